@@ -1,0 +1,1 @@
+"""Generated kernels (written by python -m derivations)."""

@@ -1,0 +1,174 @@
+"""Command line: subprocess runs of the installed console script, and in-process checks."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from moving_bogie.cli import SUBCOMMAND_MODULES, build_parser, main
+from moving_bogie.cli.common import atomic_write
+
+SCRIPT = Path(sys.executable).with_name("moving-bogie")
+
+CASE7 = {
+    "eta_f": "0.05",
+    "eta_M": "30",
+    "d": "2",
+    "cf1": "1.7",
+    "cf2": "0.01",
+    "kappa_v": "0.2",
+    "eta_v": "0.05",
+    "alpha": "0.4",
+}
+
+
+def run(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    if not SCRIPT.exists():
+        pytest.fail(f"console script {SCRIPT} is not installed: run pip install -e '.[dev]'")
+    return subprocess.run([str(SCRIPT), *args], capture_output=True, text=True, timeout=60, cwd=cwd)
+
+
+def test_params_case_7_json_equals_table1_row_7():
+    result = run("params", "--case", "7", "--json")
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert {key: data["dimensionless"][key] for key in CASE7} == CASE7
+    assert data["dimensionless"]["mu_v"] == "51" and data["dimensionless"]["beam"] == "eb"
+    assert data["physical"] is None
+
+
+def test_negative_mass_in_file_is_one_line_naming_M(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(
+        "[physical]\nEI = 6.4e6\nm = 60\nk_f = 5e7\nc_f = 0\nM = -1500\nM_b = 2500\nJ_b = 40\n"
+        "k_v = 8e6\nc_v = 0\nd = 1.7\nv = 300\nP = 1e5\n"
+    )
+    result = run("params", "--file", str(path))
+    assert result.returncode != 0
+    assert result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("moving-bogie: error: ") and " M must be" in lines[0]
+    assert "Traceback" not in result.stderr
+
+
+def test_physical_file_prints_physical_parameters_and_scales(tmp_path):
+    path = tmp_path / "phys.toml"
+    path.write_text(
+        "[physical]\nEI = 6.4e6\nm = 60\nk_f = 5e7\nc_f = 0\nM = 1500\nM_b = 2500\nJ_b = 40\n"
+        "k_v = 8e6\nc_v = 0\nd = 1.7\nv = 300\nP = 1e5\n"
+    )
+    table = run("params", "--file", str(path))
+    assert table.returncode == 0, table.stderr
+    assert "Physical parameters" in table.stdout and "Scales" in table.stdout
+    data = json.loads(run("params", "--file", str(path), "--alpha", "0.5", "--json").stdout)
+    assert data["dimensionless"]["alpha"] == "0.5"
+    assert data["physical"]["M"] == "1500" and data["physical"]["v"] != "300"
+    assert data["scales"]["chi"] > 0
+
+
+def test_version_and_help():
+    version = run("--version")
+    assert version.returncode == 0 and version.stdout.startswith("moving-bogie ")
+    top = run("--help")
+    assert top.returncode == 0 and "params" in top.stdout
+
+
+def test_every_subcommand_has_help(capsys):
+    parser = build_parser()
+    commands = parser._subparsers._group_actions[0].choices  # noqa: SLF001
+    assert len(commands) >= len(SUBCOMMAND_MODULES)
+    for name in commands:
+        with pytest.raises(SystemExit) as info:
+            main([name, "--help"])
+        assert info.value.code == 0
+        out = capsys.readouterr().out
+        assert f"usage: moving-bogie {name}" in out and len(out) > 200
+
+
+@pytest.mark.parametrize(
+    ("argv", "fragment"),
+    [
+        (["params"], "no parameters given"),
+        (["params", "--case", "99"], "valid cases of Table 1"),
+        (["params", "--case", "7", "--file", "x.toml"], "either --case or --file"),
+        (["params", "--eta-f", "0.1"], "missing parameter eta_M"),
+        (["params", "--case", "7", "--eta-M", "-3"], "eta_M must be a positive finite number (got -3)"),
+        (["params", "--case", "7", "--S", "100"], "S is only used with beam='tr'"),
+        (["params", "--file", "does-not-exist.toml"], "No such file or directory: does-not-exist.toml"),
+    ],
+)
+def test_errors_are_one_line_and_exit_2(capsys, argv, fragment):
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.count("\n") == 1 and captured.err.startswith("moving-bogie: error: ")
+    assert fragment in captured.err
+
+
+def test_overrides_without_base(capsys):
+    argv = [
+        "params",
+        "--json",
+        "--eta-f",
+        "0.05",
+        "--eta-M",
+        "30",
+        "--d",
+        "2",
+        "--cf1",
+        "1.7",
+        "--cf2",
+        "0.01",
+    ]
+    assert main([*argv, "--kappa-v", "0.2", "--eta-v", "0.05", "--alpha", "0.4"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert {key: data["dimensionless"][key] for key in CASE7} == CASE7
+
+
+def test_case_override_and_timoshenko(capsys):
+    assert main(["params", "--case", "12", "--beam", "tr", "--S", "100", "--r", "0.03", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)["dimensionless"]
+    assert (d["beam"], d["S"], d["r"], d["alpha"]) == ("tr", "100", "0.03", "0.85")
+
+
+def test_table_output_is_aligned(capsys):
+    assert main(["params", "--case", "1"]) == 0
+    title, *rows = capsys.readouterr().out.splitlines()
+    assert title == "Dimensionless parameters" and len(rows) == 14
+    value_columns = {len(row) - len(row[2:].split(" ", 1)[1].lstrip()) for row in rows}
+    assert len(value_columns) == 1
+
+
+def test_bad_number_is_a_usage_error(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["params", "--case", "7", "--alpha", "fast"])
+    assert info.value.code == 2
+    assert "not a number: 'fast'" in capsys.readouterr().err
+
+
+def test_atomic_write_replaces_whole_file(tmp_path):
+    target = tmp_path / "out" / "result.csv"
+    atomic_write(target, "a,b\n1,2\n")
+    assert target.read_text() == "a,b\n1,2\n"
+    atomic_write(target, b"new")
+    assert target.read_bytes() == b"new"
+    assert [p.name for p in target.parent.iterdir()] == ["result.csv"]  # no temporary file left
+
+
+def test_atomic_write_leaves_old_file_when_writing_fails(tmp_path, monkeypatch):
+    target = tmp_path / "result.txt"
+    target.write_text("old")
+
+    def broken_replace(src, dst):
+        raise OSError(28, "No space left on device", str(dst))
+
+    monkeypatch.setattr("moving_bogie.cli.common.os.replace", broken_replace)
+    with pytest.raises(OSError):
+        atomic_write(target, "new")
+    assert target.read_text() == "old"
+    assert [p.name for p in tmp_path.iterdir()] == ["result.txt"]
