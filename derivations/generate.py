@@ -1,0 +1,133 @@
+"""What ``python -m derivations`` writes: the generated kernels and the proof table.
+
+generated/foundation_<name>.py  coefficients (highest power first) of N(p, q), dN/dq, Q(p, q), dQ/dq in p
+generated/vehicle_<name>.py     E_chr, its partial derivatives, residue numerators and shape weights
+generated/__init__.py           the lists of models and the inputs hash
+docs/proofs.md                  derived == printed, equation by equation (paper.py)
+"""
+
+from pathlib import Path
+
+import sympy as sp
+
+from . import symbols as s
+from .emit import function_source, inputs_digest, module_source
+from .foundations import MODELS
+from .model import foundation_image
+from .paper import all_proofs
+from .system import SYSTEMS, derivatives
+
+HERE = Path(__file__).resolve().parent
+
+FOUNDATION_ARGS = ("q", "alpha", "eta_f", "eta_s", "S", "r")
+
+
+def _coeffs(expr, degree):
+    poly = sp.Poly(expr, s.p)
+    if poly.degree() > degree:
+        raise AssertionError(f"degree {poly.degree()} in p exceeds {degree}")
+    coeffs = [sp.expand(poly.coeff_monomial(s.p**k)) for k in range(degree, -1, -1)]
+    return coeffs
+
+
+def foundation_module(name, digest):
+    image = foundation_image(MODELS[name]())
+    deg_n = sp.Poly(image.N, s.p).degree()
+    deg_q = sp.Poly(image.Q, s.p).degree()
+    n = _coeffs(image.N, deg_n)
+    qq = _coeffs(image.Q, deg_q)
+    parts = [
+        function_source("n_coeffs", FOUNDATION_ARGS, n, "Coefficients of N(p, q) in p, highest power first."),
+        function_source(
+            "n_coeffs_dq", FOUNDATION_ARGS, [sp.diff(c, s.q) for c in n], "Coefficients of dN/dq in p."
+        ),
+        function_source("q_coeffs", FOUNDATION_ARGS, qq, "Coefficients of Q(p, q) in p, highest power first."),
+        function_source(
+            "q_coeffs_dq", FOUNDATION_ARGS, [sp.diff(c, s.q) for c in qq], "Coefficients of dQ/dq in p."
+        ),
+    ]
+    title = (
+        f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) (Eq. (24); Section 3.3 for Timoshenko-Rayleigh).\n\n"
+        "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
+    )
+    constants = [("ARGUMENTS", FOUNDATION_ARGS), ("DEGREE_N", deg_n), ("DEGREE_Q", deg_q)]
+    return module_source(title, digest, parts, constants)
+
+
+def vehicle_module(name, digest):
+    system = SYSTEMS[name]()
+    params = tuple(str(x) for x in system.parameters)
+    args = ("q", "K0", "Kp", "Km", *params, "pi")
+    atoms = sorted(system.atoms.items(), key=lambda kv: str(kv[0]))
+    datoms = [(sp.Symbol(f"d{a}"), sp.diff(e, s.q)) for a, e in atoms]
+    E = system.E_chr
+    parts = [function_source("e_chr", args, [E], "E_chr(q), Eq. (38) (two masses: its 2x2 analogue).", atoms)]
+    # dE/dq with K fixed, by the chain rule through the atoms; then the K partials.
+    E_q = sum((sp.diff(E, a) * da for (a, _), (da, _) in zip(atoms, datoms)), sp.Integer(0))
+    grads = [sp.expand(E_q), sp.diff(E, s.K0), sp.diff(E, s.Kp), sp.diff(E, s.Km)]
+    parts.append(
+        function_source(
+            "e_chr_partials",
+            args,
+            grads,
+            "(dE/dq at fixed K, dE/dK0, dE/dK+, dE/dK-): dE_chr/dq of Eq. (40) by the chain rule.",
+            atoms + datoms,
+        )
+    )
+    names = tuple(system.numerators)
+    parts.append(
+        function_source(
+            "numerators",
+            args,
+            [system.numerators[k] for k in names],
+            "Residue numerators n_X of Eqs. (36), (41)-(43): x(tau) = sum res(n_X e^{i q tau} / (q E_chr)).",
+            atoms,
+        )
+    )
+    parts.append(
+        function_source(
+            "shape_weights",
+            args,
+            list(system.shape_weights),
+            "(G_rear, G_front) = (8 E_chr + E1, 8 E_chr + E2) of Eqs. (44)-(47), Eqs. (45)-(46) as derived.",
+            atoms,
+        )
+    )
+    title = f"Vehicle '{name}': characteristic function, its derivatives and residue numerators."
+    constants = [("ARGUMENTS", args), ("PARAMETERS", params), ("RESPONSES", names)]
+    return module_source(title, digest, parts, constants)
+
+
+def proofs_markdown(digest):
+    lines = [
+        "# Derived versus printed formulas",
+        "",
+        "Written by `python -m derivations` (do not edit); the explanations are in [errata.md](errata.md).",
+        f"Inputs hash: `{digest}`",
+        "",
+        "| equation | statement | status | evidence |",
+        "|---|---|---|---|",
+    ]
+    for pr in all_proofs():
+        evidence = pr.evidence.replace("|", "\\|").replace("*", "\\*")
+        lines.append(f"| {pr.equation} | {pr.statement} | {pr.status} | {evidence} |")
+    return "\n".join(lines) + "\n"
+
+
+def outputs(root: Path) -> dict:
+    """Map of path -> text of every generated file."""
+    digest = inputs_digest(HERE)
+    files = {}
+    for name in MODELS:
+        files[root / "generated" / f"foundation_{name}.py"] = foundation_module(name, digest)
+    for name in SYSTEMS:
+        files[root / "generated" / f"vehicle_{name}.py"] = vehicle_module(name, digest)
+    init = module_source(
+        "Generated kernels of moving-bogie (the committed output of derivations/).",
+        digest,
+        [],
+        [("FOUNDATIONS", tuple(MODELS)), ("VEHICLES", tuple(SYSTEMS)), ("INPUTS_HASH", digest)],
+    )
+    files[root / "generated" / "__init__.py"] = init
+    files[root / "docs" / "proofs.md"] = proofs_markdown(digest)
+    return files
