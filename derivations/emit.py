@@ -59,9 +59,9 @@ def inputs_digest(folder: Path) -> str:
     return h.hexdigest()
 
 
-def function_source(name, args, outputs, doc, preamble=()):
+def function_source(name, args, outputs, doc, preamble=(), *, scalar=False):
     """One function: ``preamble`` is a list of (symbol, expression) evaluated first (e.g. B1..B4 of
-    Eq. (37)); ``outputs`` a list of expressions returned as a tuple (or alone if there is one)."""
+    Eq. (37)); ``outputs`` a list of expressions returned as a tuple (alone if ``scalar``)."""
     # Compare by name: the derivation's symbols carry assumptions (positive=True), arguments are names.
     allowed = set(args) | {str(sym) for sym, _ in preamble}
     for k, e in enumerate(outputs):
@@ -78,7 +78,7 @@ def function_source(name, args, outputs, doc, preamble=()):
         lines.append(f"    {sym} = {PRINTER.doprint(e)}")
     for sym, e in replacements:
         lines.append(f"    {sym} = {PRINTER.doprint(e)}")
-    if len(reduced) == 1:
+    if scalar:
         lines.append(f"    return {PRINTER.doprint(reduced[0])}")
     else:
         lines.append("    return (")

@@ -36,8 +36,17 @@ def foundation_module(name, digest):
     deg_q = sp.Poly(image.Q, s.p).degree()
     n = _coeffs(image.N, deg_n)
     qq = _coeffs(image.Q, deg_q)
+    deg_nq = sp.Poly(image.N, s.q).degree()
+    n_in_q = [sp.expand(sp.Poly(image.N, s.q).coeff_monomial(s.q**k)) for k in range(deg_nq, -1, -1)]
+    cut_args = ("p",) + FOUNDATION_ARGS[1:]
     parts = [
         function_source("n_coeffs", FOUNDATION_ARGS, n, "Coefficients of N(p, q) in p, highest power first."),
+        function_source(
+            "n_coeffs_in_q",
+            cut_args,
+            n_in_q,
+            "Coefficients of N(p, q) in q, highest power first: for real p its roots trace the cut locus of K.",
+        ),
         function_source(
             "n_coeffs_dq", FOUNDATION_ARGS, [sp.diff(c, s.q) for c in n], "Coefficients of dN/dq in p."
         ),
@@ -50,7 +59,7 @@ def foundation_module(name, digest):
         f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) (Eq. (24); Section 3.3 for Timoshenko-Rayleigh).\n\n"
         "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
     )
-    constants = [("ARGUMENTS", FOUNDATION_ARGS), ("DEGREE_N", deg_n), ("DEGREE_Q", deg_q)]
+    constants = [("ARGUMENTS", FOUNDATION_ARGS), ("DEGREE_N", deg_n), ("DEGREE_Q", deg_q), ("DEGREE_N_IN_Q", deg_nq)]
     return module_source(title, digest, parts, constants)
 
 
@@ -61,7 +70,7 @@ def vehicle_module(name, digest):
     atoms = sorted(system.atoms.items(), key=lambda kv: str(kv[0]))
     datoms = [(sp.Symbol(f"d{a}"), sp.diff(e, s.q)) for a, e in atoms]
     E = system.E_chr
-    parts = [function_source("e_chr", args, [E], "E_chr(q), Eq. (38) (two masses: its 2x2 analogue).", atoms)]
+    parts = [function_source("e_chr", args, [E], "E_chr(q), Eq. (38) (two masses: its 2x2 analogue).", atoms, scalar=True)]
     # dE/dq with K fixed, by the chain rule through the atoms; then the K partials.
     E_q = sum((sp.diff(E, a) * da for (a, _), (da, _) in zip(atoms, datoms)), sp.Integer(0))
     grads = [sp.expand(E_q), sp.diff(E, s.K0), sp.diff(E, s.Kp), sp.diff(E, s.Km)]
