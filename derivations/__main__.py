@@ -18,9 +18,14 @@ def main(argv=None) -> int:
         args = [sys.executable, "-m", "derivations", *(sys.argv[1:] if argv is None else argv)]
         os.execve(sys.executable, args, env)
     parser = argparse.ArgumentParser(prog="python -m derivations", description=__doc__.splitlines()[0])
-    parser.add_argument("--check", action="store_true", help="compare with the committed files, write nothing")
     parser.add_argument(
-        "--root", type=Path, default=Path(__file__).resolve().parent.parent, help="repository root to write into"
+        "--check", action="store_true", help="compare with the committed files, write nothing"
+    )
+    parser.add_argument(
+        "--root",
+        type=Path,
+        default=Path(__file__).resolve().parent.parent,
+        help="repository root to write into",
     )
     ns = parser.parse_args(argv)
     from .generate import outputs
@@ -34,7 +39,9 @@ def main(argv=None) -> int:
         stale.append(path)
         if ns.check:
             rel = path.relative_to(ns.root)
-            diff = difflib.unified_diff(old.splitlines(True), text.splitlines(True), f"a/{rel}", f"b/{rel}", n=1)
+            diff = difflib.unified_diff(
+                old.splitlines(True), text.splitlines(True), f"a/{rel}", f"b/{rel}", n=1
+            )
             sys.stdout.writelines(list(diff)[:200])
         else:
             path.parent.mkdir(parents=True, exist_ok=True)

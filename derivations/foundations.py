@@ -32,7 +32,7 @@ class TrackModel:
 
 
 def euler_bernoulli_pasternak() -> TrackModel:
-    """Eq. (1) with the Pasternak shear layer k_s of the text: EI w_xxxx - k_s w_xx + m w_tt + c_f w_t + k_f w."""
+    """Eq. (1) with the Pasternak layer k_s of the text: EI w_xxxx - k_s w_xx + m w_tt + c_f w_t + k_f w."""
     op = sp.Matrix([[EI * dx**4 - k_s * dx**2 + m * dt**2 + c_f * dt + k_f]])
     return TrackModel(op, (w_st,), (4 / (k_f * w_st),), ())
 

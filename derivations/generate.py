@@ -15,7 +15,7 @@ from .emit import function_source, inputs_digest, module_source
 from .foundations import MODELS
 from .model import foundation_image
 from .paper import all_proofs
-from .system import SYSTEMS, derivatives
+from .system import SYSTEMS
 
 HERE = Path(__file__).resolve().parent
 
@@ -45,21 +45,28 @@ def foundation_module(name, digest):
             "n_coeffs_in_q",
             cut_args,
             n_in_q,
-            "Coefficients of N(p, q) in q, highest power first: for real p its roots trace the cut locus of K.",
+            "Coefficients of N(p, q) in q, highest first: for real p its roots trace the cut of K.",
         ),
         function_source(
             "n_coeffs_dq", FOUNDATION_ARGS, [sp.diff(c, s.q) for c in n], "Coefficients of dN/dq in p."
         ),
-        function_source("q_coeffs", FOUNDATION_ARGS, qq, "Coefficients of Q(p, q) in p, highest power first."),
+        function_source(
+            "q_coeffs", FOUNDATION_ARGS, qq, "Coefficients of Q(p, q) in p, highest power first."
+        ),
         function_source(
             "q_coeffs_dq", FOUNDATION_ARGS, [sp.diff(c, s.q) for c in qq], "Coefficients of dQ/dq in p."
         ),
     ]
     title = (
-        f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) (Eq. (24); Section 3.3 for Timoshenko-Rayleigh).\n\n"
+        f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) (Eq. (24); Timoshenko-Rayleigh: Section 3.3).\n\n"
         "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
     )
-    constants = [("ARGUMENTS", FOUNDATION_ARGS), ("DEGREE_N", deg_n), ("DEGREE_Q", deg_q), ("DEGREE_N_IN_Q", deg_nq)]
+    constants = [
+        ("ARGUMENTS", FOUNDATION_ARGS),
+        ("DEGREE_N", deg_n),
+        ("DEGREE_Q", deg_q),
+        ("DEGREE_N_IN_Q", deg_nq),
+    ]
     return module_source(title, digest, parts, constants)
 
 
@@ -70,7 +77,11 @@ def vehicle_module(name, digest):
     atoms = sorted(system.atoms.items(), key=lambda kv: str(kv[0]))
     datoms = [(sp.Symbol(f"d{a}"), sp.diff(e, s.q)) for a, e in atoms]
     E = system.E_chr
-    parts = [function_source("e_chr", args, [E], "E_chr(q), Eq. (38) (two masses: its 2x2 analogue).", atoms, scalar=True)]
+    parts = [
+        function_source(
+            "e_chr", args, [E], "E_chr(q), Eq. (38) (two masses: its 2x2 analogue).", atoms, scalar=True
+        )
+    ]
     # dE/dq with K fixed, by the chain rule through the atoms; then the K partials.
     E_q = sum((sp.diff(E, a) * da for (a, _), (da, _) in zip(atoms, datoms)), sp.Integer(0))
     grads = [sp.expand(E_q), sp.diff(E, s.K0), sp.diff(E, s.Kp), sp.diff(E, s.Km)]

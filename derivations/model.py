@@ -11,12 +11,12 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .symbols import (
-    PHYSICAL_IN_DIMENSIONLESS,
     B1,
     B2,
     B3,
     B4,
     EI,
+    PHYSICAL_IN_DIMENSIONLESS,
     J_b,
     J_phys,
     M,
@@ -102,7 +102,7 @@ def contact_images() -> ContactImages:
     f1 = load_step - M * s**2 * w1 - k_v * (w1 - u + th * d_phys / 2) - c_v * s * (w1 - u + th * d_phys / 2)
     f2 = load_step - M * s**2 * w2 - k_v * (w2 - u - th * d_phys / 2) - c_v * s * (w2 - u - th * d_phys / 2)
     bounce = M_b * s**2 * u - k_v * (w1 + w2 - 2 * u) - c_v * s * (w1 + w2 - 2 * u)
-    pitch = (J_phys * s**2 * th + (k_v + c_v * s) * (w1 - w2 + th * d_phys) * d_phys / 2)
+    pitch = J_phys * s**2 * th + (k_v + c_v * s) * (w1 - w2 + th * d_phys) * d_phys / 2
     dimensionless = {w1: w_st * W0, w2: w_st * Wd, u: w_st * U, th: w_st * chi * Th}
     # delta(r) = chi delta(xi); the beam equation is scaled by 4 / (k_f w_st) (Eq. (18)).
     load_scale = chi * 4 / (k_f * w_st)

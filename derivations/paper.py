@@ -12,8 +12,8 @@ import sympy as sp
 
 from . import symbols as s
 from .foundations import euler_bernoulli_pasternak, timoshenko_rayleigh
-from .model import Th, U, W0, Wd, contact_images, foundation_image, printed_B, to_dimensionless, to_moving
-from .system import bogie_system, in_q, masses_system
+from .model import W0, Th, U, Wd, contact_images, foundation_image, printed_B, to_dimensionless, to_moving
+from .system import bogie_system, masses_system
 
 I = sp.I  # noqa: E741
 pi = sp.pi
@@ -33,12 +33,21 @@ def _compare(equation, statement, printed, derived, *, erratum_note=""):
     diff = sp.simplify(sp.expand(printed - derived))
     if diff == 0:
         return Proof(equation, "equal", statement, "printed - derived = 0")
-    return Proof(equation, "erratum", statement, f"printed - derived = {sp.sstr(diff)}. {erratum_note}".strip())
+    return Proof(
+        equation, "erratum", statement, f"printed - derived = {sp.sstr(diff)}. {erratum_note}".strip()
+    )
 
 
 def eq24_D():
     """Eq. (24) against the derived Euler-Bernoulli operator with eta_s = 0."""
-    printed = p**4 - 4 * p**2 * s.alpha**2 - 4 * q**2 + 8 * s.alpha * p * q + 8 * I * s.eta_f * (q - s.alpha * p) + 4
+    printed = (
+        p**4
+        - 4 * p**2 * s.alpha**2
+        - 4 * q**2
+        + 8 * s.alpha * p * q
+        + 8 * I * s.eta_f * (q - s.alpha * p)
+        + 4
+    )
     derived = foundation_image(euler_bernoulli_pasternak()).N.subs(s.eta_s, 0)
     proofs = [_compare("(24)", "D(p,q) of the Euler-Bernoulli beam (eta_s = 0)", printed, derived)]
     with_shear = foundation_image(euler_bernoulli_pasternak()).N
@@ -73,15 +82,17 @@ def eq14_pitch():
     th, w1, w2 = sp.symbols("theta w1 w2")
     s_t = sp.Symbol("s_t")  # d/dt as a symbol
     derived = 2 * (s.J_phys * s_t**2 * th + (s.k_v + s.c_v * s_t) * (w1 - w2 + th * s.d_phys) * s.d_phys / 2)
-    printed = 2 * s.J_phys * s_t**2 * th + s.k_v * (w1 - w2 + th * s.d_phys) + s.c_v * s_t * (
-        w1 - w2 + th * s.d_phys
-    ) * s.d_phys
+    printed = (
+        2 * s.J_phys * s_t**2 * th
+        + s.k_v * (w1 - w2 + th * s.d_phys)
+        + s.c_v * s_t * (w1 - w2 + th * s.d_phys) * s.d_phys
+    )
     return _compare(
         "(14)",
         "moment equilibrium of the bogie bar (twice Eq. (4))",
         printed,
         derived,
-        erratum_note="The stiffness term must carry the lever arm d like the damping term (compare Eq. (4), (20)).",
+        erratum_note="The stiffness term needs the lever arm d, like the damping term (Eqs. (4), (20)).",
     )
 
 
@@ -133,7 +144,9 @@ def eq30_38_bogie():
     out.append(_compare("(30)-(34), (38)", "det(A) = E_chr", det, sp.expand(E)))
     labels = {"w_rear": "(36), (39), (40)", "w_front": "(41)", "u": "(42)", "theta": "(43)"}
     for name, printed in nums.items():
-        out.append(_compare(labels[name], f"numerator of the {name} residue sum", printed, sysb.numerators[name]))
+        out.append(
+            _compare(labels[name], f"numerator of the {name} residue sum", printed, sysb.numerators[name])
+        )
     G_rear, G_front = sysb.shape_weights
     E1_derived = sp.expand(G_rear - 8 * sysb.E_chr)
     E2_derived = sp.expand(G_front - 8 * sysb.E_chr)
@@ -177,10 +190,17 @@ def eq60_62_timoshenko():
     row1 += 8 * I * eta_f * (q - alpha * p) + 4
     derived = foundation_image(timoshenko_rayleigh())
     D_derived = (derived.N / derived.Q).subs(s.eta_s, 0)
-    proof60 = _compare("(60)-(62)", "D = N/Q of the Timoshenko-Rayleigh beam, reading w_rr as w_tautau", row1, D_derived)
+    proof60 = _compare(
+        "(60)-(62)", "D = N/Q of the Timoshenko-Rayleigh beam, reading w_rr as w_tautau", row1, D_derived
+    )
     # Eq. (61) as printed, transformed, must give the printed (62):
     phi = sp.Symbol("phi")
-    row2 = -4 * S * I * p + 4 * S * phi + 4 * r**2 * (-(alpha**2) * p**2 + 2 * alpha * p * q - q**2) * phi + p**2 * phi
+    row2 = (
+        -4 * S * I * p
+        + 4 * S * phi
+        + 4 * r**2 * (-(alpha**2) * p**2 + 2 * alpha * p * q - q**2) * phi
+        + p**2 * phi
+    )
     phi_sol = sp.solve(row2, phi)[0]
     proof62 = _compare("(61)-(62)", "image of the cross-section rotation, Phi/W", Phi, phi_sol)
     note = Proof(

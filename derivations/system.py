@@ -8,8 +8,9 @@ matrix is the paper's A of Eq. (30). The bar rows are Eqs. (25)-(26) as derived 
 
 The linear algebra runs on the atoms B1..B4 and K0, K+, K- (Eq. (37)); the B's are substituted afterwards.
 For every response X in (W0, Wd, U, Th): X = n_X / E_chr, where E_chr = det(A) / c with a constant c
-(c = 1 for both systems: with the beam rows halved as in Eq. (30), det(A) is Eq. (38) itself). The time response is
-then the residue sum of Eqs. (36)-(43): x(tau) = n_X(0)/E_chr(0) + sum_j n_X(q_j) e^{i q_j tau} / (q_j E_chr'(q_j)).
+(c = 1 for both systems: with the beam rows halved as in Eq. (30), det(A) is Eq. (38) itself).
+The time response is then the residue sum of Eqs. (36)-(43):
+    x(tau) = n_X(0)/E_chr(0) + sum_j n_X(q_j) e^{i q_j tau} / (q_j E_chr'(q_j)).
 The deflection at any xi is i q W~(xi, q) = (G_rear K(xi) + G_front K(xi - d)) / (2 pi E_chr),
 G = E_chr * F, which are 8 E_chr + E1 and 8 E_chr + E2 of Eqs. (44)-(47).
 """
@@ -18,7 +19,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .model import Th, U, W0, Wd, contact_images
+from .model import W0, Th, U, Wd, contact_images
 from .symbols import B1, B2, B3, B4, K0, Km, Kp, d, eta_M, q
 
 pi = sp.pi

@@ -38,7 +38,9 @@ class Rectangle:
         return complex(0.5 * (self.x0 + self.x1), 0.5 * (self.y0 + self.y1))
 
     def contains(self, z, margin=0.0):
-        return (self.x0 - margin <= z.real <= self.x1 + margin) and (self.y0 - margin <= z.imag <= self.y1 + margin)
+        return (self.x0 - margin <= z.real <= self.x1 + margin) and (
+            self.y0 - margin <= z.imag <= self.y1 + margin
+        )
 
     def split(self, fraction=0.5):
         """Two halves across the longer side, the cut at ``fraction`` of it."""

@@ -214,14 +214,13 @@ def induced_frequencies(
         if progress is not None:
             progress(min(1.0, x))
 
-    cut, tiling = _tiling(params, window, eps, eps_branch)
-    counts = [_count(fast, rect) for rect in tiling.regions]
+    cut, tiling, counts = _count_tiling(fast, params, window, eps, eps_branch)
     total = sum(counts)
     report(0.1)
     if check_window:
         big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
-        _, big_tiling = _tiling(params, big, eps, eps_branch)
-        big_total = sum(_count(fast, rect) for rect in big_tiling.regions)
+        _, _, big_counts = _count_tiling(fast, params, big, eps, eps_branch)
+        big_total = sum(big_counts)
         if big_total != total:
             warnings.append(
                 f"window: {big_total - total} more root(s) in the window twice as large "
@@ -249,42 +248,47 @@ def induced_frequencies(
     roots, pair_warnings = _fold_pairs(roots)
     warnings += pair_warnings
     roots.sort(key=lambda r: -float(mpmath.re(r.q)))
-    mirrored = sum(1 for rect, n in zip(tiling.regions, counts) if n and rect.x0 < 0) and sum(
-        r.multiplicity for r in roots if mpmath.re(r.q) < 0
-    )
     count = total - _mirrors_counted(cells)
-    del mirrored
-    result = FrequencyResult(
-        params, model, dps, window, tuple(roots), count, tiling.unsearched,
-        fast.evaluations + precise.evaluations, tuple(warnings),
-    )
-    if result.found != result.count:
+    found = sum(r.multiplicity for r in roots)
+    if found != count:
         warnings.append(
-            f"count: the argument principle counts {result.count} root(s) with Re q >= 0, "
-            f"{result.found} were found and confirmed"
+            f"count: the argument principle counts {count} root(s) with Re q >= 0, "
+            f"{found} were found and confirmed"
         )
-        result = FrequencyResult(
-            params, model, dps, window, tuple(roots), count, tiling.unsearched,
-            fast.evaluations + precise.evaluations, tuple(warnings),
-        )
+    result = FrequencyResult(
+        params,
+        model,
+        dps,
+        window,
+        tuple(roots),
+        count,
+        tiling.unsearched,
+        fast.evaluations + precise.evaluations,
+        tuple(warnings),
+    )
     report(1.0)
     return result
 
 
-def _tiling(params, window, eps, eps_branch):
+#: Perturbations of the tiling tried in turn when an edge meets a root (eps factor, gap height fraction).
+_RETRIES = ((1.0, 0.1), (7.0, 0.113), (53.0, 0.087), (0.13, 0.121))
+
+
+def _count_tiling(fast, params, window, eps, eps_branch):
+    """Tile the window and count the roots in every tile; on a root sitting on an edge, move all the
+    edges (the tiles share them, so they move together) and count again."""
     cut = cut_locus(params, window.x0, window.x1)
-    gap_height = 0.1 * max(window.width, window.height)
-    return cut, tile_window(window, cut, eps=eps, eps_branch=eps_branch, gap_height=gap_height)
-
-
-def _count(fast, rect: Rectangle) -> int:
-    try:
-        return winding_number(fast, rect)
-    except EdgeZeroError:
-        # A root sits on this edge: the region's edges are shared with neighbours, so shrinking would lose
-        # it. Count the region as the sum of two overlapping-free halves split elsewhere is not enough
-        # either; signal it to the caller.
-        raise
+    error = None
+    for factor, fraction in _RETRIES:
+        gap_height = fraction * max(window.width, window.height)
+        tiling = tile_window(
+            window, cut, eps=eps * factor, eps_branch=eps_branch * factor, gap_height=gap_height
+        )
+        try:
+            return cut, tiling, [winding_number(fast, rect) for rect in tiling.regions]
+        except EdgeZeroError as exc:
+            error = exc
+    raise CountMismatch(f"could not place contours away from the roots and the cut: {error}")
 
 
 def _locate(fast, precise, rect, n, newton_cell, dps):

@@ -31,7 +31,9 @@ def newton(characteristic, q0, *, multiplicity=1, max_iter=60):
         q -= step
         if abs(step) <= tol * max(1, abs(q)):
             return q, abs(step)
-    raise PolishError(f"Newton did not converge near q = {mpmath.nstr(q0, 8)} (last step {mpmath.nstr(step, 3)})")
+    raise PolishError(
+        f"Newton did not converge near q = {mpmath.nstr(q0, 8)} (last step {mpmath.nstr(step, 3)})"
+    )
 
 
 @dataclass(frozen=True)

@@ -54,13 +54,15 @@ def tile_window(
         unsearched.append(Rectangle(x_band, window.x1, max(lo, band_lo), min(hi, band_hi)))
         return Tiling(tuple(regions), tuple(unsearched))
     width = (window.x1 - x_band) / columns
+    # the cut is sampled: pad each column's range so that no edge crosses it between samples
+    pad = eps + 0.05 * (cut.im_high - cut.im_low)
     for k in range(columns):
         a, b = x_band + k * width, x_band + (k + 1) * width
         rng = cut.im_range_between(a - eps, b + eps)
         if rng is None:
             regions.append(Rectangle(a, b, band_lo, band_hi))
             continue
-        c_lo, c_hi = rng[0] - eps, rng[1] + eps
+        c_lo, c_hi = rng[0] - pad, rng[1] + pad
         if c_lo - band_lo > eps:
             regions.append(Rectangle(a, b, band_lo, c_lo))
         if band_hi - c_hi > eps:

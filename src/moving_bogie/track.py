@@ -121,7 +121,9 @@ class TrackKernel:
         upper = [p for p in roots if mpmath.im(p) > 0]
         lower = [p for p in roots if mpmath.im(p) < 0]
         if len(upper) + len(lower) != len(roots):
-            raise MovingBogieError(f"K({q}) undefined: a root of N(p, q) lies on the real p-axis (q on the cut)")
+            raise MovingBogieError(
+                f"K({q}) undefined: a root of N(p, q) lies on the real p-axis (q on the cut)"
+            )
         two_pi_i = 2j * mpmath.pi
         Ks, dKs = [], []
         for xi in xis:
