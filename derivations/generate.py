@@ -31,38 +31,37 @@ def _coeffs(expr, degree):
 
 
 def foundation_module(name, digest):
-    image = foundation_image(MODELS[name]())
+    model = MODELS[name]()
+    image = foundation_image(model)
+    # Groups a model adds beyond the common ones (TrackModel.parameters) become further arguments.
+    args = FOUNDATION_ARGS + tuple(x for x in model.parameters if x not in FOUNDATION_ARGS)
     deg_n = sp.Poly(image.N, s.p).degree()
     deg_q = sp.Poly(image.Q, s.p).degree()
     n = _coeffs(image.N, deg_n)
     qq = _coeffs(image.Q, deg_q)
     deg_nq = sp.Poly(image.N, s.q).degree()
     n_in_q = [sp.expand(sp.Poly(image.N, s.q).coeff_monomial(s.q**k)) for k in range(deg_nq, -1, -1)]
-    cut_args = ("p",) + FOUNDATION_ARGS[1:]
+    cut_args = ("p",) + args[1:]
     parts = [
-        function_source("n_coeffs", FOUNDATION_ARGS, n, "Coefficients of N(p, q) in p, highest power first."),
+        function_source("n_coeffs", args, n, "Coefficients of N(p, q) in p, highest power first."),
         function_source(
             "n_coeffs_in_q",
             cut_args,
             n_in_q,
             "Coefficients of N(p, q) in q, highest first: for real p its roots trace the cut of K.",
         ),
-        function_source(
-            "n_coeffs_dq", FOUNDATION_ARGS, [sp.diff(c, s.q) for c in n], "Coefficients of dN/dq in p."
-        ),
-        function_source(
-            "q_coeffs", FOUNDATION_ARGS, qq, "Coefficients of Q(p, q) in p, highest power first."
-        ),
-        function_source(
-            "q_coeffs_dq", FOUNDATION_ARGS, [sp.diff(c, s.q) for c in qq], "Coefficients of dQ/dq in p."
-        ),
+        function_source("n_coeffs_dq", args, [sp.diff(c, s.q) for c in n], "Coefficients of dN/dq in p."),
+        function_source("q_coeffs", args, qq, "Coefficients of Q(p, q) in p, highest power first."),
+        function_source("q_coeffs_dq", args, [sp.diff(c, s.q) for c in qq], "Coefficients of dQ/dq in p."),
     ]
+    summary = (MODELS[name].__doc__ or name).strip().splitlines()[0]
     title = (
-        f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) (Eq. (24); Timoshenko-Rayleigh: Section 3.3).\n\n"
+        f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) of {summary}\n\n"
         "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
     )
     constants = [
-        ("ARGUMENTS", FOUNDATION_ARGS),
+        ("ARGUMENTS", args),
+        ("MODEL_PARAMETERS", tuple(model.parameters)),
         ("DEGREE_N", deg_n),
         ("DEGREE_Q", deg_q),
         ("DEGREE_N_IN_Q", deg_nq),

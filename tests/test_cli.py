@@ -98,7 +98,7 @@ def test_every_subcommand_has_help(capsys):
         (["params", "--case", "7", "--file", "x.toml"], "either --case or --file"),
         (["params", "--eta-f", "0.1"], "missing parameter eta_M"),
         (["params", "--case", "7", "--eta-M", "-3"], "eta_M must be a positive finite number (got -3)"),
-        (["params", "--case", "7", "--S", "100"], "S is only used with beam='tr'"),
+        (["params", "--case", "7", "--S", "100"], "S is not a parameter of beam='eb'"),
         (["params", "--file", "does-not-exist.toml"], "No such file or directory: does-not-exist.toml"),
     ],
 )

@@ -130,6 +130,7 @@ class FrequencyResult:
             "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
             "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
             "evaluations": self.evaluations,
+            "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
             "warnings": list(self.warnings),
         }
 

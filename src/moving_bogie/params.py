@@ -10,6 +10,7 @@ collected in :class:`DimensionlessParams`. The SI counterpart is :class:`Physica
 from __future__ import annotations
 
 import dataclasses
+import importlib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from fractions import Fraction
@@ -25,13 +26,20 @@ from ._exact import (
     nonnegative,
     positive,
 )
+from . import generated as _generated
 from .errors import ParameterError
 from .physical import PhysicalParams, Scales
 
 __all__ = ["BEAMS", "DimensionlessParams", "PhysicalParams", "Scales"]
 
-#: Beam theories: Euler-Bernoulli (Eq. 18) and Timoshenko-Rayleigh (Eqs. 60-61).
-BEAMS = ("eb", "tr")
+#: Track models with generated kernels: Euler-Bernoulli (Eq. 18), Timoshenko-Rayleigh (Eqs. 60-61), and any
+#: model added in derivations/foundations.py (``python -m derivations`` lists it in generated.FOUNDATIONS).
+BEAMS = _generated.FOUNDATIONS
+
+
+def _model_parameters(beam: str) -> tuple[str, ...]:
+    """Dimensionless groups a track model adds (S, r for Timoshenko-Rayleigh), from its generated kernel."""
+    return importlib.import_module(f"moving_bogie.generated.foundation_{beam}").MODEL_PARAMETERS
 
 _NUMERIC_FIELDS = ("eta_f", "eta_M", "d", "mu_v", "J_b", "kappa_v", "eta_v", "alpha", "eta_s", "S", "r")
 #: Table 1 coefficients of Eq. (63) and the field each one sets.
@@ -123,15 +131,16 @@ class DimensionlessParams:
     def __post_init__(self) -> None:
         if self.beam not in BEAMS:
             raise ParameterError("beam", f"beam must be one of {', '.join(BEAMS)} (got {self.beam!r})")
+        extra = _model_parameters(self.beam)
         for name in _NUMERIC_FIELDS:
             value = getattr(self, name)
             if name in ("S", "r"):
-                if self.beam == "eb":
+                if name not in extra:
                     if value is not None:
-                        raise ParameterError(name, f"{name} is only used with beam='tr' (got {value!r})")
+                        raise ParameterError(name, f"{name} is not a parameter of beam={self.beam!r} (got {value!r})")
                     continue
                 if value is None:
-                    raise ParameterError(name, f"{name} is required with beam='tr'")
+                    raise ParameterError(name, f"{name} is required with beam={self.beam!r}")
             object.__setattr__(self, name, _parse(name, value))
 
     __repr__ = dataclass_repr  # exact and evaluable: DimensionlessParams(eta_f='0.05', ...)

@@ -35,10 +35,13 @@ def foundation_module(beam: str):
 
 
 def foundation_arguments(params, numbers) -> dict:
-    """Keyword arguments of the generated foundation functions (besides q or p) from a params namespace."""
-    S = numbers.S if params.beam == "tr" else None
-    r = numbers.r if params.beam == "tr" else None
-    return {"alpha": numbers.alpha, "eta_f": numbers.eta_f, "eta_s": numbers.eta_s, "S": S, "r": r}
+    """Keyword arguments of the generated foundation functions (besides q or p) from a params namespace.
+
+    The names come from the generated module (its ``ARGUMENTS``), so a model added in derivations/ with the
+    existing groups needs no change here; a group the model does not use is passed as None.
+    """
+    names = foundation_module(params.beam).ARGUMENTS[1:]
+    return {name: getattr(numbers, name, None) for name in names}
 
 
 def _polyval(coeffs, x):

@@ -1,0 +1,168 @@
+"""The committed ``generated/`` and ``docs/proofs.md`` are what ``derivations/`` produces now.
+
+ARCHITECTURE, examples 1-3: generated files carry a header with the generator command, "do not edit" and
+the inputs hash; a regeneration into a temporary folder is byte-identical to the committed files and to
+a second regeneration; ``python -m derivations --check`` fails with the diff and the command that updates
+the files. The runtime never imports SymPy, whichever of its modules is imported.
+
+Each derivation run costs a few seconds (SymPy); the independent runs are started in parallel.
+"""
+
+from __future__ import annotations
+
+import ast
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+UPDATE_COMMAND = "python -m derivations"
+TIMEOUT = 300
+
+pytest.importorskip("sympy")
+
+
+def _derivations(*args, env=None) -> subprocess.Popen:
+    """Start ``python -m derivations *args`` from the repository root (derivations/ is not installed)."""
+    return subprocess.Popen(
+        [sys.executable, "-m", "derivations", *args],
+        cwd=REPO,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
+def _finish(proc: subprocess.Popen) -> subprocess.CompletedProcess:
+    out, err = proc.communicate(timeout=TIMEOUT)
+    return subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
+
+
+def _committed_files() -> dict[str, bytes]:
+    """Every committed generated file, relative path -> bytes (the files ``--root`` writes)."""
+    files = {str(p.relative_to(REPO)): p.read_bytes() for p in sorted((REPO / "generated").glob("*.py"))}
+    files["docs/proofs.md"] = (REPO / "docs" / "proofs.md").read_bytes()
+    return files
+
+
+def _written_files(root: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.rglob("*")) if p.is_file()}
+
+
+def test_committed_files_are_current():
+    result = _finish(_derivations("--check"))
+    assert result.returncode == 0, (
+        f"generated/ or docs/proofs.md is stale. Update with: {UPDATE_COMMAND}\n"
+        f"{result.stdout}\n{result.stderr}"
+    )
+    assert "generated files are current" in result.stdout
+
+
+def test_regeneration_is_deterministic_and_equals_the_committed_files(tmp_path):
+    """Two independent regenerations into empty folders are byte-identical to each other and to the repo.
+
+    The second run starts with another PYTHONHASHSEED: the command must pin it itself (SymPy's CSE and
+    ordering can depend on string hashing). The set of files must match too, so a generated module left
+    behind by a removed model (which ``--check`` cannot see) is caught here.
+    """
+    roots = [tmp_path / "first", tmp_path / "second"]
+    env_other_seed = dict(os.environ, PYTHONHASHSEED="12345")
+    procs = [_derivations("--root", str(roots[0])), _derivations("--root", str(roots[1]), env=env_other_seed)]
+    for proc in procs:
+        result = _finish(proc)
+        assert result.returncode == 0, result.stdout + result.stderr
+    first, second = (_written_files(r) for r in roots)
+    assert first == second, "two regenerations differ: the output is not deterministic"
+    committed = _committed_files()
+    assert sorted(first) == sorted(committed), (
+        f"generator writes {sorted(first)}, repository has {sorted(committed)}; "
+        f"remove stale files or run: {UPDATE_COMMAND}"
+    )
+    for rel, text in first.items():
+        assert text == committed[rel], f"{rel} differs from a regeneration. Update with: {UPDATE_COMMAND}"
+
+
+def test_check_reports_a_tampered_file_with_a_diff_and_the_command(tmp_path):
+    root = tmp_path / "copy"
+    shutil.copytree(REPO / "generated", root / "generated", ignore=shutil.ignore_patterns("__pycache__"))
+    (root / "docs").mkdir()
+    shutil.copy2(REPO / "docs" / "proofs.md", root / "docs" / "proofs.md")
+    target = root / "generated" / "foundation_eb.py"
+    original = target.read_text()
+    tampered = original.replace("4 - 4*q**2", "4 - 5*q**2", 1)
+    assert tampered != original, "the line to tamper with is gone: pick another one"
+    target.write_text(tampered)
+    proofs = root / "docs" / "proofs.md"
+    proofs.write_text(proofs.read_text().replace("equal", "same", 1))
+
+    result = _finish(_derivations("--check", "--root", str(root)))
+    assert result.returncode == 1, result.stdout + result.stderr
+    out = result.stdout
+    assert "--- a/generated/foundation_eb.py" in out and "+++ b/generated/foundation_eb.py" in out, out
+    assert "-        4 - 5*q**2" in out and "+        4 - 4*q**2" in out, out
+    assert "--- a/docs/proofs.md" in out, out
+    assert "2 generated file(s) are stale" in out, out
+    assert f"Update them with: {UPDATE_COMMAND}" in out, out
+    assert target.read_text() == tampered, "--check must not write"
+
+
+def test_generated_headers_name_the_command_and_the_inputs_hash():
+    import moving_bogie.generated as generated
+
+    digest = generated.INPUTS_HASH
+    assert len(digest) == 64 and int(digest, 16) >= 0
+    for path in sorted((REPO / "generated").glob("*.py")):
+        head = path.read_text().split('"""', 2)[1]
+        assert f"Generated by `{UPDATE_COMMAND}` - do not edit." in head, path.name
+        assert f"Inputs hash: {digest}" in head, path.name
+    assert f"Inputs hash: `{digest}`" in (REPO / "docs" / "proofs.md").read_text()
+
+
+def test_generated_code_has_no_float_literals():
+    """Full-precision constants (example 5): a float literal would round mpmath evaluations to 53 bits."""
+    for path in sorted((REPO / "generated").glob("*.py")):
+        tree = ast.parse(path.read_text())
+        floats = [
+            node.lineno
+            for node in ast.walk(tree)
+            if isinstance(node, ast.Constant) and isinstance(node.value, float)
+        ]
+        assert not floats, f"{path.name}: float literals on lines {floats}"
+        imports = [node.lineno for node in ast.walk(tree) if isinstance(node, ast.Import | ast.ImportFrom)]
+        assert not imports, f"{path.name}: generated kernels import nothing (lines {imports})"
+
+
+def test_runtime_never_imports_sympy(tmp_path):
+    """``import moving_bogie`` and every runtime and generated module, in a fresh interpreter elsewhere.
+
+    ``moving_bogie.generated`` is mapped from the top-level generated/ folder, so ``walk_packages`` over
+    ``moving_bogie`` does not list it: its modules are walked separately. ``__main__`` modules run the
+    CLI on import and are skipped (``moving_bogie.cli`` itself is imported).
+    """
+    code = """
+import importlib, pkgutil, sys
+import moving_bogie
+assert 'sympy' not in sys.modules, 'import moving_bogie imported sympy'
+import moving_bogie.generated as generated
+names = [m.name for m in pkgutil.walk_packages(moving_bogie.__path__, 'moving_bogie.')]
+names += [m.name for m in pkgutil.walk_packages(generated.__path__, 'moving_bogie.generated.')]
+names = [n for n in names if not n.endswith('__main__')]
+expected = {f'moving_bogie.generated.foundation_{n}' for n in generated.FOUNDATIONS}
+expected |= {f'moving_bogie.generated.vehicle_{n}' for n in generated.VEHICLES}
+assert expected <= set(names), sorted(expected - set(names))
+for name in names:
+    importlib.import_module(name)
+    assert 'sympy' not in sys.modules, f'importing {name} imported sympy'
+assert 'derivations' not in sys.modules
+print(len(names))
+"""
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=120
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert int(result.stdout.strip()) >= 20

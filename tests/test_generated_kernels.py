@@ -1,0 +1,318 @@
+"""Every generated kernel against direct SymPy evaluation of the derivation (ARCHITECTURE, example 6).
+
+The generated functions in ``generated/`` are evaluated at seeded random complex points with mpmath at
+30 digits and compared with the derivation's own SymPy expressions (``derivations.model.foundation_image``,
+``derivations.system``) evaluated exactly and rounded to 40 digits: every output must match to 25 digits.
+The same functions called with numpy complex arrays must agree with the mpmath values to ~1e-12 (one
+implementation serves both backends). The partial derivatives of E_chr are also checked against
+numerical differentiation of the generated E_chr, which does not involve SymPy at all.
+
+The random inputs are double-precision numbers, converted exactly to mpmath and to SymPy rationals, so
+the three backends see the same numbers and any difference is the kernel's own rounding.
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib
+import sys
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+
+sp = pytest.importorskip("sympy")
+
+REPO = Path(__file__).resolve().parents[1]
+if str(REPO) not in sys.path:  # derivations/ is a top-level folder of the repository, not installed
+    sys.path.insert(0, str(REPO))
+
+import moving_bogie.generated as generated  # noqa: E402
+from derivations import symbols as s  # noqa: E402
+from derivations.foundations import MODELS  # noqa: E402
+from derivations.model import foundation_image  # noqa: E402
+from derivations.system import SYSTEMS, derivatives, in_q  # noqa: E402
+
+DIGITS = 25  # required agreement of the 30-digit kernels with the 40-digit SymPy reference
+NUMPY_RTOL = 1e-12
+SEEDS = range(6)
+
+
+# --- exact conversion of the shared inputs -------------------------------------------------------------
+
+
+def _to_sympy(x):
+    """Exact SymPy number of a float or complex (floats are binary rationals)."""
+    if x is None:
+        return None
+    z = complex(x)
+    return sp.Rational(z.real) + sp.I * sp.Rational(z.imag) if isinstance(x, complex) else sp.Rational(z.real)
+
+
+def _to_mp(x):
+    if x is None:
+        return None
+    return mpmath.mpc(x) if isinstance(x, complex) else mpmath.mpf(x)
+
+
+def _reference(expr, values: dict):
+    """``expr`` at exact rational inputs (dict of symbol -> float/complex), rounded to 40 digits, as mpc."""
+    exact = expr.xreplace({sym: _to_sympy(v) for sym, v in values.items() if v is not None})
+    leftover = exact.free_symbols
+    assert not leftover, f"reference still depends on {sorted(map(str, leftover))}"
+    z = sp.N(exact, 40)
+    re, im = z.as_real_imag()
+    with mpmath.workdps(45):
+        return mpmath.mpc(mpmath.mpf(str(sp.N(re, 40))), mpmath.mpf(str(sp.N(im, 40))))
+
+
+def _assert_digits(values, references, what, digits=DIGITS):
+    """Each value matches its reference to ``digits`` significant digits; exact zeros stay exact."""
+    assert len(values) == len(references), f"{what}: {len(values)} outputs, expected {len(references)}"
+    with mpmath.workdps(45):
+        for k, (a, b) in enumerate(zip(values, references)):
+            if b == 0:
+                assert a == 0, f"{what}[{k}] = {a}, expected exactly 0"
+                continue
+            err = abs(mpmath.mpc(a) - b) / abs(b)
+            assert err <= mpmath.mpf(10) ** (-digits), (
+                f"{what}[{k}]: generated {mpmath.nstr(a, 30)} vs SymPy {mpmath.nstr(b, 30)}, "
+                f"only {mpmath.nstr(-mpmath.log10(err), 3)} digits"
+            )
+
+
+def _rng(seed):
+    return np.random.default_rng(20250121 + seed)
+
+
+def _complex(rng, scale=1.0):
+    return complex(*(scale * rng.uniform(-1, 1, 2)))
+
+
+def _positive(rng):
+    """A positive parameter, log-uniform over two decades around 1 (the paper's dimensionless range)."""
+    return float(10 ** rng.uniform(-1, 1))
+
+
+# --- the derivation's expressions, built once ----------------------------------------------------------
+
+
+@functools.cache
+def _foundation(name):
+    image = foundation_image(MODELS[name]())
+    return image.N, image.Q
+
+
+@functools.cache
+def _vehicle(name):
+    system = SYSTEMS[name]()
+    responses = importlib.import_module(f"moving_bogie.generated.vehicle_{name}").RESPONSES
+    parts = derivatives(system)
+    return {
+        "system": system,
+        "e_chr": [in_q(system.E_chr, system)],
+        "e_chr_partials": [parts["E_q"], parts["E_K0"], parts["E_Kp"], parts["E_Km"]],
+        "numerators": [in_q(system.numerators[r], system) for r in responses],
+        "shape_weights": [in_q(g, system) for g in system.shape_weights],
+    }
+
+
+def _foundation_module(name):
+    return importlib.import_module(f"moving_bogie.generated.foundation_{name}")
+
+
+def _vehicle_module(name):
+    return importlib.import_module(f"moving_bogie.generated.vehicle_{name}")
+
+
+def _coeffs(expr, var, degree):
+    """Coefficients of ``expr`` in ``var``, highest power first, padded to ``degree``."""
+    c = sp.Poly(expr, var).all_coeffs()
+    assert len(c) <= degree + 1
+    return [sp.Integer(0)] * (degree + 1 - len(c)) + c
+
+
+def _polyval(coeffs, x):
+    acc = 0
+    for c in coeffs:
+        acc = acc * x + c
+    return acc
+
+
+# --- the lists agree ---------------------------------------------------------------------------------------
+
+
+def test_generated_lists_match_the_derivation():
+    assert generated.FOUNDATIONS == tuple(MODELS)
+    assert generated.VEHICLES == tuple(SYSTEMS)
+    for name in SYSTEMS:
+        module = _vehicle_module(name)
+        system = _vehicle(name)["system"]
+        assert module.PARAMETERS == tuple(str(x) for x in system.parameters)
+        assert module.ARGUMENTS == ("q", "K0", "Kp", "Km", *module.PARAMETERS, "pi")
+        assert module.RESPONSES == tuple(system.numerators)
+
+
+# --- foundations -------------------------------------------------------------------------------------------
+
+
+def _foundation_point(name, seed):
+    """q complex, parameters positive; parameters the model does not use are None (as the runtime passes)."""
+    rng = _rng(seed)
+    N, Q = _foundation(name)
+    used = {str(x) for x in (N.free_symbols | Q.free_symbols)}
+    point = {"q": _complex(rng), "p": _complex(rng, 2.0)}
+    for par in _foundation_module(name).ARGUMENTS[1:]:
+        value = _positive(rng)
+        if par == "eta_f":
+            value = float(rng.uniform(0, 0.9))  # under-damped foundation, as the runtime requires
+        point[par] = value if par in used else None
+    return point
+
+
+def _foundation_symbols(point):
+    return {getattr(s, k): v for k, v in point.items()}
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+@pytest.mark.parametrize("name", generated.FOUNDATIONS)
+def test_foundation_kernels_match_sympy(name, seed):
+    module = _foundation_module(name)
+    N, Q = _foundation(name)
+    point = _foundation_point(name, seed)
+    subs = _foundation_symbols(point)
+    deg_n, deg_q, deg_nq = (sp.Poly(e, v).degree() for e, v in ((N, s.p), (Q, s.p), (N, s.q)))
+    assert (module.DEGREE_N, module.DEGREE_Q, module.DEGREE_N_IN_Q) == (deg_n, deg_q, deg_nq)
+    pars = {k: point[k] for k in module.ARGUMENTS[1:]}
+    references = {
+        "n_coeffs": [_reference(c, subs) for c in _coeffs(N, s.p, deg_n)],
+        "n_coeffs_dq": [_reference(sp.diff(c, s.q), subs) for c in _coeffs(N, s.p, deg_n)],
+        "q_coeffs": [_reference(c, subs) for c in _coeffs(Q, s.p, deg_q)],
+        "q_coeffs_dq": [_reference(sp.diff(c, s.q), subs) for c in _coeffs(Q, s.p, deg_q)],
+        "n_coeffs_in_q": [_reference(c, subs) for c in _coeffs(N, s.q, module.DEGREE_N_IN_Q)],
+    }
+    with mpmath.workdps(30):
+        mp_pars = {k: _to_mp(v) for k, v in pars.items()}
+        q, p = _to_mp(point["q"]), _to_mp(point["p"])
+        values = {f: getattr(module, f)(q, **mp_pars) for f in references if f != "n_coeffs_in_q"}
+        values["n_coeffs_in_q"] = module.n_coeffs_in_q(p, **mp_pars)
+        # The polynomials themselves, at the random p (in p) and q (in q): checks the ordering of powers.
+        polys = [
+            _polyval(values["n_coeffs"], p),
+            _polyval(values["q_coeffs"], p),
+            _polyval(values["n_coeffs_dq"], p),
+            _polyval(values["q_coeffs_dq"], p),
+            _polyval(values["n_coeffs_in_q"], q),
+        ]
+    for f, ref in references.items():
+        _assert_digits(values[f], ref, f"{name}.{f} (seed {seed})")
+    poly_refs = [_reference(e, subs) for e in (N, Q, sp.diff(N, s.q), sp.diff(Q, s.q), N)]
+    _assert_digits(polys, poly_refs, f"{name}: N, Q, N_q, Q_q, N from coefficients (seed {seed})")
+
+
+@pytest.mark.parametrize("name", generated.FOUNDATIONS)
+def test_foundation_kernels_numpy_agree_with_mpmath(name):
+    module = _foundation_module(name)
+    rng = _rng(99)
+    base = _foundation_point(name, 99)
+    pars = {k: base[k] for k in module.ARGUMENTS[1:]}
+    q = rng.uniform(-1, 1, 16) + 1j * rng.uniform(-1, 1, 16)
+    p_real = rng.uniform(-3, 3, 16)  # the runtime traces the cut locus at real p
+    for f in ("n_coeffs", "n_coeffs_dq", "q_coeffs", "q_coeffs_dq", "n_coeffs_in_q"):
+        x = p_real if f == "n_coeffs_in_q" else q
+        out = getattr(module, f)(x, **pars)
+        arrays = [np.broadcast_to(np.asarray(c, dtype=complex), x.shape) for c in out]
+        with mpmath.workdps(30):
+            mp_pars = {k: _to_mp(v) for k, v in pars.items()}
+            refs = [getattr(module, f)(_to_mp(xj.item()), **mp_pars) for xj in x]
+        _assert_numpy_close(arrays, refs, f"{name}.{f}")
+
+
+def _assert_numpy_close(arrays, refs, what):
+    for k, arr in enumerate(arrays):
+        ref = np.array([complex(r[k]) for r in refs])
+        err = np.abs(arr - ref)
+        bound = NUMPY_RTOL * np.abs(ref)
+        bad = err > bound
+        worst = float(np.max(err / np.maximum(np.abs(ref), 1e-300)))
+        assert not bad.any(), f"{what}[{k}]: numpy differs from mpmath by {worst:.2e} relative"
+
+
+# --- vehicles ----------------------------------------------------------------------------------------------
+
+
+def _vehicle_point(name, seed):
+    rng = _rng(seed)
+    point = {"q": _complex(rng), "K0": _complex(rng, 2.0), "Kp": _complex(rng, 2.0), "Km": _complex(rng, 2.0)}
+    for par in _vehicle_module(name).PARAMETERS:
+        point[par] = _positive(rng)
+    return point
+
+
+def _mp_vehicle_args(point):
+    return {k: _to_mp(v) for k, v in point.items()} | {"pi": mpmath.mp.pi}
+
+
+VEHICLE_FUNCTIONS = ("e_chr", "e_chr_partials", "numerators", "shape_weights")
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+@pytest.mark.parametrize("name", generated.VEHICLES)
+def test_vehicle_kernels_match_sympy(name, seed):
+    module = _vehicle_module(name)
+    exprs = _vehicle(name)
+    point = _vehicle_point(name, seed)
+    # The derivation's parameter symbols carry assumptions (positive=True): map them by name.
+    symbols = {str(x): x for x in exprs["system"].parameters}
+    symbols |= {k: getattr(s, k) for k in ("q", "K0", "Kp", "Km")}
+    subs = {symbols[k]: v for k, v in point.items()}
+    with mpmath.workdps(30):
+        args = _mp_vehicle_args(point)
+        values = {f: getattr(module, f)(**args) for f in VEHICLE_FUNCTIONS}
+    values["e_chr"] = [values["e_chr"]]
+    for f in VEHICLE_FUNCTIONS:
+        refs = [_reference(e, subs) for e in exprs[f]]
+        _assert_digits(values[f], refs, f"{name}.{f} (seed {seed})")
+
+
+@pytest.mark.parametrize("name", generated.VEHICLES)
+def test_e_chr_partials_are_the_derivatives_of_e_chr(name):
+    """dE/dq at fixed K and dE/dK0, dE/dK+, dE/dK- of Eq. (40), by numerical differentiation (no SymPy)."""
+    module = _vehicle_module(name)
+    for seed in SEEDS[:3]:
+        point = _vehicle_point(name, seed)
+        with mpmath.workdps(30):
+            args = _mp_vehicle_args(point)
+            partials = module.e_chr_partials(**args)
+            numeric = []
+            for var in ("q", "K0", "Kp", "Km"):
+
+                def f(z, var=var, args=args):
+                    return module.e_chr(**(args | {var: z}))
+
+                numeric.append(mpmath.diff(f, args[var]))
+        # mpmath.diff works at raised precision; agreement to 25 digits as for SymPy.
+        with mpmath.workdps(40):
+            _assert_digits(partials, [mpmath.mpc(x) for x in numeric], f"{name}.e_chr_partials (seed {seed})")
+
+
+@pytest.mark.parametrize("name", generated.VEHICLES)
+def test_vehicle_kernels_numpy_agree_with_mpmath(name):
+    module = _vehicle_module(name)
+    rng = _rng(77)
+    n = 16
+    pars = {k: _positive(rng) for k in module.PARAMETERS}
+    arrays_in = {k: rng.uniform(-1, 1, n) + 1j * rng.uniform(-1, 1, n) for k in ("q", "K0", "Kp", "Km")}
+    arrays_in["q"] = arrays_in["q"] * 0.5
+    for f in VEHICLE_FUNCTIONS:
+        out = getattr(module, f)(**arrays_in, **pars, pi=np.pi)
+        out = [out] if f == "e_chr" else list(out)
+        arrays = [np.broadcast_to(np.asarray(c, dtype=complex), (n,)) for c in out]
+        refs = []
+        with mpmath.workdps(30):
+            for j in range(n):
+                point = {k: complex(v[j]) for k, v in arrays_in.items()} | pars
+                r = getattr(module, f)(**_mp_vehicle_args(point))
+                refs.append([r] if f == "e_chr" else list(r))
+        _assert_numpy_close(arrays, refs, f"{name}.{f}")
