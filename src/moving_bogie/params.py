@@ -17,6 +17,7 @@ from fractions import Fraction
 from types import SimpleNamespace
 from typing import Any
 
+from . import generated as _generated
 from ._exact import (
     NumberLike,
     dataclass_repr,
@@ -26,7 +27,6 @@ from ._exact import (
     nonnegative,
     positive,
 )
-from . import generated as _generated
 from .errors import ParameterError
 from .physical import PhysicalParams, Scales
 
@@ -40,6 +40,7 @@ BEAMS = _generated.FOUNDATIONS
 def _model_parameters(beam: str) -> tuple[str, ...]:
     """Dimensionless groups a track model adds (S, r for Timoshenko-Rayleigh), from its generated kernel."""
     return importlib.import_module(f"moving_bogie.generated.foundation_{beam}").MODEL_PARAMETERS
+
 
 _NUMERIC_FIELDS = ("eta_f", "eta_M", "d", "mu_v", "J_b", "kappa_v", "eta_v", "alpha", "eta_s", "S", "r")
 #: Table 1 coefficients of Eq. (63) and the field each one sets.
@@ -137,7 +138,9 @@ class DimensionlessParams:
             if name in ("S", "r"):
                 if name not in extra:
                     if value is not None:
-                        raise ParameterError(name, f"{name} is not a parameter of beam={self.beam!r} (got {value!r})")
+                        raise ParameterError(
+                            name, f"{name} is not a parameter of beam={self.beam!r} (got {value!r})"
+                        )
                     continue
                 if value is None:
                     raise ParameterError(name, f"{name} is required with beam={self.beam!r}")
