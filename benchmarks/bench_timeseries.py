@@ -1,0 +1,77 @@
+"""Time the closed-form time series (Eqs. (35)-(43)) and print a table.
+
+Run: ``python benchmarks/bench_timeseries.py``. Rows, for Cases 7 (damped), 2 (undamped) and 5 (unstable)
+of Table 1, once the induced frequencies are known:
+
+* residue coefficients (mpmath, at the roots' 30 digits), computed once;
+* the steady + harmonic part for 10^3, 10^4, 10^5 points up to tau = 10^2, 10^3, 10^4: the cost depends
+  on the number of points only, not on tau (target: 10^5 points to tau = 10^4 under 1 s);
+* the full ``closed_form_response`` with ``branch_cut="auto"`` for 10^5 points to tau = 10^4, and the
+  branch-cut part alone on 2001 points to tau = 100.
+
+The machine is shared: each timing is the best of three runs.
+"""
+
+from __future__ import annotations
+
+import platform
+import time
+
+import numpy as np
+
+from moving_bogie.branch_cut import BranchCut
+from moving_bogie.cases import table1_case
+from moving_bogie.frequencies import induced_frequencies
+from moving_bogie.residues import residue_expansion
+from moving_bogie.response import closed_form_response
+
+
+def best(func, repeat: int = 3) -> float:
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        func()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def main() -> None:
+    print(f"python {platform.python_version()}, numpy {np.__version__}, {platform.machine()}")
+    rows = [("case", "job", "points", "tau max", "seconds")]
+    for case in (7, 2, 5):
+        params = table1_case(case)
+        start = time.perf_counter()
+        result = induced_frequencies(params, dps=30)
+        rows.append(
+            (f"{case}", "induced frequencies (30 digits)", "-", "-", f"{time.perf_counter() - start:.2f}")
+        )
+        t = best(lambda params=params, result=result: residue_expansion(params, result, shapes=False))
+        rows.append((f"{case}", "residue coefficients (mpmath)", "-", "-", f"{t:.3f}"))
+        expansion = residue_expansion(params, result, shapes=False)
+        for n in (10**3, 10**4, 10**5):
+            for tmax in (1e2, 1e3, 1e4):
+                tau = np.linspace(0.0, tmax, n)
+                t = best(lambda tau=tau, e=expansion: e.totals(tau))
+                rows.append(
+                    (f"{case}", "steady + harmonic, 4 responses", f"{n:.0e}", f"{tmax:.0e}", f"{t:.3f}")
+                )
+        tau = np.linspace(0.0, 1e4, 10**5)
+        t = best(lambda tau=tau, p=params, r=result: closed_form_response(p, tau, frequencies=r), repeat=1)
+        rows.append((f"{case}", "closed_form_response, branch_cut='auto'", "1e+05", "1e+04", f"{t:.2f}"))
+        bc = BranchCut(params)
+        tau = np.linspace(0.0, 100.0, 2001)
+        t = best(lambda tau=tau, bc=bc: bc.responses(tau), repeat=1)
+        rows.append((f"{case}", "branch-cut part alone", "2001", "1e+02", f"{t:.2f}"))
+    widths = [max(len(r[k]) for r in rows) for k in range(len(rows[0]))]
+    for k, row in enumerate(rows):
+        print(
+            "  ".join(
+                cell.rjust(w) if j != 1 else cell.ljust(w) for j, (cell, w) in enumerate(zip(row, widths))
+            )
+        )
+        if k == 0:
+            print("  ".join("-" * w for w in widths))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,271 @@
+"""``moving-bogie timeseries`` and ``moving-bogie shape``: closed-form vibrations, Eqs. (35)-(47)."""
+
+from __future__ import annotations
+
+import argparse
+
+from .common import add_json_option, add_parameter_options, params_from_args, print_json
+
+_MAX_POINTS = 10_000_000
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``timeseries`` and ``shape`` subcommands."""
+    parser = subparsers.add_parser(
+        "timeseries",
+        help="closed-form time series w(0,tau), w(d,tau), u, theta (Eqs. (35)-(43))",
+        description=(
+            "Closed-form vibrations at the wheels and of the bogie bar: steady part (Eq. (39)), residues at\n"
+            "every induced frequency (Eqs. (40)-(43)) and the branch-cut part I_bc of Eq. (35) where it\n"
+            "matters (Euler-Bernoulli beam). Times are dimensionless tau, or seconds with a [physical]\n"
+            "parameter file (results then in m and rad). Exit status 2 on bad input or when the induced\n"
+            "frequencies could not all be confirmed."
+        ),
+        epilog=(
+            "examples:\n  moving-bogie timeseries --case 7 --tau 20,50,100\n"
+            "  moving-bogie timeseries --case 1 --tmax 100 --points 2001 --plot case1.png\n"
+            "  moving-bogie timeseries --case 5 --tmax 2000 --points 20001 --plot-long case5_long.png\n"
+            "  moving-bogie timeseries --case 2 --tmax 50 --json --no-branch-cut"
+        ),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    add_parameter_options(parser)
+    _add_common(parser)
+    times = parser.add_argument_group("times")
+    times.add_argument("--tau", metavar="T1,T2,...", help="comma-separated times")
+    times.add_argument("--tmax", type=float, metavar="T", help="uniform times 0..T")
+    times.add_argument(
+        "--points", type=int, default=2001, metavar="K", help="points with --tmax (default 2001)"
+    )
+    out = parser.add_argument_group("output")
+    add_json_option(out)
+    out.add_argument("--csv", metavar="F.csv", help="write the series as CSV")
+    out.add_argument(
+        "--plot", metavar="F.png", help="three panels: w(0,tau), u, theta (paper's Figure 5 style)"
+    )
+    out.add_argument("--plot-long", metavar="F.png", help="two panels: w(0,tau), u (paper's Figure 6 style)")
+    parser.set_defaults(handler=run_timeseries)
+
+    shape = subparsers.add_parser(
+        "shape",
+        help="beam deflection w(xi) around the bogie at one time (Eqs. (44)-(47))",
+        description=(
+            "Closed-form beam deflection shape w(xi, tau) at one time for xi around the bogie (rear wheel\n"
+            "at xi = 0, front wheel at xi = d), with the branch-cut part where it matters. xi and tau are\n"
+            "dimensionless, or metres and seconds with a [physical] parameter file (result in m)."
+        ),
+        epilog=(
+            "examples:\n  moving-bogie shape --case 7 --tau 20\n"
+            "  moving-bogie shape --case 1 --tau 100 --xi-min -30 --xi-max 30 --plot shape.png"
+        ),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    add_parameter_options(shape)
+    _add_common(shape)
+    shape.add_argument("--tau", type=float, required=True, metavar="T", help="the time")
+    shape.add_argument("--xi-min", type=float, default=None, metavar="X", help="default -10 (or -10/chi m)")
+    shape.add_argument(
+        "--xi-max", type=float, default=None, metavar="X", help="default d + 10 (or (d+10)/chi m)"
+    )
+    shape.add_argument("--points", type=int, default=401, metavar="K", help="points in xi (default 401)")
+    sout = shape.add_argument_group("output")
+    add_json_option(sout)
+    sout.add_argument("--csv", metavar="F.csv", help="write xi, w as CSV")
+    sout.add_argument("--plot", metavar="F.png", help="plot w(xi)")
+    shape.set_defaults(handler=run_shape)
+
+
+def _add_common(parser):
+    parser.add_argument(
+        "--model", choices=("bogie", "masses"), default="bogie", help="vehicle (default bogie)"
+    )
+    parser.add_argument(
+        "--branch-cut",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="force the branch-cut part on or off (default: automatic, where it exceeds 1e-6 of the steady "
+        "deflection)",
+    )
+    parser.add_argument(
+        "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
+    )
+
+
+def _branch_cut(args):
+    return "auto" if args.branch_cut is None else bool(args.branch_cut)
+
+
+def _check(args):
+    from ..errors import ParameterError
+
+    if not 15 <= args.dps <= 1000:
+        raise ParameterError("dps", f"dps must be between 15 and 1000 (got {args.dps})")
+    if not 2 <= args.points <= _MAX_POINTS:
+        raise ParameterError("points", f"points must be between 2 and {_MAX_POINTS} (got {args.points})")
+
+
+def _times(args):
+    import numpy as np
+
+    from ..errors import ParameterError
+
+    if (args.tau is None) == (args.tmax is None):
+        raise ParameterError("tau", "give either --tau T1,T2,... or --tmax T")
+    if args.tau is not None:
+        try:
+            values = [float(v) for v in args.tau.split(",") if v.strip()]
+        except ValueError:
+            raise ParameterError("tau", f"tau must be comma-separated numbers (got {args.tau!r})") from None
+        if not values:
+            raise ParameterError("tau", "tau: no times given")
+        tau = np.array(values)
+    else:
+        if not (np.isfinite(args.tmax) and args.tmax > 0):
+            raise ParameterError("tmax", f"tmax must be a positive number (got {args.tmax})")
+        tau = np.linspace(0.0, args.tmax, args.points)
+    if not np.all(np.isfinite(tau)) or np.any(tau < 0):
+        raise ParameterError("tau", "tau must be finite and >= 0")
+    return tau
+
+
+def _frequencies_or_fail(params, model, dps, json_mode, branch_cut):
+    from ..branch_cut import BranchCut
+    from ..errors import MovingBogieError
+    from ..frequencies import induced_frequencies
+    from .progress import progress_bar
+
+    if branch_cut is True:
+        BranchCut(params, model)  # refuses a Timoshenko-Rayleigh beam before the long frequency search
+
+    with progress_bar("induced frequencies", enabled=not json_mode) as update:
+        result = induced_frequencies(params, model, dps=dps, progress=update)
+    if not result.count_ok:
+        detail = "; ".join(result.warnings) or f"{result.found} of {result.count} roots confirmed"
+        raise MovingBogieError(f"induced frequencies incomplete ({detail}); no closed-form response")
+    return result
+
+
+def run_timeseries(args: argparse.Namespace) -> int:
+    """Compute and print (or write) the closed-form time series."""
+    from ..response import closed_form_response
+
+    _check(args)
+    tau = _times(args)
+    params, physical = params_from_args(args)
+    result = _frequencies_or_fail(params, args.model, args.dps, args.json, _branch_cut(args))
+    ts = closed_form_response(
+        physical if physical is not None else params,
+        tau,
+        model=args.model,
+        frequencies=result,
+        branch_cut=_branch_cut(args),
+    )
+    if args.csv:
+        write_csv_series(ts, args.csv)
+    if args.plot or args.plot_long:
+        from ..plots_timeseries import long_time_figure, save_figure, time_series_figure
+
+        label = f"Case {args.case}" if args.case is not None else "closed form"
+        if args.plot:
+            save_figure(time_series_figure(ts, title=f"{label}: closed-form time series"), args.plot)
+        if args.plot_long:
+            save_figure(long_time_figure(ts, title=f"{label}: long times"), args.plot_long)
+    if args.json:
+        print_json(ts.to_dict())
+    else:
+        print(format_series(ts))
+    return 0
+
+
+def write_csv_series(ts, path) -> None:
+    from .common import atomic_write
+
+    names = ("tau", "w_rear", "w_front", "u", "theta")
+    units = [ts.units["tau"], ts.units["w"], ts.units["w"], ts.units["u"], ts.units["theta"]]
+    lines = [",".join(names), "# units: " + ",".join(units)]
+    columns = [getattr(ts, n) for n in names]
+    for row in zip(*columns):
+        lines.append(",".join(repr(float(v)) for v in row))
+    atomic_write(path, "\n".join(lines) + "\n")
+
+
+def format_series(ts) -> str:
+    u = ts.units
+    bc = (
+        "all times"
+        if ts.branch_cut_until == float("inf")
+        else (f"tau <= {ts.branch_cut_until:g}" if ts.branch_cut else "not included")
+    )
+    lines = [
+        f"Closed-form response ({ts.model}); {len(ts.frequencies.roots)} induced-frequency pair(s); "
+        f"branch-cut part: {bc}",
+        f"steady parts: w_rear {ts.w_steady_rear:.10g}  w_front {ts.w_steady_front:.10g}  "
+        f"u {ts.u_steady:.10g}  theta {ts.theta_steady:.10g}",
+        f"units: tau [{u['tau']}], w, u [{u['w']}], theta [{u['theta']}]",
+        f"{'tau':>14} {'w_rear':>18} {'w_front':>18} {'u':>18} {'theta':>18}",
+    ]
+    for row in zip(ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta):
+        lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))
+    lines += [f"note: {n}" for n in ts.notes]
+    return "\n".join(lines)
+
+
+def run_shape(args: argparse.Namespace) -> int:
+    """Compute and print (or write) the deflection shape at one time."""
+    import numpy as np
+
+    from ..errors import ParameterError
+    from ..response import SI_UNITS, deflection_shape
+
+    _check(args)
+    params, physical = params_from_args(args)
+    if not (np.isfinite(args.tau) and args.tau >= 0):
+        raise ParameterError("tau", f"tau must be finite and >= 0 (got {args.tau})")
+    d = float(params.d)
+    chi = physical.scales().chi if physical is not None else 1.0
+    lo = args.xi_min if args.xi_min is not None else -10.0 / chi
+    hi = args.xi_max if args.xi_max is not None else (d + 10.0) / chi
+    if not (np.isfinite(lo) and np.isfinite(hi) and hi > lo):
+        raise ParameterError("xi_max", f"need xi_min < xi_max (got {lo}, {hi})")
+    xi = np.linspace(lo, hi, args.points)
+    result = _frequencies_or_fail(params, args.model, args.dps, args.json, _branch_cut(args))
+    w = deflection_shape(
+        physical if physical is not None else params,
+        xi,
+        args.tau,
+        model=args.model,
+        frequencies=result,
+        branch_cut=_branch_cut(args),
+    )
+    units = (
+        {"xi": SI_UNITS["xi"], "tau": SI_UNITS["tau"], "w": SI_UNITS["w"]}
+        if physical is not None
+        else {"xi": "1", "tau": "1", "w": "w_st"}
+    )
+    if args.csv:
+        from .common import atomic_write
+
+        text = "xi,w\n# units: " + f"{units['xi']},{units['w']}\n"
+        text += "".join(f"{x!r},{float(v)!r}\n" for x, v in zip(xi.tolist(), w))
+        atomic_write(args.csv, text)
+    if args.plot:
+        from ..plots_timeseries import save_figure, shape_figure
+
+        fig = shape_figure(xi, w, tau=args.tau, d=d / chi, si=physical is not None)
+        save_figure(fig, args.plot)
+    if args.json:
+        print_json(
+            {
+                "tau": args.tau,
+                "xi": xi.tolist(),
+                "w": [float(v) for v in w],
+                "model": args.model,
+                "units": units,
+            }
+        )
+    else:
+        lines = [f"Deflection shape at tau = {args.tau:g} [{units['tau']}] ({args.model})"]
+        lines.append(f"{'xi':>14} {'w':>18}")
+        lines += [f"{x:>14.8g} {v:>18.10g}" for x, v in zip(xi, w)]
+        print("\n".join(lines))
+    return 0

@@ -1,0 +1,142 @@
+"""``moving-bogie timeseries`` and ``moving-bogie shape``: JSON shape, files, and clear failures.
+
+References: the JSON layout promised in docs/vibrations.md; the homogeneous initial conditions (w(0,0) = 0);
+Eq. (28) at xi = 0 (the shape's value at the rear wheel is the rear-wheel series).
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from moving_bogie.cli import main
+
+SCRIPT = Path(sys.executable).with_name("moving-bogie")
+
+
+def test_timeseries_json_from_the_console_script():
+    if not SCRIPT.exists():
+        pytest.fail(f"console script {SCRIPT} is not installed: run pip install -e '.[dev]'")
+    done = subprocess.run(
+        [str(SCRIPT), "timeseries", "--case", "7", "--tau", "0,20", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0, done.stderr
+    data = json.loads(done.stdout)
+    for key in ("tau", "w_rear", "w_front", "u", "theta"):
+        assert len(data[key]) == 2
+    assert data["tau"] == [0.0, 20.0]
+    assert data["branch_cut"] is True and data["units"]["tau"] == "1"
+    assert isinstance(data["w_steady_rear"], float)
+    assert abs(data["w_rear"][0]) < 1e-9
+
+
+def test_timeseries_files_and_no_branch_cut(tmp_path, capsys):
+    csv, png = tmp_path / "s.csv", tmp_path / "s.png"
+    code = main(
+        [
+            "timeseries",
+            "--case",
+            "7",
+            "--tmax",
+            "10",
+            "--points",
+            "11",
+            "--no-branch-cut",
+            "--json",
+            "--csv",
+            str(csv),
+            "--plot",
+            str(png),
+        ]
+    )
+    assert code == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["branch_cut"] is False and len(data["tau"]) == 11
+    lines = csv.read_text().splitlines()
+    assert lines[0] == "tau,w_rear,w_front,u,theta" and len(lines) == 13
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_shape_json_matches_the_rear_wheel_series(capsys):
+    assert (
+        main(
+            [
+                "shape",
+                "--case",
+                "7",
+                "--tau",
+                "20",
+                "--xi-min",
+                "0",
+                "--xi-max",
+                "2",
+                "--points",
+                "3",
+                "--json",
+            ]
+        )
+        == 0
+    )
+    shape = json.loads(capsys.readouterr().out)
+    assert shape["xi"] == [0.0, 1.0, 2.0] and len(shape["w"]) == 3
+    assert main(["timeseries", "--case", "7", "--tau", "20", "--json"]) == 0
+    series = json.loads(capsys.readouterr().out)
+    assert shape["w"][0] == pytest.approx(series["w_rear"][0], rel=1e-10)
+    assert shape["w"][2] == pytest.approx(series["w_front"][0], rel=1e-10)
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        (["timeseries", "--case", "7", "--tau", "-1"], "tau"),
+        (["timeseries", "--case", "7", "--tau", "1", "--tmax", "2"], "either --tau"),
+        (["timeseries", "--case", "7", "--tau", "x"], "comma-separated"),
+        (["timeseries", "--case", "99", "--tau", "1"], "unknown case"),
+        (["shape", "--case", "7", "--tau", "1", "--xi-min", "3", "--xi-max", "1"], "xi_min < xi_max"),
+        (
+            [
+                "timeseries",
+                "--case",
+                "7",
+                "--tau",
+                "1",
+                "--beam",
+                "tr",
+                "--S",
+                "100",
+                "--r",
+                "0.03",
+                "--branch-cut",
+            ],
+            "Euler-Bernoulli",
+        ),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(capsys, argv, needle):
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("moving-bogie: error:") and needle in err[0]
+
+
+def test_failed_frequency_count_exits_2(capsys, monkeypatch):
+    import dataclasses
+
+    import moving_bogie.frequencies as fq
+
+    real = fq.induced_frequencies
+
+    def broken(params, model, **kwargs):
+        result = real(params, model, **kwargs)
+        return dataclasses.replace(result, roots=result.roots[:-1], warnings=("count: stubbed mismatch",))
+
+    monkeypatch.setattr(fq, "induced_frequencies", broken)
+    assert main(["timeseries", "--case", "7", "--tau", "1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "induced frequencies incomplete" in err[0]
