@@ -1,0 +1,219 @@
+"""Finite-beam validation of the closed form (paper, Section 3.2; ``moving_bogie.validation``).
+
+References used here:
+
+* the closed form (``moving_bogie.response.closed_form_response``: steady part + residues at the
+  induced frequencies + branch-cut integral, Eqs. (35)-(43)) is the infinite-beam reference the finite
+  beam must approach as its modes grow;
+* the tolerance is the finite beam's own error, estimated from a 2N-mode, half-step run; its
+  calibration against 4000-mode runs is in ``benchmarks/bench_validation.py --calibrate`` and
+  ``docs/finite_beam.md`` (estimate / true error 0.94-1.07 over all 13 cases);
+* the comparison window is checked against a finite beam twice as long with the same ``k_max``
+  (the same model without the supports' reflections in that window).
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from moving_bogie.cases import table1_case
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.finite_beam import simulate_finite_beam
+from moving_bogie.validation import (
+    comparison_window,
+    default_tau_max,
+    plot_validation,
+    reflection_bound,
+    truncation_a_priori,
+    validate,
+)
+
+SCRIPT = Path(sys.executable).with_name("moving-bogie")
+
+
+@pytest.fixture(scope="module")
+def case2():
+    """Case 2 (undamped, Figure 9) with the defaults: 500 modes, tau_max 100."""
+    return validate(table1_case(2))
+
+
+def test_defaults_follow_damping():
+    assert default_tau_max(table1_case(2)) == 100.0  # eta_f = 0
+    assert default_tau_max(table1_case(7)) == 200.0  # eta_f = 0.05
+    assert truncation_a_priori(4.0) == pytest.approx(8 / (3 * math.pi * 64))
+
+
+def test_reflection_bound_is_zero_until_the_fastest_wave_is_back():
+    # Reference: the finite beam's hard window tau_valid = 2 x0 / (c(k_max) - alpha) (geometry module).
+    r = simulate_finite_beam(table1_case(2), 100.0, n_modes=500, tau_out=np.linspace(0, 100, 11))
+    p = table1_case(2)
+    tau = np.linspace(0.0, 300.0, 3001)
+    bound = reflection_bound(
+        tau,
+        length=r.length,
+        entry=r.entry,
+        d=float(p.d),
+        alpha=float(p.alpha),
+        eta_f=0.0,
+        eta_s=0.0,
+        k_max=r.k_max,
+    )
+    assert np.all(bound[tau < r.tau_valid * 0.999] == 0.0)
+    assert bound[-1] > 1e-2 and np.all(np.diff(bound) >= -1e-15)  # undamped: grows, never decays
+    damped = reflection_bound(
+        tau,
+        length=r.length,
+        entry=r.entry,
+        d=float(p.d),
+        alpha=float(p.alpha),
+        eta_f=0.05,
+        eta_s=0.0,
+        k_max=r.k_max,
+    )
+    assert damped.max() < 1e-3  # 0.05 damping: every reflection returns below 1e-3
+
+
+def test_window_is_justified_by_a_longer_beam():
+    # Reference: the same finite-beam model on a beam twice as long with twice the modes (same k_max,
+    # same time step), whose supports are twice as far: the difference in the window bounds what the
+    # supports' reflections add. Case 7 is damped, so the window (150) runs past tau_valid (98).
+    p = table1_case(7)
+    tau = np.linspace(0.0, 150.0, 1501)
+    short = simulate_finite_beam(p, 150.0, n_modes=500, tau_out=tau)
+    window = comparison_window(p, short)
+    assert short.tau_valid < 100.0 and window == pytest.approx(150.0)
+    long = simulate_finite_beam(
+        p,
+        150.0,
+        n_modes=1000,
+        length=2 * short.length,
+        entry=short.entry + 0.5 * short.length,
+        dt=short.dt,
+        tau_out=tau,
+    )
+    for name in ("w_rear", "w_front", "u", "theta"):
+        assert np.max(np.abs(getattr(short, name) - getattr(long, name))) < 1e-3, name
+
+
+def test_undamped_window_is_the_strict_one(case2):
+    assert case2.finite.tau_valid <= case2.window[1] <= 1.02 * case2.finite.tau_valid
+
+
+def test_few_modes_converge_towards_the_closed_form():
+    # Reference: the closed form of Case 1 (eta_f = 0.1). Fixed beam L = 200, N = 100, 200, 400:
+    # k_max = 1.6, 3.1, 6.3. Truncation error ~ k_max^-3 (docs/finite_beam.md): each doubling of N
+    # should cut the difference by several times (8 asymptotically).
+    from moving_bogie.response import closed_form_response
+
+    p = table1_case(1)
+    tau = np.linspace(0.0, 60.0, 601)
+    closed = closed_form_response(p, tau)
+    diffs = []
+    for n in (100, 200, 400):
+        r = simulate_finite_beam(p, 60.0, n_modes=n, length=200.0, entry=60.0, tau_out=tau)
+        inside = tau <= comparison_window(p, r)
+        assert inside.sum() > 500
+        diffs.append([np.max(np.abs(getattr(r, k) - getattr(closed, k))[inside]) for k in ("w_rear", "u")])
+    diffs = np.array(diffs)
+    assert np.all(diffs[1] < diffs[0] / 4) and np.all(diffs[2] < diffs[1] / 4), diffs
+    assert diffs[2, 0] < 0.02 * np.max(np.abs(closed.w_rear))
+
+
+def _check_agrees(result):
+    assert result.agrees, {k: (q.max_abs_diff, q.tolerance) for k, q in result.quantities.items()}
+    for q in result.quantities.values():
+        # The closed form is much closer to the 2N-mode run than to the N-mode run: the difference is
+        # the finite beam's truncation, not a closed-form error.
+        assert q.reference_diff < 0.35 * q.max_abs_diff, q
+
+
+def test_case_2_undamped_agrees(case2):
+    # Reference: closed form of Case 2 (real induced frequencies, Table 2; Figure 9).
+    _check_agrees(case2)
+    assert case2.max_abs_diff_rear < 0.05 * case2.quantities["rear"].amplitude
+
+
+def test_case_5_unstable_agrees():
+    # Reference: closed form of Case 5 (one induced frequency with Im q = -0.000472, Table 2; Figure 12).
+    # tau_max 100 instead of the default 200 keeps the test fast; the CLI test runs a default length.
+    result = validate(table1_case(5), tau_max=100.0)
+    assert result.window == (0.0, pytest.approx(100.0))
+    _check_agrees(result)
+
+
+def test_cli_case_7_json(tmp_path):
+    # Reference: closed form of Case 7 (damped foundation and suspension; Figure A1), via the CLI.
+    if not SCRIPT.exists():
+        pytest.fail(f"console script {SCRIPT} is not installed: run pip install -e '.[dev]'")
+    proc = subprocess.run(
+        [str(SCRIPT), "validate", "--case", "7", "--json"], capture_output=True, text=True, timeout=300
+    )
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    for key in ("max_abs_diff_rear", "max_abs_diff_u", "max_abs_diff_theta", "max_abs_diff_front"):
+        assert isinstance(data[key], float) and data[key] >= 0
+    assert data["agrees"] is True and data["case"] == 7 and data["model"] == "bogie"
+    assert data["n_modes"] == 500 and data["L"] == pytest.approx(500 * math.pi / 4)
+    assert 0 < data["entry"] < data["L"] and data["k_max"] == pytest.approx(4.0)
+    assert data["window"][0] == 0.0 and data["window"][1] == pytest.approx(200.0)
+    assert set(data["tolerance"]) == {"rear", "front", "u", "theta"}
+    assert all(data["max_abs_diff_" + k] <= data["tolerance"][k] for k in ("rear", "u", "theta"))
+    timings = data["timings"]
+    assert {"finite_beam_s", "closed_form_s", "ratio_finite_to_closed", "reference_run_s"} <= set(timings)
+    assert timings["ratio_finite_to_closed"] == pytest.approx(
+        timings["finite_beam_s"] / timings["closed_form_s"]
+    )
+    assert data["params"]["alpha"] == "0.4"
+
+
+def test_cli_exits_1_when_outside_tolerance(monkeypatch, capsys):
+    # With safety 0 the tolerance is 1e-4 of the amplitude, far below the 60-mode truncation error.
+    import moving_bogie.validation as validation
+    from moving_bogie.cli import main
+
+    monkeypatch.setattr(validation, "validate", functools.partial(validation.validate, safety=0.0))
+    code = main(["validate", "--case", "2", "--modes", "60", "--tmax", "20", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 1 and data["agrees"] is False
+
+
+def test_plot_files(case2, tmp_path):
+    fig = plot_validation(case2, tmp_path / "case2.png", title="Case 2")
+    assert len(fig.axes) == 3
+    assert (tmp_path / "case2.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_masses_model_one_panel(tmp_path):
+    # Reference: closed form of the two masses of Case 5 (Fig. 1a); short run, 200 modes.
+    result = validate(table1_case(5), model="masses", n_modes=200, tau_max=40.0)
+    assert set(result.quantities) == {"rear", "front"}
+    assert result.max_abs_diff_u is None and result.to_dict()["max_abs_diff_theta"] is None
+    assert result.agrees
+    fig = plot_validation(result, tmp_path / "m.svg")
+    assert len(fig.axes) == 1 and (tmp_path / "m.svg").stat().st_size > 0
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        ({"model": "force"}, "model"),
+        ({"n_modes": 2}, "n_modes"),
+        ({"tau_max": -1.0}, "tau_max"),
+    ],
+)
+def test_bad_input(kwargs, match):
+    with pytest.raises(MovingBogieError, match=match):
+        validate(table1_case(7), **kwargs)
+
+
+def test_timoshenko_is_refused():
+    with pytest.raises(MovingBogieError, match="Euler-Bernoulli"):
+        validate(table1_case(7).replace(beam="tr", S=100, r="0.03"))
