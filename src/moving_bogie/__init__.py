@@ -14,6 +14,32 @@ from .errors import MovingBogieError, MovingBogieWarning, ParameterError
 from .params import DimensionlessParams
 from .physical import PhysicalParams, Scales
 
+#: Main entry points, imported on first use so that ``import moving_bogie`` (and the CLI) stays light.
+_LAZY = {
+    "induced_frequencies": "frequencies",
+    "FrequencyResult": "frequencies",
+    "compute_table2": "table2",
+    "closed_form_response": "response",
+    "deflection_shape": "response",
+    "simulate_finite_beam": "finite_beam",
+    "validate": "validation",
+    "critical_velocity": "critical_velocity",
+    "frequency_lines": "frequency_lines",
+    "instability_lines": "instability_lines",
+    "d_decomposition": "d_decomposition",
+    "critical_stiffness": "critical_stiffness",
+    "stability_map": "stability_map",
+}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 try:
     __version__ = version("moving-bogie")
 except PackageNotFoundError:  # running from a source tree that is not installed
@@ -30,4 +56,5 @@ __all__ = [
     "__version__",
     "table1_case",
     "table2_printed",
+    *_LAZY,
 ]
