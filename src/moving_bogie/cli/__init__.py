@@ -21,6 +21,10 @@ __all__ = ["SUBCOMMAND_MODULES", "build_parser", "main"]
 SUBCOMMAND_MODULES: list[str] = [
     "params_cmd",
     "frequencies_cmd",
+    "reproduce_cmd",
+    "validate_cmd",
+    "timeseries_cmd",
+    "stability_cmd",
 ]
 
 
