@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .polyroots import poly_roots
 from .track import foundation_arguments, foundation_module
 
 
@@ -86,10 +87,4 @@ def _q_roots(module, args, ps):
     cs = np.stack([np.broadcast_to(np.asarray(c, dtype=complex), ps.shape) for c in cs], axis=-1)
     while np.all(cs[:, 0] == 0):
         cs = cs[:, 1:]
-    monic = cs[:, 1:] / cs[:, :1]
-    deg = monic.shape[1]
-    comp = np.zeros((ps.size, deg, deg), dtype=complex)
-    comp[:, 0, :] = -monic
-    idx = np.arange(deg - 1)
-    comp[:, idx + 1, idx] = 1
-    return np.linalg.eigvals(comp)
+    return poly_roots(cs)

@@ -15,7 +15,6 @@ Stability: the motion is unstable when some induced frequency has Im q < 0 (Eq. 
 
 from __future__ import annotations
 
-import decimal
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -27,7 +26,7 @@ from .characteristic import Characteristic, CharacteristicArray
 from .contour import EdgeZeroError, Rectangle, winding_number
 from .cut import CutLocus, cut_locus
 from .errors import MovingBogieError
-from .polish import PolishError, polish_and_confirm
+from .polish import PolishError, fixed_text, polish_and_confirm
 from .search_regions import tile_window
 
 
@@ -49,11 +48,11 @@ class InducedFrequency:
 
     @property
     def re_text(self) -> str:
-        return _fixed(mpmath.re(self.q), self.decimals)
+        return fixed_text(mpmath.re(self.q), self.decimals)
 
     @property
     def im_text(self) -> str:
-        return _fixed(mpmath.im(self.q), self.decimals)
+        return fixed_text(mpmath.im(self.q), self.decimals)
 
     @property
     def unstable(self) -> bool:
@@ -133,17 +132,6 @@ class FrequencyResult:
             "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
             "warnings": list(self.warnings),
         }
-
-
-def _fixed(x, decimals: int) -> str:
-    """``x`` rounded to ``decimals`` places in fixed-point notation (no exponent, no negative zero)."""
-    ctx = decimal.Context(prec=decimals + 40, rounding=decimal.ROUND_HALF_EVEN)
-    with mpmath.workdps(max(mpmath.mp.dps, decimals + 20)):
-        text = mpmath.nstr(mpmath.mpf(x), decimals + 30, min_fixed=-math.inf, max_fixed=math.inf)
-    value = ctx.create_decimal(text).quantize(decimal.Decimal(1).scaleb(-decimals), context=ctx)
-    if value == 0:
-        value = abs(value)
-    return f"{value:.{decimals}f}"
 
 
 def default_window(params, model: str) -> Rectangle:

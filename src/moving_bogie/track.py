@@ -24,6 +24,7 @@ import mpmath
 import numpy as np
 
 from .errors import MovingBogieError
+from .polyroots import poly_roots
 
 
 def foundation_module(beam: str):
@@ -209,16 +210,8 @@ class TrackKernelArray:
         return np.stack([np.broadcast_to(np.asarray(c, dtype=complex), q.shape) for c in cs], axis=-1)
 
     def p_roots(self, q):
-        """Roots in p, shape q.shape + (degree,), by batched companion-matrix eigenvalues."""
-        n = self._coeffs(self.module.n_coeffs, q)
-        lead = n[..., :1]
-        monic = n[..., 1:] / lead
-        deg = monic.shape[-1]
-        comp = np.zeros(q.shape + (deg, deg), dtype=complex)
-        comp[..., 0, :] = -monic
-        idx = np.arange(deg - 1)
-        comp[..., idx + 1, idx] = 1
-        return np.linalg.eigvals(comp)
+        """Roots in p, shape q.shape + (degree,) (closed-form quartic, see :mod:`polyroots`)."""
+        return poly_roots(self._coeffs(self.module.n_coeffs, q))
 
     def __call__(self, q, xis, *, derivative=False):
         q = np.asarray(q, dtype=complex)
