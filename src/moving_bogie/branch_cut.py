@@ -44,6 +44,7 @@ from scipy import optimize
 
 from .characteristic import vehicle_module
 from .errors import MovingBogieError
+from .polyroots import polyder, polyval, stack_coefficients
 from .track import foundation_arguments, foundation_module
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
@@ -149,13 +150,7 @@ class BranchCut:
         """(q, P, weights): the roots of N(., q(p0)) ordered by side (see :meth:`_both_sides`), Q/N'."""
         p0 = np.asarray(p0, dtype=float)
         q = self.q(p0)
-        c = np.stack(
-            [
-                np.broadcast_to(np.asarray(x, dtype=complex), q.shape)
-                for x in self.foundation.n_coeffs(q, **self.fargs)
-            ],
-            axis=-1,
-        )
+        c = stack_coefficients(self.foundation.n_coeffs(q, **self.fargs), q.shape)
         # deflate by (p - p0): p0 is an exact root; the cubic's roots stay well separated near p_c
         b = np.empty(c.shape[:-1] + (c.shape[-1] - 1,), dtype=complex)
         b[..., 0] = c[..., 0]
@@ -171,24 +166,11 @@ class BranchCut:
         p1 = np.take_along_axis(cubic, k[..., None], axis=-1)[..., 0].real
         others = cubic[np.arange(deg)[None, :] != k[..., None]].reshape(q.shape + (deg - 1,))
         P = np.concatenate([p0[..., None] + 0j, p1[..., None] + 0j, others], axis=-1)
-        dc = c[..., :-1] * np.arange(c.shape[-1] - 1, 0, -1)
-        Np = _polyval(dc, P)
-        dq = np.stack(
-            [
-                np.broadcast_to(np.asarray(x, dtype=complex), q.shape)
-                for x in self.foundation.n_coeffs_dq(q, **self.fargs)
-            ],
-            axis=-1,
-        )
-        Nq = _polyval(dq, P)
-        Qc = np.stack(
-            [
-                np.broadcast_to(np.asarray(x, dtype=complex), q.shape)
-                for x in self.foundation.q_coeffs(q, **self.fargs)
-            ],
-            axis=-1,
-        )
-        weight = _polyval(Qc, P) / Np
+        Np = polyval(polyder(c), P)
+        dq = stack_coefficients(self.foundation.n_coeffs_dq(q, **self.fargs), q.shape)
+        Nq = polyval(dq, P)
+        Qc = stack_coefficients(self.foundation.q_coeffs(q, **self.fargs), q.shape)
+        weight = polyval(Qc, P) / Np
         # order the roots: [upper real root seen from below, other real root, upper complex, lower complex]
         from_below = (Nq[..., 0] / Np[..., 0]).real > 0
         up_c = others.imag[..., 0] > 0
@@ -505,12 +487,4 @@ def _fourier_sum(ts, nodes, weights, weighted, m, q_max, eta, *, memory=4_000_00
         acc = sel[:, -1]
         for j in range(_TAYLOR_TERMS - 2, -1, -1):
             acc = acc * delta[:, None] + sel[:, j]
-    return acc
-
-
-def _polyval(coeffs, x):
-    """coeffs (..., n+1) highest power first, x (..., k) -> (..., k)."""
-    acc = np.broadcast_to(coeffs[..., :1], x.shape).astype(complex)
-    for j in range(1, coeffs.shape[-1]):
-        acc = acc * x + coeffs[..., j : j + 1]
     return acc

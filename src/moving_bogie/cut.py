@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .polyroots import poly_roots
+from .polyroots import poly_roots, stack_coefficients
 from .track import foundation_arguments, foundation_module
 
 
@@ -83,8 +83,7 @@ def cut_locus(params, x_min: float, x_max: float, *, samples: int = 20001) -> Cu
 
 
 def _q_roots(module, args, ps):
-    cs = module.n_coeffs_in_q(ps, **args)
-    cs = np.stack([np.broadcast_to(np.asarray(c, dtype=complex), ps.shape) for c in cs], axis=-1)
+    cs = stack_coefficients(module.n_coeffs_in_q(ps, **args), ps.shape)
     while np.all(cs[:, 0] == 0):
         cs = cs[:, 1:]
     return poly_roots(cs)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["poly_roots", "quartic_roots"]
+__all__ = ["poly_roots", "polyder", "polyval", "quartic_roots", "stack_coefficients"]
 
 
 def quartic_roots(c) -> np.ndarray:
@@ -91,3 +91,24 @@ def poly_roots(coeffs) -> np.ndarray:
         comp[..., idx + 1, idx] = 1
         roots = np.linalg.eigvals(comp)
     return np.where(bad[..., None], np.nan, roots)
+
+
+def stack_coefficients(coeffs, shape) -> np.ndarray:
+    """Generated coefficient tuples (scalars or arrays) -> complex array ``shape + (n+1,)``, highest first."""
+    return np.stack([np.broadcast_to(np.asarray(c, dtype=complex), shape) for c in coeffs], axis=-1)
+
+
+def polyval(coeffs, x):
+    """Batched Horner: coeffs ``(..., n+1)`` highest first, x ``(..., k)`` -> ``(..., k)``."""
+    acc = np.broadcast_to(coeffs[..., :1], x.shape).astype(complex)
+    for j in range(1, coeffs.shape[-1]):
+        acc = acc * x + coeffs[..., j : j + 1]
+    return acc
+
+
+def polyder(coeffs):
+    """Batched derivative of coefficient arrays ``(..., n+1)`` (highest first)."""
+    n = coeffs.shape[-1] - 1
+    if n == 0:
+        return np.zeros_like(coeffs)
+    return coeffs[..., :-1] * np.arange(n, 0, -1)

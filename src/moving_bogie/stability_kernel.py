@@ -28,6 +28,8 @@ import numpy as np
 from .characteristic import vehicle_module
 from .errors import ParameterError
 from .polyroots import poly_roots, quartic_roots
+from .polyroots import polyder as _polyder
+from .polyroots import polyval as _polyval
 from .track import foundation_arguments, foundation_module
 
 __all__ = ["POLYNOMIAL_PARAMETERS", "SweepCharacteristic", "poly_roots", "polynomial_degree", "quartic_roots"]
@@ -261,18 +263,3 @@ def _roots(coeffs):
     if coeffs.shape[-1] == 5:
         return quartic_roots(coeffs)
     return poly_roots(coeffs)
-
-
-def _polyval(coeffs, x):
-    """coeffs (..., n+1) highest first, x (..., k) -> (..., k)."""
-    acc = np.broadcast_to(coeffs[..., :1], x.shape).astype(complex)
-    for j in range(1, coeffs.shape[-1]):
-        acc = acc * x + coeffs[..., j : j + 1]
-    return acc
-
-
-def _polyder(coeffs):
-    n = coeffs.shape[-1] - 1
-    if n == 0:
-        return np.zeros_like(coeffs)
-    return coeffs[..., :-1] * np.arange(n, 0, -1)

@@ -10,8 +10,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from decimal import Decimal
 
+import mpmath
+
 from .cases import TABLE1_CASES, table1_case, table2_printed
 from .frequencies import induced_frequencies
+from .polish import fixed_text
 
 #: Half a unit of the print's last decimal (six decimals).
 PRINT_TOLERANCE = Decimal("0.0000005")
@@ -92,8 +95,8 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
     for row in table.rows:
         for k, (r, diff) in enumerate(zip(row.result.roots, row.differences), 1):
             shown = min(decimals, r.decimals)  # never show an unconfirmed digit
-            re = _round(r.re_text, shown)
-            im = _round(r.im_text, shown)
+            re = fixed_text(mpmath.re(r.q), shown)
+            im = fixed_text(mpmath.im(r.q), shown)
             pr = ""
             dd = ""
             if diff is not None:
@@ -112,13 +115,6 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
     lines.append("")
     lines.append("all cases ok" if table.ok else "MISMATCH: see the rows marked above")
     return "\n".join(lines)
-
-
-def _round(text: str, decimals: int) -> str:
-    value = Decimal(text).quantize(Decimal(1).scaleb(-decimals))
-    if value == 0:
-        value = abs(value)
-    return f"{value:.{decimals}f}"
 
 
 def _printed_for(row, root):

@@ -24,7 +24,7 @@ import mpmath
 import numpy as np
 
 from .errors import MovingBogieError
-from .polyroots import poly_roots
+from .polyroots import poly_roots, polyder, polyval, stack_coefficients
 
 
 def foundation_module(beam: str):
@@ -206,8 +206,7 @@ class TrackKernelArray:
         self.args = foundation_arguments(params, params.as_float())
 
     def _coeffs(self, func, q):
-        cs = func(q, **self.args)
-        return np.stack([np.broadcast_to(np.asarray(c, dtype=complex), q.shape) for c in cs], axis=-1)
+        return stack_coefficients(func(q, **self.args), q.shape)
 
     def p_roots(self, q):
         """Roots in p, shape q.shape + (degree,) (closed-form quartic, see :mod:`polyroots`)."""
@@ -218,19 +217,19 @@ class TrackKernelArray:
         roots = self.p_roots(q)
         n = self._coeffs(self.module.n_coeffs, q)
         qc = self._coeffs(self.module.q_coeffs, q)
-        n1 = _np_polyder(n)
+        n1 = polyder(n)
         P = roots
-        N1 = _np_polyval(n1, P)
-        Qv = _np_polyval(qc, P)
+        N1 = polyval(n1, P)
+        Qv = polyval(qc, P)
         if derivative:
-            n2 = _np_polyder(n1)
+            n2 = polyder(n1)
             nq = self._coeffs(self.module.n_coeffs_dq, q)
             qq = self._coeffs(self.module.q_coeffs_dq, q)
-            N2 = _np_polyval(n2, P)
-            Nq = _np_polyval(nq, P)
-            Nqp = _np_polyval(_np_polyder(nq), P)
-            Qp = _np_polyval(_np_polyder(qc), P)
-            Qq = _np_polyval(qq, P)
+            N2 = polyval(n2, P)
+            Nq = polyval(nq, P)
+            Nqp = polyval(polyder(nq), P)
+            Qp = polyval(polyder(qc), P)
+            Qq = polyval(qq, P)
         upper = P.imag > 0
         Ks, dKs = [], []
         for xi in xis:
@@ -245,19 +244,3 @@ class TrackKernelArray:
                 term = e * Qq / N1 - (gp * N1 - g * N2) / N1**3
                 dKs.append(sign * 2j * np.pi * np.sum(np.where(mask, term, 0), axis=-1))
         return KernelValues(tuple(Ks), tuple(dKs) if derivative else None, roots)
-
-
-def _np_polyval(coeffs, x):
-    """coeffs: (..., n+1) highest first, x: (..., k) -> (..., k)."""
-    acc = np.broadcast_to(coeffs[..., :1], x.shape).astype(complex)
-    for j in range(1, coeffs.shape[-1]):
-        acc = acc * x + coeffs[..., j : j + 1]
-    return acc
-
-
-def _np_polyder(coeffs):
-    n = coeffs.shape[-1] - 1
-    if n == 0:
-        return np.zeros_like(coeffs)
-    powers = np.arange(n, 0, -1)
-    return coeffs[..., :-1] * powers
