@@ -19,11 +19,11 @@ import time
 
 import numpy as np
 
-from moving_bogie.cases import table1_case
-from moving_bogie.finite_beam import simulate_finite_beam
-from moving_bogie.finite_beam_geometry import choose_geometry
-from moving_bogie.finite_beam_model import ModalBeam, ModalSystem, Vehicle
-from moving_bogie.newmark import effective_matrix_dense
+from moving_bogie.model.cases import table1_case
+from moving_bogie.validation.finite_beam import simulate_finite_beam
+from moving_bogie.validation.geometry import choose_geometry
+from moving_bogie.validation.modal import ModalBeam, ModalSystem, Vehicle
+from moving_bogie.validation.newmark import effective_matrix_dense
 
 CASE_1 = table1_case(1)
 

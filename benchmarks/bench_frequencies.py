@@ -8,12 +8,13 @@ Results and their reading: docs/performance.md.
 The whole of Table 2 (the 13 cases of Table 1, 4 roots each with Re q >= 0) is computed from scratch at
 30 digits by three methods applied to the same function E_chr(q) of Eq. (48), in the same run:
 
-* ``argument principle``: :func:`moving_bogie.frequencies.induced_frequencies` with its defaults (count in
+* ``argument principle``: :func:`moving_bogie.roots.frequencies.induced_frequencies` with its defaults
+(count in
   the window and in the window twice as large, bisect, polish and confirm at 30 + 15 digits).
 * ``grid + findroot``: ``mpmath.findroot`` (Newton, with the same analytic derivative and the same
   mpmath E_chr) from an N x N grid of starting points (cell centres) over the same window, at 30 digits;
   converged points are folded to Re q >= 0 (pairs q, -conj(q)), deduplicated, kept if inside the window
-  and confirmed by the same precision ladder as ours (:func:`moving_bogie.polish.polish_and_confirm`).
+  and confirmed by the same precision ladder as ours (:func:`moving_bogie.roots.polish.polish_and_confirm`).
 * ``cxroots, our tiles``: ``cxroots.Rectangle(...).roots(f, df, int_method="romb")`` (quadrature
   argument principle and contour moments, double precision, our analytic E_chr' as df) on exactly the
   rectangles our tiling used for that case (they keep 1e-7 from the cut of K and 1e-5 from its branch
@@ -44,14 +45,14 @@ import warnings
 import mpmath
 import numpy as np
 
-from moving_bogie import frequencies
-from moving_bogie.cases import TABLE1_CASES, table1_case
-from moving_bogie.characteristic import Characteristic, CharacteristicArray, vehicle_module
-from moving_bogie.cut import cut_locus
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.frequencies import default_window
-from moving_bogie.polish import PolishError, polish_and_confirm
-from moving_bogie.search_regions import tile_window
+from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray, vehicle_module
+from moving_bogie.kernels.cut import cut_locus
+from moving_bogie.model.cases import TABLE1_CASES, table1_case
+from moving_bogie.roots import frequencies
+from moving_bogie.roots.frequencies import default_window
+from moving_bogie.roots.polish import PolishError, polish_and_confirm
+from moving_bogie.roots.search_regions import tile_window
 
 DPS = 30
 EXTRA_DPS = max(10, DPS // 2)  # as induced_frequencies
@@ -96,7 +97,7 @@ class CountingPrecise(Characteristic):
 
 @contextlib.contextmanager
 def instrumented():
-    """Patch the names used inside :mod:`moving_bogie.frequencies` to count evaluations and time phases.
+    """Patch the names used inside :mod:`moving_bogie.roots.frequencies` to count evaluations and time phases.
 
     Yields a dict filled per call of induced_frequencies: the evaluators it created, seconds and double
     evaluations per phase, and the tiles of the first (default-window) count.

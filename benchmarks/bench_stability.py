@@ -36,14 +36,14 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="smaller jobs (a smoke run)")
     args = parser.parse_args()
 
-    from moving_bogie import plots_stability
-    from moving_bogie.cases import table1_case
-    from moving_bogie.critical_stiffness import critical_stiffness
-    from moving_bogie.critical_velocity import critical_velocity
-    from moving_bogie.d_decomposition import d_decomposition
-    from moving_bogie.frequency_lines import frequency_lines
-    from moving_bogie.instability_lines import instability_lines
-    from moving_bogie.stability_map import stability_map
+    from moving_bogie.model.cases import table1_case
+    from moving_bogie.stability import plots as plots_stability
+    from moving_bogie.stability.critical_stiffness import critical_stiffness
+    from moving_bogie.stability.critical_velocity import critical_velocity
+    from moving_bogie.stability.d_decomposition import d_decomposition
+    from moving_bogie.stability.frequency_lines import frequency_lines
+    from moving_bogie.stability.instability_lines import instability_lines
+    from moving_bogie.stability.map import stability_map
 
     n = 100 if args.quick else 400
     case1 = table1_case(1)

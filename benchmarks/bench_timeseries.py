@@ -19,11 +19,11 @@ import time
 
 import numpy as np
 
-from moving_bogie.branch_cut import BranchCut
-from moving_bogie.cases import table1_case
-from moving_bogie.frequencies import induced_frequencies
-from moving_bogie.residues import residue_expansion
-from moving_bogie.response import closed_form_response
+from moving_bogie.model.cases import table1_case
+from moving_bogie.response.branch_cut import BranchCut
+from moving_bogie.response.closed_form import closed_form_response
+from moving_bogie.response.residues import residue_expansion
+from moving_bogie.roots.frequencies import induced_frequencies
 
 
 def best(func, repeat: int = 3) -> float:

@@ -3,7 +3,8 @@
 Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_validation.py [--quick] [--calibrate]``.
 
 1. Timing: Case 1 of Table 1 to tau = 400 with 500 modes (target < 30 s), the finite beam against
-   the closed form (``moving_bogie.response.closed_form_response``, frequency search included), and
+   the closed form (``moving_bogie.response.closed_form.closed_form_response``, frequency search
+   included), and
    the whole ``validate`` call (which adds the 2N-mode reference run of the error estimate).
 2. Convergence: max |finite - closed| over each run's comparison window for N = 250, 500, 1000,
    2000 modes on two beam lengths (the default length of the 500-mode run and half of it), Cases 1
@@ -23,16 +24,16 @@ import time
 
 import numpy as np
 
-from moving_bogie.cases import TABLE1_CASES, table1_case
-from moving_bogie.finite_beam import simulate_finite_beam
-from moving_bogie.finite_beam_geometry import choose_geometry
-from moving_bogie.response import closed_form_response
-from moving_bogie.validation import (
+from moving_bogie.model.cases import TABLE1_CASES, table1_case
+from moving_bogie.response.closed_form import closed_form_response
+from moving_bogie.validation.compare import (
     comparison_window,
     default_tau_max,
     truncation_a_priori,
     validate,
 )
+from moving_bogie.validation.finite_beam import simulate_finite_beam
+from moving_bogie.validation.geometry import choose_geometry
 
 NAMES = ("w_rear", "u", "theta")
 

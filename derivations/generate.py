@@ -1,9 +1,10 @@
 """What ``python -m derivations`` writes: the generated kernels and the proof table.
 
-generated/foundation_<name>.py  coefficients (highest power first) of N(p, q), dN/dq, Q(p, q), dQ/dq in p
-generated/vehicle_<name>.py     E_chr, its partial derivatives, residue numerators and shape weights
-generated/__init__.py           the lists of models and the inputs hash
-docs/proofs.md                  derived == printed, equation by equation (paper.py)
+Into src/moving_bogie/generated/:
+foundation_<name>.py  coefficients (highest power first) of N(p, q), dN/dq, Q(p, q), dQ/dq in p
+vehicle_<name>.py     E_chr, its partial derivatives, residue numerators and shape weights
+__init__.py           the lists of models and the inputs hash
+and docs/proofs.md: derived == printed, equation by equation (paper.py)
 """
 
 from pathlib import Path
@@ -18,6 +19,8 @@ from .paper import all_proofs
 from .system import SYSTEMS
 
 HERE = Path(__file__).resolve().parent
+#: Where the kernels go, relative to the repository root: inside the package, so the source tree imports.
+GENERATED = Path("src/moving_bogie/generated")
 
 FOUNDATION_ARGS = ("q", "alpha", "eta_f", "eta_s", "S", "r")
 
@@ -138,15 +141,15 @@ def outputs(root: Path) -> dict:
     digest = inputs_digest(HERE)
     files = {}
     for name in MODELS:
-        files[root / "generated" / f"foundation_{name}.py"] = foundation_module(name, digest)
+        files[root / GENERATED / f"foundation_{name}.py"] = foundation_module(name, digest)
     for name in SYSTEMS:
-        files[root / "generated" / f"vehicle_{name}.py"] = vehicle_module(name, digest)
+        files[root / GENERATED / f"vehicle_{name}.py"] = vehicle_module(name, digest)
     init = module_source(
         "Generated kernels of moving-bogie (the committed output of derivations/).",
         digest,
         [],
         [("FOUNDATIONS", tuple(MODELS)), ("VEHICLES", tuple(SYSTEMS)), ("INPUTS_HASH", digest)],
     )
-    files[root / "generated" / "__init__.py"] = init
+    files[root / GENERATED / "__init__.py"] = init
     files[root / "docs" / "proofs.md"] = proofs_markdown(digest)
     return files

@@ -34,8 +34,8 @@ import matplotlib.pyplot as plt
 import mpmath
 
 from moving_bogie import table1_case
-from moving_bogie.frequencies import induced_frequencies
-from moving_bogie.table2 import compute_table2, format_table2
+from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.roots.table2 import compute_table2, format_table2
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 DPS = 20 if QUICK else 30  # working precision in decimal digits; the confirmation adds max(10, dps/2)

@@ -52,7 +52,7 @@ import mpmath
 
 import moving_bogie
 from moving_bogie import table1_case
-from moving_bogie.frequencies import induced_frequencies
+from moving_bogie.roots.frequencies import induced_frequencies
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 
@@ -216,7 +216,7 @@ with mpmath.workdps(30):
 # beam names of the installed `generated/` (`params.BEAMS`), which does not contain a model generated in a
 # scratch folder. To make the model permanent, a researcher regenerates in the real repository (the name
 # then joins `BEAMS`, its groups `MODEL_PARAMETERS`), adds the field `eta_c` with its range to
-# `DimensionlessParams` in `params.py` (and, if wanted, to `PhysicalParams`, the parameter files and the
+# `DimensionlessParams` in `model/params.py` (and, if wanted, to `PhysicalParams`, the parameter files and the
 # CLI options): `docs/adding_a_model.md`.
 #
 # Here, without editing the package: the module generated in the scratch copy is imported under the
@@ -268,7 +268,7 @@ def with_shear_damping(params, eta_c):
 # $\int e^{ip\xi} / N(p, q)\,dp$ done by brute-force quadrature (here at $\xi = 0$).
 
 # %%
-from moving_bogie.track import TrackKernel  # noqa: E402
+from moving_bogie.kernels.track import TrackKernel  # noqa: E402
 
 p1 = table1_case(1)
 zq = mpmath.mpc("0.3", "0.2")

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from moving_bogie.cli import SUBCOMMAND_MODULES, build_parser, main
-from moving_bogie.cli.common import atomic_write
+from moving_bogie.output import atomic_write
 
 SCRIPT = Path(sys.executable).with_name("moving-bogie")
 
@@ -167,7 +167,7 @@ def test_atomic_write_leaves_old_file_when_writing_fails(tmp_path, monkeypatch):
     def broken_replace(src, dst):
         raise OSError(28, "No space left on device", str(dst))
 
-    monkeypatch.setattr("moving_bogie.cli.common.os.replace", broken_replace)
+    monkeypatch.setattr("moving_bogie.output.os.replace", broken_replace)
     with pytest.raises(OSError):
         atomic_write(target, "new")
     assert target.read_text() == "old"

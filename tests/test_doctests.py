@@ -8,12 +8,12 @@ import importlib
 import pytest
 
 MODULES = [
-    "moving_bogie._exact",
+    "moving_bogie.model.exact",
     "moving_bogie.errors",
-    "moving_bogie.params",
-    "moving_bogie.physical",
-    "moving_bogie.cases",
-    "moving_bogie.paramfile",
+    "moving_bogie.model.params",
+    "moving_bogie.model.physical",
+    "moving_bogie.model.cases",
+    "moving_bogie.model.files",
 ]
 
 

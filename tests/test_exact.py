@@ -1,4 +1,4 @@
-"""Exact conversion of parameter values (moving_bogie._exact)."""
+"""Exact conversion of parameter values (moving_bogie.model.exact)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from moving_bogie import ParameterError
-from moving_bogie._exact import fraction_to_exact_text, fraction_to_mpf, fraction_to_text, to_fraction
+from moving_bogie.model.exact import fraction_to_exact_text, fraction_to_mpf, fraction_to_text, to_fraction
 
 
 @pytest.mark.parametrize(

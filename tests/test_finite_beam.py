@@ -15,18 +15,18 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from moving_bogie.cases import table1_case, table2_printed
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.finite_beam import FiniteBeamResult, simulate_finite_beam
-from moving_bogie.finite_beam_geometry import (
+from moving_bogie.model.cases import table1_case, table2_printed
+from moving_bogie.validation.finite_beam import FiniteBeamResult, simulate_finite_beam
+from moving_bogie.validation.geometry import (
     choose_geometry,
     default_time_step,
     group_velocity,
     near_field_decay_rate,
     reflection_window,
 )
-from moving_bogie.finite_beam_model import ModalBeam, ModalSystem, Vehicle
-from moving_bogie.newmark import (
+from moving_bogie.validation.modal import ModalBeam, ModalSystem, Vehicle
+from moving_bogie.validation.newmark import (
     effective_matrix_dense,
     initial_state,
     newmark_step,

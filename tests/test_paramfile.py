@@ -1,4 +1,4 @@
-"""TOML parameter files (moving_bogie.paramfile)."""
+"""TOML parameter files (moving_bogie.model.files)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from fractions import Fraction
 import pytest
 
 from moving_bogie import ParameterError, table1_case
-from moving_bogie.paramfile import load_params_file, parse_params_toml
+from moving_bogie.model.files import load_params_file, parse_params_toml
 
 DIMENSIONLESS = """
 [dimensionless]

@@ -9,8 +9,8 @@ import time
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.paper_captions import CAPTIONS
-from moving_bogie.reproduce import ARTIFACTS, NotCovered, caption_html, quick_from_env, require
+from moving_bogie.paper.captions import CAPTIONS
+from moving_bogie.paper.reproduce import ARTIFACTS, NotCovered, caption_html, quick_from_env, require
 
 
 @pytest.fixture(scope="module")

@@ -17,14 +17,14 @@ import mpmath
 import numpy as np
 import pytest
 
-from moving_bogie.branch_cut import BranchCut, BranchCutUnavailable
-from moving_bogie.cases import table1_case
 from moving_bogie.errors import MovingBogieError, ParameterError
-from moving_bogie.frequencies import induced_frequencies
-from moving_bogie.physical import PhysicalParams
-from moving_bogie.residues import IncompleteFrequencies, ResidueExpansion, residue_expansion
-from moving_bogie.response import closed_form_response, deflection_shape
-from moving_bogie.track import TrackKernel
+from moving_bogie.kernels.track import TrackKernel
+from moving_bogie.model.cases import table1_case
+from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
+from moving_bogie.response.closed_form import closed_form_response, deflection_shape
+from moving_bogie.response.residues import IncompleteFrequencies, ResidueExpansion, residue_expansion
+from moving_bogie.roots.frequencies import induced_frequencies
 
 NAMES = ("w_rear", "w_front", "u", "theta")
 
@@ -83,11 +83,12 @@ def test_side_values_of_K_on_the_cut_match_the_kernel_just_off_it(case):
 
 
 def test_branch_cut_geometry():
-    # Reference: cut.py's formula q = alpha p + i eta_f + sqrt(p^4 + 4 eta_s p^2 + 4 - 4 eta_f^2)/2 is a root
+    # Reference: kernels/cut.py's formula q = alpha p + i eta_f + sqrt(p^4 + 4 eta_s p^2 + 4 - 4
+    # eta_f^2)/2 is a root
     # of N(p, q) for real p; q_c is its minimum.
     params = table1_case(7)
     bc = BranchCut(params)
-    from moving_bogie.cut import cut_locus
+    from moving_bogie.kernels.cut import cut_locus
 
     assert bc.q_c == pytest.approx(cut_locus(params, 0.0, 3.0).x_start, abs=1e-8)
     ps = np.array([-0.5, 0.3, 4.0])

@@ -1,6 +1,7 @@
 """The closed form (steady + residues + branch cut) against an independent inversion of Eq. (35).
 
-Reference: :mod:`moving_bogie.bromwich` integrates the Bromwich line Im q = -a directly (QUADPACK QAWF on
+Reference: :mod:`moving_bogie.response.bromwich` integrates the Bromwich line Im q = -a directly
+(QUADPACK QAWF on
 X~(q) e^{i q tau} built from K of Eq. (29)); it uses no induced frequencies, no residues and no branch
 cut, so it checks all three parts of the closed form at once. Cases: 7 (damped, stable), 2 (undamped,
 eta_f = 0: the cut lies on the real axis), 1 (unstable: a must exceed 0.000130, Table 2), 13 (alpha = 0.95,
@@ -12,10 +13,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from moving_bogie.bromwich import bromwich_response, bromwich_shape
-from moving_bogie.cases import table1_case
-from moving_bogie.frequencies import induced_frequencies
-from moving_bogie.response import closed_form_response, deflection_shape
+from moving_bogie.model.cases import table1_case
+from moving_bogie.response.bromwich import bromwich_response, bromwich_shape
+from moving_bogie.response.closed_form import closed_form_response, deflection_shape
+from moving_bogie.roots.frequencies import induced_frequencies
 
 NAMES = ("w_rear", "w_front", "u", "theta")
 

@@ -128,7 +128,7 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, needle):
 def test_failed_frequency_count_exits_2(capsys, monkeypatch):
     import dataclasses
 
-    import moving_bogie.frequencies as fq
+    import moving_bogie.roots.frequencies as fq
 
     real = fq.induced_frequencies
 

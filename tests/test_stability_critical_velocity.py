@@ -7,7 +7,7 @@ import sys
 import mpmath
 import pytest
 
-from moving_bogie.critical_velocity import critical_velocity, formula_tr, phase_speed
+from moving_bogie.stability.critical_velocity import critical_velocity, formula_tr, phase_speed
 
 
 @pytest.mark.parametrize("eta_s", ["0", "0.3", "2"])

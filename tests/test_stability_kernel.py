@@ -3,10 +3,15 @@
 import numpy as np
 import pytest
 
-from moving_bogie.cases import table1_case
-from moving_bogie.characteristic import CharacteristicArray
-from moving_bogie.stability_kernel import SweepCharacteristic, poly_roots, polynomial_degree, quartic_roots
-from moving_bogie.track import TrackKernelArray
+from moving_bogie.kernels.characteristic import CharacteristicArray
+from moving_bogie.kernels.sweep_characteristic import (
+    SweepCharacteristic,
+    poly_roots,
+    polynomial_degree,
+    quartic_roots,
+)
+from moving_bogie.kernels.track import TrackKernelArray
+from moving_bogie.model.cases import table1_case
 
 Q = np.array([0.3, 0.1, 0.7 + 0.01j, 0.2 - 0.3j, 1.3 - 0.02j])
 

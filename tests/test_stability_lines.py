@@ -1,6 +1,6 @@
 """Instability lines, D-decomposition, stability maps, frequency lines, critical stiffness (Sections 3.5-3.8).
 
-References: :func:`~moving_bogie.frequencies.induced_frequencies` (argument principle + polish at 20-30
+References: :func:`~moving_bogie.roots.frequencies.induced_frequencies` (argument principle + polish at 20-30
 digits) is the independent judge of every count; the paper calls Cases 1, 5, 12 and 13 unstable.
 """
 
@@ -10,16 +10,16 @@ import mpmath
 import numpy as np
 import pytest
 
-from moving_bogie.cases import table1_case
-from moving_bogie.characteristic import Characteristic
-from moving_bogie.critical_stiffness import critical_stiffness
-from moving_bogie.d_decomposition import d_decomposition
 from moving_bogie.errors import ParameterError
-from moving_bogie.frequencies import induced_frequencies
-from moving_bogie.frequency_lines import frequency_lines
-from moving_bogie.instability_lines import instability_lines
-from moving_bogie.stability_kernel import SweepCharacteristic
-from moving_bogie.stability_map import stability_column, stability_map
+from moving_bogie.kernels.characteristic import Characteristic
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.model.cases import table1_case
+from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.stability.critical_stiffness import critical_stiffness
+from moving_bogie.stability.d_decomposition import d_decomposition
+from moving_bogie.stability.frequency_lines import frequency_lines
+from moving_bogie.stability.instability_lines import instability_lines
+from moving_bogie.stability.map import stability_column, stability_map
 
 COARSE = dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
 

@@ -1,4 +1,4 @@
-"""K(xi, q) and dK/dq by residues (track.py) against direct numerical quadrature over real p.
+"""K(xi, q) and dK/dq by residues (kernels/track.py) against direct numerical quadrature over real p.
 
 Reference: Eq. (29), K = integral of exp(i p xi) Q/N dp over the real line, evaluated with scipy's QUADPACK
 (QAWF Fourier integrals for xi != 0, QAGI for xi = 0) on the generated N, Q coefficients; dK/dq against
@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from moving_bogie.cases import table1_case
-from moving_bogie.track import TrackKernel, TrackKernelArray, foundation_arguments, foundation_module
+from moving_bogie.kernels.track import TrackKernel, TrackKernelArray, foundation_arguments, foundation_module
+from moving_bogie.model.cases import table1_case
 
 
 def _params(beam):

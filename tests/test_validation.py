@@ -1,8 +1,8 @@
-"""Finite-beam validation of the closed form (paper, Section 3.2; ``moving_bogie.validation``).
+"""Finite-beam validation of the closed form (paper, Section 3.2; ``moving_bogie.validation.compare``).
 
 References used here:
 
-* the closed form (``moving_bogie.response.closed_form_response``: steady part + residues at the
+* the closed form (``moving_bogie.response.closed_form.closed_form_response``: steady part + residues at the
   induced frequencies + branch-cut integral, Eqs. (35)-(43)) is the infinite-beam reference the finite
   beam must approach as its modes grow;
 * the tolerance is the finite beam's own error, estimated from a 2N-mode, half-step run; its
@@ -24,10 +24,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from moving_bogie.cases import table1_case
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.finite_beam import simulate_finite_beam
-from moving_bogie.validation import (
+from moving_bogie.model.cases import table1_case
+from moving_bogie.validation.compare import (
     comparison_window,
     default_tau_max,
     plot_validation,
@@ -35,6 +34,7 @@ from moving_bogie.validation import (
     truncation_a_priori,
     validate,
 )
+from moving_bogie.validation.finite_beam import simulate_finite_beam
 
 SCRIPT = Path(sys.executable).with_name("moving-bogie")
 
@@ -111,7 +111,7 @@ def test_few_modes_converge_towards_the_closed_form():
     # Reference: the closed form of Case 1 (eta_f = 0.1). Fixed beam L = 200, N = 100, 200, 400:
     # k_max = 1.6, 3.1, 6.3. Truncation error ~ k_max^-3 (docs/finite_beam.md): each doubling of N
     # should cut the difference by several times (8 asymptotically).
-    from moving_bogie.response import closed_form_response
+    from moving_bogie.response.closed_form import closed_form_response
 
     p = table1_case(1)
     tau = np.linspace(0.0, 60.0, 601)
@@ -176,7 +176,7 @@ def test_cli_case_7_json(tmp_path):
 
 def test_cli_exits_1_when_outside_tolerance(monkeypatch, capsys):
     # With safety 0 the tolerance is 1e-4 of the amplitude, far below the 60-mode truncation error.
-    import moving_bogie.validation as validation
+    import moving_bogie.validation.compare as validation
     from moving_bogie.cli import main
 
     monkeypatch.setattr(validation, "validate", functools.partial(validation.validate, safety=0.0))

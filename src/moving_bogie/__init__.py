@@ -9,26 +9,26 @@ The runtime never imports SymPy: formulas come from the generated kernels in
 
 from importlib.metadata import PackageNotFoundError, version
 
-from .cases import TABLE1_CASES, table1_case, table2_printed
-from .errors import MovingBogieError, MovingBogieWarning, ParameterError
-from .params import DimensionlessParams
-from .physical import PhysicalParams, Scales
+from moving_bogie.errors import MovingBogieError, MovingBogieWarning, ParameterError
+from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
+from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.model.physical import PhysicalParams, Scales
 
 #: Main entry points, imported on first use so that ``import moving_bogie`` (and the CLI) stays light.
 _LAZY = {
-    "induced_frequencies": "frequencies",
-    "FrequencyResult": "frequencies",
-    "compute_table2": "table2",
-    "closed_form_response": "response",
-    "deflection_shape": "response",
-    "simulate_finite_beam": "finite_beam",
-    "validate": "validation",
-    "critical_velocity": "critical_velocity",
-    "frequency_lines": "frequency_lines",
-    "instability_lines": "instability_lines",
-    "d_decomposition": "d_decomposition",
-    "critical_stiffness": "critical_stiffness",
-    "stability_map": "stability_map",
+    "induced_frequencies": "roots.frequencies",
+    "FrequencyResult": "roots.frequencies",
+    "compute_table2": "roots.table2",
+    "closed_form_response": "response.closed_form",
+    "deflection_shape": "response.closed_form",
+    "simulate_finite_beam": "validation.finite_beam",
+    "validate": "validation.compare",
+    "critical_velocity": "stability.critical_velocity",
+    "frequency_lines": "stability.frequency_lines",
+    "instability_lines": "stability.instability_lines",
+    "d_decomposition": "stability.d_decomposition",
+    "critical_stiffness": "stability.critical_stiffness",
+    "stability_map": "stability.map",
 }
 
 

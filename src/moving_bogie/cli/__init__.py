@@ -12,7 +12,8 @@ import argparse
 import importlib
 from collections.abc import Sequence
 
-from .. import __version__
+from moving_bogie import __version__
+
 from .common import PROG, handle_errors
 
 __all__ = ["SUBCOMMAND_MODULES", "build_parser", "main"]

@@ -7,18 +7,18 @@ import functools
 import json
 import os
 import sys
-import tempfile
 import tomllib
 from collections.abc import Callable
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from ..cases import TABLE1_CASES, table1_case
-from ..errors import MovingBogieError, ParameterError
-from ..paramfile import load_params_file
-from ..params import BEAMS, DimensionlessParams
-from ..physical import PhysicalParams
+from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.model.cases import TABLE1_CASES, table1_case
+from moving_bogie.model.files import load_params_file
+from moving_bogie.model.params import BEAMS, DimensionlessParams
+from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.output import atomic_write  # noqa: F401  (re-exported for the commands)
 
 __all__ = [
     "PARAMETER_OPTIONS",
@@ -173,31 +173,3 @@ def handle_errors(func: Callable[..., int | None]) -> Callable[..., int]:
             return _fail("interrupted", 130)
 
     return wrapper
-
-
-def atomic_write(path: str | os.PathLike[str], data: bytes | str) -> None:
-    """Write a file so that it never exists half-written: a temporary file in the same folder, then rename.
-
-    Text is encoded as UTF-8. Missing parent folders are created. An existing file keeps its
-    permissions; a new one gets the usual ``0o666 & ~umask``.
-    """
-    path = Path(path)
-    payload = data.encode("utf-8") if isinstance(data, str) else data
-    path.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        mode = path.stat().st_mode & 0o7777
-    except FileNotFoundError:
-        umask = os.umask(0)
-        os.umask(umask)
-        mode = 0o666 & ~umask
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(payload)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise

@@ -65,16 +65,17 @@ def _add_search_options(parser):
 
 
 def _check_dps(dps):
-    from ..errors import ParameterError
+    from moving_bogie.errors import ParameterError
 
     if not 15 <= dps <= 1000:
         raise ParameterError("dps", f"dps must be between 15 and 1000 (got {dps})")
 
 
 def run_frequencies(args: argparse.Namespace) -> int:
-    from ..contour import Rectangle
-    from ..errors import ParameterError
-    from ..frequencies import induced_frequencies
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.roots.contour import Rectangle
+    from moving_bogie.roots.frequencies import induced_frequencies
+
     from .progress import progress_bar
 
     _check_dps(args.dps)
@@ -127,7 +128,8 @@ def format_result(result) -> str:
 
 
 def run_table2(args: argparse.Namespace) -> int:
-    from ..table2 import compute_table2, format_table2
+    from moving_bogie.roots.table2 import compute_table2, format_table2
+
     from .progress import progress_bar
 
     _check_dps(args.dps)

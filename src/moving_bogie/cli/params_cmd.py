@@ -5,8 +5,9 @@ from __future__ import annotations
 import argparse
 import dataclasses
 
-from ..params import DimensionlessParams
-from ..physical import PHYSICAL_UNITS, PhysicalParams
+from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.model.physical import PHYSICAL_UNITS, PhysicalParams
+
 from .common import add_json_option, add_parameter_options, params_from_args, print_json
 
 #: One-line meaning of each dimensionless parameter, with its defining equation.

@@ -47,8 +47,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
-    from ..reproduce import ARTIFACTS, quick_from_env, reproduce
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.paper.reproduce import ARTIFACTS, quick_from_env, reproduce
+
     from .progress import progress_bar
 
     if args.list:

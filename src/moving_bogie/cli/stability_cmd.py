@@ -7,7 +7,8 @@ import argparse
 from fractions import Fraction
 from pathlib import Path
 
-from ..errors import ParameterError
+from moving_bogie.errors import ParameterError
+
 from .common import add_json_option, add_parameter_options, params_from_args, print_json
 from .progress import progress_bar
 
@@ -70,8 +71,8 @@ _DEFAULTS = dict(eta_f="0.05", eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.
 
 
 def _params_and_spacings(args):
-    from ..cases import table1_case
-    from ..params import DimensionlessParams
+    from moving_bogie.model.cases import table1_case
+    from moving_bogie.model.params import DimensionlessParams
 
     base = (
         table1_case(args.case)
@@ -116,7 +117,7 @@ def _register_critical_velocity(subparsers) -> None:
 
 
 def run_critical_velocity(args) -> int:
-    from ..critical_velocity import critical_velocity
+    from moving_bogie.stability.critical_velocity import critical_velocity
 
     if args.beam == "tr" and (args.S is None or args.r is None):
         raise ParameterError("S", "--beam tr needs --S and --r")
@@ -160,7 +161,7 @@ def _register_frequency_lines(subparsers) -> None:
 
 
 def run_frequency_lines(args) -> int:
-    from ..frequency_lines import frequency_lines
+    from moving_bogie.stability.frequency_lines import frequency_lines
 
     params, _ = params_from_args(args)
     with progress_bar("frequency lines") as bar:
@@ -239,7 +240,7 @@ def _register_instability_lines(subparsers) -> None:
 
 
 def run_instability_lines(args) -> int:
-    from ..instability_lines import instability_lines
+    from moving_bogie.stability.instability_lines import instability_lines
 
     params, spacings = _params_and_spacings(args)
     with progress_bar("instability lines") as bar:
@@ -257,7 +258,7 @@ def run_instability_lines(args) -> int:
     if args.plot:
         from matplotlib.figure import Figure
 
-        from ..plots_stability import plot_instability_lines
+        from moving_bogie.stability.plots import plot_instability_lines
 
         fig = Figure(figsize=(7, 5), layout="constrained")
         ax = fig.subplots()
@@ -317,8 +318,8 @@ def _register_stability_map(subparsers) -> None:
 def run_stability_map(args) -> int:
     import numpy as np
 
-    from ..instability_lines import instability_lines
-    from ..stability_map import stability_map
+    from moving_bogie.stability.instability_lines import instability_lines
+    from moving_bogie.stability.map import stability_map
 
     params, _ = _params_and_spacings(args)
     alphas = np.linspace(args.alpha_min, args.alpha_max, args.n)
@@ -348,7 +349,7 @@ def run_stability_map(args) -> int:
         args.npz.parent.mkdir(parents=True, exist_ok=True)
         smap.save_npz(args.npz)
     if args.plot:
-        from ..plots_stability import plot_stability_map
+        from moving_bogie.stability.plots import plot_stability_map
 
         _save(plot_stability_map(smap, lines), args.plot)
     summary = smap.summary()
@@ -390,7 +391,7 @@ def _register_critical_stiffness(subparsers) -> None:
 def run_critical_stiffness(args) -> int:
     import numpy as np
 
-    from ..critical_stiffness import critical_stiffness
+    from moving_bogie.stability.critical_stiffness import critical_stiffness
 
     params, _ = params_from_args(args)
     with progress_bar("critical stiffness") as bar:
@@ -431,7 +432,7 @@ def _register_figure(subparsers) -> None:
 
 
 def run_figure(args) -> int:
-    from .. import plots_stability
+    from moving_bogie.stability import plots as plots_stability
 
     with progress_bar(f"figure {args.number}") as bar:
         fig = getattr(plots_stability, f"figure{args.number}")(quick=args.quick, progress=bar)

@@ -96,7 +96,7 @@ def _branch_cut(args):
 
 
 def _check(args):
-    from ..errors import ParameterError
+    from moving_bogie.errors import ParameterError
 
     if not 15 <= args.dps <= 1000:
         raise ParameterError("dps", f"dps must be between 15 and 1000 (got {args.dps})")
@@ -107,7 +107,7 @@ def _check(args):
 def _times(args):
     import numpy as np
 
-    from ..errors import ParameterError
+    from moving_bogie.errors import ParameterError
 
     if (args.tau is None) == (args.tmax is None):
         raise ParameterError("tau", "give either --tau T1,T2,... or --tmax T")
@@ -129,9 +129,10 @@ def _times(args):
 
 
 def _frequencies_or_fail(params, model, dps, json_mode, branch_cut):
-    from ..branch_cut import BranchCut
-    from ..errors import MovingBogieError
-    from ..frequencies import induced_frequencies
+    from moving_bogie.errors import MovingBogieError
+    from moving_bogie.response.branch_cut import BranchCut
+    from moving_bogie.roots.frequencies import induced_frequencies
+
     from .progress import progress_bar
 
     if branch_cut is True:
@@ -147,7 +148,7 @@ def _frequencies_or_fail(params, model, dps, json_mode, branch_cut):
 
 def run_timeseries(args: argparse.Namespace) -> int:
     """Compute and print (or write) the closed-form time series."""
-    from ..response import closed_form_response
+    from moving_bogie.response.closed_form import closed_form_response
 
     _check(args)
     tau = _times(args)
@@ -163,7 +164,7 @@ def run_timeseries(args: argparse.Namespace) -> int:
     if args.csv:
         write_csv_series(ts, args.csv)
     if args.plot or args.plot_long:
-        from ..plots_timeseries import long_time_figure, save_figure, time_series_figure
+        from moving_bogie.response.plots import long_time_figure, save_figure, time_series_figure
 
         label = f"Case {args.case}" if args.case is not None else "closed form"
         if args.plot:
@@ -214,8 +215,8 @@ def run_shape(args: argparse.Namespace) -> int:
     """Compute and print (or write) the deflection shape at one time."""
     import numpy as np
 
-    from ..errors import ParameterError
-    from ..response import SI_UNITS, deflection_shape
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.response.closed_form import SI_UNITS, deflection_shape
 
     _check(args)
     params, physical = params_from_args(args)
@@ -249,7 +250,7 @@ def run_shape(args: argparse.Namespace) -> int:
         text += "".join(f"{x!r},{float(v)!r}\n" for x, v in zip(xi.tolist(), w))
         atomic_write(args.csv, text)
     if args.plot:
-        from ..plots_timeseries import save_figure, shape_figure
+        from moving_bogie.response.plots import save_figure, shape_figure
 
         fig = shape_figure(xi, w, tau=args.tau, d=d / chi, si=physical is not None)
         save_figure(fig, args.plot)

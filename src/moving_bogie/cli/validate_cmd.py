@@ -51,8 +51,9 @@ def run(args: argparse.Namespace) -> int:
     import io
     from pathlib import Path
 
-    from ..errors import ParameterError
-    from ..validation import plot_validation, validate
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.validation.compare import plot_validation, validate
+
     from .common import atomic_write
     from .progress import progress_bar
 
@@ -90,8 +91,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def format_result(result) -> str:
-    """Readable summary of a :class:`~moving_bogie.validation.ValidationResult`."""
-    from ..validation import truncation_a_priori
+    """Readable summary of a :class:`~moving_bogie.validation.compare.ValidationResult`."""
+    from moving_bogie.validation.compare import truncation_a_priori
 
     finite = result.finite
     lines = [

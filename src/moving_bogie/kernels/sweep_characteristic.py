@@ -1,0 +1,265 @@
+"""E_chr vectorised over q, the velocity alpha, the wheel spacing and one vehicle parameter.
+
+The stability tools of Sections 3.5-3.8 (frequency lines, instability lines, D-decomposition, critical
+stiffness, stability maps) evaluate the characteristic function E_chr of Eq. (38) (bogie) or of two
+moving masses on large sets of points in double precision. Three facts make this cheap:
+
+* K(xi, q) of Eq. (29) depends on the track and on alpha only, not on the vehicle: the p-roots of
+  N(p, q) are computed once per (q, alpha) and shared by every wheel spacing and every vehicle.
+* The p-roots of the quartic N come from a vectorised closed form (Ferrari) polished by two
+  Durand-Kerner sweeps: about ten times faster than batched companion eigenvalues on large batches,
+  with the same accuracy (``tests/test_stability_kernel.py``).
+* The vehicle enters E_chr through B1..B4 of Eq. (37), which are linear in eta_M (with mu_v = cf1 eta_M
+  and J_b = cf2 eta_M d^2, Eq. (63)), in kappa_v and in eta_v. At fixed (q, alpha), E_chr is therefore a
+  polynomial in each of these parameters: degree 2 in eta_M for two masses, 4 in eta_M for the bogie,
+  2 in kappa_v and in eta_v. Its coefficients follow from deg + 1 evaluations at fixed K (exact
+  interpolation at Chebyshev nodes of the range of interest, well conditioned there).
+
+K and its derivatives in q and alpha are residue sums over the p-roots of N, exactly as in
+:mod:`moving_bogie.kernels.track` (which this module is checked against): for xi >= 0 the roots with Im p > 0,
+for xi < 0 those with Im p < 0; dK/ds = integral of e^{i p xi} (Q_s / N - Q N_s / N^2) dp for s = q or
+alpha (double poles for the second term).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.polyroots import poly_roots, quartic_roots
+from moving_bogie.kernels.polyroots import polyder as _polyder
+from moving_bogie.kernels.polyroots import polyval as _polyval
+from moving_bogie.kernels.track import foundation_arguments, foundation_module
+
+__all__ = ["POLYNOMIAL_PARAMETERS", "SweepCharacteristic", "poly_roots", "polynomial_degree", "quartic_roots"]
+
+#: Vehicle parameters in which E_chr is a polynomial (at fixed q and alpha).
+POLYNOMIAL_PARAMETERS = ("eta_M", "kappa_v", "eta_v")
+
+_ALPHA_STENCIL = 0.25  # the coefficients of N and Q are polynomials of degree <= 4 in alpha
+
+
+def polynomial_degree(model: str, parameter: str) -> int:
+    """Degree of E_chr in ``parameter`` at fixed (q, alpha).
+
+    Two masses: 2 in eta_M. Bogie: 4 in eta_M (B1, B2, B3 all scale with it), 2 in kappa_v and in eta_v
+    (the B4^4 and B4^2 B1 B3 terms of Eq. (38) cancel down to degree 2).
+    """
+    if parameter not in POLYNOMIAL_PARAMETERS:
+        raise ParameterError("parameter", f"parameter must be one of {', '.join(POLYNOMIAL_PARAMETERS)}")
+    if model == "masses":
+        if parameter != "eta_M":
+            raise ParameterError("parameter", f"two moving masses have no {parameter}; use eta_M")
+        return 2
+    return 4 if parameter == "eta_M" else 2
+
+
+class SweepCharacteristic:
+    """E_chr(q; alpha, d, theta) for numpy arrays, theta one of :data:`POLYNOMIAL_PARAMETERS`.
+
+    Parameters
+    ----------
+    params : DimensionlessParams
+        Everything but alpha, the spacing d (when given per point) and ``parameter`` is taken from here;
+        with ``parameter="eta_M"`` the bar's mass and inertia follow the wheel mass with the coefficients
+        cf1, cf2 of ``params`` (Eq. (63)).
+    model : {"bogie", "masses"}
+    parameter : str
+        The vehicle parameter swept (default eta_M).
+    """
+
+    def __init__(self, params, model: str = "bogie", parameter: str = "eta_M"):
+        self.params = params
+        self.model = model
+        self.parameter = parameter
+        self.degree = polynomial_degree(model, parameter)
+        self.module = vehicle_module(model)
+        self.foundation = foundation_module(params.beam)
+        ns = params.as_float()
+        self.track_args = {k: v for k, v in foundation_arguments(params, ns).items() if k != "alpha"}
+        self.d = ns.d
+        self.cf1 = float(params.cf1)
+        self.cf2 = float(params.cf2)
+        self.base = {name: getattr(ns, name) for name in self.module.PARAMETERS}
+
+    # -- track ---------------------------------------------------------------------------------------
+    def _coeffs(self, func, q, alpha):
+        cs = func(q, **self.track_args, alpha=alpha)
+        out = np.empty(np.shape(q) + (len(cs),), dtype=complex)
+        for k, c in enumerate(cs):
+            out[..., k] = c
+        return out
+
+    def _d_alpha(self, func, q, alpha):
+        """Coefficients of dN/dalpha (or dQ/dalpha): five-point stencil, exact for degree <= 4."""
+        h = _ALPHA_STENCIL
+        shifts = np.array([-2.0, -1.0, 1.0, 2.0]).reshape((4,) + (1,) * q.ndim)
+        f = self._coeffs(func, np.broadcast_to(q, (4,) + q.shape), alpha[None] + h * shifts)
+        return (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * h)
+
+    def p_roots(self, q, alpha):
+        """Roots of N(p, q) in p, shape ``q.shape + (4,)`` (closed form for quartics)."""
+        q, alpha = _prepare(q, alpha)
+        return _roots(self._coeffs(self.foundation.n_coeffs, q, alpha))
+
+    def upper_root_count(self, q, alpha):
+        """Number of p-roots with Im p > 0: it changes exactly where q crosses the cut of K."""
+        return np.sum(self.p_roots(q, alpha).imag > 0, axis=-1)
+
+    def kernel(self, q, alpha, *, d=None, derivative=False, derivative_alpha=False, spacings=None):
+        """K = (K0, K+, K-) at arrays ``q``, ``alpha`` (and per-point spacing ``d``), broadcast together.
+
+        Returns ``(K, dK_dq, dK_dalpha)``, the derivatives None unless asked. With ``spacings`` (a list of
+        floats), K and the derivatives are lists with one triple per spacing, sharing the p-roots.
+        """
+        q, alpha = _prepare(q, alpha)
+        fnd = self.foundation
+        n = self._coeffs(fnd.n_coeffs, q, alpha)
+        qc = self._coeffs(fnd.q_coeffs, q, alpha)
+        P = _roots(n)
+        n1 = _polyder(n)
+        N1 = _polyval(n1, P)
+        Qv = _polyval(qc, P)
+        N2 = Qp = None
+        if derivative or derivative_alpha:
+            N2 = _polyval(_polyder(n1), P)
+            Qp = _polyval(_polyder(qc), P)
+        parts = []
+        if derivative:
+            parts.append((self._coeffs(fnd.n_coeffs_dq, q, alpha), self._coeffs(fnd.q_coeffs_dq, q, alpha)))
+        if derivative_alpha:
+            parts.append((self._d_alpha(fnd.n_coeffs, q, alpha), self._d_alpha(fnd.q_coeffs, q, alpha)))
+        parts = [(_polyval(ns, P), _polyval(_polyder(ns), P), _polyval(qs, P)) for ns, qs in parts]
+        upper = P.imag > 0
+        ds = [self.d] if spacings is None else list(spacings)
+        if d is not None:
+            ds = [np.broadcast_to(np.asarray(d, dtype=float), q.shape)]
+        keys = ["dq"] * derivative + ["da"] * derivative_alpha
+        out = {"K": [], "dq": [], "da": []}
+        for dd in ds:
+            trip = {key: [] for key in out}
+            for sign_xi in (0, 1, -1):
+                xi = sign_xi * (dd if np.ndim(dd) == 0 else dd[..., None])
+                mask = upper if sign_xi >= 0 else ~upper
+                factor = 2j * np.pi * (1 if sign_xi >= 0 else -1)
+                e = np.exp(1j * P * xi)
+                trip["K"].append(factor * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
+                for key, (Ns, Nsp, Qs) in zip(keys, parts):
+                    g = e * Qv * Ns
+                    gp = e * (1j * xi * Qv * Ns + Qp * Ns + Qv * Nsp)
+                    term = e * Qs / N1 - (gp * N1 - g * N2) / N1**3
+                    trip[key].append(factor * np.sum(np.where(mask, term, 0), axis=-1))
+            for key in out:
+                out[key].append(tuple(trip[key]) if trip[key] else None)
+        if spacings is None:
+            return out["K"][0], out["dq"][0], out["da"][0]
+        return out["K"], out["dq"] if derivative else None, out["da"] if derivative_alpha else None
+
+    # -- vehicle -------------------------------------------------------------------------------------
+    def vehicle_args(self, theta=None, d=None) -> dict:
+        """Keyword arguments of the generated e_chr with ``parameter = theta`` (arrays allowed)."""
+        args = dict(self.base)
+        if d is not None and "d" in args:
+            args["d"] = d
+        if theta is not None:
+            if self.parameter == "eta_M":
+                args["eta_M"] = theta
+                if self.model == "bogie":
+                    args["mu_v"] = self.cf1 * theta
+                    args["J_b"] = self.cf2 * theta * args["d"] ** 2
+            else:
+                args[self.parameter] = theta
+        return args | {"pi": np.pi}
+
+    def e_chr(self, q, K, theta=None, d=None):
+        """E_chr at ``q`` from precomputed K = (K0, K+, K-)."""
+        return self.module.e_chr(q, *K, **self.vehicle_args(theta, d))
+
+    def __call__(self, q, alpha, theta=None, d=None):
+        """E_chr at arrays q, alpha (and theta, d)."""
+        q = np.asarray(q, dtype=complex)
+        K, _, _ = self.kernel(q, alpha, d=d)
+        return self.e_chr(q, K, theta, d)
+
+    def e_and_dq(self, q, alpha, theta=None, d=None):
+        """(E_chr, dE_chr/dq) at arrays q, alpha (and theta, d): Eq. (40) chain rule through dK/dq."""
+        q = np.asarray(q, dtype=complex)
+        K, dK, _ = self.kernel(q, alpha, d=d, derivative=True)
+        args = self.vehicle_args(theta, d)
+        E = self.module.e_chr(q, *K, **args)
+        E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
+        return E, E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2]
+
+    def derivatives(self, q, alpha, theta, d=None):
+        """``(E, E_q, E_alpha, E_theta)`` at arrays (q complex or real, alpha, theta, d).
+
+        E_theta by a five-point stencil in theta, exact since E_chr has degree <= 4 in theta (None when
+        ``theta`` is None: the parameter values of ``params`` are used).
+        """
+        q = np.asarray(q, dtype=complex)
+        K, dKq, dKa = self.kernel(q, alpha, d=d, derivative=True, derivative_alpha=True)
+        args = self.vehicle_args(theta, d)
+        E = self.module.e_chr(q, *K, **args)
+        E_q, E0, Ep, Em = self.module.e_chr_partials(q, *K, **args)
+        E_q = E_q + E0 * dKq[0] + Ep * dKq[1] + Em * dKq[2]
+        E_a = E0 * dKa[0] + Ep * dKa[1] + Em * dKa[2]
+        if theta is None:
+            return E, E_q, E_a, None
+        h = np.maximum(np.abs(theta), 1.0) * 0.25
+        f = [self.module.e_chr(q, *K, **self.vehicle_args(theta + k * h, d)) for k in (-2, -1, 1, 2)]
+        E_t = (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * h)
+        return E, E_q, E_a, E_t
+
+    # -- polynomial structure ------------------------------------------------------------------------
+    def nodes(self, scale: float) -> np.ndarray:
+        """Chebyshev nodes of [0, scale] used to interpolate the polynomial in the parameter."""
+        n = self.degree + 1
+        return 0.5 * scale * (1 - np.cos((2 * np.arange(n) + 1) * np.pi / (2 * n)))
+
+    def coefficients(self, q, K, *, scale: float = 1.0, dK=None, d=None):
+        """Coefficients of E_chr (and of dE/dq with ``dK``) in t = theta / scale, highest power first.
+
+        Parameters
+        ----------
+        q : ndarray
+        K : tuple of ndarray
+            (K0, K+, K-) at q (from :meth:`kernel`).
+        scale : float
+            The range of interest of theta: the interpolation nodes lie in [0, scale].
+        dK : tuple of ndarray, optional
+            q-derivatives of K; if given, the coefficients of dE/dq are returned too.
+        d : float or ndarray, optional
+            Wheel spacing (default that of ``params``), entering the bogie's J_b and B3.
+
+        Returns
+        -------
+        ndarray of shape ``q.shape + (degree + 1,)`` (or a pair of them with ``dK``)
+        """
+        q = np.asarray(q, dtype=complex)
+        nodes = self.nodes(scale)
+        inv = np.linalg.inv(np.vander(nodes / scale, self.degree + 1))
+        values, dvalues = [], []
+        for theta in nodes:
+            args = self.vehicle_args(theta, d)
+            values.append(np.broadcast_to(self.module.e_chr(q, *K, **args), q.shape))
+            if dK is not None:
+                E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
+                dvalues.append(np.broadcast_to(E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2], q.shape))
+        c = np.einsum("ij,j...->...i", inv, np.stack(values))
+        if dK is None:
+            return c
+        return c, np.einsum("ij,j...->...i", inv, np.stack(dvalues))
+
+
+def _prepare(q, alpha):
+    q = np.asarray(q, dtype=complex)
+    alpha = np.asarray(alpha, dtype=float)
+    q, alpha = np.broadcast_arrays(q, alpha)
+    return np.ascontiguousarray(q), np.ascontiguousarray(alpha)
+
+
+def _roots(coeffs):
+    if coeffs.shape[-1] == 5:
+        return quartic_roots(coeffs)
+    return poly_roots(coeffs)

@@ -1,0 +1,246 @@
+"""The track kernel K(xi, q) of Eq. (29) and its q-derivative, by residues at the roots of N(p, q).
+
+K(xi, q) = integral over real p of exp(i p xi) Q(p,q) / N(p,q) dp. For xi >= 0 the contour is closed in the
+upper half p-plane, for xi < 0 in the lower one (Jordan's lemma: Q/N = O(p^-2)), so
+
+    K(xi, q) =  2 pi i sum_{Im p_k > 0} exp(i p_k xi) Q(p_k) / N'(p_k)          (xi >= 0)
+    K(xi, q) = -2 pi i sum_{Im p_k < 0} exp(i p_k xi) Q(p_k) / N'(p_k)          (xi < 0)
+
+dK/dq = integral of exp(i p xi) (Q_q / N - Q N_q / N^2) dp: simple poles for the first term, double poles
+for the second, whose residue at a simple root p_k of N is (g' N' - g N'') / N'^3 with g = exp(i p xi) Q N_q.
+
+The sum is taken over whichever roots lie on each side of the real p-axis at the given q, so K is the
+integral's value on either side of the cut locus (for Euler-Bernoulli the line Im q = eta_f, see
+``kernels/cut.py``). Two backends share these formulas: :class:`TrackKernel` evaluates one q at the current
+mpmath precision; :class:`TrackKernelArray` evaluates numpy arrays of q in double precision.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+
+import mpmath
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
+
+
+def foundation_module(beam: str):
+    """The generated module of a track model ("eb", "tr", or any model added in derivations/)."""
+    try:
+        return importlib.import_module(f"moving_bogie.generated.foundation_{beam}")
+    except ModuleNotFoundError:
+        raise MovingBogieError(f"unknown beam model {beam!r}: no generated/foundation_{beam}.py") from None
+
+
+def foundation_arguments(params, numbers) -> dict:
+    """Keyword arguments of the generated foundation functions (besides q or p) from a params namespace.
+
+    The names come from the generated module (its ``ARGUMENTS``), so a model added in derivations/ with the
+    existing groups needs no change here; a group the model does not use is passed as None.
+    """
+    names = foundation_module(params.beam).ARGUMENTS[1:]
+    return {name: getattr(numbers, name, None) for name in names}
+
+
+def _polyval(coeffs, x):
+    acc = coeffs[0]
+    for c in coeffs[1:]:
+        acc = acc * x + c
+    return acc
+
+
+def _polyder(coeffs):
+    n = len(coeffs) - 1
+    return [c * (n - k) for k, c in enumerate(coeffs[:-1])] or [0]
+
+
+@dataclass(frozen=True)
+class KernelValues:
+    """K at the requested xi values and, if asked, dK/dq; ``roots`` are the p-roots of N used."""
+
+    K: tuple
+    dK: tuple | None
+    roots: tuple
+
+
+class TrackKernel:
+    """K(xi, q) and dK/dq at one complex q, at the current mpmath precision (Eq. (29)).
+
+    Parameters
+    ----------
+    params : DimensionlessParams
+    coalescence_digits : int
+        Where two p-roots on the same side are closer than 10**-k relative, their separate residues are
+        large and nearly cancel (their sum stays finite). The evaluation then repeats at a precision
+        raised by three times the digits lost (the double-pole residues of dK/dq lose 3x).
+    """
+
+    def __init__(self, params, *, coalescence_digits: int = 3):
+        self.params = params
+        self.module = foundation_module(params.beam)
+        self.coalescence_digits = coalescence_digits
+
+    def _numbers(self):
+        ns = self.params.as_mp()
+        return foundation_arguments(self.params, ns)
+
+    def p_roots(self, q):
+        """Roots of N(p, q) in p at the current precision (numpy start + Durand-Kerner polish)."""
+        args = self._numbers()
+        coeffs = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
+        return _roots_mp(coeffs)
+
+    def __call__(self, q, xis, *, derivative: bool = False) -> KernelValues:
+        """K(xi, q) for every xi in ``xis`` (and dK/dq if ``derivative``)."""
+        q = mpmath.mpc(q)
+        for _ in range(4):
+            values, sep = self._evaluate(q, xis, derivative)
+            if sep is None or sep > mpmath.mpf(10) ** (-self.coalescence_digits):
+                return values
+            extra = int(3 * -mpmath.log10(sep)) + 10
+            with mpmath.workdps(mpmath.mp.dps + extra):
+                values, sep2 = self._evaluate(q, xis, derivative)
+            return KernelValues(
+                tuple(+k for k in values.K),
+                None if values.dK is None else tuple(+k for k in values.dK),
+                tuple(+p for p in values.roots),
+            )
+        return values  # pragma: no cover
+
+    def _evaluate(self, q, xis, derivative):
+        args = self._numbers()
+        n = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
+        roots = _roots_mp(n)
+        qc = [mpmath.mpc(c) for c in self.module.q_coeffs(q, **args)]
+        n1 = _polyder(n)
+        if derivative:
+            n2 = _polyder(n1)
+            nq = [mpmath.mpc(c) for c in self.module.n_coeffs_dq(q, **args)]
+            nqp = _polyder(nq)
+            qq = [mpmath.mpc(c) for c in self.module.q_coeffs_dq(q, **args)]
+            qp = _polyder(qc)
+        upper = [p for p in roots if mpmath.im(p) > 0]
+        lower = [p for p in roots if mpmath.im(p) < 0]
+        if len(upper) + len(lower) != len(roots):
+            raise MovingBogieError(
+                f"K({q}) undefined: a root of N(p, q) lies on the real p-axis (q on the cut)"
+            )
+        two_pi_i = 2j * mpmath.pi
+        Ks, dKs = [], []
+        for xi in xis:
+            xi = mpmath.mpf(xi)
+            side, sign = (upper, 1) if xi >= 0 else (lower, -1)
+            total = mpmath.mpc(0)
+            dtotal = mpmath.mpc(0)
+            for p in side:
+                e = mpmath.exp(1j * p * xi)
+                N1 = _polyval(n1, p)
+                Qv = _polyval(qc, p)
+                total += e * Qv / N1
+                if derivative:
+                    N2 = _polyval(n2, p)
+                    Nq = _polyval(nq, p)
+                    g = e * Qv * Nq
+                    gp = e * (1j * xi * Qv * Nq + _polyval(qp, p) * Nq + Qv * _polyval(nqp, p))
+                    dtotal += e * _polyval(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
+            Ks.append(sign * two_pi_i * total)
+            dKs.append(sign * two_pi_i * dtotal)
+        sep = _min_relative_separation(upper) if len(upper) > 1 else None
+        sep_l = _min_relative_separation(lower) if len(lower) > 1 else None
+        if sep is None or (sep_l is not None and sep_l < sep):
+            sep = sep_l
+        return KernelValues(tuple(Ks), tuple(dKs) if derivative else None, tuple(roots)), sep
+
+
+def _min_relative_separation(roots):
+    best = None
+    for i in range(len(roots)):
+        for j in range(i + 1, len(roots)):
+            scale = max(abs(roots[i]), abs(roots[j]), mpmath.mpf(1))
+            sep = abs(roots[i] - roots[j]) / scale
+            best = sep if best is None or sep < best else best
+    return best
+
+
+def _roots_mp(coeffs):
+    """All roots of a polynomial (highest power first) at the current precision.
+
+    Starts from numpy's double-precision roots and polishes all of them together by the Weierstrass
+    (Durand-Kerner) iteration, which converges quadratically for simple roots; falls back to
+    ``mpmath.polyroots`` if it does not converge.
+    """
+    while len(coeffs) > 1 and coeffs[0] == 0:
+        coeffs = coeffs[1:]
+    lead = coeffs[0]
+    monic = [c / lead for c in coeffs]
+    start = np.roots([complex(c) for c in monic])
+    z = [mpmath.mpc(complex(x)) for x in start]
+    tol = mpmath.mpf(10) ** (-mpmath.mp.dps + 3)
+    for _ in range(60):
+        deltas = []
+        for i, zi in enumerate(z):
+            den = mpmath.mpc(1)
+            for j, zj in enumerate(z):
+                if j != i:
+                    den *= zi - zj
+            if den == 0:
+                break
+            deltas.append(_polyval(monic, zi) / den)
+        if len(deltas) != len(z):
+            break
+        z = [zi - di for zi, di in zip(z, deltas)]
+        if max(abs(di) / max(abs(zi), 1) for di, zi in zip(deltas, z)) < tol:
+            return z
+    return list(mpmath.polyroots(monic, maxsteps=200, extraprec=2 * mpmath.mp.prec))
+
+
+class TrackKernelArray:
+    """K(xi, q) and dK/dq for numpy arrays of q in double precision (counting contours, sweeps)."""
+
+    def __init__(self, params):
+        self.params = params
+        self.module = foundation_module(params.beam)
+        self.args = foundation_arguments(params, params.as_float())
+
+    def _coeffs(self, func, q):
+        return stack_coefficients(func(q, **self.args), q.shape)
+
+    def p_roots(self, q):
+        """Roots in p, shape q.shape + (degree,) (closed-form quartic, see :mod:`polyroots`)."""
+        return poly_roots(self._coeffs(self.module.n_coeffs, q))
+
+    def __call__(self, q, xis, *, derivative=False):
+        q = np.asarray(q, dtype=complex)
+        roots = self.p_roots(q)
+        n = self._coeffs(self.module.n_coeffs, q)
+        qc = self._coeffs(self.module.q_coeffs, q)
+        n1 = polyder(n)
+        P = roots
+        N1 = polyval(n1, P)
+        Qv = polyval(qc, P)
+        if derivative:
+            n2 = polyder(n1)
+            nq = self._coeffs(self.module.n_coeffs_dq, q)
+            qq = self._coeffs(self.module.q_coeffs_dq, q)
+            N2 = polyval(n2, P)
+            Nq = polyval(nq, P)
+            Nqp = polyval(polyder(nq), P)
+            Qp = polyval(polyder(qc), P)
+            Qq = polyval(qq, P)
+        upper = P.imag > 0
+        Ks, dKs = [], []
+        for xi in xis:
+            xi = float(xi)
+            mask = upper if xi >= 0 else ~upper
+            sign = 1 if xi >= 0 else -1
+            e = np.exp(1j * P * xi)
+            Ks.append(sign * 2j * np.pi * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
+            if derivative:
+                g = e * Qv * Nq
+                gp = e * (1j * xi * Qv * Nq + Qp * Nq + Qv * Nqp)
+                term = e * Qq / N1 - (gp * N1 - g * N2) / N1**3
+                dKs.append(sign * 2j * np.pi * np.sum(np.where(mask, term, 0), axis=-1))
+        return KernelValues(tuple(Ks), tuple(dKs) if derivative else None, roots)

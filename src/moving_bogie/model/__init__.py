@@ -1,0 +1,1 @@
+"""The model: parameters (dimensionless and SI), Table 1 cases, parameter files."""

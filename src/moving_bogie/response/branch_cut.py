@@ -1,0 +1,490 @@
+"""The branch-cut part I_bc of Eq. (35) (Euler-Bernoulli beam, with or without a Pasternak layer).
+
+Orientation. x(tau) = (1/2 pi) * integral of f(q) dq along the Bromwich line Im q = -a (left to right),
+f = X~(q) e^{i q tau} = [n_X / (i q E_chr)] e^{i q tau}. Closing upward, the cut of K (for Euler-Bernoulli
+the half-lines Im q = eta_f, |Re q| >= q_c) is wrapped: the strip below the cut is traversed with its
+lower side going west, the region above with the upper side going east. The residue theorem for the
+region above the Bromwich line then gives
+
+    x(tau) = i sum Res f + (1/2 pi) * integral over the cut (Re q increasing) of [f_below - f_above] dq,
+
+so I_bc is the jump "value from below minus value from above". The mirror symmetry f(-conj q) =
+conj f(q) (x is real) maps the left ray onto the right one, hence
+
+    I_bc(tau) = (1/pi) Re integral_{q_c}^{inf} j(q) e^{i q tau} ds,
+    q = s + i eta_f,  j = X~_below - X~_above.
+
+Parametrisation. A point of the right ray is
+
+    q(p) = alpha p + i eta_f + sqrt(p^4 + 4 eta_s p^2 + 4 - 4 eta_f^2)/2
+
+for real p (the real root of N(., q) itself, ``kernels/cut.py``); s(p) is convex with its minimum q_c at p_c,
+and p > p_c covers the ray once. In p the square-root branch point disappears (ds = s'(p) dp with
+s'(p_c) = 0, K ~ 1/(p - p_1)), so a composite Gauss-Legendre rule in p converges fast. At such a q the
+two real roots p and p_1 of N are assigned to a side by the direction they move when q leaves the
+cut: q -> q - i eps moves a root by i eps N_q/N_p, so from below a real root counts as "upper" iff
+N_q/N_p > 0, from above iff N_q/N_p < 0 (checked against K at q -+ i eps in the tests).
+
+Quadrature. Panels in p are sized so that each spans at most 3 pi of phase s tau at the largest tau of a
+band of times (bands double: [0, 1/2], (1/2, 1], (1, 2], ...), 16 Gauss-Legendre nodes each. The ray is
+truncated at s = S: for the first band where the neglected tail integral of |j| is below ``tol``;
+for the others the tail is added by integration by parts, e^{i q_S tau} (i j/tau - j'/tau^2 - i j''/tau^3),
+with S chosen so that the first neglected term |j'''|/tau^4 (estimated by |j''|/tau^3) is below ``tol``.
+
+Timoshenko-Rayleigh: the cut is a curve below eta_f (``kernels/cut.py``) and is not implemented here;
+:class:`BranchCutUnavailable` is raised.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from scipy import optimize
+
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
+from moving_bogie.kernels.track import foundation_arguments, foundation_module
+
+__all__ = ["BranchCut", "BranchCutUnavailable"]
+
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
+#: Phase per panel (radians) at the largest tau of its band; 16 Gauss-Legendre nodes integrate it to ~1e-14.
+_PANEL_PHASE = 3 * np.pi
+#: Largest panel in p: at most _PANEL_XI radians of e^{i p xi} at the largest |xi| and never above _PANEL_DP;
+#: largest panel in s relative to max(1, s): resolves poles of f near the cut.
+_PANEL_DP = 0.5
+_PANEL_XI = 2.0
+_PANEL_DS_REL = 0.05
+_FIRST_BAND = 0.5
+#: Bisection levels of the adaptive base partition (a peak 2^-40 of a panel wide is still resolved).
+_MAX_SPLITS = 40
+_S_STEPS = tuple(2.0**k for k in range(-1, 16))
+
+
+class BranchCutUnavailable(MovingBogieError):
+    """The branch-cut integral is not available for these parameters (beam model or no gap at q = 0)."""
+
+
+class BranchCut:
+    """The jump of the transformed responses across the cut and the integral I_bc of Eq. (35).
+
+    Parameters
+    ----------
+    params : DimensionlessParams
+        Euler-Bernoulli beam (``beam="eb"``), subcritical (the cut leaves a gap around q = 0).
+    model : {"bogie", "masses"}
+    panel_tol : float
+        Absolute tolerance per panel of the adaptive partition of the cut (:meth:`base_edges`).
+
+    Raises
+    ------
+    BranchCutUnavailable
+        For a Timoshenko-Rayleigh beam, or when the cut reaches q = 0 (supercritical velocity).
+    """
+
+    def __init__(self, params, model: str = "bogie", *, panel_tol: float = 1e-13):
+        if params.beam != "eb":
+            raise BranchCutUnavailable(
+                "the branch-cut part I_bc is implemented for the Euler-Bernoulli beam only (beam='eb'); "
+                "for Timoshenko-Rayleigh use branch_cut=False (residues only)"
+            )
+        self.params = params
+        self.model = model
+        f = params.as_float()
+        self.alpha, self.eta_f, self.eta_s, self.d = f.alpha, f.eta_f, f.eta_s, f.d
+        self._c = 4.0 - 4.0 * self.eta_f**2
+        self.foundation = foundation_module(params.beam)
+        self.fargs = foundation_arguments(params, f)
+        self.vehicle = vehicle_module(model)
+        self.vargs = {name: getattr(f, name) for name in self.vehicle.PARAMETERS} | {"pi": np.pi}
+        self.names = tuple(self.vehicle.RESPONSES)
+        self.p_c = self._minimum()
+        self.q_c = float(self.s(self.p_c))
+        self.panel_tol = panel_tol
+        self._base: dict[float, np.ndarray] = {}
+        if not self.q_c > 0:
+            raise BranchCutUnavailable(
+                f"the cut of K reaches q = 0 (q_c = {self.q_c:.6g} <= 0): supercritical velocity, no gap "
+                "around the steady state"
+            )
+
+    # --- geometry of the right ray -------------------------------------------------------------
+    def _R(self, p):
+        return np.sqrt(p**4 + 4 * self.eta_s * p**2 + self._c)
+
+    def s(self, p):
+        """Re q of the cut point of the real root p (right ray)."""
+        return self.alpha * p + 0.5 * self._R(p)
+
+    def ds(self, p):
+        """ds/dp (>= 0 for p >= p_c)."""
+        return self.alpha + (p**3 + 2 * self.eta_s * p) / self._R(p)
+
+    def _minimum(self) -> float:
+        if self.alpha == 0:
+            return 0.0
+        lo = -1.0
+        while self.ds(lo) >= 0:
+            lo *= 2
+        return float(optimize.brentq(self.ds, lo, 0.0, xtol=1e-15, rtol=1e-15))
+
+    def p_of_s(self, s):
+        """The real root p > p_c with s(p) = s (s >= q_c); Newton from the right (s is convex)."""
+        s = np.asarray(s, dtype=float)
+        p = np.sqrt(2 * np.maximum(s, 0.0)) + 1.0 + abs(self.p_c)
+        for _ in range(100):
+            step = (self.s(p) - s) / self.ds(p)
+            p = p - step
+            if np.all(np.abs(step) <= 1e-15 * np.maximum(1.0, np.abs(p))):
+                break
+        return p
+
+    def q(self, p):
+        """The cut point q(p) = s(p) + i eta_f."""
+        return self.s(p) + 1j * self.eta_f
+
+    # --- kernel values on both sides ------------------------------------------------------------
+    def _roots_and_sides(self, p0):
+        """(q, P, weights): the roots of N(., q(p0)) ordered by side (see :meth:`_both_sides`), Q/N'."""
+        p0 = np.asarray(p0, dtype=float)
+        q = self.q(p0)
+        c = stack_coefficients(self.foundation.n_coeffs(q, **self.fargs), q.shape)
+        # deflate by (p - p0): p0 is an exact root; the cubic's roots stay well separated near p_c
+        b = np.empty(c.shape[:-1] + (c.shape[-1] - 1,), dtype=complex)
+        b[..., 0] = c[..., 0]
+        for k in range(1, b.shape[-1]):
+            b[..., k] = c[..., k] + p0 * b[..., k - 1]
+        monic = b[..., 1:] / b[..., :1]
+        deg = monic.shape[-1]
+        comp = np.zeros(q.shape + (deg, deg), dtype=complex)
+        comp[..., 0, :] = -monic
+        comp[..., np.arange(1, deg), np.arange(deg - 1)] = 1
+        cubic = np.linalg.eigvals(comp)
+        k = np.argmin(np.abs(cubic.imag), axis=-1)
+        p1 = np.take_along_axis(cubic, k[..., None], axis=-1)[..., 0].real
+        others = cubic[np.arange(deg)[None, :] != k[..., None]].reshape(q.shape + (deg - 1,))
+        P = np.concatenate([p0[..., None] + 0j, p1[..., None] + 0j, others], axis=-1)
+        Np = polyval(polyder(c), P)
+        dq = stack_coefficients(self.foundation.n_coeffs_dq(q, **self.fargs), q.shape)
+        Nq = polyval(dq, P)
+        Qc = stack_coefficients(self.foundation.q_coeffs(q, **self.fargs), q.shape)
+        weight = polyval(Qc, P) / Np
+        # order the roots: [upper real root seen from below, other real root, upper complex, lower complex]
+        from_below = (Nq[..., 0] / Np[..., 0]).real > 0
+        up_c = others.imag[..., 0] > 0
+        order = np.stack(
+            [
+                np.where(from_below, 0, 1),
+                np.where(from_below, 1, 0),
+                np.where(up_c, 2, 3),
+                np.where(up_c, 3, 2),
+            ],
+            axis=-1,
+        )
+        return q, np.take_along_axis(P, order, -1), np.take_along_axis(weight, order, -1)
+
+    @staticmethod
+    def _both_sides(P, weight, xi):
+        """(K_below, K_above) at every xi, shape (nodes, len(xi)), sharing the exponentials.
+
+        Upper roots: from below {P0, P2}, from above {P1, P2}; lower: from below {P1, P3}, from above
+        {P0, P3}. So K = sign(xi) * (complex term + real term) with the real term swapped between sides.
+        """
+        xi = np.asarray(xi, dtype=float)
+        pos = xi >= 0
+        sign = np.where(pos, 2j * np.pi, -2j * np.pi)
+        common = np.empty((P.shape[0], xi.size), dtype=complex)
+        for mask, k in ((pos, 2), (~pos, 3)):
+            if np.any(mask):
+                x = xi[mask]
+                root = P[:, k : k + 1]
+                common[:, mask] = _cis(root.real * x) * (np.exp(-root.imag * x) * weight[:, k : k + 1])
+        e0 = _cis(P[:, 0:1].real * xi) * weight[:, 0:1]
+        e1 = _cis(P[:, 1:2].real * xi) * weight[:, 1:2]
+        below = sign * (common + np.where(pos, e0, e1))
+        above = sign * (common + np.where(pos, e1, e0))
+        return below, above
+
+    def kernels(self, p0, xis, side: str):
+        """K(xi, q(p0)) on one side of the cut ("below" or "above"), shape (len(p0), len(xis))."""
+        _, P, weight = self._roots_and_sides(np.atleast_1d(p0))
+        below, above = self._both_sides(P, weight, np.atleast_1d(np.asarray(xis, dtype=float)))
+        return below if side == "below" else above
+
+    def _contact_kernels(self, P, weight):
+        xis = np.array([0.0, self.d, -self.d])
+        below, above = self._both_sides(P, weight, xis)
+        return (below[:, 0], below[:, 1], below[:, 2]), (above[:, 0], above[:, 1], above[:, 2])
+
+    # --- jumps of the transformed responses -----------------------------------------------------
+    def response_jumps(self, p0) -> tuple[np.ndarray, np.ndarray]:
+        """(q, J): J[:, k] = X~_below - X~_above of response ``names[k]`` at q(p0); X~ = n_X/(i q E_chr)."""
+        q, P, weight = self._roots_and_sides(np.atleast_1d(p0))
+        out = []
+        for Ks in self._contact_kernels(P, weight):
+            E = self.vehicle.e_chr(q, *Ks, **self.vargs)
+            nums = self.vehicle.numerators(q, *Ks, **self.vargs)
+            out.append(np.stack([n / (1j * q * E) for n in nums], axis=-1))
+        return q, out[0] - out[1]
+
+    def shape_jumps(self, p0, xi) -> tuple[np.ndarray, np.ndarray]:
+        """(q, J) with J[:, k] = W~_below - W~_above at xi[k], i q W~ = (G_r K(xi) + G_f K(xi-d))/(2 pi E)."""
+        q, P, weight = self._roots_and_sides(np.atleast_1d(p0))
+        xi = np.asarray(xi, dtype=float)
+        Kx = self._both_sides(P, weight, xi)
+        Kxd = self._both_sides(P, weight, xi - self.d)
+        out = []
+        for k, Ks in enumerate(self._contact_kernels(P, weight)):
+            E = self.vehicle.e_chr(q, *Ks, **self.vargs)
+            G_r, G_f = self.vehicle.shape_weights(q, *Ks, **self.vargs)
+            den = 2 * np.pi * 1j * q * E
+            out.append((G_r / den)[:, None] * Kx[k] + (G_f / den)[:, None] * Kxd[k])
+        return q, out[0] - out[1]
+
+    # --- the integral ---------------------------------------------------------------------------
+    def base_edges(self, S: float) -> np.ndarray:
+        """Panel edges in p on [p_c, p(S)] adapted to the jump itself (no oscillation), cached.
+
+        Start from panels of at most _PANEL_DP in p and 5 % in s, then split every panel where the
+        16-point Gauss-Legendre integral of the response jumps differs from the sum over its two halves by
+        more than ``panel_tol``: this resolves induced frequencies (or poles of the continuation across the
+        cut) lying close to the cut, whose Lorentzian peaks can be far narrower than any fixed panel.
+        """
+        for S2, edges in self._base.items():
+            if S2 >= S:
+                p_hi = float(self.p_of_s(S))
+                keep = edges[edges < p_hi]
+                return np.append(keep, p_hi)
+        p_hi = float(self.p_of_s(S))
+        n = max(4000, int(400 * (p_hi - self.p_c)))
+        P = np.linspace(self.p_c, p_hi, n)
+        sp = np.maximum(self.ds(P), 0.0)
+        density = np.maximum(sp / (_PANEL_DS_REL * np.maximum(1.0, self.s(P))), 1 / _PANEL_DP)
+        cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
+        panels = max(1, int(np.ceil(cum[-1])))
+        start = np.interp(np.linspace(0.0, cum[-1], panels + 1), cum, P)
+        a, b = start[:-1], start[1:]
+        accepted = [start]
+        for _ in range(_MAX_SPLITS):
+            if a.size == 0:
+                break
+            m = 0.5 * (a + b)
+            whole = self._panel_integrals(a, b)
+            halves = self._panel_integrals(a, m) + self._panel_integrals(m, b)
+            bad = np.max(np.abs(whole - halves), axis=-1) > self.panel_tol
+            accepted.append(m[bad])
+            a, b = np.concatenate([a[bad], m[bad]]), np.concatenate([m[bad], b[bad]])
+        edges = np.unique(np.concatenate(accepted))
+        self._base[S] = edges
+        return edges
+
+    def _panel_integrals(self, a, b):
+        nodes = (0.5 * (b - a)[:, None] * _GL_X + 0.5 * (a + b)[:, None]).ravel()
+        weights = (0.5 * (b - a)[:, None] * _GL_W).ravel()
+        _, J = self.response_jumps(nodes)
+        values = J * (weights * self.ds(nodes))[:, None]
+        return values.reshape(a.size, _GL_X.size, -1).sum(axis=1)
+
+    def rule(self, S: float, tau_hi: float, xi_max: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Composite 16-point Gauss-Legendre nodes and weights in p on [p_c, p(S)].
+
+        The panels of :meth:`base_edges` are subdivided to span at most 3 pi of the phase s tau_hi and
+        _PANEL_XI radians of e^{i p xi} for |xi| <= xi_max (default: the wheel spacing d).
+        """
+        xi_max = self.d if xi_max is None else xi_max
+        dp = min(_PANEL_DP, _PANEL_XI / (abs(xi_max) + 1.0))
+        edges = self.base_edges(S)
+        a, b = edges[:-1], edges[1:]
+        phase = tau_hi * (self.s(b) - self.s(a)) / _PANEL_PHASE
+        pieces = np.maximum(1, np.ceil(np.maximum(phase, (b - a) / dp))).astype(int)
+        k = np.repeat(np.arange(a.size), pieces)
+        j = np.arange(k.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+        width = (b - a) / pieces
+        lo = a[k] + j * width[k]
+        hi = lo + width[k]
+        nodes = (0.5 * (hi - lo)[:, None] * _GL_X + 0.5 * (lo + hi)[:, None]).ravel()
+        weights = (0.5 * (hi - lo)[:, None] * _GL_W).ravel()
+        return nodes, weights
+
+    def _tail_terms(self, channel, S: float):
+        """(j, j', j'') in s at s = S by central differences (max over channels when estimating)."""
+        h = 0.01 * min(S, max(1.0, float(self.p_of_s(S))) / max(self.d, 1.0))
+        h = min(h, 0.25 * (S - self.q_c))
+        ps = self.p_of_s(np.array([S - h, S, S + h]))
+        _, g = channel(ps)
+        g0 = g[1]
+        g1 = (g[2] - g[0]) / (2 * h)
+        g2 = (g[2] - 2 * g[1] + g[0]) / h**2
+        return g0, g1, g2
+
+    def choose_S(self, channel, tau_lo: float, tol: float, s_min: float | None = None) -> float:
+        """Truncation point S >= s_min of the ray for the band of times from tau_lo (module docstring)."""
+        last = None
+        floor = self.q_c if s_min is None else max(self.q_c, s_min - 0.5)
+        for step in _S_STEPS:
+            S = floor + step
+            if tau_lo <= 0:
+                ps = self.p_of_s(np.array([S, 2 * S]))
+                _, g = channel(ps)
+                a, b = np.abs(g[0]).max(), np.abs(g[1]).max()
+                kappa = np.log2(a / b) if a > 0 and b > 0 else 10.0
+                est = a * S / max(kappa - 1.0, 0.5)
+            else:
+                _, _, g2 = self._tail_terms(channel, S)
+                est = np.abs(g2).max() / tau_lo**3
+            last = S
+            if est <= tol:
+                return S
+        return last
+
+    def integrate(
+        self,
+        tau,
+        channel: Callable,
+        *,
+        tol: float = 1e-10,
+        s_min: float | None = None,
+        xi_max: float | None = None,
+    ) -> np.ndarray:
+        """I_bc(tau) for every channel: (1/pi) Re integral over the right ray of J e^{i q tau} dq.
+
+        Parameters
+        ----------
+        tau : array_like of float, >= 0
+        channel : callable
+            ``channel(p_nodes) -> (q, J)`` with J of shape (len(p_nodes), m): the jump in the s variable
+            (e.g. :meth:`response_jumps`).
+        tol : float
+            Absolute tolerance of the truncation/tail estimates (the quadrature itself is ~1e-13).
+        s_min : float, optional
+            Truncate the ray no earlier than this Re q (keep poles near the cut inside the quadrature).
+        xi_max : float, optional
+            Largest |xi| in the kernels of the channel (default the wheel spacing d).
+
+        Returns
+        -------
+        ndarray of shape tau.shape + (m,)
+        """
+        tau = np.asarray(tau, dtype=float)
+        if np.any(tau < 0) or not np.all(np.isfinite(tau)):
+            raise MovingBogieError("branch-cut integral needs finite tau >= 0")
+        flat = tau.reshape(-1)
+        m = channel(np.array([self.p_c + 1.0]))[1].shape[-1]
+        result = np.zeros((flat.size, m), dtype=complex)
+        exponent = np.ceil(np.log2(np.maximum(flat, _FIRST_BAND) / _FIRST_BAND))
+        band_hi = _FIRST_BAND * 2.0**exponent
+        for hi in np.unique(band_hi):
+            idx = np.nonzero(band_hi == hi)[0]
+            lo = 0.0 if hi <= _FIRST_BAND else hi / 2
+            S = self.choose_S(channel, lo, tol, s_min)
+            ts = flat[idx]
+            nodes, weights = self.rule(S, float(ts.max()), xi_max)
+            q_max = float(np.abs(self.q(nodes)).max())
+            weighted = lambda c, w: _weighted(channel, self, c, w)  # noqa: E731
+            acc = _fourier_sum(ts, nodes, weights, weighted, m, q_max, self.eta_f)
+            if lo > 0:
+                g0, g1, g2 = self._tail_terms(channel, S)
+                qS = S + 1j * self.eta_f
+                e = np.exp(1j * qS * ts)[:, None]
+                t = ts[:, None]
+                acc += e * (1j * g0 / t - g1 / t**2 - 1j * g2 / t**3)
+            result[idx] = acc
+        return (result.real / np.pi).reshape(tau.shape + (result.shape[-1],))
+
+    def responses(self, tau, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
+        """I_bc(tau) of every response, as a dict name -> ndarray."""
+        values = self.integrate(tau, self.response_jumps, tol=tol, s_min=s_min)
+        return {name: values[..., k] for k, name in enumerate(self.names)}
+
+    def shape(self, xi, tau: float, *, tol: float = 1e-10, s_min: float | None = None) -> np.ndarray:
+        """I_bc of the deflection w(xi, tau) at one time, for an array xi."""
+        xi = np.asarray(xi, dtype=float)
+        values = self.integrate(
+            np.array([float(tau)]),
+            lambda p: self.shape_jumps(p, xi.reshape(-1)),
+            tol=tol,
+            s_min=s_min,
+            xi_max=float(np.max(np.abs(np.concatenate([xi.ravel(), xi.ravel() - self.d])))),
+        )
+        return values[0].reshape(xi.shape)
+
+    def l1_bound(self, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
+        """(1/pi) integral of |J| ds per response: |I_bc(tau)| <= this * e^{-eta_f tau} for every tau."""
+        S = self.choose_S(self.response_jumps, 0.0, tol, s_min)
+        nodes, weights = self.rule(S, 0.0)
+        _, J = self.response_jumps(nodes)
+        values = (np.abs(J) * (weights * self.ds(nodes))[:, None]).sum(axis=0) / np.pi
+        return {name: float(values[k]) for k, name in enumerate(self.names)}
+
+
+def _weighted(channel, cut, chunk, w):
+    q, J = channel(chunk)
+    return q, J * (w * cut.ds(chunk))[:, None]
+
+
+#: Taylor terms of e^{i q delta} with |q delta| <= 1/4 (remainder below 1e-16 of the sum of |G|).
+_TAYLOR_TERMS = 12
+_GRID_BLOCK = 256
+
+
+def _cis(x):
+    """e^{i x} for a real array x (cos and sin of real arguments are cheaper than a complex exp)."""
+    out = np.empty(x.shape, dtype=complex)
+    np.cos(x, out=out.real)
+    np.sin(x, out=out.imag)
+    return out
+
+
+def _phases(t, s, eta):
+    """e^{i (s + i eta) t} for the outer product of times t and real s (sin/cos of real arguments)."""
+    out = _cis(np.multiply.outer(t, s))
+    out *= np.exp(-eta * t)[:, None]
+    return out
+
+
+def _fourier_sum(ts, nodes, weights, weighted, m, q_max, eta, *, memory=4_000_000):
+    """sum_n G_n e^{i q_n t} for every t, (q, G) = weighted(nodes, weights), Im q_n = eta: (len(ts), m).
+
+    Few times: the exponentials directly. Many times: on a uniform grid t_g with step h = 1/(2 max|q|),
+    e^{i q t} = e^{i q t_g} sum_k (i q delta)^k / k! with delta = t - t_g, |q delta| <= 1/4, and the grid
+    phases come by blocks from e^{i q t_0} e^{i q j h}. The cost is (grid points x nodes x terms) whatever
+    the number of times.
+    """
+    node_block = max(16, int(memory // (4 * max(m, 1))))
+    h = 0.5 / (q_max + 1.0)
+    lo, hi = np.floor(ts.min() / h), np.ceil(ts.max() / h)
+    grid_size = int(hi - lo) + 1
+    direct = ts.size <= grid_size or m > 64
+    acc = np.zeros((ts.size, m), dtype=complex)
+    if not direct:
+        k = np.rint(ts / h)
+        delta = ts - k * h
+        row = (k - lo).astype(int)
+        moments = np.zeros((grid_size, _TAYLOR_TERMS * m), dtype=complex)
+        factorials = np.concatenate([[1.0], np.cumprod(np.arange(1, _TAYLOR_TERMS))])
+        steps = np.arange(_GRID_BLOCK) * h
+    for start in range(0, nodes.size, node_block):
+        q, G = weighted(nodes[start : start + node_block], weights[start : start + node_block])
+        s = q.real
+        if direct:
+            block = max(1, int(memory // max(1, q.size)))
+            for t0 in range(0, ts.size, block):
+                t = ts[t0 : t0 + block]
+                acc[t0 : t0 + block] += _phases(t, s, eta) @ G
+            continue
+        powers = (1j * q)[:, None] ** np.arange(_TAYLOR_TERMS) / factorials
+        B = (powers[:, :, None] * G[:, None, :]).reshape(q.size, -1)
+        local = _phases(steps, s, eta)
+        starts = (lo + np.arange(0, grid_size, _GRID_BLOCK)) * h
+        first = _phases(starts, s, eta)
+        for b, g0 in enumerate(range(0, grid_size, _GRID_BLOCK)):
+            n = min(_GRID_BLOCK, grid_size - g0)
+            moments[g0 : g0 + n] += (local[:n] * first[b]) @ B
+    if not direct:
+        sel = moments[row].reshape(ts.size, _TAYLOR_TERMS, m)
+        acc = sel[:, -1]
+        for j in range(_TAYLOR_TERMS - 2, -1, -1):
+            acc = acc * delta[:, None] + sel[:, j]
+    return acc

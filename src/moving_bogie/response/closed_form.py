@@ -1,0 +1,383 @@
+"""Closed-form vibrations: time series at the contact points and deflection shapes, Eqs. (35)-(47).
+
+    x(tau) = steady part (Eq. (39)) + unsteady harmonic part (residues at every induced frequency,
+             Eqs. (36), (40)-(43)) + branch-cut part I_bc (Eq. (35))
+
+for x = w_rear = w(0, tau), w_front = w(d, tau), the bar bounce u and pitch theta (bogie), and for the
+beam deflection w(xi, tau) at any xi (Eqs. (44)-(47)). Coefficients are evaluated once at the precision
+of the roots (:mod:`residues`); time series are vectorised numpy sums whose cost does not grow with tau.
+The branch-cut part (:mod:`branch_cut`) is a numerical integral along the cut; it matters at early times
+(it makes the homogeneous initial conditions hold exactly) and decays like e^{-eta_f tau} (algebraically,
+about tau^-3/2, when eta_f = 0).
+
+``branch_cut="auto"`` (the default) includes I_bc at the times where it can matter and skips it where its
+measured size is below ``bc_tol`` times the largest steady wheel deflection:
+
+1. The rigorous bound |I_bc(tau)| <= B e^{-eta_f tau}, B = (1/pi) integral of |jump| ds over the cut, gives
+   tau_bound = ln(B / tol) / eta_f (infinite when eta_f = 0).
+2. Below tau_bound, I_bc is measured on windows of one period 2 pi/q_c at tau = 25, 50, 100, ... (doubling);
+   the first window where every response stays below tol sets the end tau_on (I_bc decays, so it stays
+   below). If none does before ``bc_tau_cap``, I_bc is included up to the cap and a note says so.
+
+I_bc is then computed for tau <= min(tau_bound, tau_on) and taken as zero beyond
+(``TimeSeries.branch_cut_until``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
+from moving_bogie.response.residues import ResidueExpansion, residue_expansion
+from moving_bogie.response.shapes import KernelGrid
+
+__all__ = ["TimeSeries", "closed_form_response", "deflection_shape", "branch_cut_extent"]
+
+DIMENSIONLESS_UNITS = {"tau": "1", "w": "w_st", "u": "w_st", "theta": "w_st chi", "xi": "1"}
+SI_UNITS = {"tau": "s", "w": "m", "u": "m", "theta": "rad", "xi": "m"}
+_PROBE_START = 25.0
+
+
+@dataclass(frozen=True)
+class TimeSeries:
+    """The closed-form response at the times ``tau``.
+
+    Attributes
+    ----------
+    tau : ndarray
+        Dimensionless times (seconds if physical parameters were given, see ``units``).
+    w_rear, w_front : ndarray
+        Beam deflection under the rear and front wheel, w(0, tau) and w(d, tau).
+    u, theta : ndarray
+        Bar bounce and pitch (NaN for the two-masses model).
+    w_steady_rear, w_steady_front, u_steady, theta_steady : float
+        Steady parts, Eq. (39) (NaN for u, theta of the two-masses model).
+    branch_cut : bool
+        Whether I_bc was included at some of the times.
+    branch_cut_until : float
+        I_bc is included for tau <= this (0: nowhere, inf: everywhere), in the units of ``tau``.
+    frequencies : FrequencyResult
+        The induced frequencies whose residues were summed.
+    model : str
+    units : dict
+        Units of tau, w, u, theta: dimensionless (w_st, w_st chi) or SI (s, m, rad).
+    notes : tuple of str
+        What the computation decided (e.g. branch cut skipped for a Timoshenko-Rayleigh beam).
+    """
+
+    tau: np.ndarray
+    w_rear: np.ndarray
+    w_front: np.ndarray
+    u: np.ndarray
+    theta: np.ndarray
+    w_steady_rear: float
+    w_steady_front: float
+    u_steady: float
+    theta_steady: float
+    branch_cut: bool
+    frequencies: object
+    model: str = "bogie"
+    branch_cut_until: float = 0.0
+    units: dict = field(default_factory=lambda: dict(DIMENSIONLESS_UNITS))
+    notes: tuple = ()
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict: arrays as lists (NaN as None), the steady parts, flags, units and frequencies."""
+
+        def clean(x):
+            return [None if not math.isfinite(v) else float(v) for v in np.asarray(x, dtype=float).ravel()]
+
+        def scalar(v):
+            return None if not math.isfinite(v) else float(v)
+
+        return {
+            "tau": clean(self.tau),
+            "w_rear": clean(self.w_rear),
+            "w_front": clean(self.w_front),
+            "u": clean(self.u),
+            "theta": clean(self.theta),
+            "w_steady_rear": scalar(self.w_steady_rear),
+            "w_steady_front": scalar(self.w_steady_front),
+            "u_steady": scalar(self.u_steady),
+            "theta_steady": scalar(self.theta_steady),
+            "branch_cut": bool(self.branch_cut),
+            "branch_cut_until": None if math.isinf(self.branch_cut_until) else float(self.branch_cut_until),
+            "model": self.model,
+            "units": dict(self.units),
+            "induced_frequencies": [
+                {"re": r.re_text, "im": r.im_text, "side": r.side} for r in self.frequencies.roots
+            ],
+            "notes": list(self.notes),
+        }
+
+
+def _dimensionless(params):
+    """(DimensionlessParams, Scales or None) from either kind of parameters."""
+    if isinstance(params, PhysicalParams):
+        return params.to_dimensionless(), params.scales()
+    return params, None
+
+
+def _frequencies(params, model, frequencies, dps, progress):
+    if frequencies is not None:
+        if getattr(frequencies, "params", params) != params:
+            raise ParameterError("frequencies", "frequencies were computed for other parameters")
+        if frequencies.model != model:
+            raise ParameterError(
+                "model", f"frequencies were computed for model {frequencies.model!r}, not {model!r}"
+            )
+        return frequencies
+    from moving_bogie.roots.frequencies import induced_frequencies
+
+    return induced_frequencies(params, model, dps=dps, progress=progress)
+
+
+def _branch_cut_mode(branch_cut) -> str:
+    if branch_cut is True or branch_cut == "on":
+        return "on"
+    if branch_cut is False or branch_cut == "off":
+        return "off"
+    if branch_cut == "auto":
+        return "auto"
+    raise ParameterError("branch_cut", f"branch_cut must be True, False or 'auto' (got {branch_cut!r})")
+
+
+def _branch_cut_or_note(params, model, mode):
+    """(BranchCut or None, notes); raises for an unavailable branch cut only when it was forced on."""
+    if mode == "off":
+        return None, []
+    try:
+        return BranchCut(params, model), []
+    except BranchCutUnavailable as exc:
+        if mode == "on":
+            raise
+        return None, [f"branch cut skipped: {exc}"]
+
+
+def _s_min(bc: BranchCut, expansion: ResidueExpansion) -> float:
+    """Keep every induced frequency's Re q inside the quadrature range of the cut (not in the tail)."""
+    top = float(np.max(np.abs(expansion.q.real))) if expansion.q.size else 0.0
+    return max(bc.q_c, top) + 1.0
+
+
+def branch_cut_extent(
+    bc: BranchCut, tau_max: float, *, tol: float, cap: float = 1e4, s_min: float | None = None
+):
+    """(tau_on, notes): the time up to which I_bc exceeds ``tol`` (the ``auto`` rule, module docstring)."""
+    notes = []
+    bound = max(bc.l1_bound(s_min=s_min).values())
+    if bound <= tol:
+        return 0.0, [f"branch cut skipped: its bound {bound:.2e} is below tol {tol:.1e}"]
+    tau_bound = math.log(bound / tol) / bc.eta_f if bc.eta_f > 0 else math.inf
+    limit = min(tau_max, tau_bound)
+    period = 2 * math.pi / bc.q_c
+    probe = _PROBE_START
+    while probe < limit:
+        if probe > cap:
+            notes.append(
+                f"branch cut still above tol {tol:.1e} at tau = {cap:g}: included only up to tau = {cap:g}"
+            )
+            return cap, notes
+        window = probe + np.linspace(0.0, period, 16)
+        values = bc.responses(window, s_min=s_min)
+        if max(np.abs(v).max() for v in values.values()) < tol:
+            return probe, notes
+        probe *= 2
+    return limit, notes
+
+
+def closed_form_response(
+    params,
+    tau,
+    *,
+    model: str = "bogie",
+    frequencies=None,
+    branch_cut="auto",
+    dps: int = 30,
+    progress: Callable[[float], None] | None = None,
+    bc_tol: float = 1e-6,
+    bc_tau_cap: float = 1e4,
+    quad_tol: float = 1e-10,
+) -> TimeSeries:
+    """Closed-form time series w_rear, w_front, u, theta (Eqs. (35)-(43)).
+
+    Parameters
+    ----------
+    params : DimensionlessParams or PhysicalParams
+        With physical parameters, ``tau`` is the time t in seconds and the results are in m and rad.
+    tau : array_like of float, >= 0
+        Times (dimensionless tau = t sqrt(k_f/m), Eq. (16), unless physical parameters are given).
+    model : {"bogie", "masses"}
+    frequencies : FrequencyResult, optional
+        Precomputed induced frequencies (same params and model); computed at ``dps`` if omitted.
+    branch_cut : True, False or "auto"
+        Include the branch-cut part I_bc (Euler-Bernoulli only; True raises for Timoshenko-Rayleigh).
+        "auto": include it where it exceeds ``bc_tol`` (module docstring).
+    dps : int
+        Precision of the induced frequencies and residue coefficients when they are computed here.
+    progress : callable, optional
+        Called with the fraction of the work done (0..1).
+    bc_tol : float
+        ``auto`` threshold, relative to the largest steady wheel deflection.
+    bc_tau_cap : float
+        ``auto`` never includes I_bc beyond this dimensionless time (its cost grows with tau).
+    quad_tol : float
+        Absolute tolerance of the branch-cut quadrature's truncation (units of w_st).
+
+    Returns
+    -------
+    TimeSeries
+
+    Raises
+    ------
+    IncompleteFrequencies
+        If the frequency count failed (``not frequencies.count_ok``).
+    BranchCutUnavailable
+        ``branch_cut=True`` with a Timoshenko-Rayleigh beam or above the critical velocity.
+    """
+    dimless, scales = _dimensionless(params)
+    tau = np.asarray(tau, dtype=float)
+    if scales is not None:
+        tau_in = tau
+        tau = tau / scales.t_scale
+    if tau.ndim != 1:
+        tau = tau.reshape(-1)
+    if np.any(tau < 0) or not np.all(np.isfinite(tau)):
+        raise ParameterError("tau", "tau must be finite and >= 0")
+    mode = _branch_cut_mode(branch_cut)
+    bc, notes = _branch_cut_or_note(dimless, model, mode)
+
+    def report(fraction):
+        if progress is not None:
+            progress(fraction)
+
+    def staged(x):
+        report(0.8 * x)
+
+    result = _frequencies(dimless, model, frequencies, dps, staged if progress else None)
+    report(0.8)
+    expansion = residue_expansion(dimless, result, model, shapes=False)
+    report(0.85)
+    series = expansion.totals(tau)
+    until = 0.0
+    if bc is not None and tau.size:
+        s_min = _s_min(bc, expansion)
+        if mode == "on":
+            until = math.inf
+        else:
+            scale = max(abs(expansion.steady["w_rear"]), abs(expansion.steady["w_front"]), 1e-300)
+            until, more = branch_cut_extent(
+                bc, float(tau.max()), tol=bc_tol * scale, cap=bc_tau_cap, s_min=s_min
+            )
+            notes += more
+        mask = tau <= until
+        if np.any(mask):
+            extra = bc.responses(tau[mask], tol=quad_tol, s_min=s_min)
+            for name in expansion.names:
+                series[name][mask] += extra[name]
+        else:
+            until = 0.0
+    report(1.0)
+    nan = np.full(tau.shape, np.nan)
+    steady = expansion.steady
+    ts = dict(
+        tau=tau,
+        w_rear=series["w_rear"],
+        w_front=series["w_front"],
+        u=series.get("u", nan),
+        theta=series.get("theta", nan),
+        w_steady_rear=steady["w_rear"],
+        w_steady_front=steady["w_front"],
+        u_steady=steady.get("u", math.nan),
+        theta_steady=steady.get("theta", math.nan),
+    )
+    if scales is not None:
+        ts = _to_si(ts, scales)
+        ts["tau"] = tau_in.reshape(-1)
+        until = until * scales.t_scale
+        units = dict(SI_UNITS)
+    else:
+        units = dict(DIMENSIONLESS_UNITS)
+    return TimeSeries(
+        **ts,
+        branch_cut=bool(until > 0),
+        frequencies=result,
+        model=model,
+        branch_cut_until=until,
+        units=units,
+        notes=tuple(notes),
+    )
+
+
+def _to_si(ts: dict, scales) -> dict:
+    out = dict(ts)
+    for key in ("w_rear", "w_front", "w_steady_rear", "w_steady_front"):
+        out[key] = scales.deflection(ts[key])
+    for key in ("u", "u_steady"):
+        out[key] = scales.displacement(ts[key])
+    for key in ("theta", "theta_steady"):
+        out[key] = scales.rotation(ts[key])
+    return out
+
+
+def deflection_shape(
+    params,
+    xi,
+    tau: float,
+    *,
+    model: str = "bogie",
+    frequencies=None,
+    branch_cut="auto",
+    dps: int = 30,
+    bc_tol: float = 1e-6,
+    bc_tau_cap: float = 1e4,
+    quad_tol: float = 1e-10,
+    expansion: ResidueExpansion | None = None,
+) -> np.ndarray:
+    """Beam deflection w(xi, tau) at one time for an array of xi, Eqs. (44)-(47) plus the branch cut.
+
+    xi is the moving coordinate (0 at the rear wheel, d at the front one). With physical parameters
+    xi is in metres, tau in seconds and the result in metres. ``branch_cut`` and the tolerances are as
+    in :func:`closed_form_response`; ``auto`` applies the same rule at this single time.
+    """
+    dimless, scales = _dimensionless(params)
+    xi = np.asarray(xi, dtype=float)
+    tau = float(tau)
+    if scales is not None:
+        xi = scales.chi * xi
+        tau = tau / scales.t_scale
+    if not (math.isfinite(tau) and tau >= 0):
+        raise ParameterError("tau", "tau must be finite and >= 0")
+    mode = _branch_cut_mode(branch_cut)
+    bc, _ = _branch_cut_or_note(dimless, model, mode)
+    result = _frequencies(dimless, model, frequencies, dps, None)
+    if expansion is None:
+        expansion = residue_expansion(dimless, result, model, shapes=True)
+    d = float(dimless.d)
+    flat = xi.reshape(-1)
+    grid0 = KernelGrid(dimless, 0, dps=result.dps)
+    w = expansion.shape_steady[0] * grid0(flat) + expansion.shape_steady[1] * grid0(flat - d)
+    for q, (a_r, a_f) in zip(expansion.q_mp, expansion.shape_amplitudes):
+        grid = KernelGrid(dimless, q, dps=result.dps)
+        w = w + (a_r * grid(flat) + a_f * grid(flat - d)) * np.exp(1j * complex(q) * tau)
+    scale = np.abs(w).max() if w.size else 0.0
+    if w.size and np.abs(w.imag).max() > 1e-8 * max(scale, 1.0):
+        raise MovingBogieError(f"deflection shape: imaginary part {np.abs(w.imag).max():.3g} does not cancel")
+    w = w.real
+    if bc is not None and flat.size:
+        s_min = _s_min(bc, expansion)
+        include = mode == "on"
+        if not include:
+            ref = max(abs(expansion.steady["w_rear"]), abs(expansion.steady["w_front"]), 1e-300)
+            until, _ = branch_cut_extent(bc, tau, tol=bc_tol * ref, cap=bc_tau_cap, s_min=s_min)
+            include = tau <= until
+        if include:
+            w = w + bc.shape(flat, tau, tol=quad_tol, s_min=s_min)
+    w = w.reshape(xi.shape)
+    return scales.deflection(w) if scales is not None else w

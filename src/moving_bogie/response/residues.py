@@ -1,0 +1,209 @@
+"""Steady part and unsteady harmonic part of the closed-form response: residues of Eq. (35).
+
+For every response X (w_rear = w(0,tau), w_front = w(d,tau), bar bounce u, pitch theta) the derived
+system gives i q X~(q) = n_X(q) / E_chr(q) (``derivations/system.py``). Closing the Bromwich line
+Im q = -a upward, x(tau) = i * sum Res[X~ e^{i q tau}] + I_bc, that is
+
+    x(tau) = n_X(0)/E_chr(0)                                  steady part, Eq. (39)
+           + sum_j n_X(q_j) e^{i q_j tau} / (q_j E_chr'(q_j))  unsteady harmonic part, Eqs. (36), (40)-(43)
+           + I_bc                                             branch-cut part (:mod:`branch_cut`)
+
+where the sum runs over every induced frequency, both members q and -conj(q) of each pair. The
+coefficients are evaluated once in mpmath at the precision of the roots; the time series is then a
+vectorised numpy sum of ``amplitude * exp(i q tau)``, whose cost does not depend on tau.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mpmath
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.characteristic import Characteristic
+
+__all__ = ["IncompleteFrequencies", "ResidueExpansion", "both_members", "residue_expansion"]
+
+
+class IncompleteFrequencies(MovingBogieError):
+    """The frequency search did not confirm every induced frequency: the residue sum would be wrong."""
+
+
+def both_members(result) -> list:
+    """Every induced frequency of a FrequencyResult, with the mirror -conj(q) of each pair added.
+
+    A root with Re q = 0 within its confirmed decimals is its own mirror and is listed once.
+
+    Raises
+    ------
+    IncompleteFrequencies
+        If ``result.count_ok`` is false (roots missing or a window warning).
+    MovingBogieError
+        For a multiple root (the simple-pole residue formula of Eq. (40) does not apply).
+    """
+    if not result.count_ok:
+        detail = "; ".join(result.warnings) or f"{result.found} of {result.count} roots found"
+        raise IncompleteFrequencies(f"induced frequencies incomplete ({detail}): no closed-form response")
+    out = []
+    for root in result.roots:
+        if root.multiplicity != 1:
+            raise MovingBogieError(
+                f"induced frequency {mpmath.nstr(root.q, 10)} has multiplicity {root.multiplicity}: "
+                "the residue formula of Eq. (40) needs simple poles"
+            )
+        out.append(root.q)
+        if abs(mpmath.re(root.q)) > mpmath.mpf(10) ** (-root.decimals):
+            out.append(-mpmath.conj(root.q))
+    return out
+
+
+@dataclass(frozen=True)
+class ResidueExpansion:
+    """The residue coefficients of Eqs. (36)-(43) for one parameter set, ready for vectorised evaluation.
+
+    Attributes
+    ----------
+    names : tuple of str
+        Responses available ("w_rear", "w_front", and for the bogie "u", "theta").
+    q : ndarray of complex
+        Every induced frequency, both members of each pair.
+    amplitudes : dict
+        name -> ndarray of complex, ``n_X(q_j) / (q_j E_chr'(q_j))``, aligned with ``q``.
+    steady : dict
+        name -> float, ``n_X(0) / E_chr(0)`` (Eq. (39)).
+    shape_amplitudes : ndarray of complex, shape (len(q), 2)
+        ``(G_rear, G_front)(q_j) / (2 pi q_j E_chr'(q_j))`` of Eq. (47).
+    shape_steady : ndarray of float, shape (2,)
+        ``(G_rear, G_front)(0) / (2 pi E_chr(0))`` of Eq. (44).
+    q_mp, amplitudes_mp : the same at the roots' precision (mpmath).
+    """
+
+    names: tuple
+    q: np.ndarray
+    amplitudes: dict
+    steady: dict
+    shape_amplitudes: np.ndarray
+    shape_steady: np.ndarray
+    q_mp: tuple
+    amplitudes_mp: dict
+    dps: int
+
+    def harmonics(self, tau, names=None, *, imag_tol: float = 1e-9) -> dict:
+        """Unsteady harmonic parts sum_j a_j e^{i q_j tau} of several responses (real, vectorised).
+
+        The exponentials are computed once for all responses. The imaginary parts of the two members of
+        each pair cancel; a residual above ``imag_tol`` times the size of the terms raises (it would
+        mean a missing mirror or a wrong amplitude).
+        """
+        names = tuple(names or self.names)
+        tau = np.asarray(tau, dtype=float)
+        flat = tau.reshape(-1)
+        out = {name: np.zeros(flat.shape) for name in names}
+        if self.q.size == 0:
+            return {name: v.reshape(tau.shape) for name, v in out.items()}
+        A = np.stack([self.amplitudes[name] for name in names], axis=-1)
+        absA = np.abs(A)
+        block = 32768
+        for start in range(0, flat.size, block):
+            chunk = flat[start : start + block]
+            phase = np.exp(1j * np.multiply.outer(chunk, self.q))
+            total = phase @ A
+            scale = np.abs(phase) @ absA
+            steady = np.array([abs(self.steady[name]) for name in names])
+            bad = np.abs(total.imag) > imag_tol * (scale + steady + 1e-300)
+            if np.any(bad):
+                i, k = np.unravel_index(np.argmax(np.abs(total.imag) / (scale + 1e-300)), total.shape)
+                raise MovingBogieError(
+                    f"{names[k]}: imaginary part {total.imag[i, k]:.3g} of the residue sum does not cancel "
+                    f"at tau = {chunk[i]:g}"
+                )
+            for k, name in enumerate(names):
+                out[name][start : start + chunk.size] = total[:, k].real
+        return {name: v.reshape(tau.shape) for name, v in out.items()}
+
+    def harmonic(self, name: str, tau, *, imag_tol: float = 1e-9) -> np.ndarray:
+        """Unsteady harmonic part of one response (see :meth:`harmonics`)."""
+        return self.harmonics(tau, (name,), imag_tol=imag_tol)[name]
+
+    def total(self, name: str, tau) -> np.ndarray:
+        """Steady plus unsteady harmonic part (the closed form without I_bc)."""
+        return self.steady[name] + self.harmonic(name, tau)
+
+    def totals(self, tau) -> dict:
+        """Steady plus unsteady harmonic part of every response."""
+        return {name: self.steady[name] + v for name, v in self.harmonics(tau).items()}
+
+
+def residue_expansion(params, frequencies, model: str = "bogie", *, shapes: bool = True) -> ResidueExpansion:
+    """Residue coefficients for the steady and unsteady harmonic parts, Eqs. (36)-(47).
+
+    Every coefficient is evaluated at the precision of ``frequencies.dps`` with dE_chr/dq from
+    :meth:`Characteristic.value_and_derivative` (dK/dq by double-pole residues, no finite differences).
+
+    Parameters
+    ----------
+    params : DimensionlessParams
+    frequencies : FrequencyResult
+        From :func:`moving_bogie.roots.frequencies.induced_frequencies` for the same params and model.
+    model : {"bogie", "masses"}
+    shapes : bool
+        Also compute the shape weights of Eqs. (44)-(47) (needed by :func:`deflection_shape`).
+
+    Raises
+    ------
+    IncompleteFrequencies, MovingBogieError
+        Frequencies incomplete, a multiple root, or E_chr(0) = 0 (no steady state).
+    """
+    if frequencies.model != model:
+        raise MovingBogieError(f"frequencies were computed for model {frequencies.model!r}, not {model!r}")
+    qs = both_members(frequencies)
+    chr_ = Characteristic(params, model)
+    names = tuple(chr_.module.RESPONSES)
+    with mpmath.workdps(frequencies.dps):
+        zero = mpmath.mpc(0)
+        kv0 = chr_.kernel_values(zero)
+        E0 = chr_.module.e_chr(zero, *kv0.K, **chr_._args())
+        if abs(E0) < mpmath.mpf(10) ** (-frequencies.dps // 2):
+            raise MovingBogieError("E_chr(0) = 0: no steady state (q = 0 is an induced frequency)")
+        n0 = chr_.numerators(zero, kv0)
+        steady_mp = {name: n0[name] / E0 for name in names}
+        amps_mp = {name: [] for name in names}
+        shape_amps, qs_mp = [], []
+        for q in qs:
+            q = mpmath.mpc(q)
+            kv = chr_.kernel_values(q, derivative=True)
+            args = chr_._args()
+            E_q, E_K0, E_Kp, E_Km = chr_.module.e_chr_partials(q, *kv.K, **args)
+            dE = E_q + E_K0 * kv.dK[0] + E_Kp * kv.dK[1] + E_Km * kv.dK[2]
+            if dE == 0:
+                raise MovingBogieError(f"E_chr'({mpmath.nstr(q, 10)}) = 0: a multiple root")
+            num = chr_.numerators(q, kv)
+            for name in names:
+                amps_mp[name].append(num[name] / (q * dE))
+            if shapes:
+                G = chr_.shape_weights(q, kv)
+                shape_amps.append([g / (2 * mpmath.pi * q * dE) for g in G])
+            qs_mp.append(q)
+        shape_steady = [0.0, 0.0]
+        if shapes:
+            G0 = chr_.shape_weights(zero, kv0)
+            shape_steady = [float(mpmath.re(g / (2 * mpmath.pi * E0))) for g in G0]
+    for name in names:
+        if abs(mpmath.im(steady_mp[name])) > mpmath.mpf(10) ** (-frequencies.dps // 2) * (
+            1 + abs(steady_mp[name])
+        ):
+            raise MovingBogieError(f"steady part of {name} is not real: {mpmath.nstr(steady_mp[name], 8)}")
+    return ResidueExpansion(
+        names=names,
+        q=np.array([complex(q) for q in qs_mp], dtype=complex),
+        amplitudes={name: np.array([complex(a) for a in amps_mp[name]], dtype=complex) for name in names},
+        steady={name: float(mpmath.re(steady_mp[name])) for name in names},
+        shape_amplitudes=np.array([[complex(g) for g in row] for row in shape_amps], dtype=complex).reshape(
+            -1, 2
+        ),
+        shape_steady=np.array(shape_steady, dtype=float),
+        q_mp=tuple(qs_mp),
+        amplitudes_mp={name: tuple(v) for name, v in amps_mp.items()},
+        dps=frequencies.dps,
+    )

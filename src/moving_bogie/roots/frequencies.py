@@ -1,0 +1,364 @@
+"""Induced frequencies: every root of E_chr(q) = 0 (Eq. (48)) in a window, found with no starting guesses.
+
+1. Count: the window (Re q >= 0 half, pairs q, -conj(q) are reported once) is tiled into rectangles that
+   never meet the cut of K (:mod:`search_regions`); the argument principle counts the roots in each
+   (:mod:`contour`), in double precision.
+2. Locate: rectangles holding roots are bisected (each half counted) until a cell holds one root and is
+   small enough for Newton's method to stay inside it.
+3. Polish and confirm at high precision (:mod:`polish`): digits are those that agree at two precisions.
+4. Check: the roots found must add up to the count, or the result says so (``count_ok``) and the CLI
+   exits non-zero. The window is also compared with a window twice as large: a root outside the default
+   window is reported, never silently dropped.
+
+Stability: the motion is unstable when some induced frequency has Im q < 0 (Eq. (35) with e^{i q tau}).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import mpmath
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
+from moving_bogie.kernels.cut import CutLocus, cut_locus
+from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
+from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
+from moving_bogie.roots.search_regions import tile_window
+
+
+@dataclass(frozen=True)
+class InducedFrequency:
+    """One induced frequency (the member of its pair with Re q >= 0).
+
+    ``side`` tells where q lies with respect to the cut of K: "below" or "above" (for eta_f = 0 a real root
+    in the gap is a limit from below). ``digits``/``decimals`` are confirmed by recomputation at higher
+    precision; ``residual`` is |E_chr/E_chr'| at q, the distance to the exact root at working precision.
+    """
+
+    q: mpmath.mpc
+    side: str
+    multiplicity: int
+    residual: mpmath.mpf
+    digits: int
+    decimals: int
+
+    @property
+    def re_text(self) -> str:
+        return fixed_text(mpmath.re(self.q), self.decimals)
+
+    @property
+    def im_text(self) -> str:
+        return fixed_text(mpmath.im(self.q), self.decimals)
+
+    @property
+    def unstable(self) -> bool:
+        """Im q < 0, confirmed: |Im q| exceeds the confirmed resolution."""
+        return mpmath.im(self.q) < 0 and abs(mpmath.im(self.q)) > mpmath.mpf(10) ** (-self.decimals)
+
+    @property
+    def marginal(self) -> bool:
+        """|Im q| below the confirmed resolution (a real induced frequency: constant amplitude)."""
+        return abs(mpmath.im(self.q)) <= mpmath.mpf(10) ** (-self.decimals)
+
+    def to_dict(self) -> dict:
+        return {
+            "re": self.re_text,
+            "im": self.im_text,
+            "side": self.side,
+            "multiplicity": self.multiplicity,
+            "digits": self.digits,
+            "residual": mpmath.nstr(self.residual, 3),
+        }
+
+
+@dataclass(frozen=True)
+class FrequencyResult:
+    """All induced frequencies in a window, the argument-principle count and the verdict."""
+
+    params: object
+    model: str
+    dps: int
+    window: Rectangle
+    roots: tuple
+    count: int  # roots with Re q >= 0 by the argument principle (with multiplicity, pairs once)
+    unsearched: tuple  # slivers around the cut that no contour can enter
+    evaluations: int  # E_chr evaluations (double precision + high precision)
+    warnings: tuple = field(default=())
+
+    @property
+    def found(self) -> int:
+        return sum(r.multiplicity for r in self.roots)
+
+    @property
+    def count_ok(self) -> bool:
+        return self.found == self.count and not any(w.startswith("window") for w in self.warnings)
+
+    @property
+    def unstable_roots(self) -> tuple:
+        return tuple(r for r in self.roots if r.unstable)
+
+    @property
+    def stable(self) -> bool:
+        return not self.unstable_roots
+
+    @property
+    def degree_of_instability(self):
+        """Most negative Im q among the unstable roots (0 when stable)."""
+        return min((mpmath.im(r.q) for r in self.unstable_roots), default=mpmath.mpf(0))
+
+    @property
+    def growth_time(self):
+        """1/|Im q| of the fastest-growing root (dimensionless time for amplitude x e), or None."""
+        return 1 / abs(self.degree_of_instability) if self.unstable_roots else None
+
+    def to_dict(self) -> dict:
+        return {
+            "params": self.params.to_dict(),
+            "model": self.model,
+            "dps": self.dps,
+            "window": {"re": [self.window.x0, self.window.x1], "im": [self.window.y0, self.window.y1]},
+            "roots": [r.to_dict() for r in self.roots],
+            "count": self.count,
+            "found": self.found,
+            "count_ok": self.count_ok,
+            "stable": self.stable,
+            "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
+            "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
+            "evaluations": self.evaluations,
+            "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
+            "warnings": list(self.warnings),
+        }
+
+
+def default_window(params, model: str) -> Rectangle:
+    """Default search window: 0 <= Re q <= X, -X <= Im q <= X + eta_f.
+
+    X = max(3, 3 f) where f is the largest natural-frequency estimate of the model: the beam on its
+    foundation (q = 1 at rest, Eq. (24) with p = 0), the bar's bounce sqrt(2 kappa_v / mu_v) and pitch
+    sqrt(kappa_v d^2 / (2 J_b)) (the zeros of B2 and B3 of Eq. (37), which E_chr approaches when K -> 0).
+    For large |q| E_chr ~ B2 B3 (pi - 2 K0 B1)^2 with K0 = O(|q|^-3/2) and B1 = O(q^2), which has no zeros:
+    every root lies at moderate |q|. The search still checks a window twice as large (``check_window``).
+    The left edge sits slightly left of Re q = 0 so that a purely imaginary root is inside, not on it.
+    """
+    f = params.as_float()
+    scale = [1.0]
+    if model == "bogie":
+        scale += [math.sqrt(2 * f.kappa_v / f.mu_v), math.sqrt(f.kappa_v * f.d**2 / (2 * f.J_b))]
+    X = max(3.0, 3.0 * max(scale))
+    return Rectangle(-1e-3 * X, X, -X, X + f.eta_f)
+
+
+class CountMismatch(MovingBogieError):
+    """The argument principle and the roots found disagree."""
+
+
+def induced_frequencies(
+    params,
+    model: str = "bogie",
+    *,
+    dps: int = 30,
+    extra_dps: int | None = None,
+    window: Rectangle | None = None,
+    check_window: bool = True,
+    eps: float = 1e-7,
+    eps_branch: float = 1e-5,
+    newton_cell: float = 0.25,
+    progress: Callable[[float], None] | None = None,
+) -> FrequencyResult:
+    """Every induced frequency of ``params`` in ``window`` (default :func:`default_window`).
+
+    Parameters
+    ----------
+    params : DimensionlessParams
+    model : {"bogie", "masses"}
+    dps : int
+        Working precision (decimal digits) of the polished roots.
+    extra_dps : int, optional
+        Extra digits of the confirming recomputation (default max(10, dps // 2)).
+    window : Rectangle, optional
+        Search window in the q-plane (Re q >= 0 half).
+    check_window : bool
+        Also count roots in a window twice as large; more roots there make the result fail loudly.
+    eps : float
+        Half-width of the sliver around the cut of K that contours keep away from.
+    eps_branch : float
+        Distance kept from the branch point (where K is infinite).
+    newton_cell : float
+        Side of a single-root cell below which Newton's method is tried from its centre.
+    progress : callable, optional
+        Called with the fraction of work done (0..1).
+    """
+    if extra_dps is None:
+        extra_dps = max(10, dps // 2)
+    window = window or default_window(params, model)
+    fast = CharacteristicArray(params, model)
+    precise = Characteristic(params, model)
+    warnings = []
+
+    def report(x):
+        if progress is not None:
+            progress(min(1.0, x))
+
+    cut, tiling, counts = _count_tiling(fast, params, window, eps, eps_branch)
+    total = sum(counts)
+    report(0.1)
+    if check_window:
+        big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
+        _, _, big_counts = _count_tiling(fast, params, big, eps, eps_branch)
+        big_total = sum(big_counts)
+        if big_total != total:
+            warnings.append(
+                f"window: {big_total - total} more root(s) in the window twice as large "
+                f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window"
+            )
+    report(0.2)
+    cells = []
+    for rect, n in zip(tiling.regions, counts):
+        if n:
+            cells += _locate(fast, precise, rect, n, newton_cell, dps)
+    report(0.6)
+    roots = []
+    for k, (q0, mult, rect) in enumerate(cells):
+        try:
+            conf = polish_and_confirm(precise, q0, dps=dps, extra_dps=extra_dps, multiplicity=mult)
+        except PolishError as exc:
+            warnings.append(f"polish: {exc}")
+            continue
+        if not rect.contains(complex(conf.q), margin=1e-9 * max(1.0, abs(complex(conf.q)))):
+            warnings.append(f"polish: Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
+            continue
+        side = _side(conf.q, conf.decimals, cut, params)
+        roots.append(InducedFrequency(conf.q, side, mult, conf.step, conf.digits, conf.decimals))
+        report(0.6 + 0.4 * (k + 1) / len(cells))
+    roots, pair_warnings = _fold_pairs(roots)
+    warnings += pair_warnings
+    roots.sort(key=lambda r: -float(mpmath.re(r.q)))
+    count = total - _mirrors_counted(cells)
+    found = sum(r.multiplicity for r in roots)
+    if found != count:
+        warnings.append(
+            f"count: the argument principle counts {count} root(s) with Re q >= 0, "
+            f"{found} were found and confirmed"
+        )
+    result = FrequencyResult(
+        params,
+        model,
+        dps,
+        window,
+        tuple(roots),
+        count,
+        tiling.unsearched,
+        fast.evaluations + precise.evaluations,
+        tuple(warnings),
+    )
+    report(1.0)
+    return result
+
+
+#: Perturbations of the tiling tried in turn when an edge meets a root (eps factor, gap height fraction).
+_RETRIES = ((1.0, 0.1), (7.0, 0.113), (53.0, 0.087), (0.13, 0.121))
+
+
+def _count_tiling(fast, params, window, eps, eps_branch):
+    """Tile the window and count the roots in every tile; on a root sitting on an edge, move all the
+    edges (the tiles share them, so they move together) and count again."""
+    cut = cut_locus(params, window.x0, window.x1)
+    error = None
+    for factor, fraction in _RETRIES:
+        gap_height = fraction * max(window.width, window.height)
+        tiling = tile_window(
+            window, cut, eps=eps * factor, eps_branch=eps_branch * factor, gap_height=gap_height
+        )
+        try:
+            return cut, tiling, [winding_number(fast, rect) for rect in tiling.regions]
+        except EdgeZeroError as exc:
+            error = exc
+    raise CountMismatch(f"could not place contours away from the roots and the cut: {error}")
+
+
+def _locate(fast, precise, rect, n, newton_cell, dps):
+    """Bisect ``rect`` (holding ``n`` roots) into cells of one root each; returns (q0, multiplicity, cell)."""
+    out = []
+    stack = [(rect, n)]
+    while stack:
+        r, k = stack.pop()
+        if k == 0:
+            continue
+        size = max(r.width, r.height)
+        if k == 1 and size <= newton_cell:
+            q = _newton_inside(precise, r)
+            if q is not None:
+                out.append((q, 1, r))
+                continue
+        if size < 1e-10 * max(1.0, abs(r.center)):
+            out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
+            continue
+        for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65):
+            a, b = r.split(frac)
+            try:
+                na = winding_number(fast, a)
+                nb = winding_number(fast, b)
+            except EdgeZeroError:
+                continue
+            if na + nb == k:
+                break
+        else:
+            raise CountMismatch(f"could not split {r} holding {k} root(s) into consistent halves")
+        stack.append((a, na))
+        stack.append((b, nb))
+    return out
+
+
+def _newton_inside(precise, rect):
+    """A few double-ish precision Newton steps from the cell centre; the root if it stays in the cell."""
+    with mpmath.workdps(17):
+        q = mpmath.mpc(rect.center)
+        for _ in range(30):
+            try:
+                E, dE = precise.value_and_derivative(q)
+            except MovingBogieError:
+                return None
+            if dE == 0:
+                return None
+            step = E / dE
+            q -= step
+            if not rect.contains(complex(q), margin=0.25 * max(rect.width, rect.height)):
+                return None
+            if abs(step) < 1e-13 * max(1, abs(q)):
+                break
+        else:
+            return None
+    return q if rect.contains(complex(q)) else None
+
+
+def _side(q, decimals, cut: CutLocus, params) -> str:
+    """Position relative to the cut; a root on the line within the confirmed digits is a limit from below."""
+    y = float(mpmath.im(q))
+    x = float(mpmath.re(q))
+    threshold = float(params.eta_f)
+    if cut.points.size and x >= cut.x_start:
+        near = cut.points[np.argmin(np.abs(cut.points.real - x))]
+        threshold = float(near.imag)
+    return "above" if y - threshold > 10.0 ** (-decimals) else "below"
+
+
+def _fold_pairs(roots):
+    """Keep one member of each pair q, -conj(q): drop a root with Re q < 0 whose mirror was found."""
+    keep, warnings = [], []
+    for r in roots:
+        if mpmath.re(r.q) < 0 and abs(mpmath.re(r.q)) > mpmath.mpf(10) ** (-r.decimals):
+            mirror = -mpmath.conj(r.q)
+            if any(abs(o.q - mirror) < 1e-8 for o in roots if o is not r):
+                continue
+            warnings.append(f"pair: root {mpmath.nstr(r.q, 8)} found without its mirror -conj(q)")
+        keep.append(r)
+    return keep, warnings
+
+
+def _mirrors_counted(cells):
+    """Roots counted in the strip Re q < 0 of the window (mirrors of roots with Re q > 0)."""
+    return sum(m for q, m, _ in cells if mpmath.re(q) < -1e-9)

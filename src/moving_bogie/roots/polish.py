@@ -1,0 +1,88 @@
+"""Polishing an induced frequency at high precision and confirming its digits (the precision ladder).
+
+Newton's method on E_chr with the analytic derivative of Eq. (40) (dK/dq by double-pole residues);
+for a root of multiplicity m the step is m E/E'. Digits are confirmed by repeating the polish at a
+higher precision and comparing: only the digits that agree are reported.
+"""
+
+from __future__ import annotations
+
+import decimal
+import math
+from dataclasses import dataclass
+
+import mpmath
+
+from moving_bogie.errors import MovingBogieError
+
+
+class PolishError(MovingBogieError):
+    """Newton's method did not converge from the located cell."""
+
+
+def newton(characteristic, q0, *, multiplicity=1, max_iter=60):
+    """Root of E_chr near ``q0`` at the current precision; returns (q, |last step|)."""
+    q = mpmath.mpc(q0)
+    tol = mpmath.mpf(10) ** (-mpmath.mp.dps + 3)
+    step = mpmath.inf
+    for _ in range(max_iter):
+        E, dE = characteristic.value_and_derivative(q)
+        if dE == 0:
+            raise PolishError(f"E_chr'(q) = 0 at q = {mpmath.nstr(q, 8)}")
+        step = multiplicity * E / dE
+        q -= step
+        if abs(step) <= tol * max(1, abs(q)):
+            return q, abs(step)
+    raise PolishError(
+        f"Newton did not converge near q = {mpmath.nstr(q0, 8)} (last step {mpmath.nstr(step, 3)})"
+    )
+
+
+def fixed_text(x, decimals: int) -> str:
+    """``x`` rounded to ``decimals`` places in fixed-point notation (no exponent, no negative zero)."""
+    ctx = decimal.Context(prec=decimals + 40, rounding=decimal.ROUND_HALF_EVEN)
+    with mpmath.workdps(max(mpmath.mp.dps, decimals + 20)):
+        text = mpmath.nstr(mpmath.mpf(x), decimals + 30, min_fixed=-math.inf, max_fixed=math.inf)
+    value = ctx.create_decimal(text).quantize(decimal.Decimal(1).scaleb(-decimals), context=ctx)
+    if value == 0:
+        value = abs(value)
+    return f"{value:.{decimals}f}"
+
+
+@dataclass(frozen=True)
+class Confirmed:
+    q: mpmath.mpc  # the value polished at the higher precision
+    step: mpmath.mpf  # |E/E'| at the root: distance to the exact root at working precision
+    error: mpmath.mpf  # |q(dps) - q(dps + extra)|
+    decimals: int  # decimal places on which both precisions round identically (Re and Im)
+    digits: int  # significant digits of q so confirmed
+
+
+def polish_and_confirm(characteristic, q0, *, dps, extra_dps, multiplicity=1) -> Confirmed:
+    """Polish at ``dps`` digits, re-polish at ``dps + extra_dps`` and keep the digits both agree on.
+
+    The reported value is the higher-precision one; ``decimals`` is the largest number of decimal places at
+    which the two values, rounded, print the same real and imaginary parts (so every printed digit has been
+    recomputed at higher precision and confirmed).
+    """
+    with mpmath.workdps(dps):
+        q, step = newton(characteristic, q0, multiplicity=multiplicity)
+    with mpmath.workdps(dps + extra_dps):
+        q_hi, _ = newton(characteristic, q, multiplicity=multiplicity)
+        err = abs(q_hi - q)
+        mag = abs(q_hi)
+        lead = int(mpmath.floor(mpmath.log10(mag))) + 1 if mag > 0 else 0
+        decimals = dps - max(lead, 0)
+        if err > 0:
+            decimals = min(decimals, int(mpmath.floor(-mpmath.log10(err))))
+        decimals = max(0, decimals)
+        while decimals > 0 and not _same_rounding(q, q_hi, decimals):
+            decimals -= 1
+        digits = max(0, min(dps, decimals + lead))
+    return Confirmed(q_hi, step, err, decimals, digits)
+
+
+def _same_rounding(a, b, decimals):
+    return fixed_text(mpmath.re(a), decimals) == fixed_text(mpmath.re(b), decimals) and fixed_text(
+        mpmath.im(a), decimals
+    ) == fixed_text(mpmath.im(b), decimals)

@@ -1,0 +1,122 @@
+"""Table 2 of the paper: the induced frequencies of the 13 cases of Table 1, compared with the print.
+
+The printed values (six decimals; Cases 7-13 withheld from the reference data) are compared with the
+computed roots rounded the same way: a difference beyond half a unit of the sixth decimal is a mismatch.
+Roots are matched to printed ones by proximity, not by position.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from decimal import Decimal
+
+import mpmath
+
+from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
+from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.roots.polish import fixed_text
+
+#: Half a unit of the print's last decimal (six decimals).
+PRINT_TOLERANCE = Decimal("0.0000005")
+
+
+@dataclass(frozen=True)
+class CaseRow:
+    case: int
+    result: object  # FrequencyResult
+    printed: tuple  # ((re, im) decimal strings), possibly empty
+    differences: tuple  # per computed root: (dre, dim) as Decimal or None when nothing is printed
+
+    @property
+    def ok(self) -> bool:
+        if not self.result.count_ok:
+            return False
+        return all(
+            d is None or (abs(d[0]) <= PRINT_TOLERANCE and abs(d[1]) <= PRINT_TOLERANCE)
+            for d in self.differences
+        )
+
+
+@dataclass(frozen=True)
+class Table2:
+    rows: tuple
+
+    @property
+    def ok(self) -> bool:
+        return all(row.ok for row in self.rows)
+
+    def to_dict(self) -> dict:
+        cases = []
+        for row in self.rows:
+            d = row.result.to_dict()
+            d["case"] = row.case
+            d["printed"] = [{"re": re, "im": im} for re, im in row.printed]
+            d["difference"] = [
+                None if x is None else {"re": str(x[0]), "im": str(x[1])} for x in row.differences
+            ]
+            d["ok"] = row.ok
+            cases.append(d)
+        return {"cases": cases, "ok": self.ok, "print_tolerance": str(PRINT_TOLERANCE)}
+
+
+def compare_with_print(result, printed):
+    """Differences (computed - printed) for each computed root, matching printed roots by proximity."""
+    remaining = list(printed)
+    out = []
+    for r in result.roots:
+        if not remaining:
+            out.append(None)
+            continue
+        q = complex(r.q)
+        best = min(remaining, key=lambda pr: abs(q - complex(float(pr[0]), float(pr[1]))))
+        remaining.remove(best)
+        out.append((Decimal(r.re_text) - Decimal(best[0]), Decimal(r.im_text) - Decimal(best[1])))
+    return tuple(out)
+
+
+def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None) -> Table2:
+    rows = []
+    for k, case in enumerate(cases):
+        result = induced_frequencies(table1_case(case), "bogie", dps=dps)
+        printed = tuple(table2_printed(case))
+        rows.append(CaseRow(case, result, printed, compare_with_print(result, printed)))
+        if progress:
+            progress((k + 1) / len(cases))
+    return Table2(tuple(rows))
+
+
+def format_table2(table: Table2, decimals: int = 6) -> str:
+    """The paper's layout: per case, q^r (with +-) and q^i of each root; printed value and difference."""
+    lines = ["Table 2. Induced frequencies (one root of each pair q, -conj(q); Re q >= 0)", ""]
+    head = (
+        f"{'case':>4} {'#':>2} {'q^r':>{decimals + 5}} {'q^i':>{decimals + 5}}   {'printed':>22}   difference"
+    )
+    lines.append(head)
+    for row in table.rows:
+        for k, (r, diff) in enumerate(zip(row.result.roots, row.differences), 1):
+            shown = min(decimals, r.decimals)  # never show an unconfirmed digit
+            re = fixed_text(mpmath.re(r.q), shown)
+            im = fixed_text(mpmath.im(r.q), shown)
+            pr = ""
+            dd = ""
+            if diff is not None:
+                pr_re, pr_im = _printed_for(row, r)
+                pr = f"+-{pr_re} {pr_im:>10}"
+                dd = f"{float(diff[0]):+.1e} {float(diff[1]):+.1e}"
+            flag = " unstable" if r.unstable else ""
+            lines.append(
+                f"{row.case if k == 1 else '':>4} {k:>2} {'+-' + re:>{decimals + 5}} {im:>{decimals + 5}}   "
+                f"{pr:>22}   {dd}{flag}"
+            )
+        status = "count ok" if row.result.count_ok else "COUNT MISMATCH"
+        verdict = "stable" if row.result.stable else "UNSTABLE"
+        match = "" if not row.printed else ("matches print" if row.ok else "DIFFERS FROM PRINT")
+        lines.append(f"{'':>7} {status}, {verdict}{', ' + match if match else ''}")
+    lines.append("")
+    lines.append("all cases ok" if table.ok else "MISMATCH: see the rows marked above")
+    return "\n".join(lines)
+
+
+def _printed_for(row, root):
+    q = complex(root.q)
+    return min(row.printed, key=lambda pr: abs(q - complex(float(pr[0]), float(pr[1]))))

@@ -1,0 +1,172 @@
+"""Critical stiffness of the primary suspension (Section 3.8, Figure 16).
+
+For each velocity alpha, the suspension stiffness kappa_v is swept over (0, kappa_max]: the values where
+the number of unstable induced frequencies changes are the crossings of the D-decomposition in kappa_v
+(:mod:`d_decomposition`; E_chr is quadratic in kappa_v), and the number on each interval between them comes
+from the argument principle (:func:`~moving_bogie.stability.map.stability_column`) at its midpoint. As a
+cross-check, the D-decomposition's own count (rule of hatching from one reference count) is compared with
+the argument principle on a grid of kappa_v. The critical stiffnesses are the kappa_v where the bogie
+passes from stable to unstable; the result lists every stable/unstable interval as well.
+
+The function is general (any parameter set, Euler-Bernoulli or Timoshenko-Rayleigh beam, bogie only since
+two masses have no suspension). The paper's Figure 16 uses the data of its ref. [48] (Verichev &
+Metrikine 2002), which the paper does not give in full; :func:`figure16_params` is the documented stand-in
+used by the package's Figure 16.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import numpy as np
+
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.stability.d_decomposition import d_decomposition
+from moving_bogie.stability.map import stability_column
+
+__all__ = ["CriticalStiffness", "critical_stiffness", "figure16_params"]
+
+
+@dataclass(frozen=True)
+class CriticalStiffness:
+    """Stable and unstable kappa_v intervals at each alpha.
+
+    Attributes
+    ----------
+    alphas : ndarray
+    intervals : tuple
+        Per alpha, a tuple of ``(kappa_low, kappa_high, unstable_count)`` covering (0, kappa_max].
+    critical : tuple
+        Per alpha, the kappa_v values (sorted) where the count changes between 0 and > 0.
+    mismatches : int
+        Grid points where the D-decomposition count and the argument-principle count disagree (0 expected).
+    """
+
+    params: object
+    alphas: np.ndarray
+    kappa_max: float
+    intervals: tuple
+    critical: tuple
+    mismatches: int
+    warnings: tuple = field(default=())
+
+    def lowest_critical(self) -> np.ndarray:
+        """Per alpha: the smallest kappa_v in (0, kappa_max] at which the bogie is unstable (nan if none)."""
+        out = []
+        for ivs in self.intervals:
+            lows = [lo for lo, hi, n in ivs if n > 0]
+            out.append(min(lows) if lows else np.nan)
+        return np.array(out)
+
+    def to_dict(self) -> dict:
+        return {
+            "params": self.params.to_dict(),
+            "kappa_max": self.kappa_max,
+            "alphas": [
+                {
+                    "alpha": float(a),
+                    "critical_kappa_v": [float(k) for k in crit],
+                    "intervals": [
+                        {"kappa_low": lo, "kappa_high": hi, "unstable": int(n)} for lo, hi, n in ivs
+                    ],
+                }
+                for a, crit, ivs in zip(self.alphas, self.critical, self.intervals)
+            ],
+            "mismatches": self.mismatches,
+            "warnings": list(self.warnings),
+        }
+
+
+def figure16_params() -> DimensionlessParams:
+    """Stand-in for the data of ref. [48] (two-axle vehicle, wheel distance 15 m), chosen here.
+
+    Track (per rail): EI = 6.4 MN m^2, m = 60 kg/m, k_f = 100 MN/m^2, so chi = 1.406 /m; Timoshenko-Rayleigh
+    with G Abar = 250 MN and radius of gyration 0.063 m, giving S = 4.9 ~ 5 and r = 0.09 (Eq. (59));
+    foundation damping eta_f = 0.05. Vehicle (per rail): wheel mass M = 750 kg (eta_M = 17.6 ~ 18),
+    wheel distance 15 m (d = 21), half the car body M_b = 20 t on it (cf1 = M_b / M ~ 27) with the inertia
+    of a uniform bar of length d, J_b = M_b d^2 / 12 (cf2 = cf1 / 12 = 2.25), no suspension damping.
+    """
+    return DimensionlessParams.from_coefficients(
+        eta_f="0.05",
+        eta_M=18,
+        d=21,
+        cf1=27,
+        cf2="2.25",
+        kappa_v="0.05",
+        eta_v=0,
+        alpha="1.2",
+        beam="tr",
+        S=5,
+        r="0.09",
+    )
+
+
+def critical_stiffness(
+    params,
+    alphas: Sequence[float],
+    *,
+    kappa_max: float = 1.0,
+    q_max: float = 1.5,
+    samples: int = 4000,
+    check_points: int = 40,
+    progress: Callable[[float], None] | None = None,
+) -> CriticalStiffness:
+    """Critical primary-suspension stiffness kappa_v of the bogie as a function of alpha (Figure 16).
+
+    Parameters
+    ----------
+    params : DimensionlessParams
+        Bogie and track (kappa_v and alpha of ``params`` are ignored); eta_f > 0.
+    alphas : sequence of float
+    kappa_max : float
+        Upper end of the kappa_v range.
+    q_max, samples : float, int
+        Sampling of the real q-axis by the D-decomposition.
+    check_points : int
+        kappa_v grid on which the argument-principle count is computed: the first point is the reference
+        of the D-decomposition count, all are compared with it.
+    progress : callable, optional
+    """
+    alphas = np.asarray(alphas, dtype=float)
+    sweep = SweepCharacteristic(params, "bogie", "kappa_v")
+    kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
+    intervals, critical, warnings = [], [], []
+    mismatches = 0
+    for k, a in enumerate(alphas):
+        dd = d_decomposition(
+            params.replace(alpha=Fraction(str(a))),
+            "bogie",
+            a,
+            parameter="kappa_v",
+            theta_max=kappa_max,
+            q_max=q_max,
+            samples=samples,
+        )
+        col = stability_column(sweep, a, kappas)
+        ref = int(col.count[0])
+        predicted = dd.counts(kappas, kappas[0], ref)
+        ok = ~col.uncertain
+        bad = int(np.sum(predicted[ok] != col.count[ok]))
+        if bad:
+            warnings.append(f"alpha={a:g}: D-decomposition and argument principle disagree at {bad} point(s)")
+        mismatches += bad
+        edges = sorted({0.0, kappa_max, *(c.theta for c in dd.crossings)})
+        pairs = [(lo, hi) for lo, hi in zip(edges[:-1], edges[1:]) if hi - lo > 1e-9 * kappa_max]
+        mids = stability_column(sweep, a, np.array([0.5 * (lo + hi) for lo, hi in pairs]))
+        ivs = []
+        for (lo, hi), n in zip(pairs, mids.count):
+            if ivs and ivs[-1][2] == n:  # a touching pair of crossings: merge
+                ivs[-1] = (ivs[-1][0], float(hi), int(n))
+            else:
+                ivs.append((float(lo), float(hi), int(n)))
+        intervals.append(tuple(ivs))
+        crit = [hi for (lo, hi, n), (_, _, m) in zip(ivs[:-1], ivs[1:]) if (n == 0) != (m == 0)]
+        critical.append(tuple(crit))
+        if progress is not None:
+            progress((k + 1) / len(alphas))
+    return CriticalStiffness(
+        params, alphas, float(kappa_max), tuple(intervals), tuple(critical), mismatches, tuple(warnings)
+    )

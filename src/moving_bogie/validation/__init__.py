@@ -1,0 +1,1 @@
+"""Validation on a long finite beam by modal expansion (Section 3.4)."""
