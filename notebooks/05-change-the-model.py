@@ -62,7 +62,7 @@ def find_repository() -> Path:
     starts = [Path.cwd(), Path(moving_bogie.__file__).resolve()]
     for start in starts:
         for folder in [start, *start.parents]:
-            if (folder / "derivations" / "foundations.py").is_file() and (folder / "generated").is_dir():
+            if (folder / "derivations" / "foundations.py").is_file() and (folder / "src/moving_bogie/generated").is_dir():
                 return folder
     raise RuntimeError(
         "this notebook needs a source checkout of moving-bogie (with derivations/): "
@@ -81,7 +81,7 @@ def tree_digest(folder: Path) -> str:
 
 
 repo = find_repository()
-before = {name: tree_digest(repo / name) for name in ("derivations", "generated")}
+before = {name: tree_digest(repo / name) for name in ("derivations", "src/moving_bogie/generated")}
 print("repository:", repo)
 
 # %% [markdown]
@@ -93,7 +93,7 @@ print("repository:", repo)
 # %%
 scratch = Path(tempfile.mkdtemp(prefix="moving-bogie-model-"))
 ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
-for name in ("derivations", "generated"):
+for name in ("derivations", "src/moving_bogie/generated"):
     shutil.copytree(repo / name, scratch / name, ignore=ignore)
 (scratch / "docs").mkdir()
 print("scratch copy:", scratch)
@@ -162,7 +162,7 @@ run = subprocess.run(
 print(run.stdout, run.stderr)
 assert run.returncode == 0, run.stderr
 print(f"regenerated in {time.perf_counter() - start:.1f} s")
-generated_file = scratch / "generated" / "foundation_eb_kelvin.py"
+generated_file = scratch / "src/moving_bogie/generated" / "foundation_eb_kelvin.py"
 print("\n".join(generated_file.read_text().splitlines()[:30]))
 
 # %% [markdown]
@@ -180,7 +180,7 @@ def load_from(path: Path, name: str) -> types.ModuleType:
 
 
 kelvin = load_from(generated_file, "scratch_foundation_eb_kelvin")
-base = load_from(scratch / "generated" / "foundation_eb.py", "scratch_foundation_eb")
+base = load_from(scratch / "src/moving_bogie/generated" / "foundation_eb.py", "scratch_foundation_eb")
 print("arguments of the new kernel:", kelvin.ARGUMENTS)
 
 with mpmath.workdps(30):
@@ -374,6 +374,6 @@ print("most negative Im q as eta_c grows:", [f"{x:.6f}" for x in unstable_im])
 # %%
 del sys.modules["moving_bogie.generated.foundation_eb_kelvin"]
 shutil.rmtree(scratch)
-after = {name: tree_digest(repo / name) for name in ("derivations", "generated")}
+after = {name: tree_digest(repo / name) for name in ("derivations", "src/moving_bogie/generated")}
 assert after == before, "the repository's derivations/ or generated/ changed"
 print("derivations/ and generated/ of", repo, "are unchanged")
