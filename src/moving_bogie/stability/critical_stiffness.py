@@ -3,7 +3,7 @@
 For each velocity alpha, the suspension stiffness kappa_v is swept over (0, kappa_max]: the values where
 the number of unstable induced frequencies changes are the crossings of the D-decomposition in kappa_v
 (:mod:`d_decomposition`; E_chr is quadratic in kappa_v), and the number on each interval between them comes
-from the argument principle (:func:`~moving_bogie.stability.map.stability_column`) at its midpoint. As a
+from the argument principle (:func:`~moving_bogie.stability.column.stability_column`) at its midpoint. As a
 cross-check, the D-decomposition's own count (rule of hatching from one reference count) is compared with
 the argument principle on a grid of kappa_v. The critical stiffnesses are the kappa_v where the bogie
 passes from stable to unstable; the result lists every stable/unstable interval as well.
@@ -25,7 +25,7 @@ import numpy as np
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.d_decomposition import d_decomposition
-from moving_bogie.stability.map import stability_column
+from moving_bogie.stability.column import stability_column
 
 __all__ = ["CriticalStiffness", "critical_stiffness", "figure16_params"]
 

@@ -1,0 +1,250 @@
+"""The points of a parameter sweep: varied parameters, their values, and the blocks the work is cut into.
+
+A sweep is a base parameter set plus any number of varied parameters. On a grid, each varied parameter is
+one dimension (``alpha=0.3:0.95:200`` is 200 values from 0.3 to 0.95, ``eta_f=0.01,0.05,0.1`` a list);
+a quasi-random design (``sobol:N``, :class:`scipy.stats.qmc.Sobol`) puts N points in the box spanned by
+the ranges, along one dimension ``point``. Values are exact: decimal text is read as a Fraction (as the
+command line reads every number), grid values are start + (stop - start) k / (count - 1) exactly, and a
+Sobol coordinate is the Fraction of its shortest decimal text.
+
+The grid is cut into blocks (one chunk of the store each). A block keeps the whole axis of one parameter
+in which E_chr is a polynomial (eta_M, kappa_v or eta_v: a "column", counted at once) and a run of alpha
+values (continuation from one column to the next); every other varied parameter is one value per block.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import numpy as np
+
+from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.sweep_characteristic import POLYNOMIAL_PARAMETERS, polynomial_degree
+from moving_bogie.model.exact import fraction_to_text
+from moving_bogie.model.params import DimensionlessParams
+
+__all__ = [
+    "Axis",
+    "Block",
+    "SweepSpec",
+    "parameter_units",
+    "parse_sample",
+    "parse_vary",
+    "sobol_axes",
+    "sweep_parameters",
+]
+
+#: Coefficients of Eq. (63) that :meth:`DimensionlessParams.replace` accepts besides the fields.
+_COEFFICIENTS = ("cf1", "cf2")
+
+
+def sweep_parameters() -> tuple[str, ...]:
+    """Names a sweep may vary: the numeric fields of the parameter object, and cf1, cf2 (Eq. (63))."""
+    numeric = [f.name for f in dataclasses.fields(DimensionlessParams) if f.name != "beam"]
+    return (*numeric, *_COEFFICIENTS)
+
+
+def parameter_units(name: str) -> str:
+    """Unit of a parameter of :func:`sweep_parameters` (all are dimensionless, Eqs. (15)-(17), (59))."""
+    return "1"
+
+
+def _number(option: str, text: str) -> Fraction:
+    try:
+        return Fraction(text.strip())
+    except (ValueError, ZeroDivisionError):
+        raise ParameterError(option, f"{option}: not a number: {text!r}") from None
+
+
+def parse_vary(text: str, *, option: str = "--vary", needs_count: bool = True) -> tuple[str, tuple]:
+    """``NAME=START:STOP:COUNT`` or ``NAME=V1,V2,...`` -> (name, exact values).
+
+    With ``needs_count=False`` (a quasi-random design), ``NAME=START:STOP`` gives the range (start, stop).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``option`` for malformed text or an unknown name.
+    """
+    name, sep, spec = text.partition("=")
+    name = name.strip()
+    if not sep or not name or not spec.strip():
+        raise ParameterError(option, f"{option} {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,...")
+    if name not in sweep_parameters():
+        known = ", ".join(sweep_parameters())
+        raise ParameterError(option, f"{option} {text!r}: unknown parameter {name!r} (known: {known})")
+    if ":" in spec:
+        parts = spec.split(":")
+        if not needs_count and len(parts) == 2:
+            start, stop = (_number(option, p) for p in parts)
+            if start == stop:
+                raise ParameterError(option, f"{option} {text!r}: empty range")
+            return name, (start, stop)
+        if len(parts) != 3:
+            raise ParameterError(option, f"{option} {text!r}: a range is START:STOP:COUNT")
+        start, stop = _number(option, parts[0]), _number(option, parts[1])
+        try:
+            count = int(parts[2])
+        except ValueError:
+            raise ParameterError(option, f"{option} {text!r}: COUNT must be an integer") from None
+        if count < 1 or (count == 1 and start != stop):
+            raise ParameterError(option, f"{option} {text!r}: COUNT must be >= 2 (or 1 with START = STOP)")
+        if not needs_count:
+            return name, (start, stop)
+        values = (start,) if count == 1 else tuple(start + (stop - start) * k / (count - 1) for k in range(count))
+        return name, values
+    values = tuple(_number(option, v) for v in spec.split(",") if v.strip())
+    if not values or len(set(values)) != len(values):
+        raise ParameterError(option, f"{option} {text!r}: give distinct values")
+    if not needs_count:
+        raise ParameterError(option, f"{option} {text!r}: a sampled parameter needs a range START:STOP")
+    return name, values
+
+
+def parse_sample(text: str) -> int:
+    """``sobol:N`` -> N (the number of quasi-random points)."""
+    kind, _, n = text.partition(":")
+    if kind.strip() != "sobol" or not n.strip().isdigit() or int(n) < 1:
+        raise ParameterError("--sample", f"--sample {text!r}: expected sobol:N with N >= 1")
+    return int(n)
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One varied parameter: its name and exact values (on a Sobol design, one value per point)."""
+
+    name: str
+    values: tuple
+
+    @property
+    def floats(self) -> np.ndarray:
+        return np.array([float(v) for v in self.values])
+
+
+@dataclass(frozen=True)
+class Block:
+    """One chunk of the sweep: index slices into each dimension of the store."""
+
+    index: int
+    slices: tuple
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A sweep: base parameters, model, varied parameters, design and per-point options.
+
+    ``design`` is "grid" (one dimension per axis) or "sobol" (one dimension ``point``). ``roots`` keeps
+    the unstable roots of every point; ``check`` is the number of points per block verified by a full
+    count.
+    """
+
+    params: DimensionlessParams
+    model: str
+    axes: tuple
+    design: str = "grid"
+    roots: bool = False
+    max_roots: int = 8
+    check: int = 1
+    block_points: int = 256
+    extra: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        names = [a.name for a in self.axes]
+        if not names:
+            raise ParameterError("--vary", "give at least one --vary NAME=...")
+        if len(set(names)) != len(names):
+            raise ParameterError("--vary", f"--vary: a parameter is varied twice ({', '.join(names)})")
+        if "cf1" in names and "mu_v" in names or "cf2" in names and "J_b" in names:
+            raise ParameterError("--vary", "--vary: vary either cf1 or mu_v (cf2 or J_b), not both")
+        for a in self.axes:  # every value must make valid parameters: fail before any computation
+            for v in {min(a.values), max(a.values)}:
+                try:
+                    self.params.replace(**{a.name: v})
+                except ParameterError as exc:
+                    raise ParameterError("--vary", f"--vary {a.name}: {exc}") from None
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        return ("point",) if self.design == "sobol" else tuple(a.name for a in self.axes)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return (len(self.axes[0].values),) if self.design == "sobol" else tuple(len(a.values) for a in self.axes)
+
+    @property
+    def size(self) -> int:
+        return math.prod(self.shape)
+
+    @property
+    def column_parameter(self) -> str | None:
+        """The varied parameter counted a whole column at a time (None on a Sobol design)."""
+        if self.design == "sobol":
+            return None
+        for a in self.axes:
+            if a.name in POLYNOMIAL_PARAMETERS:
+                try:
+                    polynomial_degree(self.model, a.name)
+                except ParameterError:
+                    continue
+                return a.name
+        return None
+
+    @property
+    def chunks(self) -> tuple[int, ...]:
+        """Chunk length along each dimension (see the module text)."""
+        if self.design == "sobol":
+            return (min(self.block_points, self.size),)
+        column = self.column_parameter
+        out = [len(a.values) if a.name == column else 1 for a in self.axes]
+        per_column = math.prod(out)
+        stride = next((k for k, a in enumerate(self.axes) if a.name == "alpha"), None)
+        if stride is None:
+            stride = next((k for k, a in enumerate(self.axes) if a.name != column), None)
+        if stride is not None:
+            out[stride] = min(len(self.axes[stride].values), max(8, -(-self.block_points // per_column)))
+        return tuple(out)
+
+    def blocks(self) -> list[Block]:
+        """Every block, in a fixed order (its index is its place in that order)."""
+        ranges = [range(0, n, c) for n, c in zip(self.shape, self.chunks)]
+        out = []
+        for k, starts in enumerate(itertools.product(*ranges)):
+            slices = tuple(slice(s, min(s + c, n)) for s, c, n in zip(starts, self.chunks, self.shape))
+            out.append(Block(k, slices))
+        return out
+
+    def describe(self) -> dict:
+        """JSON-ready description (stored in the attributes; a resumed sweep must match it)."""
+        return {
+            "model": self.model,
+            "params": self.params.to_dict(),
+            "design": self.design,
+            "varied": self.extra.get("ranges")
+            or {a.name: [fraction_to_text(v) for v in a.values] for a in self.axes},
+            "points": self.size,
+            "roots": self.roots,
+            "max_roots": self.max_roots,
+            "check": self.check,
+            "chunks": list(self.chunks),
+        }
+
+
+def sobol_axes(ranges: dict, n: int, *, seed: int = 0) -> tuple:
+    """N quasi-random points (scrambled Sobol, fixed seed) in the box of ``ranges`` {name: (lo, hi)}."""
+    import warnings
+
+    from scipy.stats import qmc
+
+    sampler = qmc.Sobol(len(ranges), scramble=True, seed=seed)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # balance properties want a power of 2; any N is allowed
+        u = sampler.random(n)
+    axes = []
+    for k, (name, (lo, hi)) in enumerate(ranges.items()):
+        x = float(lo) + (float(hi) - float(lo)) * u[:, k]
+        axes.append(Axis(name, tuple(Fraction(repr(float(v))) for v in x)))
+    return tuple(axes)

@@ -1,0 +1,154 @@
+"""Running a sweep on Dask distributed: blocks out to the workers, arrays back, chunks into the store.
+
+By default a :class:`distributed.LocalCluster` with one single-threaded worker process per core (or
+``workers``) is started and closed again; ``scheduler="tcp://HOST:8786"`` uses an existing cluster
+(``dask scheduler`` on one machine, ``dask worker tcp://HOST:8786`` on each of the others, every one with
+moving-bogie installed); ``client`` uses a client you already have. Each block is one task returning
+plain numpy arrays; the calling process writes each finished block into the store at once, so an
+interruption (Ctrl-C, a lost cluster, a killed process) keeps every finished block and ``resume=True``
+computes only the others. A worker lost mid-task is replaced by the scheduler, which runs its task again.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from moving_bogie.sweep.design import SweepSpec
+from moving_bogie.sweep.evaluate import BlockTask, evaluate_block
+from moving_bogie.sweep.store import missing_blocks, prepare_store, write_block
+
+__all__ = ["SweepRun", "block_task", "make_client", "run_sweep"]
+
+
+@dataclass(frozen=True)
+class SweepRun:
+    """What a run did: blocks and points computed now, already in the store, and the wall time."""
+
+    path: Path
+    blocks_total: int
+    blocks_computed: int
+    points_computed: int
+    seconds: float
+    workers: int
+
+    @property
+    def points_per_second(self) -> float:
+        return self.points_computed / self.seconds if self.seconds > 0 else float("nan")
+
+
+def block_task(spec: SweepSpec, block) -> BlockTask:
+    """The worker's task for ``block``: only that block's values travel."""
+    if spec.design == "sobol":
+        values = tuple(a.values[block.slices[0]] for a in spec.axes)
+    else:
+        values = tuple(a.values[s] for a, s in zip(spec.axes, block.slices))
+    return BlockTask(
+        block.index,
+        spec.params,
+        spec.model,
+        tuple(a.name for a in spec.axes),
+        values,
+        spec.design,
+        spec.column_parameter,
+        spec.roots,
+        spec.max_roots,
+        spec.check,
+    )
+
+
+def make_client(workers: int | None = None, scheduler: str | None = None, processes: bool = True):
+    """A Dask client: on ``scheduler`` if given, else on a new LocalCluster of ``workers`` processes."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        return Client(scheduler)
+    cluster = LocalCluster(
+        n_workers=workers or os.cpu_count() or 1,
+        threads_per_worker=1,
+        processes=processes,
+        dashboard_address=None,
+        silence_logs=logging.ERROR,
+    )
+    return Client(cluster)
+
+
+def run_sweep(
+    spec: SweepSpec,
+    out,
+    *,
+    resume: bool = False,
+    overwrite: bool = False,
+    client=None,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    processes: bool = True,
+    progress: Callable[[int, int], None] | None = None,
+    on_block: Callable[[int], None] | None = None,
+) -> SweepRun:
+    """Compute every missing block of ``spec`` into the store ``out``.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    out : path
+        Zarr store (a folder). Must not exist unless ``resume`` (complete it) or ``overwrite``.
+    client : distributed.Client, optional
+        Use this client (not closed afterwards).
+    workers : int, optional
+        Worker processes of the LocalCluster (default: one per core).
+    scheduler : str, optional
+        Address of an existing scheduler (``tcp://HOST:8786``).
+    processes : bool
+        LocalCluster workers as processes (default) or threads.
+    progress : callable, optional
+        Called as ``progress(points_done, points_total)`` after each block.
+    on_block : callable, optional
+        Called with the index of each block once it is in the store.
+    """
+    from distributed import as_completed
+
+    path = prepare_store(out, spec, resume=resume, overwrite=overwrite)
+    blocks = spec.blocks()
+    todo = missing_blocks(path, spec) if resume else blocks
+    total, done = spec.size, spec.size - sum(_points(b) for b in todo)
+    if progress is not None:
+        progress(done, total)
+    start = time.perf_counter()
+    own = client is None
+    if own and todo:
+        client = make_client(workers, scheduler, processes)
+    futures = {}
+    try:
+        n_workers = len(client.scheduler_info()["workers"]) if client is not None else 0
+        for b in todo:
+            futures[client.submit(evaluate_block, block_task(spec, b), pure=False)] = b
+        for future in as_completed(list(futures)):
+            b = futures.pop(future)
+            write_block(path, spec, b.slices, future.result())
+            done += _points(b)
+            if progress is not None:
+                progress(done, total)
+            if on_block is not None:
+                on_block(b.index)
+    finally:
+        if futures:
+            client.cancel(list(futures))
+        if own and client is not None:
+            cluster = client.cluster
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    seconds = time.perf_counter() - start
+    return SweepRun(path, len(blocks), len(todo), sum(_points(b) for b in todo), seconds, n_workers)
+
+
+def _points(block) -> int:
+    n = 1
+    for s in block.slices:
+        n *= s.stop - s.start
+    return n

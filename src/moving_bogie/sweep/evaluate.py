@@ -1,0 +1,163 @@
+"""The work of one block of a sweep (run on a worker): a verdict for every point, as plain arrays.
+
+Every point gets the number of unstable induced frequencies (roots of E_chr, Eq. (38), with Im q < 0) and
+the degree of instability, from the column count of :mod:`moving_bogie.stability.column` (argument
+principle over a whole column of eta_M, kappa_v or eta_v values, roots by Newton's method continued from
+the neighbouring alpha). Points the column count cannot settle get a full count
+(:func:`~moving_bogie.roots.frequencies.induced_frequencies`); ``check`` further points per block, drawn
+at random with the block's index as seed, are verified by a full count too, and a disagreement replaces
+the verdict (``checked = -1``). A point whose count no method could certify has ``certain = False``,
+``n_unstable = -1`` and a NaN degree: it is never classified.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.stability.map import map_columns
+
+__all__ = ["BlockTask", "VARIABLES", "evaluate_block"]
+
+#: Data variables of a block: (name, dtype, fill value, description).
+VARIABLES = (
+    ("stable", "bool", False, "no induced frequency with Im q < 0 (False where not certain)"),
+    ("n_unstable", "int16", -1, "number of unstable induced frequencies, pairs q, -conj(q) once (-1: unknown)"),
+    ("degree_of_instability", "float64", np.nan, "most negative Im q; 0 where stable, NaN where not certain"),
+    ("certain", "bool", False, "the count is certified (column count or full count)"),
+    ("settled", "bool", False, "the verdict comes from a full count (induced_frequencies)"),
+    ("checked", "int8", 0, "verified by a full count: 1 agreed, -1 disagreed (verdict replaced), 0 not"),
+    ("computed", "bool", False, "the point's block has been computed and written"),
+)
+
+
+@dataclass(frozen=True)
+class BlockTask:
+    """What a worker needs for one block: parameters, model, the block's values of each varied parameter.
+
+    ``design`` "grid": ``values[k]`` are the block's values along dimension k; "sobol": one value per
+    point for every parameter.
+    """
+
+    index: int
+    params: object
+    model: str
+    names: tuple
+    values: tuple
+    design: str
+    column: str | None
+    roots: bool
+    max_roots: int
+    check: int
+
+
+def evaluate_block(task: BlockTask) -> dict:
+    """Arrays of the block (shape of the block; ``roots_re``/``roots_im`` with a trailing root axis)."""
+    if task.design == "sobol":
+        shape = (len(task.values[0]),)
+        groups = [(_point(task, (i,)), None, None, [[(i,)]]) for i in range(shape[0])]
+    else:
+        shape = tuple(len(v) for v in task.values)
+        groups = _grid_groups(task)
+    n = np.full(shape, -1, dtype=np.int16)
+    degree = np.full(shape, np.nan)
+    certain = np.zeros(shape, dtype=bool)
+    settled = np.zeros(shape, dtype=bool)
+    roots = np.full((*shape, task.max_roots), np.nan, dtype=complex)
+    parameter = task.column or "eta_M"
+    for changes, alphas, thetas, index_grid in groups:
+        params = task.params.replace(**changes) if changes else task.params
+        alphas = alphas if alphas is not None else [params.alpha]
+        thetas = thetas if thetas is not None else [getattr(params, parameter)]
+        for col, row in zip(map_columns(params, task.model, parameter, alphas, thetas), index_grid):
+            for j, index in enumerate(row):
+                settled[index] = bool(col.settled[j])
+                if not col.uncertain[j]:
+                    certain[index] = True
+                    n[index] = col.count[j]
+                    degree[index] = col.degree[j]
+                    r = col.roots[j][: task.max_roots]
+                    roots[index][: len(r)] = r
+    checked = _check(task, shape, n, degree, certain, settled, roots)
+    out = {
+        "stable": certain & (n == 0),
+        "n_unstable": n,
+        "degree_of_instability": degree,
+        "certain": certain,
+        "settled": settled,
+        "checked": checked,
+        "computed": np.ones(shape, dtype=bool),
+    }
+    if task.roots:
+        out["roots_re"], out["roots_im"] = roots.real.copy(), roots.imag.copy()
+    return out
+
+
+def _grid_groups(task: BlockTask) -> list:
+    """(changes, exact alphas or None, exact thetas or None, block index per alpha and theta) for every
+    combination of the values of the other varied parameters."""
+    names = task.names
+    ia = names.index("alpha") if "alpha" in names else None
+    it = names.index(task.column) if task.column else None
+    others = [k for k in range(len(names)) if k not in (ia, it)]
+    n_alpha = len(task.values[ia]) if ia is not None else 1
+    n_theta = len(task.values[it]) if it is not None else 1
+    out = []
+    for combo in itertools.product(*(range(len(task.values[k])) for k in others)):
+        index_grid = []
+        for a in range(n_alpha):
+            row = []
+            for t in range(n_theta):
+                index = [0] * len(names)
+                for k, i in zip(others, combo):
+                    index[k] = i
+                if ia is not None:
+                    index[ia] = a
+                if it is not None:
+                    index[it] = t
+                row.append(tuple(index))
+            index_grid.append(row)
+        changes = {names[k]: task.values[k][i] for k, i in zip(others, combo)}
+        alphas = list(task.values[ia]) if ia is not None else None
+        thetas = list(task.values[it]) if it is not None else None
+        out.append((changes, alphas, thetas, index_grid))
+    return out
+
+
+def _point(task: BlockTask, index: tuple) -> dict:
+    if task.design == "sobol":
+        return {name: vals[index[0]] for name, vals in zip(task.names, task.values)}
+    return {name: vals[i] for name, vals, i in zip(task.names, task.values, index)}
+
+
+def _check(task, shape, n, degree, certain, settled, roots) -> np.ndarray:
+    """Verify ``task.check`` random points of the block by a full count (module text)."""
+    from moving_bogie.roots.frequencies import induced_frequencies
+
+    checked = np.zeros(shape, dtype=np.int8)
+    candidates = [i for i in np.ndindex(shape) if certain[i] and not settled[i]]
+    if not candidates or task.check <= 0:
+        return checked
+    rng = np.random.default_rng(task.index)
+    for k in rng.choice(len(candidates), size=min(task.check, len(candidates)), replace=False):
+        index = candidates[int(k)]
+        try:
+            res = induced_frequencies(task.params.replace(**_point(task, index)), task.model, dps=15)
+        except MovingBogieError:
+            continue
+        if not res.count_ok:
+            continue
+        unstable = sorted((complex(r.q) for r in res.unstable_roots), key=lambda q: q.imag)
+        if len(unstable) == n[index]:
+            checked[index] = 1
+            continue
+        checked[index] = -1
+        n[index] = len(unstable)
+        degree[index] = min([0.0, *(q.imag for q in unstable)])
+        roots[index][:] = np.nan
+        roots[index][: min(len(unstable), task.max_roots)] = unstable[: task.max_roots]
+        settled[index] = True
+    return checked

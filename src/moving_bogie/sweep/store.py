@@ -1,0 +1,166 @@
+"""The zarr store of a sweep, written block by block, read back as an :class:`xarray.Dataset`.
+
+Layout: one dimension per varied parameter (coordinate values as float64 with ``units`` and the exact
+decimal values in ``exact``), or one dimension ``point`` on a quasi-random design (each parameter a
+coordinate along it); the data variables of :data:`~moving_bogie.sweep.evaluate.VARIABLES` (and the
+unstable roots ``roots_re``, ``roots_im`` along a last dimension ``root`` when asked), chunked exactly
+like the blocks of the sweep, so that writing one block writes one chunk file per variable.
+
+Safety. The store is created under a temporary name and renamed into place (a store never exists half
+made). Chunk files are written atomically by zarr (temporary file, then rename), and ``computed`` is
+written last: a block whose ``computed`` chunk is there is complete, anything else is computed again by
+a resumed run. An interrupted store is therefore never corrupt, and a resumed one holds the same bytes
+as an uninterrupted one (the work of a block does not depend on the order of the blocks).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.model.exact import fraction_to_text
+from moving_bogie.sweep.design import SweepSpec, parameter_units
+from moving_bogie.sweep.evaluate import VARIABLES
+
+__all__ = ["create_store", "missing_blocks", "open_sweep", "prepare_store", "write_block"]
+
+
+def _version() -> str:
+    from moving_bogie import __version__
+
+    return __version__
+
+
+def prepare_store(path, spec: SweepSpec, *, resume: bool = False, overwrite: bool = False) -> Path:
+    """Check the ``--out`` path before any computation; create the store unless resuming one.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``--out``: the path exists without ``--resume``/``--overwrite``, holds no sweep, or holds a
+        different sweep than the one asked to resume.
+    """
+    path = Path(path)
+    if resume and overwrite:
+        raise ParameterError("--resume", "give either --resume or --overwrite, not both")
+    if path.exists():
+        if resume:
+            try:
+                stored = json.loads(_group(path, "r").attrs["sweep"])
+            except (KeyError, ValueError, OSError, MovingBogieError, FileNotFoundError):
+                raise ParameterError("--out", f"--out {path}: not a sweep store, cannot --resume it") from None
+            if stored != spec.describe():
+                raise ParameterError(
+                    "--resume", f"--resume: {path} holds a different sweep (parameters, values or options)"
+                )
+            return path
+        if not overwrite:
+            raise ParameterError(
+                "--out", f"--out {path} exists: pass --resume to complete it or --overwrite to replace it"
+            )
+    if not path.parent.exists():
+        raise ParameterError("--out", f"--out {path}: folder {path.parent} does not exist")
+    if not os.access(path.parent, os.W_OK):
+        raise ParameterError("--out", f"--out {path}: folder {path.parent} is not writable")
+    create_store(path, spec)
+    return path
+
+
+def _group(path, mode):
+    import zarr
+
+    try:
+        return zarr.open_group(str(path), mode=mode)
+    except (FileNotFoundError, ValueError, KeyError) as exc:
+        raise MovingBogieError(f"{path}: not a zarr store ({exc})") from None
+
+
+def create_store(path, spec: SweepSpec) -> None:
+    """Write the metadata and coordinates of an empty store at ``path`` (replacing what is there)."""
+    import zarr
+
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    shutil.rmtree(tmp, ignore_errors=True)
+    g = zarr.open_group(str(tmp), mode="w")
+    dims, shape, chunks = spec.dims, spec.shape, spec.chunks
+    if spec.design == "sobol":
+        point = g.create_array("point", shape=shape, chunks=shape, dtype="int64", dimension_names=("point",))
+        point[:] = np.arange(shape[0])
+    for axis in spec.axes:
+        own = ("point",) if spec.design == "sobol" else (axis.name,)
+        coord = g.create_array(axis.name, shape=(len(axis.values),), dtype="float64", dimension_names=own)
+        coord[:] = axis.floats
+        coord.attrs.update(units=parameter_units(axis.name), long_name=axis.name)
+        if spec.design == "grid":
+            coord.attrs["exact"] = [fraction_to_text(v) for v in axis.values]
+    for name, dtype, fill, text in _variables(spec):
+        extra = (spec.max_roots,) if name.startswith("roots_") else ()
+        arr = g.create_array(
+            name,
+            shape=shape + extra,
+            chunks=chunks + extra,
+            dtype=dtype,
+            fill_value=fill,
+            dimension_names=dims + (("root",) if extra else ()),
+        )
+        arr.attrs["description"] = text
+        if name == "degree_of_instability":
+            arr.attrs["units"] = "1"
+    g.attrs.update(
+        title="moving-bogie parameter sweep",
+        model=spec.model,
+        params=json.dumps(spec.params.to_dict()),
+        sweep=json.dumps(spec.describe()),
+        search_window=(
+            "per point: lower half q-plane |Re q| <= X, -Y <= Im q <= 0 with X, Y of "
+            "roots.frequencies.default_window (largest over each column); full counts in default_window"
+        ),
+        package_version=_version(),
+        degree_convention="most negative Im q over the induced frequencies; 0 where stable; NaN where not certain",
+    )
+    if path.exists():
+        shutil.rmtree(path)
+    os.replace(tmp, path)
+
+
+def _variables(spec: SweepSpec):
+    out = list(VARIABLES)
+    if spec.roots:
+        out += [
+            ("roots_re", "float64", np.nan, "Re q of the unstable roots (Re q >= 0 member of each pair), NaN-padded"),
+            ("roots_im", "float64", np.nan, "Im q of the unstable roots, NaN-padded"),
+        ]
+    # computed last: a block is complete once its computed chunk exists
+    return [v for v in out if v[0] != "computed"] + [v for v in out if v[0] == "computed"]
+
+
+def write_block(path, spec: SweepSpec, slices: tuple, arrays: dict) -> None:
+    """Write one block's arrays into its chunk of every variable (``computed`` last)."""
+    g = _group(path, "r+")
+    for name, *_ in _variables(spec):
+        g[name][slices] = arrays[name]
+
+
+def missing_blocks(path, spec: SweepSpec) -> list:
+    """Blocks of ``spec`` whose ``computed`` chunk is not in the store at ``path``."""
+    computed = _group(path, "r")["computed"][...]
+    return [b for b in spec.blocks() if not np.all(computed[b.slices])]
+
+
+def open_sweep(path):
+    """The sweep at ``path`` as an :class:`xarray.Dataset` (lazy, dask-backed)."""
+    import xarray as xr
+
+    path = Path(path)
+    if not path.exists():
+        raise ParameterError("store", f"no sweep store at {path}")
+    try:
+        return xr.open_zarr(str(path), consolidated=False)
+    except (FileNotFoundError, ValueError, KeyError) as exc:
+        raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None
