@@ -26,6 +26,7 @@ SUBCOMMAND_MODULES: list[str] = [
     "validate_cmd",
     "timeseries_cmd",
     "stability_cmd",
+    "sweep_cmd",
 ]
 
 

@@ -29,6 +29,7 @@ __all__ = [
     "figure8",
     "figure16",
     "plot_instability_lines",
+    "hatch_cells",
     "plot_stability_map",
 ]
 
@@ -279,13 +280,40 @@ def figure16(quick: bool = False, progress: Callable[[float], None] | None = Non
     return fig
 
 
+def hatch_cells(ax, x, y, mask, *, label="uncertain (not certified)") -> int:
+    """Hatch the cells ``mask[j, i]`` of the grid ``x[i], y[j]`` (cell edges halfway between the values).
+
+    Returns the number of hatched cells.
+    """
+    from matplotlib.collections import PatchCollection
+    from matplotlib.patches import Rectangle
+
+    x, y, mask = np.asarray(x, dtype=float), np.asarray(y, dtype=float), np.asarray(mask, dtype=bool)
+
+    def edges(v):
+        if len(v) == 1:
+            return np.array([v[0] - 0.5, v[0] + 0.5])
+        mid = 0.5 * (v[1:] + v[:-1])
+        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+    ex, ey = edges(x), edges(y)
+    rows, cols = np.nonzero(mask)
+    patches = [Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j]) for j, i in zip(rows, cols)]
+    if patches:
+        ax.add_collection(
+            PatchCollection(patches, facecolor="none", edgecolor="tab:blue", hatch="////", lw=0.5, label=label)
+        )
+    return len(patches)
+
+
 def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0):
-    """Heat map of log10 |degree of instability| (white where stable) with instability lines on top."""
+    """Heat map of log10 |degree of instability| (white where stable) with instability lines on top;
+    uncertain cells (if any) hatched and counted in the title."""
     fig = _figure(figsize=(7.5, 5.5), layout="constrained")
     ax = fig.subplots()
     deg = -smap.degree
     with np.errstate(divide="ignore"):
-        z = np.where(deg > 0, np.log10(np.maximum(deg, 10.0**vmin_log)), np.nan)
+        z = np.where((deg > 0) & ~smap.uncertain, np.log10(np.maximum(deg, 10.0**vmin_log)), np.nan)
     mesh = ax.pcolormesh(
         smap.alphas,
         smap.thetas,
@@ -299,12 +327,17 @@ def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0):
     if lines is not None:
         for b in lines.branches:
             ax.plot(b.alpha, b.theta, color="tab:cyan", lw=1)
+    n_uncertain = hatch_cells(ax, smap.alphas, smap.thetas, smap.uncertain)
     ax.set_xlabel(r"$\alpha$")
     ax.set_ylabel(smap.parameter)
     ax.set_xlim(smap.alphas[0], smap.alphas[-1])
     ax.set_ylim(0, smap.thetas[-1])
     ax.axvline(1.0, color="k", ls=":", lw=1)
-    ax.set_title(f"degree of instability, {smap.model}; lines: instability lines", fontsize=9)
+    title = f"degree of instability, {smap.model}; lines: instability lines"
+    if n_uncertain:
+        title += f"; hatched: {n_uncertain} uncertain cell(s)"
+        ax.legend(loc="upper left", fontsize=8)
+    ax.set_title(title, fontsize=9)
     return fig
 
 

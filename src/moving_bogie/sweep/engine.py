@@ -67,14 +67,17 @@ def make_client(workers: int | None = None, scheduler: str | None = None, proces
 
     if scheduler:
         return Client(scheduler)
+    n = workers or os.cpu_count() or 1
     cluster = LocalCluster(
-        n_workers=workers or os.cpu_count() or 1,
+        n_workers=n,
         threads_per_worker=1,
         processes=processes,
         dashboard_address=None,
         silence_logs=logging.ERROR,
     )
-    return Client(cluster)
+    client = Client(cluster)
+    client.wait_for_workers(n)
+    return client
 
 
 def run_sweep(

@@ -66,7 +66,7 @@ def evaluate_block(task: BlockTask) -> dict:
     degree = np.full(shape, np.nan)
     certain = np.zeros(shape, dtype=bool)
     settled = np.zeros(shape, dtype=bool)
-    roots = np.full((*shape, task.max_roots), np.nan, dtype=complex)
+    roots = np.full((*shape, task.max_roots), complex(np.nan, np.nan))
     parameter = task.column or "eta_M"
     for changes, alphas, thetas, index_grid in groups:
         params = task.params.replace(**changes) if changes else task.params
@@ -157,7 +157,7 @@ def _check(task, shape, n, degree, certain, settled, roots) -> np.ndarray:
         checked[index] = -1
         n[index] = len(unstable)
         degree[index] = min([0.0, *(q.imag for q in unstable)])
-        roots[index][:] = np.nan
+        roots[index][:] = complex(np.nan, np.nan)
         roots[index][: min(len(unstable), task.max_roots)] = unstable[: task.max_roots]
         settled[index] = True
     return checked

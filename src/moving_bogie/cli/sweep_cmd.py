@@ -1,0 +1,199 @@
+"""``sweep`` and ``sweep-plot``: parameter sweeps on Dask into a zarr store, and slices of them."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from contextlib import contextmanager
+from pathlib import Path
+
+from moving_bogie.errors import ParameterError
+
+from .common import add_json_option, add_parameter_options, params_from_args, print_json
+
+_RAW = argparse.RawDescriptionHelpFormatter
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add ``sweep`` and ``sweep-plot``."""
+    p = subparsers.add_parser(
+        "sweep",
+        help="stability verdict over a grid or a Sobol design of any parameters (Dask, zarr)",
+        description=(
+            "Stability at every point of a grid of any parameters (one --vary per dimension) or of a\n"
+            "quasi-random design (--sample sobol:N), computed on Dask (a local cluster by default, or\n"
+            "--scheduler for an existing one) into a zarr store readable with xarray. Per point: stable,\n"
+            "n_unstable, degree_of_instability (0 where stable), certain. An interrupted sweep keeps its\n"
+            "finished chunks: run it again with --resume."
+        ),
+        epilog=(
+            "examples:\n"
+            "  moving-bogie sweep --case 1 --vary alpha=0.3:1.1:200 --vary eta_M=1:200:200 --out s.zarr\n"
+            "  moving-bogie sweep --case 7 --vary alpha=0.3:1:80 --vary eta_M=5:100:80 \\\n"
+            "      --vary eta_f=0.01,0.05,0.1 --workers 2 --out s3.zarr\n"
+            "  moving-bogie sweep --case 1 --vary alpha=0.3:1.1 --vary eta_f=0.01:0.2 --sample sobol:256 \\\n"
+            "      --out sobol.zarr\n"
+            "  moving-bogie sweep-plot s3.zarr --x alpha --y eta_M --sel eta_f=0.05 --out slice.png"
+        ),
+        formatter_class=_RAW,
+    )
+    add_parameter_options(p)
+    p.add_argument("--model", choices=("bogie", "masses"), default="bogie")
+    p.add_argument(
+        "--vary",
+        action="append",
+        default=[],
+        metavar="NAME=SPEC",
+        help="a varied parameter: NAME=START:STOP:COUNT or NAME=V1,V2,... (NAME=START:STOP with --sample)",
+    )
+    p.add_argument("--sample", metavar="sobol:N", help="N quasi-random (Sobol) points instead of a grid")
+    p.add_argument("--out", type=Path, required=True, metavar="S.zarr", help="zarr store to write")
+    p.add_argument("--resume", action="store_true", help="complete an interrupted store")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing store")
+    p.add_argument("--workers", type=int, metavar="N", help="local worker processes (default: one per core)")
+    p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="use an existing Dask scheduler")
+    p.add_argument("--roots", action="store_true", help="store the unstable roots of every point")
+    p.add_argument(
+        "--check", type=int, default=1, metavar="K", help="points per chunk verified by a full count (default 1)"
+    )
+    p.add_argument("--chunk-points", type=int, default=256, metavar="N", help="points per chunk, about")
+    add_json_option(p)
+    p.set_defaults(handler=run_sweep_cmd)
+
+    q = subparsers.add_parser(
+        "sweep-plot",
+        help="draw a 2-D slice of a sweep store with its instability boundary",
+        description=(
+            "Degree of instability over two varied parameters of a sweep store, the other dimensions\n"
+            "fixed by --sel (nearest value); the stable/unstable boundary drawn, uncertain points hatched."
+        ),
+        epilog="example:\n  moving-bogie sweep-plot s.zarr --x alpha --y eta_M --sel eta_f=0.05 --out slice.png",
+        formatter_class=_RAW,
+    )
+    q.add_argument("store", type=Path, metavar="S.zarr")
+    q.add_argument("--x", required=True, metavar="NAME", help="parameter on the horizontal axis")
+    q.add_argument("--y", required=True, metavar="NAME", help="parameter on the vertical axis")
+    q.add_argument("--sel", action="append", default=[], metavar="NAME=X", help="fix another dimension")
+    q.add_argument("--out", type=Path, required=True, metavar="F.png")
+    q.set_defaults(handler=run_sweep_plot)
+
+
+def _spec(args):
+    from moving_bogie.sweep.design import parse_sample
+    from moving_bogie.sweep.api import make_spec
+
+    if args.workers is not None and args.workers < 1:
+        raise ParameterError("--workers", "--workers must be >= 1")
+    if args.workers is not None and args.scheduler:
+        raise ParameterError("--workers", "give either --workers or --scheduler, not both")
+    if args.check < 0:
+        raise ParameterError("--check", "--check must be >= 0")
+    if args.chunk_points < 1:
+        raise ParameterError("--chunk-points", "--chunk-points must be >= 1")
+    if not args.vary:
+        raise ParameterError("--vary", "give at least one --vary NAME=START:STOP:COUNT or NAME=V1,V2,...")
+    params, _ = params_from_args(args)
+    sample = parse_sample(args.sample) if args.sample else None
+    vary = {}
+    for text in args.vary:
+        name, eq, spec = text.partition("=")
+        if not eq:
+            raise ParameterError("--vary", f"--vary {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,...")
+        if name.strip() in vary:
+            raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
+        vary[name.strip()] = spec
+    options = dict(roots=args.roots, check=args.check, block_points=args.chunk_points)
+    return make_spec(params, vary, model=args.model, sample=sample, **options)
+
+
+@contextmanager
+def _points_bar(enabled: bool):
+    """A rich bar with points/s and ETA on an interactive stderr; a no-op callback otherwise."""
+    if not enabled or not sys.stderr.isatty():
+        yield lambda done, total: None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+    with Progress(
+        TextColumn("sweep"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("{task.fields[rate]} points/s"),
+        TextColumn("ETA"),
+        TimeRemainingColumn(),
+        console=Console(stderr=True),
+        transient=True,
+    ) as bar:
+        task = bar.add_task("sweep", total=None, rate="-")
+        first = {}
+
+        def update(done, total):
+            import time
+
+            now = time.perf_counter()
+            first.setdefault("t", now)
+            first.setdefault("done", done)
+            rate = (done - first["done"]) / (now - first["t"]) if now > first["t"] else 0.0
+            bar.update(task, completed=done, total=total, rate=f"{rate:8.1f}")
+
+        yield update
+
+
+def run_sweep_cmd(args) -> int:
+    from moving_bogie.sweep.engine import run_sweep
+    from moving_bogie.sweep.store import open_sweep
+
+    spec = _spec(args)  # every option checked (and the store created) before any computation
+    with _points_bar(not args.json) as bar:
+        run = run_sweep(
+            spec,
+            args.out,
+            resume=args.resume,
+            overwrite=args.overwrite,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            progress=bar,
+        )
+    ds = open_sweep(args.out)
+    summary = {
+        "out": str(args.out),
+        "dims": dict(ds.sizes),
+        "points": spec.size,
+        "points_computed": run.points_computed,
+        "blocks": [run.blocks_computed, run.blocks_total],
+        "workers": run.workers,
+        "seconds": round(run.seconds, 2),
+        "points_per_second": round(run.points_per_second, 1) if run.points_computed else None,
+        "unstable_fraction": float((ds.n_unstable > 0).mean()),
+        "uncertain_points": int((~ds.certain).sum()),
+        "settled_points": int(ds.settled.sum()),
+        "check_disagreements": int((ds.checked < 0).sum()),
+    }
+    if args.json:
+        print_json(summary)
+    else:
+        for key, value in summary.items():
+            print(f"{key:20s} {value}")
+    return 0
+
+
+def run_sweep_plot(args) -> int:
+    from moving_bogie.sweep.plots import plot_sweep_slice
+    from moving_bogie.sweep.store import open_sweep
+
+    sel = {}
+    for text in args.sel:
+        name, eq, value = text.partition("=")
+        try:
+            sel[name.strip()] = float(value)
+        except ValueError:
+            raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER") from None
+        if not eq:
+            raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER")
+    if not args.out.parent.exists():
+        raise ParameterError("--out", f"--out {args.out}: folder {args.out.parent} does not exist")
+    fig = plot_sweep_slice(open_sweep(args.store), args.x, args.y, sel)
+    fig.savefig(args.out, dpi=120)
+    print(args.out)
+    return 0

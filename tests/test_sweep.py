@@ -1,0 +1,156 @@
+"""Parameter sweeps (moving_bogie.sweep): stores equal across worker counts and after an interruption,
+points equal to the full root search, options checked before any work.
+
+References: every verdict is compared with ``induced_frequencies`` (argument principle over the default
+window, roots polished and confirmed in mpmath), which shares with the sweep only E_chr itself.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from moving_bogie.cli import main
+from moving_bogie.errors import ParameterError
+from moving_bogie.model.cases import table1_case
+from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.sweep import make_spec, open_sweep
+from moving_bogie.sweep.engine import run_sweep
+from moving_bogie.sweep.store import missing_blocks
+
+pytest.importorskip("distributed")
+
+# Case 1 over a window holding stable and unstable points with 0 to 3 unstable roots
+VARY = {"alpha": "0.5:1.1:24", "eta_M": "5:100:24"}
+OPTIONS = dict(block_points=8 * 24, check=1)
+VARIABLES = ("stable", "n_unstable", "degree_of_instability", "certain", "settled", "checked", "computed")
+
+
+def _spec():
+    return make_spec(table1_case(1), VARY, **OPTIONS)
+
+
+def _arrays(path):
+    ds = open_sweep(path).compute()
+    return {name: ds[name].values for name in VARIABLES}, ds.attrs
+
+
+def _same(a, b):
+    for name in VARIABLES:
+        np.testing.assert_array_equal(a[name], b[name], err_msg=name)
+
+
+@pytest.fixture(scope="module")
+def one_worker(tmp_path_factory):
+    path = tmp_path_factory.mktemp("sweep") / "one.zarr"
+    run = run_sweep(_spec(), path, workers=1, processes=False)
+    assert run.blocks_total == 3 and run.points_computed == 24 * 24
+    return path
+
+
+def test_one_and_two_workers_give_the_same_store(one_worker, tmp_path):
+    run = run_sweep(_spec(), tmp_path / "two.zarr", workers=2, processes=False)
+    assert run.workers == 2
+    a, attrs_a = _arrays(one_worker)
+    b, attrs_b = _arrays(tmp_path / "two.zarr")
+    _same(a, b)
+    assert attrs_a == attrs_b
+    assert a["computed"].all() and a["certain"].all()
+    assert set(np.unique(a["n_unstable"])) == {0, 1, 2, 3}
+
+
+def test_random_points_agree_with_induced_frequencies(one_worker):
+    ds = open_sweep(one_worker).compute()
+    exact = {name: [Fraction(v) for v in ds[name].attrs["exact"]] for name in ("alpha", "eta_M")}
+    rng = np.random.default_rng(15)
+    for i, j in rng.integers(0, 24, size=(4, 2)):
+        point = ds.isel(alpha=i, eta_M=j)
+        ref = induced_frequencies(table1_case(1).replace(alpha=exact["alpha"][i], eta_M=exact["eta_M"][j]), dps=20)
+        assert ref.count_ok
+        assert int(point.n_unstable) == len(ref.unstable_roots)
+        assert bool(point.stable) == ref.stable
+        assert float(point.degree_of_instability) == pytest.approx(float(ref.degree_of_instability), abs=1e-9)
+
+
+def test_sigint_then_resume_equals_an_uninterrupted_sweep(one_worker, tmp_path):
+    path = tmp_path / "interrupted.zarr"
+
+    def interrupt(index):
+        os.kill(os.getpid(), signal.SIGINT)  # what Ctrl-C sends
+
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(_spec(), path, workers=1, processes=False, on_block=interrupt)
+    left = missing_blocks(path, _spec())
+    assert 0 < len(left) < 3  # the finished block is kept, the rest is not
+    with pytest.raises(ParameterError, match="--out"):
+        run_sweep(_spec(), path, workers=1, processes=False)  # neither --resume nor --overwrite
+    run = run_sweep(_spec(), path, resume=True, workers=1, processes=False)
+    assert run.blocks_computed == len(left)
+    _same(_arrays(one_worker)[0], _arrays(path)[0])
+
+
+def test_resume_of_a_different_sweep_is_refused(one_worker):
+    other = make_spec(table1_case(1), {"alpha": "0.5:1.1:24", "eta_M": "5:100:23"}, **OPTIONS)
+    with pytest.raises(ParameterError, match="--resume"):
+        run_sweep(other, one_worker, resume=True, workers=1, processes=False)
+
+
+def test_sweep_plot_draws_a_slice(one_worker, tmp_path, capsys):
+    out = tmp_path / "slice.png"
+    assert main(["sweep-plot", str(one_worker), "--x", "alpha", "--y", "eta_M", "--out", str(out)]) == 0
+    assert out.stat().st_size > 0
+    assert main(["sweep-plot", str(one_worker), "--x", "alpha", "--y", "eta_f", "--out", str(out)]) == 2
+    assert "--y eta_f" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "args, option",
+    [
+        (["--vary", "alpah=0.3:1:5"], "--vary 'alpah"),
+        (["--vary", "alpha=0.3:1"], "--vary 'alpha=0.3:1'"),
+        (["--vary", "alpha=0.3:x:5"], "--vary"),
+        (["--vary", "eta_M=-1:5:3"], "--vary eta_M"),
+        (["--vary", "alpha=0.3:1:5", "--sample", "halton:8"], "--sample"),
+        (["--vary", "alpha=0.3:1:5", "--workers", "0"], "--workers"),
+        ([], "--vary"),
+    ],
+)
+def test_bad_options_fail_before_any_work(args, option, tmp_path, capsys):
+    out = tmp_path / "s.zarr"
+    assert main(["sweep", "--case", "1", "--out", str(out), *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and option in err
+    assert not out.exists()
+
+
+def test_existing_out_needs_resume_or_overwrite(tmp_path, capsys):
+    out = tmp_path / "s.zarr"
+    out.mkdir()
+    assert main(["sweep", "--case", "1", "--vary", "alpha=0.3:1:5", "--out", str(out)]) == 2
+    assert "--out" in capsys.readouterr().err
+
+
+def test_sobol_design_and_cli_json(tmp_path, capsys):
+    out = tmp_path / "sobol.zarr"
+    code = main(
+        ["sweep", "--case", "1", "--vary", "alpha=0.6:1.1", "--vary", "eta_f=0.05:0.2", "--sample", "sobol:4",
+         "--workers", "1", "--check", "0", "--roots", "--out", str(out), "--json"]
+    )
+    assert code == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["dims"] == {"point": 4, "root": 8} and summary["uncertain_points"] == 0
+    ds = open_sweep(out).compute()
+    assert ((ds.alpha >= 0.6) & (ds.alpha <= 1.1)).all()
+    # the roots stored are the unstable ones: their number is n_unstable, the deepest is the degree
+    n = (~np.isnan(ds.roots_im.values)).sum(axis=1)
+    np.testing.assert_array_equal(n, ds.n_unstable.values)
+    k = 0
+    ref = induced_frequencies(
+        table1_case(1).replace(alpha=Fraction(repr(float(ds.alpha[k]))), eta_f=Fraction(repr(float(ds.eta_f[k]))))
+    )
+    assert int(ds.n_unstable[k]) == len(ref.unstable_roots)
