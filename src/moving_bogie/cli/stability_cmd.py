@@ -311,6 +311,10 @@ def _register_stability_map(subparsers) -> None:
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
     p.add_argument("--plot", type=Path, metavar="F.png")
     p.add_argument("--npz", type=Path, metavar="F.npz", help="save the arrays")
+    p.add_argument(
+        "--out", type=Path, metavar="S.zarr", help="save as a 2-D sweep store (read by sweep-plot, xarray)"
+    )
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --out store")
     add_json_option(p)
     p.set_defaults(handler=run_stability_map)
 
@@ -322,6 +326,8 @@ def run_stability_map(args) -> int:
     from moving_bogie.stability.map import stability_map
 
     params, _ = _params_and_spacings(args)
+    if args.out is not None and args.out.exists() and not args.overwrite:
+        raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")
     alphas = np.linspace(args.alpha_min, args.alpha_max, args.n)
     thetas = np.linspace(args.theta_max / args.n, args.theta_max, args.n)
     with progress_bar("stability map") as bar:
@@ -348,6 +354,10 @@ def run_stability_map(args) -> int:
     if args.npz:
         args.npz.parent.mkdir(parents=True, exist_ok=True)
         smap.save_npz(args.npz)
+    if args.out:
+        from moving_bogie.sweep.store import write_map
+
+        write_map(args.out, smap, overwrite=args.overwrite)
     if args.plot:
         from moving_bogie.stability.plots import plot_stability_map
 
@@ -357,8 +367,10 @@ def run_stability_map(args) -> int:
         print_json(summary)
     else:
         for key, value in summary.items():
-            if key != "params":
+            if key not in ("params", "uncertain"):
                 print(f"{key:18s} {value}")
+        for cell in summary["uncertain"]:
+            print("uncertain cell     " + ", ".join(f"{k} = {v:.6g}" for k, v in cell.items()))
     return 0
 
 

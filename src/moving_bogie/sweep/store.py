@@ -27,7 +27,7 @@ from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.sweep.design import SweepSpec, parameter_units
 from moving_bogie.sweep.evaluate import VARIABLES
 
-__all__ = ["create_store", "missing_blocks", "open_sweep", "prepare_store", "write_block"]
+__all__ = ["create_store", "missing_blocks", "open_sweep", "prepare_store", "write_block", "write_map"]
 
 
 def _version() -> str:
@@ -164,3 +164,29 @@ def open_sweep(path):
         return xr.open_zarr(str(path), consolidated=False)
     except (FileNotFoundError, ValueError, KeyError) as exc:
         raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None
+
+
+def write_map(path, smap, *, overwrite: bool = False) -> Path:
+    """Write a :class:`~moving_bogie.stability.map.StabilityMap` as a 2-D sweep store (alpha, parameter)."""
+    from moving_bogie.stability.column import exact
+    from moving_bogie.sweep.design import Axis
+
+    axes = (
+        Axis("alpha", tuple(exact(a) for a in smap.alphas)),
+        Axis(smap.parameter, tuple(exact(t) for t in smap.thetas)),
+    )
+    spec = SweepSpec(smap.params, smap.model, axes, check=0)
+    path = prepare_store(path, spec, overwrite=overwrite)
+    certain = ~smap.uncertain.T
+    n = np.where(certain, smap.count.T, -1).astype(np.int16)
+    arrays = {
+        "stable": certain & (n == 0),
+        "n_unstable": n,
+        "degree_of_instability": np.where(certain, smap.degree.T, np.nan),
+        "certain": certain,
+        "settled": smap.settled_cells.T,
+        "checked": np.zeros(n.shape, dtype=np.int8),
+        "computed": np.ones(n.shape, dtype=bool),
+    }
+    write_block(path, spec, (slice(None), slice(None)), arrays)
+    return path
