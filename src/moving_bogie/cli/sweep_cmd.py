@@ -56,7 +56,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--check", type=int, default=1, metavar="K", help="points per chunk verified by a full count (default 1)"
     )
-    p.add_argument("--chunk-points", type=int, default=256, metavar="N", help="points per chunk, about")
+    p.add_argument("--chunk-points", type=int, default=2048, metavar="N", help="points per chunk, about")
     add_json_option(p)
     p.set_defaults(handler=run_sweep_cmd)
 

@@ -49,13 +49,14 @@ def exact(x) -> Fraction:
     return Fraction(str(float(x)))
 
 
-def column_window(params, model: str, parameter: str, thetas) -> tuple[float, float]:
-    """(X, Y) covering :func:`default_window` at the smallest and at the largest theta of the column."""
-    X = Y = 0.0
-    for theta in (float(np.min(thetas)), float(np.max(thetas))):
-        w = default_window(params.replace(**{parameter: exact(theta)}), model)
-        X, Y = max(X, w.x1), max(Y, -w.y0)
-    return X, Y
+def column_window(params, model: str, parameter: str, thetas) -> tuple[float, float, float]:
+    """(X, Y) covering :func:`default_window` at the smallest and at the largest theta of the column, and
+    the smaller of the two X (the part of the real axis every cell's window holds)."""
+    windows = [
+        default_window(params.replace(**{parameter: exact(theta)}), model)
+        for theta in (float(np.min(thetas)), float(np.max(thetas)))
+    ]
+    return max(w.x1 for w in windows), max(-w.y0 for w in windows), min(w.x1 for w in windows)
 
 
 def stability_column(
@@ -70,7 +71,7 @@ def stability_column(
     coarse: float = 0.03,
     max_step: float = np.pi / 3,
     max_bend: float = 0.5,
-    min_spacing: float = 1e-7,
+    min_spacing: float = 1e-10,
     polish: int = 10,
     guesses: Sequence | None = None,
 ) -> ColumnResult:
@@ -83,7 +84,8 @@ def stability_column(
     thetas : ndarray
         Values of ``sweep.parameter`` (> 0).
     window : (X, Y), optional
-        Half-width and depth of the counting rectangle (default :func:`column_window`).
+        Half-width and depth of the counting rectangle (default :func:`column_window`; the real axis is
+        then sampled at ``spacing`` up to the X every cell's own window reaches, at ``coarse`` beyond).
     top : float
         Im q of the counting rectangle's upper edge (0; slightly negative when the cut reaches the axis).
     moment_top : float, optional
@@ -104,8 +106,9 @@ def stability_column(
     thetas = np.asarray(thetas, dtype=float)
     scale = float(thetas.max())
     t = thetas / scale
+    fine_until = None
     if window is None:
-        window = column_window(sweep.params, sweep.model, sweep.parameter, thetas)
+        *window, fine_until = column_window(sweep.params, sweep.model, sweep.parameter, thetas)
     X, Y = window
     if moment_top is None:
         moment_top = top + 0.4 * float(sweep.params.eta_f)
@@ -118,7 +121,7 @@ def stability_column(
         K, _, _ = sweep.kernel(z, alpha)
         return sweep.coefficients(z, K, scale=scale), None
 
-    box = count_box(count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend)
+    box = count_box(count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend, fine_until)
     total = np.rint(box.n_rect).astype(int) + box.n_axis
     uncertain = box.uncertain | ((total % 2) != 0)
     count = np.maximum(total // 2, 0)

@@ -80,12 +80,16 @@ def _bent(E: np.ndarray, max_bend: float) -> np.ndarray:
     return out
 
 
-def count_box(coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend=0.5) -> BoxCount:
+def count_box(
+    coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend=0.5, fine_until=None
+) -> BoxCount:
     """Sample the right half-boundary and count the roots in the rectangle for every t (module text).
 
-    ``coeffs(z)`` returns the coefficients of E in t at the points z (first element of a pair). The new
-    point of a halved segment has its track kernel computed once for every row that needs it; the change
-    of arg E is the sum of the steps over each row's leaves.
+    ``coeffs(z)`` returns the coefficients of E in t at the points z (first element of a pair). The top
+    edge is sampled at ``spacing`` for Re q <= ``fine_until`` (default X) and at ``coarse`` beyond, where
+    the refinement alone resolves roots near the axis. The new point of a halved segment has its track
+    kernel computed once for every row that needs it; the change of arg E is the sum of the steps over
+    each row's leaves.
     """
     outer = np.concatenate(
         [
@@ -93,7 +97,14 @@ def count_box(coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_
             edge_samples(complex(X, -Y), complex(X, top), coarse),
         ]
     )
-    z0 = np.append(edge_samples(complex(X, top), complex(0, top), spacing), complex(0, top))
+    split = X if fine_until is None else min(X, fine_until)
+    z0 = np.concatenate(
+        [
+            edge_samples(complex(X, top), complex(split, top), coarse) if split < X else np.zeros(0, complex),
+            edge_samples(complex(split, top), complex(0, top), spacing),
+            [complex(0, top)],
+        ]
+    )
     axis = np.append(edge_samples(complex(0, top), complex(0, -Y), coarse), complex(0, -Y))
     path = np.concatenate([outer, z0])
     T = t[:, None]

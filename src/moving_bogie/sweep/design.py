@@ -149,7 +149,7 @@ class SweepSpec:
     roots: bool = False
     max_roots: int = 8
     check: int = 1
-    block_points: int = 256
+    block_points: int = 2048
     extra: dict = field(default_factory=dict)
 
     def __post_init__(self):

@@ -1,0 +1,89 @@
+"""Parameter sweeps on Dask: points/s per worker, 1 -> 2 worker scaling, a 10^6-point 3-D sweep.
+
+    python benchmarks/bench_sweep.py [--quick] [--million]
+
+1. The same 80 x 80 x 4 sweep (alpha x eta_M x eta_f, Case 1) on a LocalCluster of 1 and of 2 worker
+   processes, side by side: wall time, points/s, points/s per worker, speed-up (target >= 1.5).
+2. A 3-D sweep of 100 alpha x 100 eta_M x 100 eta_f = 10^6 points on 2 workers (target < 5 min). Without
+   --million, the first 10 of the 100 eta_f values (10^5 points, the same columns of 100 eta_M values) are
+   run and the time is multiplied by 10: blocks are independent and alike, so the time is linear in their
+   number; the table says which was done.
+
+Wall time depends on what else runs on the machine; CPU time (this process and its worker processes,
+counted when the cluster closes) does not, and is printed next to it. Each run starts its own cluster
+(start-up included in the wall time).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+
+def _cpu() -> float:
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def _run(spec, workers, folder):
+    from moving_bogie.sweep.engine import run_sweep
+
+    out = Path(folder) / f"s{workers}-{spec.size}.zarr"
+    w0, c0 = time.perf_counter(), _cpu()
+    run = run_sweep(spec, out, workers=workers, overwrite=True)
+    wall, cpu = time.perf_counter() - w0, _cpu() - c0
+    shutil.rmtree(out, ignore_errors=True)
+    return wall, cpu, run
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="a 20 x 20 x 4 scaling run and 10^4 points")
+    parser.add_argument("--million", action="store_true", help="run the full 10^6-point sweep")
+    args = parser.parse_args()
+
+    from moving_bogie.model.cases import table1_case
+    from moving_bogie.sweep import make_spec
+
+    n = 20 if args.quick else 80
+    base = table1_case(1)
+    scaling = make_spec(base, {"alpha": f"0.3:1.1:{n}", "eta_M": f"1:200:{n}", "eta_f": "0.02,0.05,0.1,0.2"})
+    print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start")
+    print(f"{'job':52s} {'wall [s]':>9s} {'CPU [s]':>9s} {'points/s':>9s} {'per worker':>10s}")
+    rows = {}
+    with tempfile.TemporaryDirectory() as folder:
+        for workers in (1, 2):
+            wall, cpu, run = _run(scaling, workers, folder)
+            rows[workers] = wall
+            rate = scaling.size / wall
+            label = f"{n} x {n} x 4 sweep, {workers} worker(s)"
+            print(f"{label:52s} {wall:9.1f} {cpu:9.1f} {rate:9.1f} {rate / workers:10.1f}")
+        print(f"{'speed-up 1 -> 2 workers (target >= 1.5)':52s} {rows[1] / rows[2]:9.2f}")
+        m = 10 if args.quick else 100
+        k = m if args.million else m // 10
+        big = make_spec(
+            base, {"alpha": f"0.3:1.1:{m}", "eta_M": f"1:200:{m}", "eta_f": ",".join(_values(0.01, 0.3, m)[:k])}
+        )
+        wall, cpu, run = _run(big, 2, folder)
+        scale = m / k
+        label = f"{m} x {m} x {k} sweep, 2 workers"
+        print(f"{label:52s} {wall:9.1f} {cpu:9.1f} {big.size / wall:9.1f} {big.size / wall / 2:10.1f}")
+        what = "measured" if scale == 1 else f"extrapolated x{scale:g} from the row above"
+        print(f"{f'{m**3:.0e}-point 3-D sweep, 2 workers ({what})':52s} {wall * scale:9.1f} {cpu * scale:9.1f}")
+
+
+def _values(lo, hi, n):
+    from fractions import Fraction
+
+    lo, hi = Fraction(str(lo)), Fraction(str(hi))
+    return [str(float(lo + (hi - lo) * k / (n - 1))) for k in range(n)]
+
+
+if __name__ == "__main__":
+    main()
