@@ -54,7 +54,8 @@ def one_worker(tmp_path_factory):
 
 
 def test_one_and_two_workers_give_the_same_store(one_worker, tmp_path):
-    run = run_sweep(_spec(), tmp_path / "two.zarr", workers=2, processes=False)
+    # two worker processes (threads would share mpmath's process-wide precision)
+    run = run_sweep(_spec(), tmp_path / "two.zarr", workers=2)
     assert run.workers == 2
     a, attrs_a = _arrays(one_worker)
     b, attrs_b = _arrays(tmp_path / "two.zarr")

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from moving_bogie.errors import ParameterError
 from moving_bogie.sweep.design import SweepSpec
 from moving_bogie.sweep.evaluate import BlockTask, evaluate_block
 from moving_bogie.sweep.store import missing_blocks, prepare_store, write_block
@@ -62,12 +63,19 @@ def block_task(spec: SweepSpec, block) -> BlockTask:
 
 
 def make_client(workers: int | None = None, scheduler: str | None = None, processes: bool = True):
-    """A Dask client: on ``scheduler`` if given, else on a new LocalCluster of ``workers`` processes."""
+    """A Dask client: on ``scheduler`` if given, else on a new LocalCluster of ``workers`` processes.
+
+    Every worker runs one thread: the full counts use mpmath, whose working precision is global to a
+    process, so two tasks must never share one (``processes=False``, threads in this process, is allowed
+    for a single worker only).
+    """
     from distributed import Client, LocalCluster
 
     if scheduler:
         return Client(scheduler)
     n = workers or os.cpu_count() or 1
+    if not processes and n > 1:
+        raise ParameterError("workers", "workers as threads (processes=False) must be a single worker")
     cluster = LocalCluster(
         n_workers=n,
         threads_per_worker=1,
