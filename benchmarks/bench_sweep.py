@@ -43,7 +43,9 @@ def _run(spec, workers, folder):
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--quick", action="store_true", help="a 20 x 20 x 4 scaling run and 10^4 points")
     parser.add_argument("--million", action="store_true", help="run the full 10^6-point sweep")
     args = parser.parse_args()
@@ -68,14 +70,17 @@ def main() -> None:
         m = 10 if args.quick else 100
         k = m if args.million else m // 10
         big = make_spec(
-            base, {"alpha": f"0.3:1.1:{m}", "eta_M": f"1:200:{m}", "eta_f": ",".join(_values(0.01, 0.3, m)[:k])}
+            base,
+            {"alpha": f"0.3:1.1:{m}", "eta_M": f"1:200:{m}", "eta_f": ",".join(_values(0.01, 0.3, m)[:k])},
         )
         wall, cpu, run = _run(big, 2, folder)
         scale = m / k
         label = f"{m} x {m} x {k} sweep, 2 workers"
         print(f"{label:52s} {wall:9.1f} {cpu:9.1f} {big.size / wall:9.1f} {big.size / wall / 2:10.1f}")
         what = "measured" if scale == 1 else f"extrapolated x{scale:g} from the row above"
-        print(f"{f'{m**3:.0e}-point 3-D sweep, 2 workers ({what})':52s} {wall * scale:9.1f} {cpu * scale:9.1f}")
+        print(
+            f"{f'{m**3:.0e}-point 3-D sweep, 2 workers ({what})':52s} {wall * scale:9.1f} {cpu * scale:9.1f}"
+        )
 
 
 def _values(lo, hi, n):

@@ -54,7 +54,7 @@ ds = sweep(
     folder / "sweep.zarr",
     **engine,
 ).load()  # small enough to hold in memory; a large store stays lazy (dask) until computed
-ds
+ds  # noqa: B018 (the notebook shows it)
 
 # %% [markdown]
 # ## What the store holds
@@ -110,7 +110,9 @@ plot_sweep_slice(ds, "alpha", "eta_M", {"eta_f": 0.1})
 
 # %%
 i, j, k = n // 2, n // 3, 1
-exact = {name: Fraction(ds[name].attrs["exact"][idx]) for name, idx in (("alpha", i), ("eta_M", j), ("eta_f", k))}
+exact = {
+    name: Fraction(ds[name].attrs["exact"][idx]) for name, idx in (("alpha", i), ("eta_M", j), ("eta_f", k))
+}
 point = ds.isel(alpha=i, eta_M=j, eta_f=k)
 ref = induced_frequencies(table1_case(1).replace(**exact), dps=20)
 print(exact)

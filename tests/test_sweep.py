@@ -71,7 +71,9 @@ def test_random_points_agree_with_induced_frequencies(one_worker):
     rng = np.random.default_rng(15)
     for i, j in rng.integers(0, 24, size=(4, 2)):
         point = ds.isel(alpha=i, eta_M=j)
-        ref = induced_frequencies(table1_case(1).replace(alpha=exact["alpha"][i], eta_M=exact["eta_M"][j]), dps=20)
+        ref = induced_frequencies(
+            table1_case(1).replace(alpha=exact["alpha"][i], eta_M=exact["eta_M"][j]), dps=20
+        )
         assert ref.count_ok
         assert int(point.n_unstable) == len(ref.unstable_roots)
         assert bool(point.stable) == ref.stable
@@ -139,8 +141,25 @@ def test_existing_out_needs_resume_or_overwrite(tmp_path, capsys):
 def test_sobol_design_and_cli_json(tmp_path, capsys):
     out = tmp_path / "sobol.zarr"
     code = main(
-        ["sweep", "--case", "1", "--vary", "alpha=0.6:1.1", "--vary", "eta_f=0.05:0.2", "--sample", "sobol:4",
-         "--workers", "1", "--check", "0", "--roots", "--out", str(out), "--json"]
+        [
+            "sweep",
+            "--case",
+            "1",
+            "--vary",
+            "alpha=0.6:1.1",
+            "--vary",
+            "eta_f=0.05:0.2",
+            "--sample",
+            "sobol:4",
+            "--workers",
+            "1",
+            "--check",
+            "0",
+            "--roots",
+            "--out",
+            str(out),
+            "--json",
+        ]
     )
     assert code == 0
     summary = json.loads(capsys.readouterr().out)
@@ -152,6 +171,8 @@ def test_sobol_design_and_cli_json(tmp_path, capsys):
     np.testing.assert_array_equal(n, ds.n_unstable.values)
     k = 0
     ref = induced_frequencies(
-        table1_case(1).replace(alpha=Fraction(repr(float(ds.alpha[k]))), eta_f=Fraction(repr(float(ds.eta_f[k]))))
+        table1_case(1).replace(
+            alpha=Fraction(repr(float(ds.alpha[k]))), eta_f=Fraction(repr(float(ds.eta_f[k])))
+        )
     )
     assert int(ds.n_unstable[k]) == len(ref.unstable_roots)

@@ -54,7 +54,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="use an existing Dask scheduler")
     p.add_argument("--roots", action="store_true", help="store the unstable roots of every point")
     p.add_argument(
-        "--check", type=int, default=1, metavar="K", help="points per chunk verified by a full count (default 1)"
+        "--check",
+        type=int,
+        default=1,
+        metavar="K",
+        help="points per chunk verified by a full count (default 1)",
     )
     p.add_argument("--chunk-points", type=int, default=2048, metavar="N", help="points per chunk, about")
     add_json_option(p)
@@ -67,7 +71,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Degree of instability over two varied parameters of a sweep store, the other dimensions\n"
             "fixed by --sel (nearest value); the stable/unstable boundary drawn, uncertain points hatched."
         ),
-        epilog="example:\n  moving-bogie sweep-plot s.zarr --x alpha --y eta_M --sel eta_f=0.05 --out slice.png",
+        epilog=(
+            "example:\n  moving-bogie sweep-plot s.zarr --x alpha --y eta_M --sel eta_f=0.05 --out slice.png"
+        ),
         formatter_class=_RAW,
     )
     q.add_argument("store", type=Path, metavar="S.zarr")
@@ -79,8 +85,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _spec(args):
-    from moving_bogie.sweep.design import parse_sample
     from moving_bogie.sweep.api import make_spec
+    from moving_bogie.sweep.design import parse_sample
 
     if args.workers is not None and args.workers < 1:
         raise ParameterError("--workers", "--workers must be >= 1")
@@ -98,7 +104,9 @@ def _spec(args):
     for text in args.vary:
         name, eq, spec = text.partition("=")
         if not eq:
-            raise ParameterError("--vary", f"--vary {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,...")
+            raise ParameterError(
+                "--vary", f"--vary {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,..."
+            )
         if name.strip() in vary:
             raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
         vary[name.strip()] = spec

@@ -24,8 +24,8 @@ import numpy as np
 
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.stability.d_decomposition import d_decomposition
 from moving_bogie.stability.column import stability_column
+from moving_bogie.stability.d_decomposition import d_decomposition
 
 __all__ = ["CriticalStiffness", "critical_stiffness", "figure16_params"]
 

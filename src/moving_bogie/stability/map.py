@@ -64,7 +64,10 @@ class StabilityMap:
     def uncertain_list(self) -> list[dict]:
         """The uncertain cells as ``{"alpha": ..., parameter: ...}`` (row-major order)."""
         rows, cols = np.nonzero(self.uncertain)
-        return [{"alpha": float(self.alphas[i]), self.parameter: float(self.thetas[j])} for j, i in zip(rows, cols)]
+        return [
+            {"alpha": float(self.alphas[i]), self.parameter: float(self.thetas[j])}
+            for j, i in zip(rows, cols)
+        ]
 
     def summary(self) -> dict:
         return {

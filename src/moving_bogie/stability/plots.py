@@ -301,7 +301,9 @@ def hatch_cells(ax, x, y, mask, *, label="uncertain (not certified)") -> int:
     patches = [Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j]) for j, i in zip(rows, cols)]
     if patches:
         ax.add_collection(
-            PatchCollection(patches, facecolor="none", edgecolor="tab:blue", hatch="////", lw=0.5, label=label)
+            PatchCollection(
+                patches, facecolor="none", edgecolor="tab:blue", hatch="////", lw=0.5, label=label
+            )
         )
     return len(patches)
 

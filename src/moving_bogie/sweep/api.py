@@ -22,7 +22,9 @@ def _axis(name, spec, needs_count: bool):
     return parse_vary(f"{name}={text}", needs_count=needs_count)
 
 
-def make_spec(params, vary: Mapping, *, model: str = "bogie", sample: int | None = None, **options) -> SweepSpec:
+def make_spec(
+    params, vary: Mapping, *, model: str = "bogie", sample: int | None = None, **options
+) -> SweepSpec:
     """A :class:`~moving_bogie.sweep.design.SweepSpec` from ``vary`` = {name: values}.
 
     Each value is text as on the command line (``"0.3:0.95:200"``, ``"0.01,0.05,0.1"``) or a sequence of
@@ -39,8 +41,22 @@ def make_spec(params, vary: Mapping, *, model: str = "bogie", sample: int | None
     return SweepSpec(params, model, sobol_axes(ranges, sample), design="sobol", extra=extra, **options)
 
 
-def sweep(params, vary: Mapping, out, *, model: str = "bogie", sample: int | None = None, resume=False,
-          overwrite=False, client=None, workers=None, scheduler=None, processes=True, progress=None, **options):
+def sweep(
+    params,
+    vary: Mapping,
+    out,
+    *,
+    model: str = "bogie",
+    sample: int | None = None,
+    resume=False,
+    overwrite=False,
+    client=None,
+    workers=None,
+    scheduler=None,
+    processes=True,
+    progress=None,
+    **options,
+):
     """Run a sweep into the zarr store ``out`` and return it as an :class:`xarray.Dataset`.
 
     Parameters
@@ -69,7 +85,14 @@ def sweep(params, vary: Mapping, out, *, model: str = "bogie", sample: int | Non
     """
     spec = make_spec(params, vary, model=model, sample=sample, **options)
     run_sweep(
-        spec, out, resume=resume, overwrite=overwrite, client=client, workers=workers, scheduler=scheduler,
-        processes=processes, progress=progress,
+        spec,
+        out,
+        resume=resume,
+        overwrite=overwrite,
+        client=client,
+        workers=workers,
+        scheduler=scheduler,
+        processes=processes,
+        progress=progress,
     )
     return open_sweep(out)

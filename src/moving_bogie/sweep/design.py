@@ -95,7 +95,9 @@ def parse_vary(text: str, *, option: str = "--vary", needs_count: bool = True) -
             raise ParameterError(option, f"{option} {text!r}: COUNT must be >= 2 (or 1 with START = STOP)")
         if not needs_count:
             return name, (start, stop)
-        values = (start,) if count == 1 else tuple(start + (stop - start) * k / (count - 1) for k in range(count))
+        values = (
+            (start,) if count == 1 else tuple(start + (stop - start) * k / (count - 1) for k in range(count))
+        )
         return name, values
     values = tuple(_number(option, v) for v in spec.split(",") if v.strip())
     if not values or len(set(values)) != len(values):
@@ -173,7 +175,9 @@ class SweepSpec:
 
     @property
     def shape(self) -> tuple[int, ...]:
-        return (len(self.axes[0].values),) if self.design == "sobol" else tuple(len(a.values) for a in self.axes)
+        return (
+            (len(self.axes[0].values),) if self.design == "sobol" else tuple(len(a.values) for a in self.axes)
+        )
 
     @property
     def size(self) -> int:

@@ -25,7 +25,12 @@ __all__ = ["BlockTask", "VARIABLES", "evaluate_block"]
 #: Data variables of a block: (name, dtype, fill value, description).
 VARIABLES = (
     ("stable", "bool", False, "no induced frequency with Im q < 0 (False where not certain)"),
-    ("n_unstable", "int16", -1, "number of unstable induced frequencies, pairs q, -conj(q) once (-1: unknown)"),
+    (
+        "n_unstable",
+        "int16",
+        -1,
+        "number of unstable induced frequencies, pairs q, -conj(q) once (-1: unknown)",
+    ),
     ("degree_of_instability", "float64", np.nan, "most negative Im q; 0 where stable, NaN where not certain"),
     ("certain", "bool", False, "the count is certified (column count or full count)"),
     ("settled", "bool", False, "the verdict comes from a full count (induced_frequencies)"),

@@ -20,10 +20,14 @@ def select_slice(ds, x: str, y: str, sel: dict | None = None):
     """
     sel = dict(sel or {})
     if "point" in ds.dims:
-        raise ParameterError("store", "a quasi-random (Sobol) sweep has no grid to slice; use xarray directly")
+        raise ParameterError(
+            "store", "a quasi-random (Sobol) sweep has no grid to slice; use xarray directly"
+        )
     for option, name in (("--x", x), ("--y", y)):
         if name not in ds.dims:
-            raise ParameterError(option, f"{option} {name}: not a dimension of the store ({', '.join(ds.dims)})")
+            raise ParameterError(
+                option, f"{option} {name}: not a dimension of the store ({', '.join(ds.dims)})"
+            )
     if x == y:
         raise ParameterError("--y", "--x and --y must differ")
     for name in sel:

@@ -53,7 +53,9 @@ def prepare_store(path, spec: SweepSpec, *, resume: bool = False, overwrite: boo
             try:
                 stored = json.loads(_group(path, "r").attrs["sweep"])
             except (KeyError, ValueError, OSError, MovingBogieError, FileNotFoundError):
-                raise ParameterError("--out", f"--out {path}: not a sweep store, cannot --resume it") from None
+                raise ParameterError(
+                    "--out", f"--out {path}: not a sweep store, cannot --resume it"
+                ) from None
             if stored != spec.describe():
                 raise ParameterError(
                     "--resume", f"--resume: {path} holds a different sweep (parameters, values or options)"
@@ -122,7 +124,9 @@ def create_store(path, spec: SweepSpec) -> None:
             "roots.frequencies.default_window (largest over each column); full counts in default_window"
         ),
         package_version=_version(),
-        degree_convention="most negative Im q over the induced frequencies; 0 where stable; NaN where not certain",
+        degree_convention=(
+            "most negative Im q over the induced frequencies; 0 where stable; NaN where not certain"
+        ),
     )
     if path.exists():
         shutil.rmtree(path)
@@ -133,7 +137,12 @@ def _variables(spec: SweepSpec):
     out = list(VARIABLES)
     if spec.roots:
         out += [
-            ("roots_re", "float64", np.nan, "Re q of the unstable roots (Re q >= 0 member of each pair), NaN-padded"),
+            (
+                "roots_re",
+                "float64",
+                np.nan,
+                "Re q of the unstable roots (Re q >= 0 member of each pair), NaN-padded",
+            ),
             ("roots_im", "float64", np.nan, "Im q of the unstable roots, NaN-padded"),
         ]
     # computed last: a block is complete once its computed chunk exists
