@@ -80,7 +80,7 @@ def make_client(workers: int | None = None, scheduler: str | None = None, proces
         n_workers=n,
         threads_per_worker=1,
         processes=processes,
-        dashboard_address=None,
+        dashboard_address=":0",  # a free port: never clashes with another cluster
         silence_logs=logging.ERROR,
     )
     client = Client(cluster)
