@@ -176,3 +176,22 @@ def test_sobol_design_and_cli_json(tmp_path, capsys):
         )
     )
     assert int(ds.n_unstable[k]) == len(ref.unstable_roots)
+
+
+@pytest.mark.parametrize(
+    "vary",
+    [
+        {"eta_M": "10,60", "d": "1,1.5"},  # eta_M a column; d changes J_b = cf2 eta_M d^2 too
+        {"eta_M": "10,60", "mu_v": "20"},  # mu_v fixed while eta_M varies: no column
+    ],
+)
+def test_every_point_is_the_point_of_replace(vary, tmp_path):
+    """The point (i, j) is ``params.replace(name_i=..., name_j=...)``: Eq. (63) scaling as replace does."""
+    base = table1_case(1).replace(alpha=Fraction("0.95"))
+    spec = make_spec(base, vary, check=0)
+    run_sweep(spec, tmp_path / "s.zarr", workers=1, processes=False)
+    ds = open_sweep(tmp_path / "s.zarr").compute()
+    for index in np.ndindex(ds.n_unstable.shape):
+        point = {name: Fraction(ds[name].attrs["exact"][i]) for name, i in zip(ds.n_unstable.dims, index)}
+        ref = induced_frequencies(base.replace(**point), dps=20)
+        assert ref.count_ok and int(ds.n_unstable[index]) == len(ref.unstable_roots)

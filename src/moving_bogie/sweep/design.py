@@ -188,7 +188,10 @@ class SweepSpec:
         """The varied parameter counted a whole column at a time (None on a Sobol design)."""
         if self.design == "sobol":
             return None
+        names = {a.name for a in self.axes}
         for a in self.axes:
+            if a.name == "eta_M" and names & {"mu_v", "J_b"}:
+                continue  # the column would scale mu_v and J_b with eta_M (Eq. (63)); the points do not
             if a.name in POLYNOMIAL_PARAMETERS:
                 try:
                     polynomial_degree(self.model, a.name)
