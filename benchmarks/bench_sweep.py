@@ -68,20 +68,24 @@ def main() -> None:
             rate = scaling.size / wall
             label = f"{n} x {n} x 4 sweep, {workers} worker(s)"
             print(f"{label:52s} {wall:9.1f} {cpu:9.1f} {rate:9.1f} {rate / workers:10.1f}")
-        print(f"{'speed-up 1 -> 2 workers (target >= 1.5)':52s} {rows[1] / rows[2]:9.2f}")
-        m = 10 if args.quick else 100
-        k = m if args.million else m // 10
+        if rows:
+            print(f"{'speed-up 1 -> 2 workers (target >= 1.5)':52s} {rows[1] / rows[2]:9.2f}")
+        m, n_eta = (10, 100) if args.quick else (100, 1000)
+        alphas = _values(0.3, 1.1, m)
+        if not args.million:
+            alphas = alphas[m // 2 - m // 20 : m // 2 + m // 20]
         big = make_spec(
             base,
-            {"alpha": f"0.3:1.1:{m}", "eta_M": f"1:200:{m}", "eta_f": ",".join(_values(0.01, 0.3, m)[:k])},
+            {"alpha": ",".join(alphas), "eta_M": f"1:200:{n_eta}", "eta_f": ",".join(_values(0.02, 0.2, 10))},
         )
         wall, cpu, run = _run(big, 2, folder)
-        scale = m / k
-        label = f"{m} x {m} x {k} sweep, 2 workers"
+        scale = m / len(alphas)
+        label = f"{len(alphas)} x {n_eta} x 10 sweep, 2 workers"
         print(f"{label:52s} {wall:9.1f} {cpu:9.1f} {big.size / wall:9.1f} {big.size / wall / 2:10.1f}")
-        what = "measured" if scale == 1 else f"extrapolated x{scale:g} from the row above"
+        what = "measured" if scale == 1 else f"x{scale:g} the row above"
+        total = m * n_eta * 10
         print(
-            f"{f'{m**3:.0e}-point 3-D sweep, 2 workers ({what})':52s} {wall * scale:9.1f} {cpu * scale:9.1f}"
+            f"{f'{total:.0e}-point 3-D sweep, 2 workers ({what})':52s} {wall * scale:9.1f} {cpu * scale:9.1f}"
         )
 
 
