@@ -24,7 +24,7 @@ from moving_bogie.roots.frequencies import default_window
 from moving_bogie.stability.column_count import count_box
 from moving_bogie.stability.column_roots import delves_lyness, dip_candidates, locate_roots
 
-__all__ = ["ColumnResult", "exact", "settle_cells", "stability_column", "top_edge"]
+__all__ = ["ColumnResult", "column_window", "exact", "settle_cells", "stability_column", "top_edge"]
 
 
 @dataclass(frozen=True)
