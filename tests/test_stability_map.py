@@ -6,6 +6,7 @@ Reference: ``induced_frequencies`` (argument principle over the default window, 
 from __future__ import annotations
 
 import dataclasses
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -28,6 +29,23 @@ def test_two_roots_next_to_the_axis_are_not_counted_unstable():
     assert not col.uncertain.any()
     for j, theta in enumerate(thetas):
         ref = induced_frequencies(p.replace(alpha=exact(0.1), eta_M=exact(theta)), dps=20)
+        assert ref.count_ok and col.count[j] == len(ref.unstable_roots) == 0
+
+
+def test_a_pair_aliased_inside_a_halved_segment_is_resolved():
+    """Case 1 with eta_f = 0.02 at alpha = 0.3 + 0.8 * 47/99: two stable roots 1.4e-3 apart at 1.4e-4 and
+    3.3e-4 above the axis sat in one half of a refined segment whose midpoint bend cancelled; the half's
+    phase step aliased to -0.92 rad and one spurious unstable pair was counted. The change of log|E| across
+    the half (1.9) now refines it."""
+    p = table1_case(1).replace(eta_f=Fraction("0.02"))
+    alpha = Fraction(3, 10) + Fraction(8, 10) * 47 / 99
+    thetas = [1 + Fraction(199) * k / 999 for k in (691, 726, 803)]
+    col = stability_column(
+        SweepCharacteristic(p, "bogie", "eta_M"), float(alpha), np.array([float(t) for t in thetas])
+    )
+    assert not col.uncertain.any()
+    for j, theta in enumerate(thetas):
+        ref = induced_frequencies(p.replace(alpha=alpha, eta_M=theta), dps=20)
         assert ref.count_ok and col.count[j] == len(ref.unstable_roots) == 0
 
 

@@ -70,7 +70,7 @@ def stability_column(
     spacing: float = 0.006,
     coarse: float = 0.03,
     max_step: float = np.pi / 3,
-    max_bend: float = 0.5,
+    max_bend: float = 0.2,
     min_spacing: float = 1e-10,
     polish: int = 10,
     guesses: Sequence | None = None,

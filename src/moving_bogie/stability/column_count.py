@@ -13,10 +13,13 @@ At fixed (q, alpha), E_chr is a polynomial in theta (:mod:`~moving_bogie.kernels
 the track kernel is evaluated once per contour point and E for every theta is a Horner evaluation.
 
 Sampling. The top edge (the real axis, which roots on instability lines approach) is refined per theta
-row. A segment is halved while the phase step of E across it exceeds ``max_step``, or while log|E| at its
-midpoint departs from the mean of its ends by more than ``max_bend``: two roots close to the axis and to
-each other turn the phase by about 2 pi across one segment, which a phase test alone reads as 0, but they
-bend log|E| strongly. The base samples are screened the same way (second difference of log E). A row
+row. A segment is halved while the change of log E across it (its phase step or its change of log|E|)
+exceeds ``max_step`` in size, or while log|E| at its midpoint departs from the mean of its ends by more
+than ``max_bend``: two roots close to the axis and to each other turn the phase by about 2 pi across one
+segment, which a phase test alone reads as a small step, but they change log|E| strongly across it (a
+segment is accepted only where |E'/E| times its length is small, i.e. it is short compared with its
+distance to every root). The base samples are screened the same way (and by the second difference of
+log|E|). A row
 whose refinement reaches ``min_spacing`` (a root within about that distance of the real axis) or whose
 count is not an integer is flagged ``uncertain``.
 """
@@ -115,7 +118,10 @@ def count_box(
     base = len(outer)
     z_all = path.copy()
     c_all = c_path
-    flagged = np.abs(steps[:, base:]) > max_step
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_mod = np.log(np.abs(E[:, base:]))
+        jumps = np.abs(np.diff(log_mod, axis=1))
+    flagged = (np.abs(steps[:, base:]) > max_step) | ~(jumps <= max_step)
     flagged |= _bent(E[:, base:], max_bend)
     rows, seg = np.nonzero(flagged)
     seg = seg + base
@@ -149,14 +155,16 @@ def count_box(
         s1, s2 = np.angle(Em / Ea), np.angle(Eb / Em)
         np.add.at(n_rect, rows, s1 + s2 - st)
         with np.errstate(divide="ignore", invalid="ignore"):
-            bend = np.abs(np.log(np.abs(Em)) - 0.5 * np.log(np.abs(Ea * Eb)))
-        bent = ~np.isfinite(bend) | (bend > max_bend)
+            la, lm, lb = np.log(np.abs(Ea)), np.log(np.abs(Em)), np.log(np.abs(Eb))
+            bend = np.abs(lm - 0.5 * (la + lb))
+            jump = np.concatenate([np.abs(lm - la), np.abs(lb - lm)])
+        bent = ~(bend <= max_bend)
         for r_, z_ in zip(rows, z_all[m]):
             if len(near[r_]) < 64:
                 near[r_].append(z_)
         r2 = np.concatenate([rows, rows])
         l2, h2, s12 = np.concatenate([lo, m]), np.concatenate([m, hi]), np.concatenate([s1, s2])
-        keep = (np.abs(s12) > max_step) | np.concatenate([bent, bent])
+        keep = (np.abs(s12) > max_step) | ~(jump <= max_step) | np.concatenate([bent, bent])
         rows, lo, hi, st = r2[keep], l2[keep], h2[keep], s12[keep]
     n_rect = n_rect / np.pi
     uncertain |= np.abs(n_rect - np.rint(n_rect)) > 1e-3
