@@ -120,3 +120,11 @@ print("sweep:", int(point.n_unstable), float(point.degree_of_instability))
 print("induced_frequencies:", len(ref.unstable_roots), float(ref.degree_of_instability))
 assert int(point.n_unstable) == len(ref.unstable_roots)
 assert np.isclose(float(point.degree_of_instability), float(ref.degree_of_instability), atol=1e-9)
+
+# %% [markdown]
+# The store was written to a temporary folder; remove it (the data above stay in memory).
+
+# %%
+import shutil  # noqa: E402
+
+shutil.rmtree(folder)
