@@ -12,6 +12,7 @@ from pathlib import Path
 import sympy as sp
 
 from . import symbols as s
+from .asymptotics import asymptotics_module
 from .emit import function_source, inputs_digest, module_source
 from .foundations import MODELS
 from .model import foundation_image
@@ -151,5 +152,6 @@ def outputs(root: Path) -> dict:
         [("FOUNDATIONS", tuple(MODELS)), ("VEHICLES", tuple(SYSTEMS)), ("INPUTS_HASH", digest)],
     )
     files[root / GENERATED / "__init__.py"] = init
+    files[root / GENERATED / "asymptotics.py"] = asymptotics_module(digest, module_source, function_source)
     files[root / "docs" / "proofs.md"] = proofs_markdown(digest)
     return files

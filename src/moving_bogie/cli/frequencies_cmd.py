@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import PROG, add_json_option, add_parameter_options, params_from_args, print_json
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -16,10 +17,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Find every induced frequency q (root of E_chr, Eq. (48)) with Re q >= 0 in the search window,\n"
             "with no starting guesses: the roots are counted by the argument principle on contours that\n"
             "avoid the cut of K, located, polished at --dps digits and confirmed at higher precision.\n"
-            "The motion is unstable when some root has Im q < 0. Exit status 1 when the count and the\n"
-            "roots found disagree (a root may be missing), 2 on bad input."
+            "The motion is unstable when some root has Im q < 0. The default window holds every root with\n"
+            "Im q < 0 (a radius R beyond which E_chr has none is checked first), so the verdict is about\n"
+            "every root; when the search is incomplete the verdict is UNDETERMINED with the reason."
         ),
         epilog=(
+            "exit status:\n  0  verdict STABLE or UNSTABLE, every root in the window found\n"
+            "  1  verdict UNDETERMINED, or the count and the roots found disagree (see the warnings)\n"
+            "  2  bad input (the message names the option)\n"
+            "warnings and errors go to stderr; the table and the verdict to stdout.\n\n"
             "examples:\n  moving-bogie frequencies --case 1\n"
             "  moving-bogie frequencies --case 7 --alpha 0.7 --json\n"
             "  moving-bogie frequencies --case 1 --beam tr --S 100 --r 0.03\n"
@@ -95,7 +101,9 @@ def run_frequencies(args: argparse.Namespace) -> int:
         print_json(result.to_dict())
     else:
         print(format_result(result))
-    return 0 if result.count_ok else 1
+    for line in format_warnings(result):
+        print(line, file=sys.stderr)
+    return 0 if result.count_ok and result.verdict.determined else 1
 
 
 def format_result(result) -> str:
@@ -112,7 +120,17 @@ def format_result(result) -> str:
         lines.append(
             f"not searched: a sliver of height <= {height:.1e} around the cut of K ('unsearched' in --json)"
         )
-    if result.stable:
+    far = result.far_field
+    if far is not None and far.radius is not None:
+        lines.append(
+            f"far field: no root with Im q < 0 beyond |q| = {far.radius:g} "
+            f"(|E_chr - E_lead| / |E_lead| <= {far.rho:.2f} there); searched: Re q <= {result.window.x1:g}, "
+            f"{result.window.y0:g} <= Im q <= {result.window.y1:g}"
+        )
+    verdict = result.verdict
+    if verdict.state == "undetermined":
+        lines.append("verdict: UNDETERMINED: " + "; ".join(verdict.reasons))
+    elif verdict.state == "stable":
         lines.append("verdict: STABLE (no induced frequency with Im q < 0)")
     else:
         growth = mpmath.nstr(result.growth_time, 6)
@@ -120,11 +138,15 @@ def format_result(result) -> str:
             f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s); degree of instability "
             f"{mpmath.nstr(result.degree_of_instability, 6)}, growth time 1/|Im q| = {growth}"
         )
-    for w in result.warnings:
-        lines.append(f"WARNING: {w}")
-    if not result.count_ok:
-        lines.append("ERROR: the count and the roots found disagree: a root may be missing (see warnings)")
     return "\n".join(lines)
+
+
+def format_warnings(result) -> list[str]:
+    """The WARNING/ERROR lines of ``result`` (printed on stderr)."""
+    lines = [f"{PROG}: warning: {w}" for w in result.warnings]
+    if not result.count_ok:
+        lines.append(f"{PROG}: error: the count and the roots found disagree: a root may be missing")
+    return lines
 
 
 def run_table2(args: argparse.Namespace) -> int:

@@ -11,6 +11,8 @@
    window is reported, never silently dropped.
 
 Stability: the motion is unstable when some induced frequency has Im q < 0 (Eq. (35) with e^{i q tau}).
+The default window contains the lower half-disc of the radius R beyond which E_chr has no root with
+Im q < 0 (:mod:`far_field`), so the verdict (:mod:`verdict`) speaks about every root, or says UNDETERMINED.
 """
 
 from __future__ import annotations
@@ -26,8 +28,10 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
+from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
 from moving_bogie.roots.search_regions import tile_window
+from moving_bogie.roots.verdict import Verdict, judge
 
 
 @dataclass(frozen=True)
@@ -88,6 +92,7 @@ class FrequencyResult:
     unsearched: tuple  # slivers around the cut that no contour can enter
     evaluations: int  # E_chr evaluations (double precision + high precision)
     warnings: tuple = field(default=())
+    far_field: FarField | None = None
 
     @property
     def found(self) -> int:
@@ -103,7 +108,13 @@ class FrequencyResult:
 
     @property
     def stable(self) -> bool:
+        """No confirmed root with Im q < 0 among those found (see :attr:`verdict` for the complete statement)."""
         return not self.unstable_roots
+
+    @property
+    def verdict(self) -> Verdict:
+        """STABLE/UNSTABLE when the lower half-plane was searched completely, else UNDETERMINED with reasons."""
+        return judge(self)
 
     @property
     def degree_of_instability(self):
@@ -125,11 +136,13 @@ class FrequencyResult:
             "count": self.count,
             "found": self.found,
             "count_ok": self.count_ok,
-            "stable": self.stable,
+            "verdict": self.verdict.to_dict(),
+            "stable": self.stable if self.verdict.determined else None,
             "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
             "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
             "evaluations": self.evaluations,
             "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
+            "far_field": None if self.far_field is None else self.far_field.to_dict(),
             "warnings": list(self.warnings),
         }
 
@@ -143,6 +156,7 @@ def default_window(params, model: str) -> Rectangle:
     For large |q| E_chr ~ B2 B3 (pi - 2 K0 B1)^2 with K0 = O(|q|^-3/2) and B1 = O(q^2), which has no zeros:
     every root lies at moderate |q|. The search still checks a window twice as large (``check_window``).
     The left edge sits slightly left of Re q = 0 so that a purely imaginary root is inside, not on it.
+    :func:`induced_frequencies` widens it to the far-field radius R (:func:`far_field_window`).
     """
     f = params.as_float()
     scale = [1.0]
@@ -150,6 +164,22 @@ def default_window(params, model: str) -> Rectangle:
         scale += [math.sqrt(2 * f.kappa_v / f.mu_v), math.sqrt(f.kappa_v * f.d**2 / (2 * f.J_b))]
     X = max(3.0, 3.0 * max(scale))
     return Rectangle(-1e-3 * X, X, -X, X + f.eta_f)
+
+
+def far_field_window(params, model: str) -> tuple[Rectangle, FarField]:
+    """The window searched by default and the far-field check that justifies it.
+
+    With S = max(X, R), X the scale of :func:`default_window` and R the radius beyond which E_chr has no root
+    with Im q < 0 (:func:`~moving_bogie.roots.far_field.far_field_radius`): -S/1000 <= Re q <= S,
+    -S <= Im q <= S + eta_f. The lower half contains every root with Im q < 0; the upper half (roots that
+    decay) is a stated choice, checked against a window twice as large.
+    """
+    base = default_window(params, model)
+    far = far_field_radius(params, model, base.x1)
+    if far.radius is None:
+        return base, far
+    S = max(base.x1, far.radius)
+    return Rectangle(-1e-3 * S, S, -S, S + float(params.eta_f)), far
 
 
 class CountMismatch(MovingBogieError):
@@ -180,7 +210,8 @@ def induced_frequencies(
     extra_dps : int, optional
         Extra digits of the confirming recomputation (default max(10, dps // 2)).
     window : Rectangle, optional
-        Search window in the q-plane (Re q >= 0 half).
+        Search window in the q-plane (Re q >= 0 half); default :func:`far_field_window`. A window that does
+        not contain the lower half-disc of the far-field radius makes the verdict UNDETERMINED.
     check_window : bool
         Also count roots in a window twice as large; more roots there make the result fail loudly.
     eps : float
@@ -194,7 +225,10 @@ def induced_frequencies(
     """
     if extra_dps is None:
         extra_dps = max(10, dps // 2)
-    window = window or default_window(params, model)
+    if window is None:
+        window, far = far_field_window(params, model)
+    else:
+        far = far_field_radius(params, model, default_window(params, model).x1)
     fast = CharacteristicArray(params, model)
     precise = Characteristic(params, model)
     warnings = []
@@ -254,6 +288,7 @@ def induced_frequencies(
         tiling.unsearched,
         fast.evaluations + precise.evaluations,
         tuple(warnings),
+        far,
     )
     report(1.0)
     return result
