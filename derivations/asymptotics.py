@@ -12,12 +12,14 @@ For every track model (``foundations.MODELS``) and every vehicle (``system.SYSTE
    below 1 (upward closure for +d, downward for -d).
 2. **Leading part of E_chr.** E_chr is a polynomial in q, K0, K+, K- (Eq. (38)); give q^a K0^i K+^j K-^k the
    order a - gamma (i + j + k). The terms of the top order m form E_lead (for the bogie
-   4 B1^2 B2 B3 (K0^2 - K+ K-) with the B's of Eq. (37) reduced to their leading powers); every other term is
-   smaller by at least |q|^-delta, delta = m - (next order) (1/2 for Euler-Bernoulli, 1 for Timoshenko-Rayleigh).
+   4 B1^2 B2 B3 (K0^2 - K+ K-) with the B's of Eq. (37) reduced to their leading powers); every other
+   term is smaller by at least |q|^-delta, delta = m - (next order) (1/2 for Euler-Bernoulli, 1 for
+   Timoshenko-Rayleigh).
 3. **The radius R** (runtime, ``roots/far_field.py``): where |E_chr - E_lead| < |E_lead|, E_chr cannot vanish
    (a zero of E_chr would give |E_lead| < |E_lead|). The relative size |E_chr - E_lead| / |E_lead| is
    O(|q|^-delta) / |1 - K+ K- / K0^2|; for Euler-Bernoulli the leading residues give
-   K+ K- / K0^2 -> (i/2) e^{-2 i sqrt(2q) d}, of modulus <= 1/2 in the lower half-plane, so the ratio tends to 0.
+   K+ K- / K0^2 -> (i/2) e^{-2 i sqrt(2q) d}, of modulus <= 1/2 in the lower half-plane, so the ratio
+   tends to 0.
    The runtime checks the ratio with a margin on circles |q| = R, 2R, ..., 32R in the lower half-plane.
 """
 
@@ -56,7 +58,9 @@ def kernel_decay(track) -> KernelDecay:
     beta = Fraction(b_zero - b_top, a_top)
     w_N = max(_weights(N, beta))
     if w_N != b_zero or w_N != a_top * beta + b_top:
-        raise AssertionError("N(p, q) has a Newton polygon with several upper edges: p-roots of several sizes")
+        raise AssertionError(
+            "N(p, q) has a Newton polygon with several upper edges: p-roots of several sizes"
+        )
     gamma = w_N - max(_weights(Q, beta)) - beta
     if gamma <= 0:
         raise AssertionError(f"K does not decay for large |q| (gamma = {gamma})")
@@ -112,7 +116,8 @@ def asymptotics_module(digest, module_source, function_source) -> str:
         ("LEADING_GAP", gap),
     ]
     title = (
-        "Large-|q| behaviour (derivations/asymptotics.py): |p_k| ~ |q|^ROOT_GROWTH, K = O(|q|^-KERNEL_DECAY),\n"
+        "Large-|q| behaviour (derivations/asymptotics.py): |p_k| ~ |q|^ROOT_GROWTH,\n"
+        "K = O(|q|^-KERNEL_DECAY), "
         "E_chr = E_lead (1 + O(|q|^-LEADING_GAP)) with E_lead = e_chr_leading_<vehicle>_<track>."
     )
     return module_source(title, digest, parts, constants)

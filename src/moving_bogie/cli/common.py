@@ -3,26 +3,26 @@
 from __future__ import annotations
 
 import argparse
-import functools
 import json
-import os
 import sys
-import tomllib
-from collections.abc import Callable
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.errors import ParameterError
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import BEAMS, DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.output import atomic_write  # noqa: F401  (re-exported for the commands)
 
+from .outputs import add_output_option  # noqa: F401  (re-exported for the commands)
+from .reporting import PROG, handle_errors  # noqa: F401  (re-exported for the commands)
+
 __all__ = [
     "PARAMETER_OPTIONS",
     "add_json_option",
+    "add_output_option",
     "add_parameter_options",
     "atomic_write",
     "handle_errors",
@@ -30,7 +30,6 @@ __all__ = [
     "print_json",
 ]
 
-PROG = "moving-bogie"
 
 #: Override option of each dimensionless parameter: (name, option, help).
 PARAMETER_OPTIONS: tuple[tuple[str, str, str], ...] = (
@@ -138,38 +137,3 @@ def print_json(data: Any) -> None:
     """Print `data` as indented JSON on stdout."""
     json.dump(data, sys.stdout, indent=2)
     sys.stdout.write("\n")
-
-
-def _fail(message: str, code: int = 2) -> int:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
-    return code
-
-
-def handle_errors(func: Callable[..., int | None]) -> Callable[..., int]:
-    """Decorate a command so that expected failures print one line to stderr instead of a traceback.
-
-    :class:`MovingBogieError`, invalid TOML and unreadable or unwritable files print
-    ``moving-bogie: error: <message>`` and return 2; Ctrl-C returns 130. Other exceptions are bugs
-    and keep their traceback.
-    """
-
-    @functools.wraps(func)
-    def wrapper(*args: Any, **kwargs: Any) -> int:
-        try:
-            return func(*args, **kwargs) or 0
-        except MovingBogieError as exc:
-            return _fail(str(exc))
-        except tomllib.TOMLDecodeError as exc:
-            return _fail(f"not a valid TOML file: {exc}")
-        except BrokenPipeError:
-            # The reader went away (e.g. `| head`): stop quietly, without a second error at exit.
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-            return 1
-        except OSError as exc:
-            if exc.filename is None:
-                raise
-            return _fail(f"{exc.strerror}: {exc.filename}")
-        except KeyboardInterrupt:
-            return _fail("interrupted", 130)
-
-    return wrapper

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from moving_bogie.errors import ParameterError
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
 from .progress import progress_bar
 
 _RAW = argparse.RawDescriptionHelpFormatter
@@ -155,7 +155,7 @@ def _register_frequency_lines(subparsers) -> None:
     p.add_argument("--alpha-min", type=float, default=0.0)
     p.add_argument("--alpha-max", type=float, default=1.2)
     p.add_argument("--checkpoints", type=int, default=13, help="velocities where all roots are found afresh")
-    p.add_argument("--plot", type=Path, metavar="F.png", help="write the figure")
+    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_frequency_lines)
 
@@ -234,7 +234,7 @@ def _register_instability_lines(subparsers) -> None:
         action="store_true",
         help="count unstable roots (induced_frequencies) on both sides of each branch",
     )
-    p.add_argument("--plot", type=Path, metavar="F.png")
+    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_instability_lines)
 
@@ -309,8 +309,8 @@ def _register_stability_map(subparsers) -> None:
     p.add_argument("--n", type=int, default=200, help="grid points per axis (default 200)")
     p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
-    p.add_argument("--plot", type=Path, metavar="F.png")
-    p.add_argument("--npz", type=Path, metavar="F.npz", help="save the arrays")
+    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
+    add_output_option(p, "--npz", metavar="F.npz", help="save the arrays")
     add_json_option(p)
     p.set_defaults(handler=run_stability_map)
 
@@ -420,13 +420,21 @@ def _register_figure(subparsers) -> None:
         help="build Figure 2, 3, 4, 7, 8 or 16 of the paper",
         description="Build one of the paper's stability figures (plots_stability.figureN) into a PNG file.",
         epilog=(
-            "examples:\n  moving-bogie stability-figure 3 --out fig3.png\n"
-            "  moving-bogie stability-figure 16 --quick --out fig16.png"
+            "examples:\n  moving-bogie stability-figure 3 --plot fig3.png\n"
+            "  moving-bogie stability-figure 16 --quick --plot fig16.png"
         ),
         formatter_class=_RAW,
     )
     p.add_argument("number", type=int, choices=FIGURES)
-    p.add_argument("--out", type=Path, required=True, metavar="F.png")
+    add_output_option(
+        p,
+        "--plot",
+        "--out",
+        dest="plot",
+        required=True,
+        metavar="F.png",
+        help="write the figure (--out: alias)",
+    )
     p.add_argument("--quick", action="store_true", help="reduced grids (CI)")
     p.set_defaults(handler=run_figure)
 
@@ -436,8 +444,8 @@ def run_figure(args) -> int:
 
     with progress_bar(f"figure {args.number}") as bar:
         fig = getattr(plots_stability, f"figure{args.number}")(quick=args.quick, progress=bar)
-    _save(fig, args.out)
-    print(args.out)
+    _save(fig, args.plot)
+    print(args.plot)
     return 0
 
 

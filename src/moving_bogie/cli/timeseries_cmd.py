@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
 
 _MAX_POINTS = 10_000_000
 
@@ -39,11 +39,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     out = parser.add_argument_group("output")
     add_json_option(out)
-    out.add_argument("--csv", metavar="F.csv", help="write the series as CSV")
-    out.add_argument(
-        "--plot", metavar="F.png", help="three panels: w(0,tau), u, theta (paper's Figure 5 style)"
+    add_output_option(out, "--csv", metavar="F.csv", help="write the series as CSV")
+    add_output_option(
+        out, "--plot", metavar="F.png", help="three panels: w(0,tau), u, theta (paper's Figure 5 style)"
     )
-    out.add_argument("--plot-long", metavar="F.png", help="two panels: w(0,tau), u (paper's Figure 6 style)")
+    add_output_option(
+        out, "--plot-long", metavar="F.png", help="two panels: w(0,tau), u (paper's Figure 6 style)"
+    )
     parser.set_defaults(handler=run_timeseries)
 
     shape = subparsers.add_parser(
@@ -70,8 +72,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     shape.add_argument("--points", type=int, default=401, metavar="K", help="points in xi (default 401)")
     sout = shape.add_argument_group("output")
     add_json_option(sout)
-    sout.add_argument("--csv", metavar="F.csv", help="write xi, w as CSV")
-    sout.add_argument("--plot", metavar="F.png", help="plot w(xi)")
+    add_output_option(sout, "--csv", metavar="F.csv", help="write xi, w as CSV")
+    add_output_option(sout, "--plot", metavar="F.png", help="plot w(xi)")
     shape.set_defaults(handler=run_shape)
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -42,7 +42,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         metavar="T",
         help="end of the run in dimensionless time (default 200 with foundation damping, 100 without)",
     )
-    parser.add_argument("--plot", metavar="F.png", help="write the paper-style figure (PNG, PDF or SVG)")
+    add_output_option(
+        parser, "--plot", metavar="F.png", help="write the paper-style figure (PNG, PDF or SVG)"
+    )
     add_json_option(parser)
     parser.set_defaults(handler=run)
 
@@ -65,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         suffix = Path(args.plot).suffix.lower().lstrip(".")
         if suffix not in ("png", "pdf", "svg"):
-            raise ParameterError("plot", f"--plot must end in .png, .pdf or .svg (got {args.plot!r})")
+            raise ParameterError("plot", f"--plot must end in .png, .pdf or .svg (got {str(args.plot)!r})")
     params, _physical = params_from_args(args)
     with progress_bar("finite beam + closed form", enabled=not args.json) as update:
         result = validate(params, model=args.model, n_modes=args.modes, tau_max=args.tmax, progress=update)

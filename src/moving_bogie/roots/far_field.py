@@ -1,8 +1,8 @@
 """A radius R beyond which E_chr has no root in the lower half-plane (the far field of Eq. (48)).
 
 ``derivations/asymptotics.py`` derives, for every track and vehicle, the leading part E_lead of E_chr for
-large |q| (``generated/asymptotics.py``): with K = O(|q|^-gamma) (Eq. (29)), E_chr = E_lead + (terms smaller by
-|q|^-delta). Wherever
+large |q| (``generated/asymptotics.py``): with K = O(|q|^-gamma) (Eq. (29)),
+E_chr = E_lead + (terms smaller by |q|^-delta). Wherever
 
     rho(q) = |E_chr(q) - E_lead(q)| / |E_lead(q)| < 1,
 
@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from moving_bogie.errors import MovingBogieError
 from moving_bogie.generated import asymptotics
 from moving_bogie.kernels.characteristic import CharacteristicArray
 
@@ -35,7 +36,7 @@ MAX_DOUBLINGS = 12
 
 @dataclass(frozen=True)
 class FarField:
-    """Outcome of the far-field check: ``radius`` R (None when no R could be justified) and the largest rho."""
+    """Outcome of the far-field check: ``radius`` R (None when none could be justified), the largest rho."""
 
     radius: float | None
     rho: float
@@ -52,7 +53,8 @@ def leading_part(model: str, beam: str):
     try:
         return getattr(asymptotics, name), asymptotics.LEADING_GAP[(model, beam)]
     except (AttributeError, KeyError):
-        raise KeyError(f"no generated far-field expansion for {model} on {beam!r}: run python -m derivations")
+        message = f"no generated far-field expansion for {model} on {beam!r}: run python -m derivations"
+        raise MovingBogieError(message) from None
 
 
 def sample_points(radius: float, outer: int = OUTER, per_circle: int = 1200, per_ray: int = 4000):

@@ -108,12 +108,12 @@ class FrequencyResult:
 
     @property
     def stable(self) -> bool:
-        """No confirmed root with Im q < 0 among those found (see :attr:`verdict` for the complete statement)."""
+        """No confirmed root with Im q < 0 among those found (:attr:`verdict` is the complete statement)."""
         return not self.unstable_roots
 
     @property
     def verdict(self) -> Verdict:
-        """STABLE/UNSTABLE when the lower half-plane was searched completely, else UNDETERMINED with reasons."""
+        """STABLE/UNSTABLE when the lower half-plane was searched completely, else UNDETERMINED."""
         return judge(self)
 
     @property
