@@ -4,12 +4,20 @@ stability-map, critical-stiffness and stability-figure."""
 from __future__ import annotations
 
 import argparse
+import sys
 from fractions import Fraction
 from pathlib import Path
 
 from moving_bogie.errors import ParameterError
 
-from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
+from .common import (
+    PROG,
+    add_json_option,
+    add_output_option,
+    add_parameter_options,
+    params_from_args,
+    print_json,
+)
 from .progress import progress_bar
 
 _RAW = argparse.RawDescriptionHelpFormatter
@@ -241,6 +249,7 @@ def _register_instability_lines(subparsers) -> None:
 
 def run_instability_lines(args) -> int:
     from moving_bogie.stability.instability_lines import instability_lines
+    from moving_bogie.stability.line_ends import EXPLANATIONS
 
     params, spacings = _params_and_spacings(args)
     with progress_bar("instability lines") as bar:
@@ -258,17 +267,18 @@ def run_instability_lines(args) -> int:
     if args.plot:
         from matplotlib.figure import Figure
 
-        from moving_bogie.stability.plots import plot_instability_lines
+        from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
 
         fig = Figure(figsize=(7, 5), layout="constrained")
         ax = fig.subplots()
-        plot_instability_lines(ax, res)
+        marks = plot_instability_lines(ax, res)
         ax.axvline(1.0, color="k", ls=":")
         ax.set_xlim(args.alpha_min, args.alpha_max)
         ax.set_ylim(0, args.theta_max)
         ax.set_xlabel("alpha")
         ax.set_ylabel(args.parameter)
-        ax.legend(fontsize=8)
+        handles, _ = ax.get_legend_handles_labels()
+        ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
         _save(fig, args.plot)
     if args.json:
         print_json(res.to_dict())
@@ -280,8 +290,15 @@ def run_instability_lines(args) -> int:
                 f"{args.parameter} {b.theta.min():.4g}..{b.theta.max():.4g}, unstable side: {b.unstable_side}"
                 + ("" if b.verified is None else f", counts below/above: {b.verified[2]}/{b.verified[4]}")
             )
+            for end in b.stops_inside:
+                print(
+                    f"  stops inside the plot at alpha {end.alpha:.4f}, {args.parameter} {end.theta:.4g}, "
+                    f"q {end.q:.4f}: {EXPLANATIONS[end.reason]}"
+                )
+        if res.q_max != args.q_max:
+            print(f"q range raised to q_max = {res.q_max:g} (a line reached {args.q_max:g})")
         for w in res.warnings:
-            print(f"warning: {w}")
+            print(f"{PROG}: warning: {w}", file=sys.stderr)
     return 0
 
 
