@@ -37,8 +37,9 @@ def test_figure3e_tip_is_marked_and_is_where_the_line_really_ends(figure3e_d2):
 
 
 def test_q_range_is_raised_automatically():
-    low = instability_lines(_base("0.25"), "masses", spacings=[2.0], q_max=0.12, alpha_step=0.02, q_step=0.008)
-    ref = instability_lines(_base("0.25"), "masses", spacings=[2.0], alpha_step=0.02, q_step=0.008)
+    grid = dict(alpha_step=0.02, q_step=0.008)
+    low = instability_lines(_base("0.25"), "masses", spacings=[2.0], q_max=0.12, **grid)
+    ref = instability_lines(_base("0.25"), "masses", spacings=[2.0], **grid)
     assert low.q_max > 0.12 and not low.warnings
     assert not any(e.reason == "q_max" for b in low.branches for e in b.ends)
     # The same line as with the default range (reference: q_max = 1.5, which the line never reaches).

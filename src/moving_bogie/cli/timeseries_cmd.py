@@ -46,6 +46,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add_output_option(
         out, "--plot-long", metavar="F.png", help="two panels: w(0,tau), u (paper's Figure 6 style)"
     )
+    out.add_argument(
+        "--rows",
+        action="store_true",
+        help="print the rows even when --csv, --plot or --plot-long writes them to a file",
+    )
     parser.set_defaults(handler=run_timeseries)
 
     shape = subparsers.add_parser(
@@ -176,7 +181,8 @@ def run_timeseries(args: argparse.Namespace) -> int:
     if args.json:
         print_json(ts.to_dict())
     else:
-        print(format_series(ts))
+        files = args.csv or args.plot or args.plot_long
+        print(format_series(ts, rows=args.rows or not files))
     return 0
 
 
@@ -192,7 +198,8 @@ def write_csv_series(ts, path) -> None:
     atomic_write(path, "\n".join(lines) + "\n")
 
 
-def format_series(ts) -> str:
+def format_series(ts, rows: bool = True) -> str:
+    """The readable series: summary lines, then one row per time (``rows``), then the notes."""
     u = ts.units
     bc = (
         "all times"
@@ -207,8 +214,11 @@ def format_series(ts) -> str:
         f"units: tau [{u['tau']}], w, u [{u['w']}], theta [{u['theta']}]",
         f"{'tau':>14} {'w_rear':>18} {'w_front':>18} {'u':>18} {'theta':>18}",
     ]
-    for row in zip(ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta):
-        lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))
+    if rows:
+        for row in zip(ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta):
+            lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))
+    else:
+        lines[-1] = f"{len(ts.tau)} rows written to the output file(s); --rows prints them here too"
     lines += [f"note: {n}" for n in ts.notes]
     return "\n".join(lines)
 

@@ -36,12 +36,13 @@ def _labels(ts) -> dict:
             "u": "u(t) [m]",
             "theta": r"$\theta$(t) [rad]",
         }
+    # Dimensionless: every quantity as the ratio it is (Eqs. (15)-(17)), w and u over the static deflection.
     return {
-        "tau": r"dimensionless time $\tau$",
-        "w_rear": r"$\tilde w(0,\tau)$",
-        "w_front": r"$\tilde w(\tilde d,\tau)$",
-        "u": r"$\tilde u(\tau)$",
-        "theta": r"$\tilde\theta(\tau)$",
+        "tau": r"dimensionless time $\tau = t\,\sqrt{k_f/m}$",
+        "w_rear": r"$w(0,\tau)\,/\,w_{st}$",
+        "w_front": r"$w(\tilde d,\tau)\,/\,w_{st}$",
+        "u": r"$u(\tau)\,/\,w_{st}$",
+        "theta": r"$\theta(\tau)\,/\,(w_{st}\,\chi)$",
     }
 
 
@@ -115,8 +116,8 @@ def shape_figure(xi, w, *, tau: float, d: float, si: bool = False, title: str | 
         ax.set_ylabel("w(r, t) [m]")
         when = f"t = {tau:g} s"
     else:
-        ax.set_xlabel(r"moving coordinate $\xi$ (rear wheel at 0)")
-        ax.set_ylabel(r"$\tilde w(\xi,\tau)$")
+        ax.set_xlabel(r"moving coordinate $\xi = \chi\,(x - v t)$ (rear wheel at 0)")
+        ax.set_ylabel(r"$w(\xi,\tau)\,/\,w_{st}$")
         when = rf"$\tau$ = {tau:g}"
     ax.set_title(title or f"beam deflection at {when}", fontsize=10)
     ax.grid(True, lw=0.3, alpha=0.6)

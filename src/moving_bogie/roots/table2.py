@@ -45,6 +45,11 @@ class Table2:
     def ok(self) -> bool:
         return all(row.ok for row in self.rows)
 
+    @property
+    def printed_cases(self) -> tuple:
+        """The cases whose printed values the reference data hold (Cases 1-6)."""
+        return tuple(row.case for row in self.rows if row.printed)
+
     def to_dict(self) -> dict:
         cases = []
         for row in self.rows:
@@ -56,7 +61,12 @@ class Table2:
             ]
             d["ok"] = row.ok
             cases.append(d)
-        return {"cases": cases, "ok": self.ok, "print_tolerance": str(PRINT_TOLERANCE)}
+        return {
+            "cases": cases,
+            "printed_cases": list(self.printed_cases),
+            "ok": self.ok,
+            "print_tolerance": str(PRINT_TOLERANCE),
+        }
 
 
 def compare_with_print(result, printed):
@@ -87,7 +97,9 @@ def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None) -> Table
 
 def format_table2(table: Table2, decimals: int = 6) -> str:
     """The paper's layout: per case, q^r (with +-) and q^i of each root; printed value and difference."""
-    lines = ["Table 2. Induced frequencies (one root of each pair q, -conj(q); Re q >= 0)", ""]
+    lines = ["Table 2. Induced frequencies (one root of each pair q, -conj(q); Re q >= 0)"]
+    lines.append(f"printed: the paper's values for {_case_list(table.printed_cases)}; {_unprinted(table)}")
+    lines.append("")
     head = (
         f"{'case':>4} {'#':>2} {'q^r':>{decimals + 5}} {'q^i':>{decimals + 5}}   {'printed':>22}   difference"
     )
@@ -110,11 +122,30 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
             )
         status = "count ok" if row.result.count_ok else "COUNT MISMATCH"
         verdict = "stable" if row.result.stable else "UNSTABLE"
-        match = "" if not row.printed else ("matches print" if row.ok else "DIFFERS FROM PRINT")
+        match = (
+            "no printed value to compare"
+            if not row.printed
+            else ("matches print" if row.ok else "DIFFERS FROM PRINT")
+        )
         lines.append(f"{'':>7} {status}, {verdict}{', ' + match if match else ''}")
     lines.append("")
     lines.append("all cases ok" if table.ok else "MISMATCH: see the rows marked above")
     return "\n".join(lines)
+
+
+def _case_list(cases) -> str:
+    if not cases:
+        return "no case"
+    if list(cases) == list(range(cases[0], cases[-1] + 1)) and len(cases) > 2:
+        return f"Cases {cases[0]}-{cases[-1]}"
+    return "Cases " + ", ".join(str(c) for c in cases)
+
+
+def _unprinted(table) -> str:
+    rest = tuple(row.case for row in table.rows if not row.printed)
+    if not rest:
+        return "every case is compared"
+    return f"{_case_list(rest)} have no printed values in the reference data (computed only, column blank)"
 
 
 def _printed_for(row, root):

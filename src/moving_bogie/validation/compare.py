@@ -545,9 +545,9 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
 
     panels = ("rear", "u", "theta") if result.model == "bogie" else ("rear",)
     labels = {
-        "rear": r"$\tilde w(0,\tau)$ rear wheel",
-        "u": r"$\tilde u$ bar bounce",
-        "theta": r"$\tilde\theta$ bar pitch",
+        "rear": r"$w(0,\tau)\,/\,w_{st}$ rear wheel",
+        "u": r"$u\,/\,w_{st}$ bar bounce",
+        "theta": r"$\theta\,/\,(w_{st}\chi)$ bar pitch",
     }
     fig = Figure(figsize=(7.5, 2.3 * len(panels) + 0.9), layout="constrained")
     axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
