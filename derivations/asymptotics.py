@@ -107,11 +107,12 @@ def asymptotics_module(digest, module_source, function_source) -> str:
                 f"the rest smaller by |q|^-{lead.decay}."
             )
             parts.append(function_source(fname, args, [lead.E_lead], doc, scalar=True))
-            order[(vname, tname)] = float(lead.order)
-            gap[(vname, tname)] = float(lead.decay)
+            order[(vname, tname)] = str(lead.order)
+            gap[(vname, tname)] = str(lead.decay)
+    # Exponents as exact fraction text ("3/2"): the generated modules carry no float literals.
     constants = [
-        ("ROOT_GROWTH", {name: float(d.beta) for name, d in decays.items()}),
-        ("KERNEL_DECAY", {name: float(d.gamma) for name, d in decays.items()}),
+        ("ROOT_GROWTH", {name: str(d.beta) for name, d in decays.items()}),
+        ("KERNEL_DECAY", {name: str(d.gamma) for name, d in decays.items()}),
         ("LEADING_ORDER", order),
         ("LEADING_GAP", gap),
     ]

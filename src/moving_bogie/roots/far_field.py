@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 
@@ -44,14 +45,21 @@ class FarField:
     reason: str = ""
 
     def to_dict(self) -> dict:
-        return {"radius": self.radius, "rho": self.rho, "margin": MARGIN, "reason": self.reason or None}
+        rho = self.rho if np.isfinite(self.rho) else None
+        return {"radius": self.radius, "rho": rho, "margin": MARGIN, "reason": self.reason or None}
 
 
 def leading_part(model: str, beam: str):
-    """The generated E_lead of ``model`` on track ``beam`` and the gap delta to the rest (LEADING_GAP)."""
+    """The generated E_lead of ``model`` on track ``beam`` and the gap delta to the rest (LEADING_GAP).
+
+    Raises
+    ------
+    MovingBogieError
+        When ``generated/asymptotics.py`` has no expansion for this pair (a model generated elsewhere).
+    """
     name = f"e_chr_leading_{model}_{beam}"
     try:
-        return getattr(asymptotics, name), asymptotics.LEADING_GAP[(model, beam)]
+        return getattr(asymptotics, name), Fraction(asymptotics.LEADING_GAP[(model, beam)])
     except (AttributeError, KeyError):
         message = f"no generated far-field expansion for {model} on {beam!r}: run python -m derivations"
         raise MovingBogieError(message) from None
@@ -93,6 +101,10 @@ def far_field_radius(params, model: str, start: float) -> FarField:
     """
     radius = float(start)
     worst = np.inf
+    try:
+        leading_part(model, params.beam)
+    except MovingBogieError as exc:
+        return FarField(None, worst, float(start), str(exc))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         for _ in range(MAX_DOUBLINGS + 1):
