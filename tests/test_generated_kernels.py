@@ -145,7 +145,7 @@ def _polyval(coeffs, x):
 
 def test_generated_lists_match_the_derivation():
     assert generated.FOUNDATIONS == tuple(MODELS)
-    assert generated.VEHICLES == tuple(SYSTEMS)
+    assert tuple(generated.VEHICLES) == tuple(SYSTEMS)
     for name in SYSTEMS:
         module = _vehicle_module(name)
         system = _vehicle(name)["system"]
