@@ -7,6 +7,7 @@ for an artefact that is not a computed result, the reason it is not rebuilt (:da
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from moving_bogie.paper.captions import CAPTIONS, Caption
@@ -76,7 +77,7 @@ def _artifact(caption: Caption) -> Artifact:
 ARTIFACTS: tuple[Artifact, ...] = tuple(_artifact(caption) for caption in CAPTIONS)
 
 
-def select(names: list[str] | tuple[str, ...]) -> tuple[list[Artifact], list[str]]:
+def select(names: Sequence[str]) -> tuple[list[Artifact], list[str]]:
     """The artefacts named by id (``"figure5"``) or label (``"Figure 5"``), in the paper's order.
 
     Returns
