@@ -3,7 +3,8 @@
 (a) no library module imports the command-line interface ``moving_bogie.cli``;
 (b) no module imports a private (``_name``) helper or module from another module of the package;
 (c) the subpackages import each other without a cycle at module import time (imports inside functions and
-    under ``if TYPE_CHECKING:`` do not run at import time and are not counted);
+    under ``if TYPE_CHECKING:`` do not run at import time and are not counted), and, counting the imports
+    inside functions too, data flows one way between them;
 (d) no tracked file refers to a file outside the repository.
 
 Each check runs on the files themselves, so each fails with the file, line and name that break the rule.
@@ -175,6 +176,17 @@ def test_subpackages_import_each_other_without_a_cycle():
     assert layers, "no import between subpackages found: the scan is broken"
     assert (cycle := _find_cycle(layers)) is None, "subpackages import each other: " + " -> ".join(cycle)
     assert (cycle := _find_cycle(modules)) is None, "modules import each other: " + " -> ".join(cycle)
+
+
+def test_data_flows_one_way_between_subpackages():
+    """Counting imports inside functions too, no subpackage reaches back up the pipeline."""
+    layers: dict[str, set[str]] = {}
+    for module, tree in _trees():
+        for _, imported, names in _imports(module, tree):
+            for target in _targets(imported, names):
+                if _layer(target) != _layer(module):
+                    layers.setdefault(_layer(module), set()).add(_layer(target))
+    assert (cycle := _find_cycle(layers)) is None, "subpackages import each other: " + " -> ".join(cycle)
 
 
 def test_the_checks_see_what_they_check():
