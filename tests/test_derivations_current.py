@@ -1,9 +1,9 @@
 """The committed ``generated/`` and ``docs/proofs.md`` are what ``derivations/`` produces now.
 
-ARCHITECTURE, examples 1-3: generated files carry a header with the generator command, "do not edit" and
-the inputs hash; a regeneration into a temporary folder is byte-identical to the committed files and to
-a second regeneration; ``python -m derivations --check`` fails with the diff and the command that updates
-the files. The runtime never imports SymPy, whichever of its modules is imported.
+docs/architecture.md, examples 1-3: generated files carry a header with the generator command, "do not
+edit" and the inputs hash; a regeneration into a temporary folder is byte-identical to the committed files
+and to a second regeneration; ``python -m derivations --check`` fails with the diff and the command that
+updates the files. The runtime never imports SymPy, whichever of its modules is imported.
 
 Each derivation run costs a few seconds (SymPy); the independent runs are started in parallel.
 """

@@ -1,6 +1,6 @@
 """Induced frequencies (roots of E_chr, Eq. (48)) found with no starting guesses.
 
-References: the paper's Table 2 (printed, six decimals; ../shared/reference, shipped in moving_bogie/data)
+References: the paper's Table 2 (printed, six decimals; shipped in moving_bogie/data)
 for Cases 1-6; for every case the argument-principle count; the pair symmetry E(-conj q) = conj E(q);
 a precision ladder (the same roots recomputed at 45 digits); seeded random parameter sets.
 """

@@ -1,4 +1,4 @@
-"""Every generated kernel against direct SymPy evaluation of the derivation (ARCHITECTURE, example 6).
+"""Every generated kernel against direct SymPy evaluation of the derivation (docs/architecture.md, example 6).
 
 The generated functions in ``generated/`` are evaluated at seeded random complex points with mpmath at
 30 digits and compared with the derivation's own SymPy expressions (``derivations.model.foundation_image``,
