@@ -1,15 +1,16 @@
 """Large-|q| behaviour of K and E_chr: what lets the runtime search the lower half-plane completely.
 
-For every track model (``foundations.MODELS``) and every vehicle (``system.SYSTEMS``), generically:
+For every model (beam x track, ``foundations.all_models()``) and every vehicle (``system.SYSTEMS``),
+generically:
 
-1. **Kernel decay.** The roots p_k(q) of N(p, q) grow like |q|^beta, where beta is the slope of the single
-   upper edge of the Newton polygon of N in (deg_p, deg_q): every monomial p^a q^b has a beta + b <= w_N with
-   equality at p^deg and at the pure power of q (dominant balance; e.g. p^4 = 4 q^2, beta = 1/2, for
-   Euler-Bernoulli, Eq. (24)). Substituting p = q^beta P in Eq. (29),
-   K(xi, q) = integral of e^{i p xi} Q/N dp = O(|q|^(w_Q - w_N + beta)) = O(|q|^-gamma),
-   gamma = w_N - w_Q - beta (3/2 for Euler-Bernoulli, 1 for Timoshenko-Rayleigh). This holds for K(0, q)
-   and bounds K(+-d, q) too: the residue sum of K(+-d) is that of K(0) with factors e^{i p_k d} of modulus
-   below 1 (upward closure for +d, downward for -d).
+1. **Kernel decay.** The roots p_k(q) of N(p, q) grow like |q|^beta, one beta per edge of the upper
+   Newton polygon of N in (deg_p, deg_q): on an edge, w(beta) = max over the monomials p^a q^b of a beta + b
+   is attained by two or more of them (dominant balance; p^4 = 4 q^2, beta = 1/2, for Euler-Bernoulli,
+   Eq. (24); beta = 1 for Timoshenko-Rayleigh). A root of size |q|^beta has a residue Q/N' of size
+   |q|^(w_Q(beta) - w_N(beta) + beta) in Eq. (29), so K(xi, q) = O(|q|^-gamma) with
+   gamma = min over the edges of w_N - w_Q - beta (3/2 for Euler-Bernoulli, 1 for Timoshenko-Rayleigh). The
+   bound holds for K(+-d, q) too: their residues carry factors e^{i p_k d} of modulus below 1 (upward closure
+   for +d, downward for -d).
 2. **Leading part of E_chr.** E_chr is a polynomial in q, K0, K+, K- (Eq. (38)); give q^a K0^i K+^j K-^k the
    order a - gamma (i + j + k). The terms of the top order m form E_lead (for the bogie
    4 B1^2 B2 B3 (K0^2 - K+ K-) with the B's of Eq. (37) reduced to their leading powers); every other
@@ -29,42 +30,45 @@ from fractions import Fraction
 import sympy as sp
 
 from . import symbols as s
-from .foundations import MODELS
+from .emit import definition_digest, function_source, module_source
 from .model import foundation_image
 from .system import SYSTEMS, in_q
 
 
 @dataclass(frozen=True)
 class KernelDecay:
-    """Growth of the p-roots (|p| ~ |q|^beta) and decay of K (|K| = O(|q|^-gamma)) of one track model."""
+    """Growth of the p-roots (|p| ~ |q|^beta, one beta per polygon edge) and decay of K (O(|q|^-gamma))."""
 
-    beta: Fraction
+    betas: tuple
     gamma: Fraction
 
 
-def _weights(poly: sp.Poly, beta: Fraction) -> list:
-    """Order a beta + b of every monomial p^a q^b of ``poly`` (a Poly in p, q)."""
-    return [a * beta + b for a, b in poly.monoms()]
+def _weight(poly: sp.Poly, beta: Fraction) -> Fraction:
+    """max over the monomials p^a q^b of ``poly`` (a Poly in p, q) of a beta + b."""
+    return max(a * beta + b for a, b in poly.monoms())
 
 
-def kernel_decay(track) -> KernelDecay:
-    """Newton-polygon slope beta of N(p, q) and the decay gamma of K(xi, q) for large |q| (Eq. (29))."""
+def kernel_decay(track) -> KernelDecay | None:
+    """Newton-polygon slopes beta of N(p, q) and the decay gamma of K(xi, q) for large |q| (Eq. (29)).
+
+    None when K does not decay (gamma <= 0): no far-field expansion is generated for such a model.
+    """
     image = foundation_image(track)
     N = sp.Poly(image.N, s.p, s.q)
     Q = sp.Poly(image.Q, s.p, s.q)
-    a_top = N.degree(s.p)
-    b_top = max(b for a, b in N.monoms() if a == a_top)
-    b_zero = max(b for a, b in N.monoms() if a == 0)
-    beta = Fraction(b_zero - b_top, a_top)
-    w_N = max(_weights(N, beta))
-    if w_N != b_zero or w_N != a_top * beta + b_top:
-        raise AssertionError(
-            "N(p, q) has a Newton polygon with several upper edges: p-roots of several sizes"
-        )
-    gamma = w_N - max(_weights(Q, beta)) - beta
-    if gamma <= 0:
-        raise AssertionError(f"K does not decay for large |q| (gamma = {gamma})")
-    return KernelDecay(beta, gamma)
+    points = N.monoms()
+    betas = set()
+    for a1, b1 in points:
+        for a2, b2 in points:
+            if a2 > a1 and b1 > b2:
+                beta = Fraction(b1 - b2, a2 - a1)
+                top = [a for a, b in points if a * beta + b == _weight(N, beta)]
+                if len(set(top)) >= 2:
+                    betas.add(beta)
+    if not betas:
+        return None
+    gamma = min(_weight(N, beta) - _weight(Q, beta) - beta for beta in betas)
+    return KernelDecay(tuple(sorted(betas)), gamma) if gamma > 0 else None
 
 
 @dataclass(frozen=True)
@@ -92,10 +96,14 @@ def leading_part(system, gamma: Fraction) -> LeadingPart:
     return LeadingPart(sp.expand(sp.Add(*orders[m])), m, m - ranked[1])
 
 
-def asymptotics_module(digest, module_source, function_source) -> str:
-    """Source of ``generated/asymptotics.py``: gamma per track, E_lead per (vehicle, track)."""
-    decays = {name: kernel_decay(MODELS[name]()) for name in MODELS}
-    parts, order, gap = [], {}, {}
+def asymptotics_module(models: dict) -> str:
+    """Source of ``generated/asymptotics.py``: gamma per model, E_lead per (vehicle, model).
+
+    ``models`` maps a model name (the ``foundation_<name>`` module) to its TrackModel.
+    """
+    decays = {name: kernel_decay(model) for name, model in models.items()}
+    decays = {name: d for name, d in decays.items() if d is not None}
+    parts, order, gap, definitions = [], {}, {}, []
     for vname in SYSTEMS:
         system = SYSTEMS[vname]()
         args = ("q", "K0", "Kp", "Km", *(str(x) for x in system.parameters), "pi")
@@ -109,16 +117,18 @@ def asymptotics_module(digest, module_source, function_source) -> str:
             parts.append(function_source(fname, args, [lead.E_lead], doc, scalar=True))
             order[(vname, tname)] = str(lead.order)
             gap[(vname, tname)] = str(lead.decay)
+            definitions.append(lead.E_lead)
     # Exponents as exact fraction text ("3/2"): the generated modules carry no float literals.
     constants = [
-        ("ROOT_GROWTH", {name: str(d.beta) for name, d in decays.items()}),
+        ("ROOT_GROWTH", {name: tuple(str(b) for b in d.betas) for name, d in decays.items()}),
         ("KERNEL_DECAY", {name: str(d.gamma) for name, d in decays.items()}),
         ("LEADING_ORDER", order),
         ("LEADING_GAP", gap),
     ]
     title = (
         "Large-|q| behaviour (derivations/asymptotics.py): |p_k| ~ |q|^ROOT_GROWTH,\n"
-        "K = O(|q|^-KERNEL_DECAY), "
-        "E_chr = E_lead (1 + O(|q|^-LEADING_GAP)) with E_lead = e_chr_leading_<vehicle>_<track>."
+        "K = O(|q|^-KERNEL_DECAY), E_chr = E_lead (1 + O(|q|^-LEADING_GAP)),\n"
+        "E_lead = e_chr_leading_<vehicle>_<model>."
     )
+    digest = definition_digest(*definitions, *[value for _, value in constants])
     return module_source(title, digest, parts, constants)

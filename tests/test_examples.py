@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.generated import FOUNDATIONS
+from moving_bogie.generated import MODULES, VEHICLES
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 
@@ -19,13 +19,16 @@ def _kind(path):
     data = tomllib.loads(path.read_text())
     table = "physical" if "physical" in data else "dimensionless"
     params, _ = load_params_file(path)
-    return table, params.beam
+    return table, params.model
 
 
 def test_an_example_for_every_model_and_table():
-    kinds = {_kind(path) for path in FILES}
-    wanted = {(table, beam) for table in ("dimensionless", "physical") for beam in FOUNDATIONS}
-    assert wanted <= kinds, f"missing examples: {sorted(wanted - kinds)}"
+    """Every beam on every track (generated.MODULES), dimensionless and in SI; every vehicle at least once."""
+    kinds = [_kind(path) for path in FILES]
+    have = {(table, model.beam, model.track) for table, model in kinds}
+    wanted = {(table, beam, track) for table in ("dimensionless", "physical") for beam, track in MODULES}
+    assert wanted <= have, f"missing examples: {sorted(wanted - have)}"
+    assert {model.vehicle for _, model in kinds} >= set(VEHICLES)
 
 
 @pytest.mark.parametrize("path", FILES, ids=[p.name for p in FILES])

@@ -58,9 +58,6 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def _add_search_options(parser):
     parser.add_argument(
-        "--model", choices=("bogie", "masses"), default="bogie", help="vehicle (default bogie)"
-    )
-    parser.add_argument(
         "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
     )
     parser.add_argument(
@@ -85,7 +82,7 @@ def run_frequencies(args: argparse.Namespace) -> int:
     from .progress import progress_bar
 
     _check_dps(args.dps)
-    params, _physical = params_from_args(args)
+    params, physical = params_from_args(args)
     window = None
     if args.window:
         try:
@@ -98,12 +95,43 @@ def run_frequencies(args: argparse.Namespace) -> int:
     with progress_bar("induced frequencies", enabled=not args.json) as update:
         result = induced_frequencies(params, args.model, dps=args.dps, window=window, progress=update)
     if args.json:
-        print_json(result.to_dict())
+        print_json(with_si(result.to_dict(), result, physical))
     else:
         print(format_result(result))
+        if physical is not None:
+            print(format_si(result, physical))
     for line in format_warnings(result):
         print(line, file=sys.stderr)
     return 0 if result.count_ok and result.verdict.determined else 1
+
+
+def with_si(data: dict, result, physical) -> dict:
+    """For a ``[physical]`` input: each root also as ``omega`` [rad/s], Hz and growth time [s]."""
+    if physical is None:
+        return data
+    from moving_bogie.model.si_results import root_in_si
+
+    t_scale = physical.scales().t_scale
+    for entry, root in zip(data["roots"], result.roots):
+        entry.update(root_in_si(root.q, t_scale, digits=min(12, root.digits)))
+    data["si"] = {"t_scale_s": repr(t_scale), "physical": physical.to_dict(), "time_factor": "exp(i omega t)"}
+    return data
+
+
+def format_si(result, physical) -> str:
+    """The roots of a ``[physical]`` input in SI units, one line each."""
+    from moving_bogie.model.si_results import root_in_si
+
+    t_scale = physical.scales().t_scale
+    lines = [f"In SI (t = tau * {t_scale:.6g} s; time factor exp(i omega t), Im omega < 0 grows):"]
+    for k, root in enumerate(result.roots, 1):
+        si = root_in_si(root.q, t_scale, digits=min(8, root.digits))
+        growth = f", growth time {si['growth_time_s']} s" if si["growth_time_s"] else ""
+        lines.append(
+            f"  {k:<2}omega = +-{si['omega']['re']} + {si['omega']['im']}i rad/s, "
+            f"f = {si['frequency_hz']} Hz{growth}"
+        )
+    return "\n".join(lines)
 
 
 def format_result(result) -> str:

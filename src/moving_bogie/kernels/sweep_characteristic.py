@@ -69,18 +69,20 @@ class SweepCharacteristic:
         The vehicle parameter swept (default eta_M).
     """
 
-    def __init__(self, params, model: str = "bogie", parameter: str = "eta_M"):
+    def __init__(self, params, model: str | None = None, parameter: str = "eta_M"):
+        model = model or params.vehicle
         self.params = params
         self.model = model
         self.parameter = parameter
         self.degree = polynomial_degree(model, parameter)
-        self.module = vehicle_module(model)
-        self.foundation = foundation_module(params.beam)
+        self.module = vehicle_module(model, params)
+        self.foundation = foundation_module(params)
         ns = params.as_float()
         self.track_args = {k: v for k, v in foundation_arguments(params, ns).items() if k != "alpha"}
         self.d = ns.d
-        self.cf1 = float(params.cf1)
-        self.cf2 = float(params.cf2)
+        # Eq. (63): the bar's mass and inertia follow eta_M at fixed cf1, cf2 (None for two masses).
+        self.cf1 = None if params.cf1 is None else float(params.cf1)
+        self.cf2 = None if params.cf2 is None else float(params.cf2)
         self.base = {name: getattr(ns, name) for name in self.module.PARAMETERS}
 
     # -- track ---------------------------------------------------------------------------------------

@@ -26,6 +26,7 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.generated import asymptotics
 from moving_bogie.kernels.characteristic import CharacteristicArray
+from moving_bogie.kernels.track import foundation_module
 
 #: rho must stay below this on every sample (1 would be enough for no root; 1/2 leaves a margin of 2).
 MARGIN = 0.5
@@ -49,8 +50,13 @@ class FarField:
         return {"radius": self.radius, "rho": rho, "margin": MARGIN, "reason": self.reason or None}
 
 
+def model_name(params) -> str:
+    """Name of the generated foundation module of ``params`` (``foundation_<name>``): its key here."""
+    return foundation_module(params).__name__.rsplit(".", 1)[-1].removeprefix("foundation_")
+
+
 def leading_part(model: str, beam: str):
-    """The generated E_lead of ``model`` on track ``beam`` and the gap delta to the rest (LEADING_GAP).
+    """The generated E_lead of ``model`` (vehicle) on ``beam`` (a :func:`model_name`) and the gap delta.
 
     Raises
     ------
@@ -79,7 +85,7 @@ def sample_points(radius: float, outer: int = OUTER, per_circle: int = 1200, per
 def rho(params, model: str, q) -> np.ndarray:
     """|E_chr - E_lead| / |E_lead| at the points ``q`` (double precision)."""
     E = CharacteristicArray(params, model)
-    lead, _ = leading_part(model, params.beam)
+    lead, _ = leading_part(model, model_name(params))
     q = np.asarray(q, dtype=complex)
     kv = E.kernel(q, [0.0, E.d, -E.d])
     with np.errstate(all="ignore"):
@@ -102,7 +108,7 @@ def far_field_radius(params, model: str, start: float) -> FarField:
     radius = float(start)
     worst = np.inf
     try:
-        leading_part(model, params.beam)
+        leading_part(model, model_name(params))
     except MovingBogieError as exc:
         return FarField(None, worst, float(start), str(exc))
     with warnings.catch_warnings():

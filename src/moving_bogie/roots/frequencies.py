@@ -188,7 +188,7 @@ class CountMismatch(MovingBogieError):
 
 def induced_frequencies(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     *,
     dps: int = 30,
     extra_dps: int | None = None,
@@ -223,6 +223,7 @@ def induced_frequencies(
     progress : callable, optional
         Called with the fraction of work done (0..1).
     """
+    model = model or params.vehicle
     if extra_dps is None:
         extra_dps = max(10, dps // 2)
     if window is None:
