@@ -9,7 +9,8 @@ E_chr = E_lead + (terms smaller by |q|^-delta). Wherever
 E_chr cannot vanish (E_chr = 0 would give |E_lead| < |E_lead|). :func:`far_field_radius` looks for the
 smallest R = R0 2^k at which rho <= 1/2 (a margin of 2) at every sample of the lower half-plane beyond R that
 it checks: the half circles |q| = R, 2R, 4R, ..., 32R (angles clustered towards the real axis, where the
-factors e^{i p_k d} of K(+-d) stop decaying) and the two rays just below the real axis from R to 32R. Beyond
+factors e^{i p_k d} of K(+-d) stop decaying), the two rays just below the real axis from R to 32R and seven
+rays in between. Beyond
 32R the derived decay rho = O(|q|^-delta) / |1 - K+ K- / K0^2| takes over (for Euler-Bernoulli the derivation
 shows |K+ K- / K0^2| <= 1/2 asymptotically). The check is numerical, with that margin: it is what makes
 "stable" a statement about every root with Im q < 0, and when it fails the verdict says UNDETERMINED.
@@ -71,15 +72,23 @@ def leading_part(model: str, beam: str):
         raise MovingBogieError(message) from None
 
 
-def sample_points(radius: float, outer: int = OUTER, per_circle: int = 1200, per_ray: int = 4000):
-    """q samples of {|q| >= radius, Im q < 0} up to ``outer * radius``: half circles and two rays."""
+def sample_points(
+    radius: float, outer: int = OUTER, per_circle: int = 1200, per_ray: int = 4000, inner_rays: int = 7
+):
+    """q samples of {|q| >= radius, Im q < 0} up to ``outer * radius``: half circles and rays.
+
+    The two rays just below the real axis carry ``per_ray`` points (there the factors e^{i p_k d} of K(+-d)
+    oscillate without decaying); ``inner_rays`` rays in between carry a quarter as many.
+    """
     t = np.linspace(0.0, 1.0, per_circle)
     theta = -np.pi * (0.5 - 0.5 * np.cos(np.pi * t))  # clustered at 0 and -pi
     theta = np.clip(theta, -np.pi + 1e-7, -1e-7)
     circles = [radius * 2.0**k * np.exp(1j * theta) for k in range(int(np.log2(outer)) + 1)]
     r = np.linspace(radius, outer * radius, per_ray)
     below = -1e-7 * r * 1j
-    return np.concatenate(circles + [r + below, -r + below])
+    angles = -np.pi * np.arange(1, inner_rays + 1) / (inner_rays + 1)
+    inner = np.outer(np.linspace(radius, outer * radius, per_ray // 4), np.exp(1j * angles)).ravel()
+    return np.concatenate(circles + [r + below, -r + below, inner])
 
 
 def rho(params, model: str, q) -> np.ndarray:

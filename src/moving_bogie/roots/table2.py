@@ -121,7 +121,10 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
                 f"{pr:>22}   {dd}{flag}"
             )
         status = "count ok" if row.result.count_ok else "COUNT MISMATCH"
-        verdict = "stable" if row.result.stable else "UNSTABLE"
+        state = row.result.verdict
+        verdict = {"stable": "stable", "unstable": "UNSTABLE"}.get(state.state) or (
+            "verdict UNDETERMINED (" + ", ".join(r.split(":")[0] for r in state.reasons) + ")"
+        )
         match = (
             "no printed value to compare"
             if not row.printed
