@@ -324,6 +324,14 @@ def _seed_points(sweep, line, d, theta_max, tol, box, steps):
     return out[inside]
 
 
+def _at_cut(sweep, reason, q, alpha):
+    """A stalled end where a p-root of N is real (to 1e-6) lies on the cut of K: reason "cut"."""
+    if reason != "stalled":
+        return reason
+    p = sweep.p_roots(np.array([complex(q)]), np.array([float(alpha)]))[0]
+    return "cut" if np.min(np.abs(p.imag) / np.maximum(1.0, np.abs(p))) < 1e-6 else reason
+
+
 def _branch(sweep, d, path, theta_max, ends, alpha_span) -> InstabilityBranch:
     _, _, E, E_q, E_t = evaluate(sweep, path, np.full(len(path), d), theta_max)
     dq_dtheta = -E_t / E_q
@@ -335,6 +343,9 @@ def _branch(sweep, d, path, theta_max, ends, alpha_span) -> InstabilityBranch:
         q=q,
         unstable_above=np.imag(dq_dtheta) < 0,
         residual=np.abs(E / E_q),
-        ends=(line_end(ends[0], alpha[0], theta[0], q[0]), line_end(ends[1], alpha[-1], theta[-1], q[-1])),
+        ends=tuple(
+            line_end(_at_cut(sweep, reason, q[k], alpha[k]), alpha[k], theta[k], q[k])
+            for reason, k in zip(ends, (0, -1))
+        ),
         folds=find_folds(alpha, theta, q, alpha_span, theta_max),
     )

@@ -8,15 +8,16 @@ q real. A line drawn in a figure can stop in three kinds of places:
 - **inside the plot**, for a reason recorded by the continuation
   (:mod:`~moving_bogie.stability.continuation`): ``q_max`` (the real root leaves the searched range of q;
   :func:`~moving_bogie.stability.instability_lines.instability_lines` then raises q_max automatically, so
-  this stays only when the cap was reached), ``q_zero`` (the root reaches q = 0), ``stalled`` (a singular
-  point: two lines cross or the root is double), ``max_steps``;
+  this stays only when the cap was reached), ``q_zero`` (the root reaches q = 0), ``cut`` (the continuation
+  stalls where a p-root of N is real: the cut of K), ``stalled`` (any other singular point: two lines cross
+  or the root is double), ``max_steps``;
 - **a fold** (a tip): the line turns back sharply at an extreme value of alpha or theta. At a tip where
   theta is largest, say, the induced frequency followed over alpha at fixed theta only *touches* the real
   q-axis (Im dq/dalpha = 0): just below the tip it crosses the axis twice, just above not at all, so no
   line goes on. Figure 3(e)'s d = 2 line has such a tip at alpha ~ 1.07, eta_M ~ 110.
 
-For EB and TR beams with eta_f > 0 a real q never meets the cut of K (it lies at Im q ~ eta_f > 0), so a
-line cannot end at the cut.
+For the Euler-Bernoulli beam with eta_f > 0 a real q never meets the cut of K (it lies on Im q = eta_f), so
+``cut`` is there for models whose cut comes down to the real axis.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ EXPLANATIONS = {
     "q_max": "the real induced frequency leaves the searched range q <= q_max",
     "q_zero": "the real induced frequency reaches q = 0",
     "stalled": "singular point: two lines cross or the real root is double",
+    "cut": "the real root meets the cut of K (a root p of N(p, q) is real there)",
     "max_steps": "continuation stopped after its maximum number of steps",
     "fold": "tip: the line turns back; there the induced frequency only touches the real axis",
 }

@@ -78,7 +78,7 @@ END_MARKERS = {
 }
 END_LABELS = {
     "fold": "tip: the root only touches the real axis",
-    "other": "line stops: q range, q = 0 or a singular point",
+    "other": "line stops: q range, q = 0, the cut or a singular point",
 }
 
 
