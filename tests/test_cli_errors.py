@@ -71,3 +71,19 @@ def test_output_alias_and_preferred_spelling_agree():
     a = parser.parse_args(["stability-figure", "3", "--out", "f.png"])
     b = parser.parse_args(["stability-figure", "3", "--plot", "f.png"])
     assert a.plot == b.plot
+
+
+def test_every_output_option_of_every_command_is_checked():
+    from moving_bogie.cli import build_parser
+    from moving_bogie.cli.outputs import OutputPath
+
+    parser = build_parser()
+    commands = parser._subparsers._group_actions[0].choices  # noqa: SLF001
+    outputs = {"--plot", "--plot-long", "--csv", "--npz", "--out", "--output"}
+    found = 0
+    for name, sub in commands.items():
+        for action in sub._actions:  # noqa: SLF001
+            if outputs & set(action.option_strings):
+                assert isinstance(action, OutputPath), f"{name} {action.option_strings[0]} is not checked"
+                found += 1
+    assert found >= 10

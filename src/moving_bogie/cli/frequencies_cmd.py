@@ -26,7 +26,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "  1  verdict UNDETERMINED, or the count and the roots found disagree (see the warnings)\n"
             "  2  bad input (the message names the option)\n"
             "warnings and errors go to stderr; the table and the verdict to stdout. With --json an error\n"
-            "is the JSON object {\"error\": ..., \"option\": ...} on stdout.\n\n"
+            'is the JSON object {"error": ..., "option": ...} on stdout.\n\n'
             "examples:\n  moving-bogie frequencies --case 1\n"
             "  moving-bogie frequencies --case 7 --alpha 0.7 --json\n"
             "  moving-bogie frequencies --case 1 --beam tr --S 100 --r 0.03\n"

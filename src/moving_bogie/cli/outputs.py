@@ -16,7 +16,7 @@ from pathlib import Path
 
 from moving_bogie.errors import MovingBogieError
 
-__all__ = ["OutputError", "add_output_option", "check_output_paths"]
+__all__ = ["OutputError", "OutputPath", "add_output_option", "check_output_paths"]
 
 
 class OutputError(MovingBogieError):
@@ -27,7 +27,7 @@ class OutputError(MovingBogieError):
         super().__init__(f"{option}: {message}")
 
 
-class _OutputPath(argparse.Action):
+class OutputPath(argparse.Action):
     """Store the path and remember (option, path, is_folder) in ``namespace.output_paths``."""
 
     def __init__(self, option_strings, dest, folder=False, **kwargs):
@@ -47,7 +47,7 @@ def add_output_option(parser, *flags: str, folder: bool = False, **kwargs) -> ar
     ``flags`` are the option strings, the preferred spelling first (the others are kept as aliases).
     """
     kwargs.setdefault("metavar", "DIR" if folder else "F")
-    return parser.add_argument(*flags, action=_OutputPath, folder=folder, **kwargs)
+    return parser.add_argument(*flags, action=OutputPath, folder=folder, **kwargs)
 
 
 def _existing_ancestor(path: Path) -> Path:
