@@ -46,8 +46,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     table.add_argument("--decimals", type=int, default=6, help="decimals shown in the text table (default 6)")
     table.add_argument("--dps", type=int, default=30, help="working precision in decimal digits (default 30)")
+    _add_certify_option(table)
     add_json_option(table)
     table.set_defaults(handler=run_table2)
+
+
+def _add_certify_option(parser):
+    parser.add_argument(
+        "--certify",
+        action="store_true",
+        help="prove every root (ball of radius 1e-26), the count and the verdict in ball arithmetic "
+        "(exit status 1 if a root or a count is not proven; see docs/frequencies.md)",
+    )
 
 
 def _add_search_options(parser):
@@ -62,6 +72,7 @@ def _add_search_options(parser):
         metavar="X,Y",
         help="search window 0 <= Re q <= X, -Y <= Im q <= Y + eta_f (default: see docs/frequencies.md)",
     )
+    _add_certify_option(parser)
 
 
 def _check_dps(dps):
@@ -90,12 +101,15 @@ def run_frequencies(args: argparse.Namespace) -> int:
             raise ParameterError("window", "window sizes must be positive")
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
     with progress_bar("induced frequencies", enabled=not args.json) as update:
-        result = induced_frequencies(params, args.model, dps=args.dps, window=window, progress=update)
+        result = induced_frequencies(
+            params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
+        )
     if args.json:
         print_json(result.to_dict())
     else:
         print(format_result(result))
-    return 0 if result.count_ok else 1
+    proven = result.certificate is None or result.certificate.all_proven
+    return 0 if result.count_ok and proven else 1
 
 
 def format_result(result) -> str:
@@ -120,11 +134,30 @@ def format_result(result) -> str:
             f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s); degree of instability "
             f"{mpmath.nstr(result.degree_of_instability, 6)}, growth time 1/|Im q| = {growth}"
         )
+    if result.certificate is not None:
+        lines += format_certificate(result.certificate)
     for w in result.warnings:
         lines.append(f"WARNING: {w}")
     if not result.count_ok:
         lines.append("ERROR: the count and the roots found disagree: a root may be missing (see warnings)")
     return "\n".join(lines)
+
+
+def format_certificate(c) -> list:
+    """Lines reporting the ball-arithmetic proof (roots, count, unsearched strip, verdict)."""
+    lines = [
+        f"certified ({c.seconds:.1f} s): {c.proven_roots}/{len(c.roots)} roots proven, each in a ball of "
+        f"radius {c.roots[0].radius if c.roots else '-'}; count proven: {c.count}"
+        + ("" if c.all_proven else " (NOT all roots proven)")
+    ]
+    if c.unsearched:
+        lo = min(u.y0 for u in c.unsearched)
+        hi = max(u.y1 for u in c.unsearched)
+        lines.append(f"  not searched by the proof: {lo:.4g} <= Im q <= {hi:.4g} along the cut of K")
+    lines.append(f"  proven verdict: {c.verdict.upper()} in the window ({c.reason})")
+    for p in c.problems:
+        lines.append(f"  not proven: {p}")
+    return lines
 
 
 def run_table2(args: argparse.Namespace) -> int:
@@ -134,9 +167,10 @@ def run_table2(args: argparse.Namespace) -> int:
 
     _check_dps(args.dps)
     with progress_bar("Table 2", enabled=not args.json) as update:
-        table = compute_table2(dps=args.dps, progress=update)
+        table = compute_table2(dps=args.dps, progress=update, certify=args.certify)
     if args.json:
         print_json(table.to_dict())
     else:
         print(format_table2(table, decimals=args.decimals))
-    return 0 if table.ok else 1
+    proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
+    return 0 if table.ok and proven else 1

@@ -238,8 +238,10 @@ def _verdict(enclosures, all_proven, unsearched, problems):
         return "not proven", "; ".join(problems) or "not every root is proven"
     low = [u for u in unsearched if u.y0 <= 0]
     if low:
+        floor = min(u.y0 for u in low)
         return "not proven", (
-            f"the unsearched strip along the cut reaches Im q = {min(u.y0 for u in low):.1e} <= 0"
+            f"no root with Im q < {floor:.1e} in the window (proven), but the unsearched strip along the "
+            f"cut reaches Im q = {floor:.1e} <= 0"
         )
     if all(e.above_axis for e in enclosures):
         return "stable", "every root in the window is proven and lies in Im q > 0"
