@@ -50,8 +50,9 @@ class Enclosure:
     reason: str = ""
 
     def contains(self, q) -> bool:
-        """Whether the ball contains the point q (an mpc or complex)."""
-        return bool(self.ball.contains(_acb_from_mp(q)))
+        """Whether the ball contains the point q (an mpc or complex, read at 256 bits)."""
+        with ctx.workprec(256):
+            return bool(self.ball.contains(_acb_from_mp(q)))
 
     @property
     def below_axis(self) -> bool:
@@ -180,6 +181,7 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
             problems.append(f"root {mpmath.nstr(e.q, 12)}: not proven ({e.reason})")
     counter = BallCharacteristic(params, model, prec=count_prec)
     cut = cut_locus(params, window.x0, window.x1)
+    margin = _margin_clear_of_roots(margin, cut, result.roots)
     tiles, unsearched, used_margin = (), (), margin
     for factor, fraction in TILINGS:
         used_margin = margin * factor
@@ -202,6 +204,22 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
         roots, mirrors, tiles, tuple(unsearched), count, all_proven, verdict, reason,
         time.perf_counter() - start, used_margin, tuple(problems),
     )  # fmt: skip
+
+
+def _margin_clear_of_roots(margin: float, cut, roots, floor: float = 1e-6) -> float:
+    """``margin``, reduced so that the strip along the cut leaves out no root found numerically: a root
+    closer to the cut than 2 ``margin`` (beyond the branch point) sets the margin to a quarter of its distance."""
+    if not cut.points.size:
+        return margin
+    for r in roots:
+        x, y = float(mpmath.re(r.q)), float(mpmath.im(r.q))
+        if x < cut.x_start - 2 * margin:
+            continue
+        near = cut.im_range_between(x - 2 * margin, x + 2 * margin) or (cut.im_low, cut.im_high)
+        distance = max(near[0] - y, y - near[1], 0.0)
+        if distance < 2 * margin:
+            margin = max(floor, distance / 4)
+    return margin
 
 
 def _match(tiles, roots, mirrors, problems):
