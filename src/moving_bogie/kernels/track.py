@@ -45,14 +45,16 @@ def foundation_arguments(params, numbers) -> dict:
     return {name: getattr(numbers, name, None) for name in names}
 
 
-def _polyval(coeffs, x):
+def horner(coeffs, x):
+    """Value at x of the polynomial with ``coeffs`` (highest power first), for any number type."""
     acc = coeffs[0]
     for c in coeffs[1:]:
         acc = acc * x + c
     return acc
 
 
-def _polyder(coeffs):
+def derivative_coefficients(coeffs):
+    """Coefficients (highest first) of the derivative of the polynomial with ``coeffs``."""
     n = len(coeffs) - 1
     return [c * (n - k) for k, c in enumerate(coeffs[:-1])] or [0]
 
@@ -115,13 +117,13 @@ class TrackKernel:
         n = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
         roots = _roots_mp(n)
         qc = [mpmath.mpc(c) for c in self.module.q_coeffs(q, **args)]
-        n1 = _polyder(n)
+        n1 = derivative_coefficients(n)
         if derivative:
-            n2 = _polyder(n1)
+            n2 = derivative_coefficients(n1)
             nq = [mpmath.mpc(c) for c in self.module.n_coeffs_dq(q, **args)]
-            nqp = _polyder(nq)
+            nqp = derivative_coefficients(nq)
             qq = [mpmath.mpc(c) for c in self.module.q_coeffs_dq(q, **args)]
-            qp = _polyder(qc)
+            qp = derivative_coefficients(qc)
         upper = [p for p in roots if mpmath.im(p) > 0]
         lower = [p for p in roots if mpmath.im(p) < 0]
         if len(upper) + len(lower) != len(roots):
@@ -137,15 +139,15 @@ class TrackKernel:
             dtotal = mpmath.mpc(0)
             for p in side:
                 e = mpmath.exp(1j * p * xi)
-                N1 = _polyval(n1, p)
-                Qv = _polyval(qc, p)
+                N1 = horner(n1, p)
+                Qv = horner(qc, p)
                 total += e * Qv / N1
                 if derivative:
-                    N2 = _polyval(n2, p)
-                    Nq = _polyval(nq, p)
+                    N2 = horner(n2, p)
+                    Nq = horner(nq, p)
                     g = e * Qv * Nq
-                    gp = e * (1j * xi * Qv * Nq + _polyval(qp, p) * Nq + Qv * _polyval(nqp, p))
-                    dtotal += e * _polyval(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
+                    gp = e * (1j * xi * Qv * Nq + horner(qp, p) * Nq + Qv * horner(nqp, p))
+                    dtotal += e * horner(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
             Ks.append(sign * two_pi_i * total)
             dKs.append(sign * two_pi_i * dtotal)
         sep = _min_relative_separation(upper) if len(upper) > 1 else None
@@ -188,7 +190,7 @@ def _roots_mp(coeffs):
                     den *= zi - zj
             if den == 0:
                 break
-            deltas.append(_polyval(monic, zi) / den)
+            deltas.append(horner(monic, zi) / den)
         if len(deltas) != len(z):
             break
         z = [zi - di for zi, di in zip(z, deltas)]

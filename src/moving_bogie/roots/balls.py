@@ -1,4 +1,4 @@
-"""E_chr(q) and dE_chr/dq of Eqs. (38) and (40) in ball arithmetic, on a point or on a whole complex ball of q.
+"""E_chr(q) and dE_chr/dq of Eqs. (38) and (40) in ball arithmetic, on a point or a whole complex ball of q.
 
 Every quantity is an arb/acb ball (python-flint, Arb) guaranteed to contain the exact value, for every q in
 the input ball; the parameters enter as balls around their exact rational values (Table 1 prints decimals).
@@ -31,7 +31,12 @@ from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
-from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.kernels.track import (
+    derivative_coefficients,
+    foundation_arguments,
+    foundation_module,
+    horner,
+)
 from moving_bogie.model.exact import map_fractions
 
 
@@ -105,18 +110,6 @@ def isolate_roots(coeffs, tol=None) -> list:
     return balls
 
 
-def _polyval(coeffs, x):
-    acc = coeffs[0]
-    for c in coeffs[1:]:
-        acc = acc * x + c
-    return acc
-
-
-def _polyder(coeffs):
-    n = len(coeffs) - 1
-    return [c * (n - k) for k, c in enumerate(coeffs[:-1])] or [0]
-
-
 def _series(values, length):
     """Each value as an acb_series of ``length`` terms (constants become constant series)."""
     return [v if isinstance(v, acb_series) else acb_series([acb(v)], prec=length) for v in values]
@@ -177,19 +170,19 @@ class BallCharacteristic:
         if q.rad() == 0:
             return centre
         n = [acb(c) for c in f.n_coeffs(q, **args)]
-        n1 = _polyder(n)
+        n1 = derivative_coefficients(n)
         nq = [acb(c) for c in f.n_coeffs_dq(q, **args)]
         n_mid = [acb(c) for c in f.n_coeffs(q.mid(), **args)]
         balls = []
         for p_ball in centre:
             pm = p_ball.mid()
-            Y = (1 / _polyval(_polyder(n_mid), pm)).mid()
+            Y = (1 / horner(derivative_coefficients(n_mid), pm)).mid()
             # N(p_m, xi) for xi in q: mean-value form in q around the centre
-            shift = _polyval(n_mid, p_ball) + _polyval(nq, p_ball) * (q - q.mid())
+            shift = horner(n_mid, p_ball) + horner(nq, p_ball) * (q - q.mid())
             rho = 2 * (Y * shift).abs_upper() + p_ball.rad() + arb(2) ** (-self.prec)
             for _ in range(3):
                 P = acb(arb(pm.real, rho), arb(pm.imag, rho))
-                K = pm - Y * shift + (1 - Y * _polyval(n1, P)) * (P - pm)
+                K = pm - Y * shift + (1 - Y * horner(n1, P)) * (P - pm)
                 if P.contains_interior(K):
                     balls.append(K)
                     break
@@ -203,14 +196,14 @@ class BallCharacteristic:
         return balls
 
     def kernel_series(self, q, order: int) -> list:
-        """[K(0), K(d), K(-d)] (Eq. (29)) as series in t = q - c to ``order``, for every c in the ball ``q``."""
+        """[K(0), K(d), K(-d)] (Eq. (29)) as series in t = q - c to ``order``, for every c in the ball q."""
         length = order + 1
         f = self.foundation
         args = self.foundation_args
         upper, lower = _sides(self._root_balls(q))
         qs = acb_series([q, 1], prec=length) if order else acb_series([q], prec=length)
         n = _series(f.n_coeffs(qs, **args), length)
-        n1 = _polyder(n)
+        n1 = derivative_coefficients(n)
         qc = _series(f.q_coeffs(qs, **args), length)
         i_unit = acb(0, 1)
 
@@ -219,9 +212,9 @@ class BallCharacteristic:
             for p0 in roots:
                 p = acb_series([p0], prec=length)
                 for _ in range(order.bit_length()):
-                    p = p - _polyval(n, p) / _polyval(n1, p)
+                    p = p - horner(n, p) / horner(n1, p)
                     p = acb_series([p0] + p.coeffs()[1:], prec=length)
-                total += (i_unit * xi * p).exp() * _polyval(qc, p) / _polyval(n1, p)
+                total += (i_unit * xi * p).exp() * horner(qc, p) / horner(n1, p)
             return total
 
         return [
@@ -231,7 +224,7 @@ class BallCharacteristic:
         ]
 
     def taylor(self, q, order: int = 1) -> list:
-        """[E, E', E''/2, ...] to ``order``: balls enclosing E_chr^(j)(xi)/j! for every xi in the ball ``q``."""
+        """[E, E', E''/2, ...] to ``order``: balls enclosing E_chr^(j)(xi)/j! for every xi in the ball q."""
         with ctx.workprec(self.prec):
             q = acb(q)
             self.evaluations += 1

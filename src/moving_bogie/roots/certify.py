@@ -35,7 +35,7 @@ from moving_bogie.roots.polish import fixed_text
 from moving_bogie.roots.search_regions import tile_window
 from moving_bogie.roots.winding import NotProven, proven_count
 
-#: Tiling perturbations tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
+#: Tilings tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
 TILINGS = ((1.0, 0.1), (1.7, 0.113), (0.6, 0.087))
 
 
@@ -69,7 +69,7 @@ class Enclosure:
         return (_mpf(r.lower()), _mpf(r.upper())), (_mpf(i.lower()), _mpf(i.upper()))
 
     def rounds_to(self, re_text: str, im_text: str, decimals: int) -> bool:
-        """Every point of the ball rounds to ``re_text``, ``im_text`` at ``decimals`` places (a proven print)."""
+        """Every point of the ball rounds to ``re_text``, ``im_text`` at ``decimals`` places."""
         (rl, rh), (il, ih) = self.bounds()
         return all(fixed_text(x, decimals) == _norm(re_text) for x in (rl, rh)) and all(
             fixed_text(y, decimals) == _norm(im_text) for y in (il, ih)
@@ -171,12 +171,12 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
     tight = BallCharacteristic(params, model, prec=prec, tight=True)
     roots = tuple(krawczyk(tight, r.q, radius) for r in result.roots)
     mirrors = []
-    for r, e in zip(result.roots, roots):
+    for r in result.roots:
         mirror = -mpmath.conj(r.q)
         if mpmath.re(mirror) >= window.x0 and mpmath.re(r.q) > 4 * radius:
             mirrors.append(krawczyk(tight, mirror, radius))
     mirrors = tuple(mirrors)
-    for k, e in enumerate(roots + mirrors, 1):
+    for e in roots + mirrors:
         if not e.certified:
             problems.append(f"root {mpmath.nstr(e.q, 12)}: not proven ({e.reason})")
     counter = BallCharacteristic(params, model, prec=count_prec)
@@ -186,7 +186,11 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
     for factor, fraction in TILINGS:
         used_margin = margin * factor
         tiling = tile_window(
-            window, cut, eps=used_margin, eps_branch=used_margin, gap_height=fraction * max(window.width, window.height)
+            window,
+            cut,
+            eps=used_margin,
+            eps_branch=used_margin,
+            gap_height=fraction * max(window.width, window.height),
         )
         try:
             tiles = tuple(proven_count(counter, rect) for rect in tiling.regions)
@@ -198,7 +202,9 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
         problems.append(f"count: {last}")
     count, all_proven = _match(tiles, roots, mirrors, problems)
     if tiles and count != result.count:
-        problems.append(f"count: proven {count} root(s) in the tiles, the numerical search counts {result.count}")
+        problems.append(
+            f"count: proven {count} root(s) in the tiles, the numerical search counts {result.count}"
+        )
     verdict, reason = _verdict(roots + mirrors, all_proven, unsearched, problems)
     return Certificate(
         roots, mirrors, tiles, tuple(unsearched), count, all_proven, verdict, reason,
@@ -208,7 +214,7 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
 
 def _margin_clear_of_roots(margin: float, cut, roots, floor: float = 1e-6) -> float:
     """``margin``, reduced so that the strip along the cut leaves out no root found numerically: a root
-    closer to the cut than 2 ``margin`` (beyond the branch point) sets the margin to a quarter of its distance."""
+    closer to the cut than 2 ``margin`` (beyond the branch point) sets it to a quarter of its distance."""
     if not cut.points.size:
         return margin
     for r in roots:
@@ -242,9 +248,7 @@ def _match(tiles, roots, mirrors, problems):
 
 
 def _in_tile(ball: acb, rect) -> bool:
-    return bool(
-        ball.real > rect.x0 and ball.real < rect.x1 and ball.imag > rect.y0 and ball.imag < rect.y1
-    )
+    return bool(ball.real > rect.x0 and ball.real < rect.x1 and ball.imag > rect.y0 and ball.imag < rect.y1)
 
 
 def _verdict(enclosures, all_proven, unsearched, problems):
