@@ -170,6 +170,8 @@ class BallCharacteristic:
         if q.rad() == 0:
             return centre
         n = [acb(c) for c in f.n_coeffs(q, **args)]
+        if n[0].contains(0):  # the degree in p must not drop anywhere in the q ball
+            raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
         n1 = derivative_coefficients(n)
         nq = [acb(c) for c in f.n_coeffs_dq(q, **args)]
         n_mid = [acb(c) for c in f.n_coeffs(q.mid(), **args)]

@@ -65,8 +65,12 @@ class Enclosure:
 
     def bounds(self):
         """((re_low, re_high), (im_low, im_high)) of the ball as exact mpmath numbers."""
-        r, i = self.ball.real, self.ball.imag
-        return (_mpf(r.lower()), _mpf(r.upper())), (_mpf(i.lower()), _mpf(i.upper()))
+        with ctx.workprec(max(256, self.ball.real.mid().bits() + 64)):
+            r, i = self.ball.real, self.ball.imag
+            lows, highs = (r.lower(), i.lower()), (r.upper(), i.upper())
+            if not all(x.is_exact() for x in lows + highs):
+                raise ArithmeticError("ball ends not exact")  # pragma: no cover (precision set above)
+            return (_mpf(lows[0]), _mpf(highs[0])), (_mpf(lows[1]), _mpf(highs[1]))
 
     def rounds_to(self, re_text: str, im_text: str, decimals: int) -> bool:
         """Every point of the ball rounds to ``re_text``, ``im_text`` at ``decimals`` places."""
@@ -119,8 +123,10 @@ class Certificate:
 
 
 def _mpf(x: arb):
-    man, exp = x.mid().man_exp()
-    return mpmath.ldexp(mpmath.mpf(int(man)), int(exp))
+    """The midpoint of ``x`` as an exact mpmath number (its mantissa kept in full)."""
+    man, exp = (int(v) for v in x.mid().man_exp())
+    with mpmath.workprec(max(mpmath.mp.prec, abs(man).bit_length() + 8)):
+        return mpmath.ldexp(mpmath.mpf(man), exp)
 
 
 def _norm(text: str) -> str:
@@ -145,6 +151,8 @@ def krawczyk(bc: BallCharacteristic, q, radius: float = 1e-26) -> Enclosure:
     radius : float
         Half-side of the ball.
     """
+    with mpmath.workprec(max(mpmath.mp.prec, bc.prec)):
+        q = mpmath.mpc(q)  # kept in full, not rounded to the current mpmath precision
     with ctx.workprec(bc.prec):
         c = _acb_from_mp(q).mid()
         B = square_ball(c, arb(radius))
@@ -153,14 +161,31 @@ def krawczyk(bc: BallCharacteristic, q, radius: float = 1e-26) -> Enclosure:
             E_c, dE_c = bc.taylor(c, 1)
             dE_B = bc.taylor(B, 1)[1]
         except Undecided as exc:
-            return Enclosure(mpmath.mpc(q), B, text, False, str(exc))
+            return Enclosure(q, B, text, False, str(exc))
         if dE_c.contains(0):
-            return Enclosure(mpmath.mpc(q), B, text, False, "E_chr' not bounded away from 0")
+            return Enclosure(q, B, text, False, "E_chr' not bounded away from 0")
         Y = (1 / dE_c).mid()
         K = c - Y * E_c + (1 - Y * dE_B) * (B - c)
         if B.contains_interior(K):
-            return Enclosure(mpmath.mpc(q), B, text, True)
-        return Enclosure(mpmath.mpc(q), B, text, False, "Krawczyk image not inside the ball")
+            return Enclosure(q, B, text, True)
+        return Enclosure(q, B, text, False, "Krawczyk image not inside the ball")
+
+
+def refine(bc: BallCharacteristic, q, steps: int = 3):
+    """``q`` after ``steps`` Newton steps on E_chr at the ball precision (midpoints only: a better centre
+    for :func:`krawczyk`, whatever the precision the root was polished at)."""
+    with ctx.workprec(bc.prec):
+        c = _acb_from_mp(q).mid()
+        try:
+            for _ in range(steps):
+                E, dE = bc.taylor(c, 1)
+                c = (c - E / dE).mid()
+        except (Undecided, ZeroDivisionError):
+            return mpmath.mpc(q)
+        if not c.is_finite():
+            return mpmath.mpc(q)
+        with mpmath.workprec(bc.prec + 8):
+            return mpmath.mpc(_mpf(c.real), _mpf(c.imag))
 
 
 def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 200, count_prec: int = 96):
@@ -169,11 +194,12 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
     params, model, window = result.params, result.model, result.window
     problems = []
     tight = BallCharacteristic(params, model, prec=prec, tight=True)
-    roots = tuple(krawczyk(tight, r.q, radius) for r in result.roots)
+    centres = [refine(tight, r.q) for r in result.roots]
+    roots = tuple(krawczyk(tight, q, radius) for q in centres)
     mirrors = []
-    for r in result.roots:
-        mirror = -mpmath.conj(r.q)
-        if mpmath.re(mirror) >= window.x0 and mpmath.re(r.q) > 4 * radius:
+    for q in centres:
+        mirror = -mpmath.conj(q)
+        if mpmath.re(mirror) >= window.x0 and mpmath.re(q) > 4 * radius:
             mirrors.append(krawczyk(tight, mirror, radius))
     mirrors = tuple(mirrors)
     for e in roots + mirrors:
