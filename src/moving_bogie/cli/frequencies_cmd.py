@@ -55,7 +55,8 @@ def _add_certify_option(parser):
     parser.add_argument(
         "--certify",
         action="store_true",
-        help="prove every root (ball of radius 1e-26), the count and the verdict in ball arithmetic "
+        help="prove every root (alone in a square of half-side 1e-26), the count and the verdict in ball "
+        "arithmetic "
         "(exit status 1 if a root or a count is not proven; see docs/frequencies.md)",
     )
 
@@ -146,14 +147,17 @@ def format_result(result) -> str:
 def format_certificate(c) -> list:
     """Lines reporting the ball-arithmetic proof (roots, count, unsearched strip, verdict)."""
     lines = [
-        f"certified ({c.seconds:.1f} s): {c.proven_roots}/{len(c.roots)} roots proven, each in a ball of "
-        f"radius {c.roots[0].radius if c.roots else '-'}; count proven: {c.count}"
+        f"certified ({c.seconds:.1f} s): {c.proven_roots}/{len(c.roots)} roots proven, each alone in a "
+        f"square of half-side {c.roots[0].radius if c.roots else '-'}; count proven: {c.count}"
         + ("" if c.all_proven else " (NOT all roots proven)")
     ]
     if c.unsearched:
-        lo = min(u.y0 for u in c.unsearched)
-        hi = max(u.y1 for u in c.unsearched)
-        lines.append(f"  not searched by the proof: {lo:.4g} <= Im q <= {hi:.4g} along the cut of K")
+        lo, hi = min(u.y0 for u in c.unsearched), max(u.y1 for u in c.unsearched)
+        left, right = min(u.x0 for u in c.unsearched), max(u.x1 for u in c.unsearched)
+        lines.append(
+            f"  not searched by the proof: {lo:.4g} <= Im q <= {hi:.4g}, {left:.6g} <= Re q <= {right:.4g} "
+            "(along the cut of K)"
+        )
     lines.append(f"  proven verdict: {c.verdict.upper()} in the window ({c.reason})")
     for p in c.problems:
         lines.append(f"  not proven: {p}")
