@@ -23,6 +23,7 @@ from moving_bogie.roots.certify import certify, krawczyk
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.polish import newton
+from moving_bogie.roots.table2 import compute_table2, format_table2
 from moving_bogie.roots.winding import NotProven, proven_count
 
 #: A window holding the four pairs of Case 1 (Table 2: Re q <= 0.31, |Im q| <= 0.03) and the cut Im q = 0.1.
@@ -138,3 +139,14 @@ def test_proven_count_equals_the_numerical_one_on_random_parameter_sets():
         assert c.count == result.count, (params, c.problems)
         assert c.all_proven, (params, c.problems)
         assert c.verdict == ("stable" if result.stable else "unstable"), (params, c.reason)
+
+
+def test_table2_certified_row_encloses_the_printed_case_5():
+    table = compute_table2(cases=(5,), certify=True)
+    row = table.to_dict()["cases"][0]
+    # Case 5 of Table 2 (paper): four pairs, q = 0.206528 - 0.000472 i unstable, all six decimals enclosed
+    assert row["certified"]["all"] and row["certified"]["count"] == 4
+    assert row["certified"]["verdict"] == "unstable"
+    assert row["certified"]["printed_enclosed"] == [True] * 4
+    assert all(r["certified"] and r["radius"] == "1e-26" for r in row["roots"])
+    assert "proven: 4/4 roots, count 4, verdict unstable, printed digits enclosed" in format_table2(table)
