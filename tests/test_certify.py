@@ -56,7 +56,7 @@ def test_enclosures_contain_the_30_digit_roots_and_the_printed_digits(case1):
 
 
 def test_a_wrong_candidate_fails_the_proof(case1):
-    bc = BallCharacteristic(table1_case(1), prec=200, tight=True)
+    bc = BallCharacteristic(table1_case(1), prec=200)
     q = case1.roots[0].q
     assert krawczyk(bc, q).certified
     assert not krawczyk(bc, q + mpmath.mpf("1e-20")).certified  # the root is outside this ball

@@ -8,16 +8,20 @@ K(xi, q) of Eq. (29) is the residue sum of :mod:`moving_bogie.kernels.track`:
     K(xi, q) = +2 pi i sum_{Im p_k > 0} exp(i p_k xi) Q(p_k) / N'(p_k)     (xi >= 0; the minus sign and
                                                                             Im p_k < 0 for xi < 0),
 
-and dK/dq its double-pole form. Here the p-roots of N(p, q) are isolated balls, and the side of the real
-p-axis on which each lies is *decided*: a root ball that meets the real axis (q too close to the cut of K
-for the given ball) raises :class:`Undecided`, so a caller can only subdivide, never guess.
+Here the p-roots of N(p, q) are isolated balls, and the side of the real p-axis on which each lies is
+*decided*: a root ball that meets the real axis (q too close to the cut of K for the given ball) raises
+:class:`Undecided`, so a caller can only subdivide, never guess.
 
-Root isolation (Smith 1970, "Error bounds for zeros of a polynomial based upon Gerschgorin's theorems"):
-for approximations z_1..z_n of the roots of a polynomial of degree n with leading coefficient a_n, every
-root lies in the union of the discs |z - z_k| <= n |w_k|, w_k = P(z_k) / (a_n prod_{j != k} (z_k - z_j)),
-and a disc disjoint from all others holds exactly one root. P(z_k) is evaluated with the ball coefficients
-(of a ball of q), so the discs enclose the roots for every q in the ball. The approximations come from
-Arb's ``acb_poly.roots`` on the midpoint polynomial.
+Root isolation at a point q (Smith 1970, "Error bounds for zeros of a polynomial based upon Gerschgorin's
+theorems"): for approximations z_1..z_n of the roots of a polynomial of degree n with leading coefficient
+a_n, every root lies in the union of the discs |z - z_k| <= n |w_k|, w_k = P(z_k) / (a_n prod_{j != k}
+(z_k - z_j)), and a disc disjoint from all others holds exactly one root. The approximations come from
+Arb's ``acb_poly.roots`` on the midpoint polynomial. Over a ball of q, each root ball at the centre is
+widened by a Krawczyk test in p that holds for every q of the ball (:meth:`BallCharacteristic.p_roots`).
+
+Derivatives in q (dK/dq, dE_chr/dq of Eq. (40), and higher) come from truncated Taylor series arithmetic
+(``acb_series``) through the same residue sum, not from the double-pole formula of
+:mod:`moving_bogie.kernels.track`, which the tests use as an independent check.
 
 The generated kernels (``moving_bogie.generated``) are plain arithmetic, so they are called unchanged with
 acb arguments (their ``1j`` literals combine with acb exactly).
@@ -58,14 +62,6 @@ def square_ball(center, radius) -> acb:
     c = acb(center)
     r = arb(radius)
     return acb(arb(c.real.mid(), r), arb(c.imag.mid(), r))
-
-
-def segment_ball(a: complex, b: complex) -> acb:
-    """The smallest acb ball (axis-parallel rectangle) containing the segment [a, b]."""
-    mid = acb(0.5 * (a.real + b.real), 0.5 * (a.imag + b.imag))
-    rx = abs(b.real - a.real) * 0.5
-    ry = abs(b.imag - a.imag) * 0.5
-    return acb(arb(mid.real, rx), arb(mid.imag, ry))
 
 
 def isolate_roots(coeffs, tol=None) -> list:
@@ -115,16 +111,12 @@ def _series(values, length):
     return [v if isinstance(v, acb_series) else acb_series([acb(v)], prec=length) for v in values]
 
 
-def _constant(series_value) -> acb:
-    return series_value.coeffs()[0] if series_value.length() else acb(0)
-
-
 class BallCharacteristic:
     """Taylor coefficients of E_chr (Eq. (38)) on acb balls of q, at ``prec`` bits.
 
     Every quantity is a truncated power series in t = q - c whose coefficients are balls: evaluated at a
-    ball c, the j-th coefficient encloses E_chr^(j)(xi)/j! for every xi in the ball (so the first one is
-    dE_chr/dq of Eq. (40), here by differentiating the residue sum rather than by double-pole residues).
+    ball c, coefficient j encloses E_chr^(j)(xi)/j! for every xi in the ball (coefficient 1 is dE_chr/dq of
+    Eq. (40), here by differentiating the residue sum rather than by double-pole residues).
     The p-roots are series too: from the isolated ball p0 of a root, Newton steps on series,
     p <- p - N(p, q) / N_p(p, q), each doubling the number of exact coefficients; since every step is
     inclusion-monotone, the coefficients enclose those of the true root p(xi + t) for every xi in the ball.
@@ -134,13 +126,10 @@ class BallCharacteristic:
     params : DimensionlessParams
     model : {"bogie", "masses"}
     prec : int
-        Working precision in bits; every call runs at it.
-    tight : bool
-        Approximate the p-roots to the working precision before enclosing them (needed for enclosures of
-        width near 2**-prec; point values otherwise carry about 1e-8 of the root approximation).
+        Working precision in bits; every call runs at it (the p-roots are approximated to it too).
     """
 
-    def __init__(self, params, model: str = "bogie", *, prec: int = 128, tight: bool = False):
+    def __init__(self, params, model: str = "bogie", *, prec: int = 128):
         self.params = params
         self.model = model
         self.prec = prec

@@ -133,6 +133,12 @@ def _norm(text: str) -> str:
     return text[1:] if text.startswith("-") and set(text[1:]) <= set("0.") else text
 
 
+def _full(q, prec: int):
+    """``q`` as an mpc of at least ``prec`` bits (not rounded to the current mpmath precision)."""
+    with mpmath.workprec(max(mpmath.mp.prec, prec)):
+        return mpmath.mpc(q)
+
+
 def _acb_from_mp(q) -> acb:
     with mpmath.workdps(max(mpmath.mp.dps, 60)):
         q = mpmath.mpc(q)
@@ -151,8 +157,7 @@ def krawczyk(bc: BallCharacteristic, q, radius: float = 1e-26) -> Enclosure:
     radius : float
         Half-side of the ball.
     """
-    with mpmath.workprec(max(mpmath.mp.prec, bc.prec)):
-        q = mpmath.mpc(q)  # kept in full, not rounded to the current mpmath precision
+    q = _full(q, bc.prec)
     with ctx.workprec(bc.prec):
         c = _acb_from_mp(q).mid()
         B = square_ball(c, arb(radius))
@@ -181,9 +186,9 @@ def refine(bc: BallCharacteristic, q, steps: int = 3):
                 E, dE = bc.taylor(c, 1)
                 c = (c - E / dE).mid()
         except (Undecided, ZeroDivisionError):
-            return mpmath.mpc(q)
+            return _full(q, bc.prec)
         if not c.is_finite():
-            return mpmath.mpc(q)
+            return _full(q, bc.prec)
         with mpmath.workprec(bc.prec + 8):
             return mpmath.mpc(_mpf(c.real), _mpf(c.imag))
 
@@ -193,14 +198,14 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
     start = time.perf_counter()
     params, model, window = result.params, result.model, result.window
     problems = []
-    tight = BallCharacteristic(params, model, prec=prec, tight=True)
-    centres = [refine(tight, r.q) for r in result.roots]
-    roots = tuple(krawczyk(tight, q, radius) for q in centres)
+    precise = BallCharacteristic(params, model, prec=prec)
+    centres = [refine(precise, r.q) for r in result.roots]
+    roots = tuple(krawczyk(precise, q, radius) for q in centres)
     mirrors = []
     for q in centres:
         mirror = -mpmath.conj(q)
         if mpmath.re(mirror) >= window.x0 and mpmath.re(q) > 4 * radius:
-            mirrors.append(krawczyk(tight, mirror, radius))
+            mirrors.append(krawczyk(precise, mirror, radius))
     mirrors = tuple(mirrors)
     for e in roots + mirrors:
         if not e.certified:
