@@ -7,6 +7,7 @@ Table 2, polynomials with known roots, and the double-precision argument-princip
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import random
 
@@ -150,3 +151,14 @@ def test_table2_certified_row_encloses_the_printed_case_5():
     assert row["certified"]["printed_enclosed"] == [True] * 4
     assert all(r["certified"] and r["radius"] == "1e-26" for r in row["roots"])
     assert "proven: 4/4 roots, count 4, verdict unstable, printed digits enclosed" in format_table2(table)
+
+
+def test_a_missing_root_is_caught_by_the_proven_count(case1):
+    # drop the stable root 0.307 + 0.021 i from the numerical result: the proof must notice
+    incomplete = dataclasses.replace(case1, roots=case1.roots[1:], certificate=None)
+    c = certify(incomplete)
+    assert not c.all_proven and c.count == 4
+    assert any("root(s) proven, 0 enclosure(s) inside" in p for p in c.problems)
+    assert c.verdict == "unstable"  # still proven: an unstable root needs no count
+    stable_only = dataclasses.replace(case1, roots=(case1.roots[0],), certificate=None)
+    assert certify(stable_only).verdict == "not proven"
