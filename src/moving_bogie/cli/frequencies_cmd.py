@@ -23,7 +23,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "examples:\n  moving-bogie frequencies --case 1\n"
             "  moving-bogie frequencies --case 7 --alpha 0.7 --json\n"
             "  moving-bogie frequencies --case 1 --beam tr --S 100 --r 0.03\n"
-            "  moving-bogie frequencies --case 5 --model masses"
+            "  moving-bogie frequencies --case 5 --model masses\n"
+            "  moving-bogie frequencies --case 1 --certify"
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -41,7 +42,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Exit status 1 on any difference beyond the print's rounding or any count mismatch."
         ),
         epilog="examples:\n  moving-bogie table2\n  moving-bogie table2 --decimals 12\n"
-        "  moving-bogie table2 --json",
+        "  moving-bogie table2 --json\n  moving-bogie table2 --certify",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     table.add_argument("--decimals", type=int, default=6, help="decimals shown in the text table (default 6)")
@@ -56,15 +57,11 @@ def _add_certify_option(parser):
         "--certify",
         action="store_true",
         help="prove every root (alone in a square of half-side 1e-26), the count and the verdict in ball "
-        "arithmetic "
-        "(exit status 1 if a root or a count is not proven; see docs/frequencies.md)",
+        "arithmetic (exit status 1 if a root or a count is not proven; see docs/frequencies.md)",
     )
 
 
 def _add_search_options(parser):
-    parser.add_argument(
-        "--model", choices=("bogie", "masses"), default="bogie", help="vehicle (default bogie)"
-    )
     parser.add_argument(
         "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
     )
@@ -91,7 +88,7 @@ def run_frequencies(args: argparse.Namespace) -> int:
     from .progress import progress_bar
 
     _check_dps(args.dps)
-    params, _physical = params_from_args(args)
+    params, physical = params_from_args(args)
     window = None
     if args.window:
         try:
@@ -106,11 +103,42 @@ def run_frequencies(args: argparse.Namespace) -> int:
             params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
         )
     if args.json:
-        print_json(result.to_dict())
+        print_json(with_si(result.to_dict(), result, physical))
     else:
         print(format_result(result))
+        if physical is not None:
+            print(format_si(result, physical))
     proven = result.certificate is None or result.certificate.all_proven
     return 0 if result.count_ok and proven else 1
+
+
+def with_si(data: dict, result, physical) -> dict:
+    """For a ``[physical]`` input: each root also as ``omega`` [rad/s], Hz and growth time [s]."""
+    if physical is None:
+        return data
+    from moving_bogie.model.si_results import root_in_si
+
+    t_scale = physical.scales().t_scale
+    for entry, root in zip(data["roots"], result.roots):
+        entry.update(root_in_si(root.q, t_scale, digits=min(12, root.digits)))
+    data["si"] = {"t_scale_s": repr(t_scale), "physical": physical.to_dict(), "time_factor": "exp(i omega t)"}
+    return data
+
+
+def format_si(result, physical) -> str:
+    """The roots of a ``[physical]`` input in SI units, one line each."""
+    from moving_bogie.model.si_results import root_in_si
+
+    t_scale = physical.scales().t_scale
+    lines = [f"In SI (t = tau * {t_scale:.6g} s; time factor exp(i omega t), Im omega < 0 grows):"]
+    for k, root in enumerate(result.roots, 1):
+        si = root_in_si(root.q, t_scale, digits=min(8, root.digits))
+        growth = f", growth time {si['growth_time_s']} s" if si["growth_time_s"] else ""
+        lines.append(
+            f"  {k:<2}omega = +-{si['omega']['re']} + {si['omega']['im']}i rad/s, "
+            f"f = {si['frequency_hz']} Hz{growth}"
+        )
+    return "\n".join(lines)
 
 
 def format_result(result) -> str:

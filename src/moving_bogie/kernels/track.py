@@ -17,7 +17,6 @@ mpmath precision; :class:`TrackKernelArray` evaluates numpy arrays of q in doubl
 
 from __future__ import annotations
 
-import importlib
 from dataclasses import dataclass
 
 import mpmath
@@ -25,14 +24,17 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
+from moving_bogie.model.catalogue import get_model
 
 
-def foundation_module(beam: str):
-    """The generated module of a track model ("eb", "tr", or any model added in derivations/)."""
-    try:
-        return importlib.import_module(f"moving_bogie.generated.foundation_{beam}")
-    except ModuleNotFoundError:
-        raise MovingBogieError(f"unknown beam model {beam!r}: no generated/foundation_{beam}.py") from None
+def foundation_module(params):
+    """The generated kernel of the beam on its track: ``params.model.foundation``.
+
+    `params` may also be a beam name, for the beam on the paper's one-layer track.
+    """
+    if isinstance(params, str):
+        return get_model(beam=params).foundation
+    return params.model.foundation
 
 
 def foundation_arguments(params, numbers) -> dict:
@@ -41,20 +43,18 @@ def foundation_arguments(params, numbers) -> dict:
     The names come from the generated module (its ``ARGUMENTS``), so a model added in derivations/ with the
     existing groups needs no change here; a group the model does not use is passed as None.
     """
-    names = foundation_module(params.beam).ARGUMENTS[1:]
+    names = foundation_module(params).ARGUMENTS[1:]
     return {name: getattr(numbers, name, None) for name in names}
 
 
-def horner(coeffs, x):
-    """Value at x of the polynomial with ``coeffs`` (highest power first), for any number type."""
+def _polyval(coeffs, x):
     acc = coeffs[0]
     for c in coeffs[1:]:
         acc = acc * x + c
     return acc
 
 
-def derivative_coefficients(coeffs):
-    """Coefficients (highest first) of the derivative of the polynomial with ``coeffs``."""
+def _polyder(coeffs):
     n = len(coeffs) - 1
     return [c * (n - k) for k, c in enumerate(coeffs[:-1])] or [0]
 
@@ -82,7 +82,7 @@ class TrackKernel:
 
     def __init__(self, params, *, coalescence_digits: int = 3):
         self.params = params
-        self.module = foundation_module(params.beam)
+        self.module = foundation_module(params)
         self.coalescence_digits = coalescence_digits
 
     def _numbers(self):
@@ -117,13 +117,13 @@ class TrackKernel:
         n = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
         roots = _roots_mp(n)
         qc = [mpmath.mpc(c) for c in self.module.q_coeffs(q, **args)]
-        n1 = derivative_coefficients(n)
+        n1 = _polyder(n)
         if derivative:
-            n2 = derivative_coefficients(n1)
+            n2 = _polyder(n1)
             nq = [mpmath.mpc(c) for c in self.module.n_coeffs_dq(q, **args)]
-            nqp = derivative_coefficients(nq)
+            nqp = _polyder(nq)
             qq = [mpmath.mpc(c) for c in self.module.q_coeffs_dq(q, **args)]
-            qp = derivative_coefficients(qc)
+            qp = _polyder(qc)
         upper = [p for p in roots if mpmath.im(p) > 0]
         lower = [p for p in roots if mpmath.im(p) < 0]
         if len(upper) + len(lower) != len(roots):
@@ -139,15 +139,15 @@ class TrackKernel:
             dtotal = mpmath.mpc(0)
             for p in side:
                 e = mpmath.exp(1j * p * xi)
-                N1 = horner(n1, p)
-                Qv = horner(qc, p)
+                N1 = _polyval(n1, p)
+                Qv = _polyval(qc, p)
                 total += e * Qv / N1
                 if derivative:
-                    N2 = horner(n2, p)
-                    Nq = horner(nq, p)
+                    N2 = _polyval(n2, p)
+                    Nq = _polyval(nq, p)
                     g = e * Qv * Nq
-                    gp = e * (1j * xi * Qv * Nq + horner(qp, p) * Nq + Qv * horner(nqp, p))
-                    dtotal += e * horner(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
+                    gp = e * (1j * xi * Qv * Nq + _polyval(qp, p) * Nq + Qv * _polyval(nqp, p))
+                    dtotal += e * _polyval(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
             Ks.append(sign * two_pi_i * total)
             dKs.append(sign * two_pi_i * dtotal)
         sep = _min_relative_separation(upper) if len(upper) > 1 else None
@@ -190,7 +190,7 @@ def _roots_mp(coeffs):
                     den *= zi - zj
             if den == 0:
                 break
-            deltas.append(horner(monic, zi) / den)
+            deltas.append(_polyval(monic, zi) / den)
         if len(deltas) != len(z):
             break
         z = [zi - di for zi, di in zip(z, deltas)]
@@ -204,7 +204,7 @@ class TrackKernelArray:
 
     def __init__(self, params):
         self.params = params
-        self.module = foundation_module(params.beam)
+        self.module = foundation_module(params)
         self.args = foundation_arguments(params, params.as_float())
 
     def _coeffs(self, func, q):

@@ -14,7 +14,7 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
-from moving_bogie.kernels.track import TrackKernel, _min_relative_separation, derivative_coefficients, horner
+from moving_bogie.kernels.track import TrackKernel, _min_relative_separation, _polyder, _polyval
 
 __all__ = ["KernelGrid"]
 
@@ -41,9 +41,9 @@ class KernelGrid:
             self.q = mpmath.mpc(q)
             args = self.kernel._numbers()
             roots = self.kernel.p_roots(self.q)
-            n1 = derivative_coefficients([mpmath.mpc(c) for c in self.kernel.module.n_coeffs(self.q, **args)])
+            n1 = _polyder([mpmath.mpc(c) for c in self.kernel.module.n_coeffs(self.q, **args)])
             qc = [mpmath.mpc(c) for c in self.kernel.module.q_coeffs(self.q, **args)]
-            weights = [horner(qc, p) / horner(n1, p) for p in roots]
+            weights = [_polyval(qc, p) / _polyval(n1, p) for p in roots]
             upper = [p for p in roots if mpmath.im(p) > 0]
             lower = [p for p in roots if mpmath.im(p) < 0]
             seps = [

@@ -29,19 +29,13 @@ acb arguments (their ``1j`` literals combine with acb exactly).
 
 from __future__ import annotations
 
-from types import SimpleNamespace
+from functools import reduce
 
 from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
-from moving_bogie.kernels.track import (
-    derivative_coefficients,
-    foundation_arguments,
-    foundation_module,
-    horner,
-)
-from moving_bogie.model.exact import map_fractions
+from moving_bogie.kernels.track import foundation_arguments, foundation_module
 
 
 class Undecided(MovingBogieError):
@@ -106,6 +100,28 @@ def isolate_roots(coeffs, tol=None) -> list:
     return balls
 
 
+def horner(coeffs, x):
+    """The polynomial with ``coeffs`` (highest power first) at x, for acb and acb_series alike."""
+    return reduce(lambda acc, c: acc * x + c, coeffs[1:], coeffs[0])
+
+
+def derivative_coefficients(coeffs) -> list:
+    """Coefficients (highest power first) of the derivative."""
+    return [c * (len(coeffs) - 1 - k) for k, c in enumerate(coeffs[:-1])] or [0]
+
+
+class _ExactBalls:
+    """Attribute access to the parameters of a DimensionlessParams as balls around their exact values."""
+
+    def __init__(self, params):
+        self._params = params
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        return exact_ball(getattr(self._params, name))
+
+
 def _series(values, length):
     """Each value as an acb_series of ``length`` terms (constants become constant series)."""
     return [v if isinstance(v, acb_series) else acb_series([acb(v)], prec=length) for v in values]
@@ -129,16 +145,16 @@ class BallCharacteristic:
         Working precision in bits; every call runs at it (the p-roots are approximated to it too).
     """
 
-    def __init__(self, params, model: str = "bogie", *, prec: int = 128):
+    def __init__(self, params, model: str | None = None, *, prec: int = 128):
         self.params = params
-        self.model = model
+        self.model = model or params.vehicle
         self.prec = prec
         self.tol = 2.0 ** (8 - prec)
-        self.foundation = foundation_module(params.beam)
-        self.vehicle = vehicle_module(model)
+        self.foundation = foundation_module(params)
+        self.vehicle = vehicle_module(model, params)
         self.evaluations = 0
         with ctx.workprec(prec):
-            numbers = SimpleNamespace(**map_fractions(params, exact_ball))
+            numbers = _ExactBalls(params)
             self.foundation_args = foundation_arguments(params, numbers)
             self.vehicle_args = {name: getattr(numbers, name) for name in self.vehicle.PARAMETERS}
             self.vehicle_args["pi"] = acb(arb.pi())

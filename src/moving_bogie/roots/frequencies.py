@@ -160,7 +160,7 @@ class CountMismatch(MovingBogieError):
 
 def induced_frequencies(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     *,
     dps: int = 30,
     extra_dps: int | None = None,
@@ -197,6 +197,7 @@ def induced_frequencies(
     certify : bool
         Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
     """
+    model = model or params.vehicle
     if extra_dps is None:
         extra_dps = max(10, dps // 2)
     window = window or default_window(params, model)

@@ -378,7 +378,7 @@ def _staged(progress: Callable[[float], None] | None, start: float, width: float
 def validate(
     params: Any,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     n_modes: int = 500,
     tau_max: float | None = None,
     tau_step: float = DEFAULT_TAU_STEP,
@@ -425,6 +425,7 @@ def validate(
         For an unknown model, too few modes, a bad `tau_max`, the Timoshenko-Rayleigh beam, or
         when the closed form fails (e.g. incomplete induced frequencies).
     """
+    model = model or params.vehicle
     from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.response.closed_form import closed_form_response
 

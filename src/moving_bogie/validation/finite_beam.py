@@ -75,7 +75,7 @@ class FiniteBeamResult:
     dt: float
     tau_valid: float
     elapsed_s: float
-    model: str = "bogie"
+    model: str | None = None
     k_max: float = math.nan
 
 
@@ -113,7 +113,7 @@ def simulate_finite_beam(
     params: Any,
     tau_max: float,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     n_modes: int = 500,
     length: float | None = None,
     entry: float | None = None,
@@ -164,6 +164,7 @@ def simulate_finite_beam(
     MovingBogieError
         For the Timoshenko-Rayleigh beam, an unknown model, or a beam too short for the run.
     """
+    model = model or getattr(params, "vehicle", "bogie")  # a plain namespace of numbers: the bogie
     _check(params, tau_max, model, n_modes, dt)
     alpha, eta_f, d = float(params.alpha), float(params.eta_f), float(params.d)
     eta_s = float(getattr(params, "eta_s", 0.0))
