@@ -9,7 +9,7 @@ Given the numerical result of :func:`~moving_bogie.roots.frequencies.induced_fre
 
    lands in the interior of B (E = E_chr of Eq. (38), E' its derivative Eq. (40), both as balls from
    :mod:`balls`). Then B holds exactly one root of E_chr, and it is simple.
-2. **No other root**: the window is tiled away from the cut of K (:func:`search_regions.tile_window` with a
+2. **No other root**: the window is tiled away from the cut of K (:func:`proof_tiling.proof_tiling` with a
    margin ``margin``) and the number of roots in every tile is proven (:mod:`winding`). All roots are proven
    when every tile holds exactly as many enclosures as its proven count.
 3. **What is not searched** is the strip of half-height ``margin`` along the cut (and around the branch
@@ -32,7 +32,7 @@ from flint import acb, arb, ctx
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.roots.balls import BallCharacteristic, Undecided, square_ball
 from moving_bogie.roots.polish import fixed_text
-from moving_bogie.roots.search_regions import tile_window
+from moving_bogie.roots.proof_tiling import proof_tiling
 from moving_bogie.roots.winding import NotProven, proven_count
 
 #: Tilings tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
@@ -216,13 +216,8 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
     tiles, unsearched, used_margin = (), (), margin
     for factor, fraction in TILINGS:
         used_margin = margin * factor
-        tiling = tile_window(
-            window,
-            cut,
-            eps=used_margin,
-            eps_branch=used_margin,
-            gap_height=fraction * max(window.width, window.height),
-        )
+        gap_height = fraction * max(window.width, window.height)
+        tiling = proof_tiling(window, cut, margin=used_margin, gap_height=gap_height)
         try:
             tiles = tuple(proven_count(counter, rect) for rect in tiling.regions)
             unsearched = tiling.unsearched
