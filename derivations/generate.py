@@ -20,7 +20,7 @@ from .emit import SCALING_PRINTER, definition_digest, function_source, module_so
 from .foundations import BEAMS, TRACKS, all_models
 from .model import foundation_image
 from .paper import all_proofs
-from .system import SYSTEMS
+from .system import SYSTEMS, in_q
 
 HERE = Path(__file__).resolve().parent
 #: Where the kernels go, relative to the repository root: inside the package, so the source tree imports.
@@ -131,6 +131,7 @@ def vehicle_module(name):
     )
     description = (SYSTEMS[name].__doc__ or name).strip().splitlines()[0]
     title = f"Vehicle '{name}': characteristic function, its derivatives and residue numerators."
+    degrees = polynomial_degrees(system)
     # The wheel spacing d places the contact points (K(+-d, q)) whatever the vehicle.
     model_params = tuple(g for g in s.GROUPS if g in set(params) | {"d"})
     constants = [
@@ -139,9 +140,28 @@ def vehicle_module(name):
         ("PARAMETERS", params),
         ("MODEL_PARAMETERS", model_params),
         ("RESPONSES", names),
+        ("POLYNOMIAL_DEGREES", degrees),
     ]
     digest = definition_digest(E, *system.atoms.values(), *system.numerators.values(), description)
     return module_source(title, digest, parts, constants)
+
+
+def polynomial_degrees(system) -> dict:
+    """Degree of E_chr in each vehicle parameter at fixed q and K, the alternatives held (Eq. (63)).
+
+    The stability tools sweep a parameter by interpolating E_chr exactly in it. The wheel spacing d is left
+    out: it also moves the contact point, so K(+-d, q) depends on it. A group that an alternative sets
+    (mu_v = cf1 eta_M) follows its dependencies and is not swept on its own.
+    """
+    E = sp.expand(in_q(system.E_chr, system))
+    held = {group: expr for group, expr, _ in s.ALTERNATIVES.values() if group in system.parameters}
+    E = sp.expand(E.subs(held))
+    out = {}
+    for par in system.parameters:
+        if str(par) == "d" or par in held:
+            continue
+        out[str(par)] = sp.Poly(E, par).degree()
+    return out
 
 
 def _physical_args(expr) -> tuple:

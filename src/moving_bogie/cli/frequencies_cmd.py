@@ -23,14 +23,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
         epilog=(
             "exit status:\n  0  verdict STABLE or UNSTABLE, every root in the window found\n"
-            "  1  verdict UNDETERMINED, or the count and the roots found disagree (see the warnings)\n"
+            "  1  verdict UNDETERMINED, the count and the roots found disagree (see the warnings),\n"
+            "     or with --certify a root or the count is not proven\n"
             "  2  bad input (the message names the option)\n"
             "warnings and errors go to stderr; the table and the verdict to stdout. With --json an error\n"
             'is the JSON object {"error": ..., "option": ...} on stdout.\n\n'
             "examples:\n  moving-bogie frequencies --case 1\n"
             "  moving-bogie frequencies --case 7 --alpha 0.7 --json\n"
             "  moving-bogie frequencies --case 1 --beam tr --S 100 --r 0.03\n"
-            "  moving-bogie frequencies --case 5 --model masses"
+            "  moving-bogie frequencies --case 5 --model masses\n"
+            "  moving-bogie frequencies --case 1 --certify"
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -48,13 +50,23 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Exit status 1 on any difference beyond the print's rounding or any count mismatch."
         ),
         epilog="examples:\n  moving-bogie table2\n  moving-bogie table2 --decimals 12\n"
-        "  moving-bogie table2 --json",
+        "  moving-bogie table2 --json\n  moving-bogie table2 --certify",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     table.add_argument("--decimals", type=int, default=6, help="decimals shown in the text table (default 6)")
     table.add_argument("--dps", type=int, default=30, help="working precision in decimal digits (default 30)")
+    _add_certify_option(table)
     add_json_option(table)
     table.set_defaults(handler=run_table2)
+
+
+def _add_certify_option(parser):
+    parser.add_argument(
+        "--certify",
+        action="store_true",
+        help="prove every root (alone in a square of half-side 1e-26), the count and the verdict in ball "
+        "arithmetic (exit status 1 if a root or a count is not proven; see docs/frequencies.md)",
+    )
 
 
 def _add_search_options(parser):
@@ -66,6 +78,7 @@ def _add_search_options(parser):
         metavar="X,Y",
         help="search window 0 <= Re q <= X, -Y <= Im q <= Y + eta_f (default: see docs/frequencies.md)",
     )
+    _add_certify_option(parser)
 
 
 def _check_dps(dps):
@@ -94,7 +107,9 @@ def run_frequencies(args: argparse.Namespace) -> int:
             raise ParameterError("window", "window sizes must be positive")
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
     with progress_bar("induced frequencies", enabled=not args.json) as update:
-        result = induced_frequencies(params, args.model, dps=args.dps, window=window, progress=update)
+        result = induced_frequencies(
+            params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
+        )
     if args.json:
         print_json(with_si(result.to_dict(), result, physical))
     else:
@@ -103,7 +118,8 @@ def run_frequencies(args: argparse.Namespace) -> int:
             print(format_si(result, physical))
     for line in format_warnings(result):
         print(line, file=sys.stderr)
-    return 0 if result.count_ok and result.verdict.determined else 1
+    proven = result.certificate is None or result.certificate.all_proven
+    return 0 if result.count_ok and result.verdict.determined and proven else 1
 
 
 def with_si(data: dict, result, physical) -> dict:
@@ -167,6 +183,8 @@ def format_result(result) -> str:
             f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s); degree of instability "
             f"{mpmath.nstr(result.degree_of_instability, 6)}, growth time 1/|Im q| = {growth}"
         )
+    if result.certificate is not None:
+        lines += format_certificate(result.certificate)
     return "\n".join(lines)
 
 
@@ -178,6 +196,26 @@ def format_warnings(result) -> list[str]:
     return lines
 
 
+def format_certificate(c) -> list:
+    """Lines reporting the ball-arithmetic proof (roots, count, unsearched strip, verdict)."""
+    lines = [
+        f"certified ({c.seconds:.1f} s): {c.proven_roots}/{len(c.roots)} roots proven, each alone in a "
+        f"square of half-side {c.roots[0].radius if c.roots else '-'}; count proven: {c.count}"
+        + ("" if c.all_proven else " (NOT all roots proven)")
+    ]
+    if c.unsearched:
+        lo, hi = min(u.y0 for u in c.unsearched), max(u.y1 for u in c.unsearched)
+        left, right = min(u.x0 for u in c.unsearched), max(u.x1 for u in c.unsearched)
+        lines.append(
+            f"  not searched by the proof: {lo:.4g} <= Im q <= {hi:.4g}, {left:.6g} <= Re q <= {right:.4g} "
+            "(along the cut of K)"
+        )
+    lines.append(f"  proven verdict: {c.verdict.upper()} in the window ({c.reason})")
+    for p in c.problems:
+        lines.append(f"  not proven: {p}")
+    return lines
+
+
 def run_table2(args: argparse.Namespace) -> int:
     from moving_bogie.roots.table2 import compute_table2, format_table2
 
@@ -185,9 +223,10 @@ def run_table2(args: argparse.Namespace) -> int:
 
     _check_dps(args.dps)
     with progress_bar("Table 2", enabled=not args.json) as update:
-        table = compute_table2(dps=args.dps, progress=update)
+        table = compute_table2(dps=args.dps, progress=update, certify=args.certify)
     if args.json:
         print_json(table.to_dict())
     else:
         print(format_table2(table, decimals=args.decimals))
-    return 0 if table.ok else 1
+    proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
+    return 0 if table.ok and proven else 1

@@ -10,6 +10,7 @@ ARGUMENTS = ('q', 'K0', 'Kp', 'Km', 'J_b', 'd', 'eta_M', 'eta_v', 'kappa_v', 'mu
 PARAMETERS = ('J_b', 'd', 'eta_M', 'eta_v', 'kappa_v', 'mu_v')
 MODEL_PARAMETERS = ('eta_M', 'd', 'mu_v', 'J_b', 'kappa_v', 'eta_v')
 RESPONSES = ('w_rear', 'w_front', 'u', 'theta')
+POLYNOMIAL_DEGREES = {'eta_M': 4, 'eta_v': 2, 'kappa_v': 2}
 
 
 def e_chr(q, K0, Kp, Km, J_b, d, eta_M, eta_v, kappa_v, mu_v, pi):

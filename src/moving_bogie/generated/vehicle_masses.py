@@ -10,6 +10,7 @@ ARGUMENTS = ('q', 'K0', 'Kp', 'Km', 'eta_M', 'pi')
 PARAMETERS = ('eta_M',)
 MODEL_PARAMETERS = ('eta_M', 'd')
 RESPONSES = ('w_rear', 'w_front')
+POLYNOMIAL_DEGREES = {'eta_M': 2}
 
 
 def e_chr(q, K0, Kp, Km, eta_M, pi):

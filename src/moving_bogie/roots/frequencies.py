@@ -17,7 +17,7 @@ Im q < 0 (:mod:`far_field`), so the verdict (:mod:`verdict`) speaks about every 
 
 from __future__ import annotations
 
-import math
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -32,6 +32,7 @@ from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
 from moving_bogie.roots.search_regions import tile_window
 from moving_bogie.roots.verdict import Verdict, judge
+from moving_bogie.roots.window import default_window, far_field_window  # noqa: F401  (public here too)
 
 
 @dataclass(frozen=True)
@@ -93,6 +94,7 @@ class FrequencyResult:
     evaluations: int  # E_chr evaluations (double precision + high precision)
     warnings: tuple = field(default=())
     far_field: FarField | None = None
+    certificate: object = None  # roots.certify.Certificate when asked for (certify=True)
 
     @property
     def found(self) -> int:
@@ -144,42 +146,7 @@ class FrequencyResult:
             "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
             "far_field": None if self.far_field is None else self.far_field.to_dict(),
             "warnings": list(self.warnings),
-        }
-
-
-def default_window(params, model: str) -> Rectangle:
-    """Default search window: 0 <= Re q <= X, -X <= Im q <= X + eta_f.
-
-    X = max(3, 3 f) where f is the largest natural-frequency estimate of the model: the beam on its
-    foundation (q = 1 at rest, Eq. (24) with p = 0), the bar's bounce sqrt(2 kappa_v / mu_v) and pitch
-    sqrt(kappa_v d^2 / (2 J_b)) (the zeros of B2 and B3 of Eq. (37), which E_chr approaches when K -> 0).
-    For large |q| E_chr ~ B2 B3 (pi - 2 K0 B1)^2 with K0 = O(|q|^-3/2) and B1 = O(q^2), which has no zeros:
-    every root lies at moderate |q|. The search still checks a window twice as large (``check_window``).
-    The left edge sits slightly left of Re q = 0 so that a purely imaginary root is inside, not on it.
-    :func:`induced_frequencies` widens it to the far-field radius R (:func:`far_field_window`).
-    """
-    f = params.as_float()
-    scale = [1.0]
-    if model == "bogie":
-        scale += [math.sqrt(2 * f.kappa_v / f.mu_v), math.sqrt(f.kappa_v * f.d**2 / (2 * f.J_b))]
-    X = max(3.0, 3.0 * max(scale))
-    return Rectangle(-1e-3 * X, X, -X, X + f.eta_f)
-
-
-def far_field_window(params, model: str) -> tuple[Rectangle, FarField]:
-    """The window searched by default and the far-field check that justifies it.
-
-    With S = max(X, R), X the scale of :func:`default_window` and R the radius beyond which E_chr has no root
-    with Im q < 0 (:func:`~moving_bogie.roots.far_field.far_field_radius`): -S/1000 <= Re q <= S,
-    -S <= Im q <= S + eta_f. The lower half contains every root with Im q < 0; the upper half (roots that
-    decay) is a stated choice, checked against a window twice as large.
-    """
-    base = default_window(params, model)
-    far = far_field_radius(params, model, base.x1)
-    if far.radius is None:
-        return base, far
-    S = max(base.x1, far.radius)
-    return Rectangle(-1e-3 * S, S, -S, S + float(params.eta_f)), far
+        } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
 
 
 class CountMismatch(MovingBogieError):
@@ -198,6 +165,7 @@ def induced_frequencies(
     eps_branch: float = 1e-5,
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
+    certify: bool = False,
 ) -> FrequencyResult:
     """Every induced frequency of ``params`` in ``window`` (default :func:`default_window`).
 
@@ -222,6 +190,8 @@ def induced_frequencies(
         Side of a single-root cell below which Newton's method is tried from its centre.
     progress : callable, optional
         Called with the fraction of work done (0..1).
+    certify : bool
+        Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
     """
     model = model or params.vehicle
     if extra_dps is None:
@@ -291,6 +261,10 @@ def induced_frequencies(
         tuple(warnings),
         far,
     )
+    if certify:
+        from moving_bogie.roots.certify import certify as prove
+
+        result = dataclasses.replace(result, certificate=prove(result))
     report(1.0)
     return result
 
