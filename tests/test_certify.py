@@ -67,8 +67,11 @@ def test_a_wrong_candidate_fails_the_proof(case1):
 
 
 def test_json_output_has_the_certified_fields(capsys):
-    assert main(["frequencies", "--case", "1", "--window", "0.5,0.1", "--certify", "--json"]) == 0
+    # The small window stops inside the far-field radius: the verdict about every root with Im q < 0 is
+    # UNDETERMINED (exit status 1), while the certificate proves the roots and the count inside the window.
+    assert main(["frequencies", "--case", "1", "--window", "0.5,0.1", "--certify", "--json"]) == 1
     data = json.loads(capsys.readouterr().out)
+    assert data["verdict"]["state"] == "undetermined" and data["verdict"]["reasons"][0].startswith("window:")
     assert all(r["certified"] is True and float(r["radius"]) <= 1e-25 for r in data["roots"])
     assert data["certified"]["all"] is True and data["certified"]["count"] == data["count"] == 4
     assert data["certified"]["verdict"] == "unstable"
