@@ -25,6 +25,7 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.geometry import choose_geometry, default_time_step
 from moving_bogie.validation.modal import MODELS, ModalBeam, ModalSystem, Vehicle
 from moving_bogie.validation.newmark import initial_state, newmark_step
@@ -120,6 +121,7 @@ def simulate_finite_beam(
     dt: float | None = None,
     tau_out: np.ndarray | None = None,
     progress: Callable[[float], None] | None = None,
+    static_correction: bool = True,
 ) -> FiniteBeamResult:
     """Bogie, two masses or two forces crossing a finite beam, by modal expansion, Eqs. (49)-(54).
 
@@ -154,6 +156,10 @@ def simulate_finite_beam(
         the exact total time derivatives; default: every step.
     progress : callable, optional
         Called with the fraction done (0 to 1) now and then; the core never prints.
+    static_correction : bool, optional
+        Add back the quasi-static response of the truncated modes at the wheels (residual
+        flexibility, :mod:`moving_bogie.validation.corrected`; default True). False gives the
+        plain ``N``-mode model of Eq. (49), which converges like ``k_max^-3``.
 
     Returns
     -------
@@ -191,7 +197,8 @@ def simulate_finite_beam(
     if tau_out is not None and (out.size == 0 or out.min() < 0 or out.max() > tau_max * (1 + 1e-12)):
         raise MovingBogieError(f"tau_out must be non-empty and lie in [0, tau_max={tau_max}]")
 
-    system = ModalSystem(
+    system_class = CorrectedModalSystem if static_correction else ModalSystem
+    system = system_class(
         ModalBeam(geometry.length, n_modes, eta_f, eta_s), _vehicle(params, model, geometry.entry)
     )
     series, elapsed_s = _integrate(system, h, n_steps, progress)
@@ -233,8 +240,7 @@ def _integrate(
     elapsed_s : float
         Wall time.
     """
-    n = system.beam.n_modes
-    has_bar = system.vehicle.n_extra > 0
+    bar = system.bar_index
     out = np.zeros((8, n_steps + 1))
     zero = np.zeros(system.n_dof)
     start = time.perf_counter()
@@ -248,8 +254,8 @@ def _integrate(
             state = newmark_step(state, h, system.assemble(tau))
         contact = system.contact(tau, state.z, state.v)
         out[0:2, i], out[4:6, i] = contact.w, contact.dw
-        if has_bar:
-            out[2:4, i], out[6:8, i] = state.z[n:], state.v[n:]
+        if bar is not None:
+            out[2:4, i], out[6:8, i] = state.z[bar : bar + 2], state.v[bar : bar + 2]
         if progress is not None and i > 0 and (i % every == 0 or i == n_steps):
             progress(i / n_steps)
     return out, time.perf_counter() - start

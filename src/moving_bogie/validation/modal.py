@@ -150,6 +150,8 @@ class ModalSystem:
         self.vehicle = vehicle
         n, ne = beam.n_modes, vehicle.n_extra
         self.n_dof = n + ne
+        #: Index of the bar bounce ``u`` in the unknowns (``theta`` follows), None without a bar.
+        self.bar_index = n if ne else None
         # The diagonals do not depend on time: modal rows, then the bar's bounce and pitch rows.
         m_diag, c_diag, k_diag = np.ones(n + ne), np.full(n + ne, 2.0 * beam.eta_f), np.empty(n + ne)
         k_diag[:n] = beam.omega2
