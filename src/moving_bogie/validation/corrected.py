@@ -84,6 +84,7 @@ class CorrectedModalSystem(ModalSystem):
             block_k[:], block_c[:] = kv * stiffness, 2.0 * ev * stiffness
         self._block = (block_c, block_k)
         self._diag = (m_diag, c_diag, k_diag)
+        self._buffers: tuple[np.ndarray, ...] | None = None
 
     def flexibility(self, tau: float) -> np.ndarray:
         """Residual flexibility ``R(tau)`` (2x2) at the wheel positions at `tau`."""
@@ -94,28 +95,42 @@ class CorrectedModalSystem(ModalSystem):
         return self.residual.matrix(x1, x2, cos1 + 1j * a[0], cos2 + 1j * a[1])
 
     def assemble(self, tau: float) -> DiagLowRankSystem:
-        """Matrices and load of the corrected equations at `tau` (module docstring)."""
+        """Matrices and load of the corrected equations at `tau` (module docstring).
+
+        The returned arrays are buffers reused by the next call (a Newmark step consumes them at
+        once); copy them to keep them.
+        """
         if self.n_wheel == 0:
             return super().assemble(tau)
-        n, L = self.beam.n_modes, self.beam.length
-        nb = self.n_dof - n  # wheel and bar unknowns
+        if self._buffers is None:
+            self._buffers = self._constant_parts()
+        k_diag, ut, vmt, vct, vkt, force, k_wheels = self._buffers
+        n = self.beam.n_modes
         a, _, _ = self.contact_shapes(tau)
-        stiff = np.linalg.inv(self.flexibility(tau))  # R^{-1}
+        (r11, r12), (r21, r22) = self.flexibility(tau)
+        stiff = np.array([[r22, -r12], [-r21, r11]]) / (r11 * r22 - r12 * r21)  # R^{-1}
+        # Modal rows: - (2/L) a_j [R^{-1} (w - A^T q)]_j on the left-hand side.
+        ut[:2, :n] = (2.0 / self.beam.length) * a
+        stiff_a = stiff @ a
+        vkt[:2, :n] = stiff_a
+        vkt[:2, n : n + 2] = -stiff
+        # Wheel rows: R^{-1} (w - A^T q) besides the suspension (diagonal and off-diagonal parts).
+        vkt[2:4, :n] = -stiff_a
+        k_diag[n : n + 2] = k_wheels + np.diag(stiff)
+        vkt[2, n + 1] = self._block[1][0, 1] + stiff[0, 1]
+        vkt[3, n] = self._block[1][1, 0] + stiff[1, 0]
+        m_diag, c_diag, _ = self._diag
+        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force)
+
+    def _constant_parts(self) -> tuple[np.ndarray, ...]:
+        """Buffers of :meth:`assemble` holding every entry that does not change with time."""
+        n, nb = self.beam.n_modes, self.n_dof - self.beam.n_modes
         m_diag, c_diag, k_diag = self._diag
         block_c, block_k = self._block
-        block_k = block_k.copy()
-        block_k[:2, :2] += stiff
+        c_diag[n:] += np.diag(block_c)
         k_diag = k_diag.copy()
         k_diag[n:] += np.diag(block_k)
-        c_diag = c_diag.copy()
-        c_diag[n:] += np.diag(block_c)
-        r = 2 + nb
-        ut, vmt, vct, vkt = (np.zeros((r, self.n_dof)) for _ in range(4))
-        # Modal rows: - (2/L) a_j [R^{-1} (w - A^T q)]_j on the left-hand side.
-        ut[:2, :n] = (2.0 / L) * a
-        vkt[:2, :n] = stiff @ a
-        vkt[:2, n : n + 2] = -stiff
-        # Wheel and bar rows: their off-diagonal block entries; the wheels also see -R^{-1} A^T q.
+        ut, vmt, vct, vkt = (np.zeros((2 + nb, self.n_dof)) for _ in range(4))
         for i in range(nb):
             ut[2 + i, n + i] = 1.0
         off_c, off_k = block_c.copy(), block_k.copy()
@@ -123,10 +138,9 @@ class CorrectedModalSystem(ModalSystem):
         np.fill_diagonal(off_k, 0.0)
         vct[2:, n:] = off_c
         vkt[2:, n:] = off_k
-        vkt[2:4, :n] = -(stiff @ a)
         force = np.zeros(self.n_dof)
         force[n : n + 2] = 2.0
-        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force)
+        return k_diag, ut, vmt, vct, vkt, force, k_diag[n : n + 2].copy()
 
     def contact(self, tau: float, z: np.ndarray, v: np.ndarray) -> ContactResponse:
         """Deflections under the wheels (the unknowns ``w_j``; modal part plus ``2 R`` for forces)."""

@@ -126,8 +126,12 @@ class ResidualFlexibility:
         self, wavenumbers: np.ndarray, length: float, alpha: float, eta_f: float, eta_s: float, d: float
     ) -> None:
         self.length = float(length)
-        residues = _residues(alpha, eta_f, eta_s)
-        self._green = lambda s: _green_from_roots(s, *residues)
+        roots, weights = _residues(alpha, eta_f, eta_s)
+        self._green = lambda s: _green_from_roots(s, roots, weights)
+        # For 0 <= s <= 2L the images s and s + 2L close above, s - 2L below (see _image_part).
+        up = roots.imag > 0
+        self._upper = (roots[up], 1j * weights[up] * (1.0 + np.exp(2j * self.length * roots[up])))
+        self._lower = (roots[~up], -1j * weights[~up])
         self._weight = 1.0 / (self.length * moving_symbol(wavenumbers, alpha, eta_f, eta_s))
         # The direct (translation-invariant) part depends only on x_l - x_j in {0, d, -d}.
         shifts = np.array([0.0, d, -d])
@@ -138,6 +142,14 @@ class ResidualFlexibility:
     def _images(self, s: np.ndarray) -> np.ndarray:
         two_l = 2.0 * self.length
         return self._green(np.concatenate([s, s - two_l, s + two_l])).reshape(3, -1).sum(axis=0)
+
+    def _image_part(self, s: np.ndarray) -> np.ndarray:
+        """``G(s) + G(s - 2L) + G(s + 2L)`` for ``0 <= s <= 2L`` (the sums ``x_j + x_l``), fast."""
+        p_up, w_up = self._upper
+        p_lo, w_lo = self._lower
+        above = np.exp(1j * np.outer(s, p_up)) @ w_up
+        below = np.exp(1j * np.outer(s - 2.0 * self.length, p_lo)) @ w_lo
+        return (above + below).real
 
     def matrix(self, x1: float, x2: float, phase1: np.ndarray, phase2: np.ndarray) -> np.ndarray:
         """``R_jl`` at wheel positions ``x1`` (rear), ``x2 = x1 + d`` (front).
@@ -156,7 +168,7 @@ class ResidualFlexibility:
             Deflection at wheel ``j`` (row) per unit force at wheel ``l`` (column).
         """
         sums = np.array([2.0 * x1, x1 + x2, 2.0 * x2])
-        image_full = self._images(sums) - 0.5 / self.length
+        image_full = self._image_part(sums) - 0.5 / self.length
         kept = np.stack([phase1 * phase1, phase1 * phase2, phase2 * phase2]) @ self._weight
         image = image_full - kept.real
         d0, dp, dm = self._direct
