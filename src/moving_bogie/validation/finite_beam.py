@@ -63,6 +63,8 @@ class FiniteBeamResult:
         "bogie", "masses" or "force".
     k_max : float
         Highest modelled wavenumber ``N pi / L``.
+    static_correction : bool
+        Whether the truncated modes' quasi-static response was added back.
     """
 
     tau: np.ndarray
@@ -78,6 +80,7 @@ class FiniteBeamResult:
     elapsed_s: float
     model: str = "bogie"
     k_max: float = math.nan
+    static_correction: bool = False
 
 
 def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
@@ -225,6 +228,7 @@ def simulate_finite_beam(
         elapsed_s=elapsed_s,
         model=model,
         k_max=geometry.k_max,
+        static_correction=static_correction,
     )
 
 
