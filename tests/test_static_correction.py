@@ -63,7 +63,9 @@ def test_supercritical_undamped_is_refused():
 def _static_system(corrected: bool, n: int = 20):
     """Two masses standing still (alpha = 0) on a beam of length 60 in only `n` modes (k_max ~ 1)."""
     beam = ModalBeam(60.0, n, eta_f=0.1, eta_s=0.3)
-    vehicle = Vehicle("masses", eta_M=2.0, d=2.0, mu_v=1.0, J_b=1.0, kappa_v=0.2, eta_v=0.0, alpha=0.0, entry=25.0)
+    vehicle = Vehicle(
+        "masses", eta_M=2.0, d=2.0, mu_v=1.0, J_b=1.0, kappa_v=0.2, eta_v=0.0, alpha=0.0, entry=25.0
+    )
     return (CorrectedModalSystem if corrected else ModalSystem)(beam, vehicle)
 
 

@@ -203,7 +203,8 @@ def test_perturbed_closed_form_fails(monkeypatch):
     ts = honest.closed  # same tau grid: no second frequency search
 
     def perturbed(*args, **kwargs):
-        return dataclasses.replace(ts, **{k: 1.02 * getattr(ts, k) for k in ("w_rear", "w_front", "u", "theta")})
+        names = ("w_rear", "w_front", "u", "theta")
+        return dataclasses.replace(ts, **{k: 1.02 * getattr(ts, k) for k in names})
 
     monkeypatch.setattr(closed_form, "closed_form_response", perturbed)
     result = validate(params, tau_max=40.0, estimate=False)

@@ -56,7 +56,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="plain N-mode finite beam, without the static correction of the truncated modes",
     )
     parser.add_argument(
-        "--no-estimate", action="store_true", help="skip the second run (twice the time step) of the error estimate"
+        "--no-estimate",
+        action="store_true",
+        help="skip the second run (twice the time step) of the error estimate",
     )
     parser.add_argument("--plot", metavar="F.png", help="write the paper-style figure (PNG, PDF or SVG)")
     add_json_option(parser)

@@ -146,9 +146,7 @@ class CorrectedModalSystem(ModalSystem):
         """Deflections under the wheels (the unknowns ``w_j``; modal part plus ``2 R`` for forces)."""
         n = self.beam.n_modes
         if self.n_wheel:
-            return ContactResponse(
-                (float(z[n]), float(z[n + 1])), (float(v[n]), float(v[n + 1]))
-            )
+            return ContactResponse((float(z[n]), float(z[n + 1])), (float(v[n]), float(v[n + 1])))
         modal = super().contact(tau, z, v)
         static = self.flexibility(tau) @ np.array([2.0, 2.0])
         return ContactResponse((modal.w[0] + static[0], modal.w[1] + static[1]), modal.dw)

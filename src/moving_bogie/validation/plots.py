@@ -1,4 +1,4 @@
-"""Paper-style overlay of a finite-beam validation (Figures 5, 9-14, A1-A7): finite beam against closed form."""
+"""Paper-style overlay of a finite-beam validation (Figures 5, 9-14, A1-A7): finite beam vs closed form."""
 
 from __future__ import annotations
 

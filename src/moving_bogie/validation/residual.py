@@ -15,7 +15,8 @@ the symbol of the moving-load operator (Eq. (24) at ``q = 0``, with the Pasterna
 of the imaginary part follows from the ``exp(i lambda alpha tau)`` forcing). The truncated modes'
 deflection at wheel ``j`` is therefore ``sum_l R_jl F_l`` with the residual flexibility
 
-    R_jl = sum_{k > N} (1/L) Re[(exp(i lambda_k (x_l - x_j)) - exp(i lambda_k (x_j + x_l))) / Omega(lambda_k)].
+    R_jl = sum_{k > N} (1/L) Re[(exp(i lambda_k (x_l - x_j)) - exp(i lambda_k (x_j + x_l)))
+                                / Omega(lambda_k)].
 
 The whole series (``k >= 1``) is summed in closed form by Poisson summation: with the moving-load
 Green's function ``G(s) = (1/2 pi) int exp(i p s) / Omega(p) dp`` of the infinite beam,

@@ -23,7 +23,14 @@ import numpy as np
 
 from moving_bogie.validation.finite_beam import FiniteBeamResult
 
-__all__ = ["DEFAULT_TOLERANCE", "QUANTITIES", "QuantityComparison", "ValidationResult", "compare_series", "series"]
+__all__ = [
+    "DEFAULT_TOLERANCE",
+    "QUANTITIES",
+    "QuantityComparison",
+    "ValidationResult",
+    "compare_series",
+    "series",
+]
 
 #: Default tolerance: every quantity within 1 % of its largest value over the window.
 DEFAULT_TOLERANCE = 0.01
@@ -140,7 +147,7 @@ def compare_series(
 
 @dataclass(frozen=True)
 class ValidationResult:
-    """Finite beam against closed form on one tau grid (see :func:`~moving_bogie.validation.compare.validate`).
+    """Finite beam against closed form on one tau grid (:func:`moving_bogie.validation.compare.validate`).
 
     Attributes
     ----------

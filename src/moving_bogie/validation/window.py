@@ -142,4 +142,3 @@ def comparison_window(params: Any, finite: FiniteBeamResult, *, reflection_level
         margin = math.log(1e3) / gamma
         end = min(end, (finite.length - finite.entry - d - margin) / alpha)
     return float(min(max(end, min(finite.tau_valid, tau_end)), tau_end))
-
