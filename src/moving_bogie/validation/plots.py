@@ -46,22 +46,12 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
     correction = " + static correction" if result.finite.static_correction else ""
     for letter, (ax, name) in zip("abc", zip(axes, panels)):
         attr = QUANTITIES[name][0]
-        ax.plot(
-            tau,
-            series(result.finite, attr, tau.size),
-            "-",
-            color="C0",
-            lw=1.2,
-            label=f"finite beam, {result.finite.n_modes} modes{correction}",
+        curves = (
+            (result.finite, "-", "C0", f"finite beam, {result.finite.n_modes} modes{correction}"),
+            (result.closed, "--", "C3", "closed form (infinite beam)"),
         )
-        ax.plot(
-            tau,
-            series(result.closed, attr, tau.size),
-            "--",
-            color="C3",
-            lw=1.2,
-            label="closed form (infinite beam)",
-        )
+        for source, style, color, label in curves:
+            ax.plot(tau, series(source, attr, tau.size), style, color=color, lw=1.2, label=label)
         if tau_w < tau[-1]:
             ax.axvspan(tau_w, tau[-1], color="0.88", zorder=0, label="after the window")
         ax.axvline(tau_w, color="k", ls=":", lw=1.0, label="window end")
@@ -76,7 +66,7 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
         q = result.quantities[name]
         ax.set_ylabel(labels[name])
         ax.set_title(
-            f"({letter})  max |difference| in the window {q.max_abs_diff:.2g} = {q.relative:.2%} of "
+            f"({letter})  max |difference| in the window {q.max_abs_diff:.2g} = {100 * q.relative:.2g} % of "
             f"max |closed form| (tolerance {q.tolerance:.0%})",
             loc="left",
             fontsize=8,
