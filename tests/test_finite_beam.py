@@ -341,9 +341,13 @@ def test_result_fields_and_output_resampling():
     assert part.elapsed_s > 0 and part.k_max == pytest.approx(60 * math.pi / 50)
 
 
-def test_rejects_timoshenko_and_bad_input():
-    with pytest.raises(MovingBogieError, match="Euler-Bernoulli"):
-        simulate_finite_beam(SimpleNamespace(**{**vars(make_params()), "beam": "tr"}), 10.0)
+def test_rejects_bad_input():
+    with pytest.raises(MovingBogieError, match="S > 0 and r > 0"):
+        simulate_finite_beam(
+            SimpleNamespace(**{**vars(make_params()), "beam": "tr", "S": 10.0, "r": 0.0}), 10.0
+        )
+    with pytest.raises(MovingBogieError, match="beam must be"):
+        simulate_finite_beam(SimpleNamespace(**{**vars(make_params()), "beam": "layered"}), 10.0)
     with pytest.raises(MovingBogieError, match="leave the beam"):
         simulate_finite_beam(make_params(), 100.0, n_modes=50, length=50.0, entry=10.0)
     with pytest.raises(MovingBogieError, match="model"):

@@ -24,6 +24,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
         epilog=(
             "examples:\n  moving-bogie validate --case 7\n"
+            "  moving-bogie validate --case 7 --beam tr --S 10 --r 0.09\n"
             "  moving-bogie validate --case 1 --tmax 400 --plot case1.png\n"
             "  moving-bogie validate --case 2 --modes 1000 --json\n"
             "  moving-bogie validate --case 5 --model masses --plot masses5.png"
@@ -100,7 +101,8 @@ def run(args: argparse.Namespace) -> int:
         )
     if args.plot:
         name = f"Case {args.case}" if args.case is not None else "moving bogie"
-        title = f"{name} ({args.model}): finite beam (solid) vs closed form (dashed)"
+        beam = ", Timoshenko-Rayleigh beam" if getattr(params, "beam", "eb") == "tr" else ""
+        title = f"{name} ({args.model}{beam}): finite beam (solid) vs closed form (dashed)"
         figure = plot_validation(result, title=title)
         buffer = io.BytesIO()
         figure.savefig(buffer, format=suffix, dpi=150)
@@ -123,19 +125,21 @@ def format_result(result) -> str:
     """Readable summary of a :class:`~moving_bogie.validation.verdict.ValidationResult`."""
     finite = result.finite
     correction = "with" if finite.static_correction else "without"
+    beam = "Timoshenko-Rayleigh" if getattr(result.params, "beam", "eb") == "tr" else "Euler-Bernoulli"
     lines = [
-        f"Finite beam ({finite.n_modes} modes {correction} static correction, L = {finite.length:.1f}, "
-        f"entry x0 = {finite.entry:.1f}, k_max = {finite.k_max:.2f}, dt = {finite.dt:.4f}) vs closed "
-        f"form, {result.model}",
+        f"Finite {beam} beam ({finite.n_modes} modes {correction} static correction, "
+        f"L = {finite.length:.1f}, entry x0 = {finite.entry:.1f}, k_max = {finite.k_max:.2f}, "
+        f"dt = {finite.dt:.4f}) vs closed form, {result.model}",
         f"comparison window: tau in [0, {result.window[1]:.1f}] of [0, {result.tau[-1]:g}] "
         f"(strict reflection-free tau_valid = {finite.tau_valid:.1f})",
         f"  {'quantity':<9}{'max |diff|':>12}{'max |X|':>10}{'relative':>10}{'est. error':>12}  verdict",
     ]
     for name, q in result.quantities.items():
         verdict = "ok" if q.within else "EXCEEDS"
+        estimate = "-" if q.error_estimate != q.error_estimate else f"{q.error_estimate:.2g}"  # NaN: not run
         lines.append(
             f"  {name:<9}{q.max_abs_diff:>12.4g}{q.amplitude:>10.4g}{q.relative:>10.3%}"
-            f"{q.error_estimate:>12.2g}  {verdict}"
+            f"{estimate:>12}  {verdict}"
         )
     lines.append(
         f"tolerance: max|X_finite - X_closed| <= {result.tolerance:.3g} max|X_closed| over the window "

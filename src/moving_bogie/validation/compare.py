@@ -70,11 +70,6 @@ def _check(params: Any, model: str, n_modes: int, tol: float, tau_step: float) -
         raise MovingBogieError(f"n_modes must be an integer of at least 4 (got {n_modes!r})")
     if not (math.isfinite(tol) and 0 < tol < 1):
         raise MovingBogieError(f"tol must be a number between 0 and 1 (got {tol!r})")
-    if getattr(params, "beam", "eb") != "eb":
-        raise MovingBogieError(
-            f"finite-beam validation is implemented for the Euler-Bernoulli beam only (beam='eb'), "
-            f"got beam={params.beam!r}"
-        )
     if not (tau_step > 0 and math.isfinite(tau_step)):
         raise MovingBogieError(f"tau_step must be a positive finite number (got {tau_step!r})")
 
@@ -97,8 +92,9 @@ def validate(
     Parameters
     ----------
     params : DimensionlessParams or PhysicalParams
-        Euler-Bernoulli beam only. Physical parameters are converted; the comparison is always in
-        dimensionless tau and w / w_st.
+        Euler-Bernoulli or Timoshenko-Rayleigh beam (``beam="tr"``, the finite beam of
+        :class:`~moving_bogie.validation.modal.ModalBeam` with two unknowns per mode number).
+        Physical parameters are converted; the comparison is always in dimensionless tau and w / w_st.
     model : {"bogie", "masses"}, optional
         The bogie of Fig. 1b or the two masses of Fig. 1a.
     n_modes : int, optional
@@ -128,8 +124,8 @@ def validate(
     Raises
     ------
     MovingBogieError
-        For an unknown model, too few modes, a bad `tau_max` or `tol`, the Timoshenko-Rayleigh
-        beam, or when the closed form fails (e.g. incomplete induced frequencies).
+        For an unknown model or beam, too few modes, a bad `tau_max` or `tol`, or when the closed
+        form fails (e.g. incomplete induced frequencies).
     """
     from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.response.closed_form import closed_form_response
@@ -181,7 +177,7 @@ def validate(
     tau_w = comparison_window(params, finite, reflection_level=reflection_level)
     inside = tau <= tau_w * (1 + 1e-12)
     names = ("rear", "front", "u", "theta") if model == "bogie" else ("rear", "front")
-    quantities, notes = {}, []
+    quantities, notes = {}, [f"closed form: {note}" for note in getattr(closed, "notes", ())]
     for name in names:
         attr = QUANTITIES[name][0]
         closed_x = series(closed, attr, tau.size)[inside]

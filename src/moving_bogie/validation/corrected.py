@@ -55,15 +55,14 @@ class CorrectedModalSystem(ModalSystem):
         super().__init__(beam, vehicle)
         v = vehicle
         self.residual = ResidualFlexibility(
-            beam.wavenumbers, beam.length, v.alpha, beam.eta_f, beam.eta_s, v.d
+            beam.wavenumbers, beam.length, v.alpha, beam.eta_f, beam.eta_s, v.d, beam.S, beam.r
         )
         self.n_wheel = 0 if v.model == "force" else 2
-        n, nw, ne = beam.n_modes, self.n_wheel, v.n_extra
+        n, nw, ne = beam.n_dof, self.n_wheel, v.n_extra  # n: beam unknowns (2N for TR)
         self.n_dof = n + nw + ne
         self.bar_index = n + nw if ne else None
-        m_diag, c_diag, k_diag = np.ones(self.n_dof), np.zeros(self.n_dof), np.zeros(self.n_dof)
-        c_diag[:n] = 2.0 * beam.eta_f
-        k_diag[:n] = beam.omega2
+        m_diag, c_diag, k_diag = (np.concatenate([x, np.ones(nw + ne)]) for x in beam.diagonals)
+        c_diag[n:], k_diag[n:] = 0.0, 0.0
         # Constant part of the wheel and bar block, dense (rows and columns n..n_dof-1).
         block_c, block_k = np.zeros((nw + ne, nw + ne)), np.zeros((nw + ne, nw + ne))
         if nw:
@@ -105,26 +104,27 @@ class CorrectedModalSystem(ModalSystem):
         if self._buffers is None:
             self._buffers = self._constant_parts()
         k_diag, ut, vmt, vct, vkt, force, k_wheels = self._buffers
-        n = self.beam.n_modes
+        modes, n = self.beam.n_modes, self.beam.n_dof  # deflection modes; wheels start at n
         a, _, _ = self.contact_shapes(tau)
         (r11, r12), (r21, r22) = self.flexibility(tau)
         stiff = np.array([[r22, -r12], [-r21, r11]]) / (r11 * r22 - r12 * r21)  # R^{-1}
         # Modal rows: - (2/L) a_j [R^{-1} (w - A^T q)]_j on the left-hand side.
-        ut[:2, :n] = (2.0 / self.beam.length) * a
+        ut[:2, :modes] = (2.0 / self.beam.length) * a
         stiff_a = stiff @ a
-        vkt[:2, :n] = stiff_a
+        vkt[:2, :modes] = stiff_a
         vkt[:2, n : n + 2] = -stiff
         # Wheel rows: R^{-1} (w - A^T q) besides the suspension (diagonal and off-diagonal parts).
-        vkt[2:4, :n] = -stiff_a
+        vkt[2:4, :modes] = -stiff_a
         k_diag[n : n + 2] = k_wheels + np.diag(stiff)
         vkt[2, n + 1] = self._block[1][0, 1] + stiff[0, 1]
         vkt[3, n] = self._block[1][1, 0] + stiff[1, 0]
         m_diag, c_diag, _ = self._diag
-        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force)
+        beam = self.beam
+        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force, beam.pairs, beam.k_pair)
 
     def _constant_parts(self) -> tuple[np.ndarray, ...]:
         """Buffers of :meth:`assemble` holding every entry that does not change with time."""
-        n, nb = self.beam.n_modes, self.n_dof - self.beam.n_modes
+        n, nb = self.beam.n_dof, self.n_dof - self.beam.n_dof
         m_diag, c_diag, k_diag = self._diag
         block_c, block_k = self._block
         c_diag[n:] += np.diag(block_c)
@@ -144,7 +144,7 @@ class CorrectedModalSystem(ModalSystem):
 
     def contact(self, tau: float, z: np.ndarray, v: np.ndarray) -> ContactResponse:
         """Deflections under the wheels (the unknowns ``w_j``; modal part plus ``2 R`` for forces)."""
-        n = self.beam.n_modes
+        n = self.beam.n_dof
         if self.n_wheel:
             return ContactResponse((float(z[n]), float(z[n + 1])), (float(v[n]), float(v[n + 1])))
         modal = super().contact(tau, z, v)

@@ -98,10 +98,12 @@ def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
 
 
 def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | None) -> None:
-    if getattr(params, "beam", "eb") != "eb":
+    beam = getattr(params, "beam", "eb")
+    if beam not in ("eb", "tr"):
+        raise MovingBogieError(f"beam must be 'eb' or 'tr' (got {beam!r})")
+    if beam == "tr" and not (float(params.S) > 0 and float(params.r) > 0):
         raise MovingBogieError(
-            f"the finite-beam model is implemented for the Euler-Bernoulli beam only (beam='eb'), "
-            f"got beam={params.beam!r}"
+            f"the Timoshenko-Rayleigh finite beam needs S > 0 and r > 0 (got S={params.S}, r={params.r})"
         )
     if model not in MODELS:
         raise MovingBogieError(f"model must be one of {', '.join(MODELS)} (got {model!r})")
@@ -176,6 +178,8 @@ def simulate_finite_beam(
     _check(params, tau_max, model, n_modes, dt)
     alpha, eta_f, d = float(params.alpha), float(params.eta_f), float(params.d)
     eta_s = float(getattr(params, "eta_s", 0.0))
+    tr = getattr(params, "beam", "eb") == "tr"
+    shear, radius = (float(params.S), float(params.r)) if tr else (None, 0.0)
     geometry = choose_geometry(
         alpha=alpha,
         eta_f=eta_f,
@@ -185,6 +189,8 @@ def simulate_finite_beam(
         n_modes=n_modes,
         length=length,
         entry=entry,
+        S=shear,
+        r=radius,
     )
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:
         raise MovingBogieError(
@@ -202,7 +208,8 @@ def simulate_finite_beam(
 
     system_class = CorrectedModalSystem if static_correction else ModalSystem
     system = system_class(
-        ModalBeam(geometry.length, n_modes, eta_f, eta_s), _vehicle(params, model, geometry.entry)
+        ModalBeam(geometry.length, n_modes, eta_f, eta_s, shear, radius),
+        _vehicle(params, model, geometry.entry),
     )
     series, elapsed_s = _integrate(system, h, n_steps, progress)
 

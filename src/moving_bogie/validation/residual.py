@@ -39,34 +39,59 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 
-__all__ = ["ResidualFlexibility", "moving_green_function", "moving_symbol"]
+__all__ = ["ResidualFlexibility", "moving_green_function", "moving_symbol", "symbol_polynomials"]
 
 
-def moving_symbol(p: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0) -> np.ndarray:
-    """``Omega(p) = 1 + (eta_s - alpha^2) p^2 + p^4 / 4 + 2 i eta_f alpha p`` (module docstring)."""
+def symbol_polynomials(
+    alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """``Omega(p) = den(p) / num(p)``: coefficients of ``num`` and ``den`` in ``p``, highest first.
+
+    Euler-Bernoulli: ``num = 1``, ``den = p^4/4 + (eta_s - alpha^2) p^2 + 2 i eta_f alpha p + 1``.
+    Timoshenko-Rayleigh (``S`` given; the two modal equations of
+    :attr:`~moving_bogie.validation.modal.ModalBeam.diagonals` driven at ``exp(i p alpha tau)``, the
+    rotation eliminated): ``num = Q = S + (1/4 - r^2 alpha^2) p^2`` and
+    ``den = (1 + (S + eta_s - alpha^2) p^2 + 2 i eta_f alpha p) Q - S^2 p^2``.
+    """
+    if S is None:
+        return np.array([1.0 + 0j]), np.array([0.25, 0.0, eta_s - alpha * alpha, 2j * eta_f * alpha, 1.0])
+    q = np.array([0.25 - r * r * alpha * alpha, 0.0, S], dtype=complex)
+    den = np.polymul([S + eta_s - alpha * alpha, 2j * eta_f * alpha, 1.0], q)
+    den[2] -= S * S
+    return q, den
+
+
+def moving_symbol(
+    p: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
+) -> np.ndarray:
+    """``Omega(p)``: ``1 + (eta_s - alpha^2) p^2 + p^4 / 4 + 2 i eta_f alpha p`` for EB (module docstring)."""
+    num, den = symbol_polynomials(alpha, eta_f, eta_s, S, r)
     p = np.asarray(p, dtype=float)
-    p2 = p * p
-    return 1.0 + (eta_s - alpha * alpha) * p2 + 0.25 * p2 * p2 + 2j * eta_f * alpha * p
+    return np.polyval(den, p) / np.polyval(num, p)
 
 
-def _roots(alpha: float, eta_f: float, eta_s: float) -> np.ndarray:
-    roots = np.roots([1.0, 0.0, -4.0 * (alpha * alpha - eta_s), 8j * eta_f * alpha, 4.0])
-    if np.min(np.abs(roots.imag)) < 1e-9:
+def _residues(alpha: float, eta_f: float, eta_s: float, S: float | None, r: float):
+    """Roots ``p_r`` of ``den`` and the residue weights ``num(p_r) / den'(p_r)``."""
+    num, den = symbol_polynomials(alpha, eta_f, eta_s, S, r)
+    roots = np.roots(den)
+    where = f"alpha={alpha}, eta_f={eta_f}, eta_s={eta_s}" + ("" if S is None else f", S={S}, r={r}")
+    if roots.size != 4 or np.min(np.abs(roots.imag)) < 1e-9:
         raise MovingBogieError(
             "the static correction needs a moving-load deflection that decays away from the load "
-            f"(alpha={alpha} is at or above the undamped critical velocity for eta_f={eta_f}, "
-            f"eta_s={eta_s}); run without the correction"
+            f"(at {where} the velocity is at or above the undamped critical velocity); run without "
+            "the correction"
         )
     gaps = np.abs(roots[:, None] - roots[None, :]) + np.eye(4)
     if np.min(gaps) < 1e-6:
         raise MovingBogieError(
-            f"the moving-load symbol has a double root at alpha={alpha}, eta_f={eta_f}, "
-            f"eta_s={eta_s}; run without the static correction"
+            f"the moving-load symbol has a double root at {where}; run without the static correction"
         )
-    return roots
+    return roots, np.polyval(num, roots) / np.polyval(np.polyder(den), roots)
 
 
-def moving_green_function(s: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0) -> np.ndarray:
+def moving_green_function(
+    s: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
+) -> np.ndarray:
     """``G(s) = (1/2 pi) int exp(i p s) / Omega(p) dp`` by residues (module docstring).
 
     Parameters
@@ -75,25 +100,20 @@ def moving_green_function(s: np.ndarray, alpha: float, eta_f: float, eta_s: floa
         Distance from the load (observation minus load position).
     alpha, eta_f, eta_s : float
         Velocity, foundation damping and Pasternak parameter, Eq. (17).
+    S, r : float, optional
+        Timoshenko-Rayleigh shear and radius of gyration, Eq. (59); Euler-Bernoulli without `S`.
 
     Returns
     -------
     ndarray
-        Real; ``G(0) = 1/2`` at ``alpha = 0``, ``eta_s = 0``.
+        Real; ``G(0) = 1/2`` at ``alpha = 0``, ``eta_s = 0`` (Euler-Bernoulli).
 
     Raises
     ------
     MovingBogieError
         When ``Omega`` has a real or a double root (undamped at or above the critical velocity).
     """
-    return _green_from_roots(np.asarray(s, dtype=float), *_residues(alpha, eta_f, eta_s))
-
-
-def _residues(alpha: float, eta_f: float, eta_s: float) -> tuple[np.ndarray, np.ndarray]:
-    """Roots ``p_r`` of ``P`` and the residue weights ``4 / P'(p_r)``."""
-    roots = _roots(alpha, eta_f, eta_s)
-    weights = 4.0 / (4.0 * roots**3 - 8.0 * (alpha * alpha - eta_s) * roots + 8j * eta_f * alpha)
-    return roots, weights
+    return _green_from_roots(np.asarray(s, dtype=float), *_residues(alpha, eta_f, eta_s, S, r))
 
 
 def _green_from_roots(s: np.ndarray, roots: np.ndarray, weights: np.ndarray) -> np.ndarray:
@@ -121,19 +141,29 @@ class ResidualFlexibility:
         Velocity, foundation damping, Pasternak parameter.
     d : float
         Wheel spacing (front wheel at ``x_1 + d``).
+    S, r : float, optional
+        Timoshenko-Rayleigh beam, Eq. (59) (Euler-Bernoulli without `S`).
     """
 
     def __init__(
-        self, wavenumbers: np.ndarray, length: float, alpha: float, eta_f: float, eta_s: float, d: float
+        self,
+        wavenumbers: np.ndarray,
+        length: float,
+        alpha: float,
+        eta_f: float,
+        eta_s: float,
+        d: float,
+        S: float | None = None,
+        r: float = 0.0,
     ) -> None:
         self.length = float(length)
-        roots, weights = _residues(alpha, eta_f, eta_s)
+        roots, weights = _residues(alpha, eta_f, eta_s, S, r)
         self._green = lambda s: _green_from_roots(s, roots, weights)
         # For 0 <= s <= 2L the images s and s + 2L close above, s - 2L below (see _image_part).
         up = roots.imag > 0
         self._upper = (roots[up], 1j * weights[up] * (1.0 + np.exp(2j * self.length * roots[up])))
         self._lower = (roots[~up], -1j * weights[~up])
-        self._weight = 1.0 / (self.length * moving_symbol(wavenumbers, alpha, eta_f, eta_s))
+        self._weight = 1.0 / (self.length * moving_symbol(wavenumbers, alpha, eta_f, eta_s, S, r))
         # The direct (translation-invariant) part depends only on x_l - x_j in {0, d, -d}.
         shifts = np.array([0.0, d, -d])
         direct_full = self._images(shifts) - 0.5 / self.length

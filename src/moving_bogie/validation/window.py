@@ -120,11 +120,21 @@ def comparison_window(params: Any, finite: FiniteBeamResult, *, reflection_level
     The first ``tau`` at which :func:`reflection_bound` exceeds `reflection_level`, or at which the
     front wheel's near field (decay ``exp(-gamma xi)``, margin ``ln(1000) / gamma``) reaches the
     right support, capped at the end of the run; never shorter than ``finite.tau_valid``.
+
+    Timoshenko-Rayleigh beam: the bound uses the Euler-Bernoulli spectrum and group velocity, so
+    the window is the strict ``tau_valid`` of its fastest modelled wave (both branches), capped by
+    the near field.
     """
     alpha, eta_f, d = float(params.alpha), float(params.eta_f), float(params.d)
     eta_s = float(getattr(params, "eta_s", 0.0))
     tau = finite.tau
     tau_end = float(tau[-1])
+    if getattr(params, "beam", "eb") == "tr":
+        gamma = near_field_decay_rate(alpha, eta_f, eta_s, float(params.S), float(params.r))
+        end = min(finite.tau_valid, tau_end)
+        if gamma > 0 and alpha > 0:
+            end = min(end, (finite.length - finite.entry - d - math.log(1e3) / gamma) / alpha)
+        return float(max(end, 0.0))
     bound = reflection_bound(
         tau,
         length=finite.length,
