@@ -6,6 +6,8 @@ Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_validation.py [--quick] [-
    Table 1, bogie and two masses: ``relative_diff`` per quantity (max |finite - closed| over the
    window divided by max |closed|), wall time of the whole call and of its parts; side by side, the
    same finite beam without the static correction (the alternative: the plain 500-mode model).
+   ``--tr``: the same for the Timoshenko-Rayleigh beam with the two parameter sets of Figure 8
+   (S = 10, r = 0.09 and S = 100, r = 0.03), bogie.
 2. ``--convergence``: for each case, the largest ``relative_diff`` over the four quantities against
    the number of modes N (fixed beam: the default length of the 500-mode run, so ``k_max = N pi /
    L``), with and without the static correction. Reference: the closed form
@@ -36,11 +38,13 @@ def table(header: list[str], rows: list[list[str]]) -> str:
     return "\n".join(lines)
 
 
-def defaults(model: str, cases: tuple[int, ...]) -> None:
+def defaults(model: str, cases: tuple[int, ...], tr: tuple[int, str] | None = None) -> None:
     rows = []
     worst = 0.0
     for case in cases:
         params = table1_case(case)
+        if tr is not None:
+            params = params.replace(beam="tr", S=tr[0], r=tr[1])
         start = time.perf_counter()
         result = validate(params, model=model)
         total = time.perf_counter() - start
@@ -60,7 +64,8 @@ def defaults(model: str, cases: tuple[int, ...]) -> None:
             ]
         )
     names = list(result.quantities)
-    print(f"\n## validate, {model}, defaults (500 modes, tolerance 1 %): relative_diff\n")
+    beam = "" if tr is None else f", Timoshenko-Rayleigh S = {tr[0]}, r = {tr[1]}"
+    print(f"\n## validate, {model}{beam}, defaults (500 modes, tolerance 1 %): relative_diff\n")
     print(
         table(
             [
@@ -123,6 +128,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="Cases 1, 2, 7 only")
     parser.add_argument("--convergence", action="store_true", help="also the modes-vs-error table")
+    parser.add_argument("--tr", action="store_true", help="only the Timoshenko-Rayleigh tables")
     args = parser.parse_args()
     print(
         f"# bench_validation: {platform.python_version()}, numpy {np.__version__}, "
@@ -130,6 +136,10 @@ def main() -> None:
         f"load average {os.getloadavg()[0]:.1f}"
     )
     cases = (1, 2, 7) if args.quick else tuple(TABLE1_CASES)
+    if args.tr:
+        for tr in ((10, "0.09"), (100, "0.03")):
+            defaults("bogie", cases, tr)
+        return
     defaults("bogie", cases)
     defaults("masses", cases)
     if args.convergence:

@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from test_static_correction import SMALL_VEHICLE, assert_step_equals_dense_solve
 
 from moving_bogie.generated import foundation_eb, foundation_tr
 from moving_bogie.model.cases import table1_case
 from moving_bogie.validation.compare import validate
 from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.modal import ModalBeam, Vehicle
-from moving_bogie.validation.newmark import effective_matrix_dense, initial_state, newmark_step
 from moving_bogie.validation.residual import ResidualFlexibility, moving_symbol
 
 
@@ -58,21 +58,11 @@ def test_tr_residual_flexibility_equals_the_tail_of_the_modal_series():
 
 @pytest.mark.parametrize("model", ["force", "masses", "bogie"])
 def test_tr_woodbury_step_equals_dense_solve(model):
-    params = dict(eta_M=1.3, d=1.7, mu_v=2.1, J_b=0.6, kappa_v=0.4, eta_v=0.15, alpha=0.6, entry=3.1)
     beam = ModalBeam(9.0, 7, eta_f=0.12, eta_s=0.2, S=10.0, r=0.09)
-    system = CorrectedModalSystem(beam, Vehicle(model, **params))
-    first = system.assemble(0.0)
-    state = initial_state(0.0, np.zeros(system.n_dof), np.zeros(system.n_dof), first)
-    h = 0.05
-    stepped = newmark_step(state, h, system.assemble(h))
-    second = system.assemble(h)
-    _, c, k = second.dense()
+    system = CorrectedModalSystem(beam, Vehicle(model, **SMALL_VEHICLE))
+    _, _, k = system.assemble(0.0).dense()
     assert k[0, beam.n_modes] == pytest.approx(-10.0 * np.pi / 9.0)  # -S lambda_1 couples q_1, b_1
-    z_pred = state.z + h * state.v + 0.25 * h * h * state.a
-    v_pred = state.v + 0.5 * h * state.a
-    rhs = second.force - c @ v_pred - k @ z_pred
-    a_dense = np.linalg.solve(effective_matrix_dense(second, h), rhs)
-    assert np.allclose(stepped.a, a_dense, rtol=1e-10, atol=1e-12)
+    assert_step_equals_dense_solve(system)
 
 
 def test_tr_validation_agrees_and_the_plain_model_does_not():

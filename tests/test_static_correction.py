@@ -87,16 +87,23 @@ def test_static_deflection_is_exact_with_few_modes():
 
 @pytest.mark.parametrize("model", ["masses", "bogie"])
 def test_corrected_woodbury_step_equals_dense_solve(model):
-    params = dict(eta_M=1.3, d=1.7, mu_v=2.1, J_b=0.6, kappa_v=0.4, eta_v=0.15, alpha=0.6, entry=3.1)
-    system = CorrectedModalSystem(ModalBeam(9.0, 9, eta_f=0.12, eta_s=0.2), Vehicle(model, **params))
+    system = CorrectedModalSystem(ModalBeam(9.0, 9, eta_f=0.12, eta_s=0.2), Vehicle(model, **SMALL_VEHICLE))
+    assert_step_equals_dense_solve(system)
+
+
+#: A small vehicle with every parameter non-zero (for the step-by-step checks).
+SMALL_VEHICLE = dict(eta_M=1.3, d=1.7, mu_v=2.1, J_b=0.6, kappa_v=0.4, eta_v=0.15, alpha=0.6, entry=3.1)
+
+
+def assert_step_equals_dense_solve(system, h: float = 0.05) -> None:
+    """Initial state and one Newmark step of `system` against dense solves of the same matrices."""
     first = system.assemble(0.0)
-    m, c, k = first.dense()
+    m, _, _ = first.dense()
     state = initial_state(0.0, np.zeros(system.n_dof), np.zeros(system.n_dof), first)
     assert np.allclose(m @ state.a, first.force)
-    h = 0.05
     stepped = newmark_step(state, h, system.assemble(h))
     second = system.assemble(h)
-    m, c, k = second.dense()
+    _, c, k = second.dense()
     z_pred = state.z + h * state.v + 0.25 * h * h * state.a
     v_pred = state.v + 0.5 * h * state.a
     rhs = second.force - c @ v_pred - k @ z_pred

@@ -139,7 +139,8 @@ def simulate_finite_beam(
     ----------
     params : DimensionlessParams or duck-typed equivalent
         Needs ``eta_f, eta_M, d, mu_v, J_b, kappa_v, eta_v, alpha`` (anything ``float()`` accepts),
-        optionally ``eta_s`` (default 0) and ``beam`` (only "eb" is supported).
+        optionally ``eta_s`` (default 0) and ``beam`` ("eb", or "tr" with ``S`` and ``r``, Eq. (59):
+        the Timoshenko-Rayleigh beam of :class:`~moving_bogie.validation.modal.ModalBeam`).
     tau_max : float
         End of the run.
     model : {"bogie", "masses", "force"}, optional
@@ -173,7 +174,8 @@ def simulate_finite_beam(
     Raises
     ------
     MovingBogieError
-        For the Timoshenko-Rayleigh beam, an unknown model, or a beam too short for the run.
+        For an unknown beam or model, a Timoshenko-Rayleigh beam without ``S, r > 0``, a beam too
+        short for the run, or (static correction) a run at or above the undamped critical velocity.
     """
     _check(params, tau_max, model, n_modes, dt)
     alpha, eta_f, d = float(params.alpha), float(params.eta_f), float(params.d)
