@@ -79,7 +79,7 @@ def _residues(alpha: float, eta_f: float, eta_s: float, S: float | None, r: floa
         raise MovingBogieError(
             "the static correction needs a moving-load deflection that decays away from the load "
             f"(at {where} the velocity is at or above the undamped critical velocity); run without "
-            "the correction"
+            "the correction (static_correction=False, --no-correction)"
         )
     gaps = np.abs(roots[:, None] - roots[None, :]) + np.eye(4)
     if np.min(gaps) < 1e-6:
