@@ -20,6 +20,7 @@ __all__ = ["SUBCOMMAND_MODULES", "build_parser", "main"]
 
 #: Modules of this package that define subcommands, in the order ``--help`` lists them.
 SUBCOMMAND_MODULES: list[str] = [
+    "models_cmd",
     "params_cmd",
     "frequencies_cmd",
     "reproduce_cmd",

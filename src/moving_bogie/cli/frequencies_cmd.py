@@ -23,7 +23,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "examples:\n  moving-bogie frequencies --case 1\n"
             "  moving-bogie frequencies --case 7 --alpha 0.7 --json\n"
             "  moving-bogie frequencies --case 1 --beam tr --S 100 --r 0.03\n"
-            "  moving-bogie frequencies --case 5 --model masses"
+            "  moving-bogie frequencies --case 5 --model masses\n"
+            "  moving-bogie frequencies --case 1 --certify"
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -41,19 +42,26 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Exit status 1 on any difference beyond the print's rounding or any count mismatch."
         ),
         epilog="examples:\n  moving-bogie table2\n  moving-bogie table2 --decimals 12\n"
-        "  moving-bogie table2 --json",
+        "  moving-bogie table2 --json\n  moving-bogie table2 --certify",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     table.add_argument("--decimals", type=int, default=6, help="decimals shown in the text table (default 6)")
     table.add_argument("--dps", type=int, default=30, help="working precision in decimal digits (default 30)")
+    _add_certify_option(table)
     add_json_option(table)
     table.set_defaults(handler=run_table2)
 
 
-def _add_search_options(parser):
+def _add_certify_option(parser):
     parser.add_argument(
-        "--model", choices=("bogie", "masses"), default="bogie", help="vehicle (default bogie)"
+        "--certify",
+        action="store_true",
+        help="prove every root (alone in a square of half-side 1e-26), the count and the verdict in ball "
+        "arithmetic (exit status 1 if a root or a count is not proven; see docs/frequencies.md)",
     )
+
+
+def _add_search_options(parser):
     parser.add_argument(
         "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
     )
@@ -62,6 +70,7 @@ def _add_search_options(parser):
         metavar="X,Y",
         help="search window 0 <= Re q <= X, -Y <= Im q <= Y + eta_f (default: see docs/frequencies.md)",
     )
+    _add_certify_option(parser)
 
 
 def _check_dps(dps):
@@ -79,7 +88,7 @@ def run_frequencies(args: argparse.Namespace) -> int:
     from .progress import progress_bar
 
     _check_dps(args.dps)
-    params, _physical = params_from_args(args)
+    params, physical = params_from_args(args)
     window = None
     if args.window:
         try:
@@ -90,12 +99,46 @@ def run_frequencies(args: argparse.Namespace) -> int:
             raise ParameterError("window", "window sizes must be positive")
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
     with progress_bar("induced frequencies", enabled=not args.json) as update:
-        result = induced_frequencies(params, args.model, dps=args.dps, window=window, progress=update)
+        result = induced_frequencies(
+            params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
+        )
     if args.json:
-        print_json(result.to_dict())
+        print_json(with_si(result.to_dict(), result, physical))
     else:
         print(format_result(result))
-    return 0 if result.count_ok else 1
+        if physical is not None:
+            print(format_si(result, physical))
+    proven = result.certificate is None or result.certificate.all_proven
+    return 0 if result.count_ok and proven else 1
+
+
+def with_si(data: dict, result, physical) -> dict:
+    """For a ``[physical]`` input: each root also as ``omega`` [rad/s], Hz and growth time [s]."""
+    if physical is None:
+        return data
+    from moving_bogie.model.si_results import root_in_si
+
+    t_scale = physical.scales().t_scale
+    for entry, root in zip(data["roots"], result.roots):
+        entry.update(root_in_si(root.q, t_scale, digits=min(12, root.digits)))
+    data["si"] = {"t_scale_s": repr(t_scale), "physical": physical.to_dict(), "time_factor": "exp(i omega t)"}
+    return data
+
+
+def format_si(result, physical) -> str:
+    """The roots of a ``[physical]`` input in SI units, one line each."""
+    from moving_bogie.model.si_results import root_in_si
+
+    t_scale = physical.scales().t_scale
+    lines = [f"In SI (t = tau * {t_scale:.6g} s; time factor exp(i omega t), Im omega < 0 grows):"]
+    for k, root in enumerate(result.roots, 1):
+        si = root_in_si(root.q, t_scale, digits=min(8, root.digits))
+        growth = f", growth time {si['growth_time_s']} s" if si["growth_time_s"] else ""
+        lines.append(
+            f"  {k:<2}omega = +-{si['omega']['re']} + {si['omega']['im']}i rad/s, "
+            f"f = {si['frequency_hz']} Hz{growth}"
+        )
+    return "\n".join(lines)
 
 
 def format_result(result) -> str:
@@ -120,11 +163,33 @@ def format_result(result) -> str:
             f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s); degree of instability "
             f"{mpmath.nstr(result.degree_of_instability, 6)}, growth time 1/|Im q| = {growth}"
         )
+    if result.certificate is not None:
+        lines += format_certificate(result.certificate)
     for w in result.warnings:
         lines.append(f"WARNING: {w}")
     if not result.count_ok:
         lines.append("ERROR: the count and the roots found disagree: a root may be missing (see warnings)")
     return "\n".join(lines)
+
+
+def format_certificate(c) -> list:
+    """Lines reporting the ball-arithmetic proof (roots, count, unsearched strip, verdict)."""
+    lines = [
+        f"certified ({c.seconds:.1f} s): {c.proven_roots}/{len(c.roots)} roots proven, each alone in a "
+        f"square of half-side {c.roots[0].radius if c.roots else '-'}; count proven: {c.count}"
+        + ("" if c.all_proven else " (NOT all roots proven)")
+    ]
+    if c.unsearched:
+        lo, hi = min(u.y0 for u in c.unsearched), max(u.y1 for u in c.unsearched)
+        left, right = min(u.x0 for u in c.unsearched), max(u.x1 for u in c.unsearched)
+        lines.append(
+            f"  not searched by the proof: {lo:.4g} <= Im q <= {hi:.4g}, {left:.6g} <= Re q <= {right:.4g} "
+            "(along the cut of K)"
+        )
+    lines.append(f"  proven verdict: {c.verdict.upper()} in the window ({c.reason})")
+    for p in c.problems:
+        lines.append(f"  not proven: {p}")
+    return lines
 
 
 def run_table2(args: argparse.Namespace) -> int:
@@ -134,9 +199,10 @@ def run_table2(args: argparse.Namespace) -> int:
 
     _check_dps(args.dps)
     with progress_bar("Table 2", enabled=not args.json) as update:
-        table = compute_table2(dps=args.dps, progress=update)
+        table = compute_table2(dps=args.dps, progress=update, certify=args.certify)
     if args.json:
         print_json(table.to_dict())
     else:
         print(format_table2(table, decimals=args.decimals))
-    return 0 if table.ok else 1
+    proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
+    return 0 if table.ok and proven else 1

@@ -8,10 +8,19 @@ from fractions import Fraction
 from pathlib import Path
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.catalogue import default_catalogue
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import (
+    MODEL_OPTIONS,
+    add_json_option,
+    add_model_options,
+    add_parameter_options,
+    params_from_args,
+    print_json,
+)
 from .progress import progress_bar
 
+BEAM_CHOICES = tuple(default_catalogue().beams)
 _RAW = argparse.RawDescriptionHelpFormatter
 FIGURES = (2, 3, 4, 7, 8, 16)
 
@@ -43,12 +52,6 @@ def _add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
     """Parameters of the instability-lines / stability-map family (no alpha, no eta_M: they are the axes)."""
     g = parser.add_argument_group("parameters", "A Table 1 case as base (optional), then overrides.")
     g.add_argument("--case", type=int, metavar="N", help="take the other parameters from Table 1 case N")
-    g.add_argument(
-        "--model",
-        choices=("bogie", "masses"),
-        default="bogie",
-        help="bogie (Fig. 1b) or two masses (Fig. 1a)",
-    )
     if spacing_list:
         g.add_argument("--d", type=_number_list, metavar="D1,D2,...", help="wheel spacing(s) d (default 1)")
     else:
@@ -64,7 +67,7 @@ def _add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
         ("--r", "r", "radius of gyration, Eq. (59) (with --beam tr)"),
     ):
         g.add_argument(opt, dest=dest, type=_number, metavar="X", help=text)
-    g.add_argument("--beam", choices=("eb", "tr"), help="beam theory (default eb)")
+    add_model_options(parser)
 
 
 _DEFAULTS = dict(eta_f="0.05", eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5")
@@ -80,13 +83,14 @@ def _params_and_spacings(args):
         else DimensionlessParams.from_coefficients(**_DEFAULTS)
     )
     changes = {
-        k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r", "beam")
-    }
+        k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r")
+    } | {k: getattr(args, k, None) for k in MODEL_OPTIONS.values()}
     changes = {k: v for k, v in changes.items() if v is not None}
     spacings = args.d if isinstance(args.d, list) else ([args.d] if args.d is not None else None)
     if spacings:
         changes["d"] = spacings[0]
     params = base.replace(**changes)
+    args.model = params.vehicle
     return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
 
 
@@ -106,9 +110,20 @@ def _register_critical_velocity(subparsers) -> None:
         ),
         formatter_class=_RAW,
     )
-    p.add_argument("--beam", choices=("eb", "tr"), default="eb")
+    p.add_argument("--beam", choices=BEAM_CHOICES, default=None, help="beam (default eb, or the file's)")
     p.add_argument(
-        "--eta-s", dest="eta_s", type=_number, default="0", metavar="X", help="Pasternak shear layer"
+        "--file",
+        type=Path,
+        metavar="F.toml",
+        help="take the track from a parameter file; [physical] adds v_cr in m/s",
+    )
+    p.add_argument(
+        "--eta-s",
+        dest="eta_s",
+        type=_number,
+        default=None,
+        metavar="X",
+        help="Pasternak shear layer (default 0)",
     )
     p.add_argument("--S", type=_number, metavar="X", help="Timoshenko shear parameter (with --beam tr)")
     p.add_argument("--r", type=_number, metavar="X", help="radius of gyration (with --beam tr)")
@@ -119,10 +134,25 @@ def _register_critical_velocity(subparsers) -> None:
 def run_critical_velocity(args) -> int:
     from moving_bogie.stability.critical_velocity import critical_velocity
 
-    if args.beam == "tr" and (args.S is None or args.r is None):
+    physical = None
+    beam, eta_s, S, r = args.beam or "eb", args.eta_s or "0", args.S, args.r
+    if args.file is not None:
+        from moving_bogie.model.files import load_params_file
+
+        params, physical = load_params_file(args.file)
+        params = params.replace(**{k: v for k, v in (("beam", args.beam), ("eta_s", args.eta_s)) if v})
+        beam, eta_s = params.beam, params.eta_s
+        S, r = (args.S or params.S), (args.r or params.r)
+        if physical is not None:
+            physical = physical.with_dimensionless(params)
+    if beam == "tr" and (S is None or r is None):
         raise ParameterError("S", "--beam tr needs --S and --r")
-    res = critical_velocity(args.beam, eta_s=args.eta_s, S=args.S, r=args.r)
+    res = critical_velocity(beam, eta_s=eta_s, S=S, r=r)
     data = res.to_dict()
+    if physical is not None:
+        v_ref = physical.scales().v_ref
+        data["v_cr"] = f"{float(data['alpha_cr']) * v_ref:.10g}"
+        data["v_cr_unit"] = "m/s"
     if args.json:
         print_json(data)
     else:
@@ -131,6 +161,8 @@ def run_critical_velocity(args) -> int:
         )
         print(f"closed form      {data['alpha_cr_formula']}  ({data['formula']}; agrees: {data['agrees']})")
         print(f"method           {data['method']}")
+        if "v_cr" in data:
+            print(f"v_cr             {data['v_cr']} m/s")
     return 0
 
 
@@ -151,7 +183,6 @@ def _register_frequency_lines(subparsers) -> None:
         formatter_class=_RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--model", choices=("bogie", "masses"), default="bogie")
     p.add_argument("--alpha-min", type=float, default=0.0)
     p.add_argument("--alpha-max", type=float, default=1.2)
     p.add_argument("--checkpoints", type=int, default=13, help="velocities where all roots are found afresh")

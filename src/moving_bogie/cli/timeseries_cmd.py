@@ -77,9 +77,6 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def _add_common(parser):
     parser.add_argument(
-        "--model", choices=("bogie", "masses"), default="bogie", help="vehicle (default bogie)"
-    )
-    parser.add_argument(
         "--branch-cut",
         action=argparse.BooleanOptionalAction,
         default=None,

@@ -33,9 +33,6 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_parameter_options(parser)
     parser.add_argument(
-        "--model", choices=("bogie", "masses"), default="bogie", help="vehicle (default bogie)"
-    )
-    parser.add_argument(
         "--modes", type=int, default=500, metavar="N", help="sine modes of the finite beam (default 500)"
     )
     parser.add_argument(

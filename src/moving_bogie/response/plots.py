@@ -79,15 +79,20 @@ def _panels(ts, names, height, title, steady: bool):
     return fig
 
 
+def _has(ts, name: str) -> bool:
+    """Whether the vehicle has this response (the others are NaN, e.g. no bar for two masses)."""
+    return not np.all(np.isnan(getattr(ts, name)))
+
+
 def time_series_figure(ts, *, title: str | None = None, steady: bool = True):
-    """Three stacked panels: w_rear, u, theta against tau (two masses: w_rear, w_front)."""
-    names = ("w_rear", "u", "theta") if ts.model == "bogie" else ("w_rear", "w_front")
+    """Three stacked panels: w_rear, u, theta against tau (a vehicle without a bar: w_rear, w_front)."""
+    names = ("w_rear", "u", "theta") if _has(ts, "u") else ("w_rear", "w_front")
     return _panels(ts, names, 2.3 * len(names) + 0.4, title, steady)
 
 
 def long_time_figure(ts, *, title: str | None = None):
     """Two stacked panels, w_rear and u, for long times (Figures 6, 13, 15, A5, A7)."""
-    names = ("w_rear", "u") if ts.model == "bogie" else ("w_rear", "w_front")
+    names = ("w_rear", "u") if _has(ts, "u") else ("w_rear", "w_front")
     return _panels(ts, names, 5.0, title, steady=False)
 
 

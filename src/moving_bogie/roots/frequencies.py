@@ -15,6 +15,7 @@ Stability: the motion is unstable when some induced frequency has Im q < 0 (Eq. 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -88,6 +89,7 @@ class FrequencyResult:
     unsearched: tuple  # slivers around the cut that no contour can enter
     evaluations: int  # E_chr evaluations (double precision + high precision)
     warnings: tuple = field(default=())
+    certificate: object = None  # roots.certify.Certificate when asked for (certify=True)
 
     @property
     def found(self) -> int:
@@ -131,7 +133,7 @@ class FrequencyResult:
             "evaluations": self.evaluations,
             "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
             "warnings": list(self.warnings),
-        }
+        } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
 
 
 def default_window(params, model: str) -> Rectangle:
@@ -158,7 +160,7 @@ class CountMismatch(MovingBogieError):
 
 def induced_frequencies(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     *,
     dps: int = 30,
     extra_dps: int | None = None,
@@ -168,6 +170,7 @@ def induced_frequencies(
     eps_branch: float = 1e-5,
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
+    certify: bool = False,
 ) -> FrequencyResult:
     """Every induced frequency of ``params`` in ``window`` (default :func:`default_window`).
 
@@ -191,7 +194,10 @@ def induced_frequencies(
         Side of a single-root cell below which Newton's method is tried from its centre.
     progress : callable, optional
         Called with the fraction of work done (0..1).
+    certify : bool
+        Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
     """
+    model = model or params.vehicle
     if extra_dps is None:
         extra_dps = max(10, dps // 2)
     window = window or default_window(params, model)
@@ -255,6 +261,10 @@ def induced_frequencies(
         fast.evaluations + precise.evaluations,
         tuple(warnings),
     )
+    if certify:
+        from moving_bogie.roots.certify import certify as prove
+
+        result = dataclasses.replace(result, certificate=prove(result))
     report(1.0)
     return result
 

@@ -55,6 +55,8 @@ class Table2:
                 None if x is None else {"re": str(x[0]), "im": str(x[1])} for x in row.differences
             ]
             d["ok"] = row.ok
+            if row.result.certificate is not None:
+                d["certified"]["printed_enclosed"] = printed_enclosed(row)
             cases.append(d)
         return {"cases": cases, "ok": self.ok, "print_tolerance": str(PRINT_TOLERANCE)}
 
@@ -74,10 +76,25 @@ def compare_with_print(result, printed):
     return tuple(out)
 
 
-def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None) -> Table2:
+def printed_enclosed(row) -> list:
+    """Per computed root with a printed value: whether its proven enclosure rounds, at every point, to the
+    printed digits (None where nothing is printed or nothing was proven)."""
+    out = []
+    for r, e, diff in zip(row.result.roots, row.result.certificate.roots, row.differences):
+        if diff is None or not e.certified:
+            out.append(None)
+            continue
+        pr_re, pr_im = _printed_for(row, r)
+        decimals = len(pr_re.split(".")[1])
+        out.append(e.rounds_to(pr_re, pr_im, decimals))
+    return out
+
+
+def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None, certify: bool = False) -> Table2:
+    """Table 2 by :func:`induced_frequencies` per case (with ``certify``, each result carries its proof)."""
     rows = []
     for k, case in enumerate(cases):
-        result = induced_frequencies(table1_case(case), "bogie", dps=dps)
+        result = induced_frequencies(table1_case(case), "bogie", dps=dps, certify=certify)
         printed = tuple(table2_printed(case))
         rows.append(CaseRow(case, result, printed, compare_with_print(result, printed)))
         if progress:
@@ -112,9 +129,21 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
         verdict = "stable" if row.result.stable else "UNSTABLE"
         match = "" if not row.printed else ("matches print" if row.ok else "DIFFERS FROM PRINT")
         lines.append(f"{'':>7} {status}, {verdict}{', ' + match if match else ''}")
+        if row.result.certificate is not None:
+            lines.append(f"{'':>7} {certificate_line(row)}")
     lines.append("")
     lines.append("all cases ok" if table.ok else "MISMATCH: see the rows marked above")
     return "\n".join(lines)
+
+
+def certificate_line(row) -> str:
+    """One line: roots and count proven, the proven verdict, whether the printed digits are enclosed."""
+    c = row.result.certificate
+    text = f"proven: {c.proven_roots}/{len(c.roots)} roots, count {c.count}, verdict {c.verdict}"
+    enclosed = [x for x in printed_enclosed(row) if x is not None]
+    if enclosed:
+        text += ", printed digits " + ("enclosed" if all(enclosed) else "NOT ENCLOSED")
+    return text
 
 
 def _printed_for(row, root):

@@ -129,7 +129,7 @@ class InstabilityLines:
 
 def instability_lines(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     *,
     spacings: Sequence[float] | None = None,
     parameter: str = "eta_M",
@@ -177,6 +177,7 @@ def instability_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
+    model = model or params.vehicle
     if params.eta_f <= 0:
         raise ParameterError(
             "eta_f",

@@ -77,7 +77,7 @@ def _check(params: Any, model: str, n_modes: int, tol: float, tau_step: float) -
 def validate(
     params: Any,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     n_modes: int = 500,
     tau_max: float | None = None,
     tau_step: float = DEFAULT_TAU_STEP,
@@ -127,6 +127,7 @@ def validate(
         For an unknown model or beam, too few modes, a bad `tau_max` or `tol`, or when the closed
         form fails (e.g. incomplete induced frequencies).
     """
+    model = model or params.vehicle
     from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.response.closed_form import closed_form_response
 

@@ -78,7 +78,7 @@ class FiniteBeamResult:
     dt: float
     tau_valid: float
     elapsed_s: float
-    model: str = "bogie"
+    model: str | None = None
     k_max: float = math.nan
     static_correction: bool = False
 
@@ -119,7 +119,7 @@ def simulate_finite_beam(
     params: Any,
     tau_max: float,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     n_modes: int = 500,
     length: float | None = None,
     entry: float | None = None,
@@ -177,6 +177,7 @@ def simulate_finite_beam(
         For an unknown beam or model, a Timoshenko-Rayleigh beam without ``S, r > 0``, a beam too
         short for the run, or (static correction) a run at or above the undamped critical velocity.
     """
+    model = model or getattr(params, "vehicle", "bogie")  # a plain namespace of numbers: the bogie
     _check(params, tau_max, model, n_modes, dt)
     alpha, eta_f, d = float(params.alpha), float(params.eta_f), float(params.d)
     eta_s = float(getattr(params, "eta_s", 0.0))
