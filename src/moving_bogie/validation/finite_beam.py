@@ -84,17 +84,13 @@ class FiniteBeamResult:
 
 
 def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
-    return Vehicle(
-        model=model,
-        eta_M=float(params.eta_M),
-        d=float(params.d),
-        mu_v=float(params.mu_v),
-        J_b=float(params.J_b),
-        kappa_v=float(params.kappa_v),
-        eta_v=float(params.eta_v),
-        alpha=float(params.alpha),
-        entry=entry,
-    )
+    # Parameters of another vehicle read as None (two masses have no bar): they are not used then.
+    bar = {
+        name: 0.0 if getattr(params, name, None) is None else float(getattr(params, name))
+        for name in ("mu_v", "J_b", "kappa_v", "eta_v")
+    }
+    eta_m = 0.0 if getattr(params, "eta_M", None) is None else float(params.eta_M)
+    return Vehicle(model=model, eta_M=eta_m, d=float(params.d), alpha=float(params.alpha), entry=entry, **bar)
 
 
 def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | None) -> None:
