@@ -30,11 +30,10 @@ def test_modal_symbol_is_the_derived_kernel(S, r):
     # (Eq. (24), and N/Q of Eqs. (60)-(62) for TR) is 4 Omega(-p) (opposite Fourier sign).
     alpha, eta_f, eta_s = 0.6, 0.07, 0.2
     p = np.array([0.3, 1.7, -2.2, 9.0])
-    if S is None:
-        derived = np.polyval(foundation_eb.n_coeffs(0.0, alpha, eta_f, eta_s, 1.0, 0.0), p)
-    else:
-        args = (0.0, alpha, eta_f, eta_s, S, r)
-        derived = np.polyval(foundation_tr.n_coeffs(*args), p) / np.polyval(foundation_tr.q_coeffs(*args), p)
+    kernel = foundation_eb if S is None else foundation_tr
+    values = dict(q=0.0, alpha=alpha, eta_f=eta_f, eta_s=eta_s, S=S, r=r)
+    args = [values[name] for name in kernel.ARGUMENTS]
+    derived = np.polyval(kernel.n_coeffs(*args), p) / np.polyval(kernel.q_coeffs(*args), p)
     assert np.allclose(derived / (4.0 * moving_symbol(-p, alpha, eta_f, eta_s, S, r)), 1.0, rtol=1e-12)
 
 
