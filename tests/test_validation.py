@@ -246,3 +246,9 @@ def test_supercritical_undamped_needs_the_plain_model():
     params = table1_case(2).replace(alpha="1.2")
     with pytest.raises(MovingBogieError, match="critical velocity"):
         validate(params, n_modes=60, tau_max=5.0, estimate=False)
+
+
+def test_too_few_modes_for_the_correction_are_flagged():
+    # k_max = 20 pi / 83 = 0.76: the truncated modes are no faster than the forcing (docs/finite_beam.md).
+    result = validate(table1_case(13), n_modes=20, tau_max=10.0, estimate=False)
+    assert result.finite.k_max < 2 and any("static correction is unreliable" in n for n in result.notes)

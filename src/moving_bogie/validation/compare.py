@@ -57,6 +57,11 @@ __all__ = [
 ]
 
 
+#: Below this ``k_max`` the static correction's quasi-static assumption fails (measured: at
+#: ``k_max = 1`` Case 13 diverges, at 2 the correction still gains 2-30; ``docs/finite_beam.md``).
+MIN_CORRECTED_WAVENUMBER = 2.0
+
+
 def _staged(progress: Callable[[float], None] | None, start: float, width: float):
     if progress is None:
         return None
@@ -179,6 +184,11 @@ def validate(
     inside = tau <= tau_w * (1 + 1e-12)
     names = ("rear", "front", "u", "theta") if model == "bogie" else ("rear", "front")
     quantities, notes = {}, [f"closed form: {note}" for note in getattr(closed, "notes", ())]
+    if static_correction and finite.k_max < MIN_CORRECTED_WAVENUMBER:
+        notes.append(
+            f"k_max = {finite.k_max:.2f} < {MIN_CORRECTED_WAVENUMBER:g}: the truncated modes are not much "
+            "faster than the forcing, so the static correction is unreliable; use more modes"
+        )
     for name in names:
         attr = QUANTITIES[name][0]
         closed_x = series(closed, attr, tau.size)[inside]
