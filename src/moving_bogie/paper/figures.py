@@ -172,7 +172,7 @@ def _validation_figure(ctx: BuildContext, fig_id: str, case: int) -> Built:
     result = validate(table1_case(case), progress=ctx.progress)
     fig = plot_validation(result, title=f"Case {case}: finite beam (full) vs closed form (dashed)")
     diffs = "; ".join(
-        f"{name}: max diff {q.max_abs_diff:.2g} (tolerance {q.tolerance:.2g})"
+        f"{name}: {100 * q.relative:.2g} % of its largest value (tolerance {q.tolerance:.0%})"
         for name, q in result.quantities.items()
     )
     notes = [
