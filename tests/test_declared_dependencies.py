@@ -30,6 +30,7 @@ def _names(requirements) -> set:
 def _imported(folder: Path) -> set:
     """Distributions of every top-level third-party module imported under ``folder``."""
     dists = packages_distributions()
+    local = {path.stem for path in folder.rglob("*.py")}  # sibling modules (tests import helpers)
     found = set()
     for path in folder.rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text(), str(path))):
@@ -48,7 +49,7 @@ def _imported(folder: Path) -> set:
                 continue
             for module in modules:
                 top = module.split(".")[0]
-                if top in sys.stdlib_module_names or top in ("moving_bogie", "derivations", "conftest"):
+                if top in sys.stdlib_module_names or top in local or top in ("moving_bogie", "derivations"):
                     continue
                 for dist in dists.get(top, [top]):
                     found.add(dist.lower().replace("_", "-"))
