@@ -1,12 +1,14 @@
-"""Beam + foundation operators: the one place where the track model is defined.
+"""Beams and tracks: the one place where the track models are defined.
 
-A track model is a square matrix of constant-coefficient differential operators in fixed physical
-coordinates, written as polynomials in the operator symbols ``dx`` (d/dx) and ``dt`` (d/dt). The first
-unknown is the beam deflection ``w``; the moving loads enter the first equation only. Any further unknowns
-(the cross-section rotation of a Timoshenko beam, a second layer, ...) are eliminated by the derivation.
+A track model is a beam (the rail: Euler-Bernoulli or Timoshenko-Rayleigh) on a track (what supports the
+rail: today one viscoelastic layer with an optional Pasternak shear layer). Each is a square matrix of
+constant-coefficient differential operators in fixed physical coordinates, written as polynomials in the
+operator symbols ``dx`` (d/dx) and ``dt`` (d/dt). The first unknown is the rail deflection ``w``; the moving
+loads enter the first equation only; every further unknown (the cross-section rotation of a Timoshenko
+beam, the deflection of a mass layer, ...) is eliminated by the derivation.
 
-To add a foundation model, add one function returning its ``TrackModel`` and one entry to ``MODELS``;
-``python -m derivations`` then derives its D(p, q) = N/Q and writes ``generated/foundation_<name>.py``.
+Every beam runs on every track: adding one ``Track`` to ``TRACKS`` (or one ``Beam`` to ``BEAMS``) and running
+``python -m derivations`` generates the kernels of every new combination, with their metadata.
 """
 
 from dataclasses import dataclass
@@ -22,40 +24,109 @@ class TrackModel:
 
     ``unknown_scales[j]`` converts the j-th dimensionless unknown to SI (w = w_st w~, phi = w_st chi phi~,
     Eqs. (16), (59)); ``row_scales[i]`` multiplies equation i (row 0 as in Eq. (18): 4 / (k_f w_st)).
-    ``parameters`` names the dimensionless groups the model adds to alpha, eta_f, eta_s.
+    ``beam`` and ``track`` name the parts; ``description`` says what the model is in one line.
     """
 
     operator: sp.Matrix
     unknown_scales: tuple
     row_scales: tuple
-    parameters: tuple
+    beam: str = ""
+    track: str = ""
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Beam:
+    """The rail's operator on its own unknowns (w first), with their scales; ``title`` for listings."""
+
+    title: str
+    operator: sp.Matrix
+    unknown_scales: tuple
+    row_scales: tuple
+
+
+@dataclass(frozen=True)
+class Track:
+    """What supports the rail.
+
+    ``on_rail`` is added to the rail's first equation (the foundation reaction on w); ``layers`` is the
+    operator matrix of further unknowns (mass layers), ``coupling[j]`` the operator that couples the rail
+    deflection w with layer unknown j (symmetric), ``layer_scales`` the SI scale of each layer unknown and
+    its row.
+    """
+
+    title: str
+    on_rail: sp.Expr
+    layers: sp.ImmutableMatrix = sp.ImmutableMatrix.zeros(0, 0)
+    coupling: tuple = ()
+    layer_scales: tuple = ()
+
+
+BEAMS = {
+    "eb": Beam(
+        "Euler-Bernoulli beam, Eq. (1)", sp.Matrix([[EI * dx**4 + m * dt**2]]), (w_st,), (4 / (k_f * w_st),)
+    ),
+    # Eqs. (55)-(56), rotary inertia J = m r_g^2. Row 2 is scaled like Eq. (61) (4 S phi~ from GA phi); any
+    # scale would do, it cancels in Q/N.
+    "tr": Beam(
+        "Timoshenko-Rayleigh beam, Eqs. (55)-(56)",
+        sp.Matrix([[-GA * dx**2 + m * dt**2, GA * dx], [-GA * dx, GA + m * r_g**2 * dt**2 - EI * dx**2]]),
+        (w_st, w_st * chi),
+        (4 / (k_f * w_st), 2 / (sp.sqrt(k_f * EI) * w_st * chi)),
+    ),
+}
+
+TRACKS = {
+    "one-layer": Track(
+        "Winkler foundation with viscous damping and a Pasternak shear layer: k_f w + c_f w_t - k_s w_xx",
+        k_f + c_f * dt - k_s * dx**2,
+    ),
+}
+
+
+def compose(beam: str, track: str) -> TrackModel:
+    """The operator matrix of ``beam`` on ``track``: the rail block, the layer block and their coupling."""
+    b, t = BEAMS[beam], TRACKS[track]
+    nb, nl = b.operator.shape[0], t.layers.shape[0]
+    op = sp.zeros(nb + nl, nb + nl)
+    op[:nb, :nb] = b.operator
+    op[0, 0] += t.on_rail
+    for j in range(nl):
+        op[0, nb + j] = op[nb + j, 0] = t.coupling[j]
+        for i in range(nl):
+            op[nb + i, nb + j] = t.layers[i, j]
+    unknowns = tuple(b.unknown_scales) + tuple(s for s, _ in t.layer_scales)
+    rows = tuple(b.row_scales) + tuple(r for _, r in t.layer_scales)
+    return TrackModel(op, unknowns, rows, beam, track, f"{b.title} on a {track} track: {t.title}")
+
+
+def model_name(beam: str, track: str) -> str:
+    """Name of the generated kernel module's model: the beam alone on the paper's one-layer track."""
+    return beam if track == "one-layer" else f"{beam}_{track.replace('-', '_')}"
 
 
 def euler_bernoulli_pasternak() -> TrackModel:
     """Eq. (1) with the Pasternak layer k_s of the text: EI w_xxxx - k_s w_xx + m w_tt + c_f w_t + k_f w."""
-    op = sp.Matrix([[EI * dx**4 - k_s * dx**2 + m * dt**2 + c_f * dt + k_f]])
-    return TrackModel(op, (w_st,), (4 / (k_f * w_st),), ())
+    return compose("eb", "one-layer")
 
 
 def timoshenko_rayleigh() -> TrackModel:
-    """Eqs. (55)-(56), rotary inertia J = m r_g^2, with the same Pasternak layer acting on w.
-
-    Row 1: -GA w_xx + GA phi_x + m w_tt + c_f w_t + k_f w - k_s w_xx = p
-    Row 2: -GA w_x + GA phi + m r_g^2 phi_tt - EI phi_xx = 0
-    """
-    op = sp.Matrix(
-        [
-            [-GA * dx**2 - k_s * dx**2 + m * dt**2 + c_f * dt + k_f, GA * dx],
-            [-GA * dx, GA + m * r_g**2 * dt**2 - EI * dx**2],
-        ]
-    )
-    # Row 2 is scaled like Eq. (61) (4 S phi~ from GA phi); any scale would do, it cancels in Q/N.
-    row_scales = (4 / (k_f * w_st), 2 / (sp.sqrt(k_f * EI) * w_st * chi))
-    return TrackModel(op, (w_st, w_st * chi), row_scales, ("S", "r"))
+    """Eqs. (55)-(56) with the same foundation and Pasternak layer acting on w."""
+    return compose("tr", "one-layer")
 
 
-#: name -> track model builder. Adding a model here is all the runtime needs (after regenerating).
-MODELS = {
-    "eb": euler_bernoulli_pasternak,
-    "tr": timoshenko_rayleigh,
-}
+def _builder(beam, track):
+    def build() -> TrackModel:
+        return compose(beam, track)
+
+    build.__doc__ = f"{BEAMS[beam].title} on the {track} track."
+    return build
+
+
+def all_models() -> dict:
+    """model name -> builder, for every beam on every track (read at call time, so additions count)."""
+    return {model_name(b, t): _builder(b, t) for t in TRACKS for b in BEAMS}
+
+
+#: name -> track model builder, as of import time (``all_models()`` sees later additions too).
+MODELS = all_models()

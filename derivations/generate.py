@@ -1,10 +1,13 @@
-"""What ``python -m derivations`` writes: the generated kernels and the proof table.
+"""What ``python -m derivations`` writes: the generated kernels, their metadata and the proof table.
 
 Into src/moving_bogie/generated/:
-foundation_<name>.py  coefficients (highest power first) of N(p, q), dN/dq, Q(p, q), dQ/dq in p
-vehicle_<name>.py     E_chr, its partial derivatives, residue numerators and shape weights
-__init__.py           the lists of models and the inputs hash
-and docs/proofs.md: derived == printed, equation by equation (paper.py)
+foundation_<name>.py  coefficients (highest power first) of N(p, q), dN/dq, Q(p, q), dQ/dq in p; the
+                      model's beam, track, parameters and degrees
+vehicle_<name>.py     E_chr, its partial derivatives, residue numerators and shape weights; its parameters
+parameters.py         every dimensionless group: meaning, constraint, default, equation, SI name and unit,
+                      the exact SI <-> dimensionless scaling, the scales of Eqs. (15)-(16), Eq. (63)
+__init__.py           the catalogue: beams, tracks, vehicles and which module holds each combination
+and docs/proofs.md: derived == printed, equation by equation (paper.py).
 """
 
 from pathlib import Path
@@ -12,17 +15,17 @@ from pathlib import Path
 import sympy as sp
 
 from . import symbols as s
-from .emit import function_source, inputs_digest, module_source
-from .foundations import MODELS
+from .asymptotics import asymptotics_module
+from .emit import SCALING_PRINTER, definition_digest, function_source, module_source
+from .foundations import BEAMS, TRACKS, all_models
 from .model import foundation_image
 from .paper import all_proofs
-from .system import SYSTEMS
+from .system import SYSTEMS, in_q
 
 HERE = Path(__file__).resolve().parent
 #: Where the kernels go, relative to the repository root: inside the package, so the source tree imports.
 GENERATED = Path("src/moving_bogie/generated")
-
-FOUNDATION_ARGS = ("q", "alpha", "eta_f", "eta_s", "S", "r")
+GENERATOR = "python -m derivations"
 
 
 def _coeffs(expr, degree):
@@ -33,18 +36,26 @@ def _coeffs(expr, degree):
     return coeffs
 
 
-def foundation_module(name, digest):
-    model = MODELS[name]()
+def _groups_in(*exprs) -> tuple:
+    """Names of the declared groups the expressions depend on, in declaration order; others are refused."""
+    names = {str(x) for e in exprs for x in e.free_symbols} - {"p", "q", "K0", "Kp", "Km", "pi"}
+    unknown = names - set(s.GROUPS)
+    if unknown:
+        raise ValueError(f"undeclared dimensionless groups {sorted(unknown)}: declare them in symbols.py")
+    return tuple(name for name in s.GROUPS if name in names)
+
+
+def foundation_module(name, model):
     image = foundation_image(model)
-    # Groups a model adds beyond the common ones (TrackModel.parameters) become further arguments.
-    args = FOUNDATION_ARGS + tuple(x for x in model.parameters if x not in FOUNDATION_ARGS)
+    params = _groups_in(image.N, image.Q)
+    args = ("q", *params)
     deg_n = sp.Poly(image.N, s.p).degree()
     deg_q = sp.Poly(image.Q, s.p).degree()
     n = _coeffs(image.N, deg_n)
     qq = _coeffs(image.Q, deg_q)
     deg_nq = sp.Poly(image.N, s.q).degree()
     n_in_q = [sp.expand(sp.Poly(image.N, s.q).coeff_monomial(s.q**k)) for k in range(deg_nq, -1, -1)]
-    cut_args = ("p",) + args[1:]
+    cut_args = ("p", *params)
     parts = [
         function_source("n_coeffs", args, n, "Coefficients of N(p, q) in p, highest power first."),
         function_source(
@@ -57,22 +68,25 @@ def foundation_module(name, digest):
         function_source("q_coeffs", args, qq, "Coefficients of Q(p, q) in p, highest power first."),
         function_source("q_coeffs_dq", args, [sp.diff(c, s.q) for c in qq], "Coefficients of dQ/dq in p."),
     ]
-    summary = (MODELS[name].__doc__ or name).strip().splitlines()[0]
     title = (
-        f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) of {summary}\n\n"
+        f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) of the {model.description}\n\n"
         "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
     )
     constants = [
+        ("BEAM", model.beam),
+        ("TRACK", model.track),
+        ("DESCRIPTION", model.description),
         ("ARGUMENTS", args),
-        ("MODEL_PARAMETERS", tuple(model.parameters)),
+        ("MODEL_PARAMETERS", params),
         ("DEGREE_N", deg_n),
         ("DEGREE_Q", deg_q),
         ("DEGREE_N_IN_Q", deg_nq),
     ]
+    digest = definition_digest(model.operator, *model.unknown_scales, *model.row_scales, model.description)
     return module_source(title, digest, parts, constants)
 
 
-def vehicle_module(name, digest):
+def vehicle_module(name):
     system = SYSTEMS[name]()
     params = tuple(str(x) for x in system.parameters)
     args = ("q", "K0", "Kp", "Km", *params, "pi")
@@ -115,17 +129,135 @@ def vehicle_module(name, digest):
             atoms,
         )
     )
+    description = (SYSTEMS[name].__doc__ or name).strip().splitlines()[0]
     title = f"Vehicle '{name}': characteristic function, its derivatives and residue numerators."
-    constants = [("ARGUMENTS", args), ("PARAMETERS", params), ("RESPONSES", names)]
+    degrees = polynomial_degrees(system)
+    # The wheel spacing d places the contact points (K(+-d, q)) whatever the vehicle.
+    model_params = tuple(g for g in s.GROUPS if g in set(params) | {"d"})
+    constants = [
+        ("DESCRIPTION", description),
+        ("ARGUMENTS", args),
+        ("PARAMETERS", params),
+        ("MODEL_PARAMETERS", model_params),
+        ("RESPONSES", names),
+        ("POLYNOMIAL_DEGREES", degrees),
+    ]
+    digest = definition_digest(E, *system.atoms.values(), *system.numerators.values(), description)
     return module_source(title, digest, parts, constants)
 
 
-def proofs_markdown(digest):
+def polynomial_degrees(system) -> dict:
+    """Degree of E_chr in each vehicle parameter at fixed q and K, the alternatives held (Eq. (63)).
+
+    The stability tools sweep a parameter by interpolating E_chr exactly in it. The wheel spacing d is left
+    out: it also moves the contact point, so K(+-d, q) depends on it. A group that an alternative sets
+    (mu_v = cf1 eta_M) follows its dependencies and is not swept on its own.
+    """
+    E = sp.expand(in_q(system.E_chr, system))
+    held = {group: expr for group, expr, _ in s.ALTERNATIVES.values() if group in system.parameters}
+    E = sp.expand(E.subs(held))
+    out = {}
+    for par in system.parameters:
+        if str(par) == "d" or par in held:
+            continue
+        out[str(par)] = sp.Poly(E, par).degree()
+    return out
+
+
+def _physical_args(expr) -> tuple:
+    return tuple(sorted({str(x) for x in expr.free_symbols}))
+
+
+def parameters_module():
+    """Metadata of every group and the exact scaling, Eqs. (15)-(17), (59), (63)."""
+    table, parts = {}, []
+    si_symbols = {g.si: g.physical for g in s.GROUPS.values()}
+    scale_symbols = {name: getattr(s, name) for name, _, _ in s.SCALE_PARAMETERS}
+    rename = {g.physical: sp.Symbol(g.si) for g in s.GROUPS.values()}
+    for name, g in s.GROUPS.items():
+        # physical = relation(group)  <=>  group = inverse(physical): both exact, from the one relation.
+        relation = s.PHYSICAL_IN_DIMENSIONLESS[g.physical]
+        (inverse,) = sp.solve(sp.Eq(g.physical, relation), g.symbol)
+        to_si = sp.powsimp(relation, force=True)
+        to_dimensionless = sp.powsimp(inverse.subs(rename), force=True)
+        si_args = ("sqrt", *_physical_args(to_dimensionless))
+        dl_args = ("sqrt", *_physical_args(to_si))
+        parts.append(
+            function_source(
+                f"dimensionless_{name}",
+                si_args,
+                [to_dimensionless],
+                f"{name} from SI, Eq. {g.equation}.",
+                scalar=True,
+                printer=SCALING_PRINTER,
+            )
+        )
+        parts.append(
+            function_source(
+                f"physical_{name}",
+                dl_args,
+                [to_si],
+                f"SI {g.si} [{g.unit}] from {name}, Eq. {g.equation}.",
+                scalar=True,
+                printer=SCALING_PRINTER,
+            )
+        )
+        table[name] = {
+            "meaning": g.meaning,
+            "constraint": g.constraint,
+            "equation": g.equation,
+            "default": None if g.default is None else str(g.default),
+            "si": g.si,
+            "unit": g.unit,
+            "si_meaning": g.si_meaning,
+        }
+    alternatives = {}
+    for alt, (group, expr, meaning) in s.ALTERNATIVES.items():
+        alt_symbol = sp.Symbol(alt, positive=True)
+        args = tuple(x for x in s.GROUPS if sp.Symbol(x, positive=True) in expr.free_symbols)
+        (alt_of_group,) = sp.solve(sp.Eq(group, expr), alt_symbol)
+        alternatives[alt] = {"sets": str(group), "depends": args, "meaning": meaning}
+        parts.append(
+            function_source(f"set_by_{alt}", (alt, *args), [expr], f"{group} from {alt}.", scalar=True)
+        )
+        parts.append(
+            function_source(
+                f"alternative_{alt}",
+                tuple(sorted({str(x) for x in alt_of_group.free_symbols})),
+                [alt_of_group],
+                f"{alt} from the groups: {meaning}.",
+                scalar=True,
+            )
+        )
+    parts.append(
+        function_source(
+            "scales",
+            ("sqrt", "EI", "m", "k_f", "P"),
+            [s.chi, s.v_ref, s.w_st, 1 / s.omega],
+            "(chi [1/m], v_ref [m/s], w_st [m], t_scale [s]) of Eqs. (15)-(16); tau = t / t_scale.",
+            printer=SCALING_PRINTER,
+        )
+    )
+    del si_symbols, scale_symbols
+    constants = [
+        ("PARAMETERS", table),
+        ("SCALE_PARAMETERS", {name: {"unit": u, "meaning": mng} for name, u, mng in s.SCALE_PARAMETERS}),
+        ("ALTERNATIVES", alternatives),
+    ]
+    digest = definition_digest(
+        *[(k, s.PHYSICAL_IN_DIMENSIONLESS[g.physical], repr(g)) for k, g in s.GROUPS.items()]
+    )
+    title = (
+        "Dimensionless groups: meaning, range, SI counterpart, exact scaling (Eqs. (15)-(17), (59), (63))."
+    )
+    return module_source(title, digest, parts, constants)
+
+
+def proofs_markdown():
     lines = [
         "# Derived versus printed formulas",
         "",
         "Written by `python -m derivations` (do not edit); the explanations are in [errata.md](errata.md).",
-        f"Inputs hash: `{digest}`",
         "",
         "| equation | statement | status | evidence |",
         "|---|---|---|---|",
@@ -138,18 +270,23 @@ def proofs_markdown(digest):
 
 def outputs(root: Path) -> dict:
     """Map of path -> text of every generated file."""
-    digest = inputs_digest(HERE)
     files = {}
-    for name in MODELS:
-        files[root / GENERATED / f"foundation_{name}.py"] = foundation_module(name, digest)
+    models = {name: build() for name, build in all_models().items()}
+    for name, model in models.items():
+        files[root / GENERATED / f"foundation_{name}.py"] = foundation_module(name, model)
     for name in SYSTEMS:
-        files[root / GENERATED / f"vehicle_{name}.py"] = vehicle_module(name, digest)
-    init = module_source(
-        "Generated kernels of moving-bogie (the committed output of derivations/).",
-        digest,
-        [],
-        [("FOUNDATIONS", tuple(MODELS)), ("VEHICLES", tuple(SYSTEMS)), ("INPUTS_HASH", digest)],
-    )
+        files[root / GENERATED / f"vehicle_{name}.py"] = vehicle_module(name)
+    files[root / GENERATED / "parameters.py"] = parameters_module()
+    catalogue = [
+        ("BEAMS", {name: beam.title for name, beam in BEAMS.items()}),
+        ("TRACKS", {name: track.title for name, track in TRACKS.items()}),
+        ("VEHICLES", {name: (SYSTEMS[name].__doc__ or name).strip().splitlines()[0] for name in SYSTEMS}),
+        ("MODULES", {(m.beam, m.track): f"foundation_{name}" for name, m in models.items()}),
+        ("FOUNDATIONS", tuple(models)),
+    ]
+    digest = definition_digest(*[value for _, value in catalogue])
+    init = module_source("Generated kernels of moving-bogie: the catalogue of models.", digest, [], catalogue)
     files[root / GENERATED / "__init__.py"] = init
-    files[root / "docs" / "proofs.md"] = proofs_markdown(digest)
+    files[root / GENERATED / "asymptotics.py"] = asymptotics_module(models)
+    files[root / "docs" / "proofs.md"] = proofs_markdown()
     return files

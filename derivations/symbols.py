@@ -5,6 +5,8 @@ positive reals too (zero values are limits that the runtime handles numerically)
 ``p`` (Fourier, Eq. (22)) and ``q`` (Laplace with ``qbar = i q``, Eq. (21)) are complex.
 """
 
+from dataclasses import dataclass
+
 import sympy as sp
 
 # --- physical (SI) ---------------------------------------------------------------------------------------
@@ -25,19 +27,185 @@ eta_M, mu_v, J_b, kappa_v, eta_v, d = sp.symbols("eta_M mu_v J_b kappa_v eta_v d
 S, r = sp.symbols("S r", positive=True)
 
 #: Physical parameter -> expression through the dimensionless groups (the inverse of Eq. (17)).
-#: EI, m, k_f and P stay free: every dimensionless result must be independent of them.
-PHYSICAL_IN_DIMENSIONLESS = {
-    c_f: 2 * eta_f * sp.sqrt(m * k_f),
-    k_s: 2 * eta_s * sp.sqrt(k_f * EI),
-    v: alpha * v_ref,
-    M: eta_M * m / chi,
-    M_b: mu_v * m / chi,
-    J_phys: J_b * m / chi**3,
-    k_v: kappa_v * k_f / chi,
-    c_v: eta_v * 2 * sp.sqrt(m * k_f) / chi,
-    d_phys: d / chi,
-    GA: 2 * S * sp.sqrt(k_f * EI),
-    r_g: r / chi,
+#: EI, m, k_f and P stay free: every dimensionless result must be independent of them. Filled by
+#: :func:`declare` below, the one place where a dimensionless group, its SI counterpart and their relation
+#: are written.
+PHYSICAL_IN_DIMENSIONLESS = {}
+
+
+@dataclass(frozen=True)
+class Group:
+    """Metadata of one dimensionless group, written once and generated into the runtime.
+
+    ``constraint`` is "positive" (> 0), "nonnegative" (>= 0) or "underdamped" (0 <= x < 1); ``default``
+    (exact, or None when required) is used when an input leaves the group out; ``si`` is the SI name of
+    the physical parameter it scales (as the user types it), ``unit`` its SI unit.
+    """
+
+    symbol: sp.Symbol
+    meaning: str
+    constraint: str
+    equation: str
+    default: sp.Rational | None
+    physical: sp.Symbol
+    si: str
+    unit: str
+    si_meaning: str
+
+
+#: name -> Group, in declaration order (the order of parameters in every generated list).
+GROUPS = {}
+
+#: SI parameters that set the scales (Eqs. (15)-(16)) and have no dimensionless group: (name, unit, meaning).
+SCALE_PARAMETERS = (
+    ("EI", "N m^2", "beam bending stiffness"),
+    ("m", "kg/m", "beam mass per unit length"),
+    ("k_f", "N/m^2", "foundation (Winkler) stiffness"),
+    ("P", "N", "constant load on each wheel"),
+)
+
+
+def declare(
+    symbol, physical, relation, *, meaning, constraint, equation, unit, si_meaning, default=None, si=None
+):
+    """Declare a dimensionless group: ``physical = relation`` (in the group and EI, m, k_f, P)."""
+    if constraint not in ("positive", "nonnegative", "underdamped"):
+        raise ValueError(f"{symbol}: unknown constraint {constraint!r}")
+    PHYSICAL_IN_DIMENSIONLESS[physical] = relation
+    GROUPS[str(symbol)] = Group(
+        symbol,
+        meaning,
+        constraint,
+        equation,
+        None if default is None else sp.Rational(default),
+        physical,
+        si or str(physical),
+        unit,
+        si_meaning,
+    )
+    return symbol
+
+
+declare(
+    alpha,
+    v,
+    alpha * v_ref,
+    meaning="velocity ratio v/v_ref",
+    constraint="nonnegative",
+    equation="(16)",
+    unit="m/s",
+    si_meaning="velocity of the vehicle",
+)
+declare(
+    eta_f,
+    c_f,
+    2 * eta_f * sp.sqrt(m * k_f),
+    meaning="foundation damping ratio c_f/(2 sqrt(m k_f))",
+    constraint="underdamped",
+    equation="(17)",
+    unit="N s/m^2",
+    si_meaning="foundation viscous damping",
+)
+declare(
+    eta_s,
+    k_s,
+    2 * eta_s * sp.sqrt(k_f * EI),
+    meaning="Pasternak shear layer k_s/(2 sqrt(k_f EI))",
+    constraint="nonnegative",
+    equation="(17)",
+    unit="N",
+    si_meaning="foundation shear (Pasternak) stiffness",
+    default=0,
+)
+declare(
+    S,
+    GA,
+    2 * S * sp.sqrt(k_f * EI),
+    meaning="Timoshenko shear parameter G Abar/(2 sqrt(k_f EI))",
+    constraint="positive",
+    equation="(59)",
+    unit="N",
+    si_meaning="shear stiffness G Abar of the beam",
+)
+declare(
+    r,
+    r_g,
+    r / chi,
+    meaning="radius of gyration r chi",
+    constraint="nonnegative",
+    equation="(59)",
+    unit="m",
+    si_meaning="radius of gyration of the cross-section",
+)
+declare(
+    eta_M,
+    M,
+    eta_M * m / chi,
+    meaning="wheel mass ratio M chi/m",
+    constraint="positive",
+    equation="(17)",
+    unit="kg",
+    si_meaning="mass of each wheel",
+)
+declare(
+    d,
+    d_phys,
+    d / chi,
+    meaning="wheel spacing d chi",
+    constraint="positive",
+    equation="(16)",
+    unit="m",
+    si_meaning="wheel spacing",
+    si="d",
+)
+declare(
+    mu_v,
+    M_b,
+    mu_v * m / chi,
+    meaning="bogie-bar mass ratio M_b chi/m",
+    constraint="positive",
+    equation="(17)",
+    unit="kg",
+    si_meaning="bogie-bar mass",
+)
+declare(
+    J_b,
+    J_phys,
+    J_b * m / chi**3,
+    meaning="bogie-bar mass moment of inertia chi^3 J_b/m",
+    constraint="positive",
+    equation="(17)",
+    unit="kg m^2",
+    si_meaning="bogie-bar mass moment of inertia",
+    si="J_b",
+)
+declare(
+    kappa_v,
+    k_v,
+    kappa_v * k_f / chi,
+    meaning="primary suspension stiffness k_v chi/k_f",
+    constraint="positive",
+    equation="(17)",
+    unit="N/m",
+    si_meaning="primary suspension stiffness (each side)",
+)
+declare(
+    eta_v,
+    c_v,
+    eta_v * 2 * sp.sqrt(m * k_f) / chi,
+    meaning="primary suspension damping c_v chi/(2 sqrt(m k_f))",
+    constraint="nonnegative",
+    equation="(17)",
+    unit="N s/m",
+    si_meaning="primary suspension damping (each side)",
+)
+
+#: Alternative inputs (Table 1, Eq. (63)): name -> (the group it sets, its expression, meaning). Giving the
+#: alternative sets the group; when a group the expression depends on changes, the alternative is kept.
+cf1, cf2 = sp.symbols("cf1 cf2", positive=True)
+ALTERNATIVES = {
+    "cf1": (mu_v, cf1 * eta_M, "bar-to-wheel mass coefficient mu_v/eta_M = M_b/M, Eq. (63)"),
+    "cf2": (J_b, cf2 * eta_M * d**2, "bar inertia coefficient J_b/(eta_M d^2), Eq. (63)"),
 }
 
 # --- transform variables and operator symbols ------------------------------------------------------------

@@ -63,7 +63,7 @@ def _solve(equations, unknowns):
 
 
 def bogie_system() -> VehicleSystem:
-    """The bogie of Figure 1b: Eqs. (23), (25), (26) -> (30)-(34) -> E_chr (38) and numerators (36)-(47)."""
+    """The bogie of Figure 1b: a rigid bar on two spring-dampers over two wheel masses, Eqs. (23)-(47)."""
     c = contact_images()
     # The load brackets in atoms; model.contact_images derived them with B1..B4 read off its coefficients,
     # and paper.py proves that substituting the atoms back reproduces the derived brackets.

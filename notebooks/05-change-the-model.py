@@ -12,49 +12,50 @@
 # ---
 
 # %% [markdown]
-# # Change the model: a new foundation, derived, generated and analysed
+# # Change the model: a new track, derived, generated and analysed
 #
 # The paper's Discussion says the analysis "can be easily extended to other types of supporting
 # structures ... simply by replacing Equation (24) with an equation reflecting the new foundation model".
-# In this package that is one edit in `derivations/` (SymPy, the single source of every formula) and a
-# regeneration into `generated/`; the runtime then finds the new kernels by name.
+# In this package that is one edit in `derivations/` (SymPy, the single source of every formula and of every
+# model's metadata) and a regeneration; every analysis of the runtime then works on the new model, with no
+# edit of the runtime and no patching.
 #
-# This notebook does it end to end, **in a temporary copy of the repository** (it never touches the
-# real `derivations/` or `generated/`):
+# This notebook does it end to end, **in a temporary copy of the source tree** (it never touches the real
+# `derivations/` or `src/`):
 #
-# 1. copy `derivations/` and `generated/` to a temporary folder;
-# 2. add a model there: the Pasternak shear layer of the Euler-Bernoulli model gets viscous
-#    (Kelvin-Voigt) damping $c_s$, i.e. Eq. (1) becomes
-#    $EI\,w_{,xxxx} - (k_s + c_s\,\partial_t)\,w_{,xx} + m\,w_{,tt} + c_f\,w_{,t} + k_f\,w = p$, with the new
-#    dimensionless group $\eta_c = c_s / (2\sqrt{EI\,m})$;
-# 3. run `python -m derivations --root <copy>` there;
-# 4. load the generated module from the copy (importlib), evaluate its kernel, and rerun the induced
-#    frequency analysis with it, against the base model.
+# 1. copy `derivations/` and `src/` to a temporary folder;
+# 2. add a track there: the Pasternak shear layer gets viscous (Kelvin-Voigt) damping $c_s$, i.e. Eq. (1)
+#    becomes $EI\,w_{,xxxx} - (k_s + c_s\,\partial_t)\,w_{,xx} + m\,w_{,tt} + c_f\,w_{,t} + k_f\,w = p$,
+#    with a new dimensionless group $\eta_c = c_s / (2\sqrt{EI\,m})$, declared once with its meaning,
+#    range, default and SI unit;
+# 3. run `python -m derivations --root <copy>`: every beam now runs on the new track too;
+# 4. load the copy's catalogue (`load_catalogue`) and analyse the new model in this Python session, and
+#    run the copy's own command line on it (`PYTHONPATH=<copy>/src`), where `--track kelvin-shear` and
+#    `--eta-c` now exist.
 #
-# The steps follow `docs/adding_a_model.md`, which explains each one and what the runtime does not yet
-# pick up by itself.
+# The steps follow `docs/adding_a_model.md`.
 
 # %%
 import difflib
 import hashlib
-import importlib.util
+import json
 import os
 import shutil
 import subprocess
 import sys
 import tempfile
 import time
-import types
-from fractions import Fraction
 from pathlib import Path
 
 import mpmath
 
 import moving_bogie
-from moving_bogie import table1_case
+from moving_bogie import DimensionlessParams, table1_case
+from moving_bogie.model.catalogue import Model, load_catalogue
 from moving_bogie.roots.frequencies import induced_frequencies
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
+SOURCES = ("derivations", "src")
 
 
 def find_repository() -> Path:
@@ -62,7 +63,8 @@ def find_repository() -> Path:
     starts = [Path.cwd(), Path(moving_bogie.__file__).resolve()]
     for start in starts:
         for folder in [start, *start.parents]:
-            if (folder / "derivations" / "foundations.py").is_file() and (folder / "src/moving_bogie/generated").is_dir():
+            derivations, package = folder / "derivations" / "foundations.py", folder / "src" / "moving_bogie"
+            if derivations.is_file() and package.is_dir():
                 return folder
     raise RuntimeError(
         "this notebook needs a source checkout of moving-bogie (with derivations/): "
@@ -81,55 +83,53 @@ def tree_digest(folder: Path) -> str:
 
 
 repo = find_repository()
-before = {name: tree_digest(repo / name) for name in ("derivations", "src/moving_bogie/generated")}
+before = {name: tree_digest(repo / name) for name in SOURCES}
 print("repository:", repo)
 
 # %% [markdown]
 # ## 1. A temporary copy
 #
-# `python -m derivations --root DIR` writes `DIR/generated/*.py` and `DIR/docs/proofs.md`; it needs
-# nothing else from the repository.
+# `python -m derivations --root DIR` writes `DIR/src/moving_bogie/generated/*.py` and `DIR/docs/proofs.md`.
+# The source tree imports as it is (`PYTHONPATH=DIR/src`), so the copy is a complete runtime too.
 
 # %%
 scratch = Path(tempfile.mkdtemp(prefix="moving-bogie-model-"))
-ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
-for name in ("derivations", "src/moving_bogie/generated"):
+ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info")
+for name in SOURCES:
     shutil.copytree(repo / name, scratch / name, ignore=ignore)
 (scratch / "docs").mkdir()
 print("scratch copy:", scratch)
 
 # %% [markdown]
-# ## 2. The new model, in the copy
+# ## 2. The new track, in the copy
 #
-# Two additions (`docs/adding_a_model.md`, steps 1-2): the physical symbol $c_s$ and its dimensionless
-# group $\eta_c$ in `symbols.py` ("physical = expression in the group", so that the derivation can check
-# that $EI$, $m$, $k_f$, $P$ drop out), and the operator in `foundations.py`, registered in `MODELS`
-# under the name `eb_kelvin`. They are appended to the copied files, so this works whatever else those
-# files contain.
+# Two additions: the group $\eta_c$ with its SI counterpart $c_s$ in `symbols.py` (one `declare`: meaning,
+# range, default, defining relation, unit; the derivation checks that $EI$, $m$, $k_f$, $P$ drop out), and the
+# track in `foundations.py`: what the foundation adds to the rail's equation. They are appended to the copied
+# files, so this works whatever else those files contain.
 
 # %%
 SYMBOLS_ADDITION = """
 
 # --- added in a scratch copy by notebooks/05-change-the-model.py -------------------------------------
 c_s = sp.Symbol("c_s", positive=True)  # viscous damping of the shear layer (Kelvin-Voigt Pasternak layer)
-eta_c = sp.Symbol("eta_c", positive=True)  # c_s / (2 sqrt(EI m))
-PHYSICAL_IN_DIMENSIONLESS[c_s] = 2 * eta_c * sp.sqrt(EI * m)
+eta_c = sp.Symbol("eta_c", positive=True)
+declare(eta_c, c_s, 2 * eta_c * sp.sqrt(EI * m), meaning="shear-layer damping c_s/(2 sqrt(EI m))",
+        constraint="nonnegative", equation="(1) with k_s -> k_s + c_s d/dt", unit="N s",
+        si_meaning="viscous damping of the shear layer", default=0)
 """
 
-FOUNDATIONS_ADDITION = '''
+FOUNDATIONS_ADDITION = """
 
 # --- added in a scratch copy by notebooks/05-change-the-model.py -------------------------------------
 from .symbols import c_s  # noqa: E402
 
-
-def euler_bernoulli_kelvin_shear() -> TrackModel:
-    """Eq. (1) with a viscous (Kelvin-Voigt) shear layer: EI w_xxxx - (k_s + c_s d/dt) w_xx + m w_tt + ..."""
-    op = sp.Matrix([[EI * dx**4 - (k_s + c_s * dt) * dx**2 + m * dt**2 + c_f * dt + k_f]])
-    return TrackModel(op, (w_st,), (4 / (k_f * w_st),), ("eta_c",))
-
-
-MODELS["eb_kelvin"] = euler_bernoulli_kelvin_shear
-'''
+TRACKS["kelvin-shear"] = Track(
+    "Winkler foundation with viscous damping and a viscous (Kelvin-Voigt) shear layer: "
+    "k_f w + c_f w_t - (k_s + c_s d/dt) w_xx",
+    k_f + c_f * dt - (k_s + c_s * dt) * dx**2,
+)
+"""
 
 for filename, addition in (("symbols.py", SYMBOLS_ADDITION), ("foundations.py", FOUNDATIONS_ADDITION)):
     path = scratch / "derivations" / filename
@@ -147,9 +147,10 @@ for filename, addition in (("symbols.py", SYMBOLS_ADDITION), ("foundations.py", 
 # %% [markdown]
 # ## 3. Regenerate, in the copy
 #
-# The generator derives $D(p, q) = N/Q$ of the new model from the operator (moving coordinates, Eq. (10);
-# dimensionless form, Eqs. (15)-(18); transforms, Eqs. (21)-(22)), checks that every free symbol is a
-# declared argument and that no constant loses digits, and writes `generated/foundation_eb_kelvin.py`.
+# The generator derives $D(p, q) = N/Q$ of every beam on the new track from the operators (moving coordinates,
+# Eq. (10); dimensionless form, Eqs. (15)-(18); transforms, Eqs. (21)-(22)), checks that every free symbol
+# is a declared argument and that no constant loses digits, and writes the kernels with their metadata:
+# the new group's meaning, range, default, SI name and exact scaling.
 
 # %%
 start = time.perf_counter()
@@ -162,130 +163,63 @@ run = subprocess.run(
 print(run.stdout, run.stderr)
 assert run.returncode == 0, run.stderr
 print(f"regenerated in {time.perf_counter() - start:.1f} s")
-generated_file = scratch / "src/moving_bogie/generated" / "foundation_eb_kelvin.py"
-print("\n".join(generated_file.read_text().splitlines()[:30]))
+generated = scratch / "src" / "moving_bogie" / "generated"
+print(sorted(p.name for p in generated.glob("foundation_*.py")))
+
+# %% [markdown]
+# ## 4. The new model in this session
+#
+# `load_catalogue` reads the copy's catalogue; its models are used exactly like the packaged ones: the
+# parameters are validated from the generated metadata (here $\eta_c \ge 0$, default 0), and every analysis
+# takes its kernels from the parameters' model.
+
+# %%
+catalogue = load_catalogue(generated)
+model = Model("eb", "kelvin-shear", "bogie", catalogue)
+print(model.name, "-", model.foundation.DESCRIPTION)
+print("parameters:", model.parameters)
+print("eta_c:", model.specs["eta_c"].to_dict())
+
+
+def on_kelvin_track(params, eta_c):
+    """The same vehicle and track parameters on the new track, with shear-layer damping eta_c."""
+    return DimensionlessParams(model=model, **params.values(), eta_c=eta_c)
+
 
 # %% [markdown]
 # The new $N(p, q)$ is $D(p, q)$ of Eq. (24) plus $4\eta_s p^2 + 4i\eta_c p^2 (q - \alpha p)$: the layer's
-# $-c_s(\partial_t - v\,\partial_r)\,w_{,rr}$ transformed. Loading the module straight from the copy and
-# subtracting the base model's coefficients shows exactly that term.
-
+# $-c_s(\partial_t - v\,\partial_r)\,w_{,rr}$ transformed. The generated coefficients minus the base model's
+# show exactly that term.
 
 # %%
-def load_from(path: Path, name: str) -> types.ModuleType:
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-kelvin = load_from(generated_file, "scratch_foundation_eb_kelvin")
-base = load_from(scratch / "src/moving_bogie/generated" / "foundation_eb.py", "scratch_foundation_eb")
-print("arguments of the new kernel:", kelvin.ARGUMENTS)
-
+base = table1_case(1)
 with mpmath.workdps(30):
-    q, alpha, eta_f, eta_c = (
-        mpmath.mpc("0.3", "0.2"),
-        mpmath.mpf("0.5"),
-        mpmath.mpf("0.05"),
-        mpmath.mpf("0.1"),
-    )
-    common = dict(alpha=alpha, eta_f=eta_f, eta_s=0, S=None, r=None)
-    new = kelvin.n_coeffs(q, **common, eta_c=eta_c)
-    old = base.n_coeffs(q, **common)
+    q, eta_c = mpmath.mpc("0.3", "0.2"), mpmath.mpf("0.1")
+    common = {"alpha": mpmath.mpf("0.5"), "eta_f": mpmath.mpf("0.05"), "eta_s": 0}
+    new = model.foundation.n_coeffs(q, **common, eta_c=eta_c)
+    old = base.model.foundation.n_coeffs(q, **common)
     i4 = 4 * mpmath.j
-    expected = [
-        0,
-        -i4 * eta_c * alpha,
-        i4 * eta_c * q,
-        0,
-        0,
-    ]  # 4 i eta_c p^2 (q - alpha p), highest power first
+    expected = [0, -i4 * eta_c * common["alpha"], i4 * eta_c * q, 0, 0]  # 4 i eta_c p^2 (q - alpha p)
     for k, (a, b, e) in enumerate(zip(new, old, expected)):
         print(f"p^{4 - k}: new - base = {mpmath.nstr(a - b, 8):>24}   expected {mpmath.nstr(e, 8)}")
         assert abs((a - b) - e) < mpmath.mpf(10) ** -25
 
 # %% [markdown]
-# ## 4. The frequency analysis with the new model
-#
-# The runtime looks a track model up by name (`moving_bogie.generated.foundation_<beam>`), and passes
-# the kernels the groups their `ARGUMENTS` name, taken from the parameters (`track.foundation_arguments`).
-# So the kernel $K$ (Eq. (29), by residues), the cut of $K$ (traced from `n_coeffs_in_q`, whatever its
-# shape), $E_{chr}$ and the root search all work for any generated model. What the runtime cannot know
-# without an edit is the *parameter*: `DimensionlessParams` has no field `eta_c`, and it accepts the
-# beam names of the installed `generated/` (`params.BEAMS`), which does not contain a model generated in a
-# scratch folder. To make the model permanent, a researcher regenerates in the real repository (the name
-# then joins `BEAMS`, its groups `MODEL_PARAMETERS`), adds the field `eta_c` with its range to
-# `DimensionlessParams` in `model/params.py` (and, if wanted, to `PhysicalParams`, the parameter files and the
-# CLI options): `docs/adding_a_model.md`.
-#
-# Here, without editing the package: the module generated in the scratch copy is imported under the
-# runtime's name for it, and a small stand-in for `DimensionlessParams` carries the beam name and
-# $\eta_c$ (in the precision the runtime asks for: mpmath numbers for polishing, floats for counting).
-
-# %%
-spec = importlib.util.spec_from_file_location("moving_bogie.generated.foundation_eb_kelvin", generated_file)
-runtime_module = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(runtime_module)
-sys.modules[spec.name] = runtime_module  # what track.foundation_module("eb_kelvin") imports
-
-
-class ModelParams:
-    """A DimensionlessParams of another track model: its beam name and the groups it adds."""
-
-    def __init__(self, base, beam: str, **groups):
-        self._base, self.beam = base, beam
-        self._groups = {name: Fraction(str(value)) for name, value in groups.items()}
-
-    def __getattr__(self, name):
-        return getattr(self._base, name)
-
-    def as_mp(self):  # at the current mpmath precision, like DimensionlessParams.as_mp
-        ns = self._base.as_mp()
-        ns.beam = self.beam
-        for name, x in self._groups.items():
-            setattr(ns, name, mpmath.mpf(x.numerator) / x.denominator)
-        return ns
-
-    def as_float(self):
-        ns = self._base.as_float()
-        ns.beam = self.beam
-        for name, x in self._groups.items():
-            setattr(ns, name, float(x))
-        return ns
-
-    def to_dict(self):
-        return self._base.to_dict() | {"beam": self.beam} | {k: str(v) for k, v in self._groups.items()}
-
-
-def with_shear_damping(params, eta_c):
-    return ModelParams(params, "eb_kelvin", eta_c=eta_c)
-
-
-# %% [markdown]
-# First the kernel itself, $K(\xi, q)$ of Eq. (29), evaluated by the runtime's residue sum with the new model:
-# at $\eta_c = 0$ it must equal the base model's, and at $\eta_c = 0.1$ it must equal the integral
-# $\int e^{ip\xi} / N(p, q)\,dp$ done by brute-force quadrature (here at $\xi = 0$).
+# The kernel itself, $K(\xi, q)$ of Eq. (29) by the runtime's residue sum: at $\eta_c = 0$ it equals the base
+# model's, and at $\eta_c = 0.1$ it equals $\int e^{ip\xi} / N(p, q)\,dp$ done by brute-force quadrature
+# (here at $\xi = 0$).
 
 # %%
 from moving_bogie.kernels.track import TrackKernel  # noqa: E402
 
-p1 = table1_case(1)
 zq = mpmath.mpc("0.3", "0.2")
 with mpmath.workdps(30):
-    k_base = TrackKernel(p1)(zq, [0, 1, -1]).K
-    k_zero = TrackKernel(with_shear_damping(p1, 0.0))(zq, [0, 1, -1]).K
-    damped = with_shear_damping(p1, 0.1)
+    k_base = TrackKernel(base)(zq, [0, 1, -1]).K
+    k_zero = TrackKernel(on_kelvin_track(base, 0))(zq, [0, 1, -1]).K
+    damped = on_kelvin_track(base, "0.1")
     k_damped = TrackKernel(damped)(zq, [0]).K[0]
-    coeffs = kelvin.n_coeffs(
-        zq,
-        alpha=mpmath.mpf(p1.alpha.numerator) / p1.alpha.denominator,
-        eta_f=mpmath.mpf(p1.eta_f.numerator) / p1.eta_f.denominator,
-        eta_s=0,
-        S=None,
-        r=None,
-        eta_c=mpmath.mpf("0.1"),
-    )
+    ns = damped.as_mp()
+    coeffs = model.foundation.n_coeffs(zq, alpha=ns.alpha, eta_f=ns.eta_f, eta_s=ns.eta_s, eta_c=ns.eta_c)
     breaks = [-mpmath.inf, *mpmath.linspace(-20, 20, 81), mpmath.inf]  # a pole lies close to the real axis
     k_quad = mpmath.quad(lambda x: 1 / mpmath.polyval(coeffs, x), breaks)
 print(
@@ -302,14 +236,14 @@ assert abs(k_damped - k_quad) < 1e-25
 
 # %%
 DPS = 20 if QUICK else 30
-ETA_C = (0.0, 0.05, 0.2) if QUICK else (0.0, 0.02, 0.05, 0.1, 0.2)
+ETA_C = ("0", "0.05", "0.2") if QUICK else ("0", "0.02", "0.05", "0.1", "0.2")
 CASE = 1  # unstable in the subcritical range (Table 2): does damping in the shear layer help?
 
 reference = induced_frequencies(table1_case(CASE), dps=DPS)
 results = {}
 for eta_c in ETA_C:
     start = time.perf_counter()
-    results[eta_c] = induced_frequencies(with_shear_damping(table1_case(CASE), eta_c), dps=DPS)
+    results[eta_c] = induced_frequencies(on_kelvin_track(table1_case(CASE), eta_c), dps=DPS)
     r = results[eta_c]
     print(
         f"eta_c = {eta_c:<5}: {r.found}/{r.count} roots, {'stable' if r.stable else 'UNSTABLE'}, "
@@ -317,7 +251,7 @@ for eta_c in ETA_C:
     )
 
 # eta_c = 0 reproduces the base model to every confirmed digit
-for a, b in zip(results[0.0].roots, reference.roots):
+for a, b in zip(results["0"].roots, reference.roots):
     assert abs(a.q - b.q) < mpmath.mpf(10) ** (-min(a.decimals, b.decimals) + 1)
 print(
     "\neta_c = 0 gives the base model's induced frequencies:",
@@ -334,15 +268,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 print(f"{'eta_c':>6} " + " ".join(f"{'Im q_' + str(k + 1):>12}" for k in range(4)) + "   verdict")
 for eta_c, r in results.items():
     ims = [float(root.q.imag) for root in r.roots]
-    print(
-        f"{eta_c:6.2f} " + " ".join(f"{x:12.6f}" for x in ims) + f"   {'stable' if r.stable else 'UNSTABLE'}"
-    )
+    print(f"{eta_c:>6} " + " ".join(f"{x:12.6f}" for x in ims) + f"   {'stable' if r.stable else 'UNSTABLE'}")
 
 fig, axes = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
 for k in range(4):
-    xs = [e for e, r in results.items() if len(r.roots) > k]
-    axes[0].plot(xs, [float(results[e].roots[k].q.real) for e in xs], "o-", label=f"root {k + 1}")
-    axes[1].plot(xs, [float(results[e].roots[k].q.imag) for e in xs], "o-", label=f"root {k + 1}")
+    keys = [e for e, r in results.items() if len(r.roots) > k]
+    xs = [float(e) for e in keys]
+    axes[0].plot(xs, [float(results[e].roots[k].q.real) for e in keys], "o-", label=f"root {k + 1}")
+    axes[1].plot(xs, [float(results[e].roots[k].q.imag) for e in keys], "o-", label=f"root {k + 1}")
 axes[1].axhline(0, color="k", lw=0.8)
 axes[1].set_yscale("symlog", linthresh=1e-4)
 axes[0].set_ylabel("Re q")
@@ -350,7 +283,7 @@ axes[1].set_ylabel("Im q (below 0: unstable)")
 for ax in axes:
     ax.set_xlabel("shear-layer damping η_c")
 axes[0].legend(fontsize=8)
-fig.suptitle(f"Case {CASE}: induced frequencies with a viscous Pasternak layer (model 'eb_kelvin', η_s = 0)")
+fig.suptitle(f"Case {CASE}: induced frequencies on the track 'kelvin-shear' (η_s = 0)")
 plt.show()
 
 # %%
@@ -366,14 +299,38 @@ print("most negative Im q as eta_c grows:", [f"{x:.6f}" for x in unstable_im])
 # reports for the foundation damping $\eta_f$ (Section 3.5, Figure 3): for two interacting contact points,
 # more damping in the track can aggravate the instability in the subcritical range.
 #
-# ## Clean up
+# ## 5. The copy's command line
 #
-# The scratch copy is deleted, the temporary module is unregistered, and the real repository is checked
-# to be byte-for-byte what it was.
+# The copy is a complete source tree, so its command line knows the new track and the new option: the
+# model options and one option per group come from the generated metadata.
 
 # %%
-del sys.modules["moving_bogie.generated.foundation_eb_kelvin"]
+env = dict(os.environ, PYTHONPATH=str(scratch / "src"))
+cli = [sys.executable, "-m", "moving_bogie"]
+listing = subprocess.run([*cli, "models", "--json"], env=env, capture_output=True, text=True, check=True)
+names = [m["beam"] + "/" + m["track"] + "/" + m["vehicle"] for m in json.loads(listing.stdout)["models"]]
+print("models of the copy:", names)
+assert "tr/kelvin-shear/bogie" in names
+run = subprocess.run(
+    [*cli, "frequencies", "--case", str(CASE), "--track", "kelvin-shear", "--eta-c", ETA_C[-1]]
+    + ["--dps", str(DPS), "--json"],
+    env=env,
+    capture_output=True,
+    text=True,
+)
+assert run.returncode == 0, run.stderr
+cli_roots = [complex(float(r["re"]), float(r["im"])) for r in json.loads(run.stdout)["roots"]]
+session_roots = [complex(r.q) for r in results[ETA_C[-1]].roots]
+print("command line:", [f"{z:.6f}" for z in cli_roots])
+assert all(abs(a - b) < 1e-12 for a, b in zip(cli_roots, session_roots))
+
+# %% [markdown]
+# ## Clean up
+#
+# The scratch copy is deleted, and the real repository is checked to be byte-for-byte what it was.
+
+# %%
 shutil.rmtree(scratch)
-after = {name: tree_digest(repo / name) for name in ("derivations", "src/moving_bogie/generated")}
-assert after == before, "the repository's derivations/ or generated/ changed"
-print("derivations/ and generated/ of", repo, "are unchanged")
+after = {name: tree_digest(repo / name) for name in SOURCES}
+assert after == before, "the repository's derivations/ or src/ changed"
+print("derivations/ and src/ of", repo, "are unchanged")

@@ -25,7 +25,8 @@ from moving_bogie.model.exact import fraction_to_exact_text, fraction_to_mpf, fr
         (Decimal("0.05"), Fraction(1, 20)),
         (7, Fraction(7)),
         (np.int64(7), Fraction(7)),
-        (0.1, Fraction(3602879701896397, 2**55)),  # a float keeps its exact binary value
+        (0.1, Fraction(1, 10)),  # a float is read by its shortest decimal text, as the CLI reads it
+        (2.5e-300, Fraction(25, 10**301)),
         (np.float64(0.5), Fraction(1, 2)),
         (mpmath.mpf(0.25), Fraction(1, 4)),
     ],

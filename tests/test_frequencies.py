@@ -1,6 +1,6 @@
 """Induced frequencies (roots of E_chr, Eq. (48)) found with no starting guesses.
 
-References: the paper's Table 2 (printed, six decimals; ../shared/reference, shipped in moving_bogie/data)
+References: the paper's Table 2 (printed, six decimals; shipped in moving_bogie/data)
 for Cases 1-6; for every case the argument-principle count; the pair symmetry E(-conj q) = conj E(q);
 a precision ladder (the same roots recomputed at 45 digits); seeded random parameter sets.
 """
@@ -120,7 +120,7 @@ def test_random_parameter_sets_never_report_a_count_mismatch(params):
 
 
 def test_bad_input_fails_cleanly():
-    with pytest.raises(ParameterError, match="model"):
+    with pytest.raises(ParameterError, match="vehicle"):
         induced_frequencies(table1_case(1), "trolley")
     out = subprocess.run(
         [sys.executable, "-m", "moving_bogie", "frequencies", "--case", "99"], capture_output=True, text=True

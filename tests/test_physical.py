@@ -140,5 +140,6 @@ def test_to_physical_validates_the_track():
 
 def test_to_dict():
     d = PhysicalParams(**SI).to_dict()
-    assert d["EI"] == "6420000" and d["c_f"] == "3000" and d["GA"] is None
+    # only the model's own SI parameters (an Euler-Bernoulli beam has no GA)
+    assert d["EI"] == "6420000" and d["c_f"] == "3000" and "GA" not in d and d["beam"] == "eb"
     assert isinstance(PhysicalParams(**SI).to_dimensionless(), DimensionlessParams)

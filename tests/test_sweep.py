@@ -74,9 +74,9 @@ def test_random_points_agree_with_induced_frequencies(one_worker):
         ref = induced_frequencies(
             table1_case(1).replace(alpha=exact["alpha"][i], eta_M=exact["eta_M"][j]), dps=20
         )
-        assert ref.count_ok
+        assert ref.count_ok and ref.verdict.determined
         assert int(point.n_unstable) == len(ref.unstable_roots)
-        assert bool(point.stable) == ref.stable
+        assert bool(point.stable) == (ref.verdict.state == "stable")
         assert float(point.degree_of_instability) == pytest.approx(float(ref.degree_of_instability), abs=1e-9)
 
 

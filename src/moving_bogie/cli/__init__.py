@@ -10,16 +10,19 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import sys
 from collections.abc import Sequence
 
 from moving_bogie import __version__
 
-from .common import PROG, handle_errors
+from .outputs import check_output_paths
+from .reporting import PROG, Parser, UsageError, handle_errors, usage_failure
 
 __all__ = ["SUBCOMMAND_MODULES", "build_parser", "main"]
 
 #: Modules of this package that define subcommands, in the order ``--help`` lists them.
 SUBCOMMAND_MODULES: list[str] = [
+    "models_cmd",
     "params_cmd",
     "frequencies_cmd",
     "reproduce_cmd",
@@ -32,7 +35,7 @@ SUBCOMMAND_MODULES: list[str] = [
 
 def build_parser() -> argparse.ArgumentParser:
     """The ``moving-bogie`` parser with every subcommand of :data:`SUBCOMMAND_MODULES` registered."""
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog=PROG,
         description=(
             "Stability and vibrations of a bogie moving on an infinite beam on a viscoelastic "
@@ -49,8 +52,18 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line `argv` (default: ``sys.argv[1:]``) and return the exit status.
 
-    Expected failures print one line ``moving-bogie: error: ...`` and return 2 (see
-    :func:`~moving_bogie.cli.common.handle_errors`); usage errors exit 2 through argparse.
+    Usage errors and expected failures print one line naming the option (a JSON object on stdout with
+    ``--json``) and return 2 (see :mod:`~moving_bogie.cli.reporting`). Every output option is checked
+    (:func:`~moving_bogie.cli.outputs.check_output_paths`) before the command computes anything.
     """
-    args = build_parser().parse_args(argv)
-    return handle_errors(args.handler)(args)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        args = build_parser().parse_args(argv)
+    except UsageError as exc:
+        return usage_failure(exc, argv)
+
+    def run(args: argparse.Namespace) -> int | None:
+        check_output_paths(args)
+        return args.handler(args)
+
+    return handle_errors(run, argv)(args)

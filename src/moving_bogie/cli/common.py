@@ -3,54 +3,54 @@
 from __future__ import annotations
 
 import argparse
-import functools
 import json
-import os
 import sys
-import tomllib
-from collections.abc import Callable
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.errors import ParameterError
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.files import load_params_file
-from moving_bogie.model.params import BEAMS, DimensionlessParams
+from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.output import atomic_write  # noqa: F401  (re-exported for the commands)
 
+from .outputs import add_output_option  # noqa: F401  (re-exported for the commands)
+from .reporting import PROG, handle_errors  # noqa: F401  (re-exported for the commands)
+
 __all__ = [
-    "PARAMETER_OPTIONS",
+    "MODEL_OPTIONS",
+    "add_model_options",
     "add_json_option",
+    "add_output_option",
     "add_parameter_options",
     "atomic_write",
     "handle_errors",
+    "parameter_options",
     "params_from_args",
     "print_json",
 ]
 
-PROG = "moving-bogie"
 
-#: Override option of each dimensionless parameter: (name, option, help).
-PARAMETER_OPTIONS: tuple[tuple[str, str, str], ...] = (
-    ("eta_f", "--eta-f", "foundation damping ratio c_f/(2 sqrt(m k_f)), 0 <= eta_f < 1, Eq. (17)"),
-    ("eta_s", "--eta-s", "Pasternak shear layer k_s/(2 sqrt(k_f EI)), >= 0"),
-    ("eta_M", "--eta-M", "wheel mass ratio M chi/m, Eq. (17)"),
-    ("d", "--d", "wheel spacing d chi, Eq. (16)"),
-    ("cf1", "--cf1", "bar mass coefficient: mu_v = cf1 eta_M, Eq. (63)"),
-    ("cf2", "--cf2", "bar inertia coefficient: J_b = cf2 eta_M d^2, Eq. (63)"),
-    ("mu_v", "--mu-v", "bar mass ratio M_b chi/m, Eq. (17) (instead of --cf1)"),
-    ("J_b", "--J-b", "bar mass moment of inertia chi^3 J_b/m, Eq. (17) (instead of --cf2)"),
-    ("kappa_v", "--kappa-v", "primary suspension stiffness k_v chi/k_f, Eq. (17)"),
-    ("eta_v", "--eta-v", "primary suspension damping c_v chi/(2 sqrt(m k_f)), Eq. (17)"),
-    ("alpha", "--alpha", "velocity ratio v/v_ref, Eq. (16)"),
-    ("S", "--S", "Timoshenko shear parameter G Abar/(2 sqrt(k_f EI)), Eq. (59) (with --beam tr)"),
-    ("r", "--r", "radius of gyration r chi, Eq. (59) (with --beam tr)"),
-)
-_OPTION = {name: option for name, option, _ in PARAMETER_OPTIONS}
-_REQUIRED = ("eta_f", "eta_M", "d", "cf1", "cf2", "kappa_v", "eta_v", "alpha")
-_ALTERNATIVE = {"cf1": "mu_v", "cf2": "J_b"}
+def _catalogue():
+    return default_catalogue()
+
+
+def parameter_options() -> list[tuple[str, str, str]]:
+    """(name, option, help) of every dimensionless group and alternative, from the generated metadata."""
+    catalogue = _catalogue()
+    rows = [
+        (s.name, s.option, f"{s.meaning}, {s.range_text}, Eq. {s.equation}") for s in catalogue.specs.values()
+    ]
+    for name, meta in catalogue.parameters.ALTERNATIVES.items():
+        rows.append((name, "--" + name.replace("_", "-"), f"{meta['meaning']} (instead of --{meta['sets']})"))
+    return rows
+
+
+#: Model choices: option -> (dest, what it chooses).
+MODEL_OPTIONS = {"--beam": "beam", "--track": "track", "--vehicle": "vehicle"}
 
 
 def _decimal_text(text: str) -> str:
@@ -63,10 +63,12 @@ def _decimal_text(text: str) -> str:
 
 
 def add_parameter_options(parser: argparse.ArgumentParser) -> None:
-    """Add ``--case``, ``--file`` and one override option per dimensionless parameter to `parser`.
+    """Add the model options, ``--case``, ``--file`` and one override option per dimensionless group.
 
+    The groups and their options come from the generated metadata (``moving-bogie models`` lists them).
     Overrides are kept as decimal text and converted exactly. Read them back with :func:`params_from_args`.
     """
+    add_model_options(parser)
     source = parser.add_argument_group(
         "parameters", "Start from a Table 1 case or a TOML file, then override single parameters."
     )
@@ -80,53 +82,83 @@ def add_parameter_options(parser: argparse.ArgumentParser) -> None:
         "--file",
         type=Path,
         metavar="F.toml",
-        help="TOML parameter file ([dimensionless] or [physical] table)",
+        help="TOML parameter file ([model], and a [dimensionless] or [physical] table)",
     )
-    for name, option, text in PARAMETER_OPTIONS:
+    for name, option, text in parameter_options():
         source.add_argument(option, dest=name, type=_decimal_text, metavar="X", help=text)
-    source.add_argument(
-        "--beam", choices=BEAMS, help="beam theory: eb Euler-Bernoulli, tr Timoshenko-Rayleigh"
+
+
+def add_model_options(parser: argparse.ArgumentParser) -> None:
+    """Add ``--beam``, ``--track`` and ``--vehicle`` (alias ``--model``), choices from the catalogue."""
+    catalogue = _catalogue()
+    model = parser.add_argument_group(
+        "model", "The model: a beam on a track under a vehicle (default: the paper's eb, one-layer, bogie)."
+    )
+    model.add_argument(
+        "--beam",
+        choices=tuple(catalogue.beams),
+        help="; ".join(f"{k}: {v}" for k, v in catalogue.beams.items()),
+    )
+    model.add_argument(
+        "--track", choices=tuple(catalogue.tracks), help="track model (moving-bogie models lists them)"
+    )
+    model.add_argument(
+        "--vehicle",
+        "--model",
+        dest="vehicle",
+        choices=tuple(catalogue.vehicles),
+        help="bogie (Figure 1b) or masses (two moving masses, Figure 1a); --model is an alias",
     )
 
 
 def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, PhysicalParams | None]:
     """Parameters selected by the options of :func:`add_parameter_options`.
 
-    The base is ``--case`` or ``--file``; the override options then change single parameters
+    The base is ``--case`` or ``--file``; the model options and the override options then change it
     (:meth:`DimensionlessParams.replace` semantics: changing eta_M or d keeps cf1 and cf2). Without a
     base, the overrides must name every required parameter. When a ``[physical]`` file is overridden,
     the physical parameters are recomputed for the same track and wheel load
-    (:meth:`PhysicalParams.with_dimensionless`).
+    (:meth:`PhysicalParams.with_dimensionless`). ``args.model`` is set to the resolved vehicle.
 
     Raises
     ------
     ParameterError
         For conflicting or missing options and invalid values.
     """
-    overrides = {name: getattr(args, name) for name in (*_OPTION, "beam") if getattr(args, name) is not None}
+    options = {name: option for name, option, _ in parameter_options()}
+    overrides = {name: getattr(args, name) for name in options if getattr(args, name, None) is not None}
+    models = {k: getattr(args, k) for k in MODEL_OPTIONS.values() if getattr(args, k, None) is not None}
     if args.case is not None and args.file is not None:
         raise ParameterError("case", "give either --case or --file, not both")
-    if args.case is not None:
-        return table1_case(args.case).replace(**overrides), None
-    if args.file is not None:
-        params, physical = load_params_file(args.file)
-        if not overrides:
-            return params, physical
-        params = params.replace(**overrides)
-        if physical is not None:
-            physical = physical.with_dimensionless(params)
-        return params, physical
-    if not overrides:
-        needed = " ".join(f"{_OPTION[name]} X" for name in _REQUIRED)
-        raise ParameterError("case", f"no parameters given: use --case N, --file F.toml, or all of {needed}")
-    for name in _REQUIRED:
-        alternative = _ALTERNATIVE.get(name)
-        if name not in overrides and alternative not in overrides:
-            option = f"{_OPTION[name]} or {_OPTION[alternative]}" if alternative else _OPTION[name]
+    physical = None
+    try:
+        if args.case is not None:
+            params = table1_case(args.case).replace(**models, **overrides)
+        elif args.file is not None:
+            params, physical = load_params_file(args.file)
+            if overrides or models:
+                params = params.replace(**models, **overrides)
+                if physical is not None:
+                    physical = physical.with_dimensionless(params)
+        elif not overrides:
             raise ParameterError(
-                name, f"missing parameter {name} ({option}); or start from --case N or --file F.toml"
+                "case",
+                "no parameters given: use --case N, --file F.toml, or give every parameter as an option "
+                "(moving-bogie models lists them)",
             )
-    return DimensionlessParams.from_mapping(overrides), None
+        else:
+            params = DimensionlessParams.from_mapping(overrides | models)
+    except ParameterError as exc:
+        option = options.get(exc.parameter) or next(
+            (o for o, dest in MODEL_OPTIONS.items() if dest == exc.parameter), None
+        )
+        if option and "missing" in str(exc) and args.case is None and args.file is None:
+            raise ParameterError(
+                exc.parameter, f"{exc} ({option}); or start from --case N or --file F.toml"
+            ) from None
+        raise
+    args.model = params.vehicle
+    return params, physical
 
 
 def add_json_option(parser: argparse.ArgumentParser) -> None:
@@ -138,38 +170,3 @@ def print_json(data: Any) -> None:
     """Print `data` as indented JSON on stdout."""
     json.dump(data, sys.stdout, indent=2)
     sys.stdout.write("\n")
-
-
-def _fail(message: str, code: int = 2) -> int:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
-    return code
-
-
-def handle_errors(func: Callable[..., int | None]) -> Callable[..., int]:
-    """Decorate a command so that expected failures print one line to stderr instead of a traceback.
-
-    :class:`MovingBogieError`, invalid TOML and unreadable or unwritable files print
-    ``moving-bogie: error: <message>`` and return 2; Ctrl-C returns 130. Other exceptions are bugs
-    and keep their traceback.
-    """
-
-    @functools.wraps(func)
-    def wrapper(*args: Any, **kwargs: Any) -> int:
-        try:
-            return func(*args, **kwargs) or 0
-        except MovingBogieError as exc:
-            return _fail(str(exc))
-        except tomllib.TOMLDecodeError as exc:
-            return _fail(f"not a valid TOML file: {exc}")
-        except BrokenPipeError:
-            # The reader went away (e.g. `| head`): stop quietly, without a second error at exit.
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-            return 1
-        except OSError as exc:
-            if exc.filename is None:
-                raise
-            return _fail(f"{exc.strerror}: {exc.filename}")
-        except KeyboardInterrupt:
-            return _fail("interrupted", 130)
-
-    return wrapper

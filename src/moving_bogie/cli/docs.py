@@ -75,6 +75,20 @@ def render(width: int = WIDTH) -> str:
         lines += ["", "## moving-bogie", "", "```", parser.format_help().rstrip(), "```"]
         for name, sub in commands.items():
             lines += ["", f"## moving-bogie {name}", "", "```", sub.format_help().rstrip(), "```"]
+    from moving_bogie.model.catalogue import default_catalogue
+
+    from .models_cmd import format_catalogue
+
+    lines += [
+        "",
+        "## The models and their parameters",
+        "",
+        "The output of `moving-bogie models`: every model of the generated catalogue (from `derivations/`).",
+        "",
+        "```",
+        format_catalogue(default_catalogue().models()),
+        "```",
+    ]
     return "\n".join(lines) + "\n"
 
 

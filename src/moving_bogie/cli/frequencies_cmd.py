@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import PROG, add_json_option, add_parameter_options, params_from_args, print_json
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -16,14 +17,22 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Find every induced frequency q (root of E_chr, Eq. (48)) with Re q >= 0 in the search window,\n"
             "with no starting guesses: the roots are counted by the argument principle on contours that\n"
             "avoid the cut of K, located, polished at --dps digits and confirmed at higher precision.\n"
-            "The motion is unstable when some root has Im q < 0. Exit status 1 when the count and the\n"
-            "roots found disagree (a root may be missing), 2 on bad input."
+            "The motion is unstable when some root has Im q < 0. The default window holds every root with\n"
+            "Im q < 0 (a radius R beyond which E_chr has none is checked first), so the verdict is about\n"
+            "every root; when the search is incomplete the verdict is UNDETERMINED with the reason."
         ),
         epilog=(
+            "exit status:\n  0  verdict STABLE or UNSTABLE, every root in the window found\n"
+            "  1  verdict UNDETERMINED, the count and the roots found disagree (see the warnings),\n"
+            "     or with --certify a root or the count is not proven\n"
+            "  2  bad input (the message names the option)\n"
+            "warnings and errors go to stderr; the table and the verdict to stdout. With --json an error\n"
+            'is the JSON object {"error": ..., "option": ...} on stdout.\n\n'
             "examples:\n  moving-bogie frequencies --case 1\n"
             "  moving-bogie frequencies --case 7 --alpha 0.7 --json\n"
             "  moving-bogie frequencies --case 1 --beam tr --S 100 --r 0.03\n"
-            "  moving-bogie frequencies --case 5 --model masses"
+            "  moving-bogie frequencies --case 5 --model masses\n"
+            "  moving-bogie frequencies --case 1 --certify"
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -41,19 +50,26 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "Exit status 1 on any difference beyond the print's rounding or any count mismatch."
         ),
         epilog="examples:\n  moving-bogie table2\n  moving-bogie table2 --decimals 12\n"
-        "  moving-bogie table2 --json",
+        "  moving-bogie table2 --json\n  moving-bogie table2 --certify",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     table.add_argument("--decimals", type=int, default=6, help="decimals shown in the text table (default 6)")
     table.add_argument("--dps", type=int, default=30, help="working precision in decimal digits (default 30)")
+    _add_certify_option(table)
     add_json_option(table)
     table.set_defaults(handler=run_table2)
 
 
-def _add_search_options(parser):
+def _add_certify_option(parser):
     parser.add_argument(
-        "--model", choices=("bogie", "masses"), default="bogie", help="vehicle (default bogie)"
+        "--certify",
+        action="store_true",
+        help="prove every root (alone in a square of half-side 1e-26), the count and the verdict in ball "
+        "arithmetic (exit status 1 if a root or a count is not proven; see docs/frequencies.md)",
     )
+
+
+def _add_search_options(parser):
     parser.add_argument(
         "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
     )
@@ -62,6 +78,7 @@ def _add_search_options(parser):
         metavar="X,Y",
         help="search window 0 <= Re q <= X, -Y <= Im q <= Y + eta_f (default: see docs/frequencies.md)",
     )
+    _add_certify_option(parser)
 
 
 def _check_dps(dps):
@@ -79,7 +96,7 @@ def run_frequencies(args: argparse.Namespace) -> int:
     from .progress import progress_bar
 
     _check_dps(args.dps)
-    params, _physical = params_from_args(args)
+    params, physical = params_from_args(args)
     window = None
     if args.window:
         try:
@@ -90,12 +107,48 @@ def run_frequencies(args: argparse.Namespace) -> int:
             raise ParameterError("window", "window sizes must be positive")
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
     with progress_bar("induced frequencies", enabled=not args.json) as update:
-        result = induced_frequencies(params, args.model, dps=args.dps, window=window, progress=update)
+        result = induced_frequencies(
+            params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
+        )
     if args.json:
-        print_json(result.to_dict())
+        print_json(with_si(result.to_dict(), result, physical))
     else:
         print(format_result(result))
-    return 0 if result.count_ok else 1
+        if physical is not None:
+            print(format_si(result, physical))
+    for line in format_warnings(result):
+        print(line, file=sys.stderr)
+    proven = result.certificate is None or result.certificate.all_proven
+    return 0 if result.count_ok and result.verdict.determined and proven else 1
+
+
+def with_si(data: dict, result, physical) -> dict:
+    """For a ``[physical]`` input: each root also as ``omega`` [rad/s], Hz and growth time [s]."""
+    if physical is None:
+        return data
+    from moving_bogie.model.si_results import root_in_si
+
+    t_scale = physical.scales().t_scale
+    for entry, root in zip(data["roots"], result.roots):
+        entry.update(root_in_si(root.q, t_scale, digits=min(12, root.digits)))
+    data["si"] = {"t_scale_s": repr(t_scale), "physical": physical.to_dict(), "time_factor": "exp(i omega t)"}
+    return data
+
+
+def format_si(result, physical) -> str:
+    """The roots of a ``[physical]`` input in SI units, one line each."""
+    from moving_bogie.model.si_results import root_in_si
+
+    t_scale = physical.scales().t_scale
+    lines = [f"In SI (t = tau * {t_scale:.6g} s; time factor exp(i omega t), Im omega < 0 grows):"]
+    for k, root in enumerate(result.roots, 1):
+        si = root_in_si(root.q, t_scale, digits=min(8, root.digits))
+        growth = f", growth time {si['growth_time_s']} s" if si["growth_time_s"] else ""
+        lines.append(
+            f"  {k:<2}omega = +-{si['omega']['re']} + {si['omega']['im']}i rad/s, "
+            f"f = {si['frequency_hz']} Hz{growth}"
+        )
+    return "\n".join(lines)
 
 
 def format_result(result) -> str:
@@ -112,7 +165,17 @@ def format_result(result) -> str:
         lines.append(
             f"not searched: a sliver of height <= {height:.1e} around the cut of K ('unsearched' in --json)"
         )
-    if result.stable:
+    far = result.far_field
+    if far is not None and far.radius is not None:
+        lines.append(
+            f"far field: no root with Im q < 0 beyond |q| = {far.radius:g} "
+            f"(|E_chr - E_lead| / |E_lead| <= {far.rho:.2f} there); searched: Re q <= {result.window.x1:g}, "
+            f"{result.window.y0:g} <= Im q <= {result.window.y1:g}"
+        )
+    verdict = result.verdict
+    if verdict.state == "undetermined":
+        lines.append("verdict: UNDETERMINED: " + "; ".join(verdict.reasons))
+    elif verdict.state == "stable":
         lines.append("verdict: STABLE (no induced frequency with Im q < 0)")
     else:
         growth = mpmath.nstr(result.growth_time, 6)
@@ -120,11 +183,37 @@ def format_result(result) -> str:
             f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s); degree of instability "
             f"{mpmath.nstr(result.degree_of_instability, 6)}, growth time 1/|Im q| = {growth}"
         )
-    for w in result.warnings:
-        lines.append(f"WARNING: {w}")
-    if not result.count_ok:
-        lines.append("ERROR: the count and the roots found disagree: a root may be missing (see warnings)")
+    if result.certificate is not None:
+        lines += format_certificate(result.certificate)
     return "\n".join(lines)
+
+
+def format_warnings(result) -> list[str]:
+    """The WARNING/ERROR lines of ``result`` (printed on stderr)."""
+    lines = [f"{PROG}: warning: {w}" for w in result.warnings]
+    if not result.count_ok:
+        lines.append(f"{PROG}: error: the count and the roots found disagree: a root may be missing")
+    return lines
+
+
+def format_certificate(c) -> list:
+    """Lines reporting the ball-arithmetic proof (roots, count, unsearched strip, verdict)."""
+    lines = [
+        f"certified ({c.seconds:.1f} s): {c.proven_roots}/{len(c.roots)} roots proven, each alone in a "
+        f"square of half-side {c.roots[0].radius if c.roots else '-'}; count proven: {c.count}"
+        + ("" if c.all_proven else " (NOT all roots proven)")
+    ]
+    if c.unsearched:
+        lo, hi = min(u.y0 for u in c.unsearched), max(u.y1 for u in c.unsearched)
+        left, right = min(u.x0 for u in c.unsearched), max(u.x1 for u in c.unsearched)
+        lines.append(
+            f"  not searched by the proof: {lo:.4g} <= Im q <= {hi:.4g}, {left:.6g} <= Re q <= {right:.4g} "
+            "(along the cut of K)"
+        )
+    lines.append(f"  proven verdict: {c.verdict.upper()} in the window ({c.reason})")
+    for p in c.problems:
+        lines.append(f"  not proven: {p}")
+    return lines
 
 
 def run_table2(args: argparse.Namespace) -> int:
@@ -134,9 +223,10 @@ def run_table2(args: argparse.Namespace) -> int:
 
     _check_dps(args.dps)
     with progress_bar("Table 2", enabled=not args.json) as update:
-        table = compute_table2(dps=args.dps, progress=update)
+        table = compute_table2(dps=args.dps, progress=update, certify=args.certify)
     if args.json:
         print_json(table.to_dict())
     else:
         print(format_table2(table, decimals=args.decimals))
-    return 0 if table.ok else 1
+    proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
+    return 0 if table.ok and proven else 1

@@ -6,27 +6,10 @@ import argparse
 import dataclasses
 
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.model.physical import PHYSICAL_UNITS, PhysicalParams
+from moving_bogie.model.physical import PhysicalParams
 
 from .common import add_json_option, add_parameter_options, params_from_args, print_json
 
-#: One-line meaning of each dimensionless parameter, with its defining equation.
-DESCRIPTIONS = {
-    "eta_f": "foundation damping c_f/(2 sqrt(m k_f)), Eq. (17)",
-    "eta_M": "wheel mass M chi/m, Eq. (17)",
-    "d": "wheel spacing d chi, Eq. (16)",
-    "mu_v": "bar mass M_b chi/m = cf1 eta_M, Eqs. (17), (63)",
-    "J_b": "bar inertia chi^3 J_b/m = cf2 eta_M d^2, Eqs. (17), (63)",
-    "kappa_v": "suspension stiffness k_v chi/k_f, Eq. (17)",
-    "eta_v": "suspension damping c_v chi/(2 sqrt(m k_f)), Eq. (17)",
-    "alpha": "velocity v/v_ref, Eq. (16)",
-    "eta_s": "shear layer k_s/(2 sqrt(k_f EI))",
-    "beam": "eb Euler-Bernoulli, tr Timoshenko-Rayleigh",
-    "S": "shear G Abar/(2 sqrt(k_f EI)), Eq. (59)",
-    "r": "radius of gyration r chi, Eq. (59)",
-    "cf1": "M_b/M, Eq. (64)",
-    "cf2": "J_b/(M d^2), Eq. (64)",
-}
 _SCALE_UNITS = {"chi": "1/m", "v_ref": "m/s", "w_st": "m", "t_scale": "s"}
 
 
@@ -64,15 +47,29 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def params_text(value) -> str:
+    """A Fraction as decimal text (exact where finite)."""
+    from moving_bogie.model.exact import fraction_to_text
+
+    return fraction_to_text(value)
+
+
 def format_table(params: DimensionlessParams, physical: PhysicalParams | None) -> str:
     """Aligned text table of the parameters (and, if given, SI parameters and scales)."""
-    rows = [(name, value or "-", DESCRIPTIONS[name]) for name, value in params.to_dict().items()]
-    sections = [("Dimensionless parameters", rows)]
+    model = params.model
+    rows = [(key, getattr(params, key), "model") for key in ("beam", "track", "vehicle")]
+    for name, spec in model.specs.items():
+        rows.append((name, params.to_dict()[name], f"{spec.meaning}, Eq. {spec.equation}"))
+    for name, meta in model.alternatives.items():
+        rows.append((name, params.to_dict()[name], meta["meaning"]))
+    sections = [(f"Dimensionless parameters of {model.name}", rows)]
     if physical is not None:
+        units = physical.units()
+        values = physical.values()
         sections.append(
             (
                 "Physical parameters (SI)",
-                [(name, value or "-", PHYSICAL_UNITS[name]) for name, value in physical.to_dict().items()],
+                [(name, str(params_text(values[name])), units[name]) for name in values],
             )
         )
         scales = dataclasses.asdict(physical.scales())

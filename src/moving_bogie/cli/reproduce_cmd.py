@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
+
+from .outputs import add_output_option
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -15,7 +16,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description=(
             "Rebuild every table and figure of the paper that the software covers into DIR, and write\n"
             "DIR/index.html and DIR/index.md showing each one under the paper's caption (verbatim).\n"
-            "An artifact whose feature is not installed is listed as 'not covered' with the reason.\n"
+            "Figure 1, a drawing rather than a computed result, is listed as 'not covered' with the reason.\n"
             "--quick (or MOVING_BOGIE_QUICK=1) uses reduced grids, short time windows and no finite-beam\n"
             "runs: a check that everything builds, in a couple of minutes. Exit status 1 when an\n"
             "artifact fails or Table 2 differs from the print, 2 on bad input."
@@ -28,7 +29,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("--out", type=Path, metavar="DIR", help="output folder (created)")
+    add_output_option(parser, "--out", folder=True, metavar="DIR", help="output folder (created)")
     parser.add_argument(
         "--quick",
         action="store_true",
@@ -48,13 +49,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
-    from moving_bogie.paper.reproduce import ARTIFACTS, quick_from_env, reproduce
+    from moving_bogie.paper.registry import ARTIFACTS
+    from moving_bogie.paper.reproduce import quick_from_env, reproduce
 
     from .progress import progress_bar
 
     if args.list:
         for a in ARTIFACTS:
-            note = f"  (not computed: {a.reason})" if a.builder is None else ""
+            note = f"  (not computed: {a.reason})" if a.recipe is None else ""
             print(f"{a.id:<10} {a.label}{note}")
         return 0
     if args.out is None:

@@ -4,14 +4,26 @@ stability-map, critical-stiffness and stability-figure."""
 from __future__ import annotations
 
 import argparse
+import sys
 from fractions import Fraction
 from pathlib import Path
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.catalogue import default_catalogue
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import (
+    MODEL_OPTIONS,
+    PROG,
+    add_json_option,
+    add_model_options,
+    add_output_option,
+    add_parameter_options,
+    params_from_args,
+    print_json,
+)
 from .progress import progress_bar
 
+BEAM_CHOICES = tuple(default_catalogue().beams)
 _RAW = argparse.RawDescriptionHelpFormatter
 FIGURES = (2, 3, 4, 7, 8, 16)
 
@@ -43,12 +55,6 @@ def _add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
     """Parameters of the instability-lines / stability-map family (no alpha, no eta_M: they are the axes)."""
     g = parser.add_argument_group("parameters", "A Table 1 case as base (optional), then overrides.")
     g.add_argument("--case", type=int, metavar="N", help="take the other parameters from Table 1 case N")
-    g.add_argument(
-        "--model",
-        choices=("bogie", "masses"),
-        default="bogie",
-        help="bogie (Fig. 1b) or two masses (Fig. 1a)",
-    )
     if spacing_list:
         g.add_argument("--d", type=_number_list, metavar="D1,D2,...", help="wheel spacing(s) d (default 1)")
     else:
@@ -64,7 +70,7 @@ def _add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
         ("--r", "r", "radius of gyration, Eq. (59) (with --beam tr)"),
     ):
         g.add_argument(opt, dest=dest, type=_number, metavar="X", help=text)
-    g.add_argument("--beam", choices=("eb", "tr"), help="beam theory (default eb)")
+    add_model_options(parser)
 
 
 _DEFAULTS = dict(eta_f="0.05", eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5")
@@ -80,13 +86,14 @@ def _params_and_spacings(args):
         else DimensionlessParams.from_coefficients(**_DEFAULTS)
     )
     changes = {
-        k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r", "beam")
-    }
+        k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r")
+    } | {k: getattr(args, k, None) for k in MODEL_OPTIONS.values()}
     changes = {k: v for k, v in changes.items() if v is not None}
     spacings = args.d if isinstance(args.d, list) else ([args.d] if args.d is not None else None)
     if spacings:
         changes["d"] = spacings[0]
     params = base.replace(**changes)
+    args.model = params.vehicle
     return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
 
 
@@ -106,9 +113,20 @@ def _register_critical_velocity(subparsers) -> None:
         ),
         formatter_class=_RAW,
     )
-    p.add_argument("--beam", choices=("eb", "tr"), default="eb")
+    p.add_argument("--beam", choices=BEAM_CHOICES, default=None, help="beam (default eb, or the file's)")
     p.add_argument(
-        "--eta-s", dest="eta_s", type=_number, default="0", metavar="X", help="Pasternak shear layer"
+        "--file",
+        type=Path,
+        metavar="F.toml",
+        help="take the track from a parameter file; [physical] adds v_cr in m/s",
+    )
+    p.add_argument(
+        "--eta-s",
+        dest="eta_s",
+        type=_number,
+        default=None,
+        metavar="X",
+        help="Pasternak shear layer (default 0)",
     )
     p.add_argument("--S", type=_number, metavar="X", help="Timoshenko shear parameter (with --beam tr)")
     p.add_argument("--r", type=_number, metavar="X", help="radius of gyration (with --beam tr)")
@@ -119,10 +137,25 @@ def _register_critical_velocity(subparsers) -> None:
 def run_critical_velocity(args) -> int:
     from moving_bogie.stability.critical_velocity import critical_velocity
 
-    if args.beam == "tr" and (args.S is None or args.r is None):
+    physical = None
+    beam, eta_s, S, r = args.beam or "eb", args.eta_s or "0", args.S, args.r
+    if args.file is not None:
+        from moving_bogie.model.files import load_params_file
+
+        params, physical = load_params_file(args.file)
+        params = params.replace(**{k: v for k, v in (("beam", args.beam), ("eta_s", args.eta_s)) if v})
+        beam, eta_s = params.beam, params.eta_s
+        S, r = (args.S or params.S), (args.r or params.r)
+        if physical is not None:
+            physical = physical.with_dimensionless(params)
+    if beam == "tr" and (S is None or r is None):
         raise ParameterError("S", "--beam tr needs --S and --r")
-    res = critical_velocity(args.beam, eta_s=args.eta_s, S=args.S, r=args.r)
+    res = critical_velocity(beam, eta_s=eta_s, S=S, r=r)
     data = res.to_dict()
+    if physical is not None:
+        v_ref = physical.scales().v_ref
+        data["v_cr"] = f"{float(data['alpha_cr']) * v_ref:.10g}"
+        data["v_cr_unit"] = "m/s"
     if args.json:
         print_json(data)
     else:
@@ -131,6 +164,8 @@ def run_critical_velocity(args) -> int:
         )
         print(f"closed form      {data['alpha_cr_formula']}  ({data['formula']}; agrees: {data['agrees']})")
         print(f"method           {data['method']}")
+        if "v_cr" in data:
+            print(f"v_cr             {data['v_cr']} m/s")
     return 0
 
 
@@ -151,11 +186,10 @@ def _register_frequency_lines(subparsers) -> None:
         formatter_class=_RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--model", choices=("bogie", "masses"), default="bogie")
     p.add_argument("--alpha-min", type=float, default=0.0)
     p.add_argument("--alpha-max", type=float, default=1.2)
     p.add_argument("--checkpoints", type=int, default=13, help="velocities where all roots are found afresh")
-    p.add_argument("--plot", type=Path, metavar="F.png", help="write the figure")
+    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_frequency_lines)
 
@@ -234,13 +268,14 @@ def _register_instability_lines(subparsers) -> None:
         action="store_true",
         help="count unstable roots (induced_frequencies) on both sides of each branch",
     )
-    p.add_argument("--plot", type=Path, metavar="F.png")
+    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_instability_lines)
 
 
 def run_instability_lines(args) -> int:
     from moving_bogie.stability.instability_lines import instability_lines
+    from moving_bogie.stability.line_ends import EXPLANATIONS
 
     params, spacings = _params_and_spacings(args)
     with progress_bar("instability lines") as bar:
@@ -258,17 +293,18 @@ def run_instability_lines(args) -> int:
     if args.plot:
         from matplotlib.figure import Figure
 
-        from moving_bogie.stability.plots import plot_instability_lines
+        from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
 
         fig = Figure(figsize=(7, 5), layout="constrained")
         ax = fig.subplots()
-        plot_instability_lines(ax, res)
+        marks = plot_instability_lines(ax, res)
         ax.axvline(1.0, color="k", ls=":")
         ax.set_xlim(args.alpha_min, args.alpha_max)
         ax.set_ylim(0, args.theta_max)
         ax.set_xlabel("alpha")
         ax.set_ylabel(args.parameter)
-        ax.legend(fontsize=8)
+        handles, _ = ax.get_legend_handles_labels()
+        ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
         _save(fig, args.plot)
     if args.json:
         print_json(res.to_dict())
@@ -280,8 +316,15 @@ def run_instability_lines(args) -> int:
                 f"{args.parameter} {b.theta.min():.4g}..{b.theta.max():.4g}, unstable side: {b.unstable_side}"
                 + ("" if b.verified is None else f", counts below/above: {b.verified[2]}/{b.verified[4]}")
             )
+            for end in b.stops_inside:
+                print(
+                    f"  stops inside the plot at alpha {end.alpha:.4f}, {args.parameter} {end.theta:.4g}, "
+                    f"q {end.q:.4f}: {EXPLANATIONS[end.reason]}"
+                )
+        if res.q_max != args.q_max:
+            print(f"q range raised to q_max = {res.q_max:g} (a line reached {args.q_max:g})")
         for w in res.warnings:
-            print(f"warning: {w}")
+            print(f"{PROG}: warning: {w}", file=sys.stderr)
     return 0
 
 
@@ -309,10 +352,10 @@ def _register_stability_map(subparsers) -> None:
     p.add_argument("--n", type=int, default=200, help="grid points per axis (default 200)")
     p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
-    p.add_argument("--plot", type=Path, metavar="F.png")
-    p.add_argument("--npz", type=Path, metavar="F.npz", help="save the arrays")
-    p.add_argument(
-        "--out", type=Path, metavar="S.zarr", help="save as a 2-D sweep store (read by sweep-plot, xarray)"
+    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
+    add_output_option(p, "--npz", metavar="F.npz", help="save the arrays")
+    add_output_option(
+        p, "--out", folder=True, metavar="S.zarr", help="save as a 2-D sweep store (sweep-plot, xarray)"
     )
     p.add_argument("--overwrite", action="store_true", help="replace an existing --out store")
     add_json_option(p)
@@ -432,13 +475,21 @@ def _register_figure(subparsers) -> None:
         help="build Figure 2, 3, 4, 7, 8 or 16 of the paper",
         description="Build one of the paper's stability figures (plots_stability.figureN) into a PNG file.",
         epilog=(
-            "examples:\n  moving-bogie stability-figure 3 --out fig3.png\n"
-            "  moving-bogie stability-figure 16 --quick --out fig16.png"
+            "examples:\n  moving-bogie stability-figure 3 --plot fig3.png\n"
+            "  moving-bogie stability-figure 16 --quick --plot fig16.png"
         ),
         formatter_class=_RAW,
     )
     p.add_argument("number", type=int, choices=FIGURES)
-    p.add_argument("--out", type=Path, required=True, metavar="F.png")
+    add_output_option(
+        p,
+        "--plot",
+        "--out",
+        dest="plot",
+        required=True,
+        metavar="F.png",
+        help="write the figure (--out: alias)",
+    )
     p.add_argument("--quick", action="store_true", help="reduced grids (CI)")
     p.set_defaults(handler=run_figure)
 
@@ -448,8 +499,8 @@ def run_figure(args) -> int:
 
     with progress_bar(f"figure {args.number}") as bar:
         fig = getattr(plots_stability, f"figure{args.number}")(quick=args.quick, progress=bar)
-    _save(fig, args.out)
-    print(args.out)
+    _save(fig, args.plot)
+    print(args.plot)
     return 0
 
 

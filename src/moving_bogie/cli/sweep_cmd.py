@@ -10,6 +10,7 @@ from pathlib import Path
 from moving_bogie.errors import ParameterError
 
 from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .outputs import add_output_option
 
 _RAW = argparse.RawDescriptionHelpFormatter
 
@@ -38,7 +39,6 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=_RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--model", choices=("bogie", "masses"), default="bogie")
     p.add_argument(
         "--vary",
         action="append",
@@ -47,7 +47,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="a varied parameter: NAME=START:STOP:COUNT or NAME=V1,V2,... (NAME=START:STOP with --sample)",
     )
     p.add_argument("--sample", metavar="sobol:N", help="N quasi-random (Sobol) points instead of a grid")
-    p.add_argument("--out", type=Path, required=True, metavar="S.zarr", help="zarr store to write")
+    add_output_option(p, "--out", folder=True, required=True, metavar="S.zarr", help="zarr store to write")
     p.add_argument("--resume", action="store_true", help="complete an interrupted store")
     p.add_argument("--overwrite", action="store_true", help="replace an existing store")
     p.add_argument("--workers", type=int, metavar="N", help="local worker processes (default: one per core)")
@@ -80,7 +80,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     q.add_argument("--x", required=True, metavar="NAME", help="parameter on the horizontal axis")
     q.add_argument("--y", required=True, metavar="NAME", help="parameter on the vertical axis")
     q.add_argument("--sel", action="append", default=[], metavar="NAME=X", help="fix another dimension")
-    q.add_argument("--out", type=Path, required=True, metavar="F.png")
+    add_output_option(q, "--out", required=True, metavar="F.png", help="the figure")
     q.set_defaults(handler=run_sweep_plot)
 
 
@@ -111,7 +111,7 @@ def _spec(args):
             raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
         vary[name.strip()] = spec
     options = dict(roots=args.roots, check=args.check, block_points=args.chunk_points)
-    return make_spec(params, vary, model=args.model, sample=sample, **options)
+    return make_spec(params, vary, model=params.vehicle, sample=sample, **options)
 
 
 @contextmanager
@@ -199,8 +199,6 @@ def run_sweep_plot(args) -> int:
             raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER") from None
         if not eq:
             raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER")
-    if not args.out.parent.exists():
-        raise ParameterError("--out", f"--out {args.out}: folder {args.out.parent} does not exist")
     fig = plot_sweep_slice(open_sweep(args.store), args.x, args.y, sel)
     fig.savefig(args.out, dpi=120)
     print(args.out)

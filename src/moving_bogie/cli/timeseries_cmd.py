@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
 
 _MAX_POINTS = 10_000_000
 
@@ -39,11 +39,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     out = parser.add_argument_group("output")
     add_json_option(out)
-    out.add_argument("--csv", metavar="F.csv", help="write the series as CSV")
-    out.add_argument(
-        "--plot", metavar="F.png", help="three panels: w(0,tau), u, theta (paper's Figure 5 style)"
+    add_output_option(out, "--csv", metavar="F.csv", help="write the series as CSV")
+    add_output_option(
+        out, "--plot", metavar="F.png", help="three panels: w(0,tau), u, theta (paper's Figure 5 style)"
     )
-    out.add_argument("--plot-long", metavar="F.png", help="two panels: w(0,tau), u (paper's Figure 6 style)")
+    add_output_option(
+        out, "--plot-long", metavar="F.png", help="two panels: w(0,tau), u (paper's Figure 6 style)"
+    )
+    out.add_argument(
+        "--rows",
+        action="store_true",
+        help="print the rows even when --csv, --plot or --plot-long writes them to a file",
+    )
     parser.set_defaults(handler=run_timeseries)
 
     shape = subparsers.add_parser(
@@ -70,15 +77,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     shape.add_argument("--points", type=int, default=401, metavar="K", help="points in xi (default 401)")
     sout = shape.add_argument_group("output")
     add_json_option(sout)
-    sout.add_argument("--csv", metavar="F.csv", help="write xi, w as CSV")
-    sout.add_argument("--plot", metavar="F.png", help="plot w(xi)")
+    add_output_option(sout, "--csv", metavar="F.csv", help="write xi, w as CSV")
+    add_output_option(sout, "--plot", metavar="F.png", help="plot w(xi)")
     shape.set_defaults(handler=run_shape)
 
 
 def _add_common(parser):
-    parser.add_argument(
-        "--model", choices=("bogie", "masses"), default="bogie", help="vehicle (default bogie)"
-    )
     parser.add_argument(
         "--branch-cut",
         action=argparse.BooleanOptionalAction,
@@ -174,7 +178,8 @@ def run_timeseries(args: argparse.Namespace) -> int:
     if args.json:
         print_json(ts.to_dict())
     else:
-        print(format_series(ts))
+        files = args.csv or args.plot or args.plot_long
+        print(format_series(ts, rows=args.rows or not files))
     return 0
 
 
@@ -190,7 +195,8 @@ def write_csv_series(ts, path) -> None:
     atomic_write(path, "\n".join(lines) + "\n")
 
 
-def format_series(ts) -> str:
+def format_series(ts, rows: bool = True) -> str:
+    """The readable series: summary lines, then one row per time (``rows``), then the notes."""
     u = ts.units
     bc = (
         "all times"
@@ -205,8 +211,11 @@ def format_series(ts) -> str:
         f"units: tau [{u['tau']}], w, u [{u['w']}], theta [{u['theta']}]",
         f"{'tau':>14} {'w_rear':>18} {'w_front':>18} {'u':>18} {'theta':>18}",
     ]
-    for row in zip(ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta):
-        lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))
+    if rows:
+        for row in zip(ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta):
+            lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))
+    else:
+        lines[-1] = f"{len(ts.tau)} rows written to the output file(s); --rows prints them here too"
     lines += [f"note: {n}" for n in ts.notes]
     return "\n".join(lines)
 

@@ -7,21 +7,30 @@ its total derivative (Eq. (40)) is dE/dq = E_q + E_K0 K0' + E_K+ K+' + E_K- K-' 
 
 from __future__ import annotations
 
-import importlib
-
 import mpmath
 import numpy as np
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.track import TrackKernel, TrackKernelArray
+from moving_bogie.model.catalogue import default_catalogue
 
-VEHICLES = ("bogie", "masses")
 
+def vehicle_module(model: str | None, params=None):
+    """The generated kernel of a vehicle: ``params.model``'s own, or the vehicle `model` of its catalogue.
 
-def vehicle_module(model: str):
-    if model not in VEHICLES:
-        raise ParameterError("model", f"model must be one of {', '.join(VEHICLES)} (got {model!r})")
-    return importlib.import_module(f"moving_bogie.generated.vehicle_{model}")
+    Raises
+    ------
+    ParameterError
+        Naming ``vehicle`` for a vehicle the catalogue does not have.
+    """
+    if params is not None and (model is None or model == params.vehicle):
+        return params.model.vehicle_kernels
+    catalogue = params.model.catalogue if params is not None else default_catalogue()
+    if model not in catalogue.vehicles:
+        raise ParameterError(
+            "vehicle", f"vehicle must be one of {', '.join(catalogue.vehicles)} (got {model!r})"
+        )
+    return catalogue.module(f"vehicle_{model}")
 
 
 class Characteristic:
@@ -34,10 +43,11 @@ class Characteristic:
         The bogie of Figure 1b (4x4 system, Eq. (30)) or two moving masses of Figure 1a (2x2).
     """
 
-    def __init__(self, params, model: str = "bogie"):
+    def __init__(self, params, model: str | None = None):
+        model = model or params.vehicle
         self.params = params
         self.model = model
-        self.module = vehicle_module(model)
+        self.module = vehicle_module(model, params)
         self.kernel = TrackKernel(params)
         self.evaluations = 0
 
@@ -80,10 +90,11 @@ class Characteristic:
 class CharacteristicArray:
     """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps)."""
 
-    def __init__(self, params, model: str = "bogie"):
+    def __init__(self, params, model: str | None = None):
+        model = model or params.vehicle
         self.params = params
         self.model = model
-        self.module = vehicle_module(model)
+        self.module = vehicle_module(model, params)
         self.kernel = TrackKernelArray(params)
         ns = params.as_float()
         self.args = {name: getattr(ns, name) for name in self.module.PARAMETERS} | {"pi": np.pi}

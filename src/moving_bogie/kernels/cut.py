@@ -55,7 +55,7 @@ def cut_locus(params, x_min: float, x_max: float, *, samples: int = 20001) -> Cu
     (|q| grows like p^2/2, so |p| <= 2 sqrt(|x| + 1) + 4 suffices for |alpha| < 2), refined near the
     minimum of Re q so that the branch point q_c is located to about 1e-9.
     """
-    module = foundation_module(params.beam)
+    module = foundation_module(params)
     args = foundation_arguments(params, params.as_float())
     span = 2.0 * np.sqrt(max(abs(x_min), abs(x_max)) + 1.0) + 4.0 + 4.0 * float(params.alpha)
     ps = np.linspace(-span, span, samples)

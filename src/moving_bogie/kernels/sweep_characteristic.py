@@ -32,31 +32,33 @@ from moving_bogie.kernels.polyroots import polyder as _polyder
 from moving_bogie.kernels.polyroots import polyval as _polyval
 from moving_bogie.kernels.track import foundation_arguments, foundation_module
 
-__all__ = ["POLYNOMIAL_PARAMETERS", "SweepCharacteristic", "poly_roots", "polynomial_degree", "quartic_roots"]
-
-#: Vehicle parameters in which E_chr is a polynomial (at fixed q and alpha).
-POLYNOMIAL_PARAMETERS = ("eta_M", "kappa_v", "eta_v")
+__all__ = ["SweepCharacteristic", "poly_roots", "polynomial_degree", "quartic_roots"]
 
 _ALPHA_STENCIL = 0.25  # the coefficients of N and Q are polynomials of degree <= 4 in alpha
 
 
-def polynomial_degree(model: str, parameter: str) -> int:
-    """Degree of E_chr in ``parameter`` at fixed (q, alpha).
+def polynomial_degree(model: str | None, parameter: str, params=None) -> int:
+    """Degree of E_chr in the vehicle parameter ``parameter`` at fixed (q, alpha), from the derivation.
 
-    Two masses: 2 in eta_M. Bogie: 4 in eta_M (B1, B2, B3 all scale with it), 2 in kappa_v and in eta_v
-    (the B4^4 and B4^2 B1 B3 terms of Eq. (38) cancel down to degree 2).
+    The generated ``POLYNOMIAL_DEGREES`` of the vehicle: for the paper's bogie 4 in eta_M (B1, B2, B3 all
+    scale with it at fixed cf1, cf2), 2 in kappa_v and in eta_v (the B4^4 and B4^2 B1 B3 terms of Eq. (38)
+    cancel down to degree 2); for two masses 2 in eta_M.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``parameter`` when E_chr is not a polynomial in it (the spacing d also moves K).
     """
-    if parameter not in POLYNOMIAL_PARAMETERS:
-        raise ParameterError("parameter", f"parameter must be one of {', '.join(POLYNOMIAL_PARAMETERS)}")
-    if model == "masses":
-        if parameter != "eta_M":
-            raise ParameterError("parameter", f"two moving masses have no {parameter}; use eta_M")
-        return 2
-    return 4 if parameter == "eta_M" else 2
+    degrees = vehicle_module(model, params).POLYNOMIAL_DEGREES
+    if parameter not in degrees:
+        raise ParameterError(
+            "parameter", f"parameter must be one of {', '.join(degrees)} for this vehicle (got {parameter!r})"
+        )
+    return degrees[parameter]
 
 
 class SweepCharacteristic:
-    """E_chr(q; alpha, d, theta) for numpy arrays, theta one of :data:`POLYNOMIAL_PARAMETERS`.
+    """E_chr(q; alpha, d, theta) for numpy arrays, theta a vehicle parameter E_chr is a polynomial in.
 
     Parameters
     ----------
@@ -69,18 +71,25 @@ class SweepCharacteristic:
         The vehicle parameter swept (default eta_M).
     """
 
-    def __init__(self, params, model: str = "bogie", parameter: str = "eta_M"):
+    def __init__(self, params, model: str | None = None, parameter: str = "eta_M"):
+        model = model or params.vehicle
         self.params = params
         self.model = model
         self.parameter = parameter
-        self.degree = polynomial_degree(model, parameter)
-        self.module = vehicle_module(model)
-        self.foundation = foundation_module(params.beam)
+        self.degree = polynomial_degree(model, parameter, params)
+        self.module = vehicle_module(model, params)
+        self.foundation = foundation_module(params)
         ns = params.as_float()
         self.track_args = {k: v for k, v in foundation_arguments(params, ns).items() if k != "alpha"}
         self.d = ns.d
-        self.cf1 = float(params.cf1)
-        self.cf2 = float(params.cf2)
+        # Eq. (63): groups set by an alternative that depends on the swept parameter follow it (the bar's
+        # mass and inertia follow eta_M at fixed cf1, cf2): (group, its function, the alternative's value).
+        meta = params.model.catalogue.parameters
+        self.followers = [
+            (info["sets"], getattr(meta, f"set_by_{name}"), float(getattr(params, name)), info["depends"])
+            for name, info in params.model.alternatives.items()
+            if parameter in info["depends"] and info["sets"] in self.module.PARAMETERS
+        ]
         self.base = {name: getattr(ns, name) for name in self.module.PARAMETERS}
 
     # -- track ---------------------------------------------------------------------------------------
@@ -163,13 +172,9 @@ class SweepCharacteristic:
         if d is not None and "d" in args:
             args["d"] = d
         if theta is not None:
-            if self.parameter == "eta_M":
-                args["eta_M"] = theta
-                if self.model == "bogie":
-                    args["mu_v"] = self.cf1 * theta
-                    args["J_b"] = self.cf2 * theta * args["d"] ** 2
-            else:
-                args[self.parameter] = theta
+            args[self.parameter] = theta
+            for group, set_by, value, depends in self.followers:
+                args[group] = set_by(value, **{name: args[name] for name in depends})
         return args | {"pi": np.pi}
 
     def e_chr(self, q, K, theta=None, d=None):

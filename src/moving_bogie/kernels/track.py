@@ -17,7 +17,6 @@ mpmath precision; :class:`TrackKernelArray` evaluates numpy arrays of q in doubl
 
 from __future__ import annotations
 
-import importlib
 from dataclasses import dataclass
 
 import mpmath
@@ -25,14 +24,17 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
+from moving_bogie.model.catalogue import get_model
 
 
-def foundation_module(beam: str):
-    """The generated module of a track model ("eb", "tr", or any model added in derivations/)."""
-    try:
-        return importlib.import_module(f"moving_bogie.generated.foundation_{beam}")
-    except ModuleNotFoundError:
-        raise MovingBogieError(f"unknown beam model {beam!r}: no generated/foundation_{beam}.py") from None
+def foundation_module(params):
+    """The generated kernel of the beam on its track: ``params.model.foundation``.
+
+    `params` may also be a beam name, for the beam on the paper's one-layer track.
+    """
+    if isinstance(params, str):
+        return get_model(beam=params).foundation
+    return params.model.foundation
 
 
 def foundation_arguments(params, numbers) -> dict:
@@ -41,7 +43,7 @@ def foundation_arguments(params, numbers) -> dict:
     The names come from the generated module (its ``ARGUMENTS``), so a model added in derivations/ with the
     existing groups needs no change here; a group the model does not use is passed as None.
     """
-    names = foundation_module(params.beam).ARGUMENTS[1:]
+    names = foundation_module(params).ARGUMENTS[1:]
     return {name: getattr(numbers, name, None) for name in names}
 
 
@@ -80,7 +82,7 @@ class TrackKernel:
 
     def __init__(self, params, *, coalescence_digits: int = 3):
         self.params = params
-        self.module = foundation_module(params.beam)
+        self.module = foundation_module(params)
         self.coalescence_digits = coalescence_digits
 
     def _numbers(self):
@@ -202,7 +204,7 @@ class TrackKernelArray:
 
     def __init__(self, params):
         self.params = params
-        self.module = foundation_module(params.beam)
+        self.module = foundation_module(params)
         self.args = foundation_arguments(params, params.as_float())
 
     def _coeffs(self, func, q):

@@ -43,8 +43,9 @@ def to_fraction(name: str, value: object) -> Fraction:
     name : str
         Parameter name, used in the error message.
     value : Fraction, int, float, str, Decimal or mpmath.mpf
-        Decimal text converts exactly (``"0.1"`` is 1/10); a float converts to its exact binary value
-        (``0.1`` is 3602879701896397/2**55); integers and Fractions are kept.
+        Decimal text converts exactly (``"0.1"`` is 1/10); a float is read by its shortest decimal text,
+        as the command line reads it (``0.1`` is 1/10, not the binary 0.1000000000000000055...); integers
+        and Fractions are kept.
 
     Returns
     -------
@@ -81,7 +82,7 @@ def to_fraction(name: str, value: object) -> Fraction:
         x = float(value)
         if not math.isfinite(x):
             raise ParameterError(name, f"{name} must be a finite number (got {x})")
-        return Fraction(x)
+        return Fraction(repr(x))
     raise ParameterError(
         name, f"{name} must be a real number or decimal text (got {type(value).__name__} {value!r})"
     )

@@ -1,29 +1,29 @@
 """TOML parameter files.
 
-A file holds either dimensionless parameters (Eqs. 15-17, 59, 63)::
+A file names its model (optional; default the paper's) and holds either dimensionless parameters::
 
     case = 7              # optional: start from a Table 1 case, then override any key below
+    [model]
+    beam = "tr"           # eb | tr; track = "one-layer"; vehicle = "bogie" | "masses"
     [dimensionless]
-    eta_f = 0.05          # required without `case`: eta_f eta_M d cf1 cf2 kappa_v eta_v alpha
-    eta_M = 30            # (mu_v may replace cf1, J_b may replace cf2)
-    ...
-    beam = "tr"           # optional: eta_s (default 0), beam ("eb" or "tr"), S and r (for "tr")
+    eta_f = 0.05          # the model's groups (moving-bogie models lists them); cf1/cf2 may replace mu_v/J_b
     S = 100
     r = 0.03
+    ...
 
-or physical parameters in SI units, with the field names of :class:`~moving_bogie.PhysicalParams`::
+or physical parameters in SI units, with the SI names of the model's parameters and the scales EI, m, k_f, P::
 
     [physical]
     EI = 6.4e6            # N m^2
     m = 60                # kg/m
     ...
 
-Decimal numbers are read exactly from their text (``0.1`` is 1/10, never a binary float).
+Decimal numbers are read exactly from their text (``0.1`` is 1/10, never a binary float). The keys a
+table accepts come from the generated metadata, so a model added in ``derivations/`` is read with no edit.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import tomllib
 from decimal import Decimal
 from pathlib import Path
@@ -31,32 +31,26 @@ from typing import Any
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.cases import table1_case
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 
-__all__ = ["DIMENSIONLESS_KEYS", "PHYSICAL_KEYS", "load_params_file", "parse_params_toml"]
+__all__ = ["dimensionless_keys", "load_params_file", "parse_params_toml", "physical_keys"]
 
-#: Keys of a ``[dimensionless]`` table: the first eight are required without ``case``; ``mu_v`` may
-#: replace ``cf1`` and ``J_b`` may replace ``cf2`` (Eq. 63).
-DIMENSIONLESS_KEYS = (
-    "eta_f",
-    "eta_M",
-    "d",
-    "cf1",
-    "cf2",
-    "kappa_v",
-    "eta_v",
-    "alpha",
-    "mu_v",
-    "J_b",
-    "eta_s",
-    "beam",
-    "S",
-    "r",
-)
-#: Keys of a ``[physical]`` table (the fields of PhysicalParams).
-PHYSICAL_KEYS = tuple(field.name for field in dataclasses.fields(PhysicalParams))
-_TOP_LEVEL = ("case", "dimensionless", "physical")
+_TOP_LEVEL = ("case", "model", "dimensionless", "physical")
+_MODEL_KEYS = ("beam", "track", "vehicle")
+
+
+def dimensionless_keys() -> tuple[str, ...]:
+    """Keys of a ``[dimensionless]`` table: every group and alternative of the catalogue (and ``beam``)."""
+    catalogue = default_catalogue()
+    return (*catalogue.specs, *catalogue.parameters.ALTERNATIVES, "beam")
+
+
+def physical_keys() -> tuple[str, ...]:
+    """Keys of a ``[physical]`` table: the scale parameters and the SI name of every group."""
+    meta = default_catalogue().parameters
+    return (*meta.SCALE_PARAMETERS, *(m["si"] for m in meta.PARAMETERS.values()))
 
 
 def load_params_file(path: str | Path) -> tuple[DimensionlessParams, PhysicalParams | None]:
@@ -101,18 +95,18 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
             )
     if "dimensionless" in data and "physical" in data:
         raise ParameterError("physical", "give either a [dimensionless] or a [physical] table, not both")
+    model = _table(data, "model", _MODEL_KEYS)
     if "physical" in data:
         if "case" in data:
             raise ParameterError(
                 "case", "case cannot be combined with a [physical] table (Table 1 is dimensionless)"
             )
-        values = _table(data, "physical", PHYSICAL_KEYS)
-        for field in dataclasses.fields(PhysicalParams):
-            if field.default is dataclasses.MISSING and field.name not in values:
-                raise ParameterError(field.name, f"missing key {field.name!r} in [physical]")
-        physical = PhysicalParams(**values)
+        physical = PhysicalParams(**model, **_table(data, "physical", physical_keys()))
         return physical.to_dimensionless(), physical
-    values = _table(data, "dimensionless", DIMENSIONLESS_KEYS)
+    values = _table(data, "dimensionless", dimensionless_keys())
+    if "beam" in values and "beam" in model:
+        raise ParameterError("beam", "give beam in [model] only")
+    values |= model
     if "case" not in data:
         return DimensionlessParams.from_mapping(values), None
     case = data["case"]
@@ -129,9 +123,9 @@ def _table(data: dict[str, Any], name: str, keys: tuple[str, ...]) -> dict[str, 
     for key, value in table.items():
         if key not in keys:
             raise ParameterError(key, f"unknown key {key!r} in [{name}]; expected one of {', '.join(keys)}")
-        expected = str if key == "beam" else (int, Decimal)
+        expected = str if key in _MODEL_KEYS else (int, Decimal)
         if isinstance(value, bool) or not isinstance(value, expected):
-            kind = "a string" if key == "beam" else "a number"
+            kind = "a string" if key in _MODEL_KEYS else "a number"
             raise ParameterError(key, f"{key} in [{name}] must be {kind} (got {_toml_type(value)} {value!r})")
     return dict(table)
 

@@ -1,112 +1,75 @@
-"""Dimensionless parameters of the moving-bogie model, stored exactly and validated.
+"""Dimensionless parameters of a model, stored exactly and validated from the generated metadata.
 
-The model (paper, Section 2) is an infinite beam on a viscoelastic foundation traversed at constant
-velocity by a bogie: a rigid bar (mass, mass moment of inertia) on a primary suspension over two
-wheel masses in permanent contact with the beam. Its dimensionless form, Eqs. (18)-(20) and for the
-Timoshenko-Rayleigh beam Eqs. (60)-(61), depends only on the parameters of Eqs. (15)-(17) and (59),
-collected in :class:`DimensionlessParams`. The SI counterpart is :class:`PhysicalParams`.
+The dimensionless form of every model (paper, Eqs. (18)-(20); Timoshenko-Rayleigh Eqs. (60)-(61)) depends
+only on the groups of Eqs. (15)-(17), (59) and those any further model declares in ``derivations/``.
+Which groups a model needs, their ranges and defaults come from the generated catalogue
+(:mod:`moving_bogie.model.catalogue`); no parameter name is written here.
 """
 
 from __future__ import annotations
 
-import dataclasses
-import importlib
 from collections.abc import Mapping
-from dataclasses import dataclass
 from fractions import Fraction
 from types import SimpleNamespace
 from typing import Any
 
-from moving_bogie import generated as _generated
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, default_catalogue, get_model
 from moving_bogie.model.exact import (
     NumberLike,
-    dataclass_repr,
+    fraction_to_exact_text,
     fraction_to_mpf,
     fraction_to_text,
-    map_fractions,
     nonnegative,
     positive,
 )
-from moving_bogie.model.physical import PhysicalParams, Scales
 
-__all__ = ["BEAMS", "DimensionlessParams", "PhysicalParams", "Scales"]
+__all__ = ["BEAMS", "DimensionlessParams"]
 
-#: Track models with generated kernels: Euler-Bernoulli (Eq. 18), Timoshenko-Rayleigh (Eqs. 60-61), and any
-#: model added in derivations/foundations.py (``python -m derivations`` lists it in generated.FOUNDATIONS).
-BEAMS = _generated.FOUNDATIONS
-
-
-def _model_parameters(beam: str) -> tuple[str, ...]:
-    """Dimensionless groups a track model adds (S, r for Timoshenko-Rayleigh), from its generated kernel."""
-    return importlib.import_module(f"moving_bogie.generated.foundation_{beam}").MODEL_PARAMETERS
+#: Beam theories with generated kernels (Euler-Bernoulli Eq. (1), Timoshenko-Rayleigh Eqs. (55)-(56), and
+#: any beam added in derivations/).
+BEAMS = tuple(default_catalogue().beams)
+_MODEL_KEYS = ("beam", "track", "vehicle")
 
 
-_NUMERIC_FIELDS = ("eta_f", "eta_M", "d", "mu_v", "J_b", "kappa_v", "eta_v", "alpha", "eta_s", "S", "r")
-#: Table 1 coefficients of Eq. (63) and the field each one sets.
-_COEFFICIENTS = {"cf1": "mu_v", "cf2": "J_b"}
-_POSITIVE = frozenset({"eta_M", "d", "mu_v", "J_b", "kappa_v", "S", "cf1", "cf2"})
-
-
-def _parse(name: str, value: object) -> Fraction:
-    """Convert one numeric parameter exactly and check its range (names `name` on failure)."""
-    if name in _POSITIVE:
-        return positive(name, value)
-    x = nonnegative(name, value)
-    if name == "eta_f" and x >= 1:
+def check_value(spec, value: object) -> Fraction:
+    """Convert one value exactly and check the range its metadata states; the error names the group."""
+    if spec.constraint == "positive":
+        return positive(spec.name, value)
+    x = nonnegative(spec.name, value)
+    if spec.constraint == "underdamped" and x >= 1:
         raise ParameterError(
-            "eta_f",
-            f"eta_f must satisfy 0 <= eta_f < 1 (got {fraction_to_text(x)}): the runtime assumes an "
-            "under-damped foundation, c_f < 2*sqrt(m*k_f), and its search for induced frequencies "
-            "relies on it",
+            spec.name,
+            f"{spec.name} must satisfy {spec.range_text.replace('x', spec.name)} "
+            f"(got {fraction_to_text(x)}): the runtime assumes an under-damped foundation, "
+            "and its search for induced frequencies relies on it",
         )
     return x
 
 
-@dataclass(frozen=True)
 class DimensionlessParams:
-    """Dimensionless parameters of the moving bogie, Eqs. (15)-(17), (59) and (63).
+    """Dimensionless parameters of one model (beam x track x vehicle), Eqs. (15)-(17), (59), (63).
 
-    Every numeric field accepts an int, a Fraction, decimal text (``"0.1"``, converted exactly), a
-    Decimal or a finite float (converted to its exact binary value), and is stored as a
-    :class:`~fractions.Fraction`. Instances are immutable; use :meth:`replace` to vary a parameter.
+    Every group accepts an int, a Fraction, decimal text (``"0.1"``, converted exactly), a Decimal or a
+    finite float (read by its shortest decimal text: ``0.1`` is 1/10), and is stored as a
+    :class:`~fractions.Fraction`. Instances are immutable and hashable; :meth:`replace` varies a parameter.
+    Read a group as an attribute (``p.alpha``); a group of the catalogue that this model does not use reads
+    as None (``p.S`` of an Euler-Bernoulli beam). ``moving-bogie models`` lists every model's groups.
 
     Parameters
     ----------
-    eta_f : NumberLike
-        Foundation damping ratio ``c_f / (2 sqrt(m k_f))``, Eq. (17); ``0 <= eta_f < 1``. The
-        under-damped bound is relied on by the runtime's search for induced frequencies.
-    eta_M : NumberLike
-        Wheel mass ratio ``M chi / m``, Eq. (17); > 0.
-    d : NumberLike
-        Wheel spacing ``d chi``, Eq. (16); > 0.
-    mu_v : NumberLike
-        Bogie-bar mass ratio ``M_b chi / m``, Eq. (17); > 0. Equals ``cf1 * eta_M``, Eq. (63).
-    J_b : NumberLike
-        Bogie-bar mass moment of inertia ``chi**3 J_b / m``, Eq. (17); > 0. Equals
-        ``cf2 * eta_M * d**2``, Eq. (63).
-    kappa_v : NumberLike
-        Primary suspension stiffness ``k_v chi / k_f``, Eq. (17); > 0.
-    eta_v : NumberLike
-        Primary suspension damping ``c_v chi / (2 sqrt(m k_f))``, Eq. (17); >= 0.
-    alpha : NumberLike
-        Velocity ratio ``v / v_ref``, Eq. (16); >= 0. ``alpha = sqrt(1 + eta_s)`` is the critical
-        velocity of a constant force on the Euler-Bernoulli beam, Eq. (65).
-    eta_s : NumberLike, optional
-        Pasternak shear layer ``k_s / (2 sqrt(k_f EI))``; >= 0, default 0.
-    beam : {"eb", "tr"}, optional
-        Euler-Bernoulli (default) or Timoshenko-Rayleigh beam.
-    S : NumberLike or None
-        Timoshenko shear parameter ``G Abar / (2 sqrt(k_f EI))``, Eq. (59); > 0, required for
-        ``beam="tr"`` and None for ``beam="eb"``.
-    r : NumberLike or None
-        Radius of gyration ``r chi``, Eq. (59); >= 0, required for ``beam="tr"`` and None for
-        ``beam="eb"``.
+    beam, track, vehicle : str, optional
+        The model (default: the paper's Euler-Bernoulli beam, one-layer track, bogie).
+    model : Model, optional
+        Instead of the three names (e.g. a model of a catalogue loaded with
+        :func:`~moving_bogie.model.catalogue.load_catalogue`).
+    **values
+        The groups: required ones must be given, those with a default may be; None counts as not given.
 
     Raises
     ------
     ParameterError
-        Naming the first offending field.
+        Naming the first offending parameter.
 
     Examples
     --------
@@ -116,137 +79,173 @@ class DimensionlessParams:
     (Fraction(51, 1), Fraction(6, 5), Fraction(17, 10))
     """
 
-    eta_f: Fraction
-    eta_M: Fraction
-    d: Fraction
-    mu_v: Fraction
-    J_b: Fraction
-    kappa_v: Fraction
-    eta_v: Fraction
-    alpha: Fraction
-    eta_s: Fraction = Fraction(0)
-    beam: str = "eb"
-    S: Fraction | None = None
-    r: Fraction | None = None
+    __slots__ = ("_model", "_values")
 
-    def __post_init__(self) -> None:
-        if self.beam not in BEAMS:
-            raise ParameterError("beam", f"beam must be one of {', '.join(BEAMS)} (got {self.beam!r})")
-        extra = _model_parameters(self.beam)
-        for name in _NUMERIC_FIELDS:
-            value = getattr(self, name)
-            if name in ("S", "r"):
-                if name not in extra:
-                    if value is not None:
-                        raise ParameterError(
-                            name, f"{name} is not a parameter of beam={self.beam!r} (got {value!r})"
-                        )
-                    continue
-                if value is None:
-                    raise ParameterError(name, f"{name} is required with beam={self.beam!r}")
-            object.__setattr__(self, name, _parse(name, value))
+    def __init__(
+        self,
+        *,
+        beam: str | None = None,
+        track: str | None = None,
+        vehicle: str | None = None,
+        model: Model | None = None,
+        **values: Any,
+    ) -> None:
+        if model is None:
+            model = get_model(beam, track, vehicle)
+        elif any(x is not None for x in (beam, track, vehicle)):
+            model = get_model(
+                beam or model.beam, track or model.track, vehicle or model.vehicle, model.catalogue
+            )
+        specs = model.catalogue.specs
+        exact = {}
+        for name, value in values.items():
+            if name not in specs:
+                known = ", ".join([*model.parameters, *model.alternatives, *_MODEL_KEYS])
+                raise ParameterError(name, f"unknown parameter {name!r}; known: {known}")
+            if value is None:
+                continue
+            if name not in model.parameters:
+                raise ParameterError(
+                    name, f"{name} is not a parameter of the model {model.name} (got {value!r})"
+                )
+        for name in model.parameters:
+            spec = specs[name]
+            value = values.get(name)
+            if value is None:
+                if spec.default is None:
+                    raise ParameterError(
+                        name, f"missing parameter {name!r} ({spec.meaning}) for {model.name}"
+                    )
+                value = spec.default
+            exact[name] = check_value(spec, value)
+        object.__setattr__(self, "_model", model)
+        object.__setattr__(self, "_values", exact)
 
-    __repr__ = dataclass_repr  # exact and evaluable: DimensionlessParams(eta_f='0.05', ...)
+    # --- reading ------------------------------------------------------------------------------------
 
     @property
-    def cf1(self) -> Fraction:
-        """Bar-to-wheel mass coefficient ``mu_v / eta_M = M_b / M``, Eqs. (63)-(64)."""
-        return self.mu_v / self.eta_M
+    def model(self) -> Model:
+        """The :class:`~moving_bogie.model.catalogue.Model` these parameters belong to."""
+        return self._model
 
     @property
-    def cf2(self) -> Fraction:
-        """Inertia coefficient ``J_b / (eta_M d**2)``, dimensional ``J_b / (M d**2)``, Eqs. (63)-(64)."""
-        return self.J_b / (self.eta_M * self.d**2)
+    def beam(self) -> str:
+        return self._model.beam
+
+    @property
+    def track(self) -> str:
+        return self._model.track
+
+    @property
+    def vehicle(self) -> str:
+        return self._model.vehicle
+
+    def values(self) -> dict[str, Fraction]:
+        """The groups of the model, name -> exact value, in the catalogue's order."""
+        return dict(self._values)
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        values = self._values
+        if name in values:
+            return values[name]
+        model = self._model
+        alternatives = model.alternatives
+        if name in alternatives:
+            meta = alternatives[name]
+            func = getattr(model.catalogue.parameters, f"alternative_{name}")
+            return func(**{k: values[k] for k in (meta["sets"], *meta["depends"])})
+        if name in model.catalogue.specs or name in model.catalogue.parameters.ALTERNATIVES:
+            return None  # a group or coefficient of another model
+        raise AttributeError(f"{type(self).__name__} of {model.name} has no parameter {name!r}")
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f"{type(self).__name__} is immutable: use replace({name}=...)")
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, DimensionlessParams):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def _key(self) -> tuple:
+        return (self._model, tuple(self._values.items()))
+
+    def __repr__(self) -> str:
+        items = [f"{k}={fraction_to_exact_text(v)!r}" for k, v in self._values.items()]
+        items += [f"{k}={getattr(self, k)!r}" for k in _MODEL_KEYS]
+        return f"{type(self).__name__}({', '.join(items)})"
+
+    def __reduce__(self):
+        return (_rebuild, (self._model.beam, self._model.track, self._model.vehicle, self.to_exact_dict()))
+
+    # --- building -----------------------------------------------------------------------------------
 
     @classmethod
-    def from_mapping(cls, values: Mapping[str, Any]) -> DimensionlessParams:
-        """Build from a mapping of field names; ``cf1`` may replace ``mu_v`` and ``cf2`` may replace ``J_b``.
+    def from_mapping(cls, values: Mapping[str, Any], *, model: Model | None = None) -> DimensionlessParams:
+        """Build from a mapping of names: the groups, the model keys and the alternatives (Eq. (63)).
 
-        ``mu_v = cf1 eta_M`` and ``J_b = cf2 eta_M d**2``, Eq. (63). This is the one entry point for
-        parameters read from files and command lines.
+        An alternative (``cf1``, ``cf2`` of Table 1) sets the group it stands for from the other groups:
+        ``mu_v = cf1 eta_M`` and ``J_b = cf2 eta_M d**2``. This is the one entry point for parameters read
+        from files and command lines.
 
         Raises
         ------
         ParameterError
-            For an unknown or missing name, for both ``cf1`` and ``mu_v`` (or ``cf2`` and ``J_b``),
-            or an invalid value; the message names the parameter.
+            For an unknown or missing name, an alternative given with the group it sets, or an invalid
+            value; the message names the parameter.
         """
         values = dict(values)
-        known = [field.name for field in dataclasses.fields(cls)]
-        for name in values:
-            if name not in known and name not in _COEFFICIENTS:
-                raise ParameterError(
-                    name, f"unknown parameter {name!r}; known: {', '.join([*known, *_COEFFICIENTS])}"
-                )
-        for coefficient, field in _COEFFICIENTS.items():
-            if coefficient in values and field in values:
-                raise ParameterError(coefficient, f"give either {coefficient} or {field}, not both")
-        for field in dataclasses.fields(cls):
-            if field.default is dataclasses.MISSING and field.name not in values:
-                coefficient = next((c for c, f in _COEFFICIENTS.items() if f == field.name), None)
-                if coefficient is None:
-                    raise ParameterError(field.name, f"missing parameter {field.name!r}")
-                if coefficient not in values:
-                    raise ParameterError(
-                        coefficient, f"missing parameter {coefficient!r} (or {field.name!r})"
-                    )
-        cf1, cf2 = values.pop("cf1", None), values.pop("cf2", None)
-        if cf1 is not None or cf2 is not None:
-            eta_M, d = _parse("eta_M", values["eta_M"]), _parse("d", values["d"])
-            if cf1 is not None:
-                values["mu_v"] = _parse("cf1", cf1) * eta_M
-            if cf2 is not None:
-                values["J_b"] = _parse("cf2", cf2) * eta_M * d**2
-        return cls(**values)
+        keys = {k: values.pop(k) for k in _MODEL_KEYS if k in values}
+        if model is None:
+            model = get_model(**keys)
+        elif keys:
+            model = get_model(
+                **({k: getattr(model, k) for k in _MODEL_KEYS} | keys), catalogue=model.catalogue
+            )
+        catalogue_alternatives = model.catalogue.parameters.ALTERNATIVES
+        for name, meta in model.alternatives.items():
+            if values.get(name) is None:
+                values.pop(name, None)
+                continue
+            if values.get(meta["sets"]) is not None:
+                raise ParameterError(name, f"give either {name} or {meta['sets']}, not both")
+            depends = {}
+            for dep in meta["depends"]:
+                if values.get(dep) is None:
+                    raise ParameterError(dep, f"missing parameter {dep!r} (needed by {name})")
+                depends[dep] = check_value(model.catalogue.specs[dep], values[dep])
+            alt = check_value_named(name, values.pop(name))
+            values[meta["sets"]] = getattr(model.catalogue.parameters, f"set_by_{name}")(alt, **depends)
+        for name in list(values):
+            if name in catalogue_alternatives and name not in model.alternatives:
+                if values[name] is None:
+                    del values[name]
+                else:
+                    raise ParameterError(name, f"{name} is not a parameter of the model {model.name}")
+        for name in model.parameters:
+            if values.get(name) is None and model.catalogue.specs[name].default is None:
+                alt = next((a for a, m in model.alternatives.items() if m["sets"] == name), None)
+                hint = f" (or {alt!r})" if alt else ""
+                raise ParameterError(alt or name, f"missing parameter {name!r}{hint}")
+        return cls(model=model, **values)
 
     @classmethod
-    def from_coefficients(
-        cls,
-        *,
-        eta_f: NumberLike,
-        eta_M: NumberLike,
-        d: NumberLike,
-        cf1: NumberLike,
-        cf2: NumberLike,
-        kappa_v: NumberLike,
-        eta_v: NumberLike,
-        alpha: NumberLike,
-        eta_s: NumberLike = 0,
-        beam: str = "eb",
-        S: NumberLike | None = None,
-        r: NumberLike | None = None,
-    ) -> DimensionlessParams:
+    def from_coefficients(cls, **values: Any) -> DimensionlessParams:
         """Build from the coefficients of Table 1: ``mu_v = cf1 eta_M``, ``J_b = cf2 eta_M d**2`` (Eq. 63)."""
-        return cls.from_mapping(
-            dict(
-                eta_f=eta_f,
-                eta_M=eta_M,
-                d=d,
-                cf1=cf1,
-                cf2=cf2,
-                kappa_v=kappa_v,
-                eta_v=eta_v,
-                alpha=alpha,
-                eta_s=eta_s,
-                beam=beam,
-                S=S,
-                r=r,
-            )
-        )
+        return cls.from_mapping(values)
 
     def replace(self, **changes: Any) -> DimensionlessParams:
-        """Return a copy with some parameters changed, validated again.
+        """Return a copy with some parameters (or the model) changed, validated again.
 
-        Besides the fields, ``cf1`` and ``cf2`` are accepted: they set ``mu_v = cf1 eta_M`` and
-        ``J_b = cf2 eta_M d**2`` (Eq. 63) with the new ``eta_M`` and ``d``. When ``eta_M`` or ``d``
-        changes and neither the coefficient nor the field it sets is given, ``cf1`` and ``cf2`` are
-        kept fixed, as in Table 1: the bar's mass and inertia scale with the wheel mass (Eq. 64).
-        Changing ``beam`` to ``"eb"`` drops ``S`` and ``r`` unless they are given.
-
-        Raises
-        ------
-        ParameterError
-            As :meth:`from_mapping`.
+        The alternatives (``cf1``, ``cf2``) are accepted too. When a group an alternative depends on
+        changes (``eta_M`` or ``d``) and neither the alternative nor the group it sets is given, the
+        alternative is kept fixed, as in Table 1: the bar's mass and inertia scale with the wheel mass
+        (Eq. 64). Changing the model (``beam``, ``track``, ``vehicle``) drops the groups the new model does
+        not use and requires those it adds.
 
         Examples
         --------
@@ -256,54 +255,77 @@ class DimensionlessParams:
         >>> (q.mu_v, q.cf1), (q.J_b, q.cf2)
         ((Fraction(80, 1), Fraction(2, 1)), (Fraction(16, 1), Fraction(1, 10)))
         """
-        values: dict[str, Any] = {field.name: getattr(self, field.name) for field in dataclasses.fields(self)}
-        rescaled = "eta_M" in changes or "d" in changes
-        for coefficient, field in _COEFFICIENTS.items():
-            if coefficient in changes or (rescaled and field not in changes):
-                del values[field]
-                values.setdefault(coefficient, getattr(self, coefficient))
-        if changes.get("beam") == "eb":
-            values.update(S=None, r=None)
-        return type(self).from_mapping(values | changes)
+        model = self._model
+        keys = {k: changes.pop(k) for k in _MODEL_KEYS if k in changes and changes[k] is not None}
+        if keys:
+            model = get_model(
+                **({k: getattr(model, k) for k in _MODEL_KEYS} | keys), catalogue=model.catalogue
+            )
+        values: dict[str, Any] = {k: v for k, v in self._values.items() if k in model.parameters}
+        for name, meta in model.alternatives.items():
+            affected = any(dep in changes for dep in meta["depends"])
+            if name in changes or (
+                affected and meta["sets"] not in changes and name in self._model.alternatives
+            ):
+                values.pop(meta["sets"], None)
+                if name not in changes:
+                    values[name] = getattr(self, name)
+        return type(self).from_mapping(values | changes, model=model)
+
+    # --- conversions --------------------------------------------------------------------------------
 
     def as_mp(self) -> SimpleNamespace:
-        """All fields as ``mpmath.mpf`` rounded once at the current ``mp`` precision (beam a str, None kept).
+        """Every group of the catalogue as ``mpmath.mpf`` at the current ``mp`` precision (None if unused).
 
         Call it inside ``mpmath.workdps(n)`` to get the parameters at `n` digits.
         """
-        return SimpleNamespace(**map_fractions(self, fraction_to_mpf))
+        return self._namespace(fraction_to_mpf)
 
     def as_float(self) -> SimpleNamespace:
-        """All fields as floats (beam a str, None kept)."""
-        return SimpleNamespace(**map_fractions(self, float))
+        """Every group of the catalogue as a float (None if unused), plus the model names."""
+        return self._namespace(float)
+
+    def _namespace(self, convert) -> SimpleNamespace:
+        out = {name: None for name in self._model.catalogue.specs}
+        out |= {name: convert(value) for name, value in self._values.items()}
+        out |= {k: getattr(self, k) for k in _MODEL_KEYS}
+        return SimpleNamespace(**out)
+
+    def to_exact_dict(self) -> dict[str, str]:
+        """The groups as exact text that ``Fraction`` reads back (``'1/3'`` where no decimal is exact)."""
+        return {k: fraction_to_exact_text(v) for k, v in self._values.items()}
 
     def to_dict(self) -> dict[str, str | None]:
-        """JSON-ready dict of all fields plus ``cf1`` and ``cf2``.
+        """JSON-ready dict: the model's names, its groups and its alternatives (``cf1``, ``cf2``).
 
         Numbers are strings: the exact decimal when the Fraction has a finite decimal expansion
         (``"0.05"``), else the repr of the nearest float (``"0.3333333333333333"``).
         """
-        out = map_fractions(self, fraction_to_text)
-        out["cf1"] = fraction_to_text(self.cf1)
-        out["cf2"] = fraction_to_text(self.cf2)
+        out: dict[str, str | None] = {k: getattr(self, k) for k in _MODEL_KEYS}
+        out |= {k: fraction_to_text(v) for k, v in self._values.items()}
+        out |= {name: fraction_to_text(getattr(self, name)) for name in self._model.alternatives}
         return out
 
-    def to_physical(
-        self, EI: NumberLike, m: NumberLike, k_f: NumberLike, P: NumberLike, *, digits: int = 20
-    ) -> PhysicalParams:
+    def to_physical(self, EI: NumberLike, m: NumberLike, k_f: NumberLike, P: NumberLike, *, digits: int = 20):
         """SI parameters for a track (`EI`, `m`, `k_f`) and wheel load `P`: Eqs. (15)-(17), (59) inverted.
-
-        Parameters
-        ----------
-        EI, m, k_f, P : NumberLike
-            Bending stiffness [N m^2], beam mass per length [kg/m], foundation stiffness [N/m^2] and
-            wheel load [N], all > 0.
-        digits : int, optional
-            The results are rounded to this many significant decimal digits (computed with 10 more).
 
         Returns
         -------
         PhysicalParams
             ``PhysicalParams(...).to_dimensionless()`` gives back these parameters to about `digits`.
         """
+        from moving_bogie.model.physical import PhysicalParams
+
         return PhysicalParams.from_dimensionless(self, EI=EI, m=m, k_f=k_f, P=P, digits=digits)
+
+
+def check_value_named(name: str, value: object) -> Fraction:
+    """An alternative input (cf1, cf2 of Eq. (63)): exact and > 0."""
+    return positive(name, value)
+
+
+def _rebuild(beam, track, vehicle, values):
+    return DimensionlessParams(beam=beam, track=track, vehicle=vehicle, **values)
+
+
+__all__ += ["DEFAULT_MODEL"]

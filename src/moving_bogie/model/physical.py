@@ -1,66 +1,41 @@
-"""Physical (SI) parameters and the scaling of Eqs. (15)-(17) and (59) between SI and dimensionless form."""
+"""Physical (SI) parameters and the exact scaling of Eqs. (15)-(17), (59) between SI and dimensionless form.
+
+The scaling of every group, the SI names and units come from the generated metadata
+(``generated/parameters.py``, derived from ``derivations/symbols.py``); nothing here names a parameter
+beyond the scale parameters the metadata lists.
+"""
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 from fractions import Fraction
-from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 import mpmath
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, default_catalogue
 from moving_bogie.model.exact import (
     NumberLike,
-    dataclass_repr,
+    fraction_to_exact_text,
     fraction_to_mpf,
     fraction_to_text,
-    map_fractions,
     nonnegative,
     positive,
 )
 
-if TYPE_CHECKING:  # params imports this module at run time; the reverse import stays local
+if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
 
 __all__ = ["DIMENSIONLESS_OF", "PHYSICAL_UNITS", "PhysicalParams", "Scales"]
 
-#: SI unit of each field of :class:`PhysicalParams`.
-PHYSICAL_UNITS = {
-    "EI": "N m^2",
-    "m": "kg/m",
-    "k_f": "N/m^2",
-    "c_f": "N s/m^2",
-    "M": "kg",
-    "M_b": "kg",
-    "J_b": "kg m^2",
-    "k_v": "N/m",
-    "c_v": "N s/m",
-    "d": "m",
-    "v": "m/s",
-    "P": "N",
-    "k_s": "N",
-    "GA": "N",
-    "r_g": "m",
+_META = default_catalogue().parameters
+#: SI unit of each SI parameter of the packaged catalogue (scale parameters first).
+PHYSICAL_UNITS = {name: meta["unit"] for name, meta in _META.SCALE_PARAMETERS.items()} | {
+    meta["si"]: meta["unit"] for meta in _META.PARAMETERS.values()
 }
-
-#: The dimensionless parameter each SI field (other than the track EI, m, k_f and load P) scales to.
-DIMENSIONLESS_OF = {
-    "c_f": "eta_f",
-    "M": "eta_M",
-    "M_b": "mu_v",
-    "J_b": "J_b",
-    "k_v": "kappa_v",
-    "c_v": "eta_v",
-    "d": "d",
-    "v": "alpha",
-    "k_s": "eta_s",
-    "GA": "S",
-    "r_g": "r",
-}
-_POSITIVE = frozenset({"EI", "m", "k_f", "M", "M_b", "J_b", "k_v", "d", "P", "GA"})
-_TIMOSHENKO = ("GA", "r_g")
+#: The dimensionless group each SI parameter (other than the scale parameters) scales to.
+DIMENSIONLESS_OF = {meta["si"]: name for name, meta in _META.PARAMETERS.items()}
 
 
 def _rounded(x: mpmath.mpf, digits: int) -> Fraction:
@@ -68,16 +43,15 @@ def _rounded(x: mpmath.mpf, digits: int) -> Fraction:
     return Fraction(mpmath.nstr(x, digits))
 
 
-def _scales_mp(EI: Fraction, m: Fraction, k_f: Fraction, P: Fraction) -> SimpleNamespace:
-    """Scales of Eqs. (15)-(16) as mpf at the current precision."""
-    EI_, m_, k_f_, P_ = (fraction_to_mpf(x) for x in (EI, m, k_f, P))
-    chi = mpmath.root(k_f_ / (4 * EI_), 4)
-    return SimpleNamespace(
-        chi=chi,
-        v_ref=mpmath.sqrt(k_f_ / m_) / chi,
-        w_st=P_ * chi / (2 * k_f_),
-        t_scale=mpmath.sqrt(m_ / k_f_),
-    )
+def _call(func, values: dict) -> Any:
+    """Call a generated scaling function with the arguments it names, ``sqrt`` being mpmath's."""
+    names = func.__code__.co_varnames[: func.__code__.co_argcount]
+    return func(**{name: (mpmath.sqrt if name == "sqrt" else values[name]) for name in names})
+
+
+def _scales_mp(model_catalogue, scale_values: dict) -> tuple:
+    """(chi, v_ref, w_st, t_scale) of Eqs. (15)-(16) as mpf at the current precision."""
+    return _call(model_catalogue.parameters.scales, {k: fraction_to_mpf(v) for k, v in scale_values.items()})
 
 
 @dataclass(frozen=True)
@@ -132,108 +106,131 @@ class Scales:
         return q / self.t_scale
 
 
-@dataclass(frozen=True)
 class PhysicalParams:
-    """Physical parameters in SI units, Eqs. (1)-(4), (55)-(56); stored exactly as Fractions.
+    """Physical parameters of a model in SI units, stored exactly as Fractions.
 
-    Numeric fields accept what :class:`~moving_bogie.model.params.DimensionlessParams` accepts.
+    The scale parameters ``EI`` [N m^2], ``m`` [kg/m], ``k_f`` [N/m^2] and the wheel load ``P`` [N], and the
+    SI counterpart of each of the model's dimensionless groups (``moving-bogie models`` lists them with their
+    units: for the paper's bogie ``c_f, M, M_b, J_b, k_v, c_v, d, v`` and optionally ``k_s``; ``GA, r_g``
+    for a Timoshenko-Rayleigh beam). Numeric values accept what
+    :class:`~moving_bogie.model.params.DimensionlessParams` accepts.
 
     Parameters
     ----------
-    EI : NumberLike
-        Beam bending stiffness [N m^2]; > 0.
-    m : NumberLike
-        Beam mass per unit length [kg/m]; > 0.
-    k_f : NumberLike
-        Foundation (Winkler) stiffness [N/m^2]; > 0.
-    c_f : NumberLike
-        Foundation viscous damping [N s/m^2]; >= 0 and below ``2 sqrt(m k_f)`` (``eta_f < 1``).
-    M : NumberLike
-        Mass of each wheel [kg]; > 0.
-    M_b : NumberLike
-        Bogie-bar mass [kg]; > 0.
-    J_b : NumberLike
-        Bogie-bar mass moment of inertia about its mass centre [kg m^2]; > 0.
-    k_v : NumberLike
-        Primary suspension stiffness of each support [N/m]; > 0.
-    c_v : NumberLike
-        Primary suspension damping of each support [N s/m]; >= 0.
-    d : NumberLike
-        Wheel spacing [m]; > 0.
-    v : NumberLike
-        Bogie velocity [m/s]; >= 0.
-    P : NumberLike
-        Constant load on each wheel [N]; > 0.
-    k_s : NumberLike, optional
-        Foundation shear (Pasternak) stiffness [N]; >= 0, default 0.
-    GA : NumberLike or None, optional
-        Timoshenko shear stiffness ``G Abar`` [N], > 0; given together with `r_g` it selects the
-        Timoshenko-Rayleigh beam of Eqs. (55)-(56).
-    r_g : NumberLike or None, optional
-        Radius of gyration of the cross-section [m], >= 0 (``J = m r_g**2`` in Eq. 56).
+    beam, track, vehicle : str, optional
+        The model. When left out, it is the one whose SI parameters are exactly those given (so ``GA`` and
+        ``r_g`` select the Timoshenko-Rayleigh beam), the paper's choice where several fit.
+    model : Model, optional
+        Instead of the names.
+    **values
+        The SI parameters.
 
     Raises
     ------
     ParameterError
-        Naming the first offending field.
+        Naming the first offending parameter.
     """
 
-    EI: Fraction
-    m: Fraction
-    k_f: Fraction
-    c_f: Fraction
-    M: Fraction
-    M_b: Fraction
-    J_b: Fraction
-    k_v: Fraction
-    c_v: Fraction
-    d: Fraction
-    v: Fraction
-    P: Fraction
-    k_s: Fraction = Fraction(0)
-    GA: Fraction | None = None
-    r_g: Fraction | None = None
+    __slots__ = ("_model", "_values")
 
-    def __post_init__(self) -> None:
-        for name in PHYSICAL_UNITS:
-            value = getattr(self, name)
-            if name in _TIMOSHENKO:
-                other = _TIMOSHENKO[1 - _TIMOSHENKO.index(name)]
-                if value is None:
-                    if getattr(self, other) is not None:
-                        raise ParameterError(
-                            name, f"{name} is required with {other} (Timoshenko-Rayleigh beam; r_g may be 0)"
-                        )
-                    continue
-            check = positive if name in _POSITIVE else nonnegative
-            object.__setattr__(self, name, check(name, value))
+    def __init__(self, *, beam=None, track=None, vehicle=None, model: Model | None = None, **values: Any):
+        values = {k: v for k, v in values.items() if v is not None}
+        if model is None:
+            model = _infer_model(values, beam, track, vehicle)
+        meta = model.catalogue.parameters
+        scale_names = tuple(meta.SCALE_PARAMETERS)
+        si_of = {spec.si: spec for spec in model.specs.values()}
+        exact = {}
+        for name in values:
+            if name not in scale_names and name not in si_of:
+                known = ", ".join([*scale_names, *si_of])
+                raise ParameterError(
+                    name, f"unknown SI parameter {name!r} for the model {model.name}; known: {known}"
+                )
+        for name in scale_names:
+            if name not in values:
+                raise ParameterError(
+                    name, f"missing SI parameter {name!r} ({meta.SCALE_PARAMETERS[name]['unit']})"
+                )
+            exact[name] = positive(name, values[name])
+        for si, spec in si_of.items():
+            if si not in values:
+                if spec.default is None:
+                    raise ParameterError(si, f"missing SI parameter {si!r} ({spec.si_meaning}, {spec.unit})")
+                if spec.default != 0:
+                    raise ParameterError(si, f"missing SI parameter {si!r} ({spec.si_meaning}, {spec.unit})")
+                exact[si] = Fraction(0)
+                continue
+            check = positive if spec.constraint == "positive" else nonnegative
+            exact[si] = check(si, values[si])
+        object.__setattr__(self, "_model", model)
+        object.__setattr__(self, "_values", exact)
 
-    __repr__ = dataclass_repr
+    @property
+    def model(self) -> Model:
+        return self._model
 
     @property
     def beam(self) -> str:
-        """``"tr"`` (Timoshenko-Rayleigh) when `GA` is given, else ``"eb"`` (Euler-Bernoulli)."""
-        return "eb" if self.GA is None else "tr"
+        return self._model.beam
+
+    @property
+    def track(self) -> str:
+        return self._model.track
+
+    @property
+    def vehicle(self) -> str:
+        return self._model.vehicle
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        if name in self._values:
+            return self._values[name]
+        raise AttributeError(f"PhysicalParams of {self._model.name} has no SI parameter {name!r}")
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("PhysicalParams is immutable")
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, PhysicalParams):
+            return NotImplemented
+        return (self._model, self._values) == (other._model, other._values)
+
+    def __hash__(self) -> int:
+        return hash((self._model, tuple(self._values.items())))
+
+    def __repr__(self) -> str:
+        items = [f"{k}={fraction_to_exact_text(v)!r}" for k, v in self._values.items()]
+        items += [f"{k}={getattr(self, k)!r}" for k in ("beam", "track", "vehicle")]
+        return f"PhysicalParams({', '.join(items)})"
+
+    def values(self) -> dict[str, Fraction]:
+        """SI name -> exact value."""
+        return dict(self._values)
+
+    def units(self) -> dict[str, str]:
+        """SI name -> unit."""
+        meta = self._model.catalogue.parameters
+        out = {name: m["unit"] for name, m in meta.SCALE_PARAMETERS.items()}
+        return out | {spec.si: spec.unit for spec in self._model.specs.values()}
 
     def to_dict(self) -> dict[str, str | None]:
-        """JSON-ready dict of the fields, numbers as decimal strings (see ``DimensionlessParams.to_dict``)."""
-        return map_fractions(self, fraction_to_text)
+        """JSON-ready dict of the model's names and the SI values as decimal strings."""
+        out: dict[str, str | None] = {k: getattr(self, k) for k in ("beam", "track", "vehicle")}
+        return out | {k: fraction_to_text(v) for k, v in self._values.items()}
+
+    def _scale_values(self) -> dict:
+        return {name: self._values[name] for name in self._model.catalogue.parameters.SCALE_PARAMETERS}
 
     def scales(self) -> Scales:
         """Reference scales chi, v_ref, w_st and the time scale, Eqs. (15)-(16), as floats."""
         with mpmath.workdps(30):
-            s = _scales_mp(self.EI, self.m, self.k_f, self.P)
-            return Scales(
-                chi=float(s.chi), v_ref=float(s.v_ref), w_st=float(s.w_st), t_scale=float(s.t_scale)
-            )
+            chi, v_ref, w_st, t_scale = _scales_mp(self._model.catalogue, self._scale_values())
+            return Scales(chi=float(chi), v_ref=float(v_ref), w_st=float(w_st), t_scale=float(t_scale))
 
     def to_dimensionless(self, *, digits: int = 20) -> DimensionlessParams:
-        """Dimensionless parameters, Eqs. (15)-(17) and (59).
-
-        ``eta_M = M chi/m``, ``mu_v = M_b chi/m``, ``J_b~ = chi**3 J_b/m``, ``kappa_v = k_v chi/k_f``,
-        ``eta_v = c_v chi/(2 sqrt(m k_f))``, ``eta_f = c_f/(2 sqrt(m k_f))``,
-        ``eta_s = k_s/(2 sqrt(k_f EI))``, ``alpha = v/v_ref``, ``d~ = d chi``, and for the
-        Timoshenko-Rayleigh beam ``S = G Abar/(2 sqrt(k_f EI))``, ``r~ = r_g chi``.
+        """Dimensionless parameters, Eqs. (15)-(17) and (59), by the generated exact scaling.
 
         Parameters
         ----------
@@ -244,36 +241,24 @@ class PhysicalParams:
         Raises
         ------
         ParameterError
-            Naming ``c_f`` when the foundation is at or above critical damping (``eta_f >= 1``).
+            Naming the SI parameter whose group is out of range (``c_f`` at or above critical damping).
         """
-        from moving_bogie.model.params import DimensionlessParams
+        from moving_bogie.model.params import DimensionlessParams, check_value
 
+        meta = self._model.catalogue.parameters
+        exact = {}
         with mpmath.workdps(digits + 10):
-            s = _scales_mp(self.EI, self.m, self.k_f, self.P)
-            f = SimpleNamespace(**map_fractions(self, fraction_to_mpf))
-            damping = 2 * mpmath.sqrt(f.m * f.k_f)
-            shear = 2 * mpmath.sqrt(f.k_f * f.EI)
-            values = {
-                "eta_f": f.c_f / damping,
-                "eta_M": f.M * s.chi / f.m,
-                "d": f.d * s.chi,
-                "mu_v": f.M_b * s.chi / f.m,
-                "J_b": s.chi**3 * f.J_b / f.m,
-                "kappa_v": f.k_v * s.chi / f.k_f,
-                "eta_v": f.c_v * s.chi / damping,
-                "alpha": f.v / s.v_ref,
-                "eta_s": f.k_s / shear,
-            }
-            if self.beam == "tr":
-                values.update(S=f.GA / shear, r=f.r_g * s.chi)
-            exact = {name: _rounded(value, digits) for name, value in values.items()}
-        if exact["eta_f"] >= 1:
-            raise ParameterError(
-                "c_f",
-                f"c_f = {fraction_to_text(self.c_f)} N s/m^2 reaches the critical foundation damping "
-                f"2*sqrt(m*k_f); eta_f = c_f/(2*sqrt(m*k_f)) must be < 1",
-            )
-        return DimensionlessParams(beam=self.beam, **exact)
+            mp_values = {k: fraction_to_mpf(v) for k, v in self._values.items()}
+            for name, spec in self._model.specs.items():
+                value = _rounded(_call(getattr(meta, f"dimensionless_{name}"), mp_values), digits)
+                try:
+                    exact[name] = check_value(spec, value)
+                except ParameterError as exc:
+                    raise ParameterError(
+                        spec.si,
+                        f"{spec.si} = {fraction_to_text(self._values[spec.si])} {spec.unit} gives {exc}",
+                    ) from None
+        return DimensionlessParams(model=self._model, **exact)
 
     @classmethod
     def from_dimensionless(
@@ -290,45 +275,59 @@ class PhysicalParams:
 
         Results are rounded to `digits` significant decimal digits, as in :meth:`to_dimensionless`.
         """
-        track = {
-            name: positive(name, value) for name, value in (("EI", EI), ("m", m), ("k_f", k_f), ("P", P))
-        }
+        model = params.model
+        meta = model.catalogue.parameters
+        given = {"EI": EI, "m": m, "k_f": k_f, "P": P}
+        track = {name: positive(name, given[name]) for name in meta.SCALE_PARAMETERS}
+        exact = {}
         with mpmath.workdps(digits + 10):
-            s = _scales_mp(**track)
-            p = params.as_mp()
-            mass, stiffness = fraction_to_mpf(track["m"]), fraction_to_mpf(track["k_f"])
-            damping = 2 * mpmath.sqrt(mass * stiffness)
-            shear = 2 * mpmath.sqrt(stiffness * fraction_to_mpf(track["EI"]))
-            values = {
-                "c_f": p.eta_f * damping,
-                "M": p.eta_M * mass / s.chi,
-                "M_b": p.mu_v * mass / s.chi,
-                "J_b": p.J_b * mass / s.chi**3,
-                "k_v": p.kappa_v * stiffness / s.chi,
-                "c_v": p.eta_v * damping / s.chi,
-                "d": p.d / s.chi,
-                "v": p.alpha * s.v_ref,
-                "k_s": p.eta_s * shear,
-            }
-            if params.beam == "tr":
-                values.update(GA=p.S * shear, r_g=p.r / s.chi)
-            exact = {name: _rounded(value, digits) for name, value in values.items()}
-        return cls(**track, **exact)
+            mp_values = {k: fraction_to_mpf(v) for k, v in track.items()}
+            mp_values |= {k: fraction_to_mpf(v) for k, v in params.values().items()}
+            for name, spec in model.specs.items():
+                exact[spec.si] = _rounded(_call(getattr(meta, f"physical_{name}"), mp_values), digits)
+        return cls(model=model, **track, **exact)
 
     def with_dimensionless(self, params: DimensionlessParams, *, digits: int = 20) -> PhysicalParams:
         """The SI parameters of `params` on this track (``EI``, ``m``, ``k_f``) under this wheel load ``P``.
 
-        Each SI field depends on one dimensionless parameter (:data:`DIMENSIONLESS_OF`); a field whose
-        parameter equals this instance's own dimensionless value keeps its exact SI value, the
-        others are recomputed as in :meth:`from_dimensionless`.
+        An SI parameter whose group equals this instance's own dimensionless value keeps its exact SI
+        value; the others are recomputed as in :meth:`from_dimensionless`.
         """
         own = self.to_dimensionless(digits=digits)
-        new = PhysicalParams.from_dimensionless(
-            params, EI=self.EI, m=self.m, k_f=self.k_f, P=self.P, digits=digits
-        )
-        kept = {
-            field: getattr(self, field)
-            for field, name in DIMENSIONLESS_OF.items()
-            if getattr(params, name) == getattr(own, name)
-        }
-        return dataclasses.replace(new, **kept)
+        new = PhysicalParams.from_dimensionless(params, **self._scale_values(), digits=digits)
+        values = new.values()
+        for name, spec in params.model.specs.items():
+            if getattr(own, name) == getattr(params, name) and spec.si in self._values:
+                values[spec.si] = self._values[spec.si]
+        return PhysicalParams(model=params.model, **values)
+
+
+def _infer_model(values: dict, beam, track, vehicle) -> Model:
+    """The model whose SI parameters are exactly those given (the paper's choice where several fit)."""
+    from moving_bogie.model.catalogue import get_model
+
+    catalogue = default_catalogue()
+    fixed = {"beam": beam, "track": track, "vehicle": vehicle}
+    scale_names = set(catalogue.parameters.SCALE_PARAMETERS)
+    given = set(values) - scale_names
+    fits, covers = [], []
+    for model in catalogue.models():
+        if any(v is not None and getattr(model, k) != v for k, v in fixed.items()):
+            continue
+        specs = model.specs.values()
+        names = {s.si for s in specs}
+        required = {s.si for s in specs if s.default is None}
+        if given <= names:
+            covers.append(model)
+            if required <= given:
+                fits.append(model)
+    # No exact fit: the model that knows every given name (its validation then names what is missing).
+    fits = fits or covers
+    if not fits:
+        return get_model(beam, track, vehicle)  # its validation names what is wrong
+    choice = {k: v if v is not None else DEFAULT_MODEL[k] for k, v in fixed.items()}
+    preferred = [m for m in fits if all(getattr(m, k) == v for k, v in choice.items())]
+    ranked = preferred or sorted(
+        fits, key=lambda m: sum(getattr(m, k) != DEFAULT_MODEL[k] for k in DEFAULT_MODEL)
+    )
+    return ranked[0]

@@ -1,6 +1,6 @@
 """The paper's figure and table captions, verbatim from the preprint (doi 10.20944/preprints202501.1517.v1).
 
-Used by :mod:`moving_bogie.paper.reproduce` to show each rebuilt artifact next to the caption it reproduces.
+Used by :mod:`moving_bogie.paper.registry` to show each rebuilt artifact next to the caption it reproduces.
 The text is the print's, including its inline TeX and bold markers; only the leading label
 ("**Figure 5.**") is split off into :attr:`Caption.label`. Where the print labels an artifact
 differently from the text that cites it, :attr:`Caption.printed_label` keeps the print's label.

@@ -84,7 +84,8 @@ class BranchCut:
         For a Timoshenko-Rayleigh beam, or when the cut reaches q = 0 (supercritical velocity).
     """
 
-    def __init__(self, params, model: str = "bogie", *, panel_tol: float = 1e-13):
+    def __init__(self, params, model: str | None = None, *, panel_tol: float = 1e-13):
+        model = model or params.vehicle
         if params.beam != "eb":
             raise BranchCutUnavailable(
                 "the branch-cut part I_bc is implemented for the Euler-Bernoulli beam only (beam='eb'); "
@@ -95,9 +96,9 @@ class BranchCut:
         f = params.as_float()
         self.alpha, self.eta_f, self.eta_s, self.d = f.alpha, f.eta_f, f.eta_s, f.d
         self._c = 4.0 - 4.0 * self.eta_f**2
-        self.foundation = foundation_module(params.beam)
+        self.foundation = foundation_module(params)
         self.fargs = foundation_arguments(params, f)
-        self.vehicle = vehicle_module(model)
+        self.vehicle = vehicle_module(model, params)
         self.vargs = {name: getattr(f, name) for name in self.vehicle.PARAMETERS} | {"pi": np.pi}
         self.names = tuple(self.vehicle.RESPONSES)
         self.p_c = self._minimum()

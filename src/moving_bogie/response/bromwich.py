@@ -39,7 +39,7 @@ class BromwichResult(dict):
 
 
 def _transform(params, model):
-    vehicle = vehicle_module(model)
+    vehicle = vehicle_module(model, params)
     kernel = TrackKernelArray(params)
     f = params.as_float()
     args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
@@ -64,7 +64,7 @@ def bromwich_shape(
     xi,
     tau: float,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     a: float = 0.02,
     epsabs: float = 1e-12,
     limit: int = 2000,
@@ -75,9 +75,10 @@ def bromwich_shape(
     i q W~(xi, q) = (G_rear K(xi, q) + G_front K(xi - d, q)) / (2 pi E_chr), evaluated directly (no residues,
     no branch cut); the same fold onto s >= 0 and QAWF quadrature as :func:`bromwich_response`.
     """
+    model = model or params.vehicle
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
-    vehicle = vehicle_module(model)
+    vehicle = vehicle_module(model, params)
     kernel = TrackKernelArray(params)
     f = params.as_float()
     args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
@@ -117,7 +118,7 @@ def bromwich_response(
     params,
     tau,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     a: float = 0.02,
     names=None,
     epsabs: float = 1e-12,
@@ -144,6 +145,7 @@ def bromwich_response(
     BromwichResult
         dict name -> ndarray like tau; ``.errors`` holds QUADPACK's error estimates times e^{a tau}/pi.
     """
+    model = model or params.vehicle
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
     responses, values = _transform(params, model)

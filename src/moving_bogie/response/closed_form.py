@@ -82,7 +82,7 @@ class TimeSeries:
     theta_steady: float
     branch_cut: bool
     frequencies: object
-    model: str = "bogie"
+    model: str | None = None
     branch_cut_until: float = 0.0
     units: dict = field(default_factory=lambda: dict(DIMENSIONLESS_UNITS))
     notes: tuple = ()
@@ -196,7 +196,7 @@ def closed_form_response(
     params,
     tau,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     frequencies=None,
     branch_cut="auto",
     dps: int = 30,
@@ -241,6 +241,7 @@ def closed_form_response(
     BranchCutUnavailable
         ``branch_cut=True`` with a Timoshenko-Rayleigh beam or above the critical velocity.
     """
+    model = model or params.vehicle
     dimless, scales = _dimensionless(params)
     tau = np.asarray(tau, dtype=float)
     if scales is not None:
@@ -331,7 +332,7 @@ def deflection_shape(
     xi,
     tau: float,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     frequencies=None,
     branch_cut="auto",
     dps: int = 30,
@@ -346,6 +347,7 @@ def deflection_shape(
     xi is in metres, tau in seconds and the result in metres. ``branch_cut`` and the tolerances are as
     in :func:`closed_form_response`; ``auto`` applies the same rule at this single time.
     """
+    model = model or params.vehicle
     dimless, scales = _dimensionless(params)
     xi = np.asarray(xi, dtype=float)
     tau = float(tau)

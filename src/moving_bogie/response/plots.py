@@ -36,12 +36,13 @@ def _labels(ts) -> dict:
             "u": "u(t) [m]",
             "theta": r"$\theta$(t) [rad]",
         }
+    # Dimensionless: every quantity as the ratio it is (Eqs. (15)-(17)), w and u over the static deflection.
     return {
-        "tau": r"dimensionless time $\tau$",
-        "w_rear": r"$\tilde w(0,\tau)$",
-        "w_front": r"$\tilde w(\tilde d,\tau)$",
-        "u": r"$\tilde u(\tau)$",
-        "theta": r"$\tilde\theta(\tau)$",
+        "tau": r"dimensionless time $\tau = t\,\sqrt{k_f/m}$",
+        "w_rear": r"$w(0,\tau)\,/\,w_{st}$",
+        "w_front": r"$w(\tilde d,\tau)\,/\,w_{st}$",
+        "u": r"$u(\tau)\,/\,w_{st}$",
+        "theta": r"$\theta(\tau)\,/\,(w_{st}\,\chi)$",
     }
 
 
@@ -79,15 +80,20 @@ def _panels(ts, names, height, title, steady: bool):
     return fig
 
 
+def _has(ts, name: str) -> bool:
+    """Whether the vehicle has this response (the others are NaN, e.g. no bar for two masses)."""
+    return not np.all(np.isnan(getattr(ts, name)))
+
+
 def time_series_figure(ts, *, title: str | None = None, steady: bool = True):
-    """Three stacked panels: w_rear, u, theta against tau (two masses: w_rear, w_front)."""
-    names = ("w_rear", "u", "theta") if ts.model == "bogie" else ("w_rear", "w_front")
+    """Three stacked panels: w_rear, u, theta against tau (a vehicle without a bar: w_rear, w_front)."""
+    names = ("w_rear", "u", "theta") if _has(ts, "u") else ("w_rear", "w_front")
     return _panels(ts, names, 2.3 * len(names) + 0.4, title, steady)
 
 
 def long_time_figure(ts, *, title: str | None = None):
     """Two stacked panels, w_rear and u, for long times (Figures 6, 13, 15, A5, A7)."""
-    names = ("w_rear", "u") if ts.model == "bogie" else ("w_rear", "w_front")
+    names = ("w_rear", "u") if _has(ts, "u") else ("w_rear", "w_front")
     return _panels(ts, names, 5.0, title, steady=False)
 
 
@@ -115,8 +121,8 @@ def shape_figure(xi, w, *, tau: float, d: float, si: bool = False, title: str | 
         ax.set_ylabel("w(r, t) [m]")
         when = f"t = {tau:g} s"
     else:
-        ax.set_xlabel(r"moving coordinate $\xi$ (rear wheel at 0)")
-        ax.set_ylabel(r"$\tilde w(\xi,\tau)$")
+        ax.set_xlabel(r"moving coordinate $\xi = \chi\,(x - v t)$ (rear wheel at 0)")
+        ax.set_ylabel(r"$w(\xi,\tau)\,/\,w_{st}$")
         when = rf"$\tau$ = {tau:g}"
     ax.set_title(title or f"beam deflection at {when}", fontsize=10)
     ax.grid(True, lw=0.3, alpha=0.6)

@@ -135,7 +135,9 @@ class ResidueExpansion:
         return {name: self.steady[name] + v for name, v in self.harmonics(tau).items()}
 
 
-def residue_expansion(params, frequencies, model: str = "bogie", *, shapes: bool = True) -> ResidueExpansion:
+def residue_expansion(
+    params, frequencies, model: str | None = None, *, shapes: bool = True
+) -> ResidueExpansion:
     """Residue coefficients for the steady and unsteady harmonic parts, Eqs. (36)-(47).
 
     Every coefficient is evaluated at the precision of ``frequencies.dps`` with dE_chr/dq from
@@ -155,6 +157,7 @@ def residue_expansion(params, frequencies, model: str = "bogie", *, shapes: bool
     IncompleteFrequencies, MovingBogieError
         Frequencies incomplete, a multiple root, or E_chr(0) = 0 (no steady state).
     """
+    model = model or params.vehicle
     if frequencies.model != model:
         raise MovingBogieError(f"frequencies were computed for model {frequencies.model!r}, not {model!r}")
     qs = both_members(frequencies)

@@ -11,11 +11,13 @@
    window is reported, never silently dropped.
 
 Stability: the motion is unstable when some induced frequency has Im q < 0 (Eq. (35) with e^{i q tau}).
+The default window contains the lower half-disc of the radius R beyond which E_chr has no root with
+Im q < 0 (:mod:`far_field`), so the verdict (:mod:`verdict`) speaks about every root, or says UNDETERMINED.
 """
 
 from __future__ import annotations
 
-import math
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -26,8 +28,11 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
+from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
 from moving_bogie.roots.search_regions import tile_window
+from moving_bogie.roots.verdict import Verdict, judge
+from moving_bogie.roots.window import default_window, far_field_window  # noqa: F401  (public here too)
 
 
 @dataclass(frozen=True)
@@ -88,6 +93,8 @@ class FrequencyResult:
     unsearched: tuple  # slivers around the cut that no contour can enter
     evaluations: int  # E_chr evaluations (double precision + high precision)
     warnings: tuple = field(default=())
+    far_field: FarField | None = None
+    certificate: object = None  # roots.certify.Certificate when asked for (certify=True)
 
     @property
     def found(self) -> int:
@@ -103,7 +110,13 @@ class FrequencyResult:
 
     @property
     def stable(self) -> bool:
+        """No confirmed root with Im q < 0 among those found (:attr:`verdict` is the complete statement)."""
         return not self.unstable_roots
+
+    @property
+    def verdict(self) -> Verdict:
+        """STABLE/UNSTABLE when the lower half-plane was searched completely, else UNDETERMINED."""
+        return judge(self)
 
     @property
     def degree_of_instability(self):
@@ -125,31 +138,15 @@ class FrequencyResult:
             "count": self.count,
             "found": self.found,
             "count_ok": self.count_ok,
-            "stable": self.stable,
+            "verdict": self.verdict.to_dict(),
+            "stable": self.stable if self.verdict.determined else None,
             "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
             "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
             "evaluations": self.evaluations,
             "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
+            "far_field": None if self.far_field is None else self.far_field.to_dict(),
             "warnings": list(self.warnings),
-        }
-
-
-def default_window(params, model: str) -> Rectangle:
-    """Default search window: 0 <= Re q <= X, -X <= Im q <= X + eta_f.
-
-    X = max(3, 3 f) where f is the largest natural-frequency estimate of the model: the beam on its
-    foundation (q = 1 at rest, Eq. (24) with p = 0), the bar's bounce sqrt(2 kappa_v / mu_v) and pitch
-    sqrt(kappa_v d^2 / (2 J_b)) (the zeros of B2 and B3 of Eq. (37), which E_chr approaches when K -> 0).
-    For large |q| E_chr ~ B2 B3 (pi - 2 K0 B1)^2 with K0 = O(|q|^-3/2) and B1 = O(q^2), which has no zeros:
-    every root lies at moderate |q|. The search still checks a window twice as large (``check_window``).
-    The left edge sits slightly left of Re q = 0 so that a purely imaginary root is inside, not on it.
-    """
-    f = params.as_float()
-    scale = [1.0]
-    if model == "bogie":
-        scale += [math.sqrt(2 * f.kappa_v / f.mu_v), math.sqrt(f.kappa_v * f.d**2 / (2 * f.J_b))]
-    X = max(3.0, 3.0 * max(scale))
-    return Rectangle(-1e-3 * X, X, -X, X + f.eta_f)
+        } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
 
 
 class CountMismatch(MovingBogieError):
@@ -158,7 +155,7 @@ class CountMismatch(MovingBogieError):
 
 def induced_frequencies(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     *,
     dps: int = 30,
     extra_dps: int | None = None,
@@ -168,6 +165,7 @@ def induced_frequencies(
     eps_branch: float = 1e-5,
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
+    certify: bool = False,
 ) -> FrequencyResult:
     """Every induced frequency of ``params`` in ``window`` (default :func:`default_window`).
 
@@ -180,7 +178,8 @@ def induced_frequencies(
     extra_dps : int, optional
         Extra digits of the confirming recomputation (default max(10, dps // 2)).
     window : Rectangle, optional
-        Search window in the q-plane (Re q >= 0 half).
+        Search window in the q-plane (Re q >= 0 half); default :func:`far_field_window`. A window that does
+        not contain the lower half-disc of the far-field radius makes the verdict UNDETERMINED.
     check_window : bool
         Also count roots in a window twice as large; more roots there make the result fail loudly.
     eps : float
@@ -191,10 +190,16 @@ def induced_frequencies(
         Side of a single-root cell below which Newton's method is tried from its centre.
     progress : callable, optional
         Called with the fraction of work done (0..1).
+    certify : bool
+        Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
     """
+    model = model or params.vehicle
     if extra_dps is None:
         extra_dps = max(10, dps // 2)
-    window = window or default_window(params, model)
+    if window is None:
+        window, far = far_field_window(params, model)
+    else:
+        far = far_field_radius(params, model, default_window(params, model).x1)
     fast = CharacteristicArray(params, model)
     precise = Characteristic(params, model)
     warnings = []
@@ -254,7 +259,12 @@ def induced_frequencies(
         tiling.unsearched,
         fast.evaluations + precise.evaluations,
         tuple(warnings),
+        far,
     )
+    if certify:
+        from moving_bogie.roots.certify import certify as prove
+
+        result = dataclasses.replace(result, certificate=prove(result))
     report(1.0)
     return result
 

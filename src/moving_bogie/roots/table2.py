@@ -45,6 +45,11 @@ class Table2:
     def ok(self) -> bool:
         return all(row.ok for row in self.rows)
 
+    @property
+    def printed_cases(self) -> tuple:
+        """The cases whose printed values the reference data hold (Cases 1-6)."""
+        return tuple(row.case for row in self.rows if row.printed)
+
     def to_dict(self) -> dict:
         cases = []
         for row in self.rows:
@@ -55,8 +60,15 @@ class Table2:
                 None if x is None else {"re": str(x[0]), "im": str(x[1])} for x in row.differences
             ]
             d["ok"] = row.ok
+            if row.result.certificate is not None:
+                d["certified"]["printed_enclosed"] = printed_enclosed(row)
             cases.append(d)
-        return {"cases": cases, "ok": self.ok, "print_tolerance": str(PRINT_TOLERANCE)}
+        return {
+            "cases": cases,
+            "printed_cases": list(self.printed_cases),
+            "ok": self.ok,
+            "print_tolerance": str(PRINT_TOLERANCE),
+        }
 
 
 def compare_with_print(result, printed):
@@ -74,10 +86,25 @@ def compare_with_print(result, printed):
     return tuple(out)
 
 
-def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None) -> Table2:
+def printed_enclosed(row) -> list:
+    """Per computed root with a printed value: whether its proven enclosure rounds, at every point, to the
+    printed digits (None where nothing is printed or nothing was proven)."""
+    out = []
+    for r, e, diff in zip(row.result.roots, row.result.certificate.roots, row.differences):
+        if diff is None or not e.certified:
+            out.append(None)
+            continue
+        pr_re, pr_im = _printed_for(row, r)
+        decimals = len(pr_re.split(".")[1])
+        out.append(e.rounds_to(pr_re, pr_im, decimals))
+    return out
+
+
+def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None, certify: bool = False) -> Table2:
+    """Table 2 by :func:`induced_frequencies` per case (with ``certify``, each result carries its proof)."""
     rows = []
     for k, case in enumerate(cases):
-        result = induced_frequencies(table1_case(case), "bogie", dps=dps)
+        result = induced_frequencies(table1_case(case), "bogie", dps=dps, certify=certify)
         printed = tuple(table2_printed(case))
         rows.append(CaseRow(case, result, printed, compare_with_print(result, printed)))
         if progress:
@@ -87,7 +114,9 @@ def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None) -> Table
 
 def format_table2(table: Table2, decimals: int = 6) -> str:
     """The paper's layout: per case, q^r (with +-) and q^i of each root; printed value and difference."""
-    lines = ["Table 2. Induced frequencies (one root of each pair q, -conj(q); Re q >= 0)", ""]
+    lines = ["Table 2. Induced frequencies (one root of each pair q, -conj(q); Re q >= 0)"]
+    lines.append(f"printed: the paper's values for {_case_list(table.printed_cases)}; {_unprinted(table)}")
+    lines.append("")
     head = (
         f"{'case':>4} {'#':>2} {'q^r':>{decimals + 5}} {'q^i':>{decimals + 5}}   {'printed':>22}   difference"
     )
@@ -109,12 +138,46 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
                 f"{pr:>22}   {dd}{flag}"
             )
         status = "count ok" if row.result.count_ok else "COUNT MISMATCH"
-        verdict = "stable" if row.result.stable else "UNSTABLE"
-        match = "" if not row.printed else ("matches print" if row.ok else "DIFFERS FROM PRINT")
+        state = row.result.verdict
+        verdict = {"stable": "stable", "unstable": "UNSTABLE"}.get(state.state) or (
+            "verdict UNDETERMINED (" + ", ".join(r.split(":")[0] for r in state.reasons) + ")"
+        )
+        match = (
+            "no printed value to compare"
+            if not row.printed
+            else ("matches print" if row.ok else "DIFFERS FROM PRINT")
+        )
         lines.append(f"{'':>7} {status}, {verdict}{', ' + match if match else ''}")
+        if row.result.certificate is not None:
+            lines.append(f"{'':>7} {certificate_line(row)}")
     lines.append("")
     lines.append("all cases ok" if table.ok else "MISMATCH: see the rows marked above")
     return "\n".join(lines)
+
+
+def _case_list(cases) -> str:
+    if not cases:
+        return "no case"
+    if list(cases) == list(range(cases[0], cases[-1] + 1)) and len(cases) > 2:
+        return f"Cases {cases[0]}-{cases[-1]}"
+    return "Cases " + ", ".join(str(c) for c in cases)
+
+
+def _unprinted(table) -> str:
+    rest = tuple(row.case for row in table.rows if not row.printed)
+    if not rest:
+        return "every case is compared"
+    return f"{_case_list(rest)} have no printed values in the reference data (computed only, column blank)"
+
+
+def certificate_line(row) -> str:
+    """One line: roots and count proven, the proven verdict, whether the printed digits are enclosed."""
+    c = row.result.certificate
+    text = f"proven: {c.proven_roots}/{len(c.roots)} roots, count {c.count}, verdict {c.verdict}"
+    enclosed = [x for x in printed_enclosed(row) if x is not None]
+    if enclosed:
+        text += ", printed digits " + ("enclosed" if all(enclosed) else "NOT ENCLOSED")
+    return text
 
 
 def _printed_for(row, root):

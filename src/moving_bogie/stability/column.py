@@ -20,7 +20,7 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
-from moving_bogie.roots.frequencies import default_window
+from moving_bogie.roots.window import default_window
 from moving_bogie.stability.column_count import count_box
 from moving_bogie.stability.column_roots import delves_lyness, dip_candidates, locate_roots
 
@@ -50,8 +50,14 @@ def exact(x) -> Fraction:
 
 
 def column_window(params, model: str, parameter: str, thetas) -> tuple[float, float, float]:
-    """(X, Y) covering :func:`default_window` at the smallest and at the largest theta of the column, and
-    the smaller of the two X (the part of the real axis every cell's window holds)."""
+    """(X, Y) covering :func:`~moving_bogie.roots.window.default_window` (the scale of the induced
+    frequencies) at the smallest and at the largest theta of the column, and the smaller of the two X (the
+    part of the real axis every cell's window holds).
+
+    Not the far-field window of :func:`~moving_bogie.roots.frequencies.induced_frequencies` (whose radius R
+    can be hundreds of times larger, too long a contour to sample at this spacing): a root with Im q < 0
+    between the two would be missed here; the full counts of the per-chunk check of a sweep would see it.
+    """
     windows = [
         default_window(params.replace(**{parameter: exact(theta)}), model)
         for theta in (float(np.min(thetas)), float(np.max(thetas)))
@@ -171,7 +177,7 @@ def settle_cells(
 
     ``alpha`` and ``thetas`` are the exact values of the column (default: the shortest decimal text of
     its floats). A cell stays uncertain only when the full count itself is not certified (``count_ok``
-    false, or the search fails): its verdict is then never claimed.
+    false, an UNDETERMINED verdict, or the search fails): its verdict is then never claimed.
     """
     from moving_bogie.roots.frequencies import induced_frequencies
 
@@ -192,7 +198,7 @@ def settle_cells(
         count[j] = len(unstable)
         degree[j] = min([0.0, *(q.imag for q in unstable)])
         roots[j] = np.array(sorted(unstable, key=lambda q: q.imag), dtype=complex)
-        uncertain[j] = not res.count_ok
+        uncertain[j] = not (res.count_ok and res.verdict.determined)
         settled[j] = True
     return replace(column, count=count, degree=degree, uncertain=uncertain, roots=roots, settled=settled)
 

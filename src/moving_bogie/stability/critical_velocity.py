@@ -78,6 +78,7 @@ def formula_tr(S, r):
 
 def _n_values(module, args, p, alpha):
     """N(p, 0; alpha) and dN/dp for the undamped track (mpmath or numpy arguments)."""
+    args = {k: v for k, v in args.items() if k in module.ARGUMENTS}
     cs = module.n_coeffs(0, alpha=alpha, eta_f=0, **args)
     N, dN = 0, 0
     for c in cs:

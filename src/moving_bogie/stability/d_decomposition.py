@@ -69,7 +69,7 @@ class DDecomposition:
 
 def d_decomposition(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     alpha: float | None = None,
     *,
     parameter: str = "eta_M",
@@ -94,6 +94,7 @@ def d_decomposition(
     tol : float
         Newton tolerance of the refined crossings.
     """
+    model = model or params.vehicle
     if params.eta_f <= 0:
         raise ParameterError("eta_f", "D-decomposition needs eta_f > 0 (the cut of K lies on the real axis)")
     alpha = float(params.alpha if alpha is None else alpha)

@@ -75,7 +75,7 @@ class FrequencyLines:
 
 def frequency_lines(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     *,
     alpha_range: tuple[float, float] = (0.0, 1.2),
     checkpoints: int = 13,
@@ -104,6 +104,7 @@ def frequency_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
+    model = model or params.vehicle
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
     sweep = SweepCharacteristic(params, model)
     tracker = _Tracker(sweep, h_max)

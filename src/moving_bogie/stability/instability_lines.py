@@ -25,7 +25,11 @@ Method
    control), all curves advancing together in vectorised numpy; dE/dalpha comes from residues like
    dE/dq (:meth:`SweepCharacteristic.derivatives`). A curve ends where it leaves the box
    ``alpha_range x (0, q_max] x (0, theta_max]`` (the end point is placed on the box face) or closes on
-   itself. Seeds lying on a traced curve are used up; duplicates are dropped.
+   itself. Seeds lying on a traced curve are used up; duplicates are dropped
+   (:mod:`~moving_bogie.stability.continuation`).
+3. Ends. Every line records why it stops (:mod:`~moving_bogie.stability.line_ends`): the plot's edge, or
+   inside the plot (q_max, which is then raised automatically; q = 0; a singular point), and its folds
+   (tips where the root touches the real axis and the line turns back).
 
 Which side is unstable follows from the implicit function theorem: at fixed alpha, the real root moves
 as dq/dtheta = -E_theta / E_q, so the side of larger theta is the unstable one (one more root with
@@ -44,6 +48,8 @@ import numpy as np
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
+from moving_bogie.stability.continuation import PathTracer, evaluate, gauss_newton
+from moving_bogie.stability.line_ends import find_folds, line_end
 
 __all__ = ["InstabilityBranch", "InstabilityLines", "instability_lines"]
 
@@ -74,6 +80,13 @@ class InstabilityBranch:
     unstable_above: np.ndarray
     residual: np.ndarray
     verified: tuple | None = None  # (alpha, eta below, count, eta above, count) by induced_frequencies
+    ends: tuple = ()  # (start, end) LineEnd: why the line stops at each end
+    folds: tuple = ()  # LineEnd("fold") at every tip where the line turns back
+
+    @property
+    def stops_inside(self) -> tuple:
+        """The ends and folds that lie inside the plotted range (marked in the figures)."""
+        return tuple(e for e in (*self.ends, *self.folds) if e.inside)
 
     @property
     def unstable_side(self) -> str:
@@ -93,6 +106,8 @@ class InstabilityBranch:
             else dict(
                 zip(("alpha", "theta_below", "count_below", "theta_above", "count_above"), self.verified)
             ),
+            "ends": [e.to_dict(parameter) for e in self.ends],
+            "folds": [e.to_dict(parameter) for e in self.folds],
             "points": [
                 {"alpha": float(a), parameter: float(t), "q": float(q), "unstable_above": bool(u)}
                 for a, t, q, u in zip(self.alpha, self.theta, self.q, self.unstable_above)
@@ -111,6 +126,7 @@ class InstabilityLines:
     theta_max: float
     branches: tuple
     warnings: tuple = field(default=())
+    q_max: float | None = None  # the searched range of real q actually used (raised automatically)
 
     def for_spacing(self, d: float) -> tuple:
         return tuple(b for b in self.branches if abs(b.d - d) < 1e-12)
@@ -122,6 +138,7 @@ class InstabilityLines:
             "parameter": self.parameter,
             "alpha_range": list(self.alpha_range),
             "theta_max": self.theta_max,
+            "q_max": self.q_max,
             "branches": [b.to_dict(self.parameter) for b in self.branches],
             "warnings": list(self.warnings),
         }
@@ -129,13 +146,14 @@ class InstabilityLines:
 
 def instability_lines(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     *,
     spacings: Sequence[float] | None = None,
     parameter: str = "eta_M",
     alpha_range: tuple[float, float] = (0.0, 1.2),
     theta_max: float = 200.0,
     q_max: float = 1.5,
+    q_max_cap: float | None = None,
     alpha_step: float = 0.01,
     q_step: float = 0.004,
     h_max: float = 0.01,
@@ -161,7 +179,10 @@ def instability_lines(
     theta_max : float
         Upper end of the parameter range (the lower end is 0).
     q_max : float
-        Largest real induced frequency searched; a line reaching it is reported in ``warnings``.
+        Largest real induced frequency searched at first; while a line reaches it, it is doubled (up to
+        ``q_max_cap``) and the lines are traced again. A line still reaching it is reported in ``warnings``.
+    q_max_cap : float
+        Largest q_max tried (default 8 times ``q_max``).
     alpha_step, q_step : float
         Grid steps of the seed scan: features smaller than a grid cell in both alpha and q (and not
         connected to a larger one) can be missed.
@@ -177,6 +198,7 @@ def instability_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
+    model = model or params.vehicle
     if params.eta_f <= 0:
         raise ParameterError(
             "eta_f",
@@ -185,7 +207,36 @@ def instability_lines(
         )
     ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
     sweep = SweepCharacteristic(params, model, parameter)
+    cap = 8 * q_max if q_max_cap is None else q_max_cap
+    grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
+    while True:
+        branches, warnings = _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress)
+        reaches = any(e.reason == "q_max" for b in branches for e in b.ends)
+        if not reaches or 2 * q_max > cap:
+            break
+        q_max *= 2
+    if reaches:
+        warnings.insert(0, f"a line reaches q_max={q_max:g} (the cap); raise q_max_cap")
+    if verify:
+        branches = [_verify(params, model, parameter, b) for b in branches]
+    _report(progress, 1.0)
+    a0, a1 = (float(a) for a in alpha_range)
+    return InstabilityLines(
+        params,
+        model,
+        parameter,
+        (a0, a1),
+        float(theta_max),
+        tuple(branches),
+        tuple(dict.fromkeys(warnings)),
+        float(q_max),
+    )
+
+
+def _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress):
+    """Seeds on an (alpha, q) grid, then continuation: the branches in the box up to ``q_max``."""
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
+    alpha_step, q_step, tol = grid["alpha_step"], grid["q_step"], grid["tol"]
     alphas = np.linspace(a0, a1, max(3, int(round((a1 - a0) / alpha_step)) + 1))
     qs = np.linspace(q_step, q_max, max(3, int(round(q_max / q_step))))
     AA, QQ = np.meshgrid(alphas, qs, indexing="ij")
@@ -203,21 +254,14 @@ def instability_lines(
             if len(seeds):
                 groups.append((d, seeds))
         _report(progress, 0.1 + 0.2 * (j + 1) / len(ds))
-    tracer = _Tracer(sweep, theta_max, box, h_max, tol, progress=lambda x: _report(progress, 0.3 + 0.7 * x))
-    branches, warnings = [], []
-    for d, path in tracer.trace_all(groups):
-        branch = _branch(sweep, d, path, theta_max)
-        branches.append(branch)
-        if np.any(branch.q >= q_max - 1e-9):
-            warnings.append(f"d={d:g}: a line reaches q_max={q_max:g}; raise q_max")
-    warnings += tracer.warnings
-    branches.sort(key=lambda b: (b.d, b.alpha.min()))
-    if verify:
-        branches = [_verify(params, model, parameter, b) for b in branches]
-    _report(progress, 1.0)
-    return InstabilityLines(
-        params, model, parameter, (a0, a1), float(theta_max), tuple(branches), tuple(dict.fromkeys(warnings))
+    tracer = PathTracer(
+        sweep, theta_max, box, grid["h_max"], tol, progress=lambda x: _report(progress, 0.3 + 0.7 * x)
     )
+    branches = [
+        _branch(sweep, d, path, theta_max, ends, a1 - a0) for d, path, ends in tracer.trace_all(groups)
+    ]
+    branches.sort(key=lambda b: (b.d, b.alpha.min()))
+    return branches, list(tracer.warnings)
 
 
 def _verify(params, model, parameter, branch) -> InstabilityBranch:
@@ -247,15 +291,6 @@ def _report(progress, x):
         progress(min(1.0, x))
 
 
-def _evaluate(sweep, x, d, scale):
-    """F = (Re E, Im E) and the 2x3 real Jacobian in (alpha, q, t = theta/scale) at points x (n, 3)."""
-    E, E_q, E_a, E_t = sweep.derivatives(x[:, 1].astype(complex), x[:, 0], x[:, 2] * scale, d=d)
-    cols = np.stack([E_a, E_q, E_t * scale], axis=-1)
-    F = np.stack([E.real, E.imag], axis=-1)
-    J = np.stack([cols.real, cols.imag], axis=-2)
-    return F, J, E, E_q, E_t
-
-
 def _seed_points(sweep, line, d, theta_max, tol, box, steps):
     """Points on the curves near the vertices of one contour polyline, shape (k, 3) in (alpha, q, t).
 
@@ -278,7 +313,7 @@ def _seed_points(sweep, line, d, theta_max, tol, box, steps):
         if not np.any(todo):
             break
         x = np.stack([alpha0[todo], q0[todo], roots[np.arange(n), order[:, rank]].real[todo]], axis=-1)
-        x, conv = _gauss_newton(sweep, x, np.full(len(x), d), theta_max, tol)
+        x, conv = gauss_newton(sweep, x, np.full(len(x), d), theta_max, tol)
         near = (np.abs(x[:, 0] - alpha0[todo]) <= 1.5 * steps[0]) & (
             np.abs(x[:, 1] - q0[todo]) <= 1.5 * steps[1]
         )
@@ -289,210 +324,28 @@ def _seed_points(sweep, line, d, theta_max, tol, box, steps):
     return out[inside]
 
 
-def _gauss_newton(sweep, x, d, scale, tol, max_iter=12):
-    """Minimum-norm Gauss-Newton onto the curve Re E = Im E = 0; returns (x, converged)."""
-    x = np.array(x, dtype=float)
-    conv = np.zeros(len(x), dtype=bool)
-    for _ in range(max_iter):
-        F, J, *_ = _evaluate(sweep, x, d, scale)
-        with np.errstate(all="ignore"):
-            y = np.linalg.solve(J @ np.swapaxes(J, -1, -2), F[..., None])
-            step = -(np.swapaxes(J, -1, -2) @ y)[..., 0]
-        size = np.max(np.abs(step), axis=-1)
-        step = np.where(
-            (size > 0.05)[:, None], step * (0.05 / np.where(size > 0.05, size, 1.0))[:, None], step
-        )
-        x = np.where(conv[:, None], x, x + step)
-        conv |= size < tol
-        if np.all(conv | ~np.isfinite(size)):
-            break
-    return x, conv & np.all(np.isfinite(x), axis=-1)
+def _at_cut(sweep, reason, q, alpha):
+    """A stalled end where a p-root of N is real (to 1e-6) lies on the cut of K: reason "cut"."""
+    if reason != "stalled":
+        return reason
+    p = sweep.p_roots(np.array([complex(q)]), np.array([float(alpha)]))[0]
+    return "cut" if np.min(np.abs(p.imag) / np.maximum(1.0, np.abs(p))) < 1e-6 else reason
 
 
-def _newton_fixed(sweep, x, d, k, value, scale, tol, max_iter=12):
-    """Newton in the two coordinates other than ``k`` with x[k] = value (end points on the box)."""
-    x = np.array(x, dtype=float)
-    x[:, k] = value
-    free = [i for i in range(3) if i != k]
-    conv = np.zeros(len(x), dtype=bool)
-    for _ in range(max_iter):
-        F, J, *_ = _evaluate(sweep, x, d, scale)
-        with np.errstate(all="ignore"):
-            step = -np.linalg.solve(J[..., free], F[..., None])[..., 0]
-        size = np.max(np.abs(step), axis=-1)
-        step = np.where(
-            (size > 0.05)[:, None], step * (0.05 / np.where(size > 0.05, size, 1.0))[:, None], step
-        )
-        x[:, free] = np.where(conv[:, None], x[:, free], x[:, free] + step)
-        conv |= size < tol
-        if np.all(conv | ~np.isfinite(size)):
-            break
-    return x, conv & np.all(np.isfinite(x), axis=-1)
-
-
-def _tangent(J, previous=None):
-    T = np.cross(J[:, 0, :], J[:, 1, :])
-    T /= np.linalg.norm(T, axis=-1, keepdims=True)
-    if previous is not None:
-        T *= np.sign(np.sum(T * previous, axis=-1, keepdims=True) + 1e-300)
-    return T
-
-
-class _Tracer:
-    """Pseudo-arclength continuation of many curves at once (vectorised over the curves).
-
-    Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
-    """
-
-    def __init__(self, sweep, scale, box, h_max, tol, *, h_min=1e-6, max_steps=4000, progress=None):
-        self.sweep, self.scale, self.box = sweep, scale, box
-        self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
-        self.progress = progress
-        self.warnings = []
-
-    def trace_all(self, groups):
-        """Trace curves until every seed lies on one; returns a list of (d, path (k, 3))."""
-        paths = []
-        pending = list(groups)
-        total = max(1, sum(len(g) for _, g in pending))
-        while pending:
-            starts = np.array([g[len(g) // 2] for _, g in pending])
-            ds = np.array([d for d, _ in pending])
-            new = self._trace(starts, ds)
-            for d, path in sorted(new, key=lambda item: -len(item[1])):
-                if not any(
-                    od == d and _covered(path, other, 0.3 * self.h_max).mean() > 0.9 for od, other in paths
-                ):
-                    paths.append((d, path))
-            remaining = []
-            for d, g in pending:
-                hit = [_covered(g, p, 0.3 * self.h_max) for od, p in paths if od == d]
-                left = g[~np.any(hit, axis=0)] if hit else g
-                if len(left):
-                    remaining.append((d, left))
-            if sum(len(g) for _, g in remaining) >= sum(len(g) for _, g in pending):
-                self.warnings.append(f"{sum(len(g) for _, g in remaining)} seed point(s) could not be traced")
-                break
-            pending = remaining
-            if self.progress is not None:
-                self.progress(1 - sum(len(g) for _, g in pending) / total)
-        return paths
-
-    def _trace(self, starts, ds):
-        m = len(starts)
-        _, J, *_ = _evaluate(self.sweep, starts, ds, self.scale)
-        T0 = _tangent(J)
-        X = np.concatenate([starts, starts])
-        D = np.concatenate([ds, ds])
-        T = np.concatenate([T0, -T0])
-        H = np.full(2 * m, 0.25 * self.h_max)
-        active = np.all(np.isfinite(T), axis=-1)
-        walked = np.zeros(2 * m)
-        loop = np.zeros(2 * m, dtype=bool)
-        pts = [[x.copy()] for x in X]
-        for _ in range(self.max_steps):
-            if not np.any(active):
-                break
-            idx = np.nonzero(active)[0]
-            x, t, h, d = X[idx], T[idx], H[idx], D[idx]
-            y = x + h[:, None] * t
-            conv = np.zeros(len(idx), dtype=bool)
-            iters = np.zeros(len(idx), dtype=int)
-            for _k in range(6):
-                F, Jy, *_ = _evaluate(self.sweep, y, d, self.scale)
-                A = np.concatenate([Jy, t[:, None, :]], axis=1)
-                rhs = np.concatenate([F, (np.sum((y - x) * t, axis=-1) - h)[:, None]], axis=-1)
-                with np.errstate(all="ignore"):
-                    dy = -np.linalg.solve(A, rhs[..., None])[..., 0]
-                size = np.max(np.abs(dy), axis=-1)
-                ok = np.isfinite(size)
-                y = np.where((ok & ~conv)[:, None], y + np.where(ok[:, None], dy, 0), y)
-                iters += ~conv
-                conv |= ok & (size < self.tol)
-                if np.all(conv | ~ok):
-                    break
-            tn = _tangent(Jy, t)  # at the last corrector iterate: the final correction is below tol
-            good = (
-                conv
-                & np.all(np.isfinite(tn), axis=-1)
-                & (np.sum(tn * t, axis=-1) > np.cos(0.5))
-                & (np.linalg.norm(y - x, axis=-1) < 2 * h)
-            )
-            for j, i in enumerate(idx):
-                if not good[j]:
-                    H[i] *= 0.5
-                    if H[i] < self.h_min:
-                        active[i] = False
-                    continue
-                out = self._outside(y[j])
-                if out is not None:
-                    end = self._end_point(x[j], y[j], d[j], out)
-                    if end is not None:
-                        pts[i].append(end)
-                    active[i] = False
-                    continue
-                walked[i] += np.linalg.norm(y[j] - x[j])
-                pts[i].append(y[j].copy())
-                X[i], T[i] = y[j], tn[j]
-                H[i] = min(H[i] * (1.5 if iters[j] <= 3 else 1.0), self.h_max)
-                if walked[i] > 4 * self.h_max and np.linalg.norm(y[j] - pts[i][0]) < 0.75 * H[i]:
-                    pts[i].append(pts[i][0].copy())
-                    active[i] = False
-                    loop[i] = True
-                    active[i + m if i < m else i - m] = False
-        else:
-            self.warnings.append("continuation stopped at max_steps")
-        paths = []
-        for i in range(m):
-            if loop[i] or loop[i + m]:
-                path = np.array(pts[i] if loop[i] else pts[i + m])
-            else:
-                path = np.array(pts[i + m][::-1] + pts[i][1:])
-            if len(path) >= 2:
-                paths.append((float(ds[i]), path))
-        return paths
-
-    def _outside(self, y):
-        """(coordinate, bound value) of the first box face crossed, or None."""
-        for k in range(3):
-            lo, hi = self.box[k]
-            if y[k] < lo:
-                return k, lo
-            if y[k] > hi:
-                return k, hi
-        return None
-
-    def _end_point(self, x, y, d, face):
-        k, value = face
-        w = (value - x[k]) / (y[k] - x[k])
-        guess = (x + w * (y - x))[None, :]
-        end, conv = _newton_fixed(self.sweep, guess, np.array([d]), k, value, self.scale, self.tol)
-        if conv[0] and np.linalg.norm(end[0] - guess[0]) < 2 * np.linalg.norm(y - x) + 1e-9:
-            return end[0]
-        return None
-
-
-def _covered(points, path, radius):
-    """Boolean mask: points within ``radius`` of the polyline ``path`` (both (n, 3))."""
-    if len(path) < 2:
-        return np.linalg.norm(points - path[0], axis=-1) < radius
-    a, b = path[:-1], path[1:]
-    ab = b - a
-    L2 = np.maximum(np.sum(ab * ab, axis=-1), 1e-300)
-    ap = points[:, None, :] - a[None, :, :]
-    s = np.clip(np.sum(ap * ab[None], axis=-1) / L2[None], 0, 1)
-    dist = np.linalg.norm(ap - s[..., None] * ab[None], axis=-1)
-    return dist.min(axis=-1) < radius
-
-
-def _branch(sweep, d, path, theta_max) -> InstabilityBranch:
-    _, _, E, E_q, E_t = _evaluate(sweep, path, np.full(len(path), d), theta_max)
+def _branch(sweep, d, path, theta_max, ends, alpha_span) -> InstabilityBranch:
+    _, _, E, E_q, E_t = evaluate(sweep, path, np.full(len(path), d), theta_max)
     dq_dtheta = -E_t / E_q
+    alpha, theta, q = path[:, 0].copy(), path[:, 2] * theta_max, path[:, 1].copy()
     return InstabilityBranch(
         d=float(d),
-        alpha=path[:, 0].copy(),
-        theta=path[:, 2] * theta_max,
-        q=path[:, 1].copy(),
+        alpha=alpha,
+        theta=theta,
+        q=q,
         unstable_above=np.imag(dq_dtheta) < 0,
         residual=np.abs(E / E_q),
+        ends=tuple(
+            line_end(_at_cut(sweep, reason, q[k], alpha[k]), alpha[k], theta[k], q[k])
+            for reason, k in zip(ends, (0, -1))
+        ),
+        folds=find_folds(alpha, theta, q, alpha_span, theta_max),
     )

@@ -114,7 +114,7 @@ def _column_task(args):
 
 def stability_map(
     params,
-    model: str = "bogie",
+    model: str | None = None,
     *,
     parameter: str = "eta_M",
     alphas: Sequence[float] | None = None,
@@ -146,6 +146,7 @@ def stability_map(
     **options
         Passed to :func:`~moving_bogie.stability.column.stability_column`.
     """
+    model = model or params.vehicle
     alphas = np.asarray(np.linspace(0.0, 1.2, 200) if alphas is None else alphas, dtype=float)
     thetas = np.asarray(np.linspace(1.0, 200.0, 200) if thetas is None else thetas, dtype=float)
     if "top" not in options:

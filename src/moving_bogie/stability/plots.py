@@ -72,27 +72,54 @@ class _Progress:
         return lambda x: self.progress((k + min(1.0, x)) / self.n)
 
 
-def plot_instability_lines(ax, lines, *, colors=None, linestyle="-", scale=1.0, label=True, lw=1.2):
+#: Marker of a line that stops inside the plot, by kind: a fold (tip) or any other reason.
+END_MARKERS = {
+    "fold": dict(marker="^", mfc="none", mec="k", ms=6, ls="none"),
+    "other": dict(marker="x", color="tab:red", ms=6, ls="none"),
+}
+END_LABELS = {
+    "fold": "tip: the root only touches the real axis",
+    "other": "line stops: q range, q = 0, the cut or a singular point",
+}
+
+
+def plot_instability_lines(ax, lines, *, colors=None, linestyle="-", scale=1.0, label=True, lw=1.2) -> set:
     """Draw the branches of an :class:`~moving_bogie.stability.instability_lines.InstabilityLines` on ``ax``.
 
-    ``scale`` divides the vertical coordinate (adapted masses of Figure 4).
+    ``scale`` divides the vertical coordinate (adapted masses of Figure 4). Where a line stops inside the
+    plot it is marked (:data:`END_MARKERS`; the reasons are in :mod:`~moving_bogie.stability.line_ends`).
+    Returns the kinds of marks drawn ("fold", "other"), for :func:`end_mark_handles`.
     """
     ds = sorted({b.d for b in lines.branches})
     colors = colors or _colors(ds)
     seen = set()
+    marked = set()
     for b in lines.branches:
         lab = f"d = {b.d:g}" if label and b.d not in seen else None
         seen.add(b.d)
         ax.plot(b.alpha, b.theta / scale, linestyle, color=colors[b.d], lw=lw, label=lab)
+        for end in b.stops_inside:
+            kind = "fold" if end.reason == "fold" else "other"
+            ax.plot([end.alpha], [end.theta / scale], **END_MARKERS[kind])
+            marked.add(kind)
+    return marked
 
 
-def _legend(fig, ds, styles=()):
-    """One legend for the figure: a colour per spacing, then the line styles."""
+def end_mark_handles(kinds) -> list:
+    """Legend handles explaining the line-end marks of ``kinds`` (from :func:`plot_instability_lines`)."""
+    from matplotlib.lines import Line2D
+
+    return [Line2D([], [], label=END_LABELS[k], **END_MARKERS[k]) for k in sorted(kinds)]
+
+
+def _legend(fig, ds, styles=(), marks=()):
+    """One legend for the figure: a colour per spacing, then the line styles and the line-end marks."""
     from matplotlib.lines import Line2D
 
     colors = _colors(SPACINGS)
     handles = [Line2D([], [], color=colors[float(d)], label=f"d = {d:g}") for d in ds]
     handles += [Line2D([], [], color="k", ls=ls, label=text) for ls, text in styles]
+    handles += end_mark_handles(marks)
     fig.legend(handles=handles, loc="outside right center", fontsize=8)
 
 
@@ -148,13 +175,14 @@ def figure3(quick: bool = False, progress: Callable[[float], None] | None = None
     axs = fig.subplots(2, 3).ravel()
     colors = _colors(SPACINGS)
     split = _Progress(progress, len(ETA_F))
+    marks = set()
     for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
         lines = instability_lines(
             _base(eta_f), "masses", spacings=SPACINGS, progress=split.part(), **_grid(quick)
         )
-        plot_instability_lines(ax, lines, colors=colors)
+        marks |= plot_instability_lines(ax, lines, colors=colors)
         _decorate(ax, rf"({tag}) $\eta_f$ = {eta_f}", 1.2)
-    _legend(fig, SPACINGS)
+    _legend(fig, SPACINGS, marks=marks)
     fig.suptitle("Figure 3: instability lines of two moving masses", fontsize=10)
     return fig
 
@@ -168,6 +196,7 @@ def figure4(quick: bool = False, progress: Callable[[float], None] | None = None
     colors = _colors(SPACINGS)
     adapt = 1 + 1.7 / 2
     split = _Progress(progress, 2 * len(ETA_F))
+    marks = set()
     for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
         p = _base(eta_f)
         bogie = instability_lines(
@@ -182,10 +211,10 @@ def figure4(quick: bool = False, progress: Callable[[float], None] | None = None
             progress=split.part(),
             **_grid(quick),
         )
-        plot_instability_lines(ax, bogie, colors=colors)
-        plot_instability_lines(ax, masses, colors=colors, linestyle="--", scale=adapt, label=False)
+        marks |= plot_instability_lines(ax, bogie, colors=colors)
+        marks |= plot_instability_lines(ax, masses, colors=colors, linestyle="--", scale=adapt, label=False)
         _decorate(ax, rf"({tag}) $\eta_f$ = {eta_f}", 1.0)
-    _legend(fig, SPACINGS, (("-", "bogie"), ("--", "masses 'a'")))
+    _legend(fig, SPACINGS, (("-", "bogie"), ("--", "masses 'a'")), marks)
     fig.suptitle("Figure 4: instability lines, bogie against two masses of the same total mass", fontsize=10)
     return fig
 
@@ -198,15 +227,16 @@ def figure7(quick: bool = False, progress: Callable[[float], None] | None = None
     axs = fig.subplots(1, 2)
     colors = _colors(SPACINGS)
     split = _Progress(progress, 4)
+    marks = set()
     for ax, cf2, tag in zip(axs, ("0.1", "0.01"), "ab"):
         for eta_v, style in (("0", "-"), ("0.05", "--")):
             p = _base("0.05", cf2=cf2, kappa_v="0.2", eta_v=eta_v)
             lines = instability_lines(
                 p, "bogie", spacings=ds, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
             )
-            plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
+            marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
         _decorate(ax, rf"({tag}) $cf_2$ = {cf2}", 1.0)
-    _legend(fig, ds, (("-", r"$\eta_v$ = 0"), ("--", r"$\eta_v$ = 0.05")))
+    _legend(fig, ds, (("-", r"$\eta_v$ = 0"), ("--", r"$\eta_v$ = 0.05")), marks)
     fig.suptitle("Figure 7: effect of the suspension damping", fontsize=10)
     return fig
 
@@ -218,6 +248,7 @@ def figure8(quick: bool = False, progress: Callable[[float], None] | None = None
     axs = fig.subplots(1, 2)
     colors = _colors(SPACINGS)
     split = _Progress(progress, 4)
+    marks = set()
     for ax, (S, r), tag in zip(axs, (("100", "0.03"), ("10", "0.09")), "ab"):
         eb = _base("0.05", cf2="0.1", kappa_v="0.2")
         tr = eb.replace(beam="tr", S=S, r=r)
@@ -226,10 +257,10 @@ def figure8(quick: bool = False, progress: Callable[[float], None] | None = None
             lines = instability_lines(
                 p, "bogie", spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
             )
-            plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
+            marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
         _decorate(ax, rf"({tag}) $\tilde S$ = {S}, $\tilde r$ = {r}", 1.0)
         ax.axvline(a_cr, color="grey", ls=":", lw=1)
-    _legend(fig, SPACINGS, (("-", "Euler-Bernoulli"), ("--", "Timoshenko-Rayleigh")))
+    _legend(fig, SPACINGS, (("-", "Euler-Bernoulli"), ("--", "Timoshenko-Rayleigh")), marks)
     fig.suptitle(
         "Figure 8: effect of the beam theory (grey dotted: TR critical velocity, Eq. (66))", fontsize=10
     )

@@ -5,25 +5,25 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.sweep.design import Axis, SweepSpec, parse_vary, sobol_axes
+from moving_bogie.sweep.design import Axis, SweepSpec, parse_vary, sobol_axes, sweep_parameters
 from moving_bogie.sweep.engine import run_sweep
 from moving_bogie.sweep.store import open_sweep
 
 __all__ = ["make_spec", "sweep"]
 
 
-def _axis(name, spec, needs_count: bool):
+def _axis(known, name, spec, needs_count: bool):
     if isinstance(spec, str):
-        return parse_vary(f"{name}={spec}", needs_count=needs_count)
+        return parse_vary(f"{name}={spec}", known, needs_count=needs_count)
     values = tuple(spec)
     text = ",".join(repr(v) if isinstance(v, float) else str(v) for v in values)
     if not needs_count:
         text = ":".join(text.split(","))
-    return parse_vary(f"{name}={text}", needs_count=needs_count)
+    return parse_vary(f"{name}={text}", known, needs_count=needs_count)
 
 
 def make_spec(
-    params, vary: Mapping, *, model: str = "bogie", sample: int | None = None, **options
+    params, vary: Mapping, *, model: str | None = None, sample: int | None = None, **options
 ) -> SweepSpec:
     """A :class:`~moving_bogie.sweep.design.SweepSpec` from ``vary`` = {name: values}.
 
@@ -33,10 +33,12 @@ def make_spec(
     """
     if not vary:
         raise ParameterError("vary", "give at least one parameter to vary")
+    model = model or params.vehicle
+    known = sweep_parameters(params)
     if sample is None:
-        axes = tuple(Axis(*_axis(name, spec, True)) for name, spec in vary.items())
+        axes = tuple(Axis(*_axis(known, name, spec, True)) for name, spec in vary.items())
         return SweepSpec(params, model, axes, **options)
-    ranges = dict(_axis(name, spec, False) for name, spec in vary.items())
+    ranges = dict(_axis(known, name, spec, False) for name, spec in vary.items())
     extra = {"ranges": {k: [str(v) for v in r] for k, r in ranges.items()}, "n": sample, "seed": 0}
     return SweepSpec(params, model, sobol_axes(ranges, sample), design="sobol", extra=extra, **options)
 
@@ -46,7 +48,7 @@ def sweep(
     vary: Mapping,
     out,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     sample: int | None = None,
     resume=False,
     overwrite=False,

@@ -14,7 +14,6 @@ values (continuation from one column to the next); every other varied parameter 
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -23,7 +22,7 @@ from fractions import Fraction
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.kernels.sweep_characteristic import POLYNOMIAL_PARAMETERS, polynomial_degree
+from moving_bogie.kernels.sweep_characteristic import polynomial_degree
 from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.model.params import DimensionlessParams
 
@@ -31,26 +30,30 @@ __all__ = [
     "Axis",
     "Block",
     "SweepSpec",
-    "parameter_units",
+    "parameter_attributes",
     "parse_sample",
     "parse_vary",
     "sobol_axes",
     "sweep_parameters",
 ]
 
-#: Coefficients of Eq. (63) that :meth:`DimensionlessParams.replace` accepts besides the fields.
-_COEFFICIENTS = ("cf1", "cf2")
+
+def sweep_parameters(params: DimensionlessParams) -> tuple[str, ...]:
+    """Names a sweep of ``params`` may vary: the groups of its model and their alternatives (cf1, cf2 of
+    Eq. (63)), from the model's metadata."""
+    return (*params.model.parameters, *params.model.alternatives)
 
 
-def sweep_parameters() -> tuple[str, ...]:
-    """Names a sweep may vary: the numeric fields of the parameter object, and cf1, cf2 (Eq. (63))."""
-    numeric = [f.name for f in dataclasses.fields(DimensionlessParams) if f.name != "beam"]
-    return (*numeric, *_COEFFICIENTS)
-
-
-def parameter_units(name: str) -> str:
-    """Unit of a parameter of :func:`sweep_parameters` (all are dimensionless, Eqs. (15)-(17), (59))."""
-    return "1"
+def parameter_attributes(params: DimensionlessParams, name: str) -> dict:
+    """Attributes of a varied parameter's coordinate: units ("1": every group is dimensionless), meaning
+    and equation from the model's metadata."""
+    out = {"units": "1", "long_name": name}
+    spec = params.model.specs.get(name)
+    if spec is not None:
+        out.update(meaning=spec.meaning, equation=spec.equation)
+    elif name in params.model.alternatives:
+        out["meaning"] = params.model.alternatives[name]["meaning"]
+    return out
 
 
 def _number(option: str, text: str) -> Fraction:
@@ -60,8 +63,8 @@ def _number(option: str, text: str) -> Fraction:
         raise ParameterError(option, f"{option}: not a number: {text!r}") from None
 
 
-def parse_vary(text: str, *, option: str = "--vary", needs_count: bool = True) -> tuple[str, tuple]:
-    """``NAME=START:STOP:COUNT`` or ``NAME=V1,V2,...`` -> (name, exact values).
+def parse_vary(text: str, known, *, option: str = "--vary", needs_count: bool = True) -> tuple[str, tuple]:
+    """``NAME=START:STOP:COUNT`` or ``NAME=V1,V2,...`` -> (name, exact values); NAME one of ``known``.
 
     With ``needs_count=False`` (a quasi-random design), ``NAME=START:STOP`` gives the range (start, stop).
 
@@ -74,9 +77,9 @@ def parse_vary(text: str, *, option: str = "--vary", needs_count: bool = True) -
     name = name.strip()
     if not sep or not name or not spec.strip():
         raise ParameterError(option, f"{option} {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,...")
-    if name not in sweep_parameters():
-        known = ", ".join(sweep_parameters())
-        raise ParameterError(option, f"{option} {text!r}: unknown parameter {name!r} (known: {known})")
+    if name not in known:
+        names = ", ".join(known)
+        raise ParameterError(option, f"{option} {text!r}: unknown parameter {name!r} (known: {names})")
     if ":" in spec:
         parts = spec.split(":")
         if not needs_count and len(parts) == 2:
@@ -192,12 +195,11 @@ class SweepSpec:
         for a in self.axes:
             if a.name == "eta_M" and names & {"mu_v", "J_b"}:
                 continue  # the column would scale mu_v and J_b with eta_M (Eq. (63)); the points do not
-            if a.name in POLYNOMIAL_PARAMETERS:
-                try:
-                    polynomial_degree(self.model, a.name)
-                except ParameterError:
-                    continue
-                return a.name
+            try:
+                polynomial_degree(self.model, a.name, self.params)
+            except (ParameterError, AttributeError):
+                continue
+            return a.name
         return None
 
     @property

@@ -153,7 +153,7 @@ def _check(task, shape, n, degree, certain, settled, roots) -> np.ndarray:
             res = induced_frequencies(task.params.replace(**_point(task, index)), task.model, dps=15)
         except MovingBogieError:
             continue
-        if not res.count_ok:
+        if not (res.count_ok and res.verdict.determined):
             continue
         unstable = sorted((complex(r.q) for r in res.unstable_roots), key=lambda q: q.imag)
         if len(unstable) == n[index]:

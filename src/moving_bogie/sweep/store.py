@@ -24,7 +24,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.model.exact import fraction_to_text
-from moving_bogie.sweep.design import SweepSpec, parameter_units
+from moving_bogie.sweep.design import SweepSpec, parameter_attributes
 from moving_bogie.sweep.evaluate import VARIABLES
 
 __all__ = ["create_store", "missing_blocks", "open_sweep", "prepare_store", "write_block", "write_map"]
@@ -98,7 +98,7 @@ def create_store(path, spec: SweepSpec) -> None:
         own = ("point",) if spec.design == "sobol" else (axis.name,)
         coord = g.create_array(axis.name, shape=(len(axis.values),), dtype="float64", dimension_names=own)
         coord[:] = axis.floats
-        coord.attrs.update(units=parameter_units(axis.name), long_name=axis.name)
+        coord.attrs.update(parameter_attributes(spec.params, axis.name))
         if spec.design == "grid":
             coord.attrs["exact"] = [fraction_to_text(v) for v in axis.values]
     for name, dtype, fill, text in _variables(spec):
@@ -120,8 +120,8 @@ def create_store(path, spec: SweepSpec) -> None:
         params=json.dumps(spec.params.to_dict()),
         sweep=json.dumps(spec.describe()),
         search_window=(
-            "per point: lower half q-plane |Re q| <= X, -Y <= Im q <= 0 with X, Y of "
-            "roots.frequencies.default_window (largest over each column); full counts in default_window"
+            "column counts: the lower half of roots.window.default_window (the largest over each column); "
+            "full counts (settled, checked points): induced_frequencies' far-field window"
         ),
         package_version=_version(),
         degree_convention=(

@@ -25,6 +25,7 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.geometry import choose_geometry, default_time_step
 from moving_bogie.validation.modal import MODELS, ModalBeam, ModalSystem, Vehicle
 from moving_bogie.validation.newmark import initial_state, newmark_step
@@ -62,6 +63,8 @@ class FiniteBeamResult:
         "bogie", "masses" or "force".
     k_max : float
         Highest modelled wavenumber ``N pi / L``.
+    static_correction : bool
+        Whether the truncated modes' quasi-static response was added back.
     """
 
     tau: np.ndarray
@@ -75,29 +78,28 @@ class FiniteBeamResult:
     dt: float
     tau_valid: float
     elapsed_s: float
-    model: str = "bogie"
+    model: str | None = None
     k_max: float = math.nan
+    static_correction: bool = False
 
 
 def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
-    return Vehicle(
-        model=model,
-        eta_M=float(params.eta_M),
-        d=float(params.d),
-        mu_v=float(params.mu_v),
-        J_b=float(params.J_b),
-        kappa_v=float(params.kappa_v),
-        eta_v=float(params.eta_v),
-        alpha=float(params.alpha),
-        entry=entry,
-    )
+    # Parameters of another vehicle read as None (two masses have no bar): they are not used then.
+    bar = {
+        name: 0.0 if getattr(params, name, None) is None else float(getattr(params, name))
+        for name in ("mu_v", "J_b", "kappa_v", "eta_v")
+    }
+    eta_m = 0.0 if getattr(params, "eta_M", None) is None else float(params.eta_M)
+    return Vehicle(model=model, eta_M=eta_m, d=float(params.d), alpha=float(params.alpha), entry=entry, **bar)
 
 
 def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | None) -> None:
-    if getattr(params, "beam", "eb") != "eb":
+    beam = getattr(params, "beam", "eb")
+    if beam not in ("eb", "tr"):
+        raise MovingBogieError(f"beam must be 'eb' or 'tr' (got {beam!r})")
+    if beam == "tr" and not (float(params.S) > 0 and float(params.r) > 0):
         raise MovingBogieError(
-            f"the finite-beam model is implemented for the Euler-Bernoulli beam only (beam='eb'), "
-            f"got beam={params.beam!r}"
+            f"the Timoshenko-Rayleigh finite beam needs S > 0 and r > 0 (got S={params.S}, r={params.r})"
         )
     if model not in MODELS:
         raise MovingBogieError(f"model must be one of {', '.join(MODELS)} (got {model!r})")
@@ -113,13 +115,14 @@ def simulate_finite_beam(
     params: Any,
     tau_max: float,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     n_modes: int = 500,
     length: float | None = None,
     entry: float | None = None,
     dt: float | None = None,
     tau_out: np.ndarray | None = None,
     progress: Callable[[float], None] | None = None,
+    static_correction: bool = True,
 ) -> FiniteBeamResult:
     """Bogie, two masses or two forces crossing a finite beam, by modal expansion, Eqs. (49)-(54).
 
@@ -132,7 +135,8 @@ def simulate_finite_beam(
     ----------
     params : DimensionlessParams or duck-typed equivalent
         Needs ``eta_f, eta_M, d, mu_v, J_b, kappa_v, eta_v, alpha`` (anything ``float()`` accepts),
-        optionally ``eta_s`` (default 0) and ``beam`` (only "eb" is supported).
+        optionally ``eta_s`` (default 0) and ``beam`` ("eb", or "tr" with ``S`` and ``r``, Eq. (59):
+        the Timoshenko-Rayleigh beam of :class:`~moving_bogie.validation.modal.ModalBeam`).
     tau_max : float
         End of the run.
     model : {"bogie", "masses", "force"}, optional
@@ -154,6 +158,10 @@ def simulate_finite_beam(
         the exact total time derivatives; default: every step.
     progress : callable, optional
         Called with the fraction done (0 to 1) now and then; the core never prints.
+    static_correction : bool, optional
+        Add back the quasi-static response of the truncated modes at the wheels (residual
+        flexibility, :mod:`moving_bogie.validation.corrected`; default True). False gives the
+        plain ``N``-mode model of Eq. (49), which converges like ``k_max^-3``.
 
     Returns
     -------
@@ -162,11 +170,15 @@ def simulate_finite_beam(
     Raises
     ------
     MovingBogieError
-        For the Timoshenko-Rayleigh beam, an unknown model, or a beam too short for the run.
+        For an unknown beam or model, a Timoshenko-Rayleigh beam without ``S, r > 0``, a beam too
+        short for the run, or (static correction) a run at or above the undamped critical velocity.
     """
+    model = model or getattr(params, "vehicle", "bogie")  # a plain namespace of numbers: the bogie
     _check(params, tau_max, model, n_modes, dt)
     alpha, eta_f, d = float(params.alpha), float(params.eta_f), float(params.d)
     eta_s = float(getattr(params, "eta_s", 0.0))
+    tr = getattr(params, "beam", "eb") == "tr"
+    shear, radius = (float(params.S), float(params.r)) if tr else (None, 0.0)
     geometry = choose_geometry(
         alpha=alpha,
         eta_f=eta_f,
@@ -176,6 +188,8 @@ def simulate_finite_beam(
         n_modes=n_modes,
         length=length,
         entry=entry,
+        S=shear,
+        r=radius,
     )
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:
         raise MovingBogieError(
@@ -191,8 +205,10 @@ def simulate_finite_beam(
     if tau_out is not None and (out.size == 0 or out.min() < 0 or out.max() > tau_max * (1 + 1e-12)):
         raise MovingBogieError(f"tau_out must be non-empty and lie in [0, tau_max={tau_max}]")
 
-    system = ModalSystem(
-        ModalBeam(geometry.length, n_modes, eta_f, eta_s), _vehicle(params, model, geometry.entry)
+    system_class = CorrectedModalSystem if static_correction else ModalSystem
+    system = system_class(
+        ModalBeam(geometry.length, n_modes, eta_f, eta_s, shear, radius),
+        _vehicle(params, model, geometry.entry),
     )
     series, elapsed_s = _integrate(system, h, n_steps, progress)
 
@@ -218,6 +234,7 @@ def simulate_finite_beam(
         elapsed_s=elapsed_s,
         model=model,
         k_max=geometry.k_max,
+        static_correction=static_correction,
     )
 
 
@@ -233,8 +250,7 @@ def _integrate(
     elapsed_s : float
         Wall time.
     """
-    n = system.beam.n_modes
-    has_bar = system.vehicle.n_extra > 0
+    bar = system.bar_index
     out = np.zeros((8, n_steps + 1))
     zero = np.zeros(system.n_dof)
     start = time.perf_counter()
@@ -248,8 +264,8 @@ def _integrate(
             state = newmark_step(state, h, system.assemble(tau))
         contact = system.contact(tau, state.z, state.v)
         out[0:2, i], out[4:6, i] = contact.w, contact.dw
-        if has_bar:
-            out[2:4, i], out[6:8, i] = state.z[n:], state.v[n:]
+        if bar is not None:
+            out[2:4, i], out[6:8, i] = state.z[bar : bar + 2], state.v[bar : bar + 2]
         if progress is not None and i > 0 and (i % every == 0 or i == n_steps):
             progress(i / n_steps)
     return out, time.perf_counter() - start

@@ -48,12 +48,15 @@ __all__ = [
     "choose_geometry",
     "default_time_step",
     "group_velocity",
+    "max_group_velocity",
     "near_field_decay_rate",
     "reflection_window",
 ]
 
 
-def near_field_decay_rate(alpha: float, eta_f: float, eta_s: float = 0.0) -> float:
+def near_field_decay_rate(
+    alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
+) -> float:
     """Smallest spatial decay rate ``min |Im p|`` of the moving-force deflection.
 
     The roots of ``D(p, 0) = p^4 - 4 (alpha^2 - eta_s) p^2 - 8 i eta_f alpha p + 4`` (Eq. (24) at
@@ -66,6 +69,11 @@ def near_field_decay_rate(alpha: float, eta_f: float, eta_s: float = 0.0) -> flo
         ``gamma >= 0``; 0 at and above the undamped critical velocity ``alpha = sqrt(1 + eta_s)``,
         Eq. (65), where the deflection radiates undamped waves.
     """
+    if S is not None:
+        # Timoshenko-Rayleigh: the denominator of the moving-load symbol (residual module).
+        from moving_bogie.validation.residual import symbol_polynomials
+
+        return float(np.min(np.abs(np.roots(symbol_polynomials(alpha, eta_f, eta_s, S, r)[1]).imag)))
     roots = np.roots([1.0, 0.0, -4.0 * (alpha * alpha - eta_s), -8j * eta_f * alpha, 4.0])
     return float(np.min(np.abs(roots.imag)))
 
@@ -79,6 +87,28 @@ def group_velocity(p: float | np.ndarray, eta_s: float = 0.0) -> float | np.ndar
     omega = np.sqrt(1.0 + eta_s * p * p + 0.25 * p**4)
     c = (p**3 + 2.0 * eta_s * p) / (2.0 * omega)
     return float(c) if c.ndim == 0 else c
+
+
+def max_group_velocity(k_max: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0) -> float:
+    """Fastest free wave that modes up to `k_max` carry.
+
+    Euler-Bernoulli: ``c(k_max)`` (:func:`group_velocity` grows with ``p``). Timoshenko-Rayleigh: the
+    largest ``d omega / d p`` over ``0 < p <= k_max`` of both branches of the modal 2x2 system of
+    :attr:`~moving_bogie.validation.modal.ModalBeam.diagonals`,
+    ``r^2 omega^4 - (r^2 (1 + (S + eta_s) p^2) + S + p^2/4) omega^2 + (1 + (S + eta_s) p^2)(S + p^2/4)
+    - S^2 p^2 = 0`` (sampled on 4000 points, so a slight underestimate between samples).
+    """
+    if S is None:
+        return float(group_velocity(k_max, eta_s))
+    p = np.linspace(0.0, k_max, 4001)
+    a = 1.0 + (S + eta_s) * p * p
+    b = S + 0.25 * p * p
+    half_sum = 0.5 * (r * r * a + b)
+    root = np.sqrt(half_sum**2 - r * r * (a * b - S * S * p * p))
+    fastest = 0.0
+    for omega2 in ((half_sum - root) / (r * r), (half_sum + root) / (r * r)):
+        fastest = max(fastest, float(np.max(np.gradient(np.sqrt(omega2), p))))
+    return fastest
 
 
 @dataclass(frozen=True)
@@ -109,8 +139,10 @@ class BeamGeometry:
     tau_valid: float
 
 
-def _margin(alpha: float, eta_f: float, eta_s: float, tol: float, max_margin: float) -> float:
-    gamma = near_field_decay_rate(alpha, eta_f, eta_s)
+def _margin(
+    alpha: float, eta_f: float, eta_s: float, tol: float, max_margin: float, S: float | None, r: float
+) -> float:
+    gamma = near_field_decay_rate(alpha, eta_f, eta_s, S, r)
     return min(math.log(1.0 / tol) / gamma, max_margin) if gamma > 0 else max_margin
 
 
@@ -150,6 +182,8 @@ def choose_geometry(
     tol: float = 1e-3,
     min_wavenumber: float = 4.0,
     max_margin: float = 100.0,
+    S: float | None = None,
+    r: float = 0.0,
 ) -> BeamGeometry:
     """Beam length and entry point for a run to `tau_max` with `n_modes` modes.
 
@@ -172,16 +206,19 @@ def choose_geometry(
     max_margin : float, optional
         Cap of the near-field margin for (nearly) undamped critical velocities, where
         ``gamma -> 0`` (default 100).
+    S, r : float, optional
+        Timoshenko-Rayleigh beam, Eq. (59): its near-field decay and fastest wave
+        (:func:`max_group_velocity`); Euler-Bernoulli without `S`.
 
     Returns
     -------
     BeamGeometry
     """
-    margin = _margin(alpha, eta_f, eta_s, tol, max_margin)
+    margin = _margin(alpha, eta_f, eta_s, tol, max_margin, S, r)
     t_req = tau_max if eta_f <= 0 else min(tau_max, math.log(1.0 / tol) / eta_f)
 
     def c_of(L: float) -> float:
-        return group_velocity(n_modes * math.pi / L, eta_s)
+        return max_group_velocity(n_modes * math.pi / L, eta_s, S, r)
 
     def clearance(L: float) -> float:
         return max(margin, 0.5 * t_req * max(c_of(L) - alpha, 0.0))

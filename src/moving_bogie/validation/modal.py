@@ -73,6 +73,8 @@ class ModalBeam:
     n_modes: int
     eta_f: float
     eta_s: float = 0.0
+    S: float | None = None
+    r: float = 0.0
 
     @cached_property
     def wavenumbers(self) -> np.ndarray:
@@ -81,9 +83,55 @@ class ModalBeam:
 
     @cached_property
     def omega2(self) -> np.ndarray:
-        """Squared modal frequencies ``1 + eta_s lambda^2 + lambda^4 / 4`` (unit modal mass)."""
+        """Squared modal frequencies ``1 + eta_s lambda^2 + lambda^4 / 4`` (unit modal mass, EB)."""
         lam2 = self.wavenumbers**2
         return 1.0 + self.eta_s * lam2 + 0.25 * lam2 * lam2
+
+    @property
+    def timoshenko(self) -> bool:
+        """Timoshenko-Rayleigh beam (``S`` given): two unknowns per mode number."""
+        return self.S is not None
+
+    @property
+    def n_dof(self) -> int:
+        """Beam unknowns: ``q_1..q_N`` (EB), then the rotations ``b_1..b_N`` (TR)."""
+        return 2 * self.n_modes if self.timoshenko else self.n_modes
+
+    @cached_property
+    def diagonals(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Diagonals of the beam block of ``M``, ``C``, ``K`` (rows divided by ``L/2``).
+
+        Euler-Bernoulli: ``1``, ``2 eta_f``, ``omega_k^2``. Timoshenko-Rayleigh, Eqs. (55)-(56) made
+        dimensionless as Eqs. (60)-(61) in the fixed frame, ``w = sum q_k sin(lambda_k x)``,
+        ``phi = sum b_k cos(lambda_k x)`` (simply supported: ``w = phi_x = 0`` at the ends):
+
+            q_k'' + 2 eta_f q_k' + (1 + (S + eta_s) lambda^2) q_k - S lambda b_k = (2/L) sum_j F_j a_jk,
+            r^2 b_k'' + (S + lambda^2 / 4) b_k - S lambda q_k = 0,
+
+        i.e. ``1, r^2``; ``2 eta_f, 0``; ``1 + (S + eta_s) lambda^2, S + lambda^2/4``, with the
+        coupling :attr:`k_pair` between ``q_k`` and ``b_k``.
+        """
+        n = self.n_modes
+        if not self.timoshenko:
+            return np.ones(n), np.full(n, 2.0 * self.eta_f), self.omega2
+        lam2 = self.wavenumbers**2
+        m = np.concatenate([np.ones(n), np.full(n, self.r * self.r)])
+        c = np.concatenate([np.full(n, 2.0 * self.eta_f), np.zeros(n)])
+        k = np.concatenate([1.0 + (self.S + self.eta_s) * lam2, self.S + 0.25 * lam2])
+        return m, c, k
+
+    @property
+    def pairs(self) -> tuple[np.ndarray, np.ndarray]:
+        """Index pairs ``(q_k, b_k)`` coupled in ``K`` (none for EB)."""
+        if not self.timoshenko:
+            return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
+        idx = np.arange(self.n_modes)
+        return idx, idx + self.n_modes
+
+    @cached_property
+    def k_pair(self) -> np.ndarray:
+        """``K[q_k, b_k] = K[b_k, q_k] = -S lambda_k`` (TR; empty for EB)."""
+        return -self.S * self.wavenumbers if self.timoshenko else np.zeros(0)
 
     @property
     def k_max(self) -> float:
@@ -148,16 +196,17 @@ class ModalSystem:
             raise ValueError(f"model must be one of {MODELS} (got {vehicle.model!r})")
         self.beam = beam
         self.vehicle = vehicle
-        n, ne = beam.n_modes, vehicle.n_extra
-        self.n_dof = n + ne
-        # The diagonals do not depend on time: modal rows, then the bar's bounce and pitch rows.
-        m_diag, c_diag, k_diag = np.ones(n + ne), np.full(n + ne, 2.0 * beam.eta_f), np.empty(n + ne)
-        k_diag[:n] = beam.omega2
+        nb, ne = beam.n_dof, vehicle.n_extra
+        self.n_dof = nb + ne
+        #: Index of the bar bounce ``u`` in the unknowns (``theta`` follows), None without a bar.
+        self.bar_index = nb if ne else None
+        # The diagonals do not depend on time: beam rows, then the bar's bounce and pitch rows.
+        m_diag, c_diag, k_diag = (np.concatenate([x, np.zeros(ne)]) for x in beam.diagonals)
         if ne:
             v, d = vehicle, vehicle.d
-            m_diag[n:] = (v.mu_v, 2.0 * v.J_b)
-            c_diag[n:] = (4.0 * v.eta_v, 2.0 * v.eta_v * d * d)
-            k_diag[n:] = (2.0 * v.kappa_v, v.kappa_v * d * d)
+            m_diag[nb:] = (v.mu_v, 2.0 * v.J_b)
+            c_diag[nb:] = (4.0 * v.eta_v, 2.0 * v.eta_v * d * d)
+            k_diag[nb:] = (2.0 * v.kappa_v, v.kappa_v * d * d)
         self._diag = (m_diag, c_diag, k_diag)
         lam_d = beam.wavenumbers * vehicle.d
         self._cos_d, self._sin_d = np.cos(lam_d), np.sin(lam_d)
@@ -195,7 +244,7 @@ class ModalSystem:
             bar equations in the module docstring.
         """
         beam, veh = self.beam, self.vehicle
-        n, ne, L = beam.n_modes, veh.n_extra, beam.length
+        n, nb, ne, L = beam.n_modes, beam.n_dof, veh.n_extra, beam.length
         a, b, c = self.contact_shapes(tau)
         force = np.zeros(self.n_dof)
         # Both static wheel loads are 2 (eta_p = 1), projected with weight 2/L.
@@ -217,9 +266,9 @@ class ModalSystem:
             vct[:2, :n] += (2.0 * ev) * a
             vkt[:2, :n] += kv * a + (2.0 * ev * al) * b
             for j in range(2):
-                vct[j, n:] = (-2.0 * ev, 2.0 * ev * sign_half[j])
-                vkt[j, n:] = (-kv, kv * sign_half[j])
-            ut[2, n], ut[3, n + 1] = 1.0, 1.0
+                vct[j, nb:] = (-2.0 * ev, 2.0 * ev * sign_half[j])
+                vkt[j, nb:] = (-kv, kv * sign_half[j])
+            ut[2, nb], ut[3, nb + 1] = 1.0, 1.0
             a_sum, a_dif = a[0] + a[1], a[0] - a[1]
             b_sum, b_dif = b[0] + b[1], b[0] - b[1]
             # Bounce row: - kappa_v (w_1 + w_2) - 2 eta_v (w_1' + w_2') besides its diagonal.
@@ -228,7 +277,7 @@ class ModalSystem:
             # Pitch row: kappa_v d (w_1 - w_2) + 2 eta_v d (w_1' - w_2') besides its diagonal.
             vct[3, :n] = (2.0 * ev * d) * a_dif
             vkt[3, :n] = (kv * d) * a_dif + (2.0 * ev * d * al) * b_dif
-        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force)
+        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force, beam.pairs, beam.k_pair)
 
     def contact(self, tau: float, z: np.ndarray, v: np.ndarray) -> ContactResponse:
         """Deflections ``w_j = a_j.q`` under the wheels and ``w_j' = a_j.q' + alpha b_j.q``."""

@@ -24,9 +24,12 @@ Sherman-Morrison-Woodbury identity used by :func:`woodbury_solve`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+
+#: No coupled pairs: the diagonal part is a plain diagonal.
+NO_PAIRS = (np.zeros(0, dtype=int), np.zeros(0, dtype=int))
 
 __all__ = [
     "AVERAGE_ACCELERATION",
@@ -78,6 +81,11 @@ class DiagLowRankSystem:
         Right factors, transposed: ``M = diag(m_diag) + ut.T @ vmt``, and so on.
     force : ndarray, shape (n,)
         Right-hand side ``f``.
+    pairs : tuple of two int arrays, optional
+        Indices ``(i, j)`` of unknowns coupled pairwise in ``K`` (the deflection and rotation of one
+        mode of a Timoshenko-Rayleigh beam); each index in at most one pair. Default: none.
+    k_pair : ndarray, optional
+        The symmetric couplings ``K[i, j] = K[j, i]`` of the pairs.
     """
 
     m_diag: np.ndarray
@@ -88,22 +96,53 @@ class DiagLowRankSystem:
     vct: np.ndarray
     vkt: np.ndarray
     force: np.ndarray
+    pairs: tuple[np.ndarray, np.ndarray] = NO_PAIRS
+    k_pair: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def residual_force(self, v: np.ndarray, z: np.ndarray) -> np.ndarray:
         """``f - C v - K z`` in ``O(n r)``."""
         low_rank = (self.vct @ v + self.vkt @ z) @ self.ut
-        return self.force - self.c_diag * v - self.k_diag * z - low_rank
+        out = self.force - self.c_diag * v - self.k_diag * z - low_rank
+        i, j = self.pairs
+        if i.size:
+            out[i] -= self.k_pair * z[j]
+            out[j] -= self.k_pair * z[i]
+        return out
 
     def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Dense ``(M, C, K)``: for tests and small systems only (``O(n^2)`` memory)."""
+        k = np.diag(self.k_diag) + self.ut.T @ self.vkt
+        i, j = self.pairs
+        k[i, j] += self.k_pair
+        k[j, i] += self.k_pair
         return (
             np.diag(self.m_diag) + self.ut.T @ self.vmt,
             np.diag(self.c_diag) + self.ut.T @ self.vct,
-            np.diag(self.k_diag) + self.ut.T @ self.vkt,
+            k,
         )
 
 
-def woodbury_solve(diag: np.ndarray, ut: np.ndarray, vt: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+def _pair_solve(diag: np.ndarray, pairs, coupling: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """``D^{-1} rhs`` for ``D`` diagonal except for symmetric 2x2 blocks on `pairs` (rhs: (n,) or (r, n))."""
+    out = rhs / diag
+    i, j = pairs
+    if i.size:
+        di, dj = diag[i], diag[j]
+        det = di * dj - coupling * coupling
+        ri, rj = rhs[..., i], rhs[..., j]
+        out[..., i] = (dj * ri - coupling * rj) / det
+        out[..., j] = (di * rj - coupling * ri) / det
+    return out
+
+
+def woodbury_solve(
+    diag: np.ndarray,
+    ut: np.ndarray,
+    vt: np.ndarray,
+    rhs: np.ndarray,
+    pairs: tuple[np.ndarray, np.ndarray] = NO_PAIRS,
+    coupling: np.ndarray | None = None,
+) -> np.ndarray:
     """Solve ``(D + U V^T) x = rhs`` by the Sherman-Morrison-Woodbury identity.
 
     ``x = D^{-1} rhs - D^{-1} U (I + V^T D^{-1} U)^{-1} V^T D^{-1} rhs`` (Hager 1989), which costs
@@ -116,15 +155,19 @@ def woodbury_solve(diag: np.ndarray, ut: np.ndarray, vt: np.ndarray, rhs: np.nda
     ut, vt : ndarray, shape (r, n)
         Low-rank factors, transposed (``U^T``, ``V^T``); ``r = 0`` reduces to a diagonal solve.
     rhs : ndarray, shape (n,)
+    pairs, coupling : optional
+        ``D`` also has the symmetric entries ``D[i, j] = D[j, i] = coupling`` on the index pairs
+        ``(i, j)``; its inverse is then block diagonal with 2x2 blocks, still ``O(n)``.
 
     Returns
     -------
     ndarray, shape (n,)
     """
-    y = rhs / diag
+    coupling = np.zeros(0) if coupling is None else coupling
+    y = _pair_solve(diag, pairs, coupling, rhs)
     if ut.shape[0] == 0:
         return y
-    d_inv_ut = ut / diag
+    d_inv_ut = _pair_solve(diag, pairs, coupling, ut)
     capacitance = np.eye(ut.shape[0]) + vt @ d_inv_ut.T
     return y - np.linalg.solve(capacitance, vt @ y) @ d_inv_ut
 
@@ -188,7 +231,7 @@ def newmark_step(
     gh, bh2 = gamma * h, beta * h * h
     s_diag = system.m_diag + gh * system.c_diag + bh2 * system.k_diag
     s_vt = system.vmt + gh * system.vct + bh2 * system.vkt
-    a_new = woodbury_solve(s_diag, system.ut, s_vt, rhs)
+    a_new = woodbury_solve(s_diag, system.ut, s_vt, rhs, system.pairs, bh2 * system.k_pair)
     return NewmarkState(state.t + h, z_pred + bh2 * a_new, v_pred + gh * a_new, a_new)
 
 

@@ -1,0 +1,268 @@
+"""E_chr(q) and dE_chr/dq of Eqs. (38) and (40) in ball arithmetic, on a point or a whole complex ball of q.
+
+Every quantity is an arb/acb ball (python-flint, Arb) guaranteed to contain the exact value, for every q in
+the input ball; the parameters enter as balls around their exact rational values (Table 1 prints decimals).
+
+K(xi, q) of Eq. (29) is the residue sum of :mod:`moving_bogie.kernels.track`:
+
+    K(xi, q) = +2 pi i sum_{Im p_k > 0} exp(i p_k xi) Q(p_k) / N'(p_k)     (xi >= 0; the minus sign and
+                                                                            Im p_k < 0 for xi < 0),
+
+Here the p-roots of N(p, q) are isolated balls, and the side of the real p-axis on which each lies is
+*decided*: a root ball that meets the real axis (q too close to the cut of K for the given ball) raises
+:class:`Undecided`, so a caller can only subdivide, never guess.
+
+Root isolation at a point q (Smith 1970, "Error bounds for zeros of a polynomial based upon Gerschgorin's
+theorems"): for approximations z_1..z_n of the roots of a polynomial of degree n with leading coefficient
+a_n, every root lies in the union of the discs |z - z_k| <= n |w_k|, w_k = P(z_k) / (a_n prod_{j != k}
+(z_k - z_j)), and a disc disjoint from all others holds exactly one root. The approximations come from
+Arb's ``acb_poly.roots`` on the midpoint polynomial. Over a ball of q, each root ball at the centre is
+widened by a Krawczyk test in p that holds for every q of the ball (:meth:`BallCharacteristic.p_roots`).
+
+Derivatives in q (dK/dq, dE_chr/dq of Eq. (40), and higher) come from truncated Taylor series arithmetic
+(``acb_series``) through the same residue sum, not from the double-pole formula of
+:mod:`moving_bogie.kernels.track`, which the tests use as an independent check.
+
+The generated kernels (``moving_bogie.generated``) are plain arithmetic, so they are called unchanged with
+acb arguments (their ``1j`` literals combine with acb exactly).
+"""
+
+from __future__ import annotations
+
+from functools import reduce
+
+from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
+
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.track import foundation_arguments, foundation_module
+
+
+class Undecided(MovingBogieError):
+    """Ball arithmetic could not decide a fact at this ball size (a p-root meets the real axis, or the
+    root discs of N(p, q) overlap): subdivide the q-ball or raise the precision."""
+
+
+def exact_ball(x) -> acb:
+    """An acb ball containing the rational ``x`` (a Fraction, int or None) at the current precision."""
+    if x is None:
+        return None
+    x = fmpq(x.numerator, x.denominator) if hasattr(x, "denominator") else fmpq(x)
+    return acb(arb(x))
+
+
+def square_ball(center, radius) -> acb:
+    """The acb ball (a square) of centre ``center`` (complex or acb) and half-side ``radius``."""
+    c = acb(center)
+    r = arb(radius)
+    return acb(arb(c.real.mid(), r), arb(c.imag.mid(), r))
+
+
+def isolate_roots(coeffs, tol=None) -> list:
+    """Balls, one per root, of the polynomial with acb ``coeffs`` (highest power first).
+
+    ``tol`` is the accuracy asked of the approximations (default: just enough to isolate them); the balls
+    are the Smith discs around them, whatever the accuracy.
+
+    Raises
+    ------
+    Undecided
+        If the Smith discs of two roots overlap (roots too close for the width of the coefficients).
+    """
+    coeffs = list(coeffs)
+    while len(coeffs) > 1 and coeffs[0].is_zero():
+        coeffs = coeffs[1:]
+    n = len(coeffs) - 1
+    if n < 1:
+        return []
+    if coeffs[0].contains(0):
+        raise Undecided("leading coefficient of N(p, q) not bounded away from 0")
+    low_first = acb_poly(list(reversed(coeffs)))
+    mid_poly = acb_poly([c.mid() for c in reversed(coeffs)])
+    try:
+        approx = [z.mid() for z in mid_poly.roots(tol=tol)]
+    except ValueError as exc:
+        raise Undecided(f"root isolation of N(p, q) failed: {exc}") from None
+    lead = coeffs[0]
+    balls = []
+    for k, zk in enumerate(approx):
+        den = lead
+        for j, zj in enumerate(approx):
+            if j != k:
+                den *= zk - zj
+        w = low_first(zk) / den
+        radius = arb(n) * abs(w)
+        balls.append(acb(arb(zk.real, radius.upper()), arb(zk.imag, radius.upper())))
+    for k in range(n):
+        for j in range(k + 1, n):
+            if balls[k].overlaps(balls[j]):
+                raise Undecided("root discs of N(p, q) overlap")
+    return balls
+
+
+def horner(coeffs, x):
+    """The polynomial with ``coeffs`` (highest power first) at x, for acb and acb_series alike."""
+    return reduce(lambda acc, c: acc * x + c, coeffs[1:], coeffs[0])
+
+
+def derivative_coefficients(coeffs) -> list:
+    """Coefficients (highest power first) of the derivative."""
+    return [c * (len(coeffs) - 1 - k) for k, c in enumerate(coeffs[:-1])] or [0]
+
+
+class _ExactBalls:
+    """Attribute access to the parameters of a DimensionlessParams as balls around their exact values."""
+
+    def __init__(self, params):
+        self._params = params
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        return exact_ball(getattr(self._params, name))
+
+
+def _series(values, length):
+    """Each value as an acb_series of ``length`` terms (constants become constant series)."""
+    return [v if isinstance(v, acb_series) else acb_series([acb(v)], prec=length) for v in values]
+
+
+class BallCharacteristic:
+    """Taylor coefficients of E_chr (Eq. (38)) on acb balls of q, at ``prec`` bits.
+
+    Every quantity is a truncated power series in t = q - c whose coefficients are balls: evaluated at a
+    ball c, coefficient j encloses E_chr^(j)(xi)/j! for every xi in the ball (coefficient 1 is dE_chr/dq of
+    Eq. (40), here by differentiating the residue sum rather than by double-pole residues).
+    The p-roots are series too: from the isolated ball p0 of a root, Newton steps on series,
+    p <- p - N(p, q) / N_p(p, q), each doubling the number of exact coefficients; since every step is
+    inclusion-monotone, the coefficients enclose those of the true root p(xi + t) for every xi in the ball.
+
+    Parameters
+    ----------
+    params : DimensionlessParams
+    model : {"bogie", "masses"}
+    prec : int
+        Working precision in bits; every call runs at it (the p-roots are approximated to it too).
+    """
+
+    def __init__(self, params, model: str | None = None, *, prec: int = 128):
+        self.params = params
+        self.model = model or params.vehicle
+        self.prec = prec
+        self.tol = 2.0 ** (8 - prec)
+        self.foundation = foundation_module(params)
+        self.vehicle = vehicle_module(model, params)
+        self.evaluations = 0
+        with ctx.workprec(prec):
+            numbers = _ExactBalls(params)
+            self.foundation_args = foundation_arguments(params, numbers)
+            self.vehicle_args = {name: getattr(numbers, name) for name in self.vehicle.PARAMETERS}
+            self.vehicle_args["pi"] = acb(arb.pi())
+            self.d = numbers.d
+            self.two_pi_i = acb(0, 2) * acb(arb.pi())
+
+    def p_roots(self, q) -> tuple:
+        """(upper, lower): balls holding each one root of N(p, xi) for every xi in the ball ``q``, split by
+        the sign of Im p (proven; Undecided if a ball meets the real axis)."""
+        with ctx.workprec(self.prec):
+            return _sides(self._root_balls(acb(q)))
+
+    def _root_balls(self, q: acb) -> list:
+        """Root balls of N(p, xi), xi in the ball q: isolated at the centre (Smith discs), then widened to
+        the whole ball by the Krawczyk test  p_m - Y N(p_m, q) + (1 - Y N_p(P, q)) (P - p_m)  inside P."""
+        f, args = self.foundation, self.foundation_args
+        centre = isolate_roots([acb(c) for c in f.n_coeffs(q.mid(), **args)], self.tol)
+        if q.rad() == 0:
+            return centre
+        n = [acb(c) for c in f.n_coeffs(q, **args)]
+        if n[0].contains(0):  # the degree in p must not drop anywhere in the q ball
+            raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
+        n1 = derivative_coefficients(n)
+        nq = [acb(c) for c in f.n_coeffs_dq(q, **args)]
+        n_mid = [acb(c) for c in f.n_coeffs(q.mid(), **args)]
+        balls = []
+        for p_ball in centre:
+            pm = p_ball.mid()
+            Y = (1 / horner(derivative_coefficients(n_mid), pm)).mid()
+            # N(p_m, xi) for xi in q: mean-value form in q around the centre
+            shift = horner(n_mid, p_ball) + horner(nq, p_ball) * (q - q.mid())
+            rho = 2 * (Y * shift).abs_upper() + p_ball.rad() + arb(2) ** (-self.prec)
+            for _ in range(3):
+                P = acb(arb(pm.real, rho), arb(pm.imag, rho))
+                K = pm - Y * shift + (1 - Y * horner(n1, P)) * (P - pm)
+                if P.contains_interior(K):
+                    balls.append(K)
+                    break
+                rho = 4 * rho
+            else:
+                raise Undecided("no isolating ball for a root of N(p, q) over the q ball")
+        for k in range(len(balls)):
+            for j in range(k + 1, len(balls)):
+                if balls[k].overlaps(balls[j]):
+                    raise Undecided("root balls of N(p, q) overlap over the q ball")
+        return balls
+
+    def kernel_series(self, q, order: int) -> list:
+        """[K(0), K(d), K(-d)] (Eq. (29)) as series in t = q - c to ``order``, for every c in the ball q."""
+        length = order + 1
+        f = self.foundation
+        args = self.foundation_args
+        upper, lower = _sides(self._root_balls(q))
+        qs = acb_series([q, 1], prec=length) if order else acb_series([q], prec=length)
+        n = _series(f.n_coeffs(qs, **args), length)
+        n1 = derivative_coefficients(n)
+        qc = _series(f.q_coeffs(qs, **args), length)
+        i_unit = acb(0, 1)
+
+        def residues(roots, xi):
+            total = acb_series([acb(0)], prec=length)
+            for p0 in roots:
+                p = acb_series([p0], prec=length)
+                for _ in range(order.bit_length()):
+                    p = p - horner(n, p) / horner(n1, p)
+                    p = acb_series([p0] + p.coeffs()[1:], prec=length)
+                total += (i_unit * xi * p).exp() * horner(qc, p) / horner(n1, p)
+            return total
+
+        return [
+            self.two_pi_i * residues(upper, acb(0)),
+            self.two_pi_i * residues(upper, self.d),
+            -self.two_pi_i * residues(lower, -self.d),
+        ]
+
+    def taylor(self, q, order: int = 1) -> list:
+        """[E, E', E''/2, ...] to ``order``: balls enclosing E_chr^(j)(xi)/j! for every xi in the ball q."""
+        with ctx.workprec(self.prec):
+            q = acb(q)
+            self.evaluations += 1
+            K = self.kernel_series(q, order)
+            qs = acb_series([q, 1], prec=order + 1) if order else acb_series([q], prec=1)
+            E = self.vehicle.e_chr(qs, *K, **self.vehicle_args)
+            coeffs = E.coeffs() if isinstance(E, acb_series) else [acb(E)]
+            return (coeffs + [acb(0)] * (order + 1))[: order + 1]
+
+    def value(self, q) -> acb:
+        """E_chr(q): a ball containing E_chr at every point of the ball ``q``."""
+        return self.taylor(q, 0)[0]
+
+    def value_and_derivative(self, q) -> tuple:
+        """(E_chr, dE_chr/dq) as balls over the ball ``q``."""
+        E, dE = self.taylor(q, 1)
+        return E, dE
+
+    def derivative(self, q) -> acb:
+        """dE_chr/dq as a ball over the ball ``q``."""
+        return self.taylor(q, 1)[1]
+
+
+def _sides(roots):
+    """Split isolated p-root balls by the sign of Im p; a ball meeting the real axis raises Undecided."""
+    upper, lower = [], []
+    for p in roots:
+        if p.imag > 0:
+            upper.append(p)
+        elif p.imag < 0:
+            lower.append(p)
+        else:
+            raise Undecided("a root of N(p, q) meets the real p-axis: q ball too close to the cut of K")
+    return upper, lower

@@ -1,0 +1,72 @@
+"""The stability verdict: STABLE, UNSTABLE, or UNDETERMINED with the reasons.
+
+The motion is unstable when some induced frequency has Im q < 0 (Eq. (35) with e^{i q tau}). A verdict is a
+statement about *every* root of E_chr (Eq. (48)) with Im q < 0, so it is given only when the search was
+complete there:
+
+- the far-field check found a radius R beyond which E_chr has no root with Im q < 0 (:mod:`far_field`),
+- the search window contains the lower half-disc of radius R (0 <= Re q <= R, -R <= Im q <= 0),
+- the roots found add up to the argument-principle count,
+- no unsearched sliver around the cut of K reaches below Im q = 0.
+
+Otherwise the verdict is UNDETERMINED and lists what is missing; roots with Im q > 0 outside the window
+(a stated choice, checked against a window twice as large) do not affect it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+STABLE, UNSTABLE, UNDETERMINED = "stable", "unstable", "undetermined"
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """``state`` is one of STABLE, UNSTABLE, UNDETERMINED; ``reasons`` say why it is UNDETERMINED."""
+
+    state: str
+    reasons: tuple = ()
+
+    @property
+    def determined(self) -> bool:
+        return self.state != UNDETERMINED
+
+    def to_dict(self) -> dict:
+        return {"state": self.state, "reasons": list(self.reasons)}
+
+
+def incompleteness(result) -> list[str]:
+    """Why the search of ``result`` (a FrequencyResult) may have missed a root with Im q < 0."""
+    reasons = []
+    far = result.far_field
+    if far is None:
+        reasons.append("far field: not checked (no radius beyond which E_chr has no root with Im q < 0)")
+    elif far.radius is None:
+        reasons.append(f"far field: {far.reason}")
+    else:
+        w = result.window
+        if w.x1 < far.radius or w.y0 > -far.radius:
+            reasons.append(
+                f"window: it stops at Re q = {w.x1:g}, Im q = {w.y0:g}, inside the radius R = {far.radius:g} "
+                "beyond which E_chr has no root with Im q < 0; widen it or drop --window"
+            )
+    if result.found != result.count:
+        reasons.append(
+            f"count: the argument principle counts {result.count} root(s) with Re q >= 0, "
+            f"{result.found} were found and confirmed"
+        )
+    low = min((u.y0 for u in result.unsearched), default=0.0)
+    if low < 0:
+        reasons.append(
+            f"sliver: the unsearched band around the cut of K reaches Im q = {low:.1e} < 0, "
+            "so a root just below the real axis there cannot be excluded"
+        )
+    return reasons
+
+
+def judge(result) -> Verdict:
+    """The verdict of a FrequencyResult: complete search -> STABLE/UNSTABLE, else UNDETERMINED."""
+    reasons = incompleteness(result)
+    if reasons:
+        return Verdict(UNDETERMINED, tuple(reasons))
+    return Verdict(UNSTABLE if result.unstable_roots else STABLE)

@@ -1,0 +1,241 @@
+"""Pseudo-arclength continuation of the curves E_chr(q; alpha, theta) = 0 with q real (Section 3.5).
+
+The curves live in (alpha, q, t = theta / theta_max); their tangent is the cross product of the gradients
+of Re E and Im E, the corrector is Newton on the bordered 3x3 system, and many curves advance together
+(vectorised numpy; each curve carries its own wheel spacing d). dE/dalpha comes from residues like dE/dq
+(:meth:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic.derivatives`).
+
+Every traced curve records why each of its two ends is where it is (:data:`END_REASONS`): it left the box
+``alpha_range x (0, q_max] x (0, theta_max]`` through one of its faces (the end point is placed on the face),
+it closed on itself, or the continuation stalled (the step fell below ``h_min``: a singular point, where two
+lines cross or the curve has a double point).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["END_REASONS", "PathTracer", "covered", "evaluate", "gauss_newton"]
+
+#: Why a traced curve ends, by box face (coordinate, low/high) or event.
+END_REASONS = {
+    (0, 0): "alpha_min",
+    (0, 1): "alpha_max",
+    (1, 0): "q_zero",
+    (1, 1): "q_max",
+    (2, 0): "theta_zero",
+    (2, 1): "theta_max",
+}
+
+
+def evaluate(sweep, x, d, scale):
+    """F = (Re E, Im E) and the 2x3 real Jacobian in (alpha, q, t = theta/scale) at points x (n, 3)."""
+    E, E_q, E_a, E_t = sweep.derivatives(x[:, 1].astype(complex), x[:, 0], x[:, 2] * scale, d=d)
+    cols = np.stack([E_a, E_q, E_t * scale], axis=-1)
+    F = np.stack([E.real, E.imag], axis=-1)
+    J = np.stack([cols.real, cols.imag], axis=-2)
+    return F, J, E, E_q, E_t
+
+
+def gauss_newton(sweep, x, d, scale, tol, max_iter=12):
+    """Minimum-norm Gauss-Newton onto the curve Re E = Im E = 0; returns (x, converged)."""
+    x = np.array(x, dtype=float)
+    conv = np.zeros(len(x), dtype=bool)
+    for _ in range(max_iter):
+        F, J, *_ = evaluate(sweep, x, d, scale)
+        with np.errstate(all="ignore"):
+            y = np.linalg.solve(J @ np.swapaxes(J, -1, -2), F[..., None])
+            step = -(np.swapaxes(J, -1, -2) @ y)[..., 0]
+        size = np.max(np.abs(step), axis=-1)
+        step = np.where(
+            (size > 0.05)[:, None], step * (0.05 / np.where(size > 0.05, size, 1.0))[:, None], step
+        )
+        x = np.where(conv[:, None], x, x + step)
+        conv |= size < tol
+        if np.all(conv | ~np.isfinite(size)):
+            break
+    return x, conv & np.all(np.isfinite(x), axis=-1)
+
+
+def newton_fixed(sweep, x, d, k, value, scale, tol, max_iter=12):
+    """Newton in the two coordinates other than ``k`` with x[k] = value (end points on the box)."""
+    x = np.array(x, dtype=float)
+    x[:, k] = value
+    free = [i for i in range(3) if i != k]
+    conv = np.zeros(len(x), dtype=bool)
+    for _ in range(max_iter):
+        F, J, *_ = evaluate(sweep, x, d, scale)
+        with np.errstate(all="ignore"):
+            step = -np.linalg.solve(J[..., free], F[..., None])[..., 0]
+        size = np.max(np.abs(step), axis=-1)
+        step = np.where(
+            (size > 0.05)[:, None], step * (0.05 / np.where(size > 0.05, size, 1.0))[:, None], step
+        )
+        x[:, free] = np.where(conv[:, None], x[:, free], x[:, free] + step)
+        conv |= size < tol
+        if np.all(conv | ~np.isfinite(size)):
+            break
+    return x, conv & np.all(np.isfinite(x), axis=-1)
+
+
+def tangent(J, previous=None):
+    T = np.cross(J[:, 0, :], J[:, 1, :])
+    T /= np.linalg.norm(T, axis=-1, keepdims=True)
+    if previous is not None:
+        T *= np.sign(np.sum(T * previous, axis=-1, keepdims=True) + 1e-300)
+    return T
+
+
+class PathTracer:
+    """Pseudo-arclength continuation of many curves at once (vectorised over the curves).
+
+    Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
+    """
+
+    def __init__(self, sweep, scale, box, h_max, tol, *, h_min=1e-6, max_steps=4000, progress=None):
+        self.sweep, self.scale, self.box = sweep, scale, box
+        self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
+        self.progress = progress
+        self.warnings = []
+
+    def trace_all(self, groups):
+        """Trace curves until every seed lies on one; returns a list of (d, path (k, 3), (start, end)).
+
+        ``start`` and ``end`` say why the path ends there: a face of the box (:data:`END_REASONS`),
+        "closed" (a loop), "stalled" (singular point) or "max_steps".
+        """
+        paths = []
+        pending = list(groups)
+        total = max(1, sum(len(g) for _, g in pending))
+        while pending:
+            starts = np.array([g[len(g) // 2] for _, g in pending])
+            ds = np.array([d for d, _ in pending])
+            new = self._trace(starts, ds)
+            for d, path, ends in sorted(new, key=lambda item: -len(item[1])):
+                if not any(
+                    od == d and covered(path, other, 0.3 * self.h_max).mean() > 0.9 for od, other, _ in paths
+                ):
+                    paths.append((d, path, ends))
+            remaining = []
+            for d, g in pending:
+                hit = [covered(g, p, 0.3 * self.h_max) for od, p, _ in paths if od == d]
+                left = g[~np.any(hit, axis=0)] if hit else g
+                if len(left):
+                    remaining.append((d, left))
+            if sum(len(g) for _, g in remaining) >= sum(len(g) for _, g in pending):
+                self.warnings.append(f"{sum(len(g) for _, g in remaining)} seed point(s) could not be traced")
+                break
+            pending = remaining
+            if self.progress is not None:
+                self.progress(1 - sum(len(g) for _, g in pending) / total)
+        return paths
+
+    def _trace(self, starts, ds):
+        m = len(starts)
+        _, J, *_ = evaluate(self.sweep, starts, ds, self.scale)
+        T0 = tangent(J)
+        X = np.concatenate([starts, starts])
+        D = np.concatenate([ds, ds])
+        T = np.concatenate([T0, -T0])
+        H = np.full(2 * m, 0.25 * self.h_max)
+        active = np.all(np.isfinite(T), axis=-1)
+        reason = ["max_steps" if ok else "stalled" for ok in active]
+        walked = np.zeros(2 * m)
+        loop = np.zeros(2 * m, dtype=bool)
+        pts = [[x.copy()] for x in X]
+        for _ in range(self.max_steps):
+            if not np.any(active):
+                break
+            idx = np.nonzero(active)[0]
+            x, t, h, d = X[idx], T[idx], H[idx], D[idx]
+            y = x + h[:, None] * t
+            conv = np.zeros(len(idx), dtype=bool)
+            iters = np.zeros(len(idx), dtype=int)
+            for _k in range(6):
+                F, Jy, *_ = evaluate(self.sweep, y, d, self.scale)
+                A = np.concatenate([Jy, t[:, None, :]], axis=1)
+                rhs = np.concatenate([F, (np.sum((y - x) * t, axis=-1) - h)[:, None]], axis=-1)
+                with np.errstate(all="ignore"):
+                    dy = -np.linalg.solve(A, rhs[..., None])[..., 0]
+                size = np.max(np.abs(dy), axis=-1)
+                ok = np.isfinite(size)
+                y = np.where((ok & ~conv)[:, None], y + np.where(ok[:, None], dy, 0), y)
+                iters += ~conv
+                conv |= ok & (size < self.tol)
+                if np.all(conv | ~ok):
+                    break
+            tn = tangent(Jy, t)  # at the last corrector iterate: the final correction is below tol
+            good = (
+                conv
+                & np.all(np.isfinite(tn), axis=-1)
+                & (np.sum(tn * t, axis=-1) > np.cos(0.5))
+                & (np.linalg.norm(y - x, axis=-1) < 2 * h)
+            )
+            for j, i in enumerate(idx):
+                if not good[j]:
+                    H[i] *= 0.5
+                    if H[i] < self.h_min:
+                        active[i] = False
+                        reason[i] = "stalled"
+                    continue
+                out = self._outside(y[j])
+                if out is not None:
+                    end = self._end_point(x[j], y[j], d[j], out)
+                    if end is not None:
+                        pts[i].append(end)
+                    active[i] = False
+                    reason[i] = END_REASONS[(out[0], int(out[1] == self.box[out[0], 1]))]
+                    continue
+                walked[i] += np.linalg.norm(y[j] - x[j])
+                pts[i].append(y[j].copy())
+                X[i], T[i] = y[j], tn[j]
+                H[i] = min(H[i] * (1.5 if iters[j] <= 3 else 1.0), self.h_max)
+                if walked[i] > 4 * self.h_max and np.linalg.norm(y[j] - pts[i][0]) < 0.75 * H[i]:
+                    pts[i].append(pts[i][0].copy())
+                    active[i] = False
+                    loop[i] = True
+                    active[i + m if i < m else i - m] = False
+                    reason[i] = reason[i + m if i < m else i - m] = "closed"
+        else:
+            self.warnings.append("continuation stopped at max_steps")
+        paths = []
+        for i in range(m):
+            if loop[i] or loop[i + m]:
+                path = np.array(pts[i] if loop[i] else pts[i + m])
+            else:
+                path = np.array(pts[i + m][::-1] + pts[i][1:])
+            if len(path) >= 2:
+                paths.append((float(ds[i]), path, (reason[i + m], reason[i])))
+        return paths
+
+    def _outside(self, y):
+        """(coordinate, bound value) of the first box face crossed, or None."""
+        for k in range(3):
+            lo, hi = self.box[k]
+            if y[k] < lo:
+                return k, lo
+            if y[k] > hi:
+                return k, hi
+        return None
+
+    def _end_point(self, x, y, d, face):
+        k, value = face
+        w = (value - x[k]) / (y[k] - x[k])
+        guess = (x + w * (y - x))[None, :]
+        end, conv = newton_fixed(self.sweep, guess, np.array([d]), k, value, self.scale, self.tol)
+        if conv[0] and np.linalg.norm(end[0] - guess[0]) < 2 * np.linalg.norm(y - x) + 1e-9:
+            return end[0]
+        return None
+
+
+def covered(points, path, radius):
+    """Boolean mask: points within ``radius`` of the polyline ``path`` (both (n, 3))."""
+    if len(path) < 2:
+        return np.linalg.norm(points - path[0], axis=-1) < radius
+    a, b = path[:-1], path[1:]
+    ab = b - a
+    L2 = np.maximum(np.sum(ab * ab, axis=-1), 1e-300)
+    ap = points[:, None, :] - a[None, :, :]
+    s = np.clip(np.sum(ap * ab[None], axis=-1) / L2[None], 0, 1)
+    dist = np.linalg.norm(ap - s[..., None] * ab[None], axis=-1)
+    return dist.min(axis=-1) < radius

@@ -1,0 +1,207 @@
+"""Residual flexibility of the truncated modes at the contact points (static correction).
+
+A finite beam in ``N`` sine modes misses the response of the modes ``k > N``. Their natural
+frequencies ``omega_k >= omega(k_max)`` lie far above the frequencies of the contact forces, so
+they follow the forces quasi-statically; this is the static correction (mode-acceleration method)
+of structural dynamics (R. R. Craig and A. J. Kurdila, *Fundamentals of Structural Dynamics*,
+2nd ed., Wiley 2006, Section 14.4). Here the forces also *move*: mode ``k`` is driven by
+``(2/L) F_l sin(lambda_k x_l(tau))`` with ``x_l = x_l(0) + alpha tau``, whose steady response to a
+constant ``F_l`` is ``(2/L) F_l Im[exp(i lambda_k x_l) / Omega(lambda_k)]`` with
+
+    Omega(p) = omega(p)^2 - alpha^2 p^2 + 2 i eta_f alpha p
+             = (p^4 - 4 (alpha^2 - eta_s) p^2 + 8 i eta_f alpha p + 4) / 4,
+
+the symbol of the moving-load operator (Eq. (24) at ``q = 0``, with the Pasternak term; the sign
+of the imaginary part follows from the ``exp(i lambda alpha tau)`` forcing). The truncated modes'
+deflection at wheel ``j`` is therefore ``sum_l R_jl F_l`` with the residual flexibility
+
+    R_jl = sum_{k > N} (1/L) Re[(exp(i lambda_k (x_l - x_j)) - exp(i lambda_k (x_j + x_l)))
+                                / Omega(lambda_k)].
+
+The whole series (``k >= 1``) is summed in closed form by Poisson summation: with the moving-load
+Green's function ``G(s) = (1/2 pi) int exp(i p s) / Omega(p) dp`` of the infinite beam,
+
+    sum_{k >= 1} (1/L) Re[exp(i lambda_k s) / Omega(lambda_k)] = sum_m G(s + 2 m L) - 1 / (2 L),
+
+(the ``k = 0`` terms cancel in the difference of the two exponentials), which is the method of
+images for the simply supported beam. ``R`` is the closed form minus the ``N`` retained terms; the
+images ``m = +-1`` are kept although the geometry makes them ``exp(-gamma L)`` small.
+
+``G`` itself follows from the residues at the four roots ``p_r`` of ``P(p) = 4 Omega(p)``: for
+``s >= 0`` it is ``i sum_{Im p_r > 0} 4 exp(i p_r s) / P'(p_r)``, for ``s < 0`` minus the same sum
+over the roots below the real axis. Its value at ``s = 0`` is 1/2 for a static load (static
+deflection 1 under the dimensionless wheel load 2).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError
+
+__all__ = ["ResidualFlexibility", "moving_green_function", "moving_symbol", "symbol_polynomials"]
+
+
+def symbol_polynomials(
+    alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """``Omega(p) = den(p) / num(p)``: coefficients of ``num`` and ``den`` in ``p``, highest first.
+
+    Euler-Bernoulli: ``num = 1``, ``den = p^4/4 + (eta_s - alpha^2) p^2 + 2 i eta_f alpha p + 1``.
+    Timoshenko-Rayleigh (``S`` given; the two modal equations of
+    :attr:`~moving_bogie.validation.modal.ModalBeam.diagonals` driven at ``exp(i p alpha tau)``, the
+    rotation eliminated): ``num = Q = S + (1/4 - r^2 alpha^2) p^2`` and
+    ``den = (1 + (S + eta_s - alpha^2) p^2 + 2 i eta_f alpha p) Q - S^2 p^2``.
+    """
+    if S is None:
+        return np.array([1.0 + 0j]), np.array([0.25, 0.0, eta_s - alpha * alpha, 2j * eta_f * alpha, 1.0])
+    q = np.array([0.25 - r * r * alpha * alpha, 0.0, S], dtype=complex)
+    den = np.polymul([S + eta_s - alpha * alpha, 2j * eta_f * alpha, 1.0], q)
+    den[2] -= S * S
+    return q, den
+
+
+def moving_symbol(
+    p: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
+) -> np.ndarray:
+    """``Omega(p)``: ``1 + (eta_s - alpha^2) p^2 + p^4 / 4 + 2 i eta_f alpha p`` for EB (module docstring)."""
+    num, den = symbol_polynomials(alpha, eta_f, eta_s, S, r)
+    p = np.asarray(p, dtype=float)
+    return np.polyval(den, p) / np.polyval(num, p)
+
+
+def _residues(alpha: float, eta_f: float, eta_s: float, S: float | None, r: float):
+    """Roots ``p_r`` of ``den`` and the residue weights ``num(p_r) / den'(p_r)``."""
+    num, den = symbol_polynomials(alpha, eta_f, eta_s, S, r)
+    roots = np.roots(den)
+    where = f"alpha={alpha}, eta_f={eta_f}, eta_s={eta_s}" + ("" if S is None else f", S={S}, r={r}")
+    if roots.size != 4 or np.min(np.abs(roots.imag)) < 1e-9:
+        raise MovingBogieError(
+            "the static correction needs a moving-load deflection that decays away from the load "
+            f"(at {where} the velocity is at or above the undamped critical velocity); run without "
+            "the correction (static_correction=False, --no-correction)"
+        )
+    gaps = np.abs(roots[:, None] - roots[None, :]) + np.eye(4)
+    if np.min(gaps) < 1e-6:
+        raise MovingBogieError(
+            f"the moving-load symbol has a double root at {where}; run without the static correction"
+        )
+    return roots, np.polyval(num, roots) / np.polyval(np.polyder(den), roots)
+
+
+def moving_green_function(
+    s: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
+) -> np.ndarray:
+    """``G(s) = (1/2 pi) int exp(i p s) / Omega(p) dp`` by residues (module docstring).
+
+    Parameters
+    ----------
+    s : array_like
+        Distance from the load (observation minus load position).
+    alpha, eta_f, eta_s : float
+        Velocity, foundation damping and Pasternak parameter, Eq. (17).
+    S, r : float, optional
+        Timoshenko-Rayleigh shear and radius of gyration, Eq. (59); Euler-Bernoulli without `S`.
+
+    Returns
+    -------
+    ndarray
+        Real; ``G(0) = 1/2`` at ``alpha = 0``, ``eta_s = 0`` (Euler-Bernoulli).
+
+    Raises
+    ------
+    MovingBogieError
+        When ``Omega`` has a real or a double root (undamped at or above the critical velocity).
+    """
+    return _green_from_roots(np.asarray(s, dtype=float), *_residues(alpha, eta_f, eta_s, S, r))
+
+
+def _green_from_roots(s: np.ndarray, roots: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    upper = roots.imag > 0
+    s_flat = s.reshape(-1, 1)
+    # s >= 0: close above, i sum w exp(i p s); s < 0: close below, -i sum w exp(i p s).
+    side = np.where(s_flat >= 0, upper, ~upper)
+    sign = np.where(s_flat[:, 0] >= 0, 1j, -1j)
+    # On the side closed, Im(p) s = |Im p| |s|: the decaying form never overflows on the other.
+    decaying = np.exp(1j * roots.real * s_flat - np.abs(roots.imag) * np.abs(s_flat))
+    terms = np.where(side, weights * decaying, 0.0)
+    return (sign * terms.sum(axis=1)).real.reshape(s.shape)
+
+
+class ResidualFlexibility:
+    """``R(tau)``, the 2x2 residual flexibility of the modes ``k > N`` at the two wheels.
+
+    Parameters
+    ----------
+    wavenumbers : ndarray
+        Retained ``lambda_k = k pi / L``, ``k = 1..N``.
+    length : float
+        Beam length ``L``.
+    alpha, eta_f, eta_s : float
+        Velocity, foundation damping, Pasternak parameter.
+    d : float
+        Wheel spacing (front wheel at ``x_1 + d``).
+    S, r : float, optional
+        Timoshenko-Rayleigh beam, Eq. (59) (Euler-Bernoulli without `S`).
+    """
+
+    def __init__(
+        self,
+        wavenumbers: np.ndarray,
+        length: float,
+        alpha: float,
+        eta_f: float,
+        eta_s: float,
+        d: float,
+        S: float | None = None,
+        r: float = 0.0,
+    ) -> None:
+        self.length = float(length)
+        roots, weights = _residues(alpha, eta_f, eta_s, S, r)
+        self._green = lambda s: _green_from_roots(s, roots, weights)
+        # For 0 <= s <= 2L the images s and s + 2L close above, s - 2L below (see _image_part).
+        up = roots.imag > 0
+        self._upper = (roots[up], 1j * weights[up] * (1.0 + np.exp(2j * self.length * roots[up])))
+        self._lower = (roots[~up], -1j * weights[~up])
+        self._weight = 1.0 / (self.length * moving_symbol(wavenumbers, alpha, eta_f, eta_s, S, r))
+        # The direct (translation-invariant) part depends only on x_l - x_j in {0, d, -d}.
+        shifts = np.array([0.0, d, -d])
+        direct_full = self._images(shifts) - 0.5 / self.length
+        direct_kept = (np.exp(1j * np.outer(shifts, wavenumbers)) @ self._weight).real
+        self._direct = direct_full - direct_kept  # R for s = 0, d, -d (direct part)
+
+    def _images(self, s: np.ndarray) -> np.ndarray:
+        two_l = 2.0 * self.length
+        return self._green(np.concatenate([s, s - two_l, s + two_l])).reshape(3, -1).sum(axis=0)
+
+    def _image_part(self, s: np.ndarray) -> np.ndarray:
+        """``G(s) + G(s - 2L) + G(s + 2L)`` for ``0 <= s <= 2L`` (the sums ``x_j + x_l``), fast."""
+        p_up, w_up = self._upper
+        p_lo, w_lo = self._lower
+        above = np.exp(1j * np.outer(s, p_up)) @ w_up
+        below = np.exp(1j * np.outer(s - 2.0 * self.length, p_lo)) @ w_lo
+        return (above + below).real
+
+    def matrix(self, x1: float, x2: float, phase1: np.ndarray, phase2: np.ndarray) -> np.ndarray:
+        """``R_jl`` at wheel positions ``x1`` (rear), ``x2 = x1 + d`` (front).
+
+        Parameters
+        ----------
+        x1, x2 : float
+            Wheel positions.
+        phase1, phase2 : ndarray, complex
+            ``exp(i lambda_k x_1)`` and ``exp(i lambda_k x_2)`` for the retained modes (the caller
+            has their real and imaginary parts already).
+
+        Returns
+        -------
+        ndarray, shape (2, 2)
+            Deflection at wheel ``j`` (row) per unit force at wheel ``l`` (column).
+        """
+        sums = np.array([2.0 * x1, x1 + x2, 2.0 * x2])
+        image_full = self._image_part(sums) - 0.5 / self.length
+        kept = np.stack([phase1 * phase1, phase1 * phase2, phase2 * phase2]) @ self._weight
+        image = image_full - kept.real
+        d0, dp, dm = self._direct
+        # R_jl = direct(x_l - x_j) - image(x_j + x_l); rear j = 0, front j = 1 (x_2 - x_1 = d).
+        return np.array([[d0 - image[0], dp - image[1]], [dm - image[1], d0 - image[2]]])

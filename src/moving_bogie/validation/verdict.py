@@ -1,0 +1,279 @@
+"""Verdict of the finite-beam validation: a fixed, stated tolerance per compared quantity.
+
+The finite beam (Section 3.2) and the closed form (Eqs. (35)-(47)) agree when, for every compared
+time series ``X`` (the deflections under the rear and the front wheel, the bar bounce ``u`` and the
+bar pitch ``theta``),
+
+    relative_diff_X = max_window |X_finite - X_closed| / max_window |X_closed| <= tol,
+
+with ``tol = 1 %`` by default: a number stated in advance, not derived from either run. The finite
+beam's own error is estimated as information only: a second run with twice the time step on the
+same beam gives the time-step error of the Newmark average-acceleration rule (second order, so
+``|X_h - X_2h| / 3``), which after the static correction of the truncated modes is the dominant
+error (``docs/finite_beam.md``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from moving_bogie.validation.finite_beam import FiniteBeamResult
+
+__all__ = [
+    "DEFAULT_TOLERANCE",
+    "QUANTITIES",
+    "QuantityComparison",
+    "ValidationResult",
+    "compare_series",
+    "series",
+]
+
+#: Default tolerance: every quantity within 1 % of its largest value over the window.
+DEFAULT_TOLERANCE = 0.01
+
+#: Compared time series: name -> (attribute of the time series, label).
+QUANTITIES: dict[str, tuple[str, str]] = {
+    "rear": ("w_rear", "beam deflection at the rear wheel"),
+    "front": ("w_front", "beam deflection at the front wheel"),
+    "u": ("u", "bar bounce u"),
+    "theta": ("theta", "bar pitch theta"),
+}
+
+
+@dataclass(frozen=True)
+class QuantityComparison:
+    """One compared time series over the window.
+
+    Attributes
+    ----------
+    name : str
+        "rear", "front", "u" or "theta".
+    max_abs_diff : float
+        ``max |finite - closed|`` over the window.
+    amplitude : float
+        ``max |closed|`` over the window.
+    relative : float
+        ``max_abs_diff / amplitude``: the ``relative_diff`` judged against `tolerance`.
+    tolerance : float
+        The relative tolerance (default 0.01).
+    convergence_diff : float
+        ``max |X_h - X_2h|`` over the window (``X_2h``: the same beam, twice the time step);
+        NaN without the estimate run.
+    error_estimate : float
+        ``convergence_diff / 3``: estimated time-step error of the finite beam (information).
+    reference_diff : float
+        ``max |X_2h - X_closed|`` over the window.
+    """
+
+    name: str
+    max_abs_diff: float
+    amplitude: float
+    relative: float
+    tolerance: float
+    convergence_diff: float = math.nan
+    error_estimate: float = math.nan
+    reference_diff: float = math.nan
+
+    @property
+    def within(self) -> bool:
+        """Whether the relative difference is within the tolerance."""
+        return bool(self.relative <= self.tolerance)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "max_abs_diff": self.max_abs_diff,
+            "amplitude": self.amplitude,
+            "relative_diff": self.relative,
+            "tolerance": self.tolerance,
+            "within": self.within,
+            "convergence_diff": _json_float(self.convergence_diff),
+            "error_estimate": _json_float(self.error_estimate),
+            "reference_diff": _json_float(self.reference_diff),
+        }
+
+
+def _json_float(x: float) -> float | None:
+    return None if math.isnan(x) else x
+
+
+def series(obj: Any, attr: str, n: int) -> np.ndarray:
+    """``obj.attr`` as a float array, or NaN of length `n` when the object lacks it."""
+    value = getattr(obj, attr, None)
+    return np.full(n, np.nan) if value is None else np.asarray(value, dtype=float)
+
+
+def compare_series(
+    name: str,
+    finite: np.ndarray,
+    closed: np.ndarray,
+    tolerance: float,
+    reference: np.ndarray | None = None,
+) -> QuantityComparison:
+    """Compare one quantity over the window (arrays already restricted to it).
+
+    Parameters
+    ----------
+    name : str
+    finite, closed : ndarray
+        The finite-beam run and the closed form.
+    tolerance : float
+        Relative tolerance.
+    reference : ndarray, optional
+        The twice-the-step run, for the error estimate.
+    """
+    diff = float(np.max(np.abs(finite - closed)))
+    amplitude = float(np.max(np.abs(closed)))
+    extra = {}
+    if reference is not None:
+        convergence = float(np.max(np.abs(finite - reference)))
+        extra = {
+            "convergence_diff": convergence,
+            "error_estimate": convergence / 3.0,
+            "reference_diff": float(np.max(np.abs(reference - closed))),
+        }
+    return QuantityComparison(
+        name=name,
+        max_abs_diff=diff,
+        amplitude=amplitude,
+        relative=diff / amplitude if amplitude > 0 else math.inf,
+        tolerance=tolerance,
+        **extra,
+    )
+
+
+@dataclass(frozen=True)
+class ValidationResult:
+    """Finite beam against closed form on one tau grid (:func:`moving_bogie.validation.compare.validate`).
+
+    Attributes
+    ----------
+    model : str
+        "bogie" or "masses".
+    params : Any
+        The parameters compared.
+    tau : ndarray
+        The common output grid.
+    finite : FiniteBeamResult
+        The finite-beam run.
+    reference : FiniteBeamResult or None
+        The same beam with twice the time step (error estimate), None when not run.
+    closed : Any
+        The closed form's :class:`~moving_bogie.response.closed_form.TimeSeries`.
+    window : tuple of float
+        ``(0, tau_w)``, the comparison window.
+    quantities : dict of str to QuantityComparison
+        "rear", "front" and, for the bogie, "u" and "theta".
+    finite_beam_s, reference_s, closed_form_s : float
+        Wall times of the finite-beam run, the estimate run and the closed form (frequency search
+        included).
+    tolerance : float
+        Relative tolerance of the verdict.
+    reflection_level : float
+        Reflection bound that ends the window.
+    notes : tuple of str
+    """
+
+    model: str
+    params: Any
+    tau: np.ndarray
+    finite: FiniteBeamResult
+    reference: FiniteBeamResult | None
+    closed: Any
+    window: tuple[float, float]
+    quantities: dict[str, QuantityComparison]
+    finite_beam_s: float
+    reference_s: float
+    closed_form_s: float
+    tolerance: float
+    reflection_level: float
+    notes: tuple[str, ...] = field(default=())
+
+    def _diff(self, name: str) -> float | None:
+        q = self.quantities.get(name)
+        return None if q is None else q.max_abs_diff
+
+    @property
+    def max_abs_diff_rear(self) -> float:
+        """``max |w_rear finite - w_rear closed|`` over the window."""
+        return self.quantities["rear"].max_abs_diff
+
+    @property
+    def max_abs_diff_front(self) -> float:
+        """``max |w_front finite - w_front closed|`` over the window."""
+        return self.quantities["front"].max_abs_diff
+
+    @property
+    def max_abs_diff_u(self) -> float | None:
+        """Bar bounce difference over the window (None for the two masses)."""
+        return self._diff("u")
+
+    @property
+    def max_abs_diff_theta(self) -> float | None:
+        """Bar pitch difference over the window (None for the two masses)."""
+        return self._diff("theta")
+
+    @property
+    def relative_diff(self) -> dict[str, float]:
+        """``max |diff| / max |closed|`` over the window, per quantity."""
+        return {k: q.relative for k, q in self.quantities.items()}
+
+    @property
+    def tau_valid(self) -> float:
+        """The finite beam's strict reflection-free window (fastest modelled wave)."""
+        return self.finite.tau_valid
+
+    @property
+    def agrees(self) -> bool:
+        """Every compared quantity within the tolerance."""
+        return all(q.within for q in self.quantities.values())
+
+    @property
+    def ratio(self) -> float:
+        """``finite_beam_s / closed_form_s``: how many times slower the finite beam is."""
+        return self.finite_beam_s / self.closed_form_s if self.closed_form_s > 0 else math.inf
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (no time series)."""
+        params = self.params.to_dict() if hasattr(self.params, "to_dict") else None
+        q = self.quantities
+        finite = self.finite
+        return {
+            "model": self.model,
+            "params": params,
+            "agrees": self.agrees,
+            "tolerance": self.tolerance,
+            "tolerance_rule": (
+                f"max|X_finite - X_closed| <= {self.tolerance:g} max|X_closed| over the window, "
+                "for every quantity"
+            ),
+            "relative_diff": self.relative_diff,
+            "max_abs_diff_rear": self.max_abs_diff_rear,
+            "max_abs_diff_front": self.max_abs_diff_front,
+            "max_abs_diff_u": self.max_abs_diff_u,
+            "max_abs_diff_theta": self.max_abs_diff_theta,
+            "error_estimate": {k: _json_float(v.error_estimate) for k, v in q.items()},
+            "quantities": {k: v.to_dict() for k, v in q.items()},
+            "window": list(self.window),
+            "tau_valid": finite.tau_valid,
+            "reflection_level": self.reflection_level,
+            "tau_max": float(self.tau[-1]),
+            "n_modes": finite.n_modes,
+            "static_correction": finite.static_correction,
+            "L": finite.length,
+            "entry": finite.entry,
+            "k_max": finite.k_max,
+            "dt": finite.dt,
+            "reference_dt": None if self.reference is None else self.reference.dt,
+            "timings": {
+                "finite_beam_s": self.finite_beam_s,
+                "finite_beam_stepping_s": finite.elapsed_s,
+                "reference_run_s": self.reference_s,
+                "closed_form_s": self.closed_form_s,
+                "ratio_finite_to_closed": self.ratio,
+            },
+            "notes": list(self.notes),
+        }

@@ -1,0 +1,167 @@
+"""Certified induced frequencies (ball arithmetic): enclosures, proven counts and verdicts.
+
+References used here are independent of the ball-arithmetic code: the mpmath Newton polish at 30 digits
+(roots/polish.py), the double-pole residue formula for dE/dq (kernels/track.py), the paper's printed
+Table 2, polynomials with known roots, and the double-precision argument-principle count.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import random
+
+import mpmath
+import pytest
+from flint import acb, acb_poly, ctx
+
+from moving_bogie.cli import main
+from moving_bogie.kernels.characteristic import Characteristic
+from moving_bogie.model.cases import table1_case, table2_printed
+from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.roots.balls import BallCharacteristic, isolate_roots, square_ball
+from moving_bogie.roots.certify import certify, krawczyk
+from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.roots.polish import newton
+from moving_bogie.roots.table2 import compute_table2, format_table2
+from moving_bogie.roots.winding import NotProven, proven_count
+
+#: A window holding the four pairs of Case 1 (Table 2: Re q <= 0.31, |Im q| <= 0.03) and the cut Im q = 0.1.
+CASE1_WINDOW = Rectangle(-5e-4, 0.5, -0.1, 0.2)
+
+
+@pytest.fixture(scope="module")
+def case1():
+    return induced_frequencies(table1_case(1), window=CASE1_WINDOW, certify=True)
+
+
+def test_case_1_is_proven_unstable_with_every_root_and_the_count(case1):
+    c = case1.certificate
+    assert c.all_proven and c.count == case1.count == 4 and c.proven_roots == 4
+    assert c.verdict == "unstable"
+    # the proven unstable root is Table 2's q = 0.222538 - 0.000130 i
+    assert sum(e.below_axis for e in c.roots) == 1
+
+
+def test_enclosures_contain_the_30_digit_roots_and_the_printed_digits(case1):
+    precise = Characteristic(table1_case(1))
+    printed = table2_printed(1)
+    for r, e in zip(case1.roots, case1.certificate.roots):
+        with mpmath.workdps(30):
+            q30, _ = newton(precise, mpmath.mpc(complex(r.q)))  # an independent polish from 16 digits
+        assert e.contains(q30)
+        assert float(e.radius) <= 1e-25
+        pr = min(printed, key=lambda p: abs(complex(r.q) - complex(float(p[0]), float(p[1]))))
+        assert e.rounds_to(pr[0], pr[1], 6)
+
+
+def test_a_wrong_candidate_fails_the_proof(case1):
+    bc = BallCharacteristic(table1_case(1), prec=200)
+    q = case1.roots[0].q
+    assert krawczyk(bc, q).certified
+    assert not krawczyk(bc, q + mpmath.mpf("1e-20")).certified  # the root is outside this ball
+    assert not krawczyk(bc, mpmath.mpc("0.25", "0.01")).certified  # no root near
+    # the printed digits alone are not a ball of radius 1e-26 around the root
+    assert not krawczyk(bc, mpmath.mpc("0.307227", "0.021025")).certified
+
+
+def test_json_output_has_the_certified_fields(capsys):
+    # The small window stops inside the far-field radius: the verdict about every root with Im q < 0 is
+    # UNDETERMINED (exit status 1), while the certificate proves the roots and the count inside the window.
+    assert main(["frequencies", "--case", "1", "--window", "0.5,0.1", "--certify", "--json"]) == 1
+    data = json.loads(capsys.readouterr().out)
+    assert data["verdict"]["state"] == "undetermined" and data["verdict"]["reasons"][0].startswith("window:")
+    assert all(r["certified"] is True and float(r["radius"]) <= 1e-25 for r in data["roots"])
+    assert data["certified"]["all"] is True and data["certified"]["count"] == data["count"] == 4
+    assert data["certified"]["verdict"] == "unstable"
+
+
+def test_ball_derivative_contains_the_double_pole_formula():
+    # dE/dq from the series in balls.py against the double-pole residues of kernels/track.py
+    params = table1_case(6)
+    bc = BallCharacteristic(params, prec=128)
+    precise = Characteristic(params)
+    for q in (0.3 + 0.05j, 0.1 - 0.2j, 1.5 + 0.2j):
+        Eb, dEb = bc.value_and_derivative(q)
+        with mpmath.workdps(30), ctx.workprec(128):
+            E, dE = precise.value_and_derivative(mpmath.mpc(q))
+            E, dE = (acb(mpmath.nstr(v.real, 30), mpmath.nstr(v.imag, 30)) for v in (E, dE))
+            # the balls reach the 30-digit reference values (up to their relative 1e-25 accuracy)
+            assert (Eb - E).abs_lower() < 1e-25 * max(1, E.abs_upper())
+            assert (dEb - dE).abs_lower() < 1e-25 * max(1, dE.abs_upper())
+            assert Eb.rad() < 1e-20 and dEb.rad() < 1e-20
+        # over a ball, the enclosure holds the values at its corners
+        ball = square_ball(q, 1e-4)
+        Ew = bc.value(ball)
+        for corner in (1 + 1j, 1 - 1j, -1 + 1j, -1 - 1j):
+            with mpmath.workdps(30):
+                Ec = precise(mpmath.mpc(q + 1e-4 * corner))
+            assert Ew.contains(acb(complex(Ec)))
+
+
+def test_isolated_p_roots_contain_known_roots():
+    roots = [complex(1.5, 0.25), complex(-0.5, 1), complex(-1, -0.75), complex(2, -0.5)]
+    with ctx.workprec(128):
+        coeffs = list(reversed(acb_poly.from_roots([acb(z) for z in roots]).coeffs()))
+        balls = isolate_roots(coeffs, 2.0**-120)
+        assert len(balls) == 4
+        for z in roots:
+            assert sum(b.contains(acb(z)) for b in balls) == 1
+        assert max(float(b.rad()) for b in balls) < 1e-30
+
+
+def test_proven_count_around_a_root_and_next_to_it(case1):
+    bc = BallCharacteristic(table1_case(1), prec=96)
+    q = complex(case1.roots[0].q)
+    around = Rectangle(q.real - 0.01, q.real + 0.01, q.imag - 0.01, q.imag + 0.01)
+    beside = Rectangle(q.real + 0.005, q.real + 0.03, q.imag - 0.01, q.imag + 0.01)
+    assert proven_count(bc, around).count == 1
+    assert proven_count(bc, beside).count == 0
+    through = Rectangle(q.real, q.real + 0.01, q.imag - 0.01, q.imag + 0.01)  # the root on its edge
+    with pytest.raises(NotProven):
+        proven_count(bc, through, min_length=1e-6)
+
+
+def test_proven_count_equals_the_numerical_one_on_random_parameter_sets():
+    rng = random.Random(16)
+    for _ in range(2):
+        params = DimensionlessParams.from_coefficients(
+            eta_f=rng.choice(["0.02", "0.05", "0.1"]),
+            eta_M=rng.randint(10, 50),
+            d=f"{rng.uniform(0.8, 3):.2f}",
+            cf1=f"{rng.uniform(1, 2.5):.2f}",
+            cf2=f"{rng.uniform(0.01, 0.1):.3f}",
+            kappa_v=f"{rng.uniform(0.02, 0.4):.3f}",
+            eta_v=rng.choice(["0", "0.05"]),
+            alpha=f"{rng.uniform(0.2, 0.9):.2f}",
+        )
+        window = Rectangle(-1e-3, 1.0, -0.3, 0.3 + float(params.eta_f))
+        result = induced_frequencies(params, dps=20, extra_dps=10, window=window, check_window=False)
+        assert result.count >= 1  # the window holds roots: the comparison below is not vacuous
+        c = certify(result)
+        assert c.count == result.count, (params, c.problems)
+        assert c.all_proven, (params, c.problems)
+        assert c.verdict == ("stable" if result.stable else "unstable"), (params, c.reason)
+
+
+def test_table2_certified_row_encloses_the_printed_case_5():
+    table = compute_table2(cases=(5,), certify=True)
+    row = table.to_dict()["cases"][0]
+    # Case 5 of Table 2 (paper): four pairs, q = 0.206528 - 0.000472 i unstable, all six decimals enclosed
+    assert row["certified"]["all"] and row["certified"]["count"] == 4
+    assert row["certified"]["verdict"] == "unstable"
+    assert row["certified"]["printed_enclosed"] == [True] * 4
+    assert all(r["certified"] and r["radius"] == "1e-26" for r in row["roots"])
+    assert "proven: 4/4 roots, count 4, verdict unstable, printed digits enclosed" in format_table2(table)
+
+
+def test_a_missing_root_is_caught_by_the_proven_count(case1):
+    # drop the stable root 0.307 + 0.021 i from the numerical result: the proof must notice
+    incomplete = dataclasses.replace(case1, roots=case1.roots[1:], certificate=None)
+    c = certify(incomplete)
+    assert not c.all_proven and c.count == 4
+    assert any("root(s) proven" in p and "enclosure(s) inside" in p for p in c.problems)
+    assert c.verdict == "unstable"  # still proven: an unstable root needs no count
+    stable_only = dataclasses.replace(case1, roots=(case1.roots[0],), certificate=None)
+    assert certify(stable_only).verdict == "not proven"

@@ -1,0 +1,76 @@
+"""What the code imports is declared in pyproject.toml, and what is declared is imported somewhere."""
+
+import ast
+import re
+import sys
+import tomllib
+from importlib.metadata import packages_distributions
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
+#: SymPy for derivations/ is pinned in its own file (installed with --no-deps, see the README).
+DERIVE = [
+    line.split("#")[0].strip()
+    for line in (ROOT / "requirements-derive.txt").read_text().splitlines()
+    if line.split("#")[0].strip()
+]
+#: Declared for what they bring without being imported by name.
+INDIRECT = {
+    "gmpy2": "mpmath's GMP backend, picked up automatically",
+    "ruff": "the linter, a command",
+    "ipykernel": "the kernel that runs the notebooks (started by nbclient)",
+}
+
+
+def _names(requirements) -> set:
+    return {re.split(r"[<>=!~\[ ;]", r, maxsplit=1)[0].lower().replace("_", "-") for r in requirements}
+
+
+def _imported(folder: Path) -> set:
+    """Distributions of every top-level third-party module imported under ``folder``."""
+    dists = packages_distributions()
+    local = {path.stem for path in folder.rglob("*.py")}  # sibling modules (tests import helpers)
+    found = set()
+    for path in folder.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.Import):
+                modules = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                modules = [node.module]
+            elif (
+                isinstance(node, ast.Call)
+                and getattr(node.func, "attr", None) == "importorskip"
+                and node.args
+                and isinstance(node.args[0], ast.Constant)
+            ):
+                modules = [node.args[0].value]
+            else:
+                continue
+            for module in modules:
+                top = module.split(".")[0]
+                if top in sys.stdlib_module_names or top in local or top in ("moving_bogie", "derivations"):
+                    continue
+                for dist in dists.get(top, [top]):
+                    found.add(dist.lower().replace("_", "-"))
+    return found
+
+
+def test_runtime_imports_are_runtime_dependencies():
+    declared = _names(PYPROJECT["project"]["dependencies"])
+    missing = _imported(ROOT / "src" / "moving_bogie") - declared
+    assert not missing, f"imported by the runtime but not in [project] dependencies: {sorted(missing)}"
+
+
+def test_test_and_derivation_imports_are_declared():
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    declared = _names(PYPROJECT["project"]["dependencies"]) | _names(extras["dev"]) | _names(DERIVE)
+    used = _imported(ROOT / "tests") | _imported(ROOT / "derivations")
+    missing = used - declared
+    assert not missing, f"imported by tests or derivations but not declared: {sorted(missing)}"
+
+
+def test_every_dev_dependency_is_used():
+    used = _imported(ROOT / "tests") | _imported(ROOT / "derivations") | _imported(ROOT / "src")
+    unused = _names(PYPROJECT["project"]["optional-dependencies"]["dev"]) - used - set(INDIRECT)
+    assert not unused, f"declared in [dev] but never imported: {sorted(unused)}"

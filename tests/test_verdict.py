@@ -1,0 +1,117 @@
+"""A verdict for the whole lower half-plane: the far-field radius; UNDETERMINED when anything is missing."""
+
+import json
+
+import mpmath
+import numpy as np
+import pytest
+
+from moving_bogie.cli import main
+from moving_bogie.generated import asymptotics
+from moving_bogie.kernels.track import TrackKernelArray
+from moving_bogie.model.cases import table1_case
+from moving_bogie.roots import far_field
+from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.far_field import far_field_radius, rho
+from moving_bogie.roots.frequencies import induced_frequencies
+
+
+@pytest.fixture(scope="module")
+def supercritical():
+    """Case 1 at alpha = 5 (issue 17): the default window of 3 used to miss two unstable pairs."""
+    return induced_frequencies(table1_case(1).replace(alpha=5), dps=20)
+
+
+def test_supercritical_case1_finds_every_unstable_root_without_a_window(supercritical):
+    res = supercritical
+    assert res.count_ok and res.verdict.state == "unstable"
+    assert len(res.unstable_roots) == 3
+    assert mpmath.nstr(res.degree_of_instability, 6) == "-4.16549"
+    # Reference: the same count in an explicitly given window four times the far-field radius (other contours,
+    # no far-field argument): no further root with Im q < 0 anywhere in it.
+    R = res.far_field.radius
+    big = induced_frequencies(
+        res.params, dps=20, window=Rectangle(-4e-3 * R, 4 * R, -4 * R, 0.5), check_window=False
+    )
+    assert big.count_ok and len(big.unstable_roots) == 3
+
+    def roots(result):
+        return sorted((complex(r.q) for r in result.unstable_roots), key=lambda z: (z.real, z.imag))
+
+    assert roots(big) == pytest.approx(roots(res), abs=1e-12)
+
+
+def test_derived_kernel_decay_matches_the_residues():
+    # Euler-Bernoulli: p^4 = 4 q^2 at leading order (Eq. (24)); the two upper roots -sqrt(2q), i sqrt(2q) give
+    # |K0| = pi / (4 |q|^(3/2)) by hand. The derivation says gamma = 3/2 (and 1 for Timoshenko-Rayleigh).
+    assert asymptotics.KERNEL_DECAY["eb"] == "3/2" and asymptotics.KERNEL_DECAY["tr"] == "1"
+    q = 1e6 * np.exp(1j * np.linspace(-3.0, -0.14, 9))
+    K0 = TrackKernelArray(table1_case(1))(q, [0.0]).K[0]
+    assert np.abs(K0) * np.abs(q) ** 1.5 == pytest.approx(np.pi / 4, rel=2e-3)
+    tr = table1_case(1).replace(beam="tr", S=100, r="0.03")
+    K_tr = [np.abs(TrackKernelArray(tr)(np.array([R * np.exp(-1j)]), [0.0]).K[0]) * R for R in (1e4, 1e5)]
+    assert K_tr[1] == pytest.approx(K_tr[0], rel=0.05)  # |K0| |q| tends to a constant: gamma = 1
+
+
+def test_relative_remainder_decays_as_derived():
+    # rho = |E - E_lead| / |E_lead| = O(|q|^-delta), delta = 1/2 for the bogie on an EB beam: away from the
+    # real axis, 16 times the radius divides rho by about 4.
+    assert asymptotics.LEADING_GAP[("bogie", "eb")] == "1/2"
+    p = table1_case(7)
+    r1, r2 = (float(rho(p, "bogie", np.array([R * np.exp(-1.2j)]))[0]) for R in (1e3, 1.6e4))
+    assert r1 / r2 == pytest.approx(4, rel=0.15)
+
+
+@pytest.mark.parametrize(
+    ("case", "changes"),
+    [(5, {"alpha": "2.5"}), (13, {"kappa_v": "3", "alpha": "0.3"}), (7, {"alpha": "3", "eta_M": "5"})],
+)
+def test_far_field_radius_is_confirmed_by_a_larger_window(case, changes):
+    p = table1_case(case).replace(**changes)
+    res = induced_frequencies(p, dps=20)
+    assert res.verdict.determined, res.verdict.reasons
+    R = res.far_field.radius
+    # Reference: argument-principle count in a window three times the radius, lower half-plane only.
+    lower = induced_frequencies(
+        p, dps=20, window=Rectangle(-3e-3 * R, 3 * R, -3 * R, -1e-6), check_window=False
+    )
+    assert lower.count == sum(1 for r in res.roots if mpmath.im(r.q) < -1e-6)
+
+
+def test_window_inside_the_radius_is_undetermined(capsys):
+    res = induced_frequencies(table1_case(1).replace(alpha=5), dps=20, window=Rectangle(-0.003, 3, -3, 3.1))
+    assert res.verdict.state == "undetermined"
+    assert any(r.startswith("window:") for r in res.verdict.reasons)
+    assert res.to_dict()["stable"] is None
+
+
+def test_undamped_sliver_is_undetermined():
+    res = induced_frequencies(table1_case(2), dps=20)
+    assert res.count_ok and res.verdict.state == "undetermined"
+    assert [r.split(":")[0] for r in res.verdict.reasons] == ["sliver"]
+
+
+def test_missing_expansion_is_undetermined(monkeypatch):
+    monkeypatch.delattr(asymptotics, "e_chr_leading_bogie_eb")
+    far = far_field_radius(table1_case(7), "bogie", 3.0)
+    assert far.radius is None and "no generated far-field expansion" in far.reason
+    assert far.to_dict()["rho"] is None  # valid JSON
+    assert far_field.leading_part("masses", "eb")  # the others are untouched
+
+
+def test_cli_verdict_line_exit_status_and_stderr(capsys):
+    assert main(["frequencies", "--case", "1", "--alpha", "5", "--dps", "20"]) == 0
+    out = capsys.readouterr()
+    assert "verdict: UNSTABLE, 3 unstable pair(s); degree of instability -4.16549" in out.out
+    assert out.err == ""
+    assert main(["frequencies", "--case", "1", "--alpha", "5", "--dps", "20", "--window", "3,3"]) == 1
+    out = capsys.readouterr()
+    (verdict,) = [line for line in out.out.splitlines() if line.startswith("verdict:")]
+    assert verdict.startswith("verdict: UNDETERMINED: ") and "STABLE" not in verdict.replace(
+        "UNDETERMINED", ""
+    )
+    assert "moving-bogie: warning: window:" in out.err and "WARNING" not in out.out
+    assert main(["frequencies", "--case", "1", "--alpha", "5", "--dps", "20", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["count_ok"] and data["verdict"] == {"state": "unstable", "reasons": []}
+    assert data["degree_of_instability"] == "-4.16549" and data["far_field"]["radius"] == 12.0
