@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from moving_bogie.kernels.polyroots import poly_roots, stack_coefficients
-from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.kernels.track import resolve_foundation
 
 
 @dataclass(frozen=True)
@@ -48,15 +48,16 @@ class CutLocus:
         return float(sel.imag.min()), float(sel.imag.max())
 
 
-def cut_locus(params, x_min: float, x_max: float, *, samples: int = 20001) -> CutLocus:
+def cut_locus(params, x_min: float, x_max: float, *, samples: int = 20001, foundation=None) -> CutLocus:
     """Trace the cut of K for ``params`` over x_min <= Re q <= x_max.
 
     Real p is sampled on a grid that reaches beyond every p whose cut point has Re q <= x_max
     (|q| grows like p^2/2, so |p| <= 2 sqrt(|x| + 1) + 4 suffices for |alpha| < 2), refined near the
     minimum of Re q so that the branch point q_c is located to about 1e-9.
     """
-    module = foundation_module(params.beam)
-    args = foundation_arguments(params, params.as_float())
+    track = resolve_foundation(params, foundation)
+    module = track.module
+    args = track.float_arguments(params)
     span = 2.0 * np.sqrt(max(abs(x_min), abs(x_max)) + 1.0) + 4.0 + 4.0 * float(params.alpha)
     ps = np.linspace(-span, span, samples)
     pts = _q_roots(module, args, ps)

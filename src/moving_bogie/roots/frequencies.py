@@ -168,6 +168,7 @@ def induced_frequencies(
     eps_branch: float = 1e-5,
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
+    foundation=None,
 ) -> FrequencyResult:
     """Every induced frequency of ``params`` in ``window`` (default :func:`default_window`).
 
@@ -191,12 +192,15 @@ def induced_frequencies(
         Side of a single-root cell below which Newton's method is tried from its centre.
     progress : callable, optional
         Called with the fraction of work done (0..1).
+    foundation : module or Foundation, optional
+        The track model (default that of ``params.beam``, see
+        :func:`moving_bogie.kernels.track.resolve_foundation`).
     """
     if extra_dps is None:
         extra_dps = max(10, dps // 2)
     window = window or default_window(params, model)
-    fast = CharacteristicArray(params, model)
-    precise = Characteristic(params, model)
+    fast = CharacteristicArray(params, model, foundation=foundation)
+    precise = Characteristic(params, model, foundation=foundation)
     warnings = []
 
     def report(x):
@@ -266,7 +270,7 @@ _RETRIES = ((1.0, 0.1), (7.0, 0.113), (53.0, 0.087), (0.13, 0.121))
 def _count_tiling(fast, params, window, eps, eps_branch):
     """Tile the window and count the roots in every tile; on a root sitting on an edge, move all the
     edges (the tiles share them, so they move together) and count again."""
-    cut = cut_locus(params, window.x0, window.x1)
+    cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
     error = None
     for factor, fraction in _RETRIES:
         gap_height = fraction * max(window.width, window.height)
