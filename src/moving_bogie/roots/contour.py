@@ -86,7 +86,14 @@ def winding_number(
         Relative segment length (to the rectangle size) below which refinement gives up.
     """
     size = max(rect.width, rect.height)
-    z = rect.boundary(spacing or min(size / 64, 0.005))
+    # a curved cell (roots/cut_cells.py) is refined along its own edges, a rectangle along its sides
+    points_at = getattr(rect, "points_at", None)
+    if points_at is not None:
+        t = rect.boundary_parameters(spacing or min(size / 64, 0.005))
+        z = np.append(points_at(t[:-1]), 0)
+        z[-1] = z[0]
+    else:
+        z = rect.boundary(spacing or min(size / 64, 0.005))
     w = f(z)
     while True:
         if not np.all(np.isfinite(w)):
@@ -105,8 +112,13 @@ def winding_number(
         seg = np.abs(z[1:] - z[:-1])
         if np.any(seg[bad] < min_segment * size) or z.size > max_points:
             raise EdgeZeroError(f"a zero lies on or next to the contour of {rect}")
-        mids = 0.5 * (z[:-1][bad] + z[1:][bad])
-        wm = f(mids)
         idx = np.nonzero(bad)[0] + 1
+        if points_at is not None:
+            tm = 0.5 * (t[:-1][bad] + t[1:][bad])
+            mids = points_at(tm)
+            t = np.insert(t, idx, tm)
+        else:
+            mids = 0.5 * (z[:-1][bad] + z[1:][bad])
+        wm = f(mids)
         z = np.insert(z, idx, mids)
         w = np.insert(w, idx, wm)
