@@ -50,7 +50,7 @@ def test_cells_partition_the_window_minus_the_sliver():
     params = _tr(*TR_CASES[0])
     window = default_window(params, "bogie")
     cut = cut_locus(params, window.x0, window.x1)
-    tiling = tile_window(window, cut, eps=5e-11, eps_branch=1e-5, gap_height=0.1 * window.height)
+    tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-5, gap_height=0.1 * window.height)
     assert max(u.height for u in tiling.unsearched) <= 1e-10
     fold = cut.folds[0].q
     points = [

@@ -80,7 +80,7 @@ class Fold:
     opens: int  # +1: the two arms leave towards larger Re q, -1 towards smaller
 
 
-@dataclass
+@dataclass(eq=False)
 class CutArm:
     """A piece of one curve q_j(p) on which Re q is strictly monotone in p: a graph over Re q.
 
@@ -178,26 +178,35 @@ class CutLocus:
         return bool(self.points.size) and self.im_high - self.im_low <= 1e-12
 
 
-def _match(prev, pred, new):
-    """Index of the root of ``new`` nearest to each prediction, and whether the step is acceptable."""
+def _match(prev, pred, new, back=None):
+    """Index of the root of ``new`` nearest to each prediction, and whether the step is acceptable.
+
+    A step is accepted when the forward prediction (and, with ``back``, the backward prediction from the
+    new roots, ordered like ``new``) lands within a tenth of the distance to the nearest other root.
+    """
     d = np.abs(new[:, None, :] - pred[:, :, None])  # (k, j prev, i new)
     order = np.argmin(d, axis=-1)
     ok = np.all(np.sort(order, axis=-1) == np.arange(order.shape[-1]), axis=-1)
     err = np.abs(np.take_along_axis(new, order, axis=-1) - pred)
+    if back is not None:
+        err = np.maximum(err, np.abs(np.take_along_axis(back, order, axis=-1) - prev))
     sep = np.abs(prev[:, :, None] - prev[:, None, :])
     sep = sep + np.where(np.eye(prev.shape[-1], dtype=bool), np.inf, 0)
     ok &= np.all((err <= _PREDICTION * sep.min(axis=-1)) & np.isfinite(err), axis=-1)
     return order, ok
 
 
-def trace_curves(tracer: CutTracer, p_lo: float, p_hi: float, n: int = 2001):
-    """(ps, Q): the curves q_j(p) on an adaptive grid of [p_lo, p_hi]; column j is one continuous curve."""
-    ps = np.linspace(p_lo, p_hi, n)
+def trace_curves(tracer: CutTracer, p_lo: float, p_hi: float, n: int = 2001, grid=None):
+    """(ps, Q): the curves q_j(p) on an adaptive grid of [p_lo, p_hi] (or refined from ``grid``);
+    column j is one continuous curve. Steps are halved until both the forward and the backward linear
+    predictions (from dq/dp at either end) land within a tenth of the distance to the nearest other root."""
+    ps = np.linspace(p_lo, p_hi, n) if grid is None else np.asarray(grid, dtype=float)
     for _ in range(_MAX_REFINE):
         Q = tracer.q_roots(ps)
         D = tracer.dq_dp(ps[:, None], Q)
-        pred = Q[:-1] + D[:-1] * np.diff(ps)[:, None]
-        order, ok = _match(Q[:-1], pred, Q[1:])
+        h = np.diff(ps)[:, None]
+        pred = Q[:-1] + D[:-1] * h
+        order, ok = _match(Q[:-1], pred, Q[1:], Q[1:] - D[1:] * h)
         if np.all(ok) or np.diff(ps).min() < 1e-9:
             break
         ps = np.sort(np.concatenate([ps, 0.5 * (ps[:-1] + ps[1:])[~ok]]))

@@ -46,6 +46,8 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.response.fourier_sum import cis as _cis
+from moving_bogie.response.fourier_sum import fourier_sum as _fourier_sum
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
 
@@ -422,69 +424,3 @@ class BranchCut:
 def _weighted(channel, cut, chunk, w):
     q, J = channel(chunk)
     return q, J * (w * cut.ds(chunk))[:, None]
-
-
-#: Taylor terms of e^{i q delta} with |q delta| <= 1/4 (remainder below 1e-16 of the sum of |G|).
-_TAYLOR_TERMS = 12
-_GRID_BLOCK = 256
-
-
-def _cis(x):
-    """e^{i x} for a real array x (cos and sin of real arguments are cheaper than a complex exp)."""
-    out = np.empty(x.shape, dtype=complex)
-    np.cos(x, out=out.real)
-    np.sin(x, out=out.imag)
-    return out
-
-
-def _phases(t, s, eta):
-    """e^{i (s + i eta) t} for the outer product of times t and real s (sin/cos of real arguments)."""
-    out = _cis(np.multiply.outer(t, s))
-    out *= np.exp(-eta * t)[:, None]
-    return out
-
-
-def _fourier_sum(ts, nodes, weights, weighted, m, q_max, eta, *, memory=4_000_000):
-    """sum_n G_n e^{i q_n t} for every t, (q, G) = weighted(nodes, weights), Im q_n = eta: (len(ts), m).
-
-    Few times: the exponentials directly. Many times: on a uniform grid t_g with step h = 1/(2 max|q|),
-    e^{i q t} = e^{i q t_g} sum_k (i q delta)^k / k! with delta = t - t_g, |q delta| <= 1/4, and the grid
-    phases come by blocks from e^{i q t_0} e^{i q j h}. The cost is (grid points x nodes x terms) whatever
-    the number of times.
-    """
-    node_block = max(16, int(memory // (4 * max(m, 1))))
-    h = 0.5 / (q_max + 1.0)
-    lo, hi = np.floor(ts.min() / h), np.ceil(ts.max() / h)
-    grid_size = int(hi - lo) + 1
-    direct = ts.size <= grid_size or m > 64
-    acc = np.zeros((ts.size, m), dtype=complex)
-    if not direct:
-        k = np.rint(ts / h)
-        delta = ts - k * h
-        row = (k - lo).astype(int)
-        moments = np.zeros((grid_size, _TAYLOR_TERMS * m), dtype=complex)
-        factorials = np.concatenate([[1.0], np.cumprod(np.arange(1, _TAYLOR_TERMS))])
-        steps = np.arange(_GRID_BLOCK) * h
-    for start in range(0, nodes.size, node_block):
-        q, G = weighted(nodes[start : start + node_block], weights[start : start + node_block])
-        s = q.real
-        if direct:
-            block = max(1, int(memory // max(1, q.size)))
-            for t0 in range(0, ts.size, block):
-                t = ts[t0 : t0 + block]
-                acc[t0 : t0 + block] += _phases(t, s, eta) @ G
-            continue
-        powers = (1j * q)[:, None] ** np.arange(_TAYLOR_TERMS) / factorials
-        B = (powers[:, :, None] * G[:, None, :]).reshape(q.size, -1)
-        local = _phases(steps, s, eta)
-        starts = (lo + np.arange(0, grid_size, _GRID_BLOCK)) * h
-        first = _phases(starts, s, eta)
-        for b, g0 in enumerate(range(0, grid_size, _GRID_BLOCK)):
-            n = min(_GRID_BLOCK, grid_size - g0)
-            moments[g0 : g0 + n] += (local[:n] * first[b]) @ B
-    if not direct:
-        sel = moments[row].reshape(ts.size, _TAYLOR_TERMS, m)
-        acc = sel[:, -1]
-        for j in range(_TAYLOR_TERMS - 2, -1, -1):
-            acc = acc * delta[:, None] + sel[:, j]
-    return acc

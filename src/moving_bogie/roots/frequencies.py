@@ -166,7 +166,7 @@ def induced_frequencies(
     extra_dps: int | None = None,
     window: Rectangle | None = None,
     check_window: bool = True,
-    eps: float = 5e-11,
+    eps: float = 2e-11,
     eps_branch: float = 1e-5,
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
@@ -188,7 +188,7 @@ def induced_frequencies(
         Also count roots in a window twice as large; more roots there make the result fail loudly.
     eps : float
         Distance kept from the cut of K by the contours that follow it: the unsearched sliver around the
-        cut is 2 eps high (default 1e-10).
+        cut is 2 eps high, at most 5 eps where two cut curves meet (default: at most 1e-10).
     eps_branch : float
         Distance kept from the branch point (where K is infinite).
     newton_cell : float
@@ -268,7 +268,7 @@ def induced_frequencies(
 
 #: Perturbations of the tiling tried in turn when an edge meets a root (eps factor, gap height fraction);
 #: eps only shrinks, so the unsearched sliver never exceeds 2 eps.
-_RETRIES = ((1.0, 0.1), (0.7, 0.113), (0.37, 0.087), (0.13, 0.121))
+_RETRIES = ((1.0, 0.1), (0.8, 0.113), (0.6, 0.087), (0.5, 0.121))
 
 
 def _count_tiling(fast, params, window, eps, eps_branch):

@@ -19,6 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import optimize
 
 from moving_bogie.kernels.cut import CutLocus
 from moving_bogie.roots.contour import Rectangle
@@ -27,6 +28,7 @@ from moving_bogie.roots.cut_cells import ColumnCell, Edge, Sliver, TipCell
 __all__ = ["Tiling", "tile_window"]
 
 _COLUMN_SAMPLES = 17  # Re q samples per column where the order of the curves is checked
+_MERGE = 3.0  # arms closer than this many eps are left out together (sliver <= 5 eps)
 
 
 @dataclass(frozen=True)
@@ -66,7 +68,9 @@ def tile_window(
 
 
 def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
-    """A cut on one horizontal line (Euler-Bernoulli): strips below and above the line."""
+    """A cut on one horizontal line (Euler-Bernoulli): strips below and above the line, and a box of
+    half-width ``eps_branch`` around the branch point (where K varies like a square root: an edge
+    passing at distance eps from it would need samples eps apart)."""
     lo, hi = cut.im_low - eps, cut.im_high + eps
     x_gap = cut.x_start - eps_branch
     if x_gap > window.x0:
@@ -74,12 +78,24 @@ def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
     x_band = max(window.x0, x_gap)
     if x_band >= window.x1:
         return Tiling(tuple(regions), ())
-    if lo > band_lo:
-        regions.append(Rectangle(x_band, window.x1, band_lo, lo))
-    if hi < band_hi:
-        regions.append(Rectangle(x_band, window.x1, hi, band_hi))
-    y0, y1 = max(lo, band_lo), min(hi, band_hi)
-    return Tiling(tuple(regions), (Sliver(x_band, window.x1, y0, y1, y1 - y0),))
+    unsearched = []
+    x_strip = x_band
+    if np.isfinite(cut.x_start) and x_gap > window.x0:
+        x_strip = min(window.x1, cut.x_start + eps_branch)
+        b_lo, b_hi = max(band_lo, cut.im_low - eps_branch), min(band_hi, cut.im_high + eps_branch)
+        if b_lo > band_lo:
+            regions.append(Rectangle(x_band, x_strip, band_lo, b_lo))
+        if b_hi < band_hi:
+            regions.append(Rectangle(x_band, x_strip, b_hi, band_hi))
+        unsearched.append(Sliver(x_band, x_strip, b_lo, b_hi, b_hi - b_lo))
+    if x_strip < window.x1:
+        if lo > band_lo:
+            regions.append(Rectangle(x_strip, window.x1, band_lo, lo))
+        if hi < band_hi:
+            regions.append(Rectangle(x_strip, window.x1, hi, band_hi))
+        y0, y1 = max(lo, band_lo), min(hi, band_hi)
+        unsearched.append(Sliver(x_strip, window.x1, y0, y1, y1 - y0))
+    return Tiling(tuple(regions), tuple(unsearched))
 
 
 def _arms_over(cut, a, b):
@@ -119,10 +135,14 @@ def _columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, columns):
         _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi)
 
 
-def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi):
-    """Cells of one column [a, b] between the cut's arms (graphs over Re q there), or a padded fallback."""
+def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
+    """Cells of one column [a, b] between the cut's arms (graphs over Re q there), or a padded fallback.
+
+    Where two arms cross, the column is split at the crossing; where two arms are closer than
+    ``_MERGE`` eps, the thin lens between them is left out with them (a sliver at most 5 eps high).
+    """
     xs = np.linspace(a, b, _COLUMN_SAMPLES)
-    arms = _arms_over(cut, a, b)
+    arms = _arms_over(cut, a, b) if arms is None else arms
     if not arms:
         regions.append(Rectangle(a, b, band_lo, band_hi))
         return
@@ -130,24 +150,52 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi):
     order = np.argsort(ys[:, _COLUMN_SAMPLES // 2])
     arms, ys = [arms[k] for k in order], ys[order]
     gaps = np.diff(ys, axis=0)
-    keep = [0]
     for k in range(len(arms) - 1):
-        if np.all(np.abs(gaps[k]) < 1e-13):
-            continue  # two coincident curves: one edge
-        if np.any(gaps[k] <= 4 * eps):
+        g = gaps[k]
+        if np.all(np.abs(g) < 1e-13):
+            continue  # coincident curves (Euler-Bernoulli): merged below
+        split = _split_point(arms[k], arms[k + 1], xs, g, eps)
+        if split is not None and a < split < b:
+            _column(cut, a, split, regions, unsearched, eps, band_lo, band_hi, arms)
+            _column(cut, split, b, regions, unsearched, eps, band_lo, band_hi, arms)
+            return
+        if np.any(g < 0):
             _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi)
             return
-        keep.append(k + 1)
-    arms, ys = [arms[k] for k in keep], ys[keep]
     if ys.min() - eps <= band_lo or ys.max() + eps >= band_hi:
         _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi)
         return
+    # groups of arms closer than _MERGE eps share one pair of edges
+    groups = [[0]]
+    for k in range(len(arms) - 1):
+        if np.all(gaps[k] <= _MERGE * eps):
+            groups[-1].append(k + 1)
+        else:
+            groups.append([k + 1])
     edges = [Edge(y=band_lo)]
-    for arm, y in zip(arms, ys):
-        edges += [Edge(arm=arm, side=-1, delta=eps), Edge(arm=arm, side=1, delta=eps)]
-        unsearched.append(Sliver(a, b, float(y.min() - eps), float(y.max() + eps), 2 * eps))
+    for group in groups:
+        lo_arm, hi_arm = arms[group[0]], arms[group[-1]]
+        edges += [Edge(arm=lo_arm, side=-1, delta=eps), Edge(arm=hi_arm, side=1, delta=eps)]
+        y_lo, y_hi = ys[group[0]], ys[group[-1]]
+        thickness = float((y_hi - y_lo).max()) + 2 * eps
+        unsearched.append(Sliver(a, b, float(y_lo.min() - eps), float(y_hi.max() + eps), thickness))
     edges.append(Edge(y=band_hi))
     regions.extend(ColumnCell(a, b, lo, hi) for lo, hi in zip(edges[::2], edges[1::2]))
+
+
+def _split_point(lower, upper, xs, gap, eps):
+    """Where the column must be split for the arms ``lower`` < ``upper`` (at the middle): their crossing,
+    or the Re q where their gap passes _MERGE eps (None if neither happens inside)."""
+
+    def g(x, target=0.0):
+        return float(upper.y_at(np.array([x]))[0] - lower.y_at(np.array([x]))[0]) - target
+
+    for target in (0.0, _MERGE * eps):
+        change = np.nonzero(np.sign(gap[:-1] - target) * np.sign(gap[1:] - target) < 0)[0]
+        if change.size:
+            k = change[0]
+            return optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
+    return None
 
 
 def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
@@ -163,22 +211,34 @@ def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
 def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
     """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched)."""
     pair = [arm for arm in cut.arms if min(abs(arm.p[0] - fold.p), abs(arm.p[-1] - fold.p)) < 1e-12]
-    others = [arm for arm in _arms_over(cut, a, b) if arm not in pair]
-    y_fold = fold.q.imag
-    if fold.cusp or fold.opens < 0 or len(pair) != 2 or others:
-        ys = np.array(
-            [[y_fold]]
-            + [arm.y_at(np.linspace(max(a, arm.x_lo), min(b, arm.x_hi), 9)) for arm in pair + others],
-            dtype=object,
-        )
-        flat = np.concatenate([np.atleast_1d(np.asarray(y, dtype=float)) for y in ys])
-        lo, hi = float(flat.min()) - eps, float(flat.max()) + eps
+    others = [arm for arm in _arms_over(cut, a, b) if all(arm is not x for x in pair)]
+    xs = np.linspace(a, b, _COLUMN_SAMPLES)
+    pair_ys = [fold.q.imag] + [
+        float(y) for arm in pair for y in arm.y_at(np.linspace(max(a, arm.x_lo), b, 9))
+    ]
+    low, high = min(pair_ys), max(pair_ys)
+    below = [arm for arm in others if arm.y_at(xs).max() < low - 8 * eps]
+    above = [arm for arm in others if arm.y_at(xs).min() > high + 8 * eps]
+    if fold.cusp or fold.opens < 0 or len(pair) != 2 or len(below) + len(above) != len(others):
+        ys = np.array(pair_ys + [float(y) for arm in others for y in arm.y_at(xs)])
+        lo, hi = float(ys.min()) - eps, float(ys.max()) + eps
         if lo > band_lo:
             regions.append(Rectangle(a, b, band_lo, lo))
         if hi < band_hi:
             regions.append(Rectangle(a, b, hi, band_hi))
         unsearched.append(Sliver(a, b, lo, hi, hi - lo))
         return
+    # other curves passing above or below the fold get ordinary column cells there
+    if below:
+        top = max(float(arm.y_at(xs).max()) for arm in below)
+        split = 0.5 * (top + low)
+        _column(cut, a, b, regions, unsearched, eps, band_lo, split, below)
+        band_lo = split
+    if above:
+        bottom = min(float(arm.y_at(xs).min()) for arm in above)
+        split = 0.5 * (bottom + high)
+        _column(cut, a, b, regions, unsearched, eps, split, band_hi, above)
+        band_hi = split
     at_b = [float(arm.y_at(np.array([b]))[0]) for arm in pair]
     lower, upper = (pair[0], pair[1]) if at_b[0] < at_b[1] else (pair[1], pair[0])
     regions.append(TipCell(fold, lower, upper, b, eps, True))
