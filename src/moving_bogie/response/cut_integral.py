@@ -187,9 +187,14 @@ class CurveBranchCut:
         if key in self._base:
             return self._base[key]
         p_lo, p_hi = curve.p_ends(S)
-        n = max(64, int(8 * (p_hi - p_lo)))
-        lo, hi = np.linspace(p_lo, p_hi, n)[:-1], np.linspace(p_lo, p_hi, n)[1:]
-        edges = [np.linspace(p_lo, p_hi, n)]
+        # start: panels of at most 0.5 in p and 5 % of max(1, Re q) along the curve (as for the half-line)
+        P = np.linspace(p_lo, p_hi, 4000)
+        q = curve.q_at(P)
+        density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
+        cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
+        start = np.interp(np.linspace(0.0, cum[-1], max(2, int(np.ceil(cum[-1]))) + 1), cum, P)
+        lo, hi = start[:-1], start[1:]
+        edges = [start]
 
         def integral(a, b):
             nodes, weights = _gauss(a, b)
