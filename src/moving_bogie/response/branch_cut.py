@@ -31,8 +31,9 @@ truncated at s = S: for the first band where the neglected tail integral of |j| 
 for the others the tail is added by integration by parts, e^{i q_S tau} (i j/tau - j'/tau^2 - i j''/tau^3),
 with S chosen so that the first neglected term |j'''|/tau^4 (estimated by |j''|/tau^3) is below ``tol``.
 
-Timoshenko-Rayleigh: the cut is a curve below eta_f (``kernels/cut.py``) and is not implemented here;
-:class:`BranchCutUnavailable` is raised.
+Any other beam or track (a curved cut with folds, lenses and further curves) is integrated by
+:class:`~moving_bogie.response.cut_integral.CurveBranchCut`; this class raises :class:`BranchCutUnavailable`
+for it.
 """
 
 from __future__ import annotations
@@ -46,12 +47,10 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import foundation_arguments, foundation_module
-from moving_bogie.response.fourier_sum import cis as _cis
-from moving_bogie.response.fourier_sum import fourier_sum as _fourier_sum
+from moving_bogie.response.quadrature import adapt_panels, by_bands, cis, fourier_sum, subdivide
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
 
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
 #: Phase per panel (radians) at the largest tau of its band; 16 Gauss-Legendre nodes integrate it to ~1e-14.
 _PANEL_PHASE = 3 * np.pi
 #: Largest panel in p: at most _PANEL_XI radians of e^{i p xi} at the largest |xi| and never above _PANEL_DP;
@@ -59,7 +58,6 @@ _PANEL_PHASE = 3 * np.pi
 _PANEL_DP = 0.5
 _PANEL_XI = 2.0
 _PANEL_DS_REL = 0.05
-_FIRST_BAND = 0.5
 #: Bisection levels of the adaptive base partition (a peak 2^-40 of a panel wide is still resolved).
 _MAX_SPLITS = 40
 _S_STEPS = tuple(2.0**k for k in range(-1, 16))
@@ -202,9 +200,9 @@ class BranchCut:
             if np.any(mask):
                 x = xi[mask]
                 root = P[:, k : k + 1]
-                common[:, mask] = _cis(root.real * x) * (np.exp(-root.imag * x) * weight[:, k : k + 1])
-        e0 = _cis(P[:, 0:1].real * xi) * weight[:, 0:1]
-        e1 = _cis(P[:, 1:2].real * xi) * weight[:, 1:2]
+                common[:, mask] = cis(root.real * x) * (np.exp(-root.imag * x) * weight[:, k : k + 1])
+        e0 = cis(P[:, 0:1].real * xi) * weight[:, 0:1]
+        e1 = cis(P[:, 1:2].real * xi) * weight[:, 1:2]
         below = sign * (common + np.where(pos, e0, e1))
         above = sign * (common + np.where(pos, e1, e0))
         return below, above
@@ -267,27 +265,12 @@ class BranchCut:
         cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
         panels = max(1, int(np.ceil(cum[-1])))
         start = np.interp(np.linspace(0.0, cum[-1], panels + 1), cum, P)
-        a, b = start[:-1], start[1:]
-        accepted = [start]
-        for _ in range(_MAX_SPLITS):
-            if a.size == 0:
-                break
-            m = 0.5 * (a + b)
-            whole = self._panel_integrals(a, b)
-            halves = self._panel_integrals(a, m) + self._panel_integrals(m, b)
-            bad = np.max(np.abs(whole - halves), axis=-1) > self.panel_tol
-            accepted.append(m[bad])
-            a, b = np.concatenate([a[bad], m[bad]]), np.concatenate([m[bad], b[bad]])
-        edges = np.unique(np.concatenate(accepted))
+        edges = adapt_panels(start, self._jump_ds, self.panel_tol, _MAX_SPLITS)
         self._base[S] = edges
         return edges
 
-    def _panel_integrals(self, a, b):
-        nodes = (0.5 * (b - a)[:, None] * _GL_X + 0.5 * (a + b)[:, None]).ravel()
-        weights = (0.5 * (b - a)[:, None] * _GL_W).ravel()
-        _, J = self.response_jumps(nodes)
-        values = J * (weights * self.ds(nodes))[:, None]
-        return values.reshape(a.size, _GL_X.size, -1).sum(axis=1)
+    def _jump_ds(self, nodes):
+        return self.response_jumps(nodes)[1] * self.ds(nodes)[:, None]
 
     def rule(self, S: float, tau_hi: float, xi_max: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Composite 16-point Gauss-Legendre nodes and weights in p on [p_c, p(S)].
@@ -300,15 +283,7 @@ class BranchCut:
         edges = self.base_edges(S)
         a, b = edges[:-1], edges[1:]
         phase = tau_hi * (self.s(b) - self.s(a)) / _PANEL_PHASE
-        pieces = np.maximum(1, np.ceil(np.maximum(phase, (b - a) / dp))).astype(int)
-        k = np.repeat(np.arange(a.size), pieces)
-        j = np.arange(k.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
-        width = (b - a) / pieces
-        lo = a[k] + j * width[k]
-        hi = lo + width[k]
-        nodes = (0.5 * (hi - lo)[:, None] * _GL_X + 0.5 * (lo + hi)[:, None]).ravel()
-        weights = (0.5 * (hi - lo)[:, None] * _GL_W).ravel()
-        return nodes, weights
+        return subdivide(edges, np.ceil(np.maximum(phase, (b - a) / dp)))
 
     def _tail_terms(self, channel, S: float):
         """(j, j', j'') in s at s = S by central differences (max over channels when estimating)."""
@@ -372,28 +347,22 @@ class BranchCut:
         tau = np.asarray(tau, dtype=float)
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
-        flat = tau.reshape(-1)
         m = channel(np.array([self.p_c + 1.0]))[1].shape[-1]
-        result = np.zeros((flat.size, m), dtype=complex)
-        exponent = np.ceil(np.log2(np.maximum(flat, _FIRST_BAND) / _FIRST_BAND))
-        band_hi = _FIRST_BAND * 2.0**exponent
-        for hi in np.unique(band_hi):
-            idx = np.nonzero(band_hi == hi)[0]
-            lo = 0.0 if hi <= _FIRST_BAND else hi / 2
+
+        def band(lo, ts):
             S = self.choose_S(channel, lo, tol, s_min)
-            ts = flat[idx]
             nodes, weights = self.rule(S, float(ts.max()), xi_max)
             q_max = float(np.abs(self.q(nodes)).max())
             weighted = lambda c, w: _weighted(channel, self, c, w)  # noqa: E731
-            acc = _fourier_sum(ts, nodes, weights, weighted, m, q_max, self.eta_f)
+            acc = fourier_sum(ts, nodes, weights, weighted, m, q_max, self.eta_f)
             if lo > 0:
                 g0, g1, g2 = self._tail_terms(channel, S)
-                qS = S + 1j * self.eta_f
-                e = np.exp(1j * qS * ts)[:, None]
+                e = np.exp(1j * (S + 1j * self.eta_f) * ts)[:, None]
                 t = ts[:, None]
                 acc += e * (1j * g0 / t - g1 / t**2 - 1j * g2 / t**3)
-            result[idx] = acc
-        return (result.real / np.pi).reshape(tau.shape + (result.shape[-1],))
+            return acc
+
+        return by_bands(tau, m, band)
 
     def responses(self, tau, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
         """I_bc(tau) of every response, as a dict name -> ndarray."""

@@ -27,6 +27,7 @@ from scipy import integrate
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.track import TrackKernelArray
+from moving_bogie.response.quadrature import adapt_panels, subdivide
 
 __all__ = ["BromwichResult", "bromwich_response", "bromwich_shape"]
 
@@ -181,15 +182,6 @@ def bromwich_response(
     return out
 
 
-#: Gauss-Legendre rule of the vectorised Bromwich quadrature (16 nodes per panel).
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
-
-
-def _gauss(a, b):
-    nodes = (0.5 * (b - a)[:, None] * _GL_X + 0.5 * (a + b)[:, None]).ravel()
-    return nodes, (0.5 * (b - a)[:, None] * _GL_W).ravel()
-
-
 def bromwich_line(
     params,
     tau,
@@ -238,28 +230,9 @@ def bromwich_line(
     start = [0.0]
     while start[-1] < s_max:
         start.append(min(s_max, start[-1] + min(0.5, 0.05 * max(1.0, start[-1]))))
-    lo, hi = np.array(start[:-1]), np.array(start[1:])
     scale = np.abs(transform(np.linspace(0.0, 2.0, 64))).max()
-    edges = [np.array(start)]
-    for _ in range(40):
-        if lo.size == 0:
-            break
-        mid = 0.5 * (lo + hi)
-
-        def integral(x0, x1):
-            nodes, weights = _gauss(x0, x1)
-            return (transform(nodes) * weights[:, None]).reshape(x0.size, _GL_X.size, -1).sum(axis=1)
-
-        bad = np.abs(integral(lo, hi) - integral(lo, mid) - integral(mid, hi)).max(axis=-1) > panel_tol * scale
-        edges.append(mid[bad])
-        lo, hi = np.concatenate([lo[bad], mid[bad]]), np.concatenate([mid[bad], hi[bad]])
-    edges = np.unique(np.concatenate(edges))
-    pieces = np.maximum(1, np.ceil(np.diff(edges) * tau.max() / (3 * np.pi))).astype(int)
-    k = np.repeat(np.arange(edges.size - 1), pieces)
-    j = np.arange(k.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
-    width = np.diff(edges) / pieces
-    x0 = edges[:-1][k] + j * width[k]
-    nodes, weights = _gauss(x0, x0 + width[k])
+    edges = adapt_panels(np.array(start), transform, panel_tol * scale)
+    nodes, weights = subdivide(edges, np.ceil(np.diff(edges) * tau.max() / (3 * np.pi)))
     values = transform(nodes) * weights[:, None]
     total = np.zeros((tau.size, values.shape[-1]), dtype=complex)
     for start_n in range(0, nodes.size, 20000):

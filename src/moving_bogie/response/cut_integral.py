@@ -33,14 +33,12 @@ from moving_bogie.kernels.cut import CutTracer, trace_curves
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
-from moving_bogie.response.fourier_sum import fourier_sum
+from moving_bogie.response.quadrature import adapt_panels, by_bands, fourier_sum, subdivide
 
 __all__ = ["CurveBranchCut", "branch_cut_for"]
 
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
 _PANEL_PHASE = 3 * np.pi
 _PANEL_XI = 2.0
-_FIRST_BAND = 0.5
 _S_STEPS = tuple(2.0**k for k in range(1, 14))
 _REACH = 2.0**14
 
@@ -75,7 +73,7 @@ class _Curve:
     def _find_ends(self, S):
         x = self.q.real
         out = []
-        for idx in (np.nonzero(x <= S)[0][[0, -1]] + np.array([-1, 0])):
+        for idx in np.nonzero(x <= S)[0][[0, -1]] + np.array([-1, 0]):
             a, b = self.p[idx], self.p[idx + 1]
             for _ in range(60):
                 m = 0.5 * (a + b)
@@ -193,34 +191,15 @@ class CurveBranchCut:
         density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
         cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
         start = np.interp(np.linspace(0.0, cum[-1], max(2, int(np.ceil(cum[-1]))) + 1), cum, P)
-        lo, hi = start[:-1], start[1:]
-        edges = [start]
-
-        def integral(a, b):
-            nodes, weights = _gauss(a, b)
-            return (channel(curve, nodes)[1] * weights[:, None]).reshape(a.size, _GL_X.size, -1).sum(axis=1)
-
-        for _ in range(40):
-            if lo.size == 0:
-                break
-            mid = 0.5 * (lo + hi)
-            bad = np.abs(integral(lo, hi) - integral(lo, mid) - integral(mid, hi)).max(axis=-1) > self.panel_tol
-            edges.append(mid[bad])
-            lo, hi = np.concatenate([lo[bad], mid[bad]]), np.concatenate([mid[bad], hi[bad]])
-        self._base[key] = np.unique(np.concatenate(edges))
+        edges = adapt_panels(start, lambda nodes: channel(curve, nodes)[1], self.panel_tol)
+        self._base[key] = edges
         return self._base[key]
 
     def _rule(self, curve, S, tau_hi, xi_max, channel):
         edges = self._panels(curve, S, channel)
         x = curve.q_at(edges).real
         phase = tau_hi * np.abs(np.diff(x)) / _PANEL_PHASE
-        pieces = np.maximum(1, np.ceil(np.maximum(phase, np.diff(edges) * (abs(xi_max) + 1.0) / _PANEL_XI)))
-        pieces = pieces.astype(int)
-        k = np.repeat(np.arange(edges.size - 1), pieces)
-        j = np.arange(k.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
-        width = np.diff(edges) / pieces
-        a = edges[:-1][k] + j * width[k]
-        return _gauss(a, a + width[k])
+        return subdivide(edges, np.ceil(np.maximum(phase, np.diff(edges) * (abs(xi_max) + 1.0) / _PANEL_XI)))
 
     def _end_terms(self, curve, S, channel):
         """Per end of the curve (lower, upper): (q, F, F', F'') of the jump F along the curve, in q."""
@@ -249,7 +228,8 @@ class CurveBranchCut:
         tau_lo > 0 the first neglected term of the tails, |F''|/tau_lo^3, below ``tol``; for the first band
         the neglected integral, estimated as |F| S, below ``tol``."""
         # every curve must reach below S (a curve wholly beyond S has no end to integrate by parts from)
-        floor = max([self.q_c if s_min is None else max(self.q_c, s_min)] + [c.x_min + 1.0 for c in self.curves])
+        lowest = self.q_c if s_min is None else max(self.q_c, s_min)
+        floor = max([lowest] + [c.x_min + 1.0 for c in self.curves])
         S = floor
         for step in _S_STEPS:
             S = floor + step
@@ -267,16 +247,12 @@ class CurveBranchCut:
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
         xi_max = self.d if xi_max is None else xi_max
-        flat = tau.reshape(-1)
-        m = channel(self.curves[0], self.curves[0].p[len(self.curves[0].p) // 2 : len(self.curves[0].p) // 2 + 1])[1]
-        result = np.zeros((flat.size, m.shape[-1]), dtype=complex)
-        exponent = np.ceil(np.log2(np.maximum(flat, _FIRST_BAND) / _FIRST_BAND))
-        band_hi = _FIRST_BAND * 2.0**exponent
-        for hi in np.unique(band_hi):
-            idx = np.nonzero(band_hi == hi)[0]
-            lo = 0.0 if hi <= _FIRST_BAND else hi / 2
+        mid = self.curves[0].p[self.curves[0].p.size // 2]
+        m = channel(self.curves[0], np.array([mid]))[1].shape[-1]
+
+        def band(lo, ts):
             S = self.choose_S(channel, lo, tol, s_min)
-            ts = flat[idx]
+            acc = np.zeros((ts.size, m), dtype=complex)
             for curve in self.curves:
                 nodes, weights = self._rule(curve, S, float(ts.max()), xi_max, channel)
 
@@ -285,10 +261,12 @@ class CurveBranchCut:
                     return q, J * w[:, None]
 
                 q_max = float(np.abs(curve.q_at(nodes[[0, -1]])).max())
-                result[idx] += fourier_sum(ts, nodes, weights, weighted, m.shape[-1], q_max, None)
+                acc += fourier_sum(ts, nodes, weights, weighted, m, q_max, None)
                 if lo > 0:
-                    result[idx] += self._tails(curve, S, channel, ts)
-        return (result.real / np.pi).reshape(tau.shape + (result.shape[-1],))
+                    acc += self._tails(curve, S, channel, ts)
+            return acc
+
+        return by_bands(tau, m, band)
 
     def responses(self, tau, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
         """I_bc(tau) of every response, as a dict name -> ndarray."""
@@ -316,8 +294,3 @@ class CurveBranchCut:
             nodes, weights = self._rule(curve, S, 0.0, self.d, self._jump)
             total = total + (np.abs(self._jump(curve, nodes)[1]) * weights[:, None]).sum(axis=0) / np.pi
         return {name: float(total[k]) for k, name in enumerate(self.names)}
-
-
-def _gauss(a, b):
-    nodes = (0.5 * (b - a)[:, None] * _GL_X + 0.5 * (a + b)[:, None]).ravel()
-    return nodes, (0.5 * (b - a)[:, None] * _GL_W).ravel()

@@ -1,14 +1,77 @@
-"""sum_n G_n e^{i q_n t} for many times t: the last step of every branch-cut integral (Eq. (35)).
+"""Quadrature shared by the branch-cut integrals (Eq. (35)) and the Bromwich reference.
 
-Shared by the Euler-Bernoulli cut (a horizontal half-line, :mod:`branch_cut`) and the traced cut of any
-model (:mod:`cut_integral`).
+Composite 16-point Gauss-Legendre panels (:func:`gauss_panels`, :func:`adapt_panels`,
+:func:`subdivide`), bands of times that double (:func:`by_bands`), and sum_n G_n e^{i q_n t} for many
+times t (:func:`fourier_sum`). Used by the Euler-Bernoulli cut (a horizontal half-line,
+:mod:`branch_cut`), the traced cut of any model (:mod:`cut_integral`) and :mod:`bromwich`.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
-__all__ = ["cis", "fourier_sum"]
+__all__ = ["adapt_panels", "by_bands", "cis", "fourier_sum", "gauss_panels", "subdivide"]
+
+GL_X, GL_W = np.polynomial.legendre.leggauss(16)
+#: Bands of times: [0, 1/2], (1/2, 1], (1, 2], ...: each band gets its own truncation and panels.
+FIRST_BAND = 0.5
+
+
+def gauss_panels(a, b):
+    """Nodes and weights of the 16-point Gauss-Legendre rule on every panel [a_k, b_k] (flattened)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    nodes = (0.5 * (b - a)[:, None] * GL_X + 0.5 * (a + b)[:, None]).ravel()
+    return nodes, (0.5 * (b - a)[:, None] * GL_W).ravel()
+
+
+def adapt_panels(start, values: Callable, tol: float, max_splits: int = 40) -> np.ndarray:
+    """Edges refining ``start``: a panel is halved while its integral of ``values`` (nodes -> (n, m))
+    differs from the sum over its halves by more than ``tol``; resolves peaks far narrower than a panel."""
+    start = np.asarray(start, dtype=float)
+    lo, hi = start[:-1], start[1:]
+    edges = [start]
+
+    def integral(a, b):
+        nodes, weights = gauss_panels(a, b)
+        return (values(nodes) * weights[:, None]).reshape(a.size, GL_X.size, -1).sum(axis=1)
+
+    for _ in range(max_splits):
+        if lo.size == 0:
+            break
+        mid = 0.5 * (lo + hi)
+        bad = np.abs(integral(lo, hi) - integral(lo, mid) - integral(mid, hi)).max(axis=-1) > tol
+        edges.append(mid[bad])
+        lo, hi = np.concatenate([lo[bad], mid[bad]]), np.concatenate([mid[bad], hi[bad]])
+    return np.unique(np.concatenate(edges))
+
+
+def subdivide(edges, pieces):
+    """Gauss nodes and weights after splitting panel k of ``edges`` into ``pieces[k]`` equal parts."""
+    pieces = np.maximum(1, np.asarray(pieces)).astype(int)
+    k = np.repeat(np.arange(edges.size - 1), pieces)
+    j = np.arange(k.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+    width = np.diff(edges) / pieces
+    lo = edges[:-1][k] + j * width[k]
+    return gauss_panels(lo, lo + width[k])
+
+
+def by_bands(tau, m: int, band: Callable) -> np.ndarray:
+    """(1/pi) Re of ``band(lo, ts)`` over the bands of times, shape tau.shape + (m,).
+
+    ``band(lo, ts)`` returns the complex integral (len(ts), m) for the times ``ts`` of one band, whose
+    lower end is ``lo`` (0 for the first band).
+    """
+    tau = np.asarray(tau, dtype=float)
+    flat = tau.reshape(-1)
+    result = np.zeros((flat.size, m), dtype=complex)
+    band_hi = FIRST_BAND * 2.0 ** np.ceil(np.log2(np.maximum(flat, FIRST_BAND) / FIRST_BAND))
+    for hi in np.unique(band_hi):
+        idx = np.nonzero(band_hi == hi)[0]
+        result[idx] = band(0.0 if hi <= FIRST_BAND else hi / 2, flat[idx])
+    return (result.real / np.pi).reshape(tau.shape + (m,))
+
 
 #: Taylor terms of e^{i q delta} with |q delta| <= 1/4 (remainder below 1e-16 of the sum of |G|).
 _TAYLOR_TERMS = 12
