@@ -10,7 +10,6 @@ from __future__ import annotations
 import time
 
 import mpmath
-import numpy as np
 
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.bromwich import bromwich_line
@@ -39,7 +38,8 @@ def frequencies_table():
 
 
 def vibrations_table():
-    print("| S | r | eta_v | tau | w_rear | I_bc w_rear | max rel. diff with I_bc | without I_bc | two lines |")
+    print("| S | r | eta_v | tau | w_rear | I_bc w_rear | max rel. diff with I_bc | without I_bc ", end="")
+    print("| two lines |")
     print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for S, r, eta_v in SETS:
         params = table1_case(7).replace(beam="tr", S=S, r=r, eta_v=eta_v)

@@ -260,7 +260,7 @@ class CurveBranchCut:
                     q, J = channel(curve, chunk)
                     return q, J * w[:, None]
 
-                q_max = float(np.abs(curve.q_at(nodes[[0, -1]])).max())
+                q_max = float(np.abs(curve.q_at(nodes)).max())
                 acc += fourier_sum(ts, nodes, weights, weighted, m, q_max, None)
                 if lo > 0:
                     acc += self._tails(curve, S, channel, ts)

@@ -18,8 +18,9 @@ class EdgeZeroError(RuntimeError):
     """A zero lies on (or within sampling resolution of) the contour."""
 
 
-@dataclass(frozen=True)
-class Rectangle:
+class BoundingBox:
+    """Width, height and centre of a search region from its bounds x0, x1, y0, y1."""
+
     x0: float
     x1: float
     y0: float
@@ -36,6 +37,14 @@ class Rectangle:
     @property
     def center(self):
         return complex(0.5 * (self.x0 + self.x1), 0.5 * (self.y0 + self.y1))
+
+
+@dataclass(frozen=True)
+class Rectangle(BoundingBox):
+    x0: float
+    x1: float
+    y0: float
+    y1: float
 
     def contains(self, z, margin=0.0):
         return (self.x0 - margin <= z.real <= self.x1 + margin) and (

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.contour import BoundingBox, Rectangle
 
 __all__ = ["Edge", "ColumnCell", "TipCell", "Sliver"]
 
@@ -71,7 +71,7 @@ def _samples(z_of_u, spacing):
     return np.arange(n) / n
 
 
-class _Curve:
+class _Curve(BoundingBox):
     """A closed curve from pieces u -> z(u), u in [0, 1]; global parameter t = piece index + u."""
 
     pieces: tuple
@@ -94,18 +94,6 @@ class _Curve:
         t = self.boundary_parameters(spacing)
         z = self.points_at(t[:-1])
         return np.append(z, z[0])
-
-    @property
-    def center(self):
-        return complex(0.5 * (self.x0 + self.x1), 0.5 * (self.y0 + self.y1))
-
-    @property
-    def width(self):
-        return self.x1 - self.x0
-
-    @property
-    def height(self):
-        return self.y1 - self.y0
 
 
 def _segment(a: complex, b: complex):
