@@ -3,10 +3,11 @@
 A track model is a beam (the rail: Euler-Bernoulli or Timoshenko-Rayleigh) on a track (what supports the
 rail: one viscoelastic layer with an optional Pasternak shear layer, or the layered tracks of
 docs/layered_tracks.md: the rail on railpads over one or two continuous mass layers). Each is a square
-matrix of constant-coefficient differential operators in fixed physical coordinates, written as polynomials in the
-operator symbols ``dx`` (d/dx) and ``dt`` (d/dt). The first unknown is the rail deflection ``w``; the moving
-loads enter the first equation only; every further unknown (the cross-section rotation of a Timoshenko
-beam, the deflection of a mass layer, ...) is eliminated by the derivation.
+matrix of constant-coefficient differential operators in fixed physical coordinates, written as
+polynomials in the operator symbols ``dx`` (d/dx) and ``dt`` (d/dt). The first unknown is the rail
+deflection ``w``; the moving loads enter the first equation only; every further unknown (the
+cross-section rotation of a Timoshenko beam, the deflection of a mass layer, ...) is eliminated by the
+derivation.
 
 Every beam runs on every track: adding one ``Track`` to ``TRACKS`` (or one ``Beam`` to ``BEAMS``) and running
 ``python -m derivations`` generates the kernels of every new combination, with their metadata.

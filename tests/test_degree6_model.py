@@ -33,7 +33,7 @@ REPO = Path(__file__).resolve().parent.parent
 
 @pytest.fixture(scope="module")
 def two_layer():
-    """The generated module of the Euler-Bernoulli beam on the two-layer track (derivations/foundations.py)."""
+    """The generated module of the Euler-Bernoulli beam on the two-layer track (derivations/)."""
     return get_model("eb", "two-layer").foundation
 
 

@@ -140,7 +140,8 @@ class TrackKernel:
     ----------
     params : DimensionlessParams
     foundation : module or Foundation, optional
-        The track model (default: the generated module of the parameters' model), see :func:`resolve_foundation`.
+        The track model (default: the generated module of the parameters' model), see
+        :func:`resolve_foundation`.
     coalescence_digits : int
         Where two p-roots on the same side are closer than 10**-k relative, their separate residues are
         large and nearly cancel (their sum stays finite). The evaluation then repeats at a precision
