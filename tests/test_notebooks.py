@@ -27,6 +27,7 @@ def test_notebooks_exist():
         "03-vibrations-and-validation.py",
         "04-instability-lines.py",
         "05-change-the-model.py",
+        "07-layered-track.py",
     ]
 
 
