@@ -118,7 +118,7 @@ for v in speeds:
     p = physical.with_dimensionless(params.replace(alpha=v / scales.v_ref)).to_dimensionless()
     res = induced_frequencies(p, dps=15)
     status = "certified" if res.count_ok else "NOT certified"
-    print(f"v = {v:5.1f} m/s: {res.count} roots ({status}); unstable: {res.unstable}")
+    print(f"v = {v:5.1f} m/s: {res.count} roots ({status}); stable: {res.stable}")
     for r in res.roots:
         w = complex(r.q) / scales.t_scale
         print(f"    omega = {w.real:+10.3f} {w.imag:+9.3f}i rad/s  ({w.real / (2 * np.pi):8.3f} Hz)")
