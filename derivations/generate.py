@@ -28,12 +28,11 @@ GENERATED = Path("src/moving_bogie/generated")
 GENERATOR = "python -m derivations"
 
 
-def _coeffs(expr, degree):
-    poly = sp.Poly(expr, s.p)
-    if poly.degree() > degree:
-        raise AssertionError(f"degree {poly.degree()} in p exceeds {degree}")
-    coeffs = [sp.expand(poly.coeff_monomial(s.p**k)) for k in range(degree, -1, -1)]
-    return coeffs
+def _coeffs(expr, var):
+    """(degree, coefficients highest first) of ``expr`` as a polynomial in ``var`` (one Poly built)."""
+    poly = sp.Poly(expr, var)
+    degree = poly.degree()
+    return degree, [sp.expand(poly.coeff_monomial(var**k)) for k in range(degree, -1, -1)]
 
 
 def _groups_in(*exprs) -> tuple:
@@ -49,12 +48,9 @@ def foundation_module(name, model):
     image = foundation_image(model)
     params = _groups_in(image.N, image.Q)
     args = ("q", *params)
-    deg_n = sp.Poly(image.N, s.p).degree()
-    deg_q = sp.Poly(image.Q, s.p).degree()
-    n = _coeffs(image.N, deg_n)
-    qq = _coeffs(image.Q, deg_q)
-    deg_nq = sp.Poly(image.N, s.q).degree()
-    n_in_q = [sp.expand(sp.Poly(image.N, s.q).coeff_monomial(s.q**k)) for k in range(deg_nq, -1, -1)]
+    deg_n, n = _coeffs(image.N, s.p)
+    deg_q, qq = _coeffs(image.Q, s.p)
+    deg_nq, n_in_q = _coeffs(image.N, s.q)
     cut_args = ("p", *params)
     parts = [
         function_source("n_coeffs", args, n, "Coefficients of N(p, q) in p, highest power first."),

@@ -127,8 +127,9 @@ for v in speeds:
 # ## Where a heavy bogie becomes unstable
 #
 # The instability lines in the plane (alpha, eta_M) of the same bogie on the one-layer track (pads only)
-# and on the two-layer track: above a line the vehicle with that wheel mass ratio has an unstable
-# induced frequency. A heavy wheel (M = 3000 kg) is marked.
+# and on the two-layer track. Where the horizontal line of a wheel mass ratio crosses an instability line,
+# an induced frequency of that vehicle crosses the real axis (Section 3.7): the first crossing is the
+# lowest speed at which its stability changes. A heavy wheel (M = 3000 kg) is marked.
 
 # %%
 spacings = (float(params.d),)
