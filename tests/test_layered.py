@@ -180,3 +180,14 @@ def test_cli_critical_velocity_of_a_layered_file_in_si():
     assert data["model"] == "eb/two-layer" and data["branch"] == 2 and data["branches"] == 2
     assert data["branches_without_minimum"] == [1] and "note" in data
     assert float(data["v_cr"]) == pytest.approx(float(data["alpha_cr"]) * 1207.3821610999894, rel=1e-9)
+
+
+def test_critical_velocity_tends_to_eq65_in_the_one_layer_limit():
+    """mu_2 = t, kappa_2 = 1/t: alpha_cr -> 1 (Eq. (65) with eta_s = 0, k_f = k_1) at the rate O(t)."""
+    gaps = []
+    for t in ("1e-3", "5e-4"):
+        model = get_model("eb", "two-layer")
+        res = critical_velocity(model, groups={"mu_2": t, "kappa_2": 1 / Fraction(t)})
+        gaps.append(abs(float(res.alpha_cr) - 1))
+        assert res.branch == 1  # the rail: the stiff light layer's branch lies far above
+    assert 0 < gaps[0] < 1e-2 and gaps[1] / gaps[0] == pytest.approx(0.5, abs=0.05)
