@@ -48,33 +48,26 @@ def main() -> None:
     layered, _ = load_params_file(EXAMPLE)
     one = layered.replace(track="one-layer")
     size = args.size or (20 if args.quick else 200)
-    rows = []
+    width = 44
+    print(f"{'job':<{width}}  {'wall [s]':>9}  {'cpu [s]':>9}  {'target [s]':>10}  result", flush=True)
+
+    def row(label, wall, cpu, target, note):
+        t = "-" if target is None else f"{target:g}"
+        print(f"{label:<{width}}  {wall:9.2f}  {cpu:9.2f}  {t:>10}  {note}", flush=True)
+
     alphas = np.linspace(0.0, 1.2, size)
     thetas = np.linspace(1.0, 200.0, size)
     for label, params in (("one-layer", one), ("two-layer", layered)):
         wall, cpu, res = _timed(lambda p=params: critical_velocity(p))
-        rows.append(
-            (
-                f"critical velocity, 30 digits ({label})",
-                wall,
-                cpu,
-                None,
-                f"alpha_cr {float(res.alpha_cr):.10f}",
-            )
+        row(
+            f"critical velocity, 30 digits ({label})", wall, cpu, None, f"alpha_cr {float(res.alpha_cr):.10f}"
         )
         wall, cpu, res = _timed(lambda p=params: induced_frequencies(p, dps=30))
         note = f"{res.count} roots, count {'certified' if res.count_ok else 'NOT certified'}"
-        rows.append((f"induced frequencies, 30 digits ({label})", wall, cpu, 1.0, note))
+        row(f"induced frequencies, 30 digits ({label})", wall, cpu, 1.0, note)
         wall, cpu, res = _timed(lambda p=params: stability_map(p, alphas=alphas, thetas=thetas))
         unstable = int(np.count_nonzero(res.count > 0))
-        rows.append(
-            (f"stability map {size} x {size} ({label})", wall, cpu, 60.0, f"{unstable} unstable cells")
-        )
-    width = max(len(r[0]) for r in rows)
-    print(f"{'job':<{width}}  {'wall [s]':>9}  {'cpu [s]':>9}  {'target [s]':>10}  result")
-    for label, wall, cpu, target, note in rows:
-        t = "-" if target is None else f"{target:g}"
-        print(f"{label:<{width}}  {wall:9.2f}  {cpu:9.2f}  {t:>10}  {note}")
+        row(f"stability map {size} x {size} ({label})", wall, cpu, 60.0, f"{unstable} unstable cells")
 
 
 if __name__ == "__main__":
