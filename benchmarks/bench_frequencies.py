@@ -65,8 +65,8 @@ MATCH = 1e-15  # two roots at 30 digits are the same root when closer than this 
 class CountingArray(CharacteristicArray):
     """E_chr on numpy arrays; counts points (as the base class) and, separately, derivative points."""
 
-    def __init__(self, params, model="bogie"):
-        super().__init__(params, model)
+    def __init__(self, params, model="bogie", **kwargs):
+        super().__init__(params, model, **kwargs)
         self.derivative_evaluations = 0
 
     def derivative(self, q):
@@ -82,8 +82,8 @@ class CountingArray(CharacteristicArray):
 class CountingPrecise(Characteristic):
     """mpmath E_chr that also records the working precision of every evaluation."""
 
-    def __init__(self, params, model="bogie"):
-        super().__init__(params, model)
+    def __init__(self, params, model="bogie", **kwargs):
+        super().__init__(params, model, **kwargs)
         self.by_dps = collections.Counter()
 
     def __call__(self, q):
@@ -114,12 +114,12 @@ def instrumented():
         )
     }
 
-    def make_array(params, model="bogie"):
-        record["fast"] = CountingArray(params, model)
+    def make_array(params, model="bogie", **kwargs):
+        record["fast"] = CountingArray(params, model, **kwargs)
         return record["fast"]
 
-    def make_precise(params, model="bogie"):
-        record["precise"] = CountingPrecise(params, model)
+    def make_precise(params, model="bogie", **kwargs):
+        record["precise"] = CountingPrecise(params, model, **kwargs)
         return record["precise"]
 
     def timed(phase_of, func):

@@ -1,11 +1,13 @@
 """Beams and tracks: the one place where the track models are defined.
 
 A track model is a beam (the rail: Euler-Bernoulli or Timoshenko-Rayleigh) on a track (what supports the
-rail: today one viscoelastic layer with an optional Pasternak shear layer). Each is a square matrix of
-constant-coefficient differential operators in fixed physical coordinates, written as polynomials in the
-operator symbols ``dx`` (d/dx) and ``dt`` (d/dt). The first unknown is the rail deflection ``w``; the moving
-loads enter the first equation only; every further unknown (the cross-section rotation of a Timoshenko
-beam, the deflection of a mass layer, ...) is eliminated by the derivation.
+rail: one viscoelastic layer with an optional Pasternak shear layer, or the layered tracks of
+docs/layered_tracks.md: the rail on railpads over one or two continuous mass layers). Each is a square
+matrix of constant-coefficient differential operators in fixed physical coordinates, written as
+polynomials in the operator symbols ``dx`` (d/dx) and ``dt`` (d/dt). The first unknown is the rail
+deflection ``w``; the moving loads enter the first equation only; every further unknown (the
+cross-section rotation of a Timoshenko beam, the deflection of a mass layer, ...) is eliminated by the
+derivation.
 
 Every beam runs on every track: adding one ``Track`` to ``TRACKS`` (or one ``Beam`` to ``BEAMS``) and running
 ``python -m derivations`` generates the kernels of every new combination, with their metadata.
@@ -15,7 +17,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .symbols import EI, GA, c_f, chi, dt, dx, k_f, k_s, m, r_g, w_st
+from .symbols import EI, GA, c_2, c_3, c_f, chi, dt, dx, k_2, k_3, k_f, k_s, m, m_2, m_3, r_g, w_st
 
 
 @dataclass(frozen=True)
@@ -33,6 +35,7 @@ class TrackModel:
     beam: str = ""
     track: str = ""
     description: str = ""
+    si_names: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -52,7 +55,8 @@ class Track:
     ``on_rail`` is added to the rail's first equation (the foundation reaction on w); ``layers`` is the
     operator matrix of further unknowns (mass layers), ``coupling[j]`` the operator that couples the rail
     deflection w with layer unknown j (symmetric), ``layer_scales`` the SI scale of each layer unknown and
-    its row.
+    its row. ``si_names`` renames SI parameters on this track: symbol -> (SI name, meaning); the
+    railpads of a layered track are the reference stiffness k_f of the scaling, named ``k_1`` there.
     """
 
     title: str
@@ -60,6 +64,7 @@ class Track:
     layers: sp.ImmutableMatrix = sp.ImmutableMatrix.zeros(0, 0)
     coupling: tuple = ()
     layer_scales: tuple = ()
+    si_names: tuple = ()
 
 
 BEAMS = {
@@ -83,6 +88,36 @@ TRACKS = {
     ),
 }
 
+#: The railpads (k_1, c_1) are the reference stiffness and damping of the scaling on a layered track.
+_PADS = k_f + c_f * dt
+_LAYERED_NAMES = (
+    (k_f, ("k_1", "railpad stiffness per unit length (reference stiffness of the scaling)")),
+    (c_f, ("c_1", "railpad viscous damping per unit length")),
+)
+#: Pasternak shear k_s acts on the lowest mass layer (the ballast/subgrade surface).
+TRACKS["two-layer"] = Track(
+    "rail on railpads (k_1, c_1) over a mass layer m_2 (sleepers) on the support (k_2, c_2, shear k_s)",
+    _PADS,
+    sp.ImmutableMatrix([[m_2 * dt**2 + _PADS + k_2 + c_2 * dt - k_s * dx**2]]),
+    (-_PADS,),
+    ((w_st, 4 / (k_f * w_st)),),
+    _LAYERED_NAMES,
+)
+TRACKS["three-layer"] = Track(
+    "rail on railpads (k_1, c_1) over mass layers m_2 (sleepers) and m_3 (ballast), tied by (k_2, c_2),"
+    " on the support (k_3, c_3, shear k_s)",
+    _PADS,
+    sp.ImmutableMatrix(
+        [
+            [m_2 * dt**2 + _PADS + k_2 + c_2 * dt, -(k_2 + c_2 * dt)],
+            [-(k_2 + c_2 * dt), m_3 * dt**2 + k_2 + c_2 * dt + k_3 + c_3 * dt - k_s * dx**2],
+        ]
+    ),
+    (-_PADS, sp.Integer(0)),
+    ((w_st, 4 / (k_f * w_st)), (w_st, 4 / (k_f * w_st))),
+    _LAYERED_NAMES,
+)
+
 
 def compose(beam: str, track: str) -> TrackModel:
     """The operator matrix of ``beam`` on ``track``: the rail block, the layer block and their coupling."""
@@ -97,7 +132,7 @@ def compose(beam: str, track: str) -> TrackModel:
             op[nb + i, nb + j] = t.layers[i, j]
     unknowns = tuple(b.unknown_scales) + tuple(s for s, _ in t.layer_scales)
     rows = tuple(b.row_scales) + tuple(r for _, r in t.layer_scales)
-    return TrackModel(op, unknowns, rows, beam, track, f"{b.title} on a {track} track: {t.title}")
+    return TrackModel(op, unknowns, rows, beam, track, f"{b.title} on a {track} track: {t.title}", t.si_names)
 
 
 def model_name(beam: str, track: str) -> str:

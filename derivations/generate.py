@@ -10,6 +10,7 @@ __init__.py           the catalogue: beams, tracks, vehicles and which module ho
 and docs/proofs.md: derived == printed, equation by equation (paper.py).
 """
 
+import re
 from pathlib import Path
 
 import sympy as sp
@@ -28,12 +29,11 @@ GENERATED = Path("src/moving_bogie/generated")
 GENERATOR = "python -m derivations"
 
 
-def _coeffs(expr, degree):
-    poly = sp.Poly(expr, s.p)
-    if poly.degree() > degree:
-        raise AssertionError(f"degree {poly.degree()} in p exceeds {degree}")
-    coeffs = [sp.expand(poly.coeff_monomial(s.p**k)) for k in range(degree, -1, -1)]
-    return coeffs
+def _coeffs(expr, var):
+    """(degree, coefficients highest first) of ``expr`` as a polynomial in ``var`` (one Poly built)."""
+    poly = sp.Poly(expr, var)
+    degree = poly.degree()
+    return degree, [sp.expand(poly.coeff_monomial(var**k)) for k in range(degree, -1, -1)]
 
 
 def _groups_in(*exprs) -> tuple:
@@ -49,12 +49,9 @@ def foundation_module(name, model):
     image = foundation_image(model)
     params = _groups_in(image.N, image.Q)
     args = ("q", *params)
-    deg_n = sp.Poly(image.N, s.p).degree()
-    deg_q = sp.Poly(image.Q, s.p).degree()
-    n = _coeffs(image.N, deg_n)
-    qq = _coeffs(image.Q, deg_q)
-    deg_nq = sp.Poly(image.N, s.q).degree()
-    n_in_q = [sp.expand(sp.Poly(image.N, s.q).coeff_monomial(s.q**k)) for k in range(deg_nq, -1, -1)]
+    deg_n, n = _coeffs(image.N, s.p)
+    deg_q, qq = _coeffs(image.Q, s.p)
+    deg_nq, n_in_q = _coeffs(image.N, s.q)
     cut_args = ("p", *params)
     parts = [
         function_source("n_coeffs", args, n, "Coefficients of N(p, q) in p, highest power first."),
@@ -72,6 +69,7 @@ def foundation_module(name, model):
         f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) of the {model.description}\n\n"
         "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
     )
+    si_names, scale_parameters, overrides = _track_si_names(model)
     constants = [
         ("BEAM", model.beam),
         ("TRACK", model.track),
@@ -81,9 +79,44 @@ def foundation_module(name, model):
         ("DEGREE_N", deg_n),
         ("DEGREE_Q", deg_q),
         ("DEGREE_N_IN_Q", deg_nq),
+        ("DAMPING", tuple(name for name in params if s.GROUPS[name].damping)),
+        ("SCALE_PARAMETERS", scale_parameters),
+        ("SI_NAMES", si_names),
+        ("GROUP_OVERRIDES", overrides),
     ]
-    digest = definition_digest(model.operator, *model.unknown_scales, *model.row_scales, model.description)
+    digest = definition_digest(
+        model.operator, *model.unknown_scales, *model.row_scales, model.description, model.si_names
+    )
     return module_source(title, digest, parts, constants)
+
+
+def _track_si_names(model):
+    """The SI names on this track: (catalogue name -> track name, scale parameters, group overrides).
+
+    A layered track names the reference stiffness k_f and its damping c_f ``k_1``, ``c_1``; the scale
+    parameters and every group whose SI name or meaning mentions them are renamed accordingly (the
+    scaling itself is the same expression, with k_1 in the place of k_f).
+    """
+    renames = {str(symbol): name for symbol, (name, _) in model.si_names}
+    meanings = {str(symbol): meaning for symbol, (_, meaning) in model.si_names}
+
+    def rename(text):
+        return re.sub(r"\b\w+\b", lambda m: renames.get(m.group(0), m.group(0)), text)
+
+    scale_parameters = {
+        renames.get(name, name): {"unit": unit, "meaning": meanings.get(name, meaning)}
+        for name, unit, meaning in s.SCALE_PARAMETERS
+    }
+    overrides = {}
+    for name, g in s.GROUPS.items():
+        changed = {}
+        if str(g.physical) in renames:
+            changed = {"si": renames[str(g.physical)], "si_meaning": meanings[str(g.physical)]}
+        if rename(g.meaning) != g.meaning:
+            changed["meaning"] = rename(g.meaning)
+        if changed:
+            overrides[name] = changed
+    return renames, scale_parameters, overrides
 
 
 def vehicle_module(name):
@@ -210,6 +243,7 @@ def parameters_module():
             "si": g.si,
             "unit": g.unit,
             "si_meaning": g.si_meaning,
+            "damping": g.damping,
         }
     alternatives = {}
     for alt, (group, expr, meaning) in s.ALTERNATIVES.items():

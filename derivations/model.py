@@ -143,7 +143,9 @@ class FoundationImage:
     """The transformed track operator: W~(p, q) = (load image) * Q / N, i.e. D(p, q) = N / Q (Eq. (24)).
 
     ``N`` and ``Q`` are polynomials in p whose coefficients are polynomials in q and the dimensionless
-    groups. They are normalised so that Q(0, 0) = 1; for the Euler-Bernoulli beam Q = 1 and N = D of Eq. (24)
+    groups. They are normalised so that Q(0, 0) = 1 where Q(0, 0) is a monomial in the groups (a sum, as on
+    the layered tracks, is kept: dividing by it would make every coefficient a rational function; K = Q/N
+    does not depend on the normalisation); for the Euler-Bernoulli beam Q = 1 and N = D of Eq. (24)
     (plus the Pasternak term). For Timoshenko-Rayleigh N is the quartic of Section 3.3, Q comes from Eq. (62).
     """
 
@@ -170,4 +172,7 @@ def foundation_image(track) -> FoundationImage:
     norm = cof.subs({p: 0, q: 0})
     if norm == 0:
         raise AssertionError("cofactor vanishes at p = q = 0: cannot normalise Q")
+    if norm.is_Add:
+        # divide by the integer content only: the coefficients stay polynomials in the groups
+        norm = sp.Poly(norm, *sorted(norm.free_symbols, key=str)).content() if norm.free_symbols else norm
     return FoundationImage(N=sp.expand(det / norm), Q=sp.expand(cof / norm))

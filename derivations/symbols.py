@@ -14,6 +14,9 @@ EI, m, k_f, k_s, c_f = sp.symbols("EI m k_f k_s c_f", positive=True)
 M, M_b, J_phys, k_v, c_v = sp.symbols("M M_b J_phys k_v c_v", positive=True)
 d_phys, v, P = sp.symbols("d_phys v P", positive=True)
 GA, r_g = sp.symbols("GA r_g", positive=True)  # Timoshenko: G*Abar and radius of gyration
+# Layered tracks: mass layers (sleepers, ballast) per unit length and their supports. The rail's support
+# (the railpads) is k_f, c_f: the reference stiffness of the scaling, named k_1, c_1 on those tracks.
+m_2, k_2, c_2, m_3, k_3, c_3 = sp.symbols("m_2 k_2 c_2 m_3 k_3 c_3", positive=True)
 
 # --- scales, Eqs. (15)-(16) ------------------------------------------------------------------------------
 chi = (k_f / (4 * EI)) ** sp.Rational(1, 4)
@@ -23,6 +26,9 @@ omega = sp.sqrt(k_f / m)  # tau = omega * t
 
 # --- dimensionless groups, Eqs. (16)-(17), (59), and the Pasternak group eta_s --------------------------
 alpha, eta_f, eta_s = sp.symbols("alpha eta_f eta_s", positive=True)
+mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3 = sp.symbols(
+    "mu_2 kappa_2 eta_2 mu_3 kappa_3 eta_3", positive=True
+)
 eta_M, mu_v, J_b, kappa_v, eta_v, d = sp.symbols("eta_M mu_v J_b kappa_v eta_v d", positive=True)
 S, r = sp.symbols("S r", positive=True)
 
@@ -39,7 +45,8 @@ class Group:
 
     ``constraint`` is "positive" (> 0), "nonnegative" (>= 0) or "underdamped" (0 <= x < 1); ``default``
     (exact, or None when required) is used when an input leaves the group out; ``si`` is the SI name of
-    the physical parameter it scales (as the user types it), ``unit`` its SI unit.
+    the physical parameter it scales (as the user types it), ``unit`` its SI unit. ``damping`` marks a
+    viscous damping group: zero on the undamped track whose free waves give the critical velocity.
     """
 
     symbol: sp.Symbol
@@ -51,6 +58,7 @@ class Group:
     si: str
     unit: str
     si_meaning: str
+    damping: bool = False
 
 
 #: name -> Group, in declaration order (the order of parameters in every generated list).
@@ -66,7 +74,18 @@ SCALE_PARAMETERS = (
 
 
 def declare(
-    symbol, physical, relation, *, meaning, constraint, equation, unit, si_meaning, default=None, si=None
+    symbol,
+    physical,
+    relation,
+    *,
+    meaning,
+    constraint,
+    equation,
+    unit,
+    si_meaning,
+    default=None,
+    si=None,
+    damping=False,
 ):
     """Declare a dimensionless group: ``physical = relation`` (in the group and EI, m, k_f, P)."""
     if constraint not in ("positive", "nonnegative", "underdamped"):
@@ -82,6 +101,7 @@ def declare(
         si or str(physical),
         unit,
         si_meaning,
+        damping,
     )
     return symbol
 
@@ -105,6 +125,7 @@ declare(
     equation="(17)",
     unit="N s/m^2",
     si_meaning="foundation viscous damping",
+    damping=True,
 )
 declare(
     eta_s,
@@ -198,7 +219,49 @@ declare(
     equation="(17)",
     unit="N s/m",
     si_meaning="primary suspension damping (each side)",
+    damping=True,
 )
+
+
+# --- layered tracks (docs/layered_tracks.md): every mass layer scaled by the rail's m, every stiffness
+# by the railpads' k_1 (= k_f, the reference stiffness), every damping like c_f.
+def _declare_layer(j, mu, kappa, eta, mass, stiffness, damping, what):
+    """The groups of mass layer j: its mass, the stiffness and damping of the support under it."""
+    declare(
+        mu,
+        mass,
+        mu * m,
+        meaning=f"mass ratio m_{j}/m of the {what}",
+        constraint="positive",
+        equation="(L3)",
+        unit="kg/m",
+        si_meaning=f"mass per unit length of the {what}",
+    )
+    declare(
+        kappa,
+        stiffness,
+        kappa * k_f,
+        meaning=f"stiffness ratio k_{j}/k_1 of the support under the {what}",
+        constraint="positive",
+        equation="(L3)",
+        unit="N/m^2",
+        si_meaning=f"stiffness per unit length of the support under the {what}",
+    )
+    declare(
+        eta,
+        damping,
+        2 * eta * sp.sqrt(m * k_f),
+        meaning=f"damping ratio c_{j}/(2 sqrt(m k_1)) of the support under the {what}",
+        constraint="nonnegative",
+        equation="(L3)",
+        unit="N s/m^2",
+        si_meaning=f"viscous damping per unit length of the support under the {what}",
+        damping=True,
+    )
+
+
+_declare_layer(2, mu_2, kappa_2, eta_2, m_2, k_2, c_2, "first mass layer (sleepers)")
+_declare_layer(3, mu_3, kappa_3, eta_3, m_3, k_3, c_3, "second mass layer (ballast)")
 
 #: Alternative inputs (Table 1, Eq. (63)): name -> (the group it sets, its expression, meaning). Giving the
 #: alternative sets the group; when a group the expression depends on changes, the alternative is kept.

@@ -28,6 +28,7 @@ def test_notebooks_exist():
         "04-instability-lines.py",
         "05-change-the-model.py",
         "06-sweeps.py",
+        "07-layered-track.py",
     ]
 
 

@@ -101,21 +101,8 @@ def test_shape_json_matches_the_rear_wheel_series(capsys):
         (["timeseries", "--case", "99", "--tau", "1"], "unknown case"),
         (["shape", "--case", "7", "--tau", "1", "--xi-min", "3", "--xi-max", "1"], "xi_min < xi_max"),
         (
-            [
-                "timeseries",
-                "--case",
-                "7",
-                "--tau",
-                "1",
-                "--beam",
-                "tr",
-                "--S",
-                "100",
-                "--r",
-                "0.03",
-                "--branch-cut",
-            ],
-            "Euler-Bernoulli",
+            ["timeseries", "--case", "7", "--tau", "1", "--alpha", "1.2", "--branch-cut"],
+            "supercritical",
         ),
     ],
 )

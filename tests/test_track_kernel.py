@@ -21,9 +21,7 @@ def _params(beam):
     return p
 
 
-def _integrand_parts(params, q, derivative):
-    mod = foundation_module(params.beam)
-    args = foundation_arguments(params, params.as_float())
+def _integrand_parts(mod, args, q, derivative):
     n = np.array(mod.n_coeffs(q, **args), dtype=complex)
     qc = np.array(mod.q_coeffs(q, **args), dtype=complex)
     nq = np.array(mod.n_coeffs_dq(q, **args), dtype=complex)
@@ -39,7 +37,13 @@ def _integrand_parts(params, q, derivative):
 
 
 def quadrature_K(params, q, xi, derivative=False):
-    f = _integrand_parts(params, q, derivative)
+    mod = foundation_module(params.beam)
+    return quadrature_module_K(mod, foundation_arguments(params, params.as_float()), q, xi, derivative)
+
+
+def quadrature_module_K(mod, args, q, xi, derivative=False):
+    """Eq. (29) by QUADPACK for any generated foundation module ``mod`` with keyword arguments ``args``."""
+    f = _integrand_parts(mod, args, q, derivative)
     opts = {"limit": 400}
     if xi == 0:
         re = integrate.quad(lambda p: f(p).real, -np.inf, np.inf, epsabs=1e-13, **opts)[0]

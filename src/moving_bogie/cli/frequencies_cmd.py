@@ -161,7 +161,7 @@ def format_result(result) -> str:
         lines.append(f"  {k:<2}{'+-' + r.re_text:>36}  {r.im_text:>36}  {r.side:<5}  {r.digits:>3}  {flag}")
     lines.append(f"count (argument principle): {result.count}, found: {result.found}")
     if result.unsearched:
-        height = max(u.y1 - u.y0 for u in result.unsearched)
+        height = max(u.height for u in result.unsearched)
         lines.append(
             f"not searched: a sliver of height <= {height:.1e} around the cut of K ('unsearched' in --json)"
         )

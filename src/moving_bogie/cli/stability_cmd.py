@@ -98,71 +98,104 @@ def _params_and_spacings(args):
 
 
 # -- critical-velocity --------------------------------------------------------------------------------
+def _track_groups() -> dict:
+    """Groups of the tracks (every foundation's, without alpha and the damping groups): name -> spec."""
+    catalogue = default_catalogue()
+    names = set()
+    for model in catalogue.models():
+        module = model.foundation
+        names |= set(module.MODEL_PARAMETERS) - {"alpha"} - set(getattr(module, "DAMPING", ()))
+    return {name: spec for name, spec in catalogue.specs.items() if name in names}
+
+
 def _register_critical_velocity(subparsers) -> None:
     p = subparsers.add_parser(
         "critical-velocity",
         help="critical velocity of a constant moving force, Eqs. (65)-(66), checked numerically",
         description=(
-            "Critical velocity alpha_cr of a constant force: the minimum phase speed of free waves (a real\n"
-            "double root of N(p, 0) in p), polished at 30 digits, next to the closed form of Eq. (65)\n"
-            "(Euler-Bernoulli with Pasternak layer, sqrt(1 + eta_s)) or Eq. (66) (Timoshenko-Rayleigh)."
+            "Critical velocity alpha_cr of a constant force: the smallest local minimum of the phase speed\n"
+            "Omega_j(p)/p of free waves over the dispersion branches of the undamped track (a real double\n"
+            "root of N(p, 0) in p), polished at 30 digits, with every local minimum and its branch, next to\n"
+            "the closed form of Eq. (65) (Euler-Bernoulli, sqrt(1 + eta_s)) or Eq. (66) (Timoshenko-\n"
+            "Rayleigh) on the paper's track. On a layered track the lowest branch is bounded (its phase\n"
+            "speed tends to 0), so the global infimum is 0 and only local minima are critical velocities."
         ),
         epilog=(
             "examples:\n  moving-bogie critical-velocity --eta-s 0.5\n"
-            "  moving-bogie critical-velocity --beam tr --S 100 --r 0.03 --json"
+            "  moving-bogie critical-velocity --beam tr --S 100 --r 0.03 --json\n"
+            "  moving-bogie critical-velocity --file examples/two-layer.toml"
         ),
         formatter_class=_RAW,
     )
     p.add_argument("--beam", choices=BEAM_CHOICES, default=None, help="beam (default eb, or the file's)")
+    p.add_argument(
+        "--track",
+        choices=tuple(default_catalogue().tracks),
+        default=None,
+        help="track (default one-layer, or the file's; moving-bogie models lists them)",
+    )
     p.add_argument(
         "--file",
         type=Path,
         metavar="F.toml",
         help="take the track from a parameter file; [physical] adds v_cr in m/s",
     )
-    p.add_argument(
-        "--eta-s",
-        dest="eta_s",
-        type=_number,
-        default=None,
-        metavar="X",
-        help="Pasternak shear layer (default 0)",
-    )
-    p.add_argument("--S", type=_number, metavar="X", help="Timoshenko shear parameter (with --beam tr)")
-    p.add_argument("--r", type=_number, metavar="X", help="radius of gyration (with --beam tr)")
+    for name, spec in _track_groups().items():
+        p.add_argument(
+            spec.option, dest=name, type=_number, default=None, metavar="X", help=f"{spec.meaning}"
+        )
     add_json_option(p)
     p.set_defaults(handler=run_critical_velocity)
 
 
 def run_critical_velocity(args) -> int:
+    from moving_bogie.model.catalogue import get_model
     from moving_bogie.stability.critical_velocity import critical_velocity
 
     physical = None
-    beam, eta_s, S, r = args.beam or "eb", args.eta_s or "0", args.S, args.r
+    groups = {name: getattr(args, name) for name in _track_groups() if getattr(args, name) is not None}
+    chosen = {k: getattr(args, k) for k in ("beam", "track") if getattr(args, k) is not None}
     if args.file is not None:
         from moving_bogie.model.files import load_params_file
 
         params, physical = load_params_file(args.file)
-        params = params.replace(**{k: v for k, v in (("beam", args.beam), ("eta_s", args.eta_s)) if v})
-        beam, eta_s = params.beam, params.eta_s
-        S, r = (args.S or params.S), (args.r or params.r)
-        if physical is not None:
-            physical = physical.with_dimensionless(params)
-    if beam == "tr" and (S is None or r is None):
-        raise ParameterError("S", "--beam tr needs --S and --r")
-    res = critical_velocity(beam, eta_s=eta_s, S=S, r=r)
+        if chosen or groups:
+            params = params.replace(**chosen, **groups)
+            if physical is not None:
+                physical = physical.with_dimensionless(params)
+        source = params
+    else:
+        source = get_model(**chosen)
+    res = critical_velocity(source, groups=groups)
     data = res.to_dict()
     if physical is not None:
         v_ref = physical.scales().v_ref
         data["v_cr"] = f"{float(data['alpha_cr']) * v_ref:.10g}"
         data["v_cr_unit"] = "m/s"
+        for minimum in data["minima"]:
+            minimum["v"] = f"{float(minimum['alpha']) * v_ref:.10g}"
     if args.json:
         print_json(data)
     else:
+        print(f"model            {data['model']}  ({data['branches']} dispersion branch(es))")
         print(
-            f"alpha_cr         {data['alpha_cr']}  (p_cr = {data['p_cr']}, {data['digits']} digits confirmed)"
+            f"alpha_cr         {data['alpha_cr']}  (p_cr = {data['p_cr']}, branch {data['branch']}, "
+            f"{data['digits']} digits confirmed)"
         )
-        print(f"closed form      {data['alpha_cr_formula']}  ({data['formula']}; agrees: {data['agrees']})")
+        if data["formula"]:
+            print(
+                f"closed form      {data['alpha_cr_formula']}  ({data['formula']}; agrees: {data['agrees']})"
+            )
+        for minimum in data["minima"]:
+            v = f", v = {minimum['v']} m/s" if "v" in minimum else ""
+            print(
+                f"local minimum    branch {minimum['branch']}: alpha = {minimum['alpha']} "
+                f"at p = {minimum['p']}{v}"
+            )
+        for j in data["branches_without_minimum"]:
+            print(f"branch {j}         no local minimum of the phase speed on 0 < p <= {data['p_max']}")
+        if "note" in data:
+            print(f"note             {data['note']}")
         print(f"method           {data['method']}")
         if "v_cr" in data:
             print(f"v_cr             {data['v_cr']} m/s")

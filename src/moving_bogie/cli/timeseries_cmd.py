@@ -134,13 +134,13 @@ def _times(args):
 
 def _frequencies_or_fail(params, model, dps, json_mode, branch_cut):
     from moving_bogie.errors import MovingBogieError
-    from moving_bogie.response.branch_cut import BranchCut
+    from moving_bogie.response.cut_integral import branch_cut_for
     from moving_bogie.roots.frequencies import induced_frequencies
 
     from .progress import progress_bar
 
     if branch_cut is True:
-        BranchCut(params, model)  # refuses a Timoshenko-Rayleigh beam before the long frequency search
+        branch_cut_for(params, model)  # refuses a supercritical velocity before the long frequency search
 
     with progress_bar("induced frequencies", enabled=not json_mode) as update:
         result = induced_frequencies(params, model, dps=dps, progress=update)

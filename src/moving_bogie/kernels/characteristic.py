@@ -41,14 +41,17 @@ class Characteristic:
     params : DimensionlessParams
     model : {"bogie", "masses"}
         The bogie of Figure 1b (4x4 system, Eq. (30)) or two moving masses of Figure 1a (2x2).
+    foundation : module or Foundation, optional
+        The track model (default that of the parameters' model, see
+        :func:`~moving_bogie.kernels.track.resolve_foundation`).
     """
 
-    def __init__(self, params, model: str | None = None):
+    def __init__(self, params, model: str | None = None, *, foundation=None):
         model = model or params.vehicle
         self.params = params
         self.model = model
         self.module = vehicle_module(model, params)
-        self.kernel = TrackKernel(params)
+        self.kernel = TrackKernel(params, foundation=foundation)
         self.evaluations = 0
 
     def _args(self):
@@ -90,12 +93,12 @@ class Characteristic:
 class CharacteristicArray:
     """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps)."""
 
-    def __init__(self, params, model: str | None = None):
+    def __init__(self, params, model: str | None = None, *, foundation=None):
         model = model or params.vehicle
         self.params = params
         self.model = model
         self.module = vehicle_module(model, params)
-        self.kernel = TrackKernelArray(params)
+        self.kernel = TrackKernelArray(params, foundation=foundation)
         ns = params.as_float()
         self.args = {name: getattr(ns, name) for name in self.module.PARAMETERS} | {"pi": np.pi}
         self.d = ns.d

@@ -1,44 +1,169 @@
 """The cut locus of K(xi, q) in the q-plane: where a root of N(p, q) crosses the real p-axis.
 
 K of Eq. (29) is analytic in q except where N(p, q) = 0 has a real root p; there the set of roots used by
-the residue sum changes and K jumps (the branch cuts of Eq. (35)). For a real p the roots q of the
-polynomial N(p, .) trace curves. For the Euler-Bernoulli beam (eta_f < 1)
+the residue sum changes and K jumps (the branch cuts of Eq. (35)). For every real p, N(p, .) is a
+polynomial in q (generated ``n_coeffs_in_q``), so the cut is the union of the explicit curves q_j(p),
+p real, j = 1..DEGREE_N_IN_Q. For the Euler-Bernoulli beam (eta_f < 1)
 
     q = alpha p + i eta_f +- sqrt((p^4 + 4 eta_s p^2 + 4)/4 - eta_f^2),
 
-two half-lines on Im q = eta_f starting at +-q_c: between them the line can be crossed (this is why the
-undamped induced frequencies of Cases 2-4 are real). For Timoshenko-Rayleigh the rotary inertia bends
-the curves slightly below eta_f. The search for induced frequencies never lets a contour meet these curves.
+two half-lines on Im q = eta_f meeting at a cusp q_c (a double real root p: the branch point of K).
+For Timoshenko-Rayleigh the curve through q_c is a fold (Re q turns, Im q does not): a thin lens below
+eta_f opens to the right of q_c, and a second curve runs near the real axis beyond |Re q| ~ sqrt(S)/r.
+
+Tracing. The curves are followed on an adaptive grid of real p: each step is checked against its linear
+prediction from dq/dp = -N_p/N_q (implicit-function theorem) and halved until the prediction error is
+below a tenth of the distance to the nearest other root, so that no two curves are confused and no
+turn of a curve is skipped at the resolution of the grid. Turning points of Re q (folds and cusps) are
+located by root-finding on Re dq/dp. Every point used later (contour edges, ``CutArm.q_at``) is then
+recomputed exactly by Newton's method on N(p, .) = 0, never interpolated.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+from scipy import optimize
 
-from moving_bogie.kernels.polyroots import poly_roots, stack_coefficients
-from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
+from moving_bogie.kernels.track import resolve_foundation
+
+__all__ = ["CutArm", "CutLocus", "CutTracer", "Fold", "cut_locus"]
+
+_MAX_REFINE = 30
+_PREDICTION = 0.1  # accepted prediction error, relative to the distance to the nearest other root
+
+
+class CutTracer:
+    """The roots q_j(p) of N(p, .) for real p, their p-derivative and Newton refinement (one model)."""
+
+    def __init__(self, module, args: dict):
+        self.module = module
+        self.args = args
+
+    def q_roots(self, ps) -> np.ndarray:
+        """All roots in q at real ``ps``, shape ``ps.shape + (DEGREE_N_IN_Q,)``."""
+        ps = np.asarray(ps, dtype=float)
+        return poly_roots(stack_coefficients(self.module.n_coeffs_in_q(ps, **self.args), ps.shape))
+
+    def dq_dp(self, p, q) -> np.ndarray:
+        """dq/dp = -N_p / N_q along a curve N(p, q) = 0 (implicit-function theorem)."""
+        p, q = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(q, dtype=complex))
+        n = stack_coefficients(self.module.n_coeffs(q, **self.args), q.shape)
+        nq = stack_coefficients(self.module.n_coeffs_dq(q, **self.args), q.shape)
+        x = p[..., None].astype(complex)
+        Np = polyval(polyder(n), x)[..., 0]
+        Nq = polyval(nq, x)[..., 0]
+        return -Np / Nq
+
+    def refine(self, p, q, steps: int = 4) -> np.ndarray:
+        """Newton's method on N(p, .) = 0 in q from ``q`` (arrays), at fixed real p."""
+        p = np.asarray(p, dtype=float)
+        c = stack_coefficients(self.module.n_coeffs_in_q(p, **self.args), p.shape)
+        dc = polyder(c)
+        z = np.asarray(q, dtype=complex).copy()
+        for _ in range(steps):
+            with np.errstate(all="ignore"):
+                step = polyval(c, z[..., None])[..., 0] / polyval(dc, z[..., None])[..., 0]
+            z = np.where(np.isfinite(step), z - step, z)
+        return z
+
+
+@dataclass(frozen=True)
+class Fold:
+    """A turning point of Re q along a curve: ``cusp`` when dq/dp = 0 there (a branch point of K)."""
+
+    p: float
+    q: complex
+    cusp: bool
+    opens: int  # +1: the two arms leave towards larger Re q, -1 towards smaller
+
+
+@dataclass(eq=False)
+class CutArm:
+    """A piece of one curve q_j(p) on which Re q is strictly monotone in p: a graph over Re q.
+
+    ``p`` (increasing) and ``q`` are samples; :meth:`q_at` and :meth:`p_at` are exact (Newton).
+    """
+
+    p: np.ndarray
+    q: np.ndarray
+    tracer: CutTracer = field(repr=False)
+
+    @property
+    def x_lo(self) -> float:
+        return float(self.q.real.min())
+
+    @property
+    def x_hi(self) -> float:
+        return float(self.q.real.max())
+
+    @property
+    def increasing(self) -> bool:
+        return bool(self.q.real[-1] > self.q.real[0])
+
+    def q_at(self, p) -> np.ndarray:
+        """The cut point of the arm at real p (in its p-range), exact to rounding."""
+        p = np.clip(np.asarray(p, dtype=float), self.p[0], self.p[-1])
+        guess = np.interp(p, self.p, self.q.real) + 1j * np.interp(p, self.p, self.q.imag)
+        return self.tracer.refine(p, guess)
+
+    def p_at(self, x) -> np.ndarray:
+        """The p of the arm where Re q = x (x within the arm's range), by safeguarded Newton."""
+        x = np.asarray(x, dtype=float)
+        xs = self.q.real if self.increasing else self.q.real[::-1]
+        ps = self.p if self.increasing else self.p[::-1]
+        p = np.interp(x, xs, ps)
+        lo, hi = self.p[0], self.p[-1]
+        for _ in range(40):
+            q = self.q_at(p)
+            slope = self.tracer.dq_dp(p, q).real
+            with np.errstate(all="ignore"):
+                step = (q.real - x) / slope
+            new = np.clip(np.where(np.isfinite(step), p - step, p), lo, hi)
+            done = np.all(np.abs(new - p) <= 1e-15 * np.maximum(1.0, np.abs(p)))
+            p = new
+            if done:
+                break
+        return p
+
+    def y_at(self, x) -> np.ndarray:
+        """Im q of the arm at Re q = x."""
+        return self.q_at(self.p_at(x)).imag
+
+    def offset(self, p, side: int, delta: float) -> np.ndarray:
+        """q(p) + side * delta * n(p), n the unit normal pointing to larger Im q (side +1: above the arm)."""
+        q = self.q_at(p)
+        t = self.tracer.dq_dp(p, q)
+        t = np.where(t.real >= 0, t, -t)  # orient along increasing Re q
+        return q + side * delta * 1j * t / np.abs(t)
 
 
 @dataclass(frozen=True)
 class CutLocus:
-    """Sampled cut curves in the half-plane Re q >= x_min, up to Re q <= x_max.
+    """The cut of K around the strip x_min <= Re q <= x_max.
 
     Attributes
     ----------
     points : ndarray of complex
         Sample points of the cut curves inside the strip.
     x_start : float
-        Smallest Re q of the cut in the strip (the branch point q_c; ``-inf`` if the cut reaches x_min).
+        Smallest Re q of the cut in the strip (``-inf`` if the cut reaches x_min).
     im_low, im_high : float
         Range of Im q of the cut inside the strip (both eta_f for Euler-Bernoulli).
+    arms : tuple of CutArm
+        The curves cut at their turning points; each is a graph over Re q.
+    folds : tuple of Fold
+        Turning points of Re q inside the strip.
     """
 
     points: np.ndarray
     x_start: float
     im_low: float
     im_high: float
+    arms: tuple = ()
+    folds: tuple = ()
 
     def im_range_between(self, x_left: float, x_right: float):
         """(low, high) Im q of the cut with x_left <= Re q <= x_right, or None if it does not pass there."""
@@ -47,43 +172,120 @@ class CutLocus:
             return None
         return float(sel.imag.min()), float(sel.imag.max())
 
+    @property
+    def flat(self) -> bool:
+        """Every arm in the strip lies on one horizontal line (Euler-Bernoulli: Im q = eta_f)."""
+        return bool(self.points.size) and self.im_high - self.im_low <= 1e-12
 
-def cut_locus(params, x_min: float, x_max: float, *, samples: int = 20001) -> CutLocus:
-    """Trace the cut of K for ``params`` over x_min <= Re q <= x_max.
 
-    Real p is sampled on a grid that reaches beyond every p whose cut point has Re q <= x_max
-    (|q| grows like p^2/2, so |p| <= 2 sqrt(|x| + 1) + 4 suffices for |alpha| < 2), refined near the
-    minimum of Re q so that the branch point q_c is located to about 1e-9.
+def _match(prev, pred, new, back=None):
+    """Index of the root of ``new`` nearest to each prediction, and whether the step is acceptable.
+
+    A step is accepted when the forward prediction (and, with ``back``, the backward prediction from the
+    new roots, ordered like ``new``) lands within a tenth of the distance to the nearest other root.
     """
-    module = foundation_module(params)
-    args = foundation_arguments(params, params.as_float())
-    span = 2.0 * np.sqrt(max(abs(x_min), abs(x_max)) + 1.0) + 4.0 + 4.0 * float(params.alpha)
-    ps = np.linspace(-span, span, samples)
-    pts = _q_roots(module, args, ps)
+    d = np.abs(new[:, None, :] - pred[:, :, None])  # (k, j prev, i new)
+    order = np.argmin(d, axis=-1)
+    ok = np.all(np.sort(order, axis=-1) == np.arange(order.shape[-1]), axis=-1)
+    err = np.abs(np.take_along_axis(new, order, axis=-1) - pred)
+    if back is not None:
+        err = np.maximum(err, np.abs(np.take_along_axis(back, order, axis=-1) - prev))
+    sep = np.abs(prev[:, :, None] - prev[:, None, :])
+    sep = sep + np.where(np.eye(prev.shape[-1], dtype=bool), np.inf, 0)
+    ok &= np.all((err <= _PREDICTION * sep.min(axis=-1)) & np.isfinite(err), axis=-1)
+    return order, ok
+
+
+def trace_curves(tracer: CutTracer, p_lo: float, p_hi: float, n: int = 2001, grid=None):
+    """(ps, Q): the curves q_j(p) on an adaptive grid of [p_lo, p_hi] (or refined from ``grid``);
+    column j is one continuous curve. Steps are halved until both the forward and the backward linear
+    predictions (from dq/dp at either end) land within a tenth of the distance to the nearest other root."""
+    ps = np.linspace(p_lo, p_hi, n) if grid is None else np.asarray(grid, dtype=float)
+    for _ in range(_MAX_REFINE):
+        Q = tracer.q_roots(ps)
+        D = tracer.dq_dp(ps[:, None], Q)
+        h = np.diff(ps)[:, None]
+        pred = Q[:-1] + D[:-1] * h
+        order, ok = _match(Q[:-1], pred, Q[1:], Q[1:] - D[1:] * h)
+        if np.all(ok) or np.diff(ps).min() < 1e-9:
+            break
+        ps = np.sort(np.concatenate([ps, 0.5 * (ps[:-1] + ps[1:])[~ok]]))
+    out = np.empty_like(Q)
+    out[0] = Q[0]
+    idx = np.arange(Q.shape[1])
+    for k in range(order.shape[0]):
+        idx = order[k][idx]
+        out[k + 1] = Q[k + 1][idx]
+    return ps, out
+
+
+def _split_at_turns(tracer, ps, qs):
+    """Arms (p, q samples) and folds of one curve: cut where Re dq/dp changes sign."""
+    xd = tracer.dq_dp(ps, qs).real
+    change = np.nonzero(np.sign(xd[:-1]) * np.sign(xd[1:]) < 0)[0]
+    folds, cuts = [], []
+    for k in change:
+
+        def slope(p, k=k):
+            q = tracer.refine(
+                np.array([p]), np.array([qs[k] + (p - ps[k]) * (qs[k + 1] - qs[k]) / (ps[k + 1] - ps[k])])
+            )
+            return float(tracer.dq_dp(np.array([p]), q).real[0])
+
+        pt = optimize.brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
+        qt = complex(tracer.refine(np.array([pt]), np.array([qs[k]]))[0])
+        d = tracer.dq_dp(np.array([pt]), np.array([qt]))[0]
+        scale = max(1.0, float(np.abs(tracer.dq_dp(ps[k : k + 2], qs[k : k + 2])).max()))
+        opens = 1 if xd[k + 1] > 0 else -1
+        folds.append(Fold(float(pt), qt, abs(d) < 1e-6 * scale, opens))
+        cuts.append((k, pt, qt))
+    arms = []
+    start_p, start_q, first = [], [], 0
+    for k, pt, qt in cuts:
+        arms.append(
+            (
+                np.concatenate([start_p, ps[first : k + 1], [pt]]),
+                np.concatenate([start_q, qs[first : k + 1], [qt]]),
+            )
+        )
+        start_p, start_q, first = [pt], [qt], k + 1
+    arms.append((np.concatenate([start_p, ps[first:]]), np.concatenate([start_q, qs[first:]])))
+    return arms, folds
+
+
+def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, foundation=None) -> CutLocus:
+    """Trace the cut of K for ``params`` over x_min <= Re q <= x_max (every curve q_j(p), p real).
+
+    The p-range grows until every root q_j(+-P) lies beyond the strip (|q_j| grows without bound with
+    |p| whenever the leading coefficient of N in q does not vanish).
+    """
+    track = resolve_foundation(params, foundation)
+    tracer = CutTracer(track.module, track.float_arguments(params))
+    reach = max(abs(x_min), abs(x_max)) + 1.0
+    P = 4.0
+    for _ in range(12):
+        ends = tracer.q_roots(np.array([-P, P]))
+        if np.all(np.abs(ends.real) > reach):
+            break
+        P *= 2
+    ps, Q = trace_curves(tracer, -P, P, samples)
+    arms, folds = [], []
+    for j in range(Q.shape[1]):
+        pieces, turns = _split_at_turns(tracer, ps, Q[:, j])
+        for p_arm, q_arm in pieces:
+            inside = (q_arm.real >= x_min) & (q_arm.real <= x_max)
+            if p_arm.size > 1 and (np.any(inside) or (q_arm.real.min() < x_min and q_arm.real.max() > x_max)):
+                arms.append(CutArm(p_arm, q_arm, tracer))
+        folds += [f for f in turns if x_min <= f.q.real <= x_max]
+    pts = np.concatenate([a.q for a in arms]) if arms else np.zeros(0, complex)
     inside = pts[(pts.real >= x_min) & (pts.real <= x_max)]
+    extra = np.array([f.q for f in folds], dtype=complex)
+    inside = np.concatenate([inside, extra])
     if inside.size == 0:
-        return CutLocus(inside, np.inf, np.nan, np.nan)
-    # refine around the leftmost point of the cut in the strip (the branch point)
-    k = np.argmin(np.where(pts.real >= x_min, pts.real, np.inf), axis=None)
-    p0 = ps[k // pts.shape[1]]
-    h = ps[1] - ps[0]
-    for _ in range(3):
-        fine = np.linspace(p0 - 2 * h, p0 + 2 * h, 2001)
-        fpts = _q_roots(module, args, fine)
-        masked = np.where(fpts.real >= x_min, fpts.real, np.inf)
-        k = np.argmin(masked)
-        p0 = fine[k // fpts.shape[1]]
-        h = fine[1] - fine[0]
-        inside = np.concatenate([inside, fpts[(fpts.real >= x_min) & (fpts.real <= x_max)]])
+        return CutLocus(inside, np.inf, np.nan, np.nan, tuple(arms), tuple(folds))
     x_start = float(inside.real.min())
-    # a cut that reaches the strip's left edge has no gap (supercritical speed)
-    if x_start <= x_min + 1e-12:
-        x_start = -np.inf
-    return CutLocus(inside, x_start, float(inside.imag.min()), float(inside.imag.max()))
-
-
-def _q_roots(module, args, ps):
-    cs = stack_coefficients(module.n_coeffs_in_q(ps, **args), ps.shape)
-    while np.all(cs[:, 0] == 0):
-        cs = cs[:, 1:]
-    return poly_roots(cs)
+    if any(a.x_lo < x_min < a.x_hi for a in arms):
+        x_start = -np.inf  # the cut reaches the strip's left edge: no gap (supercritical speed)
+    return CutLocus(
+        inside, x_start, float(inside.imag.min()), float(inside.imag.max()), tuple(arms), tuple(folds)
+    )

@@ -6,9 +6,10 @@ moving masses on large sets of points in double precision. Three facts make this
 
 * K(xi, q) of Eq. (29) depends on the track and on alpha only, not on the vehicle: the p-roots of
   N(p, q) are computed once per (q, alpha) and shared by every wheel spacing and every vehicle.
-* The p-roots of the quartic N come from a vectorised closed form (Ferrari) polished by two
+* The p-roots of a quartic N come from a vectorised closed form (Ferrari) polished by two
   Durand-Kerner sweeps: about ten times faster than batched companion eigenvalues on large batches,
-  with the same accuracy (``tests/test_stability_kernel.py``).
+  with the same accuracy (``tests/test_stability_kernel.py``); other degrees use batched companion
+  eigenvalues polished by Newton's method (:func:`~moving_bogie.kernels.polyroots.poly_roots`).
 * The vehicle enters E_chr through B1..B4 of Eq. (37), which are linear in eta_M (with mu_v = cf1 eta_M
   and J_b = cf2 eta_M d^2, Eq. (63)), in kappa_v and in eta_v. At fixed (q, alpha), E_chr is therefore a
   polynomial in each of these parameters: degree 2 in eta_M for two masses, 4 in eta_M for the bogie,
@@ -30,7 +31,7 @@ from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.polyroots import poly_roots, quartic_roots
 from moving_bogie.kernels.polyroots import polyder as _polyder
 from moving_bogie.kernels.polyroots import polyval as _polyval
-from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.kernels.track import resolve_foundation
 
 __all__ = ["SweepCharacteristic", "poly_roots", "polynomial_degree", "quartic_roots"]
 
@@ -69,18 +70,21 @@ class SweepCharacteristic:
     model : {"bogie", "masses"}
     parameter : str
         The vehicle parameter swept (default eta_M).
+    foundation : module or Foundation, optional
+        The track model (default that of the parameters' model).
     """
 
-    def __init__(self, params, model: str | None = None, parameter: str = "eta_M"):
+    def __init__(self, params, model: str | None = None, parameter: str = "eta_M", *, foundation=None):
         model = model or params.vehicle
         self.params = params
         self.model = model
         self.parameter = parameter
         self.degree = polynomial_degree(model, parameter, params)
         self.module = vehicle_module(model, params)
-        self.foundation = foundation_module(params)
+        track = resolve_foundation(params, foundation)
+        self.foundation = track.module
         ns = params.as_float()
-        self.track_args = {k: v for k, v in foundation_arguments(params, ns).items() if k != "alpha"}
+        self.track_args = {k: v for k, v in track.float_arguments(params).items() if k != "alpha"}
         self.d = ns.d
         # Eq. (63): groups set by an alternative that depends on the swept parameter follow it (the bar's
         # mass and inertia follow eta_M at fixed cf1, cf2): (group, its function, the alternative's value).
@@ -108,7 +112,7 @@ class SweepCharacteristic:
         return (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * h)
 
     def p_roots(self, q, alpha):
-        """Roots of N(p, q) in p, shape ``q.shape + (4,)`` (closed form for quartics)."""
+        """Roots of N(p, q) in p, shape ``q.shape + (DEGREE_N,)`` (closed form for quartics)."""
         q, alpha = _prepare(q, alpha)
         return _roots(self._coeffs(self.foundation.n_coeffs, q, alpha))
 

@@ -17,7 +17,10 @@ mpmath precision; :class:`TrackKernelArray` evaluates numpy arrays of q in doubl
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
 
 import mpmath
 import numpy as np
@@ -37,24 +40,86 @@ def foundation_module(params):
     return params.model.foundation
 
 
-def foundation_arguments(params, numbers) -> dict:
+@dataclass(frozen=True)
+class Foundation:
+    """A generated foundation module and the values of the groups its functions take.
+
+    ``module`` is any object with the generated interface: ``n_coeffs``, ``n_coeffs_dq``, ``q_coeffs``,
+    ``q_coeffs_dq``, ``n_coeffs_in_q``, ``ARGUMENTS``, ``DEGREE_N``, ``DEGREE_Q`` (a module of
+    ``moving_bogie.generated`` or one generated elsewhere and loaded with importlib). ``values`` maps
+    group names to numbers (floats, Fractions or decimal strings) for groups the parameters object does
+    not carry; they take precedence over the parameters' own values.
+    """
+
+    module: Any
+    values: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def names(self) -> tuple:
+        """The groups the generated functions take besides q (or p)."""
+        return tuple(self.module.ARGUMENTS[1:])
+
+    def float_arguments(self, params) -> dict:
+        """Keyword arguments in double precision (groups neither given nor in ``params`` are None)."""
+        ns = params.as_float() if params is not None else None
+        out = {}
+        for name in self.names:
+            value = self.values[name] if name in self.values else getattr(ns, name, None)
+            out[name] = None if value is None else float(value)
+        return out
+
+    def mp_arguments(self, params) -> dict:
+        """Keyword arguments at the current mpmath precision."""
+        ns = params.as_mp() if params is not None else None
+        out = {}
+        for name in self.names:
+            if name in self.values:
+                out[name] = _to_mp(self.values[name])
+            else:
+                out[name] = getattr(ns, name, None)
+        return out
+
+
+def _to_mp(value):
+    if value is None:
+        return None
+    if isinstance(value, Fraction):
+        return mpmath.mpf(value.numerator) / value.denominator
+    return mpmath.mpf(str(value)) if isinstance(value, (int, float, str)) else mpmath.mpf(value)
+
+
+def resolve_foundation(params, foundation=None) -> Foundation:
+    """The one place where the runtime finds the track model of a computation.
+
+    ``foundation`` may be None (the generated module of the parameters' model, ``params.model.foundation``),
+    a generated module (or any object with its interface), or a :class:`Foundation` (module plus values of
+    extra groups).
+    """
+    if isinstance(foundation, Foundation):
+        return foundation
+    if foundation is not None:
+        return Foundation(foundation)
+    return Foundation(foundation_module(params))
+
+
+def foundation_arguments(params, numbers, foundation=None) -> dict:
     """Keyword arguments of the generated foundation functions (besides q or p) from a params namespace.
 
     The names come from the generated module (its ``ARGUMENTS``), so a model added in derivations/ with the
     existing groups needs no change here; a group the model does not use is passed as None.
     """
-    names = foundation_module(params).ARGUMENTS[1:]
+    names = resolve_foundation(params, foundation).names
     return {name: getattr(numbers, name, None) for name in names}
 
 
-def _polyval(coeffs, x):
+def polyval_list(coeffs, x):
     acc = coeffs[0]
     for c in coeffs[1:]:
         acc = acc * x + c
     return acc
 
 
-def _polyder(coeffs):
+def polyder_list(coeffs):
     n = len(coeffs) - 1
     return [c * (n - k) for k, c in enumerate(coeffs[:-1])] or [0]
 
@@ -74,24 +139,27 @@ class TrackKernel:
     Parameters
     ----------
     params : DimensionlessParams
+    foundation : module or Foundation, optional
+        The track model (default: the generated module of the parameters' model), see
+        :func:`resolve_foundation`.
     coalescence_digits : int
         Where two p-roots on the same side are closer than 10**-k relative, their separate residues are
         large and nearly cancel (their sum stays finite). The evaluation then repeats at a precision
         raised by three times the digits lost (the double-pole residues of dK/dq lose 3x).
     """
 
-    def __init__(self, params, *, coalescence_digits: int = 3):
+    def __init__(self, params, *, foundation=None, coalescence_digits: int = 3):
         self.params = params
-        self.module = foundation_module(params)
+        self.foundation = resolve_foundation(params, foundation)
+        self.module = self.foundation.module
         self.coalescence_digits = coalescence_digits
 
-    def _numbers(self):
-        ns = self.params.as_mp()
-        return foundation_arguments(self.params, ns)
+    def arguments(self):
+        return self.foundation.mp_arguments(self.params)
 
     def p_roots(self, q):
         """Roots of N(p, q) in p at the current precision (numpy start + Durand-Kerner polish)."""
-        args = self._numbers()
+        args = self.arguments()
         coeffs = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
         return _roots_mp(coeffs)
 
@@ -113,17 +181,17 @@ class TrackKernel:
         return values  # pragma: no cover
 
     def _evaluate(self, q, xis, derivative):
-        args = self._numbers()
+        args = self.arguments()
         n = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
         roots = _roots_mp(n)
         qc = [mpmath.mpc(c) for c in self.module.q_coeffs(q, **args)]
-        n1 = _polyder(n)
+        n1 = polyder_list(n)
         if derivative:
-            n2 = _polyder(n1)
+            n2 = polyder_list(n1)
             nq = [mpmath.mpc(c) for c in self.module.n_coeffs_dq(q, **args)]
-            nqp = _polyder(nq)
+            nqp = polyder_list(nq)
             qq = [mpmath.mpc(c) for c in self.module.q_coeffs_dq(q, **args)]
-            qp = _polyder(qc)
+            qp = polyder_list(qc)
         upper = [p for p in roots if mpmath.im(p) > 0]
         lower = [p for p in roots if mpmath.im(p) < 0]
         if len(upper) + len(lower) != len(roots):
@@ -139,25 +207,25 @@ class TrackKernel:
             dtotal = mpmath.mpc(0)
             for p in side:
                 e = mpmath.exp(1j * p * xi)
-                N1 = _polyval(n1, p)
-                Qv = _polyval(qc, p)
+                N1 = polyval_list(n1, p)
+                Qv = polyval_list(qc, p)
                 total += e * Qv / N1
                 if derivative:
-                    N2 = _polyval(n2, p)
-                    Nq = _polyval(nq, p)
+                    N2 = polyval_list(n2, p)
+                    Nq = polyval_list(nq, p)
                     g = e * Qv * Nq
-                    gp = e * (1j * xi * Qv * Nq + _polyval(qp, p) * Nq + Qv * _polyval(nqp, p))
-                    dtotal += e * _polyval(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
+                    gp = e * (1j * xi * Qv * Nq + polyval_list(qp, p) * Nq + Qv * polyval_list(nqp, p))
+                    dtotal += e * polyval_list(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
             Ks.append(sign * two_pi_i * total)
             dKs.append(sign * two_pi_i * dtotal)
-        sep = _min_relative_separation(upper) if len(upper) > 1 else None
-        sep_l = _min_relative_separation(lower) if len(lower) > 1 else None
+        sep = min_relative_separation(upper) if len(upper) > 1 else None
+        sep_l = min_relative_separation(lower) if len(lower) > 1 else None
         if sep is None or (sep_l is not None and sep_l < sep):
             sep = sep_l
         return KernelValues(tuple(Ks), tuple(dKs) if derivative else None, tuple(roots)), sep
 
 
-def _min_relative_separation(roots):
+def min_relative_separation(roots):
     best = None
     for i in range(len(roots)):
         for j in range(i + 1, len(roots)):
@@ -190,7 +258,7 @@ def _roots_mp(coeffs):
                     den *= zi - zj
             if den == 0:
                 break
-            deltas.append(_polyval(monic, zi) / den)
+            deltas.append(polyval_list(monic, zi) / den)
         if len(deltas) != len(z):
             break
         z = [zi - di for zi, di in zip(z, deltas)]
@@ -200,18 +268,22 @@ def _roots_mp(coeffs):
 
 
 class TrackKernelArray:
-    """K(xi, q) and dK/dq for numpy arrays of q in double precision (counting contours, sweeps)."""
+    """K(xi, q) and dK/dq for numpy arrays of q in double precision (counting contours, sweeps).
 
-    def __init__(self, params):
+    ``foundation`` as in :class:`TrackKernel`.
+    """
+
+    def __init__(self, params, *, foundation=None):
         self.params = params
-        self.module = foundation_module(params)
-        self.args = foundation_arguments(params, params.as_float())
+        self.foundation = resolve_foundation(params, foundation)
+        self.module = self.foundation.module
+        self.args = self.foundation.float_arguments(params)
 
     def _coeffs(self, func, q):
         return stack_coefficients(func(q, **self.args), q.shape)
 
     def p_roots(self, q):
-        """Roots in p, shape q.shape + (degree,) (closed-form quartic, see :mod:`polyroots`)."""
+        """Roots in p, shape q.shape + (DEGREE_N,) (closed form for quartics, else companion + Newton)."""
         return poly_roots(self._coeffs(self.module.n_coeffs, q))
 
     def __call__(self, q, xis, *, derivative=False):

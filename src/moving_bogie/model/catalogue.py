@@ -10,6 +10,7 @@ loaded with :func:`load_catalogue` and used exactly like the packaged one.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import importlib
 import importlib.util
@@ -45,6 +46,8 @@ class ParameterSpec:
         Used when an input leaves it out; None when it is required.
     si, unit, si_meaning : str
         The SI parameter it scales, its unit and meaning.
+    damping : bool
+        Whether it is a viscous damping group (zero on the undamped track of the critical velocity).
     """
 
     name: str
@@ -55,6 +58,7 @@ class ParameterSpec:
     si: str
     unit: str
     si_meaning: str
+    damping: bool = False
 
     @property
     def option(self) -> str:
@@ -107,6 +111,7 @@ class Catalogue:
                 meta["si"],
                 meta["unit"],
                 meta["si_meaning"],
+                meta.get("damping", False),
             )
         return out
 
@@ -220,10 +225,37 @@ class Model:
         used = set(self.foundation.MODEL_PARAMETERS) | set(self.vehicle_kernels.MODEL_PARAMETERS)
         return tuple(name for name in self.catalogue.specs if name in used)
 
-    @property
+    @functools.cached_property
     def specs(self) -> dict[str, ParameterSpec]:
-        """:class:`ParameterSpec` of each of :attr:`parameters`."""
-        return {name: self.catalogue.specs[name] for name in self.parameters}
+        """:class:`ParameterSpec` of each of :attr:`parameters`, with this track's SI names and meanings.
+
+        A track may name SI parameters its own way (the railpads ``k_1``, ``c_1`` of a layered track stand
+        where the one-layer track has ``k_f``, ``c_f``); the generated ``GROUP_OVERRIDES`` say so.
+        """
+        overrides = getattr(self.foundation, "GROUP_OVERRIDES", {})
+        return {
+            name: dataclasses.replace(self.catalogue.specs[name], **overrides.get(name, {}))
+            for name in self.parameters
+        }
+
+    @property
+    def scale_parameters(self) -> dict[str, dict]:
+        """SI parameters that set the scales of Eqs. (15)-(16) on this track: name -> unit and meaning.
+
+        ``EI``, ``m``, the reference stiffness (``k_f``; ``k_1`` on a layered track) and the load ``P``.
+        """
+        own = getattr(self.foundation, "SCALE_PARAMETERS", None)
+        return dict(own if own is not None else self.catalogue.parameters.SCALE_PARAMETERS)
+
+    @property
+    def si_names(self) -> dict[str, str]:
+        """The catalogue's SI name -> this track's SI name, for the names a track renames."""
+        return dict(getattr(self.foundation, "SI_NAMES", {}))
+
+    @property
+    def damping(self) -> tuple[str, ...]:
+        """The model's viscous damping groups (foundation and vehicle), in the catalogue's order."""
+        return tuple(name for name, spec in self.specs.items() if spec.damping)
 
     @property
     def alternatives(self) -> dict[str, dict]:
@@ -253,7 +285,7 @@ class Model:
             "alternatives": {
                 name: dict(meta, depends=list(meta["depends"])) for name, meta in self.alternatives.items()
             },
-            "scale_parameters": self.catalogue.parameters.SCALE_PARAMETERS,
+            "scale_parameters": self.scale_parameters,
         }
 
 

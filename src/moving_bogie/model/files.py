@@ -48,9 +48,17 @@ def dimensionless_keys() -> tuple[str, ...]:
 
 
 def physical_keys() -> tuple[str, ...]:
-    """Keys of a ``[physical]`` table: the scale parameters and the SI name of every group."""
-    meta = default_catalogue().parameters
-    return (*meta.SCALE_PARAMETERS, *(m["si"] for m in meta.PARAMETERS.values()))
+    """Keys of a ``[physical]`` table: the scale parameters and the SI name of every group, on any track.
+
+    A track may name SI parameters its own way (a layered track's railpads ``k_1``, ``c_1``); its model's
+    metadata says so, and its names are keys too.
+    """
+    catalogue = default_catalogue()
+    meta = catalogue.parameters
+    keys = [*meta.SCALE_PARAMETERS, *(m["si"] for m in meta.PARAMETERS.values())]
+    for model in catalogue.models():
+        keys += [*model.scale_parameters, *(spec.si for spec in model.specs.values())]
+    return tuple(dict.fromkeys(keys))
 
 
 def load_params_file(path: str | Path) -> tuple[DimensionlessParams, PhysicalParams | None]:

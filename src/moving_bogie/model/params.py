@@ -306,8 +306,11 @@ class DimensionlessParams:
         out |= {name: fraction_to_text(getattr(self, name)) for name in self._model.alternatives}
         return out
 
-    def to_physical(self, EI: NumberLike, m: NumberLike, k_f: NumberLike, P: NumberLike, *, digits: int = 20):
-        """SI parameters for a track (`EI`, `m`, `k_f`) and wheel load `P`: Eqs. (15)-(17), (59) inverted.
+    def to_physical(self, *args: NumberLike, digits: int = 20, **scales: NumberLike):
+        """SI parameters for a track and wheel load: Eqs. (15)-(17), (59) inverted.
+
+        The scale parameters are the model's (``Model.scale_parameters``), by keyword or in their order:
+        ``EI, m, k_f, P`` on the one-layer track, ``EI, m, k_1, P`` on a layered track.
 
         Returns
         -------
@@ -316,7 +319,11 @@ class DimensionlessParams:
         """
         from moving_bogie.model.physical import PhysicalParams
 
-        return PhysicalParams.from_dimensionless(self, EI=EI, m=m, k_f=k_f, P=P, digits=digits)
+        names = tuple(self._model.scale_parameters)
+        if len(args) > len(names):
+            raise ParameterError("scales", f"at most {len(names)} scale parameters: {', '.join(names)}")
+        scales |= dict(zip(names, args))
+        return PhysicalParams.from_dimensionless(self, digits=digits, **scales)
 
 
 def check_value_named(name: str, value: object) -> Fraction:

@@ -30,12 +30,17 @@ if TYPE_CHECKING:
 __all__ = ["DIMENSIONLESS_OF", "PHYSICAL_UNITS", "PhysicalParams", "Scales"]
 
 _META = default_catalogue().parameters
-#: SI unit of each SI parameter of the packaged catalogue (scale parameters first).
+#: SI unit of each SI parameter of the packaged catalogue (scale parameters first), on every track.
 PHYSICAL_UNITS = {name: meta["unit"] for name, meta in _META.SCALE_PARAMETERS.items()} | {
     meta["si"]: meta["unit"] for meta in _META.PARAMETERS.values()
 }
 #: The dimensionless group each SI parameter (other than the scale parameters) scales to.
 DIMENSIONLESS_OF = {meta["si"]: name for name, meta in _META.PARAMETERS.items()}
+for _model in default_catalogue().models():
+    PHYSICAL_UNITS |= {name: meta["unit"] for name, meta in _model.scale_parameters.items()}
+    PHYSICAL_UNITS |= {spec.si: spec.unit for spec in _model.specs.values()}
+    DIMENSIONLESS_OF |= {spec.si: name for name, spec in _model.specs.items()}
+del _model
 
 
 def _rounded(x: mpmath.mpf, digits: int) -> Fraction:
@@ -49,9 +54,20 @@ def _call(func, values: dict) -> Any:
     return func(**{name: (mpmath.sqrt if name == "sqrt" else values[name]) for name in names})
 
 
-def _scales_mp(model_catalogue, scale_values: dict) -> tuple:
+def _generic(model: Model, values: dict) -> dict:
+    """SI values keyed by the catalogue's names (the arguments of the generated scaling functions).
+
+    A track that renames SI parameters (a layered track's ``k_1`` for the reference stiffness ``k_f``)
+    lists the renames in its generated ``SI_NAMES``; the scaling is the same expression.
+    """
+    catalogue_name = {track: generic for generic, track in model.si_names.items()}
+    return {catalogue_name.get(k, k): v for k, v in values.items()}
+
+
+def _scales_mp(model: Model, scale_values: dict) -> tuple:
     """(chi, v_ref, w_st, t_scale) of Eqs. (15)-(16) as mpf at the current precision."""
-    return _call(model_catalogue.parameters.scales, {k: fraction_to_mpf(v) for k, v in scale_values.items()})
+    values = _generic(model, {k: fraction_to_mpf(v) for k, v in scale_values.items()})
+    return _call(model.catalogue.parameters.scales, values)
 
 
 @dataclass(frozen=True)
@@ -137,8 +153,8 @@ class PhysicalParams:
         values = {k: v for k, v in values.items() if v is not None}
         if model is None:
             model = _infer_model(values, beam, track, vehicle)
-        meta = model.catalogue.parameters
-        scale_names = tuple(meta.SCALE_PARAMETERS)
+        scale_parameters = model.scale_parameters
+        scale_names = tuple(scale_parameters)
         si_of = {spec.si: spec for spec in model.specs.values()}
         exact = {}
         for name in values:
@@ -150,7 +166,7 @@ class PhysicalParams:
         for name in scale_names:
             if name not in values:
                 raise ParameterError(
-                    name, f"missing SI parameter {name!r} ({meta.SCALE_PARAMETERS[name]['unit']})"
+                    name, f"missing SI parameter {name!r} ({scale_parameters[name]['unit']})"
                 )
             exact[name] = positive(name, values[name])
         for si, spec in si_of.items():
@@ -211,8 +227,7 @@ class PhysicalParams:
 
     def units(self) -> dict[str, str]:
         """SI name -> unit."""
-        meta = self._model.catalogue.parameters
-        out = {name: m["unit"] for name, m in meta.SCALE_PARAMETERS.items()}
+        out = {name: m["unit"] for name, m in self._model.scale_parameters.items()}
         return out | {spec.si: spec.unit for spec in self._model.specs.values()}
 
     def to_dict(self) -> dict[str, str | None]:
@@ -221,12 +236,12 @@ class PhysicalParams:
         return out | {k: fraction_to_text(v) for k, v in self._values.items()}
 
     def _scale_values(self) -> dict:
-        return {name: self._values[name] for name in self._model.catalogue.parameters.SCALE_PARAMETERS}
+        return {name: self._values[name] for name in self._model.scale_parameters}
 
     def scales(self) -> Scales:
         """Reference scales chi, v_ref, w_st and the time scale, Eqs. (15)-(16), as floats."""
         with mpmath.workdps(30):
-            chi, v_ref, w_st, t_scale = _scales_mp(self._model.catalogue, self._scale_values())
+            chi, v_ref, w_st, t_scale = _scales_mp(self._model, self._scale_values())
             return Scales(chi=float(chi), v_ref=float(v_ref), w_st=float(w_st), t_scale=float(t_scale))
 
     def to_dimensionless(self, *, digits: int = 20) -> DimensionlessParams:
@@ -248,7 +263,7 @@ class PhysicalParams:
         meta = self._model.catalogue.parameters
         exact = {}
         with mpmath.workdps(digits + 10):
-            mp_values = {k: fraction_to_mpf(v) for k, v in self._values.items()}
+            mp_values = _generic(self._model, {k: fraction_to_mpf(v) for k, v in self._values.items()})
             for name, spec in self._model.specs.items():
                 value = _rounded(_call(getattr(meta, f"dimensionless_{name}"), mp_values), digits)
                 try:
@@ -265,23 +280,41 @@ class PhysicalParams:
         cls,
         params: DimensionlessParams,
         *,
-        EI: NumberLike,
-        m: NumberLike,
-        k_f: NumberLike,
-        P: NumberLike,
         digits: int = 20,
+        **scales: NumberLike,
     ) -> PhysicalParams:
-        """Invert Eqs. (15)-(17) and (59) for a given track (`EI`, `m`, `k_f`) and wheel load `P`.
+        """Invert Eqs. (15)-(17) and (59) for a given track and wheel load.
 
-        Results are rounded to `digits` significant decimal digits, as in :meth:`to_dimensionless`.
+        Parameters
+        ----------
+        params : DimensionlessParams
+        **scales
+            The model's scale parameters (:attr:`Model.scale_parameters`): ``EI``, ``m``, ``k_f``, ``P``
+            on the one-layer track; ``EI``, ``m``, ``k_1``, ``P`` on a layered track.
+        digits : int
+            Results are rounded to `digits` significant decimal digits, as in :meth:`to_dimensionless`.
+
+        Raises
+        ------
+        ParameterError
+            Naming a missing or unknown scale parameter.
         """
         model = params.model
+        for name in scales:
+            if name not in model.scale_parameters:
+                known = ", ".join(model.scale_parameters)
+                raise ParameterError(
+                    name, f"{name!r} is not a scale parameter of {model.name}; known: {known}"
+                )
+        track = {}
+        for name, meta in model.scale_parameters.items():
+            if scales.get(name) is None:
+                raise ParameterError(name, f"missing SI parameter {name!r} ({meta['unit']})")
+            track[name] = positive(name, scales[name])
         meta = model.catalogue.parameters
-        given = {"EI": EI, "m": m, "k_f": k_f, "P": P}
-        track = {name: positive(name, given[name]) for name in meta.SCALE_PARAMETERS}
         exact = {}
         with mpmath.workdps(digits + 10):
-            mp_values = {k: fraction_to_mpf(v) for k, v in track.items()}
+            mp_values = _generic(model, {k: fraction_to_mpf(v) for k, v in track.items()})
             mp_values |= {k: fraction_to_mpf(v) for k, v in params.values().items()}
             for name, spec in model.specs.items():
                 exact[spec.si] = _rounded(_call(getattr(meta, f"physical_{name}"), mp_values), digits)
@@ -308,15 +341,14 @@ def _infer_model(values: dict, beam, track, vehicle) -> Model:
 
     catalogue = default_catalogue()
     fixed = {"beam": beam, "track": track, "vehicle": vehicle}
-    scale_names = set(catalogue.parameters.SCALE_PARAMETERS)
-    given = set(values) - scale_names
     fits, covers = [], []
     for model in catalogue.models():
         if any(v is not None and getattr(model, k) != v for k, v in fixed.items()):
             continue
         specs = model.specs.values()
-        names = {s.si for s in specs}
-        required = {s.si for s in specs if s.default is None}
+        names = {s.si for s in specs} | set(model.scale_parameters)
+        required = {s.si for s in specs if s.default is None} | set(model.scale_parameters)
+        given = set(values)
         if given <= names:
             covers.append(model)
             if required <= given:

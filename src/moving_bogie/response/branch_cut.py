@@ -31,8 +31,9 @@ truncated at s = S: for the first band where the neglected tail integral of |j| 
 for the others the tail is added by integration by parts, e^{i q_S tau} (i j/tau - j'/tau^2 - i j''/tau^3),
 with S chosen so that the first neglected term |j'''|/tau^4 (estimated by |j''|/tau^3) is below ``tol``.
 
-Timoshenko-Rayleigh: the cut is a curve below eta_f (``kernels/cut.py``) and is not implemented here;
-:class:`BranchCutUnavailable` is raised.
+Any other beam or track (a curved cut with folds, lenses and further curves) is integrated by
+:class:`~moving_bogie.response.cut_integral.CurveBranchCut`; this class raises :class:`BranchCutUnavailable`
+for it.
 """
 
 from __future__ import annotations
@@ -46,10 +47,10 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.response.quadrature import adapt_panels, by_bands, cis, fourier_sum, subdivide
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
 
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
 #: Phase per panel (radians) at the largest tau of its band; 16 Gauss-Legendre nodes integrate it to ~1e-14.
 _PANEL_PHASE = 3 * np.pi
 #: Largest panel in p: at most _PANEL_XI radians of e^{i p xi} at the largest |xi| and never above _PANEL_DP;
@@ -57,7 +58,6 @@ _PANEL_PHASE = 3 * np.pi
 _PANEL_DP = 0.5
 _PANEL_XI = 2.0
 _PANEL_DS_REL = 0.05
-_FIRST_BAND = 0.5
 #: Bisection levels of the adaptive base partition (a peak 2^-40 of a panel wide is still resolved).
 _MAX_SPLITS = 40
 _S_STEPS = tuple(2.0**k for k in range(-1, 16))
@@ -86,7 +86,7 @@ class BranchCut:
 
     def __init__(self, params, model: str | None = None, *, panel_tol: float = 1e-13):
         model = model or params.vehicle
-        if params.beam != "eb":
+        if (params.beam, params.track) != ("eb", "one-layer"):
             raise BranchCutUnavailable(
                 "the branch-cut part I_bc is implemented for the Euler-Bernoulli beam only (beam='eb'); "
                 "for Timoshenko-Rayleigh use branch_cut=False (residues only)"
@@ -201,9 +201,9 @@ class BranchCut:
             if np.any(mask):
                 x = xi[mask]
                 root = P[:, k : k + 1]
-                common[:, mask] = _cis(root.real * x) * (np.exp(-root.imag * x) * weight[:, k : k + 1])
-        e0 = _cis(P[:, 0:1].real * xi) * weight[:, 0:1]
-        e1 = _cis(P[:, 1:2].real * xi) * weight[:, 1:2]
+                common[:, mask] = cis(root.real * x) * (np.exp(-root.imag * x) * weight[:, k : k + 1])
+        e0 = cis(P[:, 0:1].real * xi) * weight[:, 0:1]
+        e1 = cis(P[:, 1:2].real * xi) * weight[:, 1:2]
         below = sign * (common + np.where(pos, e0, e1))
         above = sign * (common + np.where(pos, e1, e0))
         return below, above
@@ -266,27 +266,12 @@ class BranchCut:
         cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
         panels = max(1, int(np.ceil(cum[-1])))
         start = np.interp(np.linspace(0.0, cum[-1], panels + 1), cum, P)
-        a, b = start[:-1], start[1:]
-        accepted = [start]
-        for _ in range(_MAX_SPLITS):
-            if a.size == 0:
-                break
-            m = 0.5 * (a + b)
-            whole = self._panel_integrals(a, b)
-            halves = self._panel_integrals(a, m) + self._panel_integrals(m, b)
-            bad = np.max(np.abs(whole - halves), axis=-1) > self.panel_tol
-            accepted.append(m[bad])
-            a, b = np.concatenate([a[bad], m[bad]]), np.concatenate([m[bad], b[bad]])
-        edges = np.unique(np.concatenate(accepted))
+        edges = adapt_panels(start, self._jump_ds, self.panel_tol, _MAX_SPLITS)
         self._base[S] = edges
         return edges
 
-    def _panel_integrals(self, a, b):
-        nodes = (0.5 * (b - a)[:, None] * _GL_X + 0.5 * (a + b)[:, None]).ravel()
-        weights = (0.5 * (b - a)[:, None] * _GL_W).ravel()
-        _, J = self.response_jumps(nodes)
-        values = J * (weights * self.ds(nodes))[:, None]
-        return values.reshape(a.size, _GL_X.size, -1).sum(axis=1)
+    def _jump_ds(self, nodes):
+        return self.response_jumps(nodes)[1] * self.ds(nodes)[:, None]
 
     def rule(self, S: float, tau_hi: float, xi_max: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Composite 16-point Gauss-Legendre nodes and weights in p on [p_c, p(S)].
@@ -299,15 +284,7 @@ class BranchCut:
         edges = self.base_edges(S)
         a, b = edges[:-1], edges[1:]
         phase = tau_hi * (self.s(b) - self.s(a)) / _PANEL_PHASE
-        pieces = np.maximum(1, np.ceil(np.maximum(phase, (b - a) / dp))).astype(int)
-        k = np.repeat(np.arange(a.size), pieces)
-        j = np.arange(k.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
-        width = (b - a) / pieces
-        lo = a[k] + j * width[k]
-        hi = lo + width[k]
-        nodes = (0.5 * (hi - lo)[:, None] * _GL_X + 0.5 * (lo + hi)[:, None]).ravel()
-        weights = (0.5 * (hi - lo)[:, None] * _GL_W).ravel()
-        return nodes, weights
+        return subdivide(edges, np.ceil(np.maximum(phase, (b - a) / dp)))
 
     def _tail_terms(self, channel, S: float):
         """(j, j', j'') in s at s = S by central differences (max over channels when estimating)."""
@@ -371,28 +348,22 @@ class BranchCut:
         tau = np.asarray(tau, dtype=float)
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
-        flat = tau.reshape(-1)
         m = channel(np.array([self.p_c + 1.0]))[1].shape[-1]
-        result = np.zeros((flat.size, m), dtype=complex)
-        exponent = np.ceil(np.log2(np.maximum(flat, _FIRST_BAND) / _FIRST_BAND))
-        band_hi = _FIRST_BAND * 2.0**exponent
-        for hi in np.unique(band_hi):
-            idx = np.nonzero(band_hi == hi)[0]
-            lo = 0.0 if hi <= _FIRST_BAND else hi / 2
+
+        def band(lo, ts):
             S = self.choose_S(channel, lo, tol, s_min)
-            ts = flat[idx]
             nodes, weights = self.rule(S, float(ts.max()), xi_max)
             q_max = float(np.abs(self.q(nodes)).max())
             weighted = lambda c, w: _weighted(channel, self, c, w)  # noqa: E731
-            acc = _fourier_sum(ts, nodes, weights, weighted, m, q_max, self.eta_f)
+            acc = fourier_sum(ts, nodes, weights, weighted, m, q_max, self.eta_f)
             if lo > 0:
                 g0, g1, g2 = self._tail_terms(channel, S)
-                qS = S + 1j * self.eta_f
-                e = np.exp(1j * qS * ts)[:, None]
+                e = np.exp(1j * (S + 1j * self.eta_f) * ts)[:, None]
                 t = ts[:, None]
                 acc += e * (1j * g0 / t - g1 / t**2 - 1j * g2 / t**3)
-            result[idx] = acc
-        return (result.real / np.pi).reshape(tau.shape + (result.shape[-1],))
+            return acc
+
+        return by_bands(tau, m, band)
 
     def responses(self, tau, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
         """I_bc(tau) of every response, as a dict name -> ndarray."""
@@ -423,69 +394,3 @@ class BranchCut:
 def _weighted(channel, cut, chunk, w):
     q, J = channel(chunk)
     return q, J * (w * cut.ds(chunk))[:, None]
-
-
-#: Taylor terms of e^{i q delta} with |q delta| <= 1/4 (remainder below 1e-16 of the sum of |G|).
-_TAYLOR_TERMS = 12
-_GRID_BLOCK = 256
-
-
-def _cis(x):
-    """e^{i x} for a real array x (cos and sin of real arguments are cheaper than a complex exp)."""
-    out = np.empty(x.shape, dtype=complex)
-    np.cos(x, out=out.real)
-    np.sin(x, out=out.imag)
-    return out
-
-
-def _phases(t, s, eta):
-    """e^{i (s + i eta) t} for the outer product of times t and real s (sin/cos of real arguments)."""
-    out = _cis(np.multiply.outer(t, s))
-    out *= np.exp(-eta * t)[:, None]
-    return out
-
-
-def _fourier_sum(ts, nodes, weights, weighted, m, q_max, eta, *, memory=4_000_000):
-    """sum_n G_n e^{i q_n t} for every t, (q, G) = weighted(nodes, weights), Im q_n = eta: (len(ts), m).
-
-    Few times: the exponentials directly. Many times: on a uniform grid t_g with step h = 1/(2 max|q|),
-    e^{i q t} = e^{i q t_g} sum_k (i q delta)^k / k! with delta = t - t_g, |q delta| <= 1/4, and the grid
-    phases come by blocks from e^{i q t_0} e^{i q j h}. The cost is (grid points x nodes x terms) whatever
-    the number of times.
-    """
-    node_block = max(16, int(memory // (4 * max(m, 1))))
-    h = 0.5 / (q_max + 1.0)
-    lo, hi = np.floor(ts.min() / h), np.ceil(ts.max() / h)
-    grid_size = int(hi - lo) + 1
-    direct = ts.size <= grid_size or m > 64
-    acc = np.zeros((ts.size, m), dtype=complex)
-    if not direct:
-        k = np.rint(ts / h)
-        delta = ts - k * h
-        row = (k - lo).astype(int)
-        moments = np.zeros((grid_size, _TAYLOR_TERMS * m), dtype=complex)
-        factorials = np.concatenate([[1.0], np.cumprod(np.arange(1, _TAYLOR_TERMS))])
-        steps = np.arange(_GRID_BLOCK) * h
-    for start in range(0, nodes.size, node_block):
-        q, G = weighted(nodes[start : start + node_block], weights[start : start + node_block])
-        s = q.real
-        if direct:
-            block = max(1, int(memory // max(1, q.size)))
-            for t0 in range(0, ts.size, block):
-                t = ts[t0 : t0 + block]
-                acc[t0 : t0 + block] += _phases(t, s, eta) @ G
-            continue
-        powers = (1j * q)[:, None] ** np.arange(_TAYLOR_TERMS) / factorials
-        B = (powers[:, :, None] * G[:, None, :]).reshape(q.size, -1)
-        local = _phases(steps, s, eta)
-        starts = (lo + np.arange(0, grid_size, _GRID_BLOCK)) * h
-        first = _phases(starts, s, eta)
-        for b, g0 in enumerate(range(0, grid_size, _GRID_BLOCK)):
-            n = min(_GRID_BLOCK, grid_size - g0)
-            moments[g0 : g0 + n] += (local[:n] * first[b]) @ B
-    if not direct:
-        sel = moments[row].reshape(ts.size, _TAYLOR_TERMS, m)
-        acc = sel[:, -1]
-        for j in range(_TAYLOR_TERMS - 2, -1, -1):
-            acc = acc * delta[:, None] + sel[:, j]
-    return acc

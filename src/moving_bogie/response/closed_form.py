@@ -34,6 +34,7 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
+from moving_bogie.response.cut_integral import branch_cut_for
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
 from moving_bogie.response.shapes import KernelGrid
 
@@ -68,7 +69,7 @@ class TimeSeries:
     units : dict
         Units of tau, w, u, theta: dimensionless (w_st, w_st chi) or SI (s, m, rad).
     notes : tuple of str
-        What the computation decided (e.g. branch cut skipped for a Timoshenko-Rayleigh beam).
+        What the computation decided (e.g. up to which time the branch cut was included).
     """
 
     tau: np.ndarray
@@ -153,7 +154,7 @@ def _branch_cut_or_note(params, model, mode):
     if mode == "off":
         return None, []
     try:
-        return BranchCut(params, model), []
+        return branch_cut_for(params, model), []
     except BranchCutUnavailable as exc:
         if mode == "on":
             raise
@@ -217,7 +218,9 @@ def closed_form_response(
     frequencies : FrequencyResult, optional
         Precomputed induced frequencies (same params and model); computed at ``dps`` if omitted.
     branch_cut : True, False or "auto"
-        Include the branch-cut part I_bc (Euler-Bernoulli only; True raises for Timoshenko-Rayleigh).
+        Include the branch-cut part I_bc (any beam: the Euler-Bernoulli half-line by
+        :class:`~moving_bogie.response.branch_cut.BranchCut`, any other cut by
+        :class:`~moving_bogie.response.cut_integral.CurveBranchCut`).
         "auto": include it where it exceeds ``bc_tol`` (module docstring).
     dps : int
         Precision of the induced frequencies and residue coefficients when they are computed here.
@@ -239,7 +242,7 @@ def closed_form_response(
     IncompleteFrequencies
         If the frequency count failed (``not frequencies.count_ok``).
     BranchCutUnavailable
-        ``branch_cut=True`` with a Timoshenko-Rayleigh beam or above the critical velocity.
+        ``branch_cut=True`` above the critical velocity (the cut reaches q = 0).
     """
     model = model or params.vehicle
     dimless, scales = _dimensionless(params)

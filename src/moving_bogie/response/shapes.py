@@ -14,7 +14,7 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
-from moving_bogie.kernels.track import TrackKernel, _min_relative_separation, _polyder, _polyval
+from moving_bogie.kernels.track import TrackKernel, min_relative_separation, polyder_list, polyval_list
 
 __all__ = ["KernelGrid"]
 
@@ -31,23 +31,25 @@ class KernelGrid:
         Precision of the roots and weights.
     coalescence : float
         Relative separation of two same-side roots below which the slow exact path is used.
+    foundation : module or Foundation, optional
+        The track model (default that of the parameters' model).
     """
 
-    def __init__(self, params, q, *, dps: int = 30, coalescence: float = 1e-3):
+    def __init__(self, params, q, *, dps: int = 30, coalescence: float = 1e-3, foundation=None):
         self.params = params
         self.dps = dps
-        self.kernel = TrackKernel(params)
+        self.kernel = TrackKernel(params, foundation=foundation)
         with mpmath.workdps(dps):
             self.q = mpmath.mpc(q)
-            args = self.kernel._numbers()
+            args = self.kernel.arguments()
             roots = self.kernel.p_roots(self.q)
-            n1 = _polyder([mpmath.mpc(c) for c in self.kernel.module.n_coeffs(self.q, **args)])
+            n1 = polyder_list([mpmath.mpc(c) for c in self.kernel.module.n_coeffs(self.q, **args)])
             qc = [mpmath.mpc(c) for c in self.kernel.module.q_coeffs(self.q, **args)]
-            weights = [_polyval(qc, p) / _polyval(n1, p) for p in roots]
+            weights = [polyval_list(qc, p) / polyval_list(n1, p) for p in roots]
             upper = [p for p in roots if mpmath.im(p) > 0]
             lower = [p for p in roots if mpmath.im(p) < 0]
             seps = [
-                s for s in (_min_relative_separation(upper), _min_relative_separation(lower)) if s is not None
+                s for s in (min_relative_separation(upper), min_relative_separation(lower)) if s is not None
             ]
         self.exact = bool(seps) and min(seps) < coalescence
         self.roots = np.array([complex(p) for p in roots])

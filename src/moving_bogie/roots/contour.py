@@ -18,8 +18,9 @@ class EdgeZeroError(RuntimeError):
     """A zero lies on (or within sampling resolution of) the contour."""
 
 
-@dataclass(frozen=True)
-class Rectangle:
+class BoundingBox:
+    """Width, height and centre of a search region from its bounds x0, x1, y0, y1."""
+
     x0: float
     x1: float
     y0: float
@@ -36,6 +37,14 @@ class Rectangle:
     @property
     def center(self):
         return complex(0.5 * (self.x0 + self.x1), 0.5 * (self.y0 + self.y1))
+
+
+@dataclass(frozen=True)
+class Rectangle(BoundingBox):
+    x0: float
+    x1: float
+    y0: float
+    y1: float
 
     def contains(self, z, margin=0.0):
         return (self.x0 - margin <= z.real <= self.x1 + margin) and (
@@ -86,7 +95,14 @@ def winding_number(
         Relative segment length (to the rectangle size) below which refinement gives up.
     """
     size = max(rect.width, rect.height)
-    z = rect.boundary(spacing or min(size / 64, 0.005))
+    # a curved cell (roots/cut_cells.py) is refined along its own edges, a rectangle along its sides
+    points_at = getattr(rect, "points_at", None)
+    if points_at is not None:
+        t = rect.boundary_parameters(spacing or min(size / 64, 0.005))
+        z = np.append(points_at(t[:-1]), 0)
+        z[-1] = z[0]
+    else:
+        z = rect.boundary(spacing or min(size / 64, 0.005))
     w = f(z)
     while True:
         if not np.all(np.isfinite(w)):
@@ -105,8 +121,13 @@ def winding_number(
         seg = np.abs(z[1:] - z[:-1])
         if np.any(seg[bad] < min_segment * size) or z.size > max_points:
             raise EdgeZeroError(f"a zero lies on or next to the contour of {rect}")
-        mids = 0.5 * (z[:-1][bad] + z[1:][bad])
-        wm = f(mids)
         idx = np.nonzero(bad)[0] + 1
+        if points_at is not None:
+            tm = 0.5 * (t[:-1][bad] + t[1:][bad])
+            mids = points_at(tm)
+            t = np.insert(t, idx, tm)
+        else:
+            mids = 0.5 * (z[:-1][bad] + z[1:][bad])
+        wm = f(mids)
         z = np.insert(z, idx, mids)
         w = np.insert(w, idx, wm)

@@ -143,7 +143,9 @@ class FrequencyResult:
             "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
             "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
             "evaluations": self.evaluations,
-            "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
+            "unsearched": [
+                {"re": [u.x0, u.x1], "im": [u.y0, u.y1], "height": u.height} for u in self.unsearched
+            ],
             "far_field": None if self.far_field is None else self.far_field.to_dict(),
             "warnings": list(self.warnings),
         } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
@@ -161,11 +163,12 @@ def induced_frequencies(
     extra_dps: int | None = None,
     window: Rectangle | None = None,
     check_window: bool = True,
-    eps: float = 1e-7,
+    eps: float = 2e-11,
     eps_branch: float = 1e-5,
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
     certify: bool = False,
+    foundation=None,
 ) -> FrequencyResult:
     """Every induced frequency of ``params`` in ``window`` (default :func:`default_window`).
 
@@ -183,7 +186,8 @@ def induced_frequencies(
     check_window : bool
         Also count roots in a window twice as large; more roots there make the result fail loudly.
     eps : float
-        Half-width of the sliver around the cut of K that contours keep away from.
+        Distance kept from the cut of K by the contours that follow it: the unsearched sliver around the
+        cut is 2 eps high, at most 5 eps where two cut curves meet (default: at most 1e-10).
     eps_branch : float
         Distance kept from the branch point (where K is infinite).
     newton_cell : float
@@ -192,6 +196,9 @@ def induced_frequencies(
         Called with the fraction of work done (0..1).
     certify : bool
         Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
+    foundation : module or Foundation, optional
+        The track model (default that of the parameters' model, see
+        :func:`moving_bogie.kernels.track.resolve_foundation`).
     """
     model = model or params.vehicle
     if extra_dps is None:
@@ -200,8 +207,8 @@ def induced_frequencies(
         window, far = far_field_window(params, model)
     else:
         far = far_field_radius(params, model, default_window(params, model).x1)
-    fast = CharacteristicArray(params, model)
-    precise = Characteristic(params, model)
+    fast = CharacteristicArray(params, model, foundation=foundation)
+    precise = Characteristic(params, model, foundation=foundation)
     warnings = []
 
     def report(x):
@@ -269,14 +276,15 @@ def induced_frequencies(
     return result
 
 
-#: Perturbations of the tiling tried in turn when an edge meets a root (eps factor, gap height fraction).
-_RETRIES = ((1.0, 0.1), (7.0, 0.113), (53.0, 0.087), (0.13, 0.121))
+#: Perturbations of the tiling tried in turn when an edge meets a root (eps factor, gap height fraction);
+#: eps only shrinks, so the unsearched sliver never exceeds 2 eps.
+_RETRIES = ((1.0, 0.1), (0.8, 0.113), (0.6, 0.087), (0.5, 0.121))
 
 
 def _count_tiling(fast, params, window, eps, eps_branch):
     """Tile the window and count the roots in every tile; on a root sitting on an edge, move all the
     edges (the tiles share them, so they move together) and count again."""
-    cut = cut_locus(params, window.x0, window.x1)
+    cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
     error = None
     for factor, fraction in _RETRIES:
         gap_height = fraction * max(window.width, window.height)
@@ -308,18 +316,16 @@ def _locate(fast, precise, rect, n, newton_cell, dps):
             out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
             continue
         for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65):
-            a, b = r.split(frac)
+            pieces = r.split(frac)  # two halves (a cell at a fold of the cut may give three pieces)
             try:
-                na = winding_number(fast, a)
-                nb = winding_number(fast, b)
+                counts = [winding_number(fast, piece) for piece in pieces]
             except EdgeZeroError:
                 continue
-            if na + nb == k:
+            if sum(counts) == k:
                 break
         else:
             raise CountMismatch(f"could not split {r} holding {k} root(s) into consistent halves")
-        stack.append((a, na))
-        stack.append((b, nb))
+        stack.extend(zip(pieces, counts))
     return out
 
 

@@ -1,71 +1,246 @@
-"""Tiling of the search window into rectangles that never meet the cut of K.
+"""Tiling of the search window into regions that never meet the cut of K.
 
-The window is cut into: everything below the cut band, everything above it, the gap left of the branch
-point (where K is analytic across Im q = eta_f, so undamped real roots lie strictly inside), and, when
-the cut is a curve (Timoshenko-Rayleigh), thin columns above and below it. What is left unsearched is a
-sliver of half-width ``eps`` around the cut (and ``eps_branch`` around the branch point): roots there
-are within that distance of the cut; the result lists those slivers.
+The window is cut into: everything below the band of the cut, everything above it, the gap left of the
+cut's leftmost point (where K is analytic across the cut's line, so undamped real roots lie strictly
+inside), and, over the cut, cells whose edges follow the traced cut curves at the distance ``eps``
+(:mod:`cut_cells`): below the lowest curve, between curves (the lens that opens at a fold of the
+Timoshenko-Rayleigh cut), above the highest, and two cells around each fold. What is left unsearched is
+the band of half-width ``eps`` around the cut (height 2 eps at every Re q) and, at a cusp of the cut (the
+branch point of K, Euler-Bernoulli), a box of half-width ``eps_branch``: roots there are within that
+distance of the cut; the result lists those slivers with their height.
+
+Where the traced curves cannot be followed (two curves crossing or closer than 4 eps inside a column, or
+a fold opening towards smaller Re q), the column falls back to a padded strip around the cut's range in
+it, and the sliver reported there is that strip's height.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+from scipy import optimize
+
 from moving_bogie.kernels.cut import CutLocus
 from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.cut_cells import ColumnCell, Edge, Sliver, TipCell
+
+__all__ = ["Tiling", "tile_window"]
+
+_COLUMN_SAMPLES = 17  # Re q samples per column where the order of the curves is checked
+_MERGE = 3.0  # arms closer than this many eps are left out together (sliver <= 5 eps)
 
 
 @dataclass(frozen=True)
 class Tiling:
-    regions: tuple  # Rectangles to count in
-    unsearched: tuple  # Rectangles (slivers around the cut) not searched
+    regions: tuple  # Rectangles and curved cells to count in
+    unsearched: tuple  # Slivers around the cut not searched
 
 
 def tile_window(
-    window: Rectangle, cut: CutLocus, *, eps: float, eps_branch: float, gap_height: float, columns: int = 48
+    window: Rectangle,
+    cut: CutLocus,
+    *,
+    eps: float,
+    eps_branch: float,
+    gap_height: float,
+    columns: int = 48,
+    curved_columns: int = 6,
 ) -> Tiling:
-    """Rectangles covering ``window`` minus an ``eps``-neighbourhood of the cut.
+    """Regions covering ``window`` minus an ``eps``-band around the cut.
 
-    Left of the branch point the gap region extends ``gap_height`` above and below the cut, so that roots
-    on or near the line Im q = eta_f there (the real roots of undamped cases) are far from every edge.
-    Edges run close to the cut only where the cut itself runs.
+    Left of the cut the gap region extends ``gap_height`` above and below the cut, so that roots on or near
+    the cut's line there (the real roots of undamped cases) are far from every edge. ``columns`` splits a
+    flat cut's strip (as it always was), ``curved_columns`` the curved one.
     """
     if not cut.points.size or cut.im_high < window.y0 or cut.im_low > window.y1:
         return Tiling((window,), ())
-    lo, hi = cut.im_low - eps, cut.im_high + eps
     band_lo = max(window.y0, cut.im_low - gap_height)
     band_hi = min(window.y1, cut.im_high + gap_height)
-    regions, unsearched = [], []
+    regions = []
     if band_lo > window.y0:
         regions.append(Rectangle(window.x0, window.x1, window.y0, band_lo))
     if band_hi < window.y1:
         regions.append(Rectangle(window.x0, window.x1, band_hi, window.y1))
+    if cut.flat or not cut.arms:
+        return _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi)
+    return _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, curved_columns)
+
+
+def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
+    """A cut on one horizontal line (Euler-Bernoulli): strips below and above the line, and a box of
+    half-width ``eps_branch`` around the branch point (where K varies like a square root: an edge
+    passing at distance eps from it would need samples eps apart)."""
+    lo, hi = cut.im_low - eps, cut.im_high + eps
     x_gap = cut.x_start - eps_branch
     if x_gap > window.x0:
         regions.append(Rectangle(window.x0, min(x_gap, window.x1), band_lo, band_hi))
     x_band = max(window.x0, x_gap)
     if x_band >= window.x1:
         return Tiling(tuple(regions), ())
-    if cut.im_high - cut.im_low <= 1e-12:
+    unsearched = []
+    x_strip = x_band
+    if np.isfinite(cut.x_start) and x_gap > window.x0:
+        x_strip = min(window.x1, cut.x_start + eps_branch)
+        b_lo, b_hi = max(band_lo, cut.im_low - eps_branch), min(band_hi, cut.im_high + eps_branch)
+        if b_lo > band_lo:
+            regions.append(Rectangle(x_band, x_strip, band_lo, b_lo))
+        if b_hi < band_hi:
+            regions.append(Rectangle(x_band, x_strip, b_hi, band_hi))
+        unsearched.append(Sliver(x_band, x_strip, b_lo, b_hi, b_hi - b_lo))
+    if x_strip < window.x1:
         if lo > band_lo:
-            regions.append(Rectangle(x_band, window.x1, band_lo, lo))
+            regions.append(Rectangle(x_strip, window.x1, band_lo, lo))
         if hi < band_hi:
-            regions.append(Rectangle(x_band, window.x1, hi, band_hi))
-        unsearched.append(Rectangle(x_band, window.x1, max(lo, band_lo), min(hi, band_hi)))
-        return Tiling(tuple(regions), tuple(unsearched))
-    width = (window.x1 - x_band) / columns
-    # the cut is sampled: pad each column's range so that no edge crosses it between samples
-    pad = eps + 0.05 * (cut.im_high - cut.im_low)
-    for k in range(columns):
-        a, b = x_band + k * width, x_band + (k + 1) * width
-        rng = cut.im_range_between(a - eps, b + eps)
-        if rng is None:
-            regions.append(Rectangle(a, b, band_lo, band_hi))
-            continue
-        c_lo, c_hi = rng[0] - pad, rng[1] + pad
-        if c_lo - band_lo > eps:
-            regions.append(Rectangle(a, b, band_lo, c_lo))
-        if band_hi - c_hi > eps:
-            regions.append(Rectangle(a, b, c_hi, band_hi))
-        unsearched.append(Rectangle(a, b, max(band_lo, c_lo), min(band_hi, c_hi)))
+            regions.append(Rectangle(x_strip, window.x1, hi, band_hi))
+        y0, y1 = max(lo, band_lo), min(hi, band_hi)
+        unsearched.append(Sliver(x_strip, window.x1, y0, y1, y1 - y0))
     return Tiling(tuple(regions), tuple(unsearched))
+
+
+def _arms_over(cut, a, b):
+    return [arm for arm in cut.arms if arm.x_lo <= a + 1e-12 and arm.x_hi >= b - 1e-12]
+
+
+def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) -> Tiling:
+    unsearched = []
+    folds = sorted((f for f in cut.folds if window.x0 < f.q.real < window.x1), key=lambda f: f.q.real)
+    # event intervals around folds (tip cells) and cusps (branch-point boxes)
+    events = []
+    for f in folds:
+        half = eps_branch if f.cusp else min(1e-3 * window.width, 1e-3)
+        events.append((f.q.real - half, f.q.real + half, f))
+    x_band = window.x0
+    if np.isfinite(cut.x_start) and cut.x_start > window.x0:
+        left = min([cut.x_start - eps_branch] + [e[0] for e in events])
+        if left > window.x0:
+            regions.append(Rectangle(window.x0, min(left, window.x1), band_lo, band_hi))
+            x_band = left
+    edges_x = [x_band]
+    for lo, hi, f in events:
+        if hi <= edges_x[-1] or lo >= window.x1:
+            continue
+        if lo > edges_x[-1]:
+            _columns(cut, edges_x[-1], lo, regions, unsearched, eps, band_lo, band_hi, columns)
+        _event(cut, max(lo, edges_x[-1]), min(hi, window.x1), f, regions, unsearched, eps, band_lo, band_hi)
+        edges_x.append(min(hi, window.x1))
+    if edges_x[-1] < window.x1:
+        _columns(cut, edges_x[-1], window.x1, regions, unsearched, eps, band_lo, band_hi, columns)
+    return Tiling(tuple(regions), tuple(unsearched))
+
+
+def _columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, columns):
+    xs = np.linspace(x0, x1, columns + 1)
+    for a, b in zip(xs[:-1], xs[1:]):
+        _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi)
+
+
+def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
+    """Cells of one column [a, b] between the cut's arms (graphs over Re q there), or a padded fallback.
+
+    Where two arms cross, the column is split at the crossing; where two arms are closer than
+    ``_MERGE`` eps, the thin lens between them is left out with them (a sliver at most 5 eps high).
+    """
+    xs = np.linspace(a, b, _COLUMN_SAMPLES)
+    arms = _arms_over(cut, a, b) if arms is None else arms
+    if not arms:
+        regions.append(Rectangle(a, b, band_lo, band_hi))
+        return
+    ys = np.array([arm.y_at(xs) for arm in arms])
+    order = np.argsort(ys[:, _COLUMN_SAMPLES // 2])
+    arms, ys = [arms[k] for k in order], ys[order]
+    gaps = np.diff(ys, axis=0)
+    for k in range(len(arms) - 1):
+        g = gaps[k]
+        if np.all(np.abs(g) < 1e-13):
+            continue  # coincident curves (Euler-Bernoulli): merged below
+        split = _split_point(arms[k], arms[k + 1], xs, g, eps)
+        if split is not None and a < split < b:
+            _column(cut, a, split, regions, unsearched, eps, band_lo, band_hi, arms)
+            _column(cut, split, b, regions, unsearched, eps, band_lo, band_hi, arms)
+            return
+        if np.any(g < 0):
+            _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi)
+            return
+    if ys.min() - eps <= band_lo or ys.max() + eps >= band_hi:
+        _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi)
+        return
+    # groups of arms closer than _MERGE eps share one pair of edges
+    groups = [[0]]
+    for k in range(len(arms) - 1):
+        if np.all(gaps[k] <= _MERGE * eps):
+            groups[-1].append(k + 1)
+        else:
+            groups.append([k + 1])
+    edges = [Edge(y=band_lo)]
+    for group in groups:
+        lo_arm, hi_arm = arms[group[0]], arms[group[-1]]
+        edges += [Edge(arm=lo_arm, side=-1, delta=eps), Edge(arm=hi_arm, side=1, delta=eps)]
+        y_lo, y_hi = ys[group[0]], ys[group[-1]]
+        thickness = float((y_hi - y_lo).max()) + 2 * eps
+        unsearched.append(Sliver(a, b, float(y_lo.min() - eps), float(y_hi.max() + eps), thickness))
+    edges.append(Edge(y=band_hi))
+    regions.extend(ColumnCell(a, b, lo, hi) for lo, hi in zip(edges[::2], edges[1::2]))
+
+
+def _split_point(lower, upper, xs, gap, eps):
+    """Where the column must be split for the arms ``lower`` < ``upper`` (at the middle): their crossing,
+    or the Re q where their gap passes _MERGE eps (None if neither happens inside)."""
+
+    def g(x, target=0.0):
+        return float(upper.y_at(np.array([x]))[0] - lower.y_at(np.array([x]))[0]) - target
+
+    for target in (0.0, _MERGE * eps):
+        change = np.nonzero(np.sign(gap[:-1] - target) * np.sign(gap[1:] - target) < 0)[0]
+        if change.size:
+            k = change[0]
+            return optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
+    return None
+
+
+def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
+    pad = eps + 0.05 * float(ys.max() - ys.min())
+    c_lo, c_hi = max(band_lo, float(ys.min()) - pad), min(band_hi, float(ys.max()) + pad)
+    if c_lo > band_lo:
+        regions.append(Rectangle(a, b, band_lo, c_lo))
+    if c_hi < band_hi:
+        regions.append(Rectangle(a, b, c_hi, band_hi))
+    unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo))
+
+
+def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
+    """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched)."""
+    pair = [arm for arm in cut.arms if min(abs(arm.p[0] - fold.p), abs(arm.p[-1] - fold.p)) < 1e-12]
+    others = [arm for arm in _arms_over(cut, a, b) if all(arm is not x for x in pair)]
+    xs = np.linspace(a, b, _COLUMN_SAMPLES)
+    pair_ys = [fold.q.imag] + [
+        float(y) for arm in pair for y in arm.y_at(np.linspace(max(a, arm.x_lo), b, 9))
+    ]
+    low, high = min(pair_ys), max(pair_ys)
+    below = [arm for arm in others if arm.y_at(xs).max() < low - 8 * eps]
+    above = [arm for arm in others if arm.y_at(xs).min() > high + 8 * eps]
+    if fold.cusp or fold.opens < 0 or len(pair) != 2 or len(below) + len(above) != len(others):
+        ys = np.array(pair_ys + [float(y) for arm in others for y in arm.y_at(xs)])
+        lo, hi = float(ys.min()) - eps, float(ys.max()) + eps
+        if lo > band_lo:
+            regions.append(Rectangle(a, b, band_lo, lo))
+        if hi < band_hi:
+            regions.append(Rectangle(a, b, hi, band_hi))
+        unsearched.append(Sliver(a, b, lo, hi, hi - lo))
+        return
+    # other curves passing above or below the fold get ordinary column cells there
+    if below:
+        top = max(float(arm.y_at(xs).max()) for arm in below)
+        split = 0.5 * (top + low)
+        _column(cut, a, b, regions, unsearched, eps, band_lo, split, below)
+        band_lo = split
+    if above:
+        bottom = min(float(arm.y_at(xs).min()) for arm in above)
+        split = 0.5 * (bottom + high)
+        _column(cut, a, b, regions, unsearched, eps, split, band_hi, above)
+        band_hi = split
+    at_b = [float(arm.y_at(np.array([b]))[0]) for arm in pair]
+    lower, upper = (pair[0], pair[1]) if at_b[0] < at_b[1] else (pair[1], pair[0])
+    regions.append(TipCell(fold, lower, upper, b, eps, True))
+    regions.append(TipCell(fold, lower, upper, b, eps, False, (a, band_lo, band_hi)))
+    unsearched.append(Sliver(float(fold.q.real) - eps, b, min(at_b) - eps, max(at_b) + eps, 2 * eps))

@@ -1,66 +1,45 @@
-"""Critical velocity of a constant moving force, Eqs. (65)-(66), checked against the dispersion relation.
+"""Critical velocity of a constant moving force, Eqs. (65)-(66), from the dispersion relation of any track.
 
 A constant force moving at alpha excites a steady wave of wavenumber p wherever N(p, 0) = 0 has a real
-root (undamped track, q = 0 in the moving frame): the force travels with the phase speed of a free wave.
-The critical velocity is the smallest such alpha, the minimum over real p of the phase speed
-c(p) (the smallest positive alpha with N(p, 0; alpha) = 0); at the minimum N(p, 0) has a real double root
-in p, so (p_cr, alpha_cr) solves N = dN/dp = 0. The minimum is located in double precision on a grid of p
-and polished with mpmath's Newton on that 2x2 system, at ``dps`` digits, and confirmed at a higher
-precision.
+root on the undamped track (every damping group zero; q = 0 in the moving frame). Because every track
+operator has constant coefficients, N(p, q; alpha) = N(p, q - alpha p; 0): the free waves of the track at
+rest have the frequencies +-Omega_j(p) (the roots in q of N(p, q; 0), the dispersion branches j = 1, 2, ...
+counted from below), and the force resonates with branch j where alpha = c_j(p) = Omega_j(p) / p, the
+phase speed. The resonance velocity is where the load's line Omega = alpha p is tangent to a branch: a
+*local* minimum of c_j(p), where N(p, 0) has a real double root in p, so (p_cr, alpha_cr) solves
+N = dN/dp = 0.
 
-Closed forms: Euler-Bernoulli with the Pasternak layer, Eq. (65), alpha_cr = sqrt(1 + eta_s) (at p^2 = 2,
-independent of eta_s); Timoshenko-Rayleigh, Eq. (66) as printed (without eta_s).
+On the paper's one-layer track there is one branch and its minimum is Eq. (65) (Euler-Bernoulli with a
+Pasternak layer, alpha_cr = sqrt(1 + eta_s) at p^2 = 2) or Eq. (66) (Timoshenko-Rayleigh). On a layered
+track (docs/layered_tracks.md) the lowest branch is bounded (the mass layer's own vibration) unless a
+shear layer stiffens it, so c_1(p) -> 0 as p grows: the global infimum of the phase speed is 0 and is no
+critical velocity. The critical velocity is the smallest local minimum over all branches; every local
+minimum is reported with its branch, and a branch without one is named.
+
+Every local minimum is bracketed on a grid of p in double precision, polished with mpmath's Newton on the
+2x2 system at ``dps`` digits and confirmed at ``dps + 15``.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
-from moving_bogie.kernels.track import foundation_module
+from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, get_model
+from moving_bogie.model.exact import fraction_to_mpf, nonnegative, positive
 
-__all__ = ["CriticalVelocity", "critical_velocity", "formula_eb", "formula_tr", "phase_speed"]
-
-
-@dataclass(frozen=True)
-class CriticalVelocity:
-    """Critical velocity alpha_cr, the wavenumber p_cr of the resonant wave and the closed form."""
-
-    beam: str
-    eta_s: float
-    S: float | None
-    r: float | None
-    alpha_cr: mpmath.mpf
-    p_cr: mpmath.mpf
-    formula: mpmath.mpf | None  # Eq. (65) or (66); None where the paper gives none (TR with eta_s > 0)
-    digits: int  # digits of alpha_cr and p_cr confirmed at two precisions
-    method: str = "minimum phase speed of free waves: real double root of N(p, 0) in p (N = dN/dp = 0)"
-
-    @property
-    def agrees(self) -> bool | None:
-        """Whether the closed form equals the numerical value to the confirmed digits."""
-        if self.formula is None:
-            return None
-        return abs(self.formula - self.alpha_cr) <= mpmath.mpf(10) ** (-self.digits + 1)
-
-    def to_dict(self) -> dict:
-        digits = min(self.digits, 20)
-        return {
-            "beam": self.beam,
-            "eta_s": self.eta_s,
-            "S": self.S,
-            "r": self.r,
-            "alpha_cr": mpmath.nstr(self.alpha_cr, digits),
-            "p_cr": mpmath.nstr(self.p_cr, digits),
-            "alpha_cr_formula": None if self.formula is None else mpmath.nstr(self.formula, digits),
-            "formula": "Eq. (65)" if self.beam == "eb" else "Eq. (66)",
-            "agrees": self.agrees,
-            "digits": self.digits,
-            "method": self.method,
-        }
+__all__ = [
+    "CriticalVelocity",
+    "PhaseSpeedMinimum",
+    "critical_velocity",
+    "dispersion_branches",
+    "formula_eb",
+    "formula_tr",
+    "phase_speed",
+]
 
 
 def formula_eb(eta_s=0):
@@ -76,10 +55,200 @@ def formula_tr(S, r):
     return mpmath.sqrt(r2 - S - 8 * r2 * S * S + 4 * S**1.5 * inner) / (2 * (S - r2))
 
 
+#: The paper's closed forms (beam, track) -> (equation, function of the track's groups). Comparisons only:
+#: the critical velocity itself is computed from the generated N(p, q) of any model.
+PAPER_FORMULAS = {
+    ("eb", DEFAULT_MODEL["track"]): ("Eq. (65)", lambda g: formula_eb(g["eta_s"])),
+    ("tr", DEFAULT_MODEL["track"]): (
+        "Eq. (66)",
+        lambda g: formula_tr(g["S"], g["r"]) if g["eta_s"] == 0 else None,
+    ),
+}
+
+
+@dataclass(frozen=True)
+class PhaseSpeedMinimum:
+    """A local minimum of the phase speed c_j(p) = Omega_j(p)/p: the load's line tangent to branch j."""
+
+    branch: int  # 1 = lowest dispersion branch
+    alpha: mpmath.mpf
+    p: mpmath.mpf
+    scan_alpha: float  # the grid minimum that bracketed it (double precision)
+    scan_p: float
+    digits: int  # digits of alpha and p confirmed at two precisions
+
+    def to_dict(self, digits: int = 20) -> dict:
+        d = min(self.digits, digits)
+        return {
+            "branch": self.branch,
+            "alpha": mpmath.nstr(self.alpha, d),
+            "p": mpmath.nstr(self.p, d),
+            "scan_alpha": self.scan_alpha,
+            "scan_p": self.scan_p,
+            "digits": self.digits,
+        }
+
+
+@dataclass(frozen=True)
+class CriticalVelocity:
+    """Critical velocity alpha_cr (the smallest local minimum of the phase speed) and what it rests on.
+
+    Attributes
+    ----------
+    model : str
+        ``beam/track`` of the foundation.
+    groups : dict
+        The track's groups used (damping set to zero), as floats.
+    alpha_cr, p_cr : mpf
+        The smallest local minimum of c_j(p) over the branches, and its wavenumber.
+    branch : int
+        The branch it lies on (1 = lowest).
+    minima : tuple of PhaseSpeedMinimum
+        Every local minimum found on 0 < p <= p_max, ascending in alpha.
+    branches : int
+        The number of dispersion branches (the degree of N in q over 2).
+    without_minimum : tuple of int
+        Branches whose phase speed has no local minimum in the scanned range.
+    unattained : float or None
+        c_1(p_max) when the phase speed of the lowest branch still decreases at p_max: its infimum is
+        approached as p grows and not attained (0 for a bounded branch, the shear wave speed of the
+        lowest layer with a Pasternak layer); None when it does not.
+    formula, formula_name
+        The paper's closed form where there is one (Eqs. (65)-(66)), else None.
+    """
+
+    model: str
+    groups: dict
+    alpha_cr: mpmath.mpf
+    p_cr: mpmath.mpf
+    branch: int
+    minima: tuple
+    branches: int
+    without_minimum: tuple
+    unattained: float | None
+    formula: mpmath.mpf | None
+    formula_name: str | None
+    digits: int
+    p_max: float
+    method: str = field(
+        default="smallest local minimum of the phase speed Omega_j(p)/p of free waves over the dispersion "
+        "branches: a real double root of N(p, 0) in p (N = dN/dp = 0)"
+    )
+
+    @property
+    def beam(self) -> str:
+        return self.model.split("/")[0]
+
+    @property
+    def agrees(self) -> bool | None:
+        """Whether the closed form equals the numerical value to the confirmed digits."""
+        if self.formula is None:
+            return None
+        return abs(self.formula - self.alpha_cr) <= mpmath.mpf(10) ** (-self.digits + 1)
+
+    def to_dict(self) -> dict:
+        digits = min(self.digits, 20)
+        out = {
+            "model": self.model,
+            "beam": self.beam,
+            **self.groups,
+            "alpha_cr": mpmath.nstr(self.alpha_cr, digits),
+            "p_cr": mpmath.nstr(self.p_cr, digits),
+            "branch": self.branch,
+            "branches": self.branches,
+            "minima": [m.to_dict(digits) for m in self.minima],
+            "branches_without_minimum": list(self.without_minimum),
+            "lowest_branch_decreasing_to": self.unattained,
+            "alpha_cr_formula": None if self.formula is None else mpmath.nstr(self.formula, digits),
+            "formula": self.formula_name,
+            "agrees": self.agrees,
+            "digits": self.digits,
+            "p_max": self.p_max,
+            "method": self.method,
+        }
+        if self.unattained is not None:
+            out["note"] = (
+                f"the phase speed of branch 1 decreases to {self.unattained:.6g} at p = {self.p_max} and "
+                "further as p grows (to 0 for a bounded branch): its infimum is no tangency and no "
+                "critical velocity; alpha_cr is the smallest local minimum"
+            )
+        return out
+
+
+def _track(source, groups) -> tuple[Model, dict]:
+    """The model and the values of its foundation's groups (a beam name, a Model or a params object)."""
+    if isinstance(source, str):
+        model = get_model(beam=source)
+    elif isinstance(source, Model):
+        model = source
+    elif hasattr(source, "model") and hasattr(source, "values"):
+        model = source.model
+        groups = {**source.values(), **{k: v for k, v in groups.items() if v is not None}}
+    else:
+        raise ParameterError("model", f"expected a beam name, a Model or parameters (got {source!r})")
+    module = model.foundation
+    damping = set(getattr(module, "DAMPING", ()))
+    specs = model.catalogue.specs
+    values = {}
+    for name in module.ARGUMENTS[1:]:
+        if name == "alpha" or name in damping:
+            continue
+        spec = specs[name]
+        value = groups.get(name)
+        if value is None:
+            if spec.default is None:
+                raise ParameterError(
+                    name, f"the critical velocity of {model.beam}/{model.track} needs {name} ({spec.meaning})"
+                )
+            value = spec.default
+        check = positive if spec.constraint == "positive" else nonnegative
+        values[name] = check(name, value)
+    return model, values
+
+
+def _arguments(module, values, convert):
+    """Keyword arguments of the generated functions on the undamped track (alpha given separately)."""
+    out = {name: convert(values[name]) for name in values}
+    for name in getattr(module, "DAMPING", ()):
+        out[name] = 0
+    return out
+
+
+def dispersion_branches(source="eb", p=None, **groups):
+    """Frequencies Omega_j(p) >= 0 of free waves on the undamped track at rest, ascending, shape (n, J).
+
+    They are the roots in q of N(p, q) at alpha = 0 (they come in pairs +-Omega). ``source`` is a beam
+    name (the one-layer track), a :class:`Model` or a parameters object; ``groups`` the track's groups.
+    """
+    model, values = _track(source, groups)
+    module = model.foundation
+    args = _arguments(module, values, float) | {"alpha": 0.0}
+    p = np.atleast_1d(np.asarray(p, dtype=float))
+    out = []
+    for pk in p:
+        coeffs = np.array([complex(c) for c in module.n_coeffs_in_q(pk, **args)])
+        # undamped: the roots are real pairs +-Omega_j; the upper half of the sorted real parts
+        real = np.sort(np.roots(np.trim_zeros(coeffs, "f")).real)
+        out.append(real[len(real) // 2 :])
+    width = max(len(o) for o in out)
+    return np.array([np.pad(o, (0, width - len(o)), constant_values=np.nan) for o in out])
+
+
+def phase_speed(source="eb", p=None, *, alpha_max: float = np.inf, **groups):
+    """Phase speed c(p) of the lowest branch that has a real phase speed, vectorised in p.
+
+    The smallest alpha > 0 with N(p, 0; alpha) = 0, i.e. min_j Omega_j(p)/p; inf where none is at most
+    ``alpha_max``. For all branches use :func:`dispersion_branches`.
+    """
+    p = np.atleast_1d(np.asarray(p, dtype=float))
+    speeds = dispersion_branches(source, p, **groups) / p[:, None]
+    speeds = np.where(np.isfinite(speeds) & (speeds <= alpha_max), speeds, np.inf)
+    return speeds.min(axis=1)
+
+
 def _n_values(module, args, p, alpha):
-    """N(p, 0; alpha) and dN/dp for the undamped track (mpmath or numpy arguments)."""
-    args = {k: v for k, v in args.items() if k in module.ARGUMENTS}
-    cs = module.n_coeffs(0, alpha=alpha, eta_f=0, **args)
+    """N(p, 0; alpha) and dN/dp on the undamped track (mpmath or numpy arguments)."""
+    cs = module.n_coeffs(0, alpha=alpha, **args)
     N, dN = 0, 0
     for c in cs:
         dN = dN * p + N
@@ -87,105 +256,106 @@ def _n_values(module, args, p, alpha):
     return N, dN
 
 
-def phase_speed(beam: str = "eb", p=None, *, eta_s=0.0, S=None, r=None, alpha_max: float = 20.0):
-    """Phase speed c(p) of free waves (smallest alpha > 0 with N(p, 0; alpha) = 0), vectorised in p.
+def _polish(module, values, p0, a0, digits):
+    """Newton on N(p, 0; alpha) = dN/dp = 0 at `digits` digits from the grid minimum (p0, a0)."""
+    with mpmath.workdps(digits):
+        args = _arguments(module, values, fraction_to_mpf)
 
-    N(p, 0; alpha) is a polynomial of degree <= 4 in alpha; its coefficients follow from five evaluations.
-    Returns inf where no positive real alpha below ``alpha_max`` exists.
-    """
-    module = foundation_module(beam)
-    args = {"eta_s": eta_s, "S": S, "r": r}
-    p = np.atleast_1d(np.asarray(p, dtype=float))
-    nodes = np.linspace(0.0, 2.0, 5)
-    vals = np.stack(
-        [np.real(_n_values(module, args, p.astype(complex), a)[0]) * np.ones_like(p) for a in nodes]
-    )
-    coeffs = np.linalg.solve(np.vander(nodes, 5), vals).T  # (n, 5) in alpha, highest first
-    out = np.full(p.shape, np.inf)
-    for k, c in enumerate(coeffs):
-        c = np.trim_zeros(c, "f")
-        if len(c) < 2:
-            continue
-        roots = np.roots(c)
-        real = roots[(np.abs(roots.imag) <= 1e-9 * np.maximum(1, np.abs(roots))) & (roots.real > 0)].real
-        real = real[real <= alpha_max]
-        if real.size:
-            out[k] = real.min()
-    return out
+        def system(p, a):
+            N, dN = _n_values(module, args, p, a)
+            return mpmath.re(N), mpmath.re(dN)
+
+        # start slightly off the grid minimum: findroot can stop at once on a start that is exact to
+        # double precision in alpha but not in p
+        start = (mpmath.mpf(p0) * (1 + mpmath.mpf(1e-6)), mpmath.mpf(a0) * (1 + mpmath.mpf(1e-6)))
+        p, a = mpmath.findroot(system, start, tol=mpmath.mpf(10) ** (-2 * digits))
+        return abs(p), +a
+
+
+def _confirmed_digits(lo, hi, dps):
+    with mpmath.workdps(dps + 15):
+        err = max(abs(h - low) / abs(low) for low, h in zip(lo, hi))
+        return dps if err == 0 else max(0, min(dps, int(-mpmath.log10(2 * err))))
 
 
 def critical_velocity(
-    beam: str = "eb", *, eta_s=0, S=None, r=None, dps: int = 30, p_max: float = 20.0, samples: int = 4001
+    source="eb",
+    *,
+    eta_s=None,
+    S=None,
+    r=None,
+    groups=None,
+    dps: int = 30,
+    p_max: float = 20.0,
+    samples: int = 4001,
 ) -> CriticalVelocity:
-    """Critical velocity of a constant moving force, Eq. (65) (EB) / Eq. (66) (TR), computed numerically.
+    """Critical velocity of a constant moving force on any track: Eqs. (65)-(66) generalised.
 
     Parameters
     ----------
-    beam : {"eb", "tr"}
-    eta_s : float
-        Pasternak shear layer.
-    S, r : float
-        Timoshenko-Rayleigh parameters of Eq. (59) (required for ``beam="tr"``).
+    source : str, Model or DimensionlessParams
+        A beam name (``"eb"``, ``"tr"``: the paper's one-layer track), a model, or parameters whose model
+        and track groups are used (vehicle groups are ignored).
+    eta_s, S, r : number, optional
+        Groups of the paper's tracks, by keyword (override those of `source`).
+    groups : dict, optional
+        Any further groups of the track (``{"mu_2": ..., "kappa_2": ...}`` on a layered track).
     dps : int
-        Working precision of the polished minimum; digits are confirmed at ``dps + 15``.
+        Working precision of the polished minima; digits are confirmed at ``dps + 15``.
     p_max, samples : float, int
-        Grid of wavenumbers 0 < p <= p_max on which the minimum of c(p) is bracketed.
+        Grid of wavenumbers 0 < p <= p_max on which the local minima of each c_j(p) are bracketed.
 
     Raises
     ------
     ParameterError
-        For a missing or invalid parameter.
+        For a missing or invalid group (the message names it).
     MovingBogieError
-        If no free wave has a real phase speed (no critical velocity).
+        If no branch has a local minimum of its phase speed in the scanned range.
     """
-    if beam not in ("eb", "tr"):
-        raise ParameterError("beam", f"beam must be eb or tr (got {beam!r})")
-    if beam == "tr" and (S is None or r is None):
-        raise ParameterError("S", "the Timoshenko-Rayleigh beam needs S and r")
-    if beam == "eb":
-        S = r = None
-    if float(eta_s) < 0 or (S is not None and float(S) <= 0) or (r is not None and float(r) < 0):
-        raise ParameterError("eta_s", "eta_s, r must be >= 0 and S > 0")
-    fargs = {
-        "eta_s": float(eta_s),
-        "S": None if S is None else float(S),
-        "r": None if r is None else float(r),
-    }
+    given = dict(groups or {}) | {k: v for k, v in (("eta_s", eta_s), ("S", S), ("r", r)) if v is not None}
+    model, values = _track(source, given)
+    module = model.foundation
     ps = np.linspace(p_max / samples, p_max, samples)
-    speeds = phase_speed(beam, ps, **fargs)
-    if not np.any(np.isfinite(speeds)):
-        raise MovingBogieError("no free wave with a real phase speed: no critical velocity")
-    k = int(np.argmin(speeds))
-    p0, a0 = ps[k], speeds[k]
-    module = foundation_module(beam)
-
-    def polish(digits):
-        with mpmath.workdps(digits):
-            args = {
-                "eta_s": mpmath.mpf(str(eta_s)),
-                "S": None if S is None else mpmath.mpf(str(S)),
-                "r": None if r is None else mpmath.mpf(str(r)),
-            }
-
-            def system(p, a):
-                N, dN = _n_values(module, args, p, a)
-                return mpmath.re(N), mpmath.re(dN)
-
-            # start slightly off the grid minimum: findroot can stop at once on a start that is exact
-            # to double precision in alpha but not in p
-            start = (mpmath.mpf(p0) * (1 + mpmath.mpf(1e-6)), mpmath.mpf(a0) * (1 + mpmath.mpf(1e-6)))
-            p, a = mpmath.findroot(system, start, tol=mpmath.mpf(10) ** (-2 * digits))
-            return abs(p), +a
-
-    p_lo, a_lo = polish(dps)
-    p_hi, a_hi = polish(dps + 15)
-    with mpmath.workdps(dps + 15):
-        err = max(abs(a_hi - a_lo) / abs(a_lo), abs(p_hi - p_lo) / abs(p_lo))
-        digits = dps if err == 0 else max(0, min(dps, int(-mpmath.log10(2 * err))))
-    formula = None
-    with mpmath.workdps(dps):
-        if beam == "eb":
-            formula = formula_eb(mpmath.mpf(str(eta_s)))
-        elif float(eta_s) == 0:
-            formula = formula_tr(mpmath.mpf(str(S)), mpmath.mpf(str(r)))
-    return CriticalVelocity(beam, float(eta_s), fargs["S"], fargs["r"], a_lo, p_lo, formula, digits)
+    speeds = dispersion_branches(model, ps, **values) / ps[:, None]
+    branches = speeds.shape[1]
+    found, without = [], []
+    for j in range(branches):
+        c = speeds[:, j]
+        inner = np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:]) & np.isfinite(c[1:-1])) + 1
+        if inner.size == 0:
+            without.append(j + 1)
+        for k in inner:
+            lo = _polish(module, values, ps[k], c[k], dps)
+            hi = _polish(module, values, ps[k], c[k], dps + 15)
+            digits = _confirmed_digits(lo, hi, dps)
+            found.append(PhaseSpeedMinimum(j + 1, lo[1], lo[0], float(c[k]), float(ps[k]), digits))
+    if not found:
+        raise MovingBogieError(
+            f"no local minimum of the phase speed on 0 < p <= {p_max} for {model.beam}/{model.track}: "
+            "no critical velocity (a larger p_max may find one)"
+        )
+    found.sort(key=lambda m: m.alpha)
+    best = found[0]
+    lowest = speeds[:, 0]
+    unattained = float(lowest[-1]) if lowest[-1] < lowest[-2] else None
+    formula = name = None
+    paper = PAPER_FORMULAS.get((model.beam, model.track))
+    if paper is not None:
+        with mpmath.workdps(dps):
+            formula = paper[1]({k: fraction_to_mpf(v) for k, v in values.items()})
+        name = paper[0] if formula is not None else None
+    return CriticalVelocity(
+        model=f"{model.beam}/{model.track}",
+        groups={k: float(v) for k, v in values.items()},
+        alpha_cr=best.alpha,
+        p_cr=best.p,
+        branch=best.branch,
+        minima=tuple(found),
+        branches=branches,
+        without_minimum=tuple(without),
+        unattained=unattained,
+        formula=formula,
+        formula_name=name,
+        digits=best.digits,
+        p_max=p_max,
+    )

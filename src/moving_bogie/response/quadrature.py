@@ -1,0 +1,148 @@
+"""Quadrature shared by the branch-cut integrals (Eq. (35)) and the Bromwich reference.
+
+Composite 16-point Gauss-Legendre panels (:func:`gauss_panels`, :func:`adapt_panels`,
+:func:`subdivide`), bands of times that double (:func:`by_bands`), and sum_n G_n e^{i q_n t} for many
+times t (:func:`fourier_sum`). Used by the Euler-Bernoulli cut (a horizontal half-line,
+:mod:`branch_cut`), the traced cut of any model (:mod:`cut_integral`) and :mod:`bromwich`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+__all__ = ["adapt_panels", "by_bands", "cis", "fourier_sum", "gauss_panels", "subdivide"]
+
+GL_X, GL_W = np.polynomial.legendre.leggauss(16)
+#: Bands of times: [0, 1/2], (1/2, 1], (1, 2], ...: each band gets its own truncation and panels.
+FIRST_BAND = 0.5
+
+
+def gauss_panels(a, b):
+    """Nodes and weights of the 16-point Gauss-Legendre rule on every panel [a_k, b_k] (flattened)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    nodes = (0.5 * (b - a)[:, None] * GL_X + 0.5 * (a + b)[:, None]).ravel()
+    return nodes, (0.5 * (b - a)[:, None] * GL_W).ravel()
+
+
+def adapt_panels(start, values: Callable, tol: float, max_splits: int = 40) -> np.ndarray:
+    """Edges refining ``start``: a panel is halved while its integral of ``values`` (nodes -> (n, m))
+    differs from the sum over its halves by more than ``tol``; resolves peaks far narrower than a panel."""
+    start = np.asarray(start, dtype=float)
+    lo, hi = start[:-1], start[1:]
+    edges = [start]
+
+    def integral(a, b):
+        nodes, weights = gauss_panels(a, b)
+        return (values(nodes) * weights[:, None]).reshape(a.size, GL_X.size, -1).sum(axis=1)
+
+    for _ in range(max_splits):
+        if lo.size == 0:
+            break
+        mid = 0.5 * (lo + hi)
+        bad = np.abs(integral(lo, hi) - integral(lo, mid) - integral(mid, hi)).max(axis=-1) > tol
+        edges.append(mid[bad])
+        lo, hi = np.concatenate([lo[bad], mid[bad]]), np.concatenate([mid[bad], hi[bad]])
+    return np.unique(np.concatenate(edges))
+
+
+def subdivide(edges, pieces):
+    """Gauss nodes and weights after splitting panel k of ``edges`` into ``pieces[k]`` equal parts."""
+    pieces = np.maximum(1, np.asarray(pieces)).astype(int)
+    k = np.repeat(np.arange(edges.size - 1), pieces)
+    j = np.arange(k.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+    width = np.diff(edges) / pieces
+    lo = edges[:-1][k] + j * width[k]
+    return gauss_panels(lo, lo + width[k])
+
+
+def by_bands(tau, m: int, band: Callable) -> np.ndarray:
+    """(1/pi) Re of ``band(lo, ts)`` over the bands of times, shape tau.shape + (m,).
+
+    ``band(lo, ts)`` returns the complex integral (len(ts), m) for the times ``ts`` of one band, whose
+    lower end is ``lo`` (0 for the first band).
+    """
+    tau = np.asarray(tau, dtype=float)
+    flat = tau.reshape(-1)
+    result = np.zeros((flat.size, m), dtype=complex)
+    band_hi = FIRST_BAND * 2.0 ** np.ceil(np.log2(np.maximum(flat, FIRST_BAND) / FIRST_BAND))
+    for hi in np.unique(band_hi):
+        idx = np.nonzero(band_hi == hi)[0]
+        result[idx] = band(0.0 if hi <= FIRST_BAND else hi / 2, flat[idx])
+    return (result.real / np.pi).reshape(tau.shape + (m,))
+
+
+#: Taylor terms of e^{i q delta} with |q delta| <= 1/4 (remainder below 1e-16 of the sum of |G|).
+_TAYLOR_TERMS = 12
+_GRID_BLOCK = 256
+
+
+def cis(x):
+    """e^{i x} for a real array x (cos and sin of real arguments are cheaper than a complex exp)."""
+    out = np.empty(x.shape, dtype=complex)
+    np.cos(x, out=out.real)
+    np.sin(x, out=out.imag)
+    return out
+
+
+def _phases(t, s, eta):
+    """e^{i (s + i eta) t} for the outer product of times t and real s (sin/cos of real arguments).
+
+    ``eta`` is one number (a cut on a horizontal line) or an array like s (a curved cut).
+    """
+    out = cis(np.multiply.outer(t, s))
+    if np.ndim(eta) == 0:
+        out *= np.exp(-eta * t)[:, None]
+    else:
+        out *= np.exp(-np.multiply.outer(t, eta))
+    return out
+
+
+def fourier_sum(ts, nodes, weights, weighted, m, q_max, eta, *, memory=4_000_000):
+    """sum_n G_n e^{i q_n t} for every t, (q, G) = weighted(nodes, weights): shape (len(ts), m).
+
+    ``eta`` is Im q_n when it is the same for every node (else None: taken from q).
+
+    Few times: the exponentials directly. Many times: on a uniform grid t_g with step h = 1/(2 max|q|),
+    e^{i q t} = e^{i q t_g} sum_k (i q delta)^k / k! with delta = t - t_g, |q delta| <= 1/4, and the grid
+    phases come by blocks from e^{i q t_0} e^{i q j h}. The cost is (grid points x nodes x terms) whatever
+    the number of times.
+    """
+    node_block = max(16, int(memory // (4 * max(m, 1))))
+    h = 0.5 / (q_max + 1.0)
+    lo, hi = np.floor(ts.min() / h), np.ceil(ts.max() / h)
+    grid_size = int(hi - lo) + 1
+    direct = ts.size <= grid_size or m > 64
+    acc = np.zeros((ts.size, m), dtype=complex)
+    if not direct:
+        k = np.rint(ts / h)
+        delta = ts - k * h
+        row = (k - lo).astype(int)
+        moments = np.zeros((grid_size, _TAYLOR_TERMS * m), dtype=complex)
+        factorials = np.concatenate([[1.0], np.cumprod(np.arange(1, _TAYLOR_TERMS))])
+        steps = np.arange(_GRID_BLOCK) * h
+    for start in range(0, nodes.size, node_block):
+        q, G = weighted(nodes[start : start + node_block], weights[start : start + node_block])
+        s = q.real
+        im = q.imag if eta is None else eta
+        if direct:
+            block = max(1, int(memory // max(1, q.size)))
+            for t0 in range(0, ts.size, block):
+                t = ts[t0 : t0 + block]
+                acc[t0 : t0 + block] += _phases(t, s, im) @ G
+            continue
+        powers = (1j * q)[:, None] ** np.arange(_TAYLOR_TERMS) / factorials
+        B = (powers[:, :, None] * G[:, None, :]).reshape(q.size, -1)
+        local = _phases(steps, s, im)
+        starts = (lo + np.arange(0, grid_size, _GRID_BLOCK)) * h
+        first = _phases(starts, s, im)
+        for b, g0 in enumerate(range(0, grid_size, _GRID_BLOCK)):
+            n = min(_GRID_BLOCK, grid_size - g0)
+            moments[g0 : g0 + n] += (local[:n] * first[b]) @ B
+    if not direct:
+        sel = moments[row].reshape(ts.size, _TAYLOR_TERMS, m)
+        acc = sel[:, -1]
+        for j in range(_TAYLOR_TERMS - 2, -1, -1):
+            acc = acc * delta[:, None] + sel[:, j]
+    return acc

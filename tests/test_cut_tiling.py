@@ -1,0 +1,82 @@
+"""The traced cut of K and the search cells that follow it (kernels/cut.py, roots/search_regions.py).
+
+References: the cut points come from an independent dense scan (numpy.roots of N(p, .) at each real p of a
+fine grid); the tiling is checked with f(z) = z - z0, whose only zero is z0: the winding numbers over all
+regions must add up to 1 and name the region that ``contains`` z0, for points placed just above, just
+below and inside the lens of the Timoshenko-Rayleigh cut and around its fold.
+"""
+
+import numpy as np
+import pytest
+
+from moving_bogie.kernels.cut import cut_locus
+from moving_bogie.kernels.track import resolve_foundation
+from moving_bogie.model.cases import table1_case
+from moving_bogie.roots.contour import winding_number
+from moving_bogie.roots.frequencies import default_window, induced_frequencies
+from moving_bogie.roots.search_regions import tile_window
+
+TR_CASES = [("10", "0.09"), ("100", "0.03")]
+
+
+def _tr(S, r):
+    return table1_case(7).replace(beam="tr", S=S, r=r)
+
+
+@pytest.mark.parametrize(("S", "r"), TR_CASES)
+def test_traced_arms_match_a_dense_scan(S, r):
+    params = _tr(S, r)
+    cut = cut_locus(params, 0.0, 3.0)
+    track = resolve_foundation(params)
+    args = track.float_arguments(params)
+    ps = np.linspace(-3, 3, 601)
+    scan = []
+    for p in ps:
+        roots = np.roots(np.array(track.module.n_coeffs_in_q(p, **args), dtype=complex))
+        scan += [q for q in roots if 0.0 < q.real < 3.0]
+    scan = np.array(scan)
+    assert scan.size > 100
+    for q in scan:
+        best = min(
+            abs(arm.y_at(np.array([q.real]))[0] - q.imag)
+            for arm in cut.arms
+            if arm.x_lo <= q.real <= arm.x_hi
+        )
+        assert best < 1e-12
+    assert len(cut.folds) == 1 and not cut.folds[0].cusp  # the fold at q_c: a lens opens to its right
+
+
+def test_cells_partition_the_window_minus_the_sliver():
+    params = _tr(*TR_CASES[0])
+    window = default_window(params, "bogie")
+    cut = cut_locus(params, window.x0, window.x1)
+    tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-5, gap_height=0.1 * window.height)
+    assert max(u.height for u in tiling.unsearched) <= 1e-10
+    fold = cut.folds[0].q
+    points = [
+        fold - 1e-6,
+        fold + 1e-5,
+        fold + 1e-4,
+        fold + 2e-3,
+        fold + 1e-3j,
+        fold - 1e-3j,
+        1.5 + 1j,
+        2.9 - 2j,
+    ]
+    for arm in cut.arms:
+        xs = np.array([fold.real + 1e-6, fold.real + 5e-4, 2.5])
+        ys = arm.y_at(xs)
+        for d in (1e-9, 1e-4):
+            points += list(xs + 1j * (ys + d)) + list(xs + 1j * (ys - d))
+    for z0 in points:
+        counts = [winding_number(lambda z, z0=z0: z - z0, region) for region in tiling.regions]
+        assert sum(counts) == 1, z0
+        assert tiling.regions[counts.index(1)].contains(z0), z0
+
+
+@pytest.mark.parametrize(("S", "r"), TR_CASES)
+def test_tr_frequencies_leave_no_sliver_above_1e_10(S, r):
+    result = induced_frequencies(_tr(S, r), dps=20)
+    assert result.count_ok, result.warnings
+    assert result.count == 4
+    assert result.unsearched and max(u.height for u in result.unsearched) <= 1e-10
