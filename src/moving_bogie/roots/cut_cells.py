@@ -132,23 +132,23 @@ class ColumnCell(_Curve):
         return lo - margin <= z.imag <= hi + margin
 
     def split(self, fraction=0.5):
-        """Two cells: a tall cell at a horizontal line between its edges, else across Re q."""
-        if self.height > 2 * self.width:
-            xs = np.linspace(self.x0, self.x1, 33)
-            top = self.lower.y if self.lower.arm is None else float(self.lower.points(xs).imag.max())
-            bottom = self.upper.y if self.upper.arm is None else float(self.upper.points(xs).imag.min())
-            if bottom > top:
-                mid = Edge(y=top + fraction * (bottom - top))
-                return self._cell(self.lower, mid), self._cell(mid, self.upper)
+        """Two cells: across Re q, or (tall, one straight edge) a rectangle off the straight side."""
+        if self.height > 2 * self.width and (self.lower.arm is None) != (self.upper.arm is None):
+            if self.lower.arm is not None:
+                top = float(self.lower.points(np.linspace(self.x0, self.x1, 33)).imag.max())
+                ym = top + fraction * (self.upper.y - top)
+                return ColumnCell(self.x0, self.x1, self.lower, Edge(y=ym)), Rectangle(
+                    self.x0, self.x1, ym, self.upper.y
+                )
+            bottom = float(self.upper.points(np.linspace(self.x0, self.x1, 33)).imag.min())
+            ym = bottom - fraction * (bottom - self.lower.y)
+            return Rectangle(self.x0, self.x1, self.lower.y, ym), ColumnCell(
+                self.x0, self.x1, Edge(y=ym), self.upper
+            )
         xm = self.x0 + fraction * self.width
         return ColumnCell(self.x0, xm, self.lower, self.upper), ColumnCell(
             xm, self.x1, self.lower, self.upper
         )
-
-    def _cell(self, lower, upper):
-        if lower.arm is None and upper.arm is None:
-            return Rectangle(self.x0, self.x1, lower.y, upper.y)
-        return ColumnCell(self.x0, self.x1, lower, upper)
 
 
 class TipCell(_Curve):

@@ -276,29 +276,16 @@ def _count_tiling(fast, params, window, eps, eps_branch):
     edges (the tiles share them, so they move together) and count again."""
     cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
     error = None
-    # cells that follow the cut first; if they cannot be counted (an exotic cut), padded strips
-    for follow, (factor, fraction) in [(True, r) for r in _RETRIES] + [(False, r) for r in _RETRIES[:2]]:
+    for factor, fraction in _RETRIES:
         gap_height = fraction * max(window.width, window.height)
         tiling = tile_window(
-            window,
-            cut,
-            eps=eps * factor,
-            eps_branch=eps_branch * factor,
-            gap_height=gap_height,
-            follow=follow,
+            window, cut, eps=eps * factor, eps_branch=eps_branch * factor, gap_height=gap_height
         )
         try:
-            return cut, tiling, [_count(fast, rect) for rect in tiling.regions]
+            return cut, tiling, [winding_number(fast, rect) for rect in tiling.regions]
         except EdgeZeroError as exc:
             error = exc
     raise CountMismatch(f"could not place contours away from the roots and the cut: {error}")
-
-
-def _count(fast, region):
-    """Winding number; a cell that follows the cut gets a smaller sampling budget (its points cost more)."""
-    if hasattr(region, "points_at"):
-        return winding_number(fast, region, max_points=20_000)
-    return winding_number(fast, region)
 
 
 def _locate(fast, precise, rect, n, newton_cell, dps):
@@ -321,7 +308,7 @@ def _locate(fast, precise, rect, n, newton_cell, dps):
         for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65):
             pieces = r.split(frac)  # two halves (a cell at a fold of the cut may give three pieces)
             try:
-                counts = [_count(fast, piece) for piece in pieces]
+                counts = [winding_number(fast, piece) for piece in pieces]
             except EdgeZeroError:
                 continue
             if sum(counts) == k:

@@ -46,7 +46,6 @@ def tile_window(
     gap_height: float,
     columns: int = 48,
     curved_columns: int = 6,
-    follow: bool = True,
 ) -> Tiling:
     """Regions covering ``window`` minus an ``eps``-band around the cut.
 
@@ -65,27 +64,7 @@ def tile_window(
         regions.append(Rectangle(window.x0, window.x1, band_hi, window.y1))
     if cut.flat or not cut.arms:
         return _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi)
-    if not follow:
-        return _strips(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns)
     return _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, curved_columns)
-
-
-def _strips(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) -> Tiling:
-    """Rectangles only: columns padded around the cut's range in each (the fallback when the cells that
-    follow the cut cannot be counted); the slivers are then as high as those padded ranges."""
-    x_gap = cut.x_start - eps_branch
-    if x_gap > window.x0:
-        regions.append(Rectangle(window.x0, min(x_gap, window.x1), band_lo, band_hi))
-    x_band = max(window.x0, x_gap)
-    unsearched = []
-    xs = np.linspace(x_band, window.x1, columns + 1)
-    for a, b in zip(xs[:-1], xs[1:]):
-        rng = cut.im_range_between(a - eps, b + eps)
-        if rng is None:
-            regions.append(Rectangle(a, b, band_lo, band_hi))
-            continue
-        _padded(a, b, np.array(rng), regions, unsearched, eps, band_lo, band_hi)
-    return Tiling(tuple(regions), tuple(unsearched))
 
 
 def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
@@ -224,14 +203,10 @@ def _split_point(lower, upper, xs, gap, eps):
         return float(upper.y_at(np.array([x]))[0] - lower.y_at(np.array([x]))[0]) - target
 
     for target in (0.0, _MERGE * eps):
-        d = gap - target
-        d = np.where(np.abs(d) <= 1e-13, 0.0, d)  # a crossing at a column edge is not inside it
-        change = np.nonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)[0]
-        for k in change:
-            try:
-                return optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
-            except ValueError:  # the recomputed ends do not bracket it (rounding): not a split point
-                continue
+        change = np.nonzero(np.sign(gap[:-1] - target) * np.sign(gap[1:] - target) < 0)[0]
+        if change.size:
+            k = change[0]
+            return optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
     return None
 
 
