@@ -71,19 +71,21 @@ class _Curve:
         return self._ends[S]
 
     def _find_ends(self, S):
+        """Both crossings of Re q = S: bracketed by the samples, then safeguarded Newton (vectorised)."""
         x = self.q.real
-        out = []
-        for idx in np.nonzero(x <= S)[0][[0, -1]] + np.array([-1, 0]):
-            a, b = self.p[idx], self.p[idx + 1]
-            for _ in range(60):
-                m = 0.5 * (a + b)
-                xm = float(self.q_at(np.array([m]))[0].real)
-                if (xm > S) == (float(self.q_at(np.array([a]))[0].real) > S):
-                    a = m
-                else:
-                    b = m
-            out.append(0.5 * (a + b))
-        return out[0], out[1]
+        inside = np.nonzero(x <= S)[0]
+        k = np.array([inside[0] - 1, inside[-1]])  # the crossing lies in [p_k, p_k+1]
+        a, b = self.p[k], self.p[k + 1]
+        p = a + (S - x[k]) * (b - a) / (x[k + 1] - x[k])
+        for _ in range(30):
+            q = self.q_at(p)
+            step = (q.real - S) / self.tracer.dq_dp(p, q).real
+            new = np.clip(p - step, a, b)
+            if np.all(np.abs(new - p) <= 1e-14 * np.maximum(1.0, np.abs(p))):
+                p = new
+                break
+            p = new
+        return float(p[0]), float(p[1])
 
 
 class CurveBranchCut:
@@ -185,6 +187,10 @@ class CurveBranchCut:
         if key in self._base:
             return self._base[key]
         p_lo, p_hi = curve.p_ends(S)
+        for (cid, S2, ch), edges in self._base.items():
+            if cid == id(curve) and ch == channel and S2 >= S:  # reuse the partition of a longer range
+                keep = edges[(edges > p_lo) & (edges < p_hi)]
+                return np.concatenate([[p_lo], keep, [p_hi]])
         # start: panels of at most 0.5 in p and 5 % of max(1, Re q) along the curve (as for the half-line)
         P = np.linspace(p_lo, p_hi, 4000)
         q = curve.q_at(P)

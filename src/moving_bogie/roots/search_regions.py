@@ -69,8 +69,8 @@ def tile_window(
 
 def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
     """A cut on one horizontal line (Euler-Bernoulli): strips below and above the line, and a box of
-    half-width ``eps_branch`` around the branch point (where K varies like a square root: an edge
-    passing at distance eps from it would need samples eps apart)."""
+    half-width ``eps_branch`` around every branch point (cusp) on it (where K varies like a square root,
+    an edge passing at distance eps would need samples eps apart)."""
     lo, hi = cut.im_low - eps, cut.im_high + eps
     x_gap = cut.x_start - eps_branch
     if x_gap > window.x0:
@@ -78,23 +78,35 @@ def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
     x_band = max(window.x0, x_gap)
     if x_band >= window.x1:
         return Tiling(tuple(regions), ())
+    cusps = sorted(f.q.real for f in cut.folds if f.cusp and x_band - eps_branch < f.q.real < window.x1)
+    if (
+        np.isfinite(cut.x_start)
+        and x_gap > window.x0
+        and not any(abs(c - cut.x_start) < eps_branch for c in cusps)
+    ):
+        cusps = sorted(cusps + [cut.x_start])
     unsearched = []
-    x_strip = x_band
-    if np.isfinite(cut.x_start) and x_gap > window.x0:
-        x_strip = min(window.x1, cut.x_start + eps_branch)
-        b_lo, b_hi = max(band_lo, cut.im_low - eps_branch), min(band_hi, cut.im_high + eps_branch)
-        if b_lo > band_lo:
-            regions.append(Rectangle(x_band, x_strip, band_lo, b_lo))
-        if b_hi < band_hi:
-            regions.append(Rectangle(x_band, x_strip, b_hi, band_hi))
-        unsearched.append(Sliver(x_band, x_strip, b_lo, b_hi, b_hi - b_lo))
-    if x_strip < window.x1:
-        if lo > band_lo:
-            regions.append(Rectangle(x_strip, window.x1, band_lo, lo))
-        if hi < band_hi:
-            regions.append(Rectangle(x_strip, window.x1, hi, band_hi))
-        y0, y1 = max(lo, band_lo), min(hi, band_hi)
-        unsearched.append(Sliver(x_strip, window.x1, y0, y1, y1 - y0))
+    b_lo, b_hi = max(band_lo, cut.im_low - eps_branch), min(band_hi, cut.im_high + eps_branch)
+    x = x_band
+    for c in cusps + [None]:
+        end = window.x1 if c is None else max(x, c - eps_branch)
+        if end > x:  # a strip between branch points
+            if lo > band_lo:
+                regions.append(Rectangle(x, end, band_lo, lo))
+            if hi < band_hi:
+                regions.append(Rectangle(x, end, hi, band_hi))
+            y0, y1 = max(lo, band_lo), min(hi, band_hi)
+            unsearched.append(Sliver(x, end, y0, y1, y1 - y0))
+        if c is None:
+            break
+        box_end = min(window.x1, c + eps_branch)
+        if box_end > end:  # the box around a branch point
+            if b_lo > band_lo:
+                regions.append(Rectangle(end, box_end, band_lo, b_lo))
+            if b_hi < band_hi:
+                regions.append(Rectangle(end, box_end, b_hi, band_hi))
+            unsearched.append(Sliver(end, box_end, b_lo, b_hi, b_hi - b_lo))
+        x = box_end
     return Tiling(tuple(regions), tuple(unsearched))
 
 
