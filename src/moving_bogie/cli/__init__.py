@@ -29,6 +29,7 @@ SUBCOMMAND_MODULES: list[str] = [
     "validate_cmd",
     "timeseries_cmd",
     "stability_cmd",
+    "lines_cmd",
     "sweep_cmd",
 ]
 

@@ -1,100 +1,37 @@
-"""Stability subcommands (Sections 3.5-3.8): critical-velocity, frequency-lines, instability-lines,
-stability-map, critical-stiffness and stability-figure."""
+"""Stability subcommands (Sections 3.5-3.8): critical-velocity, frequency-lines, critical-stiffness and
+stability-figure (instability-lines and stability-map: :mod:`.lines_cmd`)."""
 
 from __future__ import annotations
 
 import argparse
-import sys
-from fractions import Fraction
 from pathlib import Path
 
-from moving_bogie.errors import ParameterError
 from moving_bogie.model.catalogue import default_catalogue
 
 from .common import (
-    MODEL_OPTIONS,
-    PROG,
     add_json_option,
-    add_model_options,
     add_output_option,
     add_parameter_options,
     params_from_args,
     print_json,
 )
 from .progress import progress_bar
+from .stability_options import (
+    RAW,
+    decimal_number,
+    save_figure,
+)
 
 BEAM_CHOICES = tuple(default_catalogue().beams)
-_RAW = argparse.RawDescriptionHelpFormatter
 FIGURES = (2, 3, 4, 7, 8, 16)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add the stability subcommands."""
+    """Add critical-velocity, frequency-lines, critical-stiffness and stability-figure."""
     _register_critical_velocity(subparsers)
     _register_frequency_lines(subparsers)
-    _register_instability_lines(subparsers)
-    _register_stability_map(subparsers)
     _register_critical_stiffness(subparsers)
     _register_figure(subparsers)
-
-
-# -- shared options -----------------------------------------------------------------------------------
-def _number(text: str) -> str:
-    try:
-        Fraction(text.strip())
-    except (ValueError, ZeroDivisionError):
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    return text
-
-
-def _number_list(text: str) -> list[str]:
-    return [_number(t) for t in text.split(",") if t.strip()]
-
-
-def _add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
-    """Parameters of the instability-lines / stability-map family (no alpha, no eta_M: they are the axes)."""
-    g = parser.add_argument_group("parameters", "A Table 1 case as base (optional), then overrides.")
-    g.add_argument("--case", type=int, metavar="N", help="take the other parameters from Table 1 case N")
-    if spacing_list:
-        g.add_argument("--d", type=_number_list, metavar="D1,D2,...", help="wheel spacing(s) d (default 1)")
-    else:
-        g.add_argument("--d", type=_number, metavar="X", help="wheel spacing d (default 1)")
-    for opt, dest, text in (
-        ("--eta-f", "eta_f", "foundation damping (> 0; default 0.05)"),
-        ("--eta-s", "eta_s", "Pasternak shear layer (default 0)"),
-        ("--cf1", "cf1", "bar mass mu_v = cf1 eta_M, Eq. (63) (default 1.7)"),
-        ("--cf2", "cf2", "bar inertia J_b = cf2 eta_M d^2, Eq. (63) (default 0.01)"),
-        ("--kappa-v", "kappa_v", "suspension stiffness (default 0.02)"),
-        ("--eta-v", "eta_v", "suspension damping (default 0)"),
-        ("--S", "S", "Timoshenko shear parameter, Eq. (59) (with --beam tr)"),
-        ("--r", "r", "radius of gyration, Eq. (59) (with --beam tr)"),
-    ):
-        g.add_argument(opt, dest=dest, type=_number, metavar="X", help=text)
-    add_model_options(parser)
-
-
-_DEFAULTS = dict(eta_f="0.05", eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5")
-
-
-def _params_and_spacings(args):
-    from moving_bogie.model.cases import table1_case
-    from moving_bogie.model.params import DimensionlessParams
-
-    base = (
-        table1_case(args.case)
-        if args.case is not None
-        else DimensionlessParams.from_coefficients(**_DEFAULTS)
-    )
-    changes = {
-        k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r")
-    } | {k: getattr(args, k, None) for k in MODEL_OPTIONS.values()}
-    changes = {k: v for k, v in changes.items() if v is not None}
-    spacings = args.d if isinstance(args.d, list) else ([args.d] if args.d is not None else None)
-    if spacings:
-        changes["d"] = spacings[0]
-    params = base.replace(**changes)
-    args.model = params.vehicle
-    return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
 
 
 # -- critical-velocity --------------------------------------------------------------------------------
@@ -125,7 +62,7 @@ def _register_critical_velocity(subparsers) -> None:
             "  moving-bogie critical-velocity --beam tr --S 100 --r 0.03 --json\n"
             "  moving-bogie critical-velocity --file examples/two-layer.toml"
         ),
-        formatter_class=_RAW,
+        formatter_class=RAW,
     )
     p.add_argument("--beam", choices=BEAM_CHOICES, default=None, help="beam (default eb, or the file's)")
     p.add_argument(
@@ -142,7 +79,7 @@ def _register_critical_velocity(subparsers) -> None:
     )
     for name, spec in _track_groups().items():
         p.add_argument(
-            spec.option, dest=name, type=_number, default=None, metavar="X", help=f"{spec.meaning}"
+            spec.option, dest=name, type=decimal_number, default=None, metavar="X", help=f"{spec.meaning}"
         )
     add_json_option(p)
     p.set_defaults(handler=run_critical_velocity)
@@ -216,7 +153,7 @@ def _register_frequency_lines(subparsers) -> None:
             "examples:\n  moving-bogie frequency-lines --case 1 --plot fig2.png\n"
             "  moving-bogie frequency-lines --case 1 --json"
         ),
-        formatter_class=_RAW,
+        formatter_class=RAW,
     )
     add_parameter_options(p)
     p.add_argument("--alpha-min", type=float, default=0.0)
@@ -240,7 +177,7 @@ def run_frequency_lines(args) -> int:
             progress=bar,
         )
     if args.plot:
-        _save(_frequency_figure(res), args.plot)
+        save_figure(_frequency_figure(res), args.plot)
     if args.json:
         print_json(res.to_dict())
     else:
@@ -270,186 +207,6 @@ def _frequency_figure(res):
     return fig
 
 
-# -- instability-lines --------------------------------------------------------------------------------
-def _register_instability_lines(subparsers) -> None:
-    p = subparsers.add_parser(
-        "instability-lines",
-        help="instability lines in the (alpha, eta_M) plane (Figures 3, 4, 7, 8)",
-        description=(
-            "Curves where an induced frequency is real: crossing one changes the number of unstable\n"
-            "induced frequencies by one. Seeded on a grid (E_chr is a polynomial in eta_M) and traced by\n"
-            "3-D pseudo-arclength continuation; each point carries its real frequency q and which side\n"
-            "(larger or smaller eta_M) is the more unstable one."
-        ),
-        epilog=(
-            "examples:\n"
-            "  moving-bogie instability-lines --model masses --d 1,1.25,1.5 --eta-f 0.1 --plot f.png\n"
-            "  moving-bogie instability-lines --d 1.5 --cf2 0.1 --kappa-v 0.2 --beam tr --S 10 --r 0.09"
-        ),
-        formatter_class=_RAW,
-    )
-    _add_track_vehicle_options(p, spacing_list=True)
-    p.add_argument("--alpha-min", type=float, default=0.0)
-    p.add_argument("--alpha-max", type=float, default=1.2)
-    p.add_argument("--eta-M-max", dest="theta_max", type=float, default=200.0)
-    p.add_argument(
-        "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
-    )
-    p.add_argument("--q-max", type=float, default=1.5, help="largest real induced frequency searched")
-    p.add_argument(
-        "--verify",
-        action="store_true",
-        help="count unstable roots (induced_frequencies) on both sides of each branch",
-    )
-    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
-    add_json_option(p)
-    p.set_defaults(handler=run_instability_lines)
-
-
-def run_instability_lines(args) -> int:
-    from moving_bogie.stability.instability_lines import instability_lines
-    from moving_bogie.stability.line_ends import EXPLANATIONS
-
-    params, spacings = _params_and_spacings(args)
-    with progress_bar("instability lines") as bar:
-        res = instability_lines(
-            params,
-            args.model,
-            spacings=spacings,
-            parameter=args.parameter,
-            alpha_range=(args.alpha_min, args.alpha_max),
-            theta_max=args.theta_max,
-            q_max=args.q_max,
-            verify=args.verify,
-            progress=bar,
-        )
-    if args.plot:
-        from matplotlib.figure import Figure
-
-        from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
-
-        fig = Figure(figsize=(7, 5), layout="constrained")
-        ax = fig.subplots()
-        marks = plot_instability_lines(ax, res)
-        ax.axvline(1.0, color="k", ls=":")
-        ax.set_xlim(args.alpha_min, args.alpha_max)
-        ax.set_ylim(0, args.theta_max)
-        ax.set_xlabel("alpha")
-        ax.set_ylabel(args.parameter)
-        handles, _ = ax.get_legend_handles_labels()
-        ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
-        _save(fig, args.plot)
-    if args.json:
-        print_json(res.to_dict())
-    else:
-        for b in res.branches:
-            k = len(b.alpha)
-            print(
-                f"d={b.d:g}: {k} points, alpha {b.alpha.min():.4f}..{b.alpha.max():.4f}, "
-                f"{args.parameter} {b.theta.min():.4g}..{b.theta.max():.4g}, unstable side: {b.unstable_side}"
-                + ("" if b.verified is None else f", counts below/above: {b.verified[2]}/{b.verified[4]}")
-            )
-            for end in b.stops_inside:
-                print(
-                    f"  stops inside the plot at alpha {end.alpha:.4f}, {args.parameter} {end.theta:.4g}, "
-                    f"q {end.q:.4f}: {EXPLANATIONS[end.reason]}"
-                )
-        if res.q_max != args.q_max:
-            print(f"q range raised to q_max = {res.q_max:g} (a line reached {args.q_max:g})")
-        for w in res.warnings:
-            print(f"{PROG}: warning: {w}", file=sys.stderr)
-    return 0
-
-
-# -- stability-map ------------------------------------------------------------------------------------
-def _register_stability_map(subparsers) -> None:
-    p = subparsers.add_parser(
-        "stability-map",
-        help="degree of instability over an (alpha, eta_M) grid, with the instability lines",
-        description=(
-            "Degree of instability (most negative Im q, 0 where stable) and number of unstable induced\n"
-            "frequencies on a grid, in vectorised double precision: argument-principle counts on a contour\n"
-            "in the lower half q-plane shared by a whole column of eta_M, roots by Newton's method."
-        ),
-        epilog=(
-            "examples:\n  moving-bogie stability-map --case 1 --plot map.png --npz map.npz\n"
-            "  moving-bogie stability-map --d 1.5 --n 400 --lines --plot map.png"
-        ),
-        formatter_class=_RAW,
-    )
-    _add_track_vehicle_options(p, spacing_list=False)
-    p.add_argument("--alpha-min", type=float, default=0.0)
-    p.add_argument("--alpha-max", type=float, default=1.2)
-    p.add_argument("--eta-M-max", dest="theta_max", type=float, default=200.0)
-    p.add_argument("--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M")
-    p.add_argument("--n", type=int, default=200, help="grid points per axis (default 200)")
-    p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
-    p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
-    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
-    add_output_option(p, "--npz", metavar="F.npz", help="save the arrays")
-    add_output_option(
-        p, "--out", folder=True, metavar="S.zarr", help="save as a 2-D sweep store (sweep-plot, xarray)"
-    )
-    p.add_argument("--overwrite", action="store_true", help="replace an existing --out store")
-    add_json_option(p)
-    p.set_defaults(handler=run_stability_map)
-
-
-def run_stability_map(args) -> int:
-    import numpy as np
-
-    from moving_bogie.stability.instability_lines import instability_lines
-    from moving_bogie.stability.map import stability_map
-
-    params, _ = _params_and_spacings(args)
-    if args.out is not None and args.out.exists() and not args.overwrite:
-        raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")
-    alphas = np.linspace(args.alpha_min, args.alpha_max, args.n)
-    thetas = np.linspace(args.theta_max / args.n, args.theta_max, args.n)
-    with progress_bar("stability map") as bar:
-        smap = stability_map(
-            params,
-            args.model,
-            parameter=args.parameter,
-            alphas=alphas,
-            thetas=thetas,
-            workers=args.workers,
-            progress=bar,
-        )
-    lines = None
-    if args.lines and params.eta_f > 0:
-        with progress_bar("instability lines") as bar:
-            lines = instability_lines(
-                params,
-                args.model,
-                parameter=args.parameter,
-                alpha_range=(args.alpha_min, args.alpha_max),
-                theta_max=args.theta_max,
-                progress=bar,
-            )
-    if args.npz:
-        args.npz.parent.mkdir(parents=True, exist_ok=True)
-        smap.save_npz(args.npz)
-    if args.out:
-        from moving_bogie.sweep.store import write_map
-
-        write_map(args.out, smap, overwrite=args.overwrite)
-    if args.plot:
-        from moving_bogie.stability.plots import plot_stability_map
-
-        _save(plot_stability_map(smap, lines), args.plot)
-    summary = smap.summary()
-    if args.json:
-        print_json(summary)
-    else:
-        for key, value in summary.items():
-            if key not in ("params", "uncertain"):
-                print(f"{key:18s} {value}")
-        for cell in summary["uncertain"]:
-            print("uncertain cell     " + ", ".join(f"{k} = {v:.6g}" for k, v in cell.items()))
-    return 0
-
-
 # -- critical-stiffness -------------------------------------------------------------------------------
 def _register_critical_stiffness(subparsers) -> None:
     p = subparsers.add_parser(
@@ -464,7 +221,7 @@ def _register_critical_stiffness(subparsers) -> None:
             "examples:\n"
             "  moving-bogie critical-stiffness --case 5 --alpha-min 0.3 --alpha-max 1 --kappa-max 0.6"
         ),
-        formatter_class=_RAW,
+        formatter_class=RAW,
     )
     add_parameter_options(p)
     p.add_argument("--alpha-min", type=float, default=0.3)
@@ -511,7 +268,7 @@ def _register_figure(subparsers) -> None:
             "examples:\n  moving-bogie stability-figure 3 --plot fig3.png\n"
             "  moving-bogie stability-figure 16 --quick --plot fig16.png"
         ),
-        formatter_class=_RAW,
+        formatter_class=RAW,
     )
     p.add_argument("number", type=int, choices=FIGURES)
     add_output_option(
@@ -532,12 +289,6 @@ def run_figure(args) -> int:
 
     with progress_bar(f"figure {args.number}") as bar:
         fig = getattr(plots_stability, f"figure{args.number}")(quick=args.quick, progress=bar)
-    _save(fig, args.plot)
+    save_figure(fig, args.plot)
     print(args.plot)
     return 0
-
-
-def _save(fig, path: Path) -> None:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)

@@ -1,0 +1,79 @@
+"""Options and helpers shared by the stability subcommands (Sections 3.5-3.8)."""
+
+from __future__ import annotations
+
+import argparse
+from fractions import Fraction
+from pathlib import Path
+
+from .common import MODEL_OPTIONS, add_model_options
+
+#: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
+RAW = argparse.RawDescriptionHelpFormatter
+
+
+def decimal_number(text: str) -> str:
+    try:
+        Fraction(text.strip())
+    except (ValueError, ZeroDivisionError):
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    return text
+
+
+def number_list(text: str) -> list[str]:
+    return [decimal_number(t) for t in text.split(",") if t.strip()]
+
+
+def add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
+    """Parameters of the instability-lines / stability-map family (no alpha, no eta_M: they are the axes)."""
+    g = parser.add_argument_group("parameters", "A Table 1 case as base (optional), then overrides.")
+    g.add_argument("--case", type=int, metavar="N", help="take the other parameters from Table 1 case N")
+    if spacing_list:
+        g.add_argument("--d", type=number_list, metavar="D1,D2,...", help="wheel spacing(s) d (default 1)")
+    else:
+        g.add_argument("--d", type=decimal_number, metavar="X", help="wheel spacing d (default 1)")
+    for opt, dest, text in (
+        ("--eta-f", "eta_f", "foundation damping (> 0; default 0.05)"),
+        ("--eta-s", "eta_s", "Pasternak shear layer (default 0)"),
+        ("--cf1", "cf1", "bar mass mu_v = cf1 eta_M, Eq. (63) (default 1.7)"),
+        ("--cf2", "cf2", "bar inertia J_b = cf2 eta_M d^2, Eq. (63) (default 0.01)"),
+        ("--kappa-v", "kappa_v", "suspension stiffness (default 0.02)"),
+        ("--eta-v", "eta_v", "suspension damping (default 0)"),
+        ("--S", "S", "Timoshenko shear parameter, Eq. (59) (with --beam tr)"),
+        ("--r", "r", "radius of gyration, Eq. (59) (with --beam tr)"),
+    ):
+        g.add_argument(opt, dest=dest, type=decimal_number, metavar="X", help=text)
+    add_model_options(parser)
+
+
+PLANE_DEFAULTS = dict(
+    eta_f="0.05", eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5"
+)
+
+
+def params_and_spacings(args):
+    from moving_bogie.model.cases import table1_case
+    from moving_bogie.model.params import DimensionlessParams
+
+    base = (
+        table1_case(args.case)
+        if args.case is not None
+        else DimensionlessParams.from_coefficients(**PLANE_DEFAULTS)
+    )
+    changes = {
+        k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r")
+    } | {k: getattr(args, k, None) for k in MODEL_OPTIONS.values()}
+    changes = {k: v for k, v in changes.items() if v is not None}
+    spacings = args.d if isinstance(args.d, list) else ([args.d] if args.d is not None else None)
+    if spacings:
+        changes["d"] = spacings[0]
+    params = base.replace(**changes)
+    args.model = params.vehicle
+    return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
+
+
+def save_figure(fig, path: Path) -> None:
+    """Write a matplotlib figure (format from the suffix), creating the folder."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=120)
