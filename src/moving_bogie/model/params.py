@@ -23,6 +23,7 @@ from moving_bogie.model.exact import (
     nonnegative,
     positive,
 )
+from moving_bogie.model.values import ModelValues
 
 __all__ = ["BEAMS", "DimensionlessParams"]
 
@@ -47,7 +48,7 @@ def check_value(spec, value: object) -> Fraction:
     return x
 
 
-class DimensionlessParams:
+class DimensionlessParams(ModelValues):
     """Dimensionless parameters of one model (beam x track x vehicle), Eqs. (15)-(17), (59), (63).
 
     Every group accepts an int, a Fraction, decimal text (``"0.1"``, converted exactly), a Decimal or a
@@ -79,7 +80,7 @@ class DimensionlessParams:
     (Fraction(51, 1), Fraction(6, 5), Fraction(17, 10))
     """
 
-    __slots__ = ("_model", "_values")
+    __slots__ = ()
 
     def __init__(
         self,
@@ -118,31 +119,9 @@ class DimensionlessParams:
                     )
                 value = spec.default
             exact[name] = check_value(spec, value)
-        object.__setattr__(self, "_model", model)
-        object.__setattr__(self, "_values", exact)
+        self._set(model, exact)
 
     # --- reading ------------------------------------------------------------------------------------
-
-    @property
-    def model(self) -> Model:
-        """The :class:`~moving_bogie.model.catalogue.Model` these parameters belong to."""
-        return self._model
-
-    @property
-    def beam(self) -> str:
-        return self._model.beam
-
-    @property
-    def track(self) -> str:
-        return self._model.track
-
-    @property
-    def vehicle(self) -> str:
-        return self._model.vehicle
-
-    def values(self) -> dict[str, Fraction]:
-        """The groups of the model, name -> exact value, in the catalogue's order."""
-        return dict(self._values)
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("_"):
@@ -159,25 +138,6 @@ class DimensionlessParams:
         if name in model.catalogue.specs or name in model.catalogue.parameters.ALTERNATIVES:
             return None  # a group or coefficient of another model
         raise AttributeError(f"{type(self).__name__} of {model.name} has no parameter {name!r}")
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        raise AttributeError(f"{type(self).__name__} is immutable: use replace({name}=...)")
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, DimensionlessParams):
-            return NotImplemented
-        return self._key() == other._key()
-
-    def __hash__(self) -> int:
-        return hash(self._key())
-
-    def _key(self) -> tuple:
-        return (self._model, tuple(self._values.items()))
-
-    def __repr__(self) -> str:
-        items = [f"{k}={fraction_to_exact_text(v)!r}" for k, v in self._values.items()]
-        items += [f"{k}={getattr(self, k)!r}" for k in _MODEL_KEYS]
-        return f"{type(self).__name__}({', '.join(items)})"
 
     def __reduce__(self):
         return (_rebuild, (self._model.beam, self._model.track, self._model.vehicle, self.to_exact_dict()))

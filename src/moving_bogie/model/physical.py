@@ -17,12 +17,12 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, default_catalogue
 from moving_bogie.model.exact import (
     NumberLike,
-    fraction_to_exact_text,
     fraction_to_mpf,
     fraction_to_text,
     nonnegative,
     positive,
 )
+from moving_bogie.model.values import ModelValues
 
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
@@ -122,7 +122,7 @@ class Scales:
         return q / self.t_scale
 
 
-class PhysicalParams:
+class PhysicalParams(ModelValues):
     """Physical parameters of a model in SI units, stored exactly as Fractions.
 
     The scale parameters ``EI`` [N m^2], ``m`` [kg/m], ``k_f`` [N/m^2] and the wheel load ``P`` [N], and the
@@ -147,7 +147,7 @@ class PhysicalParams:
         Naming the first offending parameter.
     """
 
-    __slots__ = ("_model", "_values")
+    __slots__ = ()
 
     def __init__(self, *, beam=None, track=None, vehicle=None, model: Model | None = None, **values: Any):
         values = {k: v for k, v in values.items() if v is not None}
@@ -179,24 +179,7 @@ class PhysicalParams:
                 continue
             check = positive if spec.constraint == "positive" else nonnegative
             exact[si] = check(si, values[si])
-        object.__setattr__(self, "_model", model)
-        object.__setattr__(self, "_values", exact)
-
-    @property
-    def model(self) -> Model:
-        return self._model
-
-    @property
-    def beam(self) -> str:
-        return self._model.beam
-
-    @property
-    def track(self) -> str:
-        return self._model.track
-
-    @property
-    def vehicle(self) -> str:
-        return self._model.vehicle
+        self._set(model, exact)
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("_"):
@@ -204,26 +187,6 @@ class PhysicalParams:
         if name in self._values:
             return self._values[name]
         raise AttributeError(f"PhysicalParams of {self._model.name} has no SI parameter {name!r}")
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        raise AttributeError("PhysicalParams is immutable")
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, PhysicalParams):
-            return NotImplemented
-        return (self._model, self._values) == (other._model, other._values)
-
-    def __hash__(self) -> int:
-        return hash((self._model, tuple(self._values.items())))
-
-    def __repr__(self) -> str:
-        items = [f"{k}={fraction_to_exact_text(v)!r}" for k, v in self._values.items()]
-        items += [f"{k}={getattr(self, k)!r}" for k in ("beam", "track", "vehicle")]
-        return f"PhysicalParams({', '.join(items)})"
-
-    def values(self) -> dict[str, Fraction]:
-        """SI name -> exact value."""
-        return dict(self._values)
 
     def units(self) -> dict[str, str]:
         """SI name -> unit."""
