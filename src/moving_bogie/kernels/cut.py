@@ -26,12 +26,14 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import optimize
 
-from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
+from moving_bogie.kernels.polyroots import companion_roots, newton_polish, poly_roots, polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import resolve_foundation
 
-__all__ = ["CutArm", "CutLocus", "CutTracer", "Fold", "cut_locus"]
+__all__ = ["CutArm", "CutLocus", "CutTracer", "Fold", "cut_locus", "far_range", "trace_curves"]
 
 _MAX_REFINE = 30
+_P_MAX = 2.0**40  # largest p-range traced (a curve drifting out slower than this is cut off there)
+_SETTLED = 1e-9  # relative move of a curve's end, when |p| doubles, below which it sits at its limit
 _PREDICTION = 0.1  # accepted prediction error, relative to the distance to the nearest other root
 
 
@@ -43,9 +45,21 @@ class CutTracer:
         self.args = args
 
     def q_roots(self, ps) -> np.ndarray:
-        """All roots in q at real ``ps``, shape ``ps.shape + (DEGREE_N_IN_Q,)``."""
+        """All roots in q at real ``ps``, shape ``ps.shape + (DEGREE_N_IN_Q,)``.
+
+        Polished by Newton's method on N(p, .): at large |p| the roots of the rail (|q| ~ p^2) and of a
+        mass layer (|q| bounded) differ by many orders, and the closed form alone then loses the small ones'
+        digits.
+        """
         ps = np.asarray(ps, dtype=float)
-        return poly_roots(stack_coefficients(self.module.n_coeffs_in_q(ps, **self.args), ps.shape))
+        c = stack_coefficients(self.module.n_coeffs_in_q(ps, **self.args), ps.shape)
+        z = newton_polish(c, poly_roots(c), steps=2)
+        with np.errstate(all="ignore"):
+            residual = np.abs(polyval(c, z)) / polyval(np.abs(c), np.abs(z))
+        bad = ~np.all(residual <= 1e-11, axis=-1) & np.all(np.isfinite(c), axis=-1) & (c[..., 0] != 0)
+        if np.any(bad):  # companion eigenvalues where the closed form lost digits
+            z[bad] = companion_roots(c[bad])
+        return z
 
     def dq_dp(self, p, q) -> np.ndarray:
         """dq/dp = -N_p / N_q along a curve N(p, q) = 0 (implicit-function theorem)."""
@@ -72,12 +86,17 @@ class CutTracer:
 
 @dataclass(frozen=True)
 class Fold:
-    """A turning point of Re q along a curve: ``cusp`` when dq/dp = 0 there (a branch point of K)."""
+    """A turning point of Re q along a curve: ``cusp`` when dq/dp = 0 there (a branch point of K).
+
+    ``end``: not a turning point but the end of a curve that stays bounded as |p| -> infinity (its limit
+    q_inf; ``cusp`` is then True: K is singular there too, and ``opens`` is 0).
+    """
 
     p: float
     q: complex
     cusp: bool
     opens: int  # +1: the two arms leave towards larger Re q, -1 towards smaller
+    end: bool = False
 
 
 @dataclass(eq=False)
@@ -219,56 +238,93 @@ def trace_curves(tracer: CutTracer, p_lo: float, p_hi: float, n: int = 2001, gri
     return ps, out
 
 
+def _turn_brackets(xd):
+    """(a, b) index pairs between which Re dq/dp changes sign: b = a + 1 (a root inside), or b > a + 1 when
+    the samples between are exact zeros (a turn on a sample, e.g. p = 0 of an even curve at alpha = 0)."""
+    sign = np.sign(xd)
+    nz = np.nonzero(sign)[0]
+    return [(a, b) for a, b in zip(nz[:-1], nz[1:]) if sign[a] * sign[b] < 0]
+
+
 def _split_at_turns(tracer, ps, qs):
     """Arms (p, q samples) and folds of one curve: cut where Re dq/dp changes sign."""
     xd = tracer.dq_dp(ps, qs).real
-    change = np.nonzero(np.sign(xd[:-1]) * np.sign(xd[1:]) < 0)[0]
     folds, cuts = [], []
-    for k in change:
+    for k, b in _turn_brackets(xd):
+        if b > k + 1:  # the turn sits on a sample
+            m = (k + b) // 2
+            pt, qt, end, nxt = float(ps[m]), complex(qs[m]), m, m + 1
+        else:
 
-        def slope(p, k=k):
-            q = tracer.refine(
-                np.array([p]), np.array([qs[k] + (p - ps[k]) * (qs[k + 1] - qs[k]) / (ps[k + 1] - ps[k])])
-            )
-            return float(tracer.dq_dp(np.array([p]), q).real[0])
+            def slope(p, k=k):
+                q = tracer.refine(
+                    np.array([p]), np.array([qs[k] + (p - ps[k]) * (qs[k + 1] - qs[k]) / (ps[k + 1] - ps[k])])
+                )
+                return float(tracer.dq_dp(np.array([p]), q).real[0])
 
-        pt = optimize.brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
-        qt = complex(tracer.refine(np.array([pt]), np.array([qs[k]]))[0])
+            pt = optimize.brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
+            qt = complex(tracer.refine(np.array([pt]), np.array([qs[k]]))[0])
+            end = nxt = k + 1
         d = tracer.dq_dp(np.array([pt]), np.array([qt]))[0]
-        scale = max(1.0, float(np.abs(tracer.dq_dp(ps[k : k + 2], qs[k : k + 2])).max()))
-        opens = 1 if xd[k + 1] > 0 else -1
-        folds.append(Fold(float(pt), qt, abs(d) < 1e-6 * scale, opens))
-        cuts.append((k, pt, qt))
+        scale = max(1.0, float(np.abs(tracer.dq_dp(ps[k : b + 1], qs[k : b + 1])).max()))
+        opens = 1 if xd[b] > 0 else -1
+        folds.append(Fold(float(pt), qt, bool(abs(d) < 1e-6 * scale), opens))
+        cuts.append((end, pt, qt, nxt))
     arms = []
     start_p, start_q, first = [], [], 0
-    for k, pt, qt in cuts:
+    for end, pt, qt, nxt in cuts:
         arms.append(
             (
-                np.concatenate([start_p, ps[first : k + 1], [pt]]),
-                np.concatenate([start_q, qs[first : k + 1], [qt]]),
+                np.concatenate([start_p, ps[first:end], [pt]]),
+                np.concatenate([start_q, qs[first:end], [qt]]),
             )
         )
-        start_p, start_q, first = [pt], [qt], k + 1
+        start_p, start_q, first = [pt], [qt], nxt
     arms.append((np.concatenate([start_p, ps[first:]]), np.concatenate([start_q, qs[first:]])))
     return arms, folds
+
+
+def far_range(tracer: CutTracer, reach: float) -> float:
+    """A p-range P beyond which no curve q_j(p) (|p| > P) comes back into |Re q| <= reach except as its limit.
+
+    Every end q_j(+-P) either lies beyond the strip (the rail's curves, |q| ~ p^2, and a mass layer's for
+    alpha > 0, q ~ alpha p + s_inf) or has settled at a finite limit q_inf: with t = 1/p, t^deg N(1/t, q)
+    is a polynomial in t whose value at t = 0 vanishes at q_inf (the leading coefficient of N in p; for a
+    mass layer at alpha = 0, its own resonance), so such a curve converges like a power of 1/p. Settled
+    means: the end moved by at most 1e-9 (relative) when |p| doubled, and by at most half as much as in the
+    doubling before (a curve drifting linearly, q ~ alpha p with alpha tiny, is not settled).
+    """
+    P = 4.0
+    prev = tracer.q_roots(np.array([-P, P]))
+    moved_before = np.full(prev.shape, np.inf)
+    while P < _P_MAX:
+        P *= 2
+        cur = tracer.q_roots(np.array([-P, P]))
+        moved = np.min(np.abs(cur[..., :, None] - prev[..., None, :]), axis=-1)
+        settled = (moved <= _SETTLED * (1 + np.abs(cur))) & (moved <= 0.5 * moved_before)
+        if np.all((np.abs(cur.real) > reach) | settled):
+            break
+        prev, moved_before = cur, moved
+    return P
 
 
 def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, foundation=None) -> CutLocus:
     """Trace the cut of K for ``params`` over x_min <= Re q <= x_max (every curve q_j(p), p real).
 
-    The p-range grows until every root q_j(+-P) lies beyond the strip (|q_j| grows without bound with
-    |p| whenever the leading coefficient of N in q does not vanish).
+    The p-range (:func:`far_range`) reaches until every curve has left the strip or settled at its limit
+    q_inf; the grid is uniform in asinh(p/2) (fine near p = 0, geometric far out) and refined adaptively.
+    A curve that ends inside the strip at its limit gives an *end* of the cut (:class:`Fold` with
+    ``end=True``): K is singular there (a root p of N runs off to infinity), and the tiling treats it as
+    a branch point.
     """
     track = resolve_foundation(params, foundation)
     tracer = CutTracer(track.module, track.float_arguments(params))
     reach = max(abs(x_min), abs(x_max)) + 1.0
-    P = 4.0
-    for _ in range(12):
-        ends = tracer.q_roots(np.array([-P, P]))
-        if np.all(np.abs(ends.real) > reach):
-            break
-        P *= 2
-    ps, Q = trace_curves(tracer, -P, P, samples)
+    P = far_range(tracer, reach)
+    U = float(np.arcsinh(P / 2.0))
+    grid = 2.0 * np.sinh(np.linspace(-U, U, samples))
+    grid[0], grid[-1] = -P, P
+    ps, Q = trace_curves(tracer, -P, P, grid=grid)
     arms, folds = [], []
     for j in range(Q.shape[1]):
         pieces, turns = _split_at_turns(tracer, ps, Q[:, j])
@@ -276,7 +332,8 @@ def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, founda
             inside = (q_arm.real >= x_min) & (q_arm.real <= x_max)
             if p_arm.size > 1 and (np.any(inside) or (q_arm.real.min() < x_min and q_arm.real.max() > x_max)):
                 arms.append(CutArm(p_arm, q_arm, tracer))
-        folds += [f for f in turns if x_min <= f.q.real <= x_max]
+        ends = [Fold(float(ps[k]), complex(Q[k, j]), True, 0, True) for k in (0, -1) if abs(Q[k, j].real) <= reach]
+        folds += [f for f in turns + ends if x_min <= f.q.real <= x_max]
     pts = np.concatenate([a.q for a in arms]) if arms else np.zeros(0, complex)
     inside = pts[(pts.real >= x_min) & (pts.real <= x_max)]
     extra = np.array([f.q for f in folds], dtype=complex)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["newton_polish", "poly_roots", "polyder", "polyval", "quartic_roots", "stack_coefficients"]
+__all__ = ["companion_roots", "newton_polish", "poly_roots", "polyder", "polyval", "quartic_roots", "stack_coefficients"]
 
 
 def quartic_roots(c) -> np.ndarray:
@@ -66,11 +66,18 @@ def poly_roots(coeffs) -> np.ndarray:
     """Roots of polynomials given by ``coeffs[..., :]`` (highest first), batched.
 
     Degree 2: the stable quadratic formula; 4: :func:`quartic_roots`; others: companion eigenvalues.
-    A vanishing leading
-    coefficient gives roots at infinity (nan entries), which callers discard.
+    A leading coefficient that vanishes exactly (a layered track at alpha = 0: N loses its top powers of
+    p) gives roots at infinity: nan entries (last), which callers discard; the others are the roots of the
+    lower-degree polynomial.
     """
     coeffs = np.asarray(coeffs, dtype=complex)
     deg = coeffs.shape[-1] - 1
+    drop = (coeffs[..., 0] == 0) & np.any(coeffs[..., 1:] != 0, axis=-1)
+    if deg > 1 and np.any(drop):
+        out = poly_roots(np.where(drop[..., None], 1, coeffs))
+        lower = poly_roots(coeffs[drop][..., 1:])
+        out[drop] = np.concatenate([lower, np.full(lower.shape[:-1] + (1,), np.nan)], axis=-1)
+        return out
     with np.errstate(divide="ignore", invalid="ignore"):
         monic = coeffs[..., 1:] / coeffs[..., :1]
     bad = ~np.all(np.isfinite(monic), axis=-1)
@@ -87,12 +94,27 @@ def poly_roots(coeffs) -> np.ndarray:
     elif deg == 4:
         roots = quartic_roots(np.concatenate([np.ones(monic.shape[:-1] + (1,)), monic], axis=-1))
     else:
-        comp = np.zeros(coeffs.shape[:-1] + (deg, deg), dtype=complex)
-        comp[..., 0, :] = -monic
-        idx = np.arange(deg - 1)
-        comp[..., idx + 1, idx] = 1
-        roots = newton_polish(coeffs, np.linalg.eigvals(comp))
+        roots = _companion(coeffs, monic)
     return np.where(bad[..., None], np.nan, roots)
+
+
+def companion_roots(coeffs) -> np.ndarray:
+    """Roots by (balanced) companion-matrix eigenvalues polished by Newton's method, any degree, batched.
+
+    Slower than :func:`quartic_roots` but backward stable, also when the roots differ by many orders of
+    magnitude (where the closed form loses the small ones). Leading coefficients must not vanish.
+    """
+    coeffs = np.asarray(coeffs, dtype=complex)
+    return _companion(coeffs, coeffs[..., 1:] / coeffs[..., :1])
+
+
+def _companion(coeffs, monic):
+    deg = coeffs.shape[-1] - 1
+    comp = np.zeros(coeffs.shape[:-1] + (deg, deg), dtype=complex)
+    comp[..., 0, :] = -monic
+    idx = np.arange(deg - 1)
+    comp[..., idx + 1, idx] = 1
+    return newton_polish(coeffs, np.linalg.eigvals(comp))
 
 
 def newton_polish(coeffs, roots, steps: int = 2) -> np.ndarray:

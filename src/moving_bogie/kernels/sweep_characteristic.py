@@ -145,6 +145,7 @@ class SweepCharacteristic:
             parts.append((self._d_alpha(fnd.n_coeffs, q, alpha), self._d_alpha(fnd.q_coeffs, q, alpha)))
         parts = [(_polyval(ns, P), _polyval(_polyder(ns), P), _polyval(qs, P)) for ns, qs in parts]
         upper = P.imag > 0
+        lower = ~upper & np.isfinite(P)  # roots at infinity (nan) contribute nothing
         ds = [self.d] if spacings is None else list(spacings)
         if d is not None:
             ds = [np.broadcast_to(np.asarray(d, dtype=float), q.shape)]
@@ -154,10 +155,11 @@ class SweepCharacteristic:
             trip = {key: [] for key in out}
             for sign_xi in (0, 1, -1):
                 xi = sign_xi * (dd if np.ndim(dd) == 0 else dd[..., None])
-                mask = upper if sign_xi >= 0 else ~upper
+                mask = upper if sign_xi >= 0 else lower
                 factor = 2j * np.pi * (1 if sign_xi >= 0 else -1)
-                e = np.exp(1j * P * xi)
-                trip["K"].append(factor * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
+                with np.errstate(invalid="ignore"):  # nan roots (at infinity) are masked out
+                    e = np.exp(1j * P * xi)
+                    trip["K"].append(factor * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
                 for key, (Ns, Nsp, Qs) in zip(keys, parts):
                     g = e * Qv * Ns
                     gp = e * (1j * xi * Qv * Ns + Qp * Ns + Qv * Nsp)

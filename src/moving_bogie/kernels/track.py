@@ -305,10 +305,11 @@ class TrackKernelArray:
             Qp = polyval(polyder(qc), P)
             Qq = polyval(qq, P)
         upper = P.imag > 0
+        lower = ~upper & np.isfinite(P)  # roots at infinity (nan) contribute nothing
         Ks, dKs = [], []
         for xi in xis:
             xi = float(xi)
-            mask = upper if xi >= 0 else ~upper
+            mask = upper if xi >= 0 else lower
             sign = 1 if xi >= 0 else -1
             e = np.exp(1j * P * xi)
             Ks.append(sign * 2j * np.pi * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))

@@ -220,9 +220,15 @@ def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
     unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo))
 
 
+def _ends_at(arm, fold) -> bool:
+    """Whether ``arm`` starts or ends at ``fold`` (same p and same q: curves may share their end p)."""
+    tol = 1e-9 * (1.0 + abs(fold.q))
+    return any(abs(arm.p[k] - fold.p) < 1e-12 and abs(arm.q[k] - fold.q) < tol for k in (0, -1))
+
+
 def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
     """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched)."""
-    pair = [arm for arm in cut.arms if min(abs(arm.p[0] - fold.p), abs(arm.p[-1] - fold.p)) < 1e-12]
+    pair = [arm for arm in cut.arms if _ends_at(arm, fold)]
     others = [arm for arm in _arms_over(cut, a, b) if all(arm is not x for x in pair)]
     xs = np.linspace(a, b, _COLUMN_SAMPLES)
     pair_ys = [fold.q.imag] + [
