@@ -6,6 +6,8 @@ import argparse
 from fractions import Fraction
 from pathlib import Path
 
+from moving_bogie.errors import ParameterError
+
 from .common import MODEL_OPTIONS, add_model_options
 
 #: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
@@ -43,7 +45,24 @@ def add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
         ("--r", "r", "radius of gyration, Eq. (59) (with --beam tr)"),
     ):
         g.add_argument(opt, dest=dest, type=decimal_number, metavar="X", help=text)
+    g.add_argument(
+        "--file", type=Path, metavar="F.toml", help="take the parameters from a TOML file (a layered track's too)"
+    )
+    for name in LAYER_GROUPS:
+        g.add_argument(
+            "--" + name.replace("_", "-"), dest=name, type=decimal_number, metavar="X", help=_layer_help(name)
+        )
     add_model_options(parser)
+
+
+#: Groups of the layered tracks (docs/layered_tracks.md): mass ratio, support stiffness, damping per layer.
+LAYER_GROUPS = ("mu_2", "kappa_2", "eta_2", "mu_3", "kappa_3", "eta_3")
+
+
+def _layer_help(name: str) -> str:
+    kind, layer = name.rsplit("_", 1)
+    what = {"mu": "mass ratio m_j/m", "kappa": "support stiffness k_j/k_1", "eta": "damping c_j/(2 sqrt(m k_1))"}
+    return f"layer {layer}: {what[kind]} (--track two-layer / three-layer)"
 
 
 PLANE_DEFAULTS = dict(
@@ -55,19 +74,31 @@ def params_and_spacings(args):
     from moving_bogie.model.cases import table1_case
     from moving_bogie.model.params import DimensionlessParams
 
-    base = (
-        table1_case(args.case)
-        if args.case is not None
-        else DimensionlessParams.from_coefficients(**PLANE_DEFAULTS)
-    )
-    changes = {
-        k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r")
-    } | {k: getattr(args, k, None) for k in MODEL_OPTIONS.values()}
+    if getattr(args, "file", None) is not None and args.case is not None:
+        raise ParameterError("case", "give either --case or --file, not both")
+    if getattr(args, "file", None) is not None:
+        from moving_bogie.model.files import load_params_file
+
+        base, _ = load_params_file(args.file)
+    elif args.case is not None:
+        base = table1_case(args.case)
+    else:
+        base = DimensionlessParams.from_coefficients(**PLANE_DEFAULTS)
+    names = ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r", *LAYER_GROUPS)
+    changes = {k: getattr(args, k, None) for k in names} | {
+        k: getattr(args, k, None) for k in MODEL_OPTIONS.values()
+    }
     changes = {k: v for k, v in changes.items() if v is not None}
     spacings = args.d if isinstance(args.d, list) else ([args.d] if args.d is not None else None)
     if spacings:
         changes["d"] = spacings[0]
-    params = base.replace(**changes)
+    try:
+        params = base.replace(**changes)
+    except ParameterError as exc:
+        if exc.parameter in LAYER_GROUPS and "missing" in str(exc):
+            option = "--" + exc.parameter.replace("_", "-")
+            raise ParameterError(exc.parameter, f"{exc}: give {option} or --file F.toml") from None
+        raise
     args.model = params.vehicle
     return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
 

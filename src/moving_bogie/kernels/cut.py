@@ -109,6 +109,7 @@ class CutArm:
     p: np.ndarray
     q: np.ndarray
     tracer: CutTracer = field(repr=False)
+    _known: dict = field(default_factory=dict, repr=False)  # x -> p already solved (cells share edges)
 
     @property
     def x_lo(self) -> float:
@@ -129,8 +130,21 @@ class CutArm:
         return self.tracer.refine(p, guess)
 
     def p_at(self, x) -> np.ndarray:
-        """The p of the arm where Re q = x (x within the arm's range), by safeguarded Newton."""
+        """The p of the arm where Re q = x (x within the arm's range), by safeguarded Newton.
+
+        Solutions are remembered: the cells of a tiling share their corners and edges.
+        """
         x = np.asarray(x, dtype=float)
+        flat = x.ravel()
+        out = np.array([self._known.get(v, np.nan) for v in flat.tolist()])
+        new = np.isnan(out)
+        if np.any(new):
+            out[new] = self._solve_p(flat[new])
+            self._known.update(zip(flat[new].tolist(), out[new].tolist()))
+        return out.reshape(x.shape)
+
+    def _solve_p(self, x) -> np.ndarray:
+        x = np.clip(x, self.x_lo, self.x_hi)  # beyond its range the arm's end (a fold's slope is 0)
         xs = self.q.real if self.increasing else self.q.real[::-1]
         ps = self.p if self.increasing else self.p[::-1]
         p = np.interp(x, xs, ps)

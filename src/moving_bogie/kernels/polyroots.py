@@ -108,7 +108,60 @@ def companion_roots(coeffs) -> np.ndarray:
     return _companion(coeffs, coeffs[..., 1:] / coeffs[..., :1])
 
 
+#: Batches larger than this solve every ``_ANCHOR_EVERY``-th polynomial by eigenvalues and the others by
+#: Aberth's iteration started from the roots of the nearest preceding one (contour points come in order).
+_ANCHOR_BATCH = 64
+_ANCHOR_EVERY = 8
+_ABERTH_STEPS = 8
+
+
 def _companion(coeffs, monic):
+    if monic.ndim > 1 and monic[..., 0].size > _ANCHOR_BATCH:
+        return _anchored(coeffs, monic)
+    return _eigen(coeffs, monic)
+
+
+def _anchored(coeffs, monic):
+    """Eigenvalues at every ``_ANCHOR_EVERY``-th polynomial of the batch (flattened order), Aberth's
+    simultaneous iteration from those roots for the rest; a row that has not converged to a relative step
+    of 1e-14 (a start too far from its roots) gets its own eigenvalues."""
+    shape = monic.shape
+    deg = shape[-1]
+    flat_c = coeffs.reshape(-1, deg + 1)
+    flat_m = monic.reshape(-1, deg)
+    n = flat_m.shape[0]
+    anchors = np.arange(0, n, _ANCHOR_EVERY)
+    roots = np.empty((n, deg), dtype=complex)
+    roots[anchors] = _eigen(flat_c[anchors], flat_m[anchors])
+    rest = np.setdiff1d(np.arange(n), anchors)
+    z = roots[(rest // _ANCHOR_EVERY) * _ANCHOR_EVERY].copy()
+    mc = np.concatenate([np.ones((rest.size, 1)), flat_m[rest]], axis=-1)
+    dc = polyder(mc)
+    eye = np.eye(deg, dtype=bool)
+    active = np.arange(rest.size)
+    done = np.zeros(rest.size, dtype=bool)
+    with np.errstate(all="ignore"):
+        for _ in range(_ABERTH_STEPS):
+            za, ca, da = z[active], mc[active], dc[active]
+            ratio = polyval(ca, za) / polyval(da, za)
+            diff = za[:, :, None] - za[:, None, :]
+            diff[:, eye] = np.inf
+            w = ratio / (1.0 - ratio * (1.0 / diff).sum(axis=-1))
+            za = za - w
+            z[active] = za
+            ok = np.all(np.isfinite(za) & (np.abs(w) <= 1e-14 * np.maximum(1.0, np.abs(za))), axis=-1)
+            done[active[ok]] = True
+            active = active[~ok]
+            if not active.size:
+                break
+    roots[rest[done]] = z[done]
+    failed = rest[~done]
+    if failed.size:
+        roots[failed] = _eigen(flat_c[failed], flat_m[failed])
+    return roots.reshape(shape)
+
+
+def _eigen(coeffs, monic):
     deg = coeffs.shape[-1] - 1
     comp = np.zeros(coeffs.shape[:-1] + (deg, deg), dtype=complex)
     comp[..., 0, :] = -monic
@@ -138,14 +191,19 @@ def newton_polish(coeffs, roots, steps: int = 2) -> np.ndarray:
 
 def stack_coefficients(coeffs, shape) -> np.ndarray:
     """Generated coefficient tuples (scalars or arrays) -> complex array ``shape + (n+1,)``, highest first."""
-    return np.stack([np.broadcast_to(np.asarray(c, dtype=complex), shape) for c in coeffs], axis=-1)
+    out = np.empty(tuple(shape) + (len(coeffs),), dtype=complex)
+    for k, c in enumerate(coeffs):
+        out[..., k] = c
+    return out
 
 
 def polyval(coeffs, x):
     """Batched Horner: coeffs ``(..., n+1)`` highest first, x ``(..., k)`` -> ``(..., k)``."""
-    acc = np.broadcast_to(coeffs[..., :1], x.shape).astype(complex)
+    acc = np.empty(np.broadcast_shapes(coeffs.shape[:-1] + (1,), np.shape(x)), dtype=complex)
+    acc[...] = coeffs[..., :1]
     for j in range(1, coeffs.shape[-1]):
-        acc = acc * x + coeffs[..., j : j + 1]
+        acc *= x
+        acc += coeffs[..., j : j + 1]
     return acc
 
 

@@ -120,7 +120,9 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
     # event intervals around folds (tip cells) and cusps (branch-point boxes)
     events = []
     for f in folds:
-        half = eps_branch if f.cusp else min(1e-3 * window.width, 1e-3)
+        # a fold with tip cells gets a column of its own; a cusp, an end of the cut or a fold opening to the
+        # left (no tip cells: a box left out) a narrow one
+        half = eps_branch if (f.cusp or f.opens < 0) else min(1e-3 * window.width, 1e-3)
         events.append((f.q.real - half, f.q.real + half, f))
     x_band = window.x0
     if np.isfinite(cut.x_start) and cut.x_start > window.x0:
@@ -206,6 +208,9 @@ def _split_point(lower, upper, xs, gap, eps):
         change = np.nonzero(np.sign(gap[:-1] - target) * np.sign(gap[1:] - target) < 0)[0]
         if change.size:
             k = change[0]
+            ga, gb = g(xs[k], target), g(xs[k + 1], target)
+            if ga * gb > 0:  # the sign change was at rounding level: split at the nearer sample
+                return xs[k] if abs(ga) < abs(gb) else xs[k + 1]
             return optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
     return None
 
@@ -220,6 +225,16 @@ def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
     unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo))
 
 
+def _box(a, b, lo, hi, regions, unsearched, band_lo, band_hi):
+    """The column [a, b] with the box lo <= Im q <= hi left out (reported as a sliver)."""
+    lo, hi = max(lo, band_lo), min(hi, band_hi)
+    if lo > band_lo:
+        regions.append(Rectangle(a, b, band_lo, lo))
+    if hi < band_hi:
+        regions.append(Rectangle(a, b, hi, band_hi))
+    unsearched.append(Sliver(a, b, lo, hi, hi - lo))
+
+
 def _ends_at(arm, fold) -> bool:
     """Whether ``arm`` starts or ends at ``fold`` (same p and same q: curves may share their end p)."""
     tol = 1e-9 * (1.0 + abs(fold.q))
@@ -232,20 +247,21 @@ def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
     others = [arm for arm in _arms_over(cut, a, b) if all(arm is not x for x in pair)]
     xs = np.linspace(a, b, _COLUMN_SAMPLES)
     pair_ys = [fold.q.imag] + [
-        float(y) for arm in pair for y in arm.y_at(np.linspace(max(a, arm.x_lo), b, 9))
+        float(y) for arm in pair for y in arm.y_at(np.linspace(max(a, arm.x_lo), min(b, arm.x_hi), 9))
     ]
     low, high = min(pair_ys), max(pair_ys)
-    below = [arm for arm in others if arm.y_at(xs).max() < low - 8 * eps]
-    above = [arm for arm in others if arm.y_at(xs).min() > high + 8 * eps]
-    if fold.cusp or fold.opens < 0 or len(pair) != 2 or len(below) + len(above) != len(others):
-        ys = np.array(pair_ys + [float(y) for arm in others for y in arm.y_at(xs)])
-        lo, hi = float(ys.min()) - eps, float(ys.max()) + eps
-        if lo > band_lo:
-            regions.append(Rectangle(a, b, band_lo, lo))
-        if hi < band_hi:
-            regions.append(Rectangle(a, b, hi, band_hi))
-        unsearched.append(Sliver(a, b, lo, hi, hi - lo))
-        return
+    spans = {id(arm): arm.y_at(xs) for arm in others}
+    through = []  # other curves passing through the fold's box: left out with it
+    grown = True
+    while grown:
+        grown = False
+        for arm in others:
+            y = spans[id(arm)]
+            if arm not in through and y.max() >= low - 8 * eps and y.min() <= high + 8 * eps:
+                through.append(arm)
+                low, high, grown = min(low, float(y.min())), max(high, float(y.max())), True
+    below = [arm for arm in others if arm not in through and spans[id(arm)].max() < low]
+    above = [arm for arm in others if arm not in through and spans[id(arm)].min() > high]
     # other curves passing above or below the fold get ordinary column cells there
     if below:
         top = max(float(arm.y_at(xs).max()) for arm in below)
@@ -257,6 +273,9 @@ def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
         split = 0.5 * (bottom + high)
         _column(cut, a, b, regions, unsearched, eps, split, band_hi, above)
         band_hi = split
+    if fold.cusp or fold.opens < 0 or len(pair) != 2 or through:  # a box around the fold (cusp, end)
+        _box(a, b, low - eps, high + eps, regions, unsearched, band_lo, band_hi)
+        return
     at_b = [float(arm.y_at(np.array([b]))[0]) for arm in pair]
     lower, upper = (pair[0], pair[1]) if at_b[0] < at_b[1] else (pair[1], pair[0])
     regions.append(TipCell(fold, lower, upper, b, eps, True))
