@@ -144,20 +144,26 @@ class CutArm:
         return out.reshape(x.shape)
 
     def _solve_p(self, x) -> np.ndarray:
-        x = np.clip(x, self.x_lo, self.x_hi)  # beyond its range the arm's end (a fold's slope is 0)
-        xs = self.q.real if self.increasing else self.q.real[::-1]
-        ps = self.p if self.increasing else self.p[::-1]
+        """Newton's method on Re q(p) = x kept inside a bracket from the samples (bisection when a step
+        leaves it: near a fold Re q is flat in p and a plain Newton step can jump to the arm's other end)."""
+        x = np.clip(x, self.x_lo, self.x_hi)
+        order = np.argsort(self.q.real)
+        xs, ps = self.q.real[order], self.p[order]
+        i = np.clip(np.searchsorted(xs, x), 1, xs.size - 1)
+        below, above = ps[i - 1], ps[i]  # Re q <= x at ``below``, >= x at ``above`` (samples)
         p = np.interp(x, xs, ps)
-        lo, hi = self.p[0], self.p[-1]
-        for _ in range(40):
+        for _ in range(80):
             q = self.q_at(p)
-            slope = self.tracer.dq_dp(p, q).real
+            f = q.real - x
+            low = f <= 0
+            below, above = np.where(low, p, below), np.where(low, above, p)
             with np.errstate(all="ignore"):
-                step = (q.real - x) / slope
-            new = np.clip(np.where(np.isfinite(step), p - step, p), lo, hi)
-            done = np.all(np.abs(new - p) <= 1e-15 * np.maximum(1.0, np.abs(p)))
-            p = new
-            if done:
+                new = p - f / self.tracer.dq_dp(p, q).real
+            inside = np.isfinite(new) & ((new - below) * (new - above) <= 0)
+            new = np.where(inside, new, 0.5 * (below + above))
+            done = inside & (np.abs(new - p) <= 1e-13 * np.maximum(1.0, np.abs(p)))  # Newton: the next
+            p = new  # step (taken) is then at rounding level
+            if np.all(done | (f == 0)):
                 break
         return p
 
