@@ -220,11 +220,10 @@ def induced_frequencies(
     report(0.1)
     if check_window:
         big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
-        _, _, big_counts = _count_tiling(fast, params, big, eps, eps_branch)
-        big_total = sum(big_counts)
-        if big_total != total:
+        more = sum(sum(_count_tiling(fast, params, part, eps, eps_branch)[2]) for part in _frame(window, big))
+        if more:
             warnings.append(
-                f"window: {big_total - total} more root(s) in the window twice as large "
+                f"window: {more} more root(s) in the window twice as large "
                 f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window"
             )
     report(0.2)
@@ -296,6 +295,15 @@ def _count_tiling(fast, params, window, eps, eps_branch):
         except EdgeZeroError as exc:
             error = exc
     raise CountMismatch(f"could not place contours away from the roots and the cut: {error}")
+
+
+def _frame(window: Rectangle, big: Rectangle) -> tuple:
+    """``big`` minus ``window`` (same left edge): the strips below, above and to the right of it."""
+    return (
+        Rectangle(big.x0, big.x1, big.y0, window.y0),
+        Rectangle(big.x0, big.x1, window.y1, big.y1),
+        Rectangle(window.x1, big.x1, window.y0, window.y1),
+    )
 
 
 def _locate(fast, precise, rect, n, newton_cell, dps):

@@ -29,6 +29,7 @@ __all__ = ["Tiling", "tile_window"]
 
 _COLUMN_SAMPLES = 17  # Re q samples per column where the order of the curves is checked
 _MERGE = 3.0  # arms closer than this many eps are left out together (sliver <= 5 eps)
+_TOUCH = 1e-14  # a gap between two arms this small is zero (they meet, e.g. where they cross Re q = 0)
 
 
 @dataclass(frozen=True)
@@ -51,7 +52,8 @@ def tile_window(
 
     Left of the cut the gap region extends ``gap_height`` above and below the cut, so that roots on or near
     the cut's line there (the real roots of undamped cases) are far from every edge. ``columns`` splits a
-    flat cut's strip (as it always was), ``curved_columns`` the curved one.
+    flat cut's strip (as it always was), ``curved_columns`` the curved one (as many per window width: the
+    folds of the cut cut it into intervals, each with its share of them).
     """
     if not cut.points.size or cut.im_high < window.y0 or cut.im_low > window.y1:
         return Tiling((window,), ())
@@ -135,16 +137,17 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
         if hi <= edges_x[-1] or lo >= window.x1:
             continue
         if lo > edges_x[-1]:
-            _columns(cut, edges_x[-1], lo, regions, unsearched, eps, band_lo, band_hi, columns)
+            _columns(cut, edges_x[-1], lo, regions, unsearched, eps, band_lo, band_hi, columns / window.width)
         _event(cut, max(lo, edges_x[-1]), min(hi, window.x1), f, regions, unsearched, eps, band_lo, band_hi)
         edges_x.append(min(hi, window.x1))
     if edges_x[-1] < window.x1:
-        _columns(cut, edges_x[-1], window.x1, regions, unsearched, eps, band_lo, band_hi, columns)
+        _columns(cut, edges_x[-1], window.x1, regions, unsearched, eps, band_lo, band_hi, columns / window.width)
     return Tiling(tuple(regions), tuple(unsearched))
 
 
-def _columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, columns):
-    xs = np.linspace(x0, x1, columns + 1)
+def _columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density):
+    """Columns between two events, ``density`` of them per unit of Re q (at least one)."""
+    xs = np.linspace(x0, x1, max(1, int(np.ceil(density * (x1 - x0) - 1e-9))) + 1)
     for a, b in zip(xs[:-1], xs[1:]):
         _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi)
 
@@ -164,6 +167,7 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
     order = np.argsort(ys[:, _COLUMN_SAMPLES // 2])
     arms, ys = [arms[k] for k in order], ys[order]
     gaps = np.diff(ys, axis=0)
+    gaps = np.where(np.abs(gaps) <= _TOUCH, 0.0, gaps)  # curves meeting at rounding level (at Re q = 0)
     for k in range(len(arms) - 1):
         g = gaps[k]
         if np.all(np.abs(g) < 1e-13):
@@ -173,7 +177,7 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
             _column(cut, a, split, regions, unsearched, eps, band_lo, band_hi, arms)
             _column(cut, split, b, regions, unsearched, eps, band_lo, band_hi, arms)
             return
-        if np.any(g < 0):
+        if np.any(g < 0):  # crossing curves the split could not separate
             _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi)
             return
     if ys.min() - eps <= band_lo or ys.max() + eps >= band_hi:
