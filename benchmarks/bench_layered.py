@@ -4,7 +4,8 @@
 
 Targets (issue 12): induced frequencies of a two-layer case under 1 s; a 200 x 200 two-layer stability map
 under 60 s. Each job runs on the one-layer track (k_f = k_1, c_f = c_1, the same vehicle) and on the
-two-layer track of examples/two-layer.toml in the same run. Wall time depends on what else runs on the
+two-layer track of examples/two-layer.toml in the same run; the induced frequencies of
+examples/three-layer.toml close the table. Wall time depends on what else runs on the
 machine; CPU time (this process and its workers) does not, and is printed next to it.
 """
 
@@ -67,7 +68,13 @@ def main() -> None:
         row(f"induced frequencies, 30 digits ({label})", wall, cpu, 1.0, note)
         wall, cpu, res = _timed(lambda p=params: stability_map(p, alphas=alphas, thetas=thetas))
         unstable = int(np.count_nonzero(res.count > 0))
-        row(f"stability map {size} x {size} ({label})", wall, cpu, 60.0, f"{unstable} unstable cells")
+        note = f"{unstable} unstable, {int(res.uncertain.sum())} uncertain, {int(res.settled_cells.sum())} settled"
+        row(f"stability map {size} x {size} ({label})", wall, cpu, 60.0, note)
+    three, _ = load_params_file(EXAMPLE.with_name("three-layer.toml"))
+    wall, cpu, res = _timed(lambda: induced_frequencies(three, dps=30))
+    note = f"{res.count} roots, count {'certified' if res.count_ok else 'NOT certified'}"
+    note += f", sliver <= {max(u.height for u in res.unsearched):.1e}"
+    row("induced frequencies, 30 digits (three-layer)", wall, cpu, None, note)
 
 
 if __name__ == "__main__":
