@@ -29,7 +29,17 @@ from scipy import optimize
 from moving_bogie.kernels.polyroots import companion_roots, newton_polish, poly_roots, polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import resolve_foundation
 
-__all__ = ["CutArm", "CutLocus", "CutTracer", "Fold", "cut_locus", "far_range", "trace_curves"]
+__all__ = [
+    "CutArm",
+    "CutLocus",
+    "CutTracer",
+    "Fold",
+    "arms_p_at",
+    "arms_y_at",
+    "cut_locus",
+    "far_range",
+    "trace_curves",
+]
 
 _MAX_REFINE = 30
 _P_MAX = 2.0**40  # largest p-range traced (a curve drifting out slower than this is cut off there)
@@ -123,11 +133,14 @@ class CutArm:
     def increasing(self) -> bool:
         return bool(self.q.real[-1] > self.q.real[0])
 
+    def guess(self, p) -> np.ndarray:
+        """The arm's q at p (clipped to its range) interpolated from its samples (a start for Newton)."""
+        return np.interp(p, self.p, self.q.real) + 1j * np.interp(p, self.p, self.q.imag)
+
     def q_at(self, p) -> np.ndarray:
         """The cut point of the arm at real p (in its p-range), exact to rounding."""
         p = np.clip(np.asarray(p, dtype=float), self.p[0], self.p[-1])
-        guess = np.interp(p, self.p, self.q.real) + 1j * np.interp(p, self.p, self.q.imag)
-        return self.tracer.refine(p, guess)
+        return self.tracer.refine(p, self.guess(p))
 
     def p_at(self, x) -> np.ndarray:
         """The p of the arm where Re q = x (x within the arm's range), by safeguarded Newton.
@@ -135,37 +148,7 @@ class CutArm:
         Solutions are remembered: the cells of a tiling share their corners and edges.
         """
         x = np.asarray(x, dtype=float)
-        flat = x.ravel()
-        out = np.array([self._known.get(v, np.nan) for v in flat.tolist()])
-        new = np.isnan(out)
-        if np.any(new):
-            out[new] = self._solve_p(flat[new])
-            self._known.update(zip(flat[new].tolist(), out[new].tolist()))
-        return out.reshape(x.shape)
-
-    def _solve_p(self, x) -> np.ndarray:
-        """Newton's method on Re q(p) = x kept inside a bracket from the samples (bisection when a step
-        leaves it: near a fold Re q is flat in p and a plain Newton step can jump to the arm's other end)."""
-        x = np.clip(x, self.x_lo, self.x_hi)
-        order = np.argsort(self.q.real)
-        xs, ps = self.q.real[order], self.p[order]
-        i = np.clip(np.searchsorted(xs, x), 1, xs.size - 1)
-        below, above = ps[i - 1], ps[i]  # Re q <= x at ``below``, >= x at ``above`` (samples)
-        p = np.interp(x, xs, ps)
-        for _ in range(80):
-            q = self.q_at(p)
-            f = q.real - x
-            low = f <= 0
-            below, above = np.where(low, p, below), np.where(low, above, p)
-            with np.errstate(all="ignore"):
-                new = p - f / self.tracer.dq_dp(p, q).real
-            inside = np.isfinite(new) & ((new - below) * (new - above) <= 0)
-            new = np.where(inside, new, 0.5 * (below + above))
-            done = inside & (np.abs(new - p) <= 1e-13 * np.maximum(1.0, np.abs(p)))  # Newton: the next
-            p = new  # step (taken) is then at rounding level
-            if np.all(done | (f == 0)):
-                break
-        return p
+        return arms_p_at([self], x.ravel())[0].reshape(x.shape)
 
     def y_at(self, x) -> np.ndarray:
         """Im q of the arm at Re q = x."""
@@ -177,6 +160,68 @@ class CutArm:
         t = self.tracer.dq_dp(p, q)
         t = np.where(t.real >= 0, t, -t)  # orient along increasing Re q
         return q + side * delta * 1j * t / np.abs(t)
+
+
+def arms_p_at(arms, x) -> list:
+    """:meth:`CutArm.p_at` of several arms (one tracer) at the same Re q values ``x`` (1-d), solved together."""
+    x = np.asarray(x, dtype=float)
+    values = x.tolist()
+    outs, todo = [], []
+    for k, arm in enumerate(arms):
+        out = np.array([arm._known.get(v, np.nan) for v in values])
+        outs.append(out)
+        new = np.isnan(out)
+        if np.any(new):
+            todo.append((k, new))
+    if todo:
+        solved = _solve_p([arms[k] for k, _ in todo], [x[new] for _, new in todo])
+        for (k, new), p in zip(todo, solved):
+            outs[k][new] = p
+            arms[k]._known.update(zip(x[new].tolist(), p.tolist()))
+    return outs
+
+
+def arms_y_at(arms, x) -> np.ndarray:
+    """Im q of several arms at Re q = ``x`` (1-d), shape (len(arms), len(x)), with one Newton batch."""
+    ps = arms_p_at(arms, x)
+    guess = np.concatenate([arm.guess(p) for arm, p in zip(arms, ps)])
+    q = arms[0].tracer.refine(np.concatenate(ps), guess)
+    return q.imag.reshape(len(arms), -1)
+
+
+def _solve_p(arms, xs) -> list:
+    """Newton's method on Re q(p) = x for each arm, kept inside a bracket from its samples (bisection when
+    a step leaves it: near a fold Re q is flat in p and a plain step can jump to the arm's other end);
+    all arms in one batch."""
+    sizes = [x.size for x in xs]
+    X, B, A, P = [], [], [], []
+    for arm, x in zip(arms, xs):
+        x = np.clip(x, arm.x_lo, arm.x_hi)
+        order = np.argsort(arm.q.real)
+        xr, pr = arm.q.real[order], arm.p[order]
+        i = np.clip(np.searchsorted(xr, x), 1, xr.size - 1)
+        X.append(x)
+        B.append(pr[i - 1])  # Re q <= x there (a sample)
+        A.append(pr[i])  # Re q >= x there
+        P.append(np.interp(x, xr, pr))
+    x, below, above, p = (np.concatenate(v) for v in (X, B, A, P))
+    splits = np.cumsum(sizes)[:-1]
+    tracer = arms[0].tracer
+    for _ in range(80):
+        guess = np.concatenate([arm.guess(pk) for arm, pk in zip(arms, np.split(p, splits))])
+        q = tracer.refine(p, guess)
+        f = q.real - x
+        low = f <= 0
+        below, above = np.where(low, p, below), np.where(low, above, p)
+        with np.errstate(all="ignore"):
+            new = p - f / tracer.dq_dp(p, q).real
+        inside = np.isfinite(new) & ((new - below) * (new - above) <= 0)
+        new = np.where(inside, new, 0.5 * (below + above))
+        done = inside & (np.abs(new - p) <= 1e-13 * np.maximum(1.0, np.abs(p)))  # Newton: the next step
+        p = new  # (taken) is then at rounding level
+        if np.all(done | (f == 0)):
+            break
+    return np.split(p, splits)
 
 
 @dataclass(frozen=True)

@@ -28,6 +28,7 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
+from moving_bogie.roots.cut_cells import ColumnCell, Sliver
 from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
 from moving_bogie.roots.search_regions import tile_window
@@ -291,10 +292,36 @@ def _count_tiling(fast, params, window, eps, eps_branch):
             window, cut, eps=eps * factor, eps_branch=eps_branch * factor, gap_height=gap_height
         )
         try:
-            return cut, tiling, [winding_number(fast, rect) for rect in tiling.regions]
+            counts, left_out = _counts(fast, tiling.regions, eps * factor)
         except EdgeZeroError as exc:
             error = exc
+            continue
+        if left_out:
+            tiling = dataclasses.replace(tiling, unsearched=tiling.unsearched + tuple(left_out))
+        return cut, tiling, counts
     raise CountMismatch(f"could not place contours away from the roots and the cut: {error}")
+
+
+#: A cell between two cut curves thinner than this many eps (next to where they cross) whose count fails
+#: is left out and reported with the sliver (its edges pass within eps of both curves, where the side of a
+#: p-root is decided at rounding level).
+_THIN = 10
+
+
+def _counts(fast, regions, eps):
+    """Winding numbers of the regions, and the thin cells left out (as slivers) whose count failed."""
+    counts, left_out = [], []
+    for region in regions:
+        thin = isinstance(region, ColumnCell) and region.height < _THIN * eps
+        try:
+            counts.append(winding_number(fast, region, max_points=20_000 if thin else 400_000))
+        except EdgeZeroError:
+            if not thin:
+                raise
+            counts.append(0)
+            y0, y1 = region.y0 - eps, region.y1 + eps
+            left_out.append(Sliver(region.x0, region.x1, y0, y1, y1 - y0))
+    return counts, left_out
 
 
 def _frame(window: Rectangle, big: Rectangle) -> tuple:

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize
 
-from moving_bogie.kernels.cut import CutLocus
+from moving_bogie.kernels.cut import CutLocus, arms_y_at
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.cut_cells import ColumnCell, Edge, Sliver, TipCell
 
@@ -52,8 +52,8 @@ def tile_window(
 
     Left of the cut the gap region extends ``gap_height`` above and below the cut, so that roots on or near
     the cut's line there (the real roots of undamped cases) are far from every edge. ``columns`` splits a
-    flat cut's strip (as it always was), ``curved_columns`` the curved one (as many per window width: the
-    folds of the cut cut it into intervals, each with its share of them).
+    flat cut's strip (as it always was), ``curved_columns`` the curved one: as many per width of 3 (or of
+    the window if narrower) and at most that many between two folds of the cut.
     """
     if not cut.points.size or cut.im_high < window.y0 or cut.im_low > window.y1:
         return Tiling((window,), ())
@@ -137,17 +137,17 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
         if hi <= edges_x[-1] or lo >= window.x1:
             continue
         if lo > edges_x[-1]:
-            _columns(cut, edges_x[-1], lo, regions, unsearched, eps, band_lo, band_hi, columns / window.width)
+            _columns(cut, edges_x[-1], lo, regions, unsearched, eps, band_lo, band_hi, columns / min(window.width, 3.0))
         _event(cut, max(lo, edges_x[-1]), min(hi, window.x1), f, regions, unsearched, eps, band_lo, band_hi)
         edges_x.append(min(hi, window.x1))
     if edges_x[-1] < window.x1:
-        _columns(cut, edges_x[-1], window.x1, regions, unsearched, eps, band_lo, band_hi, columns / window.width)
+        _columns(cut, edges_x[-1], window.x1, regions, unsearched, eps, band_lo, band_hi, columns / min(window.width, 3.0))
     return Tiling(tuple(regions), tuple(unsearched))
 
 
-def _columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density):
-    """Columns between two events, ``density`` of them per unit of Re q (at least one)."""
-    xs = np.linspace(x0, x1, max(1, int(np.ceil(density * (x1 - x0) - 1e-9))) + 1)
+def _columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density, most=6):
+    """Columns between two events, ``density`` of them per unit of Re q (at least one, at most ``most``)."""
+    xs = np.linspace(x0, x1, min(most, max(1, int(np.ceil(density * (x1 - x0) - 1e-9)))) + 1)
     for a, b in zip(xs[:-1], xs[1:]):
         _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi)
 
@@ -163,7 +163,7 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
     if not arms:
         regions.append(Rectangle(a, b, band_lo, band_hi))
         return
-    ys = np.array([arm.y_at(xs) for arm in arms])
+    ys = arms_y_at(arms, xs)
     order = np.argsort(ys[:, _COLUMN_SAMPLES // 2])
     arms, ys = [arms[k] for k in order], ys[order]
     gaps = np.diff(ys, axis=0)
@@ -254,7 +254,7 @@ def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
         float(y) for arm in pair for y in arm.y_at(np.linspace(max(a, arm.x_lo), min(b, arm.x_hi), 9))
     ]
     low, high = min(pair_ys), max(pair_ys)
-    spans = {id(arm): arm.y_at(xs) for arm in others}
+    spans = dict(zip(map(id, others), arms_y_at(others, xs))) if others else {}
     through = []  # other curves passing through the fold's box: left out with it
     grown = True
     while grown:
