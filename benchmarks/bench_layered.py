@@ -68,7 +68,8 @@ def main() -> None:
         row(f"induced frequencies, 30 digits ({label})", wall, cpu, 1.0, note)
         wall, cpu, res = _timed(lambda p=params: stability_map(p, alphas=alphas, thetas=thetas))
         unstable = int(np.count_nonzero(res.count > 0))
-        note = f"{unstable} unstable, {int(res.uncertain.sum())} uncertain, {int(res.settled_cells.sum())} settled"
+        settled = int(res.settled_cells.sum())
+        note = f"{unstable} unstable, {int(res.uncertain.sum())} uncertain, {settled} settled"
         row(f"stability map {size} x {size} ({label})", wall, cpu, 60.0, note)
     three, _ = load_params_file(EXAMPLE.with_name("three-layer.toml"))
     wall, cpu, res = _timed(lambda: induced_frequencies(three, dps=30))

@@ -53,7 +53,9 @@ def _scan_roots(params, x0, x1, y0, y1, n=(1501, 181)):
     with mpmath.workdps(20):
         for j, i in zip(*np.nonzero(is_min)):
             try:
-                q = complex(mpmath.findroot(lambda z: precise.value_and_derivative(z)[0], complex(Z[j + 1, i + 1])))
+                q = complex(
+                    mpmath.findroot(lambda z: precise.value_and_derivative(z)[0], complex(Z[j + 1, i + 1]))
+                )
             except (ValueError, ZeroDivisionError):
                 continue
             if x0 < q.real < x1 and y0 < q.imag < y1 and all(abs(q - r) > 1e-8 for r in roots):
@@ -63,7 +65,9 @@ def _scan_roots(params, x0, x1, y0, y1, n=(1501, 181)):
 
 def _boundary_count(fast, x0, x1, y0, y1, n=20000):
     corners = [complex(x0, y0), complex(x1, y0), complex(x1, y1), complex(x0, y1), complex(x0, y0)]
-    z = np.concatenate([a + (b - a) * np.linspace(0, 1, n, endpoint=False) for a, b in zip(corners, corners[1:])])
+    z = np.concatenate(
+        [a + (b - a) * np.linspace(0, 1, n, endpoint=False) for a, b in zip(corners, corners[1:])]
+    )
     w = fast(np.append(z, z[0]))
     return int(round(np.sum(np.angle(w[1:] / w[:-1])) / (2 * np.pi)))
 
@@ -135,9 +139,7 @@ def test_small_two_layer_map_agrees_with_frequencies(two_layer):
     assert not smap.uncertain.any()
     assert not smap.count[:, 0].any()  # alpha = 0: the column runs (no nan from the roots at infinity)
     for j, i in ((4, 6), (4, 8)):  # one unstable and one stable cell (see the map)
-        res = induced_frequencies(
-            two_layer.replace(alpha=exact(alphas[i]), eta_M=exact(thetas[j])), dps=15
-        )
+        res = induced_frequencies(two_layer.replace(alpha=exact(alphas[i]), eta_M=exact(thetas[j])), dps=15)
         assert res.count_ok and res.verdict.determined
         assert smap.count[j, i] == len(res.unstable_roots)
     assert smap.count[4, 6] == 1 and smap.count[4, 8] == 0

@@ -46,7 +46,10 @@ def add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
     ):
         g.add_argument(opt, dest=dest, type=decimal_number, metavar="X", help=text)
     g.add_argument(
-        "--file", type=Path, metavar="F.toml", help="take the parameters from a TOML file (a layered track's too)"
+        "--file",
+        type=Path,
+        metavar="F.toml",
+        help="take the parameters from a TOML file (a layered track's too)",
     )
     for name in LAYER_GROUPS:
         g.add_argument(
@@ -61,7 +64,11 @@ LAYER_GROUPS = ("mu_2", "kappa_2", "eta_2", "mu_3", "kappa_3", "eta_3")
 
 def _layer_help(name: str) -> str:
     kind, layer = name.rsplit("_", 1)
-    what = {"mu": "mass ratio m_j/m", "kappa": "support stiffness k_j/k_1", "eta": "damping c_j/(2 sqrt(m k_1))"}
+    what = {
+        "mu": "mass ratio m_j/m",
+        "kappa": "support stiffness k_j/k_1",
+        "eta": "damping c_j/(2 sqrt(m k_1))",
+    }
     return f"layer {layer}: {what[kind]} (--track two-layer / three-layer)"
 
 

@@ -26,7 +26,14 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import optimize
 
-from moving_bogie.kernels.polyroots import companion_roots, newton_polish, poly_roots, polyder, polyval, stack_coefficients
+from moving_bogie.kernels.polyroots import (
+    companion_roots,
+    newton_polish,
+    poly_roots,
+    polyder,
+    polyval,
+    stack_coefficients,
+)
 from moving_bogie.kernels.track import resolve_foundation
 
 __all__ = [
@@ -163,7 +170,7 @@ class CutArm:
 
 
 def arms_p_at(arms, x) -> list:
-    """:meth:`CutArm.p_at` of several arms (one tracer) at the same Re q values ``x`` (1-d), solved together."""
+    """:meth:`CutArm.p_at` of several arms (one tracer) at the same Re q values ``x`` (1-d), in one batch."""
     x = np.asarray(x, dtype=float)
     values = x.tolist()
     outs, todo = [], []
@@ -397,7 +404,9 @@ def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, founda
             inside = (q_arm.real >= x_min) & (q_arm.real <= x_max)
             if p_arm.size > 1 and (np.any(inside) or (q_arm.real.min() < x_min and q_arm.real.max() > x_max)):
                 arms.append(CutArm(p_arm, q_arm, tracer))
-        ends = [Fold(float(ps[k]), complex(Q[k, j]), True, 0, True) for k in (0, -1) if abs(Q[k, j].real) <= reach]
+        ends = [
+            Fold(float(ps[k]), complex(Q[k, j]), True, 0, True) for k in (0, -1) if abs(Q[k, j].real) <= reach
+        ]
         folds += [f for f in turns + ends if x_min <= f.q.real <= x_max]
     pts = np.concatenate([a.q for a in arms]) if arms else np.zeros(0, complex)
     inside = pts[(pts.real >= x_min) & (pts.real <= x_max)]

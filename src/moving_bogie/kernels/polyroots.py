@@ -11,7 +11,15 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["companion_roots", "newton_polish", "poly_roots", "polyder", "polyval", "quartic_roots", "stack_coefficients"]
+__all__ = [
+    "companion_roots",
+    "newton_polish",
+    "poly_roots",
+    "polyder",
+    "polyval",
+    "quartic_roots",
+    "stack_coefficients",
+]
 
 
 def quartic_roots(c) -> np.ndarray:

@@ -132,16 +132,21 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
         if left > window.x0:
             regions.append(Rectangle(window.x0, min(left, window.x1), band_lo, band_hi))
             x_band = left
+    density = columns / min(window.width, 3.0)
+
+    def fill(x0, x1):
+        _columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density)
+
     edges_x = [x_band]
     for lo, hi, f in events:
         if hi <= edges_x[-1] or lo >= window.x1:
             continue
         if lo > edges_x[-1]:
-            _columns(cut, edges_x[-1], lo, regions, unsearched, eps, band_lo, band_hi, columns / min(window.width, 3.0))
+            fill(edges_x[-1], lo)
         _event(cut, max(lo, edges_x[-1]), min(hi, window.x1), f, regions, unsearched, eps, band_lo, band_hi)
         edges_x.append(min(hi, window.x1))
     if edges_x[-1] < window.x1:
-        _columns(cut, edges_x[-1], window.x1, regions, unsearched, eps, band_lo, band_hi, columns / min(window.width, 3.0))
+        fill(edges_x[-1], window.x1)
     return Tiling(tuple(regions), tuple(unsearched))
 
 
