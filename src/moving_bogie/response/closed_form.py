@@ -177,7 +177,8 @@ def branch_cut_extent(
         return 0.0, [f"branch cut skipped: its bound {bound:.2e} is below tol {tol:.1e}"]
     tau_bound = math.log(bound / tol) / bc.eta_f if bc.eta_f > 0 else math.inf
     limit = min(tau_max, tau_bound)
-    period = 2 * math.pi / bc.q_c
+    # a cut that crosses Re q = 0 (a mass layer's curves) has no slowest period: windows [probe, 2 probe]
+    period = 2 * math.pi / bc.q_c if bc.q_c > 0 else math.inf
     probe = _PROBE_START
     while probe < limit:
         if probe > cap:
@@ -185,7 +186,7 @@ def branch_cut_extent(
                 f"branch cut still above tol {tol:.1e} at tau = {cap:g}: included only up to tau = {cap:g}"
             )
             return cap, notes
-        window = probe + np.linspace(0.0, period, 16)
+        window = probe + np.linspace(0.0, min(period, probe), 16)
         values = bc.responses(window, s_min=s_min)
         if max(np.abs(v).max() for v in values.values()) < tol:
             return probe, notes

@@ -56,36 +56,102 @@ class _Curve:
 
     def __init__(self, tracer, p, q):
         self.tracer, self.p, self.q = tracer, p, q
-        self._ends: dict = {}
-        self.x_min = float(q.real.min())
 
     def q_at(self, p):
         p = np.asarray(p, dtype=float)
         guess = np.interp(p, self.p, self.q.real) + 1j * np.interp(p, self.p, self.q.imag)
         return self.tracer.refine(p, guess)
 
+    def crossing(self, level, a, b):
+        """The p in [a, b] where Re q = ``level`` (arrays a, b bracketing it): safeguarded Newton."""
+        a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+        xa, xb = self.q_at(a).real, self.q_at(b).real
+        p = a + (level - xa) * (b - a) / np.where(xb != xa, xb - xa, 1.0)
+        for _ in range(40):
+            q = self.q_at(p)
+            with np.errstate(all="ignore"):
+                step = (q.real - level) / self.tracer.dq_dp(p, q).real
+            new = np.clip(np.where(np.isfinite(step), p - step, 0.5 * (a + b)), a, b)
+            done = np.all(np.abs(new - p) <= 1e-14 * np.maximum(1.0, np.abs(p)))
+            p = new
+            if done:
+                break
+        return p
+
+
+class _Piece:
+    """The part p_lo <= p <= p_hi of a curve on which Re q >= 0 (module docstring).
+
+    Each end is either *far* (the curve runs to Re q -> +inf there: it is truncated where Re q = S and
+    the tail is integrated by parts) or a crossing of Re q = 0, an interior point of the cut that the
+    mirror image of another piece continues (no tail).
+    """
+
+    def __init__(self, curve, p_lo, p_hi, far_lo, far_hi):
+        self.curve, self.tracer = curve, curve.tracer
+        self.p_lo, self.p_hi, self.far = p_lo, p_hi, (far_lo, far_hi)
+        inside = (curve.p >= p_lo) & (curve.p <= p_hi)
+        self.p = np.concatenate([[p_lo], curve.p[inside], [p_hi]])
+        self.q = np.concatenate([curve.q_at([p_lo]), curve.q[inside], curve.q_at([p_hi])])
+        self.x_min = float(self.q.real.min())
+        self._ends: dict = {}
+
+    def q_at(self, p):
+        return self.curve.q_at(p)
+
     def p_ends(self, S):
-        """(p_lo, p_hi): the outermost p on each side where Re q = S (Re q > S beyond)."""
+        """(p_lo, p_hi) of the piece truncated at Re q = S: the outermost crossings at its far ends."""
         if S not in self._ends:
-            self._ends[S] = self._find_ends(S)
+            x = self.q.real
+            inside = np.nonzero(x <= S)[0]
+            ends = [self.p_lo, self.p_hi]
+            k = [inside[0] - 1, inside[-1]]  # the crossing lies in [p_k, p_k+1]
+            for side in (0, 1):
+                if self.far[side] and 0 <= k[side] < x.size - 1:
+                    ends[side] = float(self.curve.crossing(S, self.p[k[side]], self.p[k[side] + 1]))
+            self._ends[S] = tuple(ends)
         return self._ends[S]
 
-    def _find_ends(self, S):
-        """Both crossings of Re q = S: bracketed by the samples, then safeguarded Newton (vectorised)."""
-        x = self.q.real
-        inside = np.nonzero(x <= S)[0]
-        k = np.array([inside[0] - 1, inside[-1]])  # the crossing lies in [p_k, p_k+1]
-        a, b = self.p[k], self.p[k + 1]
-        p = a + (S - x[k]) * (b - a) / (x[k + 1] - x[k])
-        for _ in range(30):
-            q = self.q_at(p)
-            step = (q.real - S) / self.tracer.dq_dp(p, q).real
-            new = np.clip(p - step, a, b)
-            if np.all(np.abs(new - p) <= 1e-14 * np.maximum(1.0, np.abs(p))):
-                p = new
-                break
-            p = new
-        return float(p[0]), float(p[1])
+    def far_ends(self, S):
+        """[(sign, p)] of the truncated ends: sign -1 at the lower end, +1 at the upper one."""
+        return [(sign, p) for sign, p, far in zip((-1, 1), self.p_ends(S), self.far) if far]
+
+
+def _pieces(tracer, ps, qs):
+    """The pieces with Re q >= 0 of one traced curve; raises if the curve passes through q = 0.
+
+    An end of the traced range is far when Re q still grows there (at least like |p|: Re q at the end
+    is 1.5 times its value at half the end's p or more); a curve whose Re q tends to a positive limit
+    (a mass layer's curve at alpha = 0) is refused.
+    """
+    curve = _Curve(tracer, ps, qs)
+    x = qs.real
+    k = np.nonzero((x[:-1] >= 0) != (x[1:] >= 0))[0]
+    zeros = curve.crossing(0.0, ps[k], ps[k + 1]) if k.size else np.zeros(0)
+    if zeros.size:
+        at = curve.q_at(zeros)
+        if np.abs(at).min() <= 1e-9:
+            raise BranchCutUnavailable(
+                f"the cut of K passes through q = 0 (at p = {zeros[np.argmin(np.abs(at))]:.6g}), the pole of "
+                "the steady part: no gap around the steady state (e.g. an undamped track above the critical "
+                "velocity)"
+            )
+    bounds = np.concatenate([[ps[0]], zeros, [ps[-1]]])
+    half = [np.argmin(np.abs(ps - ps[0] / 2)), np.argmin(np.abs(ps - ps[-1] / 2))]
+    far = [bool(x[0] > 1.0 and x[0] >= 1.5 * x[half[0]]), bool(x[-1] > 1.0 and x[-1] >= 1.5 * x[half[1]])]
+    if (x[0] > 0 and not far[0]) or (x[-1] > 0 and not far[1]):
+        raise BranchCutUnavailable(
+            "a curve of the cut of K stays bounded in Re q > 0 as |p| grows (a mass layer at alpha = 0): "
+            "the branch-cut integral needs every curve to run to Re q -> infinity"
+        )
+    out = []
+    for j in range(bounds.size - 1):
+        mid = 0.5 * (bounds[j] + bounds[j + 1])
+        if curve.q_at([mid]).real[0] > 0:
+            out.append(
+                _Piece(curve, bounds[j], bounds[j + 1], far[0] and j == 0, far[1] and j == bounds.size - 2)
+            )
+    return out
 
 
 class CurveBranchCut:
@@ -119,19 +185,11 @@ class CurveBranchCut:
         outer = np.geomspace(8.0, max(P, 16.0), 400)
         grid = np.unique(np.concatenate([-outer[::-1], np.linspace(-8.0, 8.0, 2001), outer]))
         ps, Q = trace_curves(self.tracer, -P, P, grid=grid)
-        self.curves = []
-        for j in range(Q.shape[1]):
-            x = Q[:, j].real
-            if np.all(x > 0):
-                self.curves.append(_Curve(self.tracer, ps, Q[:, j]))
-            elif not np.all(x < 0):
-                raise BranchCutUnavailable(
-                    "the cut of K reaches Re q = 0: supercritical velocity, no gap around the steady state"
-                )
-        if not self.curves:
+        self.pieces = [piece for j in range(Q.shape[1]) for piece in _pieces(self.tracer, ps, Q[:, j])]
+        if not self.pieces:
             raise BranchCutUnavailable("the cut of K has no curve in Re q > 0")
-        self.q_c = float(min(c.q.real.min() for c in self.curves))
-        self.eta_f = max(0.0, float(min(c.q.imag.min() for c in self.curves)))
+        self.q_c = float(min(c.x_min for c in self.pieces))
+        self.eta_f = max(0.0, float(min(c.q.imag.min() for c in self.pieces)))
         self._base: dict = {}
 
     # --- the jump ------------------------------------------------------------------------------
@@ -160,10 +218,10 @@ class CurveBranchCut:
         mask = np.where(pos[None, None, :], upper[:, :, None], ~upper[:, :, None])
         return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, e, 0), axis=1)
 
-    def _jump(self, curve, p, xi=None):
+    def _jump(self, piece, p, xi=None):
         """(q, J): J = (X~_right - X~_left) q'(p) / (number of real roots), per response (or W~ at xi)."""
         p = np.asarray(p, dtype=float)
-        q = curve.q_at(p)
+        q = piece.q_at(p)
         t = self.tracer.dq_dp(p, q)
         P, W, right, left, m = self._sides(p, q, t)
         contact = np.array([0.0, self.d, -self.d])
@@ -182,94 +240,101 @@ class CurveBranchCut:
         return q, (out[0] - out[1]) * (t / m)[:, None]
 
     # --- quadrature ----------------------------------------------------------------------------
-    def _panels(self, curve, S, channel):
-        key = (id(curve), S, channel)
+    def _panels(self, piece, S, channel):
+        key = (id(piece), S, channel)
         if key in self._base:
             return self._base[key]
-        p_lo, p_hi = curve.p_ends(S)
+        p_lo, p_hi = piece.p_ends(S)
         for (cid, S2, ch), edges in self._base.items():
-            if cid == id(curve) and ch == channel and S2 >= S:  # reuse the partition of a longer range
+            if cid == id(piece) and ch == channel and S2 >= S:  # reuse the partition of a longer range
                 keep = edges[(edges > p_lo) & (edges < p_hi)]
                 return np.concatenate([[p_lo], keep, [p_hi]])
         # start: panels of at most 0.5 in p and 5 % of max(1, Re q) along the curve (as for the half-line)
         P = np.linspace(p_lo, p_hi, 4000)
-        q = curve.q_at(P)
+        q = piece.q_at(P)
         density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
         cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
         start = np.interp(np.linspace(0.0, cum[-1], max(2, int(np.ceil(cum[-1]))) + 1), cum, P)
-        edges = adapt_panels(start, lambda nodes: channel(curve, nodes)[1], self.panel_tol)
+        edges = adapt_panels(start, lambda nodes: channel(piece, nodes)[1], self.panel_tol)
         self._base[key] = edges
         return self._base[key]
 
-    def _rule(self, curve, S, tau_hi, xi_max, channel):
-        edges = self._panels(curve, S, channel)
-        x = curve.q_at(edges).real
+    def _rule(self, piece, S, tau_hi, xi_max, channel):
+        edges = self._panels(piece, S, channel)
+        x = piece.q_at(edges).real
         phase = tau_hi * np.abs(np.diff(x)) / _PANEL_PHASE
         return subdivide(edges, np.ceil(np.maximum(phase, np.diff(edges) * (abs(xi_max) + 1.0) / _PANEL_XI)))
 
-    def _end_terms(self, curve, S, channel):
-        """Per end of the curve (lower, upper): (q, F, F', F'') of the jump F along the curve, in q."""
+    def _end_terms(self, piece, S, channel):
+        """Per far end of the piece: (sign, q, F, F', F'') of the jump F along the curve, in q."""
         out = []
-        for p_end in curve.p_ends(S):
+        for sign, p_end in piece.far_ends(S):
             h = 1e-3 * max(1.0, abs(p_end))
             ps = np.array([p_end - h, p_end, p_end + h])
-            q, F = channel(curve, ps)
+            q, F = channel(piece, ps)
             F = F / self.tracer.dq_dp(ps, q)[:, None]  # the jump itself, as a function of q
             d01 = (F[1] - F[0]) / (q[1] - q[0])
             d12 = (F[2] - F[1]) / (q[2] - q[1])
             d012 = (d12 - d01) / (q[2] - q[0])
-            out.append((q[1], F[1], d01 + d012 * (q[1] - q[0]), 2 * d012))
+            out.append((sign, q[1], F[1], d01 + d012 * (q[1] - q[0]), 2 * d012))
         return out
 
-    def _tails(self, curve, S, channel, ts):
-        """Both truncated ends, integrated by parts along the curve (outward from each end)."""
+    def _tails(self, piece, S, channel, ts):
+        """The truncated ends, integrated by parts along the curve (outward from each end)."""
         total = 0
         tt = ts[:, None]
-        for sign, (q, F0, F1, F2) in zip((-1, 1), self._end_terms(curve, S, channel)):
+        for sign, q, F0, F1, F2 in self._end_terms(piece, S, channel):
             total = total + sign * np.exp(1j * q * tt) * (1j * F0 / tt - F1 / tt**2 - 1j * F2 / tt**3)
         return total
 
     def choose_S(self, channel, tau_lo, tol, s_min=None):
-        """Truncation Re q = S of every curve, as for the Euler-Bernoulli cut (:mod:`branch_cut`): for
-        tau_lo > 0 the first neglected term of the tails, |F''|/tau_lo^3, below ``tol``; for the first band
-        the neglected integral, estimated as |F| S, below ``tol``."""
-        # every curve must reach below S (a curve wholly beyond S has no end to integrate by parts from)
+        """Truncation Re q = S of each piece (a tuple), as for the Euler-Bernoulli cut (:mod:`branch_cut`):
+        for tau_lo > 0 the first neglected term of its tails, |F''|/tau_lo^3, below its share of ``tol``;
+        for the first band the neglected integral, estimated as |F| S, below it. S stays within the traced
+        range of the far ends and above every induced frequency's Re q (``s_min``), so that the tails,
+        integrated by parts, pass no pole."""
+        share = tol / len(self.pieces)
         lowest = self.q_c if s_min is None else max(self.q_c, s_min)
-        floor = max([lowest] + [c.x_min + 1.0 for c in self.curves])
-        S = floor
-        for step in _S_STEPS:
-            S = floor + step
-            est = 0.0
-            for curve in self.curves:
-                for _, F0, _, F2 in self._end_terms(curve, S, channel):
+        out = []
+        for piece in self.pieces:
+            # the piece must reach below S (a piece wholly beyond S has no end to integrate by parts from)
+            floor = max(lowest, piece.x_min + 1.0)
+            top = min([piece.q.real[0]] * piece.far[0] + [piece.q.real[-1]] * piece.far[1] + [np.inf])
+            S = floor
+            for step in _S_STEPS:
+                if floor + step >= top:
+                    break
+                S = floor + step
+                est = 0.0
+                for _, _, F0, _, F2 in self._end_terms(piece, S, channel):
                     est += float(np.abs(F2).max()) / tau_lo**3 if tau_lo > 0 else float(np.abs(F0).max()) * S
-            if est <= tol:
-                return S
-        return S
+                if est <= share:
+                    break
+            out.append(S)
+        return tuple(out)
 
     def integrate(self, tau, channel, *, tol=1e-10, s_min=None, xi_max=None):
-        """I_bc(tau) per channel column: (1/pi) Re sum over the curves of integral J e^{i q tau} dp."""
+        """I_bc(tau) per channel column: (1/pi) Re sum over the pieces of integral J e^{i q tau} dp."""
         tau = np.asarray(tau, dtype=float)
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
         xi_max = self.d if xi_max is None else xi_max
-        mid = self.curves[0].p[self.curves[0].p.size // 2]
-        m = channel(self.curves[0], np.array([mid]))[1].shape[-1]
+        first = self.pieces[0]
+        m = channel(first, np.array([0.5 * (first.p_lo + first.p_hi)]))[1].shape[-1]
 
         def band(lo, ts):
-            S = self.choose_S(channel, lo, tol, s_min)
             acc = np.zeros((ts.size, m), dtype=complex)
-            for curve in self.curves:
-                nodes, weights = self._rule(curve, S, float(ts.max()), xi_max, channel)
+            for piece, S in zip(self.pieces, self.choose_S(channel, lo, tol, s_min)):
+                nodes, weights = self._rule(piece, S, float(ts.max()), xi_max, channel)
 
-                def weighted(chunk, w, curve=curve):
-                    q, J = channel(curve, chunk)
+                def weighted(chunk, w, piece=piece):
+                    q, J = channel(piece, chunk)
                     return q, J * w[:, None]
 
-                q_max = float(np.abs(curve.q_at(nodes)).max())
+                q_max = float(np.abs(piece.q_at(nodes)).max())
                 acc += fourier_sum(ts, nodes, weights, weighted, m, q_max, None)
                 if lo > 0:
-                    acc += self._tails(curve, S, channel, ts)
+                    acc += self._tails(piece, S, channel, ts)
             return acc
 
         return by_bands(tau, m, band)
@@ -285,7 +350,7 @@ class CurveBranchCut:
         flat = xi.reshape(-1)
         values = self.integrate(
             np.array([float(tau)]),
-            lambda curve, p: self._jump(curve, p, flat),
+            lambda piece, p: self._jump(piece, p, flat),
             tol=tol,
             s_min=s_min,
             xi_max=float(np.max(np.abs(np.concatenate([flat, flat - self.d])))),
@@ -294,9 +359,8 @@ class CurveBranchCut:
 
     def l1_bound(self, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
         """(1/pi) sum of integrals of |J| dp: |I_bc(tau)| <= this * e^{-eta_f tau} for every tau."""
-        S = self.choose_S(self._jump, 0.0, tol, s_min)
         total = 0.0
-        for curve in self.curves:
-            nodes, weights = self._rule(curve, S, 0.0, self.d, self._jump)
-            total = total + (np.abs(self._jump(curve, nodes)[1]) * weights[:, None]).sum(axis=0) / np.pi
+        for piece, S in zip(self.pieces, self.choose_S(self._jump, 0.0, tol, s_min)):
+            nodes, weights = self._rule(piece, S, 0.0, self.d, self._jump)
+            total = total + (np.abs(self._jump(piece, nodes)[1]) * weights[:, None]).sum(axis=0) / np.pi
         return {name: float(total[k]) for k, name in enumerate(self.names)}
