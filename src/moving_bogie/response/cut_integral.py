@@ -41,6 +41,15 @@ _PANEL_PHASE = 3 * np.pi
 _PANEL_XI = 2.0
 _S_STEPS = tuple(2.0**k for k in range(1, 14))
 _REACH = 2.0**14
+#: Jump values kept for reuse across bands of times: entries, and only for this many columns (responses).
+_CACHE_ENTRIES = 64
+_CACHE_COLUMNS = 8
+_CHUNK = 20000
+#: A root of N(., q) counts as real (another curve through the same q) when |Im p| <= this * max(1, |p|):
+#: the rounding of coinciding curves (the two halves of the Euler-Bernoulli ray), not curves that only
+#: approach each other (the halves of a layered track's lens and its mass-layer curves converge like a
+#: power of 1/p; merging them at 1e-9 left errors of 1e-8 w_st in the deflection shape).
+_REAL_TOL = 1e-12
 
 
 def branch_cut_for(params, model: str = "bogie", *, foundation=None):
@@ -191,6 +200,7 @@ class CurveBranchCut:
         self.q_c = float(min(c.x_min for c in self.pieces))
         self.eta_f = max(0.0, float(min(c.q.imag.min() for c in self.pieces)))
         self._base: dict = {}
+        self._cache: dict = {}
 
     # --- the jump ------------------------------------------------------------------------------
     def _sides(self, p, q, t):
@@ -199,7 +209,7 @@ class CurveBranchCut:
         P = poly_roots(n)
         own = np.argmin(np.abs(P - p[:, None]), axis=-1)
         P[np.arange(p.size), own] = p
-        real = np.abs(P.imag) <= 1e-9 * np.maximum(1.0, np.abs(P))
+        real = np.abs(P.imag) <= _REAL_TOL * np.maximum(1.0, np.abs(P))
         P = np.where(real, P.real + 0j, P)
         Np = polyval(polyder(n), P)
         Nq = polyval(stack_coefficients(self.module.n_coeffs_dq(q, **self.fargs), q.shape), P)
@@ -313,6 +323,20 @@ class CurveBranchCut:
             out.append(S)
         return tuple(out)
 
+    def _values(self, piece, nodes, channel, m):
+        """(q, J) at the nodes of a rule; a band of times whose rule is that of an earlier band (panels
+        set by e^{i p xi} rather than by the phase) reuses its values (time series only: m small)."""
+        key = (id(piece), channel, nodes.size, hash(nodes.tobytes()))
+        if key in self._cache:
+            return self._cache[key]
+        parts = [channel(piece, nodes[k : k + _CHUNK]) for k in range(0, nodes.size, _CHUNK)]
+        value = np.concatenate([v[0] for v in parts]), np.concatenate([v[1] for v in parts])
+        if m <= _CACHE_COLUMNS:
+            if len(self._cache) >= _CACHE_ENTRIES:
+                self._cache.pop(next(iter(self._cache)))
+            self._cache[key] = value
+        return value
+
     def integrate(self, tau, channel, *, tol=1e-10, s_min=None, xi_max=None):
         """I_bc(tau) per channel column: (1/pi) Re sum over the pieces of integral J e^{i q tau} dp."""
         tau = np.asarray(tau, dtype=float)
@@ -326,13 +350,13 @@ class CurveBranchCut:
             acc = np.zeros((ts.size, m), dtype=complex)
             for piece, S in zip(self.pieces, self.choose_S(channel, lo, tol, s_min)):
                 nodes, weights = self._rule(piece, S, float(ts.max()), xi_max, channel)
+                q, J = self._values(piece, nodes, channel, m)
 
-                def weighted(chunk, w, piece=piece):
-                    q, J = channel(piece, chunk)
-                    return q, J * w[:, None]
+                def weighted(idx, w, q=q, J=J):
+                    return q[idx], J[idx] * w[:, None]
 
-                q_max = float(np.abs(piece.q_at(nodes)).max())
-                acc += fourier_sum(ts, nodes, weights, weighted, m, q_max, None)
+                q_max = float(np.abs(q).max())
+                acc += fourier_sum(ts, np.arange(nodes.size), weights, weighted, m, q_max, None)
                 if lo > 0:
                     acc += self._tails(piece, S, channel, ts)
             return acc
