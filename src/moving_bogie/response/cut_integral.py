@@ -142,8 +142,8 @@ def _pieces(tracer, ps, qs):
         if np.abs(at).min() <= 1e-9:
             raise BranchCutUnavailable(
                 f"the cut of K passes through q = 0 (at p = {zeros[np.argmin(np.abs(at))]:.6g}), the pole of "
-                "the steady part: no gap around the steady state (e.g. an undamped track above the critical "
-                "velocity)"
+                "the steady part: no steady state (an undamped layered track, whose mass layer has waves of "
+                "every phase speed, or an undamped track above the critical velocity)"
             )
     bounds = np.concatenate([[ps[0]], zeros, [ps[-1]]])
     half = [np.argmin(np.abs(ps - ps[0] / 2)), np.argmin(np.abs(ps - ps[-1] / 2))]
@@ -223,9 +223,10 @@ class CurveBranchCut:
     def _kernel(P, W, upper, xi):
         """K(xi, q) from the roots with the given side assignment, shape (nodes, len(xi))."""
         xi = np.asarray(xi, dtype=float)
-        e = np.exp(1j * P[:, :, None] * xi) * W[:, :, None]
         pos = xi >= 0
         mask = np.where(pos[None, None, :], upper[:, :, None], ~upper[:, :, None])
+        # the roots of the other side are not evaluated (their exponentials may overflow at large |xi|)
+        e = np.exp(1j * np.where(mask, P[:, :, None], 0) * xi) * W[:, :, None]
         return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, e, 0), axis=1)
 
     def _jump(self, piece, p, xi=None):
