@@ -212,12 +212,7 @@ def bromwich_line(
     -------
     dict name -> ndarray like tau
     """
-    tau = _line_times(tau, a)
-    vehicle = vehicle_module(model, params)
-    kernel = TrackKernelArray(params, foundation=foundation)
-    f = params.as_float()
-    args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
-    d = f.d
+    tau, vehicle, kernel, args, d = _line_setup(params, tau, a, model, foundation)
 
     def transform(s):
         q = np.asarray(s, dtype=float) - 1j * a
@@ -245,12 +240,7 @@ def bromwich_line_shape(
     i q W~(xi, q) = (G_rear K(xi, q) + G_front K(xi - d, q)) / (2 pi E_chr) on the line Im q = -a, every xi
     at once (the panels adapt to all of them); no residues, no branch cut. Any beam or track model.
     """
-    tau = _line_times(tau, a)
-    vehicle = vehicle_module(model, params)
-    kernel = TrackKernelArray(params, foundation=foundation)
-    f = params.as_float()
-    args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
-    d = f.d
+    tau, vehicle, kernel, args, d = _line_setup(params, tau, a, model, foundation)
     xi = np.asarray(xi, dtype=float)
     flat = xi.reshape(-1)
 
@@ -268,13 +258,17 @@ def bromwich_line_shape(
     return _line_quadrature(transform, tau, a, s_max, panel_tol)[0].reshape(xi.shape)
 
 
-def _line_times(tau, a):
+def _line_setup(params, tau, a, model, foundation):
+    """(tau array, vehicle module, kernel, vehicle arguments, d) after checking a and the times."""
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
     tau = np.atleast_1d(np.asarray(tau, dtype=float))
     if np.any(tau <= 0) or not np.all(np.isfinite(tau)):
         raise MovingBogieError("bromwich_line needs finite tau > 0")
-    return tau
+    vehicle = vehicle_module(model, params)
+    f = params.as_float()
+    args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
+    return tau, vehicle, TrackKernelArray(params, foundation=foundation), args, f.d
 
 
 def _line_quadrature(transform, tau, a, s_max, panel_tol):
