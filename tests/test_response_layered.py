@@ -1,5 +1,5 @@
-"""Closed-form vibrations on the layered tracks: residues plus the branch-cut part over a cut that crosses
-Re q = 0 (the mass layer's curves, response/cut_integral.py).
+"""Closed-form vibrations with a cut that crosses Re q = 0 above q = 0 (response/cut_integral.py): the
+layered tracks (the mass layer's curves) and the damped beam above the critical velocity.
 
 References (independent of residues, induced frequencies and the cut):
 * the homogeneous initial conditions: the response at tau = 0 is exactly zero at every xi;
@@ -17,11 +17,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.response.branch_cut import BranchCutUnavailable
 from moving_bogie.response.bromwich import bromwich_line, bromwich_line_shape
 from moving_bogie.response.closed_form import closed_form_response, deflection_shape
-from moving_bogie.response.cut_integral import CurveBranchCut
+from moving_bogie.response.cut_integral import CurveBranchCut, branch_cut_for
 from moving_bogie.roots.frequencies import induced_frequencies
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "two-layer.toml"
@@ -103,3 +104,22 @@ def test_degenerate_cuts_are_refused_with_the_reason(two_layer, change, reason):
     params, _ = two_layer
     with pytest.raises(BranchCutUnavailable, match=reason):
         CurveBranchCut(params.replace(**change))
+
+
+def test_damped_beam_above_the_critical_velocity_matches_the_bromwich_integral():
+    # Table 1, Case 7 (eta_f = 0.05) at alpha = 1.2 > alpha_cr: the half-lines of the cut overlap across
+    # Re q = 0 at Im q = eta_f, so the traced-cut integral takes over from the half-line one; one induced
+    # frequency is unstable (Im q = -0.165), and the Bromwich line lies below it.
+    params = table1_case(7).replace(alpha="1.2")
+    assert isinstance(branch_cut_for(params), CurveBranchCut)
+    result = induced_frequencies(params, dps=20)
+    assert result.count_ok
+    a = 0.02 - min(0.0, min(float(r.im_text) for r in result.roots))
+    taus = (0.5, 2.0, 20.0)
+    ref = bromwich_line(params, taus, a=a)
+    other = bromwich_line(params, taus, a=a + 0.03)
+    ts = closed_form_response(params, taus, frequencies=result, branch_cut=True)
+    scale = _scale(ts)
+    for name in RESPONSES:
+        assert np.abs(ref[name] - other[name]).max() < 1e-11 * scale, name  # the reference converged
+        assert np.abs(getattr(ts, name) - ref[name]).max() < 1e-9 * scale, name

@@ -55,10 +55,15 @@ _REAL_TOL = 1e-12
 
 
 def branch_cut_for(params, model: str = "bogie", *, foundation=None):
-    """The branch-cut integral of ``params``: :class:`BranchCut` for the Euler-Bernoulli beam (its cut is a
-    half-line, integrated in closed geometry), :class:`CurveBranchCut` for any other model."""
+    """The branch-cut integral of ``params``: :class:`BranchCut` for the Euler-Bernoulli beam below the
+    critical velocity (its cut is a half-line, integrated in closed geometry), :class:`CurveBranchCut` for
+    any other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut
+    passes through q = 0, e.g. eta_f = 0)."""
     if foundation is None and (params.beam, params.track) == ("eb", "one-layer"):
-        return BranchCut(params, model)
+        try:
+            return BranchCut(params, model)
+        except BranchCutUnavailable:
+            pass  # above the critical velocity: the traced cut crosses Re q = 0 above q = 0 when damped
     return CurveBranchCut(params, model, foundation=foundation)
 
 
@@ -254,25 +259,34 @@ class CurveBranchCut:
         return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, e, 0), axis=1)
 
     def _jump(self, piece, p, xi=None):
-        """(q, J): J = (X~_right - X~_left) q'(p) / (number of real roots), per response (or W~ at xi)."""
+        """(q, J): J = (X~_right - X~_left) q'(p) / (number of real roots), per response (or W~ at xi).
+
+        At a node on a cusp (a double real root: W infinite, q' = 0) J is the mean of its values at
+        p +- 1e-6 max(1, |p|) (J is smooth in p there)."""
         p = np.asarray(p, dtype=float)
         q = piece.q_at(p)
         t = self.tracer.dq_dp(p, q)
-        P, W, right, left, m = self._sides(p, q, t)
-        contact = np.array([0.0, self.d, -self.d])
-        out = []
-        for upper in (right, left):
-            K0, Kp, Km = self._kernel(P, W, upper, contact).T
-            E = self.vehicle.e_chr(q, K0, Kp, Km, **self.vargs)
-            if xi is None:
-                nums = self.vehicle.numerators(q, K0, Kp, Km, **self.vargs)
-                out.append(np.stack([n / (1j * q * E) for n in nums], axis=-1))
-            else:
-                G_r, G_f = self.vehicle.shape_weights(q, K0, Kp, Km, **self.vargs)
-                den = 2 * np.pi * 1j * q * E
-                Kx, Kxd = self._kernel(P, W, upper, xi), self._kernel(P, W, upper, xi - self.d)
-                out.append((G_r / den)[:, None] * Kx + (G_f / den)[:, None] * Kxd)
-        return q, (out[0] - out[1]) * (t / m)[:, None]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            P, W, right, left, m = self._sides(p, q, t)
+            contact = np.array([0.0, self.d, -self.d])
+            out = []
+            for upper in (right, left):
+                K0, Kp, Km = self._kernel(P, W, upper, contact).T
+                E = self.vehicle.e_chr(q, K0, Kp, Km, **self.vargs)
+                if xi is None:
+                    nums = self.vehicle.numerators(q, K0, Kp, Km, **self.vargs)
+                    out.append(np.stack([n / (1j * q * E) for n in nums], axis=-1))
+                else:
+                    G_r, G_f = self.vehicle.shape_weights(q, K0, Kp, Km, **self.vargs)
+                    den = 2 * np.pi * 1j * q * E
+                    Kx, Kxd = self._kernel(P, W, upper, xi), self._kernel(P, W, upper, xi - self.d)
+                    out.append((G_r / den)[:, None] * Kx + (G_f / den)[:, None] * Kxd)
+            J = (out[0] - out[1]) * (t / m)[:, None]
+        cusp = ~np.all(np.isfinite(J), axis=-1)
+        if np.any(cusp):
+            h = 1e-6 * np.maximum(1.0, np.abs(p[cusp]))
+            J[cusp] = 0.5 * (self._jump(piece, p[cusp] - h, xi)[1] + self._jump(piece, p[cusp] + h, xi)[1])
+        return q, J
 
     # --- quadrature ----------------------------------------------------------------------------
     def _panels(self, piece, S, channel):
