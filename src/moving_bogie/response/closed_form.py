@@ -249,7 +249,8 @@ def closed_form_response(
     IncompleteFrequencies
         If the frequency count failed (``not frequencies.count_ok``).
     BranchCutUnavailable
-        ``branch_cut=True`` above the critical velocity (the cut reaches q = 0).
+        ``branch_cut=True`` when the cut passes through q = 0 (an undamped track above the critical
+        velocity, an undamped layered track) or stays bounded (a layered track at alpha = 0).
     """
     model = model or params.vehicle
     dimless, scales = _dimensionless(params)

@@ -13,14 +13,20 @@ N(., q) (a point where curves coincide or cross, e.g. the two halves of the Eule
 by the same rule, and each point of the cut is counted once by the weight 1/(number of real roots). The
 parametrisation by p removes the square-root singularity of a cusp (q' = 0 there), and needs no
 geometry of the cut: folds, lenses and the Timoshenko-Rayleigh curve near |Re q| = sqrt(S)/r all enter
-as they are. By the mirror symmetry f(-conj q) = conj f(q) only the curves in Re q > 0 are integrated,
-I_bc = (1/pi) Re sum over them.
+as they are. By the mirror symmetry f(-conj q) = conj f(q) only the pieces of the curves with Re q >= 0
+are integrated, I_bc = (1/pi) Re sum over them: a curve that crosses Re q = 0 (a layered track's mass
+layer, whose curves sweep across all Re q; a damped track above the critical velocity) is split there,
+and that end of a piece is an interior point of the cut whose mirror piece continues it (no tail term).
+A cut through q = 0 itself (the pole of the steady part) is refused, and so is a curve that stays
+bounded in Re q > 0 (a mass layer at alpha = 0).
 
 Quadrature: composite 16-point Gauss-Legendre in p, panels first adapted to the non-oscillating integrand
 (halved until the panel integral changes by less than ``panel_tol``), then subdivided to at most 3 pi of
-phase Re q tau and 2 radians of e^{i p xi}. Each curve is truncated where Re q = S at both ends; the
-tails are integrated by parts along the curve, e^{i q tau}(i F/tau - F'/tau^2 - i F''/tau^3) with F' in q
-by divided differences, and S is chosen like the Euler-Bernoulli integral's (:mod:`branch_cut`).
+phase Re q tau and 2 radians of e^{i p xi}. Each piece is truncated where Re q = S at its far ends (where
+Re q grows without bound); the tails are integrated by parts along the curve, e^{i q tau}(i F/tau -
+F'/tau^2 - i F''/tau^3) with F' in q by divided differences, and S is chosen per piece like the
+Euler-Bernoulli integral's (:mod:`branch_cut`): a mass layer's jump falls like p^-8 while its Re q grows
+only like alpha p, so its pieces stop at a small S.
 """
 
 from __future__ import annotations
@@ -202,7 +208,8 @@ class CurveBranchCut:
     Raises
     ------
     BranchCutUnavailable
-        When the cut reaches Re q = 0 (supercritical velocity: no gap around the steady state).
+        When the cut passes through q = 0 (no steady state: an undamped track above the critical velocity,
+        an undamped layered track), or a curve stays bounded in Re q > 0 (a layered track at alpha = 0).
     """
 
     def __init__(self, params, model: str = "bogie", *, foundation=None, panel_tol: float = 1e-13):
