@@ -1,0 +1,195 @@
+"""Stability boundaries on an undamped (eta_f = 0) or near-undamped foundation (Sections 3.5, 3.8).
+
+Convention. With eta_f = 0 the cut of K lies on the real q-axis for |Re q| >= q_c (the branch point); K
+there is the limit from below (eta_f -> 0+ moves the cut up to Im q = eta_f, so the real axis lies below
+it): :class:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic` ``(below=True)``. An induced
+frequency is unstable when Im q < 0; a real one is neutral (constant amplitude).
+
+What degenerates. In the gap |Re q| < q_c, K is analytic and, with an undamped vehicle, E_chr (Eq. (38)) is
+real on the real axis (exactly, factor 1). Real induced frequencies then fill whole regions of the
+(alpha, theta) plane and the instability lines of :mod:`instability_lines` (E_chr = 0 with q real: two
+equations) degenerate. Two different boundaries replace them:
+
+* **eta_f = 0 exactly** ("exact"): the number of roots with Im q < 0 changes where two real roots collide
+  and leave the axis as a pair q, conj(q) (E = E_q = 0), where a root crosses the real axis on the cut
+  (values from below, E complex there: an ordinary crossing), or where a real root reaches the branch
+  point q_c.
+* **the limit eta_f -> 0+** ("limit"): a real root q0 of the undamped problem moves to
+  q0 - eta_f E_eta / E_q + O(eta_f^2) (E_eta = dE/deta_f; by E(q; -eta_f) = conj E(q; eta_f) on the
+  gap it is imaginary there, E_q is real), so it becomes unstable, with growth rate proportional to eta_f,
+  when Im(E_eta) / E_q > 0. Small foundation damping destabilises such roots (Case 5: Im q = -0.0091
+  eta_f for eta_f -> 0, real at eta_f = 0). The limit count is the exact count plus these roots; for
+  0 < eta_f < :data:`NEAR_UNDAMPED` it is the count at eta_f to first order in eta_f (roots there lie
+  within ~eta_f of the real axis, too close for the ordinary methods).
+
+Method (no continuation: the boundary is located by counts). At fixed alpha the exact count comes from
+the argument principle on a whole column of theta values
+(:func:`~moving_bogie.stability.column.stability_column`, upper edge 1e-7 below the real axis, so real
+roots count as neutral); the real roots in the gap are the sign changes of the real E_chr on samples
+``q_step`` apart, polished by Newton's method, and the sign of Im(E_eta) / E_q is read from E_chr at
+eta_f = :data:`DAMPING_PROBE` (Im E is odd in eta_f on the gap). Every change of either count between grid
+values of theta is bisected to a tolerance; a pair of changes closer together than the grid step, or a
+pair of real roots closer than ``q_step``, can be missed (stated in the outputs).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from moving_bogie.kernels.cut import cut_locus
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.stability.column import exact, stability_column
+from moving_bogie.stability.column_count import horner_rows
+from moving_bogie.stability.column_roots import polish_roots
+
+__all__ = [
+    "CONVENTION",
+    "DAMPING_PROBE",
+    "NEAR_UNDAMPED",
+    "Boundary",
+    "UndampedColumn",
+    "UndampedCounter",
+    "boundaries",
+    "regime",
+]
+
+#: Below this eta_f (and above 0) the foundation is treated as near-undamped: the limit eta_f -> 0+.
+NEAR_UNDAMPED = 1e-5
+#: eta_f at which the sign of dIm q/deta_f of a real root is read.
+DAMPING_PROBE = Fraction(1, 10**6)
+#: Im q of the counting rectangle's upper edge at eta_f = 0 (just below the cut on the real axis).
+TOP = -1e-7
+
+CONVENTION = (
+    "eta_f = 0: K on the cut (the real q-axis beyond the branch point q_c) is the limit from below "
+    "(eta_f -> 0+); an induced frequency is unstable when Im q < 0, a real one is neutral"
+)
+
+
+def regime(eta_f) -> str:
+    """"damped" (ordinary methods), "undamped" (eta_f = 0) or "near-undamped" (0 < eta_f < NEAR_UNDAMPED)."""
+    eta_f = float(eta_f)
+    if eta_f == 0:
+        return "undamped"
+    return "near-undamped" if eta_f < NEAR_UNDAMPED else "damped"
+
+
+@dataclass(frozen=True)
+class UndampedColumn:
+    """Counts at one alpha: ``exact`` (eta_f = 0), ``limit`` (eta_f -> 0+), ``real`` (real roots in the gap)."""
+
+    alpha: float
+    thetas: np.ndarray
+    exact: np.ndarray
+    limit: np.ndarray
+    real: np.ndarray
+    uncertain: np.ndarray
+
+
+class UndampedCounter:
+    """Exact and limit counts of unstable induced frequencies along columns of theta (module text).
+
+    Parameters
+    ----------
+    params : DimensionlessParams
+        Its eta_f is ignored (set to 0).
+    model : {"bogie", "masses"}
+    parameter : str
+        The swept vehicle parameter (eta_M, kappa_v or eta_v).
+    q_step : float
+        Sampling of the gap 0 < q < q_c for real roots.
+    """
+
+    def __init__(self, params, model: str | None = None, parameter: str = "eta_M", *, q_step: float = 0.002):
+        self.params = params.replace(eta_f=0)
+        self.model = model or params.vehicle
+        self.parameter = parameter
+        self.q_step = float(q_step)
+        self.sweep = SweepCharacteristic(self.params, self.model, parameter, below=True)
+        probe = self.params.replace(eta_f=DAMPING_PROBE)
+        self.probe = SweepCharacteristic(probe, self.model, parameter)
+
+    def gap_end(self, alpha: float) -> float:
+        """q_c: the branch point, where the cut (on the real axis) begins; 0 when there is no gap."""
+        x = cut_locus(self.params.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801).x_start
+        return float(x) if np.isfinite(x) and x > 0 else 0.0
+
+    def real_roots(self, alpha: float, thetas: np.ndarray):
+        """Real roots in the gap: (row index, q, destabilised by small eta_f), one entry per root."""
+        qc = self.gap_end(alpha)
+        n = int(np.ceil(qc / self.q_step))
+        empty = (np.zeros(0, dtype=int), np.zeros(0), np.zeros(0, dtype=bool))
+        if n < 3:
+            return empty
+        qs = np.linspace(0.0, qc, n + 1)[1:-1]
+        scale = float(np.max(thetas))
+        K, _, _ = self.sweep.kernel(qs, alpha)
+        E = horner_rows(self.sweep.coefficients(qs, K, scale=scale), (thetas / scale)[:, None])
+        with np.errstate(all="ignore"):
+            real_rows = np.max(np.abs(E.imag) / np.abs(E), axis=1) < 1e-8  # an undamped vehicle
+        R = np.where(real_rows[:, None], E.real, np.nan)
+        rows, i = np.nonzero(np.sign(R[:, :-1]) * np.sign(R[:, 1:]) < 0)
+        if not rows.size:
+            return empty
+        w = R[rows, i] / (R[rows, i] - R[rows, i + 1])
+        q0 = qs[i] + w * (qs[i + 1] - qs[i])
+        q = polish_roots(self.sweep, q0.astype(complex), alpha, thetas[rows], 12).real
+        bad = ~np.isfinite(q) | (np.abs(q - q0) > 2 * self.q_step)
+        q = np.where(bad, q0, q)
+        a = np.full(len(q), alpha)
+        _, E_q = self.sweep.e_and_dq(q.astype(complex), a, thetas[rows])
+        E_probe = self.probe(q.astype(complex), a, thetas[rows])
+        return rows, q, (E_probe.imag * E_q.real) > 0
+
+    def __call__(self, alpha: float, thetas) -> UndampedColumn:
+        thetas = np.asarray(thetas, dtype=float)
+        col = stability_column(self.sweep, alpha, thetas, top=TOP)
+        rows, _, unstable = self.real_roots(alpha, thetas)
+        real = np.bincount(rows, minlength=len(thetas))
+        limit = col.count + np.bincount(rows[unstable], minlength=len(thetas))
+        return UndampedColumn(float(alpha), thetas, col.count.copy(), limit, real, col.uncertain.copy())
+
+
+@dataclass(frozen=True)
+class Boundary:
+    """A value of theta at one alpha where a count changes: ``kind`` "exact" (eta_f = 0) or "limit"
+    (eta_f -> 0+), the counts just below and above (bisection bracket ``low``..``high``)."""
+
+    kind: str
+    alpha: float
+    theta: float
+    low: float
+    high: float
+    count_below: int
+    count_above: int
+
+
+def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
+    """Every change of the exact and of the limit count along ``grid`` (theta values), bisected to ``tol``.
+
+    Returns ``(boundaries, column)``: the :class:`Boundary` list sorted by theta, and the counts on the grid.
+    """
+    grid = np.asarray(grid, dtype=float)
+    col = counter(alpha, grid)
+    brackets = []
+    for kind in ("exact", "limit"):
+        c = getattr(col, kind)
+        for i in np.nonzero(c[:-1] != c[1:])[0]:
+            brackets.append([kind, grid[i], grid[i + 1], int(c[i]), int(c[i + 1])])
+    while brackets and max(b[2] - b[1] for b in brackets) > tol:
+        mids = np.array([0.5 * (b[1] + b[2]) for b in brackets])
+        mid = counter(alpha, mids)
+        for k, b in enumerate(brackets):
+            if b[2] - b[1] <= tol:
+                continue
+            n = int(getattr(mid, b[0])[k])
+            if n == b[3]:
+                b[1] = mids[k]
+            else:
+                b[2], b[4] = mids[k], n
+    out = [Boundary(k, float(alpha), 0.5 * (lo + hi), float(lo), float(hi), n0, n1) for k, lo, hi, n0, n1 in brackets]
+    out.sort(key=lambda b: (b.kind, b.theta))
+    return out, col
