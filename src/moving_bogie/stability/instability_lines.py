@@ -31,6 +31,13 @@ Method
    inside the plot (q_max, which is then raised automatically; q = 0; a singular point), and its folds
    (tips where the root touches the real axis and the line turns back).
 
+Undamped and near-undamped foundations (eta_f = 0, or 0 < eta_f < 1e-5): the curves above degenerate
+(with eta_f = 0 and an undamped vehicle E_chr is real on the gap of the real axis, so real induced
+frequencies fill whole regions). :func:`instability_lines` then returns, instead, boundaries of instability
+located by root counts (:mod:`undamped_lines`, convention and kinds in :mod:`undamped`): at eta_f = 0 the
+boundary at eta_f = 0 exactly (kind "undamped") and the limit eta_f -> 0+ (kind "limit"); for
+0 < eta_f < 1e-5 the limit only. ``InstabilityLines.method`` says which.
+
 Which side is unstable follows from the implicit function theorem: at fixed alpha, the real root moves
 as dq/dtheta = -E_theta / E_q, so the side of larger theta is the unstable one (one more root with
 Im q < 0) when Im(dq/dtheta) < 0. This is the D-decomposition rule of hatching written pointwise; the
@@ -46,10 +53,11 @@ from fractions import Fraction
 import contourpy
 import numpy as np
 
-from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
 from moving_bogie.stability.continuation import PathTracer, evaluate, gauss_newton
 from moving_bogie.stability.line_ends import find_folds, line_end
+from moving_bogie.stability.undamped import CONVENTION, regime
+from moving_bogie.stability.undamped_lines import undamped_branches
 
 __all__ = ["InstabilityBranch", "InstabilityLines", "instability_lines"]
 
@@ -71,6 +79,10 @@ class InstabilityBranch:
         At each point, True if increasing theta at fixed alpha makes the real root unstable.
     residual : ndarray
         |E_chr / E_chr'| at each point: distance in q to the exact real root (double precision).
+    kind : str
+        "crossing" (a real induced frequency, eta_f > 0); on an undamped foundation "undamped" or "limit"
+        (boundaries located by counts, :mod:`undamped_lines`: ``q`` and ``residual`` are nan, ``verified``
+        holds the counts at the ends of the middle point's bisection bracket).
     """
 
     d: float
@@ -82,6 +94,7 @@ class InstabilityBranch:
     verified: tuple | None = None  # (alpha, eta below, count, eta above, count) by induced_frequencies
     ends: tuple = ()  # (start, end) LineEnd: why the line stops at each end
     folds: tuple = ()  # LineEnd("fold") at every tip where the line turns back
+    kind: str = "crossing"
 
     @property
     def stops_inside(self) -> tuple:
@@ -100,6 +113,7 @@ class InstabilityBranch:
     def to_dict(self, parameter: str = "eta_M") -> dict:
         return {
             "d": self.d,
+            "kind": self.kind,
             "unstable_side": self.unstable_side,
             "verified": None
             if self.verified is None
@@ -109,7 +123,7 @@ class InstabilityBranch:
             "ends": [e.to_dict(parameter) for e in self.ends],
             "folds": [e.to_dict(parameter) for e in self.folds],
             "points": [
-                {"alpha": float(a), parameter: float(t), "q": float(q), "unstable_above": bool(u)}
+                {"alpha": float(a), parameter: float(t), "q": _number(q), "unstable_above": bool(u)}
                 for a, t, q, u in zip(self.alpha, self.theta, self.q, self.unstable_above)
             ],
         }
@@ -127,6 +141,28 @@ class InstabilityLines:
     branches: tuple
     warnings: tuple = field(default=())
     q_max: float | None = None  # the searched range of real q actually used (raised automatically)
+    method: str = "real induced frequencies traced by continuation"
+
+    @property
+    def regime(self) -> str:
+        """ "damped", "undamped" (eta_f = 0) or "near-undamped" (:func:`~.undamped.regime`)."""
+        return regime(self.params.eta_f)
+
+    @property
+    def statement(self) -> str:
+        """What the lines are, in one sentence (empty for the ordinary lines of a damped foundation)."""
+        if self.regime == "undamped":
+            return (
+                "eta_f = 0: real induced frequencies fill whole regions, so instability lines degenerate; "
+                "lines shown are boundaries of instability at eta_f = 0 exactly (kind 'undamped') and in the "
+                "limit eta_f -> 0+ (kind 'limit'); " + CONVENTION
+            )
+        if self.regime == "near-undamped":
+            return (
+                f"eta_f = {float(self.params.eta_f):g} is near-undamped: lines shown are the boundaries of "
+                "instability in the limit eta_f -> 0+ (kind 'limit', first order in eta_f); " + CONVENTION
+            )
+        return ""
 
     def for_spacing(self, d: float) -> tuple:
         return tuple(b for b in self.branches if abs(b.d - d) < 1e-12)
@@ -139,6 +175,9 @@ class InstabilityLines:
             "alpha_range": list(self.alpha_range),
             "theta_max": self.theta_max,
             "q_max": self.q_max,
+            "regime": self.regime,
+            "method": self.method,
+            "statement": self.statement,
             "branches": [b.to_dict(self.parameter) for b in self.branches],
             "warnings": list(self.warnings),
         }
@@ -168,7 +207,9 @@ def instability_lines(
     params : DimensionlessParams
         All parameters except alpha and ``parameter`` (their values in ``params`` are ignored); with
         ``parameter="eta_M"``, mu_v = cf1 eta_M and J_b = cf2 eta_M d^2 (Eq. (63)) use the cf1, cf2 of
-        ``params``. Requires eta_f > 0.
+        ``params``. With eta_f = 0 or 0 < eta_f < 1e-5 the lines degenerate and boundaries located by
+        counts are returned instead (module text; ``alpha_step`` is then the step of the velocity grid,
+        at least 0.02, and ``q_max``, ``q_step``, ``h_max``, ``tol``, ``verify`` are not used).
     model : {"bogie", "masses"}
     spacings : sequence of float, optional
         Wheel spacings d to trace (default: ``params.d``); they share the track kernel of the scan.
@@ -199,13 +240,30 @@ def instability_lines(
         Called with the fraction of work done.
     """
     model = model or params.vehicle
-    if params.eta_f <= 0:
-        raise ParameterError(
-            "eta_f",
-            "instability lines need eta_f > 0: without foundation damping the cut of K lies on the real "
-            "q-axis and real induced frequencies fill whole regions (Cases 2-4)",
-        )
     ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
+    a0, a1 = (float(a) for a in alpha_range)
+    if regime(params.eta_f) != "damped":
+        branches, warnings, method = undamped_branches(
+            params,
+            model,
+            ds,
+            parameter,
+            (a0, a1),
+            theta_max,
+            alpha_step=max(alpha_step, 0.02),
+            progress=progress,
+        )
+        return InstabilityLines(
+            params,
+            model,
+            parameter,
+            (a0, a1),
+            float(theta_max),
+            tuple(branches),
+            tuple(dict.fromkeys(warnings)),
+            None,
+            method,
+        )
     sweep = SweepCharacteristic(params, model, parameter)
     cap = 8 * q_max if q_max_cap is None else q_max_cap
     grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
@@ -220,7 +278,6 @@ def instability_lines(
     if verify:
         branches = [_verify(params, model, parameter, b) for b in branches]
     _report(progress, 1.0)
-    a0, a1 = (float(a) for a in alpha_range)
     return InstabilityLines(
         params,
         model,
@@ -280,6 +337,11 @@ def _verify(params, model, parameter, branch) -> InstabilityBranch:
     return replace(
         branch, verified=(float(a), float(theta * 0.98), counts[0], float(theta * 1.02), counts[1])
     )
+
+
+def _number(x):
+    """A float for JSON, None for nan (no real frequency recorded)."""
+    return None if not np.isfinite(x) else float(x)
 
 
 def _exact(x: float):

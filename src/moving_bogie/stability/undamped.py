@@ -10,7 +10,7 @@ real on the real axis (exactly, factor 1). Real induced frequencies then fill wh
 (alpha, theta) plane and the instability lines of :mod:`instability_lines` (E_chr = 0 with q real: two
 equations) degenerate. Two different boundaries replace them:
 
-* **eta_f = 0 exactly** ("exact"): the number of roots with Im q < 0 changes where two real roots collide
+* **eta_f = 0 exactly** ("undamped"): the number of roots with Im q < 0 changes where two real roots collide
   and leave the axis as a pair q, conj(q) (E = E_q = 0), where a root crosses the real axis on the cut
   (values from below, E complex there: an ordinary crossing), or where a real root reaches the branch
   point q_c.
@@ -18,11 +18,11 @@ equations) degenerate. Two different boundaries replace them:
   q0 - eta_f E_eta / E_q + O(eta_f^2) (E_eta = dE/deta_f; by E(q; -eta_f) = conj E(q; eta_f) on the
   gap it is imaginary there, E_q is real), so it becomes unstable, with growth rate proportional to eta_f,
   when Im(E_eta) / E_q > 0. Small foundation damping destabilises such roots (Case 5: Im q = -0.0091
-  eta_f for eta_f -> 0, real at eta_f = 0). The limit count is the exact count plus these roots; for
+  eta_f for eta_f -> 0, real at eta_f = 0). The limit count is the eta_f = 0 count plus these roots; for
   0 < eta_f < :data:`NEAR_UNDAMPED` it is the count at eta_f to first order in eta_f (roots there lie
   within ~eta_f of the real axis, too close for the ordinary methods).
 
-Method (no continuation: the boundary is located by counts). At fixed alpha the exact count comes from
+Method (no continuation: the boundary is located by counts). At fixed alpha the eta_f = 0 count comes from
 the argument principle on a whole column of theta values
 (:func:`~moving_bogie.stability.column.stability_column`, upper edge 1e-7 below the real axis, so real
 roots count as neutral); the real roots in the gap are the sign changes of the real E_chr on samples
@@ -53,6 +53,7 @@ __all__ = [
     "UndampedColumn",
     "UndampedCounter",
     "boundaries",
+    "parameter_grid",
     "regime",
 ]
 
@@ -70,20 +71,26 @@ CONVENTION = (
 
 
 def regime(eta_f) -> str:
-    """"damped" (ordinary methods), "undamped" (eta_f = 0) or "near-undamped" (0 < eta_f < NEAR_UNDAMPED)."""
+    """ "damped" (ordinary methods), "undamped" (eta_f = 0) or "near-undamped" (0 < eta_f < NEAR_UNDAMPED)."""
     eta_f = float(eta_f)
     if eta_f == 0:
         return "undamped"
     return "near-undamped" if eta_f < NEAR_UNDAMPED else "damped"
 
 
+def parameter_grid(theta_max: float, points: int) -> np.ndarray:
+    """``points`` even values up to theta_max, after 5 geometric ones from theta_max / 1000."""
+    small = np.geomspace(1e-3, 1.0 / points, 6)[:-1]
+    return theta_max * np.concatenate([small, np.linspace(1.0, points, points) / points])
+
+
 @dataclass(frozen=True)
 class UndampedColumn:
-    """Counts at one alpha: ``exact`` (eta_f = 0), ``limit`` (eta_f -> 0+), ``real`` (real roots in the gap)."""
+    """Counts at one alpha: ``undamped`` (eta_f = 0), ``limit`` (eta_f -> 0+), ``real`` (real gap roots)."""
 
     alpha: float
     thetas: np.ndarray
-    exact: np.ndarray
+    undamped: np.ndarray
     limit: np.ndarray
     real: np.ndarray
     uncertain: np.ndarray
@@ -101,9 +108,15 @@ class UndampedCounter:
         The swept vehicle parameter (eta_M, kappa_v or eta_v).
     q_step : float
         Sampling of the gap 0 < q < q_c for real roots.
+    margin : float
+        A count with an unstable root less than ``margin`` below the real axis is flagged uncertain (for a
+        near-undamped eta_f: such a root may lie on either side at that eta_f, e.g. next to a branch point).
     """
 
-    def __init__(self, params, model: str | None = None, parameter: str = "eta_M", *, q_step: float = 0.002):
+    def __init__(
+        self, params, model: str | None = None, parameter: str = "eta_M", *, q_step: float = 0.002, margin=0.0
+    ):
+        self.margin = float(margin)
         self.params = params.replace(eta_f=0)
         self.model = model or params.vehicle
         self.parameter = parameter
@@ -150,12 +163,13 @@ class UndampedCounter:
         rows, _, unstable = self.real_roots(alpha, thetas)
         real = np.bincount(rows, minlength=len(thetas))
         limit = col.count + np.bincount(rows[unstable], minlength=len(thetas))
-        return UndampedColumn(float(alpha), thetas, col.count.copy(), limit, real, col.uncertain.copy())
+        shallow = np.array([bool(len(r)) and float(np.max(r.imag)) > -self.margin for r in col.roots])
+        return UndampedColumn(float(alpha), thetas, col.count.copy(), limit, real, col.uncertain | shallow)
 
 
 @dataclass(frozen=True)
 class Boundary:
-    """A value of theta at one alpha where a count changes: ``kind`` "exact" (eta_f = 0) or "limit"
+    """A value of theta at one alpha where a count changes: ``kind`` "undamped" (eta_f = 0) or "limit"
     (eta_f -> 0+), the counts just below and above (bisection bracket ``low``..``high``)."""
 
     kind: str
@@ -168,20 +182,23 @@ class Boundary:
 
 
 def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
-    """Every change of the exact and of the limit count along ``grid`` (theta values), bisected to ``tol``.
+    """Every change of the eta_f = 0 and of the limit count along ``grid`` (values of theta), to ``tol``.
 
-    Returns ``(boundaries, column)``: the :class:`Boundary` list sorted by theta, and the counts on the grid.
+    Returns ``(boundaries, column, unsure)``: the :class:`Boundary` list sorted by kind and theta, the counts
+    on the grid, and how many counts (grid and bisection) were not certified.
     """
     grid = np.asarray(grid, dtype=float)
     col = counter(alpha, grid)
+    unsure = int(np.sum(col.uncertain))
     brackets = []
-    for kind in ("exact", "limit"):
+    for kind in ("undamped", "limit"):
         c = getattr(col, kind)
         for i in np.nonzero(c[:-1] != c[1:])[0]:
             brackets.append([kind, grid[i], grid[i + 1], int(c[i]), int(c[i + 1])])
     while brackets and max(b[2] - b[1] for b in brackets) > tol:
         mids = np.array([0.5 * (b[1] + b[2]) for b in brackets])
         mid = counter(alpha, mids)
+        unsure += int(np.sum(mid.uncertain))
         for k, b in enumerate(brackets):
             if b[2] - b[1] <= tol:
                 continue
@@ -190,6 +207,9 @@ def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
                 b[1] = mids[k]
             else:
                 b[2], b[4] = mids[k], n
-    out = [Boundary(k, float(alpha), 0.5 * (lo + hi), float(lo), float(hi), n0, n1) for k, lo, hi, n0, n1 in brackets]
+    out = [
+        Boundary(k, float(alpha), 0.5 * (lo + hi), float(lo), float(hi), n0, n1)
+        for k, lo, hi, n0, n1 in brackets
+    ]
     out.sort(key=lambda b: (b.kind, b.theta))
-    return out, col
+    return out, col, unsure
