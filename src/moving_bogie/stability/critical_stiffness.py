@@ -33,7 +33,14 @@ from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.column import stability_column
 from moving_bogie.stability.d_decomposition import d_decomposition
-from moving_bogie.stability.undamped import CONVENTION, UndampedCounter, boundaries, parameter_grid, regime
+from moving_bogie.stability.undamped import (
+    CONVENTION,
+    UndampedCounter,
+    boundaries,
+    parameter_grid,
+    regime,
+    uncertain_warning,
+)
 
 __all__ = ["CriticalStiffness", "critical_stiffness", "figure16_params"]
 
@@ -221,23 +228,21 @@ def _critical(ivs):
 
 def _undamped(params, alphas, kappa_max, check_points, tol, progress) -> CriticalStiffness:
     """Counts on a kappa_v grid and bisection (:mod:`undamped`), exact at eta_f = 0 and in the limit."""
-    counter = UndampedCounter(params, "bogie", "kappa_v", margin=100 * float(params.eta_f))
+    margin = 100 * float(params.eta_f)
+    counter = UndampedCounter(params, "bogie", "kappa_v", margin=margin)
+    unsure = {}
     grid = parameter_grid(kappa_max, check_points)
     kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"
     intervals, limits, critical, warnings = [], [], [], []
     for k, a in enumerate(alphas):
-        bounds, column, unsure = boundaries(counter, float(a), grid, tol=tol * kappa_max)
-        if unsure:
-            warnings.append(
-                f"alpha={a:g}: {unsure} count(s) not certified (a root within 1e-7 below the real axis, "
-                "not resolved)"
-            )
+        bounds, column, unsure[float(a)] = boundaries(counter, float(a), grid, tol=tol * kappa_max)
         ivs = _intervals(bounds, column, kind, kappa_max)
         intervals.append(ivs)
         limits.append(_intervals(bounds, column, "limit", kappa_max))
         critical.append(_critical(ivs))
         if progress is not None:
             progress((k + 1) / len(alphas))
+    warnings += uncertain_warning("", unsure, margin)
     what = (
         "at eta_f = 0"
         if kind == "undamped"

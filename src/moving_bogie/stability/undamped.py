@@ -55,6 +55,7 @@ __all__ = [
     "boundaries",
     "parameter_grid",
     "regime",
+    "uncertain_warning",
 ]
 
 #: Below this eta_f (and above 0) the foundation is treated as near-undamped: the limit eta_f -> 0+.
@@ -82,6 +83,18 @@ def parameter_grid(theta_max: float, points: int) -> np.ndarray:
     """``points`` even values up to theta_max, after 5 geometric ones from theta_max / 1000."""
     small = np.geomspace(1e-3, 1.0 / points, 6)[:-1]
     return theta_max * np.concatenate([small, np.linspace(1.0, points, points) / points])
+
+
+def uncertain_warning(where: str, unsure: dict, margin: float) -> list:
+    """One warning for the counts not certified, ``unsure`` = {alpha: number}; empty when there are none."""
+    unsure = {a: n for a, n in unsure.items() if n}
+    if not unsure:
+        return []
+    return [
+        f"{where}{sum(unsure.values())} count(s) at {len(unsure)} velocities (alpha {min(unsure):.4g} to "
+        f"{max(unsure):.4g}) not certified: an unstable root within {max(1e-7, margin):.0e} of the real axis "
+        "is not resolved there, so a boundary nearby may be misplaced or missing"
+    ]
 
 
 @dataclass(frozen=True)

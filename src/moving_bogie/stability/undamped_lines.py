@@ -24,7 +24,13 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from moving_bogie.stability.column import exact
-from moving_bogie.stability.undamped import UndampedCounter, boundaries, parameter_grid, regime
+from moving_bogie.stability.undamped import (
+    UndampedCounter,
+    boundaries,
+    parameter_grid,
+    regime,
+    uncertain_warning,
+)
 
 __all__ = ["KIND_TEXT", "undamped_branches"]
 
@@ -64,20 +70,15 @@ def undamped_branches(
     branches, warnings = [], []
     total = len(ds) * len(alphas)
     for j, d in enumerate(ds):
-        counter = UndampedCounter(
-            params.replace(d=exact(d)), model, parameter, margin=100 * float(params.eta_f)
-        )
-        points = []
+        margin = 100 * float(params.eta_f)
+        counter = UndampedCounter(params.replace(d=exact(d)), model, parameter, margin=margin)
+        points, unsure = [], {}
         for i, a in enumerate(alphas):
-            bounds, column, unsure = boundaries(counter, float(a), grid, tol=tol * theta_max)
-            if unsure:
-                warnings.append(
-                    f"d={d:g}, alpha={a:.4g}: {unsure} count(s) not certified (an unstable root within "
-                    f"{max(1e-7, 100 * float(params.eta_f)):.0e} of the real axis)"
-                )
+            bounds, _, unsure[float(a)] = boundaries(counter, float(a), grid, tol=tol * theta_max)
             points += [b for b in bounds if b.kind in kinds]
             if progress is not None:
                 progress((j * len(alphas) + i + 1) / total)
+        warnings += uncertain_warning(f"d={d:g}: ", unsure, margin)
         for kind in kinds:
             for chain in _join([b for b in points if b.kind == kind], alphas, join * theta_max):
                 branches.append(_branch(InstabilityBranch, float(d), kind, chain))
