@@ -43,7 +43,6 @@ from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.column import exact, stability_column
 from moving_bogie.stability.column_count import horner_rows
-from moving_bogie.stability.column_roots import polish_roots
 
 __all__ = [
     "CONVENTION",
@@ -144,7 +143,12 @@ class UndampedCounter:
         return float(x) if np.isfinite(x) and x > 0 else 0.0
 
     def real_roots(self, alpha: float, thetas: np.ndarray):
-        """Real roots in the gap: (row index, q, destabilised by small eta_f), one entry per root."""
+        """Real roots in the gap: (row index, q, destabilised by small eta_f), one entry per root.
+
+        Sign changes of the real E_chr on samples ``q_step`` apart; where |E| has a local minimum without
+        a sign change (two roots may hide between samples) the two neighbouring intervals are sampled 64
+        times finer, twice (pairs closer than ``q_step / 4096`` stay unseen). Each bracket is bisected.
+        """
         qc = self.gap_end(alpha)
         n = int(np.ceil(qc / self.q_step))
         empty = (np.zeros(0, dtype=int), np.zeros(0), np.zeros(0, dtype=bool))
@@ -156,19 +160,37 @@ class UndampedCounter:
         E = horner_rows(self.sweep.coefficients(qs, K, scale=scale), (thetas / scale)[:, None])
         with np.errstate(all="ignore"):
             real_rows = np.max(np.abs(E.imag) / np.abs(E), axis=1) < 1e-8  # an undamped vehicle
-        R = np.where(real_rows[:, None], E.real, np.nan)
-        rows, i = np.nonzero(np.sign(R[:, :-1]) * np.sign(R[:, 1:]) < 0)
+        Q = np.broadcast_to(qs, E.shape)
+        rows, lo, hi, dips = _scan(np.arange(len(thetas))[real_rows], Q[real_rows], E.real[real_rows])
+        for _ in range(2):
+            if not dips[0].size:
+                break
+            r, a, b = dips
+            Q = a[:, None] + (b - a)[:, None] * np.linspace(0.0, 1.0, 65)[None, :]
+            R = self._real(Q, alpha, np.broadcast_to(thetas[r][:, None], Q.shape))
+            r2, lo2, hi2, dips = _scan(r, Q, R)
+            rows, lo, hi = np.concatenate([rows, r2]), np.concatenate([lo, lo2]), np.concatenate([hi, hi2])
         if not rows.size:
             return empty
-        w = R[rows, i] / (R[rows, i] - R[rows, i + 1])
-        q0 = qs[i] + w * (qs[i + 1] - qs[i])
-        q = polish_roots(self.sweep, q0.astype(complex), alpha, thetas[rows], 12).real
-        bad = ~np.isfinite(q) | (np.abs(q - q0) > 2 * self.q_step)
-        q = np.where(bad, q0, q)
+        th = thetas[rows]
+        f_lo = self._real(lo, alpha, th)
+        for _ in range(44):
+            mid = 0.5 * (lo + hi)
+            f_mid = self._real(mid, alpha, th)
+            same = np.sign(f_mid) == np.sign(f_lo)
+            lo, f_lo, hi = np.where(same, mid, lo), np.where(same, f_mid, f_lo), np.where(same, hi, mid)
+        q = (0.5 * (lo + hi)).astype(complex)
         a = np.full(len(q), alpha)
-        _, E_q = self.sweep.e_and_dq(q.astype(complex), a, thetas[rows])
-        E_probe = self.probe(q.astype(complex), a, thetas[rows])
-        return rows, q, (E_probe.imag * E_q.real) > 0
+        _, E_q = self.sweep.e_and_dq(q, a, th)
+        E_probe = self.probe(q, a, th)
+        return rows, q.real, (E_probe.imag * E_q.real) > 0
+
+    def _real(self, q, alpha, theta):
+        """The real E_chr at real points q of the gap, with theta per point."""
+        q = np.asarray(q, dtype=float)
+        return self.sweep(q.astype(complex).ravel(), np.full(q.size, alpha), np.ravel(theta)).real.reshape(
+            q.shape
+        )
 
     def __call__(self, alpha: float, thetas) -> UndampedColumn:
         thetas = np.asarray(thetas, dtype=float)
@@ -226,3 +248,21 @@ def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
     ]
     out.sort(key=lambda b: (b.kind, b.theta))
     return out, col, unsure
+
+
+def _scan(rows, Q, R):
+    """Sign changes of R along each row of Q (brackets) and local minima of |R| without one (dips).
+
+    Returns ``(rows, lo, hi, (dip rows, dip start, dip end))``, a dip spanning the two intervals around
+    the minimum.
+    """
+    r, i = np.nonzero(np.sign(R[:, :-1]) * np.sign(R[:, 1:]) < 0)
+    A, S = np.abs(R), np.sign(R)
+    dip = (
+        (A[:, 1:-1] < A[:, :-2])
+        & (A[:, 1:-1] < A[:, 2:])
+        & (S[:, :-2] == S[:, 1:-1])
+        & (S[:, 2:] == S[:, 1:-1])
+    )
+    dr, di = np.nonzero(dip)
+    return rows[r], Q[r, i], Q[r, i + 1], (rows[dr], Q[dr, di], Q[dr, di + 2])
