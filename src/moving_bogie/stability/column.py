@@ -80,6 +80,7 @@ def stability_column(
     min_spacing: float = 1e-10,
     polish: int = 10,
     guesses: Sequence | None = None,
+    extra: Sequence[float] | None = None,
 ) -> ColumnResult:
     """Unstable induced frequencies for every theta of ``thetas`` at one alpha (see the module text).
 
@@ -108,6 +109,8 @@ def stability_column(
         by then is dropped).
     guesses : sequence of arrays, optional
         Extra starting points per theta (the unstable roots of the neighbouring column).
+    extra : sequence of float, optional
+        Extra samples (values of Re q) of the counting rectangle's top edge (around branch points of K).
     """
     thetas = np.asarray(thetas, dtype=float)
     scale = float(thetas.max())
@@ -127,7 +130,9 @@ def stability_column(
         K, _, _ = sweep.kernel(z, alpha)
         return sweep.coefficients(z, K, scale=scale), None
 
-    box = count_box(count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend, fine_until)
+    box = count_box(
+        count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend, fine_until, extra
+    )
     total = np.rint(box.n_rect).astype(int) + box.n_axis
     uncertain = box.uncertain | ((total % 2) != 0)
     count = np.maximum(total // 2, 0)
