@@ -143,7 +143,9 @@ def test_critical_stiffness_undamped_and_near_undamped():
     assert res.regime == "undamped" and [n for *_, n in res.intervals[0]] == [0]
     assert [n for *_, n in res.limit_intervals[0]] == [0, 1, 0]
     near = critical_stiffness(p.replace(eta_f="0.000001"), [0.7], kappa_max=0.6, check_points=20)
-    crossings = d_decomposition(p.replace(eta_f="0.0001"), "bogie", parameter="kappa_v", theta_max=0.6).crossings
+    crossings = d_decomposition(
+        p.replace(eta_f="0.0001"), "bogie", parameter="kappa_v", theta_max=0.6
+    ).crossings
     np.testing.assert_allclose(near.critical[0], [c.theta for c in crossings], rtol=1e-5)
     assert "limit eta_f -> 0+" in near.method
 

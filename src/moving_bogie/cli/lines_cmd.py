@@ -93,7 +93,8 @@ def run_instability_lines(args) -> int:
     if args.plot:
         from matplotlib.figure import Figure
 
-        from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines, undamped_title
+        from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
+        from moving_bogie.stability.undamped import title
 
         fig = Figure(figsize=(7, 5), layout="constrained")
         ax = fig.subplots()
@@ -106,7 +107,7 @@ def run_instability_lines(args) -> int:
         handles, _ = ax.get_legend_handles_labels()
         ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
         if res.statement:
-            ax.set_title(undamped_title(res), fontsize=9)
+            ax.set_title(title(params.eta_f), fontsize=9)
         save_figure(fig, args.plot)
     if args.json:
         print_json(res.to_dict())

@@ -56,7 +56,7 @@ import numpy as np
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
 from moving_bogie.stability.continuation import PathTracer, evaluate, gauss_newton
 from moving_bogie.stability.line_ends import find_folds, line_end
-from moving_bogie.stability.undamped import CONVENTION, regime
+from moving_bogie.stability.undamped import regime, statement
 from moving_bogie.stability.undamped_lines import undamped_branches
 
 __all__ = ["InstabilityBranch", "InstabilityLines", "instability_lines"]
@@ -123,7 +123,12 @@ class InstabilityBranch:
             "ends": [e.to_dict(parameter) for e in self.ends],
             "folds": [e.to_dict(parameter) for e in self.folds],
             "points": [
-                {"alpha": float(a), parameter: float(t), "q": _number(q), "unstable_above": bool(u)}
+                {
+                    "alpha": float(a),
+                    parameter: float(t),
+                    "q": float(q) if np.isfinite(q) else None,
+                    "unstable_above": bool(u),
+                }
                 for a, t, q, u in zip(self.alpha, self.theta, self.q, self.unstable_above)
             ],
         }
@@ -151,18 +156,7 @@ class InstabilityLines:
     @property
     def statement(self) -> str:
         """What the lines are, in one sentence (empty for the ordinary lines of a damped foundation)."""
-        if self.regime == "undamped":
-            return (
-                "eta_f = 0: real induced frequencies fill whole regions, so instability lines degenerate; "
-                "lines shown are boundaries of instability at eta_f = 0 exactly (kind 'undamped') and in the "
-                "limit eta_f -> 0+ (kind 'limit'); " + CONVENTION
-            )
-        if self.regime == "near-undamped":
-            return (
-                f"eta_f = {float(self.params.eta_f):g} is near-undamped: lines shown are the boundaries of "
-                "instability in the limit eta_f -> 0+ (kind 'limit', first order in eta_f); " + CONVENTION
-            )
-        return ""
+        return statement(self.params.eta_f)
 
     def for_spacing(self, d: float) -> tuple:
         return tuple(b for b in self.branches if abs(b.d - d) < 1e-12)
@@ -337,11 +331,6 @@ def _verify(params, model, parameter, branch) -> InstabilityBranch:
     return replace(
         branch, verified=(float(a), float(theta * 0.98), counts[0], float(theta * 1.02), counts[1])
     )
-
-
-def _number(x):
-    """A float for JSON, None for nan (no real frequency recorded)."""
-    return None if not np.isfinite(x) else float(x)
 
 
 def _exact(x: float):

@@ -114,19 +114,6 @@ UNDAMPED_STYLES = {"undamped": {"ls": "-", "marker": "."}, "limit": {"ls": "--",
 UNDAMPED_LABELS = {"undamped": "boundary at eta_f = 0", "limit": "boundary as eta_f -> 0+"}
 
 
-def undamped_title(lines) -> str:
-    """Title for the lines of an undamped or near-undamped foundation: what is drawn, the convention."""
-    if lines.regime == "undamped":
-        return (
-            "eta_f = 0: instability lines degenerate; shown: boundaries of instability at eta_f = 0\n"
-            "and in the limit eta_f -> 0+ (K on the cut from below; real roots neutral)"
-        )
-    return (
-        f"eta_f = {float(lines.params.eta_f):g} (near-undamped): boundaries of instability in the limit\n"
-        "eta_f -> 0+ (first order in eta_f; K on the cut from below)"
-    )
-
-
 def end_mark_handles(kinds) -> list:
     """Legend handles explaining the line-end marks of ``kinds`` (from :func:`plot_instability_lines`)."""
     from matplotlib.lines import Line2D

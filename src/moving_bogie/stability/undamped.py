@@ -54,6 +54,8 @@ __all__ = [
     "boundaries",
     "parameter_grid",
     "regime",
+    "statement",
+    "title",
     "uncertain_warning",
 ]
 
@@ -94,6 +96,35 @@ def uncertain_warning(where: str, unsure: dict, margin: float) -> list:
         f"{max(unsure):.4g}) not certified: an unstable root within {max(1e-7, margin):.0e} of the real axis "
         "is not resolved there, so a boundary nearby may be misplaced or missing"
     ]
+
+
+def statement(eta_f) -> str:
+    """What the stability lines of a foundation with this eta_f are, in one sentence ("" when damped)."""
+    if regime(eta_f) == "undamped":
+        return (
+            "eta_f = 0: real induced frequencies fill whole regions, so instability lines degenerate; lines "
+            "shown are boundaries of instability at eta_f = 0 exactly (kind 'undamped') and in the limit "
+            "eta_f -> 0+ (kind 'limit'); convention: " + CONVENTION
+        )
+    if regime(eta_f) == "near-undamped":
+        return (
+            f"eta_f = {float(eta_f):g} is near-undamped: lines shown are the boundaries of instability in "
+            "the limit eta_f -> 0+ (kind 'limit', first order in eta_f); convention: " + CONVENTION
+        )
+    return ""
+
+
+def title(eta_f) -> str:
+    """Two-line figure title saying what is drawn for an undamped or near-undamped foundation."""
+    if regime(eta_f) == "undamped":
+        return (
+            "eta_f = 0: instability lines degenerate; shown: boundaries of instability at eta_f = 0\n"
+            "and in the limit eta_f -> 0+ (K on the cut from below; real roots neutral)"
+        )
+    return (
+        f"eta_f = {float(eta_f):g} (near-undamped): boundaries of instability in the limit\n"
+        "eta_f -> 0+ (first order in eta_f; K on the cut from below)"
+    )
 
 
 @dataclass(frozen=True)
