@@ -170,3 +170,29 @@ def test_cli_states_the_convention_and_what_is_computed(capsys):
         "--alpha-max", "0.7", "--kappa-max", "0.6",
     )  # fmt: skip
     assert code == 0 and "undamped foundation" in out and "limit eta_f -> 0+ unstable counts" in out
+
+
+def test_stability_map_counts_change_exactly_across_the_undamped_boundaries():
+    """A coarse stability map at eta_f = 0 (its own columns, with the top edge just below the cut) changes
+    its unstable count between two cells exactly by the changes of the eta_f = 0 boundaries between them."""
+    from moving_bogie.stability.map import stability_map
+
+    p = table1_case(3)
+    alphas, thetas = np.linspace(1.05, 1.2, 4), np.linspace(10.0, 100.0, 10)
+    smap = stability_map(p, "bogie", alphas=alphas, thetas=thetas, workers=1)
+    counter = UndampedCounter(p, "bogie")
+    changes = 0
+    for i, a in enumerate(alphas):
+        bounds, _, _ = boundaries(counter, a, thetas, tol=1e-3)
+        for j in range(len(thetas) - 1):
+            if smap.uncertain[j, i] or smap.uncertain[j + 1, i]:
+                continue
+            step = int(smap.count[j + 1, i]) - int(smap.count[j, i])
+            mine = sum(
+                b.count_above - b.count_below
+                for b in bounds
+                if b.kind == "undamped" and thetas[j] < b.theta < thetas[j + 1]
+            )
+            assert step == mine
+            changes += abs(step)
+    assert changes >= 4

@@ -31,12 +31,9 @@ Method
    inside the plot (q_max, which is then raised automatically; q = 0; a singular point), and its folds
    (tips where the root touches the real axis and the line turns back).
 
-Undamped and near-undamped foundations (eta_f = 0, or 0 < eta_f < 1e-5): the curves above degenerate
-(with eta_f = 0 and an undamped vehicle E_chr is real on the gap of the real axis, so real induced
-frequencies fill whole regions). :func:`instability_lines` then returns, instead, boundaries of instability
-located by root counts (:mod:`undamped_lines`, convention and kinds in :mod:`undamped`): at eta_f = 0 the
-boundary at eta_f = 0 exactly (kind "undamped") and the limit eta_f -> 0+ (kind "limit"); for
-0 < eta_f < 1e-5 the limit only. ``InstabilityLines.method`` says which.
+Undamped and near-undamped foundations (eta_f = 0, or 0 < eta_f < 1e-5): the curves degenerate (real
+induced frequencies fill whole regions); boundaries of instability located by root counts are returned
+instead (:mod:`undamped_lines`; convention and kinds "undamped", "limit" in :mod:`undamped`).
 
 Which side is unstable follows from the implicit function theorem: at fixed alpha, the real root moves
 as dq/dtheta = -E_theta / E_q, so the side of larger theta is the unstable one (one more root with
