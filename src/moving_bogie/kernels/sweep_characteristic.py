@@ -131,8 +131,10 @@ class SweepCharacteristic:
         n = self._coeffs(fnd.n_coeffs, q, alpha)
         qc = self._coeffs(fnd.q_coeffs, q, alpha)
         P = _roots(n)
+        finite = np.isfinite(P)  # a root at infinity (degree drop, nan) is on neither side
+        P = np.where(finite, P, 0)
         n1 = _polyder(n)
-        N1 = _polyval(n1, P)
+        N1 = np.where(finite, _polyval(n1, P), 1)
         Qv = _polyval(qc, P)
         N2 = Qp = None
         if derivative or derivative_alpha:
@@ -144,7 +146,8 @@ class SweepCharacteristic:
         if derivative_alpha:
             parts.append((self._d_alpha(fnd.n_coeffs, q, alpha), self._d_alpha(fnd.q_coeffs, q, alpha)))
         parts = [(_polyval(ns, P), _polyval(_polyder(ns), P), _polyval(qs, P)) for ns, qs in parts]
-        upper = P.imag > 0
+        upper = (P.imag > 0) & finite
+        lower = (P.imag <= 0) & finite
         ds = [self.d] if spacings is None else list(spacings)
         if d is not None:
             ds = [np.broadcast_to(np.asarray(d, dtype=float), q.shape)]
@@ -154,9 +157,10 @@ class SweepCharacteristic:
             trip = {key: [] for key in out}
             for sign_xi in (0, 1, -1):
                 xi = sign_xi * (dd if np.ndim(dd) == 0 else dd[..., None])
-                mask = upper if sign_xi >= 0 else ~upper
+                mask = upper if sign_xi >= 0 else lower
                 factor = 2j * np.pi * (1 if sign_xi >= 0 else -1)
-                e = np.exp(1j * P * xi)
+                # only the roots on the decaying side enter: |e| <= 1 there (no overflow elsewhere)
+                e = np.exp(1j * np.where(mask, P, 0) * xi)
                 trip["K"].append(factor * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
                 for key, (Ns, Nsp, Qs) in zip(keys, parts):
                     g = e * Qv * Ns
