@@ -196,8 +196,8 @@ def test_critical_velocity_tends_to_eq65_in_the_one_layer_limit():
 @pytest.mark.parametrize("track", EXAMPLES)
 def test_layered_K_at_alpha_zero_where_the_degree_of_N_drops(track):
     """At alpha = 0 the leading coefficient of N in p vanishes (one root at infinity): the vectorised
-    kernel of the instability lines and maps must drop that root, not return nan or zero. Reference: quadrature of
-    Eq. (29) at alpha = 0 (independent of the roots)."""
+    kernel of the instability lines and maps must drop that root, not return nan or zero. Reference:
+    quadrature of Eq. (29) at alpha = 0 (independent of the roots)."""
     from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 
     groups = dict(mu_2="4", kappa_2="0.5", eta_2="0.2")
