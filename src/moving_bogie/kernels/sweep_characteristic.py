@@ -142,8 +142,10 @@ class SweepCharacteristic:
         n = self._coeffs(fnd.n_coeffs, q, alpha)
         qc = self._coeffs(fnd.q_coeffs, q, alpha)
         P = _roots(n)
+        finite = np.isfinite(P)  # a root at infinity (degree drop, nan) is on neither side
+        P = np.where(finite, P, 0)
         n1 = _polyder(n)
-        N1 = _polyval(n1, P)
+        N1 = np.where(finite, _polyval(n1, P), 1)
         Qv = _polyval(qc, P)
         N2 = Qp = None
         if derivative or derivative_alpha:
@@ -162,6 +164,8 @@ class SweepCharacteristic:
                 Nq = _polyval(self._coeffs(fnd.n_coeffs_dq, q, alpha), P)
                 with np.errstate(all="ignore"):
                     upper = np.where(real, np.real(Nq / N1) > 0, upper)
+        lower = ~upper & finite
+        upper = upper & finite
         ds = [self.d] if spacings is None else list(spacings)
         if d is not None:
             ds = [np.broadcast_to(np.asarray(d, dtype=float), q.shape)]
@@ -171,9 +175,10 @@ class SweepCharacteristic:
             trip = {key: [] for key in out}
             for sign_xi in (0, 1, -1):
                 xi = sign_xi * (dd if np.ndim(dd) == 0 else dd[..., None])
-                mask = upper if sign_xi >= 0 else ~upper
+                mask = upper if sign_xi >= 0 else lower
                 factor = 2j * np.pi * (1 if sign_xi >= 0 else -1)
-                e = np.exp(1j * P * xi)
+                # only the roots on the decaying side enter: |e| <= 1 there (no overflow elsewhere)
+                e = np.exp(1j * np.where(mask, P, 0) * xi)
                 trip["K"].append(factor * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
                 for key, (Ns, Nsp, Qs) in zip(keys, parts):
                     g = e * Qv * Ns
