@@ -57,7 +57,8 @@ class CriticalStiffness:
     critical : tuple
         Per alpha, the kappa_v values (sorted) where the count changes between 0 and > 0.
     mismatches : int
-        Grid points where the D-decomposition count and the argument-principle count disagree (0 expected).
+        Grid points where the D-decomposition count and the argument-principle count disagree (0 expected;
+        0 and not computed on an undamped or near-undamped foundation, where there is no D-decomposition).
     """
 
     params: object
