@@ -71,7 +71,7 @@ def test_subcritical_limit_boundaries_confirmed_by_counts_on_both_sides(model, a
     p = table1_case(2)
     bounds, col, unsure = boundaries(UndampedCounter(p, model), alpha, parameter_grid(200.0, 20), tol=0.01)
     assert unsure == 0
-    assert len(bounds) == 1 and bounds[0].kind == "limit"
+    assert len(bounds) == 1 and (bounds[0].kind, bounds[0].mechanism) == ("limit", "damping sign")
     assert not np.any(col.undamped)
     for b in bounds:
         base = p.replace(alpha=_fr(alpha))
@@ -90,7 +90,7 @@ def test_supercritical_boundaries_at_eta_f_zero_confirmed_by_counts(case, model)
     p = table1_case(case)
     bounds, _, _ = boundaries(UndampedCounter(p, model), 1.1, parameter_grid(100.0, 20), tol=0.01)
     exact = [b for b in bounds if b.kind == "undamped" and b.theta > 5]
-    assert exact
+    assert exact and {b.mechanism for b in bounds} == {"cut"}  # no gap above the critical velocity
     base = p.replace(alpha=_fr(1.1))
     for b in exact[:2]:
         counts = [_unstable(base.replace(eta_M=_fr(b.theta * f)), model) for f in (0.97, 1.03)]
@@ -132,7 +132,9 @@ def test_instability_lines_at_eta_f_zero_say_what_they_are():
     assert near.regime == "near-undamped" and {x.kind for x in near.branches} == {"limit"}
     np.testing.assert_allclose(near.branches[0].theta, b.theta)
     data = res.to_dict()
-    assert data["branches"][0]["kind"] == "limit" and data["branches"][0]["points"][0]["q"] is None
+    point = data["branches"][0]["points"][0]
+    assert data["branches"][0]["kind"] == "limit" and point["q"] is None
+    assert point["mechanism"] == "damping sign"
 
 
 def test_critical_stiffness_undamped_and_near_undamped():

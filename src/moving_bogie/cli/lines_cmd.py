@@ -75,6 +75,7 @@ def _register_instability_lines(subparsers) -> None:
 def run_instability_lines(args) -> int:
     from moving_bogie.stability.instability_lines import instability_lines
     from moving_bogie.stability.line_ends import EXPLANATIONS
+    from moving_bogie.stability.undamped import MECHANISMS
     from moving_bogie.stability.undamped_lines import KIND_TEXT
 
     params, spacings = params_and_spacings(args)
@@ -123,6 +124,8 @@ def run_instability_lines(args) -> int:
                 f"{args.parameter} {b.theta.min():.4g}..{b.theta.max():.4g}, unstable side: {b.unstable_side}"
                 + ("" if b.verified is None else f", counts below/above: {b.verified[2]}/{b.verified[4]}")
             )
+            for m in dict.fromkeys(b.mechanism):
+                print(f"  {m}: {MECHANISMS[m]}")
             for end in b.stops_inside:
                 print(
                     f"  stops inside the plot at alpha {end.alpha:.4f}, {args.parameter} {end.theta:.4g}, "

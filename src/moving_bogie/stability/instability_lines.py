@@ -54,7 +54,7 @@ from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_
 from moving_bogie.stability.continuation import PathTracer, evaluate, gauss_newton
 from moving_bogie.stability.line_ends import find_folds, line_end
 from moving_bogie.stability.undamped import regime, statement
-from moving_bogie.stability.undamped_lines import undamped_branches
+from moving_bogie.stability.undamped_lines import undamped_lines
 
 __all__ = ["InstabilityBranch", "InstabilityLines", "instability_lines"]
 
@@ -79,7 +79,8 @@ class InstabilityBranch:
     kind : str
         "crossing" (a real induced frequency, eta_f > 0); on an undamped foundation "undamped" or "limit"
         (boundaries located by counts, :mod:`undamped_lines`: ``q`` and ``residual`` are nan, ``verified``
-        holds the counts at the ends of the middle point's bisection bracket).
+        holds the counts at the ends of the middle point's bisection bracket, ``mechanism`` what changes
+        at each point).
     """
 
     d: float
@@ -92,6 +93,7 @@ class InstabilityBranch:
     ends: tuple = ()  # (start, end) LineEnd: why the line stops at each end
     folds: tuple = ()  # LineEnd("fold") at every tip where the line turns back
     kind: str = "crossing"
+    mechanism: tuple = ()  # undamped kinds: per point, a key of undamped.MECHANISMS
 
     @property
     def stops_inside(self) -> tuple:
@@ -125,8 +127,11 @@ class InstabilityBranch:
                     parameter: float(t),
                     "q": float(q) if np.isfinite(q) else None,
                     "unstable_above": bool(u),
+                    **({"mechanism": m} if m else {}),
                 }
-                for a, t, q, u in zip(self.alpha, self.theta, self.q, self.unstable_above)
+                for a, t, q, u, m in zip(
+                    self.alpha, self.theta, self.q, self.unstable_above, self.mechanism or [""] * len(self.q)
+                )
             ],
         }
 
@@ -234,26 +239,9 @@ def instability_lines(
     ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
     a0, a1 = (float(a) for a in alpha_range)
     if regime(params.eta_f) != "damped":
-        branches, warnings, method = undamped_branches(
-            params,
-            model,
-            ds,
-            parameter,
-            (a0, a1),
-            theta_max,
-            alpha_step=max(alpha_step, 0.02),
-            progress=progress,
-        )
-        return InstabilityLines(
-            params,
-            model,
-            parameter,
-            (a0, a1),
-            float(theta_max),
-            tuple(branches),
-            tuple(dict.fromkeys(warnings)),
-            None,
-            method,
+        step = max(alpha_step, 0.02)
+        return undamped_lines(
+            params, model, ds, parameter, (a0, a1), theta_max, alpha_step=step, progress=progress
         )
     sweep = SweepCharacteristic(params, model, parameter)
     cap = 8 * q_max if q_max_cap is None else q_max_cap

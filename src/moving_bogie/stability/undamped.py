@@ -48,6 +48,7 @@ __all__ = [
     "CONVENTION",
     "DAMPING_PROBE",
     "NEAR_UNDAMPED",
+    "MECHANISMS",
     "Boundary",
     "UndampedColumn",
     "UndampedCounter",
@@ -256,7 +257,8 @@ class UndampedCounter:
 @dataclass(frozen=True)
 class Boundary:
     """A value of theta at one alpha where a count changes: ``kind`` "undamped" (eta_f = 0) or "limit"
-    (eta_f -> 0+), the counts just below and above (bisection bracket ``low``..``high``)."""
+    (eta_f -> 0+), the counts just below and above (bisection bracket ``low``..``high``), and what happens
+    there (``mechanism``, a key of :data:`MECHANISMS`)."""
 
     kind: str
     alpha: float
@@ -265,6 +267,29 @@ class Boundary:
     high: float
     count_below: int
     count_above: int
+    mechanism: str = ""
+
+
+#: What changes at a boundary, read from the counts at the two ends of its bracket.
+MECHANISMS = {
+    "collision": "two real induced frequencies meet and leave the real axis as a pair q, conj(q)",
+    "cut": "an induced frequency crosses the real axis on the cut of K (values from below)",
+    "branch point": "a real induced frequency reaches a branch point of K",
+    "damping sign": "a real induced frequency changes the sign of dIm q/deta_f (stable or unstable for "
+    "small eta_f > 0)",
+    "mixed": "several of these at once (within the bisection tolerance)",
+}
+
+
+def _mechanism(kind: str, d_real: int, d_undamped: int) -> str:
+    """The mechanism of a boundary from the changes of the real-root and eta_f = 0 counts across it."""
+    if kind == "limit" and d_undamped == 0:
+        return "damping sign" if d_real == 0 else ("collision" if abs(d_real) == 2 else "mixed")
+    if d_real == 0:
+        return "cut"
+    if abs(d_real) == 2 and 2 * d_undamped == -d_real:
+        return "collision"
+    return "branch point" if abs(d_real) == 1 else "mixed"
 
 
 def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
@@ -293,10 +318,16 @@ def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
                 b[1] = mids[k]
             else:
                 b[2], b[4] = mids[k], n
-    out = [
-        Boundary(k, float(alpha), 0.5 * (lo + hi), float(lo), float(hi), n0, n1)
-        for k, lo, hi, n0, n1 in brackets
-    ]
+    out = []
+    if brackets:
+        ends = counter(alpha, np.array([b[1] for b in brackets] + [b[2] for b in brackets]))
+        m = len(brackets)
+        d_real = ends.real[m:] - ends.real[:m]
+        d_undamped = ends.undamped[m:] - ends.undamped[:m]
+        out = [
+            Boundary(k, float(alpha), 0.5 * (lo + hi), float(lo), float(hi), n0, n1, _mechanism(k, dr, du))
+            for (k, lo, hi, n0, n1), dr, du in zip(brackets, d_real, d_undamped)
+        ]
     out.sort(key=lambda b: (b.kind, b.theta))
     return out, col, unsure
 

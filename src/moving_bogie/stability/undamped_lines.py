@@ -32,7 +32,7 @@ from moving_bogie.stability.undamped import (
     uncertain_warning,
 )
 
-__all__ = ["KIND_TEXT", "undamped_branches"]
+__all__ = ["KIND_TEXT", "undamped_branches", "undamped_lines"]
 
 #: One sentence per kind of undamped boundary (text output, JSON, legend).
 KIND_TEXT = {
@@ -93,6 +93,21 @@ def undamped_branches(
     return branches, warnings, method
 
 
+def undamped_lines(params, model, ds, parameter, alpha_range, theta_max, **options):
+    """:class:`~moving_bogie.stability.instability_lines.InstabilityLines` of undamped boundaries (``q_max``
+    None); ``options`` go to :func:`undamped_branches`."""
+    from moving_bogie.stability.instability_lines import InstabilityLines
+
+    branches, warnings, method = undamped_branches(
+        params, model, ds, parameter, alpha_range, theta_max, **options
+    )
+    a0, a1 = (float(a) for a in alpha_range)
+    warnings = tuple(dict.fromkeys(warnings))
+    return InstabilityLines(
+        params, model, parameter, (a0, a1), float(theta_max), tuple(branches), warnings, None, method
+    )
+
+
 def _join(points, alphas, jump):
     """Chains of boundary points: same counts on both sides, consecutive alphas, theta within ``jump``."""
     index = {float(a): i for i, a in enumerate(alphas)}
@@ -133,4 +148,5 @@ def _branch(cls, d, kind, chain):
         residual=np.full(n, np.nan),
         verified=(mid.alpha, mid.low, mid.count_below, mid.high, mid.count_above),
         kind=kind,
+        mechanism=tuple(b.mechanism for b in chain),
     )
