@@ -90,7 +90,7 @@ def test_supercritical_boundaries_at_eta_f_zero_confirmed_by_counts(case, model)
     p = table1_case(case)
     bounds, _, _ = boundaries(UndampedCounter(p, model), 1.1, parameter_grid(100.0, 20), tol=0.01)
     exact = [b for b in bounds if b.kind == "undamped" and b.theta > 5]
-    assert exact and {b.mechanism for b in bounds} == {"cut"}  # no gap above the critical velocity
+    assert exact and {b.mechanism for b in bounds} == {"crossing"}  # no gap above the critical velocity
     base = p.replace(alpha=_fr(1.1))
     for b in exact[:2]:
         counts = [_unstable(base.replace(eta_M=_fr(b.theta * f)), model) for f in (0.97, 1.03)]

@@ -25,11 +25,12 @@ equations) degenerate. Two different boundaries replace them:
 Method (no continuation: the boundary is located by counts). At fixed alpha the eta_f = 0 count comes from
 the argument principle on a whole column of theta values
 (:func:`~moving_bogie.stability.column.stability_column`, upper edge 1e-7 below the real axis, so real
-roots count as neutral); the real roots in the gap are the sign changes of the real E_chr on samples
-``q_step`` apart, polished by Newton's method, and the sign of Im(E_eta) / E_q is read from E_chr at
-eta_f = :data:`DAMPING_PROBE` (Im E is odd in eta_f on the gap). Every change of either count between grid
-values of theta is bisected to a tolerance; a pair of changes closer together than the grid step, or a
-pair of real roots closer than ``q_step``, can be missed (stated in the outputs).
+roots count as neutral, sampled densely around every branch point of K on the axis); the real roots in the
+gap are the sign changes of the real E_chr on samples ``q_step`` apart (finer where |E| dips), bisected,
+and the sign of Im(E_eta) / E_q is read from E_chr at eta_f = :data:`DAMPING_PROBE` (Im E is odd in eta_f
+on the gap). Every change of either count between grid values of theta is bisected to a tolerance and
+named by its mechanism (:data:`MECHANISMS`); a pair of changes closer together than the grid step, or a
+pair of real roots closer than ``q_step / 4096``, can be missed (stated in the outputs).
 """
 
 from __future__ import annotations
@@ -273,7 +274,8 @@ class Boundary:
 #: What changes at a boundary, read from the counts at the two ends of its bracket.
 MECHANISMS = {
     "collision": "two real induced frequencies meet and leave the real axis as a pair q, conj(q)",
-    "cut": "an induced frequency crosses the real axis on the cut of K (values from below)",
+    "crossing": "an induced frequency crosses the real axis (on the cut of K, values from below; or in the "
+    "gap, where E_chr is complex with a damped vehicle)",
     "branch point": "a real induced frequency reaches a branch point of K",
     "damping sign": "a real induced frequency changes the sign of dIm q/deta_f (stable or unstable for "
     "small eta_f > 0)",
@@ -286,7 +288,7 @@ def _mechanism(kind: str, d_real: int, d_undamped: int) -> str:
     if kind == "limit" and d_undamped == 0:
         return "damping sign" if d_real == 0 else ("collision" if abs(d_real) == 2 else "mixed")
     if d_real == 0:
-        return "cut"
+        return "crossing"
     if abs(d_real) == 2 and 2 * d_undamped == -d_real:
         return "collision"
     return "branch point" if abs(d_real) == 1 else "mixed"
