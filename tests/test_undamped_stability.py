@@ -198,3 +198,15 @@ def test_stability_map_counts_change_exactly_across_the_undamped_boundaries():
             assert step == mine
             changes += abs(step)
     assert changes >= 4
+
+
+def test_stability_map_sees_the_root_next_to_a_branch_point():
+    """Case 3 (bogie) at alpha = 1.1, eta_M = 13.7: a root 1.9e-4 below the axis next to the branch point
+    q = 0.14496 of K; the full search at eta_f = 0 counts 2 unstable roots, and so must the map's column
+    (it said 1, uncertified, before the top edge was sampled densely around the branch points)."""
+    from moving_bogie.stability.map import stability_map
+
+    p = table1_case(3)
+    reference = _unstable(p.replace(alpha=_fr(1.1), eta_M=_fr(13.7)), "bogie")
+    smap = stability_map(p, "bogie", alphas=np.array([1.1]), thetas=np.array([13.0, 13.7]), workers=1)
+    assert reference == 2 and list(smap.count[:, 0]) == [1, 2]

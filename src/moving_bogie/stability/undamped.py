@@ -42,7 +42,7 @@ import numpy as np
 
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
-from moving_bogie.stability.column import exact, stability_column
+from moving_bogie.stability.column import branch_points, branch_samples, exact, stability_column
 from moving_bogie.stability.column_count import horner_rows
 
 __all__ = [
@@ -179,21 +179,10 @@ class UndampedCounter:
         """(q_c, branch points with Re q > 0) of the cut at eta_f = 0 (all on the real axis)."""
         alpha = float(alpha)
         if alpha not in self._cuts:
-            cut = cut_locus(self.params.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801)
-            x = cut.x_start
+            x = cut_locus(self.params.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801).x_start
             qc = float(x) if np.isfinite(x) and x > 0 else 0.0
-            points = []
-            for x in sorted([f.q.real for f in cut.folds if f.q.real > 0] + ([qc] if qc > 0 else [])):
-                if not points or x - points[-1] > 1e-9:
-                    points.append(float(x))
-            self._cuts[alpha] = (qc, points)
+            self._cuts[alpha] = (qc, branch_points(self.params, alpha))
         return self._cuts[alpha]
-
-    def edge_samples(self, alpha: float) -> np.ndarray:
-        """Top-edge samples around every branch point: distances 1e-8 to 1e-2 on both sides (K ~ 1/sqrt)."""
-        d = np.geomspace(1e-8, 1e-2, 25)
-        points = self._cut(alpha)[1]
-        return np.concatenate([np.concatenate([x - d[::-1], [x], x + d]) for x in points]) if points else None
 
     def real_roots(self, alpha: float, thetas: np.ndarray):
         """Real roots in the gap: (row index, q, destabilised by small eta_f), one entry per root.
@@ -247,7 +236,8 @@ class UndampedCounter:
 
     def __call__(self, alpha: float, thetas) -> UndampedColumn:
         thetas = np.asarray(thetas, dtype=float)
-        col = stability_column(self.sweep, alpha, thetas, top=TOP, extra=self.edge_samples(alpha))
+        extra = branch_samples(self._cut(alpha)[1])
+        col = stability_column(self.sweep, alpha, thetas, top=TOP, extra=extra)
         rows, _, unstable = self.real_roots(alpha, thetas)
         real = np.bincount(rows, minlength=len(thetas))
         limit = col.count + np.bincount(rows[unstable], minlength=len(thetas))
