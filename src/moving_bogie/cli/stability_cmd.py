@@ -261,7 +261,7 @@ def run_critical_stiffness(args) -> int:
         if res.limit_intervals is not None:
             from moving_bogie.stability.undamped import CONVENTION
 
-            print(f"{res.regime} foundation: {CONVENTION}")
+            print(f"{res.regime} foundation (eta_f = {float(params.eta_f):g}); convention: {CONVENTION}")
             print(f"method: {res.method}")
         limits = res.limit_intervals or [None] * len(res.alphas)
         for a, crit, ivs, lim in zip(res.alphas, res.critical, res.intervals, limits):
