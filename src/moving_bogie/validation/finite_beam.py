@@ -95,7 +95,7 @@ def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
 
 
 def layered_track(params: Any) -> ModalTrack | None:
-    """The generated finite-rail blocks of a layered track (None on the one-layer track or without a model)."""
+    """The generated finite-rail blocks of a layered track (None on a one-layer track or without a model)."""
     if getattr(params, "model", None) is None:
         return None
     track = ModalTrack.of(params)

@@ -24,7 +24,7 @@ Sherman-Morrison-Woodbury identity used by :func:`woodbury_solve`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -150,7 +150,11 @@ class DiagLowRankSystem:
     def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Dense ``(M, C, K)``: for tests and small systems only (``O(n^2)`` memory)."""
         out = []
-        for diag, vt, name in ((self.m_diag, self.vmt, "m_off"), (self.c_diag, self.vct, "c_off"), (self.k_diag, self.vkt, "k_off")):
+        for diag, vt, name in (
+            (self.m_diag, self.vmt, "m_off"),
+            (self.c_diag, self.vct, "c_off"),
+            (self.k_diag, self.vkt, "k_off"),
+        ):
             matrix = np.diag(diag) + self.ut.T @ vt
             if self.blocks is not None:
                 matrix += self.blocks.dense(getattr(self.blocks, name), diag.size)

@@ -82,7 +82,9 @@ def _where(alpha: float, eta_f: float, eta_s: float, S: float | None, r: float) 
 
 def _residues(alpha: float, eta_f: float, eta_s: float, S: float | None, r: float):
     """Roots ``p_r`` of ``den`` and the residue weights ``num(p_r) / den'(p_r)``."""
-    return polynomial_residues(*symbol_polynomials(alpha, eta_f, eta_s, S, r), _where(alpha, eta_f, eta_s, S, r))
+    return polynomial_residues(
+        *symbol_polynomials(alpha, eta_f, eta_s, S, r), _where(alpha, eta_f, eta_s, S, r)
+    )
 
 
 def polynomial_residues(num: np.ndarray, den: np.ndarray, where: str) -> tuple[np.ndarray, np.ndarray]:

@@ -107,7 +107,7 @@ class ModalTrack:
         return np.polyval(den, p) / np.polyval(num, p)
 
     def block_symbol(self, p: np.ndarray) -> np.ndarray:
-        """``Omega(p)`` from the blocks: ``1 / [(K - (alpha p)^2 M + i alpha p C)^-1]_00`` (a check of :meth:`symbol`)."""
+        """``Omega(p)`` from the blocks: ``1 / [(K - (alpha p)^2 M + i alpha p C)^-1]_00`` (a check)."""
         p = np.atleast_1d(np.asarray(p, dtype=float))
         m, c, k = self.blocks(p)
         w = (self.values["alpha"] * p)[:, None, None]

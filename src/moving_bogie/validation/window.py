@@ -160,7 +160,9 @@ def comparison_window(params: Any, finite: FiniteBeamResult, *, reflection_level
     return float(min(max(end, min(finite.tau_valid, tau_end)), tau_end))
 
 
-def _layered_window(track: ModalTrack, finite: FiniteBeamResult, alpha: float, d: float, level: float) -> float:
+def _layered_window(
+    track: ModalTrack, finite: FiniteBeamResult, alpha: float, d: float, level: float
+) -> float:
     """Window on a layered track: the strict ``tau_valid``, or the whole run when every reflection is damped.
 
     A reflection arriving after ``tau_valid`` has travelled at least ``tau_valid`` (the waves leave at the
