@@ -24,7 +24,7 @@ Sherman-Morrison-Woodbury identity used by :func:`woodbury_solve`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -60,6 +60,16 @@ class NewmarkScheme:
 AVERAGE_ACCELERATION = NewmarkScheme(beta=0.25, gamma=0.5)
 
 
+def _block_product(matrices: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``matrices[b] @ x[..., b, :]`` for every block ``b``, by ``s^2`` vector operations (``s`` is small)."""
+    out = np.zeros(np.broadcast_shapes(x.shape, matrices.shape[:-1]))
+    s = matrices.shape[-1]
+    for i in range(s):
+        for j in range(s):
+            out[..., i] += matrices[:, i, j] * x[..., j]
+    return out
+
+
 @dataclass(frozen=True)
 class ModeBlocks:
     """Couplings within small groups of unknowns: the off-diagonal entries of block-diagonal matrices.
@@ -82,18 +92,26 @@ class ModeBlocks:
     c_off: np.ndarray
     k_off: np.ndarray
 
+    _cache: dict = field(default_factory=dict, compare=False, repr=False)
+
     def apply(self, off: np.ndarray, x: np.ndarray) -> np.ndarray:
-        """``off @ x`` restricted to the blocks, shape ``(n_blocks, s)``."""
-        return np.einsum("bij,bj->bi", off, x[self.index])
+        """``off @ x`` restricted to the blocks, shape ``(..., n_blocks, s)`` (x of shape (..., n))."""
+        return _block_product(off, x[..., self.index])
 
     def solve(self, diag: np.ndarray, off: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-        """``D^{-1} rhs`` for ``D = diag(diag) + off`` on the blocks (rhs of shape (n,) or (r, n))."""
+        """``D^{-1} rhs`` for ``D = diag(diag) + off`` on the blocks (rhs of shape (n,) or (r, n)).
+
+        The blocks' inverses are kept for the next call with the same blocks (a run with a fixed step
+        has the same effective blocks at every step: only the wheel rows, outside them, change).
+        """
         out = rhs / diag
         blocks = off.copy()
         s = self.index.shape[1]
         blocks[:, np.arange(s), np.arange(s)] += diag[self.index]
-        inverse = np.linalg.inv(blocks)
-        out[..., self.index] = np.einsum("bij,...bj->...bi", inverse, rhs[..., self.index])
+        cached = self._cache.get("blocks")
+        if cached is None or not np.array_equal(cached, blocks):
+            self._cache.update(blocks=blocks, inverse=np.linalg.inv(blocks))
+        out[..., self.index] = _block_product(self._cache["inverse"], rhs[..., self.index])
         return out
 
     def dense(self, off: np.ndarray, n: int) -> np.ndarray:
