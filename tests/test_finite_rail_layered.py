@@ -1,6 +1,7 @@
 """The finite rail on a layered track (docs/layered_tracks.md, "Layered finite rail") against references.
 
 References:
+* generated blocks: the SymPy blocks of derivations/modal.py, evaluated by SymPy;
 * per-mode blocks: the one-layer formulas of ``ModalBeam`` (Euler-Bernoulli and Timoshenko-Rayleigh, written
   by hand from Eqs. (1), (55)-(56)) for the generated blocks of the one-layer tracks;
 * moving-load symbol: its closed form from the generated N(p, 0)/Q(p, 0) of the moving frame against the
@@ -15,6 +16,7 @@ References:
 
 from __future__ import annotations
 
+import importlib
 import json
 import subprocess
 import sys
@@ -39,6 +41,33 @@ TWO_LAYER = REPO / "examples" / "two-layer.toml"
 @pytest.fixture(scope="module")
 def two_layer():
     return load_params_file(TWO_LAYER)[0]
+
+
+@pytest.mark.parametrize(
+    "name", ["eb", "tr", "eb_two_layer", "tr_two_layer", "eb_three_layer", "tr_three_layer"]
+)
+def test_generated_modal_blocks_equal_the_derivation(name):
+    """The generated ``modal_*`` functions against the SymPy blocks of derivations/modal.py (20 digits)."""
+    sp = pytest.importorskip("sympy")
+    if str(REPO) not in sys.path:  # derivations/ is a top-level folder of the repository, not installed
+        sys.path.insert(0, str(REPO))
+    from derivations.foundations import MODELS
+    from derivations.modal import lam, modal_blocks
+
+    module = importlib.import_module(f"moving_bogie.generated.foundation_{name}")
+    blocks = modal_blocks(MODELS[name]())
+    rng = np.random.default_rng(11)
+    values = {arg: float(rng.uniform(0.1, 2.0)) for arg in module.MODAL_ARGUMENTS}
+    symbols = {x: values[str(x)] for b in blocks[:3] for e in b for x in e.free_symbols} | {
+        lam: values["lam"]
+    }
+    args = {k: v for k, v in values.items() if k != "lam"}
+    for function, block in zip((module.modal_mass, module.modal_damping, module.modal_stiffness), blocks[:3]):
+        expected = [float(sp.N(e.subs(symbols), 20)) for e in block]
+        np.testing.assert_allclose(
+            np.array(function(values["lam"], **args), dtype=float), expected, rtol=1e-14
+        )
+    assert module.MODAL_PARITY == blocks[3]
 
 
 @pytest.mark.parametrize("beam", ["eb", "tr"])
