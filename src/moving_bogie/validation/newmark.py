@@ -60,16 +60,6 @@ class NewmarkScheme:
 AVERAGE_ACCELERATION = NewmarkScheme(beta=0.25, gamma=0.5)
 
 
-def _block_product(matrices: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """``matrices[b] @ x[..., b, :]`` for every block ``b``, by ``s^2`` vector operations (``s`` is small)."""
-    out = np.zeros(np.broadcast_shapes(x.shape, matrices.shape[:-1]))
-    s = matrices.shape[-1]
-    for i in range(s):
-        for j in range(s):
-            out[..., i] += matrices[:, i, j] * x[..., j]
-    return out
-
-
 @dataclass(frozen=True)
 class ModeBlocks:
     """Couplings within small groups of unknowns: the off-diagonal entries of block-diagonal matrices.
@@ -81,7 +71,9 @@ class ModeBlocks:
     Attributes
     ----------
     index : ndarray of int, shape (n_blocks, s)
-        The unknowns of each block; each unknown in at most one block.
+        The unknowns of each block; each unknown in at most one block. Column ``j`` lists the ``j``-th
+        unknown of every block (for the modal models: unknown ``j`` of modes ``1..N``, stored contiguously,
+        which the products below read as slices).
     m_off, c_off, k_off : ndarray, shape (n_blocks, s, s)
         Off-diagonal entries of ``M``, ``C``, ``K`` within each block (zero diagonals: the diagonals are
         the system's ``m_diag`` etc.).
@@ -94,9 +86,27 @@ class ModeBlocks:
 
     _cache: dict = field(default_factory=dict, compare=False, repr=False)
 
-    def apply(self, off: np.ndarray, x: np.ndarray) -> np.ndarray:
-        """``off @ x`` restricted to the blocks, shape ``(..., n_blocks, s)`` (x of shape (..., n))."""
-        return _block_product(off, x[..., self.index])
+    @property
+    def columns(self) -> list:
+        """Per position ``j`` in the blocks, a slice (contiguous unknowns) or the index array."""
+        if "columns" not in self._cache:
+            cols = []
+            for j in range(self.index.shape[1]):
+                col = self.index[:, j]
+                contiguous = np.array_equal(col, col[0] + np.arange(col.size))
+                cols.append(slice(int(col[0]), int(col[0]) + col.size) if contiguous else col)
+            self._cache["columns"] = cols
+        return self._cache["columns"]
+
+    def subtract_products(self, out: np.ndarray, pairs) -> None:
+        """``out -= sum over (off, x) of off @ x`` on the blocks' unknowns (x of shape (n,))."""
+        cols = self.columns
+        s = len(cols)
+        for i in range(s):
+            for off, x in pairs:
+                for j in range(s):
+                    if j != i:
+                        out[cols[i]] -= off[:, i, j] * x[cols[j]]
 
     def solve(self, diag: np.ndarray, off: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         """``D^{-1} rhs`` for ``D = diag(diag) + off`` on the blocks (rhs of shape (n,) or (r, n)).
@@ -105,13 +115,21 @@ class ModeBlocks:
         has the same effective blocks at every step: only the wheel rows, outside them, change).
         """
         out = rhs / diag
+        cols = self.columns
+        s = len(cols)
         blocks = off.copy()
-        s = self.index.shape[1]
-        blocks[:, np.arange(s), np.arange(s)] += diag[self.index]
+        for j in range(s):
+            blocks[:, j, j] += diag[cols[j]]
         cached = self._cache.get("blocks")
         if cached is None or not np.array_equal(cached, blocks):
             self._cache.update(blocks=blocks, inverse=np.linalg.inv(blocks))
-        out[..., self.index] = _block_product(self._cache["inverse"], rhs[..., self.index])
+        inverse = self._cache["inverse"]
+        parts = [rhs[..., col] for col in cols]
+        for i in range(s):
+            acc = inverse[:, i, 0] * parts[0]
+            for j in range(1, s):
+                acc += inverse[:, i, j] * parts[j]
+            out[..., cols[i]] = acc
         return out
 
     def dense(self, off: np.ndarray, n: int) -> np.ndarray:
@@ -162,7 +180,7 @@ class DiagLowRankSystem:
         out = self.force - self.c_diag * v - self.k_diag * z - low_rank
         b = self.blocks
         if b is not None:
-            out[b.index] -= b.apply(b.c_off, v) + b.apply(b.k_off, z)
+            b.subtract_products(out, ((b.c_off, v), (b.k_off, z)))
         return out
 
     def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
