@@ -6,7 +6,7 @@ import argparse
 from fractions import Fraction
 from pathlib import Path
 
-from .common import MODEL_OPTIONS, add_model_options
+from .common import MODEL_OPTIONS, add_model_options, parameter_options
 
 #: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
 RAW = argparse.RawDescriptionHelpFormatter
@@ -43,7 +43,19 @@ def add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
         ("--r", "r", "radius of gyration, Eq. (59) (with --beam tr)"),
     ):
         g.add_argument(opt, dest=dest, type=decimal_number, metavar="X", help=text)
+    for name, opt, text in track_group_options():
+        g.add_argument(opt, dest=name, type=decimal_number, metavar="X", help=f"{text} (its --track)")
     add_model_options(parser)
+
+
+#: Groups set by the options above, or the axes and the Eq. (63) coefficients of the plane.
+_PLANE_GROUPS = {"alpha", "eta_f", "eta_s", "S", "r", "eta_M", "d", "mu_v", "J_b", "kappa_v", "eta_v"}
+_PLANE_GROUPS |= {"cf1", "cf2"}
+
+
+def track_group_options() -> list[tuple[str, str, str]]:
+    """(name, option, help) of the groups that only some tracks have (the layers' mu_j, kappa_j, eta_j)."""
+    return [row for row in parameter_options() if row[0] not in _PLANE_GROUPS]
 
 
 PLANE_DEFAULTS = dict(
@@ -63,6 +75,7 @@ def params_and_spacings(args):
     changes = {
         k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r")
     } | {k: getattr(args, k, None) for k in MODEL_OPTIONS.values()}
+    changes |= {name: getattr(args, name, None) for name, _, _ in track_group_options()}
     changes = {k: v for k, v in changes.items() if v is not None}
     spacings = args.d if isinstance(args.d, list) else ([args.d] if args.d is not None else None)
     if spacings:

@@ -66,11 +66,21 @@ def poly_roots(coeffs) -> np.ndarray:
     """Roots of polynomials given by ``coeffs[..., :]`` (highest first), batched.
 
     Degree 2: the stable quadratic formula; 4: :func:`quartic_roots`; others: companion eigenvalues.
-    A vanishing leading
-    coefficient gives roots at infinity (nan entries), which callers discard.
+    Where the leading coefficient is exactly zero the degree drops: the roots of the lower-degree
+    polynomial and a root at infinity (a nan entry, which callers discard). Non-finite coefficients give
+    nan entries only.
     """
     coeffs = np.asarray(coeffs, dtype=complex)
     deg = coeffs.shape[-1] - 1
+    finite = np.all(np.isfinite(coeffs), axis=-1)
+    drop = (coeffs[..., 0] == 0) & finite & np.any(coeffs[..., 1:] != 0, axis=-1)
+    if deg > 1 and np.any(drop):
+        # the degree drops where the leading coefficient vanishes (e.g. alpha = 0 on a layered track):
+        # the roots of the lower-degree polynomial, and one root at infinity (nan)
+        roots = poly_roots(np.where(drop[..., None], 1.0, coeffs))
+        low = poly_roots(coeffs[drop][..., 1:])
+        roots[drop] = np.concatenate([low, np.full(low.shape[:-1] + (1,), np.nan + 0j)], axis=-1)
+        return roots
     with np.errstate(divide="ignore", invalid="ignore"):
         monic = coeffs[..., 1:] / coeffs[..., :1]
     bad = ~np.all(np.isfinite(monic), axis=-1)
