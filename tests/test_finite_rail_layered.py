@@ -159,7 +159,10 @@ def test_cli_validate_runs_on_a_layered_track():
     cmd = [sys.executable, "-m", "moving_bogie", "validate", "--file", str(TWO_LAYER), "--modes", "60"]
     cmd += ["--tmax", "10", "--no-estimate", "--json"]
     run = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    assert run.returncode in (0, 1), run.stderr
+    # the closed form includes the layered branch-cut part (response/cut_pieces.py), so the two independent
+    # models must agree within the command's default tolerance (1 %); residues alone were 1-3.6 % off
+    assert run.returncode == 0, run.stderr
     data = json.loads(run.stdout)
     assert set(data["relative_diff"]) == {"rear", "front", "u", "theta"}
-    assert data["track"] == "two-layer"
+    assert data["track"] == "two-layer" and data["closed_form_branch_cut"] is True
+    assert max(data["relative_diff"].values()) < 0.01
