@@ -2,7 +2,8 @@
 
 Into src/moving_bogie/generated/:
 foundation_<name>.py  coefficients (highest power first) of N(p, q), dN/dq, Q(p, q), dQ/dq in p; the
-                      model's beam, track, parameters and degrees
+                      model's beam, track, parameters and degrees; the per-mode mass, damping and stiffness
+                      blocks of the simply supported finite rail (validation)
 vehicle_<name>.py     E_chr, its partial derivatives, residue numerators and shape weights; its parameters
 parameters.py         every dimensionless group: meaning, constraint, default, equation, SI name and unit,
                       the exact SI <-> dimensionless scaling, the scales of Eqs. (15)-(16), Eq. (63)
@@ -19,6 +20,7 @@ from . import symbols as s
 from .asymptotics import asymptotics_module
 from .emit import SCALING_PRINTER, definition_digest, function_source, module_source
 from .foundations import BEAMS, TRACKS, all_models
+from .modal import modal_blocks
 from .model import foundation_image
 from .paper import all_proofs
 from .system import SYSTEMS, in_q
@@ -65,6 +67,20 @@ def foundation_module(name, model):
         function_source("q_coeffs", args, qq, "Coefficients of Q(p, q) in p, highest power first."),
         function_source("q_coeffs_dq", args, [sp.diff(c, s.q) for c in qq], "Coefficients of dQ/dq in p."),
     ]
+    mass, damping, stiffness, parity = modal_blocks(model)
+    modal_params = tuple(
+        g for g in s.GROUPS if g in {str(x) for e in (*mass, *damping, *stiffness) for x in e.free_symbols}
+    )
+    modal_args = ("lam", *modal_params)
+    for label, block in (("mass", mass), ("damping", damping), ("stiffness", stiffness)):
+        parts.append(
+            function_source(
+                f"modal_{label}",
+                modal_args,
+                list(block),
+                f"Finite rail (validation): {label} matrix of the sine mode of wavenumber lam, row-major.",
+            )
+        )
     title = (
         f"Track model '{name}': D(p, q) = N(p, q) / Q(p, q) of the {model.description}\n\n"
         "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
@@ -83,6 +99,8 @@ def foundation_module(name, model):
         ("SCALE_PARAMETERS", scale_parameters),
         ("SI_NAMES", si_names),
         ("GROUP_OVERRIDES", overrides),
+        ("MODAL_ARGUMENTS", modal_args),
+        ("MODAL_PARITY", parity),
     ]
     digest = definition_digest(
         model.operator, *model.unknown_scales, *model.row_scales, model.description, model.si_names

@@ -191,3 +191,27 @@ def test_critical_velocity_tends_to_eq65_in_the_one_layer_limit():
         gaps.append(abs(float(res.alpha_cr) - 1))
         assert res.branch == 1  # the rail: the stiff light layer's branch lies far above
     assert 0 < gaps[0] < 1e-2 and gaps[1] / gaps[0] == pytest.approx(0.5, abs=0.05)
+
+
+@pytest.mark.parametrize("track", EXAMPLES)
+def test_layered_K_at_alpha_zero_where_the_degree_of_N_drops(track):
+    """At alpha = 0 the leading coefficient of N in p vanishes (one root at infinity): the vectorised
+    kernel of the instability lines and maps must drop that root, not return nan or zero. Reference:
+    quadrature of Eq. (29) at alpha = 0 (independent of the roots)."""
+    from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+
+    groups = dict(mu_2="4", kappa_2="0.5", eta_2="0.2")
+    if track == "three-layer":
+        groups |= dict(mu_3="2", kappa_3="0.7", eta_3="0.2")
+    params = table1_case(7).replace(track=track, alpha=0, **groups)
+    module = params.model.foundation
+    args = {name: float(getattr(params, name)) for name in module.ARGUMENTS[1:]}
+    sweep = SweepCharacteristic(params, "bogie", "eta_M")
+    qs = np.array([0.3 + 0.02j, 0.9 - 0.3j, 1.7 + 0.1j])
+    with np.errstate(all="raise"):
+        K, _, _ = sweep.kernel(qs, np.zeros(qs.size))
+    d = float(params.d)
+    for k, xi in enumerate((0.0, d, -d)):
+        for j, q in enumerate(qs):
+            ref = quadrature_module_K(module, args, q, xi)
+            assert abs(K[k][j] - ref) < 1e-8 * max(1, abs(ref)), (xi, q, K[k][j], ref)

@@ -87,9 +87,9 @@ def test_critical_stiffness_json(capsys):
     assert data["mismatches"] == 0 and data["alphas"][0]["critical_kappa_v"]
 
 
-def test_undamped_foundation_is_a_one_line_error(capsys):
-    code, _, err = _run(capsys, "instability-lines", "--eta-f", "0")
-    assert code == 2 and err.count("\n") == 1 and "eta_f" in err
+def test_negative_foundation_damping_is_a_one_line_error(capsys):
+    code, _, err = _run(capsys, "instability-lines", "--eta-f", "-0.1")
+    assert code == 2 and err.count("\n") == 1 and "eta" in err
 
 
 def test_figure_subcommand_lists_the_figures(capsys):

@@ -88,6 +88,15 @@ def test_poly_roots_handles_degrees_and_vanishing_leading_coefficient():
     c = np.array([[1, -3, 2], [0, 1, -1]], dtype=complex)
     r = poly_roots(c)
     assert sorted(r[0].real) == pytest.approx([1, 2])
-    assert np.all(np.isnan(r[1]))
+    # the degree drops: the root of the lower-degree polynomial, and one at infinity (nan)
+    assert r[1][0] == pytest.approx(1) and np.isnan(r[1][1])
+    assert np.all(np.isnan(poly_roots(np.array([[np.nan, 1, 1]], dtype=complex))))
+    # degree 6 whose leading coefficient vanishes on one row (a layered track at alpha = 0); reference:
+    # numpy.roots of the degree-5 polynomial
+    c6 = np.array([[0, 2, -1, 3j, 0.5, -2, 1], [1, 2, -1, 3j, 0.5, -2, 1]], dtype=complex)
+    r6 = poly_roots(c6)
+    assert np.isnan(r6[0][-1]) and np.all(np.isfinite(r6[1]))
+    assert np.sort_complex(r6[0][:-1]) == pytest.approx(np.sort_complex(np.roots(c6[0][1:])), abs=1e-12)
+    assert np.sort_complex(r6[1]) == pytest.approx(np.sort_complex(np.roots(c6[1])), abs=1e-12)
     c4 = np.array([[1, -10, 35, -50, 24]], dtype=complex)
     assert sorted(poly_roots(c4)[0].real) == pytest.approx([1, 2, 3, 4])

@@ -30,6 +30,7 @@ SUBCOMMAND_MODULES: list[str] = [
     "timeseries_cmd",
     "stability_cmd",
     "lines_cmd",
+    "compare_cmd",
     "sweep_cmd",
 ]
 

@@ -37,12 +37,20 @@ def _register_instability_lines(subparsers) -> None:
             "Curves where an induced frequency is real: crossing one changes the number of unstable\n"
             "induced frequencies by one. Seeded on a grid (E_chr is a polynomial in eta_M) and traced by\n"
             "3-D pseudo-arclength continuation; each point carries its real frequency q and which side\n"
-            "(larger or smaller eta_M) is the more unstable one."
+            "(larger or smaller eta_M) is the more unstable one.\n\n"
+            "Undamped foundation (--eta-f 0): K on the cut (the real q-axis beyond the branch point) is\n"
+            "the limit from below, eta_f -> 0+; an induced frequency is unstable when Im q < 0, a real one\n"
+            "is neutral. Real induced frequencies then fill whole regions and the lines degenerate; the\n"
+            "command computes instead the boundaries of instability, located by root counts on a grid with\n"
+            "bisection: at eta_f = 0 exactly (kind 'undamped') and in the limit eta_f -> 0+ (kind 'limit':\n"
+            "real roots that a small foundation damping destabilises count as unstable). 0 < eta_f < 1e-5\n"
+            "(near-undamped) gives the limit only, to first order in eta_f. The output says so."
         ),
         epilog=(
             "examples:\n"
             "  moving-bogie instability-lines --model masses --d 1,1.25,1.5 --eta-f 0.1 --plot f.png\n"
-            "  moving-bogie instability-lines --d 1.5 --cf2 0.1 --kappa-v 0.2 --beam tr --S 10 --r 0.09"
+            "  moving-bogie instability-lines --d 1.5 --cf2 0.1 --kappa-v 0.2 --beam tr --S 10 --r 0.09\n"
+            "  moving-bogie instability-lines --model masses --d 1.5 --eta-f 0 --plot undamped.png"
         ),
         formatter_class=RAW,
     )
@@ -67,6 +75,8 @@ def _register_instability_lines(subparsers) -> None:
 def run_instability_lines(args) -> int:
     from moving_bogie.stability.instability_lines import instability_lines
     from moving_bogie.stability.line_ends import EXPLANATIONS
+    from moving_bogie.stability.undamped import MECHANISMS
+    from moving_bogie.stability.undamped_lines import KIND_TEXT
 
     params, spacings = params_and_spacings(args)
     with progress_bar("instability lines") as bar:
@@ -85,6 +95,7 @@ def run_instability_lines(args) -> int:
         from matplotlib.figure import Figure
 
         from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
+        from moving_bogie.stability.undamped import title
 
         fig = Figure(figsize=(7, 5), layout="constrained")
         ax = fig.subplots()
@@ -96,23 +107,31 @@ def run_instability_lines(args) -> int:
         ax.set_ylabel(args.parameter)
         handles, _ = ax.get_legend_handles_labels()
         ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
+        if res.statement:
+            ax.set_title(title(params.eta_f), fontsize=9)
         save_figure(fig, args.plot)
     if args.json:
         print_json(res.to_dict())
     else:
+        if res.statement:
+            print(res.statement)
+            print(f"method: {res.method}")
         for b in res.branches:
             k = len(b.alpha)
+            kind = "" if b.kind == "crossing" else f" [{b.kind}: {KIND_TEXT[b.kind]}]"
             print(
-                f"d={b.d:g}: {k} points, alpha {b.alpha.min():.4f}..{b.alpha.max():.4f}, "
+                f"d={b.d:g}{kind}: {k} points, alpha {b.alpha.min():.4f}..{b.alpha.max():.4f}, "
                 f"{args.parameter} {b.theta.min():.4g}..{b.theta.max():.4g}, unstable side: {b.unstable_side}"
                 + ("" if b.verified is None else f", counts below/above: {b.verified[2]}/{b.verified[4]}")
             )
+            for m in dict.fromkeys(b.mechanism):
+                print(f"  {m}: {MECHANISMS[m]}")
             for end in b.stops_inside:
                 print(
                     f"  stops inside the plot at alpha {end.alpha:.4f}, {args.parameter} {end.theta:.4g}, "
                     f"q {end.q:.4f}: {EXPLANATIONS[end.reason]}"
                 )
-        if res.q_max != args.q_max:
+        if res.q_max is not None and res.q_max != args.q_max:
             print(f"q range raised to q_max = {res.q_max:g} (a line reached {args.q_max:g})")
         for w in res.warnings:
             print(f"{PROG}: warning: {w}", file=sys.stderr)
@@ -175,7 +194,7 @@ def run_stability_map(args) -> int:
             progress=bar,
         )
     lines = None
-    if args.lines and params.eta_f > 0:
+    if args.lines:
         with progress_bar("instability lines") as bar:
             lines = instability_lines(
                 params,

@@ -215,11 +215,19 @@ def _register_critical_stiffness(subparsers) -> None:
         description=(
             "For each alpha, the kappa_v intervals where the bogie is stable or unstable: boundaries\n"
             "from the D-decomposition in kappa_v, counts from the argument principle. The parameters'\n"
-            "kappa_v and alpha are ignored."
+            "kappa_v and alpha are ignored.\n\n"
+            "Undamped foundation (--eta-f 0): K on the cut (the real q-axis beyond the branch point) is\n"
+            "the limit from below, eta_f -> 0+; an induced frequency is unstable when Im q < 0, a real one\n"
+            "is neutral. The D-decomposition degenerates there (real induced frequencies fill whole\n"
+            "intervals): the intervals come from root counts on a kappa_v grid, every change bisected, at\n"
+            "eta_f = 0 exactly, with the limit eta_f -> 0+ (real roots that a small foundation damping\n"
+            "destabilises count as unstable) beside them. 0 < eta_f < 1e-5 (near-undamped) gives the\n"
+            "limit, to first order in eta_f. The output says which."
         ),
         epilog=(
             "examples:\n"
-            "  moving-bogie critical-stiffness --case 5 --alpha-min 0.3 --alpha-max 1 --kappa-max 0.6"
+            "  moving-bogie critical-stiffness --case 5 --alpha-min 0.3 --alpha-max 1 --kappa-max 0.6\n"
+            "  moving-bogie critical-stiffness --case 5 --eta-f 0 --alphas 3 --kappa-max 0.6"
         ),
         formatter_class=RAW,
     )
@@ -250,9 +258,18 @@ def run_critical_stiffness(args) -> int:
     if args.json:
         print_json(res.to_dict())
     else:
-        for a, crit, ivs in zip(res.alphas, res.critical, res.intervals):
+        if res.limit_intervals is not None:
+            from moving_bogie.stability.undamped import CONVENTION
+
+            print(f"{res.regime} foundation (eta_f = {float(params.eta_f):g}); convention: {CONVENTION}")
+            print(f"method: {res.method}")
+        limits = res.limit_intervals or [None] * len(res.alphas)
+        for a, crit, ivs, lim in zip(res.alphas, res.critical, res.intervals, limits):
             parts = ", ".join(f"({lo:.4g}, {hi:.4g}]: {n}" for lo, hi, n in ivs)
             print(f"alpha={a:.4f}  critical kappa_v: {[round(c, 6) for c in crit]}  unstable counts: {parts}")
+            if lim is not None and res.regime == "undamped":
+                parts = ", ".join(f"({lo:.4g}, {hi:.4g}]: {n}" for lo, hi, n in lim)
+                print(f"              limit eta_f -> 0+ unstable counts: {parts}")
         for w in res.warnings:
             print(f"warning: {w}")
     return 0

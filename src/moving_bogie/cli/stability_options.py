@@ -8,7 +8,7 @@ from pathlib import Path
 
 from moving_bogie.errors import ParameterError
 
-from .common import MODEL_OPTIONS, add_model_options
+from .common import MODEL_OPTIONS, add_model_options, parameter_options
 
 #: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
 RAW = argparse.RawDescriptionHelpFormatter
@@ -51,25 +51,19 @@ def add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
         metavar="F.toml",
         help="take the parameters from a TOML file (a layered track's too)",
     )
-    for name in LAYER_GROUPS:
-        g.add_argument(
-            "--" + name.replace("_", "-"), dest=name, type=decimal_number, metavar="X", help=_layer_help(name)
-        )
+    for name, opt, text in track_group_options():
+        g.add_argument(opt, dest=name, type=decimal_number, metavar="X", help=f"{text} (its --track)")
     add_model_options(parser)
 
 
-#: Groups of the layered tracks (docs/layered_tracks.md): mass ratio, support stiffness, damping per layer.
-LAYER_GROUPS = ("mu_2", "kappa_2", "eta_2", "mu_3", "kappa_3", "eta_3")
+#: Groups set by the options above, or the axes and the Eq. (63) coefficients of the plane.
+_PLANE_GROUPS = {"alpha", "eta_f", "eta_s", "S", "r", "eta_M", "d", "mu_v", "J_b", "kappa_v", "eta_v"}
+_PLANE_GROUPS |= {"cf1", "cf2"}
 
 
-def _layer_help(name: str) -> str:
-    kind, layer = name.rsplit("_", 1)
-    what = {
-        "mu": "mass ratio m_j/m",
-        "kappa": "support stiffness k_j/k_1",
-        "eta": "damping c_j/(2 sqrt(m k_1))",
-    }
-    return f"layer {layer}: {what[kind]} (--track two-layer / three-layer)"
+def track_group_options() -> list[tuple[str, str, str]]:
+    """(name, option, help) of the groups that only some tracks have (the layers' mu_j, kappa_j, eta_j)."""
+    return [row for row in parameter_options() if row[0] not in _PLANE_GROUPS]
 
 
 PLANE_DEFAULTS = dict(
@@ -91,10 +85,10 @@ def params_and_spacings(args):
         base = table1_case(args.case)
     else:
         base = DimensionlessParams.from_coefficients(**PLANE_DEFAULTS)
-    names = ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r", *LAYER_GROUPS)
-    changes = {k: getattr(args, k, None) for k in names} | {
-        k: getattr(args, k, None) for k in MODEL_OPTIONS.values()
-    }
+    changes = {
+        k: getattr(args, k) for k in ("eta_f", "eta_s", "cf1", "cf2", "kappa_v", "eta_v", "S", "r")
+    } | {k: getattr(args, k, None) for k in MODEL_OPTIONS.values()}
+    changes |= {name: getattr(args, name, None) for name, _, _ in track_group_options()}
     changes = {k: v for k, v in changes.items() if v is not None}
     spacings = args.d if isinstance(args.d, list) else ([args.d] if args.d is not None else None)
     if spacings:
@@ -102,7 +96,7 @@ def params_and_spacings(args):
     try:
         params = base.replace(**changes)
     except ParameterError as exc:
-        if exc.parameter in LAYER_GROUPS and "missing" in str(exc):
+        if exc.parameter in {name for name, _, _ in track_group_options()} and "missing" in str(exc):
             option = "--" + exc.parameter.replace("_", "-")
             raise ParameterError(exc.parameter, f"{exc}: give {option} or --file F.toml") from None
         raise

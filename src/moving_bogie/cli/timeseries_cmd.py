@@ -17,7 +17,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description=(
             "Closed-form vibrations at the wheels and of the bogie bar: steady part (Eq. (39)), residues at\n"
             "every induced frequency (Eqs. (40)-(43)) and the branch-cut part I_bc of Eq. (35) where it\n"
-            "matters (Euler-Bernoulli beam). Times are dimensionless tau, or seconds with a [physical]\n"
+            "matters (any beam and track). Times are dimensionless tau, or seconds with a [physical]\n"
             "parameter file (results then in m and rad). Exit status 2 on bad input or when the induced\n"
             "frequencies could not all be confirmed."
         ),
@@ -225,7 +225,7 @@ def run_shape(args: argparse.Namespace) -> int:
     import numpy as np
 
     from moving_bogie.errors import ParameterError
-    from moving_bogie.response.closed_form import SI_UNITS, deflection_shape
+    from moving_bogie.response.closed_form import SI_UNITS, deflection_shape_details
 
     _check(args)
     params, physical = params_from_args(args)
@@ -239,7 +239,7 @@ def run_shape(args: argparse.Namespace) -> int:
         raise ParameterError("xi_max", f"need xi_min < xi_max (got {lo}, {hi})")
     xi = np.linspace(lo, hi, args.points)
     result = _frequencies_or_fail(params, args.model, args.dps, args.json, _branch_cut(args))
-    w = deflection_shape(
+    w, with_cut, notes = deflection_shape_details(
         physical if physical is not None else params,
         xi,
         args.tau,
@@ -271,11 +271,17 @@ def run_shape(args: argparse.Namespace) -> int:
                 "w": [float(v) for v in w],
                 "model": args.model,
                 "units": units,
+                "branch_cut": with_cut,
+                "notes": list(notes),
             }
         )
     else:
-        lines = [f"Deflection shape at tau = {args.tau:g} [{units['tau']}] ({args.model})"]
+        lines = [
+            f"Deflection shape at tau = {args.tau:g} [{units['tau']}] ({args.model}); "
+            f"branch-cut part: {'included' if with_cut else 'not included'}"
+        ]
         lines.append(f"{'xi':>14} {'w':>18}")
         lines += [f"{x:>14.8g} {v:>18.10g}" for x, v in zip(xi, w)]
+        lines += [f"note: {n}" for n in notes]
         print("\n".join(lines))
     return 0

@@ -14,7 +14,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="finite-beam validation of the closed-form time series (paper, Section 3.2)",
         description=(
             "Run the finite-beam modal model (simply supported beam, --modes sine modes, with the\n"
-            "quasi-static response of the truncated modes added back) and the closed-form response on\n"
+            "quasi-static response of the truncated modes added back; on a layered track each mode of\n"
+            "the rail coupled with the same mode of every mass layer) and the closed-form response on\n"
             "one tau grid, and compare the rear- and front-wheel deflections, the bar bounce and the bar\n"
             "pitch over the window before reflections from the supports can matter. They agree when\n"
             "every quantity's largest difference is within --tol (default 1 %) of its largest value\n"
@@ -25,6 +26,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         epilog=(
             "examples:\n  moving-bogie validate --case 7\n"
             "  moving-bogie validate --case 7 --beam tr --S 10 --r 0.09\n"
+            "  moving-bogie validate --file examples/two-layer.toml\n"
             "  moving-bogie validate --case 1 --tmax 400 --plot case1.png\n"
             "  moving-bogie validate --case 2 --modes 1000 --json\n"
             "  moving-bogie validate --case 5 --model masses --plot masses5.png"
@@ -101,6 +103,8 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         name = f"Case {args.case}" if args.case is not None else "moving bogie"
         beam = ", Timoshenko-Rayleigh beam" if getattr(params, "beam", "eb") == "tr" else ""
+        track = getattr(params, "track", "one-layer")
+        beam += "" if track == "one-layer" else f", {track} track"
         title = f"{name} ({args.model}{beam}): finite beam (solid) vs closed form (dashed)"
         figure = plot_validation(result, title=title)
         buffer = io.BytesIO()
@@ -125,8 +129,10 @@ def format_result(result) -> str:
     finite = result.finite
     correction = "with" if finite.static_correction else "without"
     beam = "Timoshenko-Rayleigh" if getattr(result.params, "beam", "eb") == "tr" else "Euler-Bernoulli"
+    track = getattr(result.params, "track", "one-layer")
+    on = "" if track == "one-layer" else f" on a {track} track"
     lines = [
-        f"Finite {beam} beam ({finite.n_modes} modes {correction} static correction, "
+        f"Finite {beam} beam{on} ({finite.n_modes} modes {correction} static correction, "
         f"L = {finite.length:.1f}, entry x0 = {finite.entry:.1f}, k_max = {finite.k_max:.2f}, "
         f"dt = {finite.dt:.4f}) vs closed form, {result.model}",
         f"comparison window: tau in [0, {result.window[1]:.1f}] of [0, {result.tau[-1]:g}] "

@@ -19,6 +19,8 @@ DAMPING = ('eta_f',)
 SCALE_PARAMETERS = {'EI': {'unit': 'N m^2', 'meaning': 'beam bending stiffness'}, 'm': {'unit': 'kg/m', 'meaning': 'beam mass per unit length'}, 'k_f': {'unit': 'N/m^2', 'meaning': 'foundation (Winkler) stiffness'}, 'P': {'unit': 'N', 'meaning': 'constant load on each wheel'}}
 SI_NAMES = {}
 GROUP_OVERRIDES = {}
+MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s')
+MODAL_PARITY = (0,)
 
 
 def n_coeffs(q, alpha, eta_f, eta_s):
@@ -67,4 +69,25 @@ def q_coeffs_dq(q, alpha, eta_f, eta_s):
     """Coefficients of dQ/dq in p."""
     return (
         0,
+    )
+
+
+def modal_mass(lam, eta_f, eta_s):
+    """Finite rail (validation): mass matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        1,
+    )
+
+
+def modal_damping(lam, eta_f, eta_s):
+    """Finite rail (validation): damping matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        2*eta_f,
+    )
+
+
+def modal_stiffness(lam, eta_f, eta_s):
+    """Finite rail (validation): stiffness matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        1 + lam**4/4 + eta_s*lam**2,
     )

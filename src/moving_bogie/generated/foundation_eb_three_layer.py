@@ -19,6 +19,8 @@ DAMPING = ('eta_f', 'eta_2', 'eta_3')
 SCALE_PARAMETERS = {'EI': {'unit': 'N m^2', 'meaning': 'beam bending stiffness'}, 'm': {'unit': 'kg/m', 'meaning': 'beam mass per unit length'}, 'k_1': {'unit': 'N/m^2', 'meaning': 'railpad stiffness per unit length (reference stiffness of the scaling)'}, 'P': {'unit': 'N', 'meaning': 'constant load on each wheel'}}
 SI_NAMES = {'k_f': 'k_1', 'c_f': 'c_1'}
 GROUP_OVERRIDES = {'eta_f': {'si': 'c_1', 'si_meaning': 'railpad viscous damping per unit length', 'meaning': 'foundation damping ratio c_1/(2 sqrt(m k_1))'}, 'eta_s': {'meaning': 'Pasternak shear layer k_s/(2 sqrt(k_1 EI))'}, 'S': {'meaning': 'Timoshenko shear parameter G Abar/(2 sqrt(k_1 EI))'}, 'kappa_v': {'meaning': 'primary suspension stiffness k_v chi/k_1'}, 'eta_v': {'meaning': 'primary suspension damping c_v chi/(2 sqrt(m k_1))'}}
+MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s', 'mu_2', 'kappa_2', 'eta_2', 'mu_3', 'kappa_3', 'eta_3')
+MODAL_PARITY = (0, 0, 0)
 
 
 def n_coeffs(q, alpha, eta_f, eta_s, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3):
@@ -520,4 +522,54 @@ def q_coeffs_dq(q, alpha, eta_f, eta_s, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta
         -x4*x5 - x4*x7 - x6*eta_2 - x6*eta_f - q*x1*eta_s + 2*1j*eta_2*eta_s + 2*1j*eta_f*eta_s + 12*q*x2*mu_2*mu_3,
         x9 + x10*x11 + x11*x13 + x12*alpha + x14*kappa_2 + x14*kappa_3 + x16*x5 + x17*eta_2 + x17*eta_f + x9*kappa_2 + x11*x15*mu_2 - 12*x0*x18*alpha,
         -x19 - q*x12 - x10*x20 - x13*x20 - x19*kappa_2 - x21*kappa_2 - x21*kappa_3 - x22*x5 - x22*x7 - x23*eta_2 - x23*eta_f + 2*1j*eta_2 + 2*1j*eta_3 + 2*1j*eta_2*kappa_3 + 2*1j*eta_3*kappa_2 + 2*1j*eta_f*kappa_2 + 2*1j*eta_f*kappa_3 + 4*mu_2*mu_3*q**3,
+    )
+
+
+def modal_mass(lam, eta_f, eta_s, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3):
+    """Finite rail (validation): mass matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        1,
+        0,
+        0,
+        0,
+        mu_2,
+        0,
+        0,
+        0,
+        mu_3,
+    )
+
+
+def modal_damping(lam, eta_f, eta_s, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3):
+    """Finite rail (validation): damping matrix of the sine mode of wavenumber lam, row-major."""
+    x0 = 2*eta_f
+    x1 = -x0
+    x2 = 2*eta_2
+    x3 = -x2
+    return (
+        x0,
+        x1,
+        0,
+        x1,
+        x0 + x2,
+        x3,
+        0,
+        x3,
+        x2 + 2*eta_3,
+    )
+
+
+def modal_stiffness(lam, eta_f, eta_s, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3):
+    """Finite rail (validation): stiffness matrix of the sine mode of wavenumber lam, row-major."""
+    x0 = -kappa_2
+    return (
+        1 + lam**4/4,
+        -1,
+        0,
+        -1,
+        1 + kappa_2,
+        x0,
+        0,
+        x0,
+        kappa_2 + kappa_3 + eta_s*lam**2,
     )

@@ -19,6 +19,8 @@ DAMPING = ('eta_f', 'eta_2')
 SCALE_PARAMETERS = {'EI': {'unit': 'N m^2', 'meaning': 'beam bending stiffness'}, 'm': {'unit': 'kg/m', 'meaning': 'beam mass per unit length'}, 'k_1': {'unit': 'N/m^2', 'meaning': 'railpad stiffness per unit length (reference stiffness of the scaling)'}, 'P': {'unit': 'N', 'meaning': 'constant load on each wheel'}}
 SI_NAMES = {'k_f': 'k_1', 'c_f': 'c_1'}
 GROUP_OVERRIDES = {'eta_f': {'si': 'c_1', 'si_meaning': 'railpad viscous damping per unit length', 'meaning': 'foundation damping ratio c_1/(2 sqrt(m k_1))'}, 'eta_s': {'meaning': 'Pasternak shear layer k_s/(2 sqrt(k_1 EI))'}, 'S': {'meaning': 'Timoshenko shear parameter G Abar/(2 sqrt(k_1 EI))'}, 'kappa_v': {'meaning': 'primary suspension stiffness k_v chi/k_1'}, 'eta_v': {'meaning': 'primary suspension damping c_v chi/(2 sqrt(m k_1))'}}
+MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s', 'mu_2', 'kappa_2', 'eta_2')
+MODAL_PARITY = (0, 0)
 
 
 def n_coeffs(q, alpha, eta_f, eta_s, mu_2, kappa_2, eta_2):
@@ -146,4 +148,36 @@ def q_coeffs_dq(q, alpha, eta_f, eta_s, mu_2, kappa_2, eta_2):
         0,
         x0*alpha,
         x1*eta_2 + x1*eta_f - q*x0,
+    )
+
+
+def modal_mass(lam, eta_f, eta_s, mu_2, kappa_2, eta_2):
+    """Finite rail (validation): mass matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        1,
+        0,
+        0,
+        mu_2,
+    )
+
+
+def modal_damping(lam, eta_f, eta_s, mu_2, kappa_2, eta_2):
+    """Finite rail (validation): damping matrix of the sine mode of wavenumber lam, row-major."""
+    x0 = 2*eta_f
+    x1 = -x0
+    return (
+        x0,
+        x1,
+        x1,
+        x0 + 2*eta_2,
+    )
+
+
+def modal_stiffness(lam, eta_f, eta_s, mu_2, kappa_2, eta_2):
+    """Finite rail (validation): stiffness matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        1 + lam**4/4,
+        -1,
+        -1,
+        1 + kappa_2 + eta_s*lam**2,
     )

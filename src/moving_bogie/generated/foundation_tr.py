@@ -19,6 +19,8 @@ DAMPING = ('eta_f',)
 SCALE_PARAMETERS = {'EI': {'unit': 'N m^2', 'meaning': 'beam bending stiffness'}, 'm': {'unit': 'kg/m', 'meaning': 'beam mass per unit length'}, 'k_f': {'unit': 'N/m^2', 'meaning': 'foundation (Winkler) stiffness'}, 'P': {'unit': 'N', 'meaning': 'constant load on each wheel'}}
 SI_NAMES = {}
 GROUP_OVERRIDES = {}
+MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s', 'S', 'r')
+MODAL_PARITY = (0, 1)
 
 
 def n_coeffs(q, alpha, eta_f, eta_s, S, r):
@@ -131,4 +133,36 @@ def q_coeffs_dq(q, alpha, eta_f, eta_s, S, r):
         0,
         x0*alpha,
         -q*x0,
+    )
+
+
+def modal_mass(lam, eta_f, eta_s, S, r):
+    """Finite rail (validation): mass matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        1,
+        0,
+        0,
+        r**2,
+    )
+
+
+def modal_damping(lam, eta_f, eta_s, S, r):
+    """Finite rail (validation): damping matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        2*eta_f,
+        0,
+        0,
+        0,
+    )
+
+
+def modal_stiffness(lam, eta_f, eta_s, S, r):
+    """Finite rail (validation): stiffness matrix of the sine mode of wavenumber lam, row-major."""
+    x0 = lam**2
+    x1 = -S*lam
+    return (
+        1 + x0*S + x0*eta_s,
+        x1,
+        x1,
+        S + x0/4,
     )

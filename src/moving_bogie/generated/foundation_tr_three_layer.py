@@ -19,6 +19,8 @@ DAMPING = ('eta_f', 'eta_2', 'eta_3')
 SCALE_PARAMETERS = {'EI': {'unit': 'N m^2', 'meaning': 'beam bending stiffness'}, 'm': {'unit': 'kg/m', 'meaning': 'beam mass per unit length'}, 'k_1': {'unit': 'N/m^2', 'meaning': 'railpad stiffness per unit length (reference stiffness of the scaling)'}, 'P': {'unit': 'N', 'meaning': 'constant load on each wheel'}}
 SI_NAMES = {'k_f': 'k_1', 'c_f': 'c_1'}
 GROUP_OVERRIDES = {'eta_f': {'si': 'c_1', 'si_meaning': 'railpad viscous damping per unit length', 'meaning': 'foundation damping ratio c_1/(2 sqrt(m k_1))'}, 'eta_s': {'meaning': 'Pasternak shear layer k_s/(2 sqrt(k_1 EI))'}, 'S': {'meaning': 'Timoshenko shear parameter G Abar/(2 sqrt(k_1 EI))'}, 'kappa_v': {'meaning': 'primary suspension stiffness k_v chi/k_1'}, 'eta_v': {'meaning': 'primary suspension damping c_v chi/(2 sqrt(m k_1))'}}
+MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s', 'S', 'r', 'mu_2', 'kappa_2', 'eta_2', 'mu_3', 'kappa_3', 'eta_3')
+MODAL_PARITY = (0, 1, 0, 0)
 
 
 def n_coeffs(q, alpha, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3):
@@ -1586,4 +1588,77 @@ def q_coeffs_dq(q, alpha, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2, mu_3, kappa_
         -x22 - x61 - x63 - x73 + 1j*eta_2/2 + 1j*eta_3/2 - q*x35 - x11*x39 - x14*x65 - x17*x65 - x20*x48 - x22*kappa_3 - x24*x48 - x33*x59 - x36*x59 - x61*kappa_2 - x62*kappa_2 - x62*kappa_3 - x63*kappa_2 - x68*x70 - x68*x71 - x69*mu_2 - x69*mu_3 - x73*kappa_2 - x74*kappa_2 - x74*kappa_3 - x75*eta_s + x64*mu_2*mu_3 + 1j*eta_2*kappa_3/2 + 1j*eta_3*kappa_2/2 + 1j*eta_f*kappa_2/2 + 1j*eta_f*kappa_3/2 - x14*x18*x48 - x13*x3*x60*x64 + 2*1j*S*eta_2*eta_s + 2*1j*S*eta_f*eta_s + 4*x5*x64*eta_s*mu_2 + 12*q*x13*x5*mu_3 + 12*q*x13*x5*kappa_2*mu_2 + 12*q*x13*x5*kappa_2*mu_3 + 12*q*x13*x5*kappa_3*mu_2 + 12*q*x13*S*mu_2*mu_3 + 48*q*x13*x5*eta_2*eta_3 + 48*q*x13*x5*eta_2*eta_f + 48*q*x13*x5*eta_3*eta_f + 60*1j*x13*x48*x5*eta_2*mu_2 + 60*1j*x13*x48*x5*eta_2*mu_3 + 60*1j*x13*x48*x5*eta_3*mu_2 + 60*1j*x13*x48*x5*eta_f*mu_3,
         x76 + x83 + x88 + x89 - x90 + x34*x79 + x34*x86 + x76*kappa_2 + x77*x78 + x79*x80 + x80*x86 + x81*kappa_2 + x81*kappa_3 + x82*kappa_3 + x83*kappa_3 + x88*kappa_3 + x89*kappa_2 + x91*kappa_2 + x91*kappa_3 - x12*x97 - x19*x97 - x43*x96 - x47*x96 - x90*kappa_2 - x94*kappa_2 - x94*kappa_3 + x44*x84*x87 + x44*x85*eta_f - x34*x48*x93 - x48*x78*x92 - x49*x93*eta_2 - 12*x3*x49*S + x30*x5*x95*alpha,
         -x101 - x104 - x75 - x98 - x100*kappa_3 - x101*kappa_3 - x102*x70 - x102*x71 - x103*mu_2 - x103*mu_3 - x104*kappa_2 - x105*kappa_2 - x105*kappa_3 - x59*x79 - x75*kappa_3 - x79*x87 - x9*q**5 - x98*kappa_2 - x99*kappa_2 - x99*kappa_3 - x59*x77*eta_2 + 2*1j*S*eta_2 + 2*1j*S*eta_3 + 4*x5*x64*mu_3 + 2*1j*S*eta_2*kappa_3 + 2*1j*S*eta_3*kappa_2 + 2*1j*S*eta_f*kappa_2 + 2*1j*S*eta_f*kappa_3 + 4*x5*x64*kappa_2*mu_2 + 4*x5*x64*kappa_2*mu_3 + 4*x5*x64*kappa_3*mu_2 + 4*x64*S*mu_2*mu_3 + 16*x5*x64*eta_2*eta_3 + 16*x5*x64*eta_2*eta_f + 16*x5*x64*eta_3*eta_f + 10*1j*x5*x95*eta_2*mu_2 + 10*1j*x5*x95*eta_2*mu_3 + 10*1j*x5*x95*eta_3*mu_2 + 10*1j*x5*x95*eta_f*mu_3,
+    )
+
+
+def modal_mass(lam, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3):
+    """Finite rail (validation): mass matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        1,
+        0,
+        0,
+        0,
+        0,
+        r**2,
+        0,
+        0,
+        0,
+        0,
+        mu_2,
+        0,
+        0,
+        0,
+        0,
+        mu_3,
+    )
+
+
+def modal_damping(lam, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3):
+    """Finite rail (validation): damping matrix of the sine mode of wavenumber lam, row-major."""
+    x0 = 2*eta_f
+    x1 = -x0
+    x2 = 2*eta_2
+    x3 = -x2
+    return (
+        x0,
+        0,
+        x1,
+        0,
+        0,
+        0,
+        0,
+        0,
+        x1,
+        0,
+        x0 + x2,
+        x3,
+        0,
+        0,
+        x3,
+        x2 + 2*eta_3,
+    )
+
+
+def modal_stiffness(lam, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3):
+    """Finite rail (validation): stiffness matrix of the sine mode of wavenumber lam, row-major."""
+    x0 = lam**2
+    x1 = -S*lam
+    x2 = -kappa_2
+    return (
+        1 + x0*S,
+        x1,
+        -1,
+        0,
+        x1,
+        S + x0/4,
+        0,
+        0,
+        -1,
+        0,
+        1 + kappa_2,
+        x2,
+        0,
+        0,
+        x2,
+        kappa_2 + kappa_3 + x0*eta_s,
     )

@@ -19,6 +19,8 @@ DAMPING = ('eta_f', 'eta_2')
 SCALE_PARAMETERS = {'EI': {'unit': 'N m^2', 'meaning': 'beam bending stiffness'}, 'm': {'unit': 'kg/m', 'meaning': 'beam mass per unit length'}, 'k_1': {'unit': 'N/m^2', 'meaning': 'railpad stiffness per unit length (reference stiffness of the scaling)'}, 'P': {'unit': 'N', 'meaning': 'constant load on each wheel'}}
 SI_NAMES = {'k_f': 'k_1', 'c_f': 'c_1'}
 GROUP_OVERRIDES = {'eta_f': {'si': 'c_1', 'si_meaning': 'railpad viscous damping per unit length', 'meaning': 'foundation damping ratio c_1/(2 sqrt(m k_1))'}, 'eta_s': {'meaning': 'Pasternak shear layer k_s/(2 sqrt(k_1 EI))'}, 'S': {'meaning': 'Timoshenko shear parameter G Abar/(2 sqrt(k_1 EI))'}, 'kappa_v': {'meaning': 'primary suspension stiffness k_v chi/k_1'}, 'eta_v': {'meaning': 'primary suspension damping c_v chi/(2 sqrt(m k_1))'}}
+MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s', 'S', 'r', 'mu_2', 'kappa_2', 'eta_2')
+MODAL_PARITY = (0, 1, 0)
 
 
 def n_coeffs(q, alpha, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2):
@@ -373,4 +375,53 @@ def q_coeffs_dq(q, alpha, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2):
         1j*eta_2/2 + 1j*eta_f/2 - q*x0 - x5*eta_s - x9*eta_2 - x9*eta_f + 12*q*x1*x6*mu_2,
         x3 + x10*alpha + x11*eta_2 + x11*eta_f + x3*kappa_2 - 12*x12*x4*alpha,
         -x5 - q*x10 - x13*eta_2 - x13*eta_f - x5*kappa_2 + 2*1j*S*eta_2 + 2*1j*S*eta_f + 4*x1*mu_2*q**3,
+    )
+
+
+def modal_mass(lam, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2):
+    """Finite rail (validation): mass matrix of the sine mode of wavenumber lam, row-major."""
+    return (
+        1,
+        0,
+        0,
+        0,
+        r**2,
+        0,
+        0,
+        0,
+        mu_2,
+    )
+
+
+def modal_damping(lam, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2):
+    """Finite rail (validation): damping matrix of the sine mode of wavenumber lam, row-major."""
+    x0 = 2*eta_f
+    x1 = -x0
+    return (
+        x0,
+        0,
+        x1,
+        0,
+        0,
+        0,
+        x1,
+        0,
+        x0 + 2*eta_2,
+    )
+
+
+def modal_stiffness(lam, eta_f, eta_s, S, r, mu_2, kappa_2, eta_2):
+    """Finite rail (validation): stiffness matrix of the sine mode of wavenumber lam, row-major."""
+    x0 = lam**2
+    x1 = -S*lam
+    return (
+        1 + x0*S,
+        x1,
+        -1,
+        x1,
+        S + x0/4,
+        0,
+        -1,
+        0,
+        1 + kappa_2 + x0*eta_s,
     )

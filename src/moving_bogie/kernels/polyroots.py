@@ -74,18 +74,21 @@ def poly_roots(coeffs) -> np.ndarray:
     """Roots of polynomials given by ``coeffs[..., :]`` (highest first), batched.
 
     Degree 2: the stable quadratic formula; 4: :func:`quartic_roots`; others: companion eigenvalues.
-    A leading coefficient that vanishes exactly (a layered track at alpha = 0: N loses its top powers of
-    p) gives roots at infinity: nan entries (last), which callers discard; the others are the roots of the
-    lower-degree polynomial.
+    Where the leading coefficient is exactly zero the degree drops: the roots of the lower-degree
+    polynomial and a root at infinity (a nan entry, which callers discard). Non-finite coefficients give
+    nan entries only.
     """
     coeffs = np.asarray(coeffs, dtype=complex)
     deg = coeffs.shape[-1] - 1
-    drop = (coeffs[..., 0] == 0) & np.any(coeffs[..., 1:] != 0, axis=-1)
+    finite = np.all(np.isfinite(coeffs), axis=-1)
+    drop = (coeffs[..., 0] == 0) & finite & np.any(coeffs[..., 1:] != 0, axis=-1)
     if deg > 1 and np.any(drop):
-        out = poly_roots(np.where(drop[..., None], 1, coeffs))
-        lower = poly_roots(coeffs[drop][..., 1:])
-        out[drop] = np.concatenate([lower, np.full(lower.shape[:-1] + (1,), np.nan)], axis=-1)
-        return out
+        # the degree drops where the leading coefficient vanishes (e.g. alpha = 0 on a layered track):
+        # the roots of the lower-degree polynomial, and one root at infinity (nan)
+        roots = poly_roots(np.where(drop[..., None], 1.0, coeffs))
+        low = poly_roots(coeffs[drop][..., 1:])
+        roots[drop] = np.concatenate([low, np.full(low.shape[:-1] + (1,), np.nan + 0j)], axis=-1)
+        return roots
     with np.errstate(divide="ignore", invalid="ignore"):
         monic = coeffs[..., 1:] / coeffs[..., :1]
     bad = ~np.all(np.isfinite(monic), axis=-1)

@@ -72,10 +72,21 @@ class SweepCharacteristic:
         The vehicle parameter swept (default eta_M).
     foundation : module or Foundation, optional
         The track model (default that of the parameters' model).
+    below : bool
+        Limit from below on the cut (default False): a p-root of N within ``REAL_P`` (relative) of the
+        real axis counts as upper iff Re(N_q / N_p) > 0, the side it moves to when q -> q - i0 (as in
+        :mod:`~moving_bogie.response.branch_cut`). With eta_f = 0 the cut lies on the real q-axis and this
+        gives K there its physical value, the limit eta_f -> 0+; without it such a root's side is the
+        sign of a rounding error.
     """
 
-    def __init__(self, params, model: str | None = None, parameter: str = "eta_M", *, foundation=None):
+    REAL_P = 1e-9
+
+    def __init__(
+        self, params, model: str | None = None, parameter: str = "eta_M", *, foundation=None, below=False
+    ):
         model = model or params.vehicle
+        self.below = bool(below)
         self.params = params
         self.model = model
         self.parameter = parameter
@@ -131,8 +142,10 @@ class SweepCharacteristic:
         n = self._coeffs(fnd.n_coeffs, q, alpha)
         qc = self._coeffs(fnd.q_coeffs, q, alpha)
         P = _roots(n)
+        finite = np.isfinite(P)  # a root at infinity (degree drop, nan) is on neither side
+        P = np.where(finite, P, 0)
         n1 = _polyder(n)
-        N1 = _polyval(n1, P)
+        N1 = np.where(finite, _polyval(n1, P), 1)
         Qv = _polyval(qc, P)
         N2 = Qp = None
         if derivative or derivative_alpha:
@@ -145,7 +158,14 @@ class SweepCharacteristic:
             parts.append((self._d_alpha(fnd.n_coeffs, q, alpha), self._d_alpha(fnd.q_coeffs, q, alpha)))
         parts = [(_polyval(ns, P), _polyval(_polyder(ns), P), _polyval(qs, P)) for ns, qs in parts]
         upper = P.imag > 0
-        lower = ~upper & np.isfinite(P)  # roots at infinity (nan) contribute nothing
+        if self.below:
+            real = np.abs(P.imag) <= self.REAL_P * np.maximum(1.0, np.abs(P))
+            if np.any(real):
+                Nq = _polyval(self._coeffs(fnd.n_coeffs_dq, q, alpha), P)
+                with np.errstate(all="ignore"):
+                    upper = np.where(real, np.real(Nq / N1) > 0, upper)
+        lower = ~upper & finite
+        upper = upper & finite
         ds = [self.d] if spacings is None else list(spacings)
         if d is not None:
             ds = [np.broadcast_to(np.asarray(d, dtype=float), q.shape)]
@@ -157,9 +177,9 @@ class SweepCharacteristic:
                 xi = sign_xi * (dd if np.ndim(dd) == 0 else dd[..., None])
                 mask = upper if sign_xi >= 0 else lower
                 factor = 2j * np.pi * (1 if sign_xi >= 0 else -1)
-                with np.errstate(invalid="ignore"):  # nan roots (at infinity) are masked out
-                    e = np.exp(1j * P * xi)
-                    trip["K"].append(factor * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
+                # only the roots on the decaying side enter: |e| <= 1 there (no overflow elsewhere)
+                e = np.exp(1j * np.where(mask, P, 0) * xi)
+                trip["K"].append(factor * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
                 for key, (Ns, Nsp, Qs) in zip(keys, parts):
                     g = e * Qv * Ns
                     gp = e * (1j * xi * Qv * Ns + Qp * Ns + Qv * Nsp)

@@ -293,7 +293,9 @@ class TrackKernelArray:
         qc = self._coeffs(self.module.q_coeffs, q)
         n1 = polyder(n)
         P = roots
-        N1 = polyval(n1, P)
+        finite = np.isfinite(P)  # a root at infinity (degree drop, nan) is on neither side
+        P = np.where(finite, P, 0)
+        N1 = np.where(finite, polyval(n1, P), 1)
         Qv = polyval(qc, P)
         if derivative:
             n2 = polyder(n1)
@@ -304,14 +306,14 @@ class TrackKernelArray:
             Nqp = polyval(polyder(nq), P)
             Qp = polyval(polyder(qc), P)
             Qq = polyval(qq, P)
-        upper = P.imag > 0
-        lower = ~upper & np.isfinite(P)  # roots at infinity (nan) contribute nothing
+        upper = (P.imag > 0) & finite
+        lower = (P.imag <= 0) & finite
         Ks, dKs = [], []
         for xi in xis:
             xi = float(xi)
             mask = upper if xi >= 0 else lower
             sign = 1 if xi >= 0 else -1
-            e = np.exp(1j * P * xi)
+            e = np.exp(1j * np.where(mask, P, 0) * xi)  # |e| <= 1 on the side that enters
             Ks.append(sign * 2j * np.pi * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
             if derivative:
                 g = e * Qv * Nq

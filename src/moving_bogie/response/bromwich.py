@@ -29,7 +29,7 @@ from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.track import TrackKernelArray
 from moving_bogie.response.quadrature import adapt_panels, subdivide
 
-__all__ = ["BromwichResult", "bromwich_response", "bromwich_shape"]
+__all__ = ["BromwichResult", "bromwich_line", "bromwich_line_shape", "bromwich_response", "bromwich_shape"]
 
 
 class BromwichResult(dict):
@@ -212,16 +212,7 @@ def bromwich_line(
     -------
     dict name -> ndarray like tau
     """
-    if not a > 0:
-        raise MovingBogieError("the Bromwich line needs a > 0")
-    tau = np.atleast_1d(np.asarray(tau, dtype=float))
-    if np.any(tau <= 0) or not np.all(np.isfinite(tau)):
-        raise MovingBogieError("bromwich_line needs finite tau > 0")
-    vehicle = vehicle_module(model, params)
-    kernel = TrackKernelArray(params, foundation=foundation)
-    f = params.as_float()
-    args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
-    d = f.d
+    tau, vehicle, kernel, args, d = _line_setup(params, tau, a, model, foundation)
 
     def transform(s):
         q = np.asarray(s, dtype=float) - 1j * a
@@ -229,21 +220,74 @@ def bromwich_line(
         E = vehicle.e_chr(q, *kv.K, **args)
         return np.stack([n / (1j * q * E) for n in vehicle.numerators(q, *kv.K, **args)], axis=-1)
 
+    x = _line_quadrature(transform, tau, a, s_max, panel_tol)
+    return {name: x[:, k] for k, name in enumerate(vehicle.RESPONSES)}
+
+
+def bromwich_line_shape(
+    params,
+    xi,
+    tau: float,
+    *,
+    model: str = "bogie",
+    a: float = 0.02,
+    s_max: float = 400.0,
+    panel_tol: float = 1e-14,
+    foundation=None,
+) -> np.ndarray:
+    """w(xi, tau) at one time for an array xi by the quadrature of :func:`bromwich_line` (Eq. (28)).
+
+    i q W~(xi, q) = (G_rear K(xi, q) + G_front K(xi - d, q)) / (2 pi E_chr) on the line Im q = -a, every xi
+    at once (the panels adapt to all of them); no residues, no branch cut. Any beam or track model.
+    """
+    tau, vehicle, kernel, args, d = _line_setup(params, tau, a, model, foundation)
+    xi = np.asarray(xi, dtype=float)
+    flat = xi.reshape(-1)
+
+    def transform(s):
+        q = np.asarray(s, dtype=float) - 1j * a
+        with np.errstate(over="ignore", invalid="ignore"):
+            # exponentials of the roots on the unused side may overflow at large |xi|
+            kv = kernel(q, np.concatenate([[0.0, d, -d], flat, flat - d]))
+        K0, Kp, Km = kv.K[:3]
+        Kx, Kxd = np.array(kv.K[3 : 3 + flat.size]), np.array(kv.K[3 + flat.size :])
+        E = vehicle.e_chr(q, K0, Kp, Km, **args)
+        G_r, G_f = vehicle.shape_weights(q, K0, Kp, Km, **args)
+        return ((G_r * Kx + G_f * Kxd) / (2 * np.pi * 1j * q * E)).T
+
+    return _line_quadrature(transform, tau, a, s_max, panel_tol)[0].reshape(xi.shape)
+
+
+def _line_setup(params, tau, a, model, foundation):
+    """(tau array, vehicle module, kernel, vehicle arguments, d) after checking a and the times."""
+    if not a > 0:
+        raise MovingBogieError("the Bromwich line needs a > 0")
+    tau = np.atleast_1d(np.asarray(tau, dtype=float))
+    if np.any(tau <= 0) or not np.all(np.isfinite(tau)):
+        raise MovingBogieError("bromwich_line needs finite tau > 0")
+    vehicle = vehicle_module(model, params)
+    f = params.as_float()
+    args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
+    return tau, vehicle, TrackKernelArray(params, foundation=foundation), args, f.d
+
+
+def _line_quadrature(transform, tau, a, s_max, panel_tol):
+    """(e^{a tau}/pi) Re integral_0^inf transform(s) e^{i s tau} ds, shape (len(tau), columns)."""
     start = [0.0]
     while start[-1] < s_max:
         start.append(min(s_max, start[-1] + min(0.5, 0.05 * max(1.0, start[-1]))))
     scale = np.abs(transform(np.linspace(0.0, 2.0, 64))).max()
     edges = adapt_panels(np.array(start), transform, panel_tol * scale)
     nodes, weights = subdivide(edges, np.ceil(np.diff(edges) * tau.max() / (3 * np.pi)))
-    values = transform(nodes) * weights[:, None]
-    total = np.zeros((tau.size, values.shape[-1]), dtype=complex)
+    total = 0
     for start_n in range(0, nodes.size, 20000):
         sl = slice(start_n, start_n + 20000)
-        total += np.exp(1j * np.multiply.outer(tau, nodes[sl])) @ values[sl]
+        total = total + np.exp(1j * np.multiply.outer(tau, nodes[sl])) @ (
+            transform(nodes[sl]) * weights[sl, None]
+        )
     h = 0.01 * s_max
     F = transform(np.array([s_max - h, s_max, s_max + h]))
     F0, F1, F2 = F[1], (F[2] - F[0]) / (2 * h), (F[2] - 2 * F[1] + F[0]) / h**2
     t = tau[:, None]
-    total += np.exp(1j * s_max * t) * (1j * F0 / t - F1 / t**2 - 1j * F2 / t**3)
-    x = (np.exp(a * tau)[:, None] / np.pi * total).real
-    return {name: x[:, k] for k, name in enumerate(vehicle.RESPONSES)}
+    total = total + np.exp(1j * s_max * t) * (1j * F0 / t - F1 / t**2 - 1j * F2 / t**3)
+    return (np.exp(a * tau)[:, None] / np.pi * total).real

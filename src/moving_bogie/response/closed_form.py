@@ -38,7 +38,13 @@ from moving_bogie.response.cut_integral import branch_cut_for
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
 from moving_bogie.response.shapes import KernelGrid
 
-__all__ = ["TimeSeries", "closed_form_response", "deflection_shape", "branch_cut_extent"]
+__all__ = [
+    "TimeSeries",
+    "branch_cut_extent",
+    "closed_form_response",
+    "deflection_shape",
+    "deflection_shape_details",
+]
 
 DIMENSIONLESS_UNITS = {"tau": "1", "w": "w_st", "u": "w_st", "theta": "w_st chi", "xi": "1"}
 SI_UNITS = {"tau": "s", "w": "m", "u": "m", "theta": "rad", "xi": "m"}
@@ -177,7 +183,8 @@ def branch_cut_extent(
         return 0.0, [f"branch cut skipped: its bound {bound:.2e} is below tol {tol:.1e}"]
     tau_bound = math.log(bound / tol) / bc.eta_f if bc.eta_f > 0 else math.inf
     limit = min(tau_max, tau_bound)
-    period = 2 * math.pi / bc.q_c
+    # a cut that crosses Re q = 0 (a mass layer's curves) has no slowest period: windows [probe, 2 probe]
+    period = 2 * math.pi / bc.q_c if bc.q_c > 0 else math.inf
     probe = _PROBE_START
     while probe < limit:
         if probe > cap:
@@ -185,7 +192,7 @@ def branch_cut_extent(
                 f"branch cut still above tol {tol:.1e} at tau = {cap:g}: included only up to tau = {cap:g}"
             )
             return cap, notes
-        window = probe + np.linspace(0.0, period, 16)
+        window = probe + np.linspace(0.0, min(period, probe), 16)
         values = bc.responses(window, s_min=s_min)
         if max(np.abs(v).max() for v in values.values()) < tol:
             return probe, notes
@@ -242,7 +249,8 @@ def closed_form_response(
     IncompleteFrequencies
         If the frequency count failed (``not frequencies.count_ok``).
     BranchCutUnavailable
-        ``branch_cut=True`` above the critical velocity (the cut reaches q = 0).
+        ``branch_cut=True`` when the cut passes through q = 0 (an undamped track above the critical
+        velocity, an undamped layered track) or stays bounded (a layered track at alpha = 0).
     """
     model = model or params.vehicle
     dimless, scales = _dimensionless(params)
@@ -330,7 +338,20 @@ def _to_si(ts: dict, scales) -> dict:
     return out
 
 
-def deflection_shape(
+def deflection_shape(params, xi, tau: float, **options) -> np.ndarray:
+    """Beam deflection w(xi, tau) at one time for an array of xi, Eqs. (44)-(47) plus the branch cut.
+
+    xi is the moving coordinate (0 at the rear wheel, d at the front one). With physical parameters
+    xi is in metres, tau in seconds and the result in metres. Keywords: ``model``, ``frequencies``,
+    ``branch_cut``, ``dps``, ``bc_tol``, ``bc_tau_cap``, ``quad_tol`` as in :func:`closed_form_response`
+    (``auto`` applies the same rule at this single time), and ``expansion`` (a precomputed
+    :class:`ResidueExpansion` with shapes). :func:`deflection_shape_details` also says whether I_bc was
+    included.
+    """
+    return deflection_shape_details(params, xi, tau, **options)[0]
+
+
+def deflection_shape_details(
     params,
     xi,
     tau: float,
@@ -343,13 +364,8 @@ def deflection_shape(
     bc_tau_cap: float = 1e4,
     quad_tol: float = 1e-10,
     expansion: ResidueExpansion | None = None,
-) -> np.ndarray:
-    """Beam deflection w(xi, tau) at one time for an array of xi, Eqs. (44)-(47) plus the branch cut.
-
-    xi is the moving coordinate (0 at the rear wheel, d at the front one). With physical parameters
-    xi is in metres, tau in seconds and the result in metres. ``branch_cut`` and the tolerances are as
-    in :func:`closed_form_response`; ``auto`` applies the same rule at this single time.
-    """
+) -> tuple[np.ndarray, bool, tuple]:
+    """(w, branch_cut, notes): :func:`deflection_shape`, whether I_bc was included, and why not."""
     model = model or params.vehicle
     dimless, scales = _dimensionless(params)
     xi = np.asarray(xi, dtype=float)
@@ -360,7 +376,7 @@ def deflection_shape(
     if not (math.isfinite(tau) and tau >= 0):
         raise ParameterError("tau", "tau must be finite and >= 0")
     mode = _branch_cut_mode(branch_cut)
-    bc, _ = _branch_cut_or_note(dimless, model, mode)
+    bc, notes = _branch_cut_or_note(dimless, model, mode)
     result = _frequencies(dimless, model, frequencies, dps, None)
     if expansion is None:
         expansion = residue_expansion(dimless, result, model, shapes=True)
@@ -375,14 +391,18 @@ def deflection_shape(
     if w.size and np.abs(w.imag).max() > 1e-8 * max(scale, 1.0):
         raise MovingBogieError(f"deflection shape: imaginary part {np.abs(w.imag).max():.3g} does not cancel")
     w = w.real
+    include = False
     if bc is not None and flat.size:
         s_min = _s_min(bc, expansion)
         include = mode == "on"
         if not include:
             ref = max(abs(expansion.steady["w_rear"]), abs(expansion.steady["w_front"]), 1e-300)
-            until, _ = branch_cut_extent(bc, tau, tol=bc_tol * ref, cap=bc_tau_cap, s_min=s_min)
+            until, more = branch_cut_extent(bc, tau, tol=bc_tol * ref, cap=bc_tau_cap, s_min=s_min)
             include = tau <= until
+            notes += (
+                more if include else [*more, f"branch cut below tol {bc_tol:.1e} of the steady deflection"]
+            )
         if include:
             w = w + bc.shape(flat, tau, tol=quad_tol, s_min=s_min)
     w = w.reshape(xi.shape)
-    return scales.deflection(w) if scales is not None else w
+    return (scales.deflection(w) if scales is not None else w), bool(include), tuple(notes)

@@ -13,14 +13,20 @@ N(., q) (a point where curves coincide or cross, e.g. the two halves of the Eule
 by the same rule, and each point of the cut is counted once by the weight 1/(number of real roots). The
 parametrisation by p removes the square-root singularity of a cusp (q' = 0 there), and needs no
 geometry of the cut: folds, lenses and the Timoshenko-Rayleigh curve near |Re q| = sqrt(S)/r all enter
-as they are. By the mirror symmetry f(-conj q) = conj f(q) only the curves in Re q > 0 are integrated,
-I_bc = (1/pi) Re sum over them.
+as they are. By the mirror symmetry f(-conj q) = conj f(q) only the pieces of the curves with Re q >= 0
+are integrated, I_bc = (1/pi) Re sum over them: a curve that crosses Re q = 0 (a layered track's mass
+layer, whose curves sweep across all Re q; a damped track above the critical velocity) is split there,
+and that end of a piece is an interior point of the cut whose mirror piece continues it (no tail term).
+A cut through q = 0 itself (the pole of the steady part) is refused, and so is a curve that stays
+bounded in Re q > 0 (a mass layer at alpha = 0).
 
 Quadrature: composite 16-point Gauss-Legendre in p, panels first adapted to the non-oscillating integrand
 (halved until the panel integral changes by less than ``panel_tol``), then subdivided to at most 3 pi of
-phase Re q tau and 2 radians of e^{i p xi}. Each curve is truncated where Re q = S at both ends; the
-tails are integrated by parts along the curve, e^{i q tau}(i F/tau - F'/tau^2 - i F''/tau^3) with F' in q
-by divided differences, and S is chosen like the Euler-Bernoulli integral's (:mod:`branch_cut`).
+phase Re q tau and 2 radians of e^{i p xi}. Each piece is truncated where Re q = S at its far ends (where
+Re q grows without bound); the tails are integrated by parts along the curve, e^{i q tau}(i F/tau -
+F'/tau^2 - i F''/tau^3) with F' in q by divided differences, and S is chosen per piece like the
+Euler-Bernoulli integral's (:mod:`branch_cut`): a mass layer's jump falls like p^-8 while its Re q grows
+only like alpha p, so its pieces stop at a small S.
 """
 
 from __future__ import annotations
@@ -30,9 +36,10 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.cut import CutTracer, trace_curves
-from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
+from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
+from moving_bogie.response.cut_pieces import cut_pieces, roots_along
 from moving_bogie.response.quadrature import adapt_panels, by_bands, fourier_sum, subdivide
 
 __all__ = ["CurveBranchCut", "branch_cut_for"]
@@ -41,51 +48,28 @@ _PANEL_PHASE = 3 * np.pi
 _PANEL_XI = 2.0
 _S_STEPS = tuple(2.0**k for k in range(1, 14))
 _REACH = 2.0**14
+#: Jump values kept for reuse across bands of times: entries, and only for this many columns (responses).
+_CACHE_ENTRIES = 64
+_CACHE_COLUMNS = 8
+_CHUNK = 20000
+#: A root of N(., q) counts as real (another curve through the same q) when |Im p| <= this * max(1, |p|):
+#: the rounding of coinciding curves (the two halves of the Euler-Bernoulli ray), not curves that only
+#: approach each other (the halves of a layered track's lens and its mass-layer curves converge like a
+#: power of 1/p; merging them at 1e-9 left errors of 1e-8 w_st in the deflection shape).
+_REAL_TOL = 1e-12
 
 
 def branch_cut_for(params, model: str = "bogie", *, foundation=None):
-    """The branch-cut integral of ``params``: :class:`BranchCut` for the Euler-Bernoulli beam (its cut is a
-    half-line, integrated in closed geometry), :class:`CurveBranchCut` for any other model."""
+    """The branch-cut integral of ``params``: :class:`BranchCut` for the Euler-Bernoulli beam below the
+    critical velocity (its cut is a half-line, integrated in closed geometry), :class:`CurveBranchCut` for
+    any other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut
+    passes through q = 0, e.g. eta_f = 0)."""
     if foundation is None and (params.beam, params.track) == ("eb", "one-layer"):
-        return BranchCut(params, model)
+        try:
+            return BranchCut(params, model)
+        except BranchCutUnavailable:
+            pass  # above the critical velocity: the traced cut crosses Re q = 0 above q = 0 when damped
     return CurveBranchCut(params, model, foundation=foundation)
-
-
-class _Curve:
-    """One traced curve q(p) (samples ``p`` increasing, ``q``), evaluated exactly by Newton."""
-
-    def __init__(self, tracer, p, q):
-        self.tracer, self.p, self.q = tracer, p, q
-        self._ends: dict = {}
-        self.x_min = float(q.real.min())
-
-    def q_at(self, p):
-        p = np.asarray(p, dtype=float)
-        guess = np.interp(p, self.p, self.q.real) + 1j * np.interp(p, self.p, self.q.imag)
-        return self.tracer.refine(p, guess)
-
-    def p_ends(self, S):
-        """(p_lo, p_hi): the outermost p on each side where Re q = S (Re q > S beyond)."""
-        if S not in self._ends:
-            self._ends[S] = self._find_ends(S)
-        return self._ends[S]
-
-    def _find_ends(self, S):
-        """Both crossings of Re q = S: bracketed by the samples, then safeguarded Newton (vectorised)."""
-        x = self.q.real
-        inside = np.nonzero(x <= S)[0]
-        k = np.array([inside[0] - 1, inside[-1]])  # the crossing lies in [p_k, p_k+1]
-        a, b = self.p[k], self.p[k + 1]
-        p = a + (S - x[k]) * (b - a) / (x[k + 1] - x[k])
-        for _ in range(30):
-            q = self.q_at(p)
-            step = (q.real - S) / self.tracer.dq_dp(p, q).real
-            new = np.clip(p - step, a, b)
-            if np.all(np.abs(new - p) <= 1e-14 * np.maximum(1.0, np.abs(p))):
-                p = new
-                break
-            p = new
-        return float(p[0]), float(p[1])
 
 
 class CurveBranchCut:
@@ -98,7 +82,8 @@ class CurveBranchCut:
     Raises
     ------
     BranchCutUnavailable
-        When the cut reaches Re q = 0 (supercritical velocity: no gap around the steady state).
+        When the cut passes through q = 0 (no steady state: an undamped track above the critical velocity,
+        an undamped layered track), or a curve stays bounded in Re q > 0 (a layered track at alpha = 0).
     """
 
     def __init__(self, params, model: str = "bogie", *, foundation=None, panel_tol: float = 1e-13):
@@ -119,29 +104,22 @@ class CurveBranchCut:
         outer = np.geomspace(8.0, max(P, 16.0), 400)
         grid = np.unique(np.concatenate([-outer[::-1], np.linspace(-8.0, 8.0, 2001), outer]))
         ps, Q = trace_curves(self.tracer, -P, P, grid=grid)
-        self.curves = []
-        for j in range(Q.shape[1]):
-            x = Q[:, j].real
-            if np.all(x > 0):
-                self.curves.append(_Curve(self.tracer, ps, Q[:, j]))
-            elif not np.all(x < 0):
-                raise BranchCutUnavailable(
-                    "the cut of K reaches Re q = 0: supercritical velocity, no gap around the steady state"
-                )
-        if not self.curves:
+        self.pieces = [piece for j in range(Q.shape[1]) for piece in cut_pieces(self.tracer, ps, Q[:, j])]
+        if not self.pieces:
             raise BranchCutUnavailable("the cut of K has no curve in Re q > 0")
-        self.q_c = float(min(c.q.real.min() for c in self.curves))
-        self.eta_f = max(0.0, float(min(c.q.imag.min() for c in self.curves)))
+        self.q_c = float(min(c.x_min for c in self.pieces))
+        self.eta_f = max(0.0, float(min(c.q.imag.min() for c in self.pieces)))
         self._base: dict = {}
+        self._cache: dict = {}
 
     # --- the jump ------------------------------------------------------------------------------
     def _sides(self, p, q, t):
         """Roots P of N(., q), weights Q/N', and which roots count as upper on the right/left side."""
         n = stack_coefficients(self.module.n_coeffs(q, **self.fargs), q.shape)
-        P = poly_roots(n)
+        P = roots_along(n)
         own = np.argmin(np.abs(P - p[:, None]), axis=-1)
         P[np.arange(p.size), own] = p
-        real = np.abs(P.imag) <= 1e-9 * np.maximum(1.0, np.abs(P))
+        real = np.abs(P.imag) <= _REAL_TOL * np.maximum(1.0, np.abs(P))
         P = np.where(real, P.real + 0j, P)
         Np = polyval(polyder(n), P)
         Nq = polyval(stack_coefficients(self.module.n_coeffs_dq(q, **self.fargs), q.shape), P)
@@ -155,121 +133,152 @@ class CurveBranchCut:
     def _kernel(P, W, upper, xi):
         """K(xi, q) from the roots with the given side assignment, shape (nodes, len(xi))."""
         xi = np.asarray(xi, dtype=float)
-        e = np.exp(1j * P[:, :, None] * xi) * W[:, :, None]
         pos = xi >= 0
         mask = np.where(pos[None, None, :], upper[:, :, None], ~upper[:, :, None])
+        # the roots of the other side are not evaluated (their exponentials may overflow at large |xi|)
+        e = np.exp(1j * np.where(mask, P[:, :, None], 0) * xi) * W[:, :, None]
         return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, e, 0), axis=1)
 
-    def _jump(self, curve, p, xi=None):
-        """(q, J): J = (X~_right - X~_left) q'(p) / (number of real roots), per response (or W~ at xi)."""
+    def _jump(self, piece, p, xi=None):
+        """(q, J): J = (X~_right - X~_left) q'(p) / (number of real roots), per response (or W~ at xi).
+
+        At a node on a cusp (a double real root: W infinite, q' = 0) J is the mean of its values at
+        p +- 1e-6 max(1, |p|) (J is smooth in p there)."""
         p = np.asarray(p, dtype=float)
-        q = curve.q_at(p)
+        q = piece.q_at(p)
         t = self.tracer.dq_dp(p, q)
-        P, W, right, left, m = self._sides(p, q, t)
-        contact = np.array([0.0, self.d, -self.d])
-        out = []
-        for upper in (right, left):
-            K0, Kp, Km = self._kernel(P, W, upper, contact).T
-            E = self.vehicle.e_chr(q, K0, Kp, Km, **self.vargs)
-            if xi is None:
-                nums = self.vehicle.numerators(q, K0, Kp, Km, **self.vargs)
-                out.append(np.stack([n / (1j * q * E) for n in nums], axis=-1))
-            else:
-                G_r, G_f = self.vehicle.shape_weights(q, K0, Kp, Km, **self.vargs)
-                den = 2 * np.pi * 1j * q * E
-                Kx, Kxd = self._kernel(P, W, upper, xi), self._kernel(P, W, upper, xi - self.d)
-                out.append((G_r / den)[:, None] * Kx + (G_f / den)[:, None] * Kxd)
-        return q, (out[0] - out[1]) * (t / m)[:, None]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            P, W, right, left, m = self._sides(p, q, t)
+            contact = np.array([0.0, self.d, -self.d])
+            out = []
+            for upper in (right, left):
+                K0, Kp, Km = self._kernel(P, W, upper, contact).T
+                E = self.vehicle.e_chr(q, K0, Kp, Km, **self.vargs)
+                if xi is None:
+                    nums = self.vehicle.numerators(q, K0, Kp, Km, **self.vargs)
+                    out.append(np.stack([n / (1j * q * E) for n in nums], axis=-1))
+                else:
+                    G_r, G_f = self.vehicle.shape_weights(q, K0, Kp, Km, **self.vargs)
+                    den = 2 * np.pi * 1j * q * E
+                    Kx, Kxd = self._kernel(P, W, upper, xi), self._kernel(P, W, upper, xi - self.d)
+                    out.append((G_r / den)[:, None] * Kx + (G_f / den)[:, None] * Kxd)
+            J = (out[0] - out[1]) * (t / m)[:, None]
+        cusp = ~np.all(np.isfinite(J), axis=-1)
+        if np.any(cusp):
+            h = 1e-6 * np.maximum(1.0, np.abs(p[cusp]))
+            J[cusp] = 0.5 * (self._jump(piece, p[cusp] - h, xi)[1] + self._jump(piece, p[cusp] + h, xi)[1])
+        return q, J
 
     # --- quadrature ----------------------------------------------------------------------------
-    def _panels(self, curve, S, channel):
-        key = (id(curve), S, channel)
+    def _panels(self, piece, S, channel):
+        key = (id(piece), S, channel)
         if key in self._base:
             return self._base[key]
-        p_lo, p_hi = curve.p_ends(S)
+        p_lo, p_hi = piece.p_ends(S)
         for (cid, S2, ch), edges in self._base.items():
-            if cid == id(curve) and ch == channel and S2 >= S:  # reuse the partition of a longer range
+            if cid == id(piece) and ch == channel and S2 >= S:  # reuse the partition of a longer range
                 keep = edges[(edges > p_lo) & (edges < p_hi)]
                 return np.concatenate([[p_lo], keep, [p_hi]])
         # start: panels of at most 0.5 in p and 5 % of max(1, Re q) along the curve (as for the half-line)
         P = np.linspace(p_lo, p_hi, 4000)
-        q = curve.q_at(P)
+        q = piece.q_at(P)
         density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
         cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
         start = np.interp(np.linspace(0.0, cum[-1], max(2, int(np.ceil(cum[-1]))) + 1), cum, P)
-        edges = adapt_panels(start, lambda nodes: channel(curve, nodes)[1], self.panel_tol)
+        edges = adapt_panels(start, lambda nodes: channel(piece, nodes)[1], self.panel_tol)
         self._base[key] = edges
         return self._base[key]
 
-    def _rule(self, curve, S, tau_hi, xi_max, channel):
-        edges = self._panels(curve, S, channel)
-        x = curve.q_at(edges).real
+    def _rule(self, piece, S, tau_hi, xi_max, channel):
+        edges = self._panels(piece, S, channel)
+        x = piece.q_at(edges).real
         phase = tau_hi * np.abs(np.diff(x)) / _PANEL_PHASE
         return subdivide(edges, np.ceil(np.maximum(phase, np.diff(edges) * (abs(xi_max) + 1.0) / _PANEL_XI)))
 
-    def _end_terms(self, curve, S, channel):
-        """Per end of the curve (lower, upper): (q, F, F', F'') of the jump F along the curve, in q."""
+    def _end_terms(self, piece, S, channel):
+        """Per far end of the piece: (sign, q, F, F', F'') of the jump F along the curve, in q."""
         out = []
-        for p_end in curve.p_ends(S):
+        for sign, p_end in piece.far_ends(S):
             h = 1e-3 * max(1.0, abs(p_end))
             ps = np.array([p_end - h, p_end, p_end + h])
-            q, F = channel(curve, ps)
+            q, F = channel(piece, ps)
             F = F / self.tracer.dq_dp(ps, q)[:, None]  # the jump itself, as a function of q
             d01 = (F[1] - F[0]) / (q[1] - q[0])
             d12 = (F[2] - F[1]) / (q[2] - q[1])
             d012 = (d12 - d01) / (q[2] - q[0])
-            out.append((q[1], F[1], d01 + d012 * (q[1] - q[0]), 2 * d012))
+            out.append((sign, q[1], F[1], d01 + d012 * (q[1] - q[0]), 2 * d012))
         return out
 
-    def _tails(self, curve, S, channel, ts):
-        """Both truncated ends, integrated by parts along the curve (outward from each end)."""
+    def _tails(self, piece, S, channel, ts):
+        """The truncated ends, integrated by parts along the curve (outward from each end)."""
         total = 0
         tt = ts[:, None]
-        for sign, (q, F0, F1, F2) in zip((-1, 1), self._end_terms(curve, S, channel)):
+        for sign, q, F0, F1, F2 in self._end_terms(piece, S, channel):
             total = total + sign * np.exp(1j * q * tt) * (1j * F0 / tt - F1 / tt**2 - 1j * F2 / tt**3)
         return total
 
     def choose_S(self, channel, tau_lo, tol, s_min=None):
-        """Truncation Re q = S of every curve, as for the Euler-Bernoulli cut (:mod:`branch_cut`): for
-        tau_lo > 0 the first neglected term of the tails, |F''|/tau_lo^3, below ``tol``; for the first band
-        the neglected integral, estimated as |F| S, below ``tol``."""
-        # every curve must reach below S (a curve wholly beyond S has no end to integrate by parts from)
+        """Truncation Re q = S of each piece (a tuple), as for the Euler-Bernoulli cut (:mod:`branch_cut`):
+        for tau_lo > 0 the first neglected term of its tails, |F''|/tau_lo^3, below its share of ``tol``;
+        for the first band the neglected integral, estimated as |F| S, below it. S stays within the traced
+        range of the far ends and above every induced frequency's Re q (``s_min``), so that the tails,
+        integrated by parts, pass no pole."""
+        share = tol / len(self.pieces)
         lowest = self.q_c if s_min is None else max(self.q_c, s_min)
-        floor = max([lowest] + [c.x_min + 1.0 for c in self.curves])
-        S = floor
-        for step in _S_STEPS:
-            S = floor + step
-            est = 0.0
-            for curve in self.curves:
-                for _, F0, _, F2 in self._end_terms(curve, S, channel):
+        out = []
+        for piece in self.pieces:
+            # the piece must reach below S (a piece wholly beyond S has no end to integrate by parts from)
+            floor = max(lowest, piece.x_min + 1.0)
+            top = min([piece.q.real[0]] * piece.far[0] + [piece.q.real[-1]] * piece.far[1] + [np.inf])
+            S = floor
+            for step in _S_STEPS:
+                if floor + step >= top:
+                    break
+                S = floor + step
+                est = 0.0
+                for _, _, F0, _, F2 in self._end_terms(piece, S, channel):
                     est += float(np.abs(F2).max()) / tau_lo**3 if tau_lo > 0 else float(np.abs(F0).max()) * S
-            if est <= tol:
-                return S
-        return S
+                if est <= share:
+                    break
+            out.append(S)
+        return tuple(out)
+
+    def _values(self, piece, nodes, channel, m):
+        """(q, J) at the nodes of a rule; a band of times whose rule is that of an earlier band (panels
+        set by e^{i p xi} rather than by the phase) reuses its values (time series only: m small)."""
+        key = (id(piece), channel, nodes.size, hash(nodes.tobytes()))
+        if key in self._cache:
+            return self._cache[key]
+        parts = [channel(piece, nodes[k : k + _CHUNK]) for k in range(0, nodes.size, _CHUNK)]
+        value = np.concatenate([v[0] for v in parts]), np.concatenate([v[1] for v in parts])
+        if m <= _CACHE_COLUMNS:
+            if len(self._cache) >= _CACHE_ENTRIES:
+                self._cache.pop(next(iter(self._cache)))
+            self._cache[key] = value
+        return value
 
     def integrate(self, tau, channel, *, tol=1e-10, s_min=None, xi_max=None):
-        """I_bc(tau) per channel column: (1/pi) Re sum over the curves of integral J e^{i q tau} dp."""
+        """I_bc(tau) per channel column: (1/pi) Re sum over the pieces of integral J e^{i q tau} dp."""
         tau = np.asarray(tau, dtype=float)
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
         xi_max = self.d if xi_max is None else xi_max
-        mid = self.curves[0].p[self.curves[0].p.size // 2]
-        m = channel(self.curves[0], np.array([mid]))[1].shape[-1]
+        first = self.pieces[0]
+        m = channel(first, np.array([0.5 * (first.p_lo + first.p_hi)]))[1].shape[-1]
 
         def band(lo, ts):
-            S = self.choose_S(channel, lo, tol, s_min)
             acc = np.zeros((ts.size, m), dtype=complex)
-            for curve in self.curves:
-                nodes, weights = self._rule(curve, S, float(ts.max()), xi_max, channel)
+            for piece, S in zip(self.pieces, self.choose_S(channel, lo, tol, s_min)):
+                nodes, weights = self._rule(piece, S, float(ts.max()), xi_max, channel)
+                q, J = self._values(piece, nodes, channel, m)
 
-                def weighted(chunk, w, curve=curve):
-                    q, J = channel(curve, chunk)
-                    return q, J * w[:, None]
+                def weighted(idx, w, q=q, J=J):
+                    return q[idx], J[idx] * w[:, None]
 
-                q_max = float(np.abs(curve.q_at(nodes)).max())
-                acc += fourier_sum(ts, nodes, weights, weighted, m, q_max, None)
+                q_max = float(np.abs(q).max())
+                acc += fourier_sum(ts, np.arange(nodes.size), weights, weighted, m, q_max, None)
                 if lo > 0:
-                    acc += self._tails(curve, S, channel, ts)
+                    acc += self._tails(piece, S, channel, ts)
             return acc
 
         return by_bands(tau, m, band)
@@ -285,7 +294,7 @@ class CurveBranchCut:
         flat = xi.reshape(-1)
         values = self.integrate(
             np.array([float(tau)]),
-            lambda curve, p: self._jump(curve, p, flat),
+            lambda piece, p: self._jump(piece, p, flat),
             tol=tol,
             s_min=s_min,
             xi_max=float(np.max(np.abs(np.concatenate([flat, flat - self.d])))),
@@ -294,9 +303,8 @@ class CurveBranchCut:
 
     def l1_bound(self, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
         """(1/pi) sum of integrals of |J| dp: |I_bc(tau)| <= this * e^{-eta_f tau} for every tau."""
-        S = self.choose_S(self._jump, 0.0, tol, s_min)
         total = 0.0
-        for curve in self.curves:
-            nodes, weights = self._rule(curve, S, 0.0, self.d, self._jump)
-            total = total + (np.abs(self._jump(curve, nodes)[1]) * weights[:, None]).sum(axis=0) / np.pi
+        for piece, S in zip(self.pieces, self.choose_S(self._jump, 0.0, tol, s_min)):
+            nodes, weights = self._rule(piece, S, 0.0, self.d, self._jump)
+            total = total + (np.abs(self._jump(piece, nodes)[1]) * weights[:, None]).sum(axis=0) / np.pi
         return {name: float(total[k]) for k, name in enumerate(self.names)}

@@ -24,7 +24,16 @@ from moving_bogie.roots.window import default_window
 from moving_bogie.stability.column_count import count_box
 from moving_bogie.stability.column_roots import delves_lyness, dip_candidates, locate_roots
 
-__all__ = ["ColumnResult", "column_window", "exact", "settle_cells", "stability_column", "top_edge"]
+__all__ = [
+    "ColumnResult",
+    "branch_points",
+    "branch_samples",
+    "column_window",
+    "exact",
+    "settle_cells",
+    "stability_column",
+    "top_edge",
+]
 
 
 @dataclass(frozen=True)
@@ -80,6 +89,7 @@ def stability_column(
     min_spacing: float = 1e-10,
     polish: int = 10,
     guesses: Sequence | None = None,
+    extra: Sequence[float] | None = None,
 ) -> ColumnResult:
     """Unstable induced frequencies for every theta of ``thetas`` at one alpha (see the module text).
 
@@ -108,6 +118,9 @@ def stability_column(
         by then is dropped).
     guesses : sequence of arrays, optional
         Extra starting points per theta (the unstable roots of the neighbouring column).
+    extra : sequence of float, optional
+        Extra samples (values of Re q) of the counting rectangle's top edge. Default: when ``top`` < 0 (the
+        cut of K reaches the real axis), :func:`branch_samples` around the branch points of K on the axis.
     """
     thetas = np.asarray(thetas, dtype=float)
     scale = float(thetas.max())
@@ -116,6 +129,8 @@ def stability_column(
     if window is None:
         *window, fine_until = column_window(sweep.params, sweep.model, sweep.parameter, thetas)
     X, Y = window
+    if extra is None and top < 0:
+        extra = branch_samples(branch_points(sweep.params, alpha))
     if moment_top is None:
         moment_top = top + 0.4 * float(sweep.params.eta_f)
 
@@ -127,7 +142,9 @@ def stability_column(
         K, _, _ = sweep.kernel(z, alpha)
         return sweep.coefficients(z, K, scale=scale), None
 
-    box = count_box(count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend, fine_until)
+    box = count_box(
+        count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend, fine_until, extra
+    )
     total = np.rint(box.n_rect).astype(int) + box.n_axis
     uncertain = box.uncertain | ((total % 2) != 0)
     count = np.maximum(total // 2, 0)
@@ -211,3 +228,26 @@ def top_edge(params, alphas) -> float:
         if cut.points.size:
             lowest = min(lowest, cut.im_low)
     return 0.0 if lowest > 1e-6 else min(0.0, lowest) - 1e-7
+
+
+def branch_points(params, alpha) -> list:
+    """Re q > 0 of the branch points of K on the real axis (cusps and folds of the cut there), ascending."""
+    cut = cut_locus(params.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801)
+    xs = [f.q.real for f in cut.folds if f.q.real > 0 and abs(f.q.imag) < 1e-9]
+    if np.isfinite(cut.x_start) and cut.x_start > 0 and abs(cut.im_low) < 1e-9:
+        xs.append(cut.x_start)
+    out = []
+    for x in sorted(xs):
+        if not out or x - out[-1] > 1e-9:
+            out.append(float(x))
+    return out
+
+
+def branch_samples(points) -> np.ndarray | None:
+    """Top-edge samples 1e-8 to 1e-2 on both sides of each branch point: K grows like the inverse square
+    root of the distance there, so E changes on the scale of the distance (a root 2e-4 below the axis next
+    to one was missed with the regular samples alone)."""
+    if not points:
+        return None
+    d = np.geomspace(1e-8, 1e-2, 25)
+    return np.concatenate([np.concatenate([x - d[::-1], [x], x + d]) for x in points])

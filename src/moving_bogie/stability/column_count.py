@@ -84,15 +84,17 @@ def _bent(E: np.ndarray, max_bend: float) -> np.ndarray:
 
 
 def count_box(
-    coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend=0.5, fine_until=None
+    coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend=0.5, fine_until=None, extra=None
 ) -> BoxCount:
     """Sample the right half-boundary and count the roots in the rectangle for every t (module text).
 
     ``coeffs(z)`` returns the coefficients of E in t at the points z (first element of a pair). The top
     edge is sampled at ``spacing`` for Re q <= ``fine_until`` (default X) and at ``coarse`` beyond, where
-    the refinement alone resolves roots near the axis. The new point of a halved segment has its track
-    kernel computed once for every row that needs it; the change of arg E is the sum of the steps over
-    each row's leaves.
+    the refinement alone resolves roots near the axis. ``extra`` (values of Re q) are added to the top
+    edge's samples: dense samples around a branch point of K lying on or just above it (eta_f = 0), where
+    K grows like its inverse square root and E changes on the scale of the distance. The new point of a
+    halved segment has its track kernel computed once for every row that needs it; the change of arg E is
+    the sum of the steps over each row's leaves.
     """
     outer = np.concatenate(
         [
@@ -108,6 +110,11 @@ def count_box(
             [complex(0, top)],
         ]
     )
+    if extra is not None and len(extra):
+        x = np.asarray(extra, dtype=float)
+        x = np.unique(np.concatenate([z0.real, x[(x > 0) & (x < X)]]))
+        x = x[np.concatenate([[True], np.diff(x) > 10 * min_spacing])]  # no two closer than the finest
+        z0 = x[::-1] + 1j * top
     axis = np.append(edge_samples(complex(0, top), complex(0, -Y), coarse), complex(0, -Y))
     path = np.concatenate([outer, z0])
     T = t[:, None]

@@ -8,6 +8,13 @@ cross-check, the D-decomposition's own count (rule of hatching from one referenc
 the argument principle on a grid of kappa_v. The critical stiffnesses are the kappa_v where the bogie
 passes from stable to unstable; the result lists every stable/unstable interval as well.
 
+On an undamped or near-undamped foundation (eta_f < :data:`~moving_bogie.stability.undamped.NEAR_UNDAMPED`)
+the D-decomposition degenerates (real induced frequencies fill whole kappa_v intervals, :mod:`undamped`):
+the intervals then come from root counts on a grid of ``check_points`` values of kappa_v, every change
+bisected to ``tol``; ``intervals`` are the counts at eta_f = 0 exactly (K on the cut from below) when
+eta_f = 0, and the limit eta_f -> 0+ (real roots that small foundation damping destabilises counted as
+unstable) when 0 < eta_f < NEAR_UNDAMPED; ``limit_intervals`` always hold the limit.
+
 The function is general (any parameter set, Euler-Bernoulli or Timoshenko-Rayleigh beam, bogie only since
 two masses have no suspension). The paper's Figure 16 uses the data of its ref. [48] (Verichev &
 Metrikine 2002), which the paper does not give in full; :func:`figure16_params` is the documented stand-in
@@ -26,6 +33,14 @@ from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.column import stability_column
 from moving_bogie.stability.d_decomposition import d_decomposition
+from moving_bogie.stability.undamped import (
+    CONVENTION,
+    UndampedCounter,
+    boundaries,
+    parameter_grid,
+    regime,
+    uncertain_warning,
+)
 
 __all__ = ["CriticalStiffness", "critical_stiffness", "figure16_params"]
 
@@ -42,7 +57,8 @@ class CriticalStiffness:
     critical : tuple
         Per alpha, the kappa_v values (sorted) where the count changes between 0 and > 0.
     mismatches : int
-        Grid points where the D-decomposition count and the argument-principle count disagree (0 expected).
+        Grid points where the D-decomposition count and the argument-principle count disagree (0 expected;
+        0 and not computed on an undamped or near-undamped foundation, where there is no D-decomposition).
     """
 
     params: object
@@ -52,6 +68,13 @@ class CriticalStiffness:
     critical: tuple
     mismatches: int
     warnings: tuple = field(default=())
+    method: str = "D-decomposition in kappa_v, counts by the argument principle"
+    limit_intervals: tuple | None = None  # undamped regimes: counts in the limit eta_f -> 0+
+
+    @property
+    def regime(self) -> str:
+        """ "damped", "undamped" (eta_f = 0) or "near-undamped" (see :func:`~.undamped.regime`)."""
+        return regime(self.params.eta_f)
 
     def lowest_critical(self) -> np.ndarray:
         """Per alpha: the smallest kappa_v in (0, kappa_max] at which the bogie is unstable (nan if none)."""
@@ -77,6 +100,19 @@ class CriticalStiffness:
             ],
             "mismatches": self.mismatches,
             "warnings": list(self.warnings),
+            "regime": self.regime,
+            "method": self.method,
+            **(
+                {}
+                if self.limit_intervals is None
+                else {
+                    "convention": CONVENTION,
+                    "limit_intervals": [
+                        [{"kappa_low": lo, "kappa_high": hi, "unstable": int(n)} for lo, hi, n in ivs]
+                        for ivs in self.limit_intervals
+                    ],
+                }
+            ),
         }
 
 
@@ -112,6 +148,7 @@ def critical_stiffness(
     q_max: float = 1.5,
     samples: int = 4000,
     check_points: int = 40,
+    tol: float = 1e-6,
     progress: Callable[[float], None] | None = None,
 ) -> CriticalStiffness:
     """Critical primary-suspension stiffness kappa_v of the bogie as a function of alpha (Figure 16).
@@ -119,7 +156,8 @@ def critical_stiffness(
     Parameters
     ----------
     params : DimensionlessParams
-        Bogie and track (kappa_v and alpha of ``params`` are ignored); eta_f > 0.
+        Bogie and track (kappa_v and alpha of ``params`` are ignored). eta_f = 0 and
+        0 < eta_f < NEAR_UNDAMPED are handled as the module text says.
     alphas : sequence of float
     kappa_max : float
         Upper end of the kappa_v range.
@@ -127,10 +165,15 @@ def critical_stiffness(
         Sampling of the real q-axis by the D-decomposition.
     check_points : int
         kappa_v grid on which the argument-principle count is computed: the first point is the reference
-        of the D-decomposition count, all are compared with it.
+        of the D-decomposition count, all are compared with it. Undamped regimes: the grid of the counts
+        (a change between two grid values is found; two changes within one grid step can be missed).
+    tol : float
+        Undamped regimes: bisection tolerance of each change, relative to ``kappa_max``.
     progress : callable, optional
     """
     alphas = np.asarray(alphas, dtype=float)
+    if regime(params.eta_f) != "damped":
+        return _undamped(params, alphas, kappa_max, check_points, tol, progress)
     sweep = SweepCharacteristic(params, "bogie", "kappa_v")
     kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
     intervals, critical, warnings = [], [], []
@@ -169,4 +212,57 @@ def critical_stiffness(
             progress((k + 1) / len(alphas))
     return CriticalStiffness(
         params, alphas, float(kappa_max), tuple(intervals), tuple(critical), mismatches, tuple(warnings)
+    )
+
+
+def _intervals(bounds, column, kind, kappa_max):
+    """(low, high, count) intervals over [first grid value, kappa_max] from the boundaries of one kind."""
+    counts = getattr(column, kind)
+    edges = [float(column.thetas[0])] + [b.theta for b in bounds if b.kind == kind] + [float(kappa_max)]
+    ns = [int(counts[0])] + [b.count_above for b in bounds if b.kind == kind]
+    return tuple((float(lo), float(hi), n) for lo, hi, n in zip(edges[:-1], edges[1:], ns))
+
+
+def _critical(ivs):
+    return tuple(hi for (lo, hi, n), (_, _, m) in zip(ivs[:-1], ivs[1:]) if (n == 0) != (m == 0))
+
+
+def _undamped(params, alphas, kappa_max, check_points, tol, progress) -> CriticalStiffness:
+    """Counts on a kappa_v grid and bisection (:mod:`undamped`), exact at eta_f = 0 and in the limit."""
+    margin = 100 * float(params.eta_f)
+    counter = UndampedCounter(params, "bogie", "kappa_v", margin=margin)
+    unsure = {}
+    grid = parameter_grid(kappa_max, check_points)
+    kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"
+    intervals, limits, critical, warnings = [], [], [], []
+    for k, a in enumerate(alphas):
+        bounds, column, unsure[float(a)] = boundaries(counter, float(a), grid, tol=tol * kappa_max)
+        ivs = _intervals(bounds, column, kind, kappa_max)
+        intervals.append(ivs)
+        limits.append(_intervals(bounds, column, "limit", kappa_max))
+        critical.append(_critical(ivs))
+        if progress is not None:
+            progress((k + 1) / len(alphas))
+    warnings += uncertain_warning("", unsure, margin)
+    what = (
+        "at eta_f = 0"
+        if kind == "undamped"
+        else f"in the limit eta_f -> 0+ (eta_f = {float(params.eta_f):g})"
+    )
+    method = (
+        f"{'undamped' if kind == 'undamped' else 'near-undamped'} foundation: unstable counts {what} on "
+        f"{check_points} kappa_v values (argument principle, K on the cut from below; real roots in the gap "
+        f"counted unstable in the limit when small foundation damping destabilises them), every change "
+        f"bisected to {tol * kappa_max:.2g}; the D-decomposition degenerates there"
+    )
+    return CriticalStiffness(
+        params,
+        alphas,
+        float(kappa_max),
+        tuple(intervals),
+        tuple(critical),
+        0,
+        tuple(warnings),
+        method,
+        tuple(limits),
     )

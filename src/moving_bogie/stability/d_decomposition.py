@@ -96,7 +96,11 @@ def d_decomposition(
     """
     model = model or params.vehicle
     if params.eta_f <= 0:
-        raise ParameterError("eta_f", "D-decomposition needs eta_f > 0 (the cut of K lies on the real axis)")
+        raise ParameterError(
+            "eta_f",
+            "D-decomposition needs eta_f > 0 (the cut of K lies on the real axis; stability/undamped.py "
+            "locates the boundaries of an undamped foundation by counts)",
+        )
     alpha = float(params.alpha if alpha is None else alpha)
     sweep = SweepCharacteristic(params, model, parameter)
     qs = np.linspace(q_max / samples, q_max, samples)

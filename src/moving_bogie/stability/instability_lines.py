@@ -31,6 +31,10 @@ Method
    inside the plot (q_max, which is then raised automatically; q = 0; a singular point), and its folds
    (tips where the root touches the real axis and the line turns back).
 
+Undamped and near-undamped foundations (eta_f = 0, or 0 < eta_f < 1e-5): the curves degenerate (real
+induced frequencies fill whole regions); boundaries of instability located by root counts are returned
+instead (:mod:`undamped_lines`; convention and kinds "undamped", "limit" in :mod:`undamped`).
+
 Which side is unstable follows from the implicit function theorem: at fixed alpha, the real root moves
 as dq/dtheta = -E_theta / E_q, so the side of larger theta is the unstable one (one more root with
 Im q < 0) when Im(dq/dtheta) < 0. This is the D-decomposition rule of hatching written pointwise; the
@@ -46,10 +50,11 @@ from fractions import Fraction
 import contourpy
 import numpy as np
 
-from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
 from moving_bogie.stability.continuation import PathTracer, evaluate, gauss_newton
 from moving_bogie.stability.line_ends import find_folds, line_end
+from moving_bogie.stability.undamped import regime, statement
+from moving_bogie.stability.undamped_lines import undamped_lines
 
 __all__ = ["InstabilityBranch", "InstabilityLines", "instability_lines"]
 
@@ -71,6 +76,11 @@ class InstabilityBranch:
         At each point, True if increasing theta at fixed alpha makes the real root unstable.
     residual : ndarray
         |E_chr / E_chr'| at each point: distance in q to the exact real root (double precision).
+    kind : str
+        "crossing" (a real induced frequency, eta_f > 0); on an undamped foundation "undamped" or "limit"
+        (boundaries located by counts, :mod:`undamped_lines`: ``q`` and ``residual`` are nan, ``verified``
+        holds the counts at the ends of the middle point's bisection bracket, ``mechanism`` what changes
+        at each point).
     """
 
     d: float
@@ -82,6 +92,8 @@ class InstabilityBranch:
     verified: tuple | None = None  # (alpha, eta below, count, eta above, count) by induced_frequencies
     ends: tuple = ()  # (start, end) LineEnd: why the line stops at each end
     folds: tuple = ()  # LineEnd("fold") at every tip where the line turns back
+    kind: str = "crossing"
+    mechanism: tuple = ()  # undamped kinds: per point, a key of undamped.MECHANISMS
 
     @property
     def stops_inside(self) -> tuple:
@@ -100,6 +112,7 @@ class InstabilityBranch:
     def to_dict(self, parameter: str = "eta_M") -> dict:
         return {
             "d": self.d,
+            "kind": self.kind,
             "unstable_side": self.unstable_side,
             "verified": None
             if self.verified is None
@@ -109,8 +122,16 @@ class InstabilityBranch:
             "ends": [e.to_dict(parameter) for e in self.ends],
             "folds": [e.to_dict(parameter) for e in self.folds],
             "points": [
-                {"alpha": float(a), parameter: float(t), "q": float(q), "unstable_above": bool(u)}
-                for a, t, q, u in zip(self.alpha, self.theta, self.q, self.unstable_above)
+                {
+                    "alpha": float(a),
+                    parameter: float(t),
+                    "q": float(q) if np.isfinite(q) else None,
+                    "unstable_above": bool(u),
+                    **({"mechanism": m} if m else {}),
+                }
+                for a, t, q, u, m in zip(
+                    self.alpha, self.theta, self.q, self.unstable_above, self.mechanism or [""] * len(self.q)
+                )
             ],
         }
 
@@ -127,6 +148,17 @@ class InstabilityLines:
     branches: tuple
     warnings: tuple = field(default=())
     q_max: float | None = None  # the searched range of real q actually used (raised automatically)
+    method: str = "real induced frequencies traced by continuation"
+
+    @property
+    def regime(self) -> str:
+        """ "damped", "undamped" (eta_f = 0) or "near-undamped" (:func:`~.undamped.regime`)."""
+        return regime(self.params.eta_f)
+
+    @property
+    def statement(self) -> str:
+        """What the lines are, in one sentence (empty for the ordinary lines of a damped foundation)."""
+        return statement(self.params.eta_f)
 
     def for_spacing(self, d: float) -> tuple:
         return tuple(b for b in self.branches if abs(b.d - d) < 1e-12)
@@ -139,6 +171,9 @@ class InstabilityLines:
             "alpha_range": list(self.alpha_range),
             "theta_max": self.theta_max,
             "q_max": self.q_max,
+            "regime": self.regime,
+            "method": self.method,
+            "statement": self.statement,
             "branches": [b.to_dict(self.parameter) for b in self.branches],
             "warnings": list(self.warnings),
         }
@@ -168,7 +203,9 @@ def instability_lines(
     params : DimensionlessParams
         All parameters except alpha and ``parameter`` (their values in ``params`` are ignored); with
         ``parameter="eta_M"``, mu_v = cf1 eta_M and J_b = cf2 eta_M d^2 (Eq. (63)) use the cf1, cf2 of
-        ``params``. Requires eta_f > 0.
+        ``params``. With eta_f = 0 or 0 < eta_f < 1e-5 the lines degenerate and boundaries located by
+        counts are returned instead (module text; ``alpha_step`` is then the step of the velocity grid,
+        at least 0.02, and ``q_max``, ``q_step``, ``h_max``, ``tol``, ``verify`` are not used).
     model : {"bogie", "masses"}
     spacings : sequence of float, optional
         Wheel spacings d to trace (default: ``params.d``); they share the track kernel of the scan.
@@ -199,13 +236,13 @@ def instability_lines(
         Called with the fraction of work done.
     """
     model = model or params.vehicle
-    if params.eta_f <= 0:
-        raise ParameterError(
-            "eta_f",
-            "instability lines need eta_f > 0: without foundation damping the cut of K lies on the real "
-            "q-axis and real induced frequencies fill whole regions (Cases 2-4)",
-        )
     ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
+    a0, a1 = (float(a) for a in alpha_range)
+    if regime(params.eta_f) != "damped":
+        step = max(alpha_step, 0.02)
+        return undamped_lines(
+            params, model, ds, parameter, (a0, a1), theta_max, alpha_step=step, progress=progress
+        )
     sweep = SweepCharacteristic(params, model, parameter)
     cap = 8 * q_max if q_max_cap is None else q_max_cap
     grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
@@ -220,7 +257,6 @@ def instability_lines(
     if verify:
         branches = [_verify(params, model, parameter, b) for b in branches]
     _report(progress, 1.0)
-    a0, a1 = (float(a) for a in alpha_range)
     return InstabilityLines(
         params,
         model,

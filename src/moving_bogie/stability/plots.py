@@ -95,14 +95,23 @@ def plot_instability_lines(ax, lines, *, colors=None, linestyle="-", scale=1.0, 
     seen = set()
     marked = set()
     for b in lines.branches:
-        lab = f"d = {b.d:g}" if label and b.d not in seen else None
-        seen.add(b.d)
-        ax.plot(b.alpha, b.theta / scale, linestyle, color=colors[b.d], lw=lw, label=lab)
+        style = UNDAMPED_STYLES.get(b.kind, {"ls": linestyle})
+        key = (b.d, b.kind)
+        lab = None
+        if label and key not in seen:
+            lab = f"d = {b.d:g}" + ("" if b.kind == "crossing" else f", {UNDAMPED_LABELS[b.kind]}")
+        seen.add(key)
+        ax.plot(b.alpha, b.theta / scale, color=colors[b.d], lw=lw, label=lab, **style)
         for end in b.stops_inside:
             kind = "fold" if end.reason == "fold" else "other"
             ax.plot([end.alpha], [end.theta / scale], **END_MARKERS[kind])
             marked.add(kind)
     return marked
+
+
+#: Line styles and legend labels of the boundaries drawn for an undamped foundation (:mod:`undamped_lines`).
+UNDAMPED_STYLES = {"undamped": {"ls": "-", "marker": "."}, "limit": {"ls": "--", "marker": "."}}
+UNDAMPED_LABELS = {"undamped": "boundary at eta_f = 0", "limit": "boundary as eta_f -> 0+"}
 
 
 def end_mark_handles(kinds) -> list:
@@ -359,7 +368,9 @@ def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0):
     fig.colorbar(mesh, ax=ax, label=r"$\log_{10}\,|\min \mathrm{Im}\, q|$ (unstable cells)")
     if lines is not None:
         for b in lines.branches:
-            ax.plot(b.alpha, b.theta, color="tab:cyan", lw=1)
+            ax.plot(
+                b.alpha, b.theta, color="tab:cyan", lw=1, ls=UNDAMPED_STYLES.get(b.kind, {}).get("ls", "-")
+            )
     n_uncertain = hatch_cells(ax, smap.alphas, smap.thetas, smap.uncertain)
     ax.set_xlabel(r"$\alpha$")
     ax.set_ylabel(smap.parameter)
@@ -367,6 +378,11 @@ def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0):
     ax.set_ylim(0, smap.thetas[-1])
     ax.axvline(1.0, color="k", ls=":", lw=1)
     title = f"degree of instability, {smap.model}; lines: instability lines"
+    if lines is not None and lines.statement:
+        title = (
+            f"degree of instability at eta_f = {float(smap.params.eta_f):g}, {smap.model}; lines: boundaries "
+            "at eta_f = 0 (solid), eta_f -> 0+ (dashed)"
+        )
     if n_uncertain:
         title += f"; hatched: {n_uncertain} uncertain cell(s)"
         ax.legend(loc="upper left", fontsize=8)

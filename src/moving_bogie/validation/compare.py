@@ -184,6 +184,11 @@ def validate(
     inside = tau <= tau_w * (1 + 1e-12)
     names = ("rear", "front", "u", "theta") if model == "bogie" else ("rear", "front")
     quantities, notes = {}, [f"closed form: {note}" for note in getattr(closed, "notes", ())]
+    if any("branch cut skipped" in note for note in getattr(closed, "notes", ())):
+        notes.append(
+            "the closed form is residues only (its branch-cut part was left out), so it is not the complete "
+            "response: differences of the size of that part are expected, largest at early times"
+        )
     if static_correction and finite.k_max < MIN_CORRECTED_WAVENUMBER:
         notes.append(
             f"k_max = {finite.k_max:.2f} < {MIN_CORRECTED_WAVENUMBER:g}: the truncated modes are not much "

@@ -54,8 +54,17 @@ class CorrectedModalSystem(ModalSystem):
     def __init__(self, beam: ModalBeam, vehicle: Vehicle) -> None:
         super().__init__(beam, vehicle)
         v = vehicle
+        track = beam.track
         self.residual = ResidualFlexibility(
-            beam.wavenumbers, beam.length, v.alpha, beam.eta_f, beam.eta_s, v.d, beam.S, beam.r
+            beam.wavenumbers,
+            beam.length,
+            v.alpha,
+            beam.eta_f,
+            beam.eta_s,
+            v.d,
+            beam.S,
+            beam.r,
+            None if track is None else track.symbol_polynomials(),
         )
         self.n_wheel = 0 if v.model == "force" else 2
         n, nw, ne = beam.n_dof, self.n_wheel, v.n_extra  # n: beam unknowns (2N for TR)
@@ -120,7 +129,7 @@ class CorrectedModalSystem(ModalSystem):
         vkt[3, n] = self._block[1][1, 0] + stiff[1, 0]
         m_diag, c_diag, _ = self._diag
         beam = self.beam
-        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force, beam.pairs, beam.k_pair)
+        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force, beam.blocks)
 
     def _constant_parts(self) -> tuple[np.ndarray, ...]:
         """Buffers of :meth:`assemble` holding every entry that does not change with time."""

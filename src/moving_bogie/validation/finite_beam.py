@@ -29,8 +29,9 @@ from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.geometry import choose_geometry, default_time_step
 from moving_bogie.validation.modal import MODELS, ModalBeam, ModalSystem, Vehicle
 from moving_bogie.validation.newmark import initial_state, newmark_step
+from moving_bogie.validation.track_modes import ModalTrack
 
-__all__ = ["FiniteBeamResult", "simulate_finite_beam"]
+__all__ = ["FiniteBeamResult", "layered_track", "simulate_finite_beam"]
 
 #: How many progress reports a run makes at most.
 _PROGRESS_REPORTS = 200
@@ -91,6 +92,14 @@ def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
     }
     eta_m = 0.0 if getattr(params, "eta_M", None) is None else float(params.eta_M)
     return Vehicle(model=model, eta_M=eta_m, d=float(params.d), alpha=float(params.alpha), entry=entry, **bar)
+
+
+def layered_track(params: Any) -> ModalTrack | None:
+    """The generated finite-rail blocks of a layered track (None on a one-layer track or without a model)."""
+    if getattr(params, "model", None) is None:
+        return None
+    track = ModalTrack.of(params)
+    return track if track.layered else None
 
 
 def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | None) -> None:
@@ -179,6 +188,7 @@ def simulate_finite_beam(
     eta_s = float(getattr(params, "eta_s", 0.0))
     tr = getattr(params, "beam", "eb") == "tr"
     shear, radius = (float(params.S), float(params.r)) if tr else (None, 0.0)
+    track = layered_track(params)
     geometry = choose_geometry(
         alpha=alpha,
         eta_f=eta_f,
@@ -190,6 +200,7 @@ def simulate_finite_beam(
         entry=entry,
         S=shear,
         r=radius,
+        track=track,
     )
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:
         raise MovingBogieError(
@@ -207,7 +218,7 @@ def simulate_finite_beam(
 
     system_class = CorrectedModalSystem if static_correction else ModalSystem
     system = system_class(
-        ModalBeam(geometry.length, n_modes, eta_f, eta_s, shear, radius),
+        ModalBeam(geometry.length, n_modes, eta_f, eta_s, shear, radius, track),
         _vehicle(params, model, geometry.entry),
     )
     series, elapsed_s = _integrate(system, h, n_steps, progress)

@@ -43,6 +43,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from moving_bogie.validation.track_modes import ModalTrack
+
 __all__ = [
     "BeamGeometry",
     "choose_geometry",
@@ -184,6 +186,7 @@ def choose_geometry(
     max_margin: float = 100.0,
     S: float | None = None,
     r: float = 0.0,
+    track: ModalTrack | None = None,
 ) -> BeamGeometry:
     """Beam length and entry point for a run to `tau_max` with `n_modes` modes.
 
@@ -209,16 +212,34 @@ def choose_geometry(
     S, r : float, optional
         Timoshenko-Rayleigh beam, Eq. (59): its near-field decay and fastest wave
         (:func:`max_group_velocity`); Euler-Bernoulli without `S`.
+    track : ModalTrack, optional
+        Any track model's finite-rail blocks (:mod:`~moving_bogie.validation.track_modes`, a layered
+        track): the near-field decay from the roots of its moving-load symbol, the fastest wave over
+        every dispersion branch and, in place of ``eta_f``, the slowest decay rate of its free waves.
 
     Returns
     -------
     BeamGeometry
     """
-    margin = _margin(alpha, eta_f, eta_s, tol, max_margin, S, r)
-    t_req = tau_max if eta_f <= 0 else min(tau_max, math.log(1.0 / tol) / eta_f)
+    if track is None:
+        margin = _margin(alpha, eta_f, eta_s, tol, max_margin, S, r)
+        decay = eta_f
+
+        def fastest(k_max: float) -> float:
+            return max_group_velocity(k_max, eta_s, S, r)
+
+    else:
+        gamma = track.near_field_decay_rate()
+        margin = min(math.log(1.0 / tol) / gamma, max_margin) if gamma > 0 else max_margin
+        # the shortest beam the search below can reach (or the one imposed): its k_max bounds all others
+        candidates = [margin + d + alpha * tau_max + (margin if entry is None else min(entry, margin))]
+        k_top = n_modes * math.pi / min(candidates + ([] if length is None else [length]))
+        decay = track.free_wave_decay_rate(k_top)
+        fastest = track.fastest_wave(k_top)
+    t_req = tau_max if decay <= 0 else min(tau_max, math.log(1.0 / tol) / decay)
 
     def c_of(L: float) -> float:
-        return max_group_velocity(n_modes * math.pi / L, eta_s, S, r)
+        return fastest(n_modes * math.pi / L)
 
     def clearance(L: float) -> float:
         return max(margin, 0.5 * t_req * max(c_of(L) - alpha, 0.0))

@@ -47,7 +47,8 @@ from functools import cached_property
 
 import numpy as np
 
-from moving_bogie.validation.newmark import DiagLowRankSystem
+from moving_bogie.validation.newmark import DiagLowRankSystem, ModeBlocks
+from moving_bogie.validation.track_modes import ModalTrack
 
 __all__ = ["MODELS", "ContactResponse", "ModalBeam", "ModalSystem", "Vehicle"]
 
@@ -67,6 +68,12 @@ class ModalBeam:
         Number of modes ``N``; the highest wavenumber is ``k_max = N pi / L``.
     eta_f, eta_s : float
         Foundation damping and Pasternak shear parameters, Eq. (17).
+    S, r : float, optional
+        Timoshenko-Rayleigh beam, Eq. (59) (Euler-Bernoulli without `S`).
+    track : ModalTrack, optional
+        The generated per-mode blocks of any track model (:mod:`~moving_bogie.validation.track_modes`;
+        a layered track: the rail's modes coupled with the same modes of each mass layer). When given,
+        they replace the one-layer formulas below (which they equal on the one-layer track).
     """
 
     length: float
@@ -75,6 +82,7 @@ class ModalBeam:
     eta_s: float = 0.0
     S: float | None = None
     r: float = 0.0
+    track: ModalTrack | None = None
 
     @cached_property
     def wavenumbers(self) -> np.ndarray:
@@ -93,9 +101,21 @@ class ModalBeam:
         return self.S is not None
 
     @property
+    def per_mode(self) -> int:
+        """Unknowns per mode number: 1 (EB), 2 (TR), or the track's block size."""
+        if self.track is not None:
+            return self.track.size
+        return 2 if self.timoshenko else 1
+
+    @property
     def n_dof(self) -> int:
-        """Beam unknowns: ``q_1..q_N`` (EB), then the rotations ``b_1..b_N`` (TR)."""
-        return 2 * self.n_modes if self.timoshenko else self.n_modes
+        """Beam unknowns: ``q_1..q_N`` (rail deflection) first, then each further unknown's ``N`` modes."""
+        return self.per_mode * self.n_modes
+
+    @cached_property
+    def track_blocks(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The track's ``M, C, K`` per mode, shape ``(N, s, s)`` (only with :attr:`track`)."""
+        return self.track.blocks(self.wavenumbers)
 
     @cached_property
     def diagonals(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -109,9 +129,12 @@ class ModalBeam:
             r^2 b_k'' + (S + lambda^2 / 4) b_k - S lambda q_k = 0,
 
         i.e. ``1, r^2``; ``2 eta_f, 0``; ``1 + (S + eta_s) lambda^2, S + lambda^2/4``, with the
-        coupling :attr:`k_pair` between ``q_k`` and ``b_k``.
+        coupling :attr:`blocks` between ``q_k`` and ``b_k``.
         """
         n = self.n_modes
+        if self.track is not None:
+            # unknown j of mode k at j N + k: the diagonals, unknown by unknown
+            return tuple(np.diagonal(b, axis1=1, axis2=2).T.reshape(-1).copy() for b in self.track_blocks)
         if not self.timoshenko:
             return np.ones(n), np.full(n, 2.0 * self.eta_f), self.omega2
         lam2 = self.wavenumbers**2
@@ -120,18 +143,23 @@ class ModalBeam:
         k = np.concatenate([1.0 + (self.S + self.eta_s) * lam2, self.S + 0.25 * lam2])
         return m, c, k
 
-    @property
-    def pairs(self) -> tuple[np.ndarray, np.ndarray]:
-        """Index pairs ``(q_k, b_k)`` coupled in ``K`` (none for EB)."""
-        if not self.timoshenko:
-            return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
-        idx = np.arange(self.n_modes)
-        return idx, idx + self.n_modes
-
     @cached_property
-    def k_pair(self) -> np.ndarray:
-        """``K[q_k, b_k] = K[b_k, q_k] = -S lambda_k`` (TR; empty for EB)."""
-        return -self.S * self.wavenumbers if self.timoshenko else np.zeros(0)
+    def blocks(self) -> ModeBlocks | None:
+        """Couplings within each mode (TR: ``K[q_k, b_k] = -S lambda_k``; a track's off-diagonal blocks)."""
+        n, s = self.n_modes, self.per_mode
+        if s == 1:
+            return None
+        index = np.arange(n)[:, None] + n * np.arange(s)[None, :]
+        if self.track is not None:
+            off = []
+            for b in self.track_blocks:
+                b = b.copy()
+                b[:, np.arange(s), np.arange(s)] = 0.0
+                off.append(b)
+            return ModeBlocks(index, *off)
+        k_off = np.zeros((n, 2, 2))
+        k_off[:, 0, 1] = k_off[:, 1, 0] = -self.S * self.wavenumbers
+        return ModeBlocks(index, np.zeros((n, 2, 2)), np.zeros((n, 2, 2)), k_off)
 
     @property
     def k_max(self) -> float:
@@ -277,7 +305,7 @@ class ModalSystem:
             # Pitch row: kappa_v d (w_1 - w_2) + 2 eta_v d (w_1' - w_2') besides its diagonal.
             vct[3, :n] = (2.0 * ev * d) * a_dif
             vkt[3, :n] = (kv * d) * a_dif + (2.0 * ev * d * al) * b_dif
-        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force, beam.pairs, beam.k_pair)
+        return DiagLowRankSystem(m_diag, c_diag, k_diag, ut, vmt, vct, vkt, force, beam.blocks)
 
     def contact(self, tau: float, z: np.ndarray, v: np.ndarray) -> ContactResponse:
         """Deflections ``w_j = a_j.q`` under the wheels and ``w_j' = a_j.q' + alpha b_j.q``."""

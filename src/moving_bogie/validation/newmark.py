@@ -28,11 +28,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-#: No coupled pairs: the diagonal part is a plain diagonal.
-NO_PAIRS = (np.zeros(0, dtype=int), np.zeros(0, dtype=int))
-
 __all__ = [
     "AVERAGE_ACCELERATION",
+    "ModeBlocks",
     "DiagLowRankSystem",
     "NewmarkScheme",
     "NewmarkState",
@@ -63,6 +61,86 @@ AVERAGE_ACCELERATION = NewmarkScheme(beta=0.25, gamma=0.5)
 
 
 @dataclass(frozen=True)
+class ModeBlocks:
+    """Couplings within small groups of unknowns: the off-diagonal entries of block-diagonal matrices.
+
+    A mode of a Timoshenko-Rayleigh beam (deflection and rotation) or of a rail on mass layers (rail and
+    layer deflections) couples its unknowns with each other only, so the part of ``M``, ``C``, ``K`` that is
+    not diagonal (besides the low-rank vehicle coupling) is block diagonal with one small block per mode.
+
+    Attributes
+    ----------
+    index : ndarray of int, shape (n_blocks, s)
+        The unknowns of each block; each unknown in at most one block. Column ``j`` lists the ``j``-th
+        unknown of every block (for the modal models: unknown ``j`` of modes ``1..N``, stored contiguously,
+        which the products below read as slices).
+    m_off, c_off, k_off : ndarray, shape (n_blocks, s, s)
+        Off-diagonal entries of ``M``, ``C``, ``K`` within each block (zero diagonals: the diagonals are
+        the system's ``m_diag`` etc.).
+    """
+
+    index: np.ndarray
+    m_off: np.ndarray
+    c_off: np.ndarray
+    k_off: np.ndarray
+
+    _cache: dict = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def columns(self) -> list:
+        """Per position ``j`` in the blocks, a slice (contiguous unknowns) or the index array."""
+        if "columns" not in self._cache:
+            cols = []
+            for j in range(self.index.shape[1]):
+                col = self.index[:, j]
+                contiguous = np.array_equal(col, col[0] + np.arange(col.size))
+                cols.append(slice(int(col[0]), int(col[0]) + col.size) if contiguous else col)
+            self._cache["columns"] = cols
+        return self._cache["columns"]
+
+    def subtract_products(self, out: np.ndarray, pairs) -> None:
+        """``out -= sum over (off, x) of off @ x`` on the blocks' unknowns (x of shape (n,))."""
+        cols = self.columns
+        s = len(cols)
+        for i in range(s):
+            for off, x in pairs:
+                for j in range(s):
+                    if j != i:
+                        out[cols[i]] -= off[:, i, j] * x[cols[j]]
+
+    def solve(self, diag: np.ndarray, off: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """``D^{-1} rhs`` for ``D = diag(diag) + off`` on the blocks (rhs of shape (n,) or (r, n)).
+
+        The blocks' inverses are kept for the next call with the same blocks (a run with a fixed step
+        has the same effective blocks at every step: only the wheel rows, outside them, change).
+        """
+        out = rhs / diag
+        cols = self.columns
+        s = len(cols)
+        blocks = off.copy()
+        for j in range(s):
+            blocks[:, j, j] += diag[cols[j]]
+        cached = self._cache.get("blocks")
+        if cached is None or not np.array_equal(cached, blocks):
+            self._cache.update(blocks=blocks, inverse=np.linalg.inv(blocks))
+        inverse = self._cache["inverse"]
+        parts = [rhs[..., col] for col in cols]
+        for i in range(s):
+            acc = inverse[:, i, 0] * parts[0]
+            for j in range(1, s):
+                acc += inverse[:, i, j] * parts[j]
+            out[..., cols[i]] = acc
+        return out
+
+    def dense(self, off: np.ndarray, n: int) -> np.ndarray:
+        """The couplings as a dense ``n x n`` matrix (tests)."""
+        out = np.zeros((n, n))
+        rows = np.repeat(self.index[:, :, None], self.index.shape[1], axis=2)
+        out[rows, np.swapaxes(rows, 1, 2)] = off
+        return out
+
+
+@dataclass(frozen=True)
 class DiagLowRankSystem:
     """The matrices of ``M z'' + C z' + K z = f`` at one instant, each ``diag + U V^T``.
 
@@ -81,11 +159,9 @@ class DiagLowRankSystem:
         Right factors, transposed: ``M = diag(m_diag) + ut.T @ vmt``, and so on.
     force : ndarray, shape (n,)
         Right-hand side ``f``.
-    pairs : tuple of two int arrays, optional
-        Indices ``(i, j)`` of unknowns coupled pairwise in ``K`` (the deflection and rotation of one
-        mode of a Timoshenko-Rayleigh beam); each index in at most one pair. Default: none.
-    k_pair : ndarray, optional
-        The symmetric couplings ``K[i, j] = K[j, i]`` of the pairs.
+    blocks : ModeBlocks, optional
+        Couplings within each mode's unknowns (Timoshenko-Rayleigh rotation, mass layers): the diagonal
+        part becomes block diagonal, still solved in ``O(n)``. Default: none.
     """
 
     m_diag: np.ndarray
@@ -96,43 +172,30 @@ class DiagLowRankSystem:
     vct: np.ndarray
     vkt: np.ndarray
     force: np.ndarray
-    pairs: tuple[np.ndarray, np.ndarray] = NO_PAIRS
-    k_pair: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    blocks: ModeBlocks | None = None
 
     def residual_force(self, v: np.ndarray, z: np.ndarray) -> np.ndarray:
         """``f - C v - K z`` in ``O(n r)``."""
         low_rank = (self.vct @ v + self.vkt @ z) @ self.ut
         out = self.force - self.c_diag * v - self.k_diag * z - low_rank
-        i, j = self.pairs
-        if i.size:
-            out[i] -= self.k_pair * z[j]
-            out[j] -= self.k_pair * z[i]
+        b = self.blocks
+        if b is not None:
+            b.subtract_products(out, ((b.c_off, v), (b.k_off, z)))
         return out
 
     def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Dense ``(M, C, K)``: for tests and small systems only (``O(n^2)`` memory)."""
-        k = np.diag(self.k_diag) + self.ut.T @ self.vkt
-        i, j = self.pairs
-        k[i, j] += self.k_pair
-        k[j, i] += self.k_pair
-        return (
-            np.diag(self.m_diag) + self.ut.T @ self.vmt,
-            np.diag(self.c_diag) + self.ut.T @ self.vct,
-            k,
-        )
-
-
-def _pair_solve(diag: np.ndarray, pairs, coupling: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """``D^{-1} rhs`` for ``D`` diagonal except for symmetric 2x2 blocks on `pairs` (rhs: (n,) or (r, n))."""
-    out = rhs / diag
-    i, j = pairs
-    if i.size:
-        di, dj = diag[i], diag[j]
-        det = di * dj - coupling * coupling
-        ri, rj = rhs[..., i], rhs[..., j]
-        out[..., i] = (dj * ri - coupling * rj) / det
-        out[..., j] = (di * rj - coupling * ri) / det
-    return out
+        out = []
+        for diag, vt, name in (
+            (self.m_diag, self.vmt, "m_off"),
+            (self.c_diag, self.vct, "c_off"),
+            (self.k_diag, self.vkt, "k_off"),
+        ):
+            matrix = np.diag(diag) + self.ut.T @ vt
+            if self.blocks is not None:
+                matrix += self.blocks.dense(getattr(self.blocks, name), diag.size)
+            out.append(matrix)
+        return out[0], out[1], out[2]
 
 
 def woodbury_solve(
@@ -140,8 +203,8 @@ def woodbury_solve(
     ut: np.ndarray,
     vt: np.ndarray,
     rhs: np.ndarray,
-    pairs: tuple[np.ndarray, np.ndarray] = NO_PAIRS,
-    coupling: np.ndarray | None = None,
+    blocks: ModeBlocks | None = None,
+    off: np.ndarray | None = None,
 ) -> np.ndarray:
     """Solve ``(D + U V^T) x = rhs`` by the Sherman-Morrison-Woodbury identity.
 
@@ -155,19 +218,22 @@ def woodbury_solve(
     ut, vt : ndarray, shape (r, n)
         Low-rank factors, transposed (``U^T``, ``V^T``); ``r = 0`` reduces to a diagonal solve.
     rhs : ndarray, shape (n,)
-    pairs, coupling : optional
-        ``D`` also has the symmetric entries ``D[i, j] = D[j, i] = coupling`` on the index pairs
-        ``(i, j)``; its inverse is then block diagonal with 2x2 blocks, still ``O(n)``.
+    blocks, off : optional
+        ``D`` also has the off-diagonal entries `off` (shape ``(n_blocks, s, s)``) within the groups
+        ``blocks.index``; its inverse is then block diagonal with ``s x s`` blocks, still ``O(n)``.
 
     Returns
     -------
     ndarray, shape (n,)
     """
-    coupling = np.zeros(0) if coupling is None else coupling
-    y = _pair_solve(diag, pairs, coupling, rhs)
+    if blocks is None:
+        y = rhs / diag
+        d_inv_ut = ut / diag
+    else:
+        both = blocks.solve(diag, off, np.vstack([rhs, ut]))
+        y, d_inv_ut = both[0], both[1:]
     if ut.shape[0] == 0:
         return y
-    d_inv_ut = _pair_solve(diag, pairs, coupling, ut)
     capacitance = np.eye(ut.shape[0]) + vt @ d_inv_ut.T
     return y - np.linalg.solve(capacitance, vt @ y) @ d_inv_ut
 
@@ -188,7 +254,9 @@ def initial_state(t0: float, z0: np.ndarray, v0: np.ndarray, system: DiagLowRank
     The loads of the finite-beam model are applied suddenly, so ``a(t0)`` is not zero even though
     the system starts at rest: it is ``M^{-1} (f - C v0 - K z0)``.
     """
-    a0 = woodbury_solve(system.m_diag, system.ut, system.vmt, system.residual_force(v0, z0))
+    b = system.blocks
+    rhs = system.residual_force(v0, z0)
+    a0 = woodbury_solve(system.m_diag, system.ut, system.vmt, rhs, b, None if b is None else b.m_off)
     return NewmarkState(t0, z0, v0, a0)
 
 
@@ -231,7 +299,9 @@ def newmark_step(
     gh, bh2 = gamma * h, beta * h * h
     s_diag = system.m_diag + gh * system.c_diag + bh2 * system.k_diag
     s_vt = system.vmt + gh * system.vct + bh2 * system.vkt
-    a_new = woodbury_solve(s_diag, system.ut, s_vt, rhs, system.pairs, bh2 * system.k_pair)
+    b = system.blocks
+    s_off = None if b is None else b.m_off + gh * b.c_off + bh2 * b.k_off
+    a_new = woodbury_solve(s_diag, system.ut, s_vt, rhs, b, s_off)
     return NewmarkState(state.t + h, z_pred + bh2 * a_new, v_pred + gh * a_new, a_new)
 
 

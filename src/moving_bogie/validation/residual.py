@@ -39,7 +39,13 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 
-__all__ = ["ResidualFlexibility", "moving_green_function", "moving_symbol", "symbol_polynomials"]
+__all__ = [
+    "ResidualFlexibility",
+    "moving_green_function",
+    "moving_symbol",
+    "polynomial_residues",
+    "symbol_polynomials",
+]
 
 
 def symbol_polynomials(
@@ -70,18 +76,33 @@ def moving_symbol(
     return np.polyval(den, p) / np.polyval(num, p)
 
 
+def _where(alpha: float, eta_f: float, eta_s: float, S: float | None, r: float) -> str:
+    return f"alpha={alpha}, eta_f={eta_f}, eta_s={eta_s}" + ("" if S is None else f", S={S}, r={r}")
+
+
 def _residues(alpha: float, eta_f: float, eta_s: float, S: float | None, r: float):
     """Roots ``p_r`` of ``den`` and the residue weights ``num(p_r) / den'(p_r)``."""
-    num, den = symbol_polynomials(alpha, eta_f, eta_s, S, r)
+    return polynomial_residues(
+        *symbol_polynomials(alpha, eta_f, eta_s, S, r), _where(alpha, eta_f, eta_s, S, r)
+    )
+
+
+def polynomial_residues(num: np.ndarray, den: np.ndarray, where: str) -> tuple[np.ndarray, np.ndarray]:
+    """Roots ``p_r`` of ``den`` and the weights ``num(p_r) / den'(p_r)`` of ``1 / Omega = num / den``.
+
+    Raises
+    ------
+    MovingBogieError
+        When ``den`` has a real or a double root (no decaying moving-load deflection), naming `where`.
+    """
     roots = np.roots(den)
-    where = f"alpha={alpha}, eta_f={eta_f}, eta_s={eta_s}" + ("" if S is None else f", S={S}, r={r}")
-    if roots.size != 4 or np.min(np.abs(roots.imag)) < 1e-9:
+    if np.min(np.abs(roots.imag)) < 1e-9:
         raise MovingBogieError(
             "the static correction needs a moving-load deflection that decays away from the load "
             f"(at {where} the velocity is at or above the undamped critical velocity); run without "
             "the correction (static_correction=False, --no-correction)"
         )
-    gaps = np.abs(roots[:, None] - roots[None, :]) + np.eye(4)
+    gaps = np.abs(roots[:, None] - roots[None, :]) + np.eye(roots.size)
     if np.min(gaps) < 1e-6:
         raise MovingBogieError(
             f"the moving-load symbol has a double root at {where}; run without the static correction"
@@ -143,6 +164,10 @@ class ResidualFlexibility:
         Wheel spacing (front wheel at ``x_1 + d``).
     S, r : float, optional
         Timoshenko-Rayleigh beam, Eq. (59) (Euler-Bernoulli without `S`).
+    polynomials : tuple of two ndarrays, optional
+        ``(num, den)`` of any track's moving-load symbol ``Omega = den / num``
+        (:meth:`~moving_bogie.validation.track_modes.ModalTrack.symbol_polynomials`, e.g. a layered
+        track); they replace the one-layer symbol of `eta_f`, `eta_s`, `S`, `r`.
     """
 
     def __init__(
@@ -155,15 +180,19 @@ class ResidualFlexibility:
         d: float,
         S: float | None = None,
         r: float = 0.0,
+        polynomials: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> None:
         self.length = float(length)
-        roots, weights = _residues(alpha, eta_f, eta_s, S, r)
+        if polynomials is None:
+            polynomials = symbol_polynomials(alpha, eta_f, eta_s, S, r)
+        num, den = polynomials
+        roots, weights = polynomial_residues(num, den, _where(alpha, eta_f, eta_s, S, r))
         self._green = lambda s: _green_from_roots(s, roots, weights)
         # For 0 <= s <= 2L the images s and s + 2L close above, s - 2L below (see _image_part).
         up = roots.imag > 0
         self._upper = (roots[up], 1j * weights[up] * (1.0 + np.exp(2j * self.length * roots[up])))
         self._lower = (roots[~up], -1j * weights[~up])
-        self._weight = 1.0 / (self.length * moving_symbol(wavenumbers, alpha, eta_f, eta_s, S, r))
+        self._weight = np.polyval(num, wavenumbers) / (self.length * np.polyval(den, wavenumbers))
         # The direct (translation-invariant) part depends only on x_l - x_j in {0, d, -d}.
         shifts = np.array([0.0, d, -d])
         direct_full = self._images(shifts) - 0.5 / self.length

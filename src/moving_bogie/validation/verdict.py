@@ -243,7 +243,10 @@ class ValidationResult:
         finite = self.finite
         return {
             "model": self.model,
+            "beam": getattr(self.params, "beam", "eb"),
+            "track": getattr(self.params, "track", "one-layer"),
             "params": params,
+            "closed_form_branch_cut": bool(getattr(self.closed, "branch_cut", False)),
             "agrees": self.agrees,
             "tolerance": self.tolerance,
             "tolerance_rule": (

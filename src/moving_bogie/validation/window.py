@@ -34,8 +34,9 @@ from typing import Any
 
 import numpy as np
 
-from moving_bogie.validation.finite_beam import FiniteBeamResult
+from moving_bogie.validation.finite_beam import FiniteBeamResult, layered_track
 from moving_bogie.validation.geometry import group_velocity, near_field_decay_rate
+from moving_bogie.validation.track_modes import ModalTrack
 
 __all__ = [
     "DEFAULT_TAU_STEP",
@@ -121,6 +122,8 @@ def comparison_window(params: Any, finite: FiniteBeamResult, *, reflection_level
     front wheel's near field (decay ``exp(-gamma xi)``, margin ``ln(1000) / gamma``) reaches the
     right support, capped at the end of the run; never shorter than ``finite.tau_valid``.
 
+    Layered track: see :func:`_layered_window`.
+
     Timoshenko-Rayleigh beam: the bound uses the Euler-Bernoulli spectrum and group velocity, so
     the window is the strict ``tau_valid`` of its fastest modelled wave (both branches), capped by
     the near field.
@@ -129,6 +132,9 @@ def comparison_window(params: Any, finite: FiniteBeamResult, *, reflection_level
     eta_s = float(getattr(params, "eta_s", 0.0))
     tau = finite.tau
     tau_end = float(tau[-1])
+    track = layered_track(params)
+    if track is not None:
+        return _layered_window(track, finite, alpha, d, reflection_level)
     if getattr(params, "beam", "eb") == "tr":
         gamma = near_field_decay_rate(alpha, eta_f, eta_s, float(params.S), float(params.r))
         end = min(finite.tau_valid, tau_end)
@@ -152,3 +158,26 @@ def comparison_window(params: Any, finite: FiniteBeamResult, *, reflection_level
         margin = math.log(1e3) / gamma
         end = min(end, (finite.length - finite.entry - d - margin) / alpha)
     return float(min(max(end, min(finite.tau_valid, tau_end)), tau_end))
+
+
+def _layered_window(
+    track: ModalTrack, finite: FiniteBeamResult, alpha: float, d: float, level: float
+) -> float:
+    """Window on a layered track: the strict ``tau_valid``, or the whole run when every reflection is damped.
+
+    A reflection arriving after ``tau_valid`` has travelled at least ``tau_valid`` (the waves leave at the
+    sudden start), and every free wave decays at least like ``exp(-s_min tau)`` with ``s_min`` the
+    slowest decay rate over the dispersion branches
+    (:meth:`~moving_bogie.validation.track_modes.ModalTrack.free_wave_decay_rate`): when
+    ``exp(-s_min tau_valid) <= level`` no reflection exceeds `level` (relative to a unit wave) and the
+    window is the run. The front wheel's near field (decay from the roots of the track's moving-load
+    symbol) caps it as on the one-layer track.
+    """
+    tau_end = float(finite.tau[-1])
+    end = min(finite.tau_valid, tau_end)
+    if track.free_wave_decay_rate(finite.k_max) * finite.tau_valid >= math.log(1.0 / level):
+        end = tau_end
+    gamma = track.near_field_decay_rate()
+    if gamma > 0 and alpha > 0:
+        end = min(end, (finite.length - finite.entry - d - math.log(1e3) / gamma) / alpha)
+    return float(max(end, 0.0))

@@ -1,0 +1,95 @@
+"""``compare-tracks``: instability lines of one vehicle on a layered track and on the one-layer track."""
+
+from __future__ import annotations
+
+import argparse
+
+from moving_bogie.errors import ParameterError
+
+from .common import PROG, add_json_option, add_output_option, print_json
+from .progress import progress_bar
+from .stability_options import RAW, add_track_vehicle_options, params_and_spacings, save_figure
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add compare-tracks."""
+    p = subparsers.add_parser(
+        "compare-tracks",
+        help="instability lines on a layered track and on the one-layer track, side by side",
+        description=(
+            "The instability lines (alpha, eta_M) of one vehicle on the track given by --track and on the\n"
+            "one-layer track whose foundation is the first layer of it (k_f = k_1, c_f = c_1: the groups\n"
+            "of the vehicle and eta_f are shared), with the critical velocity of each track (dotted).\n"
+            "The layered track's own groups (mu_2, kappa_2, eta_2, ...) are required options."
+        ),
+        epilog=(
+            "example:\n"
+            f"  {PROG} compare-tracks --track two-layer --mu-2 4 --kappa-2 0.5 --eta-2 0.2 \\\n"
+            "      --d 1,1.5,2 --plot compare.png"
+        ),
+        formatter_class=RAW,
+    )
+    add_track_vehicle_options(p, spacing_list=True)
+    p.add_argument("--alpha-min", type=float, default=0.0)
+    p.add_argument("--alpha-max", type=float, default=1.2)
+    p.add_argument("--eta-M-max", dest="theta_max", type=float, default=200.0)
+    p.add_argument("--quick", action="store_true", help="coarser seed grid and steps (a preview)")
+    add_output_option(p, "--plot", metavar="F.png", help="write the two-panel figure")
+    add_json_option(p)
+    p.set_defaults(handler=run)
+
+
+def lowest_subcritical(lines, alpha_cr: float) -> dict:
+    """Per spacing d: the lowest point (alpha, eta_M) of its instability lines with alpha < alpha_cr."""
+    out = {}
+    for b in lines.branches:
+        sel = b.alpha < alpha_cr
+        if not sel.any():
+            continue
+        k = int(b.theta[sel].argmin())
+        point = (float(b.alpha[sel][k]), float(b.theta[sel][k]))
+        if b.d not in out or point[1] < out[b.d][1]:
+            out[b.d] = point
+    return out
+
+
+def run(args) -> int:
+    from moving_bogie.stability.track_comparison import compare_tracks, figure_track_comparison
+
+    layered, spacings = params_and_spacings(args)
+    if layered.track == "one-layer":
+        raise ParameterError("track", "compare-tracks needs a layered --track (e.g. two-layer) to compare")
+    base = layered.replace(track="one-layer")
+    shared = set(base.model.parameters)
+    groups = {name: getattr(layered, name) for name in layered.model.parameters if name not in shared}
+    if args.alpha_max <= args.alpha_min:
+        raise ParameterError("alpha-max", "must be larger than --alpha-min")
+    with progress_bar("instability lines on both tracks") as bar:
+        comparison = compare_tracks(
+            base,
+            layered.track,
+            groups,
+            spacings=spacings,
+            alpha_range=(args.alpha_min, args.alpha_max),
+            theta_max=args.theta_max,
+            quick=args.quick,
+            progress=bar,
+        )
+    if args.plot:
+        save_figure(figure_track_comparison(comparison), args.plot)
+    lowest = [lowest_subcritical(lines, a) for lines, a in zip(comparison.lines, comparison.alpha_cr)]
+    if args.json:
+        data = comparison.to_dict()
+        for entry, low in zip(data["tracks"], lowest):
+            entry["lowest_subcritical"] = [{"d": d, "alpha": a, "eta_M": t} for d, (a, t) in low.items()]
+        print_json(data)
+        return 0
+    for lines, a_cr, low in zip(comparison.lines, comparison.alpha_cr, lowest):
+        print(f"{lines.params.track} track: alpha_cr = {a_cr:.6f}, {len(lines.branches)} line pieces")
+        for d in spacings:
+            if d in low:
+                a, t = low[d]
+                print(f"  d={d:g}: lowest subcritical line point eta_M = {t:.4g} at alpha = {a:.4f}")
+            else:
+                print(f"  d={d:g}: no instability line below alpha_cr")
+    return 0
