@@ -109,3 +109,13 @@ class CharacteristicArray:
         self.evaluations += q.size
         kv = self.kernel(q, [0.0, self.d, -self.d])
         return self.module.e_chr(q, *kv.K, **self.args)
+
+    def value_and_derivative(self, q):
+        """(E_chr(q), dE_chr/dq) in double precision, with the chain rule of Eq. (40)."""
+        q = np.asarray(q, dtype=complex)
+        self.evaluations += q.size
+        kv = self.kernel(q, [0.0, self.d, -self.d], derivative=True)
+        E = self.module.e_chr(q, *kv.K, **self.args)
+        E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *kv.K, **self.args)
+        dK0, dKp, dKm = kv.dK
+        return E, E_q + E_K0 * dK0 + E_Kp * dKp + E_Km * dKm

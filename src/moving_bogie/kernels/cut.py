@@ -213,20 +213,30 @@ def _solve_p(arms, xs) -> list:
         P.append(np.interp(x, xr, pr))
     x, below, above, p = (np.concatenate(v) for v in (X, B, A, P))
     splits = np.cumsum(sizes)[:-1]
+    owner = np.repeat(np.arange(len(arms)), sizes)
     tracer = arms[0].tracer
+    active = np.arange(p.size)  # points still iterating (a point near a fold may need bisection steps)
     for _ in range(80):
-        guess = np.concatenate([arm.guess(pk) for arm, pk in zip(arms, np.split(p, splits))])
-        q = tracer.refine(p, guess)
-        f = q.real - x
+        pa, own = p[active], owner[active]
+        guess = np.empty(pa.shape, dtype=complex)
+        for k in np.unique(own):
+            sel = own == k
+            guess[sel] = arms[k].guess(pa[sel])
+        q = tracer.refine(pa, guess)
+        f = q.real - x[active]
         low = f <= 0
-        below, above = np.where(low, p, below), np.where(low, above, p)
+        lo, hi = np.where(low, pa, below[active]), np.where(low, above[active], pa)
+        below[active], above[active] = lo, hi
         with np.errstate(all="ignore"):
-            new = p - f / tracer.dq_dp(p, q).real
-        inside = np.isfinite(new) & ((new - below) * (new - above) <= 0)
-        new = np.where(inside, new, 0.5 * (below + above))
-        done = inside & (np.abs(new - p) <= 1e-13 * np.maximum(1.0, np.abs(p)))  # Newton: the next step
-        p = new  # (taken) is then at rounding level
-        if np.all(done | (f == 0)):
+            new = pa - f / tracer.dq_dp(pa, q).real
+        inside = np.isfinite(new) & ((new - lo) * (new - hi) <= 0)
+        new = np.where(inside, new, 0.5 * (lo + hi))
+        done = inside & (np.abs(new - pa) <= 1e-13 * np.maximum(1.0, np.abs(pa)))  # Newton: the next
+        p[active] = new  # step (taken) is then at rounding level
+        done |= np.abs(f) <= 4e-16 * np.maximum(1.0, np.abs(x[active]))  # Re q = x to rounding (a fold's
+        done |= np.abs(hi - lo) <= 1e-13 * np.maximum(1.0, np.abs(pa))  # slope is 0: no Newton step there)
+        active = active[~done]
+        if not active.size:
             break
     return np.split(p, splits)
 

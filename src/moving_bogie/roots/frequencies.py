@@ -343,7 +343,7 @@ def _locate(fast, precise, rect, n, newton_cell, dps):
             continue
         size = max(r.width, r.height)
         if k == 1 and size <= newton_cell:
-            q = _newton_inside(precise, r)
+            q = _newton_inside(fast, r)
             if q is not None:
                 out.append((q, 1, r))
                 continue
@@ -364,26 +364,25 @@ def _locate(fast, precise, rect, n, newton_cell, dps):
     return out
 
 
-def _newton_inside(precise, rect):
-    """A few double-ish precision Newton steps from the cell centre; the root if it stays in the cell."""
-    with mpmath.workdps(17):
-        q = mpmath.mpc(rect.center)
-        for _ in range(30):
-            try:
-                E, dE = precise.value_and_derivative(q)
-            except MovingBogieError:
-                return None
-            if dE == 0:
-                return None
-            step = E / dE
-            q -= step
-            if not rect.contains(complex(q), margin=0.25 * max(rect.width, rect.height)):
-                return None
-            if abs(step) < 1e-13 * max(1, abs(q)):
-                break
-        else:
+def _newton_inside(fast, rect):
+    """A few double-precision Newton steps from the cell centre; the root if it stays in the cell."""
+    q = complex(rect.center)
+    for _ in range(30):
+        try:
+            E, dE = (complex(v[0]) for v in fast.value_and_derivative(np.array([q])))
+        except MovingBogieError:
             return None
-    return q if rect.contains(complex(q)) else None
+        if dE == 0 or not np.isfinite(dE) or not np.isfinite(E):
+            return None
+        step = E / dE
+        q -= step
+        if not rect.contains(q, margin=0.25 * max(rect.width, rect.height)):
+            return None
+        if abs(step) < 1e-13 * max(1, abs(q)):
+            break
+    else:
+        return None
+    return mpmath.mpc(q) if rect.contains(q) else None
 
 
 def _side(q, decimals, cut: CutLocus, params) -> str:
