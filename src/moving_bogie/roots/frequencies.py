@@ -26,7 +26,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
-from moving_bogie.kernels.cut import CutLocus, cut_locus
+from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_locus
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
 from moving_bogie.roots.cut_cells import ColumnCell, Sliver
 from moving_bogie.roots.far_field import FarField, far_field_radius
@@ -40,7 +40,8 @@ from moving_bogie.roots.window import default_window, far_field_window  # noqa: 
 class InducedFrequency:
     """One induced frequency (the member of its pair with Re q >= 0).
 
-    ``side`` tells where q lies with respect to the cut of K: "below" or "above" (for eta_f = 0 a real root
+    ``side`` tells where q lies with respect to the cut of K: "below" or "above" every cut curve over its
+    Re q, or "between" two of them (layered tracks, the Timoshenko-Rayleigh lens) (for eta_f = 0 a real root
     in the gap is a limit from below). ``digits``/``decimals`` are confirmed by recomputation at higher
     precision; ``residual`` is |E_chr/E_chr'| at q, the distance to the exact root at working precision.
     """
@@ -386,14 +387,21 @@ def _newton_inside(fast, rect):
 
 
 def _side(q, decimals, cut: CutLocus, params) -> str:
-    """Position relative to the cut; a root on the line within the confirmed digits is a limit from below."""
+    """Position relative to the cut: "below" or "above" every cut curve over Re q, or "between" two of them
+    (a layered track's curves, the lens of the Timoshenko-Rayleigh cut); a root on a curve within the
+    confirmed digits counts as below it (a limit from below)."""
     y = float(mpmath.im(q))
     x = float(mpmath.re(q))
+    tol = 10.0 ** (-decimals)
+    arms = [arm for arm in cut.arms if arm.x_lo <= x <= arm.x_hi]
+    if arms:
+        above = int(np.sum(y - arms_y_at(arms, np.array([x]))[:, 0] > tol))
+        return "below" if above == 0 else "above" if above == len(arms) else "between"
     threshold = float(params.eta_f)
     if cut.points.size and x >= cut.x_start:
         near = cut.points[np.argmin(np.abs(cut.points.real - x))]
         threshold = float(near.imag)
-    return "above" if y - threshold > 10.0 ** (-decimals) else "below"
+    return "above" if y - threshold > tol else "below"
 
 
 def _fold_pairs(roots):
