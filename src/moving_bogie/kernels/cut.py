@@ -11,12 +11,9 @@ two half-lines on Im q = eta_f meeting at a cusp q_c (a double real root p: the 
 For Timoshenko-Rayleigh the curve through q_c is a fold (Re q turns, Im q does not): a thin lens below
 eta_f opens to the right of q_c, and a second curve runs near the real axis beyond |Re q| ~ sqrt(S)/r.
 
-Tracing. The curves are followed on an adaptive grid of real p: each step is checked against its linear
-prediction from dq/dp = -N_p/N_q (implicit-function theorem) and halved until the prediction error is
-below a tenth of the distance to the nearest other root, so that no two curves are confused and no
-turn of a curve is skipped at the resolution of the grid. Turning points of Re q (folds and cusps) are
-located by root-finding on Re dq/dp. Every point used later (contour edges, ``CutArm.q_at``) is then
-recomputed exactly by Newton's method on N(p, .) = 0, never interpolated.
+Tracing (:mod:`~moving_bogie.kernels.cut_curves`): the curves are followed on an adaptive grid of
+real p, and split at their turning points of Re q (folds and cusps). Every point used later (contour
+edges, ``CutArm.q_at``) is then recomputed exactly by Newton's method on N(p, .) = 0, never interpolated.
 """
 
 from __future__ import annotations
@@ -24,16 +21,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize
 
-from moving_bogie.kernels.polyroots import (
-    companion_roots,
-    newton_polish,
-    poly_roots,
-    polyder,
-    polyval,
-    stack_coefficients,
-)
+from moving_bogie.kernels.cut_curves import CutTracer, Fold, far_range, split_at_turns, trace_curves
 from moving_bogie.kernels.track import resolve_foundation
 
 __all__ = [
@@ -47,73 +36,6 @@ __all__ = [
     "far_range",
     "trace_curves",
 ]
-
-_MAX_REFINE = 30
-_P_MAX = 2.0**40  # largest p-range traced (a curve drifting out slower than this is cut off there)
-_SETTLED = 1e-9  # relative move of a curve's end, when |p| doubles, below which it sits at its limit
-_PREDICTION = 0.1  # accepted prediction error, relative to the distance to the nearest other root
-
-
-class CutTracer:
-    """The roots q_j(p) of N(p, .) for real p, their p-derivative and Newton refinement (one model)."""
-
-    def __init__(self, module, args: dict):
-        self.module = module
-        self.args = args
-
-    def q_roots(self, ps) -> np.ndarray:
-        """All roots in q at real ``ps``, shape ``ps.shape + (DEGREE_N_IN_Q,)``.
-
-        Polished by Newton's method on N(p, .): at large |p| the roots of the rail (|q| ~ p^2) and of a
-        mass layer (|q| bounded) differ by many orders, and the closed form alone then loses the small ones'
-        digits.
-        """
-        ps = np.asarray(ps, dtype=float)
-        c = stack_coefficients(self.module.n_coeffs_in_q(ps, **self.args), ps.shape)
-        z = newton_polish(c, poly_roots(c), steps=2)
-        with np.errstate(all="ignore"):
-            residual = np.abs(polyval(c, z)) / polyval(np.abs(c), np.abs(z))
-        bad = ~np.all(residual <= 1e-11, axis=-1) & np.all(np.isfinite(c), axis=-1) & (c[..., 0] != 0)
-        if np.any(bad):  # companion eigenvalues where the closed form lost digits
-            z[bad] = companion_roots(c[bad])
-        return z
-
-    def dq_dp(self, p, q) -> np.ndarray:
-        """dq/dp = -N_p / N_q along a curve N(p, q) = 0 (implicit-function theorem)."""
-        p, q = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(q, dtype=complex))
-        n = stack_coefficients(self.module.n_coeffs(q, **self.args), q.shape)
-        nq = stack_coefficients(self.module.n_coeffs_dq(q, **self.args), q.shape)
-        x = p[..., None].astype(complex)
-        Np = polyval(polyder(n), x)[..., 0]
-        Nq = polyval(nq, x)[..., 0]
-        return -Np / Nq
-
-    def refine(self, p, q, steps: int = 4) -> np.ndarray:
-        """Newton's method on N(p, .) = 0 in q from ``q`` (arrays), at fixed real p."""
-        p = np.asarray(p, dtype=float)
-        c = stack_coefficients(self.module.n_coeffs_in_q(p, **self.args), p.shape)
-        dc = polyder(c)
-        z = np.asarray(q, dtype=complex).copy()
-        for _ in range(steps):
-            with np.errstate(all="ignore"):
-                step = polyval(c, z[..., None])[..., 0] / polyval(dc, z[..., None])[..., 0]
-            z = np.where(np.isfinite(step), z - step, z)
-        return z
-
-
-@dataclass(frozen=True)
-class Fold:
-    """A turning point of Re q along a curve: ``cusp`` when dq/dp = 0 there (a branch point of K).
-
-    ``end``: not a turning point but the end of a curve that stays bounded as |p| -> infinity (its limit
-    q_inf; ``cusp`` is then True: K is singular there too, and ``opens`` is 0).
-    """
-
-    p: float
-    q: complex
-    cusp: bool
-    opens: int  # +1: the two arms leave towards larger Re q, -1 towards smaller
-    end: bool = False
 
 
 @dataclass(eq=False)
@@ -279,117 +201,6 @@ class CutLocus:
         return bool(self.points.size) and self.im_high - self.im_low <= 1e-12
 
 
-def _match(prev, pred, new, back=None):
-    """Index of the root of ``new`` nearest to each prediction, and whether the step is acceptable.
-
-    A step is accepted when the forward prediction (and, with ``back``, the backward prediction from the
-    new roots, ordered like ``new``) lands within a tenth of the distance to the nearest other root.
-    """
-    d = np.abs(new[:, None, :] - pred[:, :, None])  # (k, j prev, i new)
-    order = np.argmin(d, axis=-1)
-    ok = np.all(np.sort(order, axis=-1) == np.arange(order.shape[-1]), axis=-1)
-    err = np.abs(np.take_along_axis(new, order, axis=-1) - pred)
-    if back is not None:
-        err = np.maximum(err, np.abs(np.take_along_axis(back, order, axis=-1) - prev))
-    sep = np.abs(prev[:, :, None] - prev[:, None, :])
-    sep = sep + np.where(np.eye(prev.shape[-1], dtype=bool), np.inf, 0)
-    ok &= np.all((err <= _PREDICTION * sep.min(axis=-1)) & np.isfinite(err), axis=-1)
-    return order, ok
-
-
-def trace_curves(tracer: CutTracer, p_lo: float, p_hi: float, n: int = 2001, grid=None):
-    """(ps, Q): the curves q_j(p) on an adaptive grid of [p_lo, p_hi] (or refined from ``grid``);
-    column j is one continuous curve. Steps are halved until both the forward and the backward linear
-    predictions (from dq/dp at either end) land within a tenth of the distance to the nearest other root."""
-    ps = np.linspace(p_lo, p_hi, n) if grid is None else np.asarray(grid, dtype=float)
-    for _ in range(_MAX_REFINE):
-        Q = tracer.q_roots(ps)
-        D = tracer.dq_dp(ps[:, None], Q)
-        h = np.diff(ps)[:, None]
-        pred = Q[:-1] + D[:-1] * h
-        order, ok = _match(Q[:-1], pred, Q[1:], Q[1:] - D[1:] * h)
-        if np.all(ok) or np.diff(ps).min() < 1e-9:
-            break
-        ps = np.sort(np.concatenate([ps, 0.5 * (ps[:-1] + ps[1:])[~ok]]))
-    out = np.empty_like(Q)
-    out[0] = Q[0]
-    idx = np.arange(Q.shape[1])
-    for k in range(order.shape[0]):
-        idx = order[k][idx]
-        out[k + 1] = Q[k + 1][idx]
-    return ps, out
-
-
-def _turn_brackets(xd):
-    """(a, b) index pairs between which Re dq/dp changes sign: b = a + 1 (a root inside), or b > a + 1 when
-    the samples between are exact zeros (a turn on a sample, e.g. p = 0 of an even curve at alpha = 0)."""
-    sign = np.sign(xd)
-    nz = np.nonzero(sign)[0]
-    return [(a, b) for a, b in zip(nz[:-1], nz[1:]) if sign[a] * sign[b] < 0]
-
-
-def _split_at_turns(tracer, ps, qs):
-    """Arms (p, q samples) and folds of one curve: cut where Re dq/dp changes sign."""
-    xd = tracer.dq_dp(ps, qs).real
-    folds, cuts = [], []
-    for k, b in _turn_brackets(xd):
-        if b > k + 1:  # the turn sits on a sample
-            m = (k + b) // 2
-            pt, qt, end, nxt = float(ps[m]), complex(qs[m]), m, m + 1
-        else:
-
-            def slope(p, k=k):
-                q = tracer.refine(
-                    np.array([p]), np.array([qs[k] + (p - ps[k]) * (qs[k + 1] - qs[k]) / (ps[k + 1] - ps[k])])
-                )
-                return float(tracer.dq_dp(np.array([p]), q).real[0])
-
-            pt = optimize.brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
-            qt = complex(tracer.refine(np.array([pt]), np.array([qs[k]]))[0])
-            end = nxt = k + 1
-        d = tracer.dq_dp(np.array([pt]), np.array([qt]))[0]
-        scale = max(1.0, float(np.abs(tracer.dq_dp(ps[k : b + 1], qs[k : b + 1])).max()))
-        opens = 1 if xd[b] > 0 else -1
-        folds.append(Fold(float(pt), qt, bool(abs(d) < 1e-6 * scale), opens))
-        cuts.append((end, pt, qt, nxt))
-    arms = []
-    start_p, start_q, first = [], [], 0
-    for end, pt, qt, nxt in cuts:
-        arms.append(
-            (
-                np.concatenate([start_p, ps[first:end], [pt]]),
-                np.concatenate([start_q, qs[first:end], [qt]]),
-            )
-        )
-        start_p, start_q, first = [pt], [qt], nxt
-    arms.append((np.concatenate([start_p, ps[first:]]), np.concatenate([start_q, qs[first:]])))
-    return arms, folds
-
-
-def far_range(tracer: CutTracer, reach: float) -> float:
-    """A p-range P beyond which no curve q_j(p) (|p| > P) comes back into |Re q| <= reach except as its limit.
-
-    Every end q_j(+-P) either lies beyond the strip (the rail's curves, |q| ~ p^2, and a mass layer's for
-    alpha > 0, q ~ alpha p + s_inf) or has settled at a finite limit q_inf: with t = 1/p, t^deg N(1/t, q)
-    is a polynomial in t whose value at t = 0 vanishes at q_inf (the leading coefficient of N in p; for a
-    mass layer at alpha = 0, its own resonance), so such a curve converges like a power of 1/p. Settled
-    means: the end moved by at most 1e-9 (relative) when |p| doubled, and by at most half as much as in the
-    doubling before (a curve drifting linearly, q ~ alpha p with alpha tiny, is not settled).
-    """
-    P = 4.0
-    prev = tracer.q_roots(np.array([-P, P]))
-    moved_before = np.full(prev.shape, np.inf)
-    while P < _P_MAX:
-        P *= 2
-        cur = tracer.q_roots(np.array([-P, P]))
-        moved = np.min(np.abs(cur[..., :, None] - prev[..., None, :]), axis=-1)
-        settled = (moved <= _SETTLED * (1 + np.abs(cur))) & (moved <= 0.5 * moved_before)
-        if np.all((np.abs(cur.real) > reach) | settled):
-            break
-        prev, moved_before = cur, moved
-    return P
-
-
 def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, foundation=None) -> CutLocus:
     """Trace the cut of K for ``params`` over x_min <= Re q <= x_max (every curve q_j(p), p real).
 
@@ -409,7 +220,7 @@ def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, founda
     ps, Q = trace_curves(tracer, -P, P, grid=grid)
     arms, folds = [], []
     for j in range(Q.shape[1]):
-        pieces, turns = _split_at_turns(tracer, ps, Q[:, j])
+        pieces, turns = split_at_turns(tracer, ps, Q[:, j])
         for p_arm, q_arm in pieces:
             inside = (q_arm.real >= x_min) & (q_arm.real <= x_max)
             if p_arm.size > 1 and (np.any(inside) or (q_arm.real.min() < x_min and q_arm.real.max() > x_max)):

@@ -26,12 +26,11 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
-from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_locus
+from moving_bogie.kernels.cut import CutLocus, arms_y_at
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
-from moving_bogie.roots.cut_cells import ColumnCell, Sliver
+from moving_bogie.roots.counting import CountMismatch, count_tiling, frame
 from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
-from moving_bogie.roots.search_regions import tile_window
 from moving_bogie.roots.verdict import Verdict, judge
 from moving_bogie.roots.window import default_window, far_field_window  # noqa: F401  (public here too)
 
@@ -153,10 +152,6 @@ class FrequencyResult:
         } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
 
 
-class CountMismatch(MovingBogieError):
-    """The argument principle and the roots found disagree."""
-
-
 def induced_frequencies(
     params,
     model: str | None = None,
@@ -217,12 +212,12 @@ def induced_frequencies(
         if progress is not None:
             progress(min(1.0, x))
 
-    cut, tiling, counts = _count_tiling(fast, params, window, eps, eps_branch)
+    cut, tiling, counts = count_tiling(fast, params, window, eps, eps_branch)
     total = sum(counts)
     report(0.1)
     if check_window:
         big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
-        more = sum(sum(_count_tiling(fast, params, part, eps, eps_branch)[2]) for part in _frame(window, big))
+        more = sum(sum(count_tiling(fast, params, part, eps, eps_branch)[2]) for part in frame(window, big))
         if more:
             warnings.append(
                 f"window: {more} more root(s) in the window twice as large "
@@ -275,63 +270,6 @@ def induced_frequencies(
         result = dataclasses.replace(result, certificate=prove(result))
     report(1.0)
     return result
-
-
-#: Perturbations of the tiling tried in turn when an edge meets a root (eps factor, gap height fraction);
-#: eps only shrinks, so the unsearched sliver never exceeds 2 eps.
-_RETRIES = ((1.0, 0.1), (0.8, 0.113), (0.6, 0.087), (0.5, 0.121))
-
-
-def _count_tiling(fast, params, window, eps, eps_branch):
-    """Tile the window and count the roots in every tile; on a root sitting on an edge, move all the
-    edges (the tiles share them, so they move together) and count again."""
-    cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
-    error = None
-    for factor, fraction in _RETRIES:
-        gap_height = fraction * max(window.width, window.height)
-        tiling = tile_window(
-            window, cut, eps=eps * factor, eps_branch=eps_branch * factor, gap_height=gap_height
-        )
-        try:
-            counts, left_out = _counts(fast, tiling.regions, eps * factor)
-        except EdgeZeroError as exc:
-            error = exc
-            continue
-        if left_out:
-            tiling = dataclasses.replace(tiling, unsearched=tiling.unsearched + tuple(left_out))
-        return cut, tiling, counts
-    raise CountMismatch(f"could not place contours away from the roots and the cut: {error}")
-
-
-#: A cell between two cut curves thinner than this many eps (next to where they cross) whose count fails
-#: is left out and reported with the sliver (its edges pass within eps of both curves, where the side of a
-#: p-root is decided at rounding level).
-_THIN = 10
-
-
-def _counts(fast, regions, eps):
-    """Winding numbers of the regions, and the thin cells left out (as slivers) whose count failed."""
-    counts, left_out = [], []
-    for region in regions:
-        thin = isinstance(region, ColumnCell) and region.height < _THIN * eps
-        try:
-            counts.append(winding_number(fast, region, max_points=20_000 if thin else 400_000))
-        except EdgeZeroError:
-            if not thin:
-                raise
-            counts.append(0)
-            y0, y1 = region.y0 - eps, region.y1 + eps
-            left_out.append(Sliver(region.x0, region.x1, y0, y1, y1 - y0))
-    return counts, left_out
-
-
-def _frame(window: Rectangle, big: Rectangle) -> tuple:
-    """``big`` minus ``window`` (same left edge): the strips below, above and to the right of it."""
-    return (
-        Rectangle(big.x0, big.x1, big.y0, window.y0),
-        Rectangle(big.x0, big.x1, window.y1, big.y1),
-        Rectangle(window.x1, big.x1, window.y0, window.y1),
-    )
 
 
 def _locate(fast, precise, rect, n, newton_cell, dps):
