@@ -23,7 +23,9 @@ from moving_bogie.kernels.characteristic import Characteristic, CharacteristicAr
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.polyroots import poly_roots
 from moving_bogie.kernels.track import resolve_foundation
+from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
+from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.column import exact
 from moving_bogie.stability.map import stability_map
@@ -153,3 +155,26 @@ def test_stability_map_cli_on_a_layered_file(capsys):
     assert "--mu-2" in capsys.readouterr().err
     ok = ["--track", "two-layer", "--mu-2", "4", "--kappa-2", "0.5", "--eta-2", "0.4"]
     assert main(["stability-map", *ok, "--n", "3", "--workers", "1", "--json"]) == 0
+
+
+def test_side_between_two_cut_curves():
+    """Timoshenko-Rayleigh Case 7 (S = 10, r = 0.09) has roots near the real axis beyond sqrt(S)/r inside
+    the lens between two cut curves; the reference is numpy.roots of N(p, .) on a dense p-grid: at the
+    root's Re q the cut passes both below and above it."""
+    params = table1_case(7).replace(beam="tr", S=10, r="0.09")
+    window = Rectangle(-0.01, 60.0, -1.0, 1.0)
+    result = induced_frequencies(params, dps=15, window=window, check_window=False)
+    assert result.count_ok, result.warnings
+    track = resolve_foundation(params)
+    args = track.float_arguments(params)
+    ps = np.linspace(-25, 20, 90001)
+    cut = np.concatenate(
+        [np.roots(np.array(track.module.n_coeffs_in_q(p, **args), dtype=complex)) for p in ps]
+    )
+    far = [r for r in result.roots if float(mpmath.re(r.q)) > 35]
+    assert far
+    for r in far:
+        q = complex(r.q)
+        near = cut[np.abs(cut.real - q.real) < 2e-3]
+        assert near.imag.min() < q.imag < near.imag.max()
+        assert r.side == "between"
