@@ -10,17 +10,8 @@ The branch-cut part (:mod:`branch_cut`) is a numerical integral along the cut; i
 (it makes the homogeneous initial conditions hold exactly) and decays like e^{-eta_f tau} (algebraically,
 about tau^-3/2, when eta_f = 0).
 
-``branch_cut="auto"`` (the default) includes I_bc at the times where it can matter and skips it where its
-measured size is below ``bc_tol`` times the largest steady wheel deflection:
-
-1. The rigorous bound |I_bc(tau)| <= B e^{-eta_f tau}, B = (1/pi) integral of |jump| ds over the cut, gives
-   tau_bound = ln(B / tol) / eta_f (infinite when eta_f = 0).
-2. Below tau_bound, I_bc is measured on windows of one period 2 pi/q_c at tau = 25, 50, 100, ... (doubling);
-   the first window where every response stays below tol sets the end tau_on (I_bc decays, so it stays
-   below). If none does before ``bc_tau_cap``, I_bc is included up to the cap and a note says so.
-
-I_bc is then computed for tau <= min(tau_bound, tau_on) and taken as zero beyond
-(``TimeSeries.branch_cut_until``).
+``branch_cut="auto"`` (the default) includes I_bc at the times where it can matter
+(:mod:`~moving_bogie.response.cut_policy`).
 """
 
 from __future__ import annotations
@@ -33,8 +24,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
-from moving_bogie.response.cut_integral import branch_cut_for
+from moving_bogie.response.cut_policy import branch_cut_extent, branch_cut_mode, branch_cut_or_note, s_min_for
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
 from moving_bogie.response.shapes import KernelGrid
 
@@ -48,7 +38,6 @@ __all__ = [
 
 DIMENSIONLESS_UNITS = {"tau": "1", "w": "w_st", "u": "w_st", "theta": "w_st chi", "xi": "1"}
 SI_UNITS = {"tau": "s", "w": "m", "u": "m", "theta": "rad", "xi": "m"}
-_PROBE_START = 25.0
 
 
 @dataclass(frozen=True)
@@ -145,61 +134,6 @@ def _frequencies(params, model, frequencies, dps, progress):
     return induced_frequencies(params, model, dps=dps, progress=progress)
 
 
-def _branch_cut_mode(branch_cut) -> str:
-    if branch_cut is True or branch_cut == "on":
-        return "on"
-    if branch_cut is False or branch_cut == "off":
-        return "off"
-    if branch_cut == "auto":
-        return "auto"
-    raise ParameterError("branch_cut", f"branch_cut must be True, False or 'auto' (got {branch_cut!r})")
-
-
-def _branch_cut_or_note(params, model, mode):
-    """(BranchCut or None, notes); raises for an unavailable branch cut only when it was forced on."""
-    if mode == "off":
-        return None, []
-    try:
-        return branch_cut_for(params, model), []
-    except BranchCutUnavailable as exc:
-        if mode == "on":
-            raise
-        return None, [f"branch cut skipped: {exc}"]
-
-
-def _s_min(bc: BranchCut, expansion: ResidueExpansion) -> float:
-    """Keep every induced frequency's Re q inside the quadrature range of the cut (not in the tail)."""
-    top = float(np.max(np.abs(expansion.q.real))) if expansion.q.size else 0.0
-    return max(bc.q_c, top) + 1.0
-
-
-def branch_cut_extent(
-    bc: BranchCut, tau_max: float, *, tol: float, cap: float = 1e4, s_min: float | None = None
-):
-    """(tau_on, notes): the time up to which I_bc exceeds ``tol`` (the ``auto`` rule, module docstring)."""
-    notes = []
-    bound = max(bc.l1_bound(s_min=s_min).values())
-    if bound <= tol:
-        return 0.0, [f"branch cut skipped: its bound {bound:.2e} is below tol {tol:.1e}"]
-    tau_bound = math.log(bound / tol) / bc.eta_f if bc.eta_f > 0 else math.inf
-    limit = min(tau_max, tau_bound)
-    # a cut that crosses Re q = 0 (a mass layer's curves) has no slowest period: windows [probe, 2 probe]
-    period = 2 * math.pi / bc.q_c if bc.q_c > 0 else math.inf
-    probe = _PROBE_START
-    while probe < limit:
-        if probe > cap:
-            notes.append(
-                f"branch cut still above tol {tol:.1e} at tau = {cap:g}: included only up to tau = {cap:g}"
-            )
-            return cap, notes
-        window = probe + np.linspace(0.0, min(period, probe), 16)
-        values = bc.responses(window, s_min=s_min)
-        if max(np.abs(v).max() for v in values.values()) < tol:
-            return probe, notes
-        probe *= 2
-    return limit, notes
-
-
 def closed_form_response(
     params,
     tau,
@@ -262,8 +196,8 @@ def closed_form_response(
         tau = tau.reshape(-1)
     if np.any(tau < 0) or not np.all(np.isfinite(tau)):
         raise ParameterError("tau", "tau must be finite and >= 0")
-    mode = _branch_cut_mode(branch_cut)
-    bc, notes = _branch_cut_or_note(dimless, model, mode)
+    mode = branch_cut_mode(branch_cut)
+    bc, notes = branch_cut_or_note(dimless, model, mode)
 
     def report(fraction):
         if progress is not None:
@@ -279,7 +213,7 @@ def closed_form_response(
     series = expansion.totals(tau)
     until = 0.0
     if bc is not None and tau.size:
-        s_min = _s_min(bc, expansion)
+        s_min = s_min_for(bc, expansion)
         if mode == "on":
             until = math.inf
         else:
@@ -375,8 +309,8 @@ def deflection_shape_details(
         tau = tau / scales.t_scale
     if not (math.isfinite(tau) and tau >= 0):
         raise ParameterError("tau", "tau must be finite and >= 0")
-    mode = _branch_cut_mode(branch_cut)
-    bc, notes = _branch_cut_or_note(dimless, model, mode)
+    mode = branch_cut_mode(branch_cut)
+    bc, notes = branch_cut_or_note(dimless, model, mode)
     result = _frequencies(dimless, model, frequencies, dps, None)
     if expansion is None:
         expansion = residue_expansion(dimless, result, model, shapes=True)
@@ -393,7 +327,7 @@ def deflection_shape_details(
     w = w.real
     include = False
     if bc is not None and flat.size:
-        s_min = _s_min(bc, expansion)
+        s_min = s_min_for(bc, expansion)
         include = mode == "on"
         if not include:
             ref = max(abs(expansion.steady["w_rear"]), abs(expansion.steady["w_front"]), 1e-300)
