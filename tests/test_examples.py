@@ -22,8 +22,8 @@ def _kind(path):
     return table, params.model
 
 
-#: Examples whose induced frequencies take minutes (the three-layer track's cut crosses Re q = 0 and the
-#: traced-cut tiling refines long there): their tests run the critical velocity instead.
+#: Examples whose induced frequencies are tested elsewhere at full cost (the three-layer example, about 7 s:
+#: tests/test_layered_search.py certifies its count); here they run their critical velocity.
 SLOW = {"three-layer.toml"}
 
 
