@@ -2,9 +2,11 @@
 
 (a) no library module imports the command-line interface ``moving_bogie.cli``;
 (b) no module imports a private (``_name``) helper or module from another module of the package;
-(c) the subpackages import each other without a cycle at module import time (imports inside functions and
-    under ``if TYPE_CHECKING:`` do not run at import time and are not counted), and, counting the imports
-    inside functions too, data flows one way between them;
+(c) neither the modules nor the subpackages import each other in a cycle, counting the imports inside
+    functions too (a deferred import hides a circle, it does not remove it); only imports under
+    ``if TYPE_CHECKING:``, which never run, are left out;
+(e) no module reaches into another module's private attribute (``obj._name`` where ``_name`` is not
+    defined in the module that uses it);
 (d) no tracked file refers to a file outside the repository.
 
 Each check runs on the files themselves, so each fails with the file, line and name that break the rule.
@@ -103,6 +105,18 @@ def _top_level_statements(body: list[ast.stmt]) -> Iterator[ast.stmt]:
             yield node
 
 
+def _runtime_nodes(tree: ast.AST) -> Iterator[ast.AST]:
+    """Every node of `tree` that can run: all of it, inside functions too, except ``if TYPE_CHECKING:``."""
+    for node in ast.iter_child_nodes(tree):
+        if isinstance(node, ast.If) and ast.unparse(node.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING"):
+            for child in node.orelse:
+                yield child
+                yield from _runtime_nodes(child)
+            continue
+        yield node
+        yield from _runtime_nodes(node)
+
+
 def _layer(module: str) -> str:
     """The subpackage (``roots``) or top-level module (``errors``) that `module` belongs to."""
     parts = module.split(".")
@@ -163,30 +177,81 @@ def test_no_private_name_is_imported_across_modules():
     )
 
 
-def test_subpackages_import_each_other_without_a_cycle():
+def _import_graphs(statements) -> tuple[dict[str, set[str]], dict[str, set[str]]]:
+    """(module -> modules it imports, subpackage -> subpackages it imports) over `statements(tree)`."""
     modules: dict[str, set[str]] = {}
     layers: dict[str, set[str]] = {}
     for module, tree in _trees():
-        statements = list(_top_level_statements(tree.body))
-        for _, imported, names in _imports(module, statements):
+        for _, imported, names in _imports(module, list(statements(tree))):
             for target in _targets(imported, names) - {module}:
                 modules.setdefault(module, set()).add(target)
                 if _layer(target) != _layer(module):
                     layers.setdefault(_layer(module), set()).add(_layer(target))
+    return modules, layers
+
+
+def test_modules_import_each_other_without_a_cycle():
+    """Counting imports inside functions: a circle closed by a deferred import is still a circle."""
+    modules, layers = _import_graphs(_runtime_nodes)
     assert layers, "no import between subpackages found: the scan is broken"
-    assert (cycle := _find_cycle(layers)) is None, "subpackages import each other: " + " -> ".join(cycle)
     assert (cycle := _find_cycle(modules)) is None, "modules import each other: " + " -> ".join(cycle)
 
 
 def test_data_flows_one_way_between_subpackages():
     """Counting imports inside functions too, no subpackage reaches back up the pipeline."""
-    layers: dict[str, set[str]] = {}
-    for module, tree in _trees():
-        for _, imported, names in _imports(module, tree):
-            for target in _targets(imported, names):
-                if _layer(target) != _layer(module):
-                    layers.setdefault(_layer(module), set()).add(_layer(target))
+    _, layers = _import_graphs(_runtime_nodes)
     assert (cycle := _find_cycle(layers)) is None, "subpackages import each other: " + " -> ".join(cycle)
+
+
+def _private_names_defined(tree: ast.Module) -> set[str]:
+    """Private names a module defines: functions, classes, assigned names and attributes (``self._x = ``)."""
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            names.add(node.name)
+        elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            names.add(node.id)
+        elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store | ast.Del):
+            names.add(node.attr)
+        elif isinstance(node, ast.arg):
+            names.add(node.arg)
+        elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+            names.add(node.target.id)  # dataclass fields
+        elif isinstance(node, ast.Call) and ast.unparse(node.func) in ("setattr", "object.__setattr__"):
+            if len(node.args) > 1 and isinstance(node.args[1], ast.Constant):
+                names.add(str(node.args[1].value))
+    return {name for name in names if _is_private(name)}
+
+
+def _private_attribute_uses(tree: ast.Module, package_private: set[str]) -> Iterator[tuple[int, str]]:
+    """(line, text) of every ``obj._name`` in `tree` that reaches into another module of the package.
+
+    ``_name`` is one of the package's private names (`package_private`; so ``argparse``'s own internals do
+    not count) that this module does not define itself; ``self._name`` and ``cls._name`` are the object's
+    own (a base class in another module counts as its own).
+    """
+    own = _private_names_defined(tree)
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Attribute) and _is_private(node.attr)):
+            continue
+        if isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"):
+            continue
+        if node.attr in package_private and node.attr not in own:
+            yield node.lineno, ast.unparse(node)
+
+
+def test_no_private_attribute_is_used_across_modules():
+    trees = dict(_trees())
+    package_private = set().union(*(_private_names_defined(tree) for tree in trees.values()))
+    offenders = [
+        f"{MODULES[module].relative_to(REPO)}:{line} uses {text}"
+        for module, tree in trees.items()
+        for line, text in _private_attribute_uses(tree, package_private)
+    ]
+    assert not offenders, (
+        "private attributes of other modules' objects used (add a public, documented method to the class "
+        "that owns them):\n" + "\n".join(offenders)
+    )
 
 
 def test_the_checks_see_what_they_check():
@@ -200,6 +265,17 @@ def test_the_checks_see_what_they_check():
         "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import x\ndef f():\n    import y\n"
     )
     assert [type(s).__name__ for s in _top_level_statements(guarded.body)] == ["ImportFrom", "FunctionDef"]
+    # imports inside functions are followed; those under TYPE_CHECKING never run and are not
+    assert [imported for _, imported, _ in _imports("moving_bogie", list(_runtime_nodes(guarded)))] == [
+        "typing",
+        "y",
+    ]
+    # a private attribute of another module's object is seen; the module's own private attributes are not
+    reach = ast.parse(
+        "class A:\n    def __init__(self):\n        self._own = 1\n    def f(self, c):\n"
+        "        return self._own + c._args() + c.__len__()\n"
+    )
+    assert [text for _, text in _private_attribute_uses(reach, {"_args", "_own"})] == ["c._args"]
 
 
 # --- (d) self-contained ------------------------------------------------------------------------------------

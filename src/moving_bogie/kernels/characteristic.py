@@ -54,7 +54,12 @@ class Characteristic:
         self.kernel = TrackKernel(params, foundation=foundation)
         self.evaluations = 0
 
-    def _args(self):
+    def vehicle_arguments(self) -> dict:
+        """The vehicle's parameters of Eq. (38), by name, at the working precision (and ``pi``).
+
+        These are the keyword arguments of the generated vehicle functions (``e_chr``, ``e_chr_partials``,
+        ``numerators``, ``shape_weights``), which take the kernel values K as positional arguments.
+        """
         ns = self.params.as_mp()
         return {name: getattr(ns, name) for name in self.module.PARAMETERS} | {"pi": mpmath.pi}
 
@@ -66,13 +71,13 @@ class Characteristic:
         """E_chr(q)."""
         self.evaluations += 1
         kv = self.kernel_values(q)
-        return self.module.e_chr(q, *kv.K, **self._args())
+        return self.module.e_chr(q, *kv.K, **self.vehicle_arguments())
 
     def value_and_derivative(self, q):
         """(E_chr(q), dE_chr/dq) with the chain rule of Eq. (40)."""
         self.evaluations += 1
         kv = self.kernel_values(q, derivative=True)
-        args = self._args()
+        args = self.vehicle_arguments()
         E = self.module.e_chr(q, *kv.K, **args)
         E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *kv.K, **args)
         dK0, dKp, dKm = kv.dK
@@ -81,13 +86,13 @@ class Characteristic:
     def numerators(self, q, kernel_values=None):
         """Residue numerators n_X(q) (Eqs. (36), (41)-(43)) as a dict by response name."""
         kv = kernel_values or self.kernel_values(q)
-        values = self.module.numerators(q, *kv.K, **self._args())
+        values = self.module.numerators(q, *kv.K, **self.vehicle_arguments())
         return dict(zip(self.module.RESPONSES, values))
 
     def shape_weights(self, q, kernel_values=None):
         """(G_rear, G_front) = (8 E_chr + E1, 8 E_chr + E2) of Eqs. (44)-(47)."""
         kv = kernel_values or self.kernel_values(q)
-        return self.module.shape_weights(q, *kv.K, **self._args())
+        return self.module.shape_weights(q, *kv.K, **self.vehicle_arguments())
 
 
 class CharacteristicArray:

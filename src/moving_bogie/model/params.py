@@ -16,7 +16,6 @@ from typing import Any
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, default_catalogue, get_model
 from moving_bogie.model.exact import (
-    NumberLike,
     fraction_to_exact_text,
     fraction_to_mpf,
     fraction_to_text,
@@ -265,25 +264,6 @@ class DimensionlessParams(ModelValues):
         out |= {k: fraction_to_text(v) for k, v in self._values.items()}
         out |= {name: fraction_to_text(getattr(self, name)) for name in self._model.alternatives}
         return out
-
-    def to_physical(self, *args: NumberLike, digits: int = 20, **scales: NumberLike):
-        """SI parameters for a track and wheel load: Eqs. (15)-(17), (59) inverted.
-
-        The scale parameters are the model's (``Model.scale_parameters``), by keyword or in their order:
-        ``EI, m, k_f, P`` on the one-layer track, ``EI, m, k_1, P`` on a layered track.
-
-        Returns
-        -------
-        PhysicalParams
-            ``PhysicalParams(...).to_dimensionless()`` gives back these parameters to about `digits`.
-        """
-        from moving_bogie.model.physical import PhysicalParams
-
-        names = tuple(self._model.scale_parameters)
-        if len(args) > len(names):
-            raise ParameterError("scales", f"at most {len(names)} scale parameters: {', '.join(names)}")
-        scales |= dict(zip(names, args))
-        return PhysicalParams.from_dimensionless(self, digits=digits, **scales)
 
 
 def check_value_named(name: str, value: object) -> Fraction:

@@ -166,7 +166,7 @@ def residue_expansion(
     with mpmath.workdps(frequencies.dps):
         zero = mpmath.mpc(0)
         kv0 = chr_.kernel_values(zero)
-        E0 = chr_.module.e_chr(zero, *kv0.K, **chr_._args())
+        E0 = chr_.module.e_chr(zero, *kv0.K, **chr_.vehicle_arguments())
         if abs(E0) < mpmath.mpf(10) ** (-frequencies.dps // 2):
             raise MovingBogieError("E_chr(0) = 0: no steady state (q = 0 is an induced frequency)")
         n0 = chr_.numerators(zero, kv0)
@@ -176,7 +176,7 @@ def residue_expansion(
         for q in qs:
             q = mpmath.mpc(q)
             kv = chr_.kernel_values(q, derivative=True)
-            args = chr_._args()
+            args = chr_.vehicle_arguments()
             E_q, E_K0, E_Kp, E_Km = chr_.module.e_chr_partials(q, *kv.K, **args)
             dE = E_q + E_K0 * kv.dK[0] + E_Kp * kv.dK[1] + E_Km * kv.dK[2]
             if dE == 0:

@@ -24,6 +24,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from moving_bogie.stability.column import exact
+from moving_bogie.stability.line_results import InstabilityBranch, InstabilityLines
 from moving_bogie.stability.undamped import (
     UndampedCounter,
     boundaries,
@@ -61,8 +62,6 @@ def undamped_branches(
     ``grid_points`` values of theta (and 5 geometric ones down to theta_max / 1000) are counted at every
     alpha; changes are bisected to ``tol * theta_max``.
     """
-    from moving_bogie.stability.instability_lines import InstabilityBranch
-
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
     alphas = np.linspace(a0, a1, max(2, int(round((a1 - a0) / alpha_step)) + 1))
     grid = parameter_grid(theta_max, grid_points)
@@ -94,10 +93,8 @@ def undamped_branches(
 
 
 def undamped_lines(params, model, ds, parameter, alpha_range, theta_max, **options):
-    """:class:`~moving_bogie.stability.instability_lines.InstabilityLines` of undamped boundaries (``q_max``
+    """:class:`~moving_bogie.stability.line_results.InstabilityLines` of undamped boundaries (``q_max``
     None); ``options`` go to :func:`undamped_branches`."""
-    from moving_bogie.stability.instability_lines import InstabilityLines
-
     branches, warnings, method = undamped_branches(
         params, model, ds, parameter, alpha_range, theta_max, **options
     )
