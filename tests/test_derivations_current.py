@@ -17,13 +17,13 @@ import subprocess
 import sys
 from pathlib import Path
 
-import pytest
+from derivation_support import require_sympy
 
 REPO = Path(__file__).resolve().parents[1]
 UPDATE_COMMAND = "python -m derivations"
 TIMEOUT = 300
 
-pytest.importorskip("sympy")
+require_sympy()
 
 
 def _derivations(*args, env=None) -> subprocess.Popen:

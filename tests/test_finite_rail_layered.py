@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from derivation_support import require_sympy
 
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
@@ -48,7 +49,7 @@ def two_layer():
 )
 def test_generated_modal_blocks_equal_the_derivation(name):
     """The generated ``modal_*`` functions against the SymPy blocks of derivations/modal.py (20 digits)."""
-    sp = pytest.importorskip("sympy")
+    sp = require_sympy()
     if str(REPO) not in sys.path:  # derivations/ is a top-level folder of the repository, not installed
         sys.path.insert(0, str(REPO))
     from derivations.foundations import MODELS

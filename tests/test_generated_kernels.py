@@ -21,8 +21,9 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import pytest
+from derivation_support import require_sympy
 
-sp = pytest.importorskip("sympy")
+sp = require_sympy()
 
 REPO = Path(__file__).resolve().parents[1]
 if str(REPO) not in sys.path:  # derivations/ is a top-level folder of the repository, not installed

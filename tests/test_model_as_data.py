@@ -17,13 +17,14 @@ from pathlib import Path
 
 import mpmath
 import pytest
+from derivation_support import require_sympy
 
 from moving_bogie import DimensionlessParams, ParameterError, table1_case
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.catalogue import Model, get_model, load_catalogue
 from moving_bogie.roots.frequencies import induced_frequencies
 
-pytest.importorskip("sympy")
+require_sympy()
 
 REPO = Path(__file__).resolve().parents[1]
 
