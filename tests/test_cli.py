@@ -68,7 +68,18 @@ def test_physical_file_prints_physical_parameters_and_scales(tmp_path):
     data = json.loads(run("params", "--file", str(path), "--alpha", "0.5", "--json").stdout)
     assert data["dimensionless"]["alpha"] == "0.5"
     assert data["physical"]["M"] == "1500" and data["physical"]["v"] != "300"
-    assert data["scales"]["chi"] > 0
+    # Reference: Eqs. (15)-(17) of the paper evaluated here from the file's SI values (EI, m, k_f, P, M, d)
+    EI, m, k_f, P = 6.4e6, 60.0, 5e7, 1e5
+    chi = (k_f / (4 * EI)) ** 0.25
+    v_ref = (4 * k_f * EI / m**2) ** 0.25
+    scales = data["scales"]
+    assert scales["chi"] == pytest.approx(chi, rel=1e-12)
+    assert scales["v_ref"] == pytest.approx(v_ref, rel=1e-12)
+    assert scales["w_st"] == pytest.approx(P * chi / (2 * k_f), rel=1e-12)
+    assert scales["t_scale"] == pytest.approx((m / k_f) ** 0.5, rel=1e-12)  # tau = sqrt(k_f/m) t
+    assert float(data["physical"]["v"]) == pytest.approx(0.5 * v_ref, rel=1e-12)  # alpha = v / v_ref
+    assert float(data["dimensionless"]["eta_M"]) == pytest.approx(1500 * chi / m, rel=1e-12)
+    assert float(data["dimensionless"]["d"]) == pytest.approx(1.7 * chi, rel=1e-12)
 
 
 def test_version_and_help():
