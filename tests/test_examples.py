@@ -1,13 +1,20 @@
-"""Every parameter file in examples/ runs, and there is one for every track model and both kinds of table."""
+"""Every parameter file in examples/ runs, and there is one for every track model and both kinds of table.
+
+The results are checked against references computed in the test: each root by the argument principle on a
+circle of its own, the three-layer example's critical velocity from the dispersion relation in SI units.
+"""
 
 import json
 import tomllib
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from moving_bogie.cli import main
 from moving_bogie.generated import MODULES, VEHICLES
+from moving_bogie.kernels.characteristic import CharacteristicArray
+from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 
@@ -38,21 +45,119 @@ def test_an_example_for_every_model_and_table():
     assert {model.vehicle for _, model in kinds} >= set(VEHICLES)
 
 
+def _three_layer_v_cr(EI, m, k_1, m_2, k_2, m_3, k_3):
+    """Critical velocity (m/s) of the undamped three-layer track, from its dispersion relation in SI units.
+
+    Reference, independent of the generated kernels: the equations (L2) of docs/layered_tracks.md without
+    damping, for free waves ``e^{i(k x - omega t)}``::
+
+        (EI k^4 + k_1 - m omega^2) W - k_1 Z = 0
+        -k_1 W + (k_1 + k_2 - m_2 omega^2) Z - k_2 Z_3 = 0
+        -k_2 Z + (k_2 + k_3 - m_3 omega^2) Z_3 = 0
+
+    A cubic in omega^2 at every k. The critical velocity is the smallest local minimum of the phase speed
+    omega_j(k) / k over the three branches (the load's line tangent to a branch), found on a dense grid of
+    k and refined by a parabola through the three grid points around each minimum.
+    """
+    k = np.linspace(0.05, 20.0, 40_000)
+    a = m * m_2 * m_3  # coefficients of det(...) in x = omega^2, highest first, at every k
+    rail = EI * k**4 + k_1
+    b = -(rail * m_2 * m_3 + m * (k_1 + k_2) * m_3 + m * m_2 * (k_2 + k_3))
+    c = (
+        rail * ((k_1 + k_2) * m_3 + m_2 * (k_2 + k_3))
+        + m * ((k_1 + k_2) * (k_2 + k_3) - k_2**2)
+        - k_1**2 * m_3
+    )
+    d = -(rail * ((k_1 + k_2) * (k_2 + k_3) - k_2**2) - k_1**2 * (k_2 + k_3))
+    omega2 = np.sort(np.array([np.roots([a, bi, ci, di]).real for bi, ci, di in zip(b, c, d)]), axis=1)
+    minima = []
+    for speed in np.sqrt(omega2).T / k:
+        inner = np.flatnonzero((speed[1:-1] < speed[:-2]) & (speed[1:-1] < speed[2:])) + 1
+        for i in inner:
+            y0, y1, y2 = speed[i - 1 : i + 2]
+            minima.append(y1 - (y2 - y0) ** 2 / (8 * (y2 - 2 * y1 + y0)))
+    return min(minima)
+
+
 @pytest.mark.parametrize("path", [p for p in FILES if p.name in SLOW], ids=sorted(SLOW))
 def test_slow_example_gives_its_critical_velocity(capsys, path):
     assert main(["critical-velocity", "--file", str(path), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert float(data["v_cr"]) > 0
+    si = tomllib.loads(path.read_text())["physical"]
+    names = ("EI", "m", "k_1", "m_2", "k_2", "m_3", "k_3")
+    reference = _three_layer_v_cr(*(float(si[name]) for name in names))
+    # the grid step of k (5e-4 1/m) leaves the parabola's minimum within ~1e-6 relative of the true one
+    assert float(data["v_cr"]) == pytest.approx(reference, rel=1e-5)
+
+
+def _cut_distance(foundation, params, q0) -> float:
+    """Distance from q0 to the cut of K: min over real p of |q_j(p) - q0|, N(p, q_j(p)) = 0 (kernels/cut.py).
+
+    Independent of the cut tracer: every root in q of N(p, .) by the eigenvalues of its companion matrix on
+    a grid of real p, then the closest p refined by golden-section search (the distance is continuous in p).
+    """
+    args = foundation.float_arguments(params)
+
+    def distance(ps):
+        ps = np.atleast_1d(np.asarray(ps, dtype=float))
+        coeffs = [
+            np.broadcast_to(np.asarray(c, dtype=complex), ps.shape)
+            for c in foundation.module.n_coeffs_in_q(ps, **args)
+        ]
+        c = np.stack(coeffs, axis=-1)
+        n = c.shape[-1] - 1
+        companion = np.zeros(ps.shape + (n, n), dtype=complex)
+        companion[..., 0, :] = -c[..., 1:] / c[..., :1]
+        companion[..., np.arange(1, n), np.arange(n - 1)] = 1
+        return np.abs(np.linalg.eigvals(companion) - q0).min(axis=-1)
+
+    grid = np.linspace(-60.0, 60.0, 48_001)
+    i = int(distance(grid).argmin())
+    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
+    golden = (np.sqrt(5) - 1) / 2
+    for _ in range(60):
+        x1, x2 = hi - golden * (hi - lo), lo + golden * (hi - lo)
+        if distance(x1)[0] < distance(x2)[0]:
+            hi = x2
+        else:
+            lo = x1
+    return float(distance(0.5 * (lo + hi))[0])
+
+
+def _winding_number(characteristic, q0, radius, points=512) -> float:
+    """(change of arg E_chr around the circle |q - q0| = radius) / 2 pi, in double precision (Eq. (38))."""
+    circle = q0 + radius * np.exp(2j * np.pi * np.arange(points + 1) / points)
+    steps = np.diff(np.unwrap(np.angle(characteristic(circle))))
+    assert np.abs(steps).max() < 0.5, "the circle is too coarse to follow arg E_chr"
+    return steps.sum() / (2 * np.pi)
 
 
 @pytest.mark.parametrize(
     "path", [p for p in FILES if p.name not in SLOW], ids=[p.name for p in FILES if p.name not in SLOW]
 )
-def test_example_runs(capsys, path):
+def test_example_roots_are_simple_zeros_of_the_characteristic_equation(capsys, path):
+    """Every reported root against the argument principle on a tiling of its own (cf. roots/contour.py).
+
+    Reference: a circle around each reported root, clear of the other roots and of the cut of K (its
+    distance computed in the test), on which E_chr is evaluated in double precision (the numpy kernels,
+    not the mpmath ones that polished the root): arg E_chr winds exactly once, so the circle holds one
+    simple zero. The verdict follows from the signs of Im q (Eq. (35)).
+    """
     assert main(["frequencies", "--file", str(path), "--json", "--dps", "20"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["count_ok"] and data["verdict"]["state"] in ("stable", "unstable")
+    assert data["count_ok"] and data["count"] == data["found"] == len(data["roots"])
     assert data["roots"], "an induced frequency was expected"
+    params, _ = load_params_file(path)
+    characteristic = CharacteristicArray(params)
+    foundation = resolve_foundation(params)
+    roots = np.array([complex(float(r["re"]), float(r["im"])) for r in data["roots"]])
+    for q0 in roots:
+        others = np.abs(np.delete(roots, np.flatnonzero(roots == q0)) - q0)
+        clear = min([_cut_distance(foundation, params, q0), *others])
+        assert clear > 1e-9, f"root {q0} lies on the cut or on another root"
+        assert round(_winding_number(characteristic, q0, 0.3 * clear), 6) == 1, q0
+    unstable = roots.imag < 0
+    assert data["verdict"]["state"] == ("unstable" if unstable.any() else "stable")
 
 
 def test_dimensionless_example_is_case7_written_out():
