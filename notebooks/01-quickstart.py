@@ -101,6 +101,16 @@ for name, value in params.to_dict().items():
     if value is not None:
         print(f"{name:>8} = {value}")
 
+# The scales and groups above against Eqs. (15)-(17), evaluated here from the SI values
+EI, m, k_f, c_f, P = 6.38e6, 60.21, 5e6, 3500.0, 80e3
+chi = (k_f / (4 * EI)) ** 0.25
+assert np.isclose(scales.chi, chi, rtol=1e-12)
+assert np.isclose(scales.v_ref, (4 * k_f * EI / m**2) ** 0.25, rtol=1e-12)
+assert np.isclose(scales.w_st, P * chi / (2 * k_f), rtol=1e-12)
+assert np.isclose(float(params.alpha), 83.33 / scales.v_ref, rtol=1e-12)
+assert np.isclose(float(params.eta_M), 900 * chi / m, rtol=1e-12)
+assert np.isclose(float(params.eta_f), c_f / (2 * np.sqrt(m * k_f)), rtol=1e-12)
+
 # %% [markdown]
 # The bogie travels at $\alpha \approx 0.19$ of the critical velocity. For comparison, the cases of the
 # paper's Table 1 use $\alpha$ = 0.4-0.95, $\eta_M$ = 15-50 and $\kappa_v$ = 0.02-0.2. (A one-layer model with
@@ -131,10 +141,14 @@ for root in freq.roots:
         f"{omega.real / (2 * np.pi):9.2f} {omega.imag:12.2f}"
     )
 assert freq.count_ok and freq.stable
+# what the text below says: four pairs q, -conj(q) (one of each listed), all with Im q > 0, at 6-22 Hz
+hz = [abs(scales.angular_frequency(complex(root.q)).real) / (2 * np.pi) for root in freq.roots]
+assert len(freq.roots) == 4 and all(float(root.q.imag) > 0 for root in freq.roots)
+assert 6 <= min(hz) and max(hz) <= 22, hz
 
 # %% [markdown]
 # Four pairs, all with $\mathrm{Im}\,q > 0$: the vibrations excited when the bogie "appears" on the track at
-# $t = 0$ die out, at rates of a few per second. In SI, the induced frequencies are of the order of 6-21 Hz.
+# $t = 0$ die out, at rates of a few per second. In SI, the induced frequencies lie between about 6 and 22 Hz.
 #
 # ## 4. Vibrations in time (Eqs. (35)-(43))
 #

@@ -93,6 +93,27 @@ print("branches without a local minimum:", cv.without_minimum)
 one = critical_velocity(params.replace(track="one-layer"))
 print(f"one-layer track with the same pads: alpha_cr = {float(one.alpha_cr):.12f}")
 
+# A check of the numbers above, independent of the package's kernels: the dispersion relation of the
+# undamped two-layer track in SI units (docs/layered_tracks.md, (L1)), free waves e^{i(k x - w t)}:
+#   (EI k^4 + k_1 - m w^2)(k_1 + k_2 - m_2 w^2) - k_1^2 = 0,  a quadratic in w^2 at every k;
+# v_cr is the smallest local minimum of the phase speed w/k (dense grid of k, parabola through the minimum).
+# On the one-layer track with the same pads, Eq. (65) gives alpha_cr = 1.
+si = {name: float(getattr(physical, name)) for name in ("EI", "m", "k_1", "m_2", "k_2")}
+k = np.linspace(0.05, 20.0, 40_000)
+rail = si["EI"] * k**4 + si["k_1"]
+a2, a1 = si["m"] * si["m_2"], -(rail * si["m_2"] + si["m"] * (si["k_1"] + si["k_2"]))
+a0 = rail * (si["k_1"] + si["k_2"]) - si["k_1"] ** 2
+w2 = np.stack([(-a1 - s * np.sqrt(a1**2 - 4 * a2 * a0)) / (2 * a2) for s in (1, -1)])
+minima = []
+for speed in np.sqrt(w2) / k:
+    for i in np.flatnonzero((speed[1:-1] < speed[:-2]) & (speed[1:-1] < speed[2:])) + 1:
+        y0, y1, y2 = speed[i - 1 : i + 2]
+        minima.append(y1 - (y2 - y0) ** 2 / (8 * (y2 - 2 * y1 + y0)))
+v_cr = min(minima)
+print(f"v_cr from the SI dispersion relation: {v_cr:.3f} m/s")
+assert abs(float(cv.alpha_cr) * scales.v_ref - v_cr) < 1e-5 * v_cr
+assert abs(float(one.alpha_cr) - 1) < 1e-12
+
 ps = np.linspace(0.02, 6, 600)
 omega = dispersion_branches(params, ps)
 fig = Figure(figsize=(6, 4), layout="constrained")
@@ -122,6 +143,9 @@ for v in speeds:
     for r in res.roots:
         w = complex(r.q) / scales.t_scale
         print(f"    omega = {w.real:+10.3f} {w.imag:+9.3f}i rad/s  ({w.real / (2 * np.pi):8.3f} Hz)")
+    # the roots found are the roots counted (argument principle); the verdict is the sign of Im q (Eq. (35))
+    assert res.count_ok and res.count == len(res.roots)
+    assert res.stable == all(float(r.q.imag) >= 0 for r in res.roots)
 
 # %% [markdown]
 # ## Where a heavy bogie becomes unstable
