@@ -5,7 +5,8 @@ edit" and the inputs hash; a regeneration into a temporary folder is byte-identi
 and to a second regeneration; ``python -m derivations --check`` fails with the diff and the command that
 updates the files. The runtime never imports SymPy, whichever of its modules is imported.
 
-Each derivation run costs a few seconds (SymPy); the independent runs are started in parallel.
+Each derivation run costs a few seconds (SymPy): the two regenerations run once, in parallel, shared by
+the tests that compare them; those tests and the ``--check`` on a tampered copy are marked slow.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 from derivation_support import require_sympy
 
 REPO = Path(__file__).resolve().parents[1]
@@ -57,39 +59,52 @@ def _written_files(root: Path) -> dict[str, bytes]:
     return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.rglob("*")) if p.is_file()}
 
 
-def test_committed_files_are_current():
-    result = _finish(_derivations("--check"))
-    assert result.returncode == 0, (
-        f"generated/ or docs/proofs.md is stale. Update with: {UPDATE_COMMAND}\n"
-        f"{result.stdout}\n{result.stderr}"
-    )
-    assert "generated files are current" in result.stdout
-
-
-def test_regeneration_is_deterministic_and_equals_the_committed_files(tmp_path):
-    """Two independent regenerations into empty folders are byte-identical to each other and to the repo.
+@pytest.fixture(scope="module")
+def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes]]:
+    """Two regenerations into empty folders, run once for the module and in parallel: (first, second).
 
     The second run starts with another PYTHONHASHSEED: the command must pin it itself (SymPy's CSE and
-    ordering can depend on string hashing). The set of files must match too, so a generated module left
-    behind by a removed model (which ``--check`` cannot see) is caught here.
+    ordering can depend on string hashing). Each regeneration costs a few seconds of SymPy, so the tests
+    below share them instead of running ``--check`` (the same derivation) again.
     """
-    roots = [tmp_path / "first", tmp_path / "second"]
+    base = tmp_path_factory.mktemp("regenerated")
+    roots = [base / "first", base / "second"]
     env_other_seed = dict(os.environ, PYTHONHASHSEED="12345")
     procs = [_derivations("--root", str(roots[0])), _derivations("--root", str(roots[1]), env=env_other_seed)]
     for proc in procs:
         result = _finish(proc)
         assert result.returncode == 0, result.stdout + result.stderr
     first, second = (_written_files(r) for r in roots)
-    assert first == second, "two regenerations differ: the output is not deterministic"
+    return first, second
+
+
+@pytest.mark.slow
+def test_committed_files_are_current(regenerations):
+    """What ``python -m derivations --check`` checks: a regeneration equals the committed files, file by file.
+
+    The set of files must match too, so a generated module left behind by a removed model (which
+    ``--check`` cannot see) is caught here.
+    """
+    first, _ = regenerations
     committed = _committed_files()
     assert sorted(first) == sorted(committed), (
         f"generator writes {sorted(first)}, repository has {sorted(committed)}; "
         f"remove stale files or run: {UPDATE_COMMAND}"
     )
     for rel, text in first.items():
-        assert text == committed[rel], f"{rel} differs from a regeneration. Update with: {UPDATE_COMMAND}"
+        assert text == committed[rel], (
+            f"{rel} is stale (differs from a regeneration). Update with: {UPDATE_COMMAND}"
+        )
 
 
+@pytest.mark.slow
+def test_regeneration_is_deterministic(regenerations):
+    """Two independent regenerations, under different hash seeds, are byte-identical."""
+    first, second = regenerations
+    assert first == second, "two regenerations differ: the output is not deterministic"
+
+
+@pytest.mark.slow
 def test_check_reports_a_tampered_file_with_a_diff_and_the_command(tmp_path):
     root = tmp_path / "copy"
     shutil.copytree(

@@ -1,10 +1,27 @@
-"""The stability subcommands: JSON shapes, files written, one-line errors."""
+"""The stability subcommands: JSON shapes, files written (figures read back by content), one-line errors."""
 
 import json
 
 import numpy as np
+import pytest
+from matplotlib.collections import QuadMesh
 
+import moving_bogie.cli.lines_cmd as lines_cmd
 from moving_bogie.cli import main
+
+
+@pytest.fixture
+def saved_figures(monkeypatch):
+    """The figures the line and map commands save, kept so that a test reads their data back."""
+    figures = []
+    original = lines_cmd.save_figure
+
+    def keep(fig, path, *args, **kwargs):
+        figures.append(fig)
+        return original(fig, path, *args, **kwargs)
+
+    monkeypatch.setattr(lines_cmd, "save_figure", keep)
+    return figures
 
 
 def _run(capsys, *argv):
@@ -13,7 +30,7 @@ def _run(capsys, *argv):
     return code, out, err
 
 
-def test_instability_lines_json(capsys, tmp_path):
+def test_instability_lines_json(capsys, tmp_path, saved_figures):
     code, out, _ = _run(
         capsys,
         "instability-lines",
@@ -30,8 +47,16 @@ def test_instability_lines_json(capsys, tmp_path):
         "--plot",
         str(tmp_path / "lines.png"),
     )
-    assert code == 0 and (tmp_path / "lines.png").stat().st_size > 0
+    assert code == 0 and (tmp_path / "lines.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     data = json.loads(out)
+    # the figure by content: its lines are the branches of the JSON, point by point
+    (fig,) = saved_figures
+    drawn = [np.column_stack(ln.get_data()).astype(float) for ax in fig.axes for ln in ax.get_lines()]
+    drawn = [d for d in drawn if len(d) > 1 and len(set(d[:, 0])) > 1]
+    reported = [np.array([[pt["alpha"], pt["eta_M"]] for pt in b["points"]]) for b in data["branches"]]
+    assert len(drawn) == len(reported)
+    for d, r in zip(drawn, reported):
+        np.testing.assert_allclose(d, r, rtol=1e-12)
     assert data["model"] == "masses" and data["branches"]
     branch = data["branches"][0]
     assert branch["d"] == 1.5 and branch["unstable_side"] in ("above", "below", "mixed")
@@ -40,7 +65,7 @@ def test_instability_lines_json(capsys, tmp_path):
     assert v["count_above"] - v["count_below"] == (1 if branch["unstable_side"] == "above" else -1)
 
 
-def test_stability_map_writes_npz_and_plot(capsys, tmp_path):
+def test_stability_map_writes_npz_and_plot(capsys, tmp_path, saved_figures):
     code, out, _ = _run(
         capsys,
         "stability-map",
@@ -63,7 +88,17 @@ def test_stability_map_writes_npz_and_plot(capsys, tmp_path):
     assert summary["alpha_range"][2] == 8
     arrays = np.load(tmp_path / "m.npz")
     assert arrays["degree"].shape == (8, 8) and np.all(arrays["degree"] <= 0)
-    assert (tmp_path / "m.png").stat().st_size > 0
+    assert (tmp_path / "m.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the figure by content: the colour mesh is log10 |degree| of the map's unstable cells, blank elsewhere
+    (fig,) = saved_figures
+    (ax,) = [ax for ax in fig.axes if ax.get_xlabel() == r"$\alpha$"]  # not the colour bar
+    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    degree = arrays["degree"]
+    unstable = (degree < 0) & ~arrays["uncertain"]
+    shown = np.ma.getdata(mesh.get_array()).reshape(degree.shape)
+    blank = np.ma.getmaskarray(mesh.get_array()).reshape(degree.shape) | np.isnan(shown)
+    np.testing.assert_array_equal(blank, ~unstable)
+    np.testing.assert_allclose(shown[unstable], np.log10(np.maximum(-degree[unstable], 1e-6)), rtol=1e-12)
 
 
 def test_critical_stiffness_json(capsys):

@@ -23,7 +23,6 @@ from moving_bogie.sweep import make_spec, open_sweep
 from moving_bogie.sweep.engine import run_sweep
 from moving_bogie.sweep.store import missing_blocks
 
-pytest.importorskip("distributed")
 
 # Case 1 over a window holding stable and unstable points with 0 to 3 unstable roots
 VARY = {"alpha": "0.5:1.1:24", "eta_M": "5:100:24"}
@@ -103,10 +102,30 @@ def test_resume_of_a_different_sweep_is_refused(one_worker):
         run_sweep(other, one_worker, resume=True, workers=1, processes=False)
 
 
-def test_sweep_plot_draws_a_slice(one_worker, tmp_path, capsys):
+def test_sweep_plot_draws_a_slice(one_worker, tmp_path, capsys, monkeypatch):
+    """The slice by content: the colour mesh read back from the figure is log10 |degree| of the store's
+    unstable points (whose verdicts the tests above check against induced_frequencies), blank elsewhere."""
+    from matplotlib.collections import QuadMesh
+
+    import moving_bogie.sweep.plots as plots
+
+    drawn = []
+    original = plots.plot_sweep_slice
+    monkeypatch.setattr(
+        plots, "plot_sweep_slice", lambda *a, **k: drawn.append(original(*a, **k)) or drawn[-1]
+    )
     out = tmp_path / "slice.png"
     assert main(["sweep-plot", str(one_worker), "--x", "alpha", "--y", "eta_M", "--out", str(out)]) == 0
-    assert out.stat().st_size > 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    (ax,) = [ax for ax in drawn[0].axes if ax.get_xlabel() == "alpha"]
+    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    ds = open_sweep(one_worker).compute().transpose("eta_M", "alpha")
+    unstable = ds.n_unstable.values > 0
+    shown = np.ma.getdata(mesh.get_array()).reshape(unstable.shape)
+    blank = np.ma.getmaskarray(mesh.get_array()).reshape(unstable.shape) | np.isnan(shown)
+    np.testing.assert_array_equal(blank, ~unstable)
+    expected = np.log10(np.maximum(-ds.degree_of_instability.values[unstable], 1e-6))
+    np.testing.assert_allclose(shown[unstable], expected, rtol=1e-12)
     assert main(["sweep-plot", str(one_worker), "--x", "alpha", "--y", "eta_f", "--out", str(out)]) == 2
     assert "--y eta_f" in capsys.readouterr().err
 

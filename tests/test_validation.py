@@ -212,10 +212,30 @@ def test_perturbed_closed_form_fails(monkeypatch):
     assert all(not q.within and q.relative > 0.015 for q in result.quantities.values()), result.relative_diff
 
 
+def _check_panels_show_the_comparison(fig, result):
+    """Each panel by content: its solid and dashed curves, read back from the artists, differ inside the
+    comparison window by exactly the max |finite - closed| the verdict judged, relative to the dashed
+    curve's amplitude (validation/verdict.py)."""
+    panels = [ax for ax in fig.axes if ax.get_ylabel()]
+    assert len(panels) == len(result.quantities)
+    t0, t1 = result.window
+    for ax, (name, quantity) in zip(panels, result.quantities.items()):
+        curves = {ln.get_linestyle(): ln for ln in ax.get_lines() if len(ln.get_xdata()) > 2}
+        tau = np.asarray(curves["-"].get_xdata(), float)
+        finite = np.asarray(curves["-"].get_ydata(), float)
+        closed = np.asarray(curves["--"].get_ydata(), float)
+        inside = (tau >= t0) & (tau <= t1)
+        assert np.max(np.abs(finite - closed)[inside]) == pytest.approx(quantity.max_abs_diff, rel=1e-12), (
+            name
+        )
+        assert np.max(np.abs(closed[inside])) == pytest.approx(quantity.amplitude, rel=1e-12), name
+
+
 def test_plot_files(case2, tmp_path):
     fig = plot_validation(case2, tmp_path / "case2.png", title="Case 2")
     assert len(fig.axes) == 3
     assert (tmp_path / "case2.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    _check_panels_show_the_comparison(fig, case2)
 
 
 def test_masses_model_one_panel(tmp_path):
@@ -225,7 +245,8 @@ def test_masses_model_one_panel(tmp_path):
     assert result.max_abs_diff_u is None and result.to_dict()["max_abs_diff_theta"] is None
     assert result.agrees
     fig = plot_validation(result, tmp_path / "m.svg")
-    assert len(fig.axes) == 1 and (tmp_path / "m.svg").stat().st_size > 0
+    assert len(fig.axes) == 1 and (tmp_path / "m.svg").read_text().lstrip().startswith("<?xml")
+    _check_panels_show_the_comparison(fig, result)
 
 
 @pytest.mark.parametrize(
