@@ -64,6 +64,7 @@ def test_tr_woodbury_step_equals_dense_solve(model):
     assert_step_equals_dense_solve(system)
 
 
+@pytest.mark.slow
 def test_tr_validation_agrees_and_the_plain_model_does_not():
     # Reference: the closed form of Case 7 on the TR beam of Figure 8b (S = 10, r = 0.09), tau <= 40.
     params = table1_case(7).replace(beam="tr", S=10, r="0.09")

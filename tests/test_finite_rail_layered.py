@@ -156,6 +156,7 @@ def test_one_layer_limit_of_the_layered_finite_rail():
     assert departures[1] < 0.2 * departures[0]
 
 
+@pytest.mark.slow
 def test_cli_validate_runs_on_a_layered_track():
     cmd = [sys.executable, "-m", "moving_bogie", "validate", "--file", str(TWO_LAYER), "--modes", "60"]
     cmd += ["--tmax", "10", "--no-estimate", "--json"]

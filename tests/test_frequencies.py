@@ -110,6 +110,7 @@ params_strategy = st.builds(
 )
 
 
+@pytest.mark.slow
 @settings(max_examples=8, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(params_strategy)
 def test_random_parameter_sets_never_report_a_count_mismatch(params):
@@ -119,6 +120,7 @@ def test_random_parameter_sets_never_report_a_count_mismatch(params):
         assert r.digits >= 15
 
 
+@pytest.mark.slow
 def test_bad_input_fails_cleanly():
     with pytest.raises(ParameterError, match="vehicle"):
         induced_frequencies(table1_case(1), "trolley")
@@ -134,6 +136,7 @@ def test_bad_input_fails_cleanly():
     assert out.returncode == 2 and "eta_M" in out.stderr and "Traceback" not in out.stderr
 
 
+@pytest.mark.slow
 def test_cli_frequencies_json_reports_q_M2_unstable_for_case_1():
     out = subprocess.run(
         [sys.executable, "-m", "moving_bogie", "frequencies", "--case", "1", "--json"],

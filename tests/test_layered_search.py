@@ -74,6 +74,7 @@ def _boundary_count(fast, x0, x1, y0, y1, n=20000):
     return int(round(np.sum(np.angle(w[1:] / w[:-1])) / (2 * np.pi)))
 
 
+@pytest.mark.slow
 def test_two_layer_roots_match_a_dense_scan(two_layer):
     """Every root below the cut (Im q < 0.06; the cut's lowest point is at Im q = 0.0708, checked here by
     numpy.roots of N(p, .) on a p-grid) is found by the search, and no other."""
@@ -98,6 +99,7 @@ def test_two_layer_roots_match_a_dense_scan(two_layer):
     assert max(u.height for u in result.unsearched) < 1e-3
 
 
+@pytest.mark.slow
 def test_three_layer_frequencies_finish_with_a_certified_count():
     params = load_params_file(EXAMPLES / "three-layer.toml")[0]
     result = induced_frequencies(params, dps=15)
@@ -134,6 +136,7 @@ def test_poly_roots_drop_vanishing_leading_coefficients_and_agree_with_numpy():
         assert got.size == ref.size and np.allclose(got, ref, rtol=1e-10, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_small_two_layer_map_agrees_with_frequencies(two_layer):
     alphas = np.linspace(0.0, 1.2, 12)
     thetas = np.linspace(1.0, 200.0, 12)
@@ -157,6 +160,7 @@ def test_stability_map_cli_on_a_layered_file(capsys):
     assert main(["stability-map", *ok, "--n", "3", "--workers", "1", "--json"]) == 0
 
 
+@pytest.mark.slow
 def test_side_between_two_cut_curves():
     """Timoshenko-Rayleigh Case 7 (S = 10, r = 0.09) has roots near the real axis beyond sqrt(S)/r inside
     the lens between two cut curves; the reference is numpy.roots of N(p, .) on a dense p-grid: at the

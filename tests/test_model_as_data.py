@@ -58,6 +58,7 @@ def scratch(tmp_path_factory):
     return root
 
 
+@pytest.mark.slow
 def test_the_new_model_is_in_the_regenerated_catalogue(scratch):
     catalogue = load_catalogue(scratch / "src/moving_bogie/generated")
     names = {m.name for m in catalogue.models()}
@@ -78,6 +79,7 @@ def _base() -> dict:
     return table1_case(1).values()
 
 
+@pytest.mark.slow
 def test_kernel_against_quadrature_and_the_base_model(scratch):
     model = Model("eb", "kelvin-shear", "bogie", load_catalogue(scratch / "src/moving_bogie/generated"))
     q = mpmath.mpc("0.3", "0.2")
@@ -93,6 +95,7 @@ def test_kernel_against_quadrature_and_the_base_model(scratch):
         assert abs(TrackKernel(damped)(q, [0]).K[0] - quadrature) < mpmath.mpf(10) ** -20
 
 
+@pytest.mark.slow
 def test_frequencies_in_python_and_on_the_copy_s_command_line(scratch):
     model = Model("eb", "kelvin-shear", "bogie", load_catalogue(scratch / "src/moving_bogie/generated"))
     at_zero = induced_frequencies(DimensionlessParams(model=model, **_base()), dps=20)

@@ -48,6 +48,7 @@ def jupyter_path(tmp_path_factory):
     return root
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
 def test_notebook_runs(path, tmp_path, monkeypatch, jupyter_path):
     jupytext = pytest.importorskip("jupytext")

@@ -84,6 +84,7 @@ def _as_this_interpreter(command: str) -> str:
     return re.sub(r"(^|&&\s*|\|\s*|;\s*)python\b", rf"\g<1>{python}", command)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("kind", "code", "reason"), runnable_blocks())
 def test_readme_block_runs(tmp_path, kind, code, reason):
     if reason:

@@ -45,6 +45,7 @@ def quick_run(tmp_path_factory):
     return out, status, time.perf_counter() - start, figures
 
 
+@pytest.mark.slow
 def test_quick_run_succeeds_and_fails_nothing(quick_run):
     out, status, seconds, _ = quick_run
     index = (out / "index.md").read_text(encoding="utf-8")
@@ -53,6 +54,7 @@ def test_quick_run_succeeds_and_fails_nothing(quick_run):
     print(f"reproduce --quick: {seconds:.0f} s")
 
 
+@pytest.mark.slow
 def test_index_lists_every_artifact_with_its_caption(quick_run):
     out, _, _, _ = quick_run
     page = (out / "index.html").read_text(encoding="utf-8")
@@ -69,6 +71,7 @@ def test_index_lists_every_artifact_with_its_caption(quick_run):
     assert expected <= set(labels)
 
 
+@pytest.mark.slow
 def test_every_covered_figure_has_its_image_and_the_rest_a_reason(quick_run):
     out, _, _, _ = quick_run
     md = (out / "index.md").read_text(encoding="utf-8")
@@ -93,6 +96,7 @@ def test_every_covered_figure_has_its_image_and_the_rest_a_reason(quick_run):
         assert f"figures/{png.name}" in md
 
 
+@pytest.mark.slow
 def test_table2_shows_confirmed_digits_and_the_print(quick_run):
     out, _, _, _ = quick_run
     page = (out / "index.html").read_text(encoding="utf-8")
@@ -114,6 +118,7 @@ def _drawn(ax) -> list[np.ndarray]:
     return [d[np.all(np.isfinite(d), axis=1)] for d in data if d.size]
 
 
+@pytest.mark.slow
 def test_every_panel_of_every_figure_shows_data(quick_run):
     """No blank panel: each axes with a title or a label draws finite data inside its limits."""
     _, _, _, figures = quick_run
@@ -130,6 +135,7 @@ def test_every_panel_of_every_figure_shows_data(quick_run):
             assert inside, f"{name}: panel '{ax.get_title()}' draws nothing inside its limits"
 
 
+@pytest.mark.slow
 def test_figure2_points_are_induced_frequencies(quick_run):
     """Figure 2 by content: the plotted (alpha, Re q, Im q) are roots of E_chr of Case 1 (Eq. (38)).
 
@@ -155,6 +161,7 @@ def test_figure2_points_are_induced_frequencies(quick_run):
     assert checked >= 4, "Figure 2 shows no frequency line"
 
 
+@pytest.mark.slow
 def test_figure8_marks_the_timoshenko_rayleigh_critical_velocity_of_eq66(quick_run):
     """Figure 8 by content: each panel's grey dotted line is Eq. (66) for the panel's S and r.
 

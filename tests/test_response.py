@@ -198,6 +198,7 @@ def test_physical_parameters_give_si_units(freqs):
     assert si.w_steady_rear == pytest.approx(ref.w_steady_rear * scales.w_st, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_timoshenko_rayleigh_series_start_at_rest(freqs):
     # The half-line integral is Euler-Bernoulli only; any other beam goes through the traced cut
     # (response/cut_integral.py), on by default. Reference: the homogeneous initial conditions of Eq. (35),

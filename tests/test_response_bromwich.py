@@ -21,6 +21,7 @@ from moving_bogie.roots.frequencies import induced_frequencies
 NAMES = ("w_rear", "w_front", "u", "theta")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("case", "taus"), [(7, (20.0, 100.0)), (2, (20.0, 100.0)), (1, (20.0, 100.0)), (13, (5.0, 20.0))]
 )
@@ -36,6 +37,7 @@ def test_closed_form_matches_the_bromwich_integral(case, taus):
         assert np.all(ref.errors[name] < 1e-7 * np.abs(ref[name]) + 1e-10)  # QUADPACK estimate
 
 
+@pytest.mark.slow
 def test_without_the_branch_cut_the_early_response_is_off():
     # Case 7 at tau = 20: I_bc is about 2e-5 (docs/vibrations.md), above the 1e-6 agreement.
     params = table1_case(7)
@@ -45,6 +47,7 @@ def test_without_the_branch_cut_the_early_response_is_off():
     assert abs(off.w_rear[0] - ref["w_rear"][0]) > 1e-5 * abs(ref["w_rear"][0])
 
 
+@pytest.mark.slow
 def test_deflection_shape_matches_the_bromwich_integral():
     # Away from the wheels the early shape is the radiated transient: it lives in the branch-cut part.
     params = table1_case(7)

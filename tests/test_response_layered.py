@@ -51,6 +51,7 @@ def test_the_mass_layer_cut_crosses_re_q_0_above_q_0(two_layer):
     assert bc.q_c == pytest.approx(0.0, abs=1e-12) and bc.eta_f > 0
 
 
+@pytest.mark.slow
 def test_the_response_starts_from_rest(two_layer):
     # exact reference: the loads are switched on at tau = 0 on a track at rest, so w(xi, 0) = 0 and
     # u(0) = theta(0) = 0; the residues alone miss this by 4 % of w_st, I_bc makes it hold
@@ -66,6 +67,7 @@ def test_the_response_starts_from_rest(two_layer):
     assert np.abs(w).max() < 1e-10 * scale
 
 
+@pytest.mark.slow
 def test_two_layer_time_series_match_the_bromwich_integral(two_layer):
     params, result = two_layer
     taus = (0.5, 2.0, 20.0)
@@ -81,6 +83,7 @@ def test_two_layer_time_series_match_the_bromwich_integral(two_layer):
     assert np.abs(off.w_rear - ref["w_rear"]).min() > 1e-4 * scale
 
 
+@pytest.mark.slow
 def test_two_layer_deflection_shape_matches_the_bromwich_integral(two_layer):
     params, result = two_layer
     xi = np.linspace(-10.0, 12.0, 12)
@@ -106,6 +109,7 @@ def test_degenerate_cuts_are_refused_with_the_reason(two_layer, change, reason):
         CurveBranchCut(params.replace(**change))
 
 
+@pytest.mark.slow
 def test_damped_beam_above_the_critical_velocity_matches_the_bromwich_integral():
     # Table 1, Case 7 (eta_f = 0.05) at alpha = 1.2 > alpha_cr: the half-lines of the cut overlap across
     # Re q = 0 at Im q = eta_f, so the traced-cut integral takes over from the half-line one; one induced

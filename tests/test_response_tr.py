@@ -24,6 +24,7 @@ from moving_bogie.roots.frequencies import induced_frequencies
 TAUS = (2.0, 20.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eta_v", ["0.05", "0"])  # with and without damping in the suspension
 def test_tr_time_series_match_the_bromwich_integral(eta_v):
     params = table1_case(7).replace(beam="tr", S=10, r="0.09", eta_v=eta_v)

@@ -30,6 +30,7 @@ def _run(capsys, *argv):
     return code, out, err
 
 
+@pytest.mark.slow
 def test_instability_lines_json(capsys, tmp_path, saved_figures):
     code, out, _ = _run(
         capsys,

@@ -59,6 +59,7 @@ def test_every_traced_point_is_a_real_root(case1_lines, masses_lines):
                 assert abs(E / dE) < 1e-9  # float-rounded (alpha, eta_M, q): the root is real to ~1e-12
 
 
+@pytest.mark.slow
 def test_crossing_a_line_changes_the_unstable_count_by_one(masses_lines, case1_lines):
     for lines, model in ((masses_lines, "masses"), (case1_lines, "bogie")):
         b = max(lines.branches, key=lambda br: len(br.alpha))
@@ -70,6 +71,7 @@ def test_crossing_a_line_changes_the_unstable_count_by_one(masses_lines, case1_l
         assert (above > below) == bool(b.unstable_above[k])
 
 
+@pytest.mark.slow
 def test_paper_unstable_cases_lie_on_the_unstable_side():
     """Cases 1, 5, 12, 13 (unstable in the paper) have unstable counts > 0 at (alpha, eta_M); 6 and 7 none."""
     for case, expected in ((1, 1), (5, 1), (12, 1), (13, 1), (6, 0), (7, 0)):
@@ -112,6 +114,7 @@ def test_d_decomposition_agrees_with_instability_lines_and_counts(case1_lines):
         assert np.array_equal(dd.counts(thetas, thetas[0], col.count[0]), col.count)
 
 
+@pytest.mark.slow
 def test_stability_map_agrees_with_induced_frequencies():
     p = table1_case(1)
     alphas = np.array([0.6, 0.85, 1.05])
@@ -123,6 +126,7 @@ def test_stability_map_agrees_with_induced_frequencies():
         assert m.degree[j, i] == pytest.approx(float(r.degree_of_instability), abs=1e-10)
 
 
+@pytest.mark.slow
 def test_frequency_lines_match_the_checkpoints():
     """Case 1 from alpha = 0.7 to 0.9: four lines, each root found afresh at the checkpoints is reached."""
     res = frequency_lines(table1_case(1), "bogie", alpha_range=(0.7, 0.9), checkpoints=3, h_max=0.02)

@@ -75,6 +75,7 @@ def test_uncertain_cells_are_listed_and_hatched():
     assert [c.get_hatch() for c in ax.collections if c.get_hatch()] == ["////"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n", [6])
 def test_stability_map_store_matches_the_arrays(n, tmp_path, capsys):
     from moving_bogie.cli import main

@@ -111,6 +111,7 @@ def assert_step_equals_dense_solve(system, h: float = 0.05) -> None:
     assert np.allclose(stepped.a, a_dense, rtol=1e-10, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_corrected_run_converges_faster_than_plain():
     # Reference: the closed form of Case 7 (bogie, eta_f = 0.05), tau <= 40, on a fixed beam
     # (L = 120, x0 = 40: the supports stay beyond the near field). Error against modes: the plain model

@@ -23,7 +23,6 @@ from moving_bogie.sweep import make_spec, open_sweep
 from moving_bogie.sweep.engine import run_sweep
 from moving_bogie.sweep.store import missing_blocks
 
-
 # Case 1 over a window holding stable and unstable points with 0 to 3 unstable roots
 VARY = {"alpha": "0.5:1.1:24", "eta_M": "5:100:24"}
 OPTIONS = dict(block_points=8 * 24, check=1)
@@ -52,6 +51,7 @@ def one_worker(tmp_path_factory):
     return path
 
 
+@pytest.mark.slow
 def test_one_and_two_workers_give_the_same_store(one_worker, tmp_path):
     # two worker processes (threads would share mpmath's process-wide precision)
     run = run_sweep(_spec(), tmp_path / "two.zarr", workers=2)
@@ -64,6 +64,7 @@ def test_one_and_two_workers_give_the_same_store(one_worker, tmp_path):
     assert set(np.unique(a["n_unstable"])) == {0, 1, 2, 3}
 
 
+@pytest.mark.slow
 def test_random_points_agree_with_induced_frequencies(one_worker):
     ds = open_sweep(one_worker).compute()
     exact = {name: [Fraction(v) for v in ds[name].attrs["exact"]] for name in ("alpha", "eta_M")}
@@ -79,6 +80,7 @@ def test_random_points_agree_with_induced_frequencies(one_worker):
         assert float(point.degree_of_instability) == pytest.approx(float(ref.degree_of_instability), abs=1e-9)
 
 
+@pytest.mark.slow
 def test_sigint_then_resume_equals_an_uninterrupted_sweep(one_worker, tmp_path):
     path = tmp_path / "interrupted.zarr"
 
@@ -96,12 +98,14 @@ def test_sigint_then_resume_equals_an_uninterrupted_sweep(one_worker, tmp_path):
     _same(_arrays(one_worker)[0], _arrays(path)[0])
 
 
+@pytest.mark.slow
 def test_resume_of_a_different_sweep_is_refused(one_worker):
     other = make_spec(table1_case(1), {"alpha": "0.5:1.1:24", "eta_M": "5:100:23"}, **OPTIONS)
     with pytest.raises(ParameterError, match="--resume"):
         run_sweep(other, one_worker, resume=True, workers=1, processes=False)
 
 
+@pytest.mark.slow
 def test_sweep_plot_draws_a_slice(one_worker, tmp_path, capsys, monkeypatch):
     """The slice by content: the colour mesh read back from the figure is log10 |degree| of the store's
     unstable points (whose verdicts the tests above check against induced_frequencies), blank elsewhere."""
@@ -157,6 +161,7 @@ def test_existing_out_needs_resume_or_overwrite(tmp_path, capsys):
     assert "--out" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_sobol_design_and_cli_json(tmp_path, capsys):
     out = tmp_path / "sobol.zarr"
     code = main(
@@ -197,6 +202,7 @@ def test_sobol_design_and_cli_json(tmp_path, capsys):
     assert int(ds.n_unstable[k]) == len(ref.unstable_roots)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "vary",
     [

@@ -63,6 +63,7 @@ def test_case5_real_root_is_destabilised_by_small_foundation_damping():
     assert (col.undamped[0], col.limit[0]) == (0, 1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("model", "alpha"), [("bogie", 0.7), ("masses", 0.6)])
 def test_subcritical_limit_boundaries_confirmed_by_counts_on_both_sides(model, alpha):
     """Case 2 (undamped, d = 2), subcritical, eta_M up to 200: one boundary, of the limit kind; 3 % on
@@ -81,6 +82,7 @@ def test_subcritical_limit_boundaries_confirmed_by_counts_on_both_sides(model, a
         assert [_unstable(x, model) for x in (below, above)] == [0, 0]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("case", "model"), [(3, "bogie"), (4, "masses")])
 def test_supercritical_boundaries_at_eta_f_zero_confirmed_by_counts(case, model):
     """Cases 3 and 4 (d = 5) at alpha = 1.1: the eta_f = 0 boundaries above eta_M = 5 carry the counts the
@@ -97,6 +99,7 @@ def test_supercritical_boundaries_at_eta_f_zero_confirmed_by_counts(case, model)
         assert counts == [b.count_below, b.count_above]
 
 
+@pytest.mark.slow
 def test_limit_boundaries_are_the_limit_of_small_damping():
     """The limit boundaries equal the D-decomposition crossings at eta_f -> 0+: the difference shrinks by at
     least a factor 10 per decade of eta_f (first order or better), in eta_M (two masses, d = 1.5,
@@ -120,6 +123,7 @@ def test_limit_boundaries_are_the_limit_of_small_damping():
             assert diffs[1] < diffs[0] / 10 and diffs[2] < diffs[1] / 10
 
 
+@pytest.mark.slow
 def test_instability_lines_at_eta_f_zero_say_what_they_are():
     """No refusal any more: boundaries of both kinds for eta_f = 0, of the limit kind only for 1e-6."""
     p = table1_case(2).replace(d="1.5")
@@ -137,6 +141,7 @@ def test_instability_lines_at_eta_f_zero_say_what_they_are():
     assert point["mechanism"] == "damping sign"
 
 
+@pytest.mark.slow
 def test_critical_stiffness_undamped_and_near_undamped():
     """Case 5 at alpha = 0.7: stable for every kappa_v at eta_f = 0; in the limit (and for eta_f = 1e-6)
     unstable between the two limit boundaries, as the D-decomposition at eta_f = 1e-4 says."""
@@ -158,6 +163,7 @@ def _run(capsys, *argv):
     return code, out, err
 
 
+@pytest.mark.slow
 def test_cli_states_the_convention_and_what_is_computed(capsys):
     common = ("--model", "masses", "--d", "1.5", "--alpha-min", "0.75", "--alpha-max", "0.85")
     code, out, _ = _run(capsys, "instability-lines", *common, "--eta-f", "0")
@@ -174,6 +180,7 @@ def test_cli_states_the_convention_and_what_is_computed(capsys):
     assert code == 0 and "undamped foundation" in out and "limit eta_f -> 0+ unstable counts" in out
 
 
+@pytest.mark.slow
 def test_stability_map_counts_change_exactly_across_the_undamped_boundaries():
     """A coarse stability map at eta_f = 0 (its own columns, with the top edge just below the cut) changes
     its unstable count between two cells exactly by the changes of the eta_f = 0 boundaries between them."""

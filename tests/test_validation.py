@@ -79,6 +79,7 @@ def test_reflection_bound_is_zero_until_the_fastest_wave_is_back():
     assert damped.max() < 1e-3  # 0.05 damping: every reflection returns below 1e-3
 
 
+@pytest.mark.slow
 def test_window_is_justified_by_a_longer_beam():
     # Reference: the same finite-beam model on a beam twice as long with twice the modes (same k_max,
     # same time step), whose supports are twice as far: the difference in the window bounds what the
@@ -101,10 +102,12 @@ def test_window_is_justified_by_a_longer_beam():
         assert np.max(np.abs(getattr(short, name) - getattr(long, name))) < 1e-3, name
 
 
+@pytest.mark.slow
 def test_undamped_window_is_the_strict_one(case2):
     assert case2.finite.tau_valid <= case2.window[1] <= 1.02 * case2.finite.tau_valid
 
 
+@pytest.mark.slow
 def test_few_modes_converge_towards_the_closed_form():
     # Reference: the closed form of Case 1 (eta_f = 0.1). Fixed beam L = 200, N = 100, 200, 400:
     # k_max = 1.6, 3.1, 6.3. Truncation error of the plain modal model ~ k_max^-3 (docs/finite_beam.md):
@@ -136,11 +139,13 @@ def _check_agrees(result):
         assert q.error_estimate < 2 * q.max_abs_diff, q
 
 
+@pytest.mark.slow
 def test_case_2_undamped_agrees(case2):
     # Reference: closed form of Case 2 (real induced frequencies, Table 2; Figure 9).
     _check_agrees(case2)
 
 
+@pytest.mark.slow
 def test_case_5_unstable_agrees():
     # Reference: closed form of Case 5 (one induced frequency with Im q = -0.000472, Table 2; Figure 12).
     # tau_max 100 instead of the default 200 keeps the test fast; the CLI test runs a default length.
@@ -149,6 +154,7 @@ def test_case_5_unstable_agrees():
     _check_agrees(result)
 
 
+@pytest.mark.slow
 def test_cli_case_7_json(tmp_path):
     # Reference: closed form of Case 7 (damped foundation and suspension; Figure A1), via the CLI.
     if not SCRIPT.exists():
@@ -233,6 +239,7 @@ def _check_panels_show_the_comparison(fig, result):
         assert np.max(np.abs(closed[inside])) == pytest.approx(quantity.amplitude, rel=1e-12), name
 
 
+@pytest.mark.slow
 def test_plot_files(case2, tmp_path):
     fig = plot_validation(case2, tmp_path / "case2.png", title="Case 2")
     assert len(fig.axes) == 3
@@ -240,6 +247,7 @@ def test_plot_files(case2, tmp_path):
     _check_panels_show_the_comparison(fig, case2)
 
 
+@pytest.mark.slow
 def test_masses_model_one_panel(tmp_path):
     # Reference: closed form of the two masses of Case 5 (Fig. 1a); short run, 200 modes.
     result = validate(table1_case(5), model="masses", n_modes=200, tau_max=40.0)
