@@ -32,7 +32,7 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 
-from moving_bogie import DimensionlessParams
+from moving_bogie import DimensionlessParams, table1_case
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.instability_lines import instability_lines
 from moving_bogie.stability.map import stability_map
@@ -226,6 +226,10 @@ print(
     f"map at alpha = {smap.alphas[i]:.3f}, eta_M = {smap.thetas[j]:.1f}: unstable roots {smap.count[j, i]}, "
     f"degree {smap.degree[j, i]:.6f}"
 )
+# Checks: the root search gives Table 2's printed Im q of Case 1 (root 2: -0.000130, to its 6 decimals);
+# the parameters built here are Case 1 of Table 1 exactly.
+assert case1 == table1_case(1)
+assert not roots.stable and abs(float(roots.degree_of_instability) - (-0.000130)) <= 5e-7
 
 # %% [markdown]
 # ## Explore: how the damping moves the lines
