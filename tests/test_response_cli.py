@@ -37,7 +37,14 @@ def test_timeseries_json_from_the_console_script():
     assert abs(data["w_rear"][0]) < 1e-9
 
 
-def test_timeseries_files_and_no_branch_cut(tmp_path, capsys):
+def test_timeseries_files_and_no_branch_cut(tmp_path, capsys, monkeypatch):
+    import moving_bogie.response.plots as plots
+
+    saved = []
+    original = plots.save_figure
+    monkeypatch.setattr(
+        plots, "save_figure", lambda fig, path, **kw: saved.append(fig) or original(fig, path, **kw)
+    )
     csv, png = tmp_path / "s.csv", tmp_path / "s.png"
     code = main(
         [
@@ -62,6 +69,14 @@ def test_timeseries_files_and_no_branch_cut(tmp_path, capsys):
     lines = csv.read_text().splitlines()
     assert lines[0] == "tau,w_rear,w_front,u,theta" and len(lines) == 13
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the figure by content: its three panels draw the series of the JSON (w_rear, u, theta against tau)
+    (fig,) = saved
+    panels = [ax for ax in fig.axes if ax.get_ylabel()]
+    assert len(panels) == 3
+    for ax, name in zip(panels, ("w_rear", "u", "theta")):
+        (line,) = [ln for ln in ax.get_lines() if len(ln.get_xdata()) == 11]
+        assert list(line.get_xdata()) == pytest.approx(data["tau"], rel=1e-12)
+        assert list(line.get_ydata()) == pytest.approx(data[name], rel=1e-12, abs=1e-15), name
 
 
 def test_shape_json_matches_the_rear_wheel_series(capsys):
