@@ -123,6 +123,7 @@ def test_proven_count_around_a_root_and_next_to_it(case1):
         proven_count(bc, through, min_length=1e-6)
 
 
+@pytest.mark.slow
 def test_proven_count_equals_the_numerical_one_on_random_parameter_sets():
     rng = random.Random(16)
     for _ in range(2):
@@ -145,6 +146,7 @@ def test_proven_count_equals_the_numerical_one_on_random_parameter_sets():
         assert c.verdict == ("stable" if result.stable else "unstable"), (params, c.reason)
 
 
+@pytest.mark.slow
 def test_table2_certified_row_encloses_the_printed_case_5():
     table = compute_table2(cases=(5,), certify=True)
     row = table.to_dict()["cases"][0]
@@ -156,6 +158,7 @@ def test_table2_certified_row_encloses_the_printed_case_5():
     assert "proven: 4/4 roots, count 4, verdict unstable, printed digits enclosed" in format_table2(table)
 
 
+@pytest.mark.slow
 def test_a_missing_root_is_caught_by_the_proven_count(case1):
     # drop the stable root 0.307 + 0.021 i from the numerical result: the proof must notice
     incomplete = dataclasses.replace(case1, roots=case1.roots[1:], certificate=None)

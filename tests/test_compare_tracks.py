@@ -27,6 +27,7 @@ def _panel_data(ax):
     return float(vertical[0].get_xdata()[0]), curves
 
 
+@pytest.mark.slow
 def test_one_layer_limit_gives_the_same_lines_on_both_panels(capsys, tmp_path, monkeypatch):
     import moving_bogie.stability.track_comparison as comparison
 

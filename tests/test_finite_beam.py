@@ -381,6 +381,7 @@ def matrix_pencil(y: np.ndarray, dt: float, order: int) -> np.ndarray:
     return -1j * np.log(z) / dt
 
 
+@pytest.mark.slow
 def test_case1_reproduces_induced_frequencies_of_table2():
     # The wheel-followed deflection of Case 1 (500 modes, default beam) is a sum of the residues at
     # the induced frequencies, Eq. (40): fitting 9 exponentials (4 pairs + the steady part) to

@@ -120,6 +120,7 @@ def _real_p_roots(module, args, alpha, window):
     return np.sort(real[(real > window[0]) & (real < window[1])])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("track", EXAMPLES)
 def test_critical_velocity_of_the_examples_against_a_direct_scan(track):
     """At each local minimum the load's line touches a branch: just below alpha the two real roots p near

@@ -15,6 +15,7 @@ Each check runs on the files themselves, so each fails with the file, line and n
 from __future__ import annotations
 
 import ast
+import functools
 import re
 import subprocess
 from collections.abc import Iterator
@@ -47,9 +48,17 @@ def _module_name(path: Path) -> str:
 MODULES: dict[str, Path] = {_module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
 
 
+@functools.cache
+def _parsed() -> tuple[tuple[str, ast.Module], ...]:
+    """Every module of the package parsed once for all the checks (the trees are only read)."""
+    return tuple(
+        (name, ast.parse(path.read_text(encoding="utf-8"), filename=str(path)))
+        for name, path in MODULES.items()
+    )
+
+
 def _trees() -> Iterator[tuple[str, ast.Module]]:
-    for name, path in MODULES.items():
-        yield name, ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    yield from _parsed()
 
 
 def _is_private(name: str) -> bool:

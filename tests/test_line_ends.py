@@ -36,6 +36,7 @@ def test_figure3e_tip_is_marked_and_is_where_the_line_really_ends(figure3e_d2):
     assert _unstable(tip.alpha - 0.01, tip.theta + 2) == above == _unstable(tip.alpha + 0.01, tip.theta + 2)
 
 
+@pytest.mark.slow
 def test_q_range_is_raised_automatically():
     grid = dict(alpha_step=0.02, q_step=0.008)
     low = instability_lines(_base("0.25"), "masses", spacings=[2.0], q_max=0.12, **grid)

@@ -196,6 +196,7 @@ def test_cli_rejects_a_bad_tolerance(capsys):
     assert "--tol" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_perturbed_closed_form_fails(monkeypatch):
     # The acceptance test of the validation itself: the same finite beam against the closed form
     # scaled by 1.02 (2 % off everywhere) must fail on every quantity, while the true closed form passes.
