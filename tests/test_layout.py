@@ -5,9 +5,9 @@
 (c) neither the modules nor the subpackages import each other in a cycle, counting the imports inside
     functions too (a deferred import hides a circle, it does not remove it); only imports under
     ``if TYPE_CHECKING:``, which never run, are left out;
+(d) no tracked file refers to a file outside the repository;
 (e) no module reaches into another module's private attribute (``obj._name`` where ``_name`` is not
-    defined in the module that uses it);
-(d) no tracked file refers to a file outside the repository.
+    defined in the module that uses it).
 
 Each check runs on the files themselves, so each fails with the file, line and name that break the rule.
 """
