@@ -165,6 +165,8 @@ def format_result(result) -> str:
         lines.append(
             f"not searched: a sliver of height <= {height:.1e} around the cut of K ('unsearched' in --json)"
         )
+    if result.strip is not None:
+        lines.append("below the axis: " + result.strip.statement())
     far = result.far_field
     if far is not None and far.radius is not None:
         lines.append(
@@ -176,7 +178,14 @@ def format_result(result) -> str:
     if verdict.state == "undetermined":
         lines.append("verdict: UNDETERMINED: " + "; ".join(verdict.reasons))
     elif verdict.state == "stable":
-        lines.append("verdict: STABLE (no induced frequency with Im q < 0)")
+        real = sum(r.marginal for r in result.roots)
+        neutral = f"; {real} real, neutral (constant amplitude)" if real else ""
+        lines.append(f"verdict: STABLE (no induced frequency with Im q < 0{neutral})")
+    elif not result.unstable_roots:
+        lines.append(
+            f"verdict: UNSTABLE, {result.strip_unstable} root(s) with Im q < 0 counted in the strip just "
+            "below the cut (not located)"
+        )
     else:
         growth = mpmath.nstr(result.growth_time, 6)
         lines.append(

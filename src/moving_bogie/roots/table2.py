@@ -139,7 +139,7 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
             )
         status = "count ok" if row.result.count_ok else "COUNT MISMATCH"
         state = row.result.verdict
-        verdict = {"stable": "stable", "unstable": "UNSTABLE"}.get(state.state) or (
+        verdict = {"stable": _stable_text(row.result), "unstable": "UNSTABLE"}.get(state.state) or (
             "verdict UNDETERMINED (" + ", ".join(r.split(":")[0] for r in state.reasons) + ")"
         )
         match = (
@@ -151,8 +151,44 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
         if row.result.certificate is not None:
             lines.append(f"{'':>7} {certificate_line(row)}")
     lines.append("")
-    lines.append("all cases ok" if table.ok else "MISMATCH: see the rows marked above")
+    lines += summary_lines(table)
     return "\n".join(lines)
+
+
+def summary_lines(table: Table2) -> list:
+    """The closing lines: print and counts, then the verdicts (undetermined and unproven named)."""
+    undetermined = [row.case for row in table.rows if not row.result.verdict.determined]
+    states = [row.result.verdict.state for row in table.rows]
+    verdicts = f"verdicts: {states.count('stable')} stable, {states.count('unstable')} unstable"
+    if undetermined:
+        verdicts += f", UNDETERMINED for {_case_list(undetermined)}"
+    undamped = [row.case for row in table.rows if row.result.strip is not None and row.result.strip.decided]
+    if undamped:
+        verdicts += (
+            f" ({_case_list(undamped)}: eta_f = 0, the strip below the cut on the real axis counted with K "
+            "as the limit from below)"
+        )
+    lines = [
+        "all cases match the print and their counts" if table.ok else "MISMATCH: see the rows marked above"
+    ]
+    lines.append(verdicts)
+    if any(row.result.certificate is not None for row in table.rows):
+        unproven = [
+            row.case
+            for row in table.rows
+            if row.result.certificate is not None and row.result.certificate.verdict == "not proven"
+        ]
+        lines.append(
+            "proofs: every verdict proven"
+            if not unproven
+            else f"proofs: verdict NOT PROVEN for {_case_list(unproven)} (the rows above say what remains)"
+        )
+    return lines
+
+
+def _stable_text(result) -> str:
+    real = sum(r.marginal for r in result.roots)
+    return f"stable ({real} real root(s), neutral)" if real else "stable"
 
 
 def _case_list(cases) -> str:
