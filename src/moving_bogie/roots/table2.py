@@ -194,6 +194,8 @@ def _stable_text(result) -> str:
 def _case_list(cases) -> str:
     if not cases:
         return "no case"
+    if len(cases) == 1:
+        return f"Case {cases[0]}"
     if list(cases) == list(range(cases[0], cases[-1] + 1)) and len(cases) > 2:
         return f"Cases {cases[0]}-{cases[-1]}"
     return "Cases " + ", ".join(str(c) for c in cases)
