@@ -61,6 +61,7 @@ def test_stability_map_writes_npz_and_plot(capsys, tmp_path):
     assert code == 0
     summary = json.loads(out)
     assert summary["alpha_range"][2] == 8
+    assert summary["eta_M_range"][2] == 8 and "theta_range" not in summary  # named as the option --eta-M-max
     arrays = np.load(tmp_path / "m.npz")
     assert arrays["degree"].shape == (8, 8) and np.all(arrays["degree"] <= 0)
     assert (tmp_path / "m.png").stat().st_size > 0

@@ -77,7 +77,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
         formatter_class=_RAW,
     )
-    q.add_argument("store", type=Path, metavar="S.zarr")
+    q.add_argument("store", type=Path, metavar="S.zarr", help="the sweep store (written by sweep)")
     q.add_argument("--x", required=True, metavar="NAME", help="parameter on the horizontal axis")
     q.add_argument("--y", required=True, metavar="NAME", help="parameter on the vertical axis")
     q.add_argument("--sel", action="append", default=[], metavar="NAME=X", help="fix another dimension")
