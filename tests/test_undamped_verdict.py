@@ -13,6 +13,7 @@ import pytest
 
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.damping_limit import damping_limit
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.strip import strip_below_cut
 from moving_bogie.roots.table2 import compute_table2, format_table2
@@ -34,6 +35,16 @@ def _verdict_agrees_with_small_damping(case):
         got = sorted((complex(r.q) for r in damped.roots), key=lambda z: z.real)
         ref = sorted((complex(r.q) for r in exact.roots), key=lambda z: z.real)
         assert len(got) == len(ref) and np.allclose(got, ref, atol=1e3 * float(Fraction(eta_f)))
+    limit = damping_limit(exact)
+    if limit is None:  # a damped vehicle: no real root at eta_f = 0
+        assert not any(r.marginal for r in exact.roots)
+        return
+    # first order in eta_f against the roots the ordinary search finds at eta_f = 1e-6
+    damped = induced_frequencies(p.replace(eta_f=Fraction("1e-6")), dps=20)
+    for root, slope in zip(limit.roots, limit.slopes):
+        (near,) = [r for r in damped.roots if abs(complex(r.q).real - float(root.q.real)) < 1e-4]
+        assert float(near.q.imag) / 1e-6 == pytest.approx(slope, rel=1e-3)
+    assert (limit.destabilised == 0) == (exact.verdict.state == "stable")
 
 
 @pytest.mark.parametrize("case", [2, 9])

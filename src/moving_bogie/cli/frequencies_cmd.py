@@ -110,10 +110,17 @@ def run_frequencies(args: argparse.Namespace) -> int:
         result = induced_frequencies(
             params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
         )
+    from moving_bogie.roots.damping_limit import damping_limit
+
+    limit = damping_limit(result)
     if args.json:
-        print_json(with_si(result.to_dict(), result, physical))
+        data = with_si(result.to_dict(), result, physical)
+        data["damping_limit"] = None if limit is None else limit.to_dict()
+        print_json(data)
     else:
         print(format_result(result))
+        if limit is not None:
+            print(limit.statement())
         if physical is not None:
             print(format_si(result, physical))
     for line in format_warnings(result):

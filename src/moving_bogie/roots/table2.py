@@ -13,6 +13,7 @@ from decimal import Decimal
 import mpmath
 
 from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
+from moving_bogie.roots.damping_limit import damping_limit
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.polish import fixed_text
 
@@ -26,6 +27,7 @@ class CaseRow:
     result: object  # FrequencyResult
     printed: tuple  # ((re, im) decimal strings), possibly empty
     differences: tuple  # per computed root: (dre, dim) as Decimal or None when nothing is printed
+    limit: object = None  # DampingLimit: the real roots of an eta_f = 0 case under eta_f -> 0+
 
     @property
     def ok(self) -> bool:
@@ -60,6 +62,7 @@ class Table2:
                 None if x is None else {"re": str(x[0]), "im": str(x[1])} for x in row.differences
             ]
             d["ok"] = row.ok
+            d["damping_limit"] = None if row.limit is None else row.limit.to_dict()
             if row.result.certificate is not None:
                 d["certified"]["printed_enclosed"] = printed_enclosed(row)
             cases.append(d)
@@ -106,7 +109,8 @@ def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None, certify:
     for k, case in enumerate(cases):
         result = induced_frequencies(table1_case(case), "bogie", dps=dps, certify=certify)
         printed = tuple(table2_printed(case))
-        rows.append(CaseRow(case, result, printed, compare_with_print(result, printed)))
+        limit = damping_limit(result)
+        rows.append(CaseRow(case, result, printed, compare_with_print(result, printed), limit))
         if progress:
             progress((k + 1) / len(cases))
     return Table2(tuple(rows))
@@ -148,6 +152,8 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
             else ("matches print" if row.ok else "DIFFERS FROM PRINT")
         )
         lines.append(f"{'':>7} {status}, {verdict}{', ' + match if match else ''}")
+        if row.limit is not None:
+            lines.append(f"{'':>7} {row.limit.statement()}")
         if row.result.certificate is not None:
             lines.append(f"{'':>7} {certificate_line(row)}")
     lines.append("")
