@@ -47,7 +47,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description=(
             "Compute the induced frequencies of every Table 1 case and print them like the paper's Table 2\n"
             "(q^r with +-, q^i), with the printed value and the difference where the paper prints one.\n"
-            "Exit status 1 on any difference beyond the print's rounding or any count mismatch."
+            "Exit status 1 on any difference beyond the print's rounding, any count mismatch or any\n"
+            "UNDETERMINED verdict."
         ),
         epilog="examples:\n  moving-bogie table2\n  moving-bogie table2 --decimals 12\n"
         "  moving-bogie table2 --json\n  moving-bogie table2 --certify",
@@ -245,4 +246,5 @@ def run_table2(args: argparse.Namespace) -> int:
     else:
         print(format_table2(table, decimals=args.decimals))
     proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
-    return 0 if table.ok and proven else 1
+    decided = all(row.result.verdict.determined for row in table.rows)
+    return 0 if table.ok and proven and decided else 1
