@@ -33,6 +33,7 @@ def test_instability_lines_json(capsys, tmp_path):
     assert code == 0 and (tmp_path / "lines.png").stat().st_size > 0
     data = json.loads(out)
     assert data["model"] == "masses" and data["branches"]
+    assert data["eta_M_max"] == 200.0 and "theta_max" not in data  # named as the option --eta-M-max
     branch = data["branches"][0]
     assert branch["d"] == 1.5 and branch["unstable_side"] in ("above", "below", "mixed")
     assert set(branch["points"][0]) == {"alpha", "eta_M", "q", "unstable_above"}
