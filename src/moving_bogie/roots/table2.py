@@ -218,6 +218,15 @@ def certificate_line(row) -> str:
     """One line: roots and count proven, the proven verdict, whether the printed digits are enclosed."""
     c = row.result.certificate
     text = f"proven: {c.proven_roots}/{len(c.roots)} roots, count {c.count}, verdict {c.verdict}"
+    below = getattr(c, "below", None)
+    if c.verdict == "not proven" and below is not None and below.count == 0:
+        points = ", ".join(f"{x:.9g}" for x in below.notches)
+        text += (
+            f" (the strip below the cut on the real axis holds no root; what remains is the square of "
+            f"half-side {below.notch:.0e} under the branch point q = {points}, where K is infinite)"
+        )
+    elif c.verdict == "not proven":
+        text += f" ({c.reason})"
     enclosed = [x for x in printed_enclosed(row) if x is not None]
     if enclosed:
         text += ", printed digits " + ("enclosed" if all(enclosed) else "NOT ENCLOSED")
