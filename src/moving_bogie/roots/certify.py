@@ -34,7 +34,13 @@ from moving_bogie.roots.balls import BallCharacteristic, Undecided, square_ball
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.polish import fixed_text
 from moving_bogie.roots.proof_tiling import proof_tiling
-from moving_bogie.roots.strip import NOTCH, ON_AXIS, branch_points_on_axis, pieces_below_axis
+from moving_bogie.roots.strip import (
+    NOTCH,
+    ON_AXIS,
+    branch_point_text,
+    branch_points_on_axis,
+    pieces_below_axis,
+)
 from moving_bogie.roots.winding import NotProven, proven_count
 
 #: Tilings tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
@@ -341,11 +347,11 @@ def _verdict(enclosures, all_proven, unsearched, problems, below=None):
                 f"the strip {floor:.1e} <= Im q < 0 below the cut on the real axis (eta_f = 0) could not be "
                 f"counted with K from below: {below.reason}"
             )
-        points = ", ".join(f"{x:.9g}" for x in below.notches)
         return "not proven", (
             f"every root in the window is proven and the strip {floor:.1e} <= Im q < 0 below the cut on the "
             f"real axis holds none (K from below, eta_f -> 0+), except in a square of half-side "
-            f"{below.notch:.0e} under the branch point q = {points}, where K is infinite: only that square "
+            f"{below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite: only that "
+            "square "
             "remains"
         )
     if low:

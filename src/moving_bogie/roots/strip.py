@@ -68,10 +68,8 @@ class StripCount:
             text += ", K on the real axis as the limit from below, eta_f -> 0+"
         text += ")"
         if self.notches:
-            points = ", ".join(f"{x:.9g}" for x in self.notches)
-            text += (
-                f"; a square of half-side {self.notch:.0e} under the branch point q = {points} is left out"
-            )
+            where = branch_point_text(self.notches)
+            text += f"; a square of half-side {self.notch:.0e} under {where} is left out"
         return text
 
     def to_dict(self) -> dict:
@@ -126,6 +124,12 @@ def strip_below_cut(params, model, window, unsearched, *, foundation=None) -> St
     except EdgeZeroError as exc:
         return StripCount(None, tuple(rects), mode, notches, reason=f"{exc} (a root on or next to the axis)")
     return StripCount(count, tuple(rects), mode, notches)
+
+
+def branch_point_text(points) -> str:
+    """ "the branch point q = x" for one, "each branch point q = x, y" for several."""
+    values = ", ".join(f"{x:.9g}" for x in points)
+    return f"{'each' if len(points) > 1 else 'the'} branch point q = {values}"
 
 
 def branch_points_on_axis(cut) -> list:

@@ -16,6 +16,7 @@ from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
 from moving_bogie.roots.damping_limit import damping_limit
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.polish import fixed_text
+from moving_bogie.roots.strip import branch_point_text
 
 #: Half a unit of the print's last decimal (six decimals).
 PRINT_TOLERANCE = Decimal("0.0000005")
@@ -220,10 +221,9 @@ def certificate_line(row) -> str:
     text = f"proven: {c.proven_roots}/{len(c.roots)} roots, count {c.count}, verdict {c.verdict}"
     below = getattr(c, "below", None)
     if c.verdict == "not proven" and below is not None and below.count == 0:
-        points = ", ".join(f"{x:.9g}" for x in below.notches)
         text += (
             f" (the strip below the cut on the real axis holds no root; what remains is the square of "
-            f"half-side {below.notch:.0e} under the branch point q = {points}, where K is infinite)"
+            f"half-side {below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite)"
         )
     elif c.verdict == "not proven":
         text += f" ({c.reason})"
