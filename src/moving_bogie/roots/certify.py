@@ -351,8 +351,7 @@ def _verdict(enclosures, all_proven, unsearched, problems, below=None):
             f"every root in the window is proven and the strip {floor:.1e} <= Im q < 0 below the cut on the "
             f"real axis holds none (K from below, eta_f -> 0+), except in a square of half-side "
             f"{below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite: only that "
-            "square "
-            "remains"
+            "square remains"
         )
     if low:
         floor = min(u.y0 for u in low)
