@@ -8,9 +8,11 @@ ordinary E_chr, no limit from below), and the roots located by the ordinary sear
 
 from fractions import Fraction
 
+import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.damping_limit import damping_limit
@@ -27,6 +29,11 @@ def _verdict_agrees_with_small_damping(case):
     exact = induced_frequencies(p, dps=20)
     assert exact.verdict.determined, exact.verdict.reasons
     assert exact.strip.mode == "from below" and exact.strip.count == 0
+    # next to the branch point E_chr is infinite like K (the notch left out): |E| sqrt(distance) about
+    # constant, and equal to the mpmath E_chr below the axis (no limit from below needed there)
+    (x,), (growth,) = exact.strip.notches, exact.strip.growth
+    reference = abs(Characteristic(p)(mpmath.mpc(x, -1e-7))) * mpmath.sqrt(1e-7)
+    assert max(growth) < 1.1 * min(growth) and growth[1] == pytest.approx(float(reference), rel=1e-6)
     for eta_f in ("1e-6", "1e-8"):
         damped = induced_frequencies(p.replace(eta_f=Fraction(eta_f)), dps=20)
         assert damped.strip.mode == "below the cut"

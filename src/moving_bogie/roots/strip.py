@@ -16,8 +16,10 @@ could hide there and the verdict would be UNDETERMINED. Two situations are commo
 
 The rectangles are split at every branch point of K on the real axis, where K is infinite (it grows like
 the inverse square root of the distance): a square of half-side :data:`NOTCH` under each branch point is
-left out, and ``notches`` says so. E_chr is unbounded there with K, so no root can sit at the branch point
-itself; the notch only keeps the contour where K is finite.
+left out, and ``notches`` says so. E_chr is infinite there with K: |E_chr| sqrt|q - q_c| is checked to be
+about constant (within a factor 1.5) at 1e-5, 1e-7 and 1e-9 below each branch point (Case 2: 1.83e4 at
+1e-3, 1.94e4 at 1e-9), so no root sits next to it; otherwise the strip is not counted and the reason says
+so. This is a numerical check, not a proof: ``roots/certify.py`` proves everything but the notch.
 """
 
 from __future__ import annotations
@@ -33,6 +35,8 @@ from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
 
 #: Half-side of the square left out under a branch point of K on the real axis (where K is infinite).
 NOTCH = 1e-9
+#: Distances below a branch point at which the growth of E_chr is checked (down to the notch).
+GROWTH_PROBES = (1e-5, 1e-7, NOTCH)
 #: |Im q| below which the cut counts as lying on the real axis.
 ON_AXIS = 1e-12
 
@@ -52,6 +56,7 @@ class StripCount:
     notches: tuple = ()
     notch: float = NOTCH
     reason: str = ""
+    growth: tuple = ()  # per notch: |E_chr| sqrt(distance) at distances GROWTH_PROBES below it
 
     @property
     def decided(self) -> bool:
@@ -70,6 +75,9 @@ class StripCount:
         if self.notches:
             where = branch_point_text(self.notches)
             text += f"; a square of half-side {self.notch:.0e} under {where} is left out"
+            if self.growth:
+                c = ", ".join(f"{g[-1]:.3g}" for g in self.growth)
+                text += f" (E_chr is infinite there: |E_chr| sqrt|q - q_c| -> {c})"
         return text
 
     def to_dict(self) -> dict:
@@ -80,6 +88,7 @@ class StripCount:
             "branch_points": list(self.notches),
             "notch": self.notch,
             "reason": self.reason,
+            "growth": [list(g) for g in self.growth],
         }
 
 
@@ -119,11 +128,27 @@ def strip_below_cut(params, model, window, unsearched, *, foundation=None) -> St
     for u in low:
         rects += pieces_below_axis(Rectangle(u.x0, u.x1, u.y0, 0.0), [x for x in points if u.x0 < x < u.x1])
     notches = tuple(x for x in points if any(r.x0 <= x + NOTCH and x - NOTCH <= r.x1 for r in rects))
+    growth = tuple(_growth(f, x) for x in notches)
+    for x, g in zip(notches, growth):
+        if not (max(g) < 1.5 * min(g) and min(g) > 0):
+            reason = (
+                f"|E_chr| does not grow like the inverse square root of the distance at the branch point "
+                f"q = {x:.9g} (|E| sqrt(distance) = {', '.join(f'{v:.3g}' for v in g)} at "
+                f"{', '.join(f'{d:.0e}' for d in GROWTH_PROBES)} below it): a root may sit next to it"
+            )
+            return StripCount(None, tuple(rects), mode, notches, reason=reason, growth=growth)
     try:
         count = sum(winding_number(f, r) for r in rects)
     except EdgeZeroError as exc:
         return StripCount(None, tuple(rects), mode, notches, reason=f"{exc} (a root on or next to the axis)")
-    return StripCount(count, tuple(rects), mode, notches)
+    return StripCount(count, tuple(rects), mode, notches, growth=growth)
+
+
+def _growth(f, x: float) -> tuple:
+    """|E_chr(x - i delta)| sqrt(delta) for delta in GROWTH_PROBES: about constant when E_chr is infinite at
+    the branch point x like K (no root next to it)."""
+    d = np.array(GROWTH_PROBES)
+    return tuple(float(v) for v in np.abs(f(x - 1j * d)) * np.sqrt(d))
 
 
 def branch_point_text(points) -> str:
