@@ -1,17 +1,15 @@
 """Every notebook in notebooks/ runs from top to bottom (in quick mode).
 
-The notebooks are committed as jupytext percent-format ``.py`` files. Each test converts one to
-``.ipynb`` in a temporary folder and executes it with nbclient on a kernel that runs *this*
-interpreter (a ``python3`` kernelspec written to a temporary JUPYTER_PATH), with
-``MOVING_BOGIE_QUICK=1`` so that the notebooks use their reduced grids. A failing cell fails the test
-with the cell's traceback.
+The notebooks are committed as jupytext percent-format ``.py`` files. Each test runs one through
+``notebooks/run.py`` (the headless runner the README documents, ``python notebooks/run.py NOTEBOOK.py``):
+converted in memory and executed with nbclient on a kernel that runs *this* interpreter (a ``python3``
+kernelspec written to a temporary JUPYTER_PATH), with ``MOVING_BOGIE_QUICK=1`` (``--quick``) so that the
+notebooks use their reduced grids. A failing cell fails the test with the cell's traceback.
 """
 
 from __future__ import annotations
 
-import json
-import sys
-import time
+import importlib.util
 from pathlib import Path
 
 import pytest
@@ -32,45 +30,32 @@ def test_notebooks_exist():
     ]
 
 
-@pytest.fixture(scope="session")
-def jupyter_path(tmp_path_factory):
-    """A JUPYTER_PATH holding a ``python3`` kernelspec that starts this interpreter."""
-    pytest.importorskip("ipykernel")
-    root = tmp_path_factory.mktemp("jupyter")
-    spec = root / "kernels" / "python3"
-    spec.mkdir(parents=True)
-    kernel = {
-        "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
-        "display_name": "Python 3 (moving-bogie tests)",
-        "language": "python",
-    }
-    (spec / "kernel.json").write_text(json.dumps(kernel))
-    return root
+def _runner():
+    """notebooks/run.py, the documented headless runner (README, "Notebooks"), loaded from its path."""
+    spec = importlib.util.spec_from_file_location("notebook_runner", ROOT / "notebooks" / "run.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
-def test_notebook_runs(path, tmp_path, monkeypatch, jupyter_path):
-    jupytext = pytest.importorskip("jupytext")
-    nbformat = pytest.importorskip("nbformat")
-    nbclient = pytest.importorskip("nbclient")
-    monkeypatch.setenv("JUPYTER_PATH", str(jupyter_path))
-    monkeypatch.setenv("MOVING_BOGIE_QUICK", "1")
-    monkeypatch.setenv("PYDEVD_DISABLE_FILE_VALIDATION", "1")
-
-    ipynb = tmp_path / f"{path.stem}.ipynb"
-    jupytext.write(jupytext.read(path), ipynb)
-    notebook = nbformat.read(ipynb, as_version=4)
-    client = nbclient.NotebookClient(
-        notebook,
-        kernel_name="python3",
-        timeout=600,
-        resources={"metadata": {"path": str(tmp_path)}},
-    )
-    start = time.perf_counter()
+def test_notebook_runs(path, tmp_path):
+    for name in ("jupytext", "nbformat", "nbclient", "ipykernel"):
+        pytest.importorskip(name)
+    runner = _runner()
     try:
-        client.execute()
-    except nbclient.exceptions.CellExecutionError as exc:
-        pytest.fail(f"{path.name}: a cell failed\n{exc}", pytrace=False)
-    elapsed = time.perf_counter() - start
+        elapsed = runner.run_notebook(path, quick=True, out=tmp_path / f"{path.stem}.ipynb")
+    except runner.CellFailed as exc:
+        pytest.fail(str(exc), pytrace=False)
     print(f"{path.name}: {elapsed:.1f} s")
+
+
+def test_runner_reports_a_failing_cell(tmp_path, capsys):
+    """The runner's exit status and message for a notebook whose cell raises."""
+    for name in ("jupytext", "nbformat", "nbclient", "ipykernel"):
+        pytest.importorskip(name)
+    bad = tmp_path / "99-bad.py"
+    bad.write_text("# %%\nx = 1\n\n# %%\nraise ValueError('the cell of 99-bad')\n")
+    assert _runner().main([str(bad)]) == 1
+    assert "the cell of 99-bad" in capsys.readouterr().err

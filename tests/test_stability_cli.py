@@ -59,6 +59,7 @@ def test_instability_lines_json(capsys, tmp_path, saved_figures):
     for d, r in zip(drawn, reported):
         np.testing.assert_allclose(d, r, rtol=1e-12)
     assert data["model"] == "masses" and data["branches"]
+    assert data["eta_M_max"] == 200.0 and "theta_max" not in data  # named as the option --eta-M-max
     branch = data["branches"][0]
     assert branch["d"] == 1.5 and branch["unstable_side"] in ("above", "below", "mixed")
     assert set(branch["points"][0]) == {"alpha", "eta_M", "q", "unstable_above"}
@@ -87,6 +88,7 @@ def test_stability_map_writes_npz_and_plot(capsys, tmp_path, saved_figures):
     assert code == 0
     summary = json.loads(out)
     assert summary["alpha_range"][2] == 8
+    assert summary["eta_M_range"][2] == 8 and "theta_range" not in summary  # named as the option --eta-M-max
     arrays = np.load(tmp_path / "m.npz")
     assert arrays["degree"].shape == (8, 8) and np.all(arrays["degree"] <= 0)
     assert (tmp_path / "m.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -85,7 +85,12 @@ def test_window_inside_the_radius_is_undetermined(capsys):
     assert res.to_dict()["stable"] is None
 
 
-def test_undamped_sliver_is_undetermined():
+def test_undamped_sliver_is_undetermined_when_the_strip_is_not_counted(monkeypatch):
+    """Case 2 (eta_f = 0): without the count of the strip below the cut (roots/strip.py, which decides it:
+    tests/test_undamped_verdict.py), the sliver reaching below the axis leaves the verdict UNDETERMINED."""
+    from moving_bogie.roots import frequencies
+
+    monkeypatch.setattr(frequencies, "strip_below_cut", lambda *args, **kwargs: None)
     res = induced_frequencies(table1_case(2), dps=20)
     assert res.count_ok and res.verdict.state == "undetermined"
     assert [r.split(":")[0] for r in res.verdict.reasons] == ["sliver"]

@@ -45,7 +45,8 @@ def parameter_options() -> list[tuple[str, str, str]]:
         (s.name, s.option, f"{s.meaning}, {s.range_text}, Eq. {s.equation}") for s in catalogue.specs.values()
     ]
     for name, meta in catalogue.parameters.ALTERNATIVES.items():
-        rows.append((name, "--" + name.replace("_", "-"), f"{meta['meaning']} (instead of --{meta['sets']})"))
+        sets = catalogue.specs[meta["sets"]].option if meta["sets"] in catalogue.specs else meta["sets"]
+        rows.append((name, "--" + name.replace("_", "-"), f"{meta['meaning']} (instead of {sets})"))
     return rows
 
 

@@ -30,9 +30,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=True)
-    p.add_argument("--alpha-min", type=float, default=0.0)
-    p.add_argument("--alpha-max", type=float, default=1.2)
-    p.add_argument("--eta-M-max", dest="theta_max", type=float, default=200.0)
+    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument(
+        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        help="largest wheel mass ratio eta_M (default 200)",
+    )  # fmt: skip
     p.add_argument("--quick", action="store_true", help="coarser seed grid and steps (a preview)")
     add_output_option(p, "--plot", metavar="F.png", help="write the two-panel figure")
     add_json_option(p)

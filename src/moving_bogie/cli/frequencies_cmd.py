@@ -47,7 +47,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description=(
             "Compute the induced frequencies of every Table 1 case and print them like the paper's Table 2\n"
             "(q^r with +-, q^i), with the printed value and the difference where the paper prints one.\n"
-            "Exit status 1 on any difference beyond the print's rounding or any count mismatch."
+            "Exit status 1 on any difference beyond the print's rounding, any count mismatch or any\n"
+            "UNDETERMINED verdict."
         ),
         epilog="examples:\n  moving-bogie table2\n  moving-bogie table2 --decimals 12\n"
         "  moving-bogie table2 --json\n  moving-bogie table2 --certify",
@@ -110,10 +111,17 @@ def run_frequencies(args: argparse.Namespace) -> int:
         result = induced_frequencies(
             params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
         )
+    from moving_bogie.roots.damping_limit import damping_limit
+
+    limit = damping_limit(result)
     if args.json:
-        print_json(with_si(result.to_dict(), result, physical))
+        data = with_si(result.to_dict(), result, physical)
+        data["damping_limit"] = None if limit is None else limit.to_dict()
+        print_json(data)
     else:
         print(format_result(result))
+        if limit is not None:
+            print(limit.statement())
         if physical is not None:
             print(format_si(result, physical))
     for line in format_warnings(result):
@@ -165,6 +173,8 @@ def format_result(result) -> str:
         lines.append(
             f"not searched: a sliver of height <= {height:.1e} around the cut of K ('unsearched' in --json)"
         )
+    if result.strip is not None:
+        lines.append("below the axis: " + result.strip.statement())
     far = result.far_field
     if far is not None and far.radius is not None:
         lines.append(
@@ -176,7 +186,14 @@ def format_result(result) -> str:
     if verdict.state == "undetermined":
         lines.append("verdict: UNDETERMINED: " + "; ".join(verdict.reasons))
     elif verdict.state == "stable":
-        lines.append("verdict: STABLE (no induced frequency with Im q < 0)")
+        real = sum(r.marginal for r in result.roots)
+        neutral = f"; {real} real, neutral (constant amplitude)" if real else ""
+        lines.append(f"verdict: STABLE (no induced frequency with Im q < 0{neutral})")
+    elif not result.unstable_roots:
+        lines.append(
+            f"verdict: UNSTABLE, {result.strip_unstable} root(s) with Im q < 0 counted in the strip just "
+            "below the cut (not located)"
+        )
     else:
         growth = mpmath.nstr(result.growth_time, 6)
         lines.append(
@@ -229,4 +246,5 @@ def run_table2(args: argparse.Namespace) -> int:
     else:
         print(format_table2(table, decimals=args.decimals))
     proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
-    return 0 if table.ok and proven else 1
+    decided = all(row.result.verdict.determined for row in table.rows)
+    return 0 if table.ok and proven and decided else 1

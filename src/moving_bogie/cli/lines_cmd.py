@@ -55,9 +55,12 @@ def _register_instability_lines(subparsers) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=True)
-    p.add_argument("--alpha-min", type=float, default=0.0)
-    p.add_argument("--alpha-max", type=float, default=1.2)
-    p.add_argument("--eta-M-max", dest="theta_max", type=float, default=200.0)
+    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument(
+        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
+    )  # fmt: skip
     p.add_argument(
         "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
     )
@@ -155,10 +158,15 @@ def _register_stability_map(subparsers) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=False)
-    p.add_argument("--alpha-min", type=float, default=0.0)
-    p.add_argument("--alpha-max", type=float, default=1.2)
-    p.add_argument("--eta-M-max", dest="theta_max", type=float, default=200.0)
-    p.add_argument("--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M")
+    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument(
+        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
+    )  # fmt: skip
+    p.add_argument(
+        "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
+    )
     p.add_argument("--n", type=int, default=200, help="grid points per axis (default 200)")
     p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")

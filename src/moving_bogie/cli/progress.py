@@ -26,3 +26,35 @@ def progress_bar(description: str, *, enabled: bool = True) -> Iterator[Callable
     ) as bar:
         task = bar.add_task(description, total=1.0)
         yield lambda fraction: bar.update(task, completed=max(0.0, min(1.0, fraction)))
+
+
+@contextmanager
+def two_level_bar(description: str, *, enabled: bool = True):
+    """Yield ``(overall, part)``: ``overall(fraction)`` moves a bar for the whole job, ``part(label,
+    fraction)`` a second bar for the step under way (named ``label``); rich on an interactive stderr,
+    no-ops otherwise."""
+    if not enabled or not sys.stderr.isatty():
+        yield (lambda fraction: None), (lambda label, fraction: None)
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    with Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.percentage:>3.0f}%"),
+        TimeElapsedColumn(),
+        console=Console(stderr=True),
+        transient=True,
+    ) as bar:
+        whole = bar.add_task(description, total=1.0)
+        step = bar.add_task("", total=1.0)
+        seen = {}
+
+        def part(label: str, fraction: float) -> None:
+            if seen.get("label") != label:
+                seen["label"] = label
+                bar.reset(step, total=1.0, description=f"  {label}")
+            bar.update(step, completed=max(0.0, min(1.0, fraction)))
+
+        yield (lambda fraction: bar.update(whole, completed=max(0.0, min(1.0, fraction)))), part

@@ -52,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
     from moving_bogie.paper.registry import ARTIFACTS
     from moving_bogie.paper.reproduce import quick_from_env, reproduce
 
-    from .progress import progress_bar
+    from .progress import two_level_bar
 
     if args.list:
         for a in ARTIFACTS:
@@ -68,8 +68,16 @@ def run(args: argparse.Namespace) -> int:
     def log(line: str) -> None:
         print(line, file=sys.stderr, flush=True)
 
-    with progress_bar("reproducing the paper", enabled=not args.no_progress) as update:
-        report = reproduce(args.out, quick=quick, only=args.only, dps=args.dps, progress=update, log=log)
+    with two_level_bar("reproducing the paper", enabled=not args.no_progress) as (update, part):
+        report = reproduce(
+            args.out,
+            quick=quick,
+            only=args.only,
+            dps=args.dps,
+            progress=update,
+            log=log,
+            artifact_progress=part,
+        )
     print(
         f"wrote {report.out / 'index.html'} and index.md: {report.count('covered')} covered, "
         f"{report.count('not covered')} not covered, {report.count('failed')} failed "

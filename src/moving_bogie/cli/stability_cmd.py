@@ -156,8 +156,8 @@ def _register_frequency_lines(subparsers) -> None:
         formatter_class=RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--alpha-min", type=float, default=0.0)
-    p.add_argument("--alpha-max", type=float, default=1.2)
+    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument("--checkpoints", type=int, default=13, help="velocities where all roots are found afresh")
     add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_json_option(p)
@@ -232,11 +232,18 @@ def _register_critical_stiffness(subparsers) -> None:
         formatter_class=RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--alpha-min", type=float, default=0.3)
-    p.add_argument("--alpha-max", type=float, default=1.2)
+    p.add_argument("--alpha-min", type=float, default=0.3, help="smallest velocity alpha (default 0.3)")
+    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument("--alphas", type=int, default=19, help="number of velocities")
-    p.add_argument("--kappa-max", type=float, default=1.0)
-    p.add_argument("--q-max", type=float, default=1.5)
+    p.add_argument(
+        "--kappa-max",
+        type=float,
+        default=1.0,
+        help="largest suspension stiffness kappa_v searched (default 1)",
+    )
+    p.add_argument(
+        "--q-max", type=float, default=1.5, help="largest real induced frequency searched (default 1.5)"
+    )
     add_json_option(p)
     p.set_defaults(handler=run_critical_stiffness)
 
@@ -287,7 +294,7 @@ def _register_figure(subparsers) -> None:
         ),
         formatter_class=RAW,
     )
-    p.add_argument("number", type=int, choices=FIGURES)
+    p.add_argument("number", type=int, choices=FIGURES, help="the figure of the paper")
     add_output_option(
         p,
         "--plot",

@@ -11,6 +11,7 @@ from moving_bogie.errors import ParameterError
 
 from .common import add_json_option, add_parameter_options, params_from_args, print_json
 from .outputs import add_output_option
+from .reporting import fail
 
 _RAW = argparse.RawDescriptionHelpFormatter
 
@@ -76,7 +77,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
         formatter_class=_RAW,
     )
-    q.add_argument("store", type=Path, metavar="S.zarr")
+    q.add_argument("store", type=Path, metavar="S.zarr", help="the sweep store (written by sweep)")
     q.add_argument("--x", required=True, metavar="NAME", help="parameter on the horizontal axis")
     q.add_argument("--y", required=True, metavar="NAME", help="parameter on the vertical axis")
     q.add_argument("--sel", action="append", default=[], metavar="NAME=X", help="fix another dimension")
@@ -153,15 +154,26 @@ def run_sweep_cmd(args) -> int:
     from moving_bogie.sweep.store import open_sweep
 
     spec = _spec(args)  # every option checked (and the store created) before any computation
-    with _points_bar(not args.json) as bar:
-        run = run_sweep(
-            spec,
-            args.out,
-            resume=args.resume,
-            overwrite=args.overwrite,
-            workers=args.workers,
-            scheduler=args.scheduler,
-            progress=bar,
+    try:
+        with _points_bar(not args.json) as bar:
+            run = run_sweep(
+                spec,
+                args.out,
+                resume=args.resume,
+                overwrite=args.overwrite,
+                workers=args.workers,
+                scheduler=args.scheduler,
+                progress=bar,
+            )
+    except KeyboardInterrupt:
+        if not Path(args.out).exists():
+            return fail("interrupted", json_mode=args.json, code=130)
+        return fail(
+            f"interrupted; {args.out} keeps every finished chunk: run the same command with --resume"
+            + (" in place of --overwrite" if args.overwrite else "")
+            + " to complete it",
+            json_mode=args.json,
+            code=130,
         )
     ds = open_sweep(args.out)
     summary = {

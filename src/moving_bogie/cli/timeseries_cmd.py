@@ -179,7 +179,8 @@ def run_timeseries(args: argparse.Namespace) -> int:
         print_json(ts.to_dict())
     else:
         files = args.csv or args.plot or args.plot_long
-        print(format_series(ts, rows=args.rows or not files))
+        plots = [str(f) for f in (args.plot, args.plot_long) if f]
+        print(format_series(ts, rows=args.rows or not files, csv=args.csv, plots=plots))
     return 0
 
 
@@ -195,8 +196,9 @@ def write_csv_series(ts, path) -> None:
     atomic_write(path, "\n".join(lines) + "\n")
 
 
-def format_series(ts, rows: bool = True) -> str:
-    """The readable series: summary lines, then one row per time (``rows``), then the notes."""
+def format_series(ts, rows: bool = True, csv=None, plots=()) -> str:
+    """The readable series: summary lines, then one row per time (``rows``), then the notes; without the
+    rows, one line saying where they went (``csv``, the data file) or were drawn (``plots``)."""
     u = ts.units
     bc = (
         "all times"
@@ -215,7 +217,11 @@ def format_series(ts, rows: bool = True) -> str:
         for row in zip(ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta):
             lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))
     else:
-        lines[-1] = f"{len(ts.tau)} rows written to the output file(s); --rows prints them here too"
+        if csv:
+            lines[-1] = f"{len(ts.tau)} rows written to {csv}; --rows prints them here too"
+        else:
+            drawn = f"drawn in {', '.join(plots)}; " if plots else ""
+            lines[-1] = f"{len(ts.tau)} rows not printed ({drawn}--rows prints them, --csv F.csv writes them)"
     lines += [f"note: {n}" for n in ts.notes]
     return "\n".join(lines)
 

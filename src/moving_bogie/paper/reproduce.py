@@ -55,6 +55,7 @@ def reproduce(
     dps: int | None = None,
     progress: Callable[[float], None] | None = None,
     log: Callable[[str], None] | None = None,
+    artifact_progress: Callable[[str, float], None] | None = None,
 ) -> Report:
     """Rebuild the artefacts into `out` and write ``index.html`` and ``index.md``.
 
@@ -74,6 +75,9 @@ def reproduce(
         Called with the overall fraction done.
     log : callable, optional
         Called with one line per finished artefact.
+    artifact_progress : callable, optional
+        Called as ``artifact_progress(label, fraction)`` with the fraction done of the artefact being
+        built (a long recipe, Figure 16 takes minutes, moves it while the overall fraction barely moves).
 
     Returns
     -------
@@ -98,15 +102,21 @@ def reproduce(
     outcomes: dict[str, Outcome] = {}
     done = 0
 
+    current = [""]
+
     def overall(fraction: float) -> None:
         if progress is not None:
             progress((done + fraction) / max(1, len(todo)))
+        if artifact_progress is not None and current[0]:
+            artifact_progress(current[0], fraction)
 
     ctx = BuildContext(out, quick=quick, dps=dps, progress=overall)
     for artifact in todo:
+        current[0] = artifact.label
         outcome = build_artifact(artifact, ctx)
         outcomes[artifact.id] = outcome
         done += 1
+        current[0] = ""
         overall(0.0)
         if log is not None:
             extra = outcome.reason if outcome.status != "covered" else ", ".join(outcome.built.files)

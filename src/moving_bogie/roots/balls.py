@@ -143,9 +143,18 @@ class BallCharacteristic:
     model : {"bogie", "masses"}
     prec : int
         Working precision in bits; every call runs at it (the p-roots are approximated to it too).
+    below : bool
+        On the real q-axis, K as the limit from below (eta_f = 0, the cut on the axis). For a q-ball that
+        meets the axis, a p-root ball P that meets the real p-axis is proven real at the
+        ball's real points x (N(p, x) has real coefficients and the mirror of P meets no other root ball,
+        so the root is its own conjugate) and counted upper iff Re(N_q / N_p) > 0 on the ball: with
+        dp/dq = -N_q / N_p, Im p(x - iy) = integral from 0 to y of Re(N_q / N_p)(x - it) dt. K so
+        defined is K on Im q < 0 continued analytically across the axis (for the part of the ball above
+        it too: the continuation, not the values from above), away from the branch points.
     """
 
-    def __init__(self, params, model: str | None = None, *, prec: int = 128):
+    def __init__(self, params, model: str | None = None, *, prec: int = 128, below: bool = False):
+        self.below = below
         self.params = params
         self.model = model or params.vehicle
         self.prec = prec
@@ -165,7 +174,7 @@ class BallCharacteristic:
         """(upper, lower): balls holding each one root of N(p, xi) for every xi in the ball ``q``, split by
         the sign of Im p (proven; Undecided if a ball meets the real axis)."""
         with ctx.workprec(self.prec):
-            return _sides(self._root_balls(acb(q)))
+            return self._sides(acb(q), self._root_balls(acb(q)))
 
     def _root_balls(self, q: acb) -> list:
         """Root balls of N(p, xi), xi in the ball q: isolated at the centre (Smith discs), then widened to
@@ -202,12 +211,40 @@ class BallCharacteristic:
                     raise Undecided("root balls of N(p, q) overlap over the q ball")
         return balls
 
+    def _sides(self, q: acb, roots) -> tuple:
+        """(upper, lower) p-root balls at the q-ball ``q``; on the real axis with ``below``, real roots
+        go to the side they move to when q -> q - i0 (class docstring)."""
+        on_axis = self.below and q.imag.contains(0)
+        if not on_axis:
+            return _sides(roots)
+        upper, lower = [], []
+        f, args = self.foundation, self.foundation_args
+        if not all(acb(c).imag.is_zero() for c in f.n_coeffs(acb(q.real), **args)):
+            return _sides(roots)  # a damped track: no limit from below needed (or possible) here
+        n1 = derivative_coefficients([acb(c) for c in f.n_coeffs(q, **args)])
+        nq = [acb(c) for c in f.n_coeffs_dq(q, **args)]
+        for k, p in enumerate(roots):
+            if p.imag > 0 or p.imag < 0:
+                (upper if p.imag > 0 else lower).append(p)
+                continue
+            mirror = p.conjugate()
+            if any(mirror.overlaps(other) for j, other in enumerate(roots) if j != k):
+                raise Undecided("a root of N(p, q) near the real p-axis not proven real")
+            ratio = (horner(nq, p) / horner(n1, p)).real
+            if ratio > 0:
+                upper.append(p)
+            elif ratio < 0:
+                lower.append(p)
+            else:
+                raise Undecided("side of a real root of N(p, q) from below not decided (N_q / N_p near 0)")
+        return upper, lower
+
     def kernel_series(self, q, order: int) -> list:
         """[K(0), K(d), K(-d)] (Eq. (29)) as series in t = q - c to ``order``, for every c in the ball q."""
         length = order + 1
         f = self.foundation
         args = self.foundation_args
-        upper, lower = _sides(self._root_balls(q))
+        upper, lower = self._sides(q, self._root_balls(q))
         qs = acb_series([q, 1], prec=length) if order else acb_series([q], prec=length)
         n = _series(f.n_coeffs(qs, **args), length)
         n1 = derivative_coefficients(n)

@@ -31,8 +31,16 @@ from flint import acb, arb, ctx
 
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.roots.balls import BallCharacteristic, Undecided, square_ball
+from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.polish import fixed_text
 from moving_bogie.roots.proof_tiling import proof_tiling
+from moving_bogie.roots.strip import (
+    NOTCH,
+    ON_AXIS,
+    branch_point_text,
+    branch_points_on_axis,
+    pieces_below_axis,
+)
 from moving_bogie.roots.winding import NotProven, proven_count
 
 #: Tilings tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
@@ -95,6 +103,7 @@ class Certificate:
     seconds: float
     margin: float
     problems: tuple = field(default=())
+    below: StripProof | None = None  # the strip below a cut on the real axis, proven with K from below
 
     @property
     def proven_roots(self) -> int:
@@ -119,6 +128,7 @@ class Certificate:
             "unsearched": [{"re": [u.x0, u.x1], "im": [u.y0, u.y1]} for u in self.unsearched],
             "seconds": round(self.seconds, 3),
             "problems": list(self.problems),
+            "strip_below": None if self.below is None else self.below.to_dict(),
         }
 
 
@@ -231,11 +241,54 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
         problems.append(
             f"count: proven {count} root(s) in the tiles, the numerical search counts {result.count}"
         )
-    verdict, reason = _verdict(roots + mirrors, all_proven, unsearched, problems)
+    below = _strip_from_below(params, model, cut, unsearched, count_prec) if tiles else None
+    verdict, reason = _verdict(roots + mirrors, all_proven, unsearched, problems, below)
     return Certificate(
         roots, mirrors, tiles, tuple(unsearched), count, all_proven, verdict, reason,
-        time.perf_counter() - start, used_margin, tuple(problems),
+        time.perf_counter() - start, used_margin, tuple(problems), below,
     )  # fmt: skip
+
+
+@dataclass(frozen=True)
+class StripProof:
+    """The part of the unsearched strip below a cut on the real axis (eta_f = 0), counted in ball
+    arithmetic with K from below (:class:`BallCharacteristic` ``below=True``): ``count`` roots in ``rects``
+    (None when not proven, ``reason`` says why); ``notches`` the branch points under which a square of
+    half-side ``notch`` is left out (K is infinite there)."""
+
+    count: int | None
+    rects: tuple
+    notches: tuple
+    notch: float = NOTCH
+    reason: str = ""
+
+    def to_dict(self) -> dict:
+        return {
+            "count": self.count,
+            "rects": [{"re": [r.x0, r.x1], "im": [r.y0, r.y1]} for r in self.rects],
+            "branch_points": list(self.notches),
+            "notch": self.notch,
+            "reason": self.reason,
+        }
+
+
+def _strip_from_below(params, model, cut, unsearched, prec) -> StripProof | None:
+    """Prove the root count in the unsearched strip below a cut that lies on the real axis (None when the
+    strip does not reach below the axis or the cut is not on it)."""
+    low = [u for u in unsearched if u.y0 < 0]
+    if not low or not cut.points.size or max(abs(cut.im_low), abs(cut.im_high)) > ON_AXIS:
+        return None
+    points = branch_points_on_axis(cut)
+    rects = []
+    for u in low:
+        rects += pieces_below_axis(Rectangle(u.x0, u.x1, u.y0, 0.0), [x for x in points if u.x0 < x < u.x1])
+    notches = tuple(x for x in points if any(r.x0 <= x + NOTCH and x - NOTCH <= r.x1 for r in rects))
+    bc = BallCharacteristic(params, model, prec=prec, below=True)
+    try:
+        count = sum(proven_count(bc, r, min_length=1e-14).count for r in rects)
+    except NotProven as exc:
+        return StripProof(None, tuple(rects), notches, reason=str(exc))
+    return StripProof(count, tuple(rects), notches)
 
 
 def _margin_clear_of_roots(margin: float, cut, roots, floor: float = 1e-6) -> float:
@@ -277,14 +330,29 @@ def _in_tile(ball: acb, rect) -> bool:
     return bool(ball.real > rect.x0 and ball.real < rect.x1 and ball.imag > rect.y0 and ball.imag < rect.y1)
 
 
-def _verdict(enclosures, all_proven, unsearched, problems):
+def _verdict(enclosures, all_proven, unsearched, problems, below=None):
     unstable = [e for e in enclosures if e.certified and e.below_axis]
     if unstable:
         worst = min(unstable, key=lambda e: mpmath.im(e.q))
         return "unstable", f"a root is proven in Im q < 0 (q = {mpmath.nstr(worst.q, 10)})"
+    if below is not None and below.count:
+        return "unstable", f"{below.count} root(s) proven in the strip below the cut on the real axis"
     if not all_proven:
         return "not proven", "; ".join(problems) or "not every root is proven"
     low = [u for u in unsearched if u.y0 <= 0]
+    if low and below is not None:
+        floor = min(u.y0 for u in low)
+        if below.count is None:
+            return "not proven", (
+                f"the strip {floor:.1e} <= Im q < 0 below the cut on the real axis (eta_f = 0) could not be "
+                f"counted with K from below: {below.reason}"
+            )
+        return "not proven", (
+            f"every root in the window is proven and the strip {floor:.1e} <= Im q < 0 below the cut on the "
+            f"real axis holds none (K from below, eta_f -> 0+), except in a square of half-side "
+            f"{below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite: only that "
+            "square remains"
+        )
     if low:
         floor = min(u.y0 for u in low)
         return "not proven", (

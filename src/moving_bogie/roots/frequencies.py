@@ -31,6 +31,7 @@ from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
 from moving_bogie.roots.counting import CountMismatch, count_tiling, frame
 from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
+from moving_bogie.roots.strip import StripCount, strip_below_cut
 from moving_bogie.roots.verdict import Verdict, judge
 from moving_bogie.roots.window import default_window, far_field_window  # noqa: F401  (public here too)
 
@@ -96,6 +97,7 @@ class FrequencyResult:
     warnings: tuple = field(default=())
     far_field: FarField | None = None
     certificate: object = None  # roots.certify.Certificate when asked for (certify=True)
+    strip: StripCount | None = None  # the sliver below the real axis, counted (roots/strip.py)
 
     @property
     def found(self) -> int:
@@ -113,6 +115,11 @@ class FrequencyResult:
     def stable(self) -> bool:
         """No confirmed root with Im q < 0 among those found (:attr:`verdict` is the complete statement)."""
         return not self.unstable_roots
+
+    @property
+    def strip_unstable(self) -> int:
+        """Roots with Im q < 0 counted in the sliver below the cut (not located; 0 if none or not counted)."""
+        return self.strip.count if self.strip is not None and self.strip.decided else 0
 
     @property
     def verdict(self) -> Verdict:
@@ -149,6 +156,7 @@ class FrequencyResult:
             ],
             "far_field": None if self.far_field is None else self.far_field.to_dict(),
             "warnings": list(self.warnings),
+            "strip": None if self.strip is None else self.strip.to_dict(),
         } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
 
 
@@ -263,6 +271,7 @@ def induced_frequencies(
         fast.evaluations + precise.evaluations,
         tuple(warnings),
         far,
+        strip=strip_below_cut(params, model, window, tiling.unsearched, foundation=foundation),
     )
     if certify:
         from moving_bogie.roots.certify import certify as prove

@@ -13,8 +13,10 @@ from decimal import Decimal
 import mpmath
 
 from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
+from moving_bogie.roots.damping_limit import damping_limit
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.polish import fixed_text
+from moving_bogie.roots.strip import branch_point_text
 
 #: Half a unit of the print's last decimal (six decimals).
 PRINT_TOLERANCE = Decimal("0.0000005")
@@ -26,6 +28,7 @@ class CaseRow:
     result: object  # FrequencyResult
     printed: tuple  # ((re, im) decimal strings), possibly empty
     differences: tuple  # per computed root: (dre, dim) as Decimal or None when nothing is printed
+    limit: object = None  # DampingLimit: the real roots of an eta_f = 0 case under eta_f -> 0+
 
     @property
     def ok(self) -> bool:
@@ -60,6 +63,7 @@ class Table2:
                 None if x is None else {"re": str(x[0]), "im": str(x[1])} for x in row.differences
             ]
             d["ok"] = row.ok
+            d["damping_limit"] = None if row.limit is None else row.limit.to_dict()
             if row.result.certificate is not None:
                 d["certified"]["printed_enclosed"] = printed_enclosed(row)
             cases.append(d)
@@ -106,7 +110,8 @@ def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None, certify:
     for k, case in enumerate(cases):
         result = induced_frequencies(table1_case(case), "bogie", dps=dps, certify=certify)
         printed = tuple(table2_printed(case))
-        rows.append(CaseRow(case, result, printed, compare_with_print(result, printed)))
+        limit = damping_limit(result)
+        rows.append(CaseRow(case, result, printed, compare_with_print(result, printed), limit))
         if progress:
             progress((k + 1) / len(cases))
     return Table2(tuple(rows))
@@ -139,7 +144,7 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
             )
         status = "count ok" if row.result.count_ok else "COUNT MISMATCH"
         state = row.result.verdict
-        verdict = {"stable": "stable", "unstable": "UNSTABLE"}.get(state.state) or (
+        verdict = {"stable": _stable_text(row.result), "unstable": "UNSTABLE"}.get(state.state) or (
             "verdict UNDETERMINED (" + ", ".join(r.split(":")[0] for r in state.reasons) + ")"
         )
         match = (
@@ -148,16 +153,56 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
             else ("matches print" if row.ok else "DIFFERS FROM PRINT")
         )
         lines.append(f"{'':>7} {status}, {verdict}{', ' + match if match else ''}")
+        if row.limit is not None:
+            lines.append(f"{'':>7} {row.limit.statement()}")
         if row.result.certificate is not None:
             lines.append(f"{'':>7} {certificate_line(row)}")
     lines.append("")
-    lines.append("all cases ok" if table.ok else "MISMATCH: see the rows marked above")
+    lines += summary_lines(table)
     return "\n".join(lines)
+
+
+def summary_lines(table: Table2) -> list:
+    """The closing lines: print and counts, then the verdicts (undetermined and unproven named)."""
+    undetermined = [row.case for row in table.rows if not row.result.verdict.determined]
+    states = [row.result.verdict.state for row in table.rows]
+    verdicts = f"verdicts: {states.count('stable')} stable, {states.count('unstable')} unstable"
+    if undetermined:
+        verdicts += f", UNDETERMINED for {_case_list(undetermined)}"
+    undamped = [row.case for row in table.rows if row.result.strip is not None and row.result.strip.decided]
+    if undamped:
+        verdicts += (
+            f" ({_case_list(undamped)}: eta_f = 0, the strip below the cut on the real axis counted with K "
+            "as the limit from below)"
+        )
+    lines = [
+        "all cases match the print and their counts" if table.ok else "MISMATCH: see the rows marked above"
+    ]
+    lines.append(verdicts)
+    if any(row.result.certificate is not None for row in table.rows):
+        unproven = [
+            row.case
+            for row in table.rows
+            if row.result.certificate is not None and row.result.certificate.verdict == "not proven"
+        ]
+        lines.append(
+            "proofs: every verdict proven"
+            if not unproven
+            else f"proofs: verdict NOT PROVEN for {_case_list(unproven)} (the rows above say what remains)"
+        )
+    return lines
+
+
+def _stable_text(result) -> str:
+    real = sum(r.marginal for r in result.roots)
+    return f"stable ({real} real root(s), neutral)" if real else "stable"
 
 
 def _case_list(cases) -> str:
     if not cases:
         return "no case"
+    if len(cases) == 1:
+        return f"Case {cases[0]}"
     if list(cases) == list(range(cases[0], cases[-1] + 1)) and len(cases) > 2:
         return f"Cases {cases[0]}-{cases[-1]}"
     return "Cases " + ", ".join(str(c) for c in cases)
@@ -174,6 +219,14 @@ def certificate_line(row) -> str:
     """One line: roots and count proven, the proven verdict, whether the printed digits are enclosed."""
     c = row.result.certificate
     text = f"proven: {c.proven_roots}/{len(c.roots)} roots, count {c.count}, verdict {c.verdict}"
+    below = getattr(c, "below", None)
+    if c.verdict == "not proven" and below is not None and below.count == 0:
+        text += (
+            f" (the strip below the cut on the real axis holds no root; what remains is the square of "
+            f"half-side {below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite)"
+        )
+    elif c.verdict == "not proven":
+        text += f" ({c.reason})"
     enclosed = [x for x in printed_enclosed(row) if x is not None]
     if enclosed:
         text += ", printed digits " + ("enclosed" if all(enclosed) else "NOT ENCLOSED")

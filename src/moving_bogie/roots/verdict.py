@@ -7,7 +7,8 @@ complete there:
 - the far-field check found a radius R beyond which E_chr has no root with Im q < 0 (:mod:`far_field`),
 - the search window contains the lower half-disc of radius R (0 <= Re q <= R, -R <= Im q <= 0),
 - the roots found add up to the argument-principle count,
-- no unsearched sliver around the cut of K reaches below Im q = 0.
+- no unsearched sliver around the cut of K reaches below Im q = 0, or the part below it was counted
+  (:mod:`strip`: with eta_f = 0 the cut lies on the real axis and K there is the limit from below).
 
 Otherwise the verdict is UNDETERMINED and lists what is missing; roots with Im q > 0 outside the window
 (a stated choice, checked against a window twice as large) do not affect it.
@@ -56,7 +57,13 @@ def incompleteness(result) -> list[str]:
             f"{result.found} were found and confirmed"
         )
     low = min((u.y0 for u in result.unsearched), default=0.0)
-    if low < 0:
+    strip = getattr(result, "strip", None)
+    if low < 0 and strip is not None and not strip.decided:
+        reasons.append(
+            f"sliver: the unsearched band around the cut of K reaches Im q = {low:.1e} < 0 and "
+            f"could not be counted there ({strip.reason})"
+        )
+    elif low < 0 and strip is None:
         reasons.append(
             f"sliver: the unsearched band around the cut of K reaches Im q = {low:.1e} < 0, "
             "so a root just below the real axis there cannot be excluded"
@@ -69,4 +76,5 @@ def judge(result) -> Verdict:
     reasons = incompleteness(result)
     if reasons:
         return Verdict(UNDETERMINED, tuple(reasons))
-    return Verdict(UNSTABLE if result.unstable_roots else STABLE)
+    unstable = result.unstable_roots or getattr(result, "strip_unstable", 0)
+    return Verdict(UNSTABLE if unstable else STABLE)

@@ -124,7 +124,7 @@ class InstabilityLines:
             "model": self.model,
             "parameter": self.parameter,
             "alpha_range": list(self.alpha_range),
-            "theta_max": self.theta_max,
+            f"{self.parameter}_max": self.theta_max,  # as the option (--eta-M-max); theta_max before
             "q_max": self.q_max,
             "regime": self.regime,
             "method": self.method,

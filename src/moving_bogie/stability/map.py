@@ -75,7 +75,8 @@ class StabilityMap:
             "model": self.model,
             "parameter": self.parameter,
             "alpha_range": [float(self.alphas[0]), float(self.alphas[-1]), len(self.alphas)],
-            "theta_range": [float(self.thetas[0]), float(self.thetas[-1]), len(self.thetas)],
+            # named after the vertical axis (eta_M_range by default; theta_range before, not kept)
+            f"{self.parameter}_range": [float(self.thetas[0]), float(self.thetas[-1]), len(self.thetas)],
             "unstable_fraction": float(np.mean(self.count > 0)),
             "max_degree": float(-self.degree.min()) if self.degree.size else 0.0,
             "settled_cells": int(self.settled_cells.sum()),

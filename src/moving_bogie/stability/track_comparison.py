@@ -38,7 +38,7 @@ class TrackComparison:
             ],
             "spacings": list(self.spacings),
             "alpha_range": list(self.alpha_range),
-            "theta_max": self.theta_max,
+            "eta_M_max": self.theta_max,  # as the option --eta-M-max (theta_max before)
         }
 
 

@@ -7,14 +7,22 @@ moving-bogie installed); ``client`` uses a client you already have. Each block i
 plain numpy arrays; the calling process writes each finished block into the store at once, so an
 interruption (Ctrl-C, a lost cluster, a killed process) keeps every finished block and ``resume=True``
 computes only the others. A worker lost mid-task is replaced by the scheduler, which runs its task again.
+
+Quiet by design: the local workers are started with SIGINT ignored (Ctrl-C in a terminal reaches the whole
+process group; only this process handles it, cancels the tasks and closes the cluster), and Dask's own
+log messages below CRITICAL are silenced for the life of the cluster (a worker that outlives the
+scheduler by a heartbeat logs an ERROR; a task's failure still reaches the caller as an exception).
 """
 
 from __future__ import annotations
 
 import logging
 import os
+import signal
+import threading
 import time
 from collections.abc import Callable
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -76,16 +84,30 @@ def make_client(workers: int | None = None, scheduler: str | None = None, proces
     n = workers or os.cpu_count() or 1
     if not processes and n > 1:
         raise ParameterError("workers", "workers as threads (processes=False) must be a single worker")
-    cluster = LocalCluster(
-        n_workers=n,
-        threads_per_worker=1,
-        processes=processes,
-        dashboard_address=":0",  # a free port: never clashes with another cluster
-        silence_logs=logging.ERROR,
-    )
+    with _sigint_ignored():  # the worker processes inherit the disposition
+        cluster = LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=processes,
+            dashboard_address=":0",  # a free port: never clashes with another cluster
+            silence_logs=logging.CRITICAL,
+        )
     client = Client(cluster)
     client.wait_for_workers(n)
     return client
+
+
+@contextmanager
+def _sigint_ignored():
+    """SIGINT ignored while child processes are started (main thread only; restored afterwards)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def run_sweep(
@@ -147,13 +169,14 @@ def run_sweep(
             if on_block is not None:
                 on_block(b.index)
     finally:
-        if futures:
-            client.cancel(list(futures))
-        if own and client is not None:
-            cluster = client.cluster
-            client.close()
-            if cluster is not None:
-                cluster.close()
+        with _sigint_ignored():  # a second Ctrl-C must not interrupt the shutdown
+            if futures:
+                client.cancel(list(futures))
+            if own and client is not None:
+                cluster = client.cluster
+                client.close()
+                if cluster is not None:
+                    cluster.close()
     seconds = time.perf_counter() - start
     return SweepRun(path, len(blocks), len(todo), sum(_points(b) for b in todo), seconds, n_workers)
 

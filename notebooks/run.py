@@ -1,0 +1,128 @@
+"""Run a notebook headless: ``python notebooks/run.py notebooks/02-table2.py [--quick] [--out F.ipynb]``.
+
+The notebooks are jupytext percent-format ``.py`` files. This converts one to a notebook in memory and
+executes every cell with nbclient on a kernel that runs *this* interpreter (a ``python3`` kernelspec written
+to a temporary JUPYTER_PATH, so no kernel has to be installed), in the notebook's own folder. ``--quick``
+sets ``MOVING_BOGIE_QUICK=1`` (coarse grids, short windows: what ``tests/test_notebooks.py`` runs, through
+this same function); ``--out`` keeps the executed notebook with its outputs. A failing cell prints its
+traceback and exits with status 1. Needs the dev extra (``pip install -e '.[dev]'``: jupytext, nbformat,
+nbclient, ipykernel).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+from contextlib import contextmanager
+from pathlib import Path
+
+
+@contextmanager
+def this_interpreter_kernel():
+    """A temporary JUPYTER_PATH whose ``python3`` kernel starts this interpreter (restored afterwards)."""
+    with tempfile.TemporaryDirectory(prefix="moving-bogie-kernel-") as root:
+        spec = Path(root) / "kernels" / "python3"
+        spec.mkdir(parents=True)
+        kernel = {
+            "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
+            "display_name": "Python 3 (moving-bogie)",
+            "language": "python",
+        }
+        (spec / "kernel.json").write_text(json.dumps(kernel))
+        old = os.environ.get("JUPYTER_PATH")
+        os.environ["JUPYTER_PATH"] = root + (os.pathsep + old if old else "")
+        try:
+            yield root
+        finally:
+            if old is None:
+                os.environ.pop("JUPYTER_PATH", None)
+            else:
+                os.environ["JUPYTER_PATH"] = old
+
+
+class CellFailed(RuntimeError):
+    """A cell raised: the message holds the cell's traceback."""
+
+
+def run_notebook(path, *, quick: bool = False, out=None, timeout: int = 600) -> float:
+    """Execute the jupytext notebook ``path`` top to bottom; returns the seconds it took.
+
+    Raises
+    ------
+    CellFailed
+        With the failing cell's traceback.
+    """
+    import jupytext
+    import nbclient
+    import nbformat
+
+    path = Path(path).resolve()
+    notebook = nbformat.reads(jupytext.writes(jupytext.read(path), fmt="ipynb"), as_version=4)
+    saved = {k: os.environ.get(k) for k in ("MOVING_BOGIE_QUICK", "PYDEVD_DISABLE_FILE_VALIDATION")}
+    if quick:
+        os.environ["MOVING_BOGIE_QUICK"] = "1"
+    os.environ["PYDEVD_DISABLE_FILE_VALIDATION"] = "1"  # a debugger warning of frozen modules, not ours
+    start = time.perf_counter()
+    try:
+        with this_interpreter_kernel():
+            client = nbclient.NotebookClient(
+                notebook,
+                kernel_name="python3",
+                timeout=timeout,
+                resources={"metadata": {"path": str(path.parent)}},
+            )
+            try:
+                client.execute()
+            except nbclient.exceptions.CellExecutionError as exc:
+                raise CellFailed(f"{path.name}: a cell failed\n{exc}") from None
+    finally:
+        for key, value in saved.items():
+            if value is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = value
+        if out is not None:
+            nbformat.write(notebook, str(out))
+    return time.perf_counter() - start
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python notebooks/run.py", description="Run notebooks headless (every cell, top to bottom)."
+    )
+    parser.add_argument("notebooks", nargs="+", type=Path, metavar="NOTEBOOK.py", help="jupytext notebooks")
+    parser.add_argument("--quick", action="store_true", help="coarse grids and short windows (as the tests)")
+    parser.add_argument("--out", type=Path, metavar="F.ipynb", help="keep the executed notebook (one only)")
+    parser.add_argument(
+        "--timeout", type=int, default=600, metavar="S", help="seconds per cell (default 600)"
+    )
+    args = parser.parse_args(argv)
+    if args.out is not None and len(args.notebooks) > 1:
+        parser.error("--out takes one notebook")
+    for path in args.notebooks:
+        if not path.is_file():
+            parser.error(f"no notebook at {path}")
+    try:
+        import jupytext  # noqa: F401
+        import nbclient  # noqa: F401
+    except ImportError as exc:
+        print(f"{parser.prog}: error: {exc.name} is missing: pip install -e '.[dev]'", file=sys.stderr)
+        return 2
+    status = 0
+    for path in args.notebooks:
+        try:
+            seconds = run_notebook(path, quick=args.quick, out=args.out, timeout=args.timeout)
+        except CellFailed as exc:
+            print(exc, file=sys.stderr)
+            status = 1
+            continue
+        print(f"{path.name}: ok, {seconds:.1f} s")
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
