@@ -26,11 +26,13 @@ __all__ = [
     "add_json_option",
     "add_output_option",
     "add_parameter_options",
+    "add_units_option",
     "atomic_write",
     "handle_errors",
     "parameter_options",
     "params_from_args",
     "print_json",
+    "si_input",
 ]
 
 
@@ -170,3 +172,34 @@ def print_json(data: Any) -> None:
     """Print `data` as indented JSON on stdout."""
     json.dump(data, sys.stdout, indent=2)
     sys.stdout.write("\n")
+
+
+def add_units_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--units si|dimensionless``: the units a command takes and reports (see :func:`si_input`)."""
+    parser.add_argument(
+        "--units",
+        choices=("si", "dimensionless"),
+        help="units of the varied and plotted quantities: si (the SI names v, M, k_v, ... of "
+        "'moving-bogie models'; needs a [physical] --file) or dimensionless (the groups alpha, eta_M, ...); "
+        "default: si for a [physical] file, else dimensionless",
+    )
+
+
+def si_input(args: argparse.Namespace, physical: PhysicalParams | None) -> PhysicalParams | None:
+    """The SI parameters the command works in (None: dimensionless), from ``--units`` and the input.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``--units`` for ``--units si`` without a ``[physical]`` parameter file.
+    """
+    units = getattr(args, "units", None)
+    if units == "dimensionless":
+        return None
+    if units == "si" and physical is None:
+        raise ParameterError(
+            "--units",
+            "--units si needs a [physical] parameter file (--file F.toml with EI, m, k_f, P and the SI "
+            "parameters): Table 1 and [dimensionless] inputs have no SI scales",
+        )
+    return physical

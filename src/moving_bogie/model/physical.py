@@ -238,6 +238,58 @@ class PhysicalParams(ModelValues):
                     ) from None
         return DimensionlessParams(model=self._model, **exact)
 
+    def group_value(self, si: str, value: NumberLike, *, digits: int = 20) -> tuple[str, Fraction]:
+        """The group the SI parameter ``si`` scales to, at ``value``, the rest of ``self`` fixed.
+
+        Eqs. (15)-(17), (59) by the generated exact scaling, rounded as in :meth:`to_dimensionless` (so
+        ``si`` at its own value gives exactly the group of :meth:`to_dimensionless`).
+
+        Returns
+        -------
+        (str, Fraction)
+            The group's name and its value.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``si`` when it is not the SI counterpart of one of the model's groups (a scale
+            parameter changes every group) or when the value is out of range.
+        """
+        from moving_bogie.model.params import check_value
+
+        specs = {spec.si: (name, spec) for name, spec in self._model.specs.items()}
+        if si not in specs:
+            raise ParameterError(
+                si,
+                f"{si!r} is not the SI counterpart of a dimensionless group of {self._model.name} "
+                f"(known: {', '.join(specs)})",
+            )
+        name, spec = specs[si]
+        check = positive if spec.constraint == "positive" else nonnegative
+        exact = check(si, value)
+        meta = self._model.catalogue.parameters
+        with mpmath.workdps(digits + 10):
+            values = {k: fraction_to_mpf(v) for k, v in (self._values | {si: exact}).items()}
+            group = _rounded(
+                _call(getattr(meta, f"dimensionless_{name}"), _generic(self._model, values)), digits
+            )
+        try:
+            return name, check_value(spec, group)
+        except ParameterError as exc:
+            raise ParameterError(si, f"{si} = {fraction_to_text(exact)} {spec.unit} gives {exc}") from None
+
+    def si_factor(self, group: str) -> float:
+        """The SI value of ``group`` = 1 at this track's scales (every group is proportional to its SI
+        counterpart, Eqs. (15)-(17), (59)): SI value = group x factor, by the generated scaling."""
+        meta = self._model.catalogue.parameters
+        with mpmath.workdps(30):
+            values = _generic(self._model, {k: fraction_to_mpf(v) for k, v in self._scale_values().items()})
+            one = _call(getattr(meta, f"physical_{group}"), values | {group: mpmath.mpf(1)})
+            two = _call(getattr(meta, f"physical_{group}"), values | {group: mpmath.mpf(2)})
+            if abs(two - 2 * one) > abs(one) * mpmath.mpf(10) ** -25:
+                raise ParameterError(group, f"the SI counterpart of {group} is not proportional to it")
+            return float(one)
+
     @classmethod
     def from_dimensionless(
         cls,

@@ -2,9 +2,13 @@
 
 Layout: one dimension per varied parameter (coordinate values as float64 with ``units`` and the exact
 decimal values in ``exact``), or one dimension ``point`` on a quasi-random design (each parameter a
-coordinate along it); the data variables of :data:`~moving_bogie.sweep.evaluate.VARIABLES` (and the
-unstable roots ``roots_re``, ``roots_im`` along a last dimension ``root`` when asked), chunked exactly
-like the blocks of the sweep, so that writing one block writes one chunk file per variable.
+coordinate along it). A sweep in SI units (a ``[physical]`` input) names its dimensions by the SI
+parameters (``v`` in m/s, ``M`` in kg, ... with their ``units``) and keeps each group as a further
+coordinate along the same dimension (``alpha``, ``eta_M``; ``d_dimensionless`` where the names clash).
+The attribute ``operating_point`` holds the base point by the store's names. Then come the data variables of
+:data:`~moving_bogie.sweep.evaluate.VARIABLES` (and the unstable roots ``roots_re``, ``roots_im`` along a
+last dimension ``root`` when asked), chunked exactly like the blocks of the sweep, so that writing one block
+writes one chunk file per variable.
 
 Safety. The store is created under a temporary name and renamed into place (a store never exists half
 made). Chunk files are written atomically by zarr (temporary file, then rename), and ``computed`` is
@@ -24,7 +28,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.model.exact import fraction_to_text
-from moving_bogie.sweep.design import SweepSpec, parameter_attributes
+from moving_bogie.sweep.design import SweepSpec, group_coordinate, parameter_attributes, si_attributes
 from moving_bogie.sweep.evaluate import VARIABLES
 
 __all__ = ["create_store", "missing_blocks", "open_sweep", "prepare_store", "write_block", "write_map"]
@@ -94,13 +98,20 @@ def create_store(path, spec: SweepSpec) -> None:
     if spec.design == "sobol":
         point = g.create_array("point", shape=shape, chunks=shape, dtype="int64", dimension_names=("point",))
         point[:] = np.arange(shape[0])
+    extra_coordinates = []
     for axis in spec.axes:
-        own = ("point",) if spec.design == "sobol" else (axis.name,)
-        coord = g.create_array(axis.name, shape=(len(axis.values),), dtype="float64", dimension_names=own)
-        coord[:] = axis.floats
-        coord.attrs.update(parameter_attributes(spec.params, axis.name))
-        if spec.design == "grid":
-            coord.attrs["exact"] = [fraction_to_text(v) for v in axis.values]
+        own = ("point",) if spec.design == "sobol" else (axis.label,)
+        if spec.si:
+            _coordinate(
+                g, axis.si, own, axis.si_floats, si_attributes(spec.params, axis.name), axis.si_values
+            )
+            group = group_coordinate(axis, {a.si for a in spec.axes})
+            attrs = parameter_attributes(spec.params, axis.name) | {"si": axis.si}
+            _coordinate(g, group, own, axis.floats, attrs, axis.values)
+            extra_coordinates.append(group)
+        else:
+            exact = axis.values if spec.design == "grid" else None
+            _coordinate(g, axis.name, own, axis.floats, parameter_attributes(spec.params, axis.name), exact)
     for name, dtype, fill, text in _variables(spec):
         extra = (spec.max_roots,) if name.startswith("roots_") else ()
         arr = g.create_array(
@@ -114,6 +125,8 @@ def create_store(path, spec: SweepSpec) -> None:
         arr.attrs["description"] = text
         if name == "degree_of_instability":
             arr.attrs["units"] = "1"
+        if extra_coordinates:  # the groups of an SI sweep, read back by xarray as coordinates
+            arr.attrs["coordinates"] = " ".join(extra_coordinates)
     g.attrs.update(
         title="moving-bogie parameter sweep",
         model=spec.model,
@@ -127,10 +140,23 @@ def create_store(path, spec: SweepSpec) -> None:
         degree_convention=(
             "most negative Im q over the induced frequencies; 0 where stable; NaN where not certain"
         ),
+        units="si" if spec.si else "dimensionless",
+        operating_point=json.dumps(spec.operating_point()),
     )
+    if spec.si:
+        g.attrs["physical"] = json.dumps(spec.physical.to_dict())
     if path.exists():
         shutil.rmtree(path)
     os.replace(tmp, path)
+
+
+def _coordinate(g, name, dims, floats, attrs, exact) -> None:
+    """One coordinate array: float64 values, attributes, the exact decimal values (None: not kept)."""
+    coord = g.create_array(name, shape=(len(floats),), dtype="float64", dimension_names=dims)
+    coord[:] = floats
+    coord.attrs.update(attrs)
+    if exact is not None:
+        coord.attrs["exact"] = [fraction_to_text(v) for v in exact]
 
 
 def _variables(spec: SweepSpec):
