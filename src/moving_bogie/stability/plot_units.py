@@ -125,6 +125,35 @@ class PlaneUnits:
         mark_operating_point(ax, self.value(x_group, x), self.value(y_group, y))
         return True
 
+    def with_si(self, data):
+        """JSON ``data`` with, in SI, an ``"si"`` object beside the groups of every object: each group's SI
+        counterpart as ``{"value", "unit"}`` (and ``omega`` [rad/s] beside a real frequency ``q``).
+        Unchanged for dimensionless units."""
+        if not self.si:
+            return data
+        if isinstance(data, list):
+            return [self.with_si(x) for x in data]
+        if not isinstance(data, dict):
+            return data
+        out = {k: self.with_si(v) for k, v in data.items()}
+        si = {}
+        for key, value in data.items():
+            number = isinstance(value, int | float) and not isinstance(value, bool)
+            if key in self.units and number:
+                si[self.name(key)] = {"value": float(self.value(key, value)), "unit": self.unit(key)}
+            elif key == "q" and number:
+                si["omega"] = {"value": float(self.frequency(value)), "unit": self.frequency_unit}
+        if si:
+            out["si"] = si
+        return out
+
+    def axis(self, group: str, lo: float, hi: float, count: int | None = None) -> dict:
+        """JSON of a plot axis: shown name, unit, range (shown values) and the group with its range."""
+        out = {"name": self.name(group), "unit": self.unit(group)}
+        out["range"] = [float(self.value(group, lo)), float(self.value(group, hi))]
+        out["group"] = {"name": group, "range": [float(lo), float(hi)]}
+        return out | ({"count": count} if count is not None else {})
+
     def to_dict(self) -> dict:
         """JSON-ready: units and factors of the shown quantities."""
         return {
