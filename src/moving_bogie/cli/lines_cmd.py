@@ -98,24 +98,7 @@ def run_instability_lines(args) -> int:
             progress=bar,
         )
     if args.plot:
-        from matplotlib.figure import Figure
-
-        from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
-        from moving_bogie.stability.undamped import title
-
-        fig = Figure(figsize=(7, 5), layout="constrained")
-        ax = fig.subplots()
-        marks = plot_instability_lines(ax, res, units=units)
-        ax.axvline(units.value("alpha", 1.0), color="k", ls=":")
-        ax.set_xlim(units.value("alpha", alpha_min), units.value("alpha", alpha_max))
-        ax.set_ylim(0, units.value(args.parameter, theta_max))
-        ax.set_xlabel(units.label("alpha"))
-        ax.set_ylabel(units.label(args.parameter))
-        units.mark(ax, "alpha", args.parameter)
-        handles, _ = ax.get_legend_handles_labels()
-        ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
-        if res.statement:
-            ax.set_title(title(params.eta_f), fontsize=9)
+        fig = instability_figure(res, units, (alpha_min, alpha_max), theta_max)
         save_figure(fig, args.plot)
     if args.json:
         print_json(units.with_si(res.to_dict()) | {"units": units.to_dict()})
@@ -147,6 +130,30 @@ def run_instability_lines(args) -> int:
         for w in res.warnings:
             print(f"{PROG}: warning: {w}", file=sys.stderr)
     return 0
+
+
+def instability_figure(res, units, alpha_range, theta_max):
+    """The figure of ``instability-lines``: the lines in ``units`` (SI for a [physical] file), the line
+    ends explained, alpha = 1 dotted, the operating point marked."""
+    from matplotlib.figure import Figure
+
+    from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
+    from moving_bogie.stability.undamped import title
+
+    fig = Figure(figsize=(7, 5), layout="constrained")
+    ax = fig.subplots()
+    marks = plot_instability_lines(ax, res, units=units)
+    ax.axvline(units.value("alpha", 1.0), color="k", ls=":")
+    ax.set_xlim(*(units.value("alpha", a) for a in alpha_range))
+    ax.set_ylim(0, units.value(res.parameter, theta_max))
+    ax.set_xlabel(units.label("alpha"))
+    ax.set_ylabel(units.label(res.parameter))
+    units.mark(ax, "alpha", res.parameter)
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
+    if res.statement:
+        ax.set_title(title(res.params.eta_f), fontsize=9)
+    return fig
 
 
 # -- stability-map ------------------------------------------------------------------------------------
