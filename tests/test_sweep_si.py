@@ -52,6 +52,7 @@ def si_store(tmp_path_factory):
     return out, physical
 
 
+@pytest.mark.slow
 def test_store_is_in_si_units_with_the_groups_beside(si_store):
     out, physical = si_store
     ds = open_sweep(out).compute()
@@ -68,8 +69,16 @@ def test_store_is_in_si_units_with_the_groups_beside(si_store):
     point = json.loads(ds.attrs["operating_point"])
     assert point == {"v": float(physical.v), "M": float(physical.M)}
     assert ds.attrs["units"] == "si"
+    # the speed regime: v > v_ref is supercritical on this track (alpha_cr = 1, Eq. (65) with eta_s = 0)
+    np.testing.assert_array_equal(
+        ds.supercritical.values, np.broadcast_to((ds.v > v_ref).values[:, None], (4, 3))
+    )
+    assert ds.supercritical.any() and json.loads(ds.attrs["v_cr"])["values"] == [
+        pytest.approx(v_ref, rel=1e-12)
+    ]
 
 
+@pytest.mark.slow
 def test_every_point_is_the_si_file_at_that_v_and_m(si_store):
     out, physical = si_store
     ds = open_sweep(out).compute()
@@ -84,6 +93,7 @@ def test_every_point_is_the_si_file_at_that_v_and_m(si_store):
     assert len(counts) > 1  # the window holds stable and unstable points
 
 
+@pytest.mark.slow
 def test_sweep_plot_in_si_marks_the_operating_point(si_store, tmp_path):
     from moving_bogie.sweep.plots import plot_sweep_slice
 

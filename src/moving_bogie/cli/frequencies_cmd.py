@@ -92,6 +92,7 @@ def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
     from moving_bogie.roots.contour import Rectangle
     from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.stability.supercritical import speed_regime
 
     from .progress import progress_bar
 
@@ -110,16 +111,31 @@ def run_frequencies(args: argparse.Namespace) -> int:
         result = induced_frequencies(
             params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
         )
+    regime = speed_regime(params, physical)
     if args.json:
-        print_json(with_si(result.to_dict(), result, physical))
+        data = with_si(result.to_dict(), result, physical)
+        data["verdict"] = _with_regime(data.get("verdict"), regime)
+        speed = {"alpha_cr": regime.alpha_cr, "v_cr": regime.v_cr, "supercritical": regime.supercritical}
+        print_json(data | speed | {"speed": regime.to_dict()})
     else:
         print(format_result(result))
+        print(regime.line())
         if physical is not None:
             print(format_si(result, physical))
     for line in format_warnings(result):
         print(line, file=sys.stderr)
     proven = result.certificate is None or result.certificate.all_proven
     return 0 if result.count_ok and result.verdict.determined and proven else 1
+
+
+def _with_regime(verdict, regime):
+    """The JSON verdict with ``supercritical`` and ``v_cr`` beside it (a string verdict becomes an object)."""
+    extra = {"supercritical": regime.supercritical, "alpha_cr": regime.alpha_cr}
+    if regime.v_cr is not None:
+        extra["v_cr"] = regime.v_cr
+    if isinstance(verdict, dict):
+        return verdict | extra
+    return verdict
 
 
 def with_si(data: dict, result, physical) -> dict:
@@ -218,15 +234,27 @@ def format_certificate(c) -> list:
 
 def run_table2(args: argparse.Namespace) -> int:
     from moving_bogie.roots.table2 import compute_table2, format_table2
+    from moving_bogie.stability.supercritical import SUPERCRITICAL_MEANING, speed_regime
 
     from .progress import progress_bar
 
     _check_dps(args.dps)
     with progress_bar("Table 2", enabled=not args.json) as update:
         table = compute_table2(dps=args.dps, progress=update, certify=args.certify)
+    regimes = [speed_regime(row.result.params) for row in table.rows]
     if args.json:
-        print_json(table.to_dict())
+        data = table.to_dict()
+        for entry, regime in zip(data["cases"], regimes):
+            entry["verdict"] = _with_regime(entry.get("verdict"), regime)
+            entry |= {"alpha_cr": regime.alpha_cr, "supercritical": regime.supercritical}
+        print_json(data)
     else:
         print(format_table2(table, decimals=args.decimals))
+        above = [row.case for row, regime in zip(table.rows, regimes) if regime.supercritical]
+        if above:
+            print(f"speed: SUPERCRITICAL in case(s) {', '.join(map(str, above))}: {SUPERCRITICAL_MEANING}")
+        else:
+            worst = max(r.alpha / r.alpha_cr for r in regimes)
+            print(f"speed: every case subcritical (alpha / alpha_cr <= {worst:.4g}; v_cr of each track)")
     proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
     return 0 if table.ok and proven else 1

@@ -192,6 +192,8 @@ def run_sweep_cmd(args) -> int:
         "settled_points": int(ds.settled.sum()),
         "check_disagreements": int((ds.checked < 0).sum()),
     }
+    if "supercritical" in ds:  # the points above the critical velocity of their track
+        summary["supercritical_points"] = int(ds.supercritical.sum())
     if args.json:
         print_json(summary)
     else:

@@ -145,9 +145,35 @@ def create_store(path, spec: SweepSpec) -> None:
     )
     if spec.si:
         g.attrs["physical"] = json.dumps(spec.physical.to_dict())
+    _write_speed(g, spec)
     if path.exists():
         shutil.rmtree(path)
     os.replace(tmp, path)
+
+
+def _write_speed(g, spec: SweepSpec) -> None:
+    """``supercritical`` and ``alpha_cr`` at every point (:mod:`moving_bogie.sweep.speed`), or a note."""
+    from moving_bogie.stability.supercritical import SUPERCRITICAL_MEANING
+    from moving_bogie.sweep.speed import MAX_TRACKS, speed_arrays
+
+    arrays = speed_arrays(spec)
+    if arrays is None:
+        g.attrs["supercritical"] = f"not computed: more than {MAX_TRACKS} distinct tracks"
+        return
+    texts = {
+        "alpha_cr": "critical velocity of the point's track, Eqs. (65)-(66) (alpha units)",
+        "supercritical": "alpha > alpha_cr: " + SUPERCRITICAL_MEANING,
+    }
+    for name, values in arrays.items():
+        arr = g.create_array(name, shape=spec.shape, dtype=values.dtype, dimension_names=spec.dims)
+        arr[...] = values
+        arr.attrs["description"] = texts[name]
+        if name == "alpha_cr":
+            arr.attrs["units"] = "1"
+    if spec.si:
+        v_ref = spec.physical.scales().v_ref
+        v_cr = sorted({float(a) * v_ref for a in np.unique(arrays["alpha_cr"])})
+        g.attrs["v_cr"] = json.dumps({"values": v_cr, "unit": "m/s"})
 
 
 def _coordinate(g, name, dims, floats, attrs, exact) -> None:
