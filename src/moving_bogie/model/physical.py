@@ -27,7 +27,20 @@ from moving_bogie.model.values import ModelValues
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
 
-__all__ = ["DIMENSIONLESS_OF", "PHYSICAL_UNITS", "PhysicalParams", "Scales"]
+__all__ = ["DIMENSIONLESS_OF", "PER_RAIL_CONVENTION", "PHYSICAL_UNITS", "PhysicalParams", "Scales"]
+
+#: What the SI parameters describe: one rail and the half vehicle on it, and how to convert a whole vehicle.
+PER_RAIL_CONVENTION = (
+    "SI inputs are per rail, as in STEM and ROSE: the beam is one rail (EI, m, GA, r_g of one rail), the "
+    "foundation the support of that rail per metre of track (k_f, c_f, k_s and the layers), and the "
+    "vehicle the half carried by it: M one wheel (half a wheelset), M_b and J_b the half of the bogie frame "
+    "on that rail, k_v and c_v the primary suspension of one wheel, P one wheel's static load (half the "
+    "axle load). A whole vehicle on a combined beam (both rails as one) converts by halving everything: "
+    "EI, m and the foundation per rail are half of the combined beam's, and M, M_b, J_b, k_v, c_v and P "
+    "half of the whole vehicle's; lengths and the speed (v, d, r_g) stay. This halving leaves every "
+    "dimensionless group unchanged (Eqs. (15)-(17), (59)), so both descriptions give the same frequencies "
+    "and verdicts; only a mix of the two (a whole vehicle on one rail) is wrong."
+)
 
 _META = default_catalogue().parameters
 #: SI unit of each SI parameter of the packaged catalogue (scale parameters first), on every track.
@@ -125,7 +138,8 @@ class Scales:
 class PhysicalParams(ModelValues):
     """Physical parameters of a model in SI units, stored exactly as Fractions.
 
-    The scale parameters ``EI`` [N m^2], ``m`` [kg/m], ``k_f`` [N/m^2] and the wheel load ``P`` [N], and the
+    Per rail (:data:`PER_RAIL_CONVENTION`): one rail and the half vehicle on it. The scale parameters
+    ``EI`` [N m^2], ``m`` [kg/m], ``k_f`` [N/m^2] and the wheel load ``P`` [N], and the
     SI counterpart of each of the model's dimensionless groups (``moving-bogie models`` lists them with their
     units: for the paper's bogie ``c_f, M, M_b, J_b, k_v, c_v, d, v`` and optionally ``k_s``; ``GA, r_g``
     for a Timoshenko-Rayleigh beam). Numeric values accept what
