@@ -98,3 +98,28 @@ def test_table2_says_every_case_is_subcritical(capsys):
             assert case["alpha_cr"] == pytest.approx(np.sqrt(1 + float(case["params"]["eta_s"])), rel=1e-12)
     main(["table2"])
     assert "speed: every case subcritical" in capsys.readouterr().out
+
+
+def test_set_changes_an_si_parameter_of_the_file(capsys):
+    """``--set v=900`` on the file of v = 300 m/s is the file with v = 900 (the test above writes it out)."""
+    assert main(["frequencies", "--file", str(EXAMPLE), "--set", "v=900", "--json"]) in (0, 1)
+    data = json.loads(capsys.readouterr().out)
+    assert data["supercritical"] is True and data["speed"]["v"] == pytest.approx(900, rel=1e-12)
+    _, physical = load_params_file(EXAMPLE)
+    EI, m, k_f = (float(getattr(physical, k)) for k in ("EI", "m", "k_f"))
+    assert float(data["params"]["alpha"]) == pytest.approx(900 / (4 * k_f * EI / m**2) ** 0.25, rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--case", "1", "--set", "v=900"], "--set needs a [physical] parameter file"),
+        (["--file", str(EXAMPLE), "--set", "vv=900"], "unknown SI parameter 'vv'"),
+        (["--file", str(EXAMPLE), "--set", "v=fast"], "expected NAME=NUMBER"),
+        (["--file", str(EXAMPLE), "--set", "c_f=1e9"], "c_f = 1000000000 N s/m^2 gives eta_f"),
+    ],
+)
+def test_set_refuses_bad_input(args, message, capsys):
+    assert main(["frequencies", *args, "--json"]) == 2
+    error = json.loads(capsys.readouterr().out)
+    assert message in error["error"] and error["option"] == "--set"

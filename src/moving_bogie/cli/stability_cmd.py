@@ -162,7 +162,7 @@ def _register_frequency_lines(subparsers) -> None:
     p.add_argument("--alpha-min", type=float, default=0.0)
     p.add_argument("--alpha-max", type=float, default=1.2)
     p.add_argument("--checkpoints", type=int, default=13, help="velocities where all roots are found afresh")
-    add_plane_options(p)
+    add_plane_options(p, set_option=False)
     add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_frequency_lines)

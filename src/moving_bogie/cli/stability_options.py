@@ -9,7 +9,15 @@ from pathlib import Path
 from moving_bogie.errors import ParameterError
 from moving_bogie.stability.plot_units import PlaneUnits
 
-from .common import MODEL_OPTIONS, add_model_options, add_units_option, parameter_options, si_input
+from .common import (
+    MODEL_OPTIONS,
+    add_model_options,
+    add_set_option,
+    add_units_option,
+    apply_settings,
+    parameter_options,
+    si_input,
+)
 
 #: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
 RAW = argparse.RawDescriptionHelpFormatter
@@ -83,6 +91,10 @@ def params_and_spacings(args):
         from moving_bogie.model.files import load_params_file
 
         base, physical = load_params_file(args.file)
+        if getattr(args, "set", None):  # SI changes of a [physical] file, before the group options
+            physical, base = apply_settings(physical, args.set)
+    elif getattr(args, "set", None):
+        apply_settings(None, args.set)  # refused: no [physical] file
     elif args.case is not None:
         base = table1_case(args.case)
     else:
@@ -109,9 +121,12 @@ def params_and_spacings(args):
     return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
 
 
-def add_plane_options(parser) -> None:
-    """``--units`` and ``--range NAME=LO:HI`` of the plane commands (SI names with a [physical] file)."""
+def add_plane_options(parser, *, set_option: bool = True) -> None:
+    """``--units``, ``--range NAME=LO:HI`` (SI names with a [physical] file) and ``--set NAME=VALUE`` (unless
+    the parser has it from :func:`~moving_bogie.cli.common.add_parameter_options`) of the plane commands."""
     add_units_option(parser)
+    if set_option:
+        add_set_option(parser)
     parser.add_argument(
         "--range",
         action="append",
