@@ -97,11 +97,20 @@ def test_stability_map_in_si(case1_si):
     assert star.get_xdata()[0] == pytest.approx(float(physical.v), rel=1e-7)
 
 
-def test_stability_map_cli_takes_si_ranges(case1_si, capsys):
+def test_stability_map_cli_takes_si_ranges(case1_si, capsys, tmp_path):
+    from moving_bogie.sweep import open_sweep
+
     path, _, physical = case1_si
     v_ref, chi, _, m = _scales(physical)
     args = ["stability-map", "--file", str(path), "--n", "4", "--workers", "1", "--json"]
-    assert main([*args, "--range", "v=300:700", "--range", "M=0:2400"]) == 0
+    store = tmp_path / "map.zarr"
+    assert main([*args, "--range", "v=300:700", "--range", "M=0:2400", "--out", str(store)]) == 0
+    ds = open_sweep(store).compute()
+    assert ds.n_unstable.dims == ("v", "M") and ds.v.attrs["units"] == "m/s" and ds.M.attrs["units"] == "kg"
+    np.testing.assert_allclose(ds.v.values, np.linspace(300, 700, 4), rtol=1e-12)
+    np.testing.assert_allclose(ds.M.values, np.linspace(600, 2400, 4), rtol=1e-12)
+    np.testing.assert_allclose(ds.alpha.values, ds.v.values / v_ref, rtol=1e-12)
+    assert "follow it (Eq. (63))" in ds.attrs["vertical_axis"]
     data = json.loads(capsys.readouterr().out)
     assert data["axes"]["x"]["name"] == "v" and data["axes"]["x"]["unit"] == "m/s"
     assert data["axes"]["x"]["range"] == pytest.approx([300, 700], rel=1e-12)

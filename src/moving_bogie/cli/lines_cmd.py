@@ -12,6 +12,7 @@ from .common import (
     add_json_option,
     add_output_option,
     print_json,
+    si_input,
 )
 from .progress import progress_bar
 from .stability_options import (
@@ -231,7 +232,7 @@ def run_stability_map(args) -> int:
     if args.out:
         from moving_bogie.sweep.store import write_map
 
-        write_map(args.out, smap, overwrite=args.overwrite)
+        write_map(args.out, smap, overwrite=args.overwrite, physical=si_input(args, args.physical))
     if args.plot:
         from moving_bogie.stability.plots import plot_stability_map
 

@@ -227,16 +227,31 @@ def open_sweep(path):
         raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None
 
 
-def write_map(path, smap, *, overwrite: bool = False) -> Path:
-    """Write a :class:`~moving_bogie.stability.map.StabilityMap` as a 2-D sweep store (alpha, parameter)."""
+def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
+    """Write a :class:`~moving_bogie.stability.map.StabilityMap` as a 2-D sweep store (alpha, parameter).
+
+    With ``physical`` (the SI parameters of the map's base point) the store is in SI units, as a sweep of
+    a ``[physical]`` input: dimensions ``v``, ``M``, ... (each SI value the group times
+    :meth:`~moving_bogie.model.physical.PhysicalParams.si_factor`, read by its shortest decimal text), the
+    groups beside them. Along the map's vertical axis the groups that Eq. (63) ties to it follow it, as
+    the attribute ``vertical_axis`` says.
+    """
+    from fractions import Fraction
+
     from moving_bogie.stability.column import exact
     from moving_bogie.sweep.design import Axis
 
-    axes = (
-        Axis("alpha", tuple(exact(a) for a in smap.alphas)),
-        Axis(smap.parameter, tuple(exact(t) for t in smap.thetas)),
-    )
-    spec = SweepSpec(smap.params, smap.model, axes, check=0)
+    def axis(name, values):
+        exact_values = tuple(exact(v) for v in values)
+        if physical is None:
+            return Axis(name, exact_values)
+        spec = smap.params.model.specs[name]
+        factor = physical.si_factor(name)
+        si_values = tuple(Fraction(repr(float(v) * factor)) for v in values)
+        return Axis(name, exact_values, si=spec.si, unit=spec.unit, si_values=si_values)
+
+    axes = (axis("alpha", smap.alphas), axis(smap.parameter, smap.thetas))
+    spec = SweepSpec(smap.params, smap.model, axes, check=0, physical=physical)
     path = prepare_store(path, spec, overwrite=overwrite)
     certain = ~smap.uncertain.T
     n = np.where(certain, smap.count.T, -1).astype(np.int16)
@@ -250,4 +265,13 @@ def write_map(path, smap, *, overwrite: bool = False) -> Path:
         "computed": np.ones(n.shape, dtype=bool),
     }
     write_block(path, spec, (slice(None), slice(None)), arrays)
+    follow = [
+        f"{meta['sets']} = {name} x {smap.parameter}" + (" x d^2" if "d" in meta["depends"] else "")
+        for name, meta in smap.params.model.alternatives.items()
+        if smap.parameter in meta["depends"]
+    ]
+    if follow:
+        _group(path, "r+").attrs["vertical_axis"] = (
+            f"a stability map: along {smap.parameter} " + ", ".join(follow) + " follow it (Eq. (63))"
+        )
     return path
