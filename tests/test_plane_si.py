@@ -77,6 +77,9 @@ def test_instability_lines_in_si(case1_si):
     (star,) = [line for line in ax.get_lines() if line.get_label() == "operating point"]
     assert star.get_xdata()[0] == pytest.approx(float(physical.v), rel=1e-7)
     assert star.get_ydata()[0] == pytest.approx(float(physical.M), rel=1e-7)
+    (critical,) = [line for line in ax.get_lines() if line.get_label().startswith("v_cr = ")]
+    assert critical.get_xdata()[0] == pytest.approx(v_ref, rel=1e-12)  # alpha_cr = 1 (Eq. (65), eta_s = 0)
+    assert critical.get_label() == f"v_cr = {v_ref:.6g} m/s (critical velocity)"
 
 
 def test_stability_map_in_si(case1_si):

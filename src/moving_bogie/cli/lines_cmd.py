@@ -144,7 +144,7 @@ def instability_figure(res, units, alpha_range, theta_max):
     fig = Figure(figsize=(7, 5), layout="constrained")
     ax = fig.subplots()
     marks = plot_instability_lines(ax, res, units=units)
-    ax.axvline(units.value("alpha", 1.0), color="k", ls=":")
+    units.critical(ax)
     ax.set_xlim(*(units.value("alpha", a) for a in alpha_range))
     ax.set_ylim(0, units.value(res.parameter, theta_max))
     ax.set_xlabel(units.label("alpha"))

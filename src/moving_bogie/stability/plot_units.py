@@ -49,6 +49,9 @@ class PlaneUnits:
         ``sqrt(m / k_f)`` [s] in SI: an induced frequency q is shown as q / t_scale [rad/s].
     operating : dict
         Group -> the input's own value (dimensionless), for the operating point.
+    alpha_cr : float or None
+        The critical velocity of the track (:mod:`~moving_bogie.stability.supercritical`), drawn dotted;
+        None: the figure draws alpha = 1 (Eq. (65) without a shear layer).
     """
 
     names: dict = field(default_factory=dict)
@@ -56,6 +59,7 @@ class PlaneUnits:
     factors: dict = field(default_factory=dict)
     t_scale: float | None = None
     operating: dict = field(default_factory=dict)
+    alpha_cr: float | None = None
 
     @classmethod
     def of(cls, params, physical=None, *, operating: bool = False) -> PlaneUnits:
@@ -63,9 +67,12 @@ class PlaneUnits:
 
         ``operating`` records the input's own point (marked on the figures).
         """
+        from moving_bogie.stability.supercritical import speed_regime
+
         own = {name: float(getattr(params, name)) for name in params.model.parameters} if operating else {}
+        alpha_cr = speed_regime(params).alpha_cr
         if physical is None:
-            return cls(operating=own)
+            return cls(operating=own, alpha_cr=alpha_cr)
         specs = params.model.specs
         return cls(
             names={name: spec.si for name, spec in specs.items()},
@@ -73,6 +80,7 @@ class PlaneUnits:
             factors={name: physical.si_factor(name) for name in specs},
             t_scale=physical.scales().t_scale,
             operating=own,
+            alpha_cr=alpha_cr,
         )
 
     @property
@@ -116,6 +124,17 @@ class PlaneUnits:
         if self.si and group in self.units:
             out["group"] = {"name": group, "value": float(x)}
         return out
+
+    def critical(self, ax) -> None:
+        """The critical velocity of the track, dotted and labelled (alpha = 1 unlabelled when unknown)."""
+        if self.alpha_cr is None:
+            ax.axvline(1.0, color="k", ls=":", lw=1)
+            return
+        unit = f" {self.unit('alpha')}" if self.si else ""
+        label = (
+            f"{self.name('alpha')}_cr = {self.value('alpha', self.alpha_cr):.6g}{unit} (critical velocity)"
+        )
+        ax.axvline(self.value("alpha", self.alpha_cr), color="k", ls=":", lw=1, label=label)
 
     def mark(self, ax, x_group: str, y_group: str) -> bool:
         """Mark the operating point on a plane (x_group, y_group) when it is known; True if marked."""

@@ -386,8 +386,8 @@ def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0, units=None):
     ax.set_ylabel(units.label(smap.parameter))
     ax.set_xlim(xs[0], xs[-1])
     ax.set_ylim(0, ys[-1])
-    ax.axvline(units.value("alpha", 1.0), color="k", ls=":", lw=1)
-    marked = units.mark(ax, "alpha", smap.parameter)
+    units.critical(ax)
+    marked = units.mark(ax, "alpha", smap.parameter) or units.alpha_cr is not None
     title = f"degree of instability, {smap.model}; lines: instability lines"
     if lines is not None and lines.statement:
         title = (
