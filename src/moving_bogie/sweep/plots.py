@@ -75,7 +75,8 @@ def plot_sweep_slice(ds, x: str, y: str, sel: dict | None = None, *, vmin_log: f
     ax.set_xlabel(axis_label(ds[x]))
     ax.set_ylabel(axis_label(ds[y]))
     point = json.loads(ds.attrs.get("operating_point", "{}"))
-    if x in point and y in point:
+    inside = x in point and y in point and min(xs) <= point[x] <= max(xs) and min(ys) <= point[y] <= max(ys)
+    if inside:  # the base point, where it lies on the slice's axes
         mark_operating_point(ax, point[x], point[y])
     fixed = ", ".join(f"{k} = {float(s[k].values):.4g}{unit_suffix(ds[k])}" for k in (sel or {}))
     title = f"sweep: degree of instability ({ds.attrs.get('model', '')})" + (f"; {fixed}" if fixed else "")
