@@ -123,3 +123,17 @@ def test_set_refuses_bad_input(args, message, capsys):
     assert main(["frequencies", *args, "--json"]) == 2
     error = json.loads(capsys.readouterr().out)
     assert message in error["error"] and error["option"] == "--set"
+
+
+def test_undetermined_critical_velocity_is_said_not_guessed(monkeypatch):
+    from moving_bogie.errors import MovingBogieError
+    from moving_bogie.stability import critical_velocity as module
+
+    def fails(*args, **kwargs):
+        raise MovingBogieError("no branch has a local minimum of its phase speed")
+
+    monkeypatch.setattr(module, "critical_velocity", fails)
+    regime = speed_regime(table1_case(1).replace(eta_s="0.123"))  # a track not seen before in this process
+    assert regime.alpha_cr is None and regime.supercritical is None
+    assert regime.line().startswith("speed: UNDETERMINED") and "no branch" in regime.line()
+    assert regime.to_dict()["supercritical"] is None

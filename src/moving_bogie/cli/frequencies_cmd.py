@@ -254,7 +254,12 @@ def run_table2(args: argparse.Namespace) -> int:
         if above:
             print(f"speed: SUPERCRITICAL in case(s) {', '.join(map(str, above))}: {SUPERCRITICAL_MEANING}")
         else:
-            worst = max(r.alpha / r.alpha_cr for r in regimes)
-            print(f"speed: every case subcritical (alpha / alpha_cr <= {worst:.4g}; v_cr of each track)")
+            known = [r.alpha / r.alpha_cr for r in regimes if r.alpha_cr is not None]
+            unknown = [row.case for row, r in zip(table.rows, regimes) if r.alpha_cr is None]
+            text = f"alpha / alpha_cr <= {max(known):.4g}" if known else "no critical velocity determined"
+            if unknown:
+                print(f"speed: critical velocity UNDETERMINED in case(s) {', '.join(map(str, unknown))}")
+            else:
+                print(f"speed: every case subcritical ({text}; v_cr of each track)")
     proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
     return 0 if table.ok and proven else 1

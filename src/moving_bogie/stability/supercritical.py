@@ -13,6 +13,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from moving_bogie.errors import MovingBogieError
+
 __all__ = ["SUPERCRITICAL_MEANING", "SpeedRegime", "speed_regime"]
 
 #: What a supercritical speed means for the analysis (printed with every supercritical verdict).
@@ -30,9 +32,10 @@ class SpeedRegime:
     Attributes
     ----------
     alpha, alpha_cr : float
-        The velocity ratio and the critical one (Eqs. (16), (65)-(66)).
-    supercritical : bool
-        ``alpha > alpha_cr``.
+        The velocity ratio and the critical one (Eqs. (16), (65)-(66)); alpha_cr None when the track's
+        critical velocity could not be determined (``note`` says why).
+    supercritical : bool or None
+        ``alpha > alpha_cr``; None when alpha_cr is not determined.
     v, v_cr : float or None
         The same in m/s for a ``[physical]`` input.
     note : str or None
@@ -40,8 +43,8 @@ class SpeedRegime:
     """
 
     alpha: float
-    alpha_cr: float
-    supercritical: bool
+    alpha_cr: float | None
+    supercritical: bool | None
     v: float | None = None
     v_cr: float | None = None
     note: str | None = None
@@ -59,6 +62,10 @@ class SpeedRegime:
 
     def line(self) -> str:
         """One line of text: the speed against v_cr, and what a supercritical speed means."""
+        if self.alpha_cr is None:
+            return (
+                f"speed: UNDETERMINED against the critical velocity (alpha = {self.alpha:.6g}): {self.note}"
+            )
         if self.v_cr is not None:
             speed = f"v = {self.v:.6g} m/s, v_cr = {self.v_cr:.6g} m/s (alpha = {self.alpha:.6g}, "
             speed += f"alpha_cr = {self.alpha_cr:.6g})"
@@ -80,17 +87,18 @@ def speed_regime(params, physical=None) -> SpeedRegime:
     """
     alpha = float(params.alpha)
     alpha_cr, note = _critical(params)
-    out = dict(alpha=alpha, alpha_cr=alpha_cr, supercritical=alpha > alpha_cr, note=note)
+    supercritical = None if alpha_cr is None else alpha > alpha_cr
+    out = dict(alpha=alpha, alpha_cr=alpha_cr, supercritical=supercritical, note=note)
     if physical is not None:
         v_ref = physical.scales().v_ref
-        out |= dict(v=alpha * v_ref, v_cr=alpha_cr * v_ref)
+        out |= dict(v=alpha * v_ref, v_cr=None if alpha_cr is None else alpha_cr * v_ref)
     return SpeedRegime(**out)
 
 
 _CACHE: dict = {}
 
 
-def _critical(params) -> tuple[float, str | None]:
+def _critical(params) -> tuple[float | None, str | None]:
     """alpha_cr and its caveat, computed once per track (model and track groups) in a process."""
     from moving_bogie.stability.critical_velocity import critical_velocity
 
@@ -102,6 +110,10 @@ def _critical(params) -> tuple[float, str | None]:
     )
     key = (model.beam, model.track, groups)
     if key not in _CACHE:
-        res = critical_velocity(params)
-        _CACHE[key] = (float(res.alpha_cr), res.to_dict().get("note"))
+        try:
+            res = critical_velocity(params)
+        except MovingBogieError as exc:  # no minimum of the phase speed found: say so, do not guess
+            _CACHE[key] = (None, f"critical velocity not determined: {exc}")
+        else:
+            _CACHE[key] = (float(res.alpha_cr), res.to_dict().get("note"))
     return _CACHE[key]

@@ -29,7 +29,19 @@ def _track_axes(spec: SweepSpec) -> list[int]:
 
 def speed_arrays(spec: SweepSpec) -> dict | None:
     """``alpha_cr`` and ``supercritical`` at every point of ``spec`` (arrays of its shape), or None when
-    more than :data:`MAX_TRACKS` distinct tracks would need their critical velocity."""
+    more than :data:`MAX_TRACKS` distinct tracks would need their critical velocity or one of them has
+    none (:func:`~moving_bogie.stability.supercritical.speed_regime` says why)."""
+    try:
+        return _arrays(spec)
+    except _Undetermined:
+        return None
+
+
+class _Undetermined(Exception):
+    """A track of the sweep without a determined critical velocity."""
+
+
+def _arrays(spec: SweepSpec) -> dict | None:
     names = [a.name for a in spec.axes]
     tracks = _track_axes(spec)
     if spec.design == "sobol":
@@ -67,7 +79,10 @@ def speed_arrays(spec: SweepSpec) -> dict | None:
 
 def _alpha_cr(spec: SweepSpec, changes: dict) -> float:
     params = spec.params.replace(**(spec.fixed | changes)) if changes else spec.params
-    return speed_regime(params).alpha_cr
+    alpha_cr = speed_regime(params).alpha_cr
+    if alpha_cr is None:
+        raise _Undetermined
+    return alpha_cr
 
 
 def _value(spec: SweepSpec, name: str, index: tuple):

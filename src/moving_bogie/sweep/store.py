@@ -158,7 +158,9 @@ def _write_speed(g, spec: SweepSpec) -> None:
 
     arrays = speed_arrays(spec)
     if arrays is None:
-        g.attrs["supercritical"] = f"not computed: more than {MAX_TRACKS} distinct tracks"
+        g.attrs["supercritical"] = (
+            f"not computed: more than {MAX_TRACKS} distinct tracks, or a track without a critical velocity"
+        )
         return
     texts = {
         "alpha_cr": "critical velocity of the point's track, Eqs. (65)-(66) (alpha units)",
