@@ -126,3 +126,41 @@ def test_stability_map_cli_takes_si_ranges(case1_si, capsys, tmp_path):
     assert error == {"error": "--range alpha: not an axis (known: v, M)", "option": "--range"}
     assert main(["stability-map", "--case", "1", "--units", "si", "--n", "4"]) == 2
     assert "--units si needs a [physical]" in capsys.readouterr().err
+
+
+def test_frequency_lines_in_si(case1_si, capsys):
+    path, _, physical = case1_si
+    v_ref, _, t_scale, _ = _scales(physical)
+    args = ["frequency-lines", "--file", str(path), "--range", "v=500:600", "--checkpoints", "3", "--json"]
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["alpha_range"] == pytest.approx([500 / v_ref, 600 / v_ref], rel=1e-12)
+    assert data["lines"] and data["units"]["frequency_unit"] == "rad/s"
+    for line in data["lines"]:
+        alpha = np.array([p["alpha"] for p in line["points"]])
+        q = np.array([complex(p["re"], p["im"]) for p in line["points"]])
+        assert line["si"]["v"]["unit"] == "m/s" and line["si"]["omega"]["unit"] == "rad/s"
+        np.testing.assert_allclose(line["si"]["v"]["values"], alpha * v_ref, rtol=1e-12)
+        np.testing.assert_allclose(line["si"]["omega"]["re"], q.real / t_scale, rtol=1e-12)
+        np.testing.assert_allclose(line["si"]["omega"]["im"], q.imag / t_scale, rtol=1e-12, atol=1e-300)
+
+
+@pytest.mark.slow
+def test_compare_tracks_in_si(capsys):
+    """The two-layer example (per rail, SI): both critical velocities in m/s, spacings in metres."""
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "two-layer.toml"
+    _, physical = load_params_file(path)
+    EI, m, k_1 = (float(physical.values()[k]) for k in ("EI", "m", "k_1"))  # k_1: the reference stiffness
+    v_ref = (4 * k_1 * EI / m**2) ** 0.25  # Eq. (16)
+    args = ["compare-tracks", "--file", str(path), "--quick", "--range", "v=0:400", "--json"]
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["units"]["units"] == "si"
+    for track in data["tracks"]:
+        assert track["v_cr"] == {"value": pytest.approx(track["alpha_cr"] * v_ref, rel=1e-12), "unit": "m/s"}
+    assert data["alpha_range"] == pytest.approx([0, 400 / v_ref], rel=1e-12)
+    main(args[:-1])
+    out = capsys.readouterr().out
+    assert f"d = {float(physical.d):.6g} m" in out and "v_cr = " in out

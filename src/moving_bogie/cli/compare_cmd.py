@@ -93,6 +93,9 @@ def run(args) -> int:
         data = comparison.to_dict()
         for entry, low in zip(data["tracks"], lowest):
             entry["lowest_subcritical"] = [{"d": d, "alpha": a, "eta_M": t} for d, (a, t) in low.items()]
+            if units.si:
+                v_cr = units.value("alpha", entry["alpha_cr"])
+                entry[f"{units.name('alpha')}_cr"] = {"value": v_cr, "unit": units.unit("alpha")}
         print_json(units.with_si(data) | {"units": units.to_dict()})
         return 0
     v, m = units.name("alpha"), units.name("eta_M")
