@@ -151,3 +151,23 @@ def test_make_spec_holds_the_bar_fixed_in_si():
     assert float(back.M) == pytest.approx(1500, rel=1e-7)
     with pytest.raises(ParameterError, match="vary M"):
         make_spec(physical.to_dimensionless(), {"eta_M": "5,10"}, physical=physical)
+
+
+def test_sobol_design_in_si(tmp_path):
+    """A quasi-random SI design: every SI parameter and its group are coordinates along ``point``."""
+    from moving_bogie.sweep.store import prepare_store
+
+    physical = PhysicalParams.from_dimensionless(table1_case(1), digits=8, **SCALES)
+    spec = make_spec(
+        physical.to_dimensionless(), {"v": "300:700", "c_f": "2000:9000"}, sample=8, physical=physical
+    )
+    prepare_store(tmp_path / "s.zarr", spec)  # the coordinates are written before any computation
+    ds = open_sweep(tmp_path / "s.zarr")
+    assert {"v", "c_f", "alpha", "eta_f"} <= set(ds.coords) and ds.v.dims == ("point",)
+    assert ds.v.attrs["units"] == "m/s" and ds.c_f.attrs["units"] == "N s/m^2"
+    assert ((ds.v >= 300) & (ds.v <= 700)).all() and ((ds.c_f >= 2000) & (ds.c_f <= 9000)).all()
+    EI, m, k_f = (float(getattr(physical, k)) for k in ("EI", "m", "k_f"))
+    np.testing.assert_allclose(ds.alpha.values, ds.v.values / (4 * k_f * EI / m**2) ** 0.25, rtol=1e-14)
+    np.testing.assert_allclose(
+        ds.eta_f.values, ds.c_f.values / (2 * np.sqrt(k_f * m)), rtol=1e-14
+    )  # Eq. (17)

@@ -108,7 +108,7 @@ def create_store(path, spec: SweepSpec) -> None:
             group = group_coordinate(axis, {a.si for a in spec.axes})
             attrs = parameter_attributes(spec.params, axis.name) | {"si": axis.si}
             _coordinate(g, group, own, axis.floats, attrs, axis.values)
-            extra_coordinates.append(group)
+            extra_coordinates += [axis.si, group] if spec.design == "sobol" else [group]
         else:
             exact = axis.values if spec.design == "grid" else None
             _coordinate(g, axis.name, own, axis.floats, parameter_attributes(spec.params, axis.name), exact)
