@@ -192,6 +192,7 @@ def run_sweep_cmd(args) -> int:
         "settled_points": int(ds.settled.sum()),
         "check_disagreements": int((ds.checked < 0).sum()),
     }
+    summary["units"] = {a.label: ds[a.label].attrs.get("units", "1") for a in spec.axes}
     if "supercritical" in ds:  # the points above the critical velocity of their track
         summary["supercritical_points"] = int(ds.supercritical.sum())
     if args.json:
