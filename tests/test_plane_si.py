@@ -121,6 +121,12 @@ def test_stability_map_cli_takes_si_ranges(case1_si, capsys, tmp_path):
     assert data["alpha_range"][:2] == pytest.approx([300 / v_ref, 700 / v_ref], rel=1e-12)
     assert data["theta_range"][1] == pytest.approx(2400 * chi / m, rel=1e-12)
     assert data["units"]["units"] == "si"
+    t_scale = _scales(physical)[2]
+    assert data["max_growth_rate"] == {
+        "value": pytest.approx(data["max_degree"] / t_scale, rel=1e-12),
+        "unit": "1/s",
+    }
+    assert ds.degree_of_instability.attrs["t_scale_s"] == pytest.approx(t_scale, rel=1e-12)
     assert main([*args, "--range", "alpha=0:1"]) == 2
     error = json.loads(capsys.readouterr().out)
     assert error == {"error": "--range alpha: not an axis (known: v, M)", "option": "--range"}

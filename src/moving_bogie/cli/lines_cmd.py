@@ -243,6 +243,9 @@ def run_stability_map(args) -> int:
         "y": units.axis(args.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
     }
     summary = units.with_si(summary) | {"units": units.to_dict()}
+    if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
+        rate = units.frequency(summary["max_degree"])
+        summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
     if args.json:
         print_json(summary)
     else:

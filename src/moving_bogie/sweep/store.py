@@ -125,6 +125,9 @@ def create_store(path, spec: SweepSpec) -> None:
         arr.attrs["description"] = text
         if name == "degree_of_instability":
             arr.attrs["units"] = "1"
+            if spec.si:  # the growth rate in SI: -Im omega = -Im q / t_scale [1/s]
+                arr.attrs["t_scale_s"] = spec.physical.scales().t_scale
+                arr.attrs["si"] = "growth rate [1/s] = -degree_of_instability / t_scale_s"
         if extra_coordinates:  # the groups of an SI sweep, read back by xarray as coordinates
             arr.attrs["coordinates"] = " ".join(extra_coordinates)
     g.attrs.update(
