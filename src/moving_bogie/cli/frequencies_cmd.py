@@ -129,7 +129,7 @@ def run_frequencies(args: argparse.Namespace) -> int:
 
 
 def _with_regime(verdict, regime):
-    """The JSON verdict with ``supercritical`` and ``v_cr`` beside it (a string verdict becomes an object)."""
+    """The JSON verdict object with ``supercritical``, ``alpha_cr`` (and ``v_cr`` in m/s) added."""
     extra = {"supercritical": regime.supercritical, "alpha_cr": regime.alpha_cr}
     if regime.v_cr is not None:
         extra["v_cr"] = regime.v_cr

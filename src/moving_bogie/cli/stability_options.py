@@ -156,7 +156,7 @@ def plane_ranges(args, units: PlaneUnits, parameter: str) -> tuple[float, float,
         name = name.strip()
         try:
             lo, hi = (float(Fraction(x.strip())) for x in spec.split(":"))
-        except ValueError:
+        except (ValueError, ZeroDivisionError):
             lo = hi = None
         if not eq or lo is None or not hi > lo:
             raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI")

@@ -99,7 +99,8 @@ def plot_instability_lines(
     colors = colors or _colors(ds)
     seen = set()
     marked = set()
-    x, y = (lambda a: units.value("alpha", a)), (lambda t: units.value(lines.parameter, t) / scale)
+    parameter = getattr(lines, "parameter", "eta_M")
+    x, y = (lambda a: units.value("alpha", a)), (lambda t: units.value(parameter, t) / scale)
     for b in lines.branches:
         style = UNDAMPED_STYLES.get(b.kind, {"ls": linestyle})
         key = (b.d, b.kind)
