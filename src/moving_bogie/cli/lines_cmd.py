@@ -54,7 +54,8 @@ def _register_instability_lines(subparsers) -> None:
             "examples:\n"
             "  moving-bogie instability-lines --model masses --d 1,1.25,1.5 --eta-f 0.1 --plot f.png\n"
             "  moving-bogie instability-lines --d 1.5 --cf2 0.1 --kappa-v 0.2 --beam tr --S 10 --r 0.09\n"
-            "  moving-bogie instability-lines --model masses --d 1.5 --eta-f 0 --plot undamped.png"
+            "  moving-bogie instability-lines --model masses --d 1.5 --eta-f 0 --plot undamped.png\n"
+            "  moving-bogie instability-lines --file examples/uic60-bogie.toml --set d=2.5 --plot si.png"
         ),
         formatter_class=RAW,
     )
@@ -169,7 +170,9 @@ def _register_stability_map(subparsers) -> None:
         ),
         epilog=(
             "examples:\n  moving-bogie stability-map --case 1 --plot map.png --npz map.npz\n"
-            "  moving-bogie stability-map --d 1.5 --n 400 --lines --plot map.png"
+            "  moving-bogie stability-map --d 1.5 --n 400 --lines --plot map.png\n"
+            "  moving-bogie stability-map --file examples/uic60-bogie.toml --range v=0:400 \\\n"
+            "      --range M=0:3000 --plot map.png   (SI axes, the file's operating point marked)"
         ),
         formatter_class=RAW,
     )

@@ -154,7 +154,8 @@ def _register_frequency_lines(subparsers) -> None:
         ),
         epilog=(
             "examples:\n  moving-bogie frequency-lines --case 1 --plot fig2.png\n"
-            "  moving-bogie frequency-lines --case 1 --json"
+            "  moving-bogie frequency-lines --case 1 --json\n"
+            "  moving-bogie frequency-lines --file examples/uic60-bogie.toml --range v=0:300 --plot f.png"
         ),
         formatter_class=RAW,
     )
