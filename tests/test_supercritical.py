@@ -137,3 +137,13 @@ def test_undetermined_critical_velocity_is_said_not_guessed(monkeypatch):
     assert regime.alpha_cr is None and regime.supercritical is None
     assert regime.line().startswith("speed: UNDETERMINED") and "no branch" in regime.line()
     assert regime.to_dict()["supercritical"] is None
+
+
+def test_params_says_the_speed_regime(capsys):
+    assert main(["params", "--file", str(EXAMPLE), "--set", "v=900", "--json"]) == 0
+    speed = json.loads(capsys.readouterr().out)["speed"]
+    assert speed["supercritical"] is True and speed["v"] == pytest.approx(900, rel=1e-12)
+    assert main(["params", "--case", "1"]) == 0
+    assert (
+        capsys.readouterr().out.rstrip().splitlines()[-1] == "speed: subcritical, alpha = 0.8, alpha_cr = 1"
+    )
