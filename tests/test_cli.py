@@ -149,7 +149,9 @@ def test_case_override_and_timoshenko(capsys):
 
 def test_table_output_is_aligned(capsys):
     assert main(["params", "--case", "1"]) == 0
-    title, *rows = capsys.readouterr().out.splitlines()
+    table, speed = capsys.readouterr().out.rstrip().split("\n\n")  # the table, then the speed regime
+    assert speed.startswith("speed: subcritical")
+    title, *rows = table.splitlines()
     # 3 model names, the 9 groups of the paper's model and the 2 coefficients of Eq. (63)
     assert title == "Dimensionless parameters of eb/one-layer/bogie" and len(rows) == 14
     value_columns = {len(row) - len(row[2:].split(" ", 1)[1].lstrip()) for row in rows}

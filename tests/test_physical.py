@@ -145,3 +145,30 @@ def test_to_dict():
     # only the model's own SI parameters (an Euler-Bernoulli beam has no GA)
     assert d["EI"] == "6420000" and d["c_f"] == "3000" and "GA" not in d and d["beam"] == "eb"
     assert isinstance(PhysicalParams(**SI).to_dimensionless(), DimensionlessParams)
+
+
+def test_per_rail_and_whole_vehicle_give_the_same_groups():
+    """The convention of ``moving-bogie models``: a whole vehicle on a combined beam is the per-rail input
+    with every SI parameter doubled except lengths and the speed (units m, m/s); the groups are the same."""
+    from pathlib import Path
+
+    from moving_bogie.cli import main
+    from moving_bogie.model.files import load_params_file
+    from moving_bogie.model.physical import PER_RAIL_CONVENTION
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    for name in ("physical_eb.toml", "physical_tr.toml", "two-layer.toml"):
+        per_rail, physical = load_params_file(examples / name)
+        units = physical.units()
+        whole = {k: (v if units[k] in ("m", "m/s") else 2 * v) for k, v in physical.values().items()}
+        combined = PhysicalParams(model=physical.model, **whole)
+        assert combined.to_dimensionless() == per_rail, name
+        assert combined.scales().w_st == pytest.approx(physical.scales().w_st, rel=1e-15)
+    assert "per rail" in PER_RAIL_CONVENTION and "halving" in PER_RAIL_CONVENTION
+    import contextlib
+    import io
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["models"]) == 0
+    assert "Convention: SI inputs are per rail" in out.getvalue()

@@ -118,5 +118,9 @@ def test_cli_verdict_line_exit_status_and_stderr(capsys):
     assert "moving-bogie: warning: window:" in out.err and "WARNING" not in out.out
     assert main(["frequencies", "--case", "1", "--alpha", "5", "--dps", "20", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["count_ok"] and data["verdict"] == {"state": "unstable", "reasons": []}
+    assert data["count_ok"] and data["verdict"]["state"] == "unstable" and data["verdict"]["reasons"] == []
+    # alpha = 5 is above the EB critical velocity sqrt(1 + eta_s) (Eq. (66)): the verdict says so
+    eta_s = float(table1_case(1).eta_s)
+    assert data["verdict"]["supercritical"] is True
+    assert data["verdict"]["alpha_cr"] == pytest.approx((1 + eta_s) ** 0.5, rel=1e-9)
     assert data["degree_of_instability"] == "-4.16549" and data["far_field"]["radius"] == 12.0

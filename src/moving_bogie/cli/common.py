@@ -26,11 +26,15 @@ __all__ = [
     "add_json_option",
     "add_output_option",
     "add_parameter_options",
+    "add_set_option",
+    "add_units_option",
+    "apply_settings",
     "atomic_write",
     "handle_errors",
     "parameter_options",
     "params_from_args",
     "print_json",
+    "si_input",
 ]
 
 
@@ -87,6 +91,50 @@ def add_parameter_options(parser: argparse.ArgumentParser) -> None:
     )
     for name, option, text in parameter_options():
         source.add_argument(option, dest=name, type=_decimal_text, metavar="X", help=text)
+    add_set_option(source)
+
+
+def add_set_option(parser) -> None:
+    """Add ``--set NAME=VALUE``: an SI parameter of a ``[physical]`` file (see :func:`apply_settings`)."""
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="change an SI parameter of a [physical] --file, in its unit (e.g. --set v=900 --set M=1200; "
+        "'moving-bogie models' lists the names and units); applied before the group options",
+    )
+
+
+def apply_settings(physical: PhysicalParams | None, texts) -> tuple:
+    """``physical`` with the ``--set NAME=VALUE`` changes (exact decimal values in the SI units), and its
+    dimensionless parameters: (PhysicalParams, DimensionlessParams).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``--set`` for malformed text, an unknown SI name, an invalid value, or no ``[physical]`` file.
+    """
+    if physical is None:
+        raise ParameterError(
+            "--set",
+            "--set needs a [physical] parameter file (--file F.toml); use the group options otherwise",
+        )
+    changes = {}
+    for text in texts:
+        name, eq, value = text.partition("=")
+        name = name.strip()
+        try:
+            changes[name] = Fraction(value.strip())
+        except (ValueError, ZeroDivisionError):
+            raise ParameterError("--set", f"--set {text!r}: expected NAME=NUMBER") from None
+        if not eq or not name:
+            raise ParameterError("--set", f"--set {text!r}: expected NAME=NUMBER")
+    try:
+        physical = PhysicalParams(model=physical.model, **(physical.values() | changes))
+        return physical, physical.to_dimensionless()
+    except ParameterError as exc:
+        raise ParameterError("--set", f"--set: {exc}") from None
 
 
 def add_model_options(parser: argparse.ArgumentParser) -> None:
@@ -128,6 +176,8 @@ def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, Phy
     """
     options = {name: option for name, option, _ in parameter_options()}
     overrides = {name: getattr(args, name) for name in options if getattr(args, name, None) is not None}
+    if getattr(args, "set", None) and args.file is None:
+        apply_settings(None, args.set)  # refused: no [physical] file
     models = {k: getattr(args, k) for k in MODEL_OPTIONS.values() if getattr(args, k, None) is not None}
     if args.case is not None and args.file is not None:
         raise ParameterError("case", "give either --case or --file, not both")
@@ -137,6 +187,8 @@ def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, Phy
             params = table1_case(args.case).replace(**models, **overrides)
         elif args.file is not None:
             params, physical = load_params_file(args.file)
+            if getattr(args, "set", None):
+                physical, params = apply_settings(physical, args.set)
             if overrides or models:
                 params = params.replace(**models, **overrides)
                 if physical is not None:
@@ -171,3 +223,34 @@ def print_json(data: Any) -> None:
     """Print `data` as indented JSON on stdout."""
     json.dump(data, sys.stdout, indent=2)
     sys.stdout.write("\n")
+
+
+def add_units_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--units si|dimensionless``: the units a command takes and reports (see :func:`si_input`)."""
+    parser.add_argument(
+        "--units",
+        choices=("si", "dimensionless"),
+        help="units of the varied and plotted quantities: si (the SI names v, M, k_v, ... of "
+        "'moving-bogie models'; needs a [physical] --file) or dimensionless (the groups alpha, eta_M, ...); "
+        "default: si for a [physical] file, else dimensionless",
+    )
+
+
+def si_input(args: argparse.Namespace, physical: PhysicalParams | None) -> PhysicalParams | None:
+    """The SI parameters the command works in (None: dimensionless), from ``--units`` and the input.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``--units`` for ``--units si`` without a ``[physical]`` parameter file.
+    """
+    units = getattr(args, "units", None)
+    if units == "dimensionless":
+        return None
+    if units == "si" and physical is None:
+        raise ParameterError(
+            "--units",
+            "--units si needs a [physical] parameter file (--file F.toml with EI, m, k_f, P and the SI "
+            "parameters): Table 1 and [dimensionless] inputs have no SI scales",
+        )
+    return physical

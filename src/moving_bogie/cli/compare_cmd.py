@@ -8,7 +8,15 @@ from moving_bogie.errors import ParameterError
 
 from .common import PROG, add_json_option, add_output_option, print_json
 from .progress import progress_bar
-from .stability_options import RAW, add_track_vehicle_options, params_and_spacings, save_figure
+from .stability_options import (
+    RAW,
+    add_plane_options,
+    add_track_vehicle_options,
+    params_and_spacings,
+    plane_ranges,
+    plane_units,
+    save_figure,
+)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -37,6 +45,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="largest wheel mass ratio eta_M (default 200)",
     )  # fmt: skip
     p.add_argument("--quick", action="store_true", help="coarser seed grid and steps (a preview)")
+    add_plane_options(p)
     add_output_option(p, "--plot", metavar="F.png", help="write the two-panel figure")
     add_json_option(p)
     p.set_defaults(handler=run)
@@ -65,7 +74,9 @@ def run(args) -> int:
     base = layered.replace(track="one-layer")
     shared = set(base.model.parameters)
     groups = {name: getattr(layered, name) for name in layered.model.parameters if name not in shared}
-    if args.alpha_max <= args.alpha_min:
+    units = plane_units(args, layered)
+    alpha_min, alpha_max, theta_max = plane_ranges(args, units, "eta_M")
+    if alpha_max <= alpha_min:
         raise ParameterError("alpha-max", "must be larger than --alpha-min")
     with progress_bar("instability lines on both tracks") as bar:
         comparison = compare_tracks(
@@ -73,26 +84,36 @@ def run(args) -> int:
             layered.track,
             groups,
             spacings=spacings,
-            alpha_range=(args.alpha_min, args.alpha_max),
-            theta_max=args.theta_max,
+            alpha_range=(alpha_min, alpha_max),
+            theta_max=theta_max,
             quick=args.quick,
             progress=bar,
         )
     if args.plot:
-        save_figure(figure_track_comparison(comparison), args.plot)
+        save_figure(figure_track_comparison(comparison, units), args.plot)
     lowest = [lowest_subcritical(lines, a) for lines, a in zip(comparison.lines, comparison.alpha_cr)]
     if args.json:
         data = comparison.to_dict()
         for entry, low in zip(data["tracks"], lowest):
             entry["lowest_subcritical"] = [{"d": d, "alpha": a, "eta_M": t} for d, (a, t) in low.items()]
-        print_json(data)
+            if units.si:
+                v_cr = units.value("alpha", entry["alpha_cr"])
+                entry[f"{units.name('alpha')}_cr"] = {"value": v_cr, "unit": units.unit("alpha")}
+        print_json(units.with_si(data) | {"units": units.to_dict()})
         return 0
+    v, m = units.name("alpha"), units.name("eta_M")
     for lines, a_cr, low in zip(comparison.lines, comparison.alpha_cr, lowest):
-        print(f"{lines.params.track} track: alpha_cr = {a_cr:.6f}, {len(lines.branches)} line pieces")
+        critical = f"alpha_cr = {a_cr:.6f}"
+        if units.si:
+            critical += f" ({v}_cr = {units.value('alpha', a_cr):.6g} {units.unit('alpha')})"
+        print(f"{lines.params.track} track: {critical}, {len(lines.branches)} line pieces")
         for d in spacings:
             if d in low:
                 a, t = low[d]
-                print(f"  d={d:g}: lowest subcritical line point eta_M = {t:.4g} at alpha = {a:.4f}")
+                point = f"{m} = {units.value('eta_M', t):.4g} at {v} = {units.value('alpha', a):.4f}"
+                if units.si:
+                    point += f" [{units.unit('eta_M')}, {units.unit('alpha')}]"
+                print(f"  {units.legend('d', d)}: lowest subcritical line point {point}")
             else:
-                print(f"  d={d:g}: no instability line below alpha_cr")
+                print(f"  {units.legend('d', d)}: no instability line below the critical velocity")
     return 0

@@ -92,7 +92,9 @@ def _check_dps(dps):
 def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
     from moving_bogie.roots.contour import Rectangle
+    from moving_bogie.roots.damping_limit import damping_limit
     from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.stability.supercritical import speed_regime
 
     from .progress import progress_bar
 
@@ -111,23 +113,35 @@ def run_frequencies(args: argparse.Namespace) -> int:
         result = induced_frequencies(
             params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
         )
-    from moving_bogie.roots.damping_limit import damping_limit
-
     limit = damping_limit(result)
+    regime = speed_regime(params, physical)
     if args.json:
         data = with_si(result.to_dict(), result, physical)
+        data["verdict"] = _with_regime(data.get("verdict"), regime)
         data["damping_limit"] = None if limit is None else limit.to_dict()
-        print_json(data)
+        speed = {"alpha_cr": regime.alpha_cr, "v_cr": regime.v_cr, "supercritical": regime.supercritical}
+        print_json(data | speed | {"speed": regime.to_dict()})
     else:
         print(format_result(result))
         if limit is not None:
             print(limit.statement())
+        print(regime.line())
         if physical is not None:
             print(format_si(result, physical))
     for line in format_warnings(result):
         print(line, file=sys.stderr)
     proven = result.certificate is None or result.certificate.all_proven
     return 0 if result.count_ok and result.verdict.determined and proven else 1
+
+
+def _with_regime(verdict, regime):
+    """The JSON verdict object with ``supercritical``, ``alpha_cr`` (and ``v_cr`` in m/s) added."""
+    extra = {"supercritical": regime.supercritical, "alpha_cr": regime.alpha_cr}
+    if regime.v_cr is not None:
+        extra["v_cr"] = regime.v_cr
+    if isinstance(verdict, dict):
+        return verdict | extra
+    return verdict
 
 
 def with_si(data: dict, result, physical) -> dict:
@@ -235,16 +249,33 @@ def format_certificate(c) -> list:
 
 def run_table2(args: argparse.Namespace) -> int:
     from moving_bogie.roots.table2 import compute_table2, format_table2
+    from moving_bogie.stability.supercritical import SUPERCRITICAL_MEANING, speed_regime
 
     from .progress import progress_bar
 
     _check_dps(args.dps)
     with progress_bar("Table 2", enabled=not args.json) as update:
         table = compute_table2(dps=args.dps, progress=update, certify=args.certify)
+    regimes = [speed_regime(row.result.params) for row in table.rows]
     if args.json:
-        print_json(table.to_dict())
+        data = table.to_dict()
+        for entry, regime in zip(data["cases"], regimes):
+            entry["verdict"] = _with_regime(entry.get("verdict"), regime)
+            entry |= {"alpha_cr": regime.alpha_cr, "supercritical": regime.supercritical}
+        print_json(data)
     else:
         print(format_table2(table, decimals=args.decimals))
+        above = [row.case for row, regime in zip(table.rows, regimes) if regime.supercritical]
+        if above:
+            print(f"speed: SUPERCRITICAL in case(s) {', '.join(map(str, above))}: {SUPERCRITICAL_MEANING}")
+        else:
+            known = [r.alpha / r.alpha_cr for r in regimes if r.alpha_cr is not None]
+            unknown = [row.case for row, r in zip(table.rows, regimes) if r.alpha_cr is None]
+            text = f"alpha / alpha_cr <= {max(known):.4g}" if known else "no critical velocity determined"
+            if unknown:
+                print(f"speed: critical velocity UNDETERMINED in case(s) {', '.join(map(str, unknown))}")
+            else:
+                print(f"speed: every case subcritical ({text}; v_cr of each track)")
     proven = all(row.result.certificate is None or row.result.certificate.all_proven for row in table.rows)
     decided = all(row.result.verdict.determined for row in table.rows)
     return 0 if table.ok and proven and decided else 1

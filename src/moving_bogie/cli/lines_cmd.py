@@ -12,12 +12,16 @@ from .common import (
     add_json_option,
     add_output_option,
     print_json,
+    si_input,
 )
 from .progress import progress_bar
 from .stability_options import (
     RAW,
+    add_plane_options,
     add_track_vehicle_options,
     params_and_spacings,
+    plane_ranges,
+    plane_units,
     save_figure,
 )
 
@@ -50,7 +54,8 @@ def _register_instability_lines(subparsers) -> None:
             "examples:\n"
             "  moving-bogie instability-lines --model masses --d 1,1.25,1.5 --eta-f 0.1 --plot f.png\n"
             "  moving-bogie instability-lines --d 1.5 --cf2 0.1 --kappa-v 0.2 --beam tr --S 10 --r 0.09\n"
-            "  moving-bogie instability-lines --model masses --d 1.5 --eta-f 0 --plot undamped.png"
+            "  moving-bogie instability-lines --model masses --d 1.5 --eta-f 0 --plot undamped.png\n"
+            "  moving-bogie instability-lines --file examples/uic60-bogie.toml --set d=2.5 --plot si.png"
         ),
         formatter_class=RAW,
     )
@@ -70,6 +75,7 @@ def _register_instability_lines(subparsers) -> None:
         action="store_true",
         help="count unstable roots (induced_frequencies) on both sides of each branch",
     )
+    add_plane_options(p)
     add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_instability_lines)
@@ -82,49 +88,39 @@ def run_instability_lines(args) -> int:
     from moving_bogie.stability.undamped_lines import KIND_TEXT
 
     params, spacings = params_and_spacings(args)
+    units = plane_units(args, params)
+    alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
     with progress_bar("instability lines") as bar:
         res = instability_lines(
             params,
             args.model,
             spacings=spacings,
             parameter=args.parameter,
-            alpha_range=(args.alpha_min, args.alpha_max),
-            theta_max=args.theta_max,
+            alpha_range=(alpha_min, alpha_max),
+            theta_max=theta_max,
             q_max=args.q_max,
             verify=args.verify,
             progress=bar,
         )
     if args.plot:
-        from matplotlib.figure import Figure
-
-        from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
-        from moving_bogie.stability.undamped import title
-
-        fig = Figure(figsize=(7, 5), layout="constrained")
-        ax = fig.subplots()
-        marks = plot_instability_lines(ax, res)
-        ax.axvline(1.0, color="k", ls=":")
-        ax.set_xlim(args.alpha_min, args.alpha_max)
-        ax.set_ylim(0, args.theta_max)
-        ax.set_xlabel("alpha")
-        ax.set_ylabel(args.parameter)
-        handles, _ = ax.get_legend_handles_labels()
-        ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
-        if res.statement:
-            ax.set_title(title(params.eta_f), fontsize=9)
+        fig = instability_figure(res, units, (alpha_min, alpha_max), theta_max)
         save_figure(fig, args.plot)
     if args.json:
-        print_json(res.to_dict())
+        print_json(units.with_si(res.to_dict()) | {"units": units.to_dict()})
     else:
+        if units.si:
+            print(_si_line(units, args.parameter, params))
         if res.statement:
             print(res.statement)
             print(f"method: {res.method}")
         for b in res.branches:
             k = len(b.alpha)
             kind = "" if b.kind == "crossing" else f" [{b.kind}: {KIND_TEXT[b.kind]}]"
+            x, y = units.value("alpha", b.alpha), units.value(args.parameter, b.theta)
+            x_name, y_name = units.name("alpha"), units.name(args.parameter)
             print(
-                f"d={b.d:g}{kind}: {k} points, alpha {b.alpha.min():.4f}..{b.alpha.max():.4f}, "
-                f"{args.parameter} {b.theta.min():.4g}..{b.theta.max():.4g}, unstable side: {b.unstable_side}"
+                f"{units.legend('d', b.d)}{kind}: {k} points, {x_name} {x.min():.4f}..{x.max():.4f}, "
+                f"{y_name} {y.min():.4g}..{y.max():.4g}, unstable side: {b.unstable_side}"
                 + ("" if b.verified is None else f", counts below/above: {b.verified[2]}/{b.verified[4]}")
             )
             for m in dict.fromkeys(b.mechanism):
@@ -141,6 +137,30 @@ def run_instability_lines(args) -> int:
     return 0
 
 
+def instability_figure(res, units, alpha_range, theta_max):
+    """The figure of ``instability-lines``: the lines in ``units`` (SI for a [physical] file), the line
+    ends explained, alpha = 1 dotted, the operating point marked."""
+    from matplotlib.figure import Figure
+
+    from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
+    from moving_bogie.stability.undamped import title
+
+    fig = Figure(figsize=(7, 5), layout="constrained")
+    ax = fig.subplots()
+    marks = plot_instability_lines(ax, res, units=units)
+    units.critical(ax)
+    ax.set_xlim(*(units.value("alpha", a) for a in alpha_range))
+    ax.set_ylim(0, units.value(res.parameter, theta_max))
+    ax.set_xlabel(units.label("alpha"))
+    ax.set_ylabel(units.label(res.parameter))
+    units.mark(ax, "alpha", res.parameter)
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=handles + end_mark_handles(marks), fontsize=8)
+    if res.statement:
+        ax.set_title(title(res.params.eta_f), fontsize=9)
+    return fig
+
+
 # -- stability-map ------------------------------------------------------------------------------------
 def _register_stability_map(subparsers) -> None:
     p = subparsers.add_parser(
@@ -153,7 +173,9 @@ def _register_stability_map(subparsers) -> None:
         ),
         epilog=(
             "examples:\n  moving-bogie stability-map --case 1 --plot map.png --npz map.npz\n"
-            "  moving-bogie stability-map --d 1.5 --n 400 --lines --plot map.png"
+            "  moving-bogie stability-map --d 1.5 --n 400 --lines --plot map.png\n"
+            "  moving-bogie stability-map --file examples/uic60-bogie.toml --range v=0:400 \\\n"
+            "      --range M=0:3000 --plot map.png   (SI axes, the file's operating point marked)"
         ),
         formatter_class=RAW,
     )
@@ -170,6 +192,7 @@ def _register_stability_map(subparsers) -> None:
     p.add_argument("--n", type=int, default=200, help="grid points per axis (default 200)")
     p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
+    add_plane_options(p)
     add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_output_option(p, "--npz", metavar="F.npz", help="save the arrays")
     add_output_option(
@@ -189,8 +212,10 @@ def run_stability_map(args) -> int:
     params, _ = params_and_spacings(args)
     if args.out is not None and args.out.exists() and not args.overwrite:
         raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")
-    alphas = np.linspace(args.alpha_min, args.alpha_max, args.n)
-    thetas = np.linspace(args.theta_max / args.n, args.theta_max, args.n)
+    units = plane_units(args, params)
+    alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
+    alphas = np.linspace(alpha_min, alpha_max, args.n)
+    thetas = np.linspace(theta_max / args.n, theta_max, args.n)
     with progress_bar("stability map") as bar:
         smap = stability_map(
             params,
@@ -208,8 +233,8 @@ def run_stability_map(args) -> int:
                 params,
                 args.model,
                 parameter=args.parameter,
-                alpha_range=(args.alpha_min, args.alpha_max),
-                theta_max=args.theta_max,
+                alpha_range=(alpha_min, alpha_max),
+                theta_max=theta_max,
                 progress=bar,
             )
     if args.npz:
@@ -218,18 +243,50 @@ def run_stability_map(args) -> int:
     if args.out:
         from moving_bogie.sweep.store import write_map
 
-        write_map(args.out, smap, overwrite=args.overwrite)
+        write_map(args.out, smap, overwrite=args.overwrite, physical=si_input(args, args.physical))
     if args.plot:
         from moving_bogie.stability.plots import plot_stability_map
 
-        save_figure(plot_stability_map(smap, lines), args.plot)
+        save_figure(plot_stability_map(smap, lines, units=units), args.plot)
     summary = smap.summary()
+    summary["axes"] = {
+        "x": units.axis("alpha", smap.alphas[0], smap.alphas[-1], len(smap.alphas)),
+        "y": units.axis(args.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
+    }
+    summary = units.with_si(summary) | {"units": units.to_dict()}
+    if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
+        rate = units.frequency(summary["max_degree"])
+        summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
     if args.json:
         print_json(summary)
     else:
+        if units.si:
+            print(_si_line(units, args.parameter, params))
         for key, value in summary.items():
-            if key not in ("params", "uncertain"):
+            if key not in ("params", "uncertain", "axes", "units"):
                 print(f"{key:18s} {value}")
+        for key, axis in summary["axes"].items():
+            (lo, hi), name = axis["range"], axis["name"]
+            print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {axis['count']} points")
         for cell in summary["uncertain"]:
             print("uncertain cell     " + ", ".join(f"{k} = {v:.6g}" for k, v in cell.items()))
     return 0
+
+
+def _si_line(units, parameter: str, params) -> str:
+    """Lines saying the plane is shown in SI: each axis as its group times a factor, and what follows the
+    vertical axis (the groups an alternative input of Eq. (63) keeps in proportion, as in the paper)."""
+    text = (
+        f"units: SI ([physical] file): {units.label('alpha')} = alpha x {units.value('alpha', 1.0):.6g}, "
+        f"{units.label(parameter)} = {parameter} x {units.value(parameter, 1.0):.6g}, "
+        f"{units.label('d')} = d x {units.value('d', 1.0):.6g}"
+    )
+    follow = [
+        f"{units.name(meta['sets'])} ({name} = {float(getattr(params, name)):.6g} fixed)"
+        for name, meta in params.model.alternatives.items()
+        if parameter in meta["depends"]
+    ]
+    if follow:
+        text += f"\nalong {units.name(parameter)} the bar follows the wheel, Eq. (63): " + ", ".join(follow)
+        text += "; moving-bogie sweep holds them fixed instead"
+    return text

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import textwrap
 
 from moving_bogie.model.catalogue import default_catalogue
+from moving_bogie.model.physical import PER_RAIL_CONVENTION
 
 from .common import add_json_option, print_json
 
@@ -18,7 +20,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "List the models of the generated catalogue: each beam on each track under each vehicle, with\n"
             "the degrees of N and Q in p (Eq. (24)) and every dimensionless parameter: meaning, range,\n"
             "default, defining equation, command-line option and SI counterpart with its unit. Everything\n"
-            "comes from derivations/ through python -m derivations."
+            "comes from derivations/ through python -m derivations. SI inputs are per rail (one rail and\n"
+            "the half vehicle on it); the listing ends with the convention and the whole-vehicle conversion."
         ),
         epilog="examples:\n  moving-bogie models\n  moving-bogie models --json",
         formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -32,7 +35,7 @@ def run(args: argparse.Namespace) -> int:
     catalogue = default_catalogue()
     models = catalogue.models()
     if args.json:
-        print_json({"models": [model.to_dict() for model in models]})
+        print_json({"models": [model.to_dict() for model in models], "convention": PER_RAIL_CONVENTION})
         return 0
     print(format_catalogue(models))
     return 0
@@ -67,4 +70,5 @@ def format_catalogue(models) -> str:
     tail = "SI scale parameters of a [physical] file: " + ", ".join(
         f"{k} [{v['unit']}]" for k, v in scale.items()
     )
-    return "\n\n".join([*blocks, tail])
+    convention = "\n".join(textwrap.wrap("Convention: " + PER_RAIL_CONVENTION, 100))
+    return "\n\n".join([*blocks, tail, convention])

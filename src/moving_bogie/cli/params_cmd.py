@@ -21,7 +21,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description=(
             "Resolve a Table 1 case or a TOML parameter file plus overrides, validate them and print\n"
             "the dimensionless parameters of Eqs. (15)-(17), (59), (63). For a [physical] file, also\n"
-            "print the SI parameters and the reference scales of Eqs. (15)-(16)."
+            "print the SI parameters and the reference scales of Eqs. (15)-(16). The last line says whether\n"
+            "the speed is above the critical velocity of the track (supercritical)."
         ),
         epilog="examples:\n  moving-bogie params --case 7\n  moving-bogie params --case 1 --alpha 0.5 --json",
         formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -33,17 +34,23 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the parameters selected by `args`."""
+    from moving_bogie.stability.supercritical import speed_regime
+
     params, physical = params_from_args(args)
+    regime = speed_regime(params, physical)
     if args.json:
         print_json(
             {
                 "dimensionless": params.to_dict(),
                 "physical": None if physical is None else physical.to_dict(),
                 "scales": None if physical is None else dataclasses.asdict(physical.scales()),
+                "speed": regime.to_dict(),
             }
         )
     else:
         print(format_table(params, physical))
+        print()
+        print(regime.line())
     return 0
 
 

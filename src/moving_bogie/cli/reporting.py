@@ -82,6 +82,8 @@ def usage_failure(exc: UsageError, argv: Sequence[str]) -> int:
 def _parameter_option(parameter: str, argv: Sequence[str]) -> str | None:
     """The option the user typed for ``parameter`` (``eta_M`` -> ``--eta-M``), ``--file`` for a file value."""
     given = {a.split("=", 1)[0] for a in argv if a.startswith("--")}
+    if parameter.startswith("--"):  # the error names the option itself (--vary, --range, --units)
+        return parameter
     for option in ("--" + parameter.replace("_", "-"), "--" + parameter):
         if option in given:
             return option

@@ -14,11 +14,14 @@ from .common import (
     add_parameter_options,
     params_from_args,
     print_json,
+    si_input,
 )
 from .progress import progress_bar
 from .stability_options import (
     RAW,
+    add_plane_options,
     decimal_number,
+    plane_ranges,
     save_figure,
 )
 
@@ -151,7 +154,8 @@ def _register_frequency_lines(subparsers) -> None:
         ),
         epilog=(
             "examples:\n  moving-bogie frequency-lines --case 1 --plot fig2.png\n"
-            "  moving-bogie frequency-lines --case 1 --json"
+            "  moving-bogie frequency-lines --case 1 --json\n"
+            "  moving-bogie frequency-lines --file examples/uic60-bogie.toml --range v=0:300 --plot f.png"
         ),
         formatter_class=RAW,
     )
@@ -159,6 +163,7 @@ def _register_frequency_lines(subparsers) -> None:
     p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
     p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument("--checkpoints", type=int, default=13, help="velocities where all roots are found afresh")
+    add_plane_options(p, set_option=False)
     add_output_option(p, "--plot", metavar="F.png", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_frequency_lines)
@@ -166,44 +171,74 @@ def _register_frequency_lines(subparsers) -> None:
 
 def run_frequency_lines(args) -> int:
     from moving_bogie.stability.frequency_lines import frequency_lines
+    from moving_bogie.stability.plot_units import PlaneUnits
 
-    params, _ = params_from_args(args)
+    params, physical = params_from_args(args)
+    units = PlaneUnits.of(params, si_input(args, physical), operating=args.file is not None)
+    alpha_min, alpha_max, _ = plane_ranges(args, units, "alpha")
     with progress_bar("frequency lines") as bar:
         res = frequency_lines(
             params,
             args.model,
-            alpha_range=(args.alpha_min, args.alpha_max),
+            alpha_range=(alpha_min, alpha_max),
             checkpoints=args.checkpoints,
             progress=bar,
         )
     if args.plot:
-        save_figure(_frequency_figure(res), args.plot)
+        save_figure(_frequency_figure(res, units), args.plot)
     if args.json:
-        print_json(res.to_dict())
+        data = res.to_dict() | {"units": units.to_dict()}
+        if units.si:
+            for entry, line in zip(data["lines"], res.lines):
+                entry["si"] = _line_in_si(line, units)
+        print_json(data)
     else:
+        x, f = units.name("alpha"), "omega" if units.si else "q"
+        if units.si:
+            print(f"units: SI ([physical] file): {x} [{units.unit('alpha')}], omega = q / t_scale [rad/s]")
         for k, line in enumerate(res.lines, 1):
+            a, q = units.value("alpha", line.alpha), units.frequency(line.q)
             print(
-                f"line {k}: alpha {line.alpha[0]:.4f} -> {line.alpha[-1]:.4f} ({line.start} -> {line.end}), "
-                f"q {line.q[0]:.6f} -> {line.q[-1]:.6f}"
+                f"line {k}: {x} {a[0]:.4f} -> {a[-1]:.4f} ({line.start} -> {line.end}), "
+                f"{f} {q[0]:.6f} -> {q[-1]:.6f}"
             )
         for w in res.warnings:
             print(f"warning: {w}")
     return 0
 
 
-def _frequency_figure(res):
+def _line_in_si(line, units) -> dict:
+    """One frequency line in SI: the velocities and omega = q / t_scale, each with its unit."""
+    omega = units.frequency(line.q)
+    return {
+        units.name("alpha"): {
+            "values": units.value("alpha", line.alpha).tolist(),
+            "unit": units.unit("alpha"),
+        },
+        "omega": {"re": omega.real.tolist(), "im": omega.imag.tolist(), "unit": units.frequency_unit},
+    }
+
+
+def _frequency_figure(res, units):
+    """One panel per line: Re and Im of the induced frequency over the velocity (SI for a [physical] file)."""
     from matplotlib.figure import Figure
 
     n = max(1, len(res.lines))
     fig = Figure(figsize=(7, 1.9 * n + 0.6), layout="constrained")
     axs = fig.subplots(n, 1, sharex=True, squeeze=False)[:, 0]
+    name, unit = ("omega", f" [{units.frequency_unit}]") if units.si else ("q", "")
     for ax, line in zip(axs, res.lines):
-        ax.plot(line.alpha, line.q.real, color="tab:blue")
+        x, q = units.value("alpha", line.alpha), units.frequency(line.q)
+        ax.plot(x, q.real, color="tab:blue")
         ax2 = ax.twinx()
-        ax2.plot(line.alpha, line.q.imag, color="tab:orange")
-        ax.set_ylabel("Re q", color="tab:blue")
-        ax2.set_ylabel("Im q", color="tab:orange")
-    axs[-1].set_xlabel("alpha")
+        ax2.plot(x, q.imag, color="tab:orange")
+        ax.set_ylabel(f"Re {name}{unit}", color="tab:blue")
+        ax2.set_ylabel(f"Im {name}{unit}", color="tab:orange")
+        if "alpha" in units.operating:
+            ax.axvline(
+                units.value("alpha", units.operating["alpha"]), color="gold", lw=2, label="operating point"
+            )
+    axs[-1].set_xlabel(units.label("alpha"))
     return fig
 
 

@@ -7,8 +7,17 @@ from fractions import Fraction
 from pathlib import Path
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.stability.plot_units import PlaneUnits
 
-from .common import MODEL_OPTIONS, add_model_options, parameter_options
+from .common import (
+    MODEL_OPTIONS,
+    add_model_options,
+    add_set_option,
+    add_units_option,
+    apply_settings,
+    parameter_options,
+    si_input,
+)
 
 #: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
 RAW = argparse.RawDescriptionHelpFormatter
@@ -77,10 +86,15 @@ def params_and_spacings(args):
 
     if getattr(args, "file", None) is not None and args.case is not None:
         raise ParameterError("case", "give either --case or --file, not both")
+    physical = None
     if getattr(args, "file", None) is not None:
         from moving_bogie.model.files import load_params_file
 
-        base, _ = load_params_file(args.file)
+        base, physical = load_params_file(args.file)
+        if getattr(args, "set", None):  # SI changes of a [physical] file, before the group options
+            physical, base = apply_settings(physical, args.set)
+    elif getattr(args, "set", None):
+        apply_settings(None, args.set)  # refused: no [physical] file
     elif args.case is not None:
         base = table1_case(args.case)
     else:
@@ -100,8 +114,63 @@ def params_and_spacings(args):
             option = "--" + exc.parameter.replace("_", "-")
             raise ParameterError(exc.parameter, f"{exc}: give {option} or --file F.toml") from None
         raise
+    if physical is not None and changes:
+        physical = physical.with_dimensionless(params)
     args.model = params.vehicle
+    args.physical = physical  # the SI parameters of a [physical] file (read by plane_units)
     return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
+
+
+def add_plane_options(parser, *, set_option: bool = True) -> None:
+    """``--units``, ``--range NAME=LO:HI`` (SI names with a [physical] file) and ``--set NAME=VALUE`` (unless
+    the parser has it from :func:`~moving_bogie.cli.common.add_parameter_options`) of the plane commands."""
+    add_units_option(parser)
+    if set_option:
+        add_set_option(parser)
+    parser.add_argument(
+        "--range",
+        action="append",
+        default=[],
+        metavar="NAME=LO:HI",
+        help="range of an axis by its shown name: v=0:400 (m/s) and M=0:3000 (kg) with a [physical] file, "
+        "alpha=0:1.2 and eta_M=0:200 otherwise (instead of --alpha-min/--alpha-max/--eta-M-max; the "
+        "vertical axis starts at 0)",
+    )
+
+
+def plane_units(args, params) -> PlaneUnits:
+    """How the plane of ``params`` is shown: SI for a [physical] file (unless --units dimensionless); the
+    operating point is the file's own (a --file input)."""
+    physical = si_input(args, getattr(args, "physical", None))
+    return PlaneUnits.of(params, physical, operating=getattr(args, "file", None) is not None)
+
+
+def plane_ranges(args, units: PlaneUnits, parameter: str) -> tuple[float, float, float]:
+    """(alpha_min, alpha_max, theta_max) from --alpha-min/--alpha-max/--eta-M-max, or --range in the
+    shown units (converted to the groups)."""
+    alpha_min, alpha_max = args.alpha_min, args.alpha_max
+    theta_max = getattr(args, "theta_max", None)
+    axes = {units.name("alpha"): "alpha", units.name(parameter): parameter}
+    for text in args.range:
+        name, eq, spec = text.partition("=")
+        name = name.strip()
+        try:
+            lo, hi = (float(Fraction(x.strip())) for x in spec.split(":"))
+        except (ValueError, ZeroDivisionError):
+            lo = hi = None
+        if not eq or lo is None or not hi > lo:
+            raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI")
+        if name not in axes:
+            raise ParameterError("--range", f"--range {name}: not an axis (known: {', '.join(axes)})")
+        if axes[name] == "alpha":
+            alpha_min, alpha_max = units.group_value("alpha", lo), units.group_value("alpha", hi)
+        elif lo != 0:
+            raise ParameterError("--range", f"--range {text!r}: the vertical axis starts at 0")
+        else:
+            theta_max = units.group_value(parameter, hi)
+    if alpha_min < 0:
+        raise ParameterError("--range", "the velocity range must be >= 0")
+    return alpha_min, alpha_max, theta_max
 
 
 def save_figure(fig, path: Path) -> None:

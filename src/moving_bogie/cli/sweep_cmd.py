@@ -9,7 +9,14 @@ from pathlib import Path
 
 from moving_bogie.errors import ParameterError
 
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import (
+    add_json_option,
+    add_parameter_options,
+    add_units_option,
+    params_from_args,
+    print_json,
+    si_input,
+)
 from .outputs import add_output_option
 from .reporting import fail
 
@@ -26,7 +33,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "quasi-random design (--sample sobol:N), computed on Dask (a local cluster by default, or\n"
             "--scheduler for an existing one) into a zarr store readable with xarray. Per point: stable,\n"
             "n_unstable, degree_of_instability (0 where stable), certain. An interrupted sweep keeps its\n"
-            "finished chunks: run it again with --resume."
+            "finished chunks: run it again with --resume. With a [physical] parameter file the varied\n"
+            "parameters are the SI ones (v in m/s, M in kg, ...; every other SI parameter fixed) and the\n"
+            "store's coordinates are named and unitted so, the dimensionless groups kept beside them."
         ),
         epilog=(
             "examples:\n"
@@ -35,11 +44,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "      --vary eta_f=0.01,0.05,0.1 --workers 2 --out s3.zarr\n"
             "  moving-bogie sweep --case 1 --vary alpha=0.3:1.1 --vary eta_f=0.01:0.2 --sample sobol:256 \\\n"
             "      --out sobol.zarr\n"
-            "  moving-bogie sweep-plot s3.zarr --x alpha --y eta_M --sel eta_f=0.05 --out slice.png"
+            "  moving-bogie sweep-plot s3.zarr --x alpha --y eta_M --sel eta_f=0.05 --out slice.png\n"
+            "  moving-bogie sweep --file examples/uic60-bogie.toml --vary v=60:200:50 \\\n"
+            "      --vary M=400:1600:40 --out si.zarr\n"
+            "  moving-bogie sweep-plot si.zarr --x v --y M --out si.png"
         ),
         formatter_class=_RAW,
     )
     add_parameter_options(p)
+    add_units_option(p)
     p.add_argument(
         "--vary",
         action="append",
@@ -99,7 +112,8 @@ def _spec(args):
         raise ParameterError("--chunk-points", "--chunk-points must be >= 1")
     if not args.vary:
         raise ParameterError("--vary", "give at least one --vary NAME=START:STOP:COUNT or NAME=V1,V2,...")
-    params, _ = params_from_args(args)
+    params, physical = params_from_args(args)
+    physical = si_input(args, physical)
     sample = parse_sample(args.sample) if args.sample else None
     vary = {}
     for text in args.vary:
@@ -112,7 +126,7 @@ def _spec(args):
             raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
         vary[name.strip()] = spec
     options = dict(roots=args.roots, check=args.check, block_points=args.chunk_points)
-    return make_spec(params, vary, model=params.vehicle, sample=sample, **options)
+    return make_spec(params, vary, model=params.vehicle, sample=sample, physical=physical, **options)
 
 
 @contextmanager
@@ -190,6 +204,9 @@ def run_sweep_cmd(args) -> int:
         "settled_points": int(ds.settled.sum()),
         "check_disagreements": int((ds.checked < 0).sum()),
     }
+    summary["units"] = {a.label: ds[a.label].attrs.get("units", "1") for a in spec.axes}
+    if "supercritical" in ds:  # the points above the critical velocity of their track
+        summary["supercritical_points"] = int(ds.supercritical.sum())
     if args.json:
         print_json(summary)
     else:

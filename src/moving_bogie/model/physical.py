@@ -27,7 +27,20 @@ from moving_bogie.model.values import ModelValues
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
 
-__all__ = ["DIMENSIONLESS_OF", "PHYSICAL_UNITS", "PhysicalParams", "Scales"]
+__all__ = ["DIMENSIONLESS_OF", "PER_RAIL_CONVENTION", "PHYSICAL_UNITS", "PhysicalParams", "Scales"]
+
+#: What the SI parameters describe: one rail and the half vehicle on it, and how to convert a whole vehicle.
+PER_RAIL_CONVENTION = (
+    "SI inputs are per rail, as in STEM and ROSE: the beam is one rail (EI, m, GA, r_g of one rail), the "
+    "foundation the support of that rail per metre of track (k_f, c_f, k_s and the layers), and the "
+    "vehicle the half carried by it: M one wheel (half a wheelset), M_b and J_b the half of the bogie frame "
+    "on that rail, k_v and c_v the primary suspension of one wheel, P one wheel's static load (half the "
+    "axle load). A whole vehicle on a combined beam (both rails as one) converts by halving everything: "
+    "EI, m and the foundation per rail are half of the combined beam's, and M, M_b, J_b, k_v, c_v and P "
+    "half of the whole vehicle's; lengths and the speed (v, d, r_g) stay. This halving leaves every "
+    "dimensionless group unchanged (Eqs. (15)-(17), (59)), so both descriptions give the same frequencies "
+    "and verdicts; only a mix of the two (a whole vehicle on one rail) is wrong."
+)
 
 _META = default_catalogue().parameters
 #: SI unit of each SI parameter of the packaged catalogue (scale parameters first), on every track.
@@ -125,7 +138,8 @@ class Scales:
 class PhysicalParams(ModelValues):
     """Physical parameters of a model in SI units, stored exactly as Fractions.
 
-    The scale parameters ``EI`` [N m^2], ``m`` [kg/m], ``k_f`` [N/m^2] and the wheel load ``P`` [N], and the
+    Per rail (:data:`PER_RAIL_CONVENTION`): one rail and the half vehicle on it. The scale parameters
+    ``EI`` [N m^2], ``m`` [kg/m], ``k_f`` [N/m^2] and the wheel load ``P`` [N], and the
     SI counterpart of each of the model's dimensionless groups (``moving-bogie models`` lists them with their
     units: for the paper's bogie ``c_f, M, M_b, J_b, k_v, c_v, d, v`` and optionally ``k_s``; ``GA, r_g``
     for a Timoshenko-Rayleigh beam). Numeric values accept what
@@ -237,6 +251,58 @@ class PhysicalParams(ModelValues):
                         f"{spec.si} = {fraction_to_text(self._values[spec.si])} {spec.unit} gives {exc}",
                     ) from None
         return DimensionlessParams(model=self._model, **exact)
+
+    def group_value(self, si: str, value: NumberLike, *, digits: int = 20) -> tuple[str, Fraction]:
+        """The group the SI parameter ``si`` scales to, at ``value``, the rest of ``self`` fixed.
+
+        Eqs. (15)-(17), (59) by the generated exact scaling, rounded as in :meth:`to_dimensionless` (so
+        ``si`` at its own value gives exactly the group of :meth:`to_dimensionless`).
+
+        Returns
+        -------
+        (str, Fraction)
+            The group's name and its value.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``si`` when it is not the SI counterpart of one of the model's groups (a scale
+            parameter changes every group) or when the value is out of range.
+        """
+        from moving_bogie.model.params import check_value
+
+        specs = {spec.si: (name, spec) for name, spec in self._model.specs.items()}
+        if si not in specs:
+            raise ParameterError(
+                si,
+                f"{si!r} is not the SI counterpart of a dimensionless group of {self._model.name} "
+                f"(known: {', '.join(specs)})",
+            )
+        name, spec = specs[si]
+        check = positive if spec.constraint == "positive" else nonnegative
+        exact = check(si, value)
+        meta = self._model.catalogue.parameters
+        with mpmath.workdps(digits + 10):
+            values = {k: fraction_to_mpf(v) for k, v in (self._values | {si: exact}).items()}
+            group = _rounded(
+                _call(getattr(meta, f"dimensionless_{name}"), _generic(self._model, values)), digits
+            )
+        try:
+            return name, check_value(spec, group)
+        except ParameterError as exc:
+            raise ParameterError(si, f"{si} = {fraction_to_text(exact)} {spec.unit} gives {exc}") from None
+
+    def si_factor(self, group: str) -> float:
+        """The SI value of ``group`` = 1 at this track's scales (every group is proportional to its SI
+        counterpart, Eqs. (15)-(17), (59)): SI value = group x factor, by the generated scaling."""
+        meta = self._model.catalogue.parameters
+        with mpmath.workdps(30):
+            values = _generic(self._model, {k: fraction_to_mpf(v) for k, v in self._scale_values().items()})
+            one = _call(getattr(meta, f"physical_{group}"), values | {group: mpmath.mpf(1)})
+            two = _call(getattr(meta, f"physical_{group}"), values | {group: mpmath.mpf(2)})
+            if abs(two - 2 * one) > abs(one) * mpmath.mpf(10) ** -25:
+                raise ParameterError(group, f"the SI counterpart of {group} is not proportional to it")
+            return float(one)
 
     @classmethod
     def from_dimensionless(

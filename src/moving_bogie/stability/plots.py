@@ -20,6 +20,7 @@ from moving_bogie.stability.critical_velocity import critical_velocity
 from moving_bogie.stability.frequency_lines import frequency_lines
 from moving_bogie.stability.instability_lines import instability_lines
 from moving_bogie.stability.map import stability_map
+from moving_bogie.stability.plot_units import PlaneUnits
 
 __all__ = [
     "figure2",
@@ -83,28 +84,35 @@ END_LABELS = {
 }
 
 
-def plot_instability_lines(ax, lines, *, colors=None, linestyle="-", scale=1.0, label=True, lw=1.2) -> set:
+def plot_instability_lines(
+    ax, lines, *, colors=None, linestyle="-", scale=1.0, label=True, lw=1.2, units=None
+) -> set:
     """Draw the branches of an :class:`~moving_bogie.stability.instability_lines.InstabilityLines` on ``ax``.
 
-    ``scale`` divides the vertical coordinate (adapted masses of Figure 4). Where a line stops inside the
-    plot it is marked (:data:`END_MARKERS`; the reasons are in :mod:`~moving_bogie.stability.line_ends`).
-    Returns the kinds of marks drawn ("fold", "other"), for :func:`end_mark_handles`.
+    ``scale`` divides the vertical coordinate (adapted masses of Figure 4); ``units``
+    (:class:`~moving_bogie.stability.plot_units.PlaneUnits`) shows the axes and the spacings in SI. Where a
+    line stops inside the plot it is marked (:data:`END_MARKERS`; the reasons are in
+    :mod:`~moving_bogie.stability.line_ends`). Returns the kinds of marks drawn ("fold", "other").
     """
+    units = units or PlaneUnits()
     ds = sorted({b.d for b in lines.branches})
     colors = colors or _colors(ds)
     seen = set()
     marked = set()
+    parameter = getattr(lines, "parameter", "eta_M")
+    x, y = (lambda a: units.value("alpha", a)), (lambda t: units.value(parameter, t) / scale)
     for b in lines.branches:
         style = UNDAMPED_STYLES.get(b.kind, {"ls": linestyle})
         key = (b.d, b.kind)
         lab = None
         if label and key not in seen:
-            lab = f"d = {b.d:g}" + ("" if b.kind == "crossing" else f", {UNDAMPED_LABELS[b.kind]}")
+            kind = "" if b.kind == "crossing" else f", {UNDAMPED_LABELS[b.kind]}"
+            lab = (units.legend("d", b.d) if units.si else f"d = {b.d:g}") + kind
         seen.add(key)
-        ax.plot(b.alpha, b.theta / scale, color=colors[b.d], lw=lw, label=lab, **style)
+        ax.plot(x(b.alpha), y(b.theta), color=colors[b.d], lw=lw, label=lab, **style)
         for end in b.stops_inside:
             kind = "fold" if end.reason == "fold" else "other"
-            ax.plot([end.alpha], [end.theta / scale], **END_MARKERS[kind])
+            ax.plot([x(end.alpha)], [y(end.theta)], **END_MARKERS[kind])
             marked.add(kind)
     return marked
 
@@ -348,17 +356,20 @@ def hatch_cells(ax, x, y, mask, *, label="uncertain (not certified)") -> int:
     return len(patches)
 
 
-def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0):
+def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0, units=None):
     """Heat map of log10 |degree of instability| (white where stable) with instability lines on top;
-    uncertain cells (if any) hatched and counted in the title."""
+    uncertain cells (if any) hatched and counted in the title; axes in ``units`` (SI for a ``[physical]``
+    input, :class:`~moving_bogie.stability.plot_units.PlaneUnits`) with the operating point marked."""
+    units = units or PlaneUnits()
     fig = _figure(figsize=(7.5, 5.5), layout="constrained")
     ax = fig.subplots()
     deg = -smap.degree
     with np.errstate(divide="ignore"):
         z = np.where((deg > 0) & ~smap.uncertain, np.log10(np.maximum(deg, 10.0**vmin_log)), np.nan)
+    xs, ys = units.value("alpha", smap.alphas), units.value(smap.parameter, smap.thetas)
     mesh = ax.pcolormesh(
-        smap.alphas,
-        smap.thetas,
+        xs,
+        ys,
         z,
         shading="nearest",
         cmap="magma_r",
@@ -368,15 +379,16 @@ def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0):
     fig.colorbar(mesh, ax=ax, label=r"$\log_{10}\,|\min \mathrm{Im}\, q|$ (unstable cells)")
     if lines is not None:
         for b in lines.branches:
-            ax.plot(
-                b.alpha, b.theta, color="tab:cyan", lw=1, ls=UNDAMPED_STYLES.get(b.kind, {}).get("ls", "-")
-            )
-    n_uncertain = hatch_cells(ax, smap.alphas, smap.thetas, smap.uncertain)
-    ax.set_xlabel(r"$\alpha$")
-    ax.set_ylabel(smap.parameter)
-    ax.set_xlim(smap.alphas[0], smap.alphas[-1])
-    ax.set_ylim(0, smap.thetas[-1])
-    ax.axvline(1.0, color="k", ls=":", lw=1)
+            ls = UNDAMPED_STYLES.get(b.kind, {}).get("ls", "-")
+            x, y = units.value("alpha", b.alpha), units.value(smap.parameter, b.theta)
+            ax.plot(x, y, color="tab:cyan", lw=1, ls=ls)
+    n_uncertain = hatch_cells(ax, xs, ys, smap.uncertain)
+    ax.set_xlabel(units.label("alpha") if units.si else r"$\alpha$")
+    ax.set_ylabel(units.label(smap.parameter))
+    ax.set_xlim(xs[0], xs[-1])
+    ax.set_ylim(0, ys[-1])
+    units.critical(ax)
+    marked = units.mark(ax, "alpha", smap.parameter) or units.alpha_cr is not None
     title = f"degree of instability, {smap.model}; lines: instability lines"
     if lines is not None and lines.statement:
         title = (
@@ -385,6 +397,7 @@ def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0):
         )
     if n_uncertain:
         title += f"; hatched: {n_uncertain} uncertain cell(s)"
+    if n_uncertain or marked:
         ax.legend(loc="upper left", fontsize=8)
     ax.set_title(title, fontsize=9)
     return fig

@@ -87,24 +87,35 @@ def compare_tracks(
     return TrackComparison(tuple(out), tuple(crit), tuple(spacings), tuple(alpha_range), theta_max)
 
 
-def figure_track_comparison(comparison: TrackComparison):
-    """Two panels with the same axes: the instability lines on each track, its critical velocity dotted."""
+def figure_track_comparison(comparison: TrackComparison, units=None):
+    """Two panels with the same axes: the instability lines on each track, its critical velocity dotted;
+    in SI with ``units`` (:class:`~moving_bogie.stability.plot_units.PlaneUnits`), operating point marked."""
     import matplotlib
     from matplotlib.figure import Figure
 
+    from moving_bogie.stability.plot_units import PlaneUnits
     from moving_bogie.stability.plots import plot_instability_lines
 
+    units = units or PlaneUnits()
     fig = Figure(figsize=(11, 4.6), layout="constrained")
     axs = fig.subplots(1, 2, sharey=True)
     cmap = matplotlib.colormaps["tab10"]
     colors = {float(d): cmap(k % 10) for k, d in enumerate(comparison.spacings)}
+    parameter = comparison.lines[0].parameter
     for ax, lines, a_cr in zip(axs, comparison.lines, comparison.alpha_cr):
-        plot_instability_lines(ax, lines, colors=colors)
-        ax.axvline(a_cr, color="k", ls=":", lw=1)
-        ax.set_xlim(*comparison.alpha_range)
-        ax.set_ylim(0, comparison.theta_max)
-        ax.set_xlabel(r"$\alpha$")
-        ax.set_ylabel(r"$\eta_M$")
-        ax.set_title(rf"{lines.params.beam} on the {lines.params.track} track, $\alpha_{{cr}}$ = {a_cr:.4f}")
+        plot_instability_lines(ax, lines, colors=colors, units=units)
+        ax.axvline(units.value("alpha", a_cr), color="k", ls=":", lw=1)
+        ax.set_xlim(*(units.value("alpha", a) for a in comparison.alpha_range))
+        ax.set_ylim(0, units.value(parameter, comparison.theta_max))
+        ax.set_xlabel(units.label("alpha") if units.si else r"$\alpha$")
+        ax.set_ylabel(units.label(parameter) if units.si else r"$\eta_M$")
+        critical = (
+            f"v_cr = {units.value('alpha', a_cr):.4g} {units.unit('alpha')}"
+            if units.si
+            else rf"$\alpha_{{cr}}$ = {a_cr:.4f}"
+        )
+        ax.set_title(f"{lines.params.beam} on the {lines.params.track} track, {critical}")
     axs[0].legend(fontsize=8, title="d")
+    if units.mark(axs[1], "alpha", parameter):
+        axs[1].legend(fontsize=8)
     return fig

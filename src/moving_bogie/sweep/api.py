@@ -23,24 +23,79 @@ def _axis(known, name, spec, needs_count: bool):
 
 
 def make_spec(
-    params, vary: Mapping, *, model: str | None = None, sample: int | None = None, **options
+    params,
+    vary: Mapping,
+    *,
+    model: str | None = None,
+    sample: int | None = None,
+    physical=None,
+    **options,
 ) -> SweepSpec:
     """A :class:`~moving_bogie.sweep.design.SweepSpec` from ``vary`` = {name: values}.
 
     Each value is text as on the command line (``"0.3:0.95:200"``, ``"0.01,0.05,0.1"``) or a sequence of
     numbers (floats are read by their shortest decimal text, as on the command line). With ``sample=N``
     the values are ranges (``"0.3:0.95"`` or ``(lo, hi)``) and N Sobol points are drawn.
+
+    With ``physical`` (the :class:`~moving_bogie.model.physical.PhysicalParams` of ``params``, a
+    ``[physical]`` input) the names are the SI parameters of the model's metadata (``v`` [m/s], ``M``
+    [kg], ...) and the values are in their units; each is converted to its group exactly as
+    :meth:`~moving_bogie.model.physical.PhysicalParams.to_dimensionless` does, every other SI parameter
+    fixed.
     """
     if not vary:
         raise ParameterError("vary", "give at least one parameter to vary")
     model = model or params.vehicle
-    known = sweep_parameters(params)
+    si = physical is not None
+    known = sweep_parameters(params, si=si)
+    for name in vary:
+        _check_units(params, name.strip(), si)
     if sample is None:
         axes = tuple(Axis(*_axis(known, name, spec, True)) for name, spec in vary.items())
-        return SweepSpec(params, model, axes, **options)
-    ranges = dict(_axis(known, name, spec, False) for name, spec in vary.items())
-    extra = {"ranges": {k: [str(v) for v in r] for k, r in ranges.items()}, "n": sample, "seed": 0}
-    return SweepSpec(params, model, sobol_axes(ranges, sample), design="sobol", extra=extra, **options)
+        extra = {}
+    else:
+        ranges = dict(_axis(known, name, spec, False) for name, spec in vary.items())
+        extra = {"ranges": {k: [str(v) for v in r] for k, r in ranges.items()}, "n": sample, "seed": 0}
+        axes = sobol_axes(ranges, sample)
+    if si:
+        axes = tuple(_to_group(physical, a) for a in axes)
+        if sample is not None:
+            extra["si_ranges"] = extra.pop("ranges")
+            extra["ranges"] = {a.name: [str(min(a.values)), str(max(a.values))] for a in axes}
+    design = "grid" if sample is None else "sobol"
+    return SweepSpec(params, model, axes, design=design, extra=extra, physical=physical, **options)
+
+
+def _check_units(params, name: str, si: bool) -> None:
+    """A group named in an SI sweep, or an SI name in a dimensionless one: say which to use."""
+    specs = params.model.specs
+    by_si = {spec.si: spec for spec in specs.values()}
+    if si and name in specs and name not in by_si:
+        spec = specs[name]
+        raise ParameterError(
+            "--vary",
+            f"--vary {name}: the input is in SI units ([physical]); vary {spec.si} [{spec.unit}] "
+            "instead (or pass --units dimensionless)",
+        )
+    if not si and name in by_si and name not in specs:
+        spec = by_si[name]
+        raise ParameterError(
+            "--vary",
+            f"--vary {name}: {name} [{spec.unit}] is an SI parameter; it needs a [physical] parameter "
+            f"file (--file F.toml) for the scales EI, m, k_f, or vary the group {spec.name} instead",
+        )
+
+
+def _to_group(physical, axis: Axis) -> Axis:
+    """An axis of SI values -> the axis of their groups, keeping the SI values."""
+    spec = next(s for s in physical.model.specs.values() if s.si == axis.name)
+    values = []
+    for v in axis.values:
+        try:
+            values.append(physical.group_value(axis.name, v)[1])
+        except ParameterError as exc:
+            raise ParameterError("--vary", f"--vary {axis.name}: {exc}") from None
+    return Axis(spec.name, tuple(values), si=axis.name, unit=spec.unit, si_values=axis.values)
 
 
 def sweep(
@@ -50,6 +105,7 @@ def sweep(
     *,
     model: str | None = None,
     sample: int | None = None,
+    physical=None,
     resume=False,
     overwrite=False,
     client=None,
@@ -73,6 +129,9 @@ def sweep(
     model : {"bogie", "masses"}
     sample : int, optional
         Number of Sobol points (``vary`` then gives ranges).
+    physical : PhysicalParams, optional
+        The SI parameters of ``params``: ``vary`` then names SI parameters in their units and the store
+        is in SI units (:func:`make_spec`).
     client, workers, scheduler, processes, progress
         See :func:`~moving_bogie.sweep.engine.run_sweep`.
     **options
@@ -85,7 +144,7 @@ def sweep(
     >>> ds = sweep(table1_case(1), {"alpha": "0.5:1:24", "eta_M": "5:100:24"}, "s.zarr")  # doctest: +SKIP
     >>> ds.stable.sel(alpha=0.75, method="nearest").values  # doctest: +SKIP
     """
-    spec = make_spec(params, vary, model=model, sample=sample, **options)
+    spec = make_spec(params, vary, model=model, sample=sample, physical=physical, **options)
     run_sweep(
         spec,
         out,

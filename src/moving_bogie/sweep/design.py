@@ -28,20 +28,44 @@ from moving_bogie.model.params import DimensionlessParams
 
 __all__ = [
     "Axis",
+    "group_coordinate",
     "Block",
     "SweepSpec",
     "parameter_attributes",
     "parse_sample",
     "parse_vary",
+    "si_attributes",
     "sobol_axes",
     "sweep_parameters",
 ]
 
 
-def sweep_parameters(params: DimensionlessParams) -> tuple[str, ...]:
-    """Names a sweep of ``params`` may vary: the groups of its model and their alternatives (cf1, cf2 of
-    Eq. (63)), from the model's metadata."""
+def sweep_parameters(params: DimensionlessParams, *, si: bool = False) -> tuple[str, ...]:
+    """Names a sweep of ``params`` may vary, from the model's metadata: the groups of its model and their
+    alternatives (cf1, cf2 of Eq. (63)); with ``si=True`` (a ``[physical]`` input) the SI counterpart of
+    each group instead (``v``, ``M``, ...)."""
+    if si:
+        return tuple(spec.si for spec in params.model.specs.values())
     return (*params.model.parameters, *params.model.alternatives)
+
+
+def si_attributes(params: DimensionlessParams, group: str) -> dict:
+    """Attributes of the SI coordinate of ``group``: its SI unit, name and meaning, and the group it
+    scales to (Eqs. (15)-(17), (59)), from the model's metadata."""
+    spec = params.model.specs[group]
+    return {
+        "units": spec.unit,
+        "long_name": spec.si,
+        "meaning": spec.si_meaning,
+        "group": group,
+        "equation": spec.equation,
+    }
+
+
+def group_coordinate(axis: Axis, si_names) -> str:
+    """Name of the coordinate that keeps the dimensionless group of an SI axis: the group's name, or
+    ``<group>_dimensionless`` where an SI parameter has the same name (the spacing ``d``)."""
+    return f"{axis.name}_dimensionless" if axis.name in si_names else axis.name
 
 
 def parameter_attributes(params: DimensionlessParams, name: str) -> dict:
@@ -120,10 +144,27 @@ def parse_sample(text: str) -> int:
 
 @dataclass(frozen=True)
 class Axis:
-    """One varied parameter: its name and exact values (on a Sobol design, one value per point)."""
+    """One varied parameter: its name and exact values (on a Sobol design, one value per point).
+
+    ``name`` and ``values`` are always the dimensionless group the computation uses. An axis given in SI
+    units (a ``[physical]`` input) also keeps the SI parameter ``si``, its ``unit`` and the exact SI
+    ``si_values`` it was given, of which ``values`` are the groups (Eqs. (15)-(17), (59)).
+    """
 
     name: str
     values: tuple
+    si: str | None = None
+    unit: str | None = None
+    si_values: tuple = ()
+
+    @property
+    def label(self) -> str:
+        """The name the store and the figures use: the SI name, or the group's name."""
+        return self.si or self.name
+
+    @property
+    def si_floats(self) -> np.ndarray:
+        return np.array([float(v) for v in self.si_values])
 
     @property
     def floats(self) -> np.ndarray:
@@ -144,7 +185,9 @@ class SweepSpec:
 
     ``design`` is "grid" (one dimension per axis) or "sobol" (one dimension ``point``). ``roots`` keeps
     the unstable roots of every point; ``check`` is the number of points per block verified by a full
-    count.
+    count. ``physical`` (:class:`~moving_bogie.model.physical.PhysicalParams` of a ``[physical]`` input)
+    makes it a sweep in SI units: the axes carry their SI values, the store's dimensions are the SI names,
+    and every SI parameter not varied stays fixed (:attr:`fixed`).
     """
 
     params: DimensionlessParams
@@ -156,6 +199,7 @@ class SweepSpec:
     check: int = 1
     block_points: int = 2048
     extra: dict = field(default_factory=dict)
+    physical: object = None
 
     def __post_init__(self):
         names = [a.name for a in self.axes]
@@ -168,13 +212,32 @@ class SweepSpec:
         for a in self.axes:  # every value must make valid parameters: fail before any computation
             for v in {min(a.values), max(a.values)}:
                 try:
-                    self.params.replace(**{a.name: v})
+                    self.params.replace(**(self.fixed | {a.name: v}))
                 except ParameterError as exc:
-                    raise ParameterError("--vary", f"--vary {a.name}: {exc}") from None
+                    raise ParameterError("--vary", f"--vary {a.label}: {exc}") from None
+
+    @property
+    def si(self) -> bool:
+        """Whether the sweep is given and stored in SI units (a ``[physical]`` input)."""
+        return self.physical is not None
+
+    @property
+    def fixed(self) -> dict:
+        """Groups held at their base value whatever varies, passed with every point's changes.
+
+        In SI units every SI parameter that is not varied stays fixed: the groups that an alternative input
+        of the metadata sets (mu_v, J_b through cf1, cf2 of Eq. (63)) must not follow the groups it depends
+        on (the bar's mass M_b does not change with the wheel mass M). Dimensionless sweeps keep Table 1's
+        convention (cf1, cf2 fixed) and hold nothing.
+        """
+        if not self.si:
+            return {}
+        sets = {meta["sets"] for meta in self.params.model.alternatives.values()}
+        return {name: getattr(self.params, name) for name in sorted(sets)}
 
     @property
     def dims(self) -> tuple[str, ...]:
-        return ("point",) if self.design == "sobol" else tuple(a.name for a in self.axes)
+        return ("point",) if self.design == "sobol" else tuple(a.label for a in self.axes)
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -192,8 +255,10 @@ class SweepSpec:
         if self.design == "sobol":
             return None
         names = {a.name for a in self.axes}
+        held = names | set(self.fixed)
+        alternatives = self.params.model.alternatives.values()
         for a in self.axes:
-            if a.name == "eta_M" and names & {"mu_v", "J_b"}:
+            if any(a.name in meta["depends"] and meta["sets"] in held for meta in alternatives):
                 continue  # the column would scale mu_v and J_b with eta_M (Eq. (63)); the points do not
             try:
                 polynomial_degree(self.model, a.name, self.params)
@@ -239,7 +304,20 @@ class SweepSpec:
             "max_roots": self.max_roots,
             "check": self.check,
             "chunks": list(self.chunks),
+        } | (self._describe_si() if self.si else {})
+
+    def _describe_si(self) -> dict:
+        varied = self.extra.get("si_ranges") or {
+            a.si: [fraction_to_text(v) for v in a.si_values] for a in self.axes
         }
+        return {"units": "si", "physical": self.physical.to_dict(), "varied_si": varied}
+
+    def operating_point(self) -> dict:
+        """The base point's value of every varied parameter, by the store's names: the SI value of a
+        ``[physical]`` input, else the group's value (the point figures mark)."""
+        if self.si:
+            return {a.si: float(getattr(self.physical, a.si)) for a in self.axes}
+        return {a.name: float(getattr(self.params, a.name)) for a in self.axes}
 
 
 def sobol_axes(ranges: dict, n: int, *, seed: int = 0) -> tuple:

@@ -13,7 +13,7 @@ the verdict (``checked = -1``). A point whose count no method could certify has 
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -44,7 +44,8 @@ class BlockTask:
     """What a worker needs for one block: parameters, model, the block's values of each varied parameter.
 
     ``design`` "grid": ``values[k]`` are the block's values along dimension k; "sobol": one value per
-    point for every parameter.
+    point for every parameter. ``fixed`` holds groups at their base value with every point's changes
+    (:attr:`~moving_bogie.sweep.design.SweepSpec.fixed`).
     """
 
     index: int
@@ -57,6 +58,7 @@ class BlockTask:
     roots: bool
     max_roots: int
     check: int
+    fixed: dict = field(default_factory=dict)
 
 
 def evaluate_block(task: BlockTask) -> dict:
@@ -74,7 +76,7 @@ def evaluate_block(task: BlockTask) -> dict:
     roots = np.full((*shape, task.max_roots), complex(np.nan, np.nan))
     parameter = task.column or "eta_M"
     for changes, alphas, thetas, index_grid in groups:
-        params = task.params.replace(**changes) if changes else task.params
+        params = task.params.replace(**(task.fixed | changes)) if changes else task.params
         alphas = alphas if alphas is not None else [params.alpha]
         thetas = thetas if thetas is not None else [getattr(params, parameter)]
         for col, row in zip(map_columns(params, task.model, parameter, alphas, thetas), index_grid):
@@ -150,7 +152,8 @@ def _check(task, shape, n, degree, certain, settled, roots) -> np.ndarray:
     for k in rng.choice(len(candidates), size=min(task.check, len(candidates)), replace=False):
         index = candidates[int(k)]
         try:
-            res = induced_frequencies(task.params.replace(**_point(task, index)), task.model, dps=15)
+            point = task.params.replace(**(task.fixed | _point(task, index)))
+            res = induced_frequencies(point, task.model, dps=15)
         except MovingBogieError:
             continue
         if not (res.count_ok and res.verdict.determined):

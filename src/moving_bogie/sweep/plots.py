@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.stability.plot_units import axis_label, mark_operating_point, unit_suffix
 from moving_bogie.stability.plots import hatch_cells
 
 __all__ = ["plot_sweep_slice", "select_slice"]
@@ -41,7 +44,9 @@ def select_slice(ds, x: str, y: str, sel: dict | None = None):
 
 def plot_sweep_slice(ds, x: str, y: str, sel: dict | None = None, *, vmin_log: float = -6.0):
     """Figure: log10 |degree of instability| (white where stable), the boundary between stable and unstable
-    points (contour of n_unstable > 0 at 1/2), uncertain points hatched."""
+    points (contour of n_unstable > 0 at 1/2), uncertain points hatched, the axes in the store's units
+    (SI for a sweep of a ``[physical]`` input) and the base point of the sweep marked where the store
+    records it (``operating_point``)."""
     from matplotlib.figure import Figure
 
     s = select_slice(ds, x, y, sel).compute()
@@ -67,9 +72,13 @@ def plot_sweep_slice(ds, x: str, y: str, sel: dict | None = None, *, vmin_log: f
         ax.contour(xs, ys, unstable, levels=[0.5], colors="tab:cyan", linewidths=1.2)
         ax.plot([], [], color="tab:cyan", label="stability boundary")
     n = hatch_cells(ax, xs, ys, ~certain)
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
-    fixed = ", ".join(f"{k} = {float(s[k].values):.4g}" for k in (sel or {}))
+    ax.set_xlabel(axis_label(ds[x]))
+    ax.set_ylabel(axis_label(ds[y]))
+    point = json.loads(ds.attrs.get("operating_point", "{}"))
+    inside = x in point and y in point and min(xs) <= point[x] <= max(xs) and min(ys) <= point[y] <= max(ys)
+    if inside:  # the base point, where it lies on the slice's axes
+        mark_operating_point(ax, point[x], point[y])
+    fixed = ", ".join(f"{k} = {float(s[k].values):.4g}{unit_suffix(ds[k])}" for k in (sel or {}))
     title = f"sweep: degree of instability ({ds.attrs.get('model', '')})" + (f"; {fixed}" if fixed else "")
     if n:
         title += f"; {n} uncertain point(s) hatched"

@@ -2,9 +2,13 @@
 
 Layout: one dimension per varied parameter (coordinate values as float64 with ``units`` and the exact
 decimal values in ``exact``), or one dimension ``point`` on a quasi-random design (each parameter a
-coordinate along it); the data variables of :data:`~moving_bogie.sweep.evaluate.VARIABLES` (and the
-unstable roots ``roots_re``, ``roots_im`` along a last dimension ``root`` when asked), chunked exactly
-like the blocks of the sweep, so that writing one block writes one chunk file per variable.
+coordinate along it). A sweep in SI units (a ``[physical]`` input) names its dimensions by the SI
+parameters (``v`` in m/s, ``M`` in kg, ... with their ``units``) and keeps each group as a further
+coordinate along the same dimension (``alpha``, ``eta_M``; ``d_dimensionless`` where the names clash).
+The attribute ``operating_point`` holds the base point by the store's names. Then come the data variables of
+:data:`~moving_bogie.sweep.evaluate.VARIABLES` (and the unstable roots ``roots_re``, ``roots_im`` along a
+last dimension ``root`` when asked), chunked exactly like the blocks of the sweep, so that writing one block
+writes one chunk file per variable.
 
 Safety. The store is created under a temporary name and renamed into place (a store never exists half
 made). Chunk files are written atomically by zarr (temporary file, then rename), and ``computed`` is
@@ -24,7 +28,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.model.exact import fraction_to_text
-from moving_bogie.sweep.design import SweepSpec, parameter_attributes
+from moving_bogie.sweep.design import SweepSpec, group_coordinate, parameter_attributes, si_attributes
 from moving_bogie.sweep.evaluate import VARIABLES
 
 __all__ = ["create_store", "missing_blocks", "open_sweep", "prepare_store", "write_block", "write_map"]
@@ -94,13 +98,20 @@ def create_store(path, spec: SweepSpec) -> None:
     if spec.design == "sobol":
         point = g.create_array("point", shape=shape, chunks=shape, dtype="int64", dimension_names=("point",))
         point[:] = np.arange(shape[0])
+    extra_coordinates = []
     for axis in spec.axes:
-        own = ("point",) if spec.design == "sobol" else (axis.name,)
-        coord = g.create_array(axis.name, shape=(len(axis.values),), dtype="float64", dimension_names=own)
-        coord[:] = axis.floats
-        coord.attrs.update(parameter_attributes(spec.params, axis.name))
-        if spec.design == "grid":
-            coord.attrs["exact"] = [fraction_to_text(v) for v in axis.values]
+        own = ("point",) if spec.design == "sobol" else (axis.label,)
+        if spec.si:
+            _coordinate(
+                g, axis.si, own, axis.si_floats, si_attributes(spec.params, axis.name), axis.si_values
+            )
+            group = group_coordinate(axis, {a.si for a in spec.axes})
+            attrs = parameter_attributes(spec.params, axis.name) | {"si": axis.si}
+            _coordinate(g, group, own, axis.floats, attrs, axis.values)
+            extra_coordinates += [axis.si, group] if spec.design == "sobol" else [group]
+        else:
+            exact = axis.values if spec.design == "grid" else None
+            _coordinate(g, axis.name, own, axis.floats, parameter_attributes(spec.params, axis.name), exact)
     for name, dtype, fill, text in _variables(spec):
         extra = (spec.max_roots,) if name.startswith("roots_") else ()
         arr = g.create_array(
@@ -114,6 +125,11 @@ def create_store(path, spec: SweepSpec) -> None:
         arr.attrs["description"] = text
         if name == "degree_of_instability":
             arr.attrs["units"] = "1"
+            if spec.si:  # the growth rate in SI: -Im omega = -Im q / t_scale [1/s]
+                arr.attrs["t_scale_s"] = spec.physical.scales().t_scale
+                arr.attrs["si"] = "growth rate [1/s] = -degree_of_instability / t_scale_s"
+        if extra_coordinates:  # the groups of an SI sweep, read back by xarray as coordinates
+            arr.attrs["coordinates"] = " ".join(extra_coordinates)
     g.attrs.update(
         title="moving-bogie parameter sweep",
         model=spec.model,
@@ -127,10 +143,51 @@ def create_store(path, spec: SweepSpec) -> None:
         degree_convention=(
             "most negative Im q over the induced frequencies; 0 where stable; NaN where not certain"
         ),
+        units="si" if spec.si else "dimensionless",
+        operating_point=json.dumps(spec.operating_point()),
     )
+    if spec.si:
+        g.attrs["physical"] = json.dumps(spec.physical.to_dict())
+    _write_speed(g, spec)
     if path.exists():
         shutil.rmtree(path)
     os.replace(tmp, path)
+
+
+def _write_speed(g, spec: SweepSpec) -> None:
+    """``supercritical`` and ``alpha_cr`` at every point (:mod:`moving_bogie.sweep.speed`), or a note."""
+    from moving_bogie.stability.supercritical import SUPERCRITICAL_MEANING
+    from moving_bogie.sweep.speed import MAX_TRACKS, speed_arrays
+
+    arrays = speed_arrays(spec)
+    if arrays is None:
+        g.attrs["supercritical"] = (
+            f"not computed: more than {MAX_TRACKS} distinct tracks, or a track without a critical velocity"
+        )
+        return
+    texts = {
+        "alpha_cr": "critical velocity of the point's track, Eqs. (65)-(66) (alpha units)",
+        "supercritical": "alpha > alpha_cr: " + SUPERCRITICAL_MEANING,
+    }
+    for name, values in arrays.items():
+        arr = g.create_array(name, shape=spec.shape, dtype=values.dtype, dimension_names=spec.dims)
+        arr[...] = values
+        arr.attrs["description"] = texts[name]
+        if name == "alpha_cr":
+            arr.attrs["units"] = "1"
+    if spec.si:
+        v_ref = spec.physical.scales().v_ref
+        v_cr = sorted({float(a) * v_ref for a in np.unique(arrays["alpha_cr"])})
+        g.attrs["v_cr"] = json.dumps({"values": v_cr, "unit": "m/s"})
+
+
+def _coordinate(g, name, dims, floats, attrs, exact) -> None:
+    """One coordinate array: float64 values, attributes, the exact decimal values (None: not kept)."""
+    coord = g.create_array(name, shape=(len(floats),), dtype="float64", dimension_names=dims)
+    coord[:] = floats
+    coord.attrs.update(attrs)
+    if exact is not None:
+        coord.attrs["exact"] = [fraction_to_text(v) for v in exact]
 
 
 def _variables(spec: SweepSpec):
@@ -175,16 +232,31 @@ def open_sweep(path):
         raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None
 
 
-def write_map(path, smap, *, overwrite: bool = False) -> Path:
-    """Write a :class:`~moving_bogie.stability.map.StabilityMap` as a 2-D sweep store (alpha, parameter)."""
+def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
+    """Write a :class:`~moving_bogie.stability.map.StabilityMap` as a 2-D sweep store (alpha, parameter).
+
+    With ``physical`` (the SI parameters of the map's base point) the store is in SI units, as a sweep of
+    a ``[physical]`` input: dimensions ``v``, ``M``, ... (each SI value the group times
+    :meth:`~moving_bogie.model.physical.PhysicalParams.si_factor`, read by its shortest decimal text), the
+    groups beside them. Along the map's vertical axis the groups that Eq. (63) ties to it follow it, as
+    the attribute ``vertical_axis`` says.
+    """
+    from fractions import Fraction
+
     from moving_bogie.stability.column import exact
     from moving_bogie.sweep.design import Axis
 
-    axes = (
-        Axis("alpha", tuple(exact(a) for a in smap.alphas)),
-        Axis(smap.parameter, tuple(exact(t) for t in smap.thetas)),
-    )
-    spec = SweepSpec(smap.params, smap.model, axes, check=0)
+    def axis(name, values):
+        exact_values = tuple(exact(v) for v in values)
+        if physical is None:
+            return Axis(name, exact_values)
+        spec = smap.params.model.specs[name]
+        factor = physical.si_factor(name)
+        si_values = tuple(Fraction(repr(float(v) * factor)) for v in values)
+        return Axis(name, exact_values, si=spec.si, unit=spec.unit, si_values=si_values)
+
+    axes = (axis("alpha", smap.alphas), axis(smap.parameter, smap.thetas))
+    spec = SweepSpec(smap.params, smap.model, axes, check=0, physical=physical)
     path = prepare_store(path, spec, overwrite=overwrite)
     certain = ~smap.uncertain.T
     n = np.where(certain, smap.count.T, -1).astype(np.int16)
@@ -198,4 +270,13 @@ def write_map(path, smap, *, overwrite: bool = False) -> Path:
         "computed": np.ones(n.shape, dtype=bool),
     }
     write_block(path, spec, (slice(None), slice(None)), arrays)
+    follow = [
+        f"{meta['sets']} = {name} x {smap.parameter}" + (" x d^2" if "d" in meta["depends"] else "")
+        for name, meta in smap.params.model.alternatives.items()
+        if smap.parameter in meta["depends"]
+    ]
+    if follow:
+        _group(path, "r+").attrs["vertical_axis"] = (
+            f"a stability map: along {smap.parameter} " + ", ".join(follow) + " follow it (Eq. (63))"
+        )
     return path
