@@ -28,6 +28,7 @@ from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.validation.compare import comparison_window, default_tau_max, validate
 from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.geometry import choose_geometry
+from moving_bogie.validation.track_modes import ModalTrack
 
 NAMES = {"bogie": ("w_rear", "w_front", "u", "theta"), "masses": ("w_rear", "w_front")}
 
@@ -92,12 +93,7 @@ def convergence(cases: tuple[int, ...], modes: tuple[int, ...]) -> None:
         tau = np.linspace(0.0, tau_max, int(round(tau_max / 0.05)) + 1)
         closed = closed_form_response(params, tau)
         length = choose_geometry(
-            alpha=float(params.alpha),
-            eta_f=float(params.eta_f),
-            eta_s=float(params.eta_s),
-            d=float(params.d),
-            tau_max=tau_max,
-            n_modes=500,
+            track=ModalTrack.of(params), d=float(params.d), tau_max=tau_max, n_modes=500
         ).length
         cells = {True: [], False: []}
         for correction in (False, True):

@@ -18,13 +18,7 @@ from scipy.integrate import quad
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.model.cases import table1_case, table2_printed
 from moving_bogie.validation.finite_beam import FiniteBeamResult, simulate_finite_beam
-from moving_bogie.validation.geometry import (
-    choose_geometry,
-    default_time_step,
-    group_velocity,
-    near_field_decay_rate,
-    reflection_window,
-)
+from moving_bogie.validation.geometry import choose_geometry, default_time_step, reflection_window
 from moving_bogie.validation.modal import ModalBeam, ModalSystem, Vehicle
 from moving_bogie.validation.newmark import (
     effective_matrix_dense,
@@ -32,6 +26,7 @@ from moving_bogie.validation.newmark import (
     newmark_step,
     woodbury_solve,
 )
+from moving_bogie.validation.track_modes import ModalTrack
 
 
 def make_params(**changes: float | str) -> SimpleNamespace:
@@ -41,6 +36,21 @@ def make_params(**changes: float | str) -> SimpleNamespace:
     )
     values.update(changes)
     return SimpleNamespace(beam="eb", **values)
+
+
+def modal_track(beam: str = "eb", **values: float) -> ModalTrack:
+    """The generated finite-rail blocks of `beam` on the one-layer track for these group values."""
+    return ModalTrack.of(SimpleNamespace(beam=beam, **values))
+
+
+def eb_symbol(p: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0) -> np.ndarray:
+    """Moving-load symbol of the one-layer Euler-Bernoulli track, by hand from Eq. (1) with the shear layer.
+
+    ``Omega(p) = 1 + (eta_s - alpha^2) p^2 + p^4 / 4 + 2 i eta_f alpha p``: the steady response of the
+    mode ``sin(p x)`` to a load moving at ``alpha`` (forcing ``exp(i p alpha tau)``) is ``1 / Omega(p)``.
+    """
+    p = np.asarray(p, dtype=float)
+    return 1.0 + (eta_s - alpha * alpha) * p * p + 0.25 * p**4 + 2j * eta_f * alpha * p
 
 
 def moving_force_deflection(alpha: float, eta_f: float, eta_s: float = 0.0, shift: float = 0.0) -> float:
@@ -172,8 +182,12 @@ def test_time_step_convergence_is_second_order():
 # --- Eq. (49) assembled element by element ------------------------------------------------------
 
 
-def dense_reference(beam: ModalBeam, veh: Vehicle, tau: float):
-    """``(M, C, K, f)`` of Eq. (49), modal rows divided by L/2, written term by term."""
+def dense_reference(beam: ModalBeam, veh: Vehicle, tau: float, eta_f: float = 0.07, eta_s: float = 0.2):
+    """``(M, C, K, f)`` of Eq. (49), modal rows divided by L/2, written term by term.
+
+    The beam rows by hand from Eq. (1) with the shear layer (one-layer Euler-Bernoulli track, damping
+    `eta_f`, Pasternak `eta_s`; the defaults are those of :func:`small_system`).
+    """
     n, L, al = beam.n_modes, beam.length, veh.alpha
     lam = np.arange(1, n + 1) * np.pi / L
     x = (veh.entry + al * tau, veh.entry + al * tau + veh.d)
@@ -186,8 +200,8 @@ def dense_reference(beam: ModalBeam, veh: Vehicle, tau: float):
     kv, ev, d = veh.kappa_v, veh.eta_v, veh.d
     bogie = veh.model == "bogie"
     for k in range(n):
-        M[k, k], C[k, k] = 1.0, 2.0 * beam.eta_f
-        K[k, k] = 1.0 + beam.eta_s * lam[k] ** 2 + lam[k] ** 4 / 4.0
+        M[k, k], C[k, k] = 1.0, 2.0 * eta_f
+        K[k, k] = 1.0 + eta_s * lam[k] ** 2 + lam[k] ** 4 / 4.0
         for j, s in ((0, 1.0), (1, -1.0)):
             g = 2.0 / L * phi[j][k]  # projection of the wheel force 4 F_j delta / (2 L)
             f[k] += 2.0 * g
@@ -216,7 +230,7 @@ def dense_reference(beam: ModalBeam, veh: Vehicle, tau: float):
 
 
 def small_system(model: str = "bogie", alpha: float = 0.7) -> ModalSystem:
-    beam = ModalBeam(length=12.0, n_modes=9, eta_f=0.07, eta_s=0.2)
+    beam = ModalBeam(length=12.0, n_modes=9, track=modal_track(eta_f=0.07, eta_s=0.2, alpha=alpha))
     veh = Vehicle(
         model=model, eta_M=3.0, d=1.5, mu_v=5.1, J_b=0.8, kappa_v=0.3, eta_v=0.11, alpha=alpha, entry=3.3
     )
@@ -284,34 +298,43 @@ def test_woodbury_solve_random():
 
 def test_near_field_decay_rate_and_group_velocity():
     # Static, no shear: the roots of p^4 + 4 are 1 +- i, -1 +- i.
-    assert near_field_decay_rate(0.0, 0.0) == pytest.approx(1.0)
-    assert near_field_decay_rate(1.0, 0.0) == pytest.approx(0.0, abs=1e-7)  # critical, Eq. (65)
-    p, eps, eta_s = 1.3, 1e-6, 0.4
+    assert modal_track(alpha=0.0, eta_f=0.0).near_field_decay_rate() == pytest.approx(1.0)
+    critical = modal_track(alpha=1.0, eta_f=0.0).near_field_decay_rate()  # Eq. (65)
+    assert critical == pytest.approx(0.0, abs=1e-7)
+    eta_s = 0.4
 
-    def omega(x):
-        return math.sqrt(1.0 + eta_s * x * x + x**4 / 4.0)
+    def omega(x):  # by hand: the undamped dispersion of Eq. (1) with the shear layer
+        return np.sqrt(1.0 + eta_s * x * x + x**4 / 4.0)
 
-    assert group_velocity(p, eta_s) == pytest.approx((omega(p + eps) - omega(p - eps)) / (2 * eps), rel=1e-8)
+    track = modal_track(alpha=0.5, eta_f=0.1, eta_s=eta_s)
+    p = np.linspace(0.0, 6.0, 601)
+    np.testing.assert_allclose(track.dispersion(p)[:, 0], omega(p), rtol=1e-12)
+    # EB group velocity (p^3 + 2 eta_s p) / (2 omega) grows with p: the envelope is the velocity itself
+    exact = (p**3 + 2.0 * eta_s * p) / (2.0 * omega(p))
+    np.testing.assert_allclose(track.group_velocity_envelope(p)[1:-1], exact[1:-1], rtol=1e-3, atol=1e-4)
+    # every free wave decays at eta_f (modal damping 2 eta_f, underdamped)
+    assert track.free_wave_decay_rate(6.0) == pytest.approx(0.1, rel=1e-9)
 
 
 def test_choose_geometry_meets_its_criteria():
     # Short run, many modes: the reflection criterion can be met with k_max >= 4.
-    g = choose_geometry(alpha=0.5, eta_f=0.0, eta_s=0.0, d=2.0, tau_max=40.0, n_modes=500)
+    g = choose_geometry(track=modal_track(alpha=0.5, eta_f=0.0), d=2.0, tau_max=40.0, n_modes=500)
     assert g.k_max >= 4.0
     assert g.tau_valid >= 40.0 * (1 - 1e-9)
     assert g.entry >= g.margin and g.length - g.entry - 2.0 - 0.5 * 40.0 >= g.margin * (1 - 1e-9)
     assert g.tau_valid == pytest.approx(reflection_window(g.length, g.entry, 2.0, 0.5, g.c_max, g.margin))
     # Long run, few modes: resolution wins, the window is reported shorter than the run.
-    g = choose_geometry(alpha=0.8, eta_f=0.1, eta_s=0.0, d=1.0, tau_max=400.0, n_modes=500)
+    g = choose_geometry(track=modal_track(alpha=0.8, eta_f=0.1), d=1.0, tau_max=400.0, n_modes=500)
     assert g.k_max == pytest.approx(4.0)
     assert 0 < g.tau_valid < 400.0
     assert g.length >= g.entry + 1.0 + 0.8 * 400.0 + g.margin * (1 - 1e-9)
 
 
 def test_default_time_step_resolves_relevant_band():
-    h = default_time_step(k_max=12.0, alpha=0.8)
+    track = modal_track(alpha=0.8, eta_f=0.1)
+    h = default_time_step(k_max=12.0, track=track)
     assert h == pytest.approx(2 * math.pi / (32 * math.sqrt(1 + 4.0**4 / 4)))
-    assert default_time_step(k_max=2.0, alpha=0.8) > h
+    assert default_time_step(k_max=2.0, track=track) > h
 
 
 # --- API -----------------------------------------------------------------------------------------
@@ -342,7 +365,7 @@ def test_result_fields_and_output_resampling():
 
 
 def test_rejects_bad_input():
-    with pytest.raises(MovingBogieError, match="S > 0 and r > 0"):
+    with pytest.raises(MovingBogieError, match="positive mass.*r=0"):
         simulate_finite_beam(
             SimpleNamespace(**{**vars(make_params()), "beam": "tr", "S": 10.0, "r": 0.0}), 10.0
         )

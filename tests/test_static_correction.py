@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_finite_beam import make_params, moving_force_deflection
+from test_finite_beam import eb_symbol, make_params, modal_track, moving_force_deflection
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.model.cases import table1_case
@@ -23,7 +23,7 @@ from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.modal import ModalBeam, ModalSystem, Vehicle
 from moving_bogie.validation.newmark import effective_matrix_dense, initial_state, newmark_step
-from moving_bogie.validation.residual import ResidualFlexibility, moving_green_function, moving_symbol
+from moving_bogie.validation.residual import ResidualFlexibility, moving_green_function
 
 
 @pytest.mark.parametrize("alpha, eta_f, eta_s", [(0.0, 0.0, 0.0), (0.5, 0.2, 0.0), (0.7, 0.05, 0.3)])
@@ -32,7 +32,8 @@ def test_green_function_is_the_moving_load_deflection(alpha, eta_f, eta_s):
     # the deflection at xi = -s under the load 2, i.e. 2 G(s) (the wheel load is 2 in these units).
     for s in (-2.5, 0.0, 1.5):
         reference = moving_force_deflection(alpha, eta_f, eta_s, shift=-s)
-        assert 2.0 * moving_green_function(np.array(s), alpha, eta_f, eta_s) == pytest.approx(
+        symbol = modal_track(alpha=alpha, eta_f=eta_f, eta_s=eta_s).symbol_polynomials()
+        assert 2.0 * moving_green_function(np.array(s), symbol) == pytest.approx(
             reference, rel=1e-8, abs=1e-12
         )
 
@@ -44,10 +45,11 @@ def test_residual_flexibility_equals_the_tail_of_the_modal_series():
     length, n, alpha, eta_f, eta_s, d = 100.0, 300, 0.7, 0.05, 0.3, 2.0
     kept = np.arange(1, n + 1) * np.pi / length
     x = (7.3, 7.3 + d)
-    flex = ResidualFlexibility(kept, length, alpha, eta_f, eta_s, d)
+    symbol = modal_track(alpha=alpha, eta_f=eta_f, eta_s=eta_s).symbol_polynomials()
+    flex = ResidualFlexibility(kept, length, d, symbol)
     r = flex.matrix(*x, np.exp(1j * kept * x[0]), np.exp(1j * kept * x[1]))
     tail = np.arange(n + 1, 200_001) * np.pi / length
-    weight = 1.0 / (length * moving_symbol(tail, alpha, eta_f, eta_s))
+    weight = 1.0 / (length * eb_symbol(tail, alpha, eta_f, eta_s))  # by hand, not the generated symbol
     for j in range(2):
         for m in range(2):
             phases = np.exp(1j * tail * (x[m] - x[j])) - np.exp(1j * tail * (x[j] + x[m]))
@@ -57,12 +59,12 @@ def test_residual_flexibility_equals_the_tail_of_the_modal_series():
 
 def test_supercritical_undamped_is_refused():
     with pytest.raises(MovingBogieError, match="critical velocity"):
-        moving_green_function(np.array(0.0), 1.2, 0.0)
+        moving_green_function(np.array(0.0), modal_track(alpha=1.2, eta_f=0.0).symbol_polynomials())
 
 
 def _static_system(corrected: bool, n: int = 20):
     """Two masses standing still (alpha = 0) on a beam of length 60 in only `n` modes (k_max ~ 1)."""
-    beam = ModalBeam(60.0, n, eta_f=0.1, eta_s=0.3)
+    beam = ModalBeam(60.0, n, modal_track(eta_f=0.1, eta_s=0.3, alpha=0.0))
     vehicle = Vehicle(
         "masses", eta_M=2.0, d=2.0, mu_v=1.0, J_b=1.0, kappa_v=0.2, eta_v=0.0, alpha=0.0, entry=25.0
     )
@@ -87,7 +89,8 @@ def test_static_deflection_is_exact_with_few_modes():
 
 @pytest.mark.parametrize("model", ["masses", "bogie"])
 def test_corrected_woodbury_step_equals_dense_solve(model):
-    system = CorrectedModalSystem(ModalBeam(9.0, 9, eta_f=0.12, eta_s=0.2), Vehicle(model, **SMALL_VEHICLE))
+    track = modal_track(eta_f=0.12, eta_s=0.2, alpha=SMALL_VEHICLE["alpha"])
+    system = CorrectedModalSystem(ModalBeam(9.0, 9, track), Vehicle(model, **SMALL_VEHICLE))
     assert_step_equals_dense_solve(system)
 
 

@@ -13,7 +13,7 @@ wheels:
 where ``w = (w_1, w_2)`` are the deflections under the wheels, now unknowns of their own, and
 ``F`` the contact forces. With the vehicle of Eqs. (2)-(4) the equations read
 
-    q'' + 2 eta_f q' + omega^2 q = (2/L) A R^{-1} (w - A^T q),
+    M q'' + C q' + K q = (2/L) A R^{-1} (w - A^T q)    (the track's blocks; rail rows driven),
     eta_M w_j'' + kappa_v (w_j - u + s_j theta d/2) + 2 eta_v (w_j' - u' + s_j theta' d/2)
         + [R^{-1} (w - A^T q)]_j = 2,
 
@@ -54,17 +54,9 @@ class CorrectedModalSystem(ModalSystem):
     def __init__(self, beam: ModalBeam, vehicle: Vehicle) -> None:
         super().__init__(beam, vehicle)
         v = vehicle
-        track = beam.track
+        where = ", ".join(f"{name}={value:g}" for name, value in beam.track.values.items())
         self.residual = ResidualFlexibility(
-            beam.wavenumbers,
-            beam.length,
-            v.alpha,
-            beam.eta_f,
-            beam.eta_s,
-            v.d,
-            beam.S,
-            beam.r,
-            None if track is None else track.symbol_polynomials(),
+            beam.wavenumbers, beam.length, v.d, beam.track.symbol_polynomials(), where
         )
         self.n_wheel = 0 if v.model == "force" else 2
         n, nw, ne = beam.n_dof, self.n_wheel, v.n_extra  # n: beam unknowns (2N for TR)

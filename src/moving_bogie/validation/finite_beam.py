@@ -31,7 +31,7 @@ from moving_bogie.validation.modal import MODELS, ModalBeam, ModalSystem, Vehicl
 from moving_bogie.validation.newmark import initial_state, newmark_step
 from moving_bogie.validation.track_modes import ModalTrack
 
-__all__ = ["FiniteBeamResult", "layered_track", "simulate_finite_beam"]
+__all__ = ["FiniteBeamResult", "simulate_finite_beam"]
 
 #: How many progress reports a run makes at most.
 _PROGRESS_REPORTS = 200
@@ -94,22 +94,9 @@ def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
     return Vehicle(model=model, eta_M=eta_m, d=float(params.d), alpha=float(params.alpha), entry=entry, **bar)
 
 
-def layered_track(params: Any) -> ModalTrack | None:
-    """The generated finite-rail blocks of a layered track (None on a one-layer track or without a model)."""
-    if getattr(params, "model", None) is None:
-        return None
-    track = ModalTrack.of(params)
-    return track if track.layered else None
-
-
-def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | None) -> None:
-    beam = getattr(params, "beam", "eb")
-    if beam not in ("eb", "tr"):
-        raise MovingBogieError(f"beam must be 'eb' or 'tr' (got {beam!r})")
-    if beam == "tr" and not (float(params.S) > 0 and float(params.r) > 0):
-        raise MovingBogieError(
-            f"the Timoshenko-Rayleigh finite beam needs S > 0 and r > 0 (got S={params.S}, r={params.r})"
-        )
+def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | None) -> ModalTrack:
+    """Refuse bad input before any computation; return the track model's finite-rail blocks."""
+    track = ModalTrack.of(params)  # names an unknown beam or track
     if model not in MODELS:
         raise MovingBogieError(f"model must be one of {', '.join(MODELS)} (got {model!r})")
     if not (math.isfinite(tau_max) and tau_max > 0):
@@ -118,6 +105,24 @@ def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | No
         raise MovingBogieError(f"n_modes must be at least 1 (got {n_modes!r})")
     if dt is not None and not (math.isfinite(dt) and dt > 0):
         raise MovingBogieError(f"dt must be a positive finite number (got {dt!r})")
+    # Newmark needs a positive definite mass in every mode: e.g. rotary inertia for a rotation unknown.
+    mass = track.blocks(np.array([1.0]))[0][0]
+    if np.min(np.linalg.eigvalsh(mass)) <= 0:
+        # name the groups of the mass block that are zero (those whose value changes it)
+        zero = [
+            name
+            for name in track.module.MODAL_ARGUMENTS[1:]
+            if track.values.get(name, 0.0) <= 0
+            and not np.array_equal(
+                ModalTrack(track.module, {**track.values, name: 1.0}).blocks(np.array([1.0]))[0][0], mass
+            )
+        ]
+        raise MovingBogieError(
+            "the finite beam needs a positive mass for every unknown of each mode (got "
+            + ", ".join(f"{name}={track.values.get(name, 0.0):g}" for name in zero)
+            + "): give these groups positive values"
+        )
+    return track
 
 
 def simulate_finite_beam(
@@ -143,9 +148,11 @@ def simulate_finite_beam(
     Parameters
     ----------
     params : DimensionlessParams or duck-typed equivalent
-        Needs ``eta_f, eta_M, d, mu_v, J_b, kappa_v, eta_v, alpha`` (anything ``float()`` accepts),
-        optionally ``eta_s`` (default 0) and ``beam`` ("eb", or "tr" with ``S`` and ``r``, Eq. (59):
-        the Timoshenko-Rayleigh beam of :class:`~moving_bogie.validation.modal.ModalBeam`).
+        Any beam on any track of the catalogue (its generated per-mode blocks,
+        :class:`~moving_bogie.validation.track_modes.ModalTrack`); a namespace of numbers names its
+        ``beam`` and ``track`` (default: Euler-Bernoulli on the one-layer track) and carries the groups
+        of that model (a group it leaves out counts as 0) and the vehicle's ``eta_M, d, mu_v, J_b,
+        kappa_v, eta_v`` (anything ``float()`` accepts).
     tau_max : float
         End of the run.
     model : {"bogie", "masses", "force"}, optional
@@ -179,35 +186,20 @@ def simulate_finite_beam(
     Raises
     ------
     MovingBogieError
-        For an unknown beam or model, a Timoshenko-Rayleigh beam without ``S, r > 0``, a beam too
-        short for the run, or (static correction) a run at or above the undamped critical velocity.
+        For an unknown beam, track or model, a track whose modal mass is not positive (e.g. a
+        Timoshenko-Rayleigh beam with ``r = 0``), a beam too short for the run, or (static
+        correction) a run at or above the undamped critical velocity.
     """
     model = model or getattr(params, "vehicle", "bogie")  # a plain namespace of numbers: the bogie
-    _check(params, tau_max, model, n_modes, dt)
-    alpha, eta_f, d = float(params.alpha), float(params.eta_f), float(params.d)
-    eta_s = float(getattr(params, "eta_s", 0.0))
-    tr = getattr(params, "beam", "eb") == "tr"
-    shear, radius = (float(params.S), float(params.r)) if tr else (None, 0.0)
-    track = layered_track(params)
-    geometry = choose_geometry(
-        alpha=alpha,
-        eta_f=eta_f,
-        eta_s=eta_s,
-        d=d,
-        tau_max=tau_max,
-        n_modes=n_modes,
-        length=length,
-        entry=entry,
-        S=shear,
-        r=radius,
-        track=track,
-    )
+    track = _check(params, tau_max, model, n_modes, dt)
+    alpha, d = float(params.alpha), float(params.d)
+    geometry = choose_geometry(track=track, d=d, tau_max=tau_max, n_modes=n_modes, length=length, entry=entry)
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:
         raise MovingBogieError(
             f"the wheels leave the beam before tau_max={tau_max}: entry={geometry.entry}, d={d}, "
             f"alpha={alpha}, length={geometry.length}"
         )
-    h_max = default_time_step(geometry.k_max, alpha, eta_s) if dt is None else float(dt)
+    h_max = default_time_step(geometry.k_max, track) if dt is None else float(dt)
     n_steps = max(1, math.ceil(tau_max / h_max - 1e-9))
     h = tau_max / n_steps
 
@@ -218,7 +210,7 @@ def simulate_finite_beam(
 
     system_class = CorrectedModalSystem if static_correction else ModalSystem
     system = system_class(
-        ModalBeam(geometry.length, n_modes, eta_f, eta_s, shear, radius, track),
+        ModalBeam(geometry.length, n_modes, track),
         _vehicle(params, model, geometry.entry),
     )
     series, elapsed_s = _integrate(system, h, n_steps, progress)

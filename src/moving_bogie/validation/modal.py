@@ -1,8 +1,9 @@
 """Modal equations of a bogie (or two masses, or two forces) crossing a finite beam, Eqs. (49)-(54).
 
 Dimensionless, fixed coordinate ``x`` (``x = chi x_phys``, ``tau = t sqrt(k_f/m)``, Eqs. (15)-(17)),
-simply supported Euler-Bernoulli beam of length ``L`` on a viscoelastic Winkler foundation with an
-optional Pasternak layer. Eq. (1) with the shear layer, divided by ``k_f w_st / 4``, reads
+simply supported rail of length ``L`` on its track (any beam on any track of the catalogue: the
+generated per-mode blocks below). For the Euler-Bernoulli beam on the viscoelastic Winkler foundation with
+an optional Pasternak layer, Eq. (1) with the shear layer, divided by ``k_f w_st / 4``, reads
 
     w_xxxx - 4 eta_s w_xx + 4 w_tautau + 8 eta_f w_tau + 4 w = 4 F_1 delta(x - x_1) + 4 F_2 delta(x - x_2),
 
@@ -23,8 +24,12 @@ Two masses (paper, Fig. 1a) keep only ``F_j = 2 - eta_M w_j''``; two forces keep
 Modal expansion ``w = sum_k q_k sin(lambda_k x)``, ``lambda_k = k pi / L``: the Galerkin projection
 divided by ``2 L`` gives per mode
 
-    q_k'' + 2 eta_f q_k' + omega_k^2 q_k = (2/L) sum_j F_j a_jk,
-    omega_k^2 = 1 + eta_s lambda_k^2 + lambda_k^4 / 4,
+    M_k y_k'' + C_k y_k' + K_k y_k = (2/L) sum_j F_j a_jk e_0,
+
+with ``y_k`` the amplitudes of mode ``k`` of every unknown of the track (rail deflection first) and
+``M_k, C_k, K_k`` the track model's generated per-mode blocks
+(:mod:`~moving_bogie.validation.track_modes`); on the one-layer Euler-Bernoulli track they are the
+scalars ``1``, ``2 eta_f`` and ``omega_k^2 = 1 + eta_s lambda_k^2 + lambda_k^4 / 4``,
 
 with ``a_j = sin(lambda x_j)``, ``b_j = lambda cos(lambda x_j)``, ``c_j = -lambda^2 a_j`` the mode
 shapes and their x-derivatives at the contact points. Because the wheels are followed,
@@ -58,7 +63,7 @@ MODELS = ("bogie", "masses", "force")
 
 @dataclass(frozen=True)
 class ModalBeam:
-    """Simply supported beam on the viscoelastic foundation, in ``n_modes`` sine modes.
+    """Simply supported rail on its track, in ``n_modes`` sine modes of every unknown.
 
     Attributes
     ----------
@@ -66,46 +71,25 @@ class ModalBeam:
         Dimensionless length ``L`` (``chi`` times the physical length).
     n_modes : int
         Number of modes ``N``; the highest wavenumber is ``k_max = N pi / L``.
-    eta_f, eta_s : float
-        Foundation damping and Pasternak shear parameters, Eq. (17).
-    S, r : float, optional
-        Timoshenko-Rayleigh beam, Eq. (59) (Euler-Bernoulli without `S`).
-    track : ModalTrack, optional
-        The generated per-mode blocks of any track model (:mod:`~moving_bogie.validation.track_modes`;
-        a layered track: the rail's modes coupled with the same modes of each mass layer). When given,
-        they replace the one-layer formulas below (which they equal on the one-layer track).
+    track : ModalTrack
+        The generated per-mode blocks of the track model (:mod:`~moving_bogie.validation.track_modes`):
+        the rail's modes, coupled within each mode number with the same modes of its other unknowns (the
+        rotation of a Timoshenko-Rayleigh beam, the deflection of each mass layer).
     """
 
     length: float
     n_modes: int
-    eta_f: float
-    eta_s: float = 0.0
-    S: float | None = None
-    r: float = 0.0
-    track: ModalTrack | None = None
+    track: ModalTrack
 
     @cached_property
     def wavenumbers(self) -> np.ndarray:
         """``lambda_k = k pi / L``, ``k = 1..N``."""
         return np.arange(1, self.n_modes + 1) * (np.pi / self.length)
 
-    @cached_property
-    def omega2(self) -> np.ndarray:
-        """Squared modal frequencies ``1 + eta_s lambda^2 + lambda^4 / 4`` (unit modal mass, EB)."""
-        lam2 = self.wavenumbers**2
-        return 1.0 + self.eta_s * lam2 + 0.25 * lam2 * lam2
-
-    @property
-    def timoshenko(self) -> bool:
-        """Timoshenko-Rayleigh beam (``S`` given): two unknowns per mode number."""
-        return self.S is not None
-
     @property
     def per_mode(self) -> int:
-        """Unknowns per mode number: 1 (EB), 2 (TR), or the track's block size."""
-        if self.track is not None:
-            return self.track.size
-        return 2 if self.timoshenko else 1
+        """Unknowns per mode number: the track's block size (1 for the Euler-Bernoulli rail alone)."""
+        return self.track.size
 
     @property
     def n_dof(self) -> int:
@@ -114,52 +98,31 @@ class ModalBeam:
 
     @cached_property
     def track_blocks(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The track's ``M, C, K`` per mode, shape ``(N, s, s)`` (only with :attr:`track`)."""
+        """The track's ``M, C, K`` per mode, shape ``(N, s, s)``."""
         return self.track.blocks(self.wavenumbers)
 
     @cached_property
     def diagonals(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Diagonals of the beam block of ``M``, ``C``, ``K`` (rows divided by ``L/2``).
+        """Diagonals of the beam block of ``M``, ``C``, ``K`` (rows divided by ``L/2``), unknown by unknown.
 
-        Euler-Bernoulli: ``1``, ``2 eta_f``, ``omega_k^2``. Timoshenko-Rayleigh, Eqs. (55)-(56) made
-        dimensionless as Eqs. (60)-(61) in the fixed frame, ``w = sum q_k sin(lambda_k x)``,
-        ``phi = sum b_k cos(lambda_k x)`` (simply supported: ``w = phi_x = 0`` at the ends):
-
-            q_k'' + 2 eta_f q_k' + (1 + (S + eta_s) lambda^2) q_k - S lambda b_k = (2/L) sum_j F_j a_jk,
-            r^2 b_k'' + (S + lambda^2 / 4) b_k - S lambda q_k = 0,
-
-        i.e. ``1, r^2``; ``2 eta_f, 0``; ``1 + (S + eta_s) lambda^2, S + lambda^2/4``, with the
-        coupling :attr:`blocks` between ``q_k`` and ``b_k``.
+        Unknown ``j`` of mode ``k`` sits at ``j N + k``. On the one-layer Euler-Bernoulli track they are
+        ``1``, ``2 eta_f`` and ``omega_k^2 = 1 + eta_s lambda_k^2 + lambda_k^4 / 4``.
         """
-        n = self.n_modes
-        if self.track is not None:
-            # unknown j of mode k at j N + k: the diagonals, unknown by unknown
-            return tuple(np.diagonal(b, axis1=1, axis2=2).T.reshape(-1).copy() for b in self.track_blocks)
-        if not self.timoshenko:
-            return np.ones(n), np.full(n, 2.0 * self.eta_f), self.omega2
-        lam2 = self.wavenumbers**2
-        m = np.concatenate([np.ones(n), np.full(n, self.r * self.r)])
-        c = np.concatenate([np.full(n, 2.0 * self.eta_f), np.zeros(n)])
-        k = np.concatenate([1.0 + (self.S + self.eta_s) * lam2, self.S + 0.25 * lam2])
-        return m, c, k
+        return tuple(np.diagonal(b, axis1=1, axis2=2).T.reshape(-1).copy() for b in self.track_blocks)
 
     @cached_property
     def blocks(self) -> ModeBlocks | None:
-        """Couplings within each mode (TR: ``K[q_k, b_k] = -S lambda_k``; a track's off-diagonal blocks)."""
+        """Couplings within each mode (the track blocks' off-diagonal entries); None for one unknown."""
         n, s = self.n_modes, self.per_mode
         if s == 1:
             return None
         index = np.arange(n)[:, None] + n * np.arange(s)[None, :]
-        if self.track is not None:
-            off = []
-            for b in self.track_blocks:
-                b = b.copy()
-                b[:, np.arange(s), np.arange(s)] = 0.0
-                off.append(b)
-            return ModeBlocks(index, *off)
-        k_off = np.zeros((n, 2, 2))
-        k_off[:, 0, 1] = k_off[:, 1, 0] = -self.S * self.wavenumbers
-        return ModeBlocks(index, np.zeros((n, 2, 2)), np.zeros((n, 2, 2)), k_off)
+        off = []
+        for b in self.track_blocks:
+            b = b.copy()
+            b[:, np.arange(s), np.arange(s)] = 0.0
+            off.append(b)
+        return ModeBlocks(index, *off)
 
     @property
     def k_max(self) -> float:
