@@ -14,6 +14,7 @@ EI, m, k_f, k_s, c_f = sp.symbols("EI m k_f k_s c_f", positive=True)
 M, M_b, J_phys, k_v, c_v = sp.symbols("M M_b J_phys k_v c_v", positive=True)
 d_phys, v, P = sp.symbols("d_phys v P", positive=True)
 GA, r_g = sp.symbols("GA r_g", positive=True)  # Timoshenko: G*Abar and radius of gyration
+N_ax = sp.Symbol("N_ax", positive=True)  # axial compressive force in the rail (Metrikine & Dieterman 1997)
 # Layered tracks: mass layers (sleepers, ballast) per unit length and their supports. The rail's support
 # (the railpads) is k_f, c_f: the reference stiffness of the scaling, named k_1, c_1 on those tracks.
 m_2, k_2, c_2, m_3, k_3, c_3 = sp.symbols("m_2 k_2 c_2 m_3 k_3 c_3", positive=True)
@@ -31,6 +32,7 @@ mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3 = sp.symbols(
 )
 eta_M, mu_v, J_b, kappa_v, eta_v, d = sp.symbols("eta_M mu_v J_b kappa_v eta_v d", positive=True)
 S, r = sp.symbols("S r", positive=True)
+eta_N = sp.Symbol("eta_N", positive=True)
 
 #: Physical parameter -> expression through the dimensionless groups (the inverse of Eq. (17)).
 #: EI, m, k_f and P stay free: every dimensionless result must be independent of them. Filled by
@@ -157,6 +159,17 @@ declare(
     equation="(59)",
     unit="m",
     si_meaning="radius of gyration of the cross-section",
+)
+declare(
+    eta_N,
+    N_ax,
+    2 * eta_N * sp.sqrt(k_f * EI),
+    meaning="axial compressive force N/(2 sqrt(k_f EI)); buckles the beam on its foundation at 1 + eta_s",
+    constraint="nonnegative",
+    equation="(A1)",
+    unit="N",
+    si_meaning="axial compressive force in the rail (thermal: N = E A alpha_T dT)",
+    default=0,
 )
 declare(
     eta_M,
