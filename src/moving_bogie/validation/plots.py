@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from moving_bogie.validation.verdict import QUANTITIES, ValidationResult, series
+from moving_bogie.validation.verdict import QUANTITIES, ValidationResult, beam_title, series
 
 __all__ = ["plot_validation"]
 
@@ -79,8 +79,7 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
     verdict = "agree" if result.agrees else "DISAGREE"
     if title is None:
         vehicle = "bogie" if result.model == "bogie" else "two masses"
-        beam = " (Timoshenko-Rayleigh)" if getattr(result.params, "beam", "eb") == "tr" else ""
-        title = f"{vehicle}{beam}: finite beam (solid) vs closed form (dashed)"
+        title = f"{vehicle} ({beam_title(result.params)}): finite beam (solid) vs closed form (dashed)"
     fig.suptitle(
         f"{title}\n{result.finite.n_modes} modes, "
         f"L = {result.finite.length:.1f}, k_max = {result.finite.k_max:.2f}; window [0, {tau_w:.1f}], "

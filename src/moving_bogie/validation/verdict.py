@@ -28,6 +28,7 @@ __all__ = [
     "QUANTITIES",
     "QuantityComparison",
     "ValidationResult",
+    "beam_title",
     "compare_series",
     "series",
 ]
@@ -42,6 +43,14 @@ QUANTITIES: dict[str, tuple[str, str]] = {
     "u": ("u", "bar bounce u"),
     "theta": ("theta", "bar pitch theta"),
 }
+
+
+def beam_title(params: Any) -> str:
+    """The beam's title from the catalogue, without its equation ("Euler-Bernoulli beam", ...)."""
+    model = getattr(params, "model", None)
+    if model is None or isinstance(model, str):
+        return "beam"
+    return model.catalogue.beams[model.beam].split(", Eq")[0]
 
 
 @dataclass(frozen=True)
@@ -243,7 +252,7 @@ class ValidationResult:
         finite = self.finite
         return {
             "model": self.model,
-            "beam": getattr(self.params, "beam", "eb"),
+            "beam": getattr(self.params, "beam", None),
             "track": getattr(self.params, "track", "one-layer"),
             "params": params,
             "closed_form_branch_cut": bool(getattr(self.closed, "branch_cut", False)),
