@@ -316,3 +316,54 @@ def test_vehicle_kernels_numpy_agree_with_mpmath(name):
                 r = getattr(module, f)(**_mp_vehicle_args(point))
                 refs.append([r] if f == "e_chr" else list(r))
         _assert_numpy_close(arrays, refs, f"{name}.{f}")
+
+
+# --- declared vehicles: the shared matrix interface ------------------------------------------------------
+
+MATRIX_FUNCTIONS = ("contact_positions", "static_loads", "mass_matrix", "damping_matrix", "stiffness_matrix")
+
+
+@functools.cache
+def _declared(name):
+    from derivations.vehicles import VEHICLES, assemble
+
+    return assemble(VEHICLES[name]())
+
+
+def test_declared_vehicles_are_generated():
+    from derivations.vehicles import VEHICLES
+
+    assert tuple(generated.DECLARED_VEHICLES) == tuple(VEHICLES)
+    for name in VEHICLES:
+        module = _vehicle_module(name)
+        matrices = _declared(name)
+        assert module.DOFS == matrices.dofs
+        assert module.CONTACTS == matrices.contacts
+        assert module.MATRIX_ARGUMENTS == tuple(str(x) for x in matrices.parameters)
+        assert set(module.UNITS) == set(module.DOFS)
+
+
+@pytest.mark.parametrize("seed", SEEDS[:3])
+@pytest.mark.parametrize("name", tuple(generated.DECLARED_VEHICLES))
+def test_vehicle_matrices_match_sympy(name, seed):
+    """Generated contact positions, loads and M, C, K at random parameters against the SymPy assembly."""
+    module = _vehicle_module(name)
+    matrices = _declared(name)
+    rng = _rng(seed)
+    point = {par: _positive(rng) for par in module.MATRIX_ARGUMENTS}
+    subs = {sym: point[str(sym)] for sym in matrices.parameters}
+    exprs = {
+        "contact_positions": list(matrices.positions),
+        "static_loads": list(matrices.loads),
+        "mass_matrix": list(matrices.mass),
+        "damping_matrix": list(matrices.damping),
+        "stiffness_matrix": list(matrices.stiffness),
+    }
+    with mpmath.workdps(30):
+        args = {k: _to_mp(v) for k, v in point.items()}
+        for f in MATRIX_FUNCTIONS:
+            out = getattr(module, f)(**args)
+            flat = [x for row in out for x in row] if f.endswith("matrix") else list(out)
+            if f.endswith("matrix"):
+                assert all(len(row) == len(module.DOFS) for row in out) and len(out) == len(module.DOFS)
+            _assert_digits(flat, [_reference(e, subs) for e in exprs[f]], f"{name}.{f} (seed {seed})")
