@@ -14,14 +14,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_finite_beam import eb_symbol, modal_track
-from test_static_correction import SMALL_VEHICLE, assert_step_equals_dense_solve
+from test_finite_beam import eb_symbol, modal_track, small_vehicle
+from test_static_correction import SMALL_MOTION, SMALL_VEHICLE, assert_step_equals_dense_solve
 
 from moving_bogie.generated import foundation_eb, foundation_tr
 from moving_bogie.model.cases import table1_case
 from moving_bogie.validation.compare import validate
 from moving_bogie.validation.corrected import CorrectedModalSystem
-from moving_bogie.validation.modal import ModalBeam, Vehicle
+from moving_bogie.validation.modal import ModalBeam
 from moving_bogie.validation.residual import ResidualFlexibility
 
 
@@ -67,8 +67,8 @@ def test_tr_residual_flexibility_equals_the_tail_of_the_modal_series():
     kept = np.arange(1, n + 1) * np.pi / length
     x = (30.0, 30.0 + d)
     track = modal_track("tr", alpha=alpha, eta_f=eta_f, eta_s=eta_s, S=S, r=r)
-    flex = ResidualFlexibility(kept, length, d, track.symbol_polynomials())
-    got = flex.matrix(*x, np.exp(1j * kept * x[0]), np.exp(1j * kept * x[1]))
+    flex = ResidualFlexibility(kept, length, (0.0, d), track.symbol_polynomials())
+    got = flex.matrix(np.array(x), np.exp(1j * np.outer(x, kept)))
     tail = np.arange(n + 1, 400_001) * np.pi / length
     weight = 1.0 / (length * tr_symbol(tail, alpha, eta_f, eta_s, S, r))
     for j in range(2):
@@ -80,9 +80,9 @@ def test_tr_residual_flexibility_equals_the_tail_of_the_modal_series():
 
 @pytest.mark.parametrize("model", ["force", "masses", "bogie"])
 def test_tr_woodbury_step_equals_dense_solve(model):
-    track = modal_track("tr", eta_f=0.12, eta_s=0.2, S=10.0, r=0.09, alpha=SMALL_VEHICLE["alpha"])
+    track = modal_track("tr", eta_f=0.12, eta_s=0.2, S=10.0, r=0.09, alpha=SMALL_MOTION["alpha"])
     beam = ModalBeam(9.0, 7, track)
-    system = CorrectedModalSystem(beam, Vehicle(model, **SMALL_VEHICLE))
+    system = CorrectedModalSystem(beam, small_vehicle(model, **SMALL_MOTION, values=SMALL_VEHICLE))
     _, _, k = system.assemble(0.0).dense()
     assert k[0, beam.n_modes] == pytest.approx(-10.0 * np.pi / 9.0)  # -S lambda_1 couples q_1, b_1
     assert_step_equals_dense_solve(system)

@@ -27,6 +27,7 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.plots import plot_validation
+from moving_bogie.validation.vehicle import vehicle_kernels
 from moving_bogie.validation.verdict import (
     DEFAULT_TOLERANCE,
     QUANTITIES,
@@ -69,8 +70,7 @@ def _staged(progress: Callable[[float], None] | None, start: float, width: float
 
 
 def _check(params: Any, model: str, n_modes: int, tol: float, tau_step: float) -> None:
-    if model not in ("bogie", "masses"):
-        raise MovingBogieError(f"model must be 'bogie' or 'masses' (got {model!r})")
+    vehicle_kernels(params, model)  # names an unknown vehicle
     if int(n_modes) != n_modes or n_modes < 4:
         raise MovingBogieError(f"n_modes must be an integer of at least 4 (got {n_modes!r})")
     if not (math.isfinite(tol) and 0 < tol < 1):
@@ -182,7 +182,9 @@ def validate(
 
     tau_w = comparison_window(params, finite, reflection_level=reflection_level)
     inside = tau <= tau_w * (1 + 1e-12)
-    names = ("rear", "front", "u", "theta") if model == "bogie" else ("rear", "front")
+    # every response of the vehicle, under the short names of QUANTITIES where they have one
+    short = {attr: key for key, (attr, _) in QUANTITIES.items()}
+    names = {short.get(dof, dof): dof for dof in finite.responses}
     quantities, notes = {}, [f"closed form: {note}" for note in getattr(closed, "notes", ())]
     if any("branch cut skipped" in note for note in getattr(closed, "notes", ())):
         notes.append(
@@ -194,8 +196,7 @@ def validate(
             f"k_max = {finite.k_max:.2f} < {MIN_CORRECTED_WAVENUMBER:g}: the truncated modes are not much "
             "faster than the forcing, so the static correction is unreliable; use more modes"
         )
-    for name in names:
-        attr = QUANTITIES[name][0]
+    for name, attr in names.items():
         closed_x = series(closed, attr, tau.size)[inside]
         if not np.all(np.isfinite(closed_x)):
             notes.append(f"closed form {attr} is not finite everywhere in the window")

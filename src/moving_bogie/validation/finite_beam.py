@@ -15,6 +15,7 @@ N. M. Newmark, "A method of computation for structural dynamics", J. Eng. Mech. 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Callable
@@ -27,9 +28,10 @@ from scipy.interpolate import CubicHermiteSpline
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.geometry import choose_geometry, default_time_step
-from moving_bogie.validation.modal import MODELS, ModalBeam, ModalSystem, Vehicle
+from moving_bogie.validation.modal import ModalBeam, ModalSystem
 from moving_bogie.validation.newmark import initial_state, newmark_step
 from moving_bogie.validation.track_modes import ModalTrack
+from moving_bogie.validation.vehicle import Vehicle
 
 __all__ = ["FiniteBeamResult", "simulate_finite_beam"]
 
@@ -41,14 +43,16 @@ _PROGRESS_REPORTS = 200
 class FiniteBeamResult:
     """Time series of a finite-beam run (dimensionless, Eqs. (16)-(17)).
 
+    Every response of the vehicle is an attribute of its own too (``result.w_rear`` for the paper's
+    bogie, whose ``DOFS`` are ``w_rear, w_front, u, theta``).
+
     Attributes
     ----------
     tau : ndarray
         Output times.
-    w_rear, w_front : ndarray
-        Beam deflection under the rear and front wheel, ``w(x_j(tau), tau)``.
-    u, theta : ndarray
-        Bogie-bar bounce and pitch (all NaN for the "masses" and "force" models).
+    responses : dict
+        Degree-of-freedom name (the vehicle's ``DOFS``) -> time series: the deflection under each wheel,
+        ``w(x_j(tau), tau)``, then the bodies' bounce and pitch.
     length, entry : float
         Beam length ``L`` and rear-wheel position ``x0`` at ``tau = 0``.
     n_modes : int
@@ -61,18 +65,19 @@ class FiniteBeamResult:
     elapsed_s : float
         Wall time of the time stepping.
     model : str
-        "bogie", "masses" or "force".
+        The vehicle's name, or "force" (its loads only).
     k_max : float
         Highest modelled wavenumber ``N pi / L``.
     static_correction : bool
         Whether the truncated modes' quasi-static response was added back.
+    span : float
+        Distance from the rear to the front contact.
+    contacts : int
+        Number of wheels (the first ``contacts`` entries of :attr:`responses`).
     """
 
     tau: np.ndarray
-    w_rear: np.ndarray
-    w_front: np.ndarray
-    u: np.ndarray
-    theta: np.ndarray
+    responses: dict
     length: float
     entry: float
     n_modes: int
@@ -82,23 +87,28 @@ class FiniteBeamResult:
     model: str | None = None
     k_max: float = math.nan
     static_correction: bool = False
+    span: float = math.nan
+    contacts: int = 0
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        responses = self.__dict__.get("responses", {})
+        if name in responses:
+            return responses[name]
+        raise AttributeError(name)
 
 
-def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
-    # Parameters of another vehicle read as None (two masses have no bar): they are not used then.
-    bar = {
-        name: 0.0 if getattr(params, name, None) is None else float(getattr(params, name))
-        for name in ("mu_v", "J_b", "kappa_v", "eta_v")
-    }
-    eta_m = 0.0 if getattr(params, "eta_M", None) is None else float(params.eta_M)
-    return Vehicle(model=model, eta_M=eta_m, d=float(params.d), alpha=float(params.alpha), entry=entry, **bar)
+#: The ``model`` that keeps only the vehicle's wheel loads (its matrices zeroed): constant moving forces.
+LOADS_ONLY = "force"
 
 
-def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | None) -> ModalTrack:
-    """Refuse bad input before any computation; return the track model's finite-rail blocks."""
+def _check(
+    params: Any, tau_max: float, model: str | None, n_modes: int, dt: float | None
+) -> tuple[ModalTrack, Vehicle]:
+    """Refuse bad input before any computation; return the track's blocks and the vehicle (entry 0)."""
     track = ModalTrack.of(params)  # names an unknown beam or track
-    if model not in MODELS:
-        raise MovingBogieError(f"model must be one of {', '.join(MODELS)} (got {model!r})")
+    vehicle = Vehicle.of(params, 0.0, None if model == LOADS_ONLY else model)  # names an unknown vehicle
+    if model == LOADS_ONLY:
+        vehicle = vehicle.loads_only()
     if not (math.isfinite(tau_max) and tau_max > 0):
         raise MovingBogieError(f"tau_max must be a positive finite number (got {tau_max!r})")
     if n_modes < 1:
@@ -122,7 +132,7 @@ def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | No
             + ", ".join(f"{name}={track.values.get(name, 0.0):g}" for name in zero)
             + "): give these groups positive values"
         )
-    return track
+    return track, vehicle
 
 
 def simulate_finite_beam(
@@ -190,9 +200,9 @@ def simulate_finite_beam(
         Timoshenko-Rayleigh beam with ``r = 0``), a beam too short for the run, or (static
         correction) a run at or above the undamped critical velocity.
     """
-    model = model or getattr(params, "vehicle", "bogie")  # a plain namespace of numbers: the bogie
-    track = _check(params, tau_max, model, n_modes, dt)
-    alpha, d = float(params.alpha), float(params.d)
+    track, vehicle = _check(params, tau_max, model, n_modes, dt)
+    model = model or getattr(params, "vehicle", None) or "bogie"
+    alpha, d = vehicle.alpha, vehicle.length
     geometry = choose_geometry(track=track, d=d, tau_max=tau_max, n_modes=n_modes, length=length, entry=entry)
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:
         raise MovingBogieError(
@@ -211,7 +221,7 @@ def simulate_finite_beam(
     system_class = CorrectedModalSystem if static_correction else ModalSystem
     system = system_class(
         ModalBeam(geometry.length, n_modes, track),
-        _vehicle(params, model, geometry.entry),
+        dataclasses.replace(vehicle, entry=geometry.entry),
     )
     series, elapsed_s = _integrate(system, h, n_steps, progress)
 
@@ -220,15 +230,11 @@ def simulate_finite_beam(
             return values
         return CubicHermiteSpline(tau_steps, values, rates)(out)
 
-    w_rear, w_front, u, theta = (resample(series[i], series[i + 4]) for i in range(4))
-    if model != "bogie":
-        u, theta = np.full_like(out, np.nan), np.full_like(out, np.nan)
+    size = vehicle.size
+    responses = {name: resample(series[i], series[size + i]) for i, name in enumerate(vehicle.dofs)}
     return FiniteBeamResult(
         tau=out,
-        w_rear=w_rear,
-        w_front=w_front,
-        u=u,
-        theta=theta,
+        responses=responses,
         length=geometry.length,
         entry=geometry.entry,
         n_modes=n_modes,
@@ -238,6 +244,8 @@ def simulate_finite_beam(
         model=model,
         k_max=geometry.k_max,
         static_correction=static_correction,
+        span=vehicle.length,
+        contacts=vehicle.contacts,
     )
 
 
@@ -248,13 +256,13 @@ def _integrate(
 
     Returns
     -------
-    series : ndarray, shape (8, n_steps + 1)
-        Rows ``w_1, w_2, u, theta`` and then their total time derivatives, at every step.
+    series : ndarray, shape (2 (n + m), n_steps + 1)
+        The vehicle's degrees of freedom and then their total time derivatives, at every step.
     elapsed_s : float
         Wall time.
     """
-    bar = system.bar_index
-    out = np.zeros((8, n_steps + 1))
+    size = system.vehicle.size
+    out = np.zeros((2 * size, n_steps + 1))
     zero = np.zeros(system.n_dof)
     start = time.perf_counter()
     state = initial_state(0.0, zero, zero.copy(), system.assemble(0.0))
@@ -265,10 +273,8 @@ def _integrate(
         tau = i * h
         if i > 0:
             state = newmark_step(state, h, system.assemble(tau))
-        contact = system.contact(tau, state.z, state.v)
-        out[0:2, i], out[4:6, i] = contact.w, contact.dw
-        if bar is not None:
-            out[2:4, i], out[6:8, i] = state.z[bar : bar + 2], state.v[bar : bar + 2]
+        response = system.response(tau, state.z, state.v)
+        out[:size, i], out[size:, i] = response.x, response.dx
         if progress is not None and i > 0 and (i % every == 0 or i == n_steps):
             progress(i / n_steps)
     return out, time.perf_counter() - start

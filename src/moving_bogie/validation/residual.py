@@ -104,7 +104,7 @@ def _green_from_roots(s: np.ndarray, roots: np.ndarray, weights: np.ndarray) -> 
 
 
 class ResidualFlexibility:
-    """``R(tau)``, the 2x2 residual flexibility of the modes ``k > N`` at the two wheels.
+    """``R(tau)``, the ``n x n`` residual flexibility of the modes ``k > N`` at the ``n`` contacts.
 
     Parameters
     ----------
@@ -112,8 +112,8 @@ class ResidualFlexibility:
         Retained ``lambda_k = k pi / L``, ``k = 1..N``.
     length : float
         Beam length ``L``.
-    d : float
-        Wheel spacing (front wheel at ``x_1 + d``).
+    offsets : array_like, shape (n,)
+        Contact positions relative to the rear contact (``(0, d)`` for the paper's bogie).
     polynomials : tuple of two ndarrays
         ``(num, den)`` of the track's moving-load symbol ``Omega = den / num``
         (:meth:`~moving_bogie.validation.track_modes.ModalTrack.symbol_polynomials`).
@@ -125,7 +125,7 @@ class ResidualFlexibility:
         self,
         wavenumbers: np.ndarray,
         length: float,
-        d: float,
+        offsets: np.ndarray,
         polynomials: tuple[np.ndarray, np.ndarray],
         where: str = "these parameters",
     ) -> None:
@@ -138,11 +138,14 @@ class ResidualFlexibility:
         self._upper = (roots[up], 1j * weights[up] * (1.0 + np.exp(2j * self.length * roots[up])))
         self._lower = (roots[~up], -1j * weights[~up])
         self._weight = np.polyval(num, wavenumbers) / (self.length * np.polyval(den, wavenumbers))
-        # The direct (translation-invariant) part depends only on x_l - x_j in {0, d, -d}.
-        shifts = np.array([0.0, d, -d])
+        # The direct (translation-invariant) part depends only on x_l - x_j, fixed by the offsets.
+        offsets = np.asarray(offsets, dtype=float)
+        self.contacts = offsets.size
+        shifts = (offsets[None, :] - offsets[:, None]).reshape(-1)
         direct_full = self._images(shifts) - 0.5 / self.length
         direct_kept = (np.exp(1j * np.outer(shifts, wavenumbers)) @ self._weight).real
-        self._direct = direct_full - direct_kept  # R for s = 0, d, -d (direct part)
+        self._direct = (direct_full - direct_kept).reshape(self.contacts, self.contacts)
+        self._upper_pairs = np.triu_indices(self.contacts)
 
     def _images(self, s: np.ndarray) -> np.ndarray:
         two_l = 2.0 * self.length
@@ -156,26 +159,30 @@ class ResidualFlexibility:
         below = np.exp(1j * np.outer(s - 2.0 * self.length, p_lo)) @ w_lo
         return (above + below).real
 
-    def matrix(self, x1: float, x2: float, phase1: np.ndarray, phase2: np.ndarray) -> np.ndarray:
-        """``R_jl`` at wheel positions ``x1`` (rear), ``x2 = x1 + d`` (front).
+    def matrix(self, positions: np.ndarray, phases: np.ndarray) -> np.ndarray:
+        """``R_jl`` at the contact positions `positions` (rear first, in the order of the offsets).
 
         Parameters
         ----------
-        x1, x2 : float
-            Wheel positions.
-        phase1, phase2 : ndarray, complex
-            ``exp(i lambda_k x_1)`` and ``exp(i lambda_k x_2)`` for the retained modes (the caller
-            has their real and imaginary parts already).
+        positions : ndarray, shape (n,)
+            Contact positions ``x_j``.
+        phases : ndarray, complex, shape (n, N)
+            ``exp(i lambda_k x_j)`` for the retained modes (the caller has their real and imaginary
+            parts already).
 
         Returns
         -------
-        ndarray, shape (2, 2)
-            Deflection at wheel ``j`` (row) per unit force at wheel ``l`` (column).
+        ndarray, shape (n, n)
+            Deflection at contact ``j`` (row) per unit force at contact ``l`` (column):
+            ``direct(x_l - x_j) - image(x_j + x_l)``.
         """
-        sums = np.array([2.0 * x1, x1 + x2, 2.0 * x2])
+        rows, cols = self._upper_pairs
+        positions = np.asarray(positions, dtype=float)
+        sums = positions[rows] + positions[cols]
         image_full = self._image_part(sums) - 0.5 / self.length
-        kept = np.stack([phase1 * phase1, phase1 * phase2, phase2 * phase2]) @ self._weight
-        image = image_full - kept.real
-        d0, dp, dm = self._direct
-        # R_jl = direct(x_l - x_j) - image(x_j + x_l); rear j = 0, front j = 1 (x_2 - x_1 = d).
-        return np.array([[d0 - image[0], dp - image[1]], [dm - image[1], d0 - image[2]]])
+        kept = (phases[rows] * phases[cols]) @ self._weight
+        upper = image_full - kept.real
+        image = np.empty((self.contacts, self.contacts))
+        image[rows, cols] = upper
+        image[cols, rows] = upper
+        return self._direct - image

@@ -120,7 +120,7 @@ def comparison_window(params: Any, finite: FiniteBeamResult, *, reflection_level
     Several branches (a rotation unknown, mass layers): see :func:`_strict_window`; the bound's single
     spectrum does not tell how the branches share a wheel's deflection.
     """
-    d = float(params.d)
+    d = finite.span
     track = ModalTrack.of(params)
     alpha = float(track.values["alpha"])
     tau = finite.tau
