@@ -229,7 +229,7 @@ def test_masses_model_one_panel(tmp_path):
 @pytest.mark.parametrize(
     "kwargs, match",
     [
-        ({"model": "force"}, "model"),
+        ({"model": "force"}, "vehicle must be one of"),
         ({"n_modes": 2}, "n_modes"),
         ({"tau_max": -1.0}, "tau_max"),
     ],
