@@ -7,7 +7,8 @@ Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_validation.py [--quick] [-
    window divided by max |closed|), wall time of the whole call and of its parts; side by side, the
    same finite beam without the static correction (the alternative: the plain 500-mode model).
    ``--tr``: the same for the Timoshenko-Rayleigh beam with the two parameter sets of Figure 8
-   (S = 10, r = 0.09 and S = 100, r = 0.03), bogie.
+   (S = 10, r = 0.09 and S = 100, r = 0.03), bogie. ``--vehicles``: the finite beam under the car
+   (four wheels, ten degrees of freedom, the generated matrices) beside the bogie, same track and modes.
 2. ``--convergence``: for each case, the largest ``relative_diff`` over the four quantities against
    the number of modes N (fixed beam: the default length of the 500-mode run, so ``k_max = N pi /
    L``), with and without the static correction. Reference: the closed form
@@ -120,11 +121,46 @@ def convergence(cases: tuple[int, ...], modes: tuple[int, ...]) -> None:
     )
 
 
+#: A car per rail on Case 7's track (dimensionless; the bogie groups of Case 7, the body about five bogies).
+CAR = dict(L_c="9", mu_c="8", J_c="60", kappa_sec="0.5", eta_sec="1")
+
+
+def vehicles(tau_max: float = 200.0) -> None:
+    """The finite beam under the car (4 wheels, 10 DOFs) beside the bogie (2 wheels, 4 DOFs), Case 7."""
+    from types import SimpleNamespace
+
+    base = table1_case(7)
+    rows = []
+    for name in ("bogie", "car"):
+        values = {key: float(value) for key, value in base.values().items()}
+        values |= {key: float(value) for key, value in CAR.items()} if name == "car" else {}
+        params = SimpleNamespace(beam="eb", track="one-layer", vehicle=name, **values)
+        start, cpu = time.perf_counter(), time.process_time()
+        r = simulate_finite_beam(params, tau_max, n_modes=500)
+        steps = round(tau_max / r.dt)
+        rows.append(
+            [
+                name,
+                f"{r.contacts}",
+                f"{len(r.responses)}",
+                f"{r.length:.1f}",
+                f"{steps}",
+                f"{time.perf_counter() - start:.2f}",
+                f"{time.process_time() - cpu:.2f}",
+                f"{1e3 * r.elapsed_s / steps:.3f}",
+            ]
+        )
+    header = ["vehicle", "wheels", "DOFs", "L", "steps", "wall s", "CPU s", "ms/step"]
+    print(f"\n## Finite beam, Case 7 track, 500 modes, static correction, tau_max = {tau_max:g}\n")
+    print(table(header, rows))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="Cases 1, 2, 7 only")
     parser.add_argument("--convergence", action="store_true", help="also the modes-vs-error table")
     parser.add_argument("--tr", action="store_true", help="only the Timoshenko-Rayleigh tables")
+    parser.add_argument("--vehicles", action="store_true", help="only the car beside the bogie")
     args = parser.parse_args()
     print(
         f"# bench_validation: {platform.python_version()}, numpy {np.__version__}, "
@@ -132,6 +168,9 @@ def main() -> None:
         f"load average {os.getloadavg()[0]:.1f}"
     )
     cases = (1, 2, 7) if args.quick else tuple(TABLE1_CASES)
+    if args.vehicles:
+        vehicles()
+        return
     if args.tr:
         for tr in ((10, "0.09"), (100, "0.03")):
             defaults("bogie", cases, tr)
