@@ -97,11 +97,13 @@ def validate(
     Parameters
     ----------
     params : DimensionlessParams or PhysicalParams
-        Euler-Bernoulli or Timoshenko-Rayleigh beam (``beam="tr"``, the finite beam of
-        :class:`~moving_bogie.validation.modal.ModalBeam` with two unknowns per mode number).
+        Any beam on any track (the finite rail of :class:`~moving_bogie.validation.modal.ModalBeam`
+        reads the model's generated per-mode blocks).
         Physical parameters are converted; the comparison is always in dimensionless tau and w / w_st.
-    model : {"bogie", "masses"}, optional
-        The bogie of Fig. 1b or the two masses of Fig. 1a.
+    model : str, optional
+        Any generated vehicle (default: the parameters' own; the paper's bogie of Fig. 1b, the two masses
+        of Fig. 1a, ...): the finite beam couples its generated matrices at its contacts and every
+        degree of freedom is compared with the closed form's response of the same name.
     n_modes : int, optional
         Modes of the finite beam (default 500, as in the paper); at least 4.
     tau_max : float, optional
