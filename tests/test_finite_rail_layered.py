@@ -44,7 +44,17 @@ def two_layer():
 
 
 @pytest.mark.parametrize(
-    "name", ["eb", "tr", "eb_two_layer", "tr_two_layer", "eb_three_layer", "tr_three_layer"]
+    "name",
+    [
+        "eb",
+        "tr",
+        "eb_axial",
+        "eb_two_layer",
+        "tr_two_layer",
+        "eb_axial_two_layer",
+        "eb_three_layer",
+        "tr_three_layer",
+    ],
 )
 def test_generated_modal_blocks_equal_the_derivation(name):
     """The generated ``modal_*`` functions against the SymPy blocks of derivations/modal.py (20 digits)."""
