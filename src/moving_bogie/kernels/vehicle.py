@@ -46,6 +46,46 @@ def distinct_offsets(positions) -> tuple[list, list]:
     return offsets, index
 
 
+def lu_factor(A):
+    """LU factors with partial pivoting of a square list of rows (numbers of any backend): (lu, perm, det).
+
+    A zero pivot (A singular to working precision) ends the elimination with det = 0.
+    """
+    N = len(A)
+    lu = [list(row) for row in A]
+    perm = list(range(N))
+    det = 1
+    for k in range(N):
+        p = max(range(k, N), key=lambda r: abs(lu[r][k]))
+        if lu[p][k] == 0:
+            return lu, perm, 0 * det
+        if p != k:
+            lu[k], lu[p] = lu[p], lu[k]
+            perm[k], perm[p] = perm[p], perm[k]
+            det = -det
+        pivot = lu[k][k]
+        det = det * pivot
+        for r in range(k + 1, N):
+            f = lu[r][k] / pivot
+            lu[r][k] = f
+            if f != 0:
+                row, top = lu[r], lu[k]
+                for c in range(k + 1, N):
+                    row[c] -= f * top[c]
+    return lu, perm, det
+
+
+def lu_solve(lu, perm, b):
+    """Solve A x = b with the factors of :func:`lu_factor` (det != 0)."""
+    N = len(lu)
+    y = [b[perm[r]] for r in range(N)]
+    for r in range(N):
+        y[r] = y[r] - sum(lu[r][c] * y[c] for c in range(r))
+    for r in range(N - 1, -1, -1):
+        y[r] = (y[r] - sum(lu[r][c] * y[c] for c in range(r + 1, N))) / lu[r][r]
+    return y
+
+
 class VehicleSystem:
     """A generated vehicle module bound to parameter values of one backend (mpmath numbers or floats).
 
@@ -82,82 +122,70 @@ class VehicleSystem:
 
     # --- one q, mpmath ----------------------------------------------------------------------------------
 
-    def _dynamic(self, q):
-        i = mpmath.mpc(0, 1)
-        N = self.size
-        D = mpmath.matrix(N, N)
-        dD = mpmath.matrix(N, N)
-        for a in range(N):
-            for b in range(N):
-                m, c, k = self.mass[a][b], self.damping[a][b], self.stiffness[a][b]
-                D[a, b] = -(q**2) * m + i * q * c + k
-                dD[a, b] = -2 * q * m + i * c
-        return D, dD
-
-    def _kmat(self, values):
-        n = self.contacts
-        return mpmath.matrix([[values[self.index[i][j]] for j in range(n)] for i in range(n)])
-
     def block(self, q, K, dK=None):
-        """(A, b, dA/dq or None, D) at one q with the kernel values ``K`` (and ``dK``) at :attr:`offsets`."""
+        """(A, b, dA/dq or None, D) at one q (lists of rows); ``K`` (``dK``) at :attr:`offsets`."""
         n, N = self.contacts, self.size
-        D, dD = self._dynamic(q)
-        Kmat = self._kmat(K)
-        A = mpmath.matrix(N, N)
-        b = mpmath.matrix(N, 1)
-        dA = mpmath.matrix(N, N) if dK is not None else None
-        dKmat = self._kmat(dK) if dK is not None else None
-        for i in range(n):
-            b[i] = 2 * mpmath.fsum(Kmat[i, k] * self.loads[k] for k in range(n))
-            for col in range(N):
-                A[i, col] = 2 * mpmath.fsum(Kmat[i, k] * D[k, col] for k in range(n))
-                if dA is not None:
-                    dA[i, col] = 2 * mpmath.fsum(
-                        dKmat[i, k] * D[k, col] + Kmat[i, k] * dD[k, col] for k in range(n)
-                    )
-            A[i, i] += mpmath.pi
-        for r in range(n, N):
-            for col in range(N):
-                A[r, col] = D[r, col]
-                if dA is not None:
-                    dA[r, col] = dD[r, col]
+        i = mpmath.mpc(0, 1)
+        D = [
+            [-(q**2) * self.mass[a][c] + i * q * self.damping[a][c] + self.stiffness[a][c] for c in range(N)]
+            for a in range(N)
+        ]
+        Kmat = [[K[self.index[r][k]] for k in range(n)] for r in range(n)]
+        A = [[sum(2 * Kmat[r][k] * D[k][c] for k in range(n)) for c in range(N)] for r in range(n)]
+        for r in range(n):
+            A[r][r] += mpmath.pi
+        A += [list(D[r]) for r in range(n, N)]
+        b = [sum(2 * Kmat[r][k] * self.loads[k] for k in range(n)) for r in range(n)] + [0] * (N - n)
+        dA = None
+        if dK is not None:
+            dD = [[-2 * q * self.mass[a][c] + i * self.damping[a][c] for c in range(N)] for a in range(N)]
+            dKmat = [[dK[self.index[r][k]] for k in range(n)] for r in range(n)]
+            dA = [
+                [sum(2 * (dKmat[r][k] * D[k][c] + Kmat[r][k] * dD[k][c]) for k in range(n)) for c in range(N)]
+                for r in range(n)
+            ]
+            dA += [list(dD[r]) for r in range(n, N)]
         return A, b, dA, D
 
     def e_chr(self, q, K):
         """E_chr(q) = det A."""
         A, _, _, _ = self.block(q, K)
-        return mpmath.det(A)
+        return lu_factor(A)[2]
 
     def value_and_derivative(self, q, K, dK):
-        """(E_chr, dE_chr/dq) by Jacobi's formula (a sum of determinants, exact at a root too)."""
+        """(E_chr, dE_chr/dq) by Jacobi's formula: dE = E tr(A^-1 dA/dq), or, where A is singular to
+        working precision, the sum over k of det(A with row k replaced by row k of dA/dq)."""
         A, _, dA, _ = self.block(q, K, dK)
-        total = mpmath.mpc(0)
+        lu, perm, E = lu_factor(A)
+        if E != 0:
+            columns = [lu_solve(lu, perm, [dA[r][k] for r in range(self.size)]) for k in range(self.size)]
+            return E, E * sum(columns[k][k] for k in range(self.size))
+        total = 0
         for k in range(self.size):
-            Ak = A.copy()
-            for col in range(self.size):
-                Ak[k, col] = dA[k, col]
-            total += mpmath.det(Ak)
-        return mpmath.det(A), total
+            total += lu_factor([dA[r] if r == k else A[r] for r in range(self.size)])[2]
+        return E, total
 
     def numerators(self, q, K) -> dict:
         """n_X = det(A with column X replaced by b) for every DOF X (Cramer's rule): X = n_X / E_chr."""
         A, b, _, _ = self.block(q, K)
+        lu, perm, E = lu_factor(A)
+        if E != 0:
+            x = lu_solve(lu, perm, b)
+            return {name: E * x[k] for k, name in enumerate(self.names)}
         out = {}
-        for x, name in enumerate(self.names):
-            Ax = A.copy()
-            for r in range(self.size):
-                Ax[r, x] = b[r]
-            out[name] = mpmath.det(Ax)
+        for k, name in enumerate(self.names):
+            Ak = [[b[r] if c == k else A[r][c] for c in range(self.size)] for r in range(self.size)]
+            out[name] = lu_factor(Ak)[2]
         return out
 
     def shape_weights(self, q, K, numerators=None, E=None) -> tuple:
         """G_j = 4 (E_chr s_j - (D n)_j): i q W~(xi, q) = sum_j G_j K(xi - xi_j) / (2 pi E_chr)."""
         A, _, _, D = self.block(q, K)
-        E = mpmath.det(A) if E is None else E
+        E = lu_factor(A)[2] if E is None else E
         nums = self.numerators(q, K) if numerators is None else numerators
         vec = [nums[name] for name in self.names]
         return tuple(
-            4 * (E * self.loads[j] - mpmath.fsum(D[j, k] * vec[k] for k in range(self.size)))
+            4 * (E * self.loads[j] - sum(D[j][k] * vec[k] for k in range(self.size)))
             for j in range(self.contacts)
         )
 
