@@ -19,7 +19,7 @@ from pathlib import Path
 import sympy as sp
 
 from . import symbols as s
-from .asymptotics import asymptotics_module
+from .asymptotics import asymptotics_module, kernel_decay
 from .emit import SCALING_PRINTER, definition_digest, function_source, module_source
 from .foundations import BEAMS, TRACKS, all_models
 from .modal import modal_blocks
@@ -90,6 +90,7 @@ def foundation_module(name, model):
         "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
     )
     si_names, scale_parameters, overrides = _track_si_names(model)
+    decay = kernel_decay(model)
     constants = [
         ("BEAM", model.beam),
         ("TRACK", model.track),
@@ -105,6 +106,7 @@ def foundation_module(name, model):
         ("GROUP_OVERRIDES", overrides),
         ("MODAL_ARGUMENTS", modal_args),
         ("MODAL_PARITY", parity),
+        ("KERNEL_DECAY", None if decay is None else str(decay.gamma)),
     ]
     digest = definition_digest(
         model.operator, *model.unknown_scales, *model.row_scales, model.description, model.si_names
@@ -405,7 +407,7 @@ def outputs(root: Path) -> dict:
     catalogue = [
         ("BEAMS", {name: beam.title for name, beam in BEAMS.items()}),
         ("TRACKS", {name: track.title for name, track in TRACKS.items()}),
-        ("VEHICLES", {name: (SYSTEMS[name].__doc__ or name).strip().splitlines()[0] for name in SYSTEMS}),
+        ("VEHICLES", {name: DECLARED[name]().description for name in DECLARED}),
         ("DECLARED_VEHICLES", {name: DECLARED[name]().description for name in DECLARED}),
         ("MODULES", {(m.beam, m.track): f"foundation_{name}" for name, m in models.items()}),
         ("FOUNDATIONS", tuple(models)),

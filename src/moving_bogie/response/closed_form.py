@@ -314,13 +314,15 @@ def deflection_shape_details(
     result = _frequencies(dimless, model, frequencies, dps, None)
     if expansion is None:
         expansion = residue_expansion(dimless, result, model, shapes=True)
-    d = float(dimless.d)
     flat = xi.reshape(-1)
     grid0 = KernelGrid(dimless, 0, dps=result.dps)
-    w = expansion.shape_steady[0] * grid0(flat) + expansion.shape_steady[1] * grid0(flat - d)
-    for q, (a_r, a_f) in zip(expansion.q_mp, expansion.shape_amplitudes):
+    # Eqs. (44)-(47) for n contacts: w(xi) = sum_j weight_j K(xi - xi_j).
+    w = sum(a * grid0(flat - x) for a, x in zip(expansion.shape_steady, expansion.positions))
+    for q, amplitudes in zip(expansion.q_mp, expansion.shape_amplitudes):
         grid = KernelGrid(dimless, q, dps=result.dps)
-        w = w + (a_r * grid(flat) + a_f * grid(flat - d)) * np.exp(1j * complex(q) * tau)
+        w = w + sum(a * grid(flat - x) for a, x in zip(amplitudes, expansion.positions)) * np.exp(
+            1j * complex(q) * tau
+        )
     scale = np.abs(w).max() if w.size else 0.0
     if w.size and np.abs(w.imag).max() > 1e-8 * max(scale, 1.0):
         raise MovingBogieError(f"deflection shape: imaginary part {np.abs(w.imag).max():.3g} does not cancel")
@@ -330,7 +332,8 @@ def deflection_shape_details(
         s_min = s_min_for(bc, expansion)
         include = mode == "on"
         if not include:
-            ref = max(abs(expansion.steady["w_rear"]), abs(expansion.steady["w_front"]), 1e-300)
+            wheels = expansion.names[: len(expansion.positions)]
+            ref = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
             until, more = branch_cut_extent(bc, tau, tol=bc_tol * ref, cap=bc_tau_cap, s_min=s_min)
             include = tau <= until
             notes += (
