@@ -26,6 +26,7 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.model.catalogue import DEFAULT_MODEL
 from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.geometry import choose_geometry, default_time_step
 from moving_bogie.validation.modal import ModalBeam, ModalSystem
@@ -165,9 +166,10 @@ def simulate_finite_beam(
         kappa_v, eta_v`` (anything ``float()`` accepts).
     tau_max : float
         End of the run.
-    model : {"bogie", "masses", "force"}, optional
-        The bogie of Fig. 1b, the two masses of Fig. 1a (``F_j = 2 - eta_M w_j''``), or two
-        constant moving forces (``F_j = 2``).
+    model : str, optional
+        The vehicle: any generated vehicle module's name (default: the parameters' own, or the paper's
+        bogie for a namespace that names none), or "force": that vehicle's wheel loads only, as constant
+        moving forces (its matrices zeroed).
     n_modes : int, optional
         Number of sine modes ``N`` (default 500, as in the paper).
     length, entry : float, optional
@@ -201,7 +203,7 @@ def simulate_finite_beam(
         correction) a run at or above the undamped critical velocity.
     """
     track, vehicle = _check(params, tau_max, model, n_modes, dt)
-    model = model or getattr(params, "vehicle", None) or "bogie"
+    model = model or getattr(params, "vehicle", None) or DEFAULT_MODEL["vehicle"]
     alpha, d = vehicle.alpha, vehicle.length
     geometry = choose_geometry(track=track, d=d, tau_max=tau_max, n_modes=n_modes, length=length, entry=entry)
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:

@@ -82,7 +82,7 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
     )
     verdict = "agree" if result.agrees else "DISAGREE"
     if title is None:
-        vehicle = "bogie" if result.model == "bogie" else "two masses"
+        vehicle = result.model
         title = f"{vehicle} ({beam_title(result.params)}): finite beam (solid) vs closed form (dashed)"
     fig.suptitle(
         f"{title}\n{result.finite.n_modes} modes, "

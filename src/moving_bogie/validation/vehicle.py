@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.model.catalogue import default_catalogue
+from moving_bogie.model.catalogue import DEFAULT_MODEL, default_catalogue
 
 __all__ = ["Vehicle", "vehicle_kernels"]
 
@@ -40,7 +40,7 @@ def vehicle_kernels(params: Any, vehicle: str | ModuleType | None = None) -> Mod
     if vehicle is None and model is not None and not isinstance(model, str):
         return model.vehicle_kernels
     catalogue = default_catalogue() if model is None or isinstance(model, str) else model.catalogue
-    name = vehicle or getattr(params, "vehicle", None) or "bogie"
+    name = vehicle or getattr(params, "vehicle", None) or DEFAULT_MODEL["vehicle"]
     declared = dict(getattr(catalogue.index, "DECLARED_VEHICLES", {}), **catalogue.index.VEHICLES)
     if name not in declared:
         raise MovingBogieError(f"vehicle must be one of {', '.join(declared)} (got {name!r})")

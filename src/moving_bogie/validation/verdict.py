@@ -161,7 +161,7 @@ class ValidationResult:
     Attributes
     ----------
     model : str
-        "bogie" or "masses".
+        The vehicle compared (its name in the catalogue).
     params : Any
         The parameters compared.
     tau : ndarray
