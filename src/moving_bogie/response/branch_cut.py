@@ -44,7 +44,7 @@ import numpy as np
 from scipy import optimize
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.characteristic import closed_form_vehicle
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import foundation_arguments, foundation_module
 from moving_bogie.response.quadrature import adapt_panels, by_bands, cis, fourier_sum, subdivide
@@ -98,7 +98,7 @@ class BranchCut:
         self._c = 4.0 - 4.0 * self.eta_f**2
         self.foundation = foundation_module(params)
         self.fargs = foundation_arguments(params, f)
-        self.vehicle = vehicle_module(model, params)
+        self.vehicle = closed_form_vehicle(model, params, "the branch-cut part")
         self.vargs = {name: getattr(f, name) for name in self.vehicle.PARAMETERS} | {"pi": np.pi}
         self.names = tuple(self.vehicle.RESPONSES)
         self.p_c = self._minimum()

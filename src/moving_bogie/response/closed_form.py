@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.kernels.characteristic import closed_form_vehicle
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.response.cut_policy import branch_cut_extent, branch_cut_mode, branch_cut_or_note, s_min_for
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
@@ -188,6 +189,7 @@ def closed_form_response(
     """
     model = model or params.vehicle
     dimless, scales = _dimensionless(params)
+    closed_form_vehicle(model, dimless, "a closed-form response")
     tau = np.asarray(tau, dtype=float)
     if scales is not None:
         tau_in = tau
@@ -302,6 +304,7 @@ def deflection_shape_details(
     """(w, branch_cut, notes): :func:`deflection_shape`, whether I_bc was included, and why not."""
     model = model or params.vehicle
     dimless, scales = _dimensionless(params)
+    closed_form_vehicle(model, dimless, "a closed-form response")
     xi = np.asarray(xi, dtype=float)
     tau = float(tau)
     if scales is not None:

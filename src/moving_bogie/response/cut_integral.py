@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.characteristic import closed_form_vehicle
 from moving_bogie.kernels.cut import CutTracer, trace_curves
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import resolve_foundation
@@ -94,7 +94,7 @@ class CurveBranchCut:
         self.tracer = CutTracer(self.module, self.fargs)
         f = params.as_float()
         self.d = f.d
-        self.vehicle = vehicle_module(model, params)
+        self.vehicle = closed_form_vehicle(model, params, "the branch-cut part")
         self.vargs = {name: getattr(f, name) for name in self.vehicle.PARAMETERS} | {"pi": np.pi}
         self.names = tuple(self.vehicle.RESPONSES)
         self.panel_tol = panel_tol
