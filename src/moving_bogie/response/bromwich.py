@@ -25,7 +25,7 @@ import numpy as np
 from scipy import integrate
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.characteristic import closed_form_vehicle
 from moving_bogie.kernels.track import TrackKernelArray
 from moving_bogie.response.quadrature import adapt_panels, subdivide
 
@@ -40,7 +40,7 @@ class BromwichResult(dict):
 
 
 def _transform(params, model):
-    vehicle = vehicle_module(model, params)
+    vehicle = closed_form_vehicle(model, params, "the Bromwich inversion")
     kernel = TrackKernelArray(params)
     f = params.as_float()
     args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
@@ -79,7 +79,7 @@ def bromwich_shape(
     model = model or params.vehicle
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
-    vehicle = vehicle_module(model, params)
+    vehicle = closed_form_vehicle(model, params, "the Bromwich inversion")
     kernel = TrackKernelArray(params)
     f = params.as_float()
     args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
@@ -265,7 +265,7 @@ def _line_setup(params, tau, a, model, foundation):
     tau = np.atleast_1d(np.asarray(tau, dtype=float))
     if np.any(tau <= 0) or not np.all(np.isfinite(tau)):
         raise MovingBogieError("bromwich_line needs finite tau > 0")
-    vehicle = vehicle_module(model, params)
+    vehicle = closed_form_vehicle(model, params, "the Bromwich inversion")
     f = params.as_float()
     args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
     return tau, vehicle, TrackKernelArray(params, foundation=foundation), args, f.d
