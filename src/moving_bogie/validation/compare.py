@@ -198,8 +198,15 @@ def validate(
             f"k_max = {finite.k_max:.2f} < {MIN_CORRECTED_WAVENUMBER:g}: the truncated modes are not much "
             "faster than the forcing, so the static correction is unreliable; use more modes"
         )
+    units = getattr(vehicle_kernels(params, model), "UNITS", {})
+    closed_all = {attr: series(closed, attr, tau.size)[inside] for attr in names.values()}
+    kinds: dict[str, float] = {}
+    for attr, values in closed_all.items():
+        if np.all(np.isfinite(values)):
+            unit = units.get(attr, attr)
+            kinds[unit] = max(kinds.get(unit, 0.0), float(np.max(np.abs(values))))
     for name, attr in names.items():
-        closed_x = series(closed, attr, tau.size)[inside]
+        closed_x = closed_all[attr]
         if not np.all(np.isfinite(closed_x)):
             notes.append(f"closed form {attr} is not finite everywhere in the window")
         quantities[name] = compare_series(
@@ -208,6 +215,7 @@ def validate(
             closed_x,
             tol,
             None if reference is None else series(reference, attr, tau.size)[inside],
+            kinds.get(units.get(attr, attr), 0.0),
         )
     if progress is not None:
         progress(1.0)
