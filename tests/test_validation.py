@@ -202,7 +202,8 @@ def test_perturbed_closed_form_fails(monkeypatch):
 
     def perturbed(*args, **kwargs):
         names = ("w_rear", "w_front", "u", "theta")
-        return dataclasses.replace(ts, **{k: 1.02 * getattr(ts, k) for k in names})
+        responses = {k: 1.02 * v for k, v in ts.responses.items()}  # every response, by DOF name
+        return dataclasses.replace(ts, responses=responses, **{k: 1.02 * getattr(ts, k) for k in names})
 
     monkeypatch.setattr(closed_form, "closed_form_response", perturbed)
     result = validate(params, tau_max=40.0, estimate=False)
