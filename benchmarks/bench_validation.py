@@ -8,7 +8,8 @@ Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_validation.py [--quick] [-
    same finite beam without the static correction (the alternative: the plain 500-mode model).
    ``--tr``: the same for the Timoshenko-Rayleigh beam with the two parameter sets of Figure 8
    (S = 10, r = 0.09 and S = 100, r = 0.03), bogie. ``--vehicles``: the finite beam under the car
-   (four wheels, ten degrees of freedom, the generated matrices) beside the bogie, same track and modes.
+   (four wheels, ten degrees of freedom, the generated matrices) beside the bogie, same track and modes;
+   then ``validate`` for ``examples/car.toml`` beside its bogie alone (``--quick``: tau_max 40).
 2. ``--convergence``: for each case, the largest ``relative_diff`` over the four quantities against
    the number of modes N (fixed beam: the default length of the 500-mode run, so ``k_max = N pi /
    L``), with and without the static correction. Reference: the closed form
@@ -155,6 +156,47 @@ def vehicles(tau_max: float = 200.0) -> None:
     print(table(header, rows))
 
 
+def validate_vehicles(tau_max: float | None = None) -> None:
+    """``validate`` (finite beam and closed form) for examples/car.toml and for its bogie alone, same run."""
+    from pathlib import Path
+
+    from moving_bogie.model.files import load_params_file
+
+    car = load_params_file(Path(__file__).resolve().parents[1] / "examples" / "car.toml")[0]
+    car = car.to_dimensionless()
+    rows = []
+    for name in ("bogie", "car"):
+        params = car.replace(vehicle=name)
+        start, cpu = time.perf_counter(), time.process_time()
+        r = validate(params, tau_max=tau_max, estimate=False)
+        rows.append(
+            [
+                name,
+                f"{len(r.quantities)}",
+                f"{r.tau[-1]:g}",
+                f"{100 * max(r.relative_diff.values()):.4f}",
+                "agree" if r.agrees else "DISAGREE",
+                f"{r.finite_beam_s:.2f}",
+                f"{r.closed_form_s:.2f}",
+                f"{time.perf_counter() - start:.2f}",
+                f"{time.process_time() - cpu:.2f}",
+            ]
+        )
+    header = [
+        "vehicle",
+        "quantities",
+        "tau_max",
+        "max rel. diff %",
+        "verdict",
+        "finite s",
+        "closed s",
+        "wall s",
+        "CPU s",
+    ]
+    print("\n## validate, examples/car.toml (SI, per rail) and its bogie alone, 500 modes\n")
+    print(table(header, rows))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="Cases 1, 2, 7 only")
@@ -170,6 +212,7 @@ def main() -> None:
     cases = (1, 2, 7) if args.quick else tuple(TABLE1_CASES)
     if args.vehicles:
         vehicles()
+        validate_vehicles(40.0 if args.quick else None)
         return
     if args.tr:
         for tr in ((10, "0.09"), (100, "0.03")):

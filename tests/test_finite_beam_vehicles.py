@@ -9,11 +9,14 @@ References, independent of the vehicle coupling they check:
   interact only through the rail, and with the bogies far apart on a damped track each of them moves as the
   bogie alone;
 * one wheel under a sprung mass with a rigid spring (``kappa_v`` large) against one moving mass of the
-  total mass: the classical moving mass.
+  total mass: the classical moving mass;
+* the car's closed form (residues and branch cut from the block system of its generated matrices), which
+  shares no code with the modal expansion, for ``validate``.
 """
 
 from __future__ import annotations
 
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -108,3 +111,27 @@ def test_oscillator_with_a_rigid_spring_is_the_moving_mass():
     scale = np.max(np.abs(alone.w))
     assert np.max(np.abs(sprung.w - alone.w)) < 1e-2 * scale
     assert np.max(np.abs(sprung.u - alone.w)) < 1e-2 * scale
+
+
+@pytest.mark.slow
+def test_validate_car_agrees_with_the_closed_form():
+    # Reference: the closed form of the car (residues at its induced frequencies and the branch-cut part,
+    # from the block system of its generated matrices), examples/car.toml (SI, per rail), tau <= 40.
+    from moving_bogie.model.files import load_params_file
+    from moving_bogie.validation.compare import validate
+
+    params = load_params_file(Path(__file__).resolve().parents[1] / "examples" / "car.toml")[0]
+    result = validate(params, tau_max=40.0, estimate=False)
+    assert set(result.quantities) == {
+        "w_1",
+        "w_2",
+        "w_3",
+        "w_4",
+        "u_b1",
+        "theta_b1",
+        "u_b2",
+        "theta_b2",
+        "u_c",
+        "theta_c",
+    }
+    assert result.agrees and max(result.relative_diff.values()) < 2e-3, result.relative_diff
