@@ -163,7 +163,6 @@ def validate_vehicles(tau_max: float | None = None) -> None:
     from moving_bogie.model.files import load_params_file
 
     car = load_params_file(Path(__file__).resolve().parents[1] / "examples" / "car.toml")[0]
-    car = car.to_dimensionless()
     rows = []
     for name in ("bogie", "car"):
         params = car.replace(vehicle=name)
