@@ -169,3 +169,42 @@ def test_rigid_oscillator_is_the_moving_mass():
         for q in seen:
             qo = mpmath.findroot(Eo, q, tol=1e-25, maxsteps=60)
             assert abs(qo - q) < 1e-6 * abs(q), (q, qo)
+
+
+def test_car_steady_state_against_quadrature():
+    """Eq. (39) for the car: n_X(0) / E_chr(0) against the static solution written out by hand.
+
+    The loads P act at the wheels, so in the steady state no suspension is strained: each wheel carries 2
+    and W_i = (4 / pi) sum_j K(xi_i - xi_j, 0) (Eq. (28)), with K(xi, 0) by adaptive quadrature of
+    e^{i p xi} Q / N over real p (mpmath.quad, not the residues); each bogie follows its wheels rigidly and
+    the body its bogies.
+    """
+    params, _ = load_params_file(EXAMPLES / "car.toml")
+    chr_ = Characteristic(params)
+    with mpmath.workdps(20):
+        zero = mpmath.mpc(0)
+        kv = chr_.kernel_values(zero)
+        E0 = chr_.system.e_chr(zero, kv.K)
+        steady = {name: n / E0 for name, n in chr_.numerators(zero, kv).items()}
+        xi = [mpmath.mpf(x) for x in chr_.system.positions]
+        track = chr_.kernel.module
+        args = chr_.kernel.arguments()
+        n = [mpmath.mpc(c) for c in track.n_coeffs(zero, **args)]
+        qc = [mpmath.mpc(c) for c in track.q_coeffs(zero, **args)]
+
+        def K(x):
+            f = lambda p: mpmath.exp(1j * p * x) * mpmath.polyval(qc, p) / mpmath.polyval(n, p)  # noqa: E731
+            # unit panels: e^{i p xi} oscillates about three times per panel at the largest offset
+            return mpmath.quad(f, [-mpmath.inf, *range(-60, 61), mpmath.inf])
+
+        for i in range(4):
+            W = 4 / mpmath.pi * mpmath.fsum(K(xi[i] - xi[j]) for j in range(4))
+            # the quadrature's absolute accuracy at the offsets L_c, L_c + d is about 1e-7
+            assert abs(steady[f"w_{i + 1}"] - W) < 1e-6 * abs(W)
+    w = [steady[f"w_{i + 1}"] for i in range(4)]
+    d, L = xi[1], xi[2]
+    for b, (rear, front) in enumerate(((w[0], w[1]), (w[2], w[3])), start=1):
+        assert abs(steady[f"u_b{b}"] - (rear + front) / 2) < 1e-12
+        assert abs(steady[f"theta_b{b}"] - (front - rear) / d) < 1e-12
+    assert abs(steady["u_c"] - (steady["u_b1"] + steady["u_b2"]) / 2) < 1e-12
+    assert abs(steady["theta_c"] - (steady["u_b2"] - steady["u_b1"]) / L) < 1e-12
