@@ -133,7 +133,8 @@ def bromwich_response(
     ----------
     params : DimensionlessParams
     tau : array_like of float, >= 0
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     a : float
         Distance of the Bromwich line Im q = -a below the real axis; must exceed -Im q of every unstable
         induced frequency (the caller's responsibility: this function does not look for them).
@@ -188,7 +189,7 @@ def bromwich_line(
     params,
     tau,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     a: float = 0.02,
     s_max: float = 400.0,
     panel_tol: float = 1e-14,
@@ -229,7 +230,7 @@ def bromwich_line_shape(
     xi,
     tau: float,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     a: float = 0.02,
     s_max: float = 400.0,
     panel_tol: float = 1e-14,

@@ -172,7 +172,8 @@ def induced_frequencies(
     Parameters
     ----------
     params : DimensionlessParams
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     dps : int
         Working precision (decimal digits) of the polished roots.
     extra_dps : int, optional
