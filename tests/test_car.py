@@ -208,3 +208,30 @@ def test_car_steady_state_against_quadrature():
         assert abs(steady[f"theta_b{b}"] - (front - rear) / d) < 1e-12
     assert abs(steady["u_c"] - (steady["u_b1"] + steady["u_b2"]) / 2) < 1e-12
     assert abs(steady["theta_c"] - (steady["u_b2"] - steady["u_b1"]) / L) < 1e-12
+
+
+@pytest.mark.slow
+def test_car_on_two_layers_resolves_a_pair_1e13_apart():
+    """On the two-layer track the bogies' pair is 7e-14 apart: both members found, polished, counted."""
+    params, _ = load_params_file(EXAMPLES / "car-two-layer.toml")
+    result = induced_frequencies(params, dps=20)
+    assert result.count_ok and result.verdict.state == "stable"
+    assert all(r.multiplicity == 1 for r in result.roots)
+    qs = [complex(r.q) for r in result.roots]
+    gaps = sorted(abs(a - b) for i, a in enumerate(qs) for b in qs[:i])
+    assert gaps[0] < 1e-12
+    # Reference: Newton at 60 digits from either side of the pair converges to two roots 7e-14 apart.
+    pair = [q for q in qs if min(abs(q - o) for o in qs if o != q) == gaps[0]]
+    precise = Characteristic(params)
+    ends = []
+    with mpmath.workdps(60):
+        centre = mpmath.mpc(sum(pair) / 2)
+        for side in (1, -1):
+            q = centre + side * 1e-7 * (pair[0] - pair[1]) / abs(pair[0] - pair[1])
+            for _ in range(60):  # plain Newton, linear until it is within the pair's distance
+                E, dE = precise.value_and_derivative(q)
+                q -= E / dE
+            ends.append(q)
+    assert abs(ends[0] - ends[1]) > 1e-15
+    for q in pair:
+        assert min(abs(q - complex(e)) for e in ends) < 1e-16
