@@ -235,3 +235,20 @@ def test_car_on_two_layers_resolves_a_pair_1e13_apart():
     assert abs(ends[0] - ends[1]) > 1e-15
     for q in pair:
         assert min(abs(q - complex(e)) for e in ends) < 1e-16
+
+
+@pytest.mark.slow
+def test_car_time_series_against_bromwich():
+    """Every response of the car in closed form (residues at the 11 pairs + branch cut, Eqs. (35)-(43))
+    against the direct quadrature of the Bromwich integral on Im q = -a (no residues, no cut)."""
+    from moving_bogie.response.bromwich import bromwich_line
+    from moving_bogie.response.closed_form import closed_form_response
+
+    params, _ = load_params_file(EXAMPLES / "car.toml")
+    tau = np.array([5.0, 20.0, 60.0])
+    series = closed_form_response(params, tau, dps=20)
+    reference = bromwich_line(params, tau)
+    assert set(series.responses) == set(reference) and len(series.responses) == 10
+    for name, values in series.responses.items():
+        scale = max(np.max(np.abs(reference[name])), 1e-3)  # rotations are small: compare with w ~ 1
+        assert np.max(np.abs(values - reference[name].real)) < 1e-6 * scale, name
