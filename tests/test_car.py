@@ -169,3 +169,86 @@ def test_rigid_oscillator_is_the_moving_mass():
         for q in seen:
             qo = mpmath.findroot(Eo, q, tol=1e-25, maxsteps=60)
             assert abs(qo - q) < 1e-6 * abs(q), (q, qo)
+
+
+def test_car_steady_state_against_quadrature():
+    """Eq. (39) for the car: n_X(0) / E_chr(0) against the static solution written out by hand.
+
+    The loads P act at the wheels, so in the steady state no suspension is strained: each wheel carries 2
+    and W_i = (4 / pi) sum_j K(xi_i - xi_j, 0) (Eq. (28)), with K(xi, 0) by adaptive quadrature of
+    e^{i p xi} Q / N over real p (mpmath.quad, not the residues); each bogie follows its wheels rigidly and
+    the body its bogies.
+    """
+    params, _ = load_params_file(EXAMPLES / "car.toml")
+    chr_ = Characteristic(params)
+    with mpmath.workdps(20):
+        zero = mpmath.mpc(0)
+        kv = chr_.kernel_values(zero)
+        E0 = chr_.system.e_chr(zero, kv.K)
+        steady = {name: n / E0 for name, n in chr_.numerators(zero, kv).items()}
+        xi = [mpmath.mpf(x) for x in chr_.system.positions]
+        track = chr_.kernel.module
+        args = chr_.kernel.arguments()
+        n = [mpmath.mpc(c) for c in track.n_coeffs(zero, **args)]
+        qc = [mpmath.mpc(c) for c in track.q_coeffs(zero, **args)]
+
+        def K(x):
+            f = lambda p: mpmath.exp(1j * p * x) * mpmath.polyval(qc, p) / mpmath.polyval(n, p)  # noqa: E731
+            # unit panels: e^{i p xi} oscillates about three times per panel at the largest offset
+            return mpmath.quad(f, [-mpmath.inf, *range(-60, 61), mpmath.inf])
+
+        for i in range(4):
+            W = 4 / mpmath.pi * mpmath.fsum(K(xi[i] - xi[j]) for j in range(4))
+            # the quadrature's absolute accuracy at the offsets L_c, L_c + d is about 1e-7
+            assert abs(steady[f"w_{i + 1}"] - W) < 1e-6 * abs(W)
+    w = [steady[f"w_{i + 1}"] for i in range(4)]
+    d, L = xi[1], xi[2]
+    for b, (rear, front) in enumerate(((w[0], w[1]), (w[2], w[3])), start=1):
+        assert abs(steady[f"u_b{b}"] - (rear + front) / 2) < 1e-12
+        assert abs(steady[f"theta_b{b}"] - (front - rear) / d) < 1e-12
+    assert abs(steady["u_c"] - (steady["u_b1"] + steady["u_b2"]) / 2) < 1e-12
+    assert abs(steady["theta_c"] - (steady["u_b2"] - steady["u_b1"]) / L) < 1e-12
+
+
+@pytest.mark.slow
+def test_car_on_two_layers_resolves_a_pair_1e13_apart():
+    """On the two-layer track the bogies' pair is 7e-14 apart: both members found, polished, counted."""
+    params, _ = load_params_file(EXAMPLES / "car-two-layer.toml")
+    result = induced_frequencies(params, dps=20)
+    assert result.count_ok and result.verdict.state == "stable"
+    assert all(r.multiplicity == 1 for r in result.roots)
+    qs = [complex(r.q) for r in result.roots]
+    gaps = sorted(abs(a - b) for i, a in enumerate(qs) for b in qs[:i])
+    assert gaps[0] < 1e-12
+    # Reference: Newton at 60 digits from either side of the pair converges to two roots 7e-14 apart.
+    pair = [q for q in qs if min(abs(q - o) for o in qs if o != q) == gaps[0]]
+    precise = Characteristic(params)
+    ends = []
+    with mpmath.workdps(60):
+        centre = mpmath.mpc(sum(pair) / 2)
+        for side in (1, -1):
+            q = centre + side * 1e-7 * (pair[0] - pair[1]) / abs(pair[0] - pair[1])
+            for _ in range(60):  # plain Newton, linear until it is within the pair's distance
+                E, dE = precise.value_and_derivative(q)
+                q -= E / dE
+            ends.append(q)
+    assert abs(ends[0] - ends[1]) > 1e-15
+    for q in pair:
+        assert min(abs(q - complex(e)) for e in ends) < 1e-16
+
+
+@pytest.mark.slow
+def test_car_time_series_against_bromwich():
+    """Every response of the car in closed form (residues at the 11 pairs + branch cut, Eqs. (35)-(43))
+    against the direct quadrature of the Bromwich integral on Im q = -a (no residues, no cut)."""
+    from moving_bogie.response.bromwich import bromwich_line
+    from moving_bogie.response.closed_form import closed_form_response
+
+    params, _ = load_params_file(EXAMPLES / "car.toml")
+    tau = np.array([5.0, 20.0, 60.0])
+    series = closed_form_response(params, tau, dps=20)
+    reference = bromwich_line(params, tau)
+    assert set(series.responses) == set(reference) and len(series.responses) == 10
+    for name, values in series.responses.items():
+        scale = max(np.max(np.abs(reference[name])), 1e-3)  # rotations are small: compare with w ~ 1
+        assert np.max(np.abs(values - reference[name].real)) < 1e-6 * scale, name

@@ -37,7 +37,7 @@ def vehicle_module(model: str | None, params=None):
 def closed_form_vehicle(model: str | None, params, what: str):
     """The vehicle's generated module for a tool that still evaluates E_chr of Eq. (38) in closed form.
 
-    Such tools (the Bromwich check, stability sweeps, ball-arithmetic proofs) use
+    Such tools (stability sweeps, ball-arithmetic proofs) use
     ``e_chr``, ``numerators`` and ``shape_weights`` in K(0), K(+-d); only the vehicles that
     ``derivations/system.py`` derives in that form have them.
 

@@ -67,7 +67,8 @@ class SweepCharacteristic:
         Everything but alpha, the spacing d (when given per point) and ``parameter`` is taken from here;
         with ``parameter="eta_M"`` the bar's mass and inertia follow the wheel mass with the coefficients
         cf1, cf2 of ``params`` (Eq. (63)).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     parameter : str
         The vehicle parameter swept (default eta_M).
     foundation : module or Foundation, optional

@@ -46,6 +46,10 @@ def distinct_offsets(positions) -> tuple[list, list]:
     return offsets, index
 
 
+def _zero(x) -> bool:
+    return isinstance(x, int) and x == 0
+
+
 def lu_factor(A):
     """LU factors with partial pivoting of a square list of rows (numbers of any backend): (lu, perm, det).
 
@@ -125,19 +129,30 @@ class VehicleSystem:
     def block(self, q, K, dK=None):
         """(A, b, dA/dq or None, D) at one q (lists of rows); ``K`` (``dK``) at :attr:`offsets`."""
         n, N = self.contacts, self.size
-        i = mpmath.mpc(0, 1)
+        q2, iq = q**2, mpmath.mpc(0, 1) * q
+
+        def entry(m, c, k):  # exact 0 where the vehicle has no coupling, so that sums can skip it
+            terms = [
+                t for t in (-q2 * m if m else 0, iq * c if c else 0, k) if not (isinstance(t, int) and t == 0)
+            ]
+            return sum(terms[1:], terms[0]) if terms else 0
+
         D = [
-            [-(q**2) * self.mass[a][c] + i * q * self.damping[a][c] + self.stiffness[a][c] for c in range(N)]
+            [entry(self.mass[a][c], self.damping[a][c], self.stiffness[a][c]) for c in range(N)]
             for a in range(N)
         ]
         Kmat = [[K[self.index[r][k]] for k in range(n)] for r in range(n)]
-        A = [[sum(2 * Kmat[r][k] * D[k][c] for k in range(n)) for c in range(N)] for r in range(n)]
+        A = [
+            [sum((2 * Kmat[r][k] * D[k][c] for k in range(n) if not _zero(D[k][c])), 0) for c in range(N)]
+            for r in range(n)
+        ]
         for r in range(n):
             A[r][r] += mpmath.pi
         A += [list(D[r]) for r in range(n, N)]
         b = [sum(2 * Kmat[r][k] * self.loads[k] for k in range(n)) for r in range(n)] + [0] * (N - n)
         dA = None
         if dK is not None:
+            i = mpmath.mpc(0, 1)
             dD = [[-2 * q * self.mass[a][c] + i * self.damping[a][c] for c in range(N)] for a in range(N)]
             dKmat = [[dK[self.index[r][k]] for k in range(n)] for r in range(n)]
             dA = [
@@ -192,9 +207,11 @@ class VehicleSystem:
     # --- arrays of q, numpy -------------------------------------------------------------------------------
 
     def _dynamic_array(self, q):
-        M = np.array(self.mass, dtype=float)
-        C = np.array(self.damping, dtype=float)
-        Kv = np.array(self.stiffness, dtype=float)
+        if not hasattr(self, "_float_matrices"):
+            self._float_matrices = tuple(
+                np.array(A, dtype=float) for A in (self.mass, self.damping, self.stiffness)
+            )
+        M, C, Kv = self._float_matrices
         qq = q[..., None, None]
         return -(qq**2) * M + 1j * qq * C + Kv, -2 * qq * M + 1j * C
 
@@ -204,19 +221,14 @@ class VehicleSystem:
         n = self.contacts
         D, dD = self._dynamic_array(q)
         shape = q.shape
-        Kmat = np.empty(shape + (n, n), dtype=complex)
-        for i in range(n):
-            for j in range(n):
-                Kmat[..., i, j] = np.broadcast_to(K[self.index[i][j]], shape)
+        index = np.array(self.index)
+        Kmat = np.stack([np.broadcast_to(k, shape) for k in K], axis=-1)[..., index]
         A = D.copy()
         A[..., :n, :] = 2 * Kmat @ D[..., :n, :]
         A[..., range(n), range(n)] += np.pi
         if dK is None:
             return A, None
-        dKmat = np.empty_like(Kmat)
-        for i in range(n):
-            for j in range(n):
-                dKmat[..., i, j] = np.broadcast_to(dK[self.index[i][j]], shape)
+        dKmat = np.stack([np.broadcast_to(k, shape) for k in dK], axis=-1)[..., index]
         dA = dD.copy()
         dA[..., :n, :] = 2 * (dKmat @ D[..., :n, :] + Kmat @ dD[..., :n, :])
         return A, dA

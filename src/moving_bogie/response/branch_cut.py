@@ -75,7 +75,8 @@ class BranchCut:
     ----------
     params : DimensionlessParams
         Euler-Bernoulli beam (``beam="eb"``), subcritical (the cut leaves a gap around q = 0).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     panel_tol : float
         Absolute tolerance per panel of the adaptive partition of the cut (:meth:`base_edges`).
 

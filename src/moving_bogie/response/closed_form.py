@@ -168,7 +168,8 @@ def closed_form_response(
         With physical parameters, ``tau`` is the time t in seconds and the results are in m and rad.
     tau : array_like of float, >= 0
         Times (dimensionless tau = t sqrt(k_f/m), Eq. (16), unless physical parameters are given).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     frequencies : FrequencyResult, optional
         Precomputed induced frequencies (same params and model); computed at ``dps`` if omitted.
     branch_cut : True, False or "auto"

@@ -60,7 +60,7 @@ _CHUNK = 20000
 _REAL_TOL = 1e-12
 
 
-def branch_cut_for(params, model: str = "bogie", *, foundation=None):
+def branch_cut_for(params, model: str | None = None, *, foundation=None):
     """The branch-cut integral of ``params``: :class:`BranchCut` for the Euler-Bernoulli beam below the
     critical velocity (its cut is a half-line, integrated in closed geometry), :class:`CurveBranchCut` for
     any other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut
@@ -87,7 +87,7 @@ class CurveBranchCut:
         an undamped layered track), or a curve stays bounded in Re q > 0 (a layered track at alpha = 0).
     """
 
-    def __init__(self, params, model: str = "bogie", *, foundation=None, panel_tol: float = 1e-13):
+    def __init__(self, params, model: str | None = None, *, foundation=None, panel_tol: float = 1e-13):
         self.params, self.model = params, model
         track = resolve_foundation(params, foundation)
         self.module = track.module

@@ -151,7 +151,8 @@ def residue_expansion(
     params : DimensionlessParams
     frequencies : FrequencyResult
         From :func:`moving_bogie.roots.frequencies.induced_frequencies` for the same params and model.
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     shapes : bool
         Also compute the shape weights of Eqs. (44)-(47) (needed by :func:`deflection_shape`).
 

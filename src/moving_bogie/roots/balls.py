@@ -140,7 +140,8 @@ class BallCharacteristic:
     Parameters
     ----------
     params : DimensionlessParams
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     prec : int
         Working precision in bits; every call runs at it (the p-roots are approximated to it too).
     """
