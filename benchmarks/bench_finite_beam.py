@@ -25,6 +25,7 @@ from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.geometry import choose_geometry
 from moving_bogie.validation.modal import ModalBeam, ModalSystem, Vehicle
 from moving_bogie.validation.newmark import effective_matrix_dense
+from moving_bogie.validation.track_modes import ModalTrack
 
 CASE_1 = table1_case(1)
 
@@ -51,9 +52,10 @@ def run_row(label: str, tau_max: float, n_modes: int, model: str, correction: bo
 
 def dense_row(n_modes: int, repeats: int = 20) -> list[str]:
     """Per-step cost of a dense solve of the same effective matrix (what Woodbury avoids)."""
-    geometry = choose_geometry(alpha=0.8, eta_f=0.1, eta_s=0.0, d=1.0, tau_max=400.0, n_modes=n_modes)
+    track = ModalTrack.of(table1_case(1))  # Case 1: alpha = 0.8, eta_f = 0.1
+    geometry = choose_geometry(track=track, d=1.0, tau_max=400.0, n_modes=n_modes)
     vehicle = Vehicle("bogie", 20.0, 1.0, 34.0, 0.2, 0.02, 0.0, 0.8, geometry.entry)
-    system = ModalSystem(ModalBeam(geometry.length, n_modes, 0.1), vehicle)
+    system = ModalSystem(ModalBeam(geometry.length, n_modes, track), vehicle)
     start = time.perf_counter()
     for i in range(repeats):
         matrices = system.assemble(0.01 * i)

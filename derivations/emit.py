@@ -83,9 +83,10 @@ def definition_digest(*definitions) -> str:
     return h.hexdigest()
 
 
-def function_source(name, args, outputs, doc, preamble=(), *, scalar=False, printer=PRINTER):
+def function_source(name, args, outputs, doc, preamble=(), *, scalar=False, printer=PRINTER, columns=None):
     """One function: ``preamble`` is a list of (symbol, expression) evaluated first (e.g. B1..B4 of
-    Eq. (37)); ``outputs`` a list of expressions returned as a tuple (alone if ``scalar``)."""
+    Eq. (37)); ``outputs`` a list of expressions returned as a tuple (alone if ``scalar``), or, with
+    ``columns``, a row-major matrix returned as a tuple of rows (nested tuples)."""
     # Compare by name: the derivation's symbols carry assumptions (positive=True), arguments are names.
     allowed = set(args) | {str(sym) for sym, _ in preamble}
     for k, e in enumerate(outputs):
@@ -104,6 +105,12 @@ def function_source(name, args, outputs, doc, preamble=(), *, scalar=False, prin
         lines.append(f"    {sym} = {printer.doprint(e)}")
     if scalar:
         lines.append(f"    return {printer.doprint(reduced[0])}")
+    elif columns:
+        lines.append("    return (")
+        for i in range(0, len(reduced), columns):
+            row = ", ".join(printer.doprint(e) for e in reduced[i : i + columns])
+            lines.append(f"        ({row},),")
+        lines.append("    )")
     else:
         lines.append("    return (")
         lines.extend(f"        {printer.doprint(e)}," for e in reduced)

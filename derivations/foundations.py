@@ -17,7 +17,26 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .symbols import EI, GA, c_2, c_3, c_f, chi, dt, dx, k_2, k_3, k_f, k_s, m, m_2, m_3, r_g, w_st
+from .symbols import (
+    EI,
+    GA,
+    N_ax,
+    c_2,
+    c_3,
+    c_f,
+    chi,
+    dt,
+    dx,
+    k_2,
+    k_3,
+    k_f,
+    k_s,
+    m,
+    m_2,
+    m_3,
+    r_g,
+    w_st,
+)
 
 
 @dataclass(frozen=True)
@@ -78,6 +97,14 @@ BEAMS = {
         sp.Matrix([[-GA * dx**2 + m * dt**2, GA * dx], [-GA * dx, GA + m * r_g**2 * dt**2 - EI * dx**2]]),
         (w_st, w_st * chi),
         (4 / (k_f * w_st), 2 / (sp.sqrt(k_f * EI) * w_st * chi)),
+    ),
+    # Eq. (A1): a compressive axial force N (the thermal force E A alpha_T dT of a continuous welded rail)
+    # adds N w_xx to Eq. (1) (A. V. Metrikine and H. A. Dieterman, J. Sound Vib. 201(5), 567-576, 1997).
+    "eb_axial": Beam(
+        "Euler-Bernoulli beam under an axial compressive force N, Eq. (A1)",
+        sp.Matrix([[EI * dx**4 + N_ax * dx**2 + m * dt**2]]),
+        (w_st,),
+        (4 / (k_f * w_st),),
     ),
 }
 

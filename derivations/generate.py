@@ -4,7 +4,9 @@ Into src/moving_bogie/generated/:
 foundation_<name>.py  coefficients (highest power first) of N(p, q), dN/dq, Q(p, q), dQ/dq in p; the
                       model's beam, track, parameters and degrees; the per-mode mass, damping and stiffness
                       blocks of the simply supported finite rail (validation)
-vehicle_<name>.py     E_chr, its partial derivatives, residue numerators and shape weights; its parameters
+vehicle_<name>.py     the declared vehicle (derivations/vehicles.py): contacts, DOFs, units, M, C, K, contact
+                      positions, static loads; for bogie and masses also E_chr, its partial derivatives,
+                      residue numerators and shape weights
 parameters.py         every dimensionless group: meaning, constraint, default, equation, SI name and unit,
                       the exact SI <-> dimensionless scaling, the scales of Eqs. (15)-(16), Eq. (63)
 __init__.py           the catalogue: beams, tracks, vehicles and which module holds each combination
@@ -17,13 +19,15 @@ from pathlib import Path
 import sympy as sp
 
 from . import symbols as s
-from .asymptotics import asymptotics_module
+from .asymptotics import asymptotics_module, kernel_decay
 from .emit import SCALING_PRINTER, definition_digest, function_source, module_source
 from .foundations import BEAMS, TRACKS, all_models
 from .modal import modal_blocks
 from .model import foundation_image
 from .paper import all_proofs
 from .system import SYSTEMS, in_q
+from .vehicles import VEHICLES as DECLARED
+from .vehicles import assemble
 
 HERE = Path(__file__).resolve().parent
 #: Where the kernels go, relative to the repository root: inside the package, so the source tree imports.
@@ -86,6 +90,7 @@ def foundation_module(name, model):
         "K(xi, q) = integral over real p of exp(i p xi) Q / N dp (Eq. (29))."
     )
     si_names, scale_parameters, overrides = _track_si_names(model)
+    decay = kernel_decay(model)
     constants = [
         ("BEAM", model.beam),
         ("TRACK", model.track),
@@ -101,6 +106,7 @@ def foundation_module(name, model):
         ("GROUP_OVERRIDES", overrides),
         ("MODAL_ARGUMENTS", modal_args),
         ("MODAL_PARITY", parity),
+        ("KERNEL_DECAY", None if decay is None else str(decay.gamma)),
     ]
     digest = definition_digest(
         model.operator, *model.unknown_scales, *model.row_scales, model.description, model.si_names
@@ -137,7 +143,79 @@ def _track_si_names(model):
     return renames, scale_parameters, overrides
 
 
+def matrix_parts(matrices) -> list:
+    """The shared vehicle interface: contact positions, static loads and the M, C, K matrices."""
+    args = tuple(str(x) for x in matrices.parameters)
+    n = len(matrices.dofs)
+    parts = [
+        function_source(
+            "contact_positions",
+            args,
+            list(matrices.positions),
+            "Dimensionless contact positions xi_j = chi x_j of the wheels, rear wheel at 0 (Eq. (16)).",
+        ),
+        function_source(
+            "static_loads",
+            args,
+            list(matrices.loads),
+            "Constant wheel loads in units of k_f w_st / chi (2 for the load P of Eq. (16)).",
+        ),
+    ]
+    for label, matrix, what in (
+        ("mass", matrices.mass, "M"),
+        ("damping", matrices.damping, "C"),
+        ("stiffness", matrices.stiffness, "K"),
+    ):
+        parts.append(
+            function_source(
+                f"{label}_matrix",
+                args,
+                list(matrix),
+                f"{what} of the vehicle (DOFS order, symmetric); f_j = static_j - (M x'' + C x' + K x)_j.",
+                columns=n,
+            )
+        )
+    return parts
+
+
 def vehicle_module(name):
+    declared = DECLARED[name]()
+    matrices = assemble(declared)
+    params = tuple(str(x) for x in matrices.parameters)
+    parts = matrix_parts(matrices)
+    constants = [("DESCRIPTION", declared.description)]
+    definitions = [
+        matrices.mass,
+        matrices.damping,
+        matrices.stiffness,
+        *matrices.positions,
+        *matrices.loads,
+        declared.description,
+    ]
+    if name in SYSTEMS:
+        system_parts, system_constants, system_definitions = _system_parts(name)
+        parts = system_parts + parts
+        constants += system_constants
+        definitions += system_definitions
+    else:
+        constants += [
+            ("PARAMETERS", params),
+            ("MODEL_PARAMETERS", tuple(g for g in s.GROUPS if g in set(params))),
+            ("RESPONSES", matrices.dofs),
+        ]
+    constants += [
+        ("CONTACTS", matrices.contacts),
+        ("DOFS", matrices.dofs),
+        ("UNITS", matrices.units),
+        ("MATRIX_ARGUMENTS", params),
+    ]
+    title = f"Vehicle '{name}': its matrices, characteristic function, derivatives and residue numerators."
+    digest = definition_digest(*definitions)
+    return module_source(title, digest, parts, constants)
+
+
+def _system_parts(name):
+    """E_chr of Eq. (38) and its companions for a vehicle that ``system.py`` derives in closed form."""
     system = SYSTEMS[name]()
     params = tuple(str(x) for x in system.parameters)
     args = ("q", "K0", "Kp", "Km", *params, "pi")
@@ -180,21 +258,18 @@ def vehicle_module(name):
             atoms,
         )
     )
-    description = (SYSTEMS[name].__doc__ or name).strip().splitlines()[0]
-    title = f"Vehicle '{name}': characteristic function, its derivatives and residue numerators."
     degrees = polynomial_degrees(system)
     # The wheel spacing d places the contact points (K(+-d, q)) whatever the vehicle.
     model_params = tuple(g for g in s.GROUPS if g in set(params) | {"d"})
     constants = [
-        ("DESCRIPTION", description),
         ("ARGUMENTS", args),
         ("PARAMETERS", params),
         ("MODEL_PARAMETERS", model_params),
         ("RESPONSES", names),
         ("POLYNOMIAL_DEGREES", degrees),
     ]
-    digest = definition_digest(E, *system.atoms.values(), *system.numerators.values(), description)
-    return module_source(title, digest, parts, constants)
+    definitions = [E, *system.atoms.values(), *system.numerators.values()]
+    return parts, constants, definitions
 
 
 def polynomial_degrees(system) -> dict:
@@ -326,13 +401,14 @@ def outputs(root: Path) -> dict:
     models = {name: build() for name, build in all_models().items()}
     for name, model in models.items():
         files[root / GENERATED / f"foundation_{name}.py"] = foundation_module(name, model)
-    for name in SYSTEMS:
+    for name in DECLARED:
         files[root / GENERATED / f"vehicle_{name}.py"] = vehicle_module(name)
     files[root / GENERATED / "parameters.py"] = parameters_module()
     catalogue = [
         ("BEAMS", {name: beam.title for name, beam in BEAMS.items()}),
         ("TRACKS", {name: track.title for name, track in TRACKS.items()}),
-        ("VEHICLES", {name: (SYSTEMS[name].__doc__ or name).strip().splitlines()[0] for name in SYSTEMS}),
+        ("VEHICLES", {name: DECLARED[name]().description for name in DECLARED}),
+        ("DECLARED_VEHICLES", {name: DECLARED[name]().description for name in DECLARED}),
         ("MODULES", {(m.beam, m.track): f"foundation_{name}" for name, m in models.items()}),
         ("FOUNDATIONS", tuple(models)),
     ]

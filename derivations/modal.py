@@ -16,7 +16,9 @@ between unknowns of the same parity (``d^2/dx^2 sin = -lambda^2 sin``) and ``d/d
 ``i^(parity_j - parity_i)`` from a ``cos`` unknown ``j`` to a ``sin`` row ``i`` or back (``d/dx cos =
 -lambda sin``, ``d/dx sin = lambda cos``). The parity of each unknown follows from the operator: odd powers of
 ``d/dx`` between two unknowns flip it. Galerkin projection on the same shape (each of norm ``L/2``), and every
-row divided by the rail row's coefficient of ``d^2/dtau^2`` (4, Eq. (18)) so the rail mode has unit mass.
+row divided by the scale of the load on the rail row, the rail row's coefficient of ``d^2/dtau^2`` at
+``lambda = 0`` (4, Eq. (18)), so the rail mode has unit translational mass and the moving loads enter the
+rail row as ``(2/L) sum_j F_j sin(lambda x_j)`` whatever the beam (a rotary inertia stays in the block).
 The blocks come out symmetric (checked): the models are self-adjoint.
 """
 
@@ -70,7 +72,11 @@ def modal_blocks(track) -> tuple:
             image = to_dimensionless(operator[i, j].subs(dx, dr), scale)
             image = sp.expand(image.subs(dxi, sp.I * lam) * sp.I ** (parity[j] - parity[i]))
             entries[i, j] = image
-    unit = sp.Poly(entries[0, 0], dtau).coeff_monomial(dtau**2)
+    # The scale of the load on the rail row (4, Eq. (18)): the rail row's d^2/dtau^2 coefficient of the mode
+    # lam = 0 (a beam with rotary inertia adds lam-dependent mass above it, which stays in the block).
+    unit = sp.Poly(entries[0, 0], dtau).coeff_monomial(dtau**2).subs(lam, 0)
+    if unit.free_symbols or unit == 0:
+        raise AssertionError(f"the rail row's mass at lam = 0 is not a nonzero constant: {unit}")
     blocks = []
     for order in (2, 1, 0):
         block = sp.zeros(n, n)

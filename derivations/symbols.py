@@ -13,7 +13,10 @@ import sympy as sp
 EI, m, k_f, k_s, c_f = sp.symbols("EI m k_f k_s c_f", positive=True)
 M, M_b, J_phys, k_v, c_v = sp.symbols("M M_b J_phys k_v c_v", positive=True)
 d_phys, v, P = sp.symbols("d_phys v P", positive=True)
+# The car (derivations/vehicles.py): a body on two secondary suspensions over two bogies, per rail.
+M_c, J_c_phys, k_sec, c_sec, L_phys = sp.symbols("M_c J_c_phys k_sec c_sec L_phys", positive=True)
 GA, r_g = sp.symbols("GA r_g", positive=True)  # Timoshenko: G*Abar and radius of gyration
+N_ax = sp.Symbol("N_ax", positive=True)  # axial compressive force in the rail (Metrikine & Dieterman 1997)
 # Layered tracks: mass layers (sleepers, ballast) per unit length and their supports. The rail's support
 # (the railpads) is k_f, c_f: the reference stiffness of the scaling, named k_1, c_1 on those tracks.
 m_2, k_2, c_2, m_3, k_3, c_3 = sp.symbols("m_2 k_2 c_2 m_3 k_3 c_3", positive=True)
@@ -31,6 +34,8 @@ mu_2, kappa_2, eta_2, mu_3, kappa_3, eta_3 = sp.symbols(
 )
 eta_M, mu_v, J_b, kappa_v, eta_v, d = sp.symbols("eta_M mu_v J_b kappa_v eta_v d", positive=True)
 S, r = sp.symbols("S r", positive=True)
+eta_N = sp.Symbol("eta_N", positive=True)
+mu_c, J_c, kappa_sec, eta_sec, L_c = sp.symbols("mu_c J_c kappa_sec eta_sec L_c", positive=True)
 
 #: Physical parameter -> expression through the dimensionless groups (the inverse of Eq. (17)).
 #: EI, m, k_f and P stay free: every dimensionless result must be independent of them. Filled by
@@ -159,6 +164,17 @@ declare(
     si_meaning="radius of gyration of the cross-section",
 )
 declare(
+    eta_N,
+    N_ax,
+    2 * eta_N * sp.sqrt(k_f * EI),
+    meaning="axial compressive force N/(2 sqrt(k_f EI)); buckles the beam on its foundation at 1 + eta_s",
+    constraint="nonnegative",
+    equation="(A1)",
+    unit="N",
+    si_meaning="axial compressive force in the rail (thermal: N = E A alpha_T dT)",
+    default=0,
+)
+declare(
     eta_M,
     M,
     eta_M * m / chi,
@@ -219,6 +235,60 @@ declare(
     equation="(17)",
     unit="N s/m",
     si_meaning="primary suspension damping (each side)",
+    damping=True,
+)
+
+declare(
+    L_c,
+    L_phys,
+    L_c / chi,
+    meaning="distance between the bogie centres L_c chi",
+    constraint="positive",
+    equation="(16)",
+    unit="m",
+    si_meaning="distance between the bogie centres of a car",
+    si="L_c",
+)
+declare(
+    mu_c,
+    M_c,
+    mu_c * m / chi,
+    meaning="car-body mass ratio M_c chi/m",
+    constraint="positive",
+    equation="(17)",
+    unit="kg",
+    si_meaning="car-body mass (per rail)",
+)
+declare(
+    J_c,
+    J_c_phys,
+    J_c * m / chi**3,
+    meaning="car-body mass moment of inertia chi^3 J_c/m",
+    constraint="positive",
+    equation="(17)",
+    unit="kg m^2",
+    si_meaning="car-body pitch moment of inertia (per rail)",
+    si="J_c",
+)
+declare(
+    kappa_sec,
+    k_sec,
+    kappa_sec * k_f / chi,
+    meaning="secondary suspension stiffness k_sec chi/k_f",
+    constraint="positive",
+    equation="(17)",
+    unit="N/m",
+    si_meaning="secondary suspension stiffness (each bogie)",
+)
+declare(
+    eta_sec,
+    c_sec,
+    eta_sec * 2 * sp.sqrt(m * k_f) / chi,
+    meaning="secondary suspension damping c_sec chi/(2 sqrt(m k_f))",
+    constraint="nonnegative",
+    equation="(17)",
+    unit="N s/m",
+    si_meaning="secondary suspension damping (each bogie)",
     damping=True,
 )
 

@@ -30,8 +30,9 @@ def _kind(path):
 
 
 #: Examples whose induced frequencies are tested elsewhere at full cost (the three-layer example, about 7 s:
-#: tests/test_layered_search.py certifies its count); here they run their critical velocity.
-SLOW = {"three-layer.toml"}
+#: tests/test_layered_search.py certifies its count; the car on two layers, about 12 s: tests/test_car.py);
+#: here they run their critical velocity.
+SLOW = {"three-layer.toml", "car-two-layer.toml"}
 
 
 def test_an_example_for_every_model_and_table():

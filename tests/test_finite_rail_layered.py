@@ -2,8 +2,8 @@
 
 References:
 * generated blocks: the SymPy blocks of derivations/modal.py, evaluated by SymPy;
-* per-mode blocks: the one-layer formulas of ``ModalBeam`` (Euler-Bernoulli and Timoshenko-Rayleigh, written
-  by hand from Eqs. (1), (55)-(56)) for the generated blocks of the one-layer tracks;
+* per-mode blocks: the one-layer formulas (Euler-Bernoulli and Timoshenko-Rayleigh, written by hand from
+  Eqs. (1), (55)-(56) in ``one_layer_blocks``) for the generated blocks of the one-layer tracks;
 * moving-load symbol: its closed form from the generated N(p, 0)/Q(p, 0) of the moving frame against the
   direct inverse of the fixed-frame block (two different generated expressions);
 * block-diagonal Newmark solve: a dense numpy solve;
@@ -25,14 +25,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 from derivation_support import require_sympy
+from test_finite_beam_tr import tr_symbol
 
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.response.bromwich import bromwich_line
-from moving_bogie.validation.finite_beam import layered_track, simulate_finite_beam
+from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.modal import ModalBeam
 from moving_bogie.validation.newmark import ModeBlocks, woodbury_solve
-from moving_bogie.validation.residual import moving_symbol
 from moving_bogie.validation.track_modes import ModalTrack
 
 REPO = Path(__file__).resolve().parent.parent
@@ -45,7 +45,17 @@ def two_layer():
 
 
 @pytest.mark.parametrize(
-    "name", ["eb", "tr", "eb_two_layer", "tr_two_layer", "eb_three_layer", "tr_three_layer"]
+    "name",
+    [
+        "eb",
+        "tr",
+        "eb_axial",
+        "eb_two_layer",
+        "tr_two_layer",
+        "eb_axial_two_layer",
+        "eb_three_layer",
+        "tr_three_layer",
+    ],
 )
 def test_generated_modal_blocks_equal_the_derivation(name):
     """The generated ``modal_*`` functions against the SymPy blocks of derivations/modal.py (20 digits)."""
@@ -71,6 +81,28 @@ def test_generated_modal_blocks_equal_the_derivation(name):
     assert module.MODAL_PARITY == blocks[3]
 
 
+def one_layer_blocks(lam, eta_f, eta_s, S=None, r=0.0):
+    """Per-mode ``M, C, K`` of the one-layer track by hand (shape ``(len(lam), s, s)``).
+
+    Euler-Bernoulli, Eq. (1) with the shear layer: ``1``, ``2 eta_f``, ``1 + eta_s lam^2 + lam^4/4``.
+    Timoshenko-Rayleigh, Eqs. (55)-(56) made dimensionless as Eqs. (60)-(61) in the fixed frame
+    (``w = sum q_k sin``, ``phi = sum b_k cos``): ``diag(1, r^2)``, ``diag(2 eta_f, 0)`` and
+    ``[[1 + (S + eta_s) lam^2, -S lam], [-S lam, S + lam^2/4]]``.
+    """
+    n = lam.size
+    if S is None:
+        return (
+            np.ones((n, 1, 1)),
+            np.full((n, 1, 1), 2.0 * eta_f),
+            (1 + eta_s * lam**2 + lam**4 / 4)[:, None, None],
+        )
+    m, c, k = np.zeros((n, 2, 2)), np.zeros((n, 2, 2)), np.zeros((n, 2, 2))
+    m[:, 0, 0], m[:, 1, 1], c[:, 0, 0] = 1.0, r * r, 2.0 * eta_f
+    k[:, 0, 0], k[:, 1, 1] = 1.0 + (S + eta_s) * lam**2, S + 0.25 * lam**2
+    k[:, 0, 1] = k[:, 1, 0] = -S * lam
+    return m, c, k
+
+
 @pytest.mark.parametrize("beam", ["eb", "tr"])
 def test_generated_blocks_equal_the_one_layer_formulas(beam):
     params = table1_case(7).replace(eta_s="0.3")
@@ -78,21 +110,14 @@ def test_generated_blocks_equal_the_one_layer_formulas(beam):
         params = params.replace(beam="tr", S=10, r="0.09")
     f = params.as_float()
     shear, radius = (f.S, f.r) if beam == "tr" else (None, 0.0)
-    by_hand = ModalBeam(120.0, 40, f.eta_f, f.eta_s, shear, radius)
-    generated = ModalBeam(120.0, 40, f.eta_f, f.eta_s, shear, radius, ModalTrack.of(params))
-    assert layered_track(params) is None and generated.n_dof == by_hand.n_dof
-    for a, b in zip(generated.diagonals, by_hand.diagonals):
-        np.testing.assert_allclose(a, b, rtol=1e-14, atol=1e-14)
-    if beam == "tr":
-        for name in ("m_off", "c_off", "k_off"):
-            np.testing.assert_allclose(
-                getattr(generated.blocks, name), getattr(by_hand.blocks, name), atol=1e-12
-            )
+    track = ModalTrack.of(params)
+    lam = np.arange(1, 41) * np.pi / 120.0
+    for got, by_hand in zip(track.blocks(lam), one_layer_blocks(lam, f.eta_f, f.eta_s, shear, radius)):
+        np.testing.assert_allclose(got, by_hand, rtol=1e-14, atol=1e-12)
+    assert ModalBeam(120.0, 40, track).n_dof == 40 * (2 if beam == "tr" else 1)
     lam = np.linspace(0.05, 6.0, 17)
     np.testing.assert_allclose(
-        ModalTrack.of(params).symbol(lam),
-        moving_symbol(lam, f.alpha, f.eta_f, f.eta_s, shear, radius),
-        rtol=1e-12,
+        track.symbol(lam), tr_symbol(lam, f.alpha, f.eta_f, f.eta_s, shear, radius), rtol=1e-12
     )
 
 
@@ -103,7 +128,7 @@ def test_moving_load_symbol_closed_form_equals_the_block_inverse(track):
         extra |= {"mu_3": "2", "kappa_3": "0.7", "eta_3": "0.2"}
     params = table1_case(7).replace(track=track, eta_s="0.2", **extra)
     modal = ModalTrack.of(params)
-    assert modal.layered and modal.size == (2 if track == "two-layer" else 3)
+    assert modal.size == (2 if track == "two-layer" else 3)
     p = np.linspace(0.01, 8.0, 41)
     np.testing.assert_allclose(modal.symbol(p), modal.block_symbol(p), rtol=1e-11)
 

@@ -27,6 +27,7 @@ def test_notebooks_exist():
         "05-change-the-model.py",
         "06-sweeps.py",
         "07-layered-track.py",
+        "08-a-full-car.py",
     ]
 
 

@@ -11,6 +11,7 @@ References used here, each independent of the code under test:
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import mpmath
@@ -23,7 +24,7 @@ from moving_bogie.model.cases import table1_case
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.closed_form import closed_form_response, deflection_shape
-from moving_bogie.response.residues import IncompleteFrequencies, ResidueExpansion, residue_expansion
+from moving_bogie.response.residues import IncompleteFrequencies, residue_expansion
 from moving_bogie.roots.frequencies import induced_frequencies
 
 NAMES = ("w_rear", "w_front", "u", "theta")
@@ -237,16 +238,8 @@ def test_incomplete_or_foreign_frequencies_are_refused(freqs):
 def test_a_missing_pair_member_is_detected(freqs):
     # Reference: x(tau) is real; the members q and -conj(q) of a pair have conjugate amplitudes.
     e = residue_expansion(table1_case(7), freqs(7), shapes=False)
-    half = ResidueExpansion(
-        e.names,
-        e.q[1:],
-        {k: v[1:] for k, v in e.amplitudes.items()},
-        e.steady,
-        e.shape_amplitudes,
-        e.shape_steady,
-        e.q_mp[1:],
-        e.amplitudes_mp,
-        e.dps,
+    half = dataclasses.replace(
+        e, q=e.q[1:], amplitudes={k: v[1:] for k, v in e.amplitudes.items()}, q_mp=e.q_mp[1:]
     )
     with pytest.raises(MovingBogieError, match="does not cancel"):
         half.harmonic("w_rear", [10.0])

@@ -15,15 +15,15 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_finite_beam import make_params, moving_force_deflection
+from test_finite_beam import eb_symbol, make_params, modal_track, moving_force_deflection, small_vehicle
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.model.cases import table1_case
 from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.finite_beam import simulate_finite_beam
-from moving_bogie.validation.modal import ModalBeam, ModalSystem, Vehicle
+from moving_bogie.validation.modal import ModalBeam, ModalSystem
 from moving_bogie.validation.newmark import effective_matrix_dense, initial_state, newmark_step
-from moving_bogie.validation.residual import ResidualFlexibility, moving_green_function, moving_symbol
+from moving_bogie.validation.residual import ResidualFlexibility, moving_green_function
 
 
 @pytest.mark.parametrize("alpha, eta_f, eta_s", [(0.0, 0.0, 0.0), (0.5, 0.2, 0.0), (0.7, 0.05, 0.3)])
@@ -32,7 +32,8 @@ def test_green_function_is_the_moving_load_deflection(alpha, eta_f, eta_s):
     # the deflection at xi = -s under the load 2, i.e. 2 G(s) (the wheel load is 2 in these units).
     for s in (-2.5, 0.0, 1.5):
         reference = moving_force_deflection(alpha, eta_f, eta_s, shift=-s)
-        assert 2.0 * moving_green_function(np.array(s), alpha, eta_f, eta_s) == pytest.approx(
+        symbol = modal_track(alpha=alpha, eta_f=eta_f, eta_s=eta_s).symbol_polynomials()
+        assert 2.0 * moving_green_function(np.array(s), symbol) == pytest.approx(
             reference, rel=1e-8, abs=1e-12
         )
 
@@ -44,10 +45,11 @@ def test_residual_flexibility_equals_the_tail_of_the_modal_series():
     length, n, alpha, eta_f, eta_s, d = 100.0, 300, 0.7, 0.05, 0.3, 2.0
     kept = np.arange(1, n + 1) * np.pi / length
     x = (7.3, 7.3 + d)
-    flex = ResidualFlexibility(kept, length, alpha, eta_f, eta_s, d)
-    r = flex.matrix(*x, np.exp(1j * kept * x[0]), np.exp(1j * kept * x[1]))
+    symbol = modal_track(alpha=alpha, eta_f=eta_f, eta_s=eta_s).symbol_polynomials()
+    flex = ResidualFlexibility(kept, length, (0.0, d), symbol)
+    r = flex.matrix(np.array(x), np.exp(1j * np.outer(x, kept)))
     tail = np.arange(n + 1, 200_001) * np.pi / length
-    weight = 1.0 / (length * moving_symbol(tail, alpha, eta_f, eta_s))
+    weight = 1.0 / (length * eb_symbol(tail, alpha, eta_f, eta_s))  # by hand, not the generated symbol
     for j in range(2):
         for m in range(2):
             phases = np.exp(1j * tail * (x[m] - x[j])) - np.exp(1j * tail * (x[j] + x[m]))
@@ -57,15 +59,13 @@ def test_residual_flexibility_equals_the_tail_of_the_modal_series():
 
 def test_supercritical_undamped_is_refused():
     with pytest.raises(MovingBogieError, match="critical velocity"):
-        moving_green_function(np.array(0.0), 1.2, 0.0)
+        moving_green_function(np.array(0.0), modal_track(alpha=1.2, eta_f=0.0).symbol_polynomials())
 
 
 def _static_system(corrected: bool, n: int = 20):
     """Two masses standing still (alpha = 0) on a beam of length 60 in only `n` modes (k_max ~ 1)."""
-    beam = ModalBeam(60.0, n, eta_f=0.1, eta_s=0.3)
-    vehicle = Vehicle(
-        "masses", eta_M=2.0, d=2.0, mu_v=1.0, J_b=1.0, kappa_v=0.2, eta_v=0.0, alpha=0.0, entry=25.0
-    )
+    beam = ModalBeam(60.0, n, modal_track(eta_f=0.1, eta_s=0.3, alpha=0.0))
+    vehicle = small_vehicle("masses", 0.0, 25.0, dict(eta_M=2.0, d=2.0))
     return (CorrectedModalSystem if corrected else ModalSystem)(beam, vehicle)
 
 
@@ -78,7 +78,7 @@ def test_static_deflection_is_exact_with_few_modes():
         system = _static_system(corrected)
         _, _, k = system.assemble(0.0).dense()
         z = np.linalg.solve(k, system.assemble(0.0).force)
-        w = system.contact(0.0, z, np.zeros_like(z)).w
+        w = tuple(system.response(0.0, z, np.zeros_like(z)).w[:2])
         if tol:
             assert w == pytest.approx((exact, exact), rel=tol)
         else:
@@ -87,12 +87,16 @@ def test_static_deflection_is_exact_with_few_modes():
 
 @pytest.mark.parametrize("model", ["masses", "bogie"])
 def test_corrected_woodbury_step_equals_dense_solve(model):
-    system = CorrectedModalSystem(ModalBeam(9.0, 9, eta_f=0.12, eta_s=0.2), Vehicle(model, **SMALL_VEHICLE))
+    track = modal_track(eta_f=0.12, eta_s=0.2, alpha=SMALL_MOTION["alpha"])
+    system = CorrectedModalSystem(
+        ModalBeam(9.0, 9, track), small_vehicle(model, **SMALL_MOTION, values=SMALL_VEHICLE)
+    )
     assert_step_equals_dense_solve(system)
 
 
 #: A small vehicle with every parameter non-zero (for the step-by-step checks).
-SMALL_VEHICLE = dict(eta_M=1.3, d=1.7, mu_v=2.1, J_b=0.6, kappa_v=0.4, eta_v=0.15, alpha=0.6, entry=3.1)
+SMALL_VEHICLE = dict(eta_M=1.3, d=1.7, mu_v=2.1, J_b=0.6, kappa_v=0.4, eta_v=0.15)
+SMALL_MOTION = dict(alpha=0.6, entry=3.1)
 
 
 def assert_step_equals_dense_solve(system, h: float = 0.05) -> None:

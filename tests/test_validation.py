@@ -33,6 +33,7 @@ from moving_bogie.validation.compare import (
     validate,
 )
 from moving_bogie.validation.finite_beam import simulate_finite_beam
+from moving_bogie.validation.track_modes import ModalTrack
 
 SCRIPT = Path(sys.executable).with_name("moving-bogie")
 
@@ -46,7 +47,13 @@ def case2():
 def test_defaults_follow_damping():
     assert default_tau_max(table1_case(2)) == 100.0  # eta_f = 0
     assert default_tau_max(table1_case(7)) == 200.0  # eta_f = 0.05
-    assert truncation_a_priori(4.0) == pytest.approx(8 / (3 * math.pi * 64))
+    # Reference: (8/pi) int_4^inf dp / (p^4 + 4) by QUADPACK (one-layer EB point-load spectrum), below the
+    # bound 8 / (3 pi k^3) of its p^-4 tail.
+    from scipy.integrate import quad
+
+    share = truncation_a_priori(4.0, ModalTrack.of(table1_case(2)))
+    assert share == pytest.approx(8 / math.pi * quad(lambda p: 1 / (p**4 + 4), 4.0, np.inf)[0], rel=1e-6)
+    assert share < 8 / (3 * math.pi * 64)
 
 
 def test_reflection_bound_is_zero_until_the_fastest_wave_is_back():
@@ -55,25 +62,16 @@ def test_reflection_bound_is_zero_until_the_fastest_wave_is_back():
     p = table1_case(2)
     tau = np.linspace(0.0, 300.0, 3001)
     bound = reflection_bound(
-        tau,
-        length=r.length,
-        entry=r.entry,
-        d=float(p.d),
-        alpha=float(p.alpha),
-        eta_f=0.0,
-        eta_s=0.0,
-        k_max=r.k_max,
+        tau, track=ModalTrack.of(p), length=r.length, entry=r.entry, d=float(p.d), k_max=r.k_max
     )
     assert np.all(bound[tau < r.tau_valid * 0.999] == 0.0)
     assert bound[-1] > 1e-2 and np.all(np.diff(bound) >= -1e-15)  # undamped: grows, never decays
     damped = reflection_bound(
         tau,
+        track=ModalTrack.of(p.replace(eta_f="0.05")),
         length=r.length,
         entry=r.entry,
         d=float(p.d),
-        alpha=float(p.alpha),
-        eta_f=0.05,
-        eta_s=0.0,
         k_max=r.k_max,
     )
     assert damped.max() < 1e-3  # 0.05 damping: every reflection returns below 1e-3
@@ -211,7 +209,8 @@ def test_perturbed_closed_form_fails(monkeypatch):
 
     def perturbed(*args, **kwargs):
         names = ("w_rear", "w_front", "u", "theta")
-        return dataclasses.replace(ts, **{k: 1.02 * getattr(ts, k) for k in names})
+        responses = {k: 1.02 * v for k, v in ts.responses.items()}  # every response, by DOF name
+        return dataclasses.replace(ts, responses=responses, **{k: 1.02 * getattr(ts, k) for k in names})
 
     monkeypatch.setattr(closed_form, "closed_form_response", perturbed)
     result = validate(params, tau_max=40.0, estimate=False)
@@ -263,7 +262,7 @@ def test_masses_model_one_panel(tmp_path):
 @pytest.mark.parametrize(
     "kwargs, match",
     [
-        ({"model": "force"}, "model"),
+        ({"model": "force"}, "vehicle must be one of"),
         ({"n_modes": 2}, "n_modes"),
         ({"tau_max": -1.0}, "tau_max"),
     ],

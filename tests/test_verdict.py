@@ -1,6 +1,7 @@
 """A verdict for the whole lower half-plane: the far-field radius; UNDETERMINED when anything is missing."""
 
 import json
+from fractions import Fraction
 
 import mpmath
 import numpy as np
@@ -8,7 +9,8 @@ import pytest
 
 from moving_bogie.cli import main
 from moving_bogie.generated import asymptotics
-from moving_bogie.kernels.track import TrackKernelArray
+from moving_bogie.kernels.characteristic import CharacteristicArray
+from moving_bogie.kernels.track import TrackKernelArray, foundation_module
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots import far_field
 from moving_bogie.roots.contour import Rectangle
@@ -97,11 +99,35 @@ def test_undamped_sliver_is_undetermined_when_the_strip_is_not_counted(monkeypat
 
 
 def test_missing_expansion_is_undetermined(monkeypatch):
-    monkeypatch.delattr(asymptotics, "e_chr_leading_bogie_eb")
+    module = foundation_module(table1_case(7))
+    monkeypatch.setattr(module, "KERNEL_DECAY", None)
     far = far_field_radius(table1_case(7), "bogie", 3.0)
-    assert far.radius is None and "no generated far-field expansion" in far.reason
+    assert far.radius is None and "no far-field expansion" in far.reason
     assert far.to_dict()["rho"] is None  # valid JSON
-    assert far_field.leading_part("masses", "eb")  # the others are untouched
+    other = table1_case(7).replace(beam="tr", S=10, r="0.09")
+    assert far_field.kernel_decay(other) == 1  # the other tracks are untouched
+
+
+@pytest.mark.parametrize("vehicle", ["bogie", "masses"])
+@pytest.mark.parametrize("track", ["eb", "tr", "eb_two_layer", "tr_three_layer"])
+def test_block_leading_gap_is_the_derived_one(vehicle, track):
+    """delta = min(2 - gamma, 1) of the block system against the symbolic expansion of Eq. (38)."""
+    gamma = Fraction(asymptotics.KERNEL_DECAY[track])
+    assert far_field.leading_gap(gamma) == Fraction(asymptotics.LEADING_GAP[(vehicle, track)])
+
+
+def test_block_leading_part_is_the_derived_one():
+    """E_lead of the block system is -1/2 times the generated symbolic E_lead of Eq. (38)."""
+    p = table1_case(7)
+    E = CharacteristicArray(p)
+    q = np.array([40 - 30j, -200 - 5j, 1e3 * np.exp(-2j)])
+    kv = E.kernel_values(q)
+    block = far_field.e_lead(E.system, q, kv.K)
+    args = {name: getattr(p.as_float(), name) for name in E.module.PARAMETERS} | {"pi": np.pi}
+    index = E.system.index  # offset xi_i - xi_j: K(0), K(d) = K(xi_1 - xi_0), K(-d) = K(xi_0 - xi_1)
+    K0, Kp, Km = kv.K[index[0][0]], kv.K[index[1][0]], kv.K[index[0][1]]
+    derived = asymptotics.e_chr_leading_bogie_eb(q, K0, Kp, Km, **args)
+    np.testing.assert_allclose(block, -derived / 2, rtol=1e-10)
 
 
 def test_cli_verdict_line_exit_status_and_stderr(capsys):

@@ -73,6 +73,7 @@ def run(args: argparse.Namespace) -> int:
 
     from moving_bogie.errors import ParameterError
     from moving_bogie.validation.compare import plot_validation, validate
+    from moving_bogie.validation.verdict import beam_title
 
     from .common import atomic_write
     from .progress import progress_bar
@@ -102,7 +103,7 @@ def run(args: argparse.Namespace) -> int:
         )
     if args.plot:
         name = f"Case {args.case}" if args.case is not None else "moving bogie"
-        beam = ", Timoshenko-Rayleigh beam" if getattr(params, "beam", "eb") == "tr" else ""
+        beam = f", {beam_title(params)}"
         track = getattr(params, "track", "one-layer")
         beam += "" if track == "one-layer" else f", {track} track"
         title = f"{name} ({args.model}{beam}): finite beam (solid) vs closed form (dashed)"
@@ -126,13 +127,14 @@ def run(args: argparse.Namespace) -> int:
 
 def format_result(result) -> str:
     """Readable summary of a :class:`~moving_bogie.validation.verdict.ValidationResult`."""
+    from moving_bogie.validation.verdict import beam_title
+
     finite = result.finite
     correction = "with" if finite.static_correction else "without"
-    beam = "Timoshenko-Rayleigh" if getattr(result.params, "beam", "eb") == "tr" else "Euler-Bernoulli"
     track = getattr(result.params, "track", "one-layer")
     on = "" if track == "one-layer" else f" on a {track} track"
     lines = [
-        f"Finite {beam} beam{on} ({finite.n_modes} modes {correction} static correction, "
+        f"Finite {beam_title(result.params)}{on} ({finite.n_modes} modes {correction} static correction, "
         f"L = {finite.length:.1f}, entry x0 = {finite.entry:.1f}, k_max = {finite.k_max:.2f}, "
         f"dt = {finite.dt:.4f}) vs closed form, {result.model}",
         f"comparison window: tau in [0, {result.window[1]:.1f}] of [0, {result.tau[-1]:g}] "

@@ -21,6 +21,7 @@ SI_NAMES = {}
 GROUP_OVERRIDES = {}
 MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s')
 MODAL_PARITY = (0,)
+KERNEL_DECAY = '3/2'
 
 
 def n_coeffs(q, alpha, eta_f, eta_s):

@@ -18,9 +18,10 @@ DEGREE_N_IN_Q = 4
 DAMPING = ('eta_f', 'eta_2')
 SCALE_PARAMETERS = {'EI': {'unit': 'N m^2', 'meaning': 'beam bending stiffness'}, 'm': {'unit': 'kg/m', 'meaning': 'beam mass per unit length'}, 'k_1': {'unit': 'N/m^2', 'meaning': 'railpad stiffness per unit length (reference stiffness of the scaling)'}, 'P': {'unit': 'N', 'meaning': 'constant load on each wheel'}}
 SI_NAMES = {'k_f': 'k_1', 'c_f': 'c_1'}
-GROUP_OVERRIDES = {'eta_f': {'si': 'c_1', 'si_meaning': 'railpad viscous damping per unit length', 'meaning': 'foundation damping ratio c_1/(2 sqrt(m k_1))'}, 'eta_s': {'meaning': 'Pasternak shear layer k_s/(2 sqrt(k_1 EI))'}, 'S': {'meaning': 'Timoshenko shear parameter G Abar/(2 sqrt(k_1 EI))'}, 'kappa_v': {'meaning': 'primary suspension stiffness k_v chi/k_1'}, 'eta_v': {'meaning': 'primary suspension damping c_v chi/(2 sqrt(m k_1))'}}
+GROUP_OVERRIDES = {'eta_f': {'si': 'c_1', 'si_meaning': 'railpad viscous damping per unit length', 'meaning': 'foundation damping ratio c_1/(2 sqrt(m k_1))'}, 'eta_s': {'meaning': 'Pasternak shear layer k_s/(2 sqrt(k_1 EI))'}, 'S': {'meaning': 'Timoshenko shear parameter G Abar/(2 sqrt(k_1 EI))'}, 'eta_N': {'meaning': 'axial compressive force N/(2 sqrt(k_1 EI)); buckles the beam on its foundation at 1 + eta_s'}, 'kappa_v': {'meaning': 'primary suspension stiffness k_v chi/k_1'}, 'eta_v': {'meaning': 'primary suspension damping c_v chi/(2 sqrt(m k_1))'}, 'kappa_sec': {'meaning': 'secondary suspension stiffness k_sec chi/k_1'}, 'eta_sec': {'meaning': 'secondary suspension damping c_sec chi/(2 sqrt(m k_1))'}}
 MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s', 'mu_2', 'kappa_2', 'eta_2')
 MODAL_PARITY = (0, 0)
+KERNEL_DECAY = '3/2'
 
 
 def n_coeffs(q, alpha, eta_f, eta_s, mu_2, kappa_2, eta_2):

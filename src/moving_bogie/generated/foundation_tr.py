@@ -21,6 +21,7 @@ SI_NAMES = {}
 GROUP_OVERRIDES = {}
 MODAL_ARGUMENTS = ('lam', 'eta_f', 'eta_s', 'S', 'r')
 MODAL_PARITY = (0, 1)
+KERNEL_DECAY = '1'
 
 
 def n_coeffs(q, alpha, eta_f, eta_s, S, r):

@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.characteristic import closed_form_vehicle
 from moving_bogie.kernels.polyroots import poly_roots, quartic_roots
 from moving_bogie.kernels.polyroots import polyder as _polyder
 from moving_bogie.kernels.polyroots import polyval as _polyval
@@ -50,7 +50,7 @@ def polynomial_degree(model: str | None, parameter: str, params=None) -> int:
     ParameterError
         Naming ``parameter`` when E_chr is not a polynomial in it (the spacing d also moves K).
     """
-    degrees = vehicle_module(model, params).POLYNOMIAL_DEGREES
+    degrees = closed_form_vehicle(model, params, "a stability sweep").POLYNOMIAL_DEGREES
     if parameter not in degrees:
         raise ParameterError(
             "parameter", f"parameter must be one of {', '.join(degrees)} for this vehicle (got {parameter!r})"
@@ -67,7 +67,8 @@ class SweepCharacteristic:
         Everything but alpha, the spacing d (when given per point) and ``parameter`` is taken from here;
         with ``parameter="eta_M"`` the bar's mass and inertia follow the wheel mass with the coefficients
         cf1, cf2 of ``params`` (Eq. (63)).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     parameter : str
         The vehicle parameter swept (default eta_M).
     foundation : module or Foundation, optional
@@ -91,7 +92,7 @@ class SweepCharacteristic:
         self.model = model
         self.parameter = parameter
         self.degree = polynomial_degree(model, parameter, params)
-        self.module = vehicle_module(model, params)
+        self.module = closed_form_vehicle(model, params, "a stability sweep")
         track = resolve_foundation(params, foundation)
         self.foundation = track.module
         ns = params.as_float()

@@ -47,6 +47,7 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.response.quadrature import adapt_panels, by_bands, cis, fourier_sum, subdivide
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
@@ -74,7 +75,8 @@ class BranchCut:
     ----------
     params : DimensionlessParams
         Euler-Bernoulli beam (``beam="eb"``), subcritical (the cut leaves a gap around q = 0).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     panel_tol : float
         Absolute tolerance per panel of the adaptive partition of the cut (:meth:`base_edges`).
 
@@ -94,13 +96,16 @@ class BranchCut:
         self.params = params
         self.model = model
         f = params.as_float()
-        self.alpha, self.eta_f, self.eta_s, self.d = f.alpha, f.eta_f, f.eta_s, f.d
+        self.alpha, self.eta_f, self.eta_s = f.alpha, f.eta_f, f.eta_s
         self._c = 4.0 - 4.0 * self.eta_f**2
         self.foundation = foundation_module(params)
         self.fargs = foundation_arguments(params, f)
-        self.vehicle = vehicle_module(model, params)
-        self.vargs = {name: getattr(f, name) for name in self.vehicle.PARAMETERS} | {"pi": np.pi}
-        self.names = tuple(self.vehicle.RESPONSES)
+        module = vehicle_module(model, params)
+        self.system = VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
+        self.offsets = np.array([float(x) for x in self.system.offsets])
+        self.positions = np.array([float(x) for x in self.system.positions])
+        self.span = float(self.positions.max())  # rear to front wheel (d for the bogie)
+        self.names = tuple(module.DOFS)
         self.p_c = self._minimum()
         self.q_c = float(self.s(self.p_c))
         self.panel_tol = panel_tol
@@ -215,9 +220,10 @@ class BranchCut:
         return below if side == "below" else above
 
     def _contact_kernels(self, P, weight):
-        xis = np.array([0.0, self.d, -self.d])
-        below, above = self._both_sides(P, weight, xis)
-        return (below[:, 0], below[:, 1], below[:, 2]), (above[:, 0], above[:, 1], above[:, 2])
+        """K at every distinct contact offset xi_i - xi_j, below and above the cut."""
+        below, above = self._both_sides(P, weight, self.offsets)
+        count = len(self.offsets)
+        return [below[:, k] for k in range(count)], [above[:, k] for k in range(count)]
 
     # --- jumps of the transformed responses -----------------------------------------------------
     def response_jumps(self, p0) -> tuple[np.ndarray, np.ndarray]:
@@ -225,23 +231,20 @@ class BranchCut:
         q, P, weight = self._roots_and_sides(np.atleast_1d(p0))
         out = []
         for Ks in self._contact_kernels(P, weight):
-            E = self.vehicle.e_chr(q, *Ks, **self.vargs)
-            nums = self.vehicle.numerators(q, *Ks, **self.vargs)
-            out.append(np.stack([n / (1j * q * E) for n in nums], axis=-1))
+            E, nums, _ = self.system.responses_array(q, Ks)
+            out.append(nums / (1j * q * E)[:, None])
         return q, out[0] - out[1]
 
     def shape_jumps(self, p0, xi) -> tuple[np.ndarray, np.ndarray]:
-        """(q, J) with J[:, k] = W~_below - W~_above at xi[k], i q W~ = (G_r K(xi) + G_f K(xi-d))/(2 pi E)."""
+        """(q, J) with J[:, k] = W~_below - W~_above at xi[k], i q W~ = sum_j G_j K(xi - xi_j) / (2 pi E)."""
         q, P, weight = self._roots_and_sides(np.atleast_1d(p0))
         xi = np.asarray(xi, dtype=float)
-        Kx = self._both_sides(P, weight, xi)
-        Kxd = self._both_sides(P, weight, xi - self.d)
+        Kx = [self._both_sides(P, weight, xi - x) for x in self.positions]
         out = []
         for k, Ks in enumerate(self._contact_kernels(P, weight)):
-            E = self.vehicle.e_chr(q, *Ks, **self.vargs)
-            G_r, G_f = self.vehicle.shape_weights(q, *Ks, **self.vargs)
+            E, _, G = self.system.responses_array(q, Ks)
             den = 2 * np.pi * 1j * q * E
-            out.append((G_r / den)[:, None] * Kx[k] + (G_f / den)[:, None] * Kxd[k])
+            out.append(sum((G[:, j] / den)[:, None] * Kx[j][k] for j in range(len(self.positions))))
         return q, out[0] - out[1]
 
     # --- the integral ---------------------------------------------------------------------------
@@ -279,7 +282,7 @@ class BranchCut:
         The panels of :meth:`base_edges` are subdivided to span at most 3 pi of the phase s tau_hi and
         _PANEL_XI radians of e^{i p xi} for |xi| <= xi_max (default: the wheel spacing d).
         """
-        xi_max = self.d if xi_max is None else xi_max
+        xi_max = self.span if xi_max is None else xi_max
         dp = min(_PANEL_DP, _PANEL_XI / (abs(xi_max) + 1.0))
         edges = self.base_edges(S)
         a, b = edges[:-1], edges[1:]
@@ -288,7 +291,7 @@ class BranchCut:
 
     def _tail_terms(self, channel, S: float):
         """(j, j', j'') in s at s = S by central differences (max over channels when estimating)."""
-        h = 0.01 * min(S, max(1.0, float(self.p_of_s(S))) / max(self.d, 1.0))
+        h = 0.01 * min(S, max(1.0, float(self.p_of_s(S))) / max(self.span, 1.0))
         h = min(h, 0.25 * (S - self.q_c))
         ps = self.p_of_s(np.array([S - h, S, S + h]))
         _, g = channel(ps)
@@ -378,7 +381,7 @@ class BranchCut:
             lambda p: self.shape_jumps(p, xi.reshape(-1)),
             tol=tol,
             s_min=s_min,
-            xi_max=float(np.max(np.abs(np.concatenate([xi.ravel(), xi.ravel() - self.d])))),
+            xi_max=float(np.max(np.abs(np.concatenate([xi.ravel(), xi.ravel() - self.span])))),
         )
         return values[0].reshape(xi.shape)
 

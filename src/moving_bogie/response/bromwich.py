@@ -27,6 +27,7 @@ from scipy import integrate
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.track import TrackKernelArray
+from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.response.quadrature import adapt_panels, subdivide
 
 __all__ = ["BromwichResult", "bromwich_line", "bromwich_line_shape", "bromwich_response", "bromwich_shape"]
@@ -39,25 +40,28 @@ class BromwichResult(dict):
     a: float
 
 
-def _transform(params, model):
-    vehicle = vehicle_module(model, params)
-    kernel = TrackKernelArray(params)
+def vehicle_system(params, model=None) -> VehicleSystem:
+    """The vehicle's block system (:mod:`moving_bogie.kernels.vehicle`) at the parameters, in floats."""
+    module = vehicle_module(model, params)
     f = params.as_float()
-    args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
-    d = f.d
+    return VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
+
+
+def _transform(params, model):
+    system = vehicle_system(params, model)
+    kernel = TrackKernelArray(params)
+    offsets = [float(x) for x in system.offsets]
     cache: dict[float, np.ndarray] = {}
 
     def values(s: float, a: float) -> np.ndarray:
         key = (s, a)
         if key not in cache:
             q = np.array([s - 1j * a])
-            kv = kernel(q, [0.0, d, -d])
-            E = vehicle.e_chr(q, *kv.K, **args)
-            nums = vehicle.numerators(q, *kv.K, **args)
-            cache[key] = np.array([complex((n / (1j * q * E))[0]) for n in nums])
+            E, nums, _ = system.responses_array(q, kernel(q, offsets).K)
+            cache[key] = (nums / (1j * q * E)[:, None])[0]
         return cache[key]
 
-    return vehicle.RESPONSES, values
+    return system.names, values
 
 
 def bromwich_shape(
@@ -73,17 +77,16 @@ def bromwich_shape(
 ) -> np.ndarray:
     """w(xi, tau) for each xi by direct quadrature of the Bromwich integral of W~(xi, q), Eq. (28).
 
-    i q W~(xi, q) = (G_rear K(xi, q) + G_front K(xi - d, q)) / (2 pi E_chr), evaluated directly (no residues,
+    i q W~(xi, q) = sum_j G_j K(xi - xi_j, q) / (2 pi E_chr) (n contacts), evaluated directly (no residues,
     no branch cut); the same fold onto s >= 0 and QAWF quadrature as :func:`bromwich_response`.
     """
     model = model or params.vehicle
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
-    vehicle = vehicle_module(model, params)
+    system = vehicle_system(params, model)
     kernel = TrackKernelArray(params)
-    f = params.as_float()
-    args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
-    d = f.d
+    offsets = [float(x) for x in system.offsets]
+    positions = [float(x) for x in system.positions]
     xi = np.atleast_1d(np.asarray(xi, dtype=float))
     out = np.empty(xi.shape)
     tau = float(tau)
@@ -97,11 +100,11 @@ def bromwich_shape(
                     q = np.array([s - 1j * a])
                     with np.errstate(over="ignore", invalid="ignore"):
                         # exponentials of the roots on the unused side may overflow at large |xi|
-                        kv = kernel(q, [0.0, d, -d, x, x - d])
-                    K0, Kp, Km, Kx, Kxd = kv.K
-                    E = vehicle.e_chr(q, K0, Kp, Km, **args)
-                    G_r, G_f = vehicle.shape_weights(q, K0, Kp, Km, **args)
-                    cache[s] = complex(((G_r * Kx + G_f * Kxd) / (2 * np.pi * 1j * q * E))[0])
+                        kv = kernel(q, offsets + [x - xj for xj in positions])
+                    E, _, G = system.responses_array(q, kv.K[: len(offsets)])
+                    Kx = kv.K[len(offsets) :]
+                    w = sum(G[:, j] * Kx[j] for j in range(len(positions)))
+                    cache[s] = complex((w / (2 * np.pi * 1j * q * E))[0])
                 return cache[s]
 
             if tau == 0:
@@ -133,7 +136,8 @@ def bromwich_response(
     ----------
     params : DimensionlessParams
     tau : array_like of float, >= 0
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     a : float
         Distance of the Bromwich line Im q = -a below the real axis; must exceed -Im q of every unstable
         induced frequency (the caller's responsibility: this function does not look for them).
@@ -188,7 +192,7 @@ def bromwich_line(
     params,
     tau,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     a: float = 0.02,
     s_max: float = 400.0,
     panel_tol: float = 1e-14,
@@ -212,16 +216,16 @@ def bromwich_line(
     -------
     dict name -> ndarray like tau
     """
-    tau, vehicle, kernel, args, d = _line_setup(params, tau, a, model, foundation)
+    tau, system, kernel = _line_setup(params, tau, a, model, foundation)
+    offsets = [float(x) for x in system.offsets]
 
     def transform(s):
         q = np.asarray(s, dtype=float) - 1j * a
-        kv = kernel(q, [0.0, d, -d])
-        E = vehicle.e_chr(q, *kv.K, **args)
-        return np.stack([n / (1j * q * E) for n in vehicle.numerators(q, *kv.K, **args)], axis=-1)
+        E, nums, _ = system.responses_array(q, kernel(q, offsets).K)
+        return nums / (1j * q * E)[:, None]
 
     x = _line_quadrature(transform, tau, a, s_max, panel_tol)
-    return {name: x[:, k] for k, name in enumerate(vehicle.RESPONSES)}
+    return {name: x[:, k] for k, name in enumerate(system.names)}
 
 
 def bromwich_line_shape(
@@ -229,7 +233,7 @@ def bromwich_line_shape(
     xi,
     tau: float,
     *,
-    model: str = "bogie",
+    model: str | None = None,
     a: float = 0.02,
     s_max: float = 400.0,
     panel_tol: float = 1e-14,
@@ -237,38 +241,36 @@ def bromwich_line_shape(
 ) -> np.ndarray:
     """w(xi, tau) at one time for an array xi by the quadrature of :func:`bromwich_line` (Eq. (28)).
 
-    i q W~(xi, q) = (G_rear K(xi, q) + G_front K(xi - d, q)) / (2 pi E_chr) on the line Im q = -a, every xi
+    i q W~(xi, q) = sum_j G_j K(xi - xi_j, q) / (2 pi E_chr) on the line Im q = -a, every xi
     at once (the panels adapt to all of them); no residues, no branch cut. Any beam or track model.
     """
-    tau, vehicle, kernel, args, d = _line_setup(params, tau, a, model, foundation)
+    tau, system, kernel = _line_setup(params, tau, a, model, foundation)
+    offsets = [float(x) for x in system.offsets]
+    positions = [float(x) for x in system.positions]
     xi = np.asarray(xi, dtype=float)
     flat = xi.reshape(-1)
+    m, F = len(offsets), flat.size
 
     def transform(s):
         q = np.asarray(s, dtype=float) - 1j * a
         with np.errstate(over="ignore", invalid="ignore"):
             # exponentials of the roots on the unused side may overflow at large |xi|
-            kv = kernel(q, np.concatenate([[0.0, d, -d], flat, flat - d]))
-        K0, Kp, Km = kv.K[:3]
-        Kx, Kxd = np.array(kv.K[3 : 3 + flat.size]), np.array(kv.K[3 + flat.size :])
-        E = vehicle.e_chr(q, K0, Kp, Km, **args)
-        G_r, G_f = vehicle.shape_weights(q, K0, Kp, Km, **args)
-        return ((G_r * Kx + G_f * Kxd) / (2 * np.pi * 1j * q * E)).T
+            kv = kernel(q, np.concatenate([offsets, *[flat - x for x in positions]]))
+        E, _, G = system.responses_array(q, kv.K[:m])
+        w = sum(G[:, j] * np.array(kv.K[m + j * F : m + (j + 1) * F]) for j in range(len(positions)))
+        return (w / (2 * np.pi * 1j * q * E)).T
 
     return _line_quadrature(transform, tau, a, s_max, panel_tol)[0].reshape(xi.shape)
 
 
 def _line_setup(params, tau, a, model, foundation):
-    """(tau array, vehicle module, kernel, vehicle arguments, d) after checking a and the times."""
+    """(tau array, vehicle block system, kernel) after checking a and the times."""
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
     tau = np.atleast_1d(np.asarray(tau, dtype=float))
     if np.any(tau <= 0) or not np.all(np.isfinite(tau)):
         raise MovingBogieError("bromwich_line needs finite tau > 0")
-    vehicle = vehicle_module(model, params)
-    f = params.as_float()
-    args = {name: getattr(f, name) for name in vehicle.PARAMETERS} | {"pi": np.pi}
-    return tau, vehicle, TrackKernelArray(params, foundation=foundation), args, f.d
+    return tau, vehicle_system(params, model), TrackKernelArray(params, foundation=foundation)
 
 
 def _line_quadrature(transform, tau, a, s_max, panel_tol):

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.response.cut_policy import branch_cut_extent, branch_cut_mode, branch_cut_or_note, s_min_for
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
@@ -65,6 +66,12 @@ class TimeSeries:
         Units of tau, w, u, theta: dimensionless (w_st, w_st chi) or SI (s, m, rad).
     notes : tuple of str
         What the computation decided (e.g. up to which time the branch cut was included).
+    responses, steady : dict
+        Every response of the vehicle by its DOF name (the rail under each wheel, then the bodies' bounce
+        and pitch; ``DOFS`` of its generated module) and its steady part: the same numbers as the fields
+        above for the bogie and two masses, the only ones for any other vehicle (there those are NaN).
+    response_units : dict
+        DOF name -> unit of that response (``w_st``, ``w_st chi`` or SI ``m``, ``rad``).
     """
 
     tau: np.ndarray
@@ -82,6 +89,9 @@ class TimeSeries:
     branch_cut_until: float = 0.0
     units: dict = field(default_factory=lambda: dict(DIMENSIONLESS_UNITS))
     notes: tuple = ()
+    responses: dict = field(default_factory=dict)
+    steady: dict = field(default_factory=dict)
+    response_units: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         """JSON-ready dict: arrays as lists (NaN as None), the steady parts, flags, units and frequencies."""
@@ -106,6 +116,9 @@ class TimeSeries:
             "branch_cut_until": None if math.isinf(self.branch_cut_until) else float(self.branch_cut_until),
             "model": self.model,
             "units": dict(self.units),
+            "responses": {name: clean(v) for name, v in self.responses.items()},
+            "steady": {name: scalar(v) for name, v in self.steady.items()},
+            "response_units": dict(self.response_units),
             "induced_frequencies": [
                 {"re": r.re_text, "im": r.im_text, "side": r.side} for r in self.frequencies.roots
             ],
@@ -155,7 +168,8 @@ def closed_form_response(
         With physical parameters, ``tau`` is the time t in seconds and the results are in m and rad.
     tau : array_like of float, >= 0
         Times (dimensionless tau = t sqrt(k_f/m), Eq. (16), unless physical parameters are given).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     frequencies : FrequencyResult, optional
         Precomputed induced frequencies (same params and model); computed at ``dps`` if omitted.
     branch_cut : True, False or "auto"
@@ -217,7 +231,8 @@ def closed_form_response(
         if mode == "on":
             until = math.inf
         else:
-            scale = max(abs(expansion.steady["w_rear"]), abs(expansion.steady["w_front"]), 1e-300)
+            wheels = expansion.names[: len(expansion.positions)]
+            scale = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
             until, more = branch_cut_extent(
                 bc, float(tau.max()), tol=bc_tol * scale, cap=bc_tau_cap, s_min=s_min
             )
@@ -234,24 +249,35 @@ def closed_form_response(
     steady = expansion.steady
     ts = dict(
         tau=tau,
-        w_rear=series["w_rear"],
-        w_front=series["w_front"],
+        w_rear=series.get("w_rear", nan),
+        w_front=series.get("w_front", nan),
         u=series.get("u", nan),
         theta=series.get("theta", nan),
-        w_steady_rear=steady["w_rear"],
-        w_steady_front=steady["w_front"],
+        w_steady_rear=steady.get("w_rear", math.nan),
+        w_steady_front=steady.get("w_front", math.nan),
         u_steady=steady.get("u", math.nan),
         theta_steady=steady.get("theta", math.nan),
     )
+    units_of = vehicle_module(model, dimless).UNITS
+    responses = {name: series[name] for name in expansion.names}
+    steady_parts = {name: steady[name] for name in expansion.names}
     if scales is not None:
         ts = _to_si(ts, scales)
         ts["tau"] = tau_in.reshape(-1)
         until = until * scales.t_scale
         units = dict(SI_UNITS)
+        to_si = {"m": scales.deflection, "rad": scales.rotation}
+        responses = {name: to_si[units_of[name]](v) for name, v in responses.items()}
+        steady_parts = {name: to_si[units_of[name]](v) for name, v in steady_parts.items()}
+        response_units = {name: units_of[name] for name in expansion.names}
     else:
         units = dict(DIMENSIONLESS_UNITS)
+        response_units = {name: "w_st chi" if units_of[name] == "rad" else "w_st" for name in expansion.names}
     return TimeSeries(
         **ts,
+        responses=responses,
+        steady=steady_parts,
+        response_units=response_units,
         branch_cut=bool(until > 0),
         frequencies=result,
         model=model,
@@ -314,13 +340,15 @@ def deflection_shape_details(
     result = _frequencies(dimless, model, frequencies, dps, None)
     if expansion is None:
         expansion = residue_expansion(dimless, result, model, shapes=True)
-    d = float(dimless.d)
     flat = xi.reshape(-1)
     grid0 = KernelGrid(dimless, 0, dps=result.dps)
-    w = expansion.shape_steady[0] * grid0(flat) + expansion.shape_steady[1] * grid0(flat - d)
-    for q, (a_r, a_f) in zip(expansion.q_mp, expansion.shape_amplitudes):
+    # Eqs. (44)-(47) for n contacts: w(xi) = sum_j weight_j K(xi - xi_j).
+    w = sum(a * grid0(flat - x) for a, x in zip(expansion.shape_steady, expansion.positions))
+    for q, amplitudes in zip(expansion.q_mp, expansion.shape_amplitudes):
         grid = KernelGrid(dimless, q, dps=result.dps)
-        w = w + (a_r * grid(flat) + a_f * grid(flat - d)) * np.exp(1j * complex(q) * tau)
+        w = w + sum(a * grid(flat - x) for a, x in zip(amplitudes, expansion.positions)) * np.exp(
+            1j * complex(q) * tau
+        )
     scale = np.abs(w).max() if w.size else 0.0
     if w.size and np.abs(w.imag).max() > 1e-8 * max(scale, 1.0):
         raise MovingBogieError(f"deflection shape: imaginary part {np.abs(w.imag).max():.3g} does not cancel")
@@ -330,7 +358,8 @@ def deflection_shape_details(
         s_min = s_min_for(bc, expansion)
         include = mode == "on"
         if not include:
-            ref = max(abs(expansion.steady["w_rear"]), abs(expansion.steady["w_front"]), 1e-300)
+            wheels = expansion.names[: len(expansion.positions)]
+            ref = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
             until, more = branch_cut_extent(bc, tau, tol=bc_tol * ref, cap=bc_tau_cap, s_min=s_min)
             include = tau <= until
             notes += (

@@ -38,6 +38,7 @@ from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.cut import CutTracer, trace_curves
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import resolve_foundation
+from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.cut_pieces import cut_pieces, roots_along
 from moving_bogie.response.quadrature import adapt_panels, by_bands, fourier_sum, subdivide
@@ -59,7 +60,7 @@ _CHUNK = 20000
 _REAL_TOL = 1e-12
 
 
-def branch_cut_for(params, model: str = "bogie", *, foundation=None):
+def branch_cut_for(params, model: str | None = None, *, foundation=None):
     """The branch-cut integral of ``params``: :class:`BranchCut` for the Euler-Bernoulli beam below the
     critical velocity (its cut is a half-line, integrated in closed geometry), :class:`CurveBranchCut` for
     any other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut
@@ -86,17 +87,19 @@ class CurveBranchCut:
         an undamped layered track), or a curve stays bounded in Re q > 0 (a layered track at alpha = 0).
     """
 
-    def __init__(self, params, model: str = "bogie", *, foundation=None, panel_tol: float = 1e-13):
+    def __init__(self, params, model: str | None = None, *, foundation=None, panel_tol: float = 1e-13):
         self.params, self.model = params, model
         track = resolve_foundation(params, foundation)
         self.module = track.module
         self.fargs = track.float_arguments(params)
         self.tracer = CutTracer(self.module, self.fargs)
         f = params.as_float()
-        self.d = f.d
-        self.vehicle = vehicle_module(model, params)
-        self.vargs = {name: getattr(f, name) for name in self.vehicle.PARAMETERS} | {"pi": np.pi}
-        self.names = tuple(self.vehicle.RESPONSES)
+        module = vehicle_module(model, params)
+        self.system = VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
+        self.offsets = np.array([float(x) for x in self.system.offsets])
+        self.positions = np.array([float(x) for x in self.system.positions])
+        self.span = float(self.positions.max())  # rear to front wheel (d for the bogie)
+        self.names = tuple(module.DOFS)
         self.panel_tol = panel_tol
         P = 8.0
         while P < 1e4 and not np.all(np.abs(self.tracer.q_roots(np.array([-P, P])).real) > _REACH):
@@ -149,19 +152,20 @@ class CurveBranchCut:
         t = self.tracer.dq_dp(p, q)
         with np.errstate(divide="ignore", invalid="ignore"):
             P, W, right, left, m = self._sides(p, q, t)
-            contact = np.array([0.0, self.d, -self.d])
             out = []
             for upper in (right, left):
-                K0, Kp, Km = self._kernel(P, W, upper, contact).T
-                E = self.vehicle.e_chr(q, K0, Kp, Km, **self.vargs)
+                Ks = list(self._kernel(P, W, upper, self.offsets).T)
+                E, nums, G = self.system.responses_array(q, Ks)
                 if xi is None:
-                    nums = self.vehicle.numerators(q, K0, Kp, Km, **self.vargs)
-                    out.append(np.stack([n / (1j * q * E) for n in nums], axis=-1))
+                    out.append(nums / (1j * q * E)[:, None])
                 else:
-                    G_r, G_f = self.vehicle.shape_weights(q, K0, Kp, Km, **self.vargs)
                     den = 2 * np.pi * 1j * q * E
-                    Kx, Kxd = self._kernel(P, W, upper, xi), self._kernel(P, W, upper, xi - self.d)
-                    out.append((G_r / den)[:, None] * Kx + (G_f / den)[:, None] * Kxd)
+                    out.append(
+                        sum(
+                            (G[:, j] / den)[:, None] * self._kernel(P, W, upper, xi - x)
+                            for j, x in enumerate(self.positions)
+                        )
+                    )
             J = (out[0] - out[1]) * (t / m)[:, None]
         cusp = ~np.all(np.isfinite(J), axis=-1)
         if np.any(cusp):
@@ -262,7 +266,7 @@ class CurveBranchCut:
         tau = np.asarray(tau, dtype=float)
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
-        xi_max = self.d if xi_max is None else xi_max
+        xi_max = self.span if xi_max is None else xi_max
         first = self.pieces[0]
         m = channel(first, np.array([0.5 * (first.p_lo + first.p_hi)]))[1].shape[-1]
 
@@ -297,7 +301,7 @@ class CurveBranchCut:
             lambda piece, p: self._jump(piece, p, flat),
             tol=tol,
             s_min=s_min,
-            xi_max=float(np.max(np.abs(np.concatenate([flat, flat - self.d])))),
+            xi_max=float(np.max(np.abs(np.concatenate([flat, flat - self.span])))),
         )
         return values[0].reshape(xi.shape)
 
@@ -305,6 +309,6 @@ class CurveBranchCut:
         """(1/pi) sum of integrals of |J| dp: |I_bc(tau)| <= this * e^{-eta_f tau} for every tau."""
         total = 0.0
         for piece, S in zip(self.pieces, self.choose_S(self._jump, 0.0, tol, s_min)):
-            nodes, weights = self._rule(piece, S, 0.0, self.d, self._jump)
+            nodes, weights = self._rule(piece, S, 0.0, self.span, self._jump)
             total = total + (np.abs(self._jump(piece, nodes)[1]) * weights[:, None]).sum(axis=0) / np.pi
         return {name: float(total[k]) for k, name in enumerate(self.names)}

@@ -1,8 +1,8 @@
 """Steady part and unsteady harmonic part of the closed-form response: residues of Eq. (35).
 
-For every response X (w_rear = w(0,tau), w_front = w(d,tau), bar bounce u, pitch theta) the derived
-system gives i q X~(q) = n_X(q) / E_chr(q) (``derivations/system.py``). Closing the Bromwich line
-Im q = -a upward, x(tau) = i * sum Res[X~ e^{i q tau}] + I_bc, that is
+For every response X (every DOF of the vehicle: the rail's deflection under each wheel, then the bodies'
+bounce and pitch) the block system gives i q X~(q) = n_X(q) / E_chr(q) (:mod:`moving_bogie.kernels.vehicle`).
+Closing the Bromwich line Im q = -a upward, x(tau) = i * sum Res[X~ e^{i q tau}] + I_bc, that is
 
     x(tau) = n_X(0)/E_chr(0)                                  steady part, Eq. (39)
            + sum_j n_X(q_j) e^{i q_j tau} / (q_j E_chr'(q_j))  unsteady harmonic part, Eqs. (36), (40)-(43)
@@ -65,17 +65,19 @@ class ResidueExpansion:
     Attributes
     ----------
     names : tuple of str
-        Responses available ("w_rear", "w_front", and for the bogie "u", "theta").
+        Responses available: every DOF of the vehicle, the wheels first (``DOFS``).
     q : ndarray of complex
         Every induced frequency, both members of each pair.
     amplitudes : dict
         name -> ndarray of complex, ``n_X(q_j) / (q_j E_chr'(q_j))``, aligned with ``q``.
     steady : dict
         name -> float, ``n_X(0) / E_chr(0)`` (Eq. (39)).
-    shape_amplitudes : ndarray of complex, shape (len(q), 2)
-        ``(G_rear, G_front)(q_j) / (2 pi q_j E_chr'(q_j))`` of Eq. (47).
-    shape_steady : ndarray of float, shape (2,)
-        ``(G_rear, G_front)(0) / (2 pi E_chr(0))`` of Eq. (44).
+    shape_amplitudes : ndarray of complex, shape (len(q), n)
+        ``G_j(q_j) / (2 pi q_j E_chr'(q_j))`` of Eq. (47), one column per contact j.
+    shape_steady : ndarray of float, shape (n,)
+        ``G_j(0) / (2 pi E_chr(0))`` of Eq. (44).
+    positions : tuple of float
+        The contact positions xi_j (rear wheel at 0): w(xi) = sum_j (weight_j) K(xi - xi_j).
     q_mp, amplitudes_mp : the same at the roots' precision (mpmath).
     """
 
@@ -85,6 +87,7 @@ class ResidueExpansion:
     steady: dict
     shape_amplitudes: np.ndarray
     shape_steady: np.ndarray
+    positions: tuple
     q_mp: tuple
     amplitudes_mp: dict
     dps: int
@@ -148,7 +151,8 @@ def residue_expansion(
     params : DimensionlessParams
     frequencies : FrequencyResult
         From :func:`moving_bogie.roots.frequencies.induced_frequencies` for the same params and model.
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     shapes : bool
         Also compute the shape weights of Eqs. (44)-(47) (needed by :func:`deflection_shape`).
 
@@ -162,11 +166,11 @@ def residue_expansion(
         raise MovingBogieError(f"frequencies were computed for model {frequencies.model!r}, not {model!r}")
     qs = both_members(frequencies)
     chr_ = Characteristic(params, model)
-    names = tuple(chr_.module.RESPONSES)
+    names = chr_.names
     with mpmath.workdps(frequencies.dps):
         zero = mpmath.mpc(0)
         kv0 = chr_.kernel_values(zero)
-        E0 = chr_.module.e_chr(zero, *kv0.K, **chr_.vehicle_arguments())
+        E0 = chr_.system.e_chr(zero, kv0.K)
         if abs(E0) < mpmath.mpf(10) ** (-frequencies.dps // 2):
             raise MovingBogieError("E_chr(0) = 0: no steady state (q = 0 is an induced frequency)")
         n0 = chr_.numerators(zero, kv0)
@@ -176,21 +180,21 @@ def residue_expansion(
         for q in qs:
             q = mpmath.mpc(q)
             kv = chr_.kernel_values(q, derivative=True)
-            args = chr_.vehicle_arguments()
-            E_q, E_K0, E_Kp, E_Km = chr_.module.e_chr_partials(q, *kv.K, **args)
-            dE = E_q + E_K0 * kv.dK[0] + E_Kp * kv.dK[1] + E_Km * kv.dK[2]
+            E, dE = chr_.value_and_derivative(q, kv)
             if dE == 0:
                 raise MovingBogieError(f"E_chr'({mpmath.nstr(q, 10)}) = 0: a multiple root")
             num = chr_.numerators(q, kv)
             for name in names:
                 amps_mp[name].append(num[name] / (q * dE))
             if shapes:
-                G = chr_.shape_weights(q, kv)
+                G = chr_.shape_weights(q, kv, num, E)
                 shape_amps.append([g / (2 * mpmath.pi * q * dE) for g in G])
             qs_mp.append(q)
-        shape_steady = [0.0, 0.0]
+        contacts = chr_.system.contacts
+        positions = tuple(float(x) for x in chr_.system.positions)
+        shape_steady = [0.0] * contacts
         if shapes:
-            G0 = chr_.shape_weights(zero, kv0)
+            G0 = chr_.shape_weights(zero, kv0, n0, E0)
             shape_steady = [float(mpmath.re(g / (2 * mpmath.pi * E0))) for g in G0]
     for name in names:
         if abs(mpmath.im(steady_mp[name])) > mpmath.mpf(10) ** (-frequencies.dps // 2) * (
@@ -203,9 +207,10 @@ def residue_expansion(
         amplitudes={name: np.array([complex(a) for a in amps_mp[name]], dtype=complex) for name in names},
         steady={name: float(mpmath.re(steady_mp[name])) for name in names},
         shape_amplitudes=np.array([[complex(g) for g in row] for row in shape_amps], dtype=complex).reshape(
-            -1, 2
+            -1, contacts
         ),
         shape_steady=np.array(shape_steady, dtype=float),
+        positions=positions,
         q_mp=tuple(qs_mp),
         amplitudes_mp={name: tuple(v) for name, v in amps_mp.items()},
         dps=frequencies.dps,

@@ -34,7 +34,7 @@ from functools import reduce
 from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.characteristic import closed_form_vehicle
 from moving_bogie.kernels.track import foundation_arguments, foundation_module
 
 
@@ -140,7 +140,8 @@ class BallCharacteristic:
     Parameters
     ----------
     params : DimensionlessParams
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     prec : int
         Working precision in bits; every call runs at it (the p-roots are approximated to it too).
     below : bool
@@ -160,7 +161,7 @@ class BallCharacteristic:
         self.prec = prec
         self.tol = 2.0 ** (8 - prec)
         self.foundation = foundation_module(params)
-        self.vehicle = vehicle_module(model, params)
+        self.vehicle = closed_form_vehicle(model, params, "a ball-arithmetic proof")
         self.evaluations = 0
         with ctx.workprec(prec):
             numbers = _ExactBalls(params)

@@ -1,8 +1,12 @@
 """A radius R beyond which E_chr has no root in the lower half-plane (the far field of Eq. (48)).
 
-``derivations/asymptotics.py`` derives, for every track and vehicle, the leading part E_lead of E_chr for
-large |q| (``generated/asymptotics.py``): with K = O(|q|^-gamma) (Eq. (29)),
-E_chr = E_lead + (terms smaller by |q|^-delta). Wherever
+``derivations/asymptotics.py`` derives, for every track, the decay K = O(|q|^-gamma) of Eq. (29)
+(``KERNEL_DECAY`` of its generated module). For a vehicle on n wheels with wheel masses M_cc and body
+masses M_ii, the block system of :mod:`moving_bogie.kernels.vehicle` gives
+E_chr = E_lead + (terms smaller by |q|^-delta) with E_lead = det(-2 q^2 Kmat M_cc) det(-q^2 M_ii) and
+delta = min(2 - gamma, 1) (:func:`leading_gap`; for the
+bogie and two masses this is the expansion that ``derivations/asymptotics.py`` derives symbolically,
+checked in tests/test_verdict.py). Wherever
 
     rho(q) = |E_chr(q) - E_lead(q)| / |E_lead(q)| < 1,
 
@@ -10,10 +14,10 @@ E_chr cannot vanish (E_chr = 0 would give |E_lead| < |E_lead|). :func:`far_field
 smallest R = R0 2^k at which rho <= 1/2 (a margin of 2) at every sample of the lower half-plane beyond R that
 it checks: the half circles |q| = R, 2R, 4R, ..., 32R (angles clustered towards the real axis, where the
 factors e^{i p_k d} of K(+-d) stop decaying), the two rays just below the real axis from R to 32R and seven
-rays in between. Beyond
-32R the derived decay rho = O(|q|^-delta) / |1 - K+ K- / K0^2| takes over (for Euler-Bernoulli the derivation
-shows |K+ K- / K0^2| <= 1/2 asymptotically). The check is numerical, with that margin: it is what makes
-"stable" a statement about every root with Im q < 0, and when it fails the verdict says UNDETERMINED.
+rays in between. Beyond 32R the derived decay rho = O(|q|^-delta) / |det Kmat / K0^n| takes over (for the
+bogie on Euler-Bernoulli det Kmat / K0^2 = 1 - K+ K- / K0^2 with |K+ K- / K0^2| <= 1/2 asymptotically).
+The check is numerical, with that margin: it is what makes "stable" a statement about every root with
+Im q < 0, and when it fails the verdict says UNDETERMINED.
 """
 
 from __future__ import annotations
@@ -24,8 +28,6 @@ from fractions import Fraction
 
 import numpy as np
 
-from moving_bogie.errors import MovingBogieError
-from moving_bogie.generated import asymptotics
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.track import foundation_module
 
@@ -51,25 +53,33 @@ class FarField:
         return {"radius": self.radius, "rho": rho, "margin": MARGIN, "reason": self.reason or None}
 
 
-def model_name(params) -> str:
-    """Name of the generated foundation module of ``params`` (``foundation_<name>``): its key here."""
-    return foundation_module(params).__name__.rsplit(".", 1)[-1].removeprefix("foundation_")
+def kernel_decay(params) -> Fraction | None:
+    """gamma of K = O(|q|^-gamma) for the parameters' track (``KERNEL_DECAY`` of its generated module)."""
+    value = getattr(foundation_module(params), "KERNEL_DECAY", None)
+    return None if value is None else Fraction(value)
 
 
-def leading_part(model: str, beam: str):
-    """The generated E_lead of ``model`` (vehicle) on ``beam`` (a :func:`model_name`) and the gap delta.
+def leading_gap(gamma: Fraction) -> Fraction:
+    """delta: the rest of E_chr is smaller than E_lead by |q|^-delta, delta = min(2 - gamma, 1).
 
-    Raises
-    ------
-    MovingBogieError
-        When ``generated/asymptotics.py`` has no expansion for this pair (a model generated elsewhere).
+    The wheel rows of the block system are 2 Kmat D_c. with D = -q^2 M + O(q): their leading part
+    -2 q^2 Kmat M_cc is of order |q|^(2 - gamma); pi I is smaller by |q|^(gamma - 2), the damping and
+    stiffness terms by |q|^-1, and the coupling to the internal rows (D_ci, D_ic = O(q), M_ci = 0) by |q|^-2.
     """
-    name = f"e_chr_leading_{model}_{beam}"
-    try:
-        return getattr(asymptotics, name), Fraction(asymptotics.LEADING_GAP[(model, beam)])
-    except (AttributeError, KeyError):
-        message = f"no generated far-field expansion for {model} on {beam!r}: run python -m derivations"
-        raise MovingBogieError(message) from None
+    return min(2 - gamma, Fraction(1))
+
+
+def e_lead(system, q, K) -> np.ndarray:
+    """E_lead = det(-2 q^2 Kmat M_cc) det(-q^2 M_ii) for arrays of q (Kmat from the kernel values K)."""
+    n, N = system.contacts, system.size
+    M = np.array(system.mass, dtype=float)
+    q = np.asarray(q, dtype=complex)
+    Kmat = np.empty(q.shape + (n, n), dtype=complex)
+    for i in range(n):
+        for j in range(n):
+            Kmat[..., i, j] = K[system.index[i][j]]
+    constant = np.linalg.det(M[:n, :n]) * (np.linalg.det(M[n:, n:]) if N > n else 1.0)
+    return (-2 * q**2) ** n * (-(q**2)) ** (N - n) * constant * np.linalg.det(Kmat)
 
 
 def sample_points(
@@ -91,35 +101,40 @@ def sample_points(
     return np.concatenate(circles + [r + below, -r + below, inner])
 
 
-def rho(params, model: str, q) -> np.ndarray:
+def rho(params, model: str | None, q) -> np.ndarray:
     """|E_chr - E_lead| / |E_lead| at the points ``q`` (double precision)."""
     E = CharacteristicArray(params, model)
-    lead, _ = leading_part(model, model_name(params))
     q = np.asarray(q, dtype=complex)
-    kv = E.kernel(q, [0.0, E.d, -E.d])
+    kv = E.kernel_values(q)
     with np.errstate(all="ignore"):
-        full = E.module.e_chr(q, *kv.K, **E.args)
-        main = lead(q, *kv.K, **E.args)
+        full = E.system.e_chr_array(q, kv.K)
+        main = e_lead(E.system, q, kv.K)
         out = np.abs(full - main) / np.abs(main)
     return np.where(np.isfinite(out), out, np.inf)
 
 
-def far_field_radius(params, model: str, start: float) -> FarField:
+def far_field_radius(params, model: str | None, start: float) -> FarField:
     """Smallest R = start 2^k (k <= MAX_DOUBLINGS) with rho <= MARGIN on every sample beyond R.
 
     Parameters
     ----------
     params : DimensionlessParams
-    model : {"bogie", "masses"}
+    model : str, optional
+        The vehicle (default: the parameters' own).
     start : float
         First radius tried (the default window's scale).
     """
     radius = float(start)
     worst = np.inf
-    try:
-        leading_part(model, model_name(params))
-    except MovingBogieError as exc:
-        return FarField(None, worst, float(start), str(exc))
+    gamma = kernel_decay(params)
+    if gamma is None or gamma >= 2:
+        reason = (
+            "no far-field expansion: the decay of K(xi, q) is not generated for this track "
+            "(KERNEL_DECAY; run python -m derivations)"
+            if gamma is None
+            else f"no far-field expansion: K = O(|q|^-{gamma}) decays too fast for the block leading part"
+        )
+        return FarField(None, worst, float(start), reason)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         for _ in range(MAX_DOUBLINGS + 1):

@@ -30,7 +30,7 @@ from moving_bogie.kernels.cut import CutLocus, arms_y_at
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
 from moving_bogie.roots.counting import CountMismatch, count_tiling, frame
 from moving_bogie.roots.far_field import FarField, far_field_radius
-from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
+from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm, split_cluster
 from moving_bogie.roots.strip import StripCount, strip_below_cut
 from moving_bogie.roots.verdict import Verdict, judge
 from moving_bogie.roots.window import default_window, far_field_window  # noqa: F401  (public here too)
@@ -180,7 +180,8 @@ def induced_frequencies(
     Parameters
     ----------
     params : DimensionlessParams
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     dps : int
         Working precision (decimal digits) of the polished roots.
     extra_dps : int, optional
@@ -240,15 +241,22 @@ def induced_frequencies(
     roots = []
     for k, (q0, mult, rect) in enumerate(cells):
         try:
-            conf = polish_and_confirm(precise, q0, dps=dps, extra_dps=extra_dps, multiplicity=mult)
+            confirmed = [
+                (polish_and_confirm(precise, q0, dps=dps, extra_dps=extra_dps, multiplicity=mult), mult)
+            ]
         except PolishError as exc:
-            warnings.append(f"polish: {exc}")
-            continue
-        if not rect.contains(complex(conf.q), margin=1e-9 * max(1.0, abs(complex(conf.q)))):
-            warnings.append(f"polish: Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
-            continue
-        side = _side(conf.q, conf.decimals, cut, params)
-        roots.append(InducedFrequency(conf.q, side, mult, conf.step, conf.digits, conf.decimals))
+            confirmed = (
+                split_cluster(precise, q0, mult, rect, dps=dps, extra_dps=extra_dps) if mult > 1 else []
+            )
+            if not confirmed:
+                warnings.append(f"polish: {exc}")
+                continue
+        for conf, m in confirmed:
+            if not rect.contains(complex(conf.q), margin=1e-9 * max(1.0, abs(complex(conf.q)))):
+                warnings.append(f"polish: Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
+                continue
+            side = _side(conf.q, conf.decimals, cut, params)
+            roots.append(InducedFrequency(conf.q, side, m, conf.step, conf.digits, conf.decimals))
         report(0.6 + 0.4 * (k + 1) / len(cells))
     roots, pair_warnings = _fold_pairs(roots)
     warnings += pair_warnings

@@ -64,10 +64,22 @@ def polish_and_confirm(characteristic, q0, *, dps, extra_dps, multiplicity=1) ->
     The reported value is the higher-precision one; ``decimals`` is the largest number of decimal places at
     which the two values, rounded, print the same real and imaginary parts (so every printed digit has been
     recomputed at higher precision and confirmed).
+
+    When Newton stalls at ``dps`` digits (roots closer together than that precision resolves: two identical
+    bogies that interact only through the rail give pairs 1e-13 apart), the polish is repeated at twice
+    and four times ``dps``; the digits are still confirmed one ``extra_dps`` step higher.
     """
-    with mpmath.workdps(dps):
-        q, step = newton(characteristic, q0, multiplicity=multiplicity)
-    with mpmath.workdps(dps + extra_dps):
+    work = dps
+    while True:
+        try:
+            with mpmath.workdps(work):
+                q, step = newton(characteristic, q0, multiplicity=multiplicity)
+            break
+        except PolishError:
+            if work >= 4 * dps:
+                raise
+            work *= 2
+    with mpmath.workdps(work + extra_dps):
         q_hi, _ = newton(characteristic, q, multiplicity=multiplicity)
         err = abs(q_hi - q)
         mag = abs(q_hi)
@@ -86,3 +98,35 @@ def _same_rounding(a, b, decimals):
     return fixed_text(mpmath.re(a), decimals) == fixed_text(mpmath.re(b), decimals) and fixed_text(
         mpmath.im(a), decimals
     ) == fixed_text(mpmath.im(b), decimals)
+
+
+def split_cluster(characteristic, q0, multiplicity, rect, *, dps, extra_dps) -> list:
+    """The simple roots of a cluster that the cells could not separate (size below 1e-10), or [].
+
+    Two identical bogies that interact only through the rail give pairs closer than that. Plain Newton at
+    twice ``dps`` from points around the cluster's centre reaches its members; when exactly
+    ``multiplicity`` distinct roots inside ``rect`` are reached, each is polished and confirmed as a simple
+    root (:func:`polish_and_confirm`); otherwise nothing is returned and the cluster stays unresolved.
+    """
+    found = []
+    with mpmath.workdps(2 * dps):
+        q0 = mpmath.mpc(q0)
+        size = max(rect.width, rect.height)
+        for k in range(4 * multiplicity):
+            start = q0 + size * mpmath.expjpi(mpmath.mpf(k) / (2 * multiplicity))
+            try:
+                q, _ = newton(characteristic, start)
+            except PolishError:
+                continue
+            close = mpmath.mpf(10) ** (-dps) * max(1, abs(q))
+            if rect.contains(complex(q)) and all(abs(q - other) > close for other in found):
+                found.append(q)
+    if len(found) != multiplicity:
+        return []
+    out = []
+    for q in found:
+        try:
+            out.append((polish_and_confirm(characteristic, q, dps=dps, extra_dps=extra_dps), 1))
+        except PolishError:
+            return []
+    return out

@@ -8,34 +8,36 @@ root.
 
 from __future__ import annotations
 
-import math
-
+from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.far_field import FarField, far_field_radius
 
 __all__ = ["default_window", "far_field_window"]
 
 
-def default_window(params, model: str) -> Rectangle:
+def default_window(params, model: str | None = None) -> Rectangle:
     """Default search window: 0 <= Re q <= X, -X <= Im q <= X + eta_f.
 
     X = max(3, 3 f) where f is the largest natural-frequency estimate of the model: the beam on its
-    foundation (q = 1 at rest, Eq. (24) with p = 0), the bar's bounce sqrt(2 kappa_v / mu_v) and pitch
-    sqrt(kappa_v d^2 / (2 J_b)) (the zeros of B2 and B3 of Eq. (37), which E_chr approaches when K -> 0).
-    For large |q| E_chr ~ B2 B3 (pi - 2 K0 B1)^2 with K0 = O(|q|^-3/2) and B1 = O(q^2), which has no zeros:
-    every root lies at moderate |q|. The search still checks a window twice as large (``check_window``).
+    foundation (q = 1 at rest, Eq. (24) with p = 0) and the vehicle's bodies with the wheels held
+    (K_ii v = q^2 M_ii v, the zeros of det D_ii that E_chr approaches when K -> 0; for the bogie its bounce
+    sqrt(2 kappa_v / mu_v) and pitch sqrt(kappa_v d^2 / (2 J_b)), the zeros of B2 and B3 of Eq. (37)).
+    For large |q| E_chr approaches its leading part (:mod:`~moving_bogie.roots.far_field`), which has no
+    zeros: every root lies at moderate |q|. The search still checks a window twice as large
+    (``check_window``).
     The left edge sits slightly left of Re q = 0 so that a purely imaginary root is inside, not on it.
     :func:`induced_frequencies` widens it to the far-field radius R (:func:`far_field_window`).
     """
     f = params.as_float()
-    scale = [1.0]
-    if model == "bogie":
-        scale += [math.sqrt(2 * f.kappa_v / f.mu_v), math.sqrt(f.kappa_v * f.d**2 / (2 * f.J_b))]
+    module = vehicle_module(model, params)
+    system = VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
+    scale = [1.0, *system.natural_frequencies()]
     X = max(3.0, 3.0 * max(scale))
     return Rectangle(-1e-3 * X, X, -X, X + f.eta_f)
 
 
-def far_field_window(params, model: str) -> tuple[Rectangle, FarField]:
+def far_field_window(params, model: str | None = None) -> tuple[Rectangle, FarField]:
     """The window searched by default and the far-field check that justifies it.
 
     With S = max(X, R), X the scale of :func:`default_window` and R the radius beyond which E_chr has no root

@@ -27,6 +27,7 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.plots import plot_validation
+from moving_bogie.validation.vehicle import vehicle_kernels
 from moving_bogie.validation.verdict import (
     DEFAULT_TOLERANCE,
     QUANTITIES,
@@ -69,8 +70,7 @@ def _staged(progress: Callable[[float], None] | None, start: float, width: float
 
 
 def _check(params: Any, model: str, n_modes: int, tol: float, tau_step: float) -> None:
-    if model not in ("bogie", "masses"):
-        raise MovingBogieError(f"model must be 'bogie' or 'masses' (got {model!r})")
+    vehicle_kernels(params, model)  # names an unknown vehicle
     if int(n_modes) != n_modes or n_modes < 4:
         raise MovingBogieError(f"n_modes must be an integer of at least 4 (got {n_modes!r})")
     if not (math.isfinite(tol) and 0 < tol < 1):
@@ -97,11 +97,13 @@ def validate(
     Parameters
     ----------
     params : DimensionlessParams or PhysicalParams
-        Euler-Bernoulli or Timoshenko-Rayleigh beam (``beam="tr"``, the finite beam of
-        :class:`~moving_bogie.validation.modal.ModalBeam` with two unknowns per mode number).
+        Any beam on any track (the finite rail of :class:`~moving_bogie.validation.modal.ModalBeam`
+        reads the model's generated per-mode blocks).
         Physical parameters are converted; the comparison is always in dimensionless tau and w / w_st.
-    model : {"bogie", "masses"}, optional
-        The bogie of Fig. 1b or the two masses of Fig. 1a.
+    model : str, optional
+        Any generated vehicle (default: the parameters' own; the paper's bogie of Fig. 1b, the two masses
+        of Fig. 1a, ...): the finite beam couples its generated matrices at its contacts and every
+        degree of freedom is compared with the closed form's response of the same name.
     n_modes : int, optional
         Modes of the finite beam (default 500, as in the paper); at least 4.
     tau_max : float, optional
@@ -182,7 +184,9 @@ def validate(
 
     tau_w = comparison_window(params, finite, reflection_level=reflection_level)
     inside = tau <= tau_w * (1 + 1e-12)
-    names = ("rear", "front", "u", "theta") if model == "bogie" else ("rear", "front")
+    # every response of the vehicle, under the short names of QUANTITIES where they have one
+    short = {attr: key for key, (attr, _) in QUANTITIES.items()}
+    names = {short.get(dof, dof): dof for dof in finite.responses}
     quantities, notes = {}, [f"closed form: {note}" for note in getattr(closed, "notes", ())]
     if any("branch cut skipped" in note for note in getattr(closed, "notes", ())):
         notes.append(
@@ -194,9 +198,15 @@ def validate(
             f"k_max = {finite.k_max:.2f} < {MIN_CORRECTED_WAVENUMBER:g}: the truncated modes are not much "
             "faster than the forcing, so the static correction is unreliable; use more modes"
         )
-    for name in names:
-        attr = QUANTITIES[name][0]
-        closed_x = series(closed, attr, tau.size)[inside]
+    units = getattr(vehicle_kernels(params, model), "UNITS", {})
+    closed_all = {attr: series(closed, attr, tau.size)[inside] for attr in names.values()}
+    kinds: dict[str, float] = {}
+    for attr, values in closed_all.items():
+        if np.all(np.isfinite(values)):
+            unit = units.get(attr, attr)
+            kinds[unit] = max(kinds.get(unit, 0.0), float(np.max(np.abs(values))))
+    for name, attr in names.items():
+        closed_x = closed_all[attr]
         if not np.all(np.isfinite(closed_x)):
             notes.append(f"closed form {attr} is not finite everywhere in the window")
         quantities[name] = compare_series(
@@ -205,6 +215,7 @@ def validate(
             closed_x,
             tol,
             None if reference is None else series(reference, attr, tau.size)[inside],
+            kinds.get(units.get(attr, attr), 0.0),
         )
     if progress is not None:
         progress(1.0)

@@ -15,6 +15,7 @@ N. M. Newmark, "A method of computation for structural dynamics", J. Eng. Mech. 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Callable
@@ -25,13 +26,15 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.model.catalogue import DEFAULT_MODEL
 from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.geometry import choose_geometry, default_time_step
-from moving_bogie.validation.modal import MODELS, ModalBeam, ModalSystem, Vehicle
+from moving_bogie.validation.modal import ModalBeam, ModalSystem
 from moving_bogie.validation.newmark import initial_state, newmark_step
 from moving_bogie.validation.track_modes import ModalTrack
+from moving_bogie.validation.vehicle import Vehicle
 
-__all__ = ["FiniteBeamResult", "layered_track", "simulate_finite_beam"]
+__all__ = ["FiniteBeamResult", "simulate_finite_beam"]
 
 #: How many progress reports a run makes at most.
 _PROGRESS_REPORTS = 200
@@ -41,14 +44,16 @@ _PROGRESS_REPORTS = 200
 class FiniteBeamResult:
     """Time series of a finite-beam run (dimensionless, Eqs. (16)-(17)).
 
+    Every response of the vehicle is an attribute of its own too (``result.w_rear`` for the paper's
+    bogie, whose ``DOFS`` are ``w_rear, w_front, u, theta``).
+
     Attributes
     ----------
     tau : ndarray
         Output times.
-    w_rear, w_front : ndarray
-        Beam deflection under the rear and front wheel, ``w(x_j(tau), tau)``.
-    u, theta : ndarray
-        Bogie-bar bounce and pitch (all NaN for the "masses" and "force" models).
+    responses : dict
+        Degree-of-freedom name (the vehicle's ``DOFS``) -> time series: the deflection under each wheel,
+        ``w(x_j(tau), tau)``, then the bodies' bounce and pitch.
     length, entry : float
         Beam length ``L`` and rear-wheel position ``x0`` at ``tau = 0``.
     n_modes : int
@@ -61,18 +66,19 @@ class FiniteBeamResult:
     elapsed_s : float
         Wall time of the time stepping.
     model : str
-        "bogie", "masses" or "force".
+        The vehicle's name, or "force" (its loads only).
     k_max : float
         Highest modelled wavenumber ``N pi / L``.
     static_correction : bool
         Whether the truncated modes' quasi-static response was added back.
+    span : float
+        Distance from the rear to the front contact.
+    contacts : int
+        Number of wheels (the first ``contacts`` entries of :attr:`responses`).
     """
 
     tau: np.ndarray
-    w_rear: np.ndarray
-    w_front: np.ndarray
-    u: np.ndarray
-    theta: np.ndarray
+    responses: dict
     length: float
     entry: float
     n_modes: int
@@ -82,42 +88,52 @@ class FiniteBeamResult:
     model: str | None = None
     k_max: float = math.nan
     static_correction: bool = False
+    span: float = math.nan
+    contacts: int = 0
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        responses = self.__dict__.get("responses", {})
+        if name in responses:
+            return responses[name]
+        raise AttributeError(name)
 
 
-def _vehicle(params: Any, model: str, entry: float) -> Vehicle:
-    # Parameters of another vehicle read as None (two masses have no bar): they are not used then.
-    bar = {
-        name: 0.0 if getattr(params, name, None) is None else float(getattr(params, name))
-        for name in ("mu_v", "J_b", "kappa_v", "eta_v")
-    }
-    eta_m = 0.0 if getattr(params, "eta_M", None) is None else float(params.eta_M)
-    return Vehicle(model=model, eta_M=eta_m, d=float(params.d), alpha=float(params.alpha), entry=entry, **bar)
+#: The ``model`` that keeps only the vehicle's wheel loads (its matrices zeroed): constant moving forces.
+LOADS_ONLY = "force"
 
 
-def layered_track(params: Any) -> ModalTrack | None:
-    """The generated finite-rail blocks of a layered track (None on a one-layer track or without a model)."""
-    if getattr(params, "model", None) is None:
-        return None
-    track = ModalTrack.of(params)
-    return track if track.layered else None
-
-
-def _check(params: Any, tau_max: float, model: str, n_modes: int, dt: float | None) -> None:
-    beam = getattr(params, "beam", "eb")
-    if beam not in ("eb", "tr"):
-        raise MovingBogieError(f"beam must be 'eb' or 'tr' (got {beam!r})")
-    if beam == "tr" and not (float(params.S) > 0 and float(params.r) > 0):
-        raise MovingBogieError(
-            f"the Timoshenko-Rayleigh finite beam needs S > 0 and r > 0 (got S={params.S}, r={params.r})"
-        )
-    if model not in MODELS:
-        raise MovingBogieError(f"model must be one of {', '.join(MODELS)} (got {model!r})")
+def _check(
+    params: Any, tau_max: float, model: str | None, n_modes: int, dt: float | None
+) -> tuple[ModalTrack, Vehicle]:
+    """Refuse bad input before any computation; return the track's blocks and the vehicle (entry 0)."""
+    track = ModalTrack.of(params)  # names an unknown beam or track
+    vehicle = Vehicle.of(params, 0.0, None if model == LOADS_ONLY else model)  # names an unknown vehicle
+    if model == LOADS_ONLY:
+        vehicle = vehicle.loads_only()
     if not (math.isfinite(tau_max) and tau_max > 0):
         raise MovingBogieError(f"tau_max must be a positive finite number (got {tau_max!r})")
     if n_modes < 1:
         raise MovingBogieError(f"n_modes must be at least 1 (got {n_modes!r})")
     if dt is not None and not (math.isfinite(dt) and dt > 0):
         raise MovingBogieError(f"dt must be a positive finite number (got {dt!r})")
+    # Newmark needs a positive definite mass in every mode: e.g. rotary inertia for a rotation unknown.
+    mass = track.blocks(np.array([1.0]))[0][0]
+    if np.min(np.linalg.eigvalsh(mass)) <= 0:
+        # name the groups of the mass block that are zero (those whose value changes it)
+        zero = [
+            name
+            for name in track.module.MODAL_ARGUMENTS[1:]
+            if track.values.get(name, 0.0) <= 0
+            and not np.array_equal(
+                ModalTrack(track.module, {**track.values, name: 1.0}).blocks(np.array([1.0]))[0][0], mass
+            )
+        ]
+        raise MovingBogieError(
+            "the finite beam needs a positive mass for every unknown of each mode (got "
+            + ", ".join(f"{name}={track.values.get(name, 0.0):g}" for name in zero)
+            + "): give these groups positive values"
+        )
+    return track, vehicle
 
 
 def simulate_finite_beam(
@@ -143,14 +159,17 @@ def simulate_finite_beam(
     Parameters
     ----------
     params : DimensionlessParams or duck-typed equivalent
-        Needs ``eta_f, eta_M, d, mu_v, J_b, kappa_v, eta_v, alpha`` (anything ``float()`` accepts),
-        optionally ``eta_s`` (default 0) and ``beam`` ("eb", or "tr" with ``S`` and ``r``, Eq. (59):
-        the Timoshenko-Rayleigh beam of :class:`~moving_bogie.validation.modal.ModalBeam`).
+        Any beam on any track of the catalogue (its generated per-mode blocks,
+        :class:`~moving_bogie.validation.track_modes.ModalTrack`); a namespace of numbers names its
+        ``beam`` and ``track`` (default: Euler-Bernoulli on the one-layer track) and carries the groups
+        of that model (a group it leaves out counts as 0) and the vehicle's ``eta_M, d, mu_v, J_b,
+        kappa_v, eta_v`` (anything ``float()`` accepts).
     tau_max : float
         End of the run.
-    model : {"bogie", "masses", "force"}, optional
-        The bogie of Fig. 1b, the two masses of Fig. 1a (``F_j = 2 - eta_M w_j''``), or two
-        constant moving forces (``F_j = 2``).
+    model : str, optional
+        The vehicle: any generated vehicle module's name (default: the parameters' own, or the paper's
+        bogie for a namespace that names none), or "force": that vehicle's wheel loads only, as constant
+        moving forces (its matrices zeroed).
     n_modes : int, optional
         Number of sine modes ``N`` (default 500, as in the paper).
     length, entry : float, optional
@@ -179,35 +198,20 @@ def simulate_finite_beam(
     Raises
     ------
     MovingBogieError
-        For an unknown beam or model, a Timoshenko-Rayleigh beam without ``S, r > 0``, a beam too
-        short for the run, or (static correction) a run at or above the undamped critical velocity.
+        For an unknown beam, track or model, a track whose modal mass is not positive (e.g. a
+        Timoshenko-Rayleigh beam with ``r = 0``), a beam too short for the run, or (static
+        correction) a run at or above the undamped critical velocity.
     """
-    model = model or getattr(params, "vehicle", "bogie")  # a plain namespace of numbers: the bogie
-    _check(params, tau_max, model, n_modes, dt)
-    alpha, eta_f, d = float(params.alpha), float(params.eta_f), float(params.d)
-    eta_s = float(getattr(params, "eta_s", 0.0))
-    tr = getattr(params, "beam", "eb") == "tr"
-    shear, radius = (float(params.S), float(params.r)) if tr else (None, 0.0)
-    track = layered_track(params)
-    geometry = choose_geometry(
-        alpha=alpha,
-        eta_f=eta_f,
-        eta_s=eta_s,
-        d=d,
-        tau_max=tau_max,
-        n_modes=n_modes,
-        length=length,
-        entry=entry,
-        S=shear,
-        r=radius,
-        track=track,
-    )
+    track, vehicle = _check(params, tau_max, model, n_modes, dt)
+    model = model or getattr(params, "vehicle", None) or DEFAULT_MODEL["vehicle"]
+    alpha, d = vehicle.alpha, vehicle.length
+    geometry = choose_geometry(track=track, d=d, tau_max=tau_max, n_modes=n_modes, length=length, entry=entry)
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:
         raise MovingBogieError(
             f"the wheels leave the beam before tau_max={tau_max}: entry={geometry.entry}, d={d}, "
             f"alpha={alpha}, length={geometry.length}"
         )
-    h_max = default_time_step(geometry.k_max, alpha, eta_s) if dt is None else float(dt)
+    h_max = default_time_step(geometry.k_max, track) if dt is None else float(dt)
     n_steps = max(1, math.ceil(tau_max / h_max - 1e-9))
     h = tau_max / n_steps
 
@@ -218,8 +222,8 @@ def simulate_finite_beam(
 
     system_class = CorrectedModalSystem if static_correction else ModalSystem
     system = system_class(
-        ModalBeam(geometry.length, n_modes, eta_f, eta_s, shear, radius, track),
-        _vehicle(params, model, geometry.entry),
+        ModalBeam(geometry.length, n_modes, track),
+        dataclasses.replace(vehicle, entry=geometry.entry),
     )
     series, elapsed_s = _integrate(system, h, n_steps, progress)
 
@@ -228,15 +232,11 @@ def simulate_finite_beam(
             return values
         return CubicHermiteSpline(tau_steps, values, rates)(out)
 
-    w_rear, w_front, u, theta = (resample(series[i], series[i + 4]) for i in range(4))
-    if model != "bogie":
-        u, theta = np.full_like(out, np.nan), np.full_like(out, np.nan)
+    size = vehicle.size
+    responses = {name: resample(series[i], series[size + i]) for i, name in enumerate(vehicle.dofs)}
     return FiniteBeamResult(
         tau=out,
-        w_rear=w_rear,
-        w_front=w_front,
-        u=u,
-        theta=theta,
+        responses=responses,
         length=geometry.length,
         entry=geometry.entry,
         n_modes=n_modes,
@@ -246,6 +246,8 @@ def simulate_finite_beam(
         model=model,
         k_max=geometry.k_max,
         static_correction=static_correction,
+        span=vehicle.length,
+        contacts=vehicle.contacts,
     )
 
 
@@ -256,13 +258,13 @@ def _integrate(
 
     Returns
     -------
-    series : ndarray, shape (8, n_steps + 1)
-        Rows ``w_1, w_2, u, theta`` and then their total time derivatives, at every step.
+    series : ndarray, shape (2 (n + m), n_steps + 1)
+        The vehicle's degrees of freedom and then their total time derivatives, at every step.
     elapsed_s : float
         Wall time.
     """
-    bar = system.bar_index
-    out = np.zeros((8, n_steps + 1))
+    size = system.vehicle.size
+    out = np.zeros((2 * size, n_steps + 1))
     zero = np.zeros(system.n_dof)
     start = time.perf_counter()
     state = initial_state(0.0, zero, zero.copy(), system.assemble(0.0))
@@ -273,10 +275,8 @@ def _integrate(
         tau = i * h
         if i > 0:
             state = newmark_step(state, h, system.assemble(tau))
-        contact = system.contact(tau, state.z, state.v)
-        out[0:2, i], out[4:6, i] = contact.w, contact.dw
-        if bar is not None:
-            out[2:4, i], out[6:8, i] = state.z[bar : bar + 2], state.v[bar : bar + 2]
+        response = system.response(tau, state.z, state.v)
+        out[:size, i], out[size:, i] = response.x, response.dx
         if progress is not None and i > 0 and (i % every == 0 or i == n_steps):
             progress(i / n_steps)
     return out, time.perf_counter() - start

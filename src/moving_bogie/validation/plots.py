@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from moving_bogie.validation.verdict import QUANTITIES, ValidationResult, series
+from moving_bogie.validation.verdict import QUANTITIES, ValidationResult, beam_title, series
 
 __all__ = ["plot_validation"]
 
@@ -33,19 +33,23 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
     """
     from matplotlib.figure import Figure
 
-    panels = ("rear", "u", "theta") if result.model == "bogie" else ("rear",)
+    # the rear wheel and every internal degree of freedom
+    names = list(result.quantities)
+    panels = [names[0], *names[result.finite.contacts :]]
     labels = {
         "rear": r"$w(0,\tau)\,/\,w_{st}$ rear wheel",
         "u": r"$u\,/\,w_{st}$ bar bounce",
         "theta": r"$\theta\,/\,(w_{st}\chi)$ bar pitch",
     }
+    labels = {name: labels.get(name, name) for name in panels}
     fig = Figure(figsize=(7.5, 2.3 * len(panels) + 0.9), layout="constrained")
     axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
     tau = result.tau
     tau_w = result.window[1]
     correction = " + static correction" if result.finite.static_correction else ""
-    for letter, (ax, name) in zip("abc", zip(axes, panels)):
-        attr = QUANTITIES[name][0]
+    short = {key: attr for key, (attr, _) in QUANTITIES.items()}
+    for letter, (ax, name) in zip("abcdefghijklmnop", zip(axes, panels)):
+        attr = short.get(name, name)
         curves = (
             (result.finite, "-", "C0", f"finite beam, {result.finite.n_modes} modes{correction}"),
             (result.closed, "--", "C3", "closed form (infinite beam)"),
@@ -78,9 +82,8 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
     )
     verdict = "agree" if result.agrees else "DISAGREE"
     if title is None:
-        vehicle = "bogie" if result.model == "bogie" else "two masses"
-        beam = " (Timoshenko-Rayleigh)" if getattr(result.params, "beam", "eb") == "tr" else ""
-        title = f"{vehicle}{beam}: finite beam (solid) vs closed form (dashed)"
+        vehicle = result.model
+        title = f"{vehicle} ({beam_title(result.params)}): finite beam (solid) vs closed form (dashed)"
     fig.suptitle(
         f"{title}\n{result.finite.n_modes} modes, "
         f"L = {result.finite.length:.1f}, k_max = {result.finite.k_max:.2f}; window [0, {tau_w:.1f}], "

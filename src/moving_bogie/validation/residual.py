@@ -8,11 +8,12 @@ of structural dynamics (R. R. Craig and A. J. Kurdila, *Fundamentals of Structur
 ``(2/L) F_l sin(lambda_k x_l(tau))`` with ``x_l = x_l(0) + alpha tau``, whose steady response to a
 constant ``F_l`` is ``(2/L) F_l Im[exp(i lambda_k x_l) / Omega(lambda_k)]`` with
 
-    Omega(p) = omega(p)^2 - alpha^2 p^2 + 2 i eta_f alpha p
-             = (p^4 - 4 (alpha^2 - eta_s) p^2 + 8 i eta_f alpha p + 4) / 4,
+    Omega(p) = N(-p, 0) / (4 Q(-p, 0)),
 
-the symbol of the moving-load operator (Eq. (24) at ``q = 0``, with the Pasternak term; the sign
-of the imaginary part follows from the ``exp(i lambda alpha tau)`` forcing). The truncated modes'
+the symbol of the moving-load operator: Eq. (24) at ``q = 0`` of the track model, read from its
+generated kernel (:meth:`~moving_bogie.validation.track_modes.ModalTrack.symbol_polynomials`; the
+``exp(i p xi)`` of the transform runs the other way). On the one-layer Euler-Bernoulli track it is
+``(p^4 - 4 (alpha^2 - eta_s) p^2 + 8 i eta_f alpha p + 4) / 4``. The truncated modes'
 deflection at wheel ``j`` is therefore ``sum_l R_jl F_l`` with the residual flexibility
 
     R_jl = sum_{k > N} (1/L) Re[(exp(i lambda_k (x_l - x_j)) - exp(i lambda_k (x_j + x_l)))
@@ -27,9 +28,9 @@ Green's function ``G(s) = (1/2 pi) int exp(i p s) / Omega(p) dp`` of the infinit
 images for the simply supported beam. ``R`` is the closed form minus the ``N`` retained terms; the
 images ``m = +-1`` are kept although the geometry makes them ``exp(-gamma L)`` small.
 
-``G`` itself follows from the residues at the four roots ``p_r`` of ``P(p) = 4 Omega(p)``: for
-``s >= 0`` it is ``i sum_{Im p_r > 0} 4 exp(i p_r s) / P'(p_r)``, for ``s < 0`` minus the same sum
-over the roots below the real axis. Its value at ``s = 0`` is 1/2 for a static load (static
+``G`` itself follows from the residues at the roots ``p_r`` of the symbol's denominator: for
+``s >= 0`` it is ``i sum_{Im p_r > 0} exp(i p_r s) num(p_r) / den'(p_r)``, for ``s < 0`` minus the
+same sum over the roots below the real axis. Its value at ``s = 0`` is 1/2 for a static load (static
 deflection 1 under the dimensionless wheel load 2).
 """
 
@@ -39,52 +40,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 
-__all__ = [
-    "ResidualFlexibility",
-    "moving_green_function",
-    "moving_symbol",
-    "polynomial_residues",
-    "symbol_polynomials",
-]
-
-
-def symbol_polynomials(
-    alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
-) -> tuple[np.ndarray, np.ndarray]:
-    """``Omega(p) = den(p) / num(p)``: coefficients of ``num`` and ``den`` in ``p``, highest first.
-
-    Euler-Bernoulli: ``num = 1``, ``den = p^4/4 + (eta_s - alpha^2) p^2 + 2 i eta_f alpha p + 1``.
-    Timoshenko-Rayleigh (``S`` given; the two modal equations of
-    :attr:`~moving_bogie.validation.modal.ModalBeam.diagonals` driven at ``exp(i p alpha tau)``, the
-    rotation eliminated): ``num = Q = S + (1/4 - r^2 alpha^2) p^2`` and
-    ``den = (1 + (S + eta_s - alpha^2) p^2 + 2 i eta_f alpha p) Q - S^2 p^2``.
-    """
-    if S is None:
-        return np.array([1.0 + 0j]), np.array([0.25, 0.0, eta_s - alpha * alpha, 2j * eta_f * alpha, 1.0])
-    q = np.array([0.25 - r * r * alpha * alpha, 0.0, S], dtype=complex)
-    den = np.polymul([S + eta_s - alpha * alpha, 2j * eta_f * alpha, 1.0], q)
-    den[2] -= S * S
-    return q, den
-
-
-def moving_symbol(
-    p: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
-) -> np.ndarray:
-    """``Omega(p)``: ``1 + (eta_s - alpha^2) p^2 + p^4 / 4 + 2 i eta_f alpha p`` for EB (module docstring)."""
-    num, den = symbol_polynomials(alpha, eta_f, eta_s, S, r)
-    p = np.asarray(p, dtype=float)
-    return np.polyval(den, p) / np.polyval(num, p)
-
-
-def _where(alpha: float, eta_f: float, eta_s: float, S: float | None, r: float) -> str:
-    return f"alpha={alpha}, eta_f={eta_f}, eta_s={eta_s}" + ("" if S is None else f", S={S}, r={r}")
-
-
-def _residues(alpha: float, eta_f: float, eta_s: float, S: float | None, r: float):
-    """Roots ``p_r`` of ``den`` and the residue weights ``num(p_r) / den'(p_r)``."""
-    return polynomial_residues(
-        *symbol_polynomials(alpha, eta_f, eta_s, S, r), _where(alpha, eta_f, eta_s, S, r)
-    )
+__all__ = ["ResidualFlexibility", "moving_green_function", "polynomial_residues"]
 
 
 def polynomial_residues(num: np.ndarray, den: np.ndarray, where: str) -> tuple[np.ndarray, np.ndarray]:
@@ -110,31 +66,29 @@ def polynomial_residues(num: np.ndarray, den: np.ndarray, where: str) -> tuple[n
     return roots, np.polyval(num, roots) / np.polyval(np.polyder(den), roots)
 
 
-def moving_green_function(
-    s: np.ndarray, alpha: float, eta_f: float, eta_s: float = 0.0, S: float | None = None, r: float = 0.0
-) -> np.ndarray:
+def moving_green_function(s: np.ndarray, polynomials: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
     """``G(s) = (1/2 pi) int exp(i p s) / Omega(p) dp`` by residues (module docstring).
 
     Parameters
     ----------
     s : array_like
         Distance from the load (observation minus load position).
-    alpha, eta_f, eta_s : float
-        Velocity, foundation damping and Pasternak parameter, Eq. (17).
-    S, r : float, optional
-        Timoshenko-Rayleigh shear and radius of gyration, Eq. (59); Euler-Bernoulli without `S`.
+    polynomials : tuple of two ndarrays
+        ``(num, den)`` of the track's moving-load symbol ``Omega = den / num``
+        (:meth:`~moving_bogie.validation.track_modes.ModalTrack.symbol_polynomials`).
 
     Returns
     -------
     ndarray
-        Real; ``G(0) = 1/2`` at ``alpha = 0``, ``eta_s = 0`` (Euler-Bernoulli).
+        Real; ``G(0) = 1/2`` at ``alpha = 0`` on the one-layer Euler-Bernoulli track without shear layer.
 
     Raises
     ------
     MovingBogieError
         When ``Omega`` has a real or a double root (undamped at or above the critical velocity).
     """
-    return _green_from_roots(np.asarray(s, dtype=float), *_residues(alpha, eta_f, eta_s, S, r))
+    roots, weights = polynomial_residues(*polynomials, "these parameters")
+    return _green_from_roots(np.asarray(s, dtype=float), roots, weights)
 
 
 def _green_from_roots(s: np.ndarray, roots: np.ndarray, weights: np.ndarray) -> np.ndarray:
@@ -150,7 +104,7 @@ def _green_from_roots(s: np.ndarray, roots: np.ndarray, weights: np.ndarray) -> 
 
 
 class ResidualFlexibility:
-    """``R(tau)``, the 2x2 residual flexibility of the modes ``k > N`` at the two wheels.
+    """``R(tau)``, the ``n x n`` residual flexibility of the modes ``k > N`` at the ``n`` contacts.
 
     Parameters
     ----------
@@ -158,46 +112,40 @@ class ResidualFlexibility:
         Retained ``lambda_k = k pi / L``, ``k = 1..N``.
     length : float
         Beam length ``L``.
-    alpha, eta_f, eta_s : float
-        Velocity, foundation damping, Pasternak parameter.
-    d : float
-        Wheel spacing (front wheel at ``x_1 + d``).
-    S, r : float, optional
-        Timoshenko-Rayleigh beam, Eq. (59) (Euler-Bernoulli without `S`).
-    polynomials : tuple of two ndarrays, optional
-        ``(num, den)`` of any track's moving-load symbol ``Omega = den / num``
-        (:meth:`~moving_bogie.validation.track_modes.ModalTrack.symbol_polynomials`, e.g. a layered
-        track); they replace the one-layer symbol of `eta_f`, `eta_s`, `S`, `r`.
+    offsets : array_like, shape (n,)
+        Contact positions relative to the rear contact (``(0, d)`` for the paper's bogie).
+    polynomials : tuple of two ndarrays
+        ``(num, den)`` of the track's moving-load symbol ``Omega = den / num``
+        (:meth:`~moving_bogie.validation.track_modes.ModalTrack.symbol_polynomials`).
+    where : str, optional
+        The parameters, for the message when the symbol has a real root.
     """
 
     def __init__(
         self,
         wavenumbers: np.ndarray,
         length: float,
-        alpha: float,
-        eta_f: float,
-        eta_s: float,
-        d: float,
-        S: float | None = None,
-        r: float = 0.0,
-        polynomials: tuple[np.ndarray, np.ndarray] | None = None,
+        offsets: np.ndarray,
+        polynomials: tuple[np.ndarray, np.ndarray],
+        where: str = "these parameters",
     ) -> None:
         self.length = float(length)
-        if polynomials is None:
-            polynomials = symbol_polynomials(alpha, eta_f, eta_s, S, r)
         num, den = polynomials
-        roots, weights = polynomial_residues(num, den, _where(alpha, eta_f, eta_s, S, r))
+        roots, weights = polynomial_residues(num, den, where)
         self._green = lambda s: _green_from_roots(s, roots, weights)
         # For 0 <= s <= 2L the images s and s + 2L close above, s - 2L below (see _image_part).
         up = roots.imag > 0
         self._upper = (roots[up], 1j * weights[up] * (1.0 + np.exp(2j * self.length * roots[up])))
         self._lower = (roots[~up], -1j * weights[~up])
         self._weight = np.polyval(num, wavenumbers) / (self.length * np.polyval(den, wavenumbers))
-        # The direct (translation-invariant) part depends only on x_l - x_j in {0, d, -d}.
-        shifts = np.array([0.0, d, -d])
+        # The direct (translation-invariant) part depends only on x_l - x_j, fixed by the offsets.
+        offsets = np.asarray(offsets, dtype=float)
+        self.contacts = offsets.size
+        shifts = (offsets[None, :] - offsets[:, None]).reshape(-1)
         direct_full = self._images(shifts) - 0.5 / self.length
         direct_kept = (np.exp(1j * np.outer(shifts, wavenumbers)) @ self._weight).real
-        self._direct = direct_full - direct_kept  # R for s = 0, d, -d (direct part)
+        self._direct = (direct_full - direct_kept).reshape(self.contacts, self.contacts)
+        self._upper_pairs = np.triu_indices(self.contacts)
 
     def _images(self, s: np.ndarray) -> np.ndarray:
         two_l = 2.0 * self.length
@@ -211,26 +159,30 @@ class ResidualFlexibility:
         below = np.exp(1j * np.outer(s - 2.0 * self.length, p_lo)) @ w_lo
         return (above + below).real
 
-    def matrix(self, x1: float, x2: float, phase1: np.ndarray, phase2: np.ndarray) -> np.ndarray:
-        """``R_jl`` at wheel positions ``x1`` (rear), ``x2 = x1 + d`` (front).
+    def matrix(self, positions: np.ndarray, phases: np.ndarray) -> np.ndarray:
+        """``R_jl`` at the contact positions `positions` (rear first, in the order of the offsets).
 
         Parameters
         ----------
-        x1, x2 : float
-            Wheel positions.
-        phase1, phase2 : ndarray, complex
-            ``exp(i lambda_k x_1)`` and ``exp(i lambda_k x_2)`` for the retained modes (the caller
-            has their real and imaginary parts already).
+        positions : ndarray, shape (n,)
+            Contact positions ``x_j``.
+        phases : ndarray, complex, shape (n, N)
+            ``exp(i lambda_k x_j)`` for the retained modes (the caller has their real and imaginary
+            parts already).
 
         Returns
         -------
-        ndarray, shape (2, 2)
-            Deflection at wheel ``j`` (row) per unit force at wheel ``l`` (column).
+        ndarray, shape (n, n)
+            Deflection at contact ``j`` (row) per unit force at contact ``l`` (column):
+            ``direct(x_l - x_j) - image(x_j + x_l)``.
         """
-        sums = np.array([2.0 * x1, x1 + x2, 2.0 * x2])
+        rows, cols = self._upper_pairs
+        positions = np.asarray(positions, dtype=float)
+        sums = positions[rows] + positions[cols]
         image_full = self._image_part(sums) - 0.5 / self.length
-        kept = np.stack([phase1 * phase1, phase1 * phase2, phase2 * phase2]) @ self._weight
-        image = image_full - kept.real
-        d0, dp, dm = self._direct
-        # R_jl = direct(x_l - x_j) - image(x_j + x_l); rear j = 0, front j = 1 (x_2 - x_1 = d).
-        return np.array([[d0 - image[0], dp - image[1]], [dm - image[1], d0 - image[2]]])
+        kept = (phases[rows] * phases[cols]) @ self._weight
+        upper = image_full - kept.real
+        image = np.empty((self.contacts, self.contacts))
+        image[rows, cols] = upper
+        image[cols, rows] = upper
+        return self._direct - image

@@ -30,7 +30,9 @@ from typing import Any
 
 import numpy as np
 
-from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.track import foundation_arguments
+from moving_bogie.model.catalogue import get_model
 
 __all__ = ["ModalTrack"]
 
@@ -59,9 +61,21 @@ class ModalTrack:
 
     @classmethod
     def of(cls, params: Any) -> ModalTrack:
-        """The track of a parameters object (``DimensionlessParams`` or any namespace with ``model``)."""
-        module = foundation_module(params)
-        names = set(module.MODAL_ARGUMENTS[1:]) | set(foundation_arguments(params, params))
+        """The track of a parameters object.
+
+        ``DimensionlessParams`` (its ``model``), or any namespace of numbers naming its ``beam`` and
+        ``track`` (the paper's Euler-Bernoulli beam on the one-layer track when it names neither).
+
+        Raises
+        ------
+        MovingBogieError
+            For a beam or track that the catalogue does not hold, naming it.
+        """
+        model = getattr(params, "model", None)
+        if model is None or isinstance(model, str):
+            model = get_model(beam=getattr(params, "beam", None), track=getattr(params, "track", None))
+        module = model.foundation
+        names = set(module.MODAL_ARGUMENTS[1:]) | set(foundation_arguments(params, params, module))
         return cls(module, {name: _number(getattr(params, name, None)) for name in sorted(names)})
 
     @property
@@ -70,9 +84,9 @@ class ModalTrack:
         return len(self.module.MODAL_PARITY)
 
     @property
-    def layered(self) -> bool:
-        """Whether the track has mass layers: deflections (sine modes) besides the rail's."""
-        return sum(1 for parity in self.module.MODAL_PARITY if parity == 0) > 1
+    def damped(self) -> bool:
+        """Whether any damping group of the track (``DAMPING`` of the generated module) is positive."""
+        return any(self.values.get(name, 0.0) > 0 for name in self.module.DAMPING)
 
     def blocks(self, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``M, C, K`` of the modes of wavenumbers `lam`, each of shape ``(len(lam), size, size)``."""
@@ -85,13 +99,16 @@ class ModalTrack:
             out.append(np.stack(entries, axis=-1).reshape(lam.size, s, s))
         return out[0], out[1], out[2]
 
-    def symbol_polynomials(self) -> tuple[np.ndarray, np.ndarray]:
+    def symbol_polynomials(self, alpha: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """``Omega(p) = den(p) / num(p)``: complex coefficients, highest power first (module docstring).
 
         ``den = N(-p, 0) / 4`` and ``num = Q(-p, 0)`` from the generated ``n_coeffs`` and ``q_coeffs``;
-        leading zeros (a degree that drops, e.g. at ``alpha = 0``) are trimmed.
+        leading zeros (a degree that drops, e.g. at ``alpha = 0``) are trimmed. `alpha` replaces the
+        velocity of :attr:`values` (``alpha = 0``: the static symbol).
         """
         args = {name: self.values[name] for name in self.module.ARGUMENTS[1:]}
+        if alpha is not None:
+            args["alpha"] = float(alpha)
 
         def flipped(coeffs) -> np.ndarray:
             c = np.array([complex(x) for x in coeffs])
@@ -99,6 +116,57 @@ class ModalTrack:
             return np.trim_zeros(c * signs, "f")
 
         return flipped(self.module.q_coeffs(0, **args)), 0.25 * flipped(self.module.n_coeffs(0, **args))
+
+    def static_spectrum(self, p: np.ndarray) -> np.ndarray:
+        """Share per unit wavenumber of a static point load's deflection under the load, at ``p >= 0``.
+
+        ``(1/pi) Re[1 / Omega_0(p)] / G_0(0)`` with ``Omega_0`` the symbol at ``alpha = 0`` and
+        ``G_0(0) = (1/pi) int_0^inf Re[1 / Omega_0] dp`` the deflection under a unit static load (by
+        residues), so that it integrates to 1 over ``p >= 0``. Euler-Bernoulli without a shear layer:
+        ``(8/pi) / (p^4 + 4)``.
+        """
+        num, den = self.symbol_polynomials(alpha=0.0)
+        roots = np.roots(den)
+        if roots.size == 0 or np.min(np.abs(roots.imag)) < 1e-12:
+            raise MovingBogieError(
+                "the static moving-load symbol has a real root: the track has no static deflection"
+            )
+        weights = np.polyval(num, roots) / np.polyval(np.polyder(den), roots)
+        g0 = float((1j * np.sum(weights[roots.imag > 0])).real)
+        p = np.asarray(p, dtype=float)
+        return (np.polyval(num, p) / np.polyval(den, p)).real / (np.pi * g0)
+
+    def spectrum_tail(self, p: np.ndarray, k_max: float) -> np.ndarray:
+        """Share of a static point load's deflection carried by the wavenumbers between `p` and `k_max`.
+
+        The integral of :meth:`static_spectrum` from `p` to `k_max` (trapezoidal rule on 4001 points per
+        unit of ``k_max``); zero where ``p >= k_max``.
+        """
+        grid = np.linspace(0.0, k_max, _SAMPLES)
+        density = self.static_spectrum(grid)
+        cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(grid))])
+        p = np.clip(np.asarray(p, dtype=float), 0.0, k_max)
+        return np.clip(cumulative[-1] - np.interp(p, grid, cumulative), 0.0, 1.0)
+
+    def truncation_share(self, k_max: float) -> float:
+        """Share of a static point load's deflection carried by wavenumbers above `k_max`.
+
+        ``1 - int_0^k_max static_spectrum``, the part of the point-load spectrum beyond the modes
+        (Euler-Bernoulli: at most ``8 / (3 pi k_max^3)``).
+        """
+        return float(max(0.0, 1.0 - self.spectrum_tail(np.array(0.0), k_max)))
+
+    def rail_frequency(self, lam: float) -> float:
+        """``sqrt(K_eff / M_00)`` of the mode `lam`: the rail row with every other unknown static.
+
+        ``K_eff = 1 / [K^-1]_00`` (the other unknowns condensed out statically) and ``M_00`` the rail
+        row's mass; on the one-layer Euler-Bernoulli track ``sqrt(1 + eta_s lam^2 + lam^4 / 4)``.
+        """
+        m, _, k = self.blocks(np.array([lam]))
+        e0 = np.zeros((self.size, 1))
+        e0[0, 0] = 1.0
+        compliance = float(np.linalg.solve(k[0], e0)[0, 0])
+        return float(np.sqrt(1.0 / (compliance * m[0, 0, 0])))
 
     def symbol(self, p: np.ndarray) -> np.ndarray:
         """``Omega(p)`` at real wavenumbers `p` (closed form of :meth:`symbol_polynomials`)."""
@@ -126,6 +194,15 @@ class ModalTrack:
         omega2 = np.linalg.eigvals(np.linalg.solve(m, k)).real
         return np.sqrt(np.clip(np.sort(omega2, axis=-1), 0.0, None))
 
+    def group_velocity_envelope(self, p: np.ndarray) -> np.ndarray:
+        """``max d omega_j / d p`` over every branch and every wavenumber up to `p` (sorted grid `p`).
+
+        Non-decreasing in ``p``: the fastest wave that modes up to ``p`` carry (central differences of
+        the sorted branches of :meth:`dispersion`).
+        """
+        p = np.asarray(p, dtype=float)
+        return np.maximum.accumulate(np.max(np.gradient(self.dispersion(p), p, axis=0), axis=1))
+
     def fastest_wave(self, k_top: float):
         """``k_max -> max d omega_j / d p`` over ``0 < p <= k_max <= k_top`` and every branch.
 
@@ -133,7 +210,7 @@ class ModalTrack:
         function, since the beam's length is found by bisection over ``k_max``.
         """
         p = np.linspace(0.0, k_top, 4 * _SAMPLES)
-        envelope = np.maximum.accumulate(np.max(np.gradient(self.dispersion(p), p, axis=0), axis=1))
+        envelope = self.group_velocity_envelope(p)
         return lambda k_max: float(np.interp(k_max, p, envelope))
 
     def free_wave_decay_rate(self, k_max: float) -> float:

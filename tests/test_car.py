@@ -1,0 +1,254 @@
+"""The car (derivations/vehicles.py) on n = 4 contacts: its frequencies against independent references.
+
+References: the argument principle on a circle around each cluster of roots (a contour other than the
+search's tiling), which must count both members of the close pairs that two bogies interacting only through
+the rail produce; Newton's method on E_chr from every local minimum of |E_chr| on a dense grid; and the
+reductions of the car to its parts (two bogies far apart on a damped track give each bogie's roots twice,
+a one-wheel oscillator with a rigid spring is the moving mass of both masses).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+
+from moving_bogie.cli import main
+from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
+from moving_bogie.model.cases import table1_case
+from moving_bogie.model.files import load_params_file
+from moving_bogie.roots.frequencies import induced_frequencies
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def winding(E, centre, radius, floor=0.0, points=4000):
+    """Roots of E inside |q - centre| = r (argument principle, trapezoid on the circle).
+
+    r starts at ``radius`` and shrinks (down to ``floor``) while the circle meets the cut of K, where E
+    jumps: a step of the argument of a radian or more between neighbouring points.
+    """
+    t = np.linspace(0, 2 * np.pi, points, endpoint=False)
+    while True:
+        values = E(centre + radius * np.exp(1j * t))
+        steps = np.angle(np.roll(values, -1) / values)
+        if np.max(np.abs(steps)) < 1.0:
+            return int(round(np.sum(steps) / (2 * np.pi)))
+        radius /= 4
+        assert radius > floor, f"no circle around {centre} clear of the cut of K"
+
+
+def clusters(qs, gap):
+    """Groups of roots closer than ``gap`` to one another (single linkage), as lists."""
+    groups = []
+    for q in sorted(qs, key=lambda z: (z.real, z.imag)):
+        for g in groups:
+            if min(abs(q - x) for x in g) < gap:
+                g.append(q)
+                break
+        else:
+            groups.append([q])
+    return groups
+
+
+@pytest.fixture(scope="module")
+def car():
+    params, _ = load_params_file(EXAMPLES / "car.toml")
+    return params, induced_frequencies(params, dps=20)
+
+
+@pytest.mark.slow
+def test_car_roots_are_counted_on_other_contours(car):
+    params, result = car
+    assert result.count_ok and result.verdict.state == "stable"
+    E = CharacteristicArray(params)
+    qs = [complex(r.q) for r in result.roots]
+    # Two bogies interact only through the rail: their roots come in pairs far closer than the others.
+    assert min(abs(a - b) for i, a in enumerate(qs) for b in qs[:i]) < 1e-6
+    for group in clusters(qs, 1e-5):
+        centre = np.mean(group)
+        others = [abs(q - centre) for q in qs if q not in group]
+        span = max(abs(q - centre) for q in group)
+        assert winding(E, centre, min(0.3 * min(others), 1e-3), 10 * span) == len(group), (
+            f"cluster at {centre}"
+        )
+
+
+@pytest.mark.slow
+def test_car_roots_against_a_dense_scan(car):
+    """Every local minimum of |E_chr| on a grid that Newton turns into a root is a root found."""
+    params, result = car
+    E = CharacteristicArray(params)
+    x = np.linspace(0.004, 1.2, 600)
+    y = np.linspace(0.0005, 0.3, 300)
+    X, Y = np.meshgrid(x, y)
+    values = np.abs(E(X + 1j * Y))
+    inner = values[1:-1, 1:-1]
+    is_min = np.ones_like(inner, dtype=bool)
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            if dx or dy:
+                is_min &= inner < values[1 + dy : values.shape[0] - 1 + dy, 1 + dx : values.shape[1] - 1 + dx]
+    precise = Characteristic(params)
+    found = [complex(r.q) for r in result.roots]
+    newton = []
+    with mpmath.workdps(20):
+        for i, j in zip(*np.nonzero(is_min)):
+            start = complex(X[i + 1, j + 1], Y[i + 1, j + 1])
+            try:
+                q = complex(mpmath.findroot(precise, mpmath.mpc(start), tol=1e-24, maxsteps=50))
+            except (ValueError, ZeroDivisionError):
+                continue
+            if abs(q - start) < 0.05:
+                newton.append(q)
+    assert newton, "the scan found no root"
+    for q in newton:
+        assert min(abs(q - f) for f in found) < 1e-8 * max(1.0, abs(q)), f"scan root {q} not found"
+    # The scan is not blind: it sees several distinct roots (the other direction, every root found is a
+    # root, is the winding test above; roots next to the cut of K need not be grid minima).
+    print([g[0] for g in clusters(newton, 1e-5)])
+    assert len(clusters(newton, 1e-5)) >= 4
+
+
+@pytest.mark.slow
+def test_car_frequencies_json_in_si(capsys):
+    assert main(["frequencies", "--file", str(EXAMPLES / "car.toml"), "--json", "--dps", "20"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["count_ok"] and data["verdict"]["state"] == "stable"
+    assert all("omega" in root for root in data["roots"])
+
+
+def _bogie_values(case=7):
+    p = table1_case(case)
+    return {
+        k: p.to_exact_dict()[k] for k in ("alpha", "eta_f", "eta_M", "d", "mu_v", "J_b", "kappa_v", "eta_v")
+    }
+
+
+@pytest.mark.slow
+def test_two_far_bogies_give_each_bogie_root_twice():
+    """A car with a vanishing secondary suspension, bogies far apart on a damped track."""
+    values = _bogie_values()
+    bogie = table1_case(7).replace(eta_f="0.3")
+    roots = induced_frequencies(bogie, dps=20)
+    assert roots.count_ok
+    car = table1_case(7).replace(
+        vehicle="car", eta_f="0.3", L_c=40, mu_c=50, J_c=5000, kappa_sec="1e-9", eta_sec="1e-9"
+    )
+    assert {k: car.to_exact_dict()[k] for k in values} == values | {"eta_f": "0.3"}
+    E = CharacteristicArray(car)
+    for root in roots.roots:
+        q = complex(root.q)
+        radius = 0.2 * min(
+            abs(q.imag), min([abs(q - complex(o.q)) for o in roots.roots if o is not root] + [1])
+        )
+        assert winding(E, q, radius, 1e-9) == 2, f"bogie root {q}"
+
+
+def test_rigid_oscillator_is_the_moving_mass():
+    """kappa_v -> infinity: the sprung mass rides on the wheel, a moving mass eta_M + mu_v."""
+    base = table1_case(7)
+    mass = base.replace(vehicle="mass", eta_M=3)
+    oscillator = base.replace(vehicle="oscillator", eta_M=1, mu_v=2, kappa_v="1e8", eta_v=0)
+    Em, Eo = Characteristic(mass), Characteristic(oscillator)
+    with mpmath.workdps(30):
+        # roots of the moving mass by Newton from a grid of starts (reference), then of the oscillator
+        starts = [mpmath.mpc(x, y) for x in (0.3, 0.6, 0.9) for y in (0.05, 0.2)]
+        seen = []
+        for s in starts:
+            try:
+                q = mpmath.findroot(Em, s, tol=1e-25, maxsteps=60)
+            except (ValueError, ZeroDivisionError):
+                continue
+            if all(abs(q - x) > 1e-10 for x in seen):
+                seen.append(q)
+        assert seen
+        for q in seen:
+            qo = mpmath.findroot(Eo, q, tol=1e-25, maxsteps=60)
+            assert abs(qo - q) < 1e-6 * abs(q), (q, qo)
+
+
+def test_car_steady_state_against_quadrature():
+    """Eq. (39) for the car: n_X(0) / E_chr(0) against the static solution written out by hand.
+
+    The loads P act at the wheels, so in the steady state no suspension is strained: each wheel carries 2
+    and W_i = (4 / pi) sum_j K(xi_i - xi_j, 0) (Eq. (28)), with K(xi, 0) by adaptive quadrature of
+    e^{i p xi} Q / N over real p (mpmath.quad, not the residues); each bogie follows its wheels rigidly and
+    the body its bogies.
+    """
+    params, _ = load_params_file(EXAMPLES / "car.toml")
+    chr_ = Characteristic(params)
+    with mpmath.workdps(20):
+        zero = mpmath.mpc(0)
+        kv = chr_.kernel_values(zero)
+        E0 = chr_.system.e_chr(zero, kv.K)
+        steady = {name: n / E0 for name, n in chr_.numerators(zero, kv).items()}
+        xi = [mpmath.mpf(x) for x in chr_.system.positions]
+        track = chr_.kernel.module
+        args = chr_.kernel.arguments()
+        n = [mpmath.mpc(c) for c in track.n_coeffs(zero, **args)]
+        qc = [mpmath.mpc(c) for c in track.q_coeffs(zero, **args)]
+
+        def K(x):
+            f = lambda p: mpmath.exp(1j * p * x) * mpmath.polyval(qc, p) / mpmath.polyval(n, p)  # noqa: E731
+            # unit panels: e^{i p xi} oscillates about three times per panel at the largest offset
+            return mpmath.quad(f, [-mpmath.inf, *range(-60, 61), mpmath.inf])
+
+        for i in range(4):
+            W = 4 / mpmath.pi * mpmath.fsum(K(xi[i] - xi[j]) for j in range(4))
+            # the quadrature's absolute accuracy at the offsets L_c, L_c + d is about 1e-7
+            assert abs(steady[f"w_{i + 1}"] - W) < 1e-6 * abs(W)
+    w = [steady[f"w_{i + 1}"] for i in range(4)]
+    d, L = xi[1], xi[2]
+    for b, (rear, front) in enumerate(((w[0], w[1]), (w[2], w[3])), start=1):
+        assert abs(steady[f"u_b{b}"] - (rear + front) / 2) < 1e-12
+        assert abs(steady[f"theta_b{b}"] - (front - rear) / d) < 1e-12
+    assert abs(steady["u_c"] - (steady["u_b1"] + steady["u_b2"]) / 2) < 1e-12
+    assert abs(steady["theta_c"] - (steady["u_b2"] - steady["u_b1"]) / L) < 1e-12
+
+
+@pytest.mark.slow
+def test_car_on_two_layers_resolves_a_pair_1e13_apart():
+    """On the two-layer track the bogies' pair is 7e-14 apart: both members found, polished, counted."""
+    params, _ = load_params_file(EXAMPLES / "car-two-layer.toml")
+    result = induced_frequencies(params, dps=20)
+    assert result.count_ok and result.verdict.state == "stable"
+    assert all(r.multiplicity == 1 for r in result.roots)
+    qs = [complex(r.q) for r in result.roots]
+    gaps = sorted(abs(a - b) for i, a in enumerate(qs) for b in qs[:i])
+    assert gaps[0] < 1e-12
+    # Reference: Newton at 60 digits from either side of the pair converges to two roots 7e-14 apart.
+    pair = [q for q in qs if min(abs(q - o) for o in qs if o != q) == gaps[0]]
+    precise = Characteristic(params)
+    ends = []
+    with mpmath.workdps(60):
+        centre = mpmath.mpc(sum(pair) / 2)
+        for side in (1, -1):
+            q = centre + side * 1e-7 * (pair[0] - pair[1]) / abs(pair[0] - pair[1])
+            for _ in range(60):  # plain Newton, linear until it is within the pair's distance
+                E, dE = precise.value_and_derivative(q)
+                q -= E / dE
+            ends.append(q)
+    assert abs(ends[0] - ends[1]) > 1e-15
+    for q in pair:
+        assert min(abs(q - complex(e)) for e in ends) < 1e-16
+
+
+@pytest.mark.slow
+def test_car_time_series_against_bromwich():
+    """Every response of the car in closed form (residues at the 11 pairs + branch cut, Eqs. (35)-(43))
+    against the direct quadrature of the Bromwich integral on Im q = -a (no residues, no cut)."""
+    from moving_bogie.response.bromwich import bromwich_line
+    from moving_bogie.response.closed_form import closed_form_response
+
+    params, _ = load_params_file(EXAMPLES / "car.toml")
+    tau = np.array([5.0, 20.0, 60.0])
+    series = closed_form_response(params, tau, dps=20)
+    reference = bromwich_line(params, tau)
+    assert set(series.responses) == set(reference) and len(series.responses) == 10
+    for name, values in series.responses.items():
+        scale = max(np.max(np.abs(reference[name])), 1e-3)  # rotations are small: compare with w ~ 1
+        assert np.max(np.abs(values - reference[name].real)) < 1e-6 * scale, name

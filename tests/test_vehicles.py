@@ -1,0 +1,86 @@
+"""The declared vehicles (derivations/vehicles.py): their generated matrices obey the mechanics they describe.
+
+References: the block determinant of the declared bogie against E_chr of Eq. (38) as derived from the
+bogie's own equations of motion (derivations/system.py, proved equal to the printed Eq. (38) in
+docs/proofs.md); rigid-body motions of the free vehicle (no rail) that strain no spring-damper.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import moving_bogie.generated as generated
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def _module(name):
+    return importlib.import_module(f"moving_bogie.generated.vehicle_{name}")
+
+
+def _matrices(name, seed=0):
+    module = _module(name)
+    rng = np.random.default_rng(7 + seed)
+    params = {k: float(10 ** rng.uniform(-1, 1)) for k in module.MATRIX_ARGUMENTS}
+    return (
+        module,
+        params,
+        [
+            np.array(f(**params), dtype=float)
+            for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
+        ],
+    )
+
+
+# The free vehicle's motions that strain no spring-damper, counted by hand from each declaration: one
+# vertical translation; a pitch when the wheels are linked to a body that pitches; the two unlinked masses
+# move independently; the car also pitches each bogie with its wheels about its centre, where the secondary
+# suspension acts (translation, car pitch, two bogie pitches).
+RIGID_MOTIONS = {"mass": 1, "oscillator": 1, "masses": 2, "bogie": 2, "car": 4}
+
+
+@pytest.mark.parametrize("name", tuple(generated.DECLARED_VEHICLES))
+def test_rigid_motions_strain_no_spring(name):
+    module, _, (M, C, K) = _matrices(name)
+    n = len(module.DOFS)
+    assert M.shape == C.shape == K.shape == (n, n)
+    for A in (M, C, K):
+        assert np.array_equal(A, A.T)
+    assert np.all(np.linalg.eigvalsh(M) > 0)
+    translation = np.array([0.0 if module.UNITS[x] == "rad" else 1.0 for x in module.DOFS])
+    assert np.allclose(K @ translation, 0, atol=1e-12) and np.allclose(C @ translation, 0, atol=1e-12)
+    for A in (K, C):
+        singular = np.linalg.svd(A, compute_uv=False)
+        nullity = int(np.sum(singular <= 1e-10 * max(singular.max(), 1.0)))
+        assert nullity == RIGID_MOTIONS[name], f"{name}: {nullity} rigid motions"
+    # Positive semi-definite: springs and dampers store and dissipate energy.
+    assert np.linalg.eigvalsh(K).min() > -1e-10 and np.linalg.eigvalsh(C).min() > -1e-10
+
+
+def test_car_positions_and_loads():
+    module, params, _ = _matrices("car")
+    d, L = params["d"], params["L_c"]
+    assert module.CONTACTS == 4
+    assert module.contact_positions(**params) == (0, d, L, L + d)
+    assert module.static_loads(**params) == (2, 2, 2, 2)
+
+
+def test_block_determinant_is_eq38():
+    """det of the block system = -1/2 E_chr (bogie: pitch row halved, bounce row negated); masses: E_chr."""
+    sp = pytest.importorskip("sympy")
+    if str(REPO) not in sys.path:
+        sys.path.insert(0, str(REPO))
+    from derivations import symbols as s
+    from derivations.system import SYSTEMS, in_q
+    from derivations.vehicles import VEHICLES, assemble, block_characteristic
+
+    atoms = {0: s.K0, s.d: s.Kp, -s.d: s.Km}
+    for name, factor in (("bogie", sp.Rational(-1, 2)), ("masses", 1)):
+        E = block_characteristic(assemble(VEHICLES[name]()), lambda x: atoms[x])
+        system = SYSTEMS[name]()
+        assert sp.expand(E - factor * in_q(system.E_chr, system)) == 0
