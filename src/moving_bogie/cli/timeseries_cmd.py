@@ -184,13 +184,26 @@ def run_timeseries(args: argparse.Namespace) -> int:
     return 0
 
 
+#: The columns of the paper's vehicles; any other vehicle prints its own responses (its DOFs).
+CLASSIC = ("w_rear", "w_front", "u", "theta")
+
+
+def _own_columns(ts) -> bool:
+    return bool(ts.responses) and not set(ts.responses) <= set(CLASSIC)
+
+
 def write_csv_series(ts, path) -> None:
     from .common import atomic_write
 
-    names = ("tau", "w_rear", "w_front", "u", "theta")
-    units = [ts.units["tau"], ts.units["w"], ts.units["w"], ts.units["u"], ts.units["theta"]]
+    if _own_columns(ts):
+        names = ("tau", *ts.responses)
+        units = [ts.units["tau"], *ts.response_units.values()]
+        columns = [ts.tau, *ts.responses.values()]
+    else:
+        names = ("tau", "w_rear", "w_front", "u", "theta")
+        units = [ts.units["tau"], ts.units["w"], ts.units["w"], ts.units["u"], ts.units["theta"]]
+        columns = [getattr(ts, n) for n in names]
     lines = [",".join(names), "# units: " + ",".join(units)]
-    columns = [getattr(ts, n) for n in names]
     for row in zip(*columns):
         lines.append(",".join(repr(float(v)) for v in row))
     atomic_write(path, "\n".join(lines) + "\n")
@@ -213,8 +226,16 @@ def format_series(ts, rows: bool = True, csv=None, plots=()) -> str:
         f"units: tau [{u['tau']}], w, u [{u['w']}], theta [{u['theta']}]",
         f"{'tau':>14} {'w_rear':>18} {'w_front':>18} {'u':>18} {'theta':>18}",
     ]
+    columns = [ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta]
+    if _own_columns(ts):
+        lines[1:] = [
+            "steady parts: " + "  ".join(f"{n} {v:.10g}" for n, v in ts.steady.items()),
+            "units: tau [" + u["tau"] + "], " + ", ".join(f"{n} [{x}]" for n, x in ts.response_units.items()),
+            f"{'tau':>14} " + " ".join(f"{n:>18}" for n in ts.responses),
+        ]
+        columns = [ts.tau, *ts.responses.values()]
     if rows:
-        for row in zip(ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta):
+        for row in zip(*columns):
             lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))
     else:
         if csv:
