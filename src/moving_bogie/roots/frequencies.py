@@ -28,7 +28,7 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
-from moving_bogie.roots.counting import CountMismatch, count_tiling, frame
+from moving_bogie.roots.counting import count_tiling, frame
 from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm
 from moving_bogie.roots.verdict import Verdict, judge
@@ -212,12 +212,22 @@ def induced_frequencies(
         if progress is not None:
             progress(min(1.0, x))
 
-    cut, tiling, counts = count_tiling(fast, params, window, eps, eps_branch)
+    cut, tiling, counts, count_warnings = count_tiling(fast, params, window, eps, eps_branch)
+    warnings += count_warnings
     total = sum(counts)
     report(0.1)
     if check_window:
         big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
-        more = sum(sum(count_tiling(fast, params, part, eps, eps_branch)[2]) for part in frame(window, big))
+        more, lost = 0, 0
+        for part in frame(window, big):
+            part_counts, part_warnings = count_tiling(fast, params, part, eps, eps_branch)[2:]
+            more += sum(part_counts)
+            lost += len(part_warnings)
+        if lost:
+            warnings.append(
+                f"window: {lost} cell(s) of the window twice as large could not be counted "
+                f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})"
+            )
         if more:
             warnings.append(
                 f"window: {more} more root(s) in the window twice as large "
@@ -227,7 +237,10 @@ def induced_frequencies(
     cells = []
     for rect, n in zip(tiling.regions, counts):
         if n:
-            cells += _locate(fast, precise, rect, n, newton_cell, dps)
+            found_cells, locate_warning = _locate(fast, rect, n, newton_cell)
+            cells += found_cells
+            if locate_warning:
+                warnings.append(locate_warning)
     report(0.6)
     roots = []
     for k, (q0, mult, rect) in enumerate(cells):
@@ -272,9 +285,15 @@ def induced_frequencies(
     return result
 
 
-def _locate(fast, precise, rect, n, newton_cell, dps):
-    """Bisect ``rect`` (holding ``n`` roots) into cells of one root each; returns (q0, multiplicity, cell)."""
-    out = []
+def _locate(fast, rect, n, newton_cell):
+    """Bisect ``rect`` (holding ``n`` roots) into cells of one root each.
+
+    Returns ([(q0, multiplicity, cell)], warning). A cell that cannot be split into halves whose counts
+    add up (a root on every split line tried) is handed to Newton's method from a grid of starts inside
+    it; if that does not find its roots either, they are missing from the result and ``warning`` says
+    where (the count then disagrees with the roots found: the verdict is UNDETERMINED, never a guess).
+    """
+    out, warning = [], None
     stack = [(rect, n)]
     while stack:
         r, k = stack.pop()
@@ -289,7 +308,7 @@ def _locate(fast, precise, rect, n, newton_cell, dps):
         if size < 1e-10 * max(1.0, abs(r.center)):
             out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
             continue
-        for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65):
+        for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75):
             pieces = r.split(frac)  # two halves (a cell at a fold of the cut may give three pieces)
             try:
                 counts = [winding_number(fast, piece) for piece in pieces]
@@ -298,9 +317,46 @@ def _locate(fast, precise, rect, n, newton_cell, dps):
             if sum(counts) == k:
                 break
         else:
-            raise CountMismatch(f"could not split {r} holding {k} root(s) into consistent halves")
+            starts = _grid_roots(fast, r, k)
+            if len(starts) == k:
+                out += [(q, 1, r) for q in starts]
+            else:
+                warning = f"locate: could not split {r} holding {k} root(s) into consistent halves"
+            continue
         stack.extend(zip(pieces, counts))
-    return out
+    return out, warning
+
+
+def _grid_roots(fast, rect, k):
+    """Distinct roots inside ``rect`` reached by Newton's method from a 7 x 7 grid of starts (at most k)."""
+    found = []
+    xs = np.linspace(rect.x0, rect.x1, 9)[1:-1]
+    ys = np.linspace(rect.y0, rect.y1, 9)[1:-1]
+    for y in ys:
+        for x in xs:
+            z = complex(x, y)
+            if not rect.contains(z):
+                continue
+            q = _newton_from(fast, z, rect)
+            if q is not None and all(abs(q - o) > 1e-9 * max(1.0, abs(q)) for o in found):
+                found.append(q)
+    return [mpmath.mpc(q) for q in found[:k]] if len(found) == k else found
+
+
+def _newton_from(fast, q, rect):
+    """Double-precision Newton from ``q``; the root if it converges inside ``rect``."""
+    for _ in range(40):
+        try:
+            E, dE = (complex(v[0]) for v in fast.value_and_derivative(np.array([q])))
+        except MovingBogieError:
+            return None
+        if dE == 0 or not np.isfinite(dE) or not np.isfinite(E):
+            return None
+        step = E / dE
+        q -= step
+        if abs(step) < 1e-13 * max(1, abs(q)):
+            return q if rect.contains(q) else None
+    return None
 
 
 def _newton_inside(fast, rect):

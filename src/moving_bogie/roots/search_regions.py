@@ -9,9 +9,9 @@ the band of half-width ``eps`` around the cut (height 2 eps at every Re q) and, 
 branch point of K, Euler-Bernoulli), a box of half-width ``eps_branch``: roots there are within that
 distance of the cut; the result lists those slivers with their height.
 
-Where the traced curves cannot be followed (two curves crossing or closer than 4 eps inside a column, or
-a fold opening towards smaller Re q), the column falls back to a padded strip around the cut's range in
-it, and the sliver reported there is that strip's height.
+Folds get tip cells whichever way their lens opens. Where the traced curves cannot be followed (two
+curves crossing or closer than 4 eps inside a column), the column falls back to a padded strip around the
+cut's range in it, and the sliver reported there is that strip's height.
 """
 
 from __future__ import annotations
@@ -122,9 +122,10 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
     # event intervals around folds (tip cells) and cusps (branch-point boxes)
     events = []
     for f in folds:
-        # a fold with tip cells gets a column of its own; a cusp, an end of the cut or a fold opening to the
-        # left (no tip cells: a box left out) a narrow one
-        half = eps_branch if (f.cusp or f.opens < 0) else min(1e-3 * window.width, 1e-3)
+        # a fold with tip cells gets a column of its own, clear of the other folds; a cusp or an end of the
+        # cut (a box left out) a narrow one
+        near = min((abs(g.q.real - f.q.real) for g in folds if g is not f), default=np.inf)
+        half = eps_branch if f.cusp else min(1e-3 * window.width, 1e-3, 0.3 * near)
         events.append((f.q.real - half, f.q.real + half, f))
     x_band = window.x0
     if np.isfinite(cut.x_start) and cut.x_start > window.x0:
@@ -251,16 +252,34 @@ def _ends_at(arm, fold) -> bool:
 
 
 def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
-    """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched)."""
+    """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched).
+
+    The lens of the fold opens towards larger Re q (``fold.opens`` = +1: its tip cells reach Re q = b) or
+    towards smaller Re q (-1: they reach a). Curves of the cut that only partly cross the column, or pass
+    through the fold's box, are left out with it; the outer tip cell is framed closely around the lens and
+    rectangles fill the column above and below the frame.
+    """
     pair = [arm for arm in cut.arms if _ends_at(arm, fold)]
-    others = [arm for arm in _arms_over(cut, a, b) if all(arm is not x for x in pair)]
+    full = _arms_over(cut, a, b)
+    others = [arm for arm in full if all(arm is not x for x in pair)]
+    partial = [
+        arm
+        for arm in cut.arms
+        if arm.x_lo < b
+        and arm.x_hi > a
+        and all(arm is not x for x in full)
+        and all(arm is not x for x in pair)
+    ]
     xs = np.linspace(a, b, _COLUMN_SAMPLES)
     pair_ys = [fold.q.imag] + [
         float(y) for arm in pair for y in arm.y_at(np.linspace(max(a, arm.x_lo), min(b, arm.x_hi), 9))
     ]
     low, high = min(pair_ys), max(pair_ys)
+    for arm in partial:
+        y = arm.y_at(np.linspace(max(a, arm.x_lo), min(b, arm.x_hi), 9))
+        low, high = min(low, float(y.min())), max(high, float(y.max()))
     spans = dict(zip(map(id, others), arms_y_at(others, xs))) if others else {}
-    through = []  # other curves passing through the fold's box: left out with it
+    through = list(partial)  # other curves passing through the fold's box: left out with it
     grown = True
     while grown:
         grown = False
@@ -282,11 +301,20 @@ def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
         split = 0.5 * (bottom + high)
         _column(cut, a, b, regions, unsearched, eps, split, band_hi, above)
         band_hi = split
-    if fold.cusp or fold.opens < 0 or len(pair) != 2 or through:  # a box around the fold (cusp, end)
+    if fold.cusp or len(pair) != 2 or through:  # a box around the fold (cusp, end)
         _box(a, b, low - eps, high + eps, regions, unsearched, band_lo, band_hi)
         return
-    at_b = [float(arm.y_at(np.array([b]))[0]) for arm in pair]
-    lower, upper = (pair[0], pair[1]) if at_b[0] < at_b[1] else (pair[1], pair[0])
-    regions.append(TipCell(fold, lower, upper, b, eps, True))
-    regions.append(TipCell(fold, lower, upper, b, eps, False, (a, band_lo, band_hi)))
-    unsearched.append(Sliver(float(fold.q.real) - eps, b, min(at_b) - eps, max(at_b) + eps, 2 * eps))
+    x_tip, x_far = (b, a) if fold.opens > 0 else (a, b)
+    at_tip = [float(arm.y_at(np.array([x_tip]))[0]) for arm in pair]
+    lower, upper = (pair[0], pair[1]) if at_tip[0] < at_tip[1] else (pair[1], pair[0])
+    # a frame close around the lens (a contour far from the fold needs no fine sampling of the fold)
+    margin = max(b - a, 10.0 * (high - low), 1e3 * eps)
+    y_low, y_high = max(band_lo, low - margin), min(band_hi, high + margin)
+    if y_low > band_lo:
+        regions.append(Rectangle(a, b, band_lo, y_low))
+    if y_high < band_hi:
+        regions.append(Rectangle(a, b, y_high, band_hi))
+    regions.append(TipCell(fold, lower, upper, x_tip, eps, True))
+    regions.append(TipCell(fold, lower, upper, x_tip, eps, False, (x_far, y_low, y_high)))
+    x0, x1 = sorted((float(fold.q.real) - fold.opens * eps, x_tip))
+    unsearched.append(Sliver(x0, x1, min(at_tip) - eps, max(at_tip) + eps, 2 * eps))
