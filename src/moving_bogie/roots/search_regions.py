@@ -30,6 +30,7 @@ __all__ = ["Tiling", "tile_window"]
 _COLUMN_SAMPLES = 17  # Re q samples per column where the order of the curves is checked
 _MERGE = 3.0  # arms closer than this many eps are left out together (sliver <= 5 eps)
 _TOUCH = 1e-14  # a gap between two arms this small is zero (they meet, e.g. where they cross Re q = 0)
+_NARROW = 50.0  # a column narrower than this many eps (at a crossing of arms) is left out as a box
 
 
 @dataclass(frozen=True)
@@ -170,6 +171,9 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
         regions.append(Rectangle(a, b, band_lo, band_hi))
         return
     ys = arms_y_at(arms, xs)
+    if b - a <= _NARROW * eps * max(1.0, abs(a)):  # a sliver of a column at a crossing: boxes left out
+        _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi)
+        return
     order = np.argsort(ys[:, _COLUMN_SAMPLES // 2])
     arms, ys = [arms[k] for k in order], ys[order]
     gaps = np.diff(ys, axis=0)
@@ -179,6 +183,13 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
         if np.all(np.abs(g) < 1e-13):
             continue  # coincident curves (Euler-Bernoulli): merged below
         split = _split_point(arms[k], arms[k + 1], xs, g, eps)
+        if split is not None and a < split < b:
+            # a split next to an end makes a column too narrow to count in: widen it to _NARROW eps
+            narrow = _NARROW * eps * max(1.0, abs(a))
+            if split - a < narrow:
+                split = a + narrow if b - a > 2 * narrow else b
+            elif b - split < narrow:
+                split = b - narrow if b - a > 2 * narrow else a
         if split is not None and a < split < b:
             _column(cut, a, split, regions, unsearched, eps, band_lo, band_hi, arms)
             _column(cut, split, b, regions, unsearched, eps, band_lo, band_hi, arms)
@@ -233,6 +244,27 @@ def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
     if c_hi < band_hi:
         regions.append(Rectangle(a, b, c_hi, band_hi))
     unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo))
+
+
+def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
+    """The narrow column [a, b] with a box left out around each cluster of arms (``ys``: their Im q),
+    rectangles in between."""
+    spans = sorted((float(y.min()) - eps, float(y.max()) + eps) for y in ys)
+    merged = [list(spans[0])]
+    for lo, hi in spans[1:]:
+        if lo <= merged[-1][1] + 100 * eps:
+            merged[-1][1] = max(merged[-1][1], hi)
+        else:
+            merged.append([lo, hi])
+    bottom = band_lo
+    for lo, hi in merged:
+        lo, hi = max(lo, band_lo), min(hi, band_hi)
+        if lo > bottom:
+            regions.append(Rectangle(a, b, bottom, lo))
+        unsearched.append(Sliver(a, b, lo, hi, hi - lo))
+        bottom = max(bottom, hi)
+    if bottom < band_hi:
+        regions.append(Rectangle(a, b, bottom, band_hi))
 
 
 def _box(a, b, lo, hi, regions, unsearched, band_lo, band_hi):
