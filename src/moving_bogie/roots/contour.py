@@ -13,6 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+_SUBDIVIDE = 8  # pieces a segment whose arg step is too large is cut into
+
 
 class EdgeZeroError(RuntimeError):
     """A zero lies on (or within sampling resolution of) the contour."""
@@ -121,13 +123,18 @@ def winding_number(
         seg = np.abs(z[1:] - z[:-1])
         if np.any(seg[bad] < min_segment * size) or z.size > max_points:
             raise EdgeZeroError(f"a zero lies on or next to the contour of {rect}")
-        idx = np.nonzero(bad)[0] + 1
+        # each bad segment is cut into _SUBDIVIDE pieces at once: a zero near the edge needs many levels of
+        # refinement, and one batched evaluation per level costs little more for more points
+        idx = np.repeat(np.nonzero(bad)[0] + 1, _SUBDIVIDE - 1)
+        frac = np.tile(np.arange(1, _SUBDIVIDE) / _SUBDIVIDE, int(bad.sum()))
         if points_at is not None:
-            tm = 0.5 * (t[:-1][bad] + t[1:][bad])
+            t0, t1 = np.repeat(t[:-1][bad], _SUBDIVIDE - 1), np.repeat(t[1:][bad], _SUBDIVIDE - 1)
+            tm = t0 + frac * (t1 - t0)
             mids = points_at(tm)
             t = np.insert(t, idx, tm)
         else:
-            mids = 0.5 * (z[:-1][bad] + z[1:][bad])
+            z0, z1 = np.repeat(z[:-1][bad], _SUBDIVIDE - 1), np.repeat(z[1:][bad], _SUBDIVIDE - 1)
+            mids = z0 + frac * (z1 - z0)
         wm = f(mids)
         z = np.insert(z, idx, mids)
         w = np.insert(w, idx, wm)
