@@ -103,38 +103,45 @@ def winding_number(
         t = rect.boundary_parameters(spacing or min(size / 64, 0.005))
         z = np.append(points_at(t[:-1]), 0)
         z[-1] = z[0]
+        ta, tb = t[:-1], t[1:]
     else:
         z = rect.boundary(spacing or min(size / 64, 0.005))
+        ta = tb = None
     w = f(z)
+    za, zb, wa, wb = z[:-1], z[1:], w[:-1], w[1:]
+    total, points = 0.0, z.size
+    m = _SUBDIVIDE
+    frac = np.arange(1, m) / m
+    # only the segments still too coarse are kept and refined, so the work is linear in the points used;
+    # each is cut into m pieces at once (a zero near the edge needs many levels of refinement, and one
+    # batched evaluation per level costs little more for more points)
     while True:
-        if not np.all(np.isfinite(w)):
+        if not (np.all(np.isfinite(wa)) and np.all(np.isfinite(wb))):
             raise EdgeZeroError(f"non-finite value on the contour of {rect}")
-        if np.any(w == 0):
+        if np.any(wa == 0) or np.any(wb == 0):
             raise EdgeZeroError(f"zero on the contour of {rect}")
-        ratio = w[1:] / w[:-1]
+        ratio = wb / wa
         step = np.angle(ratio)
         bad = (np.abs(step) > max_step) | (np.abs(np.log(np.abs(ratio))) > 1.0)
+        total += float(step[~bad].sum())
         if not np.any(bad):
-            total = step.sum() / (2 * np.pi)
-            n = int(round(total))
-            if abs(total - n) > 1e-3:
-                raise EdgeZeroError(f"winding number {total} is not an integer on {rect}")
-            return n
-        seg = np.abs(z[1:] - z[:-1])
-        if np.any(seg[bad] < min_segment * size) or z.size > max_points:
+            break
+        if np.any(np.abs(zb - za)[bad] < min_segment * size) or points > max_points:
             raise EdgeZeroError(f"a zero lies on or next to the contour of {rect}")
-        # each bad segment is cut into _SUBDIVIDE pieces at once: a zero near the edge needs many levels of
-        # refinement, and one batched evaluation per level costs little more for more points
-        idx = np.repeat(np.nonzero(bad)[0] + 1, _SUBDIVIDE - 1)
-        frac = np.tile(np.arange(1, _SUBDIVIDE) / _SUBDIVIDE, int(bad.sum()))
-        if points_at is not None:
-            t0, t1 = np.repeat(t[:-1][bad], _SUBDIVIDE - 1), np.repeat(t[1:][bad], _SUBDIVIDE - 1)
-            tm = t0 + frac * (t1 - t0)
-            mids = points_at(tm)
-            t = np.insert(t, idx, tm)
+        za, zb, wa, wb = za[bad], zb[bad], wa[bad], wb[bad]
+        if ta is not None:
+            ta, tb = ta[bad], tb[bad]
+            tt = ta[:, None] + frac[None, :] * (tb - ta)[:, None]
+            zi = points_at(tt.ravel()).reshape(tt.shape)
+            ta, tb = np.column_stack([ta, tt]).ravel(), np.column_stack([tt, tb]).ravel()
         else:
-            z0, z1 = np.repeat(z[:-1][bad], _SUBDIVIDE - 1), np.repeat(z[1:][bad], _SUBDIVIDE - 1)
-            mids = z0 + frac * (z1 - z0)
-        wm = f(mids)
-        z = np.insert(z, idx, mids)
-        w = np.insert(w, idx, wm)
+            zi = za[:, None] + frac[None, :] * (zb - za)[:, None]
+        wi = f(zi.ravel()).reshape(zi.shape)
+        points += zi.size
+        za, zb = np.column_stack([za, zi]).ravel(), np.column_stack([zi, zb]).ravel()
+        wa, wb = np.column_stack([wa, wi]).ravel(), np.column_stack([wi, wb]).ravel()
+    turns = total / (2 * np.pi)
+    n = int(round(turns))
+    if abs(turns - n) > 1e-3:
+        raise EdgeZeroError(f"winding number {turns} is not an integer on {rect}")
+    return n
