@@ -14,7 +14,7 @@ import dataclasses
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.cut import cut_locus
-from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
+from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
 from moving_bogie.roots.cut_cells import ColumnCell, Sliver
 from moving_bogie.roots.search_regions import tile_window
 
@@ -125,19 +125,21 @@ _THIN = 10
 
 def _counts(fast, regions, eps):
     """Winding numbers of the regions (0 for a failing one), the thin cells left out (as slivers) whose
-    count failed, and the indices of the other regions whose count failed."""
+    count failed, and the indices of the other regions whose count failed. All regions are refined
+    together (:func:`winding_numbers`)."""
+    thin = [isinstance(region, ColumnCell) and region.height < _THIN * eps for region in regions]
+    results = winding_numbers(fast, regions, max_points=[20_000 if t else 400_000 for t in thin])
     counts, left_out, failed = [], [], []
-    for k, region in enumerate(regions):
-        thin = isinstance(region, ColumnCell) and region.height < _THIN * eps
-        try:
-            counts.append(winding_number(fast, region, max_points=20_000 if thin else 400_000))
-        except EdgeZeroError:
-            counts.append(0)
-            if not thin:
-                failed.append(k)
-                continue
-            y0, y1 = region.y0 - eps, region.y1 + eps
-            left_out.append(Sliver(region.x0, region.x1, y0, y1, y1 - y0))
+    for k, (region, result) in enumerate(zip(regions, results)):
+        if not isinstance(result, EdgeZeroError):
+            counts.append(result)
+            continue
+        counts.append(0)
+        if not thin[k]:
+            failed.append(k)
+            continue
+        y0, y1 = region.y0 - eps, region.y1 + eps
+        left_out.append(Sliver(region.x0, region.x1, y0, y1, y1 - y0))
     return counts, left_out, failed
 
 
