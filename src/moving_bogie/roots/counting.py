@@ -121,14 +121,23 @@ def _recover(fast, region, eps):
 #: is left out and reported with the sliver (its edges pass within eps of both curves, where the side of a
 #: p-root is decided at rounding level).
 _THIN = 10
+#: A region smaller than _TINY whose count fails is left out the same way (at most that high); one smaller
+#: than _SMALL gets a smaller budget of points (a count that needs more is a root on its edge).
+_TINY = 1e-8
+_SMALL = 1e-3
 
 
 def _counts(fast, regions, eps):
     """Winding numbers of the regions (0 for a failing one), the thin cells left out (as slivers) whose
     count failed, and the indices of the other regions whose count failed. All regions are refined
     together (:func:`winding_numbers`)."""
-    thin = [isinstance(region, ColumnCell) and region.height < _THIN * eps for region in regions]
-    results = winding_numbers(fast, regions, max_points=[20_000 if t else 400_000 for t in thin])
+    thin = [
+        (isinstance(region, ColumnCell) and region.height < _THIN * eps)
+        or max(region.width, region.height) < _TINY
+        for region in regions
+    ]
+    small = [t or max(r.width, r.height) < _SMALL for t, r in zip(thin, regions)]
+    results = winding_numbers(fast, regions, max_points=[20_000 if t else 400_000 for t in small])
     counts, left_out, failed = [], [], []
     for k, (region, result) in enumerate(zip(regions, results)):
         if not isinstance(result, EdgeZeroError):
