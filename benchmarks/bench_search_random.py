@@ -216,7 +216,9 @@ def run(sets, reference_every: int = 0, verbose: bool = False) -> dict:
                 ref = scan_roots(params, res.window)
                 ok, worst = compare(res, ref)
                 scan_verdict = "unstable" if ref else "stable"
-                record["reference"] = (ok and (res.verdict.state == scan_verdict), worst, len(ref))
+                # an UNDETERMINED verdict does not contradict the scan; its roots must still agree
+                same = res.verdict.state == scan_verdict or not res.verdict.determined
+                record["reference"] = (ok and same, worst, len(ref))
         records[family].append(record)
         if verbose:
             v = record.get("verdict")

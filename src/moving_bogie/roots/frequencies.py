@@ -96,6 +96,7 @@ class FrequencyResult:
     warnings: tuple = field(default=())
     far_field: FarField | None = None
     certificate: object = None  # roots.certify.Certificate when asked for (certify=True)
+    unlocated: tuple = ()  # (cell, roots counted in it but not located): cells the search could not resolve
 
     @property
     def found(self) -> int:
@@ -234,13 +235,14 @@ def induced_frequencies(
                 f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window"
             )
     report(0.2)
-    cells = []
+    cells, unlocated = [], []
     for rect, n in zip(tiling.regions, counts):
         if n:
             found_cells, locate_warning = _locate(fast, rect, n, newton_cell)
             cells += found_cells
             if locate_warning:
-                warnings.append(locate_warning)
+                warnings.append(locate_warning[0])
+                unlocated.append(locate_warning[1])
     report(0.6)
     roots = []
     for k, (q0, mult, rect) in enumerate(cells):
@@ -276,6 +278,7 @@ def induced_frequencies(
         fast.evaluations + precise.evaluations,
         tuple(warnings),
         far,
+        unlocated=tuple(unlocated),
     )
     if certify:
         from moving_bogie.roots.certify import certify as prove
@@ -290,8 +293,9 @@ def _locate(fast, rect, n, newton_cell):
 
     Returns ([(q0, multiplicity, cell)], warning). A cell that cannot be split into halves whose counts
     add up (a root on every split line tried) is handed to Newton's method from a grid of starts inside
-    it; if that does not find its roots either, they are missing from the result and ``warning`` says
-    where (the count then disagrees with the roots found: the verdict is UNDETERMINED, never a guess).
+    it; if that does not find its roots either, they are missing from the result and ``warning`` is
+    (text, (cell, missing)) (the count then disagrees with the roots found: the verdict is UNDETERMINED
+    unless the cell lies in Im q > 0, where a missing root cannot be unstable).
     """
     out, warning = [], None
     stack = [(rect, n)]
@@ -321,7 +325,9 @@ def _locate(fast, rect, n, newton_cell):
             if len(starts) == k:
                 out += [(q, 1, r) for q in starts]
             else:
-                warning = f"locate: could not split {r} holding {k} root(s) into consistent halves"
+                text = f"locate: could not split {r} holding {k} root(s) into consistent halves"
+                warning = (text, (r, k - len(starts)))
+                out += [(q, 1, r) for q in starts]
             continue
         stack.extend(zip(pieces, counts))
     return out, warning
@@ -340,7 +346,7 @@ def _grid_roots(fast, rect, k):
             q = _newton_from(fast, z, rect)
             if q is not None and all(abs(q - o) > 1e-9 * max(1.0, abs(q)) for o in found):
                 found.append(q)
-    return [mpmath.mpc(q) for q in found[:k]] if len(found) == k else found
+    return [mpmath.mpc(q) for q in found[:k]]
 
 
 def _newton_from(fast, q, rect):
