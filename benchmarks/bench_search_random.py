@@ -144,7 +144,11 @@ def scan_roots(params, window, *, n=(801, 801), tol=1e-9) -> list:
     fast = CharacteristicArray(params)
     precise = Characteristic(params)
     xs = np.linspace(window.x0, window.x1, n[0])
-    ys = np.linspace(window.y0, min(window.y1, 0.0), n[1])
+    # the grid reaches a few rows above Im q = 0, so that a root just below the real axis is an interior
+    # minimum (a minimum on the last row is not seen)
+    top = min(window.y1, 0.0)
+    dy = (top - window.y0) / (n[1] - 1)
+    ys = np.linspace(window.y0, top + 3 * dy, n[1] + 3)
     Z = xs[None, :] + 1j * ys[:, None]
     A = np.abs(fast(Z.ravel())).reshape(Z.shape)
     A = np.where(np.isfinite(A), A, np.inf)
