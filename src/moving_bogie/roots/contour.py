@@ -13,6 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+_SUBDIVIDE = 8  # pieces a segment whose arg step is too large is cut into
+
 
 class EdgeZeroError(RuntimeError):
     """A zero lies on (or within sampling resolution of) the contour."""
@@ -101,33 +103,132 @@ def winding_number(
         t = rect.boundary_parameters(spacing or min(size / 64, 0.005))
         z = np.append(points_at(t[:-1]), 0)
         z[-1] = z[0]
+        ta, tb = t[:-1], t[1:]
     else:
         z = rect.boundary(spacing or min(size / 64, 0.005))
+        ta = tb = None
     w = f(z)
+    za, zb, wa, wb = z[:-1], z[1:], w[:-1], w[1:]
+    total, points = 0.0, z.size
+    m = _SUBDIVIDE
+    frac = np.arange(1, m) / m
+    # only the segments still too coarse are kept and refined, so the work is linear in the points used;
+    # each is cut into m pieces at once (a zero near the edge needs many levels of refinement, and one
+    # batched evaluation per level costs little more for more points)
     while True:
-        if not np.all(np.isfinite(w)):
+        if not (np.all(np.isfinite(wa)) and np.all(np.isfinite(wb))):
             raise EdgeZeroError(f"non-finite value on the contour of {rect}")
-        if np.any(w == 0):
+        if np.any(wa == 0) or np.any(wb == 0):
             raise EdgeZeroError(f"zero on the contour of {rect}")
-        ratio = w[1:] / w[:-1]
+        ratio = wb / wa
         step = np.angle(ratio)
         bad = (np.abs(step) > max_step) | (np.abs(np.log(np.abs(ratio))) > 1.0)
+        total += float(step[~bad].sum())
         if not np.any(bad):
-            total = step.sum() / (2 * np.pi)
-            n = int(round(total))
-            if abs(total - n) > 1e-3:
-                raise EdgeZeroError(f"winding number {total} is not an integer on {rect}")
-            return n
-        seg = np.abs(z[1:] - z[:-1])
-        if np.any(seg[bad] < min_segment * size) or z.size > max_points:
+            break
+        if np.any(np.abs(zb - za)[bad] < min_segment * size) or points > max_points:
             raise EdgeZeroError(f"a zero lies on or next to the contour of {rect}")
-        idx = np.nonzero(bad)[0] + 1
-        if points_at is not None:
-            tm = 0.5 * (t[:-1][bad] + t[1:][bad])
-            mids = points_at(tm)
-            t = np.insert(t, idx, tm)
+        za, zb, wa, wb = za[bad], zb[bad], wa[bad], wb[bad]
+        if ta is not None:
+            ta, tb = ta[bad], tb[bad]
+            tt = ta[:, None] + frac[None, :] * (tb - ta)[:, None]
+            zi = points_at(tt.ravel()).reshape(tt.shape)
+            ta, tb = np.column_stack([ta, tt]).ravel(), np.column_stack([tt, tb]).ravel()
         else:
-            mids = 0.5 * (z[:-1][bad] + z[1:][bad])
-        wm = f(mids)
-        z = np.insert(z, idx, mids)
-        w = np.insert(w, idx, wm)
+            zi = za[:, None] + frac[None, :] * (zb - za)[:, None]
+        wi = f(zi.ravel()).reshape(zi.shape)
+        points += zi.size
+        za, zb = np.column_stack([za, zi]).ravel(), np.column_stack([zi, zb]).ravel()
+        wa, wb = np.column_stack([wa, wi]).ravel(), np.column_stack([wi, wb]).ravel()
+    turns = total / (2 * np.pi)
+    n = int(round(turns))
+    if abs(turns - n) > 1e-3:
+        raise EdgeZeroError(f"winding number {turns} is not an integer on {rect}")
+    return n
+
+
+def winding_numbers(f, regions, *, max_step=np.pi / 5, min_segment=1e-11, max_points=None) -> list:
+    """:func:`winding_number` of many regions at once: every refinement level of all of them is one
+    evaluation of ``f`` (the cost of an evaluation of E_chr is mostly per call, not per point).
+
+    Returns, per region, its winding number or the :class:`EdgeZeroError` that :func:`winding_number`
+    would raise for it. ``max_points`` (per region) defaults to 400 000.
+    """
+    n_reg = len(regions)
+    limit = np.full(n_reg, 400_000) if max_points is None else np.asarray(max_points)
+    sizes = np.array([max(r.width, r.height) for r in regions], dtype=float)
+    curves = [getattr(r, "points_at", None) for r in regions]
+    zs, ts = [], []
+    for r, points_at, size in zip(regions, curves, sizes):
+        spacing = min(size / 64, 0.005)
+        if points_at is not None:
+            t = r.boundary_parameters(spacing)
+            z = np.append(points_at(t[:-1]), 0)
+            z[-1] = z[0]
+        else:
+            z = r.boundary(spacing)
+            t = np.arange(z.size, dtype=float)  # unused for a rectangle
+        zs.append(z)
+        ts.append(t)
+    w_all = f(np.concatenate(zs)) if zs else np.zeros(0, complex)
+    ws = np.split(w_all, np.cumsum([z.size for z in zs])[:-1]) if zs else []
+    owner = np.concatenate([np.full(z.size - 1, k) for k, z in enumerate(zs)]) if zs else np.zeros(0, int)
+    za = np.concatenate([z[:-1] for z in zs]) if zs else np.zeros(0, complex)
+    zb = np.concatenate([z[1:] for z in zs]) if zs else np.zeros(0, complex)
+    wa = np.concatenate([w[:-1] for w in ws]) if zs else np.zeros(0, complex)
+    wb = np.concatenate([w[1:] for w in ws]) if zs else np.zeros(0, complex)
+    ta = np.concatenate([t[:-1] for t in ts]) if zs else np.zeros(0)
+    tb = np.concatenate([t[1:] for t in ts]) if zs else np.zeros(0)
+    total = np.zeros(n_reg)
+    points = np.array([z.size for z in zs])
+    errors: list = [None] * n_reg
+    m = _SUBDIVIDE
+    frac = np.arange(1, m) / m
+    while owner.size:
+        with np.errstate(all="ignore"):
+            ratio = wb / wa
+            step = np.angle(ratio)
+            bad = (np.abs(step) > max_step) | (np.abs(np.log(np.abs(ratio))) > 1.0)
+        broken = ~(np.isfinite(wa) & np.isfinite(wb)) | (wa == 0) | (wb == 0)
+        for k in np.unique(owner[broken]):
+            if errors[k] is None:
+                errors[k] = EdgeZeroError(f"non-finite value or zero on the contour of {regions[k]}")
+        bad |= broken
+        np.add.at(total, owner[~bad], step[~bad])
+        too_fine = bad & (np.abs(zb - za) < min_segment * sizes[owner])
+        for k in np.unique(owner[too_fine]):
+            if errors[k] is None:
+                errors[k] = EdgeZeroError(f"a zero lies on or next to the contour of {regions[k]}")
+        for k in np.unique(owner[bad]):
+            if errors[k] is None and points[k] > limit[k]:
+                errors[k] = EdgeZeroError(f"a zero lies on or next to the contour of {regions[k]}")
+        failed = np.array([e is not None for e in errors], dtype=bool)
+        bad &= ~failed[owner]
+        if not np.any(bad):
+            break
+        owner, za, zb, wa, wb, ta, tb = (x[bad] for x in (owner, za, zb, wa, wb, ta, tb))
+        tt = ta[:, None] + frac[None, :] * (tb - ta)[:, None]
+        zi = za[:, None] + frac[None, :] * (zb - za)[:, None]
+        for k in np.unique(owner):
+            if curves[k] is not None:
+                sel = owner == k
+                zi[sel] = curves[k](tt[sel].ravel()).reshape(-1, m - 1)
+        wi = f(zi.ravel()).reshape(zi.shape)
+        np.add.at(points, owner, m - 1)
+        owner = np.repeat(owner, m)
+        za, zb = np.column_stack([za, zi]).ravel(), np.column_stack([zi, zb]).ravel()
+        wa, wb = np.column_stack([wa, wi]).ravel(), np.column_stack([wi, wb]).ravel()
+        ta, tb = np.column_stack([ta, tt]).ravel(), np.column_stack([tt, tb]).ravel()
+    out = []
+    for k in range(n_reg):
+        if errors[k] is not None:
+            out.append(errors[k])
+            continue
+        turns = total[k] / (2 * np.pi)
+        n = int(round(turns))
+        out.append(
+            n
+            if abs(turns - n) <= 1e-3
+            else EdgeZeroError(f"winding number {turns} is not an integer on {regions[k]}")
+        )
+    return out

@@ -29,6 +29,9 @@ class Sliver:
     """A part of the window no contour enters: the band |Im q - cut| <= height/2 over x0..x1.
 
     ``y0``, ``y1`` bound it; ``height`` is its thickness at every Re q (the cut may slope in between).
+    ``reason`` is empty for the band the tiling leaves out by design; otherwise it says why a search cell
+    was left out (its count failed however its edges were moved and it was split), and the sliver is that
+    cell's bounding box.
     """
 
     x0: float
@@ -36,6 +39,7 @@ class Sliver:
     y0: float
     y1: float
     height: float
+    reason: str = ""
 
 
 @dataclass(frozen=True)
@@ -72,12 +76,27 @@ def _samples(z_of_u, spacing):
 
 
 class _Curve(BoundingBox):
-    """A closed curve from pieces u -> z(u), u in [0, 1]; global parameter t = piece index + u."""
+    """A closed curve from pieces u -> z(u), u in [0, 1]; global parameter t = piece index + u.
+
+    The pieces may be listed in either sense: :meth:`_orient` (called once the pieces are set) reverses the
+    parameter when the curve as listed runs clockwise (negative signed area), so that the boundary is
+    always counter-clockwise, as the argument principle needs.
+    """
 
     pieces: tuple
+    _clockwise: bool = False
+
+    def _orient(self):
+        self._clockwise = False
+        t = self.boundary_parameters(np.inf)
+        z = self.points_at(t[:-1])
+        area = 0.5 * float(np.sum(z.real * np.roll(z.imag, -1) - np.roll(z.real, -1) * z.imag))
+        self._clockwise = area < 0
 
     def points_at(self, t) -> np.ndarray:
         t = np.asarray(t, dtype=float)
+        if self._clockwise:
+            t = len(self.pieces) - t
         k = np.minimum(np.floor(t).astype(int), len(self.pieces) - 1)
         out = np.empty(t.shape, dtype=complex)
         for j, piece in enumerate(self.pieces):
@@ -87,8 +106,11 @@ class _Curve(BoundingBox):
         return out
 
     def boundary_parameters(self, spacing) -> np.ndarray:
-        ts = [j + _samples(piece, spacing) for j, piece in enumerate(self.pieces)]
-        return np.append(np.concatenate(ts), float(len(self.pieces)))
+        s = np.concatenate([j + _samples(piece, spacing) for j, piece in enumerate(self.pieces)])
+        n = float(len(self.pieces))
+        if self._clockwise:  # the same samples, run backwards (t = n - s)
+            s = np.concatenate(([0.0], np.sort(n - s[1:])))
+        return np.append(s, n)
 
     def boundary(self, spacing) -> np.ndarray:
         t = self.boundary_parameters(spacing)
@@ -154,8 +176,11 @@ class ColumnCell(_Curve):
 class TipCell(_Curve):
     """The inside (``inner``) or outside of the lens that opens at a fold of the cut, up to Re q = x_tip.
 
-    ``fold_arms`` = (lower arm, upper arm) as seen at x_tip; the offset runs from one arm around the fold to
-    the other. The outer cell is closed by the frame [x_left, x_tip] x [y_low, y_high].
+    The lens opens towards larger Re q (``fold.opens`` = +1, x_tip right of the fold) or towards smaller
+    Re q (-1, x_tip left of it). ``fold_arms`` = (lower arm, upper arm) as seen at x_tip; the offset runs
+    from one arm around the fold to the other. The outer cell is closed by the frame between x_far (the
+    side away from the opening) and x_tip, y_low <= Im q <= y_high. The boundary is made counter-clockwise
+    whichever way the lens opens (:meth:`_Curve._orient`).
     """
 
     def __init__(self, fold, lower, upper, x_tip, delta, inner, frame=None):
@@ -167,14 +192,14 @@ class TipCell(_Curve):
         around = self._offset_curve(p_lo, p_hi)
         a, b = around(0.0), around(1.0)
         if inner:
-            # counter-clockwise around the lens: from the upper arm's point, round the fold, to the lower one
+            # around the lens: from the upper arm's point, round the fold, to the lower one
             self.pieces = (lambda u: around(1.0 - u), _segment(a, b))
-            self.x0, self.x1 = float(fold.q.real), self.x_tip
+            self.x0, self.x1 = sorted((float(fold.q.real), self.x_tip))
             self.y0, self.y1 = float(a.imag), float(b.imag)
         else:
-            x_left, y_low, y_high = frame
-            c0, c1 = complex(x_left, y_low), complex(self.x_tip, y_low)
-            c2, c3 = complex(self.x_tip, y_high), complex(x_left, y_high)
+            x_far, y_low, y_high = frame
+            c0, c1 = complex(x_far, y_low), complex(self.x_tip, y_low)
+            c2, c3 = complex(self.x_tip, y_high), complex(x_far, y_high)
             self.pieces = (
                 _segment(c0, c1),
                 _segment(c1, a),
@@ -183,7 +208,9 @@ class TipCell(_Curve):
                 _segment(c2, c3),
                 _segment(c3, c0),
             )
-            self.x0, self.x1, self.y0, self.y1 = x_left, self.x_tip, y_low, y_high
+            self.x0, self.x1 = sorted((float(x_far), self.x_tip))
+            self.y0, self.y1 = y_low, y_high
+        self._orient()
 
     def _offset_curve(self, p_lo, p_hi):
         """u -> offset point from p_lo (u = 0, lower arm) to p_hi (u = 1, upper arm), through the fold."""
@@ -227,16 +254,17 @@ class TipCell(_Curve):
     def split(self, fraction=0.5):
         """The tip cell up to a Re q nearer the fold, and column cells for the rest."""
         x_new = self.fold.q.real + fraction * (self.x_tip - self.fold.q.real)
+        c0, c1 = sorted((x_new, self.x_tip))
         if self.inner:
             rest = ColumnCell(
-                x_new,
-                self.x_tip,
+                c0,
+                c1,
                 Edge(arm=self.lower, side=1, delta=self.delta),
                 Edge(arm=self.upper, side=-1, delta=self.delta),
             )
             return TipCell(self.fold, self.lower, self.upper, x_new, self.delta, True), rest
-        x_left, y_low, y_high = self.frame
-        tip = TipCell(self.fold, self.lower, self.upper, x_new, self.delta, False, (x_left, y_low, y_high))
-        below = ColumnCell(x_new, self.x_tip, Edge(y=y_low), Edge(arm=self.lower, side=-1, delta=self.delta))
-        above = ColumnCell(x_new, self.x_tip, Edge(arm=self.upper, side=1, delta=self.delta), Edge(y=y_high))
+        x_far, y_low, y_high = self.frame
+        tip = TipCell(self.fold, self.lower, self.upper, x_new, self.delta, False, (x_far, y_low, y_high))
+        below = ColumnCell(c0, c1, Edge(y=y_low), Edge(arm=self.lower, side=-1, delta=self.delta))
+        above = ColumnCell(c0, c1, Edge(arm=self.upper, side=1, delta=self.delta), Edge(y=y_high))
         return tip, below, above

@@ -24,12 +24,12 @@ from dataclasses import dataclass, field
 import mpmath
 import numpy as np
 
-from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at
-from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number
-from moving_bogie.roots.counting import CountMismatch, count_tiling, frame
+from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.counting import count_tiling, frame
 from moving_bogie.roots.far_field import FarField, far_field_radius
+from moving_bogie.roots.locate import locate
 from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm, split_cluster
 from moving_bogie.roots.strip import StripCount, strip_below_cut
 from moving_bogie.roots.verdict import Verdict, judge
@@ -98,6 +98,7 @@ class FrequencyResult:
     far_field: FarField | None = None
     certificate: object = None  # roots.certify.Certificate when asked for (certify=True)
     strip: StripCount | None = None  # the sliver below the real axis, counted (roots/strip.py)
+    unlocated: tuple = ()  # (cell, roots counted in it but not located): cells the search could not resolve
 
     @property
     def found(self) -> int:
@@ -221,22 +222,36 @@ def induced_frequencies(
         if progress is not None:
             progress(min(1.0, x))
 
-    cut, tiling, counts = count_tiling(fast, params, window, eps, eps_branch)
+    cut, tiling, counts, count_warnings = count_tiling(fast, params, window, eps, eps_branch)
+    warnings += count_warnings
     total = sum(counts)
     report(0.1)
     if check_window:
         big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
-        more = sum(sum(count_tiling(fast, params, part, eps, eps_branch)[2]) for part in frame(window, big))
+        more, lost = 0, 0
+        for part in frame(window, big):
+            part_counts, part_warnings = count_tiling(fast, params, part, eps, eps_branch)[2:]
+            more += sum(part_counts)
+            lost += len(part_warnings)
+        if lost:
+            warnings.append(
+                f"window: {lost} cell(s) of the window twice as large could not be counted "
+                f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})"
+            )
         if more:
             warnings.append(
                 f"window: {more} more root(s) in the window twice as large "
                 f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window"
             )
     report(0.2)
-    cells = []
+    cells, unlocated = [], []
     for rect, n in zip(tiling.regions, counts):
         if n:
-            cells += _locate(fast, precise, rect, n, newton_cell, dps)
+            found_cells, locate_warning = locate(fast, rect, n, newton_cell)
+            cells += found_cells
+            if locate_warning:
+                warnings.append(locate_warning[0])
+                unlocated.append(locate_warning[1])
     report(0.6)
     roots = []
     for k, (q0, mult, rect) in enumerate(cells):
@@ -279,7 +294,14 @@ def induced_frequencies(
         fast.evaluations + precise.evaluations,
         tuple(warnings),
         far,
-        strip=strip_below_cut(params, model, window, tiling.unsearched, foundation=foundation),
+        strip=strip_below_cut(
+            params,
+            model,
+            window,
+            [u for u in tiling.unsearched if not getattr(u, "reason", "")],
+            foundation=foundation,
+        ),
+        unlocated=tuple(unlocated),
     )
     if certify:
         from moving_bogie.roots.certify import certify as prove
@@ -287,58 +309,6 @@ def induced_frequencies(
         result = dataclasses.replace(result, certificate=prove(result))
     report(1.0)
     return result
-
-
-def _locate(fast, precise, rect, n, newton_cell, dps):
-    """Bisect ``rect`` (holding ``n`` roots) into cells of one root each; returns (q0, multiplicity, cell)."""
-    out = []
-    stack = [(rect, n)]
-    while stack:
-        r, k = stack.pop()
-        if k == 0:
-            continue
-        size = max(r.width, r.height)
-        if k == 1 and size <= newton_cell:
-            q = _newton_inside(fast, r)
-            if q is not None:
-                out.append((q, 1, r))
-                continue
-        if size < 1e-10 * max(1.0, abs(r.center)):
-            out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
-            continue
-        for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65):
-            pieces = r.split(frac)  # two halves (a cell at a fold of the cut may give three pieces)
-            try:
-                counts = [winding_number(fast, piece) for piece in pieces]
-            except EdgeZeroError:
-                continue
-            if sum(counts) == k:
-                break
-        else:
-            raise CountMismatch(f"could not split {r} holding {k} root(s) into consistent halves")
-        stack.extend(zip(pieces, counts))
-    return out
-
-
-def _newton_inside(fast, rect):
-    """A few double-precision Newton steps from the cell centre; the root if it stays in the cell."""
-    q = complex(rect.center)
-    for _ in range(30):
-        try:
-            E, dE = (complex(v[0]) for v in fast.value_and_derivative(np.array([q])))
-        except MovingBogieError:
-            return None
-        if dE == 0 or not np.isfinite(dE) or not np.isfinite(E):
-            return None
-        step = E / dE
-        q -= step
-        if not rect.contains(q, margin=0.25 * max(rect.width, rect.height)):
-            return None
-        if abs(step) < 1e-13 * max(1, abs(q)):
-            break
-    else:
-        return None
-    return mpmath.mpc(q) if rect.contains(q) else None
 
 
 def _side(q, decimals, cut: CutLocus, params) -> str:

@@ -9,9 +9,9 @@ the band of half-width ``eps`` around the cut (height 2 eps at every Re q) and, 
 branch point of K, Euler-Bernoulli), a box of half-width ``eps_branch``: roots there are within that
 distance of the cut; the result lists those slivers with their height.
 
-Where the traced curves cannot be followed (two curves crossing or closer than 4 eps inside a column, or
-a fold opening towards smaller Re q), the column falls back to a padded strip around the cut's range in
-it, and the sliver reported there is that strip's height.
+Folds get tip cells whichever way their lens opens. Where the traced curves cannot be followed (two
+curves crossing or closer than 4 eps inside a column), the column falls back to a padded strip around the
+cut's range in it, and the sliver reported there is that strip's height.
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ __all__ = ["Tiling", "tile_window"]
 _COLUMN_SAMPLES = 17  # Re q samples per column where the order of the curves is checked
 _MERGE = 3.0  # arms closer than this many eps are left out together (sliver <= 5 eps)
 _TOUCH = 1e-14  # a gap between two arms this small is zero (they meet, e.g. where they cross Re q = 0)
+_NARROW = 50.0  # a column narrower than this many eps (at a crossing of arms) is left out as a box
 
 
 @dataclass(frozen=True)
@@ -122,9 +123,10 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
     # event intervals around folds (tip cells) and cusps (branch-point boxes)
     events = []
     for f in folds:
-        # a fold with tip cells gets a column of its own; a cusp, an end of the cut or a fold opening to the
-        # left (no tip cells: a box left out) a narrow one
-        half = eps_branch if (f.cusp or f.opens < 0) else min(1e-3 * window.width, 1e-3)
+        # a fold with tip cells gets a column of its own, clear of the other folds; a cusp or an end of the
+        # cut (a box left out) a narrow one
+        near = min((abs(g.q.real - f.q.real) for g in folds if g is not f), default=np.inf)
+        half = eps_branch if f.cusp else min(1e-3 * window.width, 1e-3, 0.3 * near)
         events.append((f.q.real - half, f.q.real + half, f))
     x_band = window.x0
     if np.isfinite(cut.x_start) and cut.x_start > window.x0:
@@ -169,6 +171,9 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
         regions.append(Rectangle(a, b, band_lo, band_hi))
         return
     ys = arms_y_at(arms, xs)
+    if b - a <= _NARROW * eps * max(1.0, abs(a)):  # a sliver of a column at a crossing: boxes left out
+        _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi)
+        return
     order = np.argsort(ys[:, _COLUMN_SAMPLES // 2])
     arms, ys = [arms[k] for k in order], ys[order]
     gaps = np.diff(ys, axis=0)
@@ -178,6 +183,13 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
         if np.all(np.abs(g) < 1e-13):
             continue  # coincident curves (Euler-Bernoulli): merged below
         split = _split_point(arms[k], arms[k + 1], xs, g, eps)
+        if split is not None and a < split < b:
+            # a split next to an end makes a column too narrow to count in: widen it to _NARROW eps
+            narrow = _NARROW * eps * max(1.0, abs(a))
+            if split - a < narrow:
+                split = a + narrow if b - a > 2 * narrow else b
+            elif b - split < narrow:
+                split = b - narrow if b - a > 2 * narrow else a
         if split is not None and a < split < b:
             _column(cut, a, split, regions, unsearched, eps, band_lo, band_hi, arms)
             _column(cut, split, b, regions, unsearched, eps, band_lo, band_hi, arms)
@@ -234,6 +246,27 @@ def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
     unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo))
 
 
+def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
+    """The narrow column [a, b] with a box left out around each cluster of arms (``ys``: their Im q),
+    rectangles in between."""
+    spans = sorted((float(y.min()) - eps, float(y.max()) + eps) for y in ys)
+    merged = [list(spans[0])]
+    for lo, hi in spans[1:]:
+        if lo <= merged[-1][1] + 100 * eps:
+            merged[-1][1] = max(merged[-1][1], hi)
+        else:
+            merged.append([lo, hi])
+    bottom = band_lo
+    for lo, hi in merged:
+        lo, hi = max(lo, band_lo), min(hi, band_hi)
+        if lo > bottom:
+            regions.append(Rectangle(a, b, bottom, lo))
+        unsearched.append(Sliver(a, b, lo, hi, hi - lo))
+        bottom = max(bottom, hi)
+    if bottom < band_hi:
+        regions.append(Rectangle(a, b, bottom, band_hi))
+
+
 def _box(a, b, lo, hi, regions, unsearched, band_lo, band_hi):
     """The column [a, b] with the box lo <= Im q <= hi left out (reported as a sliver)."""
     lo, hi = max(lo, band_lo), min(hi, band_hi)
@@ -251,16 +284,34 @@ def _ends_at(arm, fold) -> bool:
 
 
 def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
-    """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched)."""
+    """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched).
+
+    The lens of the fold opens towards larger Re q (``fold.opens`` = +1: its tip cells reach Re q = b) or
+    towards smaller Re q (-1: they reach a). Curves of the cut that only partly cross the column, or pass
+    through the fold's box, are left out with it; the outer tip cell is framed closely around the lens and
+    rectangles fill the column above and below the frame.
+    """
     pair = [arm for arm in cut.arms if _ends_at(arm, fold)]
-    others = [arm for arm in _arms_over(cut, a, b) if all(arm is not x for x in pair)]
+    full = _arms_over(cut, a, b)
+    others = [arm for arm in full if all(arm is not x for x in pair)]
+    partial = [
+        arm
+        for arm in cut.arms
+        if arm.x_lo < b
+        and arm.x_hi > a
+        and all(arm is not x for x in full)
+        and all(arm is not x for x in pair)
+    ]
     xs = np.linspace(a, b, _COLUMN_SAMPLES)
     pair_ys = [fold.q.imag] + [
         float(y) for arm in pair for y in arm.y_at(np.linspace(max(a, arm.x_lo), min(b, arm.x_hi), 9))
     ]
     low, high = min(pair_ys), max(pair_ys)
+    for arm in partial:
+        y = arm.y_at(np.linspace(max(a, arm.x_lo), min(b, arm.x_hi), 9))
+        low, high = min(low, float(y.min())), max(high, float(y.max()))
     spans = dict(zip(map(id, others), arms_y_at(others, xs))) if others else {}
-    through = []  # other curves passing through the fold's box: left out with it
+    through = list(partial)  # other curves passing through the fold's box: left out with it
     grown = True
     while grown:
         grown = False
@@ -282,11 +333,20 @@ def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
         split = 0.5 * (bottom + high)
         _column(cut, a, b, regions, unsearched, eps, split, band_hi, above)
         band_hi = split
-    if fold.cusp or fold.opens < 0 or len(pair) != 2 or through:  # a box around the fold (cusp, end)
+    if fold.cusp or len(pair) != 2 or through:  # a box around the fold (cusp, end)
         _box(a, b, low - eps, high + eps, regions, unsearched, band_lo, band_hi)
         return
-    at_b = [float(arm.y_at(np.array([b]))[0]) for arm in pair]
-    lower, upper = (pair[0], pair[1]) if at_b[0] < at_b[1] else (pair[1], pair[0])
-    regions.append(TipCell(fold, lower, upper, b, eps, True))
-    regions.append(TipCell(fold, lower, upper, b, eps, False, (a, band_lo, band_hi)))
-    unsearched.append(Sliver(float(fold.q.real) - eps, b, min(at_b) - eps, max(at_b) + eps, 2 * eps))
+    x_tip, x_far = (b, a) if fold.opens > 0 else (a, b)
+    at_tip = [float(arm.y_at(np.array([x_tip]))[0]) for arm in pair]
+    lower, upper = (pair[0], pair[1]) if at_tip[0] < at_tip[1] else (pair[1], pair[0])
+    # a frame close around the lens (a contour far from the fold needs no fine sampling of the fold)
+    margin = max(b - a, 10.0 * (high - low), 1e3 * eps)
+    y_low, y_high = max(band_lo, low - margin), min(band_hi, high + margin)
+    if y_low > band_lo:
+        regions.append(Rectangle(a, b, band_lo, y_low))
+    if y_high < band_hi:
+        regions.append(Rectangle(a, b, y_high, band_hi))
+    regions.append(TipCell(fold, lower, upper, x_tip, eps, True))
+    regions.append(TipCell(fold, lower, upper, x_tip, eps, False, (x_far, y_low, y_high)))
+    x0, x1 = sorted((float(fold.q.real) - fold.opens * eps, x_tip))
+    unsearched.append(Sliver(x0, x1, min(at_tip) - eps, max(at_tip) + eps, 2 * eps))

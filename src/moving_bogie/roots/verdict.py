@@ -6,9 +6,11 @@ complete there:
 
 - the far-field check found a radius R beyond which E_chr has no root with Im q < 0 (:mod:`far_field`),
 - the search window contains the lower half-disc of radius R (0 <= Re q <= R, -R <= Im q <= 0),
-- the roots found add up to the argument-principle count,
+- the roots found add up to the argument-principle count (roots counted in a cell that lies in Im q > 0 but
+  could not be located are stable whatever they are: they are named in the warnings, not in the verdict),
 - no unsearched sliver around the cut of K reaches below Im q = 0, or the part below it was counted
-  (:mod:`strip`: with eta_f = 0 the cut lies on the real axis and K there is the limit from below).
+  (:mod:`strip`: with eta_f = 0 the cut lies on the real axis and K there is the limit from below),
+- no search cell reaching below Im q = 0 was left out because its count failed (``Sliver.reason``).
 
 Otherwise the verdict is UNDETERMINED and lists what is missing; roots with Im q > 0 outside the window
 (a stated choice, checked against a window twice as large) do not affect it.
@@ -51,12 +53,19 @@ def incompleteness(result) -> list[str]:
                 f"window: it stops at Re q = {w.x1:g}, Im q = {w.y0:g}, inside the radius R = {far.radius:g} "
                 "beyond which E_chr has no root with Im q < 0; widen it or drop --window"
             )
-    if result.found != result.count:
+    upper = sum(k for cell, k in getattr(result, "unlocated", ()) if cell.y0 > 0)
+    if result.found != result.count and result.count - result.found != upper:
         reasons.append(
             f"count: the argument principle counts {result.count} root(s) with Re q >= 0, "
             f"{result.found} were found and confirmed"
         )
-    low = min((u.y0 for u in result.unsearched), default=0.0)
+    lost = [u for u in result.unsearched if getattr(u, "reason", "") and u.y0 < 0]
+    for u in lost:
+        reasons.append(
+            f"unsearched: the cell {u.x0:.6g} <= Re q <= {u.x1:.6g}, {u.y0:.6g} <= Im q <= {u.y1:.6g} "
+            f"({u.x1 - u.x0:.1e} x {u.height:.1e}) could not be counted: {u.reason}"
+        )
+    low = min((u.y0 for u in result.unsearched if not getattr(u, "reason", "")), default=0.0)
     strip = getattr(result, "strip", None)
     if low < 0 and strip is not None and not strip.decided:
         reasons.append(
