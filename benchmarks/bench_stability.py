@@ -37,7 +37,7 @@ def main() -> None:
     args = parser.parse_args()
 
     from moving_bogie.model.cases import table1_case
-    from moving_bogie.stability import plots as plots_stability
+    from moving_bogie.paper import stability_figures as plots_stability
     from moving_bogie.stability.critical_stiffness import critical_stiffness
     from moving_bogie.stability.critical_velocity import critical_velocity
     from moving_bogie.stability.d_decomposition import d_decomposition

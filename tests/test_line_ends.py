@@ -5,9 +5,9 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from moving_bogie.paper.stability_figures import _base
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.instability_lines import instability_lines
-from moving_bogie.stability.plots import _base
 
 
 @pytest.fixture(scope="module")

@@ -322,7 +322,7 @@ def _register_figure(subparsers) -> None:
     p = subparsers.add_parser(
         "stability-figure",
         help="build Figure 2, 3, 4, 7, 8 or 16 of the paper",
-        description="Build one of the paper's stability figures (plots_stability.figureN) into a PNG file.",
+        description="Build one of the paper's stability figures into a PNG file.",
         epilog=(
             "examples:\n  moving-bogie stability-figure 3 --plot fig3.png\n"
             "  moving-bogie stability-figure 16 --quick --plot fig16.png"
@@ -344,7 +344,7 @@ def _register_figure(subparsers) -> None:
 
 
 def run_figure(args) -> int:
-    from moving_bogie.stability import plots as plots_stability
+    from moving_bogie.paper import stability_figures as plots_stability
 
     with progress_bar(f"figure {args.number}") as bar:
         fig = getattr(plots_stability, f"figure{args.number}")(quick=args.quick, progress=bar)

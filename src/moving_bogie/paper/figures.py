@@ -24,8 +24,8 @@ STABILITY_FIGURES = (2, 3, 4, 7, 8, 16)
 
 
 def _stability_plot(number: int) -> Callable[..., Any]:
-    """``moving_bogie.stability.plots.figure<number>`` (imported here: it pulls in matplotlib)."""
-    from moving_bogie.stability import plots
+    """``moving_bogie.paper.stability_figures.figure<number>`` (imported here: it pulls in matplotlib)."""
+    from moving_bogie.paper import stability_figures as plots
 
     functions = {
         2: plots.figure2,

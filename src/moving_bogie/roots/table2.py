@@ -108,7 +108,7 @@ def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None, certify:
     """Table 2 by :func:`induced_frequencies` per case (with ``certify``, each result carries its proof)."""
     rows = []
     for k, case in enumerate(cases):
-        result = induced_frequencies(table1_case(case), "bogie", dps=dps, certify=certify)
+        result = induced_frequencies(table1_case(case), dps=dps, certify=certify)  # Table 1: the bogie
         printed = tuple(table2_printed(case))
         limit = damping_limit(result)
         rows.append(CaseRow(case, result, printed, compare_with_print(result, printed), limit))

@@ -1,76 +1,39 @@
-"""Figures of the stability analysis: Figures 2, 3, 4, 7, 8 and 16 of the paper, and stability maps.
+"""Drawing the stability analysis: instability lines, line-end marks, uncertain cells and stability maps.
 
-Every ``figureN(quick=False, progress=None)`` returns a matplotlib Figure; ``quick=True`` uses coarser
-grids (a few seconds per panel) for CI and previews. ``progress`` is called with the fraction done.
-Colours follow the paper's legends: one colour per wheel spacing d, full and dashed lines for the two
-variants compared in a panel, a black dotted line at the critical velocity.
+The paper's figures (2, 3, 4, 7, 8, 16) are recipes built on these in
+:mod:`moving_bogie.paper.stability_figures`.
+Colours follow the paper's legends: one colour per wheel spacing d.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from fractions import Fraction
-
 import numpy as np
 
-from moving_bogie.model.cases import table1_case
-from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.stability.critical_stiffness import critical_stiffness, figure16_params
-from moving_bogie.stability.critical_velocity import critical_velocity
-from moving_bogie.stability.frequency_lines import frequency_lines
-from moving_bogie.stability.instability_lines import instability_lines
-from moving_bogie.stability.map import stability_map
 from moving_bogie.stability.plot_units import PlaneUnits
 
 __all__ = [
-    "figure2",
-    "figure3",
-    "figure4",
-    "figure7",
-    "figure8",
-    "figure16",
-    "plot_instability_lines",
+    "end_mark_handles",
     "hatch_cells",
+    "new_figure",
+    "plot_instability_lines",
     "plot_stability_map",
+    "spacing_colors",
 ]
 
-SPACINGS = (1.0, 1.25, 1.5, 1.75, 2.0, 2.25)
-ETA_F = ("0.05", "0.1", "0.15", "0.2", "0.25", "0.3")
 
-
-def _figure(*args, **kwargs):
+def new_figure(*args, **kwargs):
+    """A matplotlib Figure (imported lazily: the library loads matplotlib only when it draws)."""
     from matplotlib.figure import Figure
 
     return Figure(*args, **kwargs)
 
 
-def _colors(ds):
+def spacing_colors(ds) -> dict:
+    """One colour per wheel spacing d (the paper's legends)."""
     import matplotlib
 
     cmap = matplotlib.colormaps["tab10"]
     return {float(d): cmap(k % 10) for k, d in enumerate(ds)}
-
-
-def _grid(quick: bool) -> dict:
-    return (
-        dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
-        if quick
-        else dict(alpha_step=0.01, q_step=0.004, h_max=0.01)
-    )
-
-
-class _Progress:
-    """Split one progress callback over n equal parts."""
-
-    def __init__(self, progress, n):
-        self.progress, self.n, self.k = progress, max(1, n), 0
-
-    def part(self):
-        k = self.k
-        self.k += 1
-        if self.progress is None:
-            return None
-        return lambda x: self.progress((k + min(1.0, x)) / self.n)
 
 
 #: Marker of a line that stops inside the plot, by kind: a fold (tip) or any other reason.
@@ -96,7 +59,7 @@ def plot_instability_lines(
     """
     units = units or PlaneUnits()
     ds = sorted({b.d for b in lines.branches})
-    colors = colors or _colors(ds)
+    colors = colors or spacing_colors(ds)
     seen = set()
     marked = set()
     parameter = getattr(lines, "parameter", "eta_M")
@@ -127,205 +90,6 @@ def end_mark_handles(kinds) -> list:
     from matplotlib.lines import Line2D
 
     return [Line2D([], [], label=END_LABELS[k], **END_MARKERS[k]) for k in sorted(kinds)]
-
-
-def _legend(fig, ds, styles=(), marks=()):
-    """One legend for the figure: a colour per spacing, then the line styles and the line-end marks."""
-    from matplotlib.lines import Line2D
-
-    colors = _colors(SPACINGS)
-    handles = [Line2D([], [], color=colors[float(d)], label=f"d = {d:g}") for d in ds]
-    handles += [Line2D([], [], color="k", ls=ls, label=text) for ls, text in styles]
-    handles += end_mark_handles(marks)
-    fig.legend(handles=handles, loc="outside right center", fontsize=8)
-
-
-def _decorate(ax, title, alpha_max, theta_max=200.0, ylabel=r"$\eta_M$", critical=1.0):
-    ax.axvline(critical, color="k", ls=":", lw=1)
-    ax.set_xlim(0, alpha_max)
-    ax.set_ylim(0, theta_max)
-    ax.set_xlabel(r"$\alpha$")
-    ax.set_ylabel(ylabel)
-    ax.set_title(title, fontsize=9)
-
-
-def _base(eta_f="0.05", **kw) -> DimensionlessParams:
-    values = dict(eta_f=eta_f, eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5")
-    values.update(kw)
-    return DimensionlessParams.from_coefficients(**values)
-
-
-def figure2(quick: bool = False, progress: Callable[[float], None] | None = None):
-    """Figure 2: real (blue) and imaginary (orange) parts of the induced frequencies of Case 1 over alpha.
-
-    One root of each pair is shown, one panel per frequency line (they are far apart); a line ends where
-    it meets the cut of K (Im q = eta_f, dashed).
-    """
-    p = table1_case(1)
-    res = frequency_lines(
-        p, "bogie", checkpoints=5 if quick else 13, h_max=0.02 if quick else 0.01, progress=progress
-    )
-    n = len(res.lines)
-    fig = _figure(figsize=(7, 1.9 * n + 0.6), layout="constrained")
-    axs = fig.subplots(n, 1, sharex=True, squeeze=False)[:, 0]
-    eta_f = float(p.eta_f)
-    for k, (ax, line) in enumerate(zip(axs, res.lines)):
-        ax.plot(line.alpha, line.q.real, color="tab:blue", lw=1.3)
-        ax.set_ylabel(r"Re $q$", color="tab:blue")
-        ax2 = ax.twinx()
-        ax2.plot(line.alpha, line.q.imag, color="tab:orange", lw=1.3)
-        ax2.axhline(0, color="tab:orange", lw=0.5, alpha=0.5)
-        if np.max(line.q.imag) > 0.5 * eta_f:
-            ax2.axhline(eta_f, color="tab:orange", ls="--", lw=0.8)
-        ax2.set_ylabel(r"Im $q$", color="tab:orange")
-        ax.set_title(f"line {k + 1}: starts at {line.start}, ends at {line.end}", fontsize=8)
-        ax.axvline(1.0, color="k", ls=":", lw=0.8)
-    axs[-1].set_xlabel(r"$\alpha$")
-    axs[-1].set_xlim(*res.alpha_range)
-    fig.suptitle("Figure 2: induced frequencies of Case 1 over the velocity", fontsize=10)
-    return fig
-
-
-def figure3(quick: bool = False, progress: Callable[[float], None] | None = None):
-    """Figure 3: instability lines of two moving masses, d = 1:0.25:2.25, panels eta_f = 0.05:0.05:0.3."""
-    fig = _figure(figsize=(12, 7.5), layout="constrained")
-    axs = fig.subplots(2, 3).ravel()
-    colors = _colors(SPACINGS)
-    split = _Progress(progress, len(ETA_F))
-    marks = set()
-    for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
-        lines = instability_lines(
-            _base(eta_f), "masses", spacings=SPACINGS, progress=split.part(), **_grid(quick)
-        )
-        marks |= plot_instability_lines(ax, lines, colors=colors)
-        _decorate(ax, rf"({tag}) $\eta_f$ = {eta_f}", 1.2)
-    _legend(fig, SPACINGS, marks=marks)
-    fig.suptitle("Figure 3: instability lines of two moving masses", fontsize=10)
-    return fig
-
-
-def figure4(quick: bool = False, progress: Callable[[float], None] | None = None):
-    """Figure 4: bogie (full; cf1 = 1.7, cf2 = 0.01, kappa_v = 0.02, eta_v = 0) against two masses of the
-    same total mass (dashed, 'a': 2 eta_M' = 2 eta_M + mu_v, i.e. eta_M' = eta_M (1 + cf1/2)), up to
-    alpha = 1."""
-    fig = _figure(figsize=(12, 7.5), layout="constrained")
-    axs = fig.subplots(2, 3).ravel()
-    colors = _colors(SPACINGS)
-    adapt = 1 + 1.7 / 2
-    split = _Progress(progress, 2 * len(ETA_F))
-    marks = set()
-    for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
-        p = _base(eta_f)
-        bogie = instability_lines(
-            p, "bogie", spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
-        )
-        masses = instability_lines(
-            p,
-            "masses",
-            spacings=SPACINGS,
-            alpha_range=(0, 1),
-            theta_max=200 * adapt,
-            progress=split.part(),
-            **_grid(quick),
-        )
-        marks |= plot_instability_lines(ax, bogie, colors=colors)
-        marks |= plot_instability_lines(ax, masses, colors=colors, linestyle="--", scale=adapt, label=False)
-        _decorate(ax, rf"({tag}) $\eta_f$ = {eta_f}", 1.0)
-    _legend(fig, SPACINGS, (("-", "bogie"), ("--", "masses 'a'")), marks)
-    fig.suptitle("Figure 4: instability lines, bogie against two masses of the same total mass", fontsize=10)
-    return fig
-
-
-def figure7(quick: bool = False, progress: Callable[[float], None] | None = None):
-    """Figure 7: bogie, kappa_v = 0.2, eta_f = 0.05, cf1 = 1.7, d = 1:0.25:2; eta_v = 0 (full) and 0.05
-    (dashed); (a) cf2 = 0.1, (b) cf2 = 0.01."""
-    ds = SPACINGS[:-1]
-    fig = _figure(figsize=(11, 4.6), layout="constrained")
-    axs = fig.subplots(1, 2)
-    colors = _colors(SPACINGS)
-    split = _Progress(progress, 4)
-    marks = set()
-    for ax, cf2, tag in zip(axs, ("0.1", "0.01"), "ab"):
-        for eta_v, style in (("0", "-"), ("0.05", "--")):
-            p = _base("0.05", cf2=cf2, kappa_v="0.2", eta_v=eta_v)
-            lines = instability_lines(
-                p, "bogie", spacings=ds, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
-            )
-            marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
-        _decorate(ax, rf"({tag}) $cf_2$ = {cf2}", 1.0)
-    _legend(fig, ds, (("-", r"$\eta_v$ = 0"), ("--", r"$\eta_v$ = 0.05")), marks)
-    fig.suptitle("Figure 7: effect of the suspension damping", fontsize=10)
-    return fig
-
-
-def figure8(quick: bool = False, progress: Callable[[float], None] | None = None):
-    """Figure 8: Euler-Bernoulli (full) against Timoshenko-Rayleigh (dashed); cf1 = 1.7, cf2 = 0.1,
-    eta_f = 0.05, kappa_v = 0.2, eta_v = 0; (a) S = 100, r = 0.03, (b) S = 10, r = 0.09."""
-    fig = _figure(figsize=(11, 4.6), layout="constrained")
-    axs = fig.subplots(1, 2)
-    colors = _colors(SPACINGS)
-    split = _Progress(progress, 4)
-    marks = set()
-    for ax, (S, r), tag in zip(axs, (("100", "0.03"), ("10", "0.09")), "ab"):
-        eb = _base("0.05", cf2="0.1", kappa_v="0.2")
-        tr = eb.replace(beam="tr", S=S, r=r)
-        a_cr = float(critical_velocity("tr", S=S, r=r).alpha_cr)
-        for p, style in ((eb, "-"), (tr, "--")):
-            lines = instability_lines(
-                p, "bogie", spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
-            )
-            marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
-        _decorate(ax, rf"({tag}) $\tilde S$ = {S}, $\tilde r$ = {r}", 1.0)
-        ax.axvline(a_cr, color="grey", ls=":", lw=1)
-    _legend(fig, SPACINGS, (("-", "Euler-Bernoulli"), ("--", "Timoshenko-Rayleigh")), marks)
-    fig.suptitle(
-        "Figure 8: effect of the beam theory (grey dotted: TR critical velocity, Eq. (66))", fontsize=10
-    )
-    return fig
-
-
-def figure16(quick: bool = False, progress: Callable[[float], None] | None = None):
-    """Figure 16 (stand-in): critical primary-suspension stiffness in the (alpha, kappa_v) plane.
-
-    (a) the parameter set of :func:`~moving_bogie.stability.critical_stiffness.figure16_params`, chosen
-    to resemble
-    the two-axle vehicle of ref. [48] (its data are not given in full); (b) the bogie of Case 5, where the
-    critical stiffnesses lie in the subcritical range. Shading: number of unstable induced frequencies
-    (argument principle); black dots: stable/unstable boundaries (D-decomposition).
-    """
-    from matplotlib.colors import BoundaryNorm
-
-    fig = _figure(figsize=(11, 4.6), layout="constrained")
-    axs = fig.subplots(1, 2)
-    sets = (
-        ("(a) stand-in for ref. [48]: TR, d = 21", figure16_params(), (0.5, 2.0), 1.0, 4.0),
-        ("(b) bogie of Case 5: EB, d = 1.5", table1_case(5), (0.3, 1.1), 0.6, 1.5),
-    )
-    n_map, n_line = (40, 16) if quick else (120, 60)
-    split = _Progress(progress, 4)
-    for ax, (title, p, (a0, a1), kmax, q_max) in zip(axs, sets):
-        alphas = np.linspace(a0, a1, n_map)
-        kappas = np.linspace(kmax / n_map, kmax, n_map)
-        m = stability_map(
-            p, "bogie", parameter="kappa_v", alphas=alphas, thetas=kappas, progress=split.part()
-        )
-        norm = BoundaryNorm(np.arange(-0.5, 6.5), 256)
-        mesh = ax.pcolormesh(
-            alphas, kappas, np.minimum(m.count, 6), shading="nearest", cmap="Greys", norm=norm, alpha=0.6
-        )
-        cs = critical_stiffness(
-            p, np.linspace(a0, a1, n_line), kappa_max=kmax, q_max=q_max, progress=split.part()
-        )
-        for a, crit in zip(cs.alphas, cs.critical):
-            ax.plot([a] * len(crit), crit, "k.", ms=3)
-        ax.set_xlim(a0, a1)
-        ax.set_ylim(0, kmax)
-        ax.set_xlabel(r"$\alpha$")
-        ax.set_ylabel(r"$\kappa_v$")
-        ax.set_title(title, fontsize=9)
-        fig.colorbar(mesh, ax=ax, label="unstable induced frequencies", ticks=range(7))
-    fig.suptitle("Figure 16 (stand-in): critical stiffness of the primary suspension", fontsize=10)
-    return fig
 
 
 def hatch_cells(ax, x, y, mask, *, label="uncertain (not certified)") -> int:
@@ -361,7 +125,7 @@ def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0, units=None):
     uncertain cells (if any) hatched and counted in the title; axes in ``units`` (SI for a ``[physical]``
     input, :class:`~moving_bogie.stability.plot_units.PlaneUnits`) with the operating point marked."""
     units = units or PlaneUnits()
-    fig = _figure(figsize=(7.5, 5.5), layout="constrained")
+    fig = new_figure(figsize=(7.5, 5.5), layout="constrained")
     ax = fig.subplots()
     deg = -smap.degree
     with np.errstate(divide="ignore"):
@@ -401,7 +165,3 @@ def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0, units=None):
         ax.legend(loc="upper left", fontsize=8)
     ax.set_title(title, fontsize=9)
     return fig
-
-
-def _frac(x) -> Fraction:
-    return Fraction(str(x))
