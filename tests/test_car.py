@@ -171,6 +171,7 @@ def test_rigid_oscillator_is_the_moving_mass():
             assert abs(qo - q) < 1e-6 * abs(q), (q, qo)
 
 
+@pytest.mark.slow
 def test_car_steady_state_against_quadrature():
     """Eq. (39) for the car: n_X(0) / E_chr(0) against the static solution written out by hand.
 

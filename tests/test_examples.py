@@ -149,8 +149,18 @@ def _winding_number(characteristic, q0, radius, points=512) -> float:
     return steps.sum() / (2 * np.pi)
 
 
+#: Examples whose check takes over 5 s on one core (the car's 22 roots, the two-layer and Timoshenko-Rayleigh
+#: searches): in the full suite only.
+HEAVY = {"car.toml", "two-layer.toml", "physical_tr.toml", "dimensionless_tr.toml"}
+
+
 @pytest.mark.parametrize(
-    "path", [p for p in FILES if p.name not in SLOW], ids=[p.name for p in FILES if p.name not in SLOW]
+    "path",
+    [
+        pytest.param(p, id=p.name, marks=[pytest.mark.slow] if p.name in HEAVY else [])
+        for p in FILES
+        if p.name not in SLOW
+    ],
 )
 def test_example_roots_are_simple_zeros_of_the_characteristic_equation(capsys, path):
     """Every reported root against the argument principle on a tiling of its own (cf. roots/contour.py).

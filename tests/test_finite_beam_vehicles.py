@@ -45,6 +45,7 @@ def car(**changes) -> SimpleNamespace:
     return SimpleNamespace(beam="eb", vehicle="car", eta_s=0.0, **(CAR | changes))
 
 
+@pytest.mark.slow
 def test_car_converges_to_the_infinite_beam_steady_state():
     alpha, eta_f = 0.5, 0.2
     params = car(alpha=alpha, eta_f=eta_f)

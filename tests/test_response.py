@@ -158,6 +158,7 @@ def test_shape_at_the_wheels_equals_the_contact_series(freqs, case, tau, branch_
     assert w[1] == pytest.approx(ts.w_front[0], rel=1e-10, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_whole_beam_starts_at_rest_and_the_transient_disperses(freqs):
     # Reference: homogeneous initial conditions for the whole beam, w(xi, 0) = 0 for every xi (Section 2).
     # The residues alone do not vanish at tau = 0; with I_bc the shape does, far from the wheels too.
