@@ -252,3 +252,47 @@ def test_car_time_series_against_bromwich():
     for name, values in series.responses.items():
         scale = max(np.max(np.abs(reference[name])), 1e-3)  # rotations are small: compare with w ~ 1
         assert np.max(np.abs(values - reference[name].real)) < 1e-6 * scale, name
+
+
+def test_mirrors_keep_the_roots_precision():
+    """The mirror -conj(q) of a 30-digit root is formed at 30 digits, not rounded to double precision.
+
+    Reference: the mirror's real and imaginary parts are exactly -Re q and Im q (negation is exact), so
+    the two members agree to the last digit; rounded to double they would differ by ~1e-17, which near a
+    close pair (7e-14 apart on the two-layer car) spoils the residue in the fourth digit.
+    """
+    from types import SimpleNamespace
+
+    from moving_bogie.response.residues import both_members
+
+    with mpmath.workdps(30):
+        q = mpmath.mpc("0.025302220383382850494123456789", "0.0062633858106962469663987654321")
+    root = SimpleNamespace(q=q, multiplicity=1, decimals=28)
+    result = SimpleNamespace(count_ok=True, roots=[root], dps=30, warnings=[])
+    first, mirror = both_members(result)
+    with mpmath.workdps(40):
+        assert abs(mirror.real + q.real) < mpmath.mpf(10) ** -31
+        assert abs(mirror.imag - q.imag) < mpmath.mpf(10) ** -31
+        assert abs(first - q) < mpmath.mpf(10) ** -31
+
+
+@pytest.mark.slow
+def test_car_on_two_layers_residues_of_a_close_pair_are_mirrors():
+    """The residue of -conj(q) is the conjugate of that of q (E_chr is real on the imaginary axis), also for
+    the pair 7e-14 apart, so that the imaginary parts of the residue sum cancel (they did not when the
+    mirror was rounded to double precision)."""
+    from moving_bogie.response.residues import residue_expansion
+
+    params, _ = load_params_file(EXAMPLES / "car-two-layer.toml")
+    result = induced_frequencies(params, dps=30)
+    expansion = residue_expansion(params, result, shapes=False)
+    q = expansion.q
+    for name in expansion.names:
+        a = expansion.amplitudes[name]
+        scale = np.max(np.abs(a))
+        for j in range(q.size):
+            k = int(np.argmin(np.abs(q + np.conj(q[j]))))
+            # 30 digits less the 13 that the pair 7e-14 apart cancels leave ~17: 1e-10 is generous
+            assert abs(a[k] - np.conj(a[j])) < 1e-10 * scale, (name, q[j])
+    harmonics = expansion.harmonics(np.linspace(0.0, 400.0, 81))
+    assert all(np.all(np.isfinite(v)) for v in harmonics.values())
