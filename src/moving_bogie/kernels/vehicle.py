@@ -206,20 +206,27 @@ class VehicleSystem:
 
     # --- arrays of q, numpy -------------------------------------------------------------------------------
 
-    def _dynamic_array(self, q):
+    def _dynamic_array(self, q, derivative=True):
+        """D(q) = -q^2 M + i q C + K (and dD/dq, or None) for an array of q, shape q.shape + (N, N)."""
         if not hasattr(self, "_float_matrices"):
             self._float_matrices = tuple(
                 np.array(A, dtype=float) for A in (self.mass, self.damping, self.stiffness)
             )
         M, C, Kv = self._float_matrices
         qq = q[..., None, None]
-        return -(qq**2) * M + 1j * qq * C + Kv, -2 * qq * M + 1j * C
+        D = Kv + qq * (1j * C - qq * M)
+        return D, (1j * C - 2 * qq * M) if derivative else None
 
     def block_array(self, q, K, dK=None):
         """A (shape q.shape + (N, N)) and dA/dq (or None) for kernel arrays ``K[k]`` at :attr:`offsets`."""
+        A, dA, _ = self._blocks_and_dynamic(q, K, dK)
+        return A, dA
+
+    def _blocks_and_dynamic(self, q, K, dK=None):
+        """(A, dA/dq or None, D) on arrays: :meth:`block_array` and the vehicle's D(q) it was built from."""
         q = np.asarray(q, dtype=complex)
         n = self.contacts
-        D, dD = self._dynamic_array(q)
+        D, dD = self._dynamic_array(q, derivative=dK is not None)
         shape = q.shape
         index = np.array(self.index)
         Kmat = np.stack([np.broadcast_to(k, shape) for k in K], axis=-1)[..., index]
@@ -227,11 +234,11 @@ class VehicleSystem:
         A[..., :n, :] = 2 * Kmat @ D[..., :n, :]
         A[..., range(n), range(n)] += np.pi
         if dK is None:
-            return A, None
+            return A, None, D
         dKmat = np.stack([np.broadcast_to(k, shape) for k in dK], axis=-1)[..., index]
         dA = dD.copy()
         dA[..., :n, :] = 2 * (dKmat @ D[..., :n, :] + Kmat @ dD[..., :n, :])
-        return A, dA
+        return A, dA, D
 
     def e_chr_array(self, q, K):
         A, _ = self.block_array(q, K)
@@ -265,16 +272,29 @@ class VehicleSystem:
         return b
 
     def responses_array(self, q, K):
-        """(E_chr, numerators (shape q.shape + (N,)), shape weights (q.shape + (n,))) on arrays."""
-        A, _ = self.block_array(q, K)
+        """(E_chr, numerators (shape q.shape + (N,)), shape weights (q.shape + (n,))) on arrays.
+
+        The numerators of every response come from one solve of the block system, n = E_chr A^-1 b
+        (Cramer's rule for all responses at once); only where A is singular to double precision (E_chr = 0
+        or a non-finite solve) are they the determinants of A with column X replaced by b.
+        """
+        q = np.asarray(q, dtype=complex)
+        A, _, D = self._blocks_and_dynamic(q, K)
         b = self.rhs_array(q, K)
         E = np.linalg.det(A)
-        nums = np.empty(b.shape, dtype=complex)
-        for x in range(self.size):
-            Ax = A.copy()
-            Ax[..., :, x] = b
-            nums[..., x] = np.linalg.det(Ax)
-        D, _ = self._dynamic_array(np.asarray(q, dtype=complex))
+        nums = np.full(b.shape, np.nan, dtype=complex)
+        regular = E != 0
+        if np.any(regular):
+            with np.errstate(all="ignore"):
+                x = np.linalg.solve(A[regular], b[regular][..., None])[..., 0]
+            nums[regular] = E[regular][..., None] * x
+        singular = ~np.all(np.isfinite(nums), axis=-1)
+        if np.any(singular):
+            As, bs = A[singular], b[singular]
+            for k in range(self.size):
+                Ak = As.copy()
+                Ak[..., :, k] = bs
+                nums[singular, k] = np.linalg.det(Ak)
         loads = np.array(self.loads, dtype=float)
         G = 4 * (E[..., None] * loads - np.einsum("...jk,...k->...j", D[..., : self.contacts, :], nums))
         return E, nums, G
