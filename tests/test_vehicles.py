@@ -106,6 +106,10 @@ def test_numerators_from_one_solve_are_cramers_determinants(name):
         reference = np.linalg.det(Ax)
         scale = np.max(np.abs(reference)) + np.max(np.abs(E))
         assert np.max(np.abs(nums[..., x] - reference)) < 1e-10 * scale, (name, x)
+    # the quadratures' variant without the determinant: X = n / E and G / E
+    X, GE = system.solutions_array(q, K)
+    assert np.allclose(X * E[:, None], nums, rtol=1e-10, atol=1e-12 * np.max(np.abs(nums)))
+    assert np.allclose(GE * E[:, None], G, rtol=1e-10, atol=1e-12 * np.max(np.abs(G)))
 
 
 def test_validation_labels_come_from_the_generated_dofs():

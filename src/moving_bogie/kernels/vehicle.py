@@ -213,9 +213,15 @@ class VehicleSystem:
                 np.array(A, dtype=float) for A in (self.mass, self.damping, self.stiffness)
             )
         M, C, Kv = self._float_matrices
+        N = self.size
+        if not hasattr(self, "_stacked"):
+            self._stacked = np.stack([Kv.ravel(), 1j * C.ravel(), -M.ravel()])  # D = [1, q, q^2] @ this
+        powers = np.stack([np.ones_like(q), q, q * q], axis=-1)
+        D = (powers @ self._stacked).reshape(q.shape + (N, N))
+        if not derivative:
+            return D, None
         qq = q[..., None, None]
-        D = Kv + qq * (1j * C - qq * M)
-        return D, (1j * C - 2 * qq * M) if derivative else None
+        return D, 1j * C - 2 * qq * M
 
     def block_array(self, q, K, dK=None):
         """A (shape q.shape + (N, N)) and dA/dq (or None) for kernel arrays ``K[k]`` at :attr:`offsets`."""
@@ -270,6 +276,25 @@ class VehicleSystem:
             for k in range(n):
                 b[..., i] += 2 * np.broadcast_to(K[self.index[i][k]], q.shape) * self.loads[k]
         return b
+
+    def solutions_array(self, q, K):
+        """(X, G / E_chr) on arrays: the responses X = n_X / E_chr (shape q.shape + (N,)) from one solve of
+        the block system A X = b, and the shape weights over E_chr, 4 (s_j - (D X)_j) (shape q.shape + (n,)).
+
+        What the branch-cut quadratures need, without the determinant; inf or NaN where A is singular.
+        """
+        q = np.asarray(q, dtype=complex)
+        A, _, D = self._blocks_and_dynamic(q, K)
+        b = self.rhs_array(q, K)
+        with np.errstate(all="ignore"):
+            try:
+                X = np.linalg.solve(A, b[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                E, nums, _ = self.responses_array(q, K)
+                X = nums / E[..., None]
+            loads = np.array(self.loads, dtype=float)
+            GE = 4 * (loads - np.einsum("...jk,...k->...j", D[..., : self.contacts, :], X))
+        return X, GE
 
     def responses_array(self, q, K):
         """(E_chr, numerators (shape q.shape + (N,)), shape weights (q.shape + (n,))) on arrays.
