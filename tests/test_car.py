@@ -9,6 +9,7 @@ a one-wheel oscillator with a rigid spring is the moving mass of both masses).
 
 from __future__ import annotations
 
+import cmath
 import json
 from pathlib import Path
 
@@ -253,3 +254,139 @@ def test_car_time_series_against_bromwich():
     for name, values in series.responses.items():
         scale = max(np.max(np.abs(reference[name])), 1e-3)  # rotations are small: compare with w ~ 1
         assert np.max(np.abs(values - reference[name].real)) < 1e-6 * scale, name
+
+
+def test_mirrors_keep_the_roots_precision():
+    """The mirror -conj(q) of a 30-digit root is formed at 30 digits, not rounded to double precision.
+
+    Reference: the mirror's real and imaginary parts are exactly -Re q and Im q (negation is exact), so
+    the two members agree to the last digit; rounded to double they would differ by ~1e-17, which near a
+    close pair (7e-14 apart on the two-layer car) spoils the residue in the fourth digit.
+    """
+    from types import SimpleNamespace
+
+    from moving_bogie.response.residues import both_members
+
+    with mpmath.workdps(30):
+        q = mpmath.mpc("0.025302220383382850494123456789", "0.0062633858106962469663987654321")
+    root = SimpleNamespace(q=q, multiplicity=1, decimals=28)
+    result = SimpleNamespace(count_ok=True, roots=[root], dps=30, warnings=[])
+    first, mirror = both_members(result)
+    with mpmath.workdps(40):
+        assert abs(mirror.real + q.real) < mpmath.mpf(10) ** -31
+        assert abs(mirror.imag - q.imag) < mpmath.mpf(10) ** -31
+        assert abs(first - q) < mpmath.mpf(10) ** -31
+
+
+@pytest.mark.slow
+def test_car_on_two_layers_residues_of_a_close_pair_are_mirrors():
+    """The residue of -conj(q) is the conjugate of that of q (E_chr is real on the imaginary axis), also for
+    the pair 7e-14 apart, so that the imaginary parts of the residue sum cancel (they did not when the
+    mirror was rounded to double precision)."""
+    from moving_bogie.response.residues import residue_expansion
+
+    params, _ = load_params_file(EXAMPLES / "car-two-layer.toml")
+    result = induced_frequencies(params, dps=30)
+    expansion = residue_expansion(params, result, shapes=False)
+    q = expansion.q
+    for name in expansion.names:
+        a = expansion.amplitudes[name]
+        scale = np.max(np.abs(a))
+        for j in range(q.size):
+            k = int(np.argmin(np.abs(q + np.conj(q[j]))))
+            # 30 digits less the 13 that the pair 7e-14 apart cancels leave ~17: 1e-10 is generous
+            assert abs(a[k] - np.conj(a[j])) < 1e-10 * scale, (name, q[j])
+    harmonics = expansion.harmonics(np.linspace(0.0, 400.0, 81))
+    assert all(np.all(np.isfinite(v)) for v in harmonics.values())
+
+
+def _two_bogies_determinant(params):
+    """E of two bogies that touch the rail at 0, d and L_c, L_c + d and share nothing but the rail.
+
+    Built here with numpy from the bogie's own generated matrices, placed block-diagonally (no body, no
+    secondary suspension): the block system [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]] of Eq. (28)
+    over the two bogies' rows, with Kmat_ij = K(xi_i - xi_j, q) of the track.
+    """
+    from moving_bogie.generated import vehicle_bogie as bogie
+    from moving_bogie.kernels.track import TrackKernelArray
+
+    ns = params.as_float()
+    args = {name: float(getattr(ns, name)) for name in bogie.MATRIX_ARGUMENTS}
+    M1, C1, K1 = (
+        np.array(f(**args), dtype=float)
+        for f in (bogie.mass_matrix, bogie.damping_matrix, bogie.stiffness_matrix)
+    )
+    d, L = float(ns.d), float(ns.L_c)
+    xi = np.array([0.0, d, L, L + d])
+    # DOFs: w_1..w_4, then (u, theta) of bogie 1 and of bogie 2; bogie DOFs are (w_rear, w_front, u, theta)
+    rows = [(0, 1, 4, 5), (2, 3, 6, 7)]
+    mats = []
+    for B in (M1, C1, K1):
+        A = np.zeros((8, 8))
+        for idx in rows:
+            A[np.ix_(idx, idx)] = B
+        mats.append(A)
+    M, C, Kv = mats
+    kernel = TrackKernelArray(params)
+    offsets = (xi[:, None] - xi[None, :]).ravel()
+
+    def E(q):
+        q = np.asarray(q, dtype=complex)
+        flat = q.reshape(-1)
+        Kmat = np.stack(kernel(flat, offsets).K, axis=-1).reshape(flat.shape + (4, 4))
+        D = Kv + flat[:, None, None] * (1j * C - flat[:, None, None] * M)
+        A = D.copy()
+        A[:, :4, :] = 2 * Kmat @ D[:, :4, :]
+        A[:, range(4), range(4)] += np.pi
+        return np.linalg.det(A).reshape(q.shape)
+
+    return E
+
+
+def test_car_without_secondary_suspension_is_two_bogies_and_a_free_body():
+    """kappa_sec, eta_sec -> 0 at the normal bogie spacing: the car's roots are those of its two bogies
+    interacting through the rail (reference: the determinant of two bogie blocks built above, no body)
+    plus the body's rigid modes on its two soft springs (reference: by hand, bounce q^2 = 2 kappa_sec / mu_c,
+    pitch q^2 = 2 kappa_sec (L_c / 2)^2 / J_c, the bogies being rigid compared with kappa_sec)."""
+    car = table1_case(7).replace(vehicle="car", L_c=9, mu_c=8, J_c=60, kappa_sec="1e-9", eta_sec="1e-9")
+    result = induced_frequencies(car, dps=20)
+    assert result.count_ok
+    qs = [complex(r.q) for r in result.roots]
+    body = [q for q in qs if abs(q) < 1e-3]
+    bogies = [q for q in qs if abs(q) >= 1e-3]
+    # the body's two rigid modes on two springs kappa_sec and two dampers (2 eta_sec each, the scaling of
+    # the bogie's 2 eta_v in Eq. (38)) at -L_c/2 and +L_c/2 from its centre, the bogies held:
+    # -q^2 m + i q c + k = 0 with (m, c, k) = (mu_c, 4 eta, 2 kappa) and (J_c, eta L_c^2, kappa L_c^2 / 2)
+    kappa, eta, L = 1e-9, 1e-9, 9.0
+    expected = [
+        (1j * c + cmath.sqrt(4 * m * k - c**2)) / (2 * m)
+        for m, c, k in ((8.0, 4 * eta, 2 * kappa), (60.0, eta * L**2, kappa * L**2 / 2))
+    ]
+    assert len(body) == 2
+    for q, ref in zip(sorted(body, key=abs), sorted(expected, key=abs)):
+        # the bogies are not quite rigid: they and the rail give way by ~kappa_sec / kappa_v relative
+        assert abs(q - ref) < 1e-6 * abs(ref), (q, ref)
+    # two bogies on the rail: every root of the reference determinant near the car's, and as many
+    E_ref = _two_bogies_determinant(car)
+    assert len(bogies) == 8
+    # the two bogies' roots come in pairs (the rail couples them weakly at the spacing L_c = 9)
+    for group in clusters(bogies, 1e-3):
+        centre = np.mean(group)
+        others = [abs(q - centre) for q in bogies if q not in group]
+        span = max(abs(q - centre) for q in group)
+        radius = min(0.3 * min(others), 1e-2, 0.5 * centre.imag)
+        assert winding(E_ref, centre, radius, 10 * span) == len(group) == 2, f"pair at {centre}"
+    for q in bogies:  # secant iteration on the reference from the car's root: it is a root of both
+        a, b = q * (1 + 1e-6), q
+        fa, fb = E_ref(np.array([a, b]))
+        for _ in range(40):
+            a, b, fa = b, b - fb * (b - a) / (fb - fa), fb
+            fb = E_ref(np.array([b]))[0]
+            if abs(b - a) < 1e-13 * abs(b):
+                break
+        else:
+            raise AssertionError(f"secant on the reference did not converge from {q}")
+        # the secondary suspension (1e-9) moves a root by ~1e-9 relative (measured 1.4e-9 for the lowest
+        # pair, below 1e-11 for the others); the bogies' pairs are 3e-5 and more apart, so each member of
+        # a pair converges to its own reference root
+        assert abs(b - q) < 1e-7 * abs(q), (q, b)

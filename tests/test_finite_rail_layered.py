@@ -190,6 +190,6 @@ def test_cli_validate_runs_on_a_layered_track():
     # models must agree within the command's default tolerance (1 %); residues alone were 1-3.6 % off
     assert run.returncode == 0, run.stderr
     data = json.loads(run.stdout)
-    assert set(data["relative_diff"]) == {"rear", "front", "u", "theta"}
+    assert set(data["relative_diff"]) == {"w_rear", "w_front", "u", "theta"}
     assert data["track"] == "two-layer" and data["closed_form_branch_cut"] is True
     assert max(data["relative_diff"].values()) < 0.01

@@ -169,7 +169,7 @@ def test_cli_case_7_json(tmp_path):
     assert data["static_correction"] is True and data["tolerance"] == 0.01
     assert 0 < data["entry"] < data["L"] and data["k_max"] == pytest.approx(4.0)
     assert data["window"][0] == 0.0 and data["window"][1] == pytest.approx(200.0)
-    assert set(data["relative_diff"]) == {"rear", "front", "u", "theta"}
+    assert set(data["relative_diff"]) == {"w_rear", "w_front", "u", "theta"}
     assert all(0 <= v <= 0.01 for v in data["relative_diff"].values())
     for k, q in data["quantities"].items():
         assert q["relative_diff"] == pytest.approx(q["max_abs_diff"] / q["amplitude"]) and q["within"], k
@@ -223,7 +223,7 @@ def _check_panels_show_the_comparison(fig, result):
     comparison window by exactly the max |finite - closed| the verdict judged, relative to the dashed
     curve's amplitude (validation/verdict.py)."""
     panels = [ax for ax in fig.axes if ax.get_ylabel()]
-    names = ("rear", "u", "theta") if result.model == "bogie" else ("rear",)  # the panels, top to bottom
+    names = ("w_rear", "u", "theta") if result.model == "bogie" else ("w_rear",)  # the panels, top to bottom
     assert len(panels) == len(names)
     t0, t1 = result.window
     for ax, name in zip(panels, names):
@@ -251,7 +251,7 @@ def test_plot_files(case2, tmp_path):
 def test_masses_model_one_panel(tmp_path):
     # Reference: closed form of the two masses of Case 5 (Fig. 1a); short run, 200 modes.
     result = validate(table1_case(5), model="masses", n_modes=200, tau_max=40.0)
-    assert set(result.quantities) == {"rear", "front"}
+    assert set(result.quantities) == {"w_rear", "w_front"}
     assert result.max_abs_diff_u is None and result.to_dict()["max_abs_diff_theta"] is None
     assert result.agrees
     fig = plot_validation(result, tmp_path / "m.svg")

@@ -84,3 +84,48 @@ def test_block_determinant_is_eq38():
         E = block_characteristic(assemble(VEHICLES[name]()), lambda x: atoms[x])
         system = SYSTEMS[name]()
         assert sp.expand(E - factor * in_q(system.E_chr, system)) == 0
+
+
+@pytest.mark.parametrize("name", tuple(generated.DECLARED_VEHICLES))
+def test_numerators_from_one_solve_are_cramers_determinants(name):
+    """responses_array takes every residue numerator from one solve (n = E A^-1 b); reference: Cramer's
+    rule written out, det(A with column X replaced by b), with made-up kernel values."""
+    from moving_bogie.kernels.vehicle import VehicleSystem
+
+    module, params, _ = _matrices(name, seed=3)
+    system = VehicleSystem(module, params)
+    rng = np.random.default_rng(11)
+    q = rng.uniform(0.05, 1.5, 6) + 1j * rng.uniform(-0.2, 0.3, 6)
+    K = [rng.normal(size=6) + 1j * rng.normal(size=6) for _ in system.offsets]
+    E, nums, G = system.responses_array(q, K)
+    A, _ = system.block_array(q, K)
+    b = system.rhs_array(q, K)
+    for x in range(system.size):
+        Ax = A.copy()
+        Ax[..., :, x] = b
+        reference = np.linalg.det(Ax)
+        scale = np.max(np.abs(reference)) + np.max(np.abs(E))
+        assert np.max(np.abs(nums[..., x] - reference)) < 1e-10 * scale, (name, x)
+    # the quadratures' variant without the determinant: X = n / E and G / E
+    X, GE = system.solutions_array(q, K)
+    assert np.allclose(X * E[:, None], nums, rtol=1e-10, atol=1e-12 * np.max(np.abs(nums)))
+    assert np.allclose(GE * E[:, None], G, rtol=1e-10, atol=1e-12 * np.max(np.abs(G)))
+
+
+def test_validation_labels_come_from_the_generated_dofs():
+    """Every response of every vehicle is compared under its DOFS name, labelled by its kind and unit."""
+    from moving_bogie.validation.verdict import quantity_labels
+
+    for name in generated.DECLARED_VEHICLES:
+        module = _module(name)
+        labels = quantity_labels(module.DOFS, module.UNITS, module.CONTACTS)
+        assert tuple(labels) == tuple(module.DOFS)
+        for k, dof in enumerate(module.DOFS):
+            assert labels[dof].startswith(dof)
+            if k < module.CONTACTS:
+                assert f"wheel {k + 1} of {module.CONTACTS}" in labels[dof]
+            else:
+                kind = "pitch" if module.UNITS[dof] == "rad" else "bounce"
+                assert labels[dof].endswith(kind), labels[dof]
+    car = _module("car")
+    assert quantity_labels(car.DOFS, car.UNITS, car.CONTACTS)["theta_c"] == "theta_c / (w_st chi), pitch"

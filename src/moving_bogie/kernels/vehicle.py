@@ -206,20 +206,33 @@ class VehicleSystem:
 
     # --- arrays of q, numpy -------------------------------------------------------------------------------
 
-    def _dynamic_array(self, q):
+    def _dynamic_array(self, q, derivative=True):
+        """D(q) = -q^2 M + i q C + K (and dD/dq, or None) for an array of q, shape q.shape + (N, N)."""
         if not hasattr(self, "_float_matrices"):
             self._float_matrices = tuple(
                 np.array(A, dtype=float) for A in (self.mass, self.damping, self.stiffness)
             )
         M, C, Kv = self._float_matrices
+        N = self.size
+        if not hasattr(self, "_stacked"):
+            self._stacked = np.stack([Kv.ravel(), 1j * C.ravel(), -M.ravel()])  # D = [1, q, q^2] @ this
+        powers = np.stack([np.ones_like(q), q, q * q], axis=-1)
+        D = (powers @ self._stacked).reshape(q.shape + (N, N))
+        if not derivative:
+            return D, None
         qq = q[..., None, None]
-        return -(qq**2) * M + 1j * qq * C + Kv, -2 * qq * M + 1j * C
+        return D, 1j * C - 2 * qq * M
 
     def block_array(self, q, K, dK=None):
         """A (shape q.shape + (N, N)) and dA/dq (or None) for kernel arrays ``K[k]`` at :attr:`offsets`."""
+        A, dA, _ = self._blocks_and_dynamic(q, K, dK)
+        return A, dA
+
+    def _blocks_and_dynamic(self, q, K, dK=None):
+        """(A, dA/dq or None, D) on arrays: :meth:`block_array` and the vehicle's D(q) it was built from."""
         q = np.asarray(q, dtype=complex)
         n = self.contacts
-        D, dD = self._dynamic_array(q)
+        D, dD = self._dynamic_array(q, derivative=dK is not None)
         shape = q.shape
         index = np.array(self.index)
         Kmat = np.stack([np.broadcast_to(k, shape) for k in K], axis=-1)[..., index]
@@ -227,11 +240,11 @@ class VehicleSystem:
         A[..., :n, :] = 2 * Kmat @ D[..., :n, :]
         A[..., range(n), range(n)] += np.pi
         if dK is None:
-            return A, None
+            return A, None, D
         dKmat = np.stack([np.broadcast_to(k, shape) for k in dK], axis=-1)[..., index]
         dA = dD.copy()
         dA[..., :n, :] = 2 * (dKmat @ D[..., :n, :] + Kmat @ dD[..., :n, :])
-        return A, dA
+        return A, dA, D
 
     def e_chr_array(self, q, K):
         A, _ = self.block_array(q, K)
@@ -264,17 +277,49 @@ class VehicleSystem:
                 b[..., i] += 2 * np.broadcast_to(K[self.index[i][k]], q.shape) * self.loads[k]
         return b
 
+    def solutions_array(self, q, K):
+        """(X, G / E_chr) on arrays: the responses X = n_X / E_chr (shape q.shape + (N,)) from one solve of
+        the block system A X = b, and the shape weights over E_chr, 4 (s_j - (D X)_j) (shape q.shape + (n,)).
+
+        What the branch-cut quadratures need, without the determinant; inf or NaN where A is singular.
+        """
+        q = np.asarray(q, dtype=complex)
+        A, _, D = self._blocks_and_dynamic(q, K)
+        b = self.rhs_array(q, K)
+        with np.errstate(all="ignore"):
+            try:
+                X = np.linalg.solve(A, b[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                E, nums, _ = self.responses_array(q, K)
+                X = nums / E[..., None]
+            loads = np.array(self.loads, dtype=float)
+            GE = 4 * (loads - np.einsum("...jk,...k->...j", D[..., : self.contacts, :], X))
+        return X, GE
+
     def responses_array(self, q, K):
-        """(E_chr, numerators (shape q.shape + (N,)), shape weights (q.shape + (n,))) on arrays."""
-        A, _ = self.block_array(q, K)
+        """(E_chr, numerators (shape q.shape + (N,)), shape weights (q.shape + (n,))) on arrays.
+
+        The numerators of every response come from one solve of the block system, n = E_chr A^-1 b
+        (Cramer's rule for all responses at once); only where A is singular to double precision (E_chr = 0
+        or a non-finite solve) are they the determinants of A with column X replaced by b.
+        """
+        q = np.asarray(q, dtype=complex)
+        A, _, D = self._blocks_and_dynamic(q, K)
         b = self.rhs_array(q, K)
         E = np.linalg.det(A)
-        nums = np.empty(b.shape, dtype=complex)
-        for x in range(self.size):
-            Ax = A.copy()
-            Ax[..., :, x] = b
-            nums[..., x] = np.linalg.det(Ax)
-        D, _ = self._dynamic_array(np.asarray(q, dtype=complex))
+        nums = np.full(b.shape, np.nan, dtype=complex)
+        regular = E != 0
+        if np.any(regular):
+            with np.errstate(all="ignore"):
+                x = np.linalg.solve(A[regular], b[regular][..., None])[..., 0]
+            nums[regular] = E[regular][..., None] * x
+        singular = ~np.all(np.isfinite(nums), axis=-1)
+        if np.any(singular):
+            As, bs = A[singular], b[singular]
+            for k in range(self.size):
+                Ak = As.copy()
+                Ak[..., :, k] = bs
+                nums[singular, k] = np.linalg.det(Ak)
         loads = np.array(self.loads, dtype=float)
         G = 4 * (E[..., None] * loads - np.einsum("...jk,...k->...j", D[..., : self.contacts, :], nums))
         return E, nums, G

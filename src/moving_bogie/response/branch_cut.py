@@ -231,8 +231,8 @@ class BranchCut:
         q, P, weight = self._roots_and_sides(np.atleast_1d(p0))
         out = []
         for Ks in self._contact_kernels(P, weight):
-            E, nums, _ = self.system.responses_array(q, Ks)
-            out.append(nums / (1j * q * E)[:, None])
+            X, _ = self.system.solutions_array(q, Ks)
+            out.append(X / (1j * q)[:, None])
         return q, out[0] - out[1]
 
     def shape_jumps(self, p0, xi) -> tuple[np.ndarray, np.ndarray]:
@@ -242,9 +242,9 @@ class BranchCut:
         Kx = [self._both_sides(P, weight, xi - x) for x in self.positions]
         out = []
         for k, Ks in enumerate(self._contact_kernels(P, weight)):
-            E, _, G = self.system.responses_array(q, Ks)
-            den = 2 * np.pi * 1j * q * E
-            out.append(sum((G[:, j] / den)[:, None] * Kx[j][k] for j in range(len(self.positions))))
+            _, GE = self.system.solutions_array(q, Ks)
+            den = 2 * np.pi * 1j * q
+            out.append(sum((GE[:, j] / den)[:, None] * Kx[j][k] for j in range(len(self.positions))))
         return q, out[0] - out[1]
 
     # --- the integral ---------------------------------------------------------------------------

@@ -155,14 +155,14 @@ class CurveBranchCut:
             out = []
             for upper in (right, left):
                 Ks = list(self._kernel(P, W, upper, self.offsets).T)
-                E, nums, G = self.system.responses_array(q, Ks)
+                X, GE = self.system.solutions_array(q, Ks)
                 if xi is None:
-                    out.append(nums / (1j * q * E)[:, None])
+                    out.append(X / (1j * q)[:, None])
                 else:
-                    den = 2 * np.pi * 1j * q * E
+                    den = 2 * np.pi * 1j * q
                     out.append(
                         sum(
-                            (G[:, j] / den)[:, None] * self._kernel(P, W, upper, xi - x)
+                            (GE[:, j] / den)[:, None] * self._kernel(P, W, upper, xi - x)
                             for j, x in enumerate(self.positions)
                         )
                     )

@@ -46,15 +46,20 @@ def both_members(result) -> list:
         detail = "; ".join(result.warnings) or f"{result.found} of {result.count} roots found"
         raise IncompleteFrequencies(f"induced frequencies incomplete ({detail}): no closed-form response")
     out = []
-    for root in result.roots:
-        if root.multiplicity != 1:
-            raise MovingBogieError(
-                f"induced frequency {mpmath.nstr(root.q, 10)} has multiplicity {root.multiplicity}: "
-                "the residue formula of Eq. (40) needs simple poles"
-            )
-        out.append(root.q)
-        if abs(mpmath.re(root.q)) > mpmath.mpf(10) ** (-root.decimals):
-            out.append(-mpmath.conj(root.q))
+    # The mirror is formed at the roots' precision: rounded to double, it would sit ~1e-17 off the root,
+    # and near a close pair (two bogies interacting through the rail, roots 1e-13 apart) its residue would
+    # then be wrong in the fourth digit and the imaginary parts of the pair would not cancel.
+    with mpmath.workdps(max(int(getattr(result, "dps", 0) or 0), mpmath.mp.dps)):
+        for root in result.roots:
+            if root.multiplicity != 1:
+                raise MovingBogieError(
+                    f"induced frequency {mpmath.nstr(root.q, 10)} has multiplicity {root.multiplicity}: "
+                    "the residue formula of Eq. (40) needs simple poles"
+                )
+            q = +mpmath.mpc(root.q)
+            out.append(q)
+            if abs(mpmath.re(q)) > mpmath.mpf(10) ** (-root.decimals):
+                out.append(-mpmath.conj(q))
     return out
 
 

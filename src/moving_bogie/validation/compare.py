@@ -5,7 +5,7 @@ supported beam in 500 sine modes. :func:`validate` does the same: it runs
 :func:`~moving_bogie.validation.finite_beam.simulate_finite_beam` (with the static correction of
 the truncated modes, :mod:`moving_bogie.validation.corrected`) and
 :func:`~moving_bogie.response.closed_form.closed_form_response` on one tau grid and compares the
-rear-wheel deflection, the front-wheel deflection, the bar bounce and the bar pitch over the window
+every response of the vehicle (the rail under each wheel, each body's bounce and pitch) over the window
 in which the finite beam stands in for the infinite one (:mod:`moving_bogie.validation.window`).
 They agree when every quantity is within a fixed relative tolerance, 1 % of its largest value over
 the window by default (:mod:`moving_bogie.validation.verdict`); a second run with twice the time
@@ -30,10 +30,10 @@ from moving_bogie.validation.plots import plot_validation
 from moving_bogie.validation.vehicle import vehicle_kernels
 from moving_bogie.validation.verdict import (
     DEFAULT_TOLERANCE,
-    QUANTITIES,
     QuantityComparison,
     ValidationResult,
     compare_series,
+    quantity_labels,
     series,
 )
 from moving_bogie.validation.window import (
@@ -46,7 +46,6 @@ from moving_bogie.validation.window import (
 
 __all__ = [
     "DEFAULT_TOLERANCE",
-    "QUANTITIES",
     "QuantityComparison",
     "ValidationResult",
     "comparison_window",
@@ -184,9 +183,8 @@ def validate(
 
     tau_w = comparison_window(params, finite, reflection_level=reflection_level)
     inside = tau <= tau_w * (1 + 1e-12)
-    # every response of the vehicle, under the short names of QUANTITIES where they have one
-    short = {attr: key for key, (attr, _) in QUANTITIES.items()}
-    names = {short.get(dof, dof): dof for dof in finite.responses}
+    # every response of the vehicle, under its name in the generated DOFS
+    names = {dof: dof for dof in finite.responses}
     quantities, notes = {}, [f"closed form: {note}" for note in getattr(closed, "notes", ())]
     if any("branch cut skipped" in note for note in getattr(closed, "notes", ())):
         notes.append(
@@ -198,7 +196,9 @@ def validate(
             f"k_max = {finite.k_max:.2f} < {MIN_CORRECTED_WAVENUMBER:g}: the truncated modes are not much "
             "faster than the forcing, so the static correction is unreliable; use more modes"
         )
-    units = getattr(vehicle_kernels(params, model), "UNITS", {})
+    kernels = vehicle_kernels(params, model)
+    units = getattr(kernels, "UNITS", {})
+    labels = quantity_labels(tuple(names), units, finite.contacts)
     closed_all = {attr: series(closed, attr, tau.size)[inside] for attr in names.values()}
     kinds: dict[str, float] = {}
     for attr, values in closed_all.items():
@@ -234,4 +234,5 @@ def validate(
         tolerance=tol,
         reflection_level=reflection_level,
         notes=tuple(notes),
+        labels=labels,
     )

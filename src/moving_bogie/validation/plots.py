@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from moving_bogie.validation.verdict import QUANTITIES, ValidationResult, beam_title, series
+from moving_bogie.validation.verdict import ValidationResult, beam_title, quantity_labels, series
 
 __all__ = ["plot_validation"]
 
@@ -12,8 +12,9 @@ __all__ = ["plot_validation"]
 def plot_validation(result: ValidationResult, path: Any = None, *, title: str | None = None):
     """Paper-style figure (Figures 5, 9-12, 14, A1): finite beam solid, closed form dashed.
 
-    Three stacked panels for the bogie, (a) beam deflection at the rear wheel, (b) bar bounce,
-    (c) bar pitch; one panel (rear-wheel deflection) for the two masses. The comparison window's
+    One stacked panel for the rail under the rear wheel and one for every body DOF of the vehicle, labelled
+    from its generated ``DOFS`` and ``UNITS`` (the bogie: (a) ``w_rear``, (b) bar bounce ``u``, (c) bar pitch
+    ``theta``; the two masses: ``w_rear`` only). The comparison window's
     end is marked by a dotted line, the time after it shaded; the strict reflection-free
     ``tau_valid`` by a thin dotted grey line when it is earlier. Builds a bare
     :class:`matplotlib.figure.Figure` (no pyplot, no GUI backend).
@@ -36,20 +37,15 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
     # the rear wheel and every internal degree of freedom
     names = list(result.quantities)
     panels = [names[0], *names[result.finite.contacts :]]
-    labels = {
-        "rear": r"$w(0,\tau)\,/\,w_{st}$ rear wheel",
-        "u": r"$u\,/\,w_{st}$ bar bounce",
-        "theta": r"$\theta\,/\,(w_{st}\chi)$ bar pitch",
-    }
-    labels = {name: labels.get(name, name) for name in panels}
+    # labels from the vehicle's generated DOFS and UNITS (ValidationResult.labels)
+    labels = result.labels or quantity_labels(names, {}, result.finite.contacts)
     fig = Figure(figsize=(7.5, 2.3 * len(panels) + 0.9), layout="constrained")
     axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
     tau = result.tau
     tau_w = result.window[1]
     correction = " + static correction" if result.finite.static_correction else ""
-    short = {key: attr for key, (attr, _) in QUANTITIES.items()}
     for letter, (ax, name) in zip("abcdefghijklmnop", zip(axes, panels)):
-        attr = short.get(name, name)
+        attr = name
         curves = (
             (result.finite, "-", "C0", f"finite beam, {result.finite.n_modes} modes{correction}"),
             (result.closed, "--", "C3", "closed form (infinite beam)"),

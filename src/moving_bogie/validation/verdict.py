@@ -1,8 +1,8 @@
 """Verdict of the finite-beam validation: a fixed, stated tolerance per compared quantity.
 
 The finite beam (Section 3.2) and the closed form (Eqs. (35)-(47)) agree when, for every compared
-time series ``X`` (the deflections under the rear and the front wheel, the bar bounce ``u`` and the
-bar pitch ``theta``),
+time series ``X`` (every degree of freedom of the vehicle, under its name in the generated ``DOFS``: the
+rail's deflection under each wheel, then each body's bounce and pitch),
 
     relative_diff_X = max_window |X_finite - X_closed| / max_window |X_closed| <= tol,
 
@@ -25,24 +25,41 @@ from moving_bogie.validation.finite_beam import FiniteBeamResult
 
 __all__ = [
     "DEFAULT_TOLERANCE",
-    "QUANTITIES",
     "QuantityComparison",
     "ValidationResult",
     "beam_title",
     "compare_series",
+    "quantity_labels",
     "series",
 ]
 
 #: Default tolerance: every quantity within 1 % of its largest value over the window.
 DEFAULT_TOLERANCE = 0.01
 
-#: Compared time series: name -> (attribute of the time series, label).
-QUANTITIES: dict[str, tuple[str, str]] = {
-    "rear": ("w_rear", "beam deflection at the rear wheel"),
-    "front": ("w_front", "beam deflection at the front wheel"),
-    "u": ("u", "bar bounce u"),
-    "theta": ("theta", "bar pitch theta"),
-}
+
+def quantity_labels(dofs, units, contacts: int) -> dict[str, str]:
+    """A label for every compared quantity, from the vehicle's generated ``DOFS``, ``UNITS`` and ``CONTACTS``.
+
+    The first ``contacts`` degrees of freedom are the rail's deflection under each wheel (contact order,
+    rear first); the others are bounces (unit ``m``) and pitches (unit ``rad``) of the vehicle's bodies.
+    Each label names the quantity, its dimensionless unit (Eqs. (15)-(17)) and what it is.
+
+    Parameters
+    ----------
+    dofs : sequence of str
+    units : mapping
+        DOF name -> ``"m"`` or ``"rad"``.
+    contacts : int
+    """
+    labels = {}
+    for k, name in enumerate(dofs):
+        if k < contacts:
+            labels[name] = f"{name} / w_st, rail under wheel {k + 1} of {contacts}"
+        elif units.get(name) == "rad":
+            labels[name] = f"{name} / (w_st chi), pitch"
+        else:
+            labels[name] = f"{name} / w_st, bounce"
+    return labels
 
 
 def beam_title(params: Any) -> str:
@@ -60,7 +77,7 @@ class QuantityComparison:
     Attributes
     ----------
     name : str
-        "rear", "front", "u" or "theta".
+        The quantity's degree of freedom (``DOFS`` of the vehicle's generated module).
     max_abs_diff : float
         ``max |finite - closed|`` over the window.
     amplitude : float
@@ -186,7 +203,7 @@ class ValidationResult:
     window : tuple of float
         ``(0, tau_w)``, the comparison window.
     quantities : dict of str to QuantityComparison
-        "rear", "front" and, for the bogie, "u" and "theta".
+        Every degree of freedom of the vehicle by its ``DOFS`` name (wheels first, in contact order).
     finite_beam_s, reference_s, closed_form_s : float
         Wall times of the finite-beam run, the estimate run and the closed form (frequency search
         included).
@@ -195,6 +212,8 @@ class ValidationResult:
     reflection_level : float
         Reflection bound that ends the window.
     notes : tuple of str
+    labels : dict of str to str
+        A label per quantity (:func:`quantity_labels`).
     """
 
     model: str
@@ -211,6 +230,7 @@ class ValidationResult:
     tolerance: float
     reflection_level: float
     notes: tuple[str, ...] = field(default=())
+    labels: dict[str, str] = field(default_factory=dict)
 
     def _diff(self, name: str) -> float | None:
         q = self.quantities.get(name)
@@ -218,23 +238,27 @@ class ValidationResult:
 
     @property
     def max_abs_diff_rear(self) -> float:
-        """``max |w_rear finite - w_rear closed|`` over the window."""
-        return self.quantities["rear"].max_abs_diff
+        """Difference under the rear wheel (the first contact, at xi = 0) over the window."""
+        return self.quantities[self._wheels[0]].max_abs_diff
 
     @property
     def max_abs_diff_front(self) -> float:
-        """``max |w_front finite - w_front closed|`` over the window."""
-        return self.quantities["front"].max_abs_diff
+        """Difference under the front wheel (the last contact) over the window."""
+        return self.quantities[self._wheels[-1]].max_abs_diff
 
     @property
     def max_abs_diff_u(self) -> float | None:
-        """Bar bounce difference over the window (None for the two masses)."""
+        """Difference of the bounce named ``u`` over the window (None for a vehicle without one)."""
         return self._diff("u")
 
     @property
     def max_abs_diff_theta(self) -> float | None:
-        """Bar pitch difference over the window (None for the two masses)."""
+        """Difference of the pitch named ``theta`` over the window (None for a vehicle without one)."""
         return self._diff("theta")
+
+    @property
+    def _wheels(self) -> list[str]:
+        return list(self.quantities)[: max(1, int(getattr(self.finite, "contacts", 1)))]
 
     @property
     def relative_diff(self) -> dict[str, float]:
@@ -274,6 +298,7 @@ class ValidationResult:
                 "for every quantity (max|X_closed| at least tol times the largest quantity of the same unit)"
             ),
             "relative_diff": self.relative_diff,
+            "labels": dict(self.labels),
             "max_abs_diff_rear": self.max_abs_diff_rear,
             "max_abs_diff_front": self.max_abs_diff_front,
             "max_abs_diff_u": self.max_abs_diff_u,
