@@ -6,6 +6,7 @@ of Eq. (38) for the paper's bogie (an independent derivation: ``derivations/syst
 times the block determinant.
 """
 
+import dataclasses
 from pathlib import Path
 
 import mpmath
@@ -16,6 +17,7 @@ from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
+from moving_bogie.stability.column import settle_cells, stability_column
 
 CAR = Path(__file__).resolve().parent.parent / "examples" / "car.toml"
 
@@ -76,3 +78,17 @@ def test_block_path_matches_closed_form_for_the_bogie(parameter):
     theirs = closed.derivatives(q, alpha, theta)
     for a, b in zip(ours, theirs):  # E, E_q, E_alpha, E_theta: the block determinant is -E_chr(38) / 2
         assert np.allclose(-2 * a, b, rtol=1e-8, atol=0)
+
+
+@pytest.mark.slow
+def test_car_stability_column_agrees_with_induced_frequencies(car):
+    """Map cells of the car (a stable one and one with two unstable frequencies, found by a coarse scan of
+    the default map) against the full argument-principle count of induced_frequencies at those points."""
+    thetas = np.array([10.0, 40.0])
+    col = stability_column(SweepCharacteristic(car, parameter="eta_M"), 1.137, thetas)
+    assert not col.uncertain.any()
+    forced = dataclasses.replace(col, uncertain=np.array([True, True]))
+    settled = settle_cells(car, "car", "eta_M", forced)
+    assert settled.settled.all() and not settled.uncertain.any()
+    np.testing.assert_array_equal(settled.count, col.count)
+    assert col.count.tolist() == [0, 2]  # a cell of each kind, so that the comparison can fail
