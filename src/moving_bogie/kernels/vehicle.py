@@ -206,20 +206,22 @@ class VehicleSystem:
 
     # --- arrays of q, numpy -------------------------------------------------------------------------------
 
-    def _dynamic_array(self, q):
+    def _dynamic_array(self, q, derivative=True):
+        """(D, dD/dq) on arrays of q (dD/dq None unless ``derivative``)."""
         if not hasattr(self, "_float_matrices"):
             self._float_matrices = tuple(
                 np.array(A, dtype=float) for A in (self.mass, self.damping, self.stiffness)
             )
         M, C, Kv = self._float_matrices
         qq = q[..., None, None]
-        return -(qq**2) * M + 1j * qq * C + Kv, -2 * qq * M + 1j * C
+        D = Kv + qq * (1j * C - qq * M)
+        return D, (-2 * qq * M + 1j * C) if derivative else None
 
     def block_array(self, q, K, dK=None):
         """A (shape q.shape + (N, N)) and dA/dq (or None) for kernel arrays ``K[k]`` at :attr:`offsets`."""
         q = np.asarray(q, dtype=complex)
         n = self.contacts
-        D, dD = self._dynamic_array(q)
+        D, dD = self._dynamic_array(q, derivative=dK is not None)
         shape = q.shape
         index = np.array(self.index)
         Kmat = np.stack([np.broadcast_to(k, shape) for k in K], axis=-1)[..., index]
@@ -274,7 +276,7 @@ class VehicleSystem:
             Ax = A.copy()
             Ax[..., :, x] = b
             nums[..., x] = np.linalg.det(Ax)
-        D, _ = self._dynamic_array(np.asarray(q, dtype=complex))
+        D, _ = self._dynamic_array(np.asarray(q, dtype=complex), derivative=False)
         loads = np.array(self.loads, dtype=float)
         G = 4 * (E[..., None] * loads - np.einsum("...jk,...k->...j", D[..., : self.contacts, :], nums))
         return E, nums, G
