@@ -10,6 +10,7 @@ import sympy as sp
 from . import symbols as s
 from .emit import definition_digest, function_source, module_source
 from .system import SYSTEMS, in_q
+from .vehicle_degrees import block_degrees
 from .vehicles import VEHICLES as DECLARED
 from .vehicles import assemble
 
@@ -63,8 +64,12 @@ def vehicle_module(name):
         *matrices.loads,
         declared.description,
     ]
+    degrees = block_degrees(matrices)
     if name in SYSTEMS:
         system_parts, system_constants, system_definitions = _system_parts(name)
+        closed = dict(system_constants)["POLYNOMIAL_DEGREES"]
+        if closed != degrees:  # two derivations of one fact: the closed form and the block system
+            raise AssertionError(f"{name}: degrees {closed} (Eq. (38)) != {degrees} (block system)")
         parts = system_parts + parts
         constants += system_constants
         definitions += system_definitions
@@ -73,6 +78,7 @@ def vehicle_module(name):
             ("PARAMETERS", params),
             ("MODEL_PARAMETERS", tuple(g for g in s.GROUPS if g in set(params))),
             ("RESPONSES", matrices.dofs),
+            ("POLYNOMIAL_DEGREES", degrees),
         ]
     constants += [
         ("CONTACTS", matrices.contacts),

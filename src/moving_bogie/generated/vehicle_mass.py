@@ -9,6 +9,7 @@ DESCRIPTION = 'One wheel: the classical moving mass M under the constant load P.
 PARAMETERS = ('eta_M',)
 MODEL_PARAMETERS = ('eta_M',)
 RESPONSES = ('w',)
+POLYNOMIAL_DEGREES = {'eta_M': 1}
 CONTACTS = 1
 DOFS = ('w',)
 UNITS = {'w': 'm'}

@@ -34,29 +34,6 @@ def vehicle_module(model: str | None, params=None):
     return catalogue.module(f"vehicle_{model}")
 
 
-def closed_form_vehicle(model: str | None, params, what: str):
-    """The vehicle's generated module for a tool that still evaluates E_chr of Eq. (38) in closed form.
-
-    Such tools (stability sweeps, ball-arithmetic proofs) use
-    ``e_chr``, ``numerators`` and ``shape_weights`` in K(0), K(+-d); only the vehicles that
-    ``derivations/system.py`` derives in that form have them.
-
-    Raises
-    ------
-    ParameterError
-        Naming ``vehicle`` when the vehicle has no closed-form E_chr (n contacts: the block system only).
-    """
-    module = vehicle_module(model, params)
-    if not hasattr(module, "e_chr"):
-        name = model or params.vehicle
-        raise ParameterError(
-            "vehicle",
-            f"{what} is not available yet for the vehicle {name!r} on {module.CONTACTS} contact(s); "
-            "its induced frequencies and verdict are (moving-bogie frequencies)",
-        )
-    return module
-
-
 class Characteristic:
     """E_chr and friends at one q, at the current mpmath precision, for a vehicle on n wheels.
 

@@ -27,10 +27,11 @@ from __future__ import annotations
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.kernels.characteristic import closed_form_vehicle
+from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.polyroots import poly_roots, quartic_roots
 from moving_bogie.kernels.polyroots import polyder as _polyder
 from moving_bogie.kernels.polyroots import polyval as _polyval
+from moving_bogie.kernels.sweep_vehicle import BlockSweep
 from moving_bogie.kernels.track import resolve_foundation
 
 __all__ = ["SweepCharacteristic", "poly_roots", "polynomial_degree", "quartic_roots"]
@@ -41,16 +42,16 @@ _ALPHA_STENCIL = 0.25  # the coefficients of N and Q are polynomials of degree <
 def polynomial_degree(model: str | None, parameter: str, params=None) -> int:
     """Degree of E_chr in the vehicle parameter ``parameter`` at fixed (q, alpha), from the derivation.
 
-    The generated ``POLYNOMIAL_DEGREES`` of the vehicle: for the paper's bogie 4 in eta_M (B1, B2, B3 all
-    scale with it at fixed cf1, cf2), 2 in kappa_v and in eta_v (the B4^4 and B4^2 B1 B3 terms of Eq. (38)
-    cancel down to degree 2); for two masses 2 in eta_M.
+    The generated ``POLYNOMIAL_DEGREES`` of the vehicle, derived from its block system (for the paper's bogie
+    4 in eta_M (B1, B2, B3 all scale with it at fixed cf1, cf2), 2 in kappa_v and in eta_v (the B4^4 and
+    B4^2 B1 B3 terms of Eq. (38) cancel down to degree 2); for two masses 2 in eta_M; for the car 8 in eta_M).
 
     Raises
     ------
     ParameterError
         Naming ``parameter`` when E_chr is not a polynomial in it (the spacing d also moves K).
     """
-    degrees = closed_form_vehicle(model, params, "a stability sweep").POLYNOMIAL_DEGREES
+    degrees = getattr(vehicle_module(model, params), "POLYNOMIAL_DEGREES", {})
     if parameter not in degrees:
         raise ParameterError(
             "parameter", f"parameter must be one of {', '.join(degrees)} for this vehicle (got {parameter!r})"
@@ -73,6 +74,10 @@ class SweepCharacteristic:
         The vehicle parameter swept (default eta_M).
     foundation : module or Foundation, optional
         The track model (default that of the parameters' model).
+    block : bool
+        Evaluate E_chr as the determinant of the block system (:mod:`~moving_bogie.kernels.sweep_vehicle`)
+        even when the vehicle's module has the closed form of Eq. (38) (default False: the closed form
+        where there is one; vehicles without one always use the block system).
     below : bool
         Limit from below on the cut (default False): a p-root of N within ``REAL_P`` (relative) of the
         real axis counts as upper iff Re(N_q / N_p) > 0, the side it moves to when q -> q - i0 (as in
@@ -84,7 +89,14 @@ class SweepCharacteristic:
     REAL_P = 1e-9
 
     def __init__(
-        self, params, model: str | None = None, parameter: str = "eta_M", *, foundation=None, below=False
+        self,
+        params,
+        model: str | None = None,
+        parameter: str = "eta_M",
+        *,
+        foundation=None,
+        below=False,
+        block=False,
     ):
         model = model or params.vehicle
         self.below = bool(below)
@@ -92,7 +104,8 @@ class SweepCharacteristic:
         self.model = model
         self.parameter = parameter
         self.degree = polynomial_degree(model, parameter, params)
-        self.module = closed_form_vehicle(model, params, "a stability sweep")
+        self.module = vehicle_module(model, params)
+        self.blocks = None if hasattr(self.module, "e_chr") and not block else BlockSweep(self.module)
         track = resolve_foundation(params, foundation)
         self.foundation = track.module
         ns = params.as_float()
@@ -106,7 +119,8 @@ class SweepCharacteristic:
             for name, info in params.model.alternatives.items()
             if parameter in info["depends"] and info["sets"] in self.module.PARAMETERS
         ]
-        self.base = {name: getattr(ns, name) for name in self.module.PARAMETERS}
+        names = self.module.PARAMETERS if self.blocks is None else self.module.MATRIX_ARGUMENTS
+        self.base = {name: getattr(ns, name) for name in names}
 
     # -- track ---------------------------------------------------------------------------------------
     def _coeffs(self, func, q, alpha):
@@ -133,8 +147,10 @@ class SweepCharacteristic:
         return np.sum(self.p_roots(q, alpha).imag > 0, axis=-1)
 
     def kernel(self, q, alpha, *, d=None, derivative=False, derivative_alpha=False, spacings=None):
-        """K = (K0, K+, K-) at arrays ``q``, ``alpha`` (and per-point spacing ``d``), broadcast together.
+        """K at the contact offsets, at arrays ``q``, ``alpha`` (and per-point spacing ``d``) broadcast.
 
+        K is (K0, K+, K-) = K(0), K(d), K(-d) for a vehicle with the closed form of Eq. (38), else one value
+        per offset of :meth:`offsets` (0, then xi_i - xi_j for i != j).
         Returns ``(K, dK_dq, dK_dalpha)``, the derivatives None unless asked. With ``spacings`` (a list of
         floats), K and the derivatives are lists with one triple per spacing, sharing the p-roots.
         """
@@ -174,23 +190,30 @@ class SweepCharacteristic:
         out = {"K": [], "dq": [], "da": []}
         for dd in ds:
             trip = {key: [] for key in out}
-            for sign_xi in (0, 1, -1):
-                xi = sign_xi * (dd if np.ndim(dd) == 0 else dd[..., None])
-                mask = upper if sign_xi >= 0 else lower
-                factor = 2j * np.pi * (1 if sign_xi >= 0 else -1)
+            for xi in self.offsets(dd):
+                xi = np.asarray(xi, dtype=float)
+                xi = xi if xi.ndim == 0 else np.broadcast_to(xi, q.shape)[..., None]
+                mask = np.where(xi >= 0, upper, lower)
+                factor = np.where(xi >= 0, 2j * np.pi, -2j * np.pi)
                 # only the roots on the decaying side enter: |e| <= 1 there (no overflow elsewhere)
                 e = np.exp(1j * np.where(mask, P, 0) * xi)
-                trip["K"].append(factor * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
+                trip["K"].append(np.sum(np.where(mask, factor * e * Qv / N1, 0), axis=-1))
                 for key, (Ns, Nsp, Qs) in zip(keys, parts):
                     g = e * Qv * Ns
                     gp = e * (1j * xi * Qv * Ns + Qp * Ns + Qv * Nsp)
                     term = e * Qs / N1 - (gp * N1 - g * N2) / N1**3
-                    trip[key].append(factor * np.sum(np.where(mask, term, 0), axis=-1))
+                    trip[key].append(np.sum(np.where(mask, factor * term, 0), axis=-1))
             for key in out:
                 out[key].append(tuple(trip[key]) if trip[key] else None)
         if spacings is None:
             return out["K"][0], out["dq"][0], out["da"][0]
         return out["K"], out["dq"] if derivative else None, out["da"] if derivative_alpha else None
+
+    def offsets(self, d) -> list:
+        """The offsets xi at which :meth:`kernel` evaluates K, for the spacing ``d`` (float or array)."""
+        if self.blocks is None:
+            return [0.0, d, -d]
+        return self.blocks.offsets(self.vehicle_args(None, d))
 
     # -- vehicle -------------------------------------------------------------------------------------
     def vehicle_args(self, theta=None, d=None) -> dict:
@@ -205,8 +228,17 @@ class SweepCharacteristic:
         return args | {"pi": np.pi}
 
     def e_chr(self, q, K, theta=None, d=None):
-        """E_chr at ``q`` from precomputed K = (K0, K+, K-)."""
+        """E_chr at ``q`` from precomputed K (:meth:`kernel`)."""
+        if self.blocks is not None:
+            return self.blocks.e_chr(q, K, self.vehicle_args(theta, d))
         return self.module.e_chr(q, *K, **self.vehicle_args(theta, d))
+
+    def _e_and_dq(self, q, K, dK, args):
+        if self.blocks is not None:
+            return self.blocks.derivatives(q, K, args, dKq=dK)[:2]
+        E = self.module.e_chr(q, *K, **args)
+        E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
+        return E, E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2]
 
     def __call__(self, q, alpha, theta=None, d=None):
         """E_chr at arrays q, alpha (and theta, d)."""
@@ -218,20 +250,24 @@ class SweepCharacteristic:
         """(E_chr, dE_chr/dq) at arrays q, alpha (and theta, d): Eq. (40) chain rule through dK/dq."""
         q = np.asarray(q, dtype=complex)
         K, dK, _ = self.kernel(q, alpha, d=d, derivative=True)
-        args = self.vehicle_args(theta, d)
-        E = self.module.e_chr(q, *K, **args)
-        E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
-        return E, E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2]
+        return self._e_and_dq(q, K, dK, self.vehicle_args(theta, d))
 
     def derivatives(self, q, alpha, theta, d=None):
         """``(E, E_q, E_alpha, E_theta)`` at arrays (q complex or real, alpha, theta, d).
 
-        E_theta by a five-point stencil in theta, exact since E_chr has degree <= 4 in theta (None when
-        ``theta`` is None: the parameter values of ``params`` are used).
+        E_theta by a five-point stencil in theta, exact since E_chr has degree <= 4 in theta (closed form
+        of Eq. (38)), or by Jacobi's formula (block system); None when ``theta`` is None: the parameter
+        values of ``params`` are used.
         """
         q = np.asarray(q, dtype=complex)
         K, dKq, dKa = self.kernel(q, alpha, d=d, derivative=True, derivative_alpha=True)
         args = self.vehicle_args(theta, d)
+        if self.blocks is not None:
+            stencil = None
+            if theta is not None:
+                h = np.maximum(np.abs(theta), 1.0) * 0.25
+                stencil = (self.vehicle_args(theta - h, d), self.vehicle_args(theta + h, d), h)
+            return self.blocks.derivatives(q, K, args, dKq=dKq, dKa=dKa, theta_args=stencil)
         E = self.module.e_chr(q, *K, **args)
         E_q, E0, Ep, Em = self.module.e_chr_partials(q, *K, **args)
         E_q = E_q + E0 * dKq[0] + Ep * dKq[1] + Em * dKq[2]
@@ -262,7 +298,7 @@ class SweepCharacteristic:
         dK : tuple of ndarray, optional
             q-derivatives of K; if given, the coefficients of dE/dq are returned too.
         d : float or ndarray, optional
-            Wheel spacing (default that of ``params``), entering the bogie's J_b and B3.
+            Wheel spacing (default that of ``params``), entering the vehicle's matrices.
 
         Returns
         -------
@@ -273,11 +309,12 @@ class SweepCharacteristic:
         inv = np.linalg.inv(np.vander(nodes / scale, self.degree + 1))
         values, dvalues = [], []
         for theta in nodes:
-            args = self.vehicle_args(theta, d)
-            values.append(np.broadcast_to(self.module.e_chr(q, *K, **args), q.shape))
-            if dK is not None:
-                E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
-                dvalues.append(np.broadcast_to(E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2], q.shape))
+            if dK is None:
+                values.append(np.broadcast_to(self.e_chr(q, K, theta, d), q.shape))
+            else:
+                E, E_q = self._e_and_dq(q, K, dK, self.vehicle_args(theta, d))
+                values.append(np.broadcast_to(E, q.shape))
+                dvalues.append(np.broadcast_to(E_q, q.shape))
         c = np.einsum("ij,j...->...i", inv, np.stack(values))
         if dK is None:
             return c

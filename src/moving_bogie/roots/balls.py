@@ -34,8 +34,9 @@ from functools import reduce
 from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import closed_form_vehicle
+from moving_bogie.kernels.characteristic import vehicle_module
 from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.roots.ball_block import BlockBalls
 
 
 class Undecided(MovingBogieError):
@@ -161,13 +162,18 @@ class BallCharacteristic:
         self.prec = prec
         self.tol = 2.0 ** (8 - prec)
         self.foundation = foundation_module(params)
-        self.vehicle = closed_form_vehicle(model, params, "a ball-arithmetic proof")
+        self.vehicle = vehicle_module(model, params)
+        self.blocks = None
         self.evaluations = 0
         with ctx.workprec(prec):
             numbers = _ExactBalls(params)
             self.foundation_args = foundation_arguments(params, numbers)
-            self.vehicle_args = {name: getattr(numbers, name) for name in self.vehicle.PARAMETERS}
-            self.vehicle_args["pi"] = acb(arb.pi())
+            if hasattr(self.vehicle, "e_chr"):  # the closed form of Eq. (38)
+                self.vehicle_args = {name: getattr(numbers, name) for name in self.vehicle.PARAMETERS}
+                self.vehicle_args["pi"] = acb(arb.pi())
+            else:  # any vehicle: the block system (roots/ball_block.py)
+                values = {name: getattr(numbers, name) for name in self.vehicle.MATRIX_ARGUMENTS}
+                self.blocks = BlockBalls(self.vehicle, values)
             self.d = numbers.d
             self.two_pi_i = acb(0, 2) * acb(arb.pi())
 
@@ -241,7 +247,8 @@ class BallCharacteristic:
         return upper, lower
 
     def kernel_series(self, q, order: int) -> list:
-        """[K(0), K(d), K(-d)] (Eq. (29)) as series in t = q - c to ``order``, for every c in the ball q."""
+        """K (Eq. (29)) at the contact offsets ([K(0), K(d), K(-d)] for the closed form) as series in
+        t = q - c to ``order``, for every c in the ball q."""
         length = order + 1
         f = self.foundation
         args = self.foundation_args
@@ -262,11 +269,18 @@ class BallCharacteristic:
                 total += (i_unit * xi * p).exp() * horner(qc, p) / horner(n1, p)
             return total
 
-        return [
-            self.two_pi_i * residues(upper, acb(0)),
-            self.two_pi_i * residues(upper, self.d),
-            -self.two_pi_i * residues(lower, -self.d),
-        ]
+        if self.blocks is None:
+            return [
+                self.two_pi_i * residues(upper, acb(0)),
+                self.two_pi_i * residues(upper, self.d),
+                -self.two_pi_i * residues(lower, -self.d),
+            ]
+        out = []
+        for xi, side in zip(self.blocks.offsets, self.blocks.sides()):
+            if side is None:
+                raise Undecided("the sign of a contact offset xi_i - xi_j is not decided")
+            out.append(side * self.two_pi_i * residues(upper if side > 0 else lower, xi))
+        return out
 
     def taylor(self, q, order: int = 1) -> list:
         """[E, E', E''/2, ...] to ``order``: balls enclosing E_chr^(j)(xi)/j! for every xi in the ball q."""
@@ -275,7 +289,12 @@ class BallCharacteristic:
             self.evaluations += 1
             K = self.kernel_series(q, order)
             qs = acb_series([q, 1], prec=order + 1) if order else acb_series([q], prec=1)
-            E = self.vehicle.e_chr(qs, *K, **self.vehicle_args)
+            if self.blocks is None:
+                E = self.vehicle.e_chr(qs, *K, **self.vehicle_args)
+            else:
+                E = self.blocks.det(qs, _series(K, order + 1), order + 1)
+                if E is None:
+                    raise Undecided("a pivot of the block system contains 0 over the q ball")
             coeffs = E.coeffs() if isinstance(E, acb_series) else [acb(E)]
             return (coeffs + [acb(0)] * (order + 1))[: order + 1]
 

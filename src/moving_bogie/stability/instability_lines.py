@@ -167,10 +167,12 @@ def _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress):
         roots = poly_roots(sweep.coefficients(QQ, Ks[j], scale=theta_max, d=d))
         g = np.prod(np.where(np.isfinite(roots), roots.imag / (1 + np.abs(roots)), 1.0), axis=-1)
         lines = contourpy.contour_generator(x=alphas, y=qs, z=g.T, line_type="Separate").lines(0.0)
-        for line in lines:
-            seeds = _seed_points(sweep, line, d, theta_max, tol, box, steps)
-            if len(seeds):
-                groups.append((d, seeds))
+        if lines:  # every polyline's vertices polished in one batch (each vertex on its own)
+            points, inside = _seed_points(sweep, np.concatenate(lines), d, theta_max, tol, box, steps)
+            for span in np.split(np.arange(len(points)), np.cumsum([len(line) for line in lines])[:-1]):
+                seeds = points[span][inside[span]]
+                if len(seeds):
+                    groups.append((d, seeds))
         _report(progress, 0.1 + 0.2 * (j + 1) / len(ds))
     tracer = PathTracer(
         sweep, theta_max, box, grid["h_max"], tol, progress=lambda x: _report(progress, 0.3 + 0.7 * x)
@@ -210,7 +212,8 @@ def _report(progress, x):
 
 
 def _seed_points(sweep, line, d, theta_max, tol, box, steps):
-    """Points on the curves near the vertices of one contour polyline, shape (k, 3) in (alpha, q, t).
+    """Points on the curves near the vertices of contour polylines: (points, inside), shapes (k, 3) in
+    (alpha, q, t) and (k,), ``inside`` marking the polished points kept (in the box, theta > 0, q > 0).
 
     A vertex lies on a grid edge crossed by a curve, so its polished point must lie within about one
     grid cell: each candidate root theta_k (most nearly real first) is polished by Gauss-Newton, and the
@@ -239,7 +242,7 @@ def _seed_points(sweep, line, d, theta_max, tol, box, steps):
         idx = np.nonzero(todo)[0][good]
         out[idx], ok[idx] = x[good], True
     inside = ok & np.all((out >= box[:, 0]) & (out <= box[:, 1]), axis=-1) & (out[:, 2] > 0) & (out[:, 1] > 0)
-    return out[inside]
+    return out, inside
 
 
 def _at_cut(sweep, reason, q, alpha):

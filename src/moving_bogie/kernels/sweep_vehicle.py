@@ -1,0 +1,145 @@
+"""E_chr of any vehicle on arrays of points, with its parameters per point: the block system batched.
+
+The vehicle's side of :class:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic` for vehicles
+without a closed-form E_chr (any number of wheels). At every point, with D = -q^2 M + i q C + K the vehicle's
+dynamic stiffness (its generated matrices at that point's parameters) and Kmat_ij = K(xi_i - xi_j, q),
+
+    E_chr = det A,  A = [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]]   (Eq. (38) for n wheels),
+
+as in :mod:`moving_bogie.kernels.vehicle`, and every derivative by Jacobi's formula
+dE/ds = E tr(A^-1 dA/ds) (Eq. (40)): s = q (dD/dq = -2 q M + i C, dK/dq), s = alpha (dK/dalpha only) and
+s = theta, a vehicle parameter (D is affine in each group, so dD/dtheta is a central difference, exact).
+Where A is singular to working precision, dE/ds = sum_k det(A with row k replaced by row k of dA/ds).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["BlockSweep"]
+
+
+def _matrix(rows, shape) -> np.ndarray:
+    """A generated matrix (rows of numbers or arrays) as an array of shape ``shape + (N, N)``."""
+    N = len(rows)
+    out = np.zeros(tuple(shape) + (N, N), dtype=complex)
+    for a, row in enumerate(rows):
+        for c, value in enumerate(row):
+            if not (np.ndim(value) == 0 and value == 0):
+                out[..., a, c] = value
+    return out
+
+
+class BlockSweep:
+    """A generated vehicle module evaluated on arrays of points (parameters may vary per point).
+
+    Parameters
+    ----------
+    module : module
+        ``moving_bogie.generated.vehicle_<name>`` (``MATRIX_ARGUMENTS``, the matrices, ``contact_positions``).
+    """
+
+    def __init__(self, module):
+        self.module = module
+        self.contacts = int(module.CONTACTS)
+        self.size = len(module.DOFS)
+        n = self.contacts
+        # offset 0 (the diagonal) first, then xi_i - xi_j for every i != j
+        self.pairs = [(i, j) for i in range(n) for j in range(n) if i != j]
+        self.index = np.zeros((n, n), dtype=int)
+        for k, (i, j) in enumerate(self.pairs):
+            self.index[i, j] = k + 1
+
+    def offsets(self, args) -> list:
+        """xi_i - xi_j at the parameters ``args`` (floats or arrays), in the order of :attr:`index`."""
+        x = self.module.contact_positions(**self.matrix_args(args))
+        return [0.0] + [x[i] - x[j] for i, j in self.pairs]
+
+    def matrix_args(self, args) -> dict:
+        return {name: args[name] for name in self.module.MATRIX_ARGUMENTS}
+
+    def dynamic(self, q, args):
+        """(D, dD/dq) of shape ``q.shape + (N, N)`` at the parameters ``args``."""
+        margs = self.matrix_args(args)
+        M, C, Kv = (
+            _matrix(f(**margs), q.shape)
+            for f in (self.module.mass_matrix, self.module.damping_matrix, self.module.stiffness_matrix)
+        )
+        qq = q[..., None, None]
+        return -(qq**2) * M + 1j * qq * C + Kv, -2 * qq * M + 1j * C
+
+    def kernel_matrix(self, K, shape) -> np.ndarray:
+        """Kmat_ij = K(xi_i - xi_j) from the kernel values at :meth:`offsets`."""
+        return np.stack([np.broadcast_to(k, shape) for k in K], axis=-1)[..., self.index]
+
+    def block(self, q, K, D) -> np.ndarray:
+        n = self.contacts
+        A = D.copy()
+        A[..., :n, :] = 2 * self.kernel_matrix(K, q.shape) @ D[..., :n, :]
+        A[..., range(n), range(n)] += np.pi
+        return A
+
+    def e_chr(self, q, K, args):
+        """E_chr = det A at arrays ``q`` and kernel values ``K`` (one array per offset)."""
+        q = np.asarray(q, dtype=complex)
+        D, _ = self.dynamic(q, args)
+        return np.linalg.det(self.block(q, K, D))
+
+    def derivatives(self, q, K, args, *, dKq=None, dKa=None, theta_args=None):
+        """``(E, E_q, E_alpha, E_theta)`` (each derivative None unless its input is given).
+
+        ``dKq``, ``dKa``: the kernel's q- and alpha-derivatives at the offsets; ``theta_args``: a pair of
+        parameter dicts (theta - h, theta + h) and h, for E_theta by the exact central difference of D.
+        """
+        q = np.asarray(q, dtype=complex)
+        n = self.contacts
+        D, dDq = self.dynamic(q, args)
+        A = self.block(q, K, D)
+        Kmat = self.kernel_matrix(K, q.shape)
+        blocks = []
+        if dKq is not None:
+            dA = dDq.copy()
+            dA[..., :n, :] = 2 * (self.kernel_matrix(dKq, q.shape) @ D[..., :n, :] + Kmat @ dDq[..., :n, :])
+            blocks.append(dA)
+        if dKa is not None:
+            dA = np.zeros_like(A)
+            dA[..., :n, :] = 2 * self.kernel_matrix(dKa, q.shape) @ D[..., :n, :]
+            blocks.append(dA)
+        if theta_args is not None:
+            lo, hi, h = theta_args
+            dDt = (self.dynamic(q, hi)[0] - self.dynamic(q, lo)[0]) / (2 * np.asarray(h)[..., None, None])
+            dA = dDt.copy()
+            dA[..., :n, :] = 2 * Kmat @ dDt[..., :n, :]
+            blocks.append(dA)
+        E = np.linalg.det(A)
+        out = iter(jacobi(A, E, blocks))
+        return (
+            E,
+            next(out) if dKq is not None else None,
+            next(out) if dKa is not None else None,
+            next(out) if theta_args is not None else None,
+        )
+
+
+def jacobi(A, E, blocks) -> list:
+    """dE = E tr(A^-1 dA) for each dA of ``blocks``; row replacement where A is singular."""
+    if not blocks:
+        return []
+    try:
+        with np.errstate(all="ignore"):
+            solved = np.linalg.solve(A, np.concatenate(blocks, axis=-1))
+        N = A.shape[-1]
+        out = [E * np.trace(solved[..., k * N : (k + 1) * N], axis1=-2, axis2=-1) for k in range(len(blocks))]
+        if all(np.all(np.isfinite(x)) for x in out):
+            return out
+    except np.linalg.LinAlgError:
+        pass
+    out = []
+    for dA in blocks:
+        total = np.zeros_like(E)
+        for k in range(A.shape[-1]):
+            Ak = A.copy()
+            Ak[..., k, :] = dA[..., k, :]
+            total = total + np.linalg.det(Ak)
+        out.append(total)
+    return out
