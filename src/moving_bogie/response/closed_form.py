@@ -144,7 +144,15 @@ def _frequencies(params, model, frequencies, dps, progress):
         return frequencies
     from moving_bogie.roots.frequencies import induced_frequencies
 
-    return induced_frequencies(params, model, dps=dps, progress=progress)
+    result = induced_frequencies(params, model, dps=dps, progress=progress)
+    if result.decaying_outside:
+        # Decaying roots beyond the window would be missing from the residue sum of Eq. (35).
+        raise MovingBogieError(
+            f"{result.decaying_outside} decaying induced frequencies lie outside the search window "
+            "(found in the window twice as large): the residue sum would leave them out; "
+            "pass frequencies computed in a larger window"
+        )
+    return result
 
 
 def closed_form_response(
