@@ -49,3 +49,8 @@ def test_a_residue_sum_refuses_decaying_roots_left_outside(within_30, monkeypatc
     monkeypatch.setattr(frequencies_module, "induced_frequencies", lambda *a, **k: within_30)
     with pytest.raises(MovingBogieError, match="2 decaying induced frequencies lie outside"):
         closed_form_response(PARAMS, (2.0,))
+
+
+def test_given_frequencies_with_decaying_roots_outside_are_refused_too(within_30):
+    with pytest.raises(MovingBogieError, match="2 decaying induced frequencies lie outside"):
+        closed_form_response(PARAMS, (2.0,), frequencies=within_30)

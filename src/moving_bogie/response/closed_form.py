@@ -141,11 +141,12 @@ def _frequencies(params, model, frequencies, dps, progress):
             raise ParameterError(
                 "model", f"frequencies were computed for model {frequencies.model!r}, not {model!r}"
             )
-        return frequencies
-    from moving_bogie.roots.frequencies import induced_frequencies
+        result = frequencies
+    else:
+        from moving_bogie.roots.frequencies import induced_frequencies
 
-    result = induced_frequencies(params, model, dps=dps, progress=progress)
-    if result.decaying_outside:
+        result = induced_frequencies(params, model, dps=dps, progress=progress)
+    if getattr(result, "decaying_outside", 0):
         # Decaying roots beyond the window would be missing from the residue sum of Eq. (35).
         raise MovingBogieError(
             f"{result.decaying_outside} decaying induced frequencies lie outside the search window "
