@@ -54,3 +54,13 @@ def test_a_residue_sum_refuses_decaying_roots_left_outside(within_30, monkeypatc
 def test_given_frequencies_with_decaying_roots_outside_are_refused_too(within_30):
     with pytest.raises(MovingBogieError, match="2 decaying induced frequencies lie outside"):
         closed_form_response(PARAMS, (2.0,), frequencies=within_30)
+
+
+def test_a_tr_time_series_says_which_decaying_roots_it_leaves_out():
+    # Case 7's vehicle on the Timoshenko-Rayleigh beam: sqrt(S)/r = sqrt(10)/0.09 = 35.14, beyond a window
+    # reaching Re q = 3; the Euler-Bernoulli beam has no such sequence and gets no note.
+    ts = closed_form_response(PARAMS, (2.0,), branch_cut=False)
+    (note,) = [n for n in ts.notes if n.startswith("Timoshenko-Rayleigh")]
+    assert "beyond Re q = 3 " in note and "sqrt(S)/r = 35.14" in note
+    eb = closed_form_response(table1_case(7), (2.0,), branch_cut=False)
+    assert not any(n.startswith("Timoshenko-Rayleigh") for n in eb.notes)
