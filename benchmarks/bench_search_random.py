@@ -18,7 +18,8 @@ from 0.85-0.99, where instability lives), v_cr the critical velocity of the trac
   Newton's method in double precision then by mpmath.findroot, kept when they are roots; they must agree to
   1e-8 and give the same verdict.
 
-Prints one line per set with ``--verbose``, then a table per family: sets, failures, undetermined verdicts,
+Prints one line per set with ``--verbose``, then a table per family (Ctrl-C stops the run and still prints
+the table of the sets done): sets, failures, undetermined verdicts,
 CPU median / 90 % / max, the largest unsearched height, reference agreement. CPU time is per process and
 does not depend much on the load of the machine; it is what the targets in the README are about.
 """
@@ -199,6 +200,15 @@ def run(sets, reference_every: int = 0, verbose: bool = False) -> dict:
     from moving_bogie.roots.frequencies import induced_frequencies
 
     records = {f: [] for f in FAMILIES}
+    try:
+        _run_sets(sets, records, reference_every, verbose, induced_frequencies)
+    except KeyboardInterrupt:  # the table of the sets done so far is still worth printing
+        done = sum(len(r) for r in records.values())
+        print(f"interrupted after {done} of {len(sets)} sets", flush=True)
+    return records
+
+
+def _run_sets(sets, records, reference_every, verbose, induced_frequencies) -> None:
     for k, (family, label, params) in enumerate(sets):
         c0 = _cpu()
         record = {"label": label, "params": params}
@@ -230,7 +240,6 @@ def run(sets, reference_every: int = 0, verbose: bool = False) -> dict:
             ref = record.get("reference")
             extra = "" if ref is None else f" ref={'ok' if ref[0] else 'DIFFERS'}({ref[2]} unstable)"
             print(f"{k:4d} {family:<11} {record['cpu']:7.2f}s {state:<12} {label}{extra}", flush=True)
-    return records
 
 
 def summary(records) -> None:

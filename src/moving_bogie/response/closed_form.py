@@ -141,10 +141,36 @@ def _frequencies(params, model, frequencies, dps, progress):
             raise ParameterError(
                 "model", f"frequencies were computed for model {frequencies.model!r}, not {model!r}"
             )
-        return frequencies
-    from moving_bogie.roots.frequencies import induced_frequencies
+        result = frequencies
+    else:
+        from moving_bogie.roots.frequencies import induced_frequencies
 
-    return induced_frequencies(params, model, dps=dps, progress=progress)
+        result = induced_frequencies(params, model, dps=dps, progress=progress)
+    if getattr(result, "decaying_outside", 0):
+        # Decaying roots beyond the window would be missing from the residue sum of Eq. (35).
+        raise MovingBogieError(
+            f"{result.decaying_outside} decaying induced frequencies lie outside the search window "
+            "(found in the window twice as large): the residue sum would leave them out; "
+            "pass frequencies computed in a larger window"
+        )
+    return result
+
+
+def _far_sequence_note(params, result) -> tuple:
+    """A note for the Timoshenko-Rayleigh beam: its decaying roots beyond the window are not summed.
+
+    E_chr of that beam has an infinite sequence of roots with small Im q > 0 along the real axis beyond
+    Re q ~ sqrt(S)/r (docs/frequencies.md); no window holds them all.
+    """
+    S, r = getattr(params, "S", None), getattr(params, "r", None)
+    if S is None or r is None or not float(r) > 0:
+        return ()
+    start = math.sqrt(float(S)) / float(r)
+    return (
+        f"Timoshenko-Rayleigh: the decaying induced frequencies along the real axis beyond Re q = "
+        f"{result.window.x1:g} (a sequence from about sqrt(S)/r = {start:.4g}) are not in the residue sum; "
+        "their amplitudes fall off with Re q (see docs/frequencies.md)",
+    )
 
 
 def closed_form_response(
@@ -223,6 +249,7 @@ def closed_form_response(
     result = _frequencies(dimless, model, frequencies, dps, staged if progress else None)
     report(0.8)
     expansion = residue_expansion(dimless, result, model, shapes=False)
+    notes += _far_sequence_note(dimless, result)
     report(0.85)
     series = expansion.totals(tau)
     until = 0.0

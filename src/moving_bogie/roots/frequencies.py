@@ -8,7 +8,10 @@
 3. Polish and confirm at high precision (:mod:`polish`): digits are those that agree at two precisions.
 4. Check: the roots found must add up to the count, or the result says so (``count_ok``) and the CLI
    exits non-zero. The window is also compared with a window twice as large: a root outside the default
-   window is reported, never silently dropped.
+   window is reported, never silently dropped. When the window holds the lower half-disc of the far-field
+   radius R, roots found there lie beyond R, so Im q >= 0 (``decaying_outside``): they are reported and do
+   not change the verdict or the count (the Timoshenko-Rayleigh sequence along the real axis beyond
+   sqrt(S)/r); otherwise they fail the count.
 
 Stability: the motion is unstable when some induced frequency has Im q < 0 (Eq. (35) with e^{i q tau}).
 The default window contains the lower half-disc of the radius R beyond which E_chr has no root with
@@ -99,6 +102,7 @@ class FrequencyResult:
     certificate: object = None  # roots.certify.Certificate when asked for (certify=True)
     strip: StripCount | None = None  # the sliver below the real axis, counted (roots/strip.py)
     unlocated: tuple = ()  # (cell, roots counted in it but not located): cells the search could not resolve
+    decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
 
     @property
     def found(self) -> int:
@@ -157,6 +161,7 @@ class FrequencyResult:
             ],
             "far_field": None if self.far_field is None else self.far_field.to_dict(),
             "warnings": list(self.warnings),
+            "decaying_outside": self.decaying_outside,
             "strip": None if self.strip is None else self.strip.to_dict(),
         } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
 
@@ -226,19 +231,30 @@ def induced_frequencies(
     warnings += count_warnings
     total = sum(counts)
     report(0.1)
+    decaying_outside = 0
     if check_window:
         big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
-        more, lost = 0, 0
-        for part in frame(window, big):
+        more, lost, below = 0, 0, 0
+        for k, part in enumerate(frame(window, big)):
             part_counts, part_warnings = count_tiling(fast, params, part, eps, eps_branch)[2:]
             more += sum(part_counts)
             lost += len(part_warnings)
+            below += sum(part_counts) if k == 0 else 0  # the strip Im q <= window.y0 < 0
         if lost:
             warnings.append(
                 f"window: {lost} cell(s) of the window twice as large could not be counted "
                 f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})"
             )
-        if more:
+        if more and not below and _holds_far_disc(window, far):
+            # The frame lies outside the half-disc |q| < R of the far-field check: its roots have Im q >= 0.
+            decaying_outside = more
+            warnings.append(
+                f"beyond the window: {more} root(s) in the window twice as large (Re q <= {big.x1:g}, "
+                f"{big.y0:g} <= Im q <= {big.y1:g}), all with Im q >= 0 (no root with Im q < 0 beyond "
+                f"|q| = {far.radius:g}, the far-field check): they decay and do not change the verdict; "
+                "a residue sum over the window leaves them out (pass a larger window to include them)"
+            )
+        elif more:
             warnings.append(
                 f"window: {more} more root(s) in the window twice as large "
                 f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window"
@@ -302,6 +318,7 @@ def induced_frequencies(
             foundation=foundation,
         ),
         unlocated=tuple(unlocated),
+        decaying_outside=decaying_outside,
     )
     if certify:
         from moving_bogie.roots.certify import certify as prove
@@ -309,6 +326,11 @@ def induced_frequencies(
         result = dataclasses.replace(result, certificate=prove(result))
     report(1.0)
     return result
+
+
+def _holds_far_disc(window: Rectangle, far: FarField | None) -> bool:
+    """The window contains the lower half-disc of the far-field radius R (every root with Im q < 0)."""
+    return far is not None and far.radius is not None and window.x1 >= far.radius and window.y0 <= -far.radius
 
 
 def _side(q, decimals, cut: CutLocus, params) -> str:
