@@ -14,7 +14,7 @@ import numpy as np
 
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.stability.critical_stiffness import critical_stiffness, figure16_params
+from moving_bogie.stability.critical_stiffness import critical_stiffness
 from moving_bogie.stability.critical_velocity import critical_velocity
 from moving_bogie.stability.frequency_lines import frequency_lines
 from moving_bogie.stability.instability_lines import instability_lines
@@ -78,6 +78,30 @@ def _base(eta_f="0.05", **kw) -> DimensionlessParams:
     values = dict(eta_f=eta_f, eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5")
     values.update(kw)
     return DimensionlessParams.from_coefficients(**values)
+
+
+def figure16_params() -> DimensionlessParams:
+    """Stand-in for the data of ref. [48] (two-axle vehicle, wheel distance 15 m), chosen here.
+
+    Track (per rail): EI = 6.4 MN m^2, m = 60 kg/m, k_f = 100 MN/m^2, so chi = 1.406 /m; Timoshenko-Rayleigh
+    with G Abar = 250 MN and radius of gyration 0.063 m, giving S = 4.9 ~ 5 and r = 0.09 (Eq. (59));
+    foundation damping eta_f = 0.05. Vehicle (per rail): wheel mass M = 750 kg (eta_M = 17.6 ~ 18),
+    wheel distance 15 m (d = 21), half the car body M_b = 20 t on it (cf1 = M_b / M ~ 27) with the inertia
+    of a uniform bar of length d, J_b = M_b d^2 / 12 (cf2 = cf1 / 12 = 2.25), no suspension damping.
+    """
+    return DimensionlessParams.from_coefficients(
+        eta_f="0.05",
+        eta_M=18,
+        d=21,
+        cf1=27,
+        cf2="2.25",
+        kappa_v="0.05",
+        eta_v=0,
+        alpha="1.2",
+        beam="tr",
+        S=5,
+        r="0.09",
+    )
 
 
 def figure2(quick: bool = False, progress: Callable[[float], None] | None = None):
@@ -212,7 +236,7 @@ def figure8(quick: bool = False, progress: Callable[[float], None] | None = None
 def figure16(quick: bool = False, progress: Callable[[float], None] | None = None):
     """Figure 16 (stand-in): critical primary-suspension stiffness in the (alpha, kappa_v) plane.
 
-    (a) the parameter set of :func:`~moving_bogie.stability.critical_stiffness.figure16_params`, chosen
+    (a) the parameter set of :func:`figure16_params`, chosen
     to resemble
     the two-axle vehicle of ref. [48] (its data are not given in full); (b) the bogie of Case 5, where the
     critical stiffnesses lie in the subcritical range. Shading: number of unstable induced frequencies

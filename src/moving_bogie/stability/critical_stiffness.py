@@ -15,10 +15,10 @@ bisected to ``tol``; ``intervals`` are the counts at eta_f = 0 exactly (K on the
 eta_f = 0, and the limit eta_f -> 0+ (real roots that small foundation damping destabilises counted as
 unstable) when 0 < eta_f < NEAR_UNDAMPED; ``limit_intervals`` always hold the limit.
 
-The function is general (any parameter set, Euler-Bernoulli or Timoshenko-Rayleigh beam, bogie only since
-two masses have no suspension). The paper's Figure 16 uses the data of its ref. [48] (Verichev &
-Metrikine 2002), which the paper does not give in full; :func:`figure16_params` is the documented stand-in
-used by the package's Figure 16.
+The function is general: any beam and track, and any vehicle with a primary suspension kappa_v (two
+masses have none). The paper's Figure 16 uses the data of its ref. [48] (Verichev & Metrikine 2002), which
+the paper does not give in full; ``figure16_params`` in :mod:`moving_bogie.paper.stability_figures` is the
+documented stand-in used by the package's Figure 16.
 """
 
 from __future__ import annotations
@@ -30,7 +30,6 @@ from fractions import Fraction
 import numpy as np
 
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
-from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.column import stability_column
 from moving_bogie.stability.d_decomposition import d_decomposition
 from moving_bogie.stability.undamped import (
@@ -42,7 +41,7 @@ from moving_bogie.stability.undamped import (
     uncertain_warning,
 )
 
-__all__ = ["CriticalStiffness", "critical_stiffness", "figure16_params"]
+__all__ = ["CriticalStiffness", "critical_stiffness"]
 
 
 @dataclass(frozen=True)
@@ -116,30 +115,6 @@ class CriticalStiffness:
         }
 
 
-def figure16_params() -> DimensionlessParams:
-    """Stand-in for the data of ref. [48] (two-axle vehicle, wheel distance 15 m), chosen here.
-
-    Track (per rail): EI = 6.4 MN m^2, m = 60 kg/m, k_f = 100 MN/m^2, so chi = 1.406 /m; Timoshenko-Rayleigh
-    with G Abar = 250 MN and radius of gyration 0.063 m, giving S = 4.9 ~ 5 and r = 0.09 (Eq. (59));
-    foundation damping eta_f = 0.05. Vehicle (per rail): wheel mass M = 750 kg (eta_M = 17.6 ~ 18),
-    wheel distance 15 m (d = 21), half the car body M_b = 20 t on it (cf1 = M_b / M ~ 27) with the inertia
-    of a uniform bar of length d, J_b = M_b d^2 / 12 (cf2 = cf1 / 12 = 2.25), no suspension damping.
-    """
-    return DimensionlessParams.from_coefficients(
-        eta_f="0.05",
-        eta_M=18,
-        d=21,
-        cf1=27,
-        cf2="2.25",
-        kappa_v="0.05",
-        eta_v=0,
-        alpha="1.2",
-        beam="tr",
-        S=5,
-        r="0.09",
-    )
-
-
 def critical_stiffness(
     params,
     alphas: Sequence[float],
@@ -174,14 +149,14 @@ def critical_stiffness(
     alphas = np.asarray(alphas, dtype=float)
     if regime(params.eta_f) != "damped":
         return _undamped(params, alphas, kappa_max, check_points, tol, progress)
-    sweep = SweepCharacteristic(params, "bogie", "kappa_v")
+    sweep = SweepCharacteristic(params, params.vehicle, "kappa_v")
     kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
     intervals, critical, warnings = [], [], []
     mismatches = 0
     for k, a in enumerate(alphas):
         dd = d_decomposition(
             params.replace(alpha=Fraction(str(a))),
-            "bogie",
+            params.vehicle,
             a,
             parameter="kappa_v",
             theta_max=kappa_max,
@@ -230,7 +205,7 @@ def _critical(ivs):
 def _undamped(params, alphas, kappa_max, check_points, tol, progress) -> CriticalStiffness:
     """Counts on a kappa_v grid and bisection (:mod:`undamped`), exact at eta_f = 0 and in the limit."""
     margin = 100 * float(params.eta_f)
-    counter = UndampedCounter(params, "bogie", "kappa_v", margin=margin)
+    counter = UndampedCounter(params, params.vehicle, "kappa_v", margin=margin)
     unsure = {}
     grid = parameter_grid(kappa_max, check_points)
     kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"

@@ -84,7 +84,8 @@ def d_decomposition(
     ----------
     params : DimensionlessParams
         Requires eta_f > 0 (the real q-axis must lie below the cut of K).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     alpha : float, optional
     parameter : {"eta_M", "kappa_v", "eta_v"}
     theta_max : float

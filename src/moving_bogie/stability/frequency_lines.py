@@ -90,7 +90,8 @@ def frequency_lines(
     ----------
     params : DimensionlessParams
         Everything except alpha.
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     alpha_range : (float, float)
     checkpoints : int
         Number of alphas (evenly spaced, ends included) where all roots are found afresh by

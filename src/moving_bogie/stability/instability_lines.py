@@ -88,7 +88,8 @@ def instability_lines(
         ``params``. With eta_f = 0 or 0 < eta_f < 1e-5 the lines degenerate and boundaries located by
         counts are returned instead (module text; ``alpha_step`` is then the step of the velocity grid,
         at least 0.02, and ``q_max``, ``q_step``, ``h_max``, ``tol``, ``verify`` are not used).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     spacings : sequence of float, optional
         Wheel spacings d to trace (default: ``params.d``); they share the track kernel of the scan.
     parameter : {"eta_M", "kappa_v", "eta_v"}

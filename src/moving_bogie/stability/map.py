@@ -132,7 +132,8 @@ def stability_map(
     ----------
     params : DimensionlessParams
         Everything but alpha and ``parameter`` (cf1, cf2 kept fixed when the parameter is eta_M).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     parameter : {"eta_M", "kappa_v", "eta_v"}
     alphas, thetas : sequence of float
         Grid (default 0..1.2 and 1..200 in 200 steps each, theta > 0).

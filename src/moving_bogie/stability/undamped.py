@@ -148,7 +148,8 @@ class UndampedCounter:
     ----------
     params : DimensionlessParams
         Its eta_f is ignored (set to 0).
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     parameter : str
         The swept vehicle parameter (eta_M, kappa_v or eta_v).
     q_step : float

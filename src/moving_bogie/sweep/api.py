@@ -126,7 +126,8 @@ def sweep(
         {name: values}, see :func:`make_spec`.
     out : path
         Zarr store; ``resume`` completes an interrupted one, ``overwrite`` replaces one.
-    model : {"bogie", "masses"}
+    model : str, optional
+        A vehicle of the parameters' catalogue (default: the parameters' own).
     sample : int, optional
         Number of Sobol points (``vary`` then gives ranges).
     physical : PhysicalParams, optional
