@@ -33,9 +33,12 @@ def test_one_layer_limit_gives_the_same_lines_on_both_panels(capsys, tmp_path, m
 
     drawn = []
     original = comparison.figure_track_comparison
-    monkeypatch.setattr(
-        comparison, "figure_track_comparison", lambda c: drawn.append(original(c)) or drawn[-1]
-    )
+
+    def keep(c, *args, **kwargs):
+        drawn.append(original(c, *args, **kwargs))
+        return drawn[-1]
+
+    monkeypatch.setattr(comparison, "figure_track_comparison", keep)
     figure = tmp_path / "compare.png"
     argv = "compare-tracks --track two-layer --mu-2 1e-5 --kappa-2 1e5 --eta-2 0 --d 1.5 --quick --json"
     assert main([*argv.split(), "--plot", str(figure)]) == 0
