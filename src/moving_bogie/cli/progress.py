@@ -13,17 +13,7 @@ def progress_bar(description: str, *, enabled: bool = True) -> Iterator[Callable
     if not enabled or not sys.stderr.isatty():
         yield lambda fraction: None
         return
-    from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        TextColumn("{task.percentage:>3.0f}%"),
-        TimeElapsedColumn(),
-        console=Console(stderr=True),
-        transient=True,
-    ) as bar:
+    with _rich_bars() as bar:
         task = bar.add_task(description, total=1.0)
         yield lambda fraction: bar.update(task, completed=max(0.0, min(1.0, fraction)))
 
@@ -36,17 +26,7 @@ def two_level_bar(description: str, *, enabled: bool = True):
     if not enabled or not sys.stderr.isatty():
         yield (lambda fraction: None), (lambda label, fraction: None)
         return
-    from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        TextColumn("{task.percentage:>3.0f}%"),
-        TimeElapsedColumn(),
-        console=Console(stderr=True),
-        transient=True,
-    ) as bar:
+    with _rich_bars() as bar:
         whole = bar.add_task(description, total=1.0)
         step = bar.add_task("", total=1.0)
         seen = {}
@@ -58,3 +38,18 @@ def two_level_bar(description: str, *, enabled: bool = True):
             bar.update(step, completed=max(0.0, min(1.0, fraction)))
 
         yield (lambda fraction: bar.update(whole, completed=max(0.0, min(1.0, fraction)))), part
+
+
+def _rich_bars():
+    """The rich Progress both bars use: description, bar, percentage, elapsed time; on stderr, transient."""
+    from rich.console import Console
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    return Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.percentage:>3.0f}%"),
+        TimeElapsedColumn(),
+        console=Console(stderr=True),
+        transient=True,
+    )
