@@ -37,7 +37,7 @@ def freqs():
     def get(case, model="bogie"):
         key = (case, model)
         if key not in cache:
-            cache[key] = induced_frequencies(table1_case(case), model, dps=30)
+            cache[key] = induced_frequencies(table1_case(case).replace(vehicle=model), dps=30)
         return cache[key]
 
     return get
@@ -57,7 +57,9 @@ def test_homogeneous_initial_conditions_hold_with_the_branch_cut(freqs, case):
 
 def test_initial_conditions_two_masses(freqs):
     # Reference: homogeneous initial conditions; the masses model has no bar (u, theta are NaN).
-    ts = closed_form_response(table1_case(7), [0.0, 5.0], model="masses", frequencies=freqs(7, "masses"))
+    ts = closed_form_response(
+        table1_case(7).replace(vehicle="masses"), [0.0, 5.0], frequencies=freqs(7, "masses")
+    )
     assert abs(ts.w_rear[0]) < 1e-9 and abs(ts.w_front[0]) < 1e-9
     assert np.isnan(ts.u).all() and np.isnan(ts.theta).all() and math.isnan(ts.u_steady)
     # Steady state (q = 0): Eqs. (25)-(26) leave no force in the suspension, so the beam carries the two
@@ -251,7 +253,9 @@ def test_a_missing_pair_member_is_detected(freqs):
 def test_to_dict_is_json_ready(freqs):
     import json
 
-    ts = closed_form_response(table1_case(7), [0.0, 1.0], model="masses", frequencies=freqs(7, "masses"))
+    ts = closed_form_response(
+        table1_case(7).replace(vehicle="masses"), [0.0, 1.0], frequencies=freqs(7, "masses")
+    )
     data = json.loads(json.dumps(ts.to_dict()))
     assert set(data) >= {"tau", "w_rear", "w_front", "u", "theta", "w_steady_rear", "branch_cut", "units"}
     assert data["u"] == [None, None] and data["branch_cut"] is True

@@ -44,10 +44,9 @@ import numpy as np
 from scipy import optimize
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
-from moving_bogie.kernels.track import foundation_arguments, foundation_module
-from moving_bogie.kernels.vehicle import VehicleSystem
+from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.response.quadrature import adapt_panels, by_bands, cis, fourier_sum, subdivide
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
@@ -75,8 +74,6 @@ class BranchCut:
     ----------
     params : DimensionlessParams
         Euler-Bernoulli beam (``beam="eb"``), subcritical (the cut leaves a gap around q = 0).
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
     panel_tol : float
         Absolute tolerance per panel of the adaptive partition of the cut (:meth:`base_edges`).
 
@@ -86,26 +83,22 @@ class BranchCut:
         For a Timoshenko-Rayleigh beam, or when the cut reaches q = 0 (supercritical velocity).
     """
 
-    def __init__(self, params, model: str | None = None, *, panel_tol: float = 1e-13):
-        model = model or params.vehicle
+    def __init__(self, params, *, panel_tol: float = 1e-13):
+        bound = bind(params)
+        params = bound.params
         if (params.beam, params.track) != ("eb", "one-layer"):
             raise BranchCutUnavailable(
                 "the branch-cut part I_bc is implemented for the Euler-Bernoulli beam only (beam='eb'); "
                 "for Timoshenko-Rayleigh use branch_cut=False (residues only)"
             )
         self.params = params
-        self.model = model
-        f = params.as_float()
+        f = bound.floats
         self.alpha, self.eta_f, self.eta_s = f.alpha, f.eta_f, f.eta_s
         self._c = 4.0 - 4.0 * self.eta_f**2
-        self.foundation = foundation_module(params)
+        self.foundation = bound.foundation
         self.fargs = foundation_arguments(params, f)
-        module = vehicle_module(model, params)
-        self.system = VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
-        self.offsets = np.array([float(x) for x in self.system.offsets])
-        self.positions = np.array([float(x) for x in self.system.positions])
-        self.span = float(self.positions.max())  # rear to front wheel (d for the bogie)
-        self.names = tuple(module.DOFS)
+        self.system, self.offsets, self.positions = bound.float_system, bound.offsets, bound.positions
+        self.span, self.names = bound.span, bound.names
         self.p_c = self._minimum()
         self.q_c = float(self.s(self.p_c))
         self.panel_tol = panel_tol
