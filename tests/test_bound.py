@@ -98,3 +98,25 @@ def test_a_loaded_catalogue_reaches_its_own_kernels_and_asymptotics():
     window, far = far_field_window(own)
     reference_window, reference = far_field_window(p)
     assert far.radius is not None and far.radius == reference.radius and window == reference_window
+
+
+def test_the_half_line_cut_is_read_from_the_generated_track():
+    """The closed-geometry branch cut is chosen by what the derivation generated (cut_line_radicand), not by a
+    model name: the paper's beam and the compressed rail have it, the Timoshenko-Rayleigh beam has not.
+    Reference: the roots of N(p, q) in q for real p (n_coeffs_in_q) lie on Im q = cut_line_im, Re q =
+    alpha p +- sqrt(R(p))/2."""
+    from moving_bogie.response.cut_integral import CurveBranchCut, branch_cut_for
+
+    axial = table1_case(7).replace(beam="eb_axial", eta_s="0.2", eta_N="0.5")
+    for params in (table1_case(1), axial):
+        bound = bind(params)
+        args = {k: float(v) for k, v in params.as_float().__dict__.items() if k in bound.foundation.ARGUMENTS}
+        c = bound.foundation.cut_line_im(**args)
+        R = np.polyval([float(x) for x in bound.foundation.cut_line_radicand(**args)], 0.7)
+        roots = np.roots([complex(x) for x in bound.foundation.n_coeffs_in_q(0.7, **args)])
+        expected = args["alpha"] * 0.7 + 1j * c + np.array([1, -1]) * np.sqrt(R) / 2
+        assert np.allclose(np.sort_complex(roots), np.sort_complex(expected), rtol=1e-13)
+        assert type(branch_cut_for(params)).__name__ == "BranchCut"
+    tr = table1_case(7).replace(beam="tr", S=10, r="0.09")
+    assert not hasattr(bind(tr).foundation, "cut_line_radicand")
+    assert isinstance(branch_cut_for(tr), CurveBranchCut)

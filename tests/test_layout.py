@@ -369,9 +369,29 @@ def test_no_function_takes_a_model_name_beside_its_parameters():
     assert not offenders, "functions take a model name beside the parameters:\n" + "\n".join(offenders)
 
 
+def _model_names() -> set[str]:
+    from moving_bogie.model.catalogue import default_catalogue
+
+    catalogue = default_catalogue()
+    return set(catalogue.beams) | set(catalogue.vehicles)
+
+
+def test_the_generic_runtime_names_no_beam_or_vehicle():
+    """A quoted beam or vehicle name of the catalogue (code, docstrings, comments) only outside GENERIC."""
+    quoted = re.compile(r"[\"'](" + "|".join(sorted(map(re.escape, _model_names()))) + r")[\"']")
+    offenders = []
+    for module, path in MODULES.items():
+        if module.split(".")[1:2] and module.split(".")[1] in GENERIC:
+            for line_no, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+                if quoted.search(line):
+                    offenders.append(f"{module}:{line_no}: {line.strip()[:100]}")
+    assert not offenders, "the generic runtime names a model:\n" + "\n".join(offenders)
+
+
 def test_the_model_checks_see_what_they_check():
     tree = ast.parse(
         "def f(params, model=None): pass\ndef g(x, *, model: str | None = None): pass\n"
         "def h(params, *, foundation=None): pass\ndef k(values, *, model: Model | None = None): pass\n"
     )
     assert [name for _, name in _model_name_arguments(tree)] == ["f", "g"]
+    assert {"bogie", "masses", "eb", "tr"} <= _model_names()

@@ -60,12 +60,13 @@ _REAL_TOL = 1e-12
 
 
 def branch_cut_for(params, *, foundation=None):
-    """The branch-cut integral of ``params``: :class:`BranchCut` for the Euler-Bernoulli beam below the
-    critical velocity (its cut is a half-line, integrated in closed geometry), :class:`CurveBranchCut` for
-    any other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut
-    passes through q = 0, e.g. eta_f = 0)."""
+    """The branch-cut integral of ``params``: :class:`BranchCut` where the derivation says the cut of K is a
+    half-line (``cut_line_radicand`` of the generated track, the paper's Euler-Bernoulli beam) and the
+    velocity is below the critical one (integrated in closed geometry), :class:`CurveBranchCut` for any
+    other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut passes
+    through q = 0, e.g. eta_f = 0)."""
     params = bind(params)
-    if foundation is None and (params.params.beam, params.params.track) == ("eb", "one-layer"):
+    if foundation is None:
         try:
             return BranchCut(params)
         except BranchCutUnavailable:
