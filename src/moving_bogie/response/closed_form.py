@@ -126,7 +126,7 @@ class TimeSeries:
         }
 
 
-def _dimensionless(params):
+def _bound_and_scales(params):
     """(BoundModel, Scales or None) from either kind of parameters (or a bound model)."""
     if isinstance(params, PhysicalParams):
         return bind(params.to_dimensionless()), params.scales()
@@ -226,7 +226,7 @@ def closed_form_response(
         ``branch_cut=True`` when the cut passes through q = 0 (an undamped track above the critical
         velocity, an undamped layered track) or stays bounded (a layered track at alpha = 0).
     """
-    bound, scales = _dimensionless(params)
+    bound, scales = _bound_and_scales(params)
     tau = np.asarray(tau, dtype=float)
     if scales is not None:
         tau_in = tau
@@ -351,7 +351,7 @@ def deflection_shape_details(
     expansion: ResidueExpansion | None = None,
 ) -> tuple[np.ndarray, bool, tuple]:
     """(w, branch_cut, notes): :func:`deflection_shape`, whether I_bc was included, and why not."""
-    bound, scales = _dimensionless(params)
+    bound, scales = _bound_and_scales(params)
     xi = np.asarray(xi, dtype=float)
     tau = float(tau)
     if scales is not None:
