@@ -32,7 +32,7 @@ from moving_bogie.roots.frequencies import induced_frequencies
 def run_case(case: int) -> dict:
     """Time the search and the proof of one case; returns the row of the table."""
     t0 = time.process_time()
-    result = induced_frequencies(table1_case(case), "bogie")
+    result = induced_frequencies(table1_case(case))
     t1 = time.process_time()
     cert = certify(result)
     t2 = time.process_time()

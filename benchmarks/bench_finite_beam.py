@@ -31,7 +31,9 @@ CASE_1 = table1_case(1)
 
 
 def run_row(label: str, tau_max: float, n_modes: int, model: str, correction: bool = True) -> list[str]:
-    result = simulate_finite_beam(CASE_1, tau_max, model=model, n_modes=n_modes, static_correction=correction)
+    result = simulate_finite_beam(
+        CASE_1.replace(vehicle=model), tau_max, n_modes=n_modes, static_correction=correction
+    )
     steps = result.tau.size - 1
     return [
         label,

@@ -46,7 +46,8 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray, vehicle_module
+from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
 from moving_bogie.roots import frequencies
@@ -65,8 +66,8 @@ MATCH = 1e-15  # two roots at 30 digits are the same root when closer than this 
 class CountingArray(CharacteristicArray):
     """E_chr on numpy arrays; counts points (as the base class) and, separately, derivative points."""
 
-    def __init__(self, params, model="bogie", **kwargs):
-        super().__init__(params, model, **kwargs)
+    def __init__(self, params, **kwargs):
+        super().__init__(params, **kwargs)
         self.derivative_evaluations = 0
 
     def derivative(self, q):
@@ -82,8 +83,8 @@ class CountingArray(CharacteristicArray):
 class CountingPrecise(Characteristic):
     """mpmath E_chr that also records the working precision of every evaluation."""
 
-    def __init__(self, params, model="bogie", **kwargs):
-        super().__init__(params, model, **kwargs)
+    def __init__(self, params, **kwargs):
+        super().__init__(params, **kwargs)
         self.by_dps = collections.Counter()
 
     def __call__(self, q):
@@ -114,12 +115,12 @@ def instrumented():
         )
     }
 
-    def make_array(params, model="bogie", **kwargs):
-        record["fast"] = CountingArray(params, model, **kwargs)
+    def make_array(params, **kwargs):
+        record["fast"] = CountingArray(params, **kwargs)
         return record["fast"]
 
-    def make_precise(params, model="bogie", **kwargs):
-        record["precise"] = CountingPrecise(params, model, **kwargs)
+    def make_precise(params, **kwargs):
+        record["precise"] = CountingPrecise(params, **kwargs)
         return record["precise"]
 
     def timed(phase_of, func):
@@ -205,7 +206,7 @@ Row = collections.namedtuple("Row", "case seconds cpu double mp by_dps roots mis
 def run_ours(case, record):
     record["reset"]()
     t0, c0 = time.perf_counter(), time.process_time()
-    result = frequencies.induced_frequencies(table1_case(case), "bogie", dps=DPS)
+    result = frequencies.induced_frequencies(table1_case(case), dps=DPS)
     seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
     precise = record["precise"]
     roots = [r.q for r in result.roots]
@@ -227,8 +228,8 @@ def run_ours(case, record):
 
 def run_grid(case, reference, n):
     params = table1_case(case)
-    window = default_window(params, "bogie")
-    precise = CountingPrecise(params, "bogie")
+    window = default_window(params)
+    precise = CountingPrecise(params)
     cache = {}
 
     def f(q):
@@ -267,7 +268,7 @@ def run_grid(case, reference, n):
 def widened_tiles(case, eps=1e-3, eps_branch=1e-2):
     """Our tiling of the default window with larger margins: 1e-3 from the cut, 1e-2 from its branch point."""
     params = table1_case(case)
-    window = default_window(params, "bogie")
+    window = default_window(params)
     cut = cut_locus(params, window.x0, window.x1)
     gap_height = 0.1 * max(window.width, window.height)  # as the first try of frequencies._count_tiling
     return tile_window(window, cut, eps=eps, eps_branch=eps_branch, gap_height=gap_height).regions
@@ -281,8 +282,8 @@ def run_cxroots(case, reference, tiles, cxroots, int_method):
     right but three distinct roots returned as one root of multiplicity 3).
     """
     params = table1_case(case)
-    fast = CountingArray(params, "bogie")
-    precise = CountingPrecise(params, "bogie")
+    fast = CountingArray(params)
+    precise = CountingPrecise(params)
     t0, c0 = time.perf_counter(), time.process_time()
     candidates, ran = [], []
     for tile in tiles:
@@ -385,7 +386,7 @@ def main() -> None:
         except ImportError:
             cx_note = "cxroots not installed (pip install cxroots): its rows are skipped"
 
-    vehicle_module("bogie")  # imports outside the timings; no result is cached between cases
+    _ = bind(table1_case(1)).vehicle  # imports outside the timings; no result is cached between cases
     print(
         f"# induced frequencies, Table 2 ({len(cases)} cases), {DPS} digits; "
         f"Python {platform.python_version()}, numpy {np.__version__}, mpmath {mpmath.__version__}, "

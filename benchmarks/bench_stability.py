@@ -37,6 +37,7 @@ def main() -> None:
     args = parser.parse_args()
 
     from moving_bogie.model.cases import table1_case
+    from moving_bogie.model.catalogue import get_model
     from moving_bogie.paper import stability_figures as plots_stability
     from moving_bogie.stability.critical_stiffness import critical_stiffness
     from moving_bogie.stability.critical_velocity import critical_velocity
@@ -48,20 +49,22 @@ def main() -> None:
     n = 100 if args.quick else 400
     case1 = table1_case(1)
     rows = [
-        _timed("critical velocity, TR (30 digits)", None, lambda: critical_velocity("tr", S=10, r="0.09")),
+        _timed(
+            "critical velocity, TR (30 digits)",
+            None,
+            lambda: critical_velocity(get_model(beam="tr"), S=10, r="0.09"),
+        ),
         _timed(
             "instability lines, masses, 6 spacings (1 panel)",
             None,
             lambda: instability_lines(
-                case1.replace(eta_f="0.05"), "masses", spacings=plots_stability.SPACINGS
+                case1.replace(eta_f="0.05").replace(vehicle="masses"), spacings=plots_stability.SPACINGS
             ),
         ),
         _timed(
             "instability lines, bogie, 6 spacings (1 panel)",
             None,
-            lambda: instability_lines(
-                case1.replace(eta_f="0.05"), "bogie", spacings=plots_stability.SPACINGS
-            ),
+            lambda: instability_lines(case1.replace(eta_f="0.05"), spacings=plots_stability.SPACINGS),
         ),
         _timed(
             "Figure 3 (6 panels x 6 spacings, masses)",
@@ -72,13 +75,11 @@ def main() -> None:
             f"stability map {n} x {n}, bogie, Case 1 (2 workers)",
             60.0,
             lambda: stability_map(
-                case1, "bogie", alphas=np.linspace(0.005, 1.2, n), thetas=np.linspace(0.5, 200, n), workers=2
+                case1, alphas=np.linspace(0.005, 1.2, n), thetas=np.linspace(0.5, 200, n), workers=2
             ),
         ),
-        _timed(
-            "D-decomposition, one alpha (6000 q samples)", None, lambda: d_decomposition(case1, "bogie", 0.9)
-        ),
-        _timed("frequency lines, Case 1, 13 checkpoints", None, lambda: frequency_lines(case1, "bogie")),
+        _timed("D-decomposition, one alpha (6000 q samples)", None, lambda: d_decomposition(case1, 0.9)),
+        _timed("frequency lines, Case 1, 13 checkpoints", None, lambda: frequency_lines(case1)),
         _timed(
             "critical stiffness, Case 5, 15 alphas",
             None,

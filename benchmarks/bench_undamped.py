@@ -37,8 +37,12 @@ def main() -> None:
 
     masses = table1_case(2).replace(d="1.5")
     jobs = [
-        ("instability lines, two masses, d = 1.5", lambda p: instability_lines(p, "masses"), masses),
-        ("instability lines, bogie, Case 2 (d = 2)", lambda p: instability_lines(p, "bogie"), table1_case(2)),
+        (
+            "instability lines, two masses, d = 1.5",
+            lambda p: instability_lines(p.replace(vehicle="masses")),
+            masses,
+        ),
+        ("instability lines, bogie, Case 2 (d = 2)", lambda p: instability_lines(p), table1_case(2)),
         (
             "critical stiffness, Case 5, 19 alphas",
             lambda p: critical_stiffness(p, np.linspace(0.3, 1.2, 19)),
@@ -58,12 +62,17 @@ def main() -> None:
         ("Case 5, alpha = 0.7, kappa_v", table1_case(5), "bogie", "kappa_v", 0.7, 0.6),
     ):
         bounds, _, _ = boundaries(
-            UndampedCounter(p, model, parameter), alpha, parameter_grid(top, 20), tol=1e-12 * top
+            UndampedCounter(p.replace(vehicle=model), parameter),
+            alpha,
+            parameter_grid(top, 20),
+            tol=1e-12 * top,
         )
         limit = [b.theta for b in bounds if b.kind == "limit"]
         crossings = [
             d_decomposition(
-                p.replace(eta_f=e, alpha=str(alpha)), model, parameter=parameter, theta_max=top
+                p.replace(eta_f=e, alpha=str(alpha)).replace(vehicle=model),
+                parameter=parameter,
+                theta_max=top,
             ).crossings
             for e in ("0.01", "0.001", "0.0001")
         ]

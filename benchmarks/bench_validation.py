@@ -49,9 +49,9 @@ def defaults(model: str, cases: tuple[int, ...], tr: tuple[int, str] | None = No
         if tr is not None:
             params = params.replace(beam="tr", S=tr[0], r=tr[1])
         start, cpu = time.perf_counter(), time.process_time()
-        result = validate(params, model=model)
+        result = validate(params.replace(vehicle=model))
         total, cpu = time.perf_counter() - start, time.process_time() - cpu
-        plain = validate(params, model=model, static_correction=False, estimate=False)
+        plain = validate(params.replace(vehicle=model), static_correction=False, estimate=False)
         rel = result.relative_diff
         worst = max(worst, *rel.values())
         rows.append(

@@ -2,7 +2,8 @@
 
 Into src/moving_bogie/generated/:
 foundation_<name>.py  coefficients (highest power first) of N(p, q), dN/dq, Q(p, q), dQ/dq in p; the
-                      model's beam, track, parameters and degrees; the per-mode mass, damping and stiffness
+                      model's beam, track, parameters and degrees; where the cut of K is a half-line, its
+                      Im q and the radicand R(p) (cut_line.py); the per-mode mass, damping and stiffness
                       blocks of the simply supported finite rail (validation)
 vehicle_<name>.py     the declared vehicle (derivations/vehicles.py): contacts, DOFs, units, M, C, K, contact
                       positions, static loads; for bogie and masses also E_chr, its partial derivatives,
@@ -20,6 +21,7 @@ import sympy as sp
 
 from . import symbols as s
 from .asymptotics import asymptotics_module, kernel_decay
+from .cut_line import cut_line
 from .emit import SCALING_PRINTER, definition_digest, function_source, module_source
 from .foundations import BEAMS, TRACKS, all_models
 from .modal import modal_blocks
@@ -70,6 +72,23 @@ def foundation_module(name, model):
         function_source("q_coeffs", args, qq, "Coefficients of Q(p, q) in p, highest power first."),
         function_source("q_coeffs_dq", args, [sp.diff(c, s.q) for c in qq], "Coefficients of dQ/dq in p."),
     ]
+    line = cut_line(model)
+    if line is not None:
+        parts += [
+            function_source(
+                "cut_line_im",
+                params,
+                [line.im],
+                "Im q on the cut of K, a half-line: q = alpha p + i cut_line_im +- sqrt(R(p))/2 for real p.",
+                scalar=True,
+            ),
+            function_source(
+                "cut_line_radicand",
+                params,
+                _coeffs(line.radicand, s.p)[1],
+                "Coefficients of R(p) in p, highest first (the cut: Re q = alpha p +- sqrt(R(p))/2).",
+            ),
+        ]
     mass, damping, stiffness, parity = modal_blocks(model)
     modal_params = tuple(
         g for g in s.GROUPS if g in {str(x) for e in (*mass, *damping, *stiffness) for x in e.free_symbols}

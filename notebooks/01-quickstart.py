@@ -127,7 +127,7 @@ assert np.isclose(float(params.eta_f), c_f / (2 * np.sqrt(m * k_f)), rtol=1e-12)
 
 # %%
 start = time.perf_counter()
-freq = induced_frequencies(params, "bogie", dps=20 if QUICK else 30)
+freq = induced_frequencies(params, dps=20 if QUICK else 30)
 print(
     f"found {freq.found} of {freq.count} counted roots in {time.perf_counter() - start:.1f} s; "
     f"count ok: {freq.count_ok}"

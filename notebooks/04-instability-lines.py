@@ -93,7 +93,9 @@ start = time.perf_counter()
 etas = (0.05, 0.3) if QUICK else (0.05, 0.1, 0.15, 0.2, 0.25, 0.3)
 fig, axes = plt.subplots(1, len(etas), figsize=(4.2 * len(etas), 3.8), layout="constrained", squeeze=False)
 for ax, eta_f in zip(axes[0], etas):
-    lines = instability_lines(base(eta_f=eta_f), "masses", spacings=spacings(2.25), theta_max=ETA_MAX, **GRID)
+    lines = instability_lines(
+        base(eta_f=eta_f).replace(vehicle="masses"), spacings=spacings(2.25), theta_max=ETA_MAX, **GRID
+    )
     draw(ax, lines)
     ax.axvline(1.0, color="k", ls=":", lw=1)
     frame(ax, f"two masses, η_f = {eta_f:g}", 1.2)
@@ -118,11 +120,13 @@ adapt = 1 + 1.7 / 2  # two masses of the bogie's total mass: eta_M(masses) = (1 
 fig, axes = plt.subplots(1, len(etas), figsize=(4.6 * len(etas), 3.8), layout="constrained", squeeze=False)
 for ax, eta_f in zip(axes[0], etas):
     p = base(eta_f=eta_f)
-    bogie = instability_lines(
-        p, "bogie", spacings=spacings(2.25), alpha_range=(0, 1), theta_max=ETA_MAX, **GRID
-    )
+    bogie = instability_lines(p, spacings=spacings(2.25), alpha_range=(0, 1), theta_max=ETA_MAX, **GRID)
     masses = instability_lines(
-        p, "masses", spacings=spacings(2.25), alpha_range=(0, 1), theta_max=ETA_MAX * adapt, **GRID
+        p.replace(vehicle="masses"),
+        spacings=spacings(2.25),
+        alpha_range=(0, 1),
+        theta_max=ETA_MAX * adapt,
+        **GRID,
     )
     draw(ax, bogie)
     draw(ax, masses, style="--", scale=adapt, label_suffix=" (a)")
@@ -147,9 +151,7 @@ for ax, cf2 in zip(axes[0], cf2s):
         p = base(cf2=cf2, kappa_v="0.2", eta_v=eta_v)
         draw(
             ax,
-            instability_lines(
-                p, "bogie", spacings=spacings(2.0), alpha_range=(0, 1), theta_max=ETA_MAX, **GRID
-            ),
+            instability_lines(p, spacings=spacings(2.0), alpha_range=(0, 1), theta_max=ETA_MAX, **GRID),
             style=style,
             label_suffix=f", η_v = {eta_v:g}",
         )
@@ -172,10 +174,10 @@ fig, axes = plt.subplots(1, len(beams), figsize=(4.8 * len(beams), 3.8), layout=
 for ax, (S, r) in zip(axes[0], beams):
     p = base(cf2="0.1", kappa_v="0.2")
     kw = dict(spacings=spacings(2.25), alpha_range=(0, 1), theta_max=ETA_MAX, **GRID)
-    draw(ax, instability_lines(p, "bogie", **kw), label_suffix=", E-B")
+    draw(ax, instability_lines(p, **kw), label_suffix=", E-B")
     draw(
         ax,
-        instability_lines(p.replace(beam="tr", S=S, r=str(r)), "bogie", **kw),
+        instability_lines(p.replace(beam="tr", S=S, r=str(r)), **kw),
         style="--",
         label_suffix=", T-R",
     )
@@ -198,8 +200,8 @@ start = time.perf_counter()
 p = base(eta_f="0.1")
 alphas = np.linspace(0.02, 1.2, 30 if QUICK else 120)
 thetas = np.linspace(2.0, ETA_MAX, 30 if QUICK else 120)
-smap = stability_map(p, "bogie", alphas=alphas, thetas=thetas, workers=1)
-lines = instability_lines(p, "bogie", theta_max=ETA_MAX, **GRID)
+smap = stability_map(p, alphas=alphas, thetas=thetas, workers=1)
+lines = instability_lines(p, theta_max=ETA_MAX, **GRID)
 fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
 degree = np.where(smap.degree < 0, -smap.degree, np.nan)
 mesh = ax.pcolormesh(
@@ -241,7 +243,7 @@ assert not roots.stable and abs(float(roots.degree_of_instability) - (-0.000130)
 
 # %%
 def lines_for(eta_f=0.1, d=1.5):
-    lines = instability_lines(base(eta_f=eta_f, d=d), "masses", theta_max=ETA_MAX, **GRID)
+    lines = instability_lines(base(eta_f=eta_f, d=d).replace(vehicle="masses"), theta_max=ETA_MAX, **GRID)
     fig, ax = plt.subplots(figsize=(5, 3.5), layout="constrained")
     for b in lines.branches:
         ax.plot(b.alpha, b.theta, "-", color="C0")

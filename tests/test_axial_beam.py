@@ -32,6 +32,7 @@ import pytest
 
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.cases import table1_case
+from moving_bogie.model.catalogue import get_model
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.critical_velocity import critical_velocity
 from moving_bogie.validation.compare import validate
@@ -46,9 +47,9 @@ def n_by_hand(p, q, alpha, eta_f, eta_s, eta_N):
 
 @pytest.mark.parametrize("eta_s, eta_N", [(0.0, 0.3), (0.4, 0.9)])
 def test_critical_velocity_drops_with_compression(eta_s, eta_N):
-    got = critical_velocity("eb_axial", eta_s=eta_s, groups={"eta_N": eta_N})
+    got = critical_velocity(get_model(beam="eb_axial"), eta_s=eta_s, groups={"eta_N": eta_N})
     assert float(got.alpha_cr) == pytest.approx(math.sqrt(1 + eta_s - eta_N), rel=1e-12)
-    assert float(got.alpha_cr) < float(critical_velocity("eb", eta_s=eta_s).alpha_cr)
+    assert float(got.alpha_cr) < float(critical_velocity(get_model(beam="eb"), eta_s=eta_s).alpha_cr)
 
 
 @pytest.mark.slow

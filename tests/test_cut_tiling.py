@@ -48,7 +48,7 @@ def test_traced_arms_match_a_dense_scan(S, r):
 
 def test_cells_partition_the_window_minus_the_sliver():
     params = _tr(*TR_CASES[0])
-    window = default_window(params, "bogie")
+    window = default_window(params)
     cut = cut_locus(params, window.x0, window.x1)
     tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-5, gap_height=0.1 * window.height)
     assert max(u.height for u in tiling.unsearched) <= 1e-10

@@ -109,7 +109,10 @@ def test_moving_loads_converge_to_infinite_beam_steady_state(model):
     rear = moving_force_deflection(alpha, eta_f) + moving_force_deflection(alpha, eta_f, shift=-d)
     front = moving_force_deflection(alpha, eta_f) + moving_force_deflection(alpha, eta_f, shift=d)
     # k_max = 400 pi / 100 = 12.6: modal truncation ~ 8 / (3 pi k^3) = 4e-4 of the deflection.
-    result = simulate_finite_beam(params, 60.0, model=model, n_modes=400, length=100.0, entry=45.0)
+    vehicle = SimpleNamespace(**vars(params), vehicle="bogie" if model == "force" else model)
+    result = simulate_finite_beam(
+        vehicle, 60.0, loads_only=model == "force", n_modes=400, length=100.0, entry=45.0
+    )
     assert result.w_rear[-1] == pytest.approx(rear, rel=1e-3)
     assert result.w_front[-1] == pytest.approx(front, rel=1e-3)
     if model == "bogie":
@@ -129,7 +132,7 @@ def test_moving_force_truncation_error_falls_like_k_max_cubed():
 
     def error(n: int, correction: bool) -> float:
         run = simulate_finite_beam(
-            params, 60.0, model="force", n_modes=n, length=100.0, entry=45.0, static_correction=correction
+            params, 60.0, loads_only=True, n_modes=n, length=100.0, entry=45.0, static_correction=correction
         )
         return abs(run.w_rear[-1] - exact)
 
@@ -147,7 +150,8 @@ def test_static_single_wheel_equals_quadrature():
     eta_s = 0.3
     params = make_params(alpha=0.0, eta_f=0.3, eta_s=eta_s, d=30.0, eta_M=2.0)
     exact = moving_force_deflection(0.0, 0.0, eta_s)
-    result = simulate_finite_beam(params, 60.0, model="masses", n_modes=500, length=100.0, entry=35.0)
+    masses = SimpleNamespace(**vars(params), vehicle="masses")
+    result = simulate_finite_beam(masses, 60.0, n_modes=500, length=100.0, entry=35.0)
     assert result.w_rear[-1] == pytest.approx(exact, rel=1e-3)
     assert result.w_front[-1] == pytest.approx(exact, rel=1e-3)
 
@@ -386,7 +390,7 @@ def test_rejects_bad_input():
     with pytest.raises(MovingBogieError, match="leave the beam"):
         simulate_finite_beam(make_params(), 100.0, n_modes=50, length=50.0, entry=10.0)
     with pytest.raises(MovingBogieError, match="vehicle must be one of .*bogie"):
-        simulate_finite_beam(make_params(), 10.0, model="tram")
+        simulate_finite_beam(SimpleNamespace(**vars(make_params()), vehicle="tram"), 10.0)
     with pytest.raises(MovingBogieError, match="tau_out"):
         simulate_finite_beam(make_params(), 1.0, n_modes=20, length=40.0, entry=15.0, tau_out=[2.0])
 

@@ -85,7 +85,7 @@ def test_precision_ladder_30_vs_45_digits(table):
 
 
 def test_masses_model_and_timoshenko_rayleigh():
-    res = induced_frequencies(table1_case(7), "masses")
+    res = induced_frequencies(table1_case(7).replace(vehicle="masses"))
     assert res.count_ok and res.count >= 1
     tr = induced_frequencies(table1_case(7).replace(beam="tr", S=100, r="0.03"))
     assert tr.count_ok and len(tr.roots) == 4

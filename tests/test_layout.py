@@ -333,3 +333,65 @@ def test_the_outside_pattern_matches_what_it_should():
     assert OUTSIDE.search("python " + "/" + "work/main/x.py")
     assert not OUTSIDE.search("multiprocessing.shared_memory, https://example.org/work/x")
     assert not OUTSIDE.search("docs/architecture.md, src/moving_bogie/generated/")
+
+
+# --- (e) one bound model ------------------------------------------------------------------------------------
+
+#: Where the generic runtime lives: no beam or vehicle of the catalogue is named there.
+GENERIC = ("kernels", "roots", "response", "validation", "stability", "sweep")
+#: The entry points, which may choose a model by name (the command line) or name the paper's (its recipes).
+ENTRY_POINTS = ("moving_bogie.cli", "moving_bogie.paper")
+
+
+def _functions(tree: ast.AST) -> Iterator[ast.FunctionDef | ast.AsyncFunctionDef]:
+    yield from (n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef | ast.AsyncFunctionDef))
+
+
+def _model_name_arguments(tree: ast.AST) -> Iterator[tuple[int, str]]:
+    """Functions that take a model by name: ``model: str`` or a ``model`` beside ``params``."""
+    for node in _functions(tree):
+        args = [*node.args.posonlyargs, *node.args.args, *node.args.kwonlyargs]
+        names = {a.arg for a in args}
+        for a in args:
+            annotated = a.annotation is not None and "str" in ast.unparse(a.annotation)
+            if a.arg == "model" and (annotated or "params" in names):
+                yield node.lineno, node.name
+
+
+def test_no_function_takes_a_model_name_beside_its_parameters():
+    """Bind once (kernels/bound.py): the parameters carry their model; no ``f(params, model: str)``."""
+    offenders = [
+        f"{module}:{line} {name}"
+        for module, tree in _trees()
+        if not module.startswith(ENTRY_POINTS)
+        for line, name in _model_name_arguments(tree)
+    ]
+    assert not offenders, "functions take a model name beside the parameters:\n" + "\n".join(offenders)
+
+
+def _model_names() -> set[str]:
+    from moving_bogie.model.catalogue import default_catalogue
+
+    catalogue = default_catalogue()
+    return set(catalogue.beams) | set(catalogue.vehicles)
+
+
+def test_the_generic_runtime_names_no_beam_or_vehicle():
+    """A quoted beam or vehicle name of the catalogue (code, docstrings, comments) only outside GENERIC."""
+    quoted = re.compile(r"[\"'](" + "|".join(sorted(map(re.escape, _model_names()))) + r")[\"']")
+    offenders = []
+    for module, path in MODULES.items():
+        if module.split(".")[1:2] and module.split(".")[1] in GENERIC:
+            for line_no, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+                if quoted.search(line):
+                    offenders.append(f"{module}:{line_no}: {line.strip()[:100]}")
+    assert not offenders, "the generic runtime names a model:\n" + "\n".join(offenders)
+
+
+def test_the_model_checks_see_what_they_check():
+    tree = ast.parse(
+        "def f(params, model=None): pass\ndef g(x, *, model: str | None = None): pass\n"
+        "def h(params, *, foundation=None): pass\ndef k(values, *, model: Model | None = None): pass\n"
+    )
+    assert [name for _, name in _model_name_arguments(tree)] == ["f", "g"]
+    assert {"bogie", "masses", "eb", "tr"} <= _model_names()

@@ -13,12 +13,14 @@ from moving_bogie.stability.instability_lines import instability_lines
 @pytest.fixture(scope="module")
 def figure3e_d2():
     """Figure 3(e) (two masses, eta_f = 0.25), the d = 2 line."""
-    return instability_lines(_base("0.25"), "masses", spacings=[2.0], alpha_step=0.02, q_step=0.008)
+    return instability_lines(
+        _base("0.25").replace(vehicle="masses"), spacings=[2.0], alpha_step=0.02, q_step=0.008
+    )
 
 
 def _unstable(alpha, eta_M):
     p = _base("0.25").replace(alpha=Fraction(str(round(alpha, 6))), eta_M=Fraction(str(round(eta_M, 4))), d=2)
-    res = induced_frequencies(p, "masses", dps=20)
+    res = induced_frequencies(p.replace(vehicle="masses"), dps=20)
     assert res.verdict.determined, res.verdict.reasons
     return len(res.unstable_roots)
 
@@ -39,8 +41,8 @@ def test_figure3e_tip_is_marked_and_is_where_the_line_really_ends(figure3e_d2):
 @pytest.mark.slow
 def test_q_range_is_raised_automatically():
     grid = dict(alpha_step=0.02, q_step=0.008)
-    low = instability_lines(_base("0.25"), "masses", spacings=[2.0], q_max=0.12, **grid)
-    ref = instability_lines(_base("0.25"), "masses", spacings=[2.0], **grid)
+    low = instability_lines(_base("0.25").replace(vehicle="masses"), spacings=[2.0], q_max=0.12, **grid)
+    ref = instability_lines(_base("0.25").replace(vehicle="masses"), spacings=[2.0], **grid)
     assert low.q_max > 0.12 and not low.warnings
     assert not any(e.reason == "q_max" for b in low.branches for e in b.ends)
     # The same line as with the default range (reference: q_max = 1.5, which the line never reaches).
@@ -50,7 +52,12 @@ def test_q_range_is_raised_automatically():
 
 def test_capped_q_range_is_a_warning_and_an_end_inside():
     res = instability_lines(
-        _base("0.25"), "masses", spacings=[2.0], q_max=0.12, q_max_cap=0.12, alpha_step=0.02, q_step=0.008
+        _base("0.25").replace(vehicle="masses"),
+        spacings=[2.0],
+        q_max=0.12,
+        q_max_cap=0.12,
+        alpha_step=0.02,
+        q_step=0.008,
     )
     assert any("q_max" in w for w in res.warnings)
     ends = [e for b in res.branches for e in b.stops_inside if e.reason == "q_max"]

@@ -20,9 +20,11 @@ import pytest
 from derivation_support import require_sympy
 
 from moving_bogie import DimensionlessParams, ParameterError, table1_case
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.catalogue import Model, get_model, load_catalogue
 from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.roots.window import far_field_window
 
 require_sympy()
 
@@ -114,6 +116,22 @@ def test_frequencies_in_python_and_on_the_copy_s_command_line(scratch):
     assert data["params"]["track"] == "kelvin-shear" and data["params"]["eta_c"] == "0.2"
     cli = [complex(float(r["re"]), float(r["im"])) for r in data["roots"]]
     assert all(abs(a - complex(b.q)) < 1e-12 for a, b in zip(cli, damped.roots))
+
+
+@pytest.mark.slow
+def test_the_new_track_reaches_its_own_kernels_and_asymptotics(scratch):
+    """A track that only the copy has: the bound model holds the copy's modules, and the far-field check
+    justifies a radius from the copy's own KERNEL_DECAY (the packaged catalogue has no such module)."""
+    catalogue = load_catalogue(scratch / "src/moving_bogie/generated")
+    params = DimensionlessParams(
+        model=Model("eb", "kelvin-shear", "bogie", catalogue), **_base(), eta_c="0.2"
+    )
+    bound = bind(params)
+    assert bound.foundation is catalogue.module(catalogue.index.MODULES[("eb", "kelvin-shear")])
+    assert bound.vehicle is catalogue.module("vehicle_bogie")
+    assert bound.kernel_decay is not None
+    _, far = far_field_window(bound)
+    assert far.radius is not None, far.reason
 
 
 def test_unknown_model_names_are_refused_naming_the_option():

@@ -134,8 +134,8 @@ def test_failed_frequency_count_exits_2(capsys, monkeypatch):
 
     real = fq.induced_frequencies
 
-    def broken(params, model, **kwargs):
-        result = real(params, model, **kwargs)
+    def broken(params, **kwargs):
+        result = real(params, **kwargs)
         return dataclasses.replace(result, roots=result.roots[:-1], warnings=("count: stubbed mismatch",))
 
     monkeypatch.setattr(fq, "induced_frequencies", broken)

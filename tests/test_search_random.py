@@ -79,7 +79,7 @@ def test_winding_numbers_of_many_regions_agree_with_one_at_a_time():
 @pytest.mark.slow
 def test_tiling_with_a_fold_opening_towards_smaller_re_q():
     params = FOLDS_AT_ZERO
-    window, _ = far_field_window(params, "bogie")
+    window, _ = far_field_window(params)
     cut = cut_locus(params, window.x0, window.x1)
     opens = sorted(f.opens for f in cut.folds if not f.cusp)
     assert opens == [-1, 1]

@@ -36,10 +36,10 @@ def test_quartic_roots_match_companion_eigenvalues():
 @pytest.mark.parametrize("model", ["bogie", "masses"])
 def test_sweep_equals_reference_characteristic(beam, model):
     p = _params(beam)
-    sweep = SweepCharacteristic(p, model)
+    sweep = SweepCharacteristic(p.replace(vehicle=model))
     # The sweep evaluates the closed form of Eq. (38); CharacteristicArray the block determinant, which is
     # -1/2 times it for the bogie and equal for two masses (proved in tests/test_vehicles.py).
-    ref = {"bogie": -2, "masses": 1}[model] * CharacteristicArray(p, model)(Q)
+    ref = {"bogie": -2, "masses": 1}[model] * CharacteristicArray(p.replace(vehicle=model))(Q)
     assert np.all(np.abs(sweep(Q, float(p.alpha)) - ref) <= 1e-12 * np.abs(ref))
     K, dK, _ = sweep.kernel(Q, float(p.alpha), derivative=True)
     kv = TrackKernelArray(p)(Q, [0, float(p.d), -float(p.d)], derivative=True)
@@ -70,8 +70,8 @@ def test_derivatives_match_finite_differences(beam):
 def test_e_chr_is_a_polynomial_of_the_stated_degree(model, parameter):
     """Interpolation at deg + 1 nodes reproduces E_chr everywhere; a higher-degree fit finds nothing more."""
     p = table1_case(1)
-    sweep = SweepCharacteristic(p, model, parameter)
-    deg = polynomial_degree(model, parameter)
+    sweep = SweepCharacteristic(p.replace(vehicle=model), parameter)
+    deg = polynomial_degree(p.replace(vehicle=model), parameter)
     K, _, _ = sweep.kernel(Q, 0.8)
     scale = 200.0 if parameter == "eta_M" else 2.0
     c = sweep.coefficients(Q, K, scale=scale)

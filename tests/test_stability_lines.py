@@ -28,20 +28,20 @@ def _fr(x):
     return Fraction(str(float(x)))
 
 
-def _unstable(params, model="bogie"):
-    return len(induced_frequencies(params, model, dps=20).unstable_roots)
+def _unstable(params):
+    return len(induced_frequencies(params, dps=20).unstable_roots)
 
 
 @pytest.fixture(scope="module")
 def case1_lines():
     """Bogie of Case 1 (d = 1, eta_f = 0.1, cf2 = 0.01, kappa_v = 0.02)."""
-    return instability_lines(table1_case(1), "bogie", alpha_range=(0.3, 1.2), **COARSE)
+    return instability_lines(table1_case(1), alpha_range=(0.3, 1.2), **COARSE)
 
 
 @pytest.fixture(scope="module")
 def masses_lines():
     p = table1_case(1).replace(eta_f="0.05")
-    return instability_lines(p, "masses", spacings=[1.5, 2.0], **COARSE)
+    return instability_lines(p.replace(vehicle="masses"), spacings=[1.5, 2.0], **COARSE)
 
 
 def test_every_traced_point_is_a_real_root(case1_lines, masses_lines):
@@ -55,7 +55,7 @@ def test_every_traced_point_is_a_real_root(case1_lines, masses_lines):
         for k in (len(b.alpha) // 3, 2 * len(b.alpha) // 3):
             p = lines.params.replace(alpha=_fr(b.alpha[k]), eta_M=_fr(b.theta[k]), d=_fr(b.d))
             with mpmath.workdps(30):
-                E, dE = Characteristic(p, model).value_and_derivative(mpmath.mpf(b.q[k]))
+                E, dE = Characteristic(p.replace(vehicle=model)).value_and_derivative(mpmath.mpf(b.q[k]))
                 assert abs(E / dE) < 1e-9  # float-rounded (alpha, eta_M, q): the root is real to ~1e-12
 
 
@@ -65,8 +65,8 @@ def test_crossing_a_line_changes_the_unstable_count_by_one(masses_lines, case1_l
         b = max(lines.branches, key=lambda br: len(br.alpha))
         k = len(b.alpha) // 2
         base = lines.params.replace(alpha=_fr(b.alpha[k]), d=_fr(b.d))
-        below = _unstable(base.replace(eta_M=_fr(b.theta[k] * 0.97)), model)
-        above = _unstable(base.replace(eta_M=_fr(b.theta[k] * 1.03)), model)
+        below = _unstable(base.replace(eta_M=_fr(b.theta[k] * 0.97)).replace(vehicle=model))
+        above = _unstable(base.replace(eta_M=_fr(b.theta[k] * 1.03)).replace(vehicle=model))
         assert abs(above - below) == 1
         assert (above > below) == bool(b.unstable_above[k])
 
@@ -78,7 +78,7 @@ def test_paper_unstable_cases_lie_on_the_unstable_side():
         p = table1_case(case)
         col = stability_column(SweepCharacteristic(p), float(p.alpha), np.array([float(p.eta_M), 200.0]))
         assert col.count[0] == expected and not col.uncertain[0]
-        dd = d_decomposition(p, "bogie")
+        dd = d_decomposition(p)
         # the D-decomposition, counted from a reference near eta_M = 0 (stable), agrees
         ref = stability_column(SweepCharacteristic(p), float(p.alpha), np.array([0.5, 200.0])).count[0]
         assert dd.counts([float(p.eta_M)], 0.5, ref)[0] == expected
@@ -99,7 +99,7 @@ def test_d_decomposition_agrees_with_instability_lines_and_counts(case1_lines):
     p = table1_case(1)
     sweep = SweepCharacteristic(p)
     for alpha in (0.8, 0.95, 1.1):
-        dd = d_decomposition(p, "bogie", alpha)
+        dd = d_decomposition(p, alpha)
         traced = []
         for b in case1_lines.branches:
             s = np.sign(b.alpha - alpha)
@@ -119,9 +119,9 @@ def test_stability_map_agrees_with_induced_frequencies():
     p = table1_case(1)
     alphas = np.array([0.6, 0.85, 1.05])
     thetas = np.array([10.0, 60.0, 150.0])
-    m = stability_map(p, "bogie", alphas=alphas, thetas=thetas, workers=1)
+    m = stability_map(p, alphas=alphas, thetas=thetas, workers=1)
     for i, j in ((1, 0), (1, 2), (2, 1), (0, 1)):
-        r = induced_frequencies(p.replace(alpha=_fr(alphas[i]), eta_M=_fr(thetas[j])), "bogie", dps=20)
+        r = induced_frequencies(p.replace(alpha=_fr(alphas[i]), eta_M=_fr(thetas[j])), dps=20)
         assert m.count[j, i] == len(r.unstable_roots)
         assert m.degree[j, i] == pytest.approx(float(r.degree_of_instability), abs=1e-10)
 
@@ -129,7 +129,7 @@ def test_stability_map_agrees_with_induced_frequencies():
 @pytest.mark.slow
 def test_frequency_lines_match_the_checkpoints():
     """Case 1 from alpha = 0.7 to 0.9: four lines, each root found afresh at the checkpoints is reached."""
-    res = frequency_lines(table1_case(1), "bogie", alpha_range=(0.7, 0.9), checkpoints=3, h_max=0.02)
+    res = frequency_lines(table1_case(1), alpha_range=(0.7, 0.9), checkpoints=3, h_max=0.02)
     assert not res.warnings
     assert [(n, m) for _, n, m in res.checkpoints] == [(4, 4), (4, 4), (4, 4)]
     assert len(res.lines) == 4
@@ -149,4 +149,4 @@ def test_critical_stiffness_of_case5():
 def test_d_decomposition_needs_foundation_damping():
     """The D-decomposition degenerates at eta_f = 0 (the commands use stability/undamped.py there)."""
     with pytest.raises(ParameterError, match="eta_f"):
-        d_decomposition(table1_case(2), "bogie")
+        d_decomposition(table1_case(2))

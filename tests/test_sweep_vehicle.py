@@ -68,8 +68,8 @@ def test_car_polynomial_in_eta_M_is_exact(car):
 @pytest.mark.parametrize("parameter", ["eta_M", "kappa_v", "eta_v"])
 def test_block_path_matches_closed_form_for_the_bogie(parameter):
     params = table1_case(1)
-    closed = SweepCharacteristic(params, "bogie", parameter)
-    block = SweepCharacteristic(params, "bogie", parameter, block=True)
+    closed = SweepCharacteristic(params, parameter)
+    block = SweepCharacteristic(params, parameter, block=True)
     assert closed.blocks is None and block.blocks is not None
     q = _points(3)
     alpha = np.full(q.shape, float(params.as_float().alpha))
@@ -88,7 +88,7 @@ def test_car_stability_column_agrees_with_induced_frequencies(car):
     col = stability_column(SweepCharacteristic(car, parameter="eta_M"), 1.137, thetas)
     assert not col.uncertain.any()
     forced = dataclasses.replace(col, uncertain=np.array([True, True]))
-    settled = settle_cells(car, "car", "eta_M", forced)
+    settled = settle_cells(car.replace(vehicle="car"), "eta_M", forced)
     assert settled.settled.all() and not settled.uncertain.any()
     np.testing.assert_array_equal(settled.count, col.count)
     assert col.count.tolist() == [0, 2]  # a cell of each kind, so that the comparison can fail

@@ -37,7 +37,7 @@ def _integrand_parts(mod, args, q, derivative):
 
 
 def quadrature_K(params, q, xi, derivative=False):
-    mod = foundation_module(params.beam)
+    mod = foundation_module(params)
     return quadrature_module_K(mod, foundation_arguments(params, params.as_float()), q, xi, derivative)
 
 
@@ -112,7 +112,7 @@ def test_near_coalescing_p_roots_are_handled():
     mpmath.mp.dps = 30
     kernel = TrackKernel(params)
     # locate a q where dN/dp and N vanish together (a double root in p) off the cut, by Newton on (p, q)
-    mod = foundation_module("eb")
+    mod = foundation_module(params)
     f = params.as_mp()
     args = foundation_arguments(params, f)
 

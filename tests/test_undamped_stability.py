@@ -29,9 +29,9 @@ def _fr(x):
     return Fraction(str(float(x)))
 
 
-def _unstable(params, model):
+def _unstable(params):
     """Unstable induced frequencies by the full search (roots with Im q < 0 beyond their confirmed digits)."""
-    return len(induced_frequencies(params, model, dps=20).unstable_roots)
+    return len(induced_frequencies(params, dps=20).unstable_roots)
 
 
 @pytest.mark.parametrize("beam", [{}, {"beam": "tr", "S": 10, "r": "0.09"}])
@@ -39,12 +39,12 @@ def test_kernel_on_the_cut_is_the_limit_from_below(beam):
     """eta_f = 0, real q beyond the branch point: K(q) equals K(q - i h) up to O(h), not K(q + i h)."""
     p = table1_case(2).replace(**beam)
     q, a = np.array([0.7, 1.0, 1.5, 3.0]), np.full(4, 0.5)
-    K = np.array(SweepCharacteristic(p, "bogie", below=True).kernel(q, a)[0])
-    plain = SweepCharacteristic(p, "bogie")
+    K = np.array(SweepCharacteristic(p, below=True).kernel(q, a)[0])
+    plain = SweepCharacteristic(p)
     errors = [np.abs(K - np.array(plain.kernel(q - 1j * h, a)[0])).max() for h in (1e-5, 1e-7)]
     assert errors[1] < errors[0] / 50  # converges like h
     assert np.abs(K - np.array(plain.kernel(q + 1e-7j, a)[0])).max() > 0.1  # the other side jumps
-    tiny = SweepCharacteristic(p.replace(eta_f=Fraction(1, 10**7)), "bogie")
+    tiny = SweepCharacteristic(p.replace(eta_f=Fraction(1, 10**7)))
     assert np.abs(K - np.array(tiny.kernel(q, a)[0])).max() < 10 * errors[1]
 
 
@@ -54,12 +54,12 @@ def test_case5_real_root_is_destabilised_by_small_foundation_damping():
     p = table1_case(5)
     ims = []
     for eta_f in ("0.001", "0.0001"):
-        res = induced_frequencies(p.replace(eta_f=eta_f), "bogie", dps=20)
+        res = induced_frequencies(p.replace(eta_f=eta_f), dps=20)
         assert len(res.unstable_roots) == 1
         ims.append(float(res.unstable_roots[0].q.imag) / float(eta_f))
     assert ims[0] == pytest.approx(ims[1], rel=1e-3)  # linear in eta_f
-    assert _unstable(p.replace(eta_f=0), "bogie") == 0
-    col = UndampedCounter(p, "bogie", "kappa_v")(0.7, np.array([0.2]))
+    assert _unstable(p.replace(eta_f=0)) == 0
+    col = UndampedCounter(p, "kappa_v")(0.7, np.array([0.2]))
     assert (col.undamped[0], col.limit[0]) == (0, 1)
 
 
@@ -70,16 +70,18 @@ def test_subcritical_limit_boundaries_confirmed_by_counts_on_both_sides(model, a
     either side the full search at eta_f = 1e-4 counts one more unstable root on the unstable side, while at
     eta_f = 0 the count is 0 on both sides (the roots there are real)."""
     p = table1_case(2)
-    bounds, col, unsure = boundaries(UndampedCounter(p, model), alpha, parameter_grid(200.0, 20), tol=0.01)
+    bounds, col, unsure = boundaries(
+        UndampedCounter(p.replace(vehicle=model)), alpha, parameter_grid(200.0, 20), tol=0.01
+    )
     assert unsure == 0
     assert len(bounds) == 1 and (bounds[0].kind, bounds[0].mechanism) == ("limit", "damping sign")
     assert not np.any(col.undamped)
     for b in bounds:
         base = p.replace(alpha=_fr(alpha))
         below, above = (base.replace(eta_M=_fr(b.theta * f)) for f in (0.97, 1.03))
-        damped = [_unstable(x.replace(eta_f="0.0001"), model) for x in (below, above)]
+        damped = [_unstable(x.replace(eta_f="0.0001").replace(vehicle=model)) for x in (below, above)]
         assert damped == [b.count_below, b.count_above]
-        assert [_unstable(x, model) for x in (below, above)] == [0, 0]
+        assert [_unstable(x.replace(vehicle=model)) for x in (below, above)] == [0, 0]
 
 
 @pytest.mark.slow
@@ -90,12 +92,16 @@ def test_supercritical_boundaries_at_eta_f_zero_confirmed_by_counts(case, model)
     a branch point of K at q = 0.14496: without dense samples of the top edge around it the column count
     missed a root 2e-4 below the axis and put the boundary at 14.09.)"""
     p = table1_case(case)
-    bounds, _, _ = boundaries(UndampedCounter(p, model), 1.1, parameter_grid(100.0, 20), tol=0.01)
+    bounds, _, _ = boundaries(
+        UndampedCounter(p.replace(vehicle=model)), 1.1, parameter_grid(100.0, 20), tol=0.01
+    )
     exact = [b for b in bounds if b.kind == "undamped" and b.theta > 5]
     assert exact and {b.mechanism for b in bounds} == {"crossing"}  # no gap above the critical velocity
     base = p.replace(alpha=_fr(1.1))
     for b in exact[:2]:
-        counts = [_unstable(base.replace(eta_M=_fr(b.theta * f)), model) for f in (0.97, 1.03)]
+        counts = [
+            _unstable(base.replace(eta_M=_fr(b.theta * f)).replace(vehicle=model)) for f in (0.97, 1.03)
+        ]
         assert counts == [b.count_below, b.count_above]
 
 
@@ -108,7 +114,7 @@ def test_limit_boundaries_are_the_limit_of_small_damping():
         (table1_case(2).replace(d="1.5"), "masses", "eta_M", 0.8, 200.0),
         (table1_case(5), "bogie", "kappa_v", 0.7, 0.6),
     ):
-        counter = UndampedCounter(p, model, parameter)
+        counter = UndampedCounter(p.replace(vehicle=model), parameter)
         bounds, _, _ = boundaries(counter, alpha, parameter_grid(top, 20), tol=1e-12 * top)
         limit = [b.theta for b in bounds if b.kind == "limit"]
         assert limit
@@ -116,7 +122,9 @@ def test_limit_boundaries_are_the_limit_of_small_damping():
             diffs = []
             for eta_f in ("0.01", "0.001", "0.0001"):
                 dd = d_decomposition(
-                    p.replace(eta_f=eta_f, alpha=_fr(alpha)), model, parameter=parameter, theta_max=top
+                    p.replace(eta_f=eta_f, alpha=_fr(alpha)).replace(vehicle=model),
+                    parameter=parameter,
+                    theta_max=top,
                 )
                 assert len(dd.crossings) == len(limit)
                 diffs.append(abs(dd.crossings[k].theta - theta))
@@ -127,12 +135,14 @@ def test_limit_boundaries_are_the_limit_of_small_damping():
 def test_instability_lines_at_eta_f_zero_say_what_they_are():
     """No refusal any more: boundaries of both kinds for eta_f = 0, of the limit kind only for 1e-6."""
     p = table1_case(2).replace(d="1.5")
-    res = instability_lines(p, "masses", alpha_range=(0.7, 0.9), alpha_step=0.05)
+    res = instability_lines(p.replace(vehicle="masses"), alpha_range=(0.7, 0.9), alpha_step=0.05)
     assert res.regime == "undamped" and "limit eta_f -> 0+" in res.statement
     (b,) = res.branches
     assert b.kind == "limit" and len(b.alpha) == 5 and b.unstable_side == "above"
     assert np.all((b.theta > 35) & (b.theta < 80))
-    near = instability_lines(p.replace(eta_f="0.000001"), "masses", alpha_range=(0.7, 0.9), alpha_step=0.05)
+    near = instability_lines(
+        p.replace(eta_f="0.000001").replace(vehicle="masses"), alpha_range=(0.7, 0.9), alpha_step=0.05
+    )
     assert near.regime == "near-undamped" and {x.kind for x in near.branches} == {"limit"}
     np.testing.assert_allclose(near.branches[0].theta, b.theta)
     data = res.to_dict()
@@ -150,9 +160,7 @@ def test_critical_stiffness_undamped_and_near_undamped():
     assert res.regime == "undamped" and [n for *_, n in res.intervals[0]] == [0]
     assert [n for *_, n in res.limit_intervals[0]] == [0, 1, 0]
     near = critical_stiffness(p.replace(eta_f="0.000001"), [0.7], kappa_max=0.6, check_points=20)
-    crossings = d_decomposition(
-        p.replace(eta_f="0.0001"), "bogie", parameter="kappa_v", theta_max=0.6
-    ).crossings
+    crossings = d_decomposition(p.replace(eta_f="0.0001"), parameter="kappa_v", theta_max=0.6).crossings
     np.testing.assert_allclose(near.critical[0], [c.theta for c in crossings], rtol=1e-5)
     assert "limit eta_f -> 0+" in near.method
 
@@ -188,8 +196,8 @@ def test_stability_map_counts_change_exactly_across_the_undamped_boundaries():
 
     p = table1_case(3)
     alphas, thetas = np.linspace(1.05, 1.2, 4), np.linspace(10.0, 100.0, 10)
-    smap = stability_map(p, "bogie", alphas=alphas, thetas=thetas, workers=1)
-    counter = UndampedCounter(p, "bogie")
+    smap = stability_map(p, alphas=alphas, thetas=thetas, workers=1)
+    counter = UndampedCounter(p)
     changes = 0
     for i, a in enumerate(alphas):
         bounds, _, _ = boundaries(counter, a, thetas, tol=1e-3)
@@ -214,6 +222,6 @@ def test_stability_map_sees_the_root_next_to_a_branch_point():
     from moving_bogie.stability.map import stability_map
 
     p = table1_case(3)
-    reference = _unstable(p.replace(alpha=_fr(1.1), eta_M=_fr(13.7)), "bogie")
-    smap = stability_map(p, "bogie", alphas=np.array([1.1]), thetas=np.array([13.0, 13.7]), workers=1)
+    reference = _unstable(p.replace(alpha=_fr(1.1), eta_M=_fr(13.7)))
+    smap = stability_map(p, alphas=np.array([1.1]), thetas=np.array([13.0, 13.7]), workers=1)
     assert reference == 2 and list(smap.count[:, 0]) == [1, 2]

@@ -84,7 +84,7 @@ def test_strip_count_finds_the_root_next_to_a_branch_point():
     near = Rectangle(0.13, 0.16, -1e-3, 1e-3)
     deep = Rectangle(0.0, 3.0, -0.5, 1e-3)
     for rect in (near, deep):
-        strip = strip_below_cut(p, "bogie", result.window, (rect,))
+        strip = strip_below_cut(p, result.window, (rect,))
         assert strip.mode == "from below" and strip.notches
         inside = sum(rect.x0 < q.real < rect.x1 and rect.y0 < q.imag < 0 for q in unstable)
         assert strip.count == inside and inside >= 1

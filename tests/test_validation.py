@@ -250,7 +250,7 @@ def test_plot_files(case2, tmp_path):
 @pytest.mark.slow
 def test_masses_model_one_panel(tmp_path):
     # Reference: closed form of the two masses of Case 5 (Fig. 1a); short run, 200 modes.
-    result = validate(table1_case(5), model="masses", n_modes=200, tau_max=40.0)
+    result = validate(table1_case(5).replace(vehicle="masses"), n_modes=200, tau_max=40.0)
     assert set(result.quantities) == {"w_rear", "w_front"}
     assert result.max_abs_diff_u is None and result.to_dict()["max_abs_diff_theta"] is None
     assert result.agrees
@@ -262,7 +262,6 @@ def test_masses_model_one_panel(tmp_path):
 @pytest.mark.parametrize(
     "kwargs, match",
     [
-        ({"model": "force"}, "vehicle must be one of"),
         ({"n_modes": 2}, "n_modes"),
         ({"tau_max": -1.0}, "tau_max"),
     ],

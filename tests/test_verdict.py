@@ -60,7 +60,7 @@ def test_relative_remainder_decays_as_derived():
     # real axis, 16 times the radius divides rho by about 4.
     assert asymptotics.LEADING_GAP[("bogie", "eb")] == "1/2"
     p = table1_case(7)
-    r1, r2 = (float(rho(p, "bogie", np.array([R * np.exp(-1.2j)]))[0]) for R in (1e3, 1.6e4))
+    r1, r2 = (float(rho(p, np.array([R * np.exp(-1.2j)]))[0]) for R in (1e3, 1.6e4))
     assert r1 / r2 == pytest.approx(4, rel=0.15)
 
 
@@ -101,7 +101,7 @@ def test_undamped_sliver_is_undetermined_when_the_strip_is_not_counted(monkeypat
 def test_missing_expansion_is_undetermined(monkeypatch):
     module = foundation_module(table1_case(7))
     monkeypatch.setattr(module, "KERNEL_DECAY", None)
-    far = far_field_radius(table1_case(7), "bogie", 3.0)
+    far = far_field_radius(table1_case(7), 3.0)
     assert far.radius is None and "no far-field expansion" in far.reason
     assert far.to_dict()["rho"] is None  # valid JSON
     other = table1_case(7).replace(beam="tr", S=10, r="0.09")

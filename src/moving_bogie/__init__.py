@@ -16,6 +16,8 @@ from moving_bogie.model.physical import PhysicalParams, Scales
 
 #: Main entry points, imported on first use so that ``import moving_bogie`` (and the CLI) stays light.
 _LAZY = {
+    "bind": "kernels.bound",
+    "BoundModel": "kernels.bound",
     "induced_frequencies": "roots.frequencies",
     "FrequencyResult": "roots.frequencies",
     "compute_table2": "roots.table2",

@@ -91,6 +91,7 @@ def _check_dps(dps):
 
 def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.roots.contour import Rectangle
     from moving_bogie.roots.damping_limit import damping_limit
     from moving_bogie.roots.frequencies import induced_frequencies
@@ -111,7 +112,7 @@ def run_frequencies(args: argparse.Namespace) -> int:
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
     with progress_bar("induced frequencies", enabled=not args.json) as update:
         result = induced_frequencies(
-            params, args.model, dps=args.dps, window=window, progress=update, certify=args.certify
+            bind(params), dps=args.dps, window=window, progress=update, certify=args.certify
         )
     limit = damping_limit(result)
     regime = speed_regime(params, physical)

@@ -93,7 +93,6 @@ def run_instability_lines(args) -> int:
     with progress_bar("instability lines") as bar:
         res = instability_lines(
             params,
-            args.model,
             spacings=spacings,
             parameter=args.parameter,
             alpha_range=(alpha_min, alpha_max),
@@ -219,7 +218,6 @@ def run_stability_map(args) -> int:
     with progress_bar("stability map") as bar:
         smap = stability_map(
             params,
-            args.model,
             parameter=args.parameter,
             alphas=alphas,
             thetas=thetas,
@@ -231,7 +229,6 @@ def run_stability_map(args) -> int:
         with progress_bar("instability lines") as bar:
             lines = instability_lines(
                 params,
-                args.model,
                 parameter=args.parameter,
                 alpha_range=(alpha_min, alpha_max),
                 theta_max=theta_max,

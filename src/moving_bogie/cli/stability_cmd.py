@@ -90,6 +90,7 @@ def _register_critical_velocity(subparsers) -> None:
 
 def run_critical_velocity(args) -> int:
     from moving_bogie.model.catalogue import get_model
+    from moving_bogie.paper.critical_velocity_formulas import paper_formula
     from moving_bogie.stability.critical_velocity import critical_velocity
 
     physical = None
@@ -106,7 +107,7 @@ def run_critical_velocity(args) -> int:
         source = params
     else:
         source = get_model(**chosen)
-    res = critical_velocity(source, groups=groups)
+    res = critical_velocity(source, groups=groups, formula=paper_formula)
     data = res.to_dict()
     if physical is not None:
         v_ref = physical.scales().v_ref
@@ -179,7 +180,6 @@ def run_frequency_lines(args) -> int:
     with progress_bar("frequency lines") as bar:
         res = frequency_lines(
             params,
-            args.model,
             alpha_range=(alpha_min, alpha_max),
             checkpoints=args.checkpoints,
             progress=bar,

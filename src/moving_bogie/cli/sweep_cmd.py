@@ -126,7 +126,7 @@ def _spec(args):
             raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
         vary[name.strip()] = spec
     options = dict(roots=args.roots, check=args.check, block_points=args.chunk_points)
-    return make_spec(params, vary, model=params.vehicle, sample=sample, physical=physical, **options)
+    return make_spec(params, vary, sample=sample, physical=physical, **options)
 
 
 @contextmanager

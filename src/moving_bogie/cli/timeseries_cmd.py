@@ -132,7 +132,7 @@ def _times(args):
     return tau
 
 
-def _frequencies_or_fail(params, model, dps, json_mode, branch_cut):
+def _frequencies_or_fail(params, dps, json_mode, branch_cut):
     from moving_bogie.errors import MovingBogieError
     from moving_bogie.response.cut_integral import branch_cut_for
     from moving_bogie.roots.frequencies import induced_frequencies
@@ -140,10 +140,10 @@ def _frequencies_or_fail(params, model, dps, json_mode, branch_cut):
     from .progress import progress_bar
 
     if branch_cut is True:
-        branch_cut_for(params, model)  # refuses a supercritical velocity before the long frequency search
+        branch_cut_for(params)  # refuses a supercritical velocity before the long frequency search
 
     with progress_bar("induced frequencies", enabled=not json_mode) as update:
-        result = induced_frequencies(params, model, dps=dps, progress=update)
+        result = induced_frequencies(params, dps=dps, progress=update)
     if not result.count_ok:
         detail = "; ".join(result.warnings) or f"{result.found} of {result.count} roots confirmed"
         raise MovingBogieError(f"induced frequencies incomplete ({detail}); no closed-form response")
@@ -152,16 +152,17 @@ def _frequencies_or_fail(params, model, dps, json_mode, branch_cut):
 
 def run_timeseries(args: argparse.Namespace) -> int:
     """Compute and print (or write) the closed-form time series."""
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.response.closed_form import closed_form_response
 
     _check(args)
     tau = _times(args)
     params, physical = params_from_args(args)
-    result = _frequencies_or_fail(params, args.model, args.dps, args.json, _branch_cut(args))
+    bound = bind(params)  # bound once: the frequency search and the closed form share it
+    result = _frequencies_or_fail(bound, args.dps, args.json, _branch_cut(args))
     ts = closed_form_response(
-        physical if physical is not None else params,
+        physical if physical is not None else bound,
         tau,
-        model=args.model,
         frequencies=result,
         branch_cut=_branch_cut(args),
     )
@@ -252,6 +253,7 @@ def run_shape(args: argparse.Namespace) -> int:
     import numpy as np
 
     from moving_bogie.errors import ParameterError
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.response.closed_form import SI_UNITS, deflection_shape_details
 
     _check(args)
@@ -265,12 +267,12 @@ def run_shape(args: argparse.Namespace) -> int:
     if not (np.isfinite(lo) and np.isfinite(hi) and hi > lo):
         raise ParameterError("xi_max", f"need xi_min < xi_max (got {lo}, {hi})")
     xi = np.linspace(lo, hi, args.points)
-    result = _frequencies_or_fail(params, args.model, args.dps, args.json, _branch_cut(args))
+    bound = bind(params)
+    result = _frequencies_or_fail(bound, args.dps, args.json, _branch_cut(args))
     w, with_cut, notes = deflection_shape_details(
-        physical if physical is not None else params,
+        physical if physical is not None else bound,
         xi,
         args.tau,
-        model=args.model,
         frequencies=result,
         branch_cut=_branch_cut(args),
     )

@@ -93,7 +93,6 @@ def run(args: argparse.Namespace) -> int:
     with progress_bar("finite beam + closed form", enabled=not args.json) as update:
         result = validate(
             params,
-            model=args.model,
             n_modes=args.modes,
             tau_max=args.tmax,
             tol=args.tol,

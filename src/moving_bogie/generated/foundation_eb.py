@@ -73,6 +73,22 @@ def q_coeffs_dq(q, alpha, eta_f, eta_s):
     )
 
 
+def cut_line_im(alpha, eta_f, eta_s):
+    """Im q on the cut of K, a half-line: q = alpha p + i cut_line_im +- sqrt(R(p))/2 for real p."""
+    return eta_f
+
+
+def cut_line_radicand(alpha, eta_f, eta_s):
+    """Coefficients of R(p) in p, highest first (the cut: Re q = alpha p +- sqrt(R(p))/2)."""
+    return (
+        1,
+        0,
+        4*eta_s,
+        0,
+        4 - 4*eta_f**2,
+    )
+
+
 def modal_mass(lam, eta_f, eta_s):
     """Finite rail (validation): mass matrix of the sine mode of wavenumber lam, row-major."""
     return (

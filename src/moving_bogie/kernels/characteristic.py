@@ -7,31 +7,11 @@ generated vehicle matrices and the track kernel K(xi_i - xi_j, q) of :mod:`movin
 
 from __future__ import annotations
 
-import mpmath
 import numpy as np
 
-from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import TrackKernel, TrackKernelArray
 from moving_bogie.kernels.vehicle import VehicleSystem
-from moving_bogie.model.catalogue import default_catalogue
-
-
-def vehicle_module(model: str | None, params=None):
-    """The generated kernel of a vehicle: ``params.model``'s own, or the vehicle `model` of its catalogue.
-
-    Raises
-    ------
-    ParameterError
-        Naming ``vehicle`` for a vehicle the catalogue does not have.
-    """
-    if params is not None and (model is None or model == params.vehicle):
-        return params.model.vehicle_kernels
-    catalogue = params.model.catalogue if params is not None else default_catalogue()
-    if model not in catalogue.vehicles:
-        raise ParameterError(
-            "vehicle", f"vehicle must be one of {', '.join(catalogue.vehicles)} (got {model!r})"
-        )
-    return catalogue.module(f"vehicle_{model}")
 
 
 class Characteristic:
@@ -42,32 +22,24 @@ class Characteristic:
 
     Parameters
     ----------
-    params : DimensionlessParams
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
+    params : DimensionlessParams or BoundModel
+        The parameters (their model's vehicle, see :func:`~moving_bogie.kernels.bound.bind`).
     foundation : module or Foundation, optional
         The track model (default that of the parameters' model, see
         :func:`~moving_bogie.kernels.track.resolve_foundation`).
     """
 
-    def __init__(self, params, model: str | None = None, *, foundation=None):
-        model = model or params.vehicle
-        self.params = params
-        self.model = model
-        self.module = vehicle_module(model, params)
-        self.kernel = TrackKernel(params, foundation=foundation)
+    def __init__(self, params, *, foundation=None):
+        self.bound = bind(params)
+        self.params = self.bound.params
+        self.module = self.bound.vehicle
+        self.kernel = TrackKernel(self.params, foundation=foundation)
         self.evaluations = 0
-        self._systems = {}
 
     @property
     def system(self) -> VehicleSystem:
-        """The vehicle's matrices at the current precision."""
-        prec = mpmath.mp.prec
-        if prec not in self._systems:
-            ns = self.params.as_mp()
-            values = {name: getattr(ns, name) for name in self.module.MATRIX_ARGUMENTS}
-            self._systems[prec] = VehicleSystem(self.module, values)
-        return self._systems[prec]
+        """The vehicle's matrices at the current precision (kept by the bound model)."""
+        return self.bound.vehicle_system()
 
     @property
     def names(self) -> tuple:
@@ -103,16 +75,12 @@ class Characteristic:
 class CharacteristicArray:
     """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps)."""
 
-    def __init__(self, params, model: str | None = None, *, foundation=None):
-        model = model or params.vehicle
-        self.params = params
-        self.model = model
-        self.module = vehicle_module(model, params)
-        self.kernel = TrackKernelArray(params, foundation=foundation)
-        ns = params.as_float()
-        self.system = VehicleSystem(
-            self.module, {name: getattr(ns, name) for name in self.module.MATRIX_ARGUMENTS}
-        )
+    def __init__(self, params, *, foundation=None):
+        self.bound = bind(params)
+        self.params = self.bound.params
+        self.module = self.bound.vehicle
+        self.kernel = TrackKernelArray(self.params, foundation=foundation)
+        self.system = self.bound.float_system
         self.offsets = [float(x) for x in self.system.offsets]
         self.evaluations = 0
 

@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.polyroots import poly_roots, quartic_roots
 from moving_bogie.kernels.polyroots import polyder as _polyder
 from moving_bogie.kernels.polyroots import polyval as _polyval
@@ -39,7 +39,7 @@ __all__ = ["SweepCharacteristic", "poly_roots", "polynomial_degree", "quartic_ro
 _ALPHA_STENCIL = 0.25  # the coefficients of N and Q are polynomials of degree <= 4 in alpha
 
 
-def polynomial_degree(model: str | None, parameter: str, params=None) -> int:
+def polynomial_degree(params, parameter: str) -> int:
     """Degree of E_chr in the vehicle parameter ``parameter`` at fixed (q, alpha), from the derivation.
 
     The generated ``POLYNOMIAL_DEGREES`` of the vehicle, derived from its block system (for the paper's bogie
@@ -51,7 +51,7 @@ def polynomial_degree(model: str | None, parameter: str, params=None) -> int:
     ParameterError
         Naming ``parameter`` when E_chr is not a polynomial in it (the spacing d also moves K).
     """
-    degrees = getattr(vehicle_module(model, params), "POLYNOMIAL_DEGREES", {})
+    degrees = bind(params).polynomial_degrees
     if parameter not in degrees:
         raise ParameterError(
             "parameter", f"parameter must be one of {', '.join(degrees)} for this vehicle (got {parameter!r})"
@@ -64,12 +64,10 @@ class SweepCharacteristic:
 
     Parameters
     ----------
-    params : DimensionlessParams
-        Everything but alpha, the spacing d (when given per point) and ``parameter`` is taken from here;
-        with ``parameter="eta_M"`` the bar's mass and inertia follow the wheel mass with the coefficients
-        cf1, cf2 of ``params`` (Eq. (63)).
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
+    params : DimensionlessParams or BoundModel
+        Everything but alpha, the spacing d (when given per point) and ``parameter`` is taken from here
+        (the vehicle too: that of the parameters' model); with ``parameter="eta_M"`` the bar's mass and
+        inertia follow the wheel mass with the coefficients cf1, cf2 of ``params`` (Eq. (63)).
     parameter : str
         The vehicle parameter swept (default eta_M).
     foundation : module or Foundation, optional
@@ -91,24 +89,23 @@ class SweepCharacteristic:
     def __init__(
         self,
         params,
-        model: str | None = None,
         parameter: str = "eta_M",
         *,
         foundation=None,
         below=False,
         block=False,
     ):
-        model = model or params.vehicle
+        bound = bind(params)
+        params = bound.params
         self.below = bool(below)
         self.params = params
-        self.model = model
         self.parameter = parameter
-        self.degree = polynomial_degree(model, parameter, params)
-        self.module = vehicle_module(model, params)
+        self.degree = polynomial_degree(bound, parameter)
+        self.module = bound.vehicle
         self.blocks = None if hasattr(self.module, "e_chr") and not block else BlockSweep(self.module)
         track = resolve_foundation(params, foundation)
         self.foundation = track.module
-        ns = params.as_float()
+        ns = bound.floats
         self.track_args = {k: v for k, v in track.float_arguments(params).items() if k != "alpha"}
         self.d = ns.d
         # Eq. (63): groups set by an alternative that depends on the swept parameter follow it (the bar's

@@ -26,18 +26,16 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
-from moving_bogie.model.catalogue import get_model
 
 
 def foundation_module(params):
-    """The generated kernel of the beam on its track: ``params.model.foundation``.
+    """The generated kernel of the beam on its track, of the parameters' own catalogue.
 
-    `params` may also be a beam name, for the beam on the paper's one-layer track.
+    ``params`` are parameters or a bound model (:func:`~moving_bogie.kernels.bound.bind`).
     """
-    if isinstance(params, str):
-        return get_model(beam=params).foundation
-    return params.model.foundation
+    return bind(params).foundation
 
 
 @dataclass(frozen=True)
@@ -61,7 +59,7 @@ class Foundation:
 
     def float_arguments(self, params) -> dict:
         """Keyword arguments in double precision (groups neither given nor in ``params`` are None)."""
-        ns = params.as_float() if params is not None else None
+        ns = bind(params).floats if params is not None else None
         out = {}
         for name in self.names:
             value = self.values[name] if name in self.values else getattr(ns, name, None)
@@ -70,7 +68,7 @@ class Foundation:
 
     def mp_arguments(self, params) -> dict:
         """Keyword arguments at the current mpmath precision."""
-        ns = params.as_mp() if params is not None else None
+        ns = bind(params).params.as_mp() if params is not None else None
         out = {}
         for name in self.names:
             if name in self.values:
@@ -149,7 +147,7 @@ class TrackKernel:
     """
 
     def __init__(self, params, *, foundation=None, coalescence_digits: int = 3):
-        self.params = params
+        params = self.params = bind(params).params
         self.foundation = resolve_foundation(params, foundation)
         self.module = self.foundation.module
         self.coalescence_digits = coalescence_digits
@@ -274,7 +272,7 @@ class TrackKernelArray:
     """
 
     def __init__(self, params, *, foundation=None):
-        self.params = params
+        params = self.params = bind(params).params
         self.foundation = resolve_foundation(params, foundation)
         self.module = self.foundation.module
         self.args = self.foundation.float_arguments(params)

@@ -143,9 +143,7 @@ class TimeSeriesFigure:
         tau = np.linspace(0.0, tau_max, points + 1)
         curves, notes = [], []
         for k, case in enumerate(spec.cases):
-            series = closed_form_response(
-                table1_case(case), tau, model="bogie", frequencies=ctx.frequencies(case)
-            )
+            series = closed_form_response(table1_case(case), tau, frequencies=ctx.frequencies(case))
             curves.append((case, series))
             notes += [f"Case {case}: {note}" for note in series.notes]
             ctx.progress((k + 1) / len(spec.cases))

@@ -74,7 +74,7 @@ class BuildContext:
                 from moving_bogie.model.cases import table1_case
                 from moving_bogie.roots.frequencies import induced_frequencies
 
-                self._frequencies[case] = induced_frequencies(table1_case(case), "bogie", dps=self.dps)
+                self._frequencies[case] = induced_frequencies(table1_case(case), dps=self.dps)
         return self._frequencies[case]
 
 

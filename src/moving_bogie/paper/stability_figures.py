@@ -13,6 +13,7 @@ from collections.abc import Callable
 import numpy as np
 
 from moving_bogie.model.cases import table1_case
+from moving_bogie.model.catalogue import get_model
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.critical_stiffness import critical_stiffness
 from moving_bogie.stability.critical_velocity import critical_velocity
@@ -111,9 +112,7 @@ def figure2(quick: bool = False, progress: Callable[[float], None] | None = None
     it meets the cut of K (Im q = eta_f, dashed).
     """
     p = table1_case(1)
-    res = frequency_lines(
-        p, "bogie", checkpoints=5 if quick else 13, h_max=0.02 if quick else 0.01, progress=progress
-    )
+    res = frequency_lines(p, checkpoints=5 if quick else 13, h_max=0.02 if quick else 0.01, progress=progress)
     n = len(res.lines)
     fig = new_figure(figsize=(7, 1.9 * n + 0.6), layout="constrained")
     axs = fig.subplots(n, 1, sharex=True, squeeze=False)[:, 0]
@@ -144,7 +143,7 @@ def figure3(quick: bool = False, progress: Callable[[float], None] | None = None
     marks = set()
     for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
         lines = instability_lines(
-            _base(eta_f), "masses", spacings=SPACINGS, progress=split.part(), **_grid(quick)
+            _base(eta_f).replace(vehicle="masses"), spacings=SPACINGS, progress=split.part(), **_grid(quick)
         )
         marks |= plot_instability_lines(ax, lines, colors=colors)
         _decorate(ax, rf"({tag}) $\eta_f$ = {eta_f}", 1.2)
@@ -166,11 +165,10 @@ def figure4(quick: bool = False, progress: Callable[[float], None] | None = None
     for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
         p = _base(eta_f)
         bogie = instability_lines(
-            p, "bogie", spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
+            p, spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
         )
         masses = instability_lines(
-            p,
-            "masses",
+            p.replace(vehicle="masses"),
             spacings=SPACINGS,
             alpha_range=(0, 1),
             theta_max=200 * adapt,
@@ -198,7 +196,7 @@ def figure7(quick: bool = False, progress: Callable[[float], None] | None = None
         for eta_v, style in (("0", "-"), ("0.05", "--")):
             p = _base("0.05", cf2=cf2, kappa_v="0.2", eta_v=eta_v)
             lines = instability_lines(
-                p, "bogie", spacings=ds, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
+                p, spacings=ds, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
             )
             marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
         _decorate(ax, rf"({tag}) $cf_2$ = {cf2}", 1.0)
@@ -218,10 +216,10 @@ def figure8(quick: bool = False, progress: Callable[[float], None] | None = None
     for ax, (S, r), tag in zip(axs, (("100", "0.03"), ("10", "0.09")), "ab"):
         eb = _base("0.05", cf2="0.1", kappa_v="0.2")
         tr = eb.replace(beam="tr", S=S, r=r)
-        a_cr = float(critical_velocity("tr", S=S, r=r).alpha_cr)
+        a_cr = float(critical_velocity(get_model(beam="tr"), S=S, r=r).alpha_cr)
         for p, style in ((eb, "-"), (tr, "--")):
             lines = instability_lines(
-                p, "bogie", spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
+                p, spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
             )
             marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
         _decorate(ax, rf"({tag}) $\tilde S$ = {S}, $\tilde r$ = {r}", 1.0)
@@ -255,9 +253,7 @@ def figure16(quick: bool = False, progress: Callable[[float], None] | None = Non
     for ax, (title, p, (a0, a1), kmax, q_max) in zip(axs, sets):
         alphas = np.linspace(a0, a1, n_map)
         kappas = np.linspace(kmax / n_map, kmax, n_map)
-        m = stability_map(
-            p, "bogie", parameter="kappa_v", alphas=alphas, thetas=kappas, progress=split.part()
-        )
+        m = stability_map(p, parameter="kappa_v", alphas=alphas, thetas=kappas, progress=split.part())
         norm = BoundaryNorm(np.arange(-0.5, 6.5), 256)
         mesh = ax.pcolormesh(
             alphas, kappas, np.minimum(m.count, 6), shading="nearest", cmap="Greys", norm=norm, alpha=0.6

@@ -1,10 +1,10 @@
-"""The branch-cut part I_bc of Eq. (35) (Euler-Bernoulli beam, with or without a Pasternak layer).
+"""The branch-cut part I_bc of Eq. (35) where the cut of K is a straight half-line (the paper's beam).
 
 Orientation. x(tau) = (1/2 pi) * integral of f(q) dq along the Bromwich line Im q = -a (left to right),
-f = X~(q) e^{i q tau} = [n_X / (i q E_chr)] e^{i q tau}. Closing upward, the cut of K (for Euler-Bernoulli
-the half-lines Im q = eta_f, |Re q| >= q_c) is wrapped: the strip below the cut is traversed with its
-lower side going west, the region above with the upper side going east. The residue theorem for the
-region above the Bromwich line then gives
+f = X~(q) e^{i q tau} = [n_X / (i q E_chr)] e^{i q tau}. Closing upward, the cut of K (here the
+half-lines Im q = c, |Re q| >= q_c; c = eta_f for the paper's Euler-Bernoulli beam) is wrapped: the
+strip below the cut is traversed with its lower side going west, the region above with the upper side
+going east. The residue theorem for the region above the Bromwich line then gives
 
     x(tau) = i sum Res f + (1/2 pi) * integral over the cut (Re q increasing) of [f_below - f_above] dq,
 
@@ -12,11 +12,15 @@ so I_bc is the jump "value from below minus value from above". The mirror symmet
 conj f(q) (x is real) maps the left ray onto the right one, hence
 
     I_bc(tau) = (1/pi) Re integral_{q_c}^{inf} j(q) e^{i q tau} ds,
-    q = s + i eta_f,  j = X~_below - X~_above.
+    q = s + i c,  j = X~_below - X~_above.
 
-Parametrisation. A point of the right ray is
+Parametrisation. ``derivations/cut_line.py`` finds the tracks whose N(p, q) is quadratic in q with roots
+q = alpha p + i c +- sqrt(R(p))/2 for real p, c free of p, R a real polynomial, and generates
+``cut_line_im`` (c) and ``cut_line_radicand`` (R) for them; for the paper's beam c = eta_f and
+R = p^4 + 4 eta_s p^2 + 4 - 4 eta_f^2. Where R > 0 for every real p (checked here), a point of the right
+ray is
 
-    q(p) = alpha p + i eta_f + sqrt(p^4 + 4 eta_s p^2 + 4 - 4 eta_f^2)/2
+    q(p) = alpha p + i c + sqrt(R(p))/2
 
 for real p (the real root of N(., q) itself, ``kernels/cut.py``); s(p) is convex with its minimum q_c at p_c,
 and p > p_c covers the ray once. In p the square-root branch point disappears (ds = s'(p) dp with
@@ -31,7 +35,8 @@ truncated at s = S: for the first band where the neglected tail integral of |j| 
 for the others the tail is added by integration by parts, e^{i q_S tau} (i j/tau - j'/tau^2 - i j''/tau^3),
 with S chosen so that the first neglected term |j'''|/tau^4 (estimated by |j''|/tau^3) is below ``tol``.
 
-Any other beam or track (a curved cut with folds, lenses and further curves) is integrated by
+Any other track (a curved cut with folds, lenses and further curves; no ``cut_line_radicand`` in its
+generated module, a quartic N(p, q) assumed by the root ordering below) is integrated by
 :class:`~moving_bogie.response.cut_integral.CurveBranchCut`; this class raises :class:`BranchCutUnavailable`
 for it.
 """
@@ -44,10 +49,9 @@ import numpy as np
 from scipy import optimize
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
-from moving_bogie.kernels.track import foundation_arguments, foundation_module
-from moving_bogie.kernels.vehicle import VehicleSystem
+from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.response.quadrature import adapt_panels, by_bands, cis, fourier_sum, subdivide
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
@@ -65,7 +69,7 @@ _S_STEPS = tuple(2.0**k for k in range(-1, 16))
 
 
 class BranchCutUnavailable(MovingBogieError):
-    """The branch-cut integral is not available for these parameters (beam model or no gap at q = 0)."""
+    """The branch-cut integral is not available for these parameters (the track's cut, or no gap at q = 0)."""
 
 
 class BranchCut:
@@ -73,39 +77,43 @@ class BranchCut:
 
     Parameters
     ----------
-    params : DimensionlessParams
-        Euler-Bernoulli beam (``beam="eb"``), subcritical (the cut leaves a gap around q = 0).
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
+    params : DimensionlessParams or BoundModel
+        A track whose cut is a half-line (generated ``cut_line_radicand``, R > 0), subcritical (the cut
+        leaves a gap around q = 0).
     panel_tol : float
         Absolute tolerance per panel of the adaptive partition of the cut (:meth:`base_edges`).
 
     Raises
     ------
     BranchCutUnavailable
-        For a Timoshenko-Rayleigh beam, or when the cut reaches q = 0 (supercritical velocity).
+        For a track whose cut is not a half-line (e.g. Timoshenko-Rayleigh), or when the cut reaches q = 0
+        (supercritical velocity).
     """
 
-    def __init__(self, params, model: str | None = None, *, panel_tol: float = 1e-13):
-        model = model or params.vehicle
-        if (params.beam, params.track) != ("eb", "one-layer"):
+    def __init__(self, params, *, panel_tol: float = 1e-13):
+        bound = bind(params)
+        params = bound.params
+        self.foundation = bound.foundation
+        if not hasattr(self.foundation, "cut_line_radicand") or self.foundation.DEGREE_N != 4:
             raise BranchCutUnavailable(
-                "the branch-cut part I_bc is implemented for the Euler-Bernoulli beam only (beam='eb'); "
-                "for Timoshenko-Rayleigh use branch_cut=False (residues only)"
+                f"the cut of K of {bound.name} is not a half-line (no cut_line_radicand in its generated "
+                "module): the traced cut is integrated instead (CurveBranchCut)"
             )
         self.params = params
-        self.model = model
-        f = params.as_float()
-        self.alpha, self.eta_f, self.eta_s = f.alpha, f.eta_f, f.eta_s
-        self._c = 4.0 - 4.0 * self.eta_f**2
-        self.foundation = foundation_module(params)
+        f = bound.floats
         self.fargs = foundation_arguments(params, f)
-        module = vehicle_module(model, params)
-        self.system = VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
-        self.offsets = np.array([float(x) for x in self.system.offsets])
-        self.positions = np.array([float(x) for x in self.system.positions])
-        self.span = float(self.positions.max())  # rear to front wheel (d for the bogie)
-        self.names = tuple(module.DOFS)
+        self.alpha = f.alpha
+        self.eta_f = float(self.foundation.cut_line_im(**self.fargs))  # Im q of the line
+        self._radicand = np.array([float(c) for c in self.foundation.cut_line_radicand(**self.fargs)])
+        self._radicand_dp = np.polyder(self._radicand) / 4.0
+        critical = np.roots(np.polyder(self._radicand))
+        lowest = min(np.polyval(self._radicand, critical[np.abs(critical.imag) < 1e-12].real), default=np.inf)
+        if not (self._radicand[0] > 0 and lowest > 0):
+            raise BranchCutUnavailable(
+                "the cut of K leaves the line Im q = c where R(p) < 0: the traced cut is integrated instead"
+            )
+        self.system, self.offsets, self.positions = bound.float_system, bound.offsets, bound.positions
+        self.span, self.names = bound.span, bound.names
         self.p_c = self._minimum()
         self.q_c = float(self.s(self.p_c))
         self.panel_tol = panel_tol
@@ -118,7 +126,7 @@ class BranchCut:
 
     # --- geometry of the right ray -------------------------------------------------------------
     def _R(self, p):
-        return np.sqrt(p**4 + 4 * self.eta_s * p**2 + self._c)
+        return np.sqrt(np.polyval(self._radicand, p))
 
     def s(self, p):
         """Re q of the cut point of the real root p (right ray)."""
@@ -126,7 +134,7 @@ class BranchCut:
 
     def ds(self, p):
         """ds/dp (>= 0 for p >= p_c)."""
-        return self.alpha + (p**3 + 2 * self.eta_s * p) / self._R(p)
+        return self.alpha + np.polyval(self._radicand_dp, p) / self._R(p)
 
     def _minimum(self) -> float:
         if self.alpha == 0:

@@ -25,9 +25,8 @@ import numpy as np
 from scipy import integrate
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import TrackKernelArray
-from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.response.quadrature import adapt_panels, subdivide
 
 __all__ = ["BromwichResult", "bromwich_line", "bromwich_line_shape", "bromwich_response", "bromwich_shape"]
@@ -40,15 +39,8 @@ class BromwichResult(dict):
     a: float
 
 
-def vehicle_system(params, model=None) -> VehicleSystem:
-    """The vehicle's block system (:mod:`moving_bogie.kernels.vehicle`) at the parameters, in floats."""
-    module = vehicle_module(model, params)
-    f = params.as_float()
-    return VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
-
-
-def _transform(params, model):
-    system = vehicle_system(params, model)
+def _transform(params):
+    system = bind(params).float_system
     kernel = TrackKernelArray(params)
     offsets = [float(x) for x in system.offsets]
     cache: dict[float, np.ndarray] = {}
@@ -69,7 +61,6 @@ def bromwich_shape(
     xi,
     tau: float,
     *,
-    model: str | None = None,
     a: float = 0.02,
     epsabs: float = 1e-12,
     limit: int = 2000,
@@ -80,10 +71,9 @@ def bromwich_shape(
     i q W~(xi, q) = sum_j G_j K(xi - xi_j, q) / (2 pi E_chr) (n contacts), evaluated directly (no residues,
     no branch cut); the same fold onto s >= 0 and QAWF quadrature as :func:`bromwich_response`.
     """
-    model = model or params.vehicle
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
-    system = vehicle_system(params, model)
+    system = bind(params).float_system
     kernel = TrackKernelArray(params)
     offsets = [float(x) for x in system.offsets]
     positions = [float(x) for x in system.positions]
@@ -122,7 +112,6 @@ def bromwich_response(
     params,
     tau,
     *,
-    model: str | None = None,
     a: float = 0.02,
     names=None,
     epsabs: float = 1e-12,
@@ -134,10 +123,8 @@ def bromwich_response(
 
     Parameters
     ----------
-    params : DimensionlessParams
+    params : DimensionlessParams or BoundModel
     tau : array_like of float, >= 0
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
     a : float
         Distance of the Bromwich line Im q = -a below the real axis; must exceed -Im q of every unstable
         induced frequency (the caller's responsibility: this function does not look for them).
@@ -150,10 +137,9 @@ def bromwich_response(
     BromwichResult
         dict name -> ndarray like tau; ``.errors`` holds QUADPACK's error estimates times e^{a tau}/pi.
     """
-    model = model or params.vehicle
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
-    responses, values = _transform(params, model)
+    responses, values = _transform(params)
     names = tuple(names or responses)
     index = {name: responses.index(name) for name in names}
     tau = np.atleast_1d(np.asarray(tau, dtype=float))
@@ -192,7 +178,6 @@ def bromwich_line(
     params,
     tau,
     *,
-    model: str | None = None,
     a: float = 0.02,
     s_max: float = 400.0,
     panel_tol: float = 1e-14,
@@ -216,7 +201,7 @@ def bromwich_line(
     -------
     dict name -> ndarray like tau
     """
-    tau, system, kernel = _line_setup(params, tau, a, model, foundation)
+    tau, system, kernel = _line_setup(params, tau, a, foundation)
     offsets = [float(x) for x in system.offsets]
 
     def transform(s):
@@ -233,7 +218,6 @@ def bromwich_line_shape(
     xi,
     tau: float,
     *,
-    model: str | None = None,
     a: float = 0.02,
     s_max: float = 400.0,
     panel_tol: float = 1e-14,
@@ -244,7 +228,7 @@ def bromwich_line_shape(
     i q W~(xi, q) = sum_j G_j K(xi - xi_j, q) / (2 pi E_chr) on the line Im q = -a, every xi
     at once (the panels adapt to all of them); no residues, no branch cut. Any beam or track model.
     """
-    tau, system, kernel = _line_setup(params, tau, a, model, foundation)
+    tau, system, kernel = _line_setup(params, tau, a, foundation)
     offsets = [float(x) for x in system.offsets]
     positions = [float(x) for x in system.positions]
     xi = np.asarray(xi, dtype=float)
@@ -263,14 +247,14 @@ def bromwich_line_shape(
     return _line_quadrature(transform, tau, a, s_max, panel_tol)[0].reshape(xi.shape)
 
 
-def _line_setup(params, tau, a, model, foundation):
+def _line_setup(params, tau, a, foundation):
     """(tau array, vehicle block system, kernel) after checking a and the times."""
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
     tau = np.atleast_1d(np.asarray(tau, dtype=float))
     if np.any(tau <= 0) or not np.all(np.isfinite(tau)):
         raise MovingBogieError("bromwich_line needs finite tau > 0")
-    return tau, vehicle_system(params, model), TrackKernelArray(params, foundation=foundation)
+    return tau, bind(params).float_system, TrackKernelArray(params, foundation=foundation)
 
 
 def _line_quadrature(transform, tau, a, s_max, panel_tol):

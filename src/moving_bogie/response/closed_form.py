@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.response.cut_policy import branch_cut_extent, branch_cut_mode, branch_cut_or_note, s_min_for
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
@@ -126,26 +126,27 @@ class TimeSeries:
         }
 
 
-def _dimensionless(params):
-    """(DimensionlessParams, Scales or None) from either kind of parameters."""
+def _bound_and_scales(params):
+    """(BoundModel, Scales or None) from either kind of parameters (or a bound model)."""
     if isinstance(params, PhysicalParams):
-        return params.to_dimensionless(), params.scales()
-    return params, None
+        return bind(params.to_dimensionless()), params.scales()
+    return bind(params), None
 
 
-def _frequencies(params, model, frequencies, dps, progress):
+def _frequencies(bound, frequencies, dps, progress):
     if frequencies is not None:
-        if getattr(frequencies, "params", params) != params:
-            raise ParameterError("frequencies", "frequencies were computed for other parameters")
-        if frequencies.model != model:
+        vehicle = bound.params.vehicle
+        if frequencies.model != vehicle:
             raise ParameterError(
-                "model", f"frequencies were computed for model {frequencies.model!r}, not {model!r}"
+                "model", f"frequencies were computed for model {frequencies.model!r}, not {vehicle!r}"
             )
+        if getattr(frequencies, "params", bound.params) != bound.params:
+            raise ParameterError("frequencies", "frequencies were computed for other parameters")
         result = frequencies
     else:
         from moving_bogie.roots.frequencies import induced_frequencies
 
-        result = induced_frequencies(params, model, dps=dps, progress=progress)
+        result = induced_frequencies(bound, dps=dps, progress=progress)
     if getattr(result, "decaying_outside", 0):
         # Decaying roots beyond the window would be missing from the residue sum of Eq. (35).
         raise MovingBogieError(
@@ -177,7 +178,6 @@ def closed_form_response(
     params,
     tau,
     *,
-    model: str | None = None,
     frequencies=None,
     branch_cut="auto",
     dps: int = 30,
@@ -190,14 +190,14 @@ def closed_form_response(
 
     Parameters
     ----------
-    params : DimensionlessParams or PhysicalParams
-        With physical parameters, ``tau`` is the time t in seconds and the results are in m and rad.
+    params : DimensionlessParams, BoundModel or PhysicalParams
+        The model comes with them (another vehicle: ``params.replace(vehicle=...)``). With physical
+        parameters, ``tau`` is the time t in seconds and the results are in m and rad.
     tau : array_like of float, >= 0
         Times (dimensionless tau = t sqrt(k_f/m), Eq. (16), unless physical parameters are given).
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
     frequencies : FrequencyResult, optional
-        Precomputed induced frequencies (same params and model); computed at ``dps`` if omitted.
+        Precomputed induced frequencies (same params, hence the same vehicle); computed at ``dps`` if
+        omitted.
     branch_cut : True, False or "auto"
         Include the branch-cut part I_bc (any beam: the Euler-Bernoulli half-line by
         :class:`~moving_bogie.response.branch_cut.BranchCut`, any other cut by
@@ -226,8 +226,7 @@ def closed_form_response(
         ``branch_cut=True`` when the cut passes through q = 0 (an undamped track above the critical
         velocity, an undamped layered track) or stays bounded (a layered track at alpha = 0).
     """
-    model = model or params.vehicle
-    dimless, scales = _dimensionless(params)
+    bound, scales = _bound_and_scales(params)
     tau = np.asarray(tau, dtype=float)
     if scales is not None:
         tau_in = tau
@@ -237,7 +236,7 @@ def closed_form_response(
     if np.any(tau < 0) or not np.all(np.isfinite(tau)):
         raise ParameterError("tau", "tau must be finite and >= 0")
     mode = branch_cut_mode(branch_cut)
-    bc, notes = branch_cut_or_note(dimless, model, mode)
+    bc, notes = branch_cut_or_note(bound, mode)
 
     def report(fraction):
         if progress is not None:
@@ -246,10 +245,10 @@ def closed_form_response(
     def staged(x):
         report(0.8 * x)
 
-    result = _frequencies(dimless, model, frequencies, dps, staged if progress else None)
+    result = _frequencies(bound, frequencies, dps, staged if progress else None)
     report(0.8)
-    expansion = residue_expansion(dimless, result, model, shapes=False)
-    notes += _far_sequence_note(dimless, result)
+    expansion = residue_expansion(bound, result, shapes=False)
+    notes += _far_sequence_note(bound.params, result)
     report(0.85)
     series = expansion.totals(tau)
     until = 0.0
@@ -285,7 +284,7 @@ def closed_form_response(
         u_steady=steady.get("u", math.nan),
         theta_steady=steady.get("theta", math.nan),
     )
-    units_of = vehicle_module(model, dimless).UNITS
+    units_of = bound.vehicle.UNITS
     responses = {name: series[name] for name in expansion.names}
     steady_parts = {name: steady[name] for name in expansion.names}
     if scales is not None:
@@ -307,7 +306,7 @@ def closed_form_response(
         response_units=response_units,
         branch_cut=bool(until > 0),
         frequencies=result,
-        model=model,
+        model=bound.params.vehicle,
         branch_cut_until=until,
         units=units,
         notes=tuple(notes),
@@ -329,7 +328,7 @@ def deflection_shape(params, xi, tau: float, **options) -> np.ndarray:
     """Beam deflection w(xi, tau) at one time for an array of xi, Eqs. (44)-(47) plus the branch cut.
 
     xi is the moving coordinate (0 at the rear wheel, d at the front one). With physical parameters
-    xi is in metres, tau in seconds and the result in metres. Keywords: ``model``, ``frequencies``,
+    xi is in metres, tau in seconds and the result in metres. Keywords: ``frequencies``,
     ``branch_cut``, ``dps``, ``bc_tol``, ``bc_tau_cap``, ``quad_tol`` as in :func:`closed_form_response`
     (``auto`` applies the same rule at this single time), and ``expansion`` (a precomputed
     :class:`ResidueExpansion` with shapes). :func:`deflection_shape_details` also says whether I_bc was
@@ -343,7 +342,6 @@ def deflection_shape_details(
     xi,
     tau: float,
     *,
-    model: str | None = None,
     frequencies=None,
     branch_cut="auto",
     dps: int = 30,
@@ -353,8 +351,7 @@ def deflection_shape_details(
     expansion: ResidueExpansion | None = None,
 ) -> tuple[np.ndarray, bool, tuple]:
     """(w, branch_cut, notes): :func:`deflection_shape`, whether I_bc was included, and why not."""
-    model = model or params.vehicle
-    dimless, scales = _dimensionless(params)
+    bound, scales = _bound_and_scales(params)
     xi = np.asarray(xi, dtype=float)
     tau = float(tau)
     if scales is not None:
@@ -363,16 +360,16 @@ def deflection_shape_details(
     if not (math.isfinite(tau) and tau >= 0):
         raise ParameterError("tau", "tau must be finite and >= 0")
     mode = branch_cut_mode(branch_cut)
-    bc, notes = branch_cut_or_note(dimless, model, mode)
-    result = _frequencies(dimless, model, frequencies, dps, None)
+    bc, notes = branch_cut_or_note(bound, mode)
+    result = _frequencies(bound, frequencies, dps, None)
     if expansion is None:
-        expansion = residue_expansion(dimless, result, model, shapes=True)
+        expansion = residue_expansion(bound, result, shapes=True)
     flat = xi.reshape(-1)
-    grid0 = KernelGrid(dimless, 0, dps=result.dps)
+    grid0 = KernelGrid(bound, 0, dps=result.dps)
     # Eqs. (44)-(47) for n contacts: w(xi) = sum_j weight_j K(xi - xi_j).
     w = sum(a * grid0(flat - x) for a, x in zip(expansion.shape_steady, expansion.positions))
     for q, amplitudes in zip(expansion.q_mp, expansion.shape_amplitudes):
-        grid = KernelGrid(dimless, q, dps=result.dps)
+        grid = KernelGrid(bound, q, dps=result.dps)
         w = w + sum(a * grid(flat - x) for a, x in zip(amplitudes, expansion.positions)) * np.exp(
             1j * complex(q) * tau
         )

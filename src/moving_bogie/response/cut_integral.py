@@ -34,11 +34,10 @@ from __future__ import annotations
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.cut import CutTracer, trace_curves
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import resolve_foundation
-from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.cut_pieces import cut_pieces, roots_along
 from moving_bogie.response.quadrature import adapt_panels, by_bands, fourier_sum, subdivide
@@ -60,17 +59,19 @@ _CHUNK = 20000
 _REAL_TOL = 1e-12
 
 
-def branch_cut_for(params, model: str | None = None, *, foundation=None):
-    """The branch-cut integral of ``params``: :class:`BranchCut` for the Euler-Bernoulli beam below the
-    critical velocity (its cut is a half-line, integrated in closed geometry), :class:`CurveBranchCut` for
-    any other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut
-    passes through q = 0, e.g. eta_f = 0)."""
-    if foundation is None and (params.beam, params.track) == ("eb", "one-layer"):
+def branch_cut_for(params, *, foundation=None):
+    """The branch-cut integral of ``params``: :class:`BranchCut` where the derivation says the cut of K is a
+    half-line (``cut_line_radicand`` of the generated track, the paper's Euler-Bernoulli beam) and the
+    velocity is below the critical one (integrated in closed geometry), :class:`CurveBranchCut` for any
+    other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut passes
+    through q = 0, e.g. eta_f = 0)."""
+    params = bind(params)
+    if foundation is None:
         try:
-            return BranchCut(params, model)
+            return BranchCut(params)
         except BranchCutUnavailable:
             pass  # above the critical velocity: the traced cut crosses Re q = 0 above q = 0 when damped
-    return CurveBranchCut(params, model, foundation=foundation)
+    return CurveBranchCut(params, foundation=foundation)
 
 
 class CurveBranchCut:
@@ -87,19 +88,15 @@ class CurveBranchCut:
         an undamped layered track), or a curve stays bounded in Re q > 0 (a layered track at alpha = 0).
     """
 
-    def __init__(self, params, model: str | None = None, *, foundation=None, panel_tol: float = 1e-13):
-        self.params, self.model = params, model
+    def __init__(self, params, *, foundation=None, panel_tol: float = 1e-13):
+        bound = bind(params)
+        self.params = params = bound.params
         track = resolve_foundation(params, foundation)
         self.module = track.module
         self.fargs = track.float_arguments(params)
         self.tracer = CutTracer(self.module, self.fargs)
-        f = params.as_float()
-        module = vehicle_module(model, params)
-        self.system = VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
-        self.offsets = np.array([float(x) for x in self.system.offsets])
-        self.positions = np.array([float(x) for x in self.system.positions])
-        self.span = float(self.positions.max())  # rear to front wheel (d for the bogie)
-        self.names = tuple(module.DOFS)
+        self.system, self.offsets, self.positions = bound.float_system, bound.offsets, bound.positions
+        self.span, self.names = bound.span, bound.names
         self.panel_tol = panel_tol
         P = 8.0
         while P < 1e4 and not np.all(np.abs(self.tracer.q_roots(np.array([-P, P])).real) > _REACH):

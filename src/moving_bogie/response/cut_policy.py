@@ -40,12 +40,12 @@ def branch_cut_mode(branch_cut) -> str:
     raise ParameterError("branch_cut", f"branch_cut must be True, False or 'auto' (got {branch_cut!r})")
 
 
-def branch_cut_or_note(params, model, mode):
+def branch_cut_or_note(params, mode):
     """(BranchCut or None, notes); raises for an unavailable branch cut only when it was forced on."""
     if mode == "off":
         return None, []
     try:
-        return branch_cut_for(params, model), []
+        return branch_cut_for(params), []
     except BranchCutUnavailable as exc:
         if mode == "on":
             raise

@@ -21,6 +21,7 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic
 
 __all__ = ["IncompleteFrequencies", "ResidueExpansion", "both_members", "residue_expansion"]
@@ -143,9 +144,7 @@ class ResidueExpansion:
         return {name: self.steady[name] + v for name, v in self.harmonics(tau).items()}
 
 
-def residue_expansion(
-    params, frequencies, model: str | None = None, *, shapes: bool = True
-) -> ResidueExpansion:
+def residue_expansion(params, frequencies, *, shapes: bool = True) -> ResidueExpansion:
     """Residue coefficients for the steady and unsteady harmonic parts, Eqs. (36)-(47).
 
     Every coefficient is evaluated at the precision of ``frequencies.dps`` with dE_chr/dq from
@@ -153,11 +152,9 @@ def residue_expansion(
 
     Parameters
     ----------
-    params : DimensionlessParams
+    params : DimensionlessParams or BoundModel
     frequencies : FrequencyResult
-        From :func:`moving_bogie.roots.frequencies.induced_frequencies` for the same params and model.
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
+        From :func:`moving_bogie.roots.frequencies.induced_frequencies` for the same params (and vehicle).
     shapes : bool
         Also compute the shape weights of Eqs. (44)-(47) (needed by :func:`deflection_shape`).
 
@@ -166,11 +163,12 @@ def residue_expansion(
     IncompleteFrequencies, MovingBogieError
         Frequencies incomplete, a multiple root, or E_chr(0) = 0 (no steady state).
     """
-    model = model or params.vehicle
-    if frequencies.model != model:
-        raise MovingBogieError(f"frequencies were computed for model {frequencies.model!r}, not {model!r}")
+    bound = bind(params)
+    vehicle = bound.params.vehicle
+    if frequencies.model != vehicle:
+        raise MovingBogieError(f"frequencies were computed for model {frequencies.model!r}, not {vehicle!r}")
     qs = both_members(frequencies)
-    chr_ = Characteristic(params, model)
+    chr_ = Characteristic(bound)
     names = chr_.names
     with mpmath.workdps(frequencies.dps):
         zero = mpmath.mpc(0)

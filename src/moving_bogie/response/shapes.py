@@ -36,9 +36,9 @@ class KernelGrid:
     """
 
     def __init__(self, params, q, *, dps: int = 30, coalescence: float = 1e-3, foundation=None):
-        self.params = params
         self.dps = dps
         self.kernel = TrackKernel(params, foundation=foundation)
+        self.params = self.kernel.params
         with mpmath.workdps(dps):
             self.q = mpmath.mpc(q)
             args = self.kernel.arguments()

@@ -34,8 +34,8 @@ from functools import reduce
 from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.characteristic import vehicle_module
-from moving_bogie.kernels.track import foundation_arguments, foundation_module
+from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.roots.ball_block import BlockBalls
 
 
@@ -141,8 +141,6 @@ class BallCharacteristic:
     Parameters
     ----------
     params : DimensionlessParams
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
     prec : int
         Working precision in bits; every call runs at it (the p-roots are approximated to it too).
     below : bool
@@ -155,14 +153,15 @@ class BallCharacteristic:
         it too: the continuation, not the values from above), away from the branch points.
     """
 
-    def __init__(self, params, model: str | None = None, *, prec: int = 128, below: bool = False):
+    def __init__(self, params, *, prec: int = 128, below: bool = False):
+        bound = bind(params)
+        params = bound.params
         self.below = below
         self.params = params
-        self.model = model or params.vehicle
         self.prec = prec
         self.tol = 2.0 ** (8 - prec)
-        self.foundation = foundation_module(params)
-        self.vehicle = vehicle_module(model, params)
+        self.foundation = bound.foundation
+        self.vehicle = bound.vehicle
         self.blocks = None
         self.evaluations = 0
         with ctx.workprec(prec):

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 import mpmath
 from flint import acb, arb, ctx
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.roots.balls import BallCharacteristic, Undecided, square_ball
 from moving_bogie.roots.contour import Rectangle
@@ -206,9 +207,9 @@ def refine(bc: BallCharacteristic, q, steps: int = 3):
 def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 200, count_prec: int = 96):
     """The :class:`Certificate` of a FrequencyResult (roots, proven count, verdict)."""
     start = time.perf_counter()
-    params, model, window = result.params, result.model, result.window
+    params, window = bind(result.params), result.window
     problems = []
-    precise = BallCharacteristic(params, model, prec=prec)
+    precise = BallCharacteristic(params, prec=prec)
     centres = [refine(precise, r.q) for r in result.roots]
     roots = tuple(krawczyk(precise, q, radius) for q in centres)
     mirrors = []
@@ -220,7 +221,7 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
     for e in roots + mirrors:
         if not e.certified:
             problems.append(f"root {mpmath.nstr(e.q, 12)}: not proven ({e.reason})")
-    counter = BallCharacteristic(params, model, prec=count_prec)
+    counter = BallCharacteristic(params, prec=count_prec)
     cut = cut_locus(params, window.x0, window.x1)
     margin = _margin_clear_of_roots(margin, cut, result.roots)
     tiles, unsearched, used_margin = (), (), margin
@@ -241,7 +242,7 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
         problems.append(
             f"count: proven {count} root(s) in the tiles, the numerical search counts {result.count}"
         )
-    below = _strip_from_below(params, model, cut, unsearched, count_prec) if tiles else None
+    below = _strip_from_below(params, cut, unsearched, count_prec) if tiles else None
     verdict, reason = _verdict(roots + mirrors, all_proven, unsearched, problems, below)
     return Certificate(
         roots, mirrors, tiles, tuple(unsearched), count, all_proven, verdict, reason,
@@ -272,7 +273,7 @@ class StripProof:
         }
 
 
-def _strip_from_below(params, model, cut, unsearched, prec) -> StripProof | None:
+def _strip_from_below(params, cut, unsearched, prec) -> StripProof | None:
     """Prove the root count in the unsearched strip below a cut that lies on the real axis (None when the
     strip does not reach below the axis or the cut is not on it)."""
     low = [u for u in unsearched if u.y0 < 0]
@@ -283,7 +284,7 @@ def _strip_from_below(params, model, cut, unsearched, prec) -> StripProof | None
     for u in low:
         rects += pieces_below_axis(Rectangle(u.x0, u.x1, u.y0, 0.0), [x for x in points if u.x0 < x < u.x1])
     notches = tuple(x for x in points if any(r.x0 <= x + NOTCH and x - NOTCH <= r.x1 for r in rects))
-    bc = BallCharacteristic(params, model, prec=prec, below=True)
+    bc = BallCharacteristic(params, prec=prec, below=True)
     try:
         count = sum(proven_count(bc, r, min_length=1e-14).count for r in rects)
     except NotProven as exc:

@@ -65,8 +65,8 @@ def damping_limit(result) -> DampingLimit | None:
     real = tuple(r for r in result.roots if r.marginal)
     if not real:
         return None
-    undamped = Characteristic(params, result.model)
-    probe = Characteristic(params.replace(eta_f=PROBE), result.model)
+    undamped = Characteristic(params)
+    probe = Characteristic(params.replace(eta_f=PROBE))
     slopes = []
     with mpmath.workdps(max(30, result.dps)):
         for r in real:

@@ -28,8 +28,8 @@ from fractions import Fraction
 
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
-from moving_bogie.kernels.track import foundation_module
 
 #: rho must stay below this on every sample (1 would be enough for no root; 1/2 leaves a margin of 2).
 MARGIN = 0.5
@@ -54,9 +54,11 @@ class FarField:
 
 
 def kernel_decay(params) -> Fraction | None:
-    """gamma of K = O(|q|^-gamma) for the parameters' track (``KERNEL_DECAY`` of its generated module)."""
-    value = getattr(foundation_module(params), "KERNEL_DECAY", None)
-    return None if value is None else Fraction(value)
+    """gamma of K = O(|q|^-gamma) for the parameters' track (``KERNEL_DECAY`` of its generated module).
+
+    The module is that of the parameters' own catalogue (``BoundModel.kernel_decay``).
+    """
+    return bind(params).kernel_decay
 
 
 def leading_gap(gamma: Fraction) -> Fraction:
@@ -101,9 +103,9 @@ def sample_points(
     return np.concatenate(circles + [r + below, -r + below, inner])
 
 
-def rho(params, model: str | None, q) -> np.ndarray:
+def rho(params, q) -> np.ndarray:
     """|E_chr - E_lead| / |E_lead| at the points ``q`` (double precision)."""
-    E = CharacteristicArray(params, model)
+    E = CharacteristicArray(params)
     q = np.asarray(q, dtype=complex)
     kv = E.kernel_values(q)
     with np.errstate(all="ignore"):
@@ -113,17 +115,16 @@ def rho(params, model: str | None, q) -> np.ndarray:
     return np.where(np.isfinite(out), out, np.inf)
 
 
-def far_field_radius(params, model: str | None, start: float) -> FarField:
+def far_field_radius(params, start: float) -> FarField:
     """Smallest R = start 2^k (k <= MAX_DOUBLINGS) with rho <= MARGIN on every sample beyond R.
 
     Parameters
     ----------
-    params : DimensionlessParams
-    model : str, optional
-        The vehicle (default: the parameters' own).
+    params : DimensionlessParams or BoundModel
     start : float
         First radius tried (the default window's scale).
     """
+    params = bind(params)
     radius = float(start)
     worst = np.inf
     gamma = kernel_decay(params)
@@ -138,7 +139,7 @@ def far_field_radius(params, model: str | None, start: float) -> FarField:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         for _ in range(MAX_DOUBLINGS + 1):
-            values = rho(params, model, sample_points(radius))
+            values = rho(params, sample_points(radius))
             worst = float(np.max(values))
             if worst <= MARGIN:
                 return FarField(radius, worst, float(start))

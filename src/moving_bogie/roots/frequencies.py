@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import mpmath
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at
 from moving_bogie.roots.contour import Rectangle
@@ -89,8 +90,8 @@ class InducedFrequency:
 class FrequencyResult:
     """All induced frequencies in a window, the argument-principle count and the verdict."""
 
-    params: object
-    model: str
+    params: object  # DimensionlessParams (bind() gives its bound model)
+    model: str  # the vehicle's name, for output only
     dps: int
     window: Rectangle
     roots: tuple
@@ -168,7 +169,6 @@ class FrequencyResult:
 
 def induced_frequencies(
     params,
-    model: str | None = None,
     *,
     dps: int = 30,
     extra_dps: int | None = None,
@@ -185,9 +185,9 @@ def induced_frequencies(
 
     Parameters
     ----------
-    params : DimensionlessParams
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
+    params : DimensionlessParams or BoundModel
+        The parameters and, through their model, the vehicle and the track
+        (:func:`~moving_bogie.kernels.bound.bind`; another vehicle: ``params.replace(vehicle=...)``).
     dps : int
         Working precision (decimal digits) of the polished roots.
     extra_dps : int, optional
@@ -212,15 +212,16 @@ def induced_frequencies(
         The track model (default that of the parameters' model, see
         :func:`moving_bogie.kernels.track.resolve_foundation`).
     """
-    model = model or params.vehicle
+    bound = bind(params)
+    params = bound.params
     if extra_dps is None:
         extra_dps = max(10, dps // 2)
     if window is None:
-        window, far = far_field_window(params, model)
+        window, far = far_field_window(bound)
     else:
-        far = far_field_radius(params, model, default_window(params, model).x1)
-    fast = CharacteristicArray(params, model, foundation=foundation)
-    precise = Characteristic(params, model, foundation=foundation)
+        far = far_field_radius(bound, default_window(bound).x1)
+    fast = CharacteristicArray(bound, foundation=foundation)
+    precise = Characteristic(bound, foundation=foundation)
     warnings = []
 
     def report(x):
@@ -301,7 +302,7 @@ def induced_frequencies(
         )
     result = FrequencyResult(
         params,
-        model,
+        params.vehicle,
         dps,
         window,
         tuple(roots),
@@ -311,8 +312,7 @@ def induced_frequencies(
         tuple(warnings),
         far,
         strip=strip_below_cut(
-            params,
-            model,
+            bound,
             window,
             [u for u in tiling.unsearched if not getattr(u, "reason", "")],
             foundation=foundation,

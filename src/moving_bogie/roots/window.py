@@ -8,15 +8,14 @@ root.
 
 from __future__ import annotations
 
-from moving_bogie.kernels.characteristic import vehicle_module
-from moving_bogie.kernels.vehicle import VehicleSystem
+from moving_bogie.kernels.bound import bind
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.far_field import FarField, far_field_radius
 
 __all__ = ["default_window", "far_field_window"]
 
 
-def default_window(params, model: str | None = None) -> Rectangle:
+def default_window(params) -> Rectangle:
     """Default search window: 0 <= Re q <= X, -X <= Im q <= X + eta_f.
 
     X = max(3, 3 f) where f is the largest natural-frequency estimate of the model: the beam on its
@@ -29,15 +28,14 @@ def default_window(params, model: str | None = None) -> Rectangle:
     The left edge sits slightly left of Re q = 0 so that a purely imaginary root is inside, not on it.
     :func:`induced_frequencies` widens it to the far-field radius R (:func:`far_field_window`).
     """
-    f = params.as_float()
-    module = vehicle_module(model, params)
-    system = VehicleSystem(module, {name: getattr(f, name) for name in module.MATRIX_ARGUMENTS})
-    scale = [1.0, *system.natural_frequencies()]
+    bound = bind(params)
+    f = bound.floats
+    scale = [1.0, *bound.float_system.natural_frequencies()]
     X = max(3.0, 3.0 * max(scale))
     return Rectangle(-1e-3 * X, X, -X, X + f.eta_f)
 
 
-def far_field_window(params, model: str | None = None) -> tuple[Rectangle, FarField]:
+def far_field_window(params) -> tuple[Rectangle, FarField]:
     """The window searched by default and the far-field check that justifies it.
 
     With S = max(X, R), X the scale of :func:`default_window` and R the radius beyond which E_chr has no root
@@ -45,9 +43,10 @@ def far_field_window(params, model: str | None = None) -> tuple[Rectangle, FarFi
     -S <= Im q <= S + eta_f. The lower half contains every root with Im q < 0; the upper half (roots that
     decay) is a stated choice, checked against a window twice as large.
     """
-    base = default_window(params, model)
-    far = far_field_radius(params, model, base.x1)
+    params = bind(params)
+    base = default_window(params)
+    far = far_field_radius(params, base.x1)
     if far.radius is None:
         return base, far
     S = max(base.x1, far.radius)
-    return Rectangle(-1e-3 * S, S, -S, S + float(params.eta_f)), far
+    return Rectangle(-1e-3 * S, S, -S, S + float(params.params.eta_f)), far

@@ -58,7 +58,7 @@ def exact(x) -> Fraction:
     return Fraction(str(float(x)))
 
 
-def column_window(params, model: str, parameter: str, thetas) -> tuple[float, float, float]:
+def column_window(params, parameter: str, thetas) -> tuple[float, float, float]:
     """(X, Y) covering :func:`~moving_bogie.roots.window.default_window` (the scale of the induced
     frequencies) at the smallest and at the largest theta of the column, and the smaller of the two X (the
     part of the real axis every cell's window holds).
@@ -68,7 +68,7 @@ def column_window(params, model: str, parameter: str, thetas) -> tuple[float, fl
     between the two would be missed here; the full counts of the per-chunk check of a sweep would see it.
     """
     windows = [
-        default_window(params.replace(**{parameter: exact(theta)}), model)
+        default_window(params.replace(**{parameter: exact(theta)}))
         for theta in (float(np.min(thetas)), float(np.max(thetas)))
     ]
     return max(w.x1 for w in windows), max(-w.y0 for w in windows), min(w.x1 for w in windows)
@@ -127,7 +127,7 @@ def stability_column(
     t = thetas / scale
     fine_until = None
     if window is None:
-        *window, fine_until = column_window(sweep.params, sweep.model, sweep.parameter, thetas)
+        *window, fine_until = column_window(sweep.params, sweep.parameter, thetas)
     X, Y = window
     if extra is None and top < 0:
         extra = branch_samples(branch_points(sweep.params, alpha))
@@ -188,7 +188,7 @@ def stability_column(
 
 
 def settle_cells(
-    params, model: str, parameter: str, column: ColumnResult, *, alpha=None, thetas=None, dps: int = 15
+    params, parameter: str, column: ColumnResult, *, alpha=None, thetas=None, dps: int = 15
 ) -> ColumnResult:
     """Settle the ``uncertain`` cells of ``column`` by a full count at each (induced_frequencies).
 
@@ -208,7 +208,7 @@ def settle_cells(
     for j in cells:
         theta = exact(column.thetas[j]) if thetas is None else thetas[j]
         try:
-            res = induced_frequencies(base.replace(**{parameter: theta}), model, dps=dps)
+            res = induced_frequencies(base.replace(**{parameter: theta}), dps=dps)
         except MovingBogieError:
             continue
         unstable = [complex(r.q) for r in res.unstable_roots]

@@ -149,14 +149,13 @@ def critical_stiffness(
     alphas = np.asarray(alphas, dtype=float)
     if regime(params.eta_f) != "damped":
         return _undamped(params, alphas, kappa_max, check_points, tol, progress)
-    sweep = SweepCharacteristic(params, params.vehicle, "kappa_v")
+    sweep = SweepCharacteristic(params, "kappa_v")
     kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
     intervals, critical, warnings = [], [], []
     mismatches = 0
     for k, a in enumerate(alphas):
         dd = d_decomposition(
             params.replace(alpha=Fraction(str(a))),
-            params.vehicle,
             a,
             parameter="kappa_v",
             theta_max=kappa_max,
@@ -205,7 +204,7 @@ def _critical(ivs):
 def _undamped(params, alphas, kappa_max, check_points, tol, progress) -> CriticalStiffness:
     """Counts on a kappa_v grid and bisection (:mod:`undamped`), exact at eta_f = 0 and in the limit."""
     margin = 100 * float(params.eta_f)
-    counter = UndampedCounter(params, params.vehicle, "kappa_v", margin=margin)
+    counter = UndampedCounter(params, "kappa_v", margin=margin)
     unsure = {}
     grid = parameter_grid(kappa_max, check_points)
     kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"

@@ -10,7 +10,9 @@ phase speed. The resonance velocity is where the load's line Omega = alpha p is 
 N = dN/dp = 0.
 
 On the paper's one-layer track there is one branch and its minimum is Eq. (65) (Euler-Bernoulli with a
-Pasternak layer, alpha_cr = sqrt(1 + eta_s) at p^2 = 2) or Eq. (66) (Timoshenko-Rayleigh). On a layered
+Pasternak layer, alpha_cr = sqrt(1 + eta_s) at p^2 = 2) or Eq. (66) (Timoshenko-Rayleigh); those closed
+forms are the paper's formulas for its two beams and live in ``paper/critical_velocity_formulas.py``, which
+a caller passes as ``formula`` to compare with. On a layered
 track (docs/layered_tracks.md) the lowest branch is bounded (the mass layer's own vibration) unless a
 shear layer stiffens it, so c_1(p) -> 0 as p grows: the global infimum of the phase speed is 0 and is no
 critical velocity. The critical velocity is the smallest local minimum over all branches; every local
@@ -28,7 +30,8 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
-from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, get_model
+from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.model.catalogue import Model, get_model
 from moving_bogie.model.exact import fraction_to_mpf, nonnegative, positive
 
 __all__ = [
@@ -36,34 +39,8 @@ __all__ = [
     "PhaseSpeedMinimum",
     "critical_velocity",
     "dispersion_branches",
-    "formula_eb",
-    "formula_tr",
     "phase_speed",
 ]
-
-
-def formula_eb(eta_s=0):
-    """Eq. (65): alpha_cr = sqrt(1 + eta_s) (alpha_ref = 1)."""
-    return mpmath.sqrt(1 + mpmath.mpf(eta_s))
-
-
-def formula_tr(S, r):
-    """Eq. (66) as printed: sqrt(r^2 - S - 8 r^2 S^2 + 4 S^(3/2) sqrt(4 r^4 S - r^2 + S)) / (2 (S - r^2))."""
-    S, r = mpmath.mpf(S), mpmath.mpf(r)
-    r2 = r * r
-    inner = mpmath.sqrt(4 * r2 * r2 * S - r2 + S)
-    return mpmath.sqrt(r2 - S - 8 * r2 * S * S + 4 * S**1.5 * inner) / (2 * (S - r2))
-
-
-#: The paper's closed forms (beam, track) -> (equation, function of the track's groups). Comparisons only:
-#: the critical velocity itself is computed from the generated N(p, q) of any model.
-PAPER_FORMULAS = {
-    ("eb", DEFAULT_MODEL["track"]): ("Eq. (65)", lambda g: formula_eb(g["eta_s"])),
-    ("tr", DEFAULT_MODEL["track"]): (
-        "Eq. (66)",
-        lambda g: formula_tr(g["S"], g["r"]) if g["eta_s"] == 0 else None,
-    ),
-}
 
 
 @dataclass(frozen=True)
@@ -114,7 +91,8 @@ class CriticalVelocity:
         approached as p grows and not attained (0 for a bounded branch, the shear wave speed of the
         lowest layer with a Pasternak layer); None when it does not.
     formula, formula_name
-        The paper's closed form where there is one (Eqs. (65)-(66)), else None.
+        A closed form to compare with, where the caller gave one for this track (the paper's Eqs.
+        (65)-(66), ``paper/critical_velocity_formulas.py``), else None.
     """
 
     model: str
@@ -176,16 +154,18 @@ class CriticalVelocity:
 
 
 def _track(source, groups) -> tuple[Model, dict]:
-    """The model and the values of its foundation's groups (a beam name, a Model or a params object)."""
-    if isinstance(source, str):
-        model = get_model(beam=source)
+    """The model and the values of its foundation's groups (None: the paper's, a Model, or parameters)."""
+    if isinstance(source, BoundModel):
+        source = source.params
+    if source is None:
+        model = get_model()
     elif isinstance(source, Model):
         model = source
     elif hasattr(source, "model") and hasattr(source, "values"):
         model = source.model
         groups = {**source.values(), **{k: v for k, v in groups.items() if v is not None}}
     else:
-        raise ParameterError("model", f"expected a beam name, a Model or parameters (got {source!r})")
+        raise ParameterError("model", f"expected a Model or parameters (got {source!r})")
     module = model.foundation
     damping = set(getattr(module, "DAMPING", ()))
     specs = model.catalogue.specs
@@ -214,11 +194,11 @@ def _arguments(module, values, convert):
     return out
 
 
-def dispersion_branches(source="eb", p=None, **groups):
+def dispersion_branches(source=None, p=None, **groups):
     """Frequencies Omega_j(p) >= 0 of free waves on the undamped track at rest, ascending, shape (n, J).
 
-    They are the roots in q of N(p, q) at alpha = 0 (they come in pairs +-Omega). ``source`` is a beam
-    name (the one-layer track), a :class:`Model` or a parameters object; ``groups`` the track's groups.
+    They are the roots in q of N(p, q) at alpha = 0 (they come in pairs +-Omega). ``source`` is a
+    :class:`Model`, parameters or a bound model (None: the paper's model); ``groups`` the track's groups.
     """
     model, values = _track(source, groups)
     module = model.foundation
@@ -234,7 +214,7 @@ def dispersion_branches(source="eb", p=None, **groups):
     return np.array([np.pad(o, (0, width - len(o)), constant_values=np.nan) for o in out])
 
 
-def phase_speed(source="eb", p=None, *, alpha_max: float = np.inf, **groups):
+def phase_speed(source=None, p=None, *, alpha_max: float = np.inf, **groups):
     """Phase speed c(p) of the lowest branch that has a real phase speed, vectorised in p.
 
     The smallest alpha > 0 with N(p, 0; alpha) = 0, i.e. min_j Omega_j(p)/p; inf where none is at most
@@ -279,7 +259,7 @@ def _confirmed_digits(lo, hi, dps):
 
 
 def critical_velocity(
-    source="eb",
+    source=None,
     *,
     eta_s=None,
     S=None,
@@ -288,14 +268,15 @@ def critical_velocity(
     dps: int = 30,
     p_max: float = 20.0,
     samples: int = 4001,
+    formula=None,
 ) -> CriticalVelocity:
     """Critical velocity of a constant moving force on any track: Eqs. (65)-(66) generalised.
 
     Parameters
     ----------
-    source : str, Model or DimensionlessParams
-        A beam name (``"eb"``, ``"tr"``: the paper's one-layer track), a model, or parameters whose model
-        and track groups are used (vehicle groups are ignored).
+    source : Model, DimensionlessParams or BoundModel, optional
+        A model (``get_model(beam=...)``), or parameters whose model and track groups are used (vehicle
+        groups are ignored); default the paper's model.
     eta_s, S, r : number, optional
         Groups of the paper's tracks, by keyword (override those of `source`).
     groups : dict, optional
@@ -304,6 +285,9 @@ def critical_velocity(
         Working precision of the polished minima; digits are confirmed at ``dps + 15``.
     p_max, samples : float, int
         Grid of wavenumbers 0 < p <= p_max on which the local minima of each c_j(p) are bracketed.
+    formula : callable, optional
+        ``formula(model, groups)`` -> ``(name, alpha_cr)`` or None: a closed form to compare with (groups
+        as mpf at ``dps``), e.g. :func:`moving_bogie.paper.critical_velocity_formulas.paper_formula`.
 
     Raises
     ------
@@ -338,12 +322,11 @@ def critical_velocity(
     best = found[0]
     lowest = speeds[:, 0]
     unattained = float(lowest[-1]) if lowest[-1] < lowest[-2] else None
-    formula = name = None
-    paper = PAPER_FORMULAS.get((model.beam, model.track))
-    if paper is not None:
+    closed = None
+    if formula is not None:
         with mpmath.workdps(dps):
-            formula = paper[1]({k: fraction_to_mpf(v) for k, v in values.items()})
-        name = paper[0] if formula is not None else None
+            closed = formula(model, {k: fraction_to_mpf(v) for k, v in values.items()})
+    name, formula = closed if closed is not None else (None, None)
     return CriticalVelocity(
         model=f"{model.beam}/{model.track}",
         groups={k: float(v) for k, v in values.items()},

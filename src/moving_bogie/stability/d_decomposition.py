@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
 
 __all__ = ["DCrossing", "DDecomposition", "d_decomposition"]
@@ -69,7 +70,6 @@ class DDecomposition:
 
 def d_decomposition(
     params,
-    model: str | None = None,
     alpha: float | None = None,
     *,
     parameter: str = "eta_M",
@@ -82,10 +82,8 @@ def d_decomposition(
 
     Parameters
     ----------
-    params : DimensionlessParams
+    params : DimensionlessParams or BoundModel
         Requires eta_f > 0 (the real q-axis must lie below the cut of K).
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
     alpha : float, optional
     parameter : {"eta_M", "kappa_v", "eta_v"}
     theta_max : float
@@ -95,7 +93,8 @@ def d_decomposition(
     tol : float
         Newton tolerance of the refined crossings.
     """
-    model = model or params.vehicle
+    bound = bind(params)
+    params = bound.params
     if params.eta_f <= 0:
         raise ParameterError(
             "eta_f",
@@ -103,7 +102,7 @@ def d_decomposition(
             "locates the boundaries of an undamped foundation by counts)",
         )
     alpha = float(params.alpha if alpha is None else alpha)
-    sweep = SweepCharacteristic(params, model, parameter)
+    sweep = SweepCharacteristic(bound, parameter)
     qs = np.linspace(q_max / samples, q_max, samples)
     K, _, _ = sweep.kernel(qs, alpha)
     roots = poly_roots(sweep.coefficients(qs, K, scale=theta_max)) * theta_max

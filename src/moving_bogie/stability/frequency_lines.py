@@ -23,6 +23,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.roots.frequencies import induced_frequencies
 
@@ -75,7 +76,6 @@ class FrequencyLines:
 
 def frequency_lines(
     params,
-    model: str | None = None,
     *,
     alpha_range: tuple[float, float] = (0.0, 1.2),
     checkpoints: int = 13,
@@ -88,10 +88,8 @@ def frequency_lines(
 
     Parameters
     ----------
-    params : DimensionlessParams
-        Everything except alpha.
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
+    params : DimensionlessParams or BoundModel
+        Everything except alpha (the vehicle: that of their model).
     alpha_range : (float, float)
     checkpoints : int
         Number of alphas (evenly spaced, ends included) where all roots are found afresh by
@@ -105,15 +103,16 @@ def frequency_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
-    model = model or params.vehicle
+    bound = bind(params)
+    params = bound.params
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
-    sweep = SweepCharacteristic(params, model)
+    sweep = SweepCharacteristic(bound)
     tracker = _Tracker(sweep, h_max)
     alphas = np.round(np.linspace(a0, a1, max(2, checkpoints)), 12)
     found = []
     warnings = []
     for k, a in enumerate(alphas):
-        res = induced_frequencies(params.replace(alpha=Fraction(str(float(a)))), model, dps=dps)
+        res = induced_frequencies(params.replace(alpha=Fraction(str(float(a)))), dps=dps)
         if not res.count_ok:
             warnings.append(f"alpha={a:g}: induced_frequencies count check failed: {'; '.join(res.warnings)}")
         found.append([complex(r.q) for r in res.roots])
@@ -175,7 +174,7 @@ def frequency_lines(
             )
         )
     lines.sort(key=lambda ln: (ln.alpha[0], -ln.q[0].real))
-    return FrequencyLines(params, model, (a0, a1), tuple(lines), tuple(record), tuple(warnings))
+    return FrequencyLines(params, params.vehicle, (a0, a1), tuple(lines), tuple(record), tuple(warnings))
 
 
 class _Tracker:

@@ -49,6 +49,7 @@ from fractions import Fraction
 import contourpy
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
 from moving_bogie.stability.continuation import PathTracer, evaluate, gauss_newton
 from moving_bogie.stability.line_ends import find_folds, line_end
@@ -63,7 +64,6 @@ _ALPHA_STEP_FD = 1e-6
 
 def instability_lines(
     params,
-    model: str | None = None,
     *,
     spacings: Sequence[float] | None = None,
     parameter: str = "eta_M",
@@ -82,14 +82,12 @@ def instability_lines(
 
     Parameters
     ----------
-    params : DimensionlessParams
+    params : DimensionlessParams or BoundModel
         All parameters except alpha and ``parameter`` (their values in ``params`` are ignored); with
         ``parameter="eta_M"``, mu_v = cf1 eta_M and J_b = cf2 eta_M d^2 (Eq. (63)) use the cf1, cf2 of
         ``params``. With eta_f = 0 or 0 < eta_f < 1e-5 the lines degenerate and boundaries located by
         counts are returned instead (module text; ``alpha_step`` is then the step of the velocity grid,
         at least 0.02, and ``q_max``, ``q_step``, ``h_max``, ``tol``, ``verify`` are not used).
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
     spacings : sequence of float, optional
         Wheel spacings d to trace (default: ``params.d``); they share the track kernel of the scan.
     parameter : {"eta_M", "kappa_v", "eta_v"}
@@ -118,15 +116,14 @@ def instability_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
-    model = model or params.vehicle
+    bound = bind(params)
+    params = bound.params
     ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
     a0, a1 = (float(a) for a in alpha_range)
     if regime(params.eta_f) != "damped":
         step = max(alpha_step, 0.02)
-        return undamped_lines(
-            params, model, ds, parameter, (a0, a1), theta_max, alpha_step=step, progress=progress
-        )
-    sweep = SweepCharacteristic(params, model, parameter)
+        return undamped_lines(params, ds, parameter, (a0, a1), theta_max, alpha_step=step, progress=progress)
+    sweep = SweepCharacteristic(bound, parameter)
     cap = 8 * q_max if q_max_cap is None else q_max_cap
     grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
     while True:
@@ -138,11 +135,11 @@ def instability_lines(
     if reaches:
         warnings.insert(0, f"a line reaches q_max={q_max:g} (the cap); raise q_max_cap")
     if verify:
-        branches = [_verify(params, model, parameter, b) for b in branches]
+        branches = [_verify(params, parameter, b) for b in branches]
     _report(progress, 1.0)
     return InstabilityLines(
         params,
-        model,
+        params.vehicle,
         parameter,
         (a0, a1),
         float(theta_max),
@@ -185,7 +182,7 @@ def _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress):
     return branches, list(tracer.warnings)
 
 
-def _verify(params, model, parameter, branch) -> InstabilityBranch:
+def _verify(params, parameter, branch) -> InstabilityBranch:
     """Unstable counts by induced_frequencies just below and above the branch's middle point."""
     from dataclasses import replace
 
@@ -196,7 +193,7 @@ def _verify(params, model, parameter, branch) -> InstabilityBranch:
     base = params.replace(alpha=_exact(a), d=_exact(branch.d))
     counts = []
     for t in (theta * 0.98, theta * 1.02):
-        res = induced_frequencies(base.replace(**{parameter: _exact(t)}), model, dps=20)
+        res = induced_frequencies(base.replace(**{parameter: _exact(t)}), dps=20)
         counts.append(len(res.unstable_roots))
     return replace(
         branch, verified=(float(a), float(theta * 0.98), counts[0], float(theta * 1.02), counts[1])

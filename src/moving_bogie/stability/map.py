@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.column import ColumnResult, settle_cells, stability_column, top_edge
 
@@ -85,7 +86,7 @@ class StabilityMap:
         }
 
 
-def map_columns(params, model, parameter, alphas, thetas, options=None, settle=True) -> list[ColumnResult]:
+def map_columns(params, parameter, alphas, thetas, options=None, settle=True) -> list[ColumnResult]:
     """Columns at ``alphas`` (continuation from each column to the next), uncertain cells settled.
 
     ``alphas`` and ``thetas`` may be exact (Fractions): the columns run on their floats and the full
@@ -96,7 +97,7 @@ def map_columns(params, model, parameter, alphas, thetas, options=None, settle=T
     if "top" not in options:
         options["top"] = top_edge(params, floats)
     theta_floats = np.array([float(t) for t in thetas])
-    sweep = SweepCharacteristic(params, model, parameter)
+    sweep = SweepCharacteristic(params, parameter)
     out = []
     for a, a_float in zip(alphas, floats):
         guesses = out[-1].roots if out else None
@@ -104,7 +105,7 @@ def map_columns(params, model, parameter, alphas, thetas, options=None, settle=T
         if settle:
             exact_thetas = None if isinstance(thetas, np.ndarray) else list(thetas)
             exact_alpha = None if isinstance(a, float | np.floating) else a
-            col = settle_cells(params, model, parameter, col, alpha=exact_alpha, thetas=exact_thetas)
+            col = settle_cells(params, parameter, col, alpha=exact_alpha, thetas=exact_thetas)
         out.append(col)
     return out
 
@@ -115,7 +116,6 @@ def _column_task(args):
 
 def stability_map(
     params,
-    model: str | None = None,
     *,
     parameter: str = "eta_M",
     alphas: Sequence[float] | None = None,
@@ -130,10 +130,9 @@ def stability_map(
 
     Parameters
     ----------
-    params : DimensionlessParams
-        Everything but alpha and ``parameter`` (cf1, cf2 kept fixed when the parameter is eta_M).
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
+    params : DimensionlessParams or BoundModel
+        Everything but alpha and ``parameter`` (cf1, cf2 kept fixed when the parameter is eta_M); the
+        vehicle is that of their model.
     parameter : {"eta_M", "kappa_v", "eta_v"}
     alphas, thetas : sequence of float
         Grid (default 0..1.2 and 1..200 in 200 steps each, theta > 0).
@@ -148,13 +147,13 @@ def stability_map(
     **options
         Passed to :func:`~moving_bogie.stability.column.stability_column`.
     """
-    model = model or params.vehicle
+    params = bind(params).params
     alphas = np.asarray(np.linspace(0.0, 1.2, 200) if alphas is None else alphas, dtype=float)
     thetas = np.asarray(np.linspace(1.0, 200.0, 200) if thetas is None else thetas, dtype=float)
     if "top" not in options:
         options["top"] = top_edge(params, alphas)
     chunks = [alphas[i : i + chunk] for i in range(0, len(alphas), chunk)]
-    tasks = [(params, model, parameter, c, thetas, options, settle) for c in chunks]
+    tasks = [(params, parameter, c, thetas, options, settle) for c in chunks]
     workers = workers or min(len(chunks), os.cpu_count() or 1)
     columns = []
     if workers <= 1:
@@ -177,7 +176,7 @@ def stability_map(
 
     return StabilityMap(
         params,
-        model,
+        params.vehicle,
         parameter,
         alphas,
         thetas,

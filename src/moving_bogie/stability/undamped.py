@@ -40,6 +40,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.column import branch_points, branch_samples, exact, stability_column
@@ -146,10 +147,8 @@ class UndampedCounter:
 
     Parameters
     ----------
-    params : DimensionlessParams
-        Its eta_f is ignored (set to 0).
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
+    params : DimensionlessParams or BoundModel
+        Its eta_f is ignored (set to 0); the vehicle is that of its model.
     parameter : str
         The swept vehicle parameter (eta_M, kappa_v or eta_v).
     q_step : float
@@ -159,17 +158,14 @@ class UndampedCounter:
         near-undamped eta_f: such a root may lie on either side at that eta_f, e.g. next to a branch point).
     """
 
-    def __init__(
-        self, params, model: str | None = None, parameter: str = "eta_M", *, q_step: float = 0.002, margin=0.0
-    ):
+    def __init__(self, params, parameter: str = "eta_M", *, q_step: float = 0.002, margin=0.0):
         self.margin = float(margin)
-        self.params = params.replace(eta_f=0)
-        self.model = model or params.vehicle
+        self.params = bind(params).params.replace(eta_f=0)
         self.parameter = parameter
         self.q_step = float(q_step)
-        self.sweep = SweepCharacteristic(self.params, self.model, parameter, below=True)
+        self.sweep = SweepCharacteristic(self.params, parameter, below=True)
         probe = self.params.replace(eta_f=DAMPING_PROBE)
-        self.probe = SweepCharacteristic(probe, self.model, parameter)
+        self.probe = SweepCharacteristic(probe, parameter)
         self._cuts = {}
 
     def gap_end(self, alpha: float) -> float:

@@ -45,7 +45,6 @@ KIND_TEXT = {
 
 def undamped_branches(
     params,
-    model: str,
     ds: Sequence[float],
     parameter: str,
     alpha_range: tuple[float, float],
@@ -70,7 +69,7 @@ def undamped_branches(
     total = len(ds) * len(alphas)
     for j, d in enumerate(ds):
         margin = 100 * float(params.eta_f)
-        counter = UndampedCounter(params.replace(d=exact(d)), model, parameter, margin=margin)
+        counter = UndampedCounter(params.replace(d=exact(d)), parameter, margin=margin)
         points, unsure = [], {}
         for i, a in enumerate(alphas):
             bounds, _, unsure[float(a)] = boundaries(counter, float(a), grid, tol=tol * theta_max)
@@ -92,16 +91,14 @@ def undamped_branches(
     return branches, warnings, method
 
 
-def undamped_lines(params, model, ds, parameter, alpha_range, theta_max, **options):
+def undamped_lines(params, ds, parameter, alpha_range, theta_max, **options):
     """:class:`~moving_bogie.stability.line_results.InstabilityLines` of undamped boundaries (``q_max``
     None); ``options`` go to :func:`undamped_branches`."""
-    branches, warnings, method = undamped_branches(
-        params, model, ds, parameter, alpha_range, theta_max, **options
-    )
+    branches, warnings, method = undamped_branches(params, ds, parameter, alpha_range, theta_max, **options)
     a0, a1 = (float(a) for a in alpha_range)
     warnings = tuple(dict.fromkeys(warnings))
     return InstabilityLines(
-        params, model, parameter, (a0, a1), float(theta_max), tuple(branches), warnings, None, method
+        params, params.vehicle, parameter, (a0, a1), float(theta_max), tuple(branches), warnings, None, method
     )
 
 

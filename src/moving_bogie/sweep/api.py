@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.sweep.design import Axis, SweepSpec, parse_vary, sobol_axes, sweep_parameters
 from moving_bogie.sweep.engine import run_sweep
 from moving_bogie.sweep.store import open_sweep
@@ -26,7 +27,6 @@ def make_spec(
     params,
     vary: Mapping,
     *,
-    model: str | None = None,
     sample: int | None = None,
     physical=None,
     **options,
@@ -45,7 +45,7 @@ def make_spec(
     """
     if not vary:
         raise ParameterError("vary", "give at least one parameter to vary")
-    model = model or params.vehicle
+    params = bind(params).params
     si = physical is not None
     known = sweep_parameters(params, si=si)
     for name in vary:
@@ -63,7 +63,7 @@ def make_spec(
             extra["si_ranges"] = extra.pop("ranges")
             extra["ranges"] = {a.name: [str(min(a.values)), str(max(a.values))] for a in axes}
     design = "grid" if sample is None else "sobol"
-    return SweepSpec(params, model, axes, design=design, extra=extra, physical=physical, **options)
+    return SweepSpec(params, params.vehicle, axes, design=design, extra=extra, physical=physical, **options)
 
 
 def _check_units(params, name: str, si: bool) -> None:
@@ -103,7 +103,6 @@ def sweep(
     vary: Mapping,
     out,
     *,
-    model: str | None = None,
     sample: int | None = None,
     physical=None,
     resume=False,
@@ -119,15 +118,13 @@ def sweep(
 
     Parameters
     ----------
-    params : DimensionlessParams
-        The base point; the varied parameters replace its values (:meth:`DimensionlessParams.replace`:
-        varying eta_M or d keeps cf1, cf2 fixed).
+    params : DimensionlessParams or BoundModel
+        The base point and, through its model, the vehicle; the varied parameters replace its values
+        (:meth:`DimensionlessParams.replace`: varying eta_M or d keeps cf1, cf2 fixed).
     vary : mapping
         {name: values}, see :func:`make_spec`.
     out : path
         Zarr store; ``resume`` completes an interrupted one, ``overwrite`` replaces one.
-    model : str, optional
-        A vehicle of the parameters' catalogue (default: the parameters' own).
     sample : int, optional
         Number of Sobol points (``vary`` then gives ranges).
     physical : PhysicalParams, optional
@@ -145,7 +142,7 @@ def sweep(
     >>> ds = sweep(table1_case(1), {"alpha": "0.5:1:24", "eta_M": "5:100:24"}, "s.zarr")  # doctest: +SKIP
     >>> ds.stable.sel(alpha=0.75, method="nearest").values  # doctest: +SKIP
     """
-    spec = make_spec(params, vary, model=model, sample=sample, physical=physical, **options)
+    spec = make_spec(params, vary, sample=sample, physical=physical, **options)
     run_sweep(
         spec,
         out,

@@ -191,7 +191,7 @@ class SweepSpec:
     """
 
     params: DimensionlessParams
-    model: str
+    model: str  # the vehicle's name (params.vehicle), for the store's attributes
     axes: tuple
     design: str = "grid"
     roots: bool = False
@@ -202,6 +202,10 @@ class SweepSpec:
     physical: object = None
 
     def __post_init__(self):
+        if self.model != self.params.vehicle:
+            raise ParameterError(
+                "model", f"model {self.model!r} is not the parameters' vehicle {self.params.vehicle!r}"
+            )
         names = [a.name for a in self.axes]
         if not names:
             raise ParameterError("--vary", "give at least one --vary NAME=...")
@@ -261,7 +265,7 @@ class SweepSpec:
             if any(a.name in meta["depends"] and meta["sets"] in held for meta in alternatives):
                 continue  # the column would scale mu_v and J_b with eta_M (Eq. (63)); the points do not
             try:
-                polynomial_degree(self.model, a.name, self.params)
+                polynomial_degree(self.params, a.name)
             except (ParameterError, AttributeError):
                 continue
             return a.name

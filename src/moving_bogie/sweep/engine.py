@@ -59,7 +59,6 @@ def block_task(spec: SweepSpec, block) -> BlockTask:
     return BlockTask(
         block.index,
         spec.params,
-        spec.model,
         tuple(a.name for a in spec.axes),
         values,
         spec.design,

@@ -41,7 +41,8 @@ VARIABLES = (
 
 @dataclass(frozen=True)
 class BlockTask:
-    """What a worker needs for one block: parameters, model, the block's values of each varied parameter.
+    """What a worker needs for one block: parameters (with their model), the block's values of each varied
+    parameter.
 
     ``design`` "grid": ``values[k]`` are the block's values along dimension k; "sobol": one value per
     point for every parameter. ``fixed`` holds groups at their base value with every point's changes
@@ -50,7 +51,6 @@ class BlockTask:
 
     index: int
     params: object
-    model: str
     names: tuple
     values: tuple
     design: str
@@ -79,7 +79,7 @@ def evaluate_block(task: BlockTask) -> dict:
         params = task.params.replace(**(task.fixed | changes)) if changes else task.params
         alphas = alphas if alphas is not None else [params.alpha]
         thetas = thetas if thetas is not None else [getattr(params, parameter)]
-        for col, row in zip(map_columns(params, task.model, parameter, alphas, thetas), index_grid):
+        for col, row in zip(map_columns(params, parameter, alphas, thetas), index_grid):
             for j, index in enumerate(row):
                 settled[index] = bool(col.settled[j])
                 if not col.uncertain[j]:
@@ -153,7 +153,7 @@ def _check(task, shape, n, degree, certain, settled, roots) -> np.ndarray:
         index = candidates[int(k)]
         try:
             point = task.params.replace(**(task.fixed | _point(task, index)))
-            res = induced_frequencies(point, task.model, dps=15)
+            res = induced_frequencies(point, dps=15)
         except MovingBogieError:
             continue
         if not (res.count_ok and res.verdict.determined):

@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.plots import plot_validation
 from moving_bogie.validation.vehicle import vehicle_kernels
@@ -68,8 +69,8 @@ def _staged(progress: Callable[[float], None] | None, start: float, width: float
     return lambda fraction: progress(start + width * min(max(fraction, 0.0), 1.0))
 
 
-def _check(params: Any, model: str, n_modes: int, tol: float, tau_step: float) -> None:
-    vehicle_kernels(params, model)  # names an unknown vehicle
+def _check(params: Any, n_modes: int, tol: float, tau_step: float) -> None:
+    vehicle_kernels(params)  # names an unknown vehicle
     if int(n_modes) != n_modes or n_modes < 4:
         raise MovingBogieError(f"n_modes must be an integer of at least 4 (got {n_modes!r})")
     if not (math.isfinite(tol) and 0 < tol < 1):
@@ -81,7 +82,6 @@ def _check(params: Any, model: str, n_modes: int, tol: float, tau_step: float) -
 def validate(
     params: Any,
     *,
-    model: str | None = None,
     n_modes: int = 500,
     tau_max: float | None = None,
     tau_step: float = DEFAULT_TAU_STEP,
@@ -95,14 +95,13 @@ def validate(
 
     Parameters
     ----------
-    params : DimensionlessParams or PhysicalParams
+    params : DimensionlessParams, BoundModel or PhysicalParams
         Any beam on any track (the finite rail of :class:`~moving_bogie.validation.modal.ModalBeam`
-        reads the model's generated per-mode blocks).
-        Physical parameters are converted; the comparison is always in dimensionless tau and w / w_st.
-    model : str, optional
-        Any generated vehicle (default: the parameters' own; the paper's bogie of Fig. 1b, the two masses
-        of Fig. 1a, ...): the finite beam couples its generated matrices at its contacts and every
-        degree of freedom is compared with the closed form's response of the same name.
+        reads the model's generated per-mode blocks) under any generated vehicle (that of the
+        parameters' model; another: ``params.replace(vehicle=...)``): the finite beam couples its
+        generated matrices at its contacts and every degree of freedom is compared with the closed
+        form's response of the same name. Physical parameters are converted; the comparison is always
+        in dimensionless tau and w / w_st.
     n_modes : int, optional
         Modes of the finite beam (default 500, as in the paper); at least 4.
     tau_max : float, optional
@@ -133,13 +132,14 @@ def validate(
         For an unknown model or beam, too few modes, a bad `tau_max` or `tol`, or when the closed
         form fails (e.g. incomplete induced frequencies).
     """
-    model = model or params.vehicle
     from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.response.closed_form import closed_form_response
 
     if isinstance(params, PhysicalParams):
         params = params.to_dimensionless()  # the comparison runs in dimensionless tau
-    _check(params, model, n_modes, tol, tau_step)
+    bound = bind(params)
+    params = bound.params
+    _check(params, n_modes, tol, tau_step)
     n_modes = int(n_modes)
     tau_max = default_tau_max(params) if tau_max is None else float(tau_max)
     if not (math.isfinite(tau_max) and tau_max > 0):
@@ -150,9 +150,8 @@ def validate(
 
     start = time.perf_counter()
     finite = simulate_finite_beam(
-        params,
+        bound,
         tau_max,
-        model=model,
         n_modes=n_modes,
         tau_out=tau,
         static_correction=static_correction,
@@ -164,9 +163,8 @@ def validate(
     reference = None
     if estimate:
         reference = simulate_finite_beam(
-            params,
+            bound,
             tau_max,
-            model=model,
             n_modes=n_modes,
             length=finite.length,
             entry=finite.entry,
@@ -178,7 +176,7 @@ def validate(
     reference_s = time.perf_counter() - start
 
     start = time.perf_counter()
-    closed = closed_form_response(params, tau, model=model, progress=_staged(progress, 0.8, 0.2))
+    closed = closed_form_response(bound, tau, progress=_staged(progress, 0.8, 0.2))
     closed_s = time.perf_counter() - start
 
     tau_w = comparison_window(params, finite, reflection_level=reflection_level)
@@ -196,7 +194,7 @@ def validate(
             f"k_max = {finite.k_max:.2f} < {MIN_CORRECTED_WAVENUMBER:g}: the truncated modes are not much "
             "faster than the forcing, so the static correction is unreliable; use more modes"
         )
-    kernels = vehicle_kernels(params, model)
+    kernels = bound.vehicle
     units = getattr(kernels, "UNITS", {})
     labels = quantity_labels(tuple(names), units, finite.contacts)
     closed_all = {attr: series(closed, attr, tau.size)[inside] for attr in names.values()}
@@ -220,7 +218,7 @@ def validate(
     if progress is not None:
         progress(1.0)
     return ValidationResult(
-        model=model,
+        model=params.vehicle,
         params=params,
         tau=tau,
         finite=finite,

@@ -26,6 +26,7 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.model.catalogue import DEFAULT_MODEL
 from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.geometry import choose_geometry, default_time_step
@@ -66,7 +67,7 @@ class FiniteBeamResult:
     elapsed_s : float
         Wall time of the time stepping.
     model : str
-        The vehicle's name, or "force" (its loads only).
+        The vehicle's name, or "force" (its loads only), for output.
     k_max : float
         Highest modelled wavenumber ``N pi / L``.
     static_correction : bool
@@ -98,17 +99,17 @@ class FiniteBeamResult:
         raise AttributeError(name)
 
 
-#: The ``model`` that keeps only the vehicle's wheel loads (its matrices zeroed): constant moving forces.
+#: The ``model`` of a result that kept only the vehicle's wheel loads (``loads_only=True``).
 LOADS_ONLY = "force"
 
 
 def _check(
-    params: Any, tau_max: float, model: str | None, n_modes: int, dt: float | None
+    params: Any, tau_max: float, loads_only: bool, n_modes: int, dt: float | None
 ) -> tuple[ModalTrack, Vehicle]:
     """Refuse bad input before any computation; return the track's blocks and the vehicle (entry 0)."""
     track = ModalTrack.of(params)  # names an unknown beam or track
-    vehicle = Vehicle.of(params, 0.0, None if model == LOADS_ONLY else model)  # names an unknown vehicle
-    if model == LOADS_ONLY:
+    vehicle = Vehicle.of(params, 0.0)  # names an unknown vehicle
+    if loads_only:
         vehicle = vehicle.loads_only()
     if not (math.isfinite(tau_max) and tau_max > 0):
         raise MovingBogieError(f"tau_max must be a positive finite number (got {tau_max!r})")
@@ -140,7 +141,7 @@ def simulate_finite_beam(
     params: Any,
     tau_max: float,
     *,
-    model: str | None = None,
+    loads_only: bool = False,
     n_modes: int = 500,
     length: float | None = None,
     entry: float | None = None,
@@ -158,18 +159,17 @@ def simulate_finite_beam(
 
     Parameters
     ----------
-    params : DimensionlessParams or duck-typed equivalent
-        Any beam on any track of the catalogue (its generated per-mode blocks,
-        :class:`~moving_bogie.validation.track_modes.ModalTrack`); a namespace of numbers names its
-        ``beam`` and ``track`` (default: Euler-Bernoulli on the one-layer track) and carries the groups
-        of that model (a group it leaves out counts as 0) and the vehicle's ``eta_M, d, mu_v, J_b,
-        kappa_v, eta_v`` (anything ``float()`` accepts).
+    params : DimensionlessParams, BoundModel or duck-typed equivalent
+        Any beam on any track under any vehicle of the catalogue (its generated per-mode blocks,
+        :class:`~moving_bogie.validation.track_modes.ModalTrack`, and the vehicle's matrices); a
+        namespace of numbers names its ``beam``, ``track`` and ``vehicle`` (default: the paper's model)
+        and carries the groups of that model (a group it leaves out counts as 0) and the vehicle's
+        (anything ``float()`` accepts).
     tau_max : float
         End of the run.
-    model : str, optional
-        The vehicle: any generated vehicle module's name (default: the parameters' own, or the paper's
-        bogie for a namespace that names none), or "force": that vehicle's wheel loads only, as constant
-        moving forces (its matrices zeroed).
+    loads_only : bool, optional
+        Keep only the vehicle's wheel loads, as constant moving forces (its matrices zeroed; default
+        False).
     n_modes : int, optional
         Number of sine modes ``N`` (default 500, as in the paper).
     length, entry : float, optional
@@ -202,8 +202,9 @@ def simulate_finite_beam(
         Timoshenko-Rayleigh beam with ``r = 0``), a beam too short for the run, or (static
         correction) a run at or above the undamped critical velocity.
     """
-    track, vehicle = _check(params, tau_max, model, n_modes, dt)
-    model = model or getattr(params, "vehicle", None) or DEFAULT_MODEL["vehicle"]
+    params = params.params if isinstance(params, BoundModel) else params
+    track, vehicle = _check(params, tau_max, loads_only, n_modes, dt)
+    model = LOADS_ONLY if loads_only else getattr(params, "vehicle", None) or DEFAULT_MODEL["vehicle"]
     alpha, d = vehicle.alpha, vehicle.length
     geometry = choose_geometry(track=track, d=d, tau_max=tau_max, n_modes=n_modes, length=length, entry=entry)
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:

@@ -26,21 +26,24 @@ from moving_bogie.model.catalogue import DEFAULT_MODEL, default_catalogue
 __all__ = ["Vehicle", "vehicle_kernels"]
 
 
-def vehicle_kernels(params: Any, vehicle: str | ModuleType | None = None) -> ModuleType:
-    """The generated module of the vehicle: `vehicle` (a module or a declared name) or the parameters' own.
+def vehicle_kernels(params: Any, vehicle: ModuleType | None = None) -> ModuleType:
+    """The generated module of the vehicle: `vehicle` (a module) or the parameters' own.
+
+    ``params`` are parameters, a bound model (their model's own catalogue) or a namespace of numbers that
+    names its ``vehicle`` (the packaged catalogue's; the paper's bogie when it names none).
 
     Raises
     ------
     MovingBogieError
         For a name that no generated vehicle module has, listing those that exist.
     """
-    if isinstance(vehicle, ModuleType):
+    if vehicle is not None:
         return vehicle
     model = getattr(params, "model", None)
-    if vehicle is None and model is not None and not isinstance(model, str):
+    if model is not None and not isinstance(model, str):
         return model.vehicle_kernels
-    catalogue = default_catalogue() if model is None or isinstance(model, str) else model.catalogue
-    name = vehicle or getattr(params, "vehicle", None) or DEFAULT_MODEL["vehicle"]
+    catalogue = default_catalogue()
+    name = getattr(params, "vehicle", None) or DEFAULT_MODEL["vehicle"]
     declared = dict(getattr(catalogue.index, "DECLARED_VEHICLES", {}), **catalogue.index.VEHICLES)
     if name not in declared:
         raise MovingBogieError(f"vehicle must be one of {', '.join(declared)} (got {name!r})")
@@ -85,8 +88,8 @@ class Vehicle:
     entry: float
 
     @classmethod
-    def of(cls, params: Any, entry: float, vehicle: str | ModuleType | None = None) -> Vehicle:
-        """The vehicle of `params` (or the named or given generated module), its groups read from `params`."""
+    def of(cls, params: Any, entry: float, vehicle: ModuleType | None = None) -> Vehicle:
+        """The vehicle of `params` (or the given generated module), its groups read from `params`."""
         module = vehicle_kernels(params, vehicle)
         args = {}
         for name in module.MATRIX_ARGUMENTS:
