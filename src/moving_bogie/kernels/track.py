@@ -199,6 +199,17 @@ class TrackKernel:
                 f"K({q}) undefined: a root of N(p, q) lies on the real p-axis (q on the cut)"
             )
         two_pi_i = 2j * mpmath.pi
+        # what does not depend on xi, once per root: the offsets share it
+        at = {}
+        for p in upper + lower:
+            N1 = polyval_list(n1, p)
+            Qv = polyval_list(qc, p)
+            if derivative:
+                Nq = polyval_list(nq, p)
+                at[p] = (N1, Qv, Nq, polyval_list(n2, p), polyval_list(qp, p), polyval_list(nqp, p),
+                         polyval_list(qq, p))  # fmt: skip
+            else:
+                at[p] = (N1, Qv)
         Ks, dKs = [], []
         for xi in xis:
             xi = mpmath.mpf(xi)
@@ -207,15 +218,13 @@ class TrackKernel:
             dtotal = mpmath.mpc(0)
             for p in side:
                 e = mpmath.exp(1j * p * xi)
-                N1 = polyval_list(n1, p)
-                Qv = polyval_list(qc, p)
+                N1, Qv = at[p][:2]
                 total += e * Qv / N1
                 if derivative:
-                    N2 = polyval_list(n2, p)
-                    Nq = polyval_list(nq, p)
+                    Nq, N2, Qp, Nqp, Qq = at[p][2:]
                     g = e * Qv * Nq
-                    gp = e * (1j * xi * Qv * Nq + polyval_list(qp, p) * Nq + Qv * polyval_list(nqp, p))
-                    dtotal += e * polyval_list(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
+                    gp = e * (1j * xi * Qv * Nq + Qp * Nq + Qv * Nqp)
+                    dtotal += e * Qq / N1 - (gp * N1 - g * N2) / N1**3
             Ks.append(sign * two_pi_i * total)
             dKs.append(sign * two_pi_i * dtotal)
         sep = min_relative_separation(upper) if len(upper) > 1 else None
