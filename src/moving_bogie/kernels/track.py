@@ -317,16 +317,24 @@ class TrackKernelArray:
             Qq = polyval(qq, P)
         upper = (P.imag > 0) & finite
         lower = (P.imag <= 0) & finite
-        Ks, dKs = [], []
-        for xi in xis:
-            xi = float(xi)
-            mask = upper if xi >= 0 else lower
-            sign = 1 if xi >= 0 else -1
-            e = np.exp(1j * np.where(mask, P, 0) * xi)  # |e| <= 1 on the side that enters
-            Ks.append(sign * 2j * np.pi * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
-            if derivative:
-                g = e * Qv * Nq
-                gp = e * (1j * xi * Qv * Nq + Qp * Nq + Qv * Nqp)
-                term = e * Qq / N1 - (gp * N1 - g * N2) / N1**3
-                dKs.append(sign * 2j * np.pi * np.sum(np.where(mask, term, 0), axis=-1))
-        return KernelValues(tuple(Ks), tuple(dKs) if derivative else None, roots)
+        # every offset at once: axis -2 runs over xis, axis -1 over the roots of N
+        xi = np.array([float(x) for x in xis])
+        if not xi.size:
+            return KernelValues((), () if derivative else None, roots)
+        ahead = xi >= 0
+        mask = np.where(ahead[:, None], upper[..., None, :], lower[..., None, :])
+        sign = np.where(ahead, 2j * np.pi, -2j * np.pi)
+        xi_ = xi[:, None]
+        e = np.exp(1j * np.where(mask, P[..., None, :], 0) * xi_)  # |e| <= 1 on the side that enters
+        residue = (Qv / N1)[..., None, :]
+        K = sign * np.sum(np.where(mask, e * residue, 0), axis=-1)
+        Ks = tuple(K[..., j] for j in range(xi.size))
+        if not derivative:
+            return KernelValues(Ks, None, roots)
+        QN = (Qv * Nq)[..., None, :]
+        gp = e * (1j * xi_ * QN + (Qp * Nq + Qv * Nqp)[..., None, :])
+        g = e * QN
+        N1_, N2_ = N1[..., None, :], N2[..., None, :]
+        term = e * (Qq / N1)[..., None, :] - (gp * N1_ - g * N2_) / N1_**3
+        dK = sign * np.sum(np.where(mask, term, 0), axis=-1)
+        return KernelValues(Ks, tuple(dK[..., j] for j in range(xi.size)), roots)
