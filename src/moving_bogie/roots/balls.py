@@ -29,6 +29,7 @@ acb arguments (their ``1j`` literals combine with acb exactly).
 
 from __future__ import annotations
 
+from fractions import Fraction
 from functools import reduce
 
 from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
@@ -111,6 +112,11 @@ def derivative_coefficients(coeffs) -> list:
     return [c * (len(coeffs) - 1 - k) for k, c in enumerate(coeffs[:-1])] or [0]
 
 
+def _exact(x) -> Fraction | None:
+    """A parameter's exact value as a Fraction (it is a Fraction or an int), or None."""
+    return None if x is None else Fraction(x)
+
+
 class _ExactBalls:
     """Attribute access to the parameters of a DimensionlessParams as balls around their exact values."""
 
@@ -173,7 +179,8 @@ class BallCharacteristic:
                 self.vehicle_args["pi"] = acb(arb.pi())
             else:  # any vehicle: the block system (roots/ball_block.py)
                 values = {name: getattr(numbers, name) for name in self.vehicle.MATRIX_ARGUMENTS}
-                self.blocks = BlockBalls(self.vehicle, values)
+                exact = {name: _exact(getattr(params, name)) for name in self.vehicle.MATRIX_ARGUMENTS}
+                self.blocks = BlockBalls(self.vehicle, values, exact)
             self.d = numbers.d
             self.two_pi_i = acb(0, 2) * acb(arb.pi())
 
@@ -259,16 +266,25 @@ class BallCharacteristic:
         qc = _series(f.q_coeffs(qs, **args), length)
         i_unit = acb(0, 1)
 
-        def residues(roots, xi):
-            total = acb_series([acb(0)], prec=length)
+        def solved(roots):
+            """(p, Q(p), N_p(p)) per root: the series of the root and what its residue divides, which every
+            offset shares (only exp(i xi p) depends on xi)."""
+            out = []
             for p0 in roots:
                 p = acb_series([p0], prec=length)
                 for _ in range(order.bit_length()):
                     p = p - horner(n, p) / horner(n1, p)
                     p = acb_series([p0] + p.coeffs()[1:], prec=length)
-                total += (i_unit * xi * p).exp() * horner(qc, p) / horner(n1, p)
+                out.append((p, horner(qc, p), horner(n1, p)))
+            return out
+
+        def residues(roots, xi):
+            total = acb_series([acb(0)], prec=length)
+            for p, Qp, N1p in roots:
+                total += (i_unit * xi * p).exp() * Qp / N1p
             return total
 
+        upper, lower = solved(upper), solved(lower)
         if self.blocks is None:
             return [
                 self.two_pi_i * residues(upper, acb(0)),
