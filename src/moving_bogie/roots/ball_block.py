@@ -108,8 +108,8 @@ class BlockBalls:
         A += [list(D[r]) for r in range(n, N)]
         return series_det(A, length)
 
-    def det_linear(self, qs, K, length):
-        """:meth:`det` for ``length`` 1 or 2 on the coefficient matrices A_0, A_1 (module docstring)."""
+    def coefficient_matrices(self, qs, K, length):
+        """[A_0] or [A_0, A_1]: the block matrix A(t) = A_0 + A_1 t from q and K as series in t."""
         n = self.contacts
         M, C, Kv = self.mats
         q0, q1 = coefficient(qs, 0), coefficient(qs, 1)
@@ -120,13 +120,28 @@ class BlockBalls:
         K0 = acb_mat([[coefficient(K[self.index[r][k]], 0) for k in range(n)] for r in range(n)])
         top0 = sel * D0
         A0 = D0 + place * (K0 * top0 * 2 + sel * pi - top0)
-        E = A0.det()
         if length == 1:
-            return acb_series([E], prec=1)
+            return [A0]
         D1 = (M * (-2 * q0) + C * i) * q1
         K1 = acb_mat([[coefficient(K[self.index[r][k]], 1) for k in range(n)] for r in range(n)])
         top1 = sel * D1
-        A1 = D1 + place * ((K1 * top0 + K0 * top1) * 2 - top1)
+        return [A0, D1 + place * ((K1 * top0 + K0 * top1) * 2 - top1)]
+
+    def log_derivative(self, qs, K):
+        """(E_chr, E_chr'/E_chr = tr(A_0^-1 A_1)) over the ball, or None where A_0 is not proven regular."""
+        A0, A1 = self.coefficient_matrices(qs, K, 2)
+        try:
+            return A0.det(), A0.solve(A1).trace()
+        except ZeroDivisionError:
+            return None
+
+    def det_linear(self, qs, K, length):
+        """:meth:`det` for ``length`` 1 or 2 on the coefficient matrices A_0, A_1 (module docstring)."""
+        A = self.coefficient_matrices(qs, K, length)
+        E = A[0].det()
+        if length == 1:
+            return acb_series([E], prec=1)
+        A0, A1 = A
         try:
             dE = E * A0.solve(A1).trace()
         except ZeroDivisionError:  # A_0 not proven regular: the row-replacement form of Jacobi's formula
