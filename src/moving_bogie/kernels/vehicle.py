@@ -30,7 +30,7 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
-from moving_bogie.kernels.condensed import condensed_characteristic
+from moving_bogie.kernels.condensed import binary_matrices, condensed_characteristic
 from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
 
 
@@ -149,11 +149,9 @@ class VehicleSystem:
     def condensed(self, q, K, dK=None):
         """(E_chr, dE_chr/dq or None) on the block system condensed to its wheels, or None where that does not
         apply (:func:`moving_bogie.kernels.condensed.condensed_characteristic`)."""
-        n = self.contacts
-        D, dD = self.dynamic(q, dK is not None)
-        Kmat = [[K[self.index[r][k]] for k in range(n)] for r in range(n)]
-        dKmat = None if dK is None else [[dK[self.index[r][k]] for k in range(n)] for r in range(n)]
-        return condensed_characteristic(D, dD, Kmat, dKmat)
+        if not hasattr(self, "_binary"):
+            self._binary = binary_matrices(self.mass, self.damping, self.stiffness)
+        return condensed_characteristic(q, self._binary, K, self.index, dK)
 
     def value_and_derivative(self, q, K, dK):
         """(E_chr, dE_chr/dq) by Jacobi's formula: dE = E tr(A^-1 dA/dq) (on the condensed wheel system,
