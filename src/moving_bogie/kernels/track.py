@@ -197,6 +197,17 @@ class TrackKernel:
                 f"K({q}) undefined: a root of N(p, q) lies on the real p-axis (q on the cut)"
             )
         two_pi_i = 2j * mpmath.pi
+        # what does not depend on xi, once per root: the offsets share it
+        at = {}
+        for p in upper + lower:
+            N1 = polyval_list(n1, p)
+            Qv = polyval_list(qc, p)
+            if derivative:
+                Nq = polyval_list(nq, p)
+                at[p] = (N1, Qv, Nq, polyval_list(n2, p), polyval_list(qp, p), polyval_list(nqp, p),
+                         polyval_list(qq, p))  # fmt: skip
+            else:
+                at[p] = (N1, Qv)
         Ks, dKs = [], []
         for xi in xis:
             xi = mpmath.mpf(xi)
@@ -205,15 +216,13 @@ class TrackKernel:
             dtotal = mpmath.mpc(0)
             for p in side:
                 e = mpmath.exp(1j * p * xi)
-                N1 = polyval_list(n1, p)
-                Qv = polyval_list(qc, p)
+                N1, Qv = at[p][:2]
                 total += e * Qv / N1
                 if derivative:
-                    N2 = polyval_list(n2, p)
-                    Nq = polyval_list(nq, p)
+                    Nq, N2, Qp, Nqp, Qq = at[p][2:]
                     g = e * Qv * Nq
-                    gp = e * (1j * xi * Qv * Nq + polyval_list(qp, p) * Nq + Qv * polyval_list(nqp, p))
-                    dtotal += e * polyval_list(qq, p) / N1 - (gp * N1 - g * N2) / N1**3
+                    gp = e * (1j * xi * Qv * Nq + Qp * Nq + Qv * Nqp)
+                    dtotal += e * Qq / N1 - (gp * N1 - g * N2) / N1**3
             Ks.append(sign * two_pi_i * total)
             dKs.append(sign * two_pi_i * dtotal)
         sep = min_relative_separation(upper) if len(upper) > 1 else None
@@ -306,16 +315,24 @@ class TrackKernelArray:
             Qq = polyval(qq, P)
         upper = (P.imag > 0) & finite
         lower = (P.imag <= 0) & finite
-        Ks, dKs = [], []
-        for xi in xis:
-            xi = float(xi)
-            mask = upper if xi >= 0 else lower
-            sign = 1 if xi >= 0 else -1
-            e = np.exp(1j * np.where(mask, P, 0) * xi)  # |e| <= 1 on the side that enters
-            Ks.append(sign * 2j * np.pi * np.sum(np.where(mask, e * Qv / N1, 0), axis=-1))
-            if derivative:
-                g = e * Qv * Nq
-                gp = e * (1j * xi * Qv * Nq + Qp * Nq + Qv * Nqp)
-                term = e * Qq / N1 - (gp * N1 - g * N2) / N1**3
-                dKs.append(sign * 2j * np.pi * np.sum(np.where(mask, term, 0), axis=-1))
-        return KernelValues(tuple(Ks), tuple(dKs) if derivative else None, roots)
+        # every offset at once: axis -2 runs over xis, axis -1 over the roots of N
+        xi = np.array([float(x) for x in xis])
+        if not xi.size:
+            return KernelValues((), () if derivative else None, roots)
+        ahead = xi >= 0
+        mask = np.where(ahead[:, None], upper[..., None, :], lower[..., None, :])
+        sign = np.where(ahead, 2j * np.pi, -2j * np.pi)
+        xi_ = xi[:, None]
+        e = np.exp(1j * np.where(mask, P[..., None, :], 0) * xi_)  # |e| <= 1 on the side that enters
+        residue = (Qv / N1)[..., None, :]
+        K = sign * np.sum(np.where(mask, e * residue, 0), axis=-1)
+        Ks = tuple(K[..., j] for j in range(xi.size))
+        if not derivative:
+            return KernelValues(Ks, None, roots)
+        QN = (Qv * Nq)[..., None, :]
+        gp = e * (1j * xi_ * QN + (Qp * Nq + Qv * Nqp)[..., None, :])
+        g = e * QN
+        N1_, N2_ = N1[..., None, :], N2[..., None, :]
+        term = e * (Qq / N1)[..., None, :] - (gp * N1_ - g * N2_) / N1_**3
+        dK = sign * np.sum(np.where(mask, term, 0), axis=-1)
+        return KernelValues(Ks, tuple(dK[..., j] for j in range(xi.size)), roots)

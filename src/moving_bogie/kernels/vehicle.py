@@ -20,12 +20,18 @@ the vehicle's own rows. Then
   i q W~(xi, q) = sum_j G_j K(xi - xi_j, q) / (2 pi E_chr) (Eqs. (44)-(47) for n contacts).
 
 The kernel values are evaluated once per distinct offset xi_i - xi_j (:attr:`VehicleSystem.offsets`).
+At one q in mpmath, E_chr and dE_chr/dq come from the system condensed to its wheels
+(:mod:`moving_bogie.kernels.condensed`: det A = det D_ii det(pi I + 2 Kmat S)), the same number at a fraction
+of the cost of eliminating the whole block system.
 """
 
 from __future__ import annotations
 
 import mpmath
 import numpy as np
+
+from moving_bogie.kernels.condensed import binary_matrices, condensed_characteristic
+from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
 
 
 def distinct_offsets(positions) -> tuple[list, list]:
@@ -44,50 +50,6 @@ def distinct_offsets(positions) -> tuple[list, list]:
     n = len(positions)
     index = [[table[(i, j)] for j in range(n)] for i in range(n)]
     return offsets, index
-
-
-def _zero(x) -> bool:
-    return isinstance(x, int) and x == 0
-
-
-def lu_factor(A):
-    """LU factors with partial pivoting of a square list of rows (numbers of any backend): (lu, perm, det).
-
-    A zero pivot (A singular to working precision) ends the elimination with det = 0.
-    """
-    N = len(A)
-    lu = [list(row) for row in A]
-    perm = list(range(N))
-    det = 1
-    for k in range(N):
-        p = max(range(k, N), key=lambda r: abs(lu[r][k]))
-        if lu[p][k] == 0:
-            return lu, perm, 0 * det
-        if p != k:
-            lu[k], lu[p] = lu[p], lu[k]
-            perm[k], perm[p] = perm[p], perm[k]
-            det = -det
-        pivot = lu[k][k]
-        det = det * pivot
-        for r in range(k + 1, N):
-            f = lu[r][k] / pivot
-            lu[r][k] = f
-            if f != 0:
-                row, top = lu[r], lu[k]
-                for c in range(k + 1, N):
-                    row[c] -= f * top[c]
-    return lu, perm, det
-
-
-def lu_solve(lu, perm, b):
-    """Solve A x = b with the factors of :func:`lu_factor` (det != 0)."""
-    N = len(lu)
-    y = [b[perm[r]] for r in range(N)]
-    for r in range(N):
-        y[r] = y[r] - sum(lu[r][c] * y[c] for c in range(r))
-    for r in range(N - 1, -1, -1):
-        y[r] = (y[r] - sum(lu[r][c] * y[c] for c in range(r + 1, N))) / lu[r][r]
-    return y
 
 
 class VehicleSystem:
@@ -126,24 +88,38 @@ class VehicleSystem:
 
     # --- one q, mpmath ----------------------------------------------------------------------------------
 
-    def block(self, q, K, dK=None):
-        """(A, b, dA/dq or None, D) at one q (lists of rows); ``K`` (``dK``) at :attr:`offsets`."""
-        n, N = self.contacts, self.size
-        q2, iq = q**2, mpmath.mpc(0, 1) * q
+    def dynamic(self, q, derivative=False):
+        """(D(q), dD/dq or None) at one q, lists of rows with an exact 0 where the vehicle has no coupling
+        (so that sums and eliminations can skip it): D = -q^2 M + i q C + K (Eq. (21))."""
+        N = self.size
+        q2, iq, i = q**2, mpmath.mpc(0, 1) * q, mpmath.mpc(0, 1)
 
-        def entry(m, c, k):  # exact 0 where the vehicle has no coupling, so that sums can skip it
+        def entry(m, c, k):
             terms = [
                 t for t in (-q2 * m if m else 0, iq * c if c else 0, k) if not (isinstance(t, int) and t == 0)
             ]
             return sum(terms[1:], terms[0]) if terms else 0
 
-        D = [
-            [entry(self.mass[a][c], self.damping[a][c], self.stiffness[a][c]) for c in range(N)]
-            for a in range(N)
-        ]
+        def slope(m, c):
+            terms = [t for t in (-2 * q * m if m else 0, i * c if c else 0) if not exact_zero(t)]
+            return sum(terms[1:], terms[0]) if terms else 0
+
+        M, C, Kv = self.mass, self.damping, self.stiffness
+        D = [[entry(M[a][c], C[a][c], Kv[a][c]) for c in range(N)] for a in range(N)]
+        if not derivative:
+            return D, None
+        return D, [[slope(M[a][c], C[a][c]) for c in range(N)] for a in range(N)]
+
+    def block(self, q, K, dK=None):
+        """(A, b, dA/dq or None, D) at one q (lists of rows); ``K`` (``dK``) at :attr:`offsets`."""
+        n, N = self.contacts, self.size
+        D, _ = self.dynamic(q)
         Kmat = [[K[self.index[r][k]] for k in range(n)] for r in range(n)]
         A = [
-            [sum((2 * Kmat[r][k] * D[k][c] for k in range(n) if not _zero(D[k][c])), 0) for c in range(N)]
+            [
+                sum((2 * Kmat[r][k] * D[k][c] for k in range(n) if not exact_zero(D[k][c])), 0)
+                for c in range(N)
+            ]
             for r in range(n)
         ]
         for r in range(n):
@@ -163,13 +139,27 @@ class VehicleSystem:
         return A, b, dA, D
 
     def e_chr(self, q, K):
-        """E_chr(q) = det A."""
+        """E_chr(q) = det A (:meth:`condensed`; the full block system where that does not apply)."""
+        reduced = self.condensed(q, K)
+        if reduced is not None:
+            return reduced[0]
         A, _, _, _ = self.block(q, K)
         return lu_factor(A)[2]
 
+    def condensed(self, q, K, dK=None):
+        """(E_chr, dE_chr/dq or None) on the block system condensed to its wheels, or None where that does not
+        apply (:func:`moving_bogie.kernels.condensed.condensed_characteristic`)."""
+        if not hasattr(self, "_binary"):
+            self._binary = binary_matrices(self.mass, self.damping, self.stiffness)
+        return condensed_characteristic(q, self._binary, K, self.index, dK)
+
     def value_and_derivative(self, q, K, dK):
-        """(E_chr, dE_chr/dq) by Jacobi's formula: dE = E tr(A^-1 dA/dq), or, where A is singular to
-        working precision, the sum over k of det(A with row k replaced by row k of dA/dq)."""
+        """(E_chr, dE_chr/dq) by Jacobi's formula: dE = E tr(A^-1 dA/dq) (on the condensed wheel system,
+        :meth:`condensed`), or, where A is singular to working precision, the sum over k of det(A with row
+        k replaced by row k of dA/dq)."""
+        reduced = self.condensed(q, K, dK)
+        if reduced is not None:
+            return reduced
         A, _, dA, _ = self.block(q, K, dK)
         lu, perm, E = lu_factor(A)
         if E != 0:

@@ -223,12 +223,12 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
             problems.append(f"root {mpmath.nstr(e.q, 12)}: not proven ({e.reason})")
     counter = BallCharacteristic(params, prec=count_prec)
     cut = cut_locus(params, window.x0, window.x1)
-    margin = _margin_clear_of_roots(margin, cut, result.roots)
+    pinches = pinches_around_roots(margin, cut, result.roots)
     tiles, unsearched, used_margin = (), (), margin
     for factor, fraction in TILINGS:
         used_margin = margin * factor
         gap_height = fraction * max(window.width, window.height)
-        tiling = proof_tiling(window, cut, margin=used_margin, gap_height=gap_height)
+        tiling = proof_tiling(window, cut, margin=used_margin, gap_height=gap_height, pinches=pinches)
         try:
             tiles = tuple(proven_count(counter, rect) for rect in tiling.regions)
             unsearched = tiling.unsearched
@@ -292,11 +292,16 @@ def _strip_from_below(params, cut, unsearched, prec) -> StripProof | None:
     return StripProof(count, tuple(rects), notches)
 
 
-def _margin_clear_of_roots(margin: float, cut, roots, floor: float = 1e-6) -> float:
-    """``margin``, reduced so that the strip along the cut leaves out no root found numerically: a root
-    closer to the cut than 2 ``margin`` (beyond the branch point) sets it to a quarter of its distance."""
+def pinches_around_roots(margin: float, cut, roots, floor: float = 1e-6) -> list:
+    """Where the strip along the cut must be thinner than ``margin`` so that it leaves out no root found
+    numerically: for a root closer to the cut than 2 ``margin`` (beyond the branch point), the stretch of
+    Re q within 50 times its distance d (at least 1e-5) gets the margin max(``floor``, d / 4), a pinch of
+    :func:`proof_tiling.proof_tiling`. Only there do the tile edges come that close to the cut (an edge at
+    distance h from it needs segments shorter than about h, so a margin thin all along would cost
+    millions of segments)."""
+    out = []
     if not cut.points.size:
-        return margin
+        return out
     for r in roots:
         x, y = float(mpmath.re(r.q)), float(mpmath.im(r.q))
         if x < cut.x_start - 2 * margin:
@@ -304,8 +309,9 @@ def _margin_clear_of_roots(margin: float, cut, roots, floor: float = 1e-6) -> fl
         near = cut.im_range_between(x - 2 * margin, x + 2 * margin) or (cut.im_low, cut.im_high)
         distance = max(near[0] - y, y - near[1], 0.0)
         if distance < 2 * margin:
-            margin = max(floor, distance / 4)
-    return margin
+            half = max(50 * distance, 1e-5)
+            out.append((x - half, x + half, max(floor, distance / 4)))
+    return out
 
 
 def _match(tiles, roots, mirrors, problems):

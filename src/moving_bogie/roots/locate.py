@@ -10,7 +10,7 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.roots.contour import EdgeZeroError, winding_number
+from moving_bogie.roots.contour import EdgeZeroError, winding_numbers
 
 __all__ = ["locate", "newton_inside"]
 
@@ -25,38 +25,45 @@ def locate(fast, rect, n, newton_cell):
     unless the cell lies in Im q > 0, where a missing root cannot be unstable).
     """
     out, warning = [], None
-    stack = [(rect, n)]
-    while stack:
-        r, k = stack.pop()
-        if k == 0:
-            continue
-        size = max(r.width, r.height)
-        if k == 1 and size <= newton_cell:
-            q = newton_inside(fast, r)
-            if q is not None:
-                out.append((q, 1, r))
+    level = [(rect, n)]
+    while level:
+        # every cell of a level is split at once: one batched evaluation of E_chr per refinement of the
+        # contours of all their halves (what costs is mostly the call, not the points)
+        split = []
+        for r, k in level:
+            if k == 0:
                 continue
-        if size < 1e-10 * max(1.0, abs(r.center)):
-            out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
-            continue
+            size = max(r.width, r.height)
+            if k == 1 and size <= newton_cell:
+                q = newton_inside(fast, r)
+                if q is not None:
+                    out.append((q, 1, r))
+                    continue
+            if size < 1e-10 * max(1.0, abs(r.center)):
+                out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
+                continue
+            split.append((r, k))
+        level = []
         for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75):
-            pieces = r.split(frac)  # two halves (a cell at a fold of the cut may give three pieces)
-            try:
-                counts = [winding_number(fast, piece) for piece in pieces]
-            except EdgeZeroError:
-                continue
-            if sum(counts) == k:
+            if not split:
                 break
-        else:
+            # two halves each (a cell at a fold of the cut may give three pieces)
+            pieces = [r.split(frac) for r, _ in split]
+            counts = winding_numbers(fast, [piece for group in pieces for piece in group])
+            retry, at = [], 0
+            for (r, k), group in zip(split, pieces):
+                mine, at = counts[at : at + len(group)], at + len(group)
+                if any(isinstance(c, EdgeZeroError) for c in mine) or sum(mine) != k:
+                    retry.append((r, k))
+                else:
+                    level.extend(zip(group, mine))
+            split = retry
+        for r, k in split:
             starts = _grid_roots(fast, r, k)
-            if len(starts) == k:
-                out += [(q, 1, r) for q in starts]
-            else:
+            if len(starts) != k:
                 text = f"locate: could not split {r} holding {k} root(s) into consistent halves"
                 warning = (text, (r, k - len(starts)))
-                out += [(q, 1, r) for q in starts]
-            continue
-        stack.extend(zip(pieces, counts))
+            out += [(q, 1, r) for q in starts]
     return out, warning
 
 

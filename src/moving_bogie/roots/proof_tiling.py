@@ -23,7 +23,7 @@ class ProofTiling:
 
 
 def proof_tiling(
-    window: Rectangle, cut, *, margin: float, gap_height: float, columns: int = 48
+    window: Rectangle, cut, *, margin: float, gap_height: float, columns: int = 48, pinches=()
 ) -> ProofTiling:
     """Rectangles covering ``window`` except the cut's strip (half-height ``margin``, more where sampled).
 
@@ -40,6 +40,10 @@ def proof_tiling(
     columns : int
         Columns over a curved cut (its sampled range in each column is padded by 5 % of the cut's total
         Im range, so that no edge crosses the curve between samples); a flat cut needs one.
+    pinches : sequence of (x_lo, x_hi, margin)
+        Stretches of Re q over which the strip is thinner (its own ``margin``), each a column of its own: a
+        root closer to the cut than ``margin`` then lies in a tile, while the edges elsewhere keep their
+        distance from the cut (an edge at distance h from the cut needs segments shorter than about h).
     """
     if not cut.points.size or cut.im_high < window.y0 or cut.im_low > window.y1:
         return ProofTiling((window,), ())
@@ -54,15 +58,26 @@ def proof_tiling(
         return ProofTiling(tuple(regions), ())
     spread = cut.im_high - cut.im_low
     n = 1 if spread <= 1e-12 else columns
-    pad = margin + 0.05 * spread
+    edges = {x_cut + (window.x1 - x_cut) * k / n for k in range(n)}
+    inside = [(max(lo, x_cut), min(hi, window.x1), thin) for lo, hi, thin in pinches]
+    inside = [(lo, hi, thin) for lo, hi, thin in inside if lo < hi]
+    edges = sorted(edges | {x for lo, hi, _ in inside for x in (lo, hi) if x < window.x1})
+    bounds = []
+    for k, a in enumerate(edges):
+        b = window.x1 if k == len(edges) - 1 else edges[k + 1]
+        thin = [t for lo, hi, t in inside if lo <= 0.5 * (a + b) <= hi]
+        bounds.append((a, min([margin] + thin)))
     unsearched = []
-    for k in range(n):
-        a = x_cut + (window.x1 - x_cut) * k / n
-        b = window.x1 if k == n - 1 else x_cut + (window.x1 - x_cut) * (k + 1) / n
-        span = cut.im_range_between(a - margin, b + margin)
+    for k, (a, used) in enumerate(bounds):
+        b = window.x1 if k == len(bounds) - 1 else bounds[k + 1][0]
+        if b <= a:
+            continue
+        span = cut.im_range_between(a - used, b + used)
         if span is None:
             regions.append(Rectangle(a, b, *band))
             continue
+        # a pinch column is narrow: its own range of the cut, not the whole cut's, sets its padding
+        pad = used + 0.05 * (spread if used == margin else span[1] - span[0])
         lo, hi = max(band[0], span[0] - pad), min(band[1], span[1] + pad)
         if lo > band[0]:
             regions.append(Rectangle(a, b, band[0], lo))

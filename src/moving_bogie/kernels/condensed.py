@@ -1,0 +1,177 @@
+"""E_chr of a vehicle on n wheels with its internal DOFs eliminated first (the block system of Eq. (38)
+condensed to its wheels), and dE_chr/dq by Jacobi's formula (Eq. (40)), at one q, for the mpmath
+backend (computed in gmpy2, the library under mpmath, and returned as mpmath numbers).
+
+The block system of :mod:`moving_bogie.kernels.vehicle` is [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]]
+(c: the n wheels, i: the vehicle's internal DOFs). D_ii, the vehicle with its wheels held, does not involve
+the track, so its Schur complement is an n x n system, and an evaluation costs a small elimination of
+D_ii and one of the wheel system instead of one of the whole block system.
+"""
+
+from __future__ import annotations
+
+import gmpy2
+import mpmath
+
+from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
+
+
+def binary_matrices(*matrices) -> tuple:
+    """The vehicle's matrices (lists of rows of mpmath numbers at the working precision, exact 0 where
+    nothing couples) in gmpy2, exactly."""
+    with gmpy2.context(gmpy2.get_context(), precision=mpmath.mp.prec + 64):
+        return tuple([[to_binary(x) for x in row] for row in matrix] for matrix in matrices)
+
+
+def to_binary(x):
+    """An mpmath number (or int, float) as the gmpy2 number of the same value; an exact 0 stays 0. Exact
+    when the gmpy2 context holds at least the number's bits (the callers' contexts do)."""
+    if exact_zero(x):
+        return 0
+    if isinstance(x, mpmath.mpc):
+        return gmpy2.mpc(_mpfr(x.real._mpf_), _mpfr(x.imag._mpf_))
+    if isinstance(x, mpmath.mpf):
+        return gmpy2.mpc(_mpfr(x._mpf_), 0)
+    return gmpy2.mpc(x)
+
+
+def _mpfr(parts):
+    sign, man, exp, _ = parts
+    value = gmpy2.mul_2exp(gmpy2.mpfr(man), exp)
+    return -value if sign else value
+
+
+def _to_mp(z) -> mpmath.mpc:
+    """A gmpy2 number as an mpmath number, exactly (the caller rounds it to the working precision)."""
+    if exact_zero(z):
+        return mpmath.mpc(0)
+    parts = []
+    for x in (z.real, z.imag):
+        man, exp = x.as_mantissa_exp()
+        parts.append(mpmath.mpf((int(man), int(exp))))
+    return mpmath.mpc(*parts)
+
+
+def condensed_characteristic(q, matrices, K, index, dK=None):
+    """(E_chr, dE_chr/dq or None) of the block system with the internal DOFs eliminated first, or None.
+
+    ``q`` an mpmath number, ``matrices`` the vehicle's (M, C, K) from :func:`binary_matrices` (N x N,
+    wheels first), ``K`` (``dK``, or None) the kernel values at the distinct offsets and ``index[i][j]`` the
+    offset of xi_i - xi_j. With D(q) = -q^2 M + i q C + K, S = D_cc - D_ci D_ii^-1 D_ic (the vehicle's
+    dynamic stiffness condensed to its wheels) and B = pi I + 2 Kmat S, det A = det D_ii det B exactly. With
+    X = D_ii^-1 D_ic, Jacobi's formula gives dE/dq = E (tr(D_ii^-1 dD_ii) + tr(B^-1 dB)),
+    dB = 2 dKmat S + 2 Kmat dS, dS = dD_cc - dD_ci X - D_ci D_ii^-1 (dD_ic - dD_ii X).
+
+    The arithmetic is gmpy2's (MPC: correctly rounded, a tenth of mpmath's cost per operation here): D at
+    the working precision (rounded as mpmath rounds it), the elimination at the working precision plus
+    guard bits; the result is rounded back to mpmath at the working precision. Near a
+    zero of det D_ii (a resonance of the held vehicle) S is large and the elimination loses about log2 of
+    the ratio of the largest to the smallest pivot of D_ii in bits: the guard is that many bits plus 17 (at
+    least 34, about 10 digits), so that E keeps the accuracy of the elimination of the whole system. None
+    where D_ii or B is singular to working precision: the caller then eliminates the whole system.
+    """
+    n, N = len(index), len(matrices[0])
+    m = N - n
+    bits, guard = mpmath.mp.prec, 34
+    while True:
+        with gmpy2.context(gmpy2.get_context(), precision=bits):  # D rounded as mpmath rounds it
+            D, dD = _dynamic(to_binary(q), matrices, dK is not None)
+        with gmpy2.context(gmpy2.get_context(), precision=bits + guard):
+            factors = (None, None, 1)
+            loss = 0
+            if m:
+                factors = lu_factor([row[n:] for row in D[n:]])
+                if factors[2] == 0:
+                    return None
+                pivots = [abs(factors[0][k][k]) for k in range(m)]
+                loss = max(0, int(gmpy2.log2(max(pivots) / min(pivots))))
+            if loss + 17 <= guard:
+                Kb = [to_binary(k) for k in K]
+                Kmat = [[Kb[index[r][c]] for c in range(n)] for r in range(n)]
+                dKmat = None
+                if dK is not None:
+                    dKb = [to_binary(k) for k in dK]
+                    dKmat = [[dKb[index[r][c]] for c in range(n)] for r in range(n)]
+                out = _wheel_system(D, dD, factors, Kmat, dKmat)
+                break
+        guard = loss + 34
+    return None if out is None else tuple(None if x is None else +_to_mp(x) for x in out)
+
+
+def _dynamic(q, matrices, derivative):
+    """D(q) and dD/dq (or None) in gmpy2, an exact 0 where the vehicle couples nothing."""
+    M, C, Kv = matrices
+    N = len(M)
+    i = gmpy2.mpc(0, 1)
+    q2, iq = q * q, i * q
+
+    def total(terms):
+        terms = [t for t in terms if not exact_zero(t)]
+        return sum(terms[1:], terms[0]) if terms else 0
+
+    D = [
+        [total((-q2 * M[a][c] if M[a][c] else 0, iq * C[a][c] if C[a][c] else 0, Kv[a][c])) for c in range(N)]
+        for a in range(N)
+    ]
+    if not derivative:
+        return D, None
+    dD = [
+        [total((-2 * q * M[a][c] if M[a][c] else 0, i * C[a][c] if C[a][c] else 0)) for c in range(N)]
+        for a in range(N)
+    ]
+    return D, dD
+
+
+def _wheel_system(D, dD, factors, Kmat, dKmat):
+    """(det D_ii det B, its q-derivative or None) from the factors of D_ii (see condensed_characteristic)."""
+    n, N = len(Kmat), len(D)
+    m = N - n
+    lu, perm, d = factors
+
+    def product(P, Q, rows, cols, inner):  # sum_k P[r][k] Q[k][c], skipping exact zeros
+        out = []
+        for r in rows:
+            line = []
+            for c in cols:
+                terms = [P[r][k] * Q[k][c] for k in inner if not (exact_zero(P[r][k]) or exact_zero(Q[k][c]))]
+                line.append(sum(terms[1:], terms[0]) if terms else 0)
+            out.append(line)
+        return out
+
+    wheels, inside = range(n), range(n, N)
+    if m:
+        # X[a][c] = (D_ii^-1 D_ic)[a][c], a internal (indexed n..N-1 in the products below)
+        cols = [lu_solve(lu, perm, [D[n + a][c] for a in range(m)]) for c in wheels]
+        X = [[0] * n for _ in range(n)] + [[cols[c][a] for c in wheels] for a in range(m)]
+        DX = product(D, X, wheels, wheels, inside)
+        S = [[D[r][c] - DX[r][c] for c in wheels] for r in wheels]
+    else:
+        S = [[D[r][c] for c in wheels] for r in wheels]
+    B = product(Kmat, S, wheels, wheels, wheels)
+    B = [[2 * B[r][c] + (gmpy2.const_pi() if r == c else 0) for c in wheels] for r in wheels]
+    luB, permB, b = lu_factor(B)
+    E = d * b
+    if dKmat is None:
+        return E, None
+    if b == 0:
+        return None
+    trace = 0
+    if m:
+        for a in range(m):
+            column = [dD[n + r][n + a] for r in range(m)]
+            if any(not exact_zero(x) for x in column):
+                trace += lu_solve(lu, perm, column)[a]
+        # R = dD_ic - dD_ii X, then dX = D_ii^-1 R
+        dDX = product(dD, X, inside, wheels, inside)
+        R = [[dD[n + a][c] - dDX[a][c] for c in wheels] for a in range(m)]
+        dcols = [lu_solve(lu, perm, [R[a][c] for a in range(m)]) for c in wheels]
+        dX = [[0] * n for _ in range(n)] + [[dcols[c][a] for c in wheels] for a in range(m)]
+        first, second = product(dD, X, wheels, wheels, inside), product(D, dX, wheels, wheels, inside)
+        dS = [[dD[r][c] - first[r][c] - second[r][c] for c in wheels] for r in wheels]
+    else:
+        dS = [[dD[r][c] for c in wheels] for r in wheels]
+    left, right = product(dKmat, S, wheels, wheels, wheels), product(Kmat, dS, wheels, wheels, wheels)
+    dB = [[2 * (left[r][c] + right[r][c]) for c in wheels] for r in wheels]
+    for c in wheels:
+        trace += lu_solve(luB, permB, [dB[r][c] for r in wheels])[c]
+    return E, E * trace
