@@ -23,9 +23,6 @@ from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.catalogue import Model, load_catalogue
 from moving_bogie.validation.compare import validate
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_beam_as_data")
-
 require_sympy()
 
 FOUNDATIONS = """

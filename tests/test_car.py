@@ -23,9 +23,6 @@ from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.roots.frequencies import induced_frequencies
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_car")
-
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 

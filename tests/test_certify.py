@@ -27,9 +27,6 @@ from moving_bogie.roots.polish import newton
 from moving_bogie.roots.table2 import compute_table2, format_table2
 from moving_bogie.roots.winding import NotProven, proven_count
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_certify")
-
 #: A window holding the four pairs of Case 1 (Table 2: Re q <= 0.31, |Im q| <= 0.03) and the cut Im q = 0.1.
 CASE1_WINDOW = Rectangle(-5e-4, 0.5, -0.1, 0.2)
 

@@ -21,9 +21,6 @@ from pathlib import Path
 import pytest
 from derivation_support import require_sympy
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_derivations_current")
-
 REPO = Path(__file__).resolve().parents[1]
 UPDATE_COMMAND = "python -m derivations"
 TIMEOUT = 900  # a guard against a hung run; a shared machine can stretch a regeneration to minutes

@@ -22,9 +22,6 @@ from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.table2 import PRINT_TOLERANCE, compare_with_print
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_frequencies")
-
 
 @pytest.fixture(scope="module")
 def table():

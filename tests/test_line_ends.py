@@ -9,9 +9,6 @@ from moving_bogie.paper.stability_figures import _base
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.instability_lines import instability_lines
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_line_ends")
-
 
 @pytest.fixture(scope="module")
 def figure3e_d2():

@@ -22,9 +22,6 @@ from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.catalogue import Model, get_model, load_catalogue
 from moving_bogie.roots.frequencies import induced_frequencies
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_model_as_data")
-
 require_sympy()
 
 SYMBOLS = """

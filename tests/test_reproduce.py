@@ -22,9 +22,6 @@ from moving_bogie.paper.recipe import BuildContext
 from moving_bogie.paper.registry import ARTIFACTS, NOT_COMPUTED, Artifact
 from moving_bogie.paper.reproduce import build_artifact, quick_from_env
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_reproduce")
-
 
 @pytest.fixture(scope="module")
 def quick_run(tmp_path_factory):

@@ -27,9 +27,6 @@ from moving_bogie.response.closed_form import closed_form_response, deflection_s
 from moving_bogie.response.residues import IncompleteFrequencies, residue_expansion
 from moving_bogie.roots.frequencies import induced_frequencies
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_response")
-
 NAMES = ("w_rear", "w_front", "u", "theta")
 
 

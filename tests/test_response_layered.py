@@ -25,9 +25,6 @@ from moving_bogie.response.closed_form import closed_form_response, deflection_s
 from moving_bogie.response.cut_integral import CurveBranchCut, branch_cut_for
 from moving_bogie.roots.frequencies import induced_frequencies
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_response_layered")
-
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "two-layer.toml"
 RESPONSES = ("w_rear", "w_front", "u", "theta")
 

@@ -19,9 +19,6 @@ from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_search_window")
-
 PARAMS = table1_case(7).replace(beam="tr", S=10, r="0.09", eta_v="0.05")
 
 

@@ -21,9 +21,6 @@ from moving_bogie.stability.frequency_lines import frequency_lines
 from moving_bogie.stability.instability_lines import instability_lines
 from moving_bogie.stability.map import stability_column, stability_map
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_stability_lines")
-
 COARSE = dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
 
 

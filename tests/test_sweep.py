@@ -23,9 +23,6 @@ from moving_bogie.sweep import make_spec, open_sweep
 from moving_bogie.sweep.engine import run_sweep
 from moving_bogie.sweep.store import missing_blocks
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_sweep")
-
 # Case 1 over a window holding stable and unstable points with 0 to 3 unstable roots
 VARY = {"alpha": "0.5:1.1:24", "eta_M": "5:100:24"}
 OPTIONS = dict(block_points=8 * 24, check=1)

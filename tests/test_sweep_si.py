@@ -24,9 +24,6 @@ from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.sweep import make_spec, open_sweep
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_sweep_si")
-
 pytest.importorskip("distributed")
 
 # Table 1's Case 1 on a UIC60-like rail (EI, m per rail) on a soft track: unstable points occur in the window

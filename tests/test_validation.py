@@ -35,9 +35,6 @@ from moving_bogie.validation.compare import (
 from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.track_modes import ModalTrack
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_validation")
-
 SCRIPT = Path(sys.executable).with_name("moving-bogie")
 
 

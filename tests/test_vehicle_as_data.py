@@ -19,9 +19,6 @@ from moving_bogie.kernels.characteristic import Characteristic, CharacteristicAr
 from moving_bogie.model.catalogue import Model, load_catalogue
 from moving_bogie.roots.frequencies import induced_frequencies
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_vehicle_as_data")
-
 require_sympy()
 
 VEHICLE = '''

@@ -17,9 +17,6 @@ from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.far_field import far_field_radius, rho
 from moving_bogie.roots.frequencies import induced_frequencies
 
-# The tests share costly module fixtures: under pytest-xdist they run on one worker, which computes them once.
-pytestmark = pytest.mark.xdist_group("test_verdict")
-
 
 @pytest.fixture(scope="module")
 def supercritical():
