@@ -1,7 +1,10 @@
-"""``python -m derivations [--check] [--root DIR]``: regenerate ``generated/`` and ``docs/proofs.md``.
+"""``python -m derivations [--check] [--root DIR] [--only NAME]``: regenerate generated/ and docs/proofs.md.
 
 With ``--check`` nothing is written: the command exits 1 and prints a unified diff when any committed
-file differs from what the derivation produces now (stale kernels), 0 otherwise.
+file differs from what the derivation produces now (stale kernels), 0 otherwise. ``--only NAME`` (a beam,
+track or vehicle; repeatable) derives only the kernel modules of the named ones plus the catalogue-wide
+files (``__init__.py``, ``asymptotics.py``, ``parameters.py``): after adding a beam, track or vehicle, and
+nothing else, it writes what a full run would write, in a fraction of the time.
 """
 
 import argparse
@@ -27,10 +30,19 @@ def main(argv=None) -> int:
         default=Path(__file__).resolve().parent.parent,
         help="repository root to write into",
     )
+    parser.add_argument(
+        "--only",
+        action="append",
+        metavar="NAME",
+        help="derive only this beam's, track's or vehicle's modules and the catalogue files (repeatable)",
+    )
     ns = parser.parse_args(argv)
-    from .generate import outputs
+    from .generate import outputs, selectable
 
-    files = outputs(ns.root)
+    unknown = sorted(set(ns.only or ()) - set(selectable()))
+    if unknown:
+        parser.error(f"--only: unknown name(s) {', '.join(unknown)}; known: {', '.join(selectable())}")
+    files = outputs(ns.root, only=None if ns.only is None else frozenset(ns.only))
     stale = []
     for path, text in files.items():
         old = path.read_text() if path.exists() else ""

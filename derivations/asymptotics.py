@@ -24,6 +24,7 @@ generically:
    The runtime checks the ratio with a margin on circles |q| = R, 2R, ..., 32R in the lower half-plane.
 """
 
+import functools
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -52,19 +53,22 @@ def kernel_decay(track) -> KernelDecay | None:
     """Newton-polygon slopes beta of N(p, q) and the decay gamma of K(xi, q) for large |q| (Eq. (29)).
 
     None when K does not decay (gamma <= 0): no far-field expansion is generated for such a model.
+    Derived once per image (the kernel module and the asymptotics module both ask).
     """
-    image = foundation_image(track)
+    return _decay(foundation_image(track))
+
+
+@functools.cache
+def _decay(image) -> KernelDecay | None:
     N = sp.Poly(image.N, s.p, s.q)
     Q = sp.Poly(image.Q, s.p, s.q)
     points = N.monoms()
+    candidates = {Fraction(b1 - b2, a2 - a1) for a1, b1 in points for a2, b2 in points if a2 > a1 and b1 > b2}
     betas = set()
-    for a1, b1 in points:
-        for a2, b2 in points:
-            if a2 > a1 and b1 > b2:
-                beta = Fraction(b1 - b2, a2 - a1)
-                top = [a for a, b in points if a * beta + b == _weight(N, beta)]
-                if len(set(top)) >= 2:
-                    betas.add(beta)
+    for beta in candidates:
+        weight = _weight(N, beta)
+        if len({a for a, b in points if a * beta + b == weight}) >= 2:
+            betas.add(beta)
     if not betas:
         return None
     gamma = min(_weight(N, beta) - _weight(Q, beta) - beta for beta in betas)

@@ -266,14 +266,26 @@ def proofs_markdown():
     return "\n".join(lines) + "\n"
 
 
-def outputs(root: Path) -> dict:
-    """Map of path -> text of every generated file."""
+def selectable() -> tuple:
+    """The names ``--only`` accepts: every beam, track and vehicle of the catalogue."""
+    return (*BEAMS, *TRACKS, *DECLARED)
+
+
+def outputs(root: Path, only=None) -> dict:
+    """Map of path -> text of every generated file, or with ``only`` (names of beams, tracks, vehicles) of
+    the kernel modules of those (every model on a named beam or track, each named vehicle) and the files
+    that index the whole catalogue (``__init__.py``, ``asymptotics.py``, ``parameters.py``), which are
+    always derived in full. The other kernel modules and ``docs/proofs.md`` are left out: that is for a
+    copy whose only change is the addition of the named beams, tracks or vehicles.
+    """
     files = {}
     models = {name: build() for name, build in all_models().items()}
     for name, model in models.items():
-        files[root / GENERATED / f"foundation_{name}.py"] = foundation_module(name, model)
+        if only is None or model.beam in only or model.track in only:
+            files[root / GENERATED / f"foundation_{name}.py"] = foundation_module(name, model)
     for name in DECLARED:
-        files[root / GENERATED / f"vehicle_{name}.py"] = vehicle_module(name)
+        if only is None or name in only:
+            files[root / GENERATED / f"vehicle_{name}.py"] = vehicle_module(name)
     files[root / GENERATED / "parameters.py"] = parameters_module()
     catalogue = [
         ("BEAMS", {name: beam.title for name, beam in BEAMS.items()}),
@@ -287,5 +299,6 @@ def outputs(root: Path) -> dict:
     init = module_source("Generated kernels of moving-bogie: the catalogue of models.", digest, [], catalogue)
     files[root / GENERATED / "__init__.py"] = init
     files[root / GENERATED / "asymptotics.py"] = asymptotics_module(models)
-    files[root / "docs" / "proofs.md"] = proofs_markdown()
+    if only is None:
+        files[root / "docs" / "proofs.md"] = proofs_markdown()
     return files

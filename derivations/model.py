@@ -6,6 +6,7 @@ change of coordinates is a substitution of operator symbols and the transforms w
 conditions replace d/dxi by i p and d/dtau by i q.
 """
 
+import functools
 from dataclasses import dataclass
 
 import sympy as sp
@@ -159,13 +160,20 @@ def foundation_image(track) -> FoundationImage:
     Rows are moved to moving coordinates (Eq. (10)), made dimensionless (Eqs. (15)-(18), (59)) and
     transformed (Eqs. (21)-(22)). The first row is scaled like Eq. (18); other rows' scale cancels in Q/N.
     By Cramer's rule the image of w for a load on row 1 is load * cofactor_00 / det.
+
+    The image depends only on the operator and the scales, so it is derived once per process for each
+    (the generated kernel module and the asymptotics both need it).
     """
-    operator = track.operator
+    return _image(sp.ImmutableMatrix(track.operator), tuple(track.row_scales), tuple(track.unknown_scales))
+
+
+@functools.cache
+def _image(operator, row_scales, unknown_scales) -> FoundationImage:
     n = operator.shape[0]
     transformed = sp.zeros(n, n)
     for i in range(n):
         for j in range(n):
-            scale = track.row_scales[i] * track.unknown_scales[j]
+            scale = row_scales[i] * unknown_scales[j]
             transformed[i, j] = transform(to_dimensionless(to_moving(operator[i, j]), scale))
     det = sp.expand(transformed.det(method="berkowitz"))
     cof = sp.expand(transformed[1:, 1:].det(method="berkowitz")) if n > 1 else sp.Integer(1)

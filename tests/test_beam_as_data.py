@@ -14,22 +14,16 @@ References, independent of the generated code they check: K(0, q) by adaptive qu
 
 from __future__ import annotations
 
-import shutil
-import subprocess
-import sys
-from pathlib import Path
-
 import mpmath
 import pytest
+from derivation_support import regenerated_copy, require_sympy
 
 from moving_bogie import DimensionlessParams, table1_case
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.catalogue import Model, load_catalogue
 from moving_bogie.validation.compare import validate
 
-pytest.importorskip("sympy")
-
-REPO = Path(__file__).resolve().parents[1]
+require_sympy()
 
 FOUNDATIONS = """
 BEAMS["rayleigh"] = Beam(
@@ -43,18 +37,10 @@ BEAMS["rayleigh"] = Beam(
 
 @pytest.fixture(scope="module")
 def scratch(tmp_path_factory):
-    """A copy of the source tree with the new beam, regenerated (python -m derivations --root)."""
-    root = tmp_path_factory.mktemp("beam")
-    ignore = shutil.ignore_patterns("__pycache__", "*.egg-info")
-    for name in ("derivations", "src"):
-        shutil.copytree(REPO / name, root / name, ignore=ignore)
-    path = root / "derivations" / "foundations.py"
-    path.write_text(path.read_text() + FOUNDATIONS)
-    run = subprocess.run(
-        [sys.executable, "-m", "derivations", "--root", str(root)], cwd=root, capture_output=True, text=True
+    """A copy of the source tree with the new beam, regenerated (``--only rayleigh``)."""
+    return regenerated_copy(
+        tmp_path_factory.mktemp("beam"), {"foundations.py": FOUNDATIONS}, only=("rayleigh",)
     )
-    assert run.returncode == 0, run.stderr
-    return root
 
 
 def _params(scratch) -> DimensionlessParams:

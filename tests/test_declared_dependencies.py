@@ -20,6 +20,7 @@ INDIRECT = {
     "gmpy2": "mpmath's GMP backend, picked up automatically",
     "ruff": "the linter, a command",
     "ipykernel": "the kernel that runs the notebooks (started by nbclient)",
+    "pytest-xdist": "a pytest plugin: the suite runs on two workers (pytest -n 2, --dist=loadscope)",
 }
 
 

@@ -23,7 +23,7 @@ from derivation_support import require_sympy
 
 REPO = Path(__file__).resolve().parents[1]
 UPDATE_COMMAND = "python -m derivations"
-TIMEOUT = 300
+TIMEOUT = 900  # a guard against a hung run; a shared machine can stretch a regeneration to minutes
 
 require_sympy()
 
@@ -41,7 +41,12 @@ def _derivations(*args, env=None) -> subprocess.Popen:
 
 
 def _finish(proc: subprocess.Popen) -> subprocess.CompletedProcess:
-    out, err = proc.communicate(timeout=TIMEOUT)
+    try:
+        out, err = proc.communicate(timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.communicate()
+        raise
     return subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
 
 
@@ -59,23 +64,33 @@ def _written_files(root: Path) -> dict[str, bytes]:
     return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.rglob("*")) if p.is_file()}
 
 
+#: What the partial run of the fixture below derives (``--only``): a beam and a vehicle of the catalogue.
+ONLY = ("tr", "car")
+
+
 @pytest.fixture(scope="module")
-def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes]]:
-    """Two regenerations into empty folders, run once for the module and in parallel: (first, second).
+def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes], dict[str, bytes]]:
+    """Three regenerations into empty folders, run once for the module and in parallel: (first, second, only).
 
     The second run starts with another PYTHONHASHSEED: the command must pin it itself (SymPy's CSE and
-    ordering can depend on string hashing). Each regeneration costs a few seconds of SymPy, so the tests
-    below share them instead of running ``--check`` (the same derivation) again.
+    ordering can depend on string hashing). The third derives only :data:`ONLY` (``--only``, what the
+    scratch tests of a new beam, track or vehicle use). Each full regeneration costs several seconds of
+    SymPy, so the tests below share them instead of running ``--check`` (the same derivation) again.
     """
     base = tmp_path_factory.mktemp("regenerated")
-    roots = [base / "first", base / "second"]
+    roots = [base / "first", base / "second", base / "only"]
     env_other_seed = dict(os.environ, PYTHONHASHSEED="12345")
-    procs = [_derivations("--root", str(roots[0])), _derivations("--root", str(roots[1]), env=env_other_seed)]
+    only = [arg for name in ONLY for arg in ("--only", name)]
+    procs = [
+        _derivations("--root", str(roots[0])),
+        _derivations("--root", str(roots[1]), env=env_other_seed),
+        _derivations("--root", str(roots[2]), *only),
+    ]
     for proc in procs:
         result = _finish(proc)
         assert result.returncode == 0, result.stdout + result.stderr
-    first, second = (_written_files(r) for r in roots)
-    return first, second
+    first, second, partial = (_written_files(r) for r in roots)
+    return first, second, partial
 
 
 @pytest.mark.slow
@@ -85,7 +100,7 @@ def test_committed_files_are_current(regenerations):
     The set of files must match too, so a generated module left behind by a removed model (which
     ``--check`` cannot see) is caught here.
     """
-    first, _ = regenerations
+    first, _, _ = regenerations
     committed = _committed_files()
     assert sorted(first) == sorted(committed), (
         f"generator writes {sorted(first)}, repository has {sorted(committed)}; "
@@ -100,8 +115,35 @@ def test_committed_files_are_current(regenerations):
 @pytest.mark.slow
 def test_regeneration_is_deterministic(regenerations):
     """Two independent regenerations, under different hash seeds, are byte-identical."""
-    first, second = regenerations
+    first, second, _ = regenerations
     assert first == second, "two regenerations differ: the output is not deterministic"
+
+
+@pytest.mark.slow
+def test_only_writes_the_named_modules_and_the_catalogue_as_a_full_run_does(regenerations):
+    """``--only tr --only car``: every model on the beam, the vehicle's module and the catalogue-wide files,
+    each byte-identical to the full regeneration's; nothing else (the proofs neither).
+
+    The expected files are read from the committed catalogue (``generated.MODULES``), not from the
+    generator that writes them.
+    """
+    from moving_bogie import generated
+
+    first, _, partial = regenerations
+    folder = "src/moving_bogie/generated"
+    kernels = {module for (beam, _), module in generated.MODULES.items() if beam in ONLY}
+    kernels |= {f"vehicle_{name}" for name in generated.VEHICLES if name in ONLY}
+    expected = {f"{folder}/{module}.py" for module in (*kernels, "__init__", "asymptotics", "parameters")}
+    assert len(kernels) == 4 and set(partial) == expected, sorted(partial)
+    for rel, text in partial.items():
+        assert text == first[rel], f"{rel}: --only wrote other text than the full run"
+
+
+def test_only_refuses_an_unknown_name_naming_the_option_and_the_known_ones(tmp_path):
+    result = _finish(_derivations("--root", str(tmp_path), "--only", "ballast"))
+    assert result.returncode == 2 and "--only" in result.stderr and "ballast" in result.stderr, result.stderr
+    assert "eb, tr" in result.stderr and "bogie" in result.stderr and "Traceback" not in result.stderr
+    assert not any(tmp_path.iterdir()), "nothing is written for a refused name"
 
 
 @pytest.mark.slow

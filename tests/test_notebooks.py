@@ -10,9 +10,11 @@ notebooks use their reduced grids. A failing cell fails the test with the cell's
 from __future__ import annotations
 
 import importlib.util
+import sys
 from pathlib import Path
 
 import pytest
+from optional_tools import NOTEBOOK_INSTALL, NOTEBOOK_VARIABLE, require_notebook_tools
 
 ROOT = Path(__file__).resolve().parent.parent
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("[0-9][0-9]-*.py"))
@@ -42,8 +44,7 @@ def _runner():
 @pytest.mark.slow
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
 def test_notebook_runs(path, tmp_path):
-    for name in ("jupytext", "nbformat", "nbclient", "ipykernel"):
-        pytest.importorskip(name)
+    require_notebook_tools()
     runner = _runner()
     try:
         elapsed = runner.run_notebook(path, quick=True, out=tmp_path / f"{path.stem}.ipynb")
@@ -54,9 +55,25 @@ def test_notebook_runs(path, tmp_path):
 
 def test_runner_reports_a_failing_cell(tmp_path, capsys):
     """The runner's exit status and message for a notebook whose cell raises."""
-    for name in ("jupytext", "nbformat", "nbclient", "ipykernel"):
-        pytest.importorskip(name)
+    require_notebook_tools()
     bad = tmp_path / "99-bad.py"
     bad.write_text("# %%\nx = 1\n\n# %%\nraise ValueError('the cell of 99-bad')\n")
     assert _runner().main([str(bad)]) == 1
     assert "the cell of 99-bad" in capsys.readouterr().err
+
+
+def test_missing_notebook_tools_fail_with_the_install_command(monkeypatch):
+    """No silent skip: a missing tool of the dev extra fails with the install command and the variable."""
+    monkeypatch.delenv(NOTEBOOK_VARIABLE, raising=False)
+    monkeypatch.setitem(sys.modules, "nbclient", None)  # import nbclient now raises ImportError
+    with pytest.raises(pytest.fail.Exception) as info:
+        require_notebook_tools()
+    message = str(info.value)
+    assert "nbclient" in message and NOTEBOOK_INSTALL in message and NOTEBOOK_VARIABLE in message
+
+
+def test_the_notebook_variable_skips_with_its_name(monkeypatch):
+    monkeypatch.setenv(NOTEBOOK_VARIABLE, "1")
+    with pytest.raises(pytest.skip.Exception) as info:
+        require_notebook_tools()
+    assert NOTEBOOK_VARIABLE in str(info.value)

@@ -129,3 +129,21 @@ def test_shell_command_detection():
     assert shell_commands("console", ["$ moving-bogie params --case 1", "Dimensionless parameters"]) == [
         "moving-bogie params --case 1"
     ]
+
+
+def test_ci_runs_the_readme_test_command():
+    """``.ci/run`` repeats the README's whole-suite setup in its comment and runs its pytest command."""
+    setups = [
+        line
+        for _, lang, body, _ in readme_blocks(README.read_text())
+        if lang in SHELL_LANGUAGES
+        for line in body
+        if "pip install -e '.[dev]'" in line and "&& pytest" in line
+    ]
+    assert len(setups) == 1, setups
+    (setup,) = setups
+    command = setup.rsplit("&& ", 1)[1]
+    assert command.split()[:2] == ["pytest", "-q"], command
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert f"#   {setup}\n" in ci, "the comment of .ci/run quotes another setup than the README's"
+    assert f"\n{command} || status=$?\n" in ci, f".ci/run does not run the README's `{command}`"

@@ -9,23 +9,17 @@ found (a contour other than the search's tiling).
 
 from __future__ import annotations
 
-import shutil
-import subprocess
-import sys
-from pathlib import Path
-
 import mpmath
 import numpy as np
 import pytest
+from derivation_support import regenerated_copy, require_sympy
 
 from moving_bogie import DimensionlessParams, table1_case
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.model.catalogue import Model, load_catalogue
 from moving_bogie.roots.frequencies import induced_frequencies
 
-pytest.importorskip("sympy")
-
-REPO = Path(__file__).resolve().parents[1]
+require_sympy()
 
 VEHICLE = '''
 
@@ -46,18 +40,10 @@ VEHICLES["three_axle"] = three_axle
 
 @pytest.fixture(scope="module")
 def scratch(tmp_path_factory):
-    """A copy of the source tree with the three-axle bogie, regenerated (python -m derivations --root)."""
-    root = tmp_path_factory.mktemp("vehicle")
-    ignore = shutil.ignore_patterns("__pycache__", "*.egg-info")
-    for name in ("derivations", "src"):
-        shutil.copytree(REPO / name, root / name, ignore=ignore)
-    path = root / "derivations" / "vehicles.py"
-    path.write_text(path.read_text() + VEHICLE)
-    run = subprocess.run(
-        [sys.executable, "-m", "derivations", "--root", str(root)], cwd=root, capture_output=True, text=True
+    """A copy of the source tree with the three-axle bogie, regenerated (``--only three_axle``)."""
+    return regenerated_copy(
+        tmp_path_factory.mktemp("vehicle"), {"vehicles.py": VEHICLE}, only=("three_axle",)
     )
-    assert run.returncode == 0, run.stderr
-    return root
 
 
 @pytest.fixture(scope="module")
