@@ -122,8 +122,8 @@ def test_random_parameter_sets_never_report_a_count_mismatch(params):
 
 @pytest.mark.slow
 def test_bad_input_fails_cleanly():
-    with pytest.raises(ParameterError, match="vehicle"):
-        induced_frequencies(table1_case(1), "trolley")
+    with pytest.raises(ParameterError, match="vehicle must be one of"):
+        table1_case(1).replace(vehicle="trolley")
     out = subprocess.run(
         [sys.executable, "-m", "moving_bogie", "frequencies", "--case", "99"], capture_output=True, text=True
     )
