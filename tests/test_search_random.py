@@ -15,10 +15,12 @@ References:
 import importlib.util
 from pathlib import Path
 
+import mpmath
 import numpy as np
 import pytest
 
-from moving_bogie.kernels.cut import cut_locus
+from moving_bogie.kernels.characteristic import CharacteristicArray
+from moving_bogie.kernels.cut import arms_y_at, cut_locus
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
 from moving_bogie.roots.frequencies import induced_frequencies
@@ -46,6 +48,86 @@ FOLDS_AT_ZERO = DimensionlessParams(
     kappa_2="1.59228886982",
     eta_2="0.524276464547",
 )
+
+
+# Two masses on a light sleeper layer at 0.89 v_cr (set 11 of the benchmark's two-layer sets, seed 24): its
+# mirror cut curves cross on Re q = 0, where two purely imaginary roots lie. The column was split at the
+# crossing, so the edge Re q = 0 ran through both roots: the cells around them were left out (2.5e-3 high),
+# and a tall lens between two arms could not be bisected (split across Re q only): 5 roots counted, 3
+# found, UNDETERMINED, 23 s.
+IMAGINARY_ROOTS = DimensionlessParams(
+    beam="eb",
+    track="two-layer",
+    vehicle="masses",
+    alpha="0.361537",
+    eta_f="0.28138450197",
+    eta_s="0",
+    eta_M="36.0822020253",
+    d="6.09130421867",
+    mu_2="1.17360780857",
+    kappa_2="0.126713794942",
+    eta_2="0.480110010147",
+)
+
+
+def _imaginary_axis_roots(params, y_max, n=6401):
+    """Roots of E_chr on the imaginary axis, independently of the contour code: E(-conj q) = conj E(q) up to
+    a constant phase, so E(i y) times that phase is real (checked); its sign changes are bisected, and a
+    sign change where |E| does not vanish (a jump of K where a cut curve crosses Re q = 0) is dropped."""
+    E = CharacteristicArray(params)
+    y = np.linspace(1e-6, y_max, n)
+    v = E(1j * y)
+    phase = np.conj(v[0]) / abs(v[0])
+    assert np.max(np.abs((v * phase).imag) / np.abs(v)) < 1e-10
+
+    def real(t):
+        return float((E(np.array([1j * t])) * phase).real[0])
+
+    roots = []
+    s = (v * phase).real
+    for k in np.nonzero(np.sign(s[:-1]) != np.sign(s[1:]))[0]:
+        a, b, fa = y[k], y[k + 1], s[k]
+        for _ in range(60):
+            m = 0.5 * (a + b)
+            fm = real(m)
+            a, b, fa = (m, b, fm) if np.sign(fm) == np.sign(fa) else (a, m, fa)
+        t = 0.5 * (a + b)
+        if abs(real(t)) < 1e-10 * np.median(np.abs(v[max(0, k - 20) : k + 20])):
+            roots.append(t)
+    return roots
+
+
+@pytest.mark.slow
+def test_tiling_keeps_edges_off_a_crossing_on_re_q_zero():
+    # purely imaginary points between and around the crossings lie inside exactly one region
+    window, _ = far_field_window(IMAGINARY_ROOTS)
+    cut = cut_locus(IMAGINARY_ROOTS, window.x0, window.x1)
+    tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-5, gap_height=0.1 * window.height)
+    assert max(u.height for u in tiling.unsearched) <= 1e-8
+    arms = [arm for arm in cut.arms if arm.x_lo < 0 < arm.x_hi]
+    crossings = sorted(set(np.round(arms_y_at(arms, np.array([0.0]))[:, 0], 12)))
+    assert len(crossings) >= 2  # mirror pairs of curves meet on the imaginary axis
+    for z0 in [0.204j, 0.2892j, 1j * (crossings[0] - 1e-6), 1j * (crossings[1] + 1e-6)]:
+        counts = winding_numbers(lambda z, z0=z0: z - z0, tiling.regions)
+        assert not any(isinstance(c, EdgeZeroError) for c in counts), z0
+        assert sum(counts) == 1, z0
+        assert tiling.regions[counts.index(1)].contains(z0), z0
+
+
+@pytest.mark.slow
+def test_purely_imaginary_roots_between_crossing_cut_curves():
+    result = induced_frequencies(IMAGINARY_ROOTS)
+    assert result.count_ok, result.warnings
+    assert result.verdict.determined, result.verdict.reasons
+    assert max(u.height for u in result.unsearched) <= 1e-8
+    found = sorted(float(mpmath.im(r.q)) for r in result.roots if abs(complex(r.q).real) < 1e-12)
+    reference = _imaginary_axis_roots(IMAGINARY_ROOTS, result.window.y1)
+    assert len(found) == len(reference) == 2
+    assert np.allclose(found, reference, rtol=0, atol=1e-10), (found, reference)
+    lower = _bench().scan_roots(IMAGINARY_ROOTS, result.window, n=(401, 401))
+    same, worst = _bench().compare(result, lower)
+    assert same, (worst, lower)
+    assert result.verdict.state == ("unstable" if lower else "stable")
 
 
 def _bench():

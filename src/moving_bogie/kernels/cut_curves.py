@@ -17,11 +17,11 @@ from scipy import optimize
 
 from moving_bogie.kernels.polyroots import (
     companion_roots,
+    evaluate_coefficients,
     newton_polish,
     poly_roots,
     polyder,
     polyval,
-    stack_coefficients,
 )
 
 __all__ = ["CutTracer", "Fold", "far_range", "split_at_turns", "trace_curves"]
@@ -47,7 +47,7 @@ class CutTracer:
         digits.
         """
         ps = np.asarray(ps, dtype=float)
-        c = stack_coefficients(self.module.n_coeffs_in_q(ps, **self.args), ps.shape)
+        c = evaluate_coefficients(self.module.n_coeffs_in_q, ps, self.args)
         z = newton_polish(c, poly_roots(c), steps=2)
         with np.errstate(all="ignore"):
             residual = np.abs(polyval(c, z)) / polyval(np.abs(c), np.abs(z))
@@ -59,8 +59,8 @@ class CutTracer:
     def dq_dp(self, p, q) -> np.ndarray:
         """dq/dp = -N_p / N_q along a curve N(p, q) = 0 (implicit-function theorem)."""
         p, q = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(q, dtype=complex))
-        n = stack_coefficients(self.module.n_coeffs(q, **self.args), q.shape)
-        nq = stack_coefficients(self.module.n_coeffs_dq(q, **self.args), q.shape)
+        n = evaluate_coefficients(self.module.n_coeffs, q, self.args)
+        nq = evaluate_coefficients(self.module.n_coeffs_dq, q, self.args)
         x = p[..., None].astype(complex)
         Np = polyval(polyder(n), x)[..., 0]
         Nq = polyval(nq, x)[..., 0]
@@ -69,7 +69,7 @@ class CutTracer:
     def refine(self, p, q, steps: int = 4) -> np.ndarray:
         """Newton's method on N(p, .) = 0 in q from ``q`` (arrays), at fixed real p."""
         p = np.asarray(p, dtype=float)
-        c = stack_coefficients(self.module.n_coeffs_in_q(p, **self.args), p.shape)
+        c = evaluate_coefficients(self.module.n_coeffs_in_q, p, self.args)
         dc = polyder(c)
         z = np.asarray(q, dtype=complex).copy()
         for _ in range(steps):

@@ -27,7 +27,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import bind
-from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval, stack_coefficients
+from moving_bogie.kernels.polyroots import evaluate_coefficients, poly_roots, polyder, polyval
 
 
 def foundation_module(params):
@@ -287,16 +287,17 @@ class TrackKernelArray:
         self.args = self.foundation.float_arguments(params)
 
     def _coeffs(self, func, q):
-        return stack_coefficients(func(q, **self.args), q.shape)
+        return evaluate_coefficients(func, q, self.args)
 
-    def p_roots(self, q):
-        """Roots in p, shape q.shape + (DEGREE_N,) (closed form for quartics, else companion + Newton)."""
-        return poly_roots(self._coeffs(self.module.n_coeffs, q))
+    def p_roots(self, q, coeffs=None):
+        """Roots in p, shape q.shape + (DEGREE_N,) (closed form for quartics, else companion + Newton);
+        ``coeffs``: those of N(., q) if already evaluated."""
+        return poly_roots(self._coeffs(self.module.n_coeffs, q) if coeffs is None else coeffs)
 
     def __call__(self, q, xis, *, derivative=False):
         q = np.asarray(q, dtype=complex)
-        roots = self.p_roots(q)
         n = self._coeffs(self.module.n_coeffs, q)
+        roots = self.p_roots(q, n)
         qc = self._coeffs(self.module.q_coeffs, q)
         n1 = polyder(n)
         P = roots

@@ -16,6 +16,18 @@ import numpy as np
 _SUBDIVIDE = 8  # pieces a segment whose arg step is too large is cut into
 
 
+#: A segment shorter than this many units in the last place of its end points cannot be refined further
+#: in double precision (its midpoints round to its ends): a cell whose size times ``min_segment`` is
+#: below that (a thin cell next to a crossing of cut curves) stops refining there, not after thousands of
+#: refinement levels that do not move.
+_ULPS = 64
+
+
+def _resolution(z, shortest):
+    """The shortest segment worth refining at ``z``: ``shortest``, or the double-precision floor there."""
+    return np.maximum(shortest, _ULPS * np.finfo(float).eps * np.maximum(1.0, np.abs(z)))
+
+
 class EdgeZeroError(RuntimeError):
     """A zero lies on (or within sampling resolution of) the contour."""
 
@@ -126,7 +138,7 @@ def winding_number(
         total += float(step[~bad].sum())
         if not np.any(bad):
             break
-        if np.any(np.abs(zb - za)[bad] < min_segment * size) or points > max_points:
+        if np.any(np.abs(zb - za)[bad] < _resolution(za[bad], min_segment * size)) or points > max_points:
             raise EdgeZeroError(f"a zero lies on or next to the contour of {rect}")
         za, zb, wa, wb = za[bad], zb[bad], wa[bad], wb[bad]
         if ta is not None:
@@ -195,7 +207,7 @@ def winding_numbers(f, regions, *, max_step=np.pi / 5, min_segment=1e-11, max_po
                 errors[k] = EdgeZeroError(f"non-finite value or zero on the contour of {regions[k]}")
         bad |= broken
         np.add.at(total, owner[~bad], step[~bad])
-        too_fine = bad & (np.abs(zb - za) < min_segment * sizes[owner])
+        too_fine = bad & (np.abs(zb - za) < _resolution(za, min_segment * sizes[owner]))
         for k in np.unique(owner[too_fine]):
             if errors[k] is None:
                 errors[k] = EdgeZeroError(f"a zero lies on or next to the contour of {regions[k]}")

@@ -138,6 +138,12 @@ class ColumnCell(_Curve):
             _segment(hi[0], lo[0]),
         )
 
+    def _piece(self, lower, upper):
+        """The cell over the same columns between other edges (a Rectangle when both are straight)."""
+        if lower.arm is None and upper.arm is None:
+            return Rectangle(self.x0, self.x1, lower.y, upper.y)
+        return ColumnCell(self.x0, self.x1, lower, upper)
+
     def __repr__(self):
         return f"ColumnCell({self.x0:.9g}..{self.x1:.9g}, {self.y0:.9g}..{self.y1:.9g})"
 
@@ -154,19 +160,15 @@ class ColumnCell(_Curve):
         return lo - margin <= z.imag <= hi + margin
 
     def split(self, fraction=0.5):
-        """Two cells: across Re q, or (tall, one straight edge) a rectangle off the straight side."""
-        if self.height > 2 * self.width and (self.lower.arm is None) != (self.upper.arm is None):
-            if self.lower.arm is not None:
-                top = float(self.lower.points(np.linspace(self.x0, self.x1, 33)).imag.max())
-                ym = top + fraction * (self.upper.y - top)
-                return ColumnCell(self.x0, self.x1, self.lower, Edge(y=ym)), Rectangle(
-                    self.x0, self.x1, ym, self.upper.y
-                )
-            bottom = float(self.upper.points(np.linspace(self.x0, self.x1, 33)).imag.min())
-            ym = bottom - fraction * (bottom - self.lower.y)
-            return Rectangle(self.x0, self.x1, self.lower.y, ym), ColumnCell(
-                self.x0, self.x1, Edge(y=ym), self.upper
-            )
+        """Two cells: across Re q, or (taller than twice its width, with a horizontal line passing between
+        its edges) along that line, so that a tall cell shrinks in height too (a lens between two arms)."""
+        if self.height > 2 * self.width:
+            xs = np.linspace(self.x0, self.x1, 33)
+            top = float(self.lower.points(xs).imag.max())
+            bottom = float(self.upper.points(xs).imag.min())
+            if bottom > top:
+                ym = top + fraction * (bottom - top)
+                return self._piece(self.lower, Edge(y=ym)), self._piece(Edge(y=ym), self.upper)
         xm = self.x0 + fraction * self.width
         return ColumnCell(self.x0, xm, self.lower, self.upper), ColumnCell(
             xm, self.x1, self.lower, self.upper

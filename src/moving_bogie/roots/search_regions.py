@@ -182,10 +182,20 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
         g = gaps[k]
         if np.all(np.abs(g) < 1e-13):
             continue  # coincident curves (Euler-Bernoulli): merged below
-        split = _split_point(arms[k], arms[k + 1], xs, g, eps)
+        split, crossing = _split_point(arms[k], arms[k + 1], xs, g, eps)
+        narrow = _NARROW * eps * max(1.0, abs(a))
+        if split is not None and crossing and a < split < b:
+            # a crossing gets a narrow column of its own centred on it (boxes left out around the arms):
+            # no edge passes through the crossing point, where a root may sit (two mirror curves cross on
+            # Re q = 0, where the purely imaginary roots lie)
+            half = 0.45 * _NARROW * eps * max(1.0, abs(split))
+            inner = [x for x in (split - half, split + half) if a + 1e-3 * half < x < b - 1e-3 * half]
+            cuts = [a, *inner, b]
+            for c0, c1 in zip(cuts[:-1], cuts[1:]):
+                _column(cut, c0, c1, regions, unsearched, eps, band_lo, band_hi, arms)
+            return
         if split is not None and a < split < b:
             # a split next to an end makes a column too narrow to count in: widen it to _NARROW eps
-            narrow = _NARROW * eps * max(1.0, abs(a))
             if split - a < narrow:
                 split = a + narrow if b - a > 2 * narrow else b
             elif b - split < narrow:
@@ -219,8 +229,9 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
 
 
 def _split_point(lower, upper, xs, gap, eps):
-    """Where the column must be split for the arms ``lower`` < ``upper`` (at the middle): their crossing,
-    or the Re q where their gap passes _MERGE eps (None if neither happens inside)."""
+    """Where the column must be split for the arms ``lower`` < ``upper`` (at the middle), and whether that
+    is their crossing (else the Re q where their gap passes _MERGE eps); (None, False) if neither happens
+    inside."""
 
     def g(x, target=0.0):
         return float(upper.y_at(np.array([x]))[0] - lower.y_at(np.array([x]))[0]) - target
@@ -231,9 +242,10 @@ def _split_point(lower, upper, xs, gap, eps):
             k = change[0]
             ga, gb = g(xs[k], target), g(xs[k + 1], target)
             if ga * gb > 0:  # the sign change was at rounding level: split at the nearer sample
-                return xs[k] if abs(ga) < abs(gb) else xs[k + 1]
-            return optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
-    return None
+                return (xs[k] if abs(ga) < abs(gb) else xs[k + 1]), target == 0.0
+            x = optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
+            return x, target == 0.0
+    return None, False
 
 
 def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
