@@ -10,7 +10,7 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.roots.contour import EdgeZeroError, winding_number
+from moving_bogie.roots.contour import EdgeZeroError, winding_numbers
 
 __all__ = ["locate", "newton_inside"]
 
@@ -41,9 +41,8 @@ def locate(fast, rect, n, newton_cell):
             continue
         for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75):
             pieces = r.split(frac)  # two halves (a cell at a fold of the cut may give three pieces)
-            try:
-                counts = [winding_number(fast, piece) for piece in pieces]
-            except EdgeZeroError:
+            counts = winding_numbers(fast, pieces)  # refined together: one evaluation per level
+            if any(isinstance(c, EdgeZeroError) for c in counts):
                 continue
             if sum(counts) == k:
                 break
