@@ -205,10 +205,13 @@ def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, Phy
         option = options.get(exc.parameter) or next(
             (o for o, dest in MODEL_OPTIONS.items() if dest == exc.parameter), None
         )
-        if option and "missing" in str(exc) and args.case is None and args.file is None:
-            raise ParameterError(
-                exc.parameter, f"{exc} ({option}); or start from --case N or --file F.toml"
-            ) from None
+        if option and "missing" in str(exc):
+            if args.case is None and args.file is None:
+                hint = f"give {option}, or start from --case N or --file F.toml"
+            else:
+                base = f"case {args.case} of Table 1" if args.case is not None else str(args.file)
+                hint = f"{base} does not set it; give {option}, or use a file that has it"
+            raise ParameterError(exc.parameter, f"{exc}: {hint}") from None
         raise
     args.model = params.vehicle
     return params, physical

@@ -189,7 +189,8 @@ class DimensionlessParams(ModelValues):
             if values.get(name) is None and model.catalogue.specs[name].default is None:
                 alt = next((a for a, m in model.alternatives.items() if m["sets"] == name), None)
                 hint = f" (or {alt!r})" if alt else ""
-                raise ParameterError(alt or name, f"missing parameter {name!r}{hint}")
+                meaning = model.catalogue.specs[name].meaning
+                raise ParameterError(alt or name, f"missing parameter {name!r}{hint} ({meaning})")
         return cls(model=model, **values)
 
     @classmethod
