@@ -12,8 +12,9 @@ on strips Re q in [X_k, 2 X_k], |Im q| <= 1, the argument principle on the tilin
 is guessed) strip after strip, doubling X_k from the window's right edge, and stops when the residues of
 the next strips are estimated below ``tol``: with A_k the sum of |n_X(q)/(q E_chr'(q))| over the roots of
 strip k (both members of each pair, the largest over the responses) and rho = A_k / A_{k-1} (at least 1/8,
-the (Re q)^-4 law over a doubling), the rest is estimated as A_k rho / (1 - rho). That estimate (an
-extrapolation of the measured decay, not a proof) is what the time series' note reports.
+the (Re q)^-4 law over a doubling), the rest is estimated as A_k rho / (1 - rho), and also by the envelope
+C (Re q)^-4 of the amplitudes found over roots as dense as the densest strip; the larger is kept. That
+estimate (an extrapolation of the measured decay, not a proof) is what the time series' note reports.
 """
 
 from __future__ import annotations
@@ -37,8 +38,8 @@ LAW = 1.0 / 8.0
 #: (confirmed at 25) are far more than the sum needs.
 DPS = 15
 #: Strips reach at least this many times the start of the sequence before the rest is extrapolated.
-MIN_REACH = 4.0
-#: Strips are added until Re q reaches this many times the window's edge at most.
+MIN_REACH = 2.0
+#: Strips are added until Re q reaches this many times the window's edge or the sequence's start at most.
 MAX_REACH = 256.0
 
 
@@ -57,11 +58,11 @@ class AxisSequence:
     tail: float
     strips: int
     found: int
-    complete: bool
-    first: int  # roots (pairs once) in the first strip, Re q <= twice the window's edge  # every strip's count agreed with the roots found
+    complete: bool  # every strip's count agreed with the roots found
+    first: int  # roots (pairs once) in the first strip, Re q <= twice the window's edge
 
     def harmonics(self, tau, names) -> dict:
-        """The sum of their harmonic parts (:meth:`ResidueExpansion.harmonics`) for the responses ``names``."""
+        """The sum of their harmonic parts (:meth:`ResidueExpansion.harmonics`) for ``names``."""
         out = {name: np.zeros(np.shape(tau)) for name in names}
         for expansion in self.expansions:
             for name, v in expansion.harmonics(tau, names).items():
@@ -75,7 +76,8 @@ class AxisSequence:
             f"decaying induced frequencies along the real axis beyond the window (a sequence from Re q ~ "
             f"{start:.4g}): {self.found} found in {self.strips} strip(s) up to Re q = {self.reach:.4g} "
             f"(|Im q| <= {HALF_HEIGHT:g}) and summed; the residues beyond are estimated at {tail} "
-            f"(their measured decay over the last doubling of Re q, at least the (Re q)^-4 law)"
+            "(extrapolated from the amplitudes found: their decay over the last doubling of Re q, at least "
+            "the (Re q)^-4 law, and their (Re q)^-4 envelope)"
         )
 
 
@@ -96,8 +98,8 @@ def axis_sequence(params, model, result, *, start: float, tol: float) -> AxisSeq
     """
     edge = float(result.window.x1)
     x, expansions, sums, strips, found_roots, complete, first = edge, [], [], 0, 0, True, 0
-    tail = math.inf
-    while x < MAX_REACH * edge:
+    envelope, density, tail = 0.0, 0.0, math.inf
+    while x < MAX_REACH * max(edge, start / 16):
         strip = Rectangle(x, 2 * x, -HALF_HEIGHT, HALF_HEIGHT)
         found = induced_frequencies(params, model, dps=DPS, window=strip, check_window=False)
         complete &= found.count_ok
@@ -108,28 +110,33 @@ def axis_sequence(params, model, result, *, start: float, tol: float) -> AxisSeq
             expansion = residue_expansion(params, found, model, shapes=False)
             expansions.append(expansion)
             found_roots += len(found.roots)
-            amp = _amplitude_sum(expansion)
+            per_root = _amplitudes(expansion)
+            amp = float(per_root.sum())
+            envelope = max(envelope, float(np.max(per_root * np.abs(expansion.q.real) ** 4)))
+            density = max(density, len(found.roots) / x)
         sums.append(amp)
         x *= 2
         if x < MIN_REACH * start or len(sums) < 2:
             continue  # near its start the sequence is sparse and irregular: no extrapolation from there
-        prev, last = sums[-2], sums[-1]
-        if prev == 0 and last == 0:
-            tail = 0.0
-        elif prev > 0 and last < prev:
-            rho = max(last / prev, LAW)
-            tail = last * rho / (1 - rho)
-        else:
-            tail = math.inf
+        tail = _rest(sums[-2], sums[-1], envelope, density, x)
         if tail <= tol:
             break
     return AxisSequence(tuple(expansions), x, tail, strips, found_roots, complete, first)
 
 
-def _amplitude_sum(expansion) -> float:
-    """Sum over the roots of the largest |amplitude| over the responses."""
-    if expansion.q.size == 0:
-        return 0.0
-    A = np.abs(np.stack([expansion.amplitudes[name] for name in expansion.names]))
-    return float(A.max(axis=0).sum())
+def _rest(prev: float, last: float, envelope: float, density: float, x: float) -> float:
+    """The residues beyond Re q = x, estimated two ways and the larger kept: the last doubling's sum
+    continued geometrically with its measured ratio (at least ``LAW``), and the envelope C (Re q)^-4 of
+    the amplitudes found (C the largest a_j |Re q_j|^4) over roots as dense as the densest strip (pairs per
+    unit of Re q, both members counted): 2 C density / (3 x^3). inf while the sums do not fall."""
+    if prev == 0 and last == 0:
+        return 0.0 if envelope == 0 else 2 * envelope * density / (3 * x**3)
+    if not (prev > 0 and last < prev):
+        return math.inf
+    rho = max(last / prev, LAW)
+    return max(last * rho / (1 - rho), 2 * envelope * density / (3 * x**3))
 
+
+def _amplitudes(expansion) -> np.ndarray:
+    """Per root (each member of a pair), the largest |amplitude| over the responses."""
+    return np.abs(np.stack([expansion.amplitudes[name] for name in expansion.names])).max(axis=0)

@@ -31,7 +31,9 @@ def locate(fast, rect, n, newton_cell):
         if k == 0:
             continue
         size = max(r.width, r.height)
-        if k == 1 and size <= newton_cell:
+        # a cell between two cut curves is only ever split across Re q, so its height never shrinks: its
+        # smaller side decides (bisecting it further only makes a sliver a root sits in)
+        if k == 1 and min(r.width, r.height) <= newton_cell:
             q = newton_inside(fast, r)
             if q is not None:
                 out.append((q, 1, r))
