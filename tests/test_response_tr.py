@@ -44,6 +44,20 @@ def test_tr_time_series_match_the_bromwich_integral(eta_v):
     assert np.abs(off.w_rear - ref["w_rear"]).max() > 1e-6 * scale
 
 
+@pytest.mark.slow
+def test_the_default_tr_time_series_is_within_1e9_of_the_bromwich_integral():
+    # No window given: the decaying roots along the real axis beyond the default window (Re q <= 3) come
+    # from the strips of response/axis_sequence.py (39.07, 44.27, 95.01, ... up to Re q = 384 here).
+    params = table1_case(7).replace(beam="tr", S=10, r="0.09", eta_v="0.05")
+    taus = (0.5, 2.0, 20.0)
+    ref = bromwich_line(params, taus, a=0.02)
+    ts = closed_form_response(params, taus, branch_cut=True)
+    scale = max(abs(ts.w_steady_rear), abs(ts.w_steady_front))
+    for name in ref:
+        assert np.abs(getattr(ts, name) - ref[name]).max() < 1e-9 * scale, name
+    assert any(n.startswith("decaying induced frequencies along the real axis") for n in ts.notes)
+
+
 def test_the_curve_integral_reproduces_the_half_line_integral():
     # Reference: the Euler-Bernoulli branch cut integrated on its half-line (response/branch_cut.py,
     # itself checked against the Bromwich integral in test_response_bromwich.py); the traced-cut integral

@@ -14,6 +14,10 @@ from dataclasses import dataclass
 import numpy as np
 
 _SUBDIVIDE = 8  # pieces a segment whose arg step is too large is cut into
+#: Initial sampling step along a boundary within |q| <= _NEAR of the origin; beyond, it grows like |q|
+#: (``_SPACING |q| / _NEAR``: a relative resolution of 5e-4), see :func:`initial_samples`.
+_SPACING = 0.005
+_NEAR = 10.0
 
 
 #: A segment shorter than this many units in the last place of its end points cannot be refined further
@@ -89,6 +93,50 @@ class Rectangle(BoundingBox):
         return np.append(pts, pts[0])
 
 
+def _local_step(z) -> np.ndarray:
+    return _SPACING * np.maximum(1.0, np.abs(z) / _NEAR)
+
+
+def initial_samples(region, spacing=None):
+    """(z, t): the first samples of the closed boundary of ``region`` (z[-1] = z[0]) and their boundary
+    parameters (those of a curved cell, ``points_at``; indices for a rectangle).
+
+    With ``spacing``, uniform at that step. By default 1/64 of the longer side, then every segment longer
+    than the local step ``_SPACING max(1, |q| / _NEAR)`` is cut into ``_SUBDIVIDE`` pieces (repeatedly):
+    0.005 within |q| <= 10, where the vehicle's and the beam's induced frequencies lie, a relative
+    resolution of 5e-4 farther out, where E_chr approaches its leading part (:mod:`far_field`) and its
+    roots are the sequence along the real axis of a Timoshenko-Rayleigh beam, a few units of Re q apart.
+    A huge window (the far-field radius of such a beam reaches 1e3) then costs 1e5 samples, not 1e7.
+    """
+    points_at = getattr(region, "points_at", None)
+    size = max(region.width, region.height)
+    step = spacing or size / 64
+    if points_at is not None:
+        t = region.boundary_parameters(step)
+        z = np.append(points_at(t[:-1]), 0)
+        z[-1] = z[0]
+    else:
+        z = region.boundary(step)
+        t = np.arange(z.size, dtype=float)
+    for _ in range(8 if spacing is None else 0):
+        za, zb, ta, tb = z[:-1], z[1:], t[:-1], t[1:]
+        pieces = np.ceil(np.abs(zb - za) / _local_step(0.5 * (za + zb)) * (1 - 1e-12)).astype(int)
+        pieces = np.maximum(pieces, 1)
+        if np.all(pieces == 1):
+            break
+        # every segment's start, then its interior points at fractions k / pieces
+        owner = np.repeat(np.arange(za.size), pieces)
+        k = np.arange(owner.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+        u = k / pieces[owner]
+        t_new = ta[owner] + u * (tb - ta)[owner]
+        if points_at is not None:
+            z_new = np.where(k == 0, za[owner], points_at(t_new))
+        else:
+            z_new = za[owner] + u * (zb - za)[owner]
+        z, t = np.append(z_new, z[-1]), np.append(t_new, t[-1])
+    return z, t
+
+
 def winding_number(
     f, rect: Rectangle, *, spacing=None, max_step=np.pi / 5, min_segment=1e-11, max_points=400_000
 ) -> int:
@@ -99,10 +147,10 @@ def winding_number(
     f : callable
         Analytic and non-zero on the boundary; takes and returns complex arrays.
     spacing : float, optional
-        Initial sampling step (default: 1/64 of the longer side, at most 0.005). Two zeros closer to the
-        edge than to each other inside one initial step would cancel their phase jumps; the fine default
-        keeps that below the spacing of induced frequencies seen in practice, and region edges are kept
-        away from places where roots accumulate (see ``search_regions``).
+        Uniform initial sampling step (default: :func:`initial_samples`, 0.005 near the origin). Two zeros
+        closer to the edge than to each other inside one initial step would cancel their phase jumps; the
+        fine default keeps that below the spacing of induced frequencies seen in practice, and region edges
+        are kept away from places where roots accumulate (see ``search_regions``).
     max_step : float
         Largest accepted change of arg f between neighbouring samples (radians).
     min_segment : float
@@ -111,14 +159,8 @@ def winding_number(
     size = max(rect.width, rect.height)
     # a curved cell (roots/cut_cells.py) is refined along its own edges, a rectangle along its sides
     points_at = getattr(rect, "points_at", None)
-    if points_at is not None:
-        t = rect.boundary_parameters(spacing or min(size / 64, 0.005))
-        z = np.append(points_at(t[:-1]), 0)
-        z[-1] = z[0]
-        ta, tb = t[:-1], t[1:]
-    else:
-        z = rect.boundary(spacing or min(size / 64, 0.005))
-        ta = tb = None
+    z, t = initial_samples(rect, spacing)
+    ta, tb = (t[:-1], t[1:]) if points_at is not None else (None, None)
     w = f(z)
     za, zb, wa, wb = z[:-1], z[1:], w[:-1], w[1:]
     total, points = 0.0, z.size
@@ -171,15 +213,8 @@ def winding_numbers(f, regions, *, max_step=np.pi / 5, min_segment=1e-11, max_po
     sizes = np.array([max(r.width, r.height) for r in regions], dtype=float)
     curves = [getattr(r, "points_at", None) for r in regions]
     zs, ts = [], []
-    for r, points_at, size in zip(regions, curves, sizes):
-        spacing = min(size / 64, 0.005)
-        if points_at is not None:
-            t = r.boundary_parameters(spacing)
-            z = np.append(points_at(t[:-1]), 0)
-            z[-1] = z[0]
-        else:
-            z = r.boundary(spacing)
-            t = np.arange(z.size, dtype=float)  # unused for a rectangle
+    for r in regions:
+        z, t = initial_samples(r)
         zs.append(z)
         ts.append(t)
     w_all = f(np.concatenate(zs)) if zs else np.zeros(0, complex)

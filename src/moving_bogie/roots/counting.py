@@ -28,6 +28,9 @@ class CountMismatch(MovingBogieError):
 #: Perturbations of the tiling tried in turn when an edge meets a root (eps factor, gap height fraction);
 #: eps only shrinks, so the unsearched sliver never exceeds 2 eps.
 _RETRIES = ((1.0, 0.1), (0.8, 0.113), (0.6, 0.087), (0.5, 0.121))
+#: The gap height is that fraction of the window's size, up to this size: a window as large as a
+#: far-field radius of 1e3 would otherwise make every column over the cut 2e2 high (and its edges long).
+_GAP_SCALE = 10.0
 
 
 def count_tiling(fast, params, window, eps, eps_branch):
@@ -48,7 +51,7 @@ def count_tiling(fast, params, window, eps, eps_branch):
     cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
     best = None
     for factor, fraction in _RETRIES:
-        gap_height = fraction * max(window.width, window.height)
+        gap_height = fraction * min(max(window.width, window.height), _GAP_SCALE)
         tiling = tile_window(
             window, cut, eps=eps * factor, eps_branch=eps_branch * factor, gap_height=gap_height
         )

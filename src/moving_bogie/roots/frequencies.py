@@ -253,7 +253,8 @@ def induced_frequencies(
                 f"beyond the window: {more} root(s) in the window twice as large (Re q <= {big.x1:g}, "
                 f"{big.y0:g} <= Im q <= {big.y1:g}), all with Im q >= 0 (no root with Im q < 0 beyond "
                 f"|q| = {far.radius:g}, the far-field check): they decay and do not change the verdict; "
-                "a residue sum over the window leaves them out (pass a larger window to include them)"
+                "a time series adds them from strips along the real axis when the cut runs along it, "
+                "and refuses otherwise (pass a larger window to list them)"
             )
         elif more:
             warnings.append(

@@ -10,7 +10,7 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.roots.contour import EdgeZeroError, winding_numbers
+from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_numbers
 
 __all__ = ["locate", "newton_inside"]
 
@@ -34,7 +34,9 @@ def locate(fast, rect, n, newton_cell):
             if k == 0:
                 continue
             size = max(r.width, r.height)
-            if k == 1 and size <= newton_cell:
+            # a cell between two cut curves is only ever split across Re q, so its height never shrinks: its
+            # smaller side decides (bisecting it further only makes a sliver a root sits in)
+            if k == 1 and min(r.width, r.height) <= newton_cell:
                 q = newton_inside(fast, r)
                 if q is not None:
                     out.append((q, 1, r))
@@ -42,29 +44,53 @@ def locate(fast, rect, n, newton_cell):
             if size < 1e-10 * max(1.0, abs(r.center)):
                 out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
                 continue
-            split.append((r, k))
-        level = []
-        for frac in (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75):
-            if not split:
-                break
-            # two halves each (a cell at a fold of the cut may give three pieces)
-            pieces = [r.split(frac) for r, _ in split]
+            split.append((r, k, _towards_origin(r) + _FRACTIONS))
+        level, failed = [], []
+        while split:
+            # two halves each (a cell at a fold of the cut may give three pieces), each cell at its next
+            # split fraction
+            pieces = [r.split(fracs[0]) for r, _, fracs in split]
             counts = winding_numbers(fast, [piece for group in pieces for piece in group])
             retry, at = [], 0
-            for (r, k), group in zip(split, pieces):
+            for (r, k, fracs), group in zip(split, pieces):
                 mine, at = counts[at : at + len(group)], at + len(group)
                 if any(isinstance(c, EdgeZeroError) for c in mine) or sum(mine) != k:
-                    retry.append((r, k))
+                    retry.append((r, k, fracs[1:]))
                 else:
                     level.extend(zip(group, mine))
-            split = retry
-        for r, k in split:
+            split = [c for c in retry if c[2]]
+            failed += [c for c in retry if not c[2]]
+        for r, k, _ in failed:
             starts = _grid_roots(fast, r, k)
             if len(starts) != k:
                 text = f"locate: could not split {r} holding {k} root(s) into consistent halves"
                 warning = (text, (r, k - len(starts)))
             out += [(q, 1, r) for q in starts]
     return out, warning
+
+
+#: Split fractions tried in turn until the halves' counts add up to the cell's.
+_FRACTIONS = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
+
+#: Within this distance of q = 0 lie the vehicle's and the beam's own roots (the default window's scale).
+_NEAR = 16.0
+
+
+def _towards_origin(r) -> tuple:
+    """A first split fraction for a large rectangle (a far-field window's) that cuts off its part within
+    about ``_NEAR`` of q = 0 along its longer side, where the roots gather: bisection would need log2(size /
+    _NEAR) levels of long contours to get there. None (an empty tuple) for a small region or a curved cell."""
+    if type(r) is not Rectangle or max(r.width, r.height) < 8 * _NEAR:
+        return ()
+    lo, hi = (r.x0, r.x1) if r.width >= r.height else (r.y0, r.y1)
+    if lo >= 0:
+        cut = lo + max(_NEAR, lo)
+    elif hi <= 0:
+        cut = hi - max(_NEAR, -hi)
+    else:
+        cut = _NEAR if hi >= -lo else -_NEAR
+    frac = (cut - lo) / (hi - lo)
+    return (frac,) if 0.01 < frac < 0.35 or 0.65 < frac < 0.99 else ()
 
 
 def _grid_roots(fast, rect, k):
@@ -99,22 +125,42 @@ def _newton_from(fast, q, rect):
     return None
 
 
-def newton_inside(fast, rect):
-    """A few double-precision Newton steps from the cell centre; the root if it stays in the cell."""
-    q = complex(rect.center)
+def newton_inside(fast, rect, starts: int = 9):
+    """Double-precision Newton steps from the cell centre and, in a long cell (one along the cut holds its
+    root anywhere along it), from ``starts - 1`` more points along its longer side, all in one batch; an
+    iterate leaving the cell's box by more than a quarter of its size is dropped. Returns the first root
+    reached that lies in the cell: the cell holds one root by its count, so a root found in it is that one.
+    """
+    c = complex(rect.center)
+    long = max(rect.width, rect.height) > 4 * min(rect.width, rect.height)
+    u = (np.arange(starts) - (starts - 1) / 2) / starts if long else np.zeros(1)
+    u = u[np.argsort(np.abs(u), kind="stable")]  # the centre first
+    q = c + u * (rect.width if rect.width >= rect.height else 1j * rect.height)
+    margin = 0.25 * max(rect.width, rect.height)
+    live = np.ones(q.size, dtype=bool)
+    done = np.zeros(q.size, dtype=bool)
     for _ in range(30):
+        idx = np.nonzero(live & ~done)[0]
+        if not idx.size:
+            break
         try:
-            E, dE = (complex(v[0]) for v in fast.value_and_derivative(np.array([q])))
+            E, dE = (np.asarray(v, dtype=complex) for v in fast.value_and_derivative(q[idx]))
         except MovingBogieError:
             return None
-        if dE == 0 or not np.isfinite(dE) or not np.isfinite(E):
-            return None
-        step = E / dE
-        q -= step
-        if not rect.contains(q, margin=0.25 * max(rect.width, rect.height)):
-            return None
-        if abs(step) < 1e-13 * max(1, abs(q)):
-            break
-    else:
-        return None
-    return mpmath.mpc(q) if rect.contains(q) else None
+        with np.errstate(all="ignore"):
+            step = E / dE
+        ok = np.isfinite(step) & (dE != 0)
+        q[idx[ok]] -= step[ok]
+        z = q[idx]
+        inside = (
+            (z.real >= rect.x0 - margin)
+            & (z.real <= rect.x1 + margin)
+            & (z.imag >= rect.y0 - margin)
+            & (z.imag <= rect.y1 + margin)
+        )
+        live[idx[~(ok & inside)]] = False
+        done[idx[ok]] = np.abs(step[ok]) < 1e-13 * np.maximum(1, np.abs(q[idx[ok]]))
+    for k in np.nonzero(live & done)[0]:
+        if rect.contains(complex(q[k])):
+            return mpmath.mpc(complex(q[k]))
+    return None
