@@ -50,9 +50,9 @@ def test_a_residue_sum_refuses_decaying_roots_left_outside_for_a_beam_without_th
 ):
     # Roots beyond the window that the real-axis strips (response/axis_sequence.py) do not account for
     # would be missing from the residue sum: a beam without rotary inertia gets no strips and refuses.
-    import moving_bogie.response.closed_form as closed_form
+    import moving_bogie.response.axis_sequence as axis_sequence
 
-    monkeypatch.setattr(closed_form, "_sequence_start", lambda params: None)
+    monkeypatch.setattr(axis_sequence, "sequence_start", lambda params: None)
     with pytest.raises(MovingBogieError, match="2 decaying induced frequencies lie outside"):
         closed_form_response(PARAMS, (2.0,), frequencies=within_30)
 

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from moving_bogie.errors import MovingBogieError
 from moving_bogie.response.residues import residue_expansion
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
@@ -139,3 +140,47 @@ def _rest(prev: float, last: float, envelope: float, density: float, x: float) -
 def _amplitudes(expansion) -> np.ndarray:
     """Per root (each member of a pair), the largest |amplitude| over the responses."""
     return np.abs(np.stack([expansion.amplitudes[name] for name in expansion.names])).max(axis=0)
+
+
+def refuse_outside(result, covered: int = 0) -> None:
+    """Decaying roots beyond the window that the residue sum would miss make it refuse."""
+    outside = getattr(result, "decaying_outside", 0)
+    if outside and outside != covered:
+        raise MovingBogieError(
+            f"{outside} decaying induced frequencies lie outside the search window "
+            "(found in the window twice as large): the residue sum would leave them out; "
+            "pass frequencies computed in a larger window"
+        )
+
+
+def sequence_start(params) -> float | None:
+    """Re q = sqrt(S)/r where the cut curve along the real axis of a beam with rotary inertia touches the
+    axis (the start of its sequence of decaying roots, docs/frequencies.md), or None for a beam without."""
+    S, r = getattr(params, "S", None), getattr(params, "r", None)
+    if S is None or r is None or not float(r) > 0:
+        return None
+    return math.sqrt(float(S)) / float(r)
+
+
+def axis_roots(bound, result, expansion):
+    """The sequence of decaying roots along the real axis beyond the window (:func:`axis_sequence`) and its
+    note, or (None, ()) for a beam without one. The roots that the check window found beyond the window
+    must all be among those of the first strip, else the residue sum refuses."""
+    start = sequence_start(bound.params)
+    if start is None:
+        refuse_outside(result)
+        return None, ()
+    wheels = expansion.names[: len(expansion.positions)]
+    scale = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
+    sequence = axis_sequence(bound, result, start=start, tol=TAIL_TOL * scale)
+    refuse_outside(result, sequence.first)
+    if not sequence.complete:
+        raise MovingBogieError(
+            "the decaying induced frequencies along the real axis beyond the window could not all be "
+            "located (a strip's count and its roots disagree): no closed-form response"
+        )
+    return sequence, (sequence.note(scale, start),)
+
+
+#: The residues of the real-axis sequence left out are estimated below this fraction of the steady deflection.
+TAIL_TOL = 2e-10

@@ -52,16 +52,14 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import foundation_arguments
-from moving_bogie.response.quadrature import adapt_panels, by_bands, cis, fourier_sum, subdivide
+from moving_bogie.response import quadrature as quad
+from moving_bogie.response.quadrature import cis
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
 
-#: Phase per panel (radians) at the largest tau of its band; 16 Gauss-Legendre nodes integrate it to ~1e-14.
-_PANEL_PHASE = 3 * np.pi
-#: Largest panel in p: at most _PANEL_XI radians of e^{i p xi} at the largest |xi| and never above _PANEL_DP;
+#: Largest panel in p: at most PANEL_XI radians of e^{i p xi} at the largest |xi| and never above _PANEL_DP;
 #: largest panel in s relative to max(1, s): resolves poles of f near the cut.
 _PANEL_DP = 0.5
-_PANEL_XI = 2.0
 _PANEL_DS_REL = 0.05
 #: Bisection levels of the adaptive base partition (a peak 2^-40 of a panel wide is still resolved).
 _MAX_SPLITS = 40
@@ -274,10 +272,7 @@ class BranchCut:
         P = np.linspace(self.p_c, p_hi, n)
         sp = np.maximum(self.ds(P), 0.0)
         density = np.maximum(sp / (_PANEL_DS_REL * np.maximum(1.0, self.s(P))), 1 / _PANEL_DP)
-        cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
-        panels = max(1, int(np.ceil(cum[-1])))
-        start = np.interp(np.linspace(0.0, cum[-1], panels + 1), cum, P)
-        edges = adapt_panels(start, self._jump_ds, self.panel_tol, _MAX_SPLITS)
+        edges = quad.adapt_panels(quad.equidistribute(P, density), self._jump_ds, self.panel_tol, _MAX_SPLITS)
         self._base[S] = edges
         return edges
 
@@ -288,14 +283,12 @@ class BranchCut:
         """Composite 16-point Gauss-Legendre nodes and weights in p on [p_c, p(S)].
 
         The panels of :meth:`base_edges` are subdivided to span at most 3 pi of the phase s tau_hi and
-        _PANEL_XI radians of e^{i p xi} for |xi| <= xi_max (default: the wheel spacing d).
+        PANEL_XI radians of e^{i p xi} for |xi| <= xi_max (default: the wheel spacing d).
         """
         xi_max = self.span if xi_max is None else xi_max
-        dp = min(_PANEL_DP, _PANEL_XI / (abs(xi_max) + 1.0))
         edges = self.base_edges(S)
-        a, b = edges[:-1], edges[1:]
-        phase = tau_hi * (self.s(b) - self.s(a)) / _PANEL_PHASE
-        return subdivide(edges, np.ceil(np.maximum(phase, (b - a) / dp)))
+        phase = tau_hi * np.diff(self.s(edges))
+        return quad.oscillation_rule(edges, phase, min(_PANEL_DP, quad.PANEL_XI / (abs(xi_max) + 1.0)))
 
     def _tail_terms(self, channel, S: float):
         """(j, j', j'') in s at s = S by central differences (max over channels when estimating)."""
@@ -366,7 +359,7 @@ class BranchCut:
             nodes, weights = self.rule(S, float(ts.max()), xi_max)
             q_max = float(np.abs(self.q(nodes)).max())
             weighted = lambda c, w: _weighted(channel, self, c, w)  # noqa: E731
-            acc = fourier_sum(ts, nodes, weights, weighted, m, q_max, self.eta_f)
+            acc = quad.fourier_sum(ts, nodes, weights, weighted, m, q_max, self.eta_f)
             if lo > 0:
                 g0, g1, g2 = self._tail_terms(channel, S)
                 e = np.exp(1j * (S + 1j * self.eta_f) * ts)[:, None]
@@ -374,7 +367,7 @@ class BranchCut:
                 acc += e * (1j * g0 / t - g1 / t**2 - 1j * g2 / t**3)
             return acc
 
-        return by_bands(tau, m, band)
+        return quad.by_bands(tau, m, band)
 
     def responses(self, tau, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
         """I_bc(tau) of every response, as a dict name -> ndarray."""

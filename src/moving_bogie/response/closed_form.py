@@ -25,7 +25,7 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.bound import bind
 from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.response.axis_sequence import axis_sequence
+from moving_bogie.response.axis_sequence import axis_roots, refuse_outside
 from moving_bogie.response.cut_policy import branch_cut_extent, branch_cut_mode, branch_cut_or_note, s_min_for
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
 from moving_bogie.response.shapes import KernelGrid
@@ -151,50 +151,6 @@ def _frequencies(bound, frequencies, dps, progress):
     return result
 
 
-def _refuse_outside(result, covered: int = 0) -> None:
-    """Decaying roots beyond the window that the residue sum would miss make it refuse."""
-    outside = getattr(result, "decaying_outside", 0)
-    if outside and outside != covered:
-        raise MovingBogieError(
-            f"{outside} decaying induced frequencies lie outside the search window "
-            "(found in the window twice as large): the residue sum would leave them out; "
-            "pass frequencies computed in a larger window"
-        )
-
-
-def _sequence_start(params) -> float | None:
-    """Re q = sqrt(S)/r where the cut curve along the real axis of a beam with rotary inertia touches the
-    axis (the start of its sequence of decaying roots, docs/frequencies.md), or None for a beam without."""
-    S, r = getattr(params, "S", None), getattr(params, "r", None)
-    if S is None or r is None or not float(r) > 0:
-        return None
-    return math.sqrt(float(S)) / float(r)
-
-
-def _axis_roots(bound, result, expansion):
-    """The sequence of decaying roots along the real axis beyond the window (:mod:`axis_sequence`) and its
-    note, or (None, ()) for a beam without one. The roots that the check window found beyond the window
-    must all be among those of the first strip, else the residue sum refuses."""
-    start = _sequence_start(bound.params)
-    if start is None:
-        _refuse_outside(result)
-        return None, ()
-    wheels = expansion.names[: len(expansion.positions)]
-    scale = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
-    sequence = axis_sequence(bound, result, start=start, tol=TAIL_TOL * scale)
-    _refuse_outside(result, sequence.first)
-    if not sequence.complete:
-        raise MovingBogieError(
-            "the decaying induced frequencies along the real axis beyond the window could not all be "
-            "located (a strip's count and its roots disagree): no closed-form response"
-        )
-    return sequence, (sequence.note(scale, start),)
-
-
-#: The residues of the real-axis sequence left out are estimated below this fraction of the steady deflection.
-TAIL_TOL = 2e-10
-
-
 def closed_form_response(
     params,
     tau,
@@ -269,7 +225,7 @@ def closed_form_response(
     result = _frequencies(bound, frequencies, dps, staged if progress else None)
     report(0.8)
     expansion = residue_expansion(bound, result, shapes=False)
-    sequence, more_notes = _axis_roots(bound, result, expansion)
+    sequence, more_notes = axis_roots(bound, result, expansion)
     notes += more_notes
     report(0.85)
     series = expansion.totals(tau)
@@ -387,7 +343,7 @@ def deflection_shape_details(
     mode = branch_cut_mode(branch_cut)
     bc, notes = branch_cut_or_note(bound, mode)
     result = _frequencies(bound, frequencies, dps, None)
-    _refuse_outside(result)
+    refuse_outside(result)
     if expansion is None:
         expansion = residue_expansion(bound, result, shapes=True)
     flat = xi.reshape(-1)

@@ -40,12 +40,17 @@ from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.cut_pieces import cut_pieces, roots_along
-from moving_bogie.response.quadrature import adapt_panels, by_bands, fourier_sum, subdivide
+from moving_bogie.response.quadrature import (
+    PANEL_XI,
+    adapt_panels,
+    by_bands,
+    equidistribute,
+    fourier_sum,
+    oscillation_rule,
+)
 
 __all__ = ["CurveBranchCut", "branch_cut_for"]
 
-_PANEL_PHASE = 3 * np.pi
-_PANEL_XI = 2.0
 _S_STEPS = tuple(2.0**k for k in range(1, 14))
 _REACH = 2.0**14
 #: Jump values kept for reuse across bands of times: entries, and only for this many columns (responses).
@@ -184,17 +189,16 @@ class CurveBranchCut:
         P = np.linspace(p_lo, p_hi, 4000)
         q = piece.q_at(P)
         density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
-        cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
-        start = np.interp(np.linspace(0.0, cum[-1], max(2, int(np.ceil(cum[-1]))) + 1), cum, P)
-        edges = adapt_panels(start, lambda nodes: channel(piece, nodes)[1], self.panel_tol)
+        edges = adapt_panels(
+            equidistribute(P, density), lambda nodes: channel(piece, nodes)[1], self.panel_tol
+        )
         self._base[key] = edges
         return self._base[key]
 
     def _rule(self, piece, S, tau_hi, xi_max, channel):
         edges = self._panels(piece, S, channel)
         x = piece.q_at(edges).real
-        phase = tau_hi * np.abs(np.diff(x)) / _PANEL_PHASE
-        return subdivide(edges, np.ceil(np.maximum(phase, np.diff(edges) * (abs(xi_max) + 1.0) / _PANEL_XI)))
+        return oscillation_rule(edges, tau_hi * np.diff(x), PANEL_XI / (abs(xi_max) + 1.0))
 
     def _end_terms(self, piece, S, channel):
         """Per far end of the piece: (sign, q, F, F', F'') of the jump F along the curve, in q."""

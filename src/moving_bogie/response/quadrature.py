@@ -12,11 +12,26 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["adapt_panels", "by_bands", "cis", "fourier_sum", "gauss_panels", "subdivide"]
+__all__ = [
+    "PANEL_PHASE",
+    "PANEL_XI",
+    "adapt_panels",
+    "by_bands",
+    "cis",
+    "equidistribute",
+    "fourier_sum",
+    "gauss_panels",
+    "oscillation_rule",
+    "subdivide",
+]
 
 GL_X, GL_W = np.polynomial.legendre.leggauss(16)
 #: Bands of times: [0, 1/2], (1/2, 1], (1, 2], ...: each band gets its own truncation and panels.
 FIRST_BAND = 0.5
+#: Phase per panel (radians) at the largest tau of its band; 16 Gauss-Legendre nodes integrate it to ~1e-14.
+PANEL_PHASE = 3 * np.pi
+#: Radians of e^{i p xi} per panel at the largest |xi| of a shape.
+PANEL_XI = 2.0
 
 
 def gauss_panels(a, b):
@@ -55,6 +70,18 @@ def subdivide(edges, pieces):
     width = np.diff(edges) / pieces
     lo = edges[:-1][k] + j * width[k]
     return gauss_panels(lo, lo + width[k])
+
+
+def equidistribute(P, density) -> np.ndarray:
+    """Edges on [P[0], P[-1]] (a fine grid P) with about unit integral of ``density`` (sampled on P) each."""
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
+    return np.interp(np.linspace(0.0, cum[-1], max(1, int(np.ceil(cum[-1]))) + 1), cum, P)
+
+
+def oscillation_rule(edges, phase, dp):
+    """:func:`subdivide` each panel into pieces spanning at most PANEL_PHASE of ``phase`` (its phase s tau
+    per panel) and ``dp`` of its own length."""
+    return subdivide(edges, np.ceil(np.maximum(np.abs(phase) / PANEL_PHASE, np.diff(edges) / dp)))
 
 
 def by_bands(tau, m: int, band: Callable) -> np.ndarray:
