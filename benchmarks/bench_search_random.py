@@ -195,20 +195,21 @@ def compare(result, reference) -> tuple[bool, float]:
     return worst <= 1e-8 * max(1.0, max((abs(z) for z in ref), default=1.0)), worst
 
 
-def run(sets, reference_every: int = 0, verbose: bool = False) -> dict:
-    """Run the search on every set; returns per-family records."""
+def run(sets, reference_every: int = 0, verbose: bool = False, scan_points: dict | None = None) -> dict:
+    """Run the search on every set; returns per-family records. ``scan_points``: grid points per side of
+    the reference scan per family (default 801 for every family)."""
     from moving_bogie.roots.frequencies import induced_frequencies
 
     records = {f: [] for f in FAMILIES}
     try:
-        _run_sets(sets, records, reference_every, verbose, induced_frequencies)
+        _run_sets(sets, records, reference_every, verbose, induced_frequencies, scan_points or {})
     except KeyboardInterrupt:  # the table of the sets done so far is still worth printing
         done = sum(len(r) for r in records.values())
         print(f"interrupted after {done} of {len(sets)} sets", flush=True)
     return records
 
 
-def _run_sets(sets, records, reference_every, verbose, induced_frequencies) -> None:
+def _run_sets(sets, records, reference_every, verbose, induced_frequencies, scan_points) -> None:
     for k, (family, label, params) in enumerate(sets):
         c0 = _cpu()
         record = {"label": label, "params": params}
@@ -227,7 +228,8 @@ def _run_sets(sets, records, reference_every, verbose, induced_frequencies) -> N
                 "roots": len(res.roots),
             }
             if reference_every and k % reference_every == 0:
-                ref = scan_roots(params, res.window)
+                n = scan_points.get(family, 801)
+                ref = scan_roots(params, res.window, n=(n, n))
                 ok, worst = compare(res, ref)
                 scan_verdict = "unstable" if ref else "stable"
                 # an UNDETERMINED verdict does not contradict the scan; its roots must still agree
