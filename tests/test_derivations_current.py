@@ -156,8 +156,8 @@ def test_regeneration_is_deterministic(regenerations):
 
 @pytest.mark.slow
 def test_only_writes_the_named_modules_and_the_catalogue_as_a_full_run_does(regenerations):
-    """``--only eb --only masses``: every model on the beam, the vehicle's module and the catalogue-wide files,
-    each byte-identical to the full regeneration's; nothing else (the proofs neither).
+    """``--only eb --only masses``: every model on the beam, the vehicle's module and the catalogue-wide
+    files, each byte-identical to the full regeneration's; nothing else (the proofs neither).
 
     The expected files are read from the committed catalogue (``generated.MODULES``), not from the
     generator that writes them.
