@@ -2,8 +2,19 @@
 
 from __future__ import annotations
 
-import mpmath
-import pytest
+import os
+
+# One BLAS thread per process under pytest-xdist. The suite runs on two workers on two cores (README,
+# .ci/run): OpenBLAS's own threads on top oversubscribe the cores and spin, about half again as much CPU for
+# the same tests (measured on test_car.py and test_finite_beam_tr.py: 94 s against 62 s of user time). The
+# main process has imported numpy by now (a plugin does), but it runs no test under -n; the workers it
+# starts next, and the subprocesses of the tests (CLI runs, notebook kernels, derivations), inherit the
+# variables. A value already set wins.
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
+import mpmath  # noqa: E402
+import pytest  # noqa: E402
 
 
 @pytest.fixture(autouse=True)

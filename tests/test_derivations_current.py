@@ -5,13 +5,15 @@ edit" and the inputs hash; a regeneration into a temporary folder is byte-identi
 and to a second regeneration; ``python -m derivations --check`` fails with the diff and the command that
 updates the files. The runtime never imports SymPy, whichever of its modules is imported.
 
-Each derivation run costs a few seconds (SymPy): the two regenerations run once, in parallel, shared by
-the tests that compare them; those tests and the ``--check`` on a tampered copy are marked slow.
+Each derivation run costs many seconds of SymPy, so a module fixture runs them once for the tests that
+compare them: a full and a partial regeneration in parallel, then one ``--check`` of a tampered copy under
+another hash seed, which is the second full derivation the determinism test needs. Those tests are slow.
 """
 
 from __future__ import annotations
 
 import ast
+import difflib
 import os
 import shutil
 import subprocess
@@ -64,33 +66,51 @@ def _written_files(root: Path) -> dict[str, bytes]:
     return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.rglob("*")) if p.is_file()}
 
 
-#: What the partial run of the fixture below derives (``--only``): a beam and a vehicle of the catalogue.
-ONLY = ("tr", "car")
+#: What the partial run of the fixture below derives (``--only``): a beam and a vehicle of the catalogue
+#: (the one-layer Euler-Bernoulli beam and the two masses: the cheapest pair, a third of a full run).
+ONLY = ("eb", "masses")
+#: The two files the ``--check`` of the fixture finds tampered with, and how (old text, new text).
+TAMPERED = {
+    "src/moving_bogie/generated/foundation_eb.py": ("4 - 4*q**2", "4 - 5*q**2"),
+    "docs/proofs.md": ("equal", "same"),
+}
+#: The hash seed of the ``--check`` run: another than the one the command pins (0), see the fixture.
+OTHER_SEED = "12345"
 
 
 @pytest.fixture(scope="module")
-def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes], dict[str, bytes]]:
-    """Three regenerations into empty folders, run once for the module and in parallel: (first, second, only).
+def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes], dict]:
+    """Two derivations, then a ``--check`` of a tampered copy of the first: (first, only, check).
 
-    The second run starts with another PYTHONHASHSEED: the command must pin it itself (SymPy's CSE and
-    ordering can depend on string hashing). The third derives only :data:`ONLY` (``--only``, what the
-    scratch tests of a new beam, track or vehicle use). Each full regeneration costs several seconds of
-    SymPy, so the tests below share them instead of running ``--check`` (the same derivation) again.
+    The first regeneration (into an empty folder) and a partial one deriving only :data:`ONLY`
+    (``--only``, what the scratch tests of a new beam, track or vehicle use) run in parallel. Then
+    ``--check`` runs on a copy of the first's files with the two :data:`TAMPERED` edits, under another
+    PYTHONHASHSEED (the command must pin the seed itself: SymPy's CSE and ordering can depend on string
+    hashing). That check is a second full derivation: its diff shows what it derived, so it serves both the
+    tampered-file test and the determinism test (instead of a third full SymPy run of several seconds).
+    ``check`` holds the completed process and the tampered texts (relative path -> text).
     """
     base = tmp_path_factory.mktemp("regenerated")
-    roots = [base / "first", base / "second", base / "only"]
-    env_other_seed = dict(os.environ, PYTHONHASHSEED="12345")
+    roots = [base / "first", base / "only"]
     only = [arg for name in ONLY for arg in ("--only", name)]
-    procs = [
-        _derivations("--root", str(roots[0])),
-        _derivations("--root", str(roots[1]), env=env_other_seed),
-        _derivations("--root", str(roots[2]), *only),
-    ]
+    procs = [_derivations("--root", str(roots[0])), _derivations("--root", str(roots[1]), *only)]
     for proc in procs:
         result = _finish(proc)
         assert result.returncode == 0, result.stdout + result.stderr
-    first, second, partial = (_written_files(r) for r in roots)
-    return first, second, partial
+    first, partial = (_written_files(r) for r in roots)
+
+    copy = base / "tampered"
+    shutil.copytree(roots[0], copy)
+    tampered = {}
+    for rel, (old, new) in TAMPERED.items():
+        original = (copy / rel).read_text()
+        tampered[rel] = original.replace(old, new, 1)
+        assert tampered[rel] != original, f"{rel}: the text to tamper with is gone: pick another one"
+        (copy / rel).write_text(tampered[rel])
+    env_other_seed = dict(os.environ, PYTHONHASHSEED=OTHER_SEED)
+    result = _finish(_derivations("--check", "--root", str(copy), env=env_other_seed))
+    written = {rel: (copy / rel).read_text() for rel in TAMPERED}
+    return first, partial, {"result": result, "tampered": tampered, "after": written}
 
 
 @pytest.mark.slow
@@ -114,22 +134,37 @@ def test_committed_files_are_current(regenerations):
 
 @pytest.mark.slow
 def test_regeneration_is_deterministic(regenerations):
-    """Two independent regenerations, under different hash seeds, are byte-identical."""
-    first, second, _ = regenerations
-    assert first == second, "two regenerations differ: the output is not deterministic"
+    """A derivation under another hash seed (the fixture's ``--check``) equals the first, byte for byte.
+
+    ``--check`` compares every file it derives with the copy of the first regeneration and prints the diff
+    of each one that differs. Only the two tampered files may differ, and each by exactly the diff from
+    the tampered text back to the first run's text (computed here with difflib, as the command prints it,
+    ``n=1``): a unified diff of the tampered text determines the other side, so the check derived the first
+    run's text there too. Any other byte derived differently would add a file or a line to the diff.
+    """
+    first, _, check = regenerations
+    out = check["result"].stdout
+    assert f"{len(TAMPERED)} generated file(s) are stale" in out, out
+    for rel, tampered in check["tampered"].items():
+        expected = difflib.unified_diff(
+            tampered.splitlines(True), first[rel].decode().splitlines(True), f"a/{rel}", f"b/{rel}", n=1
+        )
+        assert "".join(expected) in out, f"{rel}: the second derivation differs from the first:\n{out}"
+    printed = [line[len("--- a/") :] for line in out.splitlines() if line.startswith("--- a/")]
+    assert sorted(printed) == sorted(TAMPERED), out
 
 
 @pytest.mark.slow
 def test_only_writes_the_named_modules_and_the_catalogue_as_a_full_run_does(regenerations):
-    """``--only tr --only car``: every model on the beam, the vehicle's module and the catalogue-wide files,
-    each byte-identical to the full regeneration's; nothing else (the proofs neither).
+    """``--only eb --only masses``: every model on the beam, the vehicle's module and the catalogue-wide
+    files, each byte-identical to the full regeneration's; nothing else (the proofs neither).
 
     The expected files are read from the committed catalogue (``generated.MODULES``), not from the
     generator that writes them.
     """
     from moving_bogie import generated
 
-    first, _, partial = regenerations
+    first, partial, _ = regenerations
     folder = "src/moving_bogie/generated"
     kernels = {module for (beam, _), module in generated.MODULES.items() if beam in ONLY}
     kernels |= {f"vehicle_{name}" for name in generated.VEHICLES if name in ONLY}
@@ -147,24 +182,9 @@ def test_only_refuses_an_unknown_name_naming_the_option_and_the_known_ones(tmp_p
 
 
 @pytest.mark.slow
-def test_check_reports_a_tampered_file_with_a_diff_and_the_command(tmp_path):
-    root = tmp_path / "copy"
-    shutil.copytree(
-        REPO / "src/moving_bogie/generated",
-        root / "src/moving_bogie/generated",
-        ignore=shutil.ignore_patterns("__pycache__"),
-    )
-    (root / "docs").mkdir()
-    shutil.copy2(REPO / "docs" / "proofs.md", root / "docs" / "proofs.md")
-    target = root / "src/moving_bogie/generated" / "foundation_eb.py"
-    original = target.read_text()
-    tampered = original.replace("4 - 4*q**2", "4 - 5*q**2", 1)
-    assert tampered != original, "the line to tamper with is gone: pick another one"
-    target.write_text(tampered)
-    proofs = root / "docs" / "proofs.md"
-    proofs.write_text(proofs.read_text().replace("equal", "same", 1))
-
-    result = _finish(_derivations("--check", "--root", str(root)))
+def test_check_reports_a_tampered_file_with_a_diff_and_the_command(regenerations):
+    _, _, check = regenerations
+    result = check["result"]
     assert result.returncode == 1, result.stdout + result.stderr
     out = result.stdout
     assert (
@@ -175,7 +195,7 @@ def test_check_reports_a_tampered_file_with_a_diff_and_the_command(tmp_path):
     assert "--- a/docs/proofs.md" in out, out
     assert "2 generated file(s) are stale" in out, out
     assert f"Update them with: {UPDATE_COMMAND}" in out, out
-    assert target.read_text() == tampered, "--check must not write"
+    assert check["after"] == check["tampered"], "--check must not write"
 
 
 def test_generated_headers_name_the_command_the_sympy_version_and_the_model_hash():

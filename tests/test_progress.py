@@ -45,10 +45,12 @@ def _run_on_a_terminal(args, cwd):
     return proc.returncode, b"".join(chunks).decode(errors="replace")
 
 
-@pytest.mark.slow
 def test_reproduce_shows_the_recipe_on_a_terminal_and_nothing_on_a_pipe(tmp_path):
-    args = ["reproduce", "--quick", "--only", "table2", "--out", str(tmp_path / "out")]
+    # Table 1 is the cheapest artefact with a recipe: the bars (and the recipe's name) are drawn by the
+    # command around any recipe, so one that builds in a moment shows the same (the progress within an
+    # artefact is the test above's).
+    args = ["reproduce", "--quick", "--only", "table1", "--out", str(tmp_path / "out")]
     code, screen = _run_on_a_terminal(args, tmp_path)
-    assert code == 0 and "reproducing the paper" in screen and "Table 2" in screen and "%" in screen
+    assert code == 0 and "reproducing the paper" in screen and "Table 1" in screen and "%" in screen
     piped = subprocess.run([sys.executable, "-m", "moving_bogie", *args], capture_output=True, text=True)
     assert piped.returncode == 0 and "%" not in piped.stderr and "reproducing the paper" not in piped.stderr
