@@ -227,7 +227,7 @@ def _run_sets(sets, records, reference_every, verbose, induced_frequencies, scan
                 "sliver": max((u.height for u in res.unsearched), default=0.0),
                 "roots": len(res.roots),
             }
-            if reference_every and k % reference_every == 0:
+            if reference_every and len(records[family]) % reference_every == 0:  # every n-th of its family
                 n = scan_points.get(family, 801)
                 ref = scan_roots(params, res.window, n=(n, n))
                 ok, worst = compare(res, ref)
@@ -241,6 +241,8 @@ def _run_sets(sets, records, reference_every, verbose, induced_frequencies, scan
             state = "FAIL " + record["failure"][:150] if record["failure"] else v.state
             ref = record.get("reference")
             extra = "" if ref is None else f" ref={'ok' if ref[0] else 'DIFFERS'}({ref[2]} unstable)"
+            if record.get("sliver", 0.0) > 1e-8:
+                extra += f" unsearched={record['sliver']:.1e}"
             print(f"{k:4d} {family:<11} {record['cpu']:7.2f}s {state:<12} {label}{extra}", flush=True)
 
 
@@ -272,7 +274,7 @@ def main() -> int:
     parser.add_argument("--layered", type=int, default=200, help="two- and three-layer sets (alternating)")
     parser.add_argument("--one-layer", type=int, default=100, help="one-layer EB and TR sets (alternating)")
     parser.add_argument("--seed", type=int, default=24)
-    parser.add_argument("--reference", type=int, default=10, help="scan every n-th set (0: none)")
+    parser.add_argument("--reference", type=int, default=10, help="scan every n-th set of each family (0: none)")
     parser.add_argument("--only", choices=FAMILIES, default=None)
     parser.add_argument("--verbose", action="store_true")
     args = parser.parse_args()
