@@ -23,3 +23,22 @@ def _restore_mp_dps():
     dps = mpmath.mp.dps
     yield
     mpmath.mp.dps = dps
+
+
+@pytest.fixture
+def compute_once(monkeypatch):
+    """``compute_once(module, name)`` replaces ``module.name`` by a version that computes on its first call
+    and hands every later call that same result; returns the list of results (one entry once called)."""
+
+    def patch(module, name):
+        results, compute = [], getattr(module, name)
+
+        def once(*args, **kwargs):
+            if not results:
+                results.append(compute(*args, **kwargs))
+            return results[0]
+
+        monkeypatch.setattr(module, name, once)
+        return results
+
+    return patch

@@ -89,7 +89,7 @@ def test_tr_woodbury_step_equals_dense_solve(model):
 
 
 @pytest.mark.slow
-def test_tr_validation_agrees_and_the_plain_model_does_not(monkeypatch):
+def test_tr_validation_agrees_and_the_plain_model_does_not(compute_once):
     # Reference: the closed form of Case 7 on the TR beam of Figure 8b (S = 10, r = 0.09), tau <= 40.
     # Both runs compare with the same closed form (same parameters, same tau grid): it is computed once
     # (about 20 s of the 22 s of one run; the finite beam itself takes under a second), and the second run
@@ -98,15 +98,7 @@ def test_tr_validation_agrees_and_the_plain_model_does_not(monkeypatch):
     # the corrected run's difference).
     from moving_bogie.response import closed_form
 
-    computed = []
-    compute = closed_form.closed_form_response
-
-    def once(*args, **kwargs):
-        if not computed:
-            computed.append(compute(*args, **kwargs))
-        return computed[0]
-
-    monkeypatch.setattr(closed_form, "closed_form_response", once)
+    compute_once(closed_form, "closed_form_response")
     params = table1_case(7).replace(beam="tr", S=10, r="0.09")
     corrected = validate(params, tau_max=40.0, estimate=False)
     assert corrected.agrees and max(corrected.relative_diff.values()) < 2e-3, corrected.relative_diff

@@ -88,20 +88,12 @@ def test_sweep_flags_every_point_by_its_own_track():
 
 
 @pytest.mark.slow
-def test_table2_says_every_case_is_subcritical(capsys, monkeypatch):
+def test_table2_says_every_case_is_subcritical(capsys, compute_once):
     # Both outputs (JSON, then text) of the command are judged on one computation of Table 2: the second
     # command is handed the same table (the speed regimes are computed by each command from it).
     from moving_bogie.roots import table2
 
-    tables = []
-    compute = table2.compute_table2
-
-    def once(*args, **kwargs):
-        if not tables:
-            tables.append(compute(*args, **kwargs))
-        return tables[0]
-
-    monkeypatch.setattr(table2, "compute_table2", once)
+    tables = compute_once(table2, "compute_table2")
     main(["table2", "--json"])
     data = json.loads(capsys.readouterr().out)
     for case in data["cases"]:
