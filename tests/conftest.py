@@ -42,3 +42,14 @@ def compute_once(monkeypatch):
         return results
 
     return patch
+
+
+@pytest.fixture
+def ctrl_c_raises():
+    """SIGINT raises KeyboardInterrupt in this process, as in a terminal, even when the suite was started as a
+    background job (which starts Python with SIGINT ignored); the previous handler comes back afterwards."""
+    import signal
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)

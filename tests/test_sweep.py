@@ -81,7 +81,7 @@ def test_random_points_agree_with_induced_frequencies(one_worker):
 
 
 @pytest.mark.slow
-def test_sigint_then_resume_equals_an_uninterrupted_sweep(one_worker, tmp_path):
+def test_sigint_then_resume_equals_an_uninterrupted_sweep(one_worker, tmp_path, ctrl_c_raises):
     path = tmp_path / "interrupted.zarr"
 
     def interrupt(index):

@@ -19,6 +19,11 @@ SWEEP = [sys.executable, "-m", "moving_bogie", "sweep", "--case", "1", "--vary",
          "--vary", "eta_M=5:100:8", "--chunk-points", "8", "--check", "0", "--workers", "2"]  # fmt: skip
 
 
+def _default_sigint() -> None:
+    """In the child, before Python starts: SIGINT as a terminal gives it (a background job inherits it ignored)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _chunks(store: Path) -> int:
     folder = store / "computed" / "c"
     return sum(1 for _ in folder.rglob("*") if _.is_file()) if folder.exists() else 0
@@ -29,7 +34,7 @@ def test_ctrl_c_prints_one_line_and_the_store_resumes(tmp_path):
     store = tmp_path / "s.zarr"
     proc = subprocess.Popen(
         SWEEP + ["--out", str(store)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-        start_new_session=True,
+        start_new_session=True, preexec_fn=_default_sigint,
     )  # fmt: skip
     deadline = time.monotonic() + 300
     while _chunks(store) == 0 and proc.poll() is None and time.monotonic() < deadline:
