@@ -20,7 +20,7 @@ SWEEP = [sys.executable, "-m", "moving_bogie", "sweep", "--case", "1", "--vary",
 
 
 def _default_sigint() -> None:
-    """In the child, before Python starts: SIGINT as a terminal gives it (a background job inherits it ignored)."""
+    """In the child before Python starts: SIGINT as a terminal gives it (a background job has it ignored)."""
     signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
