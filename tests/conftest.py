@@ -42,3 +42,13 @@ def compute_once(monkeypatch):
         return results
 
     return patch
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """Under ``-n N --dist=loadscope`` (pyproject.toml): :class:`xdist_balance.BalancedScopes`."""
+    if config.getoption("dist") != "loadscope":
+        return None
+    from xdist_balance import BalancedScopes
+
+    return BalancedScopes(config, log)
