@@ -53,3 +53,13 @@ def ctrl_c_raises():
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     yield
     signal.signal(signal.SIGINT, previous)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """Under ``-n N --dist=loadscope`` (pyproject.toml): :class:`xdist_balance.BalancedScopes`."""
+    if config.getoption("dist") != "loadscope":
+        return None
+    from xdist_balance import BalancedScopes
+
+    return BalancedScopes(config, log)

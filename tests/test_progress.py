@@ -1,4 +1,7 @@
-"""Long jobs show progress on a terminal and nothing on a pipe; reproduce shows the recipe under way."""
+"""Long jobs show progress on a terminal and nothing on a pipe; reproduce shows the recipe under way.
+
+The progress within an artefact is checked on the quick run of tests/test_reproduce.py.
+"""
 
 from __future__ import annotations
 
@@ -6,21 +9,6 @@ import os
 import pty
 import subprocess
 import sys
-
-import pytest
-
-from moving_bogie.paper.reproduce import reproduce
-
-
-@pytest.mark.slow
-def test_reproduce_reports_progress_within_each_artifact(tmp_path):
-    seen = []
-    reproduce(tmp_path, quick=True, only=["table1", "table2"], artifact_progress=lambda *a: seen.append(a))
-    labels = [label for label, _ in seen]
-    assert labels[0] == "Table 1" and "Table 2" in labels and set(labels) == {"Table 1", "Table 2"}
-    table2 = [f for label, f in seen if label == "Table 2"]
-    # Table 2 reports after each of its 13 cases: the bar moves inside the artefact, up to 1
-    assert len(table2) >= 13 and table2 == sorted(table2) and table2[-1] == 1.0
 
 
 def _run_on_a_terminal(args, cwd):
@@ -48,7 +36,7 @@ def _run_on_a_terminal(args, cwd):
 def test_reproduce_shows_the_recipe_on_a_terminal_and_nothing_on_a_pipe(tmp_path):
     # Table 1 is the cheapest artefact with a recipe: the bars (and the recipe's name) are drawn by the
     # command around any recipe, so one that builds in a moment shows the same (the progress within an
-    # artefact is the test above's).
+    # artefact: tests/test_reproduce.py).
     args = ["reproduce", "--quick", "--only", "table1", "--out", str(tmp_path / "out")]
     code, screen = _run_on_a_terminal(args, tmp_path)
     assert code == 0 and "reproducing the paper" in screen and "Table 1" in screen and "%" in screen

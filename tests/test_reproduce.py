@@ -16,11 +16,12 @@ import pytest
 from moving_bogie.cli import main
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.model.cases import table1_case
+from moving_bogie.paper import reproduce as driver
 from moving_bogie.paper.captions import CAPTIONS
 from moving_bogie.paper.index_page import caption_html
 from moving_bogie.paper.recipe import BuildContext
 from moving_bogie.paper.registry import ARTIFACTS, NOT_COMPUTED, Artifact
-from moving_bogie.paper.reproduce import build_artifact, quick_from_env
+from moving_bogie.paper.reproduce import build_artifact, quick_from_env, reproduce
 
 
 @pytest.fixture(scope="module")
@@ -28,20 +29,30 @@ def quick_run(tmp_path_factory):
     """One ``reproduce --quick`` run shared by the tests below (the CI check that everything builds).
 
     Every figure a recipe saves is kept too (``name -> Figure``), so that the tests read the data back
-    from its artists instead of judging the PNG by its size.
+    from its artists instead of judging the PNG by its size; so is every ``(label, fraction)`` the command
+    hands its progress bar within an artefact (``figures["progress"]``, a list).
     """
     out = tmp_path_factory.mktemp("reproduce")
-    figures = {}
+    figures, seen = {}, []
     save = BuildContext.save_figure
 
     def keep(self, fig, name, **kwargs):
         figures[name] = fig
         return save(self, fig, name, **kwargs)
 
+    def recorded(*args, artifact_progress, **kwargs):
+        def part(label, fraction):
+            seen.append((label, fraction))
+            artifact_progress(label, fraction)
+
+        return reproduce(*args, artifact_progress=part, **kwargs)
+
     start = time.perf_counter()
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(BuildContext, "save_figure", keep)
+        patch.setattr(driver, "reproduce", recorded)  # what the command calls
         status = main(["reproduce", "--out", str(out), "--quick", "--no-progress"])
+    figures["progress"] = seen
     return out, status, time.perf_counter() - start, figures
 
 
@@ -52,6 +63,18 @@ def test_quick_run_succeeds_and_fails_nothing(quick_run):
     assert status == 0, index
     assert "| failed |" not in index
     print(f"reproduce --quick: {seconds:.0f} s")
+
+
+@pytest.mark.slow
+def test_reproduce_reports_progress_within_each_artifact(quick_run):
+    """The command's bar moves inside an artefact: Table 2 reports after each of its 13 cases, up to 1."""
+    _, _, _, figures = quick_run
+    seen = figures["progress"]
+    labels = [label for label, _ in seen]
+    assert labels[0] == "Table 1" and "Table 2" in labels
+    assert set(labels) <= {a.label for a in ARTIFACTS if a.recipe is not None}
+    table2 = [f for label, f in seen if label == "Table 2"]
+    assert len(table2) >= 13 and table2 == sorted(table2) and table2[-1] == 1.0
 
 
 @pytest.mark.slow
