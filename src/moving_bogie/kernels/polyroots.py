@@ -18,7 +18,6 @@ __all__ = [
     "polyder",
     "polyval",
     "quartic_roots",
-    "evaluate_coefficients",
     "stack_coefficients",
 ]
 
@@ -210,30 +209,6 @@ def newton_polish(coeffs, roots, steps: int = 2) -> np.ndarray:
             better = np.isfinite(new) & (np.abs(polyval(coeffs, new)) <= np.abs(val))
         z = np.where(better, new, z)
     return z
-
-
-#: Up to this many points the generated coefficient functions are evaluated point by point on Python
-#: numbers (:func:`evaluate_coefficients`): a generated function makes hundreds of arithmetic operations,
-#: each costing about a microsecond on a numpy array whatever its size and a few tens of nanoseconds on a
-#: Python number (three-layer N in q: 1.5 ms for one point as an array, 64 us as a number).
-SCALAR_BATCH = 16
-
-
-def evaluate_coefficients(func, x, args) -> np.ndarray:
-    """``stack_coefficients(func(x, **args), x.shape)``, point by point on Python numbers for small ``x``.
-
-    The operations are the same IEEE double operations either way; a point where Python arithmetic raises
-    (a division by zero or an overflow, which numpy turns into inf or nan) sends the batch to numpy.
-    """
-    x = np.asarray(x)
-    if 0 < x.size <= SCALAR_BATCH:
-        try:
-            rows = [func(v, **args) for v in x.ravel().tolist()]
-        except (ZeroDivisionError, OverflowError):
-            pass
-        else:
-            return np.array(rows, dtype=complex).reshape(x.shape + (len(rows[0]),))
-    return stack_coefficients(func(x, **args), x.shape)
 
 
 def stack_coefficients(coeffs, shape) -> np.ndarray:
