@@ -16,7 +16,9 @@ import pytest
 import moving_bogie.generated as generated
 from moving_bogie.kernels.coefficient_matrix import CoefficientMatrix, Coefficients
 
-FOUNDATIONS = sorted(m.name for m in pkgutil.iter_modules(generated.__path__) if m.name.startswith("foundation_"))
+FOUNDATIONS = sorted(
+    m.name for m in pkgutil.iter_modules(generated.__path__) if m.name.startswith("foundation_")
+)
 FUNCTIONS = ("n_coeffs", "n_coeffs_dq", "q_coeffs", "q_coeffs_dq", "n_coeffs_in_q")
 
 

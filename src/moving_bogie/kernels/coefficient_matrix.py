@@ -5,11 +5,11 @@ Each generated function (``n_coeffs``, ``n_coeffs_dq``, ``q_coeffs``, ``q_coeffs
 in p) returns the coefficients of a polynomial in one variable whose own coefficients are polynomials in
 the other. Evaluated once on the variable itself as a polynomial object (:class:`_Poly`, coefficients
 lowest power first), the same generated arithmetic yields the matrix ``M[k, j]``: the coefficient of x^j
-in coefficient k. The model knowledge stays in the generated code; only its evaluation changes: on a batch
-of x, ``M`` costs one multiply-add per power of x (Horner's scheme), where the generated code makes hundreds of array
-operations (a three-layer N in q: 150 shared subexpressions). The monomials are the generated code's own
-(it is expanded in q and in p), so Horner's scheme has the same rounding-error bound, sum |M[k, j]| |x|^j
-times a few units in the last place.
+in coefficient k. The model knowledge stays in the generated code; only its evaluation changes: on a
+batch of x, ``M`` costs one multiply-add per power of x (Horner's scheme), where the generated code makes
+hundreds of array operations (a three-layer N in q: 150 shared subexpressions). The monomials are the
+generated code's own (it is expanded in q and in p), so Horner's scheme has the same rounding-error bound,
+sum |M[k, j]| |x|^j times a few units in the last place.
 
 A generated function that is not a polynomial in its first argument (a division by it, a function of it)
 raises on :class:`_Poly` or disagrees with itself at three probe points: it is then evaluated directly.
