@@ -32,6 +32,7 @@ __all__ = [
     "Fold",
     "arms_p_at",
     "arms_y_at",
+    "cut_loci",
     "cut_locus",
     "far_range",
     "trace_curves",
@@ -210,25 +211,40 @@ def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, founda
     ``end=True``): K is singular there (a root p of N runs off to infinity), and the tiling treats it as
     a branch point.
     """
+    return cut_loci(params, [(x_min, x_max)], samples=samples, foundation=foundation)[0]
+
+
+def cut_loci(params, strips, *, samples: int = 2001, foundation=None) -> tuple:
+    """:func:`cut_locus` of several strips ``[(x_min, x_max), ...]`` from one trace of the curves (over the
+    p-range of the widest): each is what :func:`cut_locus` of that strip alone returns, up to where the
+    samples of an arm lie (its points are exact wherever they are used)."""
     track = resolve_foundation(params, foundation)
     tracer = CutTracer(track.module, track.float_arguments(params))
-    reach = max(abs(x_min), abs(x_max)) + 1.0
+    reach = max(max(abs(x_min), abs(x_max)) for x_min, x_max in strips) + 1.0
     P = far_range(tracer, reach)
     U = float(np.arcsinh(P / 2.0))
     grid = 2.0 * np.sinh(np.linspace(-U, U, samples))
     grid[0], grid[-1] = -P, P
     ps, Q = trace_curves(tracer, -P, P, grid=grid)
-    arms, folds = [], []
+    pieces, turning = [], []
     for j in range(Q.shape[1]):
-        pieces, turns = split_at_turns(tracer, ps, Q[:, j])
-        for p_arm, q_arm in pieces:
-            inside = (q_arm.real >= x_min) & (q_arm.real <= x_max)
-            if p_arm.size > 1 and (np.any(inside) or (q_arm.real.min() < x_min and q_arm.real.max() > x_max)):
-                arms.append(CutArm(p_arm, q_arm, tracer))
+        arms_j, turns = split_at_turns(tracer, ps, Q[:, j])
+        pieces += [CutArm(p_arm, q_arm, tracer) for p_arm, q_arm in arms_j if p_arm.size > 1]
         ends = [
             Fold(float(ps[k]), complex(Q[k, j]), True, 0, True) for k in (0, -1) if abs(Q[k, j].real) <= reach
         ]
-        folds += [f for f in turns + ends if x_min <= f.q.real <= x_max]
+        turning += turns + ends
+    return tuple(_locus(pieces, turning, x_min, x_max) for x_min, x_max in strips)
+
+
+def _locus(pieces, turning, x_min, x_max) -> CutLocus:
+    """The arms and folds of the traced curves that meet the strip x_min <= Re q <= x_max."""
+    arms = []
+    for arm in pieces:
+        inside = (arm.q.real >= x_min) & (arm.q.real <= x_max)
+        if np.any(inside) or (arm.q.real.min() < x_min and arm.q.real.max() > x_max):
+            arms.append(arm)
+    folds = [f for f in turning if x_min <= f.q.real <= x_max]
     pts = np.concatenate([a.q for a in arms]) if arms else np.zeros(0, complex)
     inside = pts[(pts.real >= x_min) & (pts.real <= x_max)]
     extra = np.array([f.q for f in folds], dtype=complex)

@@ -15,9 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize
 
+from moving_bogie.kernels.coefficient_matrix import Coefficients
 from moving_bogie.kernels.polyroots import (
     companion_roots,
-    evaluate_coefficients,
     newton_polish,
     poly_roots,
     polyder,
@@ -38,6 +38,7 @@ class CutTracer:
     def __init__(self, module, args: dict):
         self.module = module
         self.args = args
+        self._coeffs = Coefficients(args)
 
     def q_roots(self, ps) -> np.ndarray:
         """All roots in q at real ``ps``, shape ``ps.shape + (DEGREE_N_IN_Q,)``.
@@ -47,7 +48,7 @@ class CutTracer:
         digits.
         """
         ps = np.asarray(ps, dtype=float)
-        c = evaluate_coefficients(self.module.n_coeffs_in_q, ps, self.args)
+        c = self._coeffs(self.module.n_coeffs_in_q, ps)
         z = newton_polish(c, poly_roots(c), steps=2)
         with np.errstate(all="ignore"):
             residual = np.abs(polyval(c, z)) / polyval(np.abs(c), np.abs(z))
@@ -59,8 +60,8 @@ class CutTracer:
     def dq_dp(self, p, q) -> np.ndarray:
         """dq/dp = -N_p / N_q along a curve N(p, q) = 0 (implicit-function theorem)."""
         p, q = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(q, dtype=complex))
-        n = evaluate_coefficients(self.module.n_coeffs, q, self.args)
-        nq = evaluate_coefficients(self.module.n_coeffs_dq, q, self.args)
+        n = self._coeffs(self.module.n_coeffs, q)
+        nq = self._coeffs(self.module.n_coeffs_dq, q)
         x = p[..., None].astype(complex)
         Np = polyval(polyder(n), x)[..., 0]
         Nq = polyval(nq, x)[..., 0]
@@ -69,7 +70,7 @@ class CutTracer:
     def refine(self, p, q, steps: int = 4) -> np.ndarray:
         """Newton's method on N(p, .) = 0 in q from ``q`` (arrays), at fixed real p."""
         p = np.asarray(p, dtype=float)
-        c = evaluate_coefficients(self.module.n_coeffs_in_q, p, self.args)
+        c = self._coeffs(self.module.n_coeffs_in_q, p)
         dc = polyder(c)
         z = np.asarray(q, dtype=complex).copy()
         for _ in range(steps):

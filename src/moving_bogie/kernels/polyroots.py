@@ -18,7 +18,6 @@ __all__ = [
     "polyder",
     "polyval",
     "quartic_roots",
-    "evaluate_coefficients",
     "stack_coefficients",
 ]
 
@@ -120,11 +119,13 @@ def companion_roots(coeffs) -> np.ndarray:
     return _companion(coeffs, coeffs[..., 1:] / coeffs[..., :1])
 
 
-#: Batches larger than this solve every ``_ANCHOR_EVERY``-th polynomial by eigenvalues and the others by
-#: Aberth's iteration started from the roots of the nearest preceding one (contour points come in order).
+#: Batches larger than this are solved in levels (contour points come in order, neighbours have nearby
+#: roots): companion eigenvalues at every ``_LEVELS[0]``-th polynomial of the batch (flattened order), then
+#: Aberth's iteration at every ``_LEVELS[1]``-th, then at all the others, each started from the roots of
+#: the nearest rows already solved on either side (interpolated linearly when both match one to one).
 _ANCHOR_BATCH = 64
-_ANCHOR_EVERY = 8
-_ABERTH_STEPS = 10
+_LEVELS = (32, 8, 1)
+_ABERTH_STEPS = 16
 _BACKWARD = 4e-15
 
 
@@ -135,28 +136,56 @@ def _companion(coeffs, monic):
 
 
 def _anchored(coeffs, monic):
-    """Eigenvalues at every ``_ANCHOR_EVERY``-th polynomial of the batch (flattened order), Aberth's
-    simultaneous iteration from those roots for the rest. A row is done when every root has converged
-    (relative step 1e-14) or has a backward error at rounding level (``_BACKWARD``: |P(z)| against
-    sum |c_k| |z|^k, the accuracy the eigenvalues reach; ill-conditioned roots, a near coalescence, never
-    reach the relative step), and its roots add up to -c_1 (Vieta: no root reached twice while another is
-    missed); any other row (a start too far from its roots) gets its own eigenvalues."""
+    """Eigenvalues at every ``_LEVELS[0]``-th polynomial of the batch, Aberth's simultaneous iteration from
+    the solved neighbours for the rest, level by level (:data:`_LEVELS`). A row is done when every root has
+    converged (relative step 1e-14) or has a backward error at rounding level (``_BACKWARD``: |P(z)|
+    against sum |c_k| |z|^k, the accuracy the eigenvalues reach; ill-conditioned roots, a near coalescence,
+    never reach the relative step), and its roots add up to -c_1 (Vieta: no root reached twice while
+    another is missed); any other row (a start too far from its roots) gets its own eigenvalues."""
     shape = monic.shape
     deg = shape[-1]
     flat_c = coeffs.reshape(-1, deg + 1)
     flat_m = monic.reshape(-1, deg)
     n = flat_m.shape[0]
-    anchors = np.arange(0, n, _ANCHOR_EVERY)
+    known = np.union1d(np.arange(0, n, _LEVELS[0]), [n - 1])
     roots = np.empty((n, deg), dtype=complex)
-    roots[anchors] = _eigen(flat_c[anchors], flat_m[anchors])
-    rest = np.setdiff1d(np.arange(n), anchors)
-    z = roots[(rest // _ANCHOR_EVERY) * _ANCHOR_EVERY].copy()
-    mc = np.concatenate([np.ones((rest.size, 1)), flat_m[rest]], axis=-1)
+    roots[known] = _eigen(flat_c[known], flat_m[known])
+    for every in _LEVELS[1:]:
+        rows = np.setdiff1d(np.arange(0, n, every), known)
+        if not rows.size:
+            continue
+        mc = np.concatenate([np.ones((rows.size, 1)), flat_m[rows]], axis=-1)
+        z, done = _aberth(mc, _starts(roots, known, rows))
+        roots[rows[done]] = z[done]
+        failed = rows[~done]
+        if failed.size:
+            roots[failed] = _eigen(flat_c[failed], flat_m[failed])
+        known = np.union1d(known, rows)
+    return roots.reshape(shape)
+
+
+def _starts(roots, known, rows):
+    """Starting roots for ``rows``: those of the nearest solved row before it, moved linearly towards those
+    of the nearest solved row after it where the two sets match one to one (nearest neighbours)."""
+    pos = np.searchsorted(known, rows) - 1  # rows are not in known: known[pos] < row < known[pos + 1]
+    a, b = known[pos], known[np.minimum(pos + 1, known.size - 1)]
+    za, zb = roots[a], roots[b]
+    order = np.argmin(np.abs(za[:, :, None] - zb[:, None, :]), axis=-1)
+    match = np.all(np.sort(order, axis=-1) == np.arange(za.shape[1]), axis=-1) & (b > rows)
+    t = ((rows - a) / np.maximum(b - a, 1))[:, None]
+    moved = za + t * (np.take_along_axis(zb, order, axis=-1) - za)
+    with np.errstate(invalid="ignore"):
+        return np.where(match[:, None] & np.isfinite(moved), moved, za)
+
+
+def _aberth(mc, z):
+    """Aberth's iteration on the monic polynomials ``mc`` from ``z``; (roots, rows accepted)."""
+    deg = z.shape[-1]
     dc = polyder(mc)
     bound_c = np.abs(mc)
     eye = np.eye(deg, dtype=bool)
-    active = np.arange(rest.size)
-    done = np.zeros(rest.size, dtype=bool)
+    active = np.arange(z.shape[0])
+    done = np.zeros(z.shape[0], dtype=bool)
     with np.errstate(all="ignore"):
         for _ in range(_ABERTH_STEPS):
             za, ca, da = z[active], mc[active], dc[active]
@@ -177,11 +206,7 @@ def _anchored(coeffs, monic):
             active = active[~ok]
             if not active.size:
                 break
-    roots[rest[done]] = z[done]
-    failed = rest[~done]
-    if failed.size:
-        roots[failed] = _eigen(flat_c[failed], flat_m[failed])
-    return roots.reshape(shape)
+    return z, done
 
 
 def _eigen(coeffs, monic):
@@ -210,30 +235,6 @@ def newton_polish(coeffs, roots, steps: int = 2) -> np.ndarray:
             better = np.isfinite(new) & (np.abs(polyval(coeffs, new)) <= np.abs(val))
         z = np.where(better, new, z)
     return z
-
-
-#: Up to this many points the generated coefficient functions are evaluated point by point on Python
-#: numbers (:func:`evaluate_coefficients`): a generated function makes hundreds of arithmetic operations,
-#: each costing about a microsecond on a numpy array whatever its size and a few tens of nanoseconds on a
-#: Python number (three-layer N in q: 1.5 ms for one point as an array, 64 us as a number).
-SCALAR_BATCH = 16
-
-
-def evaluate_coefficients(func, x, args) -> np.ndarray:
-    """``stack_coefficients(func(x, **args), x.shape)``, point by point on Python numbers for small ``x``.
-
-    The operations are the same IEEE double operations either way; a point where Python arithmetic raises
-    (a division by zero or an overflow, which numpy turns into inf or nan) sends the batch to numpy.
-    """
-    x = np.asarray(x)
-    if 0 < x.size <= SCALAR_BATCH:
-        try:
-            rows = [func(v, **args) for v in x.ravel().tolist()]
-        except (ZeroDivisionError, OverflowError):
-            pass
-        else:
-            return np.array(rows, dtype=complex).reshape(x.shape + (len(rows[0]),))
-    return stack_coefficients(func(x, **args), x.shape)
 
 
 def stack_coefficients(coeffs, shape) -> np.ndarray:

@@ -27,7 +27,8 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import bind
-from moving_bogie.kernels.polyroots import evaluate_coefficients, poly_roots, polyder, polyval
+from moving_bogie.kernels.coefficient_matrix import Coefficients
+from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval
 
 
 def foundation_module(params):
@@ -285,9 +286,7 @@ class TrackKernelArray:
         self.foundation = resolve_foundation(params, foundation)
         self.module = self.foundation.module
         self.args = self.foundation.float_arguments(params)
-
-    def _coeffs(self, func, q):
-        return evaluate_coefficients(func, q, self.args)
+        self._coeffs = Coefficients(self.args)
 
     def p_roots(self, q, coeffs=None):
         """Roots in p, shape q.shape + (DEGREE_N,) (closed form for quartics, else companion + Newton);

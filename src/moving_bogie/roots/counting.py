@@ -33,8 +33,9 @@ _RETRIES = ((1.0, 0.1), (0.8, 0.113), (0.6, 0.087), (0.5, 0.121))
 _GAP_SCALE = 10.0
 
 
-def count_tiling(fast, params, window, eps, eps_branch):
-    """Tile the window and count the roots in every tile.
+def count_tiling(fast, params, window, eps, eps_branch, cut=None):
+    """Tile the window and count the roots in every tile (``cut``: the window's :class:`CutLocus` if traced
+    already, :func:`~moving_bogie.kernels.cut.cut_loci`).
 
     Recovery, in this order, when a contour cannot be placed (a root on or next to an edge, or an edge that
     cannot be resolved next to the cut):
@@ -48,7 +49,8 @@ def count_tiling(fast, params, window, eps, eps_branch):
 
     Returns (cut, tiling, counts, warnings).
     """
-    cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
+    if cut is None:
+        cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
     best = None
     for factor, fraction in _RETRIES:
         gap_height = fraction * min(max(window.width, window.height), _GAP_SCALE)

@@ -29,7 +29,7 @@ import numpy as np
 
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
-from moving_bogie.kernels.cut import CutLocus, arms_y_at
+from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.counting import count_tiling, frame
 from moving_bogie.roots.far_field import FarField, far_field_radius
@@ -228,16 +228,19 @@ def induced_frequencies(
         if progress is not None:
             progress(min(1.0, x))
 
-    cut, tiling, counts, count_warnings = count_tiling(fast, params, window, eps, eps_branch)
+    big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
+    parts = frame(window, big) if check_window else ()
+    # the cut is traced once, over the p-range of the window twice as large, for the window and the frame
+    cuts = cut_loci(params, [(r.x0, r.x1) for r in (window, *parts)], foundation=fast.kernel.foundation)
+    cut, tiling, counts, count_warnings = count_tiling(fast, params, window, eps, eps_branch, cuts[0])
     warnings += count_warnings
     total = sum(counts)
     report(0.1)
     decaying_outside = 0
     if check_window:
-        big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
         more, lost, below = 0, 0, 0
-        for k, part in enumerate(frame(window, big)):
-            part_counts, part_warnings = count_tiling(fast, params, part, eps, eps_branch)[2:]
+        for k, (part, part_cut) in enumerate(zip(parts, cuts[1:])):
+            part_counts, part_warnings = count_tiling(fast, params, part, eps, eps_branch, part_cut)[2:]
             more += sum(part_counts)
             lost += len(part_warnings)
             below += sum(part_counts) if k == 0 else 0  # the strip Im q <= window.y0 < 0
