@@ -9,10 +9,11 @@ below and inside the lens of the Timoshenko-Rayleigh cut and around its fold.
 import numpy as np
 import pytest
 
+from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.contour import winding_number
+from moving_bogie.roots.contour import winding_number, winding_numbers
 from moving_bogie.roots.frequencies import default_window, induced_frequencies
 from moving_bogie.roots.search_regions import tile_window
 
@@ -80,3 +81,30 @@ def test_tr_frequencies_leave_no_sliver_above_1e_10(S, r):
     assert result.count_ok, result.warnings
     assert result.count == 4
     assert result.unsearched and max(u.height for u in result.unsearched) <= 1e-10
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", [1, 2])
+def test_counts_next_to_the_euler_bernoulli_branch_point(case):
+    """The box around the branch point q_c is 2e-9 wide (eps_branch = 1e-9), so contours pass within 1e-9 of
+    a point where K is infinite like 1/sqrt(q - q_c). Reference: a zero z0 placed by hand. The winding
+    numbers of E_chr(z) (z - z0) must exceed those of E_chr by exactly one, in the region that contains z0,
+    for z0 at 3e-9 to 1e-5 from q_c on every side but the cut itself (Case 2: eta_f = 0, the cut on the real
+    axis)."""
+    params = table1_case(case)
+    window = default_window(params)
+    cut = cut_locus(params, window.x0, window.x1)
+    assert cut.flat
+    tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-9, gap_height=0.1 * window.height)
+    assert max(u.height for u in tiling.unsearched) <= 2.1e-9
+    E = CharacteristicArray(params)
+    base = winding_numbers(E, tiling.regions)
+    assert not any(isinstance(b, Exception) for b in base)
+    q_c = complex(cut.x_start, cut.im_low)
+    angles = np.pi * np.array([0.5, -0.5, 1.0, 0.75, -0.75, 0.25, -0.25])
+    points = [q_c + r * np.exp(1j * t) for r in (3e-9, 1e-7, 1e-5) for t in angles]
+    for z0 in points:
+        counts = winding_numbers(lambda z, z0=z0: E(z) * (z - z0), tiling.regions)
+        diff = [c - b for c, b in zip(counts, base)]
+        assert sorted(diff) == [0] * (len(diff) - 1) + [1], z0
+        assert tiling.regions[diff.index(1)].contains(z0), z0

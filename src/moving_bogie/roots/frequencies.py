@@ -175,7 +175,7 @@ def induced_frequencies(
     window: Rectangle | None = None,
     check_window: bool = True,
     eps: float = 2e-11,
-    eps_branch: float = 1e-5,
+    eps_branch: float = 1e-9,
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
     certify: bool = False,
@@ -201,7 +201,8 @@ def induced_frequencies(
         Distance kept from the cut of K by the contours that follow it: the unsearched sliver around the
         cut is 2 eps high, at most 5 eps where two cut curves meet (default: at most 1e-10).
     eps_branch : float
-        Distance kept from the branch point (where K is infinite).
+        Half-width of the box left out around a branch point of K (where K is infinite like the inverse
+        square root of the distance; the contours next to it are refined down to that scale).
     newton_cell : float
         Side of a single-root cell below which Newton's method is tried from its centre.
     progress : callable, optional

@@ -188,7 +188,9 @@ def _column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
             # a crossing gets a narrow column of its own centred on it (boxes left out around the arms):
             # no edge passes through the crossing point, where a root may sit (two mirror curves cross on
             # Re q = 0, where the purely imaginary roots lie)
-            half = 0.45 * _NARROW * eps * max(1.0, abs(split))
+            # narrower where an arm is steep (next to a fold), so that the boxes stay a few 1e-9 high
+            steep = min(1e3, max(1.0, _slope(arms[k], split), _slope(arms[k + 1], split)))
+            half = 0.45 * _NARROW * eps * max(1.0, abs(split)) / steep
             inner = [x for x in (split - half, split + half) if a + 1e-3 * half < x < b - 1e-3 * half]
             cuts = [a, *inner, b]
             for c0, c1 in zip(cuts[:-1], cuts[1:]):
@@ -248,6 +250,13 @@ def _split_point(lower, upper, xs, gap, eps):
     return None, False
 
 
+def _slope(arm, x) -> float:
+    """|d Im q / d Re q| of ``arm`` at Re q = x."""
+    p = arm.p_at(np.array([x]))
+    t = complex(arm.tracer.dq_dp(p, arm.q_at(p))[0])
+    return abs(t.imag) / abs(t.real) if t.real else np.inf
+
+
 def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
     pad = eps + 0.05 * float(ys.max() - ys.min())
     c_lo, c_hi = max(band_lo, float(ys.min()) - pad), min(band_hi, float(ys.max()) + pad)
@@ -298,11 +307,55 @@ def _ends_at(arm, fold) -> bool:
 def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
     """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched).
 
-    The lens of the fold opens towards larger Re q (``fold.opens`` = +1: its tip cells reach Re q = b) or
-    towards smaller Re q (-1: they reach a). Curves of the cut that only partly cross the column, or pass
-    through the fold's box, are left out with it; the outer tip cell is framed closely around the lens and
-    rectangles fill the column above and below the frame.
+    Where another curve of the cut passes through the fold's lens or close to it inside [a, b] (a steep
+    arm beside the fold, or one crossing an arm of the lens), the fold's column is narrowed around the
+    fold until none does (the lens is about sqrt(Re q - fold) wide there, the other curve a fixed distance
+    away), and ordinary columns (:func:`_column`, which split at crossings) fill the rest of [a, b]: the
+    box that this curve would otherwise force around the whole column is not left out.
     """
+    if not fold.cusp:
+        narrow = _clear_column(cut, a, b, fold, eps)
+        if narrow != (a, b):
+            if narrow[0] > a:
+                _column(cut, a, narrow[0], regions, unsearched, eps, band_lo, band_hi)
+            _fold_column(cut, *narrow, fold, regions, unsearched, eps, band_lo, band_hi)
+            if narrow[1] < b:
+                _column(cut, narrow[1], b, regions, unsearched, eps, band_lo, band_hi)
+            return
+    _fold_column(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi)
+
+
+#: Each narrowing of a fold's column divides its half-width by this, down to _SMALLEST_TIP eps.
+_SHRINK = 4.0
+_SMALLEST_TIP = 500.0
+
+
+def _clear_column(cut, a, b, fold, eps):
+    """[a, b], or the narrower column around ``fold`` in which no other curve passes through its box.
+
+    Unchanged when nothing passes through, when a curve only partly crosses [a, b] (it ends next to the
+    fold: the box stays) or the fold is not the meeting point of two arms.
+    """
+    pair, _, partial, through, _, _ = _fold_neighbours(cut, a, b, fold, eps)
+    if not through or partial or len(pair) != 2:
+        return a, b
+    x_f = float(fold.q.real)
+    half = max(x_f - a, b - x_f)
+    smallest = _SMALLEST_TIP * eps * max(1.0, abs(x_f))
+    lo, hi = a, b
+    while through and half / _SHRINK >= smallest:
+        half /= _SHRINK
+        lo, hi = max(a, x_f - half), min(b, x_f + half)
+        pair, _, partial, through, _, _ = _fold_neighbours(cut, lo, hi, fold, eps)
+        if partial:
+            return a, b
+    return lo, hi
+
+
+def _fold_neighbours(cut, a, b, fold, eps):
+    """(pair, others, partial, through, low, high) of the fold's column [a, b]: the two arms meeting at the
+    fold, the other curves crossing the whole column, those crossing only part of it, the curves that pass
+    through the fold's box (within 8 eps of the Im range of the pair), and the box's Im range."""
     pair = [arm for arm in cut.arms if _ends_at(arm, fold)]
     full = _arms_over(cut, a, b)
     others = [arm for arm in full if all(arm is not x for x in pair)]
@@ -332,6 +385,21 @@ def _event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
             if arm not in through and y.max() >= low - 8 * eps and y.min() <= high + 8 * eps:
                 through.append(arm)
                 low, high, grown = min(low, float(y.min())), max(high, float(y.max())), True
+    return pair, others, partial, through, low, high
+
+
+def _fold_column(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
+    """The column [a, b] around a fold: two tip cells, or a box (a cusp, an end of the cut, or curves
+    passing through the fold's box).
+
+    The lens of the fold opens towards larger Re q (``fold.opens`` = +1: its tip cells reach Re q = b) or
+    towards smaller Re q (-1: they reach a). Curves of the cut that only partly cross the column, or pass
+    through the fold's box, are left out with it; the outer tip cell is framed closely around the lens and
+    rectangles fill the column above and below the frame.
+    """
+    pair, others, _, through, low, high = _fold_neighbours(cut, a, b, fold, eps)
+    xs = np.linspace(a, b, _COLUMN_SAMPLES)
+    spans = dict(zip(map(id, others), arms_y_at(others, xs))) if others else {}
     below = [arm for arm in others if arm not in through and spans[id(arm)].max() < low]
     above = [arm for arm in others if arm not in through and spans[id(arm)].min() > high]
     # other curves passing above or below the fold get ordinary column cells there
