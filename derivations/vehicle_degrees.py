@@ -11,6 +11,10 @@ arithmetic, so the degree is never under-estimated by rounding; a degree below t
 the random point to lie on an algebraic set of measure zero.
 
 A group that moves a contact point (d, L_c) also moves K(xi_i - xi_j, q) and is not swept this way.
+
+``follow=False`` gives the degrees with the groups an alternative sets held fixed instead (mu_v and J_b do not
+follow eta_M: a sweep in SI units over the wheel mass M keeps the frame's M_b and J_b), every group then an
+independent constant (``FIXED_POLYNOMIAL_DEGREES``).
 """
 
 import random
@@ -23,8 +27,10 @@ from . import symbols as s
 SEED = 21  # fixed, so that regeneration is reproducible
 
 
-def block_degrees(matrices) -> dict:
-    """``{group: degree of E_chr in it}`` for every group that places no contact and no alternative sets."""
+def block_degrees(matrices, follow: bool = True) -> dict:
+    """``{group: degree of E_chr in it}`` for every group that places no contact and (with ``follow``, the
+    alternatives of Eq. (63) substituted) that no alternative sets; without ``follow`` every group that places
+    no contact, the others held fixed."""
     rng = random.Random(SEED)
 
     def number():
@@ -45,7 +51,11 @@ def block_degrees(matrices) -> dict:
             if key not in offsets:
                 offsets[key] = number()
             Kmat[i, j] = offsets[key]
-    D = matrices.dynamic_stiffness().subs(held)
+    D = matrices.dynamic_stiffness()
+    if follow:
+        D = D.subs(held)
+    else:
+        held = {}
     alternatives = sorted(
         {c for expr in held.values() for c in expr.free_symbols} - set(matrices.parameters), key=str
     )

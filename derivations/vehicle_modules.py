@@ -65,11 +65,13 @@ def vehicle_module(name):
         declared.description,
     ]
     degrees = block_degrees(matrices)
+    fixed = block_degrees(matrices, follow=False)
     if name in SYSTEMS:
         system_parts, system_constants, system_definitions = _system_parts(name)
-        closed = dict(system_constants)["POLYNOMIAL_DEGREES"]
-        if closed != degrees:  # two derivations of one fact: the closed form and the block system
-            raise AssertionError(f"{name}: degrees {closed} (Eq. (38)) != {degrees} (block system)")
+        for key, block in (("POLYNOMIAL_DEGREES", degrees), ("FIXED_POLYNOMIAL_DEGREES", fixed)):
+            closed = dict(system_constants)[key]
+            if closed != block:  # two derivations of one fact: the closed form and the block system
+                raise AssertionError(f"{name}: {key} {closed} (Eq. (38)) != {block} (block system)")
         parts = system_parts + parts
         constants += system_constants
         definitions += system_definitions
@@ -79,6 +81,7 @@ def vehicle_module(name):
             ("MODEL_PARAMETERS", tuple(g for g in s.GROUPS if g in set(params))),
             ("RESPONSES", matrices.dofs),
             ("POLYNOMIAL_DEGREES", degrees),
+            ("FIXED_POLYNOMIAL_DEGREES", fixed),
         ]
     constants += [
         ("CONTACTS", matrices.contacts),
@@ -136,6 +139,7 @@ def _system_parts(name):
         )
     )
     degrees = polynomial_degrees(system)
+    fixed = polynomial_degrees(system, follow=False)
     # The wheel spacing d places the contact points (K(+-d, q)) whatever the vehicle.
     model_params = tuple(g for g in s.GROUPS if g in set(params) | {"d"})
     constants = [
@@ -144,21 +148,27 @@ def _system_parts(name):
         ("MODEL_PARAMETERS", model_params),
         ("RESPONSES", names),
         ("POLYNOMIAL_DEGREES", degrees),
+        ("FIXED_POLYNOMIAL_DEGREES", fixed),
     ]
     definitions = [E, *system.atoms.values(), *system.numerators.values()]
     return parts, constants, definitions
 
 
-def polynomial_degrees(system) -> dict:
+def polynomial_degrees(system, follow: bool = True) -> dict:
     """Degree of E_chr in each vehicle parameter at fixed q and K, the alternatives held (Eq. (63)).
 
     The stability tools sweep a parameter by interpolating E_chr exactly in it. The wheel spacing d is left
     out: it also moves the contact point, so K(+-d, q) depends on it. A group that an alternative sets
-    (mu_v = cf1 eta_M) follows its dependencies and is not swept on its own.
+    (mu_v = cf1 eta_M) follows its dependencies and is not swept on its own. With ``follow=False`` those
+    groups are held fixed instead (mu_v, J_b constant as eta_M changes: a sweep over the wheel mass in SI
+    units) and swept like the others.
     """
     E = sp.expand(in_q(system.E_chr, system))
     held = {group: expr for group, expr, _ in s.ALTERNATIVES.values() if group in system.parameters}
-    E = sp.expand(E.subs(held))
+    if follow:
+        E = sp.expand(E.subs(held))
+    else:
+        held = {}
     out = {}
     for par in system.parameters:
         if str(par) == "d" or par in held:

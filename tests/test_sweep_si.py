@@ -144,7 +144,9 @@ def test_units_option(tmp_path, capsys):
 def test_make_spec_holds_the_bar_fixed_in_si():
     physical = PhysicalParams.from_dimensionless(table1_case(1), digits=8, **SCALES)
     spec = make_spec(physical.to_dimensionless(), {"M": "500,1500"}, physical=physical)
-    assert spec.dims == ("M",) and spec.column_parameter is None  # no eta_M column: it would scale M_b
+    assert spec.dims == ("M",)
+    # a column of eta_M with the bar's mu_v, J_b held (not scaled with it: FIXED_POLYNOMIAL_DEGREES)
+    assert spec.column_parameter == "eta_M" and spec.held == ("J_b", "mu_v")
     params = spec.params.replace(**(spec.fixed | {"eta_M": spec.axes[0].values[1]}))
     back = PhysicalParams.from_dimensionless(params, digits=8, **SCALES)
     assert float(back.M_b) == pytest.approx(float(physical.M_b), rel=1e-7)

@@ -11,6 +11,7 @@ PARAMETERS = ('J_b', 'd', 'eta_M', 'eta_v', 'kappa_v', 'mu_v')
 MODEL_PARAMETERS = ('eta_M', 'd', 'mu_v', 'J_b', 'kappa_v', 'eta_v')
 RESPONSES = ('w_rear', 'w_front', 'u', 'theta')
 POLYNOMIAL_DEGREES = {'eta_M': 4, 'eta_v': 2, 'kappa_v': 2}
+FIXED_POLYNOMIAL_DEGREES = {'J_b': 1, 'eta_M': 2, 'eta_v': 2, 'kappa_v': 2, 'mu_v': 1}
 CONTACTS = 2
 DOFS = ('w_rear', 'w_front', 'u', 'theta')
 UNITS = {'w_rear': 'm', 'w_front': 'm', 'u': 'm', 'theta': 'rad'}

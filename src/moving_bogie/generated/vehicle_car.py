@@ -10,6 +10,7 @@ PARAMETERS = ('J_b', 'J_c', 'L_c', 'd', 'eta_M', 'eta_sec', 'eta_v', 'kappa_sec'
 MODEL_PARAMETERS = ('eta_M', 'd', 'mu_v', 'J_b', 'kappa_v', 'eta_v', 'L_c', 'mu_c', 'J_c', 'kappa_sec', 'eta_sec')
 RESPONSES = ('w_1', 'w_2', 'w_3', 'w_4', 'u_b1', 'theta_b1', 'u_b2', 'theta_b2', 'u_c', 'theta_c')
 POLYNOMIAL_DEGREES = {'J_c': 1, 'eta_M': 8, 'eta_sec': 2, 'eta_v': 4, 'kappa_sec': 2, 'kappa_v': 4, 'mu_c': 1}
+FIXED_POLYNOMIAL_DEGREES = {'J_b': 2, 'J_c': 1, 'eta_M': 4, 'eta_sec': 2, 'eta_v': 4, 'kappa_sec': 2, 'kappa_v': 4, 'mu_c': 1, 'mu_v': 2}
 CONTACTS = 4
 DOFS = ('w_1', 'w_2', 'w_3', 'w_4', 'u_b1', 'theta_b1', 'u_b2', 'theta_b2', 'u_c', 'theta_c')
 UNITS = {'w_1': 'm', 'w_2': 'm', 'w_3': 'm', 'w_4': 'm', 'u_b1': 'm', 'theta_b1': 'rad', 'u_b2': 'm', 'theta_b2': 'rad', 'u_c': 'm', 'theta_c': 'rad'}

@@ -10,6 +10,7 @@ PARAMETERS = ('eta_M',)
 MODEL_PARAMETERS = ('eta_M',)
 RESPONSES = ('w',)
 POLYNOMIAL_DEGREES = {'eta_M': 1}
+FIXED_POLYNOMIAL_DEGREES = {'eta_M': 1}
 CONTACTS = 1
 DOFS = ('w',)
 UNITS = {'w': 'm'}

@@ -11,6 +11,7 @@ PARAMETERS = ('eta_M',)
 MODEL_PARAMETERS = ('eta_M', 'd')
 RESPONSES = ('w_rear', 'w_front')
 POLYNOMIAL_DEGREES = {'eta_M': 2}
+FIXED_POLYNOMIAL_DEGREES = {'eta_M': 2}
 CONTACTS = 2
 DOFS = ('w_rear', 'w_front')
 UNITS = {'w_rear': 'm', 'w_front': 'm'}

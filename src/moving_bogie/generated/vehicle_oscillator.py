@@ -10,6 +10,7 @@ PARAMETERS = ('eta_M', 'eta_v', 'kappa_v', 'mu_v')
 MODEL_PARAMETERS = ('eta_M', 'mu_v', 'kappa_v', 'eta_v')
 RESPONSES = ('w', 'u')
 POLYNOMIAL_DEGREES = {'eta_M': 2, 'eta_v': 1, 'kappa_v': 1}
+FIXED_POLYNOMIAL_DEGREES = {'eta_M': 1, 'eta_v': 1, 'kappa_v': 1, 'mu_v': 1}
 CONTACTS = 1
 DOFS = ('w', 'u')
 UNITS = {'w': 'm', 'u': 'm'}

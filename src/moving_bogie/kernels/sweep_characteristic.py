@@ -34,29 +34,48 @@ from moving_bogie.kernels.polyroots import polyval as _polyval
 from moving_bogie.kernels.sweep_vehicle import BlockSweep
 from moving_bogie.kernels.track import resolve_foundation
 
-__all__ = ["SweepCharacteristic", "poly_roots", "polynomial_degree", "quartic_roots"]
+__all__ = ["SweepCharacteristic", "follower_groups", "poly_roots", "polynomial_degree", "quartic_roots"]
 
 _ALPHA_STENCIL = 0.25  # the coefficients of N and Q are polynomials of degree <= 4 in alpha
 
 
-def polynomial_degree(params, parameter: str) -> int:
+def polynomial_degree(params, parameter: str, held=()) -> int:
     """Degree of E_chr in the vehicle parameter ``parameter`` at fixed (q, alpha), from the derivation.
 
     The generated ``POLYNOMIAL_DEGREES`` of the vehicle, derived from its block system (for the paper's bogie
     4 in eta_M (B1, B2, B3 all scale with it at fixed cf1, cf2), 2 in kappa_v and in eta_v (the B4^4 and
     B4^2 B1 B3 terms of Eq. (38) cancel down to degree 2); for two masses 2 in eta_M; for the car 8 in eta_M).
+    ``held`` names groups that an alternative sets but that stay fixed (mu_v, J_b in a sweep in SI units over
+    the wheel mass): when every group that would follow ``parameter`` is held, the degree is the generated
+    ``FIXED_POLYNOMIAL_DEGREES`` (the bogie: 2 in eta_M, its two wheel masses).
 
     Raises
     ------
     ParameterError
-        Naming ``parameter`` when E_chr is not a polynomial in it (the spacing d also moves K).
+        Naming ``parameter`` when E_chr is not a polynomial in it (the spacing d also moves K), or when only
+        some of the groups that follow it are held.
     """
-    degrees = bind(params).polynomial_degrees
-    if parameter not in degrees:
+    bound = bind(params)
+    followers = follower_groups(bound, parameter)
+    fixed = followers & set(held)
+    degrees = bound.polynomial_degrees
+    if fixed:
+        degrees = dict(getattr(bound.vehicle, "FIXED_POLYNOMIAL_DEGREES", {}))
+    if parameter not in degrees or fixed not in (set(), followers):
         raise ParameterError(
             "parameter", f"parameter must be one of {', '.join(degrees)} for this vehicle (got {parameter!r})"
         )
     return degrees[parameter]
+
+
+def follower_groups(params, parameter: str) -> set:
+    """The vehicle's groups that an alternative sets from ``parameter`` (mu_v, J_b from eta_M, Eq. (63))."""
+    bound = bind(params)
+    return {
+        info["sets"]
+        for info in bound.params.model.alternatives.values()
+        if parameter in info["depends"] and info["sets"] in bound.vehicle.PARAMETERS
+    }
 
 
 class SweepCharacteristic:
@@ -76,6 +95,10 @@ class SweepCharacteristic:
         Evaluate E_chr as the determinant of the block system (:mod:`~moving_bogie.kernels.sweep_vehicle`)
         even when the vehicle's module has the closed form of Eq. (38) (default False: the closed form
         where there is one; vehicles without one always use the block system).
+    held : iterable of str
+        Groups an alternative sets that stay at their value in ``params`` instead of following
+        ``parameter`` (mu_v, J_b in a sweep in SI units over the wheel mass); E_chr then has the degree of
+        the generated ``FIXED_POLYNOMIAL_DEGREES`` (:func:`polynomial_degree`).
     below : bool
         Limit from below on the cut (default False): a p-root of N within ``REAL_P`` (relative) of the
         real axis counts as upper iff Re(N_q / N_p) > 0, the side it moves to when q -> q - i0 (as in
@@ -92,6 +115,7 @@ class SweepCharacteristic:
         parameter: str = "eta_M",
         *,
         foundation=None,
+        held=(),
         below=False,
         block=False,
     ):
@@ -100,7 +124,8 @@ class SweepCharacteristic:
         self.below = bool(below)
         self.params = params
         self.parameter = parameter
-        self.degree = polynomial_degree(bound, parameter)
+        self.held = frozenset(held) & follower_groups(bound, parameter)
+        self.degree = polynomial_degree(bound, parameter, self.held)
         self.module = bound.vehicle
         self.blocks = None if hasattr(self.module, "e_chr") and not block else BlockSweep(self.module)
         track = resolve_foundation(params, foundation)
@@ -108,13 +133,16 @@ class SweepCharacteristic:
         ns = bound.floats
         self.track_args = {k: v for k, v in track.float_arguments(params).items() if k != "alpha"}
         self.d = ns.d
-        # Eq. (63): groups set by an alternative that depends on the swept parameter follow it (the bar's
-        # mass and inertia follow eta_M at fixed cf1, cf2): (group, its function, the alternative's value).
+        # Eq. (63): groups set by an alternative that depends on the swept parameter follow it unless held
+        # (the bar's mass and inertia follow eta_M at fixed cf1, cf2): (group, its function, the value of the
+        # alternative).
         meta = params.model.catalogue.parameters
         self.followers = [
             (info["sets"], getattr(meta, f"set_by_{name}"), float(getattr(params, name)), info["depends"])
             for name, info in params.model.alternatives.items()
-            if parameter in info["depends"] and info["sets"] in self.module.PARAMETERS
+            if parameter in info["depends"]
+            and info["sets"] in self.module.PARAMETERS
+            and info["sets"] not in self.held
         ]
         names = self.module.PARAMETERS if self.blocks is None else self.module.MATRIX_ARGUMENTS
         self.base = {name: getattr(ns, name) for name in names}

@@ -26,6 +26,7 @@ from moving_bogie.stability.column_roots import delves_lyness, dip_candidates, l
 
 __all__ = [
     "ColumnResult",
+    "at_theta",
     "branch_points",
     "branch_samples",
     "column_window",
@@ -58,7 +59,13 @@ def exact(x) -> Fraction:
     return Fraction(str(float(x)))
 
 
-def column_window(params, parameter: str, thetas) -> tuple[float, float, float]:
+def at_theta(params, parameter: str, theta, held=()):
+    """``params`` with ``parameter = theta`` (exact), the groups of ``held`` kept at their values instead of
+    following it (:class:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic`)."""
+    return params.replace(**{name: getattr(params, name) for name in held}, **{parameter: theta})
+
+
+def column_window(params, parameter: str, thetas, held=()) -> tuple[float, float, float]:
     """(X, Y) covering :func:`~moving_bogie.roots.window.default_window` (the scale of the induced
     frequencies) at the smallest and at the largest theta of the column, and the smaller of the two X (the
     part of the real axis every cell's window holds).
@@ -68,7 +75,7 @@ def column_window(params, parameter: str, thetas) -> tuple[float, float, float]:
     between the two would be missed here; the full counts of the per-chunk check of a sweep would see it.
     """
     windows = [
-        default_window(params.replace(**{parameter: exact(theta)}))
+        default_window(at_theta(params, parameter, exact(theta), held))
         for theta in (float(np.min(thetas)), float(np.max(thetas)))
     ]
     return max(w.x1 for w in windows), max(-w.y0 for w in windows), min(w.x1 for w in windows)
@@ -127,7 +134,7 @@ def stability_column(
     t = thetas / scale
     fine_until = None
     if window is None:
-        *window, fine_until = column_window(sweep.params, sweep.parameter, thetas)
+        *window, fine_until = column_window(sweep.params, sweep.parameter, thetas, sweep.held)
     X, Y = window
     if extra is None and top < 0:
         extra = branch_samples(branch_points(sweep.params, alpha))
@@ -188,13 +195,14 @@ def stability_column(
 
 
 def settle_cells(
-    params, parameter: str, column: ColumnResult, *, alpha=None, thetas=None, dps: int = 15
+    params, parameter: str, column: ColumnResult, *, alpha=None, thetas=None, dps: int = 15, held=()
 ) -> ColumnResult:
     """Settle the ``uncertain`` cells of ``column`` by a full count at each (induced_frequencies).
 
     ``alpha`` and ``thetas`` are the exact values of the column (default: the shortest decimal text of
-    its floats). A cell stays uncertain only when the full count itself is not certified (``count_ok``
-    false, an UNDETERMINED verdict, or the search fails): its verdict is then never claimed.
+    its floats); the groups of ``held`` keep their values in ``params`` (:func:`at_theta`). A cell stays
+    uncertain only when the full count itself is not certified (``count_ok`` false, an UNDETERMINED
+    verdict, or the search fails): its verdict is then never claimed.
     """
     from moving_bogie.roots.frequencies import induced_frequencies
 
@@ -208,7 +216,7 @@ def settle_cells(
     for j in cells:
         theta = exact(column.thetas[j]) if thetas is None else thetas[j]
         try:
-            res = induced_frequencies(base.replace(**{parameter: theta}), dps=dps)
+            res = induced_frequencies(at_theta(base, parameter, theta, held), dps=dps)
         except MovingBogieError:
             continue
         unstable = [complex(r.q) for r in res.unstable_roots]

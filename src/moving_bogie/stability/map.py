@@ -86,18 +86,20 @@ class StabilityMap:
         }
 
 
-def map_columns(params, parameter, alphas, thetas, options=None, settle=True) -> list[ColumnResult]:
+def map_columns(params, parameter, alphas, thetas, options=None, settle=True, held=()) -> list[ColumnResult]:
     """Columns at ``alphas`` (continuation from each column to the next), uncertain cells settled.
 
     ``alphas`` and ``thetas`` may be exact (Fractions): the columns run on their floats and the full
-    counts of :func:`~moving_bogie.stability.column.settle_cells` on the exact values.
+    counts of :func:`~moving_bogie.stability.column.settle_cells` on the exact values. ``held``: groups
+    that keep their values instead of following ``parameter`` (mu_v, J_b in a sweep in SI units;
+    :class:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic`).
     """
     options = dict(options or {})
     floats = np.array([float(a) for a in alphas])
     if "top" not in options:
         options["top"] = top_edge(params, floats)
     theta_floats = np.array([float(t) for t in thetas])
-    sweep = SweepCharacteristic(params, parameter)
+    sweep = SweepCharacteristic(params, parameter, held=held)
     out = []
     for a, a_float in zip(alphas, floats):
         guesses = out[-1].roots if out else None
@@ -105,7 +107,9 @@ def map_columns(params, parameter, alphas, thetas, options=None, settle=True) ->
         if settle:
             exact_thetas = None if isinstance(thetas, np.ndarray) else list(thetas)
             exact_alpha = None if isinstance(a, float | np.floating) else a
-            col = settle_cells(params, parameter, col, alpha=exact_alpha, thetas=exact_thetas)
+            col = settle_cells(
+                params, parameter, col, alpha=exact_alpha, thetas=exact_thetas, held=sweep.held
+            )
         out.append(col)
     return out
 

@@ -254,18 +254,25 @@ class SweepSpec:
         return math.prod(self.shape)
 
     @property
+    def held(self) -> tuple[str, ...]:
+        """Groups that do not follow the parameters they depend on: those an alternative sets (mu_v, J_b,
+        Eq. (63)) that are varied or :attr:`fixed`."""
+        sets = {meta["sets"] for meta in self.params.model.alternatives.values()}
+        return tuple(sorted(sets & ({a.name for a in self.axes} | set(self.fixed))))
+
+    @property
     def column_parameter(self) -> str | None:
-        """The varied parameter counted a whole column at a time (None on a Sobol design)."""
+        """The varied parameter counted a whole column at a time (None on a Sobol design).
+
+        E_chr must be a polynomial in it at fixed q and alpha: the groups that follow it (mu_v, J_b follow
+        eta_M at fixed cf1, cf2) all follow, or all are :attr:`held` (a sweep in SI units over the wheel
+        mass M keeps the frame's M_b and J_b: the generated ``FIXED_POLYNOMIAL_DEGREES``).
+        """
         if self.design == "sobol":
             return None
-        names = {a.name for a in self.axes}
-        held = names | set(self.fixed)
-        alternatives = self.params.model.alternatives.values()
         for a in self.axes:
-            if any(a.name in meta["depends"] and meta["sets"] in held for meta in alternatives):
-                continue  # the column would scale mu_v and J_b with eta_M (Eq. (63)); the points do not
             try:
-                polynomial_degree(self.params, a.name)
+                polynomial_degree(self.params, a.name, set(self.held) - {a.name})
             except (ParameterError, AttributeError):
                 continue
             return a.name

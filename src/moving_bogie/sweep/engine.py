@@ -67,6 +67,7 @@ def block_task(spec: SweepSpec, block) -> BlockTask:
         spec.max_roots,
         spec.check,
         fixed=spec.fixed,
+        held=spec.held,
     )
 
 

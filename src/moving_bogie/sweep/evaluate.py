@@ -59,6 +59,7 @@ class BlockTask:
     max_roots: int
     check: int
     fixed: dict = field(default_factory=dict)
+    held: tuple = ()
 
 
 def evaluate_block(task: BlockTask) -> dict:
@@ -79,7 +80,8 @@ def evaluate_block(task: BlockTask) -> dict:
         params = task.params.replace(**(task.fixed | changes)) if changes else task.params
         alphas = alphas if alphas is not None else [params.alpha]
         thetas = thetas if thetas is not None else [getattr(params, parameter)]
-        for col, row in zip(map_columns(params, parameter, alphas, thetas), index_grid):
+        columns = map_columns(params, parameter, alphas, thetas, held=task.held)
+        for col, row in zip(columns, index_grid):
             for j, index in enumerate(row):
                 settled[index] = bool(col.settled[j])
                 if not col.uncertain[j]:
