@@ -38,21 +38,30 @@ class Undecided(MovingBogieError):
     root discs of N(p, q) overlap): subdivide the q-ball or raise the precision."""
 
 
-def taylor_in_q(foundation, m: acb, args) -> list:
-    """N(p, m + t) as ``[N_0, N_1, ...]``: acb_poly in p (lowest power first), coefficient of t^j each.
+def coefficients_in_q(foundation, args) -> list:
+    """N's coefficient of each power of p (highest first) as an acb_poly in q, exactly.
 
-    Exact: N is a polynomial of degree ``DEGREE_N_IN_Q`` in q, so the series of that many terms (plus one)
-    is its whole Taylor expansion; the extra term is checked to vanish.
+    N is a polynomial of degree ``DEGREE_N_IN_Q`` in q, so the series at q = 0 of that many terms (plus
+    one) is its whole expansion; the extra term is checked to vanish.
     """
     length = int(foundation.DEGREE_N_IN_Q) + 2
     series = [
         c if isinstance(c, acb_series) else acb_series([acb(c)], prec=length)
-        for c in foundation.n_coeffs(acb_series([m, 1], prec=length), **args)
+        for c in foundation.n_coeffs(acb_series([0, 1], prec=length), **args)
     ]
     rows = [(s.coeffs() + [acb(0)] * length)[:length] for s in series]
     if not all(row[-1].is_zero() for row in rows):
         raise ArithmeticError("N(p, q) is not a polynomial of degree DEGREE_N_IN_Q in q")
-    return [acb_poly([row[j] for row in reversed(rows)]) for j in range(length - 1)]
+    return [acb_poly(row[:-1]) for row in rows]
+
+
+def taylor_in_q(in_q: list, m: acb) -> list:
+    """N(p, m + t) as ``[N_0, N_1, ...]``: acb_poly in p (lowest power first), the coefficient of t^j each,
+    from :func:`coefficients_in_q` ``in_q``."""
+    shift = acb_poly([m, 1])
+    rows = [row(shift).coeffs() for row in in_q]
+    length = max(len(row) for row in rows)
+    return [acb_poly([row[j] if j < len(row) else acb(0) for row in reversed(rows)]) for j in range(length)]
 
 
 class PRootDiscs:
@@ -64,6 +73,7 @@ class PRootDiscs:
         self.prec = prec
         self.tol = 2.0 ** (8 - prec)
         self.approx: list | None = None
+        self.in_q = coefficients_in_q(foundation, args)
 
     def discs(self, q: acb) -> list:
         """Squares, one per root of N(p, xi), each holding exactly one root for every xi in the ball q.
@@ -81,7 +91,7 @@ class PRootDiscs:
         if q.rad() == 0:  # a point: N's coefficients there are all the expansion needed
             polys = [acb_poly([acb(c) for c in reversed(self.foundation.n_coeffs(m, **self.args))])]
         else:
-            polys = taylor_in_q(self.foundation, m, self.args)
+            polys = taylor_in_q(self.in_q, m)
         rt = (q - m).abs_upper()
         centre = polys[0]
         n = centre.degree()
@@ -93,7 +103,7 @@ class PRootDiscs:
             raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
         polished = _newton(centre, self.approx, self.tol) if self.approx and len(self.approx) == n else None
         if polished is not None:
-            found = self._try(polys, rt, polished)
+            found = self._try(polys, q - m, polished)
             if found is not None:
                 return found
         try:
@@ -101,15 +111,15 @@ class PRootDiscs:
             approx = [z.mid() for z in mid.roots(tol=self.tol)]
         except ValueError as exc:
             raise Undecided(f"root isolation of N(p, q) failed: {exc}") from None
-        found = self._try(polys, rt, approx)
+        found = self._try(polys, q - m, approx)
         if found is None:
             raise Undecided("no disjoint isolating discs for the roots of N(p, q) over the q ball")
         return found
 
-    def _try(self, polys, rt: arb, approx) -> list | None:
+    def _try(self, polys, t: acb, approx) -> list | None:
         found = []
         for pm in approx:
-            disc = _disc(polys, rt, pm)
+            disc = _disc(polys, t, pm)
             if disc is None:
                 return None
             found.append(disc)
@@ -170,34 +180,33 @@ def _newton(poly: acb_poly, approx, tol: float, steps: int = 4) -> list | None:
     return out
 
 
-def _disc(polys, rt: arb, pm: acb) -> RootDisc | None:
-    """The disc around ``pm`` passing the test of the module docstring (smallest radius tried), or None."""
+def _disc(polys, t: acb, pm: acb) -> RootDisc | None:
+    """The disc around ``pm`` passing the test of the module docstring (smallest radius tried), or None.
+
+    ``t`` is the ball q - m, r_t = |t|. With the majorant M(s) = sum_{k, j} |Y c_kj| r_t^j s^k (its
+    coefficients upper bounds, all >= 0): A = M(0), and over |s| <= r
+    sup |1 - Y N_p| <= |1 - Y c_10| + (M'(r) - |Y c_10|), since N_p = sum (k + 1) c_{k+1, j} s^k t^j.
+    """
     shift = acb_poly([pm, 1])
-    shifted = [poly(shift).coeffs() for poly in polys]  # c_kj: shifted[j][k]
-    c0 = shifted[0]
+    shifted = [poly(shift) for poly in polys]
+    c0 = shifted[0].coeffs()
     if len(c0) < 2 or c0[1].contains(0):
         return None
     Y = (1 / c0[1]).mid()
-    rts = [rt**j for j in range(len(shifted))]
-    # A: |Y N(pm, m + t)|; b0: |1 - Y N_p(pm, m + t)|; beta_k (k >= 1): the coefficient of r^k in B(r)
-    A = sum(((Y * c[0]).abs_upper() * rts[j] for j, c in enumerate(shifted) if c), arb(0))
-    b0 = (1 - Y * c0[1]).abs_upper() + sum(
-        ((Y * c[1]).abs_upper() * rts[j] for j, c in enumerate(shifted[1:], 1) if len(c) > 1), arb(0)
-    )
-    degree = len(c0) - 1
-    beta = [b0] + [
-        sum(
-            ((Y * c[k + 1]).abs_upper() * (k + 1) * rts[j] for j, c in enumerate(shifted) if len(c) > k + 1),
-            arb(0),
-        )
-        for k in range(1, degree)
-    ]
-    B = arb_poly(beta)
-    if not b0 < 1:
+    rt = t.abs_upper()
+    M, power = arb_poly([0]), arb(1)
+    for poly in shifted:
+        M += arb_poly([c.abs_upper() for c in (poly * Y).coeffs()]) * power
+        power *= rt
+    dM = M.derivative()
+    A = M(arb(0))
+    slope = Y * c0[1]
+    b0 = (1 - slope).abs_upper() - slope.abs_upper()  # B(r) = b0 + M'(r)
+    if not b0 + dM(arb(0)) < 1:
         return None
-    r = 2 * A.upper() / (1 - b0.upper()) + arb(2) ** -1074
+    r = 2 * A.upper() / (1 - (b0 + dM(arb(0))).upper()) + arb(2) ** -1074
     for _ in range(6):
-        if A + B(r) * r < r:
-            return RootDisc(acb(arb(pm.real, r), arb(pm.imag, r)), pm, shifted)
+        if A + (b0 + dM(r)) * r < r:
+            return RootDisc(acb(arb(pm.real, r), arb(pm.imag, r)), pm, [poly.coeffs() for poly in shifted])
         r = 2 * r
     return None
