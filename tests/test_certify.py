@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import random
+from pathlib import Path
 
 import mpmath
 import pytest
@@ -17,15 +18,20 @@ from flint import acb, acb_poly, ctx
 
 from moving_bogie.cli import main
 from moving_bogie.kernels.characteristic import Characteristic
+from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.cases import table1_case, table2_printed
+from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.roots.balls import BallCharacteristic, isolate_roots, square_ball
 from moving_bogie.roots.certify import certify, krawczyk
 from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.polish import newton
+from moving_bogie.roots.proof_tiling import Staircase, proof_tiling
 from moving_bogie.roots.table2 import compute_table2, format_table2
 from moving_bogie.roots.winding import NotProven, proven_count
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 #: A window holding the four pairs of Case 1 (Table 2: Re q <= 0.31, |Im q| <= 0.03) and the cut Im q = 0.1.
 CASE1_WINDOW = Rectangle(-5e-4, 0.5, -0.1, 0.2)
@@ -170,3 +176,40 @@ def test_a_missing_root_is_caught_by_the_proven_count(case1):
     assert c.verdict == "unstable"  # still proven: an unstable root needs no count
     stable_only = dataclasses.replace(case1, roots=(case1.roots[0],), certificate=None)
     assert certify(stable_only).verdict == "not proven"
+
+
+def _shoelace(corners) -> float:
+    return 0.5 * sum((a.conjugate() * b).imag for a, b in zip(corners, corners[1:] + corners[:1]))
+
+
+def test_staircases_bound_exactly_their_rectangles():
+    # The proof counts once around a base rectangle and the columns on it. The boundary must run
+    # counterclockwise around exactly those rectangles: its signed area (shoelace) equals their total area,
+    # its corners are corners of the members (exact floats, no rounded copies), and the staircases with
+    # the other regions and the unsearched strip still cover the window.
+    params = load_params_file(EXAMPLES / "two-layer.toml")[0]
+    window = Rectangle(-3e-3, 3.0, -3.0, 3.2)
+    cut = cut_locus(params, window.x0, window.x1)
+    tiling = proof_tiling(window, cut, margin=1e-3, gap_height=0.1 * 6.2)
+    stairs = [r for r in tiling.regions if isinstance(r, Staircase)]
+    assert len(stairs) == 2 and all(len(s.rects) > 40 for s in stairs)
+    for s in stairs:
+        corners = list(s.corners)
+        assert _shoelace(corners) == pytest.approx(sum(r.width * r.height for r in s.rects), rel=1e-12)
+        member_corners = {complex(x, y) for r in s.rects for x in (r.x0, r.x1) for y in (r.y0, r.y1)}
+        assert set(corners) <= member_corners
+    others = [r for r in tiling.regions if not isinstance(r, Staircase)]
+    pieces = [r for s in stairs for r in s.rects] + others
+    total = sum(r.width * r.height for r in pieces + list(tiling.unsearched))
+    assert total == pytest.approx(window.width * window.height, rel=1e-12)
+
+
+@pytest.mark.slow
+def test_two_layer_example_is_proven_stable():
+    # The proof on a layered track (degree 6 in p: two roots |p| ~ 60 from the sleeper layer) against the
+    # numerical search's count (itself checked against a dense scan in tests/test_layered_search.py).
+    result = induced_frequencies(load_params_file(EXAMPLES / "two-layer.toml")[0], certify=True)
+    c = result.certificate
+    assert c.all_proven and not c.problems, c.problems
+    assert c.count == result.count == 4 and c.proven_roots == 4
+    assert c.verdict == "stable"

@@ -34,15 +34,12 @@ from functools import reduce
 
 from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
 
-from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.roots.ball_block import BlockBalls
+from moving_bogie.roots.p_discs import PRootDiscs, Undecided
 
-
-class Undecided(MovingBogieError):
-    """Ball arithmetic could not decide a fact at this ball size (a p-root meets the real axis, or the
-    root discs of N(p, q) overlap): subdivide the q-ball or raise the precision."""
+__all__ = ["BallCharacteristic", "Undecided", "exact_ball", "horner", "isolate_roots", "square_ball"]
 
 
 def exact_ball(x) -> acb:
@@ -173,6 +170,7 @@ class BallCharacteristic:
         with ctx.workprec(prec):
             numbers = _ExactBalls(params)
             self.foundation_args = foundation_arguments(params, numbers)
+            self.p_discs = PRootDiscs(self.foundation, self.foundation_args, prec)
             if hasattr(self.vehicle, "e_chr"):  # the closed form of Eq. (38)
                 self.vehicle_args = {name: getattr(numbers, name) for name in self.vehicle.PARAMETERS}
                 self.vehicle_args["pi"] = acb(arb.pi())
@@ -190,39 +188,9 @@ class BallCharacteristic:
             return self._sides(acb(q), self._root_balls(acb(q)))
 
     def _root_balls(self, q: acb) -> list:
-        """Root balls of N(p, xi), xi in the ball q: isolated at the centre (Smith discs), then widened to
-        the whole ball by the Krawczyk test  p_m - Y N(p_m, q) + (1 - Y N_p(P, q)) (P - p_m)  inside P."""
-        f, args = self.foundation, self.foundation_args
-        centre = isolate_roots([acb(c) for c in f.n_coeffs(q.mid(), **args)], self.tol)
-        if q.rad() == 0:
-            return centre
-        n = [acb(c) for c in f.n_coeffs(q, **args)]
-        if n[0].contains(0):  # the degree in p must not drop anywhere in the q ball
-            raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
-        n1 = derivative_coefficients(n)
-        nq = [acb(c) for c in f.n_coeffs_dq(q, **args)]
-        n_mid = [acb(c) for c in f.n_coeffs(q.mid(), **args)]
-        balls = []
-        for p_ball in centre:
-            pm = p_ball.mid()
-            Y = (1 / horner(derivative_coefficients(n_mid), pm)).mid()
-            # N(p_m, xi) for xi in q: mean-value form in q around the centre
-            shift = horner(n_mid, p_ball) + horner(nq, p_ball) * (q - q.mid())
-            rho = 2 * (Y * shift).abs_upper() + p_ball.rad() + arb(2) ** (-self.prec)
-            for _ in range(3):
-                P = acb(arb(pm.real, rho), arb(pm.imag, rho))
-                K = pm - Y * shift + (1 - Y * horner(n1, P)) * (P - pm)
-                if P.contains_interior(K):
-                    balls.append(K)
-                    break
-                rho = 4 * rho
-            else:
-                raise Undecided("no isolating ball for a root of N(p, q) over the q ball")
-        for k in range(len(balls)):
-            for j in range(k + 1, len(balls)):
-                if balls[k].overlaps(balls[j]):
-                    raise Undecided("root balls of N(p, q) overlap over the q ball")
-        return balls
+        """Root balls of N(p, xi), xi in the ball q, each holding exactly one root for every xi
+        (:mod:`p_discs`: a Krawczyk test in disc form on N's exact Taylor expansion at the centre)."""
+        return self.p_discs.discs(q)
 
     def _sides(self, q: acb, roots) -> tuple:
         """(upper, lower) p-root balls at the q-ball ``q``; on the real axis with ``below``, real roots
@@ -258,23 +226,42 @@ class BallCharacteristic:
         length = order + 1
         f = self.foundation
         args = self.foundation_args
-        upper, lower = self._sides(q, self._root_balls(q))
+        found = self.p_discs.roots(q)
+        upper, lower = self._sides(q, [d.ball for d in found])
         qs = acb_series([q, 1], prec=length) if order else acb_series([q], prec=length)
-        n = _series(f.n_coeffs(qs, **args), length)
-        n1 = derivative_coefficients(n)
         qc = _series(f.q_coeffs(qs, **args), length)
         i_unit = acb(0, 1)
+        if q.rad() == 0:  # a point: N's coefficients as series in t = q - c directly
+            n = _series(f.n_coeffs(qs, **args), length)
+            n1 = derivative_coefficients(n)
+
+            def expanded(p0):
+                return acb(0), n, n1, p0
+        else:  # a ball: N around each root disc's centre (narrow coefficients, p_discs.py)
+            discs = {id(d.ball): d for d in found}
+            u = q - q.mid()
+
+            def expanded(p0):
+                d = discs[id(p0)]
+                n = d.series(u, length)
+                return d.centre, n, derivative_coefficients(n), p0 - d.centre
 
         def solved(roots):
             """(p, Q(p), N_p(p)) per root: the series of the root and what its residue divides, which every
-            offset shares (only exp(i xi p) depends on xi)."""
+            offset shares (only exp(i xi p) depends on xi). The root is c + s, s a series found by Newton
+            steps on N(c + s) (c = 0 at a point, the disc's centre over a ball)."""
             out = []
             for p0 in roots:
-                p = acb_series([p0], prec=length)
+                centre, n, n1, s0 = expanded(p0)
+                s = acb_series([s0], prec=length)
                 for _ in range(order.bit_length()):
-                    p = p - horner(n, p) / horner(n1, p)
-                    p = acb_series([p0] + p.coeffs()[1:], prec=length)
-                out.append((p, horner(qc, p), horner(n1, p)))
+                    step = horner(n1, s)
+                    if acb(step.coeffs()[0] if step.coeffs() else 0).contains(0):
+                        raise Undecided("N_p(p, q) not bounded away from 0 over the q ball")
+                    s = s - horner(n, s) / step
+                    s = acb_series([s0] + s.coeffs()[1:], prec=length)
+                p = s + centre
+                out.append((p, horner(qc, p), horner(n1, s)))
             return out
 
         def residues(roots, xi):

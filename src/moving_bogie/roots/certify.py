@@ -334,6 +334,10 @@ def _match(tiles, roots, mirrors, problems):
 
 
 def _in_tile(ball: acb, rect) -> bool:
+    """The ball lies in the interior of the tile (of one member rectangle, for a staircase: a ball across
+    two members' shared edge is reported as outside, never counted wrongly)."""
+    if hasattr(rect, "rects"):
+        return any(_in_tile(ball, r) for r in rect.rects)
     return bool(ball.real > rect.x0 and ball.real < rect.x1 and ball.imag > rect.y0 and ball.imag < rect.y1)
 
 

@@ -67,7 +67,7 @@ def proof_tiling(
         b = window.x1 if k == len(edges) - 1 else edges[k + 1]
         thin = [t for lo, hi, t in inside if lo <= 0.5 * (a + b) <= hi]
         bounds.append((a, min([margin] + thin)))
-    unsearched = []
+    unsearched, lower, upper = [], [], []
     for k, (a, used) in enumerate(bounds):
         b = window.x1 if k == len(bounds) - 1 else bounds[k + 1][0]
         if b <= a:
@@ -80,8 +80,90 @@ def proof_tiling(
         pad = used + 0.05 * (spread if used == margin else span[1] - span[0])
         lo, hi = max(band[0], span[0] - pad), min(band[1], span[1] + pad)
         if lo > band[0]:
-            regions.append(Rectangle(a, b, band[0], lo))
+            lower.append(Rectangle(a, b, band[0], lo))
         if hi < band[1]:
-            regions.append(Rectangle(a, b, hi, band[1]))
+            upper.append(Rectangle(a, b, hi, band[1]))
         unsearched.append(Rectangle(a, b, lo, hi))
-    return ProofTiling(tuple(regions), tuple(unsearched))
+    return ProofTiling(tuple(_merged(regions, lower, upper)), tuple(unsearched))
+
+
+@dataclass(frozen=True)
+class Staircase:
+    """A base rectangle and columns standing on one of its horizontal edges, as one region: ``corners``
+    of its boundary counterclockwise (exact copies of the rectangles' corners), ``rects`` the members.
+    Counting once on its boundary skips the edges the members share (a column's sides over the cut)."""
+
+    corners: tuple
+    rects: tuple
+
+    @property
+    def width(self) -> float:
+        return max(z.real for z in self.corners) - min(z.real for z in self.corners)
+
+    @property
+    def height(self) -> float:
+        return max(z.imag for z in self.corners) - min(z.imag for z in self.corners)
+
+    def __str__(self) -> str:
+        return f"Staircase(base={self.rects[0]}, columns={len(self.rects) - 1})"
+
+
+def _merged(regions: list, lower: list, upper: list) -> list:
+    """``regions`` with the columns below the cut joined to the region below the band (its top edge is
+    their base) and those above it to the region above; columns without such a base stay rectangles."""
+    out = list(regions)
+    for columns, on_top in ((lower, True), (upper, False)):
+        if not columns:
+            continue
+        level = columns[0].y0 if on_top else columns[0].y1
+        base = next(
+            (
+                r
+                for r in out
+                if (r.y1 if on_top else r.y0) == level and r.x0 <= columns[0].x0 and columns[-1].x1 <= r.x1
+            ),
+            None,
+        )
+        if base is None:
+            out += columns
+            continue
+        out.remove(base)
+        out.append(_staircase(base, columns, on_top))
+    return out
+
+
+def _staircase(base: Rectangle, columns: list, on_top: bool) -> Staircase:
+    """The boundary of ``base`` with ``columns`` (disjoint, sorted by Re q) on its top edge (``on_top``) or
+    its bottom edge, counterclockwise."""
+    xs = sorted({base.x0, base.x1} | {x for c in columns for x in (c.x0, c.x1)})
+    pieces = []  # (x_left, x_right, level of the outer edge there), left to right
+    for x_left, x_right in zip(xs, xs[1:]):
+        column = next((c for c in columns if c.x0 <= x_left and x_right <= c.x1), None)
+        if column is None:
+            pieces.append((x_left, x_right, base.y1 if on_top else base.y0))
+        else:
+            pieces.append((x_left, x_right, column.y1 if on_top else column.y0))
+    if on_top:  # along the bottom edge to the right, then back over the profile to the left
+        points = [complex(base.x0, base.y0), complex(base.x1, base.y0)]
+        for x_left, x_right, y in reversed(pieces):
+            points += [complex(x_right, y), complex(x_left, y)]
+    else:  # over the profile to the right, then back along the top edge to the left
+        points = []
+        for x_left, x_right, y in pieces:
+            points += [complex(x_left, y), complex(x_right, y)]
+        points += [complex(base.x1, base.y1), complex(base.x0, base.y1)]
+    corners = []
+    for z in points:
+        if corners and corners[-1] == z:
+            continue
+        corners.append(z)
+    changed = True
+    while changed and len(corners) > 4:
+        changed = False
+        for k in range(len(corners)):
+            a, b, c = corners[k - 1], corners[k], corners[(k + 1) % len(corners)]
+            if a.real == b.real == c.real or a.imag == b.imag == c.imag:
+                del corners[k]
+                changed = True
+                break
+    return Staircase(tuple(corners), (base, *columns))

@@ -9,7 +9,8 @@ The rectangle's boundary (corners are exact binary floats) is cut into segments 
    axis-parallel rectangle; when that rectangle excludes 0 it lies in an open half-plane through 0, so the
    continuous change of arg E along the segment is the principal value Arg(E(b) / E(a)), computed as a ball.
 
-A segment where either test fails is halved (down to a relative length ``min_length``, then the count is
+Along each edge a proven segment lets the next one grow, and a segment where either test fails is halved
+(down to a relative length ``min_length``, then the count is
 reported unproven). The total change of arg divided by 2 pi is a ball containing an integer, the number of
 zeros inside; it is proven when the ball holds exactly one integer.
 
@@ -28,6 +29,9 @@ from flint import acb, arb, ctx
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.roots.balls import Undecided
 
+#: Factor by which a boundary segment grows after a proven one (a failing one is halved).
+GROWTH = 1.5
+
 
 class NotProven(MovingBogieError):
     """The count could not be proven (a zero on or too near the boundary, or the boundary meets the cut)."""
@@ -45,14 +49,17 @@ class ProvenCount:
 def proven_count(
     bc, rect, *, initial: int = 8, min_length: float = 1e-10, max_segments: int = 200_000
 ) -> ProvenCount:
-    """Number of zeros of E_chr inside ``rect`` (a :class:`~moving_bogie.roots.contour.Rectangle`), proven.
+    """Number of zeros of E_chr inside ``rect`` (a :class:`~moving_bogie.roots.contour.Rectangle`, or a
+    region with axis-parallel edges and exact ``corners`` counterclockwise, such as
+    :class:`~moving_bogie.roots.proof_tiling.Staircase`), proven.
 
     Parameters
     ----------
     bc : BallCharacteristic
         E_chr and E_chr' on balls.
     initial : int
-        Segments per edge to start from; failing segments are halved.
+        The first segment of an edge is 1/``initial`` of it; along the edge, a proven segment lets the
+        next one grow by :data:`GROWTH`, a failing one is halved.
     min_length : float
         Relative length (to the rectangle's longer side) below which a segment is not halved any more.
     max_segments : int
@@ -63,12 +70,16 @@ def proven_count(
     NotProven
         Naming the place where the boundary could not be certified.
     """
-    corners = [
-        complex(rect.x0, rect.y0),
-        complex(rect.x1, rect.y0),
-        complex(rect.x1, rect.y1),
-        complex(rect.x0, rect.y1),
-    ]
+    corners = (
+        list(rect.corners)
+        if hasattr(rect, "corners")
+        else [
+            complex(rect.x0, rect.y0),
+            complex(rect.x1, rect.y0),
+            complex(rect.x1, rect.y1),
+            complex(rect.x0, rect.y1),
+        ]
+    )
     size = max(rect.width, rect.height)
     values: dict = {}
 
@@ -81,21 +92,21 @@ def proven_count(
         total = arb(0)
         segments = 0
         for a, b in zip(corners, corners[1:] + corners[:1]):
-            stack = [(a + (b - a) * k / initial, a + (b - a) * (k + 1) / initial) for k in range(initial)]
-            stack[-1] = (stack[-1][0], b)  # the corner itself, not a rounded copy
-            while stack:
-                s, t = stack.pop()
+            # walk from a to b: a proven segment lets the next one grow by GROWTH, a failing one is halved
+            x, step, edge = 0.0, 1.0 / initial, abs(b - a)
+            while x < 1.0:
+                y = 1.0 if x + step * 1.25 >= 1.0 else x + step
+                s, t = a + (b - a) * x, (b if y == 1.0 else a + (b - a) * y)
                 try:
                     total += _argument_change(bc, s, t, value)
-                    segments += 1
-                    continue
                 except Undecided as exc:
-                    reason = str(exc)
-                if abs(t - s) < min_length * size or segments + len(stack) > max_segments:
-                    raise NotProven(f"boundary of {rect} not certified near q = {s:.12g}: {reason}")
-                m = 0.5 * (s + t)
-                stack.append((m, t))
-                stack.append((s, m))
+                    if (y - x) * edge < min_length * size or segments > max_segments:
+                        where = f"boundary of {rect} not certified near q = {s:.12g}"
+                        raise NotProven(f"{where}: {exc}") from None
+                    step = 0.5 * (y - x)
+                    continue
+                segments += 1
+                x, step = y, (y - x) * GROWTH
         turns = total / (2 * arb.pi())
         n = int(round(float(turns.mid())))
         if not (turns.contains(n) and turns.rad() < 0.5):
