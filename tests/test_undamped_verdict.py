@@ -44,7 +44,10 @@ def _verdict_agrees_with_small_damping(case):
     assert max(growth) < 1.1 * min(growth) and growth[1] == pytest.approx(float(reference), rel=1e-6)
     for eta_f in ("1e-6", "1e-8"):
         damped = induced_frequencies(p.replace(eta_f=Fraction(eta_f)), dps=20)
-        assert damped.strip.mode == "below the cut"
+        # the box around the branch point (half-width 1e-9) stays above the axis at eta_f = 1e-8: then
+        # nothing below the axis is unsearched and no strip is counted
+        assert damped.strip is None or damped.strip.mode == "below the cut"
+        assert damped.verdict.determined, damped.verdict.reasons
         assert damped.verdict.state == exact.verdict.state, (case, eta_f)
         # the roots move by O(eta_f) (first order in eta_f, stability/undamped.py)
         got = sorted((complex(r.q) for r in damped.roots), key=lambda z: z.real)
