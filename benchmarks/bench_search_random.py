@@ -274,7 +274,7 @@ def main() -> int:
     parser.add_argument("--layered", type=int, default=200, help="two- and three-layer sets (alternating)")
     parser.add_argument("--one-layer", type=int, default=100, help="one-layer EB and TR sets (alternating)")
     parser.add_argument("--seed", type=int, default=24)
-    parser.add_argument("--reference", type=int, default=10, help="scan every n-th set of each family (0: none)")
+    parser.add_argument("--reference", type=int, default=10, help="scan every n-th set per family (0: none)")
     parser.add_argument("--only", choices=FAMILIES, default=None)
     parser.add_argument("--verbose", action="store_true")
     args = parser.parse_args()
