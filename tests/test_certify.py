@@ -108,6 +108,31 @@ def test_ball_derivative_contains_the_double_pole_formula():
             assert Ew.contains(acb(complex(Ec)))
 
 
+@pytest.mark.parametrize("method", ["direct", "discs"])
+def test_both_p_root_methods_enclose_the_point_values(method):
+    """Each method of p-root balls over a q-ball (p_balls.py, p_discs.py) gives E_chr balls that hold the
+    30-digit mpmath values at points of the ball (kernels/characteristic.py, an independent residue sum)."""
+    params = table1_case(6)
+    bc = BallCharacteristic(params, prec=128, p_roots=method)
+    assert bc.direct == (method == "direct")
+    precise = Characteristic(params)
+    for q in (0.3 + 0.05j, 1.5 + 0.2j):
+        ball = square_ball(q, 1e-6)
+        upper, lower = bc.p_roots(ball)
+        assert len(upper) + len(lower) == 4
+        Ew = bc.value(ball)
+        for z in (q, q + 9e-7 * (1 + 1j), q + 9e-7 * (1 - 1j), q - 9e-7):
+            with mpmath.workdps(30):
+                Ec = -2 * precise(mpmath.mpc(z))
+            assert Ew.contains(acb(complex(Ec)))
+        assert Ew.rad() < 1e-2 * Ew.abs_upper()  # a usable enclosure, not the whole plane
+
+
+def test_p_root_method_is_checked():
+    with pytest.raises(ValueError, match="p_roots"):
+        BallCharacteristic(table1_case(1), p_roots="fast")
+
+
 def test_isolated_p_roots_contain_known_roots():
     roots = [complex(1.5, 0.25), complex(-0.5, 1), complex(-1, -0.75), complex(2, -0.5)]
     with ctx.workprec(128):

@@ -12,12 +12,11 @@ Here the p-roots of N(p, q) are isolated balls, and the side of the real p-axis 
 *decided*: a root ball that meets the real axis (q too close to the cut of K for the given ball) raises
 :class:`Undecided`, so a caller can only subdivide, never guess.
 
-Root isolation at a point q (Smith 1970, "Error bounds for zeros of a polynomial based upon Gerschgorin's
-theorems"): for approximations z_1..z_n of the roots of a polynomial of degree n with leading coefficient
-a_n, every root lies in the union of the discs |z - z_k| <= n |w_k|, w_k = P(z_k) / (a_n prod_{j != k}
-(z_k - z_j)), and a disc disjoint from all others holds exactly one root. The approximations come from
-Arb's ``acb_poly.roots`` on the midpoint polynomial. Over a ball of q, each root ball at the centre is
-widened by a Krawczyk test in p that holds for every q of the ball (:meth:`BallCharacteristic.p_roots`).
+The p-root balls over a q-ball come from one of two proven methods: for tracks whose N has degree 4 in p
+(the one-layer beams) the Smith discs at the centre widened by a Krawczyk test on N evaluated over the
+ball (:mod:`~moving_bogie.roots.p_balls`), cheapest there; for the layered tracks (degree 6 and more,
+roots |p| ~ 60 whose balls that test overestimates) discs from N's exact Taylor expansion at the centre
+(:mod:`~moving_bogie.roots.p_discs`). ``p_roots="direct"`` or ``"discs"`` forces one.
 
 Derivatives in q (dK/dq, dE_chr/dq of Eq. (40), and higher) come from truncated Taylor series arithmetic
 (``acb_series``) through the same residue sum, not from the double-pole formula of
@@ -30,16 +29,27 @@ acb arguments (their ``1j`` literals combine with acb exactly).
 from __future__ import annotations
 
 from fractions import Fraction
-from functools import reduce
 
-from flint import acb, acb_poly, acb_series, arb, ctx, fmpq
+from flint import acb, acb_series, arb, ctx, fmpq
 
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.roots.ball_block import BlockBalls
+from moving_bogie.roots.p_balls import derivative_coefficients, direct_root_balls, horner, isolate_roots
 from moving_bogie.roots.p_discs import PRootDiscs, Undecided
 
-__all__ = ["BallCharacteristic", "Undecided", "exact_ball", "horner", "isolate_roots", "square_ball"]
+__all__ = [
+    "BallCharacteristic",
+    "Undecided",
+    "derivative_coefficients",
+    "exact_ball",
+    "horner",
+    "isolate_roots",
+    "square_ball",
+]
+
+#: Highest degree of N in p for which the direct p-root balls are used by default (the one-layer beams).
+DIRECT_DEGREE = 4
 
 
 def exact_ball(x) -> acb:
@@ -55,58 +65,6 @@ def square_ball(center, radius) -> acb:
     c = acb(center)
     r = arb(radius)
     return acb(arb(c.real.mid(), r), arb(c.imag.mid(), r))
-
-
-def isolate_roots(coeffs, tol=None) -> list:
-    """Balls, one per root, of the polynomial with acb ``coeffs`` (highest power first).
-
-    ``tol`` is the accuracy asked of the approximations (default: just enough to isolate them); the balls
-    are the Smith discs around them, whatever the accuracy.
-
-    Raises
-    ------
-    Undecided
-        If the Smith discs of two roots overlap (roots too close for the width of the coefficients).
-    """
-    coeffs = list(coeffs)
-    while len(coeffs) > 1 and coeffs[0].is_zero():
-        coeffs = coeffs[1:]
-    n = len(coeffs) - 1
-    if n < 1:
-        return []
-    if coeffs[0].contains(0):
-        raise Undecided("leading coefficient of N(p, q) not bounded away from 0")
-    low_first = acb_poly(list(reversed(coeffs)))
-    mid_poly = acb_poly([c.mid() for c in reversed(coeffs)])
-    try:
-        approx = [z.mid() for z in mid_poly.roots(tol=tol)]
-    except ValueError as exc:
-        raise Undecided(f"root isolation of N(p, q) failed: {exc}") from None
-    lead = coeffs[0]
-    balls = []
-    for k, zk in enumerate(approx):
-        den = lead
-        for j, zj in enumerate(approx):
-            if j != k:
-                den *= zk - zj
-        w = low_first(zk) / den
-        radius = arb(n) * abs(w)
-        balls.append(acb(arb(zk.real, radius.upper()), arb(zk.imag, radius.upper())))
-    for k in range(n):
-        for j in range(k + 1, n):
-            if balls[k].overlaps(balls[j]):
-                raise Undecided("root discs of N(p, q) overlap")
-    return balls
-
-
-def horner(coeffs, x):
-    """The polynomial with ``coeffs`` (highest power first) at x, for acb and acb_series alike."""
-    return reduce(lambda acc, c: acc * x + c, coeffs[1:], coeffs[0])
-
-
-def derivative_coefficients(coeffs) -> list:
-    """Coefficients (highest power first) of the derivative."""
-    return [c * (len(coeffs) - 1 - k) for k, c in enumerate(coeffs[:-1])] or [0]
 
 
 def _exact(x) -> Fraction | None:
@@ -156,7 +114,7 @@ class BallCharacteristic:
         it too: the continuation, not the values from above), away from the branch points.
     """
 
-    def __init__(self, params, *, prec: int = 128, below: bool = False):
+    def __init__(self, params, *, prec: int = 128, below: bool = False, p_roots: str = "auto"):
         bound = bind(params)
         params = bound.params
         self.below = below
@@ -170,7 +128,12 @@ class BallCharacteristic:
         with ctx.workprec(prec):
             numbers = _ExactBalls(params)
             self.foundation_args = foundation_arguments(params, numbers)
-            self.p_discs = PRootDiscs(self.foundation, self.foundation_args, prec)
+            if p_roots not in ("auto", "direct", "discs"):
+                raise ValueError(f"p_roots must be 'auto', 'direct' or 'discs' (got {p_roots!r})")
+            if p_roots == "auto":
+                p_roots = "direct" if int(self.foundation.DEGREE_N) <= DIRECT_DEGREE else "discs"
+            self.direct = p_roots == "direct"
+            self.p_discs = None if self.direct else PRootDiscs(self.foundation, self.foundation_args, prec)
             if hasattr(self.vehicle, "e_chr"):  # the closed form of Eq. (38)
                 self.vehicle_args = {name: getattr(numbers, name) for name in self.vehicle.PARAMETERS}
                 self.vehicle_args["pi"] = acb(arb.pi())
@@ -188,8 +151,10 @@ class BallCharacteristic:
             return self._sides(acb(q), self._root_balls(acb(q)))
 
     def _root_balls(self, q: acb) -> list:
-        """Root balls of N(p, xi), xi in the ball q, each holding exactly one root for every xi
-        (:mod:`p_discs`: a Krawczyk test in disc form on N's exact Taylor expansion at the centre)."""
+        """Root balls of N(p, xi), xi in the ball q, each holding exactly one root for every xi (direct:
+        :mod:`p_balls`; else :mod:`p_discs`, a Krawczyk test in disc form on N's exact Taylor expansion)."""
+        if self.direct:
+            return direct_root_balls(self.foundation, self.foundation_args, q, self.tol, self.prec)
         return self.p_discs.discs(q)
 
     def _sides(self, q: acb, roots) -> tuple:
@@ -226,12 +191,13 @@ class BallCharacteristic:
         length = order + 1
         f = self.foundation
         args = self.foundation_args
-        found = self.p_discs.roots(q)
-        upper, lower = self._sides(q, [d.ball for d in found])
+        found = None if self.direct else self.p_discs.roots(q)
+        balls = self._root_balls(q) if self.direct else [d.ball for d in found]
+        upper, lower = self._sides(q, balls)
         qs = acb_series([q, 1], prec=length) if order else acb_series([q], prec=length)
         qc = _series(f.q_coeffs(qs, **args), length)
         i_unit = acb(0, 1)
-        if q.rad() == 0:  # a point: N's coefficients as series in t = q - c directly
+        if q.rad() == 0 or found is None:  # N's coefficients as series in t = q - c directly
             n = _series(f.n_coeffs(qs, **args), length)
             n1 = derivative_coefficients(n)
 

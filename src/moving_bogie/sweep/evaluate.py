@@ -75,12 +75,13 @@ def evaluate_block(task: BlockTask) -> dict:
     certain = np.zeros(shape, dtype=bool)
     settled = np.zeros(shape, dtype=bool)
     roots = np.full((*shape, task.max_roots), complex(np.nan, np.nan))
-    parameter = task.column or "eta_M"
+    # without a column every point is a column of one at its own eta_M: nothing varies, nothing is held
+    parameter, held = (task.column, task.held) if task.column else ("eta_M", ())
     for changes, alphas, thetas, index_grid in groups:
         params = task.params.replace(**(task.fixed | changes)) if changes else task.params
         alphas = alphas if alphas is not None else [params.alpha]
         thetas = thetas if thetas is not None else [getattr(params, parameter)]
-        columns = map_columns(params, parameter, alphas, thetas, held=task.held)
+        columns = map_columns(params, parameter, alphas, thetas, held=held)
         for col, row in zip(columns, index_grid):
             for j, index in enumerate(row):
                 settled[index] = bool(col.settled[j])
