@@ -6,8 +6,9 @@ and to a second regeneration; ``python -m derivations --check`` fails with the d
 updates the files. The runtime never imports SymPy, whichever of its modules is imported.
 
 Each derivation run costs many seconds of SymPy, so a module fixture runs them once for the tests that
-compare them: a full and a partial regeneration in parallel, then one ``--check`` of a tampered copy under
-another hash seed, which is the second full derivation the determinism test needs. Those tests are slow.
+compare them, all three in parallel: a full regeneration, a partial one (``--only``), and a partial
+``--check`` of a tampered copy of the committed files under another hash seed, which is the second
+derivation the determinism test compares with the first. Those tests are slow.
 """
 
 from __future__ import annotations
@@ -15,7 +16,6 @@ from __future__ import annotations
 import ast
 import difflib
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -72,7 +72,7 @@ ONLY = ("eb", "masses")
 #: The two files the ``--check`` of the fixture finds tampered with, and how (old text, new text).
 TAMPERED = {
     "src/moving_bogie/generated/foundation_eb.py": ("4 - 4*q**2", "4 - 5*q**2"),
-    "docs/proofs.md": ("equal", "same"),
+    "src/moving_bogie/generated/vehicle_masses.py": ("x0*K0**2", "x0*K0**3"),
 }
 #: The hash seed of the ``--check`` run: another than the one the command pins (0), see the fixture.
 OTHER_SEED = "12345"
@@ -80,27 +80,22 @@ OTHER_SEED = "12345"
 
 @pytest.fixture(scope="module")
 def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes], dict]:
-    """Two derivations, then a ``--check`` of a tampered copy of the first: (first, only, check).
+    """Three derivations in parallel: (first, only, check).
 
-    The first regeneration (into an empty folder) and a partial one deriving only :data:`ONLY`
-    (``--only``, what the scratch tests of a new beam, track or vehicle use) run in parallel. Then
-    ``--check`` runs on a copy of the first's files with the two :data:`TAMPERED` edits, under another
-    PYTHONHASHSEED (the command must pin the seed itself: SymPy's CSE and ordering can depend on string
-    hashing). That check is a second full derivation: its diff shows what it derived, so it serves both the
-    tampered-file test and the determinism test (instead of a third full SymPy run of several seconds).
-    ``check`` holds the completed process and the tampered texts (relative path -> text).
+    The first regeneration (into an empty folder); a partial one deriving only :data:`ONLY` (``--only``,
+    what the scratch tests of a new beam, track or vehicle use); and ``--check --only`` on a copy of the
+    committed files with the two :data:`TAMPERED` edits (both in modules that :data:`ONLY` derives), under
+    another PYTHONHASHSEED (the command must pin the seed itself: SymPy's CSE and ordering can depend on
+    string hashing). The check's diff shows what it derived, so it serves both the tampered-file test and
+    the determinism test. ``check`` holds the completed process and the tampered texts (path -> text).
     """
     base = tmp_path_factory.mktemp("regenerated")
     roots = [base / "first", base / "only"]
     only = [arg for name in ONLY for arg in ("--only", name)]
-    procs = [_derivations("--root", str(roots[0])), _derivations("--root", str(roots[1]), *only)]
-    for proc in procs:
-        result = _finish(proc)
-        assert result.returncode == 0, result.stdout + result.stderr
-    first, partial = (_written_files(r) for r in roots)
-
     copy = base / "tampered"
-    shutil.copytree(roots[0], copy)
+    for rel, data in _committed_files().items():
+        (copy / rel).parent.mkdir(parents=True, exist_ok=True)
+        (copy / rel).write_bytes(data)
     tampered = {}
     for rel, (old, new) in TAMPERED.items():
         original = (copy / rel).read_text()
@@ -108,9 +103,17 @@ def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes],
         assert tampered[rel] != original, f"{rel}: the text to tamper with is gone: pick another one"
         (copy / rel).write_text(tampered[rel])
     env_other_seed = dict(os.environ, PYTHONHASHSEED=OTHER_SEED)
-    result = _finish(_derivations("--check", "--root", str(copy), env=env_other_seed))
+    procs = [
+        _derivations("--root", str(roots[0])),
+        _derivations("--root", str(roots[1]), *only),
+        _derivations("--check", "--root", str(copy), *only, env=env_other_seed),
+    ]
+    results = [_finish(proc) for proc in procs]
+    for result in results[:2]:
+        assert result.returncode == 0, result.stdout + result.stderr
+    first, partial = (_written_files(r) for r in roots)
     written = {rel: (copy / rel).read_text() for rel in TAMPERED}
-    return first, partial, {"result": result, "tampered": tampered, "after": written}
+    return first, partial, {"result": results[2], "tampered": tampered, "after": written}
 
 
 @pytest.mark.slow
@@ -136,9 +139,10 @@ def test_committed_files_are_current(regenerations):
 def test_regeneration_is_deterministic(regenerations):
     """A derivation under another hash seed (the fixture's ``--check``) equals the first, byte for byte.
 
-    ``--check`` compares every file it derives with the copy of the first regeneration and prints the diff
-    of each one that differs. Only the two tampered files may differ, and each by exactly the diff from
-    the tampered text back to the first run's text (computed here with difflib, as the command prints it,
+    ``--check`` compares every file it derives (those of :data:`ONLY` and the catalogue files) with the
+    tampered copy of the committed files and prints the diff of each one that differs. Only the two
+    tampered files may differ, and each by exactly the diff from the tampered text back to the first run's
+    text (computed here with difflib, as the command prints it,
     ``n=1``): a unified diff of the tampered text determines the other side, so the check derived the first
     run's text there too. Any other byte derived differently would add a file or a line to the diff.
     """
@@ -192,7 +196,8 @@ def test_check_reports_a_tampered_file_with_a_diff_and_the_command(regenerations
         and "+++ b/src/moving_bogie/generated/foundation_eb.py" in out
     ), out
     assert "-        4 - 5*q**2" in out and "+        4 - 4*q**2" in out, out
-    assert "--- a/docs/proofs.md" in out, out
+    assert "--- a/src/moving_bogie/generated/vehicle_masses.py" in out, out
+    assert "-    return pi**2 + x0*K0**3" in out and "+    return pi**2 + x0*K0**2" in out, out
     assert "2 generated file(s) are stale" in out, out
     assert f"Update them with: {UPDATE_COMMAND}" in out, out
     assert check["after"] == check["tampered"], "--check must not write"
