@@ -61,9 +61,15 @@ def polynomial_degree(params, parameter: str, held=()) -> int:
     degrees = bound.polynomial_degrees
     if fixed:
         degrees = dict(getattr(bound.vehicle, "FIXED_POLYNOMIAL_DEGREES", {}))
-    if parameter not in degrees or fixed not in (set(), followers):
+    if parameter not in degrees:
         raise ParameterError(
             "parameter", f"parameter must be one of {', '.join(degrees)} for this vehicle (got {parameter!r})"
+        )
+    if fixed and fixed != followers:
+        raise ParameterError(
+            "parameter",
+            f"E_chr is not a polynomial in {parameter} with {', '.join(sorted(fixed))} held and "
+            f"{', '.join(sorted(followers - fixed))} following it: hold all of them or none",
         )
     return degrees[parameter]
 
@@ -124,7 +130,8 @@ class SweepCharacteristic:
         self.below = bool(below)
         self.params = params
         self.parameter = parameter
-        self.held = frozenset(held) & follower_groups(bound, parameter)
+        following = follower_groups(bound, parameter)
+        self.held = frozenset(held) & following
         self.degree = polynomial_degree(bound, parameter, self.held)
         self.module = bound.vehicle
         self.blocks = None if hasattr(self.module, "e_chr") and not block else BlockSweep(self.module)
@@ -140,9 +147,7 @@ class SweepCharacteristic:
         self.followers = [
             (info["sets"], getattr(meta, f"set_by_{name}"), float(getattr(params, name)), info["depends"])
             for name, info in params.model.alternatives.items()
-            if parameter in info["depends"]
-            and info["sets"] in self.module.PARAMETERS
-            and info["sets"] not in self.held
+            if parameter in info["depends"] and info["sets"] in following - self.held
         ]
         names = self.module.PARAMETERS if self.blocks is None else self.module.MATRIX_ARGUMENTS
         self.base = {name: getattr(ns, name) for name in names}

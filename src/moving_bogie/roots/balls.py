@@ -35,8 +35,14 @@ from flint import acb, acb_series, arb, ctx, fmpq
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.roots.ball_block import BlockBalls
-from moving_bogie.roots.p_balls import derivative_coefficients, direct_root_balls, horner, isolate_roots
-from moving_bogie.roots.p_discs import PRootDiscs, Undecided
+from moving_bogie.roots.p_balls import (
+    Undecided,
+    derivative_coefficients,
+    direct_root_balls,
+    horner,
+    isolate_roots,
+)
+from moving_bogie.roots.p_discs import PRootDiscs
 
 __all__ = [
     "BallCharacteristic",
@@ -191,8 +197,11 @@ class BallCharacteristic:
         length = order + 1
         f = self.foundation
         args = self.foundation_args
-        found = None if self.direct else self.p_discs.roots(q)
-        balls = self._root_balls(q) if self.direct else [d.ball for d in found]
+        if self.direct:
+            found, balls = None, self._root_balls(q)
+        else:
+            found = self.p_discs.roots(q)
+            balls = [d.ball for d in found]
         upper, lower = self._sides(q, balls)
         qs = acb_series([q, 1], prec=length) if order else acb_series([q], prec=length)
         qc = _series(f.q_coeffs(qs, **args), length)

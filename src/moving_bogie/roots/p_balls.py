@@ -22,9 +22,14 @@ from functools import reduce
 
 from flint import acb, acb_poly, arb
 
-from moving_bogie.roots.p_discs import Undecided
+from moving_bogie.errors import MovingBogieError
 
-__all__ = ["derivative_coefficients", "direct_root_balls", "horner", "isolate_roots"]
+__all__ = ["Undecided", "derivative_coefficients", "direct_root_balls", "horner", "isolate_roots"]
+
+
+class Undecided(MovingBogieError):
+    """Ball arithmetic could not decide a fact at this ball size (a p-root meets the real axis, or the
+    root discs of N(p, q) overlap): subdivide the q-ball or raise the precision."""
 
 
 def isolate_roots(coeffs, tol=None) -> list:

@@ -30,12 +30,7 @@ from dataclasses import dataclass
 
 from flint import acb, acb_poly, acb_series, arb, arb_poly
 
-from moving_bogie.errors import MovingBogieError
-
-
-class Undecided(MovingBogieError):
-    """Ball arithmetic could not decide a fact at this ball size (a p-root meets the real axis, or the
-    root discs of N(p, q) overlap): subdivide the q-ball or raise the precision."""
+from moving_bogie.roots.p_balls import Undecided
 
 
 def coefficients_in_q(foundation, args) -> list:
