@@ -30,7 +30,8 @@ def quick_run(tmp_path_factory):
 
     Every figure a recipe saves is kept too (``name -> Figure``), so that the tests read the data back
     from its artists instead of judging the PNG by its size; so is every ``(label, fraction)`` the command
-    hands its progress bar within an artefact (``figures["progress"]``, a list).
+    hands its progress bar within an artefact (``progress``, a list).
+    Returns (out, status, seconds, figures, progress).
     """
     out = tmp_path_factory.mktemp("reproduce")
     figures, seen = {}, []
@@ -52,13 +53,12 @@ def quick_run(tmp_path_factory):
         patch.setattr(BuildContext, "save_figure", keep)
         patch.setattr(driver, "reproduce", recorded)  # what the command calls
         status = main(["reproduce", "--out", str(out), "--quick", "--no-progress"])
-    figures["progress"] = seen
-    return out, status, time.perf_counter() - start, figures
+    return out, status, time.perf_counter() - start, figures, seen
 
 
 @pytest.mark.slow
 def test_quick_run_succeeds_and_fails_nothing(quick_run):
-    out, status, seconds, _ = quick_run
+    out, status, seconds, _, _ = quick_run
     index = (out / "index.md").read_text(encoding="utf-8")
     assert status == 0, index
     assert "| failed |" not in index
@@ -68,8 +68,7 @@ def test_quick_run_succeeds_and_fails_nothing(quick_run):
 @pytest.mark.slow
 def test_reproduce_reports_progress_within_each_artifact(quick_run):
     """The command's bar moves inside an artefact: Table 2 reports after each of its 13 cases, up to 1."""
-    _, _, _, figures = quick_run
-    seen = figures["progress"]
+    _, _, _, _, seen = quick_run
     labels = [label for label, _ in seen]
     assert labels[0] == "Table 1" and "Table 2" in labels
     assert set(labels) <= {a.label for a in ARTIFACTS if a.recipe is not None}
@@ -79,7 +78,7 @@ def test_reproduce_reports_progress_within_each_artifact(quick_run):
 
 @pytest.mark.slow
 def test_index_lists_every_artifact_with_its_caption(quick_run):
-    out, _, _, _ = quick_run
+    out, _, _, _, _ = quick_run
     page = (out / "index.html").read_text(encoding="utf-8")
     md = (out / "index.md").read_text(encoding="utf-8")
     assert [a.id for a in ARTIFACTS] == [c.id for c in CAPTIONS]
@@ -96,7 +95,7 @@ def test_index_lists_every_artifact_with_its_caption(quick_run):
 
 @pytest.mark.slow
 def test_every_covered_figure_has_its_image_and_the_rest_a_reason(quick_run):
-    out, _, _, _ = quick_run
+    out, _, _, _, _ = quick_run
     md = (out / "index.md").read_text(encoding="utf-8")
     page = (out / "index.html").read_text(encoding="utf-8")
     for artifact in ARTIFACTS:
@@ -121,7 +120,7 @@ def test_every_covered_figure_has_its_image_and_the_rest_a_reason(quick_run):
 
 @pytest.mark.slow
 def test_table2_shows_confirmed_digits_and_the_print(quick_run):
-    out, _, _, _ = quick_run
+    out, _, _, _, _ = quick_run
     page = (out / "index.html").read_text(encoding="utf-8")
     section = page.split('<section id="table2">', 1)[1].split("</section>", 1)[0]
     assert "±0.307227" in section  # Case 1, root 1: computed and printed
@@ -144,12 +143,10 @@ def _drawn(ax) -> list[np.ndarray]:
 @pytest.mark.slow
 def test_every_panel_of_every_figure_shows_data(quick_run):
     """No blank panel: each axes with a title or a label draws finite data inside its limits."""
-    _, _, _, figures = quick_run
+    _, _, _, figures, _ = quick_run
     covered = {a.id for a in ARTIFACTS if a.recipe is not None and a.kind == "figure"}
     assert covered <= set(figures), f"figures not drawn: {sorted(covered - set(figures))}"
     for name, fig in figures.items():
-        if name == "progress":  # the recorded progress of the run, not a figure
-            continue
         panels = [ax for ax in fig.axes if ax.get_title() or ax.get_xlabel() or ax.get_ylabel()]
         assert panels, f"{name}: no panel"
         for ax in panels:
@@ -167,7 +164,7 @@ def test_figure2_points_are_induced_frequencies(quick_run):
     Reference: E_chr evaluated in the test in double precision (numpy kernels) at points read back from the
     plotted lines, against its size a small step away (a simple root: |E(q + h)| ~ |E'| h).
     """
-    _, _, _, figures = quick_run
+    _, _, _, figures, _ = quick_run
     fig = figures["figure2"]
     checked = 0
     for ax in fig.axes:
@@ -193,7 +190,7 @@ def test_figure8_marks_the_timoshenko_rayleigh_critical_velocity_of_eq66(quick_r
     Reference: Eq. (66) as printed, evaluated here from the S and r of the panel's title (the closed form
     agrees with the numerical alpha_cr, docs/errata.md, item 10 quotes 0.998 for S = 100, r = 0.03).
     """
-    _, _, _, figures = quick_run
+    _, _, _, figures, _ = quick_run
     panels = [ax for ax in figures["figure8"].axes if "S" in ax.get_title()]
     assert len(panels) == 2
     for ax in panels:
