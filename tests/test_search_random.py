@@ -24,6 +24,7 @@ from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import arms_y_at, cut_locus
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.roots import counting
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
 from moving_bogie.roots.frequencies import default_window, induced_frequencies
 from moving_bogie.roots.search_regions import tile_window
@@ -266,8 +267,9 @@ def _default_tiling(params):
     defaults = inspect.signature(induced_frequencies).parameters
     window = default_window(params)
     cut = cut_locus(params, window.x0, window.x1)
-    gap = 0.1 * min(max(window.width, window.height), 10.0)
-    eps, eps_branch = defaults["eps"].default, defaults["eps_branch"].default
+    factor, fraction = counting._RETRIES[0]  # the first attempt of count_tiling, with its gap height
+    gap = fraction * min(max(window.width, window.height), counting._GAP_SCALE)
+    eps, eps_branch = (factor * defaults[name].default for name in ("eps", "eps_branch"))
     return cut, tile_window(window, cut, eps=eps, eps_branch=eps_branch, gap_height=gap)
 
 
