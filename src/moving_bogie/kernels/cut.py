@@ -32,6 +32,7 @@ __all__ = [
     "Fold",
     "arms_p_at",
     "arms_y_at",
+    "clearance",
     "cut_loci",
     "cut_locus",
     "far_range",
@@ -85,11 +86,31 @@ class CutArm:
         return self.q_at(self.p_at(x)).imag
 
     def offset(self, p, side: int, delta: float) -> np.ndarray:
-        """q(p) + side * delta * n(p), n the unit normal pointing to larger Im q (side +1: above the arm)."""
+        """q(p) + side * d * n(p), n the unit normal pointing to larger Im q (side +1: above the arm), d the
+        :func:`clearance` of ``delta`` at p."""
         q = self.q_at(p)
         t = self.tracer.dq_dp(p, q)
         t = np.where(t.real >= 0, t, -t)  # orient along increasing Re q
-        return q + side * delta * 1j * t / np.abs(t)
+        return q + side * clearance(p, t, delta) * 1j * t / np.abs(t)
+
+    def clearance(self, x, delta: float) -> float:
+        """The largest :func:`clearance` of ``delta`` at the arm's points over Re q = ``x`` (an array)."""
+        p = self.p_at(np.asarray(x, dtype=float))
+        return float(np.max(clearance(p, self.tracer.dq_dp(p, self.q_at(p)), delta)))
+
+
+#: The offset of a contour from the cut, relative to |dq/dp| max(1, |p|), is at least this. Where q moves
+#: fast with p (|dq/dp| ~ 1e4-1e5 next to an avoided crossing of two curves q_j(p), light intermediate
+#: layers), q(p) from N(p, q) = 0 in double precision is only good to about 1e-15 |dq/dp| (N's q-derivative
+#: is small there), and the p-root of a point beside the cut has Im p ~ distance / |dq/dp|: both must stay
+#: far from rounding.
+CLEARANCE = 1e-13
+
+
+def clearance(p, t, delta):
+    """The distance from the cut at which an offset point passes: ``delta``, or CLEARANCE |t| max(1, |p|)
+    where that is more (t = dq/dp at the arm's point q(p))."""
+    return np.maximum(delta, CLEARANCE * np.abs(t) * np.maximum(1.0, np.abs(p)))
 
 
 def arms_p_at(arms, x) -> list:

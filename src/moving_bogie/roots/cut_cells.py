@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from moving_bogie.kernels.cut import clearance
 from moving_bogie.roots.contour import BoundingBox, Rectangle
 
 __all__ = ["Edge", "ColumnCell", "TipCell", "Sliver"]
@@ -225,7 +226,7 @@ class TipCell(_Curve):
             on_lower = (p - fold.p) * (p_lo - fold.p) > 0
             arm_q = np.where(on_lower, lower.q_at(p), upper.q_at(p))
             t = lower.tracer.dq_dp(p, arm_q)
-            return arm_q + sign * delta * self._inward_normal(1j * t / np.abs(t))
+            return arm_q + sign * clearance(p, t, delta) * self._inward_normal(1j * t / np.abs(t))
 
         return curve
 
