@@ -32,6 +32,20 @@ def test_quartic_roots_match_companion_eigenvalues():
         )
 
 
+def test_one_quartic_at_a_time_matches_companion_eigenvalues_and_the_batch():
+    """Small batches (continuation steps) take the scalar path of quartic_roots; numpy's eigenvalues are
+    the reference, and the batched path (the same formulas on arrays) agrees to rounding."""
+    rng = np.random.default_rng(4)
+    c = rng.normal(size=(300, 5)) + 1j * rng.normal(size=(300, 5))
+    batched = quartic_roots(c)
+    for k in range(300):
+        one = quartic_roots(c[k : k + 1])[0]
+        ref = np.roots(c[k])
+        scale = max(1, np.abs(ref).max())
+        assert np.max(np.min(np.abs(one[:, None] - ref[None, :]), axis=1)) < 1e-11 * scale
+        assert np.max(np.min(np.abs(one[:, None] - batched[k][None, :]), axis=1)) < 1e-14 * scale
+
+
 @pytest.mark.parametrize("beam", ["eb", "tr"])
 @pytest.mark.parametrize("model", ["bogie", "masses"])
 def test_sweep_equals_reference_characteristic(beam, model):

@@ -9,6 +9,8 @@ original polynomial.
 
 from __future__ import annotations
 
+import cmath
+
 import numpy as np
 
 __all__ = [
@@ -22,6 +24,21 @@ __all__ = [
 ]
 
 
+def _resolvent(a, b, cc, d):
+    """Ferrari's reduction of the monic x^4 + a x^3 + b x^2 + cc x + d (arrays or numbers): x = y - a/4
+    gives y^4 + p y^2 + q y + r, whose resolvent cubic m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0 is depressed
+    by m = u - p/3 to u^3 + P3 u + Q3. Returns (a/4, p, q, B = p, P3, Q3)."""
+    a4 = a / 4
+    a2 = a4 * a4
+    p = b - 6 * a2
+    q = cc - 2 * b * a4 + 8 * a2 * a4
+    r = d - cc * a4 + b * a2 - 3 * a2 * a2
+    B, C, D = p, p * p / 4 - r, -q * q / 8
+    P3 = C - B * B / 3
+    Q3 = 2 * B**3 / 27 - B * C / 3 + D
+    return a4, p, q, B, P3, Q3
+
+
 def quartic_roots(c) -> np.ndarray:
     """Roots of quartics ``c[..., 0] x^4 + ... + c[..., 4]`` (shape ``(..., 4)``), vectorised.
 
@@ -30,16 +47,13 @@ def quartic_roots(c) -> np.ndarray:
     roots and do not let two approximations collapse onto one root.
     """
     c = np.asarray(c, dtype=complex)
+    if c.shape[:-1] and c[..., 0].size <= _SCALAR_BATCH and np.all(np.isfinite(c)) and np.all(c[..., 0]):
+        # a handful of quartics (continuation steps, one point at a time): numpy's per-call cost on
+        # arrays this small is ten times the arithmetic; the same formulas on Python complex numbers
+        flat = c.reshape(-1, 5).tolist()
+        return np.array([_quartic_one(*row) for row in flat], dtype=complex).reshape(c.shape[:-1] + (4,))
     a, b, cc, d = (c[..., k] / c[..., 0] for k in range(1, 5))
-    a4 = a / 4
-    a2 = a4 * a4
-    p = b - 6 * a2
-    q = cc - 2 * b * a4 + 8 * a2 * a4
-    r = d - cc * a4 + b * a2 - 3 * a2 * a2
-    # resolvent cubic m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0, depressed by m = u - p/3
-    B, C, D = p, p * p / 4 - r, -q * q / 8
-    P3 = C - B * B / 3
-    Q3 = 2 * B**3 / 27 - B * C / 3 + D
+    a4, p, q, B, P3, Q3 = _resolvent(a, b, cc, d)
     disc = np.sqrt(Q3 * Q3 / 4 + P3**3 / 27)
     s1, s2 = -Q3 / 2 + disc, -Q3 / 2 - disc
     u1 = np.where(np.abs(s1) >= np.abs(s2), s1, s2) ** (1 / 3)
@@ -67,6 +81,42 @@ def quartic_roots(c) -> np.ndarray:
         with np.errstate(all="ignore"):
             step = val / den
         z = np.where(np.isfinite(step), z - step, z)
+    return z
+
+
+#: Batches of at most this many quartics go through :func:`_quartic_one` (Python complex arithmetic).
+_SCALAR_BATCH = 8
+
+
+def _quartic_one(c0, c1, c2, c3, c4) -> list:
+    """:func:`quartic_roots` of one quartic (finite coefficients, c0 != 0), the same steps on Python
+    complex numbers: the roots agree with the batched ones to rounding (about 1e-16 relative)."""
+    a, b, cc, d = c1 / c0, c2 / c0, c3 / c0, c4 / c0
+    a4, p, q, B, P3, Q3 = _resolvent(a, b, cc, d)
+    disc = cmath.sqrt(Q3 * Q3 / 4 + P3**3 / 27)
+    s1, s2 = -Q3 / 2 + disc, -Q3 / 2 - disc
+    u1 = (s1 if abs(s1) >= abs(s2) else s2) ** (1 / 3)
+    ms = []
+    for k in range(3):
+        uk = u1 * cmath.exp(2j * cmath.pi * k / 3)
+        ms.append((uk - P3 / (3 * uk) if uk != 0 else 0) - B / 3)
+    m = max(ms, key=abs)
+    sm = cmath.sqrt(2 * m)
+    t = q / sm if sm != 0 else 0
+    e1, e2 = p / 2 + m - t / 2, p / 2 + m + t / 2
+    d1, d2 = cmath.sqrt(sm * sm - 4 * e1), cmath.sqrt(sm * sm - 4 * e2)
+    z = [(-sm + d1) / 2 - a4, (-sm - d1) / 2 - a4, (sm + d2) / 2 - a4, (sm - d2) / 2 - a4]
+    for _ in range(2):
+        steps = []
+        for i, zi in enumerate(z):
+            val = (((zi + a) * zi + b) * zi + cc) * zi + d
+            den = 1
+            for j, zj in enumerate(z):
+                if j != i:
+                    den *= zi - zj
+            step = val / den if den != 0 else complex("nan")
+            steps.append(step if cmath.isfinite(step) else 0)
+        z = [zi - st for zi, st in zip(z, steps)]
     return z
 
 
