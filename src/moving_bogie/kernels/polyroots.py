@@ -27,16 +27,16 @@ __all__ = [
 def _resolvent(a, b, cc, d):
     """Ferrari's reduction of the monic x^4 + a x^3 + b x^2 + cc x + d (arrays or numbers): x = y - a/4
     gives y^4 + p y^2 + q y + r, whose resolvent cubic m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0 is depressed
-    by m = u - p/3 to u^3 + P3 u + Q3. Returns (a/4, p, q, B = p, P3, Q3)."""
+    by m = u - p/3 to u^3 + P3 u + Q3. Returns (a/4, p, q, P3, Q3)."""
     a4 = a / 4
     a2 = a4 * a4
     p = b - 6 * a2
     q = cc - 2 * b * a4 + 8 * a2 * a4
     r = d - cc * a4 + b * a2 - 3 * a2 * a2
-    B, C, D = p, p * p / 4 - r, -q * q / 8
-    P3 = C - B * B / 3
-    Q3 = 2 * B**3 / 27 - B * C / 3 + D
-    return a4, p, q, B, P3, Q3
+    C, D = p * p / 4 - r, -q * q / 8
+    P3 = C - p * p / 3
+    Q3 = 2 * p**3 / 27 - p * C / 3 + D
+    return a4, p, q, P3, Q3
 
 
 def quartic_roots(c) -> np.ndarray:
@@ -53,7 +53,7 @@ def quartic_roots(c) -> np.ndarray:
         flat = c.reshape(-1, 5).tolist()
         return np.array([_quartic_one(*row) for row in flat], dtype=complex).reshape(c.shape[:-1] + (4,))
     a, b, cc, d = (c[..., k] / c[..., 0] for k in range(1, 5))
-    a4, p, q, B, P3, Q3 = _resolvent(a, b, cc, d)
+    a4, p, q, P3, Q3 = _resolvent(a, b, cc, d)
     disc = np.sqrt(Q3 * Q3 / 4 + P3**3 / 27)
     s1, s2 = -Q3 / 2 + disc, -Q3 / 2 - disc
     u1 = np.where(np.abs(s1) >= np.abs(s2), s1, s2) ** (1 / 3)
@@ -61,7 +61,7 @@ def quartic_roots(c) -> np.ndarray:
     for k in range(3):
         uk = u1 * np.exp(2j * np.pi * k / 3)
         with np.errstate(all="ignore"):
-            ms.append(np.where(uk != 0, uk - P3 / (3 * np.where(uk != 0, uk, 1)), 0) - B / 3)
+            ms.append(np.where(uk != 0, uk - P3 / (3 * np.where(uk != 0, uk, 1)), 0) - p / 3)
     ms = np.stack(ms, -1)
     m = np.take_along_axis(ms, np.argmax(np.abs(ms), -1)[..., None], -1)[..., 0]
     sm = np.sqrt(2 * m)
@@ -92,14 +92,14 @@ def _quartic_one(c0, c1, c2, c3, c4) -> list:
     """:func:`quartic_roots` of one quartic (finite coefficients, c0 != 0), the same steps on Python
     complex numbers: the roots agree with the batched ones to rounding (about 1e-16 relative)."""
     a, b, cc, d = c1 / c0, c2 / c0, c3 / c0, c4 / c0
-    a4, p, q, B, P3, Q3 = _resolvent(a, b, cc, d)
+    a4, p, q, P3, Q3 = _resolvent(a, b, cc, d)
     disc = cmath.sqrt(Q3 * Q3 / 4 + P3**3 / 27)
     s1, s2 = -Q3 / 2 + disc, -Q3 / 2 - disc
     u1 = (s1 if abs(s1) >= abs(s2) else s2) ** (1 / 3)
     ms = []
     for k in range(3):
         uk = u1 * cmath.exp(2j * cmath.pi * k / 3)
-        ms.append((uk - P3 / (3 * uk) if uk != 0 else 0) - B / 3)
+        ms.append((uk - P3 / (3 * uk) if uk != 0 else 0) - p / 3)
     m = max(ms, key=abs)
     sm = cmath.sqrt(2 * m)
     t = q / sm if sm != 0 else 0
@@ -114,7 +114,7 @@ def _quartic_one(c0, c1, c2, c3, c4) -> list:
             for j, zj in enumerate(z):
                 if j != i:
                     den *= zi - zj
-            step = val / den if den != 0 else complex("nan")
+            step = val / den if den != 0 else 0  # no step where the batched one is not finite either
             steps.append(step if cmath.isfinite(step) else 0)
         z = [zi - st for zi, st in zip(z, steps)]
     return z
