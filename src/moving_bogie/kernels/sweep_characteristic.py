@@ -219,22 +219,25 @@ class SweepCharacteristic:
         keys = ["dq"] * derivative + ["da"] * derivative_alpha
         out = {"K": [], "dq": [], "da": []}
         for dd in ds:
-            trip = {key: [] for key in out}
-            for xi in self.offsets(dd):
-                xi = np.asarray(xi, dtype=float)
-                xi = xi if xi.ndim == 0 else np.broadcast_to(xi, q.shape)[..., None]
-                mask = np.where(xi >= 0, upper, lower)
-                factor = np.where(xi >= 0, 2j * np.pi, -2j * np.pi)
-                # only the roots on the decaying side enter: |e| <= 1 there (no overflow elsewhere)
-                e = np.exp(1j * np.where(mask, P, 0) * xi)
-                trip["K"].append(np.sum(np.where(mask, factor * e * Qv / N1, 0), axis=-1))
-                for key, (Ns, Nsp, Qs) in zip(keys, parts):
-                    g = e * Qv * Ns
-                    gp = e * (1j * xi * Qv * Ns + Qp * Ns + Qv * Nsp)
-                    term = e * Qs / N1 - (gp * N1 - g * N2) / N1**3
-                    trip[key].append(np.sum(np.where(mask, factor * term, 0), axis=-1))
+            # every offset at once: axis -2 of the sums runs over the offsets, axis -1 over the p-roots
+            offsets = [np.broadcast_to(np.asarray(xi, dtype=float), q.shape) for xi in self.offsets(dd)]
+            xi = np.stack(offsets, axis=-1)[..., None]
+            mask = np.where(xi >= 0, upper[..., None, :], lower[..., None, :])
+            factor = np.where(xi >= 0, 2j * np.pi, -2j * np.pi)
+            Pk, Qk, N1k = P[..., None, :], Qv[..., None, :], N1[..., None, :]
+            # only the roots on the decaying side enter: |e| <= 1 there (no overflow elsewhere)
+            e = np.exp(1j * np.where(mask, Pk, 0) * xi)
+            sums = {"K": np.sum(np.where(mask, factor * e * Qk / N1k, 0), axis=-1)}
+            N2k = None if N2 is None else N2[..., None, :]
+            Qpk = None if Qp is None else Qp[..., None, :]
+            for key, (Ns, Nsp, Qs) in zip(keys, parts):
+                Ns, Nsp, Qs = Ns[..., None, :], Nsp[..., None, :], Qs[..., None, :]
+                g = e * Qk * Ns
+                gp = e * (1j * xi * Qk * Ns + Qpk * Ns + Qk * Nsp)
+                term = e * Qs / N1k - (gp * N1k - g * N2k) / N1k**3
+                sums[key] = np.sum(np.where(mask, factor * term, 0), axis=-1)
             for key in out:
-                out[key].append(tuple(trip[key]) if trip[key] else None)
+                out[key].append(tuple(np.moveaxis(sums[key], -1, 0)) if key in sums else None)
         if spacings is None:
             return out["K"][0], out["dq"][0], out["da"][0]
         return out["K"], out["dq"] if derivative else None, out["da"] if derivative_alpha else None
@@ -305,7 +308,10 @@ class SweepCharacteristic:
         if theta is None:
             return E, E_q, E_a, None
         h = np.maximum(np.abs(theta), 1.0) * 0.25
-        f = [self.module.e_chr(q, *K, **self.vehicle_args(theta + k * h, d)) for k in (-2, -1, 1, 2)]
+        # the four stencil points in one call of the generated e_chr (a leading axis of length 4)
+        shifts = np.array([-2.0, -1.0, 1.0, 2.0]).reshape((4,) + (1,) * np.ndim(theta))
+        stacked = self.vehicle_args(theta + shifts * h, d)
+        f = self.module.e_chr(q, *K, **stacked)
         E_t = (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * h)
         return E, E_q, E_a, E_t
 
