@@ -108,3 +108,27 @@ def test_counts_next_to_the_euler_bernoulli_branch_point(case):
         diff = [c - b for c, b in zip(counts, base)]
         assert sorted(diff) == [0] * (len(diff) - 1) + [1], z0
         assert tiling.regions[diff.index(1)].contains(z0), z0
+
+
+@pytest.mark.parametrize(("S", "r"), TR_CASES)
+def test_newton_on_a_few_cut_points_matches_the_batch_and_numpy_roots(S, r):
+    """CutTracer.refine takes scalar steps for a handful of points: the same points as the batched steps,
+    and as numpy.roots of N(p, .) (an independent companion-matrix solve), to rounding."""
+    params = _tr(S, r)
+    cut = cut_locus(params, 0.0, 3.0)
+    track = resolve_foundation(params)
+    args = track.float_arguments(params)
+    tracer = cut.arms[0].tracer
+    checked = 0
+    for arm in cut.arms:
+        ps = np.linspace(arm.p[0], arm.p[-1], 7)[1:-1]
+        guess = arm.guess(ps)
+        batch = tracer.refine(ps, guess)  # 5 points: the batched path
+        for p, g, b in zip(ps, guess, batch):
+            (one,) = tracer.refine(np.array([p]), np.array([g]))
+            roots = np.roots(np.array(track.module.n_coeffs_in_q(p, **args), dtype=complex))
+            scale = max(1.0, abs(b))
+            assert abs(one - b) <= 1e-12 * scale, (p, one, b)
+            assert np.min(np.abs(roots - one)) <= 1e-9 * scale, (p, one, roots)
+            checked += 1
+    assert checked >= 10

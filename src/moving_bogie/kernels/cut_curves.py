@@ -10,6 +10,7 @@ reaches until every curve has left the strip of interest or settled at its limit
 
 from __future__ import annotations
 
+import cmath
 from dataclasses import dataclass
 
 import numpy as np
@@ -68,16 +69,48 @@ class CutTracer:
         return -Np / Nq
 
     def refine(self, p, q, steps: int = 4) -> np.ndarray:
-        """Newton's method on N(p, .) = 0 in q from ``q`` (arrays), at fixed real p."""
+        """Newton's method on N(p, .) = 0 in q from ``q`` (arrays), at fixed real p.
+
+        A handful of points (the tilings ask for one or a few at a time) take the same steps, with the same
+        arithmetic, on Python complex numbers, without numpy's per-call overhead.
+        """
         p = np.asarray(p, dtype=float)
         c = self._coeffs(self.module.n_coeffs_in_q, p)
         dc = polyder(c)
         z = np.asarray(q, dtype=complex).copy()
+        if z.size <= _SCALAR_REFINE and c.ndim == 1 + z.ndim and c.shape[:-1] == z.shape:
+            rows, drows = c.reshape(-1, c.shape[-1]).tolist(), dc.reshape(-1, dc.shape[-1]).tolist()
+            flat = [_newton_one(r, dr, zk, steps) for r, dr, zk in zip(rows, drows, z.ravel().tolist())]
+            return np.array(flat, dtype=complex).reshape(z.shape)
         for _ in range(steps):
             with np.errstate(all="ignore"):
                 step = polyval(c, z[..., None])[..., 0] / polyval(dc, z[..., None])[..., 0]
             z = np.where(np.isfinite(step), z - step, z)
         return z
+
+
+#: At most this many points take the scalar Newton steps of :meth:`CutTracer.refine`.
+_SCALAR_REFINE = 4
+
+
+def _horner(coeffs, z: complex) -> complex:
+    acc = coeffs[0]
+    for cj in coeffs[1:]:
+        acc = acc * z + cj
+    return acc
+
+
+def _newton_one(coeffs, dcoeffs, z: complex, steps: int) -> complex:
+    """Newton steps on one polynomial and its derivative (Python complex coefficients, highest first) from
+    ``z``: a step that is not finite (N_q = 0, overflow) is not taken, as in the batched path."""
+    for _ in range(steps):
+        try:
+            step = _horner(coeffs, z) / _horner(dcoeffs, z)
+        except (ZeroDivisionError, OverflowError):
+            continue
+        if cmath.isfinite(step):
+            z = z - step
+    return z
 
 
 @dataclass(frozen=True)
