@@ -296,8 +296,10 @@ def stack_coefficients(coeffs, shape) -> np.ndarray:
 
 
 def polyval(coeffs, x):
-    """Batched Horner: coeffs ``(..., n+1)`` highest first, x ``(..., k)`` -> ``(..., k)``."""
-    acc = np.empty(np.broadcast_shapes(coeffs.shape[:-1] + (1,), np.shape(x)), dtype=complex)
+    """Batched Horner: coeffs ``(..., n+1)`` highest first, x ``(..., k)`` -> ``(..., k)``; complex unless
+    both are real (the bounds sum |c_j| |x|^j of the backward-error tests)."""
+    dtype = complex if np.iscomplexobj(coeffs) or np.iscomplexobj(x) else float
+    acc = np.empty(np.broadcast_shapes(coeffs.shape[:-1] + (1,), np.shape(x)), dtype=dtype)
     acc[...] = coeffs[..., :1]
     for j in range(1, coeffs.shape[-1]):
         acc *= x
