@@ -99,3 +99,31 @@ class CharacteristicArray:
         self.evaluations += q.size
         kv = self.kernel_values(q, derivative=True)
         return self.system.value_and_derivative_array(q, kv.K, kv.dK)
+
+
+class ContinuedCharacteristic:
+    """E_chr of a :class:`CharacteristicArray` continued analytically through the cut of K: the side of the
+    p-roots nearest to ``refs`` fixed to ``above`` (:func:`~moving_bogie.kernels.track.fixed_sides`).
+
+    Where those roots lie on the sides given, it is E_chr; across the cut where they change side it is the
+    continuation of E_chr from there, analytic as long as each stays clearly the root nearest to its
+    reference (elsewhere its values are nan). Evaluations count on the characteristic it continues.
+    """
+
+    def __init__(self, fast: CharacteristicArray, refs, above):
+        self.fast = fast
+        self.sides = (np.asarray(refs, dtype=complex), np.asarray(above, dtype=bool))
+
+    def _kernel_values(self, q, derivative):
+        return self.fast.kernel(q, self.fast.offsets, derivative=derivative, sides=self.sides)
+
+    def __call__(self, q):
+        q = np.asarray(q, dtype=complex)
+        self.fast.evaluations += q.size
+        return self.fast.system.e_chr_array(q, self._kernel_values(q, False).K)
+
+    def value_and_derivative(self, q):
+        q = np.asarray(q, dtype=complex)
+        self.fast.evaluations += q.size
+        kv = self._kernel_values(q, True)
+        return self.fast.system.value_and_derivative_array(q, kv.K, kv.dK)

@@ -293,7 +293,10 @@ class TrackKernelArray:
         ``coeffs``: those of N(., q) if already evaluated."""
         return poly_roots(self._coeffs(self.module.n_coeffs, q) if coeffs is None else coeffs)
 
-    def __call__(self, q, xis, *, derivative=False):
+    def __call__(self, q, xis, *, derivative=False, sides=None):
+        """K at the offsets ``xis`` (and dK/dq). ``sides``: ``(refs, above)``, the side of the real p-axis
+        fixed for the root of N nearest to each ``refs[j]`` (``above[j]``) instead of read off its Im p: the
+        analytic continuation of K across the cut where those roots cross it (:func:`fixed_sides`)."""
         q = np.asarray(q, dtype=complex)
         n = self._coeffs(self.module.n_coeffs, q)
         roots = self.p_roots(q, n)
@@ -314,7 +317,10 @@ class TrackKernelArray:
             Qp = polyval(polyder(qc), P)
             Qq = polyval(qq, P)
         upper = (P.imag > 0) & finite
-        lower = (P.imag <= 0) & finite
+        unclear = None
+        if sides is not None:
+            upper, unclear = fixed_sides(P, upper, *sides)
+        lower = ~upper & finite
         # every offset at once: axis -2 runs over xis, axis -1 over the roots of N
         xi = np.array([float(x) for x in xis])
         if not xi.size:
@@ -326,6 +332,8 @@ class TrackKernelArray:
         e = np.exp(1j * np.where(mask, P[..., None, :], 0) * xi_)  # |e| <= 1 on the side that enters
         residue = (Qv / N1)[..., None, :]
         K = sign * np.sum(np.where(mask, e * residue, 0), axis=-1)
+        if unclear is not None:
+            K[unclear] = np.nan  # the root nearest to a reference is not clearly one root: no value
         Ks = tuple(K[..., j] for j in range(xi.size))
         if not derivative:
             return KernelValues(Ks, None, roots)
@@ -335,4 +343,31 @@ class TrackKernelArray:
         N1_, N2_ = N1[..., None, :], N2[..., None, :]
         term = e * (Qq / N1)[..., None, :] - (gp * N1_ - g * N2_) / N1_**3
         dK = sign * np.sum(np.where(mask, term, 0), axis=-1)
+        if unclear is not None:
+            dK[unclear] = np.nan
         return KernelValues(Ks, tuple(dK[..., j] for j in range(xi.size)), roots)
+
+
+#: A root is "the root nearest to a reference" only when it is closer than this fraction of the distance
+#: from the reference to every other root (:func:`fixed_sides`).
+NEAREST = 0.4
+
+
+def fixed_sides(P, upper, refs, above):
+    """``upper`` (the roots ``P`` (..., DEGREE_N) taken above the real p-axis) with the side of the root
+    nearest to each ``refs[j]`` set to ``above[j]``: K then sums the residue of that root on the same side
+    at every q, the analytic continuation of K through the cut where it crosses the real p-axis.
+
+    Returns (upper, unclear): ``unclear`` marks the q where some nearest root is not clearly one (closer
+    than :data:`NEAREST` times the distance to the next), where the continuation is not defined.
+    """
+    upper = upper.copy()
+    unclear = np.zeros(P.shape[:-1], dtype=bool)
+    for ref, side in zip(np.atleast_1d(refs), np.atleast_1d(above)):
+        with np.errstate(invalid="ignore"):
+            d = np.abs(np.where(np.isfinite(P), P, np.inf) - ref)
+        order = np.argsort(d, axis=-1)
+        near = np.take_along_axis(d, order[..., :2], axis=-1)
+        unclear |= ~(near[..., 0] < NEAREST * near[..., 1])
+        np.put_along_axis(upper, order[..., :1], bool(side), axis=-1)
+    return upper, unclear

@@ -15,6 +15,7 @@ import dataclasses
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
+from moving_bogie.roots.continuation import count_continued, touches_cut
 from moving_bogie.roots.cut_cells import ColumnCell, Sliver
 from moving_bogie.roots.search_regions import tile_window
 
@@ -33,19 +34,26 @@ _RETRIES = ((1.0, 0.1), (0.8, 0.113), (0.6, 0.087), (0.5, 0.121))
 _GAP_SCALE = 10.0
 
 
-def count_tiling(fast, params, window, eps, eps_branch, cut=None):
+def count_tiling(fast, params, window, eps, eps_branch, cut=None, newton_cell=0.25):
     """Tile the window and count the roots in every tile (``cut``: the window's :class:`CutLocus` if traced
     already, :func:`~moving_bogie.kernels.cut.cut_loci`).
 
     Recovery, in this order, when a contour cannot be placed (a root on or next to an edge, or an edge that
     cannot be resolved next to the cut):
 
-    1. move all the edges (the tiles share them, so they move together) and count again, a few times;
+    1. move all the edges (the tiles share them, so they move together) and count again, a few times,
+       unless every failing tile meets the cut (a p-root on the real axis on its boundary, where the
+       traced cut is not good enough): moving the edges does not help there;
     2. in the tiling with the fewest failures, split each failing tile (:meth:`split`, several fractions)
        and count the pieces, recursively: the piece that still fails shrinks around the trouble;
     3. a piece that still fails when ``_MAX_DEPTH`` splits deep is left out: it is listed with the
        unsearched slivers (its bounding box, with ``reason``), counted as 0 and named in the warnings,
        so the result says what was not searched (the verdict is UNDETERMINED when it reaches Im q < 0).
+
+    Before 1 and 2, a failing tile is counted through the cut (:mod:`continuation`: E_chr continued
+    analytically across it, so no edge has to pass beside the cut); such a tile comes back as a
+    :class:`~moving_bogie.roots.continuation.ContinuedRegion` with its roots located (``newton_cell``
+    as in :func:`~moving_bogie.roots.locate.locate`).
 
     Returns (cut, tiling, counts, warnings).
     """
@@ -58,14 +66,16 @@ def count_tiling(fast, params, window, eps, eps_branch, cut=None):
             window, cut, eps=eps * factor, eps_branch=eps_branch * factor, gap_height=gap_height
         )
         counts, left_out, failed = _counts(fast, tiling.regions, eps * factor)
-        if best is None or len(failed) < len(best[3]):
-            best = (tiling, counts, left_out, failed, eps * factor)
-        if not failed:
-            break
-    tiling, counts, left_out, failed, used_eps = best
-    regions, counts, warnings = list(tiling.regions), list(counts), []
+        regions = list(tiling.regions)
+        failed = _through_cut(fast, regions, counts, failed, newton_cell)
+        if best is None or len(failed) < len(best[4]):
+            best = (tiling, regions, counts, left_out, failed, eps * factor)
+        if not failed or all(touches_cut(fast, regions[k]) for k in failed):
+            break  # moving the edges does not move the cut: split those tiles instead
+    tiling, regions, counts, left_out, failed, used_eps = best
+    warnings = []
     for k in failed:
-        pieces, piece_counts, lost = _recover(fast, regions[k], used_eps)
+        pieces, piece_counts, lost = _recover(fast, regions[k], used_eps, newton_cell)
         regions[k], counts[k] = pieces, piece_counts
         for piece, error in lost:
             y0, y1 = piece.y0, piece.y1
@@ -82,10 +92,60 @@ def count_tiling(fast, params, window, eps, eps_branch, cut=None):
         else:
             flat_regions.append(region)
             flat_counts.append(n)
+    unsearched = _bands_through_cut(fast, tiling.unsearched, flat_regions, flat_counts, newton_cell)
     tiling = dataclasses.replace(
-        tiling, regions=tuple(flat_regions), unsearched=tiling.unsearched + tuple(left_out)
+        tiling, regions=tuple(flat_regions), unsearched=unsearched + tuple(left_out)
     )
     return cut, tiling, flat_counts, warnings
+
+
+#: A band left out around the cut taller than this (next to an avoided crossing of two cut curves, where
+#: its edges keep a wide clearance) is counted through the cut instead (:func:`count_continued`).
+BAND_THROUGH_CUT = 5e-9
+
+
+def _bands_through_cut(fast, unsearched, regions, counts, newton_cell) -> tuple:
+    """Count the tall bands of ``unsearched`` through the cut: each one counted is dropped from the list,
+    its region (with the cells it covers replaced) added to ``regions`` and ``counts``; returns the rest."""
+    rest = []
+    for sliver in unsearched:
+        if sliver.height <= BAND_THROUGH_CUT or sliver.cell is None or sliver.reason:
+            rest.append(sliver)
+            continue
+        at = [_position(regions, c) for c in sliver.covers]
+        if None in at:  # a covered cell was split or counted otherwise: leave the band as it is
+            rest.append(sliver)
+            continue
+        continued = count_continued(fast, sliver.cell, newton_cell)
+        if continued is None:
+            rest.append(sliver)
+            continue
+        for k in sorted(at, reverse=True):
+            del regions[k], counts[k]
+        regions.append(continued)
+        counts.append(continued.count)
+    return tuple(rest)
+
+
+def _through_cut(fast, regions, counts, failed, newton_cell):
+    """Count the ``failed`` regions through the cut where that works (replacing them in ``regions`` and
+    ``counts``); returns the indices that still fail."""
+    rest = []
+    for k in failed:
+        continued = count_continued(fast, regions[k], newton_cell)
+        if continued is None:
+            rest.append(k)
+        else:
+            regions[k], counts[k] = continued, continued.count
+    return rest
+
+
+def _position(regions, cell):
+    """The index of ``cell`` in ``regions`` (itself, or counted through the cut), None if it is not there."""
+    for k, r in enumerate(regions):
+        if r is cell or getattr(r, "region", None) is cell:
+            return k
+    return None
 
 
 #: How many times a failing tile is split before the piece that still fails is left out.
@@ -93,12 +153,18 @@ _MAX_DEPTH = 8
 _FRACTIONS = (0.5, 0.37, 0.63, 0.29)
 
 
-def _recover(fast, region, eps):
-    """Pieces of ``region`` that can be counted, their counts, and the (piece, error) left out."""
+def _recover(fast, region, eps, newton_cell):
+    """Pieces of ``region`` that can be counted, their counts, and the (piece, error) left out. A piece
+    that fails is first counted through the cut (:func:`count_continued`), then split."""
     pieces, counts, lost = [], [], []
     stack = [(region, 0, None)]
     while stack:
         r, depth, error = stack.pop()
+        continued = count_continued(fast, r, newton_cell) if depth else None  # depth 0: tried already
+        if continued is not None:
+            pieces.append(continued)
+            counts.append(continued.count)
+            continue
         if depth >= _MAX_DEPTH:
             lost.append((r, error))
             continue

@@ -15,7 +15,7 @@ outside of the lens that opens at a fold), closed by the vertical line Re q = x_
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -41,6 +41,11 @@ class Sliver:
     y1: float
     height: float
     reason: str = ""
+    #: a region whose area is the band left out (``covers`` empty), or that holds it together with the
+    #: search cells ``covers`` (the tip cells of a fold): it can be counted through the cut instead
+    #: (:mod:`~moving_bogie.roots.continuation`)
+    cell: object = field(default=None, repr=False, compare=False)
+    covers: tuple = field(default=(), repr=False, compare=False)
 
 
 @dataclass(frozen=True)

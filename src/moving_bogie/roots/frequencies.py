@@ -31,6 +31,7 @@ from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
 from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.continuation import ContinuedRegion
 from moving_bogie.roots.counting import count_tiling, frame
 from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.locate import locate
@@ -233,7 +234,9 @@ def induced_frequencies(
     parts = frame(window, big) if check_window else ()
     # the cut is traced once, over the p-range of the window twice as large, for the window and the frame
     cuts = cut_loci(params, [(r.x0, r.x1) for r in (window, *parts)], foundation=fast.kernel.foundation)
-    cut, tiling, counts, count_warnings = count_tiling(fast, params, window, eps, eps_branch, cuts[0])
+    cut, tiling, counts, count_warnings = count_tiling(
+        fast, params, window, eps, eps_branch, cuts[0], newton_cell
+    )
     warnings += count_warnings
     total = sum(counts)
     report(0.1)
@@ -268,7 +271,9 @@ def induced_frequencies(
     report(0.2)
     cells, unlocated = [], []
     for rect, n in zip(tiling.regions, counts):
-        if n:
+        if isinstance(rect, ContinuedRegion):  # counted through the cut, its roots located already
+            cells += rect.cells
+        elif n:
             found_cells, locate_warning = locate(fast, rect, n, newton_cell)
             cells += found_cells
             if locate_warning:

@@ -96,11 +96,13 @@ def column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
     edges = [Edge(y=band_lo)]
     for group in groups:
         lo_arm, hi_arm = arms[group[0]], arms[group[-1]]
-        edges += [Edge(arm=lo_arm, side=-1, delta=eps), Edge(arm=hi_arm, side=1, delta=eps)]
+        band = (Edge(arm=lo_arm, side=-1, delta=eps), Edge(arm=hi_arm, side=1, delta=eps))
+        edges += band
         y_lo, y_hi = ys[group[0]], ys[group[-1]]
         d_lo, d_hi = lo_arm.clearance(xs, eps), hi_arm.clearance(xs, eps)  # eps, or more (fast arms)
         thickness = float((y_hi - y_lo).max()) + d_lo + d_hi
-        unsearched.append(Sliver(a, b, float(y_lo.min() - d_lo), float(y_hi.max() + d_hi), thickness))
+        y0, y1 = float(y_lo.min() - d_lo), float(y_hi.max() + d_hi)
+        unsearched.append(Sliver(a, b, y0, y1, thickness, cell=ColumnCell(a, b, *band)))
     edges.append(Edge(y=band_hi))
     regions.extend(ColumnCell(a, b, lo, hi) for lo, hi in zip(edges[::2], edges[1::2]))
 
@@ -139,7 +141,7 @@ def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
         regions.append(Rectangle(a, b, band_lo, c_lo))
     if c_hi < band_hi:
         regions.append(Rectangle(a, b, c_hi, band_hi))
-    unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo))
+    unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo, cell=_rect(a, b, c_lo, c_hi)))
 
 
 def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
@@ -157,7 +159,7 @@ def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
         lo, hi = max(lo, band_lo), min(hi, band_hi)
         if lo > bottom:
             regions.append(Rectangle(a, b, bottom, lo))
-        unsearched.append(Sliver(a, b, lo, hi, hi - lo))
+        unsearched.append(Sliver(a, b, lo, hi, hi - lo, cell=_rect(a, b, lo, hi)))
         bottom = max(bottom, hi)
     if bottom < band_hi:
         regions.append(Rectangle(a, b, bottom, band_hi))
@@ -170,4 +172,9 @@ def box(a, b, lo, hi, regions, unsearched, band_lo, band_hi):
         regions.append(Rectangle(a, b, band_lo, lo))
     if hi < band_hi:
         regions.append(Rectangle(a, b, hi, band_hi))
-    unsearched.append(Sliver(a, b, lo, hi, hi - lo))
+    unsearched.append(Sliver(a, b, lo, hi, hi - lo, cell=_rect(a, b, lo, hi)))
+
+
+def _rect(a, b, lo, hi):
+    """The box a <= Re q <= b, lo <= Im q <= hi as a region, None if it is empty."""
+    return Rectangle(a, b, lo, hi) if b > a and hi > lo else None

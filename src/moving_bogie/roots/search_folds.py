@@ -146,8 +146,12 @@ def _fold_column(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
         regions.append(Rectangle(a, b, band_lo, y_low))
     if y_high < band_hi:
         regions.append(Rectangle(a, b, y_high, band_hi))
-    regions.append(TipCell(fold, lower, upper, x_tip, eps, True))
-    regions.append(TipCell(fold, lower, upper, x_tip, eps, False, (x_far, y_low, y_high)))
+    tips = (
+        TipCell(fold, lower, upper, x_tip, eps, True),
+        TipCell(fold, lower, upper, x_tip, eps, False, (x_far, y_low, y_high)),
+    )
+    regions.extend(tips)
     x0, x1 = sorted((float(fold.q.real) - fold.opens * eps, x_tip))
     d = max(arm.clearance(np.linspace(max(a, arm.x_lo), min(b, arm.x_hi), 9), eps) for arm in pair)
-    unsearched.append(Sliver(x0, x1, min(at_tip) - d, max(at_tip) + d, 2 * d))
+    frame = Rectangle(a, b, y_low, y_high)  # the two tip cells and the band around the lens between them
+    unsearched.append(Sliver(x0, x1, min(at_tip) - d, max(at_tip) + d, 2 * d, cell=frame, covers=tips))
