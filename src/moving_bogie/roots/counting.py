@@ -14,8 +14,8 @@ import dataclasses
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.cut import cut_locus
-from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
 from moving_bogie.roots.continuation import count_continued, touches_cut
+from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
 from moving_bogie.roots.cut_cells import ColumnCell, Sliver
 from moving_bogie.roots.search_regions import tile_window
 
@@ -93,9 +93,7 @@ def count_tiling(fast, params, window, eps, eps_branch, cut=None, newton_cell=0.
             flat_regions.append(region)
             flat_counts.append(n)
     unsearched = _bands_through_cut(fast, tiling.unsearched, flat_regions, flat_counts, newton_cell)
-    tiling = dataclasses.replace(
-        tiling, regions=tuple(flat_regions), unsearched=unsearched + tuple(left_out)
-    )
+    tiling = dataclasses.replace(tiling, regions=tuple(flat_regions), unsearched=unsearched + tuple(left_out))
     return cut, tiling, flat_counts, warnings
 
 

@@ -30,8 +30,8 @@ import numpy as np
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
-from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.continuation import ContinuedRegion
+from moving_bogie.roots.contour import Rectangle
 from moving_bogie.roots.counting import count_tiling, frame
 from moving_bogie.roots.far_field import FarField, far_field_radius
 from moving_bogie.roots.locate import locate
