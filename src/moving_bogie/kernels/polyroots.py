@@ -299,9 +299,14 @@ def polyval(coeffs, x):
     """Batched Horner: coeffs ``(..., n+1)`` highest first, x ``(..., k)`` -> ``(..., k)``; complex unless
     both are real (the bounds sum |c_j| |x|^j of the backward-error tests)."""
     dtype = complex if np.iscomplexobj(coeffs) or np.iscomplexobj(x) else float
-    acc = np.empty(np.broadcast_shapes(coeffs.shape[:-1] + (1,), np.shape(x)), dtype=dtype)
-    acc[...] = coeffs[..., :1]
-    for j in range(1, coeffs.shape[-1]):
+    n = coeffs.shape[-1]
+    if n == 1:
+        return np.multiply(coeffs[..., :1], np.ones_like(x, dtype=dtype), dtype=dtype)
+    # c0 x + c1 first (it allocates the broadcast result), then the same Horner steps in place: the same
+    # roundings as from acc = c0, without the shape computation (this is called ~10^4 times per search)
+    acc = np.multiply(coeffs[..., :1], x, dtype=dtype)
+    acc += coeffs[..., 1:2]
+    for j in range(2, n):
         acc *= x
         acc += coeffs[..., j : j + 1]
     return acc
