@@ -255,7 +255,46 @@ def cut_loci(params, strips, *, samples: int = 2001, foundation=None) -> tuple:
             Fold(float(ps[k]), complex(Q[k, j]), True, 0, True) for k in (0, -1) if abs(Q[k, j].real) <= reach
         ]
         turning += turns + ends
+    pieces, turning = _distinct_arms(pieces), _distinct_folds(turning)
     return tuple(_locus(pieces, turning, x_min, x_max) for x_min, x_max in strips)
+
+
+#: Two arms or folds closer than this (relative to max(1, |q|)) are one: a curve traced twice.
+_SAME = 1e-10
+
+
+def _distinct_folds(folds) -> list:
+    """The folds without repeats. Where N is even in p (alpha = 0), q_j(p) = q_j(-p): every curve is traced
+    twice, over p < 0 and over p > 0, and its folds and ends come twice, one rounding apart (a column of
+    zero width between them)."""
+    kept = []
+    for f in folds:
+        if not any(
+            abs(f.q - g.q) <= _SAME * max(1.0, abs(f.q)) and (f.opens, f.cusp, f.end) == (g.opens, g.cusp, g.end)
+            for g in kept
+        ):
+            kept.append(f)
+    return kept
+
+
+def _distinct_arms(arms) -> list:
+    """The arms without repeats (see :func:`_distinct_folds`): the same range of Re q and the same Im q at
+    five points of it."""
+    kept, profiles = [], []
+    for arm in arms:
+        lo, hi = arm.x_lo, arm.x_hi
+        order = np.argsort(arm.q.real)
+        xs = np.linspace(lo, hi, 5)
+        ys = np.interp(xs, arm.q.real[order], arm.q.imag[order])
+        scale = _SAME * max(1.0, abs(lo), abs(hi), float(np.abs(ys).max()))
+        same = any(
+            abs(lo - plo) <= scale and abs(hi - phi) <= scale and np.all(np.abs(ys - pys) <= 1e3 * scale)
+            for plo, phi, pys in profiles
+        )
+        if not same:
+            kept.append(arm)
+            profiles.append((lo, hi, ys))
+    return kept
 
 
 def _locus(pieces, turning, x_min, x_max) -> CutLocus:

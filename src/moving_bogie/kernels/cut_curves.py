@@ -89,6 +89,8 @@ class CutTracer:
         return z
 
 
+#: |Re dq/dp| below this times |dq/dp| is a vertical tangent to rounding (no turn of Re q there).
+_FLAT = 1e-13
 #: At most this many points take the scalar Newton steps of :meth:`CutTracer.refine`.
 _SCALAR_REFINE = 4
 
@@ -179,7 +181,10 @@ def _turn_brackets(xd):
 
 def split_at_turns(tracer, ps, qs):
     """Arms (p, q samples) and folds of one curve: cut where Re dq/dp changes sign."""
-    xd = tracer.dq_dp(ps, qs).real
+    d_all = tracer.dq_dp(ps, qs)
+    # Re dq/dp at rounding level is 0: a curve on Re q = 0 (alpha = 0, a mirror-symmetric cut) has
+    # Re dq/dp ~ 1e-60 of either sign along it, which is no turn
+    xd = np.where(np.abs(d_all.real) <= _FLAT * np.abs(d_all), 0.0, d_all.real)
     folds, cuts = [], []
     for k, b in _turn_brackets(xd):
         if b > k + 1:  # the turn sits on a sample
@@ -193,9 +198,15 @@ def split_at_turns(tracer, ps, qs):
                 )
                 return float(tracer.dq_dp(np.array([p]), q).real[0])
 
-            pt = optimize.brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
-            qt = complex(tracer.refine(np.array([pt]), np.array([qs[k]]))[0])
-            end = nxt = k + 1
+            fa, fb = slope(ps[k]), slope(ps[k + 1])
+            if fa * fb < 0:
+                pt = optimize.brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
+                qt = complex(tracer.refine(np.array([pt]), np.array([qs[k]]))[0])
+                end = nxt = k + 1
+            else:  # the change of sign was at rounding level (a turn on or next to a sample, e.g. at p = 0
+                # of a curve even in p at alpha = 0): the turn is the sample with the smaller slope
+                m = k if abs(fa) <= abs(fb) else k + 1
+                pt, qt, end, nxt = float(ps[m]), complex(qs[m]), m, m + 1
         d = tracer.dq_dp(np.array([pt]), np.array([qt]))[0]
         scale = max(1.0, float(np.abs(tracer.dq_dp(ps[k : b + 1], qs[k : b + 1])).max()))
         opens = 1 if xd[b] > 0 else -1

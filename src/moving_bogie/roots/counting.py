@@ -149,6 +149,9 @@ def _position(regions, cell):
 #: How many times a failing tile is split before the piece that still fails is left out.
 _MAX_DEPTH = 8
 _FRACTIONS = (0.5, 0.37, 0.63, 0.29)
+#: Evaluations of E_chr one failing tile's recovery may spend (about 10 s); the pieces still to be split
+#: then are left out with the others.
+_RECOVERY_POINTS = 1_000_000
 
 
 def _recover(fast, region, eps, newton_cell):
@@ -156,8 +159,12 @@ def _recover(fast, region, eps, newton_cell):
     that fails is first counted through the cut (:func:`count_continued`), then split."""
     pieces, counts, lost = [], [], []
     stack = [(region, 0, None)]
+    spent = fast.evaluations
     while stack:
         r, depth, error = stack.pop()
+        if fast.evaluations - spent > _RECOVERY_POINTS:  # bounded time: what is left is left out
+            lost.append((r, EdgeZeroError(f"{error}; the recovery spent its {_RECOVERY_POINTS} evaluations")))
+            continue
         continued = count_continued(fast, r, newton_cell) if depth else None  # depth 0: tried already
         if continued is not None:
             pieces.append(continued)
@@ -170,8 +177,9 @@ def _recover(fast, region, eps, newton_cell):
             parts = r.split(frac)
             got, bad = [], []
             for part in parts:
+                points = 20_000 if max(part.width, part.height) < _SMALL else 100_000
                 try:
-                    got.append((part, winding_number(fast, part)))
+                    got.append((part, winding_number(fast, part, max_points=points)))
                 except EdgeZeroError as exc:
                     bad.append((part, exc))
             if len(bad) < len(parts):
