@@ -26,7 +26,16 @@ def locate(fast, rect, n, newton_cell):
     """
     out, warning = [], None
     level = [(rect, n)]
+    spent = getattr(fast, "evaluations", 0)
     while level:
+        if getattr(fast, "evaluations", 0) - spent > _LOCATE_POINTS:  # bounded time: Newton from grids
+            for r, k in level:
+                starts = _grid_roots(fast, r, k) if k else []
+                if len(starts) != k:
+                    text = f"locate: gave up splitting {r} holding {k} root(s) after {_LOCATE_POINTS} evaluations"
+                    warning = (text, (r, k - len(starts)))
+                out += [(q, 1, r) for q in starts]
+            break
         # every cell of a level is split at once: one batched evaluation of E_chr per refinement of the
         # contours of all their halves (what costs is mostly the call, not the points)
         split = []
@@ -50,7 +59,9 @@ def locate(fast, rect, n, newton_cell):
             # two halves each (a cell at a fold of the cut may give three pieces), each cell at its next
             # split fraction
             pieces = [r.split(fracs[0]) for r, _, fracs in split]
-            counts = winding_numbers(fast, [piece for group in pieces for piece in group])
+            flat = [piece for group in pieces for piece in group]
+            points = [20_000 if max(p.width, p.height) < 1e-3 else 100_000 for p in flat]
+            counts = winding_numbers(fast, flat, max_points=points)
             retry, at = [], 0
             for (r, k, fracs), group in zip(split, pieces):
                 mine, at = counts[at : at + len(group)], at + len(group)
@@ -68,6 +79,10 @@ def locate(fast, rect, n, newton_cell):
             out += [(q, 1, r) for q in starts]
     return out, warning
 
+
+#: Evaluations of E_chr one call of :func:`locate` may spend splitting (a few seconds); the cells not yet
+#: resolved then get Newton's method from a grid of starts, and a warning if that falls short.
+_LOCATE_POINTS = 300_000
 
 #: Split fractions tried in turn until the halves' counts add up to the cell's.
 _FRACTIONS = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
