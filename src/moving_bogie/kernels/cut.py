@@ -269,10 +269,9 @@ def _distinct_folds(folds) -> list:
     zero width between them)."""
     kept = []
     for f in folds:
-        if not any(
-            abs(f.q - g.q) <= _SAME * max(1.0, abs(f.q)) and (f.opens, f.cusp, f.end) == (g.opens, g.cusp, g.end)
-            for g in kept
-        ):
+        kind = (f.opens, f.cusp, f.end)
+        close = _SAME * max(1.0, abs(f.q))
+        if not any(abs(f.q - g.q) <= close and kind == (g.opens, g.cusp, g.end) for g in kept):
             kept.append(f)
     return kept
 

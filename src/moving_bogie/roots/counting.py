@@ -74,8 +74,9 @@ def count_tiling(fast, params, window, eps, eps_branch, cut=None, newton_cell=0.
             break  # moving the edges does not move the cut: split those tiles instead
     tiling, regions, counts, left_out, failed, used_eps = best
     warnings = []
+    budget = {"since": fast.evaluations, "splits": 0}  # the recoveries of all failing tiles share it
     for k in failed:
-        pieces, piece_counts, lost = _recover(fast, regions[k], used_eps, newton_cell)
+        pieces, piece_counts, lost = _recover(fast, regions[k], used_eps, newton_cell, budget)
         regions[k], counts[k] = pieces, piece_counts
         for piece, error in lost:
             y0, y1 = piece.y0, piece.y1
@@ -149,21 +150,25 @@ def _position(regions, cell):
 #: How many times a failing tile is split before the piece that still fails is left out.
 _MAX_DEPTH = 8
 _FRACTIONS = (0.5, 0.37, 0.63, 0.29)
-#: Evaluations of E_chr one failing tile's recovery may spend (about 10 s); the pieces still to be split
-#: then are left out with the others.
+#: Evaluations of E_chr the recoveries of one tiling may spend (a few seconds); the pieces still to be
+#: split then are left out with the others.
 _RECOVERY_POINTS = 1_000_000
+#: ... and at most this many pieces (tiny pieces cost little each but many calls).
+_RECOVERY_SPLITS = 200
 
 
-def _recover(fast, region, eps, newton_cell):
+def _recover(fast, region, eps, newton_cell, budget):
     """Pieces of ``region`` that can be counted, their counts, and the (piece, error) left out. A piece
-    that fails is first counted through the cut (:func:`count_continued`), then split."""
+    that fails is first counted through the cut (:func:`count_continued`), then split; once the
+    recoveries of the tiling (``budget``: the evaluations when they began, the pieces so far) have spent
+    ``_RECOVERY_POINTS`` evaluations or ``_RECOVERY_SPLITS`` pieces, what is left is left out."""
     pieces, counts, lost = [], [], []
     stack = [(region, 0, None)]
-    spent = fast.evaluations
     while stack:
         r, depth, error = stack.pop()
-        if fast.evaluations - spent > _RECOVERY_POINTS:  # bounded time: what is left is left out
-            lost.append((r, EdgeZeroError(f"{error}; the recovery spent its {_RECOVERY_POINTS} evaluations")))
+        budget["splits"] += 1
+        if fast.evaluations - budget["since"] > _RECOVERY_POINTS or budget["splits"] > _RECOVERY_SPLITS:
+            lost.append((r, EdgeZeroError(f"{error}; the recovery spent its budget")))
             continue
         continued = count_continued(fast, r, newton_cell) if depth else None  # depth 0: tried already
         if continued is not None:

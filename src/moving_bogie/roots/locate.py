@@ -32,7 +32,7 @@ def locate(fast, rect, n, newton_cell):
             for r, k in level:
                 starts = _grid_roots(fast, r, k) if k else []
                 if len(starts) != k:
-                    text = f"locate: gave up splitting {r} holding {k} root(s) after {_LOCATE_POINTS} evaluations"
+                    text = f"locate: gave up splitting {r} holding {k} root(s) ({_LOCATE_POINTS} evaluations)"
                     warning = (text, (r, k - len(starts)))
                 out += [(q, 1, r) for q in starts]
             break
