@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_cut_clearance import AVOIDED_CROSSING
 
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.params import DimensionlessParams
@@ -25,22 +26,7 @@ BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_ra
 
 # Sets 144 and 149 of the random benchmark (seed 24) with alpha = 0: a light sleeper layer whose cut has a
 # segment on Re q = 0, and two masses on three layers (the ZeroDivisionError).
-ON_THE_AXIS = DimensionlessParams(
-    beam="eb",
-    track="two-layer",
-    vehicle="bogie",
-    alpha="0",
-    eta_f="0.243511471291",
-    eta_M="29.6306930923",
-    d="4.50342035984",
-    mu_v="56.9061756827",
-    J_b="311.18833294",
-    kappa_v="0.00654206126482",
-    eta_v="0.149843490531",
-    mu_2="1.19305496916",
-    kappa_2="0.107306675325",
-    eta_2="0.520493512657",
-)
+ON_THE_AXIS = AVOIDED_CROSSING.replace(alpha="0")
 THREE_LAYERS = DimensionlessParams(
     beam="eb",
     track="three-layer",
