@@ -114,6 +114,11 @@ class ContinuedCharacteristic:
         self.fast = fast
         self.sides = (np.asarray(refs, dtype=complex), np.asarray(above, dtype=bool))
 
+    @property
+    def evaluations(self) -> int:
+        """Those of the characteristic it continues (which it adds to)."""
+        return self.fast.evaluations
+
     def _kernel_values(self, q, derivative):
         return self.fast.kernel(q, self.fast.offsets, derivative=derivative, sides=self.sides)
 

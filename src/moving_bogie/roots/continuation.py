@@ -66,21 +66,10 @@ class ContinuedRegion(BoundingBox):
     cells: tuple
     crossing: int
 
-    @property
-    def x0(self):
-        return self.region.x0
-
-    @property
-    def x1(self):
-        return self.region.x1
-
-    @property
-    def y0(self):
-        return self.region.y0
-
-    @property
-    def y1(self):
-        return self.region.y1
+    x0 = property(lambda self: self.region.x0)
+    x1 = property(lambda self: self.region.x1)
+    y0 = property(lambda self: self.region.y0)
+    y1 = property(lambda self: self.region.y1)
 
     def __str__(self):
         return f"{self.region} (counted through the cut, {self.crossing} root(s) of N fixed)"
@@ -115,14 +104,10 @@ def crossing_roots(fast, region):
     """(refs, tracked) of the p-roots that may cross the real p-axis inside ``region`` (set C of the module
     docstring): a reference value of each (its mean along the boundary), or None when the roots cannot be
     followed along the boundary or a root of C is not clearly the nearest to its reference there."""
-    z, _ = initial_samples(region)
-    tracked = _track(fast.kernel.p_roots(z))
+    tracked = _boundary_roots(fast, region)
     if tracked is None:
         return None
-    scale = np.maximum(1.0, np.abs(tracked))
-    near = np.any(np.abs(tracked.imag) <= _SIDE_TOL * scale, axis=0)
-    both = np.any(tracked.imag > 0, axis=0) & np.any(tracked.imag <= 0, axis=0)
-    C = np.nonzero(near | both)[0]
+    C = np.nonzero(_near_axis(tracked, _SIDE_TOL) | _changes_side(tracked))[0]
     if C.size == 0 or C.size > _MAX_CROSSING:
         return None
     refs = tracked[:, C].mean(axis=0)
@@ -138,13 +123,24 @@ def touches_cut(fast, region) -> bool:
     """Whether the boundary of ``region`` meets the cut of K: a p-root changes side along it, or comes
     closer to the real p-axis than the edges beside the cut let it (``_TOUCH``), or the roots cannot be
     followed along it."""
+    tracked = _boundary_roots(fast, region)
+    return tracked is None or bool(np.any(_changes_side(tracked) | _near_axis(tracked, _TOUCH)))
+
+
+def _boundary_roots(fast, region):
+    """The p-roots at the first boundary samples of ``region``, followed along it (:func:`_track`)."""
     z, _ = initial_samples(region)
-    tracked = _track(fast.kernel.p_roots(z))
-    if tracked is None:
-        return True
-    im = tracked.imag
-    both = np.any(im > 0, axis=0) & np.any(im <= 0, axis=0)
-    return bool(np.any(both) or np.any(np.abs(im) <= _TOUCH * np.maximum(1.0, np.abs(tracked))))
+    return _track(fast.kernel.p_roots(z))
+
+
+def _changes_side(tracked):
+    """Per root followed along a boundary: above the real p-axis somewhere, on or below it elsewhere."""
+    return np.any(tracked.imag > 0, axis=0) & np.any(tracked.imag <= 0, axis=0)
+
+
+def _near_axis(tracked, tol):
+    """Per root followed along a boundary: whether |Im p| comes within tol max(1, |p|) of 0 somewhere."""
+    return np.any(np.abs(tracked.imag) <= tol * np.maximum(1.0, np.abs(tracked)), axis=0)
 
 
 def count_continued(fast, region, newton_cell: float = 0.25):

@@ -32,6 +32,17 @@ def _resolution(z, shortest):
     return np.maximum(shortest, _ULPS * np.finfo(float).eps * np.maximum(1.0, np.abs(z)))
 
 
+#: A piece of a split region (recovery, locating) smaller than this gets ``_PIECE_POINTS[0]`` boundary
+#: points at most, a larger one ``_PIECE_POINTS[1]``: a count that needs more has a zero on its edge.
+_SMALL_PIECE = 1e-3
+_PIECE_POINTS = (20_000, 100_000)
+
+
+def piece_points(region) -> int:
+    """The most boundary points a piece of a split region may take (``max_points`` of the winding numbers)."""
+    return _PIECE_POINTS[0] if max(region.width, region.height) < _SMALL_PIECE else _PIECE_POINTS[1]
+
+
 class EdgeZeroError(RuntimeError):
     """A zero lies on (or within sampling resolution of) the contour."""
 

@@ -15,7 +15,13 @@ import dataclasses
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.roots.continuation import count_continued, touches_cut
-from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
+from moving_bogie.roots.contour import (
+    EdgeZeroError,
+    Rectangle,
+    piece_points,
+    winding_number,
+    winding_numbers,
+)
 from moving_bogie.roots.cut_cells import ColumnCell, Sliver
 from moving_bogie.roots.search_regions import tile_window
 
@@ -182,9 +188,8 @@ def _recover(fast, region, eps, newton_cell, budget):
             parts = r.split(frac)
             got, bad = [], []
             for part in parts:
-                points = 20_000 if max(part.width, part.height) < _SMALL else 100_000
                 try:
-                    got.append((part, winding_number(fast, part, max_points=points)))
+                    got.append((part, winding_number(fast, part, max_points=piece_points(part))))
                 except EdgeZeroError as exc:
                     bad.append((part, exc))
             if len(bad) < len(parts):

@@ -10,7 +10,7 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_numbers
+from moving_bogie.roots.contour import EdgeZeroError, Rectangle, piece_points, winding_numbers
 
 __all__ = ["locate", "newton_inside"]
 
@@ -26,9 +26,9 @@ def locate(fast, rect, n, newton_cell):
     """
     out, warning = [], None
     level = [(rect, n)]
-    spent = getattr(fast, "evaluations", 0)
+    spent = fast.evaluations
     while level:
-        if getattr(fast, "evaluations", 0) - spent > _LOCATE_POINTS:  # bounded time: Newton from grids
+        if fast.evaluations - spent > _LOCATE_POINTS:  # bounded time: Newton from grids
             for r, k in level:
                 starts = _grid_roots(fast, r, k) if k else []
                 if len(starts) != k:
@@ -60,8 +60,7 @@ def locate(fast, rect, n, newton_cell):
             # split fraction
             pieces = [r.split(fracs[0]) for r, _, fracs in split]
             flat = [piece for group in pieces for piece in group]
-            points = [20_000 if max(p.width, p.height) < 1e-3 else 100_000 for p in flat]
-            counts = winding_numbers(fast, flat, max_points=points)
+            counts = winding_numbers(fast, flat, max_points=[piece_points(piece) for piece in flat])
             retry, at = [], 0
             for (r, k, fracs), group in zip(split, pieces):
                 mine, at = counts[at : at + len(group)], at + len(group)
