@@ -283,6 +283,9 @@ def main() -> int:
     parser.add_argument("--reference", type=int, default=10, help="scan every n-th set per family (0: none)")
     parser.add_argument("--only", choices=FAMILIES, default=None)
     parser.add_argument("--verbose", action="store_true")
+    from records import add_record_option
+
+    add_record_option(parser)
     args = parser.parse_args()
     t0 = time.perf_counter()
     sets = draw_sets(args.seed, args.layered, args.one_layer, args.only)
@@ -292,7 +295,43 @@ def main() -> int:
         f"wall {time.perf_counter() - t0:.0f} s (the machine may be shared: CPU times are per process; "
         f"OPENBLAS_NUM_THREADS={os.environ['OPENBLAS_NUM_THREADS']})"
     )
+    if args.record:
+        record_rows(records)
     return 1 if any(r["failure"] for recs in records.values() for r in recs) else 0
+
+
+#: The aims of the search on random sets, CPU seconds per set (median and maximum).
+TARGETS = {
+    "two-layer": "median 1 s, max 3 s",
+    "three-layer": "max 5 s",
+    "eb": "max 3 s",
+    "tr": "max 3 s",
+}
+
+
+def record_rows(records) -> None:
+    """benchmarks/results/bench_search_random.json: one row per family."""
+    from records import row, write_record
+
+    out = []
+    for family, recs in records.items():
+        if not recs:
+            continue
+        cpu = np.array([r["cpu"] for r in recs])
+        fails = sum(r["failure"] is not None for r in recs)
+        undet = sum(r["failure"] is None and not r["verdict"].determined for r in recs)
+        refs = [r["reference"] for r in recs if "reference" in r]
+        sliver = max((r["sliver"] for r in recs if r["failure"] is None), default=0.0)
+        measured = (
+            f"CPU per set median {np.median(cpu):.2f} s, 90 % {np.quantile(cpu, 0.9):.2f} s, "
+            f"max {cpu.max():.2f} s;"
+            f" {fails} failures, {undet} UNDETERMINED; tallest unsearched region {sliver:.1e}"
+        )
+        agree = f"brute-force scan: {sum(x[0] for x in refs)}/{len(refs)} sets agree" if refs else "-"
+        out.append(
+            row(f"{len(recs)} random {family} sets through the search", measured, agree, TARGETS[family])
+        )
+    write_record(__file__, "The root search on random parameter sets", out)
 
 
 if __name__ == "__main__":

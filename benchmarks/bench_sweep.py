@@ -52,6 +52,9 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="a 40 x 40 x 4 scaling run and 10^4 points")
     parser.add_argument("--million", action="store_true", help="run the full 10^6-point sweep")
     parser.add_argument("--no-scaling", action="store_true", help="skip part 1")
+    from records import add_record_option
+
+    add_record_option(parser)
     args = parser.parse_args()
 
     from moving_bogie.model.cases import table1_case
@@ -62,7 +65,7 @@ def main() -> None:
     scaling = make_spec(base, {"alpha": f"0.3:1.1:{n}", "eta_M": f"1:200:{n}", "eta_f": "0.02,0.05,0.1,0.2"})
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start")
     print(f"{'job':52s} {'wall [s]':>9s} {'CPU [s]':>9s} {'points/s':>9s} {'per worker':>10s}")
-    rows = {}
+    rows, record = {}, []
     with tempfile.TemporaryDirectory() as folder:
         for workers in () if args.no_scaling else (1, 2):
             wall, cpu, run = _run(scaling, workers, folder)
@@ -72,6 +75,14 @@ def main() -> None:
             print(f"{label:52s} {wall:9.1f} {cpu:9.1f} {rate:9.1f} {rate / workers:10.1f}")
         if rows:
             print(f"{'speed-up 1 -> 2 workers (target >= 1.5)':52s} {rows[1] / rows[2]:9.2f}")
+            record.append(
+                (
+                    f"sweep of {scaling.size} points ({n} alpha x {n} eta_M x 4 eta_f, Case 1), 2 workers",
+                    f"{rows[2]:.1f} s wall, {scaling.size / rows[2] / 2:.0f} points/s per worker",
+                    f"1 worker: {rows[1]:.1f} s wall (speed-up {rows[1] / rows[2]:.2f})",
+                    "speed-up >= 1.5",
+                )
+            )
         m, n_eta = (10, 100) if args.quick else (100, 1000)
         alphas = _values(0.3, 1.1, m)
         if not args.million:
@@ -89,6 +100,19 @@ def main() -> None:
         print(
             f"{f'{total:.0e}-point 3-D sweep, 2 workers ({what})':52s} {wall * scale:9.1f} {cpu * scale:9.1f}"
         )
+        how = "measured" if scale == 1 else f"{scale:g} x a measured {big.size}-point run ({wall:.1f} s wall)"
+        record.append(
+            (
+                f"{total:.0e}-point 3-D sweep ({m} alpha x {n_eta} eta_M x 10 eta_f), 2 workers",
+                f"{wall * scale:.0f} s wall, {cpu * scale:.0f} s CPU ({how})",
+                "-",
+                "< 5 min" if total == 10**6 else "-",
+            )
+        )
+    if args.record:
+        from records import row, write_record
+
+        write_record(__file__, "Parameter sweeps on Dask", [row(*r) for r in record])
 
 
 def _values(lo, hi, n):

@@ -17,6 +17,7 @@ The machine is shared: each timing is the best of three runs.
 
 from __future__ import annotations
 
+import argparse
 import platform
 import time
 
@@ -40,6 +41,11 @@ def best(func, repeat: int = 3) -> float:
 
 
 def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    from records import add_record_option
+
+    add_record_option(parser)
+    args = parser.parse_args()
     print(f"python {platform.python_version()}, numpy {np.__version__}, {platform.machine()}")
     rows = [("case", "job", "points", "tau max", "seconds")]
     for case in (7, 2, 5):
@@ -86,6 +92,45 @@ def main() -> None:
         )
         if k == 0:
             print("  ".join("-" * w for w in widths))
+    if args.record:
+        record_rows(rows[1:])
+
+
+def record_rows(rows) -> None:
+    """benchmarks/results/bench_timeseries.json: the rows the performance page shows."""
+    from records import row, write_record
+
+    def seconds(case: str, job: str, points: str = "-", tmax: str = "-") -> str:
+        (hit,) = [r[4] for r in rows if r[0] == case and r[1] == job and r[2] == points and r[3] == tmax]
+        return hit
+
+    steady = [seconds(c, "steady + harmonic, 4 responses", "1e+05", "1e+04") for c in ("7", "2", "5")]
+    full = [seconds(c, "closed_form_response, branch_cut='auto'", "1e+05", "1e+04") for c in ("7", "2", "5")]
+    half = [seconds(c, "branch-cut part alone (half-line)", "2001", "1e+02") for c in ("7", "2", "5")]
+    traced = [seconds(c, "branch-cut part alone (traced cut)", "2001", "1e+02") for c in ("7", "2", "5")]
+    tr = seconds("7 TR", "closed_form_response, branch_cut='auto'", "2001", "1e+02")
+    out = [
+        row(
+            "10^5 time points to tau = 10^4, roots known (Cases 7, 2, 5)",
+            "steady + harmonic part "
+            + " / ".join(steady)
+            + " s; with the branch-cut part "
+            + " / ".join(full)
+            + " s",
+            "-",
+            "< 1 s",
+        ),
+        row(
+            "branch-cut part I_bc alone, 2001 times to tau = 100 (Cases 7, 2, 5)",
+            "half-line integral " + " / ".join(half) + " s",
+            "traced-cut integral of any model: " + " / ".join(traced) + " s",
+        ),
+        row(
+            "Timoshenko-Rayleigh time series, Case 7's vehicle, S = 10, r = 0.09, 2001 times to tau = 100",
+            f"{tr} s",
+        ),
+    ]
+    write_record(__file__, "Closed-form time series", out)
 
 
 if __name__ == "__main__":

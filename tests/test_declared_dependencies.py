@@ -66,6 +66,7 @@ def test_runtime_imports_are_runtime_dependencies():
 def test_test_and_derivation_imports_are_declared():
     extras = PYPROJECT["project"]["optional-dependencies"]
     declared = _names(PYPROJECT["project"]["dependencies"]) | _names(extras["dev"]) | _names(DERIVE)
+    declared |= _names(extras["docs"])  # selenium: tests/test_docs_site.py drives the browser
     used = _imported(ROOT / "tests") | _imported(ROOT / "derivations")
     missing = used - declared
     assert not missing, f"imported by tests or derivations but not declared: {sorted(missing)}"

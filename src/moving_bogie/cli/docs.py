@@ -1,10 +1,11 @@
 """Write the command line reference ``docs/cli.md`` from the argparse parser itself.
 
 ``python -m moving_bogie.cli.docs`` renders ``moving-bogie --help`` and every subcommand's ``--help``
-into Markdown and writes ``docs/cli.md`` (``--output`` elsewhere, ``-`` for stdout). ``--check`` writes
-nothing and exits 1 when the file differs from what the parser gives now. The help is rendered at a fixed
-width, so the text does not depend on the terminal; argparse's layout does change between Python minor
-versions, so the file records the version it was made with (the test compares only on that version).
+into Markdown and writes ``docs/cli.md`` (``--output`` elsewhere, ``-`` for stdout); the documentation
+site's build (``docs/conf.py``) calls :func:`render` and writes that page, which is not committed.
+``--check`` writes nothing and exits 1 when the file differs from what the parser gives now. The help is
+rendered at a fixed width, so the text does not depend on the terminal; argparse's layout changes between
+Python minor versions, so the page records the version it was made with.
 """
 
 from __future__ import annotations
@@ -63,8 +64,8 @@ def render(width: int = WIDTH) -> str:
             "",
             f"Generated from the argparse parser by `{COMMAND}` "
             f"(Python {python_version()}, {width} columns).",
-            "Do not edit: change the subcommand's module in `src/moving_bogie/cli/` and regenerate.",
-            "`tests/test_cli_docs.py` fails when this file is out of date.",
+            "The documentation build writes this page; change the subcommand's module in",
+            "`src/moving_bogie/cli/` to change it.",
             "",
             "| command | what it does |",
             "|---|---|",

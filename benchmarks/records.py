@@ -1,0 +1,76 @@
+"""The records the benchmark scripts write with ``--record``, read by ``performance_page.py``.
+
+A benchmark run with ``--record`` writes ``benchmarks/results/<script-stem>.json``::
+
+    {"title": ..., "date": "YYYY-MM-DD",
+     "machine": {"platform": ..., "processor": ..., "cores": ..., "memory_gib": ..., "python": ...},
+     "command": ..., "rows": [{"work": ..., "measured": ..., "alternative": ..., "target": ...}]}
+
+``work`` says what was run, ``measured`` what it cost (with its unit), ``alternative`` the same work done
+another way in the same run ("-" when none was run) and ``target`` the aim ("-" when there is none). The
+file is written atomically, so an interrupted run leaves the previous record in place.
+"""
+
+from __future__ import annotations
+
+import datetime
+import json
+import os
+import platform
+import sys
+from pathlib import Path
+
+RESULTS = Path(__file__).resolve().parent / "results"
+FIELDS = ("work", "measured", "alternative", "target")
+
+
+def machine() -> dict:
+    """The machine a record was measured on: platform, cores, memory, Python."""
+    try:
+        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2**30
+    except (ValueError, OSError, AttributeError):  # not every platform reports it
+        memory = None
+    return {
+        "platform": platform.platform(),
+        "processor": platform.machine(),
+        "cores": os.cpu_count(),
+        "memory_gib": None if memory is None else round(memory, 1),
+        "python": platform.python_version(),
+    }
+
+
+def row(work: str, measured: str, alternative: str = "-", target: str = "-") -> dict:
+    """One row of a record (every field a string, as the page shows it)."""
+    return {"work": work, "measured": measured, "alternative": alternative, "target": target}
+
+
+def write_record(script: str, title: str, rows: list[dict]) -> Path:
+    """Write the record of the benchmark ``script`` (its ``__file__``); returns the path written."""
+    for r in rows:
+        missing = [f for f in FIELDS if f not in r]
+        if missing:
+            raise ValueError(f"record row {r!r} lacks {missing}")
+    stem = Path(script).stem
+    record = {
+        "title": title,
+        "date": datetime.date.today().isoformat(),
+        "machine": machine(),
+        "command": " ".join(["python", f"benchmarks/{Path(script).name}", *sys.argv[1:]]),
+        "rows": [{f: str(r[f]) for f in FIELDS} for r in rows],
+    }
+    RESULTS.mkdir(exist_ok=True)
+    path = RESULTS / f"{stem}.json"
+    partial = path.with_suffix(".json.partial")
+    partial.write_text(json.dumps(record, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
+    partial.replace(path)
+    print(f"recorded {path.relative_to(RESULTS.parent.parent)}")
+    return path
+
+
+def add_record_option(parser) -> None:
+    """The ``--record`` option every recording benchmark takes."""
+    parser.add_argument(
+        "--record",
+        action="store_true",
+        help="write benchmarks/results/<script>.json for benchmarks/performance_page.py",
+    )

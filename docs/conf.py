@@ -1,0 +1,156 @@
+"""Sphinx configuration of the documentation site (built by `.ci/run`, warnings as errors).
+
+The pages are the Markdown files of this folder (MyST). Three things are generated at build time and
+never committed:
+
+- ``cli.md``, the command line reference, rendered from the argparse parsers by
+  :func:`moving_bogie.cli.docs.render`;
+- ``_generated/uic60-series.png``, the home page's figure, drawn by ``moving-bogie timeseries``;
+- ``tutorials/*.ipynb``, the notebooks of ``notebooks/`` (jupytext percent ``.py`` files) executed in quick
+  mode (``MOVING_BOGIE_QUICK=1``) by ``notebooks/run.py``, the runner the tests use; an executed notebook is
+  kept while it is newer than its source and the package (delete ``docs/tutorials/`` to run them again).
+
+The API reference (``api.md``) is generated from the docstrings by autosummary into ``_autosummary/``.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+DOCS = Path(__file__).resolve().parent
+ROOT = DOCS.parent
+NOTEBOOKS = ROOT / "notebooks"
+TUTORIALS = DOCS / "tutorials"
+
+if (ROOT / "src" / "moving_bogie").is_dir():  # build from the checkout's sources, installed or not
+    sys.path.insert(0, str(ROOT / "src"))
+
+import moving_bogie  # noqa: E402
+from moving_bogie.cli.docs import render  # noqa: E402
+
+project = "moving-bogie"
+author = "the moving-bogie authors"
+copyright = "the moving-bogie authors"  # noqa: A001 - Sphinx's name
+release = moving_bogie.__version__
+version = release
+
+extensions = [
+    "myst_nb",  # Markdown pages (MyST) and executed notebooks
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
+    "numpydoc",
+]
+source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}  # .rst: autosummary
+exclude_patterns = ["_build", "_generated", "**/.ipynb_checkpoints", "check_links.py"]
+templates_path = ["_templates"]
+root_doc = "index"
+
+myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist"]
+myst_heading_anchors = 4
+myst_dmath_double_inline = True
+nb_execution_mode = "off"  # executed beforehand by notebooks/run.py (below)
+nb_merge_streams = True
+
+autosummary_generate = True
+autosummary_imported_members = False
+autodoc_default_options = {"members": True, "show-inheritance": False}
+autodoc_typehints = "none"  # numpydoc shows the types of the docstrings
+autodoc_member_order = "bysource"
+numpydoc_show_class_members = False
+numpydoc_class_members_toctree = False
+numpydoc_xref_param_type = False
+
+html_theme = "furo"
+html_title = "moving-bogie"
+html_static_path: list[str] = []
+html_theme_options = {"navigation_with_keys": True}
+nitpicky = False
+
+
+def write_cli_reference() -> None:
+    """``cli.md`` from the parsers (rewritten only when it changes, so Sphinx rebuilds only then)."""
+    path = DOCS / "cli.md"
+    text = render()
+    if not path.exists() or path.read_text(encoding="utf-8") != text:
+        path.write_text(text, encoding="utf-8")
+
+
+def _execute(source: Path) -> str:
+    """Run one notebook through ``notebooks/run.py --quick`` into ``tutorials/``."""
+    out = TUTORIALS / f"{source.stem}.ipynb"
+    partial = TUTORIALS / f"{source.stem}.partial.ipynb"
+    env = dict(os.environ, MPLBACKEND="module://matplotlib_inline.backend_inline")  # figures as outputs
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT / "src"), env.get("PYTHONPATH")) if p)
+    argv = [sys.executable, str(NOTEBOOKS / "run.py"), str(source), "--quick", "--out", str(partial)]
+    proc = subprocess.run(argv, env=env, capture_output=True, text=True)
+    if proc.returncode != 0:
+        partial.unlink(missing_ok=True)
+        raise RuntimeError(f"{source.name} failed in notebooks/run.py:\n{proc.stderr[-4000:]}")
+    partial.replace(out)
+    return proc.stdout.strip()
+
+
+def _newest_package_file() -> float:
+    package = Path(moving_bogie.__file__).resolve().parent
+    return max(p.stat().st_mtime for p in package.rglob("*.py"))
+
+
+def execute_notebooks() -> None:
+    """``tutorials/NAME.ipynb``: every notebook executed in quick mode, two at a time."""
+    TUTORIALS.mkdir(exist_ok=True)
+    sources = sorted(NOTEBOOKS.glob("[0-9][0-9]-*.py"))
+    for old in TUTORIALS.glob("*.ipynb"):
+        if ".partial" in old.name or not (NOTEBOOKS / f"{old.stem}.py").exists():
+            old.unlink()
+    newest = _newest_package_file()
+    stale = [
+        source
+        for source in sources
+        if not (out := TUTORIALS / f"{source.stem}.ipynb").exists()
+        or out.stat().st_mtime < max(source.stat().st_mtime, newest)
+    ]
+    if stale:
+        with ThreadPoolExecutor(min(2, len(stale))) as pool:
+            for line in pool.map(_execute, stale):
+                print(line, flush=True)
+
+
+def make_home_figure() -> None:
+    """``_generated/uic60-series.png``: the walkthrough's time series, drawn by the command line."""
+    out = DOCS / "_generated" / "uic60-series.png"
+    if out.exists() and out.stat().st_mtime >= _newest_package_file():
+        return
+    out.parent.mkdir(exist_ok=True)
+    env = dict(os.environ, MPLBACKEND="Agg")
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT / "src"), env.get("PYTHONPATH")) if p)
+    argv = [sys.executable, "-m", "moving_bogie", "timeseries", "--file", "examples/uic60-bogie.toml"]
+    argv += ["--set", "v=83.3", "--tmax", "1", "--plot", str(out)]
+    subprocess.run(argv, cwd=ROOT, env=env, check=True, capture_output=True)
+
+
+_LITERAL = re.compile(r"(``.+?``|`[^`]+`)")
+_TABLE = re.compile(r"\s*(\+[-=]|\| )")
+
+
+def escape_bars(app, what, name, obj, options, lines) -> None:
+    """The docstrings write absolute values as ``|q|``: keep them text, not reST substitutions."""
+    for k, line in enumerate(lines):
+        if _TABLE.match(line):  # a grid table's border or row, or a line block
+            continue
+        parts = _LITERAL.split(line)
+        lines[k] = "".join(p if i % 2 else p.replace("|", "\\|") for i, p in enumerate(parts))
+
+
+def setup(app) -> None:
+    app.connect("autodoc-process-docstring", escape_bars, priority=400)
+
+
+write_cli_reference()
+make_home_figure()
+execute_notebooks()
