@@ -10,7 +10,7 @@ For each parameter set, in the same run:
 * ``new default``: :func:`moving_bogie.roots.frequencies.induced_frequencies` with its default window (the
   far-field radius, the verdict about every root with Im q < 0);
 * ``old window``: the same search in the window of the previous default (``default_window``: X = max(3, 3 f))
-  with the check in a window twice as large, as before the far field existed.
+  with the check in a window twice as large, and no far field.
 
 Wall and CPU seconds, the radius R, and the number of unstable roots each finds.
 """
