@@ -3,8 +3,8 @@
 ``.ci/run`` builds the site (``sphinx-build -W --keep-going -b html docs docs/_build/html``) before the
 tests. This opens the home page and a tutorial page in headless Chromium (the system's ``chromium`` and
 ``chromium-driver`` packages, driven by selenium) and checks that every ``<img>`` has loaded
-(``complete`` and ``naturalWidth > 0``), that the tutorial shows its figures, and that every internal link
-of the site resolves (``docs/check_links.py``). Outside CI, a missing browser or an unbuilt site skips the
+(``complete`` and ``naturalWidth > 0``), that MathJax typesets the equations, that the tutorial shows its
+figures, and that every internal link of the site resolves (``docs/check_links.py``). Outside CI, a missing browser or an unbuilt site skips the
 test and says what to install or run; in CI (``CI=true``) both fail it.
 """
 
@@ -76,12 +76,24 @@ def _check_images(images: list[dict], page: str) -> None:
     assert not broken, f"{page}: images that did not load: {broken}"
 
 
+def _check_equations(driver, page: str) -> None:
+    """MathJax (served by the site itself) has typeset the page's equations."""
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    typeset = "return document.querySelectorAll('mjx-container').length"
+    try:
+        WebDriverWait(driver, 30).until(lambda d: d.execute_script(typeset) > 0)
+    except Exception:  # noqa: BLE001 - a timeout of the wait: say what is missing
+        pytest.fail(f"{page}: MathJax typeset no equation within 30 s", pytrace=False)
+
+
 @pytest.mark.slow
 def test_home_page_and_its_figure_load(browser, tmp_path):
     images = _images(browser, "index.html")
     assert "moving-bogie" in browser.title, browser.title
     assert images, "index.html: the home page shows no figure"
     _check_images(images, "index.html")
+    _check_equations(browser, "index.html")
     browser.save_screenshot(str(SHOTS / "home.png") if SHOTS else str(tmp_path / "home.png"))
 
 
