@@ -51,6 +51,7 @@ source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-n
 exclude_patterns = ["_build", "_generated", "**/.ipynb_checkpoints", "check_links.py"]
 templates_path = ["_templates"]
 root_doc = "index"
+highlight_language = "none"  # code fences without a language (help texts, commands) stay plain
 
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist"]
 myst_heading_anchors = 4
