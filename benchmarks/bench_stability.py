@@ -34,6 +34,9 @@ def main() -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--quick", action="store_true", help="smaller jobs (a smoke run)")
+    from records import add_record_option
+
+    add_record_option(parser)
     args = parser.parse_args()
 
     from moving_bogie.model.cases import table1_case
@@ -90,6 +93,19 @@ def main() -> None:
     for label, wall, cpu, target, _ in rows:
         t = "" if target is None else f"< {target:g}"
         print(f"{label:58s} {wall:9.1f} {cpu:9.1f} {t:>8s}")
+    if args.record:
+        from records import row, write_record
+
+        out = [
+            row(
+                label,
+                f"{wall:.1f} s wall, {cpu:.1f} s CPU",
+                "-",
+                "-" if target is None else f"< {target:g} s",
+            )
+            for label, wall, cpu, target, _ in rows
+        ]
+        write_record(__file__, "Stability analysis", out)
 
 
 if __name__ == "__main__":
