@@ -7,7 +7,8 @@ For each case of Table 1, in the same run and the same process:
 
 * ``search``: :func:`moving_bogie.roots.frequencies.induced_frequencies` with its defaults (double-precision
   argument principle in the window and in the window twice as large, bisection, 30 + 15 digit polish);
-* ``proof``: :func:`moving_bogie.roots.certify.certify` on that result (Krawczyk balls of radius 1e-26 at
+* ``proof``: :func:`moving_bogie.roots.proof.certify.certify` on that result (Krawczyk balls of radius 1e-26
+  at
   200 bits, proven winding numbers on every tile at 96 bits; see docs/frequencies.md).
 
 Times are CPU seconds of this process (``time.process_time``), so a busy machine does not inflate them;
@@ -25,8 +26,8 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
-from moving_bogie.roots.certify import certify
 from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.roots.proof.certify import certify
 
 
 def run_case(case: int) -> dict:

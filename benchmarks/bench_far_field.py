@@ -5,7 +5,7 @@ asserted, the numbers are printed (about a minute on 2 idle cores).
 
 For each parameter set, in the same run:
 
-* ``far-field check``: :func:`moving_bogie.roots.far_field.far_field_radius` alone (the samples of
+* ``far-field check``: :func:`moving_bogie.roots.count.far_field.far_field_radius` alone (the samples of
   |E_chr - E_lead| / |E_lead| on half circles R..32R and two rays);
 * ``new default``: :func:`moving_bogie.roots.frequencies.induced_frequencies` with its default window (the
   far-field radius, the verdict about every root with Im q < 0);
@@ -20,7 +20,7 @@ from __future__ import annotations
 import time
 
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.far_field import far_field_radius
+from moving_bogie.roots.count.far_field import far_field_radius
 from moving_bogie.roots.frequencies import default_window, induced_frequencies
 
 SETS = [

@@ -14,7 +14,8 @@ The whole of Table 2 (the 13 cases of Table 1, 4 roots each with Re q >= 0) is c
 * ``grid + findroot``: ``mpmath.findroot`` (Newton, with the same analytic derivative and the same
   mpmath E_chr) from an N x N grid of starting points (cell centres) over the same window, at 30 digits;
   converged points are folded to Re q >= 0 (pairs q, -conj(q)), deduplicated, kept if inside the window
-  and confirmed by the same precision ladder as ours (:func:`moving_bogie.roots.polish.polish_and_confirm`).
+  and confirmed by the same precision ladder as ours
+  (:func:`moving_bogie.roots.refine.polish.polish_and_confirm`).
 * ``cxroots, our tiles``: ``cxroots.Rectangle(...).roots(f, df, int_method="romb")`` (quadrature
   argument principle and contour moments, double precision, our analytic E_chr' as df) on exactly the
   rectangles our tiling used for that case (they keep 1e-7 from the cut of K and 1e-5 from its branch
@@ -52,8 +53,8 @@ from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
 from moving_bogie.roots import frequencies
 from moving_bogie.roots.frequencies import default_window
-from moving_bogie.roots.polish import PolishError, polish_and_confirm
-from moving_bogie.roots.search_regions import tile_window
+from moving_bogie.roots.refine.polish import PolishError, polish_and_confirm
+from moving_bogie.roots.search.search_regions import tile_window
 
 DPS = 30
 EXTRA_DPS = max(10, DPS // 2)  # as induced_frequencies

@@ -43,8 +43,8 @@ def main() -> None:
 
     from moving_bogie.model.files import load_params_file
     from moving_bogie.roots.frequencies import induced_frequencies
-    from moving_bogie.stability.critical_velocity import critical_velocity
-    from moving_bogie.stability.map import stability_map
+    from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
     layered, _ = load_params_file(EXAMPLE)
     one = layered.replace(track="one-layer")

@@ -8,7 +8,7 @@ sleeper layer that is realistic, m_2 = 150-350 kg/m, or light, m_2 = 60-100 kg/m
 three-layer track; ordinary or heavy wheels; the bogie or two masses) and ``--one-layer`` dimensionless
 Euler-Bernoulli and Timoshenko-Rayleigh sets, each at a speed v/v_cr drawn from 0.3-0.99 (half of them
 from 0.85-0.99, where instability lives), v_cr the critical velocity of the track
-(:func:`~moving_bogie.stability.critical_velocity.critical_velocity`). For every set it runs
+(:func:`~moving_bogie.stability.velocity.critical_velocity.critical_velocity`). For every set it runs
 ``induced_frequencies`` and records:
 
 - a *failure*: an exception (the CLI's exit 2) -- there must be none;
@@ -106,7 +106,7 @@ def draw_sets(seed: int = 24, layered: int = 200, one_layer: int = 100, only: st
     """The random sets: a list of (family, label, DimensionlessParams), reproducible from ``seed``."""
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import PhysicalParams
-    from moving_bogie.stability.critical_velocity import critical_velocity
+    from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
     rng = np.random.default_rng(seed)
     out = []

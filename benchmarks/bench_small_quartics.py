@@ -2,7 +2,8 @@
 
     python benchmarks/bench_small_quartics.py [--repeat N]
 
-The continuation of instability lines (:mod:`moving_bogie.stability.continuation`) evaluates E_chr at one
+The continuation of instability lines (:mod:`moving_bogie.stability.lines.continuation`) evaluates E_chr at
+one
 point per Newton step, so ``quartic_roots`` (the p-roots of N, Euler-Bernoulli and Timoshenko-Rayleigh)
 is called thousands of times on a single polynomial. Batches of at most ``_SCALAR_BATCH`` quartics run the
 same formulas on Python complex numbers; this script times, in one run:
@@ -32,7 +33,7 @@ def _per_call(func, repeat) -> float:
 
 def _lines_cpu() -> float:
     from moving_bogie.paper import stability_figures as sf
-    from moving_bogie.stability.instability_lines import instability_lines
+    from moving_bogie.stability.lines.instability_lines import instability_lines
 
     start = time.process_time()
     instability_lines(sf._base("0.05"), spacings=sf.SPACINGS, alpha_range=(0, 1), **sf._grid(True))

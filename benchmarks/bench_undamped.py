@@ -4,7 +4,7 @@ convergence of the limit boundaries (not a test: run it by hand).
     python benchmarks/bench_undamped.py
 
 Rows: instability lines and critical stiffness at eta_f = 0 (boundaries by counts and bisection,
-stability/undamped.py) next to the ordinary computation (continuation, D-decomposition) at eta_f = 1e-4,
+stability/maps/undamped.py) next to the ordinary computation (continuation, D-decomposition) at eta_f = 1e-4,
 wall and CPU time in the same run. Then the limit eta_f -> 0+ boundaries against the D-decomposition
 crossings at eta_f = 1e-2, 1e-3, 1e-4 (the difference should fall at least like eta_f).
 """
@@ -30,10 +30,10 @@ def _timed(func):
 
 def main() -> None:
     from moving_bogie.model.cases import table1_case
-    from moving_bogie.stability.critical_stiffness import critical_stiffness
-    from moving_bogie.stability.d_decomposition import d_decomposition
-    from moving_bogie.stability.instability_lines import instability_lines
-    from moving_bogie.stability.undamped import UndampedCounter, boundaries, parameter_grid
+    from moving_bogie.stability.lines.instability_lines import instability_lines
+    from moving_bogie.stability.maps.undamped import UndampedCounter, boundaries, parameter_grid
+    from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
+    from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
 
     masses = table1_case(2).replace(d="1.5")
     jobs = [

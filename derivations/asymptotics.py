@@ -16,7 +16,8 @@ generically:
    4 B1^2 B2 B3 (K0^2 - K+ K-) with the B's of Eq. (37) reduced to their leading powers); every other
    term is smaller by at least |q|^-delta, delta = m - (next order) (1/2 for Euler-Bernoulli, 1 for
    Timoshenko-Rayleigh).
-3. **The radius R** (runtime, ``roots/far_field.py``): where |E_chr - E_lead| < |E_lead|, E_chr cannot vanish
+3. **The radius R** (runtime, ``roots/count/far_field.py``): where |E_chr - E_lead| < |E_lead|, E_chr cannot
+   vanish
    (a zero of E_chr would give |E_lead| < |E_lead|). The relative size |E_chr - E_lead| / |E_lead| is
    O(|q|^-delta) / |1 - K+ K- / K0^2|; for Euler-Bernoulli the leading residues give
    K+ K- / K0^2 -> (i/2) e^{-2 i sqrt(2q) d}, of modulus <= 1/2 in the lower half-plane, so the ratio

@@ -18,9 +18,10 @@
 # of unstable induced frequencies ($\mathrm{Im}\,q < 0$) can only change where a root of $E_{chr}$ crosses the
 # **real** $q$-axis. The paper (Section 3.5) traces these crossings, the *instability lines*, in the plane of
 # the velocity $\alpha$ and the wheel mass $\eta_M$, instead of using the D-decomposition method. This
-# notebook computes them with `moving_bogie.stability.instability_lines.instability_lines` for the settings of
+# notebook computes them with `moving_bogie.stability.lines.instability_lines.instability_lines` for the
+# settings of
 # Figures 3, 4, 7 and 8, then maps the degree of instability over the same plane
-# (`moving_bogie.stability.map.stability_map`) and checks a point of the map against the root search.
+# (`moving_bogie.stability.maps.map.stability_map`) and checks a point of the map against the root search.
 #
 # Quick mode (`MOVING_BOGIE_QUICK=1`, used in the test suite) uses coarser seed grids, fewer wheel spacings
 # and fewer panels. `moving-bogie reproduce` rebuilds the paper's figures at full resolution.
@@ -34,8 +35,8 @@ import numpy as np
 
 from moving_bogie import DimensionlessParams, table1_case
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.instability_lines import instability_lines
-from moving_bogie.stability.map import stability_map
+from moving_bogie.stability.lines.instability_lines import instability_lines
+from moving_bogie.stability.maps.map import stability_map
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 GRID = dict(alpha_step=0.02, q_step=0.01) if QUICK else dict(alpha_step=0.01, q_step=0.004)

@@ -34,8 +34,8 @@ from matplotlib.figure import Figure
 
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.critical_velocity import critical_velocity, dispersion_branches
-from moving_bogie.stability.track_comparison import compare_tracks, figure_track_comparison
+from moving_bogie.stability.figures.track_comparison import compare_tracks, figure_track_comparison
+from moving_bogie.stability.velocity.critical_velocity import critical_velocity, dispersion_branches
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 

@@ -1,4 +1,4 @@
-"""The search on layered tracks at alpha = 0 (kernels/cut.py, kernels/cut_curves.py, roots/locate.py).
+"""The search on layered tracks at alpha = 0 (kernels/cut.py, kernels/cut_curves.py, roots/refine/locate.py).
 
 At alpha = 0, N(p, q) is even in p: every cut curve is traced twice (over p < 0 and p > 0), a curve can lie
 on Re q = 0 (Re dq/dp at rounding level, of either sign), and a mass layer's curves end at its resonance,

@@ -1,6 +1,7 @@
 """docs/architecture.md names every module of the package and of derivations/, and only modules that exist.
 
-A module is named by its path in backticks: ``stability/map.py`` for ``src/moving_bogie/stability/map.py``,
+A module is named by its path in backticks: ``stability/maps/map.py`` for
+``src/moving_bogie/stability/maps/map.py``,
 ``__init__.py`` for the package's own, ``derivations/model.py`` for the derivation. The reverse check keeps
 the document's own sections (not the list of examples from other codebases) from describing modules that
 were renamed or removed.

@@ -34,7 +34,7 @@ from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import get_model
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.critical_velocity import critical_velocity
+from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 from moving_bogie.validation.compare import validate
 from moving_bogie.validation.track_modes import ModalTrack
 

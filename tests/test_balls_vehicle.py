@@ -13,7 +13,7 @@ from flint import acb
 
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.balls import BallCharacteristic, square_ball
+from moving_bogie.roots.proof.balls import BallCharacteristic, square_ball
 
 CAR = Path(__file__).resolve().parent.parent / "examples" / "car.toml"
 

@@ -21,7 +21,7 @@ from moving_bogie.kernels.characteristic import Characteristic, CharacteristicAr
 from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.model.catalogue import Model, load_catalogue
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.roots.window import far_field_window
+from moving_bogie.roots.count.window import far_field_window
 
 GENERATED = Path(__file__).resolve().parents[1] / "src" / "moving_bogie" / "generated"
 

@@ -1,7 +1,7 @@
 """The car (four contacts, ten DOFs) certified in ball arithmetic: every root, the count and the verdict.
 
 References independent of the ball code: the mpmath Newton polish at 30 digits from each root's double
-value (roots/polish.py, the block system condensed to its wheels), and the double-precision argument
+value (roots/refine/polish.py, the block system condensed to its wheels), and the double-precision argument
 principle on a circle around each close pair (the car's two bogies interact only through the rail, so their
 roots come in pairs 2e-10, 1e-7 and 3e-7 apart).
 """
@@ -16,12 +16,12 @@ import pytest
 
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.balls import BallCharacteristic
-from moving_bogie.roots.certify import certify, krawczyk
-from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.roots.polish import newton
-from moving_bogie.roots.winding import proven_count
+from moving_bogie.roots.proof.balls import BallCharacteristic
+from moving_bogie.roots.proof.certify import certify, krawczyk
+from moving_bogie.roots.proof.winding import proven_count
+from moving_bogie.roots.refine.polish import newton
 
 CAR = Path(__file__).resolve().parent.parent / "examples" / "car.toml"
 

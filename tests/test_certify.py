@@ -1,7 +1,7 @@
 """Certified induced frequencies (ball arithmetic): enclosures, proven counts and verdicts.
 
 References used here are independent of the ball-arithmetic code: the mpmath Newton polish at 30 digits
-(roots/polish.py), the double-pole residue formula for dE/dq (kernels/track.py), the paper's printed
+(roots/refine/polish.py), the double-pole residue formula for dE/dq (kernels/track.py), the paper's printed
 Table 2, polynomials with known roots, and the double-precision argument-principle count.
 """
 
@@ -22,14 +22,14 @@ from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.cases import table1_case, table2_printed
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.roots.balls import BallCharacteristic, isolate_roots, square_ball
-from moving_bogie.roots.certify import certify, krawczyk
-from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.roots.polish import newton
-from moving_bogie.roots.proof_tiling import Staircase, proof_tiling
+from moving_bogie.roots.proof.balls import BallCharacteristic, isolate_roots, square_ball
+from moving_bogie.roots.proof.certify import certify, krawczyk
+from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
+from moving_bogie.roots.proof.winding import NotProven, proven_count
+from moving_bogie.roots.refine.polish import newton
 from moving_bogie.roots.table2 import compute_table2, format_table2
-from moving_bogie.roots.winding import NotProven, proven_count
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 

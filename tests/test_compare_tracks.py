@@ -29,7 +29,7 @@ def _panel_data(ax):
 
 @pytest.mark.slow
 def test_one_layer_limit_gives_the_same_lines_on_both_panels(capsys, tmp_path, monkeypatch):
-    import moving_bogie.stability.track_comparison as comparison
+    import moving_bogie.stability.figures.track_comparison as comparison
 
     drawn = []
     original = comparison.figure_track_comparison

@@ -1,4 +1,4 @@
-"""Counting through the cut of K (roots/continuation.py, kernels/track.py ``fixed_sides``).
+"""Counting through the cut of K (roots/search/continuation.py, kernels/track.py ``fixed_sides``).
 
 At the avoided crossing of two cut curves of set 72 of the random benchmark's two-layer sets (seed 24), the
 cut is not resolved in double precision and cells beside it could not be counted: 2.9e-3 was left out.
@@ -23,9 +23,9 @@ from test_cut_clearance import AVOIDED_CROSSING
 
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.track import TrackKernel
-from moving_bogie.roots.continuation import ContinuedRegion, count_continued, crossing_roots
-from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.roots.search.continuation import ContinuedRegion, count_continued, crossing_roots
 
 # The two cut curves pass about 5e-6 apart next to q* (their corners: the fold of one at 0.1850731869 +
 # 0.2596481805i, the other at 0.1850778 + 0.2596487i); every point below lies within 2e-5 of q*.

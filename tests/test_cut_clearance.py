@@ -1,4 +1,5 @@
-"""Contour edges beside the cut where q moves fast with p (kernels/cut.py ``clearance``, roots/cut_cells.py).
+"""Contour edges beside the cut where q moves fast with p (kernels/cut.py ``clearance``,
+roots/search/cut_cells.py).
 
 Next to an avoided crossing of two cut curves q_j(p) (a light sleeper layer), |dq/dp| reaches 2.5e4: the
 cut point q(p) from N(p, q) = 0 in double precision is good to about 1e-11 only, and a point 2e-11 beside
@@ -20,8 +21,8 @@ from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import CLEARANCE, cut_locus
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.roots.contour import winding_numbers
-from moving_bogie.roots.cut_cells import ColumnCell, Edge
+from moving_bogie.roots.count.contour import winding_numbers
+from moving_bogie.roots.search.cut_cells import ColumnCell, Edge
 
 # Set 72 of the random benchmark's two-layer sets (seed 24): bogie at 0.86 v_cr, m_2 = 71 kg/m. A fold of
 # the cut at q = 0.18507 + 0.25965i opens towards smaller Re q, and another curve passes 5e-7 above it.

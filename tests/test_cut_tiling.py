@@ -1,4 +1,4 @@
-"""The traced cut of K and the search cells that follow it (kernels/cut.py, roots/search_regions.py).
+"""The traced cut of K and the search cells that follow it (kernels/cut.py, roots/search/search_regions.py).
 
 References: the cut points come from an independent dense scan (numpy.roots of N(p, .) at each real p of a
 fine grid); the tiling is checked with f(z) = z - z0, whose only zero is z0: the winding numbers over all
@@ -13,9 +13,9 @@ from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.contour import winding_number, winding_numbers
+from moving_bogie.roots.count.contour import winding_number, winding_numbers
 from moving_bogie.roots.frequencies import default_window, induced_frequencies
-from moving_bogie.roots.search_regions import tile_window
+from moving_bogie.roots.search.search_regions import tile_window
 
 TR_CASES = [("10", "0.09"), ("100", "0.03")]
 

@@ -163,7 +163,7 @@ HEAVY = {"car.toml", "two-layer.toml", "physical_tr.toml", "dimensionless_tr.tom
     ],
 )
 def test_example_roots_are_simple_zeros_of_the_characteristic_equation(capsys, path):
-    """Every reported root against the argument principle on a tiling of its own (cf. roots/contour.py).
+    """Every reported root against the argument principle on a tiling of its own (cf. roots/count/contour.py).
 
     Reference: a circle around each reported root, clear of the other roots and of the cut of K (its
     distance computed in the test), on which E_chr is evaluated in double precision (the numpy kernels,

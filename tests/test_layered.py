@@ -31,8 +31,8 @@ from moving_bogie.model.catalogue import get_model
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.paper.critical_velocity_formulas import paper_formula
-from moving_bogie.roots.polish import newton
-from moving_bogie.stability.critical_velocity import critical_velocity, dispersion_branches
+from moving_bogie.roots.refine.polish import newton
+from moving_bogie.stability.velocity.critical_velocity import critical_velocity, dispersion_branches
 
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = ("two-layer", "three-layer")

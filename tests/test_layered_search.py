@@ -1,4 +1,4 @@
-"""Induced frequencies and stability maps on layered tracks (kernels/cut.py, roots/, stability/map.py).
+"""Induced frequencies and stability maps on layered tracks (kernels/cut.py, roots/, stability/maps/map.py).
 
 References:
 - the roots of the two-layer example against a dense scan of |E_chr| on a grid below the cut (local minima
@@ -25,10 +25,10 @@ from moving_bogie.kernels.polyroots import poly_roots
 from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.column import exact
-from moving_bogie.stability.map import stability_map
+from moving_bogie.stability.maps.column import exact
+from moving_bogie.stability.maps.map import stability_map
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 

@@ -212,6 +212,51 @@ def test_data_flows_one_way_between_subpackages():
     assert (cycle := _find_cycle(layers)) is None, "subpackages import each other: " + " -> ".join(cycle)
 
 
+def _room(module: str) -> str:
+    """The room of `module` inside its subpackage (``moving_bogie.roots.count``), or the module itself."""
+    parts = module.split(".")
+    room = ".".join(parts[:3])
+    return room if len(parts) > 3 or MODULES.get(room, Path()).name == "__init__.py" else module
+
+
+def test_the_rooms_of_a_subpackage_import_each_other_without_a_cycle():
+    """Importing one module of a room runs the room's ``__init__.py``, which imports all of its modules: the
+    rooms (``roots/count/``, ``roots/search/``, ...) and the modules beside them form no circle either."""
+    graph: dict[str, set[str]] = {}
+    for module, tree in _trees():
+        for _, imported, names in _imports(module, list(_runtime_nodes(tree))):
+            for target in _targets(imported, names):
+                if _layer(target) == _layer(module) and _room(target) != _room(module):
+                    graph.setdefault(_room(module), set()).add(_room(target))
+    assert "moving_bogie.roots.count" in graph.get("moving_bogie.roots.search", ()), "the scan is broken"
+    assert (cycle := _find_cycle(graph)) is None, "rooms import each other: " + " -> ".join(cycle)
+
+
+def test_no_package_hides_one_of_its_modules():
+    """A name re-exported by a package's ``__init__.py`` never equals one of its modules: otherwise
+    ``from pkg import mod`` (and a monkeypatch target ``"pkg.mod.name"``) would get the re-exported object."""
+    offenders = []
+    for module, tree in _trees():
+        path = MODULES[module]
+        if path.name != "__init__.py":
+            continue
+        submodules = {p.stem for p in path.parent.glob("*.py")} | {
+            p.parent.name for p in path.parent.glob("*/__init__.py")
+        }
+        for node in tree.body:
+            bound = []
+            if isinstance(node, ast.ImportFrom | ast.Import):
+                bound = [a.asname or a.name.split(".")[0] for a in node.names]
+                if isinstance(node, ast.ImportFrom) and _resolve(module, node) == module:
+                    bound = []  # ``from . import mod`` binds the module itself
+            elif isinstance(node, ast.FunctionDef | ast.ClassDef):
+                bound = [node.name]
+            offenders += [
+                f"{path.relative_to(REPO)}:{node.lineno} binds {n}" for n in bound if n in submodules
+            ]
+    assert not offenders, "a package's name hides its module of the same name:\n" + "\n".join(offenders)
+
+
 def _private_names_defined(tree: ast.Module) -> set[str]:
     """Private names a module defines: functions, classes, assigned names and attributes (``self._x = ``)."""
     names = set()

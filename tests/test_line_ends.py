@@ -7,7 +7,7 @@ import pytest
 
 from moving_bogie.paper.stability_figures import _base
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.instability_lines import instability_lines
+from moving_bogie.stability.lines.instability_lines import instability_lines
 
 
 @pytest.fixture(scope="module")

@@ -1,5 +1,6 @@
-"""The search on random parameter sets and where it used to fail (roots/counting.py, roots/contour.py,
-roots/search_regions.py, roots/cut_cells.py).
+"""The search on random parameter sets and where it used to fail (roots/search/counting.py,
+roots/count/contour.py,
+roots/search/search_regions.py, roots/search/cut_cells.py).
 
 References:
 - winding numbers of several regions refined together against one region at a time, with f a polynomial
@@ -24,11 +25,11 @@ from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import arms_y_at, cut_locus
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.roots import counting
-from moving_bogie.roots.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
+from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
+from moving_bogie.roots.count.window import far_field_window
 from moving_bogie.roots.frequencies import default_window, induced_frequencies
-from moving_bogie.roots.search_regions import tile_window
-from moving_bogie.roots.window import far_field_window
+from moving_bogie.roots.search import counting
+from moving_bogie.roots.search.search_regions import tile_window
 
 BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_random.py"
 

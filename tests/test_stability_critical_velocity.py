@@ -9,7 +9,7 @@ import pytest
 
 from moving_bogie.model.catalogue import get_model
 from moving_bogie.paper.critical_velocity_formulas import formula_tr, paper_formula
-from moving_bogie.stability.critical_velocity import critical_velocity, phase_speed
+from moving_bogie.stability.velocity.critical_velocity import critical_velocity, phase_speed
 
 
 @pytest.mark.parametrize("eta_s", ["0", "0.3", "2"])

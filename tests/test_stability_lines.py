@@ -15,11 +15,11 @@ from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.critical_stiffness import critical_stiffness
-from moving_bogie.stability.d_decomposition import d_decomposition
-from moving_bogie.stability.frequency_lines import frequency_lines
-from moving_bogie.stability.instability_lines import instability_lines
-from moving_bogie.stability.map import stability_column, stability_map
+from moving_bogie.stability.lines.frequency_lines import frequency_lines
+from moving_bogie.stability.lines.instability_lines import instability_lines
+from moving_bogie.stability.maps.map import stability_column, stability_map
+from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
+from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
 
 COARSE = dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
 
@@ -147,6 +147,6 @@ def test_critical_stiffness_of_case5():
 
 
 def test_d_decomposition_needs_foundation_damping():
-    """The D-decomposition degenerates at eta_f = 0 (the commands use stability/undamped.py there)."""
+    """The D-decomposition degenerates at eta_f = 0 (the commands use stability/maps/undamped.py there)."""
     with pytest.raises(ParameterError, match="eta_f"):
         d_decomposition(table1_case(2))

@@ -14,9 +14,9 @@ import pytest
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.column import exact, settle_cells, stability_column
-from moving_bogie.stability.map import StabilityMap
-from moving_bogie.stability.plots import plot_stability_map
+from moving_bogie.stability.figures.plots import plot_stability_map
+from moving_bogie.stability.maps.column import exact, settle_cells, stability_column
+from moving_bogie.stability.maps.map import StabilityMap
 
 
 def test_two_roots_next_to_the_axis_are_not_counted_unstable():

@@ -18,7 +18,7 @@ from scipy.optimize import minimize_scalar
 from moving_bogie.cli import main
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
-from moving_bogie.stability.supercritical import speed_regime
+from moving_bogie.stability.velocity.supercritical import speed_regime
 from moving_bogie.sweep import make_spec
 from moving_bogie.sweep.speed import speed_arrays
 
@@ -133,7 +133,7 @@ def test_set_refuses_bad_input(args, message, capsys):
 
 def test_undetermined_critical_velocity_is_said_not_guessed(monkeypatch):
     from moving_bogie.errors import MovingBogieError
-    from moving_bogie.stability import critical_velocity as module
+    from moving_bogie.stability.velocity import critical_velocity as module
 
     def fails(*args, **kwargs):
         raise MovingBogieError("no branch has a local minimum of its phase speed")

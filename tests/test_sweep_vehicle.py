@@ -17,7 +17,7 @@ from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
-from moving_bogie.stability.column import settle_cells, stability_column
+from moving_bogie.stability.maps.column import settle_cells, stability_column
 
 CAR = Path(__file__).resolve().parent.parent / "examples" / "car.toml"
 

@@ -1,7 +1,8 @@
 """The verdict on an undamped foundation (eta_f = 0, Table 1's Cases 2-4, 9, 10) is decided.
 
 With eta_f = 0 the cut of K lies on the real axis; the sliver the search leaves around it reaches below the
-axis, and the strip there is counted with K as the limit from below (roots/strip.py). References: the same
+axis, and the strip there is counted with K as the limit from below (roots/count/strip.py). References: the
+same
 case at small eta_f > 0 (the cut then lies above the axis and the strip below it is counted with the
 ordinary E_chr, no limit from below), and the roots located by the ordinary search.
 """
@@ -15,10 +16,10 @@ import pytest
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.count.contour import Rectangle
+from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.damping_limit import damping_limit
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.roots.strip import strip_below_cut
 from moving_bogie.roots.table2 import compute_table2, format_table2
 
 UNDAMPED = (2, 3, 4, 9, 10)
@@ -49,7 +50,7 @@ def _verdict_agrees_with_small_damping(case):
         assert damped.strip is None or damped.strip.mode == "below the cut"
         assert damped.verdict.determined, damped.verdict.reasons
         assert damped.verdict.state == exact.verdict.state, (case, eta_f)
-        # the roots move by O(eta_f) (first order in eta_f, stability/undamped.py)
+        # the roots move by O(eta_f) (first order in eta_f, stability/maps/undamped.py)
         got = sorted((complex(r.q) for r in damped.roots), key=lambda z: z.real)
         ref = sorted((complex(r.q) for r in exact.roots), key=lambda z: z.real)
         assert len(got) == len(ref) and np.allclose(got, ref, atol=1e3 * float(Fraction(eta_f)))
@@ -114,9 +115,9 @@ def test_certify_proves_the_strip_below_the_axis_except_the_branch_point():
 @pytest.mark.slow
 def test_ball_count_from_below_finds_the_root_next_to_a_branch_point():
     """The proven count (K from below on the top edge) against the root the ordinary search locates."""
-    from moving_bogie.roots.balls import BallCharacteristic
-    from moving_bogie.roots.strip import pieces_below_axis
-    from moving_bogie.roots.winding import proven_count
+    from moving_bogie.roots.count.strip import pieces_below_axis
+    from moving_bogie.roots.proof.balls import BallCharacteristic
+    from moving_bogie.roots.proof.winding import proven_count
 
     p = table1_case(3).replace(alpha=Fraction(11, 10), eta_M=Fraction(137, 10))
     result = induced_frequencies(p, dps=20)

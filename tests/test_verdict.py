@@ -12,9 +12,9 @@ from moving_bogie.generated import asymptotics
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.track import TrackKernelArray, foundation_module
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots import far_field
-from moving_bogie.roots.contour import Rectangle
-from moving_bogie.roots.far_field import far_field_radius, rho
+from moving_bogie.roots.count import far_field
+from moving_bogie.roots.count.contour import Rectangle
+from moving_bogie.roots.count.far_field import far_field_radius, rho
 from moving_bogie.roots.frequencies import induced_frequencies
 
 
@@ -88,7 +88,8 @@ def test_window_inside_the_radius_is_undetermined(capsys):
 
 
 def test_undamped_sliver_is_undetermined_when_the_strip_is_not_counted(monkeypatch):
-    """Case 2 (eta_f = 0): without the count of the strip below the cut (roots/strip.py, which decides it:
+    """Case 2 (eta_f = 0): without the count of the strip below the cut (roots/count/strip.py, which decides
+    it:
     tests/test_undamped_verdict.py), the sliver reaching below the axis leaves the verdict UNDETERMINED."""
     from moving_bogie.roots import frequencies
 

@@ -25,12 +25,12 @@ _LAZY = {
     "deflection_shape": "response.closed_form",
     "simulate_finite_beam": "validation.finite_beam",
     "validate": "validation.compare",
-    "critical_velocity": "stability.critical_velocity",
-    "frequency_lines": "stability.frequency_lines",
-    "instability_lines": "stability.instability_lines",
-    "d_decomposition": "stability.d_decomposition",
-    "critical_stiffness": "stability.critical_stiffness",
-    "stability_map": "stability.map",
+    "critical_velocity": "stability.velocity.critical_velocity",
+    "frequency_lines": "stability.lines.frequency_lines",
+    "instability_lines": "stability.lines.instability_lines",
+    "d_decomposition": "stability.stiffness.d_decomposition",
+    "critical_stiffness": "stability.stiffness.critical_stiffness",
+    "stability_map": "stability.maps.map",
 }
 
 

@@ -66,7 +66,7 @@ def lowest_subcritical(lines, alpha_cr: float) -> dict:
 
 
 def run(args) -> int:
-    from moving_bogie.stability.track_comparison import compare_tracks, figure_track_comparison
+    from moving_bogie.stability.figures.track_comparison import compare_tracks, figure_track_comparison
 
     layered, spacings = params_and_spacings(args)
     if layered.track == "one-layer":

@@ -92,10 +92,10 @@ def _check_dps(dps):
 def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
     from moving_bogie.kernels.bound import bind
-    from moving_bogie.roots.contour import Rectangle
+    from moving_bogie.roots.count.contour import Rectangle
     from moving_bogie.roots.damping_limit import damping_limit
     from moving_bogie.roots.frequencies import induced_frequencies
-    from moving_bogie.stability.supercritical import speed_regime
+    from moving_bogie.stability.velocity.supercritical import speed_regime
 
     from .progress import progress_bar
 
@@ -250,7 +250,7 @@ def format_certificate(c) -> list:
 
 def run_table2(args: argparse.Namespace) -> int:
     from moving_bogie.roots.table2 import compute_table2, format_table2
-    from moving_bogie.stability.supercritical import SUPERCRITICAL_MEANING, speed_regime
+    from moving_bogie.stability.velocity.supercritical import SUPERCRITICAL_MEANING, speed_regime
 
     from .progress import progress_bar
 

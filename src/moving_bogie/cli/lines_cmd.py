@@ -82,10 +82,10 @@ def _register_instability_lines(subparsers) -> None:
 
 
 def run_instability_lines(args) -> int:
-    from moving_bogie.stability.instability_lines import instability_lines
-    from moving_bogie.stability.line_ends import EXPLANATIONS
-    from moving_bogie.stability.undamped import MECHANISMS
-    from moving_bogie.stability.undamped_lines import KIND_TEXT
+    from moving_bogie.stability.lines.instability_lines import instability_lines
+    from moving_bogie.stability.lines.line_ends import EXPLANATIONS
+    from moving_bogie.stability.lines.undamped_lines import KIND_TEXT
+    from moving_bogie.stability.maps.undamped import MECHANISMS
 
     params, spacings = params_and_spacings(args)
     units = plane_units(args, params)
@@ -141,8 +141,8 @@ def instability_figure(res, units, alpha_range, theta_max):
     ends explained, alpha = 1 dotted, the operating point marked."""
     from matplotlib.figure import Figure
 
-    from moving_bogie.stability.plots import end_mark_handles, plot_instability_lines
-    from moving_bogie.stability.undamped import title
+    from moving_bogie.stability.figures.plots import end_mark_handles, plot_instability_lines
+    from moving_bogie.stability.maps.undamped import title
 
     fig = Figure(figsize=(7, 5), layout="constrained")
     ax = fig.subplots()
@@ -205,8 +205,8 @@ def _register_stability_map(subparsers) -> None:
 def run_stability_map(args) -> int:
     import numpy as np
 
-    from moving_bogie.stability.instability_lines import instability_lines
-    from moving_bogie.stability.map import stability_map
+    from moving_bogie.stability.lines.instability_lines import instability_lines
+    from moving_bogie.stability.maps.map import stability_map
 
     params, _ = params_and_spacings(args)
     if args.out is not None and args.out.exists() and not args.overwrite:
@@ -242,7 +242,7 @@ def run_stability_map(args) -> int:
 
         write_map(args.out, smap, overwrite=args.overwrite, physical=si_input(args, args.physical))
     if args.plot:
-        from moving_bogie.stability.plots import plot_stability_map
+        from moving_bogie.stability.figures.plots import plot_stability_map
 
         save_figure(plot_stability_map(smap, lines, units=units), args.plot)
     summary = smap.summary()

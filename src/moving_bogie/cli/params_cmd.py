@@ -34,7 +34,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the parameters selected by `args`."""
-    from moving_bogie.stability.supercritical import speed_regime
+    from moving_bogie.stability.velocity.supercritical import speed_regime
 
     params, physical = params_from_args(args)
     regime = speed_regime(params, physical)

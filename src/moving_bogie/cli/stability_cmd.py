@@ -91,7 +91,7 @@ def _register_critical_velocity(subparsers) -> None:
 def run_critical_velocity(args) -> int:
     from moving_bogie.model.catalogue import get_model
     from moving_bogie.paper.critical_velocity_formulas import paper_formula
-    from moving_bogie.stability.critical_velocity import critical_velocity
+    from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
     physical = None
     groups = {name: getattr(args, name) for name in _track_groups() if getattr(args, name) is not None}
@@ -171,8 +171,8 @@ def _register_frequency_lines(subparsers) -> None:
 
 
 def run_frequency_lines(args) -> int:
-    from moving_bogie.stability.frequency_lines import frequency_lines
-    from moving_bogie.stability.plot_units import PlaneUnits
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
+    from moving_bogie.stability.lines.frequency_lines import frequency_lines
 
     params, physical = params_from_args(args)
     units = PlaneUnits.of(params, si_input(args, physical), operating=args.file is not None)
@@ -286,7 +286,7 @@ def _register_critical_stiffness(subparsers) -> None:
 def run_critical_stiffness(args) -> int:
     import numpy as np
 
-    from moving_bogie.stability.critical_stiffness import critical_stiffness
+    from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
 
     params, _ = params_from_args(args)
     with progress_bar("critical stiffness") as bar:
@@ -301,7 +301,7 @@ def run_critical_stiffness(args) -> int:
         print_json(res.to_dict())
     else:
         if res.limit_intervals is not None:
-            from moving_bogie.stability.undamped import CONVENTION
+            from moving_bogie.stability.maps.undamped import CONVENTION
 
             print(f"{res.regime} foundation (eta_f = {float(params.eta_f):g}); convention: {CONVENTION}")
             print(f"method: {res.method}")

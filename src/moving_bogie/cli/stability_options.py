@@ -7,7 +7,7 @@ from fractions import Fraction
 from pathlib import Path
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.stability.plot_units import PlaneUnits
+from moving_bogie.stability.figures.plot_units import PlaneUnits
 
 from .common import (
     MODEL_OPTIONS,

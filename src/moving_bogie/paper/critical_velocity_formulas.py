@@ -2,7 +2,8 @@
 
 They hold for one model each (Euler-Bernoulli with a Pasternak layer, Eq. (65); Timoshenko-Rayleigh without
 one, Eq. (66)), so they belong to the paper, not to the generic runtime: the critical velocity itself is
-computed from the generated N(p, q) of any model (:mod:`moving_bogie.stability.critical_velocity`), and
+computed from the generated N(p, q) of any model (:mod:`moving_bogie.stability.velocity.critical_velocity`),
+and
 :func:`paper_formula` is what a caller passes as its ``formula`` to compare with the print. The proofs that
 the printed formulas equal the derived minimum are in ``derivations/paper.py``.
 """
@@ -43,7 +44,7 @@ def paper_formula(model, groups) -> tuple[str, mpmath.mpf] | None:
     """(equation, alpha_cr) of the paper's closed form for ``model``'s beam and track, or None.
 
     ``groups`` are the track's groups (mpf); the ``formula`` hook of
-    :func:`~moving_bogie.stability.critical_velocity.critical_velocity`.
+    :func:`~moving_bogie.stability.velocity.critical_velocity.critical_velocity`.
     """
     paper = PAPER_FORMULAS.get((model.beam, model.track))
     if paper is None:

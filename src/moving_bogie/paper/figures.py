@@ -1,7 +1,7 @@
 """Recipes of the paper's figures: the stability figures and the time series.
 
 * :class:`StabilityFigure` — Figures 2, 3, 4, 7, 8 and 16, drawn by ``figureN(quick=, progress=)`` of
-  :mod:`moving_bogie.stability.plots` (Sections 3.5-3.8).
+  :mod:`moving_bogie.stability.figures.plots` (Sections 3.5-3.8).
 * :class:`TimeSeriesFigure` — Figures 5, 6, 9-15 and A1-A7: the closed-form vibrations of Eqs. (35)-(43)
   for the cases of Table 1, with the finite-beam overlay of Section 3.4 where the paper shows one
   (full runs only). :data:`SERIES` says, per figure, which cases, panels and time window.
@@ -19,7 +19,7 @@ from moving_bogie.paper.recipe import BuildContext, Built
 
 __all__ = ["SERIES", "STABILITY_FIGURES", "SeriesSpec", "StabilityFigure", "TimeSeriesFigure"]
 
-#: The figures drawn by :mod:`moving_bogie.stability.plots`, by number.
+#: The figures drawn by :mod:`moving_bogie.stability.figures.plots`, by number.
 STABILITY_FIGURES = (2, 3, 4, 7, 8, 16)
 
 

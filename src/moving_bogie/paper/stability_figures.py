@@ -15,17 +15,17 @@ import numpy as np
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import get_model
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.stability.critical_stiffness import critical_stiffness
-from moving_bogie.stability.critical_velocity import critical_velocity
-from moving_bogie.stability.frequency_lines import frequency_lines
-from moving_bogie.stability.instability_lines import instability_lines
-from moving_bogie.stability.map import stability_map
-from moving_bogie.stability.plots import (
+from moving_bogie.stability.figures.plots import (
     end_mark_handles,
     new_figure,
     plot_instability_lines,
     spacing_colors,
 )
+from moving_bogie.stability.lines.frequency_lines import frequency_lines
+from moving_bogie.stability.lines.instability_lines import instability_lines
+from moving_bogie.stability.maps.map import stability_map
+from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
+from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
 __all__ = ["figure2", "figure3", "figure4", "figure7", "figure8", "figure16"]
 

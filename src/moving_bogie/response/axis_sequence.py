@@ -3,7 +3,8 @@
 A track whose cut runs along the real axis to infinity (a Timoshenko-Rayleigh beam: the second cut curve
 touches the real axis at q = sqrt(S)/r and stays just above it) gives E_chr an unbounded sequence of roots
 with small Im q > 0 next to that curve: there the kernel's p-roots are nearly real, the factors e^{i p d}
-of K(+-d) do not decay, and det Kmat (:mod:`~moving_bogie.roots.far_field`) keeps passing near zero. They
+of K(+-d) do not decay, and det Kmat (:mod:`~moving_bogie.roots.count.far_field`) keeps passing near zero.
+They
 all decay, so no verdict needs them, but the residue sum of Eq. (35) does: their residues fall off like
 (Re q)^-4 and with the default window alone the time series misses by about 1e-8 of w_st.
 
@@ -26,7 +27,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.response.residues import residue_expansion
-from moving_bogie.roots.contour import Rectangle
+from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
 
 __all__ = ["AxisSequence", "axis_sequence"]

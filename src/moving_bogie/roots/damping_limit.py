@@ -7,7 +7,7 @@ eta_f = 0 counts them as stable. Under a small foundation damping eta_f > 0 a si
     q(eta_f) = q0 - eta_f E_eta(q0) / E_q(q0) + O(eta_f^2),        E_eta = dE_chr/deta_f at eta_f = 0,
 
 so it becomes unstable, with a growth rate proportional to eta_f, when Im(E_eta / E_q) > 0 (the
-mechanism :mod:`moving_bogie.stability.undamped` follows over whole parameter planes). Here E_eta(q0) is
+mechanism :mod:`moving_bogie.stability.maps.undamped` follows over whole parameter planes). Here E_eta(q0) is
 read from E_chr(q0) at eta_f = :data:`PROBE` (E_chr(q0) = 0 at eta_f = 0, so E_chr(q0; PROBE) =
 PROBE E_eta(q0) to first order), E_q from Eq. (40) at eta_f = 0.
 """

@@ -30,15 +30,15 @@ import numpy as np
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
-from moving_bogie.roots.continuation import ContinuedRegion
-from moving_bogie.roots.contour import Rectangle
-from moving_bogie.roots.counting import count_tiling, frame
-from moving_bogie.roots.far_field import FarField, far_field_radius
-from moving_bogie.roots.locate import locate
-from moving_bogie.roots.polish import PolishError, fixed_text, polish_and_confirm, split_cluster
-from moving_bogie.roots.strip import StripCount, strip_below_cut
+from moving_bogie.roots.count.contour import Rectangle
+from moving_bogie.roots.count.far_field import FarField, far_field_radius
+from moving_bogie.roots.count.strip import StripCount, strip_below_cut
+from moving_bogie.roots.count.window import default_window, far_field_window  # noqa: F401  (public here too)
+from moving_bogie.roots.refine.locate import locate
+from moving_bogie.roots.refine.polish import PolishError, fixed_text, polish_and_confirm, split_cluster
+from moving_bogie.roots.search.continuation import ContinuedRegion
+from moving_bogie.roots.search.counting import count_tiling, frame
 from moving_bogie.roots.verdict import Verdict, judge
-from moving_bogie.roots.window import default_window, far_field_window  # noqa: F401  (public here too)
 
 
 @dataclass(frozen=True)
@@ -101,8 +101,8 @@ class FrequencyResult:
     evaluations: int  # E_chr evaluations (double precision + high precision)
     warnings: tuple = field(default=())
     far_field: FarField | None = None
-    certificate: object = None  # roots.certify.Certificate when asked for (certify=True)
-    strip: StripCount | None = None  # the sliver below the real axis, counted (roots/strip.py)
+    certificate: object = None  # roots.proof.certify.Certificate when asked for (certify=True)
+    strip: StripCount | None = None  # the sliver below the real axis, counted (roots/count/strip.py)
     unlocated: tuple = ()  # (cell, roots counted in it but not located): cells the search could not resolve
     decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
 
@@ -331,7 +331,7 @@ def induced_frequencies(
         decaying_outside=decaying_outside,
     )
     if certify:
-        from moving_bogie.roots.certify import certify as prove
+        from moving_bogie.roots.proof.certify import certify as prove
 
         result = dataclasses.replace(result, certificate=prove(result))
     report(1.0)

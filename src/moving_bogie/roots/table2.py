@@ -13,10 +13,10 @@ from decimal import Decimal
 import mpmath
 
 from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
+from moving_bogie.roots.count.strip import branch_point_text
 from moving_bogie.roots.damping_limit import damping_limit
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.roots.polish import fixed_text
-from moving_bogie.roots.strip import branch_point_text
+from moving_bogie.roots.refine.polish import fixed_text
 
 #: Half a unit of the print's last decimal (six decimals).
 PRINT_TOLERANCE = Decimal("0.0000005")

@@ -1,7 +1,7 @@
 """The work of one block of a sweep (run on a worker): a verdict for every point, as plain arrays.
 
 Every point gets the number of unstable induced frequencies (roots of E_chr, Eq. (38), with Im q < 0) and
-the degree of instability, from the column count of :mod:`moving_bogie.stability.column` (argument
+the degree of instability, from the column count of :mod:`moving_bogie.stability.maps.column` (argument
 principle over a whole column of eta_M, kappa_v or eta_v values, roots by Newton's method continued from
 the neighbouring alpha). Points the column count cannot settle get a full count
 (:func:`~moving_bogie.roots.frequencies.induced_frequencies`); ``check`` further points per block, drawn
@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.stability.map import map_columns
+from moving_bogie.stability.maps.map import map_columns
 
 __all__ = ["BlockTask", "VARIABLES", "evaluate_block"]
 

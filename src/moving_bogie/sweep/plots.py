@@ -7,8 +7,8 @@ import json
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.stability.plot_units import axis_label, mark_operating_point, unit_suffix
-from moving_bogie.stability.plots import hatch_cells
+from moving_bogie.stability.figures.plot_units import axis_label, mark_operating_point, unit_suffix
+from moving_bogie.stability.figures.plots import hatch_cells
 
 __all__ = ["plot_sweep_slice", "select_slice"]
 

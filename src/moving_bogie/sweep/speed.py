@@ -1,6 +1,6 @@
 """The speed regime of every point of a sweep: above or below the critical velocity of its track.
 
-alpha_cr depends on the track's groups only (:mod:`moving_bogie.stability.supercritical`), so it is
+alpha_cr depends on the track's groups only (:mod:`moving_bogie.stability.velocity.supercritical`), so it is
 computed once per combination of the varied track groups (once in all when none varies), and the flag of
 every point is a comparison: cheap enough to write with the store's metadata, before any block runs.
 """
@@ -11,7 +11,7 @@ import itertools
 
 import numpy as np
 
-from moving_bogie.stability.supercritical import speed_regime
+from moving_bogie.stability.velocity.supercritical import speed_regime
 from moving_bogie.sweep.design import SweepSpec
 
 __all__ = ["MAX_TRACKS", "speed_arrays"]
@@ -30,7 +30,7 @@ def _track_axes(spec: SweepSpec) -> list[int]:
 def speed_arrays(spec: SweepSpec) -> dict | None:
     """``alpha_cr`` and ``supercritical`` at every point of ``spec`` (arrays of its shape), or None when
     more than :data:`MAX_TRACKS` distinct tracks would need their critical velocity or one of them has
-    none (:func:`~moving_bogie.stability.supercritical.speed_regime` says why)."""
+    none (:func:`~moving_bogie.stability.velocity.supercritical.speed_regime` says why)."""
     try:
         return _arrays(spec)
     except _Undetermined:

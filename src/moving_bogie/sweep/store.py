@@ -136,7 +136,8 @@ def create_store(path, spec: SweepSpec) -> None:
         params=json.dumps(spec.params.to_dict()),
         sweep=json.dumps(spec.describe()),
         search_window=(
-            "column counts: the lower half of roots.window.default_window (the largest over each column); "
+            "column counts: the lower half of roots.count.window.default_window "
+            "(the largest over each column); "
             "full counts (settled, checked points): induced_frequencies' far-field window"
         ),
         package_version=_version(),
@@ -156,7 +157,7 @@ def create_store(path, spec: SweepSpec) -> None:
 
 def _write_speed(g, spec: SweepSpec) -> None:
     """``supercritical`` and ``alpha_cr`` at every point (:mod:`moving_bogie.sweep.speed`), or a note."""
-    from moving_bogie.stability.supercritical import SUPERCRITICAL_MEANING
+    from moving_bogie.stability.velocity.supercritical import SUPERCRITICAL_MEANING
     from moving_bogie.sweep.speed import MAX_TRACKS, speed_arrays
 
     arrays = speed_arrays(spec)
@@ -233,7 +234,7 @@ def open_sweep(path):
 
 
 def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
-    """Write a :class:`~moving_bogie.stability.map.StabilityMap` as a 2-D sweep store (alpha, parameter).
+    """Write a :class:`~moving_bogie.stability.maps.map.StabilityMap` as a 2-D sweep store (alpha, parameter).
 
     With ``physical`` (the SI parameters of the map's base point) the store is in SI units, as a sweep of
     a ``[physical]`` input: dimensions ``v``, ``M``, ... (each SI value the group times
@@ -243,7 +244,7 @@ def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
     """
     from fractions import Fraction
 
-    from moving_bogie.stability.column import exact
+    from moving_bogie.stability.maps.column import exact
     from moving_bogie.sweep.design import Axis
 
     def axis(name, values):

@@ -1,0 +1,190 @@
+"""E_chr of any vehicle in ball arithmetic: the block system's determinant over truncated Taylor series.
+
+For a vehicle without the closed form of Eq. (38), :class:`~moving_bogie.roots.proof.balls.BallCharacteristic`
+evaluates E_chr = det [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]] (:mod:`moving_bogie.kernels.vehicle`)
+with every entry an ``acb_series`` in t = q - c: D = -q^2 M + i q C + K from the generated matrices (balls
+around the exact parameters), Kmat_ij = K(xi_i - xi_j) as series from the residue sum. Gaussian elimination
+on series is exact algebra, so coefficient j of the result encloses E_chr^(j)(xi)/j! for every xi of the
+ball (coefficient 1 is dE_chr/dq, Eq. (40), with no Jacobi formula needed). A pivot whose constant term
+contains 0 cannot be divided by: the determinant is then not decided at this ball (``None``), never guessed.
+
+For the orders the proofs use (E_chr alone, or E_chr and dE_chr/dq: at most two terms) the series are split
+into their coefficient matrices, A(t) = A_0 + A_1 t, and the determinant is taken by Arb's ``acb_mat``
+(C code, preconditioned by the midpoint inverse, so that a wide ball does not blow up the way interval
+Gaussian elimination does): E = det A_0 and, by Jacobi's formula, E' = E tr(A_0^-1 A_1) where A_0 is
+proven regular, else E' = sum_k det(A_0 with row k replaced by row k of A_1) (a ball holding a root, as in
+the Krawczyk test). Both are enclosures for every matrix in the balls, so the proofs stay proofs.
+"""
+
+from __future__ import annotations
+
+from flint import acb, acb_mat, acb_series, arb
+
+
+class BlockBalls:
+    """A generated vehicle module bound to ball parameter values.
+
+    Parameters
+    ----------
+    module : module
+        ``moving_bogie.generated.vehicle_<name>``.
+    values : mapping
+        Parameter name -> acb ball for every name of ``module.MATRIX_ARGUMENTS``.
+    exact : mapping, optional
+        Parameter name -> exact value (Fraction): offsets xi_i - xi_j equal exactly share a kernel value.
+    """
+
+    def __init__(self, module, values, exact=None):
+        args = {name: values[name] for name in module.MATRIX_ARGUMENTS}
+        self.contacts = int(module.CONTACTS)
+        self.size = len(module.DOFS)
+        self.matrices = tuple(
+            f(**args) for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
+        )
+        x = [acb(v) for v in module.contact_positions(**args)]
+        n = self.contacts
+        # offset 0 (the diagonal, exact) first, then one per pair i != j; side of each by its sign. With the
+        # exact parameter values (``exact``: name -> Fraction) offsets that are equal exactly (L_c + d - d and
+        # L_c) share one kernel value: each ball contains the exact offset, so either ball serves both.
+        keys = None
+        if exact is not None and all(exact[name] is not None for name in module.MATRIX_ARGUMENTS):
+            x_exact = module.contact_positions(**{name: exact[name] for name in module.MATRIX_ARGUMENTS})
+            keys = {(i, j): x_exact[i] - x_exact[j] for i in range(n) for j in range(n)}
+        self.offsets = [acb(0)]
+        seen = {0: 0} if keys is not None else {}
+        self.index = [[0] * n for _ in range(n)]
+        for i in range(n):
+            for j in range(n):
+                if i == j:
+                    continue
+                key = keys[(i, j)] if keys is not None else (i, j)
+                if key not in seen:
+                    seen[key] = len(self.offsets)
+                    self.offsets.append(x[i] - x[j])
+                self.index[i][j] = seen[key]
+        N = self.size
+        self.mats = tuple(acb_mat([[acb(x) for x in row] for row in m]) for m in self.matrices)
+        # wheel rows of an N x N matrix: Sel (n x N) picks them, Sel^T puts them back
+        self.select = acb_mat([[1 if c == r else 0 for c in range(N)] for r in range(n)])
+        self.place = self.select.transpose()
+
+    def sides(self) -> list:
+        """+1 (xi >= 0: roots with Im p > 0) or -1 for each offset; None if the sign is not decided."""
+        out = []
+        for xi in self.offsets:
+            if xi.real.is_zero():
+                out.append(1)
+            elif xi.real > 0:
+                out.append(1)
+            elif xi.real < 0:
+                out.append(-1)
+            else:
+                out.append(None)
+        return out
+
+    def det(self, qs, K, length):
+        """E_chr as an acb_series of ``length`` terms, from q (series) and K (series, one per offset)."""
+        if length <= 2:
+            return self.det_linear(qs, K, length)
+        n, N = self.contacts, self.size
+        M, C, Kv = self.matrices
+        iq = acb(0, 1) * qs
+        q2 = qs * qs
+
+        def entry(a, c):
+            return -q2 * acb(M[a][c]) + iq * acb(C[a][c]) + acb(Kv[a][c])
+
+        D = [[entry(a, c) for c in range(N)] for a in range(N)]
+        pi = acb(arb.pi())
+        A = []
+        for r in range(n):
+            row = []
+            for c in range(N):
+                total = acb_series([acb(0)], prec=length)
+                for k in range(n):
+                    total += 2 * K[self.index[r][k]] * D[k][c]
+                row.append(total + pi if c == r else total)
+            A.append(row)
+        A += [list(D[r]) for r in range(n, N)]
+        return series_det(A, length)
+
+    def coefficient_matrices(self, qs, K, length):
+        """[A_0] or [A_0, A_1]: the block matrix A(t) = A_0 + A_1 t from q and K as series in t."""
+        n = self.contacts
+        M, C, Kv = self.mats
+        q0, q1 = coefficient(qs, 0), coefficient(qs, 1)
+        i = acb(0, 1)
+        pi = acb(arb.pi())
+        sel, place = self.select, self.place
+        D0 = M * (-q0 * q0) + C * (i * q0) + Kv
+        K0 = acb_mat([[coefficient(K[self.index[r][k]], 0) for k in range(n)] for r in range(n)])
+        top0 = sel * D0
+        A0 = D0 + place * (K0 * top0 * 2 + sel * pi - top0)
+        if length == 1:
+            return [A0]
+        D1 = (M * (-2 * q0) + C * i) * q1
+        K1 = acb_mat([[coefficient(K[self.index[r][k]], 1) for k in range(n)] for r in range(n)])
+        top1 = sel * D1
+        return [A0, D1 + place * ((K1 * top0 + K0 * top1) * 2 - top1)]
+
+    def log_derivative(self, qs, K):
+        """(E_chr, E_chr'/E_chr = tr(A_0^-1 A_1)) over the ball, or None where A_0 is not proven regular."""
+        A0, A1 = self.coefficient_matrices(qs, K, 2)
+        try:
+            return A0.det(), A0.solve(A1).trace()
+        except ZeroDivisionError:
+            return None
+
+    def det_linear(self, qs, K, length):
+        """:meth:`det` for ``length`` 1 or 2 on the coefficient matrices A_0, A_1 (module docstring)."""
+        A = self.coefficient_matrices(qs, K, length)
+        E = A[0].det()
+        if length == 1:
+            return acb_series([E], prec=1)
+        A0, A1 = A
+        try:
+            dE = E * A0.solve(A1).trace()
+        except ZeroDivisionError:  # A_0 not proven regular: the row-replacement form of Jacobi's formula
+            dE = acb(0)
+            N = self.size
+            for k in range(N):
+                row = acb_mat([[1 if (r == c == k) else 0 for c in range(N)] for r in range(N)])
+                dE += (A0 + row * (A1 - A0)).det()
+        return acb_series([E, dE], prec=2)
+
+
+def coefficient(series, j) -> acb:
+    """Coefficient ``j`` of an acb_series (0 beyond its stored terms) or, for j = 0, an acb itself."""
+    if not isinstance(series, acb_series):
+        return acb(series) if j == 0 else acb(0)
+    coeffs = series.coeffs()
+    return acb(coeffs[j]) if j < len(coeffs) else acb(0)
+
+
+def series_det(A, length):
+    """det A for a square list of acb_series rows (pivot: the largest constant-term midpoint); None if a
+    pivot it must divide by has a constant term that contains 0."""
+    N = len(A)
+    rows = [list(r) for r in A]
+    det = acb_series([acb(1)], prec=length)
+    for k in range(N):
+        p = max(
+            range(k, N),
+            key=lambda r: abs(complex(acb(rows[r][k].coeffs()[0] if rows[r][k].coeffs() else 0).mid())),
+        )
+        pivot = rows[p][k]
+        c0 = acb(pivot.coeffs()[0]) if pivot.coeffs() else acb(0)
+        if p != k:
+            rows[k], rows[p] = rows[p], rows[k]
+            det = -det
+        det = det * pivot
+        if k == N - 1:
+            break  # the last pivot is a factor only, never a divisor: it may contain 0 (a ball with a root)
+        if c0.contains(0):
+            return None
+        inv = 1 / pivot
+        for r in range(k + 1, N):
+            f = rows[r][k] * inv
+            for c in range(k + 1, N):
+                rows[r][c] = rows[r][c] - f * rows[k][c]
+    return det

@@ -1,0 +1,123 @@
+"""Root balls of N(p, q) (Eq. (24)), a polynomial in p with ball coefficients: at a point and over a q-ball.
+
+Root isolation at a point q (Smith 1970, "Error bounds for zeros of a polynomial based upon Gerschgorin's
+theorems"): for approximations z_1..z_n of the roots of a polynomial of degree n with leading coefficient
+a_n, every root lies in the union of the discs |z - z_k| <= n |w_k|, w_k = P(z_k) / (a_n prod_{j != k}
+(z_k - z_j)), and a disc disjoint from all others holds exactly one root. The approximations come from
+Arb's ``acb_poly.roots`` on the midpoint polynomial.
+
+Over a ball of q (the direct method, :func:`direct_root_balls`), each root ball at the centre is widened by
+a Krawczyk test in p that holds for every q of the ball: with Y ~ 1 / N_p(p_m, m),
+
+    p_m - Y N(p_m, q) + (1 - Y N_p(P, q)) (P - p_m)  inside P   =>  one root in P for every q of the ball,
+
+N(p_m, q) by the mean-value form in q around the centre m. It evaluates N on the wide ball, which is
+cheap and tight for the quartic N of the one-layer beams; :mod:`~moving_bogie.roots.proof.p_discs` serves the
+layered tracks.
+"""
+
+from __future__ import annotations
+
+from functools import reduce
+
+from flint import acb, acb_poly, arb
+
+from moving_bogie.errors import MovingBogieError
+
+__all__ = ["Undecided", "derivative_coefficients", "direct_root_balls", "horner", "isolate_roots"]
+
+
+class Undecided(MovingBogieError):
+    """Ball arithmetic could not decide a fact at this ball size (a p-root meets the real axis, or the
+    root discs of N(p, q) overlap): subdivide the q-ball or raise the precision."""
+
+
+def isolate_roots(coeffs, tol=None) -> list:
+    """Balls, one per root, of the polynomial with acb ``coeffs`` (highest power first).
+
+    ``tol`` is the accuracy asked of the approximations (default: just enough to isolate them); the balls
+    are the Smith discs around them, whatever the accuracy.
+
+    Raises
+    ------
+    Undecided
+        If the Smith discs of two roots overlap (roots too close for the width of the coefficients).
+    """
+    coeffs = list(coeffs)
+    while len(coeffs) > 1 and coeffs[0].is_zero():
+        coeffs = coeffs[1:]
+    n = len(coeffs) - 1
+    if n < 1:
+        return []
+    if coeffs[0].contains(0):
+        raise Undecided("leading coefficient of N(p, q) not bounded away from 0")
+    low_first = acb_poly(list(reversed(coeffs)))
+    mid_poly = acb_poly([c.mid() for c in reversed(coeffs)])
+    try:
+        approx = [z.mid() for z in mid_poly.roots(tol=tol)]
+    except ValueError as exc:
+        raise Undecided(f"root isolation of N(p, q) failed: {exc}") from None
+    lead = coeffs[0]
+    balls = []
+    for k, zk in enumerate(approx):
+        den = lead
+        for j, zj in enumerate(approx):
+            if j != k:
+                den *= zk - zj
+        w = low_first(zk) / den
+        radius = arb(n) * abs(w)
+        balls.append(acb(arb(zk.real, radius.upper()), arb(zk.imag, radius.upper())))
+    for k in range(n):
+        for j in range(k + 1, n):
+            if balls[k].overlaps(balls[j]):
+                raise Undecided("root discs of N(p, q) overlap")
+    return balls
+
+
+def horner(coeffs, x):
+    """The polynomial with ``coeffs`` (highest power first) at x, for acb and acb_series alike."""
+    return reduce(lambda acc, c: acc * x + c, coeffs[1:], coeffs[0])
+
+
+def derivative_coefficients(coeffs) -> list:
+    """Coefficients (highest power first) of the derivative."""
+    return [c * (len(coeffs) - 1 - k) for k, c in enumerate(coeffs[:-1])] or [0]
+
+
+def direct_root_balls(foundation, args, q: acb, tol, prec: int) -> list:
+    """Root balls of N(p, xi), each holding exactly one root for every xi in the ball q (module text).
+
+    Raises
+    ------
+    Undecided
+        When the leading coefficient may vanish over the ball, a Krawczyk test fails or two balls overlap.
+    """
+    centre = isolate_roots([acb(c) for c in foundation.n_coeffs(q.mid(), **args)], tol)
+    if q.rad() == 0:
+        return centre
+    n = [acb(c) for c in foundation.n_coeffs(q, **args)]
+    if n[0].contains(0):  # the degree in p must not drop anywhere in the q ball
+        raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
+    n1 = derivative_coefficients(n)
+    nq = [acb(c) for c in foundation.n_coeffs_dq(q, **args)]
+    n_mid = [acb(c) for c in foundation.n_coeffs(q.mid(), **args)]
+    balls = []
+    for p_ball in centre:
+        pm = p_ball.mid()
+        Y = (1 / horner(derivative_coefficients(n_mid), pm)).mid()
+        shift = horner(n_mid, p_ball) + horner(nq, p_ball) * (q - q.mid())
+        rho = 2 * (Y * shift).abs_upper() + p_ball.rad() + arb(2) ** (-prec)
+        for _ in range(3):
+            P = acb(arb(pm.real, rho), arb(pm.imag, rho))
+            K = pm - Y * shift + (1 - Y * horner(n1, P)) * (P - pm)
+            if P.contains_interior(K):
+                balls.append(K)
+                break
+            rho = 4 * rho
+        else:
+            raise Undecided("no isolating ball for a root of N(p, q) over the q ball")
+    for k in range(len(balls)):
+        for j in range(k + 1, len(balls)):
+            if balls[k].overlaps(balls[j]):
+                raise Undecided("root balls of N(p, q) overlap over the q ball")
+    return balls

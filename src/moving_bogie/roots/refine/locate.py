@@ -1,0 +1,180 @@
+"""Locating the roots counted in a region (step 2 of
+:func:`~moving_bogie.roots.frequencies.induced_frequencies`): bisection with the argument principle until a
+cell holds one root that Newton's method reaches without leaving it; a cell that cannot be split
+consistently is handed to Newton's method from a grid of starts.
+"""
+
+from __future__ import annotations
+
+import mpmath
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, piece_points, winding_numbers
+
+__all__ = ["locate", "newton_inside"]
+
+
+def locate(fast, rect, n, newton_cell):
+    """Bisect ``rect`` (holding ``n`` roots) into cells of one root each.
+
+    Returns ([(q0, multiplicity, cell)], warning). A cell that cannot be split into halves whose counts
+    add up (a root on every split line tried) is handed to Newton's method from a grid of starts inside
+    it; if that does not find its roots either, they are missing from the result and ``warning`` is
+    (text, (cell, missing)) (the count then disagrees with the roots found: the verdict is UNDETERMINED
+    unless the cell lies in Im q > 0, where a missing root cannot be unstable).
+    """
+    out, warning = [], None
+    level = [(rect, n)]
+    spent = fast.evaluations
+    while level:
+        if fast.evaluations - spent > _LOCATE_POINTS:  # bounded time: Newton from grids
+            for r, k in level:
+                starts = _grid_roots(fast, r, k) if k else []
+                if len(starts) != k:
+                    text = f"locate: gave up splitting {r} holding {k} root(s) ({_LOCATE_POINTS} evaluations)"
+                    warning = (text, (r, k - len(starts)))
+                out += [(q, 1, r) for q in starts]
+            break
+        # every cell of a level is split at once: one batched evaluation of E_chr per refinement of the
+        # contours of all their halves (what costs is mostly the call, not the points)
+        split = []
+        for r, k in level:
+            if k == 0:
+                continue
+            size = max(r.width, r.height)
+            # a cell between two cut curves is only ever split across Re q, so its height never shrinks: its
+            # smaller side decides (bisecting it further only makes a sliver a root sits in)
+            if k == 1 and min(r.width, r.height) <= newton_cell:
+                q = newton_inside(fast, r)
+                if q is not None:
+                    out.append((q, 1, r))
+                    continue
+            if size < 1e-10 * max(1.0, abs(r.center)):
+                out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
+                continue
+            split.append((r, k, _towards_origin(r) + _FRACTIONS))
+        level, failed = [], []
+        while split:
+            # two halves each (a cell at a fold of the cut may give three pieces), each cell at its next
+            # split fraction
+            pieces = [r.split(fracs[0]) for r, _, fracs in split]
+            flat = [piece for group in pieces for piece in group]
+            counts = winding_numbers(fast, flat, max_points=[piece_points(piece) for piece in flat])
+            retry, at = [], 0
+            for (r, k, fracs), group in zip(split, pieces):
+                mine, at = counts[at : at + len(group)], at + len(group)
+                if any(isinstance(c, EdgeZeroError) for c in mine) or sum(mine) != k:
+                    retry.append((r, k, fracs[1:]))
+                else:
+                    level.extend(zip(group, mine))
+            split = [c for c in retry if c[2]]
+            failed += [c for c in retry if not c[2]]
+        for r, k, _ in failed:
+            starts = _grid_roots(fast, r, k)
+            if len(starts) != k:
+                text = f"locate: could not split {r} holding {k} root(s) into consistent halves"
+                warning = (text, (r, k - len(starts)))
+            out += [(q, 1, r) for q in starts]
+    return out, warning
+
+
+#: Evaluations of E_chr one call of :func:`locate` may spend splitting (a few seconds); the cells not yet
+#: resolved then get Newton's method from a grid of starts, and a warning if that falls short.
+_LOCATE_POINTS = 300_000
+
+#: Split fractions tried in turn until the halves' counts add up to the cell's.
+_FRACTIONS = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
+
+#: Within this distance of q = 0 lie the vehicle's and the beam's own roots (the default window's scale).
+_NEAR = 16.0
+
+
+def _towards_origin(r) -> tuple:
+    """A first split fraction for a large rectangle (a far-field window's) that cuts off its part within
+    about ``_NEAR`` of q = 0 along its longer side, where the roots gather: bisection would need log2(size /
+    _NEAR) levels of long contours to get there. None (an empty tuple) for a small region or a curved cell."""
+    if type(r) is not Rectangle or max(r.width, r.height) < 8 * _NEAR:
+        return ()
+    lo, hi = (r.x0, r.x1) if r.width >= r.height else (r.y0, r.y1)
+    if lo >= 0:
+        cut = lo + max(_NEAR, lo)
+    elif hi <= 0:
+        cut = hi - max(_NEAR, -hi)
+    else:
+        cut = _NEAR if hi >= -lo else -_NEAR
+    frac = (cut - lo) / (hi - lo)
+    return (frac,) if 0.01 < frac < 0.35 or 0.65 < frac < 0.99 else ()
+
+
+def _grid_roots(fast, rect, k):
+    """Distinct roots inside ``rect`` reached by Newton's method from a 7 x 7 grid of starts (at most k)."""
+    found = []
+    xs = np.linspace(rect.x0, rect.x1, 9)[1:-1]
+    ys = np.linspace(rect.y0, rect.y1, 9)[1:-1]
+    for y in ys:
+        for x in xs:
+            z = complex(x, y)
+            if not rect.contains(z):
+                continue
+            q = _newton_from(fast, z, rect)
+            if q is not None and all(abs(q - o) > 1e-9 * max(1.0, abs(q)) for o in found):
+                found.append(q)
+    return [mpmath.mpc(q) for q in found[:k]]
+
+
+def _newton_from(fast, q, rect):
+    """Double-precision Newton from ``q``; the root if it converges inside ``rect``."""
+    for _ in range(40):
+        try:
+            E, dE = (complex(v[0]) for v in fast.value_and_derivative(np.array([q])))
+        except MovingBogieError:
+            return None
+        if dE == 0 or not np.isfinite(dE) or not np.isfinite(E):
+            return None
+        step = E / dE
+        q -= step
+        if abs(step) < 1e-13 * max(1, abs(q)):
+            return q if rect.contains(q) else None
+    return None
+
+
+def newton_inside(fast, rect, starts: int = 9):
+    """Double-precision Newton steps from the cell centre and, in a long cell (one along the cut holds its
+    root anywhere along it), from ``starts - 1`` more points along its longer side, all in one batch; an
+    iterate leaving the cell's box by more than a quarter of its size is dropped. Returns the first root
+    reached that lies in the cell: the cell holds one root by its count, so a root found in it is that one.
+    """
+    c = complex(rect.center)
+    long = max(rect.width, rect.height) > 4 * min(rect.width, rect.height)
+    u = (np.arange(starts) - (starts - 1) / 2) / starts if long else np.zeros(1)
+    u = u[np.argsort(np.abs(u), kind="stable")]  # the centre first
+    q = c + u * (rect.width if rect.width >= rect.height else 1j * rect.height)
+    margin = 0.25 * max(rect.width, rect.height)
+    live = np.ones(q.size, dtype=bool)
+    done = np.zeros(q.size, dtype=bool)
+    for _ in range(30):
+        idx = np.nonzero(live & ~done)[0]
+        if not idx.size:
+            break
+        try:
+            E, dE = (np.asarray(v, dtype=complex) for v in fast.value_and_derivative(q[idx]))
+        except MovingBogieError:
+            return None
+        with np.errstate(all="ignore"):
+            step = E / dE
+        ok = np.isfinite(step) & (dE != 0)
+        q[idx[ok]] -= step[ok]
+        z = q[idx]
+        inside = (
+            (z.real >= rect.x0 - margin)
+            & (z.real <= rect.x1 + margin)
+            & (z.imag >= rect.y0 - margin)
+            & (z.imag <= rect.y1 + margin)
+        )
+        live[idx[~(ok & inside)]] = False
+        done[idx[ok]] = np.abs(step[ok]) < 1e-13 * np.maximum(1, np.abs(q[idx[ok]]))
+    for k in np.nonzero(live & done)[0]:
+        if rect.contains(complex(q[k])):
+            return mpmath.mpc(complex(q[k]))
+    return None

@@ -1,0 +1,261 @@
+"""Unstable induced frequencies along one column (fixed alpha, a vector of theta values) of a stability map.
+
+The degree of instability is the most negative Im q over the induced frequencies (0 when stable, Eq. (35):
+a root with Im q < 0 grows like exp(|Im q| tau)). A whole column of theta values (theta = eta_M, kappa_v or
+eta_v, in which E_chr is a polynomial at fixed q and alpha) is counted at once by the argument principle
+(:mod:`column_count`), then its roots are located by Newton's method (:mod:`column_roots`). Cells the
+column count cannot settle (a root within ~1e-7 of the real axis, a count that is not an integer, or fewer
+roots found than counted) are settled by :func:`settle_cells`: a full count at that point by
+:func:`~moving_bogie.roots.frequencies.induced_frequencies`, the judge of every verdict.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from fractions import Fraction
+
+import numpy as np
+
+from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.cut import cut_locus
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.roots.count.window import default_window
+from moving_bogie.stability.maps.column_count import count_box
+from moving_bogie.stability.maps.column_roots import delves_lyness, dip_candidates, locate_roots
+
+__all__ = [
+    "ColumnResult",
+    "at_theta",
+    "branch_points",
+    "branch_samples",
+    "column_window",
+    "exact",
+    "settle_cells",
+    "stability_column",
+    "top_edge",
+]
+
+
+@dataclass(frozen=True)
+class ColumnResult:
+    """Unstable induced frequencies along one column (fixed alpha) of theta values.
+
+    ``uncertain`` marks cells whose count is not certified; ``settled`` those whose verdict comes from a
+    full count (:func:`settle_cells`) instead of the column count.
+    """
+
+    alpha: float
+    thetas: np.ndarray
+    count: np.ndarray  # unstable induced frequencies (pairs once)
+    degree: np.ndarray  # most negative Im q (0 where stable)
+    uncertain: np.ndarray  # the count could not be certified
+    roots: list  # per theta: the unstable roots (Re q >= 0 member of each pair)
+    settled: np.ndarray | None = None
+
+
+def exact(x) -> Fraction:
+    """The shortest decimal text of a float, read exactly (as the command line reads its options)."""
+    return Fraction(str(float(x)))
+
+
+def at_theta(params, parameter: str, theta, held=()):
+    """``params`` with ``parameter = theta`` (exact), the groups of ``held`` kept at their values instead of
+    following it (:class:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic`)."""
+    return params.replace(**{name: getattr(params, name) for name in held}, **{parameter: theta})
+
+
+def column_window(params, parameter: str, thetas, held=()) -> tuple[float, float, float]:
+    """(X, Y) covering :func:`~moving_bogie.roots.count.window.default_window` (the scale of the induced
+    frequencies) at the smallest and at the largest theta of the column, and the smaller of the two X (the
+    part of the real axis every cell's window holds).
+
+    Not the far-field window of :func:`~moving_bogie.roots.frequencies.induced_frequencies` (whose radius R
+    can be hundreds of times larger, too long a contour to sample at this spacing): a root with Im q < 0
+    between the two would be missed here; the full counts of the per-chunk check of a sweep would see it.
+    """
+    windows = [
+        default_window(at_theta(params, parameter, exact(theta), held))
+        for theta in (float(np.min(thetas)), float(np.max(thetas)))
+    ]
+    return max(w.x1 for w in windows), max(-w.y0 for w in windows), min(w.x1 for w in windows)
+
+
+def stability_column(
+    sweep: SweepCharacteristic,
+    alpha: float,
+    thetas: np.ndarray,
+    *,
+    window: tuple[float, float] | None = None,
+    top: float = 0.0,
+    moment_top: float | None = None,
+    spacing: float = 0.006,
+    coarse: float = 0.03,
+    max_step: float = np.pi / 3,
+    max_bend: float = 0.2,
+    min_spacing: float = 1e-10,
+    polish: int = 10,
+    guesses: Sequence | None = None,
+    extra: Sequence[float] | None = None,
+) -> ColumnResult:
+    """Unstable induced frequencies for every theta of ``thetas`` at one alpha (see the module text).
+
+    Parameters
+    ----------
+    sweep : SweepCharacteristic
+    alpha : float
+    thetas : ndarray
+        Values of ``sweep.parameter`` (> 0).
+    window : (X, Y), optional
+        Half-width and depth of the counting rectangle (default :func:`column_window`; the real axis is
+        then sampled at ``spacing`` up to the X every cell's own window reaches, at ``coarse`` beyond).
+    top : float
+        Im q of the counting rectangle's upper edge (0; slightly negative when the cut reaches the axis).
+    moment_top : float, optional
+        Im q of the upper edge of the rectangle whose power sums locate the roots (default 0.4 eta_f,
+        between the real axis and the cut). Roots found above the real axis are stable and discarded.
+    spacing, coarse : float
+        Initial sampling of the top edges and of the other edges.
+    max_step, max_bend : float
+        Largest accepted phase step of E between samples (radians), and bend of log|E| at a midpoint.
+    min_spacing : float
+        Finest sampling of the real axis; refinement still wanted there flags the cell ``uncertain``.
+    polish : int
+        Largest number of Newton steps on each candidate (a candidate that has not converged to 1e-11
+        by then is dropped).
+    guesses : sequence of arrays, optional
+        Extra starting points per theta (the unstable roots of the neighbouring column).
+    extra : sequence of float, optional
+        Extra samples (values of Re q) of the counting rectangle's top edge. Default: when ``top`` < 0 (the
+        cut of K reaches the real axis), :func:`branch_samples` around the branch points of K on the axis.
+    """
+    thetas = np.asarray(thetas, dtype=float)
+    scale = float(thetas.max())
+    t = thetas / scale
+    fine_until = None
+    if window is None:
+        *window, fine_until = column_window(sweep.params, sweep.parameter, thetas, sweep.held)
+    X, Y = window
+    if extra is None and top < 0:
+        extra = branch_samples(branch_points(sweep.params, alpha))
+    if moment_top is None:
+        moment_top = top + 0.4 * float(sweep.params.eta_f)
+
+    def coeffs(z):
+        K, dK, _ = sweep.kernel(z, alpha, derivative=True)
+        return sweep.coefficients(z, K, scale=scale, dK=dK)
+
+    def count_coeffs(z):  # the counting needs E only
+        K, _, _ = sweep.kernel(z, alpha)
+        return sweep.coefficients(z, K, scale=scale), None
+
+    box = count_box(
+        count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend, fine_until, extra
+    )
+    total = np.rint(box.n_rect).astype(int) + box.n_axis
+    uncertain = box.uncertain | ((total % 2) != 0)
+    count = np.maximum(total // 2, 0)
+    unstable = np.nonzero(count > 0)[0]
+    roots = [np.zeros(0, dtype=complex) for _ in t]
+
+    def short():
+        return np.array([j for j in unstable if len(roots[j]) < count[j]], dtype=int)
+
+    def merge(more):
+        for j in range(len(t)):
+            if len(more[j]) > len(roots[j]):
+                roots[j] = more[j]
+
+    if guesses is not None:
+        cands = [list(guesses[j]) if count[j] else [] for j in range(len(t))]
+        merge(locate_roots(sweep, alpha, thetas, cands, count, polish, spread=False))
+    todo = short()
+    if todo.size:
+        cands = [[] for _ in t]
+        for j in todo:
+            cands[j] = dip_candidates(box, j) + list(roots[j])
+        merge(locate_roots(sweep, alpha, thetas, cands, count, polish, spread=False))
+    todo = short()
+    if todo.size:
+        cands = [list(roots[j]) for j in range(len(t))]
+        merge(locate_roots(sweep, alpha, thetas, cands, count, polish))
+    # Delves-Lyness, on a taller rectangle (roots near the real axis well inside), then on one whose top
+    # lies a little below the axis (only the deeper roots inside)
+    for box_top in (max(moment_top, top), top - 0.005, top - 0.02):
+        todo = short()
+        if not todo.size:
+            break
+        cands = [[] for _ in t]
+        for j, r in zip(todo, delves_lyness(coeffs, t[todo], X, Y, box_top)):
+            cands[j] = r + list(roots[j])
+        merge(locate_roots(sweep, alpha, thetas, cands, count, polish, spread=False))
+    degree = np.array([min(0.0, float(np.min(r.imag))) if len(r) else 0.0 for r in roots])
+    uncertain |= np.array([len(r) != c for r, c in zip(roots, count)])
+    return ColumnResult(float(alpha), thetas, count, degree, uncertain, roots, np.zeros(len(t), dtype=bool))
+
+
+def settle_cells(
+    params, parameter: str, column: ColumnResult, *, alpha=None, thetas=None, dps: int = 15, held=()
+) -> ColumnResult:
+    """Settle the ``uncertain`` cells of ``column`` by a full count at each (induced_frequencies).
+
+    ``alpha`` and ``thetas`` are the exact values of the column (default: the shortest decimal text of
+    its floats); the groups of ``held`` keep their values in ``params`` (:func:`at_theta`). A cell stays
+    uncertain only when the full count itself is not certified (``count_ok`` false, an UNDETERMINED
+    verdict, or the search fails): its verdict is then never claimed.
+    """
+    from moving_bogie.roots.frequencies import induced_frequencies
+
+    cells = np.nonzero(column.uncertain)[0]
+    if not cells.size:
+        return column
+    count, degree = column.count.copy(), column.degree.copy()
+    uncertain, settled = column.uncertain.copy(), np.zeros(len(count), dtype=bool)
+    roots = list(column.roots)
+    base = params.replace(alpha=exact(column.alpha) if alpha is None else alpha)
+    for j in cells:
+        theta = exact(column.thetas[j]) if thetas is None else thetas[j]
+        try:
+            res = induced_frequencies(at_theta(base, parameter, theta, held), dps=dps)
+        except MovingBogieError:
+            continue
+        unstable = [complex(r.q) for r in res.unstable_roots]
+        count[j] = len(unstable)
+        degree[j] = min([0.0, *(q.imag for q in unstable)])
+        roots[j] = np.array(sorted(unstable, key=lambda q: q.imag), dtype=complex)
+        uncertain[j] = not (res.count_ok and res.verdict.determined)
+        settled[j] = True
+    return replace(column, count=count, degree=degree, uncertain=uncertain, roots=roots, settled=settled)
+
+
+def top_edge(params, alphas) -> float:
+    """Im q of the counting rectangle's top: 0, or just below the cut where it reaches the real axis."""
+    lowest = np.inf
+    for a in (float(np.min(alphas)), float(np.max(alphas))):
+        cut = cut_locus(params.replace(alpha=exact(a)), -3.0, 3.0, samples=2001)
+        if cut.points.size:
+            lowest = min(lowest, cut.im_low)
+    return 0.0 if lowest > 1e-6 else min(0.0, lowest) - 1e-7
+
+
+def branch_points(params, alpha) -> list:
+    """Re q > 0 of the branch points of K on the real axis (cusps and folds of the cut there), ascending."""
+    cut = cut_locus(params.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801)
+    xs = [f.q.real for f in cut.folds if f.q.real > 0 and abs(f.q.imag) < 1e-9]
+    if np.isfinite(cut.x_start) and cut.x_start > 0 and abs(cut.im_low) < 1e-9:
+        xs.append(cut.x_start)
+    out = []
+    for x in sorted(xs):
+        if not out or x - out[-1] > 1e-9:
+            out.append(float(x))
+    return out
+
+
+def branch_samples(points) -> np.ndarray | None:
+    """Top-edge samples 1e-8 to 1e-2 on both sides of each branch point: K grows like the inverse square
+    root of the distance there, so E changes on the scale of the distance (a root 2e-4 below the axis next
+    to one was missed with the regular samples alone)."""
+    if not points:
+        return None
+    d = np.geomspace(1e-8, 1e-2, 25)
+    return np.concatenate([np.concatenate([x - d[::-1], [x], x + d]) for x in points])

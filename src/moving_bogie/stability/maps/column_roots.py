@@ -1,0 +1,127 @@
+"""Locating the unstable roots of a column once their number is known (:mod:`column_count`).
+
+Newton's method on E_chr (Eq. (38)) is started, in turn, from the neighbouring column's roots
+(continuation in alpha), from the places on the real axis where a root just below (or above) it shows
+(|E| dips, the refinement of the count went deep), from the neighbouring theta's roots, and from the
+Delves-Lyness roots of a rectangle: the power sums s_m = (1/2 pi i) contour-integral of q^m E'/E dq over
+its boundary (Gauss-Legendre panels on the right half, the left half from E(-conj q) = conj E(q)) are the
+power sums of the roots inside, which are then the zeros of a polynomial (Newton's identities).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from moving_bogie.stability.maps.column_count import horner_rows
+
+__all__ = ["delves_lyness", "dip_candidates", "from_power_sums", "locate_roots", "polish_roots"]
+
+
+def delves_lyness(coeffs, t, X, Y, top, *, panel=0.05, nodes=16, max_roots=8) -> list:
+    """Roots inside -X..X x -Y..top for each t (Delves-Lyness), or an empty list where that fails.
+
+    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z.
+    """
+    x, w = np.polynomial.legendre.leggauss(nodes)
+    zs, ws = [], []
+    for a, b in (
+        (complex(0, -Y), complex(X, -Y)),
+        (complex(X, -Y), complex(X, top)),
+        (complex(X, top), complex(0, top)),
+    ):
+        n = max(1, int(np.ceil(abs(b - a) / panel)))
+        for k in range(n):
+            pa, pb = a + (b - a) * k / n, a + (b - a) * (k + 1) / n
+            zs.append(pa + (pb - pa) * (x + 1) / 2)
+            ws.append((pb - pa) / 2 * w)
+    z, wz = np.concatenate(zs), np.concatenate(ws)
+    c, dc = coeffs(z)
+    E, dE = horner_rows(c, t[:, None]), horner_rows(dc, t[:, None])
+    g = dE / E
+    out = []
+    for j in range(len(t)):
+
+        def s(m, j=j):
+            right = np.sum(z**m * g[j] * wz)
+            left = np.sum((-np.conj(z)) ** m * (-np.conj(g[j])) * np.conj(wz))
+            return (right + left) / (2j * np.pi)
+
+        n = s(0).real
+        if abs(n - round(n)) > 1e-3 or not 0 < round(n) <= max_roots:
+            out.append([])
+            continue
+        out.append(list(from_power_sums(np.array([s(m) for m in range(1, int(round(n)) + 1)]))))
+    return out
+
+
+def from_power_sums(s):
+    """Roots of the monic polynomial whose roots have power sums s[0..n-1] (Newton's identities)."""
+    n = len(s)
+    e = [1.0 + 0j]
+    for k in range(1, n + 1):
+        e.append(sum((-1) ** (i - 1) * e[k - i] * s[i - 1] for i in range(1, k + 1)) / k)
+    coeffs = [(-1) ** k * e[k] for k in range(n + 1)]
+    return np.roots(coeffs) if n > 0 else np.zeros(0, dtype=complex)
+
+
+def dip_candidates(box, j, limit=10):
+    """Starting points below the places of the top edge where a root near the real axis shows."""
+    zr = box.path[box.n_outer :]
+    mag = np.abs(box.E[j, box.n_outer :])
+    inner = np.nonzero((mag[1:-1] < mag[:-2]) & (mag[1:-1] < mag[2:]))[0] + 1
+    chosen, out = [], []
+    for z_ in list(zr[inner[np.argsort(mag[inner])][:limit]]) + box.near_axis[j][::-1]:
+        if len(chosen) >= limit:
+            break
+        if all(abs(z_ - c) > 0.002 for c in chosen):
+            chosen.append(z_)
+            out += [z_ - 0.002j, z_ - 0.01j, z_ - 1e-4j]
+    return out
+
+
+def locate_roots(sweep, alpha, thetas, cands, count, steps, spread=True):
+    """Polish the candidates of every cell at once; with ``spread``, cells still short of roots then
+    borrow the roots of the nearest complete cell (continuation in theta), front by front."""
+    roots = [np.zeros(0, dtype=complex) for _ in thetas]
+    tried: dict = {}
+    for _ in range(len(thetas) + 1):
+        owner = np.concatenate([np.full(len(c), j) for j, c in enumerate(cands)]).astype(int)
+        flat = np.array([x for c in cands for x in c], dtype=complex)
+        if flat.size:
+            flat = polish_roots(sweep, flat, alpha, thetas[owner], steps)
+        for j in set(owner.tolist()):
+            r = list(roots[j]) + [x for x in flat[owner == j] if np.isfinite(x) and x.imag < 0]
+            keep = []
+            for x in r:
+                x = -np.conj(x) if x.real < 0 else x
+                if all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):
+                    keep.append(x)
+            roots[j] = np.array(sorted(keep, key=lambda x: x.imag), dtype=complex)
+        complete = np.array([len(r) >= c for r, c in zip(roots, count)])
+        cands = [[] for _ in thetas]
+        for j in np.nonzero(~complete)[0]:
+            for nb in (j - 1, j + 1):
+                if 0 <= nb < len(thetas) and complete[nb] and count[nb] > 0 and nb not in tried.get(j, ()):
+                    cands[j] += list(roots[nb])
+                    tried.setdefault(j, set()).add(nb)
+        if not spread or not any(cands):
+            break
+    return roots
+
+
+def polish_roots(sweep, q, alpha, thetas, steps, tol=1e-11):
+    """Newton on E_chr for every (q, theta) pair; non-converged entries come back as nan."""
+    q = q.astype(complex)
+    done = np.zeros(q.shape, dtype=bool)
+    for _ in range(steps):
+        todo = ~done & np.isfinite(q)
+        if not np.any(todo):
+            break
+        E, dE = sweep.e_and_dq(q[todo], np.full(int(todo.sum()), alpha), thetas[todo])
+        with np.errstate(all="ignore"):
+            step = E / dE
+        ok = np.isfinite(step) & (np.abs(step) < 0.1)
+        qt = np.where(ok, q[todo] - step, np.nan)
+        q[todo] = qt
+        done[todo] = ok & (np.abs(step) < tol * np.maximum(1.0, np.abs(qt)))
+    return np.where(done, q, np.nan)

@@ -1,0 +1,192 @@
+"""Stability maps: the degree of instability over an (alpha, theta) grid, in vectorised double precision.
+
+Each column (fixed alpha, every theta = eta_M, kappa_v or eta_v at once) is counted and its roots located
+by :func:`~moving_bogie.stability.maps.column.stability_column`; the neighbouring column's roots are the first
+starting points of Newton's method (continuation in alpha). Cells the column count cannot settle are
+settled by a full count at that point (:func:`~moving_bogie.stability.maps.column.settle_cells`), so that
+every
+cell's verdict is the one :func:`~moving_bogie.roots.frequencies.induced_frequencies` gives; a cell is left
+``uncertain`` only when that full count is not certified either. Columns are spread over ``workers``
+processes in chunks.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+
+import numpy as np
+
+from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.stability.maps.column import ColumnResult, settle_cells, stability_column, top_edge
+
+__all__ = ["ColumnResult", "StabilityMap", "map_columns", "stability_column", "stability_map"]
+
+
+@dataclass(frozen=True)
+class StabilityMap:
+    """Degree of instability ``degree[j, i]`` at (alphas[i], thetas[j]) and the unstable count.
+
+    ``settled`` marks the cells decided by a full count, ``uncertain`` those still not certified.
+    """
+
+    params: object
+    model: str
+    parameter: str
+    alphas: np.ndarray
+    thetas: np.ndarray
+    degree: np.ndarray
+    count: np.ndarray
+    uncertain: np.ndarray
+    settled: np.ndarray | None = None
+
+    def save_npz(self, path) -> None:
+        """Write the arrays (and the parameters as JSON text) to ``path`` (numpy .npz)."""
+        np.savez_compressed(
+            path,
+            alphas=self.alphas,
+            thetas=self.thetas,
+            degree=self.degree,
+            count=self.count,
+            uncertain=self.uncertain,
+            settled=self.settled_cells,
+            params=json.dumps(self.params.to_dict()),
+            model=self.model,
+            parameter=self.parameter,
+        )
+
+    @property
+    def settled_cells(self) -> np.ndarray:
+        return np.zeros(self.count.shape, dtype=bool) if self.settled is None else self.settled
+
+    def uncertain_list(self) -> list[dict]:
+        """The uncertain cells as ``{"alpha": ..., parameter: ...}`` (row-major order)."""
+        rows, cols = np.nonzero(self.uncertain)
+        return [
+            {"alpha": float(self.alphas[i]), self.parameter: float(self.thetas[j])}
+            for j, i in zip(rows, cols)
+        ]
+
+    def summary(self) -> dict:
+        return {
+            "params": self.params.to_dict(),
+            "model": self.model,
+            "parameter": self.parameter,
+            "alpha_range": [float(self.alphas[0]), float(self.alphas[-1]), len(self.alphas)],
+            # named after the vertical axis (eta_M_range by default; theta_range before, not kept)
+            f"{self.parameter}_range": [float(self.thetas[0]), float(self.thetas[-1]), len(self.thetas)],
+            "unstable_fraction": float(np.mean(self.count > 0)),
+            "max_degree": float(-self.degree.min()) if self.degree.size else 0.0,
+            "settled_cells": int(self.settled_cells.sum()),
+            "uncertain_cells": int(self.uncertain.sum()),
+            "uncertain": self.uncertain_list(),
+        }
+
+
+def map_columns(params, parameter, alphas, thetas, options=None, settle=True, held=()) -> list[ColumnResult]:
+    """Columns at ``alphas`` (continuation from each column to the next), uncertain cells settled.
+
+    ``alphas`` and ``thetas`` may be exact (Fractions): the columns run on their floats and the full
+    counts of :func:`~moving_bogie.stability.maps.column.settle_cells` on the exact values. ``held``: groups
+    that keep their values instead of following ``parameter`` (mu_v, J_b in a sweep in SI units;
+    :class:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic`).
+    """
+    options = dict(options or {})
+    floats = np.array([float(a) for a in alphas])
+    if "top" not in options:
+        options["top"] = top_edge(params, floats)
+    theta_floats = np.array([float(t) for t in thetas])
+    sweep = SweepCharacteristic(params, parameter, held=held)
+    out = []
+    for a, a_float in zip(alphas, floats):
+        guesses = out[-1].roots if out else None
+        col = stability_column(sweep, a_float, theta_floats, guesses=guesses, **options)
+        if settle:
+            exact_thetas = None if isinstance(thetas, np.ndarray) else list(thetas)
+            exact_alpha = None if isinstance(a, float | np.floating) else a
+            col = settle_cells(
+                params, parameter, col, alpha=exact_alpha, thetas=exact_thetas, held=sweep.held
+            )
+        out.append(col)
+    return out
+
+
+def _column_task(args):
+    return map_columns(*args)
+
+
+def stability_map(
+    params,
+    *,
+    parameter: str = "eta_M",
+    alphas: Sequence[float] | None = None,
+    thetas: Sequence[float] | None = None,
+    workers: int | None = None,
+    chunk: int = 8,
+    settle: bool = True,
+    progress: Callable[[float], None] | None = None,
+    **options,
+) -> StabilityMap:
+    """Degree of instability over the grid ``alphas x thetas`` (beyond the paper).
+
+    Parameters
+    ----------
+    params : DimensionlessParams or BoundModel
+        Everything but alpha and ``parameter`` (cf1, cf2 kept fixed when the parameter is eta_M); the
+        vehicle is that of their model.
+    parameter : {"eta_M", "kappa_v", "eta_v"}
+    alphas, thetas : sequence of float
+        Grid (default 0..1.2 and 1..200 in 200 steps each, theta > 0).
+    workers : int, optional
+        Processes (default: the number of CPUs); 1 runs in-process.
+    chunk : int
+        Columns per task.
+    settle : bool
+        Settle the cells the column count leaves uncertain by a full count (default True).
+    progress : callable, optional
+        Called with the fraction of columns done.
+    **options
+        Passed to :func:`~moving_bogie.stability.maps.column.stability_column`.
+    """
+    params = bind(params).params
+    alphas = np.asarray(np.linspace(0.0, 1.2, 200) if alphas is None else alphas, dtype=float)
+    thetas = np.asarray(np.linspace(1.0, 200.0, 200) if thetas is None else thetas, dtype=float)
+    if "top" not in options:
+        options["top"] = top_edge(params, alphas)
+    chunks = [alphas[i : i + chunk] for i in range(0, len(alphas), chunk)]
+    tasks = [(params, parameter, c, thetas, options, settle) for c in chunks]
+    workers = workers or min(len(chunks), os.cpu_count() or 1)
+    columns = []
+    if workers <= 1:
+        results = map(_column_task, tasks)
+        pool = None
+    else:
+        pool = ProcessPoolExecutor(max_workers=workers)
+        results = pool.map(_column_task, tasks)
+    try:
+        for k, result in enumerate(results):
+            columns += result
+            if progress is not None:
+                progress((k + 1) / len(tasks))
+    finally:
+        if pool is not None:
+            pool.shutdown(cancel_futures=True)
+
+    def stack(name):
+        return np.stack([getattr(c, name) for c in columns], axis=1)
+
+    return StabilityMap(
+        params,
+        params.vehicle,
+        parameter,
+        alphas,
+        thetas,
+        stack("degree"),
+        stack("count"),
+        stack("uncertain"),
+        stack("settled"),
+    )
