@@ -180,6 +180,7 @@ def load_catalogue(folder: str | Path) -> Catalogue:
         if not path.is_file():
             raise ModuleNotFoundError(f"no generated module {name!r} in {folder}")
         spec = importlib.util.spec_from_file_location(f"{tag}.{name}", path)
+        assert spec is not None and spec.loader is not None  # a file location always has a loader
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
         return module

@@ -21,6 +21,8 @@ class ModelValues:
     """
 
     __slots__ = ("_model", "_values")
+    _model: Model
+    _values: dict[str, Fraction]
 
     def _set(self, model: Model, values: dict[str, Fraction]) -> None:
         object.__setattr__(self, "_model", model)
