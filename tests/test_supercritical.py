@@ -18,6 +18,7 @@ from scipy.optimize import minimize_scalar
 from moving_bogie.cli import main
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
+from moving_bogie.roots.table2 import case_list
 from moving_bogie.stability.velocity.supercritical import speed_regime
 from moving_bogie.sweep import make_spec
 from moving_bogie.sweep.speed import speed_arrays
@@ -102,7 +103,11 @@ def test_table2_says_every_case_is_subcritical(capsys, compute_once):
         if case["params"]["beam"] == "eb":  # Eq. (65) with the shear layer eta_s
             assert case["alpha_cr"] == pytest.approx(np.sqrt(1 + float(case["params"]["eta_s"])), rel=1e-12)
     main(["table2"])
-    assert "speed: every case subcritical" in capsys.readouterr().out
+    text = capsys.readouterr().out
+    assert "speed: every case subcritical" in text
+    # The summary names the unstable cases of the computed verdicts (Cases 1, 5, 12, 13 in the paper).
+    unstable = [case["case"] for case in data["cases"] if case["verdict"]["state"] == "unstable"]
+    assert unstable and f"verdicts: {len(unstable)} unstable ({case_list(unstable)}: " in text
     assert len(tables) == 1
 
 

@@ -20,7 +20,7 @@ from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.damping_limit import damping_limit
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.roots.table2 import compute_table2, format_table2
+from moving_bogie.roots.table2 import case_list, compute_table2, format_table2, summary_lines
 
 UNDAMPED = (2, 3, 4, 9, 10)
 
@@ -95,11 +95,32 @@ def test_strip_count_finds_the_root_next_to_a_branch_point():
 
 
 def test_table2_summary_is_truthful():
+    """The closing lines name the unstable cases, the stable ones and, on a line of their own, the undamped
+    ones decided by the strip below the cut: each list read from the computed verdicts and strips."""
     table = compute_table2(cases=(2, 12))
     text = format_table2(table)
+    summary = text.splitlines()[-len(summary_lines(table)) :]
+    unstable = [row.case for row in table.rows if row.result.verdict.state == "unstable"]
+    stable = [row.case for row in table.rows if row.result.verdict.state == "stable"]
+    undamped = [row.case for row in table.rows if row.result.strip is not None and row.result.strip.decided]
+    assert unstable and stable and undamped  # the three lists are exercised
     assert "UNDETERMINED" not in text
-    assert "verdicts: 1 stable, 1 unstable (Case 2: eta_f = 0" in text
+    verdicts = next(line for line in summary if line.startswith("verdicts:"))
+    assert verdicts == (
+        f"verdicts: {len(unstable)} unstable ({case_list(unstable)}: an induced frequency with Im q < 0), "
+        f"{len(stable)} stable ({case_list(stable)})"
+    )
+    undamped_line = next(line for line in summary if line.startswith("undamped"))
+    assert undamped_line.startswith(f"undamped (eta_f = 0): {case_list(undamped)}, ")
     assert "count ok, stable (4 real root(s), neutral)" in text
+
+
+def test_case_lists_name_every_case():
+    assert case_list([]) == "no case"
+    assert case_list([3]) == "Case 3"
+    assert case_list([1, 5, 12, 13]) == "Cases 1, 5, 12, 13"
+    assert case_list([2, 3, 4, 6, 7, 8, 9, 10, 11]) == "Cases 2-4, 6-11"
+    assert case_list(list(range(1, 14))) == "Cases 1-13"
 
 
 @pytest.mark.slow

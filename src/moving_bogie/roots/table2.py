@@ -120,7 +120,7 @@ def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None, certify:
 def format_table2(table: Table2, decimals: int = 6) -> str:
     """The paper's layout: per case, q^r (with +-) and q^i of each root; printed value and difference."""
     lines = ["Table 2. Induced frequencies (one root of each pair q, -conj(q); Re q >= 0)"]
-    lines.append(f"printed: the paper's values for {_case_list(table.printed_cases)}; {_unprinted(table)}")
+    lines.append(f"printed: the paper's values for {case_list(table.printed_cases)}; {_unprinted(table)}")
     lines.append("")
     head = (
         f"{'case':>4} {'#':>2} {'q^r':>{decimals + 5}} {'q^i':>{decimals + 5}}   {'printed':>22}   difference"
@@ -163,22 +163,28 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
 
 
 def summary_lines(table: Table2) -> list:
-    """The closing lines: print and counts, then the verdicts (undetermined and unproven named)."""
-    undetermined = [row.case for row in table.rows if not row.result.verdict.determined]
-    states = [row.result.verdict.state for row in table.rows]
-    verdicts = f"verdicts: {states.count('stable')} stable, {states.count('unstable')} unstable"
-    if undetermined:
-        verdicts += f", UNDETERMINED for {_case_list(undetermined)}"
+    """The closing lines: print and counts; the unstable cases, then the stable ones (undetermined named);
+    the undamped cases whose verdict the strip below the cut decided, on a line of their own; the proofs."""
+    by_state = {
+        state: [row.case for row in table.rows if row.result.verdict.state == state]
+        for state in ("unstable", "stable", "undetermined")
+    }
+    verdicts = (
+        f"verdicts: {len(by_state['unstable'])} unstable ({case_list(by_state['unstable'])}: an induced "
+        f"frequency with Im q < 0), {len(by_state['stable'])} stable ({case_list(by_state['stable'])})"
+    )
+    if by_state["undetermined"]:
+        verdicts += f", UNDETERMINED for {case_list(by_state['undetermined'])}"
     undamped = [row.case for row in table.rows if row.result.strip is not None and row.result.strip.decided]
-    if undamped:
-        verdicts += (
-            f" ({_case_list(undamped)}: eta_f = 0, the strip below the cut on the real axis counted with K "
-            "as the limit from below)"
-        )
     lines = [
         "all cases match the print and their counts" if table.ok else "MISMATCH: see the rows marked above"
     ]
     lines.append(verdicts)
+    if undamped:
+        lines.append(
+            f"undamped (eta_f = 0): {case_list(undamped)}, each verdict decided by counting the strip below "
+            "the cut on the real axis with K as the limit from below"
+        )
     if any(row.result.certificate is not None for row in table.rows):
         unproven = [
             row.case
@@ -188,7 +194,7 @@ def summary_lines(table: Table2) -> list:
         lines.append(
             "proofs: every verdict proven"
             if not unproven
-            else f"proofs: verdict NOT PROVEN for {_case_list(unproven)} (the rows above say what remains)"
+            else f"proofs: verdict NOT PROVEN for {case_list(unproven)} (the rows above say what remains)"
         )
     return lines
 
@@ -198,21 +204,30 @@ def _stable_text(result) -> str:
     return f"stable ({real} real root(s), neutral)" if real else "stable"
 
 
-def _case_list(cases) -> str:
+def case_list(cases) -> str:
+    """'Case 3', 'Cases 1, 5, 12, 13', runs of three or more as 'Cases 2-4, 6-11'; 'no case' when empty."""
+    cases = list(cases)
     if not cases:
         return "no case"
     if len(cases) == 1:
         return f"Case {cases[0]}"
-    if list(cases) == list(range(cases[0], cases[-1] + 1)) and len(cases) > 2:
-        return f"Cases {cases[0]}-{cases[-1]}"
-    return "Cases " + ", ".join(str(c) for c in cases)
+    runs: list[list[int]] = []
+    for case in cases:
+        if runs and case == runs[-1][-1] + 1:
+            runs[-1].append(case)
+        else:
+            runs.append([case])
+    parts = []
+    for run in runs:
+        parts += [f"{run[0]}-{run[-1]}"] if len(run) > 2 else [str(c) for c in run]
+    return "Cases " + ", ".join(parts)
 
 
 def _unprinted(table) -> str:
     rest = tuple(row.case for row in table.rows if not row.printed)
     if not rest:
         return "every case is compared"
-    return f"{_case_list(rest)} have no printed values in the reference data (computed only, column blank)"
+    return f"{case_list(rest)} have no printed values in the reference data (computed only, column blank)"
 
 
 def certificate_line(row) -> str:
