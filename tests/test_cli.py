@@ -106,12 +106,15 @@ def test_every_subcommand_has_help(capsys):
     [
         (["params"], "no parameters given"),
         (["params", "--case", "99"], "valid cases of Table 1"),
-        (["params", "--case", "7", "--file", "x.toml"], "either --case or --file"),
+        (
+            ["params", "--case", "7", "--file", str(Path(__file__).parents[1] / "examples/car.toml")],
+            "either --case or --file",
+        ),
         (["params", "--eta-f", "0.1"], "missing parameter 'alpha' (velocity ratio v/v_ref): give --alpha"),
         (["params", "--case", "1", "--vehicle", "car"], "case 1 of Table 1 does not set it; give --L-c"),
         (["params", "--case", "7", "--eta-M", "-3"], "eta_M must be a positive finite number (got -3)"),
         (["params", "--case", "7", "--S", "100"], "S is not a parameter of the model eb/one-layer/bogie"),
-        (["params", "--file", "does-not-exist.toml"], "No such file or directory: does-not-exist.toml"),
+        (["params", "--file", "does-not-exist.toml"], "--file: does-not-exist.toml: no such file"),
     ],
 )
 def test_errors_are_one_line_and_exit_2(capsys, argv, fragment):

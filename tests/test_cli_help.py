@@ -58,3 +58,15 @@ def test_timeseries_plot_only_does_not_claim_rows_written(tmp_path, capsys):
     assert "written" not in out and f"11 rows not printed (drawn in {png}" in out
     assert main(base + ["--csv", str(csv)]) == 0
     assert f"11 rows written to {csv}" in capsys.readouterr().out
+
+
+def test_the_vehicle_help_names_every_vehicle_of_the_catalogue():
+    from moving_bogie.model.catalogue import default_catalogue
+
+    vehicles = default_catalogue().vehicles
+    assert len(vehicles) >= 2
+    for name, parser in _commands().items():
+        for action in parser._actions:
+            if "--vehicle" in action.option_strings:
+                missing = [v for v in vehicles if f"{v}: " not in action.help]
+                assert not missing, f"{name} --vehicle help lacks {missing}"

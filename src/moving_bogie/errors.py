@@ -6,9 +6,11 @@ report it as one line without a traceback.
 
 from __future__ import annotations
 
+import difflib
 import re
+from collections.abc import Iterable
 
-__all__ = ["MovingBogieError", "MovingBogieWarning", "ParameterError"]
+__all__ = ["MovingBogieError", "MovingBogieWarning", "ParameterError", "did_you_mean", "suggestion"]
 
 
 class MovingBogieError(Exception):
@@ -47,3 +49,34 @@ class ParameterError(MovingBogieError, ValueError):
 
 class MovingBogieWarning(UserWarning):
     """Category of every warning issued by moving-bogie (turned into errors by the test suite)."""
+
+
+def did_you_mean(name: str, known: Iterable[str]) -> str:
+    """ "did you mean 'X'?" for the valid name closest to ``name`` (and any as close, within 0.05) by
+    :class:`difflib.SequenceMatcher` ratio, as :func:`difflib.get_close_matches` scores them (at least 0.6),
+    or "" when none is close.
+
+    Examples
+    --------
+    >>> did_you_mean("bogy", ["mass", "masses", "bogie", "car"])
+    "did you mean 'bogie'?"
+    """
+    scores = {str(k): difflib.SequenceMatcher(None, str(name), str(k)).ratio() for k in known}
+    best = max(scores.values(), default=0.0)
+    close = [k for k, score in scores.items() if score >= max(0.6, best - 0.05)]  # the best, and ties
+    return ("did you mean " + " or ".join(repr(c) for c in close) + "?") if close else ""
+
+
+def suggestion(name: str, known: Iterable[str], *, listing: str = "expected one of") -> str:
+    """What to say after "unknown NAME": :func:`did_you_mean`, or, when no valid name is close, every valid
+    name after ``listing``.
+
+    Examples
+    --------
+    >>> suggestion("alpah", ["alpha", "eta_f", "eta_M"])
+    "did you mean 'alpha'?"
+    >>> suggestion("zzz", ["beam", "track"])
+    'expected one of beam, track'
+    """
+    known = [str(k) for k in known]
+    return did_you_mean(name, known) or f"{listing} {', '.join(known)}"

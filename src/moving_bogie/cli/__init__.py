@@ -15,8 +15,8 @@ from collections.abc import Sequence
 
 from moving_bogie import __version__
 
-from .outputs import check_output_paths
-from .reporting import PROG, Parser, UsageError, handle_errors, usage_failure
+from .outputs import check_input_paths, check_output_paths
+from .reporting import PROG, Parser, UsageError, handle_errors, suggest_option, usage_failure
 
 __all__ = ["SUBCOMMAND_MODULES", "build_parser", "main"]
 
@@ -48,6 +48,7 @@ def build_parser() -> argparse.ArgumentParser:
     subparsers = parser.add_subparsers(title="commands", metavar="COMMAND", required=True)
     for name in SUBCOMMAND_MODULES:
         importlib.import_module(f"{__name__}.{name}").register(subparsers)
+    parser.commands = subparsers.choices  # the subcommand parsers by name (read by suggest_option)
     return parser
 
 
@@ -55,17 +56,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line `argv` (default: ``sys.argv[1:]``) and return the exit status.
 
     Usage errors and expected failures print one line naming the option (a JSON object on stdout with
-    ``--json``) and return 2 (see :mod:`~moving_bogie.cli.reporting`). Every output option is checked
-    (:func:`~moving_bogie.cli.outputs.check_output_paths`) before the command computes anything.
+    ``--json``) and return 2 (see :mod:`~moving_bogie.cli.reporting`). Every output option and input path
+    is checked (:func:`~moving_bogie.cli.outputs.check_output_paths`,
+    :func:`~moving_bogie.cli.outputs.check_input_paths`) before the command computes anything.
     """
     argv = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser()
     try:
-        args = build_parser().parse_args(argv)
+        args = parser.parse_args(argv)
     except UsageError as exc:
-        return usage_failure(exc, argv)
+        return usage_failure(suggest_option(exc, argv, parser.commands), argv)
 
     def run(args: argparse.Namespace) -> int | None:
         check_output_paths(args)
+        check_input_paths(args)
         return args.handler(args)
 
     return handle_errors(run, argv)(args)

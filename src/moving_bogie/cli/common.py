@@ -34,12 +34,21 @@ __all__ = [
     "parameter_options",
     "params_from_args",
     "print_json",
+    "read_params_file",
     "si_input",
 ]
 
 
 def _catalogue():
     return default_catalogue()
+
+
+def read_params_file(path: Path) -> tuple[DimensionlessParams, PhysicalParams | None]:
+    """:func:`~moving_bogie.model.files.load_params_file` whose errors name the ``--file`` option."""
+    try:
+        return load_params_file(path)
+    except ParameterError as exc:
+        raise ParameterError(exc.parameter, f"--file {exc}") from None
 
 
 def parameter_options() -> list[tuple[str, str, str]]:
@@ -156,8 +165,17 @@ def add_model_options(parser: argparse.ArgumentParser) -> None:
         "--model",
         dest="vehicle",
         choices=tuple(catalogue.vehicles),
-        help="bogie (Figure 1b) or masses (two moving masses, Figure 1a); --model is an alias",
+        help=vehicle_help(catalogue) + "; --model is an alias",
     )
+
+
+def vehicle_help(catalogue) -> str:
+    """Every vehicle of the catalogue with the first clause of its description: 'mass: one wheel; ...'."""
+    parts = []
+    for name, text in catalogue.vehicles.items():
+        short = text.split(":")[0].rstrip(".")
+        parts.append(f"{name}: {short[:1].lower()}{short[1:]}")
+    return "; ".join(parts)
 
 
 def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, PhysicalParams | None]:
@@ -186,7 +204,7 @@ def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, Phy
         if args.case is not None:
             params = table1_case(args.case).replace(**models, **overrides)
         elif args.file is not None:
-            params, physical = load_params_file(args.file)
+            params, physical = read_params_file(args.file)
             if getattr(args, "set", None):
                 physical, params = apply_settings(physical, args.set)
             if overrides or models:

@@ -6,7 +6,8 @@ import argparse
 
 from moving_bogie.errors import ParameterError
 
-from .common import PROG, add_json_option, add_output_option, print_json
+from .common import PROG, add_json_option, print_json
+from .outputs import add_figure_option
 from .progress import progress_bar
 from .stability_options import (
     RAW,
@@ -46,7 +47,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )  # fmt: skip
     p.add_argument("--quick", action="store_true", help="coarser seed grid and steps (a preview)")
     add_plane_options(p)
-    add_output_option(p, "--plot", metavar="F.png", help="write the two-panel figure")
+    add_figure_option(p, "--plot", help="write the two-panel figure")
     add_json_option(p)
     p.set_defaults(handler=run)
 
@@ -66,8 +67,6 @@ def lowest_subcritical(lines, alpha_cr: float) -> dict:
 
 
 def run(args) -> int:
-    from moving_bogie.stability.figures.track_comparison import compare_tracks, figure_track_comparison
-
     layered, spacings = params_and_spacings(args)
     if layered.track == "one-layer":
         raise ParameterError("track", "compare-tracks needs a layered --track (e.g. two-layer) to compare")
@@ -78,6 +77,9 @@ def run(args) -> int:
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, "eta_M")
     if alpha_max <= alpha_min:
         raise ParameterError("alpha-max", "must be larger than --alpha-min")
+
+    from moving_bogie.stability.figures.track_comparison import compare_tracks, figure_track_comparison
+
     with progress_bar("instability lines on both tracks") as bar:
         comparison = compare_tracks(
             base,

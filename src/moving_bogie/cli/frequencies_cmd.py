@@ -22,7 +22,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "every root; when the search is incomplete the verdict is UNDETERMINED with the reason."
         ),
         epilog=(
-            "exit status:\n  0  verdict STABLE or UNSTABLE, every root in the window found\n"
+            "exit status:\n"
+            "  0  verdict STABLE or UNSTABLE, every root in the window found (also above the critical\n"
+            "     velocity: the 'speed: SUPERCRITICAL' line, and \"supercritical\" in --json, say so)\n"
             "  1  verdict UNDETERMINED, the count and the roots found disagree (see the warnings),\n"
             "     or with --certify a root or the count is not proven\n"
             "  2  bad input (the message names the option)\n"
@@ -91,16 +93,9 @@ def _check_dps(dps):
 
 def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
-    from moving_bogie.kernels.bound import bind
-    from moving_bogie.roots.count.contour import Rectangle
-    from moving_bogie.roots.damping_limit import damping_limit
-    from moving_bogie.roots.frequencies import induced_frequencies
-    from moving_bogie.stability.velocity.supercritical import speed_regime
-
-    from .progress import progress_bar
 
     _check_dps(args.dps)
-    params, physical = params_from_args(args)
+    params, physical = params_from_args(args)  # every input checked before the heavy imports
     window = None
     if args.window:
         try:
@@ -109,6 +104,16 @@ def run_frequencies(args: argparse.Namespace) -> int:
             raise ParameterError("window", f"window must be two numbers X,Y (got {args.window!r})") from None
         if not (x > 0 and y > 0):
             raise ParameterError("window", "window sizes must be positive")
+
+    from moving_bogie.kernels.bound import bind
+    from moving_bogie.roots.count.contour import Rectangle
+    from moving_bogie.roots.damping_limit import damping_limit
+    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.stability.velocity.supercritical import speed_regime
+
+    from .progress import progress_bar
+
+    if args.window:
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
     with progress_bar("induced frequencies", enabled=not args.json) as update:
         result = induced_frequencies(

@@ -14,6 +14,7 @@ from .common import (
     print_json,
     si_input,
 )
+from .outputs import add_figure_option
 from .progress import progress_bar
 from .stability_options import (
     RAW,
@@ -76,20 +77,21 @@ def _register_instability_lines(subparsers) -> None:
         help="count unstable roots (induced_frequencies) on both sides of each branch",
     )
     add_plane_options(p)
-    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
+    add_figure_option(p, "--plot", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_instability_lines)
 
 
 def run_instability_lines(args) -> int:
+    params, spacings = params_and_spacings(args)
+    units = plane_units(args, params)
+    alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
+
     from moving_bogie.stability.lines.instability_lines import instability_lines
     from moving_bogie.stability.lines.line_ends import EXPLANATIONS
     from moving_bogie.stability.lines.undamped_lines import KIND_TEXT
     from moving_bogie.stability.maps.undamped import MECHANISMS
 
-    params, spacings = params_and_spacings(args)
-    units = plane_units(args, params)
-    alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
     with progress_bar("instability lines") as bar:
         res = instability_lines(
             params,
@@ -192,8 +194,8 @@ def _register_stability_map(subparsers) -> None:
     p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
     add_plane_options(p)
-    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
-    add_output_option(p, "--npz", metavar="F.npz", help="save the arrays")
+    add_figure_option(p, "--plot", help="write the figure")
+    add_output_option(p, "--npz", metavar="F.npz", formats=("npz",), help="save the arrays")
     add_output_option(
         p, "--out", folder=True, metavar="S.zarr", help="save as a 2-D sweep store (sweep-plot, xarray)"
     )
@@ -205,14 +207,15 @@ def _register_stability_map(subparsers) -> None:
 def run_stability_map(args) -> int:
     import numpy as np
 
-    from moving_bogie.stability.lines.instability_lines import instability_lines
-    from moving_bogie.stability.maps.map import stability_map
-
     params, _ = params_and_spacings(args)
     if args.out is not None and args.out.exists() and not args.overwrite:
         raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
+
+    from moving_bogie.stability.lines.instability_lines import instability_lines
+    from moving_bogie.stability.maps.map import stability_map
+
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
     with progress_bar("stability map") as bar:
@@ -235,8 +238,13 @@ def run_stability_map(args) -> int:
                 progress=bar,
             )
     if args.npz:
-        args.npz.parent.mkdir(parents=True, exist_ok=True)
-        smap.save_npz(args.npz)
+        import io
+
+        from .common import atomic_write
+
+        buffer = io.BytesIO()
+        smap.save_npz(buffer)
+        atomic_write(args.npz, buffer.getvalue())
     if args.out:
         from moving_bogie.sweep.store import write_map
 

@@ -2,9 +2,10 @@
 
 An output option is added with :func:`add_output_option`; its value is recorded on the parsed namespace
 (``args.output_paths``), and :func:`check_output_paths` (called by ``main`` before the command runs) makes
-sure every one of them can be written: not an existing folder (or, for a folder option, not an existing file),
-inside a folder that exists or can be created, where a file can actually be created. The error names the
-option, so nothing is computed only to fail at the end.
+sure every one of them can be written: a format the option writes (a figure: one of :data:`FIGURE_FORMATS`),
+not an existing folder (or, for a folder option, not an existing file), inside a folder that exists (none is
+created), where a file can actually be created. The error names the option, so nothing is computed only to
+fail at the end, and nothing is created on the way. The checks import nothing heavy (no matplotlib).
 """
 
 from __future__ import annotations
@@ -14,9 +15,27 @@ import os
 import tempfile
 from pathlib import Path
 
-from moving_bogie.errors import MovingBogieError
+from moving_bogie.errors import MovingBogieError, did_you_mean
 
-__all__ = ["OutputError", "OutputPath", "add_output_option", "check_output_paths"]
+__all__ = [
+    "FIGURE_FORMATS",
+    "OutputError",
+    "OutputPath",
+    "add_figure_option",
+    "add_output_option",
+    "check_input_paths",
+    "check_output_paths",
+]
+
+#: Input options read from a path: dest -> (option as typed, what it names).
+INPUT_PATHS = {"file": ("--file", "file"), "store": ("S.zarr", "store")}
+
+#: The file suffixes matplotlib writes (``Figure().canvas.get_supported_filetypes()``; a test compares the
+#: two), listed here so that checking a figure's name does not import matplotlib.
+FIGURE_FORMATS = (
+    "png", "pdf", "svg", "svgz", "eps", "ps", "pgf", "jpg", "jpeg", "tif", "tiff", "webp", "avif", "gif",
+    "raw", "rgba",
+)  # fmt: skip
 
 
 class OutputError(MovingBogieError):
@@ -28,33 +47,36 @@ class OutputError(MovingBogieError):
 
 
 class OutputPath(argparse.Action):
-    """Store the path and remember (option, path, is_folder) in ``namespace.output_paths``."""
+    """Store the path and remember (option, path, is_folder, suffixes) in ``namespace.output_paths``."""
 
-    def __init__(self, option_strings, dest, folder=False, **kwargs):
+    def __init__(self, option_strings, dest, folder=False, formats=(), **kwargs):
         self.folder = folder
+        self.formats = tuple(formats)
         super().__init__(option_strings, dest, **kwargs)
 
     def __call__(self, parser, namespace, values, option_string=None):
         path = Path(values)
         setattr(namespace, self.dest, path)
         recorded = [o for o in getattr(namespace, "output_paths", []) if o[0] != self.option_strings[0]]
-        namespace.output_paths = recorded + [(self.option_strings[0], path, self.folder)]
+        namespace.output_paths = recorded + [(self.option_strings[0], path, self.folder, self.formats)]
 
 
-def add_output_option(parser, *flags: str, folder: bool = False, **kwargs) -> argparse.Action:
+def add_output_option(
+    parser, *flags: str, folder: bool = False, formats: tuple = (), **kwargs
+) -> argparse.Action:
     """Add an output option (a file, or a folder if ``folder``) that :func:`check_output_paths` will check.
 
-    ``flags`` are the option strings, the preferred spelling first (the others are kept as aliases).
+    ``flags`` are the option strings, the preferred spelling first (the others are kept as aliases);
+    ``formats``, when given, the file suffixes (without the dot) the option can write.
     """
     kwargs.setdefault("metavar", "DIR" if folder else "F")
-    return parser.add_argument(*flags, action=OutputPath, folder=folder, **kwargs)
+    return parser.add_argument(*flags, action=OutputPath, folder=folder, formats=formats, **kwargs)
 
 
-def _existing_ancestor(path: Path) -> Path:
-    for candidate in (path, *path.parents):
-        if candidate.exists() or candidate.is_symlink():
-            return candidate
-    return Path(".")
+def add_figure_option(parser, *flags: str, **kwargs) -> argparse.Action:
+    """Add an output option for a figure: its suffix must be one of :data:`FIGURE_FORMATS`."""
+    kwargs.setdefault("metavar", "F.png")
+    return add_output_option(parser, *flags, formats=FIGURE_FORMATS, **kwargs)
 
 
 def _probe(folder: Path) -> str | None:
@@ -68,8 +90,18 @@ def _probe(folder: Path) -> str | None:
     return None
 
 
-def check_output_path(option: str, path: Path, folder: bool = False) -> None:
-    """Raise :class:`OutputError` naming ``option`` unless ``path`` can be written (a file, or a folder)."""
+def _check_format(option: str, path: Path, formats: tuple) -> None:
+    suffix = path.suffix.lower().lstrip(".")
+    if formats and suffix not in formats:
+        hint = did_you_mean(suffix, formats) if suffix else ""
+        got = f"'.{suffix}' is not a format it writes" if suffix else "no suffix says the format"
+        shown = ", ".join("." + f for f in formats)
+        raise OutputError(option, f"{path}: {got}; {hint or 'use one of ' + shown}")
+
+
+def check_output_path(option: str, path: Path, folder: bool = False, formats: tuple = ()) -> None:
+    """Raise :class:`OutputError` naming ``option`` unless ``path`` can be written (a file, or a folder) in
+    one of ``formats`` (file suffixes; any when empty), in a folder that exists."""
     path = Path(os.path.expanduser(path))
     if str(path) in ("", "."):
         if not folder:
@@ -81,17 +113,32 @@ def check_output_path(option: str, path: Path, folder: bool = False) -> None:
         raise OutputError(option, f"{path} is a folder; give a file name")
     elif path.exists() and not os.access(path, os.W_OK):
         raise OutputError(option, f"{path} exists and is not writable")
-    start = path if folder else path.parent
-    ancestor = _existing_ancestor(start)
-    if not ancestor.is_dir():
-        raise OutputError(option, f"cannot create {path}: {ancestor} is not a folder")
-    reason = _probe(ancestor)
+    _check_format(option, path, formats)
+    parent = path.parent
+    if not parent.is_dir():
+        what = "is not a folder" if parent.exists() else "does not exist (create it first)"
+        raise OutputError(option, f"cannot write {path}: the folder {parent} {what}")
+    reason = _probe(parent)
     if reason is not None:
-        where = "" if ancestor == start else f" (the folder {ancestor} would hold it)"
-        raise OutputError(option, f"cannot write {path}{where}: {reason}")
+        raise OutputError(option, f"cannot write {path}: {reason}")
 
 
 def check_output_paths(args: argparse.Namespace) -> None:
     """Check every output option given on the command line (see :func:`add_output_option`)."""
-    for option, path, folder in getattr(args, "output_paths", ()):
-        check_output_path(option, path, folder)
+    for option, path, folder, formats in getattr(args, "output_paths", ()):
+        check_output_path(option, path, folder, formats)
+
+
+def check_input_paths(args: argparse.Namespace) -> None:
+    """Check that every input path given (``--file``, a sweep store) exists, naming its option."""
+    for dest, (option, what) in INPUT_PATHS.items():
+        path = getattr(args, dest, None)
+        if path is None:
+            continue
+        path = Path(os.path.expanduser(path))
+        if not path.exists():
+            raise OutputError(option, f"{path}: no such {what}")
+        if what == "file" and path.is_dir():
+            raise OutputError(option, f"{path} is a folder; give a TOML file")
+        if what == "file" and not os.access(path, os.R_OK):
+            raise OutputError(option, f"{path} is not readable")

@@ -34,9 +34,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the parameters selected by `args`."""
+    params, physical = params_from_args(args)
+
     from moving_bogie.stability.velocity.supercritical import speed_regime
 
-    params, physical = params_from_args(args)
     regime = speed_regime(params, physical)
     if args.json:
         print_json(

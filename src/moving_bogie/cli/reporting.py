@@ -23,11 +23,11 @@ import tomllib
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.errors import MovingBogieError, ParameterError, did_you_mean
 
 PROG = "moving-bogie"
 
-__all__ = ["Parser", "UsageError", "fail", "handle_errors"]
+__all__ = ["Parser", "UsageError", "fail", "handle_errors", "suggest_option"]
 
 
 class UsageError(Exception):
@@ -51,10 +51,28 @@ def _blamed_option(message: str) -> str | None:
 
 
 class Parser(argparse.ArgumentParser):
-    """ArgumentParser whose errors raise :class:`UsageError` (reported by :func:`main` in one line)."""
+    """ArgumentParser whose errors raise :class:`UsageError` (reported by :func:`main` in one line); a value
+    outside an option's choices gets the closest choices suggested."""
 
     def error(self, message: str):  # noqa: D102 (argparse API)
+        match = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)$", message)
+        if match:
+            hint = did_you_mean(match.group(1), re.findall(r"'([^']*)'", match.group(2)))
+            message += f"; {hint}" if hint else ""
         raise UsageError(message, _blamed_option(message), self.prog)
+
+
+def suggest_option(exc: UsageError, argv: Sequence[str], commands: dict) -> UsageError:
+    """``exc`` with the closest options of the command named in ``argv`` suggested for an unrecognized one."""
+    message = str(exc)
+    if not message.startswith("unrecognized arguments") or not argv or argv[0] not in commands:
+        return exc
+    known = list(commands[argv[0]]._option_string_actions)  # noqa: SLF001 (argparse has no public list)
+    unknown = [a.split("=", 1)[0] for a in message.split(":", 1)[1].split() if a.startswith("--")]
+    hints = [f"{a}: {hint}" for a in unknown if (hint := did_you_mean(a, known))]
+    if not hints:
+        return exc
+    return UsageError(f"{message} ({'; '.join(hints)})", exc.option, f"{exc.prog} {argv[0]}")
 
 
 def fail(message: str, option: str | None = None, *, json_mode: bool = False, code: int = 2, hint: str = ""):
@@ -91,7 +109,7 @@ def _parameter_option(parameter: str, argv: Sequence[str]) -> str | None:
 
 
 def _path_option(filename, args) -> str | None:
-    for option, path, _folder in getattr(args, "output_paths", ()):
+    for option, path, *_ in getattr(args, "output_paths", ()):
         if os.fspath(path) == os.fspath(filename):
             return option
     file = getattr(args, "file", None)

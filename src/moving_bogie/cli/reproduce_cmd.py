@@ -29,7 +29,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    add_output_option(parser, "--out", folder=True, metavar="DIR", help="output folder (created)")
+    add_output_option(
+        parser, "--out", folder=True, metavar="DIR", help="output folder (created in a folder that exists)"
+    )
     parser.add_argument(
         "--quick",
         action="store_true",

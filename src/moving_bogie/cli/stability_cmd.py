@@ -10,12 +10,12 @@ from moving_bogie.model.catalogue import default_catalogue
 
 from .common import (
     add_json_option,
-    add_output_option,
     add_parameter_options,
     params_from_args,
     print_json,
     si_input,
 )
+from .outputs import add_figure_option
 from .progress import progress_bar
 from .stability_options import (
     RAW,
@@ -90,16 +90,14 @@ def _register_critical_velocity(subparsers) -> None:
 
 def run_critical_velocity(args) -> int:
     from moving_bogie.model.catalogue import get_model
-    from moving_bogie.paper.critical_velocity_formulas import paper_formula
-    from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
     physical = None
     groups = {name: getattr(args, name) for name in _track_groups() if getattr(args, name) is not None}
     chosen = {k: getattr(args, k) for k in ("beam", "track") if getattr(args, k) is not None}
     if args.file is not None:
-        from moving_bogie.model.files import load_params_file
+        from .common import read_params_file
 
-        params, physical = load_params_file(args.file)
+        params, physical = read_params_file(args.file)
         if chosen or groups:
             params = params.replace(**chosen, **groups)
             if physical is not None:
@@ -107,6 +105,10 @@ def run_critical_velocity(args) -> int:
         source = params
     else:
         source = get_model(**chosen)
+
+    from moving_bogie.paper.critical_velocity_formulas import paper_formula
+    from moving_bogie.stability.velocity.critical_velocity import critical_velocity
+
     res = critical_velocity(source, groups=groups, formula=paper_formula)
     data = res.to_dict()
     if physical is not None:
@@ -165,18 +167,20 @@ def _register_frequency_lines(subparsers) -> None:
     p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument("--checkpoints", type=int, default=13, help="velocities where all roots are found afresh")
     add_plane_options(p, set_option=False)
-    add_output_option(p, "--plot", metavar="F.png", help="write the figure")
+    add_figure_option(p, "--plot", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_frequency_lines)
 
 
 def run_frequency_lines(args) -> int:
     from moving_bogie.stability.figures.plot_units import PlaneUnits
-    from moving_bogie.stability.lines.frequency_lines import frequency_lines
 
     params, physical = params_from_args(args)
     units = PlaneUnits.of(params, si_input(args, physical), operating=args.file is not None)
     alpha_min, alpha_max, _ = plane_ranges(args, units, "alpha")
+
+    from moving_bogie.stability.lines.frequency_lines import frequency_lines
+
     with progress_bar("frequency lines") as bar:
         res = frequency_lines(
             params,
@@ -286,9 +290,10 @@ def _register_critical_stiffness(subparsers) -> None:
 def run_critical_stiffness(args) -> int:
     import numpy as np
 
+    params, _ = params_from_args(args)
+
     from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
 
-    params, _ = params_from_args(args)
     with progress_bar("critical stiffness") as bar:
         res = critical_stiffness(
             params,
@@ -330,7 +335,7 @@ def _register_figure(subparsers) -> None:
         formatter_class=RAW,
     )
     p.add_argument("number", type=int, choices=FIGURES, help="the figure of the paper")
-    add_output_option(
+    add_figure_option(
         p,
         "--plot",
         "--out",

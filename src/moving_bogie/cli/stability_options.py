@@ -88,9 +88,9 @@ def params_and_spacings(args):
         raise ParameterError("case", "give either --case or --file, not both")
     physical = None
     if getattr(args, "file", None) is not None:
-        from moving_bogie.model.files import load_params_file
+        from .common import read_params_file
 
-        base, physical = load_params_file(args.file)
+        base, physical = read_params_file(args.file)
         if getattr(args, "set", None):  # SI changes of a [physical] file, before the group options
             physical, base = apply_settings(physical, args.set)
     elif getattr(args, "set", None):
@@ -174,7 +174,8 @@ def plane_ranges(args, units: PlaneUnits, parameter: str) -> tuple[float, float,
 
 
 def save_figure(fig, path: Path) -> None:
-    """Write a matplotlib figure (format from the suffix), creating the folder."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
+    """Write a matplotlib figure (format from the suffix) atomically, at 120 dpi; the folder exists (the
+    output options are checked first)."""
+    from moving_bogie.response.plots import save_figure as write
+
+    write(fig, path, dpi=120)

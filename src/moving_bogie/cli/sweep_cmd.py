@@ -17,7 +17,7 @@ from .common import (
     print_json,
     si_input,
 )
-from .outputs import add_output_option
+from .outputs import add_figure_option, add_output_option
 from .reporting import fail
 
 _RAW = argparse.RawDescriptionHelpFormatter
@@ -94,14 +94,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     q.add_argument("--x", required=True, metavar="NAME", help="parameter on the horizontal axis")
     q.add_argument("--y", required=True, metavar="NAME", help="parameter on the vertical axis")
     q.add_argument("--sel", action="append", default=[], metavar="NAME=X", help="fix another dimension")
-    add_output_option(q, "--out", required=True, metavar="F.png", help="the figure")
+    add_figure_option(q, "--out", required=True, help="the figure")
     q.set_defaults(handler=run_sweep_plot)
 
 
 def _spec(args):
-    from moving_bogie.sweep.api import make_spec
-    from moving_bogie.sweep.design import parse_sample
-
     if args.workers is not None and args.workers < 1:
         raise ParameterError("--workers", "--workers must be >= 1")
     if args.workers is not None and args.scheduler:
@@ -114,7 +111,6 @@ def _spec(args):
         raise ParameterError("--vary", "give at least one --vary NAME=START:STOP:COUNT or NAME=V1,V2,...")
     params, physical = params_from_args(args)
     physical = si_input(args, physical)
-    sample = parse_sample(args.sample) if args.sample else None
     vary = {}
     for text in args.vary:
         name, eq, spec = text.partition("=")
@@ -126,6 +122,11 @@ def _spec(args):
             raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
         vary[name.strip()] = spec
     options = dict(roots=args.roots, check=args.check, block_points=args.chunk_points)
+
+    from moving_bogie.sweep.api import make_spec
+    from moving_bogie.sweep.design import parse_sample
+
+    sample = parse_sample(args.sample) if args.sample else None
     return make_spec(params, vary, sample=sample, physical=physical, **options)
 
 
@@ -219,6 +220,8 @@ def run_sweep_plot(args) -> int:
     from moving_bogie.sweep.plots import plot_sweep_slice
     from moving_bogie.sweep.store import open_sweep
 
+    from .stability_options import save_figure
+
     sel = {}
     for text in args.sel:
         name, eq, value = text.partition("=")
@@ -229,6 +232,6 @@ def run_sweep_plot(args) -> int:
         if not eq:
             raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER")
     fig = plot_sweep_slice(open_sweep(args.store), args.x, args.y, sel)
-    fig.savefig(args.out, dpi=120)
+    save_figure(fig, args.out)
     print(args.out)
     return 0

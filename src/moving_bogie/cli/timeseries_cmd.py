@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
+from .outputs import add_figure_option
 
 _MAX_POINTS = 10_000_000
 
@@ -40,12 +41,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     out = parser.add_argument_group("output")
     add_json_option(out)
     add_output_option(out, "--csv", metavar="F.csv", help="write the series as CSV")
-    add_output_option(
-        out, "--plot", metavar="F.png", help="three panels: w(0,tau), u, theta (paper's Figure 5 style)"
-    )
-    add_output_option(
-        out, "--plot-long", metavar="F.png", help="two panels: w(0,tau), u (paper's Figure 6 style)"
-    )
+    add_figure_option(out, "--plot", help="three panels: w(0,tau), u, theta (paper's Figure 5 style)")
+    add_figure_option(out, "--plot-long", help="two panels: w(0,tau), u (paper's Figure 6 style)")
     out.add_argument(
         "--rows",
         action="store_true",
@@ -78,7 +75,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     sout = shape.add_argument_group("output")
     add_json_option(sout)
     add_output_option(sout, "--csv", metavar="F.csv", help="write xi, w as CSV")
-    add_output_option(sout, "--plot", metavar="F.png", help="plot w(xi)")
+    add_figure_option(sout, "--plot", help="plot w(xi)")
     shape.set_defaults(handler=run_shape)
 
 
@@ -152,12 +149,13 @@ def _frequencies_or_fail(params, dps, json_mode, branch_cut):
 
 def run_timeseries(args: argparse.Namespace) -> int:
     """Compute and print (or write) the closed-form time series."""
+    _check(args)
+    tau = _times(args)
+    params, physical = params_from_args(args)  # every input checked before the heavy imports
+
     from moving_bogie.kernels.bound import bind
     from moving_bogie.response.closed_form import closed_form_response
 
-    _check(args)
-    tau = _times(args)
-    params, physical = params_from_args(args)
     bound = bind(params)  # bound once: the frequency search and the closed form share it
     result = _frequencies_or_fail(bound, args.dps, args.json, _branch_cut(args))
     ts = closed_form_response(
@@ -253,11 +251,9 @@ def run_shape(args: argparse.Namespace) -> int:
     import numpy as np
 
     from moving_bogie.errors import ParameterError
-    from moving_bogie.kernels.bound import bind
-    from moving_bogie.response.closed_form import SI_UNITS, deflection_shape_details
 
     _check(args)
-    params, physical = params_from_args(args)
+    params, physical = params_from_args(args)  # every input checked before the heavy imports
     if not (np.isfinite(args.tau) and args.tau >= 0):
         raise ParameterError("tau", f"tau must be finite and >= 0 (got {args.tau})")
     d = float(params.d)
@@ -267,6 +263,10 @@ def run_shape(args: argparse.Namespace) -> int:
     if not (np.isfinite(lo) and np.isfinite(hi) and hi > lo):
         raise ParameterError("xi_max", f"need xi_min < xi_max (got {lo}, {hi})")
     xi = np.linspace(lo, hi, args.points)
+
+    from moving_bogie.kernels.bound import bind
+    from moving_bogie.response.closed_form import SI_UNITS, deflection_shape_details
+
     bound = bind(params)
     result = _frequencies_or_fail(bound, args.dps, args.json, _branch_cut(args))
     w, with_cut, notes = deflection_shape_details(

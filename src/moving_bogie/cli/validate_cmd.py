@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
+from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .outputs import add_figure_option
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -60,23 +61,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         action="store_true",
         help="skip the second run (twice the time step) of the error estimate",
     )
-    add_output_option(
-        parser, "--plot", metavar="F.png", help="write the paper-style figure (PNG, PDF or SVG)"
-    )
+    add_figure_option(parser, "--plot", help="write the paper-style figure (PNG, PDF, SVG, ...)")
     add_json_option(parser)
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    import io
-    from pathlib import Path
-
     from moving_bogie.errors import ParameterError
-    from moving_bogie.validation.compare import plot_validation, validate
-    from moving_bogie.validation.verdict import beam_title
-
-    from .common import atomic_write
-    from .progress import progress_bar
 
     if args.modes < 4:
         raise ParameterError("modes", f"--modes must be at least 4 (got {args.modes})")
@@ -84,12 +75,14 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError("tmax", f"--tmax must be a positive number (got {args.tmax})")
     if not (0 < args.tol < 1):
         raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
-    suffix = None
-    if args.plot:
-        suffix = Path(args.plot).suffix.lower().lstrip(".")
-        if suffix not in ("png", "pdf", "svg"):
-            raise ParameterError("plot", f"--plot must end in .png, .pdf or .svg (got {str(args.plot)!r})")
-    params, _physical = params_from_args(args)
+    params, _physical = params_from_args(args)  # every input checked before the heavy imports
+
+    from moving_bogie.response.plots import save_figure
+    from moving_bogie.validation.compare import plot_validation, validate
+    from moving_bogie.validation.verdict import beam_title
+
+    from .progress import progress_bar
+
     with progress_bar("finite beam + closed form", enabled=not args.json) as update:
         result = validate(
             params,
@@ -106,10 +99,7 @@ def run(args: argparse.Namespace) -> int:
         track = getattr(params, "track", "one-layer")
         beam += "" if track == "one-layer" else f", {track} track"
         title = f"{name} ({args.model}{beam}): finite beam (solid) vs closed form (dashed)"
-        figure = plot_validation(result, title=title)
-        buffer = io.BytesIO()
-        figure.savefig(buffer, format=suffix, dpi=150)
-        atomic_write(args.plot, buffer.getvalue())
+        save_figure(plot_validation(result, title=title), args.plot, dpi=150)
     if args.json:
         data = result.to_dict()
         if args.case is not None:

@@ -20,7 +20,7 @@ from fractions import Fraction
 from pathlib import Path
 from types import ModuleType
 
-from moving_bogie.errors import ParameterError
+from moving_bogie.errors import ParameterError, did_you_mean
 
 __all__ = ["Catalogue", "Model", "ParameterSpec", "default_catalogue", "get_model", "load_catalogue"]
 
@@ -310,7 +310,9 @@ def get_model(
         if value is None:
             chosen[key] = DEFAULT_MODEL[key]
         elif value not in valid[key]:
-            raise ParameterError(key, f"{key} must be one of {', '.join(valid[key])} (got {value!r})")
+            hint = did_you_mean(value, valid[key])
+            message = f"{key} must be one of {', '.join(valid[key])} (got {value!r})"
+            raise ParameterError(key, message + (f"; {hint}" if hint else ""))
     if (chosen["beam"], chosen["track"]) not in catalogue.index.MODULES:
         raise ParameterError(
             "track", f"no generated kernel for beam {chosen['beam']!r} on track {chosen['track']!r}"

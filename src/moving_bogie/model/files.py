@@ -29,7 +29,7 @@ from decimal import Decimal
 from pathlib import Path
 from typing import Any
 
-from moving_bogie.errors import ParameterError
+from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
@@ -99,7 +99,7 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     for key in data:
         if key not in _TOP_LEVEL:
             raise ParameterError(
-                key, f"unknown top-level key or table {key!r}; expected one of {', '.join(_TOP_LEVEL)}"
+                key, f"unknown top-level key or table {key!r}; {suggestion(key, _TOP_LEVEL)}"
             )
     if "dimensionless" in data and "physical" in data:
         raise ParameterError("physical", "give either a [dimensionless] or a [physical] table, not both")
@@ -130,7 +130,7 @@ def _table(data: dict[str, Any], name: str, keys: tuple[str, ...]) -> dict[str, 
         raise ParameterError(name, f"{name} must be a table [{name}] (got {type(table).__name__})")
     for key, value in table.items():
         if key not in keys:
-            raise ParameterError(key, f"unknown key {key!r} in [{name}]; expected one of {', '.join(keys)}")
+            raise ParameterError(key, f"unknown key {key!r} in [{name}]; {suggestion(key, keys)}")
         expected = str if key in _MODEL_KEYS else (int, Decimal)
         if isinstance(value, bool) or not isinstance(value, expected):
             kind = "a string" if key in _MODEL_KEYS else "a number"

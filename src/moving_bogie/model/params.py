@@ -13,7 +13,7 @@ from fractions import Fraction
 from types import SimpleNamespace
 from typing import Any
 
-from moving_bogie.errors import ParameterError
+from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, default_catalogue, get_model
 from moving_bogie.model.exact import (
     fraction_to_exact_text,
@@ -100,8 +100,10 @@ class DimensionlessParams(ModelValues):
         exact = {}
         for name, value in values.items():
             if name not in specs:
-                known = ", ".join([*model.parameters, *model.alternatives, *_MODEL_KEYS])
-                raise ParameterError(name, f"unknown parameter {name!r}; known: {known}")
+                known = [*model.parameters, *model.alternatives, *_MODEL_KEYS]
+                raise ParameterError(
+                    name, f"unknown parameter {name!r}; {suggestion(name, known, listing='known:')}"
+                )
             if value is None:
                 continue
             if name not in model.parameters:

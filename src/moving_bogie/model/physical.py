@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import mpmath
 
-from moving_bogie.errors import ParameterError
+from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, default_catalogue
 from moving_bogie.model.exact import (
     NumberLike,
@@ -173,9 +173,9 @@ class PhysicalParams(ModelValues):
         exact = {}
         for name in values:
             if name not in scale_names and name not in si_of:
-                known = ", ".join([*scale_names, *si_of])
+                hint = suggestion(name, [*scale_names, *si_of], listing="known:")
                 raise ParameterError(
-                    name, f"unknown SI parameter {name!r} for the model {model.name}; known: {known}"
+                    name, f"unknown SI parameter {name!r} for the model {model.name}; {hint}"
                 )
         for name in scale_names:
             if name not in values:
