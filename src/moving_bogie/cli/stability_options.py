@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 from fractions import Fraction
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.stability.figures.plot_units import PlaneUnits
 
 from .common import (
     MODEL_OPTIONS,
@@ -18,6 +18,9 @@ from .common import (
     parameter_options,
     si_input,
 )
+
+if TYPE_CHECKING:  # the stability package imports the numerical modules: not before the arguments are checked
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
 
 #: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
 RAW = argparse.RawDescriptionHelpFormatter
@@ -141,6 +144,8 @@ def add_plane_options(parser, *, set_option: bool = True) -> None:
 def plane_units(args, params) -> PlaneUnits:
     """How the plane of ``params`` is shown: SI for a [physical] file (unless --units dimensionless); the
     operating point is the file's own (a --file input)."""
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
+
     physical = si_input(args, getattr(args, "physical", None))
     return PlaneUnits.of(params, physical, operating=getattr(args, "file", None) is not None)
 
