@@ -20,7 +20,7 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.sweep import make_spec, open_sweep
-from moving_bogie.sweep.engine import run_sweep
+from moving_bogie.sweep.engine import IN_PROCESS_POINTS, run_sweep
 from moving_bogie.sweep.store import missing_blocks
 
 # Case 1 over a window holding stable and unstable points with 0 to 3 unstable roots
@@ -62,6 +62,32 @@ def test_one_and_two_workers_give_the_same_store(one_worker, tmp_path):
     assert attrs_a == attrs_b
     assert a["computed"].all() and a["certain"].all()
     assert set(np.unique(a["n_unstable"])) == {0, 1, 2, 3}
+
+
+def test_a_small_sweep_runs_in_process_and_equals_the_cluster_store(tmp_path, capsys):
+    """Under IN_PROCESS_POINTS points, no cluster asked for, the command computes in this process and
+    says so; its store equals the one a LocalCluster worker computes (two blocks, one checked point each)."""
+    vary = {"alpha": "0.5:1.1:12", "eta_M": "5,60"}
+    cluster = run_sweep(
+        make_spec(table1_case(1), vary, block_points=16, check=1), tmp_path / "cluster.zarr", workers=1,
+        processes=False,
+    )  # fmt: skip
+    assert cluster.scheduler == "local cluster" and cluster.blocks_total == 2
+    out = tmp_path / "here.zarr"
+    varied = [arg for name, spec in vary.items() for arg in ("--vary", f"{name}={spec}")]
+    argv = ["sweep", "--case", "1", *varied, "--chunk-points", "16", "--out", str(out), "--json"]
+    assert main(argv) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["scheduler"] == "in-process" and summary["points"] == 24 < IN_PROCESS_POINTS
+    (a, attrs_a), (b, attrs_b) = _arrays(tmp_path / "cluster.zarr"), _arrays(out)
+    _same(a, b)
+    assert attrs_a == attrs_b and a["computed"].all() and len(np.unique(a["n_unstable"])) > 1
+
+
+def test_the_help_names_the_in_process_limit(capsys):
+    with pytest.raises(SystemExit):
+        main(["sweep", "--help"])
+    assert f"under {IN_PROCESS_POINTS} points" in " ".join(capsys.readouterr().out.split())
 
 
 @pytest.mark.slow
@@ -188,6 +214,7 @@ def test_sobol_design_and_cli_json(tmp_path, capsys):
     assert code == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["dims"] == {"point": 4, "root": 8} and summary["uncertain_points"] == 0
+    assert summary["scheduler"] == "local cluster"  # --workers asks for the cluster at any size
     ds = open_sweep(out).compute()
     assert ((ds.alpha >= 0.6) & (ds.alpha <= 1.1)).all()
     # the roots stored are the unstable ones: their number is n_unstable, the deepest is the degree

@@ -30,8 +30,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="stability verdict over a grid or a Sobol design of any parameters (Dask, zarr)",
         description=(
             "Stability at every point of a grid of any parameters (one --vary per dimension) or of a\n"
-            "quasi-random design (--sample sobol:N), computed on Dask (a local cluster by default, or\n"
-            "--scheduler for an existing one) into a zarr store readable with xarray. Per point: stable,\n"
+            "quasi-random design (--sample sobol:N), computed into a zarr store readable with xarray: in\n"
+            "this process for under 1000 points, else on Dask (a local cluster, or --scheduler for an\n"
+            "existing one; --workers N asks for the cluster at any size). Per point: stable,\n"
             "n_unstable, degree_of_instability (0 where stable), certain. An interrupted sweep keeps its\n"
             "finished chunks: run it again with --resume. With a [physical] parameter file the varied\n"
             "parameters are the SI ones (v in m/s, M in kg, ...; every other SI parameter fixed) and the\n"
@@ -64,7 +65,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add_output_option(p, "--out", folder=True, required=True, metavar="S.zarr", help="zarr store to write")
     p.add_argument("--resume", action="store_true", help="complete an interrupted store")
     p.add_argument("--overwrite", action="store_true", help="replace an existing store")
-    p.add_argument("--workers", type=int, metavar="N", help="local worker processes (default: one per core)")
+    p.add_argument(
+        "--workers",
+        type=int,
+        metavar="N",
+        help="local worker processes (default: one per core; under 1000 points run in this process)",
+    )
     p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="use an existing Dask scheduler")
     p.add_argument("--roots", action="store_true", help="store the unstable roots of every point")
     p.add_argument(
@@ -198,6 +204,7 @@ def run_sweep_cmd(args) -> int:
         "points_computed": run.points_computed,
         "blocks": [run.blocks_computed, run.blocks_total],
         "workers": run.workers,
+        "scheduler": run.scheduler,
         "seconds": round(run.seconds, 2),
         "points_per_second": round(run.points_per_second, 1) if run.points_computed else None,
         "unstable_fraction": float((ds.n_unstable > 0).mean()),

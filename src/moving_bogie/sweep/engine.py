@@ -1,7 +1,10 @@
-"""Running a sweep on Dask distributed: blocks out to the workers, arrays back, chunks into the store.
+"""Running a sweep: blocks out to the workers, arrays back, chunks into the store.
 
-By default a :class:`distributed.LocalCluster` with one single-threaded worker process per core (or
-``workers``) is started and closed again; ``scheduler="tcp://HOST:8786"`` uses an existing cluster
+A sweep of fewer than :data:`IN_PROCESS_POINTS` points to compute, given neither ``workers``, ``scheduler``
+nor ``client``, runs its blocks one after the other in this process: starting a cluster costs seconds,
+more than such a sweep computes. Otherwise it runs on Dask distributed: by default a
+:class:`distributed.LocalCluster` with one single-threaded worker process per core (or ``workers``) is
+started and closed again; ``scheduler="tcp://HOST:8786"`` uses an existing cluster
 (``dask scheduler`` on one machine, ``dask worker tcp://HOST:8786`` on each of the others, every one with
 moving-bogie installed); ``client`` uses a client you already have. Each block is one task returning
 plain numpy arrays; the calling process writes each finished block into the store at once, so an
@@ -31,12 +34,16 @@ from moving_bogie.sweep.design import SweepSpec
 from moving_bogie.sweep.evaluate import BlockTask, evaluate_block
 from moving_bogie.sweep.store import missing_blocks, prepare_store, write_block
 
-__all__ = ["SweepRun", "block_task", "make_client", "run_sweep"]
+__all__ = ["IN_PROCESS_POINTS", "SweepRun", "block_task", "make_client", "run_sweep"]
+
+#: A sweep with fewer points than this to compute runs in this process unless a cluster is asked for.
+IN_PROCESS_POINTS = 1000
 
 
 @dataclass(frozen=True)
 class SweepRun:
-    """What a run did: blocks and points computed now, already in the store, and the wall time."""
+    """What a run did: blocks and points computed now, already in the store, the wall time, and where it
+    ran (``scheduler``: "in-process", "local cluster", or the address of the cluster used)."""
 
     path: Path
     blocks_total: int
@@ -44,6 +51,7 @@ class SweepRun:
     points_computed: int
     seconds: float
     workers: int
+    scheduler: str = "in-process"
 
     @property
     def points_per_second(self) -> float:
@@ -134,7 +142,8 @@ def run_sweep(
     client : distributed.Client, optional
         Use this client (not closed afterwards).
     workers : int, optional
-        Worker processes of the LocalCluster (default: one per core).
+        Worker processes of the LocalCluster (default: one per core). Given neither ``workers``,
+        ``scheduler`` nor ``client``, fewer than :data:`IN_PROCESS_POINTS` points run in this process.
     scheduler : str, optional
         Address of an existing scheduler (``tcp://HOST:8786``).
     processes : bool
@@ -144,42 +153,69 @@ def run_sweep(
     on_block : callable, optional
         Called with the index of each block once it is in the store.
     """
-    from distributed import as_completed
-
     path = prepare_store(out, spec, resume=resume, overwrite=overwrite)
     blocks = spec.blocks()
     todo = missing_blocks(path, spec) if resume else blocks
-    total, done = spec.size, spec.size - sum(_points(b) for b in todo)
+    points = sum(_points(b) for b in todo)
+    total, done = spec.size, spec.size - points
     if progress is not None:
         progress(done, total)
     start = time.perf_counter()
+    in_process = client is None and workers is None and scheduler is None and points < IN_PROCESS_POINTS
+    if in_process:
+        finished = ((b, evaluate_block(block_task(spec, b))) for b in todo)
+        n_workers, where = 1, "in-process"
+        _store_blocks(path, spec, finished, done, total, progress, on_block)
+    else:
+        n_workers, where = _run_distributed(
+            spec, path, todo, (done, total), client, (workers, scheduler, processes), progress, on_block
+        )
+    seconds = time.perf_counter() - start
+    return SweepRun(path, len(blocks), len(todo), points, seconds, n_workers, where)
+
+
+def _store_blocks(path, spec, finished, done, total, progress, on_block) -> None:
+    """Write each (block, arrays) of ``finished`` into the store as it comes, reporting progress."""
+    for b, arrays in finished:
+        write_block(path, spec, b.slices, arrays)
+        done += _points(b)
+        if progress is not None:
+            progress(done, total)
+        if on_block is not None:
+            on_block(b.index)
+
+
+def _run_distributed(spec, path, todo, counts, client, cluster, progress, on_block) -> tuple[int, str]:
+    """The blocks ``todo`` on Dask (``client``, or one made from ``cluster`` = (workers, scheduler,
+    processes) and closed afterwards); the number of workers and where they ran."""
+    from distributed import as_completed
+
     own = client is None
     if own and todo:
-        client = make_client(workers, scheduler, processes)
+        client = make_client(*cluster)
+    where = cluster[1] or ("local cluster" if own else "client")
     futures = {}
     try:
         n_workers = len(client.scheduler_info()["workers"]) if client is not None else 0
         for b in todo:
             futures[client.submit(evaluate_block, block_task(spec, b), pure=False)] = b
-        for future in as_completed(list(futures)):
-            b = futures.pop(future)
-            write_block(path, spec, b.slices, future.result())
-            done += _points(b)
-            if progress is not None:
-                progress(done, total)
-            if on_block is not None:
-                on_block(b.index)
+
+        def finished():
+            for future in as_completed(list(futures)):
+                b = futures.pop(future)
+                yield b, future.result()
+
+        _store_blocks(path, spec, finished(), *counts, progress, on_block)
     finally:
         with _sigint_ignored():  # a second Ctrl-C must not interrupt the shutdown
             if futures:
                 client.cancel(list(futures))
             if own and client is not None:
-                cluster = client.cluster
+                closing = client.cluster
                 client.close()
-                if cluster is not None:
-                    cluster.close()
-    seconds = time.perf_counter() - start
-    return SweepRun(path, len(blocks), len(todo), sum(_points(b) for b in todo), seconds, n_workers)
+                if closing is not None:
+                    closing.close()
+    return n_workers, where
 
 
 def _points(block) -> int:
