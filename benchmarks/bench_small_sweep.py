@@ -40,7 +40,7 @@ def _run(extra: list[str], out: Path) -> tuple[float, float, str]:
     c0, w0 = _children_cpu(), time.perf_counter()
     done = subprocess.run(argv, capture_output=True, text=True, check=True)
     wall, cpu = time.perf_counter() - w0, _children_cpu() - c0
-    where = next(line.split()[-1] for line in done.stdout.splitlines() if line.startswith("scheduler"))
+    where = next(line.split(None, 1)[1] for line in done.stdout.splitlines() if line.startswith("scheduler"))
     return wall, cpu, where
 
 
@@ -56,7 +56,9 @@ def main() -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--repeat", type=int, default=3, metavar="N", help="runs of each (default 3)")
-    parser.add_argument("--record", action="store_true", help="write benchmarks/results/<script>.json")
+    from records import add_record_option
+
+    add_record_option(parser)
     args = parser.parse_args()
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start")
     label = "moving-bogie " + " ".join(COMMAND[:2] + ["examples/car.toml"] + COMMAND[3:])
@@ -77,7 +79,6 @@ def main() -> None:
         print(f"{label.split()[1] + ' ' + key:38s} {timings[0][2]:>14s} {wall:9.2f} {cpu:9.2f}")
     print(f"stores of the two identical: {same}")
     if args.record:
-        sys.path.insert(0, str(Path(__file__).resolve().parent))
         from records import row, write_record
 
         (wall, cpu, where), (wall2, cpu2, where2) = summary.values()
