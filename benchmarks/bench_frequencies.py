@@ -134,7 +134,7 @@ def instrumented():
             record["seconds"][phase] += time.perf_counter() - t0
             record["double"][phase] += (fast.evaluations if fast else 0) - e0
             if func is saved["count_tiling"] and "tiles" not in record:
-                record["tiles"] = out[1].regions
+                record["tiles"] = out.tiling.regions
             return out
 
         return wrapper

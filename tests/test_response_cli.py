@@ -131,12 +131,14 @@ def test_failed_frequency_count_exits_2(capsys, monkeypatch):
     import dataclasses
 
     import moving_bogie.roots.frequencies as fq
+    from moving_bogie.roots.count.outcomes import count_mismatch
 
     real = fq.induced_frequencies
 
     def broken(params, **kwargs):
         result = real(params, **kwargs)
-        return dataclasses.replace(result, roots=result.roots[:-1], warnings=("count: stubbed mismatch",))
+        lost = result.roots[:-1]
+        return dataclasses.replace(result, roots=lost, notes=(count_mismatch(result.count, len(lost)),))
 
     monkeypatch.setattr(fq, "induced_frequencies", broken)
     assert main(["timeseries", "--case", "7", "--tau", "1"]) == 2

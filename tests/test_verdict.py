@@ -15,6 +15,7 @@ from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.count import far_field
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import far_field_radius, rho
+from moving_bogie.roots.count.outcomes import Reason
 from moving_bogie.roots.frequencies import induced_frequencies
 
 
@@ -83,8 +84,56 @@ def test_far_field_radius_is_confirmed_by_a_larger_window(case, changes):
 def test_window_inside_the_radius_is_undetermined(capsys):
     res = induced_frequencies(table1_case(1).replace(alpha=5), dps=20, window=Rectangle(-0.003, 3, -3, 3.1))
     assert res.verdict.state == "undetermined"
-    assert any(r.startswith("window:") for r in res.verdict.reasons)
+    assert [note.reason for note in res.verdict.reasons] == [Reason.WINDOW]  # WindowIncomplete, and only it
+    assert res.to_dict()["verdict"]["reasons"][0].startswith("window: it stops at Re q = 3,")
     assert res.to_dict()["stable"] is None
+
+
+def test_a_count_mismatch_is_its_own_reason(monkeypatch):
+    """A root the search loses (locate returns one cell fewer, as if Newton's method had not found it) makes
+    the count disagree: the result says CountMismatch, the verdict is UNDETERMINED for that reason alone,
+    and the printed warning is rendered from it."""
+    from moving_bogie.roots import frequencies
+
+    complete = induced_frequencies(table1_case(1), dps=20)
+    assert complete.count_ok and complete.verdict.determined and complete.count > 0
+    located = frequencies.locate
+
+    def loses_one(fast, rect, n, newton_cell):
+        cells, missing = located(fast, rect, n, newton_cell)
+        return cells[1:], missing
+
+    monkeypatch.setattr(frequencies, "locate", loses_one)
+    res = induced_frequencies(table1_case(1), dps=20)
+    assert res.found < res.count == complete.count and not res.count_ok
+    assert [note.reason for note in res.verdict.reasons] == [Reason.COUNT]
+    assert [note.reason for note in res.notes] == [Reason.COUNT]
+    assert res.warnings[0] == (
+        f"count: the argument principle counts {res.count} root(s) with Re q >= 0, {res.found} were found "
+        "and confirmed"
+    )
+
+
+def test_roots_left_unlocated_are_typed_and_counted_against_the_verdict(monkeypatch):
+    """Roots counted in a cell but not located come back as an Unlocated with its LOCATE note; a cell that
+    reaches below the axis (where a missing root may be unstable) makes the verdict UNDETERMINED, with
+    CountMismatch as its reason (a cell wholly in Im q > 0 would not: its roots decay)."""
+    from moving_bogie.roots import frequencies
+    from moving_bogie.roots.count.outcomes import Note, Unlocated
+
+    located = frequencies.locate
+
+    def gives_up_below(fast, rect, n, newton_cell):
+        if rect.y0 <= 0:
+            return [], Unlocated(rect, n, Note(Reason.LOCATE, f"gave up on {rect}"))
+        return located(fast, rect, n, newton_cell)
+
+    monkeypatch.setattr(frequencies, "locate", gives_up_below)
+    res = induced_frequencies(table1_case(1), dps=20)
+    assert res.unlocated and res.found < res.count and all(u.cell.y0 <= 0 for u in res.unlocated)
+    assert sum(u.missing for u in res.unlocated) == res.count - res.found
+    assert Reason.LOCATE in [note.reason for note in res.notes]
+    assert [note.reason for note in res.verdict.reasons] == [Reason.COUNT]
 
 
 def test_undamped_sliver_is_undetermined_when_the_strip_is_not_counted(monkeypatch):
@@ -96,7 +145,7 @@ def test_undamped_sliver_is_undetermined_when_the_strip_is_not_counted(monkeypat
     monkeypatch.setattr(frequencies, "strip_below_cut", lambda *args, **kwargs: None)
     res = induced_frequencies(table1_case(2), dps=20)
     assert res.count_ok and res.verdict.state == "undetermined"
-    assert [r.split(":")[0] for r in res.verdict.reasons] == ["sliver"]
+    assert [note.reason for note in res.verdict.reasons] == [Reason.SLIVER]
 
 
 def test_missing_expansion_is_undetermined(monkeypatch):

@@ -204,7 +204,7 @@ def format_result(result) -> str:
         )
     verdict = result.verdict
     if verdict.state == "undetermined":
-        lines.append("verdict: UNDETERMINED: " + "; ".join(verdict.reasons))
+        lines.append("verdict: UNDETERMINED: " + "; ".join(note.text for note in verdict.reasons))
     elif verdict.state == "stable":
         real = sum(r.marginal for r in result.roots)
         neutral = f"; {real} real, neutral (constant amplitude)" if real else ""

@@ -23,6 +23,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import mpmath
 import numpy as np
@@ -32,6 +33,7 @@ from moving_bogie.kernels.characteristic import Characteristic, CharacteristicAr
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
+from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mismatch, notes_with
 from moving_bogie.roots.count.strip import StripCount, strip_below_cut
 from moving_bogie.roots.count.window import default_window, far_field_window  # noqa: F401  (public here too)
 from moving_bogie.roots.refine.locate import locate
@@ -39,6 +41,10 @@ from moving_bogie.roots.refine.polish import PolishError, fixed_text, polish_and
 from moving_bogie.roots.search.continuation import ContinuedRegion
 from moving_bogie.roots.search.counting import count_tiling, frame
 from moving_bogie.roots.verdict import Verdict, judge
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.roots.proof.certify import Certificate
 
 
 @dataclass(frozen=True)
@@ -91,7 +97,7 @@ class InducedFrequency:
 class FrequencyResult:
     """All induced frequencies in a window, the argument-principle count and the verdict."""
 
-    params: object  # DimensionlessParams (bind() gives its bound model)
+    params: DimensionlessParams  # (bind() gives its bound model)
     model: str  # the vehicle's name, for output only
     dps: int
     window: Rectangle
@@ -99,11 +105,11 @@ class FrequencyResult:
     count: int  # roots with Re q >= 0 by the argument principle (with multiplicity, pairs once)
     unsearched: tuple  # slivers around the cut that no contour can enter
     evaluations: int  # E_chr evaluations (double precision + high precision)
-    warnings: tuple = field(default=())
+    notes: tuple[Note, ...] = field(default=())
     far_field: FarField | None = None
-    certificate: object = None  # roots.proof.certify.Certificate when asked for (certify=True)
+    certificate: Certificate | None = None  # when asked for (certify=True)
     strip: StripCount | None = None  # the sliver below the real axis, counted (roots/count/strip.py)
-    unlocated: tuple = ()  # (cell, roots counted in it but not located): cells the search could not resolve
+    unlocated: tuple[Unlocated, ...] = ()  # roots counted in a cell but not located
     decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
 
     @property
@@ -111,8 +117,13 @@ class FrequencyResult:
         return sum(r.multiplicity for r in self.roots)
 
     @property
+    def warnings(self) -> tuple[str, ...]:
+        """The notes as printed (rendered from their reasons)."""
+        return tuple(note.text for note in self.notes)
+
+    @property
     def count_ok(self) -> bool:
-        return self.found == self.count and not any(w.startswith("window") for w in self.warnings)
+        return self.found == self.count and not notes_with(self.notes, Reason.WINDOW)
 
     @property
     def unstable_roots(self) -> tuple:
@@ -224,7 +235,7 @@ def induced_frequencies(
         far = far_field_radius(bound, default_window(bound).x1)
     fast = CharacteristicArray(bound, foundation=foundation)
     precise = Characteristic(bound, foundation=foundation)
-    warnings = []
+    notes: list[Note] = []
 
     def report(x):
         if progress is not None:
@@ -234,39 +245,47 @@ def induced_frequencies(
     parts = frame(window, big) if check_window else ()
     # the cut is traced once, over the p-range of the window twice as large, for the window and the frame
     cuts = cut_loci(params, [(r.x0, r.x1) for r in (window, *parts)], foundation=fast.kernel.foundation)
-    cut, tiling, counts, count_warnings = count_tiling(
-        fast, params, window, eps, eps_branch, cuts[0], newton_cell
-    )
-    warnings += count_warnings
+    counted = count_tiling(fast, params, window, eps, eps_branch, cuts[0], newton_cell)
+    cut, tiling, counts = counted.cut, counted.tiling, counted.counts
+    notes += counted.notes
     total = sum(counts)
     report(0.1)
     decaying_outside = 0
     if check_window:
         more, lost, below = 0, 0, 0
         for k, (part, part_cut) in enumerate(zip(parts, cuts[1:])):
-            part_counts, part_warnings = count_tiling(fast, params, part, eps, eps_branch, part_cut)[2:]
-            more += sum(part_counts)
-            lost += len(part_warnings)
-            below += sum(part_counts) if k == 0 else 0  # the strip Im q <= window.y0 < 0
+            part_count = count_tiling(fast, params, part, eps, eps_branch, part_cut)
+            more += sum(part_count.counts)
+            lost += len(part_count.notes)
+            below += sum(part_count.counts) if k == 0 else 0  # the strip Im q <= window.y0 < 0
         if lost:
-            warnings.append(
-                f"window: {lost} cell(s) of the window twice as large could not be counted "
-                f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})"
+            notes.append(
+                Note(
+                    Reason.WINDOW,
+                    f"{lost} cell(s) of the window twice as large could not be counted "
+                    f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})",
+                )
             )
         if more and not below and _holds_far_disc(window, far):
             # The frame lies outside the half-disc |q| < R of the far-field check: its roots have Im q >= 0.
             decaying_outside = more
-            warnings.append(
-                f"beyond the window: {more} root(s) in the window twice as large (Re q <= {big.x1:g}, "
-                f"{big.y0:g} <= Im q <= {big.y1:g}), all with Im q >= 0 (no root with Im q < 0 beyond "
-                f"|q| = {far.radius:g}, the far-field check): they decay and do not change the verdict; "
-                "a time series adds them from strips along the real axis when the cut runs along it, "
-                "and refuses otherwise (pass a larger window to list them)"
+            notes.append(
+                Note(
+                    Reason.BEYOND_WINDOW,
+                    f"{more} root(s) in the window twice as large (Re q <= {big.x1:g}, "
+                    f"{big.y0:g} <= Im q <= {big.y1:g}), all with Im q >= 0 (no root with Im q < 0 beyond "
+                    f"|q| = {far.radius:g}, the far-field check): they decay and do not change the verdict; "
+                    "a time series adds them from strips along the real axis when the cut runs along it, "
+                    "and refuses otherwise (pass a larger window to list them)",
+                )
             )
         elif more:
-            warnings.append(
-                f"window: {more} more root(s) in the window twice as large "
-                f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window"
+            notes.append(
+                Note(
+                    Reason.WINDOW,
+                    f"{more} more root(s) in the window twice as large "
+                    f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window",
+                )
             )
     report(0.2)
     cells, unlocated = [], []
@@ -274,11 +293,11 @@ def induced_frequencies(
         if isinstance(rect, ContinuedRegion):  # counted through the cut, its roots located already
             cells += rect.cells
         elif n:
-            found_cells, locate_warning = locate(fast, rect, n, newton_cell)
+            found_cells, missing = locate(fast, rect, n, newton_cell)
             cells += found_cells
-            if locate_warning:
-                warnings.append(locate_warning[0])
-                unlocated.append(locate_warning[1])
+            if missing is not None:
+                notes.append(missing.note)
+                unlocated.append(missing)
     report(0.6)
     roots = []
     for k, (q0, mult, rect) in enumerate(cells):
@@ -291,25 +310,24 @@ def induced_frequencies(
                 split_cluster(precise, q0, mult, rect, dps=dps, extra_dps=extra_dps) if mult > 1 else []
             )
             if not confirmed:
-                warnings.append(f"polish: {exc}")
+                notes.append(Note(Reason.POLISH, str(exc)))
                 continue
         for conf, m in confirmed:
             if not rect.contains(complex(conf.q), margin=1e-9 * max(1.0, abs(complex(conf.q)))):
-                warnings.append(f"polish: Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
+                notes.append(
+                    Note(Reason.POLISH, f"Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
+                )
                 continue
             side = _side(conf.q, conf.decimals, cut, params)
             roots.append(InducedFrequency(conf.q, side, m, conf.step, conf.digits, conf.decimals))
         report(0.6 + 0.4 * (k + 1) / len(cells))
-    roots, pair_warnings = _fold_pairs(roots)
-    warnings += pair_warnings
+    roots, pair_notes = _fold_pairs(roots)
+    notes += pair_notes
     roots.sort(key=lambda r: -float(mpmath.re(r.q)))
     count = total - _mirrors_counted(cells)
     found = sum(r.multiplicity for r in roots)
     if found != count:
-        warnings.append(
-            f"count: the argument principle counts {count} root(s) with Re q >= 0, "
-            f"{found} were found and confirmed"
-        )
+        notes.append(count_mismatch(count, found))
     result = FrequencyResult(
         params,
         params.vehicle,
@@ -319,12 +337,12 @@ def induced_frequencies(
         count,
         tiling.unsearched,
         fast.evaluations + precise.evaluations,
-        tuple(warnings),
+        tuple(notes),
         far,
         strip=strip_below_cut(
             bound,
             window,
-            [u for u in tiling.unsearched if not getattr(u, "reason", "")],
+            [u for u in tiling.unsearched if not u.reason],
             foundation=foundation,
         ),
         unlocated=tuple(unlocated),
@@ -363,15 +381,15 @@ def _side(q, decimals, cut: CutLocus, params) -> str:
 
 def _fold_pairs(roots):
     """Keep one member of each pair q, -conj(q): drop a root with Re q < 0 whose mirror was found."""
-    keep, warnings = [], []
+    keep, notes = [], []
     for r in roots:
         if mpmath.re(r.q) < 0 and abs(mpmath.re(r.q)) > mpmath.mpf(10) ** (-r.decimals):
             mirror = -mpmath.conj(r.q)
             if any(abs(o.q - mirror) < 1e-8 for o in roots if o is not r):
                 continue
-            warnings.append(f"pair: root {mpmath.nstr(r.q, 8)} found without its mirror -conj(q)")
+            notes.append(Note(Reason.PAIR, f"root {mpmath.nstr(r.q, 8)} found without its mirror -conj(q)"))
         keep.append(r)
-    return keep, warnings
+    return keep, notes
 
 
 def _mirrors_counted(cells):

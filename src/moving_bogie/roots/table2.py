@@ -14,8 +14,8 @@ import mpmath
 
 from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
 from moving_bogie.roots.count.strip import branch_point_text
-from moving_bogie.roots.damping_limit import damping_limit
-from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.roots.damping_limit import DampingLimit, damping_limit
+from moving_bogie.roots.frequencies import FrequencyResult, induced_frequencies
 from moving_bogie.roots.refine.polish import fixed_text
 
 #: Half a unit of the print's last decimal (six decimals).
@@ -25,10 +25,10 @@ PRINT_TOLERANCE = Decimal("0.0000005")
 @dataclass(frozen=True)
 class CaseRow:
     case: int
-    result: object  # FrequencyResult
+    result: FrequencyResult
     printed: tuple  # ((re, im) decimal strings), possibly empty
     differences: tuple  # per computed root: (dre, dim) as Decimal or None when nothing is printed
-    limit: object = None  # DampingLimit: the real roots of an eta_f = 0 case under eta_f -> 0+
+    limit: DampingLimit | None = None  # the real roots of an eta_f = 0 case under eta_f -> 0+
 
     @property
     def ok(self) -> bool:
@@ -86,7 +86,8 @@ def compare_with_print(result, printed):
         q = complex(r.q)
         best = min(remaining, key=lambda pr: abs(q - complex(float(pr[0]), float(pr[1]))))
         remaining.remove(best)
-        out.append((Decimal(r.re_text) - Decimal(best[0]), Decimal(r.im_text) - Decimal(best[1])))
+        re_printed, im_printed = best
+        out.append((Decimal(r.re_text) - Decimal(re_printed), Decimal(r.im_text) - Decimal(im_printed)))
     return tuple(out)
 
 
@@ -145,7 +146,7 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
         status = "count ok" if row.result.count_ok else "COUNT MISMATCH"
         state = row.result.verdict
         verdict = {"stable": _stable_text(row.result), "unstable": "UNSTABLE"}.get(state.state) or (
-            "verdict UNDETERMINED (" + ", ".join(r.split(":")[0] for r in state.reasons) + ")"
+            "verdict UNDETERMINED (" + ", ".join(note.reason.value for note in state.reasons) + ")"
         )
         match = (
             "no printed value to compare"

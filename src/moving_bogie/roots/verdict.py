@@ -19,6 +19,12 @@ Otherwise the verdict is UNDETERMINED and lists what is missing; roots with Im q
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from moving_bogie.roots.count.outcomes import Note, Reason, count_mismatch
+
+if TYPE_CHECKING:
+    from moving_bogie.roots.frequencies import FrequencyResult
 
 STABLE, UNSTABLE, UNDETERMINED = "stable", "unstable", "undetermined"
 
@@ -28,62 +34,73 @@ class Verdict:
     """``state`` is one of STABLE, UNSTABLE, UNDETERMINED; ``reasons`` say why it is UNDETERMINED."""
 
     state: str
-    reasons: tuple = ()
+    reasons: tuple[Note, ...] = ()
 
     @property
     def determined(self) -> bool:
         return self.state != UNDETERMINED
 
     def to_dict(self) -> dict:
-        return {"state": self.state, "reasons": list(self.reasons)}
+        return {"state": self.state, "reasons": [note.text for note in self.reasons]}
 
 
-def incompleteness(result) -> list[str]:
+def incompleteness(result: FrequencyResult) -> list[Note]:
     """Why the search of ``result`` (a FrequencyResult) may have missed a root with Im q < 0."""
     reasons = []
     far = result.far_field
     if far is None:
-        reasons.append("far field: not checked (no radius beyond which E_chr has no root with Im q < 0)")
+        reasons.append(
+            Note(Reason.FAR_FIELD, "not checked (no radius beyond which E_chr has no root with Im q < 0)")
+        )
     elif far.radius is None:
-        reasons.append(f"far field: {far.reason}")
+        reasons.append(Note(Reason.FAR_FIELD, far.reason))
     else:
         w = result.window
         if w.x1 < far.radius or w.y0 > -far.radius:
             reasons.append(
-                f"window: it stops at Re q = {w.x1:g}, Im q = {w.y0:g}, inside the radius R = {far.radius:g} "
-                "beyond which E_chr has no root with Im q < 0; widen it or drop --window"
+                Note(
+                    Reason.WINDOW,
+                    f"it stops at Re q = {w.x1:g}, Im q = {w.y0:g}, inside the radius R = {far.radius:g} "
+                    "beyond which E_chr has no root with Im q < 0; widen it or drop --window",
+                )
             )
-    upper = sum(k for cell, k in getattr(result, "unlocated", ()) if cell.y0 > 0)
+    upper = sum(u.missing for u in result.unlocated if u.cell.y0 > 0)
     if result.found != result.count and result.count - result.found != upper:
-        reasons.append(
-            f"count: the argument principle counts {result.count} root(s) with Re q >= 0, "
-            f"{result.found} were found and confirmed"
-        )
-    lost = [u for u in result.unsearched if getattr(u, "reason", "") and u.y0 < 0]
+        reasons.append(count_mismatch(result.count, result.found))
+    lost = [u for u in result.unsearched if u.reason and u.y0 < 0]
     for u in lost:
         reasons.append(
-            f"unsearched: the cell {u.x0:.6g} <= Re q <= {u.x1:.6g}, {u.y0:.6g} <= Im q <= {u.y1:.6g} "
-            f"({u.x1 - u.x0:.1e} x {u.height:.1e}) could not be counted: {u.reason}"
+            Note(
+                Reason.UNSEARCHED,
+                f"the cell {u.x0:.6g} <= Re q <= {u.x1:.6g}, {u.y0:.6g} <= Im q <= {u.y1:.6g} "
+                f"({u.x1 - u.x0:.1e} x {u.height:.1e}) could not be counted: {u.reason}",
+            )
         )
-    low = min((u.y0 for u in result.unsearched if not getattr(u, "reason", "")), default=0.0)
-    strip = getattr(result, "strip", None)
+    low = min((u.y0 for u in result.unsearched if not u.reason), default=0.0)
+    strip = result.strip
     if low < 0 and strip is not None and not strip.decided:
         reasons.append(
-            f"sliver: the unsearched band around the cut of K reaches Im q = {low:.1e} < 0 and "
-            f"could not be counted there ({strip.reason})"
+            Note(
+                Reason.SLIVER,
+                f"the unsearched band around the cut of K reaches Im q = {low:.1e} < 0 and "
+                f"could not be counted there ({strip.reason})",
+            )
         )
     elif low < 0 and strip is None:
         reasons.append(
-            f"sliver: the unsearched band around the cut of K reaches Im q = {low:.1e} < 0, "
-            "so a root just below the real axis there cannot be excluded"
+            Note(
+                Reason.SLIVER,
+                f"the unsearched band around the cut of K reaches Im q = {low:.1e} < 0, "
+                "so a root just below the real axis there cannot be excluded",
+            )
         )
     return reasons
 
 
-def judge(result) -> Verdict:
+def judge(result: FrequencyResult) -> Verdict:
     """The verdict of a FrequencyResult: complete search -> STABLE/UNSTABLE, else UNDETERMINED."""
     reasons = incompleteness(result)
     if reasons:
         return Verdict(UNDETERMINED, tuple(reasons))
-    unstable = result.unstable_roots or getattr(result, "strip_unstable", 0)
+    unstable = result.unstable_roots or result.strip_unstable
     return Verdict(UNSTABLE if unstable else STABLE)

@@ -20,6 +20,7 @@ from moving_bogie.roots.count.far_field import (
     rho,
     sample_points,
 )
+from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mismatch, notes_with
 from moving_bogie.roots.count.strip import (
     StripCount,
     branch_point_text,
@@ -30,6 +31,11 @@ from moving_bogie.roots.count.strip import (
 from moving_bogie.roots.count.window import default_window, far_field_window
 
 __all__ = [
+    "Note",
+    "Reason",
+    "Unlocated",
+    "count_mismatch",
+    "notes_with",
     "BoundingBox",
     "EdgeZeroError",
     "FarField",

@@ -27,7 +27,9 @@ from dataclasses import dataclass
 from flint import acb, arb, ctx
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.proof.balls import Undecided
+from moving_bogie.roots.proof.proof_tiling import Staircase
 
 #: Factor by which a boundary segment grows after a proven one (a failing one is halved).
 GROWTH = 1.5
@@ -41,7 +43,7 @@ class NotProven(MovingBogieError):
 class ProvenCount:
     """Proven number of zeros inside ``rect``; ``segments`` boundary pieces were needed."""
 
-    rect: object
+    rect: Rectangle | Staircase
     count: int
     segments: int
 

@@ -11,18 +11,19 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, piece_points, winding_numbers
+from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated
 
 __all__ = ["locate", "newton_inside"]
 
 
-def locate(fast, rect, n, newton_cell):
+def locate(fast, rect, n: int, newton_cell: float) -> tuple[list, Unlocated | None]:
     """Bisect ``rect`` (holding ``n`` roots) into cells of one root each.
 
     Returns ([(q0, multiplicity, cell)], warning). A cell that cannot be split into halves whose counts
     add up (a root on every split line tried) is handed to Newton's method from a grid of starts inside
-    it; if that does not find its roots either, they are missing from the result and ``warning`` is
-    (text, (cell, missing)) (the count then disagrees with the roots found: the verdict is UNDETERMINED
-    unless the cell lies in Im q > 0, where a missing root cannot be unstable).
+    it; if that does not find its roots either, they are missing from the result and ``warning`` is an
+    :class:`~moving_bogie.roots.count.outcomes.Unlocated` (the count then disagrees with the roots found:
+    the verdict is UNDETERMINED unless the cell lies in Im q > 0, where a missing root cannot be unstable).
     """
     out, warning = [], None
     level = [(rect, n)]
@@ -32,8 +33,8 @@ def locate(fast, rect, n, newton_cell):
             for r, k in level:
                 starts = _grid_roots(fast, r, k) if k else []
                 if len(starts) != k:
-                    text = f"locate: gave up splitting {r} holding {k} root(s) ({_LOCATE_POINTS} evaluations)"
-                    warning = (text, (r, k - len(starts)))
+                    text = f"gave up splitting {r} holding {k} root(s) ({_LOCATE_POINTS} evaluations)"
+                    warning = Unlocated(r, k - len(starts), Note(Reason.LOCATE, text))
                 out += [(q, 1, r) for q in starts]
             break
         # every cell of a level is split at once: one batched evaluation of E_chr per refinement of the
@@ -73,8 +74,8 @@ def locate(fast, rect, n, newton_cell):
         for r, k, _ in failed:
             starts = _grid_roots(fast, r, k)
             if len(starts) != k:
-                text = f"locate: could not split {r} holding {k} root(s) into consistent halves"
-                warning = (text, (r, k - len(starts)))
+                text = f"could not split {r} holding {k} root(s) into consistent halves"
+                warning = Unlocated(r, k - len(starts), Note(Reason.LOCATE, text))
             out += [(q, 1, r) for q in starts]
     return out, warning
 

@@ -9,7 +9,7 @@ from moving_bogie.roots.search.continuation import (
     crossing_roots,
     touches_cut,
 )
-from moving_bogie.roots.search.counting import CountMismatch, count_tiling, frame
+from moving_bogie.roots.search.counting import CountMismatch, TilingCount, count_tiling, frame
 from moving_bogie.roots.search.cut_cells import ColumnCell, Edge, Sliver, TipCell
 from moving_bogie.roots.search.search_columns import COLUMN_SAMPLES, arms_over, box, column, fill_columns
 from moving_bogie.roots.search.search_folds import fold_event
@@ -28,6 +28,7 @@ __all__ = [
     "box",
     "column",
     "count_continued",
+    "TilingCount",
     "count_tiling",
     "crossing_roots",
     "fill_columns",

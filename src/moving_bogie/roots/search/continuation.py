@@ -62,7 +62,7 @@ class ContinuedRegion(BoundingBox):
     how many p-roots had their side fixed.
     """
 
-    region: object
+    region: BoundingBox
     count: int
     cells: tuple
     crossing: int

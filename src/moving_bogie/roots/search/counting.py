@@ -13,9 +13,10 @@ check that no root lies just beyond it).
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.cut import cut_locus
+from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.count.contour import (
     EdgeZeroError,
     Rectangle,
@@ -23,15 +24,48 @@ from moving_bogie.roots.count.contour import (
     winding_number,
     winding_numbers,
 )
+from moving_bogie.roots.count.outcomes import Note, Reason
 from moving_bogie.roots.search.continuation import count_continued, touches_cut
 from moving_bogie.roots.search.cut_cells import ColumnCell, Sliver
-from moving_bogie.roots.search.search_regions import tile_window
+from moving_bogie.roots.search.search_regions import Tiling, tile_window
 
-__all__ = ["CountMismatch", "count_tiling", "frame"]
+__all__ = ["CountMismatch", "TilingCount", "count_tiling", "frame"]
 
 
 class CountMismatch(MovingBogieError):
     """The argument principle and the roots found disagree."""
+
+
+@dataclass(frozen=True)
+class TilingCount:
+    """The window tiled and counted: ``counts[k]`` roots in ``tiling.regions[k]``; ``notes`` say which
+    regions were left out (:attr:`~moving_bogie.roots.count.outcomes.Reason.UNSEARCHED`)."""
+
+    cut: CutLocus
+    tiling: Tiling
+    counts: tuple[int, ...]
+    notes: tuple[Note, ...]
+
+
+@dataclass(frozen=True)
+class _Attempt:
+    """One tiling tried (edges at ``eps``): its regions, their counts, the cells left out, the failures."""
+
+    tiling: Tiling
+    regions: list
+    counts: list[int]
+    left_out: list[Sliver]
+    failed: list[int]
+    eps: float
+
+
+@dataclass
+class _Budget:
+    """What the recoveries of all failing tiles of one tiling share: the evaluations when they began, and
+    the pieces counted so far."""
+
+    since: int
+    splits: int = 0
 
 
 #: Perturbations of the tiling tried in turn when an edge meets a root (eps factor, gap height fraction);
@@ -42,7 +76,15 @@ _RETRIES = ((1.0, 0.1), (0.8, 0.113), (0.6, 0.087), (0.5, 0.121))
 _GAP_SCALE = 10.0
 
 
-def count_tiling(fast, params, window, eps, eps_branch, cut=None, newton_cell=0.25):
+def count_tiling(
+    fast,
+    params,
+    window: Rectangle,
+    eps: float,
+    eps_branch: float,
+    cut: CutLocus | None = None,
+    newton_cell: float = 0.25,
+) -> TilingCount:
     """Tile the window and count the roots in every tile (``cut``: the window's :class:`CutLocus` if traced
     already, :func:`~moving_bogie.kernels.cut.cut_loci`).
 
@@ -63,7 +105,7 @@ def count_tiling(fast, params, window, eps, eps_branch, cut=None, newton_cell=0.
     :class:`~moving_bogie.roots.search.continuation.ContinuedRegion` with its roots located (``newton_cell``
     as in :func:`~moving_bogie.roots.refine.locate.locate`).
 
-    Returns (cut, tiling, counts, warnings).
+    Returns the :class:`TilingCount`.
     """
     if cut is None:
         cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
@@ -76,22 +118,26 @@ def count_tiling(fast, params, window, eps, eps_branch, cut=None, newton_cell=0.
         counts, left_out, failed = _counts(fast, tiling.regions, eps * factor)
         regions = list(tiling.regions)
         failed = _through_cut(fast, regions, counts, failed, newton_cell)
-        if best is None or len(failed) < len(best[4]):
-            best = (tiling, regions, counts, left_out, failed, eps * factor)
+        if best is None or len(failed) < len(best.failed):
+            best = _Attempt(tiling, regions, counts, left_out, failed, eps * factor)
         if not failed or all(touches_cut(fast, regions[k]) for k in failed):
             break  # moving the edges does not move the cut: split those tiles instead
-    tiling, regions, counts, left_out, failed, used_eps = best
-    warnings = []
-    budget = {"since": fast.evaluations, "splits": 0}  # the recoveries of all failing tiles share it
-    for k in failed:
-        pieces, piece_counts, lost = _recover(fast, regions[k], used_eps, newton_cell, budget)
+    assert best is not None  # _RETRIES is not empty
+    tiling, regions, counts, left_out = best.tiling, best.regions, best.counts, best.left_out
+    notes = []
+    budget = _Budget(since=fast.evaluations)
+    for k in best.failed:
+        pieces, piece_counts, lost = _recover(fast, regions[k], best.eps, newton_cell, budget)
         regions[k], counts[k] = pieces, piece_counts
         for piece, error in lost:
             y0, y1 = piece.y0, piece.y1
             left_out.append(Sliver(piece.x0, piece.x1, y0, y1, y1 - y0, reason=str(error)))
-            warnings.append(
-                f"unsearched: the roots in {piece} ({piece.width:.1e} x {piece.height:.1e}) could not be "
-                f"counted ({error})"
+            notes.append(
+                Note(
+                    Reason.UNSEARCHED,
+                    f"the roots in {piece} ({piece.width:.1e} x {piece.height:.1e}) could not be counted "
+                    f"({error})",
+                )
             )
     flat_regions, flat_counts = [], []
     for region, n in zip(regions, counts):
@@ -103,7 +149,7 @@ def count_tiling(fast, params, window, eps, eps_branch, cut=None, newton_cell=0.
             flat_counts.append(n)
     unsearched = _bands_through_cut(fast, tiling.unsearched, flat_regions, flat_counts, newton_cell)
     tiling = dataclasses.replace(tiling, regions=tuple(flat_regions), unsearched=unsearched + tuple(left_out))
-    return cut, tiling, flat_counts, warnings
+    return TilingCount(cut, tiling, tuple(flat_counts), tuple(notes))
 
 
 #: A band left out around the cut taller than this (next to an avoided crossing of two cut curves, where
@@ -165,7 +211,7 @@ _RECOVERY_POINTS = 1_000_000
 _RECOVERY_SPLITS = 200
 
 
-def _recover(fast, region, eps, newton_cell, budget):
+def _recover(fast, region, eps: float, newton_cell: float, budget: _Budget):
     """Pieces of ``region`` that can be counted, their counts, and the (piece, error) left out. A piece
     that fails is first counted through the cut (:func:`count_continued`), then split; once the
     recoveries of the tiling (``budget``: the evaluations when they began, the pieces so far) have spent
@@ -174,8 +220,8 @@ def _recover(fast, region, eps, newton_cell, budget):
     stack = [(region, 0, None)]
     while stack:
         r, depth, error = stack.pop()
-        budget["splits"] += 1
-        if fast.evaluations - budget["since"] > _RECOVERY_POINTS or budget["splits"] > _RECOVERY_SPLITS:
+        budget.splits += 1
+        if fast.evaluations - budget.since > _RECOVERY_POINTS or budget.splits > _RECOVERY_SPLITS:
             lost.append((r, EdgeZeroError(f"{error}; the recovery spent its budget")))
             continue
         continued = count_continued(fast, r, newton_cell) if depth else None  # depth 0: tried already

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from moving_bogie.kernels.cut import clearance
+from moving_bogie.kernels.cut import CutArm, clearance
 from moving_bogie.roots.count.contour import BoundingBox, Rectangle
 
 __all__ = ["Edge", "ColumnCell", "TipCell", "Sliver"]
@@ -44,7 +44,7 @@ class Sliver:
     #: a region whose area is the band left out (``covers`` empty), or that holds it together with the
     #: search cells ``covers`` (the tip cells of a fold): it can be counted through the cut instead
     #: (:mod:`~moving_bogie.roots.search.continuation`)
-    cell: object = field(default=None, repr=False, compare=False)
+    cell: BoundingBox | None = field(default=None, repr=False, compare=False)
     covers: tuple = field(default=(), repr=False, compare=False)
 
 
@@ -53,7 +53,7 @@ class Edge:
     """A horizontal line Im q = ``y`` (``arm`` None) or the offset of a cut arm by ``side`` * ``delta``."""
 
     y: float = 0.0
-    arm: object = None
+    arm: CutArm | None = None
     side: int = 0
     delta: float = 0.0
 

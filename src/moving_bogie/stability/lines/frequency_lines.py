@@ -20,12 +20,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.roots.frequencies import induced_frequencies
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
 
 __all__ = ["FrequencyLine", "FrequencyLines", "frequency_lines"]
 
@@ -56,7 +60,7 @@ class FrequencyLine:
 
 @dataclass(frozen=True)
 class FrequencyLines:
-    params: object
+    params: DimensionlessParams
     model: str
     alpha_range: tuple
     lines: tuple

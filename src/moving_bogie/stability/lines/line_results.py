@@ -9,10 +9,14 @@ eta_f = 0 or nearly so), so that neither imports the other.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from moving_bogie.stability.maps.undamped import regime, statement
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
 
 __all__ = ["InstabilityBranch", "InstabilityLines"]
 
@@ -96,7 +100,7 @@ class InstabilityBranch:
 class InstabilityLines:
     """All instability lines of one parameter set (for one or several wheel spacings)."""
 
-    params: object
+    params: DimensionlessParams
     model: str
     parameter: str
     alpha_range: tuple

@@ -17,12 +17,16 @@ import os
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import ColumnResult, settle_cells, stability_column, top_edge
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
 
 __all__ = ["ColumnResult", "StabilityMap", "map_columns", "stability_column", "stability_map"]
 
@@ -34,7 +38,7 @@ class StabilityMap:
     ``settled`` marks the cells decided by a full count, ``uncertain`` those still not certified.
     """
 
-    params: object
+    params: DimensionlessParams
     model: str
     parameter: str
     alphas: np.ndarray

@@ -28,6 +28,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -42,6 +43,9 @@ from moving_bogie.stability.maps.undamped import (
     uncertain_warning,
 )
 from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
 
 __all__ = ["CriticalStiffness", "critical_stiffness"]
 
@@ -62,7 +66,7 @@ class CriticalStiffness:
         0 and not computed on an undamped or near-undamped foundation, where there is no D-decomposition).
     """
 
-    params: object
+    params: DimensionlessParams
     alphas: np.ndarray
     kappa_max: float
     intervals: tuple
