@@ -219,6 +219,8 @@ def test_timoshenko_rayleigh_series_start_at_rest(freqs):
 
 
 def test_incomplete_or_foreign_frequencies_are_refused(freqs):
+    from moving_bogie.roots.count.outcomes import count_mismatch
+
     result = freqs(7)
     broken = type(result)(
         result.params,
@@ -229,7 +231,7 @@ def test_incomplete_or_foreign_frequencies_are_refused(freqs):
         result.count,
         result.unsearched,
         result.evaluations,
-        ("count: test",),
+        (count_mismatch(result.count, result.found - result.roots[-1].multiplicity),),
     )
     with pytest.raises(IncompleteFrequencies):
         residue_expansion(table1_case(7), broken)
