@@ -191,3 +191,19 @@ def test_atomic_write_leaves_old_file_when_writing_fails(tmp_path, monkeypatch):
         atomic_write(target, "new")
     assert target.read_text() == "old"
     assert [p.name for p in tmp_path.iterdir()] == ["result.txt"]
+
+
+def test_models_lists_one_line_per_model_and_a_name_gives_its_parameters(capsys):
+    from moving_bogie.model.catalogue import default_catalogue
+
+    models = default_catalogue().models()
+    assert main(["models"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    listed = [line.split()[0] for line in lines if line.startswith("  ")]
+    assert listed == [model.name for model in models]
+    bogie = next(model for model in models if model.vehicle == "bogie")
+    assert main(["models", bogie.name]) == 0
+    out = capsys.readouterr().out
+    assert all(spec.option in out for spec in bogie.specs.values())
+    assert main(["models", bogie.name[:-1]]) == 2
+    assert f"did you mean '{bogie.name}'?" in capsys.readouterr().err

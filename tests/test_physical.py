@@ -170,5 +170,5 @@ def test_per_rail_and_whole_vehicle_give_the_same_groups():
 
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
-        assert main(["models"]) == 0
+        assert main(["models", "--verbose"]) == 0
     assert "Convention: SI inputs are per rail" in out.getvalue()

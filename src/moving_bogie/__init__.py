@@ -3,6 +3,11 @@
 Reference: Z. Dimitrovová, *Instability of a Moving Bogie: Analysis of Vibrations and Possibility of
 Instability in Subcritical Velocity Range*, preprint 10.20944/preprints202501.1517.v1 (2025).
 
+A parameter file (``examples/*.toml``) loads with :func:`load_parameters`::
+
+    params, physical = moving_bogie.load_parameters("examples/uic60-bogie.toml")
+    result = moving_bogie.induced_frequencies(params)
+
 The runtime never imports SymPy: formulas come from the generated kernels in
 :mod:`moving_bogie.generated`, written by ``python -m derivations``.
 """
@@ -11,6 +16,7 @@ from importlib.metadata import PackageNotFoundError, version
 
 from moving_bogie.errors import MovingBogieError, MovingBogieWarning, ParameterError
 from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
+from moving_bogie.model.files import load_parameters, load_params_file
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams, Scales
 
@@ -56,6 +62,8 @@ __all__ = [
     "PhysicalParams",
     "Scales",
     "__version__",
+    "load_parameters",
+    "load_params_file",
     "table1_case",
     "table2_printed",
     *_LAZY,

@@ -173,7 +173,7 @@ def format_si(result, physical) -> str:
         si = root_in_si(root.q, t_scale, digits=min(8, root.digits))
         growth = f", growth time {si['growth_time_s']} s" if si["growth_time_s"] else ""
         lines.append(
-            f"  {k:<2}omega = +-{si['omega']['re']} + {si['omega']['im']}i rad/s, "
+            f"  {k:>2} omega = +-{si['omega']['re']} + {si['omega']['im']}i rad/s, "
             f"f = {si['frequency_hz']} Hz{growth}"
         )
     return "\n".join(lines)

@@ -169,11 +169,11 @@ def run_timeseries(args: argparse.Namespace) -> int:
     if args.plot or args.plot_long:
         from moving_bogie.response.plots import long_time_figure, save_figure, time_series_figure
 
-        label = f"Case {args.case}" if args.case is not None else "closed form"
+        label = series_label(args, ts)
         if args.plot:
             save_figure(time_series_figure(ts, title=f"{label}: closed-form time series"), args.plot)
         if args.plot_long:
-            save_figure(long_time_figure(ts, title=f"{label}: long times"), args.plot_long)
+            save_figure(long_time_figure(ts, title=f"{label}: closed form at long times"), args.plot_long)
     if args.json:
         print_json(ts.to_dict())
     else:
@@ -181,6 +181,15 @@ def run_timeseries(args: argparse.Namespace) -> int:
         plots = [str(f) for f in (args.plot, args.plot_long) if f]
         print(format_series(ts, rows=args.rows or not files, csv=args.csv, plots=plots))
     return 0
+
+
+def series_label(args: argparse.Namespace, ts) -> str:
+    """What a figure's title names: the Table 1 case, else the parameter file, else the model."""
+    if args.case is not None:
+        return f"Case {args.case}"
+    if args.file is not None:
+        return f"{args.file.name} ({ts.model})"
+    return str(ts.model)
 
 
 #: The columns of the paper's vehicles; any other vehicle prints its own responses (its DOFs).

@@ -35,7 +35,7 @@ from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 
-__all__ = ["dimensionless_keys", "load_params_file", "parse_params_toml", "physical_keys"]
+__all__ = ["dimensionless_keys", "load_parameters", "load_params_file", "parse_params_toml", "physical_keys"]
 
 _TOP_LEVEL = ("case", "model", "dimensionless", "physical")
 _MODEL_KEYS = ("beam", "track", "vehicle")
@@ -61,8 +61,11 @@ def physical_keys() -> tuple[str, ...]:
     return tuple(dict.fromkeys(keys))
 
 
-def load_params_file(path: str | Path) -> tuple[DimensionlessParams, PhysicalParams | None]:
-    """Read a TOML parameter file.
+def load_parameters(path: str | Path) -> tuple[DimensionlessParams, PhysicalParams | None]:
+    """Read a TOML parameter file (the files of ``examples/``; ``load_params_file`` is the same function).
+
+    The file has a ``[model]`` table (beam, track, vehicle) and a ``[dimensionless]`` table of the groups
+    (optionally on top of ``case = N`` of Table 1) or a ``[physical]`` table of SI parameters.
 
     Returns
     -------
@@ -76,15 +79,28 @@ def load_params_file(path: str | Path) -> tuple[DimensionlessParams, PhysicalPar
         range; the message names the key and the file.
     FileNotFoundError
         If `path` does not exist.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "case7-faster.toml"
+    >>> _ = path.write_text("case = 7\\n[dimensionless]\\nalpha = 0.5\\n")
+    >>> params, physical = load_parameters(path)
+    >>> float(params.alpha), float(params.eta_M), physical is None
+    (0.5, 30.0, True)
     """
     path = Path(path)
     return parse_params_toml(path.read_text(encoding="utf-8"), source=str(path))
 
 
+#: The former name of :func:`load_parameters`, kept.
+load_params_file = load_parameters
+
+
 def parse_params_toml(
     text: str, *, source: str = "<string>"
 ) -> tuple[DimensionlessParams, PhysicalParams | None]:
-    """Parse the text of a parameter file, named `source` in error messages; see :func:`load_params_file`."""
+    """Parse the text of a parameter file, named `source` in error messages; see :func:`load_parameters`."""
     try:
         data = tomllib.loads(text, parse_float=Decimal)
     except tomllib.TOMLDecodeError as exc:
