@@ -36,6 +36,9 @@ class StabilityMap:
     """Degree of instability ``degree[j, i]`` at (alphas[i], thetas[j]) and the unstable count.
 
     ``settled`` marks the cells decided by a full count, ``uncertain`` those still not certified.
+    ``margin[j, i]`` is the smallest Im q of the induced frequencies: the degree where unstable, the
+    smallest decay rate where stable (:mod:`~moving_bogie.stability.maps.column_margin`), NaN where
+    undetermined, a lower bound where ``margin_bound``.
     """
 
     params: DimensionlessParams
@@ -47,6 +50,8 @@ class StabilityMap:
     count: np.ndarray
     uncertain: np.ndarray
     settled: np.ndarray | None = None
+    margin: np.ndarray | None = None
+    margin_bound: np.ndarray | None = None
 
     def save_npz(self, path) -> None:
         """Write the arrays (and the parameters as JSON text) to ``path`` (numpy .npz)."""
@@ -58,6 +63,7 @@ class StabilityMap:
             count=self.count,
             uncertain=self.uncertain,
             settled=self.settled_cells,
+            **({} if self.margin is None else {"margin": self.margin, "margin_bound": self.margin_bound}),
             params=json.dumps(self.params.to_dict()),
             model=self.model,
             parameter=self.parameter,
@@ -193,4 +199,6 @@ def stability_map(
         stack("count"),
         stack("uncertain"),
         stack("settled"),
+        stack("margin"),
+        stack("margin_bound"),
     )
