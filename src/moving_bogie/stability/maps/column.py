@@ -206,7 +206,15 @@ def stability_column(
     margins = np.where(count > 0, degree, found.margin)
     margins[uncertain] = np.nan
     return ColumnResult(
-        float(alpha), thetas, count, degree, uncertain, roots, np.zeros(len(t), dtype=bool), margins, found.bound
+        float(alpha),
+        thetas,
+        count,
+        degree,
+        uncertain,
+        roots,
+        np.zeros(len(t), dtype=bool),
+        margins,
+        found.bound,
     )
 
 

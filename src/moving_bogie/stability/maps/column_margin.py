@@ -34,7 +34,8 @@ MAX_STRIP_ROOTS = 16
 
 @dataclass(frozen=True)
 class ColumnMargin:
-    """Per cell: the smallest Im q of the roots below ``h`` (``h`` itself where ``bound``; NaN: unknown)."""
+    """Per cell: the smallest Im q of the roots below the rectangle's top (that top where ``bound``, the top
+    having been lowered from ``h`` for a cell with a root near it; NaN: undetermined)."""
 
     margin: np.ndarray
     bound: np.ndarray
@@ -92,19 +93,34 @@ def column_margin(
         return ColumnMargin(margin, bound, np.nan if h is None else h)
     X, Y = window
     t = np.asarray(thetas, dtype=float) / float(np.max(thetas))
-    found = delves_lyness(coeffs, t[cells], X, Y, h, max_roots=MAX_STRIP_ROOTS, with_empty=True)
-    for j, roots in zip(cells, found):
-        if roots is None:
-            continue
-        if len(roots) == 0:
-            margin[j], bound[j] = h, True
-            continue
-        q = polish_roots(sweep, np.asarray(roots, dtype=complex), alpha, np.full(len(roots), thetas[j]), polish)
-        keep: list[complex] = []
-        for x in q[np.isfinite(q)]:
-            x = -np.conj(x) if x.real < 0 else x
-            if -Y < x.imag < h and abs(x.real) < X and all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):
-                keep.append(x)
-        if _mirrored(np.array(keep), X) == len(roots) and min(x.imag for x in keep) >= 0:
-            margin[j] = min(x.imag for x in keep)
+    todo = np.asarray(cells, dtype=int)
+    for top, panel in ((h, 0.05), (0.75 * h, 0.05), (0.5 * h, 0.02)):  # a root near the top: a lower top
+        found = delves_lyness(
+            coeffs, t[todo], X, Y, top, panel=panel, max_roots=MAX_STRIP_ROOTS, with_empty=True
+        )
+        for j, roots in zip(todo, found):
+            if roots is not None:
+                margin[j], bound[j] = _smallest(sweep, alpha, thetas[j], roots, (X, Y, top), polish)
+        todo = todo[np.isnan(margin[todo])]
+        if not todo.size:
+            break
     return ColumnMargin(margin, bound, h)
+
+
+def _smallest(sweep, alpha: float, theta: float, roots: list, box: tuple, polish: int) -> tuple[float, bool]:
+    """(margin, bound) of one cell from the Delves-Lyness roots of the rectangle ``box`` = (X, Y, top):
+    ``top`` where it holds no root, the smallest Im q of the polished roots where they add up to the
+    count and none lies below the real axis, else NaN."""
+    X, Y, top = box
+    if not roots:
+        return top, True
+    q = polish_roots(sweep, np.asarray(roots, dtype=complex), alpha, np.full(len(roots), theta), polish)
+    keep: list[complex] = []
+    for x in q[np.isfinite(q)]:
+        x = -np.conj(x) if x.real < 0 else x
+        inside = -Y < x.imag < top and abs(x.real) < X
+        if inside and all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):
+            keep.append(x)
+    if _mirrored(np.array(keep), X) != len(roots) or min(x.imag for x in keep) < 0:
+        return np.nan, False
+    return min(x.imag for x in keep), False
