@@ -81,6 +81,31 @@ class StabilityMap:
             for j, i in zip(rows, cols)
         ]
 
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict over the grid first, then its axes, margin and uncertain cells."""
+        from moving_bogie.html_repr import html_table
+
+        unstable, uncertain = int((self.count > 0).sum()), int(self.uncertain.sum())
+        if unstable:
+            verdict = f"UNSTABLE in {unstable} of {self.count.size} cells"
+        else:
+            verdict = "STABLE in every certified cell" if uncertain else "STABLE in every cell"
+        stable = (self.count == 0) & ~self.uncertain
+        margins = self.margin[stable] if self.margin is not None else np.zeros(0)
+        margins = margins[np.isfinite(margins)]
+        rows = [
+            ("model", f"{self.params.beam} beam, {self.params.track} track, {self.model}"),
+            ("alpha", f"{self.alphas[0]:.6g}..{self.alphas[-1]:.6g}, {len(self.alphas)} points"),
+            (self.parameter, f"{self.thetas[0]:.6g}..{self.thetas[-1]:.6g}, {len(self.thetas)} points"),
+            ("largest growth rate, -min Im q", f"{-float(self.degree.min()):.6g}" if unstable else "none"),
+            (
+                "smallest decay rate of the stable cells, min Im q",
+                f"{margins.min():.6g}" if margins.size else "n/a",
+            ),
+            ("cells settled by a full count / uncertain", f"{int(self.settled_cells.sum())} / {uncertain}"),
+        ]
+        return html_table("stability map", verdict, rows)
+
     def summary(self) -> dict:
         return {
             "params": self.params.to_dict(),
