@@ -81,6 +81,15 @@ class StabilityMap:
             for j, i in zip(rows, cols)
         ]
 
+    @property
+    def min_decay_rate(self) -> float | None:
+        """The smallest margin of the stable, certain cells (min Im q; None: no such cell measured)."""
+        if self.margin is None:
+            return None
+        margins = self.margin[(self.count == 0) & ~self.uncertain]
+        margins = margins[np.isfinite(margins)]
+        return float(margins.min()) if margins.size else None
+
     def _repr_html_(self) -> str:
         """Jupyter: the verdict over the grid first, then its axes, margin and uncertain cells."""
         from moving_bogie.html_repr import html_table
@@ -90,9 +99,6 @@ class StabilityMap:
             verdict = f"UNSTABLE in {unstable} of {self.count.size} cells"
         else:
             verdict = "STABLE in every certified cell" if uncertain else "STABLE in every cell"
-        stable = (self.count == 0) & ~self.uncertain
-        margins = self.margin[stable] if self.margin is not None else np.zeros(0)
-        margins = margins[np.isfinite(margins)]
         rows = [
             ("model", f"{self.params.beam} beam, {self.params.track} track, {self.model}"),
             ("alpha", f"{self.alphas[0]:.6g}..{self.alphas[-1]:.6g}, {len(self.alphas)} points"),
@@ -100,7 +106,7 @@ class StabilityMap:
             ("largest growth rate, -min Im q", f"{-float(self.degree.min()):.6g}" if unstable else "none"),
             (
                 "smallest decay rate of the stable cells, min Im q",
-                f"{margins.min():.6g}" if margins.size else "n/a",
+                _text(self.min_decay_rate),
             ),
             ("cells settled by a full count / uncertain", f"{int(self.settled_cells.sum())} / {uncertain}"),
         ]
@@ -116,10 +122,15 @@ class StabilityMap:
             f"{self.parameter}_range": [float(self.thetas[0]), float(self.thetas[-1]), len(self.thetas)],
             "unstable_fraction": float(np.mean(self.count > 0)),
             "max_degree": float(-self.degree.min()) if self.degree.size else 0.0,
+            "min_decay_rate": self.min_decay_rate,
             "settled_cells": int(self.settled_cells.sum()),
             "uncertain_cells": int(self.uncertain.sum()),
             "uncertain": self.uncertain_list(),
         }
+
+
+def _text(x: float | None) -> str:
+    return "n/a" if x is None else f"{x:.6g}"
 
 
 def map_columns(params, parameter, alphas, thetas, options=None, settle=True, held=()) -> list[ColumnResult]:
