@@ -17,9 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from moving_bogie.stability.figures.plots import hatch_cells
-
-__all__ = ["MarginPlane", "draw_margin", "fixed_parameters", "plane_title"]
+__all__ = ["MarginPlane", "draw_margin", "fixed_parameters", "hatch_cells", "plane_title"]
 
 #: Decades of growth rate and of decay rate the logarithmic colour scales span at most (smaller rates
 #: take the lowest colour, the colour bar's arrow says so).
@@ -48,6 +46,34 @@ def _colorbar(fig, ax, mesh, label: str, extend: str) -> None:
     bar = fig.colorbar(mesh, ax=ax, label=label, pad=0.01, extend=extend)
     bar.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     bar.ax.yaxis.set_minor_formatter(FuncFormatter(minor))
+
+
+def hatch_cells(
+    ax, x, y, mask, *, label="uncertain (not certified)", hatch: str = "////", color: str = "tab:blue"
+) -> int:
+    """Hatch the cells ``mask[j, i]`` of the grid ``x[i], y[j]`` (cell edges halfway between the values).
+
+    Returns the number of hatched cells.
+    """
+    from matplotlib.collections import PatchCollection
+    from matplotlib.patches import Rectangle
+
+    x, y, mask = np.asarray(x, dtype=float), np.asarray(y, dtype=float), np.asarray(mask, dtype=bool)
+
+    def edges(v):
+        if len(v) == 1:
+            return np.array([v[0] - 0.5, v[0] + 0.5])
+        mid = 0.5 * (v[1:] + v[:-1])
+        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+    ex, ey = edges(x), edges(y)
+    rows, cols = np.nonzero(mask)
+    patches = [Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j]) for j, i in zip(rows, cols)]
+    if patches:
+        ax.add_collection(
+            PatchCollection(patches, facecolor="none", edgecolor=color, hatch=hatch, lw=0.5, label=label)
+        )
+    return len(patches)
 
 
 def _extend(values: np.ndarray, norm) -> str:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from moving_bogie.stability.figures.margin_plot import hatch_cells
 from moving_bogie.stability.figures.plot_units import PlaneUnits
 
 __all__ = [
@@ -92,34 +93,6 @@ def end_mark_handles(kinds) -> list:
     from matplotlib.lines import Line2D
 
     return [Line2D([], [], label=END_LABELS[k], **END_MARKERS[k]) for k in sorted(kinds)]
-
-
-def hatch_cells(
-    ax, x, y, mask, *, label="uncertain (not certified)", hatch: str = "////", color: str = "tab:blue"
-) -> int:
-    """Hatch the cells ``mask[j, i]`` of the grid ``x[i], y[j]`` (cell edges halfway between the values).
-
-    Returns the number of hatched cells.
-    """
-    from matplotlib.collections import PatchCollection
-    from matplotlib.patches import Rectangle
-
-    x, y, mask = np.asarray(x, dtype=float), np.asarray(y, dtype=float), np.asarray(mask, dtype=bool)
-
-    def edges(v):
-        if len(v) == 1:
-            return np.array([v[0] - 0.5, v[0] + 0.5])
-        mid = 0.5 * (v[1:] + v[:-1])
-        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
-
-    ex, ey = edges(x), edges(y)
-    rows, cols = np.nonzero(mask)
-    patches = [Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j]) for j, i in zip(rows, cols)]
-    if patches:
-        ax.add_collection(
-            PatchCollection(patches, facecolor="none", edgecolor=color, hatch=hatch, lw=0.5, label=label)
-        )
-    return len(patches)
 
 
 def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0, units=None):
