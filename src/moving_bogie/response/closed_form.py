@@ -94,6 +94,24 @@ class TimeSeries:
     steady: dict = field(default_factory=dict)
     response_units: dict = field(default_factory=dict)
 
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict of the frequencies summed first, then the times, steady parts and notes."""
+        from moving_bogie.html_repr import html_table
+
+        state = getattr(getattr(self.frequencies, "verdict", None), "state", "frequencies not judged")
+        verdict = f"{state.upper()} (the induced frequencies summed)"
+        unit = self.units.get("tau", "")
+        rows = [
+            ("model", self.model),
+            ("times", f"{len(self.tau)} from {self.tau[0]:.6g} to {self.tau[-1]:.6g} {unit}".rstrip()),
+            ("branch cut included up to", f"{self.branch_cut_until:.6g}" if self.branch_cut else "nowhere"),
+        ]
+        rows += [
+            (f"steady {k}", f"{v:.10g} {self.response_units.get(k, '')}".rstrip())
+            for k, v in self.steady.items()
+        ]
+        return html_table("closed-form time series", verdict, rows, reasons=list(self.notes))
+
     def to_dict(self) -> dict:
         """JSON-ready dict: arrays as lists (NaN as None), the steady parts, flags, units and frequencies."""
 

@@ -280,6 +280,26 @@ class ValidationResult:
         """``finite_beam_s / closed_form_s``: how many times slower the finite beam is."""
         return self.finite_beam_s / self.closed_form_s if self.closed_form_s > 0 else math.inf
 
+    def _repr_html_(self) -> str:
+        """Jupyter: whether the finite beam agrees first, then every quantity's relative difference."""
+        from moving_bogie.html_repr import html_table
+
+        verdict = "AGREES" if self.agrees else "DISAGREES"
+        rows = [
+            ("model", self.model),
+            ("window", f"tau {self.window[0]:.6g}..{self.window[1]:.6g}"),
+            ("tolerance", f"{self.tolerance:g} of max |closed form|"),
+            ("wall times [s]", f"finite beam {self.finite_beam_s:.3g}, closed form {self.closed_form_s:.3g}"),
+        ]
+        items = [
+            (self.labels.get(k, k), f"{q.relative:.3g}", "yes" if q.within else "no")
+            for k, q in self.quantities.items()
+        ]
+        header = ("quantity", "max |difference| / max |closed form|", "within")
+        return html_table(
+            "finite beam against closed form", verdict, rows, reasons=list(self.notes), items=(header, items)
+        )
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (no time series)."""
         params = self.params.to_dict() if hasattr(self.params, "to_dict") else None

@@ -36,6 +36,9 @@ class StabilityMap:
     """Degree of instability ``degree[j, i]`` at (alphas[i], thetas[j]) and the unstable count.
 
     ``settled`` marks the cells decided by a full count, ``uncertain`` those still not certified.
+    ``margin[j, i]`` is the smallest Im q of the induced frequencies: the degree where unstable, the
+    smallest decay rate where stable (:mod:`~moving_bogie.stability.maps.column_margin`), NaN where
+    undetermined, a lower bound where ``margin_bound``.
     """
 
     params: DimensionlessParams
@@ -47,6 +50,8 @@ class StabilityMap:
     count: np.ndarray
     uncertain: np.ndarray
     settled: np.ndarray | None = None
+    margin: np.ndarray | None = None
+    margin_bound: np.ndarray | None = None
 
     def save_npz(self, path) -> None:
         """Write the arrays (and the parameters as JSON text) to ``path`` (numpy .npz)."""
@@ -58,6 +63,7 @@ class StabilityMap:
             count=self.count,
             uncertain=self.uncertain,
             settled=self.settled_cells,
+            **({} if self.margin is None else {"margin": self.margin, "margin_bound": self.margin_bound}),
             params=json.dumps(self.params.to_dict()),
             model=self.model,
             parameter=self.parameter,
@@ -75,6 +81,37 @@ class StabilityMap:
             for j, i in zip(rows, cols)
         ]
 
+    @property
+    def min_decay_rate(self) -> float | None:
+        """The smallest margin of the stable, certain cells (min Im q; None: no such cell measured)."""
+        if self.margin is None:
+            return None
+        margins = self.margin[(self.count == 0) & ~self.uncertain]
+        margins = margins[np.isfinite(margins)]
+        return float(margins.min()) if margins.size else None
+
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict over the grid first, then its axes, margin and uncertain cells."""
+        from moving_bogie.html_repr import html_table
+
+        unstable, uncertain = int((self.count > 0).sum()), int(self.uncertain.sum())
+        if unstable:
+            verdict = f"UNSTABLE in {unstable} of {self.count.size} cells"
+        else:
+            verdict = "STABLE in every certified cell" if uncertain else "STABLE in every cell"
+        rows = [
+            ("model", f"{self.params.beam} beam, {self.params.track} track, {self.model}"),
+            ("alpha", f"{self.alphas[0]:.6g}..{self.alphas[-1]:.6g}, {len(self.alphas)} points"),
+            (self.parameter, f"{self.thetas[0]:.6g}..{self.thetas[-1]:.6g}, {len(self.thetas)} points"),
+            ("largest growth rate, -min Im q", f"{-float(self.degree.min()):.6g}" if unstable else "none"),
+            (
+                "smallest decay rate of the stable cells, min Im q",
+                _text(self.min_decay_rate),
+            ),
+            ("cells settled by a full count / uncertain", f"{int(self.settled_cells.sum())} / {uncertain}"),
+        ]
+        return html_table("stability map", verdict, rows)
+
     def summary(self) -> dict:
         return {
             "params": self.params.to_dict(),
@@ -85,10 +122,15 @@ class StabilityMap:
             f"{self.parameter}_range": [float(self.thetas[0]), float(self.thetas[-1]), len(self.thetas)],
             "unstable_fraction": float(np.mean(self.count > 0)),
             "max_degree": float(-self.degree.min()) if self.degree.size else 0.0,
+            "min_decay_rate": self.min_decay_rate,
             "settled_cells": int(self.settled_cells.sum()),
             "uncertain_cells": int(self.uncertain.sum()),
             "uncertain": self.uncertain_list(),
         }
+
+
+def _text(x: float | None) -> str:
+    return "n/a" if x is None else f"{x:.6g}"
 
 
 def map_columns(params, parameter, alphas, thetas, options=None, settle=True, held=()) -> list[ColumnResult]:
@@ -193,4 +235,6 @@ def stability_map(
         stack("count"),
         stack("uncertain"),
         stack("settled"),
+        stack("margin"),
+        stack("margin_bound"),
     )
