@@ -69,6 +69,26 @@ def test_initial_conditions_two_masses(freqs):
     assert ts.w_steady_front == pytest.approx(bogie.w_steady_front, rel=1e-12)
 
 
+def test_a_purely_imaginary_root_is_its_own_mirror():
+    # Reference: Eq. (35) sums the residue of every pole once; a root on Re q = 0 (the two of
+    # IMAGINARY_ROOTS in tests/test_search_random.py, Re q ~ 1e-47 at 30 digits) equals its mirror
+    # -conj(q), so it is listed once, and a complex root with its mirror (exact negation of Re q).
+    from types import SimpleNamespace
+
+    from moving_bogie.response.residues import both_members
+
+    with mpmath.workdps(30):
+        on_axis = mpmath.mpc("1.41297340001946e-48", "0.204018663754486")
+        off_axis = mpmath.mpc("0.129145285682305", "0.0238007704203665")
+    roots = [SimpleNamespace(q=q, multiplicity=1, decimals=28) for q in (on_axis, off_axis)]
+    result = SimpleNamespace(count_ok=True, roots=roots, dps=30, warnings=[])
+    members = both_members(result)
+    assert len(members) == 3
+    with mpmath.workdps(30):
+        assert members[0] == on_axis and members[1] == off_axis
+        assert members[2] == -mpmath.conj(off_axis)
+
+
 @pytest.mark.parametrize("case", [7, 1])
 def test_side_values_of_K_on_the_cut_match_the_kernel_just_off_it(case):
     # Reference: K of Eq. (29) by TrackKernel at q - i eps (below) and q + i eps (above).
