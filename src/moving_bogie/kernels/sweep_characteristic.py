@@ -93,8 +93,8 @@ class SweepCharacteristic:
         Everything but alpha, the spacing d (when given per point) and ``parameter`` is taken from here
         (the vehicle too: that of the parameters' model); with ``parameter="eta_M"`` the bar's mass and
         inertia follow the wheel mass with the coefficients cf1, cf2 of ``params`` (Eq. (63)).
-    parameter : str
-        The vehicle parameter swept (default eta_M).
+    parameter : str, optional
+        The vehicle parameter swept (default: the wheel mass, ``Model.wheel_mass``, eta_M).
     foundation : module or Foundation, optional
         The track model (default that of the parameters' model).
     block : bool
@@ -118,7 +118,7 @@ class SweepCharacteristic:
     def __init__(
         self,
         params,
-        parameter: str = "eta_M",
+        parameter: str | None = None,
         *,
         foundation=None,
         held=(),
@@ -127,6 +127,7 @@ class SweepCharacteristic:
     ):
         bound = bind(params)
         params = bound.params
+        parameter = parameter or params.model.wheel_mass
         self.below = bool(below)
         self.params = params
         self.parameter = parameter

@@ -91,8 +91,8 @@ def evaluate_block(task: BlockTask) -> dict:
     certain = np.zeros(shape, dtype=bool)
     settled = np.zeros(shape, dtype=bool)
     roots = np.full((*shape, task.max_roots), complex(np.nan, np.nan))
-    # without a column every point is a column of one at its own eta_M: nothing varies, nothing is held
-    parameter, held = (task.column, task.held) if task.column else ("eta_M", ())
+    # without a column every point is a column of one at its own wheel mass: nothing varies, nothing is held
+    parameter, held = (task.column, task.held) if task.column else (task.params.model.wheel_mass, ())
     for changes, alphas, thetas, index_grid in groups:
         params = task.params.replace(**(task.fixed | changes)) if changes else task.params
         alphas = alphas if alphas is not None else [params.alpha]

@@ -65,7 +65,7 @@ def plot_instability_lines(
     colors = colors or spacing_colors(ds)
     seen = set()
     marked = set()
-    parameter = getattr(lines, "parameter", "eta_M")
+    parameter = lines.parameter
     x, y = (lambda a: units.value("alpha", a)), (lambda t: units.value(parameter, t) / scale)
     for b in lines.branches:
         style = UNDAMPED_STYLES.get(b.kind, {"ls": linestyle})

@@ -168,7 +168,7 @@ def _column_task(args):
 def stability_map(
     params,
     *,
-    parameter: str = "eta_M",
+    parameter: str | None = None,
     alphas: Sequence[float] | None = None,
     thetas: Sequence[float] | None = None,
     workers: int | None = None,
@@ -184,7 +184,8 @@ def stability_map(
     params : DimensionlessParams or BoundModel
         Everything but alpha and ``parameter`` (cf1, cf2 kept fixed when the parameter is eta_M); the
         vehicle is that of their model.
-    parameter : {"eta_M", "kappa_v", "eta_v"}
+    parameter : str, optional
+        The vertical axis (eta_M, kappa_v, eta_v, ...; default the wheel mass, ``Model.wheel_mass``).
     alphas, thetas : sequence of float
         Grid (default 0..1.2 and 1..200 in 200 steps each, theta > 0).
     workers : int, optional
@@ -199,6 +200,7 @@ def stability_map(
         Passed to :func:`~moving_bogie.stability.maps.column.stability_column`.
     """
     params = bind(params).params
+    parameter = parameter or params.model.wheel_mass
     alphas = np.asarray(np.linspace(0.0, 1.2, 200) if alphas is None else alphas, dtype=float)
     thetas = np.asarray(np.linspace(1.0, 200.0, 200) if thetas is None else thetas, dtype=float)
     if "top" not in options:

@@ -149,8 +149,9 @@ class UndampedCounter:
     ----------
     params : DimensionlessParams or BoundModel
         Its eta_f is ignored (set to 0); the vehicle is that of its model.
-    parameter : str
-        The swept vehicle parameter (eta_M, kappa_v or eta_v).
+    parameter : str, optional
+        The swept vehicle parameter (eta_M, kappa_v or eta_v; default the wheel mass,
+        ``Model.wheel_mass``).
     q_step : float
         Sampling of the gap 0 < q < q_c for real roots.
     margin : float
@@ -158,9 +159,10 @@ class UndampedCounter:
         near-undamped eta_f: such a root may lie on either side at that eta_f, e.g. next to a branch point).
     """
 
-    def __init__(self, params, parameter: str = "eta_M", *, q_step: float = 0.002, margin=0.0):
+    def __init__(self, params, parameter: str | None = None, *, q_step: float = 0.002, margin=0.0):
         self.margin = float(margin)
         self.params = bind(params).params.replace(eta_f=0)
+        parameter = parameter or self.params.model.wheel_mass
         self.parameter = parameter
         self.q_step = float(q_step)
         self.sweep = SweepCharacteristic(self.params, parameter, below=True)

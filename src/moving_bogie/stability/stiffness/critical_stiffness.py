@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import stability_column
 from moving_bogie.stability.maps.undamped import (
@@ -153,9 +154,10 @@ def critical_stiffness(
     progress : callable, optional
     """
     alphas = np.asarray(alphas, dtype=float)
+    stiffness = primary_stiffness(params)
     if regime(params.eta_f) != "damped":
-        return _undamped(params, alphas, kappa_max, check_points, tol, progress)
-    sweep = SweepCharacteristic(params, "kappa_v")
+        return _undamped(params, stiffness, alphas, kappa_max, check_points, tol, progress)
+    sweep = SweepCharacteristic(params, stiffness)
     kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
     intervals, critical, warnings = [], [], []
     mismatches = 0
@@ -163,7 +165,7 @@ def critical_stiffness(
         dd = d_decomposition(
             params.replace(alpha=Fraction(str(a))),
             a,
-            parameter="kappa_v",
+            parameter=stiffness,
             theta_max=kappa_max,
             q_max=q_max,
             samples=samples,
@@ -207,10 +209,26 @@ def _critical(ivs):
     return tuple(hi for (lo, hi, n), (_, _, m) in zip(ivs[:-1], ivs[1:]) if (n == 0) != (m == 0))
 
 
-def _undamped(params, alphas, kappa_max, check_points, tol, progress) -> CriticalStiffness:
+def primary_stiffness(params) -> str:
+    """The vehicle's primary-suspension stiffness group (``Model.primary_stiffness``: kappa_v).
+
+    Raises
+    ------
+    ParameterError
+        For a vehicle without a primary suspension (two masses), naming the vehicle.
+    """
+    name = params.model.primary_stiffness
+    if name is None:
+        raise ParameterError(
+            "vehicle", f"vehicle {params.model.vehicle!r} has no primary suspension: no critical stiffness"
+        )
+    return name
+
+
+def _undamped(params, stiffness, alphas, kappa_max, check_points, tol, progress) -> CriticalStiffness:
     """Counts on a kappa_v grid and bisection (:mod:`undamped`), exact at eta_f = 0 and in the limit."""
     margin = 100 * float(params.eta_f)
-    counter = UndampedCounter(params, "kappa_v", margin=margin)
+    counter = UndampedCounter(params, stiffness, margin=margin)
     unsure = {}
     grid = parameter_grid(kappa_max, check_points)
     kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"
