@@ -19,9 +19,10 @@ from __future__ import annotations
 
 import time
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.count.far_field import far_field_radius
-from moving_bogie.roots.frequencies import default_window, induced_frequencies
+from moving_bogie.roots.frequencies import default_window
 
 SETS = [
     ("Case 1", table1_case(1)),

@@ -204,7 +204,7 @@ def compare(result, reference) -> tuple[bool, float]:
 def run(sets, reference_every: int = 0, verbose: bool = False, scan_points: dict | None = None) -> dict:
     """Run the search on every set; returns per-family records. ``scan_points``: grid points per side of
     the reference scan per family (default 801 for every family)."""
-    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.api import induced_frequencies
 
     records = {f: [] for f in FAMILIES}
     try:

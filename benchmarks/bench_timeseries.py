@@ -23,12 +23,11 @@ import time
 
 import numpy as np
 
+from moving_bogie.api import closed_form_response, induced_frequencies
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.branch_cut import BranchCut
-from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.response.cut_integral import CurveBranchCut
 from moving_bogie.response.residues import residue_expansion
-from moving_bogie.roots.frequencies import induced_frequencies
 
 
 def best(func, repeat: int = 3) -> float:

@@ -29,11 +29,9 @@ def _timed(func):
 
 
 def main() -> None:
+    from moving_bogie.api import critical_stiffness, d_decomposition, instability_lines
     from moving_bogie.model.cases import table1_case
-    from moving_bogie.stability.lines.instability_lines import instability_lines
     from moving_bogie.stability.maps.undamped import UndampedCounter, boundaries, parameter_grid
-    from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
-    from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
 
     masses = table1_case(2).replace(d="1.5")
     jobs = [

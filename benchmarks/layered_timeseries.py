@@ -18,11 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
+from moving_bogie.api import closed_form_response, induced_frequencies
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.response.bromwich import bromwich_line
-from moving_bogie.response.closed_form import closed_form_response
-from moving_bogie.roots.frequencies import induced_frequencies
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "two-layer.toml"
 TAUS = (0.5, 2.0, 20.0, 50.0)

@@ -11,11 +11,10 @@ import time
 
 import mpmath
 
+from moving_bogie.api import closed_form_response, induced_frequencies
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.bromwich import bromwich_line
-from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 
 SETS = [("10", "0.09", "0.05"), ("10", "0.09", "0"), ("100", "0.03", "0.05")]
 TAUS = (0.5, 2.0, 20.0, 100.0)

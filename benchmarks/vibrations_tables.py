@@ -20,12 +20,12 @@ from pathlib import Path
 
 import numpy as np
 
+from moving_bogie.api import closed_form_response, induced_frequencies
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
 from moving_bogie.response.branch_cut import BranchCut
 from moving_bogie.response.bromwich import bromwich_response
-from moving_bogie.response.closed_form import _s_min, branch_cut_extent, closed_form_response
+from moving_bogie.response.closed_form import _s_min, branch_cut_extent
 from moving_bogie.response.residues import residue_expansion
-from moving_bogie.roots.frequencies import induced_frequencies
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "vibrations.md"
 TAUS = (0.0, 20.0, 100.0)

@@ -51,8 +51,8 @@ import mpmath
 
 import moving_bogie
 from moving_bogie import DimensionlessParams, table1_case
+from moving_bogie.api import induced_frequencies
 from moving_bogie.model.catalogue import Model, load_catalogue
-from moving_bogie.roots.frequencies import induced_frequencies
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 SOURCES = ("derivations", "src")

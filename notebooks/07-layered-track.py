@@ -32,8 +32,8 @@ import numpy as np
 from IPython.display import Image, display
 from matplotlib.figure import Figure
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.figures.track_comparison import compare_tracks, figure_track_comparison
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity, dispersion_branches
 

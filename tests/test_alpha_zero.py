@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 from test_cut_clearance import AVOIDED_CROSSING
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.roots.frequencies import induced_frequencies
 
 BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_random.py"
 

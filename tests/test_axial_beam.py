@@ -30,12 +30,11 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies, validate
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import get_model
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity
-from moving_bogie.validation.compare import validate
 from moving_bogie.validation.track_modes import ModalTrack
 
 

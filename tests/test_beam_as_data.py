@@ -19,9 +19,9 @@ import pytest
 from derivation_support import regenerated_copy, require_sympy
 
 from moving_bogie import DimensionlessParams, table1_case
+from moving_bogie.api import validate
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.catalogue import Model, load_catalogue
-from moving_bogie.validation.compare import validate
 
 require_sympy()
 

@@ -17,11 +17,11 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import main
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.frequencies import induced_frequencies
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -243,8 +243,8 @@ def test_car_on_two_layers_resolves_a_pair_1e13_apart():
 def test_car_time_series_against_bromwich():
     """Every response of the car in closed form (residues at the 11 pairs + branch cut, Eqs. (35)-(43))
     against the direct quadrature of the Bromwich integral on Im q = -a (no residues, no cut)."""
+    from moving_bogie.api import closed_form_response
     from moving_bogie.response.bromwich import bromwich_line
-    from moving_bogie.response.closed_form import closed_form_response
 
     params, _ = load_params_file(EXAMPLES / "car.toml")
     tau = np.array([5.0, 20.0, 60.0])

@@ -14,10 +14,10 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.model.files import load_params_file
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.proof.balls import BallCharacteristic
 from moving_bogie.roots.proof.certify import certify, krawczyk
 from moving_bogie.roots.proof.winding import proven_count

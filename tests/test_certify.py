@@ -16,6 +16,7 @@ import mpmath
 import pytest
 from flint import acb, acb_poly, ctx
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import main
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.cut import cut_locus
@@ -23,7 +24,6 @@ from moving_bogie.model.cases import table1_case, table2_printed
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.proof.balls import BallCharacteristic, isolate_roots, square_ball
 from moving_bogie.roots.proof.certify import certify, krawczyk
 from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling

@@ -21,10 +21,10 @@ import numpy as np
 import pytest
 from test_cut_clearance import AVOIDED_CROSSING
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.search.continuation import ContinuedRegion, count_continued, crossing_roots
 
 # The two cut curves pass about 5e-6 apart next to q* (their corners: the fold of one at 0.1850731869 +

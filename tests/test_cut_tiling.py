@@ -9,12 +9,13 @@ below and inside the lens of the Timoshenko-Rayleigh cut and around its fold.
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.count.contour import winding_number, winding_numbers
-from moving_bogie.roots.frequencies import default_window, induced_frequencies
+from moving_bogie.roots.frequencies import default_window
 from moving_bogie.roots.search.search_regions import tile_window
 
 TR_CASES = [("10", "0.09"), ("100", "0.03")]

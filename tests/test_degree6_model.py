@@ -112,7 +112,7 @@ def test_induced_frequencies_tend_to_table2_for_a_stiff_second_layer(two_layer):
     The roots move by O(1/kappa_2); Richardson extrapolation from kappa_2 = 1000 and 2000 removes that term,
     leaving O(1/kappa_2^2) ~ 1e-8, far below the 6 printed decimals of Table 2 (the reference).
     """
-    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.api import induced_frequencies
 
     found = {}
     for k2 in ("1000", "2000"):

@@ -15,11 +15,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.table2 import PRINT_TOLERANCE, compare_with_print
 
 

@@ -93,7 +93,7 @@ def test_one_layer_limit_is_table2_case7():
     2 q(t/2) - q(t) lands within O(t^2) of the one-layer root (Case 7's row of Table 2 is not in the
     packaged data; its one-layer roots are those `moving-bogie table2` prints).
     """
-    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.api import induced_frequencies
 
     base = table1_case(7)
     ones = induced_frequencies(base, dps=20)

@@ -18,6 +18,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies, stability_map
 from moving_bogie.cli import main
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
@@ -26,9 +27,7 @@ from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.maps.column import exact
-from moving_bogie.stability.maps.map import stability_map
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 

@@ -18,11 +18,11 @@ import pytest
 from derivation_support import regenerated_copy, require_sympy
 
 from moving_bogie import DimensionlessParams, ParameterError, table1_case
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.catalogue import Model, get_model, load_catalogue
 from moving_bogie.roots.count.window import far_field_window
-from moving_bogie.roots.frequencies import induced_frequencies
 
 require_sympy()
 

@@ -18,14 +18,13 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import closed_form_response, deflection_shape, induced_frequencies
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
-from moving_bogie.response.closed_form import closed_form_response, deflection_shape
 from moving_bogie.response.residues import IncompleteFrequencies, residue_expansion
-from moving_bogie.roots.frequencies import induced_frequencies
 
 NAMES = ("w_rear", "w_front", "u", "theta")
 

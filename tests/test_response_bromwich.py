@@ -13,10 +13,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from moving_bogie.api import closed_form_response, deflection_shape, induced_frequencies
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.bromwich import bromwich_response, bromwich_shape
-from moving_bogie.response.closed_form import closed_form_response, deflection_shape
-from moving_bogie.roots.frequencies import induced_frequencies
 
 NAMES = ("w_rear", "w_front", "u", "theta")
 

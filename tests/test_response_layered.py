@@ -17,13 +17,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from moving_bogie.api import closed_form_response, deflection_shape, induced_frequencies
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.response.branch_cut import BranchCutUnavailable
 from moving_bogie.response.bromwich import bromwich_line, bromwich_line_shape
-from moving_bogie.response.closed_form import closed_form_response, deflection_shape
 from moving_bogie.response.cut_integral import CurveBranchCut, branch_cut_for
-from moving_bogie.roots.frequencies import induced_frequencies
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "two-layer.toml"
 RESPONSES = ("w_rear", "w_front", "u", "theta")

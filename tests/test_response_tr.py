@@ -14,12 +14,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from moving_bogie.api import closed_form_response, induced_frequencies
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.bromwich import bromwich_line
-from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.response.cut_integral import CurveBranchCut, branch_cut_for
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 
 TAUS = (2.0, 20.0)
 

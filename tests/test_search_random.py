@@ -21,13 +21,14 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import arms_y_at, cut_locus
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
 from moving_bogie.roots.count.window import far_field_window
-from moving_bogie.roots.frequencies import default_window, induced_frequencies
+from moving_bogie.roots.frequencies import default_window
 from moving_bogie.roots.search import counting
 from moving_bogie.roots.search.search_regions import tile_window
 

@@ -10,16 +10,19 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import (
+    critical_stiffness,
+    d_decomposition,
+    frequency_lines,
+    induced_frequencies,
+    instability_lines,
+    stability_map,
+)
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.lines.frequency_lines import frequency_lines
-from moving_bogie.stability.lines.instability_lines import instability_lines
-from moving_bogie.stability.maps.map import stability_column, stability_map
-from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
-from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
+from moving_bogie.stability.maps.map import stability_column
 
 COARSE = dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
 

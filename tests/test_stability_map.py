@@ -11,9 +11,9 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.figures.plots import plot_stability_map
 from moving_bogie.stability.maps.column import exact, settle_cells, stability_column
 from moving_bogie.stability.maps.map import StabilityMap

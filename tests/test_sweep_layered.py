@@ -20,11 +20,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, polynomial_degree
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.maps.column import at_theta
 from moving_bogie.sweep import make_spec
 from moving_bogie.sweep.engine import block_task

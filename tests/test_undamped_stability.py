@@ -16,14 +16,11 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from moving_bogie.api import critical_stiffness, d_decomposition, induced_frequencies, instability_lines
 from moving_bogie.cli import main
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.lines.instability_lines import instability_lines
 from moving_bogie.stability.maps.undamped import UndampedCounter, boundaries, parameter_grid
-from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
-from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
 
 
 def _fr(x):
@@ -193,7 +190,7 @@ def test_cli_states_the_convention_and_what_is_computed(capsys):
 def test_stability_map_counts_change_exactly_across_the_undamped_boundaries():
     """A coarse stability map at eta_f = 0 (its own columns, with the top edge just below the cut) changes
     its unstable count between two cells exactly by the changes of the eta_f = 0 boundaries between them."""
-    from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.api import stability_map
 
     p = table1_case(3)
     alphas, thetas = np.linspace(1.05, 1.2, 4), np.linspace(10.0, 100.0, 10)
@@ -220,7 +217,7 @@ def test_stability_map_sees_the_root_next_to_a_branch_point():
     """Case 3 (bogie) at alpha = 1.1, eta_M = 13.7: a root 1.9e-4 below the axis next to the branch point
     q = 0.14496 of K; the full search at eta_f = 0 counts 2 unstable roots, and so must the map's column
     (it said 1, uncertified, before the top edge was sampled densely around the branch points)."""
-    from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.api import stability_map
 
     p = table1_case(3)
     reference = _unstable(p.replace(alpha=_fr(1.1), eta_M=_fr(13.7)))

@@ -13,13 +13,13 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.damping_limit import damping_limit
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.table2 import case_list, compute_table2, format_table2, summary_lines
 
 UNDAMPED = (2, 3, 4, 9, 10)

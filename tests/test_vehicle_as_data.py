@@ -15,9 +15,9 @@ import pytest
 from derivation_support import regenerated_copy, require_sympy
 
 from moving_bogie import DimensionlessParams, table1_case
+from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.model.catalogue import Model, load_catalogue
-from moving_bogie.roots.frequencies import induced_frequencies
 
 require_sympy()
 

@@ -7,6 +7,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import main
 from moving_bogie.generated import asymptotics
 from moving_bogie.kernels.characteristic import CharacteristicArray
@@ -16,7 +17,6 @@ from moving_bogie.roots.count import far_field
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import far_field_radius, rho
 from moving_bogie.roots.count.outcomes import Reason
-from moving_bogie.roots.frequencies import induced_frequencies
 
 
 @pytest.fixture(scope="module")

@@ -19,16 +19,21 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.errors import MovingBogieError, ParameterError
-from moving_bogie.kernels.bound import bind
-from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.model.physical import Scales
 from moving_bogie.response.axis_sequence import axis_roots, refuse_outside
 from moving_bogie.response.cut_policy import branch_cut_extent, branch_cut_mode, branch_cut_or_note, s_min_for
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
 from moving_bogie.response.shapes import KernelGrid
+
+if TYPE_CHECKING:
+    from moving_bogie.roots.frequencies import FrequencyResult
 
 __all__ = [
     "TimeSeries",
@@ -127,14 +132,22 @@ class TimeSeries:
         }
 
 
-def _bound_and_scales(params):
-    """(BoundModel, Scales or None) from either kind of parameters (or a bound model)."""
-    if isinstance(params, PhysicalParams):
-        return bind(params.to_dimensionless()), params.scales()
-    return bind(params), None
+def _dimensionless_times(tau: ArrayLike, scales: Scales | None) -> tuple[np.ndarray, np.ndarray]:
+    """(tau, the times as given): dimensionless tau of Eq. (16) (from seconds when ``scales`` are given)."""
+    tau = np.asarray(tau, dtype=float)
+    tau_in = tau
+    if scales is not None:
+        tau = tau / scales.t_scale
+    if tau.ndim != 1:
+        tau = tau.reshape(-1)
+    if np.any(tau < 0) or not np.all(np.isfinite(tau)):
+        raise ParameterError("tau", "tau must be finite and >= 0")
+    return tau, tau_in
 
 
-def _frequencies(bound, frequencies, dps, progress):
+def _frequencies(
+    bound: BoundModel, frequencies: FrequencyResult | None, dps: int, progress: Callable[[float], None] | None
+) -> FrequencyResult:
     if frequencies is not None:
         vehicle = bound.params.vehicle
         if frequencies.model != vehicle:
@@ -152,11 +165,12 @@ def _frequencies(bound, frequencies, dps, progress):
 
 
 def closed_form_response(
-    params,
-    tau,
+    bound: BoundModel,
+    tau: ArrayLike,
     *,
-    frequencies=None,
-    branch_cut="auto",
+    scales: Scales | None = None,
+    frequencies: FrequencyResult | None = None,
+    branch_cut: bool | str = "auto",
     dps: int = 30,
     progress: Callable[[float], None] | None = None,
     bc_tol: float = 1e-6,
@@ -167,11 +181,14 @@ def closed_form_response(
 
     Parameters
     ----------
-    params : DimensionlessParams, BoundModel or PhysicalParams
-        The model comes with them (another vehicle: ``params.replace(vehicle=...)``). With physical
-        parameters, ``tau`` is the time t in seconds and the results are in m and rad.
+    bound : BoundModel
+        The parameters bound to their model (another vehicle: ``bound.replace(vehicle=...)``; the public
+        :func:`moving_bogie.closed_form_response` binds, from SI parameters too).
     tau : array_like of float, >= 0
-        Times (dimensionless tau = t sqrt(k_f/m), Eq. (16), unless physical parameters are given).
+        Times (dimensionless tau = t sqrt(k_f/m), Eq. (16), unless ``scales`` are given).
+    scales : Scales, optional
+        The SI scales of Eqs. (15)-(16) (``PhysicalParams.scales()``): ``tau`` is then the time t in seconds
+        and the results are in m and rad.
     frequencies : FrequencyResult, optional
         Precomputed induced frequencies (same params, hence the same vehicle); computed at ``dps`` if
         omitted.
@@ -203,15 +220,7 @@ def closed_form_response(
         ``branch_cut=True`` when the cut passes through q = 0 (an undamped track above the critical
         velocity, an undamped layered track) or stays bounded (a layered track at alpha = 0).
     """
-    bound, scales = _bound_and_scales(params)
-    tau = np.asarray(tau, dtype=float)
-    if scales is not None:
-        tau_in = tau
-        tau = tau / scales.t_scale
-    if tau.ndim != 1:
-        tau = tau.reshape(-1)
-    if np.any(tau < 0) or not np.all(np.isfinite(tau)):
-        raise ParameterError("tau", "tau must be finite and >= 0")
+    tau, tau_in = _dimensionless_times(tau, scales)
     mode = branch_cut_mode(branch_cut)
     bc, notes = branch_cut_or_note(bound, mode)
 
@@ -228,30 +237,28 @@ def closed_form_response(
     sequence, more_notes = axis_roots(bound, result, expansion)
     notes += more_notes
     report(0.85)
-    series = expansion.totals(tau)
-    if sequence is not None:
-        for name, v in sequence.harmonics(tau, expansion.names).items():
-            series[name] += v
+    series = _harmonic_sum(expansion, sequence, tau)
     until = 0.0
     if bc is not None and tau.size:
-        s_min = max(s_min_for(bc, e) for e in (expansion, *(sequence.expansions if sequence else ())))
-        if mode == "on":
-            until = math.inf
-        else:
-            wheels = expansion.names[: len(expansion.positions)]
-            scale = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
-            until, more = branch_cut_extent(
-                bc, float(tau.max()), tol=bc_tol * scale, cap=bc_tau_cap, s_min=s_min
-            )
-            notes += more
-        mask = tau <= until
-        if np.any(mask):
-            extra = bc.responses(tau[mask], tol=quad_tol, s_min=s_min)
-            for name in expansion.names:
-                series[name][mask] += extra[name]
-        else:
-            until = 0.0
+        until = _add_branch_cut(
+            series, bc, tau, expansion, sequence, mode, notes, bc_tol, bc_tau_cap, quad_tol
+        )
     report(1.0)
+    return _time_series(bound, tau, tau_in, scales, series, expansion, result, until, notes)
+
+
+def _time_series(
+    bound: BoundModel,
+    tau: np.ndarray,
+    tau_in: np.ndarray,
+    scales: Scales | None,
+    series: dict[str, np.ndarray],
+    expansion: ResidueExpansion,
+    result: FrequencyResult,
+    until: float,
+    notes: list[str],
+) -> TimeSeries:
+    """The :class:`TimeSeries` of the summed responses, in SI units when ``scales`` are given."""
     nan = np.full(tau.shape, np.nan)
     steady = expansion.steady
     ts = dict(
@@ -294,6 +301,50 @@ def closed_form_response(
     )
 
 
+def _harmonic_sum(expansion: ResidueExpansion, sequence: Any, tau: np.ndarray) -> dict[str, np.ndarray]:
+    """Steady part plus the residues at every induced frequency (Eqs. (36), (39)-(43)), with the sequence
+    of roots along the real axis beyond the window when there is one."""
+    series = expansion.totals(tau)
+    if sequence is not None:
+        for name, v in sequence.harmonics(tau, expansion.names).items():
+            series[name] += v
+    return series
+
+
+def _add_branch_cut(
+    series: dict[str, np.ndarray],
+    bc: Any,
+    tau: np.ndarray,
+    expansion: ResidueExpansion,
+    sequence: Any,
+    mode: str,
+    notes: list[str],
+    bc_tol: float,
+    bc_tau_cap: float,
+    quad_tol: float,
+) -> float:
+    """Add the branch-cut integral I_bc to ``series`` up to the tau where it matters; returns that tau.
+
+    ``mode`` "on": at every time; "auto": until I_bc falls below ``bc_tol`` of the largest steady wheel
+    deflection (:func:`~moving_bogie.response.cut_policy.branch_cut_extent`, notes appended), 0 when never.
+    """
+    s_min = max(s_min_for(bc, e) for e in (expansion, *(sequence.expansions if sequence else ())))
+    if mode == "on":
+        until = math.inf
+    else:
+        wheels = expansion.names[: len(expansion.positions)]
+        scale = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
+        until, more = branch_cut_extent(bc, float(tau.max()), tol=bc_tol * scale, cap=bc_tau_cap, s_min=s_min)
+        notes += more
+    mask = tau <= until
+    if not np.any(mask):
+        return 0.0
+    extra = bc.responses(tau[mask], tol=quad_tol, s_min=s_min)
+    for name in expansion.names:
+        series[name][mask] += extra[name]
+    return until
+
+
 def _to_si(ts: dict, scales) -> dict:
     out = dict(ts)
     for key in ("w_rear", "w_front", "w_steady_rear", "w_steady_front"):
@@ -305,26 +356,27 @@ def _to_si(ts: dict, scales) -> dict:
     return out
 
 
-def deflection_shape(params, xi, tau: float, **options) -> np.ndarray:
+def deflection_shape(bound: BoundModel, xi: ArrayLike, tau: float, **options: Any) -> np.ndarray:
     """Beam deflection w(xi, tau) at one time for an array of xi, Eqs. (44)-(47) plus the branch cut.
 
-    xi is the moving coordinate (0 at the rear wheel, d at the front one). With physical parameters
-    xi is in metres, tau in seconds and the result in metres. Keywords: ``frequencies``,
-    ``branch_cut``, ``dps``, ``bc_tol``, ``bc_tau_cap``, ``quad_tol`` as in :func:`closed_form_response`
-    (``auto`` applies the same rule at this single time), and ``expansion`` (a precomputed
+    xi is the moving coordinate (0 at the rear wheel, d at the front one). With ``scales`` (SI, as in
+    :func:`closed_form_response`) xi is in metres, tau in seconds and the result in metres. Keywords:
+    ``scales``, ``frequencies``, ``branch_cut``, ``dps``, ``bc_tol``, ``bc_tau_cap``, ``quad_tol`` as in
+    :func:`closed_form_response` (``auto`` applies the same rule at this single time), and ``expansion`` (a precomputed
     :class:`ResidueExpansion` with shapes). :func:`deflection_shape_details` also says whether I_bc was
     included.
     """
-    return deflection_shape_details(params, xi, tau, **options)[0]
+    return deflection_shape_details(bound, xi, tau, **options)[0]
 
 
 def deflection_shape_details(
-    params,
-    xi,
+    bound: BoundModel,
+    xi: ArrayLike,
     tau: float,
     *,
-    frequencies=None,
-    branch_cut="auto",
+    scales: Scales | None = None,
+    frequencies: FrequencyResult | None = None,
+    branch_cut: bool | str = "auto",
     dps: int = 30,
     bc_tol: float = 1e-6,
     bc_tau_cap: float = 1e4,
@@ -332,7 +384,6 @@ def deflection_shape_details(
     expansion: ResidueExpansion | None = None,
 ) -> tuple[np.ndarray, bool, tuple]:
     """(w, branch_cut, notes): :func:`deflection_shape`, whether I_bc was included, and why not."""
-    bound, scales = _bound_and_scales(params)
     xi = np.asarray(xi, dtype=float)
     tau = float(tau)
     if scales is not None:

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 import mpmath
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
 from moving_bogie.roots.count.contour import Rectangle
@@ -39,7 +39,7 @@ from moving_bogie.roots.count.window import default_window, far_field_window  # 
 from moving_bogie.roots.refine.locate import locate
 from moving_bogie.roots.refine.polish import PolishError, fixed_text, polish_and_confirm, split_cluster
 from moving_bogie.roots.search.continuation import ContinuedRegion
-from moving_bogie.roots.search.counting import count_tiling, frame
+from moving_bogie.roots.search.counting import TilingCount, count_tiling, frame
 from moving_bogie.roots.verdict import Verdict, judge
 
 if TYPE_CHECKING:
@@ -97,7 +97,7 @@ class InducedFrequency:
 class FrequencyResult:
     """All induced frequencies in a window, the argument-principle count and the verdict."""
 
-    params: DimensionlessParams  # (bind() gives its bound model)
+    bound: BoundModel  # the parameters bound to their model
     model: str  # the vehicle's name, for output only
     dps: int
     window: Rectangle
@@ -111,6 +111,11 @@ class FrequencyResult:
     strip: StripCount | None = None  # the sliver below the real axis, counted (roots/count/strip.py)
     unlocated: tuple[Unlocated, ...] = ()  # roots counted in a cell but not located
     decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
+
+    @property
+    def params(self) -> DimensionlessParams:
+        """The parameters of :attr:`bound`."""
+        return self.bound.params
 
     @property
     def found(self) -> int:
@@ -180,7 +185,7 @@ class FrequencyResult:
 
 
 def induced_frequencies(
-    params,
+    bound: BoundModel,
     *,
     dps: int = 30,
     extra_dps: int | None = None,
@@ -191,15 +196,17 @@ def induced_frequencies(
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
     certify: bool = False,
-    foundation=None,
 ) -> FrequencyResult:
-    """Every induced frequency of ``params`` in ``window`` (default :func:`default_window`).
+    """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`).
+
+    Count (:func:`count_tiling`), locate (:func:`locate`), polish and confirm (:func:`polish_and_confirm`),
+    then compare the roots found with the count (module docstring).
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
-        The parameters and, through their model, the vehicle and the track
-        (:func:`~moving_bogie.kernels.bound.bind`; another vehicle: ``params.replace(vehicle=...)``).
+    bound : BoundModel
+        The parameters bound to their model: the vehicle and the track (another vehicle:
+        ``bound.replace(vehicle=...)``; the public :func:`moving_bogie.induced_frequencies` binds).
     dps : int
         Working precision (decimal digits) of the polished roots.
     extra_dps : int, optional
@@ -221,84 +228,190 @@ def induced_frequencies(
         Called with the fraction of work done (0..1).
     certify : bool
         Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
-    foundation : module or Foundation, optional
-        The track model (default that of the parameters' model, see
-        :func:`moving_bogie.kernels.track.resolve_foundation`).
     """
-    bound = bind(params)
-    params = bound.params
-    if extra_dps is None:
-        extra_dps = max(10, dps // 2)
-    if window is None:
-        window, far = far_field_window(bound)
-    else:
-        far = far_field_radius(bound, default_window(bound).x1)
-    fast = CharacteristicArray(bound, foundation=foundation)
-    precise = Characteristic(bound, foundation=foundation)
-    notes: list[Note] = []
+    extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
+    window, far = _window_and_far_field(bound, window)
+    fast, precise = CharacteristicArray(bound), Characteristic(bound)
+    report = _reporter(progress)
+    counted, beyond = _count(fast, bound, window, eps, eps_branch, newton_cell, check_window, report)
+    notes: list[Note] = [*counted.notes, *(beyond.notes(window, far) if beyond else ())]
+    report(0.2)
+    roots, cells, unlocated = _confirmed_roots(
+        fast, precise, counted, newton_cell, dps, extra_dps, notes, report
+    )
+    count = sum(counted.counts) - _mirrors_counted(cells)
+    found = sum(r.multiplicity for r in roots)
+    if found != count:
+        notes.append(count_mismatch(count, found))
+    unsearched = counted.tiling.unsearched
+    result = FrequencyResult(
+        bound,
+        bound.params.vehicle,
+        dps,
+        window,
+        tuple(roots),
+        count,
+        unsearched,
+        fast.evaluations + precise.evaluations,
+        tuple(notes),
+        far,
+        strip=strip_below_cut(bound, window, [u for u in unsearched if not u.reason]),
+        unlocated=tuple(unlocated),
+        decaying_outside=beyond.decaying(window, far) if beyond else 0,
+    )
+    if certify:
+        from moving_bogie.roots.proof.certify import certify as prove
 
-    def report(x):
+        result = dataclasses.replace(result, certificate=prove(result))
+    report(1.0)
+    return result
+
+
+def _window_and_far_field(bound: BoundModel, window: Rectangle | None) -> tuple[Rectangle, FarField]:
+    """The window searched (default :func:`far_field_window`) and the far-field check of the bound model."""
+    if window is None:
+        return far_field_window(bound)
+    return window, far_field_radius(bound, default_window(bound).x1)
+
+
+def _confirmed_roots(
+    fast: CharacteristicArray,
+    precise: Characteristic,
+    counted: TilingCount,
+    newton_cell: float,
+    dps: int,
+    extra_dps: int,
+    notes: list[Note],
+    report: Callable[[float], None],
+) -> tuple[list[InducedFrequency], list[tuple[complex, int, Rectangle]], list[Unlocated]]:
+    """Locate the counted roots, polish and confirm them, keep one of each pair q, -conj(q) (largest Re q
+    first); the roots, the located cells and the roots not located (notes appended)."""
+    cells, unlocated = _locate_counted(fast, counted, newton_cell)
+    notes += [missing.note for missing in unlocated]
+    report(0.6)
+    roots = _polish_located(precise, cells, counted.cut, dps, extra_dps, notes, report)
+    roots, pair_notes = _fold_pairs(roots)
+    notes += pair_notes
+    roots.sort(key=lambda r: -float(mpmath.re(r.q)))
+    return roots, cells, unlocated
+
+
+def _reporter(progress: Callable[[float], None] | None) -> Callable[[float], None]:
+    """Report the fraction of work done to ``progress`` (capped at 1), or nowhere."""
+
+    def report(x: float) -> None:
         if progress is not None:
             progress(min(1.0, x))
 
+    return report
+
+
+def _count(
+    fast: CharacteristicArray,
+    bound: BoundModel,
+    window: Rectangle,
+    eps: float,
+    eps_branch: float,
+    newton_cell: float,
+    check_window: bool,
+    report: Callable[[float], None],
+) -> tuple[TilingCount, _Beyond | None]:
+    """Count the roots in the window tiled around the cut and, with ``check_window``, in the frame up to the
+    window twice as large (the argument principle, :func:`count_tiling`)."""
     big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
     parts = frame(window, big) if check_window else ()
     # the cut is traced once, over the p-range of the window twice as large, for the window and the frame
-    cuts = cut_loci(params, [(r.x0, r.x1) for r in (window, *parts)], foundation=fast.kernel.foundation)
-    counted = count_tiling(fast, params, window, eps, eps_branch, cuts[0], newton_cell)
-    cut, tiling, counts = counted.cut, counted.tiling, counted.counts
-    notes += counted.notes
-    total = sum(counts)
+    cuts = cut_loci(bound, [(r.x0, r.x1) for r in (window, *parts)])
+    counted = count_tiling(fast, bound, window, eps, eps_branch, cuts[0], newton_cell)
     report(0.1)
-    decaying_outside = 0
-    if check_window:
-        more, lost, below = 0, 0, 0
-        for k, (part, part_cut) in enumerate(zip(parts, cuts[1:])):
-            part_count = count_tiling(fast, params, part, eps, eps_branch, part_cut)
-            more += sum(part_count.counts)
-            lost += len(part_count.notes)
-            below += sum(part_count.counts) if k == 0 else 0  # the strip Im q <= window.y0 < 0
-        if lost:
-            notes.append(
-                Note(
-                    Reason.WINDOW,
-                    f"{lost} cell(s) of the window twice as large could not be counted "
-                    f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})",
-                )
-            )
-        if more and not below and _holds_far_disc(window, far):
-            # The frame lies outside the half-disc |q| < R of the far-field check: its roots have Im q >= 0.
-            decaying_outside = more
+    if not check_window:
+        return counted, None
+    return counted, _count_twice_as_large(fast, bound, big, parts, cuts[1:], eps, eps_branch)
+
+
+@dataclass(frozen=True)
+class _Beyond:
+    """The roots counted in the frame between the window and the window twice as large (``big``)."""
+
+    big: Rectangle
+    more: int  # roots counted in the frame
+    lost: int  # cells of the frame that could not be counted
+    below: int  # roots in the strip Im q <= window.y0 < 0
+
+    def decaying(self, window: Rectangle, far: FarField | None) -> int:
+        """Roots of the frame known to have Im q >= 0: it lies outside the far-field half-disc."""
+        return self.more if self.more and not self.below and _holds_far_disc(window, far) else 0
+
+    def notes(self, window: Rectangle, far: FarField | None) -> list[Note]:
+        big, more = self.big, self.more
+        where = f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})"
+        notes = []
+        if self.lost:
+            text = f"{self.lost} cell(s) of the window twice as large could not be counted {where}"
+            notes.append(Note(Reason.WINDOW, text))
+        if self.decaying(window, far):
+            assert far is not None
             notes.append(
                 Note(
                     Reason.BEYOND_WINDOW,
-                    f"{more} root(s) in the window twice as large (Re q <= {big.x1:g}, "
-                    f"{big.y0:g} <= Im q <= {big.y1:g}), all with Im q >= 0 (no root with Im q < 0 beyond "
-                    f"|q| = {far.radius:g}, the far-field check): they decay and do not change the verdict; "
-                    "a time series adds them from strips along the real axis when the cut runs along it, "
-                    "and refuses otherwise (pass a larger window to list them)",
+                    f"{more} root(s) in the window twice as large {where}, all with Im q >= 0 (no root "
+                    f"with Im q < 0 beyond |q| = {far.radius:g}, the far-field check): they decay and do "
+                    "not change the verdict; a time series adds them from strips along the real axis when "
+                    "the cut runs along it, and refuses otherwise (pass a larger window to list them)",
                 )
             )
         elif more:
-            notes.append(
-                Note(
-                    Reason.WINDOW,
-                    f"{more} more root(s) in the window twice as large "
-                    f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window",
-                )
-            )
-    report(0.2)
-    cells, unlocated = [], []
-    for rect, n in zip(tiling.regions, counts):
+            text = f"{more} more root(s) in the window twice as large {where}; pass a larger window"
+            notes.append(Note(Reason.WINDOW, text))
+        return notes
+
+
+def _count_twice_as_large(
+    fast: CharacteristicArray,
+    bound: BoundModel,
+    big: Rectangle,
+    parts: tuple[Rectangle, ...],
+    cuts: tuple[CutLocus, ...],
+    eps: float,
+    eps_branch: float,
+) -> _Beyond:
+    """Count the frame between the window and the window twice as large (a root outside is never lost)."""
+    more, lost, below = 0, 0, 0
+    for k, (part, part_cut) in enumerate(zip(parts, cuts)):
+        part_count = count_tiling(fast, bound, part, eps, eps_branch, part_cut)
+        more += sum(part_count.counts)
+        lost += len(part_count.notes)
+        below += sum(part_count.counts) if k == 0 else 0  # the strip Im q <= window.y0 < 0
+    return _Beyond(big, more, lost, below)
+
+
+def _locate_counted(
+    fast: CharacteristicArray, counted: TilingCount, newton_cell: float
+) -> tuple[list[tuple[complex, int, Rectangle]], list[Unlocated]]:
+    """Isolate the counted roots of each tile: the cells (start, multiplicity, cell), the roots not located."""
+    cells: list[tuple[complex, int, Rectangle]] = []
+    unlocated: list[Unlocated] = []
+    for rect, n in zip(counted.tiling.regions, counted.counts):
         if isinstance(rect, ContinuedRegion):  # counted through the cut, its roots located already
             cells += rect.cells
         elif n:
             found_cells, missing = locate(fast, rect, n, newton_cell)
             cells += found_cells
             if missing is not None:
-                notes.append(missing.note)
                 unlocated.append(missing)
-    report(0.6)
+    return cells, unlocated
+
+
+def _polish_located(
+    precise: Characteristic,
+    cells: list[tuple[complex, int, Rectangle]],
+    cut: CutLocus,
+    dps: int,
+    extra_dps: int,
+    notes: list[Note],
+    report: Callable[[float], None],
+) -> list[InducedFrequency]:
+    """Polish each located root at ``dps`` digits and confirm its digits (notes appended for failures)."""
     roots = []
     for k, (q0, mult, rect) in enumerate(cells):
         try:
@@ -318,42 +431,10 @@ def induced_frequencies(
                     Note(Reason.POLISH, f"Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
                 )
                 continue
-            side = _side(conf.q, conf.decimals, cut, params)
+            side = _side(conf.q, conf.decimals, cut, precise.params)
             roots.append(InducedFrequency(conf.q, side, m, conf.step, conf.digits, conf.decimals))
         report(0.6 + 0.4 * (k + 1) / len(cells))
-    roots, pair_notes = _fold_pairs(roots)
-    notes += pair_notes
-    roots.sort(key=lambda r: -float(mpmath.re(r.q)))
-    count = total - _mirrors_counted(cells)
-    found = sum(r.multiplicity for r in roots)
-    if found != count:
-        notes.append(count_mismatch(count, found))
-    result = FrequencyResult(
-        params,
-        params.vehicle,
-        dps,
-        window,
-        tuple(roots),
-        count,
-        tiling.unsearched,
-        fast.evaluations + precise.evaluations,
-        tuple(notes),
-        far,
-        strip=strip_below_cut(
-            bound,
-            window,
-            [u for u in tiling.unsearched if not u.reason],
-            foundation=foundation,
-        ),
-        unlocated=tuple(unlocated),
-        decaying_outside=decaying_outside,
-    )
-    if certify:
-        from moving_bogie.roots.proof.certify import certify as prove
-
-        result = dataclasses.replace(result, certificate=prove(result))
-    report(1.0)
-    return result
+    return roots
 
 
 def _holds_far_disc(window: Rectangle, far: FarField | None) -> bool:
@@ -361,7 +442,7 @@ def _holds_far_disc(window: Rectangle, far: FarField | None) -> bool:
     return far is not None and far.radius is not None and window.x1 >= far.radius and window.y0 <= -far.radius
 
 
-def _side(q, decimals, cut: CutLocus, params) -> str:
+def _side(q: mpmath.mpc, decimals: int, cut: CutLocus, params: DimensionlessParams) -> str:
     """Position relative to the cut: "below" or "above" every cut curve over Re q, or "between" two of them
     (a layered track's curves, the lens of the Timoshenko-Rayleigh cut); a root on a curve within the
     confirmed digits counts as below it (a limit from below)."""

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.roots.frequencies import induced_frequencies
 
@@ -79,7 +79,7 @@ class FrequencyLines:
 
 
 def frequency_lines(
-    params,
+    bound: BoundModel,
     *,
     alpha_range: tuple[float, float] = (0.0, 1.2),
     checkpoints: int = 13,
@@ -88,11 +88,11 @@ def frequency_lines(
     match_tol: float = 1e-6,
     progress: Callable[[float], None] | None = None,
 ) -> FrequencyLines:
-    """Induced frequencies of ``params`` as functions of alpha (Figure 2 for Case 1).
+    """Induced frequencies of the bound model as functions of alpha (Figure 2 for Case 1).
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
         Everything except alpha (the vehicle: that of their model).
     alpha_range : (float, float)
     checkpoints : int
@@ -107,7 +107,6 @@ def frequency_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
-    bound = bind(params)
     params = bound.params
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
     sweep = SweepCharacteristic(bound)
@@ -116,7 +115,7 @@ def frequency_lines(
     found = []
     warnings = []
     for k, a in enumerate(alphas):
-        res = induced_frequencies(params.replace(alpha=Fraction(str(float(a)))), dps=dps)
+        res = induced_frequencies(bound.replace(alpha=Fraction(str(float(a)))), dps=dps)
         if not res.count_ok:
             warnings.append(f"alpha={a:g}: induced_frequencies count check failed: {'; '.join(res.warnings)}")
         found.append([complex(r.q) for r in res.roots])

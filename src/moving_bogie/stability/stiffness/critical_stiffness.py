@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import stability_column
 from moving_bogie.stability.maps.undamped import (
@@ -122,7 +123,7 @@ class CriticalStiffness:
 
 
 def critical_stiffness(
-    params,
+    bound: BoundModel,
     alphas: Sequence[float],
     *,
     kappa_max: float = 1.0,
@@ -136,8 +137,8 @@ def critical_stiffness(
 
     Parameters
     ----------
-    params : DimensionlessParams
-        Bogie and track (kappa_v and alpha of ``params`` are ignored). eta_f = 0 and
+    bound : BoundModel
+        Bogie and track (kappa_v and alpha of its parameters are ignored). eta_f = 0 and
         0 < eta_f < NEAR_UNDAMPED are handled as the module text says.
     alphas : sequence of float
     kappa_max : float
@@ -152,16 +153,17 @@ def critical_stiffness(
         Undamped regimes: bisection tolerance of each change, relative to ``kappa_max``.
     progress : callable, optional
     """
+    params = bound.params
     alphas = np.asarray(alphas, dtype=float)
     if regime(params.eta_f) != "damped":
-        return _undamped(params, alphas, kappa_max, check_points, tol, progress)
-    sweep = SweepCharacteristic(params, "kappa_v")
+        return _undamped(bound, alphas, kappa_max, check_points, tol, progress)
+    sweep = SweepCharacteristic(bound, "kappa_v")
     kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
     intervals, critical, warnings = [], [], []
     mismatches = 0
     for k, a in enumerate(alphas):
         dd = d_decomposition(
-            params.replace(alpha=Fraction(str(a))),
+            bound.replace(alpha=Fraction(str(a))),
             a,
             parameter="kappa_v",
             theta_max=kappa_max,
@@ -207,10 +209,18 @@ def _critical(ivs):
     return tuple(hi for (lo, hi, n), (_, _, m) in zip(ivs[:-1], ivs[1:]) if (n == 0) != (m == 0))
 
 
-def _undamped(params, alphas, kappa_max, check_points, tol, progress) -> CriticalStiffness:
+def _undamped(
+    bound: BoundModel,
+    alphas: np.ndarray,
+    kappa_max: float,
+    check_points: int,
+    tol: float,
+    progress: Callable[[float], None] | None,
+) -> CriticalStiffness:
     """Counts on a kappa_v grid and bisection (:mod:`undamped`), exact at eta_f = 0 and in the limit."""
+    params = bound.params
     margin = 100 * float(params.eta_f)
-    counter = UndampedCounter(params, "kappa_v", margin=margin)
+    counter = UndampedCounter(bound, "kappa_v", margin=margin)
     unsure = {}
     grid = parameter_grid(kappa_max, check_points)
     kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"
