@@ -18,6 +18,7 @@ import pytest
 
 from moving_bogie.api import critical_stiffness, d_decomposition, induced_frequencies, instability_lines
 from moving_bogie.cli import main
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.stability.maps.undamped import UndampedCounter, boundaries, parameter_grid
@@ -37,12 +38,12 @@ def test_kernel_on_the_cut_is_the_limit_from_below(beam):
     """eta_f = 0, real q beyond the branch point: K(q) equals K(q - i h) up to O(h), not K(q + i h)."""
     p = table1_case(2).replace(**beam)
     q, a = np.array([0.7, 1.0, 1.5, 3.0]), np.full(4, 0.5)
-    K = np.array(SweepCharacteristic(p, below=True).kernel(q, a)[0])
-    plain = SweepCharacteristic(p)
+    K = np.array(SweepCharacteristic(bind(p), below=True).kernel(q, a)[0])
+    plain = SweepCharacteristic(bind(p))
     errors = [np.abs(K - np.array(plain.kernel(q - 1j * h, a)[0])).max() for h in (1e-5, 1e-7)]
     assert errors[1] < errors[0] / 50  # converges like h
     assert np.abs(K - np.array(plain.kernel(q + 1e-7j, a)[0])).max() > 0.1  # the other side jumps
-    tiny = SweepCharacteristic(p.replace(eta_f=Fraction(1, 10**7)))
+    tiny = SweepCharacteristic(bind(p.replace(eta_f=Fraction(1, 10**7))))
     assert np.abs(K - np.array(tiny.kernel(q, a)[0])).max() < 10 * errors[1]
 
 
@@ -57,7 +58,7 @@ def test_case5_real_root_is_destabilised_by_small_foundation_damping():
         ims.append(float(res.unstable_roots[0].q.imag) / float(eta_f))
     assert ims[0] == pytest.approx(ims[1], rel=1e-3)  # linear in eta_f
     assert _unstable(p.replace(eta_f=0)) == 0
-    col = UndampedCounter(p, "kappa_v")(0.7, np.array([0.2]))
+    col = UndampedCounter(bind(p), "kappa_v")(0.7, np.array([0.2]))
     assert (col.undamped[0], col.limit[0]) == (0, 1)
 
 
@@ -69,7 +70,7 @@ def test_subcritical_limit_boundaries_confirmed_by_counts_on_both_sides(model, a
     eta_f = 0 the count is 0 on both sides (the roots there are real)."""
     p = table1_case(2)
     bounds, col, unsure = boundaries(
-        UndampedCounter(p.replace(vehicle=model)), alpha, parameter_grid(200.0, 20), tol=0.01
+        UndampedCounter(bind(p.replace(vehicle=model))), alpha, parameter_grid(200.0, 20), tol=0.01
     )
     assert unsure == 0
     assert len(bounds) == 1 and (bounds[0].kind, bounds[0].mechanism) == ("limit", "damping sign")
@@ -91,7 +92,7 @@ def test_supercritical_boundaries_at_eta_f_zero_confirmed_by_counts(case, model)
     missed a root 2e-4 below the axis and put the boundary at 14.09.)"""
     p = table1_case(case)
     bounds, _, _ = boundaries(
-        UndampedCounter(p.replace(vehicle=model)), 1.1, parameter_grid(100.0, 20), tol=0.01
+        UndampedCounter(bind(p.replace(vehicle=model))), 1.1, parameter_grid(100.0, 20), tol=0.01
     )
     exact = [b for b in bounds if b.kind == "undamped" and b.theta > 5]
     assert exact and {b.mechanism for b in bounds} == {"crossing"}  # no gap above the critical velocity
@@ -112,7 +113,7 @@ def test_limit_boundaries_are_the_limit_of_small_damping():
         (table1_case(2).replace(d="1.5"), "masses", "eta_M", 0.8, 200.0),
         (table1_case(5), "bogie", "kappa_v", 0.7, 0.6),
     ):
-        counter = UndampedCounter(p.replace(vehicle=model), parameter)
+        counter = UndampedCounter(bind(p.replace(vehicle=model)), parameter)
         bounds, _, _ = boundaries(counter, alpha, parameter_grid(top, 20), tol=1e-12 * top)
         limit = [b.theta for b in bounds if b.kind == "limit"]
         assert limit
@@ -195,7 +196,7 @@ def test_stability_map_counts_change_exactly_across_the_undamped_boundaries():
     p = table1_case(3)
     alphas, thetas = np.linspace(1.05, 1.2, 4), np.linspace(10.0, 100.0, 10)
     smap = stability_map(p, alphas=alphas, thetas=thetas, workers=1)
-    counter = UndampedCounter(p)
+    counter = UndampedCounter(bind(p))
     changes = 0
     for i, a in enumerate(alphas):
         bounds, _, _ = boundaries(counter, a, thetas, tol=1e-3)

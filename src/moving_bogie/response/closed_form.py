@@ -362,9 +362,9 @@ def deflection_shape(bound: BoundModel, xi: ArrayLike, tau: float, **options: An
     xi is the moving coordinate (0 at the rear wheel, d at the front one). With ``scales`` (SI, as in
     :func:`closed_form_response`) xi is in metres, tau in seconds and the result in metres. Keywords:
     ``scales``, ``frequencies``, ``branch_cut``, ``dps``, ``bc_tol``, ``bc_tau_cap``, ``quad_tol`` as in
-    :func:`closed_form_response` (``auto`` applies the same rule at this single time), and ``expansion`` (a precomputed
-    :class:`ResidueExpansion` with shapes). :func:`deflection_shape_details` also says whether I_bc was
-    included.
+    :func:`closed_form_response` (``auto`` applies the same rule at this single time), and ``expansion``
+    (a precomputed :class:`ResidueExpansion` with shapes). :func:`deflection_shape_details` also says
+    whether I_bc was included.
     """
     return deflection_shape_details(bound, xi, tau, **options)[0]
 

@@ -388,7 +388,7 @@ def _count_twice_as_large(
 def _locate_counted(
     fast: CharacteristicArray, counted: TilingCount, newton_cell: float
 ) -> tuple[list[tuple[complex, int, Rectangle]], list[Unlocated]]:
-    """Isolate the counted roots of each tile: the cells (start, multiplicity, cell), the roots not located."""
+    """Isolate the counted roots of each tile: cells (start, multiplicity, cell), the roots not located."""
     cells: list[tuple[complex, int, Rectangle]] = []
     unlocated: list[Unlocated] = []
     for rect, n in zip(counted.tiling.regions, counted.counts):

@@ -207,9 +207,9 @@ def simulate_finite_beam(
     geometry = _beam_geometry(track, vehicle, tau_max, n_modes, length, entry)
     h_max = default_time_step(geometry.k_max, track) if dt is None else float(dt)
     n_steps = max(1, math.ceil(tau_max / h_max - 1e-9))
-    model = LOADS_ONLY if loads_only else getattr(values, "vehicle", None) or DEFAULT_MODEL["vehicle"]
+    label = LOADS_ONLY if loads_only else getattr(values, "vehicle", None) or DEFAULT_MODEL["vehicle"]
     run = _Run(track, vehicle, geometry, n_modes, tau_max, n_steps, static_correction)
-    return run.result(tau_out, model, progress)
+    return run.result(tau_out, label, progress)
 
 
 def _beam_geometry(
@@ -244,9 +244,10 @@ class _Run:
     static_correction: bool
 
     def result(
-        self, tau_out: np.ndarray | None, model: str, progress: Callable[[float], None] | None
+        self, tau_out: np.ndarray | None, label: str, progress: Callable[[float], None] | None
     ) -> FiniteBeamResult:
-        """Step the run and return the vehicle's responses at ``tau_out`` (every step when None)."""
+        """Step the run and return the vehicle's responses at ``tau_out`` (every step when None); ``label``
+        names the vehicle in the result (``model``), for output only."""
         geometry, vehicle, tau_max = self.geometry, self.vehicle, self.tau_max
         h = tau_max / self.n_steps
         tau_steps = np.arange(self.n_steps + 1) * h
@@ -276,7 +277,7 @@ class _Run:
             dt=h,
             tau_valid=geometry.tau_valid,
             elapsed_s=elapsed_s,
-            model=model,
+            model=label,
             k_max=geometry.k_max,
             static_correction=self.static_correction,
             span=vehicle.length,
