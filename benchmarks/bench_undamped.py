@@ -16,6 +16,8 @@ import time
 
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
+
 
 def _cpu() -> float:
     own = resource.getrusage(resource.RUSAGE_SELF)
@@ -60,7 +62,7 @@ def main() -> None:
         ("Case 5, alpha = 0.7, kappa_v", table1_case(5), "bogie", "kappa_v", 0.7, 0.6),
     ):
         bounds, _, _ = boundaries(
-            UndampedCounter(p.replace(vehicle=model), parameter),
+            UndampedCounter(bind(p.replace(vehicle=model)), parameter),
             alpha,
             parameter_grid(top, 20),
             tol=1e-12 * top,

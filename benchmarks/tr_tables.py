@@ -12,6 +12,7 @@ import time
 import mpmath
 
 from moving_bogie.api import closed_form_response, induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.bromwich import bromwich_line
 from moving_bogie.roots.count.contour import Rectangle
@@ -47,8 +48,8 @@ def vibrations_table():
         result = induced_frequencies(params, dps=20, window=window, check_window=False)
         on = closed_form_response(params, TAUS, frequencies=result, branch_cut=True)
         off = closed_form_response(params, TAUS, frequencies=result, branch_cut=False)
-        ref = bromwich_line(params, TAUS, a=0.02)
-        other = bromwich_line(params, TAUS, a=0.05)
+        ref = bromwich_line(bind(params), TAUS, a=0.02)
+        other = bromwich_line(bind(params), TAUS, a=0.05)
         scale = max(abs(on.w_steady_rear), abs(on.w_steady_front))
         for k, tau in enumerate(TAUS):
             d_on = max(abs(getattr(on, n)[k] - ref[n][k]) for n in ref) / scale
