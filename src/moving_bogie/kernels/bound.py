@@ -13,7 +13,7 @@ from __future__ import annotations
 import functools
 from fractions import Fraction
 from types import ModuleType, SimpleNamespace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import mpmath
 import numpy as np
@@ -210,6 +210,5 @@ def bind(params: DimensionlessParams | PhysicalParams | BoundModel) -> BoundMode
     """
     if isinstance(params, BoundModel):
         return params
-    if hasattr(params, "to_dimensionless"):
-        params = params.to_dimensionless()
-    return BoundModel(params)
+    dimensionless = params.to_dimensionless() if hasattr(params, "to_dimensionless") else params
+    return BoundModel(cast("DimensionlessParams", dimensionless))

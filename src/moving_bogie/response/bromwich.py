@@ -228,7 +228,7 @@ def bromwich_line_shape(
     i q W~(xi, q) = sum_j G_j K(xi - xi_j, q) / (2 pi E_chr) on the line Im q = -a, every xi
     at once (the panels adapt to all of them); no residues, no branch cut. Any beam or track model.
     """
-    tau, system, kernel = _line_setup(bound, tau, a)
+    times, system, kernel = _line_setup(bound, tau, a)
     offsets = [float(x) for x in system.offsets]
     positions = [float(x) for x in system.positions]
     xi = np.asarray(xi, dtype=float)
@@ -244,7 +244,7 @@ def bromwich_line_shape(
         w = sum(G[:, j] * np.array(kv.K[m + j * F : m + (j + 1) * F]) for j in range(len(positions)))
         return (w / (2 * np.pi * 1j * q * E)).T
 
-    return _line_quadrature(transform, tau, a, s_max, panel_tol)[0].reshape(xi.shape)
+    return _line_quadrature(transform, times, a, s_max, panel_tol)[0].reshape(xi.shape)
 
 
 def _line_setup(

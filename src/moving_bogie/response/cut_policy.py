@@ -53,15 +53,20 @@ def branch_cut_or_note(bound: BoundModel, mode: str) -> tuple[BranchCut | CurveB
         return None, [f"branch cut skipped: {exc}"]
 
 
-def s_min_for(bc: BranchCut, expansion: ResidueExpansion) -> float:
+def s_min_for(bc: BranchCut | CurveBranchCut, expansion: ResidueExpansion) -> float:
     """Keep every induced frequency's Re q inside the quadrature range of the cut (not in the tail)."""
     top = float(np.max(np.abs(expansion.q.real))) if expansion.q.size else 0.0
     return max(bc.q_c, top) + 1.0
 
 
 def branch_cut_extent(
-    bc: BranchCut, tau_max: float, *, tol: float, cap: float = 1e4, s_min: float | None = None
-):
+    bc: BranchCut | CurveBranchCut,
+    tau_max: float,
+    *,
+    tol: float,
+    cap: float = 1e4,
+    s_min: float | None = None,
+) -> tuple[float, list[str]]:
     """(tau_on, notes): the time up to which I_bc exceeds ``tol`` (the ``auto`` rule, module docstring)."""
     notes = []
     bound = max(bc.l1_bound(s_min=s_min).values())

@@ -204,7 +204,7 @@ def settle_cells(
     column: ColumnResult,
     *,
     alpha: Fraction | None = None,
-    thetas: Sequence[Fraction] | None = None,
+    thetas: list[Fraction | float] | None = None,
     dps: int = 15,
     held: Iterable[str] = (),
 ) -> ColumnResult:
@@ -239,7 +239,7 @@ def settle_cells(
     return replace(column, count=count, degree=degree, uncertain=uncertain, roots=roots, settled=settled)
 
 
-def top_edge(bound: BoundModel, alphas: np.ndarray) -> float:
+def top_edge(bound: BoundModel, alphas: Sequence[float] | np.ndarray) -> float:
     """Im q of the counting rectangle's top: 0, or just below the cut where it reaches the real axis."""
     lowest = np.inf
     for a in (float(np.min(alphas)), float(np.max(alphas))):

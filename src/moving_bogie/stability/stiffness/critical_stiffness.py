@@ -211,7 +211,7 @@ def _critical(ivs):
 
 def _undamped(
     bound: BoundModel,
-    alphas: np.ndarray,
+    alphas: Sequence[float] | np.ndarray,
     kappa_max: float,
     check_points: int,
     tol: float,
