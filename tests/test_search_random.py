@@ -27,6 +27,7 @@ from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import arms_y_at, cut_locus
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.roots import frequencies
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
 from moving_bogie.roots.count.window import far_field_window
 from moving_bogie.roots.frequencies import default_window
@@ -267,7 +268,7 @@ MODEL_EXAMPLES = [
 def _default_tiling(params):
     """The tiling of the search's first attempt, with the search's own default eps and eps_branch, in the
     default window (the far-field window of these sets and examples, without the cost of its check)."""
-    defaults = inspect.signature(induced_frequencies).parameters
+    defaults = inspect.signature(frequencies.induced_frequencies).parameters  # the search's own defaults
     window = default_window(bind(params))
     cut = cut_locus(bind(params), window.x0, window.x1)
     factor, fraction = counting._RETRIES[0]  # the first attempt of count_tiling, with its gap height
