@@ -132,9 +132,11 @@ class BoundModel:
     def replace(self, **changes: Any) -> BoundModel:
         """A new bound model with some parameters (or the model's names) changed, as ``params.replace``.
 
-        A foundation given at construction is kept.
+        A foundation given at construction is kept, unless the beam or the track changes (then the new
+        model's own).
         """
-        return BoundModel(self.params.replace(**changes), foundation=self._override)
+        keep = self._override if not {"beam", "track"} & set(changes) else None
+        return BoundModel(self.params.replace(**changes), foundation=keep)
 
     def with_foundation(self, foundation: Foundation | ModuleType) -> BoundModel:
         """The same parameters on another track model (a generated module, with values of its groups)."""
