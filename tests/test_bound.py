@@ -76,10 +76,8 @@ def test_a_foundation_given_beside_the_parameters_is_another_bound_model():
         and other.params == p
         and other.replace(d=3).foundation_model.values == {"eta_f": "0.2"}
     )
-    layered = {"track": "two-layer", "mu_2": 1, "kappa_2": 1, "eta_2": 0}
-    assert (
-        other.replace(**layered).foundation is default.replace(**layered).foundation
-    )  # another track: its own
+    layered = {"track": "two-layer", "mu_2": 1, "kappa_2": 1, "eta_2": 0}  # another track: its own module
+    assert other.replace(**layered).foundation is default.replace(**layered).foundation
     with mpmath.workdps(40):
         assert Characteristic(same)(q) == Characteristic(default)(q)
         assert Characteristic(other)(q) == Characteristic(reference)(q) != Characteristic(default)(q)
