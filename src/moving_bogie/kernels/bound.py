@@ -77,7 +77,8 @@ class BoundModel:
     ) -> None:
         if not hasattr(params, "model") or not hasattr(params, "as_float"):
             raise ParameterError(
-                "params", f"expected DimensionlessParams or a bound model (got {type(params).__name__})"
+                "params",
+                f"expected DimensionlessParams, PhysicalParams or a bound model (got {type(params).__name__})",
             )
         self.params = params
         self._override = foundation
