@@ -78,7 +78,7 @@ class BoundModel:
         if not hasattr(params, "model") or not hasattr(params, "as_float"):
             raise ParameterError(
                 "params",
-                f"expected DimensionlessParams, PhysicalParams or a bound model (got {type(params).__name__})",
+                f"expected DimensionlessParams, PhysicalParams or a BoundModel (got {type(params).__name__})",
             )
         self.params = params
         self._override = foundation
