@@ -81,8 +81,8 @@ def test_held_interpolation_is_e_chr_of_the_point(spec):
     c = sweep.coefficients(Q, K, scale=scale)
     for theta in thetas:
         point = at_theta(bind(params.replace(alpha=spec.axes[0].values[3])), "eta_M", theta, HELD)
-        assert point.mu_v == params.mu_v and point.J_b == params.J_b
-        ref = -2 * CharacteristicArray(bind(point))(Q)
+        assert point.params.mu_v == params.mu_v and point.params.J_b == params.J_b
+        ref = -2 * CharacteristicArray(point)(Q)
         interp = np.array([np.polyval(c[k], float(theta) / scale) for k in range(len(Q))])
         assert np.all(np.abs(interp - ref) <= 1e-9 * np.abs(ref))
 
