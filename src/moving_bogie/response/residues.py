@@ -15,13 +15,14 @@ vectorised numpy sum of ``amplitude * exp(i q tau)``, whose cost does not depend
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import mpmath
 import numpy as np
 
-from moving_bogie.errors import MovingBogieError
+from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import Characteristic
 
@@ -223,3 +224,24 @@ def residue_expansion(
         amplitudes_mp={name: tuple(v) for name, v in amps_mp.items()},
         dps=frequencies.dps,
     )
+
+
+def frequencies_for(
+    bound: BoundModel, frequencies: FrequencyResult | None, dps: int, progress: Callable[[float], None] | None
+) -> FrequencyResult:
+    """The induced frequencies of ``bound``: ``frequencies`` when given (checked to be those of the same
+    parameters and vehicle), else computed at ``dps`` digits (Eq. (48))."""
+    if frequencies is not None:
+        vehicle = bound.params.vehicle
+        if frequencies.model != vehicle:
+            raise ParameterError(
+                "model", f"frequencies were computed for model {frequencies.model!r}, not {vehicle!r}"
+            )
+        if getattr(frequencies, "params", bound.params) != bound.params:
+            raise ParameterError("frequencies", "frequencies were computed for other parameters")
+        result = frequencies
+    else:
+        from moving_bogie.roots.frequencies import induced_frequencies
+
+        result = induced_frequencies(bound, dps=dps, progress=progress)
+    return result

@@ -102,9 +102,7 @@ def induced_frequencies(
         fast, precise, counted, newton_cell, dps, extra_dps, notes, report
     )
     count = sum(counted.counts) - _mirrors_counted(cells)
-    found = sum(r.multiplicity for r in roots)
-    if found != count:
-        notes.append(count_mismatch(count, found))
+    _compare_with_count(count, roots, notes)
     unsearched = counted.tiling.unsearched
     result = FrequencyResult(
         bound,
@@ -127,6 +125,13 @@ def induced_frequencies(
         result = dataclasses.replace(result, certificate=prove(result))
     report(1.0)
     return result
+
+
+def _compare_with_count(count: int, roots: list[InducedFrequency], notes: list[Note]) -> None:
+    """The roots found must add up to the count (with multiplicity), or a note says they do not."""
+    found = sum(r.multiplicity for r in roots)
+    if found != count:
+        notes.append(count_mismatch(count, found))
 
 
 def _window_and_far_field(bound: BoundModel, window: Rectangle | None) -> tuple[Rectangle, FarField]:
