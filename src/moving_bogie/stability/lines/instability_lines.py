@@ -125,14 +125,9 @@ def instability_lines(
     sweep = SweepCharacteristic(bound, parameter)
     cap = 8 * q_max if q_max_cap is None else q_max_cap
     grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
-    while True:
-        branches, warnings = _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress)
-        reaches = any(e.reason == "q_max" for b in branches for e in b.ends)
-        if not reaches or 2 * q_max > cap:
-            break
-        q_max *= 2
-    if reaches:
-        warnings.insert(0, f"a line reaches q_max={q_max:g} (the cap); raise q_max_cap")
+    branches, warnings, q_max = _trace_up_to_cap(
+        sweep, ds, alpha_range, theta_max, q_max, cap, grid, progress
+    )
     if verify:
         branches = [_verify(bound, parameter, b) for b in branches]
     _report(progress, 1.0)
@@ -146,6 +141,29 @@ def instability_lines(
         tuple(dict.fromkeys(warnings)),
         float(q_max),
     )
+
+
+def _trace_up_to_cap(
+    sweep: SweepCharacteristic,
+    ds: list[float],
+    alpha_range: tuple[float, float],
+    theta_max: float,
+    q_max: float,
+    cap: float,
+    grid: dict[str, float],
+    progress: Callable[[float], None] | None,
+) -> tuple[list[InstabilityBranch], list[str], float]:
+    """:func:`_trace` up to ``q_max``, doubled (up to ``cap``) while a line reaches it: the branches, the
+    warnings (first, that a line still reaches the cap) and the last ``q_max``."""
+    while True:
+        branches, warnings = _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress)
+        reaches = any(e.reason == "q_max" for b in branches for e in b.ends)
+        if not reaches or 2 * q_max > cap:
+            break
+        q_max *= 2
+    if reaches:
+        warnings.insert(0, f"a line reaches q_max={q_max:g} (the cap); raise q_max_cap")
+    return branches, warnings, q_max
 
 
 def _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress):
