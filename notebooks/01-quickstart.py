@@ -218,4 +218,5 @@ else:
 # * `04-instability-lines.py`: where in (velocity, mass) the motion becomes unstable.
 # * `05-change-the-model.py`: add a foundation model in `derivations/` and rerun the analysis.
 # * The same from the command line: `moving-bogie params --file bogie.toml`, `moving-bogie frequencies
-#   --file bogie.toml` (`moving-bogie COMMAND --help`, or the command line reference of the documentation site).
+#   --file bogie.toml` (`moving-bogie COMMAND --help`, or the command line reference of the documentation
+#   site).
