@@ -30,8 +30,8 @@ import sys
 import time
 from pathlib import Path
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.frequencies import induced_frequencies
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "car.toml"
 BOGIE = ("alpha", "eta_f", "eta_s", "eta_M", "d", "mu_v", "J_b", "kappa_v", "eta_v")

@@ -25,8 +25,8 @@ import platform
 import time
 from concurrent.futures import ProcessPoolExecutor
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.proof.certify import certify
 
 

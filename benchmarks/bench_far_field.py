@@ -19,9 +19,11 @@ from __future__ import annotations
 
 import time
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.count.far_field import far_field_radius
-from moving_bogie.roots.frequencies import default_window, induced_frequencies
+from moving_bogie.roots.frequencies import default_window
 
 SETS = [
     ("Case 1", table1_case(1)),
@@ -47,10 +49,10 @@ def main() -> None:
     print(head)
     print("-" * len(head))
     for label, p in SETS:
-        X = default_window(p).x1
+        X = default_window(bind(p)).x1
         far, t_far, _ = _timed(far_field_radius, p, "bogie", X)
         new, t_new, c_new = _timed(induced_frequencies, p, dps=30)
-        old, t_old, c_old = _timed(induced_frequencies, p, dps=30, window=default_window(p))
+        old, t_old, c_old = _timed(induced_frequencies, p, dps=30, window=default_window(bind(p)))
         print(
             f"{label:<30} {far.radius or float('nan'):>6.3g} {t_far:>8.2f} {t_new:>7.2f} ({c_new:>4.1f})"
             f" {t_old:>7.2f} ({c_old:>4.1f}) {len(new.unstable_roots):>8}/{len(old.unstable_roots)}"

@@ -229,7 +229,7 @@ def run_ours(case, record):
 
 def run_grid(case, reference, n):
     params = table1_case(case)
-    window = default_window(params)
+    window = default_window(bind(params))
     precise = CountingPrecise(params)
     cache = {}
 
@@ -269,8 +269,8 @@ def run_grid(case, reference, n):
 def widened_tiles(case, eps=1e-3, eps_branch=1e-2):
     """Our tiling of the default window with larger margins: 1e-3 from the cut, 1e-2 from its branch point."""
     params = table1_case(case)
-    window = default_window(params)
-    cut = cut_locus(params, window.x0, window.x1)
+    window = default_window(bind(params))
+    cut = cut_locus(bind(params), window.x0, window.x1)
     gap_height = 0.1 * max(window.width, window.height)  # as the first try of frequencies._count_tiling
     return tile_window(window, cut, eps=eps, eps_branch=eps_branch, gap_height=gap_height).regions
 

@@ -41,9 +41,8 @@ def main() -> None:
     parser.add_argument("--size", type=int, default=None, help="map size N (N x N)")
     args = parser.parse_args()
 
+    from moving_bogie.api import induced_frequencies, stability_map
     from moving_bogie.model.files import load_params_file
-    from moving_bogie.roots.frequencies import induced_frequencies
-    from moving_bogie.stability.maps.map import stability_map
     from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
     layered, _ = load_params_file(EXAMPLE)

@@ -19,6 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
+
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
@@ -60,7 +62,7 @@ def main() -> None:
         pick = np.searchsorted(grid, np.linspace(end / 8, end, 8) - 1e-9)  # grid times in the window
         times = grid[pick]
         middle = _clocks()
-        reference = bromwich_line(params, times, a=0.02)
+        reference = bromwich_line(bind(params), times, a=0.02)
         wb, cb = _clocks() - middle
         diffs = []
         for key in ("w_rear", "w_front", "u", "theta"):

@@ -41,6 +41,8 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 import mpmath  # noqa: E402
 import numpy as np  # noqa: E402
 
+from moving_bogie.kernels.bound import bind  # noqa: E402
+
 FAMILIES = ("two-layer", "three-layer", "eb", "tr")
 
 
@@ -148,8 +150,8 @@ def scan_roots(params, window, *, n=(801, 801), tol=1e-9) -> list:
     point lies in the window and E_chr vanishes there. Returns complex roots, duplicates merged."""
     from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 
-    fast = CharacteristicArray(params)
-    precise = Characteristic(params)
+    fast = CharacteristicArray(bind(params))
+    precise = Characteristic(bind(params))
     xs = np.linspace(window.x0, window.x1, n[0])
     # the grid reaches a few rows above Im q = 0, so that a root just below the real axis is an interior
     # minimum (a minimum on the last row is not seen)
@@ -204,7 +206,7 @@ def compare(result, reference) -> tuple[bool, float]:
 def run(sets, reference_every: int = 0, verbose: bool = False, scan_points: dict | None = None) -> dict:
     """Run the search on every set; returns per-family records. ``scan_points``: grid points per side of
     the reference scan per family (default 801 for every family)."""
-    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.api import induced_frequencies
 
     records = {f: [] for f in FAMILIES}
     try:

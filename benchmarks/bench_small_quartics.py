@@ -32,8 +32,8 @@ def _per_call(func, repeat) -> float:
 
 
 def _lines_cpu() -> float:
+    from moving_bogie.api import instability_lines
     from moving_bogie.paper import stability_figures as sf
-    from moving_bogie.stability.lines.instability_lines import instability_lines
 
     start = time.process_time()
     instability_lines(sf._base("0.05"), spacings=sf.SPACINGS, alpha_range=(0, 1), **sf._grid(True))

@@ -39,14 +39,16 @@ def main() -> None:
     add_record_option(parser)
     args = parser.parse_args()
 
+    from moving_bogie.api import (
+        critical_stiffness,
+        d_decomposition,
+        frequency_lines,
+        instability_lines,
+        stability_map,
+    )
     from moving_bogie.model.cases import table1_case
     from moving_bogie.model.catalogue import get_model
     from moving_bogie.paper import stability_figures as plots_stability
-    from moving_bogie.stability.lines.frequency_lines import frequency_lines
-    from moving_bogie.stability.lines.instability_lines import instability_lines
-    from moving_bogie.stability.maps.map import stability_map
-    from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
-    from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
     from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
     n = 100 if args.quick else 400

@@ -86,7 +86,7 @@ def _row(label, size, r):
 
 def _full_search_check(spec, ds, k, rng) -> tuple[int, int]:
     """k random points (half unstable where there are any) against induced_frequencies."""
-    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.api import induced_frequencies
 
     n = ds.n_unstable.values
     pools = [np.argwhere(n > 0), np.argwhere(n == 0)] if (n > 0).any() else [np.argwhere(n == 0)]

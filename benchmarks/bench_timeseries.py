@@ -23,12 +23,12 @@ import time
 
 import numpy as np
 
+from moving_bogie.api import closed_form_response, induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.branch_cut import BranchCut
-from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.response.cut_integral import CurveBranchCut
 from moving_bogie.response.residues import residue_expansion
-from moving_bogie.roots.frequencies import induced_frequencies
 
 
 def best(func, repeat: int = 3) -> float:
@@ -55,9 +55,9 @@ def main() -> None:
         rows.append(
             (f"{case}", "induced frequencies (30 digits)", "-", "-", f"{time.perf_counter() - start:.2f}")
         )
-        t = best(lambda params=params, result=result: residue_expansion(params, result, shapes=False))
+        t = best(lambda params=params, result=result: residue_expansion(bind(params), result, shapes=False))
         rows.append((f"{case}", "residue coefficients (mpmath)", "-", "-", f"{t:.3f}"))
-        expansion = residue_expansion(params, result, shapes=False)
+        expansion = residue_expansion(bind(params), result, shapes=False)
         for n in (10**3, 10**4, 10**5):
             for tmax in (1e2, 1e3, 1e4):
                 tau = np.linspace(0.0, tmax, n)
@@ -68,17 +68,17 @@ def main() -> None:
         tau = np.linspace(0.0, 1e4, 10**5)
         t = best(lambda tau=tau, p=params, r=result: closed_form_response(p, tau, frequencies=r), repeat=1)
         rows.append((f"{case}", "closed_form_response, branch_cut='auto'", "1e+05", "1e+04", f"{t:.2f}"))
-        bc = BranchCut(params)
+        bc = BranchCut(bind(params))
         tau = np.linspace(0.0, 100.0, 2001)
         t = best(lambda tau=tau, bc=bc: bc.responses(tau), repeat=1)
         rows.append((f"{case}", "branch-cut part alone (half-line)", "2001", "1e+02", f"{t:.2f}"))
-        curve = CurveBranchCut(params)
+        curve = CurveBranchCut(bind(params))
         t = best(lambda tau=tau, bc=curve: bc.responses(tau), repeat=1)
         rows.append((f"{case}", "branch-cut part alone (traced cut)", "2001", "1e+02", f"{t:.2f}"))
     params = table1_case(7).replace(beam="tr", S=10, r="0.09")
     result = induced_frequencies(params, dps=30)
     tau = np.linspace(0.0, 100.0, 2001)
-    curve = CurveBranchCut(params)
+    curve = CurveBranchCut(bind(params))
     t = best(lambda tau=tau, bc=curve: bc.responses(tau), repeat=1)
     rows.append(("7 TR", "branch-cut part alone (traced cut)", "2001", "1e+02", f"{t:.2f}"))
     t = best(lambda tau=tau, p=params, r=result: closed_form_response(p, tau, frequencies=r), repeat=1)

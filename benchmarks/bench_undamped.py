@@ -16,6 +16,8 @@ import time
 
 import numpy as np
 
+from moving_bogie.kernels.bound import bind
+
 
 def _cpu() -> float:
     own = resource.getrusage(resource.RUSAGE_SELF)
@@ -29,11 +31,9 @@ def _timed(func):
 
 
 def main() -> None:
+    from moving_bogie.api import critical_stiffness, d_decomposition, instability_lines
     from moving_bogie.model.cases import table1_case
-    from moving_bogie.stability.lines.instability_lines import instability_lines
     from moving_bogie.stability.maps.undamped import UndampedCounter, boundaries, parameter_grid
-    from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
-    from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
 
     masses = table1_case(2).replace(d="1.5")
     jobs = [
@@ -62,7 +62,7 @@ def main() -> None:
         ("Case 5, alpha = 0.7, kappa_v", table1_case(5), "bogie", "kappa_v", 0.7, 0.6),
     ):
         bounds, _, _ = boundaries(
-            UndampedCounter(p.replace(vehicle=model), parameter),
+            UndampedCounter(bind(p.replace(vehicle=model)), parameter),
             alpha,
             parameter_grid(top, 20),
             tol=1e-12 * top,

@@ -25,9 +25,9 @@ import time
 
 import numpy as np
 
+from moving_bogie.api import closed_form_response, validate
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
-from moving_bogie.response.closed_form import closed_form_response
-from moving_bogie.validation.compare import comparison_window, default_tau_max, validate
+from moving_bogie.validation.compare import comparison_window, default_tau_max
 from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.geometry import choose_geometry
 from moving_bogie.validation.track_modes import ModalTrack

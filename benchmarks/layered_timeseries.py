@@ -18,11 +18,11 @@ from pathlib import Path
 
 import numpy as np
 
+from moving_bogie.api import closed_form_response, induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.response.bromwich import bromwich_line
-from moving_bogie.response.closed_form import closed_form_response
-from moving_bogie.roots.frequencies import induced_frequencies
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "two-layer.toml"
 TAUS = (0.5, 2.0, 20.0, 50.0)
@@ -30,8 +30,8 @@ NAMES = ("w_rear", "w_front", "u", "theta")
 
 
 def agreement_table(params, result):
-    ref = bromwich_line(params, TAUS, a=0.02)
-    other = bromwich_line(params, TAUS, a=0.05)
+    ref = bromwich_line(bind(params), TAUS, a=0.02)
+    other = bromwich_line(bind(params), TAUS, a=0.05)
     on = closed_form_response(params, TAUS, frequencies=result, branch_cut=True)
     off = closed_form_response(params, TAUS, frequencies=result, branch_cut=False)
     scale = max(abs(on.steady["w_rear"]), abs(on.steady["w_front"]))

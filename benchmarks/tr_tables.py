@@ -11,11 +11,11 @@ import time
 
 import mpmath
 
+from moving_bogie.api import closed_form_response, induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.bromwich import bromwich_line
-from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 
 SETS = [("10", "0.09", "0.05"), ("10", "0.09", "0"), ("100", "0.03", "0.05")]
 TAUS = (0.5, 2.0, 20.0, 100.0)
@@ -48,8 +48,8 @@ def vibrations_table():
         result = induced_frequencies(params, dps=20, window=window, check_window=False)
         on = closed_form_response(params, TAUS, frequencies=result, branch_cut=True)
         off = closed_form_response(params, TAUS, frequencies=result, branch_cut=False)
-        ref = bromwich_line(params, TAUS, a=0.02)
-        other = bromwich_line(params, TAUS, a=0.05)
+        ref = bromwich_line(bind(params), TAUS, a=0.02)
+        other = bromwich_line(bind(params), TAUS, a=0.05)
         scale = max(abs(on.steady["w_rear"]), abs(on.steady["w_front"]))
         for k, tau in enumerate(TAUS):
             d_on = max(abs(on[n][k] - ref[n][k]) for n in ref) / scale

@@ -20,12 +20,13 @@ from pathlib import Path
 
 import numpy as np
 
+from moving_bogie.api import closed_form_response, induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
 from moving_bogie.response.branch_cut import BranchCut
 from moving_bogie.response.bromwich import bromwich_response
-from moving_bogie.response.closed_form import _s_min, branch_cut_extent, closed_form_response
+from moving_bogie.response.closed_form import _s_min, branch_cut_extent
 from moving_bogie.response.residues import residue_expansion
-from moving_bogie.roots.frequencies import induced_frequencies
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "vibrations.md"
 TAUS = (0.0, 20.0, 100.0)
@@ -41,8 +42,8 @@ def size_table() -> str:
     for case in TABLE1_CASES:
         params = table1_case(case)
         result = induced_frequencies(params, dps=30)
-        expansion = residue_expansion(params, result, shapes=False)
-        bc = BranchCut(params)
+        expansion = residue_expansion(bind(params), result, shapes=False)
+        bc = BranchCut(bind(params))
         s_min = _s_min(bc, expansion)
         values = bc.responses(np.array(TAUS), s_min=s_min)
         bound = max(bc.l1_bound(s_min=s_min).values())
@@ -67,7 +68,7 @@ def agreement_table() -> str:
         result = induced_frequencies(params, dps=30)
         for tau in (20.0, 100.0):
             start = time.perf_counter()
-            ref = bromwich_response(params, [tau], a=0.02)
+            ref = bromwich_response(bind(params), [tau], a=0.02)
             elapsed = time.perf_counter() - start
             on = closed_form_response(params, [tau], frequencies=result, branch_cut=True)
             off = closed_form_response(params, [tau], frequencies=result, branch_cut=False)

@@ -35,7 +35,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from moving_bogie import PhysicalParams
-from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.api import induced_frequencies
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 
@@ -160,7 +160,7 @@ assert 6 <= min(hz) and max(hz) <= 22, hz
 # %%
 response = None
 try:
-    from moving_bogie.response.closed_form import closed_form_response
+    from moving_bogie.api import closed_form_response
 except ImportError as exc:  # the response feature is not in this installation
     print(f"closed-form response not available: {exc}")
 else:
@@ -193,7 +193,7 @@ else:
 
 # %%
 try:
-    from moving_bogie.response.closed_form import deflection_shape
+    from moving_bogie.api import deflection_shape
 except ImportError as exc:
     print(f"deflection shapes not available: {exc}")
 else:
@@ -218,4 +218,5 @@ else:
 # * `04-instability-lines.py`: where in (velocity, mass) the motion becomes unstable.
 # * `05-change-the-model.py`: add a foundation model in `derivations/` and rerun the analysis.
 # * The same from the command line: `moving-bogie params --file bogie.toml`, `moving-bogie frequencies
-#   --file bogie.toml` (`moving-bogie COMMAND --help`, or the command line reference of the documentation site).
+#   --file bogie.toml` (`moving-bogie COMMAND --help`, or the command line reference of the documentation
+#   site).

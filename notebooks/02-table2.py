@@ -34,7 +34,7 @@ import matplotlib.pyplot as plt
 import mpmath
 
 from moving_bogie import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.api import induced_frequencies
 from moving_bogie.roots.table2 import compute_table2, format_table2
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")

@@ -32,9 +32,8 @@ import numpy as np
 from IPython.display import Image, display
 
 from moving_bogie import table1_case
-from moving_bogie.response.closed_form import closed_form_response
-from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.validation.compare import plot_validation, validate
+from moving_bogie.api import closed_form_response, induced_frequencies, validate
+from moving_bogie.validation.compare import plot_validation
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 CASE = 7

@@ -34,9 +34,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from moving_bogie import DimensionlessParams, table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.lines.instability_lines import instability_lines
-from moving_bogie.stability.maps.map import stability_map
+from moving_bogie.api import induced_frequencies, instability_lines, stability_map
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 GRID = dict(alpha_step=0.02, q_step=0.01) if QUICK else dict(alpha_step=0.01, q_step=0.004)

@@ -51,8 +51,8 @@ import mpmath
 
 import moving_bogie
 from moving_bogie import DimensionlessParams, table1_case
+from moving_bogie.api import induced_frequencies
 from moving_bogie.model.catalogue import Model, load_catalogue
-from moving_bogie.roots.frequencies import induced_frequencies
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 SOURCES = ("derivations", "src")
@@ -213,14 +213,15 @@ with mpmath.workdps(30):
 # (here at $\xi = 0$).
 
 # %%
+from moving_bogie.kernels.bound import bind  # noqa: E402
 from moving_bogie.kernels.track import TrackKernel  # noqa: E402
 
 zq = mpmath.mpc("0.3", "0.2")
 with mpmath.workdps(30):
-    k_base = TrackKernel(base)(zq, [0, 1, -1]).K
-    k_zero = TrackKernel(on_kelvin_track(base, 0))(zq, [0, 1, -1]).K
+    k_base = TrackKernel(bind(base))(zq, [0, 1, -1]).K
+    k_zero = TrackKernel(bind(on_kelvin_track(base, 0)))(zq, [0, 1, -1]).K
     damped = on_kelvin_track(base, "0.1")
-    k_damped = TrackKernel(damped)(zq, [0]).K[0]
+    k_damped = TrackKernel(bind(damped))(zq, [0]).K[0]
     ns = damped.as_mp()
     coeffs = model.foundation.n_coeffs(zq, alpha=ns.alpha, eta_f=ns.eta_f, eta_s=ns.eta_s, eta_c=ns.eta_c)
     breaks = [-mpmath.inf, *mpmath.linspace(-20, 20, 81), mpmath.inf]  # a pole lies close to the real axis

@@ -38,7 +38,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from moving_bogie import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.api import induced_frequencies
 from moving_bogie.sweep import sweep
 from moving_bogie.sweep.plots import plot_sweep_slice
 

@@ -32,8 +32,9 @@ import numpy as np
 from IPython.display import Image, display
 from matplotlib.figure import Figure
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.figures.track_comparison import compare_tracks, figure_track_comparison
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity, dispersion_branches
 
@@ -159,7 +160,7 @@ for v in speeds:
 spacings = (float(params.d),)
 base = params.replace(track="one-layer")
 comparison = compare_tracks(
-    base,
+    bind(base),
     "two-layer",
     {"mu_2": params.mu_2, "kappa_2": params.kappa_2, "eta_2": params.eta_2},
     spacings=spacings,

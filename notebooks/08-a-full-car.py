@@ -32,8 +32,8 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.frequencies import induced_frequencies
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 EXAMPLE = Path.cwd().parent / "examples" / "car.toml"

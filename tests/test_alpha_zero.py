@@ -18,9 +18,10 @@ import numpy as np
 import pytest
 from test_cut_clearance import AVOIDED_CROSSING
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.params import DimensionlessParams
-from moving_bogie.roots.frequencies import induced_frequencies
 
 BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_random.py"
 
@@ -46,7 +47,7 @@ THREE_LAYERS = DimensionlessParams(
 
 @pytest.mark.parametrize("params", [ON_THE_AXIS, THREE_LAYERS], ids=["two-layer", "three-layer"])
 def test_folds_are_distinct_and_mirror_symmetric(params):
-    cut = cut_locus(params, -3.0, 3.0)
+    cut = cut_locus(bind(params), -3.0, 3.0)
     folds = cut.folds
     assert sum(abs(f.q.real) <= 1e-9 for f in folds) <= 2  # 35 of rounding noise on Re q = 0 before
     for k, f in enumerate(folds):

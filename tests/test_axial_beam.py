@@ -30,12 +30,12 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies, validate
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import get_model
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity
-from moving_bogie.validation.compare import validate
 from moving_bogie.validation.track_modes import ModalTrack
 
 
@@ -58,7 +58,7 @@ def test_kernel_against_quadrature():
     f = params.as_float()
     q = mpmath.mpc("0.3", "-0.2")
     with mpmath.workdps(30):
-        got = TrackKernel(params)(q, [0, "1.5"]).K
+        got = TrackKernel(bind(params))(q, [0, "1.5"]).K
         breaks = [-mpmath.inf, *mpmath.linspace(-20, 20, 81), mpmath.inf]
 
         def integrand(p, xi=0):

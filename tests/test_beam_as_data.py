@@ -19,9 +19,10 @@ import pytest
 from derivation_support import regenerated_copy, require_sympy
 
 from moving_bogie import DimensionlessParams, table1_case
+from moving_bogie.api import validate
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.catalogue import Model, load_catalogue
-from moving_bogie.validation.compare import validate
 
 require_sympy()
 
@@ -59,7 +60,7 @@ def test_kernel_against_quadrature(scratch):
         return p**4 + 4 * f.eta_s * p**2 - 4 * s**2 - 4 * f.r**2 * p**2 * s**2 + 8j * f.eta_f * s + 4
 
     with mpmath.workdps(30):
-        got = TrackKernel(params)(q, [0]).K[0]
+        got = TrackKernel(bind(params))(q, [0]).K[0]
         breaks = [-mpmath.inf, *mpmath.linspace(-20, 20, 81), mpmath.inf]
         quadrature = mpmath.quad(lambda p: 1 / n_by_hand(p), breaks)
         assert abs(got - quadrature) < 1e-12 * abs(quadrature)

@@ -8,6 +8,7 @@ the same catalogue evaluated at the same parameters) for ``params.replace(vehicl
 from __future__ import annotations
 
 import pickle
+from fractions import Fraction
 from pathlib import Path
 
 import mpmath
@@ -18,9 +19,11 @@ from moving_bogie import table1_case
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel, bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
+from moving_bogie.kernels.foundation import Foundation
 from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.model.catalogue import Model, load_catalogue
 from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.roots.count.window import far_field_window
 
 GENERATED = Path(__file__).resolve().parents[1] / "src" / "moving_bogie" / "generated"
@@ -56,13 +59,35 @@ def test_the_systems_are_those_of_the_generated_module_and_kept_per_precision():
         assert abs(fifty.mass[2][2] - p.mu_v) == 0  # exact at this precision
 
 
-def test_bound_and_unbound_give_the_same_numbers():
+def test_a_foundation_given_beside_the_parameters_is_another_bound_model():
+    """BoundModel(params, foundation=...) is the one way to change the track: its own module given gives the
+    default's numbers; a value given for a group of the track gives the numbers of parameters that carry
+    that value (the reference: eta_f = 1/5 set in the parameters, bound the ordinary way)."""
     p = table1_case(3)
     q = mpmath.mpc("0.41", "-0.07")
-    with mpmath.workdps(40):
-        assert Characteristic(p)(q) == Characteristic(bind(p))(q)
     qs = np.array([0.3 - 0.1j, 1.2 + 0.4j])
-    assert np.array_equal(CharacteristicArray(p)(qs), CharacteristicArray(bind(p))(qs))
+    default = bind(p)
+    same = BoundModel(p, foundation=p.model.foundation)
+    assert same == default
+    other = default.with_foundation(Foundation(p.model.foundation, {"eta_f": "0.2"}))
+    reference = bind(p.replace(eta_f=Fraction(1, 5)))
+    assert (
+        other != default
+        and other.params == p
+        and other.replace(d=3).foundation_model.values == {"eta_f": "0.2"}
+    )
+    layered = {"track": "two-layer", "mu_2": 1, "kappa_2": 1, "eta_2": 0}  # another track: its own module
+    assert other.replace(**layered).foundation is default.replace(**layered).foundation
+    with mpmath.workdps(40):
+        assert Characteristic(same)(q) == Characteristic(default)(q)
+        assert Characteristic(other)(q) == Characteristic(reference)(q) != Characteristic(default)(q)
+    assert np.array_equal(CharacteristicArray(same)(qs), CharacteristicArray(default)(qs))
+    assert np.array_equal(CharacteristicArray(other)(qs), CharacteristicArray(reference)(qs))
+
+
+def test_bind_makes_si_parameters_dimensionless():
+    physical = PhysicalParams.from_dimensionless(table1_case(1), EI="6.4e6", m=60, k_f="1e8", P="1e5")
+    assert bind(physical) == bind(physical.to_dimensionless())
 
 
 def test_replace_gives_the_values_the_vehicle_override_used():
@@ -95,8 +120,8 @@ def test_a_loaded_catalogue_reaches_its_own_kernels_and_asymptotics():
     assert bound.foundation is catalogue.module("foundation_eb")
     assert bound.foundation is not p.model.foundation and bound.vehicle is catalogue.module("vehicle_bogie")
     assert bound.kernel_decay == bind(p).kernel_decay
-    window, far = far_field_window(own)
-    reference_window, reference = far_field_window(p)
+    window, far = far_field_window(bound)
+    reference_window, reference = far_field_window(bind(p))
     assert far.radius is not None and far.radius == reference.radius and window == reference_window
 
 
@@ -116,7 +141,7 @@ def test_the_half_line_cut_is_read_from_the_generated_track():
         roots = np.roots([complex(x) for x in bound.foundation.n_coeffs_in_q(0.7, **args)])
         expected = args["alpha"] * 0.7 + 1j * c + np.array([1, -1]) * np.sqrt(R) / 2
         assert np.allclose(np.sort_complex(roots), np.sort_complex(expected), rtol=1e-13)
-        assert type(branch_cut_for(params)).__name__ == "BranchCut"
+        assert type(branch_cut_for(bind(params))).__name__ == "BranchCut"
     tr = table1_case(7).replace(beam="tr", S=10, r="0.09")
     assert not hasattr(bind(tr).foundation, "cut_line_radicand")
-    assert isinstance(branch_cut_for(tr), CurveBranchCut)
+    assert isinstance(branch_cut_for(bind(tr)), CurveBranchCut)

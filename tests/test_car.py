@@ -17,11 +17,12 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import main
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.frequencies import induced_frequencies
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -65,7 +66,7 @@ def car():
 def test_car_roots_are_counted_on_other_contours(car):
     params, result = car
     assert result.count_ok and result.verdict.state == "stable"
-    E = CharacteristicArray(params)
+    E = CharacteristicArray(bind(params))
     qs = [complex(r.q) for r in result.roots]
     # Two bogies interact only through the rail: their roots come in pairs far closer than the others.
     assert min(abs(a - b) for i, a in enumerate(qs) for b in qs[:i]) < 1e-6
@@ -82,7 +83,7 @@ def test_car_roots_are_counted_on_other_contours(car):
 def test_car_roots_against_a_dense_scan(car):
     """Every local minimum of |E_chr| on a grid that Newton turns into a root is a root found."""
     params, result = car
-    E = CharacteristicArray(params)
+    E = CharacteristicArray(bind(params))
     x = np.linspace(0.004, 1.2, 600)
     y = np.linspace(0.0005, 0.3, 300)
     X, Y = np.meshgrid(x, y)
@@ -93,7 +94,7 @@ def test_car_roots_against_a_dense_scan(car):
         for dx in (-1, 0, 1):
             if dx or dy:
                 is_min &= inner < values[1 + dy : values.shape[0] - 1 + dy, 1 + dx : values.shape[1] - 1 + dx]
-    precise = Characteristic(params)
+    precise = Characteristic(bind(params))
     found = [complex(r.q) for r in result.roots]
     newton = []
     with mpmath.workdps(20):
@@ -140,7 +141,7 @@ def test_two_far_bogies_give_each_bogie_root_twice():
         vehicle="car", eta_f="0.3", L_c=40, mu_c=50, J_c=5000, kappa_sec="1e-9", eta_sec="1e-9"
     )
     assert {k: car.to_exact_dict()[k] for k in values} == values | {"eta_f": "0.3"}
-    E = CharacteristicArray(car)
+    E = CharacteristicArray(bind(car))
     for root in roots.roots:
         q = complex(root.q)
         radius = 0.2 * min(
@@ -154,7 +155,7 @@ def test_rigid_oscillator_is_the_moving_mass():
     base = table1_case(7)
     mass = base.replace(vehicle="mass", eta_M=3)
     oscillator = base.replace(vehicle="oscillator", eta_M=1, mu_v=2, kappa_v="1e8", eta_v=0)
-    Em, Eo = Characteristic(mass), Characteristic(oscillator)
+    Em, Eo = Characteristic(bind(mass)), Characteristic(bind(oscillator))
     with mpmath.workdps(30):
         # roots of the moving mass by Newton from a grid of starts (reference), then of the oscillator
         starts = [mpmath.mpc(x, y) for x in (0.3, 0.6, 0.9) for y in (0.05, 0.2)]
@@ -182,7 +183,7 @@ def test_car_steady_state_against_quadrature():
     the body its bogies.
     """
     params, _ = load_params_file(EXAMPLES / "car.toml")
-    chr_ = Characteristic(params)
+    chr_ = Characteristic(bind(params))
     with mpmath.workdps(20):
         zero = mpmath.mpc(0)
         kv = chr_.kernel_values(zero)
@@ -224,7 +225,7 @@ def test_car_on_two_layers_resolves_a_pair_1e13_apart():
     assert gaps[0] < 1e-12
     # Reference: Newton at 60 digits from either side of the pair converges to two roots 7e-14 apart.
     pair = [q for q in qs if min(abs(q - o) for o in qs if o != q) == gaps[0]]
-    precise = Characteristic(params)
+    precise = Characteristic(bind(params))
     ends = []
     with mpmath.workdps(60):
         centre = mpmath.mpc(sum(pair) / 2)
@@ -243,13 +244,13 @@ def test_car_on_two_layers_resolves_a_pair_1e13_apart():
 def test_car_time_series_against_bromwich():
     """Every response of the car in closed form (residues at the 11 pairs + branch cut, Eqs. (35)-(43))
     against the direct quadrature of the Bromwich integral on Im q = -a (no residues, no cut)."""
+    from moving_bogie.api import closed_form_response
     from moving_bogie.response.bromwich import bromwich_line
-    from moving_bogie.response.closed_form import closed_form_response
 
     params, _ = load_params_file(EXAMPLES / "car.toml")
     tau = np.array([5.0, 20.0, 60.0])
     series = closed_form_response(params, tau, dps=20)
-    reference = bromwich_line(params, tau)
+    reference = bromwich_line(bind(params), tau)
     assert set(series.responses) == set(reference) and len(series.responses) == 10
     for name, values in series.responses.items():
         scale = max(np.max(np.abs(reference[name])), 1e-3)  # rotations are small: compare with w ~ 1
@@ -287,7 +288,7 @@ def test_car_on_two_layers_residues_of_a_close_pair_are_mirrors():
 
     params, _ = load_params_file(EXAMPLES / "car-two-layer.toml")
     result = induced_frequencies(params, dps=30)
-    expansion = residue_expansion(params, result, shapes=False)
+    expansion = residue_expansion(bind(params), result, shapes=False)
     q = expansion.q
     for name in expansion.names:
         a = expansion.amplitudes[name]
@@ -327,7 +328,7 @@ def _two_bogies_determinant(params):
             A[np.ix_(idx, idx)] = B
         mats.append(A)
     M, C, Kv = mats
-    kernel = TrackKernelArray(params)
+    kernel = TrackKernelArray(bind(params))
     offsets = (xi[:, None] - xi[None, :]).ravel()
 
     def E(q):

@@ -14,10 +14,11 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.model.files import load_params_file
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.proof.balls import BallCharacteristic
 from moving_bogie.roots.proof.certify import certify, krawczyk
 from moving_bogie.roots.proof.winding import proven_count
@@ -51,7 +52,7 @@ def test_each_member_of_a_close_pair_has_its_own_enclosure(car):
     params, result, cert = car
     pairs = close_pairs(result)
     assert len(pairs) >= 2 and min(abs(a - b) for a, b in pairs) < 1e-9
-    precise = Characteristic(params)
+    precise = Characteristic(bind(params))
     for r, e in zip(result.roots, cert.roots):
         with mpmath.workdps(30):
             q30, _ = newton(precise, mpmath.mpc(complex(r.q)))  # an independent polish from 16 digits
@@ -66,7 +67,7 @@ def test_each_member_of_a_close_pair_has_its_own_enclosure(car):
 @pytest.mark.slow
 def test_a_wrong_candidate_fails_and_a_close_pair_counts_two(car):
     params, result, _ = car
-    bc = BallCharacteristic(params, prec=200)
+    bc = BallCharacteristic(bind(params), prec=200)
     a, b = min(close_pairs(result), key=lambda ab: abs(ab[0] - ab[1]))  # 2e-10 apart
     assert krawczyk(bc, a).certified and krawczyk(bc, b).certified
     assert not krawczyk(bc, a + mpmath.mpf("1e-20")).certified  # the root is outside this ball
@@ -74,8 +75,8 @@ def test_a_wrong_candidate_fails_and_a_close_pair_counts_two(car):
     # a square around the pair, far from the other roots: proven to hold both (and the numerical count agrees)
     centre, half = complex((a + b) / 2), 1e-6
     box = Rectangle(centre.real - half, centre.real + half, centre.imag - half, centre.imag + half)
-    assert proven_count(BallCharacteristic(params, prec=96), box).count == 2
-    E = CharacteristicArray(params)
+    assert proven_count(BallCharacteristic(bind(params), prec=96), box).count == 2
+    E = CharacteristicArray(bind(params))
     t = np.linspace(0, 2 * np.pi, 2000, endpoint=False)
     values = E(centre + half * np.exp(1j * t))
     assert round(np.sum(np.angle(np.roll(values, -1) / values)) / (2 * np.pi)) == 2

@@ -16,14 +16,15 @@ import mpmath
 import pytest
 from flint import acb, acb_poly, ctx
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import main
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.cases import table1_case, table2_printed
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.proof.balls import BallCharacteristic, isolate_roots, square_ball
 from moving_bogie.roots.proof.certify import certify, krawczyk
 from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
@@ -51,7 +52,7 @@ def test_case_1_is_proven_unstable_with_every_root_and_the_count(case1):
 
 
 def test_enclosures_contain_the_30_digit_roots_and_the_printed_digits(case1):
-    precise = Characteristic(table1_case(1))
+    precise = Characteristic(bind(table1_case(1)))
     printed = table2_printed(1)
     for r, e in zip(case1.roots, case1.certificate.roots):
         with mpmath.workdps(30):
@@ -63,7 +64,7 @@ def test_enclosures_contain_the_30_digit_roots_and_the_printed_digits(case1):
 
 
 def test_a_wrong_candidate_fails_the_proof(case1):
-    bc = BallCharacteristic(table1_case(1), prec=200)
+    bc = BallCharacteristic(bind(table1_case(1)), prec=200)
     q = case1.roots[0].q
     assert krawczyk(bc, q).certified
     assert not krawczyk(bc, q + mpmath.mpf("1e-20")).certified  # the root is outside this ball
@@ -86,8 +87,8 @@ def test_json_output_has_the_certified_fields(capsys):
 def test_ball_derivative_contains_the_double_pole_formula():
     # dE/dq from the series in balls.py against the double-pole residues of kernels/track.py
     params = table1_case(6)
-    bc = BallCharacteristic(params, prec=128)
-    precise = Characteristic(params)
+    bc = BallCharacteristic(bind(params), prec=128)
+    precise = Characteristic(bind(params))
     for q in (0.3 + 0.05j, 0.1 - 0.2j, 1.5 + 0.2j):
         Eb, dEb = bc.value_and_derivative(q)
         with mpmath.workdps(30), ctx.workprec(128):
@@ -113,9 +114,9 @@ def test_both_p_root_methods_enclose_the_point_values(method):
     """Each method of p-root balls over a q-ball (p_balls.py, p_discs.py) gives E_chr balls that hold the
     30-digit mpmath values at points of the ball (kernels/characteristic.py, an independent residue sum)."""
     params = table1_case(6)
-    bc = BallCharacteristic(params, prec=128, p_roots=method)
+    bc = BallCharacteristic(bind(params), prec=128, p_roots=method)
     assert bc.direct == (method == "direct")
-    precise = Characteristic(params)
+    precise = Characteristic(bind(params))
     for q in (0.3 + 0.05j, 1.5 + 0.2j):
         ball = square_ball(q, 1e-6)
         upper, lower = bc.p_roots(ball)
@@ -130,7 +131,7 @@ def test_both_p_root_methods_enclose_the_point_values(method):
 
 def test_p_root_method_is_checked():
     with pytest.raises(ValueError, match="p_roots"):
-        BallCharacteristic(table1_case(1), p_roots="fast")
+        BallCharacteristic(bind(table1_case(1)), p_roots="fast")
 
 
 def test_isolated_p_roots_contain_known_roots():
@@ -145,7 +146,7 @@ def test_isolated_p_roots_contain_known_roots():
 
 
 def test_proven_count_around_a_root_and_next_to_it(case1):
-    bc = BallCharacteristic(table1_case(1), prec=96)
+    bc = BallCharacteristic(bind(table1_case(1)), prec=96)
     q = complex(case1.roots[0].q)
     around = Rectangle(q.real - 0.01, q.real + 0.01, q.imag - 0.01, q.imag + 0.01)
     beside = Rectangle(q.real + 0.005, q.real + 0.03, q.imag - 0.01, q.imag + 0.01)
@@ -214,7 +215,7 @@ def test_staircases_bound_exactly_their_rectangles():
     # the other regions and the unsearched strip still cover the window.
     params = load_params_file(EXAMPLES / "two-layer.toml")[0]
     window = Rectangle(-3e-3, 3.0, -3.0, 3.2)
-    cut = cut_locus(params, window.x0, window.x1)
+    cut = cut_locus(bind(params), window.x0, window.x1)
     tiling = proof_tiling(window, cut, margin=1e-3, gap_height=0.1 * 6.2)
     stairs = [r for r in tiling.regions if isinstance(r, Staircase)]
     assert len(stairs) == 2 and all(len(s.rects) > 40 for s in stairs)

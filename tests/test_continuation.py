@@ -21,10 +21,11 @@ import numpy as np
 import pytest
 from test_cut_clearance import AVOIDED_CROSSING
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.search.continuation import ContinuedRegion, count_continued, crossing_roots
 
 # The two cut curves pass about 5e-6 apart next to q* (their corners: the fold of one at 0.1850731869 +
@@ -48,13 +49,13 @@ class _PlacedZero:
 
 
 def _with_zero(z0):
-    fast = CharacteristicArray(AVOIDED_CROSSING)
+    fast = CharacteristicArray(bind(AVOIDED_CROSSING))
     fast.system = _PlacedZero(fast.system, z0)
     return fast
 
 
 def test_the_box_meets_the_cut_and_one_root_crosses():
-    fast = CharacteristicArray(AVOIDED_CROSSING)
+    fast = CharacteristicArray(bind(AVOIDED_CROSSING))
     refs, tracked = crossing_roots(fast, BOX)
     assert refs.size == 1
     (j,) = [k for k in range(tracked.shape[1]) if np.any(np.abs(tracked[:, k] - refs[0]) < 1e-3)]
@@ -62,7 +63,7 @@ def test_the_box_meets_the_cut_and_one_root_crosses():
 
 
 def test_no_root_in_the_box():
-    found = count_continued(CharacteristicArray(AVOIDED_CROSSING), BOX)
+    found = count_continued(CharacteristicArray(bind(AVOIDED_CROSSING)), BOX)
     assert isinstance(found, ContinuedRegion) and found.count == 0
 
 
@@ -79,9 +80,9 @@ def test_a_zero_placed_by_hand_is_found_once(offset):
 
 
 def test_the_continued_kernel_is_the_residue_sum_with_the_side_chosen():
-    fast = CharacteristicArray(AVOIDED_CROSSING)
+    fast = CharacteristicArray(bind(AVOIDED_CROSSING))
     refs, _ = crossing_roots(fast, BOX)
-    kernel = TrackKernel(AVOIDED_CROSSING)
+    kernel = TrackKernel(bind(AVOIDED_CROSSING))
     offsets = [float(x) for x in fast.offsets]
     for z, above in itertools.product((CENTRE + 1.5e-5 + 1.5e-5j, CENTRE - 1.5e-5 - 1.5e-5j), (False, True)):
         got = fast.kernel(np.array([z]), offsets, sides=(refs, np.array([above]))).K

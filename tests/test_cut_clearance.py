@@ -17,6 +17,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import CLEARANCE, cut_locus
 from moving_bogie.kernels.track import TrackKernel
@@ -47,7 +48,7 @@ EPS = 2e-11  # the search's default eps
 
 @pytest.fixture(scope="module")
 def fold_arms():
-    cut = cut_locus(AVOIDED_CROSSING, 0.0, 0.4)
+    cut = cut_locus(bind(AVOIDED_CROSSING), 0.0, 0.4)
     (fold,) = [f for f in cut.folds if abs(f.q - (0.18507 + 0.25965j)) < 1e-4]
     pair = [a for a in cut.arms if any(abs(a.q[k] - fold.q) < 1e-9 for k in (0, -1))]
     assert len(pair) == 2 and fold.opens == -1
@@ -62,8 +63,8 @@ def _near_real_mp(kernel, z):
 
 def test_edges_beside_fast_arms_are_on_the_side_they_claim(fold_arms):
     cut, fold, pair = fold_arms
-    fast = CharacteristicArray(AVOIDED_CROSSING)
-    precise = TrackKernel(AVOIDED_CROSSING)
+    fast = CharacteristicArray(bind(AVOIDED_CROSSING))
+    precise = TrackKernel(bind(AVOIDED_CROSSING))
     xs = fold.q.real - np.geomspace(1e-3, 1e-6, 12)
     fastest = 0.0
     for arm in pair:
@@ -94,5 +95,5 @@ def test_the_cell_between_the_fold_and_the_curve_above_it_is_counted(fold_arms):
     above = [a for a in spans if 0 < a.y_at(xm)[0] - upper.y_at(xm)[0] < 0.1]
     assert len(above) == 1
     cell = ColumnCell(x0, x1, Edge(arm=upper, side=1, delta=EPS), Edge(arm=above[0], side=-1, delta=EPS))
-    (n,) = winding_numbers(CharacteristicArray(AVOIDED_CROSSING), [cell])
+    (n,) = winding_numbers(CharacteristicArray(bind(AVOIDED_CROSSING)), [cell])
     assert n == 0  # E_chr has no zero there: |E| ~ 1.2e5 on a 301 x 301 scan of the region

@@ -9,12 +9,13 @@ below and inside the lens of the Timoshenko-Rayleigh cut and around its fold.
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
-from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.count.contour import winding_number, winding_numbers
-from moving_bogie.roots.frequencies import default_window, induced_frequencies
+from moving_bogie.roots.frequencies import default_window
 from moving_bogie.roots.search.search_regions import tile_window
 
 TR_CASES = [("10", "0.09"), ("100", "0.03")]
@@ -27,8 +28,8 @@ def _tr(S, r):
 @pytest.mark.parametrize(("S", "r"), TR_CASES)
 def test_traced_arms_match_a_dense_scan(S, r):
     params = _tr(S, r)
-    cut = cut_locus(params, 0.0, 3.0)
-    track = resolve_foundation(params)
+    cut = cut_locus(bind(params), 0.0, 3.0)
+    track = bind(params).foundation_model
     args = track.float_arguments(params)
     ps = np.linspace(-3, 3, 601)
     scan = []
@@ -49,8 +50,8 @@ def test_traced_arms_match_a_dense_scan(S, r):
 
 def test_cells_partition_the_window_minus_the_sliver():
     params = _tr(*TR_CASES[0])
-    window = default_window(params)
-    cut = cut_locus(params, window.x0, window.x1)
+    window = default_window(bind(params))
+    cut = cut_locus(bind(params), window.x0, window.x1)
     tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-5, gap_height=0.1 * window.height)
     assert max(u.height for u in tiling.unsearched) <= 1e-10
     fold = cut.folds[0].q
@@ -92,12 +93,12 @@ def test_counts_next_to_the_euler_bernoulli_branch_point(case):
     for z0 at 3e-9 to 1e-5 from q_c on every side but the cut itself (Case 2: eta_f = 0, the cut on the real
     axis)."""
     params = table1_case(case)
-    window = default_window(params)
-    cut = cut_locus(params, window.x0, window.x1)
+    window = default_window(bind(params))
+    cut = cut_locus(bind(params), window.x0, window.x1)
     assert cut.flat
     tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-9, gap_height=0.1 * window.height)
     assert max(u.height for u in tiling.unsearched) <= 2.1e-9
-    E = CharacteristicArray(params)
+    E = CharacteristicArray(bind(params))
     base = winding_numbers(E, tiling.regions)
     assert not any(isinstance(b, Exception) for b in base)
     q_c = complex(cut.x_start, cut.im_low)
@@ -115,8 +116,8 @@ def test_newton_on_a_few_cut_points_matches_the_batch_and_numpy_roots(S, r):
     """CutTracer.refine takes scalar steps for a handful of points: the same points as the batched steps,
     and as numpy.roots of N(p, .) (an independent companion-matrix solve), to rounding."""
     params = _tr(S, r)
-    cut = cut_locus(params, 0.0, 3.0)
-    track = resolve_foundation(params)
+    cut = cut_locus(bind(params), 0.0, 3.0)
+    track = bind(params).foundation_model
     args = track.float_arguments(params)
     tracer = cut.arms[0].tracer
     checked = 0

@@ -1,9 +1,9 @@
 """A track model whose N(p, q) has degree 6 in p (the two-layer track) through the whole runtime.
 
 The two-layer track of derivations/foundations.py (rail on pads k_1, c_1 over a mass layer m_2 on
-k_2, c_2, the layout of ballasted track) is handed to the runtime as a ``Foundation`` with the values of
-its layer groups. References, all independent of the residue sums and the
-root search being tested:
+k_2, c_2, the layout of ballasted track) is bound to the runtime as a ``Foundation`` with the values of
+its layer groups: ``BoundModel(params, foundation=Foundation(module, values))``, another bound model.
+References, all independent of the residue sums and the root search being tested:
 
 * K(xi, q) and dK/dq: QUADPACK quadrature of Eq. (29) over real p (``test_track_kernel.quadrature_module_K``);
 * roots in p: the local minima of |N| on a dense grid of the complex p-plane, and mpmath.polyroots at 40
@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 from test_track_kernel import quadrature_module_K
 
+from moving_bogie.kernels.bound import BoundModel, bind
 from moving_bogie.kernels.polyroots import stack_coefficients
 from moving_bogie.kernels.track import Foundation, TrackKernel, TrackKernelArray
 from moving_bogie.model.cases import table1_case
@@ -48,12 +49,12 @@ def test_generated_model_has_degree_6(two_layer):
 
 @pytest.mark.parametrize("q", [0.3 + 0.02j, 0.9 - 0.3j, 1.4 + 0.5j, 0.05 - 0.6j])
 def test_K_and_dK_against_quadrature(two_layer, q):
-    foundation = Foundation(two_layer, LAYER)
-    args = foundation.float_arguments(PARAMS)
+    bound = BoundModel(PARAMS, foundation=Foundation(two_layer, LAYER))
+    args = bound.foundation_floats()
     mpmath.mp.dps = 30
     d = float(PARAMS.d)
-    kv = TrackKernel(PARAMS, foundation=foundation)(mpmath.mpc(q), [0, d, -d], derivative=True)
-    arr = TrackKernelArray(PARAMS, foundation=foundation)(np.array([q]), [0.0, d, -d], derivative=True)
+    kv = TrackKernel(bound)(mpmath.mpc(q), [0, d, -d], derivative=True)
+    arr = TrackKernelArray(bound)(np.array([q]), [0.0, d, -d], derivative=True)
     assert len(kv.roots) == 6
     for k, xi in enumerate((0.0, d, -d)):
         ref = quadrature_module_K(two_layer, args, q, xi)
@@ -65,10 +66,10 @@ def test_K_and_dK_against_quadrature(two_layer, q):
 
 
 def test_p_roots_against_a_dense_scan(two_layer):
-    foundation = Foundation(two_layer, LAYER)
-    args = foundation.float_arguments(PARAMS)
+    bound = bind(PARAMS).with_foundation(Foundation(two_layer, LAYER))
+    args = bound.foundation_floats()
     qs = np.array([0.3 + 0.02j, 1.7 - 0.4j, 0.05 + 2.0j])
-    roots = TrackKernelArray(PARAMS, foundation=foundation).p_roots(qs)
+    roots = TrackKernelArray(bound).p_roots(qs)
     coeffs = stack_coefficients(two_layer.n_coeffs(qs, **args), qs.shape)
     for j in range(qs.size):
         c = coeffs[j]
@@ -112,12 +113,12 @@ def test_induced_frequencies_tend_to_table2_for_a_stiff_second_layer(two_layer):
     The roots move by O(1/kappa_2); Richardson extrapolation from kappa_2 = 1000 and 2000 removes that term,
     leaving O(1/kappa_2^2) ~ 1e-8, far below the 6 printed decimals of Table 2 (the reference).
     """
-    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.api import induced_frequencies
 
     found = {}
     for k2 in ("1000", "2000"):
         layer = dict(LAYER, kappa_2=k2)
-        result = induced_frequencies(PARAMS, dps=20, foundation=Foundation(two_layer, layer))
+        result = induced_frequencies(BoundModel(PARAMS, foundation=Foundation(two_layer, layer)), dps=20)
         assert result.count_ok and result.count == 4, result.warnings
         found[k2] = sorted((complex(r.q) for r in result.roots), key=lambda z: z.real)
     limit = [2 * b - a for a, b in zip(found["1000"], found["2000"])]

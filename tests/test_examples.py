@@ -13,8 +13,8 @@ import pytest
 
 from moving_bogie.cli import main
 from moving_bogie.generated import MODULES, VEHICLES
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
-from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 
@@ -175,8 +175,8 @@ def test_example_roots_are_simple_zeros_of_the_characteristic_equation(capsys, p
     assert data["count_ok"] and data["count"] == data["found"] == len(data["roots"])
     assert data["roots"], "an induced frequency was expected"
     params, _ = load_params_file(path)
-    characteristic = CharacteristicArray(params)
-    foundation = resolve_foundation(params)
+    characteristic = CharacteristicArray(bind(params))
+    foundation = bind(params).foundation_model
     roots = np.array([complex(float(r["re"]), float(r["im"])) for r in data["roots"]])
     # Close pairs (a car's two bogies interact only through the rail: roots 1e-10 and 2e-7 apart) are
     # below what a double-precision winding number resolves well; such a cluster is checked as a whole (it

@@ -17,9 +17,9 @@ import pytest
 from test_finite_beam import eb_symbol, modal_track, small_vehicle
 from test_static_correction import SMALL_MOTION, SMALL_VEHICLE, assert_step_equals_dense_solve
 
+from moving_bogie.api import validate
 from moving_bogie.generated import foundation_eb, foundation_tr
 from moving_bogie.model.cases import table1_case
-from moving_bogie.validation.compare import validate
 from moving_bogie.validation.corrected import CorrectedModalSystem
 from moving_bogie.validation.modal import ModalBeam
 from moving_bogie.validation.residual import ResidualFlexibility

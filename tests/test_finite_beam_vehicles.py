@@ -118,8 +118,8 @@ def test_oscillator_with_a_rigid_spring_is_the_moving_mass():
 def test_validate_car_agrees_with_the_closed_form():
     # Reference: the closed form of the car (residues at its induced frequencies and the branch-cut part,
     # from the block system of its generated matrices), examples/car.toml (SI, per rail), tau <= 40.
+    from moving_bogie.api import validate
     from moving_bogie.model.files import load_params_file
-    from moving_bogie.validation.compare import validate
 
     params = load_params_file(Path(__file__).resolve().parents[1] / "examples" / "car.toml")[0]
     result = validate(params, tau_max=40.0, estimate=False)

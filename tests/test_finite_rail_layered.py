@@ -27,6 +27,7 @@ import pytest
 from derivation_support import require_sympy
 from test_finite_beam_tr import tr_symbol
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.response.bromwich import bromwich_line
@@ -157,7 +158,7 @@ def test_two_layer_finite_rail_agrees_with_the_bromwich_integral(two_layer):
     inside = taus <= finite.tau_valid  # before any reflection can reach the wheels
     assert inside.sum() >= 5
     taus = taus[inside]
-    reference = bromwich_line(two_layer, taus, a=0.05)
+    reference = bromwich_line(bind(two_layer), taus, a=0.05)
     for name in ("w_rear", "w_front", "u", "theta"):
         x, ref = getattr(finite, name)[inside], reference[name]
         assert np.max(np.abs(x - ref)) <= 2e-3 * np.max(np.abs(ref)), name

@@ -24,6 +24,7 @@ import pytest
 from test_track_kernel import quadrature_module_K
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.cases import table1_case
@@ -77,7 +78,7 @@ def test_three_layer_K_against_quadrature(q):
     args = {name: float(getattr(params, name)) for name in module.ARGUMENTS[1:]}
     d = float(params.d)
     with mpmath.workdps(30):
-        kv = TrackKernel(params)(mpmath.mpc(q), [0, d, -d])
+        kv = TrackKernel(bind(params))(mpmath.mpc(q), [0, d, -d])
     assert len(kv.roots) == 8
     for k, xi in enumerate((0.0, d, -d)):
         ref = quadrature_module_K(module, args, q, xi)
@@ -93,7 +94,7 @@ def test_one_layer_limit_is_table2_case7():
     2 q(t/2) - q(t) lands within O(t^2) of the one-layer root (Case 7's row of Table 2 is not in the
     packaged data; its one-layer roots are those `moving-bogie table2` prints).
     """
-    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.api import induced_frequencies
 
     base = table1_case(7)
     ones = induced_frequencies(base, dps=20)
@@ -104,7 +105,7 @@ def test_one_layer_limit_is_table2_case7():
         for t in ("1e-3", "5e-4"):
             params = base.replace(track="two-layer", mu_2=t, kappa_2=1 / Fraction(t), eta_2=0)
             with mpmath.workdps(25):
-                found[t] = newton(Characteristic(params), q1)[0]
+                found[t] = newton(Characteristic(bind(params)), q1)[0]
         d1, d2 = abs(found["1e-3"] - q1), abs(found["5e-4"] - q1)
         assert 1e-6 < d1 < 1e-1  # the layer is felt at first order ...
         assert d2 / d1 == pytest.approx(0.5, abs=0.05)  # ... and the distance is O(t)
@@ -208,7 +209,7 @@ def test_layered_K_at_alpha_zero_where_the_degree_of_N_drops(track):
     params = table1_case(7).replace(track=track, alpha=0, **groups)
     module = params.model.foundation
     args = {name: float(getattr(params, name)) for name in module.ARGUMENTS[1:]}
-    sweep = SweepCharacteristic(params, "eta_M")
+    sweep = SweepCharacteristic(bind(params), "eta_M")
     qs = np.array([0.3 + 0.02j, 0.9 - 0.3j, 1.7 + 0.1j])
     with np.errstate(all="raise"):
         K, _, _ = sweep.kernel(qs, np.zeros(qs.size))

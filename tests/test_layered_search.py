@@ -18,17 +18,16 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies, stability_map
 from moving_bogie.cli import main
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.polyroots import poly_roots
-from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.maps.column import exact
-from moving_bogie.stability.maps.map import stability_map
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -40,7 +39,7 @@ def two_layer():
 
 def _scan_roots(params, x0, x1, y0, y1, n=(1501, 181)):
     """Roots of E_chr in the rectangle: local minima of |E| on a grid, refined by mpmath.findroot."""
-    fast = CharacteristicArray(params)
+    fast = CharacteristicArray(bind(params))
     xs, ys = np.linspace(x0, x1, n[0]), np.linspace(y0, y1, n[1])
     Z = xs[None, :] + 1j * ys[:, None]
     A = np.abs(fast(Z.ravel())).reshape(Z.shape)
@@ -50,7 +49,7 @@ def _scan_roots(params, x0, x1, y0, y1, n=(1501, 181)):
         for dx in (-1, 0, 1):
             if dy or dx:
                 is_min &= inner <= A[1 + dy : A.shape[0] - 1 + dy, 1 + dx : A.shape[1] - 1 + dx]
-    precise = Characteristic(params)
+    precise = Characteristic(bind(params))
     roots = []
     with mpmath.workdps(20):
         for j, i in zip(*np.nonzero(is_min)):
@@ -79,7 +78,7 @@ def test_two_layer_roots_match_a_dense_scan(two_layer):
     """Every root below the cut (Im q < 0.06; the cut's lowest point is at Im q = 0.0708, checked here by
     numpy.roots of N(p, .) on a p-grid) is found by the search, and no other."""
     track_q = []
-    track = resolve_foundation(two_layer)
+    track = bind(two_layer).foundation_model
     args = track.float_arguments(two_layer)
     for p in np.linspace(-40, 40, 4001):
         track_q += list(np.roots(np.array(track.module.n_coeffs_in_q(p, **args), dtype=complex)))
@@ -113,7 +112,7 @@ def test_cut_at_alpha_zero_ends_at_the_layer_resonance(two_layer):
     """At alpha = 0 the mass layer's curves stay bounded: the cut ends where Q(q) = 0 (N loses its p^6 and
     p^5 terms; its p^4 coefficient is Q)."""
     params = two_layer.replace(alpha=0)
-    cut = cut_locus(params, -3.0, 3.0)
+    cut = cut_locus(bind(params), -3.0, 3.0)
     f = params.as_float()
     q_inf = np.roots([-f.mu_2, 2j * (f.eta_f + f.eta_2), 1 + f.kappa_2])
     ends = [fold.q for fold in cut.folds if fold.end]
@@ -169,7 +168,7 @@ def test_side_between_two_cut_curves():
     window = Rectangle(-0.01, 60.0, -1.0, 1.0)
     result = induced_frequencies(params, dps=15, window=window, check_window=False)
     assert result.count_ok, result.warnings
-    track = resolve_foundation(params)
+    track = bind(params).foundation_model
     args = track.float_arguments(params)
     ps = np.linspace(-25, 20, 90001)
     cut = np.concatenate(

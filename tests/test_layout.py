@@ -516,3 +516,76 @@ def test_the_parameter_check_sees_what_it_checks():
     assert sorted(found) == ["cf1", "eta_M"]
     allowed = {module for module, _ in PARAMETER_LITERALS_ALLOWED} - {"*"}
     assert allowed <= set(MODULES), allowed - set(MODULES)  # no stale entry
+
+
+#: The one place where a bound model is made from parameters (``bind``) and takes a foundation beside them.
+BOUND = "moving_bogie.kernels.bound"
+
+
+def _generic(module: str) -> bool:
+    return module.split(".")[1:2] != [] and module.split(".")[1] in GENERIC and module != BOUND
+
+
+def _binds(tree: ast.AST) -> Iterator[tuple[int, str]]:
+    """Calls of ``bind`` (``bind(...)``, ``bound.bind(...)``) and imports of it, anywhere in `tree`."""
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call):
+            func = node.func
+            name = (
+                func.id
+                if isinstance(func, ast.Name)
+                else func.attr
+                if isinstance(func, ast.Attribute)
+                else ""
+            )
+            if name == "bind":
+                yield node.lineno, ast.unparse(node)[:80]
+        elif isinstance(node, ast.ImportFrom) and any(a.name == "bind" for a in node.names):
+            yield node.lineno, f"from {node.module} import bind"
+
+
+def _foundation_arguments(tree: ast.AST) -> Iterator[tuple[int, str]]:
+    """Functions with an optional or keyword parameter ``foundation=`` (a second channel beside the bound
+    model). A generated module passed as the one thing a helper evaluates (``PRootDiscs(foundation, args)``
+    in ball arithmetic) is not a second channel."""
+    for node in _functions(tree):
+        positional = [*node.args.posonlyargs, *node.args.args]
+        optional = positional[len(positional) - len(node.args.defaults) :]
+        if any(a.arg == "foundation" for a in [*optional, *node.args.kwonlyargs]):
+            yield node.lineno, node.name
+
+
+def test_the_generic_runtime_never_binds():
+    """Bind once (kernels/bound.py): the entry points bind, the generic layers take ``bound: BoundModel``."""
+    offenders = [
+        f"{module}:{line} {text}"
+        for module, tree in _trees()
+        if _generic(module)
+        for line, text in _binds(tree)
+    ]
+    assert not offenders, "the generic runtime binds again:\n" + "\n".join(offenders)
+
+
+def test_no_generic_function_takes_a_foundation():
+    """Another foundation is another bound model (``BoundModel(params, foundation=...)``), not a parameter."""
+    offenders = [
+        f"{module}:{line} {name}"
+        for module, tree in _trees()
+        if _generic(module)
+        for line, name in _foundation_arguments(tree)
+    ]
+    assert not offenders, "functions take a foundation beside the bound model:\n" + "\n".join(offenders)
+
+
+def test_the_bind_checks_see_what_they_check():
+    tree = ast.parse(
+        "from moving_bogie.kernels.bound import bind\ndef f(params):\n    return g(bind(params))\n"
+        "def h(bound, *, foundation=None): pass\nclass K:\n    def __init__(self, p, foundation=None): pass\n"
+        "def k(bound: BoundModel, binder=None): return bound.params\ndef m(foundation, args): pass\n"
+    )
+    assert [line for line, _ in _binds(tree)] == [1, 3]
+    assert [name for _, name in _foundation_arguments(tree)] == ["h", "__init__"]
+    assert _generic("moving_bogie.roots.frequencies") and _generic("moving_bogie.kernels.track")
+    assert (
+        not _generic(BOUND) and not _generic("moving_bogie.api") and not _generic("moving_bogie.cli.common")
+    )

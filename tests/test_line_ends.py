@@ -5,9 +5,8 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies, instability_lines
 from moving_bogie.paper.stability_figures import _base
-from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.lines.instability_lines import instability_lines
 
 
 @pytest.fixture(scope="module")

@@ -12,6 +12,7 @@ import json
 import numpy as np
 import pytest
 
+from moving_bogie.api import instability_lines, stability_map
 from moving_bogie.cli import main
 from moving_bogie.cli.lines_cmd import instability_figure
 from moving_bogie.model.cases import table1_case
@@ -19,8 +20,6 @@ from moving_bogie.model.files import load_params_file
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.stability.figures.plot_units import PlaneUnits
 from moving_bogie.stability.figures.plots import plot_stability_map
-from moving_bogie.stability.lines.instability_lines import instability_lines
-from moving_bogie.stability.maps.map import stability_map
 
 SCALES = {"EI": "6.4e6", "m": "60", "k_f": "2.5e7", "P": "8e4"}
 

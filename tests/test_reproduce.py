@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from moving_bogie.cli import main
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.model.cases import table1_case
 from moving_bogie.paper import reproduce as driver
@@ -176,7 +177,7 @@ def test_figure2_points_are_induced_frequencies(quick_run):
         alpha = np.asarray(re_line.get_xdata(), float)
         q = np.asarray(re_line.get_ydata(), float) + 1j * np.asarray(im_line.get_ydata(), float)
         for k in np.linspace(0, len(alpha) - 1, 4).astype(int):
-            chr_ = CharacteristicArray(table1_case(1).replace(alpha=float(alpha[k])))
+            chr_ = CharacteristicArray(bind(table1_case(1).replace(alpha=float(alpha[k]))))
             h = 1e-4 * (1 + abs(q[k]))
             assert abs(chr_(q[k])) < 1e-5 * abs(chr_(q[k] + h)), (alpha[k], q[k])
             checked += 1

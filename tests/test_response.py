@@ -17,14 +17,14 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import closed_form_response, deflection_shape, induced_frequencies
 from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.track import TrackKernel
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
-from moving_bogie.response.closed_form import closed_form_response, deflection_shape
 from moving_bogie.response.residues import IncompleteFrequencies, residue_expansion
-from moving_bogie.roots.frequencies import induced_frequencies
 
 NAMES = ("w_rear", "w_front", "u", "theta")
 
@@ -95,14 +95,14 @@ def test_a_purely_imaginary_root_is_its_own_mirror():
 def test_side_values_of_K_on_the_cut_match_the_kernel_just_off_it(case):
     # Reference: K of Eq. (29) by TrackKernel at q - i eps (below) and q + i eps (above).
     params = table1_case(case)
-    bc = BranchCut(params)
+    bc = BranchCut(bind(params))
     xis = [0.0, 0.7, -1.3, 3.0]
     for p0 in (bc.p_c + 0.3, 0.4, 2.5):
         s = float(bc.s(p0))
         for side, sign in (("below", -1), ("above", 1)):
             with mpmath.workdps(40):
                 q = mpmath.mpc(s, params.as_mp().eta_f + sign * mpmath.mpf("1e-25"))
-                ref = TrackKernel(params)(q, xis).K
+                ref = TrackKernel(bind(params))(q, xis).K
             ours = bc.kernels(np.array([p0]), xis, side)[0]
             np.testing.assert_allclose(ours, [complex(k) for k in ref], rtol=1e-11, atol=1e-13)
 
@@ -112,10 +112,10 @@ def test_branch_cut_geometry():
     # eta_f^2)/2 is a root
     # of N(p, q) for real p; q_c is its minimum.
     params = table1_case(7)
-    bc = BranchCut(params)
+    bc = BranchCut(bind(params))
     from moving_bogie.kernels.cut import cut_locus
 
-    assert bc.q_c == pytest.approx(cut_locus(params, 0.0, 3.0).x_start, abs=1e-8)
+    assert bc.q_c == pytest.approx(cut_locus(bind(params), 0.0, 3.0).x_start, abs=1e-8)
     ps = np.array([-0.5, 0.3, 4.0])
     N = [np.polyval(bc.foundation.n_coeffs(complex(bc.q(p)), **bc.fargs), p) for p in ps]
     assert np.max(np.abs(N)) < 1e-10
@@ -202,7 +202,7 @@ def test_auto_rule_drops_only_a_negligible_branch_cut(freqs):
     params = table1_case(7)
     ts = closed_form_response(params, np.linspace(0, 400, 9), frequencies=freqs(7))
     assert 0 < ts.branch_cut_until < 400
-    bc = BranchCut(params)
+    bc = BranchCut(bind(params))
     late = bc.responses(np.linspace(ts.branch_cut_until, ts.branch_cut_until + 60, 25))
     assert max(np.abs(v).max() for v in late.values()) < 1e-6 * ts.steady["w_rear"]
 
@@ -233,7 +233,7 @@ def test_timoshenko_rayleigh_series_start_at_rest(freqs):
     # w(., 0) = 0, which the residues alone miss by 6e-4 here (S = 100, r = 0.03, Section 3.6).
     params = table1_case(7).replace(beam="tr", S=100, r="0.03")
     with pytest.raises(BranchCutUnavailable, match="is not a half-line"):
-        BranchCut(params)
+        BranchCut(bind(params))
     result = induced_frequencies(params, dps=30)
     off = closed_form_response(params, [0.0], frequencies=result, branch_cut=False)
     assert abs(off["w_rear"][0]) == pytest.approx(6.0e-4, rel=0.05)
@@ -257,7 +257,7 @@ def test_incomplete_or_foreign_frequencies_are_refused(freqs):
         (count_mismatch(result.count, result.found - result.roots[-1].multiplicity),),
     )
     with pytest.raises(IncompleteFrequencies):
-        residue_expansion(table1_case(7), broken)
+        residue_expansion(bind(table1_case(7)), broken)
     with pytest.raises(ParameterError):
         closed_form_response(table1_case(1), [1.0], frequencies=result)
     with pytest.raises(ParameterError):
@@ -266,7 +266,7 @@ def test_incomplete_or_foreign_frequencies_are_refused(freqs):
 
 def test_a_missing_pair_member_is_detected(freqs):
     # Reference: x(tau) is real; the members q and -conj(q) of a pair have conjugate amplitudes.
-    e = residue_expansion(table1_case(7), freqs(7), shapes=False)
+    e = residue_expansion(bind(table1_case(7)), freqs(7), shapes=False)
     half = dataclasses.replace(
         e, q=e.q[1:], amplitudes={k: v[1:] for k, v in e.amplitudes.items()}, q_mp=e.q_mp[1:]
     )

@@ -20,13 +20,13 @@ import numpy as np
 import pytest
 from test_search_random import IMAGINARY_ROOTS
 
+from moving_bogie.api import closed_form_response, deflection_shape, induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.response.branch_cut import BranchCutUnavailable
 from moving_bogie.response.bromwich import bromwich_line, bromwich_line_shape
-from moving_bogie.response.closed_form import closed_form_response, deflection_shape
 from moving_bogie.response.cut_integral import CurveBranchCut, branch_cut_for
-from moving_bogie.roots.frequencies import induced_frequencies
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "two-layer.toml"
 RESPONSES = ("w_rear", "w_front", "u", "theta")
@@ -46,7 +46,7 @@ def _scale(ts):
 
 def test_the_mass_layer_cut_crosses_re_q_0_above_q_0(two_layer):
     params, _ = two_layer
-    bc = CurveBranchCut(params)
+    bc = CurveBranchCut(bind(params))
     ends = [piece.q_at([piece.p_lo])[0] for piece in bc.pieces if not piece.far[0]]
     assert len(ends) == 2  # the two mass-layer curves, mirror images of each other
     for q in ends:
@@ -92,8 +92,8 @@ def test_purely_imaginary_roots_count_once_in_the_response():
 def test_two_layer_time_series_match_the_bromwich_integral(two_layer):
     params, result = two_layer
     taus = (0.5, 2.0, 20.0)
-    ref = bromwich_line(params, taus, a=0.02)
-    other = bromwich_line(params, taus, a=0.05)
+    ref = bromwich_line(bind(params), taus, a=0.02)
+    other = bromwich_line(bind(params), taus, a=0.05)
     ts = closed_form_response(params, taus, frequencies=result, branch_cut=True)
     off = closed_form_response(params, taus, frequencies=result, branch_cut=False)
     scale = _scale(ts)
@@ -108,8 +108,8 @@ def test_two_layer_time_series_match_the_bromwich_integral(two_layer):
 def test_two_layer_deflection_shape_matches_the_bromwich_integral(two_layer):
     params, result = two_layer
     xi = np.linspace(-10.0, 12.0, 12)
-    ref = bromwich_line_shape(params, xi, 2.0, a=0.02, s_max=1600.0)
-    other = bromwich_line_shape(params, xi, 2.0, a=0.05, s_max=800.0)
+    ref = bromwich_line_shape(bind(params), xi, 2.0, a=0.02, s_max=1600.0)
+    other = bromwich_line_shape(bind(params), xi, 2.0, a=0.05, s_max=800.0)
     w = deflection_shape(params, xi, 2.0, frequencies=result, branch_cut=True)
     ts = closed_form_response(params, [2.0], frequencies=result, branch_cut=False)
     scale = _scale(ts)
@@ -127,7 +127,7 @@ def test_two_layer_deflection_shape_matches_the_bromwich_integral(two_layer):
 def test_degenerate_cuts_are_refused_with_the_reason(two_layer, change, reason):
     params, _ = two_layer
     with pytest.raises(BranchCutUnavailable, match=reason):
-        CurveBranchCut(params.replace(**change))
+        CurveBranchCut(bind(params.replace(**change)))
 
 
 @pytest.mark.slow
@@ -136,13 +136,13 @@ def test_damped_beam_above_the_critical_velocity_matches_the_bromwich_integral()
     # Re q = 0 at Im q = eta_f, so the traced-cut integral takes over from the half-line one; one induced
     # frequency is unstable (Im q = -0.165), and the Bromwich line lies below it.
     params = table1_case(7).replace(alpha="1.2")
-    assert isinstance(branch_cut_for(params), CurveBranchCut)
+    assert isinstance(branch_cut_for(bind(params)), CurveBranchCut)
     result = induced_frequencies(params, dps=20)
     assert result.count_ok
     a = 0.02 - min(0.0, min(float(r.im_text) for r in result.roots))
     taus = (0.5, 2.0, 20.0)
-    ref = bromwich_line(params, taus, a=a)
-    other = bromwich_line(params, taus, a=a + 0.03)
+    ref = bromwich_line(bind(params), taus, a=a)
+    other = bromwich_line(bind(params), taus, a=a + 0.03)
     ts = closed_form_response(params, taus, frequencies=result, branch_cut=True)
     scale = _scale(ts)
     for name in RESPONSES:

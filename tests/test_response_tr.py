@@ -14,12 +14,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from moving_bogie.api import closed_form_response, induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.bromwich import bromwich_line
-from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.response.cut_integral import CurveBranchCut, branch_cut_for
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 
 TAUS = (2.0, 20.0)
 
@@ -28,8 +28,8 @@ TAUS = (2.0, 20.0)
 @pytest.mark.parametrize("eta_v", ["0.05", "0"])  # with and without damping in the suspension
 def test_tr_time_series_match_the_bromwich_integral(eta_v):
     params = table1_case(7).replace(beam="tr", S=10, r="0.09", eta_v=eta_v)
-    ref = bromwich_line(params, TAUS, a=0.02)
-    other = bromwich_line(params, TAUS, a=0.05)
+    ref = bromwich_line(bind(params), TAUS, a=0.02)
+    other = bromwich_line(bind(params), TAUS, a=0.05)
     result = induced_frequencies(
         params, dps=20, window=Rectangle(-0.01, 100.0, -1.0, 1.0), check_window=False
     )
@@ -50,7 +50,7 @@ def test_the_default_tr_time_series_is_within_1e9_of_the_bromwich_integral():
     # from the strips of response/axis_sequence.py (39.07, 44.27, 95.01, ... up to Re q = 384 here).
     params = table1_case(7).replace(beam="tr", S=10, r="0.09", eta_v="0.05")
     taus = (0.5, 2.0, 20.0)
-    ref = bromwich_line(params, taus, a=0.02)
+    ref = bromwich_line(bind(params), taus, a=0.02)
     ts = closed_form_response(params, taus, branch_cut=True)
     scale = max(abs(ts.steady["w_rear"]), abs(ts.steady["w_front"]))
     for name in ref:
@@ -64,7 +64,7 @@ def test_the_curve_integral_reproduces_the_half_line_integral():
     # counts the doubly covered half-line once (two real roots p at every point of it).
     params = table1_case(7)
     taus = np.array([1.0, 5.0, 20.0])
-    line = branch_cut_for(params).responses(taus)
-    curve = CurveBranchCut(params).responses(taus)
+    line = branch_cut_for(bind(params)).responses(taus)
+    curve = CurveBranchCut(bind(params)).responses(taus)
     for name in line:
         np.testing.assert_allclose(curve[name], line[name], rtol=0, atol=1e-10)

@@ -21,13 +21,16 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import arms_y_at, cut_locus
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.roots import frequencies
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number, winding_numbers
 from moving_bogie.roots.count.window import far_field_window
-from moving_bogie.roots.frequencies import default_window, induced_frequencies
+from moving_bogie.roots.frequencies import default_window
 from moving_bogie.roots.search import counting
 from moving_bogie.roots.search.search_regions import tile_window
 
@@ -78,7 +81,7 @@ def _imaginary_axis_roots(params, y_max, n=6401):
     """Roots of E_chr on the imaginary axis, independently of the contour code: E(-conj q) = conj E(q) up to
     a constant phase, so E(i y) times that phase is real (checked); its sign changes are bisected, and a
     sign change where |E| does not vanish (a jump of K where a cut curve crosses Re q = 0) is dropped."""
-    E = CharacteristicArray(params)
+    E = CharacteristicArray(bind(params))
     y = np.linspace(1e-6, y_max, n)
     v = E(1j * y)
     phase = np.conj(v[0]) / abs(v[0])
@@ -104,8 +107,8 @@ def _imaginary_axis_roots(params, y_max, n=6401):
 @pytest.mark.slow
 def test_tiling_keeps_edges_off_a_crossing_on_re_q_zero():
     # purely imaginary points between and around the crossings lie inside exactly one region
-    window, _ = far_field_window(IMAGINARY_ROOTS)
-    cut = cut_locus(IMAGINARY_ROOTS, window.x0, window.x1)
+    window, _ = far_field_window(bind(IMAGINARY_ROOTS))
+    cut = cut_locus(bind(IMAGINARY_ROOTS), window.x0, window.x1)
     tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-5, gap_height=0.1 * window.height)
     assert max(u.height for u in tiling.unsearched) <= 1e-8
     arms = [arm for arm in cut.arms if arm.x_lo < 0 < arm.x_hi]
@@ -165,8 +168,8 @@ def test_winding_numbers_of_many_regions_agree_with_one_at_a_time():
 @pytest.mark.slow
 def test_tiling_with_a_fold_opening_towards_smaller_re_q():
     params = FOLDS_AT_ZERO
-    window, _ = far_field_window(params)
-    cut = cut_locus(params, window.x0, window.x1)
+    window, _ = far_field_window(bind(params))
+    cut = cut_locus(bind(params), window.x0, window.x1)
     opens = sorted(f.opens for f in cut.folds if not f.cusp)
     assert opens == [-1, 1]
     tiling = tile_window(window, cut, eps=2e-11, eps_branch=1e-5, gap_height=0.1 * window.height)
@@ -265,9 +268,9 @@ MODEL_EXAMPLES = [
 def _default_tiling(params):
     """The tiling of the search's first attempt, with the search's own default eps and eps_branch, in the
     default window (the far-field window of these sets and examples, without the cost of its check)."""
-    defaults = inspect.signature(induced_frequencies).parameters
-    window = default_window(params)
-    cut = cut_locus(params, window.x0, window.x1)
+    defaults = inspect.signature(frequencies.induced_frequencies).parameters  # the search's own defaults
+    window = default_window(bind(params))
+    cut = cut_locus(bind(params), window.x0, window.x1)
     factor, fraction = counting._RETRIES[0]  # the first attempt of count_tiling, with its gap height
     gap = fraction * min(max(window.width, window.height), counting._GAP_SCALE)
     eps, eps_branch = (factor * defaults[name].default for name in ("eps", "eps_branch"))

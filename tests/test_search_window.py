@@ -13,11 +13,10 @@ from __future__ import annotations
 
 import pytest
 
+from moving_bogie.api import closed_form_response, induced_frequencies
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.model.cases import table1_case
-from moving_bogie.response.closed_form import closed_form_response
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
 
 PARAMS = table1_case(7).replace(beam="tr", S=10, r="0.09", eta_v="0.05")
 

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.sweep_characteristic import (
     SweepCharacteristic,
@@ -50,13 +51,13 @@ def test_one_quartic_at_a_time_matches_companion_eigenvalues_and_the_batch():
 @pytest.mark.parametrize("model", ["bogie", "masses"])
 def test_sweep_equals_reference_characteristic(beam, model):
     p = _params(beam)
-    sweep = SweepCharacteristic(p.replace(vehicle=model))
+    sweep = SweepCharacteristic(bind(p.replace(vehicle=model)))
     # The sweep evaluates the closed form of Eq. (38); CharacteristicArray the block determinant, which is
     # -1/2 times it for the bogie and equal for two masses (proved in tests/test_vehicles.py).
-    ref = {"bogie": -2, "masses": 1}[model] * CharacteristicArray(p.replace(vehicle=model))(Q)
+    ref = {"bogie": -2, "masses": 1}[model] * CharacteristicArray(bind(p.replace(vehicle=model)))(Q)
     assert np.all(np.abs(sweep(Q, float(p.alpha)) - ref) <= 1e-12 * np.abs(ref))
     K, dK, _ = sweep.kernel(Q, float(p.alpha), derivative=True)
-    kv = TrackKernelArray(p)(Q, [0, float(p.d), -float(p.d)], derivative=True)
+    kv = TrackKernelArray(bind(p))(Q, [0, float(p.d), -float(p.d)], derivative=True)
     for a, b in zip(K + dK, kv.K + kv.dK):
         assert np.all(np.abs(a - b) <= 1e-11 * np.maximum(1, np.abs(b)))
 
@@ -64,7 +65,7 @@ def test_sweep_equals_reference_characteristic(beam, model):
 @pytest.mark.parametrize("beam", ["eb", "tr"])
 def test_derivatives_match_finite_differences(beam):
     p = _params(beam)
-    sweep = SweepCharacteristic(p)
+    sweep = SweepCharacteristic(bind(p))
     a = np.full(Q.shape, 0.8)
     th = np.array([20.0, 50.0, 3.0, 7.0, 120.0])
     E, E_q, E_a, E_t = sweep.derivatives(Q, a, th)
@@ -84,8 +85,8 @@ def test_derivatives_match_finite_differences(beam):
 def test_e_chr_is_a_polynomial_of_the_stated_degree(model, parameter):
     """Interpolation at deg + 1 nodes reproduces E_chr everywhere; a higher-degree fit finds nothing more."""
     p = table1_case(1)
-    sweep = SweepCharacteristic(p.replace(vehicle=model), parameter)
-    deg = polynomial_degree(p.replace(vehicle=model), parameter)
+    sweep = SweepCharacteristic(bind(p.replace(vehicle=model)), parameter)
+    deg = polynomial_degree(bind(p.replace(vehicle=model)), parameter)
     K, _, _ = sweep.kernel(Q, 0.8)
     scale = 200.0 if parameter == "eta_M" else 2.0
     c = sweep.coefficients(Q, K, scale=scale)

@@ -10,16 +10,20 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import (
+    critical_stiffness,
+    d_decomposition,
+    frequency_lines,
+    induced_frequencies,
+    instability_lines,
+    stability_map,
+)
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.lines.frequency_lines import frequency_lines
-from moving_bogie.stability.lines.instability_lines import instability_lines
-from moving_bogie.stability.maps.map import stability_column, stability_map
-from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
-from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
+from moving_bogie.stability.maps.map import stability_column
 
 COARSE = dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
 
@@ -55,7 +59,9 @@ def test_every_traced_point_is_a_real_root(case1_lines, masses_lines):
         for k in (len(b.alpha) // 3, 2 * len(b.alpha) // 3):
             p = lines.params.replace(alpha=_fr(b.alpha[k]), eta_M=_fr(b.theta[k]), d=_fr(b.d))
             with mpmath.workdps(30):
-                E, dE = Characteristic(p.replace(vehicle=model)).value_and_derivative(mpmath.mpf(b.q[k]))
+                E, dE = Characteristic(bind(p.replace(vehicle=model))).value_and_derivative(
+                    mpmath.mpf(b.q[k])
+                )
                 assert abs(E / dE) < 1e-9  # float-rounded (alpha, eta_M, q): the root is real to ~1e-12
 
 
@@ -76,11 +82,13 @@ def test_paper_unstable_cases_lie_on_the_unstable_side():
     """Cases 1, 5, 12, 13 (unstable in the paper) have unstable counts > 0 at (alpha, eta_M); 6 and 7 none."""
     for case, expected in ((1, 1), (5, 1), (12, 1), (13, 1), (6, 0), (7, 0)):
         p = table1_case(case)
-        col = stability_column(SweepCharacteristic(p), float(p.alpha), np.array([float(p.eta_M), 200.0]))
+        col = stability_column(
+            SweepCharacteristic(bind(p)), float(p.alpha), np.array([float(p.eta_M), 200.0])
+        )
         assert col.count[0] == expected and not col.uncertain[0]
         dd = d_decomposition(p)
         # the D-decomposition, counted from a reference near eta_M = 0 (stable), agrees
-        ref = stability_column(SweepCharacteristic(p), float(p.alpha), np.array([0.5, 200.0])).count[0]
+        ref = stability_column(SweepCharacteristic(bind(p)), float(p.alpha), np.array([0.5, 200.0])).count[0]
         assert dd.counts([float(p.eta_M)], 0.5, ref)[0] == expected
 
 
@@ -97,7 +105,7 @@ def test_case1_is_inside_an_unstable_region_of_its_instability_lines(case1_lines
 
 def test_d_decomposition_agrees_with_instability_lines_and_counts(case1_lines):
     p = table1_case(1)
-    sweep = SweepCharacteristic(p)
+    sweep = SweepCharacteristic(bind(p))
     for alpha in (0.8, 0.95, 1.1):
         dd = d_decomposition(p, alpha)
         traced = []

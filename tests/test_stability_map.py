@@ -11,9 +11,10 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.figures.plots import plot_stability_map
 from moving_bogie.stability.maps.column import exact, settle_cells, stability_column
 from moving_bogie.stability.maps.map import StabilityMap
@@ -25,7 +26,7 @@ def test_two_roots_next_to_the_axis_are_not_counted_unstable():
     pair there (4044 uncertain cells in the 400 x 400 map). The log|E| bend test refines it."""
     p = table1_case(7)
     thetas = np.array([150.5, 170.5, 190.5])
-    col = stability_column(SweepCharacteristic(p, "eta_M"), 0.1, thetas)
+    col = stability_column(SweepCharacteristic(bind(p), "eta_M"), 0.1, thetas)
     assert not col.uncertain.any()
     for j, theta in enumerate(thetas):
         ref = induced_frequencies(p.replace(alpha=exact(0.1), eta_M=exact(theta)), dps=20)
@@ -41,7 +42,7 @@ def test_a_pair_aliased_inside_a_halved_segment_is_resolved():
     alpha = Fraction(3, 10) + Fraction(8, 10) * 47 / 99
     thetas = [1 + Fraction(199) * k / 999 for k in (691, 726, 803)]
     col = stability_column(
-        SweepCharacteristic(p, "eta_M"), float(alpha), np.array([float(t) for t in thetas])
+        SweepCharacteristic(bind(p), "eta_M"), float(alpha), np.array([float(t) for t in thetas])
     )
     assert not col.uncertain.any()
     for j, theta in enumerate(thetas):
@@ -52,10 +53,10 @@ def test_a_pair_aliased_inside_a_halved_segment_is_resolved():
 def test_settling_by_a_full_count_agrees_with_the_column_count():
     p = table1_case(1)
     thetas = np.array([10.0, 40.0, 90.0, 160.0])
-    col = stability_column(SweepCharacteristic(p, "eta_M"), 0.95, thetas)
+    col = stability_column(SweepCharacteristic(bind(p), "eta_M"), 0.95, thetas)
     assert not col.uncertain.any() and col.count.max() > 0
     forced = dataclasses.replace(col, uncertain=np.array([True, False, True, True]))
-    settled = settle_cells(p, "eta_M", forced)
+    settled = settle_cells(bind(p), "eta_M", forced)
     assert settled.settled.tolist() == [True, False, True, True] and not settled.uncertain.any()
     np.testing.assert_array_equal(settled.count, col.count)
     np.testing.assert_allclose(settled.degree, col.degree, atol=1e-9)

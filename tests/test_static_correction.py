@@ -121,7 +121,7 @@ def test_corrected_run_converges_faster_than_plain():
     # (L = 120, x0 = 40: the supports stay beyond the near field). Error against modes: the plain model
     # converges like k_max^-3 (about 8 per doubling of N); the corrected one much faster, and with
     # N = 150 (k_max = 3.9) it is well below the plain model with twice the modes.
-    from moving_bogie.response.closed_form import closed_form_response
+    from moving_bogie.api import closed_form_response
 
     params = table1_case(7)
     tau = np.linspace(0.0, 40.0, 401)

@@ -15,10 +15,10 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import main
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.sweep import make_spec, open_sweep
 from moving_bogie.sweep.engine import IN_PROCESS_POINTS, run_sweep
 from moving_bogie.sweep.store import missing_blocks

@@ -20,11 +20,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, polynomial_degree
 from moving_bogie.model.files import load_params_file
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.stability.maps.column import at_theta
 from moving_bogie.sweep import make_spec
 from moving_bogie.sweep.engine import block_task
@@ -62,25 +63,25 @@ def test_the_wheel_mass_is_a_column_with_the_frame_held(spec):
     assert spec.column_parameter == "eta_M" and spec.held == HELD
     assert spec.chunks == (6, 5)  # one block: the whole column of M, the run of v
     params = spec.params
-    assert polynomial_degree(params, "eta_M", HELD) == 2  # the two wheel masses
-    assert polynomial_degree(params, "eta_M") == 4  # mu_v, J_b following eta_M (Table 1)
+    assert polynomial_degree(bind(params), "eta_M", HELD) == 2  # the two wheel masses
+    assert polynomial_degree(bind(params), "eta_M") == 4  # mu_v, J_b following eta_M (Table 1)
     with pytest.raises(ParameterError, match="eta_M"):  # one held, the other following: no polynomial
-        polynomial_degree(params, "eta_M", ("mu_v",))
+        polynomial_degree(bind(params), "eta_M", ("mu_v",))
 
 
 def test_held_interpolation_is_e_chr_of_the_point(spec):
     """Degree-2 interpolation in eta_M (mu_v, J_b fixed) against the block determinant at each point."""
     params = spec.params.replace(**spec.fixed)
     alpha = float(spec.axes[0].values[3])
-    sweep = SweepCharacteristic(params, "eta_M", held=HELD)
+    sweep = SweepCharacteristic(bind(params), "eta_M", held=HELD)
     assert sweep.degree == 2 and not sweep.followers
     K, _, _ = sweep.kernel(Q, alpha)
     thetas = spec.axes[1].values
     scale = float(max(thetas))
     c = sweep.coefficients(Q, K, scale=scale)
     for theta in thetas:
-        point = at_theta(params.replace(alpha=spec.axes[0].values[3]), "eta_M", theta, HELD)
-        assert point.mu_v == params.mu_v and point.J_b == params.J_b
+        point = at_theta(bind(params.replace(alpha=spec.axes[0].values[3])), "eta_M", theta, HELD)
+        assert point.params.mu_v == params.mu_v and point.params.J_b == params.J_b
         ref = -2 * CharacteristicArray(point)(Q)
         interp = np.array([np.polyval(c[k], float(theta) / scale) for k in range(len(Q))])
         assert np.all(np.abs(interp - ref) <= 1e-9 * np.abs(ref))

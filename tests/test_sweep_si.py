@@ -16,12 +16,12 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import build_parser, main
 from moving_bogie.cli.common import si_input
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.sweep import make_spec, open_sweep
 
 pytest.importorskip("distributed")

@@ -13,6 +13,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
@@ -33,12 +34,12 @@ def _points(seed, n=5):
 
 
 def test_car_block_sweep_equals_mpmath_characteristic(car):
-    sweep = SweepCharacteristic(car)
+    sweep = SweepCharacteristic(bind(car))
     assert sweep.blocks is not None
     q = _points(1)
     alpha = np.full(q.shape, float(car.as_float().alpha))
     E, E_q = sweep.e_and_dq(q, alpha)
-    reference = Characteristic(car)
+    reference = Characteristic(bind(car))
     with mpmath.workdps(30):
         for k in range(len(q)):
             e, de = reference.value_and_derivative(mpmath.mpc(q[k]))
@@ -48,7 +49,7 @@ def test_car_block_sweep_equals_mpmath_characteristic(car):
 
 def test_car_polynomial_in_eta_M_is_exact(car):
     """The degree-8 interpolation in eta_M (generated degree) reproduces E_chr at other eta_M values."""
-    sweep = SweepCharacteristic(car, parameter="eta_M")
+    sweep = SweepCharacteristic(bind(car), parameter="eta_M")
     assert sweep.degree == 8
     q = _points(2)
     alpha = np.full(q.shape, float(car.as_float().alpha))
@@ -68,8 +69,8 @@ def test_car_polynomial_in_eta_M_is_exact(car):
 @pytest.mark.parametrize("parameter", ["eta_M", "kappa_v", "eta_v"])
 def test_block_path_matches_closed_form_for_the_bogie(parameter):
     params = table1_case(1)
-    closed = SweepCharacteristic(params, parameter)
-    block = SweepCharacteristic(params, parameter, block=True)
+    closed = SweepCharacteristic(bind(params), parameter)
+    block = SweepCharacteristic(bind(params), parameter, block=True)
     assert closed.blocks is None and block.blocks is not None
     q = _points(3)
     alpha = np.full(q.shape, float(params.as_float().alpha))
@@ -85,10 +86,10 @@ def test_car_stability_column_agrees_with_induced_frequencies(car):
     """Map cells of the car (a stable one and one with two unstable frequencies, found by a coarse scan of
     the default map) against the full argument-principle count of induced_frequencies at those points."""
     thetas = np.array([10.0, 40.0])
-    col = stability_column(SweepCharacteristic(car, parameter="eta_M"), 1.137, thetas)
+    col = stability_column(SweepCharacteristic(bind(car), parameter="eta_M"), 1.137, thetas)
     assert not col.uncertain.any()
     forced = dataclasses.replace(col, uncertain=np.array([True, True]))
-    settled = settle_cells(car.replace(vehicle="car"), "eta_M", forced)
+    settled = settle_cells(bind(car.replace(vehicle="car")), "eta_M", forced)
     assert settled.settled.all() and not settled.uncertain.any()
     np.testing.assert_array_equal(settled.count, col.count)
     assert col.count.tolist() == [0, 2]  # a cell of each kind, so that the comparison can fail

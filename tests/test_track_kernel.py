@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from moving_bogie.kernels.track import TrackKernel, TrackKernelArray, foundation_arguments, foundation_module
+from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.track import TrackKernel, TrackKernelArray, foundation_arguments
 from moving_bogie.model.cases import table1_case
 
 
@@ -37,8 +38,8 @@ def _integrand_parts(mod, args, q, derivative):
 
 
 def quadrature_K(params, q, xi, derivative=False):
-    mod = foundation_module(params)
-    return quadrature_module_K(mod, foundation_arguments(params, params.as_float()), q, xi, derivative)
+    mod = bind(params).foundation
+    return quadrature_module_K(mod, foundation_arguments(bind(params), params.as_float()), q, xi, derivative)
 
 
 def quadrature_module_K(mod, args, q, xi, derivative=False):
@@ -71,7 +72,7 @@ def test_K_and_dK_against_quadrature(beam, q):
     params = _params(beam)
     mpmath.mp.dps = 30
     d = float(params.d)
-    kv = TrackKernel(params)(mpmath.mpc(q), [0, d, -d], derivative=True)
+    kv = TrackKernel(bind(params))(mpmath.mpc(q), [0, d, -d], derivative=True)
     for k, xi in enumerate((0.0, d, -d)):
         ref = quadrature_K(params, q, xi)
         assert abs(complex(kv.K[k]) - ref) < 1e-9 * max(1, abs(ref)), (xi, kv.K[k], ref)
@@ -82,7 +83,7 @@ def test_K_and_dK_against_quadrature(beam, q):
 def test_K_jumps_across_the_cut_but_not_across_the_gap():
     """Eq. (29): K jumps across Im q = eta_f right of the branch point q_c, is continuous left of it."""
     params = _params("eb")
-    kernel = TrackKernelArray(params)
+    kernel = TrackKernelArray(bind(params))
     eta_f = float(params.eta_f)
     h = 1e-7
     gap = kernel(np.array([0.1 + 1j * (eta_f - h), 0.1 + 1j * (eta_f + h)]), [0.0]).K[0]
@@ -96,10 +97,10 @@ def test_numpy_and_mpmath_backends_agree():
     rng = np.random.default_rng(7)
     q = rng.uniform(0, 1.5, 20) + 1j * rng.uniform(-1, 1, 20)
     d = float(params.d)
-    arr = TrackKernelArray(params)(q, [0.0, d, -d], derivative=True)
+    arr = TrackKernelArray(bind(params))(q, [0.0, d, -d], derivative=True)
     mpmath.mp.dps = 25
     for j in range(q.size):
-        kv = TrackKernel(params)(mpmath.mpc(q[j]), [0, d, -d], derivative=True)
+        kv = TrackKernel(bind(params))(mpmath.mpc(q[j]), [0, d, -d], derivative=True)
         for k in range(3):
             assert abs(complex(kv.K[k]) - arr.K[k][j]) < 1e-11 * max(1, abs(arr.K[k][j]))
             assert abs(complex(kv.dK[k]) - arr.dK[k][j]) < 1e-10 * max(1, abs(arr.dK[k][j]))
@@ -110,11 +111,11 @@ def test_near_coalescing_p_roots_are_handled():
     stays finite: K near such a q must still match quadrature (precision is raised automatically)."""
     params = _params("eb")
     mpmath.mp.dps = 30
-    kernel = TrackKernel(params)
+    kernel = TrackKernel(bind(params))
     # locate a q where dN/dp and N vanish together (a double root in p) off the cut, by Newton on (p, q)
-    mod = foundation_module(params)
+    mod = bind(params).foundation
     f = params.as_mp()
-    args = foundation_arguments(params, f)
+    args = foundation_arguments(bind(params), f)
 
     def system(p, q):
         c = mod.n_coeffs(q, **args)

@@ -16,14 +16,12 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from moving_bogie.api import critical_stiffness, d_decomposition, induced_frequencies, instability_lines
 from moving_bogie.cli import main
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
-from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.stability.lines.instability_lines import instability_lines
 from moving_bogie.stability.maps.undamped import UndampedCounter, boundaries, parameter_grid
-from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
-from moving_bogie.stability.stiffness.d_decomposition import d_decomposition
 
 
 def _fr(x):
@@ -40,12 +38,12 @@ def test_kernel_on_the_cut_is_the_limit_from_below(beam):
     """eta_f = 0, real q beyond the branch point: K(q) equals K(q - i h) up to O(h), not K(q + i h)."""
     p = table1_case(2).replace(**beam)
     q, a = np.array([0.7, 1.0, 1.5, 3.0]), np.full(4, 0.5)
-    K = np.array(SweepCharacteristic(p, below=True).kernel(q, a)[0])
-    plain = SweepCharacteristic(p)
+    K = np.array(SweepCharacteristic(bind(p), below=True).kernel(q, a)[0])
+    plain = SweepCharacteristic(bind(p))
     errors = [np.abs(K - np.array(plain.kernel(q - 1j * h, a)[0])).max() for h in (1e-5, 1e-7)]
     assert errors[1] < errors[0] / 50  # converges like h
     assert np.abs(K - np.array(plain.kernel(q + 1e-7j, a)[0])).max() > 0.1  # the other side jumps
-    tiny = SweepCharacteristic(p.replace(eta_f=Fraction(1, 10**7)))
+    tiny = SweepCharacteristic(bind(p.replace(eta_f=Fraction(1, 10**7))))
     assert np.abs(K - np.array(tiny.kernel(q, a)[0])).max() < 10 * errors[1]
 
 
@@ -60,7 +58,7 @@ def test_case5_real_root_is_destabilised_by_small_foundation_damping():
         ims.append(float(res.unstable_roots[0].q.imag) / float(eta_f))
     assert ims[0] == pytest.approx(ims[1], rel=1e-3)  # linear in eta_f
     assert _unstable(p.replace(eta_f=0)) == 0
-    col = UndampedCounter(p, "kappa_v")(0.7, np.array([0.2]))
+    col = UndampedCounter(bind(p), "kappa_v")(0.7, np.array([0.2]))
     assert (col.undamped[0], col.limit[0]) == (0, 1)
 
 
@@ -72,7 +70,7 @@ def test_subcritical_limit_boundaries_confirmed_by_counts_on_both_sides(model, a
     eta_f = 0 the count is 0 on both sides (the roots there are real)."""
     p = table1_case(2)
     bounds, col, unsure = boundaries(
-        UndampedCounter(p.replace(vehicle=model)), alpha, parameter_grid(200.0, 20), tol=0.01
+        UndampedCounter(bind(p.replace(vehicle=model))), alpha, parameter_grid(200.0, 20), tol=0.01
     )
     assert unsure == 0
     assert len(bounds) == 1 and (bounds[0].kind, bounds[0].mechanism) == ("limit", "damping sign")
@@ -94,7 +92,7 @@ def test_supercritical_boundaries_at_eta_f_zero_confirmed_by_counts(case, model)
     missed a root 2e-4 below the axis and put the boundary at 14.09.)"""
     p = table1_case(case)
     bounds, _, _ = boundaries(
-        UndampedCounter(p.replace(vehicle=model)), 1.1, parameter_grid(100.0, 20), tol=0.01
+        UndampedCounter(bind(p.replace(vehicle=model))), 1.1, parameter_grid(100.0, 20), tol=0.01
     )
     exact = [b for b in bounds if b.kind == "undamped" and b.theta > 5]
     assert exact and {b.mechanism for b in bounds} == {"crossing"}  # no gap above the critical velocity
@@ -115,7 +113,7 @@ def test_limit_boundaries_are_the_limit_of_small_damping():
         (table1_case(2).replace(d="1.5"), "masses", "eta_M", 0.8, 200.0),
         (table1_case(5), "bogie", "kappa_v", 0.7, 0.6),
     ):
-        counter = UndampedCounter(p.replace(vehicle=model), parameter)
+        counter = UndampedCounter(bind(p.replace(vehicle=model)), parameter)
         bounds, _, _ = boundaries(counter, alpha, parameter_grid(top, 20), tol=1e-12 * top)
         limit = [b.theta for b in bounds if b.kind == "limit"]
         assert limit
@@ -193,12 +191,12 @@ def test_cli_states_the_convention_and_what_is_computed(capsys):
 def test_stability_map_counts_change_exactly_across_the_undamped_boundaries():
     """A coarse stability map at eta_f = 0 (its own columns, with the top edge just below the cut) changes
     its unstable count between two cells exactly by the changes of the eta_f = 0 boundaries between them."""
-    from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.api import stability_map
 
     p = table1_case(3)
     alphas, thetas = np.linspace(1.05, 1.2, 4), np.linspace(10.0, 100.0, 10)
     smap = stability_map(p, alphas=alphas, thetas=thetas, workers=1)
-    counter = UndampedCounter(p)
+    counter = UndampedCounter(bind(p))
     changes = 0
     for i, a in enumerate(alphas):
         bounds, _, _ = boundaries(counter, a, thetas, tol=1e-3)
@@ -220,7 +218,7 @@ def test_stability_map_sees_the_root_next_to_a_branch_point():
     """Case 3 (bogie) at alpha = 1.1, eta_M = 13.7: a root 1.9e-4 below the axis next to the branch point
     q = 0.14496 of K; the full search at eta_f = 0 counts 2 unstable roots, and so must the map's column
     (it said 1, uncertified, before the top edge was sampled densely around the branch points)."""
-    from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.api import stability_map
 
     p = table1_case(3)
     reference = _unstable(p.replace(alpha=_fr(1.1), eta_M=_fr(13.7)))

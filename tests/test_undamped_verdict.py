@@ -13,13 +13,14 @@ import mpmath
 import numpy as np
 import pytest
 
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.damping_limit import damping_limit
-from moving_bogie.roots.frequencies import induced_frequencies
 from moving_bogie.roots.table2 import case_list, compute_table2, format_table2, summary_lines
 
 UNDAMPED = (2, 3, 4, 9, 10)
@@ -34,13 +35,13 @@ def _verdict_agrees_with_small_damping(case):
     # next to the branch point E_chr is infinite like K (the notch left out): |E| sqrt(distance) about
     # constant, and equal to the mpmath E_chr below the axis (no limit from below needed there)
     (x,), (growth,) = exact.strip.notches, exact.strip.growth
-    reference = abs(Characteristic(p)(mpmath.mpc(x, -1e-7))) * mpmath.sqrt(1e-7)
+    reference = abs(Characteristic(bind(p))(mpmath.mpc(x, -1e-7))) * mpmath.sqrt(1e-7)
     # the strip evaluates E_chr through the sweep kernels, which may normalise E_chr by another constant
     # than the block determinant of Characteristic: take the ratio at a point far from the cut
     far = complex(x, -0.5)
-    scale = abs(SweepCharacteristic(p, below=True)(np.array([far]), np.array([float(p.alpha)]))[0]) / abs(
-        complex(Characteristic(p)(mpmath.mpc(far)))
-    )
+    scale = abs(
+        SweepCharacteristic(bind(p), below=True)(np.array([far]), np.array([float(p.alpha)]))[0]
+    ) / abs(complex(Characteristic(bind(p))(mpmath.mpc(far))))
     reference *= scale
     assert max(growth) < 1.1 * min(growth) and growth[1] == pytest.approx(float(reference), rel=1e-6)
     for eta_f in ("1e-6", "1e-8"):
@@ -88,7 +89,7 @@ def test_strip_count_finds_the_root_next_to_a_branch_point():
     near = Rectangle(0.13, 0.16, -1e-3, 1e-3)
     deep = Rectangle(0.0, 3.0, -0.5, 1e-3)
     for rect in (near, deep):
-        strip = strip_below_cut(p, result.window, (rect,))
+        strip = strip_below_cut(bind(p), result.window, (rect,))
         assert strip.mode == "from below" and strip.notches
         inside = sum(rect.x0 < q.real < rect.x1 and rect.y0 < q.imag < 0 for q in unstable)
         assert strip.count == inside and inside >= 1
@@ -143,7 +144,7 @@ def test_ball_count_from_below_finds_the_root_next_to_a_branch_point():
     p = table1_case(3).replace(alpha=Fraction(11, 10), eta_M=Fraction(137, 10))
     result = induced_frequencies(p, dps=20)
     inside = [complex(r.q) for r in result.unstable_roots if 0.13 < r.q.real < 0.16]
-    bc = BallCharacteristic(p, prec=96, below=True)
+    bc = BallCharacteristic(bind(p), prec=96, below=True)
     pieces = pieces_below_axis(Rectangle(0.13, 0.16, -1e-3, 0.0), [result.strip.notches[0]])
     count = sum(proven_count(bc, r, min_length=1e-14).count for r in pieces)
     assert len(inside) == 1 and count == 1

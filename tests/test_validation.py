@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from moving_bogie.api import validate
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.model.cases import table1_case
 from moving_bogie.validation.compare import (
@@ -30,7 +31,6 @@ from moving_bogie.validation.compare import (
     plot_validation,
     reflection_bound,
     truncation_a_priori,
-    validate,
 )
 from moving_bogie.validation.finite_beam import simulate_finite_beam
 from moving_bogie.validation.track_modes import ModalTrack
@@ -110,7 +110,7 @@ def test_few_modes_converge_towards_the_closed_form():
     # Reference: the closed form of Case 1 (eta_f = 0.1). Fixed beam L = 200, N = 100, 200, 400:
     # k_max = 1.6, 3.1, 6.3. Truncation error of the plain modal model ~ k_max^-3 (docs/finite_beam.md):
     # each doubling of N should cut the difference by several times (8 asymptotically).
-    from moving_bogie.response.closed_form import closed_form_response
+    from moving_bogie.api import closed_form_response
 
     p = table1_case(1)
     tau = np.linspace(0.0, 60.0, 601)

@@ -15,9 +15,10 @@ import pytest
 from derivation_support import regenerated_copy, require_sympy
 
 from moving_bogie import DimensionlessParams, table1_case
+from moving_bogie.api import induced_frequencies
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.model.catalogue import Model, load_catalogue
-from moving_bogie.roots.frequencies import induced_frequencies
 
 require_sympy()
 
@@ -73,7 +74,7 @@ def test_three_axle_roots_against_a_dense_scan(params):
     assert result.count_ok and result.verdict.determined, result.verdict.reasons
     found = [complex(r.q) for r in result.roots]
     assert found
-    E = CharacteristicArray(params)
+    E = CharacteristicArray(bind(params))
     # every root found: one zero on a small circle around it (radius shrunk while it meets the cut of K)
     t = np.linspace(0, 2 * np.pi, 3000, endpoint=False)
     for q in found:
@@ -97,7 +98,7 @@ def test_three_axle_roots_against_a_dense_scan(params):
         for dx in (-1, 0, 1):
             if dx or dy:
                 is_min &= inner < values[1 + dy : values.shape[0] - 1 + dy, 1 + dx : values.shape[1] - 1 + dx]
-    precise = Characteristic(params)
+    precise = Characteristic(bind(params))
     newton = []
     with mpmath.workdps(20):
         for i, j in zip(*np.nonzero(is_min)):

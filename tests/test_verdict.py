@@ -16,16 +16,17 @@ import numpy as np
 import pytest
 from test_track_kernel import quadrature_K
 
+from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import main
 from moving_bogie.generated import asymptotics, vehicle_bogie
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
-from moving_bogie.kernels.track import TrackKernelArray, foundation_module
+from moving_bogie.kernels.track import TrackKernelArray
 from moving_bogie.model.cases import table1_case
 from moving_bogie.roots.count import far_field
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import far_field_radius, rho
 from moving_bogie.roots.count.outcomes import Reason
-from moving_bogie.roots.frequencies import induced_frequencies
 
 BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_random.py"
 
@@ -95,10 +96,12 @@ def test_derived_kernel_decay_matches_the_residues():
     # |K0| = pi / (4 |q|^(3/2)) by hand. The derivation says gamma = 3/2 (and 1 for Timoshenko-Rayleigh).
     assert asymptotics.KERNEL_DECAY["eb"] == "3/2" and asymptotics.KERNEL_DECAY["tr"] == "1"
     q = 1e6 * np.exp(1j * np.linspace(-3.0, -0.14, 9))
-    K0 = TrackKernelArray(table1_case(1))(q, [0.0]).K[0]
+    K0 = TrackKernelArray(bind(table1_case(1)))(q, [0.0]).K[0]
     assert np.abs(K0) * np.abs(q) ** 1.5 == pytest.approx(np.pi / 4, rel=2e-3)
     tr = table1_case(1).replace(beam="tr", S=100, r="0.03")
-    K_tr = [np.abs(TrackKernelArray(tr)(np.array([R * np.exp(-1j)]), [0.0]).K[0]) * R for R in (1e4, 1e5)]
+    K_tr = [
+        np.abs(TrackKernelArray(bind(tr))(np.array([R * np.exp(-1j)]), [0.0]).K[0]) * R for R in (1e4, 1e5)
+    ]
     assert K_tr[1] == pytest.approx(K_tr[0], rel=0.05)  # |K0| |q| tends to a constant: gamma = 1
 
 
@@ -107,7 +110,7 @@ def test_relative_remainder_decays_as_derived():
     # real axis, 16 times the radius divides rho by about 4.
     assert asymptotics.LEADING_GAP[("bogie", "eb")] == "1/2"
     p = table1_case(7)
-    r1, r2 = (float(rho(p, np.array([R * np.exp(-1.2j)]))[0]) for R in (1e3, 1.6e4))
+    r1, r2 = (float(rho(bind(p), np.array([R * np.exp(-1.2j)]))[0]) for R in (1e3, 1.6e4))
     assert r1 / r2 == pytest.approx(4, rel=0.15)
 
 
@@ -195,13 +198,13 @@ def test_undamped_sliver_is_undetermined_when_the_strip_is_not_counted(monkeypat
 
 
 def test_missing_expansion_is_undetermined(monkeypatch):
-    module = foundation_module(table1_case(7))
+    module = bind(table1_case(7)).foundation
     monkeypatch.setattr(module, "KERNEL_DECAY", None)
-    far = far_field_radius(table1_case(7), 3.0)
+    far = far_field_radius(bind(table1_case(7)), 3.0)
     assert far.radius is None and "no far-field expansion" in far.reason
     assert far.to_dict()["rho"] is None  # valid JSON
     other = table1_case(7).replace(beam="tr", S=10, r="0.09")
-    assert far_field.kernel_decay(other) == 1  # the other tracks are untouched
+    assert far_field.kernel_decay(bind(other)) == 1  # the other tracks are untouched
 
 
 @pytest.mark.parametrize("vehicle", ["bogie", "masses"])
@@ -215,7 +218,7 @@ def test_block_leading_gap_is_the_derived_one(vehicle, track):
 def test_block_leading_part_is_the_derived_one():
     """E_lead of the block system is -1/2 times the generated symbolic E_lead of Eq. (38)."""
     p = table1_case(7)
-    E = CharacteristicArray(p)
+    E = CharacteristicArray(bind(p))
     q = np.array([40 - 30j, -200 - 5j, 1e3 * np.exp(-2j)])
     kv = E.kernel_values(q)
     block = far_field.e_lead(E.system, q, kv.K)

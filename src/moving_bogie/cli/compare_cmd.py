@@ -78,11 +78,12 @@ def run(args) -> int:
     if alpha_max <= alpha_min:
         raise ParameterError("alpha-max", "must be larger than --alpha-min")
 
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.figures.track_comparison import compare_tracks, figure_track_comparison
 
     with progress_bar("instability lines on both tracks") as bar:
         comparison = compare_tracks(
-            base,
+            bind(base),
             layered.track,
             groups,
             spacings=spacings,

@@ -87,6 +87,7 @@ def run_instability_lines(args) -> int:
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
 
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.lines.instability_lines import instability_lines
     from moving_bogie.stability.lines.line_ends import EXPLANATIONS
     from moving_bogie.stability.lines.undamped_lines import KIND_TEXT
@@ -94,7 +95,7 @@ def run_instability_lines(args) -> int:
 
     with progress_bar("instability lines") as bar:
         res = instability_lines(
-            params,
+            bind(params),
             spacings=spacings,
             parameter=args.parameter,
             alpha_range=(alpha_min, alpha_max),
@@ -213,14 +214,16 @@ def run_stability_map(args) -> int:
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
 
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.lines.instability_lines import instability_lines
     from moving_bogie.stability.maps.map import stability_map
 
+    bound = bind(params)  # bound once: the map and its lines share it
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
     with progress_bar("stability map") as bar:
         smap = stability_map(
-            params,
+            bound,
             parameter=args.parameter,
             alphas=alphas,
             thetas=thetas,
@@ -231,7 +234,7 @@ def run_stability_map(args) -> int:
     if args.lines:
         with progress_bar("instability lines") as bar:
             lines = instability_lines(
-                params,
+                bound,
                 parameter=args.parameter,
                 alpha_range=(alpha_min, alpha_max),
                 theta_max=theta_max,

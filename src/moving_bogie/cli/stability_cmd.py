@@ -179,11 +179,12 @@ def run_frequency_lines(args) -> int:
     units = PlaneUnits.of(params, si_input(args, physical), operating=args.file is not None)
     alpha_min, alpha_max, _ = plane_ranges(args, units, "alpha")
 
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.lines.frequency_lines import frequency_lines
 
     with progress_bar("frequency lines") as bar:
         res = frequency_lines(
-            params,
+            bind(params),
             alpha_range=(alpha_min, alpha_max),
             checkpoints=args.checkpoints,
             progress=bar,
@@ -292,11 +293,12 @@ def run_critical_stiffness(args) -> int:
 
     params, _ = params_from_args(args)
 
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
 
     with progress_bar("critical stiffness") as bar:
         res = critical_stiffness(
-            params,
+            bind(params),
             np.linspace(args.alpha_min, args.alpha_max, args.alphas),
             kappa_max=args.kappa_max,
             q_max=args.q_max,

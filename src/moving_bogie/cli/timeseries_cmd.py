@@ -129,7 +129,7 @@ def _times(args):
     return tau
 
 
-def _frequencies_or_fail(params, dps, json_mode, branch_cut):
+def _frequencies_or_fail(bound, dps, json_mode, branch_cut):
     from moving_bogie.errors import MovingBogieError
     from moving_bogie.response.cut_integral import branch_cut_for
     from moving_bogie.roots.frequencies import induced_frequencies
@@ -137,10 +137,10 @@ def _frequencies_or_fail(params, dps, json_mode, branch_cut):
     from .progress import progress_bar
 
     if branch_cut is True:
-        branch_cut_for(params)  # refuses a supercritical velocity before the long frequency search
+        branch_cut_for(bound)  # refuses a supercritical velocity before the long frequency search
 
     with progress_bar("induced frequencies", enabled=not json_mode) as update:
-        result = induced_frequencies(params, dps=dps, progress=update)
+        result = induced_frequencies(bound, dps=dps, progress=update)
     if not result.count_ok:
         detail = "; ".join(result.warnings) or f"{result.found} of {result.count} roots confirmed"
         raise MovingBogieError(f"induced frequencies incomplete ({detail}); no closed-form response")
@@ -159,8 +159,9 @@ def run_timeseries(args: argparse.Namespace) -> int:
     bound = bind(params)  # bound once: the frequency search and the closed form share it
     result = _frequencies_or_fail(bound, args.dps, args.json, _branch_cut(args))
     ts = closed_form_response(
-        physical if physical is not None else bound,
+        bound,
         tau,
+        scales=physical.scales() if physical is not None else None,
         frequencies=result,
         branch_cut=_branch_cut(args),
     )
@@ -272,9 +273,10 @@ def run_shape(args: argparse.Namespace) -> int:
     bound = bind(params)
     result = _frequencies_or_fail(bound, args.dps, args.json, _branch_cut(args))
     w, with_cut, notes = deflection_shape_details(
-        physical if physical is not None else bound,
+        bound,
         xi,
         args.tau,
+        scales=physical.scales() if physical is not None else None,
         frequencies=result,
         branch_cut=_branch_cut(args),
     )

@@ -77,6 +77,7 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
     params, _physical = params_from_args(args)  # every input checked before the heavy imports
 
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.response.plots import save_figure
     from moving_bogie.validation.compare import plot_validation, validate
     from moving_bogie.validation.verdict import beam_title
@@ -85,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
 
     with progress_bar("finite beam + closed form", enabled=not args.json) as update:
         result = validate(
-            params,
+            bind(params),
             n_modes=args.modes,
             tau_max=args.tmax,
             tol=args.tol,

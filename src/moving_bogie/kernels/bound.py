@@ -1,76 +1,117 @@
 """A model bound to its parameters: built once at an entry point and passed down (Eqs. (24), (29), (38)).
 
-:class:`BoundModel` holds what every computation on one parameter set needs and would otherwise look up
-again and again: the exact :class:`~moving_bogie.model.params.DimensionlessParams`, their
-:class:`~moving_bogie.model.catalogue.Model`, the generated foundation and vehicle modules of the
-parameters' OWN catalogue (a catalogue loaded with
-:func:`~moving_bogie.model.catalogue.load_catalogue` reaches its own kernels and asymptotics; no name is
-looked up), the vehicle's matrices (:class:`~moving_bogie.kernels.vehicle.VehicleSystem`) in double
-precision and per mpmath precision, its contact positions and distinct offsets, and the large-|q| data of
-the track (``KERNEL_DECAY``). It plays the part of PyBaMM's ``Simulation``, which binds a model to its
-parameter values once.
-
-Every function of the runtime that takes ``params`` accepts either the parameters or a bound model and calls
-:func:`bind` (idempotent) on it; to analyse another vehicle or track, bind other parameters:
-``bind(params.replace(vehicle=...))``.
+The entry points (the Python API of :mod:`moving_bogie.api`, the commands, the paper's recipes) call
+:func:`bind` once; every function and kernel of ``kernels/``, ``roots/``, ``response/``, ``validation/``,
+``stability/`` and ``sweep/`` takes the :class:`BoundModel` (``bound: BoundModel``) and never binds again.
+Another vehicle or track is another bound model: ``bound.replace(vehicle=...)``, or a foundation module
+given beside the parameters (``BoundModel(params, foundation=Foundation(module, values))``). It plays the
+part of PyBaMM's ``Simulation``, which binds a model to its parameter values once.
 """
 
 from __future__ import annotations
 
 import functools
 from fractions import Fraction
-from types import ModuleType
+from types import ModuleType, SimpleNamespace
+from typing import TYPE_CHECKING, Any, cast
 
 import mpmath
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.foundation import Foundation
 from moving_bogie.kernels.vehicle import VehicleSystem
 
-__all__ = ["BoundModel", "bind"]
+if TYPE_CHECKING:
+    from moving_bogie.model.catalogue import Model
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.physical import PhysicalParams
+
+__all__ = ["BoundModel", "Foundation", "bind"]
 
 
 class BoundModel:
-    """One parameter set bound to its model's generated kernels (module docstring).
+    """One parameter set bound to its model's generated kernels: what every computation on it needs.
+
+    It holds (set once, read-only):
+
+    - ``params``: the exact :class:`~moving_bogie.model.params.DimensionlessParams`; their ``model`` (beam x
+      track x vehicle of a catalogue) names the kernels;
+    - ``foundation_model``: the track as a :class:`~moving_bogie.kernels.foundation.Foundation`, the
+      generated foundation module of the parameters' OWN catalogue (a catalogue loaded with
+      :func:`~moving_bogie.model.catalogue.load_catalogue` reaches its own kernels; no name is looked up),
+      or the one given as ``foundation`` with the values of the groups the parameters do not carry.
+
+    It caches (computed on first use, kept for its life):
+
+    - ``floats``: every group as a float (``params.as_float()``);
+    - ``foundation``, ``vehicle``: the generated foundation module (N(p, q), Q(p, q) of Eq. (24)) and vehicle
+      module (matrices, contacts, loads; Eqs. (30)-(38));
+    - ``float_system``: the vehicle's :class:`~moving_bogie.kernels.vehicle.VehicleSystem` in double
+      precision, and :meth:`vehicle_system` one per mpmath precision;
+    - ``positions``, ``offsets``: the contact positions xi_j and their distinct differences (floats);
+    - ``kernel_decay``, ``polynomial_degrees``: gamma of K = O(|q|^-gamma) (``KERNEL_DECAY`` of the track)
+      and the degrees of E_chr in the vehicle's groups (``POLYNOMIAL_DEGREES``).
 
     Parameters
     ----------
     params : DimensionlessParams
-        Exact parameters; their ``model`` (beam x track x vehicle of a catalogue) chooses the kernels.
+        Exact parameters.
+    foundation : Foundation or module, optional
+        The track model when it is not that of ``params.model`` (a generated module, or a module with the
+        values of its extra groups).
 
     Examples
     --------
     >>> from moving_bogie import table1_case
-    >>> bound = bind(table1_case(1))
+    >>> bound = BoundModel(table1_case(1))
     >>> bound.names[:2], bound.span
     (('w_rear', 'w_front'), 2.0)
-    >>> bind(bound) is bound
-    True
     """
 
-    def __init__(self, params) -> None:
+    params: DimensionlessParams
+    foundation_model: Foundation
+
+    def __init__(
+        self, params: DimensionlessParams, *, foundation: Foundation | ModuleType | None = None
+    ) -> None:
         if not hasattr(params, "model") or not hasattr(params, "as_float"):
             raise ParameterError(
-                "params", f"expected DimensionlessParams or a bound model (got {type(params).__name__})"
+                "params",
+                f"expected DimensionlessParams, PhysicalParams or a BoundModel (got {type(params).__name__})",
             )
         self.params = params
+        self._override = foundation
+        if foundation is None:
+            self.foundation_model = Foundation(params.model.foundation)
+        else:
+            self.foundation_model = (
+                foundation if isinstance(foundation, Foundation) else Foundation(foundation)
+            )
         self._systems: dict[int, VehicleSystem] = {}
 
     def __repr__(self) -> str:
-        return f"BoundModel({self.params!r})"
+        extra = "" if self._override is None else f", foundation={self._override!r}"
+        return f"BoundModel({self.params!r}{extra})"
 
-    def __eq__(self, other) -> bool:
-        return isinstance(other, BoundModel) and other.params == self.params
+    def __eq__(self, other: object) -> bool:
+        return (
+            isinstance(other, BoundModel)
+            and other.params == self.params
+            and other.foundation_model == self.foundation_model
+        )
 
     def __hash__(self) -> int:
         return hash(self.params)
 
-    def __reduce__(self):
-        return (bind, (self.params,))
+    def __reduce__(self) -> tuple[Any, ...]:
+        if self._override is None:
+            return (BoundModel, (self.params,))
+        return (functools.partial(BoundModel, foundation=self._override), (self.params,))
 
     # --- the model ----------------------------------------------------------------------------------
     @property
-    def model(self):
+    def model(self) -> Model:
         """The :class:`~moving_bogie.model.catalogue.Model` (beam x track x vehicle + catalogue)."""
         return self.params.model
 
@@ -79,27 +120,36 @@ class BoundModel:
         """``beam/track/vehicle``, for output only."""
         return self.model.name
 
-    @functools.cached_property
+    @property
     def foundation(self) -> ModuleType:
-        """The generated kernel of the beam on its track (N(p, q), Q(p, q) of Eq. (24)), own catalogue."""
-        return self.model.foundation
+        """The generated kernel of the beam on its track (N(p, q), Q(p, q) of Eq. (24))."""
+        return self.foundation_model.module
 
     @functools.cached_property
     def vehicle(self) -> ModuleType:
         """The generated kernel of the vehicle (matrices, contacts, loads; Eqs. (30)-(38)), own catalogue."""
         return self.model.vehicle_kernels
 
-    def replace(self, **changes) -> BoundModel:
-        """A new bound model with some parameters (or the model's names) changed, as ``params.replace``."""
-        return BoundModel(self.params.replace(**changes))
+    def replace(self, **changes: Any) -> BoundModel:
+        """A new bound model with some parameters (or the model's names) changed, as ``params.replace``.
+
+        A foundation given at construction is kept, unless the beam or the track changes (then the new
+        model's own).
+        """
+        keep = self._override if not {"beam", "track"} & set(changes) else None
+        return BoundModel(self.params.replace(**changes), foundation=keep)
+
+    def with_foundation(self, foundation: Foundation | ModuleType) -> BoundModel:
+        """The same parameters on another track model (a generated module, with values of its groups)."""
+        return BoundModel(self.params, foundation=foundation)
 
     # --- numbers ------------------------------------------------------------------------------------
     @functools.cached_property
-    def floats(self):
+    def floats(self) -> SimpleNamespace:
         """Every group as a float (``params.as_float()``), computed once."""
         return self.params.as_float()
 
-    def vehicle_values(self, numbers) -> dict:
+    def vehicle_values(self, numbers: SimpleNamespace) -> dict[str, Any]:
         """The vehicle's matrix arguments (``MATRIX_ARGUMENTS``) read from a namespace of numbers."""
         return {name: getattr(numbers, name) for name in self.vehicle.MATRIX_ARGUMENTS}
 
@@ -115,8 +165,16 @@ class BoundModel:
             self._systems[prec] = VehicleSystem(self.vehicle, self.vehicle_values(self.params.as_mp()))
         return self._systems[prec]
 
+    def foundation_floats(self) -> dict[str, float | None]:
+        """Keyword arguments of the foundation functions in double precision."""
+        return self.foundation_model.float_arguments(self.floats)
+
+    def foundation_mp(self) -> dict[str, Any]:
+        """Keyword arguments of the foundation functions at the current mpmath precision."""
+        return self.foundation_model.mp_arguments(self.params.as_mp())
+
     @property
-    def names(self) -> tuple:
+    def names(self) -> tuple[str, ...]:
         """The responses: every DOF of the vehicle, the wheels first (``DOFS`` of the generated module)."""
         return tuple(self.vehicle.DOFS)
 
@@ -143,11 +201,17 @@ class BoundModel:
         return None if value is None else Fraction(value)
 
     @property
-    def polynomial_degrees(self) -> dict:
+    def polynomial_degrees(self) -> dict[str, int]:
         """Degree of E_chr in each vehicle parameter it is a polynomial in (``POLYNOMIAL_DEGREES``)."""
         return dict(getattr(self.vehicle, "POLYNOMIAL_DEGREES", {}))
 
 
-def bind(params) -> BoundModel:
-    """The bound model of ``params``: a :class:`BoundModel` itself, else ``BoundModel(params)``."""
-    return params if isinstance(params, BoundModel) else BoundModel(params)
+def bind(params: DimensionlessParams | PhysicalParams | BoundModel) -> BoundModel:
+    """The bound model of ``params``: a :class:`BoundModel` itself, else ``BoundModel(params)``.
+
+    Called once by each entry point; SI parameters are made dimensionless first (``to_dimensionless()``).
+    """
+    if isinstance(params, BoundModel):
+        return params
+    dimensionless = params.to_dimensionless() if hasattr(params, "to_dimensionless") else params
+    return BoundModel(cast("DimensionlessParams", dimensionless))

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.track import TrackKernel, TrackKernelArray
 from moving_bogie.kernels.vehicle import VehicleSystem
 
@@ -22,18 +22,15 @@ class Characteristic:
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
-        The parameters (their model's vehicle, see :func:`~moving_bogie.kernels.bound.bind`).
-    foundation : module or Foundation, optional
-        The track model (default that of the parameters' model, see
-        :func:`~moving_bogie.kernels.track.resolve_foundation`).
+    bound : BoundModel
+        The parameters bound to their model (its vehicle and its track).
     """
 
-    def __init__(self, params, *, foundation=None):
-        self.bound = bind(params)
-        self.params = self.bound.params
-        self.module = self.bound.vehicle
-        self.kernel = TrackKernel(self.params, foundation=foundation)
+    def __init__(self, bound: BoundModel) -> None:
+        self.bound = bound
+        self.params = bound.params
+        self.module = bound.vehicle
+        self.kernel = TrackKernel(bound)
         self.evaluations = 0
 
     @property
@@ -73,13 +70,16 @@ class Characteristic:
 
 
 class CharacteristicArray:
-    """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps)."""
+    """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps).
 
-    def __init__(self, params, *, foundation=None):
-        self.bound = bind(params)
-        self.params = self.bound.params
-        self.module = self.bound.vehicle
-        self.kernel = TrackKernelArray(self.params, foundation=foundation)
+    ``bound`` as in :class:`Characteristic`.
+    """
+
+    def __init__(self, bound: BoundModel) -> None:
+        self.bound = bound
+        self.params = bound.params
+        self.module = bound.vehicle
+        self.kernel = TrackKernelArray(bound)
         self.system = self.bound.float_system
         self.offsets = [float(x) for x in self.system.offsets]
         self.evaluations = 0

@@ -19,11 +19,14 @@ edges, ``CutArm.q_at``) is then recomputed exactly by Newton's method on N(p, .)
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from moving_bogie.kernels.cut_curves import CutTracer, Fold, far_range, split_at_turns, trace_curves
-from moving_bogie.kernels.track import resolve_foundation
+
+if TYPE_CHECKING:
+    from moving_bogie.kernels.bound import BoundModel
 
 __all__ = [
     "CutArm",
@@ -223,8 +226,8 @@ class CutLocus:
         return bool(self.points.size) and self.im_high - self.im_low <= 1e-12
 
 
-def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, foundation=None) -> CutLocus:
-    """Trace the cut of K for ``params`` over x_min <= Re q <= x_max (every curve q_j(p), p real).
+def cut_locus(bound: BoundModel, x_min: float, x_max: float, *, samples: int = 2001) -> CutLocus:
+    """Trace the cut of K of the bound model's track over x_min <= Re q <= x_max (every curve q_j(p), p real).
 
     The p-range (:func:`far_range`) reaches until every curve has left the strip or settled at its limit
     q_inf; the grid is uniform in asinh(p/2) (fine near p = 0, geometric far out) and refined adaptively.
@@ -232,15 +235,14 @@ def cut_locus(params, x_min: float, x_max: float, *, samples: int = 2001, founda
     ``end=True``): K is singular there (a root p of N runs off to infinity), and the tiling treats it as
     a branch point.
     """
-    return cut_loci(params, [(x_min, x_max)], samples=samples, foundation=foundation)[0]
+    return cut_loci(bound, [(x_min, x_max)], samples=samples)[0]
 
 
-def cut_loci(params, strips, *, samples: int = 2001, foundation=None) -> tuple:
+def cut_loci(bound: BoundModel, strips: list[tuple[float, float]], *, samples: int = 2001) -> tuple:
     """:func:`cut_locus` of several strips ``[(x_min, x_max), ...]`` from one trace of the curves (over the
     p-range of the widest): each is what :func:`cut_locus` of that strip alone returns, up to where the
     samples of an arm lie (its points are exact wherever they are used)."""
-    track = resolve_foundation(params, foundation)
-    tracer = CutTracer(track.module, track.float_arguments(params))
+    tracer = CutTracer(bound.foundation, bound.foundation_floats())
     reach = max(max(abs(x_min), abs(x_max)) for x_min, x_max in strips) + 1.0
     P = far_range(tracer, reach)
     U = float(np.arcsinh(P / 2.0))

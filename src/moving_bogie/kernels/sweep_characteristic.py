@@ -24,22 +24,23 @@ alpha (double poles for the second term).
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.polyroots import poly_roots, quartic_roots
 from moving_bogie.kernels.polyroots import polyder as _polyder
 from moving_bogie.kernels.polyroots import polyval as _polyval
 from moving_bogie.kernels.sweep_vehicle import BlockSweep
-from moving_bogie.kernels.track import resolve_foundation
 
 __all__ = ["SweepCharacteristic", "follower_groups", "poly_roots", "polynomial_degree", "quartic_roots"]
 
 _ALPHA_STENCIL = 0.25  # the coefficients of N and Q are polynomials of degree <= 4 in alpha
 
 
-def polynomial_degree(params, parameter: str, held=()) -> int:
+def polynomial_degree(bound: BoundModel, parameter: str, held: Iterable[str] = ()) -> int:
     """Degree of E_chr in the vehicle parameter ``parameter`` at fixed (q, alpha), from the derivation.
 
     The generated ``POLYNOMIAL_DEGREES`` of the vehicle, derived from its block system (for the paper's bogie
@@ -55,7 +56,6 @@ def polynomial_degree(params, parameter: str, held=()) -> int:
         Naming ``parameter`` when E_chr is not a polynomial in it (the spacing d also moves K), or when only
         some of the groups that follow it are held.
     """
-    bound = bind(params)
     followers = follower_groups(bound, parameter)
     fixed = followers & set(held)
     degrees = bound.polynomial_degrees
@@ -74,9 +74,8 @@ def polynomial_degree(params, parameter: str, held=()) -> int:
     return degrees[parameter]
 
 
-def follower_groups(params, parameter: str) -> set:
+def follower_groups(bound: BoundModel, parameter: str) -> set[str]:
     """The vehicle's groups that an alternative sets from ``parameter`` (mu_v, J_b from eta_M, Eq. (63))."""
-    bound = bind(params)
     return {
         info["sets"]
         for info in bound.params.model.alternatives.values()
@@ -89,14 +88,12 @@ class SweepCharacteristic:
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
         Everything but alpha, the spacing d (when given per point) and ``parameter`` is taken from here
-        (the vehicle too: that of the parameters' model); with ``parameter="eta_M"`` the bar's mass and
-        inertia follow the wheel mass with the coefficients cf1, cf2 of ``params`` (Eq. (63)).
+        (the vehicle and the track too); with the wheel mass as ``parameter`` the bar's mass and inertia
+        follow it with the coefficients cf1, cf2 of its parameters (Eq. (63)).
     parameter : str, optional
         The vehicle parameter swept (default: the wheel mass, ``Model.wheel_mass``, eta_M).
-    foundation : module or Foundation, optional
-        The track model (default that of the parameters' model).
     block : bool
         Evaluate E_chr as the determinant of the block system (:mod:`~moving_bogie.kernels.sweep_vehicle`)
         even when the vehicle's module has the closed form of Eq. (38) (default False: the closed form
@@ -117,17 +114,16 @@ class SweepCharacteristic:
 
     def __init__(
         self,
-        params,
+        bound: BoundModel,
         parameter: str | None = None,
         *,
-        foundation=None,
-        held=(),
-        below=False,
-        block=False,
-    ):
-        bound = bind(params)
+        held: Iterable[str] = (),
+        below: bool = False,
+        block: bool = False,
+    ) -> None:
         params = bound.params
         parameter = parameter or params.model.wheel_mass
+        self.bound = bound
         self.below = bool(below)
         self.params = params
         self.parameter = parameter
@@ -136,10 +132,9 @@ class SweepCharacteristic:
         self.degree = polynomial_degree(bound, parameter, self.held)
         self.module = bound.vehicle
         self.blocks = None if hasattr(self.module, "e_chr") and not block else BlockSweep(self.module)
-        track = resolve_foundation(params, foundation)
-        self.foundation = track.module
+        self.foundation = bound.foundation
         ns = bound.floats
-        self.track_args = {k: v for k, v in track.float_arguments(params).items() if k != "alpha"}
+        self.track_args = {k: v for k, v in bound.foundation_floats().items() if k != "alpha"}
         self.d = ns.d
         # Eq. (63): groups set by an alternative that depends on the swept parameter follow it unless held
         # (the bar's mass and inertia follow eta_M at fixed cf1, cf2): (group, its function, the value of the

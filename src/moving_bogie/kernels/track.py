@@ -17,98 +17,26 @@ mpmath precision; :class:`TrackKernelArray` evaluates numpy arrays of q in doubl
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import dataclass, field
-from fractions import Fraction
+from dataclasses import dataclass
 from typing import Any
 
 import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.coefficient_matrix import Coefficients
+from moving_bogie.kernels.foundation import Foundation
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval
 
 
-def foundation_module(params):
-    """The generated kernel of the beam on its track, of the parameters' own catalogue.
-
-    ``params`` are parameters or a bound model (:func:`~moving_bogie.kernels.bound.bind`).
-    """
-    return bind(params).foundation
-
-
-@dataclass(frozen=True)
-class Foundation:
-    """A generated foundation module and the values of the groups its functions take.
-
-    ``module`` is any object with the generated interface: ``n_coeffs``, ``n_coeffs_dq``, ``q_coeffs``,
-    ``q_coeffs_dq``, ``n_coeffs_in_q``, ``ARGUMENTS``, ``DEGREE_N``, ``DEGREE_Q`` (a module of
-    ``moving_bogie.generated`` or one generated elsewhere and loaded with importlib). ``values`` maps
-    group names to numbers (floats, Fractions or decimal strings) for groups the parameters object does
-    not carry; they take precedence over the parameters' own values.
-    """
-
-    module: Any
-    values: Mapping[str, Any] = field(default_factory=dict)
-
-    @property
-    def names(self) -> tuple:
-        """The groups the generated functions take besides q (or p)."""
-        return tuple(self.module.ARGUMENTS[1:])
-
-    def float_arguments(self, params) -> dict:
-        """Keyword arguments in double precision (groups neither given nor in ``params`` are None)."""
-        ns = bind(params).floats if params is not None else None
-        out = {}
-        for name in self.names:
-            value = self.values[name] if name in self.values else getattr(ns, name, None)
-            out[name] = None if value is None else float(value)
-        return out
-
-    def mp_arguments(self, params) -> dict:
-        """Keyword arguments at the current mpmath precision."""
-        ns = bind(params).params.as_mp() if params is not None else None
-        out = {}
-        for name in self.names:
-            if name in self.values:
-                out[name] = _to_mp(self.values[name])
-            else:
-                out[name] = getattr(ns, name, None)
-        return out
-
-
-def _to_mp(value):
-    if value is None:
-        return None
-    if isinstance(value, Fraction):
-        return mpmath.mpf(value.numerator) / value.denominator
-    return mpmath.mpf(str(value)) if isinstance(value, (int, float, str)) else mpmath.mpf(value)
-
-
-def resolve_foundation(params, foundation=None) -> Foundation:
-    """The one place where the runtime finds the track model of a computation.
-
-    ``foundation`` may be None (the generated module of the parameters' model, ``params.model.foundation``),
-    a generated module (or any object with its interface), or a :class:`Foundation` (module plus values of
-    extra groups).
-    """
-    if isinstance(foundation, Foundation):
-        return foundation
-    if foundation is not None:
-        return Foundation(foundation)
-    return Foundation(foundation_module(params))
-
-
-def foundation_arguments(params, numbers, foundation=None) -> dict:
+def foundation_arguments(bound: BoundModel, numbers: Any) -> dict[str, Any]:
     """Keyword arguments of the generated foundation functions (besides q or p) from a params namespace.
 
     The names come from the generated module (its ``ARGUMENTS``), so a model added in derivations/ with the
     existing groups needs no change here; a group the model does not use is passed as None.
     """
-    names = resolve_foundation(params, foundation).names
-    return {name: getattr(numbers, name, None) for name in names}
+    return {name: getattr(numbers, name, None) for name in bound.foundation_model.names}
 
 
 def polyval_list(coeffs, x):
@@ -137,24 +65,23 @@ class TrackKernel:
 
     Parameters
     ----------
-    params : DimensionlessParams
-    foundation : module or Foundation, optional
-        The track model (default: the generated module of the parameters' model), see
-        :func:`resolve_foundation`.
+    bound : BoundModel
+        The parameters bound to their model; the track is its ``foundation_model``.
     coalescence_digits : int
         Where two p-roots on the same side are closer than 10**-k relative, their separate residues are
         large and nearly cancel (their sum stays finite). The evaluation then repeats at a precision
         raised by three times the digits lost (the double-pole residues of dK/dq lose 3x).
     """
 
-    def __init__(self, params, *, foundation=None, coalescence_digits: int = 3):
-        params = self.params = bind(params).params
-        self.foundation = resolve_foundation(params, foundation)
+    def __init__(self, bound: BoundModel, *, coalescence_digits: int = 3) -> None:
+        self.bound = bound
+        self.params = bound.params
+        self.foundation: Foundation = bound.foundation_model
         self.module = self.foundation.module
         self.coalescence_digits = coalescence_digits
 
     def arguments(self):
-        return self.foundation.mp_arguments(self.params)
+        return self.bound.foundation_mp()
 
     def p_roots(self, q):
         """Roots of N(p, q) in p at the current precision (numpy start + Durand-Kerner polish)."""
@@ -278,14 +205,15 @@ def _roots_mp(coeffs):
 class TrackKernelArray:
     """K(xi, q) and dK/dq for numpy arrays of q in double precision (counting contours, sweeps).
 
-    ``foundation`` as in :class:`TrackKernel`.
+    ``bound`` as in :class:`TrackKernel`.
     """
 
-    def __init__(self, params, *, foundation=None):
-        params = self.params = bind(params).params
-        self.foundation = resolve_foundation(params, foundation)
+    def __init__(self, bound: BoundModel) -> None:
+        self.bound = bound
+        self.params = bound.params
+        self.foundation: Foundation = bound.foundation_model
         self.module = self.foundation.module
-        self.args = self.foundation.float_arguments(params)
+        self.args = bound.foundation_floats()
         self._coeffs = Coefficients(self.args)
 
     def p_roots(self, q, coeffs=None):

@@ -132,8 +132,8 @@ class TimeSeriesFigure:
     def __call__(self, ctx: BuildContext) -> Built:
         import numpy as np
 
+        from moving_bogie.api import closed_form_response
         from moving_bogie.model.cases import table1_case
-        from moving_bogie.response.closed_form import closed_form_response
 
         spec = self.spec
         if spec.finite and not ctx.quick:
@@ -164,8 +164,9 @@ class TimeSeriesFigure:
 
 def _validation_figure(ctx: BuildContext, fig_id: str, case: int) -> Built:
     """Finite beam (full lines) against the closed form (dashed), with the validation verdict."""
+    from moving_bogie.api import validate
     from moving_bogie.model.cases import table1_case
-    from moving_bogie.validation.compare import plot_validation, validate
+    from moving_bogie.validation.compare import plot_validation
 
     result = validate(table1_case(case), progress=ctx.progress)
     fig = plot_validation(result, title=f"Case {case}: finite beam (full) vs closed form (dashed)")

@@ -71,8 +71,8 @@ class BuildContext:
             if row is not None:
                 self._frequencies[case] = row.result
             else:
+                from moving_bogie.api import induced_frequencies
                 from moving_bogie.model.cases import table1_case
-                from moving_bogie.roots.frequencies import induced_frequencies
 
                 self._frequencies[case] = induced_frequencies(table1_case(case), dps=self.dps)
         return self._frequencies[case]

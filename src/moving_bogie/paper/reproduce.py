@@ -88,36 +88,19 @@ def reproduce(
     ParameterError
         When `only` names an unknown artefact (before anything is built).
     """
-    if only:
-        todo, unknown = select(only)
-        if unknown:
-            known = ", ".join(a.id for a in ARTIFACTS)
-            raise ParameterError("only", f"unknown artifact(s) {', '.join(unknown)}; known: {known}")
-    else:
-        todo = list(ARTIFACTS)
+    todo = _selected(only)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     dps = dps if dps is not None else (20 if quick else 30)
     start = time.perf_counter()
     outcomes: dict[str, Outcome] = {}
-    done = 0
-
-    current = [""]
-
-    def overall(fraction: float) -> None:
-        if progress is not None:
-            progress((done + fraction) / max(1, len(todo)))
-        if artifact_progress is not None and current[0]:
-            artifact_progress(current[0], fraction)
-
-    ctx = BuildContext(out, quick=quick, dps=dps, progress=overall)
+    tracker = _Progress(len(todo), progress, artifact_progress)
+    ctx = BuildContext(out, quick=quick, dps=dps, progress=tracker.overall)
     for artifact in todo:
-        current[0] = artifact.label
+        tracker.current = artifact.label
         outcome = build_artifact(artifact, ctx)
         outcomes[artifact.id] = outcome
-        done += 1
-        current[0] = ""
-        overall(0.0)
+        tracker.finished()
         if log is not None:
             extra = outcome.reason if outcome.status != "covered" else ", ".join(outcome.built.files)
             log(
@@ -129,6 +112,43 @@ def reproduce(
     report = Report(out, quick, [outcomes[a.id] for a in ARTIFACTS], time.perf_counter() - start)
     write_index(report)
     return report
+
+
+def _selected(only: Sequence[str] | None) -> list[Artifact]:
+    """The artefacts to build: those `only` names, every one without it (an unknown name is an error)."""
+    if not only:
+        return list(ARTIFACTS)
+    todo, unknown = select(only)
+    if unknown:
+        known = ", ".join(a.id for a in ARTIFACTS)
+        raise ParameterError("only", f"unknown artifact(s) {', '.join(unknown)}; known: {known}")
+    return todo
+
+
+class _Progress:
+    """The overall fraction done (artefacts finished plus the fraction of the one being built) and the
+    fraction of the current artefact, each to its callback."""
+
+    def __init__(
+        self,
+        total: int,
+        progress: Callable[[float], None] | None,
+        artifact_progress: Callable[[str, float], None] | None,
+    ) -> None:
+        self.total, self.progress, self.artifact_progress = total, progress, artifact_progress
+        self.done = 0
+        self.current = ""
+
+    def overall(self, fraction: float) -> None:
+        if self.progress is not None:
+            self.progress((self.done + fraction) / max(1, self.total))
+        if self.artifact_progress is not None and self.current:
+            self.artifact_progress(self.current, fraction)
+
+    def finished(self) -> None:
+        self.done += 1
+        self.current = ""
+        self.overall(0.0)
 
 
 def build_artifact(artifact: Artifact, ctx: BuildContext) -> Outcome:

@@ -12,6 +12,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from moving_bogie.api import critical_stiffness, frequency_lines, instability_lines, stability_map
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import get_model
 from moving_bogie.model.params import DimensionlessParams
@@ -21,10 +22,6 @@ from moving_bogie.stability.figures.plots import (
     plot_instability_lines,
     spacing_colors,
 )
-from moving_bogie.stability.lines.frequency_lines import frequency_lines
-from moving_bogie.stability.lines.instability_lines import instability_lines
-from moving_bogie.stability.maps.map import stability_map
-from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
 __all__ = ["figure2", "figure3", "figure4", "figure7", "figure8", "figure16"]

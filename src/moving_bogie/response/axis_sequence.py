@@ -26,9 +26,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.response.residues import residue_expansion
+from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.response.residues import ResidueExpansion, residue_expansion
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.roots.frequencies import FrequencyResult, induced_frequencies
 
 __all__ = ["AxisSequence", "axis_sequence"]
 
@@ -83,7 +84,7 @@ class AxisSequence:
         )
 
 
-def axis_sequence(bound, result, *, start: float, tol: float) -> AxisSequence:
+def axis_sequence(bound: BoundModel, result: FrequencyResult, *, start: float, tol: float) -> AxisSequence:
     """Roots of E_chr along the real axis from ``result.window.x1`` outwards (see the module docstring).
 
     Parameters
@@ -163,7 +164,9 @@ def sequence_start(params) -> float | None:
     return math.sqrt(float(S)) / float(r)
 
 
-def axis_roots(bound, result, expansion):
+def axis_roots(
+    bound: BoundModel, result: FrequencyResult, expansion: ResidueExpansion
+) -> tuple[AxisSequence | None, tuple[str, ...]]:
     """The sequence of decaying roots along the real axis beyond the window (:func:`axis_sequence`) and its
     note, or (None, ()) for a beam without one. The roots that the check window found beyond the window
     must all be among those of the first strip, else the residue sum refuses."""

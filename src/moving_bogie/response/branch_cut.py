@@ -49,9 +49,8 @@ import numpy as np
 from scipy import optimize
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
-from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.response import quadrature as quad
 from moving_bogie.response.quadrature import cis
 
@@ -75,7 +74,7 @@ class BranchCut:
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
         A track whose cut is a half-line (generated ``cut_line_radicand``, R > 0), subcritical (the cut
         leaves a gap around q = 0).
     panel_tol : float
@@ -88,8 +87,7 @@ class BranchCut:
         (supercritical velocity).
     """
 
-    def __init__(self, params, *, panel_tol: float = 1e-13):
-        bound = bind(params)
+    def __init__(self, bound: BoundModel, *, panel_tol: float = 1e-13) -> None:
         params = bound.params
         self.foundation = bound.foundation
         if not hasattr(self.foundation, "cut_line_radicand") or self.foundation.DEGREE_N != 4:
@@ -99,7 +97,7 @@ class BranchCut:
             )
         self.params = params
         f = bound.floats
-        self.fargs = foundation_arguments(params, f)
+        self.fargs = bound.foundation_floats()
         self.alpha = f.alpha
         self.eta_f = float(self.foundation.cut_line_im(**self.fargs))  # Im q of the line
         self._radicand = np.array([float(c) for c in self.foundation.cut_line_radicand(**self.fargs)])

@@ -20,13 +20,16 @@ amplifies the absolute quadrature error: keep a tau moderate (a tau <= ~10).
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable, Iterable
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy import integrate
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.track import TrackKernelArray
+from moving_bogie.kernels.vehicle import VehicleSystem
 from moving_bogie.response.quadrature import adapt_panels, subdivide
 
 __all__ = ["BromwichResult", "bromwich_line", "bromwich_line_shape", "bromwich_response", "bromwich_shape"]
@@ -39,9 +42,9 @@ class BromwichResult(dict):
     a: float
 
 
-def _transform(params):
-    system = bind(params).float_system
-    kernel = TrackKernelArray(params)
+def _transform(bound: BoundModel) -> tuple[tuple[str, ...], Callable[[float, float], np.ndarray]]:
+    system = bound.float_system
+    kernel = TrackKernelArray(bound)
     offsets = [float(x) for x in system.offsets]
     cache: dict[float, np.ndarray] = {}
 
@@ -57,8 +60,8 @@ def _transform(params):
 
 
 def bromwich_shape(
-    params,
-    xi,
+    bound: BoundModel,
+    xi: ArrayLike,
     tau: float,
     *,
     a: float = 0.02,
@@ -73,8 +76,8 @@ def bromwich_shape(
     """
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
-    system = bind(params).float_system
-    kernel = TrackKernelArray(params)
+    system = bound.float_system
+    kernel = TrackKernelArray(bound)
     offsets = [float(x) for x in system.offsets]
     positions = [float(x) for x in system.positions]
     xi = np.atleast_1d(np.asarray(xi, dtype=float))
@@ -109,11 +112,11 @@ def bromwich_shape(
 
 
 def bromwich_response(
-    params,
-    tau,
+    bound: BoundModel,
+    tau: ArrayLike,
     *,
     a: float = 0.02,
-    names=None,
+    names: Iterable[str] | None = None,
     epsabs: float = 1e-12,
     epsrel: float = 1e-12,
     limit: int = 2000,
@@ -123,7 +126,7 @@ def bromwich_response(
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
     tau : array_like of float, >= 0
     a : float
         Distance of the Bromwich line Im q = -a below the real axis; must exceed -Im q of every unstable
@@ -139,7 +142,7 @@ def bromwich_response(
     """
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
-    responses, values = _transform(params)
+    responses, values = _transform(bound)
     names = tuple(names or responses)
     index = {name: responses.index(name) for name in names}
     tau = np.atleast_1d(np.asarray(tau, dtype=float))
@@ -175,14 +178,13 @@ def bromwich_response(
 
 
 def bromwich_line(
-    params,
-    tau,
+    bound: BoundModel,
+    tau: ArrayLike,
     *,
     a: float = 0.02,
     s_max: float = 400.0,
     panel_tol: float = 1e-14,
-    foundation=None,
-) -> dict:
+) -> dict[str, np.ndarray]:
     """x(tau) of every response by a vectorised Bromwich quadrature on the line Im q = -a (Eq. (35)).
 
     The same integral as :func:`bromwich_response`, folded onto s >= 0,
@@ -194,14 +196,13 @@ def bromwich_line(
     on the line where the cut of K or a pole passes close above it, e.g. the Timoshenko-Rayleigh cut
     touching the real axis at Re q = sqrt(S)/r), then subdivided to at most 3 pi of phase s tau. Beyond
     ``s_max`` the tail is integrated by parts, e^{i S tau} (i X~/tau - X~'/tau^2 - i X~''/tau^3), the
-    derivatives by central differences. Any beam or track model (``foundation`` as in
-    :func:`moving_bogie.kernels.track.resolve_foundation`); times must be > 0.
+    derivatives by central differences. Any beam or track model (that of ``bound``); times must be > 0.
 
     Returns
     -------
     dict name -> ndarray like tau
     """
-    tau, system, kernel = _line_setup(params, tau, a, foundation)
+    tau, system, kernel = _line_setup(bound, tau, a)
     offsets = [float(x) for x in system.offsets]
 
     def transform(s):
@@ -214,21 +215,20 @@ def bromwich_line(
 
 
 def bromwich_line_shape(
-    params,
-    xi,
+    bound: BoundModel,
+    xi: ArrayLike,
     tau: float,
     *,
     a: float = 0.02,
     s_max: float = 400.0,
     panel_tol: float = 1e-14,
-    foundation=None,
 ) -> np.ndarray:
     """w(xi, tau) at one time for an array xi by the quadrature of :func:`bromwich_line` (Eq. (28)).
 
     i q W~(xi, q) = sum_j G_j K(xi - xi_j, q) / (2 pi E_chr) on the line Im q = -a, every xi
     at once (the panels adapt to all of them); no residues, no branch cut. Any beam or track model.
     """
-    tau, system, kernel = _line_setup(params, tau, a, foundation)
+    times, system, kernel = _line_setup(bound, tau, a)
     offsets = [float(x) for x in system.offsets]
     positions = [float(x) for x in system.positions]
     xi = np.asarray(xi, dtype=float)
@@ -244,17 +244,19 @@ def bromwich_line_shape(
         w = sum(G[:, j] * np.array(kv.K[m + j * F : m + (j + 1) * F]) for j in range(len(positions)))
         return (w / (2 * np.pi * 1j * q * E)).T
 
-    return _line_quadrature(transform, tau, a, s_max, panel_tol)[0].reshape(xi.shape)
+    return _line_quadrature(transform, times, a, s_max, panel_tol)[0].reshape(xi.shape)
 
 
-def _line_setup(params, tau, a, foundation):
+def _line_setup(
+    bound: BoundModel, tau: ArrayLike, a: float
+) -> tuple[np.ndarray, VehicleSystem, TrackKernelArray]:
     """(tau array, vehicle block system, kernel) after checking a and the times."""
     if not a > 0:
         raise MovingBogieError("the Bromwich line needs a > 0")
     tau = np.atleast_1d(np.asarray(tau, dtype=float))
     if np.any(tau <= 0) or not np.all(np.isfinite(tau)):
         raise MovingBogieError("bromwich_line needs finite tau > 0")
-    return tau, bind(params).float_system, TrackKernelArray(params, foundation=foundation)
+    return tau, bound.float_system, TrackKernelArray(bound)
 
 
 def _line_quadrature(transform, tau, a, s_max, panel_tol):

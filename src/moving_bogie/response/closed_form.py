@@ -20,16 +20,23 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from moving_bogie.errors import MovingBogieError, ParameterError
-from moving_bogie.kernels.bound import bind
-from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.response.axis_sequence import axis_roots, refuse_outside
+from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.model.physical import Scales
+from moving_bogie.response.axis_sequence import axis_roots
 from moving_bogie.response.cut_policy import branch_cut_extent, branch_cut_mode, branch_cut_or_note, s_min_for
-from moving_bogie.response.residues import ResidueExpansion, residue_expansion
-from moving_bogie.response.shapes import KernelGrid
+from moving_bogie.response.deflection import deflection_shape, deflection_shape_details
+from moving_bogie.response.residues import ResidueExpansion, frequencies_for, residue_expansion
+
+if TYPE_CHECKING:
+    from moving_bogie.response.branch_cut import BranchCut
+    from moving_bogie.response.cut_integral import CurveBranchCut
+    from moving_bogie.roots.frequencies import FrequencyResult
 
 __all__ = [
     "TimeSeries",
@@ -145,36 +152,26 @@ class TimeSeries:
         }
 
 
-def _bound_and_scales(params):
-    """(BoundModel, Scales or None) from either kind of parameters (or a bound model)."""
-    if isinstance(params, PhysicalParams):
-        return bind(params.to_dimensionless()), params.scales()
-    return bind(params), None
-
-
-def _frequencies(bound, frequencies, dps, progress):
-    if frequencies is not None:
-        vehicle = bound.params.vehicle
-        if frequencies.model != vehicle:
-            raise ParameterError(
-                "model", f"frequencies were computed for model {frequencies.model!r}, not {vehicle!r}"
-            )
-        if getattr(frequencies, "params", bound.params) != bound.params:
-            raise ParameterError("frequencies", "frequencies were computed for other parameters")
-        result = frequencies
-    else:
-        from moving_bogie.roots.frequencies import induced_frequencies
-
-        result = induced_frequencies(bound, dps=dps, progress=progress)
-    return result
+def _dimensionless_times(tau: ArrayLike, scales: Scales | None) -> tuple[np.ndarray, np.ndarray]:
+    """(tau, the times as given): dimensionless tau of Eq. (16) (from seconds when ``scales`` are given)."""
+    tau = np.asarray(tau, dtype=float)
+    tau_in = tau
+    if scales is not None:
+        tau = tau / scales.t_scale
+    if tau.ndim != 1:
+        tau = tau.reshape(-1)
+    if np.any(tau < 0) or not np.all(np.isfinite(tau)):
+        raise ParameterError("tau", "tau must be finite and >= 0")
+    return tau, tau_in
 
 
 def closed_form_response(
-    params,
-    tau,
+    bound: BoundModel,
+    tau: ArrayLike,
     *,
-    frequencies=None,
-    branch_cut="auto",
+    scales: Scales | None = None,
+    frequencies: FrequencyResult | None = None,
+    branch_cut: bool | str = "auto",
     dps: int = 30,
     progress: Callable[[float], None] | None = None,
     bc_tol: float = 1e-6,
@@ -185,11 +182,14 @@ def closed_form_response(
 
     Parameters
     ----------
-    params : DimensionlessParams, BoundModel or PhysicalParams
-        The model comes with them (another vehicle: ``params.replace(vehicle=...)``). With physical
-        parameters, ``tau`` is the time t in seconds and the results are in m and rad.
+    bound : BoundModel
+        The parameters bound to their model (another vehicle: ``bound.replace(vehicle=...)``; the public
+        :func:`moving_bogie.closed_form_response` binds, from SI parameters too).
     tau : array_like of float, >= 0
-        Times (dimensionless tau = t sqrt(k_f/m), Eq. (16), unless physical parameters are given).
+        Times (dimensionless tau = t sqrt(k_f/m), Eq. (16), unless ``scales`` are given).
+    scales : Scales, optional
+        The SI scales of Eqs. (15)-(16) (``PhysicalParams.scales()``): ``tau`` is then the time t in seconds
+        and the results are in m and rad.
     frequencies : FrequencyResult, optional
         Precomputed induced frequencies (same params, hence the same vehicle); computed at ``dps`` if
         omitted.
@@ -221,15 +221,7 @@ def closed_form_response(
         ``branch_cut=True`` when the cut passes through q = 0 (an undamped track above the critical
         velocity, an undamped layered track) or stays bounded (a layered track at alpha = 0).
     """
-    bound, scales = _bound_and_scales(params)
-    tau = np.asarray(tau, dtype=float)
-    if scales is not None:
-        tau_in = tau
-        tau = tau / scales.t_scale
-    if tau.ndim != 1:
-        tau = tau.reshape(-1)
-    if np.any(tau < 0) or not np.all(np.isfinite(tau)):
-        raise ParameterError("tau", "tau must be finite and >= 0")
+    tau, tau_in = _dimensionless_times(tau, scales)
     mode = branch_cut_mode(branch_cut)
     bc, notes = branch_cut_or_note(bound, mode)
 
@@ -240,36 +232,30 @@ def closed_form_response(
     def staged(x):
         report(0.8 * x)
 
-    result = _frequencies(bound, frequencies, dps, staged if progress else None)
+    result = frequencies_for(bound, frequencies, dps, staged if progress else None)
     report(0.8)
     expansion = residue_expansion(bound, result, shapes=False)
     sequence, more_notes = axis_roots(bound, result, expansion)
     notes += more_notes
     report(0.85)
-    series = expansion.totals(tau)
-    if sequence is not None:
-        for name, v in sequence.harmonics(tau, expansion.names).items():
-            series[name] += v
-    until = 0.0
-    if bc is not None and tau.size:
-        s_min = max(s_min_for(bc, e) for e in (expansion, *(sequence.expansions if sequence else ())))
-        if mode == "on":
-            until = math.inf
-        else:
-            wheels = expansion.names[: len(expansion.positions)]
-            scale = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
-            until, more = branch_cut_extent(
-                bc, float(tau.max()), tol=bc_tol * scale, cap=bc_tau_cap, s_min=s_min
-            )
-            notes += more
-        mask = tau <= until
-        if np.any(mask):
-            extra = bc.responses(tau[mask], tol=quad_tol, s_min=s_min)
-            for name in expansion.names:
-                series[name][mask] += extra[name]
-        else:
-            until = 0.0
+    series = _harmonic_sum(expansion, sequence, tau)
+    until = _add_branch_cut(series, bc, tau, expansion, sequence, mode, notes, bc_tol, bc_tau_cap, quad_tol)
     report(1.0)
+    return _time_series(bound, tau, tau_in, scales, series, expansion, result, until, notes)
+
+
+def _time_series(
+    bound: BoundModel,
+    tau: np.ndarray,
+    tau_in: np.ndarray,
+    scales: Scales | None,
+    series: dict[str, np.ndarray],
+    expansion: ResidueExpansion,
+    result: FrequencyResult,
+    until: float,
+    notes: list[str],
+) -> TimeSeries:
+    """The :class:`TimeSeries` of the summed responses (by DOF name), in SI when ``scales`` are given."""
     units_of = bound.vehicle.UNITS
     responses = {name: series[name] for name in expansion.names}
     steady_parts = {name: expansion.steady[name] for name in expansion.names}
@@ -299,73 +285,48 @@ def closed_form_response(
     )
 
 
-def deflection_shape(params, xi, tau: float, **options) -> np.ndarray:
-    """Beam deflection w(xi, tau) at one time for an array of xi, Eqs. (44)-(47) plus the branch cut.
+def _harmonic_sum(expansion: ResidueExpansion, sequence: Any, tau: np.ndarray) -> dict[str, np.ndarray]:
+    """Steady part plus the residues at every induced frequency (Eqs. (36), (39)-(43)), with the sequence
+    of roots along the real axis beyond the window when there is one."""
+    series = expansion.totals(tau)
+    if sequence is not None:
+        for name, v in sequence.harmonics(tau, expansion.names).items():
+            series[name] += v
+    return series
 
-    xi is the moving coordinate (0 at the rear wheel, d at the front one). With physical parameters
-    xi is in metres, tau in seconds and the result in metres. Keywords: ``frequencies``,
-    ``branch_cut``, ``dps``, ``bc_tol``, ``bc_tau_cap``, ``quad_tol`` as in :func:`closed_form_response`
-    (``auto`` applies the same rule at this single time), and ``expansion`` (a precomputed
-    :class:`ResidueExpansion` with shapes). :func:`deflection_shape_details` also says whether I_bc was
-    included.
+
+def _add_branch_cut(
+    series: dict[str, np.ndarray],
+    bc: BranchCut | CurveBranchCut | None,
+    tau: np.ndarray,
+    expansion: ResidueExpansion,
+    sequence: Any,
+    mode: str,
+    notes: list[str],
+    bc_tol: float,
+    bc_tau_cap: float,
+    quad_tol: float,
+) -> float:
+    """Add the branch-cut integral I_bc to ``series`` up to the tau where it matters; returns that tau.
+
+    ``mode`` "on": at every time; "auto": until I_bc falls below ``bc_tol`` of the largest steady wheel
+    deflection (:func:`~moving_bogie.response.cut_policy.branch_cut_extent`, notes appended), 0 when never
+    (and without a branch cut, ``bc`` None).
     """
-    return deflection_shape_details(params, xi, tau, **options)[0]
-
-
-def deflection_shape_details(
-    params,
-    xi,
-    tau: float,
-    *,
-    frequencies=None,
-    branch_cut="auto",
-    dps: int = 30,
-    bc_tol: float = 1e-6,
-    bc_tau_cap: float = 1e4,
-    quad_tol: float = 1e-10,
-    expansion: ResidueExpansion | None = None,
-) -> tuple[np.ndarray, bool, tuple]:
-    """(w, branch_cut, notes): :func:`deflection_shape`, whether I_bc was included, and why not."""
-    bound, scales = _bound_and_scales(params)
-    xi = np.asarray(xi, dtype=float)
-    tau = float(tau)
-    if scales is not None:
-        xi = scales.chi * xi
-        tau = tau / scales.t_scale
-    if not (math.isfinite(tau) and tau >= 0):
-        raise ParameterError("tau", "tau must be finite and >= 0")
-    mode = branch_cut_mode(branch_cut)
-    bc, notes = branch_cut_or_note(bound, mode)
-    result = _frequencies(bound, frequencies, dps, None)
-    refuse_outside(result)
-    if expansion is None:
-        expansion = residue_expansion(bound, result, shapes=True)
-    flat = xi.reshape(-1)
-    grid0 = KernelGrid(bound, 0, dps=result.dps)
-    # Eqs. (44)-(47) for n contacts: w(xi) = sum_j weight_j K(xi - xi_j).
-    w = sum(a * grid0(flat - x) for a, x in zip(expansion.shape_steady, expansion.positions))
-    for q, amplitudes in zip(expansion.q_mp, expansion.shape_amplitudes):
-        grid = KernelGrid(bound, q, dps=result.dps)
-        w = w + sum(a * grid(flat - x) for a, x in zip(amplitudes, expansion.positions)) * np.exp(
-            1j * complex(q) * tau
-        )
-    scale = np.abs(w).max() if w.size else 0.0
-    if w.size and np.abs(w.imag).max() > 1e-8 * max(scale, 1.0):
-        raise MovingBogieError(f"deflection shape: imaginary part {np.abs(w.imag).max():.3g} does not cancel")
-    w = w.real
-    include = False
-    if bc is not None and flat.size:
-        s_min = s_min_for(bc, expansion)
-        include = mode == "on"
-        if not include:
-            wheels = expansion.names[: len(expansion.positions)]
-            ref = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
-            until, more = branch_cut_extent(bc, tau, tol=bc_tol * ref, cap=bc_tau_cap, s_min=s_min)
-            include = tau <= until
-            notes += (
-                more if include else [*more, f"branch cut below tol {bc_tol:.1e} of the steady deflection"]
-            )
-        if include:
-            w = w + bc.shape(flat, tau, tol=quad_tol, s_min=s_min)
-    w = w.reshape(xi.shape)
-    return (scales.deflection(w) if scales is not None else w), bool(include), tuple(notes)
+    if bc is None or not tau.size:
+        return 0.0
+    s_min = max(s_min_for(bc, e) for e in (expansion, *(sequence.expansions if sequence else ())))
+    if mode == "on":
+        until = math.inf
+    else:
+        wheels = expansion.names[: len(expansion.positions)]
+        scale = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
+        until, more = branch_cut_extent(bc, float(tau.max()), tol=bc_tol * scale, cap=bc_tau_cap, s_min=s_min)
+        notes += more
+    mask = tau <= until
+    if not np.any(mask):
+        return 0.0
+    extra = bc.responses(tau[mask], tol=quad_tol, s_min=s_min)
+    for name in expansion.names:
+        series[name][mask] += extra[name]
+    return until

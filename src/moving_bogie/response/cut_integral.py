@@ -34,10 +34,9 @@ from __future__ import annotations
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.cut import CutTracer, trace_curves
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
-from moving_bogie.kernels.track import resolve_foundation
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.cut_pieces import cut_pieces, roots_along
 from moving_bogie.response.quadrature import (
@@ -64,19 +63,17 @@ _CHUNK = 20000
 _REAL_TOL = 1e-12
 
 
-def branch_cut_for(params, *, foundation=None):
-    """The branch-cut integral of ``params``: :class:`BranchCut` where the derivation says the cut of K is a
+def branch_cut_for(bound: BoundModel) -> BranchCut | CurveBranchCut:
+    """The branch-cut integral of ``bound``: :class:`BranchCut` where the derivation says the cut of K is a
     half-line (``cut_line_radicand`` of the generated track, the paper's Euler-Bernoulli beam) and the
     velocity is below the critical one (integrated in closed geometry), :class:`CurveBranchCut` for any
     other model and above the critical velocity (raises :class:`BranchCutUnavailable` when the cut passes
     through q = 0, e.g. eta_f = 0)."""
-    params = bind(params)
-    if foundation is None:
-        try:
-            return BranchCut(params)
-        except BranchCutUnavailable:
-            pass  # above the critical velocity: the traced cut crosses Re q = 0 above q = 0 when damped
-    return CurveBranchCut(params, foundation=foundation)
+    try:
+        return BranchCut(bound)
+    except BranchCutUnavailable:
+        pass  # above the critical velocity: the traced cut crosses Re q = 0 above q = 0 when damped
+    return CurveBranchCut(bound)
 
 
 class CurveBranchCut:
@@ -93,12 +90,10 @@ class CurveBranchCut:
         an undamped layered track), or a curve stays bounded in Re q > 0 (a layered track at alpha = 0).
     """
 
-    def __init__(self, params, *, foundation=None, panel_tol: float = 1e-13):
-        bound = bind(params)
-        self.params = params = bound.params
-        track = resolve_foundation(params, foundation)
-        self.module = track.module
-        self.fargs = track.float_arguments(params)
+    def __init__(self, bound: BoundModel, *, panel_tol: float = 1e-13) -> None:
+        self.params = bound.params
+        self.module = bound.foundation
+        self.fargs = bound.foundation_floats()
         self.tracer = CutTracer(self.module, self.fargs)
         self.system, self.offsets, self.positions = bound.float_system, bound.offsets, bound.positions
         self.span, self.names = bound.span, bound.names

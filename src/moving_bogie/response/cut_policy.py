@@ -20,8 +20,9 @@ import math
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
-from moving_bogie.response.cut_integral import branch_cut_for
+from moving_bogie.response.cut_integral import CurveBranchCut, branch_cut_for
 from moving_bogie.response.residues import ResidueExpansion
 
 __all__ = ["branch_cut_extent", "branch_cut_mode", "branch_cut_or_note", "s_min_for"]
@@ -40,27 +41,32 @@ def branch_cut_mode(branch_cut) -> str:
     raise ParameterError("branch_cut", f"branch_cut must be True, False or 'auto' (got {branch_cut!r})")
 
 
-def branch_cut_or_note(params, mode):
+def branch_cut_or_note(bound: BoundModel, mode: str) -> tuple[BranchCut | CurveBranchCut | None, list[str]]:
     """(BranchCut or None, notes); raises for an unavailable branch cut only when it was forced on."""
     if mode == "off":
         return None, []
     try:
-        return branch_cut_for(params), []
+        return branch_cut_for(bound), []
     except BranchCutUnavailable as exc:
         if mode == "on":
             raise
         return None, [f"branch cut skipped: {exc}"]
 
 
-def s_min_for(bc: BranchCut, expansion: ResidueExpansion) -> float:
+def s_min_for(bc: BranchCut | CurveBranchCut, expansion: ResidueExpansion) -> float:
     """Keep every induced frequency's Re q inside the quadrature range of the cut (not in the tail)."""
     top = float(np.max(np.abs(expansion.q.real))) if expansion.q.size else 0.0
     return max(bc.q_c, top) + 1.0
 
 
 def branch_cut_extent(
-    bc: BranchCut, tau_max: float, *, tol: float, cap: float = 1e4, s_min: float | None = None
-):
+    bc: BranchCut | CurveBranchCut,
+    tau_max: float,
+    *,
+    tol: float,
+    cap: float = 1e4,
+    s_min: float | None = None,
+) -> tuple[float, list[str]]:
     """(tau_on, notes): the time up to which I_bc exceeds ``tol`` (the ``auto`` rule, module docstring)."""
     notes = []
     bound = max(bc.l1_bound(s_min=s_min).values())

@@ -15,14 +15,19 @@ vectorised numpy sum of ``amplitude * exp(i q tau)``, whose cost does not depend
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import mpmath
 import numpy as np
 
-from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.bound import bind
+from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import Characteristic
+
+if TYPE_CHECKING:
+    from moving_bogie.roots.frequencies import FrequencyResult
 
 __all__ = ["IncompleteFrequencies", "ResidueExpansion", "both_members", "residue_expansion"]
 
@@ -144,7 +149,9 @@ class ResidueExpansion:
         return {name: self.steady[name] + v for name, v in self.harmonics(tau).items()}
 
 
-def residue_expansion(params, frequencies, *, shapes: bool = True) -> ResidueExpansion:
+def residue_expansion(
+    bound: BoundModel, frequencies: FrequencyResult, *, shapes: bool = True
+) -> ResidueExpansion:
     """Residue coefficients for the steady and unsteady harmonic parts, Eqs. (36)-(47).
 
     Every coefficient is evaluated at the precision of ``frequencies.dps`` with dE_chr/dq from
@@ -152,9 +159,9 @@ def residue_expansion(params, frequencies, *, shapes: bool = True) -> ResidueExp
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
     frequencies : FrequencyResult
-        From :func:`moving_bogie.roots.frequencies.induced_frequencies` for the same params (and vehicle).
+        From :func:`moving_bogie.roots.frequencies.induced_frequencies` for the same bound model.
     shapes : bool
         Also compute the shape weights of Eqs. (44)-(47) (needed by :func:`deflection_shape`).
 
@@ -163,7 +170,6 @@ def residue_expansion(params, frequencies, *, shapes: bool = True) -> ResidueExp
     IncompleteFrequencies, MovingBogieError
         Frequencies incomplete, a multiple root, or E_chr(0) = 0 (no steady state).
     """
-    bound = bind(params)
     vehicle = bound.params.vehicle
     if frequencies.model != vehicle:
         raise MovingBogieError(f"frequencies were computed for model {frequencies.model!r}, not {vehicle!r}")
@@ -218,3 +224,24 @@ def residue_expansion(params, frequencies, *, shapes: bool = True) -> ResidueExp
         amplitudes_mp={name: tuple(v) for name, v in amps_mp.items()},
         dps=frequencies.dps,
     )
+
+
+def frequencies_for(
+    bound: BoundModel, frequencies: FrequencyResult | None, dps: int, progress: Callable[[float], None] | None
+) -> FrequencyResult:
+    """The induced frequencies of ``bound``: ``frequencies`` when given (checked to be those of the same
+    parameters and vehicle), else computed at ``dps`` digits (Eq. (48))."""
+    if frequencies is not None:
+        vehicle = bound.params.vehicle
+        if frequencies.model != vehicle:
+            raise ParameterError(
+                "model", f"frequencies were computed for model {frequencies.model!r}, not {vehicle!r}"
+            )
+        if getattr(frequencies, "params", bound.params) != bound.params:
+            raise ParameterError("frequencies", "frequencies were computed for other parameters")
+        result = frequencies
+    else:
+        from moving_bogie.roots.frequencies import induced_frequencies
+
+        result = induced_frequencies(bound, dps=dps, progress=progress)
+    return result

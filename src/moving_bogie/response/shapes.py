@@ -14,6 +14,7 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.track import TrackKernel, min_relative_separation, polyder_list, polyval_list
 
 __all__ = ["KernelGrid"]
@@ -24,20 +25,18 @@ class KernelGrid:
 
     Parameters
     ----------
-    params : DimensionlessParams
+    bound : BoundModel
     q : complex or mpc
         Off the cut of K (an induced frequency or q = 0).
     dps : int
         Precision of the roots and weights.
     coalescence : float
         Relative separation of two same-side roots below which the slow exact path is used.
-    foundation : module or Foundation, optional
-        The track model (default that of the parameters' model).
     """
 
-    def __init__(self, params, q, *, dps: int = 30, coalescence: float = 1e-3, foundation=None):
+    def __init__(self, bound: BoundModel, q: complex, *, dps: int = 30, coalescence: float = 1e-3) -> None:
         self.dps = dps
-        self.kernel = TrackKernel(params, foundation=foundation)
+        self.kernel = TrackKernel(bound)
         self.params = self.kernel.params
         with mpmath.workdps(dps):
             self.q = mpmath.mpc(q)

@@ -16,10 +16,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import mpmath
 
 from moving_bogie.kernels.characteristic import Characteristic
+
+if TYPE_CHECKING:
+    from moving_bogie.roots.frequencies import FrequencyResult
 
 #: eta_f at which E_eta is read (first order: the relative error is of order PROBE).
 PROBE = Fraction(1, 10**10)
@@ -57,16 +61,16 @@ class DampingLimit:
         }
 
 
-def damping_limit(result) -> DampingLimit | None:
+def damping_limit(result: FrequencyResult) -> DampingLimit | None:
     """The eta_f -> 0+ fate of the real roots of an eta_f = 0 result (None when eta_f != 0 or none)."""
-    params = result.params
-    if params.eta_f != 0:
+    bound = result.bound
+    if bound.params.eta_f != 0:
         return None
     real = tuple(r for r in result.roots if r.marginal)
     if not real:
         return None
-    undamped = Characteristic(params)
-    probe = Characteristic(params.replace(eta_f=PROBE))
+    undamped = Characteristic(bound)
+    probe = Characteristic(bound.replace(eta_f=PROBE))
     slopes = []
     with mpmath.workdps(max(30, result.dps)):
         for r in real:

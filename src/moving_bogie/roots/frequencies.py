@@ -22,186 +22,32 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import mpmath
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
-from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mismatch, notes_with
-from moving_bogie.roots.count.strip import StripCount, strip_below_cut
+from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mismatch
+from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.count.window import default_window, far_field_window  # noqa: F401  (public here too)
+from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
 from moving_bogie.roots.refine.locate import locate
-from moving_bogie.roots.refine.polish import PolishError, fixed_text, polish_and_confirm, split_cluster
+from moving_bogie.roots.refine.polish import PolishError, polish_and_confirm, split_cluster
 from moving_bogie.roots.search.continuation import ContinuedRegion
-from moving_bogie.roots.search.counting import count_tiling, frame
-from moving_bogie.roots.verdict import Verdict, judge
+from moving_bogie.roots.search.counting import TilingCount, count_tiling, frame
 
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
-    from moving_bogie.roots.proof.certify import Certificate
-
-
-@dataclass(frozen=True)
-class InducedFrequency:
-    """One induced frequency (the member of its pair with Re q >= 0).
-
-    ``side`` tells where q lies with respect to the cut of K: "below" or "above" every cut curve over its
-    Re q, or "between" two of them (layered tracks, the Timoshenko-Rayleigh lens) (for eta_f = 0 a real root
-    in the gap is a limit from below). ``digits``/``decimals`` are confirmed by recomputation at higher
-    precision; ``residual`` is |E_chr/E_chr'| at q, the distance to the exact root at working precision.
-    """
-
-    q: mpmath.mpc
-    side: str
-    multiplicity: int
-    residual: mpmath.mpf
-    digits: int
-    decimals: int
-
-    @property
-    def re_text(self) -> str:
-        return fixed_text(mpmath.re(self.q), self.decimals)
-
-    @property
-    def im_text(self) -> str:
-        return fixed_text(mpmath.im(self.q), self.decimals)
-
-    @property
-    def unstable(self) -> bool:
-        """Im q < 0, confirmed: |Im q| exceeds the confirmed resolution."""
-        return mpmath.im(self.q) < 0 and abs(mpmath.im(self.q)) > mpmath.mpf(10) ** (-self.decimals)
-
-    @property
-    def marginal(self) -> bool:
-        """|Im q| below the confirmed resolution (a real induced frequency: constant amplitude)."""
-        return abs(mpmath.im(self.q)) <= mpmath.mpf(10) ** (-self.decimals)
-
-    def to_dict(self) -> dict:
-        return {
-            "re": self.re_text,
-            "im": self.im_text,
-            "side": self.side,
-            "multiplicity": self.multiplicity,
-            "digits": self.digits,
-            "residual": mpmath.nstr(self.residual, 3),
-        }
-
-
-@dataclass(frozen=True)
-class FrequencyResult:
-    """All induced frequencies in a window, the argument-principle count and the verdict."""
-
-    params: DimensionlessParams  # (bind() gives its bound model)
-    model: str  # the vehicle's name, for output only
-    dps: int
-    window: Rectangle
-    roots: tuple
-    count: int  # roots with Re q >= 0 by the argument principle (with multiplicity, pairs once)
-    unsearched: tuple  # slivers around the cut that no contour can enter
-    evaluations: int  # E_chr evaluations (double precision + high precision)
-    notes: tuple[Note, ...] = field(default=())
-    far_field: FarField | None = None
-    certificate: Certificate | None = None  # when asked for (certify=True)
-    strip: StripCount | None = None  # the sliver below the real axis, counted (roots/count/strip.py)
-    unlocated: tuple[Unlocated, ...] = ()  # roots counted in a cell but not located
-    decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
-
-    @property
-    def found(self) -> int:
-        return sum(r.multiplicity for r in self.roots)
-
-    @property
-    def warnings(self) -> tuple[str, ...]:
-        """The notes as printed (rendered from their reasons)."""
-        return tuple(note.text for note in self.notes)
-
-    @property
-    def count_ok(self) -> bool:
-        return self.found == self.count and not notes_with(self.notes, Reason.WINDOW)
-
-    @property
-    def unstable_roots(self) -> tuple:
-        return tuple(r for r in self.roots if r.unstable)
-
-    @property
-    def stable(self) -> bool:
-        """No confirmed root with Im q < 0 among those found (:attr:`verdict` is the complete statement)."""
-        return not self.unstable_roots
-
-    @property
-    def strip_unstable(self) -> int:
-        """Roots with Im q < 0 counted in the sliver below the cut (not located; 0 if none or not counted)."""
-        return self.strip.count if self.strip is not None and self.strip.decided else 0
-
-    @property
-    def verdict(self) -> Verdict:
-        """STABLE/UNSTABLE when the lower half-plane was searched completely, else UNDETERMINED."""
-        return judge(self)
-
-    @property
-    def degree_of_instability(self):
-        """Most negative Im q among the unstable roots (0 when stable)."""
-        return min((mpmath.im(r.q) for r in self.unstable_roots), default=mpmath.mpf(0))
-
-    @property
-    def growth_time(self):
-        """1/|Im q| of the fastest-growing root (dimensionless time for amplitude x e), or None."""
-        return 1 / abs(self.degree_of_instability) if self.unstable_roots else None
-
-    def _repr_html_(self) -> str:
-        """Jupyter: the verdict first, then the count and the roots (:mod:`moving_bogie.html_repr`)."""
-        from moving_bogie.html_repr import html_table
-
-        params = self.params.to_dict()
-        rows = [
-            ("model", f"{params.get('beam')} beam, {params.get('track')} track, {self.model}"),
-            ("roots counted / found", f"{self.count} / {self.found} (Re q >= 0, pairs q, -conj(q) once)"),
-            ("degree of instability", mpmath.nstr(self.degree_of_instability, 6)),
-            (
-                "window",
-                f"Re q {self.window.x0:g}..{self.window.x1:g}, Im q {self.window.y0:g}..{self.window.y1:g}",
-            ),
-        ]
-        roots = [(r.re_text, r.im_text, r.side, r.multiplicity, r.digits) for r in self.roots]
-        header = ("Re q", "Im q (< 0: grows)", "side of the cut", "multiplicity", "digits")
-        reasons = [note.text for note in self.verdict.reasons] + list(self.warnings)
-        return html_table(
-            "induced frequencies", self.verdict.state.upper(), rows, reasons=reasons, items=(header, roots)
-        )
-
-    def to_dict(self) -> dict:
-        return {
-            "params": self.params.to_dict(),
-            "model": self.model,
-            "dps": self.dps,
-            "window": {"re": [self.window.x0, self.window.x1], "im": [self.window.y0, self.window.y1]},
-            "roots": [r.to_dict() for r in self.roots],
-            "count": self.count,
-            "found": self.found,
-            "count_ok": self.count_ok,
-            "verdict": self.verdict.to_dict(),
-            "stable": self.stable if self.verdict.determined else None,
-            "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
-            "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
-            "evaluations": self.evaluations,
-            "unsearched": [
-                {"re": [u.x0, u.x1], "im": [u.y0, u.y1], "height": u.height} for u in self.unsearched
-            ],
-            "far_field": None if self.far_field is None else self.far_field.to_dict(),
-            "warnings": list(self.warnings),
-            "decaying_outside": self.decaying_outside,
-            "strip": None if self.strip is None else self.strip.to_dict(),
-        } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
 
 
 def induced_frequencies(
-    params,
+    bound: BoundModel,
     *,
     dps: int = 30,
     extra_dps: int | None = None,
@@ -212,15 +58,17 @@ def induced_frequencies(
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
     certify: bool = False,
-    foundation=None,
 ) -> FrequencyResult:
-    """Every induced frequency of ``params`` in ``window`` (default :func:`default_window`).
+    """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`).
+
+    Count (:func:`count_tiling`), locate (:func:`locate`), polish and confirm (:func:`polish_and_confirm`),
+    then compare the roots found with the count (module docstring).
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
-        The parameters and, through their model, the vehicle and the track
-        (:func:`~moving_bogie.kernels.bound.bind`; another vehicle: ``params.replace(vehicle=...)``).
+    bound : BoundModel
+        The parameters bound to their model: the vehicle and the track (another vehicle:
+        ``bound.replace(vehicle=...)``; the public :func:`moving_bogie.induced_frequencies` binds).
     dps : int
         Working precision (decimal digits) of the polished roots.
     extra_dps : int, optional
@@ -242,84 +90,195 @@ def induced_frequencies(
         Called with the fraction of work done (0..1).
     certify : bool
         Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
-    foundation : module or Foundation, optional
-        The track model (default that of the parameters' model, see
-        :func:`moving_bogie.kernels.track.resolve_foundation`).
     """
-    bound = bind(params)
-    params = bound.params
-    if extra_dps is None:
-        extra_dps = max(10, dps // 2)
-    if window is None:
-        window, far = far_field_window(bound)
-    else:
-        far = far_field_radius(bound, default_window(bound).x1)
-    fast = CharacteristicArray(bound, foundation=foundation)
-    precise = Characteristic(bound, foundation=foundation)
-    notes: list[Note] = []
+    extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
+    window, far = _window_and_far_field(bound, window)
+    fast, precise = CharacteristicArray(bound), Characteristic(bound)
+    report = _reporter(progress)
+    counted, beyond = _count(fast, bound, window, eps, eps_branch, newton_cell, check_window, report)
+    notes: list[Note] = [*counted.notes, *(beyond.notes(window, far) if beyond else ())]
+    report(0.2)
+    roots, cells, unlocated = _confirmed_roots(
+        fast, precise, counted, newton_cell, dps, extra_dps, notes, report
+    )
+    count = sum(counted.counts) - _mirrors_counted(cells)
+    _compare_with_count(count, roots, notes)
+    unsearched = counted.tiling.unsearched
+    result = FrequencyResult(
+        bound,
+        bound.params.vehicle,
+        dps,
+        window,
+        tuple(roots),
+        count,
+        unsearched,
+        fast.evaluations + precise.evaluations,
+        tuple(notes),
+        far,
+        strip=strip_below_cut(bound, window, [u for u in unsearched if not u.reason]),
+        unlocated=tuple(unlocated),
+        decaying_outside=beyond.decaying(window, far) if beyond else 0,
+    )
+    if certify:
+        from moving_bogie.roots.proof.certify import certify as prove
 
-    def report(x):
+        result = dataclasses.replace(result, certificate=prove(result))
+    report(1.0)
+    return result
+
+
+def _compare_with_count(count: int, roots: list[InducedFrequency], notes: list[Note]) -> None:
+    """The roots found must add up to the count (with multiplicity), or a note says they do not."""
+    found = sum(r.multiplicity for r in roots)
+    if found != count:
+        notes.append(count_mismatch(count, found))
+
+
+def _window_and_far_field(bound: BoundModel, window: Rectangle | None) -> tuple[Rectangle, FarField]:
+    """The window searched (default :func:`far_field_window`) and the far-field check of the bound model."""
+    if window is None:
+        return far_field_window(bound)
+    return window, far_field_radius(bound, default_window(bound).x1)
+
+
+def _confirmed_roots(
+    fast: CharacteristicArray,
+    precise: Characteristic,
+    counted: TilingCount,
+    newton_cell: float,
+    dps: int,
+    extra_dps: int,
+    notes: list[Note],
+    report: Callable[[float], None],
+) -> tuple[list[InducedFrequency], list[tuple[complex, int, Rectangle]], list[Unlocated]]:
+    """Locate the counted roots, polish and confirm them, keep one of each pair q, -conj(q) (largest Re q
+    first); the roots, the located cells and the roots not located (notes appended)."""
+    cells, unlocated = _locate_counted(fast, counted, newton_cell)
+    notes += [missing.note for missing in unlocated]
+    report(0.6)
+    roots = _polish_located(precise, cells, counted.cut, dps, extra_dps, notes, report)
+    roots, pair_notes = _fold_pairs(roots)
+    notes += pair_notes
+    roots.sort(key=lambda r: -float(mpmath.re(r.q)))
+    return roots, cells, unlocated
+
+
+def _reporter(progress: Callable[[float], None] | None) -> Callable[[float], None]:
+    """Report the fraction of work done to ``progress`` (capped at 1), or nowhere."""
+
+    def report(x: float) -> None:
         if progress is not None:
             progress(min(1.0, x))
 
+    return report
+
+
+def _count(
+    fast: CharacteristicArray,
+    bound: BoundModel,
+    window: Rectangle,
+    eps: float,
+    eps_branch: float,
+    newton_cell: float,
+    check_window: bool,
+    report: Callable[[float], None],
+) -> tuple[TilingCount, _Beyond | None]:
+    """Count the roots in the window tiled around the cut and, with ``check_window``, in the frame up to the
+    window twice as large (the argument principle, :func:`count_tiling`)."""
     big = Rectangle(window.x0, window.x0 + 2 * window.width, 2 * window.y0, 2 * window.y1)
     parts = frame(window, big) if check_window else ()
     # the cut is traced once, over the p-range of the window twice as large, for the window and the frame
-    cuts = cut_loci(params, [(r.x0, r.x1) for r in (window, *parts)], foundation=fast.kernel.foundation)
-    counted = count_tiling(fast, params, window, eps, eps_branch, cuts[0], newton_cell)
-    cut, tiling, counts = counted.cut, counted.tiling, counted.counts
-    notes += counted.notes
-    total = sum(counts)
+    cuts = cut_loci(bound, [(r.x0, r.x1) for r in (window, *parts)])
+    counted = count_tiling(fast, bound, window, eps, eps_branch, cuts[0], newton_cell)
     report(0.1)
-    decaying_outside = 0
-    if check_window:
-        more, lost, below = 0, 0, 0
-        for k, (part, part_cut) in enumerate(zip(parts, cuts[1:])):
-            part_count = count_tiling(fast, params, part, eps, eps_branch, part_cut)
-            more += sum(part_count.counts)
-            lost += len(part_count.notes)
-            below += sum(part_count.counts) if k == 0 else 0  # the strip Im q <= window.y0 < 0
-        if lost:
-            notes.append(
-                Note(
-                    Reason.WINDOW,
-                    f"{lost} cell(s) of the window twice as large could not be counted "
-                    f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})",
-                )
-            )
-        if more and not below and _holds_far_disc(window, far):
-            # The frame lies outside the half-disc |q| < R of the far-field check: its roots have Im q >= 0.
-            decaying_outside = more
+    if not check_window:
+        return counted, None
+    return counted, _count_twice_as_large(fast, bound, big, parts, cuts[1:], eps, eps_branch)
+
+
+@dataclass(frozen=True)
+class _Beyond:
+    """The roots counted in the frame between the window and the window twice as large (``big``)."""
+
+    big: Rectangle
+    more: int  # roots counted in the frame
+    lost: int  # cells of the frame that could not be counted
+    below: int  # roots in the strip Im q <= window.y0 < 0
+
+    def decaying(self, window: Rectangle, far: FarField | None) -> int:
+        """Roots of the frame known to have Im q >= 0: it lies outside the far-field half-disc."""
+        return self.more if self.more and not self.below and _holds_far_disc(window, far) else 0
+
+    def notes(self, window: Rectangle, far: FarField | None) -> list[Note]:
+        big, more = self.big, self.more
+        where = f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g})"
+        notes = []
+        if self.lost:
+            text = f"{self.lost} cell(s) of the window twice as large could not be counted {where}"
+            notes.append(Note(Reason.WINDOW, text))
+        if self.decaying(window, far):
+            assert far is not None
             notes.append(
                 Note(
                     Reason.BEYOND_WINDOW,
-                    f"{more} root(s) in the window twice as large (Re q <= {big.x1:g}, "
-                    f"{big.y0:g} <= Im q <= {big.y1:g}), all with Im q >= 0 (no root with Im q < 0 beyond "
-                    f"|q| = {far.radius:g}, the far-field check): they decay and do not change the verdict; "
-                    "a time series adds them from strips along the real axis when the cut runs along it, "
-                    "and refuses otherwise (pass a larger window to list them)",
+                    f"{more} root(s) in the window twice as large {where}, all with Im q >= 0 (no root "
+                    f"with Im q < 0 beyond |q| = {far.radius:g}, the far-field check): they decay and do "
+                    "not change the verdict; a time series adds them from strips along the real axis when "
+                    "the cut runs along it, and refuses otherwise (pass a larger window to list them)",
                 )
             )
         elif more:
-            notes.append(
-                Note(
-                    Reason.WINDOW,
-                    f"{more} more root(s) in the window twice as large "
-                    f"(Re q <= {big.x1:g}, {big.y0:g} <= Im q <= {big.y1:g}); pass a larger window",
-                )
-            )
-    report(0.2)
-    cells, unlocated = [], []
-    for rect, n in zip(tiling.regions, counts):
+            text = f"{more} more root(s) in the window twice as large {where}; pass a larger window"
+            notes.append(Note(Reason.WINDOW, text))
+        return notes
+
+
+def _count_twice_as_large(
+    fast: CharacteristicArray,
+    bound: BoundModel,
+    big: Rectangle,
+    parts: tuple[Rectangle, ...],
+    cuts: tuple[CutLocus, ...],
+    eps: float,
+    eps_branch: float,
+) -> _Beyond:
+    """Count the frame between the window and the window twice as large (a root outside is never lost)."""
+    more, lost, below = 0, 0, 0
+    for k, (part, part_cut) in enumerate(zip(parts, cuts)):
+        part_count = count_tiling(fast, bound, part, eps, eps_branch, part_cut)
+        more += sum(part_count.counts)
+        lost += len(part_count.notes)
+        below += sum(part_count.counts) if k == 0 else 0  # the strip Im q <= window.y0 < 0
+    return _Beyond(big, more, lost, below)
+
+
+def _locate_counted(
+    fast: CharacteristicArray, counted: TilingCount, newton_cell: float
+) -> tuple[list[tuple[complex, int, Rectangle]], list[Unlocated]]:
+    """Isolate the counted roots of each tile: cells (start, multiplicity, cell), the roots not located."""
+    cells: list[tuple[complex, int, Rectangle]] = []
+    unlocated: list[Unlocated] = []
+    for rect, n in zip(counted.tiling.regions, counted.counts):
         if isinstance(rect, ContinuedRegion):  # counted through the cut, its roots located already
             cells += rect.cells
         elif n:
             found_cells, missing = locate(fast, rect, n, newton_cell)
             cells += found_cells
             if missing is not None:
-                notes.append(missing.note)
                 unlocated.append(missing)
-    report(0.6)
+    return cells, unlocated
+
+
+def _polish_located(
+    precise: Characteristic,
+    cells: list[tuple[complex, int, Rectangle]],
+    cut: CutLocus,
+    dps: int,
+    extra_dps: int,
+    notes: list[Note],
+    report: Callable[[float], None],
+) -> list[InducedFrequency]:
+    """Polish each located root at ``dps`` digits and confirm its digits (notes appended for failures)."""
     roots = []
     for k, (q0, mult, rect) in enumerate(cells):
         try:
@@ -339,42 +298,10 @@ def induced_frequencies(
                     Note(Reason.POLISH, f"Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
                 )
                 continue
-            side = _side(conf.q, conf.decimals, cut, params)
+            side = _side(conf.q, conf.decimals, cut, precise.params)
             roots.append(InducedFrequency(conf.q, side, m, conf.step, conf.digits, conf.decimals))
         report(0.6 + 0.4 * (k + 1) / len(cells))
-    roots, pair_notes = _fold_pairs(roots)
-    notes += pair_notes
-    roots.sort(key=lambda r: -float(mpmath.re(r.q)))
-    count = total - _mirrors_counted(cells)
-    found = sum(r.multiplicity for r in roots)
-    if found != count:
-        notes.append(count_mismatch(count, found))
-    result = FrequencyResult(
-        params,
-        params.vehicle,
-        dps,
-        window,
-        tuple(roots),
-        count,
-        tiling.unsearched,
-        fast.evaluations + precise.evaluations,
-        tuple(notes),
-        far,
-        strip=strip_below_cut(
-            bound,
-            window,
-            [u for u in tiling.unsearched if not u.reason],
-            foundation=foundation,
-        ),
-        unlocated=tuple(unlocated),
-        decaying_outside=decaying_outside,
-    )
-    if certify:
-        from moving_bogie.roots.proof.certify import certify as prove
-
-        result = dataclasses.replace(result, certificate=prove(result))
-    report(1.0)
-    return result
+    return roots
 
 
 def _holds_far_disc(window: Rectangle, far: FarField | None) -> bool:
@@ -382,7 +309,7 @@ def _holds_far_disc(window: Rectangle, far: FarField | None) -> bool:
     return far is not None and far.radius is not None and window.x1 >= far.radius and window.y0 <= -far.radius
 
 
-def _side(q, decimals, cut: CutLocus, params) -> str:
+def _side(q: mpmath.mpc, decimals: int, cut: CutLocus, params: DimensionlessParams) -> str:
     """Position relative to the cut: "below" or "above" every cut curve over Re q, or "between" two of them
     (a layered track's curves, the lens of the Timoshenko-Rayleigh cut); a root on a curve within the
     confirmed digits counts as below it (a limit from below)."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.sweep.design import Axis, SweepSpec, parse_vary, sobol_axes, sweep_parameters
 from moving_bogie.sweep.engine import run_sweep
 from moving_bogie.sweep.store import open_sweep
@@ -45,7 +45,7 @@ def make_spec(
     """
     if not vary:
         raise ParameterError("vary", "give at least one parameter to vary")
-    params = bind(params).params
+    params = params.params if isinstance(params, BoundModel) else params
     si = physical is not None
     known = sweep_parameters(params, si=si)
     for name in vary:

@@ -22,6 +22,7 @@ from fractions import Fraction
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import polynomial_degree
 from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.model.params import DimensionlessParams
@@ -273,9 +274,10 @@ class SweepSpec:
         """
         if self.design == "sobol":
             return None
+        bound = BoundModel(self.params)
         for a in self.axes:
             try:
-                polynomial_degree(self.params, a.name, set(self.held) - {a.name})
+                polynomial_degree(bound, a.name, set(self.held) - {a.name})
             except (ParameterError, AttributeError):
                 continue
             return a.name

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.stability.maps.map import map_columns
 
 __all__ = ["BlockTask", "VARIABLES", "evaluate_block"]
@@ -97,7 +98,7 @@ def evaluate_block(task: BlockTask) -> dict:
         params = task.params.replace(**(task.fixed | changes)) if changes else task.params
         alphas = alphas if alphas is not None else [params.alpha]
         thetas = thetas if thetas is not None else [getattr(params, parameter)]
-        columns = map_columns(params, parameter, alphas, thetas, held=held)
+        columns = map_columns(BoundModel(params), parameter, alphas, thetas, held=held)  # this point bound
         for col, row in zip(columns, index_grid):
             for j, index in enumerate(row):
                 settled[index] = bool(col.settled[j])
@@ -177,7 +178,7 @@ def _check(task, shape, n, degree, certain, settled, roots, margins) -> np.ndarr
         index = candidates[int(k)]
         try:
             point = task.params.replace(**(task.fixed | _point(task, index)))
-            res = induced_frequencies(point, dps=15)
+            res = induced_frequencies(BoundModel(point), dps=15)
         except MovingBogieError:
             continue
         if not (res.count_ok and res.verdict.determined):

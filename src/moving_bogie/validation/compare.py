@@ -25,8 +25,8 @@ from typing import Any
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.bound import bind
-from moving_bogie.validation.finite_beam import simulate_finite_beam
+from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.validation.finite_beam import FiniteBeamResult, simulate_finite_beam
 from moving_bogie.validation.plots import plot_validation
 from moving_bogie.validation.vehicle import vehicle_kernels
 from moving_bogie.validation.verdict import (
@@ -80,7 +80,7 @@ def _check(params: Any, n_modes: int, tol: float, tau_step: float) -> None:
 
 
 def validate(
-    params: Any,
+    bound: BoundModel,
     *,
     n_modes: int = 500,
     tau_max: float | None = None,
@@ -95,13 +95,13 @@ def validate(
 
     Parameters
     ----------
-    params : DimensionlessParams, BoundModel or PhysicalParams
+    bound : BoundModel
         Any beam on any track (the finite rail of :class:`~moving_bogie.validation.modal.ModalBeam`
         reads the model's generated per-mode blocks) under any generated vehicle (that of the
-        parameters' model; another: ``params.replace(vehicle=...)``): the finite beam couples its
-        generated matrices at its contacts and every degree of freedom is compared with the closed
-        form's response of the same name. Physical parameters are converted; the comparison is always
-        in dimensionless tau and w / w_st.
+        model; another: ``bound.replace(vehicle=...)``): the finite beam couples its generated
+        matrices at its contacts and every degree of freedom is compared with the closed form's
+        response of the same name. The comparison is in dimensionless tau and w / w_st (the public
+        :func:`moving_bogie.validate` binds, from SI parameters too).
     n_modes : int, optional
         Modes of the finite beam (default 500, as in the paper); at least 4.
     tau_max : float, optional
@@ -132,58 +132,95 @@ def validate(
         For an unknown model or beam, too few modes, a bad `tau_max` or `tol`, or when the closed
         form fails (e.g. incomplete induced frequencies).
     """
-    from moving_bogie.model.physical import PhysicalParams
-    from moving_bogie.response.closed_form import closed_form_response
+    _check(bound.params, n_modes, tol, tau_step)
+    tau = _tau_grid(bound.params, tau_max, tau_step)
+    run = _Runs(bound, tau, int(n_modes), static_correction, estimate, progress)
+    finite, reference, closed = run.finite, run.reference, run.closed
+    tau_w = comparison_window(bound.params, finite, reflection_level=reflection_level)
+    inside = tau <= tau_w * (1 + 1e-12)
+    notes = _closed_form_notes(closed, finite, static_correction)
+    quantities, labels = _compare_responses(bound, finite, reference, closed, tau, inside, tol, notes)
+    if progress is not None:
+        progress(1.0)
+    return ValidationResult(
+        model=bound.params.vehicle,
+        params=bound.params,
+        tau=tau,
+        finite=finite,
+        reference=reference,
+        closed=closed,
+        window=(0.0, tau_w),
+        quantities=quantities,
+        finite_beam_s=run.finite_s,
+        reference_s=run.reference_s,
+        closed_form_s=run.closed_s,
+        tolerance=tol,
+        reflection_level=reflection_level,
+        notes=tuple(notes),
+        labels=labels,
+    )
 
-    if isinstance(params, PhysicalParams):
-        params = params.to_dimensionless()  # the comparison runs in dimensionless tau
-    bound = bind(params)
-    params = bound.params
-    _check(params, n_modes, tol, tau_step)
-    n_modes = int(n_modes)
+
+def _tau_grid(params: Any, tau_max: float | None, tau_step: float) -> np.ndarray:
+    """The common output grid 0, ..., tau_max (default :func:`default_tau_max`), spaced about ``tau_step``."""
     tau_max = default_tau_max(params) if tau_max is None else float(tau_max)
     if not (math.isfinite(tau_max) and tau_max > 0):
         raise MovingBogieError(f"tau_max must be a positive finite number (got {tau_max!r})")
     n_out = max(2, math.ceil(tau_max / tau_step - 1e-9)) + 1
-    tau = np.linspace(0.0, tau_max, n_out)
-    share = (0.55, 0.25) if estimate else (0.8, 0.0)
+    return np.linspace(0.0, tau_max, n_out)
 
-    start = time.perf_counter()
-    finite = simulate_finite_beam(
-        bound,
-        tau_max,
-        n_modes=n_modes,
-        tau_out=tau,
-        static_correction=static_correction,
-        progress=_staged(progress, 0.0, share[0]),
-    )
-    finite_s = time.perf_counter() - start
 
-    start = time.perf_counter()
-    reference = None
-    if estimate:
-        reference = simulate_finite_beam(
+class _Runs:
+    """The two models on the common tau grid, each timed: the finite beam, with ``estimate`` again at twice
+    its time step (the estimate of its own error), and the closed form."""
+
+    def __init__(
+        self,
+        bound: BoundModel,
+        tau: np.ndarray,
+        n_modes: int,
+        static_correction: bool,
+        estimate: bool,
+        progress: Callable[[float], None] | None,
+    ) -> None:
+        tau_max = float(tau[-1])
+        share = (0.55, 0.25) if estimate else (0.8, 0.0)
+        start = time.perf_counter()
+        self.finite = simulate_finite_beam(
             bound,
             tau_max,
             n_modes=n_modes,
-            length=finite.length,
-            entry=finite.entry,
-            dt=2.0 * finite.dt,
             tau_out=tau,
             static_correction=static_correction,
-            progress=_staged(progress, share[0], share[1]),
+            progress=_staged(progress, 0.0, share[0]),
         )
-    reference_s = time.perf_counter() - start
+        self.finite_s = time.perf_counter() - start
+        start = time.perf_counter()
+        self.reference: FiniteBeamResult | None = None
+        if estimate:
+            self.reference = simulate_finite_beam(
+                bound,
+                tau_max,
+                n_modes=n_modes,
+                length=self.finite.length,
+                entry=self.finite.entry,
+                dt=2.0 * self.finite.dt,
+                tau_out=tau,
+                static_correction=static_correction,
+                progress=_staged(progress, share[0], share[1]),
+            )
+        self.reference_s = time.perf_counter() - start
+        from moving_bogie.response.closed_form import closed_form_response
 
-    start = time.perf_counter()
-    closed = closed_form_response(bound, tau, progress=_staged(progress, 0.8, 0.2))
-    closed_s = time.perf_counter() - start
+        start = time.perf_counter()
+        self.closed = closed_form_response(bound, tau, progress=_staged(progress, 0.8, 0.2))
+        self.closed_s = time.perf_counter() - start
 
-    tau_w = comparison_window(params, finite, reflection_level=reflection_level)
-    inside = tau <= tau_w * (1 + 1e-12)
-    # every response of the vehicle, under its name in the generated DOFS
-    names = {dof: dof for dof in finite.responses}
-    quantities, notes = {}, [f"closed form: {note}" for note in getattr(closed, "notes", ())]
+
+def _closed_form_notes(closed: Any, finite: FiniteBeamResult, static_correction: bool) -> list[str]:
+    """What the reader must know about the two sides: the closed form's notes, a left-out branch cut, a
+    static correction that cannot be trusted."""
+    notes = [f"closed form: {note}" for note in getattr(closed, "notes", ())]
     if any("branch cut skipped" in note for note in getattr(closed, "notes", ())):
         notes.append(
             "the closed form is residues only (its branch-cut part was left out), so it is not the complete "
@@ -194,6 +231,23 @@ def validate(
             f"k_max = {finite.k_max:.2f} < {MIN_CORRECTED_WAVENUMBER:g}: the truncated modes are not much "
             "faster than the forcing, so the static correction is unreliable; use more modes"
         )
+    return notes
+
+
+def _compare_responses(
+    bound: BoundModel,
+    finite: FiniteBeamResult,
+    reference: FiniteBeamResult | None,
+    closed: Any,
+    tau: np.ndarray,
+    inside: np.ndarray,
+    tol: float,
+    notes: list[str],
+) -> tuple[dict[str, QuantityComparison], dict[str, str]]:
+    """Every response of the vehicle, under its name in the generated DOFS, compared over the window
+    (each relative to the largest value of its kind: deflections, rotations); notes appended."""
+    names = {dof: dof for dof in finite.responses}
+    quantities = {}
     kernels = bound.vehicle
     units = getattr(kernels, "UNITS", {})
     labels = quantity_labels(tuple(names), units, finite.contacts)
@@ -215,22 +269,4 @@ def validate(
             None if reference is None else series(reference, attr, tau.size)[inside],
             kinds.get(units.get(attr, attr), 0.0),
         )
-    if progress is not None:
-        progress(1.0)
-    return ValidationResult(
-        model=params.vehicle,
-        params=params,
-        tau=tau,
-        finite=finite,
-        reference=reference,
-        closed=closed,
-        window=(0.0, tau_w),
-        quantities=quantities,
-        finite_beam_s=finite_s,
-        reference_s=reference_s,
-        closed_form_s=closed_s,
-        tolerance=tol,
-        reflection_level=reflection_level,
-        notes=tuple(notes),
-        labels=labels,
-    )
+    return quantities, labels

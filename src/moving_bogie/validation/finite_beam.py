@@ -29,7 +29,7 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.model.catalogue import DEFAULT_MODEL
 from moving_bogie.validation.corrected import CorrectedModalSystem
-from moving_bogie.validation.geometry import choose_geometry, default_time_step
+from moving_bogie.validation.geometry import BeamGeometry, choose_geometry, default_time_step
 from moving_bogie.validation.modal import ModalBeam, ModalSystem
 from moving_bogie.validation.newmark import initial_state, newmark_step
 from moving_bogie.validation.track_modes import ModalTrack
@@ -202,9 +202,25 @@ def simulate_finite_beam(
         Timoshenko-Rayleigh beam with ``r = 0``), a beam too short for the run, or (static
         correction) a run at or above the undamped critical velocity.
     """
-    params = params.params if isinstance(params, BoundModel) else params
-    track, vehicle = _check(params, tau_max, loads_only, n_modes, dt)
-    model = LOADS_ONLY if loads_only else getattr(params, "vehicle", None) or DEFAULT_MODEL["vehicle"]
+    values = params.params if isinstance(params, BoundModel) else params
+    track, vehicle = _check(values, tau_max, loads_only, n_modes, dt)
+    geometry = _beam_geometry(track, vehicle, tau_max, n_modes, length, entry)
+    h_max = default_time_step(geometry.k_max, track) if dt is None else float(dt)
+    n_steps = max(1, math.ceil(tau_max / h_max - 1e-9))
+    label = LOADS_ONLY if loads_only else getattr(values, "vehicle", None) or DEFAULT_MODEL["vehicle"]
+    run = _Run(track, vehicle, geometry, n_modes, tau_max, n_steps, static_correction)
+    return run.result(tau_out, label, progress)
+
+
+def _beam_geometry(
+    track: ModalTrack,
+    vehicle: Vehicle,
+    tau_max: float,
+    n_modes: int,
+    length: float | None,
+    entry: float | None,
+) -> BeamGeometry:
+    """The beam's length and the rear wheel's entry (:func:`choose_geometry`), checked to hold the run."""
     alpha, d = vehicle.alpha, vehicle.length
     geometry = choose_geometry(track=track, d=d, tau_max=tau_max, n_modes=n_modes, length=length, entry=entry)
     if geometry.entry < 0 or geometry.entry + d + alpha * tau_max > geometry.length:
@@ -212,44 +228,61 @@ def simulate_finite_beam(
             f"the wheels leave the beam before tau_max={tau_max}: entry={geometry.entry}, d={d}, "
             f"alpha={alpha}, length={geometry.length}"
         )
-    h_max = default_time_step(geometry.k_max, track) if dt is None else float(dt)
-    n_steps = max(1, math.ceil(tau_max / h_max - 1e-9))
-    h = tau_max / n_steps
+    return geometry
 
-    tau_steps = np.arange(n_steps + 1) * h
-    out = tau_steps if tau_out is None else np.asarray(tau_out, dtype=float)
-    if tau_out is not None and (out.size == 0 or out.min() < 0 or out.max() > tau_max * (1 + 1e-12)):
-        raise MovingBogieError(f"tau_out must be non-empty and lie in [0, tau_max={tau_max}]")
 
-    system_class = CorrectedModalSystem if static_correction else ModalSystem
-    system = system_class(
-        ModalBeam(geometry.length, n_modes, track),
-        dataclasses.replace(vehicle, entry=geometry.entry),
-    )
-    series, elapsed_s = _integrate(system, h, n_steps, progress)
+@dataclass(frozen=True)
+class _Run:
+    """One run of Eq. (49): the modal beam under the vehicle, ``n_steps`` Newmark steps up to ``tau_max``."""
 
-    def resample(values: np.ndarray, rates: np.ndarray) -> np.ndarray:
-        if tau_out is None:
-            return values
-        return CubicHermiteSpline(tau_steps, values, rates)(out)
+    track: ModalTrack
+    vehicle: Vehicle
+    geometry: BeamGeometry
+    n_modes: int
+    tau_max: float
+    n_steps: int
+    static_correction: bool
 
-    size = vehicle.size
-    responses = {name: resample(series[i], series[size + i]) for i, name in enumerate(vehicle.dofs)}
-    return FiniteBeamResult(
-        tau=out,
-        responses=responses,
-        length=geometry.length,
-        entry=geometry.entry,
-        n_modes=n_modes,
-        dt=h,
-        tau_valid=geometry.tau_valid,
-        elapsed_s=elapsed_s,
-        model=model,
-        k_max=geometry.k_max,
-        static_correction=static_correction,
-        span=vehicle.length,
-        contacts=vehicle.contacts,
-    )
+    def result(
+        self, tau_out: np.ndarray | None, label: str, progress: Callable[[float], None] | None
+    ) -> FiniteBeamResult:
+        """Step the run and return the vehicle's responses at ``tau_out`` (every step when None); ``label``
+        names the vehicle in the result (``model``), for output only."""
+        geometry, vehicle, tau_max = self.geometry, self.vehicle, self.tau_max
+        h = tau_max / self.n_steps
+        tau_steps = np.arange(self.n_steps + 1) * h
+        out = tau_steps if tau_out is None else np.asarray(tau_out, dtype=float)
+        if tau_out is not None and (out.size == 0 or out.min() < 0 or out.max() > tau_max * (1 + 1e-12)):
+            raise MovingBogieError(f"tau_out must be non-empty and lie in [0, tau_max={tau_max}]")
+        system_class = CorrectedModalSystem if self.static_correction else ModalSystem
+        system = system_class(
+            ModalBeam(geometry.length, self.n_modes, self.track),
+            dataclasses.replace(vehicle, entry=geometry.entry),
+        )
+        series, elapsed_s = _integrate(system, h, self.n_steps, progress)
+
+        def resample(values: np.ndarray, rates: np.ndarray) -> np.ndarray:
+            if tau_out is None:
+                return values
+            return CubicHermiteSpline(tau_steps, values, rates)(out)
+
+        size = vehicle.size
+        responses = {name: resample(series[i], series[size + i]) for i, name in enumerate(vehicle.dofs)}
+        return FiniteBeamResult(
+            tau=out,
+            responses=responses,
+            length=geometry.length,
+            entry=geometry.entry,
+            n_modes=self.n_modes,
+            dt=h,
+            tau_valid=geometry.tau_valid,
+            elapsed_s=elapsed_s,
+            model=label,
+            k_max=geometry.k_max,
+            static_correction=self.static_correction,
+            span=vehicle.length,
+            contacts=vehicle.contacts,
+        )
 
 
 def _integrate(

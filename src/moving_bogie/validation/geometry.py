@@ -44,6 +44,7 @@ the beam until ``tau_max``), and ``tau_valid`` then reports how long the result 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from moving_bogie.validation.track_modes import ModalTrack
@@ -166,25 +167,14 @@ def choose_geometry(
 
     hard = (margin if entry is None else entry) + d + alpha * tau_max + margin
     if length is None:
-        # required(L) decreases with L (coarser modes, slower waves): bisect required(L) = L.
-        lo, hi = hard, hard
-        while required(hi) > hi:
-            hi *= 2.0
-        for _ in range(200):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if required(mid) > mid else (lo, mid)
-        length = max(hard, min(hi, n_modes * math.pi / min_wavenumber))
-        reflection_ok = length >= hi
+        length, reflection_ok = _reflection_free_length(required, hard, n_modes * math.pi / min_wavenumber)
     else:
         reflection_ok = False
     c_max = c_of(length)
     if entry is None:
-        if reflection_ok:
-            entry = clearance(length)
-        else:
-            # Equalize 2 x0 / (c - alpha) and 2 (L - x0 - d) / (c + alpha), then clamp.
-            entry = (length - d) * (c_max - alpha) / (2.0 * c_max) if c_max > alpha else margin
-            entry = min(max(entry, margin), length - d - alpha * tau_max - margin)
+        entry = (
+            clearance(length) if reflection_ok else _balanced_entry(length, d, alpha, tau_max, c_max, margin)
+        )
     return BeamGeometry(
         length=float(length),
         entry=float(entry),
@@ -193,6 +183,33 @@ def choose_geometry(
         margin=margin,
         tau_valid=reflection_window(length, entry, d, alpha, c_max, margin),
     )
+
+
+def _reflection_free_length(
+    required: Callable[[float], float], hard: float, longest: float
+) -> tuple[float, bool]:
+    """(L, reflection-free): the shortest L with ``required(L) <= L``, at least ``hard``, at most ``longest``.
+
+    required(L) decreases with L (coarser modes, slower waves): bisect required(L) = L. When ``longest``
+    (the smallest acceptable k_max) cuts it short, the run is not reflection-free.
+    """
+    lo, hi = hard, hard
+    while required(hi) > hi:
+        hi *= 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if required(mid) > mid else (lo, mid)
+    length = max(hard, min(hi, longest))
+    return length, length >= hi
+
+
+def _balanced_entry(
+    length: float, d: float, alpha: float, tau_max: float, c_max: float, margin: float
+) -> float:
+    """x0 that equalises the two reflection times 2 x0 / (c - alpha) and 2 (L - x0 - d) / (c + alpha),
+    clamped to the near-field margins."""
+    entry = (length - d) * (c_max - alpha) / (2.0 * c_max) if c_max > alpha else margin
+    return min(max(entry, margin), length - d - alpha * tau_max - margin)
 
 
 #: Wavenumber band that carries the response: the static deflection spectrum ``8 / (p^4 + 4)``

@@ -31,7 +31,6 @@ from typing import Any
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.model.catalogue import get_model
 
 __all__ = ["ModalTrack"]
@@ -75,7 +74,7 @@ class ModalTrack:
         if model is None or isinstance(model, str):
             model = get_model(beam=getattr(params, "beam", None), track=getattr(params, "track", None))
         module = model.foundation
-        names = set(module.MODAL_ARGUMENTS[1:]) | set(foundation_arguments(params, params, module))
+        names = set(module.MODAL_ARGUMENTS[1:]) | set(module.ARGUMENTS[1:])
         return cls(module, {name: _number(getattr(params, name, None)) for name in sorted(names)})
 
     @property

@@ -28,7 +28,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import CharacteristicArray
 
 #: rho must stay below this on every sample (1 would be enough for no root; 1/2 leaves a margin of 2).
@@ -53,12 +53,12 @@ class FarField:
         return {"radius": self.radius, "rho": rho, "margin": MARGIN, "reason": self.reason or None}
 
 
-def kernel_decay(params) -> Fraction | None:
-    """gamma of K = O(|q|^-gamma) for the parameters' track (``KERNEL_DECAY`` of its generated module).
+def kernel_decay(bound: BoundModel) -> Fraction | None:
+    """gamma of K = O(|q|^-gamma) for the bound model's track (``KERNEL_DECAY`` of its generated module).
 
     The module is that of the parameters' own catalogue (``BoundModel.kernel_decay``).
     """
-    return bind(params).kernel_decay
+    return bound.kernel_decay
 
 
 def leading_gap(gamma: Fraction) -> Fraction:
@@ -103,9 +103,9 @@ def sample_points(
     return np.concatenate(circles + [r + below, -r + below, inner])
 
 
-def rho(params, q) -> np.ndarray:
+def rho(bound: BoundModel, q: np.ndarray) -> np.ndarray:
     """|E_chr - E_lead| / |E_lead| at the points ``q`` (double precision)."""
-    E = CharacteristicArray(params)
+    E = CharacteristicArray(bound)
     q = np.asarray(q, dtype=complex)
     kv = E.kernel_values(q)
     with np.errstate(all="ignore"):
@@ -115,19 +115,18 @@ def rho(params, q) -> np.ndarray:
     return np.where(np.isfinite(out), out, np.inf)
 
 
-def far_field_radius(params, start: float) -> FarField:
+def far_field_radius(bound: BoundModel, start: float) -> FarField:
     """Smallest R = start 2^k (k <= MAX_DOUBLINGS) with rho <= MARGIN on every sample beyond R.
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
     start : float
         First radius tried (the default window's scale).
     """
-    params = bind(params)
     radius = float(start)
     worst = np.inf
-    gamma = kernel_decay(params)
+    gamma = kernel_decay(bound)
     if gamma is None or gamma >= 2:
         reason = (
             "no far-field expansion: the decay of K(xi, q) is not generated for this track "
@@ -139,7 +138,7 @@ def far_field_radius(params, start: float) -> FarField:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         for _ in range(MAX_DOUBLINGS + 1):
-            values = rho(params, sample_points(radius))
+            values = rho(bound, sample_points(radius))
             worst = float(np.max(values))
             if worst <= MARGIN:
                 return FarField(radius, worst, float(start))

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
@@ -93,7 +93,7 @@ class StripCount:
         }
 
 
-def strip_below_cut(params, window, unsearched, *, foundation=None) -> StripCount | None:
+def strip_below_cut(bound: BoundModel, window: Rectangle, unsearched: list) -> StripCount | None:
     """Count the roots with Im q < 0 in the unsearched sliver(s) that reach below the real axis.
 
     Returns None when no sliver reaches below the axis, or when the cut there is neither on the real axis
@@ -102,14 +102,13 @@ def strip_below_cut(params, window, unsearched, *, foundation=None) -> StripCoun
     low = [u for u in unsearched if u.y0 < 0]
     if not low:
         return None
-    params = bind(params)
-    cut = cut_locus(params, window.x0, window.x1, foundation=foundation)
+    cut = cut_locus(bound, window.x0, window.x1)
     if not cut.points.size:
         return None
     if abs(cut.im_low) <= ON_AXIS and abs(cut.im_high) <= ON_AXIS:
         mode = "from below"
-        sweep = SweepCharacteristic(params, below=True, foundation=foundation)
-        alpha = float(params.params.alpha)
+        sweep = SweepCharacteristic(bound, below=True)
+        alpha = float(bound.params.alpha)
 
         def f(z):
             z = np.asarray(z, dtype=complex)
@@ -122,7 +121,7 @@ def strip_below_cut(params, window, unsearched, *, foundation=None) -> StripCoun
             return StripCount(None, (), mode, reason=reason)
     elif cut.im_low > 0:
         mode = "below the cut"
-        f = CharacteristicArray(params, foundation=foundation)
+        f = CharacteristicArray(bound)
         points = []
     else:
         return None

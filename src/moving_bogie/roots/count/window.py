@@ -8,14 +8,14 @@ unstable root.
 
 from __future__ import annotations
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
 
 __all__ = ["default_window", "far_field_window"]
 
 
-def default_window(params) -> Rectangle:
+def default_window(bound: BoundModel) -> Rectangle:
     """Default search window: 0 <= Re q <= X, -X <= Im q <= X + eta_f.
 
     X = max(3, 3 f) where f is the largest natural-frequency estimate of the model: the beam on its
@@ -28,14 +28,13 @@ def default_window(params) -> Rectangle:
     The left edge sits slightly left of Re q = 0 so that a purely imaginary root is inside, not on it.
     :func:`induced_frequencies` widens it to the far-field radius R (:func:`far_field_window`).
     """
-    bound = bind(params)
     f = bound.floats
     scale = [1.0, *bound.float_system.natural_frequencies()]
     X = max(3.0, 3.0 * max(scale))
     return Rectangle(-1e-3 * X, X, -X, X + f.eta_f)
 
 
-def far_field_window(params) -> tuple[Rectangle, FarField]:
+def far_field_window(bound: BoundModel) -> tuple[Rectangle, FarField]:
     """The window searched by default and the far-field check that justifies it.
 
     With S = max(X, R), X the scale of :func:`default_window` and R the radius beyond which E_chr has no root
@@ -43,10 +42,9 @@ def far_field_window(params) -> tuple[Rectangle, FarField]:
     -S <= Im q <= S + eta_f. The lower half contains every root with Im q < 0; the upper half (roots that
     decay) is a stated choice, checked against a window twice as large.
     """
-    params = bind(params)
-    base = default_window(params)
-    far = far_field_radius(params, base.x1)
+    base = default_window(bound)
+    far = far_field_radius(bound, base.x1)
     if far.radius is None:
         return base, far
     S = max(base.x1, far.radius)
-    return Rectangle(-1e-3 * S, S, -S, S + float(params.params.eta_f)), far
+    return Rectangle(-1e-3 * S, S, -S, S + float(bound.params.eta_f)), far

@@ -32,7 +32,7 @@ from fractions import Fraction
 
 from flint import acb, acb_series, arb, ctx, fmpq
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.roots.proof.ball_block import BlockBalls
 from moving_bogie.roots.proof.p_balls import (
@@ -107,7 +107,8 @@ class BallCharacteristic:
 
     Parameters
     ----------
-    params : DimensionlessParams
+    bound : BoundModel
+        The parameters (exact) bound to their model.
     prec : int
         Working precision in bits; every call runs at it (the p-roots are approximated to it too).
     below : bool
@@ -120,8 +121,7 @@ class BallCharacteristic:
         it too: the continuation, not the values from above), away from the branch points.
     """
 
-    def __init__(self, params, *, prec: int = 128, below: bool = False, p_roots: str = "auto"):
-        bound = bind(params)
+    def __init__(self, bound: BoundModel, *, prec: int = 128, below: bool = False, p_roots: str = "auto"):
         params = bound.params
         self.below = below
         self.params = params
@@ -133,7 +133,7 @@ class BallCharacteristic:
         self.evaluations = 0
         with ctx.workprec(prec):
             numbers = _ExactBalls(params)
-            self.foundation_args = foundation_arguments(params, numbers)
+            self.foundation_args = foundation_arguments(bound, numbers)
             if p_roots not in ("auto", "direct", "discs"):
                 raise ValueError(f"p_roots must be 'auto', 'direct' or 'discs' (got {p_roots!r})")
             if p_roots == "auto":

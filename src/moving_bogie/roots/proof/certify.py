@@ -25,12 +25,13 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import mpmath
 from flint import acb, arb, ctx
 
-from moving_bogie.kernels.bound import bind
-from moving_bogie.kernels.cut import cut_locus
+from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.strip import (
     NOTCH,
@@ -43,6 +44,9 @@ from moving_bogie.roots.proof.balls import BallCharacteristic, Undecided, square
 from moving_bogie.roots.proof.proof_tiling import proof_tiling
 from moving_bogie.roots.proof.winding import NotProven, proven_count
 from moving_bogie.roots.refine.polish import fixed_text
+
+if TYPE_CHECKING:
+    from moving_bogie.roots.frequencies import FrequencyResult
 
 #: Tilings tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
 TILINGS = ((1.0, 0.1), (1.7, 0.113), (0.6, 0.087))
@@ -204,12 +208,19 @@ def refine(bc: BallCharacteristic, q, steps: int = 3):
             return mpmath.mpc(_mpf(c.real), _mpf(c.imag))
 
 
-def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 200, count_prec: int = 96):
+def certify(
+    result: FrequencyResult,
+    *,
+    radius: float = 1e-26,
+    margin: float = 1e-3,
+    prec: int = 200,
+    count_prec: int = 96,
+) -> Certificate:
     """The :class:`Certificate` of a FrequencyResult (roots, proven count, verdict)."""
     start = time.perf_counter()
-    params, window = bind(result.params), result.window
+    bound, window = result.bound, result.window
     problems = []
-    precise = BallCharacteristic(params, prec=prec)
+    precise = BallCharacteristic(bound, prec=prec)
     centres = [refine(precise, r.q) for r in result.roots]
     roots = tuple(krawczyk(precise, q, radius) for q in centres)
     mirrors = []
@@ -221,8 +232,8 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
     for e in roots + mirrors:
         if not e.certified:
             problems.append(f"root {mpmath.nstr(e.q, 12)}: not proven ({e.reason})")
-    counter = BallCharacteristic(params, prec=count_prec)
-    cut = cut_locus(params, window.x0, window.x1)
+    counter = BallCharacteristic(bound, prec=count_prec)
+    cut = cut_locus(bound, window.x0, window.x1)
     pinches = pinches_around_roots(margin, cut, result.roots)
     tiles, unsearched, used_margin = (), (), margin
     for factor, fraction in TILINGS:
@@ -242,7 +253,7 @@ def certify(result, *, radius: float = 1e-26, margin: float = 1e-3, prec: int = 
         problems.append(
             f"count: proven {count} root(s) in the tiles, the numerical search counts {result.count}"
         )
-    below = _strip_from_below(params, cut, unsearched, count_prec) if tiles else None
+    below = _strip_from_below(bound, cut, unsearched, count_prec) if tiles else None
     verdict, reason = _verdict(roots + mirrors, all_proven, unsearched, problems, below)
     return Certificate(
         roots, mirrors, tiles, tuple(unsearched), count, all_proven, verdict, reason,
@@ -273,7 +284,7 @@ class StripProof:
         }
 
 
-def _strip_from_below(params, cut, unsearched, prec) -> StripProof | None:
+def _strip_from_below(bound: BoundModel, cut: CutLocus, unsearched: tuple, prec: int) -> StripProof | None:
     """Prove the root count in the unsearched strip below a cut that lies on the real axis (None when the
     strip does not reach below the axis or the cut is not on it)."""
     low = [u for u in unsearched if u.y0 < 0]
@@ -284,7 +295,7 @@ def _strip_from_below(params, cut, unsearched, prec) -> StripProof | None:
     for u in low:
         rects += pieces_below_axis(Rectangle(u.x0, u.x1, u.y0, 0.0), [x for x in points if u.x0 < x < u.x1])
     notches = tuple(x for x in points if any(r.x0 <= x + NOTCH and x - NOTCH <= r.x1 for r in rects))
-    bc = BallCharacteristic(params, prec=prec, below=True)
+    bc = BallCharacteristic(bound, prec=prec, below=True)
     try:
         count = sum(proven_count(bc, r, min_length=1e-14).count for r in rects)
     except NotProven as exc:

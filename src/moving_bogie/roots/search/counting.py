@@ -16,6 +16,8 @@ import dataclasses
 from dataclasses import dataclass
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.count.contour import (
     EdgeZeroError,
@@ -77,8 +79,8 @@ _GAP_SCALE = 10.0
 
 
 def count_tiling(
-    fast,
-    params,
+    fast: CharacteristicArray,
+    bound: BoundModel,
     window: Rectangle,
     eps: float,
     eps_branch: float,
@@ -108,7 +110,7 @@ def count_tiling(
     Returns the :class:`TilingCount`.
     """
     if cut is None:
-        cut = cut_locus(params, window.x0, window.x1, foundation=fast.kernel.foundation)
+        cut = cut_locus(bound, window.x0, window.x1)
     best = None
     for factor, fraction in _RETRIES:
         gap_height = fraction * min(max(window.width, window.height), _GAP_SCALE)

@@ -14,6 +14,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.stability.lines.instability_lines import InstabilityLines, instability_lines
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
@@ -43,7 +44,7 @@ class TrackComparison:
 
 
 def compare_tracks(
-    params,
+    bound: BoundModel,
     track: str,
     groups: Mapping[str, Any],
     *,
@@ -53,11 +54,11 @@ def compare_tracks(
     quick: bool = False,
     progress: Callable[[float], None] | None = None,
 ) -> TrackComparison:
-    """Instability lines (in the plane alpha, eta_M) of the vehicle of `params` on its track and on `track`.
+    """Instability lines (in the plane alpha, eta_M) of the vehicle of `bound` on its track and on `track`.
 
     Parameters
     ----------
-    params : DimensionlessParams
+    bound : BoundModel
         The vehicle and the base track (usually the paper's one-layer track).
     track : str
         The other track (``moving-bogie models`` lists them), e.g. ``"two-layer"``.
@@ -69,14 +70,14 @@ def compare_tracks(
     quick : bool
         Coarser continuation steps (for previews and tests).
     """
-    other = params.replace(track=track, **dict(groups))
+    other = bound.replace(track=track, **dict(groups))
     steps = (
         dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
         if quick
         else dict(alpha_step=0.01, q_step=0.004, h_max=0.01)
     )
     out, crit = [], []
-    for k, p in enumerate((params, other)):
+    for k, p in enumerate((bound, other)):
         part = None if progress is None else (lambda x, k=k: progress((k + x) / 2))
         out.append(
             instability_lines(

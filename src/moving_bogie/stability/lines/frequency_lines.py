@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.roots.frequencies import induced_frequencies
 
@@ -79,7 +79,7 @@ class FrequencyLines:
 
 
 def frequency_lines(
-    params,
+    bound: BoundModel,
     *,
     alpha_range: tuple[float, float] = (0.0, 1.2),
     checkpoints: int = 13,
@@ -88,11 +88,11 @@ def frequency_lines(
     match_tol: float = 1e-6,
     progress: Callable[[float], None] | None = None,
 ) -> FrequencyLines:
-    """Induced frequencies of ``params`` as functions of alpha (Figure 2 for Case 1).
+    """Induced frequencies of the bound model as functions of alpha (Figure 2 for Case 1).
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
         Everything except alpha (the vehicle: that of their model).
     alpha_range : (float, float)
     checkpoints : int
@@ -107,60 +107,21 @@ def frequency_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
-    bound = bind(params)
     params = bound.params
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
-    sweep = SweepCharacteristic(bound)
-    tracker = _Tracker(sweep, h_max)
+    tracker = _Tracker(SweepCharacteristic(bound), h_max)
     alphas = np.round(np.linspace(a0, a1, max(2, checkpoints)), 12)
-    found = []
-    warnings = []
-    for k, a in enumerate(alphas):
-        res = induced_frequencies(params.replace(alpha=Fraction(str(float(a)))), dps=dps)
-        if not res.count_ok:
-            warnings.append(f"alpha={a:g}: induced_frequencies count check failed: {'; '.join(res.warnings)}")
-        found.append([complex(r.q) for r in res.roots])
-        if progress is not None:
-            progress(0.7 * (k + 1) / len(alphas))
-    finished, active = [], []  # lines as dicts: alpha list, q list, start, end
-    for q in found[0]:
-        active.append({"alpha": [alphas[0]], "q": [q], "start": "range", "end": None})
+    warnings: list[str] = []
+    found = _checkpoint_roots(bound, alphas, dps, warnings, progress)
+    finished: list[dict] = []
+    active = [{"alpha": [alphas[0]], "q": [q], "start": "range", "end": None} for q in found[0]]
     record = [(float(alphas[0]), len(found[0]), len(found[0]))]
     for k in range(len(alphas) - 1):
         a_from, a_to = alphas[k], alphas[k + 1]
-        still = []
-        for line in active:
-            pa, pq, how = tracker.follow(line["alpha"][-1], line["q"][-1], a_to)
-            line["alpha"] += pa
-            line["q"] += pq
-            if how == "reached":
-                still.append(line)
-            else:
-                line["end"] = how
-                finished.append(line)
-                if how == "lost":
-                    warnings.append(
-                        f"a line was lost near alpha={line['alpha'][-1]:.6g}, q={line['q'][-1]:.6g}"
-                    )
-        targets = list(found[k + 1])
-        matched = 0
-        for line in still:
-            z = line["q"][-1]
-            dist = [abs(z - t) for t in targets]
-            if dist and min(dist) < match_tol * max(1.0, abs(z)):
-                j = int(np.argmin(dist))
-                line["q"][-1] = targets.pop(j)
-                matched += 1
-            else:
-                warnings.append(f"alpha={a_to:g}: continued root {z:.8g} not among the roots found there")
-        for t in targets:  # a line that appeared between the checkpoints: follow it backwards
-            pa, pq, how = tracker.follow(a_to, t, a_from)
-            if how == "reached":
-                warnings.append(f"alpha={a_from:g}: root continued back from {t:.8g} was not found there")
-            start = "cut" if how == "cut" else ("range" if how == "reached" else "lost")
-            still.append({"alpha": pa[::-1] + [a_to], "q": pq[::-1] + [t], "start": start, "end": None})
+        active, matched = _continue_lines(
+            tracker, active, found[k + 1], a_from, a_to, match_tol, warnings, finished
+        )
         record.append((float(a_to), len(found[k + 1]), matched))
-        active = still
         if progress is not None:
             progress(0.7 + 0.3 * (k + 1) / (len(alphas) - 1))
     for line in active:
@@ -179,6 +140,70 @@ def frequency_lines(
         )
     lines.sort(key=lambda ln: (ln.alpha[0], -ln.q[0].real))
     return FrequencyLines(params, params.vehicle, (a0, a1), tuple(lines), tuple(record), tuple(warnings))
+
+
+def _checkpoint_roots(
+    bound: BoundModel,
+    alphas: np.ndarray,
+    dps: int,
+    warnings: list[str],
+    progress: Callable[[float], None] | None,
+) -> list[list[complex]]:
+    """Every induced frequency at each checkpoint alpha, found afresh (:func:`induced_frequencies`)."""
+    found = []
+    for k, a in enumerate(alphas):
+        res = induced_frequencies(bound.replace(alpha=Fraction(str(float(a)))), dps=dps)
+        if not res.count_ok:
+            warnings.append(f"alpha={a:g}: induced_frequencies count check failed: {'; '.join(res.warnings)}")
+        found.append([complex(r.q) for r in res.roots])
+        if progress is not None:
+            progress(0.7 * (k + 1) / len(alphas))
+    return found
+
+
+def _continue_lines(
+    tracker: _Tracker,
+    active: list[dict],
+    found: list[complex],
+    a_from: float,
+    a_to: float,
+    match_tol: float,
+    warnings: list[str],
+    finished: list[dict],
+) -> tuple[list[dict], int]:
+    """Continue the active lines from ``a_from`` to the next checkpoint ``a_to`` and match them with the roots
+    ``found`` there; a root found there that no line reaches is a line that appeared in between, followed
+    backwards. Lines that end on the way go to ``finished``. Returns the lines still active, the matches."""
+    still = []
+    for line in active:
+        pa, pq, how = tracker.follow(line["alpha"][-1], line["q"][-1], a_to)
+        line["alpha"] += pa
+        line["q"] += pq
+        if how == "reached":
+            still.append(line)
+        else:
+            line["end"] = how
+            finished.append(line)
+            if how == "lost":
+                warnings.append(f"a line was lost near alpha={line['alpha'][-1]:.6g}, q={line['q'][-1]:.6g}")
+    targets = list(found)
+    matched = 0
+    for line in still:
+        z = line["q"][-1]
+        dist = [abs(z - t) for t in targets]
+        if dist and min(dist) < match_tol * max(1.0, abs(z)):
+            j = int(np.argmin(dist))
+            line["q"][-1] = targets.pop(j)
+            matched += 1
+        else:
+            warnings.append(f"alpha={a_to:g}: continued root {z:.8g} not among the roots found there")
+    for t in targets:  # a line that appeared between the checkpoints: follow it backwards
+        pa, pq, how = tracker.follow(a_to, t, a_from)
+        if how == "reached":
+            warnings.append(f"alpha={a_from:g}: root continued back from {t:.8g} was not found there")
+        start = "cut" if how == "cut" else ("range" if how == "reached" else "lost")
+        still.append({"alpha": pa[::-1] + [a_to], "q": pq[::-1] + [t], "start": start, "end": None})
+    return still, matched
 
 
 class _Tracker:

@@ -49,7 +49,7 @@ from fractions import Fraction
 import contourpy
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
 from moving_bogie.stability.lines.continuation import PathTracer, evaluate, gauss_newton
 from moving_bogie.stability.lines.line_ends import find_folds, line_end
@@ -63,7 +63,7 @@ _ALPHA_STEP_FD = 1e-6
 
 
 def instability_lines(
-    params,
+    bound: BoundModel,
     *,
     spacings: Sequence[float] | None = None,
     parameter: str | None = None,
@@ -82,14 +82,14 @@ def instability_lines(
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
-        All parameters except alpha and ``parameter`` (their values in ``params`` are ignored); with
+    bound : BoundModel
+        All parameters except alpha and ``parameter`` (their values in ``bound`` are ignored); with
         ``parameter="eta_M"``, mu_v = cf1 eta_M and J_b = cf2 eta_M d^2 (Eq. (63)) use the cf1, cf2 of
-        ``params``. With eta_f = 0 or 0 < eta_f < 1e-5 the lines degenerate and boundaries located by
+        ``bound``. With eta_f = 0 or 0 < eta_f < 1e-5 the lines degenerate and boundaries located by
         counts are returned instead (module text; ``alpha_step`` is then the step of the velocity grid,
         at least 0.02, and ``q_max``, ``q_step``, ``h_max``, ``tol``, ``verify`` are not used).
     spacings : sequence of float, optional
-        Wheel spacings d to trace (default: ``params.d``); they share the track kernel of the scan.
+        Wheel spacings d to trace (default: the parameters' d); they share the track kernel of the scan.
     parameter : str, optional
         The vertical axis, a vehicle parameter E_chr is a polynomial in (eta_M, kappa_v, eta_v, ...;
         default the wheel mass, ``Model.wheel_mass``).
@@ -117,27 +117,21 @@ def instability_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
-    bound = bind(params)
     params = bound.params
     parameter = parameter or params.model.wheel_mass
     ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
     a0, a1 = (float(a) for a in alpha_range)
     if regime(params.eta_f) != "damped":
         step = max(alpha_step, 0.02)
-        return undamped_lines(params, ds, parameter, (a0, a1), theta_max, alpha_step=step, progress=progress)
+        return undamped_lines(bound, ds, parameter, (a0, a1), theta_max, alpha_step=step, progress=progress)
     sweep = SweepCharacteristic(bound, parameter)
     cap = 8 * q_max if q_max_cap is None else q_max_cap
     grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
-    while True:
-        branches, warnings = _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress)
-        reaches = any(e.reason == "q_max" for b in branches for e in b.ends)
-        if not reaches or 2 * q_max > cap:
-            break
-        q_max *= 2
-    if reaches:
-        warnings.insert(0, f"a line reaches q_max={q_max:g} (the cap); raise q_max_cap")
+    branches, warnings, q_max = _trace_up_to_cap(
+        sweep, ds, alpha_range, theta_max, q_max, cap, grid, progress
+    )
     if verify:
-        branches = [_verify(params, parameter, b) for b in branches]
+        branches = [_verify(bound, parameter, b) for b in branches]
     _report(progress, 1.0)
     return InstabilityLines(
         params,
@@ -149,6 +143,29 @@ def instability_lines(
         tuple(dict.fromkeys(warnings)),
         float(q_max),
     )
+
+
+def _trace_up_to_cap(
+    sweep: SweepCharacteristic,
+    ds: list[float],
+    alpha_range: tuple[float, float],
+    theta_max: float,
+    q_max: float,
+    cap: float,
+    grid: dict[str, float],
+    progress: Callable[[float], None] | None,
+) -> tuple[list[InstabilityBranch], list[str], float]:
+    """:func:`_trace` up to ``q_max``, doubled (up to ``cap``) while a line reaches it: the branches, the
+    warnings (first, that a line still reaches the cap) and the last ``q_max``."""
+    while True:
+        branches, warnings = _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress)
+        reaches = any(e.reason == "q_max" for b in branches for e in b.ends)
+        if not reaches or 2 * q_max > cap:
+            break
+        q_max *= 2
+    if reaches:
+        warnings.insert(0, f"a line reaches q_max={q_max:g} (the cap); raise q_max_cap")
+    return branches, warnings, q_max
 
 
 def _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress):
@@ -184,7 +201,7 @@ def _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress):
     return branches, list(tracer.warnings)
 
 
-def _verify(params, parameter, branch) -> InstabilityBranch:
+def _verify(bound: BoundModel, parameter: str, branch: InstabilityBranch) -> InstabilityBranch:
     """Unstable counts by induced_frequencies just below and above the branch's middle point."""
     from dataclasses import replace
 
@@ -192,7 +209,7 @@ def _verify(params, parameter, branch) -> InstabilityBranch:
 
     k = len(branch.alpha) // 2
     a, theta = branch.alpha[k], branch.theta[k]
-    base = params.replace(alpha=_exact(a), d=_exact(branch.d))
+    base = bound.replace(alpha=_exact(a), d=_exact(branch.d))
     counts = []
     for t in (theta * 0.98, theta * 1.02):
         res = induced_frequencies(base.replace(**{parameter: _exact(t)}), dps=20)

@@ -20,9 +20,11 @@ ends of its bisection bracket (``verified``) and the unstable side.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.stability.lines.line_results import InstabilityBranch, InstabilityLines
 from moving_bogie.stability.maps.column import exact
 from moving_bogie.stability.maps.undamped import (
@@ -44,7 +46,7 @@ KIND_TEXT = {
 
 
 def undamped_branches(
-    params,
+    bound: BoundModel,
     ds: Sequence[float],
     parameter: str,
     alpha_range: tuple[float, float],
@@ -64,12 +66,13 @@ def undamped_branches(
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
     alphas = np.linspace(a0, a1, max(2, int(round((a1 - a0) / alpha_step)) + 1))
     grid = parameter_grid(theta_max, grid_points)
+    params = bound.params
     kinds = ("undamped", "limit") if regime(params.eta_f) == "undamped" else ("limit",)
     branches, warnings = [], []
     total = len(ds) * len(alphas)
     for j, d in enumerate(ds):
         margin = 100 * float(params.eta_f)
-        counter = UndampedCounter(params.replace(d=exact(d)), parameter, margin=margin)
+        counter = UndampedCounter(bound.replace(d=exact(d)), parameter, margin=margin)
         points, unsure = [], {}
         for i, a in enumerate(alphas):
             bounds, _, unsure[float(a)] = boundaries(counter, float(a), grid, tol=tol * theta_max)
@@ -91,10 +94,18 @@ def undamped_branches(
     return branches, warnings, method
 
 
-def undamped_lines(params, ds, parameter, alpha_range, theta_max, **options):
+def undamped_lines(
+    bound: BoundModel,
+    ds: Sequence[float],
+    parameter: str,
+    alpha_range: tuple[float, float],
+    theta_max: float,
+    **options: Any,
+) -> InstabilityLines:
     """:class:`~moving_bogie.stability.lines.line_results.InstabilityLines` of undamped boundaries (``q_max``
     None); ``options`` go to :func:`undamped_branches`."""
-    branches, warnings, method = undamped_branches(params, ds, parameter, alpha_range, theta_max, **options)
+    branches, warnings, method = undamped_branches(bound, ds, parameter, alpha_range, theta_max, **options)
+    params = bound.params
     a0, a1 = (float(a) for a in alpha_range)
     warnings = tuple(dict.fromkeys(warnings))
     return InstabilityLines(

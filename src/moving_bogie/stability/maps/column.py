@@ -11,7 +11,7 @@ roots found than counted) are settled by :func:`settle_cells`: a full count at t
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
 
@@ -19,6 +19,7 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.roots.count.window import default_window
@@ -65,13 +66,16 @@ def exact(x) -> Fraction:
     return Fraction(str(float(x)))
 
 
-def at_theta(params, parameter: str, theta, held=()):
-    """``params`` with ``parameter = theta`` (exact), the groups of ``held`` kept at their values instead of
+def at_theta(bound: BoundModel, parameter: str, theta: Fraction, held: Iterable[str] = ()) -> BoundModel:
+    """``bound`` with ``parameter = theta`` (exact), the groups of ``held`` kept at their values instead of
     following it (:class:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic`)."""
-    return params.replace(**{name: getattr(params, name) for name in held}, **{parameter: theta})
+    params = bound.params
+    return bound.replace(**{name: getattr(params, name) for name in held}, **{parameter: theta})
 
 
-def column_window(params, parameter: str, thetas, held=()) -> tuple[float, float, float]:
+def column_window(
+    bound: BoundModel, parameter: str, thetas: np.ndarray, held: Iterable[str] = ()
+) -> tuple[float, float, float]:
     """(X, Y) covering :func:`~moving_bogie.roots.count.window.default_window` (the scale of the induced
     frequencies) at the smallest and at the largest theta of the column, and the smaller of the two X (the
     part of the real axis every cell's window holds).
@@ -81,7 +85,7 @@ def column_window(params, parameter: str, thetas, held=()) -> tuple[float, float
     between the two would be missed here; the full counts of the per-chunk check of a sweep would see it.
     """
     windows = [
-        default_window(at_theta(params, parameter, exact(theta), held))
+        default_window(at_theta(bound, parameter, exact(theta), held))
         for theta in (float(np.min(thetas)), float(np.max(thetas)))
     ]
     return max(w.x1 for w in windows), max(-w.y0 for w in windows), min(w.x1 for w in windows)
@@ -143,10 +147,10 @@ def stability_column(
     t = thetas / scale
     fine_until = None
     if window is None:
-        *window, fine_until = column_window(sweep.params, sweep.parameter, thetas, sweep.held)
+        *window, fine_until = column_window(sweep.bound, sweep.parameter, thetas, sweep.held)
     X, Y = window
     if extra is None and top < 0:
-        extra = branch_samples(branch_points(sweep.params, alpha))
+        extra = branch_samples(branch_points(sweep.bound, alpha))
     if moment_top is None:
         moment_top = top + 0.4 * float(sweep.params.eta_f)
 
@@ -225,12 +229,19 @@ def _cut_low(params, alpha: float, x: float) -> float | None:
 
 
 def settle_cells(
-    params, parameter: str, column: ColumnResult, *, alpha=None, thetas=None, dps: int = 15, held=()
+    bound: BoundModel,
+    parameter: str,
+    column: ColumnResult,
+    *,
+    alpha: Fraction | None = None,
+    thetas: list[Fraction | float] | None = None,
+    dps: int = 15,
+    held: Iterable[str] = (),
 ) -> ColumnResult:
     """Settle the ``uncertain`` cells of ``column`` by a full count at each (induced_frequencies).
 
     ``alpha`` and ``thetas`` are the exact values of the column (default: the shortest decimal text of
-    its floats); the groups of ``held`` keep their values in ``params`` (:func:`at_theta`). A cell stays
+    its floats); the groups of ``held`` keep their values in ``bound`` (:func:`at_theta`). A cell stays
     uncertain only when the full count itself is not certified (``count_ok`` false, an UNDETERMINED
     verdict, or the search fails): its verdict is then never claimed.
     """
@@ -244,7 +255,7 @@ def settle_cells(
     margin = np.full(len(count), np.nan) if column.margin is None else column.margin.copy()
     bound = np.zeros(len(count), dtype=bool) if column.margin_bound is None else column.margin_bound.copy()
     roots = list(column.roots)
-    base = params.replace(alpha=exact(column.alpha) if alpha is None else alpha)
+    base = bound.replace(alpha=exact(column.alpha) if alpha is None else alpha)
     for j in cells:
         theta = exact(column.thetas[j]) if thetas is None else thetas[j]
         try:
@@ -272,19 +283,19 @@ def settle_cells(
     )
 
 
-def top_edge(params, alphas) -> float:
+def top_edge(bound: BoundModel, alphas: Sequence[float] | np.ndarray) -> float:
     """Im q of the counting rectangle's top: 0, or just below the cut where it reaches the real axis."""
     lowest = np.inf
     for a in (float(np.min(alphas)), float(np.max(alphas))):
-        cut = cut_locus(params.replace(alpha=exact(a)), -3.0, 3.0, samples=2001)
+        cut = cut_locus(bound.replace(alpha=exact(a)), -3.0, 3.0, samples=2001)
         if cut.points.size:
             lowest = min(lowest, cut.im_low)
     return 0.0 if lowest > 1e-6 else min(0.0, lowest) - 1e-7
 
 
-def branch_points(params, alpha) -> list:
+def branch_points(bound: BoundModel, alpha: float) -> list[float]:
     """Re q > 0 of the branch points of K on the real axis (cusps and folds of the cut there), ascending."""
-    cut = cut_locus(params.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801)
+    cut = cut_locus(bound.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801)
     xs = [f.q.real for f in cut.folds if f.q.real > 0 and abs(f.q.imag) < 1e-9]
     if np.isfinite(cut.x_start) and cut.x_start > 0 and abs(cut.im_low) < 1e-9:
         xs.append(cut.x_start)

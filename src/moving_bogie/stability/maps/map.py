@@ -14,14 +14,15 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import ColumnResult, settle_cells, stability_column, top_edge
 
@@ -133,7 +134,15 @@ def _text(x: float | None) -> str:
     return "n/a" if x is None else f"{x:.6g}"
 
 
-def map_columns(params, parameter, alphas, thetas, options=None, settle=True, held=()) -> list[ColumnResult]:
+def map_columns(
+    bound: BoundModel,
+    parameter: str | None,
+    alphas: Sequence[float | Fraction] | np.ndarray,
+    thetas: Sequence[float | Fraction] | np.ndarray,
+    options: dict[str, Any] | None = None,
+    settle: bool = True,
+    held: Iterable[str] = (),
+) -> list[ColumnResult]:
     """Columns at ``alphas`` (continuation from each column to the next), uncertain cells settled.
 
     ``alphas`` and ``thetas`` may be exact (Fractions): the columns run on their floats and the full
@@ -144,9 +153,9 @@ def map_columns(params, parameter, alphas, thetas, options=None, settle=True, he
     options = dict(options or {})
     floats = np.array([float(a) for a in alphas])
     if "top" not in options:
-        options["top"] = top_edge(params, floats)
+        options["top"] = top_edge(bound, floats)
     theta_floats = np.array([float(t) for t in thetas])
-    sweep = SweepCharacteristic(params, parameter, held=held)
+    sweep = SweepCharacteristic(bound, parameter, held=held)
     out = []
     for a, a_float in zip(alphas, floats):
         guesses = out[-1].roots if out else None
@@ -154,9 +163,7 @@ def map_columns(params, parameter, alphas, thetas, options=None, settle=True, he
         if settle:
             exact_thetas = None if isinstance(thetas, np.ndarray) else list(thetas)
             exact_alpha = None if isinstance(a, float | np.floating) else a
-            col = settle_cells(
-                params, parameter, col, alpha=exact_alpha, thetas=exact_thetas, held=sweep.held
-            )
+            col = settle_cells(bound, parameter, col, alpha=exact_alpha, thetas=exact_thetas, held=sweep.held)
         out.append(col)
     return out
 
@@ -166,7 +173,7 @@ def _column_task(args):
 
 
 def stability_map(
-    params,
+    bound: BoundModel,
     *,
     parameter: str | None = None,
     alphas: Sequence[float] | None = None,
@@ -181,7 +188,7 @@ def stability_map(
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
         Everything but alpha and ``parameter`` (cf1, cf2 kept fixed when the parameter is eta_M); the
         vehicle is that of their model.
     parameter : str, optional
@@ -199,14 +206,14 @@ def stability_map(
     **options
         Passed to :func:`~moving_bogie.stability.maps.column.stability_column`.
     """
-    params = bind(params).params
+    params = bound.params
     parameter = parameter or params.model.wheel_mass
     alphas = np.asarray(np.linspace(0.0, 1.2, 200) if alphas is None else alphas, dtype=float)
     thetas = np.asarray(np.linspace(1.0, 200.0, 200) if thetas is None else thetas, dtype=float)
     if "top" not in options:
-        options["top"] = top_edge(params, alphas)
+        options["top"] = top_edge(bound, alphas)
     chunks = [alphas[i : i + chunk] for i in range(0, len(alphas), chunk)]
-    tasks = [(params, parameter, c, thetas, options, settle) for c in chunks]
+    tasks = [(bound, parameter, c, thetas, options, settle) for c in chunks]
     workers = workers or min(len(chunks), os.cpu_count() or 1)
     columns = []
     if workers <= 1:

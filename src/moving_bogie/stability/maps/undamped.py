@@ -40,7 +40,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import branch_points, branch_samples, exact, stability_column
@@ -147,7 +147,7 @@ class UndampedCounter:
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
         Its eta_f is ignored (set to 0); the vehicle is that of its model.
     parameter : str, optional
         The swept vehicle parameter (eta_M, kappa_v or eta_v; default the wheel mass,
@@ -159,15 +159,17 @@ class UndampedCounter:
         near-undamped eta_f: such a root may lie on either side at that eta_f, e.g. next to a branch point).
     """
 
-    def __init__(self, params, parameter: str | None = None, *, q_step: float = 0.002, margin=0.0):
+    def __init__(
+        self, bound: BoundModel, parameter: str | None = None, *, q_step: float = 0.002, margin: float = 0.0
+    ) -> None:
         self.margin = float(margin)
-        self.params = bind(params).params.replace(eta_f=0)
+        self.bound = bound.replace(eta_f=0)
+        self.params = self.bound.params
         parameter = parameter or self.params.model.wheel_mass
         self.parameter = parameter
         self.q_step = float(q_step)
-        self.sweep = SweepCharacteristic(self.params, parameter, below=True)
-        probe = self.params.replace(eta_f=DAMPING_PROBE)
-        self.probe = SweepCharacteristic(probe, parameter)
+        self.sweep = SweepCharacteristic(self.bound, parameter, below=True)
+        self.probe = SweepCharacteristic(self.bound.replace(eta_f=DAMPING_PROBE), parameter)
         self._cuts = {}
 
     def gap_end(self, alpha: float) -> float:
@@ -178,9 +180,9 @@ class UndampedCounter:
         """(q_c, branch points with Re q > 0) of the cut at eta_f = 0 (all on the real axis)."""
         alpha = float(alpha)
         if alpha not in self._cuts:
-            x = cut_locus(self.params.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801).x_start
+            x = cut_locus(self.bound.replace(alpha=exact(alpha)), 0.0, 4.0, samples=801).x_start
             qc = float(x) if np.isfinite(x) and x > 0 else 0.0
-            self._cuts[alpha] = (qc, branch_points(self.params, alpha))
+            self._cuts[alpha] = (qc, branch_points(self.bound, alpha))
         return self._cuts[alpha]
 
     def real_roots(self, alpha: float, thetas: np.ndarray):

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import stability_column
 from moving_bogie.stability.maps.undamped import (
@@ -123,7 +124,7 @@ class CriticalStiffness:
 
 
 def critical_stiffness(
-    params,
+    bound: BoundModel,
     alphas: Sequence[float],
     *,
     kappa_max: float = 1.0,
@@ -137,8 +138,8 @@ def critical_stiffness(
 
     Parameters
     ----------
-    params : DimensionlessParams
-        Bogie and track (kappa_v and alpha of ``params`` are ignored). eta_f = 0 and
+    bound : BoundModel
+        Bogie and track (kappa_v and alpha of its parameters are ignored). eta_f = 0 and
         0 < eta_f < NEAR_UNDAMPED are handled as the module text says.
     alphas : sequence of float
     kappa_max : float
@@ -153,17 +154,18 @@ def critical_stiffness(
         Undamped regimes: bisection tolerance of each change, relative to ``kappa_max``.
     progress : callable, optional
     """
+    params = bound.params
     alphas = np.asarray(alphas, dtype=float)
-    stiffness = primary_stiffness(params)
+    stiffness = primary_stiffness(bound)
     if regime(params.eta_f) != "damped":
-        return _undamped(params, stiffness, alphas, kappa_max, check_points, tol, progress)
-    sweep = SweepCharacteristic(params, stiffness)
+        return _undamped(bound, stiffness, alphas, kappa_max, check_points, tol, progress)
+    sweep = SweepCharacteristic(bound, stiffness)
     kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
     intervals, critical, warnings = [], [], []
     mismatches = 0
     for k, a in enumerate(alphas):
         dd = d_decomposition(
-            params.replace(alpha=Fraction(str(a))),
+            bound.replace(alpha=Fraction(str(a))),
             a,
             parameter=stiffness,
             theta_max=kappa_max,
@@ -209,7 +211,7 @@ def _critical(ivs):
     return tuple(hi for (lo, hi, n), (_, _, m) in zip(ivs[:-1], ivs[1:]) if (n == 0) != (m == 0))
 
 
-def primary_stiffness(params) -> str:
+def primary_stiffness(bound: BoundModel) -> str:
     """The vehicle's primary-suspension stiffness group (``Model.primary_stiffness``: kappa_v).
 
     Raises
@@ -217,18 +219,27 @@ def primary_stiffness(params) -> str:
     ParameterError
         For a vehicle without a primary suspension (two masses), naming the vehicle.
     """
-    name = params.model.primary_stiffness
+    name = bound.model.primary_stiffness
     if name is None:
         raise ParameterError(
-            "vehicle", f"vehicle {params.model.vehicle!r} has no primary suspension: no critical stiffness"
+            "vehicle", f"vehicle {bound.model.vehicle!r} has no primary suspension: no critical stiffness"
         )
     return name
 
 
-def _undamped(params, stiffness, alphas, kappa_max, check_points, tol, progress) -> CriticalStiffness:
+def _undamped(
+    bound: BoundModel,
+    stiffness: str,
+    alphas: Sequence[float] | np.ndarray,
+    kappa_max: float,
+    check_points: int,
+    tol: float,
+    progress: Callable[[float], None] | None,
+) -> CriticalStiffness:
     """Counts on a kappa_v grid and bisection (:mod:`undamped`), exact at eta_f = 0 and in the limit."""
+    params = bound.params
     margin = 100 * float(params.eta_f)
-    counter = UndampedCounter(params, stiffness, margin=margin)
+    counter = UndampedCounter(bound, stiffness, margin=margin)
     unsure = {}
     grid = parameter_grid(kappa_max, check_points)
     kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
 
 __all__ = ["DCrossing", "DDecomposition", "d_decomposition"]
@@ -69,7 +69,7 @@ class DDecomposition:
 
 
 def d_decomposition(
-    params,
+    bound: BoundModel,
     alpha: float | None = None,
     *,
     parameter: str | None = None,
@@ -78,11 +78,11 @@ def d_decomposition(
     samples: int = 6000,
     tol: float = 1e-12,
 ) -> DDecomposition:
-    """D-decomposition of the ``parameter`` axis at one velocity (default ``params.alpha``).
+    """D-decomposition of the ``parameter`` axis at one velocity (default: the parameters' alpha).
 
     Parameters
     ----------
-    params : DimensionlessParams or BoundModel
+    bound : BoundModel
         Requires eta_f > 0 (the real q-axis must lie below the cut of K).
     alpha : float, optional
     parameter : str, optional
@@ -95,7 +95,6 @@ def d_decomposition(
     tol : float
         Newton tolerance of the refined crossings.
     """
-    bound = bind(params)
     params = bound.params
     parameter = parameter or params.model.wheel_mass
     if params.eta_f <= 0:
