@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from moving_bogie import induced_frequencies, table1_case
+from moving_bogie.api import stability_map
 from moving_bogie.html_repr import html_table
-from moving_bogie.stability.maps.map import stability_map
 
 
 def test_the_verdict_comes_before_every_row():

@@ -13,11 +13,11 @@ import warnings
 import numpy as np
 import pytest
 
-from moving_bogie import induced_frequencies, load_parameters
+from moving_bogie import induced_frequencies, load_parameters, stability_map
+from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import at_theta, column_window, exact
 from moving_bogie.stability.maps.column_margin import column_margin
-from moving_bogie.stability.maps.map import stability_map
 
 EXAMPLES = __import__("pathlib").Path(__file__).resolve().parents[1] / "examples"
 
@@ -56,7 +56,7 @@ def test_unstable_cells_keep_their_degree_as_margin():
 def test_a_top_below_every_root_gives_a_lower_bound(uic60):
     """No root below h: the margin is h, flagged as a bound; the true smallest Im q lies above it."""
     params, _ = uic60
-    sweep = SweepCharacteristic(params, "eta_M")
+    sweep = SweepCharacteristic(bind(params), "eta_M")
     alpha, thetas = float(params.alpha), np.array([float(params.eta_M)])
     scale = float(thetas.max())
 
@@ -64,7 +64,7 @@ def test_a_top_below_every_root_gives_a_lower_bound(uic60):
         K, dK, _ = sweep.kernel(z, alpha, derivative=True)
         return sweep.coefficients(z, K, scale=scale, dK=dK)
 
-    X, Y, _ = column_window(params, "eta_M", thetas)
+    X, Y, _ = column_window(bind(params), "eta_M", thetas)
     h = 1e-3
     found = column_margin(sweep, alpha, thetas, coeffs, (X, Y), h, np.array([0]))
     assert found.bound[0] and found.margin[0] <= h
@@ -89,7 +89,7 @@ def test_store_keeps_the_margin_in_si_units(si_store):
     assert ds.margin.attrs["units"] == "1/s"
     for i, j in [(0, 0), (1, 1)]:
         point = at_theta(
-            params.replace(alpha=exact(ds.alpha.values[i])),
+            bind(params.replace(alpha=exact(ds.alpha.values[i]))),
             "eta_M",
             exact(ds.eta_M.values[j]),
             ("mu_v", "J_b"),

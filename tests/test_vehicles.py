@@ -149,17 +149,18 @@ def test_the_default_axes_come_from_the_declared_vehicle(name, wheel_mass, prima
     """Reference: the declarations of derivations/vehicles.py: every wheel has the mass M (group eta_M,
     Eq. (17)); the primary suspension k_v (kappa_v) acts on the wheels of the oscillator, the bogie and the
     car; one mass and two masses have none. The stability tools sweep these by default."""
+    from moving_bogie.api import critical_stiffness
     from moving_bogie.errors import ParameterError
+    from moving_bogie.kernels.bound import bind
     from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
     from moving_bogie.model.cases import table1_case
     from moving_bogie.model.catalogue import get_model
-    from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
 
     model = get_model(vehicle=name)
     assert (model.wheel_mass, model.primary_stiffness) == (wheel_mass, primary_stiffness)
     if name in ("bogie", "masses"):
         params = table1_case(7).replace(vehicle=name)
-        assert SweepCharacteristic(params).parameter == wheel_mass
+        assert SweepCharacteristic(bind(params)).parameter == wheel_mass
         if primary_stiffness is None:
             with pytest.raises(ParameterError, match="no primary suspension") as error:
                 critical_stiffness(params, [0.5])

@@ -205,7 +205,7 @@ def stability_column(
     degree = np.array([min(0.0, float(np.min(r.imag))) if len(r) else 0.0 for r in roots])
     uncertain |= np.array([len(r) != c for r, c in zip(roots, count)])
     stable = np.nonzero((count == 0) & ~uncertain)[0]
-    h = strip_top(float(sweep.params.eta_f), _cut_low(sweep.params, alpha, X), top) if margin else None
+    h = strip_top(float(sweep.params.eta_f), _cut_low(sweep.bound, alpha, X), top) if margin else None
     found = column_margin(sweep, alpha, thetas, coeffs, (X, Y), h, stable if margin else stable[:0], polish)
     margins = np.where(count > 0, degree, found.margin)
     margins[uncertain] = np.nan
@@ -222,9 +222,9 @@ def stability_column(
     )
 
 
-def _cut_low(params, alpha: float, x: float) -> float | None:
+def _cut_low(bound: BoundModel, alpha: float, x: float) -> float | None:
     """The lowest Im q of the cut of K over 0 <= Re q <= x at ``alpha`` (None: it does not pass there)."""
-    cut = cut_locus(params.replace(alpha=exact(alpha)), 0.0, x, samples=401)
+    cut = cut_locus(bound.replace(alpha=exact(alpha)), 0.0, x, samples=401)
     return float(cut.im_low) if cut.points.size else None
 
 
@@ -253,7 +253,7 @@ def settle_cells(
     count, degree = column.count.copy(), column.degree.copy()
     uncertain, settled = column.uncertain.copy(), np.zeros(len(count), dtype=bool)
     margin = np.full(len(count), np.nan) if column.margin is None else column.margin.copy()
-    bound = np.zeros(len(count), dtype=bool) if column.margin_bound is None else column.margin_bound.copy()
+    lower = np.zeros(len(count), dtype=bool) if column.margin_bound is None else column.margin_bound.copy()
     roots = list(column.roots)
     base = bound.replace(alpha=exact(column.alpha) if alpha is None else alpha)
     for j in cells:
@@ -270,7 +270,7 @@ def settle_cells(
         settled[j] = True
         im = [float(mpmath.im(r.q)) for r in res.roots]  # every located root: the smallest decay rate
         margin[j] = np.nan if uncertain[j] or not im else min(im)
-        bound[j] = False
+        lower[j] = False
     return replace(
         column,
         count=count,
@@ -279,7 +279,7 @@ def settle_cells(
         roots=roots,
         settled=settled,
         margin=margin,
-        margin_bound=bound,
+        margin_bound=lower,
     )
 
 
