@@ -28,6 +28,7 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.coefficient_matrix import Coefficients
+from moving_bogie.kernels.polynomial import derivative_coefficients, horner
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval
 
 
@@ -111,18 +112,6 @@ def foundation_arguments(params, numbers, foundation=None) -> dict:
     return {name: getattr(numbers, name, None) for name in names}
 
 
-def polyval_list(coeffs, x):
-    acc = coeffs[0]
-    for c in coeffs[1:]:
-        acc = acc * x + c
-    return acc
-
-
-def polyder_list(coeffs):
-    n = len(coeffs) - 1
-    return [c * (n - k) for k, c in enumerate(coeffs[:-1])] or [0]
-
-
 @dataclass(frozen=True)
 class KernelValues:
     """K at the requested xi values and, if asked, dK/dq; ``roots`` are the p-roots of N used."""
@@ -184,13 +173,13 @@ class TrackKernel:
         n = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
         roots = _roots_mp(n)
         qc = [mpmath.mpc(c) for c in self.module.q_coeffs(q, **args)]
-        n1 = polyder_list(n)
+        n1 = derivative_coefficients(n)
         if derivative:
-            n2 = polyder_list(n1)
+            n2 = derivative_coefficients(n1)
             nq = [mpmath.mpc(c) for c in self.module.n_coeffs_dq(q, **args)]
-            nqp = polyder_list(nq)
+            nqp = derivative_coefficients(nq)
             qq = [mpmath.mpc(c) for c in self.module.q_coeffs_dq(q, **args)]
-            qp = polyder_list(qc)
+            qp = derivative_coefficients(qc)
         upper = [p for p in roots if mpmath.im(p) > 0]
         lower = [p for p in roots if mpmath.im(p) < 0]
         if len(upper) + len(lower) != len(roots):
@@ -201,12 +190,11 @@ class TrackKernel:
         # what does not depend on xi, once per root: the offsets share it
         at = {}
         for p in upper + lower:
-            N1 = polyval_list(n1, p)
-            Qv = polyval_list(qc, p)
+            N1 = horner(n1, p)
+            Qv = horner(qc, p)
             if derivative:
-                Nq = polyval_list(nq, p)
-                at[p] = (N1, Qv, Nq, polyval_list(n2, p), polyval_list(qp, p), polyval_list(nqp, p),
-                         polyval_list(qq, p))  # fmt: skip
+                Nq = horner(nq, p)
+                at[p] = (N1, Qv, Nq, horner(n2, p), horner(qp, p), horner(nqp, p), horner(qq, p))
             else:
                 at[p] = (N1, Qv)
         Ks, dKs = [], []
@@ -266,7 +254,7 @@ def _roots_mp(coeffs):
                     den *= zi - zj
             if den == 0:
                 break
-            deltas.append(polyval_list(monic, zi) / den)
+            deltas.append(horner(monic, zi) / den)
         if len(deltas) != len(z):
             break
         z = [zi - di for zi, di in zip(z, deltas)]

@@ -1,12 +1,13 @@
 """E_chr of any vehicle in ball arithmetic: the block system's determinant over truncated Taylor series.
 
 For a vehicle without the closed form of Eq. (38), :class:`~moving_bogie.roots.proof.balls.BallCharacteristic`
-evaluates E_chr = det [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]] (:mod:`moving_bogie.kernels.vehicle`)
-with every entry an ``acb_series`` in t = q - c: D = -q^2 M + i q C + K from the generated matrices (balls
-around the exact parameters), Kmat_ij = K(xi_i - xi_j) as series from the residue sum. Gaussian elimination
-on series is exact algebra, so coefficient j of the result encloses E_chr^(j)(xi)/j! for every xi of the
-ball (coefficient 1 is dE_chr/dq, Eq. (40), with no Jacobi formula needed). A pivot whose constant term
-contains 0 cannot be divided by: the determinant is then not decided at this ball (``None``), never guessed.
+evaluates E_chr = det [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]] (:mod:`moving_bogie.kernels.coupling`,
+in Arb's numbers) with every entry an ``acb_series`` in t = q - c: D = -q^2 M + i q C + K from the generated
+matrices (balls around the exact parameters), Kmat_ij = K(xi_i - xi_j) as series from the residue sum.
+Gaussian elimination on series is exact algebra, so coefficient j of the result encloses E_chr^(j)(xi)/j! for
+every xi of the ball (coefficient 1 is dE_chr/dq, Eq. (40), with no Jacobi formula needed). A pivot whose
+constant term contains 0 cannot be divided by: the determinant is then not decided at this ball (``None``),
+never guessed.
 
 For the orders the proofs use (E_chr alone, or E_chr and dE_chr/dq: at most two terms) the series are split
 into their coefficient matrices, A(t) = A_0 + A_1 t, and the determinant is taken by Arb's ``acb_mat``
@@ -19,6 +20,15 @@ the Krawczyk test). Both are enclosures for every matrix in the balls, so the pr
 from __future__ import annotations
 
 from flint import acb, acb_mat, acb_series, arb
+
+from moving_bogie.kernels.coupling import (
+    Rows,
+    coupled_derivative,
+    coupled_system,
+    dynamic_stiffness,
+    kernel_matrix,
+    structural_zero,
+)
 
 
 class BlockBalls:
@@ -39,7 +49,8 @@ class BlockBalls:
         self.contacts = int(module.CONTACTS)
         self.size = len(module.DOFS)
         self.matrices = tuple(
-            f(**args) for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
+            [[x if structural_zero(x) else acb(x) for x in row] for row in f(**args)]
+            for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
         )
         x = [acb(v) for v in module.contact_positions(**args)]
         n = self.contacts
@@ -62,11 +73,7 @@ class BlockBalls:
                     seen[key] = len(self.offsets)
                     self.offsets.append(x[i] - x[j])
                 self.index[i][j] = seen[key]
-        N = self.size
-        self.mats = tuple(acb_mat([[acb(x) for x in row] for row in m]) for m in self.matrices)
-        # wheel rows of an N x N matrix: Sel (n x N) picks them, Sel^T puts them back
-        self.select = acb_mat([[1 if c == r else 0 for c in range(N)] for r in range(n)])
-        self.place = self.select.transpose()
+        self.ops = Rows(acb(arb.pi()), acb(0, 1))
 
     def sides(self) -> list:
         """+1 (xi >= 0: roots with Im p > 0) or -1 for each offset; None if the sign is not decided."""
@@ -86,46 +93,22 @@ class BlockBalls:
         """E_chr as an acb_series of ``length`` terms, from q (series) and K (series, one per offset)."""
         if length <= 2:
             return self.det_linear(qs, K, length)
-        n, N = self.contacts, self.size
-        M, C, Kv = self.matrices
-        iq = acb(0, 1) * qs
-        q2 = qs * qs
-
-        def entry(a, c):
-            return -q2 * acb(M[a][c]) + iq * acb(C[a][c]) + acb(Kv[a][c])
-
-        D = [[entry(a, c) for c in range(N)] for a in range(N)]
-        pi = acb(arb.pi())
-        A = []
-        for r in range(n):
-            row = []
-            for c in range(N):
-                total = acb_series([acb(0)], prec=length)
-                for k in range(n):
-                    total += 2 * K[self.index[r][k]] * D[k][c]
-                row.append(total + pi if c == r else total)
-            A.append(row)
-        A += [list(D[r]) for r in range(n, N)]
-        return series_det(A, length)
+        D, _ = dynamic_stiffness(qs, self.matrices, self.ops)
+        A = coupled_system(D, kernel_matrix(K, self.index, self.ops), self.ops).A
+        zero = acb_series([acb(0)], prec=length)
+        return series_det([[zero + x for x in row] for row in A], length)
 
     def coefficient_matrices(self, qs, K, length):
         """[A_0] or [A_0, A_1]: the block matrix A(t) = A_0 + A_1 t from q and K as series in t."""
-        n = self.contacts
-        M, C, Kv = self.mats
+        ops = self.ops
         q0, q1 = coefficient(qs, 0), coefficient(qs, 1)
-        i = acb(0, 1)
-        pi = acb(arb.pi())
-        sel, place = self.select, self.place
-        D0 = M * (-q0 * q0) + C * (i * q0) + Kv
-        K0 = acb_mat([[coefficient(K[self.index[r][k]], 0) for k in range(n)] for r in range(n)])
-        top0 = sel * D0
-        A0 = D0 + place * (K0 * top0 * 2 + sel * pi - top0)
+        D0, dD = dynamic_stiffness(q0, self.matrices, ops, derivative=length > 1)
+        K0 = kernel_matrix([coefficient(k, 0) for k in K], self.index, ops)
+        A0 = _matrix(coupled_system(D0, K0, ops).A)
         if length == 1:
             return [A0]
-        D1 = (M * (-2 * q0) + C * i) * q1
-        K1 = acb_mat([[coefficient(K[self.index[r][k]], 1) for k in range(n)] for r in range(n)])
-        top1 = sel * D1
-        return [A0, D1 + place * ((K1 * top0 + K0 * top1) * 2 - top1)]
+        K1 = kernel_matrix([coefficient(k, 1) for k in K], self.index, ops)
+        return [A0, _matrix(coupled_derivative(D0, K0, ops, dD=ops.scale(q1, dD), dG=K1))]
 
     def log_derivative(self, qs, K):
         """(E_chr, E_chr'/E_chr = tr(A_0^-1 A_1)) over the ball, or None where A_0 is not proven regular."""
@@ -151,6 +134,11 @@ class BlockBalls:
                 row = acb_mat([[1 if (r == c == k) else 0 for c in range(N)] for r in range(N)])
                 dE += (A0 + row * (A1 - A0)).det()
         return acb_series([E, dE], prec=2)
+
+
+def _matrix(rows: list) -> acb_mat:
+    """An acb_mat from lists of rows of acb (a structural zero as the exact ball 0)."""
+    return acb_mat([[acb(x) for x in row] for row in rows])
 
 
 def coefficient(series, j) -> acb:
