@@ -98,6 +98,16 @@ class Rows:
         """s P (structural zeros stay)."""
         return [[0 if structural_zero(x) else s * x for x in row] for row in P]
 
+    def polynomial(self, q: Any, coefficients: Sequence[list]) -> list:
+        """sum_k q^k P_k (``coefficients`` P_0, P_1, ... lowest power first), highest power first."""
+        powers = [1, q]
+        for _ in range(2, len(coefficients)):
+            powers.append(powers[-1] * q)
+        out = self.scale(powers[-1], coefficients[-1])
+        for k in range(len(coefficients) - 2, 0, -1):
+            out = self.add(out, self.scale(powers[k], coefficients[k]))
+        return self.add(out, coefficients[0])
+
     @staticmethod
     def add(P: list, Q: list) -> list:
         """P + Q."""
@@ -177,6 +187,23 @@ class Batched:
         return (np.asarray(s)[..., None, None] if np.ndim(s) else s) * P
 
     @staticmethod
+    def polynomial(q: Any, coefficients: Sequence[np.ndarray]) -> np.ndarray:
+        """sum_k q^k P_k: one matrix product [1, q, q^2, ...] @ [P_0, P_1, ...] over the batch when the P_k
+        are the same at every point, else the terms highest power first (as :class:`Rows`)."""
+        q = np.asarray(q)
+        powers = [np.ones_like(q), q]
+        for _ in range(2, len(coefficients)):
+            powers.append(powers[-1] * q)
+        if all(np.ndim(P) == 2 for P in coefficients):
+            stacked = np.stack([np.ravel(P) for P in coefficients])
+            shape = q.shape + np.shape(coefficients[0])
+            return (np.stack(powers[: len(coefficients)], axis=-1) @ stacked).reshape(shape)
+        out = Batched.scale(powers[-1], coefficients[-1])
+        for k in range(len(coefficients) - 2, 0, -1):
+            out = out + Batched.scale(powers[k], coefficients[k])
+        return out + coefficients[0]
+
+    @staticmethod
     def add(P: np.ndarray, Q: np.ndarray) -> np.ndarray:
         return P + Q
 
@@ -251,7 +278,7 @@ def dynamic_stiffness(q: Any, matrices: Sequence[Any], ops: Arithmetic, derivati
         Also dD/dq.
     """
     M, C, K = matrices
-    D = ops.add(ops.add(ops.scale(-(q * q), M), ops.scale(ops.i * q, C)), K)
+    D = ops.polynomial(q, (K, ops.scale(ops.i, C), ops.scale(-1, M)))
     if not derivative:
         return D, None
     return D, ops.add(ops.scale(-2 * q, M), ops.scale(ops.i, C))
