@@ -1,7 +1,8 @@
 """The one vehicle-rail coupling (kernels/coupling.py) in every number type the runtime uses.
 
 The same random complex points, vehicles and receptance matrices go through mpmath (50 digits, the
-reference), numpy (batched over the points), gmpy2 (113 bits) and Arb (64 bits, balls). References:
+reference), numpy (batched over the points), gmpy2 (113 bits) and Arb (64 bits, balls; entry by entry and
+on Arb's matrices). References:
 
 - the mpmath evaluation at 50 digits for the values (each type agrees to its own precision; every Arb ball
   contains the mpmath value);
@@ -30,6 +31,7 @@ from moving_bogie.kernels.coupling import (
     dynamic_stiffness,
     harmonic_blocks,
 )
+from moving_bogie.roots.proof.ball_block import ArbMatrices
 
 VEHICLES = ("mass", "oscillator", "masses", "bogie", "car")
 POINTS = 4
@@ -46,11 +48,13 @@ def _case(name: str, seed: int = 0):
     return module, params, q, G
 
 
-def _evaluate(module, params, q, G, ops, convert):
-    """(A, b, dA) at one q in the arithmetic ``ops``, every input converted exactly by ``convert``."""
+def _evaluate(module, params, q, G, ops, convert, matrix=None):
+    """(A, b, dA) at one q in the arithmetic ``ops``, every input converted exactly by ``convert`` (and the
+    matrices by ``matrix``, for Arb's acb_mat; lists of rows are returned)."""
+    matrix = matrix or (lambda rows: rows)
     values = {k: convert(v) for k, v in params.items()}
     matrices = [
-        [[x if isinstance(x, int) and x == 0 else convert(x) for x in row] for row in f(**values)]
+        matrix([[x if isinstance(x, int) and x == 0 else convert(x) for x in row] for row in f(**values)])
         for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
     ]
     loads = [convert(s) for s in module.static_loads(**values)]
@@ -60,8 +64,9 @@ def _evaluate(module, params, q, G, ops, convert):
     Gq = [[Gk[0][r][c] + z * Gk[1][r][c] + z * z * Gk[2][r][c] for c in range(n)] for r in range(n)]
     dGq = [[Gk[1][r][c] + 2 * z * Gk[2][r][c] for c in range(n)] for r in range(n)]
     D, dD = dynamic_stiffness(z, matrices, ops, derivative=True)
-    out = coupled_system(D, Gq, ops, loads=loads, dD=dD, dG=dGq)
-    return out.A, [row[0] for row in out.b], out.dA
+    out = coupled_system(D, matrix(Gq), ops, loads=loads, dD=dD, dG=matrix(dGq))
+    A, b, dA = (x.tolist() if isinstance(x, acb_mat) else x for x in (out.A, out.b, out.dA))
+    return A, [row[0] for row in b], dA
 
 
 def _mp(x) -> mpmath.mpc:
@@ -117,16 +122,21 @@ def test_numpy_gmpy2_and_arb_agree_with_mpmath(name):
                 scale = max(abs(x) for x in ref)
                 assert max(abs(_mp(x) - y) for x, y in zip(value, ref)) < mpmath.mpf(10) ** -31 * scale, name
 
-        with ctx.workprec(64):
-            ops = Rows(acb(arb.pi()), acb(0, 1))
-            balls = _evaluate(module, params, complex(q), G, ops, acb)
-            ball_det = acb_mat([[acb(x) for x in row] for row in balls[0]]).det()
-        with ctx.workprec(400):  # the reference's own digits as (nearly) exact balls
-            for value, ref in zip(balls, (A, b, dA)):
-                for x, y in zip(_entries(value), _entries(ref)):
-                    assert acb(x).contains(_ball(y)), (name, x, y)
-            assert ball_det.contains(_ball(det)), name
-            assert ball_det.rad() < 1e-12 * abs(complex(det)), name  # and the balls are tight
+        # Arb: entry by entry (acb, as the series of the proofs) and on its matrices (acb_mat)
+        for arithmetic, matrix in ((lambda: Rows(acb(arb.pi()), acb(0, 1)), None), (ArbMatrices, _acb_mat)):
+            with ctx.workprec(64):
+                balls = _evaluate(module, params, complex(q), G, arithmetic(), acb, matrix)
+                ball_det = _acb_mat(balls[0]).det()
+            with ctx.workprec(400):  # the reference's own digits as (nearly) exact balls
+                for value, ref in zip(balls, (A, b, dA)):
+                    for x, y in zip(_entries(value), _entries(ref)):
+                        assert acb(x).contains(_ball(y)), (name, x, y)
+                assert ball_det.contains(_ball(det)), name
+                assert ball_det.rad() < 1e-12 * abs(complex(det)), name  # and the balls are tight
+
+
+def _acb_mat(rows) -> acb_mat:
+    return acb_mat([[acb(x) for x in row] for row in rows])
 
 
 def _ball(x) -> acb:

@@ -349,7 +349,8 @@ def coupled_system(
     b = None
     if loads is not None:
         b = ops.stack(ops.scale(2, ops.matmul(G, ops.column(loads))), ops.zeros(size - n, 1))
-    return Coupled(A, b, None if dD is None and dG is None else coupled_derivative(D, G, ops, dD=dD, dG=dG))
+    dA = None if dD is None and dG is None else _derivative(Dc, G, ops, dD, dG, size)
+    return Coupled(A, b, dA)
 
 
 def coupled_derivative(D: Any, G: Any, ops: Arithmetic, *, dD: Any = None, dG: Any = None) -> Any:
@@ -370,8 +371,12 @@ def coupled_derivative(D: Any, G: Any, ops: Arithmetic, *, dD: Any = None, dG: A
     matrix
         dA in the arithmetic of ``ops``.
     """
-    n, size = ops.count(G), ops.count(D)
-    Dc = ops.split(D, n)[0]
+    return _derivative(ops.split(D, ops.count(G))[0], G, ops, dD, dG, ops.count(D))
+
+
+def _derivative(Dc: Any, G: Any, ops: Arithmetic, dD: Any, dG: Any, size: int) -> Any:
+    """dA from the contact rows D_c of D (see :func:`coupled_derivative`)."""
+    n = ops.count(G)
     terms = []
     if dG is not None:
         terms.append(ops.matmul(dG, Dc))

@@ -23,7 +23,6 @@ from flint import acb, acb_mat, acb_series, arb
 
 from moving_bogie.kernels.coupling import (
     Rows,
-    coupled_derivative,
     coupled_system,
     dynamic_stiffness,
     kernel_matrix,
@@ -74,6 +73,8 @@ class BlockBalls:
                     self.offsets.append(x[i] - x[j])
                 self.index[i][j] = seen[key]
         self.ops = Rows(acb(arb.pi()), acb(0, 1))
+        self.arb = ArbMatrices()
+        self.mats = tuple(_matrix(m) for m in self.matrices)
 
     def sides(self) -> list:
         """+1 (xi >= 0: roots with Im p > 0) or -1 for each offset; None if the sign is not decided."""
@@ -100,15 +101,15 @@ class BlockBalls:
 
     def coefficient_matrices(self, qs, K, length):
         """[A_0] or [A_0, A_1]: the block matrix A(t) = A_0 + A_1 t from q and K as series in t."""
-        ops = self.ops
+        ops = self.arb
         q0, q1 = coefficient(qs, 0), coefficient(qs, 1)
-        D0, dD = dynamic_stiffness(q0, self.matrices, ops, derivative=length > 1)
+        D0, dD = dynamic_stiffness(q0, self.mats, ops, derivative=length > 1)
         K0 = kernel_matrix([coefficient(k, 0) for k in K], self.index, ops)
-        A0 = _matrix(coupled_system(D0, K0, ops).A)
         if length == 1:
-            return [A0]
+            return [coupled_system(D0, K0, ops).A]
         K1 = kernel_matrix([coefficient(k, 1) for k in K], self.index, ops)
-        return [A0, _matrix(coupled_derivative(D0, K0, ops, dD=ops.scale(q1, dD), dG=K1))]
+        system = coupled_system(D0, K0, ops, dD=ops.scale(q1, dD), dG=K1)
+        return [system.A, system.dA]
 
     def log_derivative(self, qs, K):
         """(E_chr, E_chr'/E_chr = tr(A_0^-1 A_1)) over the ball, or None where A_0 is not proven regular."""
@@ -134,6 +135,93 @@ class BlockBalls:
                 row = acb_mat([[1 if (r == c == k) else 0 for c in range(N)] for r in range(N)])
                 dE += (A0 + row * (A1 - A0)).det()
         return acb_series([E, dE], prec=2)
+
+
+class _Below:
+    """The rows of ``P`` below its first rows ``top`` (= Sel P), left in P: only :meth:`ArbMatrices.stack`
+    takes them, back under new first rows."""
+
+    def __init__(self, P: acb_mat, top: acb_mat) -> None:
+        self.P, self.top = P, top
+
+
+class ArbMatrices:
+    """The arithmetic of :mod:`moving_bogie.kernels.coupling` on Arb's matrices (``acb_mat``): products and
+    sums in C; rows are picked and placed by products with 0/1 matrices, which are exact."""
+
+    def __init__(self) -> None:
+        self.pi, self.i = acb(arb.pi()), acb(0, 1)
+        self._units: dict = {}
+
+    def _unit(self, rows: int, columns: int, shift: int = 0, transpose: bool = False) -> acb_mat:
+        """The rows x columns matrix with ones at (r, r + shift), or its transpose (cached)."""
+        key = (rows, columns, shift, transpose)
+        if key not in self._units:
+            unit = acb_mat([[1 if c == r + shift else 0 for c in range(columns)] for r in range(rows)])
+            self._units[key] = unit.transpose() if transpose else unit
+        return self._units[key]
+
+    @staticmethod
+    def count(G: acb_mat) -> int:
+        return G.nrows()
+
+    @staticmethod
+    def scale(s, P: acb_mat) -> acb_mat:
+        """s P; 2 P and -P exactly by a sum and a negation (cheaper than Arb's scalar product here)."""
+        if isinstance(s, int) and s in (2, -1):
+            return P + P if s == 2 else -P
+        return P * s
+
+    @staticmethod
+    def add(P: acb_mat, Q: acb_mat) -> acb_mat:
+        return P + Q
+
+    @staticmethod
+    def matmul(P: acb_mat, Q: acb_mat) -> acb_mat:
+        return P * Q
+
+    @staticmethod
+    def polynomial(q, coefficients) -> acb_mat:
+        powers = [1, q]
+        for _ in range(2, len(coefficients)):
+            powers.append(powers[-1] * q)
+        out = coefficients[-1] * powers[-1]
+        for k in range(len(coefficients) - 2, 0, -1):
+            out = out + coefficients[k] * powers[k]
+        return out + coefficients[0]
+
+    def plus_identity(self, P: acb_mat, s) -> acb_mat:
+        key = (P.nrows(), P.ncols(), "times", s is self.pi)
+        if key not in self._units:  # pi I once per shape
+            self._units[key] = self._unit(P.nrows(), P.ncols()) * s
+        return P + (self._units[key] if s is self.pi else self._unit(P.nrows(), P.ncols()) * s)
+
+    def split(self, P: acb_mat, n: int) -> tuple:
+        """(the first n rows, the others): these stay in P (:class:`_Below`), never picked."""
+        top = self._unit(n, P.nrows()) * P
+        return top, _Below(P, top)
+
+    def stack(self, top: acb_mat, bottom) -> acb_mat:
+        """The rows of ``top`` over ``bottom`` (P + place (top - P's first rows) for P's own rows)."""
+        n = top.nrows()
+        if isinstance(bottom, _Below):
+            return bottom.P + self._unit(n, bottom.P.nrows(), transpose=True) * (top - bottom.top)
+        m = bottom.nrows()
+        if m == 0:
+            return top
+        return self._unit(n, n + m, transpose=True) * top + self._unit(m, n + m, n, transpose=True) * bottom
+
+    @staticmethod
+    def zeros(rows: int, columns: int) -> acb_mat:
+        return acb_mat(rows, columns)
+
+    @staticmethod
+    def column(values) -> acb_mat:
+        return acb_mat([[acb(v)] for v in values])
+
+    @staticmethod
+    def gather(values, index) -> acb_mat:
+        return acb_mat([[values[k] for k in row] for row in index])
 
 
 def _matrix(rows: list) -> acb_mat:
