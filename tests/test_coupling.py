@@ -215,6 +215,9 @@ def test_harmonic_blocks_against_the_schur_complement():
     embedded = harmonic_blocks(rows, n, ops)
     batched = harmonic_blocks([D[0] for D in blocks], n, Batched)
     assert np.allclose(np.array(embedded, dtype=complex), batched, rtol=1e-14, atol=1e-14)
+    arb_blocks = [_acb_mat([[acb(complex(x)) for x in row] for row in D]) for D in rows]
+    arb_embedded = harmonic_blocks(arb_blocks, n, ArbMatrices())
+    assert np.allclose(np.array(arb_embedded.mid().tolist(), dtype=complex), batched, rtol=1e-14, atol=1e-14)
 
 
 def matrices_rows(module, params) -> list:

@@ -47,7 +47,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -61,6 +61,50 @@ __all__ = [
     "harmonic_blocks",
     "kernel_matrix",
 ]
+
+
+class Arithmetic(Protocol):
+    """The operations the coupling uses, on the matrices of one number type (:class:`Rows`,
+    :class:`Batched`, ``roots.proof.ball_block.ArbMatrices``)."""
+
+    pi: Any
+    i: Any
+
+    def count(self, G: Any) -> int:
+        """The number of rows."""
+
+    def scale(self, s: Any, P: Any) -> Any:
+        """s P."""
+
+    def add(self, P: Any, Q: Any) -> Any:
+        """P + Q."""
+
+    def matmul(self, P: Any, Q: Any) -> Any:
+        """P Q."""
+
+    def polynomial(self, q: Any, coefficients: Sequence[Any]) -> Any:
+        """sum_k q^k P_k, lowest power first."""
+
+    def plus_identity(self, P: Any, s: Any) -> Any:
+        """P + s I."""
+
+    def split(self, P: Any, n: int) -> tuple[Any, Any]:
+        """(the first n rows, the others)."""
+
+    def stack(self, top: Any, bottom: Any) -> Any:
+        """The rows of ``top`` over those of ``bottom``."""
+
+    def zeros(self, rows: int, columns: int) -> Any:
+        """A rows x columns matrix of zeros."""
+
+    def column(self, values: Sequence[Any]) -> Any:
+        """A vector as a one-column matrix."""
+
+    def gather(self, values: Sequence[Any], index: Sequence[Sequence[int]]) -> Any:
+        """The matrix with entry (r, c) = values[index[r][c]]."""
+
+    def embed(self, blocks: Sequence[Any], places: Sequence[Sequence[int]], size: int) -> Any:
+        """size x size zeros with block k at rows and columns ``places[k]``."""
 
 
 def structural_zero(x: Any) -> bool:
@@ -249,9 +293,6 @@ class Batched:
             ix = np.asarray(place)
             out[..., ix[:, None], ix[None, :]] = block
         return out
-
-
-Arithmetic = Rows | Batched
 
 
 @dataclass(frozen=True)

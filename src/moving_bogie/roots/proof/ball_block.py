@@ -219,6 +219,14 @@ class ArbMatrices:
     def column(values) -> acb_mat:
         return acb_mat([[acb(v)] for v in values])
 
+    def embed(self, blocks, places, size: int) -> acb_mat:
+        """size x size zeros with block k at rows and columns ``places[k]`` (P B P^T, P of 0/1)."""
+        out = acb_mat(size, size)
+        for block, place in zip(blocks, places):
+            P = acb_mat([[1 if place[c] == row else 0 for c in range(len(place))] for row in range(size)])
+            out = out + P * block * P.transpose()
+        return out
+
     @staticmethod
     def gather(values, index) -> acb_mat:
         return acb_mat([[values[k] for k in row] for row in index])
