@@ -28,7 +28,8 @@ import mpmath
 import numpy as np
 from flint import acb, arb, ctx
 
-from moving_bogie.kernels.coupling import Batched, Rows, coupled_system, dynamic_stiffness
+from moving_bogie.kernels.arithmetic import Batched, Rows
+from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness
 
 HERE = Path(__file__).resolve().parent.parent
 VEHICLES = ("mass", "oscillator", "masses", "bogie", "car")

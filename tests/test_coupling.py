@@ -24,13 +24,8 @@ import numpy as np
 import pytest
 from flint import acb, acb_mat, arb, ctx
 
-from moving_bogie.kernels.coupling import (
-    Batched,
-    Rows,
-    coupled_system,
-    dynamic_stiffness,
-    harmonic_blocks,
-)
+from moving_bogie.kernels.arithmetic import Batched, Rows
+from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, harmonic_blocks
 from moving_bogie.roots.proof.ball_block import ArbMatrices
 
 VEHICLES = ("mass", "oscillator", "masses", "bogie", "car")

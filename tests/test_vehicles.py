@@ -84,7 +84,8 @@ def test_block_determinant_is_eq38():
     from derivations import symbols as s
     from derivations.system import SYSTEMS, in_q
     from derivations.vehicles import VEHICLES, assemble, block_characteristic
-    from moving_bogie.kernels.coupling import Rows, coupled_system, dynamic_stiffness, kernel_matrix
+    from moving_bogie.kernels.arithmetic import Rows
+    from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, kernel_matrix
 
     atoms = {0: s.K0, s.d: s.Kp, -s.d: s.Km}
     ops = Rows(sp.pi, sp.I)

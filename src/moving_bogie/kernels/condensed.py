@@ -15,13 +15,8 @@ from __future__ import annotations
 import gmpy2
 import mpmath
 
-from moving_bogie.kernels.coupling import (
-    Rows,
-    coupled_derivative,
-    coupled_system,
-    dynamic_stiffness,
-    kernel_matrix,
-)
+from moving_bogie.kernels.arithmetic import Rows
+from moving_bogie.kernels.coupling import coupled_derivative, coupled_system, dynamic_stiffness, kernel_matrix
 from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
 
 

@@ -17,13 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from moving_bogie.kernels.coupling import (
-    Batched,
-    coupled_derivative,
-    coupled_system,
-    dynamic_stiffness,
-    kernel_matrix,
-)
+from moving_bogie.kernels.arithmetic import Batched
+from moving_bogie.kernels.coupling import coupled_derivative, coupled_system, dynamic_stiffness, kernel_matrix
 
 __all__ = ["BlockSweep"]
 

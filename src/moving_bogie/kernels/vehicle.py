@@ -31,8 +31,9 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
+from moving_bogie.kernels.arithmetic import Batched, Rows
 from moving_bogie.kernels.condensed import binary_matrices, condensed_characteristic
-from moving_bogie.kernels.coupling import Batched, Rows, coupled_system, dynamic_stiffness, kernel_matrix
+from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, kernel_matrix
 from moving_bogie.kernels.elimination import lu_factor, lu_solve
 
 #: The arithmetic of the one-q backend (:mod:`moving_bogie.kernels.coupling`): mpmath numbers at the

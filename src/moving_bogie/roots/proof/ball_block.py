@@ -21,13 +21,8 @@ from __future__ import annotations
 
 from flint import acb, acb_mat, acb_series, arb
 
-from moving_bogie.kernels.coupling import (
-    Rows,
-    coupled_system,
-    dynamic_stiffness,
-    kernel_matrix,
-    structural_zero,
-)
+from moving_bogie.kernels.arithmetic import Rows, structural_zero
+from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, kernel_matrix
 
 
 class BlockBalls:
