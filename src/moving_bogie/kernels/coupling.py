@@ -76,7 +76,7 @@ def dynamic_stiffness(q: Any, matrices: Sequence[Any], ops: Arithmetic, derivati
     Parameters
     ----------
     q : number or array
-        The point (an array of the batch shape for :class:`Batched`).
+        The point (an array of the batch shape for :class:`~moving_bogie.kernels.arithmetic.Batched`).
     matrices : (M, C, K)
         The vehicle's generated matrices in the number type of ``ops``.
     ops : Arithmetic
