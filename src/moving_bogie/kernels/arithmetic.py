@@ -45,7 +45,7 @@ class Arithmetic(Protocol):
         """sum_k q^k P_k, lowest power first."""
 
     def plus_identity(self, P: Any, s: Any) -> Any:
-        """P + s I."""
+        """P + s I (P is a fresh result, which the arithmetic may overwrite)."""
 
     def split(self, P: Any, n: int) -> tuple[Any, Any]:
         """(the first n rows, the others)."""
@@ -175,7 +175,7 @@ class Batched:
 
     @staticmethod
     def scale(s: Any, P: np.ndarray) -> np.ndarray:
-        return (np.asarray(s)[..., None, None] if np.ndim(s) else s) * P
+        return (s[..., None, None] if isinstance(s, np.ndarray) and s.ndim else s) * P
 
     @staticmethod
     def polynomial(q: Any, coefficients: Sequence[np.ndarray]) -> np.ndarray:
@@ -204,7 +204,7 @@ class Batched:
 
     @staticmethod
     def plus_identity(P: np.ndarray, s: Any) -> np.ndarray:
-        out = np.array(P, dtype=complex)
+        out = P if P.dtype == complex else P.astype(complex)  # P is fresh: overwritten
         diagonal = range(min(P.shape[-2:]))
         out[..., diagonal, diagonal] += s
         return out
@@ -215,9 +215,10 @@ class Batched:
 
     @staticmethod
     def stack(top: np.ndarray, bottom: np.ndarray) -> np.ndarray:
-        batch = np.broadcast_shapes(top.shape[:-2], bottom.shape[:-2])
-        parts = [np.broadcast_to(x, batch + x.shape[-2:]) for x in (top, bottom)]
-        return np.concatenate(parts, axis=-2)
+        if top.shape[:-2] != bottom.shape[:-2]:
+            batch = np.broadcast_shapes(top.shape[:-2], bottom.shape[:-2])
+            top, bottom = (np.broadcast_to(x, batch + x.shape[-2:]) for x in (top, bottom))
+        return np.concatenate((top, bottom), axis=-2)
 
     @staticmethod
     def zeros(rows: int, columns: int) -> np.ndarray:
@@ -229,8 +230,11 @@ class Batched:
 
     @staticmethod
     def gather(values: Sequence[Any], index: Sequence[Sequence[int]]) -> np.ndarray:
-        shape = np.broadcast_shapes(*(np.shape(k) for k in values))
-        return np.stack([np.broadcast_to(k, shape) for k in values], axis=-1)[..., np.asarray(index)]
+        shapes = {np.shape(k) for k in values}
+        if len(shapes) > 1:
+            shape = np.broadcast_shapes(*shapes)
+            values = [np.broadcast_to(k, shape) for k in values]
+        return np.stack(values, axis=-1)[..., np.asarray(index)]
 
     @staticmethod
     def embed(blocks: Sequence[np.ndarray], places: Sequence[Sequence[int]], size: int) -> np.ndarray:

@@ -16,15 +16,23 @@ import gmpy2
 import mpmath
 
 from moving_bogie.kernels.arithmetic import Rows
-from moving_bogie.kernels.coupling import coupled_derivative, coupled_system, dynamic_stiffness, kernel_matrix
+from moving_bogie.kernels.coupling import (
+    Dynamic,
+    coupled_derivative,
+    coupled_system,
+    dynamic_coefficients,
+    dynamic_stiffness,
+    kernel_matrix,
+)
 from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
 
 
-def binary_matrices(*matrices) -> tuple:
+def binary_matrices(*matrices) -> Dynamic:
     """The vehicle's matrices (lists of rows of mpmath numbers at the working precision, exact 0 where
-    nothing couples) in gmpy2, exactly."""
+    nothing couples) in gmpy2, exactly, as the coefficients of D(q) (exact too: a sign and a factor i)."""
     with gmpy2.context(gmpy2.get_context(), precision=mpmath.mp.prec + 64):
-        return tuple([[to_binary(x) for x in row] for row in matrix] for matrix in matrices)
+        binary = tuple([[to_binary(x) for x in row] for row in matrix] for matrix in matrices)
+        return dynamic_coefficients(binary, _arithmetic())
 
 
 def to_binary(x):
@@ -59,7 +67,7 @@ def _to_mp(z) -> mpmath.mpc:
 def condensed_characteristic(q, matrices, K, index, dK=None):
     """(E_chr, dE_chr/dq or None) of the block system with the internal DOFs eliminated first, or None.
 
-    ``q`` an mpmath number, ``matrices`` the vehicle's (M, C, K) from :func:`binary_matrices` (N x N,
+    ``q`` an mpmath number, ``matrices`` the coefficients of D(q) from :func:`binary_matrices` (N x N,
     wheels first), ``K`` (``dK``, or None) the kernel values at the distinct offsets and ``index[i][j]`` the
     offset of xi_i - xi_j. With D(q) = -q^2 M + i q C + K, S = D_cc - D_ci D_ii^-1 D_ic (the vehicle's
     dynamic stiffness condensed to its wheels) and B = pi I + 2 Kmat S, det A = det D_ii det B exactly. With
@@ -74,7 +82,7 @@ def condensed_characteristic(q, matrices, K, index, dK=None):
     least 34, about 10 digits), so that E keeps the accuracy of the elimination of the whole system. None
     where D_ii or B is singular to working precision: the caller then eliminates the whole system.
     """
-    n, N = len(index), len(matrices[0])
+    n, N = len(index), len(matrices.coefficients[0])
     m = N - n
     bits, guard = mpmath.mp.prec, 34
     while True:

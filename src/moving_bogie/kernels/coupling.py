@@ -53,8 +53,10 @@ from moving_bogie.kernels.arithmetic import Arithmetic
 
 __all__ = [
     "Coupled",
+    "Dynamic",
     "coupled_derivative",
     "coupled_system",
+    "dynamic_coefficients",
     "dynamic_stiffness",
     "harmonic_blocks",
     "kernel_matrix",
@@ -70,25 +72,41 @@ class Coupled:
     dA: Any
 
 
-def dynamic_stiffness(q: Any, matrices: Sequence[Any], ops: Arithmetic, derivative: bool = False) -> tuple:
+@dataclass(frozen=True)
+class Dynamic:
+    """A vehicle's D(q) as the matrix polynomial K + q (i C) + q^2 (-M): its coefficients, lowest first."""
+
+    coefficients: tuple
+
+
+def dynamic_coefficients(matrices: Sequence[Any], ops: Arithmetic) -> Dynamic:
+    """The coefficients (K, i C, -M) of D(q) from the generated (M, C, K): once per vehicle and type."""
+    M, C, K = matrices
+    return Dynamic((K, ops.scale(ops.i, C), ops.scale(-1, M)))
+
+
+def dynamic_stiffness(q: Any, matrices: Any, ops: Arithmetic, derivative: bool = False) -> tuple:
     """(D(q), dD/dq or None): D = -q^2 M + i q C + K, dD/dq = -2 q M + i C (Eq. (21), d/dtau -> i q).
 
     Parameters
     ----------
     q : number or array
         The point (an array of the batch shape for :class:`~moving_bogie.kernels.arithmetic.Batched`).
-    matrices : (M, C, K)
-        The vehicle's generated matrices in the number type of ``ops``.
+    matrices : (M, C, K) or Dynamic
+        The vehicle's generated matrices in the number type of ``ops``, or their
+        :func:`dynamic_coefficients`.
     ops : Arithmetic
         The arithmetic.
     derivative : bool
         Also dD/dq.
     """
-    M, C, K = matrices
-    D = ops.polynomial(q, (K, ops.scale(ops.i, C), ops.scale(-1, M)))
+    if not isinstance(matrices, Dynamic):
+        matrices = dynamic_coefficients(matrices, ops)
+    K, iC, minus_M = matrices.coefficients
+    D = ops.polynomial(q, (K, iC, minus_M))
     if not derivative:
         return D, None
-    return D, ops.add(ops.scale(-2 * q, M), ops.scale(ops.i, C))
+    return D, ops.add(ops.scale(2 * q, minus_M), iC)
 
 
 def kernel_matrix(values: Sequence[Any], index: Sequence[Sequence[int]], ops: Arithmetic) -> Any:

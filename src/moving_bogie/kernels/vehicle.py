@@ -33,7 +33,13 @@ import numpy as np
 
 from moving_bogie.kernels.arithmetic import Batched, Rows
 from moving_bogie.kernels.condensed import binary_matrices, condensed_characteristic
-from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, kernel_matrix
+from moving_bogie.kernels.coupling import (
+    Dynamic,
+    coupled_system,
+    dynamic_coefficients,
+    dynamic_stiffness,
+    kernel_matrix,
+)
 from moving_bogie.kernels.elimination import lu_factor, lu_solve
 
 #: The arithmetic of the one-q backend (:mod:`moving_bogie.kernels.coupling`): mpmath numbers at the
@@ -103,7 +109,9 @@ class VehicleSystem:
     def dynamic(self, q, derivative=False):
         """(D(q), dD/dq or None) at one q, lists of rows with an exact 0 where the vehicle has no coupling
         (so that sums and eliminations can skip it): D = -q^2 M + i q C + K (Eq. (21))."""
-        return dynamic_stiffness(q, self.matrices, _MPMATH, derivative)
+        if not hasattr(self, "_dynamic"):
+            self._dynamic = dynamic_coefficients(self.matrices, _MPMATH)
+        return dynamic_stiffness(q, self._dynamic, _MPMATH, derivative)
 
     def block(self, q, K, dK=None):
         """(A, b, dA/dq or None, D) at one q (lists of rows); ``K`` (``dK``) at :attr:`offsets`
@@ -172,10 +180,11 @@ class VehicleSystem:
 
     # --- arrays of q, numpy -------------------------------------------------------------------------------
 
-    def _float_matrices(self) -> tuple:
-        """(M, C, K) as float arrays (N, N), converted once."""
+    def _float_dynamic(self) -> Dynamic:
+        """D(q)'s coefficients from (M, C, K) as float arrays (N, N), converted once."""
         if not hasattr(self, "_floats"):
-            self._floats = tuple(np.array(A, dtype=float) for A in self.matrices)
+            floats = tuple(np.array(A, dtype=float) for A in self.matrices)
+            self._floats = dynamic_coefficients(floats, Batched)
         return self._floats
 
     def block_array(self, q, K, dK=None):
@@ -186,9 +195,11 @@ class VehicleSystem:
     def _coupled_array(self, q, K, dK=None, loads=False):
         """(the block system on arrays, with b if ``loads``; the vehicle's D(q) it was built from)."""
         q = np.asarray(q, dtype=complex)
-        D, dD = dynamic_stiffness(q, self._float_matrices(), Batched, derivative=dK is not None)
-        G = kernel_matrix(K, self.index, Batched)
-        dG = None if dK is None else kernel_matrix(dK, self.index, Batched)
+        D, dD = dynamic_stiffness(q, self._float_dynamic(), Batched, derivative=dK is not None)
+        if not hasattr(self, "_index_array"):
+            self._index_array = np.array(self.index)
+        G = kernel_matrix(K, self._index_array, Batched)
+        dG = None if dK is None else kernel_matrix(dK, self._index_array, Batched)
         system = coupled_system(D, G, Batched, loads=self.loads if loads else None, dD=dD, dG=dG)
         return system, D
 

@@ -22,7 +22,12 @@ from __future__ import annotations
 from flint import acb, acb_mat, acb_series, arb
 
 from moving_bogie.kernels.arithmetic import Rows, structural_zero
-from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, kernel_matrix
+from moving_bogie.kernels.coupling import (
+    coupled_system,
+    dynamic_coefficients,
+    dynamic_stiffness,
+    kernel_matrix,
+)
 
 
 class BlockBalls:
@@ -69,7 +74,8 @@ class BlockBalls:
                 self.index[i][j] = seen[key]
         self.ops = Rows(acb(arb.pi()), acb(0, 1))
         self.arb = ArbMatrices()
-        self.mats = tuple(_matrix(m) for m in self.matrices)
+        self.dynamic = dynamic_coefficients(self.matrices, self.ops)
+        self.mats = dynamic_coefficients(tuple(_matrix(m) for m in self.matrices), self.arb)
 
     def sides(self) -> list:
         """+1 (xi >= 0: roots with Im p > 0) or -1 for each offset; None if the sign is not decided."""
@@ -89,7 +95,7 @@ class BlockBalls:
         """E_chr as an acb_series of ``length`` terms, from q (series) and K (series, one per offset)."""
         if length <= 2:
             return self.det_linear(qs, K, length)
-        D, _ = dynamic_stiffness(qs, self.matrices, self.ops)
+        D, _ = dynamic_stiffness(qs, self.dynamic, self.ops)
         A = coupled_system(D, kernel_matrix(K, self.index, self.ops), self.ops).A
         zero = acb_series([acb(0)], prec=length)
         return series_det([[zero + x for x in row] for row in A], length)
