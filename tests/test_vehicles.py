@@ -74,20 +74,36 @@ def test_car_positions_and_loads():
 def test_block_determinant_is_eq38():
     """det of the block system = -1/2 E_chr (bogie: pitch row halved, bounce row negated); masses: E_chr.
 
-    SymPy missing fails this test with its install command (skipped only on request, as the derivation
-    tests: tests/derivation_support.py)."""
+    Both the derivation's block system (derivations/vehicles.py) and the runtime's one definition of the
+    coupling (kernels/coupling.py, evaluated on SymPy numbers with the generated matrices) against E_chr as
+    derived from the vehicle's equations of motion (Eqs. (30)-(34), derivations/system.py). SymPy missing
+    fails this test with its install command (skipped only on request, as the derivation tests:
+    tests/derivation_support.py).
+    """
     sp = require_sympy()
     if str(REPO) not in sys.path:
         sys.path.insert(0, str(REPO))
     from derivations import symbols as s
     from derivations.system import SYSTEMS, in_q
     from derivations.vehicles import VEHICLES, assemble, block_characteristic
+    from moving_bogie.kernels.arithmetic import Rows
+    from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, kernel_matrix
 
     atoms = {0: s.K0, s.d: s.Kp, -s.d: s.Km}
+    ops = Rows(sp.pi, sp.I)
     for name, factor in (("bogie", sp.Rational(-1, 2)), ("masses", 1)):
-        E = block_characteristic(assemble(VEHICLES[name]()), lambda x: atoms[x])
         system = SYSTEMS[name]()
-        assert sp.expand(E - factor * in_q(system.E_chr, system)) == 0
+        closed = sp.expand(factor * in_q(system.E_chr, system))
+        assert sp.expand(block_characteristic(assemble(VEHICLES[name]()), lambda x: atoms[x]) - closed) == 0
+        module = _module(name)
+        values = {k: getattr(s, k) for k in module.MATRIX_ARGUMENTS}
+        matrices = [f(**values) for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)]
+        D, _ = dynamic_stiffness(s.q, matrices, ops)
+        x = module.contact_positions(**values)
+        offsets = sorted({sp.expand(a - b) for a in x for b in x}, key=str)
+        index = [[offsets.index(sp.expand(a - b)) for b in x] for a in x]
+        A = sp.Matrix(coupled_system(D, kernel_matrix([atoms[k] for k in offsets], index, ops), ops).A)
+        assert sp.expand(A.applyfunc(sp.expand).det(method="berkowitz") - closed) == 0, name
 
 
 @pytest.mark.parametrize("name", tuple(generated.DECLARED_VEHICLES))

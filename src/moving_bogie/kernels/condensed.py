@@ -2,10 +2,12 @@
 condensed to its wheels), and dE_chr/dq by Jacobi's formula (Eq. (40)), at one q, for the mpmath
 backend (computed in gmpy2, the library under mpmath, and returned as mpmath numbers).
 
-The block system of :mod:`moving_bogie.kernels.vehicle` is [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]]
+The block system of :mod:`moving_bogie.kernels.coupling` is [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]]
 (c: the n wheels, i: the vehicle's internal DOFs). D_ii, the vehicle with its wheels held, does not involve
 the track, so its Schur complement is an n x n system, and an evaluation costs a small elimination of
-D_ii and one of the wheel system instead of one of the whole block system.
+D_ii and one of the wheel system instead of one of the whole block system. The wheel system is the same
+coupling of the condensed vehicle S to the track (no internal DOFs left): D, the wheel system and its
+derivative are those of :mod:`moving_bogie.kernels.coupling`, in gmpy2 numbers.
 """
 
 from __future__ import annotations
@@ -13,14 +15,24 @@ from __future__ import annotations
 import gmpy2
 import mpmath
 
+from moving_bogie.kernels.arithmetic import Rows
+from moving_bogie.kernels.coupling import (
+    Dynamic,
+    coupled_derivative,
+    coupled_system,
+    dynamic_coefficients,
+    dynamic_stiffness,
+    kernel_matrix,
+)
 from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
 
 
-def binary_matrices(*matrices) -> tuple:
+def binary_matrices(*matrices) -> Dynamic:
     """The vehicle's matrices (lists of rows of mpmath numbers at the working precision, exact 0 where
-    nothing couples) in gmpy2, exactly."""
+    nothing couples) in gmpy2, exactly, as the coefficients of D(q) (exact too: a sign and a factor i)."""
     with gmpy2.context(gmpy2.get_context(), precision=mpmath.mp.prec + 64):
-        return tuple([[to_binary(x) for x in row] for row in matrix] for matrix in matrices)
+        binary = tuple([[to_binary(x) for x in row] for row in matrix] for matrix in matrices)
+        return dynamic_coefficients(binary, _arithmetic())
 
 
 def to_binary(x):
@@ -55,7 +67,7 @@ def _to_mp(z) -> mpmath.mpc:
 def condensed_characteristic(q, matrices, K, index, dK=None):
     """(E_chr, dE_chr/dq or None) of the block system with the internal DOFs eliminated first, or None.
 
-    ``q`` an mpmath number, ``matrices`` the vehicle's (M, C, K) from :func:`binary_matrices` (N x N,
+    ``q`` an mpmath number, ``matrices`` the coefficients of D(q) from :func:`binary_matrices` (N x N,
     wheels first), ``K`` (``dK``, or None) the kernel values at the distinct offsets and ``index[i][j]`` the
     offset of xi_i - xi_j. With D(q) = -q^2 M + i q C + K, S = D_cc - D_ci D_ii^-1 D_ic (the vehicle's
     dynamic stiffness condensed to its wheels) and B = pi I + 2 Kmat S, det A = det D_ii det B exactly. With
@@ -70,12 +82,12 @@ def condensed_characteristic(q, matrices, K, index, dK=None):
     least 34, about 10 digits), so that E keeps the accuracy of the elimination of the whole system. None
     where D_ii or B is singular to working precision: the caller then eliminates the whole system.
     """
-    n, N = len(index), len(matrices[0])
+    n, N = len(index), len(matrices.coefficients[0])
     m = N - n
     bits, guard = mpmath.mp.prec, 34
     while True:
         with gmpy2.context(gmpy2.get_context(), precision=bits):  # D rounded as mpmath rounds it
-            D, dD = _dynamic(to_binary(q), matrices, dK is not None)
+            D, dD = dynamic_stiffness(to_binary(q), matrices, _arithmetic(), dK is not None)
         with gmpy2.context(gmpy2.get_context(), precision=bits + guard):
             factors = (None, None, 1)
             loss = 0
@@ -86,40 +98,18 @@ def condensed_characteristic(q, matrices, K, index, dK=None):
                 pivots = [abs(factors[0][k][k]) for k in range(m)]
                 loss = max(0, int(gmpy2.log2(max(pivots) / min(pivots))))
             if loss + 17 <= guard:
-                Kb = [to_binary(k) for k in K]
-                Kmat = [[Kb[index[r][c]] for c in range(n)] for r in range(n)]
-                dKmat = None
-                if dK is not None:
-                    dKb = [to_binary(k) for k in dK]
-                    dKmat = [[dKb[index[r][c]] for c in range(n)] for r in range(n)]
+                ops = _arithmetic()
+                Kmat = kernel_matrix([to_binary(k) for k in K], index, ops)
+                dKmat = None if dK is None else kernel_matrix([to_binary(k) for k in dK], index, ops)
                 out = _wheel_system(D, dD, factors, Kmat, dKmat)
                 break
         guard = loss + 34
     return None if out is None else tuple(None if x is None else +_to_mp(x) for x in out)
 
 
-def _dynamic(q, matrices, derivative):
-    """D(q) and dD/dq (or None) in gmpy2, an exact 0 where the vehicle couples nothing."""
-    M, C, Kv = matrices
-    N = len(M)
-    i = gmpy2.mpc(0, 1)
-    q2, iq = q * q, i * q
-
-    def total(terms):
-        terms = [t for t in terms if not exact_zero(t)]
-        return sum(terms[1:], terms[0]) if terms else 0
-
-    D = [
-        [total((-q2 * M[a][c] if M[a][c] else 0, iq * C[a][c] if C[a][c] else 0, Kv[a][c])) for c in range(N)]
-        for a in range(N)
-    ]
-    if not derivative:
-        return D, None
-    dD = [
-        [total((-2 * q * M[a][c] if M[a][c] else 0, i * C[a][c] if C[a][c] else 0)) for c in range(N)]
-        for a in range(N)
-    ]
-    return D, dD
+def _arithmetic() -> Rows:
+    """gmpy2's arithmetic of :mod:`moving_bogie.kernels.coupling`, pi at the precision of the context."""
+    return Rows(gmpy2.const_pi(), gmpy2.mpc(0, 1))
 
 
 def _wheel_system(D, dD, factors, Kmat, dKmat):
@@ -147,8 +137,8 @@ def _wheel_system(D, dD, factors, Kmat, dKmat):
         S = [[D[r][c] - DX[r][c] for c in wheels] for r in wheels]
     else:
         S = [[D[r][c] for c in wheels] for r in wheels]
-    B = product(Kmat, S, wheels, wheels, wheels)
-    B = [[2 * B[r][c] + (gmpy2.const_pi() if r == c else 0) for c in wheels] for r in wheels]
+    ops = _arithmetic()
+    B = coupled_system(S, Kmat, ops).A
     luB, permB, b = lu_factor(B)
     E = d * b
     if dKmat is None:
@@ -170,8 +160,7 @@ def _wheel_system(D, dD, factors, Kmat, dKmat):
         dS = [[dD[r][c] - first[r][c] - second[r][c] for c in wheels] for r in wheels]
     else:
         dS = [[dD[r][c] for c in wheels] for r in wheels]
-    left, right = product(dKmat, S, wheels, wheels, wheels), product(Kmat, dS, wheels, wheels, wheels)
-    dB = [[2 * (left[r][c] + right[r][c]) for c in wheels] for r in wheels]
+    dB = coupled_derivative(S, Kmat, ops, dD=dS, dG=dKmat)
     for c in wheels:
         trace += lu_solve(luB, permB, [dB[r][c] for r in wheels])[c]
     return E, E * trace

@@ -17,6 +17,7 @@ import numpy as np
 from scipy import optimize
 
 from moving_bogie.kernels.coefficient_matrix import Coefficients
+from moving_bogie.kernels.polynomial import horner
 from moving_bogie.kernels.polyroots import (
     companion_roots,
     newton_polish,
@@ -95,19 +96,12 @@ _FLAT = 1e-13
 _SCALAR_REFINE = 4
 
 
-def _horner(coeffs, z: complex) -> complex:
-    acc = coeffs[0]
-    for cj in coeffs[1:]:
-        acc = acc * z + cj
-    return acc
-
-
 def _newton_one(coeffs, dcoeffs, z: complex, steps: int) -> complex:
     """Newton steps on one polynomial and its derivative (Python complex coefficients, highest first) from
     ``z``: a step that is not finite (N_q = 0, overflow) is not taken, as in the batched path."""
     for _ in range(steps):
         try:
-            step = _horner(coeffs, z) / _horner(dcoeffs, z)
+            step = horner(coeffs, z) / horner(dcoeffs, z)
         except (ZeroDivisionError, OverflowError):
             continue
         if cmath.isfinite(step):

@@ -296,8 +296,9 @@ def stack_coefficients(coeffs, shape) -> np.ndarray:
 
 
 def polyval(coeffs, x):
-    """Batched Horner: coeffs ``(..., n+1)`` highest first, x ``(..., k)`` -> ``(..., k)``; complex unless
-    both are real (the bounds sum |c_j| |x|^j of the backward-error tests)."""
+    """Batched Horner (the steps of :func:`moving_bogie.kernels.polynomial.horner`, on arrays, in place):
+    coeffs ``(..., n+1)`` highest first, x ``(..., k)`` -> ``(..., k)``; complex unless both are real (the
+    bounds sum |c_j| |x|^j of the backward-error tests)."""
     dtype = complex if np.iscomplexobj(coeffs) or np.iscomplexobj(x) else float
     n = coeffs.shape[-1]
     if n == 1:

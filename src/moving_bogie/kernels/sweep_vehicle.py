@@ -6,7 +6,8 @@ dynamic stiffness (its generated matrices at that point's parameters) and Kmat_i
 
     E_chr = det A,  A = [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]]   (Eq. (38) for n wheels),
 
-as in :mod:`moving_bogie.kernels.vehicle`, and every derivative by Jacobi's formula
+as :mod:`moving_bogie.kernels.coupling` defines it (batched, with the vehicle's matrices per point), and
+every derivative by Jacobi's formula
 dE/ds = E tr(A^-1 dA/ds) (Eq. (40)): s = q (dD/dq = -2 q M + i C, dK/dq), s = alpha (dK/dalpha only) and
 s = theta, a vehicle parameter (D is affine in each group, so dD/dtheta is a central difference, exact).
 Where A is singular to working precision, dE/ds = sum_k det(A with row k replaced by row k of dA/ds).
@@ -15,6 +16,9 @@ Where A is singular to working precision, dE/ds = sum_k det(A with row k replace
 from __future__ import annotations
 
 import numpy as np
+
+from moving_bogie.kernels.arithmetic import Batched
+from moving_bogie.kernels.coupling import coupled_derivative, coupled_system, dynamic_stiffness, kernel_matrix
 
 __all__ = ["BlockSweep"]
 
@@ -61,29 +65,25 @@ class BlockSweep:
     def dynamic(self, q, args):
         """(D, dD/dq) of shape ``q.shape + (N, N)`` at the parameters ``args``."""
         margs = self.matrix_args(args)
-        M, C, Kv = (
+        matrices = tuple(
             _matrix(f(**margs), q.shape)
             for f in (self.module.mass_matrix, self.module.damping_matrix, self.module.stiffness_matrix)
         )
-        qq = q[..., None, None]
-        return -(qq**2) * M + 1j * qq * C + Kv, -2 * qq * M + 1j * C
+        return dynamic_stiffness(q, matrices, Batched, derivative=True)
 
-    def kernel_matrix(self, K, shape) -> np.ndarray:
+    def kernel_matrix(self, K) -> np.ndarray:
         """Kmat_ij = K(xi_i - xi_j) from the kernel values at :meth:`offsets`."""
-        return np.stack([np.broadcast_to(k, shape) for k in K], axis=-1)[..., self.index]
+        return kernel_matrix(K, self.index, Batched)
 
-    def block(self, q, K, D) -> np.ndarray:
-        n = self.contacts
-        A = D.copy()
-        A[..., :n, :] = 2 * self.kernel_matrix(K, q.shape) @ D[..., :n, :]
-        A[..., range(n), range(n)] += np.pi
-        return A
+    def block(self, K, D) -> np.ndarray:
+        """The block system A at the kernel values ``K`` and the vehicle's D."""
+        return coupled_system(D, self.kernel_matrix(K), Batched).A
 
     def e_chr(self, q, K, args):
         """E_chr = det A at arrays ``q`` and kernel values ``K`` (one array per offset)."""
         q = np.asarray(q, dtype=complex)
         D, _ = self.dynamic(q, args)
-        return np.linalg.det(self.block(q, K, D))
+        return np.linalg.det(self.block(K, D))
 
     def derivatives(self, q, K, args, *, dKq=None, dKa=None, theta_args=None):
         """``(E, E_q, E_alpha, E_theta)`` (each derivative None unless its input is given).
@@ -92,25 +92,18 @@ class BlockSweep:
         parameter dicts (theta - h, theta + h) and h, for E_theta by the exact central difference of D.
         """
         q = np.asarray(q, dtype=complex)
-        n = self.contacts
         D, dDq = self.dynamic(q, args)
-        A = self.block(q, K, D)
-        Kmat = self.kernel_matrix(K, q.shape)
+        G = self.kernel_matrix(K)
+        A = coupled_system(D, G, Batched).A
         blocks = []
         if dKq is not None:
-            dA = dDq.copy()
-            dA[..., :n, :] = 2 * (self.kernel_matrix(dKq, q.shape) @ D[..., :n, :] + Kmat @ dDq[..., :n, :])
-            blocks.append(dA)
+            blocks.append(coupled_derivative(D, G, Batched, dD=dDq, dG=self.kernel_matrix(dKq)))
         if dKa is not None:
-            dA = np.zeros_like(A)
-            dA[..., :n, :] = 2 * self.kernel_matrix(dKa, q.shape) @ D[..., :n, :]
-            blocks.append(dA)
+            blocks.append(coupled_derivative(D, G, Batched, dG=self.kernel_matrix(dKa)))
         if theta_args is not None:
             lo, hi, h = theta_args
             dDt = (self.dynamic(q, hi)[0] - self.dynamic(q, lo)[0]) / (2 * np.asarray(h)[..., None, None])
-            dA = dDt.copy()
-            dA[..., :n, :] = 2 * Kmat @ dDt[..., :n, :]
-            blocks.append(dA)
+            blocks.append(coupled_derivative(D, G, Batched, dD=dDt))
         E = np.linalg.det(A)
         out = iter(jacobi(A, E, blocks))
         return (

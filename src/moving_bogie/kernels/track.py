@@ -27,6 +27,7 @@ from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.coefficient_matrix import Coefficients
 from moving_bogie.kernels.foundation import Foundation
+from moving_bogie.kernels.polynomial import derivative_coefficients, horner
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval
 
 
@@ -37,18 +38,6 @@ def foundation_arguments(bound: BoundModel, numbers: Any) -> dict[str, Any]:
     existing groups needs no change here; a group the model does not use is passed as None.
     """
     return {name: getattr(numbers, name, None) for name in bound.foundation_model.names}
-
-
-def polyval_list(coeffs, x):
-    acc = coeffs[0]
-    for c in coeffs[1:]:
-        acc = acc * x + c
-    return acc
-
-
-def polyder_list(coeffs):
-    n = len(coeffs) - 1
-    return [c * (n - k) for k, c in enumerate(coeffs[:-1])] or [0]
 
 
 @dataclass(frozen=True)
@@ -111,13 +100,13 @@ class TrackKernel:
         n = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
         roots = _roots_mp(n)
         qc = [mpmath.mpc(c) for c in self.module.q_coeffs(q, **args)]
-        n1 = polyder_list(n)
+        n1 = derivative_coefficients(n)
         if derivative:
-            n2 = polyder_list(n1)
+            n2 = derivative_coefficients(n1)
             nq = [mpmath.mpc(c) for c in self.module.n_coeffs_dq(q, **args)]
-            nqp = polyder_list(nq)
+            nqp = derivative_coefficients(nq)
             qq = [mpmath.mpc(c) for c in self.module.q_coeffs_dq(q, **args)]
-            qp = polyder_list(qc)
+            qp = derivative_coefficients(qc)
         upper = [p for p in roots if mpmath.im(p) > 0]
         lower = [p for p in roots if mpmath.im(p) < 0]
         if len(upper) + len(lower) != len(roots):
@@ -128,12 +117,11 @@ class TrackKernel:
         # what does not depend on xi, once per root: the offsets share it
         at = {}
         for p in upper + lower:
-            N1 = polyval_list(n1, p)
-            Qv = polyval_list(qc, p)
+            N1 = horner(n1, p)
+            Qv = horner(qc, p)
             if derivative:
-                Nq = polyval_list(nq, p)
-                at[p] = (N1, Qv, Nq, polyval_list(n2, p), polyval_list(qp, p), polyval_list(nqp, p),
-                         polyval_list(qq, p))  # fmt: skip
+                Nq = horner(nq, p)
+                at[p] = (N1, Qv, Nq, horner(n2, p), horner(qp, p), horner(nqp, p), horner(qq, p))
             else:
                 at[p] = (N1, Qv)
         Ks, dKs = [], []
@@ -193,7 +181,7 @@ def _roots_mp(coeffs):
                     den *= zi - zj
             if den == 0:
                 break
-            deltas.append(polyval_list(monic, zi) / den)
+            deltas.append(horner(monic, zi) / den)
         if len(deltas) != len(z):
             break
         z = [zi - di for zi, di in zip(z, deltas)]

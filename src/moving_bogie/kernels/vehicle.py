@@ -8,7 +8,8 @@ wheel deflections W (n of them) and the internal DOFs Y of the vehicle (times i 
     [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]] [W; Y] = [2 Kmat s; 0],
 
 the beam rows of Eq. (28) (pi W_i = 2 sum_j K(xi_i - xi_j) f_j with the wheel forces f_j = s_j - (D x)_j) over
-the vehicle's own rows. Then
+the vehicle's own rows, as :mod:`moving_bogie.kernels.coupling` defines it once for every number type (here
+mpmath at one q and numpy arrays of q). Then
 
 - E_chr(q) = det A (for the paper's bogie -1/2 times Eq. (38), for two masses Eq. (38)'s analogue itself: a
   constant factor changes neither the roots nor a residue);
@@ -30,8 +31,20 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
+from moving_bogie.kernels.arithmetic import Batched, Rows
 from moving_bogie.kernels.condensed import binary_matrices, condensed_characteristic
-from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
+from moving_bogie.kernels.coupling import (
+    Dynamic,
+    coupled_system,
+    dynamic_coefficients,
+    dynamic_stiffness,
+    kernel_matrix,
+)
+from moving_bogie.kernels.elimination import lu_factor, lu_solve
+
+#: The arithmetic of the one-q backend (:mod:`moving_bogie.kernels.coupling`): mpmath numbers at the
+#: working precision (``mpmath.pi`` is evaluated at the precision in force).
+_MPMATH = Rows(mpmath.pi, mpmath.mpc(0, 1))
 
 
 def distinct_offsets(positions) -> tuple[list, list]:
@@ -86,57 +99,28 @@ class VehicleSystem:
         squares = np.linalg.eigvals(np.linalg.solve(M, K)).real
         return [float(np.sqrt(x)) for x in sorted(squares) if x > 0]
 
-    # --- one q, mpmath ----------------------------------------------------------------------------------
+    # --- one q, mpmath ---------------------------------------------------------------------------------
+
+    @property
+    def matrices(self) -> tuple:
+        """(M, C, K) as generated: lists of rows, the integer 0 where the vehicle couples nothing."""
+        return self.mass, self.damping, self.stiffness
 
     def dynamic(self, q, derivative=False):
         """(D(q), dD/dq or None) at one q, lists of rows with an exact 0 where the vehicle has no coupling
         (so that sums and eliminations can skip it): D = -q^2 M + i q C + K (Eq. (21))."""
-        N = self.size
-        q2, iq, i = q**2, mpmath.mpc(0, 1) * q, mpmath.mpc(0, 1)
-
-        def entry(m, c, k):
-            terms = [
-                t for t in (-q2 * m if m else 0, iq * c if c else 0, k) if not (isinstance(t, int) and t == 0)
-            ]
-            return sum(terms[1:], terms[0]) if terms else 0
-
-        def slope(m, c):
-            terms = [t for t in (-2 * q * m if m else 0, i * c if c else 0) if not exact_zero(t)]
-            return sum(terms[1:], terms[0]) if terms else 0
-
-        M, C, Kv = self.mass, self.damping, self.stiffness
-        D = [[entry(M[a][c], C[a][c], Kv[a][c]) for c in range(N)] for a in range(N)]
-        if not derivative:
-            return D, None
-        return D, [[slope(M[a][c], C[a][c]) for c in range(N)] for a in range(N)]
+        if not hasattr(self, "_dynamic"):
+            self._dynamic = dynamic_coefficients(self.matrices, _MPMATH)
+        return dynamic_stiffness(q, self._dynamic, _MPMATH, derivative)
 
     def block(self, q, K, dK=None):
-        """(A, b, dA/dq or None, D) at one q (lists of rows); ``K`` (``dK``) at :attr:`offsets`."""
-        n, N = self.contacts, self.size
-        D, _ = self.dynamic(q)
-        Kmat = [[K[self.index[r][k]] for k in range(n)] for r in range(n)]
-        A = [
-            [
-                sum((2 * Kmat[r][k] * D[k][c] for k in range(n) if not exact_zero(D[k][c])), 0)
-                for c in range(N)
-            ]
-            for r in range(n)
-        ]
-        for r in range(n):
-            A[r][r] += mpmath.pi
-        A += [list(D[r]) for r in range(n, N)]
-        b = [sum(2 * Kmat[r][k] * self.loads[k] for k in range(n)) for r in range(n)] + [0] * (N - n)
-        dA = None
-        if dK is not None:
-            i = mpmath.mpc(0, 1)
-            dD = [[-2 * q * self.mass[a][c] + i * self.damping[a][c] for c in range(N)] for a in range(N)]
-            dKmat = [[dK[self.index[r][k]] for k in range(n)] for r in range(n)]
-            dA = [
-                [sum(2 * (dKmat[r][k] * D[k][c] + Kmat[r][k] * dD[k][c]) for k in range(n)) for c in range(N)]
-                for r in range(n)
-            ]
-            dA += [list(dD[r]) for r in range(n, N)]
-        return A, b, dA, D
+        """(A, b, dA/dq or None, D) at one q (lists of rows); ``K`` (``dK``) at :attr:`offsets`
+        (:func:`~moving_bogie.kernels.coupling.coupled_system`)."""
+        D, dD = self.dynamic(q, derivative=dK is not None)
+        G = kernel_matrix(K, self.index, _MPMATH)
+        dG = None if dK is None else kernel_matrix(dK, self.index, _MPMATH)
+        system = coupled_system(D, G, _MPMATH, loads=self.loads, dD=dD, dG=dG)
+        return system.A, [row[0] for row in system.b], system.dA, D
 
     def e_chr(self, q, K):
         """E_chr(q) = det A (:meth:`condensed`; the full block system where that does not apply)."""
@@ -196,45 +180,28 @@ class VehicleSystem:
 
     # --- arrays of q, numpy -------------------------------------------------------------------------------
 
-    def _dynamic_array(self, q, derivative=True):
-        """D(q) = -q^2 M + i q C + K (and dD/dq, or None) for an array of q, shape q.shape + (N, N)."""
-        if not hasattr(self, "_float_matrices"):
-            self._float_matrices = tuple(
-                np.array(A, dtype=float) for A in (self.mass, self.damping, self.stiffness)
-            )
-        M, C, Kv = self._float_matrices
-        N = self.size
-        if not hasattr(self, "_stacked"):
-            self._stacked = np.stack([Kv.ravel(), 1j * C.ravel(), -M.ravel()])  # D = [1, q, q^2] @ this
-        powers = np.stack([np.ones_like(q), q, q * q], axis=-1)
-        D = (powers @ self._stacked).reshape(q.shape + (N, N))
-        if not derivative:
-            return D, None
-        qq = q[..., None, None]
-        return D, 1j * C - 2 * qq * M
+    def _float_dynamic(self) -> Dynamic:
+        """D(q)'s coefficients from (M, C, K) as float arrays (N, N), converted once."""
+        if not hasattr(self, "_floats"):
+            floats = tuple(np.array(A, dtype=float) for A in self.matrices)
+            self._floats = dynamic_coefficients(floats, Batched)
+        return self._floats
 
     def block_array(self, q, K, dK=None):
         """A (shape q.shape + (N, N)) and dA/dq (or None) for kernel arrays ``K[k]`` at :attr:`offsets`."""
-        A, dA, _ = self._blocks_and_dynamic(q, K, dK)
-        return A, dA
+        system, _ = self._coupled_array(q, K, dK)
+        return system.A, system.dA
 
-    def _blocks_and_dynamic(self, q, K, dK=None):
-        """(A, dA/dq or None, D) on arrays: :meth:`block_array` and the vehicle's D(q) it was built from."""
+    def _coupled_array(self, q, K, dK=None, loads=False):
+        """(the block system on arrays, with b if ``loads``; the vehicle's D(q) it was built from)."""
         q = np.asarray(q, dtype=complex)
-        n = self.contacts
-        D, dD = self._dynamic_array(q, derivative=dK is not None)
-        shape = q.shape
-        index = np.array(self.index)
-        Kmat = np.stack([np.broadcast_to(k, shape) for k in K], axis=-1)[..., index]
-        A = D.copy()
-        A[..., :n, :] = 2 * Kmat @ D[..., :n, :]
-        A[..., range(n), range(n)] += np.pi
-        if dK is None:
-            return A, None, D
-        dKmat = np.stack([np.broadcast_to(k, shape) for k in dK], axis=-1)[..., index]
-        dA = dD.copy()
-        dA[..., :n, :] = 2 * (dKmat @ D[..., :n, :] + Kmat @ dD[..., :n, :])
-        return A, dA, D
+        D, dD = dynamic_stiffness(q, self._float_dynamic(), Batched, derivative=dK is not None)
+        if not hasattr(self, "_index_array"):
+            self._index_array = np.array(self.index)
+        G = kernel_matrix(K, self._index_array, Batched)
+        dG = None if dK is None else kernel_matrix(dK, self._index_array, Batched)
+        system = coupled_system(D, G, Batched, loads=self.loads if loads else None, dD=dD, dG=dG)
+        return system, D
 
     def e_chr_array(self, q, K):
         A, _ = self.block_array(q, K)
@@ -259,13 +226,15 @@ class VehicleSystem:
         return E, dE
 
     def rhs_array(self, q, K):
+        """b = [2 Kmat s; 0] on arrays, shape q.shape + (N,)."""
         q = np.asarray(q, dtype=complex)
-        n = self.contacts
-        b = np.zeros(q.shape + (self.size,), dtype=complex)
-        for i in range(n):
-            for k in range(n):
-                b[..., i] += 2 * np.broadcast_to(K[self.index[i][k]], q.shape) * self.loads[k]
-        return b
+        system, _ = self._coupled_array(q, K, loads=True)
+        return np.broadcast_to(system.b[..., 0], q.shape + (self.size,))
+
+    def _system_and_rhs(self, q, K):
+        """(A, b of shape A.shape[:-1], D) on arrays."""
+        system, D = self._coupled_array(q, K, loads=True)
+        return system.A, np.broadcast_to(system.b[..., 0], system.A.shape[:-1]), D
 
     def solutions_array(self, q, K):
         """(X, G / E_chr) on arrays: the responses X = n_X / E_chr (shape q.shape + (N,)) from one solve of
@@ -274,8 +243,7 @@ class VehicleSystem:
         What the branch-cut quadratures need, without the determinant; inf or NaN where A is singular.
         """
         q = np.asarray(q, dtype=complex)
-        A, _, D = self._blocks_and_dynamic(q, K)
-        b = self.rhs_array(q, K)
+        A, b, D = self._system_and_rhs(q, K)
         with np.errstate(all="ignore"):
             try:
                 X = np.linalg.solve(A, b[..., None])[..., 0]
@@ -294,8 +262,7 @@ class VehicleSystem:
         or a non-finite solve) are they the determinants of A with column X replaced by b.
         """
         q = np.asarray(q, dtype=complex)
-        A, _, D = self._blocks_and_dynamic(q, K)
-        b = self.rhs_array(q, K)
+        A, b, D = self._system_and_rhs(q, K)
         E = np.linalg.det(A)
         nums = np.full(b.shape, np.nan, dtype=complex)
         regular = E != 0

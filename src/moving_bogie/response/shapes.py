@@ -15,7 +15,8 @@ import mpmath
 import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
-from moving_bogie.kernels.track import TrackKernel, min_relative_separation, polyder_list, polyval_list
+from moving_bogie.kernels.polynomial import derivative_coefficients, horner
+from moving_bogie.kernels.track import TrackKernel, min_relative_separation
 
 __all__ = ["KernelGrid"]
 
@@ -42,9 +43,9 @@ class KernelGrid:
             self.q = mpmath.mpc(q)
             args = self.kernel.arguments()
             roots = self.kernel.p_roots(self.q)
-            n1 = polyder_list([mpmath.mpc(c) for c in self.kernel.module.n_coeffs(self.q, **args)])
+            n1 = derivative_coefficients([mpmath.mpc(c) for c in self.kernel.module.n_coeffs(self.q, **args)])
             qc = [mpmath.mpc(c) for c in self.kernel.module.q_coeffs(self.q, **args)]
-            weights = [polyval_list(qc, p) / polyval_list(n1, p) for p in roots]
+            weights = [horner(qc, p) / horner(n1, p) for p in roots]
             upper = [p for p in roots if mpmath.im(p) > 0]
             lower = [p for p in roots if mpmath.im(p) < 0]
             seps = [

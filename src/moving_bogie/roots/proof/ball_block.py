@@ -1,12 +1,13 @@
 """E_chr of any vehicle in ball arithmetic: the block system's determinant over truncated Taylor series.
 
 For a vehicle without the closed form of Eq. (38), :class:`~moving_bogie.roots.proof.balls.BallCharacteristic`
-evaluates E_chr = det [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]] (:mod:`moving_bogie.kernels.vehicle`)
-with every entry an ``acb_series`` in t = q - c: D = -q^2 M + i q C + K from the generated matrices (balls
-around the exact parameters), Kmat_ij = K(xi_i - xi_j) as series from the residue sum. Gaussian elimination
-on series is exact algebra, so coefficient j of the result encloses E_chr^(j)(xi)/j! for every xi of the
-ball (coefficient 1 is dE_chr/dq, Eq. (40), with no Jacobi formula needed). A pivot whose constant term
-contains 0 cannot be divided by: the determinant is then not decided at this ball (``None``), never guessed.
+evaluates E_chr = det [[pi I + 2 Kmat D_cc, 2 Kmat D_ci], [D_ic, D_ii]] (:mod:`moving_bogie.kernels.coupling`,
+in Arb's numbers) with every entry an ``acb_series`` in t = q - c: D = -q^2 M + i q C + K from the generated
+matrices (balls around the exact parameters), Kmat_ij = K(xi_i - xi_j) as series from the residue sum.
+Gaussian elimination on series is exact algebra, so coefficient j of the result encloses E_chr^(j)(xi)/j! for
+every xi of the ball (coefficient 1 is dE_chr/dq, Eq. (40), with no Jacobi formula needed). A pivot whose
+constant term contains 0 cannot be divided by: the determinant is then not decided at this ball (``None``),
+never guessed.
 
 For the orders the proofs use (E_chr alone, or E_chr and dE_chr/dq: at most two terms) the series are split
 into their coefficient matrices, A(t) = A_0 + A_1 t, and the determinant is taken by Arb's ``acb_mat``
@@ -19,6 +20,14 @@ the Krawczyk test). Both are enclosures for every matrix in the balls, so the pr
 from __future__ import annotations
 
 from flint import acb, acb_mat, acb_series, arb
+
+from moving_bogie.kernels.arithmetic import Rows, structural_zero
+from moving_bogie.kernels.coupling import (
+    coupled_system,
+    dynamic_coefficients,
+    dynamic_stiffness,
+    kernel_matrix,
+)
 
 
 class BlockBalls:
@@ -39,7 +48,8 @@ class BlockBalls:
         self.contacts = int(module.CONTACTS)
         self.size = len(module.DOFS)
         self.matrices = tuple(
-            f(**args) for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
+            [[x if structural_zero(x) else acb(x) for x in row] for row in f(**args)]
+            for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
         )
         x = [acb(v) for v in module.contact_positions(**args)]
         n = self.contacts
@@ -62,11 +72,10 @@ class BlockBalls:
                     seen[key] = len(self.offsets)
                     self.offsets.append(x[i] - x[j])
                 self.index[i][j] = seen[key]
-        N = self.size
-        self.mats = tuple(acb_mat([[acb(x) for x in row] for row in m]) for m in self.matrices)
-        # wheel rows of an N x N matrix: Sel (n x N) picks them, Sel^T puts them back
-        self.select = acb_mat([[1 if c == r else 0 for c in range(N)] for r in range(n)])
-        self.place = self.select.transpose()
+        self.ops = Rows(acb(arb.pi()), acb(0, 1))
+        self.arb = ArbMatrices()
+        self.dynamic = dynamic_coefficients(self.matrices, self.ops)
+        self.mats = dynamic_coefficients(tuple(_matrix(m) for m in self.matrices), self.arb)
 
     def sides(self) -> list:
         """+1 (xi >= 0: roots with Im p > 0) or -1 for each offset; None if the sign is not decided."""
@@ -86,46 +95,22 @@ class BlockBalls:
         """E_chr as an acb_series of ``length`` terms, from q (series) and K (series, one per offset)."""
         if length <= 2:
             return self.det_linear(qs, K, length)
-        n, N = self.contacts, self.size
-        M, C, Kv = self.matrices
-        iq = acb(0, 1) * qs
-        q2 = qs * qs
-
-        def entry(a, c):
-            return -q2 * acb(M[a][c]) + iq * acb(C[a][c]) + acb(Kv[a][c])
-
-        D = [[entry(a, c) for c in range(N)] for a in range(N)]
-        pi = acb(arb.pi())
-        A = []
-        for r in range(n):
-            row = []
-            for c in range(N):
-                total = acb_series([acb(0)], prec=length)
-                for k in range(n):
-                    total += 2 * K[self.index[r][k]] * D[k][c]
-                row.append(total + pi if c == r else total)
-            A.append(row)
-        A += [list(D[r]) for r in range(n, N)]
-        return series_det(A, length)
+        D, _ = dynamic_stiffness(qs, self.dynamic, self.ops)
+        A = coupled_system(D, kernel_matrix(K, self.index, self.ops), self.ops).A
+        zero = acb_series([acb(0)], prec=length)
+        return series_det([[zero + x for x in row] for row in A], length)
 
     def coefficient_matrices(self, qs, K, length):
         """[A_0] or [A_0, A_1]: the block matrix A(t) = A_0 + A_1 t from q and K as series in t."""
-        n = self.contacts
-        M, C, Kv = self.mats
+        ops = self.arb
         q0, q1 = coefficient(qs, 0), coefficient(qs, 1)
-        i = acb(0, 1)
-        pi = acb(arb.pi())
-        sel, place = self.select, self.place
-        D0 = M * (-q0 * q0) + C * (i * q0) + Kv
-        K0 = acb_mat([[coefficient(K[self.index[r][k]], 0) for k in range(n)] for r in range(n)])
-        top0 = sel * D0
-        A0 = D0 + place * (K0 * top0 * 2 + sel * pi - top0)
+        D0, dD = dynamic_stiffness(q0, self.mats, ops, derivative=length > 1)
+        K0 = kernel_matrix([coefficient(k, 0) for k in K], self.index, ops)
         if length == 1:
-            return [A0]
-        D1 = (M * (-2 * q0) + C * i) * q1
-        K1 = acb_mat([[coefficient(K[self.index[r][k]], 1) for k in range(n)] for r in range(n)])
-        top1 = sel * D1
-        return [A0, D1 + place * ((K1 * top0 + K0 * top1) * 2 - top1)]
+            return [coupled_system(D0, K0, ops).A]
+        K1 = kernel_matrix([coefficient(k, 1) for k in K], self.index, ops)
+        system = coupled_system(D0, K0, ops, dD=ops.scale(q1, dD), dG=K1)
+        return [system.A, system.dA]
 
     def log_derivative(self, qs, K):
         """(E_chr, E_chr'/E_chr = tr(A_0^-1 A_1)) over the ball, or None where A_0 is not proven regular."""
@@ -151,6 +136,106 @@ class BlockBalls:
                 row = acb_mat([[1 if (r == c == k) else 0 for c in range(N)] for r in range(N)])
                 dE += (A0 + row * (A1 - A0)).det()
         return acb_series([E, dE], prec=2)
+
+
+class _Below:
+    """The rows of ``P`` below its first rows ``top`` (= Sel P), left in P: only :meth:`ArbMatrices.stack`
+    takes them, back under new first rows."""
+
+    def __init__(self, P: acb_mat, top: acb_mat) -> None:
+        self.P, self.top = P, top
+
+
+class ArbMatrices:
+    """The arithmetic of :mod:`moving_bogie.kernels.coupling` on Arb's matrices (``acb_mat``): products and
+    sums in C; rows are picked and placed by products with 0/1 matrices, which are exact."""
+
+    def __init__(self) -> None:
+        self.pi, self.i = acb(arb.pi()), acb(0, 1)
+        self._units: dict = {}
+
+    def _unit(self, rows: int, columns: int, shift: int = 0, transpose: bool = False) -> acb_mat:
+        """The rows x columns matrix with ones at (r, r + shift), or its transpose (cached)."""
+        key = (rows, columns, shift, transpose)
+        if key not in self._units:
+            unit = acb_mat([[1 if c == r + shift else 0 for c in range(columns)] for r in range(rows)])
+            self._units[key] = unit.transpose() if transpose else unit
+        return self._units[key]
+
+    @staticmethod
+    def count(G: acb_mat) -> int:
+        return G.nrows()
+
+    @staticmethod
+    def scale(s, P: acb_mat) -> acb_mat:
+        """s P; 2 P and -P exactly by a sum and a negation (cheaper than Arb's scalar product here)."""
+        if isinstance(s, int) and s in (2, -1):
+            return P + P if s == 2 else -P
+        return P * s
+
+    @staticmethod
+    def add(P: acb_mat, Q: acb_mat) -> acb_mat:
+        return P + Q
+
+    @staticmethod
+    def matmul(P: acb_mat, Q: acb_mat) -> acb_mat:
+        return P * Q
+
+    @staticmethod
+    def polynomial(q, coefficients) -> acb_mat:
+        powers = [1, q]
+        for _ in range(2, len(coefficients)):
+            powers.append(powers[-1] * q)
+        out = coefficients[-1] * powers[-1]
+        for k in range(len(coefficients) - 2, 0, -1):
+            out = out + coefficients[k] * powers[k]
+        return out + coefficients[0]
+
+    def plus_identity(self, P: acb_mat, s) -> acb_mat:
+        key = (P.nrows(), P.ncols(), "times", s is self.pi)
+        if key not in self._units:  # pi I once per shape
+            self._units[key] = self._unit(P.nrows(), P.ncols()) * s
+        return P + (self._units[key] if s is self.pi else self._unit(P.nrows(), P.ncols()) * s)
+
+    def split(self, P: acb_mat, n: int) -> tuple:
+        """(the first n rows, the others): these stay in P (:class:`_Below`), never picked."""
+        top = self._unit(n, P.nrows()) * P
+        return top, _Below(P, top)
+
+    def stack(self, top: acb_mat, bottom) -> acb_mat:
+        """The rows of ``top`` over ``bottom`` (P + place (top - P's first rows) for P's own rows)."""
+        n = top.nrows()
+        if isinstance(bottom, _Below):
+            return bottom.P + self._unit(n, bottom.P.nrows(), transpose=True) * (top - bottom.top)
+        m = bottom.nrows()
+        if m == 0:
+            return top
+        return self._unit(n, n + m, transpose=True) * top + self._unit(m, n + m, n, transpose=True) * bottom
+
+    @staticmethod
+    def zeros(rows: int, columns: int) -> acb_mat:
+        return acb_mat(rows, columns)
+
+    @staticmethod
+    def column(values) -> acb_mat:
+        return acb_mat([[acb(v)] for v in values])
+
+    def embed(self, blocks, places, size: int) -> acb_mat:
+        """size x size zeros with block k at rows and columns ``places[k]`` (P B P^T, P of 0/1)."""
+        out = acb_mat(size, size)
+        for block, place in zip(blocks, places):
+            P = acb_mat([[1 if place[c] == row else 0 for c in range(len(place))] for row in range(size)])
+            out = out + P * block * P.transpose()
+        return out
+
+    @staticmethod
+    def gather(values, index) -> acb_mat:
+        return acb_mat([[values[k] for k in row] for row in index])
+
+
+def _matrix(rows: list) -> acb_mat:
+    """An acb_mat from lists of rows of acb (a structural zero as the exact ball 0)."""
+    return acb_mat([[acb(x) for x in row] for row in rows])
 
 
 def coefficient(series, j) -> acb:

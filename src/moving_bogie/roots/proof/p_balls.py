@@ -18,11 +18,10 @@ layered tracks.
 
 from __future__ import annotations
 
-from functools import reduce
-
 from flint import acb, acb_poly, arb
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.kernels.polynomial import derivative_coefficients, horner
 
 __all__ = ["Undecided", "derivative_coefficients", "direct_root_balls", "horner", "isolate_roots"]
 
@@ -72,16 +71,6 @@ def isolate_roots(coeffs, tol=None) -> list:
             if balls[k].overlaps(balls[j]):
                 raise Undecided("root discs of N(p, q) overlap")
     return balls
-
-
-def horner(coeffs, x):
-    """The polynomial with ``coeffs`` (highest power first) at x, for acb and acb_series alike."""
-    return reduce(lambda acc, c: acc * x + c, coeffs[1:], coeffs[0])
-
-
-def derivative_coefficients(coeffs) -> list:
-    """Coefficients (highest power first) of the derivative."""
-    return [c * (len(coeffs) - 1 - k) for k, c in enumerate(coeffs[:-1])] or [0]
 
 
 def direct_root_balls(foundation, args, q: acb, tol, prec: int) -> list:
