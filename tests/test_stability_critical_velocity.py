@@ -67,3 +67,22 @@ def test_cli_json():
         "0.979847522056"
     )
     assert data["method"]
+
+
+def test_a_track_unstable_at_rest_is_one_clear_error(capsys):
+    """A compressed rail on a soft three-layer track: the lowest branch's phase speed falls to 0 (the rail
+    buckles: its N(p, 0; alpha = 0) has a real root p, seen on the grid), so there is no critical velocity to
+    polish. The command says so in one line and exits 2 (no traceback)."""
+    import numpy as np
+
+    from moving_bogie.cli import main
+
+    groups = {"eta_s": 0.1, "mu_2": 2.2, "kappa_2": 0.15, "mu_3": 3.9, "kappa_3": 0.56, "eta_N": 0.68}
+    model = get_model(beam="eb_axial", track="three-layer")
+    speeds = phase_speed(model, np.linspace(0.3, 0.5, 201), **groups)
+    assert float(np.nanmin(speeds)) < 1e-6  # the grid itself sees the phase speed reach 0 (lowest branch)
+    options = [f"--{name.replace('_', '-')}={value}" for name, value in groups.items()]
+    code = main(["critical-velocity", "--beam", "eb_axial", "--track", "three-layer", *options])
+    err = capsys.readouterr().err
+    assert code == 2 and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1 and "unstable at rest" in err

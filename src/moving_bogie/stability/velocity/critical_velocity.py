@@ -309,8 +309,23 @@ def critical_velocity(
         if inner.size == 0:
             without.append(j + 1)
         for k in inner:
-            lo = _polish(module, values, ps[k], c[k], dps)
-            hi = _polish(module, values, ps[k], c[k], dps + 15)
+            if not c[k] > 1e-9 * np.nanmax(np.abs(c)):  # a static wave: nothing to polish
+                raise MovingBogieError(
+                    f"critical velocity of {model.beam}/{model.track}: the phase speed of branch {j + 1} "
+                    f"falls to {c[k]:.3g} near p = {ps[k]:.4g}: the track is unstable at rest (for example "
+                    "a rail buckled by its axial force)"
+                )
+            try:
+                lo = _polish(module, values, ps[k], c[k], dps)
+                hi = _polish(module, values, ps[k], c[k], dps + 15)
+            except ValueError as error:  # mpmath.findroot: no convergence from the grid minimum
+                where = f"branch {j + 1} near p = {ps[k]:.4g} (phase speed {c[k]:.3g} on the grid)"
+                raise MovingBogieError(
+                    f"critical velocity of {model.beam}/{model.track}: Newton did not converge on the "
+                    f"phase-speed minimum of {where}; a phase speed that falls to 0 means the track is "
+                    "unstable at rest (for example a rail buckled by its axial force) "
+                    f"({str(error).splitlines()[0]})"
+                ) from None
             digits = _confirmed_digits(lo, hi, dps)
             found.append(PhaseSpeedMinimum(j + 1, lo[1], lo[0], float(c[k]), float(ps[k]), digits))
     if not found:
