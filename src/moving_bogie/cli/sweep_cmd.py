@@ -158,7 +158,7 @@ def _points_bar(enabled: bool):
         task = bar.add_task("sweep", total=None, rate="-")
         first = {}
 
-        def update(done, total):
+        def update(done, total) -> None:
             import time
 
             now = time.perf_counter()

@@ -43,7 +43,7 @@ class Characteristic:
         """The responses: every DOF of the vehicle, the wheels first (``DOFS`` of the generated module)."""
         return tuple(self.module.DOFS)
 
-    def kernel_values(self, q, derivative=False):
+    def kernel_values(self, q, derivative: bool=False):
         """K (and dK/dq) at every distinct offset xi_i - xi_j of the contacts (:attr:`system`)."""
         return self.kernel(q, self.system.offsets, derivative=derivative)
 
@@ -84,7 +84,7 @@ class CharacteristicArray:
         self.offsets = [float(x) for x in self.system.offsets]
         self.evaluations = 0
 
-    def kernel_values(self, q, derivative=False):
+    def kernel_values(self, q, derivative: bool=False):
         """K (and dK/dq) at the distinct contact offsets, arrays shaped like ``q``."""
         return self.kernel(np.asarray(q, dtype=complex), self.offsets, derivative=derivative)
 
@@ -110,7 +110,7 @@ class ContinuedCharacteristic:
     reference (elsewhere its values are nan). Evaluations count on the characteristic it continues.
     """
 
-    def __init__(self, fast: CharacteristicArray, refs, above):
+    def __init__(self, fast: CharacteristicArray, refs, above) -> None:
         self.fast = fast
         self.sides = (np.asarray(refs, dtype=complex), np.asarray(above, dtype=bool))
 

@@ -33,7 +33,7 @@ class _Poly:
     __slots__ = ("c",)
     __array_ufunc__ = None  # numpy scalars and arrays defer to the methods below
 
-    def __init__(self, c):
+    def __init__(self, c) -> None:
         self.c = np.asarray(c, dtype=complex)
 
     @staticmethod
@@ -95,7 +95,7 @@ class CoefficientMatrix:
     ``matrix`` (shape (terms, powers), None when the function is not polynomial in its argument).
     """
 
-    def __init__(self, func, args: dict):
+    def __init__(self, func, args: dict) -> None:
         self.func, self.args = func, args
         self.matrix = _matrix(func, args)
         self._by_power = None if self.matrix is None else np.ascontiguousarray(self.matrix.T)
@@ -119,7 +119,7 @@ class Coefficients:
     """The coefficient functions of one generated module at fixed parameters, each turned into a
     :class:`CoefficientMatrix` on first use (``coefficients(module.n_coeffs, q)``)."""
 
-    def __init__(self, args: dict):
+    def __init__(self, args: dict) -> None:
         self.args = args
         self._built: dict = {}
 

@@ -171,7 +171,7 @@ class SweepCharacteristic:
         """Number of p-roots with Im p > 0: it changes exactly where q crosses the cut of K."""
         return np.sum(self.p_roots(q, alpha).imag > 0, axis=-1)
 
-    def kernel(self, q, alpha, *, d=None, derivative=False, derivative_alpha=False, spacings=None):
+    def kernel(self, q, alpha, *, d=None, derivative: bool=False, derivative_alpha: bool=False, spacings=None):
         """K at the contact offsets, at arrays ``q``, ``alpha`` (and per-point spacing ``d``) broadcast.
 
         K is (K0, K+, K-) = K(0), K(d), K(-d) for a vehicle with the closed form of Eq. (38), else one value

@@ -81,7 +81,7 @@ def _exact(x) -> Fraction | None:
 class _ExactBalls:
     """Attribute access to the parameters of a DimensionlessParams as balls around their exact values."""
 
-    def __init__(self, params):
+    def __init__(self, params) -> None:
         self._params = params
 
     def __getattr__(self, name):
@@ -121,7 +121,7 @@ class BallCharacteristic:
         it too: the continuation, not the values from above), away from the branch points.
     """
 
-    def __init__(self, bound: BoundModel, *, prec: int = 128, below: bool = False, p_roots: str = "auto"):
+    def __init__(self, bound: BoundModel, *, prec: int = 128, below: bool = False, p_roots: str = "auto") -> None:
         params = bound.params
         self.below = below
         self.params = params

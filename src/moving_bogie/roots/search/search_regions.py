@@ -129,7 +129,7 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
             x_band = left
     density = columns / min(window.width, 3.0)
 
-    def fill(x0, x1):
+    def fill(x0, x1) -> None:
         fill_columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density)
 
     edges_x = [x_band]

@@ -221,7 +221,7 @@ def _exact(x: float):
     return Fraction(str(x))
 
 
-def _report(progress, x):
+def _report(progress, x) -> None:
     if progress is not None:
         progress(min(1.0, x))
 

@@ -165,7 +165,7 @@ def stability_column(
     def short():
         return np.array([j for j in unstable if len(roots[j]) < count[j]], dtype=int)
 
-    def merge(more):
+    def merge(more) -> None:
         for j in range(len(t)):
             if len(more[j]) > len(roots[j]):
                 roots[j] = more[j]
