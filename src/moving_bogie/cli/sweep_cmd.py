@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import argparse
 import sys
 from contextlib import contextmanager
@@ -156,7 +158,7 @@ def _points_bar(enabled: bool):
         transient=True,
     ) as bar:
         task = bar.add_task("sweep", total=None, rate="-")
-        first = {}
+        first: dict[Any, Any] = {}
 
         def update(done, total) -> None:
             import time

@@ -28,6 +28,8 @@ acb arguments (their ``1j`` literals combine with acb exactly).
 
 from __future__ import annotations
 
+from typing import Any
+
 from fractions import Fraction
 
 from flint import acb, acb_series, arb, ctx, fmpq
@@ -169,7 +171,8 @@ class BallCharacteristic:
         on_axis = self.below and q.imag.contains(0)
         if not on_axis:
             return _sides(roots)
-        upper, lower = [], []
+        upper: list[Any] = []
+        lower: list[Any] = []
         f, args = self.foundation, self.foundation_args
         if not all(acb(c).imag.is_zero() for c in f.n_coeffs(acb(q.real), **args)):
             return _sides(roots)  # a damped track: no limit from below needed (or possible) here

@@ -7,6 +7,8 @@ higher precision and comparing: only the digits that agree are reported.
 
 from __future__ import annotations
 
+from typing import Any
+
 import decimal
 import math
 from dataclasses import dataclass
@@ -129,7 +131,7 @@ def split_cluster(characteristic, q0, multiplicity, rect, *, dps, extra_dps) -> 
     ``multiplicity`` distinct roots inside ``rect`` are reached, each is polished and confirmed as a simple
     root (:func:`polish_and_confirm`); otherwise nothing is returned and the cluster stays unresolved.
     """
-    found = []
+    found: list[Any] = []
     with mpmath.workdps(2 * dps):
         q0 = mpmath.mpc(q0)
         size = max(rect.width, rect.height)

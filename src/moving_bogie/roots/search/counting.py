@@ -12,6 +12,8 @@ check that no root lies just beyond it).
 
 from __future__ import annotations
 
+from typing import Any
+
 import dataclasses
 from dataclasses import dataclass
 
@@ -141,7 +143,8 @@ def count_tiling(
                     f"({error})",
                 )
             )
-    flat_regions, flat_counts = [], []
+    flat_regions: list[Any] = []
+    flat_counts: list[Any] = []
     for region, n in zip(regions, counts):
         if isinstance(region, list):
             flat_regions += region

@@ -17,6 +17,8 @@ cut's range in it, and the sliver reported there is that strip's height.
 
 from __future__ import annotations
 
+from typing import Any
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -111,7 +113,7 @@ def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
 
 
 def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) -> Tiling:
-    unsearched = []
+    unsearched: list[Any] = []
     folds = sorted((f for f in cut.folds if window.x0 < f.q.real < window.x1), key=lambda f: f.q.real)
     # event intervals around folds (tip cells) and cusps (branch-point boxes)
     events = []

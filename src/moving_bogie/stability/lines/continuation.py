@@ -13,6 +13,8 @@ lines cross or the curve has a double point).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 __all__ = ["END_REASONS", "PathTracer", "covered", "evaluate", "gauss_newton"]
@@ -96,7 +98,7 @@ class PathTracer:
         self.sweep, self.scale, self.box = sweep, scale, box
         self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
         self.progress = progress
-        self.warnings = []
+        self.warnings: list[Any] = []
 
     def trace_all(self, groups):
         """Trace curves until every seed lies on one; returns a list of (d, path (k, 3), (start, end)).
@@ -104,7 +106,7 @@ class PathTracer:
         ``start`` and ``end`` say why the path ends there: a face of the box (:data:`END_REASONS`),
         "closed" (a loop), "stalled" (singular point) or "max_steps".
         """
-        paths = []
+        paths: list[Any] = []
         pending = list(groups)
         total = max(1, sum(len(g) for _, g in pending))
         while pending:

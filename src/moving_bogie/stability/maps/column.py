@@ -11,6 +11,8 @@ roots found than counted) are settled by :func:`settle_cells`: a full count at t
 
 from __future__ import annotations
 
+from typing import Any
+
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
@@ -255,7 +257,7 @@ def branch_points(bound: BoundModel, alpha: float) -> list[float]:
     xs = [f.q.real for f in cut.folds if f.q.real > 0 and abs(f.q.imag) < 1e-9]
     if np.isfinite(cut.x_start) and cut.x_start > 0 and abs(cut.im_low) < 1e-9:
         xs.append(cut.x_start)
-    out = []
+    out: list[Any] = []
     for x in sorted(xs):
         if not out or x - out[-1] > 1e-9:
             out.append(float(x))

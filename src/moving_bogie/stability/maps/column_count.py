@@ -26,6 +26,8 @@ count is not an integer is flagged ``uncertain``.
 
 from __future__ import annotations
 
+from typing import Any
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -134,7 +136,7 @@ def count_box(
     seg = seg + base
     lo, hi = seg, seg + 1
     st = steps[rows, seg]
-    near = [[] for _ in t]
+    near: list[list[Any]] = [[] for _ in t]
     uncertain = np.zeros(len(t), dtype=bool)
     for _ in range(80):
         if rows.size == 0:

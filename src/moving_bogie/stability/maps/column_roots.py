@@ -10,6 +10,8 @@ power sums of the roots inside, which are then the zeros of a polynomial (Newton
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from moving_bogie.stability.maps.column_count import horner_rows
@@ -38,7 +40,7 @@ def delves_lyness(coeffs, t, X, Y, top, *, panel: float=0.05, nodes: int=16, max
     c, dc = coeffs(z)
     E, dE = horner_rows(c, t[:, None]), horner_rows(dc, t[:, None])
     g = dE / E
-    out = []
+    out: list[Any] = []
     for j in range(len(t)):
 
         def s(m, j=j):
@@ -69,7 +71,8 @@ def dip_candidates(box, j, limit: int=10):
     zr = box.path[box.n_outer :]
     mag = np.abs(box.E[j, box.n_outer :])
     inner = np.nonzero((mag[1:-1] < mag[:-2]) & (mag[1:-1] < mag[2:]))[0] + 1
-    chosen, out = [], []
+    chosen: list[Any] = []
+    out: list[Any] = []
     for z_ in list(zr[inner[np.argsort(mag[inner])][:limit]]) + box.near_axis[j][::-1]:
         if len(chosen) >= limit:
             break
@@ -91,7 +94,7 @@ def locate_roots(sweep, alpha, thetas, cands, count, steps, spread: bool=True):
             flat = polish_roots(sweep, flat, alpha, thetas[owner], steps)
         for j in set(owner.tolist()):
             r = list(roots[j]) + [x for x in flat[owner == j] if np.isfinite(x) and x.imag < 0]
-            keep = []
+            keep: list[Any] = []
             for x in r:
                 x = -np.conj(x) if x.real < 0 else x
                 if all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):

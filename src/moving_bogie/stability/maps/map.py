@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
@@ -114,7 +114,7 @@ def map_columns(
         options["top"] = top_edge(bound, floats)
     theta_floats = np.array([float(t) for t in thetas])
     sweep = SweepCharacteristic(bound, parameter, held=held)
-    out = []
+    out: list[Any] = []
     for a, a_float in zip(alphas, floats):
         guesses = out[-1].roots if out else None
         col = stability_column(sweep, a_float, theta_floats, guesses=guesses, **options)

@@ -35,6 +35,8 @@ pair of real roots closer than ``q_step / 4096``, can be missed (stated in the o
 
 from __future__ import annotations
 
+from typing import Any
+
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -168,7 +170,7 @@ class UndampedCounter:
         self.q_step = float(q_step)
         self.sweep = SweepCharacteristic(self.bound, parameter, below=True)
         self.probe = SweepCharacteristic(self.bound.replace(eta_f=DAMPING_PROBE), parameter)
-        self._cuts = {}
+        self._cuts: dict[Any, Any] = {}
 
     def gap_end(self, alpha: float) -> float:
         """q_c: the branch point, where the cut (on the real axis) begins; 0 when there is no gap."""

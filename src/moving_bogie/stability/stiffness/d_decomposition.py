@@ -19,6 +19,8 @@ Im theta_k and refines each by Newton's method in (q, theta) at fixed alpha. Not
 
 from __future__ import annotations
 
+from typing import Any
+
 import itertools
 from dataclasses import dataclass
 
@@ -106,7 +108,7 @@ def d_decomposition(
     K, _, _ = sweep.kernel(qs, alpha)
     roots = poly_roots(sweep.coefficients(qs, K, scale=theta_max)) * theta_max
     curves = _follow(roots)
-    crossings = []
+    crossings: list[Any] = []
     im = curves.imag
     for k in range(curves.shape[1]):
         flips = np.nonzero(
