@@ -518,7 +518,7 @@ def test_the_bind_checks_see_what_they_check():
 
 # -- signatures and function length -----------------------------------------------------------------------
 
-#: The longest function the runtime may hold (docs/architecture.md, "Rules"), in lines from ``def`` to its end.
+#: The longest function the runtime may hold, in lines from ``def`` to its end.
 MAX_FUNCTION_LINES = 80
 
 
@@ -571,7 +571,9 @@ def test_every_public_signature_is_annotated():
     ships ``py.typed``), even where mypy does not run; the modules pyproject.toml's ``[tool.mypy]`` still
     lists as not annotated are the only exception, and they exist."""
     pending = _not_yet_annotated()
-    assert not pending - set(MODULES), f"pyproject.toml lists modules that do not exist: {pending - set(MODULES)}"
+    assert not pending - set(MODULES), (
+        f"pyproject.toml lists modules that do not exist: {pending - set(MODULES)}"
+    )
     offenders = []
     for module, tree in _runtime():
         if module in pending:
@@ -609,4 +611,7 @@ def test_the_signature_checks_see_what_they_check():
         ("s", ["self", "return"]),
         ("long", ["return"]),
     ]
-    assert max(n.end_lineno - n.lineno + 1 for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)) > MAX_FUNCTION_LINES
+    assert (
+        max(n.end_lineno - n.lineno + 1 for n in ast.walk(tree) if isinstance(n, ast.FunctionDef))
+        > MAX_FUNCTION_LINES
+    )

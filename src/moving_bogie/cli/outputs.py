@@ -49,7 +49,7 @@ class OutputError(MovingBogieError):
 class OutputPath(argparse.Action):
     """Store the path and remember (option, path, is_folder, suffixes) in ``namespace.output_paths``."""
 
-    def __init__(self, option_strings, dest, folder: bool=False, formats=(), **kwargs) -> None:
+    def __init__(self, option_strings, dest, folder: bool = False, formats=(), **kwargs) -> None:
         self.folder = folder
         self.formats = tuple(formats)
         super().__init__(option_strings, dest, **kwargs)

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import argparse
 import sys
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 from moving_bogie.errors import ParameterError
 

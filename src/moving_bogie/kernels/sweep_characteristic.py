@@ -24,15 +24,11 @@ alpha (double poles for the second term).
 
 from __future__ import annotations
 
-from numpy.typing import ArrayLike
-
-from collections.abc import Callable
-
+from collections.abc import Callable, Iterable
 from typing import Any
 
-from collections.abc import Iterable
-
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
@@ -270,7 +266,9 @@ class SweepCharacteristic:
                 args[group] = set_by(value, **{name: args[name] for name in depends})
         return args | {"pi": np.pi}
 
-    def e_chr(self, q: np.ndarray, K: Any, theta: ArrayLike | None = None, d: ArrayLike | None = None) -> np.ndarray:
+    def e_chr(
+        self, q: np.ndarray, K: Any, theta: ArrayLike | None = None, d: ArrayLike | None = None
+    ) -> np.ndarray:
         """E_chr at ``q`` from precomputed K (:meth:`kernel`)."""
         if self.blocks is not None:
             return self.blocks.e_chr(q, K, self.vehicle_args(theta, d))
@@ -283,19 +281,25 @@ class SweepCharacteristic:
         E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
         return E, E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2]
 
-    def __call__(self, q: ArrayLike, alpha: ArrayLike, theta: ArrayLike | None = None, d: ArrayLike | None = None) -> np.ndarray:
+    def __call__(
+        self, q: ArrayLike, alpha: ArrayLike, theta: ArrayLike | None = None, d: ArrayLike | None = None
+    ) -> np.ndarray:
         """E_chr at arrays q, alpha (and theta, d)."""
         q = np.asarray(q, dtype=complex)
         K, _, _ = self.kernel(q, alpha, d=d)
         return self.e_chr(q, K, theta, d)
 
-    def e_and_dq(self, q: ArrayLike, alpha: ArrayLike, theta: ArrayLike | None = None, d: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
+    def e_and_dq(
+        self, q: ArrayLike, alpha: ArrayLike, theta: ArrayLike | None = None, d: ArrayLike | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(E_chr, dE_chr/dq) at arrays q, alpha (and theta, d): Eq. (40) chain rule through dK/dq."""
         q = np.asarray(q, dtype=complex)
         K, dK, _ = self.kernel(q, alpha, d=d, derivative=True)
         return self._e_and_dq(q, K, dK, self.vehicle_args(theta, d))
 
-    def derivatives(self, q: ArrayLike, alpha: ArrayLike, theta: Any, d: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+    def derivatives(
+        self, q: ArrayLike, alpha: ArrayLike, theta: Any, d: ArrayLike | None = None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
         """``(E, E_q, E_alpha, E_theta)`` at arrays (q complex or real, alpha, theta, d).
 
         E_theta by a five-point stencil in theta, exact since E_chr has degree <= 4 in theta (closed form
@@ -331,7 +335,9 @@ class SweepCharacteristic:
         n = self.degree + 1
         return 0.5 * scale * (1 - np.cos((2 * np.arange(n) + 1) * np.pi / (2 * n)))
 
-    def coefficients(self, q: ArrayLike, K: Any, *, scale: float = 1.0, dK: Any = None, d: ArrayLike | None = None) -> Any:
+    def coefficients(
+        self, q: ArrayLike, K: Any, *, scale: float = 1.0, dK: Any = None, d: ArrayLike | None = None
+    ) -> Any:
         """Coefficients of E_chr (and of dE/dq with ``dK``) in t = theta / scale, highest power first.
 
         Parameters

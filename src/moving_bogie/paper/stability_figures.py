@@ -63,7 +63,9 @@ def _legend(fig, ds, styles=(), marks=()) -> None:
     fig.legend(handles=handles, loc="outside right center", fontsize=8)
 
 
-def _decorate(ax, title, alpha_max, theta_max: float=200.0, ylabel: str=r"$\eta_M$", critical: float=1.0) -> None:
+def _decorate(
+    ax, title, alpha_max, theta_max: float = 200.0, ylabel: str = r"$\eta_M$", critical: float = 1.0
+) -> None:
     ax.axvline(critical, color="k", ls=":", lw=1)
     ax.set_xlim(0, alpha_max)
     ax.set_ylim(0, theta_max)
@@ -72,7 +74,7 @@ def _decorate(ax, title, alpha_max, theta_max: float=200.0, ylabel: str=r"$\eta_
     ax.set_title(title, fontsize=9)
 
 
-def _base(eta_f: str="0.05", **kw) -> DimensionlessParams:
+def _base(eta_f: str = "0.05", **kw) -> DimensionlessParams:
     values = dict(eta_f=eta_f, eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5")
     values.update(kw)
     return DimensionlessParams.from_coefficients(**values)

@@ -7,10 +7,9 @@ Roots are matched to printed ones by proximity, not by position.
 
 from __future__ import annotations
 
-from typing import Any
-
 from dataclasses import dataclass
 from decimal import Decimal
+from typing import Any
 
 import mpmath
 

@@ -28,9 +28,8 @@ acb arguments (their ``1j`` literals combine with acb exactly).
 
 from __future__ import annotations
 
-from typing import Any
-
 from fractions import Fraction
+from typing import Any
 
 from flint import acb, acb_series, arb, ctx, fmpq
 
@@ -123,7 +122,9 @@ class BallCharacteristic:
         it too: the continuation, not the values from above), away from the branch points.
     """
 
-    def __init__(self, bound: BoundModel, *, prec: int = 128, below: bool = False, p_roots: str = "auto") -> None:
+    def __init__(
+        self, bound: BoundModel, *, prec: int = 128, below: bool = False, p_roots: str = "auto"
+    ) -> None:
         params = bound.params
         self.below = below
         self.params = params

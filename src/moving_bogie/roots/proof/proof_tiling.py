@@ -11,9 +11,8 @@ is listed as ``unsearched``.
 
 from __future__ import annotations
 
-from typing import Any
-
 from dataclasses import dataclass
+from typing import Any
 
 from moving_bogie.roots.count.contour import Rectangle
 

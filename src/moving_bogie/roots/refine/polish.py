@@ -7,11 +7,10 @@ higher precision and comparing: only the digits that agree are reported.
 
 from __future__ import annotations
 
-from typing import Any
-
 import decimal
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import mpmath
 
@@ -22,7 +21,7 @@ class PolishError(MovingBogieError):
     """Newton's method did not converge from the located cell."""
 
 
-def newton(characteristic, q0, *, multiplicity: int=1, max_iter: int=60):
+def newton(characteristic, q0, *, multiplicity: int = 1, max_iter: int = 60):
     """Root of E_chr near ``q0`` at the current precision; returns (q, |last step|)."""
     q = mpmath.mpc(q0)
     tol = mpmath.mpf(10) ** (-mpmath.mp.dps + 3)
@@ -60,7 +59,7 @@ class Confirmed:
     digits: int  # significant digits of q so confirmed
 
 
-def polish_and_confirm(characteristic, q0, *, dps, extra_dps, multiplicity: int=1) -> Confirmed:
+def polish_and_confirm(characteristic, q0, *, dps, extra_dps, multiplicity: int = 1) -> Confirmed:
     """Polish at ``dps`` digits, re-polish at ``dps + extra_dps`` and keep the digits both agree on.
 
     The reported value is the higher-precision one; ``decimals`` is the largest number of decimal places at

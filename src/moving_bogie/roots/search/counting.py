@@ -12,10 +12,9 @@ check that no root lies just beyond it).
 
 from __future__ import annotations
 
-from typing import Any
-
 import dataclasses
 from dataclasses import dataclass
+from typing import Any
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel

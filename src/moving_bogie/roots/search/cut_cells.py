@@ -157,7 +157,7 @@ class ColumnCell(_Curve):
     def center(self):
         return self._mid
 
-    def contains(self, z, margin: float=0.0):
+    def contains(self, z, margin: float = 0.0):
         if not (self.x0 - margin <= z.real <= self.x1 + margin):
             return False
         x = np.array([min(max(z.real, self.x0), self.x1)])
@@ -165,7 +165,7 @@ class ColumnCell(_Curve):
         hi = self.upper.points(x)[0].imag
         return lo - margin <= z.imag <= hi + margin
 
-    def split(self, fraction: float=0.5):
+    def split(self, fraction: float = 0.5):
         """Two cells: across Re q, or (taller than twice its width, with a horizontal line passing between
         its edges) along that line, so that a tall cell shrinks in height too (a lens between two arms)."""
         if self.height > 2 * self.width:
@@ -243,7 +243,7 @@ class TipCell(_Curve):
     def __repr__(self) -> str:
         return f"TipCell({'inner' if self.inner else 'outer'}, x <= {self.x_tip:.9g})"
 
-    def contains(self, z, margin: float=0.0):
+    def contains(self, z, margin: float = 0.0):
         if not (
             self.x0 - margin <= z.real <= self.x1 + margin and self.y0 - margin <= z.imag <= self.y1 + margin
         ):
@@ -259,7 +259,7 @@ class TipCell(_Curve):
         hi = self.upper.y_at(np.array([z.real]))[0]
         return lo <= z.imag <= hi
 
-    def split(self, fraction: float=0.5):
+    def split(self, fraction: float = 0.5):
         """The tip cell up to a Re q nearer the fold, and column cells for the rest."""
         x_new = self.fold.q.real + fraction * (self.x_tip - self.fold.q.real)
         c0, c1 = sorted((x_new, self.x_tip))

@@ -26,7 +26,7 @@ def arms_over(cut, a, b):
     return [arm for arm in cut.arms if arm.x_lo <= a + 1e-12 and arm.x_hi >= b - 1e-12]
 
 
-def fill_columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density, most: int=6) -> None:
+def fill_columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density, most: int = 6) -> None:
     """Columns between two events, ``density`` of them per unit of Re q (at least one, at most ``most``)."""
     xs = np.linspace(x0, x1, min(most, max(1, int(np.ceil(density * (x1 - x0) - 1e-9)))) + 1)
     for a, b in zip(xs[:-1], xs[1:]):
@@ -112,7 +112,7 @@ def _split_point(lower, upper, xs, gap, eps):
     is their crossing (else the Re q where their gap passes _MERGE eps); (None, False) if neither happens
     inside."""
 
-    def g(x, target: float=0.0):
+    def g(x, target: float = 0.0):
         return float(upper.y_at(np.array([x]))[0] - lower.y_at(np.array([x]))[0]) - target
 
     for target in (0.0, _MERGE * eps):

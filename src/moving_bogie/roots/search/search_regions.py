@@ -17,9 +17,8 @@ cut's range in it, and the sliver reported there is that strip's height.
 
 from __future__ import annotations
 
-from typing import Any
-
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 

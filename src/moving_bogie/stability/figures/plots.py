@@ -48,7 +48,15 @@ END_LABELS = {
 
 
 def plot_instability_lines(
-    ax, lines, *, colors=None, linestyle: str="-", scale: float=1.0, label: bool=True, lw: float=1.2, units=None
+    ax,
+    lines,
+    *,
+    colors=None,
+    linestyle: str = "-",
+    scale: float = 1.0,
+    label: bool = True,
+    lw: float = 1.2,
+    units=None,
 ) -> set:
     """Draw the branches of an :class:`~moving_bogie.stability.lines.instability_lines.InstabilityLines` on
     ``ax``.
@@ -94,7 +102,7 @@ def end_mark_handles(kinds) -> list:
     return [Line2D([], [], label=END_LABELS[k], **END_MARKERS[k]) for k in sorted(kinds)]
 
 
-def hatch_cells(ax, x, y, mask, *, label: str="uncertain (not certified)") -> int:
+def hatch_cells(ax, x, y, mask, *, label: str = "uncertain (not certified)") -> int:
     """Hatch the cells ``mask[j, i]`` of the grid ``x[i], y[j]`` (cell edges halfway between the values).
 
     Returns the number of hatched cells.

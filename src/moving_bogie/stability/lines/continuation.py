@@ -39,7 +39,7 @@ def evaluate(sweep, x, d, scale):
     return F, J, E, E_q, E_t
 
 
-def gauss_newton(sweep, x, d, scale, tol, max_iter: int=12):
+def gauss_newton(sweep, x, d, scale, tol, max_iter: int = 12):
     """Minimum-norm Gauss-Newton onto the curve Re E = Im E = 0; returns (x, converged)."""
     x = np.array(x, dtype=float)
     conv = np.zeros(len(x), dtype=bool)
@@ -59,7 +59,7 @@ def gauss_newton(sweep, x, d, scale, tol, max_iter: int=12):
     return x, conv & np.all(np.isfinite(x), axis=-1)
 
 
-def newton_fixed(sweep, x, d, k, value, scale, tol, max_iter: int=12):
+def newton_fixed(sweep, x, d, k, value, scale, tol, max_iter: int = 12):
     """Newton in the two coordinates other than ``k`` with x[k] = value (end points on the box)."""
     x = np.array(x, dtype=float)
     x[:, k] = value
@@ -94,7 +94,9 @@ class PathTracer:
     Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
     """
 
-    def __init__(self, sweep, scale, box, h_max, tol, *, h_min: float=1e-6, max_steps: int=4000, progress=None) -> None:
+    def __init__(
+        self, sweep, scale, box, h_max, tol, *, h_min: float = 1e-6, max_steps: int = 4000, progress=None
+    ) -> None:
         self.sweep, self.scale, self.box = sweep, scale, box
         self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
         self.progress = progress

@@ -11,11 +11,10 @@ roots found than counted) are settled by :func:`settle_cells`: a full count at t
 
 from __future__ import annotations
 
-from typing import Any
-
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 

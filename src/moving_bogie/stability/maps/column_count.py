@@ -26,9 +26,8 @@ count is not an integer is flagged ``uncertain``.
 
 from __future__ import annotations
 
-from typing import Any
-
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -86,7 +85,18 @@ def _bent(E: np.ndarray, max_bend: float) -> np.ndarray:
 
 
 def count_box(
-    coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend: float=0.5, fine_until=None, extra=None
+    coeffs,
+    t,
+    X,
+    Y,
+    top,
+    spacing,
+    coarse,
+    max_step,
+    min_spacing,
+    max_bend: float = 0.5,
+    fine_until=None,
+    extra=None,
 ) -> BoxCount:
     """Sample the right half-boundary and count the roots in the rectangle for every t (module text).
 

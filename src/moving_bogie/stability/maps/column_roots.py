@@ -19,7 +19,7 @@ from moving_bogie.stability.maps.column_count import horner_rows
 __all__ = ["delves_lyness", "dip_candidates", "from_power_sums", "locate_roots", "polish_roots"]
 
 
-def delves_lyness(coeffs, t, X, Y, top, *, panel: float=0.05, nodes: int=16, max_roots: int=8) -> list:
+def delves_lyness(coeffs, t, X, Y, top, *, panel: float = 0.05, nodes: int = 16, max_roots: int = 8) -> list:
     """Roots inside -X..X x -Y..top for each t (Delves-Lyness), or an empty list where that fails.
 
     ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z.
@@ -66,7 +66,7 @@ def from_power_sums(s):
     return np.roots(coeffs) if n > 0 else np.zeros(0, dtype=complex)
 
 
-def dip_candidates(box, j, limit: int=10):
+def dip_candidates(box, j, limit: int = 10):
     """Starting points below the places of the top edge where a root near the real axis shows."""
     zr = box.path[box.n_outer :]
     mag = np.abs(box.E[j, box.n_outer :])
@@ -82,7 +82,7 @@ def dip_candidates(box, j, limit: int=10):
     return out
 
 
-def locate_roots(sweep, alpha, thetas, cands, count, steps, spread: bool=True):
+def locate_roots(sweep, alpha, thetas, cands, count, steps, spread: bool = True):
     """Polish the candidates of every cell at once; with ``spread``, cells still short of roots then
     borrow the roots of the nearest complete cell (continuation in theta), front by front."""
     roots = [np.zeros(0, dtype=complex) for _ in thetas]
@@ -112,7 +112,7 @@ def locate_roots(sweep, alpha, thetas, cands, count, steps, spread: bool=True):
     return roots
 
 
-def polish_roots(sweep, q, alpha, thetas, steps, tol: float=1e-11):
+def polish_roots(sweep, q, alpha, thetas, steps, tol: float = 1e-11):
     """Newton on E_chr for every (q, theta) pair; non-converged entries come back as nan."""
     q = q.astype(complex)
     done = np.zeros(q.shape, dtype=bool)

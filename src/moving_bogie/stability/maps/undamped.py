@@ -35,10 +35,9 @@ pair of real roots closer than ``q_step / 4096``, can be missed (stated in the o
 
 from __future__ import annotations
 
-from typing import Any
-
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 

@@ -19,10 +19,9 @@ Im theta_k and refines each by Newton's method in (q, theta) at fixed alpha. Not
 
 from __future__ import annotations
 
-from typing import Any
-
 import itertools
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -146,7 +145,7 @@ def _follow(roots):
     return out
 
 
-def _refine(sweep, alpha, q, theta, tol, max_iter: int=30):
+def _refine(sweep, alpha, q, theta, tol, max_iter: int = 30):
     """Newton on E(q, theta) = 0 with q, theta real (2x2 real system); returns (q, theta, change) or None."""
     for _ in range(max_iter):
         E, E_q, _, E_t = sweep.derivatives(np.array([q], dtype=complex), np.array([alpha]), np.array([theta]))
