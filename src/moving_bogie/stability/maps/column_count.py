@@ -26,6 +26,7 @@ count is not an integer is flagged ``uncertain``.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -108,26 +109,7 @@ def count_box(
     halved segment has its track kernel computed once for every row that needs it; the change of arg E is
     the sum of the steps over each row's leaves.
     """
-    outer = np.concatenate(
-        [
-            edge_samples(complex(0, -Y), complex(X, -Y), coarse),
-            edge_samples(complex(X, -Y), complex(X, top), coarse),
-        ]
-    )
-    split = X if fine_until is None else min(X, fine_until)
-    z0 = np.concatenate(
-        [
-            edge_samples(complex(X, top), complex(split, top), coarse) if split < X else np.zeros(0, complex),
-            edge_samples(complex(split, top), complex(0, top), spacing),
-            [complex(0, top)],
-        ]
-    )
-    if extra is not None and len(extra):
-        x = np.asarray(extra, dtype=float)
-        x = np.unique(np.concatenate([z0.real, x[(x > 0) & (x < X)]]))
-        x = x[np.concatenate([[True], np.diff(x) > 10 * min_spacing])]  # no two closer than the finest
-        z0 = x[::-1] + 1j * top
-    axis = np.append(edge_samples(complex(0, top), complex(0, -Y), coarse), complex(0, -Y))
+    outer, z0, axis = _half_boundary(X, Y, top, spacing, coarse, min_spacing, fine_until, extra)
     path = np.concatenate([outer, z0])
     T = t[:, None]
     c_path, _ = coeffs(path)
@@ -191,3 +173,39 @@ def count_box(
     Ea = horner_rows(c_axis, T).real
     n_axis = np.sum(np.sign(Ea[:, 1:]) * np.sign(Ea[:, :-1]) < 0, axis=1)
     return BoxCount(path, base, E, n_rect, n_axis, uncertain, near)
+
+
+def _half_boundary(
+    X: float,
+    Y: float,
+    top: float,
+    spacing: float,
+    coarse: float,
+    min_spacing: float,
+    fine_until: float | None,
+    extra: Sequence[float] | np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The samples of the right half-boundary of the rectangle (see :func:`count_box`): the bottom and right
+    edges (``outer``), the top edge from Re q = X to 0 (``z0``: ``spacing`` up to ``fine_until``, the
+    ``extra`` values of Re q added) and the imaginary axis down to -Y (``axis``)."""
+    outer = np.concatenate(
+        [
+            edge_samples(complex(0, -Y), complex(X, -Y), coarse),
+            edge_samples(complex(X, -Y), complex(X, top), coarse),
+        ]
+    )
+    split = X if fine_until is None else min(X, fine_until)
+    z0 = np.concatenate(
+        [
+            edge_samples(complex(X, top), complex(split, top), coarse) if split < X else np.zeros(0, complex),
+            edge_samples(complex(split, top), complex(0, top), spacing),
+            [complex(0, top)],
+        ]
+    )
+    if extra is not None and len(extra):
+        x = np.asarray(extra, dtype=float)
+        x = np.unique(np.concatenate([z0.real, x[(x > 0) & (x < X)]]))
+        x = x[np.concatenate([[True], np.diff(x) > 10 * min_spacing])]  # no two closer than the finest
+        z0 = x[::-1] + 1j * top
+    axis = np.append(edge_samples(complex(0, top), complex(0, -Y), coarse), complex(0, -Y))
+    return outer, z0, axis

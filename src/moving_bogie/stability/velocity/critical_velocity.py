@@ -25,6 +25,7 @@ Every local minimum is bracketed on a grid of p in double precision, polished wi
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from types import ModuleType
 
 import mpmath
 import numpy as np
@@ -258,6 +259,25 @@ def _confirmed_digits(lo, hi, dps):
         return dps if err == 0 else max(0, min(dps, int(-mpmath.log10(2 * err))))
 
 
+def _phase_speed_minima(
+    module: ModuleType, values: dict, ps: np.ndarray, speeds: np.ndarray, dps: int
+) -> tuple[list[PhaseSpeedMinimum], list[int]]:
+    """The local minima of the phase speed c_j(p) of every branch j, bracketed on the grid ``ps`` and
+    polished at ``dps`` (digits confirmed at ``dps + 15``), and the branches (from 1) without one."""
+    found, without = [], []
+    for j in range(speeds.shape[1]):
+        c = speeds[:, j]
+        inner = np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:]) & np.isfinite(c[1:-1])) + 1
+        if inner.size == 0:
+            without.append(j + 1)
+        for k in inner:
+            lo = _polish(module, values, ps[k], c[k], dps)
+            hi = _polish(module, values, ps[k], c[k], dps + 15)
+            digits = _confirmed_digits(lo, hi, dps)
+            found.append(PhaseSpeedMinimum(j + 1, lo[1], lo[0], float(c[k]), float(ps[k]), digits))
+    return found, without
+
+
 def critical_velocity(
     source=None,
     *,
@@ -302,17 +322,7 @@ def critical_velocity(
     ps = np.linspace(p_max / samples, p_max, samples)
     speeds = dispersion_branches(model, ps, **values) / ps[:, None]
     branches = speeds.shape[1]
-    found, without = [], []
-    for j in range(branches):
-        c = speeds[:, j]
-        inner = np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:]) & np.isfinite(c[1:-1])) + 1
-        if inner.size == 0:
-            without.append(j + 1)
-        for k in inner:
-            lo = _polish(module, values, ps[k], c[k], dps)
-            hi = _polish(module, values, ps[k], c[k], dps + 15)
-            digits = _confirmed_digits(lo, hi, dps)
-            found.append(PhaseSpeedMinimum(j + 1, lo[1], lo[0], float(c[k]), float(ps[k]), digits))
+    found, without = _phase_speed_minima(module, values, ps, speeds, dps)
     if not found:
         raise MovingBogieError(
             f"no local minimum of the phase speed on 0 < p <= {p_max} for {model.beam}/{model.track}: "
