@@ -34,7 +34,7 @@ def agreement_table(params, result):
     other = bromwich_line(bind(params), TAUS, a=0.05)
     on = closed_form_response(params, TAUS, frequencies=result, branch_cut=True)
     off = closed_form_response(params, TAUS, frequencies=result, branch_cut=False)
-    scale = max(abs(on.w_steady_rear), abs(on.w_steady_front))
+    scale = max(abs(on.steady["w_rear"]), abs(on.steady["w_front"]))
     print("| tau | w_rear | I_bc w_rear | max rel. diff with I_bc | without I_bc | two lines |")
     print("|---:|---:|---:|---:|---:|---:|")
     for k, tau in enumerate(TAUS):
@@ -42,10 +42,10 @@ def agreement_table(params, result):
         def diff(a, b, k=k):
             return max(abs(a[n][k] - b[n][k]) for n in NAMES) / scale
 
-        with_bc = {n: getattr(on, n) for n in NAMES}
-        without = {n: getattr(off, n) for n in NAMES}
+        with_bc = {n: on[n] for n in NAMES}
+        without = {n: off[n] for n in NAMES}
         print(
-            f"| {tau:g} | {on.w_rear[k]:.10f} | {on.w_rear[k] - off.w_rear[k]:.2e} "
+            f"| {tau:g} | {on['w_rear'][k]:.10f} | {on['w_rear'][k] - off['w_rear'][k]:.2e} "
             f"| {diff(with_bc, ref):.1e} | {diff(without, ref):.1e} | {diff(ref, other):.0e} |"
         )
 

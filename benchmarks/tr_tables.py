@@ -50,13 +50,14 @@ def vibrations_table():
         off = closed_form_response(params, TAUS, frequencies=result, branch_cut=False)
         ref = bromwich_line(bind(params), TAUS, a=0.02)
         other = bromwich_line(bind(params), TAUS, a=0.05)
-        scale = max(abs(on.w_steady_rear), abs(on.w_steady_front))
+        scale = max(abs(on.steady["w_rear"]), abs(on.steady["w_front"]))
         for k, tau in enumerate(TAUS):
-            d_on = max(abs(getattr(on, n)[k] - ref[n][k]) for n in ref) / scale
-            d_off = max(abs(getattr(off, n)[k] - ref[n][k]) for n in ref) / scale
+            d_on = max(abs(on[n][k] - ref[n][k]) for n in ref) / scale
+            d_off = max(abs(off[n][k] - ref[n][k]) for n in ref) / scale
             lines = max(abs(ref[n][k] - other[n][k]) for n in ref) / scale
             print(
-                f"| {S} | {r} | {eta_v} | {tau:g} | {on.w_rear[k]:.10f} | {on.w_rear[k] - off.w_rear[k]:.2e} "
+                f"| {S} | {r} | {eta_v} | {tau:g} | {on['w_rear'][k]:.10f} "
+                f"| {on['w_rear'][k] - off['w_rear'][k]:.2e} "
                 f"| {d_on:.1e} | {d_off:.1e} | {lines:.0e} |"
             )
 

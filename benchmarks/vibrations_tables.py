@@ -75,12 +75,13 @@ def agreement_table() -> str:
 
             def rel(ts, ref=ref):
                 return max(
-                    abs(getattr(ts, n)[0] - ref[n][0]) / max(abs(ref[n][0]), 1e-300)
+                    abs(ts[n][0] - ref[n][0]) / max(abs(ref[n][0]), 1e-300)
                     for n in ("w_rear", "w_front", "u", "theta")
                 )
 
             rows.append(
-                f"| {case} | {tau:g} | {on.w_rear[0]:.10f} | {rel(on):.1e} | {rel(off):.1e} | {elapsed:.1f} |"
+                f"| {case} | {tau:g} | {on['w_rear'][0]:.10f} | {rel(on):.1e} | {rel(off):.1e} "
+                f"| {elapsed:.1f} |"
             )
     return head + "\n".join(rows) + "\n"
 

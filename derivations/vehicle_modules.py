@@ -88,10 +88,33 @@ def vehicle_module(name):
         ("DOFS", matrices.dofs),
         ("UNITS", matrices.units),
         ("MATRIX_ARGUMENTS", params),
+        *roles(matrices),
     ]
     title = f"Vehicle '{name}': its matrices, characteristic function, derivatives and residue numerators."
     digest = definition_digest(*definitions)
     return module_source(title, digest, parts, constants)
+
+
+def _role(entry) -> str | None:
+    """The one dimensionless group that a matrix entry is proportional to (None for an entry 0)."""
+    groups = sorted(str(x) for x in sp.sympify(entry).free_symbols)
+    if not groups:
+        return None
+    if len(groups) != 1:
+        raise AssertionError(f"a role's matrix entry depends on more than one group: {entry}")
+    return groups[0]
+
+
+def roles(matrices) -> list:
+    """The groups the stability tools sweep by default, read off the assembled matrices.
+
+    ``WHEEL_MASS``: the group of the first wheel's mass (M[0, 0]); ``PRIMARY_STIFFNESS``: that of the
+    stiffness acting on the first wheel (K[0, 0], the primary suspension; None for a vehicle without one).
+    """
+    return [
+        ("WHEEL_MASS", _role(matrices.mass[0, 0])),
+        ("PRIMARY_STIFFNESS", _role(matrices.stiffness[0, 0])),
+    ]
 
 
 def _system_parts(name):

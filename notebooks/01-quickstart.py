@@ -167,21 +167,21 @@ else:
     t = np.linspace(0.0, 0.5, 801)  # seconds
     response = closed_form_response(bogie, t, frequencies=freq)
     fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True, layout="constrained")
-    axes[0].plot(t, response.w_rear * 1e3, label="rear wheel")
-    axes[0].plot(t, response.w_front * 1e3, "--", label="front wheel")
-    axes[0].axhline(response.w_steady_rear * 1e3, color="0.5", lw=0.8, ls=":", label="steady state")
+    axes[0].plot(t, response["w_rear"] * 1e3, label="rear wheel")
+    axes[0].plot(t, response["w_front"] * 1e3, "--", label="front wheel")
+    axes[0].axhline(response.steady["w_rear"] * 1e3, color="0.5", lw=0.8, ls=":", label="steady state")
     axes[0].set_ylabel("rail deflection [mm]")
     axes[0].legend(fontsize=8)
-    axes[1].plot(t, response.u * 1e3)
+    axes[1].plot(t, response["u"] * 1e3)
     axes[1].set_ylabel("bar bounce $u_v$ [mm]")
-    axes[2].plot(t, response.theta * 1e3)
+    axes[2].plot(t, response["theta"] * 1e3)
     axes[2].set_ylabel("bar pitch θ [mrad]")
     axes[2].set_xlabel("t [s]")
     fig.suptitle(f"Closed-form response at {float(bogie.v) * 3.6:.0f} km/h (downward positive)")
     plt.show()
     print(
-        f"steady deflection under the wheels: rear {response.w_steady_rear * 1e3:.3f} mm, "
-        f"front {response.w_steady_front * 1e3:.3f} mm; notes: {response.notes or 'none'}"
+        f"steady deflection under the wheels: rear {response.steady['w_rear'] * 1e3:.3f} mm, "
+        f"front {response.steady['w_front'] * 1e3:.3f} mm; notes: {response.notes or 'none'}"
     )
 
 # %% [markdown]
@@ -218,4 +218,5 @@ else:
 # * `04-instability-lines.py`: where in (velocity, mass) the motion becomes unstable.
 # * `05-change-the-model.py`: add a foundation model in `derivations/` and rerun the analysis.
 # * The same from the command line: `moving-bogie params --file bogie.toml`, `moving-bogie frequencies
-#   --file bogie.toml` (`moving-bogie COMMAND --help`, or the command line reference of the documentation site).
+#   --file bogie.toml` (`moving-bogie COMMAND --help`, or the command line reference of the documentation
+#   site).

@@ -85,21 +85,21 @@ tau = np.linspace(0.0, 60.0 if QUICK else 150.0, 1201)
 full = closed_form_response(params, tau, frequencies=freq, branch_cut="auto")
 residues_only = closed_form_response(params, tau, frequencies=freq, branch_cut=False)
 fig, axes = plt.subplots(2, 1, figsize=(8, 5), sharex=True, layout="constrained")
-axes[0].plot(tau, full.w_rear, label="steady + residues + branch cut")
-axes[0].plot(tau, residues_only.w_rear, "--", label="steady + residues only")
-axes[0].axhline(full.w_steady_rear, color="0.5", ls=":", lw=0.8, label="steady part, Eq. (39)")
+axes[0].plot(tau, full["w_rear"], label="steady + residues + branch cut")
+axes[0].plot(tau, residues_only["w_rear"], "--", label="steady + residues only")
+axes[0].axhline(full.steady["w_rear"], color="0.5", ls=":", lw=0.8, label="steady part, Eq. (39)")
 axes[0].set_ylabel("w(0, τ)")
 axes[0].legend(fontsize=8)
-axes[1].semilogy(tau, np.abs(full.w_rear - residues_only.w_rear) + 1e-16)
+axes[1].semilogy(tau, np.abs(full["w_rear"] - residues_only["w_rear"]) + 1e-16)
 axes[1].set_ylabel("|I_bc| at the rear wheel")
 axes[1].set_xlabel("τ")
 plt.show()
 print(
-    f"at tau = 0: with I_bc w = {full.w_rear[0]:.2e}, without it w = {residues_only.w_rear[0]:.3f} "
+    f"at tau = 0: with I_bc w = {full['w_rear'][0]:.2e}, without it w = {residues_only['w_rear'][0]:.3f} "
     "(the initial condition w = 0 needs I_bc)"
 )
 print(f"I_bc included for tau <= {full.branch_cut_until:g}; notes: {full.notes or 'none'}")
-assert np.abs(full.w_rear - residues_only.w_rear).max() < 1e-3  # "below 1e-3 of the static deflection"
+assert np.abs(full["w_rear"] - residues_only["w_rear"]).max() < 1e-3  # "below 1e-3 of the static deflection"
 
 # %% [markdown]
 # ## Long times: where the closed form has no competitor
@@ -118,10 +118,10 @@ print("unstable root(s):", [f"{r.re_text[:10]} {r.im_text[:10]}i" for r in unsta
 tau_long = np.linspace(0.0, 4000.0 if QUICK else 12000.0, 8001 if QUICK else 24001)
 long = closed_form_response(p5, tau_long, frequencies=f5)
 fig, ax = plt.subplots(figsize=(8, 3), layout="constrained")
-ax.plot(tau_long, long.w_rear, lw=0.6)
+ax.plot(tau_long, long["w_rear"], lw=0.6)
 growth = float(1 / abs(unstable[0].q.imag))
 ax.set_title(f"Case 5, rear-wheel deflection (growth time 1/|Im q| = {growth:.0f})", fontsize=10)
 ax.set_xlabel("τ")
 ax.set_ylabel("w(0, τ)")
 plt.show()
-assert np.abs(long.w_rear[-2000:]).max() > np.abs(long.w_rear[:2000]).max()
+assert np.abs(long["w_rear"][-2000:]).max() > np.abs(long["w_rear"][:2000]).max()

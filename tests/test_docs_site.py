@@ -4,8 +4,9 @@
 tests. This opens the home page and a tutorial page in headless Chromium (the system's ``chromium`` and
 ``chromium-driver`` packages, driven by selenium) and checks that every ``<img>`` has loaded
 (``complete`` and ``naturalWidth > 0``), that MathJax typesets the equations, that the tutorial shows its
-figures, and that every internal link of the site resolves (``docs/check_links.py``). Outside CI, a missing browser or an unbuilt site skips the
-test and says what to install or run; in CI (``CI=true``) both fail it.
+figures, and that every internal link of the site resolves (``docs/check_links.py``). Outside CI, a
+missing browser or an unbuilt site skips the test and says what to install or run; in CI (``CI=true``)
+both fail it.
 """
 
 from __future__ import annotations

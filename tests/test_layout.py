@@ -443,6 +443,82 @@ def test_the_model_checks_see_what_they_check():
     assert {"bogie", "masses", "eb", "tr"} <= _model_names()
 
 
+#: The model-parameter literals the generic runtime keeps, each with its reason: (module or "*", name).
+PARAMETER_LITERALS_ALLOWED: dict[tuple[str, str], str] = {
+    ("*", "alpha"): "the velocity of the moving load: an argument of every generated foundation (Eq. (16))",
+    ("moving_bogie.kernels.sweep_characteristic", "d"): "the spacing axis of E_chr(q; alpha, d, theta)",
+    ("moving_bogie.stability.lines.line_results", "d"): "the spacing of a traced line (Figures 3, 4, 7, 8)",
+    ("moving_bogie.stability.figures.plots", "d"): "the legend of the lines' spacings",
+    ("moving_bogie.stability.figures.track_comparison", "d"): "the legend of the lines' spacings",
+    ("moving_bogie.sweep.store", "d"): "a dependency of Eq. (63)'s J_b = cf2 eta_M d^2 in the store's text",
+    ("moving_bogie.sweep.store", "r"): "the read mode of a zarr group, not the radius of gyration",
+    ("moving_bogie.response.axis_sequence", "S"): "Re q = sqrt(S)/r, where the real-axis roots of a beam "
+    "with rotary inertia begin (docs/frequencies.md)",
+    ("moving_bogie.response.axis_sequence", "r"): "the same start sqrt(S)/r",
+    ("moving_bogie.stability.velocity.critical_velocity", "eta_s"): "the keywords of Eqs. (65)-(66)",
+    ("moving_bogie.stability.velocity.critical_velocity", "S"): "the keywords of Eqs. (65)-(66)",
+    ("moving_bogie.stability.velocity.critical_velocity", "r"): "the keywords of Eqs. (65)-(66)",
+    (
+        "moving_bogie.stability.stiffness.d_decomposition",
+        "eta_f",
+    ): "names the damping it needs > 0",
+}
+
+
+def _parameter_names() -> set[str]:
+    """Every dimensionless group of the catalogue and every alternative input (cf1, cf2 of Eq. (63))."""
+    from moving_bogie.model.catalogue import default_catalogue
+
+    catalogue = default_catalogue()
+    return set(catalogue.specs) | set(catalogue.parameters.ALTERNATIVES)
+
+
+def _docstring_nodes(tree: ast.AST) -> set[int]:
+    nodes = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
+            first = node.body[0] if node.body else None
+            if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant):
+                nodes.add(id(first.value))
+    return nodes
+
+
+def _parameter_literals(module: str, tree: ast.AST, names: set[str]) -> Iterator[tuple[int, str]]:
+    """String constants (docstrings left out) equal to a parameter name and not allowed for ``module``."""
+    docstrings = _docstring_nodes(tree)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docstrings:
+            name = node.value
+            if name in names and ("*", name) not in PARAMETER_LITERALS_ALLOWED:
+                if (module, name) not in PARAMETER_LITERALS_ALLOWED:
+                    yield node.lineno, name
+
+
+def test_the_generic_runtime_names_no_model_parameter():
+    """Which group is the wheel mass or the primary stiffness comes from the vehicle's metadata
+    (``Model.wheel_mass``, ``Model.primary_stiffness``), the alternatives from ``Model.alternatives``: no
+    parameter of the catalogue is a string literal in GENERIC but those of PARAMETER_LITERALS_ALLOWED."""
+    names = _parameter_names()
+    offenders = [
+        f"{module}:{line}: {name!r}"
+        for module, tree in _trees()
+        if module.split(".")[1:2] and module.split(".")[1] in GENERIC
+        for line, name in _parameter_literals(module, tree, names)
+    ]
+    assert not offenders, "the generic runtime names a model parameter:\n" + "\n".join(offenders)
+
+
+def test_the_parameter_check_sees_what_it_checks():
+    tree = ast.parse(
+        '"""eta_M in a docstring."""\ndef f(params, parameter="eta_M"):\n    """kappa_v."""\n'
+        '    return params.replace(**{"cf1": 2}), "alpha", "eta_Mx"\n'
+    )
+    found = [name for _, name in _parameter_literals("m", tree, _parameter_names())]
+    assert sorted(found) == ["cf1", "eta_M"]
+    allowed = {module for module, _ in PARAMETER_LITERALS_ALLOWED} - {"*"}
+    assert allowed <= set(MODULES), allowed - set(MODULES)  # no stale entry
+
+
 #: The one place where a bound model is made from parameters (``bind``) and takes a foundation beside them.
 BOUND = "moving_bogie.kernels.bound"
 

@@ -90,11 +90,13 @@ def test_stability_map_in_si(case1_si):
     fig = plot_stability_map(smap, units=units)
     ax = fig.axes[0]
     assert (ax.get_xlabel(), ax.get_ylabel()) == ("v [m/s]", "M [kg]")
-    mesh = ax.collections[0]
-    x, y = mesh.get_coordinates()[0, :, 0], mesh.get_coordinates()[:, 0, 1]
-    np.testing.assert_allclose(0.5 * (x[1:] + x[:-1]), alphas * v_ref, rtol=1e-12)  # cell centres
-    np.testing.assert_allclose(0.5 * (y[1:] + y[:-1]), thetas * m / chi, rtol=1e-12)
-    assert np.isfinite(mesh.get_array()).sum() == int((smap.count > 0).sum())
+    decay, growth = ax.collections[:2]  # the stable cells by their decay rate, the unstable by growth
+    for mesh in (decay, growth):
+        x, y = mesh.get_coordinates()[0, :, 0], mesh.get_coordinates()[:, 0, 1]
+        np.testing.assert_allclose(0.5 * (x[1:] + x[:-1]), alphas * v_ref, rtol=1e-12)  # cell centres
+        np.testing.assert_allclose(0.5 * (y[1:] + y[:-1]), thetas * m / chi, rtol=1e-12)
+    assert np.isfinite(decay.get_array()).sum() == int((smap.count == 0).sum())
+    assert np.isfinite(growth.get_array()).sum() == int((smap.count > 0).sum())
     (star,) = [line for line in ax.get_lines() if line.get_label() == "operating point"]
     assert star.get_xdata()[0] == pytest.approx(float(physical.v), rel=1e-7)
 

@@ -33,7 +33,8 @@ def test_timeseries_json_from_the_console_script():
         assert len(data[key]) == 2
     assert data["tau"] == [0.0, 20.0]
     assert data["branch_cut"] is True and data["units"]["tau"] == "1"
-    assert isinstance(data["w_steady_rear"], float)
+    assert set(data["steady"]) == {"w_rear", "w_front", "u", "theta"}
+    assert isinstance(data["steady"]["w_rear"], float)
     assert abs(data["w_rear"][0]) < 1e-9
 
 

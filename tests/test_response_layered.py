@@ -2,7 +2,9 @@
 layered tracks (the mass layer's curves) and the damped beam above the critical velocity.
 
 References (independent of residues, induced frequencies and the cut):
-* the homogeneous initial conditions: the response at tau = 0 is exactly zero at every xi;
+* the homogeneous initial conditions: the response at tau = 0 is exactly zero at every xi, also on the
+  suite's set of two purely imaginary roots (``IMAGINARY_ROOTS`` of tests/test_search_random.py), where
+  each such root is its own mirror and enters the residue sum once;
 * :func:`moving_bogie.response.bromwich.bromwich_line` and :func:`~moving_bogie.response.bromwich.
   bromwich_line_shape`, direct quadratures of the Bromwich integral of Eq. (35) on a line Im q = -a below
   every singularity; their own convergence is shown by a second line (a = 0.05) or a longer range.
@@ -16,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_search_random import IMAGINARY_ROOTS
 
 from moving_bogie.api import closed_form_response, deflection_shape, induced_frequencies
 from moving_bogie.kernels.bound import bind
@@ -38,7 +41,7 @@ def two_layer():
 
 
 def _scale(ts):
-    return max(abs(ts.w_steady_rear), abs(ts.w_steady_front))
+    return max(abs(ts.steady["w_rear"]), abs(ts.steady["w_front"]))
 
 
 def test_the_mass_layer_cut_crosses_re_q_0_above_q_0(two_layer):
@@ -60,11 +63,29 @@ def test_the_response_starts_from_rest(two_layer):
     off = closed_form_response(params, [0.0], frequencies=result, branch_cut=False)
     scale = _scale(ts)
     for name in RESPONSES:
-        assert abs(getattr(ts, name)[0]) < 1e-10 * scale, name
-    assert abs(off.w_rear[0]) > 1e-2 * scale
+        assert abs(ts[name][0]) < 1e-10 * scale, name
+    assert abs(off["w_rear"][0]) > 1e-2 * scale
     xi = np.linspace(-6.0, 10.0, 9)
     w = deflection_shape(params, xi, 0.0, frequencies=result, branch_cut=True)
     assert np.abs(w).max() < 1e-10 * scale
+
+
+@pytest.mark.slow
+def test_purely_imaginary_roots_count_once_in_the_response():
+    # exact reference: homogeneous initial conditions, w(0, 0) = w(d, 0) = 0 (Section 2), on two masses
+    # over a two-layer track with two induced frequencies on Re q = 0. A purely imaginary root q equals its
+    # mirror -conj(q); counted twice, its residue shifts w_rear(0) by 5 % of the steady deflection.
+    # (The fast companion is tests/test_response.py::test_a_purely_imaginary_root_is_its_own_mirror.)
+    result = induced_frequencies(IMAGINARY_ROOTS)
+    assert result.count_ok, result.warnings
+    on_axis = [r for r in result.roots if abs(complex(r.q).real) < 1e-12]
+    assert len(on_axis) == 2  # the set keeps what its name says
+    ts = closed_form_response(IMAGINARY_ROOTS, [0.0], frequencies=result, branch_cut=True)
+    off = closed_form_response(IMAGINARY_ROOTS, [0.0], frequencies=result, branch_cut=False)
+    scale = max(abs(v) for v in ts.steady.values())
+    for name, values in ts.responses.items():
+        assert abs(values[0]) < 1e-10 * scale, name
+    assert abs(off.responses["w_rear"][0]) > 1e-3 * scale  # I_bc matters here: the check is not idle
 
 
 @pytest.mark.slow
@@ -78,9 +99,9 @@ def test_two_layer_time_series_match_the_bromwich_integral(two_layer):
     scale = _scale(ts)
     for name in RESPONSES:
         assert np.abs(ref[name] - other[name]).max() < 1e-11 * scale, name  # the reference converged
-        assert np.abs(getattr(ts, name) - ref[name]).max() < 1e-9 * scale, name
+        assert np.abs(ts[name] - ref[name]).max() < 1e-9 * scale, name
     # without the branch-cut part the wheels are 1e-3 to 4e-2 of w_st off at these times
-    assert np.abs(off.w_rear - ref["w_rear"]).min() > 1e-4 * scale
+    assert np.abs(off["w_rear"] - ref["w_rear"]).min() > 1e-4 * scale
 
 
 @pytest.mark.slow
@@ -126,4 +147,4 @@ def test_damped_beam_above_the_critical_velocity_matches_the_bromwich_integral()
     scale = _scale(ts)
     for name in RESPONSES:
         assert np.abs(ref[name] - other[name]).max() < 1e-11 * scale, name  # the reference converged
-        assert np.abs(getattr(ts, name) - ref[name]).max() < 1e-9 * scale, name
+        assert np.abs(ts[name] - ref[name]).max() < 1e-9 * scale, name

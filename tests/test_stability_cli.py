@@ -92,16 +92,18 @@ def test_stability_map_writes_npz_and_plot(capsys, tmp_path, saved_figures):
     arrays = np.load(tmp_path / "m.npz")
     assert arrays["degree"].shape == (8, 8) and np.all(arrays["degree"] <= 0)
     assert (tmp_path / "m.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    # the figure by content: the colour mesh is log10 |degree| of the map's unstable cells, blank elsewhere
+    # the figure by content: the unstable cells are coloured by their growth rate -degree (the margin of an
+    # unstable cell is its degree, min Im q), the other cells are blank in that mesh
     (fig,) = saved_figures
-    (ax,) = [ax for ax in fig.axes if ax.get_xlabel() == r"$\alpha$"]  # not the colour bar
-    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    (ax,) = [ax for ax in fig.axes if ax.get_xlabel() == r"$\alpha$"]  # not the colour bars
+    meshes = [c for c in ax.collections if isinstance(c, QuadMesh) and c.colorbar is not None]
+    (mesh,) = [c for c in meshes if "growth" in c.colorbar.ax.get_ylabel()]
     degree = arrays["degree"]
     unstable = (degree < 0) & ~arrays["uncertain"]
     shown = np.ma.getdata(mesh.get_array()).reshape(degree.shape)
     blank = np.ma.getmaskarray(mesh.get_array()).reshape(degree.shape) | np.isnan(shown)
     np.testing.assert_array_equal(blank, ~unstable)
-    np.testing.assert_allclose(shown[unstable], np.log10(np.maximum(-degree[unstable], 1e-6)), rtol=1e-12)
+    np.testing.assert_allclose(shown[unstable], -degree[unstable], rtol=1e-12)
 
 
 def test_critical_stiffness_json(capsys):

@@ -1,15 +1,24 @@
-"""A verdict for the whole lower half-plane: the far-field radius; UNDETERMINED when anything is missing."""
+"""A verdict for the whole lower half-plane: the far-field radius; UNDETERMINED when anything is missing.
 
+References for Case 1 at alpha = 5: the roots with Im q < 0 of a brute-force scan (local minima of |E_chr|
+on a dense grid polished by Newton and mpmath.findroot, ``benchmarks/bench_search_random.py``, no contour
+code); Eq. (38) in closed form (``generated/vehicle_bogie.py``) with K(xi, q) by QUADPACK quadrature of
+Eq. (29) over real p (``tests/test_track_kernel.py``), independent of the residue kernel.
+"""
+
+import importlib.util
 import json
 from fractions import Fraction
+from pathlib import Path
 
 import mpmath
 import numpy as np
 import pytest
+from test_track_kernel import quadrature_K
 
 from moving_bogie.api import induced_frequencies
 from moving_bogie.cli import main
-from moving_bogie.generated import asymptotics
+from moving_bogie.generated import asymptotics, vehicle_bogie
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.track import TrackKernelArray
@@ -18,6 +27,16 @@ from moving_bogie.roots.count import far_field
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import far_field_radius, rho
 from moving_bogie.roots.count.outcomes import Reason
+
+BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_random.py"
+
+
+def _scan_roots(params, window, n):
+    """The brute-force roots with Im q < 0 of ``benchmarks/bench_search_random.py`` (no contour code)."""
+    spec = importlib.util.spec_from_file_location("bench_search_random", BENCH)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.scan_roots(params, window, n=n)
 
 
 @pytest.fixture(scope="module")
@@ -30,7 +49,12 @@ def test_supercritical_case1_finds_every_unstable_root_without_a_window(supercri
     res = supercritical
     assert res.count_ok and res.verdict.state == "unstable"
     assert len(res.unstable_roots) == 3
-    assert mpmath.nstr(res.degree_of_instability, 6) == "-4.16549"
+    # Reference: the brute-force scan of the window (Re q >= 0; the roots with Re q < 0 are mirrors): the
+    # same three roots, the lowest of them the degree of instability (its Im q is -4.16549...).
+    scan = _scan_roots(res.params, Rectangle(0.0, res.window.x1, res.window.y0, 0.5), n=(241, 241))
+    assert len(scan) == 3
+    lowest = min(scan, key=lambda z: z.imag)
+    assert float(res.degree_of_instability) == pytest.approx(lowest.imag, abs=1e-9)
     # Reference: the same count in an explicitly given window four times the far-field radius (other contours,
     # no far-field argument): no further root with Im q < 0 anywhere in it.
     R = res.far_field.radius
@@ -43,6 +67,28 @@ def test_supercritical_case1_finds_every_unstable_root_without_a_window(supercri
         return sorted((complex(r.q) for r in result.unstable_roots), key=lambda z: (z.real, z.imag))
 
     assert roots(big) == pytest.approx(roots(res), abs=1e-12)
+
+
+@pytest.mark.slow
+def test_supercritical_case1_most_unstable_root_is_a_zero_of_eq38_by_quadrature(supercritical):
+    # Reference: E_chr of Eq. (38) in closed form with K(0), K(d), K(-d) by QUADPACK (independent of the
+    # residue kernel). One secant step from the reported root moves it by its distance from the zero of
+    # that E_chr (superlinear convergence): below 1e-10, where |E_chr| 1e-5 away is 1e8 times larger.
+    res = supercritical
+    q = complex(min(res.unstable_roots, key=lambda r: complex(r.q).imag).q)
+    params = res.params
+    d = float(params.d)
+    vehicle = {name: float(getattr(params, name)) for name in vehicle_bogie.PARAMETERS}
+
+    def e_chr(z):
+        K0, Kp, Km = (quadrature_K(params, z, xi) for xi in (0.0, d, -d))
+        return vehicle_bogie.e_chr(z, K0, Kp, Km, pi=np.pi, **vehicle)
+
+    near = q * (1 + 1e-6)
+    E, E_near = e_chr(q), e_chr(near)
+    step = E * (q - near) / (E - E_near)
+    assert abs(step) < 1e-10
+    assert abs(E_near) > 1e6 * abs(E)
 
 
 def test_derived_kernel_decay_matches_the_residues():

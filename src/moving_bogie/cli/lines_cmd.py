@@ -265,6 +265,9 @@ def run_stability_map(args) -> int:
     if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
         rate = units.frequency(summary["max_degree"])
         summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
+        if summary["min_decay_rate"] is not None:
+            decay = units.frequency(summary["min_decay_rate"])
+            summary["min_decay_rate"] = {"value": decay, "unit": "1/s"}
     if args.json:
         print_json(summary)
     else:

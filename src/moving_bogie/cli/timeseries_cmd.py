@@ -193,25 +193,27 @@ def series_label(args: argparse.Namespace, ts) -> str:
     return str(ts.model)
 
 
-#: The columns of the paper's vehicles; any other vehicle prints its own responses (its DOFs).
-CLASSIC = ("w_rear", "w_front", "u", "theta")
-
-
-def _own_columns(ts) -> bool:
-    return bool(ts.responses) and not set(ts.responses) <= set(CLASSIC)
+def _units_line(ts) -> str:
+    """``units: tau [...], ...``: the wheels' deflections as ``w``, then the bodies' DOFs, names of one unit
+    together (the bogie: ``w, u [w_st], theta [w_st chi]``)."""
+    groups: list[tuple[list[str], str]] = []
+    wheel_unit = ts.response_units[ts.names[0]]
+    labels = [("w", wheel_unit)] + [(n, ts.response_units[n]) for n in ts.names[ts.contacts :]]
+    for label, unit in labels:
+        if groups and groups[-1][1] == unit:
+            groups[-1][0].append(label)
+        else:
+            groups.append(([label], unit))
+    return f"units: tau [{ts.units['tau']}], " + ", ".join(f"{', '.join(g)} [{unit}]" for g, unit in groups)
 
 
 def write_csv_series(ts, path) -> None:
+    """The series as CSV: tau, then every response under its DOF name, a units line below the header."""
     from .common import atomic_write
 
-    if _own_columns(ts):
-        names = ("tau", *ts.responses)
-        units = [ts.units["tau"], *ts.response_units.values()]
-        columns = [ts.tau, *ts.responses.values()]
-    else:
-        names = ("tau", "w_rear", "w_front", "u", "theta")
-        units = [ts.units["tau"], ts.units["w"], ts.units["w"], ts.units["u"], ts.units["theta"]]
-        columns = [getattr(ts, n) for n in names]
+    names = ("tau", *ts.responses)
+    units = [ts.units["tau"], *ts.response_units.values()]
+    columns = [ts.tau, *ts.responses.values()]
     lines = [",".join(names), "# units: " + ",".join(units)]
     for row in zip(*columns):
         lines.append(",".join(repr(float(v)) for v in row))
@@ -221,7 +223,6 @@ def write_csv_series(ts, path) -> None:
 def format_series(ts, rows: bool = True, csv=None, plots=()) -> str:
     """The readable series: summary lines, then one row per time (``rows``), then the notes; without the
     rows, one line saying where they went (``csv``, the data file) or were drawn (``plots``)."""
-    u = ts.units
     bc = (
         "all times"
         if ts.branch_cut_until == float("inf")
@@ -230,19 +231,11 @@ def format_series(ts, rows: bool = True, csv=None, plots=()) -> str:
     lines = [
         f"Closed-form response ({ts.model}); {len(ts.frequencies.roots)} induced-frequency pair(s); "
         f"branch-cut part: {bc}",
-        f"steady parts: w_rear {ts.w_steady_rear:.10g}  w_front {ts.w_steady_front:.10g}  "
-        f"u {ts.u_steady:.10g}  theta {ts.theta_steady:.10g}",
-        f"units: tau [{u['tau']}], w, u [{u['w']}], theta [{u['theta']}]",
-        f"{'tau':>14} {'w_rear':>18} {'w_front':>18} {'u':>18} {'theta':>18}",
+        "steady parts: " + "  ".join(f"{n} {v:.10g}" for n, v in ts.steady.items()),
+        _units_line(ts),
+        f"{'tau':>14} " + " ".join(f"{n:>18}" for n in ts.responses),
     ]
-    columns = [ts.tau, ts.w_rear, ts.w_front, ts.u, ts.theta]
-    if _own_columns(ts):
-        lines[1:] = [
-            "steady parts: " + "  ".join(f"{n} {v:.10g}" for n, v in ts.steady.items()),
-            "units: tau [" + u["tau"] + "], " + ", ".join(f"{n} [{x}]" for n, x in ts.response_units.items()),
-            f"{'tau':>14} " + " ".join(f"{n:>18}" for n in ts.responses),
-        ]
-        columns = [ts.tau, *ts.responses.values()]
+    columns = [ts.tau, *ts.responses.values()]
     if rows:
         for row in zip(*columns):
             lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))

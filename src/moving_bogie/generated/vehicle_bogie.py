@@ -16,6 +16,8 @@ CONTACTS = 2
 DOFS = ('w_rear', 'w_front', 'u', 'theta')
 UNITS = {'w_rear': 'm', 'w_front': 'm', 'u': 'm', 'theta': 'rad'}
 MATRIX_ARGUMENTS = ('J_b', 'd', 'eta_M', 'eta_v', 'kappa_v', 'mu_v')
+WHEEL_MASS = 'eta_M'
+PRIMARY_STIFFNESS = 'kappa_v'
 
 
 def e_chr(q, K0, Kp, Km, J_b, d, eta_M, eta_v, kappa_v, mu_v, pi):

@@ -15,6 +15,8 @@ CONTACTS = 4
 DOFS = ('w_1', 'w_2', 'w_3', 'w_4', 'u_b1', 'theta_b1', 'u_b2', 'theta_b2', 'u_c', 'theta_c')
 UNITS = {'w_1': 'm', 'w_2': 'm', 'w_3': 'm', 'w_4': 'm', 'u_b1': 'm', 'theta_b1': 'rad', 'u_b2': 'm', 'theta_b2': 'rad', 'u_c': 'm', 'theta_c': 'rad'}
 MATRIX_ARGUMENTS = ('J_b', 'J_c', 'L_c', 'd', 'eta_M', 'eta_sec', 'eta_v', 'kappa_sec', 'kappa_v', 'mu_c', 'mu_v')
+WHEEL_MASS = 'eta_M'
+PRIMARY_STIFFNESS = 'kappa_v'
 
 
 def contact_positions(J_b, J_c, L_c, d, eta_M, eta_sec, eta_v, kappa_sec, kappa_v, mu_c, mu_v):

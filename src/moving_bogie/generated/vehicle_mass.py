@@ -15,6 +15,8 @@ CONTACTS = 1
 DOFS = ('w',)
 UNITS = {'w': 'm'}
 MATRIX_ARGUMENTS = ('eta_M',)
+WHEEL_MASS = 'eta_M'
+PRIMARY_STIFFNESS = None
 
 
 def contact_positions(eta_M):

@@ -16,6 +16,8 @@ CONTACTS = 2
 DOFS = ('w_rear', 'w_front')
 UNITS = {'w_rear': 'm', 'w_front': 'm'}
 MATRIX_ARGUMENTS = ('d', 'eta_M')
+WHEEL_MASS = 'eta_M'
+PRIMARY_STIFFNESS = None
 
 
 def e_chr(q, K0, Kp, Km, eta_M, pi):

@@ -15,6 +15,8 @@ CONTACTS = 1
 DOFS = ('w', 'u')
 UNITS = {'w': 'm', 'u': 'm'}
 MATRIX_ARGUMENTS = ('eta_M', 'eta_v', 'kappa_v', 'mu_v')
+WHEEL_MASS = 'eta_M'
+PRIMARY_STIFFNESS = 'kappa_v'
 
 
 def contact_positions(eta_M, eta_v, kappa_v, mu_v):

@@ -92,10 +92,10 @@ class SweepCharacteristic:
     ----------
     bound : BoundModel
         Everything but alpha, the spacing d (when given per point) and ``parameter`` is taken from here
-        (the vehicle and the track too); with ``parameter="eta_M"`` the bar's mass and inertia follow the
-        wheel mass with the coefficients cf1, cf2 of its parameters (Eq. (63)).
-    parameter : str
-        The vehicle parameter swept (default eta_M).
+        (the vehicle and the track too); with the wheel mass as ``parameter`` the bar's mass and inertia
+        follow it with the coefficients cf1, cf2 of its parameters (Eq. (63)).
+    parameter : str, optional
+        The vehicle parameter swept (default: the wheel mass, ``Model.wheel_mass``, eta_M).
     block : bool
         Evaluate E_chr as the determinant of the block system (:mod:`~moving_bogie.kernels.sweep_vehicle`)
         even when the vehicle's module has the closed form of Eq. (38) (default False: the closed form
@@ -117,13 +117,14 @@ class SweepCharacteristic:
     def __init__(
         self,
         bound: BoundModel,
-        parameter: str = "eta_M",
+        parameter: str | None = None,
         *,
         held: Iterable[str] = (),
         below: bool = False,
         block: bool = False,
     ) -> None:
         params = bound.params
+        parameter = parameter or params.model.wheel_mass
         self.bound = bound
         self.below = bool(below)
         self.params = params

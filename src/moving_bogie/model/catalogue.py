@@ -268,6 +268,18 @@ class Model:
         return out
 
     @property
+    def wheel_mass(self) -> str:
+        """The group of the wheels' mass (the generated ``WHEEL_MASS``): the default axis of the stability
+        maps, lines and sweeps beside the velocity alpha."""
+        return self.vehicle_kernels.WHEEL_MASS
+
+    @property
+    def primary_stiffness(self) -> str | None:
+        """The group of the stiffness on the wheels, the primary suspension (the generated
+        ``PRIMARY_STIFFNESS``; None for a vehicle without one): the critical stiffness's parameter."""
+        return self.vehicle_kernels.PRIMARY_STIFFNESS
+
+    @property
     def degrees(self) -> dict[str, int]:
         """Degrees of N and Q in p (Eq. (24)) and of N in q."""
         f = self.foundation

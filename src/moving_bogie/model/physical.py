@@ -159,6 +159,18 @@ class PhysicalParams(ModelValues):
     ------
     ParameterError
         Naming the first offending parameter.
+
+    Examples
+    --------
+    Table 1's Case 7 on a rail with EI = 6.42e6 N m^2 and m = 60.21 kg/m on k_f = 1.2e8 N/m^2 under an
+    80 kN wheel: Eqs. (15)-(17) inverted, then applied again.
+
+    >>> from moving_bogie.model.cases import table1_case
+    >>> si = PhysicalParams.from_dimensionless(table1_case(7), EI="6.42e6", m="60.21", k_f="1.2e8", P="8e4")
+    >>> round(si.scales().v_ref, 1), round(float(si.v), 1)
+    (960.2, 384.1)
+    >>> si.to_dimensionless().alpha
+    Fraction(2, 5)
     """
 
     __slots__ = ()

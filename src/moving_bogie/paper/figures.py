@@ -203,7 +203,7 @@ def _series_figure(spec: SeriesSpec, curves: list) -> Any:
     for j, (panel, ax) in enumerate(zip(spec.panels, axes)):
         for k, (case, series) in enumerate(curves):
             color = spec.colors[k] if spec.colors else "C0"
-            ax.plot(series.tau, getattr(series, panel), "-", color=color, lw=1.0, label=f"Case {case}")
+            ax.plot(series.tau, series[panel], "-", color=color, lw=1.0, label=f"Case {case}")
         name, symbol = _PANEL_LABELS[panel].split("  ")
         ax.set_ylabel(symbol)
         ax.set_title(f"({'abc'[j]}) {name}" if len(spec.panels) > 1 else name, loc="left", fontsize=9)

@@ -3,8 +3,9 @@
     x(tau) = steady part (Eq. (39)) + unsteady harmonic part (residues at every induced frequency,
              Eqs. (36), (40)-(43)) + branch-cut part I_bc (Eq. (35))
 
-for x = w_rear = w(0, tau), w_front = w(d, tau), the bar bounce u and pitch theta (bogie), and for the
-beam deflection w(xi, tau) at any xi (Eqs. (44)-(47)). Coefficients are evaluated once at the precision
+for x every degree of freedom of the vehicle (its generated ``DOFS``: the rail's deflection under each
+wheel, w(xi_j, tau), then the bodies' bounce and pitch), and for the beam deflection w(xi, tau) at any xi
+(Eqs. (44)-(47)). Coefficients are evaluated once at the precision
 of the roots (:mod:`residues`); time series are vectorised numpy sums whose cost does not grow with tau.
 The branch-cut part (:mod:`branch_cut`) is a numerical integral along the cut; it matters at early times
 (it makes the homogeneous initial conditions hold exactly) and decays like e^{-eta_f tau} (algebraically,
@@ -51,18 +52,20 @@ SI_UNITS = {"tau": "s", "w": "m", "u": "m", "theta": "rad", "xi": "m"}
 
 @dataclass(frozen=True)
 class TimeSeries:
-    """The closed-form response at the times ``tau``.
+    """The closed-form response at the times ``tau``, every degree of freedom of the vehicle by its name.
 
     Attributes
     ----------
     tau : ndarray
         Dimensionless times (seconds if physical parameters were given, see ``units``).
-    w_rear, w_front : ndarray
-        Beam deflection under the rear and front wheel, w(0, tau) and w(d, tau).
-    u, theta : ndarray
-        Bar bounce and pitch (NaN for the two-masses model).
-    w_steady_rear, w_steady_front, u_steady, theta_steady : float
-        Steady parts, Eq. (39) (NaN for u, theta of the two-masses model).
+    responses : dict
+        Every response of the vehicle by its DOF name (``DOFS`` of its generated module: the rail under
+        each wheel, then the bodies' bounce and pitch), e.g. ``w_rear``, ``w_front``, ``u``, ``theta`` for
+        the paper's bogie. ``series[name]`` is ``series.responses[name]``.
+    steady : dict
+        DOF name -> its steady part, Eq. (39).
+    response_units : dict
+        DOF name -> unit of that response (``w_st``, ``w_st chi`` or SI ``m``, ``rad``).
     branch_cut : bool
         Whether I_bc was included at some of the times.
     branch_cut_until : float
@@ -71,38 +74,60 @@ class TimeSeries:
         The induced frequencies whose residues were summed.
     model : str
     units : dict
-        Units of tau, w, u, theta: dimensionless (w_st, w_st chi) or SI (s, m, rad).
+        Units by kind of quantity: time ``tau``, rail deflection ``w``, body displacement ``u``, body
+        rotation ``theta``, coordinate ``xi``; dimensionless (w_st, w_st chi) or SI (s, m, rad).
     notes : tuple of str
         What the computation decided (e.g. up to which time the branch cut was included).
-    responses, steady : dict
-        Every response of the vehicle by its DOF name (the rail under each wheel, then the bodies' bounce
-        and pitch; ``DOFS`` of its generated module) and its steady part: the same numbers as the fields
-        above for the bogie and two masses, the only ones for any other vehicle (there those are NaN).
-    response_units : dict
-        DOF name -> unit of that response (``w_st``, ``w_st chi`` or SI ``m``, ``rad``).
+    contacts : int
+        How many of the responses, the first ones, are the rail under a wheel (``CONTACTS``).
     """
 
     tau: np.ndarray
-    w_rear: np.ndarray
-    w_front: np.ndarray
-    u: np.ndarray
-    theta: np.ndarray
-    w_steady_rear: float
-    w_steady_front: float
-    u_steady: float
-    theta_steady: float
+    responses: dict
+    steady: dict
+    response_units: dict
     branch_cut: bool
     frequencies: object
     model: str | None = None
     branch_cut_until: float = 0.0
     units: dict = field(default_factory=lambda: dict(DIMENSIONLESS_UNITS))
     notes: tuple = ()
-    responses: dict = field(default_factory=dict)
-    steady: dict = field(default_factory=dict)
-    response_units: dict = field(default_factory=dict)
+    contacts: int = 1
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The responses' DOF names, the wheels first (``DOFS`` order)."""
+        return tuple(self.responses)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        """The response of the DOF ``name`` (``series["w_rear"]``)."""
+        try:
+            return self.responses[name]
+        except KeyError:
+            known = ", ".join(self.responses)
+            raise KeyError(f"{name!r}: no such response of {self.model}; known: {known}") from None
+
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict of the frequencies summed first, then the times, steady parts and notes."""
+        from moving_bogie.html_repr import html_table
+
+        state = getattr(getattr(self.frequencies, "verdict", None), "state", "frequencies not judged")
+        verdict = f"{state.upper()} (the induced frequencies summed)"
+        unit = self.units.get("tau", "")
+        rows = [
+            ("model", self.model),
+            ("times", f"{len(self.tau)} from {self.tau[0]:.6g} to {self.tau[-1]:.6g} {unit}".rstrip()),
+            ("branch cut included up to", f"{self.branch_cut_until:.6g}" if self.branch_cut else "nowhere"),
+        ]
+        rows += [
+            (f"steady {k}", f"{v:.10g} {self.response_units.get(k, '')}".rstrip())
+            for k, v in self.steady.items()
+        ]
+        return html_table("closed-form time series", verdict, rows, reasons=list(self.notes))
 
     def to_dict(self) -> dict:
-        """JSON-ready dict: arrays as lists (NaN as None), the steady parts, flags, units and frequencies."""
+        """JSON-ready dict: every response under its DOF name (arrays as lists, NaN as None), the steady
+        parts, flags, units and frequencies."""
 
         def clean(x):
             return [None if not math.isfinite(v) else float(v) for v in np.asarray(x, dtype=float).ravel()]
@@ -112,14 +137,7 @@ class TimeSeries:
 
         return {
             "tau": clean(self.tau),
-            "w_rear": clean(self.w_rear),
-            "w_front": clean(self.w_front),
-            "u": clean(self.u),
-            "theta": clean(self.theta),
-            "w_steady_rear": scalar(self.w_steady_rear),
-            "w_steady_front": scalar(self.w_steady_front),
-            "u_steady": scalar(self.u_steady),
-            "theta_steady": scalar(self.theta_steady),
+            **{name: clean(v) for name, v in self.responses.items()},
             "branch_cut": bool(self.branch_cut),
             "branch_cut_until": None if math.isinf(self.branch_cut_until) else float(self.branch_cut_until),
             "model": self.model,
@@ -160,7 +178,7 @@ def closed_form_response(
     bc_tau_cap: float = 1e4,
     quad_tol: float = 1e-10,
 ) -> TimeSeries:
-    """Closed-form time series w_rear, w_front, u, theta (Eqs. (35)-(43)).
+    """Closed-form time series of every degree of freedom of the vehicle (Eqs. (35)-(43)).
 
     Parameters
     ----------
@@ -237,37 +255,23 @@ def _time_series(
     until: float,
     notes: list[str],
 ) -> TimeSeries:
-    """The :class:`TimeSeries` of the summed responses, in SI units when ``scales`` are given."""
-    nan = np.full(tau.shape, np.nan)
-    steady = expansion.steady
-    ts = dict(
-        tau=tau,
-        w_rear=series.get("w_rear", nan),
-        w_front=series.get("w_front", nan),
-        u=series.get("u", nan),
-        theta=series.get("theta", nan),
-        w_steady_rear=steady.get("w_rear", math.nan),
-        w_steady_front=steady.get("w_front", math.nan),
-        u_steady=steady.get("u", math.nan),
-        theta_steady=steady.get("theta", math.nan),
-    )
+    """The :class:`TimeSeries` of the summed responses (by DOF name), in SI when ``scales`` are given."""
     units_of = bound.vehicle.UNITS
     responses = {name: series[name] for name in expansion.names}
-    steady_parts = {name: steady[name] for name in expansion.names}
+    steady_parts = {name: expansion.steady[name] for name in expansion.names}
     if scales is not None:
-        ts = _to_si(ts, scales)
-        ts["tau"] = tau_in.reshape(-1)
         until = until * scales.t_scale
         units = dict(SI_UNITS)
         to_si = {"m": scales.deflection, "rad": scales.rotation}
         responses = {name: to_si[units_of[name]](v) for name, v in responses.items()}
         steady_parts = {name: to_si[units_of[name]](v) for name, v in steady_parts.items()}
         response_units = {name: units_of[name] for name in expansion.names}
+        tau = tau_in.reshape(-1)
     else:
         units = dict(DIMENSIONLESS_UNITS)
         response_units = {name: "w_st chi" if units_of[name] == "rad" else "w_st" for name in expansion.names}
     return TimeSeries(
-        **ts,
+        tau=tau,
         responses=responses,
         steady=steady_parts,
         response_units=response_units,
@@ -277,6 +281,7 @@ def _time_series(
         branch_cut_until=until,
         units=units,
         notes=tuple(notes),
+        contacts=len(expansion.positions),
     )
 
 
@@ -325,14 +330,3 @@ def _add_branch_cut(
     for name in expansion.names:
         series[name][mask] += extra[name]
     return until
-
-
-def _to_si(ts: dict, scales) -> dict:
-    out = dict(ts)
-    for key in ("w_rear", "w_front", "w_steady_rear", "w_steady_front"):
-        out[key] = scales.deflection(ts[key])
-    for key in ("u", "u_steady"):
-        out[key] = scales.displacement(ts[key])
-    for key in ("theta", "theta_steady"):
-        out[key] = scales.rotation(ts[key])
-    return out

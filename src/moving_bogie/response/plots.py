@@ -1,9 +1,13 @@
 """Figures of the closed-form vibrations in the paper's style (matplotlib, Agg backend, no pyplot state).
 
 * :func:`time_series_figure`: three stacked panels against tau, (a) beam deflection at the rear wheel,
-  (b) bar mass-centre displacement, (c) bar rotation (Figures 5, 9-12, 14, A1-A4, A6); for two moving
-  masses, the deflections under the rear and the front mass.
-* :func:`long_time_figure`: the long-time views of Figures 6, 13, 15, A5, A7: (a) w_rear, (b) u.
+  (b) bounce and (c) pitch of the vehicle's first body (the bogie's bar: Figures 5, 9-12, 14, A1-A4, A6);
+  for a vehicle without a body (two moving masses), the deflections under the rear and the front wheel.
+* :func:`long_time_figure`: the long-time views of Figures 6, 13, 15, A5, A7: (a) the rear wheel's
+  deflection, (b) the first body's bounce.
+
+The panels are chosen from the vehicle's DOFs (``TimeSeries.responses``, the wheels first); the paper's
+bogie keeps the paper's axis labels and titles, any other DOF is labelled by its name and unit.
 * :func:`shape_figure`: the beam deflection w(xi) around the bogie at one time, wheels marked.
 
 Each ``*_figure`` returns a :class:`matplotlib.figure.Figure`; :func:`save_figure` writes it atomically.
@@ -29,23 +33,29 @@ def _figure(rows: int, height: float):
 def _labels(ts) -> dict:
     si = ts.units.get("tau") == "s"
     if si:
-        return {
+        known = {
             "tau": "time t [s]",
             "w_rear": "w(0, t) [m]",
             "w_front": "w(d, t) [m]",
             "u": "u(t) [m]",
             "theta": r"$\theta$(t) [rad]",
         }
-    # Dimensionless: every quantity as the ratio it is (Eqs. (15)-(17)), w and u over the static deflection.
-    return {
-        "tau": r"dimensionless time $\tau = t\,\sqrt{k_f/m}$",
-        "w_rear": r"$w(0,\tau)\,/\,w_{st}$",
-        "w_front": r"$w(\tilde d,\tau)\,/\,w_{st}$",
-        "u": r"$u(\tau)\,/\,w_{st}$",
-        "theta": r"$\theta(\tau)\,/\,(w_{st}\,\chi)$",
+    else:
+        # Dimensionless: every quantity as the ratio it is (Eqs. (15)-(17)), w and u over the static
+        # deflection.
+        known = {
+            "tau": r"dimensionless time $\tau = t\,\sqrt{k_f/m}$",
+            "w_rear": r"$w(0,\tau)\,/\,w_{st}$",
+            "w_front": r"$w(\tilde d,\tau)\,/\,w_{st}$",
+            "u": r"$u(\tau)\,/\,w_{st}$",
+            "theta": r"$\theta(\tau)\,/\,(w_{st}\,\chi)$",
+        }
+    return {name: known.get(name, f"{name} [{unit}]") for name, unit in ts.response_units.items()} | {
+        "tau": known["tau"]
     }
 
 
+#: The paper's titles of the bogie's panels; any other DOF is titled by what it is (:func:`_title`).
 _TITLES = {
     "w_rear": "beam deflection at the rear wheel",
     "w_front": "beam deflection at the front wheel",
@@ -54,24 +64,27 @@ _TITLES = {
 }
 
 
+def _title(ts, name: str) -> str:
+    if name in _TITLES:
+        return _TITLES[name]
+    k = ts.names.index(name)
+    if k < ts.contacts:
+        return f"beam deflection under wheel {k + 1} of {ts.contacts}"
+    return f"{name}, {'pitch' if ts.response_units[name] in ('rad', 'w_st chi') else 'bounce'}"
+
+
 def _panels(ts, names, height, title, steady: bool):
     labels = _labels(ts)
     fig, axes = _figure(len(names), height)
     for k, (ax, name) in enumerate(zip(axes, names)):
-        y = getattr(ts, name)
-        ax.plot(ts.tau, y, lw=0.9, color="C0")
+        ax.plot(ts.tau, ts[name], lw=0.9, color="C0")
         if steady:
-            level = {
-                "w_rear": ts.w_steady_rear,
-                "w_front": ts.w_steady_front,
-                "u": ts.u_steady,
-                "theta": ts.theta_steady,
-            }[name]
+            level = ts.steady[name]
             if np.isfinite(level):
                 ax.axhline(level, color="0.5", lw=0.7, ls="--", label="steady part")
                 ax.legend(loc="lower right", fontsize=8, frameon=False)
         ax.set_ylabel(labels[name])
-        ax.set_title(f"({chr(97 + k)}) {_TITLES[name]}", loc="left", fontsize=9)
+        ax.set_title(f"({chr(97 + k)}) {_title(ts, name)}", loc="left", fontsize=9)
         ax.grid(True, lw=0.3, alpha=0.6)
         ax.margins(x=0)
     axes[-1].set_xlabel(labels["tau"])
@@ -80,20 +93,24 @@ def _panels(ts, names, height, title, steady: bool):
     return fig
 
 
-def _has(ts, name: str) -> bool:
-    """Whether the vehicle has this response (the others are NaN, e.g. no bar for two masses)."""
-    return not np.all(np.isnan(getattr(ts, name)))
+def _wheels_and_bodies(ts) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The DOFs of the rail under the wheels (rear first) and those of the vehicle's bodies."""
+    return ts.names[: ts.contacts], ts.names[ts.contacts :]
 
 
 def time_series_figure(ts, *, title: str | None = None, steady: bool = True):
-    """Three stacked panels: w_rear, u, theta against tau (a vehicle without a bar: w_rear, w_front)."""
-    names = ("w_rear", "u", "theta") if _has(ts, "u") else ("w_rear", "w_front")
+    """Three stacked panels: the rear wheel, the first body's bounce and pitch against tau (the bogie:
+    w_rear, u, theta); a vehicle without a body: the rear and the front wheel."""
+    wheels, bodies = _wheels_and_bodies(ts)
+    names = (wheels[0], *bodies[:2]) if bodies else (wheels[0], wheels[-1])
     return _panels(ts, names, 2.3 * len(names) + 0.4, title, steady)
 
 
 def long_time_figure(ts, *, title: str | None = None):
-    """Two stacked panels, w_rear and u, for long times (Figures 6, 13, 15, A5, A7)."""
-    names = ("w_rear", "u") if _has(ts, "u") else ("w_rear", "w_front")
+    """Two stacked panels, the rear wheel and the first body's bounce (the bogie: w_rear, u), for long
+    times (Figures 6, 13, 15, A5, A7); a vehicle without a body: the rear and the front wheel."""
+    wheels, bodies = _wheels_and_bodies(ts)
+    names = (wheels[0], bodies[0]) if bodies else (wheels[0], wheels[-1])
     return _panels(ts, names, 5.0, title, steady=False)
 
 

@@ -140,6 +140,27 @@ class FrequencyResult:
         """1/|Im q| of the fastest-growing root (dimensionless time for amplitude x e), or None."""
         return 1 / abs(self.degree_of_instability) if self.unstable_roots else None
 
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict first, then the count and the roots (:mod:`moving_bogie.html_repr`)."""
+        from moving_bogie.html_repr import html_table
+
+        params = self.params.to_dict()
+        rows = [
+            ("model", f"{params.get('beam')} beam, {params.get('track')} track, {self.model}"),
+            ("roots counted / found", f"{self.count} / {self.found} (Re q >= 0, pairs q, -conj(q) once)"),
+            ("degree of instability", mpmath.nstr(self.degree_of_instability, 6)),
+            (
+                "window",
+                f"Re q {self.window.x0:g}..{self.window.x1:g}, Im q {self.window.y0:g}..{self.window.y1:g}",
+            ),
+        ]
+        roots = [(r.re_text, r.im_text, r.side, r.multiplicity, r.digits) for r in self.roots]
+        header = ("Re q", "Im q (< 0: grows)", "side of the cut", "multiplicity", "digits")
+        reasons = [note.text for note in self.verdict.reasons] + list(self.warnings)
+        return html_table(
+            "induced frequencies", self.verdict.state.upper(), rows, reasons=reasons, items=(header, roots)
+        )
+
     def to_dict(self) -> dict:
         return {
             "params": self.params.to_dict(),

@@ -212,8 +212,11 @@ class SweepSpec:
             raise ParameterError("--vary", "give at least one --vary NAME=...")
         if len(set(names)) != len(names):
             raise ParameterError("--vary", f"--vary: a parameter is varied twice ({', '.join(names)})")
-        if "cf1" in names and "mu_v" in names or "cf2" in names and "J_b" in names:
-            raise ParameterError("--vary", "--vary: vary either cf1 or mu_v (cf2 or J_b), not both")
+        for alternative, meta in self.params.model.alternatives.items():  # cf1 sets mu_v, Eq. (63), ...
+            if alternative in names and meta["sets"] in names:
+                raise ParameterError(
+                    "--vary", f"--vary: vary either {alternative} or {meta['sets']}, not both"
+                )
         for a in self.axes:  # every value must make valid parameters: fail before any computation
             for v in {min(a.values), max(a.values)}:
                 try:

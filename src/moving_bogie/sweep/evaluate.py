@@ -7,7 +7,8 @@ the neighbouring alpha). Points the column count cannot settle get a full count
 (:func:`~moving_bogie.roots.frequencies.induced_frequencies`); ``check`` further points per block, drawn
 at random with the block's index as seed, are verified by a full count too, and a disagreement replaces
 the verdict (``checked = -1``). A point whose count no method could certify has ``certain = False``,
-``n_unstable = -1`` and a NaN degree: it is never classified.
+``n_unstable = -1`` and a NaN degree: it is never classified. The ``margin`` of a point is the smallest Im q
+of its induced frequencies (:mod:`~moving_bogie.stability.maps.column_margin`).
 """
 
 from __future__ import annotations
@@ -33,6 +34,19 @@ VARIABLES = (
         "number of unstable induced frequencies, pairs q, -conj(q) once (-1: unknown)",
     ),
     ("degree_of_instability", "float64", np.nan, "most negative Im q; 0 where stable, NaN where not certain"),
+    (
+        "margin",
+        "float64",
+        np.nan,
+        "smallest Im q of the induced frequencies: the decay rate where stable, the degree where unstable; "
+        "NaN where undetermined; in 1/s (Im omega = Im q / t_scale) in a sweep in SI units",
+    ),
+    (
+        "margin_bound",
+        "bool",
+        False,
+        "the margin is a lower bound: no root of the column's window lies below it (above it, or the cut)",
+    ),
     ("certain", "bool", False, "the count is certified (column count or full count)"),
     ("settled", "bool", False, "the verdict comes from a full count (induced_frequencies)"),
     ("checked", "int8", 0, "verified by a full count: 1 agreed, -1 disagreed (verdict replaced), 0 not"),
@@ -73,11 +87,13 @@ def evaluate_block(task: BlockTask) -> dict:
         groups = _grid_groups(task)
     n = np.full(shape, -1, dtype=np.int16)
     degree = np.full(shape, np.nan)
+    margin = np.full(shape, np.nan)
+    bound = np.zeros(shape, dtype=bool)
     certain = np.zeros(shape, dtype=bool)
     settled = np.zeros(shape, dtype=bool)
     roots = np.full((*shape, task.max_roots), complex(np.nan, np.nan))
-    # without a column every point is a column of one at its own eta_M: nothing varies, nothing is held
-    parameter, held = (task.column, task.held) if task.column else ("eta_M", ())
+    # without a column every point is a column of one at its own wheel mass: nothing varies, nothing is held
+    parameter, held = (task.column, task.held) if task.column else (task.params.model.wheel_mass, ())
     for changes, alphas, thetas, index_grid in groups:
         params = task.params.replace(**(task.fixed | changes)) if changes else task.params
         alphas = alphas if alphas is not None else [params.alpha]
@@ -90,13 +106,17 @@ def evaluate_block(task: BlockTask) -> dict:
                     certain[index] = True
                     n[index] = col.count[j]
                     degree[index] = col.degree[j]
+                    margin[index] = col.margin[j]
+                    bound[index] = bool(col.margin_bound[j])
                     r = col.roots[j][: task.max_roots]
                     roots[index][: len(r)] = r
-    checked = _check(task, shape, n, degree, certain, settled, roots)
+    checked = _check(task, shape, n, degree, certain, settled, roots, (margin, bound))
     out = {
         "stable": certain & (n == 0),
         "n_unstable": n,
         "degree_of_instability": degree,
+        "margin": margin,
+        "margin_bound": bound,
         "certain": certain,
         "settled": settled,
         "checked": checked,
@@ -144,8 +164,9 @@ def _point(task: BlockTask, index: tuple) -> dict:
     return {name: vals[i] for name, vals, i in zip(task.names, task.values, index)}
 
 
-def _check(task, shape, n, degree, certain, settled, roots) -> np.ndarray:
-    """Verify ``task.check`` random points of the block by a full count (module text)."""
+def _check(task, shape, n, degree, certain, settled, roots, margins) -> np.ndarray:
+    """Verify ``task.check`` random points of the block by a full count (module text); a replaced verdict
+    takes its margin (``margins``: the arrays of the margin and its bound flag) from that count."""
     from moving_bogie.roots.frequencies import induced_frequencies
 
     checked = np.zeros(shape, dtype=np.int8)
@@ -169,6 +190,8 @@ def _check(task, shape, n, degree, certain, settled, roots) -> np.ndarray:
         checked[index] = -1
         n[index] = len(unstable)
         degree[index] = min([0.0, *(q.imag for q in unstable)])
+        margins[0][index] = min((float(r.q.imag) for r in res.roots), default=np.nan)
+        margins[1][index] = False
         roots[index][:] = complex(np.nan, np.nan)
         roots[index][: min(len(unstable), task.max_roots)] = unstable[: task.max_roots]
         settled[index] = True

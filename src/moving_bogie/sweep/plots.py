@@ -1,4 +1,4 @@
-"""Slices of a sweep: the degree of instability over two varied parameters, with the stability boundary."""
+"""Slices of a sweep: the stability margin over two varied parameters, with the stability boundary."""
 
 from __future__ import annotations
 
@@ -8,7 +8,6 @@ import numpy as np
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.stability.figures.plot_units import axis_label, mark_operating_point, unit_suffix
-from moving_bogie.stability.figures.plots import hatch_cells
 
 __all__ = ["plot_sweep_slice", "select_slice"]
 
@@ -43,46 +42,74 @@ def select_slice(ds, x: str, y: str, sel: dict | None = None):
 
 
 def plot_sweep_slice(ds, x: str, y: str, sel: dict | None = None, *, vmin_log: float = -6.0):
-    """Figure: log10 |degree of instability| (white where stable), the boundary between stable and unstable
-    points (contour of n_unstable > 0 at 1/2), uncertain points hatched, the axes in the store's units
-    (SI for a sweep of a ``[physical]`` input) and the base point of the sweep marked where the store
-    records it (``operating_point``)."""
+    """Figure: the slice coloured by its stability margin (decay rate where stable, growth rate where
+    unstable, in 1/s in a sweep in SI units; :mod:`~moving_bogie.stability.figures.margin_plot`), the
+    boundary between stable and unstable points, uncertain points hatched, the axes in the store's units
+    and the base point of the sweep marked where the store records it (``operating_point``); the title
+    names the model and the fixed parameters. A store without a ``margin`` (written by an earlier version)
+    shows its stable points grey and says so. ``vmin_log`` is kept for callers."""
     from matplotlib.figure import Figure
+
+    from moving_bogie.stability.figures.margin_plot import MarginPlane, draw_margin, plane_title
 
     s = select_slice(ds, x, y, sel).compute()
     xs, ys = s[x].values, s[y].values
-    deg = -s.degree_of_instability.values
     certain = s.certain.values
-    with np.errstate(divide="ignore", invalid="ignore"):
-        z = np.where(certain & (deg > 0), np.log10(np.maximum(deg, 10.0**vmin_log)), np.nan)
-    fig = Figure(figsize=(7.5, 5.5), layout="constrained")
+    unstable = certain & (s.n_unstable.values > 0)
+    si = ds.attrs.get("units") == "si"
+    if "margin" in s:
+        margin, bound = s.margin.values, s.margin_bound.values
+    else:  # the growth rate from the degree; no margin of the stable points
+        t_scale = ds.degree_of_instability.attrs.get("t_scale_s", 1.0) if si else 1.0
+        margin = np.where(unstable, s.degree_of_instability.values / t_scale, np.nan)
+        bound = np.zeros(margin.shape, dtype=bool)
+    fig = Figure(figsize=(8.5, 5.8), layout="constrained")
     ax = fig.subplots()
-    mesh = ax.pcolormesh(
-        xs,
-        ys,
-        z,
-        shading="nearest",
-        cmap="magma_r",
-        vmin=vmin_log,
-        vmax=max(vmin_log + 1, float(np.nanmax(z)) if np.isfinite(z).any() else 0),
-    )
-    fig.colorbar(mesh, ax=ax, label=r"$\log_{10}\,|\min \mathrm{Im}\, q|$ (unstable points)")
-    unstable = np.where(certain, (s.n_unstable.values > 0).astype(float), np.nan)
-    if len(xs) > 1 and len(ys) > 1 and np.nanmin(unstable) < 0.5 < np.nanmax(unstable):
-        ax.contour(xs, ys, unstable, levels=[0.5], colors="tab:cyan", linewidths=1.2)
-        ax.plot([], [], color="tab:cyan", label="stability boundary")
-    n = hatch_cells(ax, xs, ys, ~certain)
+    plane = MarginPlane(xs, ys, margin, bound, certain, unstable, "1/s" if si else "")
+    handles = draw_margin(fig, ax, plane)
     ax.set_xlabel(axis_label(ds[x]))
     ax.set_ylabel(axis_label(ds[y]))
     point = json.loads(ds.attrs.get("operating_point", "{}"))
     inside = x in point and y in point and min(xs) <= point[x] <= max(xs) and min(ys) <= point[y] <= max(ys)
     if inside:  # the base point, where it lies on the slice's axes
         mark_operating_point(ax, point[x], point[y])
-    fixed = ", ".join(f"{k} = {float(s[k].values):.4g}{unit_suffix(ds[k])}" for k in (sel or {}))
-    title = f"sweep: degree of instability ({ds.attrs.get('model', '')})" + (f"; {fixed}" if fixed else "")
-    if n:
-        title += f"; {n} uncertain point(s) hatched"
-    ax.set_title(title, fontsize=9)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(loc="upper left", fontsize=8)
+    heading = "sweep, stability margin"
+    if "margin" not in s:
+        heading += " (not in this store: run the sweep again to store it)"
+    if (~certain).any():
+        heading += f" ({int((~certain).sum())} uncertain point(s) hatched)"
+    ax.set_title(
+        plane_title(heading, json.loads(ds.attrs.get("params", "{}")), _fixed(ds, s, x, y, sel)), fontsize=8
+    )
+    drawn, _ = ax.get_legend_handles_labels()
+    if drawn or handles:
+        ax.legend(handles=[h for h in drawn if h not in handles] + handles, loc="upper left", fontsize=8)
     return fig
+
+
+def _fixed(ds, s, x: str, y: str, sel: dict | None) -> dict:
+    """The fixed parameters of a slice as title text: the selected values of the other dimensions, then
+    the store's base point (SI in a sweep in SI units) without the varied parameters."""
+    from moving_bogie.model.catalogue import get_model
+    from moving_bogie.stability.figures.margin_plot import fixed_parameters
+
+    out = {k: f"{float(s[k].values):.4g}{unit_suffix(ds[k])}" for k in (sel or {})}
+    params = json.loads(ds.attrs.get("params", "{}"))
+    try:
+        model = get_model(params.get("beam"), params.get("track"), params.get("vehicle"))
+    except ParameterError:
+        return out
+    si = ds.attrs.get("units") == "si"
+    base = json.loads(ds.attrs["physical"]) if si and "physical" in ds.attrs else params
+    varied = set(ds.dims) | {str(c) for c in ds.coords}
+    follow = {}
+    if not si or "vertical_axis" in ds.attrs:  # groups Eq. (63) ties to a varied one follow it
+        for name, meta in model.alternatives.items():
+            for axis in (x, y, *(sel or {})):
+                group = ds[axis].attrs.get("group", axis)
+                if group in meta["depends"]:
+                    spec = model.specs[meta["sets"]]
+                    follow[spec.si if si else meta["sets"]] = (
+                        f"follows {axis} ({name} = {float(params[name]):.4g})"
+                    )
+    return out | fixed_parameters(model, base, varied, si=si, follow=follow)

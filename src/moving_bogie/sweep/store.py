@@ -31,7 +31,37 @@ from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.sweep.design import SweepSpec, group_coordinate, parameter_attributes, si_attributes
 from moving_bogie.sweep.evaluate import VARIABLES
 
-__all__ = ["create_store", "missing_blocks", "open_sweep", "prepare_store", "write_block", "write_map"]
+__all__ = [
+    "VARIABLE_NAMES",
+    "consolidate",
+    "create_store",
+    "missing_blocks",
+    "open_sweep",
+    "prepare_store",
+    "write_block",
+    "write_map",
+]
+
+#: CF ``long_name`` and ``units`` of each data variable (``ds.plot()`` labels its axes from them); the
+#: margin's unit is "1/s" in a sweep in SI units.
+VARIABLE_NAMES = {
+    "stable": ("stable (no induced frequency with Im q < 0)", "1"),
+    "n_unstable": ("number of unstable induced frequencies", "1"),
+    "degree_of_instability": ("degree of instability, most negative Im q", "1"),
+    "margin": ("stability margin, smallest Im q (decay rate; < 0: growth rate)", "1"),
+    "margin_bound": ("the margin is a lower bound", "1"),
+    "certain": ("the count is certified", "1"),
+    "settled": ("verdict from a full count", "1"),
+    "checked": ("verified by a full count (1 agreed, -1 disagreed, 0 not checked)", "1"),
+    "computed": ("the block has been computed", "1"),
+    "roots_re": ("Re q of the unstable induced frequencies", "1"),
+    "roots_im": ("Im q of the unstable induced frequencies", "1"),
+    "alpha_cr": ("critical velocity of the track, alpha_cr", "1"),
+    "supercritical": ("the point moves above the critical velocity", "1"),
+}
+
+#: The margin of a sweep in SI units: Im omega = Im q / t_scale.
+SI_MARGIN = ("stability margin, smallest Im omega (decay rate; < 0: growth rate)", "1/s")
 
 
 def _version() -> str:
@@ -98,6 +128,7 @@ def create_store(path, spec: SweepSpec) -> None:
     if spec.design == "sobol":
         point = g.create_array("point", shape=shape, chunks=shape, dtype="int64", dimension_names=("point",))
         point[:] = np.arange(shape[0])
+        point.attrs.update(long_name="point of the quasi-random design", units="1")
     extra_coordinates = []
     for axis in spec.axes:
         own = ("point",) if spec.design == "sobol" else (axis.label,)
@@ -123,8 +154,9 @@ def create_store(path, spec: SweepSpec) -> None:
             dimension_names=dims + (("root",) if extra else ()),
         )
         arr.attrs["description"] = text
+        long_name, units = SI_MARGIN if name == "margin" and spec.si else VARIABLE_NAMES[name]
+        arr.attrs.update(long_name=long_name, units=units)
         if name == "degree_of_instability":
-            arr.attrs["units"] = "1"
             if spec.si:  # the growth rate in SI: -Im omega = -Im q / t_scale [1/s]
                 arr.attrs["t_scale_s"] = spec.physical.scales().t_scale
                 arr.attrs["si"] = "growth rate [1/s] = -degree_of_instability / t_scale_s"
@@ -150,9 +182,25 @@ def create_store(path, spec: SweepSpec) -> None:
     if spec.si:
         g.attrs["physical"] = json.dumps(spec.physical.to_dict())
     _write_speed(g, spec)
+    consolidate(tmp)
     if path.exists():
         shutil.rmtree(path)
     os.replace(tmp, path)
+
+
+def consolidate(path) -> None:
+    """Gather the metadata of every array into the store's root (xarray then opens it in one read).
+
+    zarr warns that consolidated metadata is not part of the zarr 3 specification: xarray, the reader of
+    these stores, reads it, so the warning is not passed on.
+    """
+    import warnings
+
+    import zarr
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Consolidated metadata", category=UserWarning)
+        zarr.consolidate_metadata(str(path))
 
 
 def _write_speed(g, spec: SweepSpec) -> None:
@@ -174,8 +222,8 @@ def _write_speed(g, spec: SweepSpec) -> None:
         arr = g.create_array(name, shape=spec.shape, dtype=values.dtype, dimension_names=spec.dims)
         arr[...] = values
         arr.attrs["description"] = texts[name]
-        if name == "alpha_cr":
-            arr.attrs["units"] = "1"
+        long_name, units = VARIABLE_NAMES[name]
+        arr.attrs.update(long_name=long_name, units=units)
     if spec.si:
         v_ref = spec.physical.scales().v_ref
         v_cr = sorted({float(a) * v_ref for a in np.unique(arrays["alpha_cr"])})
@@ -208,10 +256,12 @@ def _variables(spec: SweepSpec):
 
 
 def write_block(path, spec: SweepSpec, slices: tuple, arrays: dict) -> None:
-    """Write one block's arrays into its chunk of every variable (``computed`` last)."""
+    """Write one block's arrays into its chunk of every variable (``computed`` last); the margin in 1/s in
+    a sweep in SI units."""
     g = _group(path, "r+")
+    t_scale = spec.physical.scales().t_scale if spec.si else 1.0
     for name, *_ in _variables(spec):
-        g[name][slices] = arrays[name]
+        g[name][slices] = arrays[name] / t_scale if name == "margin" else arrays[name]
 
 
 def missing_blocks(path, spec: SweepSpec) -> list:
@@ -221,14 +271,19 @@ def missing_blocks(path, spec: SweepSpec) -> list:
 
 
 def open_sweep(path):
-    """The sweep at ``path`` as an :class:`xarray.Dataset` (lazy, dask-backed)."""
+    """The sweep at ``path`` as an :class:`xarray.Dataset` (lazy, dask-backed).
+
+    A store has its metadata consolidated (:func:`consolidate`); one without (written by an earlier
+    version) is read array by array, without the margin and the units of its variables.
+    """
     import xarray as xr
 
     path = Path(path)
     if not path.exists():
         raise ParameterError("store", f"no sweep store at {path}")
     try:
-        return xr.open_zarr(str(path), consolidated=False)
+        root = json.loads((path / "zarr.json").read_text()) if (path / "zarr.json").exists() else {}
+        return xr.open_zarr(str(path), consolidated="consolidated_metadata" in root)
     except (FileNotFoundError, ValueError, KeyError) as exc:
         raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None
 
@@ -265,6 +320,8 @@ def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
         "stable": certain & (n == 0),
         "n_unstable": n,
         "degree_of_instability": np.where(certain, smap.degree.T, np.nan),
+        "margin": _map_margin(smap, certain),
+        "margin_bound": np.zeros(n.shape, dtype=bool) if smap.margin is None else smap.margin_bound.T,
         "certain": certain,
         "settled": smap.settled_cells.T,
         "checked": np.zeros(n.shape, dtype=np.int8),
@@ -280,4 +337,12 @@ def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
         _group(path, "r+").attrs["vertical_axis"] = (
             f"a stability map: along {smap.parameter} " + ", ".join(follow) + " follow it (Eq. (63))"
         )
+        consolidate(path)
     return path
+
+
+def _map_margin(smap, certain: np.ndarray) -> np.ndarray:
+    """The map's margin (alpha first), NaN where not certain or not measured."""
+    if smap.margin is None:
+        return np.full(certain.shape, np.nan)
+    return np.where(certain, smap.margin.T, np.nan)

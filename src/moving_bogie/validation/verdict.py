@@ -128,10 +128,8 @@ def _json_float(x: float) -> float | None:
 
 
 def series(obj: Any, attr: str, n: int) -> np.ndarray:
-    """``obj.responses[attr]`` (or ``obj.attr``) as a float array, or NaN of length `n` when it lacks it."""
-    responses = getattr(obj, "responses", None)
-    value = responses.get(attr) if isinstance(responses, dict) else None
-    value = getattr(obj, attr, None) if value is None else value
+    """``obj.responses[attr]`` as a float array, or NaN of length `n` when it lacks it."""
+    value = obj.responses.get(attr)
     return np.full(n, np.nan) if value is None else np.asarray(value, dtype=float)
 
 
@@ -232,10 +230,6 @@ class ValidationResult:
     notes: tuple[str, ...] = field(default=())
     labels: dict[str, str] = field(default_factory=dict)
 
-    def _diff(self, name: str) -> float | None:
-        q = self.quantities.get(name)
-        return None if q is None else q.max_abs_diff
-
     @property
     def max_abs_diff_rear(self) -> float:
         """Difference under the rear wheel (the first contact, at xi = 0) over the window."""
@@ -245,16 +239,6 @@ class ValidationResult:
     def max_abs_diff_front(self) -> float:
         """Difference under the front wheel (the last contact) over the window."""
         return self.quantities[self._wheels[-1]].max_abs_diff
-
-    @property
-    def max_abs_diff_u(self) -> float | None:
-        """Difference of the bounce named ``u`` over the window (None for a vehicle without one)."""
-        return self._diff("u")
-
-    @property
-    def max_abs_diff_theta(self) -> float | None:
-        """Difference of the pitch named ``theta`` over the window (None for a vehicle without one)."""
-        return self._diff("theta")
 
     @property
     def _wheels(self) -> list[str]:
@@ -280,6 +264,26 @@ class ValidationResult:
         """``finite_beam_s / closed_form_s``: how many times slower the finite beam is."""
         return self.finite_beam_s / self.closed_form_s if self.closed_form_s > 0 else math.inf
 
+    def _repr_html_(self) -> str:
+        """Jupyter: whether the finite beam agrees first, then every quantity's relative difference."""
+        from moving_bogie.html_repr import html_table
+
+        verdict = "AGREES" if self.agrees else "DISAGREES"
+        rows = [
+            ("model", self.model),
+            ("window", f"tau {self.window[0]:.6g}..{self.window[1]:.6g}"),
+            ("tolerance", f"{self.tolerance:g} of max |closed form|"),
+            ("wall times [s]", f"finite beam {self.finite_beam_s:.3g}, closed form {self.closed_form_s:.3g}"),
+        ]
+        items = [
+            (self.labels.get(k, k), f"{q.relative:.3g}", "yes" if q.within else "no")
+            for k, q in self.quantities.items()
+        ]
+        header = ("quantity", "max |difference| / max |closed form|", "within")
+        return html_table(
+            "finite beam against closed form", verdict, rows, reasons=list(self.notes), items=(header, items)
+        )
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (no time series)."""
         params = self.params.to_dict() if hasattr(self.params, "to_dict") else None
@@ -301,8 +305,7 @@ class ValidationResult:
             "labels": dict(self.labels),
             "max_abs_diff_rear": self.max_abs_diff_rear,
             "max_abs_diff_front": self.max_abs_diff_front,
-            "max_abs_diff_u": self.max_abs_diff_u,
-            "max_abs_diff_theta": self.max_abs_diff_theta,
+            **{f"max_abs_diff_{name}": q[name].max_abs_diff for name in list(q)[len(self._wheels) :]},
             "error_estimate": {k: _json_float(v.error_estimate) for k, v in q.items()},
             "quantities": {k: v.to_dict() for k, v in q.items()},
             "window": list(self.window),

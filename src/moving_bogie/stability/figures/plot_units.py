@@ -53,6 +53,8 @@ class PlaneUnits:
         The critical velocity of the track (:mod:`~moving_bogie.stability.velocity.supercritical`), drawn
         dotted;
         None: the figure draws alpha = 1 (Eq. (65) without a shear layer).
+    base : dict
+        The SI parameters of the input, as text (``PhysicalParams.to_dict``), for the figures' titles.
     """
 
     names: dict = field(default_factory=dict)
@@ -61,6 +63,7 @@ class PlaneUnits:
     t_scale: float | None = None
     operating: dict = field(default_factory=dict)
     alpha_cr: float | None = None
+    base: dict = field(default_factory=dict)
 
     @classmethod
     def of(cls, params, physical=None, *, operating: bool = False) -> PlaneUnits:
@@ -82,6 +85,7 @@ class PlaneUnits:
             t_scale=physical.scales().t_scale,
             operating=own,
             alpha_cr=alpha_cr,
+            base=physical.to_dict(),
         )
 
     @property
@@ -126,16 +130,46 @@ class PlaneUnits:
             out["group"] = {"name": group, "value": float(x)}
         return out
 
-    def critical(self, ax) -> None:
-        """The critical velocity of the track, dotted and labelled (alpha = 1 unlabelled when unknown)."""
+    def critical(self, ax, x_range: tuple[float, float] | None = None) -> None:
+        """The critical velocity of the track, dotted and labelled (alpha = 1 unlabelled when unknown).
+
+        With ``x_range`` (the shown velocity axis) a critical velocity beyond it is not drawn (nor listed
+        in the legend) but noted in a corner of the axes.
+        """
+        value = self.value("alpha", 1.0 if self.alpha_cr is None else self.alpha_cr)
+        if x_range is not None and not min(x_range) <= value <= max(x_range):
+            if self.alpha_cr is not None:
+                ax.text(
+                    0.99, 0.99, self._critical_text() + ": beyond this axis", transform=ax.transAxes,
+                    ha="right", va="top", fontsize=7, bbox=dict(fc="white", ec="0.6", alpha=0.9),
+                )  # fmt: skip
+            return
         if self.alpha_cr is None:
             ax.axvline(1.0, color="k", ls=":", lw=1)
             return
+        ax.axvline(value, color="k", ls=":", lw=1, label=self._critical_text())
+
+    def _critical_text(self) -> str:
         unit = f" {self.unit('alpha')}" if self.si else ""
-        label = (
-            f"{self.name('alpha')}_cr = {self.value('alpha', self.alpha_cr):.6g}{unit} (critical velocity)"
-        )
-        ax.axvline(self.value("alpha", self.alpha_cr), color="k", ls=":", lw=1, label=label)
+        shown = self.value("alpha", self.alpha_cr)
+        return f"{self.name('alpha')}_cr = {shown:.6g}{unit} (critical velocity)"
+
+    def fixed_text(self, params, parameter: str) -> dict:
+        """The parameters a plane (alpha, ``parameter``) holds fixed, as title text (SI values for an SI
+        input, with their units; :func:`~moving_bogie.stability.figures.margin_plot.fixed_parameters`);
+        the groups Eq. (63) ties to ``parameter`` are said to follow it."""
+        from moving_bogie.stability.figures.margin_plot import fixed_parameters
+
+        follow = {
+            self.name(
+                meta["sets"]
+            ): f"follows {self.name(parameter)} ({name} = {float(getattr(params, name)):.4g})"
+            for name, meta in params.model.alternatives.items()
+            if parameter in meta["depends"]
+        }
+        values = self.base if self.si else params.to_dict()
+        shown = {self.name("alpha"), self.name(parameter)}
+        return fixed_parameters(params.model, values, shown, si=self.si, follow=follow)
 
     def mark(self, ax, x_group: str, y_group: str) -> bool:
         """Mark the operating point on a plane (x_group, y_group) when it is known; True if marked."""

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from moving_bogie.stability.figures.margin_plot import hatch_cells
 from moving_bogie.stability.figures.plot_units import PlaneUnits
 
 __all__ = [
@@ -72,7 +73,7 @@ def plot_instability_lines(
     colors = colors or spacing_colors(ds)
     seen = set()
     marked = set()
-    parameter = getattr(lines, "parameter", "eta_M")
+    parameter = lines.parameter
     x, y = (lambda a: units.value("alpha", a)), (lambda t: units.value(parameter, t) / scale)
     for b in lines.branches:
         style = UNDAMPED_STYLES.get(b.kind, {"ls": linestyle})
@@ -102,76 +103,53 @@ def end_mark_handles(kinds) -> list:
     return [Line2D([], [], label=END_LABELS[k], **END_MARKERS[k]) for k in sorted(kinds)]
 
 
-def hatch_cells(ax, x, y, mask, *, label: str = "uncertain (not certified)") -> int:
-    """Hatch the cells ``mask[j, i]`` of the grid ``x[i], y[j]`` (cell edges halfway between the values).
-
-    Returns the number of hatched cells.
-    """
-    from matplotlib.collections import PatchCollection
-    from matplotlib.patches import Rectangle
-
-    x, y, mask = np.asarray(x, dtype=float), np.asarray(y, dtype=float), np.asarray(mask, dtype=bool)
-
-    def edges(v):
-        if len(v) == 1:
-            return np.array([v[0] - 0.5, v[0] + 0.5])
-        mid = 0.5 * (v[1:] + v[:-1])
-        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
-
-    ex, ey = edges(x), edges(y)
-    rows, cols = np.nonzero(mask)
-    patches = [Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j]) for j, i in zip(rows, cols)]
-    if patches:
-        ax.add_collection(
-            PatchCollection(
-                patches, facecolor="none", edgecolor="tab:blue", hatch="////", lw=0.5, label=label
-            )
-        )
-    return len(patches)
-
-
 def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0, units=None):
-    """Heat map of log10 |degree of instability| (white where stable) with instability lines on top;
-    uncertain cells (if any) hatched and counted in the title; axes in ``units`` (SI for a ``[physical]``
-    input, :class:`~moving_bogie.stability.figures.plot_units.PlaneUnits`) with the operating point marked."""
+    """The map coloured by its stability margin (:mod:`~moving_bogie.stability.figures.margin_plot`: decay
+    rate where stable, growth rate where unstable, in 1/s for an SI input), with instability lines on top;
+    uncertain cells hatched and counted in the title; axes in ``units`` (SI for a ``[physical]`` input,
+    :class:`~moving_bogie.stability.figures.plot_units.PlaneUnits`) with the operating point marked, the
+    critical velocity drawn where it lies on the axis and noted where it does not. ``vmin_log`` (the
+    decades of growth shown) is kept for callers; the growth scale spans at most
+    :data:`~moving_bogie.stability.figures.margin_plot.GROWTH_DECADES` decades."""
+    from moving_bogie.stability.figures.margin_plot import MarginPlane, draw_margin, plane_title
+
     units = units or PlaneUnits()
-    fig = new_figure(figsize=(7.5, 5.5), layout="constrained")
+    fig = new_figure(figsize=(8.5, 5.8), layout="constrained")
     ax = fig.subplots()
-    deg = -smap.degree
-    with np.errstate(divide="ignore"):
-        z = np.where((deg > 0) & ~smap.uncertain, np.log10(np.maximum(deg, 10.0**vmin_log)), np.nan)
     xs, ys = units.value("alpha", smap.alphas), units.value(smap.parameter, smap.thetas)
-    mesh = ax.pcolormesh(
-        xs,
-        ys,
-        z,
-        shading="nearest",
-        cmap="magma_r",
-        vmin=vmin_log,
-        vmax=max(vmin_log + 1, float(np.nanmax(z)) if np.isfinite(z).any() else 0),
+    certain = ~smap.uncertain
+    margin = np.where(smap.count > 0, smap.degree, np.nan) if smap.margin is None else smap.margin
+    bound = np.zeros(margin.shape, dtype=bool) if smap.margin_bound is None else smap.margin_bound
+    plane = MarginPlane(
+        xs, ys, units.frequency(margin), bound, certain, certain & (smap.count > 0), "1/s" if units.si else ""
     )
-    fig.colorbar(mesh, ax=ax, label=r"$\log_{10}\,|\min \mathrm{Im}\, q|$ (unstable cells)")
+    handles = draw_margin(fig, ax, plane)
     if lines is not None:
         for b in lines.branches:
             ls = UNDAMPED_STYLES.get(b.kind, {}).get("ls", "-")
             x, y = units.value("alpha", b.alpha), units.value(smap.parameter, b.theta)
             ax.plot(x, y, color="tab:cyan", lw=1, ls=ls)
-    n_uncertain = hatch_cells(ax, xs, ys, smap.uncertain)
+        if lines.branches:
+            handles.append(ax.plot([], [], color="tab:cyan", lw=1, label="instability lines")[0])
     ax.set_xlabel(units.label("alpha") if units.si else r"$\alpha$")
     ax.set_ylabel(units.label(smap.parameter))
     ax.set_xlim(xs[0], xs[-1])
     ax.set_ylim(0, ys[-1])
-    units.critical(ax)
-    marked = units.mark(ax, "alpha", smap.parameter) or units.alpha_cr is not None
-    title = f"degree of instability, {smap.model}; lines: instability lines"
+    units.critical(ax, x_range=(xs[0], xs[-1]))
+    units.mark(ax, "alpha", smap.parameter)
+    heading = "stability margin"
     if lines is not None and lines.statement:
-        title = (
-            f"degree of instability at eta_f = {float(smap.params.eta_f):g}, {smap.model}; lines: boundaries "
-            "at eta_f = 0 (solid), eta_f -> 0+ (dashed)"
+        heading += (
+            f" at eta_f = {float(smap.params.eta_f):g}; lines: boundaries at eta_f = 0 (solid), "
+            "eta_f -> 0+ (dashed)"
         )
+    n_uncertain = int(smap.uncertain.sum())
     if n_uncertain:
-        title += f"; hatched: {n_uncertain} uncertain cell(s)"
-    if n_uncertain or marked:
-        ax.legend(loc="upper left", fontsize=8)
-    ax.set_title(title, fontsize=9)
+        heading += f" ({n_uncertain} uncertain cell(s) hatched)"
+    ax.set_title(
+        plane_title(heading, smap.params.to_dict(), units.fixed_text(smap.params, smap.parameter)), fontsize=8
+    )
+    drawn, _ = ax.get_legend_handles_labels()
+    if drawn or handles:
+        ax.legend(handles=[h for h in drawn if h not in handles] + handles, loc="upper left", fontsize=8)
     return fig

@@ -66,7 +66,7 @@ def instability_lines(
     bound: BoundModel,
     *,
     spacings: Sequence[float] | None = None,
-    parameter: str = "eta_M",
+    parameter: str | None = None,
     alpha_range: tuple[float, float] = (0.0, 1.2),
     theta_max: float = 200.0,
     q_max: float = 1.5,
@@ -90,8 +90,9 @@ def instability_lines(
         at least 0.02, and ``q_max``, ``q_step``, ``h_max``, ``tol``, ``verify`` are not used).
     spacings : sequence of float, optional
         Wheel spacings d to trace (default: the parameters' d); they share the track kernel of the scan.
-    parameter : {"eta_M", "kappa_v", "eta_v"}
-        The vertical axis.
+    parameter : str, optional
+        The vertical axis, a vehicle parameter E_chr is a polynomial in (eta_M, kappa_v, eta_v, ...;
+        default the wheel mass, ``Model.wheel_mass``).
     alpha_range : (float, float)
         Velocity range.
     theta_max : float
@@ -117,6 +118,7 @@ def instability_lines(
         Called with the fraction of work done.
     """
     params = bound.params
+    parameter = parameter or params.model.wheel_mass
     ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
     a0, a1 = (float(a) for a in alpha_range)
     if regime(params.eta_f) != "damped":

@@ -63,7 +63,8 @@ class LineEnd:
         """True when the line stops inside the plotted range (it is marked in the figures)."""
         return self.reason not in PLOT_EDGES
 
-    def to_dict(self, parameter: str = "eta_M") -> dict:
+    def to_dict(self, parameter: str) -> dict:
+        """JSON-ready; ``parameter`` names the vertical axis (the lines' ``parameter``)."""
         return {
             "reason": self.reason,
             "explanation": EXPLANATIONS[self.reason],

@@ -69,7 +69,8 @@ class InstabilityBranch:
             return "below"
         return "mixed"
 
-    def to_dict(self, parameter: str = "eta_M") -> dict:
+    def to_dict(self, parameter: str) -> dict:
+        """JSON-ready; ``parameter`` names the vertical axis (the lines' ``parameter``)."""
         return {
             "d": self.d,
             "kind": self.kind,

@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
+import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
@@ -24,6 +25,7 @@ from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.roots.count.window import default_window
 from moving_bogie.stability.maps.column_count import count_box
+from moving_bogie.stability.maps.column_margin import column_margin, strip_top
 from moving_bogie.stability.maps.column_roots import delves_lyness, dip_candidates, locate_roots
 
 __all__ = [
@@ -44,7 +46,9 @@ class ColumnResult:
     """Unstable induced frequencies along one column (fixed alpha) of theta values.
 
     ``uncertain`` marks cells whose count is not certified; ``settled`` those whose verdict comes from a
-    full count (:func:`settle_cells`) instead of the column count.
+    full count (:func:`settle_cells`) instead of the column count. ``margin`` is the smallest Im q of the
+    induced frequencies (:mod:`~moving_bogie.stability.maps.column_margin`): the degree where unstable,
+    the smallest decay rate where stable, NaN where undetermined, and a lower bound where ``margin_bound``.
     """
 
     alpha: float
@@ -54,6 +58,8 @@ class ColumnResult:
     uncertain: np.ndarray  # the count could not be certified
     roots: list  # per theta: the unstable roots (Re q >= 0 member of each pair)
     settled: np.ndarray | None = None
+    margin: np.ndarray | None = None  # smallest Im q (the degree where unstable; NaN: undetermined)
+    margin_bound: np.ndarray | None = None  # the margin is only a lower bound (no root below it)
 
 
 def exact(x) -> Fraction:
@@ -102,6 +108,7 @@ def stability_column(
     polish: int = 10,
     guesses: Sequence | None = None,
     extra: Sequence[float] | None = None,
+    margin: bool = True,
 ) -> ColumnResult:
     """Unstable induced frequencies for every theta of ``thetas`` at one alpha (see the module text).
 
@@ -133,6 +140,8 @@ def stability_column(
     extra : sequence of float, optional
         Extra samples (values of Re q) of the counting rectangle's top edge. Default: when ``top`` < 0 (the
         cut of K reaches the real axis), :func:`branch_samples` around the branch points of K on the axis.
+    margin : bool
+        Measure the margin of the stable cells (:mod:`~moving_bogie.stability.maps.column_margin`).
     """
     thetas = np.asarray(thetas, dtype=float)
     scale = float(thetas.max())
@@ -196,7 +205,28 @@ def stability_column(
         merge(locate_roots(sweep, alpha, thetas, cands, count, polish, spread=False))
     degree = np.array([min(0.0, float(np.min(r.imag))) if len(r) else 0.0 for r in roots])
     uncertain |= np.array([len(r) != c for r, c in zip(roots, count)])
-    return ColumnResult(float(alpha), thetas, count, degree, uncertain, roots, np.zeros(len(t), dtype=bool))
+    stable = np.nonzero((count == 0) & ~uncertain)[0]
+    h = strip_top(float(sweep.params.eta_f), _cut_low(sweep.bound, alpha, X), top) if margin else None
+    found = column_margin(sweep, alpha, thetas, coeffs, (X, Y), h, stable if margin else stable[:0], polish)
+    margins = np.where(count > 0, degree, found.margin)
+    margins[uncertain] = np.nan
+    return ColumnResult(
+        float(alpha),
+        thetas,
+        count,
+        degree,
+        uncertain,
+        roots,
+        np.zeros(len(t), dtype=bool),
+        margins,
+        found.bound,
+    )
+
+
+def _cut_low(bound: BoundModel, alpha: float, x: float) -> float | None:
+    """The lowest Im q of the cut of K over 0 <= Re q <= x at ``alpha`` (None: it does not pass there)."""
+    cut = cut_locus(bound.replace(alpha=exact(alpha)), 0.0, x, samples=401)
+    return float(cut.im_low) if cut.points.size else None
 
 
 def settle_cells(
@@ -223,6 +253,8 @@ def settle_cells(
         return column
     count, degree = column.count.copy(), column.degree.copy()
     uncertain, settled = column.uncertain.copy(), np.zeros(len(count), dtype=bool)
+    margin = np.full(len(count), np.nan) if column.margin is None else column.margin.copy()
+    lower = np.zeros(len(count), dtype=bool) if column.margin_bound is None else column.margin_bound.copy()
     roots = list(column.roots)
     base = bound.replace(alpha=exact(column.alpha) if alpha is None else alpha)
     for j in cells:
@@ -237,7 +269,19 @@ def settle_cells(
         roots[j] = np.array(sorted(unstable, key=lambda q: q.imag), dtype=complex)
         uncertain[j] = not (res.count_ok and res.verdict.determined)
         settled[j] = True
-    return replace(column, count=count, degree=degree, uncertain=uncertain, roots=roots, settled=settled)
+        im = [float(mpmath.im(r.q)) for r in res.roots]  # every located root: the smallest decay rate
+        margin[j] = np.nan if uncertain[j] or not im else min(im)
+        lower[j] = False
+    return replace(
+        column,
+        count=count,
+        degree=degree,
+        uncertain=uncertain,
+        roots=roots,
+        settled=settled,
+        margin=margin,
+        margin_bound=lower,
+    )
 
 
 def top_edge(bound: BoundModel, alphas: Sequence[float] | np.ndarray) -> float:

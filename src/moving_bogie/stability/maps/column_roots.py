@@ -19,10 +19,23 @@ from moving_bogie.stability.maps.column_count import horner_rows
 __all__ = ["delves_lyness", "dip_candidates", "from_power_sums", "locate_roots", "polish_roots"]
 
 
-def delves_lyness(coeffs, t, X, Y, top, *, panel: float = 0.05, nodes: int = 16, max_roots: int = 8) -> list:
+def delves_lyness(
+    coeffs,
+    t,
+    X,
+    Y,
+    top,
+    *,
+    panel: float = 0.05,
+    nodes: int = 16,
+    max_roots: int = 8,
+    with_empty: bool = False,
+) -> list:
     """Roots inside -X..X x -Y..top for each t (Delves-Lyness), or an empty list where that fails.
 
-    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z.
+    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z. With ``with_empty`` a
+    failure (a count that is not an integer, or more than ``max_roots`` roots) gives None and a rectangle
+    without roots an empty list.
     """
     x, w = np.polynomial.legendre.leggauss(nodes)
     zs, ws = [], []
@@ -49,8 +62,11 @@ def delves_lyness(coeffs, t, X, Y, top, *, panel: float = 0.05, nodes: int = 16,
             return (right + left) / (2j * np.pi)
 
         n = s(0).real
-        if abs(n - round(n)) > 1e-3 or not 0 < round(n) <= max_roots:
+        if with_empty and abs(n - round(n)) <= 1e-3 and round(n) == 0:
             out.append([])
+            continue
+        if abs(n - round(n)) > 1e-3 or not 0 < round(n) <= max_roots:
+            out.append(None if with_empty else [])
             continue
         out.append(list(from_power_sums(np.array([s(m) for m in range(1, int(round(n)) + 1)]))))
     return out

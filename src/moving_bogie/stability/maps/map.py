@@ -37,6 +37,9 @@ class StabilityMap:
     """Degree of instability ``degree[j, i]`` at (alphas[i], thetas[j]) and the unstable count.
 
     ``settled`` marks the cells decided by a full count, ``uncertain`` those still not certified.
+    ``margin[j, i]`` is the smallest Im q of the induced frequencies: the degree where unstable, the
+    smallest decay rate where stable (:mod:`~moving_bogie.stability.maps.column_margin`), NaN where
+    undetermined, a lower bound where ``margin_bound``.
     """
 
     params: DimensionlessParams
@@ -48,6 +51,8 @@ class StabilityMap:
     count: np.ndarray
     uncertain: np.ndarray
     settled: np.ndarray | None = None
+    margin: np.ndarray | None = None
+    margin_bound: np.ndarray | None = None
 
     def save_npz(self, path) -> None:
         """Write the arrays (and the parameters as JSON text) to ``path`` (numpy .npz)."""
@@ -59,6 +64,7 @@ class StabilityMap:
             count=self.count,
             uncertain=self.uncertain,
             settled=self.settled_cells,
+            **({} if self.margin is None else {"margin": self.margin, "margin_bound": self.margin_bound}),
             params=json.dumps(self.params.to_dict()),
             model=self.model,
             parameter=self.parameter,
@@ -76,6 +82,37 @@ class StabilityMap:
             for j, i in zip(rows, cols)
         ]
 
+    @property
+    def min_decay_rate(self) -> float | None:
+        """The smallest margin of the stable, certain cells (min Im q; None: no such cell measured)."""
+        if self.margin is None:
+            return None
+        margins = self.margin[(self.count == 0) & ~self.uncertain]
+        margins = margins[np.isfinite(margins)]
+        return float(margins.min()) if margins.size else None
+
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict over the grid first, then its axes, margin and uncertain cells."""
+        from moving_bogie.html_repr import html_table
+
+        unstable, uncertain = int((self.count > 0).sum()), int(self.uncertain.sum())
+        if unstable:
+            verdict = f"UNSTABLE in {unstable} of {self.count.size} cells"
+        else:
+            verdict = "STABLE in every certified cell" if uncertain else "STABLE in every cell"
+        rows = [
+            ("model", f"{self.params.beam} beam, {self.params.track} track, {self.model}"),
+            ("alpha", f"{self.alphas[0]:.6g}..{self.alphas[-1]:.6g}, {len(self.alphas)} points"),
+            (self.parameter, f"{self.thetas[0]:.6g}..{self.thetas[-1]:.6g}, {len(self.thetas)} points"),
+            ("largest growth rate, -min Im q", f"{-float(self.degree.min()):.6g}" if unstable else "none"),
+            (
+                "smallest decay rate of the stable cells, min Im q",
+                _text(self.min_decay_rate),
+            ),
+            ("cells settled by a full count / uncertain", f"{int(self.settled_cells.sum())} / {uncertain}"),
+        ]
+        return html_table("stability map", verdict, rows)
+
     def summary(self) -> dict:
         return {
             "params": self.params.to_dict(),
@@ -86,15 +123,20 @@ class StabilityMap:
             f"{self.parameter}_range": [float(self.thetas[0]), float(self.thetas[-1]), len(self.thetas)],
             "unstable_fraction": float(np.mean(self.count > 0)),
             "max_degree": float(-self.degree.min()) if self.degree.size else 0.0,
+            "min_decay_rate": self.min_decay_rate,
             "settled_cells": int(self.settled_cells.sum()),
             "uncertain_cells": int(self.uncertain.sum()),
             "uncertain": self.uncertain_list(),
         }
 
 
+def _text(x: float | None) -> str:
+    return "n/a" if x is None else f"{x:.6g}"
+
+
 def map_columns(
     bound: BoundModel,
-    parameter: str,
+    parameter: str | None,
     alphas: Sequence[float | Fraction] | np.ndarray,
     thetas: Sequence[float | Fraction] | np.ndarray,
     options: dict[str, Any] | None = None,
@@ -133,7 +175,7 @@ def _column_task(args):
 def stability_map(
     bound: BoundModel,
     *,
-    parameter: str = "eta_M",
+    parameter: str | None = None,
     alphas: Sequence[float] | None = None,
     thetas: Sequence[float] | None = None,
     workers: int | None = None,
@@ -149,7 +191,8 @@ def stability_map(
     bound : BoundModel
         Everything but alpha and ``parameter`` (cf1, cf2 kept fixed when the parameter is eta_M); the
         vehicle is that of their model.
-    parameter : {"eta_M", "kappa_v", "eta_v"}
+    parameter : str, optional
+        The vertical axis (eta_M, kappa_v, eta_v, ...; default the wheel mass, ``Model.wheel_mass``).
     alphas, thetas : sequence of float
         Grid (default 0..1.2 and 1..200 in 200 steps each, theta > 0).
     workers : int, optional
@@ -164,6 +207,7 @@ def stability_map(
         Passed to :func:`~moving_bogie.stability.maps.column.stability_column`.
     """
     params = bound.params
+    parameter = parameter or params.model.wheel_mass
     alphas = np.asarray(np.linspace(0.0, 1.2, 200) if alphas is None else alphas, dtype=float)
     thetas = np.asarray(np.linspace(1.0, 200.0, 200) if thetas is None else thetas, dtype=float)
     if "top" not in options:
@@ -200,4 +244,6 @@ def stability_map(
         stack("count"),
         stack("uncertain"),
         stack("settled"),
+        stack("margin"),
+        stack("margin_bound"),
     )

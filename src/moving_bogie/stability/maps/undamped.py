@@ -150,8 +150,9 @@ class UndampedCounter:
     ----------
     bound : BoundModel
         Its eta_f is ignored (set to 0); the vehicle is that of its model.
-    parameter : str
-        The swept vehicle parameter (eta_M, kappa_v or eta_v).
+    parameter : str, optional
+        The swept vehicle parameter (eta_M, kappa_v or eta_v; default the wheel mass,
+        ``Model.wheel_mass``).
     q_step : float
         Sampling of the gap 0 < q < q_c for real roots.
     margin : float
@@ -160,11 +161,12 @@ class UndampedCounter:
     """
 
     def __init__(
-        self, bound: BoundModel, parameter: str = "eta_M", *, q_step: float = 0.002, margin: float = 0.0
+        self, bound: BoundModel, parameter: str | None = None, *, q_step: float = 0.002, margin: float = 0.0
     ) -> None:
         self.margin = float(margin)
         self.bound = bound.replace(eta_f=0)
         self.params = self.bound.params
+        parameter = parameter or self.params.model.wheel_mass
         self.parameter = parameter
         self.q_step = float(q_step)
         self.sweep = SweepCharacteristic(self.bound, parameter, below=True)

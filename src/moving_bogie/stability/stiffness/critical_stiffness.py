@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import stability_column
@@ -155,9 +156,10 @@ def critical_stiffness(
     """
     params = bound.params
     alphas = np.asarray(alphas, dtype=float)
+    stiffness = primary_stiffness(bound)
     if regime(params.eta_f) != "damped":
-        return _undamped(bound, alphas, kappa_max, check_points, tol, progress)
-    sweep = SweepCharacteristic(bound, "kappa_v")
+        return _undamped(bound, stiffness, alphas, kappa_max, check_points, tol, progress)
+    sweep = SweepCharacteristic(bound, stiffness)
     kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
     intervals, critical, warnings = [], [], []
     mismatches = 0
@@ -165,7 +167,7 @@ def critical_stiffness(
         dd = d_decomposition(
             bound.replace(alpha=Fraction(str(a))),
             a,
-            parameter="kappa_v",
+            parameter=stiffness,
             theta_max=kappa_max,
             q_max=q_max,
             samples=samples,
@@ -209,8 +211,25 @@ def _critical(ivs):
     return tuple(hi for (lo, hi, n), (_, _, m) in zip(ivs[:-1], ivs[1:]) if (n == 0) != (m == 0))
 
 
+def primary_stiffness(bound: BoundModel) -> str:
+    """The vehicle's primary-suspension stiffness group (``Model.primary_stiffness``: kappa_v).
+
+    Raises
+    ------
+    ParameterError
+        For a vehicle without a primary suspension (two masses), naming the vehicle.
+    """
+    name = bound.model.primary_stiffness
+    if name is None:
+        raise ParameterError(
+            "vehicle", f"vehicle {bound.model.vehicle!r} has no primary suspension: no critical stiffness"
+        )
+    return name
+
+
 def _undamped(
     bound: BoundModel,
+    stiffness: str,
     alphas: Sequence[float] | np.ndarray,
     kappa_max: float,
     check_points: int,
@@ -220,7 +239,7 @@ def _undamped(
     """Counts on a kappa_v grid and bisection (:mod:`undamped`), exact at eta_f = 0 and in the limit."""
     params = bound.params
     margin = 100 * float(params.eta_f)
-    counter = UndampedCounter(bound, "kappa_v", margin=margin)
+    counter = UndampedCounter(bound, stiffness, margin=margin)
     unsure = {}
     grid = parameter_grid(kappa_max, check_points)
     kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"

@@ -73,7 +73,7 @@ def d_decomposition(
     bound: BoundModel,
     alpha: float | None = None,
     *,
-    parameter: str = "eta_M",
+    parameter: str | None = None,
     theta_max: float = 200.0,
     q_max: float = 1.5,
     samples: int = 6000,
@@ -86,7 +86,9 @@ def d_decomposition(
     bound : BoundModel
         Requires eta_f > 0 (the real q-axis must lie below the cut of K).
     alpha : float, optional
-    parameter : {"eta_M", "kappa_v", "eta_v"}
+    parameter : str, optional
+        The swept vehicle parameter (eta_M, kappa_v, eta_v, ...; default the wheel mass,
+        ``Model.wheel_mass``).
     theta_max : float
         Crossings with 0 < theta <= theta_max are kept.
     q_max, samples : float, int
@@ -95,6 +97,7 @@ def d_decomposition(
         Newton tolerance of the refined crossings.
     """
     params = bound.params
+    parameter = parameter or params.model.wheel_mass
     if params.eta_f <= 0:
         raise ParameterError(
             "eta_f",

@@ -1,0 +1,155 @@
+"""The stability margin of maps and sweeps: the smallest Im q of the induced frequencies, earned.
+
+References: every margin is compared with the smallest Im q of the roots that
+:func:`~moving_bogie.roots.frequencies.induced_frequencies` (the full count over the far-field window,
+roots confirmed in mpmath) locates at the same exact point.
+"""
+
+from __future__ import annotations
+
+import json
+import warnings
+
+import numpy as np
+import pytest
+
+from moving_bogie import induced_frequencies, load_parameters, stability_map
+from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.stability.maps.column import at_theta, column_window, exact
+from moving_bogie.stability.maps.column_margin import column_margin
+
+EXAMPLES = __import__("pathlib").Path(__file__).resolve().parents[1] / "examples"
+
+
+def smallest_im(params) -> float:
+    """The reference: the smallest Im q of the roots the full count locates."""
+    res = induced_frequencies(params, dps=15)
+    assert res.count_ok and res.verdict.determined
+    return min(float(r.q.imag) for r in res.roots)
+
+
+@pytest.fixture(scope="module")
+def uic60():
+    return load_parameters(EXAMPLES / "uic60-bogie.toml")
+
+
+def test_map_margin_is_the_smallest_decay_rate(uic60):
+    params, _ = uic60
+    alphas, thetas = np.array([0.1, 0.5]), np.array([5.0, 30.0])
+    smap = stability_map(params, alphas=alphas, thetas=thetas, workers=1)
+    assert not smap.uncertain.any() and not (smap.count > 0).any()
+    assert not smap.margin_bound.any()
+    for j, i in [(0, 0), (1, 1)]:
+        ref = smallest_im(params.replace(alpha=exact(alphas[i]), eta_M=exact(thetas[j])))
+        assert smap.margin[j, i] == pytest.approx(ref, rel=1e-9)
+
+
+def test_unstable_cells_keep_their_degree_as_margin():
+    from moving_bogie import table1_case
+
+    smap = stability_map(table1_case(1), alphas=[0.9], thetas=[50.0], workers=1)
+    assert smap.count[0, 0] > 0
+    assert smap.margin[0, 0] == smap.degree[0, 0] < 0
+
+
+def test_a_top_below_every_root_gives_a_lower_bound(uic60):
+    """No root below h: the margin is h, flagged as a bound; the true smallest Im q lies above it."""
+    params, _ = uic60
+    sweep = SweepCharacteristic(bind(params), "eta_M")
+    alpha, thetas = float(params.alpha), np.array([float(params.eta_M)])
+    scale = float(thetas.max())
+
+    def coeffs(z):
+        K, dK, _ = sweep.kernel(z, alpha, derivative=True)
+        return sweep.coefficients(z, K, scale=scale, dK=dK)
+
+    X, Y, _ = column_window(bind(params), "eta_M", thetas)
+    h = 1e-3
+    found = column_margin(sweep, alpha, thetas, coeffs, (X, Y), h, np.array([0]))
+    assert found.bound[0] and found.margin[0] <= h
+    assert smallest_im(params) > h
+    unknown = column_margin(sweep, alpha, thetas, coeffs, (X, Y), None, np.array([0]))
+    assert np.isnan(unknown.margin[0]) and not unknown.bound[0]
+
+
+@pytest.fixture(scope="module")
+def si_store(tmp_path_factory, uic60):
+    from moving_bogie.sweep.api import sweep
+
+    params, physical = uic60
+    out = tmp_path_factory.mktemp("store") / "s.zarr"
+    ds = sweep(params, {"v": "60,120", "M": "600,1400"}, out=out, physical=physical, check=0)
+    return out, ds, params, physical
+
+
+def test_store_keeps_the_margin_in_si_units(si_store):
+    _, ds, params, physical = si_store
+    t_scale = physical.scales().t_scale
+    assert ds.margin.attrs["units"] == "1/s"
+    for i, j in [(0, 0), (1, 1)]:
+        point = at_theta(
+            bind(params.replace(alpha=exact(ds.alpha.values[i]))),
+            "eta_M",
+            exact(ds.eta_M.values[j]),
+            ("mu_v", "J_b"),
+        )
+        assert float(ds.margin[i, j]) == pytest.approx(smallest_im(point) / t_scale, rel=1e-9)
+
+
+def test_store_opens_consolidated_with_units_and_names(si_store):
+    import xarray as xr
+
+    from moving_bogie.sweep import open_sweep
+
+    out, *_ = si_store
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ds = open_sweep(out)
+        xr.open_zarr(out, consolidated=True)
+    for name in list(ds.data_vars) + list(ds.coords):
+        assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+
+
+def test_a_store_without_margin_or_consolidated_metadata_still_opens(si_store, tmp_path):
+    """A store as an earlier version wrote it: no consolidated metadata, no margin."""
+    import shutil
+
+    from moving_bogie.sweep import open_sweep
+    from moving_bogie.sweep.plots import plot_sweep_slice
+
+    out, *_ = si_store
+    old = tmp_path / "old.zarr"
+    shutil.copytree(out, old)
+    meta = json.loads((old / "zarr.json").read_text())
+    meta.pop("consolidated_metadata")
+    (old / "zarr.json").write_text(json.dumps(meta))
+    shutil.rmtree(old / "margin")
+    shutil.rmtree(old / "margin_bound")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ds = open_sweep(old)
+    assert "margin" not in ds
+    fig = plot_sweep_slice(ds, "v", "M")
+    assert "not in this store" in fig.axes[0].get_title()
+
+
+def test_figure_shows_the_margin_and_lists_only_what_is_drawn(uic60):
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
+    from moving_bogie.stability.figures.plots import plot_stability_map
+
+    params, physical = uic60
+    smap = stability_map(params, alphas=np.array([0.1, 0.3]), thetas=np.array([10.0, 30.0]), workers=1)
+    units = PlaneUnits.of(params, physical, operating=True)
+    fig = plot_stability_map(smap, units=units)
+    ax, *bars = fig.axes
+    assert [bar.get_ylabel() for bar in bars] == [r"decay rate $\min\,\mathrm{Im}\,\omega$ [1/s] (stable)"]
+    mesh = ax.collections[0]
+    np.testing.assert_allclose(
+        np.sort(mesh.get_array().compressed()), np.sort(smap.margin.ravel() / units.t_scale)
+    )
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["operating point"]  # v_cr = 649 m/s lies beyond the 0.3 alpha axis: not listed
+    assert any("beyond this axis" in t.get_text() for t in ax.texts)
+    title = ax.get_title()
+    assert "bogie, eb beam, one-layer track" in title and "c_f = 1.2e+04 N s/m^2" in title
