@@ -26,7 +26,7 @@ count is not an integer is flagged ``uncertain``.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -86,18 +86,18 @@ def _bent(E: np.ndarray, max_bend: float) -> np.ndarray:
 
 
 def count_box(
-    coeffs,
-    t,
-    X,
-    Y,
-    top,
-    spacing,
-    coarse,
-    max_step,
-    min_spacing,
+    coeffs: Callable[[np.ndarray], tuple[np.ndarray, Any]],
+    t: np.ndarray,
+    X: float,
+    Y: float,
+    top: float,
+    spacing: float,
+    coarse: float,
+    max_step: float,
+    min_spacing: float,
     max_bend: float = 0.5,
-    fine_until=None,
-    extra=None,
+    fine_until: float | None = None,
+    extra: Sequence[float] | np.ndarray | None = None,
 ) -> BoxCount:
     """Sample the right half-boundary and count the roots in the rectangle for every t (module text).
 
@@ -119,15 +119,7 @@ def count_box(
     base = len(outer)
     z_all = path.copy()
     c_all = c_path
-    with np.errstate(divide="ignore", invalid="ignore"):
-        log_mod = np.log(np.abs(E[:, base:]))
-        jumps = np.abs(np.diff(log_mod, axis=1))
-    flagged = (np.abs(steps[:, base:]) > max_step) | ~(jumps <= max_step)
-    flagged |= _bent(E[:, base:], max_bend)
-    rows, seg = np.nonzero(flagged)
-    seg = seg + base
-    lo, hi = seg, seg + 1
-    st = steps[rows, seg]
+    rows, lo, hi, st = _flagged_segments(E, steps, base, max_step, max_bend)
     near: list[list[Any]] = [[] for _ in t]
     uncertain = np.zeros(len(t), dtype=bool)
     for _ in range(80):
@@ -173,6 +165,22 @@ def count_box(
     Ea = horner_rows(c_axis, T).real
     n_axis = np.sum(np.sign(Ea[:, 1:]) * np.sign(Ea[:, :-1]) < 0, axis=1)
     return BoxCount(path, base, E, n_rect, n_axis, uncertain, near)
+
+
+def _flagged_segments(
+    E: np.ndarray, steps: np.ndarray, base: int, max_step: float, max_bend: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The segments of the path after its first ``base`` samples (the top edge) to halve, row by row: a
+    phase step of E or a jump of log|E| over ``max_step``, or a bend of log|E| over ``max_bend``. Returns
+    (rows, first sample, second sample, phase step) of each."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_mod = np.log(np.abs(E[:, base:]))
+        jumps = np.abs(np.diff(log_mod, axis=1))
+    flagged = (np.abs(steps[:, base:]) > max_step) | ~(jumps <= max_step)
+    flagged |= _bent(E[:, base:], max_bend)
+    rows, seg = np.nonzero(flagged)
+    seg = seg + base
+    return rows, seg, seg + 1, steps[rows, seg]
 
 
 def _half_boundary(
