@@ -18,6 +18,7 @@ import ast
 import functools
 import re
 import subprocess
+import tomllib
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -588,4 +589,105 @@ def test_the_bind_checks_see_what_they_check():
     assert _generic("moving_bogie.roots.frequencies") and _generic("moving_bogie.kernels.track")
     assert (
         not _generic(BOUND) and not _generic("moving_bogie.api") and not _generic("moving_bogie.cli.common")
+    )
+
+
+# -- signatures and function length -----------------------------------------------------------------------
+
+#: The longest function the runtime may hold, in lines from ``def`` to its end.
+MAX_FUNCTION_LINES = 80
+
+
+def _runtime() -> Iterator[tuple[str, ast.Module]]:
+    """The runtime's modules without the generated kernels (written by derivations/emit.py)."""
+    for module, tree in _trees():
+        if not module.startswith(f"{ROOT}.generated"):
+            yield module, tree
+
+
+def _not_yet_annotated() -> set[str]:
+    """The modules pyproject.toml's ``[tool.mypy]`` still lets through with unannotated signatures."""
+    with open(REPO / "pyproject.toml", "rb") as file:
+        overrides = tomllib.load(file)["tool"]["mypy"].get("overrides", [])
+    return {
+        module
+        for override in overrides
+        if override.get("disallow_untyped_defs") is False
+        for module in override["module"]
+        if not module.startswith(f"{ROOT}.generated")
+    }
+
+
+def _public_functions(tree: ast.Module) -> Iterator[ast.FunctionDef | ast.AsyncFunctionDef]:
+    """The module's public functions and the public methods (dunders included) of its public classes."""
+    functions = ast.FunctionDef | ast.AsyncFunctionDef
+    for node in tree.body:
+        if isinstance(node, functions) and not _is_private(node.name):
+            yield node
+        elif isinstance(node, ast.ClassDef) and not _is_private(node.name):
+            yield from (
+                item for item in node.body if isinstance(item, functions) and not _is_private(item.name)
+            )
+
+
+def _unannotated(node: ast.FunctionDef | ast.AsyncFunctionDef, method: bool) -> list[str]:
+    """The parameters of `node` without an annotation (``self``/``cls`` of a method excepted), and
+    ``return`` if its return is not annotated."""
+    args = node.args
+    params = [*args.posonlyargs, *args.args, *args.kwonlyargs, *filter(None, (args.vararg, args.kwarg))]
+    static = any(ast.unparse(d) == "staticmethod" for d in node.decorator_list)
+    if method and not static and params and params[0].arg in ("self", "cls", "mcs"):
+        params = params[1:]
+    missing = [p.arg for p in params if p.annotation is None]
+    return missing + (["return"] if node.returns is None else [])
+
+
+def test_every_public_signature_is_annotated():
+    """Annotated parameters and return on every public function and method of the runtime (the package
+    ships ``py.typed``), even where mypy does not run; the modules pyproject.toml's ``[tool.mypy]`` still
+    lists as not annotated are the only exception, and they exist."""
+    pending = _not_yet_annotated()
+    assert not pending - set(MODULES), (
+        f"pyproject.toml lists modules that do not exist: {pending - set(MODULES)}"
+    )
+    offenders = []
+    for module, tree in _runtime():
+        if module in pending:
+            continue
+        methods = {id(item) for node in tree.body if isinstance(node, ast.ClassDef) for item in node.body}
+        for node in _public_functions(tree):
+            if missing := _unannotated(node, id(node) in methods):
+                offenders.append(f"{module}:{node.lineno} {node.name}: {', '.join(missing)}")
+    assert not offenders, "public signatures without annotations:\n" + "\n".join(offenders)
+
+
+def test_no_function_is_longer_than_the_limit():
+    offenders = [
+        f"{module}:{node.lineno} {node.name}: {node.end_lineno - node.lineno + 1} lines"
+        for module, tree in _runtime()
+        for node in ast.walk(tree)
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
+        and node.end_lineno - node.lineno + 1 > MAX_FUNCTION_LINES
+    ]
+    assert not offenders, f"functions over {MAX_FUNCTION_LINES} lines:\n" + "\n".join(offenders)
+
+
+def test_the_signature_checks_see_what_they_check():
+    tree = ast.parse(
+        "def f(a: int, b) -> int: pass\ndef g(a: int): pass\ndef _h(a): pass\n"
+        "class C:\n    def m(self, x: int) -> None: pass\n    @staticmethod\n    def s(self): pass\n"
+        "    def _p(self, y): pass\nclass _D:\n    def m(self, z): pass\n"
+        "def long():\n" + "    x = 1\n" * MAX_FUNCTION_LINES
+    )
+    found = [(node.name, _unannotated(node, node.name in ("m", "s"))) for node in _public_functions(tree)]
+    assert found == [
+        ("f", ["b"]),
+        ("g", ["return"]),
+        ("m", []),
+        ("s", ["self", "return"]),
+        ("long", ["return"]),
+    ]
+    assert (
+        max(n.end_lineno - n.lineno + 1 for n in ast.walk(tree) if isinstance(n, ast.FunctionDef))
+        > MAX_FUNCTION_LINES
     )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from moving_bogie.errors import ParameterError
 
@@ -54,7 +55,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def lowest_subcritical(lines, alpha_cr: float) -> dict:
     """Per spacing d: the lowest point (alpha, eta_M) of its instability lines with alpha < alpha_cr."""
-    out = {}
+    out: dict[Any, Any] = {}
     for b in lines.branches:
         sel = b.alpha < alpha_cr
         if not sel.any():

@@ -63,7 +63,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     table.set_defaults(handler=run_table2)
 
 
-def _add_certify_option(parser):
+def _add_certify_option(parser) -> None:
     parser.add_argument(
         "--certify",
         action="store_true",
@@ -72,7 +72,7 @@ def _add_certify_option(parser):
     )
 
 
-def _add_search_options(parser):
+def _add_search_options(parser) -> None:
     parser.add_argument(
         "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
     )

@@ -49,12 +49,12 @@ class OutputError(MovingBogieError):
 class OutputPath(argparse.Action):
     """Store the path and remember (option, path, is_folder, suffixes) in ``namespace.output_paths``."""
 
-    def __init__(self, option_strings, dest, folder=False, formats=(), **kwargs):
+    def __init__(self, option_strings, dest, folder: bool = False, formats=(), **kwargs) -> None:
         self.folder = folder
         self.formats = tuple(formats)
         super().__init__(option_strings, dest, **kwargs)
 
-    def __call__(self, parser, namespace, values, option_string=None):
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
         path = Path(values)
         setattr(namespace, self.dest, path)
         recorded = [o for o in getattr(namespace, "output_paths", []) if o[0] != self.option_strings[0]]

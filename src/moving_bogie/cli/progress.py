@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from typing import Any
 
 
 @contextmanager
@@ -29,7 +30,7 @@ def two_level_bar(description: str, *, enabled: bool = True):
     with _rich_bars() as bar:
         whole = bar.add_task(description, total=1.0)
         step = bar.add_task("", total=1.0)
-        seen = {}
+        seen: dict[Any, Any] = {}
 
         def part(label: str, fraction: float) -> None:
             if seen.get("label") != label:

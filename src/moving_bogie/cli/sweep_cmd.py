@@ -6,6 +6,7 @@ import argparse
 import sys
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 from moving_bogie.errors import ParameterError
 
@@ -156,9 +157,9 @@ def _points_bar(enabled: bool):
         transient=True,
     ) as bar:
         task = bar.add_task("sweep", total=None, rate="-")
-        first = {}
+        first: dict[Any, Any] = {}
 
-        def update(done, total):
+        def update(done, total) -> None:
             import time
 
             now = time.perf_counter()

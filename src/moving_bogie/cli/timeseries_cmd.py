@@ -79,7 +79,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     shape.set_defaults(handler=run_shape)
 
 
-def _add_common(parser):
+def _add_common(parser) -> None:
     parser.add_argument(
         "--branch-cut",
         action=argparse.BooleanOptionalAction,

@@ -7,11 +7,17 @@ generated vehicle matrices and the track kernel K(xi_i - xi_j, q) of :mod:`movin
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.kernels.bound import BoundModel
-from moving_bogie.kernels.track import TrackKernel, TrackKernelArray
+from moving_bogie.kernels.track import KernelValues, TrackKernel, TrackKernelArray
 from moving_bogie.kernels.vehicle import VehicleSystem
+
+if TYPE_CHECKING:
+    from moving_bogie.typing import ComplexArray, Mpc
 
 
 class Characteristic:
@@ -43,27 +49,33 @@ class Characteristic:
         """The responses: every DOF of the vehicle, the wheels first (``DOFS`` of the generated module)."""
         return tuple(self.module.DOFS)
 
-    def kernel_values(self, q, derivative=False):
+    def kernel_values(self, q: Mpc, derivative: bool = False) -> KernelValues:
         """K (and dK/dq) at every distinct offset xi_i - xi_j of the contacts (:attr:`system`)."""
         return self.kernel(q, self.system.offsets, derivative=derivative)
 
-    def __call__(self, q):
+    def __call__(self, q: Mpc) -> Mpc:
         """E_chr(q)."""
         self.evaluations += 1
         return self.system.e_chr(q, self.kernel_values(q).K)
 
-    def value_and_derivative(self, q, kernel_values=None):
+    def value_and_derivative(self, q: Mpc, kernel_values: KernelValues | None = None) -> tuple[Mpc, Mpc]:
         """(E_chr(q), dE_chr/dq): Eq. (40), by Jacobi's formula."""
         self.evaluations += 1
         kv = kernel_values or self.kernel_values(q, derivative=True)
         return self.system.value_and_derivative(q, kv.K, kv.dK)
 
-    def numerators(self, q, kernel_values=None):
+    def numerators(self, q: Mpc, kernel_values: KernelValues | None = None) -> dict[str, Mpc]:
         """Residue numerators n_X(q) (Eqs. (36), (41)-(43)) as a dict by response name."""
         kv = kernel_values or self.kernel_values(q)
         return self.system.numerators(q, kv.K)
 
-    def shape_weights(self, q, kernel_values=None, numerators=None, E=None):
+    def shape_weights(
+        self,
+        q: Mpc,
+        kernel_values: KernelValues | None = None,
+        numerators: dict[str, Mpc] | None = None,
+        E: Mpc | None = None,
+    ) -> Any:
         """G_j of the n contacts: i q W~(xi, q) = sum_j G_j K(xi - xi_j) / (2 pi E_chr), Eqs. (44)-(47)."""
         kv = kernel_values or self.kernel_values(q)
         return self.system.shape_weights(q, kv.K, numerators, E)
@@ -84,16 +96,16 @@ class CharacteristicArray:
         self.offsets = [float(x) for x in self.system.offsets]
         self.evaluations = 0
 
-    def kernel_values(self, q, derivative=False):
+    def kernel_values(self, q: ArrayLike, derivative: bool = False) -> KernelValues:
         """K (and dK/dq) at the distinct contact offsets, arrays shaped like ``q``."""
         return self.kernel(np.asarray(q, dtype=complex), self.offsets, derivative=derivative)
 
-    def __call__(self, q):
+    def __call__(self, q: ArrayLike) -> ComplexArray:
         q = np.asarray(q, dtype=complex)
         self.evaluations += q.size
         return self.system.e_chr_array(q, self.kernel_values(q).K)
 
-    def value_and_derivative(self, q):
+    def value_and_derivative(self, q: ArrayLike) -> tuple[ComplexArray, ComplexArray]:
         """(E_chr(q), dE_chr/dq) in double precision, by Jacobi's formula (Eq. (40))."""
         q = np.asarray(q, dtype=complex)
         self.evaluations += q.size
@@ -110,7 +122,7 @@ class ContinuedCharacteristic:
     reference (elsewhere its values are nan). Evaluations count on the characteristic it continues.
     """
 
-    def __init__(self, fast: CharacteristicArray, refs, above):
+    def __init__(self, fast: CharacteristicArray, refs: ArrayLike, above: ArrayLike) -> None:
         self.fast = fast
         self.sides = (np.asarray(refs, dtype=complex), np.asarray(above, dtype=bool))
 
@@ -119,15 +131,15 @@ class ContinuedCharacteristic:
         """Those of the characteristic it continues (which it adds to)."""
         return self.fast.evaluations
 
-    def _kernel_values(self, q, derivative):
+    def _kernel_values(self, q: ComplexArray, derivative: bool) -> KernelValues:
         return self.fast.kernel(q, self.fast.offsets, derivative=derivative, sides=self.sides)
 
-    def __call__(self, q):
+    def __call__(self, q: ArrayLike) -> ComplexArray:
         q = np.asarray(q, dtype=complex)
         self.fast.evaluations += q.size
         return self.fast.system.e_chr_array(q, self._kernel_values(q, False).K)
 
-    def value_and_derivative(self, q):
+    def value_and_derivative(self, q: ArrayLike) -> tuple[ComplexArray, ComplexArray]:
         q = np.asarray(q, dtype=complex)
         self.fast.evaluations += q.size
         kv = self._kernel_values(q, True)

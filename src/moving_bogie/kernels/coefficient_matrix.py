@@ -17,7 +17,11 @@ raises on :class:`_Poly` or disagrees with itself at three probe points: it is t
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["CoefficientMatrix", "Coefficients"]
 
@@ -33,18 +37,18 @@ class _Poly:
     __slots__ = ("c",)
     __array_ufunc__ = None  # numpy scalars and arrays defer to the methods below
 
-    def __init__(self, c):
+    def __init__(self, c: ArrayLike) -> None:
         self.c = np.asarray(c, dtype=complex)
 
     @staticmethod
-    def _coef(other):
+    def _coef(other: object) -> Any:
         if isinstance(other, _Poly):
             return other.c
         if isinstance(other, (int, float, complex)):
             return np.array([other], dtype=complex)
         return NotImplemented
 
-    def __add__(self, other):
+    def __add__(self, other: object) -> Any:
         o = self._coef(other)
         if o is NotImplemented:
             return o
@@ -56,17 +60,17 @@ class _Poly:
 
     __radd__ = __add__
 
-    def __neg__(self):
+    def __neg__(self) -> _Poly:
         return _Poly(-self.c)
 
-    def __sub__(self, other):
+    def __sub__(self, other: object) -> Any:
         o = self._coef(other)
         return o if o is NotImplemented else self + _Poly(-o)
 
-    def __rsub__(self, other):
+    def __rsub__(self, other: object) -> Any:
         return (-self) + other
 
-    def __mul__(self, other):
+    def __mul__(self, other: object) -> Any:
         if isinstance(other, _Poly):
             return _Poly(np.convolve(self.c, other.c))
         if isinstance(other, (int, float, complex)):
@@ -75,12 +79,12 @@ class _Poly:
 
     __rmul__ = __mul__
 
-    def __truediv__(self, other):
+    def __truediv__(self, other: object) -> Any:
         if isinstance(other, (int, float, complex)):
             return _Poly(self.c / other)
         return NotImplemented
 
-    def __pow__(self, k):
+    def __pow__(self, k: object) -> Any:
         if not isinstance(k, int) or k < 0:
             return NotImplemented
         out = _Poly([1.0])
@@ -95,17 +99,17 @@ class CoefficientMatrix:
     ``matrix`` (shape (terms, powers), None when the function is not polynomial in its argument).
     """
 
-    def __init__(self, func, args: dict):
+    def __init__(self, func: Callable[..., Any], args: dict) -> None:
         self.func, self.args = func, args
         self.matrix = _matrix(func, args)
         self._by_power = None if self.matrix is None else np.ascontiguousarray(self.matrix.T)
 
-    def __call__(self, x) -> np.ndarray:
+    def __call__(self, x: ArrayLike) -> np.ndarray:
         """The coefficients at every point of ``x``: shape ``x.shape + (terms,)``."""
         x = np.asarray(x)
-        if self.matrix is None:
+        rows = self._by_power  # rows[j]: the coefficients of x^j, contiguous (None: not polynomial)
+        if rows is None:
             return _direct(self.func, x, self.args)
-        rows = self._by_power  # rows[j]: the coefficients of x^j, contiguous
         out = np.empty(x.shape + (rows.shape[1],), dtype=complex)
         out[...] = rows[-1]
         xs = x[..., None]
@@ -119,18 +123,18 @@ class Coefficients:
     """The coefficient functions of one generated module at fixed parameters, each turned into a
     :class:`CoefficientMatrix` on first use (``coefficients(module.n_coeffs, q)``)."""
 
-    def __init__(self, args: dict):
+    def __init__(self, args: dict) -> None:
         self.args = args
         self._built: dict = {}
 
-    def __call__(self, func, x) -> np.ndarray:
+    def __call__(self, func: Callable[..., Any], x: ArrayLike) -> np.ndarray:
         built = self._built.get(func)
         if built is None:
             built = self._built[func] = CoefficientMatrix(func, self.args)
         return built(x)
 
 
-def _direct(func, x, args) -> np.ndarray:
+def _direct(func: Callable[..., Any], x: np.ndarray, args: dict) -> np.ndarray:
     coeffs = func(x, **args)
     out = np.empty(x.shape + (len(coeffs),), dtype=complex)
     for k, c in enumerate(coeffs):
@@ -138,7 +142,7 @@ def _direct(func, x, args) -> np.ndarray:
     return out
 
 
-def _matrix(func, args):
+def _matrix(func: Callable[..., Any], args: dict) -> np.ndarray | None:
     """The monomial matrix of ``func`` (see the module docstring), or None if it is not polynomial."""
     try:
         with np.errstate(all="ignore"):

@@ -109,9 +109,10 @@ def dynamic_stiffness(q: Any, matrices: Any, ops: Arithmetic, derivative: bool =
     return D, ops.add(ops.scale(2 * q, minus_M), iC)
 
 
-def kernel_matrix(values: Sequence[Any], index: Sequence[Sequence[int]], ops: Arithmetic) -> Any:
+def kernel_matrix(values: Sequence[Any], index: Any, ops: Arithmetic) -> Any:
     """G_ij = K(xi_i - xi_j, q) (Eq. (29)) from the kernel ``values`` at the distinct offsets and
-    ``index[i][j]``, the offset of xi_i - xi_j: the receptance of a continuous track."""
+    ``index[i][j]`` (nested sequences or an integer array), the offset of xi_i - xi_j: the receptance
+    of a continuous track."""
     return ops.gather(values, index)
 
 

@@ -18,10 +18,12 @@ edges, ``CutArm.q_at``) is then recomputed exactly by Newton's method on N(p, .)
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.kernels.cut_curves import CutTracer, Fold, far_range, split_at_turns, trace_curves
 
@@ -67,16 +69,16 @@ class CutArm:
     def increasing(self) -> bool:
         return bool(self.q.real[-1] > self.q.real[0])
 
-    def guess(self, p) -> np.ndarray:
+    def guess(self, p: np.ndarray | float) -> np.ndarray:
         """The arm's q at p (clipped to its range) interpolated from its samples (a start for Newton)."""
         return np.interp(p, self.p, self.q.real) + 1j * np.interp(p, self.p, self.q.imag)
 
-    def q_at(self, p) -> np.ndarray:
+    def q_at(self, p: np.ndarray | float) -> np.ndarray:
         """The cut point of the arm at real p (in its p-range), exact to rounding."""
         p = np.clip(np.asarray(p, dtype=float), self.p[0], self.p[-1])
         return self.tracer.refine(p, self.guess(p))
 
-    def p_at(self, x) -> np.ndarray:
+    def p_at(self, x: ArrayLike) -> np.ndarray:
         """The p of the arm where Re q = x (x within the arm's range), by safeguarded Newton.
 
         Solutions are remembered: the cells of a tiling share their corners and edges.
@@ -84,11 +86,11 @@ class CutArm:
         x = np.asarray(x, dtype=float)
         return arms_p_at([self], x.ravel())[0].reshape(x.shape)
 
-    def y_at(self, x) -> np.ndarray:
+    def y_at(self, x: ArrayLike) -> np.ndarray:
         """Im q of the arm at Re q = x."""
         return self.q_at(self.p_at(x)).imag
 
-    def offset(self, p, side: int, delta: float) -> np.ndarray:
+    def offset(self, p: np.ndarray | float, side: int, delta: float) -> np.ndarray:
         """q(p) + side * d * n(p), n the unit normal pointing to larger Im q (side +1: above the arm), d the
         :func:`clearance` of ``delta`` at p."""
         q = self.q_at(p)
@@ -96,7 +98,7 @@ class CutArm:
         t = np.where(t.real >= 0, t, -t)  # orient along increasing Re q
         return q + side * clearance(p, t, delta) * 1j * t / np.abs(t)
 
-    def clearance(self, x, delta: float) -> float:
+    def clearance(self, x: ArrayLike, delta: float) -> float:
         """The largest :func:`clearance` of ``delta`` at the arm's points over Re q = ``x`` (an array)."""
         p = self.p_at(np.asarray(x, dtype=float))
         return float(np.max(clearance(p, self.tracer.dq_dp(p, self.q_at(p)), delta)))
@@ -110,13 +112,13 @@ class CutArm:
 CLEARANCE = 1e-13
 
 
-def clearance(p, t, delta):
+def clearance(p: ArrayLike, t: ArrayLike, delta: float) -> np.ndarray:
     """The distance from the cut at which an offset point passes: ``delta``, or CLEARANCE |t| max(1, |p|)
     where that is more (t = dq/dp at the arm's point q(p))."""
     return np.maximum(delta, CLEARANCE * np.abs(t) * np.maximum(1.0, np.abs(p)))
 
 
-def arms_p_at(arms, x) -> list:
+def arms_p_at(arms: Sequence[CutArm], x: ArrayLike) -> list:
     """:meth:`CutArm.p_at` of several arms (one tracer) at the same Re q values ``x`` (1-d), in one batch."""
     x = np.asarray(x, dtype=float)
     values = x.tolist()
@@ -135,7 +137,7 @@ def arms_p_at(arms, x) -> list:
     return outs
 
 
-def arms_y_at(arms, x) -> np.ndarray:
+def arms_y_at(arms: Sequence[CutArm], x: ArrayLike) -> np.ndarray:
     """Im q of several arms at Re q = ``x`` (1-d), shape (len(arms), len(x)), with one Newton batch."""
     ps = arms_p_at(arms, x)
     guess = np.concatenate([arm.guess(p) for arm, p in zip(arms, ps)])
@@ -143,7 +145,7 @@ def arms_y_at(arms, x) -> np.ndarray:
     return q.imag.reshape(len(arms), -1)
 
 
-def _solve_p(arms, xs) -> list:
+def _solve_p(arms: Sequence[CutArm], xs: Sequence[np.ndarray]) -> list:
     """Newton's method on Re q(p) = x for each arm, kept inside a bracket from its samples (bisection when
     a step leaves it: near a fold Re q is flat in p and a plain step can jump to the arm's other end);
     all arms in one batch."""
@@ -213,7 +215,7 @@ class CutLocus:
     arms: tuple = ()
     folds: tuple = ()
 
-    def im_range_between(self, x_left: float, x_right: float):
+    def im_range_between(self, x_left: float, x_right: float) -> tuple[float, float] | None:
         """(low, high) Im q of the cut with x_left <= Re q <= x_right, or None if it does not pass there."""
         sel = self.points[(self.points.real >= x_left) & (self.points.real <= x_right)]
         if sel.size == 0:
@@ -265,11 +267,11 @@ def cut_loci(bound: BoundModel, strips: list[tuple[float, float]], *, samples: i
 _SAME = 1e-10
 
 
-def _distinct_folds(folds) -> list:
+def _distinct_folds(folds: list[Any]) -> list[Any]:
     """The folds without repeats. Where N is even in p (alpha = 0), q_j(p) = q_j(-p): every curve is traced
     twice, over p < 0 and over p > 0, and its folds and ends come twice, one rounding apart (a column of
     zero width between them)."""
-    kept = []
+    kept: list[Any] = []
     for f in folds:
         kind = (f.opens, f.cusp, f.end)
         close = _SAME * max(1.0, abs(f.q))
@@ -278,10 +280,11 @@ def _distinct_folds(folds) -> list:
     return kept
 
 
-def _distinct_arms(arms) -> list:
+def _distinct_arms(arms: list[CutArm]) -> list:
     """The arms without repeats (see :func:`_distinct_folds`): the same range of Re q and the same Im q at
     five points of it."""
-    kept, profiles = [], []
+    kept: list[CutArm] = []
+    profiles: list[Any] = []
     for arm in arms:
         lo, hi = arm.x_lo, arm.x_hi
         order = np.argsort(arm.q.real)
@@ -298,7 +301,7 @@ def _distinct_arms(arms) -> list:
     return kept
 
 
-def _locus(pieces, turning, x_min, x_max) -> CutLocus:
+def _locus(pieces: list[CutArm], turning: list, x_min: float, x_max: float) -> CutLocus:
     """The arms and folds of the traced curves that meet the strip x_min <= Re q <= x_max."""
     arms = []
     for arm in pieces:

@@ -7,13 +7,18 @@ by it nor turns it into a rounded zero, so the values are those of the dense eli
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
 
-def exact_zero(x) -> bool:
+if TYPE_CHECKING:
+    from moving_bogie.typing import Matrix
+
+
+def exact_zero(x: object) -> bool:
     """Whether ``x`` is the exact integer 0 that marks a structural zero (a coupling the vehicle lacks)."""
     return isinstance(x, int) and x == 0
 
 
-def lu_factor(A):
+def lu_factor(A: Matrix) -> tuple[Matrix, list[int], Any]:
     """LU factors with partial pivoting of a square list of rows (numbers of any backend): (lu, perm, det).
 
     A zero pivot (A singular to working precision) ends the elimination with det = 0.
@@ -46,7 +51,7 @@ def lu_factor(A):
     return lu, perm, det
 
 
-def lu_solve(lu, perm, b):
+def lu_solve(lu: Matrix, perm: list[int], b: list[Any]) -> list[Any]:
     """Solve A x = b with the factors of :func:`lu_factor` (det != 0)."""
     N = len(lu)
     y = [b[perm[r]] for r in range(N)]

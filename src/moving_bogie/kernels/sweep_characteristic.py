@@ -24,9 +24,11 @@ alpha (double poles for the second term).
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
@@ -149,30 +151,39 @@ class SweepCharacteristic:
         self.base = {name: getattr(ns, name) for name in names}
 
     # -- track ---------------------------------------------------------------------------------------
-    def _coeffs(self, func, q, alpha):
+    def _coeffs(self, func: Callable[..., Any], q: ArrayLike, alpha: ArrayLike) -> np.ndarray:
         cs = func(q, **self.track_args, alpha=alpha)
         out = np.empty(np.shape(q) + (len(cs),), dtype=complex)
         for k, c in enumerate(cs):
             out[..., k] = c
         return out
 
-    def _d_alpha(self, func, q, alpha):
+    def _d_alpha(self, func: Callable[..., Any], q: np.ndarray, alpha: np.ndarray) -> np.ndarray:
         """Coefficients of dN/dalpha (or dQ/dalpha): five-point stencil, exact for degree <= 4."""
         h = _ALPHA_STENCIL
         shifts = np.array([-2.0, -1.0, 1.0, 2.0]).reshape((4,) + (1,) * q.ndim)
         f = self._coeffs(func, np.broadcast_to(q, (4,) + q.shape), alpha[None] + h * shifts)
         return (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * h)
 
-    def p_roots(self, q, alpha):
+    def p_roots(self, q: ArrayLike, alpha: ArrayLike) -> np.ndarray:
         """Roots of N(p, q) in p, shape ``q.shape + (DEGREE_N,)`` (closed form for quartics)."""
         q, alpha = _prepare(q, alpha)
         return _roots(self._coeffs(self.foundation.n_coeffs, q, alpha))
 
-    def upper_root_count(self, q, alpha):
+    def upper_root_count(self, q: ArrayLike, alpha: ArrayLike) -> np.ndarray:
         """Number of p-roots with Im p > 0: it changes exactly where q crosses the cut of K."""
         return np.sum(self.p_roots(q, alpha).imag > 0, axis=-1)
 
-    def kernel(self, q, alpha, *, d=None, derivative=False, derivative_alpha=False, spacings=None):
+    def kernel(
+        self,
+        q: ArrayLike,
+        alpha: ArrayLike,
+        *,
+        d: ArrayLike | None = None,
+        derivative: bool = False,
+        derivative_alpha: bool = False,
+        spacings: Any = None,
+    ) -> tuple[Any, Any, Any]:
         """K at the contact offsets, at arrays ``q``, ``alpha`` (and per-point spacing ``d``) broadcast.
 
         K is (K0, K+, K-) = K(0), K(d), K(-d) for a vehicle with the closed form of Eq. (38), else one value
@@ -194,7 +205,7 @@ class SweepCharacteristic:
         if derivative or derivative_alpha:
             N2 = _polyval(_polyder(n1), P)
             Qp = _polyval(_polyder(qc), P)
-        parts = []
+        parts: list[tuple[Any, ...]] = []
         if derivative:
             parts.append((self._coeffs(fnd.n_coeffs_dq, q, alpha), self._coeffs(fnd.q_coeffs_dq, q, alpha)))
         if derivative_alpha:
@@ -213,7 +224,7 @@ class SweepCharacteristic:
         if d is not None:
             ds = [np.broadcast_to(np.asarray(d, dtype=float), q.shape)]
         keys = ["dq"] * derivative + ["da"] * derivative_alpha
-        out = {"K": [], "dq": [], "da": []}
+        out: dict[str, list[Any]] = {"K": [], "dq": [], "da": []}
         for dd in ds:
             # every offset at once: axis -2 of the sums runs over the offsets, axis -1 over the p-roots
             offsets = [np.broadcast_to(np.asarray(xi, dtype=float), q.shape) for xi in self.offsets(dd)]
@@ -238,14 +249,14 @@ class SweepCharacteristic:
             return out["K"][0], out["dq"][0], out["da"][0]
         return out["K"], out["dq"] if derivative else None, out["da"] if derivative_alpha else None
 
-    def offsets(self, d) -> list:
+    def offsets(self, d: Any) -> list:
         """The offsets xi at which :meth:`kernel` evaluates K, for the spacing ``d`` (float or array)."""
         if self.blocks is None:
             return [0.0, d, -d]
         return self.blocks.offsets(self.vehicle_args(None, d))
 
     # -- vehicle -------------------------------------------------------------------------------------
-    def vehicle_args(self, theta=None, d=None) -> dict:
+    def vehicle_args(self, theta: ArrayLike | None = None, d: ArrayLike | None = None) -> dict:
         """Keyword arguments of the generated e_chr with ``parameter = theta`` (arrays allowed)."""
         args = dict(self.base)
         if d is not None and "d" in args:
@@ -256,32 +267,40 @@ class SweepCharacteristic:
                 args[group] = set_by(value, **{name: args[name] for name in depends})
         return args | {"pi": np.pi}
 
-    def e_chr(self, q, K, theta=None, d=None):
+    def e_chr(
+        self, q: np.ndarray, K: Any, theta: ArrayLike | None = None, d: ArrayLike | None = None
+    ) -> np.ndarray:
         """E_chr at ``q`` from precomputed K (:meth:`kernel`)."""
         if self.blocks is not None:
             return self.blocks.e_chr(q, K, self.vehicle_args(theta, d))
         return self.module.e_chr(q, *K, **self.vehicle_args(theta, d))
 
-    def _e_and_dq(self, q, K, dK, args):
+    def _e_and_dq(self, q: np.ndarray, K: Any, dK: Any, args: dict) -> tuple[np.ndarray, np.ndarray]:
         if self.blocks is not None:
             return self.blocks.derivatives(q, K, args, dKq=dK)[:2]
         E = self.module.e_chr(q, *K, **args)
         E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
         return E, E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2]
 
-    def __call__(self, q, alpha, theta=None, d=None):
+    def __call__(
+        self, q: ArrayLike, alpha: ArrayLike, theta: ArrayLike | None = None, d: ArrayLike | None = None
+    ) -> np.ndarray:
         """E_chr at arrays q, alpha (and theta, d)."""
         q = np.asarray(q, dtype=complex)
         K, _, _ = self.kernel(q, alpha, d=d)
         return self.e_chr(q, K, theta, d)
 
-    def e_and_dq(self, q, alpha, theta=None, d=None):
+    def e_and_dq(
+        self, q: ArrayLike, alpha: ArrayLike, theta: ArrayLike | None = None, d: ArrayLike | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(E_chr, dE_chr/dq) at arrays q, alpha (and theta, d): Eq. (40) chain rule through dK/dq."""
         q = np.asarray(q, dtype=complex)
         K, dK, _ = self.kernel(q, alpha, d=d, derivative=True)
         return self._e_and_dq(q, K, dK, self.vehicle_args(theta, d))
 
-    def derivatives(self, q, alpha, theta, d=None):
+    def derivatives(
+        self, q: ArrayLike, alpha: ArrayLike, theta: Any, d: ArrayLike | None = None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
         """``(E, E_q, E_alpha, E_theta)`` at arrays (q complex or real, alpha, theta, d).
 
         E_theta by a five-point stencil in theta, exact since E_chr has degree <= 4 in theta (closed form
@@ -317,7 +336,9 @@ class SweepCharacteristic:
         n = self.degree + 1
         return 0.5 * scale * (1 - np.cos((2 * np.arange(n) + 1) * np.pi / (2 * n)))
 
-    def coefficients(self, q, K, *, scale: float = 1.0, dK=None, d=None):
+    def coefficients(
+        self, q: ArrayLike, K: Any, *, scale: float = 1.0, dK: Any = None, d: ArrayLike | None = None
+    ) -> Any:
         """Coefficients of E_chr (and of dE/dq with ``dK``) in t = theta / scale, highest power first.
 
         Parameters
@@ -353,14 +374,14 @@ class SweepCharacteristic:
         return c, np.einsum("ij,j...->...i", inv, np.stack(dvalues))
 
 
-def _prepare(q, alpha):
+def _prepare(q: ArrayLike, alpha: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     q = np.asarray(q, dtype=complex)
     alpha = np.asarray(alpha, dtype=float)
     q, alpha = np.broadcast_arrays(q, alpha)
     return np.ascontiguousarray(q), np.ascontiguousarray(alpha)
 
 
-def _roots(coeffs):
+def _roots(coeffs: np.ndarray) -> np.ndarray:
     if coeffs.shape[-1] == 5:
         return quartic_roots(coeffs)
     return poly_roots(coeffs)

@@ -138,7 +138,7 @@ class Catalogue:
 class _LazyModules(dict):
     """Generated modules imported on first use (a model's kernels are loaded only when it is used)."""
 
-    def __init__(self, load):
+    def __init__(self, load) -> None:
         super().__init__()
         self._load = load
 

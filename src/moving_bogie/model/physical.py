@@ -175,7 +175,9 @@ class PhysicalParams(ModelValues):
 
     __slots__ = ()
 
-    def __init__(self, *, beam=None, track=None, vehicle=None, model: Model | None = None, **values: Any):
+    def __init__(
+        self, *, beam=None, track=None, vehicle=None, model: Model | None = None, **values: Any
+    ) -> None:
         values = {k: v for k, v in values.items() if v is not None}
         if model is None:
             model = _infer_model(values, beam, track, vehicle)

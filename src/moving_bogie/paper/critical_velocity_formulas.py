@@ -17,7 +17,7 @@ from moving_bogie.model.catalogue import DEFAULT_MODEL
 __all__ = ["PAPER_FORMULAS", "formula_eb", "formula_tr", "paper_formula"]
 
 
-def formula_eb(eta_s=0):
+def formula_eb(eta_s: float = 0):
     """Eq. (65): alpha_cr = sqrt(1 + eta_s) (alpha_ref = 1)."""
     return mpmath.sqrt(1 + mpmath.mpf(eta_s))
 

@@ -41,7 +41,9 @@ class BuildContext:
         Called with the fraction (0..1) of the current artefact done.
     """
 
-    def __init__(self, out: Path, *, quick: bool, dps: int, progress: Callable[[float], None] | None = None):
+    def __init__(
+        self, out: Path, *, quick: bool, dps: int, progress: Callable[[float], None] | None = None
+    ) -> None:
         self.out = out
         self.quick = quick
         self.dps = dps

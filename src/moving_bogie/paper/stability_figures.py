@@ -41,7 +41,7 @@ def _grid(quick: bool) -> dict:
 class _Progress:
     """Split one progress callback over n equal parts."""
 
-    def __init__(self, progress, n):
+    def __init__(self, progress, n) -> None:
         self.progress, self.n, self.k = progress, max(1, n), 0
 
     def part(self):
@@ -52,7 +52,7 @@ class _Progress:
         return lambda x: self.progress((k + min(1.0, x)) / self.n)
 
 
-def _legend(fig, ds, styles=(), marks=()):
+def _legend(fig, ds, styles=(), marks=()) -> None:
     """One legend for the figure: a colour per spacing, then the line styles and the line-end marks."""
     from matplotlib.lines import Line2D
 
@@ -63,7 +63,9 @@ def _legend(fig, ds, styles=(), marks=()):
     fig.legend(handles=handles, loc="outside right center", fontsize=8)
 
 
-def _decorate(ax, title, alpha_max, theta_max=200.0, ylabel=r"$\eta_M$", critical=1.0):
+def _decorate(
+    ax, title, alpha_max, theta_max: float = 200.0, ylabel: str = r"$\eta_M$", critical: float = 1.0
+) -> None:
     ax.axvline(critical, color="k", ls=":", lw=1)
     ax.set_xlim(0, alpha_max)
     ax.set_ylim(0, theta_max)
@@ -72,7 +74,7 @@ def _decorate(ax, title, alpha_max, theta_max=200.0, ylabel=r"$\eta_M$", critica
     ax.set_title(title, fontsize=9)
 
 
-def _base(eta_f="0.05", **kw) -> DimensionlessParams:
+def _base(eta_f: str = "0.05", **kw) -> DimensionlessParams:
     values = dict(eta_f=eta_f, eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5")
     values.update(kw)
     return DimensionlessParams.from_coefficients(**values)

@@ -225,11 +225,11 @@ def closed_form_response(
     mode = branch_cut_mode(branch_cut)
     bc, notes = branch_cut_or_note(bound, mode)
 
-    def report(fraction):
+    def report(fraction) -> None:
         if progress is not None:
             progress(fraction)
 
-    def staged(x):
+    def staged(x) -> None:
         report(0.8 * x)
 
     result = frequencies_for(bound, frequencies, dps, staged if progress else None)

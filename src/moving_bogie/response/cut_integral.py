@@ -257,7 +257,7 @@ class CurveBranchCut:
             self._cache[key] = value
         return value
 
-    def integrate(self, tau, channel, *, tol=1e-10, s_min=None, xi_max=None):
+    def integrate(self, tau, channel, *, tol: float = 1e-10, s_min=None, xi_max=None):
         """I_bc(tau) per channel column: (1/pi) Re sum over the pieces of integral J e^{i q tau} dp."""
         tau = np.asarray(tau, dtype=float)
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):

@@ -25,7 +25,7 @@ SEED_STRIDE = 8
 class TracedCurve:
     """One traced curve q(p) (samples ``p`` increasing, ``q``), evaluated exactly by Newton."""
 
-    def __init__(self, tracer, p, q):
+    def __init__(self, tracer, p, q) -> None:
         self.tracer, self.p, self.q = tracer, p, q
 
     def q_at(self, p):
@@ -58,7 +58,7 @@ class CurvePiece:
     mirror image of another piece continues (no tail).
     """
 
-    def __init__(self, curve, p_lo, p_hi, far_lo, far_hi):
+    def __init__(self, curve, p_lo, p_hi, far_lo, far_hi) -> None:
         self.curve, self.tracer = curve, curve.tracer
         self.p_lo, self.p_hi, self.far = p_lo, p_hi, (far_lo, far_hi)
         inside = (curve.p >= p_lo) & (curve.p <= p_hi)

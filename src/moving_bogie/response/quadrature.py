@@ -126,7 +126,7 @@ def _phases(t, s, eta):
     return out
 
 
-def fourier_sum(ts, nodes, weights, weighted, m, q_max, eta, *, memory=4_000_000):
+def fourier_sum(ts, nodes, weights, weighted, m, q_max, eta, *, memory: int = 4_000_000):
     """sum_n G_n e^{i q_n t} for every t, (q, G) = weighted(nodes, weights): shape (len(ts), m).
 
     ``eta`` is Im q_n when it is the same for every node (else None: taken from q).

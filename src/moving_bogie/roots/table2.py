@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from decimal import Decimal
+from typing import Any
 
 import mpmath
 
@@ -79,7 +80,7 @@ class Table2:
 def compare_with_print(result, printed):
     """Differences (computed - printed) for each computed root, matching printed roots by proximity."""
     remaining = list(printed)
-    out = []
+    out: list[Any] = []
     for r in result.roots:
         if not remaining:
             out.append(None)
@@ -95,7 +96,7 @@ def compare_with_print(result, printed):
 def printed_enclosed(row) -> list:
     """Per computed root with a printed value: whether its proven enclosure rounds, at every point, to the
     printed digits (None where nothing is printed or nothing was proven)."""
-    out = []
+    out: list[Any] = []
     for r, e, diff in zip(row.result.roots, row.result.certificate.roots, row.differences):
         if diff is None or not e.certified:
             out.append(None)

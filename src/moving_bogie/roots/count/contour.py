@@ -75,12 +75,12 @@ class Rectangle(BoundingBox):
     y0: float
     y1: float
 
-    def contains(self, z, margin=0.0):
+    def contains(self, z, margin: float = 0.0):
         return (self.x0 - margin <= z.real <= self.x1 + margin) and (
             self.y0 - margin <= z.imag <= self.y1 + margin
         )
 
-    def split(self, fraction=0.5):
+    def split(self, fraction: float = 0.5):
         """Two halves across the longer side, the cut at ``fraction`` of it."""
         if self.width >= self.height:
             xm = self.x0 + fraction * self.width
@@ -149,7 +149,13 @@ def initial_samples(region, spacing=None):
 
 
 def winding_number(
-    f, rect: Rectangle, *, spacing=None, max_step=np.pi / 5, min_segment=1e-11, max_points=400_000
+    f,
+    rect: Rectangle,
+    *,
+    spacing=None,
+    max_step=np.pi / 5,
+    min_segment: float = 1e-11,
+    max_points: int = 400_000,
 ) -> int:
     """Number of zeros of ``f`` (vectorised over numpy arrays) inside ``rect``.
 
@@ -212,7 +218,7 @@ def winding_number(
     return n
 
 
-def winding_numbers(f, regions, *, max_step=np.pi / 5, min_segment=1e-11, max_points=None) -> list:
+def winding_numbers(f, regions, *, max_step=np.pi / 5, min_segment: float = 1e-11, max_points=None) -> list:
     """:func:`winding_number` of many regions at once: every refinement level of all of them is one
     evaluation of ``f`` (the cost of an evaluation of E_chr is mostly per call, not per point).
 

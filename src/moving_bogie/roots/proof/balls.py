@@ -29,6 +29,7 @@ acb arguments (their ``1j`` literals combine with acb exactly).
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import Any
 
 from flint import acb, acb_series, arb, ctx, fmpq
 
@@ -81,7 +82,7 @@ def _exact(x) -> Fraction | None:
 class _ExactBalls:
     """Attribute access to the parameters of a DimensionlessParams as balls around their exact values."""
 
-    def __init__(self, params):
+    def __init__(self, params) -> None:
         self._params = params
 
     def __getattr__(self, name):
@@ -121,7 +122,9 @@ class BallCharacteristic:
         it too: the continuation, not the values from above), away from the branch points.
     """
 
-    def __init__(self, bound: BoundModel, *, prec: int = 128, below: bool = False, p_roots: str = "auto"):
+    def __init__(
+        self, bound: BoundModel, *, prec: int = 128, below: bool = False, p_roots: str = "auto"
+    ) -> None:
         params = bound.params
         self.below = below
         self.params = params
@@ -169,7 +172,8 @@ class BallCharacteristic:
         on_axis = self.below and q.imag.contains(0)
         if not on_axis:
             return _sides(roots)
-        upper, lower = [], []
+        upper: list[Any] = []
+        lower: list[Any] = []
         f, args = self.foundation, self.foundation_args
         if not all(acb(c).imag.is_zero() for c in f.n_coeffs(acb(q.real), **args)):
             return _sides(roots)  # a damped track: no limit from below needed (or possible) here

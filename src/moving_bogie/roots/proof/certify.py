@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import mpmath
 from flint import acb, arb, ctx
@@ -310,7 +310,7 @@ def pinches_around_roots(margin: float, cut, roots, floor: float = 1e-6) -> list
     :func:`proof_tiling.proof_tiling`. Only there do the tile edges come that close to the cut (an edge at
     distance h from it needs segments shorter than about h, so a margin thin all along would cost
     millions of segments)."""
-    out = []
+    out: list[Any] = []
     if not cut.points.size:
         return out
     for r in roots:

@@ -62,7 +62,7 @@ def taylor_in_q(in_q: list, m: acb) -> list:
 class PRootDiscs:
     """Root discs of N(p, q) over q-balls; remembers the last approximations to start from."""
 
-    def __init__(self, foundation, args, prec: int):
+    def __init__(self, foundation, args, prec: int) -> None:
         self.foundation = foundation
         self.args = args
         self.prec = prec

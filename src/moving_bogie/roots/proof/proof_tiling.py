@@ -12,6 +12,7 @@ is listed as ``unsearched``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from moving_bogie.roots.count.contour import Rectangle
 
@@ -152,7 +153,7 @@ def _staircase(base: Rectangle, columns: list, on_top: bool) -> Staircase:
         for x_left, x_right, y in pieces:
             points += [complex(x_left, y), complex(x_right, y)]
         points += [complex(base.x1, base.y1), complex(base.x0, base.y1)]
-    corners = []
+    corners: list[Any] = []
     for z in points:
         if corners and corners[-1] == z:
             continue

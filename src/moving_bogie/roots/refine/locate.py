@@ -6,6 +6,8 @@ consistently is handed to Newton's method from a grid of starts.
 
 from __future__ import annotations
 
+from typing import Any
+
 import mpmath
 import numpy as np
 
@@ -110,7 +112,7 @@ def _towards_origin(r) -> tuple:
 
 def _grid_roots(fast, rect, k):
     """Distinct roots inside ``rect`` reached by Newton's method from a 7 x 7 grid of starts (at most k)."""
-    found = []
+    found: list[Any] = []
     xs = np.linspace(rect.x0, rect.x1, 9)[1:-1]
     ys = np.linspace(rect.y0, rect.y1, 9)[1:-1]
     for y in ys:

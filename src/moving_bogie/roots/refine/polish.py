@@ -10,6 +10,7 @@ from __future__ import annotations
 import decimal
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import mpmath
 
@@ -20,7 +21,7 @@ class PolishError(MovingBogieError):
     """Newton's method did not converge from the located cell."""
 
 
-def newton(characteristic, q0, *, multiplicity=1, max_iter=60):
+def newton(characteristic, q0, *, multiplicity: int = 1, max_iter: int = 60):
     """Root of E_chr near ``q0`` at the current precision; returns (q, |last step|)."""
     q = mpmath.mpc(q0)
     tol = mpmath.mpf(10) ** (-mpmath.mp.dps + 3)
@@ -58,7 +59,7 @@ class Confirmed:
     digits: int  # significant digits of q so confirmed
 
 
-def polish_and_confirm(characteristic, q0, *, dps, extra_dps, multiplicity=1) -> Confirmed:
+def polish_and_confirm(characteristic, q0, *, dps, extra_dps, multiplicity: int = 1) -> Confirmed:
     """Polish at ``dps`` digits, re-polish at ``dps + extra_dps`` and keep the digits both agree on.
 
     The reported value is the higher-precision one; ``decimals`` is the largest number of decimal places at
@@ -129,7 +130,7 @@ def split_cluster(characteristic, q0, multiplicity, rect, *, dps, extra_dps) -> 
     ``multiplicity`` distinct roots inside ``rect`` are reached, each is polished and confirmed as a simple
     root (:func:`polish_and_confirm`); otherwise nothing is returned and the cluster stays unresolved.
     """
-    found = []
+    found: list[Any] = []
     with mpmath.workdps(2 * dps):
         q0 = mpmath.mpc(q0)
         size = max(rect.width, rect.height)

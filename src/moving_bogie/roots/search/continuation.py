@@ -72,7 +72,7 @@ class ContinuedRegion(BoundingBox):
     y0 = property(lambda self: self.region.y0)
     y1 = property(lambda self: self.region.y1)
 
-    def __str__(self):
+    def __str__(self) -> str:
         return f"{self.region} (counted through the cut, {self.crossing} root(s) of N fixed)"
 
 

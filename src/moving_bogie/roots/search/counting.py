@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from typing import Any
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
@@ -141,7 +142,8 @@ def count_tiling(
                     f"({error})",
                 )
             )
-    flat_regions, flat_counts = [], []
+    flat_regions: list[Any] = []
+    flat_counts: list[Any] = []
     for region, n in zip(regions, counts):
         if isinstance(region, list):
             flat_regions += region

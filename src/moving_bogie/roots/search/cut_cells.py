@@ -92,7 +92,7 @@ class _Curve(BoundingBox):
     pieces: tuple
     _clockwise: bool = False
 
-    def _orient(self):
+    def _orient(self) -> None:
         self._clockwise = False
         t = self.boundary_parameters(np.inf)
         z = self.points_at(t[:-1])
@@ -131,7 +131,7 @@ def _segment(a: complex, b: complex):
 class ColumnCell(_Curve):
     """x0 <= Re q <= x1 between the edges ``lower`` and ``upper`` (counter-clockwise boundary)."""
 
-    def __init__(self, x0: float, x1: float, lower: Edge, upper: Edge):
+    def __init__(self, x0: float, x1: float, lower: Edge, upper: Edge) -> None:
         self.x0, self.x1, self.lower, self.upper = float(x0), float(x1), lower, upper
         lo = lower.points(np.array([x0, 0.5 * (x0 + x1), x1]))
         hi = upper.points(np.array([x0, 0.5 * (x0 + x1), x1]))
@@ -150,14 +150,14 @@ class ColumnCell(_Curve):
             return Rectangle(self.x0, self.x1, lower.y, upper.y)
         return ColumnCell(self.x0, self.x1, lower, upper)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"ColumnCell({self.x0:.9g}..{self.x1:.9g}, {self.y0:.9g}..{self.y1:.9g})"
 
     @property
     def center(self):
         return self._mid
 
-    def contains(self, z, margin=0.0):
+    def contains(self, z, margin: float = 0.0):
         if not (self.x0 - margin <= z.real <= self.x1 + margin):
             return False
         x = np.array([min(max(z.real, self.x0), self.x1)])
@@ -165,7 +165,7 @@ class ColumnCell(_Curve):
         hi = self.upper.points(x)[0].imag
         return lo - margin <= z.imag <= hi + margin
 
-    def split(self, fraction=0.5):
+    def split(self, fraction: float = 0.5):
         """Two cells: across Re q, or (taller than twice its width, with a horizontal line passing between
         its edges) along that line, so that a tall cell shrinks in height too (a lens between two arms)."""
         if self.height > 2 * self.width:
@@ -191,7 +191,7 @@ class TipCell(_Curve):
     whichever way the lens opens (:meth:`_Curve._orient`).
     """
 
-    def __init__(self, fold, lower, upper, x_tip, delta, inner, frame=None):
+    def __init__(self, fold, lower, upper, x_tip, delta, inner, frame=None) -> None:
         self.fold, self.lower, self.upper = fold, lower, upper
         self.x_tip, self.delta, self.inner, self.frame = float(x_tip), delta, inner, frame
         p_lo = float(lower.p_at(np.array([x_tip]))[0])
@@ -240,10 +240,10 @@ class TipCell(_Curve):
         t = complex(self.lower.tracer.dq_dp(np.array([self.fold.p]), np.array([self.fold.q]))[0])
         return n if (1j * t).real * self.fold.opens > 0 else -n
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"TipCell({'inner' if self.inner else 'outer'}, x <= {self.x_tip:.9g})"
 
-    def contains(self, z, margin=0.0):
+    def contains(self, z, margin: float = 0.0):
         if not (
             self.x0 - margin <= z.real <= self.x1 + margin and self.y0 - margin <= z.imag <= self.y1 + margin
         ):
@@ -259,7 +259,7 @@ class TipCell(_Curve):
         hi = self.upper.y_at(np.array([z.real]))[0]
         return lo <= z.imag <= hi
 
-    def split(self, fraction=0.5):
+    def split(self, fraction: float = 0.5):
         """The tip cell up to a Re q nearer the fold, and column cells for the rest."""
         x_new = self.fold.q.real + fraction * (self.x_tip - self.fold.q.real)
         c0, c1 = sorted((x_new, self.x_tip))

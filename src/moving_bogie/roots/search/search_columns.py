@@ -26,14 +26,14 @@ def arms_over(cut, a, b):
     return [arm for arm in cut.arms if arm.x_lo <= a + 1e-12 and arm.x_hi >= b - 1e-12]
 
 
-def fill_columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density, most=6):
+def fill_columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density, most: int = 6) -> None:
     """Columns between two events, ``density`` of them per unit of Re q (at least one, at most ``most``)."""
     xs = np.linspace(x0, x1, min(most, max(1, int(np.ceil(density * (x1 - x0) - 1e-9)))) + 1)
     for a, b in zip(xs[:-1], xs[1:]):
         column(cut, a, b, regions, unsearched, eps, band_lo, band_hi)
 
 
-def column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None):
+def column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None) -> None:
     """Cells of one column [a, b] between the cut's arms (graphs over Re q there), or a padded fallback.
 
     Where two arms cross, the column is split at the crossing; where two arms are closer than
@@ -112,7 +112,7 @@ def _split_point(lower, upper, xs, gap, eps):
     is their crossing (else the Re q where their gap passes _MERGE eps); (None, False) if neither happens
     inside."""
 
-    def g(x, target=0.0):
+    def g(x, target: float = 0.0):
         return float(upper.y_at(np.array([x]))[0] - lower.y_at(np.array([x]))[0]) - target
 
     for target in (0.0, _MERGE * eps):
@@ -134,7 +134,7 @@ def _slope(arm, x) -> float:
     return abs(t.imag) / abs(t.real) if t.real else np.inf
 
 
-def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
+def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi) -> None:
     pad = eps + 0.05 * float(ys.max() - ys.min())
     c_lo, c_hi = max(band_lo, float(ys.min()) - pad), min(band_hi, float(ys.max()) + pad)
     if c_lo > band_lo:
@@ -144,7 +144,7 @@ def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
     unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo, cell=_rect(a, b, c_lo, c_hi)))
 
 
-def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
+def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi) -> None:
     """The narrow column [a, b] with a box left out around each cluster of arms (``ys``: their Im q),
     rectangles in between."""
     spans = sorted((float(y.min()) - eps, float(y.max()) + eps) for y in ys)
@@ -165,7 +165,7 @@ def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi):
         regions.append(Rectangle(a, b, bottom, band_hi))
 
 
-def box(a, b, lo, hi, regions, unsearched, band_lo, band_hi):
+def box(a, b, lo, hi, regions, unsearched, band_lo, band_hi) -> None:
     """The column [a, b] with the box lo <= Im q <= hi left out (reported as a sliver)."""
     lo, hi = max(lo, band_lo), min(hi, band_hi)
     if lo > band_lo:

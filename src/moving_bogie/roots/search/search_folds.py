@@ -23,7 +23,7 @@ def _ends_at(arm, fold) -> bool:
     return any(abs(arm.p[k] - fold.p) < 1e-12 and abs(arm.q[k] - fold.q) < tol for k in (0, -1))
 
 
-def fold_event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
+def fold_event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi) -> None:
     """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched).
 
     Where another curve of the cut passes through the fold's lens or close to it inside [a, b] (a steep
@@ -108,7 +108,7 @@ def _fold_neighbours(cut, a, b, fold, eps):
     return pair, others, partial, through, low, high
 
 
-def _fold_column(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi):
+def _fold_column(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi) -> None:
     """The column [a, b] around a fold: two tip cells, or a box (a cusp, an end of the cut, or curves
     passing through the fold's box).
 

@@ -18,6 +18,7 @@ cut's range in it, and the sliver reported there is that strip's height.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -111,7 +112,7 @@ def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
 
 
 def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) -> Tiling:
-    unsearched = []
+    unsearched: list[Any] = []
     folds = sorted((f for f in cut.folds if window.x0 < f.q.real < window.x1), key=lambda f: f.q.real)
     # event intervals around folds (tip cells) and cusps (branch-point boxes)
     events = []
@@ -129,7 +130,7 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
             x_band = left
     density = columns / min(window.width, 3.0)
 
-    def fill(x0, x1):
+    def fill(x0, x1) -> None:
         fill_columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density)
 
     edges_x = [x_band]

@@ -14,8 +14,19 @@ from __future__ import annotations
 
 import textwrap
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from matplotlib.artist import Artist
+    from matplotlib.axes import Axes
+    from matplotlib.collections import QuadMesh
+    from matplotlib.colors import LogNorm, Normalize
+    from matplotlib.figure import Figure
+
+    from moving_bogie.model.catalogue import Model
 
 __all__ = ["MarginPlane", "draw_margin", "fixed_parameters", "hatch_cells", "plane_title"]
 
@@ -25,7 +36,7 @@ GROWTH_DECADES = 6
 DECAY_DECADES = 3
 
 
-def _log_norm(values: np.ndarray, decades: int):
+def _log_norm(values: np.ndarray, decades: int) -> LogNorm:
     """A logarithmic scale from the smallest positive value (at least one decade below the largest, so
     that nearly equal rates get nearly equal colours; at most ``decades`` below it) to the largest."""
     from matplotlib.colors import LogNorm
@@ -35,11 +46,11 @@ def _log_norm(values: np.ndarray, decades: int):
     return LogNorm(max(min(lo, hi / 10), hi * 10.0**-decades), hi)
 
 
-def _colorbar(fig, ax, mesh, label: str, extend: str) -> None:
+def _colorbar(fig: Figure, ax: Axes, mesh: QuadMesh, label: str, extend: str) -> None:
     """A colour bar with plain numbers (1, 2, 5 of each decade) instead of powers of ten."""
     from matplotlib.ticker import FuncFormatter
 
-    def minor(v, _):
+    def minor(v: float, _: Any) -> str:
         lead = round(v / 10 ** np.floor(np.log10(v)))
         return f"{v:g}" if lead in (2, 5) else ""
 
@@ -49,7 +60,14 @@ def _colorbar(fig, ax, mesh, label: str, extend: str) -> None:
 
 
 def hatch_cells(
-    ax, x, y, mask, *, label="uncertain (not certified)", hatch: str = "////", color: str = "tab:blue"
+    ax: Axes,
+    x: ArrayLike,
+    y: ArrayLike,
+    mask: ArrayLike,
+    *,
+    label: str = "uncertain (not certified)",
+    hatch: str = "////",
+    color: str = "tab:blue",
 ) -> int:
     """Hatch the cells ``mask[j, i]`` of the grid ``x[i], y[j]`` (cell edges halfway between the values).
 
@@ -60,7 +78,7 @@ def hatch_cells(
 
     x, y, mask = np.asarray(x, dtype=float), np.asarray(y, dtype=float), np.asarray(mask, dtype=bool)
 
-    def edges(v):
+    def edges(v: np.ndarray) -> np.ndarray:
         if len(v) == 1:
             return np.array([v[0] - 0.5, v[0] + 0.5])
         mid = 0.5 * (v[1:] + v[:-1])
@@ -76,9 +94,10 @@ def hatch_cells(
     return len(patches)
 
 
-def _extend(values: np.ndarray, norm) -> str:
+def _extend(values: np.ndarray, norm: Normalize) -> str:
     """``"min"`` when some finite value lies below the colour scale (shown in its lowest colour)."""
-    return "min" if np.nanmin(values[values > 0], initial=np.inf) < norm.vmin * (1 - 1e-12) else "neither"
+    lowest = norm.vmin * (1 - 1e-12)  # type: ignore[operator]  # every norm here is built with vmin (typed float | None)
+    return "min" if np.nanmin(values[values > 0], initial=np.inf) < lowest else "neither"
 
 
 @dataclass(frozen=True)
@@ -111,7 +130,7 @@ def _rate(kind: str, unit: str) -> str:
     return f"{kind} rate {symbol} (dimensionless)" + (" (stable)" if kind == "decay" else " (unstable)")
 
 
-def draw_margin(fig, ax, plane: MarginPlane) -> list:
+def draw_margin(fig: Figure, ax: Axes, plane: MarginPlane) -> list:
     """Colour ``ax`` by the margin of ``plane`` (module text); returns the legend handles of what is drawn
     beside the colours (dotted bounds, grey undetermined margins, hatched uncertain points, the boundary)."""
     from matplotlib import colormaps
@@ -119,7 +138,7 @@ def draw_margin(fig, ax, plane: MarginPlane) -> list:
     from matplotlib.patches import Patch
 
     x, y, m = plane.x, plane.y, plane.margin
-    handles = []
+    handles: list[Artist] = []
     decay = np.where(plane.stable & np.isfinite(m), m, np.nan)
     if np.isfinite(decay).any():
         hi = float(np.nanmax(decay))
@@ -167,7 +186,7 @@ def plane_title(heading: str, model: dict, fixed: dict, *, width: int = 110) -> 
     return "\n".join(textwrap.wrap(text, width))
 
 
-def fixed_parameters(model, values: dict, shown: set, *, si: bool, follow: dict | None = None) -> dict:
+def fixed_parameters(model: Model, values: dict, shown: set, *, si: bool, follow: dict | None = None) -> dict:
     """The parameters a plane holds fixed, as title text: ``{name: "value unit"}``.
 
     ``model`` is the :class:`~moving_bogie.model.catalogue.Model`; ``values`` its parameters by name (the

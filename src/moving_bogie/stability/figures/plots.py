@@ -49,7 +49,15 @@ END_LABELS = {
 
 
 def plot_instability_lines(
-    ax, lines, *, colors=None, linestyle="-", scale=1.0, label=True, lw=1.2, units=None
+    ax,
+    lines,
+    *,
+    colors=None,
+    linestyle: str = "-",
+    scale: float = 1.0,
+    label: bool = True,
+    lw: float = 1.2,
+    units=None,
 ) -> set:
     """Draw the branches of an :class:`~moving_bogie.stability.lines.instability_lines.InstabilityLines` on
     ``ax``.

@@ -13,6 +13,8 @@ lines cross or the curve has a double point).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 __all__ = ["END_REASONS", "PathTracer", "covered", "evaluate", "gauss_newton"]
@@ -37,7 +39,7 @@ def evaluate(sweep, x, d, scale):
     return F, J, E, E_q, E_t
 
 
-def gauss_newton(sweep, x, d, scale, tol, max_iter=12):
+def gauss_newton(sweep, x, d, scale, tol, max_iter: int = 12):
     """Minimum-norm Gauss-Newton onto the curve Re E = Im E = 0; returns (x, converged)."""
     x = np.array(x, dtype=float)
     conv = np.zeros(len(x), dtype=bool)
@@ -57,7 +59,7 @@ def gauss_newton(sweep, x, d, scale, tol, max_iter=12):
     return x, conv & np.all(np.isfinite(x), axis=-1)
 
 
-def newton_fixed(sweep, x, d, k, value, scale, tol, max_iter=12):
+def newton_fixed(sweep, x, d, k, value, scale, tol, max_iter: int = 12):
     """Newton in the two coordinates other than ``k`` with x[k] = value (end points on the box)."""
     x = np.array(x, dtype=float)
     x[:, k] = value
@@ -92,11 +94,13 @@ class PathTracer:
     Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
     """
 
-    def __init__(self, sweep, scale, box, h_max, tol, *, h_min=1e-6, max_steps=4000, progress=None):
+    def __init__(
+        self, sweep, scale, box, h_max, tol, *, h_min: float = 1e-6, max_steps: int = 4000, progress=None
+    ) -> None:
         self.sweep, self.scale, self.box = sweep, scale, box
         self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
         self.progress = progress
-        self.warnings = []
+        self.warnings: list[Any] = []
 
     def trace_all(self, groups):
         """Trace curves until every seed lies on one; returns a list of (d, path (k, 3), (start, end)).
@@ -104,7 +108,7 @@ class PathTracer:
         ``start`` and ``end`` say why the path ends there: a face of the box (:data:`END_REASONS`),
         "closed" (a loop), "stalled" (singular point) or "max_steps".
         """
-        paths = []
+        paths: list[Any] = []
         pending = list(groups)
         total = max(1, sum(len(g) for _, g in pending))
         while pending:

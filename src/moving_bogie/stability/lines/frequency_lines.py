@@ -209,13 +209,13 @@ def _continue_lines(
 class _Tracker:
     """Continuation of one root q(alpha) of E_chr in double precision."""
 
-    def __init__(self, sweep, h_max, *, h_min=1e-9, tol=1e-12, max_iter=8):
+    def __init__(self, sweep, h_max, *, h_min: float = 1e-9, tol: float = 1e-12, max_iter: int = 8) -> None:
         self.sweep, self.h_max, self.h_min, self.tol, self.max_iter = sweep, h_max, h_min, tol, max_iter
 
     def _side(self, q, a):
         return int(self.sweep.upper_root_count(np.array([q]), np.array([a]))[0])
 
-    def _near_cut(self, q, a, tol=1e-5):
+    def _near_cut(self, q, a, tol: float = 1e-5):
         """Some p-root of N(p, q) is (nearly) real: q is at the cut of K."""
         P = self.sweep.p_roots(np.array([q]), np.array([a]))[0]
         return bool(np.min(np.abs(P.imag) / np.maximum(1.0, np.abs(P))) < tol)
@@ -270,7 +270,7 @@ class _Tracker:
             h = min(1.5 * h, self.h_max)
         return out_a, out_q, "reached"
 
-    def _bisect_cut(self, a_good, q_good, a_bad, side, tol=1e-9):
+    def _bisect_cut(self, a_good, q_good, a_bad, side, tol: float = 1e-9):
         """Last point on the starting side of the cut, to ``tol`` in alpha."""
         while abs(a_bad - a_good) > tol:
             a_mid = 0.5 * (a_good + a_bad)

@@ -112,8 +112,7 @@ def instability_lines(
     verify : bool
         For every branch, count the unstable induced frequencies with
         :func:`~moving_bogie.roots.frequencies.induced_frequencies` 2 % below and above its middle point
-        (in theta,
-        at fixed alpha) and store them in ``verified`` (about one second per branch).
+        (in theta, at fixed alpha) and store them in ``verified`` (about one second per branch).
     progress : callable, optional
         Called with the fraction of work done.
     """
@@ -223,7 +222,7 @@ def _exact(x: float):
     return Fraction(str(x))
 
 
-def _report(progress, x):
+def _report(progress, x) -> None:
     if progress is not None:
         progress(min(1.0, x))
 

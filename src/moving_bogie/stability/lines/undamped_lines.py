@@ -116,7 +116,8 @@ def undamped_lines(
 def _join(points, alphas, jump):
     """Chains of boundary points: same counts on both sides, consecutive alphas, theta within ``jump``."""
     index = {float(a): i for i, a in enumerate(alphas)}
-    open_, done = [], []
+    open_: list[Any] = []
+    done: list[Any] = []
     for i in range(len(alphas)):
         here = sorted((b for b in points if index[b.alpha] == i), key=lambda b: b.theta)
         still = []

@@ -11,9 +11,10 @@ roots found than counted) are settled by :func:`settle_cells`: a full count at t
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
+from typing import Any
 
 import mpmath
 import numpy as np
@@ -23,7 +24,7 @@ from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.roots.count.window import default_window
-from moving_bogie.stability.maps.column_count import count_box
+from moving_bogie.stability.maps.column_count import BoxCount, count_box
 from moving_bogie.stability.maps.column_margin import column_margin, strip_top
 from moving_bogie.stability.maps.column_roots import delves_lyness, dip_candidates, locate_roots
 
@@ -151,30 +152,69 @@ def stability_column(
     X, Y = window
     if extra is None and top < 0:
         extra = branch_samples(branch_points(sweep.bound, alpha))
-    if moment_top is None:
-        moment_top = top + 0.4 * float(sweep.params.eta_f)
+    moment_top = top + 0.4 * float(sweep.params.eta_f) if moment_top is None else moment_top
 
-    def coeffs(z):
-        K, dK, _ = sweep.kernel(z, alpha, derivative=True)
-        return sweep.coefficients(z, K, scale=scale, dK=dK)
-
-    def count_coeffs(z):  # the counting needs E only
-        K, _, _ = sweep.kernel(z, alpha)
-        return sweep.coefficients(z, K, scale=scale), None
-
+    coeffs, count_coeffs = _column_coefficients(sweep, alpha, scale)
     box = count_box(
         count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend, fine_until, extra
     )
     total = np.rint(box.n_rect).astype(int) + box.n_axis
     uncertain = box.uncertain | ((total % 2) != 0)
     count = np.maximum(total // 2, 0)
+    tops = (max(moment_top, top), top - 0.005, top - 0.02)  # the rectangles whose power sums locate roots
+    roots = _unstable_roots(sweep, alpha, thetas, box, count, guesses, coeffs, (X, Y), tops, polish)
+    degree = np.array([min(0.0, float(np.min(r.imag))) if len(r) else 0.0 for r in roots])
+    uncertain |= np.array([len(r) != c for r, c in zip(roots, count)])
+    stable = np.nonzero((count == 0) & ~uncertain)[0]
+    h = strip_top(float(sweep.params.eta_f), _cut_low(sweep.bound, alpha, X), top) if margin else None
+    found = column_margin(sweep, alpha, thetas, coeffs, (X, Y), h, stable if margin else stable[:0], polish)
+    margins = np.where(count > 0, degree, found.margin)
+    margins[uncertain] = np.nan
+    settled = np.zeros(len(t), dtype=bool)
+    return ColumnResult(float(alpha), thetas, count, degree, uncertain, roots, settled, margins, found.bound)
+
+
+def _column_coefficients(
+    sweep: SweepCharacteristic, alpha: float, scale: float
+) -> tuple[Callable[[np.ndarray], Any], Callable[[np.ndarray], Any]]:
+    """The coefficients of E_chr in theta / ``scale`` at the points z and ``alpha``: with their q-derivative
+    (to locate roots), and alone (the counting needs E only)."""
+
+    def coeffs(z: np.ndarray) -> Any:
+        K, dK, _ = sweep.kernel(z, alpha, derivative=True)
+        return sweep.coefficients(z, K, scale=scale, dK=dK)
+
+    def count_coeffs(z: np.ndarray) -> Any:
+        K, _, _ = sweep.kernel(z, alpha)
+        return sweep.coefficients(z, K, scale=scale), None
+
+    return coeffs, count_coeffs
+
+
+def _unstable_roots(
+    sweep: SweepCharacteristic,
+    alpha: float,
+    thetas: np.ndarray,
+    box: BoxCount,
+    count: np.ndarray,
+    guesses: Sequence | None,
+    coeffs: Callable[[np.ndarray], Any],
+    window: tuple[float, float],
+    tops: tuple[float, ...],
+    polish: int,
+) -> list[np.ndarray]:
+    """The unstable roots of every theta, ``count`` of them where found: Newton from the ``guesses``, from
+    the dips of |E| on the counting rectangle's top edge, spread around those found, then from the
+    Delves-Lyness roots of rectangles with the upper edges ``tops``."""
+    t = thetas / float(thetas.max())
+    X, Y = window
     unstable = np.nonzero(count > 0)[0]
     roots = [np.zeros(0, dtype=complex) for _ in t]
 
     def short():
         return np.array([j for j in unstable if len(roots[j]) < count[j]], dtype=int)
 
-    def merge(more):
+    def merge(more) -> None:
         for j in range(len(t)):
             if len(more[j]) > len(roots[j]):
                 roots[j] = more[j]
@@ -194,7 +234,7 @@ def stability_column(
         merge(locate_roots(sweep, alpha, thetas, cands, count, polish))
     # Delves-Lyness, on a taller rectangle (roots near the real axis well inside), then on one whose top
     # lies a little below the axis (only the deeper roots inside)
-    for box_top in (max(moment_top, top), top - 0.005, top - 0.02):
+    for box_top in tops:
         todo = short()
         if not todo.size:
             break
@@ -202,24 +242,7 @@ def stability_column(
         for j, r in zip(todo, delves_lyness(coeffs, t[todo], X, Y, box_top)):
             cands[j] = r + list(roots[j])
         merge(locate_roots(sweep, alpha, thetas, cands, count, polish, spread=False))
-    degree = np.array([min(0.0, float(np.min(r.imag))) if len(r) else 0.0 for r in roots])
-    uncertain |= np.array([len(r) != c for r, c in zip(roots, count)])
-    stable = np.nonzero((count == 0) & ~uncertain)[0]
-    h = strip_top(float(sweep.params.eta_f), _cut_low(sweep.bound, alpha, X), top) if margin else None
-    found = column_margin(sweep, alpha, thetas, coeffs, (X, Y), h, stable if margin else stable[:0], polish)
-    margins = np.where(count > 0, degree, found.margin)
-    margins[uncertain] = np.nan
-    return ColumnResult(
-        float(alpha),
-        thetas,
-        count,
-        degree,
-        uncertain,
-        roots,
-        np.zeros(len(t), dtype=bool),
-        margins,
-        found.bound,
-    )
+    return roots
 
 
 def _cut_low(bound: BoundModel, alpha: float, x: float) -> float | None:
@@ -299,7 +322,7 @@ def branch_points(bound: BoundModel, alpha: float) -> list[float]:
     xs = [f.q.real for f in cut.folds if f.q.real > 0 and abs(f.q.imag) < 1e-9]
     if np.isfinite(cut.x_start) and cut.x_start > 0 and abs(cut.im_low) < 1e-9:
         xs.append(cut.x_start)
-    out = []
+    out: list[Any] = []
     for x in sorted(xs):
         if not out or x - out[-1] > 1e-9:
             out.append(float(x))

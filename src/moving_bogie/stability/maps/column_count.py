@@ -26,7 +26,9 @@ count is not an integer is flagged ``uncertain``.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -84,7 +86,18 @@ def _bent(E: np.ndarray, max_bend: float) -> np.ndarray:
 
 
 def count_box(
-    coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend=0.5, fine_until=None, extra=None
+    coeffs: Callable[[np.ndarray], tuple[np.ndarray, Any]],
+    t: np.ndarray,
+    X: float,
+    Y: float,
+    top: float,
+    spacing: float,
+    coarse: float,
+    max_step: float,
+    min_spacing: float,
+    max_bend: float = 0.5,
+    fine_until: float | None = None,
+    extra: Sequence[float] | np.ndarray | None = None,
 ) -> BoxCount:
     """Sample the right half-boundary and count the roots in the rectangle for every t (module text).
 
@@ -96,26 +109,7 @@ def count_box(
     halved segment has its track kernel computed once for every row that needs it; the change of arg E is
     the sum of the steps over each row's leaves.
     """
-    outer = np.concatenate(
-        [
-            edge_samples(complex(0, -Y), complex(X, -Y), coarse),
-            edge_samples(complex(X, -Y), complex(X, top), coarse),
-        ]
-    )
-    split = X if fine_until is None else min(X, fine_until)
-    z0 = np.concatenate(
-        [
-            edge_samples(complex(X, top), complex(split, top), coarse) if split < X else np.zeros(0, complex),
-            edge_samples(complex(split, top), complex(0, top), spacing),
-            [complex(0, top)],
-        ]
-    )
-    if extra is not None and len(extra):
-        x = np.asarray(extra, dtype=float)
-        x = np.unique(np.concatenate([z0.real, x[(x > 0) & (x < X)]]))
-        x = x[np.concatenate([[True], np.diff(x) > 10 * min_spacing])]  # no two closer than the finest
-        z0 = x[::-1] + 1j * top
-    axis = np.append(edge_samples(complex(0, top), complex(0, -Y), coarse), complex(0, -Y))
+    outer, z0, axis = _half_boundary(X, Y, top, spacing, coarse, min_spacing, fine_until, extra)
     path = np.concatenate([outer, z0])
     T = t[:, None]
     c_path, _ = coeffs(path)
@@ -125,16 +119,8 @@ def count_box(
     base = len(outer)
     z_all = path.copy()
     c_all = c_path
-    with np.errstate(divide="ignore", invalid="ignore"):
-        log_mod = np.log(np.abs(E[:, base:]))
-        jumps = np.abs(np.diff(log_mod, axis=1))
-    flagged = (np.abs(steps[:, base:]) > max_step) | ~(jumps <= max_step)
-    flagged |= _bent(E[:, base:], max_bend)
-    rows, seg = np.nonzero(flagged)
-    seg = seg + base
-    lo, hi = seg, seg + 1
-    st = steps[rows, seg]
-    near = [[] for _ in t]
+    rows, lo, hi, st = _flagged_segments(E, steps, base, max_step, max_bend)
+    near: list[list[Any]] = [[] for _ in t]
     uncertain = np.zeros(len(t), dtype=bool)
     for _ in range(80):
         if rows.size == 0:
@@ -179,3 +165,55 @@ def count_box(
     Ea = horner_rows(c_axis, T).real
     n_axis = np.sum(np.sign(Ea[:, 1:]) * np.sign(Ea[:, :-1]) < 0, axis=1)
     return BoxCount(path, base, E, n_rect, n_axis, uncertain, near)
+
+
+def _flagged_segments(
+    E: np.ndarray, steps: np.ndarray, base: int, max_step: float, max_bend: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The segments of the path after its first ``base`` samples (the top edge) to halve, row by row: a
+    phase step of E or a jump of log|E| over ``max_step``, or a bend of log|E| over ``max_bend``. Returns
+    (rows, first sample, second sample, phase step) of each."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_mod = np.log(np.abs(E[:, base:]))
+        jumps = np.abs(np.diff(log_mod, axis=1))
+    flagged = (np.abs(steps[:, base:]) > max_step) | ~(jumps <= max_step)
+    flagged |= _bent(E[:, base:], max_bend)
+    rows, seg = np.nonzero(flagged)
+    seg = seg + base
+    return rows, seg, seg + 1, steps[rows, seg]
+
+
+def _half_boundary(
+    X: float,
+    Y: float,
+    top: float,
+    spacing: float,
+    coarse: float,
+    min_spacing: float,
+    fine_until: float | None,
+    extra: Sequence[float] | np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The samples of the right half-boundary of the rectangle (see :func:`count_box`): the bottom and right
+    edges (``outer``), the top edge from Re q = X to 0 (``z0``: ``spacing`` up to ``fine_until``, the
+    ``extra`` values of Re q added) and the imaginary axis down to -Y (``axis``)."""
+    outer = np.concatenate(
+        [
+            edge_samples(complex(0, -Y), complex(X, -Y), coarse),
+            edge_samples(complex(X, -Y), complex(X, top), coarse),
+        ]
+    )
+    split = X if fine_until is None else min(X, fine_until)
+    z0 = np.concatenate(
+        [
+            edge_samples(complex(X, top), complex(split, top), coarse) if split < X else np.zeros(0, complex),
+            edge_samples(complex(split, top), complex(0, top), spacing),
+            [complex(0, top)],
+        ]
+    )
+    if extra is not None and len(extra):
+        x = np.asarray(extra, dtype=float)
+        x = np.unique(np.concatenate([z0.real, x[(x > 0) & (x < X)]]))
+        x = x[np.concatenate([[True], np.diff(x) > 10 * min_spacing])]  # no two closer than the finest
+        z0 = x[::-1] + 1j * top
+    axis = np.append(edge_samples(complex(0, top), complex(0, -Y), coarse), complex(0, -Y))
+    return outer, z0, axis

@@ -21,10 +21,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from moving_bogie.stability.maps.column_roots import delves_lyness, polish_roots
+
+if TYPE_CHECKING:
+    from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 
 __all__ = ["ColumnMargin", "column_margin", "strip_top"]
 
@@ -58,7 +62,7 @@ def _mirrored(roots: np.ndarray, x: float) -> int:
 
 
 def column_margin(
-    sweep,
+    sweep: SweepCharacteristic,
     alpha: float,
     thetas: np.ndarray,
     coeffs: Callable,
@@ -107,7 +111,9 @@ def column_margin(
     return ColumnMargin(margin, bound, h)
 
 
-def _smallest(sweep, alpha: float, theta: float, roots: list, box: tuple, polish: int) -> tuple[float, bool]:
+def _smallest(
+    sweep: SweepCharacteristic, alpha: float, theta: float, roots: list, box: tuple, polish: int
+) -> tuple[float, bool]:
     """(margin, bound) of one cell from the Delves-Lyness roots of the rectangle ``box`` = (X, Y, top):
     ``top`` where it holds no root, the smallest Im q of the polished roots where they add up to the
     count and none lies below the real axis, else NaN."""

@@ -10,6 +10,8 @@ power sums of the roots inside, which are then the zeros of a polynomial (Newton
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from moving_bogie.stability.maps.column_count import horner_rows
@@ -17,7 +19,18 @@ from moving_bogie.stability.maps.column_count import horner_rows
 __all__ = ["delves_lyness", "dip_candidates", "from_power_sums", "locate_roots", "polish_roots"]
 
 
-def delves_lyness(coeffs, t, X, Y, top, *, panel=0.05, nodes=16, max_roots=8, with_empty=False) -> list:
+def delves_lyness(
+    coeffs,
+    t,
+    X,
+    Y,
+    top,
+    *,
+    panel: float = 0.05,
+    nodes: int = 16,
+    max_roots: int = 8,
+    with_empty: bool = False,
+) -> list:
     """Roots inside -X..X x -Y..top for each t (Delves-Lyness), or an empty list where that fails.
 
     ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z. With ``with_empty`` a
@@ -40,7 +53,7 @@ def delves_lyness(coeffs, t, X, Y, top, *, panel=0.05, nodes=16, max_roots=8, wi
     c, dc = coeffs(z)
     E, dE = horner_rows(c, t[:, None]), horner_rows(dc, t[:, None])
     g = dE / E
-    out = []
+    out: list[Any] = []
     for j in range(len(t)):
 
         def s(m, j=j):
@@ -69,12 +82,13 @@ def from_power_sums(s):
     return np.roots(coeffs) if n > 0 else np.zeros(0, dtype=complex)
 
 
-def dip_candidates(box, j, limit=10):
+def dip_candidates(box, j, limit: int = 10):
     """Starting points below the places of the top edge where a root near the real axis shows."""
     zr = box.path[box.n_outer :]
     mag = np.abs(box.E[j, box.n_outer :])
     inner = np.nonzero((mag[1:-1] < mag[:-2]) & (mag[1:-1] < mag[2:]))[0] + 1
-    chosen, out = [], []
+    chosen: list[Any] = []
+    out: list[Any] = []
     for z_ in list(zr[inner[np.argsort(mag[inner])][:limit]]) + box.near_axis[j][::-1]:
         if len(chosen) >= limit:
             break
@@ -84,7 +98,7 @@ def dip_candidates(box, j, limit=10):
     return out
 
 
-def locate_roots(sweep, alpha, thetas, cands, count, steps, spread=True):
+def locate_roots(sweep, alpha, thetas, cands, count, steps, spread: bool = True):
     """Polish the candidates of every cell at once; with ``spread``, cells still short of roots then
     borrow the roots of the nearest complete cell (continuation in theta), front by front."""
     roots = [np.zeros(0, dtype=complex) for _ in thetas]
@@ -96,7 +110,7 @@ def locate_roots(sweep, alpha, thetas, cands, count, steps, spread=True):
             flat = polish_roots(sweep, flat, alpha, thetas[owner], steps)
         for j in set(owner.tolist()):
             r = list(roots[j]) + [x for x in flat[owner == j] if np.isfinite(x) and x.imag < 0]
-            keep = []
+            keep: list[Any] = []
             for x in r:
                 x = -np.conj(x) if x.real < 0 else x
                 if all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):
@@ -114,7 +128,7 @@ def locate_roots(sweep, alpha, thetas, cands, count, steps, spread=True):
     return roots
 
 
-def polish_roots(sweep, q, alpha, thetas, steps, tol=1e-11):
+def polish_roots(sweep, q, alpha, thetas, steps, tol: float = 1e-11):
     """Newton on E_chr for every (q, theta) pair; non-converged entries come back as nan."""
     q = q.astype(complex)
     done = np.zeros(q.shape, dtype=bool)

@@ -156,7 +156,7 @@ def map_columns(
         options["top"] = top_edge(bound, floats)
     theta_floats = np.array([float(t) for t in thetas])
     sweep = SweepCharacteristic(bound, parameter, held=held)
-    out = []
+    out: list[Any] = []
     for a, a_float in zip(alphas, floats):
         guesses = out[-1].roots if out else None
         col = stability_column(sweep, a_float, theta_floats, guesses=guesses, **options)

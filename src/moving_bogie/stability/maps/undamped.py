@@ -37,6 +37,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 
@@ -170,7 +171,7 @@ class UndampedCounter:
         self.q_step = float(q_step)
         self.sweep = SweepCharacteristic(self.bound, parameter, below=True)
         self.probe = SweepCharacteristic(self.bound.replace(eta_f=DAMPING_PROBE), parameter)
-        self._cuts = {}
+        self._cuts: dict[Any, Any] = {}
 
     def gap_end(self, alpha: float) -> float:
         """q_c: the branch point, where the cut (on the real axis) begins; 0 when there is no gap."""

@@ -28,7 +28,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -183,7 +183,7 @@ def critical_stiffness(
         edges = sorted({0.0, kappa_max, *(c.theta for c in dd.crossings)})
         pairs = [(lo, hi) for lo, hi in zip(edges[:-1], edges[1:]) if hi - lo > 1e-9 * kappa_max]
         mids = stability_column(sweep, a, np.array([0.5 * (lo + hi) for lo, hi in pairs]))
-        ivs = []
+        ivs: list[Any] = []
         for (lo, hi), n in zip(pairs, mids.count):
             if ivs and ivs[-1][2] == n:  # a touching pair of crossings: merge
                 ivs[-1] = (ivs[-1][0], float(hi), int(n))

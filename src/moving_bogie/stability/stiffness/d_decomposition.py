@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -109,7 +110,7 @@ def d_decomposition(
     K, _, _ = sweep.kernel(qs, alpha)
     roots = poly_roots(sweep.coefficients(qs, K, scale=theta_max)) * theta_max
     curves = _follow(roots)
-    crossings = []
+    crossings: list[Any] = []
     im = curves.imag
     for k in range(curves.shape[1]):
         flips = np.nonzero(
@@ -147,7 +148,7 @@ def _follow(roots):
     return out
 
 
-def _refine(sweep, alpha, q, theta, tol, max_iter=30):
+def _refine(sweep, alpha, q, theta, tol, max_iter: int = 30):
     """Newton on E(q, theta) = 0 with q, theta real (2x2 real system); returns (q, theta, change) or None."""
     for _ in range(max_iter):
         E, E_q, _, E_t = sweep.derivatives(np.array([q], dtype=complex), np.array([alpha]), np.array([theta]))

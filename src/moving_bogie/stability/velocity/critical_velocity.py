@@ -25,6 +25,7 @@ Every local minimum is bracketed on a grid of p in double precision, polished wi
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from types import ModuleType
 
 import mpmath
 import numpy as np
@@ -258,6 +259,45 @@ def _confirmed_digits(lo, hi, dps):
         return dps if err == 0 else max(0, min(dps, int(-mpmath.log10(2 * err))))
 
 
+def _phase_speed_minima(
+    module: ModuleType, values: dict, ps: np.ndarray, speeds: np.ndarray, dps: int, name: str
+) -> tuple[list[PhaseSpeedMinimum], list[int]]:
+    """The local minima of the phase speed c_j(p) of every branch j, bracketed on the grid ``ps`` and
+    polished at ``dps`` (digits confirmed at ``dps + 15``), and the branches (from 1) without one.
+
+    Raises
+    ------
+    MovingBogieError
+        Where a branch's phase speed falls to 0 (the track ``name`` is unstable at rest), or where Newton
+        does not converge on a minimum.
+    """
+    found, without = [], []
+    for j in range(speeds.shape[1]):
+        c = speeds[:, j]
+        inner = np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:]) & np.isfinite(c[1:-1])) + 1
+        if inner.size == 0:
+            without.append(j + 1)
+        for k in inner:
+            where = f"branch {j + 1} near p = {ps[k]:.4g} (phase speed {c[k]:.3g} on the grid)"
+            if not c[k] > 1e-9 * np.nanmax(np.abs(c)):  # a static wave: nothing to polish
+                raise MovingBogieError(
+                    f"critical velocity of {name}: the phase speed of {where} falls to 0: the track is "
+                    "unstable at rest (for example a rail buckled by its axial force)"
+                )
+            try:
+                lo = _polish(module, values, ps[k], c[k], dps)
+                hi = _polish(module, values, ps[k], c[k], dps + 15)
+            except ValueError as error:  # mpmath.findroot: no convergence from the grid minimum
+                raise MovingBogieError(
+                    f"critical velocity of {name}: Newton did not converge on the phase-speed minimum of "
+                    f"{where}; a phase speed that falls to 0 means the track is unstable at rest (for "
+                    f"example a rail buckled by its axial force) ({str(error).splitlines()[0]})"
+                ) from None
+            digits = _confirmed_digits(lo, hi, dps)
+            found.append(PhaseSpeedMinimum(j + 1, lo[1], lo[0], float(c[k]), float(ps[k]), digits))
+    return found, without
+
+
 def critical_velocity(
     source=None,
     *,
@@ -302,32 +342,7 @@ def critical_velocity(
     ps = np.linspace(p_max / samples, p_max, samples)
     speeds = dispersion_branches(model, ps, **values) / ps[:, None]
     branches = speeds.shape[1]
-    found, without = [], []
-    for j in range(branches):
-        c = speeds[:, j]
-        inner = np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:]) & np.isfinite(c[1:-1])) + 1
-        if inner.size == 0:
-            without.append(j + 1)
-        for k in inner:
-            if not c[k] > 1e-9 * np.nanmax(np.abs(c)):  # a static wave: nothing to polish
-                raise MovingBogieError(
-                    f"critical velocity of {model.beam}/{model.track}: the phase speed of branch {j + 1} "
-                    f"falls to {c[k]:.3g} near p = {ps[k]:.4g}: the track is unstable at rest (for example "
-                    "a rail buckled by its axial force)"
-                )
-            try:
-                lo = _polish(module, values, ps[k], c[k], dps)
-                hi = _polish(module, values, ps[k], c[k], dps + 15)
-            except ValueError as error:  # mpmath.findroot: no convergence from the grid minimum
-                where = f"branch {j + 1} near p = {ps[k]:.4g} (phase speed {c[k]:.3g} on the grid)"
-                raise MovingBogieError(
-                    f"critical velocity of {model.beam}/{model.track}: Newton did not converge on the "
-                    f"phase-speed minimum of {where}; a phase speed that falls to 0 means the track is "
-                    "unstable at rest (for example a rail buckled by its axial force) "
-                    f"({str(error).splitlines()[0]})"
-                ) from None
-            digits = _confirmed_digits(lo, hi, dps)
-            found.append(PhaseSpeedMinimum(j + 1, lo[1], lo[0], float(c[k]), float(ps[k]), digits))
+    found, without = _phase_speed_minima(module, values, ps, speeds, dps, f"{model.beam}/{model.track}")
     if not found:
         raise MovingBogieError(
             f"no local minimum of the phase speed on 0 < p <= {p_max} for {model.beam}/{model.track}: "

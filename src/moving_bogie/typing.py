@@ -1,0 +1,28 @@
+"""Names of the number types the runtime computes with, for annotations.
+
+mpmath, gmpy2 and python-flint ship no type information, so their numbers are ``Any`` to a type checker;
+the names below say in a signature which one is meant. The numpy names are numpy's own arrays.
+"""
+
+from __future__ import annotations
+
+from typing import Any, TypeAlias
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["ComplexArray", "FloatArray", "Matrix", "Mpc", "Mpf", "Scalar"]
+
+#: An mpmath real (``mpmath.mpf``).
+Mpf: TypeAlias = Any
+#: An mpmath complex number (``mpmath.mpc``).
+Mpc: TypeAlias = Any
+#: A number of any backend the kernels evaluate: float, complex, numpy scalars or arrays (batched),
+#: mpmath, gmpy2, Arb's balls.
+Scalar: TypeAlias = Any
+#: A matrix as a list of rows of such numbers (mpmath, gmpy2, Arb; the integer 0 a structural zero).
+Matrix: TypeAlias = list[list[Any]]
+#: A numpy array of real doubles.
+FloatArray: TypeAlias = npt.NDArray[np.float64]
+#: A numpy array of complex doubles.
+ComplexArray: TypeAlias = npt.NDArray[np.complex128]
