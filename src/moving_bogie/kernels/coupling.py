@@ -28,11 +28,11 @@ its own way (numpy: one matrix product [1, q, q^2] @ [K, i C, -M] over the batch
 excites the harmonics Omega_m = Omega + m Omega_0, and the rail's receptance couples them: the contact
 deflection at harmonic m is w_m = sum_m' H_mm'(Omega) F_m', with one entry per (contact, harmonic) pair
 (n contacts at their phases: an n x n block per pair of harmonics). The vehicle answers each harmonic at its
-own frequency, F_m = -D(Omega_m) x_m over its contact rows (D_vehicle = -D in the sleeper issue's notation:
-m Omega^2 for a mass). The coupled system is then the block system above with
+own frequency, F_m = -D(Omega_m) x_m over its contact rows (D_vehicle = -D: m Omega^2 for a mass). The
+coupled system is then the block system above with
 
-- D = :func:`harmonic_blocks` of [D(Omega_-h), ..., D(Omega_h)], block diagonal over the harmonics with every
-  contact DOF (contact, harmonic) first, then the internal DOFs of every harmonic;
+- D = :func:`harmonic_blocks` of ``[D(Omega_{-h}), ..., D(Omega_{h})]``, block diagonal over the harmonics
+  with every contact DOF (contact, harmonic) first, then the internal DOFs of every harmonic;
 - G = (pi / 2) H, the receptance between (contact, harmonic) pairs in the rows and columns of D's contacts;
 
 so that det A = det D_ii det(pi I + 2 G S) = pi^P det D_ii det(I + H S) (P the number of (contact, harmonic)
