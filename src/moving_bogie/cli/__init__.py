@@ -35,7 +35,7 @@ SUBCOMMAND_MODULES: list[str] = [
 ]
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser() -> Parser:
     """The ``moving-bogie`` parser with every subcommand of :data:`SUBCOMMAND_MODULES` registered."""
     parser = Parser(
         prog=PROG,

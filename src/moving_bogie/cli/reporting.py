@@ -20,7 +20,7 @@ import os
 import re
 import sys
 import tomllib
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from moving_bogie.errors import MovingBogieError, ParameterError, did_you_mean
@@ -54,6 +54,9 @@ class Parser(argparse.ArgumentParser):
     """ArgumentParser whose errors raise :class:`UsageError` (reported by :func:`main` in one line); a value
     outside an option's choices gets the closest choices suggested."""
 
+    #: The subcommand parsers by name (set by :func:`~moving_bogie.cli.build_parser`).
+    commands: Mapping[str, argparse.ArgumentParser]
+
     def error(self, message: str):  # noqa: D102 (argparse API)
         match = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)$", message)
         if match:
@@ -62,7 +65,9 @@ class Parser(argparse.ArgumentParser):
         raise UsageError(message, _blamed_option(message), self.prog)
 
 
-def suggest_option(exc: UsageError, argv: Sequence[str], commands: dict) -> UsageError:
+def suggest_option(
+    exc: UsageError, argv: Sequence[str], commands: Mapping[str, argparse.ArgumentParser]
+) -> UsageError:
     """``exc`` with the closest options of the command named in ``argv`` suggested for an unrecognized one."""
     message = str(exc)
     if not message.startswith("unrecognized arguments") or not argv or argv[0] not in commands:

@@ -12,6 +12,8 @@ derivative are those of :mod:`moving_bogie.kernels.coupling`, in gmpy2 numbers.
 
 from __future__ import annotations
 
+from typing import Any
+
 import gmpy2
 import mpmath
 
@@ -25,6 +27,7 @@ from moving_bogie.kernels.coupling import (
     kernel_matrix,
 )
 from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
+from moving_bogie.typing import Matrix
 
 
 def binary_matrices(*matrices) -> Dynamic:
@@ -89,13 +92,14 @@ def condensed_characteristic(q, matrices, K, index, dK=None):
         with gmpy2.context(gmpy2.get_context(), precision=bits):  # D rounded as mpmath rounds it
             D, dD = dynamic_stiffness(to_binary(q), matrices, _arithmetic(), dK is not None)
         with gmpy2.context(gmpy2.get_context(), precision=bits + guard):
-            factors = (None, None, 1)
+            factors: tuple[Matrix | None, list[int] | None, Any] = (None, None, 1)
             loss = 0
             if m:
-                factors = lu_factor([row[n:] for row in D[n:]])
-                if factors[2] == 0:
+                lu, perm, det = lu_factor([row[n:] for row in D[n:]])
+                if det == 0:
                     return None
-                pivots = [abs(factors[0][k][k]) for k in range(m)]
+                factors = (lu, perm, det)
+                pivots = [abs(lu[k][k]) for k in range(m)]
                 loss = max(0, int(gmpy2.log2(max(pivots) / min(pivots))))
             if loss + 17 <= guard:
                 ops = _arithmetic()

@@ -207,7 +207,9 @@ def split_at_turns(tracer, ps, qs):
         folds.append(Fold(float(pt), qt, bool(abs(d) < 1e-6 * scale), opens))
         cuts.append((end, pt, qt, nxt))
     arms = []
-    start_p, start_q, first = [], [], 0
+    start_p: list[float] = []
+    start_q: list[complex] = []
+    first = 0
     for end, pt, qt, nxt in cuts:
         arms.append(
             (

@@ -57,12 +57,12 @@ def quartic_roots(c) -> np.ndarray:
     disc = np.sqrt(Q3 * Q3 / 4 + P3**3 / 27)
     s1, s2 = -Q3 / 2 + disc, -Q3 / 2 - disc
     u1 = np.where(np.abs(s1) >= np.abs(s2), s1, s2) ** (1 / 3)
-    ms = []
+    cubic_roots = []
     for k in range(3):
         uk = u1 * np.exp(2j * np.pi * k / 3)
         with np.errstate(all="ignore"):
-            ms.append(np.where(uk != 0, uk - P3 / (3 * np.where(uk != 0, uk, 1)), 0) - p / 3)
-    ms = np.stack(ms, -1)
+            cubic_roots.append(np.where(uk != 0, uk - P3 / (3 * np.where(uk != 0, uk, 1)), 0) - p / 3)
+    ms = np.stack(cubic_roots, -1)
     m = np.take_along_axis(ms, np.argmax(np.abs(ms), -1)[..., None], -1)[..., 0]
     sm = np.sqrt(2 * m)
     with np.errstate(all="ignore"):

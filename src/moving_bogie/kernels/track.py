@@ -29,6 +29,7 @@ from moving_bogie.kernels.coefficient_matrix import Coefficients
 from moving_bogie.kernels.foundation import Foundation
 from moving_bogie.kernels.polynomial import derivative_coefficients, horner
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval
+from moving_bogie.typing import Mpc
 
 
 def foundation_arguments(bound: BoundModel, numbers: Any) -> dict[str, Any]:
@@ -115,7 +116,7 @@ class TrackKernel:
             )
         two_pi_i = 2j * mpmath.pi
         # what does not depend on xi, once per root: the offsets share it
-        at = {}
+        at: dict[Mpc, tuple[Mpc, ...]] = {}
         for p in upper + lower:
             N1 = horner(n1, p)
             Qv = horner(qc, p)

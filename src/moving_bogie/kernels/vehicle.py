@@ -28,6 +28,8 @@ of the cost of eliminating the whole block system.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import mpmath
 import numpy as np
 
@@ -41,18 +43,20 @@ from moving_bogie.kernels.coupling import (
     kernel_matrix,
 )
 from moving_bogie.kernels.elimination import lu_factor, lu_solve
+from moving_bogie.typing import Scalar
 
 #: The arithmetic of the one-q backend (:mod:`moving_bogie.kernels.coupling`): mpmath numbers at the
 #: working precision (``mpmath.pi`` is evaluated at the precision in force).
 _MPMATH = Rows(mpmath.pi, mpmath.mpc(0, 1))
 
 
-def distinct_offsets(positions) -> tuple[list, list]:
+def distinct_offsets(positions: Sequence[Scalar]) -> tuple[list[Scalar], list[list[int]]]:
     """The distinct xi_i - xi_j (0 first) and, for each (i, j), the index of its offset."""
-    offsets, keys, index = [], {}, []
+    offsets: list[Scalar] = []
+    keys: dict[float, int] = {}
     ordered = [(i, j) for i in range(len(positions)) for j in range(len(positions))]
     ordered.sort(key=lambda ij: ij[0] != ij[1])  # the diagonal (offset 0) first
-    table = {}
+    table: dict[tuple[int, int], int] = {}
     for i, j in ordered:
         x = positions[i] - positions[j]
         key = round(float(mpmath.re(x)), 12) + 0.0

@@ -9,6 +9,7 @@ import csv
 import functools
 import operator
 from importlib import resources
+from typing import SupportsIndex
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.params import DimensionlessParams
@@ -37,10 +38,10 @@ TABLE1_CASES: tuple[int, ...] = tuple(_table1())
 
 def _check_case(n: object) -> int:
     try:
-        case = operator.index(n) if not isinstance(n, bool) else None
+        case = operator.index(n) if isinstance(n, SupportsIndex) and not isinstance(n, bool) else None
     except TypeError:
         case = None
-    if case not in _table1():
+    if case is None or case not in _table1():
         valid = ", ".join(str(c) for c in TABLE1_CASES)
         raise ParameterError("case", f"unknown case {n!r}; valid cases of Table 1: {valid}")
     return case

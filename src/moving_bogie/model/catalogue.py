@@ -318,15 +318,18 @@ def get_model(
     catalogue = catalogue or default_catalogue()
     chosen = {"beam": beam, "track": track, "vehicle": vehicle}
     valid = {"beam": catalogue.beams, "track": catalogue.tracks, "vehicle": catalogue.vehicles}
+    names: dict[str, str] = {}
     for key, value in chosen.items():
         if value is None:
-            chosen[key] = DEFAULT_MODEL[key]
+            names[key] = DEFAULT_MODEL[key]
         elif value not in valid[key]:
             hint = did_you_mean(value, valid[key])
             message = f"{key} must be one of {', '.join(valid[key])} (got {value!r})"
             raise ParameterError(key, message + (f"; {hint}" if hint else ""))
-    if (chosen["beam"], chosen["track"]) not in catalogue.index.MODULES:
+        else:
+            names[key] = value
+    if (names["beam"], names["track"]) not in catalogue.index.MODULES:
         raise ParameterError(
-            "track", f"no generated kernel for beam {chosen['beam']!r} on track {chosen['track']!r}"
+            "track", f"no generated kernel for beam {names['beam']!r} on track {names['track']!r}"
         )
-    return Model(catalogue=catalogue, **chosen)
+    return Model(catalogue=catalogue, beam=names["beam"], track=names["track"], vehicle=names["vehicle"])

@@ -189,10 +189,10 @@ class DimensionlessParams(ModelValues):
                     raise ParameterError(name, f"{name} is not a parameter of the model {model.name}")
         for name in model.parameters:
             if values.get(name) is None and model.catalogue.specs[name].default is None:
-                alt = next((a for a, m in model.alternatives.items() if m["sets"] == name), None)
-                hint = f" (or {alt!r})" if alt else ""
+                alt_name = next((a for a, m in model.alternatives.items() if m["sets"] == name), None)
+                hint = f" (or {alt_name!r})" if alt_name else ""
                 meaning = model.catalogue.specs[name].meaning
-                raise ParameterError(alt or name, f"missing parameter {name!r}{hint} ({meaning})")
+                raise ParameterError(alt_name or name, f"missing parameter {name!r}{hint} ({meaning})")
         return cls(model=model, **values)
 
     @classmethod

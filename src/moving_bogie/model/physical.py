@@ -252,7 +252,7 @@ class PhysicalParams(ModelValues):
         from moving_bogie.model.params import DimensionlessParams, check_value
 
         meta = self._model.catalogue.parameters
-        exact = {}
+        exact: dict[str, Any] = {}  # Fractions, passed as DimensionlessParams' **values
         with mpmath.workdps(digits + 10):
             mp_values = _generic(self._model, {k: fraction_to_mpf(v) for k, v in self._values.items()})
             for name, spec in self._model.specs.items():
@@ -354,13 +354,13 @@ class PhysicalParams(ModelValues):
             if scales.get(name) is None:
                 raise ParameterError(name, f"missing SI parameter {name!r} ({meta['unit']})")
             track[name] = positive(name, scales[name])
-        meta = model.catalogue.parameters
+        formulas = model.catalogue.parameters
         exact = {}
         with mpmath.workdps(digits + 10):
             mp_values = _generic(model, {k: fraction_to_mpf(v) for k, v in track.items()})
             mp_values |= {k: fraction_to_mpf(v) for k, v in params.values().items()}
             for name, spec in model.specs.items():
-                exact[spec.si] = _rounded(_call(getattr(meta, f"physical_{name}"), mp_values), digits)
+                exact[spec.si] = _rounded(_call(getattr(formulas, f"physical_{name}"), mp_values), digits)
         return cls(model=model, **track, **exact)
 
     def with_dimensionless(self, params: DimensionlessParams, *, digits: int = 20) -> PhysicalParams:

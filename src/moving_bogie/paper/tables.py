@@ -38,7 +38,9 @@ def build_table1(ctx: BuildContext) -> Built:
     table = f'<table class="data">\n<tr><th>Parameter</th>{head}</tr>\n{body}\n</table>'
     md_head = "| Parameter | " + " | ".join(m for _, _, m in TABLE1_COLUMNS) + " |"
     md_rule = "|" + "---|" * (len(TABLE1_COLUMNS) + 1)
-    md_rows = [f"| Case {n} | " + " | ".join(d[key] for key, _, _ in TABLE1_COLUMNS) + " |" for n, d in rows]
+    md_rows = [
+        f"| Case {n} | " + " | ".join(f"{d[key]}" for key, _, _ in TABLE1_COLUMNS) + " |" for n, d in rows
+    ]
     ctx.progress(1.0)
     return Built(
         html=table,

@@ -162,7 +162,7 @@ class BranchCut:
         q = self.q(p0)
         c = stack_coefficients(self.foundation.n_coeffs(q, **self.fargs), q.shape)
         # deflate by (p - p0): p0 is an exact root; the cubic's roots stay well separated near p_c
-        b = np.empty(c.shape[:-1] + (c.shape[-1] - 1,), dtype=complex)
+        b: np.ndarray = np.empty(c.shape[:-1] + (c.shape[-1] - 1,), dtype=complex)
         b[..., 0] = c[..., 0]
         for k in range(1, b.shape[-1]):
             b[..., k] = c[..., k] + p0 * b[..., k - 1]
@@ -301,7 +301,6 @@ class BranchCut:
 
     def choose_S(self, channel, tau_lo: float, tol: float, s_min: float | None = None) -> float:
         """Truncation point S >= s_min of the ray for the band of times from tau_lo (module docstring)."""
-        last = None
         floor = self.q_c if s_min is None else max(self.q_c, s_min - 0.5)
         for step in _S_STEPS:
             S = floor + step
@@ -314,10 +313,9 @@ class BranchCut:
             else:
                 _, _, g2 = self._tail_terms(channel, S)
                 est = np.abs(g2).max() / tau_lo**3
-            last = S
             if est <= tol:
                 return S
-        return last
+        return floor + _S_STEPS[-1]
 
     def integrate(
         self,

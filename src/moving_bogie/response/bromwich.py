@@ -46,7 +46,7 @@ def _transform(bound: BoundModel) -> tuple[tuple[str, ...], Callable[[float, flo
     system = bound.float_system
     kernel = TrackKernelArray(bound)
     offsets = [float(x) for x in system.offsets]
-    cache: dict[float, np.ndarray] = {}
+    cache: dict[tuple[float, float], np.ndarray] = {}
 
     def values(s: float, a: float) -> np.ndarray:
         key = (s, a)

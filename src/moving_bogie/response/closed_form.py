@@ -87,7 +87,7 @@ class TimeSeries:
     steady: dict
     response_units: dict
     branch_cut: bool
-    frequencies: object
+    frequencies: FrequencyResult
     model: str | None = None
     branch_cut_until: float = 0.0
     units: dict = field(default_factory=lambda: dict(DIMENSIONLESS_UNITS))

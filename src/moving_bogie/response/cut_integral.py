@@ -303,7 +303,7 @@ class CurveBranchCut:
 
     def l1_bound(self, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
         """(1/pi) sum of integrals of |J| dp: |I_bc(tau)| <= this * e^{-eta_f tau} for every tau."""
-        total = 0.0
+        total = np.zeros(len(self.names))
         for piece, S in zip(self.pieces, self.choose_S(self._jump, 0.0, tol, s_min)):
             nodes, weights = self._rule(piece, S, 0.0, self.span, self._jump)
             total = total + (np.abs(self._jump(piece, nodes)[1]) * weights[:, None]).sum(axis=0) / np.pi

@@ -127,9 +127,9 @@ class ResidueExpansion:
             steady = np.array([abs(self.steady[name]) for name in names])
             bad = np.abs(total.imag) > imag_tol * (scale + steady + 1e-300)
             if np.any(bad):
-                i, k = np.unravel_index(np.argmax(np.abs(total.imag) / (scale + 1e-300)), total.shape)
+                i, j = np.unravel_index(np.argmax(np.abs(total.imag) / (scale + 1e-300)), total.shape)
                 raise MovingBogieError(
-                    f"{names[k]}: imaginary part {total.imag[i, k]:.3g} of the residue sum does not cancel "
+                    f"{names[j]}: imaginary part {total.imag[i, j]:.3g} of the residue sum does not cancel "
                     f"at tau = {chunk[i]:g}"
                 )
             for k, name in enumerate(names):

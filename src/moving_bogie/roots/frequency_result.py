@@ -123,7 +123,9 @@ class FrequencyResult:
     @property
     def strip_unstable(self) -> int:
         """Roots with Im q < 0 counted in the sliver below the cut (not located; 0 if none or not counted)."""
-        return self.strip.count if self.strip is not None and self.strip.decided else 0
+        if self.strip is None or self.strip.count is None:
+            return 0
+        return self.strip.count
 
     @property
     def verdict(self) -> Verdict:

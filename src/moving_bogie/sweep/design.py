@@ -26,6 +26,7 @@ from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import polynomial_degree
 from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.model.physical import PhysicalParams
 
 __all__ = [
     "Axis",
@@ -200,7 +201,7 @@ class SweepSpec:
     check: int = 1
     block_points: int = 2048
     extra: dict = field(default_factory=dict)
-    physical: object = None
+    physical: PhysicalParams | None = None
 
     def __post_init__(self):
         if self.model != self.params.vehicle:
@@ -320,13 +321,13 @@ class SweepSpec:
             "max_roots": self.max_roots,
             "check": self.check,
             "chunks": list(self.chunks),
-        } | (self._describe_si() if self.si else {})
+        } | (self._describe_si(self.physical) if self.physical is not None else {})
 
-    def _describe_si(self) -> dict:
+    def _describe_si(self, physical: PhysicalParams) -> dict:
         varied = self.extra.get("si_ranges") or {
             a.si: [fraction_to_text(v) for v in a.si_values] for a in self.axes
         }
-        return {"units": "si", "physical": self.physical.to_dict(), "varied_si": varied}
+        return {"units": "si", "physical": physical.to_dict(), "varied_si": varied}
 
     def operating_point(self) -> dict:
         """The base point's value of every varied parameter, by the store's names: the SI value of a

@@ -205,7 +205,8 @@ def _run_distributed(spec, path, todo, counts, client, cluster, progress, on_blo
                 b = futures.pop(future)
                 yield b, future.result()
 
-        _store_blocks(path, spec, finished(), *counts, progress, on_block)
+        done, total = counts
+        _store_blocks(path, spec, finished(), done, total, progress, on_block)
     finally:
         with _sigint_ignored():  # a second Ctrl-C must not interrupt the shutdown
             if futures:

@@ -20,6 +20,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.maps.map import map_columns
 
 __all__ = ["BlockTask", "VARIABLES", "evaluate_block"]
@@ -65,7 +66,7 @@ class BlockTask:
     """
 
     index: int
-    params: object
+    params: DimensionlessParams
     names: tuple
     values: tuple
     design: str
@@ -80,7 +81,7 @@ class BlockTask:
 def evaluate_block(task: BlockTask) -> dict:
     """Arrays of the block (shape of the block; ``roots_re``/``roots_im`` with a trailing root axis)."""
     if task.design == "sobol":
-        shape = (len(task.values[0]),)
+        shape: tuple[int, ...] = (len(task.values[0]),)
         groups = [(_point(task, (i,)), None, None, [[(i,)]]) for i in range(shape[0])]
     else:
         shape = tuple(len(v) for v in task.values)

@@ -62,7 +62,7 @@ def _arrays(spec: SweepSpec) -> dict | None:
         return None
     alpha_cr = np.empty(spec.shape)
     for combo in combos:
-        index = [slice(None)] * len(spec.axes)
+        index: list[slice | int] = [slice(None)] * len(spec.axes)
         for k, i in zip(tracks, combo):
             index[k] = i
         alpha_cr[tuple(index)] = _alpha_cr(

@@ -157,7 +157,7 @@ def create_store(path, spec: SweepSpec) -> None:
         long_name, units = SI_MARGIN if name == "margin" and spec.si else VARIABLE_NAMES[name]
         arr.attrs.update(long_name=long_name, units=units)
         if name == "degree_of_instability":
-            if spec.si:  # the growth rate in SI: -Im omega = -Im q / t_scale [1/s]
+            if spec.physical is not None:  # the growth rate in SI: -Im omega = -Im q / t_scale [1/s]
                 arr.attrs["t_scale_s"] = spec.physical.scales().t_scale
                 arr.attrs["si"] = "growth rate [1/s] = -degree_of_instability / t_scale_s"
         if extra_coordinates:  # the groups of an SI sweep, read back by xarray as coordinates
@@ -179,7 +179,7 @@ def create_store(path, spec: SweepSpec) -> None:
         units="si" if spec.si else "dimensionless",
         operating_point=json.dumps(spec.operating_point()),
     )
-    if spec.si:
+    if spec.physical is not None:
         g.attrs["physical"] = json.dumps(spec.physical.to_dict())
     _write_speed(g, spec)
     consolidate(tmp)
@@ -224,7 +224,7 @@ def _write_speed(g, spec: SweepSpec) -> None:
         arr.attrs["description"] = texts[name]
         long_name, units = VARIABLE_NAMES[name]
         arr.attrs.update(long_name=long_name, units=units)
-    if spec.si:
+    if spec.physical is not None:
         v_ref = spec.physical.scales().v_ref
         v_cr = sorted({float(a) * v_ref for a in np.unique(arrays["alpha_cr"])})
         g.attrs["v_cr"] = json.dumps({"values": v_cr, "unit": "m/s"})
@@ -259,7 +259,7 @@ def write_block(path, spec: SweepSpec, slices: tuple, arrays: dict) -> None:
     """Write one block's arrays into its chunk of every variable (``computed`` last); the margin in 1/s in
     a sweep in SI units."""
     g = _group(path, "r+")
-    t_scale = spec.physical.scales().t_scale if spec.si else 1.0
+    t_scale = spec.physical.scales().t_scale if spec.physical is not None else 1.0
     for name, *_ in _variables(spec):
         g[name][slices] = arrays[name] / t_scale if name == "margin" else arrays[name]
 

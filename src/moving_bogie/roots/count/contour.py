@@ -200,7 +200,7 @@ def winding_number(
         if np.any(np.abs(zb - za)[bad] < _resolution(za[bad], min_segment * size)) or points > max_points:
             raise EdgeZeroError(f"a zero lies on or next to the contour of {rect}")
         za, zb, wa, wb = za[bad], zb[bad], wa[bad], wb[bad]
-        if ta is not None:
+        if ta is not None and tb is not None and points_at is not None:
             ta, tb = ta[bad], tb[bad]
             tt = ta[:, None] + frac[None, :] * (tb - ta)[:, None]
             zi = points_at(tt.ravel()).reshape(tt.shape)

@@ -38,7 +38,7 @@ def fold_event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi) -> N
         if narrow != (a, b):
             if narrow[0] > a:
                 column(cut, a, narrow[0], regions, unsearched, eps, band_lo, band_hi)
-            _fold_column(cut, *narrow, fold, regions, unsearched, eps, band_lo, band_hi)
+            _fold_column(cut, narrow[0], narrow[1], fold, regions, unsearched, eps, band_lo, band_hi)
             if narrow[1] < b:
                 column(cut, narrow[1], b, regions, unsearched, eps, band_lo, band_hi)
             return
