@@ -11,6 +11,7 @@ mirror pairs or lie on Re q = 0, and no two folds of the same kind coincide), an
 benchmarks/bench_search_random.py (no contour code) for the roots with Im q < 0.
 """
 
+import functools
 import importlib.util
 from pathlib import Path
 
@@ -59,9 +60,15 @@ def test_folds_are_distinct_and_mirror_symmetric(params):
         assert abs(f.q.real) <= 1e-9 or min(abs(g.q - mirror) for g in folds) <= 1e-7, f
 
 
+@functools.cache
+def _search(params: DimensionlessParams):
+    """The search from scratch, once per parameter set for the tests of this module that share it."""
+    return induced_frequencies(params)
+
+
 @pytest.mark.parametrize("params", [ON_THE_AXIS, THREE_LAYERS], ids=["two-layer", "three-layer"])
 def test_the_search_ends_with_a_decided_verdict(params):
-    res = induced_frequencies(params)
+    res = _search(params)
     assert res.verdict.determined
     assert res.evaluations < 1_000_000
 
@@ -71,7 +78,7 @@ def test_three_layers_at_rest_agree_with_the_scan():
     spec = importlib.util.spec_from_file_location("bench_search_random", BENCH)
     bench = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(bench)
-    res = induced_frequencies(THREE_LAYERS)
+    res = _search(THREE_LAYERS)
     assert res.count_ok and max(u.height for u in res.unsearched) <= 1e-8
     reference = bench.scan_roots(THREE_LAYERS, res.window, n=(401, 401))
     ok, worst = bench.compare(res, reference)

@@ -22,17 +22,26 @@ def _params(beam):
     return p
 
 
+def _horner(coeffs, p):
+    """The polynomial with ``coeffs`` (highest power first) at the scalar ``p``: QUADPACK calls the
+    integrand one point at a time, where Python's complex arithmetic is much cheaper than numpy's."""
+    acc = 0j
+    for c in coeffs:
+        acc = acc * p + c
+    return acc
+
+
 def _integrand_parts(mod, args, q, derivative):
-    n = np.array(mod.n_coeffs(q, **args), dtype=complex)
-    qc = np.array(mod.q_coeffs(q, **args), dtype=complex)
-    nq = np.array(mod.n_coeffs_dq(q, **args), dtype=complex)
-    qq = np.array(mod.q_coeffs_dq(q, **args), dtype=complex)
+    n, qc, nq, qq = (
+        [complex(c) for c in getattr(mod, f)(q, **args)]
+        for f in ("n_coeffs", "q_coeffs", "n_coeffs_dq", "q_coeffs_dq")
+    )
 
     def f(p):
-        N, Q = np.polyval(n, p), np.polyval(qc, p)
+        N, Q = _horner(n, p), _horner(qc, p)
         if not derivative:
             return Q / N
-        return (np.polyval(qq, p) * N - Q * np.polyval(nq, p)) / N**2
+        return (_horner(qq, p) * N - Q * _horner(nq, p)) / N**2
 
     return f
 

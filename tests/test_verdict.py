@@ -229,7 +229,20 @@ def test_block_leading_part_is_the_derived_one():
     np.testing.assert_allclose(block, -derived / 2, rtol=1e-10)
 
 
-def test_cli_verdict_line_exit_status_and_stderr(capsys):
+def test_cli_verdict_line_exit_status_and_stderr(capsys, monkeypatch):
+    # The text and the --json run below print the same search (same case, alpha, dps and window): it runs
+    # once and both print it; the run with --window 3,3 is a search of its own.
+    from moving_bogie.roots import frequencies
+
+    searches, search = {}, frequencies.induced_frequencies
+
+    def once(bound, *, dps, window, progress=None, certify=False):
+        key = (bound.params, dps, repr(window), certify)
+        if key not in searches:
+            searches[key] = search(bound, dps=dps, window=window, progress=progress, certify=certify)
+        return searches[key]
+
+    monkeypatch.setattr(frequencies, "induced_frequencies", once)
     assert main(["frequencies", "--case", "1", "--alpha", "5", "--dps", "20"]) == 0
     out = capsys.readouterr()
     assert "verdict: UNSTABLE, 3 unstable pair(s); degree of instability -4.16549" in out.out
@@ -249,3 +262,4 @@ def test_cli_verdict_line_exit_status_and_stderr(capsys):
     assert data["verdict"]["supercritical"] is True
     assert data["verdict"]["alpha_cr"] == pytest.approx((1 + eta_s) ** 0.5, rel=1e-9)
     assert data["degree_of_instability"] == "-4.16549" and data["far_field"]["radius"] == 12.0
+    assert len(searches) == 2
