@@ -19,6 +19,7 @@ DERIVE = [
 INDIRECT = {
     "gmpy2": "mpmath's GMP backend, picked up automatically",
     "ruff": "the linter, a command",
+    "mypy": "the type checker, a command (.ci/run runs it on src/)",
     "ipykernel": "the kernel that runs the notebooks (started by nbclient)",
     "pytest-xdist": "a pytest plugin: the suite runs on two workers (pytest -n 2, --dist=loadscope)",
 }
