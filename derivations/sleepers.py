@@ -277,6 +277,15 @@ def sleepers_module() -> str:
     for track, (title, _ref, limit) in TRACKS.items():
         z = support_stiffness(track)
         z_args = ("w", *sorted(str(x) for x in z.free_symbols if str(x) != "w"))
+        z_num, z_den = sp.fraction(sp.cancel(sp.together(z)))
+        parts.append(
+            function_source(
+                f"support_polynomials_{track.replace('-', '_')}",
+                z_args[1:],
+                [sp.Tuple(*sp.Poly(z_num, w).all_coeffs()), sp.Tuple(*sp.Poly(z_den, w).all_coeffs())],
+                f"(numerator, denominator) of z(w) on {track} as polynomials in w, highest power first.",
+            )
+        )
         parts.append(
             function_source(
                 f"support_{track.replace('-', '_')}",

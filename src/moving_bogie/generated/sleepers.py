@@ -153,6 +153,14 @@ def moving_q_coeffs_eb_axial(q, alpha, kappa_f, eta_f, eta_N):
     )
 
 
+def support_polynomials_sleepers(eta_sup):
+    """(numerator, denominator) of z(w) on sleepers as polynomials in w, highest power first."""
+    return (
+        (2*1j*eta_sup, 1),
+        (1,),
+    )
+
+
 def support_sleepers(w, eta_sup):
     """z(w) = (Z_s / l) / k_e on sleepers."""
     return 1 + 2*1j*w*eta_sup
@@ -193,6 +201,17 @@ def scales_sleepers(sqrt, EI, m, k_sup, l):
         x0*x1/x2,
         x2*sqrt(l)/sqrt(k_sup),
         k_sup/l,
+    )
+
+
+def support_polynomials_sleepers_two_layer(eta_bal, eta_pad, kappa_bal, mu_sl):
+    """(numerator, denominator) of z(w) on sleepers-two-layer as polynomials in w, highest power first."""
+    x0 = 2*1j
+    x1 = x0*eta_pad
+    x2 = x0*eta_bal
+    return (
+        (x1*mu_sl, mu_sl + 4*eta_bal*eta_pad, -x2 - x1*kappa_bal, -kappa_bal),
+        (mu_sl, -x1 - x2, -1 - kappa_bal),
     )
 
 
