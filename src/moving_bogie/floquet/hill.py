@@ -37,7 +37,10 @@ class VehicleMatrices:
     def from_module(cls, module, values: dict) -> VehicleMatrices:
         """From a generated vehicle module and its group values (floats)."""
         args = {name: values[name] for name in module.MATRIX_ARGUMENTS}
-        arrays = [np.array(f(**args), dtype=complex) for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)]
+        arrays = [
+            np.array(f(**args), dtype=complex)
+            for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
+        ]
         positions = np.array([float(x) for x in module.contact_positions(**args)])
         return cls(*arrays, int(module.CONTACTS), positions)
 

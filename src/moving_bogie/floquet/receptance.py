@@ -55,8 +55,12 @@ _WGK = np.array(
     ]
 )
 _WG = np.array(
-    [0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
-     0.381830050505118944950369775488975, 0.417959183673469387755102040816327]
+    [
+        0.129484966168869693270611432679082,
+        0.279705391489276667901467771423780,
+        0.381830050505118944950369775488975,
+        0.417959183673469387755102040816327,
+    ]
 )
 #: the 15 Kronrod nodes on [-1, 1], their weights, and the 7-point Gauss weights on the same nodes
 NODES = np.concatenate([-_XGK[:-1], _XGK[::-1]])
@@ -65,7 +69,9 @@ GAUSS = np.zeros(15)
 GAUSS[[1, 3, 5, 7, 9, 11, 13]] = np.concatenate([_WG[:-1], _WG[::-1]])
 
 #: cot y - 1 / y = -sum_k c_k y^(2k-1), c_k = 2^(2k) |B_2k| / (2k)!, for |y| < 0.5 (14 terms: < 1e-17)
-_COT_SERIES = [float(2 ** (2 * k) * abs(mpmath.bernoulli(2 * k)) / mpmath.factorial(2 * k)) for k in range(1, 15)]
+_COT_SERIES = [
+    float(2 ** (2 * k) * abs(mpmath.bernoulli(2 * k)) / mpmath.factorial(2 * k)) for k in range(1, 15)
+]
 
 
 def cot_minus_pole(lam: float, x: np.ndarray) -> np.ndarray:
@@ -155,11 +161,18 @@ def _integrand(track, q, harmonics, positions, p):
 
 
 def _panel_sums(track, q, harmonics, positions, a, b):
-    """Kronrod and Gauss sums over panels [a_i, b_i]: arrays (panels, R, R) each."""
+    """Kronrod and Gauss sums over panels [a_i, b_i]: arrays (panels, R, R) each (in chunks of panels)."""
+    R = _r(harmonics, positions)
+    chunk = max(1, 200_000 // (15 * R * R))
+    if a.size > chunk:
+        parts = [
+            _panel_sums(track, q, harmonics, positions, a[i : i + chunk], b[i : i + chunk])
+            for i in range(0, a.size, chunk)
+        ]
+        return np.concatenate([k for k, _ in parts]), np.concatenate([g for _, g in parts])
     half = (b - a) / 2
     mid = (a + b) / 2
     p = (mid[:, None] + half[:, None] * NODES[None, :]).ravel()
-    R = _r(harmonics, positions)
     f = _integrand(track, q, harmonics, positions, p).reshape(a.size, 15, R, R)
     kron = np.einsum("k,pkrs->prs", KRONROD, f) * half[:, None, None]
     gauss = np.einsum("k,pkrs->prs", GAUSS, f) * half[:, None, None]
@@ -187,7 +200,7 @@ def receptance(
     tol : float
         Relative tolerance (to the largest free-rail receptance) of every entry.
     tail : float, optional
-        Half-width beyond the outermost harmonic's zone where the integration starts (default 8 K + 40).
+        Half-width beyond the outermost harmonic's zone where the integration starts (default 2 K + 10).
     """
     harmonics = np.asarray(harmonics, dtype=int)
     positions = np.asarray(positions, dtype=float)
@@ -200,17 +213,22 @@ def receptance(
         free[i * C : (i + 1) * C, i * C : (i + 1) * C] = vals
     scale = float(np.max(np.abs(np.diag(free))))
     atol = tol * scale
-    reach = (np.max(np.abs(harmonics)) + 1) * K + (8 * K + 40 if tail is None else tail)
+    reach = (np.max(np.abs(harmonics)) + 1) * K + (2 * K + 10 if tail is None else tail)
     while True:
         edges = np.arange(-reach, reach + 1e-9 * K, K / 4)
         a, b = edges[:-1], edges[1:]
         total, err, panels = _adaptive(track, q, harmonics, positions, a, b, atol, max_rounds)
         outer = _zone_magnitude(track, q, harmonics, positions, reach, K)
         tail_bound = outer * reach / (2 * K)
-        if tail_bound < atol or reach > 1e4:
+        if tail_bound < atol or reach > _MAX_REACH * K:
             break
         reach *= 1.6
     return Receptance(free + total / (2 * np.pi), float((err + tail_bound) / (2 * np.pi)), scale, panels)
+
+
+#: the farthest the integration reaches, in units of K, and the most panels of one refinement round
+_MAX_REACH = 60
+_MAX_PANELS = 4000
 
 
 def _zone_magnitude(track, q, harmonics, positions, reach, K) -> float:
@@ -233,11 +251,12 @@ def _adaptive(track, q, harmonics, positions, a, b, atol, max_rounds):
         ok = e <= atol * (b - a) / width
         total = total + np.sum(kron[ok], axis=0)
         err += float(np.sum(e[ok]))
-        if np.all(ok):
-            return total, err, panels
+        if np.all(ok) or np.count_nonzero(~ok) > _MAX_PANELS:
+            break
         a, b = a[~ok], b[~ok]
         m = (a + b) / 2
         a, b = np.concatenate([a, m]), np.concatenate([m, b])
-    total = total + np.sum(kron[~ok], axis=0)
-    err += float(np.sum(e[~ok]))
+    if not np.all(ok):
+        total = total + np.sum(kron[~ok], axis=0)
+        err += float(np.sum(e[~ok]))
     return total, err, panels
