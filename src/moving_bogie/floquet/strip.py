@@ -63,22 +63,25 @@ def _count(system: FloquetSystem, rect: Rectangle) -> int:
     return winding_number(system, rect, spacing=spacing, max_points=20_000)
 
 
-def _newton(system: FloquetSystem, q: complex, rect: Rectangle, max_iter: int = 40) -> tuple[complex, float]:
+def _newton(
+    system: FloquetSystem, q: complex, rect: Rectangle, margin: float = 0.0, max_iter: int = 40
+) -> tuple[complex, float]:
     """Newton's method with a central-difference derivative; returns (q, |f / f'|).
 
-    An iterate that leaves ``rect`` widened by its size on every side stops the iteration (residual inf).
+    An iterate that leaves ``rect`` widened by ``margin`` stops the iteration (residual inf): above the
+    window the receptance may be on the far side of its singularities.
     """
     step = np.inf
-    size = max(rect.width, rect.height)
     for _ in range(max_iter):
-        if not rect.contains(q, margin=size):
+        if not rect.contains(q, margin=margin):
             return complex(q), float("inf")
         h = 1e-6 * max(1.0, abs(q))
         f0 = system(q)
         d = (system(q + h) - system(q - h)) / (2 * h)
         step = f0 / d
         q = q - step
-        if abs(step) < 1e-13 * max(1.0, abs(q)):
+        # the receptance is good to system.tol: a step below ten times that is at the noise floor
+        if abs(step) < max(1e-13, 10 * system.tol) * max(1.0, abs(q)):
             break
     return complex(q), float(abs(step))
 
@@ -92,6 +95,11 @@ def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float) -> list
         for r, k in level:
             if k == 0:
                 continue
+            if k == 1:
+                q, res = _newton(system, r.center, r)
+                if res < 1e-6 and r.contains(q):
+                    out.append(q)
+                    continue
             if k == 1 and max(r.width, r.height) < cell:
                 out.append(r.center)
                 continue
@@ -121,7 +129,7 @@ def _roots_at(system, rect, previous, cell):
         previous if previous is not None and len(previous) == count else _locate(system, rect, count, cell)
     )
     system.tol = 1e-12
-    polished = [_newton(system, q, rect) for q in starts]
+    polished = [_newton(system, q, rect, margin=0.05 * min(rect.width, rect.height)) for q in starts]
     system.tol = 1e-8
     return count, polished
 
@@ -157,7 +165,7 @@ def floquet_frequencies(
     if track.Omega0 <= 0:
         raise ValueError("alpha: the Floquet strip needs a moving vehicle (v > 0)")
     eta_f = float(track.groups.get("eta_f", 0.0))
-    top = (0.0 if eta_f > 0 else -1e-4 * track.Omega0) if top is None else top
+    top = (0.0 if eta_f > 0 else -1e-3 * track.Omega0) if top is None else top
     depth = max(track.Omega0, 1.0) if depth is None else depth
     x0 = -0.25 * track.Omega0
     cell = 0.05 * min(track.Omega0, depth)
@@ -189,6 +197,8 @@ def floquet_frequencies(
         notes.append(f"the roots have not converged in the harmonics up to N = {system.N}")
     if len(roots) != count:
         notes.append(f"{count} root(s) counted but {len(roots)} located")
+    if top < 0 and not any(q.imag < top for q, _ in roots):
+        notes.append(f"roots with {top:.3g} < Im q <= 0 are not searched (rail undamped between the supports)")
     found = tuple(FloquetRoot(q, res, s) for (q, res), s in zip(roots, steps))
     return FloquetResult(
         found, count, system.N, converged, rect, track.Omega0, system.evaluations, tuple(notes)
