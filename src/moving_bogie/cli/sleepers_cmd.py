@@ -17,10 +17,14 @@ def run_sleeper_frequencies(args: argparse.Namespace) -> int:
 
     given = [name for name in ("case", "beam", "track", "vehicle", "window") if getattr(args, name, None)]
     if given:
-        raise ParameterError(given[0], f"--{given[0]} does not apply to a sleeper track (give it in the file)")
+        raise ParameterError(
+            given[0], f"--{given[0]} does not apply to a sleeper track (give it in the file)"
+        )
     data = load_sleeper_file(args.file)
     if data.groups["alpha"] <= 0:
-        raise ParameterError("v", "v must be positive on a sleeper track (the Floquet strip has width 2 pi v / l)")
+        raise ParameterError(
+            "v", "v must be positive on a sleeper track (the Floquet strip has width 2 pi v / l)"
+        )
 
     from moving_bogie.floquet.hill import VehicleMatrices, harmonic_set
     from moving_bogie.floquet.strip import floquet_frequencies

@@ -60,7 +60,9 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
     model = data.get("model", {})
     beam, track, vehicle = model.get("beam", "eb"), model["track"], model.get("vehicle", "mass")
     if beam not in generated.BEAMS:
-        raise ParameterError("beam", f"no beam {beam!r}; {suggestion(beam, list(generated.BEAMS), listing='one of')}")
+        raise ParameterError(
+            "beam", f"no beam {beam!r}; {suggestion(beam, list(generated.BEAMS), listing='one of')}"
+        )
     from moving_bogie.generated import DECLARED_VEHICLES
 
     if vehicle not in DECLARED_VEHICLES:
@@ -76,7 +78,9 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
     si = data["physical"]
     for key in si:
         if key not in known:
-            raise ParameterError(key, f"unknown key {key!r} in {path}; {suggestion(key, sorted(known), listing='one of')}")
+            raise ParameterError(
+                key, f"unknown key {key!r} in {path}; {suggestion(key, sorted(known), listing='one of')}"
+            )
     values = {key: _number(si, key, path) for key in si}
     for key in ("EI", "m", ref, *(s["si"] for s in table.values() if s["default"] is None), *vehicle_si):
         if key not in values:
@@ -86,9 +90,13 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
     for name, spec in table.items():
         values.setdefault(spec["si"], 0.0)
         if values[spec["si"]] < 0:
-            raise ParameterError(spec["si"], f"{spec['si']} must not be negative (got {values[spec['si']]:g})")
+            raise ParameterError(
+                spec["si"], f"{spec['si']} must not be negative (got {values[spec['si']]:g})"
+            )
     tag = track.replace("-", "_")
-    chi, v_ref, t_scale, k_e = getattr(generated, f"scales_{tag}")(math.sqrt, values["EI"], values["m"], values[ref], values["l"])
+    chi, v_ref, t_scale, k_e = getattr(generated, f"scales_{tag}")(
+        math.sqrt, values["EI"], values["m"], values[ref], values["l"]
+    )
     groups = {}
     for name in table:
         fn = getattr(generated, f"dimensionless_{tag}_{name}", None)
@@ -96,7 +104,9 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
             groups[name] = float(_call(getattr(paper_groups, f"dimensionless_{name}"), values, k_e))
         else:
             groups[name] = float(_call(fn, values))
-    vehicle_groups = {g: float(_call(getattr(paper_groups, f"dimensionless_{g}"), values, k_e)) for g in module.PARAMETERS}
+    vehicle_groups = {
+        g: float(_call(getattr(paper_groups, f"dimensionless_{g}"), values, k_e)) for g in module.PARAMETERS
+    }
     return SleeperInput(beam, track, vehicle, groups, vehicle_groups, values, chi, v_ref, t_scale, k_e)
 
 

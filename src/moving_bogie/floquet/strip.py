@@ -198,7 +198,9 @@ def floquet_frequencies(
     if len(roots) != count:
         notes.append(f"{count} root(s) counted but {len(roots)} located")
     if top < 0 and not any(q.imag < top for q, _ in roots):
-        notes.append(f"roots with {top:.3g} < Im q <= 0 are not searched (rail undamped between the supports)")
+        notes.append(
+            f"roots with {top:.3g} < Im q <= 0 are not searched (rail undamped between the supports)"
+        )
     found = tuple(FloquetRoot(q, res, s) for (q, res), s in zip(roots, steps))
     return FloquetResult(
         found, count, system.N, converged, rect, track.Omega0, system.evaluations, tuple(notes)
