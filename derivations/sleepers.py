@@ -143,7 +143,7 @@ def _beam_groups(beam: str) -> tuple:
 
 
 def beam_symbol(beam: str) -> tuple[sp.Expr, sp.Expr]:
-    """(N~, Q~) with k_e G0(k, omega) = Q~ / N~ in p = k / chi and w = omega / omega_e (e^{i omega t - i k x}).
+    """(N~, Q~): k_e G0(k, omega) = Q~ / N~ in p = k / chi, w = omega / omega_e (e^{i omega t - i k x}).
 
     G0 is the rail's response to a unit force at x = 0 (first unknown, first equation): the (0, 0) entry of
     the inverse of the operator matrix with d/dx -> -i k, d/dt -> i omega, plus the continuous foundation.
@@ -259,7 +259,7 @@ def scaling_parts(track: str) -> list:
             f"scales_{tag}",
             ("sqrt", "EI", "m", ref_name, "l"),
             scales,
-            "(chi [1/m], v_ref [m/s], t_scale [s], k_e [N/m^2]): Omega = w / t_scale, the reference k_f = k_e.",
+            "(chi [1/m], v_ref [m/s], t_scale [s], k_e [N/m^2]): Omega = w / t_scale, reference k_f = k_e.",
             printer=SCALING_PRINTER,
         )
     )
@@ -317,7 +317,8 @@ def sleepers_module() -> str:
     title = (
         "A rail on discrete supports every l (docs/sleepers.md): beam symbols, supports, scaling.\n\n"
         "k_e G0(k, omega) = Q~/N~ in p = k/chi, w = omega/omega_e; z = (Z_s/l)/k_e; the lattice sum\n"
-        "S~(p, w) = sum_j Q~/N~(p + j K, w) = sum over the roots r of N~ of (lam/2) cot(lam (p - r)/2) Q~(r)/N~'(r)."
+        "S~(p, w) = sum_j Q~/N~(p + j K, w) = sum over the roots r of N~ of\n"
+        "(lam/2) cot(lam (p - r)/2) Q~(r)/N~'(r)."
     )
     return module_source(title, digest, parts, constants)
 
@@ -337,7 +338,9 @@ def lattice_sum_check(beam: str = "eb", *, terms: int = 4000) -> float:
         import mpmath
 
         K = 2 * mpmath.pi / lv
-        direct = mpmath.nsum(lambda j: qq(pw + j * K) / nn(pw + j * K), [-mpmath.inf, mpmath.inf])
+        direct = mpmath.nsum(
+            lambda j, qq=qq, nn=nn, pw=pw, K=K: qq(pw + j * K) / nn(pw + j * K), [-mpmath.inf, mpmath.inf]
+        )
         roots = mpmath.polyroots(
             [complex(c) for c in _in_p(den.subs(values).subs(w, ww))], maxsteps=200, extraprec=60
         )

@@ -190,7 +190,7 @@ def test_short_bays_give_the_one_layer_roots_at_rate_l4():
 
 
 def test_two_wheels_at_short_bays_are_the_continuous_two_masses():
-    """Two contacts and their phases: at lam = 0.1 the two masses' roots are the continuous track's to 1e-5."""
+    """Two contacts and their phases: at lam = 0.1 the two masses' roots are the continuous ones to 1e-5."""
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.roots.frequencies import induced_frequencies
 

@@ -9,7 +9,7 @@ from moving_bogie.cli.common import print_json
 
 
 def run_sleeper_frequencies(args: argparse.Namespace) -> int:
-    """Every root with Im Omega <= 0 in one strip of width Omega_0, in rad/s, the harmonics and the verdict."""
+    """Every root with Im Omega <= 0 in one strip of width Omega_0 in rad/s, the harmonics, the verdict."""
     import importlib
 
     from moving_bogie.errors import ParameterError

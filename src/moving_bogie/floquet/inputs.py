@@ -87,7 +87,7 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
             raise ParameterError(key, f"{path} has no {key!r} (required on {beam}/{track}/{vehicle})")
         if values[key] <= 0 and key != "v":
             raise ParameterError(key, f"{key} must be positive (got {values[key]:g})")
-    for name, spec in table.items():
+    for spec in table.values():
         values.setdefault(spec["si"], 0.0)
         if values[spec["si"]] < 0:
             raise ParameterError(

@@ -1,4 +1,4 @@
-"""The receptance between (contact, harmonic) pairs of a load moving over a rail on supports (docs/sleepers.md).
+"""Receptance between (contact, harmonic) pairs of a load moving over a rail on supports (docs/sleepers.md).
 
 A force F e^{i q_m tau} at contact c (position s_c in the moving frame) gives at contact c' the harmonics
 q_n = q + n Omega_0; the receptance between them (Eq. (S9), dimensionless: k_e / chi times the SI one) is
@@ -135,7 +135,7 @@ def smeared_receptance(track: SleeperTrack, q: complex, offsets: np.ndarray) -> 
 
 
 def _integrand(track, q, harmonics, positions, p):
-    """The integrands at nodes p (shape (P,)): matrix of shape (P, R, R) with R = len(harmonics) * contacts."""
+    """The integrands at nodes p (shape (P,)): shape (P, R, R), R = len(harmonics) * contacts."""
     K, alpha, lam = track.K, track.alpha, track.lam
     w = q + alpha * p
     z = track.support(w)

@@ -158,7 +158,7 @@ def floquet_frequencies(
     N0, N_max : int
         First and largest N of the harmonics -N-1..N.
     tol : float
-        Largest move of a root (relative to max(1, |q|)) between N - 1 and N for the roots to count as converged.
+        Largest move of a root (relative to max(1, |q|)) between N - 1 and N: the roots have converged.
     depth, top : float, optional
         Lower and upper edge of the window in Im q (defaults: see the module docstring).
     """

@@ -1,11 +1,12 @@
-"""The rail on discrete supports at one parameter set: its symbol, supports and lattice sum (docs/sleepers.md).
+"""A rail on discrete supports at one parameter set: symbol, supports, lattice sum (docs/sleepers.md).
 
 Everything is dimensionless in the scaling of ``generated/sleepers.py`` (the paper's, Eqs. (15)-(17),
 with the smeared support stiffness k_e in the place of k_f): wavenumber p, frequency w, bay lam,
 K = 2 pi / lam. G(p, w) = Q~ / N~ is k_e times the rail's receptance in the wavenumber domain,
 z(w) = (Z_s / l) / k_e the supports' stiffness per unit length, and
 
-    S(p, w) = sum_j G(p + j K, w) = sum over the four roots r of N~(., w) of (lam / 2) cot(lam (p - r) / 2) Res(G, r)
+    S(p, w) = sum_j G(p + j K, w)
+            = sum over the four roots r of N~(., w) of (lam / 2) cot(lam (p - r) / 2) Res(G, r)
 
 the lattice sum in closed form (docs/sleepers.md, Eq. (S7)).
 """
