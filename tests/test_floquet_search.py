@@ -40,19 +40,19 @@ def test_principal_parametric_zone_root_sits_on_half_the_passing_frequency():
         "eb", "sleepers", {"lam": 1.5, "alpha": 0.25, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.005}
     )
     vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": 5.0})
-    O = track.Omega0
+    omega0 = track.Omega0
     system = FloquetSystem(track, vehicle, N=1, tol=1e-6)
-    box = Rectangle(0.3 * O, 0.7 * O, -0.2 * O, -1e-3 * O)
+    box = Rectangle(0.3 * omega0, 0.7 * omega0, -0.2 * omega0, -1e-3 * omega0)
     assert winding_number(system, box, spacing=box.width / 10) == 1
     system.tol = 1e-12
     q1 = _newton(system, box.center)
     assert box.contains(q1) and q1.imag < 0
-    assert abs(q1.real - O / 2) < 1e-9
+    assert abs(q1.real - omega0 / 2) < 1e-9
     system.N = 2
     q2 = _newton(system, q1)
     system.N = 3
     q3 = _newton(system, q2)
-    assert abs(q2.real - O / 2) < 1e-9 and abs(q3.real - O / 2) < 1e-9
+    assert abs(q2.real - omega0 / 2) < 1e-9 and abs(q3.real - omega0 / 2) < 1e-9
     assert abs(q3 - q2) < 0.1 * abs(q2 - q1) < 1e-5
 
 
@@ -75,7 +75,7 @@ def test_bad_sleeper_files_name_the_key(tmp_path, capsys, text, fragment):
 
 @pytest.mark.slow
 def test_example_file_gives_the_strip_the_harmonics_and_a_verdict(capsys):
-    """examples/sleepers.toml: Omega_0 = 2 pi v / l, the harmonics -N-1..N, converged, a determined verdict."""
+    """examples/sleepers.toml: Omega_0 = 2 pi v / l, the harmonics -N-1..N, converged, a verdict."""
     assert main(["frequencies", "--file", str(EXAMPLE), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["Omega0_rad_s"] == pytest.approx(2 * np.pi * 40 / 0.6, rel=1e-12)
