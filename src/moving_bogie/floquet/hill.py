@@ -37,12 +37,12 @@ class VehicleMatrices:
     def from_module(cls, module, values: dict) -> VehicleMatrices:
         """From a generated vehicle module and its group values (floats)."""
         args = {name: values[name] for name in module.MATRIX_ARGUMENTS}
-        arrays = [
+        mass, damping, stiffness = (
             np.array(f(**args), dtype=complex)
             for f in (module.mass_matrix, module.damping_matrix, module.stiffness_matrix)
-        ]
+        )
         positions = np.array([float(x) for x in module.contact_positions(**args)])
-        return cls(*arrays, int(module.CONTACTS), positions)
+        return cls(mass, damping, stiffness, int(module.CONTACTS), positions)
 
 
 def dynamic_stiffness(vehicle: VehicleMatrices, q: complex) -> np.ndarray:

@@ -14,6 +14,7 @@ import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.generated import parameters as paper_groups
@@ -71,9 +72,10 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
     if "physical" not in data:
         raise ParameterError("physical", f"{path}: a sleeper track takes a [physical] table in SI units")
     module = importlib.import_module(f"moving_bogie.generated.vehicle_{vehicle}")
-    table = generated.PARAMETERS[track][beam]
-    ref = generated.TRACKS[track]["reference"][0]
-    vehicle_si = {paper_groups.PARAMETERS[g]["si"]: g for g in module.PARAMETERS}
+    table: dict[str, dict[str, Any]] = generated.PARAMETERS[track][beam]  # type: ignore[assignment]
+    ref: str = generated.TRACKS[track]["reference"][0]  # type: ignore[index]
+    paper: dict[str, dict[str, Any]] = paper_groups.PARAMETERS  # type: ignore[assignment]
+    vehicle_si = {paper[g]["si"]: g for g in module.PARAMETERS}
     known = {"EI", "m", "P", ref, *(spec["si"] for spec in table.values()), *vehicle_si}
     si = data["physical"]
     for key in si:

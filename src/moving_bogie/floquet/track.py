@@ -47,7 +47,8 @@ class SleeperTrack:
     groups: dict = field(hash=False)
 
     def _args(self, key: str) -> dict:
-        return {name: self.groups[name] for name in generated.BEAMS[self.beam][key]}
+        names: tuple[str, ...] = generated.BEAMS[self.beam][key]  # type: ignore[assignment]
+        return {name: self.groups[name] for name in names}
 
     @property
     def lam(self) -> float:
