@@ -138,8 +138,16 @@ def test_element_stiffness_is_the_static_one_at_zero_frequency():
     assert np.max(np.abs(_element(1e-10, L) - k0)) < 1e-7
 
 
-@pytest.mark.parametrize("s, node", [(0.0, 0), (0.5, 1)])
-@pytest.mark.parametrize("w", [0.3 - 0.05j, 1.1 - 0.2j])
+@pytest.mark.parametrize(
+    "s, node, w",
+    [
+        (0.0, 0, 0.3 - 0.05j),
+        # the same check at mid-span and at a higher frequency (slow: the fast one covers the same code)
+        pytest.param(0.5, 1, 0.3 - 0.05j, marks=pytest.mark.slow),
+        pytest.param(0.0, 0, 1.1 - 0.2j, marks=pytest.mark.slow),
+        pytest.param(0.5, 1, 1.1 - 0.2j, marks=pytest.mark.slow),
+    ],
+)
 def test_receptance_at_rest_against_a_finite_periodic_rail(s, node, w):
     """v = 0: sum over n of H[n, 0] at a support and at mid-span against 300 bays solved directly.
 
