@@ -27,6 +27,8 @@ from .foundations import BEAMS, TRACKS, all_models
 from .modal import modal_blocks
 from .model import foundation_image
 from .paper import all_proofs
+from .sleepers import TRACKS as SLEEPER_TRACKS
+from .sleepers import sleepers_module
 from .vehicle_modules import vehicle_module
 from .vehicles import VEHICLES as DECLARED
 
@@ -268,7 +270,7 @@ def proofs_markdown():
 
 def selectable() -> tuple:
     """The names ``--only`` accepts: every beam, track and vehicle of the catalogue."""
-    return (*BEAMS, *TRACKS, *DECLARED)
+    return (*BEAMS, *TRACKS, *SLEEPER_TRACKS, *DECLARED)
 
 
 def outputs(root: Path, only=None) -> dict:
@@ -299,6 +301,8 @@ def outputs(root: Path, only=None) -> dict:
     init = module_source("Generated kernels of moving-bogie: the catalogue of models.", digest, [], catalogue)
     files[root / GENERATED / "__init__.py"] = init
     files[root / GENERATED / "asymptotics.py"] = asymptotics_module(models)
+    if only is None or only & {"sleepers", "sleepers-two-layer"}:
+        files[root / GENERATED / "sleepers.py"] = sleepers_module()
     if only is None:
         files[root / "docs" / "proofs.md"] = proofs_markdown()
     return files

@@ -199,8 +199,14 @@ def test_models_lists_one_line_per_model_and_a_name_gives_its_parameters(capsys)
     models = default_catalogue().models()
     assert main(["models"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    listed = [line.split()[0] for line in lines if line.startswith("  ")]
+    # the catalogue's models, then the rails on discrete supports (docs/sleepers.md) after their heading
+    cut = next(i for i, line in enumerate(lines) if line.startswith("rails on discrete supports"))
+    listed = [line.split()[0] for line in lines[:cut] if line.startswith("  ")]
     assert listed == [model.name for model in models]
+    from moving_bogie.generated import sleepers
+
+    discrete = [line.split()[0] for line in lines[cut:] if line.startswith("  ")]
+    assert discrete == [f"{beam}/{track}" for track in sleepers.TRACKS for beam in sleepers.BEAMS]
     bogie = next(model for model in models if model.vehicle == "bogie")
     assert main(["models", bogie.name]) == 0
     out = capsys.readouterr().out

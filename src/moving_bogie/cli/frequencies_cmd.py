@@ -95,6 +95,12 @@ def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
 
     _check_dps(args.dps)
+    from moving_bogie.floquet.inputs import is_sleeper_file
+
+    if args.file is not None and is_sleeper_file(args.file):
+        from .sleepers_cmd import run_sleeper_frequencies
+
+        return run_sleeper_frequencies(args)
     params, physical = params_from_args(args)  # every input checked before the heavy imports
     window = None
     if args.window:

@@ -72,7 +72,21 @@ def format_summary(models) -> str:
         "a model's parameters, their SI units and the per-rail convention of SI inputs: "
         "moving-bogie models NAME (every model: --verbose)"
     )
+    lines += format_sleeper_tracks()
     return "\n".join(lines)
+
+
+def format_sleeper_tracks() -> list[str]:
+    """The rails on discrete supports (docs/sleepers.md): each beam on each sleeper track, its SI inputs."""
+    from moving_bogie.generated import sleepers
+
+    lines = ["rails on discrete supports (Floquet; analysed by frequencies --file, any vehicle):"]
+    for track, meta in sleepers.TRACKS.items():
+        for beam in sleepers.BEAMS:
+            table = sleepers.PARAMETERS[track][beam]
+            names = ", ".join(spec["si"] for spec in table.values())
+            lines.append(f"  {beam}/{track}  SI: EI, m, {meta['reference'][0]}, {names}")
+    return lines
 
 
 def format_catalogue(models) -> str:

@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
+from moving_bogie.generated.sleepers import TRACKS as SLEEPER_TRACKS
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
@@ -120,6 +121,12 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     if "dimensionless" in data and "physical" in data:
         raise ParameterError("physical", "give either a [dimensionless] or a [physical] table, not both")
     model = _table(data, "model", _MODEL_KEYS)
+    if model.get("track") in SLEEPER_TRACKS:
+        raise ParameterError(
+            "track",
+            f"track {model['track']!r} (a rail on discrete supports) is analysed by "
+            "`moving-bogie frequencies --file` only, for now",
+        )
     if "physical" in data:
         if "case" in data:
             raise ParameterError(

@@ -1,0 +1,262 @@
+"""Receptance between (contact, harmonic) pairs of a load moving over a rail on supports (docs/sleepers.md).
+
+A force F e^{i q_m tau} at contact c (position s_c in the moving frame) gives at contact c' the harmonics
+q_n = q + n Omega_0; the receptance between them (Eq. (S9), dimensionless: k_e / chi times the SI one) is
+
+    H[(c', n), (c, m)] = (1 / 2 pi) int [ delta_nm G_n e^{i (p - n K) (s_c - s_c')}
+                                          - z G_n G_m e^{i (p - m K) s_c - i (p - n K) s_c'} / D ] dp,
+
+G_n = G(p - n K, w), w = q + alpha p, D = 1 + z S(p, w). It is evaluated as (Eq. (S11))
+
+- for n = m: the continuous rail on the smeared supports, G_c = G / (1 + z G), by residues (exact), plus
+  the integral of e^{i (p - n K) (s_c - s_c')} z^2 G_n^2 S'_n / (D (1 + z G_n)), with S'_n = S - G_n the
+  lattice sum without its own term, in the form (lam / 2) cot(lam x / 2) - 1 / x that has no pole;
+- for n != m: the integral of the second term as it stands.
+
+Neither integrand has a pole where G_n has one (they cancel in the formula), so the only singularities
+near the real axis are the free waves of the periodic rail (zeros of D) and of the smeared one. The
+integrals are adaptive Gauss-Kronrod (7-15) on panels of a quarter of K, with a tail bound, to ``tol``
+relative to the largest free-rail receptance.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mpmath
+import numpy as np
+
+from moving_bogie.floquet.track import SleeperTrack, stable_cot
+
+__all__ = ["Receptance", "receptance"]
+
+_XGK = np.array(
+    [
+        0.991455371120812639206854697526329,
+        0.949107912342758524526189684047851,
+        0.864864423359769072789712788640926,
+        0.741531185599394439863864773280788,
+        0.586087235467691130294144845693013,
+        0.405845151377397166906606412076961,
+        0.207784955007898467600689403773245,
+        0.0,
+    ]
+)
+_WGK = np.array(
+    [
+        0.022935322010529224963732008058970,
+        0.063092092629978553290700663189204,
+        0.104790010322250183839876322541518,
+        0.140653259715525918745189590510238,
+        0.169004726639267902826583426598550,
+        0.190350578064785409913256402421014,
+        0.204432940075298892414161999234649,
+        0.209482141084727828012999174891714,
+    ]
+)
+_WG = np.array(
+    [
+        0.129484966168869693270611432679082,
+        0.279705391489276667901467771423780,
+        0.381830050505118944950369775488975,
+        0.417959183673469387755102040816327,
+    ]
+)
+#: the 15 Kronrod nodes on [-1, 1], their weights, and the 7-point Gauss weights on the same nodes
+NODES = np.concatenate([-_XGK[:-1], _XGK[::-1]])
+KRONROD = np.concatenate([_WGK[:-1], _WGK[::-1]])
+GAUSS = np.zeros(15)
+GAUSS[[1, 3, 5, 7, 9, 11, 13]] = np.concatenate([_WG[:-1], _WG[::-1]])
+
+#: cot y - 1 / y = -sum_k c_k y^(2k-1), c_k = 2^(2k) |B_2k| / (2k)!, for |y| < 0.5 (14 terms: < 1e-17)
+_COT_SERIES = [
+    float(2 ** (2 * k) * abs(mpmath.bernoulli(2 * k)) / mpmath.factorial(2 * k)) for k in range(1, 15)
+]
+
+
+def cot_minus_pole(lam: float, x: np.ndarray) -> np.ndarray:
+    """(lam / 2) cot(lam x / 2) - 1 / x, with no cancellation at small x (its Taylor series there)."""
+    y = lam * np.asarray(x, dtype=complex) / 2
+    small = np.abs(y) < 0.5
+    ys = np.where(small, y, 0.25)
+    series = np.zeros_like(ys)
+    y2 = ys * ys
+    for c in reversed(_COT_SERIES):
+        series = series * y2 + c
+    series = -series * ys
+    yb = np.where(small, 1.0, y)
+    big = stable_cot(yb) - 1 / yb
+    return lam / 2 * np.where(small, series, big)
+
+
+@dataclass(frozen=True)
+class Receptance:
+    """H over (contact, harmonic) pairs at one q, row/column index i_n * contacts + c.
+
+    ``matrix`` is H; ``error`` the estimated absolute error of its entries (Gauss-Kronrod and tail);
+    ``scale`` the largest free-rail receptance, the reference of the relative tolerance.
+    """
+
+    matrix: np.ndarray
+    error: float
+    scale: float
+    panels: int
+
+
+def _polynomial_in_kappa(coeffs_w: np.ndarray, q: complex, alpha: float) -> np.ndarray:
+    """Coefficients in kappa (highest first) of a polynomial in w at w = q + alpha kappa."""
+    out = np.zeros(1, dtype=complex)
+    lin = np.array([alpha, q], dtype=complex)
+    for c in coeffs_w:
+        out = np.polyadd(np.polymul(out, lin), [c])
+    return out
+
+
+def smeared_receptance(track: SleeperTrack, q: complex, offsets: np.ndarray) -> np.ndarray:
+    """(1 / 2 pi) int G_c(kappa, q + alpha kappa) e^{i kappa xi} dkappa, G_c = G / (1 + z G), by residues.
+
+    The continuous rail on the supports smeared along it (the l -> 0 limit, Eq. (S12)); the integral is
+    closed in the upper half-plane for xi >= 0 and in the lower one for xi < 0.
+    """
+    n, qq = track.moving_polynomials(q)
+    z_num, z_den = track.support_polynomials()
+    zn, zd = (_polynomial_in_kappa(np.asarray(c, dtype=complex), q, track.alpha) for c in (z_num, z_den))
+    den = np.polyadd(np.polymul(n, zd), np.polymul(zn, qq))
+    num = np.polymul(qq, zd)
+    den = np.trim_zeros(den, "f")
+    roots = np.roots(den)
+    res = np.polyval(num, roots) / np.polyval(np.polyder(den), roots)
+    out = []
+    for xi in np.atleast_1d(offsets):
+        sel = roots.imag > 0 if xi >= 0 else roots.imag < 0
+        sign = 1j if xi >= 0 else -1j
+        out.append(sign * np.sum(res[sel] * np.exp(1j * roots[sel] * xi)))
+    return np.array(out)
+
+
+def _integrand(track, q, harmonics, positions, p):
+    """The integrands at nodes p (shape (P,)): shape (P, R, R), R = len(harmonics) * contacts."""
+    K, alpha, lam = track.K, track.alpha, track.lam
+    w = q + alpha * p
+    z = track.support(w)
+    r, res = track.symbol_roots(w)  # (P, 4)
+    S = np.sum(lam / 2 * stable_cot(lam / 2 * (p[:, None] - r)) * res, axis=-1)
+    D = 1 + z * S
+    shift = p[:, None] - harmonics[None, :] * K  # (P, H)
+    x = shift[:, :, None] - r[:, None, :]  # (P, H, 4)
+    G = np.sum(res[:, None, :] / x, axis=-1)  # partial fractions of Q~/N~ (deg Q < deg N)
+    S_own = np.sum(res[:, None, :] * cot_minus_pole(lam, x), axis=-1)  # S'_n
+    s = np.asarray(positions, dtype=float)
+    out_ph = np.exp(-1j * shift[:, :, None] * s[None, None, :])  # receiver phases (P, H, C)
+    in_ph = np.exp(1j * shift[:, :, None] * s[None, None, :])
+    P, H, C = out_ph.shape
+    u = (G[:, :, None] * out_ph).reshape(P, H * C)
+    v = (G[:, :, None] * in_ph).reshape(P, H * C)
+    f = -(z / D)[:, None, None] * u[:, :, None] * v[:, None, :]
+    diag = z[:, None] ** 2 * G**2 * S_own / (D[:, None] * (1 + z[:, None] * G))  # (P, H)
+    for i in range(H):
+        blk = slice(i * C, (i + 1) * C)
+        f[:, blk, blk] = diag[:, i, None, None] * out_ph[:, i, :, None] * in_ph[:, i, None, :]
+    return f
+
+
+def _panel_sums(track, q, harmonics, positions, a, b):
+    """Kronrod and Gauss sums over panels [a_i, b_i]: arrays (panels, R, R) each (in chunks of panels)."""
+    R = _r(harmonics, positions)
+    chunk = max(1, 200_000 // (15 * R * R))
+    if a.size > chunk:
+        parts = [
+            _panel_sums(track, q, harmonics, positions, a[i : i + chunk], b[i : i + chunk])
+            for i in range(0, a.size, chunk)
+        ]
+        return np.concatenate([k for k, _ in parts]), np.concatenate([g for _, g in parts])
+    half = (b - a) / 2
+    mid = (a + b) / 2
+    p = (mid[:, None] + half[:, None] * NODES[None, :]).ravel()
+    f = _integrand(track, q, harmonics, positions, p).reshape(a.size, 15, R, R)
+    kron = np.einsum("k,pkrs->prs", KRONROD, f) * half[:, None, None]
+    gauss = np.einsum("k,pkrs->prs", GAUSS, f) * half[:, None, None]
+    return kron, gauss
+
+
+def _r(harmonics, positions) -> int:
+    return len(harmonics) * len(positions)
+
+
+def receptance(
+    track: SleeperTrack,
+    q: complex,
+    harmonics,
+    positions=(0.0,),
+    *,
+    tol: float = 1e-12,
+    tail: float | None = None,
+    max_rounds: int = 40,
+) -> Receptance:
+    """H[(c', n), (c, m)](q) of Eq. (S9) for the given harmonics n and contact positions s_c (dimensionless).
+
+    Parameters
+    ----------
+    tol : float
+        Relative tolerance (to the largest free-rail receptance) of every entry.
+    tail : float, optional
+        Half-width beyond the outermost harmonic's zone where the integration starts (default 2 K + 10).
+    """
+    harmonics = np.asarray(harmonics, dtype=int)
+    positions = np.asarray(positions, dtype=float)
+    C, H = positions.size, harmonics.size
+    K = track.K
+    offsets = positions[None, :] - positions[:, None]  # [c', c] -> s_c - s_c'
+    free = np.zeros((H * C, H * C), dtype=complex)
+    for i, n in enumerate(harmonics):
+        vals = smeared_receptance(track, q + n * track.Omega0, offsets.ravel()).reshape(C, C)
+        free[i * C : (i + 1) * C, i * C : (i + 1) * C] = vals
+    scale = float(np.max(np.abs(np.diag(free))))
+    atol = tol * scale
+    reach = (np.max(np.abs(harmonics)) + 1) * K + (2 * K + 10 if tail is None else tail)
+    while True:
+        edges = np.arange(-reach, reach + 1e-9 * K, K / 4)
+        a, b = edges[:-1], edges[1:]
+        total, err, panels = _adaptive(track, q, harmonics, positions, a, b, atol, max_rounds)
+        outer = _zone_magnitude(track, q, harmonics, positions, reach, K)
+        tail_bound = outer * reach / (2 * K)
+        if tail_bound < atol or reach > _MAX_REACH * K:
+            break
+        reach *= 1.6
+    return Receptance(free + total / (2 * np.pi), float((err + tail_bound) / (2 * np.pi)), scale, panels)
+
+
+#: the farthest the integration reaches, in units of K, and the most panels of one refinement round
+_MAX_REACH = 60
+_MAX_PANELS = 4000
+
+
+def _zone_magnitude(track, q, harmonics, positions, reach, K) -> float:
+    """Largest entry of the integrals over the two outermost zones of width K (the tail's estimate)."""
+    a = np.array([reach - K, -reach])
+    kron, _ = _panel_sums(track, q, harmonics, positions, a, a + K)
+    return float(np.max(np.abs(kron)))
+
+
+def _adaptive(track, q, harmonics, positions, a, b, atol, max_rounds):
+    """Sum of the panel integrals, bisecting every panel whose Gauss-Kronrod difference exceeds its share."""
+    total = 0.0
+    err = 0.0
+    width = float(np.sum(b - a))
+    panels = 0
+    for _ in range(max_rounds):
+        kron, gauss = _panel_sums(track, q, harmonics, positions, a, b)
+        e = np.max(np.abs(kron - gauss), axis=(1, 2))
+        panels += a.size
+        ok = e <= atol * (b - a) / width
+        total = total + np.sum(kron[ok], axis=0)
+        err += float(np.sum(e[ok]))
+        if np.all(ok) or np.count_nonzero(~ok) > _MAX_PANELS:
+            break
+        a, b = a[~ok], b[~ok]
+        m = (a + b) / 2
+        a, b = np.concatenate([a, m]), np.concatenate([m, b])
+    if not np.all(ok):
+        total = total + np.sum(kron[~ok], axis=0)
+        err += float(np.sum(e[~ok]))
+    return total, err, panels

@@ -1,0 +1,207 @@
+"""Every induced frequency with Im q <= 0 in one strip of width Omega_0, converged in the harmonics.
+
+The characteristic function (:mod:`moving_bogie.floquet.hill`) is periodic in q with period Omega_0, so the
+strip x0 <= Re q < x0 + Omega_0 holds one copy of every root (docs/sleepers.md, Eq. (S14)). Its roots with
+Im q <= 0 are counted by the argument principle on the rectangle [x0, x0 + Omega_0] x [-depth, top], with no
+starting guesses, located by bisection and polished by Newton's method; the count and the located roots are
+compared, and the whole is repeated with one more harmonic on each side until the count is the same and
+the roots move less than ``tol``. ``top`` is 0 when the rail is damped along its length (eta_f > 0), else
+slightly below the axis: the rail's pinned-pinned waves, undamped by the supports, put singular points of
+the receptance on the real axis (Eq. (S15)). The depth is doubled until a band as deep again below the
+window holds no root.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number
+
+__all__ = ["FloquetResult", "FloquetRoot", "floquet_frequencies"]
+
+
+@dataclass(frozen=True)
+class FloquetRoot:
+    """One induced frequency q in the strip; ``step`` is how far it moved at the last harmonic added."""
+
+    q: complex
+    residual: float
+    step: float
+
+
+@dataclass(frozen=True)
+class FloquetResult:
+    """The roots with Im q <= top in the strip, with the count, the harmonics and the verdict's reasons.
+
+    ``harmonics`` is N (the harmonics -N-1..N); ``converged`` says whether the roots and the count agreed
+    at N - 1 and N; ``notes`` say why a verdict is UNDETERMINED.
+    """
+
+    roots: tuple[FloquetRoot, ...]
+    count: int
+    harmonics: int
+    converged: bool
+    window: Rectangle
+    Omega0: float
+    evaluations: int
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def verdict(self) -> str:
+        """UNSTABLE when a root has Im q < 0, STABLE when none can, else UNDETERMINED."""
+        if any(r.q.imag < 0 for r in self.roots):
+            return "UNSTABLE"
+        return "STABLE" if not self.notes and self.count == 0 else "UNDETERMINED"
+
+
+def _count(system: FloquetSystem, rect: Rectangle) -> int:
+    spacing = min(rect.width, rect.height) / 12
+    return winding_number(system, rect, spacing=spacing, max_points=20_000)
+
+
+def _newton(
+    system: FloquetSystem, q: complex, rect: Rectangle, margin: float = 0.0, max_iter: int = 40
+) -> tuple[complex, float]:
+    """Newton's method with a central-difference derivative; returns (q, |f / f'|).
+
+    An iterate that leaves ``rect`` widened by ``margin`` stops the iteration (residual inf): above the
+    window the receptance may be on the far side of its singularities.
+    """
+    step = np.inf
+    for _ in range(max_iter):
+        if not rect.contains(q, margin=margin):
+            return complex(q), float("inf")
+        h = 1e-6 * max(1.0, abs(q))
+        f0 = system(q)
+        d = (system(q + h) - system(q - h)) / (2 * h)
+        step = f0 / d
+        q = q - step
+        # the receptance is good to system.tol: a step below ten times that is at the noise floor
+        if abs(step) < max(1e-13, 10 * system.tol) * max(1.0, abs(q)):
+            break
+    return complex(q), float(abs(step))
+
+
+def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float) -> list[complex]:
+    """Bisect ``rect`` (holding n roots) until each piece holds one root of size below ``cell``."""
+    out: list[complex] = []
+    level = [(rect, n)]
+    while level:
+        nxt = []
+        for r, k in level:
+            if k == 0:
+                continue
+            if k == 1:
+                q, res = _newton(system, r.center, r)
+                if res < 1e-6 and r.contains(q):
+                    out.append(q)
+                    continue
+            if k == 1 and max(r.width, r.height) < cell:
+                out.append(r.center)
+                continue
+            if max(r.width, r.height) < 1e-9:
+                out += [r.center] * k
+                continue
+            for frac in (0.5, 0.47, 0.53, 0.41):
+                a, b = r.split(frac)
+                try:
+                    ka = _count(system, a)
+                    kb = k - ka
+                    if ka >= 0 and kb >= 0 and _count(system, b) == kb:
+                        nxt += [(a, ka), (b, kb)]
+                        break
+                except EdgeZeroError:
+                    continue
+            else:
+                out += [r.center] * k
+        level = nxt
+    return out
+
+
+def _roots_at(system, rect, previous, cell):
+    """Count in ``rect``, locate (or start from ``previous`` when the count is unchanged) and polish."""
+    count = _count(system, rect)
+    starts = (
+        previous if previous is not None and len(previous) == count else _locate(system, rect, count, cell)
+    )
+    system.tol = 1e-12
+    polished = [_newton(system, q, rect, margin=0.05 * min(rect.width, rect.height)) for q in starts]
+    system.tol = 1e-8
+    return count, polished
+
+
+def _window(track: SleeperTrack, depth: float, top: float, x0: float) -> Rectangle:
+    return Rectangle(x0, x0 + track.Omega0, -depth, top)
+
+
+def floquet_frequencies(
+    track: SleeperTrack,
+    vehicle: VehicleMatrices,
+    *,
+    offset: float = 0.0,
+    N0: int = 1,
+    N_max: int = 6,
+    tol: float = 1e-8,
+    depth: float | None = None,
+    top: float | None = None,
+) -> FloquetResult:
+    """Every root with Im q <= top of the Floquet characteristic in one strip (docs/sleepers.md, Eq. (S14)).
+
+    Parameters
+    ----------
+    offset : float
+        The rear wheel's position relative to a support at tau = 0 (the roots do not depend on it).
+    N0, N_max : int
+        First and largest N of the harmonics -N-1..N.
+    tol : float
+        Largest move of a root (relative to max(1, |q|)) between N - 1 and N: the roots have converged.
+    depth, top : float, optional
+        Lower and upper edge of the window in Im q (defaults: see the module docstring).
+    """
+    if track.Omega0 <= 0:
+        raise ValueError("alpha: the Floquet strip needs a moving vehicle (v > 0)")
+    eta_f = float(track.groups.get("eta_f", 0.0))
+    top = (0.0 if eta_f > 0 else -1e-3 * track.Omega0) if top is None else top
+    depth = max(track.Omega0, 1.0) if depth is None else depth
+    x0 = -0.25 * track.Omega0
+    cell = 0.05 * min(track.Omega0, depth)
+    notes: list[str] = []
+    system = FloquetSystem(track, vehicle, N0, offset=offset)
+    # the depth: doubled until a band as deep again below the window holds no root
+    for _ in range(6):
+        below = Rectangle(x0, x0 + track.Omega0, -2 * depth, -depth)
+        if _count(system, below) == 0:
+            break
+        depth *= 2
+    else:
+        notes.append(f"roots below Im q = -{depth:g} at every depth tried: the window may be incomplete")
+    rect = _window(track, depth, top, x0)
+    count, roots = _roots_at(system, rect, None, cell)
+    converged, steps = False, [np.inf] * len(roots)
+    for N in range(N0 + 1, N_max + 1):
+        system.N = N
+        new_count, new_roots = _roots_at(system, rect, [q for q, _ in roots], cell)
+        if new_count == count and len(new_roots) == len(roots):
+            steps = [abs(a[0] - b[0]) for a, b in zip(new_roots, roots)]
+            count, roots = new_count, new_roots
+            if all(s < tol * max(1.0, abs(q)) for s, (q, _) in zip(steps, roots)):
+                converged = True
+                break
+        else:
+            count, roots, steps = new_count, new_roots, [np.inf] * len(new_roots)
+    if not converged:
+        notes.append(f"the roots have not converged in the harmonics up to N = {system.N}")
+    if len(roots) != count:
+        notes.append(f"{count} root(s) counted but {len(roots)} located")
+    if top < 0 and not any(q.imag < top for q, _ in roots):
+        notes.append(
+            f"roots with {top:.3g} < Im q <= 0 are not searched (rail undamped between the supports)"
+        )
+    found = tuple(FloquetRoot(q, res, s) for (q, res), s in zip(roots, steps))
+    return FloquetResult(
+        found, count, system.N, converged, rect, track.Omega0, system.evaluations, tuple(notes)
+    )

@@ -1,0 +1,162 @@
+"""A rail on discrete supports at one parameter set: symbol, supports, lattice sum (docs/sleepers.md).
+
+Everything is dimensionless in the scaling of ``generated/sleepers.py`` (the paper's, Eqs. (15)-(17),
+with the smeared support stiffness k_e in the place of k_f): wavenumber p, frequency w, bay lam,
+K = 2 pi / lam. G(p, w) = Q~ / N~ is k_e times the rail's receptance in the wavenumber domain,
+z(w) = (Z_s / l) / k_e the supports' stiffness per unit length, and
+
+    S(p, w) = sum_j G(p + j K, w)
+            = sum over the four roots r of N~(., w) of (lam / 2) cot(lam (p - r) / 2) Res(G, r)
+
+the lattice sum in closed form (docs/sleepers.md, Eq. (S7)).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from moving_bogie.generated import sleepers as generated
+
+__all__ = ["SleeperTrack", "stable_cot"]
+
+
+def stable_cot(z: np.ndarray) -> np.ndarray:
+    """cot z for complex arrays, through exp(+-2 i z) of modulus at most 1 (no overflow far from the axis)."""
+    z = np.asarray(z, dtype=complex)
+    upper = z.imag > 0
+    e = np.exp(np.where(upper, 2j * z, -2j * z))
+    return np.where(upper, 1j * (e + 1) / (e - 1), 1j * (1 + e) / (1 - e))
+
+
+@dataclass(frozen=True)
+class SleeperTrack:
+    """A beam on a sleeper track with its dimensionless groups (floats), ready to evaluate.
+
+    Parameters
+    ----------
+    beam, track : str
+        A beam of ``generated.sleepers.BEAMS`` and a track of ``generated.sleepers.TRACKS``.
+    groups : dict
+        Every group the beam's symbol and the track's support take (``lam``, ``alpha``, ``kappa_f``, ...).
+    """
+
+    beam: str
+    track: str
+    groups: dict = field(hash=False)
+
+    def _args(self, key: str) -> dict:
+        names: tuple[str, ...] = generated.BEAMS[self.beam][key]  # type: ignore[assignment]
+        return {name: self.groups[name] for name in names}
+
+    @property
+    def lam(self) -> float:
+        """The bay l chi."""
+        return float(self.groups["lam"])
+
+    @property
+    def K(self) -> float:
+        """The reciprocal-lattice step 2 pi / lam."""
+        return 2 * np.pi / self.lam
+
+    @property
+    def alpha(self) -> float:
+        """The velocity v / v_ref."""
+        return float(self.groups["alpha"])
+
+    @property
+    def Omega0(self) -> float:
+        """The sleeper-passing frequency K alpha (in w: Omega_0 / omega_e = 2 pi v / (l omega_e))."""
+        return self.K * self.alpha
+
+    def support_polynomials(self) -> tuple:
+        """(numerator, denominator) of z as polynomials in w, highest power first."""
+        fn = getattr(generated, f"support_polynomials_{self.track.replace('-', '_')}")
+        return fn(**{n: self.groups[n] for n in generated.TRACKS[self.track]["support_arguments"]})
+
+    def support(self, w: np.ndarray) -> np.ndarray:
+        """z(w) = (Z_s / l) / k_e (docs/sleepers.md, Eq. (S2))."""
+        fn = getattr(generated, f"support_{self.track.replace('-', '_')}")
+        args = {n: self.groups[n] for n in generated.TRACKS[self.track]["support_arguments"]}
+        return fn(np.asarray(w, dtype=complex), **args) + 0j
+
+    def _coeffs(self, w: np.ndarray) -> tuple[list, list]:
+        w = np.asarray(w, dtype=complex)
+        n = getattr(generated, f"n_coeffs_{self.beam}")(w, **self._args("groups"))
+        q = getattr(generated, f"q_coeffs_{self.beam}")(w, **self._args("groups"))
+        return [np.broadcast_to(np.asarray(c, dtype=complex), w.shape) for c in n], [
+            np.broadcast_to(np.asarray(c, dtype=complex), w.shape) for c in q
+        ]
+
+    def green(self, p: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """G(p, w) = Q~ / N~ = k_e G0(k, omega) (docs/sleepers.md, Eq. (S1))."""
+        n, q = self._coeffs(w)
+        s = np.asarray(p, dtype=complex) ** 2
+        return _horner(q, s) / _horner(n, s)
+
+    def symbol_roots(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(roots r, residues Q~(r) / N~'(r)) of G(., w): arrays of shape w.shape + (4,).
+
+        N~ is a quadratic in p^2 (every beam is even in p): its roots in p^2 by the quadratic formula in the
+        form without cancellation, then r = +-sqrt(p^2).
+        """
+        n, q = self._coeffs(w)
+        if len(n) != 3:
+            raise ValueError(f"the symbol of beam {self.beam!r} is not a quadratic in p^2")
+        a, b, c = n
+        disc = np.sqrt(b * b - 4 * a * c)
+        disc = np.where(np.abs(b + disc) >= np.abs(b - disc), disc, -disc)
+        t = -(b + disc) / 2
+        s = np.stack([t / a, c / t], axis=-1)
+        root = np.sqrt(s)
+        r = np.concatenate([root, -root], axis=-1)
+        s4 = np.concatenate([s, s], axis=-1)
+        dn = 2 * r * (2 * a[..., None] * s4 + b[..., None])
+        res = _horner([c_[..., None] for c_ in q], s4) / dn
+        return r, res
+
+    def lattice_sum(self, p: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """S(p, w) = sum_j G(p + j K, w) in closed form (docs/sleepers.md, Eq. (S7))."""
+        r, res = self.symbol_roots(w)
+        p = np.asarray(p, dtype=complex)[..., None]
+        half = self.lam / 2
+        return np.sum(half * stable_cot(half * (p - r)) * res, axis=-1)
+
+    def moving_polynomials(self, q: complex) -> tuple[np.ndarray, np.ndarray]:
+        """(N~, Q~)(kappa, q + alpha kappa) as numpy polynomial coefficients in kappa, highest first."""
+        args = self._args("moving_groups")
+        n = getattr(generated, f"moving_n_coeffs_{self.beam}")(q, self.alpha, **args)
+        qq = getattr(generated, f"moving_q_coeffs_{self.beam}")(q, self.alpha, **args)
+        return np.array(n, dtype=complex), np.array(qq, dtype=complex)
+
+    def free_receptance(self, q: complex, offsets: np.ndarray) -> np.ndarray:
+        """(1 / 2 pi) int G(kappa, q + alpha kappa) exp(i kappa xi) dkappa for each offset xi, by residues.
+
+        The continuous rail's receptance between two points a distance xi apart that move with the load (the
+        paper's K(xi, q) up to its normalisation): closed in the upper half-plane for xi >= 0, in the lower
+        one for xi < 0 (docs/sleepers.md, Eq. (S5)).
+        """
+        n, qq = self.moving_polynomials(q)
+        while abs(n[0]) == 0:
+            n = n[1:]
+        roots = np.roots(n)
+        dn = np.polyval(np.polyder(n), roots)
+        res = np.polyval(qq, roots) / dn
+        offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
+        out = np.empty(offsets.shape, dtype=complex)
+        for i, xi in enumerate(offsets):
+            if xi >= 0:
+                sel = roots.imag > 0
+                out[i] = 1j * np.sum(res[sel] * np.exp(1j * roots[sel] * xi))
+            else:
+                sel = roots.imag < 0
+                out[i] = -1j * np.sum(res[sel] * np.exp(1j * roots[sel] * xi))
+        return out
+
+
+def _horner(coeffs: list, x: np.ndarray) -> np.ndarray:
+    out = np.zeros(np.shape(x), dtype=complex) + coeffs[0]
+    for c in coeffs[1:]:
+        out = out * x + c
+    return out

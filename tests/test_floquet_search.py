@@ -1,0 +1,85 @@
+"""Floquet roots in the strip: the principal parametric zone, convergence in the harmonics, the command.
+
+References: the symmetry q -> Omega_0 - conj(q) of docs/sleepers.md (S14) puts the principal zone's root on
+Re q = Omega_0 / 2 exactly; the argument principle (roots/count/contour.py) counts it with no guess; the
+sleeper-passing frequency 2 pi v / l is computed here from the file's v and l.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from moving_bogie.cli import main
+from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.generated import vehicle_mass
+from moving_bogie.roots.count.contour import Rectangle, winding_number
+
+EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml"
+
+
+def _newton(f, q, h=1e-7):
+    for _ in range(30):
+        step = f(q) / ((f(q + h) - f(q - h)) / (2 * h))
+        q -= step
+        if abs(step) < 1e-11:
+            break
+    return q
+
+
+@pytest.mark.slow
+def test_principal_parametric_zone_root_sits_on_half_the_passing_frequency():
+    """A heavy, lightly damped wheel on long bays at 2 x its frequency = Omega_0: one root with Im q < 0
+    counted in a box around Re q = Omega_0 / 2, on that line; one more harmonic moves it by 2e-6 (N = 1 to
+    2), a tenth of that from N = 2 to 3: it converges in the harmonics."""
+    track = SleeperTrack(
+        "eb", "sleepers", {"lam": 1.5, "alpha": 0.25, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.005}
+    )
+    vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": 5.0})
+    omega0 = track.Omega0
+    system = FloquetSystem(track, vehicle, N=1, tol=1e-6)
+    box = Rectangle(0.3 * omega0, 0.7 * omega0, -0.2 * omega0, -1e-3 * omega0)
+    assert winding_number(system, box, spacing=box.width / 10) == 1
+    system.tol = 1e-12
+    q1 = _newton(system, box.center)
+    assert box.contains(q1) and q1.imag < 0
+    assert abs(q1.real - omega0 / 2) < 1e-9
+    system.N = 2
+    q2 = _newton(system, q1)
+    system.N = 3
+    q3 = _newton(system, q2)
+    assert abs(q2.real - omega0 / 2) < 1e-9 and abs(q3.real - omega0 / 2) < 1e-9
+    assert abs(q3 - q2) < 0.1 * abs(q2 - q1) < 1e-5
+
+
+@pytest.mark.parametrize(
+    "text, fragment",
+    [
+        ("k_sup = 6.0e7\nksup = 1", "ksup"),
+        ("k_sup = -6.0e7", "k_sup must be positive"),
+        ("", "no 'k_sup'"),
+    ],
+)
+def test_bad_sleeper_files_name_the_key(tmp_path, capsys, text, fragment):
+    """One line naming the key, exit 2, before any computation."""
+    path = tmp_path / "bad.toml"
+    head = '[model]\nbeam = "eb"\ntrack = "sleepers"\nvehicle = "mass"\n[physical]\n'
+    path.write_text(head + "EI = 6.4e6\nm = 60\nl = 0.6\nM = 600\nv = 40\n" + text + "\n")
+    assert main(["frequencies", "--file", str(path)]) == 2
+    assert fragment in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_example_file_gives_the_strip_the_harmonics_and_a_verdict(capsys):
+    """examples/sleepers.toml: Omega_0 = 2 pi v / l, the harmonics -N-1..N, converged, a verdict."""
+    assert main(["frequencies", "--file", str(EXAMPLE), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["Omega0_rad_s"] == pytest.approx(2 * np.pi * 40 / 0.6, rel=1e-12)
+    assert out["converged"] and out["verdict"] in ("STABLE", "UNSTABLE")
+    n = out["harmonics"]
+    assert n == list(range(-n[-1] - 1, n[-1] + 1))
+    assert out["count"] == len(out["roots"])
