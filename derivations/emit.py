@@ -122,7 +122,8 @@ def module_source(title, digest, body_parts, constants=()):
     text = HEADER.format(title=title, digest=digest, sympy=sp.__version__)
     for cname, value in constants:
         # an empty container carries its type, so that a type checker needs no guess
-        annotation = f": {type(value).__name__}" if isinstance(value, dict | list | tuple | set) and not value else ""
+        empty = isinstance(value, dict | list | tuple | set) and not value
+        annotation = f": {type(value).__name__}" if empty else ""
         text += f"{cname}{annotation} = {value!r}\n"
     for part in body_parts:
         text += "\n\n" + part

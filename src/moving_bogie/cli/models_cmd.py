@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import textwrap
+from typing import cast
 
 from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.model.catalogue import default_catalogue
@@ -83,9 +84,10 @@ def format_sleeper_tracks() -> list[str]:
     lines = ["rails on discrete supports (Floquet; analysed by frequencies --file, any vehicle):"]
     for track, meta in sleepers.TRACKS.items():
         for beam in sleepers.BEAMS:
-            table = sleepers.PARAMETERS[track][beam]
+            table = cast(dict[str, dict[str, str]], sleepers.PARAMETERS[track][beam])
             names = ", ".join(spec["si"] for spec in table.values())
-            lines.append(f"  {beam}/{track}  SI: EI, m, {meta['reference'][0]}, {names}")
+            reference = cast(tuple[str, str, str], meta["reference"])  # (SI name, unit, meaning)
+            lines.append(f"  {beam}/{track}  SI: EI, m, {reference[0]}, {names}")
     return lines
 
 

@@ -14,6 +14,7 @@ The characteristic function is the determinant; its zeros are the induced freque
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import ModuleType
 
 import numpy as np
 
@@ -34,7 +35,7 @@ class VehicleMatrices:
     positions: np.ndarray
 
     @classmethod
-    def from_module(cls, module, values: dict) -> VehicleMatrices:
+    def from_module(cls, module: ModuleType, values: dict) -> VehicleMatrices:
         """From a generated vehicle module and its group values (floats)."""
         args = {name: values[name] for name in module.MATRIX_ARGUMENTS}
         mass, damping, stiffness = (
@@ -99,7 +100,7 @@ class FloquetSystem:
         A[:R, R:] = rec.matrix @ Dci
         return A, rec
 
-    def __call__(self, q) -> np.ndarray:
+    def __call__(self, q: complex | np.ndarray) -> np.ndarray:
         """det of the Hill matrix at each q (an array); the function the argument principle counts."""
         qs = np.atleast_1d(np.asarray(q, dtype=complex))
         out = np.empty(qs.shape, dtype=complex)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib
 import math
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -48,7 +49,7 @@ def is_sleeper_file(path: str | Path) -> bool:
     return isinstance(data.get("model"), dict) and data["model"].get("track") in generated.TRACKS
 
 
-def _number(si: dict, key: str, path) -> float:
+def _number(si: dict, key: str, path: Path | str) -> float:
     value = si[key]
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
         raise ParameterError(key, f"{key} in {path} must be a number (got {value!r})")
@@ -73,7 +74,7 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
         raise ParameterError("physical", f"{path}: a sleeper track takes a [physical] table in SI units")
     module = importlib.import_module(f"moving_bogie.generated.vehicle_{vehicle}")
     table: dict[str, dict[str, Any]] = generated.PARAMETERS[track][beam]  # type: ignore[assignment]
-    ref: str = generated.TRACKS[track]["reference"][0]  # type: ignore[index]
+    ref: str = generated.TRACKS[track]["reference"][0]
     paper: dict[str, dict[str, Any]] = paper_groups.PARAMETERS  # type: ignore[assignment]
     vehicle_si = {paper[g]["si"]: g for g in module.PARAMETERS}
     known = {"EI", "m", "P", ref, *(spec["si"] for spec in table.values()), *vehicle_si}
@@ -112,7 +113,7 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
     return SleeperInput(beam, track, vehicle, groups, vehicle_groups, values, chi, v_ref, t_scale, k_e)
 
 
-def _call(fn, values: dict, reference: float | None = None) -> float:
+def _call(fn: Callable[..., Any], values: dict, reference: float | None = None) -> float:
     """Call a generated scaling function with its SI arguments; with ``reference``, a function of the
     paper's scaling, whose k_f is the reference stiffness: k_e here."""
     names = fn.__code__.co_varnames[: fn.__code__.co_argcount]

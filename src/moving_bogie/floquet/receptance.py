@@ -22,9 +22,11 @@ relative to the largest free-rail receptance.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import mpmath
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.floquet.track import SleeperTrack, stable_cot
 
@@ -134,7 +136,9 @@ def smeared_receptance(track: SleeperTrack, q: complex, offsets: np.ndarray) -> 
     return np.array(out)
 
 
-def _integrand(track, q, harmonics, positions, p):
+def _integrand(
+    track: SleeperTrack, q: complex, harmonics: np.ndarray, positions: np.ndarray, p: np.ndarray
+) -> np.ndarray:
     """The integrands at nodes p (shape (P,)): shape (P, R, R), R = len(harmonics) * contacts."""
     K, alpha, lam = track.K, track.alpha, track.lam
     w = q + alpha * p
@@ -160,7 +164,14 @@ def _integrand(track, q, harmonics, positions, p):
     return f
 
 
-def _panel_sums(track, q, harmonics, positions, a, b):
+def _panel_sums(
+    track: SleeperTrack,
+    q: complex,
+    harmonics: np.ndarray,
+    positions: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
     """Kronrod and Gauss sums over panels [a_i, b_i]: arrays (panels, R, R) each (in chunks of panels)."""
     R = _r(harmonics, positions)
     chunk = max(1, 200_000 // (15 * R * R))
@@ -179,15 +190,15 @@ def _panel_sums(track, q, harmonics, positions, a, b):
     return kron, gauss
 
 
-def _r(harmonics, positions) -> int:
+def _r(harmonics: np.ndarray, positions: np.ndarray) -> int:
     return len(harmonics) * len(positions)
 
 
 def receptance(
     track: SleeperTrack,
     q: complex,
-    harmonics,
-    positions=(0.0,),
+    harmonics: ArrayLike,
+    positions: ArrayLike = (0.0,),
     *,
     tol: float = 1e-12,
     tail: float | None = None,
@@ -231,14 +242,30 @@ _MAX_REACH = 60
 _MAX_PANELS = 4000
 
 
-def _zone_magnitude(track, q, harmonics, positions, reach, K) -> float:
+def _zone_magnitude(
+    track: SleeperTrack,
+    q: complex,
+    harmonics: np.ndarray,
+    positions: np.ndarray,
+    reach: float,
+    K: float,
+) -> float:
     """Largest entry of the integrals over the two outermost zones of width K (the tail's estimate)."""
     a = np.array([reach - K, -reach])
     kron, _ = _panel_sums(track, q, harmonics, positions, a, a + K)
     return float(np.max(np.abs(kron)))
 
 
-def _adaptive(track, q, harmonics, positions, a, b, atol, max_rounds):
+def _adaptive(
+    track: SleeperTrack,
+    q: complex,
+    harmonics: np.ndarray,
+    positions: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    atol: float,
+    max_rounds: int,
+) -> tuple[Any, float, int]:
     """Sum of the panel integrals, bisecting every panel whose Gauss-Kronrod difference exceeds its share."""
     total = 0.0
     err = 0.0

@@ -122,7 +122,9 @@ def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float) -> list
     return out
 
 
-def _roots_at(system, rect, previous, cell):
+def _roots_at(
+    system: FloquetSystem, rect: Rectangle, previous: list[complex] | None, cell: float
+) -> tuple[int, list[tuple[complex, float]]]:
     """Count in ``rect``, locate (or start from ``previous`` when the count is unchanged) and polish."""
     count = _count(system, rect)
     starts = (
