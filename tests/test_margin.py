@@ -149,7 +149,10 @@ def test_figure_shows_the_margin_and_lists_only_what_is_drawn(uic60):
         np.sort(mesh.get_array().compressed()), np.sort(smap.margin.ravel() / units.t_scale)
     )
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
-    assert labels == ["operating point"]  # v_cr = 649 m/s lies beyond the 0.3 alpha axis: not listed
+    # v_cr = 649 m/s lies beyond the 0.3 alpha axis: not listed; the stable cell closest to instability is
+    # marked with its rate, the smallest margin of the map
+    closest = float(np.nanmin(smap.margin) / units.t_scale)
+    assert labels == ["operating point", f"smallest decay rate {closest:.3g} 1/s"]
     assert any("beyond this axis" in t.get_text() for t in ax.texts)
     title = ax.get_title()
     assert "bogie, eb beam, one-layer track" in title and "c_f = 1.2e+04 N s/m^2" in title

@@ -130,6 +130,18 @@ def _rate(kind: str, unit: str) -> str:
     return f"{kind} rate {symbol} (dimensionless)" + (" (stable)" if kind == "decay" else " (unstable)")
 
 
+def _closest(ax: Axes, plane: MarginPlane, decay: np.ndarray) -> Artist:
+    """Mark the stable cell closest to instability (the smallest decay rate) and name its rate: the number a
+    plane of nearly one colour would hide."""
+    j, i = np.unravel_index(int(np.nanargmin(decay)), decay.shape)
+    unit = plane.unit or "(dimensionless)"
+    label = f"smallest decay rate {decay[j, i]:.3g} {unit}" + (" (lower bound)" if plane.bound[j, i] else "")
+    (marker,) = ax.plot(
+        plane.x[i], plane.y[j], ls="none", marker="v", ms=8, mfc="white", mec="k", label=label, zorder=5
+    )
+    return marker
+
+
 def draw_margin(fig: Figure, ax: Axes, plane: MarginPlane) -> list:
     """Colour ``ax`` by the margin of ``plane`` (module text); returns the legend handles of what is drawn
     beside the colours (dotted bounds, grey undetermined margins, hatched uncertain points, the boundary)."""
@@ -145,6 +157,7 @@ def draw_margin(fig: Figure, ax: Axes, plane: MarginPlane) -> list:
         norm = _log_norm(decay, DECAY_DECADES) if hi > 0 else Normalize(0.0, 1.0)
         mesh = ax.pcolormesh(x, y, decay, shading="nearest", cmap="YlGnBu", norm=norm)
         _colorbar(fig, ax, mesh, _rate("decay", plane.unit), _extend(decay, norm))
+        handles.append(_closest(ax, plane, decay))
     growth = np.where(plane.unstable & np.isfinite(m), -m, np.nan)
     if np.isfinite(growth).any():
         norm = _log_norm(growth, GROWTH_DECADES)
