@@ -66,7 +66,7 @@ def _count(system: FloquetSystem, rect: Rectangle) -> int:
 def _newton(
     system: FloquetSystem, q: complex, rect: Rectangle, margin: float = 0.0, max_iter: int = 40
 ) -> tuple[complex, float]:
-    """Newton's method with a central-difference derivative; returns (q, |f / f'|).
+    """Newton's method with a central-difference derivative; returns (q, abs(f / f')).
 
     An iterate that leaves ``rect`` widened by ``margin`` stops the iteration (residual inf): above the
     window the receptance may be on the far side of its singularities.
@@ -160,7 +160,7 @@ def floquet_frequencies(
     N0, N_max : int
         First and largest N of the harmonics -N-1..N.
     tol : float
-        Largest move of a root (relative to max(1, |q|)) between N - 1 and N: the roots have converged.
+        Largest move of a root (relative to max(1, abs(q))) between N - 1 and N: the roots have converged.
     depth, top : float, optional
         Lower and upper edge of the window in Im q (defaults: see the module docstring).
     """
