@@ -181,8 +181,8 @@ def _newton(f, q, h=1e-7):
 def test_short_bays_give_the_one_layer_roots_at_rate_l4():
     """l -> 0 with k_sup / l fixed: the wheel's root tends to the continuous rail's (roots/frequencies.py,
     eta_f = eta_sup, same alpha, eta_M), the error falls like lam^4 (ratio 16 per halving)."""
-    from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.api import induced_frequencies
+    from moving_bogie.model.params import DimensionlessParams
 
     params = DimensionlessParams.from_mapping(
         {"beam": "eb", "vehicle": "mass", "eta_f": "0.2", "alpha": "0.3", "eta_M": 2}
@@ -199,8 +199,8 @@ def test_short_bays_give_the_one_layer_roots_at_rate_l4():
 
 def test_two_wheels_at_short_bays_are_the_continuous_two_masses():
     """Two contacts and their phases: at lam = 0.1 the two masses' roots are the continuous ones to 1e-5."""
-    from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.api import induced_frequencies
+    from moving_bogie.model.params import DimensionlessParams
 
     params = DimensionlessParams.from_mapping(
         {"beam": "eb", "vehicle": "masses", "eta_f": "0.2", "alpha": "0.3", "eta_M": 2, "d": "1.5"}

@@ -148,13 +148,14 @@ def test_sweep_plot_draws_a_slice(one_worker, tmp_path, capsys, monkeypatch):
     assert main(["sweep-plot", str(one_worker), "--x", "alpha", "--y", "eta_M", "--out", str(out)]) == 0
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     (ax,) = [ax for ax in drawn[0].axes if ax.get_xlabel() == "alpha"]
-    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    meshes = [c for c in ax.collections if isinstance(c, QuadMesh) and c.colorbar is not None]
+    (mesh,) = [c for c in meshes if "growth" in c.colorbar.ax.get_ylabel()]  # the unstable points
     ds = open_sweep(one_worker).compute().transpose("eta_M", "alpha")
     unstable = ds.n_unstable.values > 0
     shown = np.ma.getdata(mesh.get_array()).reshape(unstable.shape)
     blank = np.ma.getmaskarray(mesh.get_array()).reshape(unstable.shape) | np.isnan(shown)
     np.testing.assert_array_equal(blank, ~unstable)
-    expected = np.log10(np.maximum(-ds.degree_of_instability.values[unstable], 1e-6))
+    expected = -ds.degree_of_instability.values[unstable]  # the growth rate: the margin of an unstable point
     np.testing.assert_allclose(shown[unstable], expected, rtol=1e-12)
     assert main(["sweep-plot", str(one_worker), "--x", "alpha", "--y", "eta_f", "--out", str(out)]) == 2
     assert "--y eta_f" in capsys.readouterr().err
