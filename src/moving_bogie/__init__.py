@@ -13,6 +13,7 @@ The runtime never imports SymPy: formulas come from the generated kernels in
 """
 
 from importlib.metadata import PackageNotFoundError, version
+from typing import Any
 
 from moving_bogie.errors import MovingBogieError, MovingBogieWarning, ParameterError
 from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
@@ -41,7 +42,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
     if name in _LAZY:
         import importlib
 

@@ -42,7 +42,7 @@ class ParameterError(MovingBogieError, ValueError):
             message = f"{parameter} {message}"
         super().__init__(message)
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[type[ParameterError], tuple[str, str]]:
         # Errors raised in worker processes must survive pickling with their parameter name.
         return (type(self), (self.parameter, str(self)))
 

@@ -5,13 +5,14 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from collections.abc import Iterable
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
-from moving_bogie.model.catalogue import default_catalogue
+from moving_bogie.model.catalogue import Catalogue, default_catalogue
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
@@ -39,7 +40,7 @@ __all__ = [
 ]
 
 
-def _catalogue():
+def _catalogue() -> Catalogue:
     return default_catalogue()
 
 
@@ -103,7 +104,7 @@ def add_parameter_options(parser: argparse.ArgumentParser) -> None:
     add_set_option(source)
 
 
-def add_set_option(parser) -> None:
+def add_set_option(parser: argparse._ActionsContainer) -> None:
     """Add ``--set NAME=VALUE``: an SI parameter of a ``[physical]`` file (see :func:`apply_settings`)."""
     parser.add_argument(
         "--set",
@@ -115,7 +116,9 @@ def add_set_option(parser) -> None:
     )
 
 
-def apply_settings(physical: PhysicalParams | None, texts) -> tuple:
+def apply_settings(
+    physical: PhysicalParams | None, texts: Iterable[str]
+) -> tuple[PhysicalParams, DimensionlessParams]:
     """``physical`` with the ``--set NAME=VALUE`` changes (exact decimal values in the SI units), and its
     dimensionless parameters: (PhysicalParams, DimensionlessParams).
 
@@ -140,7 +143,8 @@ def apply_settings(physical: PhysicalParams | None, texts) -> tuple:
         if not eq or not name:
             raise ParameterError("--set", f"--set {text!r}: expected NAME=NUMBER")
     try:
-        physical = PhysicalParams(model=physical.model, **(physical.values() | changes))
+        values: dict[str, Any] = physical.values() | changes  # Fractions, passed as **values
+        physical = PhysicalParams(model=physical.model, **values)
         return physical, physical.to_dimensionless()
     except ParameterError as exc:
         raise ParameterError("--set", f"--set: {exc}") from None
@@ -169,7 +173,7 @@ def add_model_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def vehicle_help(catalogue) -> str:
+def vehicle_help(catalogue: Catalogue) -> str:
     """Every vehicle of the catalogue with the first clause of its description: 'mass: one wheel; ...'."""
     parts = []
     for name, text in catalogue.vehicles.items():

@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 
 from .common import PROG, add_json_option, print_json
 from .outputs import add_figure_option
 from .progress import progress_bar
+
+if TYPE_CHECKING:
+    from moving_bogie.stability.lines.line_results import InstabilityLines
+
 from .stability_options import (
     RAW,
     add_plane_options,
@@ -53,9 +57,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=run)
 
 
-def lowest_subcritical(lines, alpha_cr: float) -> dict:
+def lowest_subcritical(lines: InstabilityLines, alpha_cr: float) -> dict[float, tuple[float, float]]:
     """Per spacing d: the lowest point (alpha, eta_M) of its instability lines with alpha < alpha_cr."""
-    out: dict[Any, Any] = {}
+    out: dict[float, tuple[float, float]] = {}
     for b in lines.branches:
         sel = b.alpha < alpha_cr
         if not sel.any():
@@ -67,7 +71,7 @@ def lowest_subcritical(lines, alpha_cr: float) -> dict:
     return out
 
 
-def run(args) -> int:
+def run(args: argparse.Namespace) -> int:
     layered, spacings = params_and_spacings(args)
     if layered.track == "one-layer":
         raise ParameterError("track", "compare-tracks needs a layered --track (e.g. two-layer) to compare")

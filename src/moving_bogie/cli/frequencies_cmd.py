@@ -4,6 +4,13 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from moving_bogie.model.physical import PhysicalParams
+    from moving_bogie.roots.frequency_result import FrequencyResult
+    from moving_bogie.roots.proof.certify import Certificate
+    from moving_bogie.stability.velocity.supercritical import SpeedRegime
 
 from .common import PROG, add_json_option, add_parameter_options, params_from_args, print_json
 
@@ -63,7 +70,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     table.set_defaults(handler=run_table2)
 
 
-def _add_certify_option(parser) -> None:
+def _add_certify_option(parser: argparse._ActionsContainer) -> None:
     parser.add_argument(
         "--certify",
         action="store_true",
@@ -72,7 +79,7 @@ def _add_certify_option(parser) -> None:
     )
 
 
-def _add_search_options(parser) -> None:
+def _add_search_options(parser: argparse._ActionsContainer) -> None:
     parser.add_argument(
         "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
     )
@@ -84,7 +91,7 @@ def _add_search_options(parser) -> None:
     _add_certify_option(parser)
 
 
-def _check_dps(dps):
+def _check_dps(dps: int) -> None:
     from moving_bogie.errors import ParameterError
 
     if not 15 <= dps <= 1000:
@@ -146,8 +153,9 @@ def run_frequencies(args: argparse.Namespace) -> int:
     return 0 if result.count_ok and result.verdict.determined and proven else 1
 
 
-def _with_regime(verdict, regime):
-    """The JSON verdict object with ``supercritical``, ``alpha_cr`` (and ``v_cr`` in m/s) added."""
+def _with_regime(verdict: Any, regime: SpeedRegime) -> Any:
+    """The JSON verdict object with ``supercritical``, ``alpha_cr`` (and ``v_cr`` in m/s) added (any other
+    JSON value as it is)."""
     extra = {"supercritical": regime.supercritical, "alpha_cr": regime.alpha_cr}
     if regime.v_cr is not None:
         extra["v_cr"] = regime.v_cr
@@ -156,7 +164,7 @@ def _with_regime(verdict, regime):
     return verdict
 
 
-def with_si(data: dict, result, physical) -> dict:
+def with_si(data: dict[str, Any], result: FrequencyResult, physical: PhysicalParams | None) -> dict[str, Any]:
     """For a ``[physical]`` input: each root also as ``omega`` [rad/s], Hz and growth time [s]."""
     if physical is None:
         return data
@@ -169,7 +177,7 @@ def with_si(data: dict, result, physical) -> dict:
     return data
 
 
-def format_si(result, physical) -> str:
+def format_si(result: FrequencyResult, physical: PhysicalParams) -> str:
     """The roots of a ``[physical]`` input in SI units, one line each."""
     from moving_bogie.model.si_results import root_in_si
 
@@ -185,7 +193,7 @@ def format_si(result, physical) -> str:
     return "\n".join(lines)
 
 
-def format_result(result) -> str:
+def format_result(result: FrequencyResult) -> str:
     import mpmath
 
     lines = [f"Induced frequencies ({result.model}, {result.params.beam.upper()} beam), {result.dps} digits:"]
@@ -231,7 +239,7 @@ def format_result(result) -> str:
     return "\n".join(lines)
 
 
-def format_warnings(result) -> list[str]:
+def format_warnings(result: FrequencyResult) -> list[str]:
     """The WARNING/ERROR lines of ``result`` (printed on stderr)."""
     lines = [f"{PROG}: warning: {w}" for w in result.warnings]
     if not result.count_ok:
@@ -239,7 +247,7 @@ def format_warnings(result) -> list[str]:
     return lines
 
 
-def format_certificate(c) -> list:
+def format_certificate(c: Certificate) -> list[str]:
     """Lines reporting the ball-arithmetic proof (roots, count, unsearched strip, verdict)."""
     lines = [
         f"certified ({c.seconds:.1f} s): {c.proven_roots}/{len(c.roots)} roots proven, each alone in a "

@@ -4,6 +4,14 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
+    from moving_bogie.stability.lines.line_results import InstabilityLines
 
 from moving_bogie.errors import ParameterError
 
@@ -34,7 +42,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 # -- instability-lines --------------------------------------------------------------------------------
-def _register_instability_lines(subparsers) -> None:
+def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser(
         "instability-lines",
         help="instability lines in the (alpha, eta_M) plane (Figures 3, 4, 7, 8)",
@@ -82,7 +90,7 @@ def _register_instability_lines(subparsers) -> None:
     p.set_defaults(handler=run_instability_lines)
 
 
-def run_instability_lines(args) -> int:
+def run_instability_lines(args: argparse.Namespace) -> int:
     params, spacings = params_and_spacings(args)
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
@@ -139,7 +147,9 @@ def run_instability_lines(args) -> int:
     return 0
 
 
-def instability_figure(res, units, alpha_range, theta_max):
+def instability_figure(
+    res: InstabilityLines, units: PlaneUnits, alpha_range: tuple[float, float], theta_max: float
+) -> Figure:
     """The figure of ``instability-lines``: the lines in ``units`` (SI for a [physical] file), the line
     ends explained, alpha = 1 dotted, the operating point marked."""
     from matplotlib.figure import Figure
@@ -164,7 +174,7 @@ def instability_figure(res, units, alpha_range, theta_max):
 
 
 # -- stability-map ------------------------------------------------------------------------------------
-def _register_stability_map(subparsers) -> None:
+def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser(
         "stability-map",
         help="degree of instability over an (alpha, eta_M) grid, with the instability lines",
@@ -205,7 +215,7 @@ def _register_stability_map(subparsers) -> None:
     p.set_defaults(handler=run_stability_map)
 
 
-def run_stability_map(args) -> int:
+def run_stability_map(args: argparse.Namespace) -> int:
     import numpy as np
 
     params, _ = params_and_spacings(args)
@@ -225,8 +235,8 @@ def run_stability_map(args) -> int:
         smap = stability_map(
             bound,
             parameter=args.parameter,
-            alphas=alphas,
-            thetas=thetas,
+            alphas=alphas.tolist(),
+            thetas=thetas.tolist(),
             workers=args.workers,
             progress=bar,
         )
@@ -284,7 +294,7 @@ def run_stability_map(args) -> int:
     return 0
 
 
-def _si_line(units, parameter: str, params) -> str:
+def _si_line(units: PlaneUnits, parameter: str, params: DimensionlessParams) -> str:
     """Lines saying the plane is shown in SI: each axis as its group times a factor, and what follows the
     vertical axis (the groups an alternative input of Eq. (63) keeps in proportion, as in the paper)."""
     text = (

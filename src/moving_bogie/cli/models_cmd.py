@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import argparse
 import textwrap
+from collections.abc import Sequence
 from typing import cast
 
 from moving_bogie.errors import ParameterError, suggestion
-from moving_bogie.model.catalogue import default_catalogue
+from moving_bogie.model.catalogue import Model, default_catalogue
 from moving_bogie.model.physical import PER_RAIL_CONVENTION
 
 from .common import add_json_option, print_json
@@ -59,7 +60,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def format_summary(models) -> str:
+def format_summary(models: Sequence[Model]) -> str:
     """One line per model: its name, the degrees of N and Q in p, its parameters; then where to look next."""
     width = max(len(model.name) for model in models)
     lines = [f"{len(models)} models (beam/track/vehicle):"]
@@ -91,7 +92,7 @@ def format_sleeper_tracks() -> list[str]:
     return lines
 
 
-def format_catalogue(models) -> str:
+def format_catalogue(models: Sequence[Model]) -> str:
     """Readable listing: one block per model, one line per parameter."""
     blocks = []
     for model in models:

@@ -13,7 +13,9 @@ from __future__ import annotations
 import argparse
 import os
 import tempfile
+from collections.abc import Iterable, Sequence
 from pathlib import Path
+from typing import Any
 
 from moving_bogie.errors import MovingBogieError, did_you_mean
 
@@ -49,12 +51,27 @@ class OutputError(MovingBogieError):
 class OutputPath(argparse.Action):
     """Store the path and remember (option, path, is_folder, suffixes) in ``namespace.output_paths``."""
 
-    def __init__(self, option_strings, dest, folder: bool = False, formats=(), **kwargs) -> None:
+    def __init__(
+        self,
+        option_strings: Sequence[str],
+        dest: str,
+        folder: bool = False,
+        formats: Iterable[str] = (),
+        **kwargs: Any,
+    ) -> None:
         self.folder = folder
         self.formats = tuple(formats)
         super().__init__(option_strings, dest, **kwargs)
 
-    def __call__(self, parser, namespace, values, option_string=None) -> None:
+    def __call__(
+        self,
+        parser: argparse.ArgumentParser,
+        namespace: argparse.Namespace,
+        values: str | Sequence[Any] | None,
+        option_string: str | None = None,
+    ) -> None:
+        if not isinstance(values, str):  # one path per option (no nargs, no type)
+            raise TypeError(f"{self.option_strings[0]} takes one path")
         path = Path(values)
         setattr(namespace, self.dest, path)
         recorded = [o for o in getattr(namespace, "output_paths", []) if o[0] != self.option_strings[0]]
@@ -62,7 +79,11 @@ class OutputPath(argparse.Action):
 
 
 def add_output_option(
-    parser, *flags: str, folder: bool = False, formats: tuple = (), **kwargs
+    parser: argparse._ActionsContainer,
+    *flags: str,
+    folder: bool = False,
+    formats: tuple[str, ...] = (),
+    **kwargs: Any,
 ) -> argparse.Action:
     """Add an output option (a file, or a folder if ``folder``) that :func:`check_output_paths` will check.
 
@@ -73,7 +94,7 @@ def add_output_option(
     return parser.add_argument(*flags, action=OutputPath, folder=folder, formats=formats, **kwargs)
 
 
-def add_figure_option(parser, *flags: str, **kwargs) -> argparse.Action:
+def add_figure_option(parser: argparse._ActionsContainer, *flags: str, **kwargs: Any) -> argparse.Action:
     """Add an output option for a figure: its suffix must be one of :data:`FIGURE_FORMATS`."""
     kwargs.setdefault("metavar", "F.png")
     return add_output_option(parser, *flags, formats=FIGURE_FORMATS, **kwargs)
@@ -90,7 +111,7 @@ def _probe(folder: Path) -> str | None:
     return None
 
 
-def _check_format(option: str, path: Path, formats: tuple) -> None:
+def _check_format(option: str, path: Path, formats: tuple[str, ...]) -> None:
     suffix = path.suffix.lower().lstrip(".")
     if formats and suffix not in formats:
         hint = did_you_mean(suffix, formats) if suffix else ""
@@ -99,7 +120,7 @@ def _check_format(option: str, path: Path, formats: tuple) -> None:
         raise OutputError(option, f"{path}: {got}; {hint or 'use one of ' + shown}")
 
 
-def check_output_path(option: str, path: Path, folder: bool = False, formats: tuple = ()) -> None:
+def check_output_path(option: str, path: Path, folder: bool = False, formats: tuple[str, ...] = ()) -> None:
     """Raise :class:`OutputError` naming ``option`` unless ``path`` can be written (a file, or a folder) in
     one of ``formats`` (file suffixes; any when empty), in a folder that exists."""
     path = Path(os.path.expanduser(path))

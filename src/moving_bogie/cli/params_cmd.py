@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+from fractions import Fraction
 
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
@@ -55,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def params_text(value) -> str:
+def params_text(value: Fraction) -> str:
     """A Fraction as decimal text (exact where finite)."""
     from moving_bogie.model.exact import fraction_to_text
 

@@ -5,7 +5,10 @@ from __future__ import annotations
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from rich.progress import Progress
 
 
 @contextmanager
@@ -20,7 +23,9 @@ def progress_bar(description: str, *, enabled: bool = True) -> Iterator[Callable
 
 
 @contextmanager
-def two_level_bar(description: str, *, enabled: bool = True):
+def two_level_bar(
+    description: str, *, enabled: bool = True
+) -> Iterator[tuple[Callable[[float], None], Callable[[str, float], None]]]:
     """Yield ``(overall, part)``: ``overall(fraction)`` moves a bar for the whole job, ``part(label,
     fraction)`` a second bar for the step under way (named ``label``); rich on an interactive stderr,
     no-ops otherwise."""
@@ -41,7 +46,7 @@ def two_level_bar(description: str, *, enabled: bool = True):
         yield (lambda fraction: bar.update(whole, completed=max(0.0, min(1.0, fraction)))), part
 
 
-def _rich_bars():
+def _rich_bars() -> Progress:
     """The rich Progress both bars use: description, bar, percentage, elapsed time; on stderr, transient."""
     from rich.console import Console
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn

@@ -21,7 +21,7 @@ import re
 import sys
 import tomllib
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any
+from typing import Any, NoReturn
 
 from moving_bogie.errors import MovingBogieError, ParameterError, did_you_mean
 
@@ -57,7 +57,7 @@ class Parser(argparse.ArgumentParser):
     #: The subcommand parsers by name (set by :func:`~moving_bogie.cli.build_parser`).
     commands: Mapping[str, argparse.ArgumentParser]
 
-    def error(self, message: str):  # noqa: D102 (argparse API)
+    def error(self, message: str) -> NoReturn:  # noqa: D102 (argparse API)
         match = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)$", message)
         if match:
             hint = did_you_mean(match.group(1), re.findall(r"'([^']*)'", match.group(2)))
@@ -80,7 +80,9 @@ def suggest_option(
     return UsageError(f"{message} ({'; '.join(hints)})", exc.option, f"{exc.prog} {argv[0]}")
 
 
-def fail(message: str, option: str | None = None, *, json_mode: bool = False, code: int = 2, hint: str = ""):
+def fail(
+    message: str, option: str | None = None, *, json_mode: bool = False, code: int = 2, hint: str = ""
+) -> int:
     """Report a failure (see the module docstring) and return the exit status ``code``."""
     if json_mode:
         json.dump({"error": message, "option": option}, sys.stdout)
@@ -113,7 +115,7 @@ def _parameter_option(parameter: str, argv: Sequence[str]) -> str | None:
     return "--file" if "--file" in given else None
 
 
-def _path_option(filename, args) -> str | None:
+def _path_option(filename: str | bytes | os.PathLike[str], args: argparse.Namespace) -> str | None:
     for option, path, *_ in getattr(args, "output_paths", ()):
         if os.fspath(path) == os.fspath(filename):
             return option

@@ -5,8 +5,16 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
-from moving_bogie.model.catalogue import default_catalogue
+from moving_bogie.model.catalogue import Model, ParameterSpec, default_catalogue
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
+    from moving_bogie.stability.lines.frequency_lines import FrequencyLine, FrequencyLines
 
 from .common import (
     add_json_option,
@@ -38,17 +46,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 # -- critical-velocity --------------------------------------------------------------------------------
-def _track_groups() -> dict:
+def _track_groups() -> dict[str, ParameterSpec]:
     """Groups of the tracks (every foundation's, without alpha and the damping groups): name -> spec."""
     catalogue = default_catalogue()
-    names = set()
+    names: set[str] = set()
     for model in catalogue.models():
         module = model.foundation
         names |= set(module.MODEL_PARAMETERS) - {"alpha"} - set(getattr(module, "DAMPING", ()))
     return {name: spec for name, spec in catalogue.specs.items() if name in names}
 
 
-def _register_critical_velocity(subparsers) -> None:
+def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser(
         "critical-velocity",
         help="critical velocity of a constant moving force, Eqs. (65)-(66), checked numerically",
@@ -88,7 +96,7 @@ def _register_critical_velocity(subparsers) -> None:
     p.set_defaults(handler=run_critical_velocity)
 
 
-def run_critical_velocity(args) -> int:
+def run_critical_velocity(args: argparse.Namespace) -> int:
     from moving_bogie.model.catalogue import get_model
 
     physical = None
@@ -102,7 +110,7 @@ def run_critical_velocity(args) -> int:
             params = params.replace(**chosen, **groups)
             if physical is not None:
                 physical = physical.with_dimensionless(params)
-        source = params
+        source: DimensionlessParams | Model = params
     else:
         source = get_model(**chosen)
 
@@ -146,7 +154,7 @@ def run_critical_velocity(args) -> int:
 
 
 # -- frequency-lines ----------------------------------------------------------------------------------
-def _register_frequency_lines(subparsers) -> None:
+def _register_frequency_lines(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser(
         "frequency-lines",
         help="induced frequencies followed over the velocity (Figure 2)",
@@ -172,7 +180,7 @@ def _register_frequency_lines(subparsers) -> None:
     p.set_defaults(handler=run_frequency_lines)
 
 
-def run_frequency_lines(args) -> int:
+def run_frequency_lines(args: argparse.Namespace) -> int:
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
     params, physical = params_from_args(args)
@@ -212,7 +220,7 @@ def run_frequency_lines(args) -> int:
     return 0
 
 
-def _line_in_si(line, units) -> dict:
+def _line_in_si(line: FrequencyLine, units: PlaneUnits) -> dict[str, Any]:
     """One frequency line in SI: the velocities and omega = q / t_scale, each with its unit."""
     omega = units.frequency(line.q)
     return {
@@ -224,7 +232,7 @@ def _line_in_si(line, units) -> dict:
     }
 
 
-def _frequency_figure(res, units):
+def _frequency_figure(res: FrequencyLines, units: PlaneUnits) -> Figure:
     """One panel per line: Re and Im of the induced frequency over the velocity (SI for a [physical] file)."""
     from matplotlib.figure import Figure
 
@@ -248,7 +256,7 @@ def _frequency_figure(res, units):
 
 
 # -- critical-stiffness -------------------------------------------------------------------------------
-def _register_critical_stiffness(subparsers) -> None:
+def _register_critical_stiffness(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser(
         "critical-stiffness",
         help="critical primary-suspension stiffness over the velocity (Figure 16)",
@@ -288,7 +296,7 @@ def _register_critical_stiffness(subparsers) -> None:
     p.set_defaults(handler=run_critical_stiffness)
 
 
-def run_critical_stiffness(args) -> int:
+def run_critical_stiffness(args: argparse.Namespace) -> int:
     import numpy as np
 
     params, _ = params_from_args(args)
@@ -299,7 +307,7 @@ def run_critical_stiffness(args) -> int:
     with progress_bar("critical stiffness") as bar:
         res = critical_stiffness(
             bind(params),
-            np.linspace(args.alpha_min, args.alpha_max, args.alphas),
+            np.linspace(args.alpha_min, args.alpha_max, args.alphas).tolist(),
             kappa_max=args.kappa_max,
             q_max=args.q_max,
             progress=bar,
@@ -325,7 +333,7 @@ def run_critical_stiffness(args) -> int:
 
 
 # -- stability-figure ---------------------------------------------------------------------------------
-def _register_figure(subparsers) -> None:
+def _register_figure(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser(
         "stability-figure",
         help="build Figure 2, 3, 4, 7, 8 or 16 of the paper",
@@ -350,7 +358,7 @@ def _register_figure(subparsers) -> None:
     p.set_defaults(handler=run_figure)
 
 
-def run_figure(args) -> int:
+def run_figure(args: argparse.Namespace) -> int:
     from moving_bogie.paper import stability_figures as plots_stability
 
     with progress_bar(f"figure {args.number}") as bar:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from fractions import Fraction
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -20,6 +21,9 @@ from .common import (
 )
 
 if TYPE_CHECKING:  # the stability package imports the numerical modules: not before the arguments are checked
+    from matplotlib.figure import Figure
+
+    from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
 #: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
@@ -38,7 +42,7 @@ def number_list(text: str) -> list[str]:
     return [decimal_number(t) for t in text.split(",") if t.strip()]
 
 
-def add_track_vehicle_options(parser, *, spacing_list: bool) -> None:
+def add_track_vehicle_options(parser: argparse.ArgumentParser, *, spacing_list: bool) -> None:
     """Parameters of the instability-lines / stability-map family (no alpha, no eta_M: they are the axes)."""
     g = parser.add_argument_group("parameters", "A Table 1 case as base (optional), then overrides.")
     g.add_argument("--case", type=int, metavar="N", help="take the other parameters from Table 1 case N")
@@ -83,7 +87,7 @@ PLANE_DEFAULTS = dict(
 )
 
 
-def params_and_spacings(args):
+def params_and_spacings(args: argparse.Namespace) -> tuple[DimensionlessParams, list[float]]:
     from moving_bogie.model.cases import table1_case
     from moving_bogie.model.params import DimensionlessParams
 
@@ -124,7 +128,7 @@ def params_and_spacings(args):
     return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
 
 
-def add_plane_options(parser, *, set_option: bool = True) -> None:
+def add_plane_options(parser: argparse.ArgumentParser, *, set_option: bool = True) -> None:
     """``--units``, ``--range NAME=LO:HI`` (SI names with a [physical] file) and ``--set NAME=VALUE`` (unless
     the parser has it from :func:`~moving_bogie.cli.common.add_parameter_options`) of the plane commands."""
     add_units_option(parser)
@@ -141,7 +145,7 @@ def add_plane_options(parser, *, set_option: bool = True) -> None:
     )
 
 
-def plane_units(args, params) -> PlaneUnits:
+def plane_units(args: argparse.Namespace, params: DimensionlessParams) -> PlaneUnits:
     """How the plane of ``params`` is shown: SI for a [physical] file (unless --units dimensionless); the
     operating point is the file's own (a --file input)."""
     from moving_bogie.stability.figures.plot_units import PlaneUnits
@@ -150,23 +154,27 @@ def plane_units(args, params) -> PlaneUnits:
     return PlaneUnits.of(params, physical, operating=getattr(args, "file", None) is not None)
 
 
-def plane_ranges(args, units: PlaneUnits, parameter: str) -> tuple[float, float, float]:
+def plane_ranges(args: argparse.Namespace, units: PlaneUnits, parameter: str) -> tuple[float, float, float]:
     """(alpha_min, alpha_max, theta_max) from --alpha-min/--alpha-max/--eta-M-max, or --range in the
-    shown units (converted to the groups)."""
-    alpha_min, alpha_max = args.alpha_min, args.alpha_max
-    theta_max = getattr(args, "theta_max", None)
+    shown units (converted to the groups); theta_max is nan for a command without a vertical axis."""
+    alpha_min: float = args.alpha_min
+    alpha_max: float = args.alpha_max
+    theta_max: float = getattr(args, "theta_max", math.nan)
     axes = {units.name("alpha"): "alpha", units.name(parameter): parameter}
     for text in args.range:
         name, eq, spec = text.partition("=")
         name = name.strip()
+        bounds: tuple[float, float] | None
         try:
             lo, hi = (float(Fraction(x.strip())) for x in spec.split(":"))
+            bounds = lo, hi
         except (ValueError, ZeroDivisionError):
-            lo = hi = None
-        if not eq or lo is None or not hi > lo:
+            bounds = None
+        if not eq or bounds is None or not bounds[1] > bounds[0]:
             raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI")
         if name not in axes:
             raise ParameterError("--range", f"--range {name}: not an axis (known: {', '.join(axes)})")
+        lo, hi = bounds
         if axes[name] == "alpha":
             alpha_min, alpha_max = units.group_value("alpha", lo), units.group_value("alpha", hi)
         elif lo != 0:
@@ -178,7 +186,7 @@ def plane_ranges(args, units: PlaneUnits, parameter: str) -> tuple[float, float,
     return alpha_min, alpha_max, theta_max
 
 
-def save_figure(fig, path: Path) -> None:
+def save_figure(fig: Figure, path: Path) -> None:
     """Write a matplotlib figure (format from the suffix) atomically, at 120 dpi; the folder exists (the
     output options are checked first)."""
     from moving_bogie.response.plots import save_figure as write

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
 
@@ -20,6 +21,9 @@ from .common import (
 )
 from .outputs import add_figure_option, add_output_option
 from .reporting import fail
+
+if TYPE_CHECKING:
+    from moving_bogie.sweep.design import SweepSpec
 
 _RAW = argparse.RawDescriptionHelpFormatter
 
@@ -105,7 +109,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     q.set_defaults(handler=run_sweep_plot)
 
 
-def _spec(args):
+def _spec(args: argparse.Namespace) -> SweepSpec:
     if args.workers is not None and args.workers < 1:
         raise ParameterError("--workers", "--workers must be >= 1")
     if args.workers is not None and args.scheduler:
@@ -118,7 +122,7 @@ def _spec(args):
         raise ParameterError("--vary", "give at least one --vary NAME=START:STOP:COUNT or NAME=V1,V2,...")
     params, physical = params_from_args(args)
     physical = si_input(args, physical)
-    vary = {}
+    vary: dict[str, str] = {}
     for text in args.vary:
         name, eq, spec = text.partition("=")
         if not eq:
@@ -138,7 +142,7 @@ def _spec(args):
 
 
 @contextmanager
-def _points_bar(enabled: bool):
+def _points_bar(enabled: bool) -> Iterator[Callable[[int, int], None]]:
     """A rich bar with points/s and ETA on an interactive stderr; a no-op callback otherwise."""
     if not enabled or not sys.stderr.isatty():
         yield lambda done, total: None
@@ -159,7 +163,7 @@ def _points_bar(enabled: bool):
         task = bar.add_task("sweep", total=None, rate="-")
         first: dict[Any, Any] = {}
 
-        def update(done, total) -> None:
+        def update(done: int, total: int) -> None:
             import time
 
             now = time.perf_counter()
@@ -171,7 +175,7 @@ def _points_bar(enabled: bool):
         yield update
 
 
-def run_sweep_cmd(args) -> int:
+def run_sweep_cmd(args: argparse.Namespace) -> int:
     from moving_bogie.sweep.engine import run_sweep
     from moving_bogie.sweep.store import open_sweep
 
@@ -224,13 +228,13 @@ def run_sweep_cmd(args) -> int:
     return 0
 
 
-def run_sweep_plot(args) -> int:
+def run_sweep_plot(args: argparse.Namespace) -> int:
     from moving_bogie.sweep.plots import plot_sweep_slice
     from moving_bogie.sweep.store import open_sweep
 
     from .stability_options import save_figure
 
-    sel = {}
+    sel: dict[str, float] = {}
     for text in args.sel:
         name, eq, value = text.partition("=")
         try:

@@ -3,6 +3,16 @@
 from __future__ import annotations
 
 import argparse
+import os
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from moving_bogie.kernels.bound import BoundModel
+    from moving_bogie.response.closed_form import TimeSeries
+    from moving_bogie.roots.frequency_result import FrequencyResult
 
 from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
 from .outputs import add_figure_option
@@ -79,7 +89,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     shape.set_defaults(handler=run_shape)
 
 
-def _add_common(parser) -> None:
+def _add_common(parser: argparse._ActionsContainer) -> None:
     parser.add_argument(
         "--branch-cut",
         action=argparse.BooleanOptionalAction,
@@ -92,11 +102,12 @@ def _add_common(parser) -> None:
     )
 
 
-def _branch_cut(args):
+def _branch_cut(args: argparse.Namespace) -> bool | str:
+    """``branch_cut`` of the closed form: "auto", or the forced choice of ``--branch-cut``."""
     return "auto" if args.branch_cut is None else bool(args.branch_cut)
 
 
-def _check(args):
+def _check(args: argparse.Namespace) -> None:
     from moving_bogie.errors import ParameterError
 
     if not 15 <= args.dps <= 1000:
@@ -105,7 +116,7 @@ def _check(args):
         raise ParameterError("points", f"points must be between 2 and {_MAX_POINTS} (got {args.points})")
 
 
-def _times(args):
+def _times(args: argparse.Namespace) -> np.ndarray:
     import numpy as np
 
     from moving_bogie.errors import ParameterError
@@ -129,7 +140,9 @@ def _times(args):
     return tau
 
 
-def _frequencies_or_fail(bound, dps, json_mode, branch_cut):
+def _frequencies_or_fail(
+    bound: BoundModel, dps: int, json_mode: bool, branch_cut: bool | str
+) -> FrequencyResult:
     from moving_bogie.errors import MovingBogieError
     from moving_bogie.response.cut_integral import branch_cut_for
     from moving_bogie.roots.frequencies import induced_frequencies
@@ -184,7 +197,7 @@ def run_timeseries(args: argparse.Namespace) -> int:
     return 0
 
 
-def series_label(args: argparse.Namespace, ts) -> str:
+def series_label(args: argparse.Namespace, ts: TimeSeries) -> str:
     """What a figure's title names: the Table 1 case, else the parameter file, else the model."""
     if args.case is not None:
         return f"Case {args.case}"
@@ -193,7 +206,7 @@ def series_label(args: argparse.Namespace, ts) -> str:
     return str(ts.model)
 
 
-def _units_line(ts) -> str:
+def _units_line(ts: TimeSeries) -> str:
     """``units: tau [...], ...``: the wheels' deflections as ``w``, then the bodies' DOFs, names of one unit
     together (the bogie: ``w, u [w_st], theta [w_st chi]``)."""
     groups: list[tuple[list[str], str]] = []
@@ -207,7 +220,7 @@ def _units_line(ts) -> str:
     return f"units: tau [{ts.units['tau']}], " + ", ".join(f"{', '.join(g)} [{unit}]" for g, unit in groups)
 
 
-def write_csv_series(ts, path) -> None:
+def write_csv_series(ts: TimeSeries, path: str | os.PathLike[str]) -> None:
     """The series as CSV: tau, then every response under its DOF name, a units line below the header."""
     from .common import atomic_write
 
@@ -220,7 +233,9 @@ def write_csv_series(ts, path) -> None:
     atomic_write(path, "\n".join(lines) + "\n")
 
 
-def format_series(ts, rows: bool = True, csv=None, plots=()) -> str:
+def format_series(
+    ts: TimeSeries, rows: bool = True, csv: str | os.PathLike[str] | None = None, plots: Sequence[str] = ()
+) -> str:
     """The readable series: summary lines, then one row per time (``rows``), then the notes; without the
     rows, one line saying where they went (``csv``, the data file) or were drawn (``plots``)."""
     bc = (

@@ -3,6 +3,10 @@
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from moving_bogie.validation.verdict import ValidationResult
 
 from .common import add_json_option, add_parameter_options, params_from_args, print_json
 from .outputs import add_figure_option
@@ -115,7 +119,7 @@ def run(args: argparse.Namespace) -> int:
     return 0 if result.agrees else 1
 
 
-def format_result(result) -> str:
+def format_result(result: ValidationResult) -> str:
     """Readable summary of a :class:`~moving_bogie.validation.verdict.ValidationResult`."""
     from moving_bogie.validation.verdict import beam_title
 

@@ -15,6 +15,7 @@ import functools
 import importlib
 import importlib.util
 import itertools
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -135,14 +136,14 @@ class Catalogue:
         ]
 
 
-class _LazyModules(dict):
+class _LazyModules(dict[str, ModuleType]):
     """Generated modules imported on first use (a model's kernels are loaded only when it is used)."""
 
-    def __init__(self, load) -> None:
+    def __init__(self, load: Callable[[str], ModuleType]) -> None:
         super().__init__()
         self._load = load
 
-    def __missing__(self, name):
+    def __missing__(self, name: str) -> ModuleType:
         module = self[name] = self._load(name)
         return module
 

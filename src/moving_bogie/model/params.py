@@ -8,13 +8,19 @@ Which groups a model needs, their ranges and defaults come from the generated ca
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from fractions import Fraction
 from types import SimpleNamespace
 from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
-from moving_bogie.model.catalogue import DEFAULT_MODEL, Model, default_catalogue, get_model
+from moving_bogie.model.catalogue import (
+    DEFAULT_MODEL,
+    Model,
+    ParameterSpec,
+    default_catalogue,
+    get_model,
+)
 from moving_bogie.model.exact import (
     fraction_to_exact_text,
     fraction_to_mpf,
@@ -32,7 +38,7 @@ BEAMS = tuple(default_catalogue().beams)
 _MODEL_KEYS = ("beam", "track", "vehicle")
 
 
-def check_value(spec, value: object) -> Fraction:
+def check_value(spec: ParameterSpec, value: object) -> Fraction:
     """Convert one value exactly and check the range its metadata states; the error names the group."""
     if spec.constraint == "positive":
         return positive(spec.name, value)
@@ -140,7 +146,7 @@ class DimensionlessParams(ModelValues):
             return None  # a group or coefficient of another model
         raise AttributeError(f"{type(self).__name__} of {model.name} has no parameter {name!r}")
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[Callable[..., DimensionlessParams], tuple[Any, ...]]:
         return (_rebuild, (self._model.beam, self._model.track, self._model.vehicle, self.to_exact_dict()))
 
     # --- building -----------------------------------------------------------------------------------
@@ -247,7 +253,7 @@ class DimensionlessParams(ModelValues):
         """Every group of the catalogue as a float (None if unused), plus the model names."""
         return self._namespace(float)
 
-    def _namespace(self, convert) -> SimpleNamespace:
+    def _namespace(self, convert: Callable[[Fraction], Any]) -> SimpleNamespace:
         out = {name: None for name in self._model.catalogue.specs}
         out |= {name: convert(value) for name, value in self._values.items()}
         out |= {k: getattr(self, k) for k in _MODEL_KEYS}
@@ -274,7 +280,8 @@ def check_value_named(name: str, value: object) -> Fraction:
     return positive(name, value)
 
 
-def _rebuild(beam, track, vehicle, values):
+def _rebuild(beam: str, track: str, vehicle: str, values: dict[str, Any]) -> DimensionlessParams:
+    """Unpickle: the model's names and the exact texts of :meth:`DimensionlessParams.to_exact_dict`."""
     return DimensionlessParams(beam=beam, track=track, vehicle=vehicle, **values)
 
 

@@ -7,7 +7,6 @@ beyond the scale parameters the metadata lists.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
@@ -21,6 +20,13 @@ from moving_bogie.model.exact import (
     fraction_to_text,
     nonnegative,
     positive,
+)
+from moving_bogie.model.scales import (
+    Scales,
+    call_scaling,
+    catalogue_values,
+    rounded_fraction,
+    scales_mp,
 )
 from moving_bogie.model.values import ModelValues
 
@@ -54,85 +60,6 @@ for _model in default_catalogue().models():
     PHYSICAL_UNITS |= {spec.si: spec.unit for spec in _model.specs.values()}
     DIMENSIONLESS_OF |= {spec.si: name for name, spec in _model.specs.items()}
 del _model
-
-
-def _rounded(x: mpmath.mpf, digits: int) -> Fraction:
-    """`x` rounded to `digits` significant decimal digits, as an exact decimal Fraction."""
-    return Fraction(mpmath.nstr(x, digits))
-
-
-def _call(func, values: dict) -> Any:
-    """Call a generated scaling function with the arguments it names, ``sqrt`` being mpmath's."""
-    names = func.__code__.co_varnames[: func.__code__.co_argcount]
-    return func(**{name: (mpmath.sqrt if name == "sqrt" else values[name]) for name in names})
-
-
-def _generic(model: Model, values: dict) -> dict:
-    """SI values keyed by the catalogue's names (the arguments of the generated scaling functions).
-
-    A track that renames SI parameters (a layered track's ``k_1`` for the reference stiffness ``k_f``)
-    lists the renames in its generated ``SI_NAMES``; the scaling is the same expression.
-    """
-    catalogue_name = {track: generic for generic, track in model.si_names.items()}
-    return {catalogue_name.get(k, k): v for k, v in values.items()}
-
-
-def _scales_mp(model: Model, scale_values: dict) -> tuple:
-    """(chi, v_ref, w_st, t_scale) of Eqs. (15)-(16) as mpf at the current precision."""
-    values = _generic(model, {k: fraction_to_mpf(v) for k, v in scale_values.items()})
-    return _call(model.catalogue.parameters.scales, values)
-
-
-@dataclass(frozen=True)
-class Scales:
-    """Reference scales of Eqs. (15)-(16), as floats in SI units.
-
-    Attributes
-    ----------
-    chi : float
-        ``(k_f / (4 EI))**(1/4)`` [1/m]; ``xi = chi * r``.
-    v_ref : float
-        ``(4 k_f EI / m**2)**(1/4)`` [m/s]; ``alpha = v / v_ref``.
-    w_st : float
-        ``P chi / (2 k_f)`` [m], the static deflection under one wheel load.
-    t_scale : float
-        ``sqrt(m / k_f)`` [s]; ``tau = t / t_scale = chi v_ref t``.
-
-    The methods take dimensionless values (floats, numpy arrays or mpf) and return SI values.
-    """
-
-    chi: float
-    v_ref: float
-    w_st: float
-    t_scale: float
-
-    def position(self, xi: Any) -> Any:
-        """Moving coordinate ``r = xi / chi`` [m], Eq. (16)."""
-        return xi / self.chi
-
-    def deflection(self, w: Any) -> Any:
-        """Beam deflection ``w = w~ w_st`` [m], Eq. (16)."""
-        return w * self.w_st
-
-    def displacement(self, u: Any) -> Any:
-        """Bogie-bar mass-centre displacement ``u_v = u~ w_st`` [m], Eq. (16)."""
-        return u * self.w_st
-
-    def rotation(self, theta: Any) -> Any:
-        """Bogie-bar rotation ``theta = theta~ w_st chi`` [rad], Eq. (16)."""
-        return theta * self.w_st * self.chi
-
-    def time(self, tau: Any) -> Any:
-        """Time ``t = tau t_scale`` [s], Eq. (16)."""
-        return tau * self.t_scale
-
-    def velocity(self, alpha: Any) -> Any:
-        """Velocity ``v = alpha v_ref`` [m/s], Eq. (16)."""
-        return alpha * self.v_ref
-
-    def angular_frequency(self, q: Any) -> Any:
-        """Angular frequency [rad/s] of an induced frequency `q`, the conjugate of `tau`: ``q / t_scale``."""
-        return q / self.t_scale
 
 
 class PhysicalParams(ModelValues):
@@ -176,7 +103,13 @@ class PhysicalParams(ModelValues):
     __slots__ = ()
 
     def __init__(
-        self, *, beam=None, track=None, vehicle=None, model: Model | None = None, **values: Any
+        self,
+        *,
+        beam: str | None = None,
+        track: str | None = None,
+        vehicle: str | None = None,
+        model: Model | None = None,
+        **values: Any,
     ) -> None:
         values = {k: v for k, v in values.items() if v is not None}
         if model is None:
@@ -232,7 +165,7 @@ class PhysicalParams(ModelValues):
     def scales(self) -> Scales:
         """Reference scales chi, v_ref, w_st and the time scale, Eqs. (15)-(16), as floats."""
         with mpmath.workdps(30):
-            chi, v_ref, w_st, t_scale = _scales_mp(self._model, self._scale_values())
+            chi, v_ref, w_st, t_scale = scales_mp(self._model, self._scale_values())
             return Scales(chi=float(chi), v_ref=float(v_ref), w_st=float(w_st), t_scale=float(t_scale))
 
     def to_dimensionless(self, *, digits: int = 20) -> DimensionlessParams:
@@ -254,9 +187,13 @@ class PhysicalParams(ModelValues):
         meta = self._model.catalogue.parameters
         exact: dict[str, Any] = {}  # Fractions, passed as DimensionlessParams' **values
         with mpmath.workdps(digits + 10):
-            mp_values = _generic(self._model, {k: fraction_to_mpf(v) for k, v in self._values.items()})
+            mp_values = catalogue_values(
+                self._model, {k: fraction_to_mpf(v) for k, v in self._values.items()}
+            )
             for name, spec in self._model.specs.items():
-                value = _rounded(_call(getattr(meta, f"dimensionless_{name}"), mp_values), digits)
+                value = rounded_fraction(
+                    call_scaling(getattr(meta, f"dimensionless_{name}"), mp_values), digits
+                )
                 try:
                     exact[name] = check_value(spec, value)
                 except ParameterError as exc:
@@ -298,8 +235,9 @@ class PhysicalParams(ModelValues):
         meta = self._model.catalogue.parameters
         with mpmath.workdps(digits + 10):
             values = {k: fraction_to_mpf(v) for k, v in (self._values | {si: exact}).items()}
-            group = _rounded(
-                _call(getattr(meta, f"dimensionless_{name}"), _generic(self._model, values)), digits
+            group = rounded_fraction(
+                call_scaling(getattr(meta, f"dimensionless_{name}"), catalogue_values(self._model, values)),
+                digits,
             )
         try:
             return name, check_value(spec, group)
@@ -311,9 +249,11 @@ class PhysicalParams(ModelValues):
         counterpart, Eqs. (15)-(17), (59)): SI value = group x factor, by the generated scaling."""
         meta = self._model.catalogue.parameters
         with mpmath.workdps(30):
-            values = _generic(self._model, {k: fraction_to_mpf(v) for k, v in self._scale_values().items()})
-            one = _call(getattr(meta, f"physical_{group}"), values | {group: mpmath.mpf(1)})
-            two = _call(getattr(meta, f"physical_{group}"), values | {group: mpmath.mpf(2)})
+            values = catalogue_values(
+                self._model, {k: fraction_to_mpf(v) for k, v in self._scale_values().items()}
+            )
+            one = call_scaling(getattr(meta, f"physical_{group}"), values | {group: mpmath.mpf(1)})
+            two = call_scaling(getattr(meta, f"physical_{group}"), values | {group: mpmath.mpf(2)})
             if abs(two - 2 * one) > abs(one) * mpmath.mpf(10) ** -25:
                 raise ParameterError(group, f"the SI counterpart of {group} is not proportional to it")
             return float(one)
@@ -349,18 +289,20 @@ class PhysicalParams(ModelValues):
                 raise ParameterError(
                     name, f"{name!r} is not a scale parameter of {model.name}; known: {known}"
                 )
-        track = {}
+        track: dict[str, Any] = {}  # Fractions, passed as **values
         for name, meta in model.scale_parameters.items():
             if scales.get(name) is None:
                 raise ParameterError(name, f"missing SI parameter {name!r} ({meta['unit']})")
             track[name] = positive(name, scales[name])
         formulas = model.catalogue.parameters
-        exact = {}
+        exact: dict[str, Any] = {}  # Fractions, passed as **values
         with mpmath.workdps(digits + 10):
-            mp_values = _generic(model, {k: fraction_to_mpf(v) for k, v in track.items()})
+            mp_values = catalogue_values(model, {k: fraction_to_mpf(v) for k, v in track.items()})
             mp_values |= {k: fraction_to_mpf(v) for k, v in params.values().items()}
             for name, spec in model.specs.items():
-                exact[spec.si] = _rounded(_call(getattr(formulas, f"physical_{name}"), mp_values), digits)
+                exact[spec.si] = rounded_fraction(
+                    call_scaling(getattr(formulas, f"physical_{name}"), mp_values), digits
+                )
         return cls(model=model, **track, **exact)
 
     def with_dimensionless(self, params: DimensionlessParams, *, digits: int = 20) -> PhysicalParams:
@@ -371,14 +313,14 @@ class PhysicalParams(ModelValues):
         """
         own = self.to_dimensionless(digits=digits)
         new = PhysicalParams.from_dimensionless(params, **self._scale_values(), digits=digits)
-        values = new.values()
+        values: dict[str, Any] = new.values()  # Fractions, passed as **values
         for name, spec in params.model.specs.items():
             if getattr(own, name) == getattr(params, name) and spec.si in self._values:
                 values[spec.si] = self._values[spec.si]
         return PhysicalParams(model=params.model, **values)
 
 
-def _infer_model(values: dict, beam, track, vehicle) -> Model:
+def _infer_model(values: dict[str, Any], beam: str | None, track: str | None, vehicle: str | None) -> Model:
     """The model whose SI parameters are exactly those given (the paper's choice where several fit)."""
     from moving_bogie.model.catalogue import get_model
 

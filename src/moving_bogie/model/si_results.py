@@ -7,12 +7,17 @@ Im omega < 0 grows, with growth time 1 / |Im omega| [s]; Re omega / (2 pi) is it
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from typing import Any
+
 import mpmath
+
+from moving_bogie.typing import Mpc, Mpf
 
 __all__ = ["root_in_si", "roots_in_si"]
 
 
-def root_in_si(q, t_scale, *, digits: int = 12) -> dict:
+def root_in_si(q: complex | Mpc, t_scale: float | Mpf, *, digits: int = 12) -> dict[str, Any]:
     """One induced frequency `q` (dimensionless, Eq. (38)) in SI units, as JSON-ready decimal strings.
 
     Parameters
@@ -41,6 +46,6 @@ def root_in_si(q, t_scale, *, digits: int = 12) -> dict:
         }
 
 
-def roots_in_si(roots, t_scale, *, digits: int = 12) -> list[dict]:
+def roots_in_si(roots: Iterable[Any], t_scale: float | Mpf, *, digits: int = 12) -> list[dict[str, Any]]:
     """:func:`root_in_si` of each root (objects with ``q``) of a frequency result."""
     return [root_in_si(r.q, t_scale, digits=digits) for r in roots]

@@ -10,19 +10,22 @@ the printed formulas equal the derived minimum are in ``derivations/paper.py``.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
+
 import mpmath
 
-from moving_bogie.model.catalogue import DEFAULT_MODEL
+from moving_bogie.model.catalogue import DEFAULT_MODEL, Model
+from moving_bogie.typing import Mpf
 
 __all__ = ["PAPER_FORMULAS", "formula_eb", "formula_tr", "paper_formula"]
 
 
-def formula_eb(eta_s: float = 0):
+def formula_eb(eta_s: float | Mpf = 0) -> Mpf:
     """Eq. (65): alpha_cr = sqrt(1 + eta_s) (alpha_ref = 1)."""
     return mpmath.sqrt(1 + mpmath.mpf(eta_s))
 
 
-def formula_tr(S, r):
+def formula_tr(S: float | Mpf, r: float | Mpf) -> Mpf:
     """Eq. (66) as printed: sqrt(r^2 - S - 8 r^2 S^2 + 4 S^(3/2) sqrt(4 r^4 S - r^2 + S)) / (2 (S - r^2))."""
     S, r = mpmath.mpf(S), mpmath.mpf(r)
     r2 = r * r
@@ -31,7 +34,7 @@ def formula_tr(S, r):
 
 
 #: The paper's closed forms (beam, track) -> (equation, function of the track's groups).
-PAPER_FORMULAS = {
+PAPER_FORMULAS: dict[tuple[str, str], tuple[str, Callable[[Mapping[str, Mpf]], Mpf | None]]] = {
     ("eb", DEFAULT_MODEL["track"]): ("Eq. (65)", lambda g: formula_eb(g["eta_s"])),
     ("tr", DEFAULT_MODEL["track"]): (
         "Eq. (66)",
@@ -40,7 +43,7 @@ PAPER_FORMULAS = {
 }
 
 
-def paper_formula(model, groups) -> tuple[str, mpmath.mpf] | None:
+def paper_formula(model: Model, groups: Mapping[str, Mpf]) -> tuple[str, Mpf] | None:
     """(equation, alpha_cr) of the paper's closed form for ``model``'s beam and track, or None.
 
     ``groups`` are the track's groups (mpf); the ``formula`` hook of

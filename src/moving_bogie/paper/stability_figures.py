@@ -8,7 +8,8 @@ variants compared in a panel, a black dotted line at the critical velocity.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -24,13 +25,18 @@ from moving_bogie.stability.figures.plots import (
 )
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
 __all__ = ["figure2", "figure3", "figure4", "figure7", "figure8", "figure16"]
 
 SPACINGS = (1.0, 1.25, 1.5, 1.75, 2.0, 2.25)
 ETA_F = ("0.05", "0.1", "0.15", "0.2", "0.25", "0.3")
 
 
-def _grid(quick: bool) -> dict:
+def _grid(quick: bool) -> dict[str, Any]:
+    """The step sizes of the instability lines (the keyword arguments of :func:`instability_lines`)."""
     return (
         dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
         if quick
@@ -41,18 +47,24 @@ def _grid(quick: bool) -> dict:
 class _Progress:
     """Split one progress callback over n equal parts."""
 
-    def __init__(self, progress, n) -> None:
+    def __init__(self, progress: Callable[[float], None] | None, n: int) -> None:
         self.progress, self.n, self.k = progress, max(1, n), 0
 
-    def part(self):
+    def part(self) -> Callable[[float], None] | None:
         k = self.k
         self.k += 1
-        if self.progress is None:
+        progress = self.progress
+        if progress is None:
             return None
-        return lambda x: self.progress((k + min(1.0, x)) / self.n)
+        return lambda x: progress((k + min(1.0, x)) / self.n)
 
 
-def _legend(fig, ds, styles=(), marks=()) -> None:
+def _legend(
+    fig: Figure,
+    ds: Iterable[float],
+    styles: Iterable[tuple[str, str]] = (),
+    marks: Iterable[str] = (),
+) -> None:
     """One legend for the figure: a colour per spacing, then the line styles and the line-end marks."""
     from matplotlib.lines import Line2D
 
@@ -64,7 +76,12 @@ def _legend(fig, ds, styles=(), marks=()) -> None:
 
 
 def _decorate(
-    ax, title, alpha_max, theta_max: float = 200.0, ylabel: str = r"$\eta_M$", critical: float = 1.0
+    ax: Axes,
+    title: str,
+    alpha_max: float,
+    theta_max: float = 200.0,
+    ylabel: str = r"$\eta_M$",
+    critical: float = 1.0,
 ) -> None:
     ax.axvline(critical, color="k", ls=":", lw=1)
     ax.set_xlim(0, alpha_max)
@@ -74,7 +91,7 @@ def _decorate(
     ax.set_title(title, fontsize=9)
 
 
-def _base(eta_f: str = "0.05", **kw) -> DimensionlessParams:
+def _base(eta_f: str = "0.05", **kw: Any) -> DimensionlessParams:
     values = dict(eta_f=eta_f, eta_M=20, d=1, cf1="1.7", cf2="0.01", kappa_v="0.02", eta_v=0, alpha="0.5")
     values.update(kw)
     return DimensionlessParams.from_coefficients(**values)
@@ -104,7 +121,7 @@ def figure16_params() -> DimensionlessParams:
     )
 
 
-def figure2(quick: bool = False, progress: Callable[[float], None] | None = None):
+def figure2(quick: bool = False, progress: Callable[[float], None] | None = None) -> Figure:
     """Figure 2: real (blue) and imaginary (orange) parts of the induced frequencies of Case 1 over alpha.
 
     One root of each pair is shown, one panel per frequency line (they are far apart); a line ends where
@@ -133,13 +150,13 @@ def figure2(quick: bool = False, progress: Callable[[float], None] | None = None
     return fig
 
 
-def figure3(quick: bool = False, progress: Callable[[float], None] | None = None):
+def figure3(quick: bool = False, progress: Callable[[float], None] | None = None) -> Figure:
     """Figure 3: instability lines of two moving masses, d = 1:0.25:2.25, panels eta_f = 0.05:0.05:0.3."""
     fig = new_figure(figsize=(12, 7.5), layout="constrained")
     axs = fig.subplots(2, 3).ravel()
     colors = spacing_colors(SPACINGS)
     split = _Progress(progress, len(ETA_F))
-    marks = set()
+    marks: set[str] = set()
     for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
         lines = instability_lines(
             _base(eta_f).replace(vehicle="masses"), spacings=SPACINGS, progress=split.part(), **_grid(quick)
@@ -151,7 +168,7 @@ def figure3(quick: bool = False, progress: Callable[[float], None] | None = None
     return fig
 
 
-def figure4(quick: bool = False, progress: Callable[[float], None] | None = None):
+def figure4(quick: bool = False, progress: Callable[[float], None] | None = None) -> Figure:
     """Figure 4: bogie (full; cf1 = 1.7, cf2 = 0.01, kappa_v = 0.02, eta_v = 0) against two masses of the
     same total mass (dashed, 'a': 2 eta_M' = 2 eta_M + mu_v, i.e. eta_M' = eta_M (1 + cf1/2)), up to
     alpha = 1."""
@@ -160,7 +177,7 @@ def figure4(quick: bool = False, progress: Callable[[float], None] | None = None
     colors = spacing_colors(SPACINGS)
     adapt = 1 + 1.7 / 2
     split = _Progress(progress, 2 * len(ETA_F))
-    marks = set()
+    marks: set[str] = set()
     for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
         p = _base(eta_f)
         bogie = instability_lines(
@@ -182,7 +199,7 @@ def figure4(quick: bool = False, progress: Callable[[float], None] | None = None
     return fig
 
 
-def figure7(quick: bool = False, progress: Callable[[float], None] | None = None):
+def figure7(quick: bool = False, progress: Callable[[float], None] | None = None) -> Figure:
     """Figure 7: bogie, kappa_v = 0.2, eta_f = 0.05, cf1 = 1.7, d = 1:0.25:2; eta_v = 0 (full) and 0.05
     (dashed); (a) cf2 = 0.1, (b) cf2 = 0.01."""
     ds = SPACINGS[:-1]
@@ -190,7 +207,7 @@ def figure7(quick: bool = False, progress: Callable[[float], None] | None = None
     axs = fig.subplots(1, 2)
     colors = spacing_colors(SPACINGS)
     split = _Progress(progress, 4)
-    marks = set()
+    marks: set[str] = set()
     for ax, cf2, tag in zip(axs, ("0.1", "0.01"), "ab"):
         for eta_v, style in (("0", "-"), ("0.05", "--")):
             p = _base("0.05", cf2=cf2, kappa_v="0.2", eta_v=eta_v)
@@ -204,14 +221,14 @@ def figure7(quick: bool = False, progress: Callable[[float], None] | None = None
     return fig
 
 
-def figure8(quick: bool = False, progress: Callable[[float], None] | None = None):
+def figure8(quick: bool = False, progress: Callable[[float], None] | None = None) -> Figure:
     """Figure 8: Euler-Bernoulli (full) against Timoshenko-Rayleigh (dashed); cf1 = 1.7, cf2 = 0.1,
     eta_f = 0.05, kappa_v = 0.2, eta_v = 0; (a) S = 100, r = 0.03, (b) S = 10, r = 0.09."""
     fig = new_figure(figsize=(11, 4.6), layout="constrained")
     axs = fig.subplots(1, 2)
     colors = spacing_colors(SPACINGS)
     split = _Progress(progress, 4)
-    marks = set()
+    marks: set[str] = set()
     for ax, (S, r), tag in zip(axs, (("100", "0.03"), ("10", "0.09")), "ab"):
         eb = _base("0.05", cf2="0.1", kappa_v="0.2")
         tr = eb.replace(beam="tr", S=S, r=r)
@@ -230,7 +247,7 @@ def figure8(quick: bool = False, progress: Callable[[float], None] | None = None
     return fig
 
 
-def figure16(quick: bool = False, progress: Callable[[float], None] | None = None):
+def figure16(quick: bool = False, progress: Callable[[float], None] | None = None) -> Figure:
     """Figure 16 (stand-in): critical primary-suspension stiffness in the (alpha, kappa_v) plane.
 
     (a) the parameter set of :func:`figure16_params`, chosen

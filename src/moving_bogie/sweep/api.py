@@ -2,18 +2,29 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.sweep.design import Axis, SweepSpec, parse_vary, sobol_axes, sweep_parameters
 from moving_bogie.sweep.engine import run_sweep
-from moving_bogie.sweep.store import open_sweep
+from moving_bogie.sweep.store import StorePath, open_sweep
+
+if TYPE_CHECKING:
+    import xarray
+    from distributed import Client
 
 __all__ = ["make_spec", "sweep"]
 
 
-def _axis(known, name, spec, needs_count: bool):
+def _axis(
+    known: Collection[str], name: str, spec: str | Iterable[Any], needs_count: bool
+) -> tuple[str, tuple[Fraction, ...]]:
+    """One ``vary`` entry as the command line reads it: text, or numbers written as text."""
     if isinstance(spec, str):
         return parse_vary(f"{name}={spec}", known, needs_count=needs_count)
     values = tuple(spec)
@@ -24,12 +35,12 @@ def _axis(known, name, spec, needs_count: bool):
 
 
 def make_spec(
-    params,
-    vary: Mapping,
+    params: DimensionlessParams | BoundModel,
+    vary: Mapping[str, str | Iterable[Any]],
     *,
     sample: int | None = None,
-    physical=None,
-    **options,
+    physical: PhysicalParams | None = None,
+    **options: Any,
 ) -> SweepSpec:
     """A :class:`~moving_bogie.sweep.design.SweepSpec` from ``vary`` = {name: values}.
 
@@ -52,12 +63,12 @@ def make_spec(
         _check_units(params, name.strip(), si)
     if sample is None:
         axes = tuple(Axis(*_axis(known, name, spec, True)) for name, spec in vary.items())
-        extra = {}
+        extra: dict[str, Any] = {}
     else:
         ranges = dict(_axis(known, name, spec, False) for name, spec in vary.items())
         extra = {"ranges": {k: [str(v) for v in r] for k, r in ranges.items()}, "n": sample, "seed": 0}
         axes = sobol_axes(ranges, sample)
-    if si:
+    if physical is not None:
         axes = tuple(_to_group(physical, a) for a in axes)
         if sample is not None:
             extra["si_ranges"] = extra.pop("ranges")
@@ -66,7 +77,7 @@ def make_spec(
     return SweepSpec(params, params.vehicle, axes, design=design, extra=extra, physical=physical, **options)
 
 
-def _check_units(params, name: str, si: bool) -> None:
+def _check_units(params: DimensionlessParams, name: str, si: bool) -> None:
     """A group named in an SI sweep, or an SI name in a dimensionless one: say which to use."""
     specs = params.model.specs
     by_si = {spec.si: spec for spec in specs.values()}
@@ -86,10 +97,10 @@ def _check_units(params, name: str, si: bool) -> None:
         )
 
 
-def _to_group(physical, axis: Axis) -> Axis:
+def _to_group(physical: PhysicalParams, axis: Axis) -> Axis:
     """An axis of SI values -> the axis of their groups, keeping the SI values."""
     spec = next(s for s in physical.model.specs.values() if s.si == axis.name)
-    values = []
+    values: list[Fraction] = []
     for v in axis.values:
         try:
             values.append(physical.group_value(axis.name, v)[1])
@@ -99,21 +110,21 @@ def _to_group(physical, axis: Axis) -> Axis:
 
 
 def sweep(
-    params,
-    vary: Mapping,
-    out,
+    params: DimensionlessParams | BoundModel,
+    vary: Mapping[str, str | Iterable[Any]],
+    out: StorePath,
     *,
     sample: int | None = None,
-    physical=None,
+    physical: PhysicalParams | None = None,
     resume: bool = False,
     overwrite: bool = False,
-    client=None,
-    workers=None,
-    scheduler=None,
+    client: Client | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
     processes: bool = True,
-    progress=None,
-    **options,
-):
+    progress: Callable[[int, int], None] | None = None,
+    **options: Any,
+) -> xarray.Dataset:
     """Run a sweep into the zarr store ``out`` and return it as an :class:`xarray.Dataset`.
 
     Parameters

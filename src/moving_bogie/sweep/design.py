@@ -16,8 +16,10 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Collection, Container, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 
@@ -51,7 +53,7 @@ def sweep_parameters(params: DimensionlessParams, *, si: bool = False) -> tuple[
     return (*params.model.parameters, *params.model.alternatives)
 
 
-def si_attributes(params: DimensionlessParams, group: str) -> dict:
+def si_attributes(params: DimensionlessParams, group: str) -> dict[str, str]:
     """Attributes of the SI coordinate of ``group``: its SI unit, name and meaning, and the group it
     scales to (Eqs. (15)-(17), (59)), from the model's metadata."""
     spec = params.model.specs[group]
@@ -64,13 +66,13 @@ def si_attributes(params: DimensionlessParams, group: str) -> dict:
     }
 
 
-def group_coordinate(axis: Axis, si_names) -> str:
+def group_coordinate(axis: Axis, si_names: Container[str]) -> str:
     """Name of the coordinate that keeps the dimensionless group of an SI axis: the group's name, or
     ``<group>_dimensionless`` where an SI parameter has the same name (the spacing ``d``)."""
     return f"{axis.name}_dimensionless" if axis.name in si_names else axis.name
 
 
-def parameter_attributes(params: DimensionlessParams, name: str) -> dict:
+def parameter_attributes(params: DimensionlessParams, name: str) -> dict[str, str]:
     """Attributes of a varied parameter's coordinate: units ("1": every group is dimensionless), meaning
     and equation from the model's metadata."""
     out = {"units": "1", "long_name": name}
@@ -89,7 +91,9 @@ def _number(option: str, text: str) -> Fraction:
         raise ParameterError(option, f"{option}: not a number: {text!r}") from None
 
 
-def parse_vary(text: str, known, *, option: str = "--vary", needs_count: bool = True) -> tuple[str, tuple]:
+def parse_vary(
+    text: str, known: Collection[str], *, option: str = "--vary", needs_count: bool = True
+) -> tuple[str, tuple[Fraction, ...]]:
     """``NAME=START:STOP:COUNT`` or ``NAME=V1,V2,...`` -> (name, exact values); NAME one of ``known``.
 
     With ``needs_count=False`` (a quasi-random design), ``NAME=START:STOP`` gives the range (start, stop).
@@ -154,10 +158,10 @@ class Axis:
     """
 
     name: str
-    values: tuple
+    values: tuple[Fraction, ...]
     si: str | None = None
     unit: str | None = None
-    si_values: tuple = ()
+    si_values: tuple[Fraction, ...] = ()
 
     @property
     def label(self) -> str:
@@ -178,7 +182,7 @@ class Block:
     """One chunk of the sweep: index slices into each dimension of the store."""
 
     index: int
-    slices: tuple
+    slices: tuple[slice, ...]
 
 
 @dataclass(frozen=True)
@@ -194,16 +198,16 @@ class SweepSpec:
 
     params: DimensionlessParams
     model: str  # the vehicle's name (params.vehicle), for the store's attributes
-    axes: tuple
+    axes: tuple[Axis, ...]
     design: str = "grid"
     roots: bool = False
     max_roots: int = 8
     check: int = 1
     block_points: int = 2048
-    extra: dict = field(default_factory=dict)
+    extra: dict[str, Any] = field(default_factory=dict)
     physical: PhysicalParams | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.model != self.params.vehicle:
             raise ParameterError(
                 "model", f"model {self.model!r} is not the parameters' vehicle {self.params.vehicle!r}"
@@ -231,7 +235,7 @@ class SweepSpec:
         return self.physical is not None
 
     @property
-    def fixed(self) -> dict:
+    def fixed(self) -> dict[str, Fraction]:
         """Groups held at their base value whatever varies, passed with every point's changes.
 
         In SI units every SI parameter that is not varied stays fixed: the groups that an alternative input
@@ -308,7 +312,7 @@ class SweepSpec:
             out.append(Block(k, slices))
         return out
 
-    def describe(self) -> dict:
+    def describe(self) -> dict[str, Any]:
         """JSON-ready description (stored in the attributes; a resumed sweep must match it)."""
         return {
             "model": self.model,
@@ -323,21 +327,21 @@ class SweepSpec:
             "chunks": list(self.chunks),
         } | (self._describe_si(self.physical) if self.physical is not None else {})
 
-    def _describe_si(self, physical: PhysicalParams) -> dict:
+    def _describe_si(self, physical: PhysicalParams) -> dict[str, Any]:
         varied = self.extra.get("si_ranges") or {
             a.si: [fraction_to_text(v) for v in a.si_values] for a in self.axes
         }
         return {"units": "si", "physical": physical.to_dict(), "varied_si": varied}
 
-    def operating_point(self) -> dict:
+    def operating_point(self) -> dict[str, float]:
         """The base point's value of every varied parameter, by the store's names: the SI value of a
         ``[physical]`` input, else the group's value (the point figures mark)."""
         if self.si:
-            return {a.si: float(getattr(self.physical, a.si)) for a in self.axes}
+            return {a.label: float(getattr(self.physical, a.label)) for a in self.axes}
         return {a.name: float(getattr(self.params, a.name)) for a in self.axes}
 
 
-def sobol_axes(ranges: dict, n: int, *, seed: int = 0) -> tuple:
+def sobol_axes(ranges: Mapping[str, tuple[Fraction, ...]], n: int, *, seed: int = 0) -> tuple[Axis, ...]:
     """N quasi-random points (scrambled Sobol, fixed seed) in the box of ``ranges`` {name: (lo, hi)}."""
     import warnings
 

@@ -24,15 +24,21 @@ import os
 import signal
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.sweep.design import SweepSpec
+from moving_bogie.sweep.design import Block, SweepSpec
 from moving_bogie.sweep.evaluate import BlockTask, evaluate_block
-from moving_bogie.sweep.store import missing_blocks, prepare_store, write_block
+from moving_bogie.sweep.store import StorePath, missing_blocks, prepare_store, write_block
+
+if TYPE_CHECKING:
+    from distributed import Client, Future
 
 __all__ = ["IN_PROCESS_POINTS", "SweepRun", "block_task", "make_client", "run_sweep"]
 
@@ -58,7 +64,7 @@ class SweepRun:
         return self.points_computed / self.seconds if self.seconds > 0 else float("nan")
 
 
-def block_task(spec: SweepSpec, block) -> BlockTask:
+def block_task(spec: SweepSpec, block: Block) -> BlockTask:
     """The worker's task for ``block``: only that block's values travel."""
     if spec.design == "sobol":
         values = tuple(a.values[block.slices[0]] for a in spec.axes)
@@ -79,7 +85,7 @@ def block_task(spec: SweepSpec, block) -> BlockTask:
     )
 
 
-def make_client(workers: int | None = None, scheduler: str | None = None, processes: bool = True):
+def make_client(workers: int | None = None, scheduler: str | None = None, processes: bool = True) -> Client:
     """A Dask client: on ``scheduler`` if given, else on a new LocalCluster of ``workers`` processes.
 
     Every worker runs one thread: the full counts use mpmath, whose working precision is global to a
@@ -107,7 +113,7 @@ def make_client(workers: int | None = None, scheduler: str | None = None, proces
 
 
 @contextmanager
-def _sigint_ignored():
+def _sigint_ignored() -> Iterator[None]:
     """SIGINT ignored while child processes are started (main thread only; restored afterwards)."""
     if threading.current_thread() is not threading.main_thread():
         yield
@@ -121,11 +127,11 @@ def _sigint_ignored():
 
 def run_sweep(
     spec: SweepSpec,
-    out,
+    out: StorePath,
     *,
     resume: bool = False,
     overwrite: bool = False,
-    client=None,
+    client: Client | None = None,
     workers: int | None = None,
     scheduler: str | None = None,
     processes: bool = True,
@@ -174,7 +180,15 @@ def run_sweep(
     return SweepRun(path, len(blocks), len(todo), points, seconds, n_workers, where)
 
 
-def _store_blocks(path, spec, finished, done, total, progress, on_block) -> None:
+def _store_blocks(
+    path: Path,
+    spec: SweepSpec,
+    finished: Iterable[tuple[Block, dict[str, np.ndarray]]],
+    done: int,
+    total: int,
+    progress: Callable[[int, int], None] | None,
+    on_block: Callable[[int], None] | None,
+) -> None:
     """Write each (block, arrays) of ``finished`` into the store as it comes, reporting progress."""
     for b, arrays in finished:
         write_block(path, spec, b.slices, arrays)
@@ -185,7 +199,16 @@ def _store_blocks(path, spec, finished, done, total, progress, on_block) -> None
             on_block(b.index)
 
 
-def _run_distributed(spec, path, todo, counts, client, cluster, progress, on_block) -> tuple[int, str]:
+def _run_distributed(
+    spec: SweepSpec,
+    path: Path,
+    todo: Sequence[Block],
+    counts: tuple[int, int],
+    client: Client | None,
+    cluster: tuple[int | None, str | None, bool],
+    progress: Callable[[int, int], None] | None,
+    on_block: Callable[[int], None] | None,
+) -> tuple[int, str]:
     """The blocks ``todo`` on Dask (``client``, or one made from ``cluster`` = (workers, scheduler,
     processes) and closed afterwards); the number of workers and where they ran."""
     from distributed import as_completed
@@ -194,13 +217,14 @@ def _run_distributed(spec, path, todo, counts, client, cluster, progress, on_blo
     if own and todo:
         client = make_client(*cluster)
     where = cluster[1] or ("local cluster" if own else "client")
-    futures = {}
+    futures: dict[Future, Block] = {}
     try:
         n_workers = len(client.scheduler_info()["workers"]) if client is not None else 0
-        for b in todo:
-            futures[client.submit(evaluate_block, block_task(spec, b), pure=False)] = b
+        if client is not None:  # None only when there is nothing to run
+            for b in todo:
+                futures[client.submit(evaluate_block, block_task(spec, b), pure=False)] = b
 
-        def finished():
+        def finished() -> Iterator[tuple[Block, dict[str, np.ndarray]]]:
             for future in as_completed(list(futures)):
                 b = futures.pop(future)
                 yield b, future.result()
@@ -209,7 +233,7 @@ def _run_distributed(spec, path, todo, counts, client, cluster, progress, on_blo
         _store_blocks(path, spec, finished(), done, total, progress, on_block)
     finally:
         with _sigint_ignored():  # a second Ctrl-C must not interrupt the shutdown
-            if futures:
+            if futures and client is not None:
                 client.cancel(list(futures))
             if own and client is not None:
                 closing = client.cluster
@@ -219,7 +243,7 @@ def _run_distributed(spec, path, todo, counts, client, cluster, progress, on_blo
     return n_workers, where
 
 
-def _points(block) -> int:
+def _points(block: Block) -> int:
     n = 1
     for s in block.slices:
         n *= s.stop - s.start

@@ -15,12 +15,15 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import TypeAlias
 
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.stability.maps.column import ColumnResult
 from moving_bogie.stability.maps.map import map_columns
 
 __all__ = ["BlockTask", "VARIABLES", "evaluate_block"]
@@ -67,22 +70,31 @@ class BlockTask:
 
     index: int
     params: DimensionlessParams
-    names: tuple
-    values: tuple
+    names: tuple[str, ...]
+    values: tuple[tuple[Fraction, ...], ...]
     design: str
     column: str | None
     roots: bool
     max_roots: int
     check: int
-    fixed: dict = field(default_factory=dict)
-    held: tuple = ()
+    fixed: dict[str, Fraction] = field(default_factory=dict)
+    held: tuple[str, ...] = ()
 
 
-def evaluate_block(task: BlockTask) -> dict:
+#: A block index (one entry per dimension of the block).
+Index: TypeAlias = tuple[int, ...]
+#: Points counted as one group: (changes of the other varied parameters, exact alphas or None, exact
+#: thetas or None, the block index of each alpha (row) and theta (entry)).
+PointGroup: TypeAlias = tuple[
+    dict[str, Fraction], list[Fraction] | None, list[Fraction] | None, list[list[Index]]
+]
+
+
+def evaluate_block(task: BlockTask) -> dict[str, np.ndarray]:
     """Arrays of the block (shape of the block; ``roots_re``/``roots_im`` with a trailing root axis)."""
     if task.design == "sobol":
         shape: tuple[int, ...] = (len(task.values[0]),)
-        groups = [(_point(task, (i,)), None, None, [[(i,)]]) for i in range(shape[0])]
+        groups: list[PointGroup] = [(_point(task, (i,)), None, None, [[(i,)]]) for i in range(shape[0])]
     else:
         shape = tuple(len(v) for v in task.values)
         groups = _grid_groups(task)
@@ -101,14 +113,15 @@ def evaluate_block(task: BlockTask) -> dict:
         thetas = thetas if thetas is not None else [getattr(params, parameter)]
         columns = map_columns(BoundModel(params), parameter, alphas, thetas, held=held)  # this point bound
         for col, row in zip(columns, index_grid):
+            col_settled, col_margin, col_bound = _settled_and_margins(col)
             for j, index in enumerate(row):
-                settled[index] = bool(col.settled[j])
+                settled[index] = bool(col_settled[j])
                 if not col.uncertain[j]:
                     certain[index] = True
                     n[index] = col.count[j]
                     degree[index] = col.degree[j]
-                    margin[index] = col.margin[j]
-                    bound[index] = bool(col.margin_bound[j])
+                    margin[index] = col_margin[j]
+                    bound[index] = bool(col_bound[j])
                     r = col.roots[j][: task.max_roots]
                     roots[index][: len(r)] = r
     checked = _check(task, shape, n, degree, certain, settled, roots, (margin, bound))
@@ -128,7 +141,15 @@ def evaluate_block(task: BlockTask) -> dict:
     return out
 
 
-def _grid_groups(task: BlockTask) -> list:
+def _settled_and_margins(col: ColumnResult) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``settled``, ``margin`` and ``margin_bound`` of a column of :func:`map_columns`, which fills them all
+    (a column is settled and its margins computed unless asked otherwise)."""
+    if col.settled is None or col.margin is None or col.margin_bound is None:
+        raise RuntimeError("map_columns returned a column without its settled cells or margins")
+    return col.settled, col.margin, col.margin_bound
+
+
+def _grid_groups(task: BlockTask) -> list[PointGroup]:
     """(changes, exact alphas or None, exact thetas or None, block index per alpha and theta) for every
     combination of the values of the other varied parameters."""
     names = task.names
@@ -137,11 +158,11 @@ def _grid_groups(task: BlockTask) -> list:
     others = [k for k in range(len(names)) if k not in (ia, it)]
     n_alpha = len(task.values[ia]) if ia is not None else 1
     n_theta = len(task.values[it]) if it is not None else 1
-    out = []
+    out: list[PointGroup] = []
     for combo in itertools.product(*(range(len(task.values[k])) for k in others)):
-        index_grid = []
+        index_grid: list[list[Index]] = []
         for a in range(n_alpha):
-            row = []
+            row: list[Index] = []
             for t in range(n_theta):
                 index = [0] * len(names)
                 for k, i in zip(others, combo):
@@ -159,13 +180,22 @@ def _grid_groups(task: BlockTask) -> list:
     return out
 
 
-def _point(task: BlockTask, index: tuple) -> dict:
+def _point(task: BlockTask, index: Index) -> dict[str, Fraction]:
     if task.design == "sobol":
         return {name: vals[index[0]] for name, vals in zip(task.names, task.values)}
     return {name: vals[i] for name, vals, i in zip(task.names, task.values, index)}
 
 
-def _check(task, shape, n, degree, certain, settled, roots, margins) -> np.ndarray:
+def _check(
+    task: BlockTask,
+    shape: Index,
+    n: np.ndarray,
+    degree: np.ndarray,
+    certain: np.ndarray,
+    settled: np.ndarray,
+    roots: np.ndarray,
+    margins: tuple[np.ndarray, np.ndarray],
+) -> np.ndarray:
     """Verify ``task.check`` random points of the block by a full count (module text); a replaced verdict
     takes its margin (``margins``: the arrays of the margin and its bound flag) from that count."""
     from moving_bogie.roots.frequencies import induced_frequencies

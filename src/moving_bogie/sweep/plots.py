@@ -3,16 +3,24 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.stability.figures.plot_units import axis_label, mark_operating_point, unit_suffix
 
+if TYPE_CHECKING:
+    import xarray
+    from matplotlib.figure import Figure
+
 __all__ = ["plot_sweep_slice", "select_slice"]
 
 
-def select_slice(ds, x: str, y: str, sel: dict | None = None):
+def select_slice(
+    ds: xarray.Dataset, x: str, y: str, sel: Mapping[str, float] | None = None
+) -> xarray.Dataset:
     """The 2-D slice (y, x) of a grid sweep, other dimensions fixed by ``sel`` (nearest values).
 
     Raises
@@ -28,7 +36,7 @@ def select_slice(ds, x: str, y: str, sel: dict | None = None):
     for option, name in (("--x", x), ("--y", y)):
         if name not in ds.dims:
             raise ParameterError(
-                option, f"{option} {name}: not a dimension of the store ({', '.join(ds.dims)})"
+                option, f"{option} {name}: not a dimension of the store ({', '.join(map(str, ds.dims))})"
             )
     if x == y:
         raise ParameterError("--y", "--x and --y must differ")
@@ -37,11 +45,18 @@ def select_slice(ds, x: str, y: str, sel: dict | None = None):
             raise ParameterError("--sel", f"--sel {name}: not one of the other dimensions")
     free = [d for d in ds.dims if d not in (x, y, "root") and d not in sel]
     if free:
-        raise ParameterError("--sel", f"--sel: fix {', '.join(free)} (e.g. --sel {free[0]}=VALUE)")
+        raise ParameterError("--sel", f"--sel: fix {', '.join(map(str, free))} (e.g. --sel {free[0]}=VALUE)")
     return ds.sel(sel, method="nearest").transpose(y, x, ...)
 
 
-def plot_sweep_slice(ds, x: str, y: str, sel: dict | None = None, *, vmin_log: float = -6.0):
+def plot_sweep_slice(
+    ds: xarray.Dataset,
+    x: str,
+    y: str,
+    sel: Mapping[str, float] | None = None,
+    *,
+    vmin_log: float = -6.0,
+) -> Figure:
     """Figure: the slice coloured by its stability margin (decay rate where stable, growth rate where
     unstable, in 1/s in a sweep in SI units; :mod:`~moving_bogie.stability.figures.margin_plot`), the
     boundary between stable and unstable points, uncertain points hatched, the axes in the store's units
@@ -87,7 +102,9 @@ def plot_sweep_slice(ds, x: str, y: str, sel: dict | None = None, *, vmin_log: f
     return fig
 
 
-def _fixed(ds, s, x: str, y: str, sel: dict | None) -> dict:
+def _fixed(
+    ds: xarray.Dataset, s: xarray.Dataset, x: str, y: str, sel: Mapping[str, float] | None
+) -> dict[str, str]:
     """The fixed parameters of a slice as title text: the selected values of the other dimensions, then
     the store's base point (SI in a sweep in SI units) without the varied parameters."""
     from moving_bogie.model.catalogue import get_model
@@ -102,7 +119,7 @@ def _fixed(ds, s, x: str, y: str, sel: dict | None) -> dict:
     si = ds.attrs.get("units") == "si"
     base = json.loads(ds.attrs["physical"]) if si and "physical" in ds.attrs else params
     varied = set(ds.dims) | {str(c) for c in ds.coords}
-    follow = {}
+    follow: dict[str, str] = {}
     if not si or "vertical_axis" in ds.attrs:  # groups Eq. (63) ties to a varied one follow it
         for name, meta in model.alternatives.items():
             for axis in (x, y, *(sel or {})):

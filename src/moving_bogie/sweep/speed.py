@@ -8,6 +8,7 @@ every point is a comparison: cheap enough to write with the store's metadata, be
 from __future__ import annotations
 
 import itertools
+from fractions import Fraction
 
 import numpy as np
 
@@ -27,7 +28,7 @@ def _track_axes(spec: SweepSpec) -> list[int]:
     return [k for k, a in enumerate(spec.axes) if a.name in track]
 
 
-def speed_arrays(spec: SweepSpec) -> dict | None:
+def speed_arrays(spec: SweepSpec) -> dict[str, np.ndarray] | None:
     """``alpha_cr`` and ``supercritical`` at every point of ``spec`` (arrays of its shape), or None when
     more than :data:`MAX_TRACKS` distinct tracks would need their critical velocity or one of them has
     none (:func:`~moving_bogie.stability.velocity.supercritical.speed_regime` says why)."""
@@ -41,7 +42,7 @@ class _Undetermined(Exception):
     """A track of the sweep without a determined critical velocity."""
 
 
-def _arrays(spec: SweepSpec) -> dict | None:
+def _arrays(spec: SweepSpec) -> dict[str, np.ndarray] | None:
     names = [a.name for a in spec.axes]
     tracks = _track_axes(spec)
     if spec.design == "sobol":
@@ -49,7 +50,7 @@ def _arrays(spec: SweepSpec) -> dict | None:
         keys = [tuple(spec.axes[k].values[i] for k in tracks) for i in range(n)]
         if len(set(keys)) > MAX_TRACKS:
             return None
-        cache = {}
+        cache: dict[tuple[Fraction, ...], float] = {}
         alpha_cr = np.empty(n)
         for i, key in enumerate(keys):
             if key not in cache:
@@ -77,7 +78,7 @@ def _arrays(spec: SweepSpec) -> dict | None:
     return {"alpha_cr": alpha_cr, "supercritical": alpha > alpha_cr}
 
 
-def _alpha_cr(spec: SweepSpec, changes: dict) -> float:
+def _alpha_cr(spec: SweepSpec, changes: dict[str, Fraction]) -> float:
     params = spec.params.replace(**(spec.fixed | changes)) if changes else spec.params
     alpha_cr = speed_regime(params).alpha_cr
     if alpha_cr is None:
@@ -85,7 +86,7 @@ def _alpha_cr(spec: SweepSpec, changes: dict) -> float:
     return alpha_cr
 
 
-def _value(spec: SweepSpec, name: str, index: tuple):
+def _value(spec: SweepSpec, name: str, index: tuple[int, ...]) -> Fraction:
     for a in spec.axes:
         if a.name == name:
             return a.values[index[0]]

@@ -22,14 +22,35 @@ from __future__ import annotations
 import json
 import os
 import shutil
+from collections.abc import Iterable
+from fractions import Fraction
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, cast
 
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.model.exact import fraction_to_text
-from moving_bogie.sweep.design import SweepSpec, group_coordinate, parameter_attributes, si_attributes
+from moving_bogie.sweep.design import (
+    Block,
+    SweepSpec,
+    group_coordinate,
+    parameter_attributes,
+    si_attributes,
+)
 from moving_bogie.sweep.evaluate import VARIABLES
+
+if TYPE_CHECKING:
+    import xarray
+    import zarr
+
+    from moving_bogie.model.physical import PhysicalParams
+    from moving_bogie.stability.maps.map import StabilityMap
+
+#: Where a store is: a folder's path.
+StorePath: TypeAlias = str | os.PathLike[str]
+#: A data variable of a store: (name, dtype, fill value, description).
+Variable: TypeAlias = tuple[str, str, Any, str]
 
 __all__ = [
     "VARIABLE_NAMES",
@@ -70,7 +91,7 @@ def _version() -> str:
     return __version__
 
 
-def prepare_store(path, spec: SweepSpec, *, resume: bool = False, overwrite: bool = False) -> Path:
+def prepare_store(path: StorePath, spec: SweepSpec, *, resume: bool = False, overwrite: bool = False) -> Path:
     """Check the ``--out`` path before any computation; create the store unless resuming one.
 
     Raises
@@ -85,7 +106,7 @@ def prepare_store(path, spec: SweepSpec, *, resume: bool = False, overwrite: boo
     if path.exists():
         if resume:
             try:
-                stored = json.loads(_group(path, "r").attrs["sweep"])
+                stored = json.loads(cast(str, _group(path, "r").attrs["sweep"]))  # JSON text (create_store)
             except (KeyError, ValueError, OSError, MovingBogieError, FileNotFoundError):
                 raise ParameterError(
                     "--out", f"--out {path}: not a sweep store, cannot --resume it"
@@ -107,7 +128,7 @@ def prepare_store(path, spec: SweepSpec, *, resume: bool = False, overwrite: boo
     return path
 
 
-def _group(path, mode):
+def _group(path: StorePath, mode: Literal["r", "r+"]) -> zarr.Group:
     import zarr
 
     try:
@@ -116,7 +137,17 @@ def _group(path, mode):
         raise MovingBogieError(f"{path}: not a zarr store ({exc})") from None
 
 
-def create_store(path, spec: SweepSpec) -> None:
+def _array(g: zarr.Group, name: str) -> zarr.Array:
+    """The array ``name`` of the store ``g``."""
+    import zarr
+
+    member = g[name]
+    if not isinstance(member, zarr.Array):
+        raise MovingBogieError(f"{name} in {g.store}: a group where a sweep store has an array")
+    return member
+
+
+def create_store(path: StorePath, spec: SweepSpec) -> None:
     """Write the metadata and coordinates of an empty store at ``path`` (replacing what is there)."""
     import zarr
 
@@ -129,17 +160,18 @@ def create_store(path, spec: SweepSpec) -> None:
         point = g.create_array("point", shape=shape, chunks=shape, dtype="int64", dimension_names=("point",))
         point[:] = np.arange(shape[0])
         point.attrs.update(long_name="point of the quasi-random design", units="1")
-    extra_coordinates = []
+    extra_coordinates: list[str] = []
     for axis in spec.axes:
         own = ("point",) if spec.design == "sobol" else (axis.label,)
         if spec.si:
+            si_name = axis.label  # the SI name of an axis given in SI units
             _coordinate(
-                g, axis.si, own, axis.si_floats, si_attributes(spec.params, axis.name), axis.si_values
+                g, si_name, own, axis.si_floats, si_attributes(spec.params, axis.name), axis.si_values
             )
-            group = group_coordinate(axis, {a.si for a in spec.axes})
-            attrs = parameter_attributes(spec.params, axis.name) | {"si": axis.si}
+            group = group_coordinate(axis, {a.label for a in spec.axes})
+            attrs = parameter_attributes(spec.params, axis.name) | {"si": si_name}
             _coordinate(g, group, own, axis.floats, attrs, axis.values)
-            extra_coordinates += [axis.si, group] if spec.design == "sobol" else [group]
+            extra_coordinates += [si_name, group] if spec.design == "sobol" else [group]
         else:
             exact = axis.values if spec.design == "grid" else None
             _coordinate(g, axis.name, own, axis.floats, parameter_attributes(spec.params, axis.name), exact)
@@ -188,7 +220,7 @@ def create_store(path, spec: SweepSpec) -> None:
     os.replace(tmp, path)
 
 
-def consolidate(path) -> None:
+def consolidate(path: StorePath) -> None:
     """Gather the metadata of every array into the store's root (xarray then opens it in one read).
 
     zarr warns that consolidated metadata is not part of the zarr 3 specification: xarray, the reader of
@@ -203,7 +235,7 @@ def consolidate(path) -> None:
         zarr.consolidate_metadata(str(path))
 
 
-def _write_speed(g, spec: SweepSpec) -> None:
+def _write_speed(g: zarr.Group, spec: SweepSpec) -> None:
     """``supercritical`` and ``alpha_cr`` at every point (:mod:`moving_bogie.sweep.speed`), or a note."""
     from moving_bogie.stability.velocity.supercritical import SUPERCRITICAL_MEANING
     from moving_bogie.sweep.speed import MAX_TRACKS, speed_arrays
@@ -230,7 +262,14 @@ def _write_speed(g, spec: SweepSpec) -> None:
         g.attrs["v_cr"] = json.dumps({"values": v_cr, "unit": "m/s"})
 
 
-def _coordinate(g, name, dims, floats, attrs, exact) -> None:
+def _coordinate(
+    g: zarr.Group,
+    name: str,
+    dims: tuple[str, ...],
+    floats: np.ndarray,
+    attrs: dict[str, str],
+    exact: Iterable[Fraction] | None,
+) -> None:
     """One coordinate array: float64 values, attributes, the exact decimal values (None: not kept)."""
     coord = g.create_array(name, shape=(len(floats),), dtype="float64", dimension_names=dims)
     coord[:] = floats
@@ -239,8 +278,8 @@ def _coordinate(g, name, dims, floats, attrs, exact) -> None:
         coord.attrs["exact"] = [fraction_to_text(v) for v in exact]
 
 
-def _variables(spec: SweepSpec):
-    out = list(VARIABLES)
+def _variables(spec: SweepSpec) -> list[Variable]:
+    out: list[Variable] = list(VARIABLES)
     if spec.roots:
         out += [
             (
@@ -255,22 +294,24 @@ def _variables(spec: SweepSpec):
     return [v for v in out if v[0] != "computed"] + [v for v in out if v[0] == "computed"]
 
 
-def write_block(path, spec: SweepSpec, slices: tuple, arrays: dict) -> None:
+def write_block(
+    path: StorePath, spec: SweepSpec, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]
+) -> None:
     """Write one block's arrays into its chunk of every variable (``computed`` last); the margin in 1/s in
     a sweep in SI units."""
     g = _group(path, "r+")
     t_scale = spec.physical.scales().t_scale if spec.physical is not None else 1.0
     for name, *_ in _variables(spec):
-        g[name][slices] = arrays[name] / t_scale if name == "margin" else arrays[name]
+        _array(g, name)[slices] = arrays[name] / t_scale if name == "margin" else arrays[name]
 
 
-def missing_blocks(path, spec: SweepSpec) -> list:
+def missing_blocks(path: StorePath, spec: SweepSpec) -> list[Block]:
     """Blocks of ``spec`` whose ``computed`` chunk is not in the store at ``path``."""
-    computed = _group(path, "r")["computed"][...]
+    computed = np.asarray(_array(_group(path, "r"), "computed")[...])
     return [b for b in spec.blocks() if not np.all(computed[b.slices])]
 
 
-def open_sweep(path):
+def open_sweep(path: StorePath) -> xarray.Dataset:
     """The sweep at ``path`` as an :class:`xarray.Dataset` (lazy, dask-backed).
 
     A store has its metadata consolidated (:func:`consolidate`); one without (written by an earlier
@@ -288,7 +329,9 @@ def open_sweep(path):
         raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None
 
 
-def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
+def write_map(
+    path: StorePath, smap: StabilityMap, *, overwrite: bool = False, physical: PhysicalParams | None = None
+) -> Path:
     """Write a :class:`~moving_bogie.stability.maps.map.StabilityMap` as a 2-D sweep store (alpha, parameter).
 
     With ``physical`` (the SI parameters of the map's base point) the store is in SI units, as a sweep of
@@ -297,12 +340,10 @@ def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
     groups beside them. Along the map's vertical axis the groups that Eq. (63) ties to it follow it, as
     the attribute ``vertical_axis`` says.
     """
-    from fractions import Fraction
-
     from moving_bogie.stability.maps.column import exact
     from moving_bogie.sweep.design import Axis
 
-    def axis(name, values):
+    def axis(name: str, values: np.ndarray) -> Axis:
         exact_values = tuple(exact(v) for v in values)
         if physical is None:
             return Axis(name, exact_values)
@@ -321,7 +362,11 @@ def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
         "n_unstable": n,
         "degree_of_instability": np.where(certain, smap.degree.T, np.nan),
         "margin": _map_margin(smap, certain),
-        "margin_bound": np.zeros(n.shape, dtype=bool) if smap.margin is None else smap.margin_bound.T,
+        "margin_bound": (
+            np.zeros(n.shape, dtype=bool)
+            if smap.margin is None or smap.margin_bound is None
+            else smap.margin_bound.T
+        ),
         "certain": certain,
         "settled": smap.settled_cells.T,
         "checked": np.zeros(n.shape, dtype=np.int8),
@@ -341,7 +386,7 @@ def write_map(path, smap, *, overwrite: bool = False, physical=None) -> Path:
     return path
 
 
-def _map_margin(smap, certain: np.ndarray) -> np.ndarray:
+def _map_margin(smap: StabilityMap, certain: np.ndarray) -> np.ndarray:
     """The map's margin (alpha first), NaN where not certain or not measured."""
     if smap.margin is None:
         return np.full(certain.shape, np.nan)
