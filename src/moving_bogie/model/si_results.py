@@ -25,7 +25,7 @@ def root_in_si(q: complex | Mpc, t_scale: float | Mpf, *, digits: int = 12) -> d
     q : complex or mpmath.mpc
         The root.
     t_scale : float or mpmath.mpf
-        ``sqrt(m / k_f)`` [s], :attr:`~moving_bogie.model.physical.Scales.t_scale`.
+        ``sqrt(m / k_f)`` [s], :attr:`~moving_bogie.model.scales.Scales.t_scale`.
     digits : int
         Significant digits printed.
 
