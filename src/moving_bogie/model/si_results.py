@@ -8,13 +8,20 @@ Im omega < 0 grows, with growth time 1 / |Im omega| [s]; Re omega / (2 pi) is it
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, Protocol
 
 import mpmath
 
 from moving_bogie.typing import Mpc, Mpf
 
 __all__ = ["root_in_si", "roots_in_si"]
+
+
+class HasFrequency(Protocol):
+    """A root of a frequency result: anything with its induced frequency ``q``."""
+
+    @property
+    def q(self) -> Mpc: ...
 
 
 def root_in_si(q: complex | Mpc, t_scale: float | Mpf, *, digits: int = 12) -> dict[str, Any]:
@@ -46,6 +53,8 @@ def root_in_si(q: complex | Mpc, t_scale: float | Mpf, *, digits: int = 12) -> d
         }
 
 
-def roots_in_si(roots: Iterable[Any], t_scale: float | Mpf, *, digits: int = 12) -> list[dict[str, Any]]:
+def roots_in_si(
+    roots: Iterable[HasFrequency], t_scale: float | Mpf, *, digits: int = 12
+) -> list[dict[str, Any]]:
     """:func:`root_in_si` of each root (objects with ``q``) of a frequency result."""
     return [root_in_si(r.q, t_scale, digits=digits) for r in roots]
