@@ -15,6 +15,12 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import mpmath  # noqa: E402
 import pytest  # noqa: E402
+from hypothesis import settings  # noqa: E402
+
+# The property tests judge values, not speed: no per-example deadline, which a loaded machine exceeds
+# (Hypothesis's default is 200 ms per example).
+settings.register_profile("moving-bogie", deadline=None)
+settings.load_profile("moving-bogie")
 
 
 @pytest.fixture(autouse=True)
