@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import mpmath
 import numpy as np
@@ -188,7 +188,7 @@ def residue_expansion(
             raise MovingBogieError("E_chr(0) = 0: no steady state (q = 0 is an induced frequency)")
         n0 = chr_.numerators(zero, kv0)
         steady_mp = {name: n0[name] / E0 for name in names}
-        amps_mp: dict[str, list[Any]] = {name: [] for name in names}
+        amps_mp: dict[str, list[Mpc]] = {name: [] for name in names}
         shape_amps, qs_mp = [], []
         for q in qs:
             q = mpmath.mpc(q)

@@ -41,7 +41,7 @@ __all__ = ["ModalTrack"]
 _SAMPLES = 4001
 
 
-def _number(value: Any) -> float:
+def _number(value: Scalar | None) -> float:
     return 0.0 if value is None else float(value)
 
 
