@@ -35,10 +35,10 @@ from moving_bogie.response.quadrature import adapt_panels, subdivide
 __all__ = ["BromwichResult", "bromwich_line", "bromwich_line_shape", "bromwich_response", "bromwich_shape"]
 
 
-class BromwichResult(dict):
+class BromwichResult(dict[str, np.ndarray]):
     """name -> ndarray of x(tau), with ``.errors`` (name -> quadrature error estimates) and ``.a``."""
 
-    errors: dict
+    errors: dict[str, np.ndarray]
     a: float
 
 
@@ -88,7 +88,7 @@ def bromwich_shape(
         for k, x in np.ndenumerate(xi):
             cache: dict[float, complex] = {}
 
-            def value(s, x=x, cache=cache):
+            def value(s: float, x: float = x, cache: dict[float, complex] = cache) -> complex:
                 if s not in cache:
                     q = np.array([s - 1j * a])
                     with np.errstate(over="ignore", invalid="ignore"):
@@ -155,10 +155,10 @@ def bromwich_response(
             for name in names:
                 j = index[name]
 
-                def re(s, j=j):
+                def re(s: float, j: int = j) -> float:
                     return values(s, a)[j].real
 
-                def im(s, j=j):
+                def im(s: float, j: int = j) -> float:
                     return values(s, a)[j].imag
 
                 if t == 0:
@@ -205,7 +205,7 @@ def bromwich_line(
     tau, system, kernel = _line_setup(bound, tau, a)
     offsets = [float(x) for x in system.offsets]
 
-    def transform(s):
+    def transform(s: np.ndarray) -> np.ndarray:
         q = np.asarray(s, dtype=float) - 1j * a
         E, nums, _ = system.responses_array(q, kernel(q, offsets).K)
         return nums / (1j * q * E)[:, None]
@@ -235,7 +235,7 @@ def bromwich_line_shape(
     flat = xi.reshape(-1)
     m, F = len(offsets), flat.size
 
-    def transform(s):
+    def transform(s: np.ndarray) -> np.ndarray:
         q = np.asarray(s, dtype=float) - 1j * a
         with np.errstate(over="ignore", invalid="ignore"):
             # exponentials of the roots on the unused side may overflow at large |xi|
@@ -259,7 +259,9 @@ def _line_setup(
     return tau, bound.float_system, TrackKernelArray(bound)
 
 
-def _line_quadrature(transform, tau, a, s_max, panel_tol):
+def _line_quadrature(
+    transform: Callable[[np.ndarray], np.ndarray], tau: np.ndarray, a: float, s_max: float, panel_tol: float
+) -> np.ndarray:
     """(e^{a tau}/pi) Re integral_0^inf transform(s) e^{i s tau} ds, shape (len(tau), columns)."""
     start = [0.0]
     while start[-1] < s_max:

@@ -34,6 +34,7 @@ from moving_bogie.response.deflection import deflection_shape, deflection_shape_
 from moving_bogie.response.residues import ResidueExpansion, frequencies_for, residue_expansion
 
 if TYPE_CHECKING:
+    from moving_bogie.response.axis_sequence import AxisSequence
     from moving_bogie.response.branch_cut import BranchCut
     from moving_bogie.response.cut_integral import CurveBranchCut
     from moving_bogie.roots.frequencies import FrequencyResult
@@ -83,15 +84,15 @@ class TimeSeries:
     """
 
     tau: np.ndarray
-    responses: dict
-    steady: dict
-    response_units: dict
+    responses: dict[str, np.ndarray]
+    steady: dict[str, float]
+    response_units: dict[str, str]
     branch_cut: bool
     frequencies: FrequencyResult
     model: str | None = None
     branch_cut_until: float = 0.0
-    units: dict = field(default_factory=lambda: dict(DIMENSIONLESS_UNITS))
-    notes: tuple = ()
+    units: dict[str, str] = field(default_factory=lambda: dict(DIMENSIONLESS_UNITS))
+    notes: tuple[str, ...] = ()
     contacts: int = 1
 
     @property
@@ -125,14 +126,14 @@ class TimeSeries:
         ]
         return html_table("closed-form time series", verdict, rows, reasons=list(self.notes))
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: every response under its DOF name (arrays as lists, NaN as None), the steady
         parts, flags, units and frequencies."""
 
-        def clean(x):
+        def clean(x: ArrayLike) -> list[float | None]:
             return [None if not math.isfinite(v) else float(v) for v in np.asarray(x, dtype=float).ravel()]
 
-        def scalar(v):
+        def scalar(v: float) -> float | None:
             return None if not math.isfinite(v) else float(v)
 
         return {
@@ -225,11 +226,11 @@ def closed_form_response(
     mode = branch_cut_mode(branch_cut)
     bc, notes = branch_cut_or_note(bound, mode)
 
-    def report(fraction) -> None:
+    def report(fraction: float) -> None:
         if progress is not None:
             progress(fraction)
 
-    def staged(x) -> None:
+    def staged(x: float) -> None:
         report(0.8 * x)
 
     result = frequencies_for(bound, frequencies, dps, staged if progress else None)
@@ -285,7 +286,9 @@ def _time_series(
     )
 
 
-def _harmonic_sum(expansion: ResidueExpansion, sequence: Any, tau: np.ndarray) -> dict[str, np.ndarray]:
+def _harmonic_sum(
+    expansion: ResidueExpansion, sequence: AxisSequence | None, tau: np.ndarray
+) -> dict[str, np.ndarray]:
     """Steady part plus the residues at every induced frequency (Eqs. (36), (39)-(43)), with the sequence
     of roots along the real axis beyond the window when there is one."""
     series = expansion.totals(tau)
@@ -300,7 +303,7 @@ def _add_branch_cut(
     bc: BranchCut | CurveBranchCut | None,
     tau: np.ndarray,
     expansion: ResidueExpansion,
-    sequence: Any,
+    sequence: AxisSequence | None,
     mode: str,
     notes: list[str],
     bc_tol: float,

@@ -16,13 +16,23 @@ Each ``*_figure`` returns a :class:`matplotlib.figure.Figure`; :func:`save_figur
 from __future__ import annotations
 
 import io
+from collections.abc import Sequence
+from os import PathLike
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from moving_bogie.response.closed_form import TimeSeries
 
 __all__ = ["long_time_figure", "save_figure", "shape_figure", "time_series_figure"]
 
 
-def _figure(rows: int, height: float):
+def _figure(rows: int, height: float) -> tuple[Figure, np.ndarray]:
+    """A figure of `rows` stacked panels sharing the x axis, and its axes (an array of ``Axes``)."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(7.0, height), constrained_layout=True)
@@ -30,7 +40,7 @@ def _figure(rows: int, height: float):
     return fig, axes
 
 
-def _labels(ts) -> dict:
+def _labels(ts: TimeSeries) -> dict[str, str]:
     si = ts.units.get("tau") == "s"
     if si:
         known = {
@@ -64,7 +74,7 @@ _TITLES = {
 }
 
 
-def _title(ts, name: str) -> str:
+def _title(ts: TimeSeries, name: str) -> str:
     if name in _TITLES:
         return _TITLES[name]
     k = ts.names.index(name)
@@ -73,7 +83,7 @@ def _title(ts, name: str) -> str:
     return f"{name}, {'pitch' if ts.response_units[name] in ('rad', 'w_st chi') else 'bounce'}"
 
 
-def _panels(ts, names, height, title, steady: bool):
+def _panels(ts: TimeSeries, names: Sequence[str], height: float, title: str | None, steady: bool) -> Figure:
     labels = _labels(ts)
     fig, axes = _figure(len(names), height)
     for k, (ax, name) in enumerate(zip(axes, names)):
@@ -93,12 +103,12 @@ def _panels(ts, names, height, title, steady: bool):
     return fig
 
 
-def _wheels_and_bodies(ts) -> tuple[tuple[str, ...], tuple[str, ...]]:
+def _wheels_and_bodies(ts: TimeSeries) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The DOFs of the rail under the wheels (rear first) and those of the vehicle's bodies."""
     return ts.names[: ts.contacts], ts.names[ts.contacts :]
 
 
-def time_series_figure(ts, *, title: str | None = None, steady: bool = True):
+def time_series_figure(ts: TimeSeries, *, title: str | None = None, steady: bool = True) -> Figure:
     """Three stacked panels: the rear wheel, the first body's bounce and pitch against tau (the bogie:
     w_rear, u, theta); a vehicle without a body: the rear and the front wheel."""
     wheels, bodies = _wheels_and_bodies(ts)
@@ -106,7 +116,7 @@ def time_series_figure(ts, *, title: str | None = None, steady: bool = True):
     return _panels(ts, names, 2.3 * len(names) + 0.4, title, steady)
 
 
-def long_time_figure(ts, *, title: str | None = None):
+def long_time_figure(ts: TimeSeries, *, title: str | None = None) -> Figure:
     """Two stacked panels, the rear wheel and the first body's bounce (the bogie: w_rear, u), for long
     times (Figures 6, 13, 15, A5, A7); a vehicle without a body: the rear and the front wheel."""
     wheels, bodies = _wheels_and_bodies(ts)
@@ -114,7 +124,9 @@ def long_time_figure(ts, *, title: str | None = None):
     return _panels(ts, names, 5.0, title, steady=False)
 
 
-def shape_figure(xi, w, *, tau: float, d: float, si: bool = False, title: str | None = None):
+def shape_figure(
+    xi: ArrayLike, w: ArrayLike, *, tau: float, d: float, si: bool = False, title: str | None = None
+) -> Figure:
     """Beam deflection w(xi) at one time, with the rear (xi = 0) and front (xi = d) wheels marked."""
     fig, axes = _figure(1, 3.2)
     ax = axes[0]
@@ -147,7 +159,7 @@ def shape_figure(xi, w, *, tau: float, d: float, si: bool = False, title: str | 
     return fig
 
 
-def save_figure(fig, path, *, dpi: int = 150) -> None:
+def save_figure(fig: Figure, path: str | PathLike[str], *, dpi: int = 150) -> None:
     """Write the figure (format from the file suffix) atomically."""
     from pathlib import Path
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = [
     "PANEL_PHASE",
@@ -34,21 +35,23 @@ PANEL_PHASE = 3 * np.pi
 PANEL_XI = 2.0
 
 
-def gauss_panels(a, b):
+def gauss_panels(a: ArrayLike, b: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Nodes and weights of the 16-point Gauss-Legendre rule on every panel [a_k, b_k] (flattened)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     nodes = (0.5 * (b - a)[:, None] * GL_X + 0.5 * (a + b)[:, None]).ravel()
     return nodes, (0.5 * (b - a)[:, None] * GL_W).ravel()
 
 
-def adapt_panels(start, values: Callable, tol: float, max_splits: int = 40) -> np.ndarray:
+def adapt_panels(
+    start: ArrayLike, values: Callable[[np.ndarray], np.ndarray], tol: float, max_splits: int = 40
+) -> np.ndarray:
     """Edges refining ``start``: a panel is halved while its integral of ``values`` (nodes -> (n, m))
     differs from the sum over its halves by more than ``tol``; resolves peaks far narrower than a panel."""
     start = np.asarray(start, dtype=float)
     lo, hi = start[:-1], start[1:]
     edges = [start]
 
-    def integral(a, b):
+    def integral(a: np.ndarray, b: np.ndarray) -> np.ndarray:
         nodes, weights = gauss_panels(a, b)
         return (values(nodes) * weights[:, None]).reshape(a.size, GL_X.size, -1).sum(axis=1)
 
@@ -62,29 +65,29 @@ def adapt_panels(start, values: Callable, tol: float, max_splits: int = 40) -> n
     return np.unique(np.concatenate(edges))
 
 
-def subdivide(edges, pieces):
+def subdivide(edges: np.ndarray, pieces: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Gauss nodes and weights after splitting panel k of ``edges`` into ``pieces[k]`` equal parts."""
-    pieces = np.maximum(1, np.asarray(pieces)).astype(int)
-    k = np.repeat(np.arange(edges.size - 1), pieces)
-    j = np.arange(k.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
-    width = np.diff(edges) / pieces
+    counts = np.maximum(1, np.asarray(pieces)).astype(int)
+    k = np.repeat(np.arange(edges.size - 1), counts)
+    j = np.arange(k.size) - np.repeat(np.cumsum(counts) - counts, counts)
+    width = np.diff(edges) / counts
     lo = edges[:-1][k] + j * width[k]
     return gauss_panels(lo, lo + width[k])
 
 
-def equidistribute(P, density) -> np.ndarray:
+def equidistribute(P: np.ndarray, density: np.ndarray) -> np.ndarray:
     """Edges on [P[0], P[-1]] (a fine grid P) with about unit integral of ``density`` (sampled on P) each."""
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(P))])
     return np.interp(np.linspace(0.0, cum[-1], max(1, int(np.ceil(cum[-1]))) + 1), cum, P)
 
 
-def oscillation_rule(edges, phase, dp):
+def oscillation_rule(edges: np.ndarray, phase: np.ndarray, dp: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`subdivide` each panel into pieces spanning at most PANEL_PHASE of ``phase`` (its phase s tau
     per panel) and ``dp`` of its own length."""
     return subdivide(edges, np.ceil(np.maximum(np.abs(phase) / PANEL_PHASE, np.diff(edges) / dp)))
 
 
-def by_bands(tau, m: int, band: Callable) -> np.ndarray:
+def by_bands(tau: ArrayLike, m: int, band: Callable[[float, np.ndarray], np.ndarray]) -> np.ndarray:
     """(1/pi) Re of ``band(lo, ts)`` over the bands of times, shape tau.shape + (m,).
 
     ``band(lo, ts)`` returns the complex integral (len(ts), m) for the times ``ts`` of one band, whose
@@ -105,7 +108,7 @@ _TAYLOR_TERMS = 12
 _GRID_BLOCK = 256
 
 
-def cis(x):
+def cis(x: np.ndarray) -> np.ndarray:
     """e^{i x} for a real array x (cos and sin of real arguments are cheaper than a complex exp)."""
     out = np.empty(x.shape, dtype=complex)
     np.cos(x, out=out.real)
@@ -113,7 +116,7 @@ def cis(x):
     return out
 
 
-def _phases(t, s, eta):
+def _phases(t: np.ndarray, s: np.ndarray, eta: float | np.ndarray) -> np.ndarray:
     """e^{i (s + i eta) t} for the outer product of times t and real s (sin/cos of real arguments).
 
     ``eta`` is one number (a cut on a horizontal line) or an array like s (a curved cut).
@@ -126,7 +129,17 @@ def _phases(t, s, eta):
     return out
 
 
-def fourier_sum(ts, nodes, weights, weighted, m, q_max, eta, *, memory: int = 4_000_000):
+def fourier_sum(
+    ts: np.ndarray,
+    nodes: np.ndarray,
+    weights: np.ndarray,
+    weighted: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
+    m: int,
+    q_max: float,
+    eta: float | np.ndarray | None,
+    *,
+    memory: int = 4_000_000,
+) -> np.ndarray:
     """sum_n G_n e^{i q_n t} for every t, (q, G) = weighted(nodes, weights): shape (len(ts), m).
 
     ``eta`` is Im q_n when it is the same for every node (else None: taken from q).

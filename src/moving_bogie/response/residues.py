@@ -15,16 +15,18 @@ vectorised numpy sum of ``amplitude * exp(i q tau)``, whose cost does not depend
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import mpmath
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import Characteristic
+from moving_bogie.typing import Mpc
 
 if TYPE_CHECKING:
     from moving_bogie.roots.frequencies import FrequencyResult
@@ -36,7 +38,7 @@ class IncompleteFrequencies(MovingBogieError):
     """The frequency search did not confirm every induced frequency: the residue sum would be wrong."""
 
 
-def both_members(result) -> list:
+def both_members(result: FrequencyResult) -> list[Mpc]:
     """Every induced frequency of a FrequencyResult, with the mirror -conj(q) of each pair added.
 
     A root with Re q = 0 within its confirmed decimals is its own mirror and is listed once.
@@ -51,7 +53,7 @@ def both_members(result) -> list:
     if not result.count_ok:
         detail = "; ".join(result.warnings) or f"{result.found} of {result.count} roots found"
         raise IncompleteFrequencies(f"induced frequencies incomplete ({detail}): no closed-form response")
-    out = []
+    out: list[Mpc] = []
     # The mirror is formed at the roots' precision: rounded to double, it would sit ~1e-17 off the root,
     # and near a close pair (two bogies interacting through the rail, roots 1e-13 apart) its residue would
     # then be wrong in the fourth digit and the imaginary parts of the pair would not cancel.
@@ -92,18 +94,20 @@ class ResidueExpansion:
     q_mp, amplitudes_mp : the same at the roots' precision (mpmath).
     """
 
-    names: tuple
+    names: tuple[str, ...]
     q: np.ndarray
-    amplitudes: dict
-    steady: dict
+    amplitudes: dict[str, np.ndarray]
+    steady: dict[str, float]
     shape_amplitudes: np.ndarray
     shape_steady: np.ndarray
-    positions: tuple
-    q_mp: tuple
-    amplitudes_mp: dict
+    positions: tuple[float, ...]
+    q_mp: tuple[Mpc, ...]
+    amplitudes_mp: dict[str, tuple[Mpc, ...]]
     dps: int
 
-    def harmonics(self, tau, names=None, *, imag_tol: float = 1e-9) -> dict:
+    def harmonics(
+        self, tau: ArrayLike, names: Iterable[str] | None = None, *, imag_tol: float = 1e-9
+    ) -> dict[str, np.ndarray]:
         """Unsteady harmonic parts sum_j a_j e^{i q_j tau} of several responses (real, vectorised).
 
         The exponentials are computed once for all responses. The imaginary parts of the two members of
@@ -136,15 +140,15 @@ class ResidueExpansion:
                 out[name][start : start + chunk.size] = total[:, k].real
         return {name: v.reshape(tau.shape) for name, v in out.items()}
 
-    def harmonic(self, name: str, tau, *, imag_tol: float = 1e-9) -> np.ndarray:
+    def harmonic(self, name: str, tau: ArrayLike, *, imag_tol: float = 1e-9) -> np.ndarray:
         """Unsteady harmonic part of one response (see :meth:`harmonics`)."""
         return self.harmonics(tau, (name,), imag_tol=imag_tol)[name]
 
-    def total(self, name: str, tau) -> np.ndarray:
+    def total(self, name: str, tau: ArrayLike) -> np.ndarray:
         """Steady plus unsteady harmonic part (the closed form without I_bc)."""
         return self.steady[name] + self.harmonic(name, tau)
 
-    def totals(self, tau) -> dict:
+    def totals(self, tau: ArrayLike) -> dict[str, np.ndarray]:
         """Steady plus unsteady harmonic part of every response."""
         return {name: self.steady[name] + v for name, v in self.harmonics(tau).items()}
 
@@ -184,7 +188,7 @@ def residue_expansion(
             raise MovingBogieError("E_chr(0) = 0: no steady state (q = 0 is an induced frequency)")
         n0 = chr_.numerators(zero, kv0)
         steady_mp = {name: n0[name] / E0 for name in names}
-        amps_mp: dict[str, list[Any]] = {name: [] for name in names}
+        amps_mp: dict[str, list[Mpc]] = {name: [] for name in names}
         shape_amps, qs_mp = [], []
         for q in qs:
             q = mpmath.mpc(q)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import mpmath
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.polynomial import derivative_coefficients, horner
@@ -55,7 +56,7 @@ class KernelGrid:
         self.roots = np.array([complex(p) for p in roots])
         self.weights = np.array([complex(w) for w in weights])
 
-    def __call__(self, xi) -> np.ndarray:
+    def __call__(self, xi: ArrayLike) -> np.ndarray:
         """K(xi, q) for an array xi (complex array of the same shape)."""
         xi = np.asarray(xi, dtype=float)
         if self.exact:

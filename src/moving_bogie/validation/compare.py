@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -45,6 +45,10 @@ from moving_bogie.validation.window import (
     truncation_a_priori,
 )
 
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.response.closed_form import TimeSeries
+
 __all__ = [
     "DEFAULT_TOLERANCE",
     "QuantityComparison",
@@ -63,13 +67,15 @@ __all__ = [
 MIN_CORRECTED_WAVENUMBER = 2.0
 
 
-def _staged(progress: Callable[[float], None] | None, start: float, width: float):
+def _staged(
+    progress: Callable[[float], None] | None, start: float, width: float
+) -> Callable[[float], None] | None:
     if progress is None:
         return None
     return lambda fraction: progress(start + width * min(max(fraction, 0.0), 1.0))
 
 
-def _check(params: Any, n_modes: int, tol: float, tau_step: float) -> None:
+def _check(params: DimensionlessParams, n_modes: int, tol: float, tau_step: float) -> None:
     vehicle_kernels(params)  # names an unknown vehicle
     if int(n_modes) != n_modes or n_modes < 4:
         raise MovingBogieError(f"n_modes must be an integer of at least 4 (got {n_modes!r})")
@@ -161,7 +167,7 @@ def validate(
     )
 
 
-def _tau_grid(params: Any, tau_max: float | None, tau_step: float) -> np.ndarray:
+def _tau_grid(params: DimensionlessParams, tau_max: float | None, tau_step: float) -> np.ndarray:
     """The common output grid 0, ..., tau_max (default :func:`default_tau_max`), spaced about ``tau_step``."""
     tau_max = default_tau_max(params) if tau_max is None else float(tau_max)
     if not (math.isfinite(tau_max) and tau_max > 0):
@@ -217,7 +223,7 @@ class _Runs:
         self.closed_s = time.perf_counter() - start
 
 
-def _closed_form_notes(closed: Any, finite: FiniteBeamResult, static_correction: bool) -> list[str]:
+def _closed_form_notes(closed: TimeSeries, finite: FiniteBeamResult, static_correction: bool) -> list[str]:
     """What the reader must know about the two sides: the closed form's notes, a left-out branch cut, a
     static correction that cannot be trusted."""
     notes = [f"closed form: {note}" for note in getattr(closed, "notes", ())]
@@ -238,7 +244,7 @@ def _compare_responses(
     bound: BoundModel,
     finite: FiniteBeamResult,
     reference: FiniteBeamResult | None,
-    closed: Any,
+    closed: TimeSeries,
     tau: np.ndarray,
     inside: np.ndarray,
     tol: float,
@@ -247,7 +253,7 @@ def _compare_responses(
     """Every response of the vehicle, under its name in the generated DOFS, compared over the window
     (each relative to the largest value of its kind: deflections, rotations); notes appended."""
     names = {dof: dof for dof in finite.responses}
-    quantities = {}
+    quantities: dict[str, QuantityComparison] = {}
     kernels = bound.vehicle
     units = getattr(kernels, "UNITS", {})
     labels = quantity_labels(tuple(names), units, finite.contacts)

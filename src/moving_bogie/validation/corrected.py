@@ -63,10 +63,11 @@ class CorrectedModalSystem(ModalSystem):
         n, size, nb = vehicle.contacts, vehicle.size, beam.n_dof
         self.n_dof = nb + size
         self.internal_index = nb + n if size > n else None
-        diagonals = []
-        for beam_diag, matrix in zip(beam.diagonals, (vehicle.mass, vehicle.damping, vehicle.stiffness)):
-            diagonals.append(np.concatenate([beam_diag, np.diag(matrix)]))
-        self._diag = tuple(diagonals)
+        m_diag, c_diag, k_diag = (
+            np.concatenate([beam_diag, np.diag(matrix)])
+            for beam_diag, matrix in zip(beam.diagonals, (vehicle.mass, vehicle.damping, vehicle.stiffness))
+        )
+        self._diag = (m_diag, c_diag, k_diag)
         self._buffers: tuple[np.ndarray, ...] | None = None
 
     def flexibility(self, tau: float) -> np.ndarray:

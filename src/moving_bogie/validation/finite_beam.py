@@ -79,7 +79,7 @@ class FiniteBeamResult:
     """
 
     tau: np.ndarray
-    responses: dict
+    responses: dict[str, np.ndarray]
     length: float
     entry: float
     n_modes: int

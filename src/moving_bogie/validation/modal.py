@@ -90,7 +90,8 @@ class ModalBeam:
         Unknown ``j`` of mode ``k`` sits at ``j N + k``. On the one-layer Euler-Bernoulli track they are
         ``1``, ``2 eta_f`` and ``omega_k^2 = 1 + eta_s lambda_k^2 + lambda_k^4 / 4``.
         """
-        return tuple(np.diagonal(b, axis1=1, axis2=2).T.reshape(-1).copy() for b in self.track_blocks)
+        m, c, k = (np.diagonal(b, axis1=1, axis2=2).T.reshape(-1).copy() for b in self.track_blocks)
+        return m, c, k
 
     @cached_property
     def blocks(self) -> ModeBlocks | None:
@@ -104,7 +105,7 @@ class ModalBeam:
             b = b.copy()
             b[:, np.arange(s), np.arange(s)] = 0.0
             off.append(b)
-        return ModeBlocks(index, *off)
+        return ModeBlocks(index, off[0], off[1], off[2])
 
     @property
     def k_max(self) -> float:
@@ -153,8 +154,8 @@ class ModalSystem:
         self._diag = (m_diag, c_diag, k_diag)
         lam_offsets = np.outer(vehicle.offsets, beam.wavenumbers)
         self._cos_off, self._sin_off = np.cos(lam_offsets), np.sin(lam_offsets)
-        self._cache_tau: float | None = None
-        self._cache_shapes: tuple[np.ndarray, np.ndarray, np.ndarray] = ()
+        #: The last :meth:`contact_shapes`: its `tau` and its shapes (None before the first call).
+        self._cached_shapes: tuple[float, tuple[np.ndarray, np.ndarray, np.ndarray]] | None = None
 
     def contact_shapes(self, tau: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(a, b, c)``, each of shape ``(n, N)``: mode shapes and x-derivatives at the contacts.
@@ -163,15 +164,15 @@ class ModalSystem:
         fixed), which saves transcendental evaluations; the last call is cached because
         :meth:`assemble` and :meth:`response` need the same values at each step.
         """
-        if self._cache_tau == tau:
-            return self._cache_shapes
+        if self._cached_shapes is not None and self._cached_shapes[0] == tau:
+            return self._cached_shapes[1]
         lam = self.beam.wavenumbers
         x1 = self.vehicle.entry + self.vehicle.alpha * tau
         sin1, cos1 = np.sin(lam * x1), np.cos(lam * x1)
         a = sin1 * self._cos_off + cos1 * self._sin_off
         cos_ = cos1 * self._cos_off - sin1 * self._sin_off
         shapes = (a, lam * cos_, -(lam * lam) * a)
-        self._cache_tau, self._cache_shapes = tau, shapes
+        self._cached_shapes = (tau, shapes)
         return shapes
 
     def assemble(self, tau: float) -> DiagLowRankSystem:

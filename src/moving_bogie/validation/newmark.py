@@ -24,6 +24,7 @@ Sherman-Morrison-Woodbury identity used by :func:`woodbury_solve`.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -84,21 +85,22 @@ class ModeBlocks:
     c_off: np.ndarray
     k_off: np.ndarray
 
-    _cache: dict = field(default_factory=dict, compare=False, repr=False)
+    #: Cache of :attr:`columns` (filled by its first call).
+    _columns: list[slice | np.ndarray] = field(default_factory=list, compare=False, repr=False)
+    #: Cache of :meth:`solve`: the last effective blocks (``"blocks"``) and their inverses (``"inverse"``).
+    _inverse: dict[str, np.ndarray] = field(default_factory=dict, compare=False, repr=False)
 
     @property
-    def columns(self) -> list:
+    def columns(self) -> list[slice | np.ndarray]:
         """Per position ``j`` in the blocks, a slice (contiguous unknowns) or the index array."""
-        if "columns" not in self._cache:
-            cols = []
+        if not self._columns:
             for j in range(self.index.shape[1]):
                 col = self.index[:, j]
                 contiguous = np.array_equal(col, col[0] + np.arange(col.size))
-                cols.append(slice(int(col[0]), int(col[0]) + col.size) if contiguous else col)
-            self._cache["columns"] = cols
-        return self._cache["columns"]
+                self._columns.append(slice(int(col[0]), int(col[0]) + col.size) if contiguous else col)
+        return self._columns
 
-    def subtract_products(self, out: np.ndarray, pairs) -> None:
+    def subtract_products(self, out: np.ndarray, pairs: Sequence[tuple[np.ndarray, np.ndarray]]) -> None:
         """``out -= sum over (off, x) of off @ x`` on the blocks' unknowns (x of shape (n,))."""
         cols = self.columns
         s = len(cols)
@@ -120,10 +122,10 @@ class ModeBlocks:
         blocks = off.copy()
         for j in range(s):
             blocks[:, j, j] += diag[cols[j]]
-        cached = self._cache.get("blocks")
+        cached = self._inverse.get("blocks")
         if cached is None or not np.array_equal(cached, blocks):
-            self._cache.update(blocks=blocks, inverse=np.linalg.inv(blocks))
-        inverse = self._cache["inverse"]
+            self._inverse.update(blocks=blocks, inverse=np.linalg.inv(blocks))
+        inverse = self._inverse["inverse"]
         parts = [rhs[..., col] for col in cols]
         for i in range(s):
             acc = inverse[:, i, 0] * parts[0]
@@ -230,6 +232,8 @@ def woodbury_solve(
         y = rhs / diag
         d_inv_ut = ut / diag
     else:
+        if off is None:
+            raise ValueError("woodbury_solve: `blocks` needs their off-diagonal entries `off`")
         both = blocks.solve(diag, off, np.vstack([rhs, ut]))
         y, d_inv_ut = both[0], both[1:]
     if ut.shape[0] == 0:

@@ -2,14 +2,20 @@
 
 from __future__ import annotations
 
-from typing import Any
+from os import PathLike
+from typing import TYPE_CHECKING, BinaryIO
 
 from moving_bogie.validation.verdict import ValidationResult, beam_title, quantity_labels, series
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["plot_validation"]
 
 
-def plot_validation(result: ValidationResult, path: Any = None, *, title: str | None = None):
+def plot_validation(
+    result: ValidationResult, path: str | PathLike[str] | BinaryIO | None = None, *, title: str | None = None
+) -> Figure:
     """Paper-style figure (Figures 5, 9-12, 14, A1): finite beam solid, closed form dashed.
 
     One stacked panel for the rail under the rear wheel and one for every body DOF of the vehicle, labelled
@@ -76,16 +82,21 @@ def plot_validation(result: ValidationResult, path: Any = None, *, title: str | 
     fig.legend(
         *axes[0].get_legend_handles_labels(), loc="outside lower center", fontsize=8, ncol=3, frameon=False
     )
+    fig.suptitle(_suptitle(result, title), fontsize=9)
+    if path is not None:
+        fig.savefig(path, dpi=150)
+    return fig
+
+
+def _suptitle(result: ValidationResult, title: str | None) -> str:
+    """The figure's title: `title` (default: the vehicle and its beam), then the run and the verdict."""
+    finite, tau_w = result.finite, result.window[1]
     verdict = "agree" if result.agrees else "DISAGREE"
     if title is None:
         vehicle = result.model
         title = f"{vehicle} ({beam_title(result.params)}): finite beam (solid) vs closed form (dashed)"
-    fig.suptitle(
-        f"{title}\n{result.finite.n_modes} modes, "
-        f"L = {result.finite.length:.1f}, k_max = {result.finite.k_max:.2f}; window [0, {tau_w:.1f}], "
-        f"tau_valid = {result.finite.tau_valid:.1f}: {verdict}",
-        fontsize=9,
+    return (
+        f"{title}\n{finite.n_modes} modes, "
+        f"L = {finite.length:.1f}, k_max = {finite.k_max:.2f}; window [0, {tau_w:.1f}], "
+        f"tau_valid = {finite.tau_valid:.1f}: {verdict}"
     )
-    if path is not None:
-        fig.savefig(path, dpi=150)
-    return fig

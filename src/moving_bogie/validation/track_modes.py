@@ -24,6 +24,7 @@ of parameters and derives from the same model what the finite rail needs besides
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from types import ModuleType
 from typing import Any
@@ -32,6 +33,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.model.catalogue import get_model
+from moving_bogie.typing import Scalar
 
 __all__ = ["ModalTrack"]
 
@@ -39,7 +41,7 @@ __all__ = ["ModalTrack"]
 _SAMPLES = 4001
 
 
-def _number(value: Any) -> float:
+def _number(value: Scalar | None) -> float:
     return 0.0 if value is None else float(value)
 
 
@@ -56,7 +58,7 @@ class ModalTrack:
     """
 
     module: ModuleType
-    values: dict
+    values: dict[str, float]
 
     @classmethod
     def of(cls, params: Any) -> ModalTrack:
@@ -109,7 +111,7 @@ class ModalTrack:
         if alpha is not None:
             args["alpha"] = float(alpha)
 
-        def flipped(coeffs) -> np.ndarray:
+        def flipped(coeffs: Sequence[Scalar]) -> np.ndarray:
             c = np.array([complex(x) for x in coeffs])
             signs = (-1.0) ** np.arange(c.size - 1, -1, -1)
             return np.trim_zeros(c * signs, "f")
@@ -153,7 +155,7 @@ class ModalTrack:
         ``1 - int_0^k_max static_spectrum``, the part of the point-load spectrum beyond the modes
         (Euler-Bernoulli: at most ``8 / (3 pi k_max^3)``).
         """
-        return float(max(0.0, 1.0 - self.spectrum_tail(np.array(0.0), k_max)))
+        return max(0.0, 1.0 - float(self.spectrum_tail(np.array(0.0), k_max)))
 
     def rail_frequency(self, lam: float) -> float:
         """``sqrt(K_eff / M_00)`` of the mode `lam`: the rail row with every other unknown static.
@@ -202,7 +204,7 @@ class ModalTrack:
         p = np.asarray(p, dtype=float)
         return np.maximum.accumulate(np.max(np.gradient(self.dispersion(p), p, axis=0), axis=1))
 
-    def fastest_wave(self, k_top: float):
+    def fastest_wave(self, k_top: float) -> Callable[[float], float]:
         """``k_max -> max d omega_j / d p`` over ``0 < p <= k_max <= k_top`` and every branch.
 
         Sampled once on ``[0, k_top]`` (central differences of the sorted branches) and returned as a

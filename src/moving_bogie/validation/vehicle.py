@@ -77,7 +77,7 @@ class Vehicle:
         Rear-wheel position ``x0`` at ``tau = 0``.
     """
 
-    dofs: tuple
+    dofs: tuple[str, ...]
     contacts: int
     offsets: np.ndarray
     loads: np.ndarray

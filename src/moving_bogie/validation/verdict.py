@@ -16,12 +16,17 @@ error (``docs/finite_beam.md``).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from moving_bogie.validation.finite_beam import FiniteBeamResult
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.response.closed_form import TimeSeries
 
 __all__ = [
     "DEFAULT_TOLERANCE",
@@ -37,7 +42,7 @@ __all__ = [
 DEFAULT_TOLERANCE = 0.01
 
 
-def quantity_labels(dofs, units, contacts: int) -> dict[str, str]:
+def quantity_labels(dofs: Sequence[str], units: Mapping[str, str], contacts: int) -> dict[str, str]:
     """A label for every compared quantity, from the vehicle's generated ``DOFS``, ``UNITS`` and ``CONTACTS``.
 
     The first ``contacts`` degrees of freedom are the rail's deflection under each wheel (contact order,
@@ -51,7 +56,7 @@ def quantity_labels(dofs, units, contacts: int) -> dict[str, str]:
         DOF name -> ``"m"`` or ``"rad"``.
     contacts : int
     """
-    labels = {}
+    labels: dict[str, str] = {}
     for k, name in enumerate(dofs):
         if k < contacts:
             labels[name] = f"{name} / w_st, rail under wheel {k + 1} of {contacts}"
@@ -127,7 +132,7 @@ def _json_float(x: float) -> float | None:
     return None if math.isnan(x) else x
 
 
-def series(obj: Any, attr: str, n: int) -> np.ndarray:
+def series(obj: FiniteBeamResult | TimeSeries, attr: str, n: int) -> np.ndarray:
     """``obj.responses[attr]`` as a float array, or NaN of length `n` when it lacks it."""
     value = obj.responses.get(attr)
     return np.full(n, np.nan) if value is None else np.asarray(value, dtype=float)
@@ -162,7 +167,7 @@ def compare_series(
     """
     diff = float(np.max(np.abs(finite - closed)))
     amplitude = max(float(np.max(np.abs(closed))), tolerance * kind_amplitude)
-    extra = {}
+    extra: dict[str, float] = {}
     if reference is not None:
         convergence = float(np.max(np.abs(finite - reference)))
         extra = {
@@ -188,7 +193,7 @@ class ValidationResult:
     ----------
     model : str
         The vehicle compared (its name in the catalogue).
-    params : Any
+    params : DimensionlessParams
         The parameters compared.
     tau : ndarray
         The common output grid.
@@ -196,7 +201,7 @@ class ValidationResult:
         The finite-beam run.
     reference : FiniteBeamResult or None
         The same beam with twice the time step (error estimate), None when not run.
-    closed : Any
+    closed : TimeSeries
         The closed form's :class:`~moving_bogie.response.closed_form.TimeSeries`.
     window : tuple of float
         ``(0, tau_w)``, the comparison window.
@@ -215,11 +220,11 @@ class ValidationResult:
     """
 
     model: str
-    params: Any
+    params: DimensionlessParams
     tau: np.ndarray
     finite: FiniteBeamResult
     reference: FiniteBeamResult | None
-    closed: Any
+    closed: TimeSeries
     window: tuple[float, float]
     quantities: dict[str, QuantityComparison]
     finite_beam_s: float
