@@ -20,6 +20,7 @@ from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, notes_wit
 from moving_bogie.roots.count.strip import StripCount
 from moving_bogie.roots.refine.polish import fixed_text
 from moving_bogie.roots.verdict import Verdict, judge
+from moving_bogie.typing import Mpf
 
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
@@ -133,12 +134,12 @@ class FrequencyResult:
         return judge(self)
 
     @property
-    def degree_of_instability(self):
+    def degree_of_instability(self) -> Mpf:
         """Most negative Im q among the unstable roots (0 when stable)."""
         return min((mpmath.im(r.q) for r in self.unstable_roots), default=mpmath.mpf(0))
 
     @property
-    def growth_time(self):
+    def growth_time(self) -> Mpf | None:
         """1/|Im q| of the fastest-growing root (dimensionless time for amplitude x e), or None."""
         return 1 / abs(self.degree_of_instability) if self.unstable_roots else None
 
