@@ -13,7 +13,6 @@ derivative are those of :mod:`moving_bogie.kernels.coupling`, in gmpy2 numbers.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
 import gmpy2
 import mpmath
@@ -100,7 +99,7 @@ def condensed_characteristic(
         with gmpy2.context(gmpy2.get_context(), precision=bits):  # D rounded as mpmath rounds it
             D, dD = dynamic_stiffness(to_binary(q), matrices, _arithmetic(), dK is not None)
         with gmpy2.context(gmpy2.get_context(), precision=bits + guard):
-            factors: tuple[Matrix | None, list[int] | None, Any] = (None, None, 1)
+            factors: tuple[Matrix | None, list[int] | None, Scalar] = (None, None, 1)
             loss = 0
             if m:
                 lu, perm, det = lu_factor([row[n:] for row in D[n:]])

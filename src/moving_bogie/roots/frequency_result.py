@@ -25,6 +25,7 @@ from moving_bogie.typing import Mpf
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.roots.proof.certify import Certificate
+    from moving_bogie.roots.search.cut_cells import Sliver
 
 __all__ = ["FrequencyResult", "InducedFrequency"]
 
@@ -83,9 +84,9 @@ class FrequencyResult:
     model: str  # the vehicle's name, for output only
     dps: int
     window: Rectangle
-    roots: tuple
+    roots: tuple[InducedFrequency, ...]
     count: int  # roots with Re q >= 0 by the argument principle (with multiplicity, pairs once)
-    unsearched: tuple  # slivers around the cut that no contour can enter
+    unsearched: tuple[Sliver, ...]  # slivers around the cut that no contour can enter
     evaluations: int  # E_chr evaluations (double precision + high precision)
     notes: tuple[Note, ...] = field(default=())
     far_field: FarField | None = None
@@ -113,7 +114,7 @@ class FrequencyResult:
         return self.found == self.count and not notes_with(self.notes, Reason.WINDOW)
 
     @property
-    def unstable_roots(self) -> tuple:
+    def unstable_roots(self) -> tuple[InducedFrequency, ...]:
         return tuple(r for r in self.roots if r.unstable)
 
     @property

@@ -180,7 +180,7 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
     return "\n".join(lines)
 
 
-def summary_lines(table: Table2) -> list:
+def summary_lines(table: Table2) -> list[str]:
     """The closing lines: print and counts; the unstable cases, then the stable ones (undetermined named);
     the undamped cases whose verdict the strip below the cut decided, on a line of their own; the proofs."""
     by_state = {

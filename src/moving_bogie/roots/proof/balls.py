@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from flint import acb, acb_series, arb, ctx, fmpq
 
@@ -177,8 +177,8 @@ class BallCharacteristic:
         on_axis = self.below and q.imag.contains(0)
         if not on_axis:
             return _sides(roots)
-        upper: list[Any] = []
-        lower: list[Any] = []
+        upper: list[Acb] = []
+        lower: list[Acb] = []
         f, args = self.foundation, self.foundation_args
         if not all(acb(c).imag.is_zero() for c in f.n_coeffs(acb(q.real), **args)):
             return _sides(roots)  # a damped track: no limit from below needed (or possible) here

@@ -31,18 +31,12 @@ from typing import TYPE_CHECKING, Any
 import mpmath
 from flint import acb, arb, ctx
 
-from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.count.strip import (
-    NOTCH,
-    ON_AXIS,
-    branch_point_text,
-    branch_points_on_axis,
-    pieces_below_axis,
-)
+from moving_bogie.roots.count.strip import branch_point_text
 from moving_bogie.roots.proof.balls import BallCharacteristic, Undecided, square_ball
 from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
+from moving_bogie.roots.proof.strip_proof import StripProof, strip_from_below
 from moving_bogie.roots.proof.winding import NotProven, ProvenCount, proven_count
 from moving_bogie.roots.refine.polish import fixed_text
 from moving_bogie.typing import Acb, Arb, Mpc, Mpf
@@ -257,56 +251,12 @@ def certify(
         problems.append(
             f"count: proven {count} root(s) in the tiles, the numerical search counts {result.count}"
         )
-    below = _strip_from_below(bound, cut, unsearched, count_prec) if tiles else None
+    below = strip_from_below(bound, cut, unsearched, count_prec) if tiles else None
     verdict, reason = _verdict(roots + mirrors, all_proven, unsearched, problems, below)
     return Certificate(
         roots, mirrors, tiles, unsearched, count, all_proven, verdict, reason,
         time.perf_counter() - start, used_margin, tuple(problems), below,
     )  # fmt: skip
-
-
-@dataclass(frozen=True)
-class StripProof:
-    """The part of the unsearched strip below a cut on the real axis (eta_f = 0), counted in ball
-    arithmetic with K from below (:class:`BallCharacteristic` ``below=True``): ``count`` roots in ``rects``
-    (None when not proven, ``reason`` says why); ``notches`` the branch points under which a square of
-    half-side ``notch`` is left out (K is infinite there)."""
-
-    count: int | None
-    rects: tuple[Rectangle, ...]
-    notches: tuple[float, ...]
-    notch: float = NOTCH
-    reason: str = ""
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "count": self.count,
-            "rects": [{"re": [r.x0, r.x1], "im": [r.y0, r.y1]} for r in self.rects],
-            "branch_points": list(self.notches),
-            "notch": self.notch,
-            "reason": self.reason,
-        }
-
-
-def _strip_from_below(
-    bound: BoundModel, cut: CutLocus, unsearched: Sequence[Rectangle], prec: int
-) -> StripProof | None:
-    """Prove the root count in the unsearched strip below a cut that lies on the real axis (None when the
-    strip does not reach below the axis or the cut is not on it)."""
-    low = [u for u in unsearched if u.y0 < 0]
-    if not low or not cut.points.size or max(abs(cut.im_low), abs(cut.im_high)) > ON_AXIS:
-        return None
-    points = branch_points_on_axis(cut)
-    rects: list[Rectangle] = []
-    for u in low:
-        rects += pieces_below_axis(Rectangle(u.x0, u.x1, u.y0, 0.0), [x for x in points if u.x0 < x < u.x1])
-    notches = tuple(x for x in points if any(r.x0 <= x + NOTCH and x - NOTCH <= r.x1 for r in rects))
-    bc = BallCharacteristic(bound, prec=prec, below=True)
-    try:
-        count = sum(proven_count(bc, r, min_length=1e-14).count for r in rects)
-    except NotProven as exc:
-        return StripProof(None, tuple(rects), notches, reason=str(exc))
-    return StripProof(count, tuple(rects), notches)
 
 
 def pinches_around_roots(
