@@ -20,6 +20,7 @@ from moving_bogie.roots.count.strip import branch_point_text
 from moving_bogie.roots.damping_limit import DampingLimit, damping_limit
 from moving_bogie.roots.frequencies import FrequencyResult, induced_frequencies
 from moving_bogie.roots.frequency_result import InducedFrequency
+from moving_bogie.roots.proof.certify import ProofVerdict
 from moving_bogie.roots.refine.polish import fixed_text
 
 #: Half a unit of the print's last decimal (six decimals).
@@ -207,7 +208,8 @@ def summary_lines(table: Table2) -> list[str]:
         unproven = [
             row.case
             for row in table.rows
-            if row.result.certificate is not None and row.result.certificate.verdict == "not proven"
+            if row.result.certificate is not None
+            and row.result.certificate.verdict is ProofVerdict.NOT_PROVEN
         ]
         lines.append(
             "proofs: every verdict proven"
@@ -254,12 +256,12 @@ def certificate_line(row: CaseRow) -> str:
     assert c is not None  # a line for a certified row
     text = f"proven: {c.proven_roots}/{len(c.roots)} roots, count {c.count}, verdict {c.verdict}"
     below = c.below
-    if c.verdict == "not proven" and below is not None and below.count == 0:
+    if c.verdict is ProofVerdict.NOT_PROVEN and below is not None and below.count == 0:
         text += (
             f" (the strip below the cut on the real axis holds no root; what remains is the square of "
             f"half-side {below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite)"
         )
-    elif c.verdict == "not proven":
+    elif c.verdict is ProofVerdict.NOT_PROVEN:
         text += f" ({c.reason})"
     enclosed = [x for x in printed_enclosed(row) if x is not None]
     if enclosed:

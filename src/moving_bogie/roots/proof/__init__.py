@@ -8,6 +8,7 @@ from moving_bogie.roots.proof.balls import BallCharacteristic, exact_ball, squar
 from moving_bogie.roots.proof.certify import (
     Certificate,
     Enclosure,
+    ProofVerdict,
     krawczyk,
     pinches_around_roots,
     refine,
@@ -32,6 +33,7 @@ __all__ = [
     "NotProven",
     "PRootDiscs",
     "ProofTiling",
+    "ProofVerdict",
     "ProvenCount",
     "RootDisc",
     "Staircase",

@@ -26,6 +26,7 @@ from __future__ import annotations
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from enum import StrEnum
 from typing import TYPE_CHECKING, Any
 
 import mpmath
@@ -90,6 +91,15 @@ class Enclosure:
         )
 
 
+class ProofVerdict(StrEnum):
+    """The proven verdict in the window (module docstring, 4.); the value is the word printed for it."""
+
+    STABLE = "stable"
+    UNSTABLE = "unstable"
+    MARGINAL = "marginal"
+    NOT_PROVEN = "not proven"
+
+
 @dataclass(frozen=True)
 class Certificate:
     """The proof attached to a FrequencyResult (see the module docstring)."""
@@ -100,8 +110,8 @@ class Certificate:
     unsearched: tuple[Rectangle, ...]  # along the cut, not covered by the tiles
     count: int | None  # proven number of roots with Re q >= 0 in the tiles (pairs once), None if unproven
     all_proven: bool
-    verdict: str  # "stable", "unstable", "marginal" or "not proven"
-    reason: str
+    verdict: ProofVerdict
+    reason: str  # what the verdict rests on, or what is not proven
     seconds: float
     margin: float
     problems: tuple[str, ...] = field(default=())
@@ -321,24 +331,28 @@ def _verdict(
     unsearched: Sequence[Rectangle],
     problems: Sequence[str],
     below: StripProof | None = None,
-) -> tuple[str, str]:
+) -> tuple[ProofVerdict, str]:
+    """The verdict and its reason (module docstring, 4.)."""
     unstable = [e for e in enclosures if e.certified and e.below_axis]
     if unstable:
         worst = min(unstable, key=lambda e: mpmath.im(e.q))
-        return "unstable", f"a root is proven in Im q < 0 (q = {mpmath.nstr(worst.q, 10)})"
+        return ProofVerdict.UNSTABLE, f"a root is proven in Im q < 0 (q = {mpmath.nstr(worst.q, 10)})"
     if below is not None and below.count:
-        return "unstable", f"{below.count} root(s) proven in the strip below the cut on the real axis"
+        return (
+            ProofVerdict.UNSTABLE,
+            f"{below.count} root(s) proven in the strip below the cut on the real axis",
+        )
     if not all_proven:
-        return "not proven", "; ".join(problems) or "not every root is proven"
+        return ProofVerdict.NOT_PROVEN, "; ".join(problems) or "not every root is proven"
     low = [u for u in unsearched if u.y0 <= 0]
     if low and below is not None:
         floor = min(u.y0 for u in low)
         if below.count is None:
-            return "not proven", (
+            return ProofVerdict.NOT_PROVEN, (
                 f"the strip {floor:.1e} <= Im q < 0 below the cut on the real axis (eta_f = 0) could not be "
                 f"counted with K from below: {below.reason}"
             )
-        return "not proven", (
+        return ProofVerdict.NOT_PROVEN, (
             f"every root in the window is proven and the strip {floor:.1e} <= Im q < 0 below the cut on the "
             f"real axis holds none (K from below, eta_f -> 0+), except in a square of half-side "
             f"{below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite: only that "
@@ -346,14 +360,14 @@ def _verdict(
         )
     if low:
         floor = min(u.y0 for u in low)
-        return "not proven", (
+        return ProofVerdict.NOT_PROVEN, (
             f"no root with Im q < {floor:.1e} in the window (proven), but the unsearched strip along the "
             f"cut reaches Im q = {floor:.1e} <= 0"
         )
     if all(e.above_axis for e in enclosures):
-        return "stable", "every root in the window is proven and lies in Im q > 0"
+        return ProofVerdict.STABLE, "every root in the window is proven and lies in Im q > 0"
     marginal = sum(not e.above_axis for e in enclosures)
-    return "marginal", (
+    return ProofVerdict.MARGINAL, (
         f"no root in Im q < 0 beyond the enclosures; {marginal} enclosure(s) meet Im q = 0 (real to within "
         f"the radius)"
     )
