@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Protocol, cast, runtime_checkable
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 import numpy.typing as npt
@@ -172,12 +172,12 @@ def initial_samples(region: Region, spacing: float | None = None) -> tuple[Compl
     roots are the sequence along the real axis of a Timoshenko-Rayleigh beam, a few units of Re q apart.
     A huge window (the far-field radius of such a beam reaches 1e3) then costs 1e5 samples, not 1e7.
     """
-    points_at = region.points_at if isinstance(region, CurvedRegion) else None
+    curved = region if isinstance(region, CurvedRegion) else None
     size = max(region.width, region.height)
     step = spacing or size / 64
-    if points_at is not None:
-        t = cast(CurvedRegion, region).boundary_parameters(step)  # points_at is only a CurvedRegion's
-        z = np.append(points_at(t[:-1]), 0)
+    if curved is not None:
+        t = curved.boundary_parameters(step)
+        z = np.append(curved.points_at(t[:-1]), 0)
         z[-1] = z[0]
     else:
         z = region.boundary(step)
@@ -193,8 +193,8 @@ def initial_samples(region: Region, spacing: float | None = None) -> tuple[Compl
         k = np.arange(owner.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
         u = k / pieces[owner]
         t_new = ta[owner] + u * (tb - ta)[owner]
-        if points_at is not None:
-            z_new = np.where(k == 0, za[owner], points_at(t_new))
+        if curved is not None:
+            z_new = np.where(k == 0, za[owner], curved.points_at(t_new))
         else:
             z_new = za[owner] + u * (zb - za)[owner]
         z, t = np.append(z_new, z[-1]), np.append(t_new, t[-1])
