@@ -11,12 +11,20 @@ from typing import Any, TypeAlias
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["ComplexArray", "FloatArray", "Matrix", "Mpc", "Mpf", "Scalar"]
+__all__ = ["Acb", "AcbSeries", "Arb", "ComplexArray", "FloatArray", "Matrix", "Mpc", "Mpf", "Scalar"]
 
 #: An mpmath real (``mpmath.mpf``).
 Mpf: TypeAlias = Any
 #: An mpmath complex number (``mpmath.mpc``).
 Mpc: TypeAlias = Any
+#: An Arb complex ball (``flint.acb``). ``Any``: python-flint ships type information only from 0.9 on
+#: (the project supports older releases), and a ball meets mpmath numbers, Fractions and integers in
+#: the same expressions.
+Acb: TypeAlias = Any
+#: An Arb real ball (``flint.arb``); ``Any`` as :data:`Acb`.
+Arb: TypeAlias = Any
+#: A truncated power series with Arb complex ball coefficients (``flint.acb_series``); ``Any`` as :data:`Acb`.
+AcbSeries: TypeAlias = Any
 #: A number of any backend the kernels evaluate: float, complex, numpy scalars or arrays (batched),
 #: mpmath, gmpy2, Arb's balls.
 Scalar: TypeAlias = Any

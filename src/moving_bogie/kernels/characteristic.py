@@ -62,6 +62,7 @@ class Characteristic:
         """(E_chr(q), dE_chr/dq): Eq. (40), by Jacobi's formula."""
         self.evaluations += 1
         kv = kernel_values or self.kernel_values(q, derivative=True)
+        assert kv.dK is not None  # kernel values with their derivative
         return self.system.value_and_derivative(q, kv.K, kv.dK)
 
     def numerators(self, q: Mpc, kernel_values: KernelValues | None = None) -> dict[str, Mpc]:
@@ -110,6 +111,7 @@ class CharacteristicArray:
         q = np.asarray(q, dtype=complex)
         self.evaluations += q.size
         kv = self.kernel_values(q, derivative=True)
+        assert kv.dK is not None  # asked for with derivative=True
         return self.system.value_and_derivative_array(q, kv.K, kv.dK)
 
 
@@ -143,4 +145,5 @@ class ContinuedCharacteristic:
         q = np.asarray(q, dtype=complex)
         self.fast.evaluations += q.size
         kv = self._kernel_values(q, True)
+        assert kv.dK is not None  # asked for with derivative=True
         return self.fast.system.value_and_derivative_array(q, kv.K, kv.dK)

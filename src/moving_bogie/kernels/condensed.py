@@ -12,7 +12,7 @@ derivative are those of :mod:`moving_bogie.kernels.coupling`, in gmpy2 numbers.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
 
 import gmpy2
 import mpmath
@@ -27,10 +27,10 @@ from moving_bogie.kernels.coupling import (
     kernel_matrix,
 )
 from moving_bogie.kernels.elimination import exact_zero, lu_factor, lu_solve
-from moving_bogie.typing import Matrix
+from moving_bogie.typing import Matrix, Mpc, Scalar
 
 
-def binary_matrices(*matrices) -> Dynamic:
+def binary_matrices(*matrices: Matrix) -> Dynamic:
     """The vehicle's matrices (lists of rows of mpmath numbers at the working precision, exact 0 where
     nothing couples) in gmpy2, exactly, as the coefficients of D(q) (exact too: a sign and a factor i)."""
     with gmpy2.context(gmpy2.get_context(), precision=mpmath.mp.prec + 64):
@@ -38,7 +38,7 @@ def binary_matrices(*matrices) -> Dynamic:
         return dynamic_coefficients(binary, _arithmetic())
 
 
-def to_binary(x):
+def to_binary(x: Scalar) -> Scalar:
     """An mpmath number (or int, float) as the gmpy2 number of the same value; an exact 0 stays 0. Exact
     when the gmpy2 context holds at least the number's bits (the callers' contexts do)."""
     if exact_zero(x):
@@ -50,13 +50,14 @@ def to_binary(x):
     return gmpy2.mpc(x)
 
 
-def _mpfr(parts):
+def _mpfr(parts: tuple[int, int, int, int]) -> Scalar:
+    """mpmath's (sign, mantissa, exponent, bits) of a real as the gmpy2 mpfr of the same value."""
     sign, man, exp, _ = parts
     value = gmpy2.mul_2exp(gmpy2.mpfr(man), exp)
     return -value if sign else value
 
 
-def _to_mp(z) -> mpmath.mpc:
+def _to_mp(z: Scalar) -> Mpc:
     """A gmpy2 number as an mpmath number, exactly (the caller rounds it to the working precision)."""
     if exact_zero(z):
         return mpmath.mpc(0)
@@ -67,7 +68,13 @@ def _to_mp(z) -> mpmath.mpc:
     return mpmath.mpc(*parts)
 
 
-def condensed_characteristic(q, matrices, K, index, dK=None):
+def condensed_characteristic(
+    q: Mpc,
+    matrices: Dynamic,
+    K: Sequence[Mpc],
+    index: Sequence[Sequence[int]],
+    dK: Sequence[Mpc] | None = None,
+) -> tuple[Mpc, Mpc | None] | None:
     """(E_chr, dE_chr/dq or None) of the block system with the internal DOFs eliminated first, or None.
 
     ``q`` an mpmath number, ``matrices`` the coefficients of D(q) from :func:`binary_matrices` (N x N,
@@ -92,7 +99,7 @@ def condensed_characteristic(q, matrices, K, index, dK=None):
         with gmpy2.context(gmpy2.get_context(), precision=bits):  # D rounded as mpmath rounds it
             D, dD = dynamic_stiffness(to_binary(q), matrices, _arithmetic(), dK is not None)
         with gmpy2.context(gmpy2.get_context(), precision=bits + guard):
-            factors: tuple[Matrix | None, list[int] | None, Any] = (None, None, 1)
+            factors: tuple[Matrix | None, list[int] | None, Scalar] = (None, None, 1)
             loss = 0
             if m:
                 lu, perm, det = lu_factor([row[n:] for row in D[n:]])
@@ -108,7 +115,10 @@ def condensed_characteristic(q, matrices, K, index, dK=None):
                 out = _wheel_system(D, dD, factors, Kmat, dKmat)
                 break
         guard = loss + 34
-    return None if out is None else tuple(None if x is None else +_to_mp(x) for x in out)
+    if out is None:
+        return None
+    E, dE = out
+    return +_to_mp(E), None if dE is None else +_to_mp(dE)
 
 
 def _arithmetic() -> Rows:
@@ -116,13 +126,20 @@ def _arithmetic() -> Rows:
     return Rows(gmpy2.const_pi(), gmpy2.mpc(0, 1))
 
 
-def _wheel_system(D, dD, factors, Kmat, dKmat):
+def _wheel_system(
+    D: Matrix,
+    dD: Matrix | None,
+    factors: tuple[Matrix | None, list[int] | None, Scalar],
+    Kmat: Matrix,
+    dKmat: Matrix | None,
+) -> tuple[Scalar, Scalar | None] | None:
     """(det D_ii det B, its q-derivative or None) from the factors of D_ii (see condensed_characteristic)."""
     n, N = len(Kmat), len(D)
     m = N - n
     lu, perm, d = factors
 
-    def product(P, Q, rows, cols, inner):  # sum_k P[r][k] Q[k][c], skipping exact zeros
+    def product(P: Matrix, Q: Matrix, rows: range, cols: range, inner: range) -> Matrix:
+        """sum_k P[r][k] Q[k][c] over ``inner``, skipping exact zeros."""
         out = []
         for r in rows:
             line = []
@@ -134,6 +151,7 @@ def _wheel_system(D, dD, factors, Kmat, dKmat):
 
     wheels, inside = range(n), range(n, N)
     if m:
+        assert lu is not None and perm is not None  # D_ii is factored when there is one
         # X[a][c] = (D_ii^-1 D_ic)[a][c], a internal (indexed n..N-1 in the products below)
         cols = [lu_solve(lu, perm, [D[n + a][c] for a in range(m)]) for c in wheels]
         X = [[0] * n for _ in range(n)] + [[cols[c][a] for c in wheels] for a in range(m)]
@@ -149,8 +167,10 @@ def _wheel_system(D, dD, factors, Kmat, dKmat):
         return E, None
     if b == 0:
         return None
+    assert dD is not None  # dKmat given: the derivative was asked for
     trace = 0
     if m:
+        assert lu is not None and perm is not None
         for a in range(m):
             column = [dD[n + r][n + a] for r in range(m)]
             if any(not exact_zero(x) for x in column):

@@ -11,9 +11,13 @@ reaches until every curve has left the strip of interest or settled at its limit
 from __future__ import annotations
 
 import cmath
+from collections.abc import Sequence
 from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy import optimize
 
 from moving_bogie.kernels.coefficient_matrix import Coefficients
@@ -37,12 +41,12 @@ _PREDICTION = 0.1  # accepted prediction error, relative to the distance to the 
 class CutTracer:
     """The roots q_j(p) of N(p, .) for real p, their p-derivative and Newton refinement (one model)."""
 
-    def __init__(self, module, args: dict):
+    def __init__(self, module: ModuleType, args: dict[str, Any]) -> None:
         self.module = module
         self.args = args
         self._coeffs = Coefficients(args)
 
-    def q_roots(self, ps) -> np.ndarray:
+    def q_roots(self, ps: ArrayLike) -> np.ndarray:
         """All roots in q at real ``ps``, shape ``ps.shape + (DEGREE_N_IN_Q,)``.
 
         Polished by Newton's method on N(p, .): at large |p| the roots of the rail (|q| ~ p^2) and of a
@@ -59,7 +63,7 @@ class CutTracer:
             z[bad] = companion_roots(c[bad])
         return z
 
-    def dq_dp(self, p, q) -> np.ndarray:
+    def dq_dp(self, p: ArrayLike, q: ArrayLike) -> np.ndarray:
         """dq/dp = -N_p / N_q along a curve N(p, q) = 0 (implicit-function theorem)."""
         p, q = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(q, dtype=complex))
         n = self._coeffs(self.module.n_coeffs, q)
@@ -69,7 +73,7 @@ class CutTracer:
         Nq = polyval(nq, x)[..., 0]
         return -Np / Nq
 
-    def refine(self, p, q, steps: int = 4) -> np.ndarray:
+    def refine(self, p: ArrayLike, q: ArrayLike, steps: int = 4) -> np.ndarray:
         """Newton's method on N(p, .) = 0 in q from ``q`` (arrays), at fixed real p.
 
         A handful of points (the tilings ask for one or a few at a time) take the same steps, with the same
@@ -96,7 +100,7 @@ _FLAT = 1e-13
 _SCALAR_REFINE = 4
 
 
-def _newton_one(coeffs, dcoeffs, z: complex, steps: int) -> complex:
+def _newton_one(coeffs: Sequence[complex], dcoeffs: Sequence[complex], z: complex, steps: int) -> complex:
     """Newton steps on one polynomial and its derivative (Python complex coefficients, highest first) from
     ``z``: a step that is not finite (N_q = 0, overflow) is not taken, as in the batched path."""
     for _ in range(steps):
@@ -124,7 +128,9 @@ class Fold:
     end: bool = False
 
 
-def _match(prev, pred, new, back=None):
+def _match(
+    prev: np.ndarray, pred: np.ndarray, new: np.ndarray, back: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Index of the root of ``new`` nearest to each prediction, and whether the step is acceptable.
 
     A step is accepted when the forward prediction (and, with ``back``, the backward prediction from the
@@ -142,7 +148,9 @@ def _match(prev, pred, new, back=None):
     return order, ok
 
 
-def trace_curves(tracer: CutTracer, p_lo: float, p_hi: float, n: int = 2001, grid=None):
+def trace_curves(
+    tracer: CutTracer, p_lo: float, p_hi: float, n: int = 2001, grid: ArrayLike | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """(ps, Q): the curves q_j(p) on an adaptive grid of [p_lo, p_hi] (or refined from ``grid``);
     column j is one continuous curve. Steps are halved until both the forward and the backward linear
     predictions (from dq/dp at either end) land within a tenth of the distance to the nearest other root."""
@@ -165,7 +173,7 @@ def trace_curves(tracer: CutTracer, p_lo: float, p_hi: float, n: int = 2001, gri
     return ps, out
 
 
-def _turn_brackets(xd):
+def _turn_brackets(xd: np.ndarray) -> list[tuple[int, int]]:
     """(a, b) index pairs between which Re dq/dp changes sign: b = a + 1 (a root inside), or b > a + 1 when
     the samples between are exact zeros (a turn on a sample, e.g. p = 0 of an even curve at alpha = 0)."""
     sign = np.sign(xd)
@@ -173,7 +181,9 @@ def _turn_brackets(xd):
     return [(a, b) for a, b in zip(nz[:-1], nz[1:]) if sign[a] * sign[b] < 0]
 
 
-def split_at_turns(tracer, ps, qs):
+def split_at_turns(
+    tracer: CutTracer, ps: np.ndarray, qs: np.ndarray
+) -> tuple[list[tuple[np.ndarray, np.ndarray]], list[Fold]]:
     """Arms (p, q samples) and folds of one curve: cut where Re dq/dp changes sign."""
     d_all = tracer.dq_dp(ps, qs)
     # Re dq/dp at rounding level is 0: a curve on Re q = 0 (alpha = 0, a mirror-symmetric cut) has
@@ -186,7 +196,7 @@ def split_at_turns(tracer, ps, qs):
             pt, qt, end, nxt = float(ps[m]), complex(qs[m]), m, m + 1
         else:
 
-            def slope(p, k=k):
+            def slope(p: float, k: int = k) -> float:
                 q = tracer.refine(
                     np.array([p]), np.array([qs[k] + (p - ps[k]) * (qs[k + 1] - qs[k]) / (ps[k + 1] - ps[k])])
                 )

@@ -10,8 +10,12 @@ original polynomial.
 from __future__ import annotations
 
 import cmath
+from collections.abc import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+from moving_bogie.typing import Scalar
 
 __all__ = [
     "companion_roots",
@@ -24,7 +28,7 @@ __all__ = [
 ]
 
 
-def _resolvent(a, b, cc, d):
+def _resolvent(a: Scalar, b: Scalar, cc: Scalar, d: Scalar) -> tuple[Scalar, Scalar, Scalar, Scalar, Scalar]:
     """Ferrari's reduction of the monic x^4 + a x^3 + b x^2 + cc x + d (arrays or numbers): x = y - a/4
     gives y^4 + p y^2 + q y + r, whose resolvent cubic m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0 is depressed
     by m = u - p/3 to u^3 + P3 u + Q3. Returns (a/4, p, q, P3, Q3)."""
@@ -39,7 +43,7 @@ def _resolvent(a, b, cc, d):
     return a4, p, q, P3, Q3
 
 
-def quartic_roots(c) -> np.ndarray:
+def quartic_roots(c: ArrayLike) -> np.ndarray:
     """Roots of quartics ``c[..., 0] x^4 + ... + c[..., 4]`` (shape ``(..., 4)``), vectorised.
 
     Ferrari's closed form (the resolvent-cubic root of largest modulus, for stability), then two
@@ -88,7 +92,7 @@ def quartic_roots(c) -> np.ndarray:
 _SCALAR_BATCH = 8
 
 
-def _quartic_one(c0, c1, c2, c3, c4) -> list:
+def _quartic_one(c0: complex, c1: complex, c2: complex, c3: complex, c4: complex) -> list[complex]:
     """:func:`quartic_roots` of one quartic (finite coefficients, c0 != 0), the same steps on Python
     complex numbers: the roots agree with the batched ones to rounding (about 1e-16 relative)."""
     a, b, cc, d = c1 / c0, c2 / c0, c3 / c0, c4 / c0
@@ -96,7 +100,7 @@ def _quartic_one(c0, c1, c2, c3, c4) -> list:
     disc = cmath.sqrt(Q3 * Q3 / 4 + P3**3 / 27)
     s1, s2 = -Q3 / 2 + disc, -Q3 / 2 - disc
     u1 = (s1 if abs(s1) >= abs(s2) else s2) ** (1 / 3)
-    ms = []
+    ms: list[complex] = []
     for k in range(3):
         uk = u1 * cmath.exp(2j * cmath.pi * k / 3)
         ms.append((uk - P3 / (3 * uk) if uk != 0 else 0) - p / 3)
@@ -120,7 +124,7 @@ def _quartic_one(c0, c1, c2, c3, c4) -> list:
     return z
 
 
-def poly_roots(coeffs) -> np.ndarray:
+def poly_roots(coeffs: ArrayLike) -> np.ndarray:
     """Roots of polynomials given by ``coeffs[..., :]`` (highest first), batched.
 
     Degree 2: the stable quadratic formula; 4: :func:`quartic_roots`; others: companion eigenvalues.
@@ -159,7 +163,7 @@ def poly_roots(coeffs) -> np.ndarray:
     return np.where(bad[..., None], np.nan, roots)
 
 
-def companion_roots(coeffs) -> np.ndarray:
+def companion_roots(coeffs: ArrayLike) -> np.ndarray:
     """Roots by (balanced) companion-matrix eigenvalues polished by Newton's method, any degree, batched.
 
     Slower than :func:`quartic_roots` but backward stable, also when the roots differ by many orders of
@@ -179,13 +183,14 @@ _ABERTH_STEPS = 16
 _BACKWARD = 4e-15
 
 
-def _companion(coeffs, monic):
+def _companion(coeffs: np.ndarray, monic: np.ndarray) -> np.ndarray:
+    """Companion eigenvalues (polished), in levels for a large batch (:func:`_anchored`)."""
     if monic.ndim > 1 and monic[..., 0].size > _ANCHOR_BATCH:
         return _anchored(coeffs, monic)
     return _eigen(coeffs, monic)
 
 
-def _anchored(coeffs, monic):
+def _anchored(coeffs: np.ndarray, monic: np.ndarray) -> np.ndarray:
     """Eigenvalues at every ``_LEVELS[0]``-th polynomial of the batch, Aberth's simultaneous iteration from
     the solved neighbours for the rest, level by level (:data:`_LEVELS`). A row is done when every root has
     converged (relative step 1e-14) or has a backward error at rounding level (``_BACKWARD``: |P(z)|
@@ -214,7 +219,7 @@ def _anchored(coeffs, monic):
     return roots.reshape(shape)
 
 
-def _starts(roots, known, rows):
+def _starts(roots: np.ndarray, known: np.ndarray, rows: np.ndarray) -> np.ndarray:
     """Starting roots for ``rows``: those of the nearest solved row before it, moved linearly towards those
     of the nearest solved row after it where the two sets match one to one (nearest neighbours)."""
     pos = np.searchsorted(known, rows) - 1  # rows are not in known: known[pos] < row < known[pos + 1]
@@ -228,7 +233,7 @@ def _starts(roots, known, rows):
         return np.where(match[:, None] & np.isfinite(moved), moved, za)
 
 
-def _aberth(mc, z):
+def _aberth(mc: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Aberth's iteration on the monic polynomials ``mc`` from ``z``; (roots, rows accepted)."""
     deg = z.shape[-1]
     dc = polyder(mc)
@@ -259,7 +264,8 @@ def _aberth(mc, z):
     return z, done
 
 
-def _eigen(coeffs, monic):
+def _eigen(coeffs: np.ndarray, monic: np.ndarray) -> np.ndarray:
+    """Eigenvalues of the companion matrices of ``monic``, polished on ``coeffs`` (:func:`newton_polish`)."""
     deg = coeffs.shape[-1] - 1
     comp = np.zeros(coeffs.shape[:-1] + (deg, deg), dtype=complex)
     comp[..., 0, :] = -monic
@@ -268,7 +274,7 @@ def _eigen(coeffs, monic):
     return newton_polish(coeffs, np.linalg.eigvals(comp))
 
 
-def newton_polish(coeffs, roots, steps: int = 2) -> np.ndarray:
+def newton_polish(coeffs: np.ndarray, roots: np.ndarray, steps: int = 2) -> np.ndarray:
     """A few batched Newton steps on every root (``coeffs (..., n+1)``, ``roots (..., n)``).
 
     Companion eigenvalues carry a backward error of order machine epsilon times the norm of the
@@ -287,7 +293,7 @@ def newton_polish(coeffs, roots, steps: int = 2) -> np.ndarray:
     return z
 
 
-def stack_coefficients(coeffs, shape) -> np.ndarray:
+def stack_coefficients(coeffs: Sequence[Scalar], shape: Sequence[int]) -> np.ndarray:
     """Generated coefficient tuples (scalars or arrays) -> complex array ``shape + (n+1,)``, highest first."""
     out = np.empty(tuple(shape) + (len(coeffs),), dtype=complex)
     for k, c in enumerate(coeffs):
@@ -295,7 +301,7 @@ def stack_coefficients(coeffs, shape) -> np.ndarray:
     return out
 
 
-def polyval(coeffs, x):
+def polyval(coeffs: np.ndarray, x: np.ndarray) -> np.ndarray:
     """Batched Horner (the steps of :func:`moving_bogie.kernels.polynomial.horner`, on arrays, in place):
     coeffs ``(..., n+1)`` highest first, x ``(..., k)`` -> ``(..., k)``; complex unless both are real (the
     bounds sum |c_j| |x|^j of the backward-error tests)."""
@@ -313,7 +319,7 @@ def polyval(coeffs, x):
     return acc
 
 
-def polyder(coeffs):
+def polyder(coeffs: np.ndarray) -> np.ndarray:
     """Batched derivative of coefficient arrays ``(..., n+1)`` (highest first)."""
     n = coeffs.shape[-1] - 1
     if n == 0:

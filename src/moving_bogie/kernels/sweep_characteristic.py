@@ -277,7 +277,9 @@ class SweepCharacteristic:
 
     def _e_and_dq(self, q: np.ndarray, K: Any, dK: Any, args: dict) -> tuple[np.ndarray, np.ndarray]:
         if self.blocks is not None:
-            return self.blocks.derivatives(q, K, args, dKq=dK)[:2]
+            E, E_q, _, _ = self.blocks.derivatives(q, K, args, dKq=dK)
+            assert E_q is not None  # asked for with dKq
+            return E, E_q
         E = self.module.e_chr(q, *K, **args)
         E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
         return E, E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2]
@@ -315,7 +317,9 @@ class SweepCharacteristic:
             if theta is not None:
                 h = np.maximum(np.abs(theta), 1.0) * 0.25
                 stencil = (self.vehicle_args(theta - h, d), self.vehicle_args(theta + h, d), h)
-            return self.blocks.derivatives(q, K, args, dKq=dKq, dKa=dKa, theta_args=stencil)
+            E, E_q, E_a, E_t = self.blocks.derivatives(q, K, args, dKq=dKq, dKa=dKa, theta_args=stencil)
+            assert E_q is not None and E_a is not None  # asked for with dKq and dKa
+            return E, E_q, E_a, E_t
         E = self.module.e_chr(q, *K, **args)
         E_q, E0, Ep, Em = self.module.e_chr_partials(q, *K, **args)
         E_q = E_q + E0 * dKq[0] + Ep * dKq[1] + Em * dKq[2]

@@ -15,7 +15,12 @@ Where A is singular to working precision, dE/ds = sum_k det(A with row k replace
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+from types import ModuleType
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.kernels.arithmetic import Batched
 from moving_bogie.kernels.coupling import coupled_derivative, coupled_system, dynamic_stiffness, kernel_matrix
@@ -23,7 +28,7 @@ from moving_bogie.kernels.coupling import coupled_derivative, coupled_system, dy
 __all__ = ["BlockSweep"]
 
 
-def _matrix(rows, shape) -> np.ndarray:
+def _matrix(rows: Sequence[Sequence[Any]], shape: Sequence[int]) -> np.ndarray:
     """A generated matrix (rows of numbers or arrays) as an array of shape ``shape + (N, N)``."""
     N = len(rows)
     out = np.zeros(tuple(shape) + (N, N), dtype=complex)
@@ -43,7 +48,7 @@ class BlockSweep:
         ``moving_bogie.generated.vehicle_<name>`` (``MATRIX_ARGUMENTS``, the matrices, ``contact_positions``).
     """
 
-    def __init__(self, module):
+    def __init__(self, module: ModuleType) -> None:
         self.module = module
         self.contacts = int(module.CONTACTS)
         self.size = len(module.DOFS)
@@ -54,15 +59,16 @@ class BlockSweep:
         for k, (i, j) in enumerate(self.pairs):
             self.index[i, j] = k + 1
 
-    def offsets(self, args) -> list:
+    def offsets(self, args: Mapping[str, Any]) -> list[Any]:
         """xi_i - xi_j at the parameters ``args`` (floats or arrays), in the order of :attr:`index`."""
         x = self.module.contact_positions(**self.matrix_args(args))
         return [0.0] + [x[i] - x[j] for i, j in self.pairs]
 
-    def matrix_args(self, args) -> dict:
+    def matrix_args(self, args: Mapping[str, Any]) -> dict[str, Any]:
+        """The parameters of ``args`` that the vehicle's generated matrices take."""
         return {name: args[name] for name in self.module.MATRIX_ARGUMENTS}
 
-    def dynamic(self, q, args):
+    def dynamic(self, q: np.ndarray, args: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
         """(D, dD/dq) of shape ``q.shape + (N, N)`` at the parameters ``args``."""
         margs = self.matrix_args(args)
         matrices = tuple(
@@ -71,21 +77,30 @@ class BlockSweep:
         )
         return dynamic_stiffness(q, matrices, Batched, derivative=True)
 
-    def kernel_matrix(self, K) -> np.ndarray:
+    def kernel_matrix(self, K: Sequence[np.ndarray]) -> np.ndarray:
         """Kmat_ij = K(xi_i - xi_j) from the kernel values at :meth:`offsets`."""
         return kernel_matrix(K, self.index, Batched)
 
-    def block(self, K, D) -> np.ndarray:
+    def block(self, K: Sequence[np.ndarray], D: np.ndarray) -> np.ndarray:
         """The block system A at the kernel values ``K`` and the vehicle's D."""
         return coupled_system(D, self.kernel_matrix(K), Batched).A
 
-    def e_chr(self, q, K, args):
+    def e_chr(self, q: ArrayLike, K: Sequence[np.ndarray], args: Mapping[str, Any]) -> np.ndarray:
         """E_chr = det A at arrays ``q`` and kernel values ``K`` (one array per offset)."""
         q = np.asarray(q, dtype=complex)
         D, _ = self.dynamic(q, args)
         return np.linalg.det(self.block(K, D))
 
-    def derivatives(self, q, K, args, *, dKq=None, dKa=None, theta_args=None):
+    def derivatives(
+        self,
+        q: ArrayLike,
+        K: Sequence[np.ndarray],
+        args: Mapping[str, Any],
+        *,
+        dKq: Sequence[np.ndarray] | None = None,
+        dKa: Sequence[np.ndarray] | None = None,
+        theta_args: tuple[Mapping[str, Any], Mapping[str, Any], ArrayLike] | None = None,
+    ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None, np.ndarray | None]:
         """``(E, E_q, E_alpha, E_theta)`` (each derivative None unless its input is given).
 
         ``dKq``, ``dKa``: the kernel's q- and alpha-derivatives at the offsets; ``theta_args``: a pair of
@@ -114,7 +129,7 @@ class BlockSweep:
         )
 
 
-def jacobi(A, E, blocks) -> list:
+def jacobi(A: np.ndarray, E: np.ndarray, blocks: Sequence[np.ndarray]) -> list[np.ndarray]:
     """dE = E tr(A^-1 dA) for each dA of ``blocks``; row replacement where A is singular."""
     if not blocks:
         return []

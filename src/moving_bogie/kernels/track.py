@@ -17,11 +17,13 @@ mpmath precision; :class:`TrackKernelArray` evaluates numpy arrays of q in doubl
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import mpmath
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
@@ -29,7 +31,7 @@ from moving_bogie.kernels.coefficient_matrix import Coefficients
 from moving_bogie.kernels.foundation import Foundation
 from moving_bogie.kernels.polynomial import derivative_coefficients, horner
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval
-from moving_bogie.typing import Mpc
+from moving_bogie.typing import ComplexArray, Mpc, Mpf
 
 
 def foundation_arguments(bound: BoundModel, numbers: Any) -> dict[str, Any]:
@@ -45,9 +47,9 @@ def foundation_arguments(bound: BoundModel, numbers: Any) -> dict[str, Any]:
 class KernelValues:
     """K at the requested xi values and, if asked, dK/dq; ``roots`` are the p-roots of N used."""
 
-    K: tuple
-    dK: tuple | None
-    roots: tuple
+    K: tuple[Any, ...]  # mpmath numbers (TrackKernel) or arrays over q (TrackKernelArray)
+    dK: tuple[Any, ...] | None
+    roots: tuple[Mpc, ...] | np.ndarray
 
 
 class TrackKernel:
@@ -70,16 +72,19 @@ class TrackKernel:
         self.module = self.foundation.module
         self.coalescence_digits = coalescence_digits
 
-    def arguments(self):
+    def arguments(self) -> dict[str, Any]:
+        """The foundation's parameters at the current mpmath precision (keyword arguments of its kernels)."""
         return self.bound.foundation_mp()
 
-    def p_roots(self, q):
+    def p_roots(self, q: Mpc | complex) -> list[Mpc]:
         """Roots of N(p, q) in p at the current precision (numpy start + Durand-Kerner polish)."""
         args = self.arguments()
         coeffs = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
         return _roots_mp(coeffs)
 
-    def __call__(self, q, xis, *, derivative: bool = False) -> KernelValues:
+    def __call__(
+        self, q: Mpc | complex, xis: Iterable[Mpf | float], *, derivative: bool = False
+    ) -> KernelValues:
         """K(xi, q) for every xi in ``xis`` (and dK/dq if ``derivative``)."""
         q = mpmath.mpc(q)
         for _ in range(4):
@@ -96,7 +101,9 @@ class TrackKernel:
             )
         return values  # pragma: no cover
 
-    def _evaluate(self, q, xis, derivative):
+    def _evaluate(
+        self, q: Mpc, xis: Iterable[Mpf | float], derivative: bool
+    ) -> tuple[KernelValues, Mpf | None]:
         args = self.arguments()
         n = [mpmath.mpc(c) for c in self.module.n_coeffs(q, **args)]
         roots = _roots_mp(n)
@@ -149,7 +156,8 @@ class TrackKernel:
         return KernelValues(tuple(Ks), tuple(dKs) if derivative else None, tuple(roots)), sep
 
 
-def min_relative_separation(roots):
+def min_relative_separation(roots: Sequence[Mpc]) -> Mpf | None:
+    """The smallest distance between two of ``roots`` relative to max(|p|, 1), None for fewer than two."""
     best = None
     for i in range(len(roots)):
         for j in range(i + 1, len(roots)):
@@ -159,7 +167,7 @@ def min_relative_separation(roots):
     return best
 
 
-def _roots_mp(coeffs):
+def _roots_mp(coeffs: list[Mpc]) -> list[Mpc]:
     """All roots of a polynomial (highest power first) at the current precision.
 
     Starts from numpy's double-precision roots and polishes all of them together by the Weierstrass
@@ -205,12 +213,19 @@ class TrackKernelArray:
         self.args = bound.foundation_floats()
         self._coeffs = Coefficients(self.args)
 
-    def p_roots(self, q, coeffs=None):
+    def p_roots(self, q: ArrayLike, coeffs: ComplexArray | None = None) -> ComplexArray:
         """Roots in p, shape q.shape + (DEGREE_N,) (closed form for quartics, else companion + Newton);
         ``coeffs``: those of N(., q) if already evaluated."""
         return poly_roots(self._coeffs(self.module.n_coeffs, q) if coeffs is None else coeffs)
 
-    def __call__(self, q, xis, *, derivative=False, sides=None):
+    def __call__(
+        self,
+        q: ArrayLike,
+        xis: Iterable[float],
+        *,
+        derivative: bool = False,
+        sides: tuple[ArrayLike, ArrayLike] | None = None,
+    ) -> KernelValues:
         """K at the offsets ``xis`` (and dK/dq). ``sides``: ``(refs, above)``, the side of the real p-axis
         fixed for the root of N nearest to each ``refs[j]`` (``above[j]``) instead of read off its Im p: the
         analytic continuation of K across the cut where those roots cross it (:func:`fixed_sides`)."""
@@ -270,7 +285,9 @@ class TrackKernelArray:
 NEAREST = 0.4
 
 
-def fixed_sides(P, upper, refs, above):
+def fixed_sides(
+    P: ComplexArray, upper: np.ndarray, refs: ArrayLike, above: ArrayLike
+) -> tuple[np.ndarray, np.ndarray]:
     """``upper`` (the roots ``P`` (..., DEGREE_N) taken above the real p-axis) with the side of the root
     nearest to each ``refs[j]`` set to ``above[j]``: K then sums the residue of that root on the same side
     at every q, the analytic continuation of K through the cut where it crosses the real p-axis.

@@ -28,14 +28,18 @@ of the cost of eliminating the whole block system.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from types import ModuleType
+from typing import Any
 
 import mpmath
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.kernels.arithmetic import Batched, Rows
 from moving_bogie.kernels.condensed import binary_matrices, condensed_characteristic
 from moving_bogie.kernels.coupling import (
+    Coupled,
     Dynamic,
     coupled_system,
     dynamic_coefficients,
@@ -43,7 +47,7 @@ from moving_bogie.kernels.coupling import (
     kernel_matrix,
 )
 from moving_bogie.kernels.elimination import lu_factor, lu_solve
-from moving_bogie.typing import Scalar
+from moving_bogie.typing import Matrix, Mpc, Scalar
 
 #: The arithmetic of the one-q backend (:mod:`moving_bogie.kernels.coupling`): mpmath numbers at the
 #: working precision (``mpmath.pi`` is evaluated at the precision in force).
@@ -80,7 +84,7 @@ class VehicleSystem:
         Parameter name -> value for every name in ``module.MATRIX_ARGUMENTS``.
     """
 
-    def __init__(self, module, values):
+    def __init__(self, module: ModuleType, values: Mapping[str, Any]) -> None:
         args = {name: values[name] for name in module.MATRIX_ARGUMENTS}
         self.module = module
         self.names = tuple(module.DOFS)
@@ -93,7 +97,7 @@ class VehicleSystem:
         self.loads = tuple(module.static_loads(**args))
         self.offsets, self.index = distinct_offsets(self.positions)
 
-    def natural_frequencies(self) -> list:
+    def natural_frequencies(self) -> list[float]:
         """Natural frequencies (in tau) of the vehicle's bodies with the wheels held: K_ii v = q^2 M_ii v."""
         n = self.contacts
         M = np.array(self.mass, dtype=float)[n:, n:]
@@ -106,18 +110,20 @@ class VehicleSystem:
     # --- one q, mpmath ---------------------------------------------------------------------------------
 
     @property
-    def matrices(self) -> tuple:
+    def matrices(self) -> tuple[Matrix, Matrix, Matrix]:
         """(M, C, K) as generated: lists of rows, the integer 0 where the vehicle couples nothing."""
         return self.mass, self.damping, self.stiffness
 
-    def dynamic(self, q, derivative=False):
+    def dynamic(self, q: Mpc, derivative: bool = False) -> tuple[Matrix, Matrix | None]:
         """(D(q), dD/dq or None) at one q, lists of rows with an exact 0 where the vehicle has no coupling
         (so that sums and eliminations can skip it): D = -q^2 M + i q C + K (Eq. (21))."""
         if not hasattr(self, "_dynamic"):
             self._dynamic = dynamic_coefficients(self.matrices, _MPMATH)
         return dynamic_stiffness(q, self._dynamic, _MPMATH, derivative)
 
-    def block(self, q, K, dK=None):
+    def block(
+        self, q: Mpc, K: Sequence[Mpc], dK: Sequence[Mpc] | None = None
+    ) -> tuple[Matrix, list[Mpc], Matrix | None, Matrix]:
         """(A, b, dA/dq or None, D) at one q (lists of rows); ``K`` (``dK``) at :attr:`offsets`
         (:func:`~moving_bogie.kernels.coupling.coupled_system`)."""
         D, dD = self.dynamic(q, derivative=dK is not None)
@@ -126,7 +132,7 @@ class VehicleSystem:
         system = coupled_system(D, G, _MPMATH, loads=self.loads, dD=dD, dG=dG)
         return system.A, [row[0] for row in system.b], system.dA, D
 
-    def e_chr(self, q, K):
+    def e_chr(self, q: Mpc, K: Sequence[Mpc]) -> Mpc:
         """E_chr(q) = det A (:meth:`condensed`; the full block system where that does not apply)."""
         reduced = self.condensed(q, K)
         if reduced is not None:
@@ -134,14 +140,16 @@ class VehicleSystem:
         A, _, _, _ = self.block(q, K)
         return lu_factor(A)[2]
 
-    def condensed(self, q, K, dK=None):
+    def condensed(
+        self, q: Mpc, K: Sequence[Mpc], dK: Sequence[Mpc] | None = None
+    ) -> tuple[Mpc, Mpc | None] | None:
         """(E_chr, dE_chr/dq or None) on the block system condensed to its wheels, or None where that does not
         apply (:func:`moving_bogie.kernels.condensed.condensed_characteristic`)."""
         if not hasattr(self, "_binary"):
             self._binary = binary_matrices(self.mass, self.damping, self.stiffness)
         return condensed_characteristic(q, self._binary, K, self.index, dK)
 
-    def value_and_derivative(self, q, K, dK):
+    def value_and_derivative(self, q: Mpc, K: Sequence[Mpc], dK: Sequence[Mpc]) -> tuple[Mpc, Mpc]:
         """(E_chr, dE_chr/dq) by Jacobi's formula: dE = E tr(A^-1 dA/dq) (on the condensed wheel system,
         :meth:`condensed`), or, where A is singular to working precision, the sum over k of det(A with row
         k replaced by row k of dA/dq)."""
@@ -149,6 +157,7 @@ class VehicleSystem:
         if reduced is not None:
             return reduced
         A, _, dA, _ = self.block(q, K, dK)
+        assert dA is not None  # block() with dK gives dA/dq
         lu, perm, E = lu_factor(A)
         if E != 0:
             columns = [lu_solve(lu, perm, [dA[r][k] for r in range(self.size)]) for k in range(self.size)]
@@ -158,7 +167,7 @@ class VehicleSystem:
             total += lu_factor([dA[r] if r == k else A[r] for r in range(self.size)])[2]
         return E, total
 
-    def numerators(self, q, K) -> dict:
+    def numerators(self, q: Mpc, K: Sequence[Mpc]) -> dict[str, Mpc]:
         """n_X = det(A with column X replaced by b) for every DOF X (Cramer's rule): X = n_X / E_chr."""
         A, b, _, _ = self.block(q, K)
         lu, perm, E = lu_factor(A)
@@ -171,7 +180,13 @@ class VehicleSystem:
             out[name] = lu_factor(Ak)[2]
         return out
 
-    def shape_weights(self, q, K, numerators=None, E=None) -> tuple:
+    def shape_weights(
+        self,
+        q: Mpc,
+        K: Sequence[Mpc],
+        numerators: Mapping[str, Mpc] | None = None,
+        E: Mpc | None = None,
+    ) -> tuple[Mpc, ...]:
         """G_j = 4 (E_chr s_j - (D n)_j): i q W~(xi, q) = sum_j G_j K(xi - xi_j) / (2 pi E_chr)."""
         A, _, _, D = self.block(q, K)
         E = lu_factor(A)[2] if E is None else E
@@ -191,12 +206,20 @@ class VehicleSystem:
             self._floats = dynamic_coefficients(floats, Batched)
         return self._floats
 
-    def block_array(self, q, K, dK=None):
+    def block_array(
+        self, q: ArrayLike, K: Sequence[np.ndarray], dK: Sequence[np.ndarray] | None = None
+    ) -> tuple[np.ndarray, np.ndarray | None]:
         """A (shape q.shape + (N, N)) and dA/dq (or None) for kernel arrays ``K[k]`` at :attr:`offsets`."""
         system, _ = self._coupled_array(q, K, dK)
         return system.A, system.dA
 
-    def _coupled_array(self, q, K, dK=None, loads=False):
+    def _coupled_array(
+        self,
+        q: ArrayLike,
+        K: Sequence[np.ndarray],
+        dK: Sequence[np.ndarray] | None = None,
+        loads: bool = False,
+    ) -> tuple[Coupled, np.ndarray]:
         """(the block system on arrays, with b if ``loads``; the vehicle's D(q) it was built from)."""
         q = np.asarray(q, dtype=complex)
         D, dD = dynamic_stiffness(q, self._float_dynamic(), Batched, derivative=dK is not None)
@@ -207,13 +230,17 @@ class VehicleSystem:
         system = coupled_system(D, G, Batched, loads=self.loads if loads else None, dD=dD, dG=dG)
         return system, D
 
-    def e_chr_array(self, q, K):
+    def e_chr_array(self, q: ArrayLike, K: Sequence[np.ndarray]) -> np.ndarray:
+        """E_chr = det A on arrays of q (``K[k]`` at :attr:`offsets`)."""
         A, _ = self.block_array(q, K)
         return np.linalg.det(A)
 
-    def value_and_derivative_array(self, q, K, dK):
+    def value_and_derivative_array(
+        self, q: ArrayLike, K: Sequence[np.ndarray], dK: Sequence[np.ndarray]
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(E_chr, dE_chr/dq) on arrays: dE = E tr(A^-1 dA) (Jacobi), row by row where A is singular."""
         A, dA = self.block_array(q, K, dK)
+        assert dA is not None  # block_array() with dK gives dA/dq
         E = np.linalg.det(A)
         try:
             with np.errstate(all="ignore"):
@@ -229,18 +256,20 @@ class VehicleSystem:
             dE = dE + np.linalg.det(Ak)
         return E, dE
 
-    def rhs_array(self, q, K):
+    def rhs_array(self, q: ArrayLike, K: Sequence[np.ndarray]) -> np.ndarray:
         """b = [2 Kmat s; 0] on arrays, shape q.shape + (N,)."""
         q = np.asarray(q, dtype=complex)
         system, _ = self._coupled_array(q, K, loads=True)
         return np.broadcast_to(system.b[..., 0], q.shape + (self.size,))
 
-    def _system_and_rhs(self, q, K):
+    def _system_and_rhs(
+        self, q: ArrayLike, K: Sequence[np.ndarray]
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(A, b of shape A.shape[:-1], D) on arrays."""
         system, D = self._coupled_array(q, K, loads=True)
         return system.A, np.broadcast_to(system.b[..., 0], system.A.shape[:-1]), D
 
-    def solutions_array(self, q, K):
+    def solutions_array(self, q: ArrayLike, K: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
         """(X, G / E_chr) on arrays: the responses X = n_X / E_chr (shape q.shape + (N,)) from one solve of
         the block system A X = b, and the shape weights over E_chr, 4 (s_j - (D X)_j) (shape q.shape + (n,)).
 
@@ -258,7 +287,9 @@ class VehicleSystem:
             GE = 4 * (loads - np.einsum("...jk,...k->...j", D[..., : self.contacts, :], X))
         return X, GE
 
-    def responses_array(self, q, K):
+    def responses_array(
+        self, q: ArrayLike, K: Sequence[np.ndarray]
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(E_chr, numerators (shape q.shape + (N,)), shape weights (q.shape + (n,))) on arrays.
 
         The numerators of every response come from one solve of the block system, n = E_chr A^-1 b

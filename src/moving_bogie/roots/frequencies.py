@@ -37,7 +37,7 @@ from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mis
 from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.count.window import default_window, far_field_window  # noqa: F401  (public here too)
 from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
-from moving_bogie.roots.refine.locate import locate
+from moving_bogie.roots.refine.locate import LocatedCell, locate
 from moving_bogie.roots.refine.polish import PolishError, polish_and_confirm, split_cluster
 from moving_bogie.roots.search.continuation import ContinuedRegion
 from moving_bogie.roots.search.counting import TilingCount, count_tiling, frame
@@ -150,7 +150,7 @@ def _confirmed_roots(
     extra_dps: int,
     notes: list[Note],
     report: Callable[[float], None],
-) -> tuple[list[InducedFrequency], list[tuple[complex, int, Rectangle]], list[Unlocated]]:
+) -> tuple[list[InducedFrequency], list[LocatedCell], list[Unlocated]]:
     """Locate the counted roots, polish and confirm them, keep one of each pair q, -conj(q) (largest Re q
     first); the roots, the located cells and the roots not located (notes appended)."""
     cells, unlocated = _locate_counted(fast, counted, newton_cell)
@@ -254,9 +254,9 @@ def _count_twice_as_large(
 
 def _locate_counted(
     fast: CharacteristicArray, counted: TilingCount, newton_cell: float
-) -> tuple[list[tuple[complex, int, Rectangle]], list[Unlocated]]:
+) -> tuple[list[LocatedCell], list[Unlocated]]:
     """Isolate the counted roots of each tile: cells (start, multiplicity, cell), the roots not located."""
-    cells: list[tuple[complex, int, Rectangle]] = []
+    cells: list[LocatedCell] = []
     unlocated: list[Unlocated] = []
     for rect, n in zip(counted.tiling.regions, counted.counts):
         if isinstance(rect, ContinuedRegion):  # counted through the cut, its roots located already
@@ -271,7 +271,7 @@ def _locate_counted(
 
 def _polish_located(
     precise: Characteristic,
-    cells: list[tuple[complex, int, Rectangle]],
+    cells: list[LocatedCell],
     cut: CutLocus,
     dps: int,
     extra_dps: int,
@@ -327,9 +327,10 @@ def _side(q: mpmath.mpc, decimals: int, cut: CutLocus, params: DimensionlessPara
     return "above" if y - threshold > tol else "below"
 
 
-def _fold_pairs(roots):
+def _fold_pairs(roots: list[InducedFrequency]) -> tuple[list[InducedFrequency], list[Note]]:
     """Keep one member of each pair q, -conj(q): drop a root with Re q < 0 whose mirror was found."""
-    keep, notes = [], []
+    keep: list[InducedFrequency] = []
+    notes: list[Note] = []
     for r in roots:
         if mpmath.re(r.q) < 0 and abs(mpmath.re(r.q)) > mpmath.mpf(10) ** (-r.decimals):
             mirror = -mpmath.conj(r.q)
@@ -340,6 +341,6 @@ def _fold_pairs(roots):
     return keep, notes
 
 
-def _mirrors_counted(cells):
+def _mirrors_counted(cells: list[LocatedCell]) -> int:
     """Roots counted in the strip Re q < 0 of the window (mirrors of roots with Re q > 0)."""
     return sum(m for q, m, _ in cells if mpmath.re(q) < -1e-9)

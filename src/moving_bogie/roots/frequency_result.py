@@ -20,10 +20,12 @@ from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, notes_wit
 from moving_bogie.roots.count.strip import StripCount
 from moving_bogie.roots.refine.polish import fixed_text
 from moving_bogie.roots.verdict import Verdict, judge
+from moving_bogie.typing import Mpf
 
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.roots.proof.certify import Certificate
+    from moving_bogie.roots.search.cut_cells import Sliver
 
 __all__ = ["FrequencyResult", "InducedFrequency"]
 
@@ -82,9 +84,9 @@ class FrequencyResult:
     model: str  # the vehicle's name, for output only
     dps: int
     window: Rectangle
-    roots: tuple
+    roots: tuple[InducedFrequency, ...]
     count: int  # roots with Re q >= 0 by the argument principle (with multiplicity, pairs once)
-    unsearched: tuple  # slivers around the cut that no contour can enter
+    unsearched: tuple[Sliver, ...]  # slivers around the cut that no contour can enter
     evaluations: int  # E_chr evaluations (double precision + high precision)
     notes: tuple[Note, ...] = field(default=())
     far_field: FarField | None = None
@@ -112,7 +114,7 @@ class FrequencyResult:
         return self.found == self.count and not notes_with(self.notes, Reason.WINDOW)
 
     @property
-    def unstable_roots(self) -> tuple:
+    def unstable_roots(self) -> tuple[InducedFrequency, ...]:
         return tuple(r for r in self.roots if r.unstable)
 
     @property
@@ -133,12 +135,12 @@ class FrequencyResult:
         return judge(self)
 
     @property
-    def degree_of_instability(self):
+    def degree_of_instability(self) -> Mpf:
         """Most negative Im q among the unstable roots (0 when stable)."""
         return min((mpmath.im(r.q) for r in self.unstable_roots), default=mpmath.mpf(0))
 
     @property
-    def growth_time(self):
+    def growth_time(self) -> Mpf | None:
         """1/|Im q| of the fastest-growing root (dimensionless time for amplitude x e), or None."""
         return 1 / abs(self.degree_of_instability) if self.unstable_roots else None
 

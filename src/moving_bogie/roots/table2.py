@@ -7,6 +7,7 @@ Roots are matched to printed ones by proximity, not by position.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from decimal import Decimal
 from typing import Any
@@ -18,6 +19,8 @@ from moving_bogie.model.cases import TABLE1_CASES, table1_case, table2_printed
 from moving_bogie.roots.count.strip import branch_point_text
 from moving_bogie.roots.damping_limit import DampingLimit, damping_limit
 from moving_bogie.roots.frequencies import FrequencyResult, induced_frequencies
+from moving_bogie.roots.frequency_result import InducedFrequency
+from moving_bogie.roots.proof.certify import ProofVerdict
 from moving_bogie.roots.refine.polish import fixed_text
 
 #: Half a unit of the print's last decimal (six decimals).
@@ -28,8 +31,9 @@ PRINT_TOLERANCE = Decimal("0.0000005")
 class CaseRow:
     case: int
     result: FrequencyResult
-    printed: tuple  # ((re, im) decimal strings), possibly empty
-    differences: tuple  # per computed root: (dre, dim) as Decimal or None when nothing is printed
+    printed: tuple[tuple[str, str], ...]  # (re, im) decimal strings, possibly empty
+    differences: tuple[tuple[Decimal, Decimal] | None, ...]  # per computed root: (dre, dim), None when
+    # nothing is printed
     limit: DampingLimit | None = None  # the real roots of an eta_f = 0 case under eta_f -> 0+
 
     @property
@@ -44,18 +48,18 @@ class CaseRow:
 
 @dataclass(frozen=True)
 class Table2:
-    rows: tuple
+    rows: tuple[CaseRow, ...]
 
     @property
     def ok(self) -> bool:
         return all(row.ok for row in self.rows)
 
     @property
-    def printed_cases(self) -> tuple:
+    def printed_cases(self) -> tuple[int, ...]:
         """The cases whose printed values the reference data hold (Cases 1-6)."""
         return tuple(row.case for row in self.rows if row.printed)
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         cases = []
         for row in self.rows:
             d = row.result.to_dict()
@@ -77,10 +81,12 @@ class Table2:
         }
 
 
-def compare_with_print(result, printed):
+def compare_with_print(
+    result: FrequencyResult, printed: Sequence[tuple[str, str]]
+) -> tuple[tuple[Decimal, Decimal] | None, ...]:
     """Differences (computed - printed) for each computed root, matching printed roots by proximity."""
     remaining = list(printed)
-    out: list[Any] = []
+    out: list[tuple[Decimal, Decimal] | None] = []
     for r in result.roots:
         if not remaining:
             out.append(None)
@@ -93,11 +99,13 @@ def compare_with_print(result, printed):
     return tuple(out)
 
 
-def printed_enclosed(row) -> list:
+def printed_enclosed(row: CaseRow) -> list[bool | None]:
     """Per computed root with a printed value: whether its proven enclosure rounds, at every point, to the
     printed digits (None where nothing is printed or nothing was proven)."""
-    out: list[Any] = []
-    for r, e, diff in zip(row.result.roots, row.result.certificate.roots, row.differences):
+    certificate = row.result.certificate
+    assert certificate is not None  # only a certified row has enclosures
+    out: list[bool | None] = []
+    for r, e, diff in zip(row.result.roots, certificate.roots, row.differences):
         if diff is None or not e.certified:
             out.append(None)
             continue
@@ -107,9 +115,16 @@ def printed_enclosed(row) -> list:
     return out
 
 
-def compute_table2(*, dps: int = 30, cases=TABLE1_CASES, progress=None, certify: bool = False) -> Table2:
+def compute_table2(
+    *,
+    dps: int = 30,
+    cases: Iterable[int] = TABLE1_CASES,
+    progress: Callable[[float], None] | None = None,
+    certify: bool = False,
+) -> Table2:
     """Table 2 by :func:`induced_frequencies` per case (with ``certify``, each result carries its proof)."""
     rows = []
+    cases = tuple(cases)
     for k, case in enumerate(cases):
         bound = BoundModel(table1_case(case))  # Table 1: the bogie, each case bound once here
         result = induced_frequencies(bound, dps=dps, certify=certify)
@@ -166,7 +181,7 @@ def format_table2(table: Table2, decimals: int = 6) -> str:
     return "\n".join(lines)
 
 
-def summary_lines(table: Table2) -> list:
+def summary_lines(table: Table2) -> list[str]:
     """The closing lines: print and counts; the unstable cases, then the stable ones (undetermined named);
     the undamped cases whose verdict the strip below the cut decided, on a line of their own; the proofs."""
     by_state = {
@@ -193,7 +208,8 @@ def summary_lines(table: Table2) -> list:
         unproven = [
             row.case
             for row in table.rows
-            if row.result.certificate is not None and row.result.certificate.verdict == "not proven"
+            if row.result.certificate is not None
+            and row.result.certificate.verdict is ProofVerdict.NOT_PROVEN
         ]
         lines.append(
             "proofs: every verdict proven"
@@ -203,14 +219,14 @@ def summary_lines(table: Table2) -> list:
     return lines
 
 
-def _stable_text(result) -> str:
+def _stable_text(result: FrequencyResult) -> str:
     real = sum(r.marginal for r in result.roots)
     return f"stable ({real} real root(s), neutral)" if real else "stable"
 
 
-def case_list(cases) -> str:
+def case_list(numbers: Iterable[int]) -> str:
     """'Case 3', 'Cases 1, 5, 12, 13', runs of three or more as 'Cases 2-4, 6-11'; 'no case' when empty."""
-    cases = list(cases)
+    cases = list(numbers)
     if not cases:
         return "no case"
     if len(cases) == 1:
@@ -227,24 +243,25 @@ def case_list(cases) -> str:
     return "Cases " + ", ".join(parts)
 
 
-def _unprinted(table) -> str:
+def _unprinted(table: Table2) -> str:
     rest = tuple(row.case for row in table.rows if not row.printed)
     if not rest:
         return "every case is compared"
     return f"{case_list(rest)} have no printed values in the reference data (computed only, column blank)"
 
 
-def certificate_line(row) -> str:
+def certificate_line(row: CaseRow) -> str:
     """One line: roots and count proven, the proven verdict, whether the printed digits are enclosed."""
     c = row.result.certificate
+    assert c is not None  # a line for a certified row
     text = f"proven: {c.proven_roots}/{len(c.roots)} roots, count {c.count}, verdict {c.verdict}"
-    below = getattr(c, "below", None)
-    if c.verdict == "not proven" and below is not None and below.count == 0:
+    below = c.below
+    if c.verdict is ProofVerdict.NOT_PROVEN and below is not None and below.count == 0:
         text += (
             f" (the strip below the cut on the real axis holds no root; what remains is the square of "
             f"half-side {below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite)"
         )
-    elif c.verdict == "not proven":
+    elif c.verdict is ProofVerdict.NOT_PROVEN:
         text += f" ({c.reason})"
     enclosed = [x for x in printed_enclosed(row) if x is not None]
     if enclosed:
@@ -252,6 +269,6 @@ def certificate_line(row) -> str:
     return text
 
 
-def _printed_for(row, root):
+def _printed_for(row: CaseRow, root: InducedFrequency) -> tuple[str, str]:
     q = complex(root.q)
     return min(row.printed, key=lambda pr: abs(q - complex(float(pr[0]), float(pr[1]))))

@@ -9,9 +9,14 @@ move the edge instead of returning a wrong count).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
 
 import numpy as np
+import numpy.typing as npt
+
+from moving_bogie.typing import ComplexArray, FloatArray
 
 _SUBDIVIDE = 8  # pieces a segment whose arg step is too large is cut into
 #: Initial sampling step along a boundary within |q| <= _NEAR of the origin; beyond, it grows like |q|
@@ -27,7 +32,7 @@ _NEAR = 10.0
 _ULPS = 64
 
 
-def _resolution(z, shortest):
+def _resolution(z: ComplexArray, shortest: float | FloatArray) -> FloatArray:
     """The shortest segment worth refining at ``z``: ``shortest``, or the double-precision floor there."""
     return np.maximum(shortest, _ULPS * np.finfo(float).eps * np.maximum(1.0, np.abs(z)))
 
@@ -38,7 +43,7 @@ _SMALL_PIECE = 1e-3
 _PIECE_POINTS = (20_000, 100_000)
 
 
-def piece_points(region) -> int:
+def piece_points(region: Region) -> int:
     """The most boundary points a piece of a split region may take (``max_points`` of the winding numbers)."""
     return _PIECE_POINTS[0] if max(region.width, region.height) < _SMALL_PIECE else _PIECE_POINTS[1]
 
@@ -56,16 +61,64 @@ class BoundingBox:
     y1: float
 
     @property
-    def width(self):
+    def width(self) -> float:
         return self.x1 - self.x0
 
     @property
-    def height(self):
+    def height(self) -> float:
         return self.y1 - self.y0
 
     @property
-    def center(self):
+    def center(self) -> complex:
         return complex(0.5 * (self.x0 + self.x1), 0.5 * (self.y0 + self.y1))
+
+
+class Region(Protocol):
+    """A search region as counting and locating use it: a :class:`Rectangle` or a curved cell
+    (:mod:`~moving_bogie.roots.search.cut_cells`), with its bounds, the points it contains, its pieces
+    (:meth:`split`) and its closed boundary. A curved cell also has ``points_at`` and
+    ``boundary_parameters``, by which its boundary is refined along the curve itself."""
+
+    @property
+    def x0(self) -> float: ...
+
+    @property
+    def x1(self) -> float: ...
+
+    @property
+    def y0(self) -> float: ...
+
+    @property
+    def y1(self) -> float: ...
+
+    @property
+    def width(self) -> float: ...
+
+    @property
+    def height(self) -> float: ...
+
+    @property
+    def center(self) -> complex: ...
+
+    def contains(self, z: complex, margin: float = 0.0) -> bool: ...
+
+    def split(self, fraction: float = 0.5) -> tuple[Region, ...]: ...
+
+    def boundary(self, spacing: float) -> ComplexArray: ...
+
+
+@runtime_checkable
+class CurvedRegion(Region, Protocol):
+    """A region whose boundary is a curve t -> z (:class:`~moving_bogie.roots.search.cut_cells.ColumnCell`,
+    ``TipCell``): its boundary parameters about ``spacing`` apart, and the points at parameters ``t``."""
+
+    def boundary_parameters(self, spacing: float) -> FloatArray: ...
+
+    def points_at(self, t: FloatArray) -> ComplexArray: ...
+
+
+#: A function counted on a contour: complex arrays to complex arrays (E_chr batched, Eq. (48)).
+ContourFunction = Callable[[ComplexArray], ComplexArray]
 
 
 @dataclass(frozen=True)
@@ -75,12 +128,12 @@ class Rectangle(BoundingBox):
     y0: float
     y1: float
 
-    def contains(self, z, margin: float = 0.0):
+    def contains(self, z: complex, margin: float = 0.0) -> bool:
         return (self.x0 - margin <= z.real <= self.x1 + margin) and (
             self.y0 - margin <= z.imag <= self.y1 + margin
         )
 
-    def split(self, fraction: float = 0.5):
+    def split(self, fraction: float = 0.5) -> tuple[Rectangle, Rectangle]:
         """Two halves across the longer side, the cut at ``fraction`` of it."""
         if self.width >= self.height:
             xm = self.x0 + fraction * self.width
@@ -88,7 +141,7 @@ class Rectangle(BoundingBox):
         ym = self.y0 + fraction * self.height
         return Rectangle(self.x0, self.x1, self.y0, ym), Rectangle(self.x0, self.x1, ym, self.y1)
 
-    def boundary(self, spacing):
+    def boundary(self, spacing: float) -> ComplexArray:
         """Counter-clockwise closed polyline, each edge sampled at about ``spacing`` (at least 8 points)."""
         corners = [
             complex(self.x0, self.y0),
@@ -104,11 +157,11 @@ class Rectangle(BoundingBox):
         return np.append(pts, pts[0])
 
 
-def _local_step(z) -> np.ndarray:
+def _local_step(z: ComplexArray) -> FloatArray:
     return _SPACING * np.maximum(1.0, np.abs(z) / _NEAR)
 
 
-def initial_samples(region, spacing=None):
+def initial_samples(region: Region, spacing: float | None = None) -> tuple[ComplexArray, FloatArray]:
     """(z, t): the first samples of the closed boundary of ``region`` (z[-1] = z[0]) and their boundary
     parameters (those of a curved cell, ``points_at``; indices for a rectangle).
 
@@ -119,12 +172,12 @@ def initial_samples(region, spacing=None):
     roots are the sequence along the real axis of a Timoshenko-Rayleigh beam, a few units of Re q apart.
     A huge window (the far-field radius of such a beam reaches 1e3) then costs 1e5 samples, not 1e7.
     """
-    points_at = getattr(region, "points_at", None)
+    curved = region if isinstance(region, CurvedRegion) else None
     size = max(region.width, region.height)
     step = spacing or size / 64
-    if points_at is not None:
-        t = region.boundary_parameters(step)
-        z = np.append(points_at(t[:-1]), 0)
+    if curved is not None:
+        t = curved.boundary_parameters(step)
+        z = np.append(curved.points_at(t[:-1]), 0)
         z[-1] = z[0]
     else:
         z = region.boundary(step)
@@ -140,8 +193,8 @@ def initial_samples(region, spacing=None):
         k = np.arange(owner.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
         u = k / pieces[owner]
         t_new = ta[owner] + u * (tb - ta)[owner]
-        if points_at is not None:
-            z_new = np.where(k == 0, za[owner], points_at(t_new))
+        if curved is not None:
+            z_new = np.where(k == 0, za[owner], curved.points_at(t_new))
         else:
             z_new = za[owner] + u * (zb - za)[owner]
         z, t = np.append(z_new, z[-1]), np.append(t_new, t[-1])
@@ -149,11 +202,11 @@ def initial_samples(region, spacing=None):
 
 
 def winding_number(
-    f,
-    rect: Rectangle,
+    f: ContourFunction,
+    rect: Region,
     *,
-    spacing=None,
-    max_step=np.pi / 5,
+    spacing: float | None = None,
+    max_step: float = np.pi / 5,
     min_segment: float = 1e-11,
     max_points: int = 400_000,
 ) -> int:
@@ -218,7 +271,14 @@ def winding_number(
     return n
 
 
-def winding_numbers(f, regions, *, max_step=np.pi / 5, min_segment: float = 1e-11, max_points=None) -> list:
+def winding_numbers(
+    f: ContourFunction,
+    regions: Sequence[Region],
+    *,
+    max_step: float = np.pi / 5,
+    min_segment: float = 1e-11,
+    max_points: Sequence[int] | npt.NDArray[np.int_] | None = None,
+) -> list[int | EdgeZeroError]:
     """:func:`winding_number` of many regions at once: every refinement level of all of them is one
     evaluation of ``f`` (the cost of an evaluation of E_chr is mostly per call, not per point).
 
@@ -245,7 +305,7 @@ def winding_numbers(f, regions, *, max_step=np.pi / 5, min_segment: float = 1e-1
     tb = np.concatenate([t[1:] for t in ts]) if zs else np.zeros(0)
     total = np.zeros(n_reg)
     points = np.array([z.size for z in zs])
-    errors: list = [None] * n_reg
+    errors: list[EdgeZeroError | None] = [None] * n_reg
     m = _SUBDIVIDE
     frac = np.arange(1, m) / m
     while owner.size:
@@ -283,10 +343,17 @@ def winding_numbers(f, regions, *, max_step=np.pi / 5, min_segment: float = 1e-1
         za, zb = np.column_stack([za, zi]).ravel(), np.column_stack([zi, zb]).ravel()
         wa, wb = np.column_stack([wa, wi]).ravel(), np.column_stack([wi, wb]).ravel()
         ta, tb = np.column_stack([ta, tt]).ravel(), np.column_stack([tt, tb]).ravel()
-    out = []
-    for k in range(n_reg):
-        if errors[k] is not None:
-            out.append(errors[k])
+    return _winding_results(total, errors, regions)
+
+
+def _winding_results(
+    total: FloatArray, errors: Sequence[EdgeZeroError | None], regions: Sequence[Region]
+) -> list[int | EdgeZeroError]:
+    """Per region, its winding number (``total`` change of arg / 2 pi, an integer to 1e-3) or its error."""
+    out: list[int | EdgeZeroError] = []
+    for k, error in enumerate(errors):
+        if error is not None:
+            out.append(error)
             continue
         turns = total[k] / (2 * np.pi)
         n = int(round(turns))

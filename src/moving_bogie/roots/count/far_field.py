@@ -23,6 +23,7 @@ Im q < 0, and when it fails the verdict says UNDETERMINED.
 from __future__ import annotations
 
 import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -30,6 +31,8 @@ import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import CharacteristicArray
+from moving_bogie.kernels.vehicle import VehicleSystem
+from moving_bogie.typing import ComplexArray
 
 #: rho must stay below this on every sample (1 would be enough for no root; 1/2 leaves a margin of 2).
 MARGIN = 0.5
@@ -71,7 +74,7 @@ def leading_gap(gamma: Fraction) -> Fraction:
     return min(2 - gamma, Fraction(1))
 
 
-def e_lead(system, q, K) -> np.ndarray:
+def e_lead(system: VehicleSystem, q: ComplexArray, K: Sequence[ComplexArray]) -> np.ndarray:
     """E_lead = det(-2 q^2 Kmat M_cc) det(-q^2 M_ii) for arrays of q (Kmat from the kernel values K)."""
     n, N = system.contacts, system.size
     M = np.array(system.mass, dtype=float)
@@ -86,7 +89,7 @@ def e_lead(system, q, K) -> np.ndarray:
 
 def sample_points(
     radius: float, outer: int = OUTER, per_circle: int = 1200, per_ray: int = 4000, inner_rays: int = 7
-):
+) -> np.ndarray:
     """q samples of {|q| >= radius, Im q < 0} up to ``outer * radius``: half circles and rays.
 
     The two rays just below the real axis carry ``per_ray`` points (there the factors e^{i p_k d} of K(+-d)

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
-from moving_bogie.roots.count.contour import BoundingBox
+from moving_bogie.roots.count.contour import Region
 
 __all__ = ["Note", "Reason", "Unlocated", "count_mismatch", "notes_with"]
 
@@ -58,7 +58,7 @@ class Note:
 class Unlocated:
     """Roots counted in ``cell`` that were not located (``missing`` of them), with the note that says so."""
 
-    cell: BoundingBox  # a Rectangle or a cut cell
+    cell: Region  # a Rectangle or a cut cell
     missing: int
     note: Note
 

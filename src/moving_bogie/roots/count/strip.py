@@ -24,15 +24,21 @@ so. This is a numerical check, not a proof: ``roots/proof/certify.py`` proves ev
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import CharacteristicArray
-from moving_bogie.kernels.cut import cut_locus
+from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
-from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number
+from moving_bogie.roots.count.contour import ContourFunction, EdgeZeroError, Rectangle, winding_number
+from moving_bogie.typing import ComplexArray
+
+if TYPE_CHECKING:
+    from moving_bogie.roots.search.cut_cells import Sliver
 
 #: Half-side of the square left out under a branch point of K on the real axis (where K is infinite).
 NOTCH = 1e-9
@@ -52,12 +58,12 @@ class StripCount:
     """
 
     count: int | None
-    rects: tuple
+    rects: tuple[Rectangle, ...]
     mode: str
-    notches: tuple = ()
+    notches: tuple[float, ...] = ()
     notch: float = NOTCH
     reason: str = ""
-    growth: tuple = ()  # per notch: |E_chr| sqrt(distance) at distances GROWTH_PROBES below it
+    growth: tuple[tuple[float, ...], ...] = ()  # per notch: |E_chr| sqrt(distance) at GROWTH_PROBES below it
 
     @property
     def decided(self) -> bool:
@@ -81,7 +87,7 @@ class StripCount:
                 text += f" (E_chr is infinite there: |E_chr| sqrt|q - q_c| -> {c})"
         return text
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         return {
             "count": self.count,
             "mode": self.mode,
@@ -93,7 +99,7 @@ class StripCount:
         }
 
 
-def strip_below_cut(bound: BoundModel, window: Rectangle, unsearched: list) -> StripCount | None:
+def strip_below_cut(bound: BoundModel, window: Rectangle, unsearched: Sequence[Sliver]) -> StripCount | None:
     """Count the roots with Im q < 0 in the unsearched sliver(s) that reach below the real axis.
 
     Returns None when no sliver reaches below the axis, or when the cut there is neither on the real axis
@@ -105,14 +111,18 @@ def strip_below_cut(bound: BoundModel, window: Rectangle, unsearched: list) -> S
     cut = cut_locus(bound, window.x0, window.x1)
     if not cut.points.size:
         return None
+    f: ContourFunction
+    points: list[float]
     if abs(cut.im_low) <= ON_AXIS and abs(cut.im_high) <= ON_AXIS:
         mode = "from below"
         sweep = SweepCharacteristic(bound, below=True)
         alpha = float(bound.params.alpha)
 
-        def f(z):
+        def from_below(z: ComplexArray) -> ComplexArray:
             z = np.asarray(z, dtype=complex)
             return sweep(z, np.full(z.shape, alpha))
+
+        f = from_below
 
         points = branch_points_on_axis(cut)
         misplaced = [x for x in points if not _located(sweep, alpha, x)]
@@ -125,7 +135,7 @@ def strip_below_cut(bound: BoundModel, window: Rectangle, unsearched: list) -> S
         points = []
     else:
         return None
-    rects = []
+    rects: list[Rectangle] = []
     for u in low:
         rects += pieces_below_axis(Rectangle(u.x0, u.x1, u.y0, 0.0), [x for x in points if u.x0 < x < u.x1])
     notches = tuple(x for x in points if any(r.x0 <= x + NOTCH and x - NOTCH <= r.x1 for r in rects))
@@ -145,20 +155,20 @@ def strip_below_cut(bound: BoundModel, window: Rectangle, unsearched: list) -> S
     return StripCount(count, tuple(rects), mode, notches, growth=growth)
 
 
-def _growth(f, x: float) -> tuple:
+def _growth(f: ContourFunction, x: float) -> tuple[float, ...]:
     """|E_chr(x - i delta)| sqrt(delta) for delta in GROWTH_PROBES: about constant when E_chr is infinite at
     the branch point x like K (no root next to it)."""
     d = np.array(GROWTH_PROBES)
     return tuple(float(v) for v in np.abs(f(x - 1j * d)) * np.sqrt(d))
 
 
-def branch_point_text(points) -> str:
+def branch_point_text(points: Sequence[float]) -> str:
     """ "the branch point q = x" for one, "each branch point q = x, y" for several."""
     values = ", ".join(f"{x:.9g}" for x in points)
     return f"{'each' if len(points) > 1 else 'the'} branch point q = {values}"
 
 
-def branch_points_on_axis(cut) -> list:
+def branch_points_on_axis(cut: CutLocus) -> list[float]:
     """Re q of the branch points of K on the real axis: the cut's start and its folds there."""
     xs = [float(f.q.real) for f in cut.folds if abs(f.q.imag) <= 1e-9]
     if np.isfinite(cut.x_start):
@@ -166,7 +176,7 @@ def branch_points_on_axis(cut) -> list:
     return sorted(set(xs))
 
 
-def _located(sweep, alpha: float, x: float) -> bool:
+def _located(sweep: SweepCharacteristic, alpha: float, x: float) -> bool:
     """The number of real p-roots of N changes between x - NOTCH and x + NOTCH: the branch point lies in
     the notch (a real pair of p-roots is about sqrt(NOTCH) apart next to it, far above rounding)."""
     q = np.array([x - NOTCH, x + NOTCH], dtype=complex)
@@ -175,7 +185,7 @@ def _located(sweep, alpha: float, x: float) -> bool:
     return bool(real[0] != real[1])
 
 
-def pieces_below_axis(rect: Rectangle, points) -> list:
+def pieces_below_axis(rect: Rectangle, points: Iterable[float]) -> list[Rectangle]:
     """``rect`` (top edge on Im q = 0) split at each branch point x: the columns between them reach the
     axis, and under each x a column [x - NOTCH, x + NOTCH] stops at Im q = -NOTCH."""
     out, x0 = [], rect.x0

@@ -8,7 +8,7 @@ from moving_bogie.roots.proof.balls import BallCharacteristic, exact_ball, squar
 from moving_bogie.roots.proof.certify import (
     Certificate,
     Enclosure,
-    StripProof,
+    ProofVerdict,
     krawczyk,
     pinches_around_roots,
     refine,
@@ -22,6 +22,7 @@ from moving_bogie.roots.proof.p_balls import (
 )
 from moving_bogie.roots.proof.p_discs import PRootDiscs, RootDisc, coefficients_in_q, taylor_in_q
 from moving_bogie.roots.proof.proof_tiling import ProofTiling, Staircase
+from moving_bogie.roots.proof.strip_proof import StripProof, strip_from_below
 from moving_bogie.roots.proof.winding import NotProven, ProvenCount, proven_count
 
 __all__ = [
@@ -32,6 +33,7 @@ __all__ = [
     "NotProven",
     "PRootDiscs",
     "ProofTiling",
+    "ProofVerdict",
     "ProvenCount",
     "RootDisc",
     "Staircase",
@@ -50,5 +52,6 @@ __all__ = [
     "refine",
     "series_det",
     "square_ball",
+    "strip_from_below",
     "taylor_in_q",
 ]

@@ -19,6 +19,11 @@ the Krawczyk test). Both are enclosures for every matrix in the balls, so the pr
 
 from __future__ import annotations
 
+from collections.abc import Hashable, Mapping, Sequence
+from fractions import Fraction
+from types import ModuleType
+from typing import Any
+
 from flint import acb, acb_mat, acb_series, arb
 
 from moving_bogie.kernels.arithmetic import Rows, structural_zero
@@ -28,6 +33,7 @@ from moving_bogie.kernels.coupling import (
     dynamic_stiffness,
     kernel_matrix,
 )
+from moving_bogie.typing import Acb, AcbSeries, Matrix
 
 
 class BlockBalls:
@@ -43,7 +49,12 @@ class BlockBalls:
         Parameter name -> exact value (Fraction): offsets xi_i - xi_j equal exactly share a kernel value.
     """
 
-    def __init__(self, module, values, exact=None):
+    def __init__(
+        self,
+        module: ModuleType,
+        values: Mapping[str, Acb],
+        exact: Mapping[str, Fraction | None] | None = None,
+    ) -> None:
         args = {name: values[name] for name in module.MATRIX_ARGUMENTS}
         self.contacts = int(module.CONTACTS)
         self.size = len(module.DOFS)
@@ -61,7 +72,7 @@ class BlockBalls:
             x_exact = module.contact_positions(**{name: exact[name] for name in module.MATRIX_ARGUMENTS})
             keys = {(i, j): x_exact[i] - x_exact[j] for i in range(n) for j in range(n)}
         self.offsets = [acb(0)]
-        seen = {0: 0} if keys is not None else {}
+        seen: dict[Hashable, int] = {0: 0} if keys is not None else {}
         self.index = [[0] * n for _ in range(n)]
         for i in range(n):
             for j in range(n):
@@ -77,9 +88,9 @@ class BlockBalls:
         self.dynamic = dynamic_coefficients(self.matrices, self.ops)
         self.mats = dynamic_coefficients(tuple(_matrix(m) for m in self.matrices), self.arb)
 
-    def sides(self) -> list:
+    def sides(self) -> list[int | None]:
         """+1 (xi >= 0: roots with Im p > 0) or -1 for each offset; None if the sign is not decided."""
-        out = []
+        out: list[int | None] = []
         for xi in self.offsets:
             if xi.real.is_zero():
                 out.append(1)
@@ -91,7 +102,7 @@ class BlockBalls:
                 out.append(None)
         return out
 
-    def det(self, qs, K, length):
+    def det(self, qs: AcbSeries, K: Sequence[AcbSeries], length: int) -> AcbSeries | None:
         """E_chr as an acb_series of ``length`` terms, from q (series) and K (series, one per offset)."""
         if length <= 2:
             return self.det_linear(qs, K, length)
@@ -100,7 +111,7 @@ class BlockBalls:
         zero = acb_series([acb(0)], prec=length)
         return series_det([[zero + x for x in row] for row in A], length)
 
-    def coefficient_matrices(self, qs, K, length):
+    def coefficient_matrices(self, qs: AcbSeries, K: Sequence[AcbSeries], length: int) -> list[acb_mat]:
         """[A_0] or [A_0, A_1]: the block matrix A(t) = A_0 + A_1 t from q and K as series in t."""
         ops = self.arb
         q0, q1 = coefficient(qs, 0), coefficient(qs, 1)
@@ -112,7 +123,7 @@ class BlockBalls:
         system = coupled_system(D0, K0, ops, dD=ops.scale(q1, dD), dG=K1)
         return [system.A, system.dA]
 
-    def log_derivative(self, qs, K):
+    def log_derivative(self, qs: AcbSeries, K: Sequence[AcbSeries]) -> tuple[Acb, Acb] | None:
         """(E_chr, E_chr'/E_chr = tr(A_0^-1 A_1)) over the ball, or None where A_0 is not proven regular."""
         A0, A1 = self.coefficient_matrices(qs, K, 2)
         try:
@@ -120,7 +131,7 @@ class BlockBalls:
         except ZeroDivisionError:
             return None
 
-    def det_linear(self, qs, K, length):
+    def det_linear(self, qs: AcbSeries, K: Sequence[AcbSeries], length: int) -> AcbSeries:
         """:meth:`det` for ``length`` 1 or 2 on the coefficient matrices A_0, A_1 (module docstring)."""
         A = self.coefficient_matrices(qs, K, length)
         E = A[0].det()
@@ -152,7 +163,7 @@ class ArbMatrices:
 
     def __init__(self) -> None:
         self.pi, self.i = acb(arb.pi()), acb(0, 1)
-        self._units: dict = {}
+        self._units: dict[tuple[int, int, Any, bool], acb_mat] = {}
 
     def _unit(self, rows: int, columns: int, shift: int = 0, transpose: bool = False) -> acb_mat:
         """The rows x columns matrix with ones at (r, r + shift), or its transpose (cached)."""
@@ -167,7 +178,7 @@ class ArbMatrices:
         return G.nrows()
 
     @staticmethod
-    def scale(s, P: acb_mat) -> acb_mat:
+    def scale(s: Acb, P: acb_mat) -> acb_mat:
         """s P; 2 P and -P exactly by a sum and a negation (cheaper than Arb's scalar product here)."""
         if isinstance(s, int) and s in (2, -1):
             return P + P if s == 2 else -P
@@ -182,7 +193,7 @@ class ArbMatrices:
         return P * Q
 
     @staticmethod
-    def polynomial(q, coefficients) -> acb_mat:
+    def polynomial(q: Acb, coefficients: Sequence[acb_mat]) -> acb_mat:
         powers = [1, q]
         for _ in range(2, len(coefficients)):
             powers.append(powers[-1] * q)
@@ -191,18 +202,18 @@ class ArbMatrices:
             out = out + coefficients[k] * powers[k]
         return out + coefficients[0]
 
-    def plus_identity(self, P: acb_mat, s) -> acb_mat:
+    def plus_identity(self, P: acb_mat, s: Acb) -> acb_mat:
         key = (P.nrows(), P.ncols(), "times", s is self.pi)
         if key not in self._units:  # pi I once per shape
             self._units[key] = self._unit(P.nrows(), P.ncols()) * s
         return P + (self._units[key] if s is self.pi else self._unit(P.nrows(), P.ncols()) * s)
 
-    def split(self, P: acb_mat, n: int) -> tuple:
+    def split(self, P: acb_mat, n: int) -> tuple[acb_mat, _Below]:
         """(the first n rows, the others): these stay in P (:class:`_Below`), never picked."""
         top = self._unit(n, P.nrows()) * P
         return top, _Below(P, top)
 
-    def stack(self, top: acb_mat, bottom) -> acb_mat:
+    def stack(self, top: acb_mat, bottom: acb_mat | _Below) -> acb_mat:
         """The rows of ``top`` over ``bottom`` (P + place (top - P's first rows) for P's own rows)."""
         n = top.nrows()
         if isinstance(bottom, _Below):
@@ -217,10 +228,10 @@ class ArbMatrices:
         return acb_mat(rows, columns)
 
     @staticmethod
-    def column(values) -> acb_mat:
+    def column(values: Sequence[Acb]) -> acb_mat:
         return acb_mat([[acb(v)] for v in values])
 
-    def embed(self, blocks, places, size: int) -> acb_mat:
+    def embed(self, blocks: Sequence[acb_mat], places: Sequence[Sequence[int]], size: int) -> acb_mat:
         """size x size zeros with block k at rows and columns ``places[k]`` (P B P^T, P of 0/1)."""
         out = acb_mat(size, size)
         for block, place in zip(blocks, places):
@@ -229,16 +240,16 @@ class ArbMatrices:
         return out
 
     @staticmethod
-    def gather(values, index) -> acb_mat:
+    def gather(values: Sequence[Acb], index: Sequence[Sequence[int]]) -> acb_mat:
         return acb_mat([[values[k] for k in row] for row in index])
 
 
-def _matrix(rows: list) -> acb_mat:
+def _matrix(rows: Matrix) -> acb_mat:
     """An acb_mat from lists of rows of acb (a structural zero as the exact ball 0)."""
     return acb_mat([[acb(x) for x in row] for row in rows])
 
 
-def coefficient(series, j) -> acb:
+def coefficient(series: AcbSeries | Acb, j: int) -> Acb:
     """Coefficient ``j`` of an acb_series (0 beyond its stored terms) or, for j = 0, an acb itself."""
     if not isinstance(series, acb_series):
         return acb(series) if j == 0 else acb(0)
@@ -246,7 +257,7 @@ def coefficient(series, j) -> acb:
     return acb(coeffs[j]) if j < len(coeffs) else acb(0)
 
 
-def series_det(A, length):
+def series_det(A: Sequence[Sequence[AcbSeries]], length: int) -> AcbSeries | None:
     """det A for a square list of acb_series rows (pivot: the largest constant-term midpoint); None if a
     pivot it must divide by has a constant term that contains 0."""
     N = len(A)

@@ -28,8 +28,9 @@ acb arguments (their ``1j`` literals combine with acb exactly).
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING
 
 from flint import acb, acb_series, arb, ctx, fmpq
 
@@ -43,7 +44,11 @@ from moving_bogie.roots.proof.p_balls import (
     horner,
     isolate_roots,
 )
-from moving_bogie.roots.proof.p_discs import PRootDiscs
+from moving_bogie.roots.proof.p_discs import PRootDiscs, RootDisc
+from moving_bogie.typing import Acb, AcbSeries, Arb
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
 
 __all__ = [
     "BallCharacteristic",
@@ -59,22 +64,22 @@ __all__ = [
 DIRECT_DEGREE = 4
 
 
-def exact_ball(x) -> acb:
-    """An acb ball containing the rational ``x`` (a Fraction, int or None) at the current precision."""
+def exact_ball(x: Fraction | int | None) -> Acb | None:
+    """An acb ball containing the rational ``x`` (a Fraction, int or None) at the current precision
+    (None for None)."""
     if x is None:
         return None
-    x = fmpq(x.numerator, x.denominator) if hasattr(x, "denominator") else fmpq(x)
-    return acb(arb(x))
+    return acb(arb(fmpq(x.numerator, x.denominator)))
 
 
-def square_ball(center, radius) -> acb:
+def square_ball(center: complex | Acb, radius: float | Arb) -> Acb:
     """The acb ball (a square) of centre ``center`` (complex or acb) and half-side ``radius``."""
     c = acb(center)
     r = arb(radius)
     return acb(arb(c.real.mid(), r), arb(c.imag.mid(), r))
 
 
-def _exact(x) -> Fraction | None:
+def _exact(x: Fraction | int | None) -> Fraction | None:
     """A parameter's exact value as a Fraction (it is a Fraction or an int), or None."""
     return None if x is None else Fraction(x)
 
@@ -82,16 +87,16 @@ def _exact(x) -> Fraction | None:
 class _ExactBalls:
     """Attribute access to the parameters of a DimensionlessParams as balls around their exact values."""
 
-    def __init__(self, params) -> None:
+    def __init__(self, params: DimensionlessParams) -> None:
         self._params = params
 
-    def __getattr__(self, name):
+    def __getattr__(self, name: str) -> Acb:
         if name.startswith("_"):
             raise AttributeError(name)
         return exact_ball(getattr(self._params, name))
 
 
-def _series(values, length):
+def _series(values: Iterable[Acb | AcbSeries], length: int) -> list[AcbSeries]:
     """Each value as an acb_series of ``length`` terms (constants become constant series)."""
     return [v if isinstance(v, acb_series) else acb_series([acb(v)], prec=length) for v in values]
 
@@ -132,7 +137,7 @@ class BallCharacteristic:
         self.tol = 2.0 ** (8 - prec)
         self.foundation = bound.foundation
         self.vehicle = bound.vehicle
-        self.blocks = None
+        self.blocks: BlockBalls | None = None
         self.evaluations = 0
         with ctx.workprec(prec):
             numbers = _ExactBalls(params)
@@ -153,27 +158,27 @@ class BallCharacteristic:
             self.d = numbers.d
             self.two_pi_i = acb(0, 2) * acb(arb.pi())
 
-    def p_roots(self, q) -> tuple:
+    def p_roots(self, q: Acb | complex) -> tuple[list[Acb], list[Acb]]:
         """(upper, lower): balls holding each one root of N(p, xi) for every xi in the ball ``q``, split by
         the sign of Im p (proven; Undecided if a ball meets the real axis)."""
         with ctx.workprec(self.prec):
             return self._sides(acb(q), self._root_balls(acb(q)))
 
-    def _root_balls(self, q: acb) -> list:
+    def _root_balls(self, q: Acb) -> list[Acb]:
         """Root balls of N(p, xi), xi in the ball q, each holding exactly one root for every xi (direct:
         :mod:`p_balls`; else :mod:`p_discs`, a Krawczyk test in disc form on N's exact Taylor expansion)."""
-        if self.direct:
+        if self.p_discs is None:  # self.direct
             return direct_root_balls(self.foundation, self.foundation_args, q, self.tol, self.prec)
         return self.p_discs.discs(q)
 
-    def _sides(self, q: acb, roots) -> tuple:
+    def _sides(self, q: Acb, roots: Sequence[Acb]) -> tuple[list[Acb], list[Acb]]:
         """(upper, lower) p-root balls at the q-ball ``q``; on the real axis with ``below``, real roots
         go to the side they move to when q -> q - i0 (class docstring)."""
         on_axis = self.below and q.imag.contains(0)
         if not on_axis:
             return _sides(roots)
-        upper: list[Any] = []
-        lower: list[Any] = []
+        upper: list[Acb] = []
+        lower: list[Acb] = []
         f, args = self.foundation, self.foundation_args
         if not all(acb(c).imag.is_zero() for c in f.n_coeffs(acb(q.real), **args)):
             return _sides(roots)  # a damped track: no limit from below needed (or possible) here
@@ -195,13 +200,14 @@ class BallCharacteristic:
                 raise Undecided("side of a real root of N(p, q) from below not decided (N_q / N_p near 0)")
         return upper, lower
 
-    def kernel_series(self, q, order: int) -> list:
+    def kernel_series(self, q: Acb, order: int) -> list[AcbSeries]:
         """K (Eq. (29)) at the contact offsets ([K(0), K(d), K(-d)] for the closed form) as series in
         t = q - c to ``order``, for every c in the ball q."""
         length = order + 1
         f = self.foundation
         args = self.foundation_args
-        if self.direct:
+        found: list[RootDisc] | None
+        if self.p_discs is None:  # self.direct
             found, balls = None, self._root_balls(q)
         else:
             found = self.p_discs.roots(q)
@@ -214,18 +220,18 @@ class BallCharacteristic:
             n = _series(f.n_coeffs(qs, **args), length)
             n1 = derivative_coefficients(n)
 
-            def expanded(p0):
+            def expanded(p0: Acb) -> tuple[Acb, list[AcbSeries], list[AcbSeries], Acb]:
                 return acb(0), n, n1, p0
         else:  # a ball: N around each root disc's centre (narrow coefficients, p_discs.py)
             discs = {id(d.ball): d for d in found}
             u = q - q.mid()
 
-            def expanded(p0):
+            def expanded(p0: Acb) -> tuple[Acb, list[AcbSeries], list[AcbSeries], Acb]:
                 d = discs[id(p0)]
                 n = d.series(u, length)
                 return d.centre, n, derivative_coefficients(n), p0 - d.centre
 
-        def solved(roots):
+        def solved(roots: Sequence[Acb]) -> list[tuple[AcbSeries, AcbSeries, AcbSeries]]:
             """(p, Q(p), N_p(p)) per root: the series of the root and what its residue divides, which every
             offset shares (only exp(i xi p) depends on xi). The root is c + s, s a series found by Newton
             steps on N(c + s) (c = 0 at a point, the disc's centre over a ball)."""
@@ -243,27 +249,27 @@ class BallCharacteristic:
                 out.append((p, horner(qc, p), horner(n1, s)))
             return out
 
-        def residues(roots, xi):
+        def residues(roots: Sequence[tuple[AcbSeries, AcbSeries, AcbSeries]], xi: Acb) -> AcbSeries:
             total = acb_series([acb(0)], prec=length)
             for p, Qp, N1p in roots:
                 total += (i_unit * xi * p).exp() * Qp / N1p
             return total
 
-        upper, lower = solved(upper), solved(lower)
+        above, below = solved(upper), solved(lower)
         if self.blocks is None:
             return [
-                self.two_pi_i * residues(upper, acb(0)),
-                self.two_pi_i * residues(upper, self.d),
-                -self.two_pi_i * residues(lower, -self.d),
+                self.two_pi_i * residues(above, acb(0)),
+                self.two_pi_i * residues(above, self.d),
+                -self.two_pi_i * residues(below, -self.d),
             ]
         out = []
         for xi, side in zip(self.blocks.offsets, self.blocks.sides()):
             if side is None:
                 raise Undecided("the sign of a contact offset xi_i - xi_j is not decided")
-            out.append(side * self.two_pi_i * residues(upper if side > 0 else lower, xi))
+            out.append(side * self.two_pi_i * residues(above if side > 0 else below, xi))
         return out
 
-    def taylor(self, q, order: int = 1) -> list:
+    def taylor(self, q: Acb | complex, order: int = 1) -> list[Acb]:
         """[E, E', E''/2, ...] to ``order``: balls enclosing E_chr^(j)(xi)/j! for every xi in the ball q."""
         with ctx.workprec(self.prec):
             q = acb(q)
@@ -279,16 +285,16 @@ class BallCharacteristic:
             coeffs = E.coeffs() if isinstance(E, acb_series) else [acb(E)]
             return (coeffs + [acb(0)] * (order + 1))[: order + 1]
 
-    def value(self, q) -> acb:
+    def value(self, q: Acb | complex) -> Acb:
         """E_chr(q): a ball containing E_chr at every point of the ball ``q``."""
         return self.taylor(q, 0)[0]
 
-    def value_and_derivative(self, q) -> tuple:
+    def value_and_derivative(self, q: Acb | complex) -> tuple[Acb, Acb]:
         """(E_chr, dE_chr/dq) as balls over the ball ``q``."""
         E, dE = self.taylor(q, 1)
         return E, dE
 
-    def derivative(self, q) -> acb:
+    def derivative(self, q: Acb | complex) -> Acb:
         """dE_chr/dq as a ball over the ball ``q``.
 
         For the block system over a ball B of positive radius, E' = E T with T = tr(A^-1 dA/dq) (Jacobi)
@@ -320,14 +326,15 @@ class BallCharacteristic:
             return dE
 
 
-def _intersection(a: acb, b: acb) -> acb:
+def _intersection(a: Acb, b: Acb) -> Acb:
     """The intersection of two enclosures of one complex number (both rectangles hold it)."""
     return acb(a.real.intersection(b.real), a.imag.intersection(b.imag))
 
 
-def _sides(roots):
+def _sides(roots: Iterable[Acb]) -> tuple[list[Acb], list[Acb]]:
     """Split isolated p-root balls by the sign of Im p; a ball meeting the real axis raises Undecided."""
-    upper, lower = [], []
+    upper: list[Acb] = []
+    lower: list[Acb] = []
     for p in roots:
         if p.imag > 0:
             upper.append(p)

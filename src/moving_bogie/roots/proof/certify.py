@@ -24,29 +24,27 @@ Given the numerical result of :func:`~moving_bogie.roots.frequencies.induced_fre
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from enum import StrEnum
 from typing import TYPE_CHECKING, Any
 
 import mpmath
 from flint import acb, arb, ctx
 
-from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.count.strip import (
-    NOTCH,
-    ON_AXIS,
-    branch_point_text,
-    branch_points_on_axis,
-    pieces_below_axis,
-)
+from moving_bogie.roots.count.strip import branch_point_text
 from moving_bogie.roots.proof.balls import BallCharacteristic, Undecided, square_ball
-from moving_bogie.roots.proof.proof_tiling import proof_tiling
-from moving_bogie.roots.proof.winding import NotProven, proven_count
+from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
+from moving_bogie.roots.proof.strip_proof import StripProof, strip_from_below
+from moving_bogie.roots.proof.winding import NotProven, ProvenCount, proven_count
 from moving_bogie.roots.refine.polish import fixed_text
+from moving_bogie.typing import Acb, Arb, Mpc, Mpf
 
 if TYPE_CHECKING:
     from moving_bogie.roots.frequencies import FrequencyResult
+    from moving_bogie.roots.frequency_result import InducedFrequency
 
 #: Tilings tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
 TILINGS = ((1.0, 0.1), (1.7, 0.113), (0.6, 0.087))
@@ -56,13 +54,13 @@ TILINGS = ((1.0, 0.1), (1.7, 0.113), (0.6, 0.087))
 class Enclosure:
     """A square ball ``ball`` (acb) around ``q``; ``certified`` when it provably holds exactly one root."""
 
-    q: mpmath.mpc
-    ball: acb
+    q: Mpc
+    ball: Acb
     radius: str
     certified: bool
     reason: str = ""
 
-    def contains(self, q) -> bool:
+    def contains(self, q: Mpc | complex) -> bool:
         """Whether the ball contains the point q (an mpc or complex, read at 256 bits)."""
         with ctx.workprec(256):
             return bool(self.ball.contains(_acb_from_mp(q)))
@@ -76,7 +74,7 @@ class Enclosure:
     def above_axis(self) -> bool:
         return bool(self.ball.imag > 0)
 
-    def bounds(self):
+    def bounds(self) -> tuple[tuple[Mpf, Mpf], tuple[Mpf, Mpf]]:
         """((re_low, re_high), (im_low, im_high)) of the ball as exact mpmath numbers."""
         with ctx.workprec(max(256, self.ball.real.mid().bits() + 64)):
             r, i = self.ball.real, self.ball.imag
@@ -93,28 +91,37 @@ class Enclosure:
         )
 
 
+class ProofVerdict(StrEnum):
+    """The proven verdict in the window (module docstring, 4.); the value is the word printed for it."""
+
+    STABLE = "stable"
+    UNSTABLE = "unstable"
+    MARGINAL = "marginal"
+    NOT_PROVEN = "not proven"
+
+
 @dataclass(frozen=True)
 class Certificate:
     """The proof attached to a FrequencyResult (see the module docstring)."""
 
-    roots: tuple  # Enclosure per result root, same order
-    mirrors: tuple  # Enclosures of the mirrors -conj(q) that lie in the window's Re q < 0 strip
-    tiles: tuple  # ProvenCount per tile, or empty when a tile could not be counted
-    unsearched: tuple  # Rectangles along the cut not covered by the tiles
+    roots: tuple[Enclosure, ...]  # per result root, same order
+    mirrors: tuple[Enclosure, ...]  # of the mirrors -conj(q) that lie in the window's Re q < 0 strip
+    tiles: tuple[ProvenCount, ...]  # per tile, or empty when a tile could not be counted
+    unsearched: tuple[Rectangle, ...]  # along the cut, not covered by the tiles
     count: int | None  # proven number of roots with Re q >= 0 in the tiles (pairs once), None if unproven
     all_proven: bool
-    verdict: str  # "stable", "unstable", "marginal" or "not proven"
-    reason: str
+    verdict: ProofVerdict
+    reason: str  # what the verdict rests on, or what is not proven
     seconds: float
     margin: float
-    problems: tuple = field(default=())
+    problems: tuple[str, ...] = field(default=())
     below: StripProof | None = None  # the strip below a cut on the real axis, proven with K from below
 
     @property
     def proven_roots(self) -> int:
         return sum(e.certified for e in self.roots)
 
-    def to_dict_for(self, result) -> dict:
+    def to_dict_for(self, result: FrequencyResult) -> dict[str, Any]:
         """Fields added to ``result.to_dict()``: per-root ``radius`` and ``certified``, and ``certified``."""
         roots = [
             r.to_dict() | {"radius": e.radius, "certified": e.certified}
@@ -122,7 +129,7 @@ class Certificate:
         ]
         return {"roots": roots, "certified": self.to_dict()}
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         return {
             "count": self.count,
             "roots": self.proven_roots,
@@ -137,7 +144,7 @@ class Certificate:
         }
 
 
-def _mpf(x: arb):
+def _mpf(x: Arb) -> Mpf:
     """The midpoint of ``x`` as an exact mpmath number (its mantissa kept in full)."""
     man, exp = (int(v) for v in x.mid().man_exp())
     with mpmath.workprec(max(mpmath.mp.prec, abs(man).bit_length() + 8)):
@@ -148,19 +155,19 @@ def _norm(text: str) -> str:
     return text[1:] if text.startswith("-") and set(text[1:]) <= set("0.") else text
 
 
-def _full(q, prec: int):
+def _full(q: Mpc | complex, prec: int) -> Mpc:
     """``q`` as an mpc of at least ``prec`` bits (not rounded to the current mpmath precision)."""
     with mpmath.workprec(max(mpmath.mp.prec, prec)):
         return mpmath.mpc(q)
 
 
-def _acb_from_mp(q) -> acb:
+def _acb_from_mp(q: Mpc | complex) -> Acb:
     with mpmath.workdps(max(mpmath.mp.dps, 60)):
         q = mpmath.mpc(q)
         return acb(arb(mpmath.nstr(q.real, 60)), arb(mpmath.nstr(q.imag, 60)))
 
 
-def krawczyk(bc: BallCharacteristic, q, radius: float = 1e-26) -> Enclosure:
+def krawczyk(bc: BallCharacteristic, q: Mpc, radius: float = 1e-26) -> Enclosure:
     """Prove that the square ball of half-side ``radius`` around ``q`` holds exactly one root of E_chr.
 
     Parameters
@@ -191,7 +198,7 @@ def krawczyk(bc: BallCharacteristic, q, radius: float = 1e-26) -> Enclosure:
         return Enclosure(q, B, text, False, "Krawczyk image not inside the ball")
 
 
-def refine(bc: BallCharacteristic, q, steps: int = 3):
+def refine(bc: BallCharacteristic, q: Mpc, steps: int = 3) -> Mpc:
     """``q`` after ``steps`` Newton steps on E_chr at the ball precision (midpoints only: a better centre
     for :func:`krawczyk`, whatever the precision the root was polished at)."""
     with ctx.workprec(bc.prec):
@@ -219,23 +226,24 @@ def certify(
     """The :class:`Certificate` of a FrequencyResult (roots, proven count, verdict)."""
     start = time.perf_counter()
     bound, window = result.bound, result.window
-    problems = []
+    problems: list[str] = []
     precise = BallCharacteristic(bound, prec=prec)
     centres = [refine(precise, r.q) for r in result.roots]
     roots = tuple(krawczyk(precise, q, radius) for q in centres)
-    mirrors = []
-    for q in centres:
-        mirror = -mpmath.conj(q)
-        if mpmath.re(mirror) >= window.x0 and mpmath.re(q) > 4 * radius:
-            mirrors.append(krawczyk(precise, mirror, radius))
-    mirrors = tuple(mirrors)
+    mirrors = tuple(
+        krawczyk(precise, -mpmath.conj(q), radius)
+        for q in centres
+        if mpmath.re(-mpmath.conj(q)) >= window.x0 and mpmath.re(q) > 4 * radius
+    )
     for e in roots + mirrors:
         if not e.certified:
             problems.append(f"root {mpmath.nstr(e.q, 12)}: not proven ({e.reason})")
     counter = BallCharacteristic(bound, prec=count_prec)
     cut = cut_locus(bound, window.x0, window.x1)
     pinches = pinches_around_roots(margin, cut, result.roots)
-    tiles, unsearched, used_margin = (), (), margin
+    tiles: tuple[ProvenCount, ...] = ()
+    unsearched: tuple[Rectangle, ...] = ()
+    used_margin = margin
     for factor, fraction in TILINGS:
         used_margin = margin * factor
         gap_height = fraction * max(window.width, window.height)
@@ -253,64 +261,24 @@ def certify(
         problems.append(
             f"count: proven {count} root(s) in the tiles, the numerical search counts {result.count}"
         )
-    below = _strip_from_below(bound, cut, unsearched, count_prec) if tiles else None
+    below = strip_from_below(bound, cut, unsearched, count_prec) if tiles else None
     verdict, reason = _verdict(roots + mirrors, all_proven, unsearched, problems, below)
     return Certificate(
-        roots, mirrors, tiles, tuple(unsearched), count, all_proven, verdict, reason,
+        roots, mirrors, tiles, unsearched, count, all_proven, verdict, reason,
         time.perf_counter() - start, used_margin, tuple(problems), below,
     )  # fmt: skip
 
 
-@dataclass(frozen=True)
-class StripProof:
-    """The part of the unsearched strip below a cut on the real axis (eta_f = 0), counted in ball
-    arithmetic with K from below (:class:`BallCharacteristic` ``below=True``): ``count`` roots in ``rects``
-    (None when not proven, ``reason`` says why); ``notches`` the branch points under which a square of
-    half-side ``notch`` is left out (K is infinite there)."""
-
-    count: int | None
-    rects: tuple
-    notches: tuple
-    notch: float = NOTCH
-    reason: str = ""
-
-    def to_dict(self) -> dict:
-        return {
-            "count": self.count,
-            "rects": [{"re": [r.x0, r.x1], "im": [r.y0, r.y1]} for r in self.rects],
-            "branch_points": list(self.notches),
-            "notch": self.notch,
-            "reason": self.reason,
-        }
-
-
-def _strip_from_below(bound: BoundModel, cut: CutLocus, unsearched: tuple, prec: int) -> StripProof | None:
-    """Prove the root count in the unsearched strip below a cut that lies on the real axis (None when the
-    strip does not reach below the axis or the cut is not on it)."""
-    low = [u for u in unsearched if u.y0 < 0]
-    if not low or not cut.points.size or max(abs(cut.im_low), abs(cut.im_high)) > ON_AXIS:
-        return None
-    points = branch_points_on_axis(cut)
-    rects = []
-    for u in low:
-        rects += pieces_below_axis(Rectangle(u.x0, u.x1, u.y0, 0.0), [x for x in points if u.x0 < x < u.x1])
-    notches = tuple(x for x in points if any(r.x0 <= x + NOTCH and x - NOTCH <= r.x1 for r in rects))
-    bc = BallCharacteristic(bound, prec=prec, below=True)
-    try:
-        count = sum(proven_count(bc, r, min_length=1e-14).count for r in rects)
-    except NotProven as exc:
-        return StripProof(None, tuple(rects), notches, reason=str(exc))
-    return StripProof(count, tuple(rects), notches)
-
-
-def pinches_around_roots(margin: float, cut, roots, floor: float = 1e-6) -> list:
+def pinches_around_roots(
+    margin: float, cut: CutLocus, roots: Sequence[InducedFrequency], floor: float = 1e-6
+) -> list[tuple[float, float, float]]:
     """Where the strip along the cut must be thinner than ``margin`` so that it leaves out no root found
     numerically: for a root closer to the cut than 2 ``margin`` (beyond the branch point), the stretch of
     Re q within 50 times its distance d (at least 1e-5) gets the margin max(``floor``, d / 4), a pinch of
     :func:`proof_tiling.proof_tiling`. Only there do the tile edges come that close to the cut (an edge at
     distance h from it needs segments shorter than about h, so a margin thin all along would cost
     millions of segments)."""
-    out: list[Any] = []
+    out: list[tuple[float, float, float]] = []
     if not cut.points.size:
         return out
     for r in roots:
@@ -325,7 +293,12 @@ def pinches_around_roots(margin: float, cut, roots, floor: float = 1e-6) -> list
     return out
 
 
-def _match(tiles, roots, mirrors, problems):
+def _match(
+    tiles: Sequence[ProvenCount],
+    roots: tuple[Enclosure, ...],
+    mirrors: tuple[Enclosure, ...],
+    problems: list[str],
+) -> tuple[int | None, bool]:
     """Proven count (pairs once) and whether every root in the tiles is one of the proven enclosures."""
     if not tiles:
         return None, False
@@ -344,32 +317,42 @@ def _match(tiles, roots, mirrors, problems):
     return total - sum(e.certified for e in mirrors), ok
 
 
-def _in_tile(ball: acb, rect) -> bool:
+def _in_tile(ball: Acb, rect: Rectangle | Staircase) -> bool:
     """The ball lies in the interior of the tile (of one member rectangle, for a staircase: a ball across
     two members' shared edge is reported as outside, never counted wrongly)."""
-    if hasattr(rect, "rects"):
+    if isinstance(rect, Staircase):
         return any(_in_tile(ball, r) for r in rect.rects)
     return bool(ball.real > rect.x0 and ball.real < rect.x1 and ball.imag > rect.y0 and ball.imag < rect.y1)
 
 
-def _verdict(enclosures, all_proven, unsearched, problems, below=None):
+def _verdict(
+    enclosures: Sequence[Enclosure],
+    all_proven: bool,
+    unsearched: Sequence[Rectangle],
+    problems: Sequence[str],
+    below: StripProof | None = None,
+) -> tuple[ProofVerdict, str]:
+    """The verdict and its reason (module docstring, 4.)."""
     unstable = [e for e in enclosures if e.certified and e.below_axis]
     if unstable:
         worst = min(unstable, key=lambda e: mpmath.im(e.q))
-        return "unstable", f"a root is proven in Im q < 0 (q = {mpmath.nstr(worst.q, 10)})"
+        return ProofVerdict.UNSTABLE, f"a root is proven in Im q < 0 (q = {mpmath.nstr(worst.q, 10)})"
     if below is not None and below.count:
-        return "unstable", f"{below.count} root(s) proven in the strip below the cut on the real axis"
+        return (
+            ProofVerdict.UNSTABLE,
+            f"{below.count} root(s) proven in the strip below the cut on the real axis",
+        )
     if not all_proven:
-        return "not proven", "; ".join(problems) or "not every root is proven"
+        return ProofVerdict.NOT_PROVEN, "; ".join(problems) or "not every root is proven"
     low = [u for u in unsearched if u.y0 <= 0]
     if low and below is not None:
         floor = min(u.y0 for u in low)
         if below.count is None:
-            return "not proven", (
+            return ProofVerdict.NOT_PROVEN, (
                 f"the strip {floor:.1e} <= Im q < 0 below the cut on the real axis (eta_f = 0) could not be "
                 f"counted with K from below: {below.reason}"
             )
-        return "not proven", (
+        return ProofVerdict.NOT_PROVEN, (
             f"every root in the window is proven and the strip {floor:.1e} <= Im q < 0 below the cut on the "
             f"real axis holds none (K from below, eta_f -> 0+), except in a square of half-side "
             f"{below.notch:.0e} under {branch_point_text(below.notches)}, where K is infinite: only that "
@@ -377,14 +360,14 @@ def _verdict(enclosures, all_proven, unsearched, problems, below=None):
         )
     if low:
         floor = min(u.y0 for u in low)
-        return "not proven", (
+        return ProofVerdict.NOT_PROVEN, (
             f"no root with Im q < {floor:.1e} in the window (proven), but the unsearched strip along the "
             f"cut reaches Im q = {floor:.1e} <= 0"
         )
     if all(e.above_axis for e in enclosures):
-        return "stable", "every root in the window is proven and lies in Im q > 0"
+        return ProofVerdict.STABLE, "every root in the window is proven and lies in Im q > 0"
     marginal = sum(not e.above_axis for e in enclosures)
-    return "marginal", (
+    return ProofVerdict.MARGINAL, (
         f"no root in Im q < 0 beyond the enclosures; {marginal} enclosure(s) meet Im q = 0 (real to within "
         f"the radius)"
     )

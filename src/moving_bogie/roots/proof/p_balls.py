@@ -18,10 +18,15 @@ layered tracks.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from types import ModuleType
+from typing import Any
+
 from flint import acb, acb_poly, arb
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.polynomial import derivative_coefficients, horner
+from moving_bogie.typing import Acb
 
 __all__ = ["Undecided", "derivative_coefficients", "direct_root_balls", "horner", "isolate_roots"]
 
@@ -31,7 +36,7 @@ class Undecided(MovingBogieError):
     root discs of N(p, q) overlap): subdivide the q-ball or raise the precision."""
 
 
-def isolate_roots(coeffs, tol=None) -> list:
+def isolate_roots(coeffs: Iterable[Acb], tol: float | None = None) -> list[Acb]:
     """Balls, one per root, of the polynomial with acb ``coeffs`` (highest power first).
 
     ``tol`` is the accuracy asked of the approximations (default: just enough to isolate them); the balls
@@ -73,7 +78,9 @@ def isolate_roots(coeffs, tol=None) -> list:
     return balls
 
 
-def direct_root_balls(foundation, args, q: acb, tol, prec: int) -> list:
+def direct_root_balls(
+    foundation: ModuleType, args: dict[str, Any], q: Acb, tol: float, prec: int
+) -> list[Acb]:
     """Root balls of N(p, xi), each holding exactly one root for every xi in the ball q (module text).
 
     Raises

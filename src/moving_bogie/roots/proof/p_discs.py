@@ -26,14 +26,18 @@ boundary segments are close), or, when those do not give disjoint discs, Arb's `
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
 
 from flint import acb, acb_poly, acb_series, arb, arb_poly
 
 from moving_bogie.roots.proof.p_balls import Undecided
+from moving_bogie.typing import Acb, AcbSeries
 
 
-def coefficients_in_q(foundation, args) -> list:
+def coefficients_in_q(foundation: ModuleType, args: dict[str, Any]) -> list[acb_poly]:
     """N's coefficient of each power of p (highest first) as an acb_poly in q, exactly.
 
     N is a polynomial of degree ``DEGREE_N_IN_Q`` in q, so the series at q = 0 of that many terms (plus
@@ -50,7 +54,7 @@ def coefficients_in_q(foundation, args) -> list:
     return [acb_poly(row[:-1]) for row in rows]
 
 
-def taylor_in_q(in_q: list, m: acb) -> list:
+def taylor_in_q(in_q: Sequence[acb_poly], m: Acb) -> list[acb_poly]:
     """N(p, m + t) as ``[N_0, N_1, ...]``: acb_poly in p (lowest power first), the coefficient of t^j each,
     from :func:`coefficients_in_q` ``in_q``."""
     shift = acb_poly([m, 1])
@@ -62,15 +66,15 @@ def taylor_in_q(in_q: list, m: acb) -> list:
 class PRootDiscs:
     """Root discs of N(p, q) over q-balls; remembers the last approximations to start from."""
 
-    def __init__(self, foundation, args, prec: int) -> None:
+    def __init__(self, foundation: ModuleType, args: dict[str, Any], prec: int) -> None:
         self.foundation = foundation
         self.args = args
         self.prec = prec
         self.tol = 2.0 ** (8 - prec)
-        self.approx: list | None = None
+        self.approx: list[Acb] | None = None
         self.in_q = coefficients_in_q(foundation, args)
 
-    def discs(self, q: acb) -> list:
+    def discs(self, q: Acb) -> list[Acb]:
         """Squares, one per root of N(p, xi), each holding exactly one root for every xi in the ball q.
 
         Raises
@@ -80,7 +84,7 @@ class PRootDiscs:
         """
         return [d.ball for d in self.roots(q)]
 
-    def roots(self, q: acb) -> list:
+    def roots(self, q: Acb) -> list[RootDisc]:
         """:class:`RootDisc` per root of N(p, xi) over the ball q (see :meth:`discs`)."""
         m = q.mid()
         if q.rad() == 0:  # a point: N's coefficients there are all the expansion needed
@@ -111,7 +115,7 @@ class PRootDiscs:
             raise Undecided("no disjoint isolating discs for the roots of N(p, q) over the q ball")
         return found
 
-    def _try(self, polys, t: acb, approx) -> list | None:
+    def _try(self, polys: Sequence[acb_poly], t: Acb, approx: Sequence[Acb]) -> list[RootDisc] | None:
         found = []
         for pm in approx:
             disc = _disc(polys, t, pm)
@@ -131,11 +135,11 @@ class RootDisc:
     """A proven root disc: the square ``ball`` around ``centre`` (p_m) and the expansion of N there,
     ``shifted[j][k]`` = c_kj (coefficient of s^k t^j, module docstring)."""
 
-    ball: acb
-    centre: acb
-    shifted: list
+    ball: Acb
+    centre: Acb
+    shifted: list[list[Acb]]
 
-    def series(self, u: acb, length: int) -> list:
+    def series(self, u: Acb, length: int) -> list[AcbSeries]:
         """N(p_m + s, m + u + tau) as a polynomial in s (highest power first) with coefficients series in
         tau of ``length`` terms: u is the ball q - m, so the coefficients hold for every q of it."""
         ts = acb_series([u, 1], prec=length)
@@ -150,22 +154,23 @@ class RootDisc:
         return out
 
 
-def _coefficient(poly: acb_poly, k: int) -> acb:
+def _coefficient(poly: acb_poly, k: int) -> Acb:
     coeffs = poly.coeffs()
     return coeffs[k] if k < len(coeffs) else acb(0)
 
 
-def _newton(poly: acb_poly, approx, tol: float, steps: int = 4) -> list | None:
+def _newton(poly: acb_poly, approx: Sequence[Acb], tol: float, steps: int = 4) -> list[Acb] | None:
     """Midpoint Newton steps from ``approx`` on ``poly``; None unless every step converged to a relative
     ``tol`` (a far start is not polished: its disc would be proven, but wide)."""
     dpoly = poly.derivative()
     out = []
     for z in approx:
         for _ in range(steps):
-            d = dpoly(z)
+            d: Acb = dpoly(z)  # at a point z: a ball (python-flint's stubs say a polynomial)
             if d.contains(0):
                 return None
-            step = (poly(z) / d).mid()
+            value: Acb = poly(z)
+            step = (value / d).mid()
             z = (z - step).mid()
             if step.abs_upper() < tol * z.abs_lower():
                 break
@@ -175,7 +180,7 @@ def _newton(poly: acb_poly, approx, tol: float, steps: int = 4) -> list | None:
     return out
 
 
-def _disc(polys, t: acb, pm: acb) -> RootDisc | None:
+def _disc(polys: Sequence[acb_poly], t: Acb, pm: Acb) -> RootDisc | None:
     """The disc around ``pm`` passing the test of the module docstring (smallest radius tried), or None.
 
     ``t`` is the ball q - m, r_t = |t|. With the majorant M(s) = sum_{k, j} |Y c_kj| r_t^j s^k (its
@@ -184,7 +189,7 @@ def _disc(polys, t: acb, pm: acb) -> RootDisc | None:
     """
     shift = acb_poly([pm, 1])
     shifted = [poly(shift) for poly in polys]
-    c0 = shifted[0].coeffs()
+    c0: list[Acb] = shifted[0].coeffs()
     if len(c0) < 2 or c0[1].contains(0):
         return None
     Y = (1 / c0[1]).mid()

@@ -11,20 +11,27 @@ is listed as ``unsearched``.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
+from moving_bogie.kernels.cut import CutLocus
 from moving_bogie.roots.count.contour import Rectangle
 
 
 @dataclass(frozen=True)
 class ProofTiling:
-    regions: tuple  # Rectangles to count in
-    unsearched: tuple  # Rectangles along the cut that no region covers
+    regions: tuple[Rectangle | Staircase, ...]  # to count in
+    unsearched: tuple[Rectangle, ...]  # along the cut, which no region covers
 
 
 def proof_tiling(
-    window: Rectangle, cut, *, margin: float, gap_height: float, columns: int = 48, pinches=()
+    window: Rectangle,
+    cut: CutLocus,
+    *,
+    margin: float,
+    gap_height: float,
+    columns: int = 48,
+    pinches: Sequence[tuple[float, float, float]] = (),
 ) -> ProofTiling:
     """Rectangles covering ``window`` except the cut's strip (half-height ``margin``, more where sampled).
 
@@ -59,16 +66,18 @@ def proof_tiling(
         return ProofTiling(tuple(regions), ())
     spread = cut.im_high - cut.im_low
     n = 1 if spread <= 1e-12 else columns
-    edges = {x_cut + (window.x1 - x_cut) * k / n for k in range(n)}
+    uniform = {x_cut + (window.x1 - x_cut) * k / n for k in range(n)}
     inside = [(max(lo, x_cut), min(hi, window.x1), thin) for lo, hi, thin in pinches]
     inside = [(lo, hi, thin) for lo, hi, thin in inside if lo < hi]
-    edges = sorted(edges | {x for lo, hi, _ in inside for x in (lo, hi) if x < window.x1})
+    edges = sorted(uniform | {x for lo, hi, _ in inside for x in (lo, hi) if x < window.x1})
     bounds = []
     for k, a in enumerate(edges):
         b = window.x1 if k == len(edges) - 1 else edges[k + 1]
         thin = [t for lo, hi, t in inside if lo <= 0.5 * (a + b) <= hi]
         bounds.append((a, min([margin] + thin)))
-    unsearched, lower, upper = [], [], []
+    unsearched: list[Rectangle] = []
+    lower: list[Rectangle] = []
+    upper: list[Rectangle] = []
     for k, (a, used) in enumerate(bounds):
         b = window.x1 if k == len(bounds) - 1 else bounds[k + 1][0]
         if b <= a:
@@ -94,8 +103,8 @@ class Staircase:
     of its boundary counterclockwise (exact copies of the rectangles' corners), ``rects`` the members.
     Counting once on its boundary skips the edges the members share (a column's sides over the cut)."""
 
-    corners: tuple
-    rects: tuple
+    corners: tuple[complex, ...]
+    rects: tuple[Rectangle, ...]
 
     @property
     def width(self) -> float:
@@ -109,10 +118,13 @@ class Staircase:
         return f"Staircase(base={self.rects[0]}, columns={len(self.rects) - 1})"
 
 
-def _merged(regions: list, lower: list, upper: list) -> list:
+def _merged(
+    regions: list[Rectangle], lower: list[Rectangle], upper: list[Rectangle]
+) -> list[Rectangle | Staircase]:
     """``regions`` with the columns below the cut joined to the region below the band (its top edge is
-    their base) and those above it to the region above; columns without such a base stay rectangles."""
-    out = list(regions)
+    their base) and those above it to the region above; columns without such a base stay rectangles
+    (a staircase made for the columns below is no base for those above)."""
+    out: list[Rectangle | Staircase] = list(regions)
     for columns, on_top in ((lower, True), (upper, False)):
         if not columns:
             continue
@@ -121,7 +133,10 @@ def _merged(regions: list, lower: list, upper: list) -> list:
             (
                 r
                 for r in out
-                if (r.y1 if on_top else r.y0) == level and r.x0 <= columns[0].x0 and columns[-1].x1 <= r.x1
+                if isinstance(r, Rectangle)
+                and (r.y1 if on_top else r.y0) == level
+                and r.x0 <= columns[0].x0
+                and columns[-1].x1 <= r.x1
             ),
             None,
         )
@@ -133,7 +148,7 @@ def _merged(regions: list, lower: list, upper: list) -> list:
     return out
 
 
-def _staircase(base: Rectangle, columns: list, on_top: bool) -> Staircase:
+def _staircase(base: Rectangle, columns: list[Rectangle], on_top: bool) -> Staircase:
     """The boundary of ``base`` with ``columns`` (disjoint, sorted by Re q) on its top edge (``on_top``) or
     its bottom edge, counterclockwise."""
     xs = sorted({base.x0, base.x1} | {x for c in columns for x in (c.x0, c.x1)})
@@ -153,7 +168,7 @@ def _staircase(base: Rectangle, columns: list, on_top: bool) -> Staircase:
         for x_left, x_right, y in pieces:
             points += [complex(x_left, y), complex(x_right, y)]
         points += [complex(base.x1, base.y1), complex(base.x0, base.y1)]
-    corners: list[Any] = []
+    corners: list[complex] = []
     for z in points:
         if corners and corners[-1] == z:
             continue

@@ -22,14 +22,16 @@ boundary, which step 1 excludes. E_chr is therefore analytic inside and the wind
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from flint import acb, arb, ctx
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.roots.count.contour import Rectangle
-from moving_bogie.roots.proof.balls import Undecided
+from moving_bogie.roots.proof.balls import BallCharacteristic, Undecided
 from moving_bogie.roots.proof.proof_tiling import Staircase
+from moving_bogie.typing import Acb, Arb
 
 #: Factor by which a boundary segment grows after a proven one (a failing one is halved).
 GROWTH = 1.5
@@ -49,7 +51,12 @@ class ProvenCount:
 
 
 def proven_count(
-    bc, rect, *, initial: int = 8, min_length: float = 1e-10, max_segments: int = 200_000
+    bc: BallCharacteristic,
+    rect: Rectangle | Staircase,
+    *,
+    initial: int = 8,
+    min_length: float = 1e-10,
+    max_segments: int = 200_000,
 ) -> ProvenCount:
     """Number of zeros of E_chr inside ``rect`` (a :class:`~moving_bogie.roots.count.contour.Rectangle`, or a
     region with axis-parallel edges and exact ``corners`` counterclockwise, such as
@@ -74,7 +81,7 @@ def proven_count(
     """
     corners = (
         list(rect.corners)
-        if hasattr(rect, "corners")
+        if isinstance(rect, Staircase)
         else [
             complex(rect.x0, rect.y0),
             complex(rect.x1, rect.y0),
@@ -83,9 +90,9 @@ def proven_count(
         ]
     )
     size = max(rect.width, rect.height)
-    values: dict = {}
+    values: dict[complex, Acb] = {}
 
-    def value(z: complex):
+    def value(z: complex) -> Acb:
         if z not in values:
             values[z] = bc.value(z)
         return values[z]
@@ -116,7 +123,7 @@ def proven_count(
         return ProvenCount(rect, n, segments)
 
 
-def _argument_change(bc, a: complex, b: complex, value) -> arb:
+def _argument_change(bc: BallCharacteristic, a: complex, b: complex, value: Callable[[complex], Acb]) -> Arb:
     """Change of arg E_chr along [a, b] as a ball; raises Undecided if it cannot be determined."""
     ball = acb(a).union(acb(b))
     m = 0.5 * (a + b)

@@ -6,19 +6,28 @@ consistently is handed to Newton's method from a grid of starts.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TypeAlias
 
 import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, piece_points, winding_numbers
+from moving_bogie.kernels.characteristic import CharacteristicArray, ContinuedCharacteristic
+from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, Region, piece_points, winding_numbers
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated
+from moving_bogie.typing import Mpc
 
-__all__ = ["locate", "newton_inside"]
+__all__ = ["FastCharacteristic", "LocatedCell", "locate", "newton_inside"]
+
+#: E_chr in double precision, batched: itself, or continued analytically through the cut.
+FastCharacteristic: TypeAlias = CharacteristicArray | ContinuedCharacteristic
+#: A located root: its start for polishing, its multiplicity, and the cell that holds it.
+LocatedCell: TypeAlias = tuple[Mpc, int, Region]
 
 
-def locate(fast, rect, n: int, newton_cell: float) -> tuple[list, Unlocated | None]:
+def locate(
+    fast: FastCharacteristic, rect: Region, n: int, newton_cell: float
+) -> tuple[list[LocatedCell], Unlocated | None]:
     """Bisect ``rect`` (holding ``n`` roots) into cells of one root each.
 
     Returns ([(q0, multiplicity, cell)], warning). A cell that cannot be split into halves whose counts
@@ -27,8 +36,9 @@ def locate(fast, rect, n: int, newton_cell: float) -> tuple[list, Unlocated | No
     :class:`~moving_bogie.roots.count.outcomes.Unlocated` (the count then disagrees with the roots found:
     the verdict is UNDETERMINED unless the cell lies in Im q > 0, where a missing root cannot be unstable).
     """
-    out, warning = [], None
-    level = [(rect, n)]
+    out: list[LocatedCell] = []
+    warning: Unlocated | None = None
+    level: list[tuple[Region, int]] = [(rect, n)]
     spent = fast.evaluations
     while level:
         if fast.evaluations - spent > _LOCATE_POINTS:  # bounded time: Newton from grids
@@ -41,7 +51,7 @@ def locate(fast, rect, n: int, newton_cell: float) -> tuple[list, Unlocated | No
             break
         # every cell of a level is split at once: one batched evaluation of E_chr per refinement of the
         # contours of all their halves (what costs is mostly the call, not the points)
-        split = []
+        split: list[tuple[Region, int, tuple[float, ...]]] = []
         for r, k in level:
             if k == 0:
                 continue
@@ -57,17 +67,20 @@ def locate(fast, rect, n: int, newton_cell: float) -> tuple[list, Unlocated | No
                 out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
                 continue
             split.append((r, k, _towards_origin(r) + _FRACTIONS))
-        level, failed = [], []
+        level = []
+        failed: list[tuple[Region, int, tuple[float, ...]]] = []
         while split:
             # two halves each (a cell at a fold of the cut may give three pieces), each cell at its next
             # split fraction
             pieces = [r.split(fracs[0]) for r, _, fracs in split]
             flat = [piece for group in pieces for piece in group]
             counts = winding_numbers(fast, flat, max_points=[piece_points(piece) for piece in flat])
-            retry, at = [], 0
+            retry: list[tuple[Region, int, tuple[float, ...]]] = []
+            at = 0
             for (r, k, fracs), group in zip(split, pieces):
-                mine, at = counts[at : at + len(group)], at + len(group)
-                if any(isinstance(c, EdgeZeroError) for c in mine) or sum(mine) != k:
+                mine = [c for c in counts[at : at + len(group)] if not isinstance(c, EdgeZeroError)]
+                at += len(group)
+                if len(mine) < len(group) or sum(mine) != k:
                     retry.append((r, k, fracs[1:]))
                 else:
                     level.extend(zip(group, mine))
@@ -93,7 +106,7 @@ _FRACTIONS = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
 _NEAR = 16.0
 
 
-def _towards_origin(r) -> tuple:
+def _towards_origin(r: Region) -> tuple[float, ...]:
     """A first split fraction for a large rectangle (a far-field window's) that cuts off its part within
     about ``_NEAR`` of q = 0 along its longer side, where the roots gather: bisection would need log2(size /
     _NEAR) levels of long contours to get there. None (an empty tuple) for a small region or a curved cell."""
@@ -110,9 +123,9 @@ def _towards_origin(r) -> tuple:
     return (frac,) if 0.01 < frac < 0.35 or 0.65 < frac < 0.99 else ()
 
 
-def _grid_roots(fast, rect, k):
+def _grid_roots(fast: FastCharacteristic, rect: Region, k: int) -> list[Mpc]:
     """Distinct roots inside ``rect`` reached by Newton's method from a 7 x 7 grid of starts (at most k)."""
-    found: list[Any] = []
+    found: list[complex] = []
     xs = np.linspace(rect.x0, rect.x1, 9)[1:-1]
     ys = np.linspace(rect.y0, rect.y1, 9)[1:-1]
     for y in ys:
@@ -126,7 +139,7 @@ def _grid_roots(fast, rect, k):
     return [mpmath.mpc(q) for q in found[:k]]
 
 
-def _newton_from(fast, q, rect):
+def _newton_from(fast: FastCharacteristic, q: complex, rect: Region) -> complex | None:
     """Double-precision Newton from ``q``; the root if it converges inside ``rect``."""
     for _ in range(40):
         try:
@@ -142,7 +155,7 @@ def _newton_from(fast, q, rect):
     return None
 
 
-def newton_inside(fast, rect, starts: int = 9):
+def newton_inside(fast: FastCharacteristic, rect: Region, starts: int = 9) -> Mpc | None:
     """Double-precision Newton steps from the cell centre and, in a long cell (one along the cut holds its
     root anywhere along it), from ``starts - 1`` more points along its longer side, all in one batch; an
     iterate leaving the cell's box by more than a quarter of its size is dropped. Returns the first root

@@ -10,18 +10,29 @@ from __future__ import annotations
 import decimal
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Protocol
 
 import mpmath
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.roots.count.contour import Region
+from moving_bogie.typing import Mpc, Mpf
+
+
+class PreciseCharacteristic(Protocol):
+    """E_chr and dE_chr/dq (Eqs. (38), (40)) at the current mpmath precision
+    (:class:`~moving_bogie.kernels.characteristic.Characteristic`)."""
+
+    def value_and_derivative(self, q: Mpc) -> tuple[Mpc, Mpc]: ...
 
 
 class PolishError(MovingBogieError):
     """Newton's method did not converge from the located cell."""
 
 
-def newton(characteristic, q0, *, multiplicity: int = 1, max_iter: int = 60):
+def newton(
+    characteristic: PreciseCharacteristic, q0: Mpc | complex, *, multiplicity: int = 1, max_iter: int = 60
+) -> tuple[Mpc, Mpf]:
     """Root of E_chr near ``q0`` at the current precision; returns (q, |last step|)."""
     q = mpmath.mpc(q0)
     tol = mpmath.mpf(10) ** (-mpmath.mp.dps + 3)
@@ -39,7 +50,7 @@ def newton(characteristic, q0, *, multiplicity: int = 1, max_iter: int = 60):
     )
 
 
-def fixed_text(x, decimals: int) -> str:
+def fixed_text(x: Mpf | float | str, decimals: int) -> str:
     """``x`` rounded to ``decimals`` places in fixed-point notation (no exponent, no negative zero)."""
     ctx = decimal.Context(prec=decimals + 40, rounding=decimal.ROUND_HALF_EVEN)
     with mpmath.workdps(max(mpmath.mp.dps, decimals + 20)):
@@ -52,14 +63,21 @@ def fixed_text(x, decimals: int) -> str:
 
 @dataclass(frozen=True)
 class Confirmed:
-    q: mpmath.mpc  # the value polished at the higher precision
-    step: mpmath.mpf  # |E/E'| at the root: distance to the exact root at working precision
-    error: mpmath.mpf  # |q(dps) - q(dps + extra)|
+    q: Mpc  # the value polished at the higher precision
+    step: Mpf  # |E/E'| at the root: distance to the exact root at working precision
+    error: Mpf  # |q(dps) - q(dps + extra)|
     decimals: int  # decimal places on which both precisions round identically (Re and Im)
     digits: int  # significant digits of q so confirmed
 
 
-def polish_and_confirm(characteristic, q0, *, dps, extra_dps, multiplicity: int = 1) -> Confirmed:
+def polish_and_confirm(
+    characteristic: PreciseCharacteristic,
+    q0: Mpc | complex,
+    *,
+    dps: int,
+    extra_dps: int,
+    multiplicity: int = 1,
+) -> Confirmed:
     """Polish at ``dps`` digits, re-polish at ``dps + extra_dps`` and keep the digits both agree on.
 
     The reported value is the higher-precision one; ``decimals`` is the largest number of decimal places at
@@ -95,7 +113,7 @@ def polish_and_confirm(characteristic, q0, *, dps, extra_dps, multiplicity: int 
     return Confirmed(q_hi, step, err, decimals, digits)
 
 
-def confirming_step(characteristic, q, work: int, multiplicity: int = 1):
+def confirming_step(characteristic: PreciseCharacteristic, q: Mpc, work: int, multiplicity: int = 1) -> Mpc:
     """The root near ``q`` (converged at ``work`` digits) recomputed at the current, higher precision.
 
     Newton's method converges quadratically at a simple root: when the first step at the higher precision
@@ -116,13 +134,21 @@ def confirming_step(characteristic, q, work: int, multiplicity: int = 1):
     return newton(characteristic, q, multiplicity=multiplicity)[0]
 
 
-def _same_rounding(a, b, decimals):
+def _same_rounding(a: Mpc, b: Mpc, decimals: int) -> bool:
     return fixed_text(mpmath.re(a), decimals) == fixed_text(mpmath.re(b), decimals) and fixed_text(
         mpmath.im(a), decimals
     ) == fixed_text(mpmath.im(b), decimals)
 
 
-def split_cluster(characteristic, q0, multiplicity, rect, *, dps, extra_dps) -> list:
+def split_cluster(
+    characteristic: PreciseCharacteristic,
+    q0: Mpc | complex,
+    multiplicity: int,
+    rect: Region,
+    *,
+    dps: int,
+    extra_dps: int,
+) -> list[tuple[Confirmed, int]]:
     """The simple roots of a cluster that the cells could not separate (size below 1e-10), or [].
 
     Two identical bogies that interact only through the rail give pairs closer than that. Plain Newton at
@@ -130,7 +156,7 @@ def split_cluster(characteristic, q0, multiplicity, rect, *, dps, extra_dps) -> 
     ``multiplicity`` distinct roots inside ``rect`` are reached, each is polished and confirmed as a simple
     root (:func:`polish_and_confirm`); otherwise nothing is returned and the cluster stays unresolved.
     """
-    found: list[Any] = []
+    found: list[Mpc] = []
     with mpmath.workdps(2 * dps):
         q0 = mpmath.mpc(q0)
         size = max(rect.width, rect.height)

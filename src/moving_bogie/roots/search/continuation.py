@@ -27,15 +27,30 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
+from typing import TypeAlias
 
 import numpy as np
 
-from moving_bogie.kernels.characteristic import ContinuedCharacteristic
+from moving_bogie.kernels.characteristic import CharacteristicArray, ContinuedCharacteristic
 from moving_bogie.kernels.track import NEAREST
-from moving_bogie.roots.count.contour import BoundingBox, EdgeZeroError, initial_samples, winding_numbers
-from moving_bogie.roots.refine.locate import locate
+from moving_bogie.roots.count.contour import (
+    BoundingBox,
+    EdgeZeroError,
+    Region,
+    initial_samples,
+    winding_numbers,
+)
+from moving_bogie.roots.refine.locate import LocatedCell, locate
+from moving_bogie.typing import ComplexArray
 
-__all__ = ["ContinuedRegion", "count_continued", "crossing_roots", "touches_cut"]
+__all__ = [
+    "ContinuedRegion",
+    "CountedRegion",
+    "CrossingRoots",
+    "count_continued",
+    "crossing_roots",
+    "touches_cut",
+]
 
 #: A p-root whose |Im p| comes within this (relative to max(1, |p|)) of 0 on the boundary may change side
 #: inside: its side is fixed both ways. The edges beside the cut pass at 2e-11 from it, where the p-roots
@@ -62,9 +77,9 @@ class ContinuedRegion(BoundingBox):
     how many p-roots had their side fixed.
     """
 
-    region: BoundingBox
+    region: Region
     count: int
-    cells: tuple
+    cells: tuple[LocatedCell, ...]
     crossing: int
 
     x0 = property(lambda self: self.region.x0)
@@ -76,7 +91,21 @@ class ContinuedRegion(BoundingBox):
         return f"{self.region} (counted through the cut, {self.crossing} root(s) of N fixed)"
 
 
-def _track(P):
+#: A region of a counted tiling: a search cell, or one counted through the cut.
+CountedRegion: TypeAlias = Region | ContinuedRegion
+
+
+@dataclass(frozen=True)
+class CrossingRoots:
+    """The p-roots that may cross the real p-axis in a region (the set C of the module docstring): a
+    reference value of each (its mean along the boundary), ``refs``, and all the p-roots followed along
+    the boundary, ``tracked`` (samples, degree)."""
+
+    refs: ComplexArray
+    tracked: ComplexArray
+
+
+def _track(P: ComplexArray) -> ComplexArray | None:
     """The roots ``P`` (samples, degree) along a closed boundary reordered so that column k follows one root,
     or None where a step is not clear (a root moves more than ``_TRACK`` of its distance to the others) or
     the loop does not close on the same order."""
@@ -101,10 +130,10 @@ def _track(P):
     return out
 
 
-def crossing_roots(fast, region):
-    """(refs, tracked) of the p-roots that may cross the real p-axis inside ``region`` (set C of the module
-    docstring): a reference value of each (its mean along the boundary), or None when the roots cannot be
-    followed along the boundary or a root of C is not clearly the nearest to its reference there."""
+def crossing_roots(fast: CharacteristicArray, region: Region) -> CrossingRoots | None:
+    """The p-roots that may cross the real p-axis inside ``region`` (set C of the module docstring), or
+    None when the roots cannot be followed along the boundary or a root of C is not clearly the nearest
+    to its reference there."""
     tracked = _boundary_roots(fast, region)
     if tracked is None:
         return None
@@ -117,10 +146,10 @@ def crossing_roots(fast, region):
         others = np.min(np.abs(np.delete(tracked, j, axis=1) - ref), axis=1)
         if np.any(own >= NEAREST * others):
             return None
-    return refs, tracked
+    return CrossingRoots(refs, tracked)
 
 
-def touches_cut(fast, region) -> bool:
+def touches_cut(fast: CharacteristicArray, region: Region) -> bool:
     """Whether the boundary of ``region`` meets the cut of K: a p-root changes side along it, or comes
     closer to the real p-axis than the edges beside the cut let it (``_TOUCH``), or the roots cannot be
     followed along it."""
@@ -128,23 +157,25 @@ def touches_cut(fast, region) -> bool:
     return tracked is None or bool(np.any(_changes_side(tracked) | _near_axis(tracked, _TOUCH)))
 
 
-def _boundary_roots(fast, region):
+def _boundary_roots(fast: CharacteristicArray, region: Region) -> ComplexArray | None:
     """The p-roots at the first boundary samples of ``region``, followed along it (:func:`_track`)."""
     z, _ = initial_samples(region)
     return _track(fast.kernel.p_roots(z))
 
 
-def _changes_side(tracked):
+def _changes_side(tracked: ComplexArray) -> np.ndarray:
     """Per root followed along a boundary: above the real p-axis somewhere, on or below it elsewhere."""
     return np.any(tracked.imag > 0, axis=0) & np.any(tracked.imag <= 0, axis=0)
 
 
-def _near_axis(tracked, tol):
+def _near_axis(tracked: ComplexArray, tol: float) -> np.ndarray:
     """Per root followed along a boundary: whether |Im p| comes within tol max(1, |p|) of 0 somewhere."""
     return np.any(np.abs(tracked.imag) <= tol * np.maximum(1.0, np.abs(tracked)), axis=0)
 
 
-def count_continued(fast, region, newton_cell: float = 0.25):
+def count_continued(
+    fast: CharacteristicArray, region: Region, newton_cell: float = 0.25
+) -> ContinuedRegion | None:
     """Count and locate the roots of E_chr in ``region`` through the cut (module docstring).
 
     Returns a :class:`ContinuedRegion`, or None when the region cannot be counted this way.
@@ -152,13 +183,14 @@ def count_continued(fast, region, newton_cell: float = 0.25):
     found = crossing_roots(fast, region)
     if found is None:
         return None
-    refs = found[0]
+    refs = found.refs
     subsets = list(itertools.product((False, True), repeat=refs.size))
     continued = [ContinuedCharacteristic(fast, refs, above) for above in subsets]
-    counts = [winding_numbers(f, [region])[0] for f in continued]
-    if any(isinstance(n, EdgeZeroError) for n in counts):
+    results = [winding_numbers(f, [region])[0] for f in continued]
+    counts = [n for n in results if not isinstance(n, EdgeZeroError)]
+    if len(counts) < len(results):
         return None
-    cells = []
+    cells: list[LocatedCell] = []
     for f, above, n in zip(continued, subsets, counts):
         if n == 0:
             continue
@@ -174,11 +206,11 @@ def count_continued(fast, region, newton_cell: float = 0.25):
     return ContinuedRegion(region, sum(m for _, m, _ in cells), tuple(cells), refs.size)
 
 
-def _natural_sides(fast, q, refs):
+def _natural_sides(fast: CharacteristicArray, q: complex, refs: ComplexArray) -> tuple[bool, ...] | None:
     """Whether each root of N nearest to ``refs`` lies above the real p-axis at ``q`` (a tuple of bools),
     None if one of them lies on it (within ``_ON_CUT``)."""
     P = fast.kernel.p_roots(np.array([q]))[0]
-    out = []
+    out: list[bool] = []
     for ref in refs:
         p = P[np.argmin(np.abs(P - ref))]
         if abs(p.imag) <= _ON_CUT * max(1.0, abs(p)):

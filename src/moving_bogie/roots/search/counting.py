@@ -13,8 +13,8 @@ check that no root lies just beyond it).
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
@@ -23,12 +23,18 @@ from moving_bogie.kernels.cut import CutLocus, cut_locus
 from moving_bogie.roots.count.contour import (
     EdgeZeroError,
     Rectangle,
+    Region,
     piece_points,
     winding_number,
     winding_numbers,
 )
 from moving_bogie.roots.count.outcomes import Note, Reason
-from moving_bogie.roots.search.continuation import count_continued, touches_cut
+from moving_bogie.roots.search.continuation import (
+    ContinuedRegion,
+    CountedRegion,
+    count_continued,
+    touches_cut,
+)
 from moving_bogie.roots.search.cut_cells import ColumnCell, Sliver
 from moving_bogie.roots.search.search_regions import Tiling, tile_window
 
@@ -55,11 +61,21 @@ class _Attempt:
     """One tiling tried (edges at ``eps``): its regions, their counts, the cells left out, the failures."""
 
     tiling: Tiling
-    regions: list
+    regions: list[CountedRegion]
     counts: list[int]
     left_out: list[Sliver]
     failed: list[int]
     eps: float
+
+
+@dataclass(frozen=True)
+class _Recovery:
+    """What the recovery of one failing tile gives: the ``pieces`` counted and their ``counts``, and the
+    pieces ``lost`` (left out) with the error of their last count."""
+
+    pieces: tuple[CountedRegion, ...]
+    counts: tuple[int, ...]
+    lost: tuple[tuple[Region, EdgeZeroError | None], ...]
 
 
 @dataclass
@@ -118,21 +134,24 @@ def count_tiling(
         tiling = tile_window(
             window, cut, eps=eps * factor, eps_branch=eps_branch * factor, gap_height=gap_height
         )
-        counts, left_out, failed = _counts(fast, tiling.regions, eps * factor)
-        regions = list(tiling.regions)
+        cells = _search_cells(tiling)
+        counts, left_out, failed = _counts(fast, cells, eps * factor)
+        regions: list[CountedRegion] = list(cells)
         failed = _through_cut(fast, regions, counts, failed, newton_cell)
         if best is None or len(failed) < len(best.failed):
             best = _Attempt(tiling, regions, counts, left_out, failed, eps * factor)
-        if not failed or all(touches_cut(fast, regions[k]) for k in failed):
+        if not failed or all(touches_cut(fast, cells[k]) for k in failed):
             break  # moving the edges does not move the cut: split those tiles instead
     assert best is not None  # _RETRIES is not empty
     tiling, regions, counts, left_out = best.tiling, best.regions, best.counts, best.left_out
     notes = []
     budget = _Budget(since=fast.evaluations)
+    recovered: dict[int, _Recovery] = {}
     for k in best.failed:
-        pieces, piece_counts, lost = _recover(fast, regions[k], best.eps, newton_cell, budget)
-        regions[k], counts[k] = pieces, piece_counts
-        for piece, error in lost:
+        region = regions[k]
+        assert not isinstance(region, ContinuedRegion)  # a region counted through the cut did not fail
+        recovered[k] = recovery = _recover(fast, region, best.eps, newton_cell, budget)
+        for piece, error in recovery.lost:
             y0, y1 = piece.y0, piece.y1
             left_out.append(Sliver(piece.x0, piece.x1, y0, y1, y1 - y0, reason=str(error)))
             notes.append(
@@ -142,12 +161,12 @@ def count_tiling(
                     f"({error})",
                 )
             )
-    flat_regions: list[Any] = []
-    flat_counts: list[Any] = []
-    for region, n in zip(regions, counts):
-        if isinstance(region, list):
-            flat_regions += region
-            flat_counts += n
+    flat_regions: list[CountedRegion] = []
+    flat_counts: list[int] = []
+    for k, (region, n) in enumerate(zip(regions, counts)):
+        if k in recovered:
+            flat_regions += recovered[k].pieces
+            flat_counts += recovered[k].counts
         else:
             flat_regions.append(region)
             flat_counts.append(n)
@@ -156,12 +175,25 @@ def count_tiling(
     return TilingCount(cut, tiling, tuple(flat_counts), tuple(notes))
 
 
+def _search_cells(tiling: Tiling) -> list[Region]:
+    """The regions of a tiling just made (none of them counted through the cut yet)."""
+    cells = [r for r in tiling.regions if not isinstance(r, ContinuedRegion)]
+    assert len(cells) == len(tiling.regions)
+    return cells
+
+
 #: A band left out around the cut taller than this (next to an avoided crossing of two cut curves, where
 #: its edges keep a wide clearance) is counted through the cut instead (:func:`count_continued`).
 BAND_THROUGH_CUT = 5e-9
 
 
-def _bands_through_cut(fast, unsearched, regions, counts, newton_cell) -> tuple:
+def _bands_through_cut(
+    fast: CharacteristicArray,
+    unsearched: Sequence[Sliver],
+    regions: list[CountedRegion],
+    counts: list[int],
+    newton_cell: float,
+) -> tuple[Sliver, ...]:
     """Count the tall bands of ``unsearched`` through the cut: each one counted is dropped from the list,
     its region (with the cells it covers replaced) added to ``regions`` and ``counts``; returns the rest."""
     rest = []
@@ -169,8 +201,9 @@ def _bands_through_cut(fast, unsearched, regions, counts, newton_cell) -> tuple:
         if sliver.height <= BAND_THROUGH_CUT or sliver.cell is None or sliver.reason:
             rest.append(sliver)
             continue
-        at = [_position(regions, c) for c in sliver.covers]
-        if None in at:  # a covered cell was split or counted otherwise: leave the band as it is
+        found = [_position(regions, c) for c in sliver.covers]
+        at = [k for k in found if k is not None]
+        if len(at) < len(found):  # a covered cell was split or counted otherwise: leave the band as it is
             rest.append(sliver)
             continue
         continued = count_continued(fast, sliver.cell, newton_cell)
@@ -184,12 +217,20 @@ def _bands_through_cut(fast, unsearched, regions, counts, newton_cell) -> tuple:
     return tuple(rest)
 
 
-def _through_cut(fast, regions, counts, failed, newton_cell):
+def _through_cut(
+    fast: CharacteristicArray,
+    regions: list[CountedRegion],
+    counts: list[int],
+    failed: list[int],
+    newton_cell: float,
+) -> list[int]:
     """Count the ``failed`` regions through the cut where that works (replacing them in ``regions`` and
     ``counts``); returns the indices that still fail."""
     rest = []
     for k in failed:
-        continued = count_continued(fast, regions[k], newton_cell)
+        region = regions[k]
+        assert not isinstance(region, ContinuedRegion)  # only the tiling's own cells fail
+        continued = count_continued(fast, region, newton_cell)
         if continued is None:
             rest.append(k)
         else:
@@ -197,10 +238,10 @@ def _through_cut(fast, regions, counts, failed, newton_cell):
     return rest
 
 
-def _position(regions, cell):
+def _position(regions: Sequence[CountedRegion], cell: Region) -> int | None:
     """The index of ``cell`` in ``regions`` (itself, or counted through the cut), None if it is not there."""
     for k, r in enumerate(regions):
-        if r is cell or getattr(r, "region", None) is cell:
+        if r is cell or (isinstance(r, ContinuedRegion) and r.region is cell):
             return k
     return None
 
@@ -215,13 +256,17 @@ _RECOVERY_POINTS = 1_000_000
 _RECOVERY_SPLITS = 200
 
 
-def _recover(fast, region, eps: float, newton_cell: float, budget: _Budget):
+def _recover(
+    fast: CharacteristicArray, region: Region, eps: float, newton_cell: float, budget: _Budget
+) -> _Recovery:
     """Pieces of ``region`` that can be counted, their counts, and the (piece, error) left out. A piece
     that fails is first counted through the cut (:func:`count_continued`), then split; once the
     recoveries of the tiling (``budget``: the evaluations when they began, the pieces so far) have spent
     ``_RECOVERY_POINTS`` evaluations or ``_RECOVERY_SPLITS`` pieces, what is left is left out."""
-    pieces, counts, lost = [], [], []
-    stack = [(region, 0, None)]
+    pieces: list[CountedRegion] = []
+    counts: list[int] = []
+    lost: list[tuple[Region, EdgeZeroError | None]] = []
+    stack: list[tuple[Region, int, EdgeZeroError | None]] = [(region, 0, None)]
     while stack:
         r, depth, error = stack.pop()
         budget.splits += 1
@@ -238,7 +283,8 @@ def _recover(fast, region, eps: float, newton_cell: float, budget: _Budget):
             continue
         for frac in _FRACTIONS:
             parts = r.split(frac)
-            got, bad = [], []
+            got: list[tuple[Region, int]] = []
+            bad: list[tuple[Region, EdgeZeroError]] = []
             for part in parts:
                 try:
                     got.append((part, winding_number(fast, part, max_points=piece_points(part))))
@@ -253,7 +299,7 @@ def _recover(fast, region, eps: float, newton_cell: float, budget: _Budget):
             pieces.append(part)
             counts.append(n)
         stack.extend((part, depth + 1, exc) for part, exc in bad)
-    return pieces, counts, lost
+    return _Recovery(tuple(pieces), tuple(counts), tuple(lost))
 
 
 #: A cell between two cut curves thinner than this many eps (next to where they cross) whose count fails
@@ -266,7 +312,9 @@ _TINY = 1e-8
 _SMALL = 1e-3
 
 
-def _counts(fast, regions, eps):
+def _counts(
+    fast: CharacteristicArray, regions: Sequence[Region], eps: float
+) -> tuple[list[int], list[Sliver], list[int]]:
     """Winding numbers of the regions (0 for a failing one), the thin cells left out (as slivers) whose
     count failed, and the indices of the other regions whose count failed. All regions are refined
     together (:func:`winding_numbers`)."""
@@ -277,7 +325,9 @@ def _counts(fast, regions, eps):
     ]
     small = [t or max(r.width, r.height) < _SMALL for t, r in zip(thin, regions)]
     results = winding_numbers(fast, regions, max_points=[20_000 if t else 400_000 for t in small])
-    counts, left_out, failed = [], [], []
+    counts: list[int] = []
+    left_out: list[Sliver] = []
+    failed: list[int] = []
     for k, (region, result) in enumerate(zip(regions, results)):
         if not isinstance(result, EdgeZeroError):
             counts.append(result)
@@ -291,7 +341,7 @@ def _counts(fast, regions, eps):
     return counts, left_out, failed
 
 
-def frame(window: Rectangle, big: Rectangle) -> tuple:
+def frame(window: Rectangle, big: Rectangle) -> tuple[Rectangle, Rectangle, Rectangle]:
     """``big`` minus ``window`` (same left edge): the strips below, above and to the right of it."""
     return (
         Rectangle(big.x0, big.x1, big.y0, window.y0),

@@ -15,12 +15,19 @@ outside of the lens that opens at a fold), closed by the vertical line Re q = x_
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.kernels.cut import CutArm, clearance
-from moving_bogie.roots.count.contour import BoundingBox, Rectangle
+from moving_bogie.kernels.cut_curves import Fold
+from moving_bogie.roots.count.contour import BoundingBox, Rectangle, Region
+from moving_bogie.typing import FloatArray
+
+#: A piece of a cell's boundary: u in [0, 1] (an array) -> its points.
+Piece = Callable[[np.ndarray], np.ndarray]
 
 __all__ = ["Edge", "ColumnCell", "TipCell", "Sliver"]
 
@@ -44,8 +51,8 @@ class Sliver:
     #: a region whose area is the band left out (``covers`` empty), or that holds it together with the
     #: search cells ``covers`` (the tip cells of a fold): it can be counted through the cut instead
     #: (:mod:`~moving_bogie.roots.search.continuation`)
-    cell: BoundingBox | None = field(default=None, repr=False, compare=False)
-    covers: tuple = field(default=(), repr=False, compare=False)
+    cell: Region | None = field(default=None, repr=False, compare=False)
+    covers: tuple[Region, ...] = field(default=(), repr=False, compare=False)
 
 
 @dataclass(frozen=True)
@@ -57,14 +64,14 @@ class Edge:
     side: int = 0
     delta: float = 0.0
 
-    def points(self, x) -> np.ndarray:
+    def points(self, x: ArrayLike) -> np.ndarray:
         """Points of the edge above (near) Re q = x, for an array x."""
         x = np.asarray(x, dtype=float)
         if self.arm is None:
             return x + 1j * self.y
         return self.arm.offset(self.arm.p_at(x), self.side, self.delta)
 
-    def along(self, x0: float, x1: float, u) -> np.ndarray:
+    def along(self, x0: float, x1: float, u: ArrayLike) -> np.ndarray:
         """Points from Re q ~ x0 (u = 0) to x1 (u = 1), uniform in the arm parameter p."""
         u = np.asarray(u, dtype=float)
         if self.arm is None:
@@ -73,7 +80,7 @@ class Edge:
         return self.arm.offset(p0 + (p1 - p0) * u, self.side, self.delta)
 
 
-def _samples(z_of_u, spacing):
+def _samples(z_of_u: Piece, spacing: float) -> FloatArray:
     """Uniform parameters in [0, 1) of one piece, about ``spacing`` apart (at least 8)."""
     probe = z_of_u(np.linspace(0.0, 1.0, 17))
     length = float(np.abs(np.diff(probe)).sum())
@@ -89,7 +96,7 @@ class _Curve(BoundingBox):
     always counter-clockwise, as the argument principle needs.
     """
 
-    pieces: tuple
+    pieces: tuple[Piece, ...]
     _clockwise: bool = False
 
     def _orient(self) -> None:
@@ -99,7 +106,7 @@ class _Curve(BoundingBox):
         area = 0.5 * float(np.sum(z.real * np.roll(z.imag, -1) - np.roll(z.real, -1) * z.imag))
         self._clockwise = area < 0
 
-    def points_at(self, t) -> np.ndarray:
+    def points_at(self, t: ArrayLike) -> np.ndarray:
         t = np.asarray(t, dtype=float)
         if self._clockwise:
             t = len(self.pieces) - t
@@ -111,21 +118,26 @@ class _Curve(BoundingBox):
                 out[sel] = piece(t[sel] - j)
         return out
 
-    def boundary_parameters(self, spacing) -> np.ndarray:
+    def boundary_parameters(self, spacing: float) -> FloatArray:
         s = np.concatenate([j + _samples(piece, spacing) for j, piece in enumerate(self.pieces)])
         n = float(len(self.pieces))
         if self._clockwise:  # the same samples, run backwards (t = n - s)
             s = np.concatenate(([0.0], np.sort(n - s[1:])))
         return np.append(s, n)
 
-    def boundary(self, spacing) -> np.ndarray:
+    def boundary(self, spacing: float) -> np.ndarray:
         t = self.boundary_parameters(spacing)
         z = self.points_at(t[:-1])
         return np.append(z, z[0])
 
 
-def _segment(a: complex, b: complex):
-    return lambda u: a + (b - a) * u
+def _segment(a: complex | np.ndarray, b: complex | np.ndarray) -> Piece:
+    """The straight piece from ``a`` (u = 0) to ``b`` (u = 1)."""
+
+    def piece(u: np.ndarray) -> np.ndarray:
+        return a + (b - a) * u
+
+    return piece
 
 
 class ColumnCell(_Curve):
@@ -144,7 +156,7 @@ class ColumnCell(_Curve):
             _segment(hi[0], lo[0]),
         )
 
-    def _piece(self, lower, upper):
+    def _piece(self, lower: Edge, upper: Edge) -> Rectangle | ColumnCell:
         """The cell over the same columns between other edges (a Rectangle when both are straight)."""
         if lower.arm is None and upper.arm is None:
             return Rectangle(self.x0, self.x1, lower.y, upper.y)
@@ -154,18 +166,18 @@ class ColumnCell(_Curve):
         return f"ColumnCell({self.x0:.9g}..{self.x1:.9g}, {self.y0:.9g}..{self.y1:.9g})"
 
     @property
-    def center(self):
+    def center(self) -> complex:
         return self._mid
 
-    def contains(self, z, margin: float = 0.0):
+    def contains(self, z: complex, margin: float = 0.0) -> bool:
         if not (self.x0 - margin <= z.real <= self.x1 + margin):
             return False
         x = np.array([min(max(z.real, self.x0), self.x1)])
         lo = self.lower.points(x)[0].imag
         hi = self.upper.points(x)[0].imag
-        return lo - margin <= z.imag <= hi + margin
+        return bool(lo - margin <= z.imag <= hi + margin)
 
-    def split(self, fraction: float = 0.5):
+    def split(self, fraction: float = 0.5) -> tuple[Rectangle | ColumnCell, Rectangle | ColumnCell]:
         """Two cells: across Re q, or (taller than twice its width, with a horizontal line passing between
         its edges) along that line, so that a tall cell shrinks in height too (a lens between two arms)."""
         if self.height > 2 * self.width:
@@ -191,7 +203,16 @@ class TipCell(_Curve):
     whichever way the lens opens (:meth:`_Curve._orient`).
     """
 
-    def __init__(self, fold, lower, upper, x_tip, delta, inner, frame=None) -> None:
+    def __init__(
+        self,
+        fold: Fold,
+        lower: CutArm,
+        upper: CutArm,
+        x_tip: float,
+        delta: float,
+        inner: bool,
+        frame: tuple[float, float, float] | None = None,
+    ) -> None:
         self.fold, self.lower, self.upper = fold, lower, upper
         self.x_tip, self.delta, self.inner, self.frame = float(x_tip), delta, inner, frame
         p_lo = float(lower.p_at(np.array([x_tip]))[0])
@@ -205,6 +226,7 @@ class TipCell(_Curve):
             self.x0, self.x1 = sorted((float(fold.q.real), self.x_tip))
             self.y0, self.y1 = float(a.imag), float(b.imag)
         else:
+            assert frame is not None  # the outer cell is closed by its frame
             x_far, y_low, y_high = frame
             c0, c1 = complex(x_far, y_low), complex(self.x_tip, y_low)
             c2, c3 = complex(self.x_tip, y_high), complex(x_far, y_high)
@@ -220,12 +242,12 @@ class TipCell(_Curve):
             self.y0, self.y1 = y_low, y_high
         self._orient()
 
-    def _offset_curve(self, p_lo, p_hi):
+    def _offset_curve(self, p_lo: float, p_hi: float) -> Callable[[float | np.ndarray], np.ndarray]:
         """u -> offset point from p_lo (u = 0, lower arm) to p_hi (u = 1, upper arm), through the fold."""
         fold, lower, upper, delta = self.fold, self.lower, self.upper, self.delta
         sign = 1 if self.inner else -1
 
-        def curve(u):
+        def curve(u: float | np.ndarray) -> np.ndarray:
             u = np.asarray(u, dtype=float)
             p = p_lo + (p_hi - p_lo) * u
             on_lower = (p - fold.p) * (p_lo - fold.p) > 0
@@ -235,7 +257,7 @@ class TipCell(_Curve):
 
         return curve
 
-    def _inward_normal(self, n):
+    def _inward_normal(self, n: np.ndarray) -> np.ndarray:
         """The unit normal n = i t/|t| (t = dq/dp, continuous through the fold) turned into the lens."""
         t = complex(self.lower.tracer.dq_dp(np.array([self.fold.p]), np.array([self.fold.q]))[0])
         return n if (1j * t).real * self.fold.opens > 0 else -n
@@ -243,7 +265,7 @@ class TipCell(_Curve):
     def __repr__(self) -> str:
         return f"TipCell({'inner' if self.inner else 'outer'}, x <= {self.x_tip:.9g})"
 
-    def contains(self, z, margin: float = 0.0):
+    def contains(self, z: complex, margin: float = 0.0) -> bool:
         if not (
             self.x0 - margin <= z.real <= self.x1 + margin and self.y0 - margin <= z.imag <= self.y1 + margin
         ):
@@ -251,15 +273,15 @@ class TipCell(_Curve):
         inside_lens = self._in_lens(z)
         return inside_lens if self.inner else not inside_lens
 
-    def _in_lens(self, z):
+    def _in_lens(self, z: complex) -> bool:
         x = (z.real - self.fold.q.real) * self.fold.opens
         if x <= 0:
             return False
         lo = self.lower.y_at(np.array([z.real]))[0]
         hi = self.upper.y_at(np.array([z.real]))[0]
-        return lo <= z.imag <= hi
+        return bool(lo <= z.imag <= hi)
 
-    def split(self, fraction: float = 0.5):
+    def split(self, fraction: float = 0.5) -> tuple[Region, ...]:
         """The tip cell up to a Re q nearer the fold, and column cells for the rest."""
         x_new = self.fold.q.real + fraction * (self.x_tip - self.fold.q.real)
         c0, c1 = sorted((x_new, self.x_tip))
@@ -271,6 +293,7 @@ class TipCell(_Curve):
                 Edge(arm=self.upper, side=-1, delta=self.delta),
             )
             return TipCell(self.fold, self.lower, self.upper, x_new, self.delta, True), rest
+        assert self.frame is not None  # the outer cell is closed by its frame
         x_far, y_low, y_high = self.frame
         tip = TipCell(self.fold, self.lower, self.upper, x_new, self.delta, False, (x_far, y_low, y_high))
         below = ColumnCell(c0, c1, Edge(y=y_low), Edge(arm=self.lower, side=-1, delta=self.delta))

@@ -7,12 +7,15 @@ the arms that bound them; where the arms cannot be followed, a padded strip or b
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 from scipy import optimize
 
-from moving_bogie.kernels.cut import arms_y_at
-from moving_bogie.roots.count.contour import Rectangle
+from moving_bogie.kernels.cut import CutArm, CutLocus, arms_y_at
+from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.search.cut_cells import ColumnCell, Edge, Sliver
+from moving_bogie.typing import FloatArray
 
 __all__ = ["COLUMN_SAMPLES", "arms_over", "box", "column", "fill_columns"]
 
@@ -22,18 +25,40 @@ _TOUCH = 1e-14  # a gap between two arms this small is zero (they meet, e.g. whe
 _NARROW = 50.0  # a column narrower than this many eps (at a crossing of arms) is left out as a box
 
 
-def arms_over(cut, a, b):
+def arms_over(cut: CutLocus, a: float, b: float) -> list[CutArm]:
+    """The arms of the cut that span the whole column [a, b]."""
     return [arm for arm in cut.arms if arm.x_lo <= a + 1e-12 and arm.x_hi >= b - 1e-12]
 
 
-def fill_columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density, most: int = 6) -> None:
+def fill_columns(
+    cut: CutLocus,
+    x0: float,
+    x1: float,
+    regions: list[Region],
+    unsearched: list[Sliver],
+    eps: float,
+    band_lo: float,
+    band_hi: float,
+    density: float,
+    most: int = 6,
+) -> None:
     """Columns between two events, ``density`` of them per unit of Re q (at least one, at most ``most``)."""
     xs = np.linspace(x0, x1, min(most, max(1, int(np.ceil(density * (x1 - x0) - 1e-9)))) + 1)
     for a, b in zip(xs[:-1], xs[1:]):
         column(cut, a, b, regions, unsearched, eps, band_lo, band_hi)
 
 
-def column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None) -> None:
+def column(
+    cut: CutLocus,
+    a: float,
+    b: float,
+    regions: list[Region],
+    unsearched: list[Sliver],
+    eps: float,
+    band_lo: float,
+    band_hi: float,
+    arms: Sequence[CutArm] | None = None,
+) -> None:
     """Cells of one column [a, b] between the cut's arms (graphs over Re q there), or a padded fallback.
 
     Where two arms cross, the column is split at the crossing; where two arms are closer than
@@ -86,15 +111,8 @@ def column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None) -> 
     if ys.min() - eps <= band_lo or ys.max() + eps >= band_hi:
         _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi)
         return
-    # groups of arms closer than _MERGE eps share one pair of edges
-    groups = [[0]]
-    for k in range(len(arms) - 1):
-        if np.all(gaps[k] <= _MERGE * eps):
-            groups[-1].append(k + 1)
-        else:
-            groups.append([k + 1])
     edges = [Edge(y=band_lo)]
-    for group in groups:
+    for group in _groups(gaps, eps):
         lo_arm, hi_arm = arms[group[0]], arms[group[-1]]
         band = (Edge(arm=lo_arm, side=-1, delta=eps), Edge(arm=hi_arm, side=1, delta=eps))
         edges += band
@@ -107,12 +125,26 @@ def column(cut, a, b, regions, unsearched, eps, band_lo, band_hi, arms=None) -> 
     regions.extend(ColumnCell(a, b, lo, hi) for lo, hi in zip(edges[::2], edges[1::2]))
 
 
-def _split_point(lower, upper, xs, gap, eps):
+def _groups(gaps: FloatArray, eps: float) -> list[list[int]]:
+    """The arms (indices, sorted by Im q; ``gaps`` between neighbours) in groups: arms closer than
+    ``_MERGE`` eps share one pair of edges."""
+    groups: list[list[int]] = [[0]]
+    for k in range(len(gaps)):
+        if np.all(gaps[k] <= _MERGE * eps):
+            groups[-1].append(k + 1)
+        else:
+            groups.append([k + 1])
+    return groups
+
+
+def _split_point(
+    lower: CutArm, upper: CutArm, xs: FloatArray, gap: FloatArray, eps: float
+) -> tuple[float | None, bool]:
     """Where the column must be split for the arms ``lower`` < ``upper`` (at the middle), and whether that
     is their crossing (else the Re q where their gap passes _MERGE eps); (None, False) if neither happens
     inside."""
 
-    def g(x, target: float = 0.0):
+    def g(x: float, target: float = 0.0) -> float:
         return float(upper.y_at(np.array([x]))[0] - lower.y_at(np.array([x]))[0]) - target
 
     for target in (0.0, _MERGE * eps):
@@ -121,20 +153,31 @@ def _split_point(lower, upper, xs, gap, eps):
             k = change[0]
             ga, gb = g(xs[k], target), g(xs[k + 1], target)
             if ga * gb > 0:  # the sign change was at rounding level: split at the nearer sample
-                return (xs[k] if abs(ga) < abs(gb) else xs[k + 1]), target == 0.0
+                return float(xs[k] if abs(ga) < abs(gb) else xs[k + 1]), target == 0.0
             x = optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
             return x, target == 0.0
     return None, False
 
 
-def _slope(arm, x) -> float:
+def _slope(arm: CutArm, x: float) -> float:
     """|d Im q / d Re q| of ``arm`` at Re q = x."""
     p = arm.p_at(np.array([x]))
     t = complex(arm.tracer.dq_dp(p, arm.q_at(p))[0])
     return abs(t.imag) / abs(t.real) if t.real else np.inf
 
 
-def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi) -> None:
+def _padded(
+    a: float,
+    b: float,
+    ys: FloatArray,
+    regions: list[Region],
+    unsearched: list[Sliver],
+    eps: float,
+    band_lo: float,
+    band_hi: float,
+) -> None:
+    """The column [a, b] with a strip around the arms (``ys``: their Im q) left out, padded by eps and 5 %
+    of their spread."""
     pad = eps + 0.05 * float(ys.max() - ys.min())
     c_lo, c_hi = max(band_lo, float(ys.min()) - pad), min(band_hi, float(ys.max()) + pad)
     if c_lo > band_lo:
@@ -144,7 +187,16 @@ def _padded(a, b, ys, regions, unsearched, eps, band_lo, band_hi) -> None:
     unsearched.append(Sliver(a, b, c_lo, c_hi, c_hi - c_lo, cell=_rect(a, b, c_lo, c_hi)))
 
 
-def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi) -> None:
+def _boxes(
+    a: float,
+    b: float,
+    ys: FloatArray,
+    regions: list[Region],
+    unsearched: list[Sliver],
+    eps: float,
+    band_lo: float,
+    band_hi: float,
+) -> None:
     """The narrow column [a, b] with a box left out around each cluster of arms (``ys``: their Im q),
     rectangles in between."""
     spans = sorted((float(y.min()) - eps, float(y.max()) + eps) for y in ys)
@@ -165,7 +217,16 @@ def _boxes(a, b, ys, regions, unsearched, eps, band_lo, band_hi) -> None:
         regions.append(Rectangle(a, b, bottom, band_hi))
 
 
-def box(a, b, lo, hi, regions, unsearched, band_lo, band_hi) -> None:
+def box(
+    a: float,
+    b: float,
+    lo: float,
+    hi: float,
+    regions: list[Region],
+    unsearched: list[Sliver],
+    band_lo: float,
+    band_hi: float,
+) -> None:
     """The column [a, b] with the box lo <= Im q <= hi left out (reported as a sliver)."""
     lo, hi = max(lo, band_lo), min(hi, band_hi)
     if lo > band_lo:
@@ -175,6 +236,6 @@ def box(a, b, lo, hi, regions, unsearched, band_lo, band_hi) -> None:
     unsearched.append(Sliver(a, b, lo, hi, hi - lo, cell=_rect(a, b, lo, hi)))
 
 
-def _rect(a, b, lo, hi):
+def _rect(a: float, b: float, lo: float, hi: float) -> Rectangle | None:
     """The box a <= Re q <= b, lo <= Im q <= hi as a region, None if it is empty."""
     return Rectangle(a, b, lo, hi) if b > a and hi > lo else None

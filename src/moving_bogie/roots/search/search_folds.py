@@ -7,23 +7,36 @@ out with it; curves above or below get ordinary column cells (:mod:`search_colum
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
-from moving_bogie.kernels.cut import arms_y_at
-from moving_bogie.roots.count.contour import Rectangle
+from moving_bogie.kernels.cut import CutArm, CutLocus, arms_y_at
+from moving_bogie.kernels.cut_curves import Fold
+from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.search.cut_cells import Sliver, TipCell
 from moving_bogie.roots.search.search_columns import COLUMN_SAMPLES, arms_over, box, column
 
 __all__ = ["fold_event"]
 
 
-def _ends_at(arm, fold) -> bool:
+def _ends_at(arm: CutArm, fold: Fold) -> bool:
     """Whether ``arm`` starts or ends at ``fold`` (same p and same q: curves may share their end p)."""
     tol = 1e-9 * (1.0 + abs(fold.q))
     return any(abs(arm.p[k] - fold.p) < 1e-12 and abs(arm.q[k] - fold.q) < tol for k in (0, -1))
 
 
-def fold_event(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi) -> None:
+def fold_event(
+    cut: CutLocus,
+    a: float,
+    b: float,
+    fold: Fold,
+    regions: list[Region],
+    unsearched: list[Sliver],
+    eps: float,
+    band_lo: float,
+    band_hi: float,
+) -> None:
     """The column [a, b] around a fold (two tip cells) or a cusp (a box left unsearched).
 
     Where another curve of the cut passes through the fold's lens or close to it inside [a, b] (a steep
@@ -50,32 +63,44 @@ _SHRINK = 4.0
 _SMALLEST_TIP = 500.0
 
 
-def _clear_column(cut, a, b, fold, eps):
+def _clear_column(cut: CutLocus, a: float, b: float, fold: Fold, eps: float) -> tuple[float, float]:
     """[a, b], or the narrower column around ``fold`` in which no other curve passes through its box.
 
     Unchanged when nothing passes through, when a curve only partly crosses [a, b] (it ends next to the
     fold: the box stays) or the fold is not the meeting point of two arms.
     """
-    pair, _, partial, through, _, _ = _fold_neighbours(cut, a, b, fold, eps)
-    if not through or partial or len(pair) != 2:
+    near = _fold_neighbours(cut, a, b, fold, eps)
+    if not near.through or near.partial or len(near.pair) != 2:
         return a, b
     x_f = float(fold.q.real)
     half = max(x_f - a, b - x_f)
     smallest = _SMALLEST_TIP * eps * max(1.0, abs(x_f))
     lo, hi = a, b
-    while through and half / _SHRINK >= smallest:
+    while near.through and half / _SHRINK >= smallest:
         half /= _SHRINK
         lo, hi = max(a, x_f - half), min(b, x_f + half)
-        pair, _, partial, through, _, _ = _fold_neighbours(cut, lo, hi, fold, eps)
-        if partial:
+        near = _fold_neighbours(cut, lo, hi, fold, eps)
+        if near.partial:
             return a, b
     return lo, hi
 
 
-def _fold_neighbours(cut, a, b, fold, eps):
-    """(pair, others, partial, through, low, high) of the fold's column [a, b]: the two arms meeting at the
-    fold, the other curves crossing the whole column, those crossing only part of it, the curves that pass
-    through the fold's box (within 8 eps of the Im range of the pair), and the box's Im range."""
+@dataclass(frozen=True)
+class _FoldNeighbours:
+    """The arms around a fold in its column: the ``pair`` meeting at the fold, the ``others`` crossing the
+    whole column, those crossing only part of it (``partial``), the curves that pass ``through`` the
+    fold's box (within 8 eps of the Im range of the pair), and the box's Im range ``low``..``high``."""
+
+    pair: list[CutArm]
+    others: list[CutArm]
+    partial: list[CutArm]
+    through: list[CutArm]
+    low: float
+    high: float
+
+
+def _fold_neighbours(cut: CutLocus, a: float, b: float, fold: Fold, eps: float) -> _FoldNeighbours:
+    """The :class:`_FoldNeighbours` of the fold's column [a, b]."""
     pair = [arm for arm in cut.arms if _ends_at(arm, fold)]
     full = arms_over(cut, a, b)
     others = [arm for arm in full if all(arm is not x for x in pair)]
@@ -105,10 +130,20 @@ def _fold_neighbours(cut, a, b, fold, eps):
             if arm not in through and y.max() >= low - 8 * eps and y.min() <= high + 8 * eps:
                 through.append(arm)
                 low, high, grown = min(low, float(y.min())), max(high, float(y.max())), True
-    return pair, others, partial, through, low, high
+    return _FoldNeighbours(pair, others, partial, through, low, high)
 
 
-def _fold_column(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi) -> None:
+def _fold_column(
+    cut: CutLocus,
+    a: float,
+    b: float,
+    fold: Fold,
+    regions: list[Region],
+    unsearched: list[Sliver],
+    eps: float,
+    band_lo: float,
+    band_hi: float,
+) -> None:
     """The column [a, b] around a fold: two tip cells, or a box (a cusp, an end of the cut, or curves
     passing through the fold's box).
 
@@ -117,7 +152,8 @@ def _fold_column(cut, a, b, fold, regions, unsearched, eps, band_lo, band_hi) ->
     through the fold's box, are left out with it; the outer tip cell is framed closely around the lens and
     rectangles fill the column above and below the frame.
     """
-    pair, others, _, through, low, high = _fold_neighbours(cut, a, b, fold, eps)
+    near = _fold_neighbours(cut, a, b, fold, eps)
+    pair, others, through, low, high = near.pair, near.others, near.through, near.low, near.high
     xs = np.linspace(a, b, COLUMN_SAMPLES)
     spans = dict(zip(map(id, others), arms_y_at(others, xs))) if others else {}
     below = [arm for arm in others if arm not in through and spans[id(arm)].max() < low]

@@ -18,23 +18,30 @@ cut's range in it, and the sliver reported there is that strip's height.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from moving_bogie.kernels.cut import CutLocus
-from moving_bogie.roots.count.contour import Rectangle
+from moving_bogie.kernels.cut_curves import Fold
+from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.search.cut_cells import Sliver
 from moving_bogie.roots.search.search_columns import fill_columns
 from moving_bogie.roots.search.search_folds import fold_event
+
+if TYPE_CHECKING:
+    from moving_bogie.roots.search.continuation import CountedRegion
 
 __all__ = ["Tiling", "tile_window"]
 
 
 @dataclass(frozen=True)
 class Tiling:
-    regions: tuple  # Rectangles and curved cells to count in
-    unsearched: tuple  # Slivers around the cut not searched
+    """The ``regions`` to count in (Rectangles and curved cells; once counted, some of them counted
+    through the cut) and the ``unsearched`` slivers around the cut."""
+
+    regions: tuple[CountedRegion, ...]
+    unsearched: tuple[Sliver, ...]
 
 
 def tile_window(
@@ -58,7 +65,7 @@ def tile_window(
         return Tiling((window,), ())
     band_lo = max(window.y0, cut.im_low - gap_height)
     band_hi = min(window.y1, cut.im_high + gap_height)
-    regions = []
+    regions: list[Region] = []
     if band_lo > window.y0:
         regions.append(Rectangle(window.x0, window.x1, window.y0, band_lo))
     if band_hi < window.y1:
@@ -68,7 +75,15 @@ def tile_window(
     return _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, curved_columns)
 
 
-def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
+def _flat(
+    window: Rectangle,
+    cut: CutLocus,
+    regions: list[Region],
+    eps: float,
+    eps_branch: float,
+    band_lo: float,
+    band_hi: float,
+) -> Tiling:
     """A cut on one horizontal line (Euler-Bernoulli): strips below and above the line, and a box of
     half-width ``eps_branch`` around every branch point (cusp) on it (where K varies like a square root,
     an edge passing at distance eps would need samples eps apart)."""
@@ -86,10 +101,11 @@ def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
         and not any(abs(c - cut.x_start) < eps_branch for c in cusps)
     ):
         cusps = sorted(cusps + [cut.x_start])
-    unsearched = []
+    unsearched: list[Sliver] = []
     b_lo, b_hi = max(band_lo, cut.im_low - eps_branch), min(band_hi, cut.im_high + eps_branch)
     x = x_band
-    for c in cusps + [None]:
+    ends: list[float | None] = [*cusps, None]
+    for c in ends:
         end = window.x1 if c is None else max(x, c - eps_branch)
         if end > x:  # a strip between branch points
             if lo > band_lo:
@@ -111,11 +127,21 @@ def _flat(window, cut, regions, eps, eps_branch, band_lo, band_hi) -> Tiling:
     return Tiling(tuple(regions), tuple(unsearched))
 
 
-def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) -> Tiling:
-    unsearched: list[Any] = []
+def _curved(
+    window: Rectangle,
+    cut: CutLocus,
+    regions: list[Region],
+    eps: float,
+    eps_branch: float,
+    band_lo: float,
+    band_hi: float,
+    columns: int,
+) -> Tiling:
+    """The band over a curved cut: columns of cells between the folds, and the columns around them."""
+    unsearched: list[Sliver] = []
     folds = sorted((f for f in cut.folds if window.x0 < f.q.real < window.x1), key=lambda f: f.q.real)
     # event intervals around folds (tip cells) and cusps (branch-point boxes)
-    events = []
+    events: list[tuple[float, float, Fold]] = []
     for f in folds:
         # a fold with tip cells gets a column of its own, clear of the other folds; a cusp or an end of the
         # cut (a box left out) a narrow one
@@ -130,7 +156,7 @@ def _curved(window, cut, regions, eps, eps_branch, band_lo, band_hi, columns) ->
             x_band = left
     density = columns / min(window.width, 3.0)
 
-    def fill(x0, x1) -> None:
+    def fill(x0: float, x1: float) -> None:
         fill_columns(cut, x0, x1, regions, unsearched, eps, band_lo, band_hi, density)
 
     edges_x = [x_band]
