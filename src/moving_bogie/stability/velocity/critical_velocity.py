@@ -35,6 +35,7 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.polynomial import derivative_coefficients, horner
 from moving_bogie.model.catalogue import Model, get_model
 from moving_bogie.model.exact import fraction_to_mpf, nonnegative, positive
 from moving_bogie.model.values import ModelValues
@@ -243,12 +244,8 @@ def phase_speed(
 
 def _n_values(module: ModuleType, args: Mapping[str, Any], p: Any, alpha: Any) -> tuple[Any, Any]:
     """N(p, 0; alpha) and dN/dp on the undamped track (mpmath or numpy arguments)."""
-    cs = module.n_coeffs(0, alpha=alpha, **args)
-    N, dN = 0, 0
-    for c in cs:
-        dN = dN * p + N
-        N = N * p + c
-    return N, dN
+    cs = list(module.n_coeffs(0, alpha=alpha, **args))
+    return horner(cs, p), horner(derivative_coefficients(cs), p)
 
 
 def _polish(
