@@ -15,6 +15,7 @@ MODULES = [
     "moving_bogie.model.physical",
     "moving_bogie.model.cases",
     "moving_bogie.model.files",
+    "moving_bogie.kernels.polynomial",
 ]
 
 

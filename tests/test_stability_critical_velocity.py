@@ -86,3 +86,49 @@ def test_a_track_unstable_at_rest_is_one_clear_error(capsys):
     err = capsys.readouterr().err
     assert code == 2 and "Traceback" not in err
     assert len(err.strip().splitlines()) == 1 and "unstable at rest" in err
+
+
+def _two_layer_phase_speeds(p, eta_N, mu_2, kappa_2):
+    """Reference phase speeds omega_j(p) / p of the free waves of a compressed rail on two layers, ascending
+    in j, shape (len(p), 2): the undamped equations (L1) of docs/layered_tracks.md with the axial force of
+    Eq. (A1), in their groups (rail row divided by k_1, x by chi, t by sqrt(m / k_1)), as the generalised
+    eigenproblem K(p) v = omega^2 M v with
+    K = [[p^4/4 - eta_N p^2 + 1, -1], [-1, 1 + kappa_2]] and M = diag(1, mu_2). Written from the equations,
+    not from the generated kernels."""
+    import numpy as np
+
+    K = np.zeros((len(p), 2, 2))
+    K[:, 0, 0] = p**4 / 4 - eta_N * p**2 + 1
+    K[:, 0, 1] = K[:, 1, 0] = -1 / np.sqrt(mu_2)  # M^(-1/2) K M^(-1/2): symmetric, same eigenvalues
+    K[:, 1, 1] = (1 + kappa_2) / mu_2
+    return np.sqrt(np.linalg.eigvalsh(K)) / p[:, None]
+
+
+def test_the_critical_velocity_is_the_slowest_minimum_not_the_first_in_p():
+    """A compressed rail (eta_N = 0.8) on pads over a heavy layer (mu_2 = 100): the phase speed of each of
+    the two branches has a local minimum, and the slower one lies at the larger wavenumber (branch 1, alpha
+    0.128 at p 1.472; branch 2, alpha 0.462 at p 1.434). alpha_cr is the smallest local minimum in alpha:
+    ordering the minima by p would report branch 2's. Reference: a dense scan of the phase speeds of the
+    model's equations over 0 < p <= 20 (:func:`_two_layer_phase_speeds`)."""
+    import numpy as np
+
+    groups = {"eta_N": 0.8, "mu_2": 100.0, "kappa_2": 5.0}
+    ps = np.linspace(1e-4, 20.0, 200_000)
+    speeds = _two_layer_phase_speeds(ps, **groups)
+    reference = []  # (alpha, p, branch) of every local minimum on the scan
+    for j in range(speeds.shape[1]):
+        c = speeds[:, j]
+        for k in np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] < c[2:])) + 1:
+            reference.append((float(c[k]), float(ps[k]), j + 1))
+    assert len(reference) == 2
+    slowest = min(reference)
+    assert slowest[1] > min(p for _, p, _ in reference)  # the set tells the two orders apart
+
+    res = critical_velocity(get_model(beam="eb_axial", track="two-layer"), groups=groups)
+    assert float(res.alpha_cr) == pytest.approx(slowest[0], rel=1e-8)
+    assert float(res.p_cr) == pytest.approx(slowest[1], abs=2e-4)
+    assert res.branch == slowest[2]
+    found = [(float(m.alpha), float(m.p), m.branch) for m in res.minima]  # ascending in alpha
+    assert [b for _, _, b in found] == [b for _, _, b in sorted(reference)]
+    for (a, p, _), (a_ref, p_ref, _) in zip(found, sorted(reference)):
+        assert a == pytest.approx(a_ref, rel=1e-8) and p == pytest.approx(p_ref, abs=2e-4)

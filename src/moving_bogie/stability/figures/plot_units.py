@@ -11,26 +11,34 @@ parameter: names, units and factors come from the model's metadata.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    import xarray
+    from matplotlib.axes import Axes
+
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.physical import PhysicalParams
 
 __all__ = ["PlaneUnits", "axis_label", "mark_operating_point", "unit_suffix"]
 
 #: Style of the operating point (the input's own parameters) on maps and line figures.
-OPERATING_POINT = dict(marker="*", ms=13, mfc="gold", mec="k", ls="none", zorder=5)
+OPERATING_POINT: dict[str, Any] = dict(marker="*", ms=13, mfc="gold", mec="k", ls="none", zorder=5)
 
 
-def unit_suffix(coord) -> str:
+def unit_suffix(coord: xarray.DataArray) -> str:
     """`` m/s`` for a coordinate (xarray) with SI ``units``; empty for a dimensionless one."""
     units = coord.attrs.get("units", "1")
     return "" if units in ("1", "") else f" {units}"
 
 
-def axis_label(coord) -> str:
+def axis_label(coord: xarray.DataArray) -> str:
     """Axis label of a store coordinate: ``v [m/s]`` in SI, the group's name when dimensionless."""
     units = coord.attrs.get("units", "1")
     return str(coord.name) if units in ("1", "") else f"{coord.name} [{units}]"
 
 
-def mark_operating_point(ax, x: float, y: float, *, label: str = "operating point") -> None:
+def mark_operating_point(ax: Axes, x: float, y: float, *, label: str = "operating point") -> None:
     """Mark the input's own point (x, y) on ``ax``, labelled for the legend (and for reading it back)."""
     ax.plot([x], [y], label=label, **OPERATING_POINT)
 
@@ -57,16 +65,18 @@ class PlaneUnits:
         The SI parameters of the input, as text (``PhysicalParams.to_dict``), for the figures' titles.
     """
 
-    names: dict = field(default_factory=dict)
-    units: dict = field(default_factory=dict)
-    factors: dict = field(default_factory=dict)
+    names: dict[str, str] = field(default_factory=dict)
+    units: dict[str, str] = field(default_factory=dict)
+    factors: dict[str, float] = field(default_factory=dict)
     t_scale: float | None = None
-    operating: dict = field(default_factory=dict)
+    operating: dict[str, float] = field(default_factory=dict)
     alpha_cr: float | None = None
-    base: dict = field(default_factory=dict)
+    base: dict[str, str | None] = field(default_factory=dict)
 
     @classmethod
-    def of(cls, params, physical=None, *, operating: bool = False) -> PlaneUnits:
+    def of(
+        cls, params: DimensionlessParams, physical: PhysicalParams | None = None, *, operating: bool = False
+    ) -> PlaneUnits:
         """The units of ``params``: SI when ``physical`` (its SI parameters) is given, else the groups.
 
         ``operating`` records the input's own point (marked on the figures).
@@ -98,8 +108,8 @@ class PlaneUnits:
     def unit(self, group: str) -> str:
         return self.units.get(group, "1")
 
-    def value(self, group: str, x):
-        """The shown value of ``x`` (a group's value, float or array)."""
+    def value(self, group: str, x: Any) -> Any:
+        """The shown value of ``x`` (a group's value: any real number type, or a numpy array)."""
         return x * self.factors.get(group, 1.0)
 
     def group_value(self, group: str, shown: float) -> float:
@@ -115,22 +125,27 @@ class PlaneUnits:
         unit = f" {self.unit(group)}" if group in self.units else ""
         return f"{self.name(group)} = {self.value(group, x):.6g}{unit}"
 
-    def frequency(self, q):
-        """An induced frequency shown: omega = q / t_scale [rad/s] in SI, else q itself."""
-        return q / self.t_scale if self.si else q
+    def frequency(self, q: Any) -> Any:
+        """An induced frequency shown: omega = q / t_scale [rad/s] in SI, else q itself (any number type,
+        or a numpy array)."""
+        return q / self.t_scale if self.t_scale is not None else q
 
     @property
     def frequency_unit(self) -> str:
         return "rad/s" if self.si else "1"
 
-    def quantity(self, group: str, x) -> dict:
+    def quantity(self, group: str, x: float) -> dict[str, Any]:
         """JSON of one value: ``{"name", "value", "unit"}``, with the group's own value in SI."""
-        out = {"name": self.name(group), "value": float(self.value(group, x)), "unit": self.unit(group)}
+        out: dict[str, Any] = {
+            "name": self.name(group),
+            "value": float(self.value(group, x)),
+            "unit": self.unit(group),
+        }
         if self.si and group in self.units:
             out["group"] = {"name": group, "value": float(x)}
         return out
 
-    def critical(self, ax, x_range: tuple[float, float] | None = None) -> None:
+    def critical(self, ax: Axes, x_range: tuple[float, float] | None = None) -> None:
         """The critical velocity of the track, dotted and labelled (alpha = 1 unlabelled when unknown).
 
         With ``x_range`` (the shown velocity axis) a critical velocity beyond it is not drawn (nor listed
@@ -154,7 +169,7 @@ class PlaneUnits:
         shown = self.value("alpha", self.alpha_cr)
         return f"{self.name('alpha')}_cr = {shown:.6g}{unit} (critical velocity)"
 
-    def fixed_text(self, params, parameter: str) -> dict:
+    def fixed_text(self, params: DimensionlessParams, parameter: str) -> dict:
         """The parameters a plane (alpha, ``parameter``) holds fixed, as title text (SI values for an SI
         input, with their units; :func:`~moving_bogie.stability.figures.margin_plot.fixed_parameters`);
         the groups Eq. (63) ties to ``parameter`` are said to follow it."""
@@ -171,7 +186,7 @@ class PlaneUnits:
         shown = {self.name("alpha"), self.name(parameter)}
         return fixed_parameters(params.model, values, shown, si=self.si, follow=follow)
 
-    def mark(self, ax, x_group: str, y_group: str) -> bool:
+    def mark(self, ax: Axes, x_group: str, y_group: str) -> bool:
         """Mark the operating point on a plane (x_group, y_group) when it is known; True if marked."""
         if x_group not in self.operating or y_group not in self.operating:
             return False
@@ -179,10 +194,10 @@ class PlaneUnits:
         mark_operating_point(ax, self.value(x_group, x), self.value(y_group, y))
         return True
 
-    def with_si(self, data):
-        """JSON ``data`` with, in SI, an ``"si"`` object beside the groups of every object: each group's SI
-        counterpart as ``{"value", "unit"}`` (and ``omega`` [rad/s] beside a real frequency ``q``).
-        Unchanged for dimensionless units."""
+    def with_si(self, data: Any) -> Any:
+        """JSON ``data`` (any JSON value) with, in SI, an ``"si"`` object beside the groups of every object:
+        each group's SI counterpart as ``{"value", "unit"}`` (and ``omega`` [rad/s] beside a real frequency
+        ``q``). Unchanged for dimensionless units."""
         if not self.si:
             return data
         if isinstance(data, list):
@@ -190,7 +205,7 @@ class PlaneUnits:
         if not isinstance(data, dict):
             return data
         out = {k: self.with_si(v) for k, v in data.items()}
-        si = {}
+        si: dict[str, dict[str, Any]] = {}
         for key, value in data.items():
             number = isinstance(value, int | float) and not isinstance(value, bool)
             if key in self.units and number:
@@ -203,7 +218,7 @@ class PlaneUnits:
 
     def axis(self, group: str, lo: float, hi: float, count: int | None = None) -> dict:
         """JSON of a plot axis: shown name, unit, range (shown values) and the group with its range."""
-        out = {"name": self.name(group), "unit": self.unit(group)}
+        out: dict[str, Any] = {"name": self.name(group), "unit": self.unit(group)}
         out["range"] = [float(self.value(group, lo)), float(self.value(group, hi))]
         out["group"] = {"name": group, "range": [float(lo), float(hi)]}
         return out | ({"count": count} if count is not None else {})

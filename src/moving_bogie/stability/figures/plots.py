@@ -7,10 +7,21 @@ Colours follow the paper's legends: one colour per wheel spacing d.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 from moving_bogie.stability.figures.margin_plot import hatch_cells
 from moving_bogie.stability.figures.plot_units import PlaneUnits
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+
+    from moving_bogie.stability.lines.line_results import InstabilityLines
+    from moving_bogie.stability.maps.map import StabilityMap
 
 __all__ = [
     "end_mark_handles",
@@ -22,14 +33,14 @@ __all__ = [
 ]
 
 
-def new_figure(*args, **kwargs):
+def new_figure(*args: Any, **kwargs: Any) -> Figure:
     """A matplotlib Figure (imported lazily: the library loads matplotlib only when it draws)."""
     from matplotlib.figure import Figure
 
     return Figure(*args, **kwargs)
 
 
-def spacing_colors(ds) -> dict:
+def spacing_colors(ds: Iterable[float]) -> dict[float, tuple[float, float, float, float]]:
     """One colour per wheel spacing d (the paper's legends)."""
     import matplotlib
 
@@ -38,7 +49,7 @@ def spacing_colors(ds) -> dict:
 
 
 #: Marker of a line that stops inside the plot, by kind: a fold (tip) or any other reason.
-END_MARKERS = {
+END_MARKERS: dict[str, dict[str, Any]] = {
     "fold": dict(marker="^", mfc="none", mec="k", ms=6, ls="none"),
     "other": dict(marker="x", color="tab:red", ms=6, ls="none"),
 }
@@ -49,16 +60,16 @@ END_LABELS = {
 
 
 def plot_instability_lines(
-    ax,
-    lines,
+    ax: Axes,
+    lines: InstabilityLines,
     *,
-    colors=None,
+    colors: dict[float, Any] | None = None,
     linestyle: str = "-",
     scale: float = 1.0,
     label: bool = True,
     lw: float = 1.2,
-    units=None,
-) -> set:
+    units: PlaneUnits | None = None,
+) -> set[str]:
     """Draw the branches of an :class:`~moving_bogie.stability.lines.instability_lines.InstabilityLines` on
     ``ax``.
 
@@ -71,8 +82,8 @@ def plot_instability_lines(
     units = units or PlaneUnits()
     ds = sorted({b.d for b in lines.branches})
     colors = colors or spacing_colors(ds)
-    seen = set()
-    marked = set()
+    seen: set[tuple[float, str]] = set()
+    marked: set[str] = set()
     parameter = lines.parameter
     x, y = (lambda a: units.value("alpha", a)), (lambda t: units.value(parameter, t) / scale)
     for b in lines.branches:
@@ -92,18 +103,27 @@ def plot_instability_lines(
 
 
 #: Line styles and legend labels of the boundaries drawn for an undamped foundation (:mod:`undamped_lines`).
-UNDAMPED_STYLES = {"undamped": {"ls": "-", "marker": "."}, "limit": {"ls": "--", "marker": "."}}
+UNDAMPED_STYLES: dict[str, dict[str, Any]] = {
+    "undamped": {"ls": "-", "marker": "."},
+    "limit": {"ls": "--", "marker": "."},
+}
 UNDAMPED_LABELS = {"undamped": "boundary at eta_f = 0", "limit": "boundary as eta_f -> 0+"}
 
 
-def end_mark_handles(kinds) -> list:
+def end_mark_handles(kinds: Iterable[str]) -> list[Line2D]:
     """Legend handles explaining the line-end marks of ``kinds`` (from :func:`plot_instability_lines`)."""
     from matplotlib.lines import Line2D
 
     return [Line2D([], [], label=END_LABELS[k], **END_MARKERS[k]) for k in sorted(kinds)]
 
 
-def plot_stability_map(smap, lines=None, *, vmin_log: float = -6.0, units=None):
+def plot_stability_map(
+    smap: StabilityMap,
+    lines: InstabilityLines | None = None,
+    *,
+    vmin_log: float = -6.0,
+    units: PlaneUnits | None = None,
+) -> Figure:
     """The map coloured by its stability margin (:mod:`~moving_bogie.stability.figures.margin_plot`: decay
     rate where stable, growth rate where unstable, in 1/s for an SI input), with instability lines on top;
     uncertain cells hatched and counted in the title; axes in ``units`` (SI for a ``[physical]`` input,

@@ -12,11 +12,16 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.stability.lines.instability_lines import InstabilityLines, instability_lines
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
 
 __all__ = ["TrackComparison", "compare_tracks", "figure_track_comparison"]
 
@@ -71,24 +76,35 @@ def compare_tracks(
         Coarser continuation steps (for previews and tests).
     """
     other = bound.replace(track=track, **dict(groups))
-    steps = (
-        dict(alpha_step=0.02, q_step=0.008, h_max=0.02)
-        if quick
-        else dict(alpha_step=0.01, q_step=0.004, h_max=0.01)
-    )
-    out, crit = [], []
-    for k, p in enumerate((bound, other)):
-        part = None if progress is None else (lambda x, k=k: progress((k + x) / 2))
-        out.append(
-            instability_lines(
-                p, spacings=spacings, alpha_range=alpha_range, theta_max=theta_max, progress=part, **steps
-            )
+    alpha_step, q_step, h_max = (0.02, 0.008, 0.02) if quick else (0.01, 0.004, 0.01)
+
+    def track_lines(k: int, p: BoundModel) -> InstabilityLines:
+        part = None if progress is None else (lambda x: progress((k + x) / 2))
+        return instability_lines(
+            p,
+            spacings=spacings,
+            alpha_range=alpha_range,
+            theta_max=theta_max,
+            progress=part,
+            alpha_step=alpha_step,
+            q_step=q_step,
+            h_max=h_max,
         )
-        crit.append(float(critical_velocity(p).alpha_cr))
-    return TrackComparison(tuple(out), tuple(crit), tuple(spacings), tuple(alpha_range), theta_max)
+
+    base_lines = track_lines(0, bound)
+    base_cr = float(critical_velocity(bound).alpha_cr)
+    other_lines = track_lines(1, other)
+    other_cr = float(critical_velocity(other).alpha_cr)
+    return TrackComparison(
+        (base_lines, other_lines),
+        (base_cr, other_cr),
+        tuple(spacings),
+        (alpha_range[0], alpha_range[1]),
+        theta_max,
+    )
 
 
-def figure_track_comparison(comparison: TrackComparison, units=None):
+def figure_track_comparison(comparison: TrackComparison, units: PlaneUnits | None = None) -> Figure:
     """Two panels with the same axes: the instability lines on each track, its critical velocity dotted;
     in SI with ``units`` (:class:`~moving_bogie.stability.figures.plot_units.PlaneUnits`), operating point
     marked."""

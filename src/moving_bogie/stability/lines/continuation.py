@@ -13,11 +13,18 @@ lines cross or the curve has a double point).
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable, Iterable
+from typing import TypeAlias
 
 import numpy as np
 
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.typing import ComplexArray, FloatArray
+
 __all__ = ["END_REASONS", "PathTracer", "covered", "evaluate", "gauss_newton"]
+
+#: A traced curve: its wheel spacing d, its points (k, 3) in (alpha, q, t) and why each end is there.
+TracedPath: TypeAlias = tuple[float, FloatArray, tuple[str, str]]
 
 #: Why a traced curve ends, by box face (coordinate, low/high) or event.
 END_REASONS = {
@@ -30,16 +37,23 @@ END_REASONS = {
 }
 
 
-def evaluate(sweep, x, d, scale):
-    """F = (Re E, Im E) and the 2x3 real Jacobian in (alpha, q, t = theta/scale) at points x (n, 3)."""
+def evaluate(
+    sweep: SweepCharacteristic, x: FloatArray, d: FloatArray, scale: float
+) -> tuple[FloatArray, FloatArray, ComplexArray, ComplexArray, ComplexArray]:
+    """F = (Re E, Im E) and the 2x3 real Jacobian in (alpha, q, t = theta/scale) at points x (n, 3),
+    with E, dE/dq and dE/dtheta there."""
     E, E_q, E_a, E_t = sweep.derivatives(x[:, 1].astype(complex), x[:, 0], x[:, 2] * scale, d=d)
+    assert E_t is not None  # theta is given
+
     cols = np.stack([E_a, E_q, E_t * scale], axis=-1)
     F = np.stack([E.real, E.imag], axis=-1)
     J = np.stack([cols.real, cols.imag], axis=-2)
     return F, J, E, E_q, E_t
 
 
-def gauss_newton(sweep, x, d, scale, tol, max_iter: int = 12):
+def gauss_newton(
+    sweep: SweepCharacteristic, x: FloatArray, d: FloatArray, scale: float, tol: float, max_iter: int = 12
+) -> tuple[FloatArray, np.ndarray]:
     """Minimum-norm Gauss-Newton onto the curve Re E = Im E = 0; returns (x, converged)."""
     x = np.array(x, dtype=float)
     conv = np.zeros(len(x), dtype=bool)
@@ -59,7 +73,16 @@ def gauss_newton(sweep, x, d, scale, tol, max_iter: int = 12):
     return x, conv & np.all(np.isfinite(x), axis=-1)
 
 
-def newton_fixed(sweep, x, d, k, value, scale, tol, max_iter: int = 12):
+def newton_fixed(
+    sweep: SweepCharacteristic,
+    x: FloatArray,
+    d: FloatArray,
+    k: int,
+    value: float,
+    scale: float,
+    tol: float,
+    max_iter: int = 12,
+) -> tuple[FloatArray, np.ndarray]:
     """Newton in the two coordinates other than ``k`` with x[k] = value (end points on the box)."""
     x = np.array(x, dtype=float)
     x[:, k] = value
@@ -80,7 +103,8 @@ def newton_fixed(sweep, x, d, k, value, scale, tol, max_iter: int = 12):
     return x, conv & np.all(np.isfinite(x), axis=-1)
 
 
-def tangent(J, previous=None):
+def tangent(J: FloatArray, previous: FloatArray | None = None) -> FloatArray:
+    """Unit tangent of the curves (cross product of the rows of J), oriented along ``previous``."""
     T = np.cross(J[:, 0, :], J[:, 1, :])
     T /= np.linalg.norm(T, axis=-1, keepdims=True)
     if previous is not None:
@@ -95,20 +119,29 @@ class PathTracer:
     """
 
     def __init__(
-        self, sweep, scale, box, h_max, tol, *, h_min: float = 1e-6, max_steps: int = 4000, progress=None
+        self,
+        sweep: SweepCharacteristic,
+        scale: float,
+        box: FloatArray,
+        h_max: float,
+        tol: float,
+        *,
+        h_min: float = 1e-6,
+        max_steps: int = 4000,
+        progress: Callable[[float], None] | None = None,
     ) -> None:
         self.sweep, self.scale, self.box = sweep, scale, box
         self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
         self.progress = progress
-        self.warnings: list[Any] = []
+        self.warnings: list[str] = []
 
-    def trace_all(self, groups):
+    def trace_all(self, groups: Iterable[tuple[float, FloatArray]]) -> list[TracedPath]:
         """Trace curves until every seed lies on one; returns a list of (d, path (k, 3), (start, end)).
 
         ``start`` and ``end`` say why the path ends there: a face of the box (:data:`END_REASONS`),
         "closed" (a loop), "stalled" (singular point) or "max_steps".
         """
-        paths: list[Any] = []
+        paths: list[TracedPath] = []
         pending = list(groups)
         total = max(1, sum(len(g) for _, g in pending))
         while pending:
@@ -134,7 +167,7 @@ class PathTracer:
                 self.progress(1 - sum(len(g) for _, g in pending) / total)
         return paths
 
-    def _trace(self, starts, ds):
+    def _trace(self, starts: FloatArray, ds: FloatArray) -> list[TracedPath]:
         m = len(starts)
         _, J, *_ = evaluate(self.sweep, starts, ds, self.scale)
         T0 = tangent(J)
@@ -202,17 +235,17 @@ class PathTracer:
                     reason[i] = reason[i + m if i < m else i - m] = "closed"
         else:
             self.warnings.append("continuation stopped at max_steps")
-        paths = []
-        for i in range(m):
-            if loop[i] or loop[i + m]:
-                path = np.array(pts[i] if loop[i] else pts[i + m])
+        paths: list[TracedPath] = []
+        for c in range(m):
+            if loop[c] or loop[c + m]:
+                path = np.array(pts[c] if loop[c] else pts[c + m])
             else:
-                path = np.array(pts[i + m][::-1] + pts[i][1:])
+                path = np.array(pts[c + m][::-1] + pts[c][1:])
             if len(path) >= 2:
-                paths.append((float(ds[i]), path, (reason[i + m], reason[i])))
+                paths.append((float(ds[c]), path, (reason[c + m], reason[c])))
         return paths
 
-    def _outside(self, y):
+    def _outside(self, y: FloatArray) -> tuple[int, float] | None:
         """(coordinate, bound value) of the first box face crossed, or None."""
         for k in range(3):
             lo, hi = self.box[k]
@@ -222,7 +255,9 @@ class PathTracer:
                 return k, hi
         return None
 
-    def _end_point(self, x, y, d, face):
+    def _end_point(
+        self, x: FloatArray, y: FloatArray, d: float, face: tuple[int, float]
+    ) -> FloatArray | None:
         k, value = face
         w = (value - x[k]) / (y[k] - x[k])
         guess = (x + w * (y - x))[None, :]
@@ -232,7 +267,7 @@ class PathTracer:
         return None
 
 
-def covered(points, path, radius):
+def covered(points: FloatArray, path: FloatArray, radius: float) -> np.ndarray:
     """Boolean mask: points within ``radius`` of the polyline ``path`` (both (n, 3))."""
     if len(path) < 2:
         return np.linalg.norm(points - path[0], axis=-1) < radius

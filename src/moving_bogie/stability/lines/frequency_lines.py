@@ -62,10 +62,10 @@ class FrequencyLine:
 class FrequencyLines:
     params: DimensionlessParams
     model: str
-    alpha_range: tuple
-    lines: tuple
-    checkpoints: tuple  # (alpha, number of roots found, number matched by continued lines)
-    warnings: tuple = field(default=())
+    alpha_range: tuple[float, float]
+    lines: tuple[FrequencyLine, ...]
+    checkpoints: tuple[tuple[float, int, int], ...]  # (alpha, number of roots found, number matched)
+    warnings: tuple[str, ...] = field(default=())
 
     def to_dict(self) -> dict:
         return {
@@ -76,6 +76,16 @@ class FrequencyLines:
             "checkpoints": [{"alpha": a, "found": n, "matched": m} for a, n, m in self.checkpoints],
             "warnings": list(self.warnings),
         }
+
+
+@dataclass
+class _OpenLine:
+    """A line being followed: its points so far, how it began, and how it ended (None while it goes on)."""
+
+    alpha: list[float]
+    q: list[complex]
+    start: str
+    end: str | None = None
 
 
 def frequency_lines(
@@ -113,8 +123,8 @@ def frequency_lines(
     alphas = np.round(np.linspace(a0, a1, max(2, checkpoints)), 12)
     warnings: list[str] = []
     found = _checkpoint_roots(bound, alphas, dps, warnings, progress)
-    finished: list[dict] = []
-    active = [{"alpha": [alphas[0]], "q": [q], "start": "range", "end": None} for q in found[0]]
+    finished: list[_OpenLine] = []
+    active = [_OpenLine([alphas[0]], [q], "range") for q in found[0]]
     record = [(float(alphas[0]), len(found[0]), len(found[0]))]
     for k in range(len(alphas) - 1):
         a_from, a_to = alphas[k], alphas[k + 1]
@@ -125,17 +135,18 @@ def frequency_lines(
         if progress is not None:
             progress(0.7 + 0.3 * (k + 1) / (len(alphas) - 1))
     for line in active:
-        line["end"] = "range"
+        line.end = "range"
         finished.append(line)
     lines = []
     for line in finished:
-        order = np.argsort(line["alpha"], kind="stable")
+        assert line.end is not None  # every finished line has been given its end
+        order = np.argsort(line.alpha, kind="stable")
         lines.append(
             FrequencyLine(
-                np.asarray(line["alpha"])[order],
-                np.asarray(line["q"], dtype=complex)[order],
-                line["start"],
-                line["end"],
+                np.asarray(line.alpha)[order],
+                np.asarray(line.q, dtype=complex)[order],
+                line.start,
+                line.end,
             )
         )
     lines.sort(key=lambda ln: (ln.alpha[0], -ln.q[0].real))
@@ -150,7 +161,7 @@ def _checkpoint_roots(
     progress: Callable[[float], None] | None,
 ) -> list[list[complex]]:
     """Every induced frequency at each checkpoint alpha, found afresh (:func:`induced_frequencies`)."""
-    found = []
+    found: list[list[complex]] = []
     for k, a in enumerate(alphas):
         res = induced_frequencies(bound.replace(alpha=Fraction(str(float(a)))), dps=dps)
         if not res.count_ok:
@@ -163,37 +174,37 @@ def _checkpoint_roots(
 
 def _continue_lines(
     tracker: _Tracker,
-    active: list[dict],
+    active: list[_OpenLine],
     found: list[complex],
     a_from: float,
     a_to: float,
     match_tol: float,
     warnings: list[str],
-    finished: list[dict],
-) -> tuple[list[dict], int]:
+    finished: list[_OpenLine],
+) -> tuple[list[_OpenLine], int]:
     """Continue the active lines from ``a_from`` to the next checkpoint ``a_to`` and match them with the roots
     ``found`` there; a root found there that no line reaches is a line that appeared in between, followed
     backwards. Lines that end on the way go to ``finished``. Returns the lines still active, the matches."""
     still = []
     for line in active:
-        pa, pq, how = tracker.follow(line["alpha"][-1], line["q"][-1], a_to)
-        line["alpha"] += pa
-        line["q"] += pq
+        pa, pq, how = tracker.follow(line.alpha[-1], line.q[-1], a_to)
+        line.alpha += pa
+        line.q += pq
         if how == "reached":
             still.append(line)
         else:
-            line["end"] = how
+            line.end = how
             finished.append(line)
             if how == "lost":
-                warnings.append(f"a line was lost near alpha={line['alpha'][-1]:.6g}, q={line['q'][-1]:.6g}")
+                warnings.append(f"a line was lost near alpha={line.alpha[-1]:.6g}, q={line.q[-1]:.6g}")
     targets = list(found)
     matched = 0
     for line in still:
-        z = line["q"][-1]
+        z = line.q[-1]
         dist = [abs(z - t) for t in targets]
         if dist and min(dist) < match_tol * max(1.0, abs(z)):
             j = int(np.argmin(dist))
-            line["q"][-1] = targets.pop(j)
+            line.q[-1] = targets.pop(j)
             matched += 1
         else:
             warnings.append(f"alpha={a_to:g}: continued root {z:.8g} not among the roots found there")
@@ -202,25 +213,33 @@ def _continue_lines(
         if how == "reached":
             warnings.append(f"alpha={a_from:g}: root continued back from {t:.8g} was not found there")
         start = "cut" if how == "cut" else ("range" if how == "reached" else "lost")
-        still.append({"alpha": pa[::-1] + [a_to], "q": pq[::-1] + [t], "start": start, "end": None})
+        still.append(_OpenLine(pa[::-1] + [a_to], pq[::-1] + [t], start))
     return still, matched
 
 
 class _Tracker:
     """Continuation of one root q(alpha) of E_chr in double precision."""
 
-    def __init__(self, sweep, h_max, *, h_min: float = 1e-9, tol: float = 1e-12, max_iter: int = 8) -> None:
+    def __init__(
+        self,
+        sweep: SweepCharacteristic,
+        h_max: float,
+        *,
+        h_min: float = 1e-9,
+        tol: float = 1e-12,
+        max_iter: int = 8,
+    ) -> None:
         self.sweep, self.h_max, self.h_min, self.tol, self.max_iter = sweep, h_max, h_min, tol, max_iter
 
-    def _side(self, q, a):
+    def _side(self, q: complex, a: float) -> int:
         return int(self.sweep.upper_root_count(np.array([q]), np.array([a]))[0])
 
-    def _near_cut(self, q, a, tol: float = 1e-5):
+    def _near_cut(self, q: complex, a: float, tol: float = 1e-5) -> bool:
         """Some p-root of N(p, q) is (nearly) real: q is at the cut of K."""
         P = self.sweep.p_roots(np.array([q]), np.array([a]))[0]
         return bool(np.min(np.abs(P.imag) / np.maximum(1.0, np.abs(P))) < tol)
 
-    def _correct(self, q, a):
+    def _correct(self, q: complex, a: float) -> tuple[complex, bool]:
         """Newton at fixed alpha; returns (q, converged)."""
         for _ in range(self.max_iter):
             E, E_q = self.sweep.e_and_dq(np.array([q]), np.array([a]))
@@ -232,11 +251,11 @@ class _Tracker:
                 return (complex(-q.conjugate()) if q.real < 0 else q), True
         return q, False
 
-    def _slope(self, q, a):
+    def _slope(self, q: complex, a: float) -> complex:
         E, E_q, E_a, _ = self.sweep.derivatives(np.array([q]), np.array([a]), None)
         return complex(-E_a[0] / E_q[0])
 
-    def follow(self, a, q, a_end):
+    def follow(self, a: float, q: complex, a_end: float) -> tuple[list[float], list[complex], str]:
         """Follow the root q at alpha=a towards a_end; returns (alphas, qs, how) without the start point.
 
         ``how`` is "reached", "cut" (the root meets the cut of K) or "lost".
@@ -244,7 +263,8 @@ class _Tracker:
         direction = 1.0 if a_end >= a else -1.0
         side = self._side(q, a)
         h = 0.25 * self.h_max
-        out_a, out_q = [], []
+        out_a: list[float] = []
+        out_q: list[complex] = []
         while direction * (a_end - a) > 1e-14:
             step = min(h, direction * (a_end - a))
             a_new = a + direction * step
@@ -270,7 +290,9 @@ class _Tracker:
             h = min(1.5 * h, self.h_max)
         return out_a, out_q, "reached"
 
-    def _bisect_cut(self, a_good, q_good, a_bad, side, tol: float = 1e-9):
+    def _bisect_cut(
+        self, a_good: float, q_good: complex, a_bad: float, side: int, tol: float = 1e-9
+    ) -> tuple[float, complex]:
         """Last point on the starting side of the cut, to ``tol`` in alpha."""
         while abs(a_bad - a_good) > tol:
             a_mid = 0.5 * (a_good + a_bad)

@@ -45,6 +45,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from fractions import Fraction
+from typing import cast
 
 import contourpy
 import numpy as np
@@ -56,6 +57,7 @@ from moving_bogie.stability.lines.line_ends import find_folds, line_end
 from moving_bogie.stability.lines.line_results import InstabilityBranch, InstabilityLines
 from moving_bogie.stability.lines.undamped_lines import undamped_lines
 from moving_bogie.stability.maps.undamped import regime
+from moving_bogie.typing import FloatArray
 
 __all__ = ["InstabilityBranch", "InstabilityLines", "instability_lines"]
 
@@ -167,7 +169,15 @@ def _trace_up_to_cap(
     return branches, warnings, q_max
 
 
-def _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress):
+def _trace(
+    sweep: SweepCharacteristic,
+    ds: Sequence[float],
+    alpha_range: Sequence[float],
+    theta_max: float,
+    q_max: float,
+    grid: dict[str, float],
+    progress: Callable[[float], None] | None,
+) -> tuple[list[InstabilityBranch], list[str]]:
     """Seeds on an (alpha, q) grid, then continuation: the branches in the box up to ``q_max``."""
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
     alpha_step, q_step, tol = grid["alpha_step"], grid["q_step"], grid["tol"]
@@ -178,11 +188,15 @@ def _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress):
     _report(progress, 0.1)
     box = np.array([[a0, a1], [0.0, q_max], [0.0, 1.0]])
     steps = (alphas[1] - alphas[0], qs[1] - qs[0])
-    groups = []  # (d, seed points) per contour polyline
+    groups: list[tuple[float, FloatArray]] = []  # (d, seed points) per contour polyline
     for j, d in enumerate(ds):
         roots = poly_roots(sweep.coefficients(QQ, Ks[j], scale=theta_max, d=d))
         g = np.prod(np.where(np.isfinite(roots), roots.imag / (1 + np.abs(roots)), 1.0), axis=-1)
-        lines = contourpy.contour_generator(x=alphas, y=qs, z=g.T, line_type="Separate").lines(0.0)
+        # line_type "Separate": the lines are a list of (k, 2) vertex arrays (contourpy types every line type)
+        lines = cast(
+            list[FloatArray],
+            contourpy.contour_generator(x=alphas, y=qs, z=g.T, line_type="Separate").lines(0.0),
+        )
         if lines:  # every polyline's vertices polished in one batch (each vertex on its own)
             points, inside = _seed_points(sweep, np.concatenate(lines), d, theta_max, tol, box, steps)
             for span in np.split(np.arange(len(points)), np.cumsum([len(line) for line in lines])[:-1]):
@@ -218,16 +232,24 @@ def _verify(bound: BoundModel, parameter: str, branch: InstabilityBranch) -> Ins
     )
 
 
-def _exact(x: float):
+def _exact(x: float) -> Fraction:
     return Fraction(str(x))
 
 
-def _report(progress, x) -> None:
+def _report(progress: Callable[[float], None] | None, x: float) -> None:
     if progress is not None:
         progress(min(1.0, x))
 
 
-def _seed_points(sweep, line, d, theta_max, tol, box, steps):
+def _seed_points(
+    sweep: SweepCharacteristic,
+    line: FloatArray,
+    d: float,
+    theta_max: float,
+    tol: float,
+    box: FloatArray,
+    steps: tuple[float, float],
+) -> tuple[FloatArray, np.ndarray]:
     """Points on the curves near the vertices of contour polylines: (points, inside), shapes (k, 3) in
     (alpha, q, t) and (k,), ``inside`` marking the polished points kept (in the box, theta > 0, q > 0).
 
@@ -261,7 +283,7 @@ def _seed_points(sweep, line, d, theta_max, tol, box, steps):
     return out, inside
 
 
-def _at_cut(sweep, reason, q, alpha):
+def _at_cut(sweep: SweepCharacteristic, reason: str, q: float, alpha: float) -> str:
     """A stalled end where a p-root of N is real (to 1e-6) lies on the cut of K: reason "cut"."""
     if reason != "stalled":
         return reason
@@ -269,7 +291,15 @@ def _at_cut(sweep, reason, q, alpha):
     return "cut" if np.min(np.abs(p.imag) / np.maximum(1.0, np.abs(p))) < 1e-6 else reason
 
 
-def _branch(sweep, d, path, theta_max, ends, alpha_span) -> InstabilityBranch:
+def _branch(
+    sweep: SweepCharacteristic,
+    d: float,
+    path: FloatArray,
+    theta_max: float,
+    ends: tuple[str, str],
+    alpha_span: float,
+) -> InstabilityBranch:
+
     _, _, E, E_q, E_t = evaluate(sweep, path, np.full(len(path), d), theta_max)
     dq_dtheta = -E_t / E_q
     alpha, theta, q = path[:, 0].copy(), path[:, 2] * theta_max, path[:, 1].copy()

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from moving_bogie.typing import FloatArray
+
 __all__ = ["EXPLANATIONS", "PLOT_EDGES", "LineEnd", "find_folds", "line_end"]
 
 #: End reasons that are the edge of the plotted range (the line continues outside).
@@ -75,12 +77,20 @@ class LineEnd:
         }
 
 
-def line_end(reason: str, alpha, theta, q) -> LineEnd:
+def line_end(reason: str, alpha: float, theta: float, q: float) -> LineEnd:
     """A :class:`LineEnd` at the point (alpha, theta, q)."""
     return LineEnd(reason, float(alpha), float(theta), float(q))
 
 
-def find_folds(alpha, theta, q, alpha_span: float, theta_max: float, *, reach: float = 0.02) -> tuple:
+def find_folds(
+    alpha: FloatArray,
+    theta: FloatArray,
+    q: FloatArray,
+    alpha_span: float,
+    theta_max: float,
+    *,
+    reach: float = 0.02,
+) -> tuple[LineEnd, ...]:
     """Tips where the line turns back in the (alpha, theta) plane.
 
     In the plot's scaled coordinates (alpha / alpha_span, theta / theta_max), every local extremum of alpha
@@ -92,11 +102,13 @@ def find_folds(alpha, theta, q, alpha_span: float, theta_max: float, *, reach: f
     if len(P) < 3:
         return ()
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(P, axis=0), axis=-1))])
-    extrema = set()
+    extrema: set[int] = set()
     for coordinate in P.T:
         step = np.diff(coordinate)
         extrema |= set((np.nonzero(step[:-1] * step[1:] < 0)[0] + 1).tolist())
-    folds, last = [], -np.inf
+    folds: list[LineEnd] = []
+    last = -np.inf
+
     for k in sorted(extrema):
         i = np.searchsorted(s, s[k] - reach, side="right") - 1
         j = np.searchsorted(s, s[k] + reach)

@@ -28,12 +28,14 @@ from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.stability.lines.line_results import InstabilityBranch, InstabilityLines
 from moving_bogie.stability.maps.column import exact
 from moving_bogie.stability.maps.undamped import (
+    Boundary,
     UndampedCounter,
     boundaries,
     parameter_grid,
     regime,
     uncertain_warning,
 )
+from moving_bogie.typing import FloatArray
 
 __all__ = ["KIND_TEXT", "undamped_branches", "undamped_lines"]
 
@@ -57,7 +59,7 @@ def undamped_branches(
     tol: float = 1e-3,
     join: float = 0.5,
     progress: Callable[[float], None] | None = None,
-):
+) -> tuple[list[InstabilityBranch], list[str], str]:
     """Branches of undamped boundaries (module text); returns ``(branches, warnings, method)``.
 
     ``grid_points`` values of theta (and 5 geometric ones down to theta_max / 1000) are counted at every
@@ -68,12 +70,14 @@ def undamped_branches(
     grid = parameter_grid(theta_max, grid_points)
     params = bound.params
     kinds = ("undamped", "limit") if regime(params.eta_f) == "undamped" else ("limit",)
-    branches, warnings = [], []
+    branches: list[InstabilityBranch] = []
+    warnings: list[str] = []
     total = len(ds) * len(alphas)
     for j, d in enumerate(ds):
         margin = 100 * float(params.eta_f)
         counter = UndampedCounter(bound.replace(d=exact(d)), parameter, margin=margin)
-        points, unsure = [], {}
+        points: list[Boundary] = []
+        unsure: dict[float, int] = {}
         for i, a in enumerate(alphas):
             bounds, _, unsure[float(a)] = boundaries(counter, float(a), grid, tol=tol * theta_max)
             points += [b for b in bounds if b.kind in kinds]
@@ -82,7 +86,7 @@ def undamped_branches(
         warnings += uncertain_warning(f"d={d:g}: ", unsure, margin)
         for kind in kinds:
             for chain in _join([b for b in points if b.kind == kind], alphas, join * theta_max):
-                branches.append(_branch(InstabilityBranch, float(d), kind, chain))
+                branches.append(_branch(float(d), kind, chain))
     branches.sort(key=lambda b: (b.d, b.kind, b.alpha.min()))
     method = (
         f"counts of unstable induced frequencies (argument principle, K on the cut from below) on "
@@ -107,17 +111,17 @@ def undamped_lines(
     branches, warnings, method = undamped_branches(bound, ds, parameter, alpha_range, theta_max, **options)
     params = bound.params
     a0, a1 = (float(a) for a in alpha_range)
-    warnings = tuple(dict.fromkeys(warnings))
+    unique = tuple(dict.fromkeys(warnings))
     return InstabilityLines(
-        params, params.vehicle, parameter, (a0, a1), float(theta_max), tuple(branches), warnings, None, method
+        params, params.vehicle, parameter, (a0, a1), float(theta_max), tuple(branches), unique, None, method
     )
 
 
-def _join(points, alphas, jump):
+def _join(points: list[Boundary], alphas: FloatArray, jump: float) -> list[list[Boundary]]:
     """Chains of boundary points: same counts on both sides, consecutive alphas, theta within ``jump``."""
     index = {float(a): i for i, a in enumerate(alphas)}
-    open_: list[Any] = []
-    done: list[Any] = []
+    open_: list[list[Boundary]] = []
+    done: list[list[Boundary]] = []
     for i in range(len(alphas)):
         here = sorted((b for b in points if index[b.alpha] == i), key=lambda b: b.theta)
         still = []
@@ -141,11 +145,12 @@ def _join(points, alphas, jump):
     return done + open_
 
 
-def _branch(cls, d, kind, chain):
+def _branch(d: float, kind: str, chain: list[Boundary]) -> InstabilityBranch:
+    """The :class:`InstabilityBranch` of one chain of boundary points (kind "undamped" or "limit")."""
     n = len(chain)
     k = n // 2
     mid = chain[k]
-    return cls(
+    return InstabilityBranch(
         d=d,
         alpha=np.array([b.alpha for b in chain]),
         theta=np.array([b.theta for b in chain]),

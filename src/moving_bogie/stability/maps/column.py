@@ -56,18 +56,20 @@ class ColumnResult:
     count: np.ndarray  # unstable induced frequencies (pairs once)
     degree: np.ndarray  # most negative Im q (0 where stable)
     uncertain: np.ndarray  # the count could not be certified
-    roots: list  # per theta: the unstable roots (Re q >= 0 member of each pair)
+    roots: list[np.ndarray]  # per theta: the unstable roots (Re q >= 0 member of each pair)
     settled: np.ndarray | None = None
     margin: np.ndarray | None = None  # smallest Im q (the degree where unstable; NaN: undetermined)
     margin_bound: np.ndarray | None = None  # the margin is only a lower bound (no root below it)
 
 
-def exact(x) -> Fraction:
+def exact(x: float | str | Fraction) -> Fraction:
     """The shortest decimal text of a float, read exactly (as the command line reads its options)."""
     return Fraction(str(float(x)))
 
 
-def at_theta(bound: BoundModel, parameter: str, theta: Fraction, held: Iterable[str] = ()) -> BoundModel:
+def at_theta(
+    bound: BoundModel, parameter: str, theta: Fraction | float, held: Iterable[str] = ()
+) -> BoundModel:
     """``bound`` with ``parameter = theta`` (exact), the groups of ``held`` kept at their values instead of
     following it (:class:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic`)."""
     params = bound.params
@@ -106,8 +108,8 @@ def stability_column(
     max_bend: float = 0.2,
     min_spacing: float = 1e-10,
     polish: int = 10,
-    guesses: Sequence | None = None,
-    extra: Sequence[float] | None = None,
+    guesses: Sequence[Sequence[complex] | np.ndarray] | None = None,
+    extra: Sequence[float] | np.ndarray | None = None,
     margin: bool = True,
 ) -> ColumnResult:
     """Unstable induced frequencies for every theta of ``thetas`` at one alpha (see the module text).
@@ -146,10 +148,9 @@ def stability_column(
     thetas = np.asarray(thetas, dtype=float)
     scale = float(thetas.max())
     t = thetas / scale
-    fine_until = None
-    if window is None:
-        *window, fine_until = column_window(sweep.bound, sweep.parameter, thetas, sweep.held)
-    X, Y = window
+    X, Y, fine_until = (
+        column_window(sweep.bound, sweep.parameter, thetas, sweep.held) if window is None else (*window, None)
+    )
     if extra is None and top < 0:
         extra = branch_samples(branch_points(sweep.bound, alpha))
     moment_top = top + 0.4 * float(sweep.params.eta_f) if moment_top is None else moment_top
@@ -197,7 +198,7 @@ def _unstable_roots(
     thetas: np.ndarray,
     box: BoxCount,
     count: np.ndarray,
-    guesses: Sequence | None,
+    guesses: Sequence[Sequence[complex] | np.ndarray] | None,
     coeffs: Callable[[np.ndarray], Any],
     window: tuple[float, float],
     tops: tuple[float, ...],
@@ -211,10 +212,10 @@ def _unstable_roots(
     unstable = np.nonzero(count > 0)[0]
     roots = [np.zeros(0, dtype=complex) for _ in t]
 
-    def short():
+    def short() -> np.ndarray:
         return np.array([j for j in unstable if len(roots[j]) < count[j]], dtype=int)
 
-    def merge(more) -> None:
+    def merge(more: list[np.ndarray]) -> None:
         for j in range(len(t)):
             if len(more[j]) > len(roots[j]):
                 roots[j] = more[j]
@@ -240,7 +241,8 @@ def _unstable_roots(
             break
         cands = [[] for _ in t]
         for j, r in zip(todo, delves_lyness(coeffs, t[todo], X, Y, box_top)):
-            cands[j] = r + list(roots[j])
+            cands[j] = (r or []) + list(roots[j])
+
         merge(locate_roots(sweep, alpha, thetas, cands, count, polish, spread=False))
     return roots
 
@@ -322,14 +324,14 @@ def branch_points(bound: BoundModel, alpha: float) -> list[float]:
     xs = [f.q.real for f in cut.folds if f.q.real > 0 and abs(f.q.imag) < 1e-9]
     if np.isfinite(cut.x_start) and cut.x_start > 0 and abs(cut.im_low) < 1e-9:
         xs.append(cut.x_start)
-    out: list[Any] = []
+    out: list[float] = []
     for x in sorted(xs):
         if not out or x - out[-1] > 1e-9:
             out.append(float(x))
     return out
 
 
-def branch_samples(points) -> np.ndarray | None:
+def branch_samples(points: Sequence[float]) -> np.ndarray | None:
     """Top-edge samples 1e-8 to 1e-2 on both sides of each branch point: K grows like the inverse square
     root of the distance there, so E changes on the scale of the distance (a root 2e-4 below the axis next
     to one was missed with the regular samples alone)."""

@@ -32,6 +32,8 @@ from typing import Any
 
 import numpy as np
 
+from moving_bogie.kernels.polynomial import horner
+
 __all__ = ["BoxCount", "count_box", "edge_samples", "horner_pairs", "horner_rows"]
 
 
@@ -42,22 +44,13 @@ def edge_samples(a: complex, b: complex, h: float) -> np.ndarray:
 
 
 def horner_rows(c: np.ndarray, T: np.ndarray) -> np.ndarray:
-    """E at every contour point for every t: c (M, deg+1), T (n, 1) -> (n, M) (Horner, in place)."""
-    acc = np.empty((T.shape[0], c.shape[0]), dtype=complex)
-    acc[:] = c[None, :, 0]
-    for k in range(1, c.shape[-1]):
-        acc *= T
-        acc += c[None, :, k]
-    return acc
+    """E at every contour point for every t: c (M, deg+1) complex, T (n, 1) -> (n, M) (:func:`horner`)."""
+    return horner(np.moveaxis(c, -1, 0), T)
 
 
 def horner_pairs(c: np.ndarray, idx: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """E at points ``idx`` (coefficient rows of c) for the matching t values (1-d arrays)."""
-    cc = c[idx]
-    acc = cc[:, 0].copy()
-    for k in range(1, cc.shape[-1]):
-        acc = acc * t + cc[:, k]
-    return acc
+    """E at points ``idx`` (coefficient rows of c) for the matching t values (1-d arrays; :func:`horner`)."""
+    return horner(np.moveaxis(c[idx], -1, 0), t)
 
 
 @dataclass

@@ -10,27 +10,29 @@ power sums of the roots inside, which are then the zeros of a polynomial (Newton
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from moving_bogie.stability.maps.column_count import horner_rows
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.stability.maps.column_count import BoxCount, horner_rows
+from moving_bogie.typing import ComplexArray, FloatArray
 
 __all__ = ["delves_lyness", "dip_candidates", "from_power_sums", "locate_roots", "polish_roots"]
 
 
 def delves_lyness(
-    coeffs,
-    t,
-    X,
-    Y,
-    top,
+    coeffs: Callable[[ComplexArray], tuple[ComplexArray, ComplexArray]],
+    t: FloatArray,
+    X: float,
+    Y: float,
+    top: float,
     *,
     panel: float = 0.05,
     nodes: int = 16,
     max_roots: int = 8,
     with_empty: bool = False,
-) -> list:
+) -> list[list[complex] | None]:
     """Roots inside -X..X x -Y..top for each t (Delves-Lyness), or an empty list where that fails.
 
     ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z. With ``with_empty`` a
@@ -53,26 +55,26 @@ def delves_lyness(
     c, dc = coeffs(z)
     E, dE = horner_rows(c, t[:, None]), horner_rows(dc, t[:, None])
     g = dE / E
-    out: list[Any] = []
+    out: list[list[complex] | None] = []
     for j in range(len(t)):
 
-        def s(m, j=j):
+        def s(m: int, j: int = j) -> complex:
             right = np.sum(z**m * g[j] * wz)
             left = np.sum((-np.conj(z)) ** m * (-np.conj(g[j])) * np.conj(wz))
             return (right + left) / (2j * np.pi)
 
-        n = s(0).real
-        if with_empty and abs(n - round(n)) <= 1e-3 and round(n) == 0:
+        inside = s(0).real
+        if with_empty and abs(inside - round(inside)) <= 1e-3 and round(inside) == 0:
             out.append([])
             continue
-        if abs(n - round(n)) > 1e-3 or not 0 < round(n) <= max_roots:
+        if abs(inside - round(inside)) > 1e-3 or not 0 < round(inside) <= max_roots:
             out.append(None if with_empty else [])
             continue
-        out.append(list(from_power_sums(np.array([s(m) for m in range(1, int(round(n)) + 1)]))))
+        out.append(list(from_power_sums(np.array([s(m) for m in range(1, int(round(inside)) + 1)]))))
     return out
 
 
-def from_power_sums(s):
+def from_power_sums(s: ComplexArray) -> np.ndarray:
     """Roots of the monic polynomial whose roots have power sums s[0..n-1] (Newton's identities)."""
     n = len(s)
     e = [1.0 + 0j]
@@ -82,13 +84,13 @@ def from_power_sums(s):
     return np.roots(coeffs) if n > 0 else np.zeros(0, dtype=complex)
 
 
-def dip_candidates(box, j, limit: int = 10):
+def dip_candidates(box: BoxCount, j: int, limit: int = 10) -> list[complex]:
     """Starting points below the places of the top edge where a root near the real axis shows."""
     zr = box.path[box.n_outer :]
     mag = np.abs(box.E[j, box.n_outer :])
     inner = np.nonzero((mag[1:-1] < mag[:-2]) & (mag[1:-1] < mag[2:]))[0] + 1
-    chosen: list[Any] = []
-    out: list[Any] = []
+    chosen: list[complex] = []
+    out: list[complex] = []
     for z_ in list(zr[inner[np.argsort(mag[inner])][:limit]]) + box.near_axis[j][::-1]:
         if len(chosen) >= limit:
             break
@@ -98,11 +100,19 @@ def dip_candidates(box, j, limit: int = 10):
     return out
 
 
-def locate_roots(sweep, alpha, thetas, cands, count, steps, spread: bool = True):
+def locate_roots(
+    sweep: SweepCharacteristic,
+    alpha: float,
+    thetas: FloatArray,
+    cands: Sequence[Sequence[complex]],
+    count: np.ndarray,
+    steps: int,
+    spread: bool = True,
+) -> list[ComplexArray]:
     """Polish the candidates of every cell at once; with ``spread``, cells still short of roots then
     borrow the roots of the nearest complete cell (continuation in theta), front by front."""
     roots = [np.zeros(0, dtype=complex) for _ in thetas]
-    tried: dict = {}
+    tried: dict[int, set[int]] = {}
     for _ in range(len(thetas) + 1):
         owner = np.concatenate([np.full(len(c), j) for j, c in enumerate(cands)]).astype(int)
         flat = np.array([x for c in cands for x in c], dtype=complex)
@@ -110,25 +120,33 @@ def locate_roots(sweep, alpha, thetas, cands, count, steps, spread: bool = True)
             flat = polish_roots(sweep, flat, alpha, thetas[owner], steps)
         for j in set(owner.tolist()):
             r = list(roots[j]) + [x for x in flat[owner == j] if np.isfinite(x) and x.imag < 0]
-            keep: list[Any] = []
+            keep: list[complex] = []
             for x in r:
                 x = -np.conj(x) if x.real < 0 else x
                 if all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):
                     keep.append(x)
             roots[j] = np.array(sorted(keep, key=lambda x: x.imag), dtype=complex)
         complete = np.array([len(r) >= c for r, c in zip(roots, count)])
-        cands = [[] for _ in thetas]
-        for j in np.nonzero(~complete)[0]:
+        spread_to: list[list[complex]] = [[] for _ in thetas]
+        for j in np.nonzero(~complete)[0].tolist():
             for nb in (j - 1, j + 1):
                 if 0 <= nb < len(thetas) and complete[nb] and count[nb] > 0 and nb not in tried.get(j, ()):
-                    cands[j] += list(roots[nb])
+                    spread_to[j] += list(roots[nb])
                     tried.setdefault(j, set()).add(nb)
+        cands = spread_to
         if not spread or not any(cands):
             break
     return roots
 
 
-def polish_roots(sweep, q, alpha, thetas, steps, tol: float = 1e-11):
+def polish_roots(
+    sweep: SweepCharacteristic,
+    q: ComplexArray,
+    alpha: float,
+    thetas: FloatArray,
+    steps: int,
+    tol: float = 1e-11,
+) -> ComplexArray:
     """Newton on E_chr for every (q, theta) pair; non-converged entries come back as nan."""
     q = q.astype(complex)
     done = np.zeros(q.shape, dtype=bool)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from fractions import Fraction
@@ -54,21 +54,24 @@ class StabilityMap:
     margin: np.ndarray | None = None
     margin_bound: np.ndarray | None = None
 
-    def save_npz(self, path) -> None:
+    def save_npz(self, path: str | os.PathLike[str]) -> None:
         """Write the arrays (and the parameters as JSON text) to ``path`` (numpy .npz)."""
-        np.savez_compressed(
-            path,
-            alphas=self.alphas,
-            thetas=self.thetas,
-            degree=self.degree,
-            count=self.count,
-            uncertain=self.uncertain,
-            settled=self.settled_cells,
-            **({} if self.margin is None else {"margin": self.margin, "margin_bound": self.margin_bound}),
-            params=json.dumps(self.params.to_dict()),
-            model=self.model,
-            parameter=self.parameter,
-        )
+        arrays: dict[str, Any] = {
+            "alphas": self.alphas,
+            "thetas": self.thetas,
+            "degree": self.degree,
+            "count": self.count,
+            "uncertain": self.uncertain,
+            "settled": self.settled_cells,
+        }
+        if self.margin is not None:
+            arrays |= {"margin": self.margin, "margin_bound": self.margin_bound}
+        arrays |= {
+            "params": json.dumps(self.params.to_dict()),
+            "model": self.model,
+            "parameter": self.parameter,
+        }
+        np.savez_compressed(path, **arrays)
 
     @property
     def settled_cells(self) -> np.ndarray:
@@ -156,19 +159,22 @@ def map_columns(
         options["top"] = top_edge(bound, floats)
     theta_floats = np.array([float(t) for t in thetas])
     sweep = SweepCharacteristic(bound, parameter, held=held)
-    out: list[Any] = []
+    out: list[ColumnResult] = []
     for a, a_float in zip(alphas, floats):
         guesses = out[-1].roots if out else None
         col = stability_column(sweep, a_float, theta_floats, guesses=guesses, **options)
         if settle:
             exact_thetas = None if isinstance(thetas, np.ndarray) else list(thetas)
             exact_alpha = None if isinstance(a, float | np.floating) else a
-            col = settle_cells(bound, parameter, col, alpha=exact_alpha, thetas=exact_thetas, held=sweep.held)
+            col = settle_cells(
+                bound, sweep.parameter, col, alpha=exact_alpha, thetas=exact_thetas, held=sweep.held
+            )
         out.append(col)
     return out
 
 
-def _column_task(args):
+def _column_task(args: tuple[Any, ...]) -> list[ColumnResult]:
+    """One chunk of columns (the arguments of :func:`map_columns`), in a worker process."""
     return map_columns(*args)
 
 
@@ -182,7 +188,7 @@ def stability_map(
     chunk: int = 8,
     settle: bool = True,
     progress: Callable[[float], None] | None = None,
-    **options,
+    **options: Any,
 ) -> StabilityMap:
     """Degree of instability over the grid ``alphas x thetas`` (beyond the paper).
 
@@ -208,14 +214,15 @@ def stability_map(
     """
     params = bound.params
     parameter = parameter or params.model.wheel_mass
-    alphas = np.asarray(np.linspace(0.0, 1.2, 200) if alphas is None else alphas, dtype=float)
-    thetas = np.asarray(np.linspace(1.0, 200.0, 200) if thetas is None else thetas, dtype=float)
+    alpha_grid = np.asarray(np.linspace(0.0, 1.2, 200) if alphas is None else alphas, dtype=float)
+    theta_grid = np.asarray(np.linspace(1.0, 200.0, 200) if thetas is None else thetas, dtype=float)
     if "top" not in options:
-        options["top"] = top_edge(bound, alphas)
-    chunks = [alphas[i : i + chunk] for i in range(0, len(alphas), chunk)]
-    tasks = [(bound, parameter, c, thetas, options, settle) for c in chunks]
+        options["top"] = top_edge(bound, alpha_grid)
+    chunks = [alpha_grid[i : i + chunk] for i in range(0, len(alpha_grid), chunk)]
+    tasks = [(bound, parameter, c, theta_grid, options, settle) for c in chunks]
     workers = workers or min(len(chunks), os.cpu_count() or 1)
-    columns = []
+    columns: list[ColumnResult] = []
+    results: Iterator[list[ColumnResult]]
     if workers <= 1:
         results = map(_column_task, tasks)
         pool = None
@@ -231,15 +238,15 @@ def stability_map(
         if pool is not None:
             pool.shutdown(cancel_futures=True)
 
-    def stack(name):
+    def stack(name: str) -> np.ndarray:
         return np.stack([getattr(c, name) for c in columns], axis=1)
 
     return StabilityMap(
         params,
         params.vehicle,
         parameter,
-        alphas,
-        thetas,
+        alpha_grid,
+        theta_grid,
         stack("degree"),
         stack("count"),
         stack("uncertain"),

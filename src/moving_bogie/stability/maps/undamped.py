@@ -35,6 +35,7 @@ pair of real roots closer than ``q_step / 4096``, can be missed (stated in the o
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -46,6 +47,7 @@ from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import branch_points, branch_samples, exact, stability_column
 from moving_bogie.stability.maps.column_count import horner_rows
+from moving_bogie.typing import FloatArray
 
 __all__ = [
     "CONVENTION",
@@ -76,7 +78,7 @@ CONVENTION = (
 )
 
 
-def regime(eta_f) -> str:
+def regime(eta_f: float | Fraction) -> str:
     """ "damped" (ordinary methods), "undamped" (eta_f = 0) or "near-undamped" (0 < eta_f < NEAR_UNDAMPED)."""
     eta_f = float(eta_f)
     if eta_f == 0:
@@ -90,7 +92,7 @@ def parameter_grid(theta_max: float, points: int) -> np.ndarray:
     return theta_max * np.concatenate([small, np.linspace(1.0, points, points) / points])
 
 
-def uncertain_warning(where: str, unsure: dict, margin: float) -> list:
+def uncertain_warning(where: str, unsure: dict[float, int], margin: float) -> list[str]:
     """One warning for the counts not certified, ``unsure`` = {alpha: number}; empty when there are none."""
     unsure = {a: n for a, n in unsure.items() if n}
     if not unsure:
@@ -102,7 +104,7 @@ def uncertain_warning(where: str, unsure: dict, margin: float) -> list:
     ]
 
 
-def statement(eta_f) -> str:
+def statement(eta_f: float | Fraction) -> str:
     """What the stability lines of a foundation with this eta_f are, in one sentence ("" when damped)."""
     if regime(eta_f) == "undamped":
         return (
@@ -118,7 +120,7 @@ def statement(eta_f) -> str:
     return ""
 
 
-def title(eta_f) -> str:
+def title(eta_f: float | Fraction) -> str:
     """Two-line figure title saying what is drawn for an undamped or near-undamped foundation."""
     if regime(eta_f) == "undamped":
         return (
@@ -171,13 +173,13 @@ class UndampedCounter:
         self.q_step = float(q_step)
         self.sweep = SweepCharacteristic(self.bound, parameter, below=True)
         self.probe = SweepCharacteristic(self.bound.replace(eta_f=DAMPING_PROBE), parameter)
-        self._cuts: dict[Any, Any] = {}
+        self._cuts: dict[float, tuple[float, list[float]]] = {}
 
     def gap_end(self, alpha: float) -> float:
         """q_c: the branch point, where the cut (on the real axis) begins; 0 when there is no gap."""
         return self._cut(alpha)[0]
 
-    def _cut(self, alpha: float):
+    def _cut(self, alpha: float) -> tuple[float, list[float]]:
         """(q_c, branch points with Re q > 0) of the cut at eta_f = 0 (all on the real axis)."""
         alpha = float(alpha)
         if alpha not in self._cuts:
@@ -186,7 +188,7 @@ class UndampedCounter:
             self._cuts[alpha] = (qc, branch_points(self.bound, alpha))
         return self._cuts[alpha]
 
-    def real_roots(self, alpha: float, thetas: np.ndarray):
+    def real_roots(self, alpha: float, thetas: FloatArray) -> tuple[np.ndarray, FloatArray, np.ndarray]:
         """Real roots in the gap: (row index, q, destabilised by small eta_f), one entry per root.
 
         Sign changes of the real E_chr on samples ``q_step`` apart; where |E| has a local minimum without
@@ -229,14 +231,14 @@ class UndampedCounter:
         E_probe = self.probe(q, a, th)
         return rows, q.real, (E_probe.imag * E_q.real) > 0
 
-    def _real(self, q, alpha, theta):
+    def _real(self, q: FloatArray, alpha: float, theta: FloatArray) -> FloatArray:
         """The real E_chr at real points q of the gap, with theta per point."""
         q = np.asarray(q, dtype=float)
         return self.sweep(q.astype(complex).ravel(), np.full(q.size, alpha), np.ravel(theta)).real.reshape(
             q.shape
         )
 
-    def __call__(self, alpha: float, thetas) -> UndampedColumn:
+    def __call__(self, alpha: float, thetas: Sequence[float] | FloatArray) -> UndampedColumn:
         thetas = np.asarray(thetas, dtype=float)
         extra = branch_samples(self._cut(alpha)[1])
         col = stability_column(self.sweep, alpha, thetas, top=TOP, extra=extra)
@@ -286,7 +288,9 @@ def _mechanism(kind: str, d_real: int, d_undamped: int) -> str:
     return "branch point" if abs(d_real) == 1 else "mixed"
 
 
-def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
+def boundaries(
+    counter: UndampedCounter, alpha: float, grid: Sequence[float] | FloatArray, *, tol: float
+) -> tuple[list[Boundary], UndampedColumn, int]:
     """Every change of the eta_f = 0 and of the limit count along ``grid`` (values of theta), to ``tol``.
 
     Returns ``(boundaries, column, unsure)``: the :class:`Boundary` list sorted by kind and theta, the counts
@@ -295,7 +299,7 @@ def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
     grid = np.asarray(grid, dtype=float)
     col = counter(alpha, grid)
     unsure = int(np.sum(col.uncertain))
-    brackets = []
+    brackets: list[list[Any]] = []  # [kind, theta below, theta above, count below, count above], narrowed
     for kind in ("undamped", "limit"):
         c = getattr(col, kind)
         for i in np.nonzero(c[:-1] != c[1:])[0]:
@@ -312,7 +316,7 @@ def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
                 b[1] = mids[k]
             else:
                 b[2], b[4] = mids[k], n
-    out = []
+    out: list[Boundary] = []
     if brackets:
         ends = counter(alpha, np.array([b[1] for b in brackets] + [b[2] for b in brackets]))
         m = len(brackets)
@@ -326,7 +330,9 @@ def boundaries(counter: UndampedCounter, alpha: float, grid, *, tol: float):
     return out, col, unsure
 
 
-def _scan(rows, Q, R):
+def _scan(
+    rows: np.ndarray, Q: FloatArray, R: FloatArray
+) -> tuple[np.ndarray, FloatArray, FloatArray, tuple[np.ndarray, FloatArray, FloatArray]]:
     """Sign changes of R along each row of Q (brackets) and local minima of |R| without one (dips).
 
     Returns ``(rows, lo, hi, (dip rows, dip start, dip end))``, a dip spanning the two intervals around

@@ -28,7 +28,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, TypeAlias
 
 import numpy as np
 
@@ -38,6 +38,8 @@ from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import stability_column
 from moving_bogie.stability.maps.undamped import (
     CONVENTION,
+    Boundary,
+    UndampedColumn,
     UndampedCounter,
     boundaries,
     parameter_grid,
@@ -50,6 +52,9 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
 
 __all__ = ["CriticalStiffness", "critical_stiffness"]
+
+#: The kappa_v intervals at one alpha: ``(kappa_low, kappa_high, unstable_count)``, ascending.
+Intervals: TypeAlias = tuple[tuple[float, float, int], ...]
 
 
 @dataclass(frozen=True)
@@ -71,12 +76,12 @@ class CriticalStiffness:
     params: DimensionlessParams
     alphas: np.ndarray
     kappa_max: float
-    intervals: tuple
-    critical: tuple
+    intervals: tuple[Intervals, ...]
+    critical: tuple[tuple[float, ...], ...]
     mismatches: int
-    warnings: tuple = field(default=())
+    warnings: tuple[str, ...] = field(default=())
     method: str = "D-decomposition in kappa_v, counts by the argument principle"
-    limit_intervals: tuple | None = None  # undamped regimes: counts in the limit eta_f -> 0+
+    limit_intervals: tuple[Intervals, ...] | None = None  # undamped regimes: counts in the limit eta_f -> 0+
 
     @property
     def regime(self) -> str:
@@ -155,15 +160,17 @@ def critical_stiffness(
     progress : callable, optional
     """
     params = bound.params
-    alphas = np.asarray(alphas, dtype=float)
+    alpha_grid = np.asarray(alphas, dtype=float)
     stiffness = primary_stiffness(bound)
     if regime(params.eta_f) != "damped":
-        return _undamped(bound, stiffness, alphas, kappa_max, check_points, tol, progress)
+        return _undamped(bound, stiffness, alpha_grid, kappa_max, check_points, tol, progress)
     sweep = SweepCharacteristic(bound, stiffness)
     kappas = np.linspace(kappa_max / check_points, kappa_max, check_points)
-    intervals, critical, warnings = [], [], []
+    intervals: list[Intervals] = []
+    critical: list[tuple[float, ...]] = []
+    warnings: list[str] = []
     mismatches = 0
-    for k, a in enumerate(alphas):
+    for k, a in enumerate(alpha_grid):
         dd = d_decomposition(
             bound.replace(alpha=Fraction(str(a))),
             a,
@@ -183,23 +190,22 @@ def critical_stiffness(
         edges = sorted({0.0, kappa_max, *(c.theta for c in dd.crossings)})
         pairs = [(lo, hi) for lo, hi in zip(edges[:-1], edges[1:]) if hi - lo > 1e-9 * kappa_max]
         mids = stability_column(sweep, a, np.array([0.5 * (lo + hi) for lo, hi in pairs]))
-        ivs: list[Any] = []
+        ivs: list[tuple[float, float, int]] = []
         for (lo, hi), n in zip(pairs, mids.count):
             if ivs and ivs[-1][2] == n:  # a touching pair of crossings: merge
                 ivs[-1] = (ivs[-1][0], float(hi), int(n))
             else:
                 ivs.append((float(lo), float(hi), int(n)))
         intervals.append(tuple(ivs))
-        crit = [hi for (lo, hi, n), (_, _, m) in zip(ivs[:-1], ivs[1:]) if (n == 0) != (m == 0)]
-        critical.append(tuple(crit))
+        critical.append(_critical(tuple(ivs)))
         if progress is not None:
-            progress((k + 1) / len(alphas))
+            progress((k + 1) / len(alpha_grid))
     return CriticalStiffness(
-        params, alphas, float(kappa_max), tuple(intervals), tuple(critical), mismatches, tuple(warnings)
+        params, alpha_grid, float(kappa_max), tuple(intervals), tuple(critical), mismatches, tuple(warnings)
     )
 
 
-def _intervals(bounds, column, kind, kappa_max):
+def _intervals(bounds: list[Boundary], column: UndampedColumn, kind: str, kappa_max: float) -> Intervals:
     """(low, high, count) intervals over [first grid value, kappa_max] from the boundaries of one kind."""
     counts = getattr(column, kind)
     edges = [float(column.thetas[0])] + [b.theta for b in bounds if b.kind == kind] + [float(kappa_max)]
@@ -207,7 +213,8 @@ def _intervals(bounds, column, kind, kappa_max):
     return tuple((float(lo), float(hi), n) for lo, hi, n in zip(edges[:-1], edges[1:], ns))
 
 
-def _critical(ivs):
+def _critical(ivs: Intervals) -> tuple[float, ...]:
+    """The kappa_v values where the count changes between 0 and > 0 (the ends of the stable intervals)."""
     return tuple(hi for (lo, hi, n), (_, _, m) in zip(ivs[:-1], ivs[1:]) if (n == 0) != (m == 0))
 
 
@@ -230,7 +237,7 @@ def primary_stiffness(bound: BoundModel) -> str:
 def _undamped(
     bound: BoundModel,
     stiffness: str,
-    alphas: Sequence[float] | np.ndarray,
+    alphas: np.ndarray,
     kappa_max: float,
     check_points: int,
     tol: float,
@@ -240,10 +247,14 @@ def _undamped(
     params = bound.params
     margin = 100 * float(params.eta_f)
     counter = UndampedCounter(bound, stiffness, margin=margin)
-    unsure = {}
+    unsure: dict[float, int] = {}
     grid = parameter_grid(kappa_max, check_points)
     kind = "undamped" if regime(params.eta_f) == "undamped" else "limit"
-    intervals, limits, critical, warnings = [], [], [], []
+    intervals: list[Intervals] = []
+    limits: list[Intervals] = []
+    critical: list[tuple[float, ...]] = []
+    warnings: list[str] = []
+
     for k, a in enumerate(alphas):
         bounds, column, unsure[float(a)] = boundaries(counter, float(a), grid, tol=tol * kappa_max)
         ivs = _intervals(bounds, column, kind, kappa_max)

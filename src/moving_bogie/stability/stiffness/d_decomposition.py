@@ -20,8 +20,8 @@ Im theta_k and refines each by Newton's method in (q, theta) at fixed alpha. Not
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -50,15 +50,17 @@ class DDecomposition:
     parameter: str
     q: np.ndarray  # real samples of q
     curves: np.ndarray  # (len(q), degree) complex theta_k(q), labels followed continuously in q
-    crossings: tuple  # DCrossing, sorted by theta
+    crossings: tuple[DCrossing, ...]  # sorted by theta
 
-    def counts(self, thetas, reference_theta: float, reference_count: int) -> np.ndarray:
+    def counts(
+        self, thetas: float | Sequence[float] | np.ndarray, reference_theta: float, reference_count: int
+    ) -> np.ndarray:
         """Unstable induced frequencies at ``thetas`` from one reference count (rule of hatching)."""
-        thetas = np.atleast_1d(np.asarray(thetas, dtype=float))
-        out = np.full(thetas.shape, reference_count, dtype=int)
+        at = np.atleast_1d(np.asarray(thetas, dtype=float))
+        out = np.full(at.shape, reference_count, dtype=int)
         for c in self.crossings:
-            out += np.where((thetas > c.theta) & (reference_theta < c.theta), c.change, 0)
-            out -= np.where((thetas < c.theta) & (reference_theta > c.theta), c.change, 0)
+            out += np.where((at > c.theta) & (reference_theta < c.theta), c.change, 0)
+            out -= np.where((at < c.theta) & (reference_theta > c.theta), c.change, 0)
         return out
 
     def to_dict(self) -> dict:
@@ -110,7 +112,7 @@ def d_decomposition(
     K, _, _ = sweep.kernel(qs, alpha)
     roots = poly_roots(sweep.coefficients(qs, K, scale=theta_max)) * theta_max
     curves = _follow(roots)
-    crossings: list[Any] = []
+    crossings: list[DCrossing] = []
     im = curves.imag
     for k in range(curves.shape[1]):
         flips = np.nonzero(
@@ -134,7 +136,7 @@ def d_decomposition(
     return DDecomposition(alpha, parameter, qs, curves, tuple(crossings))
 
 
-def _follow(roots):
+def _follow(roots: np.ndarray) -> np.ndarray:
     """Relabel the roots sample by sample so that each column is continuous in q (nearest assignment)."""
     n, deg = roots.shape
     out = roots.copy()
@@ -148,10 +150,14 @@ def _follow(roots):
     return out
 
 
-def _refine(sweep, alpha, q, theta, tol, max_iter: int = 30):
+def _refine(
+    sweep: SweepCharacteristic, alpha: float, q: float, theta: float, tol: float, max_iter: int = 30
+) -> tuple[float, float, int] | None:
     """Newton on E(q, theta) = 0 with q, theta real (2x2 real system); returns (q, theta, change) or None."""
     for _ in range(max_iter):
         E, E_q, _, E_t = sweep.derivatives(np.array([q], dtype=complex), np.array([alpha]), np.array([theta]))
+        assert E_t is not None  # theta is given
+
         J = np.array([[E_q[0].real, E_t[0].real], [E_q[0].imag, E_t[0].imag]])
         try:
             dq, dt = np.linalg.solve(J, -np.array([E[0].real, E[0].imag]))

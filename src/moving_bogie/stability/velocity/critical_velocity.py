@@ -24,16 +24,22 @@ Every local minimum is bracketed on a grid of p in double precision, polished wi
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from fractions import Fraction
 from types import ModuleType
+from typing import Any
 
 import mpmath
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.polynomial import derivative_coefficients, horner
 from moving_bogie.model.catalogue import Model, get_model
 from moving_bogie.model.exact import fraction_to_mpf, nonnegative, positive
+from moving_bogie.model.values import ModelValues
+from moving_bogie.typing import FloatArray, Mpf
 
 __all__ = [
     "CriticalVelocity",
@@ -49,8 +55,8 @@ class PhaseSpeedMinimum:
     """A local minimum of the phase speed c_j(p) = Omega_j(p)/p: the load's line tangent to branch j."""
 
     branch: int  # 1 = lowest dispersion branch
-    alpha: mpmath.mpf
-    p: mpmath.mpf
+    alpha: Mpf
+    p: Mpf
     scan_alpha: float  # the grid minimum that bracketed it (double precision)
     scan_p: float
     digits: int  # digits of alpha and p confirmed at two precisions
@@ -97,15 +103,15 @@ class CriticalVelocity:
     """
 
     model: str
-    groups: dict
-    alpha_cr: mpmath.mpf
-    p_cr: mpmath.mpf
+    groups: dict[str, float]
+    alpha_cr: Mpf
+    p_cr: Mpf
     branch: int
-    minima: tuple
+    minima: tuple[PhaseSpeedMinimum, ...]
     branches: int
-    without_minimum: tuple
+    without_minimum: tuple[int, ...]
     unattained: float | None
-    formula: mpmath.mpf | None
+    formula: Mpf | None
     formula_name: str | None
     digits: int
     p_max: float
@@ -154,7 +160,12 @@ class CriticalVelocity:
         return out
 
 
-def _track(source, groups) -> tuple[Model, dict]:
+#: What the critical velocity is computed from: a model, parameters (their model and track groups), a bound
+#: model, or None (the paper's model).
+Source = Model | ModelValues | BoundModel | None
+
+
+def _track(source: Source, groups: Mapping[str, Any]) -> tuple[Model, dict[str, Fraction]]:
     """The model and the values of its foundation's groups (None: the paper's, a Model, or parameters)."""
     if isinstance(source, BoundModel):
         source = source.params
@@ -170,7 +181,7 @@ def _track(source, groups) -> tuple[Model, dict]:
     module = model.foundation
     damping = set(getattr(module, "DAMPING", ()))
     specs = model.catalogue.specs
-    values = {}
+    values: dict[str, Fraction] = {}
     for name in module.ARGUMENTS[1:]:
         if name == "alpha" or name in damping:
             continue
@@ -187,7 +198,9 @@ def _track(source, groups) -> tuple[Model, dict]:
     return model, values
 
 
-def _arguments(module, values, convert):
+def _arguments(
+    module: ModuleType, values: Mapping[str, Fraction], convert: Callable[[Fraction], Any]
+) -> dict[str, Any]:
     """Keyword arguments of the generated functions on the undamped track (alpha given separately)."""
     out = {name: convert(values[name]) for name in values}
     for name in getattr(module, "DAMPING", ()):
@@ -195,7 +208,7 @@ def _arguments(module, values, convert):
     return out
 
 
-def dispersion_branches(source=None, p=None, **groups):
+def dispersion_branches(source: Source = None, p: Any = None, **groups: Any) -> FloatArray:
     """Frequencies Omega_j(p) >= 0 of free waves on the undamped track at rest, ascending, shape (n, J).
 
     They are the roots in q of N(p, q) at alpha = 0 (they come in pairs +-Omega). ``source`` is a
@@ -215,7 +228,9 @@ def dispersion_branches(source=None, p=None, **groups):
     return np.array([np.pad(o, (0, width - len(o)), constant_values=np.nan) for o in out])
 
 
-def phase_speed(source=None, p=None, *, alpha_max: float = np.inf, **groups):
+def phase_speed(
+    source: Source = None, p: Any = None, *, alpha_max: float = np.inf, **groups: Any
+) -> FloatArray:
     """Phase speed c(p) of the lowest branch that has a real phase speed, vectorised in p.
 
     The smallest alpha > 0 with N(p, 0; alpha) = 0, i.e. min_j Omega_j(p)/p; inf where none is at most
@@ -227,22 +242,20 @@ def phase_speed(source=None, p=None, *, alpha_max: float = np.inf, **groups):
     return speeds.min(axis=1)
 
 
-def _n_values(module, args, p, alpha):
+def _n_values(module: ModuleType, args: Mapping[str, Any], p: Any, alpha: Any) -> tuple[Any, Any]:
     """N(p, 0; alpha) and dN/dp on the undamped track (mpmath or numpy arguments)."""
-    cs = module.n_coeffs(0, alpha=alpha, **args)
-    N, dN = 0, 0
-    for c in cs:
-        dN = dN * p + N
-        N = N * p + c
-    return N, dN
+    cs = list(module.n_coeffs(0, alpha=alpha, **args))
+    return horner(cs, p), horner(derivative_coefficients(cs), p)
 
 
-def _polish(module, values, p0, a0, digits):
+def _polish(
+    module: ModuleType, values: Mapping[str, Fraction], p0: float, a0: float, digits: int
+) -> tuple[Mpf, Mpf]:
     """Newton on N(p, 0; alpha) = dN/dp = 0 at `digits` digits from the grid minimum (p0, a0)."""
     with mpmath.workdps(digits):
         args = _arguments(module, values, fraction_to_mpf)
 
-        def system(p, a):
+        def system(p: Mpf, a: Mpf) -> tuple[Mpf, Mpf]:
             N, dN = _n_values(module, args, p, a)
             return mpmath.re(N), mpmath.re(dN)
 
@@ -253,14 +266,19 @@ def _polish(module, values, p0, a0, digits):
         return abs(p), +a
 
 
-def _confirmed_digits(lo, hi, dps):
+def _confirmed_digits(lo: tuple[Mpf, Mpf], hi: tuple[Mpf, Mpf], dps: int) -> int:
     with mpmath.workdps(dps + 15):
         err = max(abs(h - low) / abs(low) for low, h in zip(lo, hi))
         return dps if err == 0 else max(0, min(dps, int(-mpmath.log10(2 * err))))
 
 
 def _phase_speed_minima(
-    module: ModuleType, values: dict, ps: np.ndarray, speeds: np.ndarray, dps: int, name: str
+    module: ModuleType,
+    values: Mapping[str, Fraction],
+    ps: FloatArray,
+    speeds: FloatArray,
+    dps: int,
+    name: str,
 ) -> tuple[list[PhaseSpeedMinimum], list[int]]:
     """The local minima of the phase speed c_j(p) of every branch j, bracketed on the grid ``ps`` and
     polished at ``dps`` (digits confirmed at ``dps + 15``), and the branches (from 1) without one.
@@ -271,7 +289,8 @@ def _phase_speed_minima(
         Where a branch's phase speed falls to 0 (the track ``name`` is unstable at rest), or where Newton
         does not converge on a minimum.
     """
-    found, without = [], []
+    found: list[PhaseSpeedMinimum] = []
+    without: list[int] = []
     for j in range(speeds.shape[1]):
         c = speeds[:, j]
         inner = np.flatnonzero((c[1:-1] < c[:-2]) & (c[1:-1] <= c[2:]) & np.isfinite(c[1:-1])) + 1
@@ -299,16 +318,16 @@ def _phase_speed_minima(
 
 
 def critical_velocity(
-    source=None,
+    source: Source = None,
     *,
-    eta_s=None,
-    S=None,
-    r=None,
-    groups=None,
+    eta_s: object = None,
+    S: object = None,
+    r: object = None,
+    groups: Mapping[str, object] | None = None,
     dps: int = 30,
     p_max: float = 20.0,
     samples: int = 4001,
-    formula=None,
+    formula: Callable[[Model, dict[str, Mpf]], tuple[str, Mpf] | None] | None = None,
 ) -> CriticalVelocity:
     """Critical velocity of a constant moving force on any track: Eqs. (65)-(66) generalised.
 
@@ -356,7 +375,7 @@ def critical_velocity(
     if formula is not None:
         with mpmath.workdps(dps):
             closed = formula(model, {k: fraction_to_mpf(v) for k, v in values.items()})
-    name, formula = closed if closed is not None else (None, None)
+    name, closed_value = closed if closed is not None else (None, None)
     return CriticalVelocity(
         model=f"{model.beam}/{model.track}",
         groups={k: float(v) for k, v in values.items()},
@@ -367,7 +386,7 @@ def critical_velocity(
         branches=branches,
         without_minimum=tuple(without),
         unattained=unattained,
-        formula=formula,
+        formula=closed_value,
         formula_name=name,
         digits=best.digits,
         p_max=p_max,

@@ -13,8 +13,11 @@ Eqs. (35)-(47) may grow without bound along the track. Every verdict therefore s
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from moving_bogie.errors import MovingBogieError
+from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.model.physical import PhysicalParams
 
 __all__ = ["SUPERCRITICAL_MEANING", "SpeedRegime", "speed_regime"]
 
@@ -50,9 +53,13 @@ class SpeedRegime:
     v_cr: float | None = None
     note: str | None = None
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """JSON: ``alpha_cr``, ``supercritical`` (and ``v``, ``v_cr`` in m/s for SI), with the meaning."""
-        out = {"alpha": self.alpha, "alpha_cr": self.alpha_cr, "supercritical": self.supercritical}
+        out: dict[str, Any] = {
+            "alpha": self.alpha,
+            "alpha_cr": self.alpha_cr,
+            "supercritical": self.supercritical,
+        }
         if self.v_cr is not None:
             out |= {"v": self.v, "v_cr": self.v_cr, "v_unit": "m/s"}
         if self.supercritical:
@@ -77,7 +84,7 @@ class SpeedRegime:
         return f"speed: subcritical, {speed}"
 
 
-def speed_regime(params, physical=None) -> SpeedRegime:
+def speed_regime(params: DimensionlessParams, physical: PhysicalParams | None = None) -> SpeedRegime:
     """The :class:`SpeedRegime` of ``params`` (its track's critical velocity, computed afresh).
 
     Parameters
@@ -89,17 +96,18 @@ def speed_regime(params, physical=None) -> SpeedRegime:
     alpha = float(params.alpha)
     alpha_cr, note = _critical(params)
     supercritical = None if alpha_cr is None else alpha > alpha_cr
-    out = dict(alpha=alpha, alpha_cr=alpha_cr, supercritical=supercritical, note=note)
-    if physical is not None:
-        v_ref = physical.scales().v_ref
-        out |= dict(v=alpha * v_ref, v_cr=None if alpha_cr is None else alpha_cr * v_ref)
-    return SpeedRegime(**out)
+    if physical is None:
+        return SpeedRegime(alpha, alpha_cr, supercritical, note=note)
+    v_ref = physical.scales().v_ref
+    v_cr = None if alpha_cr is None else alpha_cr * v_ref
+    return SpeedRegime(alpha, alpha_cr, supercritical, v=alpha * v_ref, v_cr=v_cr, note=note)
 
 
-_CACHE: dict = {}
+#: alpha_cr and its caveat per track: (beam, track, the track's undamped groups).
+_CACHE: dict[tuple[str, str, tuple[tuple[str, Any], ...]], tuple[float | None, str | None]] = {}
 
 
-def _critical(params) -> tuple[float | None, str | None]:
+def _critical(params: DimensionlessParams) -> tuple[float | None, str | None]:
     """alpha_cr and its caveat, computed once per track (model and track groups) in a process."""
     from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
