@@ -225,15 +225,15 @@ def receptance(
     scale = float(np.max(np.abs(np.diag(free))))
     atol = tol * scale
     reach = (np.max(np.abs(harmonics)) + 1) * K + (2 * K + 10 if tail is None else tail)
+    # the reach first (the tail's estimate needs no integral inside it), then one adaptive integral
     while True:
-        edges = np.arange(-reach, reach + 1e-9 * K, K / 4)
-        a, b = edges[:-1], edges[1:]
-        total, err, panels = _adaptive(track, q, harmonics, positions, a, b, atol, max_rounds)
         outer = _zone_magnitude(track, q, harmonics, positions, reach, K)
         tail_bound = outer * reach / (2 * K)
         if tail_bound < atol or reach > _MAX_REACH * K:
             break
         reach *= 1.6
+    edges = np.arange(-reach, reach + 1e-9 * K, K / 4)
+    total, err, panels = _adaptive(track, q, harmonics, positions, edges[:-1], edges[1:], atol, max_rounds)
     return Receptance(free + total / (2 * np.pi), float((err + tail_bound) / (2 * np.pi)), scale, panels)
 
 
