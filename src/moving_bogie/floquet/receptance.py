@@ -86,24 +86,6 @@ def _cot_series(y: np.ndarray) -> np.ndarray:
     return -series * y
 
 
-def cot_minus_pole(lam: float, x: np.ndarray, cot: np.ndarray | None = None) -> np.ndarray:
-    """(lam / 2) cot(lam x / 2) - 1 / x, with no cancellation at small x (its Taylor series there).
-
-    ``cot``, optional: (lam / 2) cot(lam x / 2) already known (broadcast to x), used where x is not small.
-    """
-    y = lam * np.asarray(x, dtype=complex) / 2
-    small = np.abs(y) < 0.5
-    if cot is None:
-        yb = np.where(small, 1.0, y)
-        out = lam / 2 * (stable_cot(yb) - 1 / yb)
-    else:
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out = np.broadcast_to(cot, y.shape) - lam / (2 * np.where(small, 1.0, y))
-    if np.any(small):
-        out[small] = lam / 2 * _cot_series(y[small])
-    return out
-
-
 @dataclass(frozen=True)
 class Receptance:
     """H over (contact, harmonic) pairs at one q, row/column index i_n * contacts + c.
@@ -218,11 +200,19 @@ def _integrand(
     D = 1 + z * S
     shift = p[:, None] - harmonics[None, :] * K  # (P, H)
     x = shift[:, :, None] - r[:, None, :]  # (P, H, 4)
-    G = np.sum(res[:, None, :] / x, axis=-1)  # partial fractions of Q~/N~ (deg Q < deg N)
-    S_own = np.sum(res[:, None, :] * cot_minus_pole(lam, x, cot[:, None, :]), axis=-1)  # S'_n
+    inv = 1 / x
+    G = np.sum(res[:, None, :] * inv, axis=-1)  # partial fractions of Q~/N~ (deg Q < deg N)
+    own = cot[:, None, :] - inv  # (lam / 2) cot(lam x / 2) - 1 / x: S'_n, its series where x is small
+    y = lam / 2 * x
+    small = y.real**2 + y.imag**2 < 0.25
+    if np.any(small):
+        own[small] = lam / 2 * _cot_series(y[small])
+    S_own = np.sum(res[:, None, :] * own, axis=-1)
     s = np.asarray(positions, dtype=float)
-    out_ph = np.exp(-1j * shift[:, :, None] * s[None, None, :])  # receiver phases (P, H, C)
-    in_ph = np.exp(1j * shift[:, :, None] * s[None, None, :])
+    # the source's phase e^{i (p - n K) s_c} (P, H, C) as e^{i p s_c} e^{-i n K s_c}; the receiver's is its
+    # conjugate (p real)
+    in_ph = np.exp(1j * p[:, None, None] * s) * np.exp(-1j * K * harmonics[:, None] * s)[None, :, :]
+    out_ph = in_ph.conj()
     P, H, C = out_ph.shape
     u = (G[:, :, None] * out_ph).reshape(P, H * C)
     v = (G[:, :, None] * in_ph).reshape(P, H * C)
@@ -336,16 +326,19 @@ def _adaptive(
     atol: float,
     max_rounds: int,
 ) -> tuple[Any, float, int]:
-    """Sum of the panel integrals, bisecting every panel whose Gauss-Kronrod difference exceeds its share."""
+    """Sum of the panel integrals, bisecting every panel whose Gauss-Kronrod difference exceeds its share.
+
+    A panel's share is the part of the tolerance not yet spent by the accepted panels, in proportion to its
+    width among the panels still open: the accepted errors never add up to more than ``atol``.
+    """
     total = 0.0
     err = 0.0
-    width = float(np.sum(b - a))
     panels = 0
     for _ in range(max_rounds):
         kron, gauss = _panel_sums(track, q, harmonics, positions, a, b)
         e = np.max(np.abs(kron - gauss), axis=(1, 2))
         panels += a.size
-        ok = e <= atol * (b - a) / width
+        ok = e <= (atol - err) * (b - a) / float(np.sum(b - a))
         total = total + np.sum(kron[ok], axis=0)
         err += float(np.sum(e[ok]))
         if np.all(ok) or np.count_nonzero(~ok) > _MAX_PANELS:
