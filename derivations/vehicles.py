@@ -275,7 +275,13 @@ def car() -> Vehicle:
 
 
 def hertz_mass() -> Vehicle:
-    """One wheel on a Hertz spring: the wheel mass M on a linearised contact spring (k_H, c_H), load P."""
+    """One wheel on a Hertz spring: the wheel mass M on a linearised contact spring (k_H, c_H), load P.
+
+    The contact point is a wheel of mass 0 (its deflection is the rail's), the wheel mass a body above it.
+    The load P acts at the contact: the spring's static compression P / k_H, a constant offset of the
+    wheel, is left out of its displacement; it changes no frequency and no contact force. As k_H -> infinity
+    this is the rigid-contact ``mass`` (tests/test_hertz.py).
+    """
     return Vehicle(
         hertz_mass.__doc__.splitlines()[0],
         (Wheel("c", sp.Integer(0), x_rear),),
