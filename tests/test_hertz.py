@@ -9,7 +9,6 @@ O(kappa_H^-2): the distance to the rigid root falls like 1 / kappa_H (ratio 10 p
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 from moving_bogie.api import induced_frequencies

@@ -149,7 +149,7 @@ def smeared_receptance(track: SleeperTrack, q: ArrayLike, offsets: ArrayLike) ->
     qs = np.asarray(q, dtype=complex)
     xi = np.atleast_1d(np.asarray(offsets, dtype=float))
     batch = qs.reshape(-1)
-    args = track._args("moving_groups")
+    args = track.arguments("moving_groups")
     beam = track.beam
     n = _columns(getattr(generated, f"moving_n_coeffs_{beam}")(batch, track.alpha, **args), batch.shape)
     qq = _columns(getattr(generated, f"moving_q_coeffs_{beam}")(batch, track.alpha, **args), batch.shape)
