@@ -2,7 +2,7 @@
 stiffness, in one run.
 
 Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sleepers.py [--file examples/sleepers.toml]
-[--repeat 3] [--against DIR]``. A script, not a test: nothing is asserted, the table is printed.
+[--repeat 3] [--against DIR] [--record]``. A script, not a test: nothing is asserted, the table is printed.
 
 The continuous track is the ``l -> 0`` limit of the file's (docs/sleepers.md): the paper's one-layer track
 with ``k_f = k_sup / l + k_f`` and ``c_f = c_sup / l + c_f``, the same rail, vehicle and speed, written to a
@@ -69,6 +69,9 @@ def main() -> None:
     parser.add_argument("--file", type=Path, default=HERE / "examples" / "sleepers.toml")
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--against", type=Path, default=None, help="another checkout, timed alternately")
+    from records import add_record_option
+
+    add_record_option(parser)
     args = parser.parse_args()
     checkouts = [("this", HERE / "src")] + (
         [(args.against.name, args.against / "src")] if args.against else []
@@ -93,6 +96,24 @@ def main() -> None:
         span = f"{harmonics[0]}..{harmonics[-1]}" if harmonics else "-"
         verdict = out["verdict"] if isinstance(out["verdict"], str) else out["verdict"]["state"].upper()
         print(f"{label:<12}{track:<12}{cpu:>8.2f}{wall:>9.2f}  {verdict:<13}{out['count']:>6}  {span}")
+    if args.record:
+        record(args.file, best)
+
+
+def record(path: Path, best: dict) -> None:
+    """benchmarks/results/bench_sleepers.json: this checkout's sleeper track, the continuous one beside it."""
+    from records import row, write_record
+
+    def cost(key: tuple[str, str]) -> str:
+        cpu, wall, out = best[key]
+        verdict = out["verdict"] if isinstance(out["verdict"], str) else out["verdict"]["state"].upper()
+        return f"{wall:.2f} s wall, {cpu:.2f} s CPU, {verdict}"
+
+    work = f"frequencies --file {path.name} (Floquet roots in one strip, converged in the harmonics)"
+    continuous = cost(("this", "one-layer"))
+    alternative = f"the continuous one-layer track of the same smeared stiffness: {continuous}"
+    rows = [row(work, cost(("this", "sleepers")), alternative, "< 5 s")]
+    write_record(__file__, "A rail on sleepers beside the continuous track", rows)
 
 
 if __name__ == "__main__":
