@@ -15,6 +15,8 @@ M, M_b, J_phys, k_v, c_v = sp.symbols("M M_b J_phys k_v c_v", positive=True)
 d_phys, v, P = sp.symbols("d_phys v P", positive=True)
 # The car (derivations/vehicles.py): a body on two secondary suspensions over two bogies, per rail.
 M_c, J_c_phys, k_sec, c_sec, L_phys = sp.symbols("M_c J_c_phys k_sec c_sec L_phys", positive=True)
+# A wheel on a linearised Hertz contact spring (derivations/vehicles.py, hertz_mass).
+k_H, c_H = sp.symbols("k_H c_H", positive=True)
 GA, r_g = sp.symbols("GA r_g", positive=True)  # Timoshenko: G*Abar and radius of gyration
 N_ax = sp.Symbol("N_ax", positive=True)  # axial compressive force in the rail (Metrikine & Dieterman 1997)
 # Layered tracks: mass layers (sleepers, ballast) per unit length and their supports. The rail's support
@@ -36,6 +38,7 @@ eta_M, mu_v, J_b, kappa_v, eta_v, d = sp.symbols("eta_M mu_v J_b kappa_v eta_v d
 S, r = sp.symbols("S r", positive=True)
 eta_N = sp.Symbol("eta_N", positive=True)
 mu_c, J_c, kappa_sec, eta_sec, L_c = sp.symbols("mu_c J_c kappa_sec eta_sec L_c", positive=True)
+kappa_H, eta_H = sp.symbols("kappa_H eta_H", positive=True)
 
 #: Physical parameter -> expression through the dimensionless groups (the inverse of Eq. (17)).
 #: EI, m, k_f and P stay free: every dimensionless result must be independent of them. Filled by
@@ -289,6 +292,28 @@ declare(
     equation="(17)",
     unit="N s/m",
     si_meaning="secondary suspension damping (each bogie)",
+    damping=True,
+)
+declare(
+    kappa_H,
+    k_H,
+    kappa_H * k_f / chi,
+    meaning="linearised Hertz contact stiffness k_H chi/k_f",
+    constraint="positive",
+    equation="(17)",
+    unit="N/m",
+    si_meaning="linearised Hertz contact stiffness between wheel and rail",
+)
+declare(
+    eta_H,
+    c_H,
+    eta_H * 2 * sp.sqrt(m * k_f) / chi,
+    meaning="contact damping c_H chi/(2 sqrt(m k_f))",
+    constraint="nonnegative",
+    equation="(17)",
+    unit="N s/m",
+    si_meaning="viscous damping of the contact between wheel and rail",
+    default=0,
     damping=True,
 )
 

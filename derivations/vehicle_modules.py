@@ -108,11 +108,14 @@ def _role(entry) -> str | None:
 def roles(matrices) -> list:
     """The groups the stability tools sweep by default, read off the assembled matrices.
 
-    ``WHEEL_MASS``: the group of the first wheel's mass (M[0, 0]); ``PRIMARY_STIFFNESS``: that of the
-    stiffness acting on the first wheel (K[0, 0], the primary suspension; None for a vehicle without one).
+    ``WHEEL_MASS``: the group of the first wheel's mass (M[0, 0]; for a massless contact point, the first
+    mass on the diagonal: the wheel on its contact spring); ``PRIMARY_STIFFNESS``: that of the stiffness
+    acting on the first contact (K[0, 0], the primary suspension or the contact spring; None for a vehicle
+    without one).
     """
+    masses = [matrices.mass[i, i] for i in range(len(matrices.dofs))]
     return [
-        ("WHEEL_MASS", _role(matrices.mass[0, 0])),
+        ("WHEEL_MASS", next((_role(x) for x in masses if x != 0), None)),
         ("PRIMARY_STIFFNESS", _role(matrices.stiffness[0, 0])),
     ]
 

@@ -4,7 +4,8 @@ A vehicle is
 
 - **wheels** (mass, contact position along the track, constant load), in permanent contact with the rail:
   the deflection of a wheel is the rail's deflection under it; the rear wheel sits at x = 0 and positions
-  increase forwards;
+  increase forwards. A wheel of mass 0 is a massless contact point: a wheel mass above it on a contact
+  spring-damper (a linearised Hertz spring k_H, c_H) is then a body;
 - **rigid bodies** (mass, pitch moment of inertia or none for a body that only bounces, centre position):
   a point at x on a body moves u + (x - x_c) theta (theta > 0 lifts the front);
 - **spring-dampers** (stiffness, viscous damping) acting vertically at a position x between a point of one
@@ -273,5 +274,28 @@ def car() -> Vehicle:
     return Vehicle(car.__doc__.splitlines()[0], wheels, bodies, links)
 
 
+def hertz_mass() -> Vehicle:
+    """One wheel on a Hertz spring: the wheel mass M on a linearised contact spring (k_H, c_H), load P.
+
+    The contact point is a wheel of mass 0 (its deflection is the rail's), the wheel mass a body above it.
+    The load P acts at the contact: the spring's static compression P / k_H, a constant offset of the
+    wheel, is left out of its displacement; it changes no frequency and no contact force. As k_H -> infinity
+    this is the rigid-contact ``mass`` (tests/test_hertz.py).
+    """
+    return Vehicle(
+        hertz_mass.__doc__.splitlines()[0],
+        (Wheel("c", sp.Integer(0), x_rear),),
+        (Body("w", s.M, x_rear),),
+        (Link("c", "w", x_rear, s.k_H, s.c_H),),
+    )
+
+
 #: name -> declaration. A new vehicle is one more entry (docs/adding_a_model.md).
-VEHICLES = {"mass": moving_mass, "oscillator": oscillator, "masses": two_masses, "bogie": bogie, "car": car}
+VEHICLES = {
+    "mass": moving_mass,
+    "oscillator": oscillator,
+    "masses": two_masses,
+    "bogie": bogie,
+    "car": car,
+    "hertz_mass": hertz_mass,
+}

@@ -42,7 +42,7 @@ def _matrices(name, seed=0):
 # vertical translation; a pitch when the wheels are linked to a body that pitches; the two unlinked masses
 # move independently; the car also pitches each bogie with its wheels about its centre, where the secondary
 # suspension acts (translation, car pitch, two bogie pitches).
-RIGID_MOTIONS = {"mass": 1, "oscillator": 1, "masses": 2, "bogie": 2, "car": 4}
+RIGID_MOTIONS = {"mass": 1, "oscillator": 1, "masses": 2, "bogie": 2, "car": 4, "hertz_mass": 1}
 
 
 @pytest.mark.parametrize("name", tuple(generated.DECLARED_VEHICLES))
@@ -52,7 +52,12 @@ def test_rigid_motions_strain_no_spring(name):
     assert M.shape == C.shape == K.shape == (n, n)
     for A in (M, C, K):
         assert np.array_equal(A, A.T)
-    assert np.all(np.linalg.eigvalsh(M) > 0)
+    # every DOF has a mass but a massless contact point (hertz_mass), which a spring links to one that has
+    massless = [i for i in range(n) if M[i, i] == 0]
+    assert all(i < module.CONTACTS and K[i, i] > 0 for i in massless)
+    massive = [i for i in range(n) if i not in massless]
+    assert np.all(np.linalg.eigvalsh(M[np.ix_(massive, massive)]) > 0)
+    assert not np.any(M[massless, :])
     translation = np.array([0.0 if module.UNITS[x] == "rad" else 1.0 for x in module.DOFS])
     assert np.allclose(K @ translation, 0, atol=1e-12) and np.allclose(C @ translation, 0, atol=1e-12)
     for A in (K, C):

@@ -9,19 +9,41 @@ maps onto itself), the contact displacements U and the vehicle's internal DOFs Y
 H the receptance between (contact, harmonic) pairs (:mod:`moving_bogie.floquet.receptance`) and D the
 vehicle's dynamic stiffness -q_n^2 M + i q_n C + K at each harmonic, block diagonal over the harmonics.
 The characteristic function is the determinant; its zeros are the induced frequencies.
+
+D and the block system are the one vehicle-rail coupling of :mod:`moving_bogie.kernels.coupling`
+(``dynamic_stiffness`` at every harmonic, ``harmonic_blocks``, ``coupled_system``) with the rail's receptance
+G = H / 2 in an arithmetic whose pi is 1: its A = [[pi I + 2 G D_cc, 2 G D_ci], [D_ic, D_ii]] is then the
+system above, the coupling's A with its contact rows divided by pi (the determinant divided by pi^P, P the
+number of (contact, harmonic) pairs; the factor 1/2 and the division are exact in floating point).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from types import ModuleType
 
 import numpy as np
 
 from moving_bogie.floquet.receptance import Receptance, receptance
 from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.arithmetic import Batched
+from moving_bogie.kernels.coupling import (
+    Dynamic,
+    coupled_system,
+    dynamic_coefficients,
+    dynamic_stiffness,
+    harmonic_blocks,
+)
 
-__all__ = ["FloquetSystem", "VehicleMatrices", "dynamic_stiffness", "harmonic_set"]
+__all__ = ["FloquetSystem", "VehicleMatrices", "harmonic_set"]
+
+
+class HillArithmetic(Batched):
+    """numpy's batched arithmetic of the coupling with pi = 1: the contact rows of the coupling's system
+    divided by pi, so that with G = H / 2 they read I + H D_cc (docs/sleepers.md, Eq. (S13))."""
+
+    pi = 1.0
 
 
 @dataclass(frozen=True)
@@ -45,13 +67,10 @@ class VehicleMatrices:
         positions = np.array([float(x) for x in module.contact_positions(**args)])
         return cls(mass, damping, stiffness, int(module.CONTACTS), positions)
 
-
-def dynamic_stiffness(vehicle: VehicleMatrices, q: complex) -> np.ndarray:
-    """D(q) = -q^2 M + i q C + K: the vehicle's force at its DOFs per unit displacement (e^{i q tau}).
-
-    The one place where the vehicle meets the rail; the rail receives -D_c. x at its contacts.
-    """
-    return -(q**2) * vehicle.mass + 1j * q * vehicle.damping + vehicle.stiffness
+    @cached_property
+    def dynamic(self) -> Dynamic:
+        """D(q) = -q^2 M + i q C + K as the coupling's matrix polynomial (Eq. (21), d/dtau -> i q)."""
+        return dynamic_coefficients((self.mass, self.damping, self.stiffness), HillArithmetic)
 
 
 def harmonic_set(N: int) -> np.ndarray:
@@ -82,23 +101,10 @@ class FloquetSystem:
         """The Hill block matrix at q and the receptance it was built from."""
         v = self.vehicle
         h = self.harmonics
-        nc, nd = v.contacts, v.mass.shape[0]
-        ni = nd - nc
         rec = receptance(self.track, q, h, v.positions + self.offset, tol=self.tol)
-        R = h.size * nc
-        A = np.zeros((h.size * nd, h.size * nd), dtype=complex)
-        Dcc = np.zeros((R, R), dtype=complex)
-        Dci = np.zeros((R, h.size * ni), dtype=complex)
-        for i, n in enumerate(h):
-            D = dynamic_stiffness(v, q + n * self.track.Omega0)
-            c, k = slice(i * nc, (i + 1) * nc), slice(i * ni, (i + 1) * ni)
-            Dcc[c, c] = D[:nc, :nc]
-            Dci[c, k] = D[:nc, nc:]
-            A[R + i * ni : R + (i + 1) * ni, c] = D[nc:, :nc]
-            A[R + i * ni : R + (i + 1) * ni, R + i * ni : R + (i + 1) * ni] = D[nc:, nc:]
-        A[:R, :R] = np.eye(R) + rec.matrix @ Dcc
-        A[:R, R:] = rec.matrix @ Dci
-        return A, rec
+        D, _ = dynamic_stiffness(q + h * self.track.Omega0, v.dynamic, HillArithmetic)
+        blocks = harmonic_blocks(list(D), v.contacts, HillArithmetic)
+        return coupled_system(blocks, rec.matrix / 2, HillArithmetic).A, rec
 
     def __call__(self, q: complex | np.ndarray) -> np.ndarray:
         """det of the Hill matrix at each q (an array); the function the argument principle counts."""

@@ -85,13 +85,21 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
                 key, f"unknown key {key!r} in {path}; {suggestion(key, sorted(known), listing='one of')}"
             )
     values = {key: _number(si, key, path) for key in si}
-    for key in ("EI", "m", ref, *(s["si"] for s in table.values() if s["default"] is None), *vehicle_si):
-        if key not in values:
+    optional = {spec["si"]: float(spec["default"]) for spec in table.values() if spec["default"] is not None}
+    for key, group in vehicle_si.items():
+        if paper[group]["default"] is not None:
+            optional[key] = float(paper[group]["default"])
+    nonnegative = {"v"} | {key for key, g in vehicle_si.items() if paper[g]["constraint"] != "positive"}
+    for key in ("EI", "m", ref, *(s["si"] for s in table.values()), *vehicle_si):
+        if key not in values and key not in optional:
             raise ParameterError(key, f"{path} has no {key!r} (required on {beam}/{track}/{vehicle})")
-        if values[key] <= 0 and key != "v":
+        if key in nonnegative and values.get(key, 0.0) < 0:
+            raise ParameterError(key, f"{key} must not be negative (got {values[key]:g})")
+        if key in values and key not in optional and key not in nonnegative and values[key] <= 0:
             raise ParameterError(key, f"{key} must be positive (got {values[key]:g})")
+    for key, default in optional.items():
+        values.setdefault(key, default)
     for spec in table.values():
-        values.setdefault(spec["si"], 0.0)
         if values[spec["si"]] < 0:
             raise ParameterError(
                 spec["si"], f"{spec['si']} must not be negative (got {values[spec['si']]:g})"

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from moving_bogie.floquet.track import SleeperTrack, stable_cot
+from moving_bogie.generated import sleepers as generated
 
 __all__ = ["Receptance", "receptance"]
 
@@ -76,19 +77,13 @@ _COT_SERIES = [
 ]
 
 
-def cot_minus_pole(lam: float, x: np.ndarray) -> np.ndarray:
-    """(lam / 2) cot(lam x / 2) - 1 / x, with no cancellation at small x (its Taylor series there)."""
-    y = lam * np.asarray(x, dtype=complex) / 2
-    small = np.abs(y) < 0.5
-    ys = np.where(small, y, 0.25)
-    series = np.zeros_like(ys)
-    y2 = ys * ys
+def _cot_series(y: np.ndarray) -> np.ndarray:
+    """cot y - 1 / y by its Taylor series (|y| < 0.5)."""
+    series = np.zeros_like(y)
+    y2 = y * y
     for c in reversed(_COT_SERIES):
         series = series * y2 + c
-    series = -series * ys
-    yb = np.where(small, 1.0, y)
-    big = stable_cot(yb) - 1 / yb
-    return lam / 2 * np.where(small, series, big)
+    return -series * y
 
 
 @dataclass(frozen=True)
@@ -105,34 +100,90 @@ class Receptance:
     panels: int
 
 
-def _polynomial_in_kappa(coeffs_w: np.ndarray, q: complex, alpha: float) -> np.ndarray:
-    """Coefficients in kappa (highest first) of a polynomial in w at w = q + alpha kappa."""
-    out = np.zeros(1, dtype=complex)
-    lin = np.array([alpha, q], dtype=complex)
-    for c in coeffs_w:
-        out = np.polyadd(np.polymul(out, lin), [c])
+def _columns(coeffs: Any, shape: tuple[int, ...]) -> np.ndarray:
+    """Coefficients (highest first; scalars or arrays of ``shape``) as an array shape + (deg + 1,)."""
+    return np.stack([np.broadcast_to(np.asarray(c, dtype=complex), shape) for c in coeffs], axis=-1)
+
+
+def _polymul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Products of polynomials along the last axis (highest first), over the batch."""
+    out = np.zeros(
+        np.broadcast_shapes(a.shape[:-1], b.shape[:-1]) + (a.shape[-1] + b.shape[-1] - 1,), complex
+    )
+    for j in range(b.shape[-1]):
+        out[..., j : j + a.shape[-1]] += a * b[..., j : j + 1]
     return out
 
 
-def smeared_receptance(track: SleeperTrack, q: complex, offsets: np.ndarray) -> np.ndarray:
+def _polyadd(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Sums of polynomials along the last axis (highest first), over the batch."""
+    n = max(a.shape[-1], b.shape[-1])
+    pad = [np.concatenate([np.zeros(c.shape[:-1] + (n - c.shape[-1],), complex), c], axis=-1) for c in (a, b)]
+    return pad[0] + pad[1]
+
+
+def _polyval(c: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Horner over the batch: c of shape batch + (deg + 1,), x of shape batch + (k,)."""
+    out = np.zeros(x.shape, dtype=complex) + c[..., :1]
+    for k in range(1, c.shape[-1]):
+        out = out * x + c[..., k : k + 1]
+    return out
+
+
+def _polynomial_in_kappa(coeffs_w: Any, q: np.ndarray, alpha: float) -> np.ndarray:
+    """Coefficients in kappa (highest first) of a polynomial in w at w = q + alpha kappa, for each q."""
+    out = np.zeros(q.shape + (1,), dtype=complex)
+    lin = _columns((alpha, q), q.shape)
+    for c in coeffs_w:
+        out = _polyadd(_polymul(out, lin), np.full(q.shape + (1,), c, dtype=complex))
+    return out
+
+
+def smeared_receptance(track: SleeperTrack, q: ArrayLike, offsets: ArrayLike) -> np.ndarray:
     """(1 / 2 pi) int G_c(kappa, q + alpha kappa) e^{i kappa xi} dkappa, G_c = G / (1 + z G), by residues.
 
     The continuous rail on the supports smeared along it (the l -> 0 limit, Eq. (S12)); the integral is
-    closed in the upper half-plane for xi >= 0 and in the lower one for xi < 0.
+    closed in the upper half-plane for xi >= 0 and in the lower one for xi < 0. ``q`` a number (the result
+    has the shape of ``offsets``) or an array (the result: q.shape + offsets.shape), every q at once.
     """
-    n, qq = track.moving_polynomials(q)
+    qs = np.asarray(q, dtype=complex)
+    xi = np.atleast_1d(np.asarray(offsets, dtype=float))
+    batch = qs.reshape(-1)
+    args = track.arguments("moving_groups")
+    beam = track.beam
+    n = _columns(getattr(generated, f"moving_n_coeffs_{beam}")(batch, track.alpha, **args), batch.shape)
+    qq = _columns(getattr(generated, f"moving_q_coeffs_{beam}")(batch, track.alpha, **args), batch.shape)
     z_num, z_den = track.support_polynomials()
-    zn, zd = (_polynomial_in_kappa(np.asarray(c, dtype=complex), q, track.alpha) for c in (z_num, z_den))
-    den = np.polyadd(np.polymul(n, zd), np.polymul(zn, qq))
-    num = np.polymul(qq, zd)
+    zn, zd = (_polynomial_in_kappa(c, batch, track.alpha) for c in (z_num, z_den))
+    den = _polyadd(_polymul(n, zd), _polymul(zn, qq))
+    num = _polymul(qq, zd)
+    while den.shape[-1] > 1 and not np.any(den[:, 0]):
+        den = den[:, 1:]
+    if not np.all(den[:, 0]) or not np.all(den[:, -1]):  # a degree that drops at some q only, or kappa = 0
+        rows = [_smeared_one(den_i, num_i, xi) for den_i, num_i in zip(den, num)]
+        return np.array(rows).reshape(qs.shape + xi.shape)
+    d = den.shape[-1] - 1
+    companion = np.zeros(batch.shape + (d, d), dtype=complex)
+    companion[:, 0, :] = -den[:, 1:] / den[:, :1]
+    companion[:, range(1, d), range(d - 1)] = 1
+    roots = np.linalg.eigvals(companion)  # the roots of den, as np.roots finds them
+    res = _polyval(num, roots) / _polyval(den[:, :-1] * np.arange(d, 0, -1), roots)
+    upper = (xi >= 0)[None, :, None]
+    sel = np.where(upper, roots.imag[:, None, :] > 0, roots.imag[:, None, :] < 0)
+    terms = np.where(sel, res[:, None, :] * np.exp(1j * roots[:, None, :] * xi[None, :, None]), 0)
+    out = np.where(upper[..., 0], 1j, -1j) * np.sum(terms, axis=-1)
+    return out.reshape(qs.shape + xi.shape)
+
+
+def _smeared_one(den: np.ndarray, num: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """:func:`smeared_receptance` at one q from the polynomials of G_c (any degree, by np.roots)."""
     den = np.trim_zeros(den, "f")
     roots = np.roots(den)
     res = np.polyval(num, roots) / np.polyval(np.polyder(den), roots)
     out = []
-    for xi in np.atleast_1d(offsets):
-        sel = roots.imag > 0 if xi >= 0 else roots.imag < 0
-        sign = 1j if xi >= 0 else -1j
-        out.append(sign * np.sum(res[sel] * np.exp(1j * roots[sel] * xi)))
+    for x in xi:
+        sel = roots.imag > 0 if x >= 0 else roots.imag < 0
+        out.append((1j if x >= 0 else -1j) * np.sum(res[sel] * np.exp(1j * roots[sel] * x)))
     return np.array(out)
 
 
@@ -144,15 +195,24 @@ def _integrand(
     w = q + alpha * p
     z = track.support(w)
     r, res = track.symbol_roots(w)  # (P, 4)
-    S = np.sum(lam / 2 * stable_cot(lam / 2 * (p[:, None] - r)) * res, axis=-1)
+    cot = lam / 2 * stable_cot(lam / 2 * (p[:, None] - r))  # the same at every harmonic: lam K / 2 = pi
+    S = np.sum(cot * res, axis=-1)
     D = 1 + z * S
     shift = p[:, None] - harmonics[None, :] * K  # (P, H)
     x = shift[:, :, None] - r[:, None, :]  # (P, H, 4)
-    G = np.sum(res[:, None, :] / x, axis=-1)  # partial fractions of Q~/N~ (deg Q < deg N)
-    S_own = np.sum(res[:, None, :] * cot_minus_pole(lam, x), axis=-1)  # S'_n
+    inv = 1 / x
+    G = np.sum(res[:, None, :] * inv, axis=-1)  # partial fractions of Q~/N~ (deg Q < deg N)
+    own = cot[:, None, :] - inv  # (lam / 2) cot(lam x / 2) - 1 / x: S'_n, its series where x is small
+    y = lam / 2 * x
+    small = y.real**2 + y.imag**2 < 0.25
+    if np.any(small):
+        own[small] = lam / 2 * _cot_series(y[small])
+    S_own = np.sum(res[:, None, :] * own, axis=-1)
     s = np.asarray(positions, dtype=float)
-    out_ph = np.exp(-1j * shift[:, :, None] * s[None, None, :])  # receiver phases (P, H, C)
-    in_ph = np.exp(1j * shift[:, :, None] * s[None, None, :])
+    # the source's phase e^{i (p - n K) s_c} (P, H, C) as e^{i p s_c} e^{-i n K s_c}; the receiver's is its
+    # conjugate (p real)
+    in_ph = np.exp(1j * p[:, None, None] * s) * np.exp(-1j * K * harmonics[:, None] * s)[None, :, :]
+    out_ph = in_ph.conj()
     P, H, C = out_ph.shape
     u = (G[:, :, None] * out_ph).reshape(P, H * C)
     v = (G[:, :, None] * in_ph).reshape(P, H * C)
@@ -219,21 +279,21 @@ def receptance(
     K = track.K
     offsets = positions[None, :] - positions[:, None]  # [c', c] -> s_c - s_c'
     free = np.zeros((H * C, H * C), dtype=complex)
-    for i, n in enumerate(harmonics):
-        vals = smeared_receptance(track, q + n * track.Omega0, offsets.ravel()).reshape(C, C)
-        free[i * C : (i + 1) * C, i * C : (i + 1) * C] = vals
+    vals = smeared_receptance(track, q + harmonics * track.Omega0, offsets.ravel()).reshape(H, C, C)
+    for i in range(H):
+        free[i * C : (i + 1) * C, i * C : (i + 1) * C] = vals[i]
     scale = float(np.max(np.abs(np.diag(free))))
     atol = tol * scale
     reach = (np.max(np.abs(harmonics)) + 1) * K + (2 * K + 10 if tail is None else tail)
+    # the reach first (the tail's estimate needs no integral inside it), then one adaptive integral
     while True:
-        edges = np.arange(-reach, reach + 1e-9 * K, K / 4)
-        a, b = edges[:-1], edges[1:]
-        total, err, panels = _adaptive(track, q, harmonics, positions, a, b, atol, max_rounds)
         outer = _zone_magnitude(track, q, harmonics, positions, reach, K)
         tail_bound = outer * reach / (2 * K)
         if tail_bound < atol or reach > _MAX_REACH * K:
             break
         reach *= 1.6
+    edges = np.arange(-reach, reach + 1e-9 * K, K / 4)
+    total, err, panels = _adaptive(track, q, harmonics, positions, edges[:-1], edges[1:], atol, max_rounds)
     return Receptance(free + total / (2 * np.pi), float((err + tail_bound) / (2 * np.pi)), scale, panels)
 
 
@@ -266,16 +326,19 @@ def _adaptive(
     atol: float,
     max_rounds: int,
 ) -> tuple[Any, float, int]:
-    """Sum of the panel integrals, bisecting every panel whose Gauss-Kronrod difference exceeds its share."""
+    """Sum of the panel integrals, bisecting every panel whose Gauss-Kronrod difference exceeds its share.
+
+    A panel's share is the part of the tolerance not yet spent by the accepted panels, in proportion to its
+    width among the panels still open: the accepted errors never add up to more than ``atol``.
+    """
     total = 0.0
     err = 0.0
-    width = float(np.sum(b - a))
     panels = 0
     for _ in range(max_rounds):
         kron, gauss = _panel_sums(track, q, harmonics, positions, a, b)
         e = np.max(np.abs(kron - gauss), axis=(1, 2))
         panels += a.size
-        ok = e <= atol * (b - a) / width
+        ok = e <= (atol - err) * (b - a) / float(np.sum(b - a))
         total = total + np.sum(kron[ok], axis=0)
         err += float(np.sum(e[ok]))
         if np.all(ok) or np.count_nonzero(~ok) > _MAX_PANELS:

@@ -46,7 +46,8 @@ class SleeperTrack:
     track: str
     groups: dict = field(hash=False)
 
-    def _args(self, key: str) -> dict:
+    def arguments(self, key: str) -> dict:
+        """The groups of ``generated.sleepers.BEAMS[beam][key]`` (``groups``, ``moving_groups``)."""
         names: tuple[str, ...] = generated.BEAMS[self.beam][key]  # type: ignore[assignment]
         return {name: self.groups[name] for name in names}
 
@@ -83,8 +84,8 @@ class SleeperTrack:
 
     def _coeffs(self, w: np.ndarray) -> tuple[list, list]:
         w = np.asarray(w, dtype=complex)
-        n = getattr(generated, f"n_coeffs_{self.beam}")(w, **self._args("groups"))
-        q = getattr(generated, f"q_coeffs_{self.beam}")(w, **self._args("groups"))
+        n = getattr(generated, f"n_coeffs_{self.beam}")(w, **self.arguments("groups"))
+        q = getattr(generated, f"q_coeffs_{self.beam}")(w, **self.arguments("groups"))
         return [np.broadcast_to(np.asarray(c, dtype=complex), w.shape) for c in n], [
             np.broadcast_to(np.asarray(c, dtype=complex), w.shape) for c in q
         ]
@@ -125,7 +126,7 @@ class SleeperTrack:
 
     def moving_polynomials(self, q: complex) -> tuple[np.ndarray, np.ndarray]:
         """(N~, Q~)(kappa, q + alpha kappa) as numpy polynomial coefficients in kappa, highest first."""
-        args = self._args("moving_groups")
+        args = self.arguments("moving_groups")
         n = getattr(generated, f"moving_n_coeffs_{self.beam}")(q, self.alpha, **args)
         qq = getattr(generated, f"moving_q_coeffs_{self.beam}")(q, self.alpha, **args)
         return np.array(n, dtype=complex), np.array(qq, dtype=complex)
