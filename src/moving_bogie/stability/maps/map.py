@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -54,8 +54,8 @@ class StabilityMap:
     margin: np.ndarray | None = None
     margin_bound: np.ndarray | None = None
 
-    def save_npz(self, path: str | os.PathLike[str]) -> None:
-        """Write the arrays (and the parameters as JSON text) to ``path`` (numpy .npz)."""
+    def save_npz(self, path: str | os.PathLike[str] | IO[bytes]) -> None:
+        """Write the arrays (and the parameters as JSON text) to ``path``, a file name or binary file (.npz)."""
         arrays: dict[str, Any] = {
             "alphas": self.alphas,
             "thetas": self.thetas,
