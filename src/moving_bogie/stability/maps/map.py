@@ -55,7 +55,7 @@ class StabilityMap:
     margin_bound: np.ndarray | None = None
 
     def save_npz(self, path: str | os.PathLike[str] | IO[bytes]) -> None:
-        """Write the arrays (and the parameters as JSON text) to ``path``, a file name or binary file (.npz)."""
+        """Write the arrays (and the parameters as JSON text) to ``path``: a name or a binary file (.npz)."""
         arrays: dict[str, Any] = {
             "alphas": self.alphas,
             "thetas": self.thetas,
