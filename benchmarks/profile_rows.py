@@ -44,7 +44,7 @@ PARTS = {
         "induced frequencies of the default window": ("response/residues.py", "frequencies_for"),
         "real-axis sequence beyond the window": ("response/axis_sequence.py", "axis_sequence"),
         "  count per strip (argument principle; the window's too)": ("roots/frequencies.py", "_count"),
-        "  locate the counted roots by bisection (the window's too)": ("roots/frequencies.py", "_locate_counted"),
+        "  locate by bisection (the window's too)": ("roots/frequencies.py", "_locate_counted"),
         "  Newton from the asymptotic law": ("response/axis_law.py", "law_roots"),
         "  polish and confirm (mpmath; the window's too)": ("roots/frequencies.py", "_polish_located"),
         "  residue coefficients (mpmath; the window's too)": ("response/residues.py", "residue_expansion"),
@@ -113,8 +113,10 @@ def main() -> None:
         print(f"=== {name}: moving-bogie {' '.join(ROWS[name]).replace(str(ROOT) + '/', '')}")
         print(f"CPU {cpu:.2f} s under the profiler (its overhead included)\n")
         if name in PARTS:
-            print(f"by part (cumulative CPU seconds; indented parts are inside the one above):\n"
-                  f"{parts_table(stats, PARTS[name])}\n")
+            print(
+                f"by part (cumulative CPU seconds; indented parts are inside the one above):\n"
+                f"{parts_table(stats, PARTS[name])}\n"
+            )
         print(f"by cumulative time:\n{_top(stats, 'cumulative', args.top)}\n")
         print(f"by own time:\n{_top(stats, 'tottime', args.top)}\n")
 
