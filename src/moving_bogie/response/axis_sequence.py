@@ -25,8 +25,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
@@ -35,6 +37,9 @@ from moving_bogie.response.axis_law import law_applies, law_roots
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.frequencies import FrequencyResult, induced_frequencies
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
 
 __all__ = ["AxisSequence", "axis_sequence"]
 
@@ -61,7 +66,7 @@ class AxisSequence:
     number of strips counted, ``found`` the roots (pairs once).
     """
 
-    expansions: tuple
+    expansions: tuple[ResidueExpansion, ...]
     reach: float
     tail: float
     strips: int
@@ -70,7 +75,7 @@ class AxisSequence:
     first: int  # roots (pairs once) in the first strip, Re q <= twice the window's edge
     bisected: int = 0  # roots located by bisection of their tiles (no law, or it disagreed with the count)
 
-    def harmonics(self, tau, names) -> dict:
+    def harmonics(self, tau: ArrayLike, names: tuple[str, ...]) -> dict:
         """The sum of their harmonic parts (:meth:`ResidueExpansion.harmonics`) for ``names``."""
         out = {name: np.zeros(np.shape(tau)) for name in names}
         for expansion in self.expansions:
@@ -127,7 +132,9 @@ def axis_sequence(bound: BoundModel, result: FrequencyResult, *, start: float, t
     while x < MAX_REACH * max(edge, start / 16):
         strip = Rectangle(x, 2 * x, -HALF_HEIGHT, HALF_HEIGHT)
         starts = law_roots(fast, strip) if fast is not None else None
-        found = induced_frequencies(bound, dps=DPS, window=strip, check_window=False, starts=starts)
+        found = induced_frequencies(
+            bound, dps=DPS, window=strip, check_window=False, starts=None if starts is None else list(starts)
+        )
         bisected += _bisected(starts, found)
         complete &= found.count_ok
         strips += 1
@@ -172,12 +179,12 @@ def _rest(prev: float, last: float, envelope: float, density: float, x: float) -
     return max(last * rho / (1 - rho), 2 * envelope * density / (3 * x**3))
 
 
-def _amplitudes(expansion) -> np.ndarray:
+def _amplitudes(expansion: ResidueExpansion) -> np.ndarray:
     """Per root (each member of a pair), the largest |amplitude| over the responses."""
     return np.abs(np.stack([expansion.amplitudes[name] for name in expansion.names])).max(axis=0)
 
 
-def refuse_outside(result, covered: int = 0) -> None:
+def refuse_outside(result: FrequencyResult, covered: int = 0) -> None:
     """Decaying roots beyond the window that the residue sum would miss make it refuse."""
     outside = getattr(result, "decaying_outside", 0)
     if outside and outside != covered:
@@ -188,7 +195,7 @@ def refuse_outside(result, covered: int = 0) -> None:
         )
 
 
-def sequence_start(params) -> float | None:
+def sequence_start(params: DimensionlessParams) -> float | None:
     """Re q = sqrt(S)/r where the cut curve along the real axis of a beam with rotary inertia touches the
     axis (the start of its sequence of decaying roots, docs/frequencies.md), or None for a beam without."""
     S, r = getattr(params, "S", None), getattr(params, "r", None)
