@@ -92,10 +92,8 @@ def induced_frequencies(
     certify : bool
         Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
     starts : sequence of complex, optional
-        Distinct roots of E_chr in the window located by other means (in double
-        precision, e.g. from an asymptotic law: :mod:`moving_bogie.response.axis_law`). They replace the
-        bisection of step 2 only where every tile holds exactly as many of them as its count; otherwise
-        the tiles are located by bisection as usual (the count decides, the points are never trusted alone).
+        Roots located by other means (double precision): a tile holding exactly its count of them takes
+        them instead of its bisection (:func:`_locate_counted`; :mod:`moving_bogie.response.axis_law`).
     """
     extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
@@ -104,9 +102,8 @@ def induced_frequencies(
     counted, beyond = _count(fast, bound, window, eps, eps_branch, newton_cell, check_window, report)
     notes: list[Note] = [*counted.notes, *(beyond.notes(window, far) if beyond else ())]
     report(0.2)
-    roots, cells, unlocated = _confirmed_roots(
-        fast, precise, counted, newton_cell, dps, extra_dps, notes, report, starts
-    )
+    args = (counted, newton_cell, dps, extra_dps, notes, report, starts)
+    roots, cells, unlocated = _confirmed_roots(fast, precise, *args)
     count = sum(counted.counts) - _mirrors_counted(cells)
     _compare_with_count(count, roots, notes)
     unsearched = counted.tiling.unsearched
@@ -125,12 +122,16 @@ def induced_frequencies(
         unlocated=tuple(unlocated),
         decaying_outside=beyond.decaying(window, far) if beyond else 0,
     )
-    if certify:
-        from moving_bogie.roots.proof.certify import certify as prove
-
-        result = dataclasses.replace(result, certificate=prove(result))
+    result = _certified(result) if certify else result
     report(1.0)
     return result
+
+
+def _certified(result: FrequencyResult) -> FrequencyResult:
+    """The result with the proof of every root, the count and the verdict in ball arithmetic."""
+    from moving_bogie.roots.proof.certify import certify as prove
+
+    return dataclasses.replace(result, certificate=prove(result))
 
 
 def _compare_with_count(count: int, roots: list[InducedFrequency], notes: list[Note]) -> None:
