@@ -4,7 +4,9 @@
 
 Each row is one command of the command line, run in this process under :mod:`cProfile` with CPU time as
 its clock (the load of the machine then counts little); the package is imported before the profile
-starts, so what is printed is the command's own work. For each row: the CPU time, then the ``--top``
+starts, so what is printed is the command's own work. For each row: the CPU time, the parts of its work
+named in ``PARTS`` (cumulative CPU of the functions that do them, so the reader sees at once which part to
+attack), then the ``--top``
 functions by cumulative time (where the work sits in the call tree) and by own time (where the
 interpreter spends it), the package's functions and numpy's or mpmath's alike. A sweep writes a
 temporary store, deleted afterwards.
@@ -34,6 +36,39 @@ ROWS = {
     "small-sweep": ["sweep", "--file", str(ROOT / "examples" / "car.toml"), "--vary", "v=40:120:6",
                     "--out", "{out}/s.zarr"],
 }  # fmt: skip
+
+#: The parts of a row's work: label -> (module path suffix, function name); cumulative CPU seconds each.
+#: Parts may nest (the indented labels are inside the one above them).
+PARTS = {
+    "timeseries-tr": {
+        "induced frequencies of the default window": ("response/residues.py", "frequencies_for"),
+        "real-axis sequence beyond the window": ("response/axis_sequence.py", "axis_sequence"),
+        "  count per strip (argument principle; the window's too)": ("roots/frequencies.py", "_count"),
+        "  locate by bisection (the window's too)": ("roots/frequencies.py", "_locate_counted"),
+        "  Newton from the asymptotic law": ("response/axis_law.py", "law_roots"),
+        "  polish and confirm (mpmath; the window's too)": ("roots/frequencies.py", "_polish_located"),
+        "  residue coefficients (mpmath; the window's too)": ("response/residues.py", "residue_expansion"),
+        "branch cut, where it matters (auto rule)": ("response/cut_policy.py", "branch_cut_extent"),
+        "  L1 bound of the jump": ("response/cut_integral.py", "l1_bound"),
+        "  adaptive panels of the jump": ("response/quadrature.py", "adapt_panels"),
+        "branch cut I_bc over the time series": ("response/closed_form.py", "_add_branch_cut"),
+        "  jump across the cut (all calls)": ("response/cut_integral.py", "_jump"),
+        "  sum over nodes x times (fourier_sum)": ("response/quadrature.py", "fourier_sum"),
+        "    e^{i x} of nodes x times (cis)": ("response/quadrature.py", "cis"),
+    },
+}
+PARTS["validate-tr"] = PARTS["timeseries-tr"]
+
+
+def parts_table(stats: pstats.Stats, parts: dict[str, tuple[str, str]]) -> str:
+    """The cumulative CPU seconds of each part (the largest over functions of that name and module)."""
+    table = stats.stats  # type: ignore[attr-defined]  # pstats keeps its table in this attribute
+    lines = []
+    for label, (suffix, name) in parts.items():
+        hits = [v[3] for (path, _, func), v in table.items() if path.endswith(suffix) and func == name]
+        seconds = f"{max(hits):8.2f}" if hits else "       -"
+        lines.append(f"{seconds}  {label}")
+    return "\n".join(lines)
 
 
 def profile_row(argv: list[str]) -> tuple[float, pstats.Stats]:
@@ -77,6 +112,11 @@ def main() -> None:
             cpu, stats = profile_row(argv)
         print(f"=== {name}: moving-bogie {' '.join(ROWS[name]).replace(str(ROOT) + '/', '')}")
         print(f"CPU {cpu:.2f} s under the profiler (its overhead included)\n")
+        if name in PARTS:
+            print(
+                f"by part (cumulative CPU seconds; indented parts are inside the one above):\n"
+                f"{parts_table(stats, PARTS[name])}\n"
+            )
         print(f"by cumulative time:\n{_top(stats, 'cumulative', args.top)}\n")
         print(f"by own time:\n{_top(stats, 'tottime', args.top)}\n")
 

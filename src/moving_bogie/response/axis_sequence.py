@@ -9,8 +9,11 @@ all decay, so no verdict needs them, but the residue sum of Eq. (35) does: their
 (Re q)^-4 and with the default window alone the time series misses by about 1e-8 of w_st.
 
 :func:`axis_sequence` counts and locates them (:func:`~moving_bogie.roots.frequencies.induced_frequencies`
-on strips Re q in [X_k, 2 X_k], |Im q| <= 1, the argument principle on the tiling of each strip: nothing
-is guessed) strip after strip, doubling X_k from the window's right edge, and stops when the residues of
+on strips Re q in [X_k, 2 X_k], |Im q| <= 1, the argument principle on the tiling of each strip) strip after
+strip, doubling X_k from the window's right edge. The roots of a strip are located by Newton's method from
+the large-|q| balance of E_chr (:mod:`~moving_bogie.response.axis_law`) and taken only where they agree
+with the count of every tile; elsewhere the strip's tiles are bisected as in any search, and the note says
+in how many strips. It stops when the residues of
 the next strips are estimated below ``tol``: with A_k the sum of |n_X(q)/(q E_chr'(q))| over the roots of
 strip k (both members of each pair, the largest over the responses) and rho = A_k / A_{k-1} (at least 1/8,
 the (Re q)^-4 law over a doubling), the rest is estimated as A_k rho / (1 - rho), and also by the envelope
@@ -22,14 +25,21 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.characteristic import CharacteristicArray
+from moving_bogie.response.axis_law import law_applies, law_roots
 from moving_bogie.response.residues import ResidueExpansion, residue_expansion
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.frequencies import FrequencyResult, induced_frequencies
+
+if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
 
 __all__ = ["AxisSequence", "axis_sequence"]
 
@@ -56,15 +66,16 @@ class AxisSequence:
     number of strips counted, ``found`` the roots (pairs once).
     """
 
-    expansions: tuple
+    expansions: tuple[ResidueExpansion, ...]
     reach: float
     tail: float
     strips: int
     found: int
     complete: bool  # every strip's count agreed with the roots found
     first: int  # roots (pairs once) in the first strip, Re q <= twice the window's edge
+    bisected: int = 0  # roots located by bisection of their tiles (no law, or it disagreed with the count)
 
-    def harmonics(self, tau, names) -> dict:
+    def harmonics(self, tau: ArrayLike, names: tuple[str, ...]) -> dict:
         """The sum of their harmonic parts (:meth:`ResidueExpansion.harmonics`) for ``names``."""
         out = {name: np.zeros(np.shape(tau)) for name in names}
         for expansion in self.expansions:
@@ -72,16 +83,32 @@ class AxisSequence:
                 out[name] += v
         return out
 
+    def _located(self) -> str:
+        return _located_text(self.found, self.bisected)
+
     def note(self, scale: float, start: float) -> str:
         rel = self.tail / scale if scale > 0 else math.inf
         tail = f"{rel:.1e} of the steady deflection" if math.isfinite(rel) else "not bounded (no decay seen)"
         return (
             f"decaying induced frequencies along the real axis beyond the window (a sequence from Re q ~ "
             f"{start:.4g}): {self.found} found in {self.strips} strip(s) up to Re q = {self.reach:.4g} "
-            f"(|Im q| <= {HALF_HEIGHT:g}) and summed; the residues beyond are estimated at {tail} "
+            f"(|Im q| <= {HALF_HEIGHT:g}; {self._located()}) and summed; the residues beyond are estimated "
+            f"at {tail} "
             "(extrapolated from the amplitudes found: their decay over the last doubling of Re q, at least "
             "the (Re q)^-4 law, and their (Re q)^-4 envelope)"
         )
+
+
+def _located_text(found: int, bisected: int) -> str:
+    """How the roots of the strips were located, for the note."""
+    if bisected >= found:
+        return "located by bisection of each strip's tiles"
+    text = (
+        "located by Newton's method from the large-|q| balance of E_chr, confirmed by the count of every tile"
+    )
+    if bisected:
+        text += f" ({bisected} by bisection of the tiles where the balance's roots disagreed with the count)"
+    return text
 
 
 def axis_sequence(bound: BoundModel, result: FrequencyResult, *, start: float, tol: float) -> AxisSequence:
@@ -100,10 +127,15 @@ def axis_sequence(bound: BoundModel, result: FrequencyResult, *, start: float, t
     """
     edge = float(result.window.x1)
     x, expansions, sums, strips, found_roots, complete, first = edge, [], [], 0, 0, True, 0
-    envelope, density, tail = 0.0, 0.0, math.inf
+    envelope, density, tail, bisected = 0.0, 0.0, math.inf, 0
+    fast = CharacteristicArray(bound) if law_applies(bound) else None
     while x < MAX_REACH * max(edge, start / 16):
         strip = Rectangle(x, 2 * x, -HALF_HEIGHT, HALF_HEIGHT)
-        found = induced_frequencies(bound, dps=DPS, window=strip, check_window=False)
+        starts = law_roots(fast, strip) if fast is not None else None
+        found = induced_frequencies(
+            bound, dps=DPS, window=strip, check_window=False, starts=None if starts is None else list(starts)
+        )
+        bisected += _bisected(starts, found)
         complete &= found.count_ok
         strips += 1
         first = first if strips > 1 else found.found
@@ -123,7 +155,15 @@ def axis_sequence(bound: BoundModel, result: FrequencyResult, *, start: float, t
         tail = _rest(sums[-2], sums[-1], envelope, density, x)
         if tail <= tol:
             break
-    return AxisSequence(tuple(expansions), x, tail, strips, found_roots, complete, first)
+    return AxisSequence(tuple(expansions), x, tail, strips, found_roots, complete, first, bisected)
+
+
+def _bisected(starts: np.ndarray | None, found: FrequencyResult) -> int:
+    """Roots of a strip not among those located from the law (within 1e-8 relative of one of them): found
+    by bisection of their tiles."""
+    if starts is None or not starts.size:
+        return len(found.roots)
+    return sum(bool(np.min(np.abs(starts - complex(r.q))) > 1e-8 * abs(complex(r.q))) for r in found.roots)
 
 
 def _rest(prev: float, last: float, envelope: float, density: float, x: float) -> float:
@@ -139,12 +179,12 @@ def _rest(prev: float, last: float, envelope: float, density: float, x: float) -
     return max(last * rho / (1 - rho), 2 * envelope * density / (3 * x**3))
 
 
-def _amplitudes(expansion) -> np.ndarray:
+def _amplitudes(expansion: ResidueExpansion) -> np.ndarray:
     """Per root (each member of a pair), the largest |amplitude| over the responses."""
     return np.abs(np.stack([expansion.amplitudes[name] for name in expansion.names])).max(axis=0)
 
 
-def refuse_outside(result, covered: int = 0) -> None:
+def refuse_outside(result: FrequencyResult, covered: int = 0) -> None:
     """Decaying roots beyond the window that the residue sum would miss make it refuse."""
     outside = getattr(result, "decaying_outside", 0)
     if outside and outside != covered:
@@ -155,7 +195,7 @@ def refuse_outside(result, covered: int = 0) -> None:
         )
 
 
-def sequence_start(params) -> float | None:
+def sequence_start(params: DimensionlessParams) -> float | None:
     """Re q = sqrt(S)/r where the cut curve along the real axis of a beam with rotary inertia touches the
     axis (the start of its sequence of decaying roots, docs/frequencies.md), or None for a beam without."""
     S, r = getattr(params, "S", None), getattr(params, "r", None)

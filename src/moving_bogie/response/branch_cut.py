@@ -46,6 +46,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy import optimize
 
 from moving_bogie.errors import MovingBogieError
@@ -63,6 +64,10 @@ _PANEL_DS_REL = 0.05
 #: Bisection levels of the adaptive base partition (a peak 2^-40 of a panel wide is still resolved).
 _MAX_SPLITS = 40
 _S_STEPS = tuple(2.0**k for k in range(-1, 16))
+
+
+#: The jump of a branch-cut integral at nodes in p: ``channel(p) -> (q, J)``, J of shape (len(p), m).
+Channel = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
 
 
 class BranchCutUnavailable(MovingBogieError):
@@ -121,14 +126,14 @@ class BranchCut:
             )
 
     # --- geometry of the right ray -------------------------------------------------------------
-    def _R(self, p):
+    def _R(self, p: np.ndarray | float) -> np.ndarray:
         return np.sqrt(np.polyval(self._radicand, p))
 
-    def s(self, p):
+    def s(self, p: np.ndarray | float) -> np.ndarray:
         """Re q of the cut point of the real root p (right ray)."""
         return self.alpha * p + 0.5 * self._R(p)
 
-    def ds(self, p):
+    def ds(self, p: np.ndarray | float) -> np.ndarray:
         """ds/dp (>= 0 for p >= p_c)."""
         return self.alpha + np.polyval(self._radicand_dp, p) / self._R(p)
 
@@ -140,7 +145,7 @@ class BranchCut:
             lo *= 2
         return float(optimize.brentq(self.ds, lo, 0.0, xtol=1e-15, rtol=1e-15))
 
-    def p_of_s(self, s):
+    def p_of_s(self, s: ArrayLike) -> np.ndarray:
         """The real root p > p_c with s(p) = s (s >= q_c); Newton from the right (s is convex)."""
         s = np.asarray(s, dtype=float)
         p = np.sqrt(2 * np.maximum(s, 0.0)) + 1.0 + abs(self.p_c)
@@ -151,12 +156,12 @@ class BranchCut:
                 break
         return p
 
-    def q(self, p):
+    def q(self, p: np.ndarray | float) -> np.ndarray:
         """The cut point q(p) = s(p) + i eta_f."""
         return self.s(p) + 1j * self.eta_f
 
     # --- kernel values on both sides ------------------------------------------------------------
-    def _roots_and_sides(self, p0):
+    def _roots_and_sides(self, p0: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(q, P, weights): the roots of N(., q(p0)) ordered by side (see :meth:`_both_sides`), Q/N'."""
         p0 = np.asarray(p0, dtype=float)
         q = self.q(p0)
@@ -196,7 +201,7 @@ class BranchCut:
         return q, np.take_along_axis(P, order, -1), np.take_along_axis(weight, order, -1)
 
     @staticmethod
-    def _both_sides(P, weight, xi):
+    def _both_sides(P: np.ndarray, weight: np.ndarray, xi: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """(K_below, K_above) at every xi, shape (nodes, len(xi)), sharing the exponentials.
 
         Upper roots: from below {P0, P2}, from above {P1, P2}; lower: from below {P1, P3}, from above
@@ -217,20 +222,22 @@ class BranchCut:
         above = sign * (common + np.where(pos, e1, e0))
         return below, above
 
-    def kernels(self, p0, xis, side: str):
+    def kernels(self, p0: ArrayLike, xis: ArrayLike, side: str) -> np.ndarray:
         """K(xi, q(p0)) on one side of the cut ("below" or "above"), shape (len(p0), len(xis))."""
         _, P, weight = self._roots_and_sides(np.atleast_1d(p0))
         below, above = self._both_sides(P, weight, np.atleast_1d(np.asarray(xis, dtype=float)))
         return below if side == "below" else above
 
-    def _contact_kernels(self, P, weight):
+    def _contact_kernels(
+        self, P: np.ndarray, weight: np.ndarray
+    ) -> tuple[list[np.ndarray], list[np.ndarray]]:
         """K at every distinct contact offset xi_i - xi_j, below and above the cut."""
         below, above = self._both_sides(P, weight, self.offsets)
         count = len(self.offsets)
         return [below[:, k] for k in range(count)], [above[:, k] for k in range(count)]
 
     # --- jumps of the transformed responses -----------------------------------------------------
-    def response_jumps(self, p0) -> tuple[np.ndarray, np.ndarray]:
+    def response_jumps(self, p0: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """(q, J): J[:, k] = X~_below - X~_above of response ``names[k]`` at q(p0); X~ = n_X/(i q E_chr)."""
         q, P, weight = self._roots_and_sides(np.atleast_1d(p0))
         out = []
@@ -239,7 +246,7 @@ class BranchCut:
             out.append(X / (1j * q)[:, None])
         return q, out[0] - out[1]
 
-    def shape_jumps(self, p0, xi) -> tuple[np.ndarray, np.ndarray]:
+    def shape_jumps(self, p0: ArrayLike, xi: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """(q, J) with J[:, k] = W~_below - W~_above at xi[k], i q W~ = sum_j G_j K(xi - xi_j) / (2 pi E)."""
         q, P, weight = self._roots_and_sides(np.atleast_1d(p0))
         xi = np.asarray(xi, dtype=float)
@@ -274,7 +281,7 @@ class BranchCut:
         self._base[S] = edges
         return edges
 
-    def _jump_ds(self, nodes):
+    def _jump_ds(self, nodes: np.ndarray) -> np.ndarray:
         return self.response_jumps(nodes)[1] * self.ds(nodes)[:, None]
 
     def rule(self, S: float, tau_hi: float, xi_max: float | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -288,7 +295,7 @@ class BranchCut:
         phase = tau_hi * np.diff(self.s(edges))
         return quad.oscillation_rule(edges, phase, min(_PANEL_DP, quad.PANEL_XI / (abs(xi_max) + 1.0)))
 
-    def _tail_terms(self, channel, S: float):
+    def _tail_terms(self, channel: Channel, S: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(j, j', j'') in s at s = S by central differences (max over channels when estimating)."""
         h = 0.01 * min(S, max(1.0, float(self.p_of_s(S))) / max(self.span, 1.0))
         h = min(h, 0.25 * (S - self.q_c))
@@ -299,7 +306,7 @@ class BranchCut:
         g2 = (g[2] - 2 * g[1] + g[0]) / h**2
         return g0, g1, g2
 
-    def choose_S(self, channel, tau_lo: float, tol: float, s_min: float | None = None) -> float:
+    def choose_S(self, channel: Channel, tau_lo: float, tol: float, s_min: float | None = None) -> float:
         """Truncation point S >= s_min of the ray for the band of times from tau_lo (module docstring)."""
         floor = self.q_c if s_min is None else max(self.q_c, s_min - 0.5)
         for step in _S_STEPS:
@@ -319,8 +326,8 @@ class BranchCut:
 
     def integrate(
         self,
-        tau,
-        channel: Callable,
+        tau: ArrayLike,
+        channel: Channel,
         *,
         tol: float = 1e-10,
         s_min: float | None = None,
@@ -350,7 +357,7 @@ class BranchCut:
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
         m = channel(np.array([self.p_c + 1.0]))[1].shape[-1]
 
-        def band(lo, ts):
+        def band(lo: float, ts: np.ndarray) -> np.ndarray:
             S = self.choose_S(channel, lo, tol, s_min)
             nodes, weights = self.rule(S, float(ts.max()), xi_max)
             q_max = float(np.abs(self.q(nodes)).max())
@@ -365,12 +372,14 @@ class BranchCut:
 
         return quad.by_bands(tau, m, band)
 
-    def responses(self, tau, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
+    def responses(self, tau: ArrayLike, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
         """I_bc(tau) of every response, as a dict name -> ndarray."""
         values = self.integrate(tau, self.response_jumps, tol=tol, s_min=s_min)
         return {name: values[..., k] for k, name in enumerate(self.names)}
 
-    def shape(self, xi, tau: float, *, tol: float = 1e-10, s_min: float | None = None) -> np.ndarray:
+    def shape(
+        self, xi: ArrayLike, tau: float, *, tol: float = 1e-10, s_min: float | None = None
+    ) -> np.ndarray:
         """I_bc of the deflection w(xi, tau) at one time, for an array xi."""
         xi = np.asarray(xi, dtype=float)
         values = self.integrate(
@@ -391,6 +400,8 @@ class BranchCut:
         return {name: float(values[k]) for k, name in enumerate(self.names)}
 
 
-def _weighted(channel, cut, chunk, w):
+def _weighted(
+    channel: Channel, cut: BranchCut, chunk: np.ndarray, w: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     q, J = channel(chunk)
     return q, J * (w * cut.ds(chunk))[:, None]

@@ -324,7 +324,9 @@ def _add_branch_cut(
     else:
         wheels = expansion.names[: len(expansion.positions)]
         scale = max(*(abs(expansion.steady[name]) for name in wheels), 1e-300)
-        until, more = branch_cut_extent(bc, float(tau.max()), tol=bc_tol * scale, cap=bc_tau_cap, s_min=s_min)
+        until, more = branch_cut_extent(
+            bc, float(tau.max()), tol=bc_tol * scale, cap=bc_tau_cap, s_min=s_min, times=tau
+        )
         notes += more
     mask = tau <= until
     if not np.any(mask):

@@ -31,15 +31,19 @@ only like alpha p, so its pieces stop at a small S.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.cut import CutTracer, trace_curves
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
-from moving_bogie.response.cut_pieces import cut_pieces, roots_along
+from moving_bogie.response.cut_pieces import CurvePiece, cut_pieces, roots_along
 from moving_bogie.response.quadrature import (
+    FIRST_BAND,
     PANEL_XI,
     adapt_panels,
     by_bands,
@@ -61,6 +65,22 @@ _CHUNK = 20000
 #: approach each other (the halves of a layered track's lens and its mass-layer curves converge like a
 #: power of 1/p; merging them at 1e-9 left errors of 1e-8 w_st in the deflection shape).
 _REAL_TOL = 1e-12
+
+
+#: The jump along one piece of the cut at nodes in p: ``channel(piece, p) -> (q, J)``.
+PieceChannel = Callable[[CurvePiece, np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
+def _rule_top(lo: float, ts: np.ndarray, rule_tau: np.ndarray | None) -> float:
+    """The time that sets the panels of the band (lo, 2 lo] (``[0, FIRST_BAND]`` when lo = 0): the largest
+    of ``ts`` and of the ``rule_tau`` in that band."""
+    top = float(ts.max())
+    if rule_tau is None:
+        return top
+    rule_tau = np.asarray(rule_tau, dtype=float)
+    hi = 2 * lo if lo > 0 else FIRST_BAND
+    same = rule_tau[(rule_tau > lo) & (rule_tau <= hi)] if lo > 0 else rule_tau[rule_tau <= hi]
+    return max(top, float(same.max())) if same.size else top
 
 
 def branch_cut_for(bound: BoundModel) -> BranchCut | CurveBranchCut:
@@ -113,7 +133,9 @@ class CurveBranchCut:
         self._cache: dict = {}
 
     # --- the jump ------------------------------------------------------------------------------
-    def _sides(self, p, q, t):
+    def _sides(
+        self, p: np.ndarray, q: np.ndarray, t: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Roots P of N(., q), weights Q/N', and which roots count as upper on the right/left side."""
         n = stack_coefficients(self.module.n_coeffs(q, **self.fargs), q.shape)
         P = roots_along(n)
@@ -130,7 +152,7 @@ class CurveBranchCut:
         return P, W, right, left, real.sum(axis=-1)
 
     @staticmethod
-    def _kernel(P, W, upper, xi):
+    def _kernel(P: np.ndarray, W: np.ndarray, upper: np.ndarray, xi: ArrayLike) -> np.ndarray:
         """K(xi, q) from the roots with the given side assignment, shape (nodes, len(xi))."""
         xi = np.asarray(xi, dtype=float)
         pos = xi >= 0
@@ -139,7 +161,9 @@ class CurveBranchCut:
         e = np.exp(1j * np.where(mask, P[:, :, None], 0) * xi) * W[:, :, None]
         return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, e, 0), axis=1)
 
-    def _jump(self, piece, p, xi=None):
+    def _jump(
+        self, piece: CurvePiece, p: ArrayLike, xi: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(q, J): J = (X~_right - X~_left) q'(p) / (number of real roots), per response (or W~ at xi).
 
         At a node on a cusp (a double real root: W infinite, q' = 0) J is the mean of its values at
@@ -171,7 +195,7 @@ class CurveBranchCut:
         return q, J
 
     # --- quadrature ----------------------------------------------------------------------------
-    def _panels(self, piece, S, channel):
+    def _panels(self, piece: CurvePiece, S: float, channel: PieceChannel) -> np.ndarray:
         key = (id(piece), S, channel)
         if key in self._base:
             return self._base[key]
@@ -190,12 +214,14 @@ class CurveBranchCut:
         self._base[key] = edges
         return self._base[key]
 
-    def _rule(self, piece, S, tau_hi, xi_max, channel):
+    def _rule(
+        self, piece: CurvePiece, S: float, tau_hi: float, xi_max: float, channel: PieceChannel
+    ) -> tuple[np.ndarray, np.ndarray]:
         edges = self._panels(piece, S, channel)
         x = piece.q_at(edges).real
         return oscillation_rule(edges, tau_hi * np.diff(x), PANEL_XI / (abs(xi_max) + 1.0))
 
-    def _end_terms(self, piece, S, channel):
+    def _end_terms(self, piece: CurvePiece, S: float, channel: PieceChannel) -> list[tuple]:
         """Per far end of the piece: (sign, q, F, F', F'') of the jump F along the curve, in q."""
         out = []
         for sign, p_end in piece.far_ends(S):
@@ -209,15 +235,17 @@ class CurveBranchCut:
             out.append((sign, q[1], F[1], d01 + d012 * (q[1] - q[0]), 2 * d012))
         return out
 
-    def _tails(self, piece, S, channel, ts):
+    def _tails(self, piece: CurvePiece, S: float, channel: PieceChannel, ts: np.ndarray) -> np.ndarray:
         """The truncated ends, integrated by parts along the curve (outward from each end)."""
-        total = 0
+        total: np.ndarray = np.zeros((ts.size, 1), dtype=complex)
         tt = ts[:, None]
         for sign, q, F0, F1, F2 in self._end_terms(piece, S, channel):
             total = total + sign * np.exp(1j * q * tt) * (1j * F0 / tt - F1 / tt**2 - 1j * F2 / tt**3)
         return total
 
-    def choose_S(self, channel, tau_lo, tol, s_min=None):
+    def choose_S(
+        self, channel: PieceChannel, tau_lo: float, tol: float, s_min: float | None = None
+    ) -> tuple[float, ...]:
         """Truncation Re q = S of each piece (a tuple), as for the Euler-Bernoulli cut (:mod:`branch_cut`):
         for tau_lo > 0 the first neglected term of its tails, |F''|/tau_lo^3, below its share of ``tol``;
         for the first band the neglected integral, estimated as |F| S, below it. S stays within the traced
@@ -243,7 +271,9 @@ class CurveBranchCut:
             out.append(S)
         return tuple(out)
 
-    def _values(self, piece, nodes, channel, m):
+    def _values(
+        self, piece: CurvePiece, nodes: np.ndarray, channel: PieceChannel, m: int
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(q, J) at the nodes of a rule; a band of times whose rule is that of an earlier band (panels
         set by e^{i p xi} rather than by the phase) reuses its values (time series only: m small)."""
         key = (id(piece), channel, nodes.size, hash(nodes.tobytes()))
@@ -252,13 +282,30 @@ class CurveBranchCut:
         parts = [channel(piece, nodes[k : k + _CHUNK]) for k in range(0, nodes.size, _CHUNK)]
         value = np.concatenate([v[0] for v in parts]), np.concatenate([v[1] for v in parts])
         if m <= _CACHE_COLUMNS:
-            if len(self._cache) >= _CACHE_ENTRIES:
-                self._cache.pop(next(iter(self._cache)))
-            self._cache[key] = value
+            self._keep(key, value)
         return value
 
-    def integrate(self, tau, channel, *, tol: float = 1e-10, s_min=None, xi_max=None):
-        """I_bc(tau) per channel column: (1/pi) Re sum over the pieces of integral J e^{i q tau} dp."""
+    def _keep(self, key: tuple, value: tuple[np.ndarray, np.ndarray]) -> None:
+        """Cache the jump values of a rule (the oldest entry leaves when the cache is full)."""
+        if len(self._cache) >= _CACHE_ENTRIES:
+            self._cache.pop(next(iter(self._cache)))
+        self._cache[key] = value
+
+    def integrate(
+        self,
+        tau: ArrayLike,
+        channel: PieceChannel,
+        *,
+        tol: float = 1e-10,
+        s_min: float | None = None,
+        xi_max: float | None = None,
+        rule_tau: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """I_bc(tau) per channel column: (1/pi) Re sum over the pieces of integral J e^{i q tau} dp.
+
+        ``rule_tau``: other times whose rules a band of ``tau`` should share (their largest in the band sets
+        its panels when it is larger than that of ``tau``): a probe of a few times then evaluates the jump
+        at the nodes that the whole series will use, and the series finds them in the cache."""
         tau = np.asarray(tau, dtype=float)
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
@@ -266,13 +313,16 @@ class CurveBranchCut:
         first = self.pieces[0]
         m = channel(first, np.array([0.5 * (first.p_lo + first.p_hi)]))[1].shape[-1]
 
-        def band(lo, ts):
+        def band(lo: float, ts: np.ndarray) -> np.ndarray:
             acc = np.zeros((ts.size, m), dtype=complex)
+            top = _rule_top(lo, ts, rule_tau)
             for piece, S in zip(self.pieces, self.choose_S(channel, lo, tol, s_min)):
-                nodes, weights = self._rule(piece, S, float(ts.max()), xi_max, channel)
+                nodes, weights = self._rule(piece, S, top, xi_max, channel)
                 q, J = self._values(piece, nodes, channel, m)
 
-                def weighted(idx, w, q=q, J=J):
+                def weighted(
+                    idx: np.ndarray, w: np.ndarray, q: np.ndarray = q, J: np.ndarray = J
+                ) -> tuple[np.ndarray, np.ndarray]:
                     return q[idx], J[idx] * w[:, None]
 
                 q_max = float(np.abs(q).max())
@@ -283,12 +333,21 @@ class CurveBranchCut:
 
         return by_bands(tau, m, band)
 
-    def responses(self, tau, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
-        """I_bc(tau) of every response, as a dict name -> ndarray."""
-        values = self.integrate(tau, self._jump, tol=tol, s_min=s_min)
+    def responses(
+        self,
+        tau: ArrayLike,
+        *,
+        tol: float = 1e-10,
+        s_min: float | None = None,
+        rule_tau: np.ndarray | None = None,
+    ) -> dict:
+        """I_bc(tau) of every response, as a dict name -> ndarray (``rule_tau``: :meth:`integrate`)."""
+        values = self.integrate(tau, self._jump, tol=tol, s_min=s_min, rule_tau=rule_tau)
         return {name: values[..., k] for k, name in enumerate(self.names)}
 
-    def shape(self, xi, tau: float, *, tol: float = 1e-10, s_min: float | None = None) -> np.ndarray:
+    def shape(
+        self, xi: ArrayLike, tau: float, *, tol: float = 1e-10, s_min: float | None = None
+    ) -> np.ndarray:
         """I_bc of the deflection w(xi, tau) at one time, for an array xi."""
         xi = np.asarray(xi, dtype=float)
         flat = xi.reshape(-1)
@@ -306,5 +365,10 @@ class CurveBranchCut:
         total = np.zeros(len(self.names))
         for piece, S in zip(self.pieces, self.choose_S(self._jump, 0.0, tol, s_min)):
             nodes, weights = self._rule(piece, S, 0.0, self.span, self._jump)
-            total = total + (np.abs(self._jump(piece, nodes)[1]) * weights[:, None]).sum(axis=0) / np.pi
+            q, J = self._jump(piece, nodes)
+            if nodes.size <= _CHUNK and len(self.names) <= _CACHE_COLUMNS:
+                # the first band of times mostly has these very nodes: its values, evaluated in one chunk
+                # there too, are these
+                self._keep((id(piece), self._jump, nodes.size, hash(nodes.tobytes())), (q, J))
+            total = total + (np.abs(J) * weights[:, None]).sum(axis=0) / np.pi
         return {name: float(total[k]) for k, name in enumerate(self.names)}

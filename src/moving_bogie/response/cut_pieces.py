@@ -11,10 +11,16 @@ of a quadrature rule.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from moving_bogie.kernels.polyroots import newton_polish, poly_roots, polyder, polyval
 from moving_bogie.response.branch_cut import BranchCutUnavailable
+
+if TYPE_CHECKING:
+    from moving_bogie.kernels.cut import CutTracer
 
 __all__ = ["CurvePiece", "TracedCurve", "cut_pieces", "roots_along"]
 
@@ -25,15 +31,15 @@ SEED_STRIDE = 8
 class TracedCurve:
     """One traced curve q(p) (samples ``p`` increasing, ``q``), evaluated exactly by Newton."""
 
-    def __init__(self, tracer, p, q) -> None:
+    def __init__(self, tracer: CutTracer, p: np.ndarray, q: np.ndarray) -> None:
         self.tracer, self.p, self.q = tracer, p, q
 
-    def q_at(self, p):
+    def q_at(self, p: ArrayLike) -> np.ndarray:
         p = np.asarray(p, dtype=float)
         guess = np.interp(p, self.p, self.q.real) + 1j * np.interp(p, self.p, self.q.imag)
         return self.tracer.refine(p, guess)
 
-    def crossing(self, level, a, b):
+    def crossing(self, level: float, a: ArrayLike, b: ArrayLike) -> np.ndarray:
         """The p in [a, b] where Re q = ``level`` (arrays a, b bracketing it): safeguarded Newton."""
         a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
         xa, xb = self.q_at(a).real, self.q_at(b).real
@@ -58,7 +64,7 @@ class CurvePiece:
     mirror image of another piece continues (no tail).
     """
 
-    def __init__(self, curve, p_lo, p_hi, far_lo, far_hi) -> None:
+    def __init__(self, curve: TracedCurve, p_lo: float, p_hi: float, far_lo: bool, far_hi: bool) -> None:
         self.curve, self.tracer = curve, curve.tracer
         self.p_lo, self.p_hi, self.far = p_lo, p_hi, (far_lo, far_hi)
         inside = (curve.p >= p_lo) & (curve.p <= p_hi)
@@ -67,10 +73,10 @@ class CurvePiece:
         self.x_min = float(self.q.real.min())
         self._ends: dict = {}
 
-    def q_at(self, p):
+    def q_at(self, p: ArrayLike) -> np.ndarray:
         return self.curve.q_at(p)
 
-    def p_ends(self, S):
+    def p_ends(self, S: float) -> tuple[float, float]:
         """(p_lo, p_hi) of the piece truncated at Re q = S: the outermost crossings at its far ends."""
         if S not in self._ends:
             x = self.q.real
@@ -83,12 +89,12 @@ class CurvePiece:
             self._ends[S] = tuple(ends)
         return self._ends[S]
 
-    def far_ends(self, S):
+    def far_ends(self, S: float) -> list[tuple[int, float]]:
         """[(sign, p)] of the truncated ends: sign -1 at the lower end, +1 at the upper one."""
         return [(sign, p) for sign, p, far in zip((-1, 1), self.p_ends(S), self.far) if far]
 
 
-def roots_along(n):
+def roots_along(n: np.ndarray) -> np.ndarray:
     """Roots of the polynomials ``n`` (nodes, degree + 1) at the consecutive nodes of a quadrature rule.
 
     Companion eigenvalues at every ``SEED_STRIDE``-th node, Newton's method from them at the nodes
@@ -110,7 +116,7 @@ def roots_along(n):
     return roots
 
 
-def cut_pieces(tracer, ps, qs):
+def cut_pieces(tracer: CutTracer, ps: np.ndarray, qs: np.ndarray) -> list[CurvePiece]:
     """The pieces with Re q >= 0 of one traced curve; raises if the curve passes through q = 0.
 
     An end of the traced range is far when Re q still grows there (at least like |p|: Re q at the end

@@ -30,7 +30,7 @@ __all__ = ["branch_cut_extent", "branch_cut_mode", "branch_cut_or_note", "s_min_
 _PROBE_START = 25.0
 
 
-def branch_cut_mode(branch_cut) -> str:
+def branch_cut_mode(branch_cut: bool | str) -> str:
     """ "on", "off" or "auto" from the ``branch_cut`` argument (True, False or one of those words)."""
     if branch_cut is True or branch_cut == "on":
         return "on"
@@ -66,8 +66,13 @@ def branch_cut_extent(
     tol: float,
     cap: float = 1e4,
     s_min: float | None = None,
+    times: np.ndarray | None = None,
 ) -> tuple[float, list[str]]:
-    """(tau_on, notes): the time up to which I_bc exceeds ``tol`` (the ``auto`` rule, module docstring)."""
+    """(tau_on, notes): the time up to which I_bc exceeds ``tol`` (the ``auto`` rule, module docstring).
+
+    ``times``: those of the series that follows; a traced cut probes each window with the panels that
+    their band will use (:meth:`CurveBranchCut.integrate`, ``rule_tau``), so that the series reuses the
+    jump's values when I_bc is kept over that band."""
     notes = []
     bound = max(bc.l1_bound(s_min=s_min).values())
     if bound <= tol:
@@ -84,7 +89,10 @@ def branch_cut_extent(
             )
             return cap, notes
         window = probe + np.linspace(0.0, min(period, probe), 16)
-        values = bc.responses(window, s_min=s_min)
+        if isinstance(bc, CurveBranchCut):
+            values = bc.responses(window, s_min=s_min, rule_tau=times)
+        else:
+            values = bc.responses(window, s_min=s_min)
         if max(np.abs(v).max() for v in values.values()) < tol:
             return probe, notes
         probe *= 2

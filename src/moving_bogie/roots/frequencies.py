@@ -21,7 +21,7 @@ Im q < 0 (:mod:`far_field`), so the verdict (:mod:`verdict`) speaks about every 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -31,7 +31,7 @@ import numpy as np
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
-from moving_bogie.roots.count.contour import Rectangle
+from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mismatch
 from moving_bogie.roots.count.strip import strip_below_cut
@@ -58,6 +58,7 @@ def induced_frequencies(
     newton_cell: float = 0.25,
     progress: Callable[[float], None] | None = None,
     certify: bool = False,
+    starts: Sequence[complex] | None = None,
 ) -> FrequencyResult:
     """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`).
 
@@ -90,6 +91,9 @@ def induced_frequencies(
         Called with the fraction of work done (0..1).
     certify : bool
         Also prove every root, the count and the verdict in ball arithmetic (:mod:`certify`).
+    starts : sequence of complex, optional
+        Roots located by other means (double precision): a tile holding exactly its count of them takes
+        them instead of its bisection (:func:`_locate_counted`; :mod:`moving_bogie.response.axis_law`).
     """
     extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
@@ -98,9 +102,8 @@ def induced_frequencies(
     counted, beyond = _count(fast, bound, window, eps, eps_branch, newton_cell, check_window, report)
     notes: list[Note] = [*counted.notes, *(beyond.notes(window, far) if beyond else ())]
     report(0.2)
-    roots, cells, unlocated = _confirmed_roots(
-        fast, precise, counted, newton_cell, dps, extra_dps, notes, report
-    )
+    args = (counted, newton_cell, dps, extra_dps, notes, report, starts)
+    roots, cells, unlocated = _confirmed_roots(fast, precise, *args)
     count = sum(counted.counts) - _mirrors_counted(cells)
     _compare_with_count(count, roots, notes)
     unsearched = counted.tiling.unsearched
@@ -119,12 +122,16 @@ def induced_frequencies(
         unlocated=tuple(unlocated),
         decaying_outside=beyond.decaying(window, far) if beyond else 0,
     )
-    if certify:
-        from moving_bogie.roots.proof.certify import certify as prove
-
-        result = dataclasses.replace(result, certificate=prove(result))
+    result = _certified(result) if certify else result
     report(1.0)
     return result
+
+
+def _certified(result: FrequencyResult) -> FrequencyResult:
+    """The result with the proof of every root, the count and the verdict in ball arithmetic."""
+    from moving_bogie.roots.proof.certify import certify as prove
+
+    return dataclasses.replace(result, certificate=prove(result))
 
 
 def _compare_with_count(count: int, roots: list[InducedFrequency], notes: list[Note]) -> None:
@@ -150,10 +157,12 @@ def _confirmed_roots(
     extra_dps: int,
     notes: list[Note],
     report: Callable[[float], None],
+    starts: Sequence[complex] | None = None,
 ) -> tuple[list[InducedFrequency], list[LocatedCell], list[Unlocated]]:
-    """Locate the counted roots, polish and confirm them, keep one of each pair q, -conj(q) (largest Re q
-    first); the roots, the located cells and the roots not located (notes appended)."""
-    cells, unlocated = _locate_counted(fast, counted, newton_cell)
+    """Locate the counted roots (from ``starts`` where they agree with the count of every tile), polish and
+    confirm them, keep one of each pair q, -conj(q) (largest Re q first); the roots, the located cells and
+    the roots not located (notes appended)."""
+    cells, unlocated = _locate_counted(fast, counted, newton_cell, starts)
     notes += [missing.note for missing in unlocated]
     report(0.6)
     roots = _polish_located(precise, cells, counted.cut, dps, extra_dps, notes, report)
@@ -252,15 +261,54 @@ def _count_twice_as_large(
     return _Beyond(big, more, lost, below)
 
 
+def _holds(region: Region | ContinuedRegion, z: np.ndarray) -> np.ndarray:
+    """Which points z lie inside a tile: a rectangle, or a curved cell by the winding number of its boundary
+    sampled 1e-3 apart (a point within that of a curved edge may count in two tiles or none: those tiles
+    are then bisected)."""
+    if isinstance(region, ContinuedRegion):  # its roots are located already
+        return np.zeros(z.shape, dtype=bool)
+    if isinstance(region, Rectangle):
+        return np.array([region.contains(w) for w in z], dtype=bool)
+    # a curved cell (roots.search.cut_cells): its bounds come from three points of each edge, so they are
+    # widened before they screen the points; the winding number decides
+    pad = 0.5 * region.height
+    box = (
+        (z.real >= region.x0)
+        & (z.real <= region.x1)
+        & (z.imag >= region.y0 - pad)
+        & (z.imag <= region.y1 + pad)
+    )
+    if not np.any(box):
+        return np.zeros(z.shape, dtype=bool)
+    edge = region.boundary(1e-3)
+    w = z[box]
+    turns = np.angle((edge[None, 1:] - w[:, None]) / (edge[None, :-1] - w[:, None])).sum(axis=1)
+    out = np.zeros(z.shape, dtype=bool)
+    out[box] = np.abs(turns) > np.pi
+    return out
+
+
 def _locate_counted(
-    fast: CharacteristicArray, counted: TilingCount, newton_cell: float
+    fast: CharacteristicArray,
+    counted: TilingCount,
+    newton_cell: float,
+    starts: Sequence[complex] | None = None,
 ) -> tuple[list[LocatedCell], list[Unlocated]]:
-    """Isolate the counted roots of each tile: cells (start, multiplicity, cell), the roots not located."""
+    """Isolate the counted roots of each tile: cells (start, multiplicity, cell), the roots not located.
+
+    A tile that holds exactly its count of the given ``starts`` (roots located by other means), none of
+    them in another tile as well, takes them as its cells; any other tile is bisected."""
     cells: list[LocatedCell] = []
     unlocated: list[Unlocated] = []
-    for rect, n in zip(counted.tiling.regions, counted.counts):
+    points = np.array([complex(z) for z in (() if starts is None else starts)], dtype=complex)
+    regions = counted.tiling.regions
+    held = np.array([_holds(rect, points) for rect in regions]).reshape(len(regions), points.size)
+    once = held.sum(axis=0) == 1
+    for k, (rect, n) in enumerate(zip(regions, counted.counts)):
         if isinstance(rect, ContinuedRegion):  # counted through the cut, its roots located already
             cells += rect.cells
+        elif points.size and held[k].sum() == n and np.all(once[held[k]]):
+            cells += [(complex(z), 1, rect) for z in points[held[k]]]
         elif n:
             found_cells, missing = locate(fast, rect, n, newton_cell)
             cells += found_cells
