@@ -1,6 +1,7 @@
 """What the code imports is declared in pyproject.toml, and what is declared is imported somewhere."""
 
 import ast
+import functools
 import re
 import sys
 import tomllib
@@ -29,9 +30,16 @@ def _names(requirements) -> set:
     return {re.split(r"[<>=!~\[ ;]", r, maxsplit=1)[0].lower().replace("_", "-") for r in requirements}
 
 
-def _imported(folder: Path) -> set:
-    """Distributions of every top-level third-party module imported under ``folder``."""
-    dists = packages_distributions()
+@functools.cache
+def _distributions() -> dict:
+    """Top-level module -> distributions, read once (it scans every installed distribution)."""
+    return packages_distributions()
+
+
+@functools.cache
+def _imported(folder: Path) -> frozenset:
+    """Distributions of every top-level third-party module imported under ``folder`` (parsed once)."""
+    dists = _distributions()
     local = {path.stem for path in folder.rglob("*.py")}  # sibling modules (tests import helpers)
     found = set()
     for path in folder.rglob("*.py"):
@@ -55,7 +63,7 @@ def _imported(folder: Path) -> set:
                     continue
                 for dist in dists.get(top, [top]):
                     found.add(dist.lower().replace("_", "-"))
-    return found
+    return frozenset(found)
 
 
 def test_runtime_imports_are_runtime_dependencies():

@@ -9,13 +9,22 @@ Each derivation run costs many seconds of SymPy, so a module fixture runs them o
 compare them, all three in parallel: a full regeneration, a partial one (``--only``), and a partial
 ``--check`` of a tampered copy of the committed files under another hash seed, which is the second
 derivation the determinism test compares with the first. Those tests are slow.
+
+The full regeneration is the longest of the three, and a function of its inputs alone: the sources of
+``derivations/`` and the versions of Python, SymPy and mpmath. Its files are kept in pytest's cache folder
+(``.pytest_cache``, ``--cache-clear`` empties it) under a sha256 of those inputs, so a later run with the
+same inputs compares the committed files with them without deriving again. A hand edit of a committed file
+is still a difference from the kept regeneration; an edit of a derivation source, or another SymPy, is
+another key, hence a new regeneration. The partial run and the ``--check`` run always run.
 """
 
 from __future__ import annotations
 
 import ast
 import difflib
+import hashlib
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -78,11 +87,54 @@ TAMPERED = {
 OTHER_SEED = "12345"
 
 
+def _inputs_key() -> str:
+    """sha256 of everything a full regeneration depends on: each derivation source (path and bytes) and the
+    versions of Python, SymPy and mpmath (the generated headers name the SymPy version)."""
+    import mpmath
+    import sympy
+
+    h = hashlib.sha256()
+    h.update(f"{sys.version_info[:3]} sympy {sympy.__version__} mpmath {mpmath.__version__}\n".encode())
+    for path in sorted((REPO / "derivations").rglob("*.py")):
+        h.update(str(path.relative_to(REPO)).encode() + b"\0" + path.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+#: The file that marks a kept regeneration as complete (written last, inside its folder).
+COMPLETE = "complete"
+
+
+def _kept_regeneration(cache, key: str) -> Path | None:
+    """The folder of a complete full regeneration kept under ``key`` in pytest's cache, or None (also
+    when the cache is off: ``-p no:cacheprovider``)."""
+    if cache is None:
+        return None
+    folder = cache.mkdir("derivations-regeneration") / key
+    return folder if (folder / COMPLETE).is_file() else None
+
+
+def _keep_regeneration(cache, key: str, root: Path) -> None:
+    """Keep the full regeneration written into ``root`` under ``key``; the ones of other inputs go."""
+    if cache is None:
+        return
+    base = cache.mkdir("derivations-regeneration")
+    for old in base.iterdir():
+        shutil.rmtree(old, ignore_errors=True)
+    partial = base / f"{key}.{os.getpid()}"
+    shutil.copytree(root, partial)
+    (partial / COMPLETE).write_text(key + "\n")
+    try:
+        partial.rename(base / key)
+    except OSError:  # another session kept the same regeneration first
+        shutil.rmtree(partial, ignore_errors=True)
+
+
 @pytest.fixture(scope="module")
-def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes], dict]:
+def regenerations(request, tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes], dict]:
     """Three derivations in parallel: (first, only, check).
 
-    The first regeneration (into an empty folder); a partial one deriving only :data:`ONLY` (``--only``,
+    The first regeneration (into an empty folder, or the one kept in pytest's cache for the same inputs,
+    :func:`_inputs_key`); a partial one deriving only :data:`ONLY` (``--only``,
     what the scratch tests of a new beam, track or vehicle use); and ``--check --only`` on a copy of the
     committed files with the two :data:`TAMPERED` edits (both in modules that :data:`ONLY` derives), under
     another PYTHONHASHSEED (the command must pin the seed itself: SymPy's CSE and ordering can depend on
@@ -103,15 +155,22 @@ def regenerations(tmp_path_factory) -> tuple[dict[str, bytes], dict[str, bytes],
         assert tampered[rel] != original, f"{rel}: the text to tamper with is gone: pick another one"
         (copy / rel).write_text(tampered[rel])
     env_other_seed = dict(os.environ, PYTHONHASHSEED=OTHER_SEED)
+    key, cache = _inputs_key(), getattr(request.config, "cache", None)
+    kept = _kept_regeneration(cache, key)
     procs = [
-        _derivations("--root", str(roots[0])),
+        None if kept else _derivations("--root", str(roots[0])),
         _derivations("--root", str(roots[1]), *only),
         _derivations("--check", "--root", str(copy), *only, env=env_other_seed),
     ]
-    results = [_finish(proc) for proc in procs]
+    results = [proc and _finish(proc) for proc in procs]
     for result in results[:2]:
-        assert result.returncode == 0, result.stdout + result.stderr
+        assert result is None or result.returncode == 0, result.stdout + result.stderr
+    if kept is None:
+        _keep_regeneration(cache, key, roots[0])
+    else:
+        roots[0] = kept
     first, partial = (_written_files(r) for r in roots)
+    first.pop(COMPLETE, None)
     written = {rel: (copy / rel).read_text() for rel in TAMPERED}
     return first, partial, {"result": results[2], "tampered": tampered, "after": written}
 
