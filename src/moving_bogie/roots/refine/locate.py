@@ -17,7 +17,7 @@ from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, Region, p
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated
 from moving_bogie.typing import Mpc
 
-__all__ = ["FastCharacteristic", "LocatedCell", "locate", "newton_inside"]
+__all__ = ["FastCharacteristic", "locate", "newton_inside"]
 
 #: E_chr in double precision, batched: itself, or continued analytically through the cut.
 FastCharacteristic: TypeAlias = CharacteristicArray | ContinuedCharacteristic
