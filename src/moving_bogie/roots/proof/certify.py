@@ -43,8 +43,7 @@ from moving_bogie.roots.refine.polish import fixed_text
 from moving_bogie.typing import Acb, Arb, Mpc, Mpf
 
 if TYPE_CHECKING:
-    from moving_bogie.roots.frequencies import FrequencyResult
-    from moving_bogie.roots.frequency_result import InducedFrequency
+    from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
 
 #: Tilings tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
 TILINGS = ((1.0, 0.1), (1.7, 0.113), (0.6, 0.087))
