@@ -262,30 +262,11 @@ def _count_twice_as_large(
 
 
 def _holds(region: Region | ContinuedRegion, z: np.ndarray) -> np.ndarray:
-    """Which points z lie inside a tile: a rectangle, or a curved cell by the winding number of its boundary
-    sampled 1e-3 apart (a point within that of a curved edge may count in two tiles or none: those tiles
-    are then bisected)."""
-    if isinstance(region, ContinuedRegion):  # its roots are located already
+    """Which points z lie inside a tile, by the tile's own :meth:`contains` (a rectangle, or a curved cell
+    between its arms); a tile counted through the cut holds none (its roots are located already)."""
+    if isinstance(region, ContinuedRegion):
         return np.zeros(z.shape, dtype=bool)
-    if isinstance(region, Rectangle):
-        return np.array([region.contains(w) for w in z], dtype=bool)
-    # a curved cell (roots.search.cut_cells): its bounds come from three points of each edge, so they are
-    # widened before they screen the points; the winding number decides
-    pad = 0.5 * region.height
-    box = (
-        (z.real >= region.x0)
-        & (z.real <= region.x1)
-        & (z.imag >= region.y0 - pad)
-        & (z.imag <= region.y1 + pad)
-    )
-    if not np.any(box):
-        return np.zeros(z.shape, dtype=bool)
-    edge = region.boundary(1e-3)
-    w = z[box]
-    turns = np.angle((edge[None, 1:] - w[:, None]) / (edge[None, :-1] - w[:, None])).sum(axis=1)
-    out = np.zeros(z.shape, dtype=bool)
-    out[box] = np.abs(turns) > np.pi
-    return out
+    return np.array([region.contains(complex(w)) for w in z], dtype=bool)
 
 
 def _locate_counted(
