@@ -218,12 +218,27 @@ def dispersion_branches(source: Source = None, p: Any = None, **groups: Any) -> 
     module = model.foundation
     args = _arguments(module, values, float) | {"alpha": 0.0}
     p = np.atleast_1d(np.asarray(p, dtype=float))
-    out = []
-    for pk in p:
-        coeffs = np.array([complex(c) for c in module.n_coeffs_in_q(pk, **args)])
+    rows = np.stack(
+        [np.broadcast_to(np.asarray(c, dtype=complex), p.shape) for c in module.n_coeffs_in_q(p, **args)],
+        axis=-1,
+    )
+    # one batched eigenvalue call on the companion matrices of the rows whose leading coefficient is
+    # nonzero (numpy.roots' own construction); the others, of lower degree there, one by one
+    full = rows[:, 0] != 0
+    out: list[FloatArray] = [np.empty(0)] * len(p)
+    if full.any():
+        lead = rows[full]
+        n = lead.shape[1] - 1
+        companion = np.zeros((len(lead), n, n), dtype=complex)
+        companion[:, 0, :] = -lead[:, 1:] / lead[:, :1]
+        companion[:, np.arange(1, n), np.arange(n - 1)] = 1
         # undamped: the roots are real pairs +-Omega_j; the upper half of the sorted real parts
-        real = np.sort(np.roots(np.trim_zeros(coeffs, "f")).real)
-        out.append(real[len(real) // 2 :])
+        real = np.sort(np.linalg.eigvals(companion).real, axis=1)[:, n // 2 :]
+        for k, row in zip(np.flatnonzero(full), real):
+            out[k] = row
+    for k in np.flatnonzero(~full):
+        roots = np.sort(np.roots(np.trim_zeros(rows[k], "f")).real)
+        out[k] = roots[len(roots) // 2 :]
     width = max(len(o) for o in out)
     return np.array([np.pad(o, (0, width - len(o)), constant_values=np.nan) for o in out])
 
