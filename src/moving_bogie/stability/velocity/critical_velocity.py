@@ -239,8 +239,10 @@ def dispersion_branches(source: Source = None, p: Any = None, **groups: Any) -> 
     for k in np.flatnonzero(~full):
         roots = np.sort(np.roots(np.trim_zeros(rows[k], "f")).real)
         out[k] = roots[len(roots) // 2 :]
-    width = max(len(o) for o in out)
-    return np.array([np.pad(o, (0, width - len(o)), constant_values=np.nan) for o in out])
+    branches = np.full((len(p), max(len(o) for o in out)), np.nan)
+    for k, o in enumerate(out):
+        branches[k, : len(o)] = o
+    return branches
 
 
 def phase_speed(
