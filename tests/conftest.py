@@ -13,6 +13,20 @@ import os
 for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
 
+# Compiled bytecode. Where PYTHONDONTWRITEBYTECODE is set (some machines set it for every process), every
+# process of the suite (the two workers, each command-line subprocess, each notebook kernel, each later run)
+# compiles the package and the tests from source again: about half of a worker's collection time. The suite
+# writes its bytecode under .pytest_cache/bytecode instead, never beside the sources, and every later
+# process reads it there. A PYTHONPYCACHEPREFIX already set wins.
+if os.environ.pop("PYTHONDONTWRITEBYTECODE", None):
+    import sys
+    from pathlib import Path
+
+    _prefix = str(Path(__file__).resolve().parent.parent / ".pytest_cache" / "bytecode")
+    os.environ.setdefault("PYTHONPYCACHEPREFIX", _prefix)
+    sys.pycache_prefix = os.environ["PYTHONPYCACHEPREFIX"]
+    sys.dont_write_bytecode = False
+
 import mpmath  # noqa: E402
 import pytest  # noqa: E402
 from hypothesis import settings  # noqa: E402
