@@ -14,8 +14,21 @@ if TYPE_CHECKING:
 
 from .common import print_json
 
-#: the options of the continuous-track time series, which a sleeper file does not take
-_NOT_FOR_SLEEPERS = ("case", "beam", "track", "vehicle", "tau", "tmax", "branch_cut", "plot_long", "dps")
+#: the options of the continuous-track time series that a sleeper file does not take, and what to do instead
+_MODEL = (
+    "the file's [model] and [physical] tables set the model and its SI values (--set NAME=VALUE changes one)"
+)
+_NOT_FOR_SLEEPERS = {
+    "case": _MODEL,
+    "beam": _MODEL,
+    "track": _MODEL,
+    "vehicle": _MODEL,
+    "tau": "the steady response spans --bays bays on --points points",
+    "tmax": "the steady response spans --bays bays on --points points",
+    "branch_cut": "the steady response over a bay is a sum of harmonics, without a branch cut",
+    "plot_long": "--plot draws the steady response over the bays",
+    "dps": "the Floquet runtime works in double precision",
+}
 _MAX_POINTS = 1_000_000
 _MAX_BAYS = 10_000
 SLEEPER_POINTS = 201
@@ -31,20 +44,19 @@ def check_sleeper_options(args: argparse.Namespace) -> None:
 
     from .common import parameter_options
 
-    options = {dest: _option(dest) for dest in _NOT_FOR_SLEEPERS}
-    options |= {name: option for name, option, _ in parameter_options()}
-    for dest, option in options.items():
-        if getattr(args, dest, None) not in (None, False):
+    options = {dest: (_option(dest), why) for dest, why in _NOT_FOR_SLEEPERS.items()}
+    options |= {name: (option, _MODEL) for name, option, _ in parameter_options()}
+    for dest, (option, why) in options.items():
+        if getattr(args, dest, None) is not None:
             raise ParameterError(
-                option.lstrip("-"),
-                f"{option} does not apply to a sleeper-track file (give the SI value in the file, or --set)",
+                option.lstrip("-"), f"{option} does not apply to a sleeper-track file: {why}"
             )
     bays = 1 if args.bays is None else args.bays
     if not 1 <= bays <= _MAX_BAYS:
-        raise ParameterError("bays", f"bays must be between 1 and {_MAX_BAYS} (got {bays})")
+        raise ParameterError("bays", f"--bays must be between 1 and {_MAX_BAYS} (got {bays})")
     points = SLEEPER_POINTS * bays if args.points is None else args.points
     if not 2 <= points <= _MAX_POINTS:
-        raise ParameterError("points", f"points must be between 2 and {_MAX_POINTS} (got {points})")
+        raise ParameterError("points", f"--points must be between 2 and {_MAX_POINTS} (got {points})")
     args.bays, args.points = bays, points
 
 
