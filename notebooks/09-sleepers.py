@@ -174,6 +174,9 @@ for factor in around:
     )
 HERTZ_FILE.unlink()
 HERTZ_FILE.parent.rmdir()
+growing = [v for v, _, state, _ in rows if state == "UNSTABLE"]
+print("growing roots on sleepers at v =", growing or "none of the speeds scanned")
+print("continuous track unstable at v =", [v for v, *_, c in rows if c == "unstable"] or "none of them")
 
 # %% [markdown]
 # At the example's support damping ($c_{sup} = 3 \cdot 10^4$ N s/m per sleeper) the lines above say whether a
