@@ -30,6 +30,7 @@ def test_notebooks_exist():
         "06-sweeps.py",
         "07-layered-track.py",
         "08-a-full-car.py",
+        "09-sleepers.py",
     ]
 
 

@@ -30,24 +30,25 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "every induced frequency (Eqs. (40)-(43)) and the branch-cut part I_bc of Eq. (35) where it\n"
             "matters (any beam and track). Times are dimensionless tau, or seconds with a [physical]\n"
             "parameter file (results then in m and rad). Exit status 2 on bad input or when the induced\n"
-            "frequencies could not all be confirmed."
+            "frequencies could not all be confirmed.\n"
+            "A sleeper-track file (docs/sleepers.md) gives instead, in SI, the steady response over a bay\n"
+            "under the constant loads (contact force and rail deflection under each wheel, their mean and\n"
+            "peak-to-peak, the harmonics and whether they converged) and the free vibrations (each Floquet\n"
+            "root's frequency, growth rate and doubling time, and the verdict); exit status 1 when the\n"
+            "response has not converged or the verdict is UNDETERMINED."
         ),
         epilog=(
             "examples:\n  moving-bogie timeseries --case 7 --tau 20,50,100\n"
             "  moving-bogie timeseries --case 1 --tmax 100 --points 2001 --plot case1.png\n"
             "  moving-bogie timeseries --case 5 --tmax 2000 --points 20001 --plot-long case5_long.png\n"
-            "  moving-bogie timeseries --case 2 --tmax 50 --json --no-branch-cut"
+            "  moving-bogie timeseries --case 2 --tmax 50 --json --no-branch-cut\n"
+            "  moving-bogie timeseries --file examples/sleepers.toml --bays 2 --plot bay.png"
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     add_parameter_options(parser)
     _add_common(parser)
-    times = parser.add_argument_group("times")
-    times.add_argument("--tau", metavar="T1,T2,...", help="comma-separated times")
-    times.add_argument("--tmax", type=float, metavar="T", help="uniform times 0..T")
-    times.add_argument(
-        "--points", type=int, default=2001, metavar="K", help="points with --tmax (default 2001)"
-    )
+    _add_times(parser)
     out = parser.add_argument_group("output")
     add_json_option(out)
     add_output_option(out, "--csv", metavar="F.csv", help="write the series as CSV")
@@ -89,6 +90,24 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     shape.set_defaults(handler=run_shape)
 
 
+def _add_times(parser: argparse.ArgumentParser) -> None:
+    times = parser.add_argument_group("times")
+    times.add_argument("--tau", metavar="T1,T2,...", help="comma-separated times")
+    times.add_argument("--tmax", type=float, metavar="T", help="uniform times 0..T")
+    times.add_argument(
+        "--points",
+        type=int,
+        metavar="K",
+        help="points with --tmax (default 2001); a sleeper file: points over the bays (default 201 per bay)",
+    )
+    times.add_argument(
+        "--bays",
+        type=int,
+        metavar="n",
+        help="a sleeper-track file only: bays shown of the steady response (default 1)",
+    )
+
+
 def _add_common(parser: argparse._ActionsContainer) -> None:
     parser.add_argument(
         "--branch-cut",
@@ -97,9 +116,7 @@ def _add_common(parser: argparse._ActionsContainer) -> None:
         help="force the branch-cut part on or off (default: automatic, where it exceeds 1e-6 of the steady "
         "deflection)",
     )
-    parser.add_argument(
-        "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
-    )
+    parser.add_argument("--dps", type=int, help="working precision in decimal digits (default 30)")
 
 
 def _branch_cut(args: argparse.Namespace) -> bool | str:
@@ -107,9 +124,12 @@ def _branch_cut(args: argparse.Namespace) -> bool | str:
     return "auto" if args.branch_cut is None else bool(args.branch_cut)
 
 
-def _check(args: argparse.Namespace) -> None:
+def _check(args: argparse.Namespace, points: int = 2001) -> None:
+    """Check --dps and --points, filling in their defaults (30 digits, ``points``)."""
     from moving_bogie.errors import ParameterError
 
+    args.dps = 30 if args.dps is None else args.dps
+    args.points = points if args.points is None else args.points
     if not 15 <= args.dps <= 1000:
         raise ParameterError("dps", f"dps must be between 15 and 1000 (got {args.dps})")
     if not 2 <= args.points <= _MAX_POINTS:
@@ -161,7 +181,17 @@ def _frequencies_or_fail(
 
 
 def run_timeseries(args: argparse.Namespace) -> int:
-    """Compute and print (or write) the closed-form time series."""
+    """Compute and print (or write) the closed-form time series; a sleeper-track file's steady response
+    over a bay and free vibrations (:mod:`.sleepers_series_cmd`)."""
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.inputs import is_sleeper_file
+
+    if args.file is not None and is_sleeper_file(args.file):
+        from .sleepers_series_cmd import run_sleeper_timeseries
+
+        return run_sleeper_timeseries(args)
+    if args.bays is not None:
+        raise ParameterError("bays", "--bays applies to a sleeper-track file only")
     _check(args)
     tau = _times(args)
     params, physical = params_from_args(args)  # every input checked before the heavy imports

@@ -12,7 +12,7 @@ from __future__ import annotations
 import importlib
 import math
 import tomllib
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -56,8 +56,11 @@ def _number(si: dict, key: str, path: Path | str) -> float:
     return float(value)
 
 
-def load_sleeper_file(path: str | Path) -> SleeperInput:
-    """Read and check a sleeper-track file; every error names its key before any computation."""
+def load_sleeper_file(path: str | Path, overrides: Mapping[str, float] | None = None) -> SleeperInput:
+    """Read and check a sleeper-track file; every error names its key before any computation.
+
+    ``overrides`` replaces or adds ``[physical]`` values (SI, checked as the file's own).
+    """
     data = tomllib.loads(Path(path).read_text())
     model = data.get("model", {})
     beam, track, vehicle = model.get("beam", "eb"), model["track"], model.get("vehicle", "mass")
@@ -78,7 +81,7 @@ def load_sleeper_file(path: str | Path) -> SleeperInput:
     paper: dict[str, dict[str, Any]] = paper_groups.PARAMETERS  # type: ignore[assignment]
     vehicle_si = {paper[g]["si"]: g for g in module.PARAMETERS}
     known = {"EI", "m", "P", ref, *(spec["si"] for spec in table.values()), *vehicle_si}
-    si = data["physical"]
+    si = {**data["physical"], **(overrides or {})}
     for key in si:
         if key not in known:
             raise ParameterError(

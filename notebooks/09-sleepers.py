@@ -1,0 +1,186 @@
+# ---
+# jupyter:
+#   jupytext:
+#     formats: py:percent
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # A wheel on a rail on sleepers: the steady response over a bay and the parametric resonance
+#
+# A UIC60 rail rests on sleepers every $l = 0.6$ m (`examples/sleepers.toml`, per rail). A wheel moving at
+# $v$ passes them at the sleeper-passing frequency $\Omega_0 = 2\pi v / l$: the rail under the wheel is
+# stiffer over a sleeper than between two, and the contact force and the deflection under the wheel vary
+# over each bay (docs/sleepers.md, Eqs. (S16)-(S18)). A wheel can also resonate parametrically: its free
+# vibration is a Floquet root $\Omega$ (time dependence $e^{i\Omega t}$, growing when
+# $\mathrm{Im}\,\Omega < 0$), and the principal parametric zone lies where $\Omega_0$ is twice the wheel's
+# natural frequency on the track, the root on $\mathrm{Re}\,\Omega = \Omega_0 / 2$ (Eq. (S14)).
+#
+# The comparison throughout is the continuous track with the same smeared supports: $k_f = k_{sup} / l$,
+# $c_f = c_{sup} / l + c_f$, the limit $l \to 0$ of docs/sleepers.md (S2).
+
+# %%
+import os
+import tempfile
+import tomllib
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from moving_bogie.api import induced_frequencies
+from moving_bogie.floquet.hill import VehicleMatrices
+from moving_bogie.floquet.inputs import load_sleeper_file
+from moving_bogie.floquet.series import sleeper_series
+from moving_bogie.floquet.smeared import smeared_track
+from moving_bogie.floquet.strip import floquet_frequencies
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.generated import vehicle_hertz_mass
+from moving_bogie.stability.velocity.supercritical import speed_regime
+
+QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
+EXAMPLES = Path.cwd().parent / "examples"
+if not EXAMPLES.exists():  # run from the repository root
+    EXAMPLES = Path("examples")
+SLEEPERS = EXAMPLES / "sleepers.toml"
+print(tomllib.loads(SLEEPERS.read_text())["physical"])
+
+# %% [markdown]
+# ## 1. The steady contact force over a bay, against the speed
+#
+# `moving-bogie timeseries --file examples/sleepers.toml --plot F.png` draws one speed; here several. The
+# mean force over a bay is the static load $P$ at every speed (the harmonic $n = 0$ of (S17) carries no
+# inertia); the variation around it grows with the speed, as the sleeper-passing frequency approaches the
+# wheel's natural frequency on the track.
+
+# %%
+speeds = [20.0, 40.0, 80.0] if QUICK else [10.0, 20.0, 40.0, 60.0, 80.0, 100.0]
+fig, (ax_f, ax_w) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+for v in speeds:
+    s = sleeper_series(load_sleeper_file(SLEEPERS, overrides={"v": v}), points=201, free=False)
+    print(
+        f"v = {v:5.1f} m/s: Omega_0 = {s.Omega0:7.1f} rad/s, F mean {s.force_mean[0]:.1f} N, "
+        f"F peak-to-peak {s.force_peak_to_peak[0]:7.1f} N, w peak-to-peak {s.deflection_peak_to_peak[0]:.3e} m, "
+        f"harmonics -{s.harmonics}..{s.harmonics} ({'converged' if s.converged else 'NOT converged'})"
+    )
+    ax_f.plot(s.position, s.contact_force[0] / 1e3, label=f"v = {v:g} m/s")
+    ax_w.plot(s.position, s.deflection[0] * 1e3)
+ax_f.axhline(s.static_force[0] / 1e3, color="k", ls="--", lw=0.8, label="static load P")
+ax_w.axhline(s.continuous_deflection[0] * 1e3, color="k", ls="--", lw=0.8)
+ax_f.set_ylabel("contact force [kN]")
+ax_w.set_ylabel("deflection under the wheel [mm]")
+ax_w.set_xlabel("wheel's position from a sleeper [m]")
+ax_w.set_title(f"dashed: {s.continuous_model} with the smeared supports at v = {speeds[-1]:g} m/s", fontsize=9)
+ax_f.legend(fontsize=8)
+plt.show()
+
+# %% [markdown]
+# ## 2. A wheel on a Hertz spring: its natural frequency on the smeared track
+#
+# The wheel of `examples/hertz_mass.toml` ($M$ on the linearised Hertz spring $k_H$) on the rail and sleepers
+# of `examples/sleepers.toml`. On the continuous track with the smeared supports its induced frequency $q$
+# (the paper's Eq. (48), every root counted) is the wheel's natural frequency at each speed; the principal
+# parametric zone is expected where $\Omega_0(v) = 2\,\mathrm{Re}\,\Omega(v)$.
+
+# %%
+hertz = tomllib.loads((EXAMPLES / "hertz_mass.toml").read_text())["physical"]
+table = tomllib.loads(SLEEPERS.read_text())
+physical = table["physical"] | {"k_H": hertz["k_H"], "M": hertz["M"]}
+HERTZ_FILE = Path(tempfile.mkdtemp()) / "hertz-on-sleepers.toml"
+HERTZ_FILE.write_text(
+    '[model]\nbeam = "eb"\ntrack = "sleepers"\nvehicle = "hertz_mass"\n\n[physical]\n'
+    + "".join(f"{k} = {v!r}\n" for k, v in physical.items())
+)
+
+
+def continuous(v):
+    """The continuous track with the smeared supports: natural frequency [rad/s], verdict, speed regime."""
+    params = smeared_track(load_sleeper_file(HERTZ_FILE, overrides={"v": v}))
+    result = induced_frequencies(params.to_dimensionless(), dps=15)
+    t_scale = params.scales().t_scale
+    Omega = [complex(r.q) / t_scale for r in result.roots]
+    return Omega, result.verdict.state, speed_regime(params.to_dimensionless(), params)
+
+
+scan = [20.0, 80.0, 140.0] if QUICK else list(np.arange(20.0, 201.0, 20.0))
+natural = []
+for v in scan:
+    Omega, verdict, regime = continuous(v)
+    natural.append(min(Omega, key=lambda z: z.real))
+    print(
+        f"v = {v:5.1f} m/s: Omega_0 / 2 = {np.pi * v / physical['l']:7.1f} rad/s; continuous track: "
+        f"{len(Omega)} root(s) " + ", ".join(f"{z.real:.1f}{z.imag:+.1f}i" for z in Omega) + f" rad/s, {verdict}"
+    )
+print("continuous track at the last speed:", regime.line())
+half = np.pi * np.array(scan) / physical["l"]
+re = np.array([z.real for z in natural])
+crossing = np.flatnonzero(np.diff(np.sign(half - re)))
+v_star = None
+if crossing.size:
+    i = crossing[0]
+    v_star = scan[i] + (scan[i + 1] - scan[i]) * (re[i] - half[i]) / ((half[i + 1] - half[i]) - (re[i + 1] - re[i]))
+    print(f"Omega_0 / 2 meets the lowest natural frequency at v* = {v_star:.1f} m/s (linear interpolation)")
+else:
+    print("Omega_0 / 2 does not meet the lowest natural frequency in the scanned speeds")
+
+# %%
+fig, ax = plt.subplots(figsize=(7, 3.5))
+ax.plot(scan, re, "o-", label=r"Re $\Omega$ of the Hertz wheel, continuous track")
+ax.plot(scan, half, "s--", label=r"$\Omega_0 / 2 = \pi v / l$ (principal parametric zone)")
+ax.plot(scan, 2 * half, "^:", label=r"$\Omega_0 = 2 \pi v / l$ (forced resonance)")
+ax.set_ylim(0, 1.6 * re.max())
+if v_star is not None:
+    ax.axvline(v_star, color="0.5", ls=":", lw=1)
+ax.set_xlabel("v [m/s]")
+ax.set_ylabel("[rad/s]")
+ax.legend(fontsize=8)
+plt.show()
+
+# %% [markdown]
+# The line $\Omega_0 = 2\pi v / l$ meets the natural frequency at half $v^*$: there the sleepers force the
+# wheel at resonance, which is where the peak-to-peak contact force of section 1 is largest among the speeds
+# shown (40 m/s against 20 and 80 m/s).
+#
+# ## 3. The Floquet roots on sleepers around the principal zone
+#
+# `floquet_frequencies` counts the roots with $\mathrm{Im}\,\Omega \le 0$ in one strip of width $\Omega_0$
+# by the argument principle (no starting guesses) and converges them in the harmonics: a root there is a
+# growing vibration, none means the wheel is stable at that speed. The speeds are a modest set around $v^*$.
+
+# %%
+data = load_sleeper_file(HERTZ_FILE)
+centre = v_star if v_star is not None else 100.0
+around = [1.0, 1.2] if QUICK else [0.6, 0.8, 0.9, 1.0, 1.1, 1.2, 1.4]
+rows = []
+for factor in around:
+    v = round(centre * factor, 1)
+    d = load_sleeper_file(HERTZ_FILE, overrides={"v": v})
+    track = SleeperTrack(d.beam, d.track, d.groups)
+    result = floquet_frequencies(track, VehicleMatrices.from_module(vehicle_hertz_mass, d.vehicle_groups))
+    _, verdict, _ = continuous(v)
+    roots = [complex(r.q) / d.t_scale for r in result.roots]
+    rows.append((v, result.count, result.verdict, verdict))
+    print(
+        f"v = {v:6.1f} m/s: sleepers: {result.count} root(s) with Im Omega <= 0 "
+        f"{[f'{z.real:.1f}{z.imag:+.2f}i' for z in roots]}, harmonics -{result.harmonics + 1}..{result.harmonics}, "
+        f"verdict {result.verdict}{' (' + '; '.join(result.notes) + ')' if result.notes else ''}; "
+        f"continuous track: {verdict}"
+    )
+HERTZ_FILE.unlink()
+HERTZ_FILE.parent.rmdir()
+growing = [v for v, _, state, _ in rows if state == "UNSTABLE"]
+print("growing roots on sleepers at v =", growing or "none of the speeds scanned")
+print("continuous track unstable at v =", [v for v, *_, c in rows if c == "unstable"] or "none of them")
+
+# %% [markdown]
+# At the example's support damping ($c_{sup} = 3 \cdot 10^4$ N s/m per sleeper) the lines above say whether a
+# growing root exists near $v^*$ on sleepers, and what the continuous track with the same smeared stiffness
+# says at the same speeds: the continuous track has no parametric excitation, so any instability on sleepers
+# that it does not share is parametric. The critical velocity of the continuous track (the speed regime
+# printed in section 2) bounds the speeds at which the smeared comparison is subcritical.

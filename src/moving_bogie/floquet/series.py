@@ -1,0 +1,273 @@
+"""The time series of a vehicle on a sleeper track in SI units: the steady response and the free vibrations.
+
+The steady response under the constant loads (docs/sleepers.md, Eqs. (S16)-(S18),
+:func:`moving_bogie.floquet.steady.steady_response`) gives, per wheel, the contact force and the rail
+deflection under the wheel as functions of the position in the bay; its mean over a bay is the harmonic
+``n = 0`` and its harmonics are converged (the series change by less than ``tol`` of their largest value
+when N doubles, else ``converged`` is False). The free vibrations are the Floquet roots in one strip
+(Eq. (S14), :func:`moving_bogie.floquet.strip.floquet_frequencies`): a root ``Omega`` (time dependence
+``e^{i Omega t}``) oscillates at ``Re Omega`` (modulo ``Omega_0``) and grows at the rate ``-Im Omega``.
+
+Units (Eq. (16) of the paper with the smeared stiffness ``k_e`` for ``k_f``, docs/sleepers.md (S2)):
+displacements times ``w_st = P chi / (2 k_e)``, forces times ``P / 2`` (the static load is 2), times times
+``t_scale``, lengths divided by ``chi``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from moving_bogie.errors import ParameterError
+from moving_bogie.floquet.hill import VehicleMatrices
+from moving_bogie.floquet.inputs import SleeperInput
+from moving_bogie.floquet.smeared import continuous_steady_deflection, smeared_track
+from moving_bogie.floquet.steady import static_loads, steady_response
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.generated import parameters as paper_groups
+
+__all__ = ["FreeVibration", "SleeperSeries", "sleeper_series"]
+
+#: points over one bay on which the peak-to-peak values are taken (independent of the output's points)
+PEAK_POINTS = 1025
+
+
+@dataclass(frozen=True)
+class FreeVibration:
+    """One Floquet root ``Omega`` [rad/s] (time dependence ``e^{i Omega t}``), its copy in the strip."""
+
+    Omega: complex
+
+    @property
+    def frequency_rad_s(self) -> float:
+        """Re Omega [rad/s] (modulo the sleeper-passing frequency Omega_0)."""
+        return self.Omega.real
+
+    @property
+    def frequency_hz(self) -> float:
+        return self.Omega.real / (2 * math.pi)
+
+    @property
+    def growth_rate(self) -> float:
+        """-Im Omega [1/s]: positive grows, negative decays."""
+        return -self.Omega.imag
+
+    @property
+    def doubling_time(self) -> float | None:
+        """ln 2 / growth rate [s] for a growing vibration, else None."""
+        return math.log(2) / self.growth_rate if self.growth_rate > 0 else None
+
+    @property
+    def halving_time(self) -> float | None:
+        """ln 2 / decay rate [s] for a decaying vibration, else None."""
+        return math.log(2) / -self.growth_rate if self.growth_rate < 0 else None
+
+    @property
+    def state(self) -> str:
+        return "growing" if self.growth_rate > 0 else ("decaying" if self.growth_rate < 0 else "neutral")
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "Omega_rad_s": [self.Omega.real, self.Omega.imag],
+            "frequency_rad_s": self.frequency_rad_s,
+            "frequency_Hz": self.frequency_hz,
+            "growth_rate_1_s": self.growth_rate,
+            "doubling_time_s": self.doubling_time,
+            "halving_time_s": self.halving_time,
+            "state": self.state,
+        }
+
+
+@dataclass(frozen=True)
+class SleeperSeries:
+    """The steady response over ``bays`` bays and the free vibrations of one sleeper-track file, in SI.
+
+    ``time`` [s] and ``position`` [m] (the rear wheel's distance from the support behind it at t = 0) share
+    the axis; ``contact_force`` [N] and ``deflection`` [m] have shape (wheels, points); ``wheel_positions``
+    [m] are the wheels' distances ahead of the rear one, ``bay`` is l [m]. The means are the harmonic
+    n = 0, the peak-to-peak values are taken on ``PEAK_POINTS`` points of one bay. ``harmonics`` is N (the
+    harmonics -N..N), ``change`` the series' relative change when N last doubled.
+    ``continuous_deflection`` [m] is the steady deflection of the continuous track with the same smeared
+    supports (None: no such track), under which each wheel's force is its static load ``static_force``
+    [N]. ``free`` are the Floquet roots with ``Im Omega <= free_window[1]`` in the strip ``free_strip``,
+    ``free_count`` the argument principle's count, ``free_verdict`` and ``free_notes`` its verdict and
+    reasons.
+    """
+
+    model: str
+    v: float
+    bay: float
+    Omega0: float
+    time: np.ndarray
+    position: np.ndarray
+    wheel_positions: np.ndarray
+    contact_force: np.ndarray
+    deflection: np.ndarray
+    force_mean: np.ndarray
+    force_peak_to_peak: np.ndarray
+    deflection_mean: np.ndarray
+    deflection_peak_to_peak: np.ndarray
+    static_force: np.ndarray
+    continuous_deflection: np.ndarray | None
+    continuous_model: str | None
+    harmonics: int
+    change: float
+    tol: float
+    converged: bool
+    free: tuple[FreeVibration, ...]
+    free_count: int
+    free_verdict: str
+    free_strip: tuple[float, float]
+    free_window: tuple[float, float]
+    free_notes: tuple[str, ...]
+
+    @property
+    def wheels(self) -> int:
+        return int(self.contact_force.shape[0])
+
+    @property
+    def period(self) -> float:
+        """The bay-passing period l / v [s]."""
+        return self.bay / self.v
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: the summary per wheel, the series, the free vibrations (units in the key names)."""
+        cont = self.continuous_deflection
+        wheels = [
+            {
+                "position_m": float(self.wheel_positions[j]),
+                "force_mean_N": float(self.force_mean[j]),
+                "force_peak_to_peak_N": float(self.force_peak_to_peak[j]),
+                "deflection_mean_m": float(self.deflection_mean[j]),
+                "deflection_peak_to_peak_m": float(self.deflection_peak_to_peak[j]),
+                "static_force_N": float(self.static_force[j]),
+                "continuous_deflection_m": None if cont is None else float(cont[j]),
+            }
+            for j in range(self.wheels)
+        ]
+        return {
+            "model": self.model,
+            "v_m_s": self.v,
+            "l_m": self.bay,
+            "Omega0_rad_s": self.Omega0,
+            "Omega0_Hz": self.Omega0 / (2 * math.pi),
+            "period_s": self.period,
+            "steady": {
+                "harmonics": [-self.harmonics, self.harmonics],
+                "change": self.change,
+                "tol": self.tol,
+                "converged": self.converged,
+                "continuous_model": self.continuous_model,
+                "wheels": wheels,
+                "time_s": self.time.tolist(),
+                "position_m": self.position.tolist(),
+                "contact_force_N": self.contact_force.tolist(),
+                "deflection_m": self.deflection.tolist(),
+            },
+            "free": {
+                "strip_rad_s": list(self.free_strip),
+                "window_im_rad_s": list(self.free_window),
+                "count": self.free_count,
+                "roots": [r.to_dict() for r in self.free],
+                "verdict": self.free_verdict,
+                "notes": list(self.free_notes),
+            },
+        }
+
+
+def _series(amplitudes: np.ndarray, harmonics: np.ndarray, Omega0: float, tau: np.ndarray) -> np.ndarray:
+    """sum_n a_n e^{i n Omega_0 tau} (real part), shape (contacts, points): Eq. (S16)."""
+    return np.real(np.exp(1j * Omega0 * np.outer(tau, harmonics)) @ amplitudes).T
+
+
+def sleeper_series(
+    data: SleeperInput, *, bays: int = 1, points: int = 201, tol: float = 1e-3, free: bool = True
+) -> SleeperSeries:
+    """The steady response over ``bays`` bays on ``points`` points and the free vibrations, in SI.
+
+    Parameters
+    ----------
+    data : SleeperInput
+        A sleeper-track file (:func:`moving_bogie.floquet.inputs.load_sleeper_file`) with ``v > 0`` and ``P``.
+    bays, points : int
+        Bays shown and points over them (both ends included).
+    tol : float
+        Largest change of the steady series when N doubles, relative to their largest value (Eq. (S18)).
+    free : bool
+        Also search the Floquet roots (the free vibrations); False leaves ``free`` empty and the verdict
+        ``"not searched"``.
+    """
+    si = data.physical
+    if "P" not in si:
+        raise ParameterError("P", "P (the static wheel load, N) is required for the steady response")
+    if si["v"] <= 0:
+        raise ParameterError("v", "v must be positive: the steady response over a bay needs a moving vehicle")
+    track = SleeperTrack(data.beam, data.track, data.groups)
+    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
+    loads = static_loads(module, data.vehicle_groups)
+    steady = steady_response(track, vehicle, loads, tol=tol, points=129)
+    w_st = paper_groups.scales(math.sqrt, si["EI"], si["m"], data.k_e, si["P"])[2]
+    f_unit = si["P"] / 2
+    h, F, U = steady.harmonics, steady.force_harmonics, steady.deflection_harmonics
+    tau = np.linspace(0.0, bays * 2 * np.pi / track.Omega0, points)
+    one_bay = np.linspace(0.0, 2 * np.pi / track.Omega0, PEAK_POINTS)
+    force, deflection = (_series(a, h, track.Omega0, tau) for a in (F, U))
+    peak_f, peak_u = (_series(a, h, track.Omega0, one_bay) for a in (F, U))
+    i0 = int(np.flatnonzero(h == 0)[0])
+    smeared = smeared_track(data)
+    continuous = None if smeared is None else continuous_steady_deflection(smeared)
+    free_part = _free_vibrations(track, vehicle, data.t_scale) if free else None
+    return SleeperSeries(
+        model=f"{data.beam}/{data.track}/{data.vehicle}",
+        v=si["v"],
+        bay=si["l"],
+        Omega0=track.Omega0 / data.t_scale,
+        time=tau * data.t_scale,
+        position=track.alpha * tau / data.chi,
+        wheel_positions=vehicle.positions / data.chi,
+        contact_force=force * f_unit,
+        deflection=deflection * w_st,
+        force_mean=F[i0].real * f_unit,
+        force_peak_to_peak=np.ptp(peak_f, axis=1) * f_unit,
+        deflection_mean=U[i0].real * w_st,
+        deflection_peak_to_peak=np.ptp(peak_u, axis=1) * w_st,
+        static_force=loads * f_unit,
+        continuous_deflection=continuous,
+        continuous_model=None if smeared is None else smeared.model.name,
+        harmonics=int(h[-1]),
+        change=steady.change,
+        tol=tol,
+        converged=steady.converged,
+        **(free_part or _NOT_SEARCHED),
+    )
+
+
+_NOT_SEARCHED: dict[str, Any] = {
+    "free": (),
+    "free_count": 0,
+    "free_verdict": "not searched",
+    "free_strip": (math.nan, math.nan),
+    "free_window": (math.nan, math.nan),
+    "free_notes": (),
+}
+
+
+def _free_vibrations(track: SleeperTrack, vehicle: VehicleMatrices, t_scale: float) -> dict[str, Any]:
+    """The Floquet roots of Eq. (S14) in rad/s, with the count, window and verdict of the strip search."""
+    from moving_bogie.floquet.strip import floquet_frequencies
+
+    result = floquet_frequencies(track, vehicle)
+    window = result.window
+    return {
+        "free": tuple(FreeVibration(r.q / t_scale) for r in result.roots),
+        "free_count": result.count,
+        "free_verdict": result.verdict,
+        "free_strip": (window.x0 / t_scale, window.x1 / t_scale),
+        "free_window": (window.y0 / t_scale, window.y1 / t_scale),
+        "free_notes": result.notes,
+    }
