@@ -73,12 +73,20 @@ def test_bad_sleeper_files_name_the_key(tmp_path, capsys, text, fragment):
     assert fragment in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("setting, fragment", [("Mx=1200", "'Mx'"), ("k_sup=-1", "k_sup must be positive")])
+def test_set_on_a_sleeper_file_is_checked_as_the_file(capsys, setting, fragment):
+    """--set NAME=VALUE reaches the sleeper file's [physical] values and is checked as they are."""
+    assert main(["frequencies", "--file", str(EXAMPLE), "--set", setting]) == 2
+    assert fragment in capsys.readouterr().err
+
+
 @pytest.mark.slow
 def test_example_file_gives_the_strip_the_harmonics_and_a_verdict(capsys):
-    """examples/sleepers.toml: Omega_0 = 2 pi v / l, the harmonics -N-1..N, converged, a verdict."""
-    assert main(["frequencies", "--file", str(EXAMPLE), "--json"]) == 0
+    """examples/sleepers.toml with --set v=45: Omega_0 = 2 pi v / l, the harmonics -N-1..N, converged, a
+    verdict."""
+    assert main(["frequencies", "--file", str(EXAMPLE), "--set", "v=45", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["Omega0_rad_s"] == pytest.approx(2 * np.pi * 40 / 0.6, rel=1e-12)
+    assert out["Omega0_rad_s"] == pytest.approx(2 * np.pi * 45 / 0.6, rel=1e-12)
     assert out["converged"] and out["verdict"] in ("STABLE", "UNSTABLE")
     n = out["harmonics"]
     assert n == list(range(-n[-1] - 1, n[-1] + 1))

@@ -8,6 +8,22 @@ import sys
 from moving_bogie.cli.common import print_json
 
 
+def sleeper_settings(texts: list[str] | None) -> dict[str, float]:
+    """``--set NAME=VALUE`` as SI floats, the overrides of a sleeper file's ``[physical]`` values."""
+    from moving_bogie.errors import ParameterError
+
+    out: dict[str, float] = {}
+    for text in texts or ():
+        name, eq, value = text.partition("=")
+        try:
+            out[name.strip()] = float(value)
+        except ValueError:
+            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER") from None
+        if not eq or not name.strip():
+            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER")
+    return out
+
+
 def run_sleeper_frequencies(args: argparse.Namespace) -> int:
     """Every root with Im Omega <= 0 in one strip of width Omega_0 in rad/s, the harmonics, the verdict."""
     import importlib
@@ -20,7 +36,7 @@ def run_sleeper_frequencies(args: argparse.Namespace) -> int:
         raise ParameterError(
             given[0], f"--{given[0]} does not apply to a sleeper track (give it in the file)"
         )
-    data = load_sleeper_file(args.file)
+    data = load_sleeper_file(args.file, overrides=sleeper_settings(getattr(args, "set", None)))
     if data.groups["alpha"] <= 0:
         raise ParameterError(
             "v", "v must be positive on a sleeper track (the Floquet strip has width 2 pi v / l)"

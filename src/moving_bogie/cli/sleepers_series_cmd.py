@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from moving_bogie.floquet.series import SleeperSeries
 
 from .common import print_json
+from .sleepers_cmd import sleeper_settings
 
 #: the options of the continuous-track time series that a sleeper file does not take, and what to do instead
 _MODEL = (
@@ -60,29 +61,13 @@ def check_sleeper_options(args: argparse.Namespace) -> None:
     args.bays, args.points = bays, points
 
 
-def _settings(texts: list[str]) -> dict[str, float]:
-    """``--set NAME=VALUE`` as SI floats."""
-    from moving_bogie.errors import ParameterError
-
-    out = {}
-    for text in texts:
-        name, eq, value = text.partition("=")
-        try:
-            out[name.strip()] = float(value)
-        except ValueError:
-            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER") from None
-        if not eq or not name.strip():
-            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER")
-    return out
-
-
 def run_sleeper_timeseries(args: argparse.Namespace) -> int:
     """Print (or write) the steady response over ``--bays`` bays and the free vibrations in SI."""
     check_sleeper_options(args)
     from moving_bogie.floquet.inputs import load_sleeper_file
     from moving_bogie.floquet.series import sleeper_series
 
-    data = load_sleeper_file(args.file, overrides=_settings(args.set))
+    data = load_sleeper_file(args.file, overrides=sleeper_settings(args.set))
     series = sleeper_series(data, bays=args.bays, points=args.points)
     if args.csv:
         write_sleeper_csv(series, args.csv)

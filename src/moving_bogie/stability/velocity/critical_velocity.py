@@ -240,8 +240,8 @@ def dispersion_branches(source: Source = None, p: Any = None, **groups: Any) -> 
         roots = np.sort(np.roots(np.trim_zeros(rows[k], "f")).real)
         out[k] = roots[len(roots) // 2 :]
     branches = np.full((len(p), max(len(o) for o in out)), np.nan)
-    for k, o in enumerate(out):
-        branches[k, : len(o)] = o
+    for row_index, o in enumerate(out):
+        branches[row_index, : len(o)] = o
     return branches
 
 
