@@ -171,8 +171,8 @@ def _verify_cells(
 
 def sleeper_map(
     data: SleeperInput,
-    velocities: Sequence[float],
-    masses: Sequence[float],
+    velocities: Sequence[float] | np.ndarray,
+    masses: Sequence[float] | np.ndarray,
     *,
     N: int = 2,
     samples: int = 32,
