@@ -15,6 +15,7 @@ if TYPE_CHECKING:
 
 from moving_bogie.errors import ParameterError
 
+from . import sleepers_map_cmd
 from .common import (
     PROG,
     add_json_option,
@@ -24,6 +25,7 @@ from .common import (
 )
 from .outputs import add_figure_option
 from .progress import progress_bar
+from .sleepers_map_cmd import sleeper_file
 from .stability_options import (
     RAW,
     add_plane_options,
@@ -95,12 +97,8 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_instability_lines(args: argparse.Namespace) -> int:
-    from moving_bogie.floquet.inputs import is_sleeper_file
-
-    if args.file is not None and is_sleeper_file(args.file):
-        from .sleepers_map_cmd import run_sleeper_lines
-
-        return run_sleeper_lines(args)
+    if sleeper_file(args):
+        return sleepers_map_cmd.run_sleeper_lines(args)
     params, spacings = params_and_spacings(args)
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
@@ -236,12 +234,8 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
 def run_stability_map(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from moving_bogie.floquet.inputs import is_sleeper_file
-
-    if args.file is not None and is_sleeper_file(args.file):
-        from .sleepers_map_cmd import run_sleeper_map
-
-        return run_sleeper_map(args)
+    if sleeper_file(args):
+        return sleepers_map_cmd.run_sleeper_map(args)
     params, _ = params_and_spacings(args)
     if args.out is not None and args.out.exists() and not args.overwrite:
         raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")

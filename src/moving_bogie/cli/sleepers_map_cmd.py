@@ -30,6 +30,13 @@ _NOT_APPLICABLE = {
 }  # fmt: skip
 
 
+def sleeper_file(args: argparse.Namespace) -> bool:
+    """Whether ``--file`` names a sleeper track (its ``[model]`` table read first)."""
+    from moving_bogie.floquet.inputs import is_sleeper_file
+
+    return getattr(args, "file", None) is not None and is_sleeper_file(args.file)
+
+
 def _refuse_options(args: argparse.Namespace) -> None:
     """One message naming the first option that does not apply to a sleeper file (before any work)."""
     for dest, option in _NOT_APPLICABLE.items():
