@@ -15,6 +15,7 @@ if TYPE_CHECKING:
 
 from moving_bogie.errors import ParameterError
 
+from . import sleepers_map_cmd
 from .common import (
     PROG,
     add_json_option,
@@ -24,6 +25,7 @@ from .common import (
 )
 from .outputs import add_figure_option
 from .progress import progress_bar
+from .sleepers_map_cmd import sleeper_file
 from .stability_options import (
     RAW,
     add_plane_options,
@@ -64,7 +66,11 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
             "  moving-bogie instability-lines --model masses --d 1,1.25,1.5 --eta-f 0.1 --plot f.png\n"
             "  moving-bogie instability-lines --d 1.5 --cf2 0.1 --kappa-v 0.2 --beam tr --S 10 --r 0.09\n"
             "  moving-bogie instability-lines --model masses --d 1.5 --eta-f 0 --plot undamped.png\n"
-            "  moving-bogie instability-lines --file examples/uic60-bogie.toml --set d=2.5 --plot si.png"
+            "  moving-bogie instability-lines --file examples/uic60-bogie.toml --set d=2.5 --plot si.png\n"
+            "  moving-bogie instability-lines --file examples/sleepers_zones.toml --range v=50:250\n\n"
+            "A file on a sleeper track (docs/sleepers.md): the D-decomposition in the wheel mass M at 60\n"
+            "velocities of --range v=LO:HI (m/s), up to --range M=0:HI (kg); --verify checks the counts by\n"
+            "floquet_frequencies."
         ),
         formatter_class=RAW,
     )
@@ -91,6 +97,8 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_instability_lines(args: argparse.Namespace) -> int:
+    if sleeper_file(args):
+        return sleepers_map_cmd.run_sleeper_lines(args)
     params, spacings = params_and_spacings(args)
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
@@ -187,7 +195,12 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
             "examples:\n  moving-bogie stability-map --case 1 --plot map.png --npz map.npz\n"
             "  moving-bogie stability-map --d 1.5 --n 400 --lines --plot map.png\n"
             "  moving-bogie stability-map --file examples/uic60-bogie.toml --range v=0:400 \\\n"
-            "      --range M=0:3000 --plot map.png   (SI axes, the file's operating point marked)"
+            "      --range M=0:3000 --plot map.png   (SI axes, the file's operating point marked)\n"
+            "  moving-bogie stability-map --file examples/sleepers_zones.toml --range v=20:400 \\\n"
+            "      --range M=0:3000 --n 100 --workers 2 --plot map.png --csv map.csv\n\n"
+            "A file on a sleeper track (docs/sleepers.md): the unstable count of each cell from the\n"
+            "D-decomposition in M at each velocity (none at M -> 0, then the signed crossings), checked by\n"
+            "floquet_frequencies at a few cells, beside the continuous track of the same smeared support."
         ),
         formatter_class=RAW,
     )
@@ -211,6 +224,9 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
         p, "--out", folder=True, metavar="S.zarr", help="save as a 2-D sweep store (sweep-plot, xarray)"
     )
     p.add_argument("--overwrite", action="store_true", help="replace an existing --out store")
+    add_output_option(
+        p, "--csv", metavar="F.csv", formats=("csv",), help="save the cells as CSV (a sleeper track's file)"
+    )
     add_json_option(p)
     p.set_defaults(handler=run_stability_map)
 
@@ -218,6 +234,8 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
 def run_stability_map(args: argparse.Namespace) -> int:
     import numpy as np
 
+    if sleeper_file(args):
+        return sleepers_map_cmd.run_sleeper_map(args)
     params, _ = params_and_spacings(args)
     if args.out is not None and args.out.exists() and not args.overwrite:
         raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")

@@ -1,0 +1,195 @@
+"""``instability-lines`` and ``stability-map`` for a file on a sleeper track: the D-decomposition lines in
+(v, M) and the map of unstable counts built from them, beside the continuous track (docs/sleepers.md)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from fractions import Fraction
+from typing import TYPE_CHECKING
+
+from moving_bogie.errors import ParameterError
+
+from .common import print_json
+from .progress import progress_bar
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from moving_bogie.floquet.inputs import SleeperInput
+    from moving_bogie.floquet.sleeper_map import SleeperMap
+
+#: the velocity and mass axes without --range, m/s and kg
+DEFAULT_RANGES = {"v": (20.0, 400.0), "M": (0.0, 3000.0)}
+
+#: options of the continuous plane that a sleeper file does not take (dest -> option), refused when given
+_NOT_APPLICABLE = {
+    "case": "--case", "d": "--d", "eta_f": "--eta-f", "eta_s": "--eta-s", "cf1": "--cf1", "cf2": "--cf2",
+    "kappa_v": "--kappa-v", "eta_v": "--eta-v", "S": "--S", "r": "--r", "beam": "--beam",
+    "track": "--track", "vehicle": "--vehicle", "npz": "--npz", "out": "--out",
+}  # fmt: skip
+
+
+def sleeper_file(args: argparse.Namespace) -> bool:
+    """Whether ``--file`` names a sleeper track (its ``[model]`` table read first)."""
+    from moving_bogie.floquet.inputs import is_sleeper_file
+
+    return getattr(args, "file", None) is not None and is_sleeper_file(args.file)
+
+
+def _refuse_options(args: argparse.Namespace) -> None:
+    """One message naming the first option that does not apply to a sleeper file (before any work)."""
+    for dest, option in _NOT_APPLICABLE.items():
+        if getattr(args, dest, None) not in (None, [], False):
+            raise ParameterError(option, f"{option} does not apply to a sleeper track (give it in the file)")
+    if getattr(args, "set", None):
+        raise ParameterError("--set", "--set does not apply to a sleeper track (give it in the file)")
+    if getattr(args, "parameter", "eta_M") != "eta_M":
+        raise ParameterError("--parameter", "on a sleeper track the vertical axis is the wheel mass M")
+    if args.alpha_min != 0.0 or args.alpha_max != 1.2 or getattr(args, "theta_max", 200.0) != 200.0:
+        raise ParameterError("--range", "on a sleeper track give the axes as --range v=LO:HI --range M=0:HI")
+    if getattr(args, "units", None) == "dimensionless":
+        raise ParameterError("--units", "a sleeper map is in SI units (v in m/s, M in kg)")
+    if getattr(args, "lines", False):
+        raise ParameterError("--lines", "--lines: the map of a sleeper track always shows its D-lines")
+
+
+def _ranges(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
+    ranges = dict(DEFAULT_RANGES)
+    for text in args.range:
+        name, eq, spec = text.partition("=")
+        try:
+            lo, hi = (float(Fraction(x.strip())) for x in spec.split(":"))
+        except (ValueError, ZeroDivisionError):
+            raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI") from None
+        if not eq or not hi > lo:
+            raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI")
+        if name.strip() not in ranges:
+            raise ParameterError("--range", f"--range {name.strip()}: not an axis (known: v, M)")
+        ranges[name.strip()] = (lo, hi)
+    if ranges["v"][0] <= 0:
+        raise ParameterError("--range", "--range v: the velocities must be positive on a sleeper track")
+    if ranges["M"][0] != 0:
+        raise ParameterError("--range", "--range M: the mass axis starts at 0 (the count's base, M -> 0)")
+    return ranges
+
+
+def sleeper_plane(args: argparse.Namespace, n: int) -> tuple[SleeperInput, np.ndarray, np.ndarray]:
+    """The file and the grid (velocities, masses): every option checked before any computation."""
+    import numpy as np
+
+    from moving_bogie.floquet.inputs import load_sleeper_file
+
+    _refuse_options(args)
+    ranges = _ranges(args)
+    workers = getattr(args, "workers", None)
+    if n < 2:
+        raise ParameterError("--n", f"--n must be at least 2 (got {n})")
+    if workers is not None and workers < 1:
+        raise ParameterError("--workers", f"--workers must be at least 1 (got {workers})")
+    data = load_sleeper_file(args.file)
+    if data.vehicle_groups.get("eta_M") is None or "M" not in data.physical:
+        raise ParameterError("vehicle", f"vehicle {data.vehicle!r} has no wheel mass M")
+    if data.groups.get("eta_f", 0.0) <= 0:
+        raise ParameterError(
+            "c_f", "c_f must be positive: the D-decomposition runs along the real axis (S15)"
+        )
+    (v0, v1), (_, m1) = ranges["v"], ranges["M"]
+    return data, np.linspace(v0, v1, n), np.linspace(m1 / n, m1, n)
+
+
+def _text(smap: SleeperMap, *, crossings: bool) -> str:
+    s = smap.summary()
+    lines = [
+        f"model {s['model']}: unstable roots in the strip of width 2 pi v / l, {s['method']}",
+        f"v {s['v_m_s'][0]:.6g}..{s['v_m_s'][1]:.6g} m/s ({s['v_m_s'][2]}), "
+        f"M {s['M_kg'][0]:.6g}..{s['M_kg'][1]:.6g} kg ({s['M_kg'][2]})",
+        f"unstable cells {s['unstable_cells']} of {s['cells']}, most unstable roots {s['max_count']}, "
+        f"crossings {s['crossings']}, uncertain columns {s['uncertain_columns']}",
+    ]
+    if crossings:
+        for p in smap.lines():
+            lines.append(
+                f"  v {p['v']:10.4f} m/s  M {p['M']:12.6g} kg  Omega {p['Omega_rad_s']:12.6g} rad/s  "
+                f"count {p['change']:+d} as M grows"
+            )
+    for c in s["checks"]:
+        mark = "agrees" if c["agrees"] else "DISAGREES"
+        lines.append(
+            f"check v {c['v']:.6g} m/s, M {c['M']:.6g} kg: map {c['map_count']}, floquet_frequencies "
+            f"{c['search_count']} ({c['verdict']}): {mark}"
+        )
+    return "\n".join(lines)
+
+
+def run_sleeper_lines(args: argparse.Namespace) -> int:
+    """``instability-lines --file F`` on sleepers: every crossing of every velocity column."""
+    from moving_bogie.floquet.sleeper_map import sleeper_map
+
+    data, vs, ms = sleeper_plane(args, getattr(args, "n", 60))
+    with progress_bar("D-decomposition lines") as bar:
+        smap = sleeper_map(data, vs, ms, verify=3 if args.verify else 0, progress=bar)
+    return _report(args, data, smap, crossings=True, continuous=None)
+
+
+def run_sleeper_map(args: argparse.Namespace) -> int:
+    """``stability-map --file F`` on sleepers: the map, the continuous track's map on the same grid."""
+    from moving_bogie.floquet.sleeper_map import sleeper_map
+    from moving_bogie.floquet.smeared import smeared_track
+    from moving_bogie.kernels.bound import bind
+    from moving_bogie.stability.maps.map import StabilityMap, stability_map
+
+    data, vs, ms = sleeper_plane(args, args.n)
+    physical = smeared_track(data)  # None: no continuous counterpart, the sleeper map alone
+    with progress_bar("sleeper map") as bar:
+        smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar)
+    continuous: StabilityMap | None = None
+    if physical is not None:
+        with progress_bar("continuous map") as bar:
+            continuous = stability_map(
+                bind(physical.to_dimensionless()),
+                parameter="eta_M",
+                alphas=(vs / physical.si_factor("alpha")).tolist(),
+                thetas=(ms / physical.si_factor("eta_M")).tolist(),
+                workers=args.workers,
+                progress=bar,
+            )
+    return _report(args, data, smap, crossings=False, continuous=continuous)
+
+
+def _report(args: argparse.Namespace, data: SleeperInput, smap: SleeperMap, **kw: object) -> int:
+    from moving_bogie.stability.maps.map import StabilityMap
+
+    continuous = kw["continuous"]
+    assert continuous is None or isinstance(continuous, StabilityMap)
+    if getattr(args, "csv", None):
+        from .common import atomic_write
+
+        atomic_write(args.csv, smap.to_csv().encode())
+    if args.plot:
+        from moving_bogie.floquet.map_figure import sleeper_map_figure
+
+        from .stability_options import save_figure
+
+        label = "continuous one-layer track, k_f = k_sup / l + k_f, c_f = c_sup / l + c_f"
+        operating = (data.physical["v"], data.physical["M"])
+        save_figure(
+            sleeper_map_figure(smap, continuous, operating=operating, continuous_label=label), args.plot
+        )
+    extra = {}
+    if continuous is not None:
+        extra["continuous"] = {
+            "model": continuous.model,
+            "unstable_cells": int((continuous.count > 0).sum()),
+            "uncertain_cells": int(continuous.uncertain.sum()),
+        }
+    if args.json:
+        print_json((smap.to_dict() if kw["crossings"] else smap.summary()) | extra)
+    else:
+        print(_text(smap, crossings=bool(kw["crossings"])))
+        if extra:
+            c = extra["continuous"]
+            print(f"continuous track ({c['model']}), same grid: unstable cells {c['unstable_cells']}")
+    for note in smap.notes:
+        print(f"warning: {note}", file=sys.stderr)
+    return 0 if not smap.notes else 1

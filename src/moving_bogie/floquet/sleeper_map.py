@@ -1,0 +1,234 @@
+"""The (v, M) stability map of a vehicle on sleepers from its D-decomposition lines (docs/sleepers.md, (S22)).
+
+Each velocity is one column: its crossings (:func:`~moving_bogie.floquet.d_lines.d_column`) give the
+number of unstable roots in the strip at every wheel mass at once, none at M -> 0 plus the signed
+crossings below M. No cell is searched; the count is checked against
+:func:`~moving_bogie.floquet.strip.floquet_frequencies` (the argument principle, no D-decomposition) at a few
+cells: one in each count region of ``verify`` columns. A disagreement, a column whose crossings have not
+converged in the harmonics or a sign change not resolved is said in ``notes`` and marks the column
+``uncertain``. Columns are spread over ``workers`` processes.
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib
+import io
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from moving_bogie.errors import ParameterError
+from moving_bogie.floquet.d_lines import DColumn, d_column
+from moving_bogie.floquet.hill import VehicleMatrices
+from moving_bogie.floquet.inputs import SleeperInput
+from moving_bogie.floquet.mass_pencil import mass_pencil
+from moving_bogie.floquet.strip import floquet_frequencies
+from moving_bogie.floquet.track import SleeperTrack
+
+__all__ = ["MapCheck", "SleeperMap", "sleeper_map"]
+
+
+@dataclass(frozen=True)
+class MapCheck:
+    """A cell counted by floquet_frequencies beside the map's count: (v, M) in SI, both counts, the verdict
+    and whether that search converged."""
+
+    v: float
+    M: float
+    map_count: int
+    search_count: int
+    verdict: str
+    converged: bool
+
+    @property
+    def agrees(self) -> bool:
+        return self.map_count == self.search_count
+
+
+@dataclass(frozen=True)
+class SleeperMap:
+    """Unstable counts ``count[j, i]`` at (velocities[i] m/s, masses[j] kg), the D-decomposition columns
+    (dimensionless, alpha = v / v_ref, eta_M = M / mass_unit, Omega = q / t_scale) and the checks."""
+
+    model: str
+    velocities: np.ndarray
+    masses: np.ndarray
+    v_ref: float
+    mass_unit: float
+    t_scale: float
+    columns: tuple[DColumn, ...]
+    count: np.ndarray
+    checks: tuple[MapCheck, ...] = ()
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def uncertain(self) -> np.ndarray:
+        """The columns (as a cell mask) whose count is not certain: notes, or a check that disagrees."""
+        bad = np.array([bool(c.notes) for c in self.columns])
+        for check in self.checks:
+            if not check.agrees:
+                bad[int(np.argmin(np.abs(self.velocities - check.v)))] = True
+        return np.broadcast_to(bad[None, :], self.count.shape)
+
+    def lines(self) -> list[dict]:
+        """Every crossing in SI: v [m/s], M [kg], the real frequency Omega [rad/s] and the change."""
+        return [
+            {
+                "v": float(col.alpha * self.v_ref),
+                "M": c.eta_M * self.mass_unit,
+                "Omega_rad_s": c.q / self.t_scale,
+                "change": c.change,
+                "moved": c.moved,
+            }
+            for col in self.columns
+            for c in col.crossings
+        ]
+
+    def summary(self) -> dict:
+        """Counts, the verdict's limits and the checks (JSON-ready)."""
+        return {
+            "model": self.model,
+            "method": "D-decomposition in the wheel mass at each velocity, count 0 at M -> 0 (S19)-(S22)",
+            "v_m_s": [float(self.velocities[0]), float(self.velocities[-1]), len(self.velocities)],
+            "M_kg": [float(self.masses[0]), float(self.masses[-1]), len(self.masses)],
+            "unstable_cells": int(np.count_nonzero(self.count > 0)),
+            "cells": int(self.count.size),
+            "max_count": int(self.count.max(initial=0)),
+            "uncertain_columns": int(np.count_nonzero(self.uncertain[0])),
+            "crossings": len(self.lines()),
+            "checks": [c.__dict__ | {"agrees": c.agrees} for c in self.checks],
+            "notes": list(self.notes),
+        }
+
+    def to_dict(self) -> dict:
+        """The summary with the lines and the count array."""
+        return self.summary() | {
+            "velocities_m_s": self.velocities.tolist(),
+            "masses_kg": self.masses.tolist(),
+            "count": self.count.tolist(),
+            "uncertain": self.uncertain[0].tolist(),
+            "lines": self.lines(),
+        }
+
+    def to_csv(self) -> str:
+        """One row per cell: v [m/s], M [kg], count, uncertain."""
+        out = io.StringIO()
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(["v_m_s", "M_kg", "unstable_count", "uncertain"])
+        unc = self.uncertain
+        for i, v in enumerate(self.velocities):
+            for j, m in enumerate(self.masses):
+                writer.writerow([f"{v:.10g}", f"{m:.10g}", int(self.count[j, i]), int(unc[j, i])])
+        return out.getvalue()
+
+
+def _groups(data: SleeperInput, v: float) -> dict:
+    return data.groups | {"alpha": v / data.v_ref}
+
+
+def mass_unit(data: SleeperInput) -> float:
+    """kg per unit of eta_M (eta_M is proportional to M: the file's M over its group)."""
+    return float(data.physical["M"] / data.vehicle_groups["eta_M"])
+
+
+def column_at(data: SleeperInput, v: float, eta_max: float, N: int, samples: int) -> DColumn:
+    """The D-decomposition column at velocity v [m/s] (one process's task)."""
+    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    track = SleeperTrack(data.beam, data.track, _groups(data, v))
+    return d_column(mass_pencil(track, module, data.vehicle_groups, N), eta_max=eta_max, samples=samples)
+
+
+def _columns(task: tuple[SleeperInput, list[float], float, int, int]) -> list[DColumn]:
+    data, vs, eta_max, N, samples = task
+    return [column_at(data, v, eta_max, N, samples) for v in vs]
+
+
+def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapCheck:
+    """floquet_frequencies at (v, M): its count beside the map's."""
+    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    track = SleeperTrack(data.beam, data.track, _groups(data, v))
+    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | {"eta_M": M / mass_unit(data)})
+    res = floquet_frequencies(track, vehicle)
+    return MapCheck(v, M, map_count, res.count, res.verdict, res.converged)
+
+
+def _verify_cells(
+    smap_count: np.ndarray, columns: Sequence[DColumn], masses: np.ndarray, verify: int
+) -> list:
+    """(i, j) cells to check: in ``verify`` evenly spread columns, the middle cell of each count region."""
+    n = len(columns)
+    picks = sorted({int(round(x)) for x in np.linspace(0, n - 1, verify)}) if verify > 0 else []
+    cells = []
+    for i in picks:
+        col = smap_count[:, i]
+        edges = [0] + [j for j in range(1, len(col)) if col[j] != col[j - 1]] + [len(col)]
+        cells += [(i, (lo + hi - 1) // 2) for lo, hi in zip(edges[:-1], edges[1:])]
+    return cells
+
+
+def sleeper_map(
+    data: SleeperInput,
+    velocities: Sequence[float] | np.ndarray,
+    masses: Sequence[float] | np.ndarray,
+    *,
+    N: int = 2,
+    samples: int = 32,
+    verify: int = 2,
+    workers: int | None = None,
+    progress: Callable[[float], None] | None = None,
+) -> SleeperMap:
+    """Unstable counts over velocities [m/s] x masses [kg] (module docstring).
+
+    Parameters
+    ----------
+    N : int
+        Harmonics -N-1..N of the D-decomposition (each crossing is checked with N + 1).
+    samples : int
+        Samples of the real axis of the strip (a multiple of 4).
+    verify : int
+        Columns whose count regions are each checked by floquet_frequencies at one cell.
+    workers : int, optional
+        Processes (default: the number of CPUs); 1 runs in-process.
+    """
+    vs, ms = np.asarray(velocities, dtype=float), np.asarray(masses, dtype=float)
+    if data.groups.get("eta_f", 0.0) <= 0:
+        raise ParameterError(
+            "c_f", "the D-decomposition runs along the real axis: it needs c_f > 0 (docs/sleepers.md, S15)"
+        )
+    if vs.min() <= 0:
+        raise ParameterError("v", "the velocities of a sleeper map must be positive")
+    unit = mass_unit(data)
+    eta_max = float(ms.max()) / unit
+    chunks = [list(map(float, c)) for c in np.array_split(vs, min(len(vs), 4 * max(1, workers or 2)))]
+    tasks = [(data, c, eta_max, N, samples) for c in chunks if len(c)]
+    columns: list[DColumn] = []
+    if workers == 1:
+        for k, task in enumerate(tasks):
+            columns += _columns(task)
+            if progress:
+                progress((k + 1) / len(tasks))
+    else:
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            for k, part in enumerate(pool.map(_columns, tasks)):
+                columns += part
+                if progress:
+                    progress((k + 1) / len(tasks))
+    count = np.stack([col.counts(ms / unit) for col in columns], axis=1)
+    checks = tuple(
+        check_cell(data, float(vs[i]), float(ms[j]), int(count[j, i]))
+        for i, j in _verify_cells(count, columns, ms, verify)
+    )
+    notes = [f"v = {col.alpha * data.v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
+    notes += [
+        f"v = {c.v:.6g} m/s, M = {c.M:.6g} kg: the map counts {c.map_count} unstable root(s), "
+        f"floquet_frequencies {c.search_count} ({c.verdict})"
+        for c in checks
+        if not c.agrees
+    ]
+    model = f"{data.beam}/{data.track}/{data.vehicle}"
+    return SleeperMap(
+        model, vs, ms, data.v_ref, unit, data.t_scale, tuple(columns), count, checks, tuple(notes)
+    )

@@ -1,0 +1,91 @@
+"""D-decomposition lines and the (v, M) map of a vehicle on sleepers (docs/sleepers.md, (S19)-(S22)).
+
+References: the Hill determinant of floquet/hill.py (FloquetSystem, built without the pencil); the argument
+principle's count (roots/count/contour.py) on the window of floquet/strip.py, which knows nothing of the
+D-decomposition; the symmetry (S14), which puts the principal zone's crossings on Re q = Omega_0 / 2.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from moving_bogie.cli import main
+from moving_bogie.floquet.d_lines import d_column
+from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.floquet.mass_pencil import mass_pencil
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
+from moving_bogie.roots.count.contour import Rectangle, winding_number
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+#: long, lightly damped bays with a heavy wheel: the principal parametric zone of test_floquet_search.py,
+#: with a little damping along the rail so that the real axis is regular (S15)
+ZONE_TRACK = {"lam": 1.5, "alpha": 0.25, "kappa_f": 0.0, "eta_f": 0.002, "eta_sup": 0.005}
+
+
+@pytest.mark.parametrize("module, values", [(vehicle_mass, {"eta_M": 1.0}), (vehicle_hertz_mass, None)])
+def test_pencil_is_the_hill_matrix_at_every_mass(module, values):
+    """det(A + eta_M B) equals the Hill determinant of FloquetSystem at that eta_M (a complex q, two
+    masses); for the rigid contact A = I (no root at eta_M -> 0, Eq. (S19))."""
+    if values is None:
+        values = {"eta_M": 1.0, "kappa_H": 20.0, "eta_H": 0.1}
+    track = SleeperTrack("eb", "sleepers", ZONE_TRACK)
+    pencil = mass_pencil(track, module, values, 1)
+    q = 0.37 - 0.05j
+    A, B = pencil.matrices(q)
+    for eta in (0.7, 5.0):
+        vehicle = VehicleMatrices.from_module(module, values | {"eta_M": eta})
+        reference = FloquetSystem(track, vehicle, 1, tol=pencil.tol)(q)
+        assert abs(np.linalg.det(A + eta * B) - reference) < 1e-9 * max(1.0, abs(reference))
+    if module is vehicle_mass:
+        assert np.array_equal(A, np.eye(len(A)))
+
+
+@pytest.mark.slow
+def test_zone_edges_are_the_d_decomposition_crossings():
+    """The principal zone: two crossings on Re q = Omega_0 / 2, +1 then -1, converged in the harmonics.
+    The argument principle on floquet_frequencies' window (the strip, Im q in [-max(Omega_0, 1), 0]) counts
+    0 roots just below the lower edge, 1 just inside it and 0 just above the upper edge (1% of the zone's
+    width away), as the column's counts say."""
+    track = SleeperTrack("eb", "sleepers", ZONE_TRACK)
+    column = d_column(mass_pencil(track, vehicle_mass, {"eta_M": 1.0}, 2), eta_max=6.0)
+    assert not column.notes and column.converged
+    assert [c.change for c in column.crossings] == [1, -1]
+    lo, hi = (c.eta_M for c in column.crossings)
+    for c in column.crossings:
+        assert abs(c.q - track.Omega0 / 2) < 1e-8 * track.Omega0
+    omega0 = track.Omega0
+    window = Rectangle(-omega0 / 4, 3 * omega0 / 4, -max(omega0, 1.0), 0.0)
+    delta = 0.01 * (hi - lo)
+    for eta, expected in ((lo - delta, 0), (lo + delta, 1), (hi + delta, 0)):
+        assert column.counts([eta])[0] == expected
+        vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": eta})
+        system = FloquetSystem(track, vehicle, 2, tol=1e-6)
+        spacing = min(window.width, window.height) / 12
+        assert winding_number(system, window, spacing=spacing, max_points=20_000) == expected, eta
+
+
+@pytest.mark.parametrize(
+    "extra, option",
+    [
+        (["--d", "1.5"], "--d"),
+        (["--range", "v=0:100"], "--range"),
+        (["--range", "M=10:100"], "--range"),
+        (["--range", "w=1:2"], "--range"),
+        (["--n", "1"], "--n"),
+        (["--parameter", "kappa_v"], "--parameter"),
+        (["--workers", "0"], "--workers"),
+        (["--units", "dimensionless"], "--units"),
+    ],
+)
+def test_bad_options_are_named_before_any_computation(extra, option, capsys):
+    """Each option that a sleeper map cannot take is named in one line, exit 2, no traceback."""
+    code = main(["stability-map", "--file", str(EXAMPLES / "sleepers.toml"), "--json", *extra])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 2
+    assert option in out["error"]
