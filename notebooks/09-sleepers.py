@@ -184,3 +184,48 @@ print("continuous track unstable at v =", [v for v, *_, c in rows if c == "unsta
 # says at the same speeds: the continuous track has no parametric excitation, so any instability on sleepers
 # that it does not share is parametric. The critical velocity of the continuous track (the speed regime
 # printed in section 2) bounds the speeds at which the smeared comparison is subcritical.
+
+# %% [markdown]
+# ## 4. The parametric zones in (v, M)
+#
+# The zones open where the supports are lightly damped. `examples/sleepers_zones.toml` holds the same rail
+# on supports every 1 m with the same smeared stiffness ($k_{sup} / l = 10^8$ N/m$^2$) and a tenth of the
+# support damping. At each speed, the D-decomposition in the wheel mass
+# (docs/sleepers.md, (S20)-(S22)) finds every mass at which a root crosses the real axis of the strip.
+# The sign of each crossing then counts the unstable roots: none at M -> 0, plus the signed crossings
+# below M. The same command draws the full map:
+# `moving-bogie stability-map --file examples/sleepers_zones.toml --range v=20:400 --range M=0:3000 --plot map.png`.
+# Beside it is the continuous track with the same smeared support, on the same grid.
+
+# %%
+from moving_bogie.floquet.map_figure import sleeper_map_figure  # noqa: E402
+from moving_bogie.floquet.sleeper_map import sleeper_map  # noqa: E402
+from moving_bogie.kernels.bound import bind  # noqa: E402
+from moving_bogie.stability.maps.map import stability_map  # noqa: E402
+
+zones = load_sleeper_file(EXAMPLES / "sleepers_zones.toml")
+vs = np.linspace(80.0, 140.0, 3) if QUICK else np.linspace(40.0, 250.0, 43)
+ms = np.linspace(100.0, 3000.0, 30 if QUICK else 120)
+smap = sleeper_map(zones, vs, ms, verify=0 if QUICK else 2, workers=1 if QUICK else None)
+smeared = smeared_track(zones)
+continuous = stability_map(
+    bind(smeared.to_dimensionless()),
+    parameter="eta_M",
+    alphas=(vs / smeared.si_factor("alpha")).tolist(),
+    thetas=(ms / smeared.si_factor("eta_M")).tolist(),
+)
+print(f"sleepers: {int((smap.count > 0).sum())} unstable cells of {smap.count.size}; notes: {list(smap.notes)}")
+print(f"continuous track, same smeared support: {int((continuous.count > 0).sum())} unstable cells")
+for check in smap.checks:
+    print(f"check at v = {check.v:g} m/s, M = {check.M:g} kg: map {check.map_count}, search {check.search_count}")
+for line in smap.lines()[:8]:
+    print(f"v = {line['v']:6.1f} m/s: crossing at M = {line['M']:7.1f} kg, Omega = {line['Omega_rad_s']:.1f} rad/s, change {line['change']:+d}")
+fig = sleeper_map_figure(smap, continuous, operating=(zones.physical["v"], zones.physical["M"]))
+fig
+
+# %% [markdown]
+# Each band is a parametric zone: a narrow interval of wheel masses, at each speed, in which the wheel's
+# free vibration grows. Along the band, twice the wheel's natural frequency on the track equals the
+# sleeper-passing frequency, so heavier wheels resonate at lower speeds. The continuous track with the
+# same smeared support shows none of it on this grid: its smeared stiffness is that of section 2, whose
+# critical velocity (printed there) lies far above these speeds.
