@@ -66,7 +66,8 @@ for v in speeds:
     s = sleeper_series(load_sleeper_file(SLEEPERS, overrides={"v": v}), points=201, free=False)
     print(
         f"v = {v:5.1f} m/s: Omega_0 = {s.Omega0:7.1f} rad/s, F mean {s.force_mean[0]:.1f} N, "
-        f"F peak-to-peak {s.force_peak_to_peak[0]:7.1f} N, w peak-to-peak {s.deflection_peak_to_peak[0]:.3e} m, "
+        f"F peak-to-peak {s.force_peak_to_peak[0]:7.1f} N, "
+        f"w peak-to-peak {s.deflection_peak_to_peak[0]:.3e} m, "
         f"harmonics -{s.harmonics}..{s.harmonics} ({'converged' if s.converged else 'NOT converged'})"
     )
     ax_f.plot(s.position, s.contact_force[0] / 1e3, label=f"v = {v:g} m/s")
@@ -76,7 +77,9 @@ ax_w.axhline(s.continuous_deflection[0] * 1e3, color="k", ls="--", lw=0.8)
 ax_f.set_ylabel("contact force [kN]")
 ax_w.set_ylabel("deflection under the wheel [mm]")
 ax_w.set_xlabel("wheel's position from a sleeper [m]")
-ax_w.set_title(f"dashed: {s.continuous_model} with the smeared supports at v = {speeds[-1]:g} m/s", fontsize=9)
+ax_w.set_title(
+    f"dashed: {s.continuous_model} with the smeared supports at v = {speeds[-1]:g} m/s", fontsize=9
+)
 ax_f.legend(fontsize=8)
 plt.show()
 
@@ -115,7 +118,9 @@ for v in scan:
     natural.append(min(Omega, key=lambda z: z.real))
     print(
         f"v = {v:5.1f} m/s: Omega_0 / 2 = {np.pi * v / physical['l']:7.1f} rad/s; continuous track: "
-        f"{len(Omega)} root(s) " + ", ".join(f"{z.real:.1f}{z.imag:+.1f}i" for z in Omega) + f" rad/s, {verdict}"
+        f"{len(Omega)} root(s) "
+        + ", ".join(f"{z.real:.1f}{z.imag:+.1f}i" for z in Omega)
+        + f" rad/s, {verdict}"
     )
 print("continuous track at the last speed:", regime.line())
 half = np.pi * np.array(scan) / physical["l"]
@@ -124,7 +129,8 @@ crossing = np.flatnonzero(np.diff(np.sign(half - re)))
 v_star = None
 if crossing.size:
     i = crossing[0]
-    v_star = scan[i] + (scan[i + 1] - scan[i]) * (re[i] - half[i]) / ((half[i + 1] - half[i]) - (re[i + 1] - re[i]))
+    slope = (half[i + 1] - half[i]) - (re[i + 1] - re[i])
+    v_star = scan[i] + (scan[i + 1] - scan[i]) * (re[i] - half[i]) / slope
     print(f"Omega_0 / 2 meets the lowest natural frequency at v* = {v_star:.1f} m/s (linear interpolation)")
 else:
     print("Omega_0 / 2 does not meet the lowest natural frequency in the scanned speeds")
@@ -168,7 +174,8 @@ for factor in around:
     rows.append((v, result.count, result.verdict, verdict))
     print(
         f"v = {v:6.1f} m/s: sleepers: {result.count} root(s) with Im Omega <= 0 "
-        f"{[f'{z.real:.1f}{z.imag:+.2f}i' for z in roots]}, harmonics -{result.harmonics + 1}..{result.harmonics}, "
+        f"{[f'{z.real:.1f}{z.imag:+.2f}i' for z in roots]}, "
+        f"harmonics -{result.harmonics + 1}..{result.harmonics}, "
         f"verdict {result.verdict}{' (' + '; '.join(result.notes) + ')' if result.notes else ''}; "
         f"continuous track: {verdict}"
     )
@@ -193,11 +200,13 @@ print("continuous track unstable at v =", [v for v, *_, c in rows if c == "unsta
 # support damping. At each speed, the D-decomposition in the wheel mass
 # (docs/sleepers.md, (S20)-(S22)) finds every mass at which a root crosses the real axis of the strip.
 # The sign of each crossing then counts the unstable roots: none at M -> 0, plus the signed crossings
-# below M. The same command draws the full map:
-# `moving-bogie stability-map --file examples/sleepers_zones.toml --range v=20:400 --range M=0:3000 --plot map.png`.
+# below M. The same command draws the full map: `moving-bogie stability-map --file
+# examples/sleepers_zones.toml --range v=20:400 --range M=0:3000 --plot map.png`.
 # Beside it is the continuous track with the same smeared support, on the same grid.
 
 # %%
+from IPython.display import display  # noqa: E402
+
 from moving_bogie.floquet.map_figure import sleeper_map_figure  # noqa: E402
 from moving_bogie.floquet.sleeper_map import sleeper_map  # noqa: E402
 from moving_bogie.kernels.bound import bind  # noqa: E402
@@ -214,14 +223,20 @@ continuous = stability_map(
     alphas=(vs / smeared.si_factor("alpha")).tolist(),
     thetas=(ms / smeared.si_factor("eta_M")).tolist(),
 )
-print(f"sleepers: {int((smap.count > 0).sum())} unstable cells of {smap.count.size}; notes: {list(smap.notes)}")
+unstable = int((smap.count > 0).sum())
+print(f"sleepers: {unstable} unstable cells of {smap.count.size}; notes: {list(smap.notes)}")
 print(f"continuous track, same smeared support: {int((continuous.count > 0).sum())} unstable cells")
 for check in smap.checks:
-    print(f"check at v = {check.v:g} m/s, M = {check.M:g} kg: map {check.map_count}, search {check.search_count}")
+    print(
+        f"check at v = {check.v:g} m/s, M = {check.M:g} kg: "
+        f"map {check.map_count}, search {check.search_count}"
+    )
 for line in smap.lines()[:8]:
-    print(f"v = {line['v']:6.1f} m/s: crossing at M = {line['M']:7.1f} kg, Omega = {line['Omega_rad_s']:.1f} rad/s, change {line['change']:+d}")
-fig = sleeper_map_figure(smap, continuous, operating=(zones.physical["v"], zones.physical["M"]))
-fig
+    print(
+        f"v = {line['v']:6.1f} m/s: crossing at M = {line['M']:7.1f} kg, "
+        f"Omega = {line['Omega_rad_s']:.1f} rad/s, change {line['change']:+d}"
+    )
+display(sleeper_map_figure(smap, continuous, operating=(zones.physical["v"], zones.physical["M"])))
 
 # %% [markdown]
 # Each band is a parametric zone: a narrow interval of wheel masses, at each speed, in which the wheel's
