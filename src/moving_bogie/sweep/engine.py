@@ -34,8 +34,9 @@ import numpy as np
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.sweep.design import Block, SweepSpec
-from moving_bogie.sweep.evaluate import BlockTask, evaluate_block
-from moving_bogie.sweep.store import StorePath, missing_blocks, prepare_store, write_block
+from moving_bogie.sweep.evaluate import BlockTask
+from moving_bogie.sweep.plan import SweepPlan, evaluate_work
+from moving_bogie.sweep.store import StorePath, missing_blocks, prepare_store
 
 if TYPE_CHECKING:
     from distributed import Client, Future
@@ -126,7 +127,7 @@ def _sigint_ignored() -> Iterator[None]:
 
 
 def run_sweep(
-    spec: SweepSpec,
+    spec: SweepPlan,
     out: StorePath,
     *,
     resume: bool = False,
@@ -142,7 +143,9 @@ def run_sweep(
 
     Parameters
     ----------
-    spec : SweepSpec
+    spec : SweepPlan
+        A :class:`~moving_bogie.sweep.design.SweepSpec` (continuous tracks) or a
+        :class:`~moving_bogie.sweep.sleepers.SleeperSweepSpec` (sleeper tracks).
     out : path
         Zarr store (a folder). Must not exist unless ``resume`` (complete it) or ``overwrite``.
     client : distributed.Client, optional
@@ -169,7 +172,7 @@ def run_sweep(
     start = time.perf_counter()
     in_process = client is None and workers is None and scheduler is None and points < IN_PROCESS_POINTS
     if in_process:
-        finished = ((b, evaluate_block(block_task(spec, b))) for b in todo)
+        finished = ((b, spec.task(b).evaluate()) for b in todo)
         n_workers, where = 1, "in-process"
         _store_blocks(path, spec, finished, done, total, progress, on_block)
     else:
@@ -182,7 +185,7 @@ def run_sweep(
 
 def _store_blocks(
     path: Path,
-    spec: SweepSpec,
+    spec: SweepPlan,
     finished: Iterable[tuple[Block, dict[str, np.ndarray]]],
     done: int,
     total: int,
@@ -191,7 +194,7 @@ def _store_blocks(
 ) -> None:
     """Write each (block, arrays) of ``finished`` into the store as it comes, reporting progress."""
     for b, arrays in finished:
-        write_block(path, spec, b.slices, arrays)
+        spec.write_block(path, b.slices, arrays)
         done += _points(b)
         if progress is not None:
             progress(done, total)
@@ -200,7 +203,7 @@ def _store_blocks(
 
 
 def _run_distributed(
-    spec: SweepSpec,
+    spec: SweepPlan,
     path: Path,
     todo: Sequence[Block],
     counts: tuple[int, int],
@@ -222,7 +225,7 @@ def _run_distributed(
         n_workers = len(client.scheduler_info()["workers"]) if client is not None else 0
         if client is not None:  # None only when there is nothing to run
             for b in todo:
-                futures[client.submit(evaluate_block, block_task(spec, b), pure=False)] = b
+                futures[client.submit(evaluate_work, spec.task(b), pure=False)] = b
 
         def finished() -> Iterator[tuple[Block, dict[str, np.ndarray]]]:
             for future in as_completed(list(futures)):

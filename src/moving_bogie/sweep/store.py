@@ -46,6 +46,7 @@ if TYPE_CHECKING:
 
     from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.stability.maps.map import StabilityMap
+    from moving_bogie.sweep.plan import SweepPlan
 
 #: Where a store is: a folder's path.
 StorePath: TypeAlias = str | os.PathLike[str]
@@ -91,7 +92,7 @@ def _version() -> str:
     return __version__
 
 
-def prepare_store(path: StorePath, spec: SweepSpec, *, resume: bool = False, overwrite: bool = False) -> Path:
+def prepare_store(path: StorePath, spec: SweepPlan, *, resume: bool = False, overwrite: bool = False) -> Path:
     """Check the ``--out`` path before any computation; create the store unless resuming one.
 
     Raises
@@ -124,7 +125,7 @@ def prepare_store(path: StorePath, spec: SweepSpec, *, resume: bool = False, ove
         raise ParameterError("--out", f"--out {path}: folder {path.parent} does not exist")
     if not os.access(path.parent, os.W_OK):
         raise ParameterError("--out", f"--out {path}: folder {path.parent} is not writable")
-    create_store(path, spec)
+    spec.create_store(path)
     return path
 
 
@@ -305,7 +306,7 @@ def write_block(
         _array(g, name)[slices] = arrays[name] / t_scale if name == "margin" else arrays[name]
 
 
-def missing_blocks(path: StorePath, spec: SweepSpec) -> list[Block]:
+def missing_blocks(path: StorePath, spec: SweepPlan) -> list[Block]:
     """Blocks of ``spec`` whose ``computed`` chunk is not in the store at ``path``."""
     computed = np.asarray(_array(_group(path, "r"), "computed")[...])
     return [b for b in spec.blocks() if not np.all(computed[b.slices])]
