@@ -71,13 +71,16 @@ def sleeper_spec(args: argparse.Namespace) -> SleeperSweepSpec:
 
 def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any]:
     """The verdicts of a sleeper sweep for the summary: the counts of points and the fastest growth."""
-    growth = -ds.Omega_im.where(ds.unstable)
+    import numpy as np
+
+    ds = ds.compute()
+    growth = np.where(ds.unstable.values, -ds.Omega_im.values, np.nan)
     fastest = None
-    if bool(ds.unstable.any()):
-        at = growth.argmax(...)
+    if np.isfinite(growth).any():
+        at = np.unravel_index(int(np.nanargmax(growth)), growth.shape)
+        dims = list(ds.unstable.dims)
         fastest = {"growth_rate_1_s": float(growth[at])} | {
-            name: float(ds[name][at].values) if "point" in ds.dims else float(ds[name][at[name]])
-            for name in spec.units
+            name: float(ds[name].values[at[dims.index(ds[name].dims[0])]]) for name in spec.units
         }
     return {
         "model": spec.model,
