@@ -149,7 +149,7 @@ def test_views_draw_the_stored_growth_rate_and_verdicts(tmp_path, capsys):
     """sweep-plot of a sleeper store: --x alone draws -Omega_im of the unstable points (stored values
     written here: the view is checked, not the search); --x --y the map; both PNGs written."""
     from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep
-    from moving_bogie.sweep.sleepers import SLEEPER_VARIABLES
+    from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES
 
     out, spec = _store(tmp_path, {"v": "40:80:3", "c_sup": "1e4,3e4"})
     shape = (3, 2)

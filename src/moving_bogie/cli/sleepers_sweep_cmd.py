@@ -49,8 +49,8 @@ def sleeper_spec(args: argparse.Namespace) -> SleeperSweepSpec:
     from moving_bogie.sweep.design import parse_sample
     from moving_bogie.sweep.sleepers import make_sleeper_spec
 
+    from .common import vary_texts
     from .sleepers_cmd import sleeper_settings
-    from .sweep_cmd import vary_texts
 
     _refuse_options(args)
     if args.workers is not None and args.workers < 1:

@@ -19,6 +19,7 @@ from .common import (
     params_from_args,
     print_json,
     si_input,
+    vary_texts,
 )
 from .outputs import add_figure_option, add_output_option
 from .reporting import fail
@@ -101,7 +102,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_json_option(p)
     p.set_defaults(handler=run_sweep_cmd)
+    _register_plot(subparsers)
 
+
+def _register_plot(subparsers: argparse._SubParsersAction) -> None:
+    """Add ``sweep-plot``."""
     q = subparsers.add_parser(
         "sweep-plot",
         help="draw a 2-D slice of a sweep store with its instability boundary",
@@ -151,23 +156,6 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
     return make_spec(params, vary, sample=sample, physical=physical, **options)
 
 
-def vary_texts(texts: list[str]) -> dict[str, str]:
-    """``--vary NAME=SPEC`` options as {NAME: SPEC}; a malformed one or a name given twice is refused."""
-    if not texts:
-        raise ParameterError("--vary", "give at least one --vary NAME=START:STOP:COUNT or NAME=V1,V2,...")
-    vary: dict[str, str] = {}
-    for text in texts:
-        name, eq, spec = text.partition("=")
-        if not eq:
-            raise ParameterError(
-                "--vary", f"--vary {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,..."
-            )
-        if name.strip() in vary:
-            raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
-        vary[name.strip()] = spec
-    return vary
-
-
 @contextmanager
 def _points_bar(enabled: bool) -> Iterator[Callable[[int, int], None]]:
     """A rich bar with points/s and ETA on an interactive stderr; a no-op callback otherwise."""
@@ -204,7 +192,7 @@ def _points_bar(enabled: bool) -> Iterator[Callable[[int, int], None]]:
 
 def run_sweep_cmd(args: argparse.Namespace) -> int:
     from moving_bogie.floquet.inputs import is_sleeper_file
-    from moving_bogie.sweep.engine import run_sweep
+    from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
     from moving_bogie.sweep.store import open_sweep
 
     spec: SweepPlan
@@ -216,7 +204,7 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
         spec, summarise = sleepers, partial(sleeper_summary, sleepers)
     else:
         continuous = _spec(args)
-        spec, summarise = continuous, partial(_summary, continuous)
+        spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
     # every option is checked (and the store created) before any computation
     try:
         with _points_bar(not args.json) as bar:

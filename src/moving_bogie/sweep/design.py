@@ -19,8 +19,7 @@ import math
 from collections.abc import Collection, Container, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
-from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -30,9 +29,6 @@ from moving_bogie.kernels.sweep_characteristic import polynomial_degree
 from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
-
-if TYPE_CHECKING:
-    from moving_bogie.sweep.evaluate import BlockTask
 
 __all__ = [
     "Axis",
@@ -315,24 +311,6 @@ class SweepSpec:
             slices = tuple(slice(s, min(s + c, n)) for s, c, n in zip(starts, self.chunks, self.shape))
             out.append(Block(k, slices))
         return out
-
-    def task(self, block: Block) -> BlockTask:
-        """The worker's task for ``block`` (:func:`~moving_bogie.sweep.engine.block_task`)."""
-        from moving_bogie.sweep.engine import block_task
-
-        return block_task(self, block)
-
-    def create_store(self, path: Path) -> None:
-        """The empty store (:func:`~moving_bogie.sweep.store.create_store`)."""
-        from moving_bogie.sweep.store import create_store
-
-        create_store(path, self)
-
-    def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
-        """One block into the store (:func:`~moving_bogie.sweep.store.write_block`)."""
-        from moving_bogie.sweep.store import write_block
-
-        write_block(path, self, slices, arrays)
 
     def describe(self) -> dict[str, Any]:
         """JSON-ready description (stored in the attributes; a resumed sweep must match it)."""

@@ -28,7 +28,7 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -36,12 +36,12 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.sweep.design import Block, SweepSpec
 from moving_bogie.sweep.evaluate import BlockTask
 from moving_bogie.sweep.plan import SweepPlan, evaluate_work
-from moving_bogie.sweep.store import StorePath, missing_blocks, prepare_store
+from moving_bogie.sweep.store import StorePath, create_store, missing_blocks, prepare_store, write_block
 
 if TYPE_CHECKING:
     from distributed import Client, Future
 
-__all__ = ["IN_PROCESS_POINTS", "SweepRun", "block_task", "make_client", "run_sweep"]
+__all__ = ["ContinuousPlan", "IN_PROCESS_POINTS", "SweepRun", "block_task", "make_client", "run_sweep"]
 
 #: A sweep with fewer points than this to compute runs in this process unless a cluster is asked for.
 IN_PROCESS_POINTS = 1000
@@ -86,6 +86,33 @@ def block_task(spec: SweepSpec, block: Block) -> BlockTask:
     )
 
 
+@dataclass(frozen=True)
+class ContinuousPlan:
+    """A :class:`~moving_bogie.sweep.design.SweepSpec` as a :class:`~moving_bogie.sweep.plan.SweepPlan`:
+    its tasks are :func:`block_task`, its store that of :mod:`moving_bogie.sweep.store`."""
+
+    spec: SweepSpec
+
+    @property
+    def size(self) -> int:
+        return self.spec.size
+
+    def blocks(self) -> list[Block]:
+        return self.spec.blocks()
+
+    def describe(self) -> dict[str, Any]:
+        return self.spec.describe()
+
+    def task(self, block: Block) -> BlockTask:
+        return block_task(self.spec, block)
+
+    def create_store(self, path: Path) -> None:
+        create_store(path, self.spec)
+
+    def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
+        write_block(path, self.spec, slices, arrays)
+
+
 def make_client(workers: int | None = None, scheduler: str | None = None, processes: bool = True) -> Client:
     """A Dask client: on ``scheduler`` if given, else on a new LocalCluster of ``workers`` processes.
 
@@ -127,7 +154,7 @@ def _sigint_ignored() -> Iterator[None]:
 
 
 def run_sweep(
-    spec: SweepPlan,
+    spec: SweepSpec | SweepPlan,
     out: StorePath,
     *,
     resume: bool = False,
@@ -162,6 +189,7 @@ def run_sweep(
     on_block : callable, optional
         Called with the index of each block once it is in the store.
     """
+    spec = ContinuousPlan(spec) if isinstance(spec, SweepSpec) else spec
     path = prepare_store(out, spec, resume=resume, overwrite=overwrite)
     blocks = spec.blocks()
     todo = missing_blocks(path, spec) if resume else blocks

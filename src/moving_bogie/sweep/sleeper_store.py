@@ -2,7 +2,7 @@
 
 Layout: one dimension per varied SI parameter (``v`` in m/s, ``l`` in m, ... float64 with ``units`` and
 the exact decimal values in ``exact``), or one dimension ``point`` on a Sobol design (each parameter a
-coordinate along it); the data variables of :data:`~moving_bogie.sweep.sleepers.SLEEPER_VARIABLES`,
+coordinate along it); the data variables of :data:`SLEEPER_VARIABLES`,
 chunked like the blocks. The safety rules are those of :mod:`moving_bogie.sweep.store`: the store is
 created under a temporary name and renamed into place, and ``computed`` is written last.
 """
@@ -13,23 +13,41 @@ import json
 import os
 import shutil
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from moving_bogie.sweep.store import StorePath, _array, _coordinate, _group, _version, consolidate
+from moving_bogie.sweep.store import (
+    StorePath,
+    consolidate,
+    package_version,
+    store_array,
+    store_group,
+    write_coordinate,
+)
 
 if TYPE_CHECKING:
     from moving_bogie.sweep.sleepers import SleeperSweepSpec
 
-__all__ = ["create_sleeper_store", "write_sleeper_block"]
+__all__ = ["SLEEPER_VARIABLES", "create_sleeper_store", "write_sleeper_block"]
+
+#: Data variables of a sleeper sweep: (name, dtype, fill value, long_name, units).
+SLEEPER_VARIABLES: tuple[tuple[str, str, Any, str, str], ...] = (
+    ("count", "int16", -1, "roots with Im Omega <= 0 counted in the strip (-1: not searched)", "1"),
+    ("stable", "bool", False, "verdict STABLE: no root with Im Omega <= 0, the window complete", "1"),
+    ("unstable", "bool", False, "verdict UNSTABLE: a root with Im Omega < 0", "1"),
+    ("certain", "bool", False, "converged in the harmonics and every counted root located", "1"),
+    ("Omega_im", "float64", np.nan, "most negative Im Omega (-Im Omega: growth rate); NaN: no root", "1/s"),
+    ("Omega_re", "float64", np.nan, "Re Omega of that root", "rad/s"),
+    ("harmonics", "int16", -1, "harmonics used: N of n = -N-1..N", "1"),
+    ("Omega0", "float64", np.nan, "sleeper-passing frequency Omega_0 = 2 pi v / l", "rad/s"),
+    ("computed", "bool", False, "the point's block has been computed and written", "1"),
+)
 
 
 def create_sleeper_store(path: StorePath, spec: SleeperSweepSpec) -> None:
     """Write the metadata and coordinates of an empty store at ``path`` (replacing what is there)."""
     import zarr
-
-    from moving_bogie.sweep.sleepers import SLEEPER_VARIABLES
 
     path = Path(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
@@ -44,7 +62,7 @@ def create_sleeper_store(path: StorePath, spec: SleeperSweepSpec) -> None:
     for axis in spec.axes:
         attrs = {"units": units[axis.name], "long_name": axis.name}
         own = ("point",) if sobol else (axis.name,)
-        _coordinate(g, axis.name, own, axis.floats, attrs, axis.values)
+        write_coordinate(g, axis.name, own, axis.floats, attrs, axis.values)
     for name, dtype, fill, long_name, unit in SLEEPER_VARIABLES:
         arr = g.create_array(
             name, shape=shape, chunks=chunks, dtype=dtype, fill_value=fill, dimension_names=dims
@@ -58,7 +76,7 @@ def create_sleeper_store(path: StorePath, spec: SleeperSweepSpec) -> None:
         model=spec.model,
         physical=json.dumps(spec.base.physical),
         sweep=json.dumps(spec.describe()),
-        package_version=_version(),
+        package_version=package_version(),
         units="si",
         time_factor="exp(i Omega t): a root with Im Omega < 0 grows at the rate -Im Omega",
         search=(
@@ -75,8 +93,7 @@ def create_sleeper_store(path: StorePath, spec: SleeperSweepSpec) -> None:
 
 def write_sleeper_block(path: StorePath, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
     """Write one block's arrays into its chunk of every variable, ``computed`` last."""
-    from moving_bogie.sweep.sleepers import SLEEPER_VARIABLES
 
-    g = _group(path, "r+")
+    g = store_group(path, "r+")
     for name, *_ in SLEEPER_VARIABLES:  # computed is the last of them
-        _array(g, name)[slices] = arrays[name]
+        store_array(g, name)[slices] = arrays[name]

@@ -26,28 +26,15 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.floquet.inputs import SleeperInput, sleeper_input, sleeper_units
 from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.sweep.design import Axis, Block, parse_vary, sobol_axes
+from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
 
 __all__ = [
-    "SLEEPER_VARIABLES",
     "SleeperSweepSpec",
     "SleeperTask",
     "evaluate_sleeper_block",
     "make_sleeper_spec",
     "sleeper_point",
 ]
-
-#: Data variables of a sleeper sweep: (name, dtype, fill value, long_name, units).
-SLEEPER_VARIABLES: tuple[tuple[str, str, Any, str, str], ...] = (
-    ("count", "int16", -1, "roots with Im Omega <= 0 counted in the strip (-1: not searched)", "1"),
-    ("stable", "bool", False, "verdict STABLE: no root with Im Omega <= 0, the window complete", "1"),
-    ("unstable", "bool", False, "verdict UNSTABLE: a root with Im Omega < 0", "1"),
-    ("certain", "bool", False, "converged in the harmonics and every counted root located", "1"),
-    ("Omega_im", "float64", np.nan, "most negative Im Omega (-Im Omega: growth rate); NaN: no root", "1/s"),
-    ("Omega_re", "float64", np.nan, "Re Omega of that root", "rad/s"),
-    ("harmonics", "int16", -1, "harmonics used: N of n = -N-1..N", "1"),
-    ("Omega0", "float64", np.nan, "sleeper-passing frequency Omega_0 = 2 pi v / l", "rad/s"),
-    ("computed", "bool", False, "the point's block has been computed and written", "1"),
-)
 
 
 def _input(data: Mapping[str, Any], source: str, overrides: Mapping[str, float]) -> SleeperInput:
@@ -159,13 +146,9 @@ class SleeperSweepSpec:
         )
 
     def create_store(self, path: Path) -> None:
-        from moving_bogie.sweep.sleeper_store import create_sleeper_store
-
         create_sleeper_store(path, self)
 
     def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
-        from moving_bogie.sweep.sleeper_store import write_sleeper_block
-
         write_sleeper_block(path, slices, arrays)
 
 
