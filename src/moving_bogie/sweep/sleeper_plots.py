@@ -108,14 +108,13 @@ def _growth_line(ax: Axes, s: xarray.Dataset, x: str) -> None:
     stable, unstable = s.stable.values, s.unstable.values
     undetermined = ~stable & ~unstable
     ax.plot(xs, np.where(stable | unstable, np.nan_to_num(growth), np.nan), "-", color="0.4", lw=1)
-    ax.plot(
-        xs[unstable], growth[unstable], "o", color=_CLASSES[1][1], label="unstable: growth rate -Im Omega"
-    )
-    ax.plot(xs[stable], np.zeros(stable.sum()), "s", color=_CLASSES[0][1], label="stable (no root, growth 0)")
+    if unstable.any():
+        ax.plot(xs[unstable], growth[unstable], "o", color=_CLASSES[1][1], label="unstable: growth rate")
+    if stable.any():
+        ax.plot(xs[stable], np.zeros(stable.sum()), "s", color=_CLASSES[0][1], label="stable (growth 0)")
     if undetermined.any():
-        ax.plot(
-            xs[undetermined], np.zeros(undetermined.sum()), "^", color=_CLASSES[2][1], label="undetermined"
-        )
+        label = "undetermined (no growing root found, the window incomplete)"
+        ax.plot(xs[undetermined], np.zeros(undetermined.sum()), "^", color=_CLASSES[2][1], label=label)
     uncertain = ~s.certain.values
     if uncertain.any():
         ax.plot(
