@@ -37,6 +37,7 @@ __all__ = [
     "print_json",
     "read_params_file",
     "si_input",
+    "vary_texts",
 ]
 
 
@@ -279,3 +280,20 @@ def si_input(args: argparse.Namespace, physical: PhysicalParams | None) -> Physi
             "parameters): Table 1 and [dimensionless] inputs have no SI scales",
         )
     return physical
+
+
+def vary_texts(texts: list[str]) -> dict[str, str]:
+    """``--vary NAME=SPEC`` options as {NAME: SPEC}; a malformed one or a name given twice is refused."""
+    if not texts:
+        raise ParameterError("--vary", "give at least one --vary NAME=START:STOP:COUNT or NAME=V1,V2,...")
+    vary: dict[str, str] = {}
+    for text in texts:
+        name, eq, spec = text.partition("=")
+        if not eq:
+            raise ParameterError(
+                "--vary", f"--vary {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,..."
+            )
+        if name.strip() in vary:
+            raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
+        vary[name.strip()] = spec
+    return vary

@@ -6,6 +6,7 @@ import argparse
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -18,12 +19,16 @@ from .common import (
     params_from_args,
     print_json,
     si_input,
+    vary_texts,
 )
 from .outputs import add_figure_option, add_output_option
 from .reporting import fail
 
 if TYPE_CHECKING:
+    import xarray
+
     from moving_bogie.sweep.design import SweepSpec
+    from moving_bogie.sweep.plan import SweepPlan
 
 _RAW = argparse.RawDescriptionHelpFormatter
 
@@ -41,7 +46,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "n_unstable, degree_of_instability (0 where stable), certain. An interrupted sweep keeps its\n"
             "finished chunks: run it again with --resume. With a [physical] parameter file the varied\n"
             "parameters are the SI ones (v in m/s, M in kg, ...; every other SI parameter fixed) and the\n"
-            "store's coordinates are named and unitted so, the dimensionless groups kept beside them."
+            "store's coordinates are named and unitted so, the dimensionless groups kept beside them.\n"
+            "A sleeper-track file (docs/sleepers.md) is swept over its [physical] names, each point one\n"
+            "Floquet strip search: count, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
+            "harmonics, Omega0 [rad/s]."
         ),
         epilog=(
             "examples:\n"
@@ -53,7 +61,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "  moving-bogie sweep-plot s3.zarr --x alpha --y eta_M --sel eta_f=0.05 --out slice.png\n"
             "  moving-bogie sweep --file examples/uic60-bogie.toml --vary v=60:200:50 \\\n"
             "      --vary M=400:1600:40 --out si.zarr\n"
-            "  moving-bogie sweep-plot si.zarr --x v --y M --out si.png"
+            "  moving-bogie sweep-plot si.zarr --x v --y M --out si.png\n"
+            "  moving-bogie sweep --file examples/sleepers.toml --vary v=40:80:9 --out sl.zarr\n"
+            "  moving-bogie sweep-plot sl.zarr --x v --out growth.png"
         ),
         formatter_class=_RAW,
     )
@@ -81,20 +91,30 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--check",
         type=int,
-        default=1,
         metavar="K",
-        help="points per chunk verified by a full count (default 1)",
+        help="points per chunk verified by a full count (default 1; not on a sleeper track)",
     )
-    p.add_argument("--chunk-points", type=int, default=2048, metavar="N", help="points per chunk, about")
+    p.add_argument(
+        "--chunk-points",
+        type=int,
+        metavar="N",
+        help="points per chunk, about (default 2048; on a sleeper track 1: a point costs seconds)",
+    )
     add_json_option(p)
     p.set_defaults(handler=run_sweep_cmd)
+    _register_plot(subparsers)
 
+
+def _register_plot(subparsers: argparse._SubParsersAction) -> None:
+    """Add ``sweep-plot``."""
     q = subparsers.add_parser(
         "sweep-plot",
         help="draw a 2-D slice of a sweep store with its instability boundary",
         description=(
             "Degree of instability over two varied parameters of a sweep store, the other dimensions\n"
-            "fixed by --sel (nearest value); the stable/unstable boundary drawn, uncertain points hatched."
+            "fixed by --sel (nearest value); the stable/unstable boundary drawn, uncertain points hatched.\n"
+            "A sleeper-track sweep: with --x alone the growth rate -Im Omega against it, with --x and --y\n"
+            "the map of stable, unstable and undetermined points."
         ),
         epilog=(
             "example:\n  moving-bogie sweep-plot s.zarr --x alpha --y eta_M --sel eta_f=0.05 --out slice.png"
@@ -103,7 +123,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     q.add_argument("store", type=Path, metavar="S.zarr", help="the sweep store (written by sweep)")
     q.add_argument("--x", required=True, metavar="NAME", help="parameter on the horizontal axis")
-    q.add_argument("--y", required=True, metavar="NAME", help="parameter on the vertical axis")
+    q.add_argument(
+        "--y",
+        metavar="NAME",
+        help="parameter on the vertical axis (a sleeper-track sweep without it: the growth rate against --x)",
+    )
     q.add_argument("--sel", action="append", default=[], metavar="NAME=X", help="fix another dimension")
     add_figure_option(q, "--out", required=True, help="the figure")
     q.set_defaults(handler=run_sweep_plot)
@@ -114,25 +138,16 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
         raise ParameterError("--workers", "--workers must be >= 1")
     if args.workers is not None and args.scheduler:
         raise ParameterError("--workers", "give either --workers or --scheduler, not both")
-    if args.check < 0:
+    check = 1 if args.check is None else args.check
+    chunk_points = 2048 if args.chunk_points is None else args.chunk_points
+    if check < 0:
         raise ParameterError("--check", "--check must be >= 0")
-    if args.chunk_points < 1:
+    if chunk_points < 1:
         raise ParameterError("--chunk-points", "--chunk-points must be >= 1")
-    if not args.vary:
-        raise ParameterError("--vary", "give at least one --vary NAME=START:STOP:COUNT or NAME=V1,V2,...")
     params, physical = params_from_args(args)
     physical = si_input(args, physical)
-    vary: dict[str, str] = {}
-    for text in args.vary:
-        name, eq, spec = text.partition("=")
-        if not eq:
-            raise ParameterError(
-                "--vary", f"--vary {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,..."
-            )
-        if name.strip() in vary:
-            raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
-        vary[name.strip()] = spec
-    options = dict(roots=args.roots, check=args.check, block_points=args.chunk_points)
+    vary = vary_texts(args.vary)
+    options = dict(roots=args.roots, check=check, block_points=chunk_points)
 
     from moving_bogie.sweep.api import make_spec
     from moving_bogie.sweep.design import parse_sample
@@ -176,10 +191,21 @@ def _points_bar(enabled: bool) -> Iterator[Callable[[int, int], None]]:
 
 
 def run_sweep_cmd(args: argparse.Namespace) -> int:
-    from moving_bogie.sweep.engine import run_sweep
+    from moving_bogie.floquet.inputs import is_sleeper_file
+    from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
     from moving_bogie.sweep.store import open_sweep
 
-    spec = _spec(args)  # every option checked (and the store created) before any computation
+    spec: SweepPlan
+    summarise: Callable[[xarray.Dataset], dict[str, Any]]
+    if args.file is not None and is_sleeper_file(args.file):
+        from .sleepers_sweep_cmd import sleeper_spec, sleeper_summary
+
+        sleepers = sleeper_spec(args)
+        spec, summarise = sleepers, partial(sleeper_summary, sleepers)
+    else:
+        continuous = _spec(args)
+        spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
+    # every option is checked (and the store created) before any computation
     try:
         with _points_bar(not args.json) as bar:
             run = run_sweep(
@@ -212,20 +238,27 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
         "scheduler": run.scheduler,
         "seconds": round(run.seconds, 2),
         "points_per_second": round(run.points_per_second, 1) if run.points_computed else None,
-        "unstable_fraction": float((ds.n_unstable > 0).mean()),
-        "uncertain_points": int((~ds.certain).sum()),
-        "settled_points": int(ds.settled.sum()),
-        "check_disagreements": int((ds.checked < 0).sum()),
-    }
-    summary["units"] = {a.label: ds[a.label].attrs.get("units", "1") for a in spec.axes}
-    if "supercritical" in ds:  # the points above the critical velocity of their track
-        summary["supercritical_points"] = int(ds.supercritical.sum())
+    } | summarise(ds)
     if args.json:
         print_json(summary)
     else:
         for key, value in summary.items():
             print(f"{key:20s} {value}")
     return 0
+
+
+def _summary(spec: SweepSpec, ds: xarray.Dataset) -> dict[str, Any]:
+    """The verdicts of a sweep of a continuous track, for the summary."""
+    out = {
+        "unstable_fraction": float((ds.n_unstable > 0).mean()),
+        "uncertain_points": int((~ds.certain).sum()),
+        "settled_points": int(ds.settled.sum()),
+        "check_disagreements": int((ds.checked < 0).sum()),
+        "units": {a.label: ds[a.label].attrs.get("units", "1") for a in spec.axes},
+    }
+    if "supercritical" in ds:  # the points above the critical velocity of their track
+        out["supercritical_points"] = int(ds.supercritical.sum())
+    return out
 
 
 def run_sweep_plot(args: argparse.Namespace) -> int:
@@ -243,7 +276,15 @@ def run_sweep_plot(args: argparse.Namespace) -> int:
             raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER") from None
         if not eq:
             raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER")
-    fig = plot_sweep_slice(open_sweep(args.store), args.x, args.y, sel)
+    ds = open_sweep(args.store)
+    if ds.attrs.get("kind") == "sleepers":
+        from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep
+
+        fig = plot_sleeper_sweep(ds, args.x, args.y, sel)
+    elif args.y is None:
+        raise ParameterError("--y", "--y NAME is required (a 1-D view needs a sleeper-track sweep)")
+    else:
+        fig = plot_sweep_slice(ds, args.x, args.y, sel)
     save_figure(fig, args.out)
     print(args.out)
     return 0

@@ -21,7 +21,7 @@ from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.generated import parameters as paper_groups
 from moving_bogie.generated import sleepers as generated
 
-__all__ = ["SleeperInput", "is_sleeper_file", "load_sleeper_file"]
+__all__ = ["SleeperInput", "is_sleeper_file", "load_sleeper_file", "sleeper_input", "sleeper_units"]
 
 
 @dataclass(frozen=True)
@@ -61,7 +61,26 @@ def load_sleeper_file(path: str | Path, overrides: Mapping[str, float] | None = 
 
     ``overrides`` replaces or adds ``[physical]`` values (SI, checked as the file's own).
     """
-    data = tomllib.loads(Path(path).read_text())
+    return sleeper_input(tomllib.loads(Path(path).read_text()), path, overrides)
+
+
+def sleeper_units(data: Mapping[str, Any]) -> dict[str, str]:
+    """The ``[physical]`` names a sleeper file of this ``[model]`` takes, with their SI units."""
+    model = data.get("model", {})
+    beam, track, vehicle = model.get("beam", "eb"), model["track"], model.get("vehicle", "mass")
+    module = importlib.import_module(f"moving_bogie.generated.vehicle_{vehicle}")
+    table: dict[str, dict[str, Any]] = generated.PARAMETERS[track][beam]  # type: ignore[assignment]
+    ref = generated.TRACKS[track]["reference"]
+    paper: dict[str, dict[str, Any]] = paper_groups.PARAMETERS  # type: ignore[assignment]
+    units = {"EI": "N m^2", "m": "kg/m", "P": "N", ref[0]: ref[1]}
+    units |= {spec["si"]: spec["unit"] for spec in table.values()}
+    return units | {paper[g]["si"]: paper[g]["unit"] for g in module.PARAMETERS}
+
+
+def sleeper_input(
+    data: Mapping[str, Any], path: str | Path, overrides: Mapping[str, float] | None = None
+) -> SleeperInput:
+    """:func:`load_sleeper_file` of the file's parsed TOML ``data`` (``path`` names it in the messages)."""
     model = data.get("model", {})
     beam, track, vehicle = model.get("beam", "eb"), model["track"], model.get("vehicle", "mass")
     if beam not in generated.BEAMS:
@@ -80,7 +99,7 @@ def load_sleeper_file(path: str | Path, overrides: Mapping[str, float] | None = 
     ref: str = generated.TRACKS[track]["reference"][0]
     paper: dict[str, dict[str, Any]] = paper_groups.PARAMETERS  # type: ignore[assignment]
     vehicle_si = {paper[g]["si"]: g for g in module.PARAMETERS}
-    known = {"EI", "m", "P", ref, *(spec["si"] for spec in table.values()), *vehicle_si}
+    known = set(sleeper_units(data))
     si = {**data["physical"], **(overrides or {})}
     for key in si:
         if key not in known:

@@ -28,19 +28,20 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.sweep.design import Block, SweepSpec
-from moving_bogie.sweep.evaluate import BlockTask, evaluate_block
-from moving_bogie.sweep.store import StorePath, missing_blocks, prepare_store, write_block
+from moving_bogie.sweep.evaluate import BlockTask
+from moving_bogie.sweep.plan import SweepPlan, evaluate_work
+from moving_bogie.sweep.store import StorePath, create_store, missing_blocks, prepare_store, write_block
 
 if TYPE_CHECKING:
     from distributed import Client, Future
 
-__all__ = ["IN_PROCESS_POINTS", "SweepRun", "block_task", "make_client", "run_sweep"]
+__all__ = ["ContinuousPlan", "IN_PROCESS_POINTS", "SweepRun", "block_task", "make_client", "run_sweep"]
 
 #: A sweep with fewer points than this to compute runs in this process unless a cluster is asked for.
 IN_PROCESS_POINTS = 1000
@@ -85,6 +86,33 @@ def block_task(spec: SweepSpec, block: Block) -> BlockTask:
     )
 
 
+@dataclass(frozen=True)
+class ContinuousPlan:
+    """A :class:`~moving_bogie.sweep.design.SweepSpec` as a :class:`~moving_bogie.sweep.plan.SweepPlan`:
+    its tasks are :func:`block_task`, its store that of :mod:`moving_bogie.sweep.store`."""
+
+    spec: SweepSpec
+
+    @property
+    def size(self) -> int:
+        return self.spec.size
+
+    def blocks(self) -> list[Block]:
+        return self.spec.blocks()
+
+    def describe(self) -> dict[str, Any]:
+        return self.spec.describe()
+
+    def task(self, block: Block) -> BlockTask:
+        return block_task(self.spec, block)
+
+    def create_store(self, path: Path) -> None:
+        create_store(path, self.spec)
+
+    def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
+        write_block(path, self.spec, slices, arrays)
+
+
 def make_client(workers: int | None = None, scheduler: str | None = None, processes: bool = True) -> Client:
     """A Dask client: on ``scheduler`` if given, else on a new LocalCluster of ``workers`` processes.
 
@@ -126,7 +154,7 @@ def _sigint_ignored() -> Iterator[None]:
 
 
 def run_sweep(
-    spec: SweepSpec,
+    spec: SweepSpec | SweepPlan,
     out: StorePath,
     *,
     resume: bool = False,
@@ -142,7 +170,9 @@ def run_sweep(
 
     Parameters
     ----------
-    spec : SweepSpec
+    spec : SweepPlan
+        A :class:`~moving_bogie.sweep.design.SweepSpec` (continuous tracks) or a
+        :class:`~moving_bogie.sweep.sleepers.SleeperSweepSpec` (sleeper tracks).
     out : path
         Zarr store (a folder). Must not exist unless ``resume`` (complete it) or ``overwrite``.
     client : distributed.Client, optional
@@ -159,6 +189,7 @@ def run_sweep(
     on_block : callable, optional
         Called with the index of each block once it is in the store.
     """
+    spec = ContinuousPlan(spec) if isinstance(spec, SweepSpec) else spec
     path = prepare_store(out, spec, resume=resume, overwrite=overwrite)
     blocks = spec.blocks()
     todo = missing_blocks(path, spec) if resume else blocks
@@ -169,7 +200,7 @@ def run_sweep(
     start = time.perf_counter()
     in_process = client is None and workers is None and scheduler is None and points < IN_PROCESS_POINTS
     if in_process:
-        finished = ((b, evaluate_block(block_task(spec, b))) for b in todo)
+        finished = ((b, spec.task(b).evaluate()) for b in todo)
         n_workers, where = 1, "in-process"
         _store_blocks(path, spec, finished, done, total, progress, on_block)
     else:
@@ -182,7 +213,7 @@ def run_sweep(
 
 def _store_blocks(
     path: Path,
-    spec: SweepSpec,
+    spec: SweepPlan,
     finished: Iterable[tuple[Block, dict[str, np.ndarray]]],
     done: int,
     total: int,
@@ -191,7 +222,7 @@ def _store_blocks(
 ) -> None:
     """Write each (block, arrays) of ``finished`` into the store as it comes, reporting progress."""
     for b, arrays in finished:
-        write_block(path, spec, b.slices, arrays)
+        spec.write_block(path, b.slices, arrays)
         done += _points(b)
         if progress is not None:
             progress(done, total)
@@ -200,7 +231,7 @@ def _store_blocks(
 
 
 def _run_distributed(
-    spec: SweepSpec,
+    spec: SweepPlan,
     path: Path,
     todo: Sequence[Block],
     counts: tuple[int, int],
@@ -222,7 +253,7 @@ def _run_distributed(
         n_workers = len(client.scheduler_info()["workers"]) if client is not None else 0
         if client is not None:  # None only when there is nothing to run
             for b in todo:
-                futures[client.submit(evaluate_block, block_task(spec, b), pure=False)] = b
+                futures[client.submit(evaluate_work, spec.task(b), pure=False)] = b
 
         def finished() -> Iterator[tuple[Block, dict[str, np.ndarray]]]:
             for future in as_completed(list(futures)):

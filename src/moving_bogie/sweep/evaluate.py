@@ -80,6 +80,10 @@ class BlockTask:
     fixed: dict[str, Fraction] = field(default_factory=dict)
     held: tuple[str, ...] = ()
 
+    def evaluate(self) -> dict[str, np.ndarray]:
+        """:func:`evaluate_block` of this task."""
+        return evaluate_block(self)
+
 
 #: A block index (one entry per dimension of the block).
 Index: TypeAlias = tuple[int, ...]

@@ -46,6 +46,7 @@ if TYPE_CHECKING:
 
     from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.stability.maps.map import StabilityMap
+    from moving_bogie.sweep.plan import SweepPlan
 
 #: Where a store is: a folder's path.
 StorePath: TypeAlias = str | os.PathLike[str]
@@ -58,8 +59,12 @@ __all__ = [
     "create_store",
     "missing_blocks",
     "open_sweep",
+    "package_version",
     "prepare_store",
+    "store_array",
+    "store_group",
     "write_block",
+    "write_coordinate",
     "write_map",
 ]
 
@@ -85,13 +90,16 @@ VARIABLE_NAMES = {
 SI_MARGIN = ("stability margin, smallest Im omega (decay rate; < 0: growth rate)", "1/s")
 
 
-def _version() -> str:
+def package_version() -> str:
+    """The version of moving-bogie that writes a store (its attribute ``package_version``)."""
     from moving_bogie import __version__
 
     return __version__
 
 
-def prepare_store(path: StorePath, spec: SweepSpec, *, resume: bool = False, overwrite: bool = False) -> Path:
+def prepare_store(
+    path: StorePath, spec: SweepSpec | SweepPlan, *, resume: bool = False, overwrite: bool = False
+) -> Path:
     """Check the ``--out`` path before any computation; create the store unless resuming one.
 
     Raises
@@ -106,7 +114,8 @@ def prepare_store(path: StorePath, spec: SweepSpec, *, resume: bool = False, ove
     if path.exists():
         if resume:
             try:
-                stored = json.loads(cast(str, _group(path, "r").attrs["sweep"]))  # JSON text (create_store)
+                text = cast(str, store_group(path, "r").attrs["sweep"])  # JSON text (create_store)
+                stored = json.loads(text)
             except (KeyError, ValueError, OSError, MovingBogieError, FileNotFoundError):
                 raise ParameterError(
                     "--out", f"--out {path}: not a sweep store, cannot --resume it"
@@ -124,11 +133,15 @@ def prepare_store(path: StorePath, spec: SweepSpec, *, resume: bool = False, ove
         raise ParameterError("--out", f"--out {path}: folder {path.parent} does not exist")
     if not os.access(path.parent, os.W_OK):
         raise ParameterError("--out", f"--out {path}: folder {path.parent} is not writable")
-    create_store(path, spec)
+    if isinstance(spec, SweepSpec):
+        create_store(path, spec)
+    else:
+        spec.create_store(path)
     return path
 
 
-def _group(path: StorePath, mode: Literal["r", "r+"]) -> zarr.Group:
+def store_group(path: StorePath, mode: Literal["r", "r+"]) -> zarr.Group:
+    """The zarr group of the store at ``path`` (``mode`` "r" or "r+"); not a store: MovingBogieError."""
     import zarr
 
     try:
@@ -137,7 +150,7 @@ def _group(path: StorePath, mode: Literal["r", "r+"]) -> zarr.Group:
         raise MovingBogieError(f"{path}: not a zarr store ({exc})") from None
 
 
-def _array(g: zarr.Group, name: str) -> zarr.Array:
+def store_array(g: zarr.Group, name: str) -> zarr.Array:
     """The array ``name`` of the store ``g``."""
     import zarr
 
@@ -165,16 +178,18 @@ def create_store(path: StorePath, spec: SweepSpec) -> None:
         own = ("point",) if spec.design == "sobol" else (axis.label,)
         if spec.si:
             si_name = axis.label  # the SI name of an axis given in SI units
-            _coordinate(
+            write_coordinate(
                 g, si_name, own, axis.si_floats, si_attributes(spec.params, axis.name), axis.si_values
             )
             group = group_coordinate(axis, {a.label for a in spec.axes})
             attrs = parameter_attributes(spec.params, axis.name) | {"si": si_name}
-            _coordinate(g, group, own, axis.floats, attrs, axis.values)
+            write_coordinate(g, group, own, axis.floats, attrs, axis.values)
             extra_coordinates += [si_name, group] if spec.design == "sobol" else [group]
         else:
             exact = axis.values if spec.design == "grid" else None
-            _coordinate(g, axis.name, own, axis.floats, parameter_attributes(spec.params, axis.name), exact)
+            write_coordinate(
+                g, axis.name, own, axis.floats, parameter_attributes(spec.params, axis.name), exact
+            )
     for name, dtype, fill, text in _variables(spec):
         extra = (spec.max_roots,) if name.startswith("roots_") else ()
         arr = g.create_array(
@@ -204,7 +219,7 @@ def create_store(path: StorePath, spec: SweepSpec) -> None:
             "(the largest over each column); "
             "full counts (settled, checked points): induced_frequencies' far-field window"
         ),
-        package_version=_version(),
+        package_version=package_version(),
         degree_convention=(
             "most negative Im q over the induced frequencies; 0 where stable; NaN where not certain"
         ),
@@ -262,7 +277,7 @@ def _write_speed(g: zarr.Group, spec: SweepSpec) -> None:
         g.attrs["v_cr"] = json.dumps({"values": v_cr, "unit": "m/s"})
 
 
-def _coordinate(
+def write_coordinate(
     g: zarr.Group,
     name: str,
     dims: tuple[str, ...],
@@ -299,15 +314,15 @@ def write_block(
 ) -> None:
     """Write one block's arrays into its chunk of every variable (``computed`` last); the margin in 1/s in
     a sweep in SI units."""
-    g = _group(path, "r+")
+    g = store_group(path, "r+")
     t_scale = spec.physical.scales().t_scale if spec.physical is not None else 1.0
     for name, *_ in _variables(spec):
-        _array(g, name)[slices] = arrays[name] / t_scale if name == "margin" else arrays[name]
+        store_array(g, name)[slices] = arrays[name] / t_scale if name == "margin" else arrays[name]
 
 
-def missing_blocks(path: StorePath, spec: SweepSpec) -> list[Block]:
+def missing_blocks(path: StorePath, spec: SweepPlan) -> list[Block]:
     """Blocks of ``spec`` whose ``computed`` chunk is not in the store at ``path``."""
-    computed = np.asarray(_array(_group(path, "r"), "computed")[...])
+    computed = np.asarray(store_array(store_group(path, "r"), "computed")[...])
     return [b for b in spec.blocks() if not np.all(computed[b.slices])]
 
 
@@ -379,7 +394,7 @@ def write_map(
         if smap.parameter in meta["depends"]
     ]
     if follow:
-        _group(path, "r+").attrs["vertical_axis"] = (
+        store_group(path, "r+").attrs["vertical_axis"] = (
             f"a stability map: along {smap.parameter} " + ", ".join(follow) + " follow it (Eq. (63))"
         )
         consolidate(path)

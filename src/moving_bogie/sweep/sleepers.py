@@ -1,0 +1,233 @@
+"""A sweep over the SI parameters of a sleeper-track file: one Floquet strip search per point.
+
+Each point is the file's ``[physical]`` values with the point's values in their place, read and checked by
+:func:`~moving_bogie.floquet.inputs.sleeper_input` exactly as the file's own (the smallest and the largest
+value of every axis are checked before any computation), and searched by
+:func:`~moving_bogie.floquet.strip.floquet_frequencies`: every root with Im Omega <= 0 in one strip of
+width Omega_0 (docs/sleepers.md, Eq. (S14)), converged in the harmonics. A grid has one dimension per
+varied parameter, a Sobol design one dimension ``point``; the points are cut into blocks of
+``block_points`` points along the last dimension (one chunk of the store each: a point costs seconds).
+"""
+
+from __future__ import annotations
+
+import importlib
+import itertools
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from moving_bogie.errors import ParameterError
+from moving_bogie.floquet.inputs import SleeperInput, sleeper_input, sleeper_units
+from moving_bogie.model.exact import fraction_to_text
+from moving_bogie.sweep.design import Axis, Block, parse_vary, sobol_axes
+from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
+
+__all__ = [
+    "SleeperSweepSpec",
+    "SleeperTask",
+    "evaluate_sleeper_block",
+    "make_sleeper_spec",
+    "sleeper_point",
+]
+
+
+def _input(data: Mapping[str, Any], source: str, overrides: Mapping[str, float]) -> SleeperInput:
+    """The checked input of one point; a vehicle at rest has no Floquet strip."""
+    inp = sleeper_input(data, source, overrides)
+    if inp.groups["alpha"] <= 0:
+        raise ParameterError("v", "v must be positive on a sleeper track (the strip has width 2 pi v / l)")
+    return inp
+
+
+@dataclass(frozen=True)
+class SleeperSweepSpec:
+    """A sweep of a sleeper file: its parsed TOML ``data``, the ``settings`` (``--set``) of the base point,
+    the varied SI parameters (``axes``, exact values in their units) and the design ("grid" or "sobol")."""
+
+    data: dict[str, Any]
+    source: str
+    axes: tuple[Axis, ...]
+    settings: dict[str, float] = field(default_factory=dict)
+    design: str = "grid"
+    block_points: int = 1
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        names = [a.name for a in self.axes]
+        if not names:
+            raise ParameterError("--vary", "give at least one --vary NAME=...")
+        if len(set(names)) != len(names):
+            raise ParameterError("--vary", f"--vary: a parameter is varied twice ({', '.join(names)})")
+        _ = self.base  # the base point is checked (its errors name the key)
+        for a in self.axes:  # every value is checked as the file's own, before any computation
+            for v in sorted({min(a.values), max(a.values)}):
+                try:
+                    _input(self.data, self.source, self.settings | {a.name: float(v)})
+                except ParameterError as exc:
+                    raise ParameterError("--vary", f"--vary {a.name}: {exc}") from None
+
+    @property
+    def base(self) -> SleeperInput:
+        """The file's values with the settings: the base point of the sweep."""
+        return sleeper_input(self.data, self.source, self.settings)
+
+    @property
+    def model(self) -> str:
+        base = self.base
+        return f"{base.beam}/{base.track}/{base.vehicle}"
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The SI unit of every varied parameter."""
+        known = sleeper_units(self.data)
+        return {a.name: known[a.name] for a in self.axes}
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        return ("point",) if self.design == "sobol" else tuple(a.name for a in self.axes)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        if self.design == "sobol":
+            return (len(self.axes[0].values),)
+        return tuple(len(a.values) for a in self.axes)
+
+    @property
+    def size(self) -> int:
+        return math.prod(self.shape)
+
+    @property
+    def chunks(self) -> tuple[int, ...]:
+        """One value of every dimension but the last, ``block_points`` values of the last."""
+        return (*(1 for _ in self.shape[:-1]), min(self.shape[-1], self.block_points))
+
+    def blocks(self) -> list[Block]:
+        """Every block, in a fixed order (its index is its place in that order)."""
+        ranges = [range(0, n, c) for n, c in zip(self.shape, self.chunks)]
+        out = []
+        for k, starts in enumerate(itertools.product(*ranges)):
+            slices = tuple(slice(s, min(s + c, n)) for s, c, n in zip(starts, self.chunks, self.shape))
+            out.append(Block(k, slices))
+        return out
+
+    def describe(self) -> dict[str, Any]:
+        """JSON-ready description (stored in the attributes; a resumed sweep must match it)."""
+        return {
+            "kind": "sleepers",
+            "model": self.model,
+            "physical": self.base.physical,
+            "design": self.design,
+            "varied": self.extra.get("ranges")
+            or {a.name: [fraction_to_text(v) for v in a.values] for a in self.axes},
+            "units": self.units,
+            "points": self.size,
+            "chunks": list(self.chunks),
+        }
+
+    def operating_point(self) -> dict[str, float]:
+        """The base point's value of every varied parameter."""
+        physical = self.base.physical
+        return {a.name: float(physical[a.name]) for a in self.axes}
+
+    def task(self, block: Block) -> SleeperTask:
+        """The worker's task for ``block``: the file's data and only that block's values."""
+        if self.design == "sobol":
+            values = tuple(a.values[block.slices[0]] for a in self.axes)
+        else:
+            values = tuple(a.values[s] for a, s in zip(self.axes, block.slices))
+        return SleeperTask(
+            self.data, self.source, self.settings, tuple(a.name for a in self.axes), values, self.design
+        )
+
+    def create_store(self, path: Path) -> None:
+        create_sleeper_store(path, self)
+
+    def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
+        write_sleeper_block(path, slices, arrays)
+
+
+@dataclass(frozen=True)
+class SleeperTask:
+    """One block of a sleeper sweep: ``values[k]`` the block's values along dimension k (grid) or of
+    parameter k at each point (sobol)."""
+
+    data: dict[str, Any]
+    source: str
+    settings: dict[str, float]
+    names: tuple[str, ...]
+    values: tuple[tuple[Fraction, ...], ...]
+    design: str
+
+    def evaluate(self) -> dict[str, np.ndarray]:
+        return evaluate_sleeper_block(self)
+
+
+def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
+    """The stored values of one point (docs/sweeps.md): the strip search of Eq. (S14) in SI units."""
+    from moving_bogie.floquet.hill import VehicleMatrices
+    from moving_bogie.floquet.strip import floquet_frequencies
+    from moving_bogie.floquet.track import SleeperTrack
+
+    module = importlib.import_module(f"moving_bogie.generated.vehicle_{inp.vehicle}")
+    result = floquet_frequencies(
+        SleeperTrack(inp.beam, inp.track, inp.groups), VehicleMatrices.from_module(module, inp.vehicle_groups)
+    )
+    lowest = min((r.q for r in result.roots), key=lambda q: q.imag, default=complex(np.nan, np.nan))
+    return {
+        "count": result.count,
+        "stable": result.verdict == "STABLE",
+        "unstable": result.verdict == "UNSTABLE",
+        "certain": result.converged and result.count == len(result.roots),
+        "Omega_im": lowest.imag / inp.t_scale,
+        "Omega_re": lowest.real / inp.t_scale,
+        "harmonics": result.harmonics,
+        "Omega0": result.Omega0 / inp.t_scale,
+    }
+
+
+def evaluate_sleeper_block(task: SleeperTask) -> dict[str, np.ndarray]:
+    """The arrays of one block (shape of the block), one Floquet strip search per point."""
+    if task.design == "sobol":
+        shape: tuple[int, ...] = (len(task.values[0]),)
+        points = [((i,), {n: v[i] for n, v in zip(task.names, task.values)}) for i in range(shape[0])]
+    else:
+        shape = tuple(len(v) for v in task.values)
+        points = [(i, {n: v[k] for n, v, k in zip(task.names, task.values, i)}) for i in np.ndindex(shape)]
+    out = {name: np.full(shape, fill, dtype=dtype) for name, dtype, fill, *_ in SLEEPER_VARIABLES}
+    for index, point in points:
+        overrides = task.settings | {n: float(v) for n, v in point.items()}
+        for name, value in sleeper_point(_input(task.data, task.source, overrides)).items():
+            out[name][index] = value
+    out["computed"][...] = True
+    return out
+
+
+def make_sleeper_spec(
+    data: dict[str, Any],
+    source: str,
+    vary: Mapping[str, str],
+    *,
+    settings: Mapping[str, float] | None = None,
+    sample: int | None = None,
+    block_points: int = 1,
+) -> SleeperSweepSpec:
+    """A :class:`SleeperSweepSpec` from ``vary`` = {SI name: "START:STOP:COUNT" or "V1,V2,..."} (with
+    ``sample=N``: {SI name: "START:STOP"} and N scrambled Sobol points, seed 0)."""
+    known = [name for name in sleeper_units(data) if name != "P"]  # P does not enter the roots
+    if sample is None:
+        axes = tuple(Axis(*parse_vary(f"{n}={s}", known)) for n, s in vary.items())
+        extra: dict[str, Any] = {}
+    else:
+        ranges = dict(parse_vary(f"{n}={s}", known, needs_count=False) for n, s in vary.items())
+        extra = {"ranges": {k: [str(v) for v in r] for k, r in ranges.items()}, "n": sample, "seed": 0}
+        axes = sobol_axes(ranges, sample)
+    design = "grid" if sample is None else "sobol"
+    return SleeperSweepSpec(
+        data, source, axes, dict(settings or {}), design=design, block_points=block_points, extra=extra
+    )
