@@ -31,6 +31,9 @@ from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.generated.sleepers import TRACKS as SLEEPER_TRACKS
+
+#: The commands that route a sleeper-track file to the Floquet analyses (cli/sleepers_*.py).
+SLEEPER_COMMANDS = ("frequencies", "timeseries", "stability-map", "instability-lines", "sweep")
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
@@ -124,8 +127,8 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     if model.get("track") in SLEEPER_TRACKS:
         raise ParameterError(
             "track",
-            f"track {model['track']!r} (a rail on discrete supports) is analysed by "
-            "`moving-bogie frequencies --file` only, for now",
+            f"track {model['track']!r} (a rail on discrete supports) is analysed by the commands "
+            f"{', '.join(SLEEPER_COMMANDS)} with --file (docs/sleepers.md), not by this one",
         )
     if "physical" in data:
         if "case" in data:
