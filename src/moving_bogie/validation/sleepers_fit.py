@@ -4,9 +4,9 @@ A free vibration of the vehicle on the periodic rail is a sum of Floquet modes `
 periodic with the bay-passing period ``T0 = lam / alpha``; once the least damped one dominates, the
 root-mean-square of the deflection under the wheel over successive periods ``T0`` grows by ``e^{-Im q T0}``
 per period (exactly so in a parametric zone, where ``Re q = Omega_0 / 2``). :func:`envelope_rate` fits that
-rate by least squares to the logarithm of the per-period values; :func:`dominant_frequency` finds the peak
-of the spectrum of the signal with the fitted growth removed. Neither uses the Floquet theory: they read the
-time series only.
+rate by least squares to the logarithm of the per-period values (those above 1e-6 of the largest);
+:func:`dominant_frequency` finds the peak of the spectrum of the signal with the fitted growth removed.
+Neither uses the Floquet theory: they read the time series only.
 """
 
 from __future__ import annotations
@@ -44,6 +44,9 @@ def envelope_rate(tau: np.ndarray, x: np.ndarray, period: float, start: float) -
     them (how steady the rate is: a transient not yet gone shows here)."""
     inside = tau >= start
     mids, rms = period_rms(tau[inside], x[inside], period)
+    # a decay that reached the round-off of the run stops there: those periods say nothing of the rate
+    keep = rms >= 1e-6 * np.max(period_rms(tau, x, period)[1])
+    mids, rms = mids[keep], rms[keep]
     if mids.size < 6:
         raise ValueError("the fit window holds fewer than 6 periods")
     logs = np.log(rms)
