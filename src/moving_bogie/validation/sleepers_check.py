@@ -152,11 +152,15 @@ def check_sleepers(
     *,
     settings: SleeperBeamSettings | None = None,
     tol: float = 0.01,
+    harmonics: tuple[int, int] = (1, 6),
 ) -> SleeperCheck:
-    """Compare the finite rail with the Floquet theory for one vehicle on one sleeper track (module doc)."""
+    """Compare the finite rail with the Floquet theory for one vehicle on one sleeper track (module doc).
+
+    ``harmonics`` are the first and the largest N of the Floquet search (:func:`floquet_frequencies`).
+    """
     settings = SleeperBeamSettings() if settings is None else settings
     start = time.perf_counter()
-    result = floquet_frequencies(track, vehicle)
+    result = floquet_frequencies(track, vehicle, N0=harmonics[0], N_max=harmonics[1])
     root = _dominant_root(result)
     steady = None if root is not None else steady_response(track, vehicle, loads, points=129)
     floquet_s = time.perf_counter() - start
