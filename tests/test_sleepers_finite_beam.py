@@ -39,6 +39,18 @@ def _vehicle(eta_M: float) -> tuple[VehicleMatrices, np.ndarray]:
 
 
 @pytest.mark.parametrize(("track", "support"), TRACKS)
+def test_the_support_element_has_the_generated_dynamic_stiffness(track, support):
+    """The support's finite element, its own unknowns condensed out at a frequency w, is lam z(w), z the
+    generated support function of docs/sleepers.md (S2) (derivations/sleepers.py)."""
+    sleeper_track = SleeperTrack("eb", track, {"lam": 1.3, "alpha": 0.1, **support})
+    m, c, k = sleeper_track.support_element()
+    for w in (0.0, 0.4, 1.7):
+        d = k + 1j * w * c - w * w * m
+        condensed = d[0, 0] - d[0, 1:] @ np.linalg.solve(d[1:, 1:], d[1:, 0]) if d.shape[0] > 1 else d[0, 0]
+        assert abs(condensed - 1.3 * sleeper_track.support(np.array(w))) < 1e-12
+
+
+@pytest.mark.parametrize(("track", "support"), TRACKS)
 def test_the_pinned_pinned_mode_is_an_eigenmode_of_the_finite_rail(track, support):
     """sin(pi x / lam) vanishes at every support and at the pinned ends: the finite rail has the eigenvalue
     ((pi / lam)^2 / 2)^2 of (K, M) exactly; the quintic elements (8 per bay) approximate it to far below

@@ -27,14 +27,21 @@ from typing import Any
 import numpy as np
 
 from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.steady import steady_response
+from moving_bogie.floquet.steady import SteadyResponse, steady_response
 from moving_bogie.floquet.strip import FloquetResult, floquet_frequencies
 from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.validation.sleepers_beam import BeamRun, simulate_sleeper_beam
 from moving_bogie.validation.sleepers_fit import dominant_frequency, envelope_rate, smooth_steps
 from moving_bogie.validation.sleepers_rail import SleeperRail
 
-__all__ = ["Comparison", "SleeperBeamSettings", "SleeperCheck", "check_sleepers"]
+__all__ = [
+    "Comparison",
+    "FloquetSide",
+    "SleeperBeamSettings",
+    "SleeperCheck",
+    "check_sleepers",
+    "floquet_side",
+]
 
 #: the rail beyond the wheels' path at each end, in units of 1 / chi (the static deflection decays like
 #: e^{-x} cos x: below 1e-4 of its peak there)
@@ -44,12 +51,14 @@ MARGIN = 10.0
 @dataclass(frozen=True)
 class SleeperBeamSettings:
     """The finite model's resolution: Hermite elements per bay, time steps per bay-passing period, the
-    periods of the free run and the fraction of them left out of the fit as the transient."""
+    periods of the free run, the fraction of them left out of the fit as the transient and the rail beyond
+    the wheel's path at each end (units of 1 / chi)."""
 
     elements: int = 8
     steps_per_period: int = 200
     periods: int = 40
     transient: float = 0.4
+    margin: float = MARGIN
 
 
 @dataclass(frozen=True)
@@ -145,6 +154,48 @@ def _relative(floquet: float, finite: float) -> float:
     return abs(finite - floquet) / abs(floquet) if floquet != 0 else math.inf
 
 
+@dataclass(frozen=True)
+class FloquetSide:
+    """The Floquet theory's answers: the search, its least damped root with Im q <= 0 and that root's
+    dominant frequency (an unstable case), or the steady response (a stable one); the wall time."""
+
+    result: FloquetResult
+    root: complex | None
+    frequency: float | None
+    steady: SteadyResponse | None
+    seconds: float
+
+
+def floquet_side(
+    track: SleeperTrack, vehicle: VehicleMatrices, loads: np.ndarray, harmonics: tuple[int, int] = (1, 6)
+) -> FloquetSide:
+    """Roots by :func:`floquet_frequencies` (N from ``harmonics[0]`` to ``harmonics[1]``), then the root's
+    frequency (:func:`floquet_frequency`) or the steady response (:func:`steady_response`)."""
+    start = time.perf_counter()
+    result = floquet_frequencies(track, vehicle, N0=harmonics[0], N_max=harmonics[1])
+    root = _dominant_root(result)
+    nu = None if root is None else floquet_frequency(track, vehicle, root, result.harmonics)
+    steady = None if root is not None else steady_response(track, vehicle, loads, points=129)
+    return FloquetSide(result, root, nu, steady, time.perf_counter() - start)
+
+
+def _steady_comparison(
+    track: SleeperTrack, steady: SteadyResponse, loaded: BeamRun, T0: float, tol: float
+) -> tuple[Comparison, np.ndarray, np.ndarray]:
+    """The loaded run's smoothed contact force over its last bay against the Floquet steady force (S18) at
+    the same positions in the bay, judged by max |difference| relative to the Floquet peak-to-peak; with
+    the times and the Floquet force there (for the figure)."""
+    last = loaded.tau >= loaded.tau[-1] - T0
+    position = (loaded.entry + track.alpha * loaded.tau[last]) % track.lam
+    phase = np.exp(1j * track.Omega0 * np.outer(position / track.alpha, steady.harmonics))
+    reference = np.real(phase @ steady.force_harmonics[:, 0])
+    force = smooth_steps(loaded.force[0])[last]
+    spread = float(np.ptp(reference))
+    diff = float(np.max(np.abs(force - reference)))
+    name = "steady force over a bay"
+    return Comparison(name, spread, float(np.ptp(force)), diff / spread, tol), loaded.tau[last], reference
+
+
 def check_sleepers(
     track: SleeperTrack,
     vehicle: VehicleMatrices,
@@ -153,20 +204,19 @@ def check_sleepers(
     settings: SleeperBeamSettings | None = None,
     tol: float = 0.01,
     harmonics: tuple[int, int] = (1, 6),
+    floquet: FloquetSide | None = None,
 ) -> SleeperCheck:
     """Compare the finite rail with the Floquet theory for one vehicle on one sleeper track (module doc).
 
-    ``harmonics`` are the first and the largest N of the Floquet search (:func:`floquet_frequencies`).
+    ``harmonics`` are the first and the largest N of the Floquet search (:func:`floquet_frequencies`);
+    ``floquet`` the Floquet side already computed (:func:`floquet_side`), e.g. for a convergence study.
     """
     settings = SleeperBeamSettings() if settings is None else settings
-    start = time.perf_counter()
-    result = floquet_frequencies(track, vehicle, N0=harmonics[0], N_max=harmonics[1])
-    root = _dominant_root(result)
-    steady = None if root is not None else steady_response(track, vehicle, loads, points=129)
-    floquet_s = time.perf_counter() - start
+    side = floquet_side(track, vehicle, loads, harmonics) if floquet is None else floquet
+    root, steady = side.root, side.steady
     T0 = track.lam / track.alpha
     tau_free = settings.periods * T0
-    margin = math.ceil(MARGIN / track.lam)
+    margin = math.ceil(settings.margin / track.lam)
     travel = math.ceil(track.alpha * tau_free / track.lam) + 1
     rail = SleeperRail(track, 2 * margin + travel, settings.elements)
     entry = margin * track.lam
@@ -175,15 +225,15 @@ def check_sleepers(
     free = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, loaded=False)
     fit_start = settings.transient * tau_free
     rate, spread = envelope_rate(free.tau, free.deflection[0], T0, fit_start)
-    notes = list(result.notes)
+    notes = list(side.result.notes)
     comparisons = []
     loaded = None
     steady_tau = steady_force = None
-    if root is not None:
+    if root is not None and side.frequency is not None:
         comparisons.append(
             Comparison("growth rate -Im q", -root.imag, rate, _relative(-root.imag, rate), tol)
         )
-        nu = floquet_frequency(track, vehicle, root, result.harmonics)
+        nu = side.frequency
         top = 4 * track.Omega0 + 2 * nu
         found = dominant_frequency(free.tau, free.deflection[0], rate, fit_start, top)
         comparisons.append(Comparison("dominant frequency", nu, found, _relative(nu, found), tol))
@@ -193,21 +243,12 @@ def check_sleepers(
         )
         assert steady is not None
         loaded = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt)
-        last = loaded.tau >= tau_free - T0
-        position = (entry + track.alpha * loaded.tau[last]) % track.lam
-        phase = np.exp(1j * track.Omega0 * np.outer(position / track.alpha, steady.harmonics))
-        reference = np.real(phase @ steady.force_harmonics[:, 0])
-        force = smooth_steps(loaded.force[0])[last]
-        spread_f = float(np.ptp(reference))
-        diff = float(np.max(np.abs(force - reference)))
-        # the force's peak-to-peak over the bay; judged by max |difference| over the bay relative to it
-        name = "steady force over a bay"
-        comparisons.append(Comparison(name, spread_f, float(np.ptp(force)), diff / spread_f, tol))
-        steady_tau, steady_force = loaded.tau[last], reference
+        comparison, steady_tau, steady_force = _steady_comparison(track, steady, loaded, T0, tol)
+        comparisons.append(comparison)
     finite_s = time.perf_counter() - start
     return SleeperCheck(
         tuple(comparisons),
-        result.verdict,
+        side.result.verdict,
         root,
         track.Omega0,
         free,
@@ -218,7 +259,7 @@ def check_sleepers(
         rate,
         spread,
         rail,
-        floquet_s,
+        side.seconds,
         finite_s,
         tuple(notes),
     )

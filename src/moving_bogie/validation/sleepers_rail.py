@@ -4,14 +4,14 @@ The check of the Floquet theory by a model that does not use it: a rail of ``bay
 ends, on a support at every interior multiple of the bay ``lam``, in the dimensionless variables of
 docs/sleepers.md (S2) (the rail's mass per length 1, its bending stiffness 1/4, lengths in units of
 1 / chi, times in units of 1 / omega_e). Each bay is cut into ``elements`` Euler-Bernoulli elements with
-cubic Hermite shape functions (nodal unknowns: deflection and slope); the continuous foundation
-``kappa_f``, ``2 eta_f`` takes the element's consistent mass matrix as its shape. A support is the
-element of its track's dynamic stiffness z(w) (:func:`moving_bogie.floquet.track.SleeperTrack.support`)
-times the bay ``lam``:
-
-- ``sleepers``: a spring ``lam`` and a dashpot ``2 lam eta_sup`` from the rail's node to the ground;
-- ``sleepers-two-layer``: a railpad (``lam``, ``2 lam eta_pad``) from the node to a sleeper of mass
-  ``lam mu_sl``, on the ballast (``lam kappa_bal``, ``2 lam eta_bal``), the sleeper a degree of freedom.
+quintic Hermite shape functions (nodal unknowns: deflection, slope and curvature, so that the curvature
+under a moving wheel, which its acceleration contains, is continuous when it crosses a node); the continuous
+foundation
+``kappa_f``, ``2 eta_f`` takes the element's consistent mass matrix as its shape
+(:meth:`~moving_bogie.floquet.track.SleeperTrack.rail_foundation`). A support is the finite element of its
+track (:meth:`~moving_bogie.floquet.track.SleeperTrack.support_element`), whose dynamic stiffness at the
+rail is ``lam z(w)``: a spring-dashpot to the ground on ``sleepers``; on ``sleepers-two-layer`` a railpad
+over a sleeper of mass ``lam mu_sl`` on the ballast, the sleeper an unknown of its own.
 
 The matrices are sparse (scipy.sparse), assembled once; :mod:`moving_bogie.validation.sleepers_beam` adds
 the moving vehicle.
@@ -88,11 +88,10 @@ class SleeperRail:
     elements: int
 
     def __post_init__(self) -> None:
-        if self.track.beam != "eb":
-            raise MovingBogieError(
-                f"beam: the finite-beam check of a sleeper track has Euler-Bernoulli elements only "
-                f"(got {self.track.beam!r})"
-            )
+        try:
+            self.track.rail_foundation()
+        except ValueError as exc:
+            raise MovingBogieError(f"the finite rail on supports: {exc}") from None
         if self.bays < 4 or self.elements < 1:
             raise MovingBogieError(
                 f"the finite rail needs at least 4 bays and 1 element per bay (got {self})"
@@ -131,9 +130,14 @@ class SleeperRail:
         return PER_NODE * self.nodes - 2
 
     @property
+    def per_support(self) -> int:
+        """Unknowns of one support besides the rail's deflection (the sleeper of a two-layer support)."""
+        return self.track.support_element()[0].shape[0] - 1
+
+    @property
     def sleepers(self) -> int:
-        """Sleeper unknowns (``sleepers-two-layer``: one per interior support)."""
-        return self.bays - 1 if self.track.track == "sleepers-two-layer" else 0
+        """Unknowns of the supports: ``per_support`` at each interior support."""
+        return (self.bays - 1) * self.per_support
 
     @property
     def size(self) -> int:
@@ -146,10 +150,10 @@ class SleeperRail:
     @cached_property
     def matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
         """Sparse M, C, K of the rail on its supports (Eqs. (S19)-(S20))."""
-        g = self.track.groups
+        k_f, c_f = self.track.rail_foundation()
         me, ke = _element_matrices(self.h)
-        ce = 2 * float(g.get("eta_f", 0.0)) * me
-        kfe = ke + float(g.get("kappa_f", 0.0)) * me
+        ce = c_f * me
+        kfe = ke + k_f * me
         rows, cols, m_val, c_val, k_val = [], [], [], [], []
         for e in range(self.nodes - 1):
             dofs = self._index[PER_NODE * e : PER_NODE * e + 2 * PER_NODE]
@@ -172,28 +176,16 @@ class SleeperRail:
         return out[0], out[1], out[2]
 
     def _support_entries(self) -> tuple[np.ndarray, ...]:
-        """(rows, cols, mass, damping, stiffness) entries of the supports (S20), duplicates summed."""
-        g, lam = self.track.groups, self.lam
-        w = self._index[PER_NODE * self.support_nodes()]
-        zero = np.zeros(w.size)
-        if self.track.track == "sleepers":
-            k, c = lam * np.ones(w.size), 2 * lam * float(g.get("eta_sup", 0.0)) * np.ones(w.size)
-            return w, w, zero, c, k
-        if self.track.track != "sleepers-two-layer":
-            raise MovingBogieError(f"track: no finite rail for the track {self.track.track!r}")
-        s = self.rail_dofs + np.arange(w.size)
-        kp, cp = lam, 2 * lam * float(g.get("eta_pad", 0.0))
-        kb, cb = lam * float(g["kappa_bal"]), 2 * lam * float(g.get("eta_bal", 0.0))
-        ms = lam * float(g["mu_sl"])
-        one = np.ones(w.size)
-        rows = np.concatenate([w, w, s, s])
-        cols = np.concatenate([w, s, w, s])
-
-        def pair(a: float, b: float) -> np.ndarray:  # the pad's 2 x 2 element, ballast on the sleeper
-            return np.concatenate([a * one, -a * one, -a * one, (a + b) * one])
-
-        mass = np.concatenate([zero, zero, zero, ms * one])
-        return rows, cols, mass, pair(cp, cb), pair(kp, kb)
+        """(rows, cols, mass, damping, stiffness) entries of the supports' elements (S20)."""
+        element = self.track.support_element()
+        size = element[0].shape[0]
+        rail = self._index[PER_NODE * self.support_nodes()]
+        own = self.rail_dofs + np.arange(rail.size * (size - 1)).reshape(rail.size, size - 1)
+        dofs = np.column_stack([rail, own])  # (supports, size)
+        rows = np.repeat(dofs, size, axis=1).ravel()
+        cols = np.tile(dofs, (1, size)).ravel()
+        values = [np.tile(matrix.ravel(), rail.size) for matrix in element]
+        return rows, cols, values[0], values[1], values[2]
 
     def contact_shapes(self, x: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(unknowns, N, N', N'') at the rail position ``x``: w(x) = N . z[unknowns] and its x-derivatives.
