@@ -13,9 +13,9 @@ rail's free vibration, and for a stable case its loaded run; the Floquet search 
 beside the continuous track's finite-beam check (``validate`` of Table 1 Case 7, without the estimate
 run: its finite beam and its closed form timed apart).
 
-``--convergence``: the relative differences from the Floquet theory as the finite model is refined one
-setting at a time from the defaults (elements per bay, time steps per period, the rail beyond the wheel's
-path, the periods of the free run), the Floquet side computed once (N up to 6).
+``--convergence [unstable|example]``: the relative differences from the Floquet theory as the finite
+model is refined one setting at a time from the defaults (elements per bay, time steps per period, the
+rail beyond the wheel's path, the periods of the free run), the Floquet side computed once (N up to 6).
 """
 
 from __future__ import annotations
@@ -93,11 +93,10 @@ def timing() -> None:
     )
 
 
-def convergence() -> None:
-    for label, (track, vehicle, loads) in (
-        ("unstable", unstable_case()),
-        ("examples/sleepers.toml", example_case()),
-    ):
+def convergence(which: str) -> None:
+    cases = {"unstable": unstable_case, "example": example_case}
+    for label in list(cases) if which == "both" else [which]:
+        track, vehicle, loads = cases[label]()
         side = floquet_side(track, vehicle, loads)  # type: ignore[arg-type]
         base = SleeperBeamSettings()
         variants = [("defaults", base)]
@@ -124,9 +123,15 @@ def _print(header: list[str], rows: list[list[str]]) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--convergence", action="store_true", help="the convergence tables instead of timing")
+    parser.add_argument(
+        "--convergence",
+        nargs="?",
+        const="both",
+        choices=("both", "unstable", "example"),
+        help="the convergence tables (of both cases, or of one) instead of the timing",
+    )
     args = parser.parse_args()
-    convergence() if args.convergence else timing()
+    convergence(args.convergence) if args.convergence else timing()
 
 
 if __name__ == "__main__":
