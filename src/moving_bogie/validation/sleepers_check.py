@@ -48,6 +48,12 @@ __all__ = [
 MARGIN = 10.0
 
 
+#: the Floquet steady response's convergence in the harmonics, relative to its largest value (the mean force
+#: 2): a hundredth of its default, so that its truncation stays far below the tolerance on the force's
+#: peak-to-peak, a few percent of the mean
+STEADY_TOL = 1e-5
+
+
 @dataclass(frozen=True)
 class SleeperBeamSettings:
     """The finite model's resolution: Hermite elements per bay, time steps per bay-passing period, the
@@ -175,17 +181,18 @@ def floquet_side(
     result = floquet_frequencies(track, vehicle, N0=harmonics[0], N_max=harmonics[1])
     root = _dominant_root(result)
     nu = None if root is None else floquet_frequency(track, vehicle, root, result.harmonics)
-    steady = None if root is not None else steady_response(track, vehicle, loads, points=129)
+    steady = None if root is not None else steady_response(track, vehicle, loads, points=129, tol=STEADY_TOL)
     return FloquetSide(result, root, nu, steady, time.perf_counter() - start)
 
 
 def _steady_comparison(
     track: SleeperTrack, steady: SteadyResponse, loaded: BeamRun, T0: float, tol: float
 ) -> tuple[Comparison, np.ndarray, np.ndarray]:
-    """The loaded run's smoothed contact force over its last bay against the Floquet steady force (S18) at
-    the same positions in the bay, judged by max |difference| relative to the Floquet peak-to-peak; with
-    the times and the Floquet force there (for the figure)."""
-    last = loaded.tau >= loaded.tau[-1] - T0
+    """The loaded run's smoothed contact force over its last bay (up to its last averaged step) against the
+    Floquet steady force (S18) at the same positions in the bay, judged by max |difference| relative to the
+    Floquet peak-to-peak; with the times and the Floquet force there (for the figure)."""
+    end = loaded.tau[-2]  # the last step is not averaged (smooth_steps)
+    last = (loaded.tau >= end - T0) & (loaded.tau <= end)
     position = (loaded.entry + track.alpha * loaded.tau[last]) % track.lam
     phase = np.exp(1j * track.Omega0 * np.outer(position / track.alpha, steady.harmonics))
     reference = np.real(phase @ steady.force_harmonics[:, 0])
