@@ -34,7 +34,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "  moving-bogie validate --file examples/two-layer.toml\n"
             "  moving-bogie validate --case 1 --tmax 400 --plot case1.png\n"
             "  moving-bogie validate --case 2 --modes 1000 --json\n"
-            "  moving-bogie validate --case 5 --model masses --plot masses5.png"
+            "  moving-bogie validate --case 5 --model masses --plot masses5.png\n"
+            "  moving-bogie validate --file examples/sleepers.toml --plot sleepers.png\n"
+            "On a sleeper track (--file naming track = sleepers or sleepers-two-layer) the finite rail is\n"
+            "compared with the Floquet theory instead: the growth rate and dominant frequency of the free\n"
+            "vibration (unstable case) or the steady contact force over a bay (stable case); see\n"
+            "docs/sleepers.md."
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -72,7 +77,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.inputs import is_sleeper_file
 
+    if args.file is not None and is_sleeper_file(args.file):
+        from .sleepers_validate_cmd import run_sleeper_validation
+
+        if not (0 < args.tol < 1):
+            raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
+        return run_sleeper_validation(args)
     if args.modes < 4:
         raise ParameterError("modes", f"--modes must be at least 4 (got {args.modes})")
     if args.tmax is not None and not (args.tmax > 0 and args.tmax < float("inf")):

@@ -82,6 +82,33 @@ class SleeperTrack:
         args = {n: self.groups[n] for n in generated.TRACKS[self.track]["support_arguments"]}
         return fn(np.asarray(w, dtype=complex), **args) + 0j
 
+    def support_element(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(M, C, K) of one support as a finite element, times the bay lam (docs/sleepers.md, Eq. (S24)).
+
+        Unknowns: the rail's deflection at the support, then the support's own (the sleeper of
+        ``sleepers-two-layer``); its dynamic stiffness at the rail, the others condensed out, is
+        ``lam z(w)``: ``sleepers`` a spring ``lam`` and a dashpot ``2 lam eta_sup``; ``sleepers-two-layer``
+        a railpad (``lam``, ``2 lam eta_pad``) over a sleeper of mass ``lam mu_sl`` on the ballast
+        (``lam kappa_bal``, ``2 lam eta_bal``).
+        """
+        g, lam = self.groups, self.lam
+        if self.track == "sleepers":
+            return np.zeros((1, 1)), np.array([[2 * lam * g["eta_sup"]]]), np.array([[lam]])
+
+        def pair(pad: float, ballast: float) -> np.ndarray:
+            return lam * np.array([[pad, -pad], [-pad, pad + ballast]])
+
+        mass = np.diag([0.0, lam * g["mu_sl"]])
+        return mass, pair(2 * g["eta_pad"], 2 * g["eta_bal"]), pair(1.0, g["kappa_bal"])
+
+    def rail_foundation(self) -> tuple[float, float]:
+        """(stiffness, damping) per length of the continuous foundation, ``(kappa_f, 2 eta_f)``, of an
+        Euler-Bernoulli rail (mass 1 and bending stiffness 1/4 per length, Eq. (S1)); ValueError naming
+        the beam for another."""
+        if self.beam != "eb":
+            raise ValueError(f"beam: a rail of Euler-Bernoulli elements has no beam {self.beam!r}")
+        return float(self.groups.get("kappa_f", 0.0)), 2 * float(self.groups.get("eta_f", 0.0))
+
     def _coeffs(self, w: np.ndarray) -> tuple[list, list]:
         w = np.asarray(w, dtype=complex)
         n = getattr(generated, f"n_coeffs_{self.beam}")(w, **self.arguments("groups"))

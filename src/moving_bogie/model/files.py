@@ -31,13 +31,13 @@ from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.generated.sleepers import TRACKS as SLEEPER_TRACKS
-
-#: The commands that route a sleeper-track file to the Floquet analyses (cli/sleepers_*.py).
-SLEEPER_COMMANDS = ("frequencies", "timeseries", "stability-map", "instability-lines", "sweep")
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
+
+#: The commands that route a sleeper-track file to the Floquet analyses (cli/sleepers_*.py).
+SLEEPER_COMMANDS = ("frequencies", "timeseries", "validate", "stability-map", "instability-lines", "sweep")
 
 __all__ = ["dimensionless_keys", "load_parameters", "load_params_file", "parse_params_toml", "physical_keys"]
 

@@ -1,0 +1,138 @@
+"""Time the finite-beam check on sleepers beside the continuous track's, and print its convergence.
+
+Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sleepers_finite_beam.py [--convergence]``. A script,
+not a test: nothing is asserted, the tables are printed.
+
+Timing (one run, in one process): the finite-beam check of a sleeper case (``check_sleepers``: the finite
+rail's free vibration, and for a stable case its loaded run; the Floquet search timed apart), for
+
+- the unstable case of tests/test_sleepers_finite_beam.py (bay 2.5 / chi, alpha 0.24, eta_M 14, light
+  damping: the principal parametric zone) and
+- examples/sleepers.toml (stable: the steady force),
+
+beside the continuous track's finite-beam check (``validate`` of Table 1 Case 7, without the estimate
+run: its finite beam and its closed form timed apart).
+
+``--convergence [unstable|example]``: the relative differences from the Floquet theory as the finite
+model is refined one setting at a time from the defaults (elements per bay, time steps per period, the
+rail beyond the wheel's path, the periods of the free run), the Floquet side computed once (N up to 6).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import importlib
+from pathlib import Path
+
+from moving_bogie.floquet.hill import VehicleMatrices
+from moving_bogie.floquet.inputs import load_sleeper_file
+from moving_bogie.floquet.steady import static_loads
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.generated import vehicle_mass
+from moving_bogie.kernels.bound import bind
+from moving_bogie.model.cases import table1_case
+from moving_bogie.validation.compare import validate
+from moving_bogie.validation.sleepers_check import (
+    SleeperBeamSettings,
+    SleeperCheck,
+    check_sleepers,
+    floquet_side,
+)
+
+HERE = Path(__file__).resolve().parent.parent
+UNSTABLE = {"lam": 2.5, "alpha": 0.24, "kappa_f": 0.0, "eta_f": 0.01, "eta_sup": 0.01}
+
+
+def unstable_case() -> tuple[SleeperTrack, VehicleMatrices, object]:
+    values = {"eta_M": 14.0}
+    vehicle = VehicleMatrices.from_module(vehicle_mass, values)
+    return SleeperTrack("eb", "sleepers", UNSTABLE), vehicle, static_loads(vehicle_mass, values)
+
+
+def example_case() -> tuple[SleeperTrack, VehicleMatrices, object]:
+    data = load_sleeper_file(HERE / "examples" / "sleepers.toml")
+    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
+    return (
+        SleeperTrack(data.beam, data.track, data.groups),
+        vehicle,
+        static_loads(module, data.vehicle_groups),
+    )
+
+
+def _row(label: str, check: SleeperCheck) -> list[str]:
+    worst = max(c.relative for c in check.comparisons)
+    names = ", ".join(c.quantity for c in check.comparisons)
+    return [label, f"{check.finite_s:.2f}", f"{check.floquet_s:.2f}", f"{worst:.2e}", names]
+
+
+def timing() -> None:
+    rows = []
+    for label, case, harmonics in (
+        ("sleepers, unstable", unstable_case(), (1, 6)),
+        ("examples/sleepers.toml", example_case(), (1, 6)),
+    ):
+        track, vehicle, loads = case
+        rows.append(_row(label, check_sleepers(track, vehicle, loads, harmonics=harmonics)))  # type: ignore[arg-type]
+    result = validate(bind(table1_case(7)), estimate=False)
+    worst = max(result.relative_diff.values())
+    rows.append(
+        [
+            "continuous, Case 7",
+            f"{result.finite_beam_s:.2f}",
+            f"{result.closed_form_s:.2f}",
+            f"{worst:.2e}",
+            "every DOF over the window",
+        ]
+    )
+    header = ["case", "finite beam [s]", "reference [s]", "worst rel. diff", "compared"]
+    _print(header, rows)
+    print(
+        "reference: the Floquet search (+ steady force) on sleepers; the closed form on the continuous track"
+    )
+
+
+def convergence(which: str) -> None:
+    cases = {"unstable": unstable_case, "example": example_case}
+    for label in list(cases) if which == "both" else [which]:
+        track, vehicle, loads = cases[label]()
+        side = floquet_side(track, vehicle, loads)  # type: ignore[arg-type]
+        base = SleeperBeamSettings()
+        variants = [("defaults", base)]
+        for name, values in (
+            ("elements", (4, 16)),
+            ("steps_per_period", (100, 400)),
+            ("margin", (20.0,)),
+            ("periods", (30, 60)),
+        ):
+            variants += [(f"{name} = {v}", dataclasses.replace(base, **{name: v})) for v in values]
+        rows = []
+        for name, settings in variants:
+            check = check_sleepers(track, vehicle, loads, settings=settings, floquet=side)  # type: ignore[arg-type]
+            rows.append([name] + [f"{c.relative:.2e}" for c in check.comparisons] + [f"{check.finite_s:.2f}"])
+        print(f"\n{label}: Floquet {side.result.verdict}, root {side.root}, N = {side.result.harmonics}")
+        _print(["setting"] + [c.quantity for c in check.comparisons] + ["finite beam [s]"], rows)
+
+
+def _print(header: list[str], rows: list[list[str]]) -> None:
+    widths = [max(len(str(r[i])) for r in [header, *rows]) for i in range(len(header))]
+    for row in [header, *rows]:
+        print("  ".join(str(x).ljust(w) for x, w in zip(row, widths)))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--convergence",
+        nargs="?",
+        const="both",
+        choices=("both", "unstable", "example"),
+        help="the convergence tables (of both cases, or of one) instead of the timing",
+    )
+    args = parser.parse_args()
+    convergence(args.convergence) if args.convergence else timing()
+
+
+if __name__ == "__main__":
+    main()

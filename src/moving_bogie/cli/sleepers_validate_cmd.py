@@ -1,0 +1,121 @@
+"""``moving-bogie validate --file F`` on a sleeper track: the finite rail against the Floquet theory."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from moving_bogie.cli.common import parameter_options, print_json
+
+if TYPE_CHECKING:
+    from moving_bogie.floquet.inputs import SleeperInput
+    from moving_bogie.validation.sleepers_check import SleeperCheck
+
+#: options of ``validate`` that the continuous tracks' check takes and a sleeper file does not
+_NOT_HERE = {"case": "--case", "beam": "--beam", "track": "--track", "vehicle": "--vehicle", "tmax": "--tmax"}
+_FLAGS = {"no_correction": "--no-correction", "no_estimate": "--no-estimate"}
+
+
+def _refuse(args: argparse.Namespace) -> None:
+    """One message naming the first option that does not apply to a sleeper file (before any work)."""
+    from moving_bogie.errors import ParameterError
+
+    given = [opt for dest, opt in _NOT_HERE.items() if getattr(args, dest, None) is not None]
+    given += [opt for dest, opt in _FLAGS.items() if getattr(args, dest, False)]
+    given += [opt for name, opt, _ in parameter_options() if getattr(args, name, None) is not None]
+    if getattr(args, "set", None):
+        given.append("--set")
+    if args.modes != 500:
+        given.append("--modes")
+    if given:
+        name = given[0].lstrip("-")
+        raise ParameterError(
+            name, f"{given[0]} does not apply to a sleeper track (give the model in the file)"
+        )
+
+
+def run_sleeper_validation(args: argparse.Namespace) -> int:
+    """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers`, printed."""
+    import importlib
+
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.inputs import load_sleeper_file
+
+    _refuse(args)
+    data = load_sleeper_file(args.file)
+    if data.groups["alpha"] <= 0:
+        raise ParameterError("v", "v must be positive on a sleeper track (the vehicle must cross the bays)")
+    if data.beam != "eb":
+        raise ParameterError(
+            "beam", f"the finite rail on sleepers has Euler-Bernoulli elements (got {data.beam!r})"
+        )
+
+    from moving_bogie.floquet.hill import VehicleMatrices
+    from moving_bogie.floquet.steady import static_loads
+    from moving_bogie.floquet.track import SleeperTrack
+    from moving_bogie.validation.sleepers_check import check_sleepers
+
+    track = SleeperTrack(data.beam, data.track, data.groups)
+    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
+    result = check_sleepers(track, vehicle, static_loads(module, data.vehicle_groups), tol=args.tol)
+    if args.plot:
+        from moving_bogie.response.plots import save_figure
+        from moving_bogie.validation.sleepers_plots import plot_sleeper_check
+
+        title = f"{data.beam}/{data.track}/{data.vehicle}, v = {data.physical['v']:g} m/s"
+        save_figure(plot_sleeper_check(result, title=title), args.plot, dpi=150)
+    out = sleeper_check_dict(result, data)
+    if args.plot:
+        out["plot"] = str(args.plot)
+    if args.json:
+        print_json(out)
+    else:
+        print(format_sleeper_check(out))
+        if args.plot:
+            print(f"figure written to {args.plot}")
+    return 0 if result.agrees else 1
+
+
+def sleeper_check_dict(result: SleeperCheck, data: SleeperInput) -> dict[str, Any]:
+    """The check's summary with SI values beside the dimensionless ones (rates and frequencies in 1/s and
+    rad/s, forces in N: the static load 2 is P)."""
+    out = {"model": f"{data.beam}/{data.track}/{data.vehicle}", **result.to_dict()}
+    to_si = {"growth rate -Im q": 1 / data.t_scale, "dominant frequency": 1 / data.t_scale}
+    force = data.physical.get("P", 2.0) / 2
+    for item in out["comparisons"]:
+        scale = to_si.get(item["quantity"], force)
+        item["unit_si"] = (
+            "N"
+            if item["quantity"].startswith("steady")
+            else ("1/s" if "rate" in item["quantity"] else "rad/s")
+        )
+        item["floquet_si"], item["finite_beam_si"] = item["floquet"] * scale, item["finite_beam"] * scale
+    return out
+
+
+def format_sleeper_check(out: dict[str, Any]) -> str:
+    """The table: quantity, Floquet, finite beam (SI), relative difference, and the verdict line."""
+    fb = out["finite_beam"]
+    lines = [
+        f"model {out['model']}: finite rail of {fb['bays']} bays "
+        f"({fb['elements_per_bay']} quintic elements per bay, "
+        f"{fb['unknowns']} unknowns, dt = {fb['dt']:.4g}) against the Floquet theory "
+        f"(verdict {out['floquet_verdict']})",
+        f"  {'quantity':<26}{'Floquet':>14}{'finite beam':>14}  {'unit':<6}{'rel. diff':>10}  within",
+    ]
+    for c in out["comparisons"]:
+        lines.append(
+            f"  {c['quantity']:<26}{c['floquet_si']:>14.6g}{c['finite_beam_si']:>14.6g}  {c['unit_si']:<6}"
+            f"{c['relative_diff']:>10.3%}  {'yes' if c['within'] else 'NO'}"
+        )
+    lines.append(
+        "rule: |finite - Floquet| <= tol |Floquet| for the rate and the frequency; for the steady force "
+        "max |difference| over the last bay <= tol x the Floquet force's peak-to-peak"
+    )
+    t = out["timings"]
+    lines.append(f"time: Floquet {t['floquet_s']:.2f} s, finite beam {t['finite_beam_s']:.2f} s")
+    lines += [f"NOTE: {note}" for note in out["notes"]]
+    tol = out["comparisons"][0]["tolerance"] if out["comparisons"] else float("nan")
+    lines.append(f"verdict: {'AGREE' if out['agrees'] else 'DISAGREE'} (every quantity within {tol:.3g})")
+    return "\n".join(lines)

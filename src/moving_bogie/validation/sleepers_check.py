@@ -1,0 +1,279 @@
+"""The finite-beam check of the Floquet theory of a vehicle on a rail on sleepers (docs/sleepers.md).
+
+Three quantities, each from the Floquet theory (:mod:`moving_bogie.floquet`) and from the finite rail in
+the time domain (:mod:`moving_bogie.validation.sleepers_beam`, which uses no Floquet theory):
+
+- the growth (or decay) rate of the free vibration: ``-Im q`` of the least damped root against the slope of
+  the logarithm of the deflection's RMS per bay-passing period of a run released from the static
+  deflection with the loads removed (:func:`~moving_bogie.validation.sleepers_fit.envelope_rate`);
+- the dominant frequency of that free vibration: ``|Re q + n Omega_0|`` for the harmonic ``n`` that carries
+  the largest contact displacement in the root's null vector of the Hill matrix (S13), against the peak of
+  the spectrum of the run with its growth removed;
+- the steady contact force over a bay (S16)-(S18), against the loaded run's last bay; the difference is
+  judged relative to the Floquet force's peak-to-peak variation over the bay.
+
+The rate and the frequency are compared when the Floquet theory finds a root (Im q <= 0: an unstable case);
+the steady force when it finds none (a stable case: the loaded run then tends to the steady response).
+Each must agree within ``tol`` (1 % by default), relative to the Floquet value.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.floquet.steady import SteadyResponse, steady_response
+from moving_bogie.floquet.strip import FloquetResult, floquet_frequencies
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.validation.sleepers_beam import BeamRun, simulate_sleeper_beam
+from moving_bogie.validation.sleepers_fit import dominant_frequency, envelope_rate, smooth_steps
+from moving_bogie.validation.sleepers_rail import SleeperRail
+
+__all__ = [
+    "Comparison",
+    "FloquetSide",
+    "SleeperBeamSettings",
+    "SleeperCheck",
+    "check_sleepers",
+    "floquet_side",
+]
+
+#: the rail beyond the wheels' path at each end, in units of 1 / chi (the static deflection decays like
+#: e^{-x} cos x: below 1e-4 of its peak there)
+MARGIN = 10.0
+
+
+#: the Floquet steady response's convergence in the harmonics, relative to its largest value (the mean force
+#: 2): a hundredth of its default, so that its truncation stays far below the tolerance on the force's
+#: peak-to-peak, a few percent of the mean
+STEADY_TOL = 1e-5
+
+
+@dataclass(frozen=True)
+class SleeperBeamSettings:
+    """The finite model's resolution: Hermite elements per bay, time steps per bay-passing period, the
+    periods of the free run, the fraction of them left out of the fit as the transient and the rail beyond
+    the wheel's path at each end (units of 1 / chi)."""
+
+    elements: int = 8
+    steps_per_period: int = 200
+    periods: int = 40
+    transient: float = 0.4
+    margin: float = MARGIN
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """One quantity: the Floquet value, the finite rail's, their relative difference against ``tol``."""
+
+    quantity: str
+    floquet: float
+    finite: float
+    relative: float
+    tolerance: float
+
+    @property
+    def within(self) -> bool:
+        return bool(self.relative <= self.tolerance)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "quantity": self.quantity,
+            "floquet": self.floquet,
+            "finite_beam": self.finite,
+            "relative_diff": self.relative,
+            "tolerance": self.tolerance,
+            "within": self.within,
+        }
+
+
+@dataclass(frozen=True)
+class SleeperCheck:
+    """The comparisons, the Floquet verdict, the two runs (for plots) and the wall times."""
+
+    comparisons: tuple[Comparison, ...]
+    floquet_verdict: str
+    root: complex | None
+    Omega0: float
+    free: BeamRun
+    loaded: BeamRun | None
+    steady_tau: np.ndarray | None
+    steady_force: np.ndarray | None
+    fit_start: float
+    rate: float
+    rate_spread: float
+    rail: SleeperRail
+    floquet_s: float
+    finite_s: float
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def agrees(self) -> bool:
+        return bool(self.comparisons) and all(c.within for c in self.comparisons)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "agrees": self.agrees,
+            "floquet_verdict": self.floquet_verdict,
+            "root_q": None if self.root is None else [self.root.real, self.root.imag],
+            "Omega0": self.Omega0,
+            "comparisons": [c.to_dict() for c in self.comparisons],
+            "finite_beam": {
+                "bays": self.rail.bays,
+                "elements_per_bay": self.rail.elements,
+                "length": self.rail.length,
+                "unknowns": self.rail.size,
+                "dt": self.free.dt,
+                "free_run_tau": float(self.free.tau[-1]),
+                "fit_start": self.fit_start,
+                "free_vibration_rate": self.rate,
+                "rate_spread": self.rate_spread,
+            },
+            "timings": {"floquet_s": self.floquet_s, "finite_beam_s": self.finite_s},
+            "notes": list(self.notes),
+        }
+
+
+def _dominant_root(result: FloquetResult) -> complex | None:
+    roots = [r.q for r in result.roots if r.q.imag <= 0]
+    return min(roots, key=lambda q: q.imag) if roots else None
+
+
+def floquet_frequency(track: SleeperTrack, vehicle: VehicleMatrices, q: complex, N: int) -> float:
+    """``|Re q + n Omega_0|`` for the harmonic n with the largest contact displacement in the null vector of
+    the Hill matrix (S13) at the root ``q`` (the smallest right singular vector)."""
+    system = FloquetSystem(track, vehicle, N, tol=1e-10)
+    matrix, _ = system.matrix(q)
+    null = np.linalg.svd(matrix)[2][-1].conj()
+    c = vehicle.contacts
+    amplitudes = np.abs(null[: system.harmonics.size * c].reshape(-1, c)[:, 0])
+    n = system.harmonics[int(np.argmax(amplitudes))]
+    return abs(q.real + n * track.Omega0)
+
+
+def _relative(floquet: float, finite: float) -> float:
+    return abs(finite - floquet) / abs(floquet) if floquet != 0 else math.inf
+
+
+@dataclass(frozen=True)
+class FloquetSide:
+    """The Floquet theory's answers: the search, its least damped root with Im q <= 0 and that root's
+    dominant frequency (an unstable case), or the steady response (a stable one); the wall time."""
+
+    result: FloquetResult
+    root: complex | None
+    frequency: float | None
+    steady: SteadyResponse | None
+    seconds: float
+
+
+def floquet_side(
+    track: SleeperTrack, vehicle: VehicleMatrices, loads: np.ndarray, harmonics: tuple[int, int] = (1, 6)
+) -> FloquetSide:
+    """Roots by :func:`floquet_frequencies` (N from ``harmonics[0]`` to ``harmonics[1]``), then the root's
+    frequency (:func:`floquet_frequency`) or the steady response (:func:`steady_response`)."""
+    start = time.perf_counter()
+    result = floquet_frequencies(track, vehicle, N0=harmonics[0], N_max=harmonics[1])
+    root = _dominant_root(result)
+    nu = None if root is None else floquet_frequency(track, vehicle, root, result.harmonics)
+    steady = None if root is not None else steady_response(track, vehicle, loads, points=129, tol=STEADY_TOL)
+    return FloquetSide(result, root, nu, steady, time.perf_counter() - start)
+
+
+def _steady_comparison(
+    track: SleeperTrack, steady: SteadyResponse, loaded: BeamRun, T0: float, tol: float
+) -> tuple[Comparison, np.ndarray, np.ndarray]:
+    """The loaded run's smoothed contact force over its last bay (up to its last averaged step) against the
+    Floquet steady force (S18) at the same positions in the bay, judged by max |difference| relative to the
+    Floquet peak-to-peak; with the times and the Floquet force there (for the figure)."""
+    end = loaded.tau[-2]  # the last step is not averaged (smooth_steps)
+    last = (loaded.tau >= end - T0) & (loaded.tau <= end)
+    position = (loaded.entry + track.alpha * loaded.tau[last]) % track.lam
+    phase = np.exp(1j * track.Omega0 * np.outer(position / track.alpha, steady.harmonics))
+    reference = np.real(phase @ steady.force_harmonics[:, 0])
+    force = smooth_steps(loaded.force[0])[last]
+    spread = float(np.ptp(reference))
+    diff = float(np.max(np.abs(force - reference)))
+    name = "steady force over a bay"
+    return Comparison(name, spread, float(np.ptp(force)), diff / spread, tol), loaded.tau[last], reference
+
+
+def check_sleepers(
+    track: SleeperTrack,
+    vehicle: VehicleMatrices,
+    loads: np.ndarray,
+    *,
+    settings: SleeperBeamSettings | None = None,
+    tol: float = 0.01,
+    harmonics: tuple[int, int] = (1, 6),
+    floquet: FloquetSide | None = None,
+) -> SleeperCheck:
+    """Compare the finite rail with the Floquet theory for one vehicle on one sleeper track (module doc).
+
+    ``harmonics`` are the first and the largest N of the Floquet search (:func:`floquet_frequencies`);
+    ``floquet`` the Floquet side already computed (:func:`floquet_side`), e.g. for a convergence study.
+    """
+    settings = SleeperBeamSettings() if settings is None else settings
+    side = floquet_side(track, vehicle, loads, harmonics) if floquet is None else floquet
+    root, steady = side.root, side.steady
+    T0 = track.lam / track.alpha
+    tau_free = settings.periods * T0
+    margin = math.ceil(settings.margin / track.lam)
+    travel = math.ceil(track.alpha * tau_free / track.lam) + 1
+    rail = SleeperRail(track, 2 * margin + travel, settings.elements)
+    entry = margin * track.lam
+    dt = T0 / settings.steps_per_period
+    start = time.perf_counter()
+    free = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, loaded=False)
+    fit_start = settings.transient * tau_free
+    notes = list(side.result.notes)
+    try:
+        rate, spread = envelope_rate(free.tau, free.deflection[0], T0, fit_start)
+    except (
+        ValueError
+    ):  # decayed to round-off before the fit window: a stable case, whose rate is not compared
+        fit_start = 0.0
+        rate, spread = envelope_rate(free.tau, free.deflection[0], T0, fit_start)
+        notes.append("the free vibration decayed to round-off early: its rate is fitted from tau = 0")
+    comparisons = []
+    loaded = None
+    steady_tau = steady_force = None
+    if root is not None and side.frequency is not None:
+        comparisons.append(
+            Comparison("growth rate -Im q", -root.imag, rate, _relative(-root.imag, rate), tol)
+        )
+        nu = side.frequency
+        top = 4 * track.Omega0 + 2 * nu
+        found = dominant_frequency(free.tau, free.deflection[0], rate, fit_start, top)
+        comparisons.append(Comparison("dominant frequency", nu, found, _relative(nu, found), tol))
+    else:
+        notes.append(
+            f"no Floquet root with Im q <= 0 (stable): the free vibration's rate {rate:.4g} is not compared"
+        )
+        assert steady is not None
+        loaded = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt)
+        comparison, steady_tau, steady_force = _steady_comparison(track, steady, loaded, T0, tol)
+        comparisons.append(comparison)
+    finite_s = time.perf_counter() - start
+    return SleeperCheck(
+        tuple(comparisons),
+        side.result.verdict,
+        root,
+        track.Omega0,
+        free,
+        loaded,
+        steady_tau,
+        steady_force,
+        fit_start,
+        rate,
+        spread,
+        rail,
+        side.seconds,
+        finite_s,
+        tuple(notes),
+    )

@@ -1,0 +1,144 @@
+"""The finite rail on discrete supports against the Floquet theory (moving_bogie.validation.sleepers_*).
+
+The finite rail (quintic Hermite elements, point supports, the vehicle stepped by Newmark's rule) uses no
+Floquet theory: no harmonics, no receptance, no lattice sum. The references are
+
+- the exact pinned-pinned frequency (pi / lam)^2 / 2 of a rail on supports (the wave sin(pi x / lam) does
+  not move the supports; docs/sleepers.md (S15));
+- the Floquet steady response (S17) at a very small speed, against the finite rail's static deflection;
+- the Floquet root with Im q < 0 of an unstable case (floquet_frequencies) and the Floquet steady force of
+  a stable one (steady_response), against the finite rail's free vibration and loaded run
+  (check_sleepers): the issue's 1 % on the growth rate, the dominant frequency and the steady force.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import scipy.sparse.linalg as sla
+
+from moving_bogie.cli import main
+from moving_bogie.floquet.hill import VehicleMatrices
+from moving_bogie.floquet.steady import static_loads, steady_response
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
+from moving_bogie.validation.sleepers_check import SleeperBeamSettings, check_sleepers
+from moving_bogie.validation.sleepers_rail import SleeperRail
+
+TRACKS = [
+    ("sleepers", {"eta_sup": 0.1}),
+    ("sleepers-two-layer", {"eta_pad": 0.1, "mu_sl": 0.5, "kappa_bal": 0.5, "eta_bal": 0.1}),
+]
+
+
+def _vehicle(eta_M: float) -> tuple[VehicleMatrices, np.ndarray]:
+    values = {"eta_M": eta_M}
+    return VehicleMatrices.from_module(vehicle_mass, values), static_loads(vehicle_mass, values)
+
+
+@pytest.mark.parametrize(("track", "support"), TRACKS)
+def test_the_support_element_has_the_generated_dynamic_stiffness(track, support):
+    """The support's finite element, its own unknowns condensed out at a frequency w, is lam z(w), z the
+    generated support function of docs/sleepers.md (S2) (derivations/sleepers.py)."""
+    sleeper_track = SleeperTrack("eb", track, {"lam": 1.3, "alpha": 0.1, **support})
+    m, c, k = sleeper_track.support_element()
+    for w in (0.0, 0.4, 1.7):
+        d = k + 1j * w * c - w * w * m
+        condensed = d[0, 0] - d[0, 1:] @ np.linalg.solve(d[1:, 1:], d[1:, 0]) if d.shape[0] > 1 else d[0, 0]
+        assert abs(condensed - 1.3 * sleeper_track.support(np.array(w))) < 1e-12
+
+
+@pytest.mark.parametrize(("track", "support"), TRACKS)
+def test_the_pinned_pinned_mode_is_an_eigenmode_of_the_finite_rail(track, support):
+    """sin(pi x / lam) vanishes at every support and at the pinned ends: the finite rail has the eigenvalue
+    ((pi / lam)^2 / 2)^2 of (K, M) exactly; the quintic elements (8 per bay) approximate it to far below
+    1e-6 (their error falls like h^8 for the eigenvalue)."""
+    lam = 1.5
+    groups = {"lam": lam, "alpha": 0.1, "kappa_f": 0.0, "eta_f": 0.05, **support}
+    rail = SleeperRail(SleeperTrack("eb", track, groups), 12, 8)
+    m, _, k = rail.matrices
+    exact = (np.pi / lam) ** 2 / 2
+    values = sla.eigsh(k, k=3, M=m, sigma=exact**2, return_eigenvectors=False)
+    assert np.min(np.abs(np.sqrt(values) / exact - 1)) < 1e-6
+
+
+@pytest.mark.parametrize(("track", "support"), TRACKS)
+def test_static_deflection_against_the_floquet_steady_response_at_low_speed(track, support):
+    """The finite rail's static deflection under the load 2 at a support, a quarter and half a bay from it,
+    against the Floquet steady deflection (S17) at alpha = 1e-3 (its dynamic part is of order alpha^2): within
+    1e-3, the tolerance to which steady_response converges its time series."""
+    lam, bays = 1.5, 28
+    groups = {"lam": lam, "alpha": 1e-3, "kappa_f": 0.0, "eta_f": 0.05, **support}
+    sleeper_track = SleeperTrack("eb", track, groups)
+    vehicle, loads = _vehicle(1.0)
+    steady = steady_response(sleeper_track, vehicle, loads, points=5)
+    rail = SleeperRail(sleeper_track, bays, 8)
+    stiffness = rail.matrices[2].tocsc()
+    for position, floquet in zip(steady.position[:3], steady.deflection[0][:3]):
+        dofs, shape, _, _ = rail.contact_shapes(bays // 2 * lam + position)
+        force = np.zeros(rail.size)
+        force[dofs] = loads[0] * shape
+        finite = shape @ sla.spsolve(stiffness, force)[dofs]
+        assert abs(finite / floquet - 1) < 1e-3
+
+
+@pytest.mark.slow
+def test_unstable_case_growth_rate_and_frequency_within_one_percent():
+    """A wheel in the principal parametric zone (Re q = Omega_0 / 2; bay 2.5 / chi, light damping): the
+    free vibration released from the static deflection grows at the Floquet rate -Im q and oscillates at the
+    Floquet frequency, each within 1 % (the issue's tolerance)."""
+    groups = {"lam": 2.5, "alpha": 0.24, "kappa_f": 0.0, "eta_f": 0.01, "eta_sup": 0.01}
+    vehicle, loads = _vehicle(14.0)
+    track, settings = SleeperTrack("eb", "sleepers", groups), SleeperBeamSettings(periods=30)
+    result = check_sleepers(track, vehicle, loads, settings=settings, harmonics=(3, 3))
+    assert result.floquet_verdict == "UNSTABLE"
+    names = [c.quantity for c in result.comparisons]
+    assert names == ["growth rate -Im q", "dominant frequency"]
+    assert result.rate > 0
+    for comparison in result.comparisons:
+        assert comparison.relative < 0.01, comparison
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("module", [vehicle_mass, vehicle_hertz_mass])
+def test_stable_case_steady_force_within_one_percent(module):
+    """The UIC60 rail of examples/sleepers.toml (its groups) under its wheel, rigid or on a Hertz spring
+    (kappa_H 20: k_H = 1.4e9 N/m): no Floquet root with Im q <= 0, and the loaded run's contact force over
+    its last bay within 1 % of the Floquet steady force's peak-to-peak."""
+    groups = {"lam": 0.8428542781, "alpha": 0.0436009096, "kappa_f": 0.0, "eta_f": 0.0128874112}
+    groups["eta_sup"] = 0.3221852804
+    values = {"eta_M": 13.998576285, "kappa_H": 20.0, "eta_H": 0.0}
+    values = {name: values[name] for name in module.MATRIX_ARGUMENTS}
+    vehicle = VehicleMatrices.from_module(module, values)
+    settings = SleeperBeamSettings(periods=12)
+    track = SleeperTrack("eb", "sleepers", groups)
+    result = check_sleepers(track, vehicle, static_loads(module, values), settings=settings)
+    assert result.floquet_verdict == "STABLE"
+    (force,) = result.comparisons
+    assert force.quantity == "steady force over a bay"
+    assert force.relative < 0.01, force
+    assert result.rate < 0  # the free vibration decays
+
+
+EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml"
+
+
+@pytest.mark.parametrize(
+    ("extra", "option"),
+    [
+        (["--case", "3"], "--case"),
+        (["--beam", "tr"], "--beam"),
+        (["--tmax", "50"], "--tmax"),
+        (["--modes", "100"], "--modes"),
+        (["--no-estimate"], "--no-estimate"),
+        (["--set", "v=50"], "--set"),
+    ],
+)
+def test_options_of_the_continuous_check_are_refused_by_name(capsys, extra, option):
+    """A sleeper file with an option that only the continuous tracks' check takes: one message naming the
+    option, exit status 2, before any computation."""
+    assert main(["validate", "--file", str(EXAMPLE), *extra]) == 2
+    err = capsys.readouterr().err
+    assert option in err and err.count("\n") == 1, err
