@@ -244,3 +244,59 @@ display(sleeper_map_figure(smap, continuous, operating=(zones.physical["v"], zon
 # sleeper-passing frequency, so heavier wheels resonate at lower speeds. The continuous track with the
 # same smeared support shows none of it on this grid: its smeared stiffness is that of section 2, whose
 # critical velocity (printed there) lies far above these speeds.
+
+# %% [markdown]
+# ## 5. A bogie and a car on the same rail
+#
+# The same D-decomposition runs for any vehicle on the rail: the Hill matrix stays linear in the wheel
+# mass $M$ when the frame and the body are held fixed (S19). The bogie of `examples/uic60-bogie.toml` and
+# the car of `examples/car.toml` go on the rail of `examples/sleepers_zones.toml`, and each is compared with
+# the single wheel at the same speeds. The lines below count the crossings at each edge of a zone: one per
+# root that crosses the real axis there. Beside each is the verdict of the continuous track
+# with the same smeared support, at the middle of the wheel's zone. Quick mode draws the wheel and the bogie
+# at one speed; the full notebook adds the car and more speeds. A car column costs about ten times a bogie
+# column.
+
+# %%
+from moving_bogie.floquet.inputs import sleeper_input  # noqa: E402
+
+rail = tomllib.loads((EXAMPLES / "sleepers_zones.toml").read_text())
+
+
+def on_the_rail(example: str, vehicle: str) -> dict:
+    """The rail of sleepers_zones.toml under the vehicle of a continuous example (its wheel, frame, body)."""
+    parts = tomllib.loads((EXAMPLES / example).read_text())["physical"]
+    rail_keys = {"EI", "m", "k_f", "c_f", "k_s"}
+    physical = dict(rail["physical"]) | {k: v for k, v in parts.items() if k not in rail_keys}
+    return {"model": {"beam": "eb", "track": "sleepers", "vehicle": vehicle}, "physical": physical}
+
+
+vehicles = {"wheel": rail, "bogie": on_the_rail("uic60-bogie.toml", "bogie")}
+if not QUICK:
+    vehicles["car"] = on_the_rail("car.toml", "car")
+zone_speeds = [88.0] if QUICK else [80.0, 84.0, 88.0, 92.0, 96.0]
+wheel_masses = np.linspace(100.0, 3000.0, 59 if QUICK else 291)
+zones_by_vehicle = {}
+for name, table in vehicles.items():
+    vehicle_input = sleeper_input(table, f"{name} on sleepers_zones.toml")
+    vmap = sleeper_map(vehicle_input, zone_speeds, wheel_masses, verify=0, workers=1)
+    zones_by_vehicle[name] = vmap
+    for v in zone_speeds:
+        crossings = sorted((p for p in vmap.lines() if p["v"] == v), key=lambda p: p["M"])
+        ups = [p["M"] for p in crossings if p["change"] > 0]
+        downs = [p["M"] for p in crossings if p["change"] < 0]
+        if not crossings:
+            print(f"{name:5s} v = {v:5.1f} m/s: no crossing for 100 <= M <= 3000 kg")
+            continue
+        low, high = min(ups), max(downs)
+        smeared_params = smeared_track(sleeper_input(table, name, overrides={"v": v, "M": (low + high) / 2}))
+        state = induced_frequencies(smeared_params.to_dimensionless(), dps=15).verdict.state
+        print(
+            f"{name:5s} v = {v:5.1f} m/s: {len(ups)} crossing(s) up, {len(downs)} down; unstable for "
+            f"{low:7.1f} < M < {high:7.1f} kg; continuous track at the zone's middle: {state}"
+        )
+
+# %% [markdown]
+# Every vehicle resonates in a narrow band of wheel masses at the same speeds as the single wheel. Its
+# primary suspension couples the wheels through the frame, which moves and narrows the band. In the band,
+# the vehicle is unstable on sleepers and stable on the continuous track with the same smeared stiffness.
