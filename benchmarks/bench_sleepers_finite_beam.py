@@ -1,7 +1,7 @@
 """Time the finite-beam check on sleepers beside the continuous track's, and print its convergence.
 
-Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sleepers_finite_beam.py [--convergence]``. A script,
-not a test: nothing is asserted, the tables are printed.
+Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sleepers_finite_beam.py [--convergence] [--record]``.
+A script, not a test: nothing is asserted, the tables are printed.
 
 Timing (one run, in one process): the finite-beam check of a sleeper case (``check_sleepers``: the finite
 rail's free vibration, and for a stable case its loaded run; the Floquet search timed apart), for
@@ -67,7 +67,7 @@ def _row(label: str, check: SleeperCheck) -> list[str]:
     return [label, f"{check.finite_s:.2f}", f"{check.floquet_s:.2f}", f"{worst:.2e}", names]
 
 
-def timing() -> None:
+def timing(record: bool = False) -> None:
     rows = []
     for label, case, harmonics in (
         ("sleepers, unstable", unstable_case(), (1, 6)),
@@ -91,6 +91,26 @@ def timing() -> None:
     print(
         "reference: the Floquet search (+ steady force) on sleepers; the closed form on the continuous track"
     )
+    if record:
+        _record(rows)
+
+
+def _record(rows: list[list[str]]) -> None:
+    """benchmarks/results/bench_sleepers_finite_beam.json: each sleeper case beside the continuous one."""
+    from records import row, write_record
+
+    continuous = rows[-1]
+    alternative = f"the continuous track's finite beam (Table 1 Case 7): {continuous[1]} s"
+    out = [
+        row(
+            f"finite-beam check on sleepers, {label} (compared: {compared})",
+            f"{finite} s finite beam (Floquet side {reference} s), worst rel. diff {worst}",
+            alternative,
+            "< 30 s",
+        )
+        for label, finite, reference, worst, compared in rows[:-1]
+    ]
+    write_record(__file__, "The finite-beam check on sleepers", out)
 
 
 def convergence(which: str) -> None:
@@ -130,8 +150,11 @@ def main() -> None:
         choices=("both", "unstable", "example"),
         help="the convergence tables (of both cases, or of one) instead of the timing",
     )
+    from records import add_record_option
+
+    add_record_option(parser)
     args = parser.parse_args()
-    convergence(args.convergence) if args.convergence else timing()
+    convergence(args.convergence) if args.convergence else timing(args.record)
 
 
 if __name__ == "__main__":
