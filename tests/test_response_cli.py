@@ -18,33 +18,10 @@ from moving_bogie.cli import main
 SCRIPT = Path(sys.executable).with_name("moving-bogie")
 
 
-@pytest.fixture(scope="module", autouse=True)
-def _each_search_once():
-    """The in-process runs below search the same roots (Case 7 at the default 30 digits, four runs): a search
-    of the same parameters on their own track at the same precision runs once for the module (any other
-    search, with options or another track, runs anew). What each test checks is the command's output from
-    those roots; the search itself is checked in tests/test_frequencies.py."""
-    import moving_bogie.roots.frequencies as fq
-    from moving_bogie.kernels.bound import bind
-
-    search, found = fq.induced_frequencies, {}
-
-    def once(bound, *, dps=30, progress=None, **options):
-        own = bind(bound.params)
-        if (
-            options
-            or bound.foundation is not own.foundation
-            or bound.foundation_floats() != own.foundation_floats()
-        ):
-            return search(bound, dps=dps, progress=progress, **options)
-        key = (bound.params, dps)
-        if key not in found:
-            found[key] = search(bound, dps=dps, progress=progress)
-        return found[key]
-
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(fq, "induced_frequencies", once)
-        yield found
+# The in-process runs below search the same roots (Case 7 at the default 30 digits, four runs): once for the
+# module. What each test checks is the command's output from those roots; the search itself is checked in
+# tests/test_frequencies.py.
+pytestmark = pytest.mark.usefixtures("same_search_once")
 
 
 def test_timeseries_json_from_the_console_script():
