@@ -64,6 +64,33 @@ def compute_once(monkeypatch):
     return patch
 
 
+@pytest.fixture(scope="module")
+def same_search_once():
+    """For the module that asks for it (``pytestmark = pytest.mark.usefixtures("same_search_once")``): a root
+    search (``roots.frequencies.induced_frequencies``) of the same parameters on their own track with the
+    same options runs once, and every later call gets that result (a search on another track, given as a
+    foundation beside the parameters, runs anew). Only for modules whose tests check what is made of the
+    roots (a command's output), not the search itself, and that patch no part of the search. Returns the
+    dict of the searches run, by key."""
+    import moving_bogie.roots.frequencies as fq
+    from moving_bogie.kernels.bound import bind
+
+    search, found = fq.induced_frequencies, {}
+
+    def once(bound, *, progress=None, **options):
+        own = bind(bound.params)
+        if bound.foundation is not own.foundation or bound.foundation_floats() != own.foundation_floats():
+            return search(bound, progress=progress, **options)
+        key = (bound.params, repr(sorted(options.items())))
+        if key not in found:
+            found[key] = search(bound, progress=progress, **options)
+        return found[key]
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(fq, "induced_frequencies", once)
+        yield found
+
+
 @pytest.fixture
 def ctrl_c_raises():
     """SIGINT raises KeyboardInterrupt in this process, as in a terminal, even when the suite was started as a

@@ -47,10 +47,12 @@ def test_metavars_are_not_internal_names():
     assert "THETA" not in text
 
 
-def test_timeseries_plot_only_does_not_claim_rows_written(tmp_path, capsys):
+def test_timeseries_plot_only_does_not_claim_rows_written(tmp_path, capsys, compute_once):
     """``timeseries --plot`` without --csv writes no data file, so it must not say "rows written"."""
+    import moving_bogie.roots.frequencies as fq
     from moving_bogie.cli import main
 
+    compute_once(fq, "induced_frequencies")  # both runs search the same roots (Case 7): once
     png, csv = tmp_path / "s.png", tmp_path / "s.csv"
     base = ["timeseries", "--case", "7", "--tmax", "10", "--points", "11", "--no-branch-cut"]
     assert main(base + ["--plot", str(png)]) == 0

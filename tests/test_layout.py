@@ -19,8 +19,9 @@ import functools
 import re
 import subprocess
 import tomllib
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -79,7 +80,7 @@ def _resolve(module: str, node: ast.ImportFrom) -> str:
 
 def _imports(module: str, nodes: list[ast.stmt] | ast.Module) -> Iterator[tuple[int, str, list[str]]]:
     """(line, imported module, names) for every import statement among `nodes` (all levels)."""
-    for node in ast.walk(nodes) if isinstance(nodes, ast.AST) else nodes:
+    for node in _walk(nodes) if isinstance(nodes, ast.AST) else nodes:
         if isinstance(node, ast.Import):
             for alias in node.names:
                 yield node.lineno, alias.name, []
@@ -115,16 +116,49 @@ def _top_level_statements(body: list[ast.stmt]) -> Iterator[ast.stmt]:
             yield node
 
 
-def _runtime_nodes(tree: ast.AST) -> Iterator[ast.AST]:
-    """Every node of `tree` that can run: all of it, inside functions too, except ``if TYPE_CHECKING:``."""
-    for node in ast.iter_child_nodes(tree):
-        if isinstance(node, ast.If) and ast.unparse(node.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING"):
-            for child in node.orelse:
-                yield child
-                yield from _runtime_nodes(child)
-            continue
-        yield node
-        yield from _runtime_nodes(node)
+def _runtime_nodes(tree: ast.AST) -> tuple[ast.AST, ...]:
+    """Every node of `tree` that can run: all of it, inside functions too, except ``if TYPE_CHECKING:``.
+
+    Depth first, each node before its children (computed once per tree, :func:`_once`)."""
+    return _once("runtime", tree, lambda: tuple(_runtime_walk(tree)))
+
+
+def _runtime_walk(tree: ast.AST) -> Iterator[ast.AST]:
+    """The nodes of :func:`_runtime_nodes`, with a stack (a recursive generator passes every node up
+    through each level above it: quadratic in the depth). ``checked``: whether the nodes of that level
+    are tested for ``if TYPE_CHECKING:`` (the statements of its ``else:`` are taken whole)."""
+    stack: list[tuple[Iterator[ast.AST], bool]] = [(ast.iter_child_nodes(tree), True)]
+    while stack:
+        level, checked = stack[-1]
+        node = next(level, None)
+        if node is None:
+            stack.pop()
+        elif checked and isinstance(node, ast.If) and _is_type_checking(node.test):
+            stack.append((iter(node.orelse), False))
+        else:
+            yield node
+            stack.append((ast.iter_child_nodes(node), True))
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    return ast.unparse(test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING")
+
+
+#: Results computed once per tree (the trees of :func:`_parsed` live as long as the session; a tree is
+#: kept here with its results, so that its ``id`` is never reused by another tree).
+_ONCE: dict[tuple[str, int], tuple[ast.AST, Any]] = {}
+
+
+def _once(what: str, tree: ast.AST, compute: Callable[[], Any]) -> Any:
+    key = (what, id(tree))
+    if key not in _ONCE:
+        _ONCE[key] = (tree, compute())
+    return _ONCE[key][1]
+
+
+def _walk(tree: ast.AST) -> tuple[ast.AST, ...]:
+    """``ast.walk(tree)`` (breadth first), listed once per tree: every check reads the same trees."""
+    return _once("walk", tree, lambda: tuple(ast.walk(tree)))
 
 
 def _layer(module: str) -> str:
@@ -259,9 +293,21 @@ def test_no_package_hides_one_of_its_modules():
 
 
 def _private_names_defined(tree: ast.Module) -> set[str]:
-    """Private names a module defines: functions, classes, assigned names and attributes (``self._x = ``)."""
+    """Private names a module defines: functions, classes, assigned names and attributes (``self._x = ``)
+    (once per tree)."""
+    return _once("private", tree, lambda: _private_names_found(tree))
+
+
+def _may_set_attributes(func: ast.expr) -> bool:
+    """``func`` is ``setattr`` or ``object.__setattr__`` (the name looked at first: unparsing every callee
+    of the package is most of this check's time)."""
+    name = func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else ""
+    return name in ("setattr", "__setattr__") and ast.unparse(func) in ("setattr", "object.__setattr__")
+
+
+def _private_names_found(tree: ast.Module) -> set[str]:
     names = set()
-    for node in ast.walk(tree):
+    for node in _walk(tree):
         if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
             names.add(node.name)
         elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
@@ -272,7 +318,7 @@ def _private_names_defined(tree: ast.Module) -> set[str]:
             names.add(node.arg)
         elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
             names.add(node.target.id)  # dataclass fields
-        elif isinstance(node, ast.Call) and ast.unparse(node.func) in ("setattr", "object.__setattr__"):
+        elif isinstance(node, ast.Call) and _may_set_attributes(node.func):
             if len(node.args) > 1 and isinstance(node.args[1], ast.Constant):
                 names.add(str(node.args[1].value))
     return {name for name in names if _is_private(name)}
@@ -286,7 +332,7 @@ def _private_attribute_uses(tree: ast.Module, package_private: set[str]) -> Iter
     own (a base class in another module counts as its own).
     """
     own = _private_names_defined(tree)
-    for node in ast.walk(tree):
+    for node in _walk(tree):
         if not (isinstance(node, ast.Attribute) and _is_private(node.attr)):
             continue
         if isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"):
@@ -390,7 +436,7 @@ ENTRY_POINTS = ("moving_bogie.cli", "moving_bogie.paper")
 
 
 def _functions(tree: ast.AST) -> Iterator[ast.FunctionDef | ast.AsyncFunctionDef]:
-    yield from (n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef | ast.AsyncFunctionDef))
+    yield from (n for n in _walk(tree) if isinstance(n, ast.FunctionDef | ast.AsyncFunctionDef))
 
 
 def _model_name_arguments(tree: ast.AST) -> Iterator[tuple[int, str]]:
@@ -475,7 +521,7 @@ def _parameter_names() -> set[str]:
 
 def _docstring_nodes(tree: ast.AST) -> set[int]:
     nodes = set()
-    for node in ast.walk(tree):
+    for node in _walk(tree):
         if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
             first = node.body[0] if node.body else None
             if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant):
@@ -486,7 +532,7 @@ def _docstring_nodes(tree: ast.AST) -> set[int]:
 def _parameter_literals(module: str, tree: ast.AST, names: set[str]) -> Iterator[tuple[int, str]]:
     """String constants (docstrings left out) equal to a parameter name and not allowed for ``module``."""
     docstrings = _docstring_nodes(tree)
-    for node in ast.walk(tree):
+    for node in _walk(tree):
         if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docstrings:
             name = node.value
             if name in names and ("*", name) not in PARAMETER_LITERALS_ALLOWED:
@@ -529,7 +575,7 @@ def _generic(module: str) -> bool:
 
 def _binds(tree: ast.AST) -> Iterator[tuple[int, str]]:
     """Calls of ``bind`` (``bind(...)``, ``bound.bind(...)``) and imports of it, anywhere in `tree`."""
-    for node in ast.walk(tree):
+    for node in _walk(tree):
         if isinstance(node, ast.Call):
             func = node.func
             name = (
@@ -665,7 +711,7 @@ def test_no_function_is_longer_than_the_limit():
     offenders = [
         f"{module}:{node.lineno} {node.name}: {node.end_lineno - node.lineno + 1} lines"
         for module, tree in _runtime()
-        for node in ast.walk(tree)
+        for node in _walk(tree)
         if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
         and node.end_lineno - node.lineno + 1 > MAX_FUNCTION_LINES
     ]
@@ -688,6 +734,6 @@ def test_the_signature_checks_see_what_they_check():
         ("long", ["return"]),
     ]
     assert (
-        max(n.end_lineno - n.lineno + 1 for n in ast.walk(tree) if isinstance(n, ast.FunctionDef))
+        max(n.end_lineno - n.lineno + 1 for n in _walk(tree) if isinstance(n, ast.FunctionDef))
         > MAX_FUNCTION_LINES
     )

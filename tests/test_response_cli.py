@@ -18,6 +18,12 @@ from moving_bogie.cli import main
 SCRIPT = Path(sys.executable).with_name("moving-bogie")
 
 
+# The in-process runs below search the same roots (Case 7 at the default 30 digits, four runs): once for the
+# module. What each test checks is the command's output from those roots; the search itself is checked in
+# tests/test_frequencies.py.
+pytestmark = pytest.mark.usefixtures("same_search_once")
+
+
 def test_timeseries_json_from_the_console_script():
     if not SCRIPT.exists():
         pytest.fail(f"console script {SCRIPT} is not installed: run pip install -e '.[dev]'")

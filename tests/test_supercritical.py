@@ -25,6 +25,10 @@ from moving_bogie.sweep.speed import speed_arrays
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "physical_eb.toml"
 
+# The text and --json runs of one file (and --set v=900 on the file of 300 m/s, the file with v = 900) search
+# the same roots: once for the module. The tests check what the commands say of the speed and the verdict.
+pytestmark = pytest.mark.usefixtures("same_search_once")
+
 
 def _v_cr(EI, m, k_f, k_s=0.0) -> float:
     """min over k of the phase speed, on a log scale of k around the minimum's order."""

@@ -229,12 +229,14 @@ def test_block_leading_part_is_the_derived_one():
     np.testing.assert_allclose(block, -derived / 2, rtol=1e-10)
 
 
-def test_cli_verdict_line_exit_status_and_stderr(capsys, monkeypatch):
-    # The text and the --json run below print the same search (same case, alpha, dps and window): it runs
-    # once and both print it; the run with --window 3,3 is a search of its own.
+def test_cli_verdict_line_exit_status_and_stderr(capsys, monkeypatch, supercritical):
+    # The text and the --json run below print the same search (same case, alpha, dps and window) as the
+    # module's fixture: it runs once and all print it; the run with --window 3,3 is a search of its own.
+    # (Two searches in all: a command that searched other parameters would make a third.)
     from moving_bogie.roots import frequencies
 
     searches, search = {}, frequencies.induced_frequencies
+    searches[(supercritical.params, 20, repr(None), False)] = supercritical
 
     def once(bound, *, dps, window, progress=None, certify=False):
         key = (bound.params, dps, repr(window), certify)
