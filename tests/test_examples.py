@@ -18,7 +18,7 @@ from moving_bogie.generated import MODULES, VEHICLES
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.model.cases import table1_case
-from moving_bogie.model.files import load_params_file
+from moving_bogie.model.files import SLEEPER_COMMANDS, load_params_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 #: The continuous tracks' examples; a rail on discrete supports (floquet/) has its own reader.
@@ -27,13 +27,13 @@ SLEEPER_FILES = [path for path in sorted(EXAMPLES.glob("*.toml")) if is_sleeper_
 
 
 def test_every_sleeper_example_loads_as_a_rail_on_supports():
-    """The sleeper examples are read by the Floquet reader (the continuous one refuses them, naming
-    ``frequencies --file``)."""
+    """The sleeper examples are read by the Floquet reader (the continuous one refuses them, naming every
+    command that takes a sleeper file)."""
     assert SLEEPER_FILES, "examples/sleepers.toml is the README's and docs/sleepers.md's example"
     for path in SLEEPER_FILES:
         loaded = load_sleeper_file(path)
         assert loaded is not None
-        with pytest.raises(ParameterError, match="frequencies --file"):
+        with pytest.raises(ParameterError, match=", ".join(SLEEPER_COMMANDS) + " with --file"):
             load_params_file(path)
 
 
