@@ -144,11 +144,11 @@ def _merged(
             out += columns
             continue
         out.remove(base)
-        out.append(_staircase(base, columns, on_top))
+        out.append(staircase(base, columns, on_top))
     return out
 
 
-def _staircase(base: Rectangle, columns: list[Rectangle], on_top: bool) -> Staircase:
+def staircase(base: Rectangle, columns: list[Rectangle], on_top: bool) -> Staircase:
     """The boundary of ``base`` with ``columns`` (disjoint, sorted by Re q) on its top edge (``on_top``) or
     its bottom edge, counterclockwise."""
     xs = sorted({base.x0, base.x1} | {x for c in columns for x in (c.x0, c.x1)})

@@ -102,12 +102,14 @@ def proven_count(
         segments = 0
         for a, b in zip(corners, corners[1:] + corners[:1]):
             # walk from a to b: a proven segment lets the next one grow by GROWTH, a failing one is halved
+            # (its midpoint, whose value is kept, becomes the end of the next try)
             x, step, edge = 0.0, 1.0 / initial, abs(b - a)
             while x < 1.0:
                 y = 1.0 if x + step * 1.25 >= 1.0 else x + step
-                s, t = a + (b - a) * x, (b if y == 1.0 else a + (b - a) * y)
+                h = x + 0.5 * (y - x)
+                s = _point(a, b, x)
                 try:
-                    total += _argument_change(bc, s, t, value)
+                    total += _argument_change(bc, s, _point(a, b, y), _point(a, b, h), value)
                 except Undecided as exc:
                     if (y - x) * edge < min_length * size or segments > max_segments:
                         where = f"boundary of {rect} not certified near q = {s:.12g}"
@@ -123,15 +125,35 @@ def proven_count(
         return ProvenCount(rect, n, segments)
 
 
-def _argument_change(bc: BallCharacteristic, a: complex, b: complex, value: Callable[[complex], Acb]) -> Arb:
-    """Change of arg E_chr along [a, b] as a ball; raises Undecided if it cannot be determined."""
-    ball = acb(a).union(acb(b))
-    m = 0.5 * (a + b)
+def _point(a: complex, b: complex, u: float) -> complex:
+    """The point at fraction ``u`` of the edge from a to b (b itself at 1, a at 0)."""
+    return b if u == 1.0 else a + (b - a) * u
+
+
+def _argument_change(
+    bc: BallCharacteristic, a: complex, b: complex, m: complex, value: Callable[[complex], Acb]
+) -> Arb:
+    """Change of arg E_chr along [a, b] (``m`` near its midpoint) as a ball; raises Undecided if it
+    cannot be determined.
+
+    E on the segment is enclosed by the mean-value forms around a and b (their intersection), and only
+    when that does not exclude 0, by the one around m too: E(q) in E(c) + E'(B) (B - c) for every q of
+    the segment and c in {a, b, m}, B the box of a, b and m (so that the segment from c to q lies in it).
+    """
+    ball = acb(a).union(acb(b)).union(acb(m))
     dE = bc.derivative(ball)
-    enclosure = value(m) + dE * (ball - acb(m))
+    Ea, Eb = value(a), value(b)
+    enclosure = _intersection(Ea + dE * (ball - acb(a)), Eb + dE * (ball - acb(b)))
     if enclosure.contains(0):
-        raise Undecided("E_chr not bounded away from 0 on the segment")
-    change = (value(b) / value(a)).arg()
+        enclosure = _intersection(enclosure, value(m) + dE * (ball - acb(m)))
+        if enclosure.contains(0):
+            raise Undecided("E_chr not bounded away from 0 on the segment")
+    change = (Eb / Ea).arg()
     if not change.is_finite() or change.rad() > 0.5:
         raise Undecided("arg E_chr not resolved on the segment")
     return change
+
+
+def _intersection(u: Acb, v: Acb) -> Acb:
+    """The intersection of two rectangles that both enclose one set (it encloses the set too)."""
+    return acb(u.real.intersection(v.real), u.imag.intersection(v.imag))
