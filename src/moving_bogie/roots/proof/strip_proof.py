@@ -25,7 +25,7 @@ from moving_bogie.roots.proof.balls import BallCharacteristic
 from moving_bogie.roots.proof.proof_tiling import Staircase, staircase
 from moving_bogie.roots.proof.winding import NotProven, proven_count
 
-__all__ = ["StripProof", "strip_from_below"]
+__all__ = ["StripProof", "strip_from_below", "strip_region"]
 
 
 @dataclass(frozen=True)
@@ -65,7 +65,7 @@ def strip_from_below(
     for u in low:
         pieces = pieces_below_axis(Rectangle(u.x0, u.x1, u.y0, 0.0), [x for x in points if u.x0 < x < u.x1])
         rects += pieces
-        regions += _union(pieces)
+        regions += strip_region(pieces)
     notches = tuple(x for x in points if any(r.x0 <= x + NOTCH and x - NOTCH <= r.x1 for r in rects))
     bc = BallCharacteristic(bound, prec=prec, below=True)
     try:
@@ -75,7 +75,7 @@ def strip_from_below(
     return StripProof(count, tuple(rects), notches)
 
 
-def _union(pieces: list[Rectangle]) -> list[Rectangle | Staircase]:
+def strip_region(pieces: list[Rectangle]) -> list[Rectangle | Staircase]:
     """The pieces of one strip (:func:`pieces_below_axis`, left to right) as one region: the base below
     Im q = -NOTCH with the columns that reach the axis standing on it, when the pieces are side by side on
     one bottom edge and reach Im q = 0 or -NOTCH (as they are); otherwise the pieces themselves."""
