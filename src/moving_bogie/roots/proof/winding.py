@@ -1,17 +1,21 @@
-"""Proven root counts: the argument principle on a rectangle with ball arithmetic.
+"""Proven root counts: the argument principle on a rectangle (or a region with axis-parallel edges) with
+ball arithmetic.
 
 The rectangle's boundary (corners are exact binary floats) is cut into segments [a, b]. On each segment:
 
 1. E_chr is analytic: the ball evaluation (:mod:`balls`) proves that no p-root of N(p, q) is real for any q
    of the segment, i.e. the segment does not meet the cut of K.
-2. E_chr has no zero and turns by less than pi: with m the midpoint and B the segment's ball, the
-   mean-value form E(q) in E(m) + E'(B) (B - m) (Eq. (40) for E') encloses E on the whole segment in an
-   axis-parallel rectangle; when that rectangle excludes 0 it lies in an open half-plane through 0, so the
+2. E_chr has no zero and turns by less than pi: with B the segment's ball, the mean-value forms
+   E(q) in E(c) + E'(B) (B - c) (Eq. (40) for E') around c = a and c = b, intersected, and when that does
+   not exclude 0 the one around the midpoint m too, enclose E on the whole segment in an axis-parallel
+   rectangle (E(q) - E(c) is (q - c) times the mean of E' over the segment from c to q, which lies in
+   the convex E'(B)); when that rectangle excludes 0 it lies in an open half-plane through 0, so the
    continuous change of arg E along the segment is the principal value Arg(E(b) / E(a)), computed as a ball.
 
 Along each edge a proven segment lets the next one grow, and a segment where either test fails is halved
-(down to a relative length ``min_length``, then the count is
-reported unproven). The total change of arg divided by 2 pi is a ball containing an integer, the number of
+(down to a relative length ``min_length``, then the count is reported unproven); the values at the ends
+are kept, so neighbouring segments share them, and a halved segment ends at the midpoint of the failed
+one. The total change of arg divided by 2 pi is a ball containing an integer, the number of
 zeros inside; it is proven when the ball holds exactly one integer.
 
 Why the interior is free of the cut too: each branch q(p), p real, of the cut is a connected curve that
