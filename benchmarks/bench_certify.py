@@ -1,7 +1,7 @@
 """Benchmark the certified Table 2 (ball arithmetic) side by side with the uncertified search.
 
 Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_certify.py [--cases 1,5,13] [--workers 2]``. A script,
-not a test: nothing is asserted, the numbers are printed (~25 s of CPU for the 13 cases).
+not a test: nothing is asserted, the numbers are printed (~20 s of CPU for the 13 cases).
 
 For each case of Table 1, in the same run and the same process:
 
