@@ -25,9 +25,11 @@ from moving_bogie.model.cases import table1_case, table2_printed
 from moving_bogie.model.files import load_params_file
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.roots.count.contour import Rectangle
+from moving_bogie.roots.count.strip import pieces_below_axis
 from moving_bogie.roots.proof.balls import BallCharacteristic, isolate_roots, square_ball
 from moving_bogie.roots.proof.certify import certify, krawczyk
 from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
+from moving_bogie.roots.proof.strip_proof import strip_region
 from moving_bogie.roots.proof.winding import NotProven, proven_count
 from moving_bogie.roots.refine.polish import newton
 from moving_bogie.roots.table2 import compute_table2, format_table2
@@ -239,3 +241,39 @@ def test_two_layer_example_is_proven_stable():
     assert c.all_proven and not c.problems, c.problems
     assert c.count == result.count == 4 and c.proven_roots == 4
     assert c.verdict == "stable"
+
+
+def _covers_exactly(region: Staircase) -> None:
+    """The boundary runs counterclockwise around exactly the members: signed area (shoelace) equal to their
+    total area, corners among the members' corners (exact floats)."""
+    corners = list(region.corners)
+    assert _shoelace(corners) == pytest.approx(sum(r.width * r.height for r in region.rects), rel=1e-12)
+    member_corners = {complex(x, y) for r in region.rects for x in (r.x0, r.x1) for y in (r.y0, r.y1)}
+    assert set(corners) <= member_corners
+
+
+def test_window_but_the_strip_along_a_flat_cut_is_one_region():
+    # Table 2's windows: the region below the band, the one above, the gap left of the cut and the columns
+    # are counted as one region around the strip, which reaches the window's right edge; with the strip
+    # they cover the window.
+    window = Rectangle(-3e-3, 3.0, -3.0, 3.1)
+    for case in (1, 5, 12):
+        cut = cut_locus(bind(table1_case(case)), window.x0, window.x1)
+        tiling = proof_tiling(window, cut, margin=1e-3, gap_height=0.1 * 6.1)
+        assert len(tiling.regions) == 1 and isinstance(tiling.regions[0], Staircase)
+        region = tiling.regions[0]
+        _covers_exactly(region)
+        assert region.width == window.width and region.height == window.height
+        total = sum(r.width * r.height for r in list(region.rects) + list(tiling.unsearched))
+        assert total == pytest.approx(window.width * window.height, rel=1e-12)
+
+
+def test_strip_below_the_axis_is_one_region_around_the_notch():
+    # The pieces of the strip below a cut on the real axis (columns to Im q = 0, the notch column under a
+    # branch point to -NOTCH) are counted on the boundary of their union.
+    pieces = pieces_below_axis(Rectangle(0.6, 3.0, -1e-3, 0.0), [0.8, 1.7])
+    (region,) = strip_region(pieces)
+    _covers_exactly(region)
+    area = sum(r.width * r.height for r in pieces)
+    assert _shoelace(list(region.corners)) == pytest.approx(area, rel=1e-12)
+    assert len(region.corners) == 12  # the rectangle with two notches in its top edge

@@ -50,6 +50,9 @@ from moving_bogie.typing import Acb, AcbSeries, Arb
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
 
+#: A series in t = q - c, or its value alone (a ball) when no derivative is asked for.
+Series = Acb | AcbSeries
+
 __all__ = [
     "BallCharacteristic",
     "Undecided",
@@ -94,6 +97,14 @@ class _ExactBalls:
         if name.startswith("_"):
             raise AttributeError(name)
         return exact_ball(getattr(self._params, name))
+
+
+def _constant(value: Acb | AcbSeries) -> Acb:
+    """A number, or the constant term of a series (of one term), as an acb."""
+    if isinstance(value, acb_series):
+        coeffs = value.coeffs()
+        return acb(coeffs[0]) if coeffs else acb(0)
+    return acb(value)
 
 
 def _series(values: Iterable[Acb | AcbSeries], length: int) -> list[AcbSeries]:
@@ -200,9 +211,9 @@ class BallCharacteristic:
                 raise Undecided("side of a real root of N(p, q) from below not decided (N_q / N_p near 0)")
         return upper, lower
 
-    def kernel_series(self, q: Acb, order: int) -> list[AcbSeries]:
+    def kernel_series(self, q: Acb, order: int) -> list[Series]:
         """K (Eq. (29)) at the contact offsets ([K(0), K(d), K(-d)] for the closed form) as series in
-        t = q - c to ``order``, for every c in the ball q."""
+        t = q - c to ``order``, for every c in the ball q (as balls, the values, for ``order`` 0)."""
         length = order + 1
         f = self.foundation
         args = self.foundation_args
@@ -213,32 +224,37 @@ class BallCharacteristic:
             found = self.p_discs.roots(q)
             balls = [d.ball for d in found]
         upper, lower = self._sides(q, balls)
-        qs = acb_series([q, 1], prec=length) if order else acb_series([q], prec=length)
-        qc = _series(f.q_coeffs(qs, **args), length)
+        point = order == 0  # values only: plain balls, not series of one term (the same sums, faster)
+
+        def lift(values: Iterable[Acb | AcbSeries]) -> list[Series]:
+            return [_constant(v) for v in values] if point else _series(values, length)
+
+        qs = q if point else acb_series([q, 1], prec=length)
+        qc = lift(f.q_coeffs(qs, **args))
         i_unit = acb(0, 1)
         if q.rad() == 0 or found is None:  # N's coefficients as series in t = q - c directly
-            n = _series(f.n_coeffs(qs, **args), length)
+            n = lift(f.n_coeffs(qs, **args))
             n1 = derivative_coefficients(n)
 
-            def expanded(p0: Acb) -> tuple[Acb, list[AcbSeries], list[AcbSeries], Acb]:
+            def expanded(p0: Acb) -> tuple[Acb, list[Series], list[Series], Acb]:
                 return acb(0), n, n1, p0
         else:  # a ball: N around each root disc's centre (narrow coefficients, p_discs.py)
             discs = {id(d.ball): d for d in found}
             u = q - q.mid()
 
-            def expanded(p0: Acb) -> tuple[Acb, list[AcbSeries], list[AcbSeries], Acb]:
+            def expanded(p0: Acb) -> tuple[Acb, list[Series], list[Series], Acb]:
                 d = discs[id(p0)]
-                n = d.series(u, length)
+                n = lift(d.series(u, length))
                 return d.centre, n, derivative_coefficients(n), p0 - d.centre
 
-        def solved(roots: Sequence[Acb]) -> list[tuple[AcbSeries, AcbSeries, AcbSeries]]:
+        def solved(roots: Sequence[Acb]) -> list[tuple[Series, Series, Series]]:
             """(p, Q(p), N_p(p)) per root: the series of the root and what its residue divides, which every
             offset shares (only exp(i xi p) depends on xi). The root is c + s, s a series found by Newton
             steps on N(c + s) (c = 0 at a point, the disc's centre over a ball)."""
             out = []
             for p0 in roots:
                 centre, n, n1, s0 = expanded(p0)
-                s = acb_series([s0], prec=length)
+                s: Series = s0 if point else acb_series([s0], prec=length)
                 for _ in range(order.bit_length()):
                     step = horner(n1, s)
                     if acb(step.coeffs()[0] if step.coeffs() else 0).contains(0):
@@ -249,8 +265,8 @@ class BallCharacteristic:
                 out.append((p, horner(qc, p), horner(n1, s)))
             return out
 
-        def residues(roots: Sequence[tuple[AcbSeries, AcbSeries, AcbSeries]], xi: Acb) -> AcbSeries:
-            total = acb_series([acb(0)], prec=length)
+        def residues(roots: Sequence[tuple[Series, Series, Series]], xi: Acb) -> Series:
+            total: Series = acb(0) if point else acb_series([acb(0)], prec=length)
             for p, Qp, N1p in roots:
                 total += (i_unit * xi * p).exp() * Qp / N1p
             return total
@@ -277,7 +293,7 @@ class BallCharacteristic:
             K = self.kernel_series(q, order)
             qs = acb_series([q, 1], prec=order + 1) if order else acb_series([q], prec=1)
             if self.blocks is None:
-                E = self.vehicle.e_chr(qs, *K, **self.vehicle_args)
+                E = self.vehicle.e_chr(qs if order else q, *K, **self.vehicle_args)
             else:
                 E = self.blocks.det(qs, _series(K, order + 1), order + 1)
                 if E is None:

@@ -88,7 +88,8 @@ def direct_root_balls(
     Undecided
         When the leading coefficient may vanish over the ball, a Krawczyk test fails or two balls overlap.
     """
-    centre = isolate_roots([acb(c) for c in foundation.n_coeffs(q.mid(), **args)], tol)
+    n_mid = [acb(c) for c in foundation.n_coeffs(q.mid(), **args)]
+    centre = isolate_roots(n_mid, tol)
     if q.rad() == 0:
         return centre
     n = [acb(c) for c in foundation.n_coeffs(q, **args)]
@@ -96,11 +97,11 @@ def direct_root_balls(
         raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
     n1 = derivative_coefficients(n)
     nq = [acb(c) for c in foundation.n_coeffs_dq(q, **args)]
-    n_mid = [acb(c) for c in foundation.n_coeffs(q.mid(), **args)]
+    n1_mid = derivative_coefficients(n_mid)
     balls = []
     for p_ball in centre:
         pm = p_ball.mid()
-        Y = (1 / horner(derivative_coefficients(n_mid), pm)).mid()
+        Y = (1 / horner(n1_mid, pm)).mid()
         shift = horner(n_mid, p_ball) + horner(nq, p_ball) * (q - q.mid())
         rho = 2 * (Y * shift).abs_upper() + p_ball.rad() + arb(2) ** (-prec)
         for _ in range(3):

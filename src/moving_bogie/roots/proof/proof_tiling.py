@@ -94,14 +94,18 @@ def proof_tiling(
         if hi < band[1]:
             upper.append(Rectangle(a, b, hi, band[1]))
         unsearched.append(Rectangle(a, b, lo, hi))
+    slot = _slotted(window, regions, lower, upper, unsearched)
+    if slot is not None:
+        return ProofTiling((slot,), tuple(unsearched))
     return ProofTiling(tuple(_merged(regions, lower, upper)), tuple(unsearched))
 
 
 @dataclass(frozen=True)
 class Staircase:
-    """A base rectangle and columns standing on one of its horizontal edges, as one region: ``corners``
-    of its boundary counterclockwise (exact copies of the rectangles' corners), ``rects`` the members.
-    Counting once on its boundary skips the edges the members share (a column's sides over the cut)."""
+    """Rectangles as one region: a base rectangle and columns standing on one of its horizontal edges, or
+    the whole window but the strip along the cut (:func:`proof_tiling`); ``corners`` of its boundary
+    counterclockwise (exact copies of the rectangles' corners), ``rects`` the members (the first one the
+    base). Counting once on its boundary skips the edges the members share (a column's sides over the cut)."""
 
     corners: tuple[complex, ...]
     rects: tuple[Rectangle, ...]
@@ -144,11 +148,11 @@ def _merged(
             out += columns
             continue
         out.remove(base)
-        out.append(_staircase(base, columns, on_top))
+        out.append(staircase(base, columns, on_top))
     return out
 
 
-def _staircase(base: Rectangle, columns: list[Rectangle], on_top: bool) -> Staircase:
+def staircase(base: Rectangle, columns: list[Rectangle], on_top: bool) -> Staircase:
     """The boundary of ``base`` with ``columns`` (disjoint, sorted by Re q) on its top edge (``on_top``) or
     its bottom edge, counterclockwise."""
     xs = sorted({base.x0, base.x1} | {x for c in columns for x in (c.x0, c.x1)})
@@ -168,6 +172,11 @@ def _staircase(base: Rectangle, columns: list[Rectangle], on_top: bool) -> Stair
         for x_left, x_right, y in pieces:
             points += [complex(x_left, y), complex(x_right, y)]
         points += [complex(base.x1, base.y1), complex(base.x0, base.y1)]
+    return Staircase(_simplified(points), (base, *columns))
+
+
+def _simplified(points: list[complex]) -> tuple[complex, ...]:
+    """A closed path's corners without repeated points and without corners on a straight line."""
     corners: list[complex] = []
     for z in points:
         if corners and corners[-1] == z:
@@ -182,4 +191,47 @@ def _staircase(base: Rectangle, columns: list[Rectangle], on_top: bool) -> Stair
                 del corners[k]
                 changed = True
                 break
-    return Staircase(tuple(corners), (base, *columns))
+    return tuple(corners)
+
+
+def _slotted(
+    window: Rectangle,
+    regions: list[Rectangle],
+    lower: list[Rectangle],
+    upper: list[Rectangle],
+    unsearched: list[Rectangle],
+) -> Staircase | None:
+    """The window but the strip along the cut as one region, when the tiling is the region below the band,
+    the one above it, the gap left of the cut and columns from the gap to the window's right edge, each
+    split into a rectangle below the cut, one above it and the unsearched strip between them (else None).
+
+    The strip reaches the window's edge, so the region is simply connected; its boundary runs under the
+    strip from the right edge to the gap, around the strip's end and back over it. The sides the members
+    share (the gap's, the columns') are inside it and not walked; those next to the cut's leftmost point
+    (the branch point) would need the most segments.
+    """
+    if len(regions) != 3 or not lower or len(lower) != len(upper) or len(lower) != len(unsearched):
+        return None
+    below, above, gap = regions
+    aligned = all(
+        lo.x0 == up.x0 == u.x0 and lo.x1 == up.x1 == u.x1 and lo.y1 == u.y0 and u.y1 == up.y0
+        for lo, up, u in zip(lower, upper, unsearched)
+    )
+    contiguous = all(a.x1 == b.x0 for a, b in zip(lower, lower[1:]))
+    framed = (
+        below == Rectangle(window.x0, window.x1, window.y0, lower[0].y0)
+        and above == Rectangle(window.x0, window.x1, upper[0].y1, window.y1)
+        and gap == Rectangle(window.x0, lower[0].x0, below.y1, above.y0)
+        and lower[-1].x1 == window.x1
+        and all(c.y0 == below.y1 for c in lower)
+        and all(c.y1 == above.y0 for c in upper)
+    )
+    if not (aligned and contiguous and framed):
+        return None
+    points = [complex(window.x0, window.y0), complex(window.x1, window.y0)]
+    for c in reversed(lower):  # under the strip, right to left
+        points += [complex(c.x1, c.y1), complex(c.x0, c.y1)]
+    for c in upper:  # over it, left to right
+        points += [complex(c.x0, c.y0), complex(c.x1, c.y0)]
+    points += [complex(window.x1, window.y1), complex(window.x0, window.y1)]
+    return Staircase(_simplified(points), (below, above, gap, *lower, *upper))
