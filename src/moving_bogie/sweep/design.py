@@ -33,6 +33,7 @@ from moving_bogie.model.physical import PhysicalParams
 __all__ = [
     "Axis",
     "group_coordinate",
+    "grid_blocks",
     "Block",
     "SweepSpec",
     "parameter_attributes",
@@ -185,6 +186,17 @@ class Block:
     slices: tuple[slice, ...]
 
 
+def grid_blocks(shape: tuple[int, ...], chunks: tuple[int, ...]) -> list[Block]:
+    """The blocks of a store of ``shape`` cut into ``chunks``, in a fixed order (a block's index is its
+    place in that order)."""
+    ranges = [range(0, n, c) for n, c in zip(shape, chunks)]
+    out = []
+    for k, starts in enumerate(itertools.product(*ranges)):
+        slices = tuple(slice(s, min(s + c, n)) for s, c, n in zip(starts, chunks, shape))
+        out.append(Block(k, slices))
+    return out
+
+
 @dataclass(frozen=True)
 class SweepSpec:
     """A sweep: base parameters, model, varied parameters, design and per-point options.
@@ -305,12 +317,7 @@ class SweepSpec:
 
     def blocks(self) -> list[Block]:
         """Every block, in a fixed order (its index is its place in that order)."""
-        ranges = [range(0, n, c) for n, c in zip(self.shape, self.chunks)]
-        out = []
-        for k, starts in enumerate(itertools.product(*ranges)):
-            slices = tuple(slice(s, min(s + c, n)) for s, c, n in zip(starts, self.chunks, self.shape))
-            out.append(Block(k, slices))
-        return out
+        return grid_blocks(self.shape, self.chunks)
 
     def describe(self) -> dict[str, Any]:
         """JSON-ready description (stored in the attributes; a resumed sweep must match it)."""

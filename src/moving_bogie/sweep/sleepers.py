@@ -12,7 +12,6 @@ varied parameter, a Sobol design one dimension ``point``; the points are cut int
 from __future__ import annotations
 
 import importlib
-import itertools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -25,7 +24,7 @@ import numpy as np
 from moving_bogie.errors import ParameterError
 from moving_bogie.floquet.inputs import SleeperInput, sleeper_input, sleeper_units
 from moving_bogie.model.exact import fraction_to_text
-from moving_bogie.sweep.design import Axis, Block, parse_vary, sobol_axes
+from moving_bogie.sweep.design import Axis, Block, grid_blocks, parse_vary, sobol_axes
 from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
 
 __all__ = [
@@ -109,12 +108,7 @@ class SleeperSweepSpec:
 
     def blocks(self) -> list[Block]:
         """Every block, in a fixed order (its index is its place in that order)."""
-        ranges = [range(0, n, c) for n, c in zip(self.shape, self.chunks)]
-        out = []
-        for k, starts in enumerate(itertools.product(*ranges)):
-            slices = tuple(slice(s, min(s + c, n)) for s, c, n in zip(starts, self.chunks, self.shape))
-            out.append(Block(k, slices))
-        return out
+        return grid_blocks(self.shape, self.chunks)
 
     def describe(self) -> dict[str, Any]:
         """JSON-ready description (stored in the attributes; a resumed sweep must match it)."""
