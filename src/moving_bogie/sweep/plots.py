@@ -19,9 +19,10 @@ __all__ = ["plot_sweep_slice", "select_slice"]
 
 
 def select_slice(
-    ds: xarray.Dataset, x: str, y: str, sel: Mapping[str, float] | None = None
+    ds: xarray.Dataset, x: str, y: str | None, sel: Mapping[str, float] | None = None
 ) -> xarray.Dataset:
-    """The 2-D slice (y, x) of a grid sweep, other dimensions fixed by ``sel`` (nearest values).
+    """The slice (x) or (y, x) of a grid sweep, other dimensions (but a store's ``root``) fixed by ``sel``
+    (nearest values).
 
     Raises
     ------
@@ -33,7 +34,8 @@ def select_slice(
         raise ParameterError(
             "store", "a quasi-random (Sobol) sweep has no grid to slice; use xarray directly"
         )
-    for option, name in (("--x", x), ("--y", y)):
+    shown = [d for d in (x, y) if d is not None]
+    for option, name in zip(("--x", "--y"), shown):
         if name not in ds.dims:
             raise ParameterError(
                 option, f"{option} {name}: not a dimension of the store ({', '.join(map(str, ds.dims))})"
@@ -41,12 +43,12 @@ def select_slice(
     if x == y:
         raise ParameterError("--y", "--x and --y must differ")
     for name in sel:
-        if name not in ds.dims or name in (x, y):
+        if name not in ds.dims or name in shown:
             raise ParameterError("--sel", f"--sel {name}: not one of the other dimensions")
-    free = [d for d in ds.dims if d not in (x, y, "root") and d not in sel]
+    free = [d for d in ds.dims if d not in (*shown, "root") and d not in sel]
     if free:
         raise ParameterError("--sel", f"--sel: fix {', '.join(map(str, free))} (e.g. --sel {free[0]}=VALUE)")
-    return ds.sel(sel, method="nearest").transpose(y, x, ...)
+    return ds.sel(sel, method="nearest").transpose(*shown[::-1], ...)
 
 
 def plot_sweep_slice(

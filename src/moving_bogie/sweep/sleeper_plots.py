@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from moving_bogie.errors import ParameterError
 from moving_bogie.stability.figures.plot_units import axis_label, mark_operating_point, unit_suffix
+from moving_bogie.sweep.plots import select_slice
 
 if TYPE_CHECKING:
     import xarray
@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["plot_sleeper_sweep", "select_sleeper_slice"]
+__all__ = ["plot_sleeper_sweep"]
 
 #: colours of the map's classes: stable, unstable, undetermined
 _CLASSES = (
@@ -26,39 +26,6 @@ _CLASSES = (
     ("unstable (a root with Im Omega < 0)", "#d9534f"),
     ("undetermined", "0.6"),
 )
-
-
-def select_sleeper_slice(
-    ds: xarray.Dataset, x: str, y: str | None, sel: Mapping[str, float] | None = None
-) -> xarray.Dataset:
-    """The slice (x) or (y, x) of a grid sweep, other dimensions fixed by ``sel`` (nearest values).
-
-    Raises
-    ------
-    ParameterError
-        Naming ``--x``, ``--y`` or ``--sel`` when a name is not a dimension or a dimension is left free.
-    """
-    sel = dict(sel or {})
-    if "point" in ds.dims:
-        raise ParameterError(
-            "store", "a quasi-random (Sobol) sweep has no grid to slice; use xarray directly"
-        )
-    shown = [d for d in (x, y) if d is not None]
-    for option, name in zip(("--x", "--y"), shown):
-        if name not in ds.dims:
-            raise ParameterError(
-                option, f"{option} {name}: not a dimension of the store ({', '.join(map(str, ds.dims))})"
-            )
-    if x == y:
-        raise ParameterError("--y", "--x and --y must differ")
-    for name in sel:
-        if name not in ds.dims or name in shown:
-            raise ParameterError("--sel", f"--sel {name}: not one of the other dimensions")
-    free = [d for d in ds.dims if d not in shown and d not in sel]
-    if free:
-        raise ParameterError("--sel", f"--sel: fix {', '.join(map(str, free))} (e.g. --sel {free[0]}=VALUE)")
-    s = ds.sel(sel, method="nearest")
-    return s.transpose(*shown[::-1])
 
 
 def plot_sleeper_sweep(
@@ -70,7 +37,7 @@ def plot_sleeper_sweep(
     the sweep is marked where it lies on the axes; the title names the model and the fixed parameters."""
     from matplotlib.figure import Figure
 
-    s = select_sleeper_slice(ds, x, y, sel).compute()
+    s = select_slice(ds, x, y, sel).compute()
     fig = Figure(figsize=(8.0, 5.0), layout="constrained")
     ax = fig.subplots()
     point = json.loads(ds.attrs.get("operating_point", "{}"))
