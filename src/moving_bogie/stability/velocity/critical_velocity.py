@@ -36,6 +36,7 @@ import numpy as np
 from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.polynomial import derivative_coefficients, horner
+from moving_bogie.kernels.polyroots import companion_roots
 from moving_bogie.model.catalogue import Model, get_model
 from moving_bogie.model.exact import fraction_to_mpf, nonnegative, positive
 from moving_bogie.model.values import ModelValues
@@ -222,27 +223,19 @@ def dispersion_branches(source: Source = None, p: Any = None, **groups: Any) -> 
         [np.broadcast_to(np.asarray(c, dtype=complex), p.shape) for c in module.n_coeffs_in_q(p, **args)],
         axis=-1,
     )
-    # one batched eigenvalue call on the companion matrices of the rows whose leading coefficient is
-    # nonzero (numpy.roots' own construction); the others, of lower degree there, one by one
+    # the rows whose leading coefficient is nonzero in one batched call; the others, of lower degree
+    # there, one by one. Undamped: the roots are real pairs +-Omega_j, the upper half of the sorted real
+    # parts; the array is as wide as the widest row.
+    n = rows.shape[1] - 1
+    branches = np.full((len(p), n - n // 2), np.nan)
     full = rows[:, 0] != 0
-    out: list[FloatArray] = [np.empty(0)] * len(p)
-    if full.any():
-        lead = rows[full]
-        n = lead.shape[1] - 1
-        companion = np.zeros((len(lead), n, n), dtype=complex)
-        companion[:, 0, :] = -lead[:, 1:] / lead[:, :1]
-        companion[:, np.arange(1, n), np.arange(n - 1)] = 1
-        # undamped: the roots are real pairs +-Omega_j; the upper half of the sorted real parts
-        real = np.sort(np.linalg.eigvals(companion).real, axis=1)[:, n // 2 :]
-        for k, row in zip(np.flatnonzero(full), real):
-            out[k] = row
+    branches[full] = np.sort(companion_roots(rows[full]).real, axis=1)[:, n // 2 :]
+    width = branches.shape[1] if full.any() else 0
     for k in np.flatnonzero(~full):
         roots = np.sort(np.roots(np.trim_zeros(rows[k], "f")).real)
-        out[k] = roots[len(roots) // 2 :]
-    branches = np.full((len(p), max(len(o) for o in out)), np.nan)
-    for row_index, o in enumerate(out):
-        branches[row_index, : len(o)] = o
-    return branches
+        branches[k, : len(roots) - len(roots) // 2] = roots[len(roots) // 2 :]
+        width = max(width, len(roots) - len(roots) // 2)
+    return branches[:, :width]
 
 
 def phase_speed(
