@@ -74,6 +74,8 @@ def test_zone_edges_are_the_d_decomposition_crossings():
     "extra, option",
     [
         (["--d", "1.5"], "--d"),
+        (["--d", "0"], "--d"),  # a zero is given too (0.0 == False must not hide it)
+        (["--eta-f", "0.0"], "--eta-f"),
         (["--range", "v=0:100"], "--range"),
         (["--range", "M=10:100"], "--range"),
         (["--range", "w=1:2"], "--range"),

@@ -80,6 +80,18 @@ def test_set_on_a_sleeper_file_is_checked_as_the_file(capsys, setting, fragment)
     assert fragment in capsys.readouterr().err
 
 
+@pytest.mark.parametrize(
+    "extra, option",
+    [(["--case", "1"], "--case"), (["--alpha", "0"], "--alpha"), (["--window", "0:1:-1:1"], "--window")],
+)
+def test_options_a_sleeper_file_does_not_take_are_named(capsys, extra, option):
+    """A parameter option (the file sets every value; a zero counts as given), a case or a window: one
+    line naming it, exit status 2, before the search."""
+    assert main(["frequencies", "--file", str(EXAMPLE), *extra]) == 2
+    err = capsys.readouterr().err
+    assert option in err and "sleeper" in err and err.count("\n") == 1, err
+
+
 @pytest.mark.slow
 def test_example_file_gives_the_strip_the_harmonics_and_a_verdict(capsys):
     """examples/sleepers.toml with --set v=45: Omega_0 = 2 pi v / l, the harmonics -N-1..N, converged, a

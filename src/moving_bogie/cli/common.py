@@ -65,6 +65,40 @@ def parameter_options() -> list[tuple[str, str, str]]:
     return rows
 
 
+def option_flag(dest: str) -> str:
+    """The command-line spelling of an option's ``dest`` (``eta_f`` -> ``--eta-f``)."""
+    return "--" + dest.replace("_", "-")
+
+
+def first_given(
+    args: argparse.Namespace, dests: Iterable[str], unset: tuple[object, ...] = (None, False)
+) -> str | None:
+    """The first of ``dests`` that the command line set: its value is none of ``unset`` (the parsers'
+    defaults: None, and False for a flag; pass ``(None,)`` where ``--no-X`` sets False) nor an empty list.
+    Compared by identity, so that a number 0 counts as given."""
+    for dest in dests:
+        value = getattr(args, dest, None)
+        if any(value is u for u in unset) or (isinstance(value, list) and not value):
+            continue
+        return dest
+    return None
+
+
+def refuse_for_sleepers(
+    args: argparse.Namespace, reasons: dict[str, str], unset: tuple[object, ...] = (None, False)
+) -> None:
+    """One :class:`ParameterError` naming the first option of ``reasons`` (dest -> why it does not apply)
+    given for a sleeper-track file, and every parameter option (the file sets the model), before any work
+    (``unset``: :func:`first_given`)."""
+    why_model = "give the model and its values in the file (--set NAME=VALUE changes one)"
+    table = dict(reasons) | {name: why_model for name, _, _ in parameter_options() if name not in reasons}
+    dest = first_given(args, table, unset)
+    if dest is not None:
+        flag = option_flag(dest)
+        why = table[dest]
+        raise ParameterError(flag.lstrip("-"), f"{flag} does not apply to a sleeper-track file: {why}")
+
+
 #: Model choices: option -> (dest, what it chooses).
 MODEL_OPTIONS = {"--beam": "beam", "--track": "track", "--vehicle": "vehicle"}
 

@@ -31,11 +31,11 @@ def run_sleeper_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
     from moving_bogie.floquet.inputs import load_sleeper_file
 
-    given = [name for name in ("case", "beam", "track", "vehicle", "window") if getattr(args, name, None)]
-    if given:
-        raise ParameterError(
-            given[0], f"--{given[0]} does not apply to a sleeper track (give it in the file)"
-        )
+    from .common import refuse_for_sleepers
+
+    model = "give the model and its values in the file"
+    reasons = dict.fromkeys(("case", "beam", "track", "vehicle"), model)
+    refuse_for_sleepers(args, reasons | {"window": "the search covers one strip of width Omega_0"})
     data = load_sleeper_file(args.file, overrides=sleeper_settings(getattr(args, "set", None)))
     if data.groups["alpha"] <= 0:
         raise ParameterError(

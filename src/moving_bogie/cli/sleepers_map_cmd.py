@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 
-from .common import print_json
+from .common import print_json, refuse_for_sleepers
 from .progress import progress_bar
 
 if TYPE_CHECKING:
@@ -22,11 +22,12 @@ if TYPE_CHECKING:
 #: the velocity and mass axes without --range, m/s and kg
 DEFAULT_RANGES = {"v": (20.0, 400.0), "M": (0.0, 3000.0)}
 
-#: options of the continuous plane that a sleeper file does not take (dest -> option), refused when given
+#: options of the continuous plane that a sleeper file does not take (dest -> why), refused when given
+_MODEL = "give the model and its values in the file"
 _NOT_APPLICABLE = {
-    "case": "--case", "d": "--d", "eta_f": "--eta-f", "eta_s": "--eta-s", "cf1": "--cf1", "cf2": "--cf2",
-    "kappa_v": "--kappa-v", "eta_v": "--eta-v", "S": "--S", "r": "--r", "beam": "--beam",
-    "track": "--track", "vehicle": "--vehicle", "npz": "--npz", "out": "--out",
+    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL,
+    "npz": "a sleeper map writes its figure and its JSON only", "out": "a sleeper map is not a sweep store",
+    "set": "give the model and its values in the file",
 }  # fmt: skip
 
 
@@ -39,11 +40,7 @@ def sleeper_file(args: argparse.Namespace) -> bool:
 
 def _refuse_options(args: argparse.Namespace) -> None:
     """One message naming the first option that does not apply to a sleeper file (before any work)."""
-    for dest, option in _NOT_APPLICABLE.items():
-        if getattr(args, dest, None) not in (None, [], False):
-            raise ParameterError(option, f"{option} does not apply to a sleeper track (give it in the file)")
-    if getattr(args, "set", None):
-        raise ParameterError("--set", "--set does not apply to a sleeper track (give it in the file)")
+    refuse_for_sleepers(args, _NOT_APPLICABLE)
     if getattr(args, "parameter", "eta_M") != "eta_M":
         raise ParameterError("--parameter", "on a sleeper track the vertical axis is the wheel mass M")
     if args.alpha_min != 0.0 or args.alpha_max != 1.2 or getattr(args, "theta_max", 200.0) != 200.0:

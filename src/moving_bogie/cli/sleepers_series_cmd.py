@@ -35,23 +35,14 @@ _MAX_BAYS = 10_000
 SLEEPER_POINTS = 201
 
 
-def _option(dest: str) -> str:
-    return "--" + dest.replace("_", "-")
-
-
 def check_sleeper_options(args: argparse.Namespace) -> None:
     """Refuse, naming it, the first option that does not apply to a sleeper file; check --bays, --points."""
     from moving_bogie.errors import ParameterError
 
-    from .common import parameter_options
+    from .common import refuse_for_sleepers
 
-    options = {dest: (_option(dest), why) for dest, why in _NOT_FOR_SLEEPERS.items()}
-    options |= {name: (option, _MODEL) for name, option, _ in parameter_options()}
-    for dest, (option, why) in options.items():
-        if getattr(args, dest, None) is not None:
-            raise ParameterError(
-                option.lstrip("-"), f"{option} does not apply to a sleeper-track file: {why}"
-            )
+    # --no-branch-cut sets False: refused too
+    refuse_for_sleepers(args, _NOT_FOR_SLEEPERS, unset=(None,))
     bays = 1 if args.bays is None else args.bays
     if not 1 <= bays <= _MAX_BAYS:
         raise ParameterError("bays", f"--bays must be between 1 and {_MAX_BAYS} (got {bays})")

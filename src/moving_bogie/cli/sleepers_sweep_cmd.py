@@ -30,13 +30,9 @@ def _refuse_options(args: argparse.Namespace) -> None:
     """Refuse, naming it, the first option that does not apply to a sleeper file."""
     from moving_bogie.errors import ParameterError
 
-    from .common import parameter_options
+    from .common import refuse_for_sleepers
 
-    options = {dest: ("--" + dest.replace("_", "-"), why) for dest, why in _NOT_FOR_SLEEPERS.items()}
-    options |= {name: (option, _MODEL) for name, option, _ in parameter_options()}
-    for dest, (option, why) in options.items():
-        if getattr(args, dest, None) not in (None, False):
-            raise ParameterError(option, f"{option} does not apply to a sleeper-track file: {why}")
+    refuse_for_sleepers(args, _NOT_FOR_SLEEPERS)
     if args.units == "dimensionless":
         raise ParameterError(
             "--units", "--units dimensionless does not apply to a sleeper-track file: it is swept in SI units"
