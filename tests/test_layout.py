@@ -496,7 +496,7 @@ PARAMETER_LITERALS_ALLOWED: dict[tuple[str, str], str] = {
     ("moving_bogie.stability.lines.line_results", "d"): "the spacing of a traced line (Figures 3, 4, 7, 8)",
     ("moving_bogie.stability.figures.plots", "d"): "the legend of the lines' spacings",
     ("moving_bogie.stability.figures.track_comparison", "d"): "the legend of the lines' spacings",
-    ("moving_bogie.sweep.store", "d"): "a dependency of Eq. (63)'s J_b = cf2 eta_M d^2 in the store's text",
+    ("moving_bogie.sweep.map_store", "d"): "a dependency of Eq. (63)'s J_b = cf2 eta_M d^2 in the map's text",
     ("moving_bogie.sweep.store", "r"): "the read mode of a zarr group, not the radius of gyration",
     ("moving_bogie.response.axis_sequence", "S"): "Re q = sqrt(S)/r, where the real-axis roots of a beam "
     "with rotary inertia begin (docs/frequencies.md)",

@@ -277,7 +277,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
         smap.save_npz(buffer)
         atomic_write(args.npz, buffer.getvalue())
     if args.out:
-        from moving_bogie.sweep.store import write_map
+        from moving_bogie.sweep.map_store import write_map
 
         write_map(args.out, smap, overwrite=args.overwrite, physical=si_input(args, args.physical))
     if args.plot:

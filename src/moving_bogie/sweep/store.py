@@ -44,8 +44,6 @@ if TYPE_CHECKING:
     import xarray
     import zarr
 
-    from moving_bogie.model.physical import PhysicalParams
-    from moving_bogie.stability.maps.map import StabilityMap
     from moving_bogie.sweep.plan import SweepPlan
 
 #: Where a store is: a folder's path.
@@ -65,7 +63,6 @@ __all__ = [
     "store_group",
     "write_block",
     "write_coordinate",
-    "write_map",
 ]
 
 #: CF ``long_name`` and ``units`` of each data variable (``ds.plot()`` labels its axes from them); the
@@ -342,67 +339,3 @@ def open_sweep(path: StorePath) -> xarray.Dataset:
         return xr.open_zarr(str(path), consolidated="consolidated_metadata" in root)
     except (FileNotFoundError, ValueError, KeyError) as exc:
         raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None
-
-
-def write_map(
-    path: StorePath, smap: StabilityMap, *, overwrite: bool = False, physical: PhysicalParams | None = None
-) -> Path:
-    """Write a :class:`~moving_bogie.stability.maps.map.StabilityMap` as a 2-D sweep store (alpha, parameter).
-
-    With ``physical`` (the SI parameters of the map's base point) the store is in SI units, as a sweep of
-    a ``[physical]`` input: dimensions ``v``, ``M``, ... (each SI value the group times
-    :meth:`~moving_bogie.model.physical.PhysicalParams.si_factor`, read by its shortest decimal text), the
-    groups beside them. Along the map's vertical axis the groups that Eq. (63) ties to it follow it, as
-    the attribute ``vertical_axis`` says.
-    """
-    from moving_bogie.stability.maps.column import exact
-    from moving_bogie.sweep.design import Axis
-
-    def axis(name: str, values: np.ndarray) -> Axis:
-        exact_values = tuple(exact(v) for v in values)
-        if physical is None:
-            return Axis(name, exact_values)
-        spec = smap.params.model.specs[name]
-        factor = physical.si_factor(name)
-        si_values = tuple(Fraction(repr(float(v) * factor)) for v in values)
-        return Axis(name, exact_values, si=spec.si, unit=spec.unit, si_values=si_values)
-
-    axes = (axis("alpha", smap.alphas), axis(smap.parameter, smap.thetas))
-    spec = SweepSpec(smap.params, smap.model, axes, check=0, physical=physical)
-    path = prepare_store(path, spec, overwrite=overwrite)
-    certain = ~smap.uncertain.T
-    n = np.where(certain, smap.count.T, -1).astype(np.int16)
-    arrays = {
-        "stable": certain & (n == 0),
-        "n_unstable": n,
-        "degree_of_instability": np.where(certain, smap.degree.T, np.nan),
-        "margin": _map_margin(smap, certain),
-        "margin_bound": (
-            np.zeros(n.shape, dtype=bool)
-            if smap.margin is None or smap.margin_bound is None
-            else smap.margin_bound.T
-        ),
-        "certain": certain,
-        "settled": smap.settled_cells.T,
-        "checked": np.zeros(n.shape, dtype=np.int8),
-        "computed": np.ones(n.shape, dtype=bool),
-    }
-    write_block(path, spec, (slice(None), slice(None)), arrays)
-    follow = [
-        f"{meta['sets']} = {name} x {smap.parameter}" + (" x d^2" if "d" in meta["depends"] else "")
-        for name, meta in smap.params.model.alternatives.items()
-        if smap.parameter in meta["depends"]
-    ]
-    if follow:
-        store_group(path, "r+").attrs["vertical_axis"] = (
-            f"a stability map: along {smap.parameter} " + ", ".join(follow) + " follow it (Eq. (63))"
-        )
-        consolidate(path)
-    return path
-
-
-def _map_margin(smap: StabilityMap, certain: np.ndarray) -> np.ndarray:
-    """The map's margin (alpha first), NaN where not certain or not measured."""
-    if smap.margin is None:
-        return np.full(certain.shape, np.nan)
-    return np.where(certain, smap.margin.T, np.nan)
