@@ -31,7 +31,7 @@ from moving_bogie.roots.proof.certify import certify, krawczyk
 from moving_bogie.roots.proof.p_balls import direct_root_balls
 from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
 from moving_bogie.roots.proof.strip_proof import strip_region
-from moving_bogie.roots.proof.winding import NotProven, proven_count
+from moving_bogie.roots.proof.winding import NotProven, _between, proven_count
 from moving_bogie.roots.refine.polish import newton
 from moving_bogie.roots.table2 import compute_table2, format_table2
 
@@ -307,3 +307,11 @@ def test_direct_p_root_balls_from_given_approximations_hold_the_roots(start):
                     ]
                     assert sum(inside) == 1
         assert max(float(g.rad()) for g in given) < 2 * max(float(g.rad()) for g in plain)
+
+
+def test_a_segment_is_split_only_at_a_point_between_its_ends():
+    """The halves of a boundary segment (winding.py) cover it only when m lies on it between a and b."""
+    assert _between(0.25 - 1j, 0.5 - 1j, 0.75 - 1j) and _between(2 + 0.5j, 2 + 0.25j, 2 + 0j)
+    assert not _between(0.25 - 1j, 0.8 - 1j, 0.75 - 1j)
+    assert not _between(0.25 - 1j, 0.5 - 1.0000001j, 0.75 - 1j)
+    assert not _between(0j, 0.5 + 0.5j, 1 + 1j)
