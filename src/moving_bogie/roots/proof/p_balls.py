@@ -15,8 +15,11 @@ N(p_m, q) by the mean-value form in q around the centre m. The test proves P for
 any Y; p_m only has to be near the root for P to be small. The points p_m are the midpoints of the Smith
 discs at the centre, or, cheaper, given approximations (the roots at a point of the ball: a boundary
 segment's end) after one Newton step on N(., m), the Smith discs at the centre serving only when those
-fail. It evaluates N on the wide
-ball, which is cheap and tight for the quartic N of the one-layer beams;
+fail. The image K holds the root for every q; it is narrowed by the same operator applied to K itself
+(K(X) holds every root in X when X holds p_m, the segment from p_m to the root then lying in X), each
+image intersected with the ball it came from, while that shrinks it: the term (1 - Y N_p(P, q)) (P - p_m)
+is of second order in the ball's radius, and over a long segment the first, square P costs much. It
+evaluates N on the wide ball, which is cheap and tight for the quartic N of the one-layer beams;
 :mod:`~moving_bogie.roots.proof.p_discs` serves the layered tracks.
 """
 
@@ -116,6 +119,23 @@ def direct_root_balls(
     return _krawczyk_balls(polys, q, isolate_roots(n_mid, tol), prec)
 
 
+def _narrowed(K: Acb, pm: Acb, Y: Acb, shift: Acb, n1: list[Acb], steps: int = 8) -> Acb:
+    """The Krawczyk image K of a proven ball, narrowed: K(X) = p_m - Y shift + (1 - Y N_p(X, q)) (X - p_m)
+    holds the root for every q of the ball whenever X does and holds p_m (the mean-value form of N around
+    p_m over X), so X is replaced by K(X) intersected with X while that holds p_m and shrinks the radius by
+    a tenth or more (at most ``steps`` times)."""
+    for _ in range(steps):
+        if not K.contains(pm):
+            break
+        image = pm - Y * shift + (1 - Y * horner(n1, K)) * (K - pm)
+        narrower = acb(K.real.intersection(image.real), K.imag.intersection(image.imag))
+        shrunk = narrower.rad() < 0.9 * K.rad()
+        K = narrower
+        if not shrunk:
+            break
+    return K
+
+
 def _newton_step(n_mid: list[Acb], n1_mid: list[Acb], approx: Sequence[Acb]) -> list[Acb]:
     """One Newton step on N(., m) from each of ``approx``, in midpoints (exact points)."""
     out = []
@@ -142,7 +162,7 @@ def _krawczyk_balls(
             P = acb(arb(pm.real, rho), arb(pm.imag, rho))
             K = pm - Y * shift + (1 - Y * horner(n1, P)) * (P - pm)
             if P.contains_interior(K):
-                balls.append(K)
+                balls.append(_narrowed(K, pm, Y, shift, n1))
                 break
             rho = 4 * rho
         else:
