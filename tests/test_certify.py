@@ -28,9 +28,10 @@ from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.strip import pieces_below_axis
 from moving_bogie.roots.proof.balls import BallCharacteristic, isolate_roots, square_ball
 from moving_bogie.roots.proof.certify import certify, krawczyk
+from moving_bogie.roots.proof.p_balls import direct_root_balls
 from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
 from moving_bogie.roots.proof.strip_proof import strip_region
-from moving_bogie.roots.proof.winding import NotProven, proven_count
+from moving_bogie.roots.proof.winding import NotProven, _between, proven_count
 from moving_bogie.roots.refine.polish import newton
 from moving_bogie.roots.table2 import compute_table2, format_table2
 
@@ -277,3 +278,40 @@ def test_strip_below_the_axis_is_one_region_around_the_notch():
     area = sum(r.width * r.height for r in pieces)
     assert _shoelace(list(region.corners)) == pytest.approx(area, rel=1e-12)
     assert len(region.corners) == 12  # the rectangle with two notches in its top edge
+
+
+@pytest.mark.parametrize("start", ["end", "far"])
+def test_direct_p_root_balls_from_given_approximations_hold_the_roots(start):
+    """Over a q-ball, the Krawczyk balls started from given approximations (the roots at the ball's end, as
+    a boundary segment gives them, or far ones, which fall back to the Smith discs at the centre) each hold
+    exactly one root of N(p, q) at points of the ball (mpmath's polyroots at 30 digits), as those without."""
+    bound = bind(table1_case(2))
+    bc = BallCharacteristic(bound, prec=96)
+    f, args = bc.foundation, bc.foundation_args
+    a, b = 0.62 - 1e-4j, 0.6203 - 1e-4j
+    with ctx.workprec(96):
+        ball = acb(a).union(acb(b))
+        at_end = [z.mid() for z in direct_root_balls(f, args, acb(a), bc.tol, 96)]
+        approx = at_end if start == "end" else [acb(10 * k, 1) for k in range(4)]
+        given = direct_root_balls(f, args, ball, bc.tol, 96, approx)
+        plain = direct_root_balls(f, args, ball, bc.tol, 96)
+        for q in (a, b, 0.5 * (a + b)):
+            coeffs = [complex(acb(c).mid()) for c in f.n_coeffs(acb(q), **args)]
+            with mpmath.workdps(30):
+                roots = mpmath.polyroots(coeffs, maxsteps=200, extraprec=200)
+            for balls in (given, plain):
+                assert len(balls) == 4
+                for p in roots:
+                    inside = [
+                        g.contains(acb(mpmath.nstr(p.real, 30), mpmath.nstr(p.imag, 30))) for g in balls
+                    ]
+                    assert sum(inside) == 1
+        assert max(float(g.rad()) for g in given) < 2 * max(float(g.rad()) for g in plain)
+
+
+def test_a_segment_is_split_only_at_a_point_between_its_ends():
+    """The halves of a boundary segment (winding.py) cover it only when m lies on it between a and b."""
+    assert _between(0.25 - 1j, 0.5 - 1j, 0.75 - 1j) and _between(2 + 0.5j, 2 + 0.25j, 2 + 0j)
+    assert not _between(0.25 - 1j, 0.8 - 1j, 0.75 - 1j)
+    assert not _between(0.25 - 1j, 0.5 - 1.0000001j, 0.75 - 1j)
+    assert not _between(0j, 0.5 + 0.5j, 1 + 1j)

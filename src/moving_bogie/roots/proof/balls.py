@@ -149,6 +149,7 @@ class BallCharacteristic:
         self.foundation = bound.foundation
         self.vehicle = bound.vehicle
         self.blocks: BlockBalls | None = None
+        self.last_point: tuple[Acb, list[Acb]] | None = None  # a point q and its roots' midpoints
         self.evaluations = 0
         with ctx.workprec(prec):
             numbers = _ExactBalls(params)
@@ -177,10 +178,18 @@ class BallCharacteristic:
 
     def _root_balls(self, q: Acb) -> list[Acb]:
         """Root balls of N(p, xi), xi in the ball q, each holding exactly one root for every xi (direct:
-        :mod:`p_balls`; else :mod:`p_discs`, a Krawczyk test in disc form on N's exact Taylor expansion)."""
-        if self.p_discs is None:  # self.direct
-            return direct_root_balls(self.foundation, self.foundation_args, q, self.tol, self.prec)
-        return self.p_discs.discs(q)
+        :mod:`p_balls`; else :mod:`p_discs`, a Krawczyk test in disc form on N's exact Taylor expansion).
+
+        Direct: the roots at the last point evaluated start the tests over a ball that contains the point
+        (a boundary segment's ball holds its end evaluated before it), as approximations only."""
+        if self.p_discs is not None:  # not self.direct
+            return self.p_discs.discs(q)
+        last = self.last_point
+        approx = last[1] if last is not None and q.rad() != 0 and q.contains(last[0]) else None
+        balls = direct_root_balls(self.foundation, self.foundation_args, q, self.tol, self.prec, approx)
+        if q.rad() == 0:
+            self.last_point = (q, [b.mid() for b in balls])
+        return balls
 
     def _sides(self, q: Acb, roots: Sequence[Acb]) -> tuple[list[Acb], list[Acb]]:
         """(upper, lower) p-root balls at the q-ball ``q``; on the real axis with ``below``, real roots

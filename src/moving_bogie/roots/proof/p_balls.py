@@ -11,14 +11,21 @@ a Krawczyk test in p that holds for every q of the ball: with Y ~ 1 / N_p(p_m, m
 
     p_m - Y N(p_m, q) + (1 - Y N_p(P, q)) (P - p_m)  inside P   =>  one root in P for every q of the ball,
 
-N(p_m, q) by the mean-value form in q around the centre m. It evaluates N on the wide ball, which is
-cheap and tight for the quartic N of the one-layer beams; :mod:`~moving_bogie.roots.proof.p_discs` serves the
-layered tracks.
+N(p_m, q) by the mean-value form in q around the centre m. The test proves P for any point p_m in it and
+any Y; p_m only has to be near the root for P to be small. The points p_m are the midpoints of the Smith
+discs at the centre, or, cheaper, given approximations (the roots at a point of the ball: a boundary
+segment's end) after one Newton step on N(., m), the Smith discs at the centre serving only when those
+fail. The image K holds the root for every q; it is narrowed by the same operator applied to K itself
+(K(X) holds every root in X when X holds p_m, the segment from p_m to the root then lying in X), each
+image intersected with the ball it came from, while that shrinks it: the term (1 - Y N_p(P, q)) (P - p_m)
+is of second order in the ball's radius, and over a long segment the first, square P costs much. It
+evaluates N on the wide ball, which is cheap and tight for the quartic N of the one-layer beams;
+:mod:`~moving_bogie.roots.proof.p_discs` serves the layered tracks.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from types import ModuleType
 from typing import Any
 
@@ -79,9 +86,17 @@ def isolate_roots(coeffs: Iterable[Acb], tol: float | None = None) -> list[Acb]:
 
 
 def direct_root_balls(
-    foundation: ModuleType, args: dict[str, Any], q: Acb, tol: float, prec: int
+    foundation: ModuleType,
+    args: dict[str, Any],
+    q: Acb,
+    tol: float,
+    prec: int,
+    approx: Sequence[Acb] | None = None,
 ) -> list[Acb]:
     """Root balls of N(p, xi), each holding exactly one root for every xi in the ball q (module text).
+
+    ``approx``, exact points near the roots at the ball's centre (one per root), are where the Krawczyk
+    tests start; without them, or when they fail, the Smith discs at the centre.
 
     Raises
     ------
@@ -89,15 +104,54 @@ def direct_root_balls(
         When the leading coefficient may vanish over the ball, a Krawczyk test fails or two balls overlap.
     """
     n_mid = [acb(c) for c in foundation.n_coeffs(q.mid(), **args)]
-    centre = isolate_roots(n_mid, tol)
     if q.rad() == 0:
-        return centre
+        return isolate_roots(n_mid, tol)
     n = [acb(c) for c in foundation.n_coeffs(q, **args)]
     if n[0].contains(0):  # the degree in p must not drop anywhere in the q ball
         raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
-    n1 = derivative_coefficients(n)
     nq = [acb(c) for c in foundation.n_coeffs_dq(q, **args)]
-    n1_mid = derivative_coefficients(n_mid)
+    polys = (n_mid, derivative_coefficients(n_mid), derivative_coefficients(n), nq)
+    if approx is not None and len(approx) == len(n_mid) - 1:
+        try:
+            return _krawczyk_balls(polys, q, _newton_step(n_mid, polys[1], approx), prec)
+        except Undecided:
+            pass
+    return _krawczyk_balls(polys, q, isolate_roots(n_mid, tol), prec)
+
+
+def _narrowed(K: Acb, pm: Acb, Y: Acb, shift: Acb, n1: list[Acb], steps: int = 8) -> Acb:
+    """The Krawczyk image K of a proven ball, narrowed: K(X) = p_m - Y shift + (1 - Y N_p(X, q)) (X - p_m)
+    holds the root for every q of the ball whenever X does and holds p_m (the mean-value form of N around
+    p_m over X), so X is replaced by K(X) intersected with X while that holds p_m and shrinks the radius by
+    a tenth or more (at most ``steps`` times)."""
+    for _ in range(steps):
+        if not K.contains(pm):
+            break
+        image = pm - Y * shift + (1 - Y * horner(n1, K)) * (K - pm)
+        narrower = acb(K.real.intersection(image.real), K.imag.intersection(image.imag))
+        shrunk = narrower.rad() < 0.9 * K.rad()
+        K = narrower
+        if not shrunk:
+            break
+    return K
+
+
+def _newton_step(n_mid: list[Acb], n1_mid: list[Acb], approx: Sequence[Acb]) -> list[Acb]:
+    """One Newton step on N(., m) from each of ``approx``, in midpoints (exact points)."""
+    out = []
+    for z in approx:
+        z = acb(z).mid()
+        out.append((z - horner(n_mid, z) / horner(n1_mid, z)).mid())
+    return out
+
+
+def _krawczyk_balls(
+    polys: tuple[list[Acb], list[Acb], list[Acb], list[Acb]], q: Acb, centre: Sequence[Acb], prec: int
+) -> list[Acb]:
+    """The Krawczyk test of the module text around each ball of ``centre`` (at q's midpoint m; points or
+    Smith discs), with ``polys`` = (N(., m), N_p(., m), N_p over q, N_q over q); the balls K it proves,
+    checked pairwise disjoint (so that, one per root of N, they hold every root)."""
+    n_mid, n1_mid, n1, nq = polys
     balls = []
     for p_ball in centre:
         pm = p_ball.mid()
@@ -108,7 +162,7 @@ def direct_root_balls(
             P = acb(arb(pm.real, rho), arb(pm.imag, rho))
             K = pm - Y * shift + (1 - Y * horner(n1, P)) * (P - pm)
             if P.contains_interior(K):
-                balls.append(K)
+                balls.append(_narrowed(K, pm, Y, shift, n1))
                 break
             rho = 4 * rho
         else:

@@ -6,11 +6,15 @@ The rectangle's boundary (corners are exact binary floats) is cut into segments 
 1. E_chr is analytic: the ball evaluation (:mod:`balls`) proves that no p-root of N(p, q) is real for any q
    of the segment, i.e. the segment does not meet the cut of K.
 2. E_chr has no zero and turns by less than pi: with B the segment's ball, the mean-value forms
-   E(q) in E(c) + E'(B) (B - c) (Eq. (40) for E') around c = a and c = b, intersected, and when that does
-   not exclude 0 the one around the midpoint m too, enclose E on the whole segment in an axis-parallel
-   rectangle (E(q) - E(c) is (q - c) times the mean of E' over the segment from c to q, which lies in
-   the convex E'(B)); when that rectangle excludes 0 it lies in an open half-plane through 0, so the
-   continuous change of arg E along the segment is the principal value Arg(E(b) / E(a)), computed as a ball.
+   E(q) in E(c) + E'(B) (B - c) (Eq. (40) for E') around c = a and c = b, intersected, enclose E on the
+   whole segment in an axis-parallel rectangle (E(q) - E(c) is (q - c) times the mean of E' over the
+   segment from c to q, which lies in the convex E'(B)). When that does not exclude 0, the segment is
+   split at its midpoint m (a point of it: the edges are axis-parallel) and E on [a, m] enclosed by
+   E(a) + E'(B) (H(a, m) - a), on [m, b] by E(b) + E'(B) (H(m, b) - b) (H(u, v) the ball holding u and v;
+   no new value of E is needed), a rectangle holding both intersected with the first; when that does not
+   exclude 0 either, the form around m, E(m) + E'(B) (B - m), too. When the rectangle excludes 0 it lies
+   in an open half-plane through 0, so the continuous change of arg E along the segment is the principal
+   value Arg(E(b) / E(a)), computed as a ball.
 
 Along each edge a proven segment lets the next one grow, and a segment where either test fails is halved
 (down to a relative length ``min_length``, then the count is reported unproven); the values at the ends
@@ -143,13 +147,17 @@ def _argument_change(
     cannot be determined.
 
     E on the segment is enclosed by the mean-value forms around a and b (their intersection), and only
-    when that does not exclude 0, by the one around m too: E(q) in E(c) + E'(B) (B - c) for every q of
-    the segment and c in {a, b, m}, B the box of a, b and m (so that the segment from c to q lies in it).
+    when that does not exclude 0, by those around a on [a, m] and around b on [m, b] (the hull of the
+    two), and then by the one around m too: E(q) in E(c) + E'(B) (H - c) for every q of the segment, or
+    of the half of it that H holds, B the box of a, b and m (so that the segment from c to q lies in it).
     """
     ball = acb(a).union(acb(b)).union(acb(m))
     dE = bc.derivative(ball)
     Ea, Eb = value(a), value(b)
     enclosure = _intersection(Ea + dE * (ball - acb(a)), Eb + dE * (ball - acb(b)))
+    if enclosure.contains(0) and _between(a, m, b):
+        halves = (Ea + dE * (acb(a).union(acb(m)) - acb(a))).union(Eb + dE * (acb(m).union(acb(b)) - acb(b)))
+        enclosure = _intersection(enclosure, halves)
     if enclosure.contains(0):
         enclosure = _intersection(enclosure, value(m) + dE * (ball - acb(m)))
         if enclosure.contains(0):
@@ -158,6 +166,15 @@ def _argument_change(
     if not change.is_finite() or change.rad() > 0.5:
         raise Undecided("arg E_chr not resolved on the segment")
     return change
+
+
+def _between(a: complex, m: complex, b: complex) -> bool:
+    """m lies on the axis-parallel segment from a to b (so that [a, m] and [m, b] cover it)."""
+    if a.imag == m.imag == b.imag:
+        return min(a.real, b.real) <= m.real <= max(a.real, b.real)
+    if a.real == m.real == b.real:
+        return min(a.imag, b.imag) <= m.imag <= max(a.imag, b.imag)
+    return False
 
 
 def _intersection(u: Acb, v: Acb) -> Acb:
