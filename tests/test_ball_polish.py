@@ -1,7 +1,7 @@
 """The polish and the residues in Arb's balls against the mpmath path they replace where asked.
 
 References: :class:`moving_bogie.kernels.characteristic.Characteristic` (E_chr and dE_chr/dq at the mpmath
-precision, dK/dq by double-pole residues) for :class:`~moving_bogie.roots.refine.ball_polish.BallPrecise`,
+precision, dK/dq by double-pole residues) for :class:`~moving_bogie.roots.ball_polish.BallPrecise`,
 and :func:`moving_bogie.response.residues.residue_expansion` on its mpmath path (Cramer's rule and Jacobi's
 formula on the condensed system) for :func:`~moving_bogie.response.ball_residues.ball_amplitudes`.
 """
@@ -16,9 +16,9 @@ from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic
 from moving_bogie.model.cases import table1_case
 from moving_bogie.response.residues import residue_expansion
+from moving_bogie.roots.ball_polish import BallPrecise, acb_from_mpc, mpc_from_acb
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.frequencies import induced_frequencies
-from moving_bogie.roots.refine.ball_polish import BallPrecise, acb_from_mpc, mpc_from_acb
 from moving_bogie.roots.refine.polish import polish_and_confirm
 
 

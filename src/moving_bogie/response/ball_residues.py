@@ -24,9 +24,9 @@ from flint import acb, acb_series, arb, ctx
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, kernel_matrix
+from moving_bogie.roots.ball_polish import acb_from_mpc, balls_apply, mpc_from_acb
 from moving_bogie.roots.proof.ball_block import BlockBalls, coefficient
 from moving_bogie.roots.proof.balls import BallCharacteristic, Undecided, exact_ball
-from moving_bogie.roots.refine.ball_polish import acb_from_mpc, mpc_from_acb
 from moving_bogie.typing import Acb, Mpc
 
 __all__ = ["ball_amplitudes"]
@@ -59,7 +59,8 @@ def ball_amplitudes(
 ) -> list[dict[str, Mpc] | None]:
     """Per root q (mpmath), the amplitudes n_X(q) / (q E_chr'(q)) by response name, each to ``dps`` digits
     relative (the ball's radius below 10^-dps of its size, rounded at ``dps`` digits), or None for a root
-    where the balls do not reach that (the caller's mpmath path then).
+    where the balls do not reach that (the caller's mpmath path then; for every root of a model the balls do
+    not evaluate, :func:`~moving_bogie.roots.ball_polish.balls_apply`).
 
     At a root A is singular to about the root's accuracy (10^-dps relative), so x and tr(A^-1 dA/dq) lose
     about dps digits to cancellation that their ratio recovers: the balls are evaluated at twice the bits
@@ -68,7 +69,7 @@ def ball_amplitudes(
     tolerance = arb(10) ** -dps
     first = 2 * int(dps * math.log2(10)) + GUARD_BITS
     out: list[dict[str, Mpc] | None] = [None] * len(qs)
-    for bits in (first, 2 * first):
+    for bits in (first, 2 * first) if balls_apply(bound) else ():
         wanted = [k for k, found in enumerate(out) if found is None]
         if not wanted:
             break

@@ -198,20 +198,11 @@ def residue_expansion(
         for q, found in zip(qs, in_balls):
             q = mpmath.mpc(q)
             qs_mp.append(q)
-            if found is not None:
-                for name in names:
-                    amps_mp[name].append(found[name])
-                continue
-            kv = chr_.kernel_values(q, derivative=True)
-            E, dE = chr_.value_and_derivative(q, kv)
-            if dE == 0:
-                raise MovingBogieError(f"E_chr'({mpmath.nstr(q, 10)}) = 0: a multiple root")
-            num = chr_.numerators(q, kv)
+            amps, shape = (found, None) if found is not None else _residue_mp(chr_, q, shapes)
             for name in names:
-                amps_mp[name].append(num[name] / (q * dE))
-            if shapes:
-                G = chr_.shape_weights(q, kv, num, E)
-                shape_amps.append([g / (2 * mpmath.pi * q * dE) for g in G])
+                amps_mp[name].append(amps[name])
+            if shape is not None:
+                shape_amps.append(shape)
         contacts = chr_.system.contacts
         positions = tuple(float(x) for x in chr_.system.positions)
         shape_steady = [0.0] * contacts
@@ -237,6 +228,21 @@ def residue_expansion(
         amplitudes_mp={name: tuple(v) for name, v in amps_mp.items()},
         dps=frequencies.dps,
     )
+
+
+def _residue_mp(chr_: Characteristic, q: Mpc, shapes: bool) -> tuple[dict[str, Mpc], list[Mpc] | None]:
+    """At one root q, at the working precision: n_X(q) / (q E_chr'(q)) by response name (Eqs. (36),
+    (40)-(43)) and, with ``shapes``, G_j(q) / (2 pi q E_chr'(q)) of Eq. (47) (else None)."""
+    kv = chr_.kernel_values(q, derivative=True)
+    E, dE = chr_.value_and_derivative(q, kv)
+    if dE == 0:
+        raise MovingBogieError(f"E_chr'({mpmath.nstr(q, 10)}) = 0: a multiple root")
+    num = chr_.numerators(q, kv)
+    amps = {name: num[name] / (q * dE) for name in chr_.names}
+    if not shapes:
+        return amps, None
+    G = chr_.shape_weights(q, kv, num, E)
+    return amps, [g / (2 * mpmath.pi * q * dE) for g in G]
 
 
 def _in_balls(

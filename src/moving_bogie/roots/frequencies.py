@@ -30,15 +30,15 @@ import mpmath
 import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
-from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
+from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
+from moving_bogie.roots.ball_polish import BallPrecise
 from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mismatch
 from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.count.window import default_window, far_field_window  # noqa: F401  (public here too)
 from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
-from moving_bogie.roots.refine.ball_polish import BallPrecise
 from moving_bogie.roots.refine.locate import LocatedCell, locate
 from moving_bogie.roots.refine.polish import (
     PolishError,
@@ -103,14 +103,12 @@ def induced_frequencies(
         Roots located by other means (double precision): a tile holding exactly its count of them takes
         them instead of its bisection (:func:`_locate_counted`; :mod:`moving_bogie.response.axis_law`).
     balls : bool
-        Evaluate E_chr and dE_chr/dq for the polish in Arb's balls (:class:`BallPrecise`: the same roots to
-        the working precision, faster; the mpmath path where the balls do not settle a step).
+        Polish in Arb's balls too (:class:`BallPrecise`; the digits are confirmed there in any case).
     """
     extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
-    fast, precise = CharacteristicArray(bound), Characteristic(bound)
-    in_balls = BallPrecise(bound, precise)  # counts its evaluations and those of the mpmath path
-    polishing = (in_balls if balls else precise, in_balls)  # (polish, confirm at the higher precision)
+    fast, in_balls = CharacteristicArray(bound), BallPrecise(bound)
+    polishing = (in_balls if balls else in_balls.precise, in_balls)  # (polish, confirm at higher precision)
     report = _reporter(progress)
     counted, beyond = _count(fast, bound, window, eps, eps_branch, newton_cell, check_window, report)
     notes: list[Note] = [*counted.notes, *(beyond.notes(window, far) if beyond else ())]
@@ -121,16 +119,9 @@ def induced_frequencies(
     _compare_with_count(count, roots, notes)
     unsearched = counted.tiling.unsearched
     result = FrequencyResult(
-        bound,
-        bound.params.vehicle,
-        dps,
-        window,
-        tuple(roots),
-        count,
-        unsearched,
-        fast.evaluations + in_balls.evaluations,
-        tuple(notes),
-        far,
+        *(bound, bound.params.vehicle, dps, window, tuple(roots), count, unsearched),
+        fast.evaluations + in_balls.evaluations,  # BallPrecise's own and those of its mpmath path
+        *(tuple(notes), far),
         strip=strip_below_cut(bound, window, [u for u in unsearched if not u.reason]),
         unlocated=tuple(unlocated),
         decaying_outside=beyond.decaying(window, far) if beyond else 0,

@@ -22,7 +22,7 @@ from moving_bogie.typing import Mpc, Mpf
 class PreciseCharacteristic(Protocol):
     """E_chr and dE_chr/dq (Eqs. (38), (40)) at the current mpmath precision
     (:class:`~moving_bogie.kernels.characteristic.Characteristic`,
-    :class:`~moving_bogie.roots.refine.ball_polish.BallPrecise`)."""
+    :class:`~moving_bogie.roots.ball_polish.BallPrecise`)."""
 
     params: Any  # the dimensionless parameters
 
@@ -96,7 +96,7 @@ def polish_and_confirm(
     and four times ``dps``; the digits are still confirmed one ``extra_dps`` step higher.
 
     ``confirming``: the evaluation of E_chr and dE_chr/dq for the higher precision (default
-    ``characteristic``), e.g. :class:`~moving_bogie.roots.refine.ball_polish.BallPrecise`, whose error is
+    ``characteristic``), e.g. :class:`~moving_bogie.roots.ball_polish.BallPrecise`, whose error is
     bounded: the recomputation then also comes from another arithmetic.
     """
     work = dps

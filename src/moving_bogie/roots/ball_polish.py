@@ -7,7 +7,8 @@ rounded to the working precision. Every ball encloses the exact value, so the ev
 error: the values are accepted only when the error of E over |E'| (what the Newton step E / E' and so the
 root inherit; that of E' only scales a step) is below the last working digit of q by
 :data:`GUARD_DIGITS`; otherwise the evaluation is repeated at twice the bits, and where the balls cannot
-decide (a p-root of N on the real p-axis, :class:`Undecided`) or stay too wide, the mpmath path answers.
+decide (a p-root of N on the real p-axis, :class:`Undecided`) or stay too wide, and for a model they do
+not evaluate (:func:`balls_apply`), the mpmath path answers.
 The roots so polished are those of the mpmath path to the working precision (a test compares the two).
 """
 
@@ -18,10 +19,11 @@ from flint import acb, arb, ctx
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import Characteristic
+from moving_bogie.kernels.track import foundation_arguments
 from moving_bogie.roots.proof.balls import BallCharacteristic, Undecided
 from moving_bogie.typing import Acb, Arb, Mpc, Mpf
 
-__all__ = ["BallPrecise", "acb_from_mpc", "mpc_from_acb"]
+__all__ = ["BallPrecise", "acb_from_mpc", "balls_apply", "mpc_from_acb"]
 
 #: Bits carried beyond the working precision in the ball evaluation.
 GUARD_BITS = 32
@@ -71,6 +73,7 @@ class BallPrecise:
         self.bound = bound
         self.params = bound.params
         self.precise = Characteristic(bound) if precise is None else precise
+        self.applies = balls_apply(bound)
         self._balls: dict[int, BallCharacteristic] = {}
         self.ball_evaluations = 0
         self.fallbacks = 0
@@ -93,7 +96,7 @@ class BallPrecise:
         point = acb_from_mpc(q)
         bound = mpmath.mpf(10) ** (-mpmath.mp.dps - GUARD_DIGITS) * max(1, abs(q))
         prec = mpmath.mp.prec + GUARD_BITS
-        for _ in range(RETRIES + 1):
+        for _ in range(RETRIES + 1 if self.applies else 0):
             try:
                 E, dE = self._at(prec).value_and_derivative(point)
             except Undecided:
@@ -104,6 +107,16 @@ class BallPrecise:
             prec *= 2
         self.fallbacks += 1
         return self.precise.value_and_derivative(q)
+
+
+def balls_apply(bound: BoundModel) -> bool:
+    """Whether :class:`~moving_bogie.roots.proof.balls.BallCharacteristic` evaluates this bound model: it
+    takes the track's arguments from the parameters, so not a track whose own values (a
+    :class:`~moving_bogie.kernels.foundation.Foundation` given its layer) fill arguments they lack."""
+    from_params = foundation_arguments(bound, bound.params)
+    return all(
+        from_params.get(name) is not None or value is None for name, value in bound.foundation_mp().items()
+    )
 
 
 def _upper(x: Arb) -> Mpf:
