@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from moving_bogie.kernels.brent import brentq
 from moving_bogie.kernels.coefficient_matrix import Coefficients
 from moving_bogie.kernels.polynomial import horner
 from moving_bogie.kernels.polyroots import (
@@ -203,8 +204,6 @@ def split_at_turns(
 
             fa, fb = slope(ps[k]), slope(ps[k + 1])
             if fa * fb < 0:
-                from scipy.optimize import brentq  # here: scipy.optimize costs 0.3 s to import
-
                 pt = brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
                 qt = complex(tracer.refine(np.array([pt]), np.array([qs[k]]))[0])
                 end = nxt = k + 1

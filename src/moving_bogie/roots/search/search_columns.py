@@ -11,6 +11,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from moving_bogie.kernels.brent import brentq
 from moving_bogie.kernels.cut import CutArm, CutLocus, arms_y_at
 from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.search.cut_cells import ColumnCell, Edge, Sliver
@@ -153,8 +154,6 @@ def _split_point(
             ga, gb = g(xs[k], target), g(xs[k + 1], target)
             if ga * gb > 0:  # the sign change was at rounding level: split at the nearer sample
                 return float(xs[k] if abs(ga) < abs(gb) else xs[k + 1]), target == 0.0
-            from scipy.optimize import brentq  # here: scipy.optimize costs 0.3 s to import
-
             x = brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
             return x, target == 0.0
     return None, False
