@@ -18,8 +18,8 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import optimize
 
+from moving_bogie.kernels.brent import brentq
 from moving_bogie.kernels.coefficient_matrix import Coefficients
 from moving_bogie.kernels.polynomial import horner
 from moving_bogie.kernels.polyroots import (
@@ -204,7 +204,7 @@ def split_at_turns(
 
             fa, fb = slope(ps[k]), slope(ps[k + 1])
             if fa * fb < 0:
-                pt = optimize.brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
+                pt = brentq(slope, ps[k], ps[k + 1], xtol=1e-15, rtol=1e-15)
                 qt = complex(tracer.refine(np.array([pt]), np.array([qs[k]]))[0])
                 end = nxt = k + 1
             else:  # the change of sign was at rounding level (a turn on or next to a sample, e.g. at p = 0

@@ -133,7 +133,12 @@ def axis_sequence(bound: BoundModel, result: FrequencyResult, *, start: float, t
         strip = Rectangle(x, 2 * x, -HALF_HEIGHT, HALF_HEIGHT)
         starts = law_roots(fast, strip) if fast is not None else None
         found = induced_frequencies(
-            bound, dps=DPS, window=strip, check_window=False, starts=None if starts is None else list(starts)
+            bound,
+            dps=DPS,
+            window=strip,
+            check_window=False,
+            starts=None if starts is None else list(starts),
+            balls=True,
         )
         bisected += _bisected(starts, found)
         complete &= found.count_ok
@@ -141,7 +146,7 @@ def axis_sequence(bound: BoundModel, result: FrequencyResult, *, start: float, t
         first = first if strips > 1 else found.found
         amp = 0.0
         if found.roots:
-            expansion = residue_expansion(bound, found, shapes=False)
+            expansion = residue_expansion(bound, found, shapes=False, balls=True)
             expansions.append(expansion)
             found_roots += len(found.roots)
             per_root = _amplitudes(expansion)

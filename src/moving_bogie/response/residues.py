@@ -154,7 +154,7 @@ class ResidueExpansion:
 
 
 def residue_expansion(
-    bound: BoundModel, frequencies: FrequencyResult, *, shapes: bool = True
+    bound: BoundModel, frequencies: FrequencyResult, *, shapes: bool = True, balls: bool = False
 ) -> ResidueExpansion:
     """Residue coefficients for the steady and unsteady harmonic parts, Eqs. (36)-(47).
 
@@ -168,6 +168,10 @@ def residue_expansion(
         From :func:`moving_bogie.roots.frequencies.induced_frequencies` for the same bound model.
     shapes : bool
         Also compute the shape weights of Eqs. (44)-(47) (needed by :func:`deflection_shape`).
+    balls : bool
+        Without ``shapes``: the amplitudes in Arb's balls, to ``frequencies.dps`` digits proven
+        (:func:`~moving_bogie.response.ball_residues.ball_amplitudes`; the mpmath path for a root where the
+        balls do not reach them).
 
     Raises
     ------
@@ -190,19 +194,15 @@ def residue_expansion(
         steady_mp = {name: n0[name] / E0 for name in names}
         amps_mp: dict[str, list[Mpc]] = {name: [] for name in names}
         shape_amps, qs_mp = [], []
-        for q in qs:
+        in_balls = _in_balls(bound, qs, names, frequencies.dps) if balls and not shapes else [None] * len(qs)
+        for q, found in zip(qs, in_balls):
             q = mpmath.mpc(q)
-            kv = chr_.kernel_values(q, derivative=True)
-            E, dE = chr_.value_and_derivative(q, kv)
-            if dE == 0:
-                raise MovingBogieError(f"E_chr'({mpmath.nstr(q, 10)}) = 0: a multiple root")
-            num = chr_.numerators(q, kv)
-            for name in names:
-                amps_mp[name].append(num[name] / (q * dE))
-            if shapes:
-                G = chr_.shape_weights(q, kv, num, E)
-                shape_amps.append([g / (2 * mpmath.pi * q * dE) for g in G])
             qs_mp.append(q)
+            amps, shape = (found, None) if found is not None else _residue_mp(chr_, q, shapes)
+            for name in names:
+                amps_mp[name].append(amps[name])
+            if shape is not None:
+                shape_amps.append(shape)
         contacts = chr_.system.contacts
         positions = tuple(float(x) for x in chr_.system.positions)
         shape_steady = [0.0] * contacts
@@ -228,6 +228,30 @@ def residue_expansion(
         amplitudes_mp={name: tuple(v) for name, v in amps_mp.items()},
         dps=frequencies.dps,
     )
+
+
+def _residue_mp(chr_: Characteristic, q: Mpc, shapes: bool) -> tuple[dict[str, Mpc], list[Mpc] | None]:
+    """At one root q, at the working precision: n_X(q) / (q E_chr'(q)) by response name (Eqs. (36),
+    (40)-(43)) and, with ``shapes``, G_j(q) / (2 pi q E_chr'(q)) of Eq. (47) (else None)."""
+    kv = chr_.kernel_values(q, derivative=True)
+    E, dE = chr_.value_and_derivative(q, kv)
+    if dE == 0:
+        raise MovingBogieError(f"E_chr'({mpmath.nstr(q, 10)}) = 0: a multiple root")
+    num = chr_.numerators(q, kv)
+    amps = {name: num[name] / (q * dE) for name in chr_.names}
+    if not shapes:
+        return amps, None
+    G = chr_.shape_weights(q, kv, num, E)
+    return amps, [g / (2 * mpmath.pi * q * dE) for g in G]
+
+
+def _in_balls(
+    bound: BoundModel, qs: list[Mpc], names: tuple[str, ...], dps: int
+) -> list[dict[str, Mpc] | None]:
+    """The amplitudes of every root in Arb's balls where they reach ``dps`` digits (else None)."""
+    from moving_bogie.response.ball_residues import ball_amplitudes
+
+    return ball_amplitudes(bound, qs, names, dps)
 
 
 def frequencies_for(

@@ -21,6 +21,7 @@ Im q < 0 (:mod:`far_field`), so the verdict (:mod:`verdict`) speaks about every 
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -29,8 +30,9 @@ import mpmath
 import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
-from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
+from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
+from moving_bogie.roots.ball_polish import BallPrecise
 from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mismatch
@@ -38,7 +40,12 @@ from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.count.window import default_window, far_field_window  # noqa: F401  (public here too)
 from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
 from moving_bogie.roots.refine.locate import LocatedCell, locate
-from moving_bogie.roots.refine.polish import PolishError, polish_and_confirm, split_cluster
+from moving_bogie.roots.refine.polish import (
+    PolishError,
+    PreciseCharacteristic,
+    polish_and_confirm,
+    split_cluster,
+)
 from moving_bogie.roots.search.continuation import ContinuedRegion
 from moving_bogie.roots.search.counting import TilingCount, count_tiling, frame
 
@@ -59,6 +66,7 @@ def induced_frequencies(
     progress: Callable[[float], None] | None = None,
     certify: bool = False,
     starts: Sequence[complex] | None = None,
+    balls: bool = False,
 ) -> FrequencyResult:
     """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`).
 
@@ -94,30 +102,26 @@ def induced_frequencies(
     starts : sequence of complex, optional
         Roots located by other means (double precision): a tile holding exactly its count of them takes
         them instead of its bisection (:func:`_locate_counted`; :mod:`moving_bogie.response.axis_law`).
+    balls : bool
+        Polish in Arb's balls too (:class:`BallPrecise`; the digits are confirmed there in any case).
     """
     extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
-    fast, precise = CharacteristicArray(bound), Characteristic(bound)
+    fast, in_balls = CharacteristicArray(bound), BallPrecise(bound)
+    polishing = (in_balls if balls else in_balls.precise, in_balls)  # (polish, confirm at higher precision)
     report = _reporter(progress)
     counted, beyond = _count(fast, bound, window, eps, eps_branch, newton_cell, check_window, report)
     notes: list[Note] = [*counted.notes, *(beyond.notes(window, far) if beyond else ())]
     report(0.2)
     args = (counted, newton_cell, dps, extra_dps, notes, report, starts)
-    roots, cells, unlocated = _confirmed_roots(fast, precise, *args)
+    roots, cells, unlocated = _confirmed_roots(fast, polishing, *args)
     count = sum(counted.counts) - _mirrors_counted(cells)
     _compare_with_count(count, roots, notes)
     unsearched = counted.tiling.unsearched
     result = FrequencyResult(
-        bound,
-        bound.params.vehicle,
-        dps,
-        window,
-        tuple(roots),
-        count,
-        unsearched,
-        fast.evaluations + precise.evaluations,
-        tuple(notes),
-        far,
+        *(bound, bound.params.vehicle, dps, window, tuple(roots), count, unsearched),
+        fast.evaluations + in_balls.evaluations,  # BallPrecise's own and those of its mpmath path
+        *(tuple(notes), far),
         strip=strip_below_cut(bound, window, [u for u in unsearched if not u.reason]),
         unlocated=tuple(unlocated),
         decaying_outside=beyond.decaying(window, far) if beyond else 0,
@@ -145,12 +149,19 @@ def _window_and_far_field(bound: BoundModel, window: Rectangle | None) -> tuple[
     """The window searched (default :func:`far_field_window`) and the far-field check of the bound model."""
     if window is None:
         return far_field_window(bound)
-    return window, far_field_radius(bound, default_window(bound).x1)
+    return window, _far_field(bound)
+
+
+@functools.lru_cache(maxsize=16)
+def _far_field(bound: BoundModel) -> FarField:
+    """The far-field check from the default window's scale (:func:`far_field_radius`), once per bound model:
+    the strips of a search along the real axis (:mod:`moving_bogie.response.axis_sequence`) share it."""
+    return far_field_radius(bound, default_window(bound).x1)
 
 
 def _confirmed_roots(
     fast: CharacteristicArray,
-    precise: Characteristic,
+    precise: tuple[PreciseCharacteristic, PreciseCharacteristic],
     counted: TilingCount,
     newton_cell: float,
     dps: int,
@@ -160,8 +171,9 @@ def _confirmed_roots(
     starts: Sequence[complex] | None = None,
 ) -> tuple[list[InducedFrequency], list[LocatedCell], list[Unlocated]]:
     """Locate the counted roots (from ``starts`` where they agree with the count of every tile), polish and
-    confirm them, keep one of each pair q, -conj(q) (largest Re q first); the roots, the located cells and
-    the roots not located (notes appended)."""
+    confirm them (``precise``: the evaluations of E_chr for each, :func:`_polish_located`), keep one of each
+    pair q, -conj(q) (largest Re q first); the roots, the located cells and the roots not located (notes
+    appended)."""
     cells, unlocated = _locate_counted(fast, counted, newton_cell, starts)
     notes += [missing.note for missing in unlocated]
     report(0.6)
@@ -299,7 +311,7 @@ def _locate_counted(
 
 
 def _polish_located(
-    precise: Characteristic,
+    precise: tuple[PreciseCharacteristic, PreciseCharacteristic],
     cells: list[LocatedCell],
     cut: CutLocus,
     dps: int,
@@ -307,16 +319,26 @@ def _polish_located(
     notes: list[Note],
     report: Callable[[float], None],
 ) -> list[InducedFrequency]:
-    """Polish each located root at ``dps`` digits and confirm its digits (notes appended for failures)."""
+    """Polish each located root at ``dps`` digits and confirm its digits (notes appended for failures);
+    ``precise``: the evaluations of E_chr for the polish and for the confirmation
+    (:func:`polish_and_confirm`)."""
+    polishing, confirming = precise
     roots = []
     for k, (q0, mult, rect) in enumerate(cells):
         try:
             confirmed = [
-                (polish_and_confirm(precise, q0, dps=dps, extra_dps=extra_dps, multiplicity=mult), mult)
+                (
+                    polish_and_confirm(
+                        polishing, q0, dps=dps, extra_dps=extra_dps, multiplicity=mult, confirming=confirming
+                    ),
+                    mult,
+                )
             ]
         except PolishError as exc:
             confirmed = (
-                split_cluster(precise, q0, mult, rect, dps=dps, extra_dps=extra_dps) if mult > 1 else []
+                split_cluster(polishing, q0, mult, rect, dps=dps, extra_dps=extra_dps, confirming=confirming)
+                if mult > 1
+                else []
             )
             if not confirmed:
                 notes.append(Note(Reason.POLISH, str(exc)))
@@ -327,7 +349,7 @@ def _polish_located(
                     Note(Reason.POLISH, f"Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
                 )
                 continue
-            side = _side(conf.q, conf.decimals, cut, precise.params)
+            side = _side(conf.q, conf.decimals, cut, polishing.params)
             roots.append(InducedFrequency(conf.q, side, m, conf.step, conf.digits, conf.decimals))
         report(0.6 + 0.4 * (k + 1) / len(cells))
     return roots

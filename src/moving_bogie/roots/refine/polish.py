@@ -10,7 +10,7 @@ from __future__ import annotations
 import decimal
 import math
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Any, Protocol
 
 import mpmath
 
@@ -21,7 +21,13 @@ from moving_bogie.typing import Mpc, Mpf
 
 class PreciseCharacteristic(Protocol):
     """E_chr and dE_chr/dq (Eqs. (38), (40)) at the current mpmath precision
-    (:class:`~moving_bogie.kernels.characteristic.Characteristic`)."""
+    (:class:`~moving_bogie.kernels.characteristic.Characteristic`,
+    :class:`~moving_bogie.roots.ball_polish.BallPrecise`)."""
+
+    params: Any  # the dimensionless parameters
+
+    @property
+    def evaluations(self) -> int: ...
 
     def value_and_derivative(self, q: Mpc) -> tuple[Mpc, Mpc]: ...
 
@@ -77,6 +83,7 @@ def polish_and_confirm(
     dps: int,
     extra_dps: int,
     multiplicity: int = 1,
+    confirming: PreciseCharacteristic | None = None,
 ) -> Confirmed:
     """Polish at ``dps`` digits, re-polish at ``dps + extra_dps`` and keep the digits both agree on.
 
@@ -87,6 +94,10 @@ def polish_and_confirm(
     When Newton stalls at ``dps`` digits (roots closer together than that precision resolves: two identical
     bogies that interact only through the rail give pairs 1e-13 apart), the polish is repeated at twice
     and four times ``dps``; the digits are still confirmed one ``extra_dps`` step higher.
+
+    ``confirming``: the evaluation of E_chr and dE_chr/dq for the higher precision (default
+    ``characteristic``), e.g. :class:`~moving_bogie.roots.ball_polish.BallPrecise`, whose error is
+    bounded: the recomputation then also comes from another arithmetic.
     """
     work = dps
     while True:
@@ -99,7 +110,7 @@ def polish_and_confirm(
                 raise
             work *= 2
     with mpmath.workdps(work + extra_dps):
-        q_hi = confirming_step(characteristic, q, work, multiplicity)
+        q_hi = confirming_step(confirming or characteristic, q, work, multiplicity)
         err = abs(q_hi - q)
         mag = abs(q_hi)
         lead = int(mpmath.floor(mpmath.log10(mag))) + 1 if mag > 0 else 0
@@ -148,13 +159,15 @@ def split_cluster(
     *,
     dps: int,
     extra_dps: int,
+    confirming: PreciseCharacteristic | None = None,
 ) -> list[tuple[Confirmed, int]]:
     """The simple roots of a cluster that the cells could not separate (size below 1e-10), or [].
 
     Two identical bogies that interact only through the rail give pairs closer than that. Plain Newton at
     twice ``dps`` from points around the cluster's centre reaches its members; when exactly
     ``multiplicity`` distinct roots inside ``rect`` are reached, each is polished and confirmed as a simple
-    root (:func:`polish_and_confirm`); otherwise nothing is returned and the cluster stays unresolved.
+    root (:func:`polish_and_confirm`, ``confirming`` as there); otherwise nothing is returned and the
+    cluster stays unresolved.
     """
     found: list[Mpc] = []
     with mpmath.workdps(2 * dps):
@@ -174,7 +187,10 @@ def split_cluster(
     out = []
     for q in found:
         try:
-            out.append((polish_and_confirm(characteristic, q, dps=dps, extra_dps=extra_dps), 1))
+            confirmed = polish_and_confirm(
+                characteristic, q, dps=dps, extra_dps=extra_dps, confirming=confirming
+            )
+            out.append((confirmed, 1))
         except PolishError:
             return []
     return out

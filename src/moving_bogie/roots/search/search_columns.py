@@ -10,8 +10,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-from scipy import optimize
 
+from moving_bogie.kernels.brent import brentq
 from moving_bogie.kernels.cut import CutArm, CutLocus, arms_y_at
 from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.search.cut_cells import ColumnCell, Edge, Sliver
@@ -154,7 +154,7 @@ def _split_point(
             ga, gb = g(xs[k], target), g(xs[k + 1], target)
             if ga * gb > 0:  # the sign change was at rounding level: split at the nearer sample
                 return float(xs[k] if abs(ga) < abs(gb) else xs[k + 1]), target == 0.0
-            x = optimize.brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
+            x = brentq(g, xs[k], xs[k + 1], args=(target,), xtol=1e-15, rtol=1e-15)
             return x, target == 0.0
     return None, False
 
