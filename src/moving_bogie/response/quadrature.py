@@ -166,7 +166,7 @@ def _uniform_sum(
     chunk = max(16, int(min(memory, _CACHE_SIZED) // (m * B + B + J)))
     for k in range(0, s.size, chunk):
         sl = slice(k, k + chunk)
-        eta = im if np.ndim(im) == 0 else im[sl]
+        eta = im[sl] if isinstance(im, np.ndarray) and im.ndim else im
         first = _phases(starts, s[sl], eta)
         local = _phases(offsets, s[sl], eta)
         weighted = first[None, :, :] * G[sl].T[:, None, :]
