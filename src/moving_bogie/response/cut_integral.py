@@ -44,11 +44,13 @@ from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.cut_pieces import CurvePiece, cut_pieces, roots_along
 from moving_bogie.response.quadrature import (
     FIRST_BAND,
+    GL_X,
     PANEL_XI,
-    adapt_panels,
+    adapt_panels_with_values,
     by_bands,
     equidistribute,
     fourier_sum,
+    gauss_panels,
     oscillation_rule,
 )
 
@@ -208,11 +210,20 @@ class CurveBranchCut:
         P = np.linspace(p_lo, p_hi, 4000)
         q = piece.q_at(P)
         density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
-        edges = adapt_panels(
-            equidistribute(P, density), lambda nodes: channel(piece, nodes)[1], self.panel_tol
+
+        def jump_and_q(nodes: np.ndarray) -> np.ndarray:
+            q, J = channel(piece, nodes)
+            return np.concatenate([J, q[:, None]], axis=1)
+
+        edges, final = adapt_panels_with_values(
+            equidistribute(P, density), jump_and_q, self.panel_tol, checked=-1
         )
         self._base[key] = edges
-        return self._base[key]
+        if final.shape == (GL_X.size * (edges.size - 1), final.shape[1]) and final.shape[1] <= _CACHE_COLUMNS:
+            # the rule of a band whose panels stay whole (the first band, the L1 bound) has these nodes
+            nodes = gauss_panels(edges[:-1], edges[1:])[0]
+            self._keep((id(piece), channel, nodes.size, hash(nodes.tobytes())), (final[:, -1], final[:, :-1]))
+        return edges
 
     def _rule(
         self, piece: CurvePiece, S: float, tau_hi: float, xi_max: float, channel: PieceChannel
@@ -365,10 +376,7 @@ class CurveBranchCut:
         total = np.zeros(len(self.names))
         for piece, S in zip(self.pieces, self.choose_S(self._jump, 0.0, tol, s_min)):
             nodes, weights = self._rule(piece, S, 0.0, self.span, self._jump)
-            q, J = self._jump(piece, nodes)
-            if nodes.size <= _CHUNK and len(self.names) <= _CACHE_COLUMNS:
-                # the first band of times mostly has these very nodes: its values, evaluated in one chunk
-                # there too, are these
-                self._keep((id(piece), self._jump, nodes.size, hash(nodes.tobytes())), (q, J))
+            # the first band of times has these very nodes, most often those of the adapted panels
+            q, J = self._values(piece, nodes, self._jump, len(self.names))
             total = total + (np.abs(J) * weights[:, None]).sum(axis=0) / np.pi
         return {name: float(total[k]) for k, name in enumerate(self.names)}

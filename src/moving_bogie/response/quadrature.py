@@ -17,6 +17,7 @@ __all__ = [
     "PANEL_PHASE",
     "PANEL_XI",
     "adapt_panels",
+    "adapt_panels_with_values",
     "by_bands",
     "cis",
     "equidistribute",
@@ -48,22 +49,51 @@ def adapt_panels(
 ) -> np.ndarray:
     """Edges refining ``start``: a panel is halved while its integral of ``values`` (nodes -> (n, m))
     differs from the sum over its halves by more than ``tol``; resolves peaks far narrower than a panel."""
+    return adapt_panels_with_values(start, values, tol, max_splits)[0]
+
+
+def adapt_panels_with_values(
+    start: ArrayLike,
+    values: Callable[[np.ndarray], np.ndarray],
+    tol: float,
+    max_splits: int = 40,
+    checked: int | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """(edges, the values at the Gauss nodes of the final panels, in the order of :func:`gauss_panels`
+    of the edges) of :func:`adapt_panels`; only the first ``checked`` columns of ``values`` (all when
+    None) enter the test, the others ride along (e.g. q at the nodes).
+
+    Each pass evaluates the halves of the panels still open; a half's integral is the whole of the next
+    pass (the halves of a panel are evaluated by the same calls as when every pass evaluated the whole
+    too: first all left halves, then all right halves)."""
     start = np.asarray(start, dtype=float)
-    lo, hi = start[:-1], start[1:]
-    edges = [start]
+    n = GL_X.size
 
-    def integral(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    def evaluate(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         nodes, weights = gauss_panels(a, b)
-        return (values(nodes) * weights[:, None]).reshape(a.size, GL_X.size, -1).sum(axis=1)
+        f = values(nodes)
+        f = f.reshape(a.size, n, -1)
+        return f, (f[..., :checked] * weights.reshape(a.size, n, 1)).sum(axis=1)
 
+    lo, hi = start[:-1], start[1:]
+    f, whole = evaluate(lo, hi)
+    edges, done_lo, done_f = [start], [], []
     for _ in range(max_splits):
         if lo.size == 0:
             break
         mid = 0.5 * (lo + hi)
-        bad = np.abs(integral(lo, hi) - integral(lo, mid) - integral(mid, hi)).max(axis=-1) > tol
+        f_left, left = evaluate(lo, mid)
+        f_right, right = evaluate(mid, hi)
+        bad = np.abs(whole - left - right).max(axis=-1) > tol
         edges.append(mid[bad])
+        done_lo.append(lo[~bad])
+        done_f.append(f[~bad])
         lo, hi = np.concatenate([lo[bad], mid[bad]]), np.concatenate([mid[bad], hi[bad]])
-    return np.unique(np.concatenate(edges))
+        f, whole = np.concatenate([f_left[bad], f_right[bad]]), np.concatenate([left[bad], right[bad]])
+    done_lo.append(lo)  # panels still open after max_splits are final too
+    done_f.append(f)
+    order = np.argsort(np.concatenate(done_lo), kind="stable")
+    return np.unique(np.concatenate(edges)), np.concatenate(done_f)[order].reshape(order.size * n, -1)
 
 
 def subdivide(edges: np.ndarray, pieces: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -73,7 +103,8 @@ def subdivide(edges: np.ndarray, pieces: ArrayLike) -> tuple[np.ndarray, np.ndar
     j = np.arange(k.size) - np.repeat(np.cumsum(counts) - counts, counts)
     width = np.diff(edges) / counts
     lo = edges[:-1][k] + j * width[k]
-    return gauss_panels(lo, lo + width[k])
+    # the last part ends at the panel's edge exactly (the nodes of an undivided panel are its own)
+    return gauss_panels(lo, np.where(j + 1 == counts[k], edges[1:][k], lo + width[k]))
 
 
 def equidistribute(P: np.ndarray, density: np.ndarray) -> np.ndarray:
