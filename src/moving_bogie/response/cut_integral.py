@@ -61,7 +61,10 @@ _REACH = 2.0**14
 #: Jump values kept for reuse across bands of times: entries, and only for this many columns (responses).
 _CACHE_ENTRIES = 64
 _CACHE_COLUMNS = 8
-_CHUNK = 20000
+#: Small results kept (per piece, truncation and channel: Re q at the panel edges, the end terms).
+_SMALL_ENTRIES = 256
+#: Nodes per evaluation of the jump (a multiple of the 16 nodes of a panel; arrays that fit the cache).
+_CHUNK = 4096
 #: A root of N(., q) counts as real (another curve through the same q) when |Im p| <= this * max(1, |p|):
 #: the rounding of coinciding curves (the two halves of the Euler-Bernoulli ray), not curves that only
 #: approach each other (the halves of a layered track's lens and its mass-layer curves converge like a
@@ -133,12 +136,14 @@ class CurveBranchCut:
         self.eta_f = max(0.0, float(min(c.q.imag.min() for c in self.pieces)))
         self._base: dict = {}
         self._cache: dict = {}
+        self._small: dict = {}
 
     # --- the jump ------------------------------------------------------------------------------
     def _sides(
         self, p: np.ndarray, q: np.ndarray, t: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Roots P of N(., q), weights Q/N', and which roots count as upper on the right/left side."""
+        """Roots P of N(., q), weights Q/N', which roots count as upper on the right/left side, and which
+        are real."""
         n = stack_coefficients(self.module.n_coeffs(q, **self.fargs), q.shape)
         P = roots_along(n)
         own = np.argmin(np.abs(P - p[:, None]), axis=-1)
@@ -151,17 +156,25 @@ class CurveBranchCut:
         moves_up = (Nq / Np * (t / np.abs(t))[:, None]).real > 0
         right = np.where(real, moves_up, P.imag > 0)
         left = np.where(real, ~moves_up, P.imag > 0)
-        return P, W, right, left, real.sum(axis=-1)
+        return P, W, right, left, real
 
     @staticmethod
-    def _kernel(P: np.ndarray, W: np.ndarray, upper: np.ndarray, xi: ArrayLike) -> np.ndarray:
-        """K(xi, q) from the roots with the given side assignment, shape (nodes, len(xi))."""
+    def _exponentials(P: np.ndarray, W: np.ndarray, real: np.ndarray, xi: ArrayLike) -> np.ndarray:
+        """W e^{i P xi} per node, root and xi (shape (nodes, roots, len(xi))) for the roots that either
+        side may take there: those with Im P xi >= 0 and the real ones (of the others, whose exponentials
+        may overflow at large |xi|, only W)."""
         xi = np.asarray(xi, dtype=float)
-        pos = xi >= 0
+        used = (np.multiply.outer(P.imag, xi) >= 0) | real[:, :, None]
+        return np.exp(1j * np.where(used, P[:, :, None], 0) * xi) * W[:, :, None]
+
+    @staticmethod
+    def _kernel(E: np.ndarray, upper: np.ndarray, xi: ArrayLike) -> np.ndarray:
+        """K(xi, q) from the roots with the given side assignment, shape (nodes, len(xi)); ``E`` from
+        :meth:`_exponentials` (a side takes the roots above the real axis for xi >= 0, below for xi < 0:
+        all among those evaluated there)."""
+        pos = np.asarray(xi, dtype=float) >= 0
         mask = np.where(pos[None, None, :], upper[:, :, None], ~upper[:, :, None])
-        # the roots of the other side are not evaluated (their exponentials may overflow at large |xi|)
-        e = np.exp(1j * np.where(mask, P[:, :, None], 0) * xi) * W[:, :, None]
-        return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, e, 0), axis=1)
+        return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, E, 0), axis=1)
 
     def _jump(
         self, piece: CurvePiece, p: ArrayLike, xi: np.ndarray | None = None
@@ -174,10 +187,16 @@ class CurveBranchCut:
         q = piece.q_at(p)
         t = self.tracer.dq_dp(p, q)
         with np.errstate(divide="ignore", invalid="ignore"):
-            P, W, right, left, m = self._sides(p, q, t)
+            P, W, right, left, real = self._sides(p, q, t)
+            E = self._exponentials(P, W, real, self.offsets)
+            shifted = (
+                []
+                if xi is None
+                else [(xi - x, self._exponentials(P, W, real, xi - x)) for x in self.positions]
+            )
             out = []
             for upper in (right, left):
-                Ks = list(self._kernel(P, W, upper, self.offsets).T)
+                Ks = list(self._kernel(E, upper, self.offsets).T)
                 X, GE = self.system.solutions_array(q, Ks)
                 if xi is None:
                     out.append(X / (1j * q)[:, None])
@@ -185,11 +204,11 @@ class CurveBranchCut:
                     den = 2 * np.pi * 1j * q
                     out.append(
                         sum(
-                            (GE[:, j] / den)[:, None] * self._kernel(P, W, upper, xi - x)
-                            for j, x in enumerate(self.positions)
+                            (GE[:, j] / den)[:, None] * self._kernel(Ej, upper, xj)
+                            for j, (xj, Ej) in enumerate(shifted)
                         )
                     )
-            J = (out[0] - out[1]) * (t / m)[:, None]
+            J = (out[0] - out[1]) * (t / real.sum(axis=-1))[:, None]
         cusp = ~np.all(np.isfinite(J), axis=-1)
         if np.any(cusp):
             h = 1e-6 * np.maximum(1.0, np.abs(p[cusp]))
@@ -212,7 +231,7 @@ class CurveBranchCut:
         density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
 
         def jump_and_q(nodes: np.ndarray) -> np.ndarray:
-            q, J = channel(piece, nodes)
+            q, J = self._chunked(piece, nodes, channel)
             return np.concatenate([J, q[:, None]], axis=1)
 
         edges, final = adapt_panels_with_values(
@@ -229,11 +248,26 @@ class CurveBranchCut:
         self, piece: CurvePiece, S: float, tau_hi: float, xi_max: float, channel: PieceChannel
     ) -> tuple[np.ndarray, np.ndarray]:
         edges = self._panels(piece, S, channel)
-        x = piece.q_at(edges).real
+        key = ("x", id(piece), S, channel)
+        if key not in self._small:
+            self._remember(key, piece.q_at(edges).real)
+        x = self._small[key]
         return oscillation_rule(edges, tau_hi * np.diff(x), PANEL_XI / (abs(xi_max) + 1.0))
+
+    def _remember(self, key: tuple, value: object) -> None:
+        """Keep a small result (Re q at the edges, the end terms) for the other bands of times."""
+        if len(self._small) >= _SMALL_ENTRIES:
+            self._small.pop(next(iter(self._small)))
+        self._small[key] = value
 
     def _end_terms(self, piece: CurvePiece, S: float, channel: PieceChannel) -> list[tuple]:
         """Per far end of the piece: (sign, q, F, F', F'') of the jump F along the curve, in q."""
+        key = ("ends", id(piece), S, channel)
+        if key not in self._small:
+            self._remember(key, self._end_terms_at(piece, S, channel))
+        return self._small[key]
+
+    def _end_terms_at(self, piece: CurvePiece, S: float, channel: PieceChannel) -> list[tuple]:
         out = []
         for sign, p_end in piece.far_ends(S):
             h = 1e-3 * max(1.0, abs(p_end))
@@ -290,11 +324,19 @@ class CurveBranchCut:
         key = (id(piece), channel, nodes.size, hash(nodes.tobytes()))
         if key in self._cache:
             return self._cache[key]
-        parts = [channel(piece, nodes[k : k + _CHUNK]) for k in range(0, nodes.size, _CHUNK)]
-        value = np.concatenate([v[0] for v in parts]), np.concatenate([v[1] for v in parts])
+        value = self._chunked(piece, nodes, channel)
         if m <= _CACHE_COLUMNS:
             self._keep(key, value)
         return value
+
+    @staticmethod
+    def _chunked(
+        piece: CurvePiece, nodes: np.ndarray, channel: PieceChannel
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(q, J) at the nodes, by chunks of ``_CHUNK`` nodes (whole panels: the values do not depend on
+        the chunks, :func:`~moving_bogie.response.cut_pieces.roots_along` seeds within a panel)."""
+        parts = [channel(piece, nodes[k : k + _CHUNK]) for k in range(0, nodes.size, _CHUNK)]
+        return np.concatenate([v[0] for v in parts]), np.concatenate([v[1] for v in parts])
 
     def _keep(self, key: tuple, value: tuple[np.ndarray, np.ndarray]) -> None:
         """Cache the jump values of a rule (the oldest entry leaves when the cache is full)."""
