@@ -137,6 +137,7 @@ class CurveBranchCut:
         self._base: dict = {}
         self._cache: dict = {}
         self._small: dict = {}
+        self._known: dict = {}
 
     # --- the jump ------------------------------------------------------------------------------
     def _sides(
@@ -238,10 +239,15 @@ class CurveBranchCut:
             equidistribute(P, density), jump_and_q, self.panel_tol, checked=-1
         )
         self._base[key] = edges
-        if final.shape == (GL_X.size * (edges.size - 1), final.shape[1]) and final.shape[1] <= _CACHE_COLUMNS:
-            # the rule of a band whose panels stay whole (the first band, the L1 bound) has these nodes
+        if (
+            final.shape == (GL_X.size * (edges.size - 1), final.shape[1])
+            and final.shape[1] <= _CACHE_COLUMNS + 1
+        ):
+            # every rule's panels that stay whole (all of them in the first band and the L1 bound, most
+            # in the next bands) have these nodes
             nodes = gauss_panels(edges[:-1], edges[1:])[0]
-            self._keep((id(piece), channel, nodes.size, hash(nodes.tobytes())), (final[:, -1], final[:, :-1]))
+            order = np.argsort(nodes, kind="stable")
+            self._known[(id(piece), channel)] = nodes[order], final[order]
         return edges
 
     def _rule(
@@ -324,10 +330,28 @@ class CurveBranchCut:
         key = (id(piece), channel, nodes.size, hash(nodes.tobytes()))
         if key in self._cache:
             return self._cache[key]
-        value = self._chunked(piece, nodes, channel)
+        value = self._reuse_known(piece, nodes, channel)
         if m <= _CACHE_COLUMNS:
             self._keep(key, value)
         return value
+
+    def _reuse_known(
+        self, piece: CurvePiece, nodes: np.ndarray, channel: PieceChannel
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(q, J) at the nodes: at the nodes of the adapted panels (:meth:`_panels`) their values, at the
+        others (whole panels of the rule) by :meth:`_chunked`."""
+        known = self._known.get((id(piece), channel))
+        if known is None:
+            return self._chunked(piece, nodes, channel)
+        at, values = known
+        k = np.minimum(np.searchsorted(at, nodes), at.size - 1)
+        hit = at[k] == nodes
+        out = np.empty((nodes.size, values.shape[1]), dtype=complex)
+        out[hit] = values[k[hit]]
+        if not np.all(hit):
+            q, J = self._chunked(piece, nodes[~hit], channel)
+            out[~hit] = np.concatenate([J, q[:, None]], axis=1)
+        return out[:, -1], out[:, :-1]
 
     @staticmethod
     def _chunked(
