@@ -178,31 +178,74 @@ def uniform_step(ts: np.ndarray) -> float | None:
     return h if deviation <= 8 * np.finfo(float).eps * float(np.abs(ts).max()) else None
 
 
+def _grid_parts(t0: float, h: float, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """(coarse, fine): t0 + j h = coarse[j // c] + fine[j % c] for j < count, c ~ sqrt(count) (to
+    rounding: :func:`_grid_phases` takes these very numbers, :func:`_uniform_sum` their exact sum)."""
+    c = int(np.ceil(np.sqrt(count)))
+    return t0 + np.arange(-(-count // c)) * (c * h), np.arange(c) * h
+
+
+def _grid_phases(t0: float, h: float, count: int, s: np.ndarray, eta: float | np.ndarray) -> np.ndarray:
+    """e^{i (s + i eta) (coarse + fine)} of :func:`_grid_parts`, shape (count, len(s)): the products of
+    the phases of the coarse and of the fine times, exponentials of 2 sqrt(count) times only (each
+    product adds a rounding, far below that of the argument s t of a direct exponential)."""
+    coarse, fine = _grid_parts(t0, h, count)
+    out = _phases(coarse, s, eta)[:, None, :] * _phases(fine, s, eta)[None, :, :]
+    return out.reshape(-1, s.size)[:count]
+
+
+def _two_sum(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(a + b rounded, its rounding error): a + b exactly (Knuth's TwoSum)."""
+    total = a + b
+    b_part = total - a
+    return total, (a - (total - b_part)) + (b - b_part)
+
+
+def _grid_offsets(ts: np.ndarray, h: float, J: int) -> np.ndarray:
+    """ts - (the time of :func:`_uniform_sum`'s phases for each t), to about 1e-32 relative: the sum of
+    the four grid parts of each time is formed exactly (double-double by :func:`_two_sum`)."""
+    k = np.arange(ts.size)
+    B = -(-ts.size // J)
+    start_coarse, start_fine = _grid_parts(float(ts[0]), J * h, B)
+    off_coarse, off_fine = _grid_parts(0.0, h, J)
+    b, j = k // J, k % J
+    cb, cj = start_fine.size, off_fine.size
+    parts = [start_coarse[b // cb], start_fine[b % cb], off_coarse[j // cj], off_fine[j % cj]]
+    total, low = parts[0], np.zeros(ts.size)
+    for part in parts[1:]:
+        total, err = _two_sum(total, part)
+        low = low + err
+    return (ts - total) - low
+
+
 def _uniform_sum(
     ts: np.ndarray, h: float, s: np.ndarray, im: float | np.ndarray, G: np.ndarray, memory: int
 ) -> np.ndarray:
     """sum_k G_k e^{i (s_k + i im_k) t} at times ``ts`` of uniform step h (:func:`uniform_step`), shape
     (len(ts), m).
 
-    With t = T_b + j h (blocks b of J times), e^{i q t} = e^{i q T_b} e^{i q j h}: the exponentials of
-    the B block starts and of the J offsets only (B + J ~ 2 sqrt(n) per node instead of n), and the sum
-    over nodes for each response column a matrix product (B x nodes) diag(G_r) (nodes x J).
+    With t = T_b + j h + delta (blocks b of J ~ sqrt(n) times; delta, a few ulps of t, what rounding
+    left of the uniform grid), e^{i q t} = e^{i q T_b} e^{i q j h} (1 + i q delta): the phases of the B
+    block starts and of the J offsets only (:func:`_grid_phases`), and the sum over nodes for each
+    response column, and for the column q G_r of the first-order term, a matrix product
+    (B x nodes) diag(G_r) (nodes x J).
     """
     n, m = ts.size, G.shape[1]
     J = int(np.ceil(np.sqrt(n)))
-    starts = ts[::J]
-    B = starts.size
-    offsets = np.arange(J) * h
-    out = np.zeros((m, B, J), dtype=complex)
-    chunk = max(16, int(min(memory, _CACHE_SIZED) // (m * B + B + J)))
+    B = -(-n // J)
+    delta = _grid_offsets(ts, h, J)
+    out = np.zeros((2 * m, B, J), dtype=complex)
+    chunk = max(16, int(min(memory, _CACHE_SIZED) // (2 * m * B + B + J)))
     for k in range(0, s.size, chunk):
         sl = slice(k, k + chunk)
         eta = im[sl] if isinstance(im, np.ndarray) and im.ndim else im
-        first = _phases(starts, s[sl], eta)
-        local = _phases(offsets, s[sl], eta)
-        weighted = first[None, :, :] * G[sl].T[:, None, :]
-        out += (weighted.reshape(m * B, -1) @ local.T).reshape(m, B, J)
-    return out.reshape(m, B * J)[:, :n].T
+        first = _grid_phases(float(ts[0]), J * h, B, s[sl], eta)
+        local = _grid_phases(0.0, h, J, s[sl], eta)
+        both = np.concatenate([G[sl], (s[sl] + 1j * np.asarray(eta))[:, None] * G[sl]], axis=1)
+        weighted = first[None, :, :] * both.T[:, None, :]
+        out += (weighted.reshape(2 * m * B, -1) @ local.T).reshape(2 * m, B, J)
+    sums = out.reshape(2 * m, B * J)[:, :n].T
+    return sums[:, :m] + 1j * delta[:, None] * sums[:, m:]
 
 
 def fourier_sum(
