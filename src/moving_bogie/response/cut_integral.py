@@ -141,23 +141,25 @@ class CurveBranchCut:
 
     # --- the jump ------------------------------------------------------------------------------
     def _sides(
-        self, p: np.ndarray, q: np.ndarray, t: np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Roots P of N(., q), weights Q/N', which roots count as upper on the right/left side, and which
-        are real."""
+        self, p: np.ndarray, q: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Roots P of N(., q), weights Q/N', which roots count as upper on the right/left side, which
+        are real, and t = dq/dp = -N_p/N_q at the node's own root p (the curve's tangent)."""
         n = stack_coefficients(self.module.n_coeffs(q, **self.fargs), q.shape)
         P = roots_along(n)
+        rows = np.arange(p.size)
         own = np.argmin(np.abs(P - p[:, None]), axis=-1)
-        P[np.arange(p.size), own] = p
+        P[rows, own] = p
         real = np.abs(P.imag) <= _REAL_TOL * np.maximum(1.0, np.abs(P))
         P = np.where(real, P.real + 0j, P)
         Np = polyval(polyder(n), P)
         Nq = polyval(stack_coefficients(self.module.n_coeffs_dq(q, **self.fargs), q.shape), P)
         W = polyval(stack_coefficients(self.module.q_coeffs(q, **self.fargs), q.shape), P) / Np
+        t = -Np[rows, own] / Nq[rows, own]
         moves_up = (Nq / Np * (t / np.abs(t))[:, None]).real > 0
         right = np.where(real, moves_up, P.imag > 0)
         left = np.where(real, ~moves_up, P.imag > 0)
-        return P, W, right, left, real
+        return P, W, right, left, real, t
 
     @staticmethod
     def _exponentials(P: np.ndarray, W: np.ndarray, real: np.ndarray, xi: ArrayLike) -> np.ndarray:
@@ -165,8 +167,12 @@ class CurveBranchCut:
         side may take there: those with Im P xi >= 0 and the real ones (of the others, whose exponentials
         may overflow at large |xi|, only W)."""
         xi = np.asarray(xi, dtype=float)
-        used = (np.multiply.outer(P.imag, xi) >= 0) | real[:, :, None]
-        return np.exp(1j * np.where(used, P[:, :, None], 0) * xi) * W[:, :, None]
+        out = np.empty(P.shape + xi.shape, dtype=complex)
+        out[..., xi == 0] = W[:, :, None]  # e^0 = 1
+        x = xi[xi != 0]
+        used = (np.multiply.outer(P.imag, x) >= 0) | real[:, :, None]
+        out[..., xi != 0] = np.exp(1j * np.where(used, P[:, :, None], 0) * x) * W[:, :, None]
+        return out
 
     @staticmethod
     def _kernel(E: np.ndarray, upper: np.ndarray, xi: ArrayLike) -> np.ndarray:
@@ -186,9 +192,8 @@ class CurveBranchCut:
         p +- 1e-6 max(1, |p|) (J is smooth in p there)."""
         p = np.asarray(p, dtype=float)
         q = piece.q_at(p)
-        t = self.tracer.dq_dp(p, q)
         with np.errstate(divide="ignore", invalid="ignore"):
-            P, W, right, left, real = self._sides(p, q, t)
+            P, W, right, left, real, t = self._sides(p, q)
             E = self._exponentials(P, W, real, self.offsets)
             shifted = (
                 []
