@@ -31,8 +31,6 @@ only like alpha p, so its pieces stop at a small S.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -42,15 +40,14 @@ from moving_bogie.kernels.cut import CutTracer, trace_curves
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.cut_pieces import CurvePiece, cut_pieces, roots_along
+from moving_bogie.response.cut_values import JumpValues, PieceChannel
 from moving_bogie.response.quadrature import (
     FIRST_BAND,
-    GL_X,
     PANEL_XI,
     adapt_panels_with_values,
     by_bands,
     equidistribute,
     fourier_sum,
-    gauss_panels,
     oscillation_rule,
 )
 
@@ -58,22 +55,11 @@ __all__ = ["CurveBranchCut", "branch_cut_for"]
 
 _S_STEPS = tuple(2.0**k for k in range(1, 14))
 _REACH = 2.0**14
-#: Jump values kept for reuse across bands of times: entries, and only for this many columns (responses).
-_CACHE_ENTRIES = 64
-_CACHE_COLUMNS = 8
-#: Small results kept (per piece, truncation and channel: Re q at the panel edges, the end terms).
-_SMALL_ENTRIES = 256
-#: Nodes per evaluation of the jump (a multiple of the 16 nodes of a panel; arrays that fit the cache).
-_CHUNK = 4096
 #: A root of N(., q) counts as real (another curve through the same q) when |Im p| <= this * max(1, |p|):
 #: the rounding of coinciding curves (the two halves of the Euler-Bernoulli ray), not curves that only
 #: approach each other (the halves of a layered track's lens and its mass-layer curves converge like a
 #: power of 1/p; merging them at 1e-9 left errors of 1e-8 w_st in the deflection shape).
 _REAL_TOL = 1e-12
-
-
-#: The jump along one piece of the cut at nodes in p: ``channel(piece, p) -> (q, J)``.
-PieceChannel = Callable[[CurvePiece, np.ndarray], tuple[np.ndarray, np.ndarray]]
 
 
 def _rule_top(lo: float, ts: np.ndarray, rule_tau: np.ndarray | None) -> float:
@@ -101,7 +87,7 @@ def branch_cut_for(bound: BoundModel) -> BranchCut | CurveBranchCut:
     return CurveBranchCut(bound)
 
 
-class CurveBranchCut:
+class CurveBranchCut(JumpValues):
     """I_bc of Eq. (35) for any track model, integrated over the traced cut (module docstring).
 
     Same interface as :class:`~moving_bogie.response.branch_cut.BranchCut`: ``q_c`` (leftmost point of
@@ -134,10 +120,7 @@ class CurveBranchCut:
             raise BranchCutUnavailable("the cut of K has no curve in Re q > 0")
         self.q_c = float(min(c.x_min for c in self.pieces))
         self.eta_f = max(0.0, float(min(c.q.imag.min() for c in self.pieces)))
-        self._base: dict = {}
-        self._cache: dict = {}
-        self._small: dict = {}
-        self._known: dict = {}
+        JumpValues.__init__(self)
 
     # --- the jump ------------------------------------------------------------------------------
     def _sides(
@@ -244,15 +227,7 @@ class CurveBranchCut:
             equidistribute(P, density), jump_and_q, self.panel_tol, checked=-1
         )
         self._base[key] = edges
-        if (
-            final.shape == (GL_X.size * (edges.size - 1), final.shape[1])
-            and final.shape[1] <= _CACHE_COLUMNS + 1
-        ):
-            # every rule's panels that stay whole (all of them in the first band and the L1 bound, most
-            # in the next bands) have these nodes
-            nodes = gauss_panels(edges[:-1], edges[1:])[0]
-            order = np.argsort(nodes, kind="stable")
-            self._known[(id(piece), channel)] = nodes[order], final[order]
+        self._store_adapted(piece, channel, edges, final)
         return edges
 
     def _rule(
@@ -264,12 +239,6 @@ class CurveBranchCut:
             self._remember(key, piece.q_at(edges).real)
         x = self._small[key]
         return oscillation_rule(edges, tau_hi * np.diff(x), PANEL_XI / (abs(xi_max) + 1.0))
-
-    def _remember(self, key: tuple, value: object) -> None:
-        """Keep a small result (Re q at the edges, the end terms) for the other bands of times."""
-        if len(self._small) >= _SMALL_ENTRIES:
-            self._small.pop(next(iter(self._small)))
-        self._small[key] = value
 
     def _end_terms(self, piece: CurvePiece, S: float, channel: PieceChannel) -> list[tuple]:
         """Per far end of the piece: (sign, q, F, F', F'') of the jump F along the curve, in q."""
@@ -326,52 +295,6 @@ class CurveBranchCut:
                     break
             out.append(S)
         return tuple(out)
-
-    def _values(
-        self, piece: CurvePiece, nodes: np.ndarray, channel: PieceChannel, m: int
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """(q, J) at the nodes of a rule; a band of times whose rule is that of an earlier band (panels
-        set by e^{i p xi} rather than by the phase) reuses its values (time series only: m small)."""
-        key = (id(piece), channel, nodes.size, hash(nodes.tobytes()))
-        if key in self._cache:
-            return self._cache[key]
-        value = self._reuse_known(piece, nodes, channel)
-        if m <= _CACHE_COLUMNS:
-            self._keep(key, value)
-        return value
-
-    def _reuse_known(
-        self, piece: CurvePiece, nodes: np.ndarray, channel: PieceChannel
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """(q, J) at the nodes: at the nodes of the adapted panels (:meth:`_panels`) their values, at the
-        others (whole panels of the rule) by :meth:`_chunked`."""
-        known = self._known.get((id(piece), channel))
-        if known is None:
-            return self._chunked(piece, nodes, channel)
-        at, values = known
-        k = np.minimum(np.searchsorted(at, nodes), at.size - 1)
-        hit = at[k] == nodes
-        out = np.empty((nodes.size, values.shape[1]), dtype=complex)
-        out[hit] = values[k[hit]]
-        if not np.all(hit):
-            q, J = self._chunked(piece, nodes[~hit], channel)
-            out[~hit] = np.concatenate([J, q[:, None]], axis=1)
-        return out[:, -1], out[:, :-1]
-
-    @staticmethod
-    def _chunked(
-        piece: CurvePiece, nodes: np.ndarray, channel: PieceChannel
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """(q, J) at the nodes, by chunks of ``_CHUNK`` nodes (whole panels: the values do not depend on
-        the chunks, :func:`~moving_bogie.response.cut_pieces.roots_along` seeds within a panel)."""
-        parts = [channel(piece, nodes[k : k + _CHUNK]) for k in range(0, nodes.size, _CHUNK)]
-        return np.concatenate([v[0] for v in parts]), np.concatenate([v[1] for v in parts])
-
-    def _keep(self, key: tuple, value: tuple[np.ndarray, np.ndarray]) -> None:
-        """Cache the jump values of a rule (the oldest entry leaves when the cache is full)."""
-        if len(self._cache) >= _CACHE_ENTRIES:
-            self._cache.pop(next(iter(self._cache)))
-        self._cache[key] = value
 
     def integrate(
         self,

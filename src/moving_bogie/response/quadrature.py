@@ -1,9 +1,10 @@
 """Quadrature shared by the branch-cut integrals (Eq. (35)) and the Bromwich reference.
 
-Composite 16-point Gauss-Legendre panels (:func:`gauss_panels`, :func:`adapt_panels`,
-:func:`subdivide`), bands of times that double (:func:`by_bands`), and sum_n G_n e^{i q_n t} for many
-times t (:func:`fourier_sum`). Used by the Euler-Bernoulli cut (a horizontal half-line,
-:mod:`branch_cut`), the traced cut of any model (:mod:`cut_integral`) and :mod:`bromwich`.
+Composite 16-point Gauss-Legendre panels (:func:`gauss_panels`, :func:`adapt_panels` and
+:func:`adapt_panels_with_values`, :func:`subdivide`), bands of times that double (:func:`by_bands`),
+and sum_n G_n e^{i q_n t} for many times t (:func:`fourier_sum`). Used by the Euler-Bernoulli cut (a
+horizontal half-line, :mod:`branch_cut`), the traced cut of any model (:mod:`cut_integral`) and
+:mod:`bromwich`.
 """
 
 from __future__ import annotations
@@ -263,7 +264,9 @@ def fourier_sum(
 
     ``eta`` is Im q_n when it is the same for every node (else None: taken from q).
 
-    Few times: the exponentials directly. Many times: on a uniform grid t_g with step h = 1/(2 max|q|),
+    Few times: the exponentials directly, or, for 16 or more times of a uniform step (:func:`uniform_step`,
+    the time series' bands), by blocks of times as matrix products (:func:`_uniform_sum`, exponentials of
+    about 2 sqrt(len(ts)) times per node). Many times: on a uniform grid t_g with step h = 1/(2 max|q|),
     e^{i q t} = e^{i q t_g} sum_k (i q delta)^k / k! with delta = t - t_g, |q delta| <= 1/4, and the grid
     phases come by blocks from e^{i q t_0} e^{i q j h}. The cost is (grid points x nodes x terms) whatever
     the number of times.
