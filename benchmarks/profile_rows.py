@@ -50,7 +50,7 @@ PARTS = {
         "  residue coefficients (mpmath; the window's too)": ("response/residues.py", "residue_expansion"),
         "branch cut, where it matters (auto rule)": ("response/cut_policy.py", "branch_cut_extent"),
         "  L1 bound of the jump": ("response/cut_integral.py", "l1_bound"),
-        "  adaptive panels of the jump": ("response/quadrature.py", "adapt_panels"),
+        "  adaptive panels of the jump": ("response/quadrature.py", "adapt_panels_with_values"),
         "branch cut I_bc over the time series": ("response/closed_form.py", "_add_branch_cut"),
         "  jump across the cut (all calls)": ("response/cut_integral.py", "_jump"),
         "  sum over nodes x times (fourier_sum)": ("response/quadrature.py", "fourier_sum"),

@@ -31,8 +31,6 @@ only like alpha p, so its pieces stop at a small S.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -42,10 +40,11 @@ from moving_bogie.kernels.cut import CutTracer, trace_curves
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.cut_pieces import CurvePiece, cut_pieces, roots_along
+from moving_bogie.response.cut_values import JumpValues, PieceChannel
 from moving_bogie.response.quadrature import (
     FIRST_BAND,
     PANEL_XI,
-    adapt_panels,
+    adapt_panels_with_values,
     by_bands,
     equidistribute,
     fourier_sum,
@@ -56,19 +55,11 @@ __all__ = ["CurveBranchCut", "branch_cut_for"]
 
 _S_STEPS = tuple(2.0**k for k in range(1, 14))
 _REACH = 2.0**14
-#: Jump values kept for reuse across bands of times: entries, and only for this many columns (responses).
-_CACHE_ENTRIES = 64
-_CACHE_COLUMNS = 8
-_CHUNK = 20000
 #: A root of N(., q) counts as real (another curve through the same q) when |Im p| <= this * max(1, |p|):
 #: the rounding of coinciding curves (the two halves of the Euler-Bernoulli ray), not curves that only
 #: approach each other (the halves of a layered track's lens and its mass-layer curves converge like a
 #: power of 1/p; merging them at 1e-9 left errors of 1e-8 w_st in the deflection shape).
 _REAL_TOL = 1e-12
-
-
-#: The jump along one piece of the cut at nodes in p: ``channel(piece, p) -> (q, J)``.
-PieceChannel = Callable[[CurvePiece, np.ndarray], tuple[np.ndarray, np.ndarray]]
 
 
 def _rule_top(lo: float, ts: np.ndarray, rule_tau: np.ndarray | None) -> float:
@@ -96,7 +87,7 @@ def branch_cut_for(bound: BoundModel) -> BranchCut | CurveBranchCut:
     return CurveBranchCut(bound)
 
 
-class CurveBranchCut:
+class CurveBranchCut(JumpValues):
     """I_bc of Eq. (35) for any track model, integrated over the traced cut (module docstring).
 
     Same interface as :class:`~moving_bogie.response.branch_cut.BranchCut`: ``q_c`` (leftmost point of
@@ -129,37 +120,51 @@ class CurveBranchCut:
             raise BranchCutUnavailable("the cut of K has no curve in Re q > 0")
         self.q_c = float(min(c.x_min for c in self.pieces))
         self.eta_f = max(0.0, float(min(c.q.imag.min() for c in self.pieces)))
-        self._base: dict = {}
-        self._cache: dict = {}
+        JumpValues.__init__(self)
 
     # --- the jump ------------------------------------------------------------------------------
     def _sides(
-        self, p: np.ndarray, q: np.ndarray, t: np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Roots P of N(., q), weights Q/N', and which roots count as upper on the right/left side."""
+        self, p: np.ndarray, q: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Roots P of N(., q), weights Q/N', which roots count as upper on the right/left side, which
+        are real, and t = dq/dp = -N_p/N_q at the node's own root p (the curve's tangent)."""
         n = stack_coefficients(self.module.n_coeffs(q, **self.fargs), q.shape)
         P = roots_along(n)
+        rows = np.arange(p.size)
         own = np.argmin(np.abs(P - p[:, None]), axis=-1)
-        P[np.arange(p.size), own] = p
+        P[rows, own] = p
         real = np.abs(P.imag) <= _REAL_TOL * np.maximum(1.0, np.abs(P))
         P = np.where(real, P.real + 0j, P)
         Np = polyval(polyder(n), P)
         Nq = polyval(stack_coefficients(self.module.n_coeffs_dq(q, **self.fargs), q.shape), P)
         W = polyval(stack_coefficients(self.module.q_coeffs(q, **self.fargs), q.shape), P) / Np
+        t = -Np[rows, own] / Nq[rows, own]
         moves_up = (Nq / Np * (t / np.abs(t))[:, None]).real > 0
         right = np.where(real, moves_up, P.imag > 0)
         left = np.where(real, ~moves_up, P.imag > 0)
-        return P, W, right, left, real.sum(axis=-1)
+        return P, W, right, left, real, t
 
     @staticmethod
-    def _kernel(P: np.ndarray, W: np.ndarray, upper: np.ndarray, xi: ArrayLike) -> np.ndarray:
-        """K(xi, q) from the roots with the given side assignment, shape (nodes, len(xi))."""
+    def _exponentials(P: np.ndarray, W: np.ndarray, real: np.ndarray, xi: ArrayLike) -> np.ndarray:
+        """W e^{i P xi} per node, root and xi (shape (nodes, roots, len(xi))) for the roots that either
+        side may take there: those with Im P xi >= 0 and the real ones (of the others, whose exponentials
+        may overflow at large |xi|, only W)."""
         xi = np.asarray(xi, dtype=float)
-        pos = xi >= 0
+        out = np.empty(P.shape + xi.shape, dtype=complex)
+        out[..., xi == 0] = W[:, :, None]  # e^0 = 1
+        x = xi[xi != 0]
+        used = (np.multiply.outer(P.imag, x) >= 0) | real[:, :, None]
+        out[..., xi != 0] = np.exp(1j * np.where(used, P[:, :, None], 0) * x) * W[:, :, None]
+        return out
+
+    @staticmethod
+    def _kernel(E: np.ndarray, upper: np.ndarray, xi: ArrayLike) -> np.ndarray:
+        """K(xi, q) from the roots with the given side assignment, shape (nodes, len(xi)); ``E`` from
+        :meth:`_exponentials` (a side takes the roots above the real axis for xi >= 0, below for xi < 0:
+        all among those evaluated there)."""
+        pos = np.asarray(xi, dtype=float) >= 0
         mask = np.where(pos[None, None, :], upper[:, :, None], ~upper[:, :, None])
-        # the roots of the other side are not evaluated (their exponentials may overflow at large |xi|)
-        e = np.exp(1j * np.where(mask, P[:, :, None], 0) * xi) * W[:, :, None]
-        return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, e, 0), axis=1)
+        return np.where(pos, 2j * np.pi, -2j * np.pi) * np.sum(np.where(mask, E, 0), axis=1)
 
     def _jump(
         self, piece: CurvePiece, p: ArrayLike, xi: np.ndarray | None = None
@@ -170,12 +175,17 @@ class CurveBranchCut:
         p +- 1e-6 max(1, |p|) (J is smooth in p there)."""
         p = np.asarray(p, dtype=float)
         q = piece.q_at(p)
-        t = self.tracer.dq_dp(p, q)
         with np.errstate(divide="ignore", invalid="ignore"):
-            P, W, right, left, m = self._sides(p, q, t)
+            P, W, right, left, real, t = self._sides(p, q)
+            E = self._exponentials(P, W, real, self.offsets)
+            shifted = (
+                []
+                if xi is None
+                else [(xi - x, self._exponentials(P, W, real, xi - x)) for x in self.positions]
+            )
             out = []
             for upper in (right, left):
-                Ks = list(self._kernel(P, W, upper, self.offsets).T)
+                Ks = list(self._kernel(E, upper, self.offsets).T)
                 X, GE = self.system.solutions_array(q, Ks)
                 if xi is None:
                     out.append(X / (1j * q)[:, None])
@@ -183,11 +193,11 @@ class CurveBranchCut:
                     den = 2 * np.pi * 1j * q
                     out.append(
                         sum(
-                            (GE[:, j] / den)[:, None] * self._kernel(P, W, upper, xi - x)
-                            for j, x in enumerate(self.positions)
+                            (GE[:, j] / den)[:, None] * self._kernel(Ej, upper, xj)
+                            for j, (xj, Ej) in enumerate(shifted)
                         )
                     )
-            J = (out[0] - out[1]) * (t / m)[:, None]
+            J = (out[0] - out[1]) * (t / real.sum(axis=-1))[:, None]
         cusp = ~np.all(np.isfinite(J), axis=-1)
         if np.any(cusp):
             h = 1e-6 * np.maximum(1.0, np.abs(p[cusp]))
@@ -208,21 +218,36 @@ class CurveBranchCut:
         P = np.linspace(p_lo, p_hi, 4000)
         q = piece.q_at(P)
         density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
-        edges = adapt_panels(
-            equidistribute(P, density), lambda nodes: channel(piece, nodes)[1], self.panel_tol
+
+        def jump_and_q(nodes: np.ndarray) -> np.ndarray:
+            q, J = self._chunked(piece, nodes, channel)
+            return np.concatenate([J, q[:, None]], axis=1)
+
+        edges, final = adapt_panels_with_values(
+            equidistribute(P, density), jump_and_q, self.panel_tol, checked=-1
         )
         self._base[key] = edges
-        return self._base[key]
+        self._store_adapted(piece, channel, edges, final)
+        return edges
 
     def _rule(
         self, piece: CurvePiece, S: float, tau_hi: float, xi_max: float, channel: PieceChannel
     ) -> tuple[np.ndarray, np.ndarray]:
         edges = self._panels(piece, S, channel)
-        x = piece.q_at(edges).real
+        key = ("x", id(piece), S, channel)
+        if key not in self._small:
+            self._remember(key, piece.q_at(edges).real)
+        x = self._small[key]
         return oscillation_rule(edges, tau_hi * np.diff(x), PANEL_XI / (abs(xi_max) + 1.0))
 
     def _end_terms(self, piece: CurvePiece, S: float, channel: PieceChannel) -> list[tuple]:
         """Per far end of the piece: (sign, q, F, F', F'') of the jump F along the curve, in q."""
+        key = ("ends", id(piece), S, channel)
+        if key not in self._small:
+            self._remember(key, self._end_terms_at(piece, S, channel))
+        return self._small[key]
+
+    def _end_terms_at(self, piece: CurvePiece, S: float, channel: PieceChannel) -> list[tuple]:
         out = []
         for sign, p_end in piece.far_ends(S):
             h = 1e-3 * max(1.0, abs(p_end))
@@ -270,26 +295,6 @@ class CurveBranchCut:
                     break
             out.append(S)
         return tuple(out)
-
-    def _values(
-        self, piece: CurvePiece, nodes: np.ndarray, channel: PieceChannel, m: int
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """(q, J) at the nodes of a rule; a band of times whose rule is that of an earlier band (panels
-        set by e^{i p xi} rather than by the phase) reuses its values (time series only: m small)."""
-        key = (id(piece), channel, nodes.size, hash(nodes.tobytes()))
-        if key in self._cache:
-            return self._cache[key]
-        parts = [channel(piece, nodes[k : k + _CHUNK]) for k in range(0, nodes.size, _CHUNK)]
-        value = np.concatenate([v[0] for v in parts]), np.concatenate([v[1] for v in parts])
-        if m <= _CACHE_COLUMNS:
-            self._keep(key, value)
-        return value
-
-    def _keep(self, key: tuple, value: tuple[np.ndarray, np.ndarray]) -> None:
-        """Cache the jump values of a rule (the oldest entry leaves when the cache is full)."""
-        if len(self._cache) >= _CACHE_ENTRIES:
-            self._cache.pop(next(iter(self._cache)))
-        self._cache[key] = value
 
     def integrate(
         self,
@@ -365,10 +370,7 @@ class CurveBranchCut:
         total = np.zeros(len(self.names))
         for piece, S in zip(self.pieces, self.choose_S(self._jump, 0.0, tol, s_min)):
             nodes, weights = self._rule(piece, S, 0.0, self.span, self._jump)
-            q, J = self._jump(piece, nodes)
-            if nodes.size <= _CHUNK and len(self.names) <= _CACHE_COLUMNS:
-                # the first band of times mostly has these very nodes: its values, evaluated in one chunk
-                # there too, are these
-                self._keep((id(piece), self._jump, nodes.size, hash(nodes.tobytes())), (q, J))
+            # the first band of times has these very nodes, most often those of the adapted panels
+            q, J = self._values(piece, nodes, self._jump, len(self.names))
             total = total + (np.abs(J) * weights[:, None]).sum(axis=0) / np.pi
         return {name: float(total[k]) for k, name in enumerate(self.names)}

@@ -1,9 +1,10 @@
 """Quadrature shared by the branch-cut integrals (Eq. (35)) and the Bromwich reference.
 
-Composite 16-point Gauss-Legendre panels (:func:`gauss_panels`, :func:`adapt_panels`,
-:func:`subdivide`), bands of times that double (:func:`by_bands`), and sum_n G_n e^{i q_n t} for many
-times t (:func:`fourier_sum`). Used by the Euler-Bernoulli cut (a horizontal half-line,
-:mod:`branch_cut`), the traced cut of any model (:mod:`cut_integral`) and :mod:`bromwich`.
+Composite 16-point Gauss-Legendre panels (:func:`gauss_panels`, :func:`adapt_panels` and
+:func:`adapt_panels_with_values`, :func:`subdivide`), bands of times that double (:func:`by_bands`),
+and sum_n G_n e^{i q_n t} for many times t (:func:`fourier_sum`). Used by the Euler-Bernoulli cut (a
+horizontal half-line, :mod:`branch_cut`), the traced cut of any model (:mod:`cut_integral`) and
+:mod:`bromwich`.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ __all__ = [
     "PANEL_PHASE",
     "PANEL_XI",
     "adapt_panels",
+    "adapt_panels_with_values",
     "by_bands",
     "cis",
     "equidistribute",
@@ -24,6 +26,7 @@ __all__ = [
     "gauss_panels",
     "oscillation_rule",
     "subdivide",
+    "uniform_step",
 ]
 
 GL_X, GL_W = np.polynomial.legendre.leggauss(16)
@@ -47,22 +50,51 @@ def adapt_panels(
 ) -> np.ndarray:
     """Edges refining ``start``: a panel is halved while its integral of ``values`` (nodes -> (n, m))
     differs from the sum over its halves by more than ``tol``; resolves peaks far narrower than a panel."""
+    return adapt_panels_with_values(start, values, tol, max_splits)[0]
+
+
+def adapt_panels_with_values(
+    start: ArrayLike,
+    values: Callable[[np.ndarray], np.ndarray],
+    tol: float,
+    max_splits: int = 40,
+    checked: int | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """(edges, the values at the Gauss nodes of the final panels, in the order of :func:`gauss_panels`
+    of the edges) of :func:`adapt_panels`; only the first ``checked`` columns of ``values`` (all when
+    None) enter the test, the others ride along (e.g. q at the nodes).
+
+    Each pass evaluates the halves of the panels still open; a half's integral is the whole of the next
+    pass (the halves of a panel are evaluated by the same calls as when every pass evaluated the whole
+    too: first all left halves, then all right halves)."""
     start = np.asarray(start, dtype=float)
-    lo, hi = start[:-1], start[1:]
-    edges = [start]
+    n = GL_X.size
 
-    def integral(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    def evaluate(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         nodes, weights = gauss_panels(a, b)
-        return (values(nodes) * weights[:, None]).reshape(a.size, GL_X.size, -1).sum(axis=1)
+        f = values(nodes)
+        f = f.reshape(a.size, n, -1)
+        return f, (f[..., :checked] * weights.reshape(a.size, n, 1)).sum(axis=1)
 
+    lo, hi = start[:-1], start[1:]
+    f, whole = evaluate(lo, hi)
+    edges, done_lo, done_f = [start], [], []
     for _ in range(max_splits):
         if lo.size == 0:
             break
         mid = 0.5 * (lo + hi)
-        bad = np.abs(integral(lo, hi) - integral(lo, mid) - integral(mid, hi)).max(axis=-1) > tol
+        f_left, left = evaluate(lo, mid)
+        f_right, right = evaluate(mid, hi)
+        bad = np.abs(whole - left - right).max(axis=-1) > tol
         edges.append(mid[bad])
+        done_lo.append(lo[~bad])
+        done_f.append(f[~bad])
         lo, hi = np.concatenate([lo[bad], mid[bad]]), np.concatenate([mid[bad], hi[bad]])
-    return np.unique(np.concatenate(edges))
+        f, whole = np.concatenate([f_left[bad], f_right[bad]]), np.concatenate([left[bad], right[bad]])
+    done_lo.append(lo)  # panels still open after max_splits are final too
+    done_f.append(f)
+    order = np.argsort(np.concatenate(done_lo), kind="stable")
+    return np.unique(np.concatenate(edges)), np.concatenate(done_f)[order].reshape(order.size * n, -1)
 
 
 def subdivide(edges: np.ndarray, pieces: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -72,7 +104,8 @@ def subdivide(edges: np.ndarray, pieces: ArrayLike) -> tuple[np.ndarray, np.ndar
     j = np.arange(k.size) - np.repeat(np.cumsum(counts) - counts, counts)
     width = np.diff(edges) / counts
     lo = edges[:-1][k] + j * width[k]
-    return gauss_panels(lo, lo + width[k])
+    # the last part ends at the panel's edge exactly (the nodes of an undivided panel are its own)
+    return gauss_panels(lo, np.where(j + 1 == counts[k], edges[1:][k], lo + width[k]))
 
 
 def equidistribute(P: np.ndarray, density: np.ndarray) -> np.ndarray:
@@ -129,6 +162,93 @@ def _phases(t: np.ndarray, s: np.ndarray, eta: float | np.ndarray) -> np.ndarray
     return out
 
 
+#: Fewer times than this take the exponentials of every time (no blocks).
+_UNIFORM_MIN = 16
+#: Complex entries of the phase tables per chunk of nodes (fits the cache better than ``memory``).
+_CACHE_SIZED = 2**18
+
+
+def uniform_step(ts: np.ndarray) -> float | None:
+    """The step h when ``ts[k] = ts[0] + k h`` to rounding (8 ulps of the largest |t|), else None."""
+    if ts.size < _UNIFORM_MIN:
+        return None
+    h = float(ts[-1] - ts[0]) / (ts.size - 1)
+    if not h > 0:
+        return None
+    deviation = float(np.abs(ts - (ts[0] + np.arange(ts.size) * h)).max())
+    return h if deviation <= 8 * np.finfo(float).eps * float(np.abs(ts).max()) else None
+
+
+def _grid_parts(t0: float, h: float, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """(coarse, fine): t0 + j h = coarse[j // c] + fine[j % c] for j < count, c ~ sqrt(count) (to
+    rounding: :func:`_grid_phases` takes these very numbers, :func:`_uniform_sum` their exact sum)."""
+    c = int(np.ceil(np.sqrt(count)))
+    return t0 + np.arange(-(-count // c)) * (c * h), np.arange(c) * h
+
+
+def _grid_phases(t0: float, h: float, count: int, s: np.ndarray, eta: float | np.ndarray) -> np.ndarray:
+    """e^{i (s + i eta) (coarse + fine)} of :func:`_grid_parts`, shape (count, len(s)): the products of
+    the phases of the coarse and of the fine times, exponentials of 2 sqrt(count) times only (each
+    product adds a rounding, far below that of the argument s t of a direct exponential)."""
+    coarse, fine = _grid_parts(t0, h, count)
+    out = _phases(coarse, s, eta)[:, None, :] * _phases(fine, s, eta)[None, :, :]
+    return out.reshape(-1, s.size)[:count]
+
+
+def _two_sum(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(a + b rounded, its rounding error): a + b exactly (Knuth's TwoSum)."""
+    total = a + b
+    b_part = total - a
+    return total, (a - (total - b_part)) + (b - b_part)
+
+
+def _grid_offsets(ts: np.ndarray, h: float, J: int) -> np.ndarray:
+    """ts - (the time of :func:`_uniform_sum`'s phases for each t), to about 1e-32 relative: the sum of
+    the four grid parts of each time is formed exactly (double-double by :func:`_two_sum`)."""
+    k = np.arange(ts.size)
+    B = -(-ts.size // J)
+    start_coarse, start_fine = _grid_parts(float(ts[0]), J * h, B)
+    off_coarse, off_fine = _grid_parts(0.0, h, J)
+    b, j = k // J, k % J
+    cb, cj = start_fine.size, off_fine.size
+    parts = [start_coarse[b // cb], start_fine[b % cb], off_coarse[j // cj], off_fine[j % cj]]
+    total, low = parts[0], np.zeros(ts.size)
+    for part in parts[1:]:
+        total, err = _two_sum(total, part)
+        low = low + err
+    return (ts - total) - low
+
+
+def _uniform_sum(
+    ts: np.ndarray, h: float, s: np.ndarray, im: float | np.ndarray, G: np.ndarray, memory: int
+) -> np.ndarray:
+    """sum_k G_k e^{i (s_k + i im_k) t} at times ``ts`` of uniform step h (:func:`uniform_step`), shape
+    (len(ts), m).
+
+    With t = T_b + j h + delta (blocks b of J ~ sqrt(n) times; delta, a few ulps of t, what rounding
+    left of the uniform grid), e^{i q t} = e^{i q T_b} e^{i q j h} (1 + i q delta): the phases of the B
+    block starts and of the J offsets only (:func:`_grid_phases`), and the sum over nodes for each
+    response column, and for the column q G_r of the first-order term, a matrix product
+    (B x nodes) diag(G_r) (nodes x J).
+    """
+    n, m = ts.size, G.shape[1]
+    J = int(np.ceil(np.sqrt(n)))
+    B = -(-n // J)
+    delta = _grid_offsets(ts, h, J)
+    out = np.zeros((2 * m, B, J), dtype=complex)
+    chunk = max(16, int(min(memory, _CACHE_SIZED) // (2 * m * B + B + J)))
+    for k in range(0, s.size, chunk):
+        sl = slice(k, k + chunk)
+        eta = im[sl] if isinstance(im, np.ndarray) and im.ndim else im
+        first = _grid_phases(float(ts[0]), J * h, B, s[sl], eta)
+        local = _grid_phases(0.0, h, J, s[sl], eta)
+        both = np.concatenate([G[sl], (s[sl] + 1j * np.asarray(eta))[:, None] * G[sl]], axis=1)
+        weighted = first[None, :, :] * both.T[:, None, :]
+        out += (weighted.reshape(2 * m * B, -1) @ local.T).reshape(2 * m, B, J)
+    sums = out.reshape(2 * m, B * J)[:, :n].T
+    return sums[:, :m] + 1j * delta[:, None] * sums[:, m:]
+
+
 def fourier_sum(
     ts: np.ndarray,
     nodes: np.ndarray,
@@ -144,7 +264,9 @@ def fourier_sum(
 
     ``eta`` is Im q_n when it is the same for every node (else None: taken from q).
 
-    Few times: the exponentials directly. Many times: on a uniform grid t_g with step h = 1/(2 max|q|),
+    Few times: the exponentials directly, or, for 16 or more times of a uniform step (:func:`uniform_step`,
+    the time series' bands), by blocks of times as matrix products (:func:`_uniform_sum`, exponentials of
+    about 2 sqrt(len(ts)) times per node). Many times: on a uniform grid t_g with step h = 1/(2 max|q|),
     e^{i q t} = e^{i q t_g} sum_k (i q delta)^k / k! with delta = t - t_g, |q delta| <= 1/4, and the grid
     phases come by blocks from e^{i q t_0} e^{i q j h}. The cost is (grid points x nodes x terms) whatever
     the number of times.
@@ -155,6 +277,7 @@ def fourier_sum(
     grid_size = int(hi - lo) + 1
     direct = ts.size <= grid_size or m > 64
     acc = np.zeros((ts.size, m), dtype=complex)
+    step = uniform_step(ts) if direct else None
     if not direct:
         k = np.rint(ts / h)
         delta = ts - k * h
@@ -166,6 +289,9 @@ def fourier_sum(
         q, G = weighted(nodes[start : start + node_block], weights[start : start + node_block])
         s = q.real
         im = q.imag if eta is None else eta
+        if direct and step is not None:
+            acc += _uniform_sum(ts, step, s, im, G, memory)
+            continue
         if direct:
             block = max(1, int(memory // max(1, q.size)))
             for t0 in range(0, ts.size, block):
