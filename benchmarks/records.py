@@ -39,6 +39,23 @@ def machine() -> dict:
     }
 
 
+def source_revision(src: Path) -> str:
+    """``commit <hash>`` of the git checkout that holds the folder ``src`` (the code a benchmark compares
+    with), or the folder's name when it is not in a git checkout."""
+    import subprocess
+
+    try:
+        out = subprocess.run(
+            ["git", "-C", str(src), "rev-parse", "--short", "HEAD"],
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+    except (OSError, subprocess.CalledProcessError):
+        return Path(src).name
+    return f"commit {out.stdout.strip()}"
+
+
 def row(work: str, measured: str, alternative: str = "-", target: str = "-") -> dict:
     """One row of a record (every field a string, as the page shows it)."""
     return {"work": work, "measured": measured, "alternative": alternative, "target": target}
