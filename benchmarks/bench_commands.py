@@ -15,6 +15,7 @@ finite-beam validation, and a small sweep of the car (6 points, in-process).
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import resource
 import subprocess
@@ -68,11 +69,34 @@ def run_child(src: Path, argv: list[str]) -> Run:
     return Run(wall, cpu, done.stdout, done.returncode)
 
 
+def numbers(text: str) -> dict:
+    """Every number of a --json output by its path (timings left out), or {} when it is not one."""
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError:
+        return {}
+    out: dict = {}
+
+    def walk(value: object, path: str) -> None:
+        if isinstance(value, dict):
+            for key, item in value.items():
+                if key not in ("timings", "elapsed", "seconds", "evaluations"):
+                    walk(item, f"{path}/{key}")
+        elif isinstance(value, list) and value and all(isinstance(v, (int, float)) for v in value):
+            out[path] = np.asarray(value, dtype=float)
+        elif isinstance(value, list):
+            for k, item in enumerate(value):
+                walk(item, f"{path}[{k}]")
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            out[path] = np.asarray([value], dtype=float)
+
+    walk(data, "")
+    return out
+
+
 def largest_difference(a: str, b: str) -> str:
     """The largest difference between the numbers of two ``--json`` outputs, path by path."""
-    from bench_timeseries import _numbers
-
-    x, y = _numbers(a), _numbers(b)
+    x, y = numbers(a), numbers(b)
     if not x or not y:
         return "(no numbers)"
     if x.keys() != y.keys() or any(x[k].shape != y[k].shape for k in x):

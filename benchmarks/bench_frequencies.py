@@ -1,9 +1,9 @@
 """Benchmark the search for induced frequencies (paper, Table 2) and print tables.
 
 Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_frequencies.py [--grid N] [--no-grid]
-[--no-cxroots] [--cx-method romb|quad] [--cases 1,5,13] [--before SRC [--only-commands]]``. A script,
-not a test: nothing is asserted, the numbers are printed. All methods: ~8 min on 2 idle cores; ours alone
-(``--no-grid --no-cxroots``) ~5 s.
+[--no-cxroots] [--cx-method romb|quad] [--cases 1,5,13]``. A script, not a test: nothing is asserted,
+the numbers are printed. All methods: ~8 min on 2 idle cores; ours alone (``--no-grid --no-cxroots``) ~5 s.
+The command ``moving-bogie table2`` as a whole, side by side with another checkout: ``bench_commands.py``.
 Results and their reading: docs/performance.md.
 
 The whole of Table 2 (the 13 cases of Table 1, 4 roots each with Re q >= 0) is computed from scratch at
@@ -25,11 +25,6 @@ The whole of Table 2 (the 13 cases of Table 1, 4 roots each with Re q >= 0) is c
   branch point (a strip that nothing searches; no Table 2 root lies in it).
   Both cxroots rows are skipped with a note when cxroots is not installed (it is not a dependency:
   ``pip install cxroots``).
-
-``--before SRC`` (a ``src`` folder of another checkout of the package) adds the commands ``moving-bogie
-table2`` and ``table2 --json`` run side by side by this checkout and by that one, alternating
-(subprocesses, CPU seconds of the child, best of ``--repeat``), and whether the two printed the same text
-(timing fields aside); ``--only-commands`` skips the rest.
 
 Roots are compared with the argument-principle roots (which match the print of Cases 1-6 and add up to
 the argument-principle count in every case): "missed" are reference roots a method did not return,
@@ -371,39 +366,6 @@ def summary_row(method, rows, expected, certifies):
     ]
 
 
-#: The commands users wait for, run side by side with ``--before``.
-COMMANDS = {"table2": ["table2"], "table2 --json": ["table2", "--json"]}
-
-
-def _without_seconds(text: str) -> str:
-    """A command's output with its timing fields (``"seconds": ...``) left out."""
-    return "\n".join(line for line in text.splitlines() if '"seconds"' not in line)
-
-
-def side_by_side(before: str, repeat: int) -> None:
-    """Each command by this checkout and by ``before`` (a ``src`` folder), alternating (CPU seconds of the
-    child, best of ``repeat``), and whether both printed the same text (the timing fields left out)."""
-    from pathlib import Path
-
-    from bench_timeseries import HERE, _print, run_command
-
-    rows = [("command", "code", "wall s", "CPU s", "same output")]
-    for label, argv in COMMANDS.items():
-        best: dict[str, tuple[float, float, str]] = {}
-        for _ in range(repeat):
-            for who, src in (("before", Path(before)), ("this", HERE)):
-                wall, cpu, out = run_command(src, argv)
-                if who not in best or cpu < best[who][1]:
-                    best[who] = (wall, cpu, out)
-        same = _without_seconds(best["before"][2]) == _without_seconds(best["this"][2])
-        for who in ("before", "this"):
-            wall, cpu, _ = best[who]
-            rows.append(
-                (label, who, f"{wall:.1f}", f"{cpu:.2f}", ("yes" if same else "NO") if who == "this" else "")
-            )
-    _print(rows)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--grid", type=int, default=20, help="grid of N x N starting points (default 20)")
@@ -413,17 +375,10 @@ def main() -> None:
         "--cx-method", default="romb", choices=("romb", "quad"), help="cxroots int_method (default romb)"
     )
     parser.add_argument("--cases", default=None, help="comma-separated case numbers (default: all 13)")
-    parser.add_argument("--before", metavar="SRC", help="src folder of the code to compare with")
-    parser.add_argument("--repeat", type=int, default=2, help="runs per command and code (best kept)")
-    parser.add_argument("--only-commands", action="store_true", help="only the side-by-side commands")
     from records import add_record_option
 
     add_record_option(parser)
     args = parser.parse_args()
-    if args.before:
-        side_by_side(args.before, args.repeat)
-    if args.only_commands:
-        return
     cases = tuple(int(c) for c in args.cases.split(",")) if args.cases else TABLE1_CASES
 
     cxroots, cx_note = None, ""

@@ -14,24 +14,15 @@ of Table 1, once the induced frequencies are known:
 
 The machine is shared: each timing is the best of three runs.
 
-``--before SRC`` (a ``src`` folder of another checkout of the package, e.g. ``git worktree add /tmp/before
-main``) adds the commands users wait for, run side by side in one go by this checkout and by that one
-(subprocesses with ``PYTHONPATH`` set to each ``src``; wall and CPU seconds of the child, best of
-``--repeat``): the Timoshenko-Rayleigh time series of Case 7's vehicle (S = 10, r = 0.09) to tau = 40 and
-its validation, and whether the two printed the same numbers. ``--only-commands`` skips the rows above.
+The commands ``timeseries`` and ``validate`` of that Timoshenko-Rayleigh case as a whole, side by side with
+another checkout: ``bench_commands.py``.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
-import os
 import platform
-import resource
-import subprocess
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -57,15 +48,8 @@ def main() -> None:
     from records import add_record_option
 
     add_record_option(parser)
-    parser.add_argument("--before", metavar="SRC", help="src folder of the code to compare with")
-    parser.add_argument("--repeat", type=int, default=1, help="runs per command and code (best kept)")
-    parser.add_argument("--only-commands", action="store_true", help="only the side-by-side commands")
     args = parser.parse_args()
     print(f"python {platform.python_version()}, numpy {np.__version__}, {platform.machine()}")
-    if args.before:
-        side_by_side(Path(args.before), args.repeat)
-    if args.only_commands:
-        return
     rows = [("case", "job", "points", "tau max", "seconds")]
     for case in (7, 2, 5):
         params = table1_case(case)
@@ -113,81 +97,6 @@ def main() -> None:
             print("  ".join("-" * w for w in widths))
     if args.record:
         record_rows(rows[1:])
-
-
-#: The commands users wait for (issue: a Timoshenko-Rayleigh time series in seconds).
-TR = ["--case", "7", "--beam", "tr", "--S", "10", "--r", "0.09"]
-COMMANDS = {
-    "timeseries TR, tau <= 40": ["timeseries", *TR, "--tmax", "40", "--json"],
-    "validate TR": ["validate", *TR, "--json"],
-}
-HERE = Path(__file__).resolve().parent.parent / "src"
-
-
-def run_command(src: Path, argv: list[str]) -> tuple[float, float, str]:
-    """(wall s, CPU s of the child, stdout) of ``moving-bogie argv`` with the package from ``src``."""
-    env = dict(os.environ, PYTHONPATH=str(src), OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
-    code = "import sys; from moving_bogie.cli import main; sys.exit(main(sys.argv[1:]))"
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
-    out = subprocess.run([sys.executable, "-c", code, *argv], env=env, capture_output=True, text=True)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return wall, cpu, out.stdout
-
-
-def _numbers(text: str) -> dict:
-    """Every number of a --json output by its path (timings left out), or {} when it is not one."""
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError:
-        return {}
-    out: dict = {}
-
-    def walk(value: object, path: str) -> None:
-        if isinstance(value, dict):
-            for key, item in value.items():
-                if key not in ("timings", "elapsed", "seconds", "evaluations"):
-                    walk(item, f"{path}/{key}")
-        elif isinstance(value, list) and value and all(isinstance(v, (int, float)) for v in value):
-            out[path] = np.asarray(value, dtype=float)
-        elif isinstance(value, list):
-            for k, item in enumerate(value):
-                walk(item, f"{path}[{k}]")
-        elif isinstance(value, (int, float)) and not isinstance(value, bool):
-            out[path] = np.asarray([value], dtype=float)
-
-    walk(data, "")
-    return out
-
-
-def side_by_side(before: Path, repeat: int) -> None:
-    """Each command by this checkout and by ``before``, alternating, and the largest difference."""
-    rows = [("command", "code", "wall s", "CPU s", "max |difference|")]
-    for label, argv in COMMANDS.items():
-        best: dict[str, tuple[float, float, str]] = {}
-        for _ in range(repeat):
-            for who, src in (("before", before), ("this", HERE)):
-                wall, cpu, out = run_command(src, argv)
-                if who not in best or cpu < best[who][1]:
-                    best[who] = (wall, cpu, out)
-        a, b = _numbers(best["before"][2]), _numbers(best["this"][2])
-        diffs = [float(np.max(np.abs(a[k] - b[k]))) for k in a if k in b and a[k].shape == b[k].shape]
-        same = f"{max(diffs):.1e}" if diffs else "(no numbers)"
-        for who in ("before", "this"):
-            wall, cpu, _ = best[who]
-            rows.append((label, who, f"{wall:.1f}", f"{cpu:.1f}", same if who == "this" else ""))
-    _print(rows)
-
-
-def _print(rows: list[tuple[str, ...]]) -> None:
-    widths = [max(len(r[k]) for r in rows) for k in range(len(rows[0]))]
-    for k, row in enumerate(rows):
-        print("  ".join(cell.ljust(w) for cell, w in zip(row, widths)))
-        if k == 0:
-            print("  ".join("-" * w for w in widths))
-    print()
 
 
 def record_rows(rows) -> None:
