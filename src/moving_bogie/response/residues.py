@@ -194,7 +194,11 @@ def residue_expansion(
         steady_mp = {name: n0[name] / E0 for name in names}
         amps_mp: dict[str, list[Mpc]] = {name: [] for name in names}
         shape_amps, qs_mp = [], []
-        in_balls = _in_balls(bound, qs, names, frequencies.dps) if balls and not shapes else [None] * len(qs)
+        in_balls: list[dict[str, Mpc] | None] = [None] * len(qs)
+        if balls and not shapes:
+            from moving_bogie.response.ball_residues import ball_amplitudes
+
+            in_balls = ball_amplitudes(bound, qs, names, frequencies.dps)
         for q, found in zip(qs, in_balls):
             q = mpmath.mpc(q)
             qs_mp.append(q)
@@ -243,15 +247,6 @@ def _residue_mp(chr_: Characteristic, q: Mpc, shapes: bool) -> tuple[dict[str, M
         return amps, None
     G = chr_.shape_weights(q, kv, num, E)
     return amps, [g / (2 * mpmath.pi * q * dE) for g in G]
-
-
-def _in_balls(
-    bound: BoundModel, qs: list[Mpc], names: tuple[str, ...], dps: int
-) -> list[dict[str, Mpc] | None]:
-    """The amplitudes of every root in Arb's balls where they reach ``dps`` digits (else None)."""
-    from moving_bogie.response.ball_residues import ball_amplitudes
-
-    return ball_amplitudes(bound, qs, names, dps)
 
 
 def frequencies_for(
