@@ -47,13 +47,13 @@ from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import optimize
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.polyroots import polyder, polyval, stack_coefficients
 from moving_bogie.response import quadrature as quad
 from moving_bogie.response.quadrature import cis
+from moving_bogie.response.right_ray import RightRay
 
 __all__ = ["BranchCut", "BranchCutUnavailable"]
 
@@ -74,7 +74,7 @@ class BranchCutUnavailable(MovingBogieError):
     """The branch-cut integral is not available for these parameters (the track's cut, or no gap at q = 0)."""
 
 
-class BranchCut:
+class BranchCut(RightRay):
     """The jump of the transformed responses across the cut and the integral I_bc of Eq. (35).
 
     Parameters
@@ -124,41 +124,6 @@ class BranchCut:
                 f"the cut of K reaches q = 0 (q_c = {self.q_c:.6g} <= 0): supercritical velocity, no gap "
                 "around the steady state"
             )
-
-    # --- geometry of the right ray -------------------------------------------------------------
-    def _R(self, p: np.ndarray | float) -> np.ndarray:
-        return np.sqrt(np.polyval(self._radicand, p))
-
-    def s(self, p: np.ndarray | float) -> np.ndarray:
-        """Re q of the cut point of the real root p (right ray)."""
-        return self.alpha * p + 0.5 * self._R(p)
-
-    def ds(self, p: np.ndarray | float) -> np.ndarray:
-        """ds/dp (>= 0 for p >= p_c)."""
-        return self.alpha + np.polyval(self._radicand_dp, p) / self._R(p)
-
-    def _minimum(self) -> float:
-        if self.alpha == 0:
-            return 0.0
-        lo = -1.0
-        while self.ds(lo) >= 0:
-            lo *= 2
-        return float(optimize.brentq(self.ds, lo, 0.0, xtol=1e-15, rtol=1e-15))
-
-    def p_of_s(self, s: ArrayLike) -> np.ndarray:
-        """The real root p > p_c with s(p) = s (s >= q_c); Newton from the right (s is convex)."""
-        s = np.asarray(s, dtype=float)
-        p = np.sqrt(2 * np.maximum(s, 0.0)) + 1.0 + abs(self.p_c)
-        for _ in range(100):
-            step = (self.s(p) - s) / self.ds(p)
-            p = p - step
-            if np.all(np.abs(step) <= 1e-15 * np.maximum(1.0, np.abs(p))):
-                break
-        return p
-
-    def q(self, p: np.ndarray | float) -> np.ndarray:
-        """The cut point q(p) = s(p) + i eta_f."""
-        return self.s(p) + 1j * self.eta_f
 
     # --- kernel values on both sides ------------------------------------------------------------
     def _roots_and_sides(self, p0: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -372,8 +337,17 @@ class BranchCut:
 
         return quad.by_bands(tau, m, band)
 
-    def responses(self, tau: ArrayLike, *, tol: float = 1e-10, s_min: float | None = None) -> dict:
-        """I_bc(tau) of every response, as a dict name -> ndarray."""
+    def responses(
+        self,
+        tau: ArrayLike,
+        *,
+        tol: float = 1e-10,
+        s_min: float | None = None,
+        rule_tau: np.ndarray | None = None,
+    ) -> dict:
+        """I_bc(tau) of every response, as a dict name -> ndarray. ``rule_tau`` is taken for the interface
+        of :meth:`CurveBranchCut.responses <moving_bogie.response.cut_integral.CurveBranchCut.responses>`
+        and not used: the half-line's rules keep no values across calls."""
         values = self.integrate(tau, self.response_jumps, tol=tol, s_min=s_min)
         return {name: values[..., k] for k, name in enumerate(self.names)}
 

@@ -29,7 +29,6 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.model.physical import Scales
 from moving_bogie.response.axis_sequence import axis_roots
-from moving_bogie.response.cut_integral import CurveBranchCut
 from moving_bogie.response.cut_policy import branch_cut_extent, branch_cut_mode, branch_cut_or_note, s_min_for
 from moving_bogie.response.deflection import deflection_shape, deflection_shape_details
 from moving_bogie.response.residues import ResidueExpansion, frequencies_for, residue_expansion
@@ -37,6 +36,7 @@ from moving_bogie.response.residues import ResidueExpansion, frequencies_for, re
 if TYPE_CHECKING:
     from moving_bogie.response.axis_sequence import AxisSequence
     from moving_bogie.response.branch_cut import BranchCut
+    from moving_bogie.response.cut_integral import CurveBranchCut
     from moving_bogie.roots.frequencies import FrequencyResult
 
 __all__ = [
@@ -331,11 +331,8 @@ def _add_branch_cut(
     mask = tau <= until
     if not np.any(mask):
         return 0.0
-    if isinstance(bc, CurveBranchCut):
-        # the rules of the probes of branch_cut_extent (set by all the times): their jump values are reused
-        extra = bc.responses(tau[mask], tol=quad_tol, s_min=s_min, rule_tau=tau)
-    else:
-        extra = bc.responses(tau[mask], tol=quad_tol, s_min=s_min)
+    # the rules of the probes of branch_cut_extent (set by all the times): a traced cut reuses their values
+    extra = bc.responses(tau[mask], tol=quad_tol, s_min=s_min, rule_tau=tau)
     for name in expansion.names:
         series[name][mask] += extra[name]
     return until

@@ -89,10 +89,7 @@ def branch_cut_extent(
             )
             return cap, notes
         window = probe + np.linspace(0.0, min(period, probe), 16)
-        if isinstance(bc, CurveBranchCut):
-            values = bc.responses(window, s_min=s_min, rule_tau=times)
-        else:
-            values = bc.responses(window, s_min=s_min)
+        values = bc.responses(window, s_min=s_min, rule_tau=times)
         if max(np.abs(v).max() for v in values.values()) < tol:
             return probe, notes
         probe *= 2
