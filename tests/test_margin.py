@@ -156,3 +156,43 @@ def test_figure_shows_the_margin_and_lists_only_what_is_drawn(uic60):
     assert any("beyond this axis" in t.get_text() for t in ax.texts)
     title = ax.get_title()
     assert "bogie, eb beam, one-layer track" in title and "c_f = 1.2e+04 N s/m^2" in title
+
+
+@pytest.fixture(scope="module")
+def car():
+    params, _ = load_parameters(EXAMPLES / "car.toml")
+    res = induced_frequencies(params, dps=15)
+    assert res.count_ok and res.verdict.determined
+    return params, sorted((complex(r.q) for r in res.roots), key=lambda q: q.imag)
+
+
+def test_car_margin_is_earned_where_its_rectangle_holds_more_roots_than_the_power_sums_locate(car):
+    """The car of examples/car.toml: 20 roots below 0.4 eta_f (more than MAX_STRIP_ROOTS), among them pairs
+    about 2e-10 apart; the rectangle's top is lowered until it holds few enough, and the margin is the
+    smallest Im q of the full count's roots (the reference)."""
+    from moving_bogie.stability.maps.column_margin import MAX_STRIP_ROOTS
+
+    params, roots = car
+    assert 2 * sum(q.imag < 0.4 * float(params.eta_f) for q in roots) > MAX_STRIP_ROOTS
+    smap = stability_map(params, alphas=[float(params.alpha)], thetas=[float(params.eta_M)], workers=1)
+    assert not smap.uncertain.any() and not smap.margin_bound.any()
+    assert smap.margin[0, 0] == pytest.approx(roots[0].imag, rel=1e-9)
+
+
+def test_a_pair_closer_than_newton_separates_counts_twice_on_its_circle(car):
+    """cluster_counts against the full count's roots: one circle around a root of the car's pair 2e-10
+    apart holds both (and the mirror circle both mirrors: 4), two roots 1e-7 apart get a circle each, and a
+    point that is no root is refused."""
+    from moving_bogie.stability.maps.column_margin import cluster_counts
+
+    params, roots = car
+    gaps = [(abs(a - b), a, b) for i, a in enumerate(roots) for b in roots[i + 1 :]]
+    tight = min(gaps, key=lambda g: g[0])
+    near = min((g for g in gaps if g[0] > 1e-8), key=lambda g: g[0])
+    assert tight[0] < 1e-9 and near[0] < 1e-6
+    sweep = SweepCharacteristic(bind(params), "eta_M")
+    alpha, theta = float(params.alpha), float(params.eta_M)
+    box = (3.0, 3.0, 0.5)
+    assert cluster_counts(sweep, alpha, theta, np.array([tight[1]]), box) == 4
+    assert cluster_counts(sweep, alpha, theta, np.array([near[1], near[2]]), box) == 4
+    assert cluster_counts(sweep, alpha, theta, np.array([near[1] + 1e-3]), box) == -1

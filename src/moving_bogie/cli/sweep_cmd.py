@@ -227,7 +227,7 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
             json_mode=args.json,
             code=130,
         )
-    ds = open_sweep(args.out)
+    ds = open_sweep(args.out, dask=False)
     summary = {
         "out": str(args.out),
         "dims": dict(ds.sizes),

@@ -284,6 +284,14 @@ class SweepCharacteristic:
         E_q, E_K0, E_Kp, E_Km = self.module.e_chr_partials(q, *K, **args)
         return E, E_q + E_K0 * dK[0] + E_Kp * dK[1] + E_Km * dK[2]
 
+    def e_and_dq_from(
+        self, q: ArrayLike, K: Any, dK: Any, theta: ArrayLike | None = None, d: ArrayLike | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(E_chr, dE_chr/dq) at ``q`` from precomputed K and dK/dq (:meth:`kernel`), Eq. (40)."""
+        q = np.asarray(q, dtype=complex)
+        E, E_q = self._e_and_dq(q, K, dK, self.vehicle_args(theta, d))
+        return np.broadcast_to(E, q.shape), np.broadcast_to(E_q, q.shape)
+
     def __call__(
         self, q: ArrayLike, alpha: ArrayLike, theta: ArrayLike | None = None, d: ArrayLike | None = None
     ) -> np.ndarray:

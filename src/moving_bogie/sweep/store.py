@@ -323,8 +323,9 @@ def missing_blocks(path: StorePath, spec: SweepPlan) -> list[Block]:
     return [b for b in spec.blocks() if not np.all(computed[b.slices])]
 
 
-def open_sweep(path: StorePath) -> xarray.Dataset:
-    """The sweep at ``path`` as an :class:`xarray.Dataset` (lazy, dask-backed).
+def open_sweep(path: StorePath, dask: bool = True) -> xarray.Dataset:
+    """The sweep at ``path`` as an :class:`xarray.Dataset` (lazy, dask-backed; with ``dask=False`` lazy
+    without dask, which a summary of the store reads faster than dask starts).
 
     A store has its metadata consolidated (:func:`consolidate`); one without (written by an earlier
     version) is read array by array, without the margin and the units of its variables.
@@ -336,6 +337,9 @@ def open_sweep(path: StorePath) -> xarray.Dataset:
         raise ParameterError("store", f"no sweep store at {path}")
     try:
         root = json.loads((path / "zarr.json").read_text()) if (path / "zarr.json").exists() else {}
-        return xr.open_zarr(str(path), consolidated="consolidated_metadata" in root)
+        consolidated = "consolidated_metadata" in root
+        if dask:
+            return xr.open_zarr(str(path), consolidated=consolidated)
+        return xr.open_zarr(str(path), consolidated=consolidated, chunks=None)
     except (FileNotFoundError, ValueError, KeyError) as exc:
         raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None

@@ -155,7 +155,7 @@ def stability_column(
         extra = branch_samples(branch_points(sweep.bound, alpha))
     moment_top = top + 0.4 * float(sweep.params.eta_f) if moment_top is None else moment_top
 
-    coeffs, count_coeffs = _column_coefficients(sweep, alpha, scale)
+    coeffs, count_coeffs = _column_coefficients(sweep, alpha, thetas)
     box = count_box(
         count_coeffs, t, X, Y, top, spacing, coarse, max_step, min_spacing, max_bend, fine_until, extra
     )
@@ -168,7 +168,8 @@ def stability_column(
     uncertain |= np.array([len(r) != c for r, c in zip(roots, count)])
     stable = np.nonzero((count == 0) & ~uncertain)[0]
     h = strip_top(float(sweep.params.eta_f), _cut_low(sweep.bound, alpha, X), top) if margin else None
-    found = column_margin(sweep, alpha, thetas, coeffs, (X, Y), h, stable if margin else stable[:0], polish)
+    cells = stable if margin else stable[:0]
+    found = column_margin(sweep, alpha, thetas, coeffs, (X, Y), h, cells, polish, base=top)
     margins = np.where(count > 0, degree, found.margin)
     margins[uncertain] = np.nan
     settled = np.zeros(len(t), dtype=bool)
@@ -176,17 +177,28 @@ def stability_column(
 
 
 def _column_coefficients(
-    sweep: SweepCharacteristic, alpha: float, scale: float
+    sweep: SweepCharacteristic, alpha: float, thetas: np.ndarray
 ) -> tuple[Callable[[np.ndarray], Any], Callable[[np.ndarray], Any]]:
-    """The coefficients of E_chr in theta / ``scale`` at the points z and ``alpha``: with their q-derivative
-    (to locate roots), and alone (the counting needs E only)."""
+    """The coefficients of E_chr in theta / max(thetas) at the points z and ``alpha``: with their
+    q-derivative (to locate roots), and alone (the counting needs E only).
+
+    A column of one value needs no polynomial: its coefficients are E itself (degree 0), evaluated at that
+    value, a ninth of the work for a car (degree 8 in the wheel mass).
+    """
+    scale = float(thetas.max())
+    one = float(thetas[0]) if len(thetas) == 1 else None
 
     def coeffs(z: np.ndarray) -> Any:
         K, dK, _ = sweep.kernel(z, alpha, derivative=True)
+        if one is not None:
+            E, E_q = sweep.e_and_dq_from(z, K, dK, one)
+            return E[..., None], E_q[..., None]
         return sweep.coefficients(z, K, scale=scale, dK=dK)
 
     def count_coeffs(z: np.ndarray) -> Any:
         K, _, _ = sweep.kernel(z, alpha)
+        if one is not None:
+            return np.broadcast_to(sweep.e_chr(z, K, one), np.shape(z))[..., None], None
         return sweep.coefficients(z, K, scale=scale), None
 
     return coeffs, count_coeffs

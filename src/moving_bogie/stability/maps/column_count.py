@@ -45,12 +45,17 @@ def edge_samples(a: complex, b: complex, h: float) -> np.ndarray:
 
 def horner_rows(c: np.ndarray, T: np.ndarray) -> np.ndarray:
     """E at every contour point for every t: c (M, deg+1) complex, T (n, 1) -> (n, M) (:func:`horner`)."""
-    return horner(np.moveaxis(c, -1, 0), T)
+    return _broadcast(horner(np.moveaxis(c, -1, 0), T), np.broadcast_shapes(T.shape, c.shape[:-1]))
 
 
 def horner_pairs(c: np.ndarray, idx: np.ndarray, t: np.ndarray) -> np.ndarray:
     """E at points ``idx`` (coefficient rows of c) for the matching t values (1-d arrays; :func:`horner`)."""
-    return horner(np.moveaxis(c[idx], -1, 0), t)
+    return _broadcast(horner(np.moveaxis(c[idx], -1, 0), t), np.broadcast_shapes(t.shape, c[idx].shape[:-1]))
+
+
+def _broadcast(values: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+    """``values`` with the shape of the points and t values (a polynomial of degree 0 is constant in t)."""
+    return values if values.shape == shape else np.broadcast_to(values, shape).copy()
 
 
 @dataclass

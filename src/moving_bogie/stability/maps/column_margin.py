@@ -3,15 +3,24 @@
 A stable cell has no root of E_chr (Eq. (38)) with Im q < 0; how far it is from instability is the
 smallest Im q of its roots (a vibration decays like exp(-Im q tau), Eq. (35)). Its roots lie above the
 real axis, below or above the cut of K. Below the cut E_chr is analytic, so the argument principle and
-the Delves-Lyness power sums (:func:`~moving_bogie.stability.maps.column_roots.delves_lyness`) of the
-rectangle -X <= Re q <= X, -Y <= Im q <= h (the column's window, its top h below the cut) count and
-locate every root there; each is polished by Newton's method and the located roots must add up to the
-count (a pair q, -conj(q) counts twice, a root on the imaginary axis once). Then:
+the Delves-Lyness power sums (:func:`~moving_bogie.stability.maps.column_roots.rectangle_sums`) of the
+rectangle -X <= Re q <= X, -Y <= Im q <= t (the column's window, its top t at most h below the cut)
+count and locate every root there:
 
-- roots in the rectangle: the margin is their smallest Im q, earned by the count;
-- no root in it: every root of the window lies above h (or above the cut), and the margin is at least h:
-  a lower bound, flagged ``bound``;
-- the count is not an integer or the roots do not add up: the margin is undetermined (NaN).
+- the top starts at h. A rectangle holding more roots than the power sums locate (``MAX_STRIP_ROOTS``)
+  has its top halved towards the highest top known to hold none (0 at first), and one holding none
+  (below h) has it raised half way to the lowest top known to hold too many; a count that is not an
+  integer (a root on the edge) moves the top by a tenth of that interval. The lowest roots are in every
+  rectangle that holds any, so the first rectangle holding 1 to ``MAX_STRIP_ROOTS`` roots holds them;
+- its roots are polished by Newton's method, and each distinct polished root is confirmed, with its
+  multiplicity, by the argument principle on a small circle around it (radius at most 1e-6 |q|, and
+  less than half the distance to any other root found or to the rectangle's edge): a pair of roots closer
+  than Newton's method separates (the two rails of a car) counts twice there. The multiplicities must add
+  up to the rectangle's count (a pair q, -conj(q) counts twice, a root on the imaginary axis once), so no
+  root of the rectangle is missed; the margin is then the smallest Im q, to within the circles' radii.
+
+With no root below h the margin is h, a lower bound flagged ``bound``; when the counts never settle or the
+roots do not add up, it is undetermined (NaN).
 
 Like the column count it speaks about the column's window (the scale of the natural frequencies,
 :func:`~moving_bogie.stability.maps.column.column_window`), not about roots beyond it.
@@ -25,12 +34,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from moving_bogie.stability.maps.column_roots import delves_lyness, polish_roots
+from moving_bogie.stability.maps.column_roots import located, polish_roots, rectangle_sums
 
 if TYPE_CHECKING:
     from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 
-__all__ = ["ColumnMargin", "column_margin", "strip_top"]
+__all__ = ["ColumnMargin", "cluster_counts", "column_margin", "strip_top"]
 
 #: Largest number of roots (both members of each pair) whose power sums locate them.
 MAX_STRIP_ROOTS = 16
@@ -38,8 +47,7 @@ MAX_STRIP_ROOTS = 16
 
 @dataclass(frozen=True)
 class ColumnMargin:
-    """Per cell: the smallest Im q of the roots below the rectangle's top (that top where ``bound``, the top
-    having been lowered from ``h`` for a cell with a root near it; NaN: undetermined)."""
+    """Per cell: the smallest Im q of its roots (h where ``bound``: no root below h; NaN: undetermined)."""
 
     margin: np.ndarray
     bound: np.ndarray
@@ -56,11 +64,6 @@ def strip_top(eta_f: float, cut_low: float | None, top: float) -> float | None:
     return h if h > max(top, 0.0) + 1e-9 else None
 
 
-def _mirrored(roots: np.ndarray, x: float) -> int:
-    """Roots counted as the argument principle counts them: a pair twice, one on the imaginary axis once."""
-    return int(sum(1 if abs(r.real) <= 1e-9 * max(1.0, x) else 2 for r in roots))
-
-
 def column_margin(
     sweep: SweepCharacteristic,
     alpha: float,
@@ -70,6 +73,7 @@ def column_margin(
     h: float | None,
     cells: np.ndarray,
     polish: int = 10,
+    base: float | None = None,
 ) -> ColumnMargin:
     """The margin of the cells ``cells`` (indices into ``thetas``) of one column (see the module text).
 
@@ -85,11 +89,15 @@ def column_margin(
     window : (X, Y)
         Half-width and depth of the rectangle.
     h : float or None
-        Its top (:func:`strip_top`); None leaves every margin undetermined.
+        Its highest top (:func:`strip_top`); None leaves every margin undetermined.
     cells : ndarray of int
         The cells to measure (the stable, certain ones).
     polish : int
-        Newton steps on each Delves-Lyness root.
+        Newton steps on each Delves-Lyness root (three times as many are allowed near a cluster).
+    base : float, optional
+        Im q of the top of the rectangle where the column count found no root of these cells (the stable
+        ones): the rectangle with top t then reaches down to ``base`` - t only, rather than to -Y (half
+        the boundary, the roots at least t away from its bottom edge).
     """
     margin = np.full(len(thetas), np.nan)
     bound = np.zeros(len(thetas), dtype=bool)
@@ -97,36 +105,85 @@ def column_margin(
         return ColumnMargin(margin, bound, np.nan if h is None else h)
     X, Y = window
     t = np.asarray(thetas, dtype=float) / float(np.max(thetas))
-    todo = np.asarray(cells, dtype=int)
-    for top, panel in ((h, 0.05), (0.75 * h, 0.05), (0.5 * h, 0.02)):  # a root near the top: a lower top
-        found = delves_lyness(
-            coeffs, t[todo], X, Y, top, panel=panel, max_roots=MAX_STRIP_ROOTS, with_empty=True
-        )
-        for j, roots in zip(todo, found):
-            if roots is not None:
-                margin[j], bound[j] = _smallest(sweep, alpha, thetas[j], roots, (X, Y, top), polish)
-        todo = todo[np.isnan(margin[todo])]
-        if not todo.size:
+    # per cell: (highest top known to hold no root, lowest top known to hold too many, the next top)
+    state = {int(j): (0.0, h, h) for j in cells}
+    for _ in range(_ROUNDS):
+        groups: dict[float, list[int]] = {}
+        for j, tops in state.items():
+            groups.setdefault(tops[2], []).append(j)
+        for top, group in sorted(groups.items()):
+            depth = Y if base is None else min(Y, top - min(base, 0.0))
+            s = rectangle_sums(coeffs, t[group], X, depth, top)
+            for k, j in enumerate(group):
+                lo, hi, _ = state.pop(j)
+                n = s(k, 0).real
+                if abs(n - round(n)) > 1e-3:  # a root on the edge
+                    state[j] = (lo, hi, top - 0.1 * (top - lo))
+                elif round(n) > MAX_STRIP_ROOTS:
+                    state[j] = (lo, top, 0.5 * (lo + top))
+                elif round(n) == 0 and top == h:
+                    margin[j], bound[j] = h, True
+                elif round(n) == 0:
+                    state[j] = (top, hi, 0.5 * (top + hi))
+                else:
+                    roots = located(s, k, int(round(n)))
+                    margin[j] = _smallest(sweep, alpha, thetas[j], roots, (X, depth, top), polish)
+        if not state:
             break
     return ColumnMargin(margin, bound, h)
 
 
+#: Rectangles tried per cell before its margin is left undetermined.
+_ROUNDS = 8
+
+
 def _smallest(
     sweep: SweepCharacteristic, alpha: float, theta: float, roots: list, box: tuple, polish: int
-) -> tuple[float, bool]:
-    """(margin, bound) of one cell from the Delves-Lyness roots of the rectangle ``box`` = (X, Y, top):
-    ``top`` where it holds no root, the smallest Im q of the polished roots where they add up to the
-    count and none lies below the real axis, else NaN."""
+) -> float:
+    """The smallest Im q of the Delves-Lyness roots ``roots`` of the rectangle ``box`` = (X, Y, top),
+    polished, where their multiplicities on small circles add up to the count and none lies below the
+    real axis; else NaN."""
     X, Y, top = box
-    if not roots:
-        return top, True
-    q = polish_roots(sweep, np.asarray(roots, dtype=complex), alpha, np.full(len(roots), theta), polish)
+    q = polish_roots(sweep, np.asarray(roots, dtype=complex), alpha, np.full(len(roots), theta), 3 * polish)
     keep: list[complex] = []
     for x in q[np.isfinite(q)]:
         x = -np.conj(x) if x.real < 0 else x
         inside = -Y < x.imag < top and abs(x.real) < X
         if inside and all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):
             keep.append(x)
-    if _mirrored(np.array(keep), X) != len(roots) or min(x.imag for x in keep) < 0:
-        return np.nan, False
-    return min(x.imag for x in keep), False
+    if not keep or min(x.imag for x in keep) < 0:
+        return np.nan
+    counted = cluster_counts(sweep, alpha, theta, np.array(keep), box)
+    return min(x.imag for x in keep) if counted == len(roots) else np.nan
+
+
+def cluster_counts(
+    sweep: SweepCharacteristic, alpha: float, theta: float, keep: np.ndarray, box: tuple, nodes: int = 32
+) -> int:
+    """The roots of E_chr on small circles around the distinct roots ``keep`` (Re q >= 0), counted as the
+    argument principle counts the rectangle ``box`` = (X, Y, top): a circle off the imaginary axis twice
+    (its mirror -conj(q) holds as many), one on it once. -1 when a circle cannot be drawn (a root at the
+    edge) or its count is not an integer.
+
+    Each count is (1/2 pi i) of the contour integral of E'/E over the circle, by the trapezoidal rule on
+    ``nodes`` points (exact to about (radius / distance of the nearest root outside)^nodes).
+    """
+    X, Y, top = box
+    on_axis = np.abs(keep.real) <= 1e-9 * max(1.0, X)
+    centre = np.where(on_axis, 1j * keep.imag, keep)
+    others = np.concatenate([centre, -np.conj(centre[~on_axis])])
+    radius = np.empty(len(centre))
+    for i, c in enumerate(centre):
+        gaps = np.abs(others - c)
+        gaps = gaps[gaps > 0]
+        edge = min(X - abs(c.real), c.imag + Y, top - c.imag)
+        radius[i] = min(1e-6 * max(1.0, abs(c)), 0.4 * float(gaps.min(initial=np.inf)), 0.5 * edge)
+    if np.any(radius <= 1e-12 * np.maximum(1.0, np.abs(centre))):
+        return -1
+    ring = radius[:, None] * np.exp(2j * np.pi * np.arange(nodes) / nodes)
+    z = centre[:, None] + ring
+    E, dE = sweep.e_and_dq(z, np.full(z.shape, alpha), np.full(z.shape, theta))
+    n = np.mean(dE / E * ring, axis=1).real
+    if not np.all(np.isfinite(n)) or np.any(np.abs(n - np.round(n)) > 1e-2) or np.any(np.round(n) < 1):
+        return -1
+    return int(np.sum(np.round(n) * np.where(on_axis, 1, 2)))

@@ -18,10 +18,18 @@ from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column_count import BoxCount, horner_rows
 from moving_bogie.typing import ComplexArray, FloatArray
 
-__all__ = ["delves_lyness", "dip_candidates", "from_power_sums", "locate_roots", "polish_roots"]
+__all__ = [
+    "delves_lyness",
+    "dip_candidates",
+    "from_power_sums",
+    "locate_roots",
+    "located",
+    "polish_roots",
+    "rectangle_sums",
+]
 
 
-def delves_lyness(
+def rectangle_sums(
     coeffs: Callable[[ComplexArray], tuple[ComplexArray, ComplexArray]],
     t: FloatArray,
     X: float,
@@ -30,14 +38,12 @@ def delves_lyness(
     *,
     panel: float = 0.05,
     nodes: int = 16,
-    max_roots: int = 8,
-    with_empty: bool = False,
-) -> list[list[complex] | None]:
-    """Roots inside -X..X x -Y..top for each t (Delves-Lyness), or an empty list where that fails.
+) -> Callable[[int, int], complex]:
+    """``s(j, m)``: the power sum s_m = (1/2 pi i) contour-integral of q^m E'/E dq of the roots inside
+    -X..X x -Y..top for the j-th t (Gauss-Legendre panels on the right half, the left half from
+    E(-conj q) = conj E(q)); s(j, 0) is the argument principle's count.
 
-    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z. With ``with_empty`` a
-    failure (a count that is not an integer, or more than ``max_roots`` roots) gives None and a rectangle
-    without roots an empty list.
+    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z.
     """
     x, w = np.polynomial.legendre.leggauss(nodes)
     zs, ws = [], []
@@ -53,25 +59,52 @@ def delves_lyness(
             ws.append((pb - pa) / 2 * w)
     z, wz = np.concatenate(zs), np.concatenate(ws)
     c, dc = coeffs(z)
-    E, dE = horner_rows(c, t[:, None]), horner_rows(dc, t[:, None])
-    g = dE / E
+    g = horner_rows(dc, t[:, None]) / horner_rows(c, t[:, None])
+
+    def s(j: int, m: int) -> complex:
+        right = np.sum(z**m * g[j] * wz)
+        left = np.sum((-np.conj(z)) ** m * (-np.conj(g[j])) * np.conj(wz))
+        return complex((right + left) / (2j * np.pi))
+
+    return s
+
+
+def delves_lyness(
+    coeffs: Callable[[ComplexArray], tuple[ComplexArray, ComplexArray]],
+    t: FloatArray,
+    X: float,
+    Y: float,
+    top: float,
+    *,
+    panel: float = 0.05,
+    nodes: int = 16,
+    max_roots: int = 8,
+    with_empty: bool = False,
+) -> list[list[complex] | None]:
+    """Roots inside -X..X x -Y..top for each t (Delves-Lyness, :func:`rectangle_sums`), or an empty list
+    where that fails.
+
+    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z. With ``with_empty`` a
+    failure (a count that is not an integer, or more than ``max_roots`` roots) gives None and a rectangle
+    without roots an empty list.
+    """
+    s = rectangle_sums(coeffs, t, X, Y, top, panel=panel, nodes=nodes)
     out: list[list[complex] | None] = []
     for j in range(len(t)):
-
-        def s(m: int, j: int = j) -> complex:
-            right = np.sum(z**m * g[j] * wz)
-            left = np.sum((-np.conj(z)) ** m * (-np.conj(g[j])) * np.conj(wz))
-            return (right + left) / (2j * np.pi)
-
-        inside = s(0).real
+        inside = s(j, 0).real
         if with_empty and abs(inside - round(inside)) <= 1e-3 and round(inside) == 0:
             out.append([])
             continue
         if abs(inside - round(inside)) > 1e-3 or not 0 < round(inside) <= max_roots:
             out.append(None if with_empty else [])
             continue
-        out.append(list(from_power_sums(np.array([s(m) for m in range(1, int(round(inside)) + 1)]))))
+        out.append(located(s, j, int(round(inside))))
     return out
+
+
+def located(s: Callable[[int, int], complex], j: int, n: int) -> list[complex]:
+    """The n roots whose power sums are s(j, 1..n) (:func:`from_power_sums`)."""
+    return list(from_power_sums(np.array([s(j, m) for m in range(1, n + 1)])))
 
 
 def from_power_sums(s: ComplexArray) -> np.ndarray:
