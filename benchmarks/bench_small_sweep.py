@@ -26,7 +26,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 COMMAND = ["sweep", "--file", str(ROOT / "examples" / "car.toml"), "--vary", "v=40:120:6"]
-VARIABLES = ("stable", "n_unstable", "degree_of_instability", "certain", "settled", "checked")
+VARIABLES = ("stable", "n_unstable", "degree_of_instability", "margin", "certain", "settled", "checked")
 
 
 def _children_cpu() -> float:
