@@ -196,3 +196,17 @@ def test_a_pair_closer_than_newton_separates_counts_twice_on_its_circle(car):
     assert cluster_counts(sweep, alpha, theta, np.array([tight[1]]), box) == 4
     assert cluster_counts(sweep, alpha, theta, np.array([near[1], near[2]]), box) == 4
     assert cluster_counts(sweep, alpha, theta, np.array([near[1] + 1e-3]), box) == -1
+
+
+def test_car_margin_in_a_column_of_two_wheel_masses(car):
+    """The column's E as a polynomial in the wheel mass (two values): 14 roots below h / 4 at the heavier
+    wheel, more than its power sums locate in a rectangle 6 wide, so its top is lowered once more; both
+    margins against the full count's roots at the exact points."""
+    params, roots = car
+    heavy = params.eta_M * 14 / 9  # a wheel of 1400 kg in place of 900 kg
+    smap = stability_map(
+        params, alphas=[float(params.alpha)], thetas=[float(params.eta_M), float(heavy)], workers=1
+    )
+    assert not smap.uncertain.any() and not smap.margin_bound.any()
+    assert smap.margin[0, 0] == pytest.approx(roots[0].imag, rel=1e-9)
+    assert smap.margin[1, 0] == pytest.approx(smallest_im(params.replace(eta_M=heavy)), rel=1e-9)

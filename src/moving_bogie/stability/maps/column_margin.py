@@ -11,7 +11,9 @@ count and locate every root there:
   has its top halved towards the highest top known to hold none (0 at first), and one holding none
   (below h) has it raised half way to the lowest top known to hold too many; a count that is not an
   integer (a root on the edge) moves the top by a tenth of that interval. The lowest roots are in every
-  rectangle that holds any, so the first rectangle holding 1 to ``MAX_STRIP_ROOTS`` roots holds them;
+  rectangle that holds any, so the first rectangle holding 1 to ``MAX_STRIP_ROOTS`` roots holds them.
+  Its panels are halved where E'/E is not resolved (a root near an edge), and when its power sums do not
+  locate its roots (many small roots in a wide rectangle), its top is halved again;
 - its roots are polished by Newton's method, and each distinct polished root is confirmed, with its
   multiplicity, by the argument principle on a small circle around it (radius at most 1e-6 |q|, and
   less than half the distance to any other root found or to the rectangle's edge): a pair of roots closer
@@ -113,7 +115,7 @@ def column_margin(
             groups.setdefault(tops[2], []).append(j)
         for top, group in sorted(groups.items()):
             depth = Y if base is None else min(Y, top - min(base, 0.0))
-            s = rectangle_sums(coeffs, t[group], X, depth, top)
+            s = rectangle_sums(coeffs, t[group], X, depth, top, adaptive=True)
             for k, j in enumerate(group):
                 lo, hi, _ = state.pop(j)
                 n = s(k, 0).real
@@ -128,6 +130,8 @@ def column_margin(
                 else:
                     roots = located(s, k, int(round(n)))
                     margin[j] = _smallest(sweep, alpha, thetas[j], roots, (X, depth, top), polish)
+                    if np.isnan(margin[j]):  # not located: fewer roots, in a lower rectangle
+                        state[j] = (lo, top, 0.5 * (lo + top))
         if not state:
             break
     return ColumnMargin(margin, bound, h)

@@ -38,28 +38,27 @@ def rectangle_sums(
     *,
     panel: float = 0.05,
     nodes: int = 16,
+    adaptive: bool = False,
 ) -> Callable[[int, int], complex]:
     """``s(j, m)``: the power sum s_m = (1/2 pi i) contour-integral of q^m E'/E dq of the roots inside
     -X..X x -Y..top for the j-th t (Gauss-Legendre panels on the right half, the left half from
     E(-conj q) = conj E(q)); s(j, 0) is the argument principle's count.
 
-    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z.
+    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z. With ``adaptive`` a
+    panel is halved until E'/E is resolved on it (:func:`_resolved_panels`): a root at the distance d from
+    a panel of width w limits the rule's accuracy to about rho^(-2 nodes), rho = a + sqrt(a^2 + 1),
+    a = 2 d / w (the Bernstein ellipse through the pole), so a root near an edge needs narrow panels there.
     """
     x, w = np.polynomial.legendre.leggauss(nodes)
-    zs, ws = [], []
+    ends = []
     for a, b in (
         (complex(0, -Y), complex(X, -Y)),
         (complex(X, -Y), complex(X, top)),
         (complex(X, top), complex(0, top)),
     ):
         n = max(1, int(np.ceil(abs(b - a) / panel)))
-        for k in range(n):
-            pa, pb = a + (b - a) * k / n, a + (b - a) * (k + 1) / n
-            zs.append(pa + (pb - pa) * (x + 1) / 2)
-            ws.append((pb - pa) / 2 * w)
-    z, wz = np.concatenate(zs), np.concatenate(ws)
-    c, dc = coeffs(z)
-    g = horner_rows(dc, t[:, None]) / horner_rows(c, t[:, None])
+        ends += [(a + (b - a) * k / n, a + (b - a) * (k + 1) / n) for k in range(n)]
+    z, wz, g = _resolved_panels(coeffs, t, np.array(ends), x, w, levels=16 if adaptive else 0)
 
     def s(j: int, m: int) -> complex:
         right = np.sum(z**m * g[j] * wz)
@@ -67,6 +66,38 @@ def rectangle_sums(
         return complex((right + left) / (2j * np.pi))
 
     return s
+
+
+def _resolved_panels(
+    coeffs: Callable[[ComplexArray], tuple[ComplexArray, ComplexArray]],
+    t: FloatArray,
+    ends: ComplexArray,
+    x: FloatArray,
+    w: FloatArray,
+    levels: int,
+    tol: float = 1e-5,
+) -> tuple[ComplexArray, ComplexArray, ComplexArray]:
+    """Nodes, weights and E'/E (one row per t) of Gauss-Legendre panels from ``ends`` (pairs of complex
+    ends), each halved, up to ``levels`` times, while the last two Legendre coefficients of E'/E on it,
+    times its half-width, exceed ``tol`` for some t (the rule's error is about their square)."""
+    tail = np.linalg.inv(np.polynomial.legendre.legvander(x, len(x) - 1))[-2:]
+    zs, ws, gs = [], [], []
+    for level in range(levels + 1):
+        a, b = ends[:, 0:1], ends[:, 1:2]
+        z, wz = a + (b - a) * (x + 1) / 2, (b - a) / 2 * w
+        c, dc = coeffs(z.ravel())
+        g = (horner_rows(dc, t[:, None]) / horner_rows(c, t[:, None])).reshape(len(t), *z.shape)
+        size = np.abs(np.einsum("kn,jpn->jpk", tail, g)).max(axis=(0, 2)) * np.abs(b - a)[:, 0] / 2
+        split = ~(size <= tol) if level < levels else np.zeros(len(ends), dtype=bool)
+        zs.append(z[~split].ravel())
+        ws.append(wz[~split].ravel())
+        gs.append(g[:, ~split].reshape(len(t), -1))
+        if not split.any():
+            break
+        mid = ends[split].mean(axis=1)
+        halves = (np.stack([ends[split, 0], mid], axis=1), np.stack([mid, ends[split, 1]], axis=1))
+        ends = np.concatenate(halves)
+    return np.concatenate(zs), np.concatenate(ws), np.concatenate(gs, axis=1)
 
 
 def delves_lyness(
