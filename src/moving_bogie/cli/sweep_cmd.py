@@ -25,8 +25,6 @@ from .outputs import add_figure_option, add_output_option
 from .reporting import fail
 
 if TYPE_CHECKING:
-    import xarray
-
     from moving_bogie.sweep.design import SweepSpec
     from moving_bogie.sweep.plan import SweepPlan
 
@@ -193,15 +191,16 @@ def _points_bar(enabled: bool) -> Iterator[Callable[[int, int], None]]:
 def run_sweep_cmd(args: argparse.Namespace) -> int:
     from moving_bogie.floquet.inputs import is_sleeper_file
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
-    from moving_bogie.sweep.store import open_sweep
+    from moving_bogie.sweep.store import open_sweep, read_store
 
     spec: SweepPlan
-    summarise: Callable[[xarray.Dataset], dict[str, Any]]
+    summarise: Callable[[Path], dict[str, Any]]
     if args.file is not None and is_sleeper_file(args.file):
         from .sleepers_sweep_cmd import sleeper_spec, sleeper_summary
 
         sleepers = sleeper_spec(args)
-        spec, summarise = sleepers, partial(sleeper_summary, sleepers)
+        spec = sleepers
+        summarise = lambda path: sleeper_summary(sleepers, open_sweep(path, dask=False))  # noqa: E731
     else:
         continuous = _spec(args)
         spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
@@ -227,10 +226,9 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
             json_mode=args.json,
             code=130,
         )
-    ds = open_sweep(args.out, dask=False)
     summary = {
         "out": str(args.out),
-        "dims": dict(ds.sizes),
+        "dims": read_store(args.out, ()).sizes,
         "points": spec.size,
         "points_computed": run.points_computed,
         "blocks": [run.blocks_computed, run.blocks_total],
@@ -238,7 +236,7 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
         "scheduler": run.scheduler,
         "seconds": round(run.seconds, 2),
         "points_per_second": round(run.points_per_second, 1) if run.points_computed else None,
-    } | summarise(ds)
+    } | summarise(args.out)
     if args.json:
         print_json(summary)
     else:
@@ -247,17 +245,21 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
     return 0
 
 
-def _summary(spec: SweepSpec, ds: xarray.Dataset) -> dict[str, Any]:
+def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
     """The verdicts of a sweep of a continuous track, for the summary."""
+    from moving_bogie.sweep.store import read_store
+
+    store = read_store(path, ("n_unstable", "certain", "settled", "checked", "supercritical"))
+    a = store.arrays
     out = {
-        "unstable_fraction": float((ds.n_unstable > 0).mean()),
-        "uncertain_points": int((~ds.certain).sum()),
-        "settled_points": int(ds.settled.sum()),
-        "check_disagreements": int((ds.checked < 0).sum()),
-        "units": {a.label: ds[a.label].attrs.get("units", "1") for a in spec.axes},
+        "unstable_fraction": float((a["n_unstable"] > 0).mean()),
+        "uncertain_points": int((~a["certain"]).sum()),
+        "settled_points": int(a["settled"].sum()),
+        "check_disagreements": int((a["checked"] < 0).sum()),
+        "units": {axis.label: store.units.get(axis.label, "1") for axis in spec.axes},
     }
-    if "supercritical" in ds:  # the points above the critical velocity of their track
-        out["supercritical_points"] = int(ds.supercritical.sum())
+    if "supercritical" in a:  # the points above the critical velocity of their track
+        out["supercritical_points"] = int(a["supercritical"].sum())
     return out
 
 

@@ -23,6 +23,7 @@ import json
 import os
 import shutil
 from collections.abc import Iterable
+from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, TypeAlias, cast
@@ -59,6 +60,7 @@ __all__ = [
     "open_sweep",
     "package_version",
     "prepare_store",
+    "read_store",
     "store_array",
     "store_group",
     "write_block",
@@ -321,6 +323,30 @@ def missing_blocks(path: StorePath, spec: SweepPlan) -> list[Block]:
     """Blocks of ``spec`` whose ``computed`` chunk is not in the store at ``path``."""
     computed = np.asarray(store_array(store_group(path, "r"), "computed")[...])
     return [b for b in spec.blocks() if not np.all(computed[b.slices])]
+
+
+def read_store(path: StorePath, names: Iterable[str]) -> StoreSummary:
+    """The dimensions of the store at ``path``, the units of its arrays and those arrays ``names`` that it
+    holds, read whole with zarr: a summary without starting xarray and dask."""
+    g = store_group(path, "r")
+    out = StoreSummary({}, {}, {})
+    for name in g.array_keys():
+        array = store_array(g, name)
+        dims = getattr(array.metadata, "dimension_names", None) or array.attrs.get("_ARRAY_DIMENSIONS", ())
+        out.sizes.update({str(dim): n for dim, n in zip(cast(list, dims), array.shape) if dim})
+        out.units[name] = str(array.attrs.get("units", "1"))
+        if name in names:
+            out.arrays[name] = np.asarray(array[...])
+    return out
+
+
+@dataclass(frozen=True)
+class StoreSummary:
+    """What :func:`read_store` read: dimension lengths, units of every array, and the arrays asked for."""
+
+    sizes: dict[str, int]
+    units: dict[str, str]
+    arrays: dict[str, np.ndarray]
 
 
 def open_sweep(path: StorePath, dask: bool = True) -> xarray.Dataset:
