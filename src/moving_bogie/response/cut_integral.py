@@ -43,6 +43,7 @@ from moving_bogie.response.cut_pieces import CurvePiece, cut_pieces, roots_along
 from moving_bogie.response.cut_values import JumpValues, PieceChannel
 from moving_bogie.response.quadrature import (
     FIRST_BAND,
+    PANEL_PHASE,
     PANEL_XI,
     adapt_panels_with_values,
     by_bands,
@@ -214,10 +215,12 @@ class CurveBranchCut(JumpValues):
             if cid == id(piece) and ch == channel and S2 >= S:  # reuse the partition of a longer range
                 keep = edges[(edges > p_lo) & (edges < p_hi)]
                 return np.concatenate([[p_lo], keep, [p_hi]])
-        # start: panels of at most 0.5 in p and 5 % of max(1, Re q) along the curve (as for the half-line)
+        # start: panels of at most 5 % of max(1, Re q) along the curve (as for the half-line) and PANEL_PHASE
+        # of e^{i p xi} at the largest contact offset (at least one unit): wide where the jump is smooth
         P = np.linspace(p_lo, p_hi, 4000)
         q = piece.q_at(P)
-        density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
+        floor = max(1.0, float(np.abs(self.offsets).max())) / PANEL_PHASE
+        density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), floor)
 
         def jump_and_q(nodes: np.ndarray) -> np.ndarray:
             q, J = self._chunked(piece, nodes, channel)
