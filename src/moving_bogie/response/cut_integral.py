@@ -21,12 +21,13 @@ A cut through q = 0 itself (the pole of the steady part) is refused, and so is a
 bounded in Re q > 0 (a mass layer at alpha = 0).
 
 Quadrature: composite 16-point Gauss-Legendre in p, panels first adapted to the non-oscillating integrand
-(halved until the panel integral changes by less than ``panel_tol``), then subdivided to at most 3 pi of
-phase Re q tau and 2 radians of e^{i p xi}. Each piece is truncated where Re q = S at its far ends (where
-Re q grows without bound); the tails are integrated by parts along the curve, e^{i q tau}(i F/tau -
-F'/tau^2 - i F''/tau^3) with F' in q by divided differences, and S is chosen per piece like the
-Euler-Bernoulli integral's (:mod:`branch_cut`): a mass layer's jump falls like p^-8 while its Re q grows
-only like alpha p, so its pieces stop at a small S.
+(from panels of at most 5 % of max(1, Re q) along the curve and 3 pi of e^{i p xi} at the largest contact
+offset, halved until the panel integral changes by less than ``panel_tol``), then subdivided to at most
+3 pi of phase Re q tau and 2 radians of e^{i p xi}. Each piece is truncated where Re q = S at its far
+ends (where Re q grows without bound); the tails are integrated by parts along the curve,
+e^{i q tau}(i F/tau - F'/tau^2 - i F''/tau^3) with F' in q by divided differences, and S is chosen per
+piece like the Euler-Bernoulli integral's (:mod:`branch_cut`): a mass layer's jump falls like p^-8 while
+its Re q grows only like alpha p, so its pieces stop at a small S.
 """
 
 from __future__ import annotations
@@ -95,6 +96,16 @@ class CurveBranchCut(JumpValues):
     the cut), ``eta_f`` (lowest Im q of the cut: |I_bc| <= l1_bound e^{-eta_f tau}), :meth:`responses`,
     :meth:`shape`, :meth:`l1_bound`.
 
+    Parameters
+    ----------
+    bound : BoundModel
+    panel_tol : float
+        Absolute tolerance per panel of the adapted partition (the halving test of
+        :func:`~moving_bogie.response.quadrature.adapt_panels_with_values`).
+    widest : float, optional
+        Widest starting panel in p (default: PANEL_PHASE radians of e^{i p xi} at the largest contact
+        offset, at least one unit of xi).
+
     Raises
     ------
     BranchCutUnavailable
@@ -102,7 +113,7 @@ class CurveBranchCut(JumpValues):
         an undamped layered track), or a curve stays bounded in Re q > 0 (a layered track at alpha = 0).
     """
 
-    def __init__(self, bound: BoundModel, *, panel_tol: float = 1e-13) -> None:
+    def __init__(self, bound: BoundModel, *, panel_tol: float = 1e-13, widest: float | None = None) -> None:
         self.params = bound.params
         self.module = bound.foundation
         self.fargs = bound.foundation_floats()
@@ -110,6 +121,8 @@ class CurveBranchCut(JumpValues):
         self.system, self.offsets, self.positions = bound.float_system, bound.offsets, bound.positions
         self.span, self.names = bound.span, bound.names
         self.panel_tol = panel_tol
+        #: the widest starting panel in p: PANEL_PHASE radians of e^{i p xi} at the largest contact offset
+        self.widest = PANEL_PHASE / max(1.0, float(np.abs(self.offsets).max())) if widest is None else widest
         P = 8.0
         while P < 1e4 and not np.all(np.abs(self.tracer.q_roots(np.array([-P, P])).real) > _REACH):
             P *= 2
@@ -215,12 +228,12 @@ class CurveBranchCut(JumpValues):
             if cid == id(piece) and ch == channel and S2 >= S:  # reuse the partition of a longer range
                 keep = edges[(edges > p_lo) & (edges < p_hi)]
                 return np.concatenate([[p_lo], keep, [p_hi]])
-        # start: panels of at most 5 % of max(1, Re q) along the curve (as for the half-line) and PANEL_PHASE
-        # of e^{i p xi} at the largest contact offset (at least one unit): wide where the jump is smooth
+        # start: panels of at most 5 % of max(1, Re q) along the curve (as for the half-line) and
+        # ``widest`` in p: wide where the jump is smooth, the halving test refines the rest
         P = np.linspace(p_lo, p_hi, 4000)
         q = piece.q_at(P)
-        floor = max(1.0, float(np.abs(self.offsets).max())) / PANEL_PHASE
-        density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), floor)
+        along = np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real)))
+        density = np.maximum(along, 1.0 / self.widest)
 
         def jump_and_q(nodes: np.ndarray) -> np.ndarray:
             q, J = self._chunked(piece, nodes, channel)
