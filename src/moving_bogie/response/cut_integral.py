@@ -62,6 +62,8 @@ _REACH = 2.0**14
 #: approach each other (the halves of a layered track's lens and its mass-layer curves converge like a
 #: power of 1/p; merging them at 1e-9 left errors of 1e-8 w_st in the deflection shape).
 _REAL_TOL = 1e-12
+#: The widest starting panel in p is at least the half-line's (its _PANEL_DP).
+_START_DP = 0.5
 
 
 def _rule_top(lo: float, ts: np.ndarray, rule_tau: np.ndarray | None) -> float:
@@ -104,7 +106,7 @@ class CurveBranchCut(JumpValues):
         :func:`~moving_bogie.response.quadrature.adapt_panels_with_values`).
     widest : float, optional
         Widest starting panel in p (default: PANEL_PHASE radians of e^{i p xi} at the largest contact
-        offset, at least one unit of xi).
+        offset, at least one unit of xi, and never below the half-line's 0.5).
 
     Raises
     ------
@@ -122,7 +124,8 @@ class CurveBranchCut(JumpValues):
         self.span, self.names = bound.span, bound.names
         self.panel_tol = panel_tol
         #: the widest starting panel in p: PANEL_PHASE radians of e^{i p xi} at the largest contact offset
-        self.widest = PANEL_PHASE / max(1.0, float(np.abs(self.offsets).max())) if widest is None else widest
+        offset = max(1.0, float(np.abs(self.offsets).max()))
+        self.widest = max(_START_DP, PANEL_PHASE / offset) if widest is None else widest
         P = 8.0
         while P < 1e4 and not np.all(np.abs(self.tracer.q_roots(np.array([-P, P])).real) > _REACH):
             P *= 2
