@@ -68,3 +68,19 @@ def test_the_curve_integral_reproduces_the_half_line_integral():
     curve = CurveBranchCut(bind(params)).responses(taus)
     for name in line:
         np.testing.assert_allclose(curve[name], line[name], rtol=0, atol=1e-10)
+
+
+@pytest.mark.slow
+def test_the_wide_starting_panels_give_the_integral_of_panels_of_half_a_unit():
+    # Reference: the same adapted quadrature started from panels of at most 0.5 in p along the whole cut
+    # (the half-line's start; no rule subdivides them for e^{i p xi}). Wide starting panels (3 pi of
+    # e^{i p xi} at the wheel spacing) where the jump is smooth meet the same halving test, and the rules
+    # keep pieces of up to 3 pi of it; the two agree far below the truncation tolerance 1e-10.
+    params = table1_case(7).replace(beam="tr", S=10, r="0.09")
+    taus = np.array([0.3, 2.0, 20.0])
+    wide = CurveBranchCut(bind(params))
+    narrow = CurveBranchCut(bind(params), widest=0.5)
+    assert wide.widest > 4 * narrow.widest
+    got, ref = wide.responses(taus), narrow.responses(taus)
+    for name in ref:
+        np.testing.assert_allclose(got[name], ref[name], rtol=0, atol=1e-11)

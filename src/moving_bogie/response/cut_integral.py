@@ -21,12 +21,14 @@ A cut through q = 0 itself (the pole of the steady part) is refused, and so is a
 bounded in Re q > 0 (a mass layer at alpha = 0).
 
 Quadrature: composite 16-point Gauss-Legendre in p, panels first adapted to the non-oscillating integrand
-(halved until the panel integral changes by less than ``panel_tol``), then subdivided to at most 3 pi of
-phase Re q tau and 2 radians of e^{i p xi}. Each piece is truncated where Re q = S at its far ends (where
-Re q grows without bound); the tails are integrated by parts along the curve, e^{i q tau}(i F/tau -
-F'/tau^2 - i F''/tau^3) with F' in q by divided differences, and S is chosen per piece like the
-Euler-Bernoulli integral's (:mod:`branch_cut`): a mass layer's jump falls like p^-8 while its Re q grows
-only like alpha p, so its pieces stop at a small S.
+(from panels of at most 5 % of max(1, Re q) along the curve and 3 pi of e^{i p xi} at the largest contact
+offset, halved until the panel integral changes by less than ``panel_tol``), then subdivided to at most
+3 pi of phase Re q tau and, for a shape, 2 radians of e^{i p xi} at its largest |xi| (the responses' jump
+holds e^{i p xi} at the contact offsets only, which the adapted panels resolve: at most 3 pi of it). Each
+piece is truncated where Re q = S at its far ends (where Re q grows without bound); the tails are
+integrated by parts along the curve, e^{i q tau}(i F/tau - F'/tau^2 - i F''/tau^3) with F' in q by divided
+differences, and S is chosen per piece like the Euler-Bernoulli integral's (:mod:`branch_cut`): a mass
+layer's jump falls like p^-8 while its Re q grows only like alpha p, so its pieces stop at a small S.
 """
 
 from __future__ import annotations
@@ -43,6 +45,7 @@ from moving_bogie.response.cut_pieces import CurvePiece, cut_pieces, roots_along
 from moving_bogie.response.cut_values import JumpValues, PieceChannel
 from moving_bogie.response.quadrature import (
     FIRST_BAND,
+    PANEL_PHASE,
     PANEL_XI,
     adapt_panels_with_values,
     by_bands,
@@ -60,6 +63,8 @@ _REACH = 2.0**14
 #: approach each other (the halves of a layered track's lens and its mass-layer curves converge like a
 #: power of 1/p; merging them at 1e-9 left errors of 1e-8 w_st in the deflection shape).
 _REAL_TOL = 1e-12
+#: The widest starting panel in p is at least the half-line's (its _PANEL_DP).
+_START_DP = 0.5
 
 
 def _rule_top(lo: float, ts: np.ndarray, rule_tau: np.ndarray | None) -> float:
@@ -94,6 +99,16 @@ class CurveBranchCut(JumpValues):
     the cut), ``eta_f`` (lowest Im q of the cut: |I_bc| <= l1_bound e^{-eta_f tau}), :meth:`responses`,
     :meth:`shape`, :meth:`l1_bound`.
 
+    Parameters
+    ----------
+    bound : BoundModel
+    panel_tol : float
+        Absolute tolerance per panel of the adapted partition (the halving test of
+        :func:`~moving_bogie.response.quadrature.adapt_panels_with_values`).
+    widest : float, optional
+        Widest starting panel in p (default: PANEL_PHASE radians of e^{i p xi} at the largest contact
+        offset, at least one unit of xi, and never below the half-line's 0.5).
+
     Raises
     ------
     BranchCutUnavailable
@@ -101,7 +116,7 @@ class CurveBranchCut(JumpValues):
         an undamped layered track), or a curve stays bounded in Re q > 0 (a layered track at alpha = 0).
     """
 
-    def __init__(self, bound: BoundModel, *, panel_tol: float = 1e-13) -> None:
+    def __init__(self, bound: BoundModel, *, panel_tol: float = 1e-13, widest: float | None = None) -> None:
         self.params = bound.params
         self.module = bound.foundation
         self.fargs = bound.foundation_floats()
@@ -109,6 +124,9 @@ class CurveBranchCut(JumpValues):
         self.system, self.offsets, self.positions = bound.float_system, bound.offsets, bound.positions
         self.span, self.names = bound.span, bound.names
         self.panel_tol = panel_tol
+        #: PANEL_PHASE of e^{i p xi} at the largest offset (>= 1), in p: start panels, rules of the responses
+        self.offset_dp = PANEL_PHASE / max(1.0, float(np.abs(self.offsets).max()))
+        self.widest = max(_START_DP, self.offset_dp) if widest is None else widest
         P = 8.0
         while P < 1e4 and not np.all(np.abs(self.tracer.q_roots(np.array([-P, P])).real) > _REACH):
             P *= 2
@@ -214,10 +232,12 @@ class CurveBranchCut(JumpValues):
             if cid == id(piece) and ch == channel and S2 >= S:  # reuse the partition of a longer range
                 keep = edges[(edges > p_lo) & (edges < p_hi)]
                 return np.concatenate([[p_lo], keep, [p_hi]])
-        # start: panels of at most 0.5 in p and 5 % of max(1, Re q) along the curve (as for the half-line)
+        # start: panels of at most 5 % of max(1, Re q) along the curve (as for the half-line) and
+        # ``widest`` in p: wide where the jump is smooth, the halving test refines the rest
         P = np.linspace(p_lo, p_hi, 4000)
         q = piece.q_at(P)
-        density = np.maximum(np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real))), 2.0)
+        along = np.abs(self.tracer.dq_dp(P, q)) / (0.05 * np.maximum(1.0, np.abs(q.real)))
+        density = np.maximum(along, 1.0 / self.widest)
 
         def jump_and_q(nodes: np.ndarray) -> np.ndarray:
             q, J = self._chunked(piece, nodes, channel)
@@ -231,14 +251,19 @@ class CurveBranchCut(JumpValues):
         return edges
 
     def _rule(
-        self, piece: CurvePiece, S: float, tau_hi: float, xi_max: float, channel: PieceChannel
+        self, piece: CurvePiece, S: float, tau_hi: float, xi_max: float | None, channel: PieceChannel
     ) -> tuple[np.ndarray, np.ndarray]:
+        """The adapted panels subdivided to at most PANEL_PHASE of Re q tau_hi and, for a jump with
+        e^{i p xi} at other xi than the contact offsets (``xi_max``: their largest |xi|), PANEL_XI radians
+        of it; with e^{i p xi} at the offsets only (``xi_max`` None: the responses, whose adapted panels
+        resolve it), pieces of at most PANEL_PHASE of it (``offset_dp``)."""
         edges = self._panels(piece, S, channel)
         key = ("x", id(piece), S, channel)
         if key not in self._small:
             self._remember(key, piece.q_at(edges).real)
         x = self._small[key]
-        return oscillation_rule(edges, tau_hi * np.diff(x), PANEL_XI / (abs(xi_max) + 1.0))
+        dp = self.offset_dp if xi_max is None else PANEL_XI / (abs(xi_max) + 1.0)
+        return oscillation_rule(edges, tau_hi * np.diff(x), dp)
 
     def _end_terms(self, piece: CurvePiece, S: float, channel: PieceChannel) -> list[tuple]:
         """Per far end of the piece: (sign, q, F, F', F'') of the jump F along the curve, in q."""
@@ -310,11 +335,12 @@ class CurveBranchCut(JumpValues):
 
         ``rule_tau``: other times whose rules a band of ``tau`` should share (their largest in the band sets
         its panels when it is larger than that of ``tau``): a probe of a few times then evaluates the jump
-        at the nodes that the whole series will use, and the series finds them in the cache."""
+        at the nodes that the whole series will use, and the series finds them in the cache. ``xi_max``:
+        the largest |xi| of the channel's e^{i p xi} when it has other xi than the contact offsets (a
+        shape; None: the offsets only, :meth:`_rule`)."""
         tau = np.asarray(tau, dtype=float)
         if np.any(tau < 0) or not np.all(np.isfinite(tau)):
             raise MovingBogieError("branch-cut integral needs finite tau >= 0")
-        xi_max = self.span if xi_max is None else xi_max
         first = self.pieces[0]
         m = channel(first, np.array([0.5 * (first.p_lo + first.p_hi)]))[1].shape[-1]
 
@@ -369,7 +395,7 @@ class CurveBranchCut(JumpValues):
         """(1/pi) sum of integrals of |J| dp: |I_bc(tau)| <= this * e^{-eta_f tau} for every tau."""
         total = np.zeros(len(self.names))
         for piece, S in zip(self.pieces, self.choose_S(self._jump, 0.0, tol, s_min)):
-            nodes, weights = self._rule(piece, S, 0.0, self.span, self._jump)
+            nodes, weights = self._rule(piece, S, 0.0, None, self._jump)
             # the first band of times has these very nodes, most often those of the adapted panels
             q, J = self._values(piece, nodes, self._jump, len(self.names))
             total = total + (np.abs(J) * weights[:, None]).sum(axis=0) / np.pi
