@@ -127,9 +127,17 @@ def _vehicle_module(name):
     return importlib.import_module(f"moving_bogie.generated.vehicle_{name}")
 
 
-def _coeffs(expr, var, degree):
-    """Coefficients of ``expr`` in ``var``, highest power first, padded to ``degree``."""
-    c = sp.Poly(expr, var).all_coeffs()
+@functools.cache
+def _foundation_poly(name, which, var):
+    """``N`` or ``Q`` (``which``) of the foundation as a polynomial in ``var`` (``"p"`` or ``"q"``), built
+    once: converting the layered tracks' expressions to polynomials takes seconds each."""
+    N, Q = _foundation(name)
+    return sp.Poly({"N": N, "Q": Q}[which], getattr(s, var))
+
+
+def _coeffs(poly, degree):
+    """Coefficients of ``poly``, highest power first, padded to ``degree``."""
+    c = poly.all_coeffs()
     assert len(c) <= degree + 1
     return [sp.Integer(0)] * (degree + 1 - len(c)) + c
 
@@ -203,15 +211,16 @@ def test_foundation_kernels_match_sympy(name, seed):
     N, Q = _foundation(name)
     point = _foundation_point(name, seed)
     subs = _foundation_symbols(point)
-    deg_n, deg_q, deg_nq = (sp.Poly(e, v).degree() for e, v in ((N, s.p), (Q, s.p), (N, s.q)))
+    n_p, q_p, n_q = (_foundation_poly(name, e, v) for e, v in (("N", "p"), ("Q", "p"), ("N", "q")))
+    deg_n, deg_q, deg_nq = n_p.degree(), q_p.degree(), n_q.degree()
     assert (module.DEGREE_N, module.DEGREE_Q, module.DEGREE_N_IN_Q) == (deg_n, deg_q, deg_nq)
     pars = {k: point[k] for k in module.ARGUMENTS[1:]}
     references = {
-        "n_coeffs": [_reference(c, subs) for c in _coeffs(N, s.p, deg_n)],
-        "n_coeffs_dq": [_reference(sp.diff(c, s.q), subs) for c in _coeffs(N, s.p, deg_n)],
-        "q_coeffs": [_reference(c, subs) for c in _coeffs(Q, s.p, deg_q)],
-        "q_coeffs_dq": [_reference(sp.diff(c, s.q), subs) for c in _coeffs(Q, s.p, deg_q)],
-        "n_coeffs_in_q": [_reference(c, subs) for c in _coeffs(N, s.q, module.DEGREE_N_IN_Q)],
+        "n_coeffs": [_reference(c, subs) for c in _coeffs(n_p, deg_n)],
+        "n_coeffs_dq": [_reference(sp.diff(c, s.q), subs) for c in _coeffs(n_p, deg_n)],
+        "q_coeffs": [_reference(c, subs) for c in _coeffs(q_p, deg_q)],
+        "q_coeffs_dq": [_reference(sp.diff(c, s.q), subs) for c in _coeffs(q_p, deg_q)],
+        "n_coeffs_in_q": [_reference(c, subs) for c in _coeffs(n_q, module.DEGREE_N_IN_Q)],
     }
     with mpmath.workdps(30):
         mp_pars = {k: _to_mp(v) for k, v in pars.items()}

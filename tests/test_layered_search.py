@@ -32,6 +32,20 @@ from moving_bogie.stability.maps.column import exact
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
+def _cut_q(params, ps: np.ndarray) -> np.ndarray:
+    """The q of the cut of K at each real p of ``ps``: the roots of N(p, .), p after p, as numpy.roots finds
+    them (the eigenvalues of the companion matrix numpy.roots builds), in one batched eigvals call."""
+    track = bind(params).foundation_model
+    args = track.float_arguments(params)
+    coeffs = np.array([track.module.n_coeffs_in_q(p, **args) for p in ps], dtype=complex)
+    assert np.all(coeffs[:, 0] != 0) and np.all(coeffs[:, -1] != 0)  # numpy.roots would strip zeros
+    n = coeffs.shape[1] - 1
+    companion = np.zeros((len(ps), n, n), dtype=complex)
+    companion[:, 1:, :-1] = np.eye(n - 1)
+    companion[:, 0, :] = -coeffs[:, 1:] / coeffs[:, :1]
+    return np.linalg.eigvals(companion).ravel()
+
+
 @pytest.fixture(scope="module")
 def two_layer():
     return load_params_file(EXAMPLES / "two-layer.toml")[0]
@@ -77,12 +91,7 @@ def _boundary_count(fast, x0, x1, y0, y1, n=20000):
 def test_two_layer_roots_match_a_dense_scan(two_layer):
     """Every root below the cut (Im q < 0.06; the cut's lowest point is at Im q = 0.0708, checked here by
     numpy.roots of N(p, .) on a p-grid) is found by the search, and no other."""
-    track_q = []
-    track = bind(two_layer).foundation_model
-    args = track.float_arguments(two_layer)
-    for p in np.linspace(-40, 40, 4001):
-        track_q += list(np.roots(np.array(track.module.n_coeffs_in_q(p, **args), dtype=complex)))
-    track_q = np.array(track_q)
+    track_q = _cut_q(two_layer, np.linspace(-40, 40, 4001))
     assert track_q[np.abs(track_q.real) < 3].imag.min() > 0.07
     box = (0.0, 1.5, -0.3, 0.06)
     scan, fast = _scan_roots(two_layer, *box)
@@ -168,12 +177,7 @@ def test_side_between_two_cut_curves():
     window = Rectangle(-0.01, 60.0, -1.0, 1.0)
     result = induced_frequencies(params, dps=15, window=window, check_window=False)
     assert result.count_ok, result.warnings
-    track = bind(params).foundation_model
-    args = track.float_arguments(params)
-    ps = np.linspace(-25, 20, 90001)
-    cut = np.concatenate(
-        [np.roots(np.array(track.module.n_coeffs_in_q(p, **args), dtype=complex)) for p in ps]
-    )
+    cut = _cut_q(params, np.linspace(-25, 20, 90001))
     far = [r for r in result.roots if float(mpmath.re(r.q)) > 35]
     assert far
     for r in far:
