@@ -89,10 +89,13 @@ CHUNK = 4096
 class CharacteristicArray:
     """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps).
 
-    ``bound`` as in :class:`Characteristic`.
+    ``bound`` as in :class:`Characteristic`. With ``remember``, E_chr (a call, not
+    :meth:`value_and_derivative`) is evaluated once per point: the contours of one search that pass through
+    the same points (:mod:`moving_bogie.roots.count.lattice`) share the values, and only the points not
+    seen before count as ``evaluations``.
     """
 
-    def __init__(self, bound: BoundModel) -> None:
+    def __init__(self, bound: BoundModel, remember: bool = False) -> None:
         self.bound = bound
         self.params = bound.params
         self.module = bound.vehicle
@@ -100,6 +103,7 @@ class CharacteristicArray:
         self.system = self.bound.float_system
         self.offsets = [float(x) for x in self.system.offsets]
         self.evaluations = 0
+        self._known: dict[complex, complex] | None = {} if remember else None
 
     def kernel_values(self, q: ArrayLike, derivative: bool = False) -> KernelValues:
         """K (and dK/dq) at the distinct contact offsets, arrays shaped like ``q``."""
@@ -112,12 +116,27 @@ class CharacteristicArray:
         one the whole batch gives, bit for bit: each point's arithmetic is elementwise, and no piece is small
         enough for the scalar path of :func:`~moving_bogie.kernels.polyroots.quartic_roots`."""
         q = np.asarray(q, dtype=complex)
+        if self._known is not None:
+            return self._remembered(q, self._known)
+        return self._evaluate(q)
+
+    def _evaluate(self, q: ComplexArray) -> ComplexArray:
         self.evaluations += q.size
         if q.size <= CHUNK:
             return self.system.e_chr_array(q, self.kernel_values(q).K)
         pieces = np.array_split(q.ravel(), -(-q.size // CHUNK))
         values = [self.system.e_chr_array(z, self.kernel_values(z).K) for z in pieces]
         return np.concatenate(values).reshape(q.shape)
+
+    def _remembered(self, q: ComplexArray, known: dict[complex, complex]) -> ComplexArray:
+        """E_chr(q), evaluated only at the points not in ``known`` (then added to it)."""
+        points = q.ravel().tolist()
+        values = [known.get(z) for z in points]
+        new = list(dict.fromkeys(z for z, v in zip(points, values) if v is None))
+        if new:
+            known.update(zip(new, self._evaluate(np.array(new, dtype=complex)).tolist()))
+            values = [known[z] for z in points]
+        return np.array(values, dtype=complex).reshape(q.shape)
 
     def value_and_derivative(self, q: ArrayLike) -> tuple[ComplexArray, ComplexArray]:
         """(E_chr(q), dE_chr/dq) in double precision, by Jacobi's formula (Eq. (40))."""

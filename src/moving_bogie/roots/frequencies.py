@@ -107,7 +107,7 @@ def induced_frequencies(
     """
     extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
-    fast, in_balls = CharacteristicArray(bound), BallPrecise(bound)
+    fast, in_balls = CharacteristicArray(bound, remember=True), BallPrecise(bound)
     polishing = (in_balls if balls else in_balls.precise, in_balls)  # (polish, confirm at higher precision)
     report = _reporter(progress)
     counted, beyond = _count(fast, bound, window, eps, eps_branch, newton_cell, check_window, report)
