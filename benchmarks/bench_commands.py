@@ -106,13 +106,10 @@ def largest_difference(a: str, b: str) -> str:
     return "NaN MISMATCH" if nan_mismatch else f"{max(diffs):.1e}"
 
 
-def compare(before: Path, repeat: int, only: list[str] | None = None) -> list[tuple[str, Run, Run, str]]:
-    """(label, best run of ``before``, best run of this checkout, largest difference) per command (those
-    labelled in ``only``, if given)."""
+def compare(before: Path, repeat: int) -> list[tuple[str, Run, Run, str]]:
+    """(label, best run of ``before``, best run of this checkout, largest difference) per command."""
     out = []
     for label, (argv, _) in COMMANDS.items():
-        if only and label not in only:
-            continue
         best: dict[str, Run] = {}
         for _ in range(repeat):
             for who, src in (("before", before), ("this", HERE)):
@@ -168,16 +165,13 @@ def main() -> None:
         "--before", metavar="SRC", type=Path, required=True, help="src folder of the other code"
     )
     parser.add_argument("--repeat", type=int, default=1, help="runs per command and code (best kept)")
-    parser.add_argument(
-        "--only", action="append", metavar="LABEL", help="only this command (its label; repeatable)"
-    )
     from records import add_record_option
 
     add_record_option(parser)
     args = parser.parse_args()
     if not (args.before / "moving_bogie").is_dir():
         parser.error(f"--before: {args.before} holds no moving_bogie package")
-    results = compare(args.before, args.repeat, args.only)
+    results = compare(args.before, args.repeat)
     print_table(results)
     if args.record:
         record(results, args.before)
