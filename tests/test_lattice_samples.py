@@ -70,12 +70,17 @@ def test_counts_on_the_lattice_agree_with_uniform_sampling(case):
 
 def test_remembered_values_are_the_values_and_count_once():
     bound = bind(table1_case(3))
-    plain, remembering = CharacteristicArray(bound), CharacteristicArray(bound, remember=True)
+    plain, remembering = CharacteristicArray(bound), CharacteristicArray(bound, remember=2.0)
     rng = np.random.default_rng(5)
-    q = rng.uniform(-2, 2, 300) + 1j * rng.uniform(-2, 2, 300)
+    q = rng.uniform(-1.4, 1.4, 300) + 1j * rng.uniform(-1.4, 1.4, 300)
+    q[[10, 250]] = [3.0 - 0.5j, -2.5 + 1j]  # beyond the radius: evaluated each time, not kept
     first = remembering(q[:200])
-    again = remembering(q.reshape(3, 100))  # 200 points seen, 100 new
-    assert remembering.evaluations == 300
-    assert np.array_equal(first, plain(q[:200]))
-    assert np.array_equal(again.ravel()[:200], first)
-    assert np.array_equal(again.ravel()[200:], plain(q[200:]))
+    assert remembering.evaluations == 200
+    again = remembering(q.reshape(3, 100))  # 199 near points seen, 99 new; both far ones evaluated
+    assert remembering.evaluations == 200 + 99 + 2
+    assert again.shape == (3, 100)
+    reference = plain(q)
+    assert np.allclose(first, reference[:200], rtol=1e-13, atol=0)
+    assert np.allclose(again.ravel(), reference, rtol=1e-13, atol=0)
+    near = np.abs(q[:200]) <= 2.0
+    assert np.array_equal(again.ravel()[:200][near], first[near])  # the values kept, to the bit

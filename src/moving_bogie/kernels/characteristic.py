@@ -89,13 +89,13 @@ CHUNK = 4096
 class CharacteristicArray:
     """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps).
 
-    ``bound`` as in :class:`Characteristic`. With ``remember``, E_chr (a call, not
-    :meth:`value_and_derivative`) is evaluated once per point: the contours of one search that pass through
-    the same points (:mod:`moving_bogie.roots.count.lattice`) share the values, and only the points not
-    seen before count as ``evaluations``.
+    ``bound`` as in :class:`Characteristic`. With ``remember`` (a radius), E_chr (a call, not
+    :meth:`value_and_derivative`) is evaluated once per point with |q| <= ``remember``: the contours of one
+    search that pass through the same points (:mod:`moving_bogie.roots.count.lattice`) share the values,
+    and only the points not seen before count as ``evaluations``.
     """
 
-    def __init__(self, bound: BoundModel, remember: bool = False) -> None:
+    def __init__(self, bound: BoundModel, remember: float | None = None) -> None:
         self.bound = bound
         self.params = bound.params
         self.module = bound.vehicle
@@ -103,7 +103,8 @@ class CharacteristicArray:
         self.system = self.bound.float_system
         self.offsets = [float(x) for x in self.system.offsets]
         self.evaluations = 0
-        self._known: dict[complex, complex] | None = {} if remember else None
+        self._remember = remember
+        self._known: dict[complex, complex] = {}
 
     def kernel_values(self, q: ArrayLike, derivative: bool = False) -> KernelValues:
         """K (and dK/dq) at the distinct contact offsets, arrays shaped like ``q``."""
@@ -116,9 +117,16 @@ class CharacteristicArray:
         one the whole batch gives, bit for bit: each point's arithmetic is elementwise, and no piece is small
         enough for the scalar path of :func:`~moving_bogie.kernels.polyroots.quartic_roots`."""
         q = np.asarray(q, dtype=complex)
-        if self._known is not None:
-            return self._remembered(q, self._known)
-        return self._evaluate(q)
+        if self._remember is None:
+            return self._evaluate(q)
+        flat = q.ravel()
+        near = np.abs(flat) <= self._remember
+        if np.all(near):
+            return self._remembered(flat, self._known).reshape(q.shape)
+        out = np.empty(flat.shape, dtype=complex)
+        out[near] = self._remembered(flat[near], self._known)
+        out[~near] = self._evaluate(flat[~near])
+        return out.reshape(q.shape)
 
     def _evaluate(self, q: ComplexArray) -> ComplexArray:
         self.evaluations += q.size
@@ -129,14 +137,14 @@ class CharacteristicArray:
         return np.concatenate(values).reshape(q.shape)
 
     def _remembered(self, q: ComplexArray, known: dict[complex, complex]) -> ComplexArray:
-        """E_chr(q), evaluated only at the points not in ``known`` (then added to it)."""
-        points = q.ravel().tolist()
+        """E_chr at the points ``q`` (one-dimensional), evaluated only where not in ``known`` (then added)."""
+        points = q.tolist()
         values = [known.get(z) for z in points]
         new = list(dict.fromkeys(z for z, v in zip(points, values) if v is None))
         if new:
             known.update(zip(new, self._evaluate(np.array(new, dtype=complex)).tolist()))
             values = [known[z] for z in points]
-        return np.array(values, dtype=complex).reshape(q.shape)
+        return np.array(values, dtype=complex)
 
     def value_and_derivative(self, q: ArrayLike) -> tuple[ComplexArray, ComplexArray]:
         """(E_chr(q), dE_chr/dq) in double precision, by Jacobi's formula (Eq. (40))."""
