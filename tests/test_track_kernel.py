@@ -141,3 +141,22 @@ def test_near_coalescing_p_roots_are_handled():
     for k, xi in enumerate((0.0, float(params.d))):
         ref = quadrature_K(params, complex(q), xi)
         assert abs(complex(kv.K[k]) - ref) < 1e-8 * max(1, abs(ref))
+
+
+@pytest.mark.parametrize("beam", ["eb", "tr"])
+def test_a_large_batch_of_e_chr_is_evaluated_in_pieces_bit_for_bit(beam):
+    """E_chr on more than ``CHUNK`` points (a count's contour) is evaluated in pieces: every value must be
+    the one the whole batch in one piece gives, to the last bit (the polish starts and the far-field rho
+    are printed from such values)."""
+    from moving_bogie.kernels.characteristic import CHUNK, CharacteristicArray
+
+    fast = CharacteristicArray(bind(_params(beam)))
+    rng = np.random.default_rng(11)
+    n = 2 * CHUNK + 37
+    q = rng.uniform(-4, 4, n) + 1j * rng.uniform(-4, 4, n)
+    whole = fast.system.e_chr_array(q, fast.kernel_values(q).K)
+    pieces = fast(q)
+    assert pieces.shape == q.shape
+    assert np.array_equal(pieces, whole, equal_nan=True)
+    square = fast(q[: 2 * CHUNK + 2].reshape(2, CHUNK + 1))  # any shape: pieces of the flattened batch
+    assert np.array_equal(square.ravel(), whole[: 2 * CHUNK + 2], equal_nan=True)

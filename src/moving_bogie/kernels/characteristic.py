@@ -82,13 +82,20 @@ class Characteristic:
         return self.system.shape_weights(q, kv.K, numerators, E)
 
 
+#: The most points :class:`CharacteristicArray` evaluates in one piece (a larger batch is split evenly).
+CHUNK = 4096
+
+
 class CharacteristicArray:
     """E_chr for numpy arrays of q in double precision (argument-principle counting, sweeps).
 
-    ``bound`` as in :class:`Characteristic`.
+    ``bound`` as in :class:`Characteristic`. With ``remember`` (a radius), E_chr (a call, not
+    :meth:`value_and_derivative`) is evaluated once per point with |q| <= ``remember``: the contours of one
+    search that pass through the same points (:mod:`moving_bogie.roots.count.lattice`) share the values,
+    and only the points not seen before count as ``evaluations``.
     """
 
-    def __init__(self, bound: BoundModel) -> None:
+    def __init__(self, bound: BoundModel, remember: float | None = None) -> None:
         self.bound = bound
         self.params = bound.params
         self.module = bound.vehicle
@@ -96,15 +103,48 @@ class CharacteristicArray:
         self.system = self.bound.float_system
         self.offsets = [float(x) for x in self.system.offsets]
         self.evaluations = 0
+        self._remember = remember
+        self._known: dict[complex, complex] = {}
 
     def kernel_values(self, q: ArrayLike, derivative: bool = False) -> KernelValues:
         """K (and dK/dq) at the distinct contact offsets, arrays shaped like ``q``."""
         return self.kernel(np.asarray(q, dtype=complex), self.offsets, derivative=derivative)
 
     def __call__(self, q: ArrayLike) -> ComplexArray:
+        """E_chr(q) (Eq. (38)) at every point of ``q``; a batch larger than :data:`CHUNK` points is evaluated
+        in nearly equal pieces of at most that many (the temporaries of one piece stay in the processor's
+        cache: a third less time per point on the ten-thousand-point contours of a count). Every value is the
+        one the whole batch gives, bit for bit: each point's arithmetic is elementwise, and no piece is small
+        enough for the scalar path of :func:`~moving_bogie.kernels.polyroots.quartic_roots`."""
         q = np.asarray(q, dtype=complex)
+        if self._remember is None:
+            return self._evaluate(q)
+        flat = q.ravel()
+        near = np.abs(flat) <= self._remember
+        if np.all(near):
+            return self._remembered(flat, self._known).reshape(q.shape)
+        out = np.empty(flat.shape, dtype=complex)
+        out[near] = self._remembered(flat[near], self._known)
+        out[~near] = self._evaluate(flat[~near])
+        return out.reshape(q.shape)
+
+    def _evaluate(self, q: ComplexArray) -> ComplexArray:
         self.evaluations += q.size
-        return self.system.e_chr_array(q, self.kernel_values(q).K)
+        if q.size <= CHUNK:
+            return self.system.e_chr_array(q, self.kernel_values(q).K)
+        pieces = np.array_split(q.ravel(), -(-q.size // CHUNK))
+        values = [self.system.e_chr_array(z, self.kernel_values(z).K) for z in pieces]
+        return np.concatenate(values).reshape(q.shape)
+
+    def _remembered(self, q: ComplexArray, known: dict[complex, complex]) -> ComplexArray:
+        """E_chr at the points ``q`` (one-dimensional), evaluated only where not in ``known`` (then added)."""
+        points = q.tolist()
+        values = [known.get(z) for z in points]
+        new = list(dict.fromkeys(z for z, v in zip(points, values) if v is None))
+        if new:
+            known.update(zip(new, self._evaluate(np.array(new, dtype=complex)).tolist()))
+            values = [known[z] for z in points]
+        return np.array(values, dtype=complex)
 
     def value_and_derivative(self, q: ArrayLike) -> tuple[ComplexArray, ComplexArray]:
         """(E_chr(q), dE_chr/dq) in double precision, by Jacobi's formula (Eq. (40))."""

@@ -35,6 +35,7 @@ from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
 from moving_bogie.roots.ball_polish import BallPrecise
 from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
+from moving_bogie.roots.count.lattice import NEAR
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, count_mismatch
 from moving_bogie.roots.count.strip import strip_below_cut
 from moving_bogie.roots.count.window import default_window, far_field_window  # noqa: F401  (public here too)
@@ -107,7 +108,7 @@ def induced_frequencies(
     """
     extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
-    fast, in_balls = CharacteristicArray(bound), BallPrecise(bound)
+    fast, in_balls = CharacteristicArray(bound, remember=NEAR), BallPrecise(bound)  # NEAR: the lattice's
     polishing = (in_balls if balls else in_balls.precise, in_balls)  # (polish, confirm at higher precision)
     report = _reporter(progress)
     counted, beyond = _count(fast, bound, window, eps, eps_branch, newton_cell, check_window, report)

@@ -16,13 +16,14 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 import numpy.typing as npt
 
+from moving_bogie.roots.count.lattice import NEAR, STEP, lattice_boundary
 from moving_bogie.typing import ComplexArray, FloatArray
 
 _SUBDIVIDE = 8  # pieces a segment whose arg step is too large is cut into
 #: Initial sampling step along a boundary within |q| <= _NEAR of the origin; beyond, it grows like |q|
 #: (``_SPACING |q| / _NEAR``: a relative resolution of 5e-4), see :func:`initial_samples`.
-_SPACING = 0.005
-_NEAR = 10.0
+_SPACING = STEP
+_NEAR = NEAR
 
 
 #: A segment shorter than this many units in the last place of its end points cannot be refined further
@@ -171,8 +172,14 @@ def initial_samples(region: Region, spacing: float | None = None) -> tuple[Compl
     resolution of 5e-4 farther out, where E_chr approaches its leading part (:mod:`far_field`) and its
     roots are the sequence along the real axis of a Timoshenko-Rayleigh beam, a few units of Re q apart.
     A huge window (the far-field radius of such a beam reaches 1e3) then costs 1e5 samples, not 1e7.
+    A rectangle within |q| <= 10 takes the same bounds on the lattice of :mod:`lattice` instead (points it
+    shares with other rectangles along a common line).
     """
     curved = region if isinstance(region, CurvedRegion) else None
+    if spacing is None and type(region) is Rectangle:
+        lattice = lattice_boundary(region.x0, region.x1, region.y0, region.y1)
+        if lattice is not None:  # near the origin, on the lattice other rectangles share
+            return lattice, np.arange(lattice.size, dtype=float)
     size = max(region.width, region.height)
     step = spacing or size / 64
     if curved is not None:

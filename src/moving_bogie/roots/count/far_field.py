@@ -116,9 +116,10 @@ def sample_points(
     return np.concatenate(circles + [r + below, -r + below, inner])
 
 
-def rho(bound: BoundModel, q: np.ndarray) -> np.ndarray:
-    """|E_chr - E_lead| / |E_lead| at the points ``q`` (double precision)."""
-    E = CharacteristicArray(bound)
+def rho(bound: BoundModel, q: np.ndarray, E: CharacteristicArray | None = None) -> np.ndarray:
+    """|E_chr - E_lead| / |E_lead| at the points ``q`` (double precision); ``E``: the bound model's
+    :class:`CharacteristicArray` if built already (its kernel's coefficient matrices are made once)."""
+    E = CharacteristicArray(bound) if E is None else E
     q = np.asarray(q, dtype=complex)
     kv = E.kernel_values(q)
     with np.errstate(all="ignore"):
@@ -133,8 +134,9 @@ def _worst_rho(bound: BoundModel, q: np.ndarray, stop: bool, chunk: int = 4096) 
     exceeds MARGIN (the radius fails there, and the rest would not change that)."""
     q = q[np.argsort(np.abs(q), kind="stable")]
     worst = 0.0
+    E = CharacteristicArray(bound)
     for k in range(0, len(q), chunk):
-        worst = max(worst, float(np.max(rho(bound, q[k : k + chunk]))))
+        worst = max(worst, float(np.max(rho(bound, q[k : k + chunk], E))))
         if stop and worst > MARGIN:
             break
     return worst
