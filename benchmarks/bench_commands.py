@@ -80,7 +80,7 @@ def numbers(text: str) -> dict:
     def walk(value: object, path: str) -> None:
         if isinstance(value, dict):
             for key, item in value.items():
-                if key not in ("timings", "elapsed", "seconds", "evaluations"):
+                if key not in ("timings", "elapsed", "seconds", "points_per_second", "evaluations"):
                     walk(item, f"{path}/{key}")
         elif isinstance(value, list) and value and all(isinstance(v, (int, float)) for v in value):
             out[path] = np.asarray(value, dtype=float)
@@ -159,7 +159,10 @@ def record(results: list[tuple[str, Run, Run, str]], before: Path) -> None:
         )
         for label, old, new, diff in results
     ]
-    write_record(__file__, "The commands users wait for, side by side with the code before", rows)
+    title = "The commands users wait for, side by side with the code before"
+    argv = sys.argv
+    where = {argv[k + 1]: "SRC" for k, arg in enumerate(argv[:-1]) if arg == "--before"}  # no local path
+    write_record(__file__, title, rows, placeholders=where)
 
 
 def main() -> None:

@@ -61,8 +61,11 @@ def row(work: str, measured: str, alternative: str = "-", target: str = "-") -> 
     return {"work": work, "measured": measured, "alternative": alternative, "target": target}
 
 
-def write_record(script: str, title: str, rows: list[dict]) -> Path:
-    """Write the record of the benchmark ``script`` (its ``__file__``); returns the path written."""
+def write_record(
+    script: str, title: str, rows: list[dict], placeholders: dict[str, str] | None = None
+) -> Path:
+    """Write the record of the benchmark ``script`` (its ``__file__``); returns the path written.
+    ``placeholders``: arguments of the command shown as a name (a local path as ``SRC``)."""
     for r in rows:
         missing = [f for f in FIELDS if f not in r]
         if missing:
@@ -72,7 +75,10 @@ def write_record(script: str, title: str, rows: list[dict]) -> Path:
         "title": title,
         "date": datetime.date.today().isoformat(),
         "machine": machine(),
-        "command": " ".join(["python", f"benchmarks/{Path(script).name}", *sys.argv[1:]]),
+        "command": " ".join(
+            ["python", f"benchmarks/{Path(script).name}"]
+            + [(placeholders or {}).get(arg, arg) for arg in sys.argv[1:]]
+        ),
         "rows": [{f: str(r[f]) for f in FIELDS} for r in rows],
     }
     RESULTS.mkdir(exist_ok=True)
