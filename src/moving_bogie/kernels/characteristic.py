@@ -122,9 +122,9 @@ class CharacteristicArray:
         flat = q.ravel()
         near = np.abs(flat) <= self._remember
         if np.all(near):
-            return self._remembered(flat, self._known).reshape(q.shape)
+            return self._remembered(flat).reshape(q.shape)
         out = np.empty(flat.shape, dtype=complex)
-        out[near] = self._remembered(flat[near], self._known)
+        out[near] = self._remembered(flat[near])
         out[~near] = self._evaluate(flat[~near])
         return out.reshape(q.shape)
 
@@ -136,8 +136,9 @@ class CharacteristicArray:
         values = [self.system.e_chr_array(z, self.kernel_values(z).K) for z in pieces]
         return np.concatenate(values).reshape(q.shape)
 
-    def _remembered(self, q: ComplexArray, known: dict[complex, complex]) -> ComplexArray:
-        """E_chr at the points ``q`` (one-dimensional), evaluated only where not in ``known`` (then added)."""
+    def _remembered(self, q: ComplexArray) -> ComplexArray:
+        """E_chr at the points ``q`` (one-dimensional), evaluated only where not known yet (then kept)."""
+        known = self._known
         points = q.tolist()
         values = [known.get(z) for z in points]
         new = list(dict.fromkeys(z for z, v in zip(points, values) if v is None))

@@ -124,7 +124,6 @@ class CurveBranchCut(JumpValues):
         self.system, self.offsets, self.positions = bound.float_system, bound.offsets, bound.positions
         self.span, self.names = bound.span, bound.names
         self.panel_tol = panel_tol
-        #: PANEL_PHASE of e^{i p xi} at the largest offset (>= 1), in p: start panels, rules of the responses
         self.offset_dp = PANEL_PHASE / max(1.0, float(np.abs(self.offsets).max()))
         self.widest = max(_START_DP, self.offset_dp) if widest is None else widest
         P = 8.0

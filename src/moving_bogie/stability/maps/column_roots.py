@@ -110,24 +110,19 @@ def delves_lyness(
     panel: float = 0.05,
     nodes: int = 16,
     max_roots: int = 8,
-    with_empty: bool = False,
-) -> list[list[complex] | None]:
+) -> list[list[complex]]:
     """Roots inside -X..X x -Y..top for each t (Delves-Lyness, :func:`rectangle_sums`), or an empty list
     where that fails.
 
-    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z. With ``with_empty`` a
-    failure (a count that is not an integer, or more than ``max_roots`` roots) gives None and a rectangle
-    without roots an empty list.
+    ``coeffs(z)`` returns the coefficients in t of E and of dE/dq at the points z; a failure is a count
+    that is not an integer, or more than ``max_roots`` roots.
     """
     s = rectangle_sums(coeffs, t, X, Y, top, panel=panel, nodes=nodes)
-    out: list[list[complex] | None] = []
+    out: list[list[complex]] = []
     for j in range(len(t)):
         inside = s(j, 0).real
-        if with_empty and abs(inside - round(inside)) <= 1e-3 and round(inside) == 0:
-            out.append([])
-            continue
         if abs(inside - round(inside)) > 1e-3 or not 0 < round(inside) <= max_roots:
-            out.append(None if with_empty else [])
+            out.append([])
             continue
         out.append(located(s, j, int(round(inside))))
     return out
