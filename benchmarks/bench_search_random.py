@@ -180,7 +180,7 @@ def scan_roots(params, window, *, n=(801, 801), tol=1e-9) -> list:
             if not (np.isfinite(z) and window.contains(z) and z.imag < 0):
                 continue
             try:
-                r = complex(mpmath.findroot(lambda s: precise.value_and_derivative(s)[0], mpmath.mpc(z)))
+                r = complex(mpmath.findroot(precise, mpmath.mpc(z)))
             except (ValueError, ZeroDivisionError):
                 continue
             if abs(r - z) > 1e-6 * max(1.0, abs(z)) or not window.contains(r) or r.imag >= 0:

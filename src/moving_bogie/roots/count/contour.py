@@ -9,6 +9,7 @@ move the edge instead of returning a wrong count).
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
@@ -158,6 +159,12 @@ class Rectangle(BoundingBox):
         return np.append(pts, pts[0])
 
 
+#: The default :func:`initial_samples` of the curved regions alive (keyed by the region itself).
+_CURVED_SAMPLES: weakref.WeakKeyDictionary[CurvedRegion, tuple[ComplexArray, FloatArray]] = (
+    weakref.WeakKeyDictionary()
+)
+
+
 def _local_step(z: ComplexArray) -> FloatArray:
     return _SPACING * np.maximum(1.0, np.abs(z) / _NEAR)
 
@@ -173,9 +180,30 @@ def initial_samples(region: Region, spacing: float | None = None) -> tuple[Compl
     roots are the sequence along the real axis of a Timoshenko-Rayleigh beam, a few units of Re q apart.
     A huge window (the far-field radius of such a beam reaches 1e3) then costs 1e5 samples, not 1e7.
     A rectangle within |q| <= 10 takes the same bounds on the lattice of :mod:`lattice` instead (points it
-    shares with other rectangles along a common line).
+    shares with other rectangles along a common line). A curved cell's default samples are computed once
+    and kept while the cell lives (read-only): its boundary points are Newton solves on the cut, and the
+    counts of one tiling (recounts, locating, checks against it) sample the same cells again.
     """
     curved = region if isinstance(region, CurvedRegion) else None
+    if spacing is None and curved is not None:
+        kept = _CURVED_SAMPLES.get(curved)
+        if kept is None:
+            kept = _CURVED_SAMPLES[curved] = _frozen(_samples(region, None, curved))
+        return kept
+    return _samples(region, spacing, curved)
+
+
+def _frozen(samples: tuple[ComplexArray, FloatArray]) -> tuple[ComplexArray, FloatArray]:
+    """``samples`` made read-only (they are shared by every count of their region)."""
+    for a in samples:
+        a.flags.writeable = False
+    return samples
+
+
+def _samples(
+    region: Region, spacing: float | None, curved: CurvedRegion | None
+) -> tuple[ComplexArray, FloatArray]:
+    """:func:`initial_samples`, computed (``curved``: ``region`` if it is a curved cell, else None)."""
     if spacing is None and type(region) is Rectangle:
         lattice = lattice_boundary(region.x0, region.x1, region.y0, region.y1)
         if lattice is not None:  # near the origin, on the lattice other rectangles share
