@@ -23,7 +23,7 @@ from moving_bogie.cli import main
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 from moving_bogie.kernels.cut import cut_locus
-from moving_bogie.kernels.polyroots import poly_roots
+from moving_bogie.kernels.polyroots import inverse_distances, poly_roots
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 from moving_bogie.roots.count.contour import Rectangle
@@ -142,6 +142,21 @@ def test_poly_roots_drop_vanishing_leading_coefficients_and_agree_with_numpy():
         ref = np.sort_complex(np.roots(row))  # numpy.roots strips leading zeros itself
         got = np.sort_complex(r[np.isfinite(r)])
         assert got.size == ref.size and np.allclose(got, ref, rtol=1e-10, atol=1e-12)
+
+
+@pytest.mark.parametrize("deg", [1, 2, 3, 4, 6, 7, 8, 13])
+def test_inverse_distances_of_aberth_agree_with_the_matrix_of_distances(deg):
+    """Aberth's repulsion sum_{j != i} 1 / (z_i - z_j) column by column against the (n, deg, deg) matrix of
+    the distances, its diagonal left out, summed along its rows; values spread over 16 decades."""
+    rng = np.random.default_rng(deg)
+    z = (rng.normal(size=(500, deg)) + 1j * rng.normal(size=(500, deg))) * 10.0 ** rng.integers(
+        -8, 8, (500, deg)
+    )
+    diff = z[:, :, None] - z[:, None, :]
+    diff[:, np.eye(deg, dtype=bool)] = np.inf  # 1 / inf = 0: no term of its own
+    reference = (1.0 / diff).sum(axis=-1)
+    got = inverse_distances(z)
+    assert np.allclose(got, reference, rtol=1e-13, atol=0)
 
 
 @pytest.mark.slow

@@ -235,10 +235,8 @@ def _starts(roots: np.ndarray, known: np.ndarray, rows: np.ndarray) -> np.ndarra
 
 def _aberth(mc: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Aberth's iteration on the monic polynomials ``mc`` from ``z``; (roots, rows accepted)."""
-    deg = z.shape[-1]
     dc = polyder(mc)
     bound_c = np.abs(mc)
-    eye = np.eye(deg, dtype=bool)
     active = np.arange(z.shape[0])
     done = np.zeros(z.shape[0], dtype=bool)
     with np.errstate(all="ignore"):
@@ -246,9 +244,7 @@ def _aberth(mc: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             za, ca, da = z[active], mc[active], dc[active]
             val = polyval(ca, za)
             ratio = val / polyval(da, za)
-            diff = za[:, :, None] - za[:, None, :]
-            diff[:, eye] = np.inf
-            w = ratio / (1.0 - ratio * (1.0 / diff).sum(axis=-1))
+            w = ratio / (1.0 - ratio * inverse_distances(za))
             small = (np.abs(w) <= 1e-14 * np.maximum(1.0, np.abs(za))) | (
                 np.abs(val) <= _BACKWARD * polyval(bound_c[active], np.abs(za)).real
             )
@@ -262,6 +258,35 @@ def _aberth(mc: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             if not active.size:
                 break
     return z, done
+
+
+def inverse_distances(z: np.ndarray) -> np.ndarray:
+    """sum over j != i of 1 / (z_i - z_j), for every root z_i of every row of ``z`` (n, deg): the repulsion
+    term of Aberth's iteration. One column j at a time over contiguous (n, deg) arrays, its own term i = j
+    set to 0, summed in a fixed order: four partial sums over the columns j = 0, 1, 2, 3 (mod 4) of the
+    first multiple of four, (s_0 + s_1) + (s_2 + s_3), then the remaining columns in turn (fewer than
+    four columns: in turn). That is numpy's pairwise order along a row of at most 64 entries, so the
+    (n, deg, deg) matrix of distances summed along its rows gives the same values, bit for bit."""
+    deg = z.shape[-1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        columns = [1.0 / (z - z[:, j : j + 1]) for j in range(deg)]
+    for j, column in enumerate(columns):
+        column[:, j] = 0
+    if deg < 4:
+        total = columns[0]
+        for column in columns[1:]:
+            total += column
+        return total
+    four = deg - deg % 4
+    partial = columns[:4]  # summed into in place (each column is a new array)
+    for i in range(4, four, 4):
+        for k in range(4):
+            partial[k] += columns[i + k]
+    total = partial[0] + partial[1]
+    total += partial[2] + partial[3]
+    for column in columns[four:]:
+        total += column
+    return total
 
 
 def _eigen(coeffs: np.ndarray, monic: np.ndarray) -> np.ndarray:
