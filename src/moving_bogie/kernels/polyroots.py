@@ -202,11 +202,14 @@ def _anchored(coeffs: np.ndarray, monic: np.ndarray) -> np.ndarray:
     flat_c = coeffs.reshape(-1, deg + 1)
     flat_m = monic.reshape(-1, deg)
     n = flat_m.shape[0]
-    known = np.union1d(np.arange(0, n, _LEVELS[0]), [n - 1])
+    solved = np.zeros(n, dtype=bool)  # the rows solved so far (a mask: no set operations on indices)
+    solved[:: _LEVELS[0]] = solved[n - 1] = True
+    known = np.flatnonzero(solved)
     roots = np.empty((n, deg), dtype=complex)
     roots[known] = _eigen(flat_c[known], flat_m[known])
     for every in _LEVELS[1:]:
-        rows = np.setdiff1d(np.arange(0, n, every), known)
+        rows = np.arange(0, n, every)
+        rows = rows[~solved[rows]]
         if not rows.size:
             continue
         mc = np.concatenate([np.ones((rows.size, 1)), flat_m[rows]], axis=-1)
@@ -215,7 +218,8 @@ def _anchored(coeffs: np.ndarray, monic: np.ndarray) -> np.ndarray:
         failed = rows[~done]
         if failed.size:
             roots[failed] = _eigen(flat_c[failed], flat_m[failed])
-        known = np.union1d(known, rows)
+        solved[rows] = True
+        known = np.flatnonzero(solved)
     return roots.reshape(shape)
 
 
