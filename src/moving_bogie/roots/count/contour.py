@@ -160,7 +160,7 @@ class Rectangle(BoundingBox):
 
 
 #: The default :func:`initial_samples` of the curved regions alive (keyed by the region itself).
-_CURVED_SAMPLES: weakref.WeakKeyDictionary[CurvedRegion, tuple[ComplexArray, FloatArray]] = (
+_CURVED_SAMPLES: weakref.WeakKeyDictionary[Region, tuple[ComplexArray, FloatArray]] = (
     weakref.WeakKeyDictionary()
 )
 
@@ -184,20 +184,16 @@ def initial_samples(region: Region, spacing: float | None = None) -> tuple[Compl
     and kept while the cell lives (read-only): its boundary points are Newton solves on the cut, and the
     counts of one tiling (recounts, locating, checks against it) sample the same cells again.
     """
+    if spacing is None and getattr(region, "points_at", None) is not None:  # before the slower isinstance
+        kept = _CURVED_SAMPLES.get(region)
+        if kept is not None:
+            return kept
     curved = region if isinstance(region, CurvedRegion) else None
     if spacing is None and curved is not None:
-        kept = _CURVED_SAMPLES.get(curved)
-        if kept is None:
-            kept = _CURVED_SAMPLES[curved] = _frozen(_samples(region, None, curved))
+        z, t = kept = _CURVED_SAMPLES[curved] = _samples(region, None, curved)
+        z.flags.writeable = t.flags.writeable = False  # shared by every count of the cell
         return kept
     return _samples(region, spacing, curved)
-
-
-def _frozen(samples: tuple[ComplexArray, FloatArray]) -> tuple[ComplexArray, FloatArray]:
-    """``samples`` made read-only (they are shared by every count of their region)."""
-    for a in samples:
-        a.flags.writeable = False
-    return samples
 
 
 def _samples(
