@@ -181,11 +181,12 @@ class BallCharacteristic:
         :mod:`p_balls`; else :mod:`p_discs`, a Krawczyk test in disc form on N's exact Taylor expansion).
 
         Direct: the roots at the last point evaluated start the tests over a ball that contains the point
-        (a boundary segment's ball holds its end evaluated before it), as approximations only."""
+        (a boundary segment's ball holds its end evaluated before it), and the Newton steps to the Smith
+        discs at a point (a boundary segment's end next to the one before), as approximations only."""
         if self.p_discs is not None:  # not self.direct
             return self.p_discs.discs(q)
         last = self.last_point
-        approx = last[1] if last is not None and q.rad() != 0 and q.contains(last[0]) else None
+        approx = last[1] if last is not None and (q.rad() == 0 or q.contains(last[0])) else None
         balls = direct_root_balls(self.foundation, self.foundation_args, q, self.tol, self.prec, approx)
         if q.rad() == 0:
             self.last_point = (q, [b.mid() for b in balls])

@@ -4,7 +4,8 @@ Root isolation at a point q (Smith 1970, "Error bounds for zeros of a polynomial
 theorems"): for approximations z_1..z_n of the roots of a polynomial of degree n with leading coefficient
 a_n, every root lies in the union of the discs |z - z_k| <= n |w_k|, w_k = P(z_k) / (a_n prod_{j != k}
 (z_k - z_j)), and a disc disjoint from all others holds exactly one root. The approximations come from
-Arb's ``acb_poly.roots`` on the midpoint polynomial.
+Newton's method on the midpoint polynomial started at given points (the roots at a neighbouring point q,
+:func:`point_root_balls`), or from Arb's ``acb_poly.roots`` on it when those fail to give disjoint discs.
 
 Over a ball of q (the direct method, :func:`direct_root_balls`), each root ball at the centre is widened by
 a Krawczyk test in p that holds for every q of the ball: with Y ~ 1 / N_p(p_m, m),
@@ -54,20 +55,38 @@ def isolate_roots(coeffs: Iterable[Acb], tol: float | None = None) -> list[Acb]:
     Undecided
         If the Smith discs of two roots overlap (roots too close for the width of the coefficients).
     """
-    coeffs = list(coeffs)
-    while len(coeffs) > 1 and coeffs[0].is_zero():
-        coeffs = coeffs[1:]
-    n = len(coeffs) - 1
-    if n < 1:
+    coeffs = _leading(list(coeffs))
+    if len(coeffs) < 2:
         return []
-    if coeffs[0].contains(0):
-        raise Undecided("leading coefficient of N(p, q) not bounded away from 0")
-    low_first = acb_poly(list(reversed(coeffs)))
     mid_poly = acb_poly([c.mid() for c in reversed(coeffs)])
     try:
         approx = [z.mid() for z in mid_poly.roots(tol=tol)]
     except ValueError as exc:
         raise Undecided(f"root isolation of N(p, q) failed: {exc}") from None
+    return smith_discs(coeffs, approx)
+
+
+def _leading(coeffs: list[Acb]) -> list[Acb]:
+    """``coeffs`` without leading exact zeros; Undecided when the leading one left may be 0."""
+    while len(coeffs) > 1 and coeffs[0].is_zero():
+        coeffs = coeffs[1:]
+    if len(coeffs) > 1 and coeffs[0].contains(0):
+        raise Undecided("leading coefficient of N(p, q) not bounded away from 0")
+    return coeffs
+
+
+def smith_discs(coeffs: Sequence[Acb], approx: Sequence[Acb]) -> list[Acb]:
+    """The Smith discs (module text) of the polynomial with acb ``coeffs`` (highest power first, leading
+    one bounded away from 0) around the exact points ``approx``, one per root, as square balls; they hold
+    one root each when pairwise disjoint, which is checked.
+
+    Raises
+    ------
+    Undecided
+        If two discs overlap (approximations not close enough to distinct roots).
+    """
+    n = len(coeffs) - 1
+    low_first = acb_poly(list(reversed(coeffs)))
     lead = coeffs[0]
     balls = []
     for k, zk in enumerate(approx):
@@ -85,6 +104,35 @@ def isolate_roots(coeffs: Iterable[Acb], tol: float | None = None) -> list[Acb]:
     return balls
 
 
+def point_root_balls(coeffs: list[Acb], tol: float, approx: Sequence[Acb] | None = None) -> list[Acb]:
+    """Root balls of N(p, q) at a point q (acb ``coeffs``, highest power first): the Smith discs around
+    ``approx`` (e.g. the roots at a neighbouring point) after Newton steps on N(., q) until the last step
+    is below ``tol`` relative to the root; :func:`isolate_roots` when that does not converge in 12 steps or
+    the discs overlap (the discs hold one root each whatever the approximations, :func:`smith_discs`)."""
+    coeffs = _leading(coeffs)
+    if approx is None or len(approx) != len(coeffs) - 1:
+        return isolate_roots(coeffs, tol)
+    mid = [c.mid() for c in coeffs]
+    slope = derivative_coefficients(mid)
+    points = []
+    for z in approx:
+        z = acb(z).mid()
+        for _ in range(12):
+            step = (horner(mid, z) / horner(slope, z)).mid()
+            z = (z - step).mid()
+            if not step.is_finite() or step.abs_upper() <= tol * max(1.0, float(z.abs_upper())):
+                break
+        else:
+            return isolate_roots(coeffs, tol)
+        if not z.is_finite():
+            return isolate_roots(coeffs, tol)
+        points.append(z)
+    try:
+        return smith_discs(coeffs, points)
+    except Undecided:
+        return isolate_roots(coeffs, tol)
+
+
 def direct_root_balls(
     foundation: ModuleType,
     args: dict[str, Any],
@@ -96,7 +144,8 @@ def direct_root_balls(
     """Root balls of N(p, xi), each holding exactly one root for every xi in the ball q (module text).
 
     ``approx``, exact points near the roots at the ball's centre (one per root), are where the Krawczyk
-    tests start; without them, or when they fail, the Smith discs at the centre.
+    tests start; without them, or when they fail, the Smith discs at the centre. At a point (radius 0),
+    the Smith discs of :func:`point_root_balls` from ``approx``.
 
     Raises
     ------
@@ -105,7 +154,7 @@ def direct_root_balls(
     """
     n_mid = [acb(c) for c in foundation.n_coeffs(q.mid(), **args)]
     if q.rad() == 0:
-        return isolate_roots(n_mid, tol)
+        return point_root_balls(n_mid, tol, approx)
     n = [acb(c) for c in foundation.n_coeffs(q, **args)]
     if n[0].contains(0):  # the degree in p must not drop anywhere in the q ball
         raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
