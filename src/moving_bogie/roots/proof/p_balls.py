@@ -34,7 +34,7 @@ from flint import acb, acb_poly, arb
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.polynomial import derivative_coefficients, horner
-from moving_bogie.typing import Acb
+from moving_bogie.typing import Acb, AcbPoly
 
 __all__ = ["Undecided", "derivative_coefficients", "direct_root_balls", "horner", "isolate_roots"]
 
@@ -113,12 +113,12 @@ def point_root_balls(coeffs: list[Acb], tol: float, approx: Sequence[Acb] | None
     if approx is None or len(approx) != len(coeffs) - 1:
         return isolate_roots(coeffs, tol)
     mid = [c.mid() for c in coeffs]
-    slope = derivative_coefficients(mid)
+    value, slope = _poly(mid), _poly(derivative_coefficients(mid))
     points = []
     for z in approx:
         z = acb(z).mid()
         for _ in range(12):
-            step = (horner(mid, z) / horner(slope, z)).mid()
+            step = (value(z) / slope(z)).mid()
             z = (z - step).mid()
             if not step.is_finite() or step.abs_upper() <= tol * max(1.0, float(z.abs_upper())):
                 break
@@ -159,16 +159,22 @@ def direct_root_balls(
     if n[0].contains(0):  # the degree in p must not drop anywhere in the q ball
         raise Undecided("leading coefficient of N(p, q) not bounded away from 0 over the q ball")
     nq = [acb(c) for c in foundation.n_coeffs_dq(q, **args)]
-    polys = (n_mid, derivative_coefficients(n_mid), derivative_coefficients(n), nq)
+    polys = tuple(_poly(c) for c in (n_mid, derivative_coefficients(n_mid), derivative_coefficients(n), nq))
     if approx is not None and len(approx) == len(n_mid) - 1:
         try:
-            return _krawczyk_balls(polys, q, _newton_step(n_mid, polys[1], approx), prec)
+            return _krawczyk_balls(polys, q, _newton_step(polys[0], polys[1], approx), prec)
         except Undecided:
             pass
     return _krawczyk_balls(polys, q, isolate_roots(n_mid, tol), prec)
 
 
-def _narrowed(K: Acb, pm: Acb, Y: Acb, shift: Acb, n1: list[Acb], steps: int = 8) -> Acb:
+def _poly(coeffs: Sequence[Acb]) -> AcbPoly:
+    """The polynomial with ``coeffs`` (highest power first) as an ``acb_poly``: evaluated by Arb's Horner
+    scheme, the same balls as :func:`horner` gives (the same operations, each rounded alike)."""
+    return acb_poly(list(reversed(coeffs)))
+
+
+def _narrowed(K: Acb, pm: Acb, Y: Acb, shift: Acb, n1: AcbPoly, steps: int = 8) -> Acb:
     """The Krawczyk image K of a proven ball, narrowed: K(X) = p_m - Y shift + (1 - Y N_p(X, q)) (X - p_m)
     holds the root for every q of the ball whenever X does and holds p_m (the mean-value form of N around
     p_m over X), so X is replaced by K(X) intersected with X while that holds p_m and shrinks the radius by
@@ -176,7 +182,7 @@ def _narrowed(K: Acb, pm: Acb, Y: Acb, shift: Acb, n1: list[Acb], steps: int = 8
     for _ in range(steps):
         if not K.contains(pm):
             break
-        image = pm - Y * shift + (1 - Y * horner(n1, K)) * (K - pm)
+        image = pm - Y * shift + (1 - Y * n1(K)) * (K - pm)
         narrower = acb(K.real.intersection(image.real), K.imag.intersection(image.imag))
         shrunk = narrower.rad() < 0.9 * K.rad()
         K = narrower
@@ -185,18 +191,16 @@ def _narrowed(K: Acb, pm: Acb, Y: Acb, shift: Acb, n1: list[Acb], steps: int = 8
     return K
 
 
-def _newton_step(n_mid: list[Acb], n1_mid: list[Acb], approx: Sequence[Acb]) -> list[Acb]:
+def _newton_step(n_mid: AcbPoly, n1_mid: AcbPoly, approx: Sequence[Acb]) -> list[Acb]:
     """One Newton step on N(., m) from each of ``approx``, in midpoints (exact points)."""
     out = []
     for z in approx:
         z = acb(z).mid()
-        out.append((z - horner(n_mid, z) / horner(n1_mid, z)).mid())
+        out.append((z - n_mid(z) / n1_mid(z)).mid())
     return out
 
 
-def _krawczyk_balls(
-    polys: tuple[list[Acb], list[Acb], list[Acb], list[Acb]], q: Acb, centre: Sequence[Acb], prec: int
-) -> list[Acb]:
+def _krawczyk_balls(polys: tuple[AcbPoly, ...], q: Acb, centre: Sequence[Acb], prec: int) -> list[Acb]:
     """The Krawczyk test of the module text around each ball of ``centre`` (at q's midpoint m; points or
     Smith discs), with ``polys`` = (N(., m), N_p(., m), N_p over q, N_q over q); the balls K it proves,
     checked pairwise disjoint (so that, one per root of N, they hold every root)."""
@@ -204,12 +208,12 @@ def _krawczyk_balls(
     balls = []
     for p_ball in centre:
         pm = p_ball.mid()
-        Y = (1 / horner(n1_mid, pm)).mid()
-        shift = horner(n_mid, p_ball) + horner(nq, p_ball) * (q - q.mid())
+        Y = (1 / n1_mid(pm)).mid()
+        shift = n_mid(p_ball) + nq(p_ball) * (q - q.mid())
         rho = 2 * (Y * shift).abs_upper() + p_ball.rad() + arb(2) ** (-prec)
         for _ in range(3):
             P = acb(arb(pm.real, rho), arb(pm.imag, rho))
-            K = pm - Y * shift + (1 - Y * horner(n1, P)) * (P - pm)
+            K = pm - Y * shift + (1 - Y * n1(P)) * (P - pm)
             if P.contains_interior(K):
                 balls.append(_narrowed(K, pm, Y, shift, n1))
                 break
