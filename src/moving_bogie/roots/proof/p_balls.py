@@ -26,6 +26,7 @@ evaluates N on the wide ball, which is cheap and tight for the quartic N of the 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from types import ModuleType
 from typing import Any
@@ -107,20 +108,22 @@ def smith_discs(coeffs: Sequence[Acb], approx: Sequence[Acb]) -> list[Acb]:
 def point_root_balls(coeffs: list[Acb], tol: float, approx: Sequence[Acb] | None = None) -> list[Acb]:
     """Root balls of N(p, q) at a point q (acb ``coeffs``, highest power first): the Smith discs around
     ``approx`` (e.g. the roots at a neighbouring point) after Newton steps on N(., q) until the last step
-    is below ``tol`` relative to the root; :func:`isolate_roots` when that does not converge in 12 steps or
-    the discs overlap (the discs hold one root each whatever the approximations, :func:`smith_discs`)."""
+    s is below sqrt(``tol``) / 100 relative to the root (the error after it, about |N''/2N'| s^2, is far
+    below ``tol``); :func:`isolate_roots` when that does not converge in 12 steps or the discs overlap (the
+    discs hold one root each whatever the approximations, :func:`smith_discs`)."""
     coeffs = _leading(coeffs)
     if approx is None or len(approx) != len(coeffs) - 1:
         return isolate_roots(coeffs, tol)
     mid = [c.mid() for c in coeffs]
     value, slope = _poly(mid), _poly(derivative_coefficients(mid))
+    enough = 1e-2 * math.sqrt(tol)
     points = []
     for z in approx:
         z = acb(z).mid()
         for _ in range(12):
             step = (value(z) / slope(z)).mid()
             z = (z - step).mid()
-            if not step.is_finite() or step.abs_upper() <= tol * max(1.0, float(z.abs_upper())):
+            if not step.is_finite() or step.abs_upper() <= enough * max(1.0, float(z.abs_upper())):
                 break
         else:
             return isolate_roots(coeffs, tol)
