@@ -28,7 +28,7 @@ from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.strip import pieces_below_axis
 from moving_bogie.roots.proof.balls import BallCharacteristic, isolate_roots, square_ball
 from moving_bogie.roots.proof.certify import certify, krawczyk
-from moving_bogie.roots.proof.p_balls import direct_root_balls
+from moving_bogie.roots.proof.p_balls import _poly, direct_root_balls, horner, point_root_balls
 from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
 from moving_bogie.roots.proof.strip_proof import strip_region
 from moving_bogie.roots.proof.winding import NotProven, _between, proven_count
@@ -146,6 +146,46 @@ def test_isolated_p_roots_contain_known_roots():
         for z in roots:
             assert sum(b.contains(acb(z)) for b in balls) == 1
         assert max(float(b.rad()) for b in balls) < 1e-30
+
+
+@pytest.mark.parametrize("start", ["near", "far", "twice"])
+def test_point_root_balls_from_given_approximations_hold_the_known_roots(start):
+    """The Smith discs at a point after Newton steps from given approximations (near ones, as the roots at a
+    neighbouring point; far or repeated ones, which fall back to Arb's root finder) each hold exactly one
+    of the known roots, and are about as narrow as those of :func:`isolate_roots`."""
+    roots = [complex(1.5, 0.25), complex(-0.5, 1), complex(-1, -0.75), complex(2, -0.5)]
+    starts = {
+        "near": [z + complex(1e-3, -2e-3) for z in roots],
+        "far": [complex(10 * k, 1) for k in range(4)],
+        "twice": [roots[0]] * 2 + roots[2:],
+    }[start]
+    with ctx.workprec(128):
+        coeffs = list(reversed(acb_poly.from_roots([acb(z) for z in roots]).coeffs()))
+        balls = point_root_balls(coeffs, 2.0**-120, [acb(z) for z in starts])
+        reference = isolate_roots(coeffs, 2.0**-120)
+        assert len(balls) == 4
+        for z in roots:
+            assert sum(b.contains(acb(z)) for b in balls) == 1
+        assert max(float(b.rad()) for b in balls) < max(1e-30, 4 * max(float(b.rad()) for b in reference))
+
+
+def test_arb_polynomial_gives_the_balls_of_horner():
+    """N's coefficients over a q-ball evaluated by Arb's acb_poly (p_balls.py) and by Horner's scheme in
+    Python, on wide and exact points: the same balls, bit for bit."""
+    bc = BallCharacteristic(bind(table1_case(2)), prec=96)
+    rng = random.Random(3)
+    with ctx.workprec(96):
+        for _ in range(20):
+            q = square_ball(complex(rng.uniform(0.1, 3), rng.uniform(-1, 1)), rng.choice([0.0, 1e-4]))
+            coeffs = [acb(c) for c in bc.foundation.n_coeffs(q, **bc.foundation_args)]
+            p = square_ball(complex(rng.uniform(-5, 5), rng.uniform(-5, 5)), rng.choice([0.0, 1e-3]))
+            a, b = horner(coeffs, p), _poly(coeffs)(p)
+            assert (a.real.mid(), a.real.rad(), a.imag.mid(), a.imag.rad()) == (
+                b.real.mid(),
+                b.real.rad(),
+                b.imag.mid(),
+                b.imag.rad(),
+            )
 
 
 def test_proven_count_around_a_root_and_next_to_it(case1):

@@ -11,7 +11,18 @@ from typing import Any, TypeAlias
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Acb", "AcbSeries", "Arb", "ComplexArray", "FloatArray", "Matrix", "Mpc", "Mpf", "Scalar"]
+__all__ = [
+    "Acb",
+    "AcbPoly",
+    "AcbSeries",
+    "Arb",
+    "ComplexArray",
+    "FloatArray",
+    "Matrix",
+    "Mpc",
+    "Mpf",
+    "Scalar",
+]
 
 #: An mpmath real (``mpmath.mpf``).
 Mpf: TypeAlias = Any
@@ -25,6 +36,8 @@ Acb: TypeAlias = Any
 Arb: TypeAlias = Any
 #: A truncated power series with Arb complex ball coefficients (``flint.acb_series``); ``Any`` as :data:`Acb`.
 AcbSeries: TypeAlias = Any
+#: A polynomial with Arb complex ball coefficients (``flint.acb_poly``); ``Any`` as :data:`Acb`.
+AcbPoly: TypeAlias = Any
 #: A number of any backend the kernels evaluate: float, complex, numpy scalars or arrays (batched),
 #: mpmath, gmpy2, Arb's balls.
 Scalar: TypeAlias = Any

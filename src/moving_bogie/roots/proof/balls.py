@@ -151,6 +151,7 @@ class BallCharacteristic:
         self.blocks: BlockBalls | None = None
         self.last_point: tuple[Acb, list[Acb]] | None = None  # a point q and its roots' midpoints
         self.evaluations = 0
+        self._series_args: dict[int, dict[str, AcbSeries]] = {}
         with ctx.workprec(prec):
             numbers = _ExactBalls(params)
             self.foundation_args = foundation_arguments(bound, numbers)
@@ -181,11 +182,12 @@ class BallCharacteristic:
         :mod:`p_balls`; else :mod:`p_discs`, a Krawczyk test in disc form on N's exact Taylor expansion).
 
         Direct: the roots at the last point evaluated start the tests over a ball that contains the point
-        (a boundary segment's ball holds its end evaluated before it), as approximations only."""
+        (a boundary segment's ball holds its end evaluated before it), and the Newton steps to the Smith
+        discs at a point (a boundary segment's end next to the one before), as approximations only."""
         if self.p_discs is not None:  # not self.direct
             return self.p_discs.discs(q)
         last = self.last_point
-        approx = last[1] if last is not None and q.rad() != 0 and q.contains(last[0]) else None
+        approx = last[1] if last is not None and (q.rad() == 0 or q.contains(last[0])) else None
         balls = direct_root_balls(self.foundation, self.foundation_args, q, self.tol, self.prec, approx)
         if q.rad() == 0:
             self.last_point = (q, [b.mid() for b in balls])
@@ -302,13 +304,23 @@ class BallCharacteristic:
             K = self.kernel_series(q, order)
             qs = acb_series([q, 1], prec=order + 1) if order else acb_series([q], prec=1)
             if self.blocks is None:
-                E = self.vehicle.e_chr(qs if order else q, *K, **self.vehicle_args)
+                E = self.vehicle.e_chr(qs if order else q, *K, **self._vehicle_args(order + 1))
             else:
                 E = self.blocks.det(qs, _series(K, order + 1), order + 1)
                 if E is None:
                     raise Undecided("a pivot of the block system contains 0 over the q ball")
             coeffs = E.coeffs() if isinstance(E, acb_series) else [acb(E)]
             return (coeffs + [acb(0)] * (order + 1))[: order + 1]
+
+    def _vehicle_args(self, length: int) -> dict[str, Acb | AcbSeries]:
+        """The vehicle's parameters for :meth:`taylor`: balls for values (``length`` 1), else constant
+        series of ``length`` terms (the same products as with balls, without converting a ball at each)."""
+        if length == 1:
+            return self.vehicle_args
+        if length not in self._series_args:
+            constants = _series(self.vehicle_args.values(), length)
+            self._series_args[length] = dict(zip(self.vehicle_args, constants))
+        return self._series_args[length]
 
     def value(self, q: Acb | complex) -> Acb:
         """E_chr(q): a ball containing E_chr at every point of the ball ``q``."""
