@@ -58,11 +58,15 @@ class BuildContext:
             self._progress(max(0.0, min(1.0, fraction)))
 
     def save_figure(self, fig: Any, name: str, *, dpi: int = 110) -> str:
-        """Save a matplotlib Figure as ``figures/<name>.png``, close it, return the relative path."""
+        """Save a matplotlib Figure as ``figures/<name>.png``, close it, return the relative path.
+
+        A figure with a layout engine (constrained layout, as every recipe's) already fits its canvas and is
+        drawn once; any other is cropped to its content (``bbox_inches="tight"``, which draws it twice).
+        """
         rel = f"figures/{name}.png"
         path = self.out / rel
         path.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(path, dpi=dpi, bbox_inches="tight")
+        fig.savefig(path, dpi=dpi, bbox_inches=None if fig.get_layout_engine() is not None else "tight")
         _close_figure(fig)
         return rel
 
