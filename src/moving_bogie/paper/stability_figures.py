@@ -268,7 +268,8 @@ def figure16(quick: bool = False, progress: Callable[[float], None] | None = Non
         ("(a) stand-in for ref. [48]: TR, d = 21", figure16_params(), (0.5, 2.0), 1.0, 4.0),
         ("(b) bogie of Case 5: EB, d = 1.5", table1_case(5), (0.3, 1.1), 0.6, 1.5),
     )
-    n_map, n_line = (24, 10) if quick else (120, 60)
+    # quick: coarser grids, and 10 instead of 40 argument-principle counts per alpha checking the dots
+    n_map, n_line, checks = (24, 10, 10) if quick else (120, 60, 40)
     split = _Progress(progress, 4)
     for ax, (title, p, (a0, a1), kmax, q_max) in zip(axs, sets):
         alphas = np.linspace(a0, a1, n_map)
@@ -279,7 +280,12 @@ def figure16(quick: bool = False, progress: Callable[[float], None] | None = Non
             alphas, kappas, np.minimum(m.count, 6), shading="nearest", cmap="Greys", norm=norm, alpha=0.6
         )
         cs = critical_stiffness(
-            p, np.linspace(a0, a1, n_line), kappa_max=kmax, q_max=q_max, progress=split.part()
+            p,
+            np.linspace(a0, a1, n_line),
+            kappa_max=kmax,
+            q_max=q_max,
+            check_points=checks,
+            progress=split.part(),
         )
         for a, crit in zip(cs.alphas, cs.critical):
             ax.plot([a] * len(crit), crit, "k.", ms=3)
