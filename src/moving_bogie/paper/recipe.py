@@ -62,7 +62,8 @@ class BuildContext:
         """Save a matplotlib Figure as ``figures/<name>.png``, close it, return the relative path.
 
         A figure with a layout engine (constrained layout, as every recipe's) already fits its canvas and is
-        drawn once; any other is cropped to its content (``bbox_inches="tight"``, which draws it twice).
+        saved as laid out; any other is cropped to its content (``bbox_inches="tight"``, an extra pass
+        measuring every artist).
         """
         rel = f"figures/{name}.png"
         path = self.out / rel
