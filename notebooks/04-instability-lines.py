@@ -23,8 +23,8 @@
 # Figures 3, 4, 7 and 8, then maps the degree of instability over the same plane
 # (`moving_bogie.stability.maps.map.stability_map`) and checks a point of the map against the root search.
 #
-# Quick mode (`MOVING_BOGIE_QUICK=1`, used in the test suite) uses coarser seed grids, fewer wheel spacings
-# and fewer panels. `moving-bogie reproduce` rebuilds the paper's figures at full resolution.
+# Quick mode (`MOVING_BOGIE_QUICK=1`, used in the test suite) uses coarser seed grids and continuation steps
+# (those of `moving-bogie reproduce --quick`), fewer wheel spacings and fewer panels. `moving-bogie reproduce` rebuilds the paper's figures at full resolution.
 
 # %%
 import os
@@ -37,7 +37,7 @@ from moving_bogie import DimensionlessParams, table1_case
 from moving_bogie.api import induced_frequencies, instability_lines, stability_map
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
-GRID = dict(alpha_step=0.02, q_step=0.01) if QUICK else dict(alpha_step=0.01, q_step=0.004)
+GRID = dict(alpha_step=0.02, q_step=0.01, h_max=0.02) if QUICK else dict(alpha_step=0.01, q_step=0.004)
 ETA_MAX = 200.0  # the paper extends the vertical axis to eta_M = 200 ("already only an academic value")
 
 

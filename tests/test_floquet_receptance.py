@@ -229,3 +229,20 @@ def test_periodic_in_q_and_independent_of_the_bay_the_vehicle_starts_in():
     assert np.max(np.abs(a[2:, 2:] - b[:-2, :-2])) < 1e-11 * np.max(np.abs(a))
     # the symmetry q -> Omega_0 - conj(q) is exact for the harmonics -N-1..N
     assert abs(base(tr.Omega0 - np.conj(q)) - np.conj(f0)) < 1e-9 * abs(f0)
+
+
+@pytest.mark.parametrize("positions", [[0.3], [0.3, 1.7]])
+def test_panel_sums_match_the_assembled_integrand(positions):
+    """The factored panel sums against Gauss-Kronrod applied to the assembled (nodes, R, R) integrand."""
+    from moving_bogie.floquet.receptance import GAUSS, KRONROD, NODES, _integrand, _panel_sums
+
+    tr, q, harmonics = _track(), 0.7 - 0.05j, np.arange(-2, 3)
+    a = np.linspace(-9.0, 8.0, 7)
+    b = a + tr.K / 4
+    kron, gauss = _panel_sums(tr, q, harmonics, np.array(positions), a, b)
+    half = (b - a) / 2
+    p = ((a + b)[:, None] / 2 + half[:, None] * NODES[None, :]).ravel()
+    f = _integrand(tr, q, harmonics, np.array(positions), p).reshape(a.size, 15, *kron.shape[1:])
+    for weights, sums in ((KRONROD, kron), (GAUSS, gauss)):
+        reference = np.einsum("k,pkrs->prs", weights, f) * half[:, None, None]
+        assert np.allclose(sums, reference, rtol=1e-13, atol=1e-15 * np.max(np.abs(reference)))

@@ -187,10 +187,15 @@ def _smeared_one(den: np.ndarray, num: np.ndarray, xi: np.ndarray) -> np.ndarray
     return np.array(out)
 
 
-def _integrand(
+def _integrand_factors(
     track: SleeperTrack, q: complex, harmonics: np.ndarray, positions: np.ndarray, p: np.ndarray
-) -> np.ndarray:
-    """The integrands at nodes p (shape (P,)): shape (P, R, R), R = len(harmonics) * contacts."""
+) -> tuple[np.ndarray, ...]:
+    """The integrands of Eq. (S11) at nodes p (shape (P,)) as factors: ``(c, u, v, diag, out_ph, in_ph)``.
+
+    The (P, R, R) integrand (R = len(harmonics) * contacts) is ``c u v^T`` (the n != m term,
+    c = -z / D) except on its diagonal blocks n = m, which are ``diag out_ph in_ph^T``; shapes (P,),
+    (P, R), (P, R), (P, H), (P, H, C), (P, H, C). :func:`_integrand` assembles them.
+    """
     K, alpha, lam = track.K, track.alpha, track.lam
     w = q + alpha * p
     z = track.support(w)
@@ -216,9 +221,18 @@ def _integrand(
     P, H, C = out_ph.shape
     u = (G[:, :, None] * out_ph).reshape(P, H * C)
     v = (G[:, :, None] * in_ph).reshape(P, H * C)
-    f = -(z / D)[:, None, None] * u[:, :, None] * v[:, None, :]
     diag = z[:, None] ** 2 * G**2 * S_own / (D[:, None] * (1 + z[:, None] * G))  # (P, H)
-    for i in range(H):
+    return -z / D, u, v, diag, out_ph, in_ph
+
+
+def _integrand(
+    track: SleeperTrack, q: complex, harmonics: np.ndarray, positions: np.ndarray, p: np.ndarray
+) -> np.ndarray:
+    """The integrands at nodes p (shape (P,)): shape (P, R, R), R = len(harmonics) * contacts."""
+    c, u, v, diag, out_ph, in_ph = _integrand_factors(track, q, harmonics, positions, p)
+    f = c[:, None, None] * u[:, :, None] * v[:, None, :]
+    C = out_ph.shape[-1]
+    for i in range(out_ph.shape[1]):
         blk = slice(i * C, (i + 1) * C)
         f[:, blk, blk] = diag[:, i, None, None] * out_ph[:, i, :, None] * in_ph[:, i, None, :]
     return f
@@ -232,7 +246,11 @@ def _panel_sums(
     a: np.ndarray,
     b: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Kronrod and Gauss sums over panels [a_i, b_i]: arrays (panels, R, R) each (in chunks of panels)."""
+    """Kronrod and Gauss sums over panels [a_i, b_i]: arrays (panels, R, R) each (in chunks of panels).
+
+    The weighted sums of the factors of :func:`_integrand_factors`, a batched matrix product for the
+    rank-one part and one per diagonal block, without forming the (nodes, R, R) integrand.
+    """
     R = _r(harmonics, positions)
     chunk = max(1, 200_000 // (15 * R * R))
     if a.size > chunk:
@@ -244,10 +262,16 @@ def _panel_sums(
     half = (b - a) / 2
     mid = (a + b) / 2
     p = (mid[:, None] + half[:, None] * NODES[None, :]).ravel()
-    f = _integrand(track, q, harmonics, positions, p).reshape(a.size, 15, R, R)
-    kron = np.einsum("k,pkrs->prs", KRONROD, f) * half[:, None, None]
-    gauss = np.einsum("k,pkrs->prs", GAUSS, f) * half[:, None, None]
-    return kron, gauss
+    c, u, v, diag, out_ph, in_ph = _integrand_factors(track, q, harmonics, positions, p)
+    n, H, C = a.size, out_ph.shape[1], out_ph.shape[2]
+    weights = np.stack([KRONROD, GAUSS])[:, None, :] * half[None, :, None]  # (2, panels, 15)
+    cu = (weights * c.reshape(n, 15))[..., None] * u.reshape(n, 15, R)  # (2, panels, 15, R)
+    sums = np.swapaxes(cu, -1, -2) @ v.reshape(n, 15, R)  # (2, panels, R, R)
+    wd = weights[..., None] * diag.reshape(n, 15, H)  # (2, panels, 15, H)
+    blocks = np.einsum("wpkh,pkhc,pkhd->wphcd", wd, out_ph.reshape(n, 15, H, C), in_ph.reshape(n, 15, H, C))
+    for i in range(H):
+        sums[:, :, i * C : (i + 1) * C, i * C : (i + 1) * C] = blocks[:, :, i]
+    return sums[0], sums[1]
 
 
 def _r(harmonics: np.ndarray, positions: np.ndarray) -> int:

@@ -130,20 +130,14 @@ class TimeSeriesFigure:
         return SERIES[self.id]
 
     def __call__(self, ctx: BuildContext) -> Built:
-        import numpy as np
-
-        from moving_bogie.api import closed_form_response
-        from moving_bogie.model.cases import table1_case
-
         spec = self.spec
         if spec.finite and not ctx.quick:
             return _validation_figure(ctx, self.id, spec.cases[0])
         tau_max = spec.quick_tau_max if ctx.quick or spec.tau_max is None else spec.tau_max
         points = min(spec.points, 2000) if ctx.quick else spec.points
-        tau = np.linspace(0.0, tau_max, points + 1)
         curves, notes = [], []
         for k, case in enumerate(spec.cases):
-            series = closed_form_response(table1_case(case), tau, frequencies=ctx.frequencies(case))
+            series = ctx.closed_form(case, tau_max, points)
             curves.append((case, series))
             notes += [f"Case {case}: {note}" for note in series.notes]
             ctx.progress((k + 1) / len(spec.cases))

@@ -49,6 +49,7 @@ class BuildContext:
         self.dps = dps
         self._progress = progress
         self._frequencies: dict[int, Any] = {}
+        self._series: dict[tuple[int, float, int], Any] = {}
         #: The :class:`~moving_bogie.roots.table2.Table2` of this run, once the Table 2 recipe has run.
         self.table2: Any = None
 
@@ -58,11 +59,16 @@ class BuildContext:
             self._progress(max(0.0, min(1.0, fraction)))
 
     def save_figure(self, fig: Any, name: str, *, dpi: int = 110) -> str:
-        """Save a matplotlib Figure as ``figures/<name>.png``, close it, return the relative path."""
+        """Save a matplotlib Figure as ``figures/<name>.png``, close it, return the relative path.
+
+        A figure with a layout engine (constrained layout, as every recipe's) already fits its canvas and is
+        saved as laid out; any other is cropped to its content (``bbox_inches="tight"``, an extra pass
+        measuring every artist).
+        """
         rel = f"figures/{name}.png"
         path = self.out / rel
         path.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(path, dpi=dpi, bbox_inches="tight")
+        fig.savefig(path, dpi=dpi, bbox_inches=None if fig.get_layout_engine() is not None else "tight")
         _close_figure(fig)
         return rel
 
@@ -78,6 +84,22 @@ class BuildContext:
 
                 self._frequencies[case] = induced_frequencies(table1_case(case), dps=self.dps)
         return self._frequencies[case]
+
+    def closed_form(self, case: int, tau_max: float, points: int) -> Any:
+        """Closed-form response (Eqs. (35)-(43)) of Table 1 case `case` at ``points + 1`` times in
+        [0, tau_max], computed once per run (figures sharing a case and a window share it)."""
+        key = (case, float(tau_max), int(points))
+        if key not in self._series:
+            import numpy as np
+
+            from moving_bogie.api import closed_form_response
+            from moving_bogie.model.cases import table1_case
+
+            tau = np.linspace(0.0, tau_max, points + 1)
+            self._series[key] = closed_form_response(
+                table1_case(case), tau, frequencies=self.frequencies(case)
+            )
+        return self._series[key]
 
 
 #: A recipe: rebuilds one artefact into the context's output folder.

@@ -23,6 +23,7 @@ from moving_bogie.stability.figures.plots import (
     plot_instability_lines,
     spacing_colors,
 )
+from moving_bogie.stability.lines.line_results import InstabilityLines
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
 if TYPE_CHECKING:
@@ -227,16 +228,19 @@ def figure8(quick: bool = False, progress: Callable[[float], None] | None = None
     fig = new_figure(figsize=(11, 4.6), layout="constrained")
     axs = fig.subplots(1, 2)
     colors = spacing_colors(SPACINGS)
-    split = _Progress(progress, 4)
+    split = _Progress(progress, 3)
     marks: set[str] = set()
+    eb = _base("0.05", cf2="0.1", kappa_v="0.2")
+
+    def lines_of(p: DimensionlessParams) -> InstabilityLines:
+        return instability_lines(
+            p, spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
+        )
+
+    eb_lines = lines_of(eb)  # the same Euler-Bernoulli lines in both panels
     for ax, (S, r), tag in zip(axs, (("100", "0.03"), ("10", "0.09")), "ab"):
-        eb = _base("0.05", cf2="0.1", kappa_v="0.2")
-        tr = eb.replace(beam="tr", S=S, r=r)
         a_cr = float(critical_velocity(get_model(beam="tr"), S=S, r=r).alpha_cr)
-        for p, style in ((eb, "-"), (tr, "--")):
-            lines = instability_lines(
-                p, spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
-            )
+        for lines, style in ((eb_lines, "-"), (lines_of(eb.replace(beam="tr", S=S, r=r)), "--")):
             marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
         _decorate(ax, rf"({tag}) $\tilde S$ = {S}, $\tilde r$ = {r}", 1.0)
         ax.axvline(a_cr, color="grey", ls=":", lw=1)
@@ -264,7 +268,8 @@ def figure16(quick: bool = False, progress: Callable[[float], None] | None = Non
         ("(a) stand-in for ref. [48]: TR, d = 21", figure16_params(), (0.5, 2.0), 1.0, 4.0),
         ("(b) bogie of Case 5: EB, d = 1.5", table1_case(5), (0.3, 1.1), 0.6, 1.5),
     )
-    n_map, n_line = (24, 10) if quick else (120, 60)
+    # quick: coarser grids, and 10 instead of 40 argument-principle counts per alpha checking the dots
+    n_map, n_line, checks = (24, 10, 10) if quick else (120, 60, 40)
     split = _Progress(progress, 4)
     for ax, (title, p, (a0, a1), kmax, q_max) in zip(axs, sets):
         alphas = np.linspace(a0, a1, n_map)
@@ -275,7 +280,12 @@ def figure16(quick: bool = False, progress: Callable[[float], None] | None = Non
             alphas, kappas, np.minimum(m.count, 6), shading="nearest", cmap="Greys", norm=norm, alpha=0.6
         )
         cs = critical_stiffness(
-            p, np.linspace(a0, a1, n_line), kappa_max=kmax, q_max=q_max, progress=split.part()
+            p,
+            np.linspace(a0, a1, n_line),
+            kappa_max=kmax,
+            q_max=q_max,
+            check_points=checks,
+            progress=split.part(),
         )
         for a, crit in zip(cs.alphas, cs.critical):
             ax.plot([a] * len(crit), crit, "k.", ms=3)
