@@ -184,3 +184,42 @@ def _image(operator, row_scales, unknown_scales) -> FoundationImage:
         # divide by the integer content only: the coefficients stay polynomials in the groups
         norm = sp.Poly(norm, *sorted(norm.free_symbols, key=str)).content() if norm.free_symbols else norm
     return FoundationImage(N=sp.expand(det / norm), Q=sp.expand(cof / norm))
+
+
+def _power_of(factor: sp.Expr, var: sp.Symbol) -> int:
+    """k when ``factor`` is var**k (k a positive integer), 0 when it is free of ``var``; else ValueError."""
+    if factor == var:
+        return 1
+    if factor.is_Pow and factor.base == var and factor.exp.is_Integer and factor.exp > 0:
+        return int(factor.exp)
+    if factor.has(var):
+        raise ValueError(f"{factor} is not a power of {var}: expand the polynomial first")
+    return 0
+
+
+def terms_by_power(expr: sp.Expr, var: sp.Symbol) -> dict:
+    """``{k: [t_1, t_2, ...]}``: an expanded polynomial in ``var`` read term by term, expr = sum of
+    var**k t_i. An expanded sum holds each monomial once, so a k that occurs has a nonzero coefficient."""
+    out: dict = {}
+    for term in sp.Add.make_args(expr):
+        k, rest = 0, []
+        for factor in sp.Mul.make_args(term):
+            j = _power_of(factor, var)
+            k += j
+            if not j:
+                rest.append(factor)
+        out.setdefault(k, []).append(sp.Mul(*rest))
+    return out
+
+
+@functools.cache
+def coefficients(expr: sp.Expr, var: sp.Symbol) -> tuple:
+    """(degree, coefficients highest first, each expanded) of ``expr`` as a polynomial in ``var``.
+
+    What ``sp.Poly(expr, var)`` gives coefficient by coefficient, read off the expanded sum directly: a
+    Poly over the other symbols of a layered track's N(p, q) costs seconds. Asked for again by the kernel
+    module and the cut line (Eq. (24)), so derived once per process.
+    """
+    terms = terms_by_power(sp.expand(expr), var)
+    degree = max(terms)
+    return degree, tuple(sp.expand(sp.Add(*terms.get(k, ()))) for k in range(degree, -1, -1))
