@@ -10,6 +10,8 @@ import functools
 from dataclasses import dataclass
 
 import sympy as sp
+from sympy.polys.matrices import DomainMatrix
+from sympy.polys.polyerrors import CoercionFailed, ExactQuotientFailed
 
 from .symbols import (
     B1,
@@ -167,6 +169,38 @@ def foundation_image(track) -> FoundationImage:
     return _image(sp.ImmutableMatrix(track.operator), tuple(track.row_scales), tuple(track.unknown_scales))
 
 
+#: Coefficient domains in which a determinant is exact polynomial arithmetic (Gaussian integers or
+#: rationals, and polynomial rings over them).
+_EXACT = (sp.ZZ, sp.QQ, sp.ZZ_I, sp.QQ_I)
+
+
+def expanded_det(matrix: sp.Matrix, divisor: sp.Expr = sp.S.One) -> sp.Expr:
+    """``sp.expand(det(matrix) / divisor)`` for a matrix of polynomials (Berkowitz, division-free).
+
+    Computed in the polynomial ring of the entries (``DomainMatrix``), divided there when ``divisor``
+    divides it, and converted to an expression once: the same polynomial as
+    ``sp.expand(matrix.det(method="berkowitz") / divisor)`` without expanding products of large
+    expressions. Entries outside a polynomial ring over the Gaussian rationals take that path.
+    """
+    dm = DomainMatrix.from_Matrix(matrix)
+    domain = dm.domain
+    if domain not in _EXACT and not (domain.is_PolynomialRing and domain.domain in _EXACT):
+        return sp.expand(matrix.det(method="berkowitz") / divisor)
+    det = dm.charpoly()[-1]  # det(x I - A) at x = 0: (-1)^n det A
+    det = -det if matrix.shape[0] % 2 else det
+    try:
+        return sp.expand(domain.to_sympy(domain.exquo(det, domain.from_sympy(divisor))))
+    except (CoercionFailed, ExactQuotientFailed):
+        return sp.expand(domain.to_sympy(det) / divisor)
+
+
+@functools.cache
+def _entry_image(entry: sp.Expr, scale: sp.Expr) -> sp.Expr:
+    """One operator entry moved (Eq. (10)), made dimensionless (Eqs. (15)-(18)) and transformed (Eqs. (21)-
+    (22)); derived once per process: the beam's and the layers' entries recur in every model built on them."""
+    return transform(to_dimensionless(to_moving(entry), scale))
+
+
 @functools.cache
 def _image(operator, row_scales, unknown_scales) -> FoundationImage:
     n = operator.shape[0]
@@ -174,16 +208,15 @@ def _image(operator, row_scales, unknown_scales) -> FoundationImage:
     for i in range(n):
         for j in range(n):
             scale = row_scales[i] * unknown_scales[j]
-            transformed[i, j] = transform(to_dimensionless(to_moving(operator[i, j]), scale))
-    det = sp.expand(transformed.det(method="berkowitz"))
-    cof = sp.expand(transformed[1:, 1:].det(method="berkowitz")) if n > 1 else sp.Integer(1)
+            transformed[i, j] = _entry_image(operator[i, j], scale)
+    cof = expanded_det(transformed[1:, 1:]) if n > 1 else sp.Integer(1)
     norm = cof.subs({p: 0, q: 0})
     if norm == 0:
         raise AssertionError("cofactor vanishes at p = q = 0: cannot normalise Q")
     if norm.is_Add:
         # divide by the integer content only: the coefficients stay polynomials in the groups
         norm = sp.Poly(norm, *sorted(norm.free_symbols, key=str)).content() if norm.free_symbols else norm
-    return FoundationImage(N=sp.expand(det / norm), Q=sp.expand(cof / norm))
+    return FoundationImage(N=expanded_det(transformed, norm), Q=sp.expand(cof / norm))
 
 
 def _power_of(factor: sp.Expr, var: sp.Symbol) -> int:
