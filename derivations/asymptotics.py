@@ -33,7 +33,7 @@ import sympy as sp
 
 from . import symbols as s
 from .emit import definition_digest, function_source, module_source
-from .model import foundation_image, terms_by_power
+from .model import foundation_image, power_of
 from .system import SYSTEMS, in_q
 
 
@@ -52,13 +52,13 @@ def _weight(monomials: set, beta: Fraction) -> Fraction:
 
 def _monomials(expr: sp.Expr) -> set:
     """The exponent pairs (a, b) of the monomials p^a q^b with a nonzero coefficient in the expanded
-    polynomial ``expr`` (what ``sp.Poly(expr, p, q).monoms()`` lists, read off its terms)."""
-    return {
-        (a, b)
-        for a, terms in terms_by_power(expr, s.p).items()
-        for t in terms
-        for b in terms_by_power(t, s.q)
-    }
+    polynomial ``expr`` (what ``sp.Poly(expr, p, q).monoms()`` lists, read off its terms: an expanded sum
+    holds each monomial once)."""
+    out = set()
+    for term in sp.Add.make_args(expr):
+        factors = sp.Mul.make_args(term)
+        out.add((sum(power_of(f, s.p) for f in factors), sum(power_of(f, s.q) for f in factors)))
+    return out
 
 
 def kernel_decay(track) -> KernelDecay | None:

@@ -58,9 +58,13 @@ def to_moving(op: sp.Expr) -> sp.Expr:
 
 def to_dimensionless(op: sp.Expr, scale: sp.Expr) -> sp.Expr:
     """Eqs. (15)-(17): r = xi/chi, t = tau/omega; the result is multiplied by ``scale`` and every physical
-    parameter is replaced by its dimensionless group. EI, m, k_f, P must drop out (checked)."""
-    op = op.subs({dr: chi * dxi, dt: omega * dtau}) * scale
-    op = sp.expand(sp.powsimp(sp.expand(op.subs(PHYSICAL_IN_DIMENSIONLESS)), force=True))
+    parameter is replaced by its dimensionless group. EI, m, k_f, P must drop out (checked).
+
+    The replacements are made all at once (``xreplace``): no right-hand side holds a replaced symbol
+    (``symbols.declare`` checks it for the groups), so that is the same as one after the other (``subs``).
+    """
+    op = op.xreplace({dr: chi * dxi, dt: omega * dtau}) * scale
+    op = sp.expand(sp.powsimp(sp.expand(op.xreplace(PHYSICAL_IN_DIMENSIONLESS)), force=True))
     leftover = op.free_symbols & {EI, m, k_f, P}
     if leftover:
         raise AssertionError(f"dimensionless operator still depends on {sorted(map(str, leftover))}: {op}")
@@ -111,7 +115,7 @@ def contact_images() -> ContactImages:
     load_scale = chi * 4 / (k_f * w_st)
 
     def clean(e, scale):
-        e = (e.subs(dimensionless) * scale).subs(PHYSICAL_IN_DIMENSIONLESS)
+        e = (e.xreplace(dimensionless) * scale).xreplace(PHYSICAL_IN_DIMENSIONLESS)
         return sp.expand(sp.powsimp(sp.expand(e), force=True))
 
     F_rear = clean(f1, load_scale)
@@ -219,7 +223,7 @@ def _image(operator, row_scales, unknown_scales) -> FoundationImage:
     return FoundationImage(N=expanded_det(transformed, norm), Q=sp.expand(cof / norm))
 
 
-def _power_of(factor: sp.Expr, var: sp.Symbol) -> int:
+def power_of(factor: sp.Expr, var: sp.Symbol) -> int:
     """k when ``factor`` is var**k (k a positive integer), 0 when it is free of ``var``; else ValueError."""
     if factor == var:
         return 1
@@ -237,7 +241,7 @@ def terms_by_power(expr: sp.Expr, var: sp.Symbol) -> dict:
     for term in sp.Add.make_args(expr):
         k, rest = 0, []
         for factor in sp.Mul.make_args(term):
-            j = _power_of(factor, var)
+            j = power_of(factor, var)
             k += j
             if not j:
                 rest.append(factor)
