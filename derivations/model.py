@@ -259,4 +259,12 @@ def coefficients(expr: sp.Expr, var: sp.Symbol) -> tuple:
     """
     terms = terms_by_power(sp.expand(expr), var)
     degree = max(terms)
-    return degree, tuple(sp.expand(sp.Add(*terms.get(k, ()))) for k in range(degree, -1, -1))
+    # the terms of an expanded sum are expanded monomials: their sum is expanded as it is built
+    return degree, tuple(sp.Add(*terms.get(k, ())) for k in range(degree, -1, -1))
+
+
+def derivative(expr: sp.Expr, var: sp.Symbol) -> sp.Expr:
+    """d/d``var`` of an expanded polynomial, term by term (``sp.diff`` of each monomial: k var**(k-1) t)."""
+    return sp.Add(
+        *[k * var ** (k - 1) * t for k, terms in terms_by_power(expr, var).items() if k for t in terms]
+    )
