@@ -33,7 +33,7 @@ import sympy as sp
 
 from . import symbols as s
 from .emit import definition_digest, function_source, module_source
-from .model import foundation_image
+from .model import foundation_image, power_of
 from .system import SYSTEMS, in_q
 
 
@@ -45,9 +45,20 @@ class KernelDecay:
     gamma: Fraction
 
 
-def _weight(poly: sp.Poly, beta: Fraction) -> Fraction:
-    """max over the monomials p^a q^b of ``poly`` (a Poly in p, q) of a beta + b."""
-    return max(a * beta + b for a, b in poly.monoms())
+def _weight(monomials: set, beta: Fraction) -> Fraction:
+    """max over the monomials p^a q^b (exponent pairs (a, b), :func:`_monomials`) of a beta + b."""
+    return max(a * beta + b for a, b in monomials)
+
+
+def _monomials(expr: sp.Expr) -> set:
+    """The exponent pairs (a, b) of the monomials p^a q^b with a nonzero coefficient in the expanded
+    polynomial ``expr`` (what ``sp.Poly(expr, p, q).monoms()`` lists, read off its terms: an expanded sum
+    holds each monomial once)."""
+    out = set()
+    for term in sp.Add.make_args(expr):
+        factors = sp.Mul.make_args(term)
+        out.add((sum(power_of(f, s.p) for f in factors), sum(power_of(f, s.q) for f in factors)))
+    return out
 
 
 def kernel_decay(track) -> KernelDecay | None:
@@ -61,9 +72,8 @@ def kernel_decay(track) -> KernelDecay | None:
 
 @functools.cache
 def _decay(image) -> KernelDecay | None:
-    N = sp.Poly(image.N, s.p, s.q)
-    Q = sp.Poly(image.Q, s.p, s.q)
-    points = N.monoms()
+    N, Q = _monomials(image.N), _monomials(image.Q)
+    points = N
     candidates = {Fraction(b1 - b2, a2 - a1) for a1, b1 in points for a2, b2 in points if a2 > a1 and b1 > b2}
     betas = set()
     for beta in candidates:

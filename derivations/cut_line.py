@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from . import symbols as s
-from .model import foundation_image
+from .model import coefficients, foundation_image
 
 
 @dataclass(frozen=True)
@@ -27,10 +27,10 @@ class CutLine:
 
 def cut_line(track) -> CutLine | None:
     """The half-line form of the cut of K for ``track``, or None when N(p, q) does not have it."""
-    N = sp.Poly(foundation_image(track).N, s.q)
-    if N.degree() != 2:
+    degree, coeffs = coefficients(foundation_image(track).N, s.q)
+    if degree != 2:
         return None
-    a, b, c = (N.coeff_monomial(s.q**k) for k in (2, 1, 0))
+    a, b, c = coeffs
     if a.has(s.p) or a == 0:
         return None
     centre = sp.expand(-b / (2 * a) - s.alpha * s.p)

@@ -25,7 +25,7 @@ from .cut_line import cut_line
 from .emit import SCALING_PRINTER, definition_digest, function_source, module_source
 from .foundations import BEAMS, TRACKS, all_models
 from .modal import modal_blocks
-from .model import foundation_image
+from .model import coefficients, derivative, foundation_image
 from .paper import all_proofs
 from .sleepers import TRACKS as SLEEPER_TRACKS
 from .sleepers import sleepers_module
@@ -39,10 +39,9 @@ GENERATOR = "python -m derivations"
 
 
 def _coeffs(expr, var):
-    """(degree, coefficients highest first) of ``expr`` as a polynomial in ``var`` (one Poly built)."""
-    poly = sp.Poly(expr, var)
-    degree = poly.degree()
-    return degree, [sp.expand(poly.coeff_monomial(var**k)) for k in range(degree, -1, -1)]
+    """(degree, coefficients highest first) of ``expr`` as a polynomial in ``var`` (``coefficients``)."""
+    degree, coeffs = coefficients(expr, var)
+    return degree, list(coeffs)
 
 
 def _groups_in(*exprs) -> tuple:
@@ -70,9 +69,9 @@ def foundation_module(name, model):
             n_in_q,
             "Coefficients of N(p, q) in q, highest first: for real p its roots trace the cut of K.",
         ),
-        function_source("n_coeffs_dq", args, [sp.diff(c, s.q) for c in n], "Coefficients of dN/dq in p."),
+        function_source("n_coeffs_dq", args, [derivative(c, s.q) for c in n], "Coefficients of dN/dq in p."),
         function_source("q_coeffs", args, qq, "Coefficients of Q(p, q) in p, highest power first."),
-        function_source("q_coeffs_dq", args, [sp.diff(c, s.q) for c in qq], "Coefficients of dQ/dq in p."),
+        function_source("q_coeffs_dq", args, [derivative(c, s.q) for c in qq], "Coefficients of dQ/dq in p."),
     ]
     line = cut_line(model)
     if line is not None:

@@ -10,6 +10,8 @@ import functools
 from dataclasses import dataclass
 
 import sympy as sp
+from sympy.polys.matrices import DomainMatrix
+from sympy.polys.polyerrors import CoercionFailed, ExactQuotientFailed
 
 from .symbols import (
     B1,
@@ -56,9 +58,13 @@ def to_moving(op: sp.Expr) -> sp.Expr:
 
 def to_dimensionless(op: sp.Expr, scale: sp.Expr) -> sp.Expr:
     """Eqs. (15)-(17): r = xi/chi, t = tau/omega; the result is multiplied by ``scale`` and every physical
-    parameter is replaced by its dimensionless group. EI, m, k_f, P must drop out (checked)."""
-    op = op.subs({dr: chi * dxi, dt: omega * dtau}) * scale
-    op = sp.expand(sp.powsimp(sp.expand(op.subs(PHYSICAL_IN_DIMENSIONLESS)), force=True))
+    parameter is replaced by its dimensionless group. EI, m, k_f, P must drop out (checked).
+
+    The replacements are made all at once (``xreplace``): no right-hand side holds a replaced symbol
+    (``symbols.declare`` checks it for the groups), so that is the same as one after the other (``subs``).
+    """
+    op = op.xreplace({dr: chi * dxi, dt: omega * dtau}) * scale
+    op = sp.expand(sp.powsimp(sp.expand(op.xreplace(PHYSICAL_IN_DIMENSIONLESS)), force=True))
     leftover = op.free_symbols & {EI, m, k_f, P}
     if leftover:
         raise AssertionError(f"dimensionless operator still depends on {sorted(map(str, leftover))}: {op}")
@@ -109,7 +115,7 @@ def contact_images() -> ContactImages:
     load_scale = chi * 4 / (k_f * w_st)
 
     def clean(e, scale):
-        e = (e.subs(dimensionless) * scale).subs(PHYSICAL_IN_DIMENSIONLESS)
+        e = (e.xreplace(dimensionless) * scale).xreplace(PHYSICAL_IN_DIMENSIONLESS)
         return sp.expand(sp.powsimp(sp.expand(e), force=True))
 
     F_rear = clean(f1, load_scale)
@@ -167,6 +173,38 @@ def foundation_image(track) -> FoundationImage:
     return _image(sp.ImmutableMatrix(track.operator), tuple(track.row_scales), tuple(track.unknown_scales))
 
 
+#: Coefficient domains in which a determinant is exact polynomial arithmetic (Gaussian integers or
+#: rationals, and polynomial rings over them).
+_EXACT = (sp.ZZ, sp.QQ, sp.ZZ_I, sp.QQ_I)
+
+
+def expanded_det(matrix: sp.Matrix, divisor: sp.Expr = sp.S.One) -> sp.Expr:
+    """``sp.expand(det(matrix) / divisor)`` for a matrix of polynomials (Berkowitz, division-free).
+
+    Computed in the polynomial ring of the entries (``DomainMatrix``), divided there when ``divisor``
+    divides it, and converted to an expression once: the same polynomial as
+    ``sp.expand(matrix.det(method="berkowitz") / divisor)`` without expanding products of large
+    expressions. Entries outside a polynomial ring over the Gaussian rationals take that path.
+    """
+    dm = DomainMatrix.from_Matrix(matrix)
+    domain = dm.domain
+    if domain not in _EXACT and not (domain.is_PolynomialRing and domain.domain in _EXACT):
+        return sp.expand(matrix.det(method="berkowitz") / divisor)
+    det = dm.charpoly()[-1]  # det(x I - A) at x = 0: (-1)^n det A
+    det = -det if matrix.shape[0] % 2 else det
+    try:
+        return sp.expand(domain.to_sympy(domain.exquo(det, domain.from_sympy(divisor))))
+    except (CoercionFailed, ExactQuotientFailed):
+        return sp.expand(domain.to_sympy(det) / divisor)
+
+
+@functools.cache
+def _entry_image(entry: sp.Expr, scale: sp.Expr) -> sp.Expr:
+    """One operator entry moved (Eq. (10)), made dimensionless (Eqs. (15)-(18)) and transformed (Eqs. (21)-
+    (22)); derived once per process: the beam's and the layers' entries recur in every model built on them."""
+    return transform(to_dimensionless(to_moving(entry), scale))
+
+
 @functools.cache
 def _image(operator, row_scales, unknown_scales) -> FoundationImage:
     n = operator.shape[0]
@@ -174,13 +212,59 @@ def _image(operator, row_scales, unknown_scales) -> FoundationImage:
     for i in range(n):
         for j in range(n):
             scale = row_scales[i] * unknown_scales[j]
-            transformed[i, j] = transform(to_dimensionless(to_moving(operator[i, j]), scale))
-    det = sp.expand(transformed.det(method="berkowitz"))
-    cof = sp.expand(transformed[1:, 1:].det(method="berkowitz")) if n > 1 else sp.Integer(1)
+            transformed[i, j] = _entry_image(operator[i, j], scale)
+    cof = expanded_det(transformed[1:, 1:]) if n > 1 else sp.Integer(1)
     norm = cof.subs({p: 0, q: 0})
     if norm == 0:
         raise AssertionError("cofactor vanishes at p = q = 0: cannot normalise Q")
     if norm.is_Add:
         # divide by the integer content only: the coefficients stay polynomials in the groups
         norm = sp.Poly(norm, *sorted(norm.free_symbols, key=str)).content() if norm.free_symbols else norm
-    return FoundationImage(N=sp.expand(det / norm), Q=sp.expand(cof / norm))
+    return FoundationImage(N=expanded_det(transformed, norm), Q=sp.expand(cof / norm))
+
+
+def power_of(factor: sp.Expr, var: sp.Symbol) -> int:
+    """k when ``factor`` is var**k (k a positive integer), 0 when it is free of ``var``; else ValueError."""
+    if factor == var:
+        return 1
+    if factor.is_Pow and factor.base == var and factor.exp.is_Integer and factor.exp > 0:
+        return int(factor.exp)
+    if factor.has(var):
+        raise ValueError(f"{factor} is not a power of {var}: expand the polynomial first")
+    return 0
+
+
+def terms_by_power(expr: sp.Expr, var: sp.Symbol) -> dict:
+    """``{k: [t_1, t_2, ...]}``: an expanded polynomial in ``var`` read term by term, expr = sum of
+    var**k t_i. An expanded sum holds each monomial once, so a k that occurs has a nonzero coefficient."""
+    out: dict = {}
+    for term in sp.Add.make_args(expr):
+        k, rest = 0, []
+        for factor in sp.Mul.make_args(term):
+            j = power_of(factor, var)
+            k += j
+            if not j:
+                rest.append(factor)
+        out.setdefault(k, []).append(sp.Mul(*rest))
+    return out
+
+
+@functools.cache
+def coefficients(expr: sp.Expr, var: sp.Symbol) -> tuple:
+    """(degree, coefficients highest first, each expanded) of ``expr`` as a polynomial in ``var``.
+
+    What ``sp.Poly(expr, var)`` gives coefficient by coefficient, read off the expanded sum directly: a
+    Poly over the other symbols of a layered track's N(p, q) costs seconds. Asked for again by the kernel
+    module and the cut line (Eq. (24)), so derived once per process.
+    """
+    terms = terms_by_power(sp.expand(expr), var)
+    degree = max(terms)
+    # the terms of an expanded sum are expanded monomials: their sum is expanded as it is built
+    return degree, tuple(sp.Add(*terms.get(k, ())) for k in range(degree, -1, -1))
+
+
+def derivative(expr: sp.Expr, var: sp.Symbol) -> sp.Expr:
+    """d/d``var`` of an expanded polynomial, term by term (``sp.diff`` of each monomial: k var**(k-1) t)."""
+    return sp.Add(
+        *[k * var ** (k - 1) * t for k, terms in terms_by_power(expr, var).items() if k for t in terms]
+    )

@@ -98,6 +98,12 @@ def declare(
     """Declare a dimensionless group: ``physical = relation`` (in the group and EI, m, k_f, P)."""
     if constraint not in ("positive", "nonnegative", "underdamped"):
         raise ValueError(f"{symbol}: unknown constraint {constraint!r}")
+    declared = {physical, *PHYSICAL_IN_DIMENSIONLESS}
+    if relation.free_symbols & declared or any(
+        physical in r.free_symbols for r in PHYSICAL_IN_DIMENSIONLESS.values()
+    ):
+        # the derivation replaces every declared physical parameter at once (model.to_dimensionless)
+        raise ValueError(f"{symbol}: {physical} = {relation} mixes the declared physical parameters")
     PHYSICAL_IN_DIMENSIONLESS[physical] = relation
     GROUPS[str(symbol)] = Group(
         symbol,

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .model import W0, Th, U, Wd, contact_images
+from .model import W0, Th, U, Wd, contact_images, expanded_det
 from .symbols import B1, B2, B3, B4, K0, Km, Kp, d, eta_M, q
 
 pi = sp.pi
@@ -53,12 +53,12 @@ def _solve(equations, unknowns):
     for i in range(2, len(unknowns)):
         A[i, :] = A[i, :] / pi
         b[i] = b[i] / pi
-    det = sp.expand(A.det(method="berkowitz"))
+    det = expanded_det(A)
     nums = []
     for j in range(len(unknowns)):
         Aj = A.copy()
         Aj[:, j] = b
-        nums.append(sp.expand(Aj.det(method="berkowitz")))
+        nums.append(expanded_det(Aj))
     return A, b, det, nums
 
 

@@ -66,7 +66,8 @@ def block_degrees(matrices, follow: bool = True) -> dict:
         if par in moving or par in held:
             continue
         theta = sp.Symbol("theta")
-        Dp = D.subs(par, theta).subs({x: v for x, v in values.items() if x != par})
+        # numbers for symbols, all at once (xreplace): the same as one after the other
+        Dp = D.xreplace({x: v for x, v in values.items() if x != par} | {par: theta})
         A = sp.zeros(total, total)
         A[:n, :] = 2 * Kmat * Dp[:n, :]
         A[:n, :n] += pi * sp.eye(n)
@@ -77,6 +78,10 @@ def block_degrees(matrices, follow: bool = True) -> dict:
 
 
 def _degree(A, theta) -> int:
-    """Degree in ``theta`` of det A (entries polynomial in theta, Gaussian-rational coefficients), exactly."""
-    det = DomainMatrix.from_Matrix(A).convert_to(sp.QQ_I[theta]).det()
-    return sp.Poly(det.as_expr() if hasattr(det, "as_expr") else sp.QQ_I[theta].to_sympy(det), theta).degree()
+    """Degree in ``theta`` of det A (entries polynomial in theta, Gaussian-rational coefficients), exactly:
+    Berkowitz (division-free, ``charpoly``) in QQ_I[theta]."""
+    ring = sp.QQ_I[theta]
+    n = A.shape[0]
+    rows = [[ring.from_sympy(A[i, j]) for j in range(n)] for i in range(n)]
+    det = DomainMatrix(rows, (n, n), ring).charpoly()[-1]  # (-1)^n det A
+    return sp.Poly(ring.to_sympy(det), theta).degree()

@@ -140,7 +140,7 @@ def _gradient(vehicle: Vehicle, element: str, x) -> list:
 
 
 def _dimensionless(expr):
-    e = sp.expand(sp.powsimp(sp.expand(sp.sympify(expr).subs(s.PHYSICAL_IN_DIMENSIONLESS)), force=True))
+    e = sp.expand(sp.powsimp(sp.expand(sp.sympify(expr).xreplace(s.PHYSICAL_IN_DIMENSIONLESS)), force=True))
     leftover = e.free_symbols & {s.EI, s.m, s.k_f, s.P}
     if leftover:
         raise AssertionError(f"vehicle term not dimensionless, depends on {sorted(map(str, leftover))}: {e}")

@@ -62,6 +62,11 @@ def _reference(expr, values: dict):
     exact = expr.xreplace({sym: _to_sympy(v) for sym, v in values.items() if v is not None})
     leftover = exact.free_symbols
     assert not leftover, f"reference still depends on {sorted(map(str, leftover))}"
+    return _rounded(exact)
+
+
+def _rounded(exact):
+    """An exact SymPy number rounded to 40 digits, as mpc."""
     z = sp.N(exact, 40)
     re, im = z.as_real_imag()
     with mpmath.workdps(45):
@@ -127,12 +132,20 @@ def _vehicle_module(name):
     return importlib.import_module(f"moving_bogie.generated.vehicle_{name}")
 
 
-@functools.cache
-def _foundation_poly(name, which, var):
-    """``N`` or ``Q`` (``which``) of the foundation as a polynomial in ``var`` (``"p"`` or ``"q"``), built
-    once: converting the layered tracks' expressions to polynomials takes seconds each."""
-    N, Q = _foundation(name)
-    return sp.Poly({"N": N, "Q": Q}[which], getattr(s, var))
+def _exact_polys(name, point) -> tuple:
+    """N and Q of the derivation with the point's groups substituted exactly (``_to_sympy``): polynomials
+    in (p, q) over the Gaussian rationals. Exact arithmetic commutes with taking coefficients and with
+    d/dq, so each coefficient (or derivative) read from these at the point is exactly the derivation's own
+    coefficient evaluated there; a Poly over every group of a layered track would take seconds to build.
+    """
+    groups = {getattr(s, k): _to_sympy(v) for k, v in point.items() if k not in ("p", "q") and v is not None}
+    polys = []
+    for expr in _foundation(name):
+        exact = expr.xreplace(groups)
+        leftover = exact.free_symbols - {s.p, s.q}
+        assert not leftover, f"{name}: N or Q still depends on {sorted(map(str, leftover))}"
+        polys.append(sp.Poly(exact, s.p, s.q))
+    return tuple(polys)
 
 
 def _coeffs(poly, degree):
@@ -187,10 +200,6 @@ def _foundation_point(name, seed, *, derived=True):
     return point
 
 
-def _foundation_symbols(point):
-    return {getattr(s, k): v for k, v in point.items()}
-
-
 #: (foundation, seed) of every comparison. The layered tracks' kernels against SymPy take up to about a
 #: minute each on a loaded machine (exact evaluation of large expressions at 40 digits): they run in the full
 #: suite only, at one random point each (two polynomials that agree at a random complex point are equal but
@@ -208,19 +217,24 @@ FOUNDATION_CASES = [
 @pytest.mark.parametrize(("name", "seed"), FOUNDATION_CASES)
 def test_foundation_kernels_match_sympy(name, seed):
     module = _foundation_module(name)
-    N, Q = _foundation(name)
     point = _foundation_point(name, seed)
-    subs = _foundation_symbols(point)
-    n_p, q_p, n_q = (_foundation_poly(name, e, v) for e, v in (("N", "p"), ("Q", "p"), ("N", "q")))
-    deg_n, deg_q, deg_nq = n_p.degree(), q_p.degree(), n_q.degree()
+    n_pq, q_pq = _exact_polys(name, point)
+    # degrees at the random point: those of N and Q unless a leading coefficient (a nonzero polynomial in
+    # the groups) vanishes there, a set of measure zero
+    deg_n, deg_q, deg_nq = n_pq.degree(s.p), q_pq.degree(s.p), n_pq.degree(s.q)
     assert (module.DEGREE_N, module.DEGREE_Q, module.DEGREE_N_IN_Q) == (deg_n, deg_q, deg_nq)
     pars = {k: point[k] for k in module.ARGUMENTS[1:]}
+    q_at, p_at = _to_sympy(point["q"]), _to_sympy(point["p"])
+
+    def in_p_at_q(poly, degree):
+        return [_rounded(c) for c in _coeffs(poly.eval(s.q, q_at), degree)]
+
     references = {
-        "n_coeffs": [_reference(c, subs) for c in _coeffs(n_p, deg_n)],
-        "n_coeffs_dq": [_reference(sp.diff(c, s.q), subs) for c in _coeffs(n_p, deg_n)],
-        "q_coeffs": [_reference(c, subs) for c in _coeffs(q_p, deg_q)],
-        "q_coeffs_dq": [_reference(sp.diff(c, s.q), subs) for c in _coeffs(q_p, deg_q)],
-        "n_coeffs_in_q": [_reference(c, subs) for c in _coeffs(n_q, module.DEGREE_N_IN_Q)],
+        "n_coeffs": in_p_at_q(n_pq, deg_n),
+        "n_coeffs_dq": in_p_at_q(n_pq.diff(s.q), deg_n),
+        "q_coeffs": in_p_at_q(q_pq, deg_q),
+        "q_coeffs_dq": in_p_at_q(q_pq.diff(s.q), deg_q),
+        "n_coeffs_in_q": [_rounded(c) for c in _coeffs(n_pq.eval(s.p, p_at), deg_nq)],
     }
     with mpmath.workdps(30):
         mp_pars = {k: _to_mp(v) for k, v in pars.items()}
@@ -237,7 +251,8 @@ def test_foundation_kernels_match_sympy(name, seed):
         ]
     for f, ref in references.items():
         _assert_digits(values[f], ref, f"{name}.{f} (seed {seed})")
-    poly_refs = [_reference(e, subs) for e in (N, Q, sp.diff(N, s.q), sp.diff(Q, s.q))]
+    at = {s.p: p_at, s.q: q_at}
+    poly_refs = [_rounded(e.eval(at)) for e in (n_pq, q_pq, n_pq.diff(s.q), q_pq.diff(s.q))]
     poly_refs.append(poly_refs[0])  # N from its coefficients in q, at the same (p, q): the same exact value
     _assert_digits(polys, poly_refs, f"{name}: N, Q, N_q, Q_q, N from coefficients (seed {seed})")
 
