@@ -201,9 +201,10 @@ def _foundation_point(name, seed, *, derived=True):
 
 
 #: (foundation, seed) of every comparison. The layered tracks' kernels against SymPy are the longest
-#: comparisons (exact evaluation of large expressions at 40 digits): they run in the full suite only, at one random point each (two polynomials that agree at a random complex point are equal but
-#: for a set of measure zero; every coefficient is compared there, to DIGITS digits). The one-layer kernels
-#: stay in the quick subset at all six points.
+#: comparisons (exact evaluation of large expressions at 40 digits): they run in the full suite only, at
+#: one random point each (two polynomials that agree at a random complex point are equal but for a set of
+#: measure zero; every coefficient is compared there, to DIGITS digits). The one-layer kernels stay in the
+#: quick subset at all six points.
 FOUNDATION_CASES = [
     pytest.param(name, seed, marks=pytest.mark.slow, id=f"{name}-{seed}")
     if "layer" in name
