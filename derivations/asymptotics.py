@@ -73,12 +73,11 @@ def kernel_decay(track) -> KernelDecay | None:
 @functools.cache
 def _decay(image) -> KernelDecay | None:
     N, Q = _monomials(image.N), _monomials(image.Q)
-    points = N
-    candidates = {Fraction(b1 - b2, a2 - a1) for a1, b1 in points for a2, b2 in points if a2 > a1 and b1 > b2}
+    candidates = {Fraction(b1 - b2, a2 - a1) for a1, b1 in N for a2, b2 in N if a2 > a1 and b1 > b2}
     betas = set()
     for beta in candidates:
         weight = _weight(N, beta)
-        if len({a for a, b in points if a * beta + b == weight}) >= 2:
+        if len({a for a, b in N if a * beta + b == weight}) >= 2:
             betas.add(beta)
     if not betas:
         return None

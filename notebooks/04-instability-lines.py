@@ -24,7 +24,8 @@
 # (`moving_bogie.stability.maps.map.stability_map`) and checks a point of the map against the root search.
 #
 # Quick mode (`MOVING_BOGIE_QUICK=1`, used in the test suite) uses coarser seed grids and continuation steps
-# (those of `moving-bogie reproduce --quick`), fewer wheel spacings and fewer panels. `moving-bogie reproduce` rebuilds the paper's figures at full resolution.
+# (those of `moving-bogie reproduce --quick`), fewer wheel spacings and fewer panels. `moving-bogie reproduce`
+# rebuilds the paper's figures at full resolution.
 
 # %%
 import os
