@@ -44,10 +44,10 @@ from moving_bogie.response.branch_cut import BranchCut, BranchCutUnavailable
 from moving_bogie.response.cut_pieces import CurvePiece, cut_pieces, roots_along
 from moving_bogie.response.cut_values import JumpValues, PieceChannel
 from moving_bogie.response.quadrature import (
-    FIRST_BAND,
     PANEL_PHASE,
     PANEL_XI,
     adapt_panels_with_values,
+    band_top,
     by_bands,
     equidistribute,
     fourier_sum,
@@ -65,18 +65,6 @@ _REACH = 2.0**14
 _REAL_TOL = 1e-12
 #: The widest starting panel in p is at least the half-line's (its _PANEL_DP).
 _START_DP = 0.5
-
-
-def _rule_top(lo: float, ts: np.ndarray, rule_tau: np.ndarray | None) -> float:
-    """The time that sets the panels of the band (lo, 2 lo] (``[0, FIRST_BAND]`` when lo = 0): the largest
-    of ``ts`` and of the ``rule_tau`` in that band."""
-    top = float(ts.max())
-    if rule_tau is None:
-        return top
-    rule_tau = np.asarray(rule_tau, dtype=float)
-    hi = 2 * lo if lo > 0 else FIRST_BAND
-    same = rule_tau[(rule_tau > lo) & (rule_tau <= hi)] if lo > 0 else rule_tau[rule_tau <= hi]
-    return max(top, float(same.max())) if same.size else top
 
 
 def branch_cut_for(bound: BoundModel) -> BranchCut | CurveBranchCut:
@@ -345,7 +333,7 @@ class CurveBranchCut(JumpValues):
 
         def band(lo: float, ts: np.ndarray) -> np.ndarray:
             acc = np.zeros((ts.size, m), dtype=complex)
-            top = _rule_top(lo, ts, rule_tau)
+            top = band_top(lo, ts, rule_tau)
             for piece, S in zip(self.pieces, self.choose_S(channel, lo, tol, s_min)):
                 nodes, weights = self._rule(piece, S, top, xi_max, channel)
                 q, J = self._values(piece, nodes, channel, m)

@@ -19,6 +19,7 @@ __all__ = [
     "PANEL_XI",
     "adapt_panels",
     "adapt_panels_with_values",
+    "band_top",
     "by_bands",
     "cis",
     "equidistribute",
@@ -134,6 +135,18 @@ def by_bands(tau: ArrayLike, m: int, band: Callable[[float, np.ndarray], np.ndar
         idx = np.nonzero(band_hi == hi)[0]
         result[idx] = band(0.0 if hi <= FIRST_BAND else hi / 2, flat[idx])
     return (result.real / np.pi).reshape(tau.shape + (m,))
+
+
+def band_top(lo: float, ts: np.ndarray, rule_tau: ArrayLike | None) -> float:
+    """The time that sets the panels of the band of :func:`by_bands` with lower end ``lo``, (lo, 2 lo]
+    (``[0, FIRST_BAND]`` when lo = 0): the largest of ``ts`` and of the ``rule_tau`` in that band."""
+    top = float(ts.max())
+    if rule_tau is None:
+        return top
+    rule_tau = np.asarray(rule_tau, dtype=float)
+    hi = 2 * lo if lo > 0 else FIRST_BAND
+    same = rule_tau[(rule_tau > lo) & (rule_tau <= hi)] if lo > 0 else rule_tau[rule_tau <= hi]
+    return max(top, float(same.max())) if same.size else top
 
 
 #: Taylor terms of e^{i q delta} with |q delta| <= 1/4 (remainder below 1e-16 of the sum of |G|).
