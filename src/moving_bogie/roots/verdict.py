@@ -19,12 +19,9 @@ Otherwise the verdict is UNDETERMINED and lists what is missing; roots with Im q
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from moving_bogie.roots.count.outcomes import Note, Reason, count_mismatch
-
-if TYPE_CHECKING:
-    from moving_bogie.roots.frequencies import FrequencyResult
+from moving_bogie.roots.search_record import SearchRecord
 
 STABLE, UNSTABLE, UNDETERMINED = "stable", "unstable", "undetermined"
 
@@ -44,7 +41,7 @@ class Verdict:
         return {"state": self.state, "reasons": [note.text for note in self.reasons]}
 
 
-def incompleteness(result: FrequencyResult) -> list[Note]:
+def incompleteness(result: SearchRecord) -> list[Note]:
     """Why the search of ``result`` (a FrequencyResult) may have missed a root with Im q < 0."""
     reasons = []
     far = result.far_field
@@ -97,7 +94,7 @@ def incompleteness(result: FrequencyResult) -> list[Note]:
     return reasons
 
 
-def judge(result: FrequencyResult) -> Verdict:
+def judge(result: SearchRecord) -> Verdict:
     """The verdict of a FrequencyResult: complete search -> STABLE/UNSTABLE, else UNDETERMINED."""
     reasons = incompleteness(result)
     if reasons:

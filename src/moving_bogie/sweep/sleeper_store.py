@@ -13,10 +13,11 @@ import json
 import os
 import shutil
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 
+from moving_bogie.sweep.design import Axis
 from moving_bogie.sweep.store import (
     StorePath,
     consolidate,
@@ -26,10 +27,7 @@ from moving_bogie.sweep.store import (
     write_coordinate,
 )
 
-if TYPE_CHECKING:
-    from moving_bogie.sweep.sleepers import SleeperSweepSpec
-
-__all__ = ["SLEEPER_VARIABLES", "create_sleeper_store", "write_sleeper_block"]
+__all__ = ["SLEEPER_VARIABLES", "SleeperLayout", "create_sleeper_store", "write_sleeper_block"]
 
 #: Data variables of a sleeper sweep: (name, dtype, fill value, long_name, units).
 SLEEPER_VARIABLES: tuple[tuple[str, str, Any, str, str], ...] = (
@@ -45,7 +43,46 @@ SLEEPER_VARIABLES: tuple[tuple[str, str, Any, str, str], ...] = (
 )
 
 
-def create_sleeper_store(path: StorePath, spec: SleeperSweepSpec) -> None:
+class _Base(Protocol):
+    """The base point's checked input: its SI values."""
+
+    @property
+    def physical(self) -> dict[str, float]: ...
+
+
+class SleeperLayout(Protocol):
+    """What the store needs of a sleeper sweep (:class:`~moving_bogie.sweep.sleepers.SleeperSweepSpec`)."""
+
+    @property
+    def axes(self) -> tuple[Axis, ...]: ...
+
+    @property
+    def design(self) -> str: ...
+
+    @property
+    def base(self) -> _Base: ...
+
+    @property
+    def model(self) -> str: ...
+
+    @property
+    def units(self) -> dict[str, str]: ...
+
+    @property
+    def dims(self) -> tuple[str, ...]: ...
+
+    @property
+    def shape(self) -> tuple[int, ...]: ...
+
+    @property
+    def chunks(self) -> tuple[int, ...]: ...
+
+    def describe(self) -> dict[str, Any]: ...
+
+    def operating_point(self) -> dict[str, float]: ...
+
+
+def create_sleeper_store(path: StorePath, spec: SleeperLayout) -> None:
     """Write the metadata and coordinates of an empty store at ``path`` (replacing what is there)."""
     import zarr
 

@@ -27,7 +27,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import mpmath
 from flint import acb, arb, ctx
@@ -40,10 +40,8 @@ from moving_bogie.roots.proof.proof_tiling import Staircase, proof_tiling
 from moving_bogie.roots.proof.strip_proof import StripProof, strip_from_below
 from moving_bogie.roots.proof.winding import NotProven, ProvenCount, proven_count
 from moving_bogie.roots.refine.polish import fixed_text
+from moving_bogie.roots.search_record import LocatedRoot, SearchRecord
 from moving_bogie.typing import Acb, Arb, Mpc, Mpf
-
-if TYPE_CHECKING:
-    from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
 
 #: Tilings tried in turn when a tile edge passes too close to a root (margin factor, gap fraction).
 TILINGS = ((1.0, 0.1), (1.7, 0.113), (0.6, 0.087))
@@ -120,7 +118,7 @@ class Certificate:
     def proven_roots(self) -> int:
         return sum(e.certified for e in self.roots)
 
-    def to_dict_for(self, result: FrequencyResult) -> dict[str, Any]:
+    def to_dict_for(self, result: SearchRecord) -> dict[str, Any]:
         """Fields added to ``result.to_dict()``: per-root ``radius`` and ``certified``, and ``certified``."""
         roots = [
             r.to_dict() | {"radius": e.radius, "certified": e.certified}
@@ -215,7 +213,7 @@ def refine(bc: BallCharacteristic, q: Mpc, steps: int = 3) -> Mpc:
 
 
 def certify(
-    result: FrequencyResult,
+    result: SearchRecord,
     *,
     radius: float = 1e-26,
     margin: float = 1e-3,
@@ -269,7 +267,7 @@ def certify(
 
 
 def pinches_around_roots(
-    margin: float, cut: CutLocus, roots: Sequence[InducedFrequency], floor: float = 1e-6
+    margin: float, cut: CutLocus, roots: Sequence[LocatedRoot], floor: float = 1e-6
 ) -> list[tuple[float, float, float]]:
     """Where the strip along the cut must be thinner than ``margin`` so that it leaves out no root found
     numerically: for a root closer to the cut than 2 ``margin`` (beyond the branch point), the stretch of
