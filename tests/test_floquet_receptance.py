@@ -51,6 +51,12 @@ def test_a_kept_receptance_is_the_computed_one_and_a_copy():
     assert np.array_equal(other.matrix, module._receptance(damped, q, h, s, 1e-10, None, 40).matrix)
 
 
+#: S(p, w) of :func:`_brute_force` by (lam, p, w, precision): its tests integrate entries at one q on the
+#: same panels, so mpmath.quad asks for the lattice sum (two thirds of the integrand's cost) at the same
+#: nodes again; each is summed once.
+_LATTICE_SUMS: dict = {}
+
+
 def _brute_force(tr, q, n, m, s_out, s_in, smeared_part=False):
     """(1/2 pi) int [delta G_n e^.. - z G_n G_m e^.. / D] dp by mpmath.quad (D from the direct lattice sum
     would take minutes; the closed-form sum is checked above). With ``smeared_part`` the smeared rail's
@@ -62,8 +68,11 @@ def _brute_force(tr, q, n, m, s_out, s_in, smeared_part=False):
         return 4 / (p**4 - 4 * w**2)
 
     def S(p, w):
-        rs = [mpmath.sqrt(2 * w) * u for u in (1, -1)] + [mpmath.sqrt(-2 * w) * u for u in (1, -1)]
-        return sum(lam / 2 * mpmath.cot(lam * (p - r) / 2) / r**3 for r in rs)
+        key = (lam, p, w, mpmath.mp.prec)
+        if key not in _LATTICE_SUMS:
+            rs = [mpmath.sqrt(2 * w) * u for u in (1, -1)] + [mpmath.sqrt(-2 * w) * u for u in (1, -1)]
+            _LATTICE_SUMS[key] = sum(lam / 2 * mpmath.cot(lam * (p - r) / 2) / r**3 for r in rs)
+        return _LATTICE_SUMS[key]
 
     def f(p):
         w = q + a * p
