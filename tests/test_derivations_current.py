@@ -15,7 +15,9 @@ The full regeneration is the longest of the three, and a function of its inputs 
 (``.pytest_cache``, ``--cache-clear`` empties it) under a sha256 of those inputs, so a later run with the
 same inputs compares the committed files with them without deriving again. A hand edit of a committed file
 is still a difference from the kept regeneration; an edit of a derivation source, or another SymPy, is
-another key, hence a new regeneration. The partial run and the ``--check`` run always run.
+another key, hence a new regeneration. The partial run is kept the same way, under that key and the names
+it derives. The ``--check`` run always runs: the determinism test compares its derivation, under another
+hash seed, with the kept one.
 """
 
 from __future__ import annotations
@@ -102,22 +104,32 @@ def _inputs_key() -> str:
 
 #: The file that marks a kept regeneration as complete (written last, inside its folder).
 COMPLETE = "complete"
+#: The folders of pytest's cache that keep the full and the partial (:data:`ONLY`) regeneration.
+KEPT = ("derivations-regeneration", "derivations-only")
 
 
-def _kept_regeneration(cache, key: str) -> Path | None:
-    """The folder of a complete full regeneration kept under ``key`` in pytest's cache, or None (also
-    when the cache is off: ``-p no:cacheprovider``)."""
+def _kept_keys() -> tuple[str, str]:
+    """The keys of the full regeneration (:func:`_inputs_key`) and of the partial one (that key and the
+    names it derives)."""
+    key = _inputs_key()
+    return key, hashlib.sha256(f"{key} --only {' '.join(ONLY)}".encode()).hexdigest()
+
+
+def _kept_regeneration(cache, key: str, name: str) -> Path | None:
+    """The folder of a complete regeneration kept under ``key`` in the cache folder ``name`` of pytest's
+    cache, or None (also when the cache is off: ``-p no:cacheprovider``)."""
     if cache is None:
         return None
-    folder = cache.mkdir("derivations-regeneration") / key
+    folder = cache.mkdir(name) / key
     return folder if (folder / COMPLETE).is_file() else None
 
 
-def _keep_regeneration(cache, key: str, root: Path) -> None:
-    """Keep the full regeneration written into ``root`` under ``key``; the ones of other inputs go."""
+def _keep_regeneration(cache, key: str, root: Path, name: str) -> None:
+    """Keep the regeneration written into ``root`` under ``key`` in the cache folder ``name``; the ones of
+    other inputs go."""
     if cache is None:
         return
-    base = cache.mkdir("derivations-regeneration")
+    base = cache.mkdir(name)
     for old in base.iterdir():
         shutil.rmtree(old, ignore_errors=True)
     partial = base / f"{key}.{os.getpid()}"
@@ -134,9 +146,9 @@ def regenerations(request, tmp_path_factory) -> tuple[dict[str, bytes], dict[str
     """Three derivations in parallel: (first, only, check).
 
     The first regeneration (into an empty folder, or the one kept in pytest's cache for the same inputs,
-    :func:`_inputs_key`); a partial one deriving only :data:`ONLY` (``--only``,
-    what the scratch tests of a new beam, track or vehicle use); and ``--check --only`` on a copy of the
-    committed files with the two :data:`TAMPERED` edits (both in modules that :data:`ONLY` derives), under
+    :func:`_inputs_key`); a partial one deriving only :data:`ONLY` (``--only``, what the scratch tests of
+    a new beam, track or vehicle use; kept likewise, :func:`_kept_keys`); and ``--check --only`` on a copy of
+    the committed files with the two :data:`TAMPERED` edits (both in modules that :data:`ONLY` derives), under
     another PYTHONHASHSEED (the command must pin the seed itself: SymPy's CSE and ordering can depend on
     string hashing). The check's diff shows what it derived, so it serves both the tampered-file test and
     the determinism test. ``check`` holds the completed process and the tampered texts (path -> text).
@@ -155,22 +167,24 @@ def regenerations(request, tmp_path_factory) -> tuple[dict[str, bytes], dict[str
         assert tampered[rel] != original, f"{rel}: the text to tamper with is gone: pick another one"
         (copy / rel).write_text(tampered[rel])
     env_other_seed = dict(os.environ, PYTHONHASHSEED=OTHER_SEED)
-    key, cache = _inputs_key(), getattr(request.config, "cache", None)
-    kept = _kept_regeneration(cache, key)
+    keys, cache = _kept_keys(), getattr(request.config, "cache", None)
+    kept = [_kept_regeneration(cache, key, name) for key, name in zip(keys, KEPT)]
     procs = [
-        None if kept else _derivations("--root", str(roots[0])),
-        _derivations("--root", str(roots[1]), *only),
+        None if kept[0] else _derivations("--root", str(roots[0])),
+        None if kept[1] else _derivations("--root", str(roots[1]), *only),
         _derivations("--check", "--root", str(copy), *only, env=env_other_seed),
     ]
     results = [proc and _finish(proc) for proc in procs]
     for result in results[:2]:
         assert result is None or result.returncode == 0, result.stdout + result.stderr
-    if kept is None:
-        _keep_regeneration(cache, key, roots[0])
-    else:
-        roots[0] = kept
+    for i, (key, name) in enumerate(zip(keys, KEPT)):
+        if kept[i] is None:
+            _keep_regeneration(cache, key, roots[i], name)
+        else:
+            roots[i] = kept[i]
     first, partial = (_written_files(r) for r in roots)
     first.pop(COMPLETE, None)
+    partial.pop(COMPLETE, None)
     written = {rel: (copy / rel).read_text() for rel in TAMPERED}
     return first, partial, {"result": results[2], "tampered": tampered, "after": written}
 

@@ -32,6 +32,31 @@ def test_lattice_sum_matches_direct_sum():
     assert np.allclose(tr.lattice_sum(p, w), direct, rtol=1e-10, atol=0)
 
 
+def test_a_kept_receptance_is_the_computed_one_and_a_copy():
+    """receptance keeps what it computed by its arguments: asked again it hands out the same numbers (those
+    of the computation itself, floquet.receptance._receptance) as a new array; another track's groups or
+    another q are other arguments."""
+    from moving_bogie.floquet import receptance as module
+
+    tr, q, h, s = _track(), 0.8 - 0.3j, np.array([-1, 0]), np.array([0.3, 1.7])
+    first = receptance(tr, q, h, s, tol=1e-10)
+    first.matrix[0, 0] = 0  # a caller's change stays its own
+    again = receptance(tr, q, h, s, tol=1e-10)
+    direct = module._receptance(tr, q, h, s, 1e-10, None, 40)
+    assert np.array_equal(again.matrix, direct.matrix) and again.matrix[0, 0] != 0
+    assert (again.error, again.scale, again.panels) == (direct.error, direct.scale, direct.panels)
+    damped = _track(eta_sup=0.2)
+    other = receptance(damped, q, h, s, tol=1e-10)
+    assert not np.array_equal(other.matrix, again.matrix)
+    assert np.array_equal(other.matrix, module._receptance(damped, q, h, s, 1e-10, None, 40).matrix)
+
+
+#: S(p, w) of :func:`_brute_force` by (lam, p, w, precision): its tests integrate entries at one q on the
+#: same panels, so mpmath.quad asks for the lattice sum (two thirds of the integrand's cost) at the same
+#: nodes again; each is summed once.
+_LATTICE_SUMS: dict = {}
+
+
 def _brute_force(tr, q, n, m, s_out, s_in, smeared_part=False):
     """(1/2 pi) int [delta G_n e^.. - z G_n G_m e^.. / D] dp by mpmath.quad (D from the direct lattice sum
     would take minutes; the closed-form sum is checked above). With ``smeared_part`` the smeared rail's
@@ -43,8 +68,11 @@ def _brute_force(tr, q, n, m, s_out, s_in, smeared_part=False):
         return 4 / (p**4 - 4 * w**2)
 
     def S(p, w):
-        rs = [mpmath.sqrt(2 * w) * u for u in (1, -1)] + [mpmath.sqrt(-2 * w) * u for u in (1, -1)]
-        return sum(lam / 2 * mpmath.cot(lam * (p - r) / 2) / r**3 for r in rs)
+        key = (lam, p, w, mpmath.mp.prec)
+        if key not in _LATTICE_SUMS:
+            rs = [mpmath.sqrt(2 * w) * u for u in (1, -1)] + [mpmath.sqrt(-2 * w) * u for u in (1, -1)]
+            _LATTICE_SUMS[key] = sum(lam / 2 * mpmath.cot(lam * (p - r) / 2) / r**3 for r in rs)
+        return _LATTICE_SUMS[key]
 
     def f(p):
         w = q + a * p

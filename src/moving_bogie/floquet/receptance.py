@@ -296,9 +296,40 @@ def receptance(
         Relative tolerance (to the largest free-rail receptance) of every entry.
     tail : float, optional
         Half-width beyond the outermost harmonic's zone where the integration starts (default 2 K + 10).
+
+    The last :data:`_KEPT` receptances are kept by their arguments (the track's groups included): the Hill
+    matrices of several vehicles on one track (the counts on either side of a zone edge, a column of
+    eta_M) need it at the same q again. A kept one is handed out as a copy.
     """
     harmonics = np.asarray(harmonics, dtype=int)
     positions = np.asarray(positions, dtype=float)
+    q = complex(q)
+    at = np.complex128(q).tobytes()  # -0.0 apart from 0.0
+    model = (track.beam, track.track, tuple(sorted(track.groups.items())))
+    key = (model, at, harmonics.tobytes(), positions.tobytes(), tol, tail, max_rounds)
+    kept = _kept.get(key)
+    if kept is None:
+        kept = _kept[key] = _receptance(track, q, harmonics, positions, tol, tail, max_rounds)
+        if len(_kept) > _KEPT:
+            del _kept[next(iter(_kept))]  # the oldest
+    return Receptance(kept.matrix.copy(), kept.error, kept.scale, kept.panels)
+
+
+#: How many receptances :func:`receptance` keeps, and those it keeps (by their arguments).
+_KEPT = 1024
+_kept: dict[tuple, Receptance] = {}
+
+
+def _receptance(
+    track: SleeperTrack,
+    q: complex,
+    harmonics: np.ndarray,
+    positions: np.ndarray,
+    tol: float,
+    tail: float | None,
+    max_rounds: int,
+) -> Receptance:
+    """:func:`receptance` computed (Eqs. (S9), (S11))."""
     C, H = positions.size, harmonics.size
     K = track.K
     offsets = positions[None, :] - positions[:, None]  # [c', c] -> s_c - s_c'
