@@ -13,15 +13,16 @@ lines cross or the curve has a double point).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from typing import TypeAlias
 
 import numpy as np
 
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.stability.lines.walkers import trace_walkers_many
 from moving_bogie.typing import ComplexArray, FloatArray
 
-__all__ = ["END_REASONS", "PathTracer", "covered", "evaluate", "gauss_newton"]
+__all__ = ["END_REASONS", "PathTracer", "covered", "evaluate", "gauss_newton", "trace_all_many"]
 
 #: A traced curve: its wheel spacing d, its points (k, 3) in (alpha, q, t) and why each end is there.
 TracedPath: TypeAlias = tuple[float, FloatArray, tuple[str, str]]
@@ -116,6 +117,9 @@ class PathTracer:
     """Pseudo-arclength continuation of many curves at once (vectorised over the curves).
 
     Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
+    Every walker (a seed, one direction) advances on its own schedule
+    (:func:`~moving_bogie.stability.lines.walkers.trace_walkers_many`); ``lockstep=True`` advances them
+    all one step at a time instead (:meth:`trace_lockstep`, the reference the tests compare with).
     """
 
     def __init__(
@@ -129,11 +133,16 @@ class PathTracer:
         h_min: float = 1e-6,
         max_steps: int = 4000,
         progress: Callable[[float], None] | None = None,
+        lockstep: bool = False,
     ) -> None:
         self.sweep, self.scale, self.box = sweep, scale, box
+        self.lockstep = lockstep
         self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
         self.progress = progress
         self.warnings: list[str] = []
+        self.paths: list[TracedPath] = []  # the curves traced (trace_all)
+        self.pending: list[tuple[float, FloatArray]] = []  # (d, seeds) not yet on a traced curve
+        self.total = 1  # seeds at the start
 
     def trace_all(self, groups: Iterable[tuple[float, FloatArray]]) -> list[TracedPath]:
         """Trace curves until every seed lies on one; returns a list of (d, path (k, 3), (start, end)).
@@ -141,33 +150,36 @@ class PathTracer:
         ``start`` and ``end`` say why the path ends there: a face of the box (:data:`END_REASONS`),
         "closed" (a loop), "stalled" (singular point) or "max_steps".
         """
-        paths: list[TracedPath] = []
-        pending = list(groups)
-        total = max(1, sum(len(g) for _, g in pending))
-        while pending:
-            starts = np.array([g[len(g) // 2] for _, g in pending])
-            ds = np.array([d for d, _ in pending])
-            new = self._trace(starts, ds)
-            for d, path, ends in sorted(new, key=lambda item: -len(item[1])):
-                if not any(
-                    od == d and covered(path, other, 0.3 * self.h_max).mean() > 0.9 for od, other, _ in paths
-                ):
-                    paths.append((d, path, ends))
-            remaining = []
-            for d, g in pending:
-                hit = [covered(g, p, 0.3 * self.h_max) for od, p, _ in paths if od == d]
-                left = g[~np.any(hit, axis=0)] if hit else g
-                if len(left):
-                    remaining.append((d, left))
-            if sum(len(g) for _, g in remaining) >= sum(len(g) for _, g in pending):
-                self.warnings.append(f"{sum(len(g) for _, g in remaining)} seed point(s) could not be traced")
-                break
-            pending = remaining
-            if self.progress is not None:
-                self.progress(1 - sum(len(g) for _, g in pending) / total)
-        return paths
+        return trace_all_many([(self, groups)])[0]
 
-    def _trace(self, starts: FloatArray, ds: FloatArray) -> list[TracedPath]:
+    def start_round(self) -> tuple[FloatArray, FloatArray]:
+        """The seeds of the next round: the middle seed of every group not yet on a traced curve."""
+        starts = np.array([g[len(g) // 2] for _, g in self.pending])
+        return starts, np.array([d for d, _ in self.pending])
+
+    def end_round(self, new: list[TracedPath]) -> None:
+        """Keep the new curves not already traced; use up the seeds lying on a traced curve."""
+        paths, pending = self.paths, self.pending
+        for d, path, ends in sorted(new, key=lambda item: -len(item[1])):
+            if not any(
+                od == d and covered(path, other, 0.3 * self.h_max).mean() > 0.9 for od, other, _ in paths
+            ):
+                paths.append((d, path, ends))
+        remaining = []
+        for d, g in pending:
+            hit = [covered(g, p, 0.3 * self.h_max) for od, p, _ in paths if od == d]
+            left = g[~np.any(hit, axis=0)] if hit else g
+            if len(left):
+                remaining.append((d, left))
+        self.pending = remaining
+        if sum(len(g) for _, g in remaining) >= sum(len(g) for _, g in pending):
+            self.warnings.append(f"{sum(len(g) for _, g in remaining)} seed point(s) could not be traced")
+            self.pending = []
+        elif self.progress is not None:
+            self.progress(1 - sum(len(g) for _, g in remaining) / self.total)
+
+    def trace_lockstep(self, starts: FloatArray, ds: FloatArray) -> list[TracedPath]:
+        """The curves through ``starts`` (spacings ``ds``), every walker one step at a time."""
         m = len(starts)
         _, J, *_ = evaluate(self.sweep, starts, ds, self.scale)
         T0 = tangent(J)
@@ -265,6 +277,26 @@ class PathTracer:
         if conv[0] and np.linalg.norm(end[0] - guess[0]) < 2 * np.linalg.norm(y - x) + 1e-9:
             return end[0]
         return None
+
+
+def trace_all_many(
+    jobs: Sequence[tuple[PathTracer, Iterable[tuple[float, FloatArray]]]],
+) -> list[list[TracedPath]]:
+    """:meth:`PathTracer.trace_all` of several tracers (the panels of a figure), their rounds together:
+    the walkers of every tracer's current round advance in shared calls
+    (:func:`~moving_bogie.stability.lines.walkers.trace_walkers_many`); each tracer's rounds, curves and
+    warnings are those it has alone."""
+    tracers = [tracer for tracer, _ in jobs]
+    for tracer, groups in jobs:
+        tracer.paths, tracer.pending = [], list(groups)
+        tracer.total = max(1, sum(len(g) for _, g in tracer.pending))
+    while todo := [tracer for tracer in tracers if tracer.pending]:
+        rounds = [(tracer, *tracer.start_round()) for tracer in todo]
+        free = [r for r in rounds if not r[0].lockstep]
+        walked = iter(trace_walkers_many(free) if free else [])
+        for tracer, starts, ds in rounds:
+            tracer.end_round(tracer.trace_lockstep(starts, ds) if tracer.lockstep else next(walked))
+    return [tracer.paths for tracer in tracers]
 
 
 def covered(points: FloatArray, path: FloatArray, radius: float) -> np.ndarray:
