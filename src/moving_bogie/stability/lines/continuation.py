@@ -39,7 +39,7 @@ END_REASONS = {
 
 
 def evaluate(
-    sweep: SweepCharacteristic, x: FloatArray, d: FloatArray, scale: float
+    sweep: SweepCharacteristic, x: FloatArray, d: FloatArray, scale: float | FloatArray
 ) -> tuple[FloatArray, FloatArray, ComplexArray, ComplexArray, ComplexArray]:
     """F = (Re E, Im E) and the 2x3 real Jacobian in (alpha, q, t = theta/scale) at points x (n, 3),
     with E, dE/dq and dE/dtheta there."""
@@ -53,7 +53,12 @@ def evaluate(
 
 
 def gauss_newton(
-    sweep: SweepCharacteristic, x: FloatArray, d: FloatArray, scale: float, tol: float, max_iter: int = 12
+    sweep: SweepCharacteristic,
+    x: FloatArray,
+    d: FloatArray,
+    scale: float | FloatArray,
+    tol: float | FloatArray,
+    max_iter: int = 12,
 ) -> tuple[FloatArray, np.ndarray]:
     """Minimum-norm Gauss-Newton onto the curve Re E = Im E = 0; returns (x, converged)."""
     x = np.array(x, dtype=float)
@@ -80,8 +85,8 @@ def newton_fixed(
     d: FloatArray,
     k: int,
     value: float,
-    scale: float,
-    tol: float,
+    scale: float | FloatArray,
+    tol: float | FloatArray,
     max_iter: int = 12,
 ) -> tuple[FloatArray, np.ndarray]:
     """Newton in the two coordinates other than ``k`` with x[k] = value (end points on the box)."""
