@@ -122,9 +122,9 @@ class PathTracer:
     """Pseudo-arclength continuation of many curves at once (vectorised over the curves).
 
     Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
-    Every walker (a seed, one direction) advances on its own schedule
-    (:func:`~moving_bogie.stability.lines.walkers.trace_walkers_many`); ``lockstep=True`` advances them
-    all one step at a time instead (:meth:`trace_lockstep`, the reference the tests compare with).
+    Tracers traced together (:func:`trace_all_many`, the panels of a figure) share their calls
+    (:func:`~moving_bogie.stability.lines.walkers.trace_walkers_many`); ``lockstep=True`` makes a tracer
+    trace its rounds by itself (:meth:`trace_lockstep`, the reference the tests compare with).
     """
 
     def __init__(
@@ -184,7 +184,8 @@ class PathTracer:
             self.progress(1 - sum(len(g) for _, g in remaining) / self.total)
 
     def trace_lockstep(self, starts: FloatArray, ds: FloatArray) -> list[TracedPath]:
-        """The curves through ``starts`` (spacings ``ds``), every walker one step at a time."""
+        """The curves through ``starts`` (spacings ``ds``), every walker one step at a time, by this
+        tracer alone."""
         m = len(starts)
         _, J, *_ = evaluate(self.sweep, starts, ds, self.scale)
         T0 = tangent(J)

@@ -1,24 +1,17 @@
-"""Pseudo-arclength continuation with every walker on its own schedule (Section 3.5, instability lines).
+"""Pseudo-arclength continuation of several tracers at once (Section 3.5, the panels of a figure).
 
-Each seed starts two *walkers*, one along each direction of the curve's tangent. A walker repeats the
-step of :class:`~moving_bogie.stability.lines.continuation.PathTracer`: Euler predictor ``y = x + h t``,
-Newton corrector on the bordered 3x3 system ``(Re E, Im E, t . (y - x) - h) = 0`` (at most 6 iterations,
-to ``tol``), acceptance test, step control, box faces and closed loops. What differs from advancing all
-walkers in lockstep (one step of all of them, the corrector iterating until the slowest one converges) is
-only the schedule: one call of :meth:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic.
-derivatives` serves every walker at whatever stage it is (first corrector iteration of a new step, or
-the fifth of a hard one), so the calls number the corrector iterations of the longest walker instead of
-the sum over the steps of the slowest iteration count. The end points on the box faces of the walkers
-leaving the box in the same call are placed together.
-
-Several tracers (the panels of a figure) advance together: their walkers share the calls, one per group
-of tracers whose sweeps stack (:class:`~moving_bogie.kernels.stacked_sweep.StackedSweep`).
-
-A walker's sequence of points is that of the lockstep tracer (each point's arithmetic is its own); the
-tangent of an accepted step is taken from the Jacobian of the walker's last corrector iteration. When a
-walker closes a loop at its step ``s``, its partner (the other direction of the same seed) stops after its
-own step ``s``: as in lockstep, of two walkers closing, the one closing at the earlier step wins (the
-forward one on a tie).
+Each tracer (:class:`~moving_bogie.stability.lines.continuation.PathTracer`, one panel) advances its
+curves in lockstep, exactly as it does alone: every step, the Euler predictor ``y = x + h t`` of all its
+walkers (a seed, one direction of the curve's tangent), then the Newton corrector on the bordered 3x3
+system ``(Re E, Im E, t . (y - x) - h) = 0`` iterating until all of them have converged or failed (at most
+6 iterations), then acceptance, step control, box faces and closed loops walker by walker. What the
+tracers share is the calls: one call of
+:meth:`~moving_bogie.kernels.sweep_characteristic.SweepCharacteristic.derivatives` per corrector iteration
+serves the current iterate of every tracer whose sweep stacks with the others
+(:class:`~moving_bogie.kernels.stacked_sweep.StackedSweep`), and the end points on the box faces of all
+walkers leaving the box in that iteration are placed together. Every point's arithmetic is its own, so each
+tracer's curves are those it traces alone; the calls number the corrector iterations of the slowest tracer
+instead of their sum over the tracers.
 """
 
 from __future__ import annotations
@@ -42,47 +35,8 @@ CORRECTOR_ITERATIONS = 6
 #: A tracing job: the tracer, the seeds (m, 3) and their spacings (m,).
 Job = tuple["PathTracer", FloatArray, FloatArray]
 
-
-class _Walkers:
-    """The walkers of every job: job k's seed c starts walker o_k + c forward and o_k + m_k + c backward."""
-
-    def __init__(self, jobs: list[Job], T0: FloatArray) -> None:
-        sizes = [len(starts) for _, starts, _ in jobs]
-        self.offsets = np.concatenate([[0], np.cumsum([2 * m for m in sizes])]).astype(int)
-        self.tracers = [tracer for tracer, _, _ in jobs]
-        starts = [np.concatenate([s, s]) for _, s, _ in jobs]
-        self.X = np.concatenate(starts)  # the last accepted point
-        self.D = np.concatenate([np.concatenate([d, d]) for _, _, d in jobs])
-        T = np.split(T0, np.cumsum(sizes)[:-1])
-        self.T = np.concatenate([np.concatenate([t, -t]) for t in T])
-        self.job = np.repeat(np.arange(len(jobs)), [2 * m for m in sizes])
-        self.pair = np.concatenate(
-            [o + (np.arange(2 * m) + m) % (2 * m) for o, m in zip(self.offsets, sizes)]
-        )
-        self.scale = np.array([self.tracers[j].scale for j in self.job], dtype=float)
-        self.H = np.array([0.25 * self.tracers[j].h_max for j in self.job], dtype=float)
-        self.Y = self.X + self.H[:, None] * self.T  # the corrector's iterate of the current step
-        n = len(self.X)
-        self.iters = np.zeros(n, dtype=int)  # corrector iterations done in the current step
-        self.steps = np.zeros(n, dtype=int)  # steps attempted (accepted or not)
-        self.active = np.all(np.isfinite(self.T), axis=-1)
-        self.reason = ["max_steps" if ok else "stalled" for ok in self.active]
-        self.walked = np.zeros(n)
-        self.closed_at = np.full(n, _NEVER)  # the step at which the walker closed its loop
-        self.ended_at = np.full(n, _NEVER)  # the step at which it left the box or stalled
-        self.pts: list[list[FloatArray]] = [[x.copy()] for x in self.X]
-
-    def end(self, i: int, reason: str) -> None:
-        """Walker ``i`` stops by itself at its current step (box face, stalled or closed loop)."""
-        self.active[i] = False
-        self.reason[i] = reason
-        if reason == "closed":
-            self.closed_at[i] = self.steps[i]
-        else:
-            self.ended_at[i] = self.steps[i]
-
-
-_NEVER = np.iinfo(np.int64).max
+#: An end point to place: (the lockstep, walker, last point x, first point outside y, box coordinate, face).
+EndRequest = tuple["_Lockstep", int, FloatArray, FloatArray, int, float]
 
 
 class _Calls:
@@ -116,140 +70,175 @@ class _Calls:
 
 
 def trace_walkers_many(jobs: list[Job]) -> list[list[TracedPath]]:
-    """Trace the curves through the seeds of every job (tracer, seeds, spacings) both ways: per job, a
-    list of (d, path, (start, end))."""
+    """Trace the curves through the seeds of every job (tracer, seeds, spacings) both ways, each tracer in
+    lockstep: per job, a list of (d, path, (start, end))."""
     from moving_bogie.stability.lines.continuation import evaluate, tangent
 
     calls = _Calls([tracer for tracer, _, _ in jobs])
-    job0 = np.repeat(np.arange(len(jobs)), [len(s) for _, s, _ in jobs])
-    starts = np.concatenate([s for _, s, _ in jobs])
-    ds = np.concatenate([d for _, _, d in jobs])
-    scale0 = np.array([jobs[k][0].scale for k in job0], dtype=float)
-    T0 = np.empty_like(starts)
-    for sweep, where in calls.split(job0):
-        _, J, *_ = evaluate(sweep, starts[where], ds[where], scale0[where])
-        T0[where] = tangent(J)
-    w = _Walkers(jobs, T0)
-    tol = np.array([w.tracers[j].tol for j in w.job])
-    while np.any(w.active):
-        active = np.nonzero(w.active)[0]
-        for sweep, where in calls.split(w.job[active]):
-            _advance(w, calls, sweep, active[where], tol)
-    paths = []
-    for k, (tracer, _, d) in enumerate(jobs):
-        mine = slice(w.offsets[k], w.offsets[k + 1])
-        if np.any(w.steps[mine] >= tracer.max_steps):
-            tracer.warnings.append("continuation stopped at max_steps")
-        paths.append(_paths(w, w.offsets[k], d))
-    return paths
+    states: list[_Lockstep] = []
+    for k, (tracer, starts, ds) in enumerate(jobs):
+        state = _Lockstep(tracer, k, starts, ds)
+        state.start_step(tangent(_evaluated(calls, [state], evaluate, starts)[0][1]))
+        states.append(state)
+    while running := [s for s in states if not s.finished]:
+        ends: list[EndRequest] = []
+        for state, (F, J) in zip(running, _evaluated(calls, running, evaluate)):
+            if state.correct(F, J):
+                ends += state.finish_step()
+        _place_ends(calls, ends)
+        for state in running:
+            if state.done_step:
+                state.start_step()
+    return [state.paths() for state in states]
 
 
-def _advance(
-    w: _Walkers, calls: _Calls, sweep: SweepCharacteristic, idx: np.ndarray, tol: FloatArray
-) -> None:
-    """One corrector iteration of the walkers ``idx`` (one call); finish the steps that are done."""
-    from moving_bogie.stability.lines.continuation import evaluate
-
-    y, x, t, h = w.Y[idx], w.X[idx], w.T[idx], w.H[idx]
-    F, Jy, *_ = evaluate(sweep, y, w.D[idx], w.scale[idx])
-    A = np.concatenate([Jy, t[:, None, :]], axis=1)
-    rhs = np.concatenate([F, (np.sum((y - x) * t, axis=-1) - h)[:, None]], axis=-1)
-    with np.errstate(all="ignore"):
-        dy = -np.linalg.solve(A, rhs[..., None])[..., 0]
-    size = np.max(np.abs(dy), axis=-1)
-    ok = np.isfinite(size)
-    w.Y[idx] = np.where(ok[:, None], y + np.where(ok[:, None], dy, 0), y)
-    w.iters[idx] += 1
-    conv = ok & (size < tol[idx])
-    done = conv | ~ok | (w.iters[idx] >= CORRECTOR_ITERATIONS)
-    if np.any(done):
-        _finish_steps(w, calls, idx[done], conv[done], Jy[done])
+def _evaluated(
+    calls: _Calls, states: list[_Lockstep], evaluate: object, points: FloatArray | None = None
+) -> list[tuple[FloatArray, FloatArray]]:
+    """(F, J) at the current iterate of every state (or at ``points`` of the only state), shared calls."""
+    ys = [s.y if points is None else points for s in states]
+    ds = [s.d if points is None else s.ds for s in states]
+    sizes = [len(y) for y in ys]
+    y, d = np.concatenate(ys), np.concatenate(ds)
+    job = np.repeat([s.job for s in states], sizes)
+    scale = np.repeat([s.tracer.scale for s in states], sizes).astype(float)
+    F, J = np.empty((len(y), 2)), np.empty((len(y), 2, 3))
+    for sweep, where in calls.split(job):
+        F[where], J[where], *_ = evaluate(sweep, y[where], d[where], scale[where])  # type: ignore[operator]
+    cuts = np.cumsum(sizes)[:-1]
+    return list(zip(np.split(F, cuts), np.split(J, cuts)))
 
 
-def _finish_steps(w: _Walkers, calls: _Calls, idx: np.ndarray, conv: np.ndarray, Jy: FloatArray) -> None:
-    """Accept or refuse the steps of the walkers ``idx`` whose corrector has finished; start the next."""
-    from moving_bogie.stability.lines.continuation import END_REASONS, tangent
-
-    x, y, t, h = w.X[idx], w.Y[idx], w.T[idx], w.H[idx]
-    tn = tangent(Jy, t)  # at the last corrector iterate: the final correction is below tol
-    good = (
-        conv
-        & np.all(np.isfinite(tn), axis=-1)
-        & (np.sum(tn * t, axis=-1) > np.cos(0.5))
-        & (np.linalg.norm(y - x, axis=-1) < 2 * h)
-    )
-    leaving: dict[tuple[int, float], list[int]] = {}  # walkers by box face, with their x and y
-    for j, i in enumerate(idx):
-        tracer = w.tracers[w.job[i]]
-        w.steps[i] += 1
-        if not good[j]:
-            w.H[i] *= 0.5
-            if w.H[i] < tracer.h_min:
-                w.end(i, "stalled")
-        elif (out := tracer._outside(y[j])) is not None:
-            leaving.setdefault(out, []).append(j)
-            w.end(i, END_REASONS[(out[0], int(out[1] == tracer.box[out[0], 1]))])
-        else:
-            w.walked[i] += np.linalg.norm(y[j] - x[j])
-            w.pts[i].append(y[j].copy())
-            w.X[i], w.T[i] = y[j], tn[j]
-            w.H[i] = min(w.H[i] * (1.5 if w.iters[i] <= 3 else 1.0), tracer.h_max)
-            if w.walked[i] > 4 * tracer.h_max and np.linalg.norm(y[j] - w.pts[i][0]) < 0.75 * w.H[i]:
-                w.pts[i].append(w.pts[i][0].copy())
-                w.end(i, "closed")
-        p = w.pair[i]
-        if w.active[p] and w.steps[p] >= w.closed_at[i]:  # a partner already past the closing step
-            w.active[p] = False
-        if w.active[i] and (w.steps[i] >= w.closed_at[p] or w.steps[i] >= tracer.max_steps):
-            w.active[i] = False
-        if w.active[i]:
-            w.iters[i] = 0
-            w.Y[i] = w.X[i] + w.H[i] * w.T[i]  # the predictor of the next step
-    for (k, value), js in leaving.items():
-        for sweep, where in calls.split(w.job[idx[js]]):
-            _place_ends(w, sweep, idx[js][where], k, value, x[js][where], y[js][where])
-
-
-def _place_ends(
-    w: _Walkers,
-    sweep: SweepCharacteristic,
-    idx: np.ndarray,
-    k: int,
-    value: float,
-    x: FloatArray,
-    y: FloatArray,
-) -> None:
-    """End points on the box face x[k] = value (as :meth:`PathTracer._end_point`), walkers ``idx`` at once."""
+def _place_ends(calls: _Calls, ends: list[EndRequest]) -> None:
+    """End points on the box faces (as :meth:`PathTracer._end_point`), all requests at once per box
+    coordinate and group of sweeps."""
     from moving_bogie.stability.lines.continuation import newton_fixed
 
-    tol = np.array([w.tracers[j].tol for j in w.job[idx]])
-    guess = x + ((value - x[:, k]) / (y[:, k] - x[:, k]))[:, None] * (y - x)
-    end, conv = newton_fixed(sweep, guess, w.D[idx], k, value, w.scale[idx], tol)
-    near = np.linalg.norm(end - guess, axis=-1) < 2 * np.linalg.norm(y - x, axis=-1) + 1e-9
-    for j, i in enumerate(idx):
-        if conv[j] and near[j]:
-            w.pts[i].append(end[j])
+    for k in sorted({e[4] for e in ends}):
+        mine = [e for e in ends if e[4] == k]
+        x, y = np.array([e[2] for e in mine]), np.array([e[3] for e in mine])
+        value = np.array([e[5] for e in mine])
+        d = np.array([e[0].D[e[1]] for e in mine])
+        scale = np.array([e[0].tracer.scale for e in mine], dtype=float)
+        tol = np.array([e[0].tracer.tol for e in mine], dtype=float)
+        guess = x + ((value - x[:, k]) / (y[:, k] - x[:, k]))[:, None] * (y - x)
+        for sweep, where in calls.split(np.array([e[0].job for e in mine])):
+            w = where
+            end, conv = newton_fixed(sweep, guess[w], d[w], k, value[w], scale[w], tol[w])
+            near = np.linalg.norm(end - guess[w], axis=-1) < 2 * np.linalg.norm(y[w] - x[w], axis=-1) + 1e-9
+            for j, n in enumerate(w):
+                if conv[j] and near[j]:
+                    state, i = mine[n][0], mine[n][1]
+                    state.pts[i].append(end[j])
 
 
-def _paths(w: _Walkers, offset: int, ds: FloatArray) -> list[TracedPath]:
-    """One path per seed of the job starting at walker ``offset``, with why each end is where it is.
+class _Lockstep:
+    """One tracer's walkers advancing one step at a time: seed c starts walkers c (forward) and c + m."""
 
-    A closed loop is the path of the walker that closed it first (the forward one on a tie); the other
-    walker's end is "closed" too, unless it left the box or stalled at that very step and is the
-    backward one (lockstep processes the forward walker's closing first, then the backward one's step).
-    """
-    paths: list[TracedPath] = []
-    m = len(ds)
-    for c in range(offset, offset + m):
-        b = c + m
-        if min(w.closed_at[c], w.closed_at[b]) < _NEVER:
-            winner, loser = (c, b) if w.closed_at[c] <= w.closed_at[b] else (b, c)
-            path = np.array(w.pts[winner])
-            w.reason[winner] = "closed"
-            if not (loser == b and w.ended_at[b] == w.closed_at[c]):
-                w.reason[loser] = "closed"
-        else:
-            path = np.array(w.pts[b][::-1] + w.pts[c][1:])
-        if len(path) >= 2:
-            paths.append((float(ds[c - offset]), path, (w.reason[b], w.reason[c])))
-    return paths
+    def __init__(self, tracer: PathTracer, job: int, starts: FloatArray, ds: FloatArray) -> None:
+        m = len(starts)
+        self.tracer, self.job, self.m, self.ds = tracer, job, m, ds
+        self.X = np.concatenate([starts, starts])
+        self.D = np.concatenate([ds, ds])
+        self.H = np.full(2 * m, 0.25 * tracer.h_max)
+        self.walked = np.zeros(2 * m)
+        self.loop = np.zeros(2 * m, dtype=bool)
+        self.pts: list[list[FloatArray]] = [[x.copy()] for x in self.X]
+        self.taken = 0  # steps started
+        self.finished = False
+        self.done_step = False
+
+    def start_step(self, T0: FloatArray | None = None) -> None:
+        """The predictor of the next step of the active walkers (the first step: their tangents ``T0``)."""
+        if T0 is not None:
+            self.T = np.concatenate([T0, -T0])
+            self.active = np.all(np.isfinite(self.T), axis=-1)
+            self.reason = ["max_steps" if ok else "stalled" for ok in self.active]
+        if self.taken == self.tracer.max_steps:
+            self.tracer.warnings.append("continuation stopped at max_steps")
+            self.finished = True
+        if self.finished or not np.any(self.active):
+            self.finished = True
+            return
+        self.taken += 1
+        self.idx = np.nonzero(self.active)[0]
+        self.x, self.t, self.h, self.d = (
+            self.X[self.idx],
+            self.T[self.idx],
+            self.H[self.idx],
+            self.D[self.idx],
+        )
+        self.y = self.x + self.h[:, None] * self.t
+        self.conv = np.zeros(len(self.idx), dtype=bool)
+        self.iters = np.zeros(len(self.idx), dtype=int)
+        self.k = 0
+        self.done_step = False
+
+    def correct(self, F: FloatArray, Jy: FloatArray) -> bool:
+        """One corrector iteration from (F, J) at the iterate; True when the step's corrector is done."""
+        x, y, t, h, conv = self.x, self.y, self.t, self.h, self.conv
+        A = np.concatenate([Jy, t[:, None, :]], axis=1)
+        rhs = np.concatenate([F, (np.sum((y - x) * t, axis=-1) - h)[:, None]], axis=-1)
+        with np.errstate(all="ignore"):
+            dy = -np.linalg.solve(A, rhs[..., None])[..., 0]
+        size = np.max(np.abs(dy), axis=-1)
+        ok = np.isfinite(size)
+        self.y = np.where((ok & ~conv)[:, None], y + np.where(ok[:, None], dy, 0), y)
+        self.iters += ~conv
+        conv |= ok & (size < self.tracer.tol)
+        self.k += 1
+        self.Jy = Jy
+        self.done_step = bool(np.all(conv | ~ok)) or self.k == CORRECTOR_ITERATIONS
+        return self.done_step
+
+    def finish_step(self) -> list[EndRequest]:
+        """Accept or refuse every walker's step (:meth:`PathTracer.trace_lockstep`); the end points to
+        place on the box faces."""
+        from moving_bogie.stability.lines.continuation import END_REASONS, tangent
+
+        tracer, m, x, y, t, h = self.tracer, self.m, self.x, self.y, self.t, self.h
+        tn = tangent(self.Jy, t)  # at the last corrector iterate: the final correction is below tol
+        good = (
+            self.conv
+            & np.all(np.isfinite(tn), axis=-1)
+            & (np.sum(tn * t, axis=-1) > np.cos(0.5))
+            & (np.linalg.norm(y - x, axis=-1) < 2 * h)
+        )
+        ends: list[EndRequest] = []
+        for j, i in enumerate(self.idx):
+            if not good[j]:
+                self.H[i] *= 0.5
+                if self.H[i] < tracer.h_min:
+                    self.active[i] = False
+                    self.reason[i] = "stalled"
+                continue
+            out = tracer._outside(y[j])
+            if out is not None:
+                ends.append((self, int(i), x[j], y[j], out[0], out[1]))
+                self.active[i] = False
+                self.reason[i] = END_REASONS[(out[0], int(out[1] == tracer.box[out[0], 1]))]
+                continue
+            self.walked[i] += np.linalg.norm(y[j] - x[j])
+            self.pts[i].append(y[j].copy())
+            self.X[i], self.T[i] = y[j], tn[j]
+            self.H[i] = min(self.H[i] * (1.5 if self.iters[j] <= 3 else 1.0), tracer.h_max)
+            if self.walked[i] > 4 * tracer.h_max and np.linalg.norm(y[j] - self.pts[i][0]) < 0.75 * self.H[i]:
+                self.pts[i].append(self.pts[i][0].copy())
+                partner = i + m if i < m else i - m
+                self.active[i] = self.active[partner] = False
+                self.loop[i] = True
+                self.reason[i] = self.reason[partner] = "closed"
+        return ends
+
+    def paths(self) -> list[TracedPath]:
+        """One path per seed (a closed loop: the walker's that closed it), with why each end is there."""
+        m, pts, reason = self.m, self.pts, self.reason
+        paths: list[TracedPath] = []
+        for c in range(m):
+            if self.loop[c] or self.loop[c + m]:
+                path = np.array(pts[c] if self.loop[c] else pts[c + m])
+            else:
+                path = np.array(pts[c + m][::-1] + pts[c][1:])
+            if len(path) >= 2:
+                paths.append((float(self.ds[c]), path, (reason[c + m], reason[c])))
+        return paths
