@@ -17,6 +17,7 @@ from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.lines.continuation import PathTracer
 from moving_bogie.stability.lines.instability_lines import instability_lines, instability_lines_many
 from moving_bogie.stability.lines.seeds import seed_groups
+from moving_bogie.stability.lines.walkers import trace_all_many
 
 GRID = dict(alpha_step=0.02, q_step=0.008, h_max=0.02, tol=1e-11)
 SPACINGS = (1.0, 1.5)
@@ -40,13 +41,12 @@ def test_shared_calls_trace_the_lockstep_paths(vehicle):
     """Same curves, same points, same reasons at the ends as the tracer's own loop."""
     sweep = SweepCharacteristic(bind(_params("0.1").replace(vehicle=vehicle)))
     groups, box = seed_groups(sweep, SPACINGS[1:], (0.0, 1.0), 200.0, 1.5, GRID, None)
-    traced = {}
-    for lockstep in (True, False):
-        tracer = PathTracer(sweep, 200.0, box, GRID["h_max"], GRID["tol"], lockstep=lockstep)
-        traced[lockstep] = (tracer.trace_all(groups), tracer.warnings)
-    assert traced[True][0], "no line traced"
-    _same_paths(traced[True][0], traced[False][0])
-    assert traced[True][1] == traced[False][1]
+    alone = PathTracer(sweep, 200.0, box, GRID["h_max"], GRID["tol"])
+    shared = PathTracer(sweep, 200.0, box, GRID["h_max"], GRID["tol"])
+    paths = alone.trace_all(groups)
+    assert paths, "no line traced"
+    _same_paths(paths, trace_all_many([(shared, groups)])[0])
+    assert alone.warnings == shared.warnings
 
 
 def test_panels_traced_together_are_the_panels_alone():

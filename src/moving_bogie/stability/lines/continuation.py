@@ -13,16 +13,15 @@ lines cross or the curve has a double point).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable
 from typing import TypeAlias
 
 import numpy as np
 
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
-from moving_bogie.stability.lines.walkers import trace_walkers_many
 from moving_bogie.typing import ComplexArray, FloatArray
 
-__all__ = ["END_REASONS", "PathTracer", "covered", "evaluate", "gauss_newton", "trace_all_many"]
+__all__ = ["END_REASONS", "PathTracer", "covered", "evaluate", "gauss_newton"]
 
 #: A traced curve: its wheel spacing d, its points (k, 3) in (alpha, q, t) and why each end is there.
 TracedPath: TypeAlias = tuple[float, FloatArray, tuple[str, str]]
@@ -122,9 +121,9 @@ class PathTracer:
     """Pseudo-arclength continuation of many curves at once (vectorised over the curves).
 
     Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
-    Tracers traced together (:func:`trace_all_many`, the panels of a figure) share their calls
-    (:func:`~moving_bogie.stability.lines.walkers.trace_walkers_many`); ``lockstep=True`` makes a tracer
-    trace its rounds by itself (:meth:`trace_lockstep`, the reference the tests compare with).
+    :meth:`trace_all` traces by itself (:meth:`trace_lockstep`); tracers traced together (the panels of a
+    figure, :func:`~moving_bogie.stability.lines.walkers.trace_all_many`) share their calls and trace the
+    same curves.
     """
 
     def __init__(
@@ -138,10 +137,8 @@ class PathTracer:
         h_min: float = 1e-6,
         max_steps: int = 4000,
         progress: Callable[[float], None] | None = None,
-        lockstep: bool = False,
     ) -> None:
         self.sweep, self.scale, self.box = sweep, scale, box
-        self.lockstep = lockstep
         self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
         self.progress = progress
         self.warnings: list[str] = []
@@ -155,7 +152,15 @@ class PathTracer:
         ``start`` and ``end`` say why the path ends there: a face of the box (:data:`END_REASONS`),
         "closed" (a loop), "stalled" (singular point) or "max_steps".
         """
-        return trace_all_many([(self, groups)])[0]
+        self.begin(groups)
+        while self.pending:
+            self.end_round(self.trace_lockstep(*self.start_round()))
+        return self.paths
+
+    def begin(self, groups: Iterable[tuple[float, FloatArray]]) -> None:
+        """Start tracing the seed ``groups`` (d, seeds): no curve yet, every seed pending."""
+        self.paths, self.pending = [], list(groups)
+        self.total = max(1, sum(len(g) for _, g in self.pending))
 
     def start_round(self) -> tuple[FloatArray, FloatArray]:
         """The seeds of the next round: the middle seed of every group not yet on a traced curve."""
@@ -233,7 +238,7 @@ class PathTracer:
                         active[i] = False
                         reason[i] = "stalled"
                     continue
-                out = self._outside(y[j])
+                out = self.outside(y[j])
                 if out is not None:
                     end = self._end_point(x[j], y[j], d[j], out)
                     if end is not None:
@@ -263,7 +268,7 @@ class PathTracer:
                 paths.append((float(ds[c]), path, (reason[c + m], reason[c])))
         return paths
 
-    def _outside(self, y: FloatArray) -> tuple[int, float] | None:
+    def outside(self, y: FloatArray) -> tuple[int, float] | None:
         """(coordinate, bound value) of the first box face crossed, or None."""
         for k in range(3):
             lo, hi = self.box[k]
@@ -283,26 +288,6 @@ class PathTracer:
         if conv[0] and np.linalg.norm(end[0] - guess[0]) < 2 * np.linalg.norm(y - x) + 1e-9:
             return end[0]
         return None
-
-
-def trace_all_many(
-    jobs: Sequence[tuple[PathTracer, Iterable[tuple[float, FloatArray]]]],
-) -> list[list[TracedPath]]:
-    """:meth:`PathTracer.trace_all` of several tracers (the panels of a figure), their rounds together:
-    the walkers of every tracer's current round advance in shared calls
-    (:func:`~moving_bogie.stability.lines.walkers.trace_walkers_many`); each tracer's rounds, curves and
-    warnings are those it has alone."""
-    tracers = [tracer for tracer, _ in jobs]
-    for tracer, groups in jobs:
-        tracer.paths, tracer.pending = [], list(groups)
-        tracer.total = max(1, sum(len(g) for _, g in tracer.pending))
-    while todo := [tracer for tracer in tracers if tracer.pending]:
-        rounds = [(tracer, *tracer.start_round()) for tracer in todo]
-        free = [r for r in rounds if not r[0].lockstep]
-        walked = iter(trace_walkers_many(free) if free else [])
-        for tracer, starts, ds in rounds:
-            tracer.end_round(tracer.trace_lockstep(starts, ds) if tracer.lockstep else next(walked))
-    return [tracer.paths for tracer in tracers]
 
 
 def covered(points: FloatArray, path: FloatArray, radius: float) -> np.ndarray:

@@ -52,11 +52,12 @@ import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
-from moving_bogie.stability.lines.continuation import PathTracer, evaluate, trace_all_many
+from moving_bogie.stability.lines.continuation import PathTracer, evaluate
 from moving_bogie.stability.lines.line_ends import find_folds, line_end
 from moving_bogie.stability.lines.line_results import InstabilityBranch, InstabilityLines
 from moving_bogie.stability.lines.seeds import report, seed_groups
 from moving_bogie.stability.lines.undamped_lines import undamped_lines
+from moving_bogie.stability.lines.walkers import trace_all_many
 from moving_bogie.stability.maps.undamped import regime
 from moving_bogie.typing import FloatArray
 
@@ -129,15 +130,16 @@ def instability_lines_many(requests: Sequence[tuple[BoundModel, dict[str, Any]]]
     ``(bound, keyword arguments of instability_lines)``.
 
     Each result is the one :func:`instability_lines` returns for its request alone; the continuations of
-    all requests advance together (:func:`~moving_bogie.stability.lines.continuation.trace_all_many`), the
+    all requests advance together (:func:`~moving_bogie.stability.lines.walkers.trace_all_many`), the
     points of requests of one track and vehicle model in shared calls.
     """
-    signature = inspect.signature(instability_lines)
+    parameters = inspect.signature(instability_lines).parameters
+    defaults = {name: p.default for name, p in parameters.items() if name != "bound"}
     panels = []
     for bound, options in requests:
-        arguments = signature.bind(bound, **options)
-        arguments.apply_defaults()
-        panels.append(_Panel(**arguments.arguments))
+        if unknown := sorted(set(options) - set(defaults)):
+            raise TypeError(f"instability_lines() got unexpected keyword arguments {unknown}")
+        panels.append(_Panel(bound, **(defaults | options)))
     todo = [panel for panel in panels if panel.result is None]
     while todo:
         jobs = [panel.seed() for panel in todo]

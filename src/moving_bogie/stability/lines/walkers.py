@@ -16,24 +16,29 @@ instead of their sum over the tracers.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 
 from moving_bogie.kernels.stacked_sweep import StackedSweep, stack_key
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.stability.lines.continuation import (
+    END_REASONS,
+    PathTracer,
+    TracedPath,
+    evaluate,
+    newton_fixed,
+    tangent,
+)
 from moving_bogie.typing import FloatArray
 
-if TYPE_CHECKING:
-    from moving_bogie.stability.lines.continuation import PathTracer, TracedPath
-
-__all__ = ["trace_walkers_many"]
+__all__ = ["trace_all_many", "trace_walkers_many"]
 
 #: Newton iterations of the corrector per step.
 CORRECTOR_ITERATIONS = 6
 
 #: A tracing job: the tracer, the seeds (m, 3) and their spacings (m,).
-Job = tuple["PathTracer", FloatArray, FloatArray]
+Job = tuple[PathTracer, FloatArray, FloatArray]
 
 #: An end point to place: (the lockstep, walker, last point x, first point outside y, box coordinate, face).
 EndRequest = tuple["_Lockstep", int, FloatArray, FloatArray, int, float]
@@ -69,11 +74,26 @@ class _Calls:
         return out
 
 
+def trace_all_many(
+    jobs: Sequence[tuple[PathTracer, Iterable[tuple[float, FloatArray]]]],
+) -> list[list[TracedPath]]:
+    """:meth:`~moving_bogie.stability.lines.continuation.PathTracer.trace_all` of several tracers (the
+    panels of a figure), their rounds together: the walkers of every tracer's current round advance in
+    shared calls (:func:`trace_walkers_many`); each tracer's rounds, curves and warnings are those it has
+    alone."""
+    tracers = [tracer for tracer, _ in jobs]
+    for tracer, groups in jobs:
+        tracer.begin(groups)
+    while todo := [tracer for tracer in tracers if tracer.pending]:
+        rounds = [(tracer, *tracer.start_round()) for tracer in todo]
+        for (tracer, _, _), new in zip(rounds, trace_walkers_many(rounds)):
+            tracer.end_round(new)
+    return [tracer.paths for tracer in tracers]
+
+
 def trace_walkers_many(jobs: list[Job]) -> list[list[TracedPath]]:
     """Trace the curves through the seeds of every job (tracer, seeds, spacings) both ways, each tracer in
     lockstep: per job, a list of (d, path, (start, end))."""
-    from moving_bogie.stability.lines.continuation import evaluate, tangent
-
     calls = _Calls([tracer for tracer, _, _ in jobs])
     states: list[_Lockstep] = []
     for k, (tracer, starts, ds) in enumerate(jobs):
@@ -112,8 +132,6 @@ def _evaluated(
 def _place_ends(calls: _Calls, ends: list[EndRequest]) -> None:
     """End points on the box faces (as :meth:`PathTracer._end_point`), all requests at once per box
     coordinate and group of sweeps."""
-    from moving_bogie.stability.lines.continuation import newton_fixed
-
     for k in sorted({e[4] for e in ends}):
         mine = [e for e in ends if e[4] == k]
         x, y = np.array([e[2] for e in mine]), np.array([e[3] for e in mine])
@@ -194,8 +212,6 @@ class _Lockstep:
     def finish_step(self) -> list[EndRequest]:
         """Accept or refuse every walker's step (:meth:`PathTracer.trace_lockstep`); the end points to
         place on the box faces."""
-        from moving_bogie.stability.lines.continuation import END_REASONS, tangent
-
         tracer, m, x, y, t, h = self.tracer, self.m, self.x, self.y, self.t, self.h
         tn = tangent(self.Jy, t)  # at the last corrector iterate: the final correction is below tol
         good = (
@@ -212,7 +228,7 @@ class _Lockstep:
                     self.active[i] = False
                     self.reason[i] = "stalled"
                 continue
-            out = tracer._outside(y[j])
+            out = tracer.outside(y[j])
             if out is not None:
                 ends.append((self, int(i), x[j], y[j], out[0], out[1]))
                 self.active[i] = False
