@@ -76,7 +76,8 @@ def main() -> None:
         line = f"{job:44s} {this:13.2f}"
         if args.against is not None:
             other = best[job, "against"] - start["against"]
-            line += f" {other:16.2f} {other / this if this > 0 else float('nan'):8.1f}x"
+            ratio = "" if job == "import only" else f"{other / this:8.1f}x"
+            line += f" {other:16.2f} {ratio:>9s}"
         print(line)
 
 
