@@ -10,8 +10,10 @@ tracers share is the calls: one call of
 serves the current iterate of every tracer whose sweep stacks with the others
 (:class:`~moving_bogie.kernels.stacked_sweep.StackedSweep`), and the end points on the box faces of all
 walkers leaving the box in that iteration are placed together. Every point's arithmetic is its own, so each
-tracer's curves are those it traces alone; the calls number the corrector iterations of the slowest tracer
-instead of their sum over the tracers.
+tracer's curves are those it traces alone, to rounding (the quartics of a call of at most eight points are
+solved on Python complex numbers, larger batches with numpy: :func:`~moving_bogie.kernels.polyroots.
+quartic_roots`); the calls number the corrector iterations of the slowest tracer instead of their sum over
+the tracers.
 """
 
 from __future__ import annotations
