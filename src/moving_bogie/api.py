@@ -10,6 +10,7 @@ binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stabili
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.kernels.bound import BoundModel, bind
@@ -40,6 +41,7 @@ __all__ = [
     "frequency_lines",
     "induced_frequencies",
     "instability_lines",
+    "instability_lines_many",
     "stability_map",
     "validate",
 ]
@@ -124,6 +126,16 @@ def instability_lines(
     from moving_bogie.stability.lines.instability_lines import instability_lines as run
 
     return run(bind(params), **options)
+
+
+def instability_lines_many(
+    requests: Sequence[tuple[DimensionlessParams | PhysicalParams | BoundModel, dict[str, Any]]],
+) -> list[InstabilityLines]:
+    """Instability lines of several parameter sets, each ``(params, options)``, traced together (the panels
+    of a figure): :func:`moving_bogie.stability.lines.instability_lines.instability_lines_many`."""
+    from moving_bogie.stability.lines.instability_lines import instability_lines_many as run
+
+    return run([(bind(params), options) for params, options in requests])
 
 
 def d_decomposition(

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from moving_bogie.api import critical_stiffness, frequency_lines, instability_lines, stability_map
+from moving_bogie.api import critical_stiffness, frequency_lines, instability_lines_many, stability_map
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import get_model
 from moving_bogie.model.params import DimensionlessParams
@@ -23,7 +23,6 @@ from moving_bogie.stability.figures.plots import (
     plot_instability_lines,
     spacing_colors,
 )
-from moving_bogie.stability.lines.line_results import InstabilityLines
 from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 
 if TYPE_CHECKING:
@@ -158,10 +157,16 @@ def figure3(quick: bool = False, progress: Callable[[float], None] | None = None
     colors = spacing_colors(SPACINGS)
     split = _Progress(progress, len(ETA_F))
     marks: set[str] = set()
-    for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
-        lines = instability_lines(
-            _base(eta_f).replace(vehicle="masses"), spacings=SPACINGS, progress=split.part(), **_grid(quick)
-        )
+    panels = instability_lines_many(
+        [
+            (
+                _base(eta_f).replace(vehicle="masses"),
+                dict(spacings=SPACINGS, progress=split.part(), **_grid(quick)),
+            )
+            for eta_f in ETA_F
+        ]
+    )  # the six panels traced together
+    for ax, eta_f, tag, lines in zip(axs, ETA_F, "abcdef", panels):
         marks |= plot_instability_lines(ax, lines, colors=colors)
         _decorate(ax, rf"({tag}) $\eta_f$ = {eta_f}", 1.2)
     _legend(fig, SPACINGS, marks=marks)
@@ -179,19 +184,16 @@ def figure4(quick: bool = False, progress: Callable[[float], None] | None = None
     adapt = 1 + 1.7 / 2
     split = _Progress(progress, 2 * len(ETA_F))
     marks: set[str] = set()
-    for ax, eta_f, tag in zip(axs, ETA_F, "abcdef"):
+    requests = []
+    for eta_f in ETA_F:
         p = _base(eta_f)
-        bogie = instability_lines(
-            p, spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
+        requests.append(
+            (p, dict(spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)))
         )
-        masses = instability_lines(
-            p.replace(vehicle="masses"),
-            spacings=SPACINGS,
-            alpha_range=(0, 1),
-            theta_max=200 * adapt,
-            progress=split.part(),
-            **_grid(quick),
-        )
+        same_mass = dict(spacings=SPACINGS, alpha_range=(0, 1), theta_max=200 * adapt, progress=split.part())
+        requests.append((p.replace(vehicle="masses"), same_mass | _grid(quick)))
+    panels = instability_lines_many(requests)  # all twelve traced together
+    for ax, eta_f, tag, bogie, masses in zip(axs, ETA_F, "abcdef", panels[::2], panels[1::2]):
         marks |= plot_instability_lines(ax, bogie, colors=colors)
         marks |= plot_instability_lines(ax, masses, colors=colors, linestyle="--", scale=adapt, label=False)
         _decorate(ax, rf"({tag}) $\eta_f$ = {eta_f}", 1.0)
@@ -209,13 +211,23 @@ def figure7(quick: bool = False, progress: Callable[[float], None] | None = None
     colors = spacing_colors(SPACINGS)
     split = _Progress(progress, 4)
     marks: set[str] = set()
+    variants = [(cf2, eta_v) for cf2 in ("0.1", "0.01") for eta_v in ("0", "0.05")]
+    panels = iter(
+        instability_lines_many(
+            [
+                (
+                    _base("0.05", cf2=cf2, kappa_v="0.2", eta_v=eta_v),
+                    dict(spacings=ds, alpha_range=(0, 1), progress=split.part(), **_grid(quick)),
+                )
+                for cf2, eta_v in variants
+            ]
+        )
+    )  # the four sets of lines traced together
     for ax, cf2, tag in zip(axs, ("0.1", "0.01"), "ab"):
-        for eta_v, style in (("0", "-"), ("0.05", "--")):
-            p = _base("0.05", cf2=cf2, kappa_v="0.2", eta_v=eta_v)
-            lines = instability_lines(
-                p, spacings=ds, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
+        for style in ("-", "--"):
+            marks |= plot_instability_lines(
+                ax, next(panels), colors=colors, linestyle=style, label=style == "-"
             )
-            marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
         _decorate(ax, rf"({tag}) $cf_2$ = {cf2}", 1.0)
     _legend(fig, ds, (("-", r"$\eta_v$ = 0"), ("--", r"$\eta_v$ = 0.05")), marks)
     fig.suptitle("Figure 7: effect of the suspension damping", fontsize=10)
@@ -232,15 +244,18 @@ def figure8(quick: bool = False, progress: Callable[[float], None] | None = None
     marks: set[str] = set()
     eb = _base("0.05", cf2="0.1", kappa_v="0.2")
 
-    def lines_of(p: DimensionlessParams) -> InstabilityLines:
-        return instability_lines(
-            p, spacings=SPACINGS, alpha_range=(0, 1), progress=split.part(), **_grid(quick)
-        )
-
-    eb_lines = lines_of(eb)  # the same Euler-Bernoulli lines in both panels
-    for ax, (S, r), tag in zip(axs, (("100", "0.03"), ("10", "0.09")), "ab"):
+    beams = (("100", "0.03"), ("10", "0.09"))
+    options = dict(spacings=SPACINGS, alpha_range=(0, 1), **_grid(quick))
+    # the same Euler-Bernoulli lines in both panels; the three sets traced together
+    eb_lines, *tr_lines = instability_lines_many(
+        [
+            (p, options | dict(progress=split.part()))
+            for p in [eb, *(eb.replace(beam="tr", S=S, r=r) for S, r in beams)]
+        ]
+    )
+    for ax, (S, r), tag, tr in zip(axs, beams, "ab", tr_lines):
         a_cr = float(critical_velocity(get_model(beam="tr"), S=S, r=r).alpha_cr)
-        for lines, style in ((eb_lines, "-"), (lines_of(eb.replace(beam="tr", S=S, r=r)), "--")):
+        for lines, style in ((eb_lines, "-"), (tr, "--")):
             marks |= plot_instability_lines(ax, lines, colors=colors, linestyle=style, label=style == "-")
         _decorate(ax, rf"({tag}) $\tilde S$ = {S}, $\tilde r$ = {r}", 1.0)
         ax.axvline(a_cr, color="grey", ls=":", lw=1)

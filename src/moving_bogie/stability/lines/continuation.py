@@ -38,7 +38,7 @@ END_REASONS = {
 
 
 def evaluate(
-    sweep: SweepCharacteristic, x: FloatArray, d: FloatArray, scale: float
+    sweep: SweepCharacteristic, x: FloatArray, d: FloatArray, scale: float | FloatArray
 ) -> tuple[FloatArray, FloatArray, ComplexArray, ComplexArray, ComplexArray]:
     """F = (Re E, Im E) and the 2x3 real Jacobian in (alpha, q, t = theta/scale) at points x (n, 3),
     with E, dE/dq and dE/dtheta there."""
@@ -52,7 +52,12 @@ def evaluate(
 
 
 def gauss_newton(
-    sweep: SweepCharacteristic, x: FloatArray, d: FloatArray, scale: float, tol: float, max_iter: int = 12
+    sweep: SweepCharacteristic,
+    x: FloatArray,
+    d: FloatArray,
+    scale: float | FloatArray,
+    tol: float | FloatArray,
+    max_iter: int = 12,
 ) -> tuple[FloatArray, np.ndarray]:
     """Minimum-norm Gauss-Newton onto the curve Re E = Im E = 0; returns (x, converged)."""
     x = np.array(x, dtype=float)
@@ -79,8 +84,8 @@ def newton_fixed(
     d: FloatArray,
     k: int,
     value: float,
-    scale: float,
-    tol: float,
+    scale: float | FloatArray,
+    tol: float | FloatArray,
     max_iter: int = 12,
 ) -> tuple[FloatArray, np.ndarray]:
     """Newton in the two coordinates other than ``k`` with x[k] = value (end points on the box)."""
@@ -116,6 +121,9 @@ class PathTracer:
     """Pseudo-arclength continuation of many curves at once (vectorised over the curves).
 
     Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
+    :meth:`trace_all` traces by itself (:meth:`trace_lockstep`); tracers traced together (the panels of a
+    figure, :func:`~moving_bogie.stability.lines.walkers.trace_all_many`) share their calls and trace the
+    same curves.
     """
 
     def __init__(
@@ -134,6 +142,9 @@ class PathTracer:
         self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
         self.progress = progress
         self.warnings: list[str] = []
+        self.paths: list[TracedPath] = []  # the curves traced (trace_all)
+        self.pending: list[tuple[float, FloatArray]] = []  # (d, seeds) not yet on a traced curve
+        self.total = 1  # seeds at the start
 
     def trace_all(self, groups: Iterable[tuple[float, FloatArray]]) -> list[TracedPath]:
         """Trace curves until every seed lies on one; returns a list of (d, path (k, 3), (start, end)).
@@ -141,33 +152,45 @@ class PathTracer:
         ``start`` and ``end`` say why the path ends there: a face of the box (:data:`END_REASONS`),
         "closed" (a loop), "stalled" (singular point) or "max_steps".
         """
-        paths: list[TracedPath] = []
-        pending = list(groups)
-        total = max(1, sum(len(g) for _, g in pending))
-        while pending:
-            starts = np.array([g[len(g) // 2] for _, g in pending])
-            ds = np.array([d for d, _ in pending])
-            new = self._trace(starts, ds)
-            for d, path, ends in sorted(new, key=lambda item: -len(item[1])):
-                if not any(
-                    od == d and covered(path, other, 0.3 * self.h_max).mean() > 0.9 for od, other, _ in paths
-                ):
-                    paths.append((d, path, ends))
-            remaining = []
-            for d, g in pending:
-                hit = [covered(g, p, 0.3 * self.h_max) for od, p, _ in paths if od == d]
-                left = g[~np.any(hit, axis=0)] if hit else g
-                if len(left):
-                    remaining.append((d, left))
-            if sum(len(g) for _, g in remaining) >= sum(len(g) for _, g in pending):
-                self.warnings.append(f"{sum(len(g) for _, g in remaining)} seed point(s) could not be traced")
-                break
-            pending = remaining
-            if self.progress is not None:
-                self.progress(1 - sum(len(g) for _, g in pending) / total)
-        return paths
+        self.begin(groups)
+        while self.pending:
+            self.end_round(self.trace_lockstep(*self.start_round()))
+        return self.paths
 
-    def _trace(self, starts: FloatArray, ds: FloatArray) -> list[TracedPath]:
+    def begin(self, groups: Iterable[tuple[float, FloatArray]]) -> None:
+        """Start tracing the seed ``groups`` (d, seeds): no curve yet, every seed pending."""
+        self.paths, self.pending = [], list(groups)
+        self.total = max(1, sum(len(g) for _, g in self.pending))
+
+    def start_round(self) -> tuple[FloatArray, FloatArray]:
+        """The seeds of the next round: the middle seed of every group not yet on a traced curve."""
+        starts = np.array([g[len(g) // 2] for _, g in self.pending])
+        return starts, np.array([d for d, _ in self.pending])
+
+    def end_round(self, new: list[TracedPath]) -> None:
+        """Keep the new curves not already traced; use up the seeds lying on a traced curve."""
+        paths, pending = self.paths, self.pending
+        for d, path, ends in sorted(new, key=lambda item: -len(item[1])):
+            if not any(
+                od == d and covered(path, other, 0.3 * self.h_max).mean() > 0.9 for od, other, _ in paths
+            ):
+                paths.append((d, path, ends))
+        remaining = []
+        for d, g in pending:
+            hit = [covered(g, p, 0.3 * self.h_max) for od, p, _ in paths if od == d]
+            left = g[~np.any(hit, axis=0)] if hit else g
+            if len(left):
+                remaining.append((d, left))
+        self.pending = remaining
+        if sum(len(g) for _, g in remaining) >= sum(len(g) for _, g in pending):
+            self.warnings.append(f"{sum(len(g) for _, g in remaining)} seed point(s) could not be traced")
+            self.pending = []
+        elif self.progress is not None:
+            self.progress(1 - sum(len(g) for _, g in remaining) / self.total)
+
+    def trace_lockstep(self, starts: FloatArray, ds: FloatArray) -> list[TracedPath]:
+        """The curves through ``starts`` (spacings ``ds``), every walker one step at a time, by this
+        tracer alone."""
         m = len(starts)
         _, J, *_ = evaluate(self.sweep, starts, ds, self.scale)
         T0 = tangent(J)
@@ -215,7 +238,7 @@ class PathTracer:
                         active[i] = False
                         reason[i] = "stalled"
                     continue
-                out = self._outside(y[j])
+                out = self.outside(y[j])
                 if out is not None:
                     end = self._end_point(x[j], y[j], d[j], out)
                     if end is not None:
@@ -245,7 +268,7 @@ class PathTracer:
                 paths.append((float(ds[c]), path, (reason[c + m], reason[c])))
         return paths
 
-    def _outside(self, y: FloatArray) -> tuple[int, float] | None:
+    def outside(self, y: FloatArray) -> tuple[int, float] | None:
         """(coordinate, bound value) of the first box face crossed, or None."""
         for k in range(3):
             lo, hi = self.box[k]

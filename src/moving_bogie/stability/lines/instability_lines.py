@@ -43,23 +43,25 @@ tests confirm it with :func:`~moving_bogie.roots.frequencies.induced_frequencies
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable, Sequence
 from fractions import Fraction
-from typing import cast
+from typing import Any, cast
 
-import contourpy
 import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
-from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic, poly_roots
-from moving_bogie.stability.lines.continuation import PathTracer, evaluate, gauss_newton
+from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
+from moving_bogie.stability.lines.continuation import PathTracer, evaluate
 from moving_bogie.stability.lines.line_ends import find_folds, line_end
 from moving_bogie.stability.lines.line_results import InstabilityBranch, InstabilityLines
+from moving_bogie.stability.lines.seeds import report, seed_groups
 from moving_bogie.stability.lines.undamped_lines import undamped_lines
+from moving_bogie.stability.lines.walkers import trace_all_many
 from moving_bogie.stability.maps.undamped import regime
 from moving_bogie.typing import FloatArray
 
-__all__ = ["InstabilityBranch", "InstabilityLines", "instability_lines"]
+__all__ = ["InstabilityBranch", "InstabilityLines", "instability_lines", "instability_lines_many"]
 
 _ALPHA_STEP_FD = 1e-6
 
@@ -118,100 +120,124 @@ def instability_lines(
     progress : callable, optional
         Called with the fraction of work done.
     """
-    params = bound.params
-    parameter = parameter or params.model.wheel_mass
-    ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
-    a0, a1 = (float(a) for a in alpha_range)
-    if regime(params.eta_f) != "damped":
-        step = max(alpha_step, 0.02)
-        return undamped_lines(bound, ds, parameter, (a0, a1), theta_max, alpha_step=step, progress=progress)
-    sweep = SweepCharacteristic(bound, parameter)
-    cap = 8 * q_max if q_max_cap is None else q_max_cap
-    grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
-    branches, warnings, q_max = _trace_up_to_cap(
-        sweep, ds, alpha_range, theta_max, q_max, cap, grid, progress
-    )
-    if verify:
-        branches = [_verify(bound, parameter, b) for b in branches]
-    _report(progress, 1.0)
-    return InstabilityLines(
-        params,
-        params.vehicle,
-        parameter,
-        (a0, a1),
-        float(theta_max),
-        tuple(branches),
-        tuple(dict.fromkeys(warnings)),
-        float(q_max),
-    )
+    options = dict(spacings=spacings, parameter=parameter, alpha_range=alpha_range, theta_max=theta_max)
+    options |= dict(q_max=q_max, q_max_cap=q_max_cap, alpha_step=alpha_step, q_step=q_step, h_max=h_max)
+    return instability_lines_many([(bound, options | dict(tol=tol, verify=verify, progress=progress))])[0]
 
 
-def _trace_up_to_cap(
-    sweep: SweepCharacteristic,
-    ds: list[float],
-    alpha_range: tuple[float, float],
-    theta_max: float,
-    q_max: float,
-    cap: float,
-    grid: dict[str, float],
-    progress: Callable[[float], None] | None,
-) -> tuple[list[InstabilityBranch], list[str], float]:
-    """:func:`_trace` up to ``q_max``, doubled (up to ``cap``) while a line reaches it: the branches, the
-    warnings (first, that a line still reaches the cap) and the last ``q_max``."""
-    while True:
-        branches, warnings = _trace(sweep, ds, alpha_range, theta_max, q_max, grid, progress)
-        reaches = any(e.reason == "q_max" for b in branches for e in b.ends)
-        if not reaches or 2 * q_max > cap:
-            break
-        q_max *= 2
-    if reaches:
-        warnings.insert(0, f"a line reaches q_max={q_max:g} (the cap); raise q_max_cap")
-    return branches, warnings, q_max
+def instability_lines_many(requests: Sequence[tuple[BoundModel, dict[str, Any]]]) -> list[InstabilityLines]:
+    """:func:`instability_lines` of several parameter sets at once (the panels of a figure), each
+    ``(bound, keyword arguments of instability_lines)``.
+
+    Each result is the one :func:`instability_lines` returns for its request alone; the continuations of
+    all requests advance together (:func:`~moving_bogie.stability.lines.walkers.trace_all_many`), the
+    points of requests of one track and vehicle model in shared calls.
+    """
+    parameters = inspect.signature(instability_lines).parameters
+    defaults = {name: p.default for name, p in parameters.items() if name != "bound"}
+    panels = []
+    for bound, options in requests:
+        if unknown := sorted(set(options) - set(defaults)):
+            raise TypeError(f"instability_lines() got unexpected keyword arguments {unknown}")
+        panels.append(_Panel(bound, **(defaults | options)))
+    todo = [panel for panel in panels if panel.result is None]
+    while todo:
+        jobs = [panel.seed() for panel in todo]
+        for panel, traced in zip(todo, trace_all_many(jobs)):
+            panel.traced(traced)
+        todo = [panel for panel in todo if panel.result is None]
+    return [cast(InstabilityLines, panel.result) for panel in panels]
 
 
-def _trace(
-    sweep: SweepCharacteristic,
-    ds: Sequence[float],
-    alpha_range: Sequence[float],
-    theta_max: float,
-    q_max: float,
-    grid: dict[str, float],
-    progress: Callable[[float], None] | None,
-) -> tuple[list[InstabilityBranch], list[str]]:
-    """Seeds on an (alpha, q) grid, then continuation: the branches in the box up to ``q_max``."""
-    a0, a1 = float(alpha_range[0]), float(alpha_range[1])
-    alpha_step, q_step, tol = grid["alpha_step"], grid["q_step"], grid["tol"]
-    alphas = np.linspace(a0, a1, max(3, int(round((a1 - a0) / alpha_step)) + 1))
-    qs = np.linspace(q_step, q_max, max(3, int(round(q_max / q_step))))
-    AA, QQ = np.meshgrid(alphas, qs, indexing="ij")
-    Ks, _, _ = sweep.kernel(QQ, AA, spacings=ds)
-    _report(progress, 0.1)
-    box = np.array([[a0, a1], [0.0, q_max], [0.0, 1.0]])
-    steps = (alphas[1] - alphas[0], qs[1] - qs[0])
-    groups: list[tuple[float, FloatArray]] = []  # (d, seed points) per contour polyline
-    for j, d in enumerate(ds):
-        roots = poly_roots(sweep.coefficients(QQ, Ks[j], scale=theta_max, d=d))
-        g = np.prod(np.where(np.isfinite(roots), roots.imag / (1 + np.abs(roots)), 1.0), axis=-1)
-        # line_type "Separate": the lines are a list of (k, 2) vertex arrays (contourpy types every line type)
-        lines = cast(
-            list[FloatArray],
-            contourpy.contour_generator(x=alphas, y=qs, z=g.T, line_type="Separate").lines(0.0),
+class _Panel:
+    """One request of :func:`instability_lines_many` while its lines are traced: seeds and continuation
+    up to ``q_max``, doubled (up to the cap) while a line reaches it."""
+
+    def __init__(
+        self,
+        bound: BoundModel,
+        spacings: Sequence[float] | None,
+        parameter: str | None,
+        alpha_range: tuple[float, float],
+        theta_max: float,
+        q_max: float,
+        q_max_cap: float | None,
+        alpha_step: float,
+        q_step: float,
+        h_max: float,
+        tol: float,
+        verify: bool,
+        progress: Callable[[float], None] | None,
+    ) -> None:
+        params = bound.params
+        self.bound, self.verify, self.progress = bound, verify, progress
+        self.parameter = parameter or params.model.wheel_mass
+        self.ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
+        self.alpha_range = (float(alpha_range[0]), float(alpha_range[1]))
+        self.theta_max, self.q_max = theta_max, q_max
+        self.result: InstabilityLines | None = None
+        if regime(params.eta_f) != "damped":
+            step = max(alpha_step, 0.02)
+            self.result = undamped_lines(
+                bound,
+                self.ds,
+                self.parameter,
+                self.alpha_range,
+                theta_max,
+                alpha_step=step,
+                progress=progress,
+            )
+            return
+        self.sweep = SweepCharacteristic(bound, self.parameter)
+        self.cap = 8 * q_max if q_max_cap is None else q_max_cap
+        self.grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
+
+    def seed(self) -> tuple[PathTracer, list[tuple[float, FloatArray]]]:
+        """The tracer and the seeds up to the current ``q_max``."""
+        progress = self.progress
+        groups, box = seed_groups(
+            self.sweep, self.ds, self.alpha_range, self.theta_max, self.q_max, self.grid, progress
         )
-        if lines:  # every polyline's vertices polished in one batch (each vertex on its own)
-            points, inside = _seed_points(sweep, np.concatenate(lines), d, theta_max, tol, box, steps)
-            for span in np.split(np.arange(len(points)), np.cumsum([len(line) for line in lines])[:-1]):
-                seeds = points[span][inside[span]]
-                if len(seeds):
-                    groups.append((d, seeds))
-        _report(progress, 0.1 + 0.2 * (j + 1) / len(ds))
-    tracer = PathTracer(
-        sweep, theta_max, box, grid["h_max"], tol, progress=lambda x: _report(progress, 0.3 + 0.7 * x)
-    )
-    branches = [
-        _branch(sweep, d, path, theta_max, ends, a1 - a0) for d, path, ends in tracer.trace_all(groups)
-    ]
-    branches.sort(key=lambda b: (b.d, b.alpha.min()))
-    return branches, list(tracer.warnings)
+        self.tracer = PathTracer(
+            self.sweep,
+            self.theta_max,
+            box,
+            self.grid["h_max"],
+            self.grid["tol"],
+            progress=lambda x: report(progress, 0.3 + 0.7 * x),
+        )
+        return self.tracer, groups
+
+    def traced(self, traced: list[tuple[float, FloatArray, tuple[str, str]]]) -> None:
+        """The branches of the traced curves: the result, or ``q_max`` doubled while a line reaches it."""
+        a0, a1 = self.alpha_range
+        values = _path_values(self.sweep, traced, self.theta_max)
+        branches = [
+            _branch(self.sweep, d, path, self.theta_max, ends, a1 - a0, value)
+            for (d, path, ends), value in zip(traced, values)
+        ]
+        branches.sort(key=lambda b: (b.d, b.alpha.min()))
+        warnings = list(self.tracer.warnings)
+        reaches = any(e.reason == "q_max" for b in branches for e in b.ends)
+        if reaches and 2 * self.q_max <= self.cap:
+            self.q_max *= 2
+            return
+        if reaches:
+            warnings.insert(0, f"a line reaches q_max={self.q_max:g} (the cap); raise q_max_cap")
+        if self.verify:
+            branches = [_verify(self.bound, self.parameter, b) for b in branches]
+        report(self.progress, 1.0)
+        params = self.bound.params
+        self.result = InstabilityLines(
+            params,
+            params.vehicle,
+            self.parameter,
+            self.alpha_range,
+            float(self.theta_max),
+            tuple(branches),
+            tuple(dict.fromkeys(warnings)),
+            float(self.q_max),
+        )
 
 
 def _verify(bound: BoundModel, parameter: str, branch: InstabilityBranch) -> InstabilityBranch:
@@ -236,59 +262,25 @@ def _exact(x: float) -> Fraction:
     return Fraction(str(x))
 
 
-def _report(progress: Callable[[float], None] | None, x: float) -> None:
-    if progress is not None:
-        progress(min(1.0, x))
-
-
-def _seed_points(
-    sweep: SweepCharacteristic,
-    line: FloatArray,
-    d: float,
-    theta_max: float,
-    tol: float,
-    box: FloatArray,
-    steps: tuple[float, float],
-) -> tuple[FloatArray, np.ndarray]:
-    """Points on the curves near the vertices of contour polylines: (points, inside), shapes (k, 3) in
-    (alpha, q, t) and (k,), ``inside`` marking the polished points kept (in the box, theta > 0, q > 0).
-
-    A vertex lies on a grid edge crossed by a curve, so its polished point must lie within about one
-    grid cell: each candidate root theta_k (most nearly real first) is polished by Gauss-Newton, and the
-    first one that converges that close is kept.
-    """
-    alpha0, q0 = line[:, 0].copy(), line[:, 1].copy()
-    n = len(q0)
-    K, _, _ = sweep.kernel(q0, alpha0, d=d)
-    roots = poly_roots(sweep.coefficients(q0, K, scale=theta_max, d=d))
-    with np.errstate(all="ignore"):
-        score = np.abs(roots.imag) / np.abs(roots)
-    score = np.where(np.isfinite(roots) & (roots.real > -0.05) & (roots.real < 1.5), score, np.inf)
-    order = np.argsort(score, axis=-1)
-    out = np.full((n, 3), np.nan)
-    ok = np.zeros(n, dtype=bool)
-    for rank in range(roots.shape[-1]):
-        todo = ~ok & np.isfinite(score[np.arange(n), order[:, rank]])
-        if not np.any(todo):
-            break
-        x = np.stack([alpha0[todo], q0[todo], roots[np.arange(n), order[:, rank]].real[todo]], axis=-1)
-        x, conv = gauss_newton(sweep, x, np.full(len(x), d), theta_max, tol)
-        near = (np.abs(x[:, 0] - alpha0[todo]) <= 1.5 * steps[0]) & (
-            np.abs(x[:, 1] - q0[todo]) <= 1.5 * steps[1]
-        )
-        good = conv & near
-        idx = np.nonzero(todo)[0][good]
-        out[idx], ok[idx] = x[good], True
-    inside = ok & np.all((out >= box[:, 0]) & (out <= box[:, 1]), axis=-1) & (out[:, 2] > 0) & (out[:, 1] > 0)
-    return out, inside
-
-
 def _at_cut(sweep: SweepCharacteristic, reason: str, q: float, alpha: float) -> str:
     """A stalled end where a p-root of N is real (to 1e-6) lies on the cut of K: reason "cut"."""
     if reason != "stalled":
         return reason
     p = sweep.p_roots(np.array([complex(q)]), np.array([float(alpha)]))[0]
     return "cut" if np.min(np.abs(p.imag) / np.maximum(1.0, np.abs(p))) < 1e-6 else reason
+
+
+def _path_values(
+    sweep: SweepCharacteristic, traced: list[tuple[float, FloatArray, tuple[str, str]]], theta_max: float
+) -> list[tuple[np.ndarray, ...]]:
+    """(E, E_q, E_theta) at the points of every traced path (all paths in one batch)."""
+    if not traced:
+        return []
+    points = np.concatenate([path for _, path, _ in traced])
+    d = np.concatenate([np.full(len(path), d) for d, path, _ in traced])
+    _, _, *values = evaluate(sweep, points, d, theta_max)
+    spans = np.split(np.arange(len(points)), np.cumsum([len(path) for _, path, _ in traced])[:-1])
+    return [tuple(v[span] for v in values) for span in spans]
 
 
 def _branch(
@@ -298,9 +290,11 @@ def _branch(
     theta_max: float,
     ends: tuple[str, str],
     alpha_span: float,
+    values: tuple[np.ndarray, ...],
 ) -> InstabilityBranch:
-
-    _, _, E, E_q, E_t = evaluate(sweep, path, np.full(len(path), d), theta_max)
+    """The branch of one traced path; ``values`` are (E, E_q, E_theta) at its points (the residual
+    |E / E_q| and the unstable side from dq/dtheta = -E_theta / E_q)."""
+    E, E_q, E_t = values
     dq_dtheta = -E_t / E_q
     alpha, theta, q = path[:, 0].copy(), path[:, 2] * theta_max, path[:, 1].copy()
     return InstabilityBranch(
