@@ -8,6 +8,8 @@ import tomllib
 from importlib.metadata import packages_distributions
 from pathlib import Path
 
+from parsed_sources import parsed
+
 ROOT = Path(__file__).resolve().parent.parent
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
 #: SymPy for derivations/ is pinned in its own file (installed with --no-deps, see the README).
@@ -56,8 +58,7 @@ def _modules_named(path: Path) -> tuple:
 
     Parsed once per file for all the folders that hold it. The imports are read off the statements; the
     whole tree is walked for ``importorskip(...)`` calls only where the word occurs in the text."""
-    text = path.read_text()
-    tree = ast.parse(text, str(path))
+    text, tree = path.read_text(encoding="utf-8"), parsed(path)
     modules = []
     for node in _statements(tree):
         if isinstance(node, ast.Import):

@@ -10,7 +10,7 @@ pytest 9 no longer reads: its groups are silently split.)
 :class:`BalancedScopes` is ``loadscope`` with three changes, none of which moves a test to another worker
 than the rest of its module except where that costs nothing:
 
-* the modules of :data:`TOGETHER` share a session fixture: they are one unit, on one worker;
+* each group of :data:`TOGETHER` shares what a process computes once: it is one unit, on one worker;
 * the modules of :data:`SPREAD` share no module fixture: each of their tests is a unit of its own, so the
   two workers share them (the notebooks: eight kernels of 5-20 s each, one module);
 * the modules of :data:`LONG_FIRST` (the longest in a full run, ``--durations=0``) go out first, in
@@ -26,9 +26,13 @@ from xdist.scheduler import LoadScopeScheduling
 #: Modules whose tests share no module-scoped fixture: one unit per test.
 SPREAD = ("tests/test_notebooks.py",)
 
-#: Modules that share a session fixture (``table1_search`` in conftest.py: the searches of Table 1's cases):
-#: one unit, so the searches run once on one worker.
-TOGETHER = ("tests/test_frequencies.py", "tests/test_response.py", "tests/test_ball_polish.py")
+#: Groups of modules that share what a process computes once: each group is one unit, on one worker.
+TOGETHER = (
+    # the searches of Table 1's cases (``table1_search`` in conftest.py)
+    ("tests/test_frequencies.py", "tests/test_response.py", "tests/test_ball_polish.py"),
+    # the parsed source files (parsed_sources.py)
+    ("tests/test_layout.py", "tests/test_declared_dependencies.py", "tests/test_docs.py"),
+)
 
 #: The modules that took longest on one worker in a full run (``pytest -n 2 --durations=0``), longest first.
 LONG_FIRST = (
@@ -63,8 +67,9 @@ class BalancedScopes(LoadScopeScheduling):
     def _split_scope(self, nodeid: str) -> str:
         if _module(nodeid) in SPREAD:
             return nodeid
-        if _module(nodeid) in TOGETHER:
-            return TOGETHER[0]
+        for group in TOGETHER:
+            if _module(nodeid) in group:
+                return group[0]
         return super()._split_scope(nodeid)
 
     def _assign_work_unit(self, node) -> None:
