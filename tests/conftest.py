@@ -64,6 +64,25 @@ def compute_once(monkeypatch):
     return patch
 
 
+@pytest.fixture(scope="session")
+def table1_search():
+    """``table1_search(case, vehicle=None)``: ``induced_frequencies(table1_case(case), dps=30)`` (the default
+    options; another vehicle by name), searched once per process for every module that asks for it and
+    reads the roots. Under ``-n 2`` those modules run on one worker (``xdist_balance.TOGETHER``)."""
+    from moving_bogie.api import induced_frequencies
+    from moving_bogie.model.cases import table1_case
+
+    found = {}
+
+    def search(case: int, vehicle: str | None = None):
+        if (case, vehicle) not in found:
+            params = table1_case(case) if vehicle is None else table1_case(case).replace(vehicle=vehicle)
+            found[case, vehicle] = induced_frequencies(params, dps=30)
+        return found[case, vehicle]
+
+    return search
+
+
 @pytest.fixture(scope="module")
 def same_search_once():
     """For the module that asks for it (``pytestmark = pytest.mark.usefixtures("same_search_once")``): a root

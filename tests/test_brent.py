@@ -8,7 +8,6 @@ import math
 
 import numpy as np
 import pytest
-from scipy import optimize
 
 from moving_bogie.kernels.brent import brentq
 
@@ -27,6 +26,8 @@ FUNCTIONS = [
 @pytest.mark.parametrize("k", range(len(FUNCTIONS)))
 @pytest.mark.parametrize("tols", [(1e-15, 1e-15), (2e-12, 4 * np.finfo(float).eps), (1e-6, 1e-10)])
 def test_brentq_equals_scipy_bit_for_bit(k, tols):
+    from scipy import optimize  # imported where used: every worker collects this module
+
     f, a, b = FUNCTIONS[k]
     xtol, rtol = tols
     calls: dict[str, list[float]] = {"ours": [], "scipy": []}
@@ -49,6 +50,8 @@ def test_brentq_equals_scipy_bit_for_bit(k, tols):
 
 
 def test_brentq_random_cubics_equal_scipy():
+    from scipy import optimize  # imported where used: every worker collects this module
+
     rng = np.random.default_rng(7)
     for _ in range(200):
         c = rng.normal(size=4)

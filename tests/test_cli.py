@@ -1,4 +1,5 @@
-"""Command line: subprocess runs of the installed console script, and in-process checks."""
+"""Command line: the installed console script run in a subprocess (``--version``, ``--help``), and in-process
+checks of the commands through :func:`moving_bogie.cli.main`."""
 
 from __future__ import annotations
 
@@ -32,40 +33,40 @@ def run(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]
     return subprocess.run([str(SCRIPT), *args], capture_output=True, text=True, timeout=60, cwd=cwd)
 
 
-def test_params_case_7_json_equals_table1_row_7():
-    result = run("params", "--case", "7", "--json")
-    assert result.returncode == 0, result.stderr
-    data = json.loads(result.stdout)
+def test_params_case_7_json_equals_table1_row_7(capsys):
+    assert main(["params", "--case", "7", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
     assert {key: data["dimensionless"][key] for key in CASE7} == CASE7
     assert data["dimensionless"]["mu_v"] == "51" and data["dimensionless"]["beam"] == "eb"
     assert data["physical"] is None
 
 
-def test_negative_mass_in_file_is_one_line_naming_M(tmp_path):
+def test_negative_mass_in_file_is_one_line_naming_M(tmp_path, capsys):
     path = tmp_path / "bad.toml"
     path.write_text(
         "[physical]\nEI = 6.4e6\nm = 60\nk_f = 5e7\nc_f = 0\nM = -1500\nM_b = 2500\nJ_b = 40\n"
         "k_v = 8e6\nc_v = 0\nd = 1.7\nv = 300\nP = 1e5\n"
     )
-    result = run("params", "--file", str(path))
-    assert result.returncode != 0
-    assert result.stdout == ""
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1, result.stderr
+    assert main(["params", "--file", str(path)]) != 0
+    result = capsys.readouterr()
+    assert result.out == ""
+    lines = result.err.strip().splitlines()
+    assert len(lines) == 1, result.err
     assert lines[0].startswith("moving-bogie: error: ") and " M must be" in lines[0]
-    assert "Traceback" not in result.stderr
+    assert "Traceback" not in result.err
 
 
-def test_physical_file_prints_physical_parameters_and_scales(tmp_path):
+def test_physical_file_prints_physical_parameters_and_scales(tmp_path, capsys):
     path = tmp_path / "phys.toml"
     path.write_text(
         "[physical]\nEI = 6.4e6\nm = 60\nk_f = 5e7\nc_f = 0\nM = 1500\nM_b = 2500\nJ_b = 40\n"
         "k_v = 8e6\nc_v = 0\nd = 1.7\nv = 300\nP = 1e5\n"
     )
-    table = run("params", "--file", str(path))
-    assert table.returncode == 0, table.stderr
-    assert "Physical parameters" in table.stdout and "Scales" in table.stdout
-    data = json.loads(run("params", "--file", str(path), "--alpha", "0.5", "--json").stdout)
+    assert main(["params", "--file", str(path)]) == 0
+    table = capsys.readouterr().out
+    assert "Physical parameters" in table and "Scales" in table
+    assert main(["params", "--file", str(path), "--alpha", "0.5", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
     assert data["dimensionless"]["alpha"] == "0.5"
     assert data["physical"]["M"] == "1500" and data["physical"]["v"] != "300"
     # Reference: Eqs. (15)-(17) of the paper evaluated here from the file's SI values (EI, m, k_f, P, M, d)

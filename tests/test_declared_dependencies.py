@@ -8,6 +8,8 @@ import tomllib
 from importlib.metadata import packages_distributions
 from pathlib import Path
 
+from parsed_sources import parsed
+
 ROOT = Path(__file__).resolve().parent.parent
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
 #: SymPy for derivations/ is pinned in its own file (installed with --no-deps, see the README).
@@ -36,33 +38,58 @@ def _distributions() -> dict:
     return packages_distributions()
 
 
+#: The fields of a statement that hold statements: an import, at any depth, sits in one of them.
+_BODIES = ("body", "orelse", "finalbody", "handlers", "cases")
+
+
+def _statements(tree: ast.Module):
+    """Every statement of ``tree``, nested ones included (the expressions are not walked)."""
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        yield node
+        for field in _BODIES:
+            stack.extend(getattr(node, field, ()))
+
+
+@functools.cache
+def _modules_named(path: Path) -> tuple:
+    """Every module name ``path`` imports (``import``, absolute ``from ... import``, ``importorskip``).
+
+    Parsed once per file for all the folders that hold it. The imports are read off the statements; the
+    whole tree is walked for ``importorskip(...)`` calls only where the word occurs in the text."""
+    text, tree = path.read_text(encoding="utf-8"), parsed(path)
+    modules = []
+    for node in _statements(tree):
+        if isinstance(node, ast.Import):
+            modules += [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            modules.append(node.module)
+    if "importorskip" in text:
+        modules += [
+            node.args[0].value
+            for node in ast.walk(tree)
+            if isinstance(node, ast.Call)
+            and getattr(node.func, "attr", None) == "importorskip"
+            and node.args
+            and isinstance(node.args[0], ast.Constant)
+        ]
+    return tuple(modules)
+
+
 @functools.cache
 def _imported(folder: Path) -> frozenset:
-    """Distributions of every top-level third-party module imported under ``folder`` (parsed once)."""
+    """Distributions of every top-level third-party module imported under ``folder``."""
     dists = _distributions()
     local = {path.stem for path in folder.rglob("*.py")}  # sibling modules (tests import helpers)
     found = set()
     for path in folder.rglob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text(), str(path))):
-            if isinstance(node, ast.Import):
-                modules = [a.name for a in node.names]
-            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-                modules = [node.module]
-            elif (
-                isinstance(node, ast.Call)
-                and getattr(node.func, "attr", None) == "importorskip"
-                and node.args
-                and isinstance(node.args[0], ast.Constant)
-            ):
-                modules = [node.args[0].value]
-            else:
+        for module in _modules_named(path):
+            top = module.split(".")[0]
+            if top in sys.stdlib_module_names or top in local or top in ("moving_bogie", "derivations"):
                 continue
-            for module in modules:
-                top = module.split(".")[0]
-                if top in sys.stdlib_module_names or top in local or top in ("moving_bogie", "derivations"):
-                    continue
-                for dist in dists.get(top, [top]):
-                    found.add(dist.lower().replace("_", "-"))
+            for dist in dists.get(top, [top]):
+                found.add(dist.lower().replace("_", "-"))
     return frozenset(found)
 
 

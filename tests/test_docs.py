@@ -13,6 +13,7 @@ from functools import cache
 from pathlib import Path
 
 import pytest
+from parsed_sources import parsed
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ("theory_to_code.md", "validation.md", "troubleshooting.md", "architecture.md")
@@ -54,7 +55,7 @@ def _find(filename: str) -> Path | None:
 @cache
 def _defined(path: Path) -> frozenset[str]:
     names = set()
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+    for node in ast.walk(parsed(path)):
         if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
             names.add(node.name)
         elif isinstance(node, ast.Assign):

@@ -13,8 +13,6 @@ References:
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from fractions import Fraction
 from pathlib import Path
 
@@ -163,23 +161,12 @@ def test_critical_velocity_keeps_eqs_65_66_on_the_one_layer_track():
     assert tr.agrees and mpmath.nstr(tr.alpha_cr, 15) == "0.979847522056015"
 
 
-def test_cli_critical_velocity_of_a_layered_file_in_si():
-    out = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "moving_bogie",
-            "critical-velocity",
-            "--file",
-            "examples/two-layer.toml",
-            "--json",
-        ],
-        capture_output=True,
-        text=True,
-        check=True,
-        cwd=REPO,
-    )
-    data = json.loads(out.stdout)
+def test_cli_critical_velocity_of_a_layered_file_in_si(monkeypatch, capsys):
+    from moving_bogie.cli import main
+
+    monkeypatch.chdir(REPO)
+    assert main(["critical-velocity", "--file", "examples/two-layer.toml", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
     assert data["model"] == "eb/two-layer" and data["branch"] == 2 and data["branches"] == 2
     assert data["branches_without_minimum"] == [1] and "note" in data
     assert float(data["v_cr"]) == pytest.approx(float(data["alpha_cr"]) * 1207.3821610999894, rel=1e-9)

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from parsed_sources import parsed
 
 REPO = Path(__file__).resolve().parent.parent
 SRC = REPO / "src"
@@ -53,10 +54,7 @@ MODULES: dict[str, Path] = {_module_name(p): p for p in sorted(PACKAGE.rglob("*.
 @functools.cache
 def _parsed() -> tuple[tuple[str, ast.Module], ...]:
     """Every module of the package parsed once for all the checks (the trees are only read)."""
-    return tuple(
-        (name, ast.parse(path.read_text(encoding="utf-8"), filename=str(path)))
-        for name, path in MODULES.items()
-    )
+    return tuple((name, parsed(path)) for name, path in MODULES.items())
 
 
 def _trees() -> Iterator[tuple[str, ast.Module]]:

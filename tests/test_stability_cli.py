@@ -4,7 +4,6 @@ import json
 
 import numpy as np
 import pytest
-from matplotlib.collections import QuadMesh
 
 import moving_bogie.cli.lines_cmd as lines_cmd
 from moving_bogie.cli import main
@@ -94,6 +93,8 @@ def test_stability_map_writes_npz_and_plot(capsys, tmp_path, saved_figures):
     assert (tmp_path / "m.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # the figure by content: the unstable cells are coloured by their growth rate -degree (the margin of an
     # unstable cell is its degree, min Im q), the other cells are blank in that mesh
+    from matplotlib.collections import QuadMesh
+
     (fig,) = saved_figures
     (ax,) = [ax for ax in fig.axes if ax.get_xlabel() == r"$\alpha$"]  # not the colour bars
     meshes = [c for c in ax.collections if isinstance(c, QuadMesh) and c.colorbar is not None]

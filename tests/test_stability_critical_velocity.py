@@ -1,8 +1,6 @@
 """Critical velocity of a constant force: Eqs. (65)-(66) against the minimum phase speed of free waves."""
 
 import json
-import subprocess
-import sys
 
 import mpmath
 import pytest
@@ -43,26 +41,11 @@ def test_phase_speed_minimum_brackets_the_critical_velocity():
     assert np.all(c >= 0.979847522056015 - 1e-12)
 
 
-def test_cli_json():
-    out = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "moving_bogie",
-            "critical-velocity",
-            "--beam",
-            "tr",
-            "--S",
-            "10",
-            "--r",
-            "0.09",
-            "--json",
-        ],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    data = json.loads(out.stdout)
+def test_cli_json(capsys):
+    from moving_bogie.cli import main
+
+    assert main(["critical-velocity", "--beam", "tr", "--S", "10", "--r", "0.09", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
     assert data["alpha_cr"].startswith("0.979847522056") and data["alpha_cr_formula"].startswith(
         "0.979847522056"
     )

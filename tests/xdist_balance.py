@@ -7,9 +7,10 @@ fixtures come last, and one worker ends alone on one of them while the other wai
 with ``xdist_group`` marks would be finer, but pytest-xdist 3.8 renames the node ids by an attribute that
 pytest 9 no longer reads: its groups are silently split.)
 
-:class:`BalancedScopes` is ``loadscope`` with two changes, neither of which moves a test to another worker
+:class:`BalancedScopes` is ``loadscope`` with three changes, none of which moves a test to another worker
 than the rest of its module except where that costs nothing:
 
+* each group of :data:`TOGETHER` shares what a process computes once: it is one unit, on one worker;
 * the modules of :data:`SPREAD` share no module fixture: each of their tests is a unit of its own, so the
   two workers share them (the notebooks: eight kernels of 5-20 s each, one module);
 * the modules of :data:`LONG_FIRST` (the longest in a full run, ``--durations=0``) go out first, in
@@ -24,6 +25,14 @@ from xdist.scheduler import LoadScopeScheduling
 
 #: Modules whose tests share no module-scoped fixture: one unit per test.
 SPREAD = ("tests/test_notebooks.py",)
+
+#: Groups of modules that share what a process computes once: each group is one unit, on one worker.
+TOGETHER = (
+    # the searches of Table 1's cases (``table1_search`` in conftest.py)
+    ("tests/test_frequencies.py", "tests/test_response.py", "tests/test_ball_polish.py"),
+    # the parsed source files (parsed_sources.py)
+    ("tests/test_layout.py", "tests/test_declared_dependencies.py", "tests/test_docs.py"),
+)
 
 #: The modules that took longest on one worker in a full run (``pytest -n 2 --durations=0``), longest first.
 LONG_FIRST = (
@@ -48,7 +57,8 @@ def _module(nodeid: str) -> str:
 
 
 class BalancedScopes(LoadScopeScheduling):
-    """``--dist=loadscope`` with :data:`SPREAD` split per test and :data:`LONG_FIRST` handed out first."""
+    """``--dist=loadscope`` with :data:`TOGETHER` one unit, :data:`SPREAD` split per test and
+    :data:`LONG_FIRST` handed out first."""
 
     def __init__(self, config, log=None) -> None:
         super().__init__(config, log)
@@ -57,6 +67,9 @@ class BalancedScopes(LoadScopeScheduling):
     def _split_scope(self, nodeid: str) -> str:
         if _module(nodeid) in SPREAD:
             return nodeid
+        for group in TOGETHER:
+            if _module(nodeid) in group:
+                return group[0]
         return super()._split_scope(nodeid)
 
     def _assign_work_unit(self, node) -> None:
