@@ -46,24 +46,6 @@ def test_pencil_is_the_hill_matrix_at_every_mass(module, values):
         assert np.array_equal(A, np.eye(len(A)))
 
 
-def test_pencil_remembers_a_point_as_computed():
-    """A point asked for again returns the matrices of its first evaluation (and a fresh pencil's), without
-    a receptance more; another N or tolerance (``but``) is another point; the copies returned are the
-    caller's to change."""
-    values = {"eta_M": 1.0, "kappa_H": 20.0, "eta_H": 0.1}
-    track = SleeperTrack("eb", "sleepers", ZONE_TRACK)
-    pencil = mass_pencil(track, vehicle_hertz_mass, values, 1)
-    q = 0.41
-    A, B = pencil.matrices(q)
-    A[:] = 0
-    again = pencil.matrices(q)
-    fresh = mass_pencil(track, vehicle_hertz_mass, values, 1).matrices(q)
-    assert all(np.array_equal(x, y) for x, y in zip(again, fresh)) and pencil.evaluations == [1]
-    finer, loose = pencil.but(N=2), pencil.but(tol=1e-6)
-    assert finer.matrices(q)[0].shape == (12, 12) and loose.matrices(q)[0].shape == again[0].shape == (8, 8)
-    assert not np.array_equal(loose.matrices(q)[0], again[0]) and pencil.evaluations == [3]
-
-
 @pytest.mark.slow
 def test_zone_edges_are_the_d_decomposition_crossings():
     """The principal zone: two crossings on Re q = Omega_0 / 2, +1 then -1, converged in the harmonics.

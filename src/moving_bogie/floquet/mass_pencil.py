@@ -33,9 +33,6 @@ class MassPencil:
     """A(q) + eta_M B(q) for ``vehicle`` (at eta_M = 0 and at eta_M = 1) on ``track`` with harmonics -N-1..N.
 
     ``tol`` is the relative tolerance of the receptance; ``evaluations`` counts the receptances computed.
-    The matrices are remembered by (N, tol, q), in a memory that :meth:`but` shares: a point evaluated
-    again (a bracket's ends in Brent's method, a sample met again when a crossing is resolved) costs no
-    receptance and does not count.
     """
 
     track: SleeperTrack
@@ -44,25 +41,16 @@ class MassPencil:
     N: int
     tol: float = 1e-9
     evaluations: list[int] = field(default_factory=lambda: [0], compare=False)
-    seen: dict[tuple[int, float, complex], tuple[np.ndarray, np.ndarray]] = field(
-        default_factory=dict, compare=False, repr=False
-    )
 
     def but(self, *, N: int | None = None, tol: float | None = None) -> MassPencil:
-        """The same pencil with harmonics -N-1..N or receptance tolerance ``tol`` (count, memory shared)."""
+        """The same pencil with harmonics -N-1..N or receptance tolerance ``tol`` (the count shared)."""
         N = self.N if N is None else N
-        tol = self.tol if tol is None else tol
-        return MassPencil(self.track, self.base, self.unit, N, tol, self.evaluations, self.seen)
+        return MassPencil(
+            self.track, self.base, self.unit, N, self.tol if tol is None else tol, self.evaluations
+        )
 
     def matrices(self, q: complex) -> tuple[np.ndarray, np.ndarray]:
         """(A, B) at q (Eq. (S19)): the Hill matrices of the massless and of the unit wheel, subtracted."""
-        key = (self.N, self.tol, complex(q))
-        if key not in self.seen:
-            self.seen[key] = self._matrices(q)
-        A, B = self.seen[key]
-        return A.copy(), B.copy()
-
-    def _matrices(self, q: complex) -> tuple[np.ndarray, np.ndarray]:
         h = harmonic_set(self.N)
         rec = receptance(self.track, q, h, self.base.positions, tol=self.tol)
         self.evaluations[0] += 1
