@@ -15,7 +15,8 @@
 # # Parameter sweeps: a 3-D stability sweep explored with xarray
 #
 # `moving_bogie.sweep` computes the stability verdict (is there an induced frequency with Im q < 0,
-# Eq. (35)?) at every point of a grid of any parameters, on Dask, into a zarr store that xarray reads.
+# Eq. (35)?) at every point of a grid of any parameters, on Dask (a small sweep in this process), into a
+# zarr store that xarray reads.
 # Here: Case 1 of Table 1 over the velocity `alpha`, the wheel mass `eta_M` and the foundation damping
 # `eta_f`. The same sweep from the command line:
 #
@@ -45,14 +46,12 @@ from moving_bogie.sweep.plots import plot_sweep_slice
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 n = 12 if QUICK else 60
 folder = Path(tempfile.mkdtemp())
-# quick mode: one worker thread in this process (no cluster start-up); otherwise one process per core
-engine = dict(workers=1, processes=False) if QUICK else {}
-
+# quick mode's 576 points run in this process (a sweep of fewer than IN_PROCESS_POINTS = 1000 points: a
+# cluster's start-up would cost more than they do); the full 14,400 on a local cluster, a process per core
 ds = sweep(
     table1_case(1),
     {"alpha": f"0.5:1.15:{n}", "eta_M": f"2:120:{n}", "eta_f": "0.03,0.06,0.1,0.2"},
     folder / "sweep.zarr",
-    **engine,
 ).load()  # small enough to hold in memory; a large store stays lazy (dask) until computed
 ds  # noqa: B018 (the notebook shows it)
 

@@ -20,6 +20,15 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
+#: What ``python -m ipykernel_launcher`` does (the working folder off sys.path while ipykernel loads; the
+#: kernel puts it back), with debugpy made unimportable: the kernel then starts without its debugger
+#: (ipykernel's own fallback when debugpy is missing), which saves about a tenth of a second of CPU at every
+#: start. A headless run steps through nothing.
+KERNEL_START = (
+    "import sys; del sys.path[0]; sys.modules['debugpy'] = None; "
+    "from ipykernel import kernelapp; kernelapp.launch_new_instance()"
+)
+
 
 @contextmanager
 def this_interpreter_kernel():
@@ -28,7 +37,7 @@ def this_interpreter_kernel():
         spec = Path(root) / "kernels" / "python3"
         spec.mkdir(parents=True)
         kernel = {
-            "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
+            "argv": [sys.executable, "-c", KERNEL_START, "-f", "{connection_file}"],
             "display_name": "Python 3 (moving-bogie)",
             "language": "python",
         }
@@ -62,10 +71,9 @@ def run_notebook(path, *, quick: bool = False, out=None, timeout: int = 600) -> 
 
     path = Path(path).resolve()
     notebook = nbformat.reads(jupytext.writes(jupytext.read(path), fmt="ipynb"), as_version=4)
-    saved = {k: os.environ.get(k) for k in ("MOVING_BOGIE_QUICK", "PYDEVD_DISABLE_FILE_VALIDATION")}
+    saved = {k: os.environ.get(k) for k in ("MOVING_BOGIE_QUICK",)}
     if quick:
         os.environ["MOVING_BOGIE_QUICK"] = "1"
-    os.environ["PYDEVD_DISABLE_FILE_VALIDATION"] = "1"  # a debugger warning of frozen modules, not ours
     start = time.perf_counter()
     try:
         with this_interpreter_kernel():

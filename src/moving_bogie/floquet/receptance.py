@@ -187,6 +187,11 @@ def _smeared_one(den: np.ndarray, num: np.ndarray, xi: np.ndarray) -> np.ndarray
     return np.array(out)
 
 
+def _sum4(a: np.ndarray) -> np.ndarray:
+    """The sum over the first axis (the four roots of the symbol), term by term in their order."""
+    return a[0] + a[1] + a[2] + a[3]
+
+
 def _integrand_factors(
     track: SleeperTrack, q: complex, harmonics: np.ndarray, positions: np.ndarray, p: np.ndarray
 ) -> tuple[np.ndarray, ...]:
@@ -199,20 +204,19 @@ def _integrand_factors(
     K, alpha, lam = track.K, track.alpha, track.lam
     w = q + alpha * p
     z = track.support(w)
-    r, res = track.symbol_roots(w)  # (P, 4)
-    cot = lam / 2 * stable_cot(lam / 2 * (p[:, None] - r))  # the same at every harmonic: lam K / 2 = pi
-    S = np.sum(cot * res, axis=-1)
+    r, res = (a[:, :, None] for a in track.symbol_roots_first(w))  # (4, P, 1)
+    cot = lam / 2 * stable_cot(lam / 2 * (p[None, :, None] - r))  # the same at every harmonic: lam K / 2 = pi
+    S = _sum4(cot * res)[:, 0]
     D = 1 + z * S
-    shift = p[:, None] - harmonics[None, :] * K  # (P, H)
-    x = shift[:, :, None] - r[:, None, :]  # (P, H, 4)
+    shift = p[:, None] - harmonics[None, :] * K  # (P, H), real
+    x = shift[None] - r  # (4, P, H): p - n K - r
     inv = 1 / x
-    G = np.sum(res[:, None, :] * inv, axis=-1)  # partial fractions of Q~/N~ (deg Q < deg N)
-    own = cot[:, None, :] - inv  # (lam / 2) cot(lam x / 2) - 1 / x: S'_n, its series where x is small
-    y = lam / 2 * x
-    small = y.real**2 + y.imag**2 < 0.25
+    G = _sum4(res * inv)  # (P, H): partial fractions of Q~/N~ (deg Q < deg N)
+    own = cot - inv  # (lam / 2) cot(lam x / 2) - 1 / x: S'_n, its series where x is small
+    small = (shift[None] - r.real) ** 2 + r.imag**2 < (1 / lam) ** 2  # |lam x / 2| < 1 / 2
     if np.any(small):
-        own[small] = lam / 2 * _cot_series(y[small])
-    S_own = np.sum(res[:, None, :] * own, axis=-1)
+        own[small] = lam / 2 * _cot_series(lam / 2 * x[small])
+    S_own = _sum4(res * own)
     s = np.asarray(positions, dtype=float)
     # the source's phase e^{i (p - n K) s_c} (P, H, C) as e^{i p s_c} e^{-i n K s_c}; the receiver's is its
     # conjugate (p real)
@@ -221,7 +225,8 @@ def _integrand_factors(
     P, H, C = out_ph.shape
     u = (G[:, :, None] * out_ph).reshape(P, H * C)
     v = (G[:, :, None] * in_ph).reshape(P, H * C)
-    diag = z[:, None] ** 2 * G**2 * S_own / (D[:, None] * (1 + z[:, None] * G))  # (P, H)
+    zG = z[:, None] * G
+    diag = zG * zG * S_own / (D[:, None] * (1 + zG))  # (P, H): z^2 G^2 S'_n / (D (1 + z G))
     return -z / D, u, v, diag, out_ph, in_ph
 
 

@@ -26,8 +26,10 @@ def stable_cot(z: np.ndarray) -> np.ndarray:
     """cot z for complex arrays, through exp(+-2 i z) of modulus at most 1 (no overflow far from the axis)."""
     z = np.asarray(z, dtype=complex)
     upper = z.imag > 0
-    e = np.exp(np.where(upper, 2j * z, -2j * z))
-    return np.where(upper, 1j * (e + 1) / (e - 1), 1j * (1 + e) / (1 - e))
+    t = 2j * z
+    e = np.exp(np.where(upper, t, -t))
+    ratio = (e + 1) / (e - 1)
+    return 1j * np.where(upper, ratio, -ratio)  # below the axis (1 + e) / (1 - e) = -ratio
 
 
 @dataclass(frozen=True)
@@ -129,6 +131,11 @@ class SleeperTrack:
         N~ is a quadratic in p^2 (every beam is even in p): its roots in p^2 by the quadratic formula in the
         form without cancellation, then r = +-sqrt(p^2).
         """
+        r, res = self.symbol_roots_first(w)
+        return np.ascontiguousarray(np.moveaxis(r, 0, -1)), np.ascontiguousarray(np.moveaxis(res, 0, -1))
+
+    def symbol_roots_first(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`symbol_roots` with the axis of the four roots first: arrays of shape (4,) + w.shape."""
         n, q = self._coeffs(w)
         if len(n) != 3:
             raise ValueError(f"the symbol of beam {self.beam!r} is not a quadratic in p^2")
@@ -136,13 +143,11 @@ class SleeperTrack:
         disc = np.sqrt(b * b - 4 * a * c)
         disc = np.where(np.abs(b + disc) >= np.abs(b - disc), disc, -disc)
         t = -(b + disc) / 2
-        s = np.stack([t / a, c / t], axis=-1)
-        root = np.sqrt(s)
-        r = np.concatenate([root, -root], axis=-1)
-        s4 = np.concatenate([s, s], axis=-1)
-        dn = 2 * r * (2 * a[..., None] * s4 + b[..., None])
-        res = _horner([c_[..., None] for c_ in q], s4) / dn
-        return r, res
+        s = (t / a, c / t)  # the two roots in p^2
+        root = [np.sqrt(x) for x in s]
+        # Q~(r) / N~'(r), N~'(r) = 2 r (2 a r^2 + b): odd in r, so -r has the residue of r negated
+        res = [_horner(q, x) / (2 * y * (2 * a * x + b)) for x, y in zip(s, root)]
+        return np.stack([*root, -root[0], -root[1]]), np.stack([*res, -res[0], -res[1]])
 
     def lattice_sum(self, p: np.ndarray, w: np.ndarray) -> np.ndarray:
         """S(p, w) = sum_j G(p + j K, w) in closed form (docs/sleepers.md, Eq. (S7))."""
