@@ -69,14 +69,18 @@ print("uncertain points:", int((~ds.certain).sum()), " settled by a full count:"
 # %% [markdown]
 # ## Fraction of unstable points, per foundation damping
 #
-# Larger foundation damping shrinks the subcritical instability region (Section 3.5).
+# Section 3.5 of the paper finds that foundation damping *aggravates* the subcritical instability: the
+# instability lines move to lower masses as eta_f grows. The last line below says whether this sweep's
+# subcritical unstable fraction grows with eta_f too.
 
 # %%
 unstable = ds.n_unstable > 0
 print(unstable.mean(dim=("alpha", "eta_M")).to_series().round(3))
 subcritical = unstable.sel(alpha=slice(None, 0.999))
+fraction = subcritical.mean(dim=("alpha", "eta_M"))
 print("subcritical unstable fraction:")
-print(subcritical.mean(dim=("alpha", "eta_M")).to_series().round(3))
+print(fraction.to_series().round(3))
+print("grows with eta_f:", bool((fraction.diff("eta_f") > 0).all()))
 
 # %% [markdown]
 # ## The lowest unstable velocity for each wheel mass and damping

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.receptance import receptance, smeared_receptance
+from moving_bogie.floquet.receptance import receptance
+from moving_bogie.floquet.smeared_rail import smeared_receptance
 from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_mass, vehicle_masses
 
