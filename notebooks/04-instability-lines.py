@@ -19,9 +19,10 @@
 # **real** $q$-axis. The paper (Section 3.5) traces these crossings, the *instability lines*, in the plane of
 # the velocity $\alpha$ and the wheel mass $\eta_M$, instead of using the D-decomposition method. This
 # notebook computes them with `moving_bogie.stability.lines.instability_lines.instability_lines` for the
-# settings of
-# Figures 3, 4, 7 and 8, then maps the degree of instability over the same plane
-# (`moving_bogie.stability.maps.map.stability_map`) and checks a point of the map against the root search.
+# settings of Figures 3, 4, 7 and 8 (a figure's panels together, with `instability_lines_many`: the same
+# lines as panel by panel, in fewer and larger evaluations), then maps the degree of instability over the
+# same plane (`moving_bogie.stability.maps.map.stability_map`) and checks a point of the map against the
+# root search.
 #
 # Quick mode (`MOVING_BOGIE_QUICK=1`, used in the test suite) uses coarser seed grids and continuation steps
 # (those of `moving-bogie reproduce --quick`), fewer wheel spacings and fewer panels. `moving-bogie reproduce`
@@ -35,7 +36,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from moving_bogie import DimensionlessParams, table1_case
-from moving_bogie.api import induced_frequencies, instability_lines, stability_map
+from moving_bogie.api import induced_frequencies, instability_lines, instability_lines_many, stability_map
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 GRID = dict(alpha_step=0.02, q_step=0.01, h_max=0.02) if QUICK else dict(alpha_step=0.01, q_step=0.004)
@@ -92,10 +93,18 @@ timings = {}
 start = time.perf_counter()
 etas = (0.05, 0.3) if QUICK else (0.05, 0.1, 0.15, 0.2, 0.25, 0.3)
 fig, axes = plt.subplots(1, len(etas), figsize=(4.2 * len(etas), 3.8), layout="constrained", squeeze=False)
-for ax, eta_f in zip(axes[0], etas):
-    lines = instability_lines(
-        base(eta_f=eta_f).replace(vehicle="masses"), spacings=spacings(2.25), theta_max=ETA_MAX, **GRID
-    )
+# the panels are traced together (instability_lines_many): each panel's lines are those instability_lines
+# gives it alone, in fewer, larger evaluations of E_chr
+panels = instability_lines_many(
+    [
+        (
+            base(eta_f=eta_f).replace(vehicle="masses"),
+            dict(spacings=spacings(2.25), theta_max=ETA_MAX, **GRID),
+        )
+        for eta_f in etas
+    ]
+)
+for ax, eta_f, lines in zip(axes[0], etas, panels):
     draw(ax, lines)
     ax.axvline(1.0, color="k", ls=":", lw=1)
     frame(ax, f"two masses, η_f = {eta_f:g}", 1.2)
@@ -118,16 +127,13 @@ start = time.perf_counter()
 etas = (0.05,) if QUICK else (0.05, 0.1, 0.15, 0.2, 0.25, 0.3)
 adapt = 1 + 1.7 / 2  # two masses of the bogie's total mass: eta_M(masses) = (1 + cf1/2) eta_M(bogie)
 fig, axes = plt.subplots(1, len(etas), figsize=(4.6 * len(etas), 3.8), layout="constrained", squeeze=False)
-for ax, eta_f in zip(axes[0], etas):
-    p = base(eta_f=eta_f)
-    bogie = instability_lines(p, spacings=spacings(2.25), alpha_range=(0, 1), theta_max=ETA_MAX, **GRID)
-    masses = instability_lines(
-        p.replace(vehicle="masses"),
-        spacings=spacings(2.25),
-        alpha_range=(0, 1),
-        theta_max=ETA_MAX * adapt,
-        **GRID,
-    )
+common = dict(spacings=spacings(2.25), alpha_range=(0, 1), **GRID)
+requests = []
+for eta_f in etas:
+    requests.append((base(eta_f=eta_f), dict(common, theta_max=ETA_MAX)))
+    requests.append((base(eta_f=eta_f).replace(vehicle="masses"), dict(common, theta_max=ETA_MAX * adapt)))
+panels = instability_lines_many(requests)
+for ax, eta_f, bogie, masses in zip(axes[0], etas, panels[::2], panels[1::2]):
     draw(ax, bogie)
     draw(ax, masses, style="--", scale=adapt, label_suffix=" (a)")
     frame(ax, f"bogie (full) vs masses (dashed), η_f = {eta_f:g}", 1.0)
@@ -146,15 +152,16 @@ timings["Figure 4"] = time.perf_counter() - start
 start = time.perf_counter()
 cf2s = (0.1,) if QUICK else (0.1, 0.01)
 fig, axes = plt.subplots(1, len(cf2s), figsize=(4.8 * len(cf2s), 3.8), layout="constrained", squeeze=False)
+styles = ((0, "-"), (0.05, "--"))
+options = dict(spacings=spacings(2.0), alpha_range=(0, 1), theta_max=ETA_MAX, **GRID)
+panels = iter(
+    instability_lines_many(
+        [(base(cf2=cf2, kappa_v="0.2", eta_v=eta_v), options) for cf2 in cf2s for eta_v, _ in styles]
+    )
+)
 for ax, cf2 in zip(axes[0], cf2s):
-    for eta_v, style in ((0, "-"), (0.05, "--")):
-        p = base(cf2=cf2, kappa_v="0.2", eta_v=eta_v)
-        draw(
-            ax,
-            instability_lines(p, spacings=spacings(2.0), alpha_range=(0, 1), theta_max=ETA_MAX, **GRID),
-            style=style,
-            label_suffix=f", η_v = {eta_v:g}",
-        )
+    for eta_v, style in styles:
+        draw(ax, next(panels), style=style, label_suffix=f", η_v = {eta_v:g}")
     frame(ax, f"cf_2 = {cf2:g}: η_v = 0 (full), 0.05 (dashed)", 1.0)
 axes[0][0].legend(fontsize=7)
 plt.show()
