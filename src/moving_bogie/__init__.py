@@ -36,6 +36,7 @@ _LAZY = {
     "critical_velocity": "stability.velocity.critical_velocity",
     "frequency_lines": "api",
     "instability_lines": "api",
+    "instability_lines_many": "api",
     "d_decomposition": "api",
     "critical_stiffness": "api",
     "stability_map": "api",
