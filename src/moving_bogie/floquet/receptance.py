@@ -21,6 +21,7 @@ relative to the largest free-rail receptance.
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 from typing import Any
 
@@ -227,15 +228,18 @@ def receptance(
     key = (model, at, harmonics.tobytes(), positions.tobytes(), tol, tail, max_rounds)
     kept = _kept.get(key)
     if kept is None:
-        kept = _kept[key] = _receptance(track, q, harmonics, positions, tol, tail, max_rounds)
-        if len(_kept) > _KEPT:
-            del _kept[next(iter(_kept))]  # the oldest
+        kept = _receptance(track, q, harmonics, positions, tol, tail, max_rounds)
+        with _keeping:  # threads of one process (a threaded scheduler) share the memory
+            _kept[key] = kept
+            while len(_kept) > _KEPT:
+                del _kept[next(iter(_kept))]  # the oldest
     return Receptance(kept.matrix.copy(), kept.error, kept.scale, kept.panels)
 
 
 #: How many receptances :func:`receptance` keeps, and those it keeps (by their arguments).
 _KEPT = 1024
 _kept: dict[tuple, Receptance] = {}
+_keeping = threading.Lock()
 
 
 def _receptance(
