@@ -1,7 +1,7 @@
 """Instability lines traced together: the shared-call tracer against a tracer alone, panels stacked
 against each panel alone, a stacked sweep against its members.
 
-References: :meth:`PathTracer.trace_lockstep` (the loop of one tracer by itself) and
+References: one tracer traced by itself (:func:`trace_all_many` of one job, no call shared) and
 :func:`instability_lines` of one parameter set at a time.
 """
 
@@ -37,16 +37,24 @@ def _same_paths(a: list, b: list, rtol: float = 1e-13) -> None:
 
 
 @pytest.mark.parametrize("vehicle", ["bogie", "masses"])
-def test_shared_calls_trace_the_lockstep_paths(vehicle):
-    """Same curves, same points, same reasons at the ends as the tracer's own loop."""
-    sweep = SweepCharacteristic(bind(_params("0.1").replace(vehicle=vehicle)))
-    groups, box = seed_groups(sweep, SPACINGS[1:], (0.0, 1.0), 200.0, 1.5, GRID, None)
-    alone = PathTracer(sweep, 200.0, box, GRID["h_max"], GRID["tol"])
-    shared = PathTracer(sweep, 200.0, box, GRID["h_max"], GRID["tol"])
-    paths = alone.trace_all(groups)
+def test_shared_calls_trace_the_paths_of_the_tracer_alone(vehicle):
+    """Same curves, same points, same reasons at the ends as the tracer traced by itself, when its calls
+    are shared with the tracer of another panel (another eta_f: the sweeps stack)."""
+    panels = []
+    for eta_f in ("0.1", "0.2"):
+        sweep = SweepCharacteristic(bind(_params(eta_f).replace(vehicle=vehicle)))
+        groups, box = seed_groups(sweep, SPACINGS[1:], (0.0, 1.0), 200.0, 1.5, GRID, None)
+        panels.append((sweep, box, groups))
+
+    def tracer(sweep, box):
+        return PathTracer(sweep, 200.0, box, GRID["h_max"], GRID["tol"])
+
+    alone = tracer(*panels[0][:2])
+    paths = trace_all_many([(alone, panels[0][2])])[0]
     assert paths, "no line traced"
-    _same_paths(paths, trace_all_many([(shared, groups)])[0])
-    assert alone.warnings == shared.warnings
+    shared = [tracer(sweep, box) for sweep, box, _ in panels]
+    _same_paths(paths, trace_all_many([(t, g) for t, (_, _, g) in zip(shared, panels)])[0])
+    assert alone.warnings == shared[0].warnings
 
 
 def test_panels_traced_together_are_the_panels_alone():

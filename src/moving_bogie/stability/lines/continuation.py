@@ -121,9 +121,10 @@ class PathTracer:
     """Pseudo-arclength continuation of many curves at once (vectorised over the curves).
 
     Each curve carries its own wheel spacing d, so that all spacings of a figure advance together.
-    :meth:`trace_all` traces by itself (:meth:`trace_lockstep`); tracers traced together (the panels of a
-    figure, :func:`~moving_bogie.stability.lines.walkers.trace_all_many`) share their calls and trace the
-    same curves.
+    It holds one panel's settings, its rounds of seeds (:meth:`begin`, :meth:`start_round`,
+    :meth:`end_round`) and the curves traced; the steps themselves are taken by
+    :func:`~moving_bogie.stability.lines.walkers.trace_all_many`, alone or with the tracers of other panels
+    (sharing their calls, each tracer's curves the same).
     """
 
     def __init__(
@@ -142,20 +143,9 @@ class PathTracer:
         self.h_max, self.tol, self.h_min, self.max_steps = h_max, tol, h_min, max_steps
         self.progress = progress
         self.warnings: list[str] = []
-        self.paths: list[TracedPath] = []  # the curves traced (trace_all)
+        self.paths: list[TracedPath] = []  # the curves traced (end_round)
         self.pending: list[tuple[float, FloatArray]] = []  # (d, seeds) not yet on a traced curve
         self.total = 1  # seeds at the start
-
-    def trace_all(self, groups: Iterable[tuple[float, FloatArray]]) -> list[TracedPath]:
-        """Trace curves until every seed lies on one; returns a list of (d, path (k, 3), (start, end)).
-
-        ``start`` and ``end`` say why the path ends there: a face of the box (:data:`END_REASONS`),
-        "closed" (a loop), "stalled" (singular point) or "max_steps".
-        """
-        self.begin(groups)
-        while self.pending:
-            self.end_round(self.trace_lockstep(*self.start_round()))
-        return self.paths
 
     def begin(self, groups: Iterable[tuple[float, FloatArray]]) -> None:
         """Start tracing the seed ``groups`` (d, seeds): no curve yet, every seed pending."""
@@ -188,86 +178,6 @@ class PathTracer:
         elif self.progress is not None:
             self.progress(1 - sum(len(g) for _, g in remaining) / self.total)
 
-    def trace_lockstep(self, starts: FloatArray, ds: FloatArray) -> list[TracedPath]:
-        """The curves through ``starts`` (spacings ``ds``), every walker one step at a time, by this
-        tracer alone."""
-        m = len(starts)
-        _, J, *_ = evaluate(self.sweep, starts, ds, self.scale)
-        T0 = tangent(J)
-        X = np.concatenate([starts, starts])
-        D = np.concatenate([ds, ds])
-        T = np.concatenate([T0, -T0])
-        H = np.full(2 * m, 0.25 * self.h_max)
-        active = np.all(np.isfinite(T), axis=-1)
-        reason = ["max_steps" if ok else "stalled" for ok in active]
-        walked = np.zeros(2 * m)
-        loop = np.zeros(2 * m, dtype=bool)
-        pts = [[x.copy()] for x in X]
-        for _ in range(self.max_steps):
-            if not np.any(active):
-                break
-            idx = np.nonzero(active)[0]
-            x, t, h, d = X[idx], T[idx], H[idx], D[idx]
-            y = x + h[:, None] * t
-            conv = np.zeros(len(idx), dtype=bool)
-            iters = np.zeros(len(idx), dtype=int)
-            for _k in range(6):
-                F, Jy, *_ = evaluate(self.sweep, y, d, self.scale)
-                A = np.concatenate([Jy, t[:, None, :]], axis=1)
-                rhs = np.concatenate([F, (np.sum((y - x) * t, axis=-1) - h)[:, None]], axis=-1)
-                with np.errstate(all="ignore"):
-                    dy = -np.linalg.solve(A, rhs[..., None])[..., 0]
-                size = np.max(np.abs(dy), axis=-1)
-                ok = np.isfinite(size)
-                y = np.where((ok & ~conv)[:, None], y + np.where(ok[:, None], dy, 0), y)
-                iters += ~conv
-                conv |= ok & (size < self.tol)
-                if np.all(conv | ~ok):
-                    break
-            tn = tangent(Jy, t)  # at the last corrector iterate: the final correction is below tol
-            good = (
-                conv
-                & np.all(np.isfinite(tn), axis=-1)
-                & (np.sum(tn * t, axis=-1) > np.cos(0.5))
-                & (np.linalg.norm(y - x, axis=-1) < 2 * h)
-            )
-            for j, i in enumerate(idx):
-                if not good[j]:
-                    H[i] *= 0.5
-                    if H[i] < self.h_min:
-                        active[i] = False
-                        reason[i] = "stalled"
-                    continue
-                out = self.outside(y[j])
-                if out is not None:
-                    end = self._end_point(x[j], y[j], d[j], out)
-                    if end is not None:
-                        pts[i].append(end)
-                    active[i] = False
-                    reason[i] = END_REASONS[(out[0], int(out[1] == self.box[out[0], 1]))]
-                    continue
-                walked[i] += np.linalg.norm(y[j] - x[j])
-                pts[i].append(y[j].copy())
-                X[i], T[i] = y[j], tn[j]
-                H[i] = min(H[i] * (1.5 if iters[j] <= 3 else 1.0), self.h_max)
-                if walked[i] > 4 * self.h_max and np.linalg.norm(y[j] - pts[i][0]) < 0.75 * H[i]:
-                    pts[i].append(pts[i][0].copy())
-                    active[i] = False
-                    loop[i] = True
-                    active[i + m if i < m else i - m] = False
-                    reason[i] = reason[i + m if i < m else i - m] = "closed"
-        else:
-            self.warnings.append("continuation stopped at max_steps")
-        paths: list[TracedPath] = []
-        for c in range(m):
-            if loop[c] or loop[c + m]:
-                path = np.array(pts[c] if loop[c] else pts[c + m])
-            else:
-                path = np.array(pts[c + m][::-1] + pts[c][1:])
-            if len(path) >= 2:
-                paths.append((float(ds[c]), path, (reason[c + m], reason[c])))
-        return paths
-
     def outside(self, y: FloatArray) -> tuple[int, float] | None:
         """(coordinate, bound value) of the first box face crossed, or None."""
         for k in range(3):
@@ -276,17 +186,6 @@ class PathTracer:
                 return k, lo
             if y[k] > hi:
                 return k, hi
-        return None
-
-    def _end_point(
-        self, x: FloatArray, y: FloatArray, d: float, face: tuple[int, float]
-    ) -> FloatArray | None:
-        k, value = face
-        w = (value - x[k]) / (y[k] - x[k])
-        guess = (x + w * (y - x))[None, :]
-        end, conv = newton_fixed(self.sweep, guess, np.array([d]), k, value, self.scale, self.tol)
-        if conv[0] and np.linalg.norm(end[0] - guess[0]) < 2 * np.linalg.norm(y - x) + 1e-9:
-            return end[0]
         return None
 
 

@@ -79,8 +79,8 @@ class _Calls:
 def trace_all_many(
     jobs: Sequence[tuple[PathTracer, Iterable[tuple[float, FloatArray]]]],
 ) -> list[list[TracedPath]]:
-    """:meth:`~moving_bogie.stability.lines.continuation.PathTracer.trace_all` of several tracers (the
-    panels of a figure), their rounds together: the walkers of every tracer's current round advance in
+    """Trace curves until every seed of every tracer lies on one (the panels of a figure, or one panel
+    alone), their rounds together: the walkers of every tracer's current round advance in
     shared calls (:func:`trace_walkers_many`); each tracer's rounds, curves and warnings are those it has
     alone."""
     tracers = [tracer for tracer, _ in jobs]
@@ -132,8 +132,8 @@ def _evaluated(
 
 
 def _place_ends(calls: _Calls, ends: list[EndRequest]) -> None:
-    """End points on the box faces (as :meth:`PathTracer._end_point`), all requests at once per box
-    coordinate and group of sweeps."""
+    """End points on the box faces (Newton with the box coordinate held, from the linear guess between
+    the last point and the first outside), all requests at once per box coordinate and group of sweeps."""
     for k in sorted({e[4] for e in ends}):
         mine = [e for e in ends if e[4] == k]
         x, y = np.array([e[2] for e in mine]), np.array([e[3] for e in mine])
@@ -212,7 +212,7 @@ class _Lockstep:
         return self.done_step
 
     def finish_step(self) -> list[EndRequest]:
-        """Accept or refuse every walker's step (:meth:`PathTracer.trace_lockstep`); the end points to
+        """Accept or refuse every walker's step (step control, box faces, closed loops); the end points to
         place on the box faces."""
         tracer, m, x, y, t, h = self.tracer, self.m, self.x, self.y, self.t, self.h
         tn = tangent(self.Jy, t)  # at the last corrector iterate: the final correction is below tol
