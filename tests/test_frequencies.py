@@ -112,6 +112,31 @@ params_strategy = st.builds(
 )
 
 
+def test_newton_of_many_cells_at_once_equals_each_cell_alone(table):
+    """The Newton starts of several cells in one batch (``newton_inside_many``, what locating does per
+    level) reach what each cell reaches alone (``newton_inside``), and that is the root the search
+    polished at 30 digits (reference: the polished roots of Case 1; a cell without a root gets None)."""
+    from moving_bogie.kernels.characteristic import CharacteristicArray
+    from moving_bogie.roots.count.contour import Rectangle
+    from moving_bogie.roots.refine.locate import newton_inside, newton_inside_many
+
+    roots = [complex(r.q) for r in table[1].roots]
+    cells = [Rectangle(z.real - 0.01, z.real + 0.02, z.imag - 0.012, z.imag + 0.008) for z in roots]
+    long = roots[0]  # a long cell: its starts along the longer side
+    cells.append(Rectangle(long.real - 0.01, long.real + 0.07, long.imag - 0.006, long.imag + 0.009))
+    assert all(sum(cell.contains(z) for z in roots) == 1 for cell in cells)  # one root each
+    empty = Rectangle(0.70, 0.72, -2.02, -2.0)  # no root of Case 1 there (Table 2)
+    assert all(not empty.contains(z) for z in roots)
+    cells.append(empty)
+    fast = CharacteristicArray(bind(table1_case(1)))
+    together = newton_inside_many(fast, cells)
+    alone = [newton_inside(fast, cell) for cell in cells]
+    assert together[-1] is None and alone[-1] is None
+    for z, a, b in zip(roots + [long], together[:-1], alone[:-1]):
+        assert a is not None and b is not None
+        assert abs(complex(a) - z) < 1e-12 and abs(complex(b) - z) < 1e-12
+
+
 @pytest.mark.slow
 @settings(max_examples=8, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(params_strategy)

@@ -265,3 +265,27 @@ def test_cli_verdict_line_exit_status_and_stderr(capsys, monkeypatch, supercriti
     assert data["verdict"]["alpha_cr"] == pytest.approx((1 + eta_s) ** 0.5, rel=1e-9)
     assert data["degree_of_instability"] == "-4.16549" and data["far_field"]["radius"] == 12.0
     assert len(searches) == 2
+
+
+@pytest.mark.parametrize(
+    "source",
+    ["case 7", "case 1, tr", "two-layer.toml", "car.toml"],
+)
+def test_far_field_samples_mirror(source):
+    """The far-field check samples only Re q >= 0: rho(-conj q) = rho(q) (E_chr and E_lead have real
+    coefficients). Checked against rho evaluated directly at the mirror points of the samples, for the
+    bogie on both beams, a layered track and the car."""
+    from moving_bogie.model.files import load_params_file
+
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    if source.endswith(".toml"):
+        params = load_params_file(examples / source)[0]
+    else:
+        params = table1_case(7) if source == "case 7" else table1_case(1).replace(beam="tr", S=10, r="0.09")
+    bound = bind(params)
+    q = far_field.sample_points(3.0)
+    assert np.all(q.real >= 0) and np.all(q.imag < 0)
+    q = q[:: max(1, q.size // 2000)]  # about 2000 of them: circles, rays and the imaginary axis alike
+    here, there = rho(bound, q), rho(bound, -np.conj(q))
+    assert np.all(np.isfinite(here))
+    np.testing.assert_allclose(there, here, rtol=1e-8, atol=1e-14)

@@ -14,8 +14,9 @@ E_chr cannot vanish (E_chr = 0 would give |E_lead| < |E_lead|). :func:`far_field
 smallest R = R0 2^k at which rho <= 1/2 (a margin of 2) at every sample of the lower half-plane beyond R that
 it checks: the half circles |q| = R, 2R, 4R, ..., 32R (angles clustered towards the real axis, where the
 factors e^{i p_k d} of K(+-d) stop decaying), the two rays just below the real axis from R to 32R and seven
-rays in between. Beyond 32R the derived decay rho = O(|q|^-delta) / |det Kmat / K0^n| takes over (for the
-bogie on Euler-Bernoulli det Kmat / K0^2 = 1 - K+ K- / K0^2 with |K+ K- / K0^2| <= 1/2 asymptotically).
+rays in between, of which it evaluates the half Re q >= 0 (rho(-conj q) = rho(q), :func:`sample_points`).
+Beyond 32R the derived decay rho = O(|q|^-delta) / |det Kmat / K0^n| takes over (for the bogie on
+Euler-Bernoulli det Kmat / K0^2 = 1 - K+ K- / K0^2 with |K+ K- / K0^2| <= 1/2 asymptotically).
 The check is numerical, with that margin: it is what makes "stable" a statement about every root with
 Im q < 0, and when it fails the verdict says UNDETERMINED.
 """
@@ -100,10 +101,14 @@ def e_lead(system: VehicleSystem, q: ComplexArray, K: Sequence[ComplexArray]) ->
 def sample_points(
     radius: float, outer: int = OUTER, per_circle: int = 1200, per_ray: int = 4000, inner_rays: int = 7
 ) -> np.ndarray:
-    """q samples of {|q| >= radius, Im q < 0} up to ``outer * radius``: half circles and rays.
+    """q samples of {|q| >= radius, Im q < 0, Re q >= 0} up to ``outer * radius``: quarter circles and rays.
 
-    The two rays just below the real axis carry ``per_ray`` points (there the factors e^{i p_k d} of K(+-d)
-    oscillate without decaying); ``inner_rays`` rays in between carry a quarter as many.
+    They are the right half of a set symmetric under q -> -conj(q): half circles of ``per_circle`` angles
+    (clustered towards the real axis), the two rays just below the real axis with ``per_ray`` points each
+    (there the factors e^{i p_k d} of K(+-d) oscillate without decaying) and ``inner_rays`` rays in between
+    with a quarter as many. E_chr has real coefficients, E_chr(-conj q) = conj E_chr(q), and so has E_lead:
+    rho takes the same value at a point and at its mirror, which is why the left half is not sampled (the
+    search window, Re q >= 0, rests on the same symmetry; tests/test_verdict.py checks it at the samples).
     """
     t = np.linspace(0.0, 1.0, per_circle)
     theta = -np.pi * (0.5 - 0.5 * np.cos(np.pi * t))  # clustered at 0 and -pi
@@ -113,7 +118,8 @@ def sample_points(
     below = -1e-7 * r * 1j
     angles = -np.pi * np.arange(1, inner_rays + 1) / (inner_rays + 1)
     inner = np.outer(np.linspace(radius, outer * radius, per_ray // 4), np.exp(1j * angles)).ravel()
-    return np.concatenate(circles + [r + below, -r + below, inner])
+    q = np.concatenate(circles + [r + below, -r + below, inner])
+    return q[q.real >= 0]  # a ray on the imaginary axis (cos(-pi/2) > 0 in floating point) is kept
 
 
 def rho(bound: BoundModel, q: np.ndarray, E: CharacteristicArray | None = None) -> np.ndarray:

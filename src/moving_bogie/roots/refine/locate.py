@@ -17,7 +17,7 @@ from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, Region, p
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated
 from moving_bogie.typing import Mpc
 
-__all__ = ["FastCharacteristic", "locate", "newton_inside"]
+__all__ = ["FastCharacteristic", "locate", "newton_inside", "newton_inside_many"]
 
 #: E_chr in double precision, batched: itself, or continued analytically through the cut.
 FastCharacteristic: TypeAlias = CharacteristicArray | ContinuedCharacteristic
@@ -52,17 +52,18 @@ def locate(
         # every cell of a level is split at once: one batched evaluation of E_chr per refinement of the
         # contours of all their halves (what costs is mostly the call, not the points)
         split: list[tuple[Region, int, tuple[float, ...]]] = []
+        # a cell between two cut curves is only ever split across Re q, so its height never shrinks: its
+        # smaller side decides (bisecting it further only makes a sliver a root sits in)
+        single = [r for r, k in level if k == 1 and min(r.width, r.height) <= newton_cell]
+        reached = dict(zip(map(id, single), newton_inside_many(fast, single)))
         for r, k in level:
             if k == 0:
                 continue
             size = max(r.width, r.height)
-            # a cell between two cut curves is only ever split across Re q, so its height never shrinks: its
-            # smaller side decides (bisecting it further only makes a sliver a root sits in)
-            if k == 1 and min(r.width, r.height) <= newton_cell:
-                q = newton_inside(fast, r)
-                if q is not None:
-                    out.append((q, 1, r))
-                    continue
+            q = reached.get(id(r))
+            if q is not None:
+                out.append((q, 1, r))
+                continue
             if size < 1e-10 * max(1.0, abs(r.center)):
                 out.append((mpmath.mpc(r.center), k, r))  # a cluster of k roots: a multiple root
                 continue
@@ -161,12 +162,28 @@ def newton_inside(fast: FastCharacteristic, rect: Region, starts: int = 9) -> Mp
     iterate leaving the cell's box by more than a quarter of its size is dropped. Returns the first root
     reached that lies in the cell: the cell holds one root by its count, so a root found in it is that one.
     """
+    return newton_inside_many(fast, [rect], starts)[0]
+
+
+def _starts(rect: Region, starts: int) -> np.ndarray:
+    """The Newton starts of :func:`newton_inside` in ``rect``: its centre first."""
     c = complex(rect.center)
     long = max(rect.width, rect.height) > 4 * min(rect.width, rect.height)
     u = (np.arange(starts) - (starts - 1) / 2) / starts if long else np.zeros(1)
     u = u[np.argsort(np.abs(u), kind="stable")]  # the centre first
-    q = c + u * (rect.width if rect.width >= rect.height else 1j * rect.height)
-    margin = 0.25 * max(rect.width, rect.height)
+    return c + u * (rect.width if rect.width >= rect.height else 1j * rect.height)
+
+
+def newton_inside_many(fast: FastCharacteristic, rects: list[Region], starts: int = 9) -> list[Mpc | None]:
+    """:func:`newton_inside` of several cells at once: the starts of all of them are one batch, so each
+    Newton iteration is one evaluation of E_chr and dE_chr/dq for every cell (what costs is mostly the
+    call, not the points). Each cell's iterates stay its own: the same steps, kept or dropped by its box."""
+    if not rects:
+        return []
+    firsts = [_starts(r, starts) for r in rects]
+    q = np.concatenate(firsts)
+    owner = np.concatenate([np.full(z.size, k) for k, z in enumerate(firsts)])
+    boxes = np.array([_box(r) for r in rects], dtype=float).reshape(-1, 4)[owner]
     live = np.ones(q.size, dtype=bool)
     done = np.zeros(q.size, dtype=bool)
     for _ in range(30):
@@ -176,21 +193,29 @@ def newton_inside(fast: FastCharacteristic, rect: Region, starts: int = 9) -> Mp
         try:
             E, dE = (np.asarray(v, dtype=complex) for v in fast.value_and_derivative(q[idx]))
         except MovingBogieError:
-            return None
+            return [None] * len(rects) if len(rects) == 1 else _one_by_one(fast, rects, starts)
         with np.errstate(all="ignore"):
             step = E / dE
         ok = np.isfinite(step) & (dE != 0)
         q[idx[ok]] -= step[ok]
-        z = q[idx]
-        inside = (
-            (z.real >= rect.x0 - margin)
-            & (z.real <= rect.x1 + margin)
-            & (z.imag >= rect.y0 - margin)
-            & (z.imag <= rect.y1 + margin)
-        )
+        z, box = q[idx], boxes[idx]
+        inside = (z.real >= box[:, 0]) & (z.real <= box[:, 1]) & (z.imag >= box[:, 2]) & (z.imag <= box[:, 3])
         live[idx[~(ok & inside)]] = False
         done[idx[ok]] = np.abs(step[ok]) < 1e-13 * np.maximum(1, np.abs(q[idx[ok]]))
+    found: list[Mpc | None] = [None] * len(rects)
     for k in np.nonzero(live & done)[0]:
-        if rect.contains(complex(q[k])):
-            return mpmath.mpc(complex(q[k]))
-    return None
+        cell = int(owner[k])
+        if found[cell] is None and rects[cell].contains(complex(q[k])):
+            found[cell] = mpmath.mpc(complex(q[k]))
+    return found
+
+
+def _box(rect: Region) -> tuple[float, float, float, float]:
+    """The cell's bounding box widened by a quarter of its size: Newton iterates that leave it are dropped."""
+    margin = 0.25 * max(rect.width, rect.height)
+    return (rect.x0 - margin, rect.x1 + margin, rect.y0 - margin, rect.y1 + margin)
+
+
+def _one_by_one(fast: FastCharacteristic, rects: list[Region], starts: int) -> list[Mpc | None]:
+    """Each cell on its own, when the batch could not be evaluated (one cell's failure stays its own)."""
+    return [newton_inside_many(fast, [r], starts)[0] for r in rects]
