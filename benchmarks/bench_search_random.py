@@ -146,8 +146,9 @@ def draw_sets(seed: int = 24, layered: int = 200, one_layer: int = 100, only: st
 def scan_roots(params, window, *, n=(801, 801), tol=1e-9) -> list:
     """Roots of E_chr in ``window`` (a Rectangle) with Im q < 0 found by brute force, independently of the
     contour code: the local minima of |E_chr| on an n[0] x n[1] grid, polished by double-precision Newton
-    steps (analytic derivative) and then by mpmath.findroot at 30 digits; a minimum is kept when the polished
-    point lies in the window and E_chr vanishes there. Returns complex roots, duplicates merged."""
+    steps (analytic derivative; where they settle) and then by mpmath.findroot at 30 digits; a minimum is kept
+    when the polished point lies in the window and E_chr vanishes there. Returns complex roots, duplicates
+    merged."""
     from moving_bogie.kernels.characteristic import Characteristic, CharacteristicArray
 
     fast = CharacteristicArray(bind(params))
@@ -169,14 +170,18 @@ def scan_roots(params, window, *, n=(801, 801), tol=1e-9) -> list:
                 is_min &= inner <= A[1 + dy : A.shape[0] - 1 + dy, 1 + dx : A.shape[1] - 1 + dx]
     starts = Z[1:-1, 1:-1][is_min]
     q = starts.copy()
+    step = np.zeros_like(q)
     for _ in range(40):
         E, dE = fast.value_and_derivative(q)
         with np.errstate(all="ignore"):
-            step = np.where((dE != 0) & np.isfinite(dE), E / dE, 0)
+            step = np.where((dE != 0) & np.isfinite(dE), E / dE, np.inf)
         q = q - np.where(np.isfinite(step), step, 0)
+    # a minimum where Newton's last step is still above 1e-6 relative is no root within 1e-6 of q (near a
+    # root the step is the distance to it): findroot from there could only give what is rejected below
+    settled = np.abs(step) <= 1e-6 * np.maximum(1.0, np.abs(q))
     roots = []
     with mpmath.workdps(30):
-        for z in q:
+        for z in q[settled]:
             if not (np.isfinite(z) and window.contains(z) and z.imag < 0):
                 continue
             try:

@@ -205,8 +205,8 @@ timings["Figure 8"] = time.perf_counter() - start
 # %%
 start = time.perf_counter()
 p = base(eta_f="0.1")
-alphas = np.linspace(0.02, 1.2, 30 if QUICK else 120)
-thetas = np.linspace(2.0, ETA_MAX, 30 if QUICK else 120)
+alphas = np.linspace(0.02, 1.2, 20 if QUICK else 120)
+thetas = np.linspace(2.0, ETA_MAX, 20 if QUICK else 120)
 smap = stability_map(p, alphas=alphas, thetas=thetas, workers=1)
 lines = instability_lines(p, theta_max=ETA_MAX, **GRID)
 fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")

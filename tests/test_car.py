@@ -223,11 +223,18 @@ def test_car_steady_state_against_quadrature():
     assert abs(steady["theta_c"] - (steady["u_b2"] - steady["u_b1"]) / L) < 1e-12
 
 
-@pytest.mark.slow
-def test_car_on_two_layers_resolves_a_pair_1e13_apart():
-    """On the two-layer track the bogies' pair is 7e-14 apart: both members found, polished, counted."""
+@pytest.fixture(scope="module")
+def two_layer_car():
+    """The car on the two-layer track and its induced frequencies at 30 digits (searched once, for the
+    two tests of its close pair below)."""
     params, _ = load_params_file(EXAMPLES / "car-two-layer.toml")
-    result = induced_frequencies(params, dps=20)
+    return params, induced_frequencies(params, dps=30)
+
+
+@pytest.mark.slow
+def test_car_on_two_layers_resolves_a_pair_1e13_apart(two_layer_car):
+    """On the two-layer track the bogies' pair is 7e-14 apart: both members found, polished, counted."""
+    params, result = two_layer_car
     assert result.count_ok and result.verdict.state == "stable"
     assert all(r.multiplicity == 1 for r in result.roots)
     qs = [complex(r.q) for r in result.roots]
@@ -290,14 +297,13 @@ def test_mirrors_keep_the_roots_precision():
 
 
 @pytest.mark.slow
-def test_car_on_two_layers_residues_of_a_close_pair_are_mirrors():
+def test_car_on_two_layers_residues_of_a_close_pair_are_mirrors(two_layer_car):
     """The residue of -conj(q) is the conjugate of that of q (E_chr is real on the imaginary axis), also for
     the pair 7e-14 apart, so that the imaginary parts of the residue sum cancel (they did not when the
     mirror was rounded to double precision)."""
     from moving_bogie.response.residues import residue_expansion
 
-    params, _ = load_params_file(EXAMPLES / "car-two-layer.toml")
-    result = induced_frequencies(params, dps=30)
+    params, result = two_layer_car
     expansion = residue_expansion(bind(params), result, shapes=False)
     q = expansion.q
     for name in expansion.names:

@@ -12,11 +12,11 @@ than the rest of its module except where that costs nothing:
 
 * each group of :data:`TOGETHER` shares what a process computes once: it is one unit, on one worker;
 * the modules of :data:`SPREAD` share no module fixture: each of their tests is a unit of its own, so the
-  two workers share them (the notebooks: eight kernels of 5-20 s each, one module);
-* the modules of :data:`LONG_FIRST` (the longest in a full run, ``--durations=0``) go out first, in
-  that order, then the rest as ``loadscope`` orders them, then the units of :data:`SPREAD`, short ones
-  that fill the end of both workers. The list is a hint for the order only: a module missing from it, or
-  one that got faster, runs all the same.
+  two workers share them (the notebooks: nine kernels of 5-20 s each, one module);
+* the units of :data:`LONG_FIRST` (the longest in a full run, ``--durations=0``, notebooks among them)
+  go out first, longest first, then the rest as ``loadscope`` orders them, then the other units of
+  :data:`SPREAD`: short ones that fill the end of both workers. The list is a hint for the order only: a
+  unit missing from it, or one that got faster, runs all the same.
 """
 
 from __future__ import annotations
@@ -34,21 +34,46 @@ TOGETHER = (
     ("tests/test_layout.py", "tests/test_declared_dependencies.py", "tests/test_docs.py"),
 )
 
-#: The modules that took longest on one worker in a full run (``pytest -n 2 --durations=0``), longest first.
+#: The units that took longest in a full run (``pytest -n 2 --durations=0``, seconds per module, a
+#: notebook per test), longest first: handed out in this order, the many short modules left to fill the
+#: end of both workers. The derivations come first: on a fresh clone (CI) their regeneration is not
+#: cached and takes them to the top.
 LONG_FIRST = (
     "tests/test_derivations_current.py",
-    "tests/test_search_random.py",
     "tests/test_reproduce.py",
-    "tests/test_car_certified.py",
-    "tests/test_readme.py",
-    "tests/test_response_tr.py",
-    "tests/test_generated_kernels.py",
+    "tests/test_search_random.py",
     "tests/test_undamped_stability.py",
-    "tests/test_response_bromwich.py",
-    "tests/test_undamped_verdict.py",
-    "tests/test_beam_as_data.py",
+    "tests/test_car.py",
+    "tests/test_sweep.py",
     "tests/test_validation.py",
+    "tests/test_response_layered.py",
+    "tests/test_frequencies.py",
+    "tests/test_notebooks.py::test_notebook_runs[09-sleepers]",
+    "tests/test_response_tr.py",
+    "tests/test_response_bromwich.py",
+    "tests/test_notebooks.py::test_notebook_runs[04-instability-lines]",
     "tests/test_layered_search.py",
+    "tests/test_notebooks.py::test_notebook_runs[06-sweeps]",
+    "tests/test_model_as_data.py",
+    "tests/test_car_certified.py",
+    "tests/test_sleepers_finite_beam.py",
+    "tests/test_floquet_receptance.py",
+    "tests/test_undamped_verdict.py",
+    "tests/test_docs_site.py",
+    "tests/test_sweep_quiet.py",
+    "tests/test_readme.py",
+    "tests/test_notebooks.py::test_notebook_runs[05-change-the-model]",
+    "tests/test_notebooks.py::test_notebook_runs[08-a-full-car]",
+    "tests/test_search_window.py",
+    "tests/test_certify.py",
+    "tests/test_examples.py",
+    "tests/test_finite_beam_tr.py",
+    "tests/test_finite_beam_vehicles.py",
+    "tests/test_finite_beam.py",
+    "tests/test_notebooks.py::test_notebook_runs[03-vibrations-and-validation]",
+    "tests/test_notebooks.py::test_notebook_runs[02-table2]",
+    "tests/test_notebooks.py::test_notebook_runs[07-layered-track]",
+    "tests/test_notebooks.py::test_notebook_runs[01-quickstart]",
 )
 
 
@@ -82,8 +107,7 @@ class BalancedScopes(LoadScopeScheduling):
 
 
 def _rank(scope: str) -> int:
-    """0, 1, ... for the modules of LONG_FIRST, then the rest (their loadscope order kept), SPREAD last."""
-    module = _module(scope)
-    if module in LONG_FIRST:
-        return LONG_FIRST.index(module)
-    return len(LONG_FIRST) + (module in SPREAD)
+    """0, 1, ... for the units of LONG_FIRST, then the rest (their loadscope order kept), SPREAD last."""
+    if scope in LONG_FIRST:
+        return LONG_FIRST.index(scope)
+    return len(LONG_FIRST) + (_module(scope) in SPREAD)
