@@ -283,8 +283,8 @@ def figure16(quick: bool = False, progress: Callable[[float], None] | None = Non
         ("(a) stand-in for ref. [48]: TR, d = 21", figure16_params(), (0.5, 2.0), 1.0, 4.0),
         ("(b) bogie of Case 5: EB, d = 1.5", table1_case(5), (0.3, 1.1), 0.6, 1.5),
     )
-    # quick: coarser grids, and 10 instead of 40 argument-principle counts per alpha checking the dots
-    n_map, n_line, checks = (24, 10, 10) if quick else (120, 60, 40)
+    # quick: coarser grids, and 6 instead of 40 argument-principle counts per alpha checking the dots
+    n_map, n_line, checks = (16, 6, 6) if quick else (120, 60, 40)
     split = _Progress(progress, 4)
     for ax, (title, p, (a0, a1), kmax, q_max) in zip(axs, sets):
         alphas = np.linspace(a0, a1, n_map)
