@@ -24,7 +24,7 @@ from moving_bogie.sweep.engine import IN_PROCESS_POINTS, run_sweep
 from moving_bogie.sweep.store import missing_blocks
 
 # Case 1 over a window holding stable and unstable points with 0 to 3 unstable roots
-VARY = {"alpha": "0.5:1.1:24", "eta_M": "5:100:24"}
+VARY = {"alpha": "0.5:1.1:12", "eta_M": "5:100:24"}
 OPTIONS = dict(block_points=8 * 24, check=1)
 VARIABLES = ("stable", "n_unstable", "degree_of_instability", "certain", "settled", "checked", "computed")
 
@@ -47,7 +47,7 @@ def _same(a, b):
 def one_worker(tmp_path_factory):
     path = tmp_path_factory.mktemp("sweep") / "one.zarr"
     run = run_sweep(_spec(), path, workers=1, processes=False)
-    assert run.blocks_total == 3 and run.points_computed == 24 * 24
+    assert run.blocks_total == 2 and run.points_computed == 12 * 24
     return path
 
 
@@ -95,7 +95,7 @@ def test_random_points_agree_with_induced_frequencies(one_worker):
     ds = open_sweep(one_worker).compute()
     exact = {name: [Fraction(v) for v in ds[name].attrs["exact"]] for name in ("alpha", "eta_M")}
     rng = np.random.default_rng(15)
-    for i, j in rng.integers(0, 24, size=(4, 2)):
+    for i, j in rng.integers((0, 0), (12, 24), size=(4, 2)):
         point = ds.isel(alpha=i, eta_M=j)
         ref = induced_frequencies(
             table1_case(1).replace(alpha=exact["alpha"][i], eta_M=exact["eta_M"][j]), dps=20
@@ -116,7 +116,7 @@ def test_sigint_then_resume_equals_an_uninterrupted_sweep(one_worker, tmp_path, 
     with pytest.raises(KeyboardInterrupt):
         run_sweep(_spec(), path, workers=1, processes=False, on_block=interrupt)
     left = missing_blocks(path, _spec())
-    assert 0 < len(left) < 3  # the finished block is kept, the rest is not
+    assert len(left) == 1  # the finished block is kept, the other is not
     with pytest.raises(ParameterError, match="--out"):
         run_sweep(_spec(), path, workers=1, processes=False)  # neither --resume nor --overwrite
     run = run_sweep(_spec(), path, resume=True, workers=1, processes=False)
@@ -126,7 +126,7 @@ def test_sigint_then_resume_equals_an_uninterrupted_sweep(one_worker, tmp_path, 
 
 @pytest.mark.slow
 def test_resume_of_a_different_sweep_is_refused(one_worker):
-    other = make_spec(table1_case(1), {"alpha": "0.5:1.1:24", "eta_M": "5:100:23"}, **OPTIONS)
+    other = make_spec(table1_case(1), {"alpha": "0.5:1.1:12", "eta_M": "5:100:23"}, **OPTIONS)
     with pytest.raises(ParameterError, match="--resume"):
         run_sweep(other, one_worker, resume=True, workers=1, processes=False)
 
