@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import resource
 import subprocess
 import sys
@@ -69,8 +70,13 @@ def run_child(src: Path, argv: list[str]) -> Run:
     return Run(wall, cpu, done.stdout, done.returncode)
 
 
+#: A number printed as a string (the digits of a root): compared as the double it rounds to.
+DECIMAL = re.compile(r"[-+]?\d+(\.\d*)?([eE][-+]?\d+)?")
+
+
 def numbers(text: str) -> dict:
-    """Every number of a --json output by its path (timings left out), or {} when it is not one."""
+    """Every number of a --json output by its path (timings left out; strings of digits, such as the
+    printed roots, as numbers too), or {} when it is not one."""
     try:
         data = json.loads(text)
     except json.JSONDecodeError:
@@ -89,21 +95,27 @@ def numbers(text: str) -> dict:
                 walk(item, f"{path}[{k}]")
         elif isinstance(value, (int, float)) and not isinstance(value, bool):
             out[path] = np.asarray([value], dtype=float)
+        elif isinstance(value, str) and DECIMAL.fullmatch(value):
+            out[path] = np.asarray([float(value)], dtype=float)
 
     walk(data, "")
     return out
 
 
 def largest_difference(a: str, b: str) -> str:
-    """The largest difference between the numbers of two ``--json`` outputs, path by path."""
+    """The largest difference between the numbers of two ``--json`` outputs, path by path, and where it is
+    (the path, when it is not zero)."""
     x, y = numbers(a), numbers(b)
     if not x or not y:
         return "(no numbers)"
     if x.keys() != y.keys() or any(x[k].shape != y[k].shape for k in x):
         return "DIFFERENT FIELDS"
-    diffs = [float(np.nanmax(np.abs(x[k] - y[k]), initial=0.0)) for k in x]
+    diffs = {k: float(np.nanmax(np.abs(x[k] - y[k]), initial=0.0)) for k in x}
     nan_mismatch = any(not np.array_equal(np.isnan(x[k]), np.isnan(y[k])) for k in x)
-    return "NaN MISMATCH" if nan_mismatch else f"{max(diffs):.1e}"
+    where = max(diffs, key=lambda k: diffs[k])
+    if nan_mismatch:
+        return "NaN MISMATCH"
+    return f"{diffs[where]:.1e}" + (f" (at {where})" if diffs[where] else "")
 
 
 def compare(before: Path, repeat: int, only: list[str] | None = None) -> list[tuple[str, Run, Run, str]]:
