@@ -119,6 +119,32 @@ def test_branch_cut_geometry():
     assert np.allclose(bc.s(bc.p_of_s(np.array([1.0, 10.0, 300.0]))), [1.0, 10.0, 300.0], rtol=1e-14)
 
 
+@pytest.mark.parametrize("tau_lo", [0.0, 3.0])
+def test_truncation_point_is_the_first_that_passes_one_at_a_time(tau_lo):
+    """choose_S estimates several truncation points in one evaluation of the jump; reference: the same
+    sequence floor + 2^k tried one point at a time, the tail term |j''(S)| / tau^3 from the three-point
+    differences of ``_tail_terms`` (those the integral's tails use) or, for the first band, |j(S)| S /
+    (kappa - 1) from j at S and 2 S, each evaluated on its own."""
+    from moving_bogie.response.branch_cut import _S_STEPS
+
+    bc = BranchCut(bind(table1_case(1)))
+    channel, tol = bc.response_jumps, 1e-10
+    for S in bc.q_c + np.array(_S_STEPS):
+        if tau_lo > 0:
+            est = np.abs(bc._tail_terms(channel, float(S))[2]).max() / tau_lo**3
+        else:
+            _, g = channel(bc.p_of_s(np.array([S, 2 * S])))
+            a, b = np.abs(g[0]).max(), np.abs(g[1]).max()
+            est = a * S / max(np.log2(a / b) - 1.0, 0.5)
+        if est <= tol:
+            break
+    chosen = bc.choose_S(channel, tau_lo, tol)
+    assert chosen == S and S < bc.q_c + _S_STEPS[-1]  # a point before the last one passed
+    batch = bc._truncation_estimates(channel, bc.q_c + np.array(_S_STEPS[:6]), tau_lo)
+    alone = [bc._truncation_estimates(channel, np.array([bc.q_c + s]), tau_lo)[0] for s in _S_STEPS[:6]]
+    np.testing.assert_allclose(batch, alone, rtol=1e-9)
+
+
 @pytest.mark.parametrize("case", [2, 3, 4])
 def test_undamped_cases_keep_constant_amplitudes(freqs, case):
     # Reference: Section 3.7, Cases 2-4 are undamped, the induced frequencies are real (Table 2) and "all

@@ -64,6 +64,8 @@ _PANEL_DS_REL = 0.05
 #: Bisection levels of the adaptive base partition (a peak 2^-40 of a panel wide is still resolved).
 _MAX_SPLITS = 40
 _S_STEPS = tuple(2.0**k for k in range(-1, 16))
+#: Truncation points estimated together, in one evaluation of the channel (:meth:`BranchCut.choose_S`).
+_S_BATCH = 4
 
 
 #: The jump of a branch-cut integral at nodes in p: ``channel(p) -> (q, J)``, J of shape (len(p), m).
@@ -260,10 +262,15 @@ class BranchCut(RightRay):
         phase = tau_hi * np.diff(self.s(edges))
         return quad.oscillation_rule(edges, phase, min(_PANEL_DP, quad.PANEL_XI / (abs(xi_max) + 1.0)))
 
+    def _difference_step(self, S: np.ndarray) -> np.ndarray:
+        """The step h in s of the central differences at s = S (per S): 1 % of S, of the wavelength of
+        e^{i p xi} over the wheel spacing, and at most a quarter of the way back to q_c."""
+        h = 0.01 * np.minimum(S, np.maximum(1.0, self.p_of_s(S)) / max(self.span, 1.0))
+        return np.minimum(h, 0.25 * (S - self.q_c))
+
     def _tail_terms(self, channel: Channel, S: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(j, j', j'') in s at s = S by central differences (max over channels when estimating)."""
-        h = 0.01 * min(S, max(1.0, float(self.p_of_s(S))) / max(self.span, 1.0))
-        h = min(h, 0.25 * (S - self.q_c))
+        h = float(self._difference_step(np.array([S]))[0])
         ps = self.p_of_s(np.array([S - h, S, S + h]))
         _, g = channel(ps)
         g0 = g[1]
@@ -272,22 +279,32 @@ class BranchCut(RightRay):
         return g0, g1, g2
 
     def choose_S(self, channel: Channel, tau_lo: float, tol: float, s_min: float | None = None) -> float:
-        """Truncation point S >= s_min of the ray for the band of times from tau_lo (module docstring)."""
+        """Truncation point S >= s_min of the ray for the band of times from tau_lo (module docstring): the
+        first of floor + _S_STEPS whose estimate passes, ``_S_BATCH`` of them per evaluation of the
+        channel."""
         floor = self.q_c if s_min is None else max(self.q_c, s_min - 0.5)
-        for step in _S_STEPS:
-            S = floor + step
-            if tau_lo <= 0:
-                ps = self.p_of_s(np.array([S, 2 * S]))
-                _, g = channel(ps)
-                a, b = np.abs(g[0]).max(), np.abs(g[1]).max()
-                kappa = np.log2(a / b) if a > 0 and b > 0 else 10.0
-                est = a * S / max(kappa - 1.0, 0.5)
-            else:
-                _, _, g2 = self._tail_terms(channel, S)
-                est = np.abs(g2).max() / tau_lo**3
-            if est <= tol:
-                return S
+        for k in range(0, len(_S_STEPS), _S_BATCH):
+            S = floor + np.array(_S_STEPS[k : k + _S_BATCH])
+            passed = np.nonzero(self._truncation_estimates(channel, S, tau_lo) <= tol)[0]
+            if passed.size:
+                return float(S[passed[0]])
         return floor + _S_STEPS[-1]
+
+    def _truncation_estimates(self, channel: Channel, S: np.ndarray, tau_lo: float) -> np.ndarray:
+        """Per truncation point S: for tau_lo > 0 the first neglected term of the tail integrated by parts,
+        max |j''(S)| / tau_lo^3; for the first band the neglected integral, |j(S)| S / (kappa - 1) with
+        kappa the decay exponent of |j| between S and 2 S (at least 1.5)."""
+        n = S.size
+        with np.errstate(all="ignore"):
+            if tau_lo <= 0:
+                _, g = channel(self.p_of_s(np.concatenate([S, 2 * S])))
+                a, b = np.abs(g[:n]).max(axis=1), np.abs(g[n:]).max(axis=1)
+                kappa = np.where((a > 0) & (b > 0), np.log2(a / b), 10.0)
+                return a * S / np.maximum(kappa - 1.0, 0.5)
+            h = self._difference_step(S)
+            _, g = channel(self.p_of_s(np.concatenate([S - h, S, S + h])))
+            g2 = (g[2 * n :] - 2 * g[n : 2 * n] + g[:n]) / (h**2)[:, None]
+            return np.abs(g2).max(axis=1) / tau_lo**3
 
     def integrate(
         self,
