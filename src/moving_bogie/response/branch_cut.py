@@ -270,13 +270,15 @@ class BranchCut(RightRay):
 
     def _tail_terms(self, channel: Channel, S: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(j, j', j'') in s at s = S by central differences (max over channels when estimating)."""
-        h = float(self._difference_step(np.array([S]))[0])
-        ps = self.p_of_s(np.array([S - h, S, S + h]))
-        _, g = channel(ps)
-        g0 = g[1]
-        g1 = (g[2] - g[0]) / (2 * h)
-        g2 = (g[2] - 2 * g[1] + g[0]) / h**2
-        return g0, g1, g2
+        g0, g1, g2 = self._differences(channel, np.array([S]))
+        return g0[0], g1[0], g2[0]
+
+    def _differences(self, channel: Channel, S: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(j, j', j'') in s at every s = S (rows) by central differences, one evaluation of the channel."""
+        n, h = S.size, self._difference_step(S)
+        _, g = channel(self.p_of_s(np.concatenate([S - h, S, S + h])))
+        lo, mid, hi = g[:n], g[n : 2 * n], g[2 * n :]
+        return mid, (hi - lo) / (2 * h)[:, None], (hi - 2 * mid + lo) / (h**2)[:, None]
 
     def choose_S(self, channel: Channel, tau_lo: float, tol: float, s_min: float | None = None) -> float:
         """Truncation point S >= s_min of the ray for the band of times from tau_lo (module docstring): the
@@ -301,9 +303,7 @@ class BranchCut(RightRay):
                 a, b = np.abs(g[:n]).max(axis=1), np.abs(g[n:]).max(axis=1)
                 kappa = np.where((a > 0) & (b > 0), np.log2(a / b), 10.0)
                 return a * S / np.maximum(kappa - 1.0, 0.5)
-            h = self._difference_step(S)
-            _, g = channel(self.p_of_s(np.concatenate([S - h, S, S + h])))
-            g2 = (g[2 * n :] - 2 * g[n : 2 * n] + g[:n]) / (h**2)[:, None]
+            _, _, g2 = self._differences(channel, S)
             return np.abs(g2).max(axis=1) / tau_lo**3
 
     def integrate(

@@ -183,7 +183,7 @@ def newton_inside_many(fast: FastCharacteristic, rects: list[Region], starts: in
     firsts = [_starts(r, starts) for r in rects]
     q = np.concatenate(firsts)
     owner = np.concatenate([np.full(z.size, k) for k, z in enumerate(firsts)])
-    boxes = np.array([_box(r) for r in rects], dtype=float).reshape(-1, 4)[owner]
+    boxes = np.array([_box(r) for r in rects], dtype=float)[owner]
     live = np.ones(q.size, dtype=bool)
     done = np.zeros(q.size, dtype=bool)
     for _ in range(30):
@@ -193,7 +193,7 @@ def newton_inside_many(fast: FastCharacteristic, rects: list[Region], starts: in
         try:
             E, dE = (np.asarray(v, dtype=complex) for v in fast.value_and_derivative(q[idx]))
         except MovingBogieError:
-            return [None] * len(rects) if len(rects) == 1 else _one_by_one(fast, rects, starts)
+            return [None] if len(rects) == 1 else _one_by_one(fast, rects, starts)
         with np.errstate(all="ignore"):
             step = E / dE
         ok = np.isfinite(step) & (dE != 0)
