@@ -145,6 +145,26 @@ def test_frequency_lines_match_the_checkpoints():
     assert {0.307227, 0.222538, 0.184817, 0.03391} <= {round(x, 6) for x in q} | {round(x, 5) for x in q}
 
 
+def test_lines_followed_together_equal_each_line_followed_alone():
+    """The lockstep continuation of Figure 2 (``FrequencyTracker.follow_many``) against each line alone.
+
+    Case 1's roots at alpha = 0.9 (found by the argument principle), followed to 1.0 (one of them meets the
+    cut of K near alpha = 0.946 and is bisected there) and back to 0.85: every alpha, q and end equal
+    those of :meth:`follow` on that line alone, to the last bit (the evaluations are elementwise)."""
+    from moving_bogie.stability.lines.frequency_tracker import FrequencyTracker
+
+    params = table1_case(1)
+    roots = [complex(r.q) for r in induced_frequencies(params.replace(alpha=Fraction(9, 10)), dps=15).roots]
+    tracker = FrequencyTracker(SweepCharacteristic(bind(params)), 0.02)
+    starts = [(0.9, q, 1.0) for q in roots] + [(0.9, q, 0.85) for q in roots]
+    together = tracker.follow_many(starts)
+    assert together == [tracker.follow(*start) for start in starts]
+    ends = [how for _, _, how in together]
+    assert ends.count("cut") == 1 and ends.count("reached") == len(starts) - 1, ends
+    (cut,) = [alphas[-1] for alphas, _, how in together if how == "cut"]
+    assert 0.94 < cut < 0.95
+
+
 def test_critical_stiffness_of_case5():
     """Case 5 (unstable at kappa_v = 0.2, alpha = 0.7): the interval holding 0.2 is unstable; counts agree."""
     res = critical_stiffness(table1_case(5), [0.7], kappa_max=0.6, check_points=20)

@@ -4,10 +4,11 @@ Each induced frequency q(alpha) (one member of each pair q, -conj(q)) is a root 
 Eq. (48). Starting points come from :func:`~moving_bogie.roots.frequencies.induced_frequencies` (argument
 principle, no guesses) at checkpoints spread over the range; between checkpoints every root is followed
 by predictor-corrector continuation in double precision (Euler predictor dq/dalpha = -E_alpha / E_q,
-Newton corrector at fixed alpha, step control). At the next checkpoint the continued roots are matched
-with the freshly found ones: a found root that no line reaches is a line that appeared in between, and
-is followed backwards to where it appeared; a line that reaches a checkpoint without a partner is
-reported.
+Newton corrector at fixed alpha, step control; every line of a stretch in the same evaluations,
+:mod:`~moving_bogie.stability.lines.frequency_tracker`).
+At the next checkpoint the continued roots are matched with the freshly found ones: a found root that no
+line reaches is a line that appeared in between, and is followed backwards to where it appeared; a line
+that reaches a checkpoint without a partner is reported.
 
 A line ends where it meets the cut of K (Section 3.1, "their evolution is interrupted when their
 imaginary part reaches eta_f"): there a root of N(p, q) crosses the real p-axis, which is detected as a
@@ -27,6 +28,7 @@ import numpy as np
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.roots.frequencies import induced_frequencies
+from moving_bogie.stability.lines.frequency_tracker import FrequencyTracker
 
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
@@ -119,7 +121,7 @@ def frequency_lines(
     """
     params = bound.params
     a0, a1 = float(alpha_range[0]), float(alpha_range[1])
-    tracker = _Tracker(SweepCharacteristic(bound), h_max)
+    tracker = FrequencyTracker(SweepCharacteristic(bound), h_max)
     alphas = np.round(np.linspace(a0, a1, max(2, checkpoints)), 12)
     warnings: list[str] = []
     found = _checkpoint_roots(bound, alphas, dps, warnings, progress)
@@ -173,7 +175,7 @@ def _checkpoint_roots(
 
 
 def _continue_lines(
-    tracker: _Tracker,
+    tracker: FrequencyTracker,
     active: list[_OpenLine],
     found: list[complex],
     a_from: float,
@@ -182,12 +184,13 @@ def _continue_lines(
     warnings: list[str],
     finished: list[_OpenLine],
 ) -> tuple[list[_OpenLine], int]:
-    """Continue the active lines from ``a_from`` to the next checkpoint ``a_to`` and match them with the roots
-    ``found`` there; a root found there that no line reaches is a line that appeared in between, followed
-    backwards. Lines that end on the way go to ``finished``. Returns the lines still active, the matches."""
+    """Continue the active lines from ``a_from`` to the next checkpoint ``a_to`` (all together) and match them
+    with the roots ``found`` there; a root found there that no line reaches is a line that appeared in
+    between, followed backwards (those together too). Lines that end on the way go to ``finished``.
+    Returns the lines still active, the matches."""
     still = []
-    for line in active:
-        pa, pq, how = tracker.follow(line.alpha[-1], line.q[-1], a_to)
+    followed = tracker.follow_many([(line.alpha[-1], line.q[-1], a_to) for line in active])
+    for line, (pa, pq, how) in zip(active, followed):
         line.alpha += pa
         line.q += pq
         if how == "reached":
@@ -208,98 +211,10 @@ def _continue_lines(
             matched += 1
         else:
             warnings.append(f"alpha={a_to:g}: continued root {z:.8g} not among the roots found there")
-    for t in targets:  # a line that appeared between the checkpoints: follow it backwards
-        pa, pq, how = tracker.follow(a_to, t, a_from)
+    # the lines that appeared between the checkpoints: followed backwards
+    for t, (pa, pq, how) in zip(targets, tracker.follow_many([(a_to, t, a_from) for t in targets])):
         if how == "reached":
             warnings.append(f"alpha={a_from:g}: root continued back from {t:.8g} was not found there")
         start = "cut" if how == "cut" else ("range" if how == "reached" else "lost")
         still.append(_OpenLine(pa[::-1] + [a_to], pq[::-1] + [t], start))
     return still, matched
-
-
-class _Tracker:
-    """Continuation of one root q(alpha) of E_chr in double precision."""
-
-    def __init__(
-        self,
-        sweep: SweepCharacteristic,
-        h_max: float,
-        *,
-        h_min: float = 1e-9,
-        tol: float = 1e-12,
-        max_iter: int = 8,
-    ) -> None:
-        self.sweep, self.h_max, self.h_min, self.tol, self.max_iter = sweep, h_max, h_min, tol, max_iter
-
-    def _side(self, q: complex, a: float) -> int:
-        return int(self.sweep.upper_root_count(np.array([q]), np.array([a]))[0])
-
-    def _near_cut(self, q: complex, a: float, tol: float = 1e-5) -> bool:
-        """Some p-root of N(p, q) is (nearly) real: q is at the cut of K."""
-        P = self.sweep.p_roots(np.array([q]), np.array([a]))[0]
-        return bool(np.min(np.abs(P.imag) / np.maximum(1.0, np.abs(P))) < tol)
-
-    def _correct(self, q: complex, a: float) -> tuple[complex, bool]:
-        """Newton at fixed alpha; returns (q, converged)."""
-        for _ in range(self.max_iter):
-            E, E_q = self.sweep.e_and_dq(np.array([q]), np.array([a]))
-            step = complex(E[0] / E_q[0])
-            if not np.isfinite(step):
-                return q, False
-            q -= step
-            if abs(step) < self.tol * max(1.0, abs(q)):
-                return (complex(-q.conjugate()) if q.real < 0 else q), True
-        return q, False
-
-    def _slope(self, q: complex, a: float) -> complex:
-        E, E_q, E_a, _ = self.sweep.derivatives(np.array([q]), np.array([a]), None)
-        return complex(-E_a[0] / E_q[0])
-
-    def follow(self, a: float, q: complex, a_end: float) -> tuple[list[float], list[complex], str]:
-        """Follow the root q at alpha=a towards a_end; returns (alphas, qs, how) without the start point.
-
-        ``how`` is "reached", "cut" (the root meets the cut of K) or "lost".
-        """
-        direction = 1.0 if a_end >= a else -1.0
-        side = self._side(q, a)
-        h = 0.25 * self.h_max
-        out_a: list[float] = []
-        out_q: list[complex] = []
-        while direction * (a_end - a) > 1e-14:
-            step = min(h, direction * (a_end - a))
-            a_new = a + direction * step
-            slope = self._slope(q, a)
-            guess = q + slope * (a_new - a)
-            q_new, ok = self._correct(guess, a_new)
-            ok = ok and abs(q_new - guess) < 0.05 * max(abs(slope) * step, 1e-3)
-            if ok and self._side(q_new, a_new) != side:
-                a_cut, q_cut = self._bisect_cut(a, q, a_new, side)
-                if a_cut != a:
-                    out_a.append(a_cut)
-                    out_q.append(q_cut)
-                return out_a, out_q, "cut"
-            if not ok:
-                h *= 0.5
-                if h < self.h_min:
-                    # Newton stalls where K has its square-root behaviour: at the cut itself
-                    return out_a, out_q, ("cut" if self._near_cut(q, a) else "lost")
-                continue
-            a, q = a_new, q_new
-            out_a.append(a)
-            out_q.append(q)
-            h = min(1.5 * h, self.h_max)
-        return out_a, out_q, "reached"
-
-    def _bisect_cut(
-        self, a_good: float, q_good: complex, a_bad: float, side: int, tol: float = 1e-9
-    ) -> tuple[float, complex]:
-        """Last point on the starting side of the cut, to ``tol`` in alpha."""
-        while abs(a_bad - a_good) > tol:
-            a_mid = 0.5 * (a_good + a_bad)
-            guess = q_good + self._slope(q_good, a_good) * (a_mid - a_good)
-            q_mid, ok = self._correct(guess, a_mid)
-            if ok and self._side(q_mid, a_mid) == side:
-                a_good, q_good = a_mid, q_mid
-            else:
-                a_bad = a_mid
-        return a_good, q_good
