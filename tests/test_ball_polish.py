@@ -30,7 +30,10 @@ def test_mpmath_numbers_pass_to_balls_and_back_exactly():
         assert mpc_from_acb(ball) == z
 
 
-@pytest.mark.parametrize("case", [1, 2, 5, 7])
+# the fast subset polishes a damped unstable case and an undamped one, the full suite two more
+@pytest.mark.parametrize(
+    "case", [1, 2, pytest.param(5, marks=pytest.mark.slow), pytest.param(7, marks=pytest.mark.slow)]
+)
 def test_ball_polish_finds_the_mpmath_roots(case, table1_search):
     """The same windows, counts and roots (to the confirmed decimals of both) with the polish in balls; the
     undamped case 2 has real roots, where the balls cannot decide the side of p-roots on the real axis and

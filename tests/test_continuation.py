@@ -109,6 +109,9 @@ def test_the_continued_kernel_is_the_residue_sum_with_the_side_chosen():
                 assert abs(complex(value[0]) - want) <= 1e-9 * max(1.0, abs(want))
 
 
+# slow: a whole search; the fast subset checks the same bound on the tilings of every shipped track
+# (tests/test_search_random.py, test_no_unsearched_box_taller_than_1e_8)
+@pytest.mark.slow
 def test_the_search_leaves_nothing_taller_than_1e_8():
     res = induced_frequencies(AVOIDED_CROSSING)
     assert max(u.height for u in res.unsearched) <= 1e-8

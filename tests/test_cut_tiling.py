@@ -25,7 +25,10 @@ def _tr(S, r):
     return table1_case(7).replace(beam="tr", S=S, r=r)
 
 
-@pytest.mark.parametrize(("S", "r"), TR_CASES)
+# the fast subset scans the first beam of TR_CASES, the full suite both
+@pytest.mark.parametrize(
+    ("S", "r"), [TR_CASES[0], *(pytest.param(*c, marks=pytest.mark.slow) for c in TR_CASES[1:])]
+)
 def test_traced_arms_match_a_dense_scan(S, r):
     params = _tr(S, r)
     cut = cut_locus(bind(params), 0.0, 3.0)

@@ -107,6 +107,9 @@ def _printed_case1():
     )
 
 
+# slow: two searches; the fast subset checks the degree-6 kernel itself (K and dK against quadrature, the
+# p-roots against a dense scan)
+@pytest.mark.slow
 def test_induced_frequencies_tend_to_table2_for_a_stiff_second_layer(two_layer):
     """kappa_2 -> infinity clamps the mass layer: the model becomes the Euler-Bernoulli track of Case 1.
 

@@ -99,7 +99,8 @@ def test_quadrature_reference_static_single_load_is_one():
     assert moving_force_deflection(0.0, 0.0) == pytest.approx(1.0, abs=1e-10)
 
 
-@pytest.mark.parametrize("model", ["force", "masses", "bogie"])
+# the fast subset checks the bogie's convergence in modes (test_bogie_converges_with_number_of_modes)
+@pytest.mark.parametrize("model", ["force", "masses", pytest.param("bogie", marks=pytest.mark.slow)])
 def test_moving_loads_converge_to_infinite_beam_steady_state(model):
     # Damped, subcritical: the transient decays like exp(-eta_f tau) (e^-12 at tau = 60). The two
     # masses and the bogie then move without acceleration, so F_j -> 2 and their steady deflection

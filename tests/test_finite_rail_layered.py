@@ -164,6 +164,9 @@ def test_two_layer_finite_rail_agrees_with_the_bromwich_integral(two_layer):
         assert np.max(np.abs(x - ref)) <= 2e-3 * np.max(np.abs(ref)), name
 
 
+# slow: the fast subset checks the one-layer limit on the generated blocks
+# (test_generated_blocks_equal_the_one_layer_formulas) and the two-layer rail against Bromwich
+@pytest.mark.slow
 def test_one_layer_limit_of_the_layered_finite_rail():
     """m_2 -> 0, k_2 -> infinity: the two-layer rail tends to the one-layer beam with k_f = k_1, c_f = c_1."""
     base = table1_case(7)

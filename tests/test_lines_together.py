@@ -36,7 +36,8 @@ def _same_paths(a: list, b: list, rtol: float = 1e-13) -> None:
         np.testing.assert_allclose(pa, pb, rtol=rtol, atol=rtol)
 
 
-@pytest.mark.parametrize("vehicle", ["bogie", "masses"])
+# the bogie's panels take longer: the fast subset traces the two masses
+@pytest.mark.parametrize("vehicle", [pytest.param("bogie", marks=pytest.mark.slow), "masses"])
 def test_shared_calls_trace_the_paths_of_the_tracer_alone(vehicle):
     """Same curves, same points, same reasons at the ends as the tracer traced by itself, when its calls
     are shared with the tracer of another panel (another eta_f: the sweeps stack)."""
@@ -57,6 +58,9 @@ def test_shared_calls_trace_the_paths_of_the_tracer_alone(vehicle):
     assert alone.warnings == shared[0].warnings
 
 
+# slow: four whole panels; the fast subset checks the shared calls themselves, the same paths as a tracer
+# alone (test_shared_calls_trace_the_paths_of_the_tracer_alone, masses)
+@pytest.mark.slow
 def test_panels_traced_together_are_the_panels_alone():
     """instability_lines_many of four panels (two models, each with two parameter sets, one panel
     with another theta_max) returns what each call of instability_lines returns."""

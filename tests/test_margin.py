@@ -198,6 +198,9 @@ def test_a_pair_closer_than_newton_separates_counts_twice_on_its_circle(car):
     assert cluster_counts(sweep, alpha, theta, np.array([near[1] + 1e-3]), box) == -1
 
 
+# slow: a second column of the car; the fast subset checks the car's margin where its rectangle is lowered
+# (test_car_margin_is_earned_where_its_rectangle_holds_more_roots_than_the_power_sums_locate)
+@pytest.mark.slow
 def test_car_margin_in_a_column_of_two_wheel_masses(car):
     """The column's E as a polynomial in the wheel mass (two values): 14 roots below h / 4 at the heavier
     wheel, more than its power sums locate in a rectangle 6 wide, so its top is lowered once more; both

@@ -53,6 +53,9 @@ def test_plane_units_match_the_scaling(case1_si):
     assert PlaneUnits.of(params).legend("d", 2.95544) == "d = 2.95544"  # dimensionless input unchanged
 
 
+# slow: the lines of a whole panel; the fast subset checks the SI axes of the stability map and of the
+# frequency lines, and the scaling of the plane's units
+@pytest.mark.slow
 def test_instability_lines_in_si(case1_si):
     _, params, physical = case1_si
     v_ref, chi, _, m = _scales(physical)

@@ -95,6 +95,7 @@ def test_an_interrupted_sweep_resumes_and_equals_the_direct_search(tmp_path, cap
     assert main(argv) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["points_computed"] == 1 and summary["blocks"] == [1, 2]
+    assert summary["scheduler"] == "in-process"  # a small sweep starts no cluster (IN_PROCESS_POINTS)
     ds = open_sweep(out).compute()
     assert ds.v.attrs["units"] == "m/s" and ds.v.attrs["exact"] == ["40", "65"]
     assert ds.attrs["kind"] == "sleepers" and ds.attrs["model"] == "eb/sleepers/mass"

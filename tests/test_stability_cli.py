@@ -101,6 +101,7 @@ def test_stability_map_writes_npz_and_plot(capsys, tmp_path, saved_figures):
     (mesh,) = [c for c in meshes if "growth" in c.colorbar.ax.get_ylabel()]
     degree = arrays["degree"]
     unstable = (degree < 0) & ~arrays["uncertain"]
+    assert unstable.any() and not unstable.all()  # both kinds of cell on the map
     shown = np.ma.getdata(mesh.get_array()).reshape(degree.shape)
     blank = np.ma.getmaskarray(mesh.get_array()).reshape(degree.shape) | np.isnan(shown)
     np.testing.assert_array_equal(blank, ~unstable)

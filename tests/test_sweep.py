@@ -64,6 +64,9 @@ def test_one_and_two_workers_give_the_same_store(one_worker, tmp_path):
     assert set(np.unique(a["n_unstable"])) == {0, 1, 2, 3}
 
 
+# slow: it starts a cluster. In the fast subset, a small sweep of tests/test_sleepers_sweep.py says that it
+# ran in-process, and tests/test_margin.py checks an in-process store against the roots at its points.
+@pytest.mark.slow
 def test_a_small_sweep_runs_in_process_and_equals_the_cluster_store(tmp_path, capsys):
     """Under IN_PROCESS_POINTS points, no cluster asked for, the command computes in this process and
     says so; its store equals the one a LocalCluster worker computes (two blocks, one checked point each)."""

@@ -87,6 +87,9 @@ def test_held_interpolation_is_e_chr_of_the_point(spec):
         assert np.all(np.abs(interp - ref) <= 1e-9 * np.abs(ref))
 
 
+# slow: every point of the grid twice; the fast subset checks the column's polynomial in eta_M against
+# E_chr of each point (test_held_interpolation_is_e_chr_of_the_point)
+@pytest.mark.slow
 def test_columns_equal_the_per_point_path(spec, columns):
     """Every point of the grid: the column of wheel masses gives the verdict of the per-point path."""
     points = _grid(spec, {"column": None, "held": ()})

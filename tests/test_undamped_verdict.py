@@ -68,7 +68,7 @@ def _verdict_agrees_with_small_damping(case):
     assert (limit.destabilised == 0) == (exact.verdict.state == "stable")
 
 
-@pytest.mark.parametrize("case", [2, 9])
+@pytest.mark.parametrize("case", [2, pytest.param(9, marks=pytest.mark.slow)])  # Case 9 with Cases 3, 4, 10
 def test_undamped_verdict_matches_the_limit_of_small_damping(case):
     """Case 2 (four real roots, undamped vehicle) and Case 9 (damped vehicle)."""
     _verdict_agrees_with_small_damping(case)
