@@ -1,5 +1,5 @@
 """Time the instability lines (Figures 3, 4, 7, 8; one panel as the ``instability-lines`` command traces it)
-of this checkout against another one, side by side, and print a table.
+and the frequency lines (Figure 2) of this checkout against another one, side by side, and print a table.
 
 Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_lines.py [--against DIR] [--full] [--repeat 2]``.
 A script, not a test: nothing is asserted. Each job runs in a fresh child process with ``PYTHONPATH`` set to
@@ -34,6 +34,9 @@ JOBS = {
         )
         for n, panels in ((3, 6), (4, 12), (7, 4), (8, 3))
     },
+    "Figure 2 (frequency lines of Case 1)": (
+        "from moving_bogie.paper.stability_figures import figure2\nfigure2(quick={quick})"
+    ),
 }
 
 
