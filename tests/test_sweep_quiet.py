@@ -49,7 +49,10 @@ def test_ctrl_c_prints_one_line_and_the_store_resumes(tmp_path):
     assert "Traceback" not in err and "distributed" not in err
     lines = err.strip().splitlines()
     assert len(lines) == 1 and "--resume" in lines[0] and str(store) in lines[0], err
-    done = subprocess.run(SWEEP + ["--out", str(store), "--resume", "--json"], capture_output=True, text=True)
+    # resumed in this process (no --workers: a small sweep starts no cluster), as a user would after Ctrl-C
+    resume = SWEEP[: SWEEP.index("--workers")] + ["--out", str(store), "--resume", "--json"]
+    done = subprocess.run(resume, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert "Traceback" not in done.stderr and "distributed" not in done.stderr
     assert '"points_computed": ' in done.stdout and '"points_computed": 160' not in done.stdout
+    assert '"scheduler": "in-process"' in done.stdout, done.stdout
