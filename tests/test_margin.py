@@ -45,6 +45,19 @@ def test_map_margin_is_the_smallest_decay_rate(uic60):
         assert smap.margin[j, i] == pytest.approx(ref, rel=1e-9)
 
 
+def test_cells_measured_together_are_each_cell_measured_alone(uic60):
+    """The stable cells of a column are polished and their circles counted in shared evaluations: four
+    wheel masses in one column against a column of each mass alone (the same roots, to the polish)."""
+    params, _ = uic60
+    thetas = np.array([5.0, 15.0, 30.0, 60.0])
+    together = stability_map(params, alphas=[0.3], thetas=thetas, workers=1)
+    assert not together.uncertain.any() and not together.margin_bound.any()
+    for j, theta in enumerate(thetas):
+        alone = stability_map(params, alphas=[0.3], thetas=[theta], workers=1)
+        assert not alone.margin_bound[0, 0]
+        assert together.margin[j, 0] == pytest.approx(alone.margin[0, 0], rel=1e-10)
+
+
 def test_unstable_cells_keep_their_degree_as_margin():
     from moving_bogie import table1_case
 

@@ -21,6 +21,10 @@ count and locate every root there:
   up to the rectangle's count (a pair q, -conj(q) counts twice, a root on the imaginary axis once), so no
   root of the rectangle is missed; the margin is then the smallest Im q, to within the circles' radii.
 
+The cells of a column whose rectangles share a top are measured together: their power sums come from one
+set of panels, and their roots are polished and their circles counted in shared evaluations of E_chr
+(elementwise, so each cell gets the roots it gets alone, to rounding).
+
 With no root below h the margin is h, a lower bound flagged ``bound``; when the counts never settle or the
 roots do not add up, it is undetermined (NaN).
 
@@ -116,49 +120,80 @@ def column_margin(
         for top, group in sorted(groups.items()):
             depth = Y if base is None else min(Y, top - min(base, 0.0))
             s = rectangle_sums(coeffs, t[group], X, depth, top, adaptive=True)
+            counts = [s(k, 0).real for k in range(len(group))]
+            # the cells whose rectangle holds 1 to MAX_STRIP_ROOTS roots: located, then measured together
+            measured = [
+                k
+                for k, n in enumerate(counts)
+                if abs(n - round(n)) <= 1e-3 and 0 < round(n) <= MAX_STRIP_ROOTS
+            ]
+            roots = [located(s, k, int(round(counts[k]))) for k in measured]
+            cells_at = [thetas[group[k]] for k in measured]
+            values = dict(
+                zip(measured, _smallest_many(sweep, alpha, cells_at, roots, (X, depth, top), polish))
+            )
             for k, j in enumerate(group):
-                lo, hi, _ = state.pop(j)
-                n = s(k, 0).real
-                if abs(n - round(n)) > 1e-3:  # a root on the edge
-                    state[j] = (lo, hi, top - 0.1 * (top - lo))
-                elif round(n) > MAX_STRIP_ROOTS:
-                    state[j] = (lo, top, 0.5 * (lo + top))
-                elif round(n) == 0 and top == h:
-                    margin[j], bound[j] = h, True
-                elif round(n) == 0:
-                    state[j] = (top, hi, 0.5 * (top + hi))
-                else:
-                    roots = located(s, k, int(round(n)))
-                    margin[j] = _smallest(sweep, alpha, thetas[j], roots, (X, depth, top), polish)
-                    if np.isnan(margin[j]):  # not located: fewer roots, in a lower rectangle
-                        state[j] = (lo, top, 0.5 * (lo + top))
+                following = _next_top(state.pop(j), top, h, counts[k], values.get(k, np.nan))
+                if following is not None:
+                    state[j] = following
+                else:  # settled: a margin, or h as a bound where no root lies below h
+                    margin[j], bound[j] = (h, True) if round(counts[k]) == 0 else (values[k], False)
         if not state:
             break
     return ColumnMargin(margin, bound, h)
+
+
+def _next_top(
+    tops: tuple[float, float, float], top: float, h: float, n: float, smallest: float
+) -> tuple[float, float, float] | None:
+    """The next (lo, hi, top) of a cell whose rectangle with this ``top`` counted ``n`` roots (the module
+    text), or None when it is settled: no root below h (its margin the bound h), or ``smallest`` measured."""
+    lo, hi, _ = tops
+    if abs(n - round(n)) > 1e-3:  # a root on the edge
+        return (lo, hi, top - 0.1 * (top - lo))
+    if round(n) > MAX_STRIP_ROOTS:
+        return (lo, top, 0.5 * (lo + top))
+    if round(n) == 0:
+        return None if top == h else (top, hi, 0.5 * (top + hi))
+    # not located (NaN): fewer roots, in a lower rectangle
+    return (lo, top, 0.5 * (lo + top)) if np.isnan(smallest) else None
 
 
 #: Rectangles tried per cell before its margin is left undetermined.
 _ROUNDS = 8
 
 
-def _smallest(
-    sweep: SweepCharacteristic, alpha: float, theta: float, roots: list, box: tuple, polish: int
-) -> float:
-    """The smallest Im q of the Delves-Lyness roots ``roots`` of the rectangle ``box`` = (X, Y, top),
-    polished, where their multiplicities on small circles add up to the count and none lies below the
-    real axis; else NaN."""
+def _smallest_many(
+    sweep: SweepCharacteristic, alpha: float, thetas: list, roots: list[list], box: tuple, polish: int
+) -> list[float]:
+    """Per cell (its theta and its Delves-Lyness roots in the rectangle ``box`` = (X, Y, top)): the smallest
+    Im q of its polished roots, where their multiplicities on small circles add up to the count and none
+    lies below the real axis; else NaN. Every cell's roots are polished, and its circles counted, in the
+    same evaluations (elementwise: each cell gets what it gets alone)."""
     X, Y, top = box
-    q = polish_roots(sweep, np.asarray(roots, dtype=complex), alpha, np.full(len(roots), theta), 3 * polish)
-    keep: list[complex] = []
-    for x in q[np.isfinite(q)]:
-        x = -np.conj(x) if x.real < 0 else x
-        inside = -Y < x.imag < top and abs(x.real) < X
-        if inside and all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):
-            keep.append(x)
-    if not keep or min(x.imag for x in keep) < 0:
-        return np.nan
-    counted = cluster_counts(sweep, alpha, theta, np.array(keep), box)
-    return min(x.imag for x in keep) if counted == len(roots) else np.nan
+    sizes = [len(r) for r in roots]
+    if not sizes:
+        return []
+    flat = np.concatenate([np.asarray(r, dtype=complex) for r in roots])
+    q = polish_roots(sweep, flat, alpha, np.repeat(np.asarray(thetas, dtype=float), sizes), 3 * polish)
+    kept: list[np.ndarray | None] = []
+    for cell in np.split(q, np.cumsum(sizes)[:-1]):
+        keep: list[complex] = []  # the distinct polished roots of the cell, each once (Re q >= 0)
+        for x in cell[np.isfinite(cell)]:
+            x = -np.conj(x) if x.real < 0 else x
+            inside = -Y < x.imag < top and abs(x.real) < X
+            if inside and all(abs(x - y) > 1e-7 * max(1.0, abs(x)) for y in keep):
+                keep.append(x)
+        kept.append(np.array(keep) if keep and min(x.imag for x in keep) >= 0 else None)
+    chosen = [k for k, keep in enumerate(kept) if keep is not None]
+    counted = _counts_many(sweep, alpha, [thetas[k] for k in chosen], [kept[k] for k in chosen], box)
+    out = [np.nan] * len(roots)
+    for k, n in zip(chosen, counted):
+        distinct = kept[k]
+        assert distinct is not None  # chosen: a cell with roots kept
+        if n == sizes[k]:
+            out[k] = float(distinct.imag.min())
+    return out
 
 
 def cluster_counts(
@@ -172,6 +207,12 @@ def cluster_counts(
     Each count is (1/2 pi i) of the contour integral of E'/E over the circle, by the trapezoidal rule on
     ``nodes`` points (exact to about (radius / distance of the nearest root outside)^nodes).
     """
+    return _counts_many(sweep, alpha, [theta], [keep], box, nodes)[0]
+
+
+def _circles(keep: np.ndarray, box: tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """(centres, radii, on the imaginary axis) of the circles of :func:`cluster_counts`; None when one
+    cannot be drawn."""
     X, Y, top = box
     on_axis = np.abs(keep.real) <= 1e-9 * max(1.0, X)
     centre = np.where(on_axis, 1j * keep.imag, keep)
@@ -183,11 +224,39 @@ def cluster_counts(
         edge = min(X - abs(c.real), c.imag + Y, top - c.imag)
         radius[i] = min(1e-6 * max(1.0, abs(c)), 0.4 * float(gaps.min(initial=np.inf)), 0.5 * edge)
     if np.any(radius <= 1e-12 * np.maximum(1.0, np.abs(centre))):
-        return -1
-    ring = radius[:, None] * np.exp(2j * np.pi * np.arange(nodes) / nodes)
-    z = centre[:, None] + ring
-    E, dE = sweep.e_and_dq(z, np.full(z.shape, alpha), np.full(z.shape, theta))
-    n = np.mean(dE / E * ring, axis=1).real
-    if not np.all(np.isfinite(n)) or np.any(np.abs(n - np.round(n)) > 1e-2) or np.any(np.round(n) < 1):
-        return -1
-    return int(np.sum(np.round(n) * np.where(on_axis, 1, 2)))
+        return None
+    return centre, radius, on_axis
+
+
+def _counts_many(
+    sweep: SweepCharacteristic, alpha: float, thetas: list, keeps: list, box: tuple, nodes: int = 32
+) -> list[int]:
+    """:func:`cluster_counts` of several cells (their thetas and distinct roots), the circles of all of
+    them in one evaluation of E_chr."""
+    circles = [_circles(keep, box) for keep in keeps]
+    drawn = [k for k, c in enumerate(circles) if c is not None]
+    out = [-1] * len(keeps)
+    if not drawn:
+        return out
+    angles = np.exp(2j * np.pi * np.arange(nodes) / nodes)
+    rings, centres, theta = [], [], []
+    for k in drawn:
+        centre, radius, _ = circles[k]  # type: ignore[misc]
+        rings.append(radius[:, None] * angles)
+        centres.append(centre)
+        theta.append(np.full(len(centre), float(thetas[k])))
+    ring = np.concatenate(rings)
+    z = np.concatenate(centres)[:, None] + ring
+    E, dE = sweep.e_and_dq(
+        z, np.full(z.shape, alpha), np.repeat(np.concatenate(theta), nodes).reshape(z.shape)
+    )
+    counts = np.mean(dE / E * ring, axis=1).real
+    for k, n in zip(drawn, np.split(counts, np.cumsum([len(c) for c in centres])[:-1])):
+        on_axis = circles[k][2]  # type: ignore[index]
+        if (
+            np.all(np.isfinite(n))
+            and not np.any(np.abs(n - np.round(n)) > 1e-2)
+            and not np.any(np.round(n) < 1)
+        ):
+            out[k] = int(np.sum(np.round(n) * np.where(on_axis, 1, 2)))
+    return out

@@ -60,10 +60,14 @@ def rectangle_sums(
         ends += [(a + (b - a) * k / n, a + (b - a) * (k + 1) / n) for k in range(n)]
     z, wz, g = _resolved_panels(coeffs, t, np.array(ends), x, w, levels=16 if adaptive else 0)
 
+    sums: dict[int, ComplexArray] = {}  # power m -> s_m of every t, computed on the first call for m
+
     def s(j: int, m: int) -> complex:
-        right = np.sum(z**m * g[j] * wz)
-        left = np.sum((-np.conj(z)) ** m * (-np.conj(g[j])) * np.conj(wz))
-        return complex((right + left) / (2j * np.pi))
+        if m not in sums:
+            right = np.sum(z**m * g * wz, axis=-1)
+            left = np.sum((-np.conj(z)) ** m * (-np.conj(g)) * np.conj(wz), axis=-1)
+            sums[m] = (right + left) / (2j * np.pi)
+        return complex(sums[m][j])
 
     return s
 
