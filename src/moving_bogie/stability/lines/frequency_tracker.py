@@ -21,10 +21,10 @@ import numpy as np
 
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 
-__all__ = ["FrequencyTracker", "Followed"]
+__all__ = ["FrequencyTracker"]
 
 #: A followed line: (the alphas, the q's, without the start point; how it ended).
-Followed = tuple[list[float], list[complex], str]
+_Followed = tuple[list[float], list[complex], str]
 
 
 @dataclass
@@ -95,13 +95,13 @@ class FrequencyTracker:
         E, E_q, E_a, _ = self.sweep.derivatives(q, a, None)
         return -E_a / E_q
 
-    def follow(self, a: float, q: complex, a_end: float) -> Followed:
+    def follow(self, a: float, q: complex, a_end: float) -> _Followed:
         """Follow the root q at alpha=a towards a_end; returns (alphas, qs, how) without the start point.
 
         ``how`` is "reached", "cut" (the root meets the cut of K) or "lost"."""
         return self.follow_many([(a, q, a_end)])[0]
 
-    def follow_many(self, starts: list[tuple[float, complex, float]]) -> list[Followed]:
+    def follow_many(self, starts: list[tuple[float, complex, float]]) -> list[_Followed]:
         """:meth:`follow` for every (a, q, a_end) of ``starts``, all lines advanced together (module
         docstring)."""
         if not starts:
