@@ -38,20 +38,30 @@ def broken_links(site: Path) -> list[str]:
     site = site.resolve()
     pages = {path: _parse(path) for path in sorted(site.rglob("*.html"))}
     problems = []
+    # (folder, path of a link) -> (the file it names, whether it exists): most links (the theme's files,
+    # the index, the neighbouring pages) recur on every page of a folder, and are resolved once
+    found: dict[tuple[Path, str], tuple[Path, bool]] = {}
     for path, page in pages.items():
         for link in page.links:
             parts = urlsplit(link)
             if parts.scheme or parts.netloc:
                 continue
-            target = path if not parts.path else (path.parent / unquote(parts.path)).resolve()
-            if target.is_dir():
-                target = target / "index.html"
-            where = f"{path.relative_to(site)}: {link}"
-            if not target.is_file():
-                problems.append(f"{where} (no such file)")
+            key = (path.parent, parts.path)
+            if not parts.path:
+                target, exists = path, True
+            elif key in found:
+                target, exists = found[key]
+            else:
+                target = (path.parent / unquote(parts.path)).resolve()
+                if target.is_dir():
+                    target = target / "index.html"
+                target, exists = found[key] = (target, target.is_file())
+            if not exists:
+                problems.append(f"{path.relative_to(site)}: {link} (no such file)")
             elif parts.fragment and target.suffix == ".html":
                 ids = pages[target].ids if target in pages else _parse(target).ids
                 if unquote(parts.fragment) not in ids:
+                    where = f"{path.relative_to(site)}: {link}"
                     problems.append(f"{where} (no id {parts.fragment!r} in {target.relative_to(site)})")
     return problems
 
