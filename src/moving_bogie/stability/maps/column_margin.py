@@ -122,11 +122,7 @@ def column_margin(
             s = rectangle_sums(coeffs, t[group], X, depth, top, adaptive=True)
             counts = [s(k, 0).real for k in range(len(group))]
             # the cells whose rectangle holds 1 to MAX_STRIP_ROOTS roots: located, then measured together
-            measured = [
-                k
-                for k, n in enumerate(counts)
-                if abs(n - round(n)) <= 1e-3 and 0 < round(n) <= MAX_STRIP_ROOTS
-            ]
+            measured = [k for k, n in enumerate(counts) if _locatable(n)]
             roots = [located(s, k, int(round(counts[k]))) for k in measured]
             cells_at = [thetas[group[k]] for k in measured]
             values = dict(
@@ -143,19 +139,29 @@ def column_margin(
     return ColumnMargin(margin, bound, h)
 
 
+def _on_edge(n: float) -> bool:
+    """A rectangle's count ``n`` that is not an integer: a root on its edge."""
+    return abs(n - round(n)) > 1e-3
+
+
+def _locatable(n: float) -> bool:
+    """A count of 1 to MAX_STRIP_ROOTS roots, which the power sums locate."""
+    return not _on_edge(n) and 0 < round(n) <= MAX_STRIP_ROOTS
+
+
 def _next_top(
     tops: tuple[float, float, float], top: float, h: float, n: float, smallest: float
 ) -> tuple[float, float, float] | None:
     """The next (lo, hi, top) of a cell whose rectangle with this ``top`` counted ``n`` roots (the module
     text), or None when it is settled: no root below h (its margin the bound h), or ``smallest`` measured."""
     lo, hi, _ = tops
-    if abs(n - round(n)) > 1e-3:  # a root on the edge
+    if _on_edge(n):
         return (lo, hi, top - 0.1 * (top - lo))
     if round(n) > MAX_STRIP_ROOTS:
         return (lo, top, 0.5 * (lo + top))
     if round(n) == 0:
         return None if top == h else (top, hi, 0.5 * (top + hi))
-    # not located (NaN): fewer roots, in a lower rectangle
+    # not located (NaN; :func:`_locatable` counts only): fewer roots, in a lower rectangle
     return (lo, top, 0.5 * (lo + top)) if np.isnan(smallest) else None
 
 
@@ -233,15 +239,13 @@ def _counts_many(
 ) -> list[int]:
     """:func:`cluster_counts` of several cells (their thetas and distinct roots), the circles of all of
     them in one evaluation of E_chr."""
-    circles = [_circles(keep, box) for keep in keeps]
-    drawn = [k for k, c in enumerate(circles) if c is not None]
+    drawn = [(k, c) for k, c in enumerate(_circles(keep, box) for keep in keeps) if c is not None]
     out = [-1] * len(keeps)
     if not drawn:
         return out
     angles = np.exp(2j * np.pi * np.arange(nodes) / nodes)
     rings, centres, theta = [], [], []
-    for k in drawn:
-        centre, radius, _ = circles[k]  # type: ignore[misc]
+    for k, (centre, radius, _) in drawn:
         rings.append(radius[:, None] * angles)
         centres.append(centre)
         theta.append(np.full(len(centre), float(thetas[k])))
@@ -251,8 +255,7 @@ def _counts_many(
         z, np.full(z.shape, alpha), np.repeat(np.concatenate(theta), nodes).reshape(z.shape)
     )
     counts = np.mean(dE / E * ring, axis=1).real
-    for k, n in zip(drawn, np.split(counts, np.cumsum([len(c) for c in centres])[:-1])):
-        on_axis = circles[k][2]  # type: ignore[index]
+    for (k, (_, _, on_axis)), n in zip(drawn, np.split(counts, np.cumsum([len(c) for c in centres])[:-1])):
         if (
             np.all(np.isfinite(n))
             and not np.any(np.abs(n - np.round(n)) > 1e-2)
