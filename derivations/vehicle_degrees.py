@@ -78,10 +78,25 @@ def block_degrees(matrices, follow: bool = True) -> dict:
 
 
 def _degree(A, theta) -> int:
-    """Degree in ``theta`` of det A (entries polynomial in theta, Gaussian-rational coefficients), exactly:
-    Berkowitz (division-free, ``charpoly``) in QQ_I[theta]."""
+    """Degree in ``theta`` of det A (entries polynomial in theta, Gaussian-rational coefficients), exactly.
+
+    det A has degree at most ``bound``, the sum over the rows of their largest entry degree. Its values at
+    theta = 0, 1, ..., bound (determinants of Gaussian-rational matrices, exact) determine it, and its degree
+    is the largest k whose divided difference f[0, ..., k] (the coefficient of the Newton basis polynomial of
+    degree k) is not zero. Many small exact determinants cost far less than one in QQ_I[theta]."""
     ring = sp.QQ_I[theta]
     n = A.shape[0]
     rows = [[ring.from_sympy(A[i, j]) for j in range(n)] for i in range(n)]
-    det = DomainMatrix(rows, (n, n), ring).charpoly()[-1]  # (-1)^n det A
-    return sp.Poly(ring.to_sympy(det), theta).degree()
+    bound = sum(max((e.degree() for e in row if e), default=0) for row in rows)
+    values = []
+    for x in range(bound + 1):
+        at = [[e(x) if e else sp.QQ_I.zero for e in row] for row in rows]
+        values.append(DomainMatrix(at, (n, n), sp.QQ_I).det())
+    differences = list(values)
+    for k in range(1, bound + 1):  # in place: differences[i] becomes f[i-k, ..., i]
+        for i in range(bound, k - 1, -1):
+            differences[i] = (differences[i] - differences[i - 1]) / sp.QQ_I(k)
+    degree = max((k for k, c in enumerate(differences) if c), default=None)
+    if degree is None:
+        raise ValueError("E_chr vanishes identically in this parameter at the generic point")
+    return degree

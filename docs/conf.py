@@ -15,6 +15,7 @@ The API reference (``api.md``) is generated from the docstrings by autosummary i
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import re
 import subprocess
@@ -32,6 +33,18 @@ if (ROOT / "src" / "moving_bogie").is_dir():  # build from the checkout's source
 
 import moving_bogie  # noqa: E402
 from moving_bogie.cli.docs import render  # noqa: E402
+
+
+def _notebook_runner():
+    """``notebooks/run.py``, the runner that executes the notebooks, loaded from its path (for its rule of
+    when an executed copy is current, :func:`is_current`)."""
+    spec = importlib.util.spec_from_file_location("notebook_runner", NOTEBOOKS / "run.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+RUNNER = _notebook_runner()
 
 project = "moving-bogie"
 author = "the moving-bogie authors"
@@ -98,11 +111,6 @@ def _execute(source: Path) -> str:
     return proc.stdout.strip()
 
 
-def _newest_package_file() -> float:
-    package = Path(moving_bogie.__file__).resolve().parent
-    return max(p.stat().st_mtime for p in package.rglob("*.py"))
-
-
 def execute_notebooks() -> None:
     """``tutorials/NAME.ipynb``: every notebook executed in quick mode, two at a time."""
     TUTORIALS.mkdir(exist_ok=True)
@@ -110,13 +118,7 @@ def execute_notebooks() -> None:
     for old in TUTORIALS.glob("*.ipynb"):
         if ".partial" in old.name or not (NOTEBOOKS / f"{old.stem}.py").exists():
             old.unlink()
-    newest = _newest_package_file()
-    stale = [
-        source
-        for source in sources
-        if not (out := TUTORIALS / f"{source.stem}.ipynb").exists()
-        or out.stat().st_mtime < max(source.stat().st_mtime, newest)
-    ]
+    stale = [s for s in sources if not RUNNER.is_current(s, TUTORIALS / f"{s.stem}.ipynb")]
     if stale:
         with ThreadPoolExecutor(min(2, len(stale))) as pool:
             for line in pool.map(_execute, stale):
@@ -126,7 +128,7 @@ def execute_notebooks() -> None:
 def make_home_figure() -> None:
     """``_generated/uic60-series.png``: the walkthrough's time series, drawn by the command line."""
     out = DOCS / "_generated" / "uic60-series.png"
-    if out.exists() and out.stat().st_mtime >= _newest_package_file():
+    if out.exists() and out.stat().st_mtime >= RUNNER.newest_package_file():
         return
     out.parent.mkdir(exist_ok=True)
     env = dict(os.environ, MPLBACKEND="Agg")

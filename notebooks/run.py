@@ -83,6 +83,7 @@ def run_notebook(path, *, quick: bool = False, out=None, timeout: int = 600) -> 
                 timeout=timeout,
                 resources={"metadata": {"path": str(path.parent)}},
             )
+            notebook.metadata[RUN_METADATA] = {"quick": bool(quick)}
             try:
                 client.execute()
             except nbclient.exceptions.CellExecutionError as exc:
@@ -96,6 +97,51 @@ def run_notebook(path, *, quick: bool = False, out=None, timeout: int = 600) -> 
         if out is not None:
             nbformat.write(notebook, str(out))
     return time.perf_counter() - start
+
+
+#: The key of the executed notebook's metadata under which :func:`run_notebook` records how it ran.
+RUN_METADATA = "moving_bogie_run"
+
+
+def newest_package_file() -> float:
+    """The modification time of the newest ``.py`` file of the imported package ``moving_bogie``."""
+    import moving_bogie
+
+    package = Path(moving_bogie.__file__).resolve().parent
+    return max(p.stat().st_mtime for p in package.rglob("*.py"))
+
+
+def is_current(source, executed) -> bool:
+    """Whether the executed notebook ``executed`` is newer than its ``source`` and than every file of the
+    package: the documentation build keeps such a copy instead of running the notebook again."""
+    source, executed = Path(source), Path(executed)
+    if not executed.is_file():
+        return False
+    return executed.stat().st_mtime >= max(source.stat().st_mtime, newest_package_file())
+
+
+def check_executed(source, executed, *, quick: bool) -> list[str]:
+    """What keeps ``executed`` from being a complete run of the jupytext notebook ``source`` as it is now
+    (empty when nothing does): a code cell whose text is not the source's, one that did not run, an error
+    among its outputs, or a run in another mode than ``quick``."""
+    import jupytext
+    import nbformat
+
+    expected = [c.source for c in jupytext.read(Path(source)).cells if c.cell_type == "code"]
+    notebook = nbformat.read(str(executed), as_version=4)
+    cells = [c for c in notebook.cells if c.cell_type == "code"]
+    problems = []
+    if [c.source for c in cells] != expected:
+        problems.append("its code cells are not those of the source")
+    if notebook.metadata.get(RUN_METADATA, {}).get("quick") is not bool(quick):
+        problems.append(f"it was not run with quick={bool(quick)}")
+    for k, cell in enumerate(cells):
+        if cell.get("execution_count") is None:
+            problems.append(f"code cell {k} did not run")
+        errors = [o for o in cell.get("outputs", ()) if o.get("output_type") == "error"]
+        if errors:
+            problems.append(f"code cell {k} raised {errors[0].get('ename')}")
+    return problems
 
 
 def main(argv=None) -> int:

@@ -104,7 +104,10 @@ class CharacteristicArray:
         self.offsets = [float(x) for x in self.system.offsets]
         self.evaluations = 0
         self._remember = remember
-        self._known: dict[complex, complex] = {}
+        # the points seen so far, sorted (numpy's order of complex numbers: by real part, then imaginary),
+        # and E_chr at each
+        self._known = np.empty(0, dtype=complex)
+        self._values = np.empty(0, dtype=complex)
 
     def kernel_values(self, q: ArrayLike, derivative: bool = False) -> KernelValues:
         """K (and dK/dq) at the distinct contact offsets, arrays shaped like ``q``."""
@@ -137,15 +140,23 @@ class CharacteristicArray:
         return np.concatenate(values).reshape(q.shape)
 
     def _remembered(self, q: ComplexArray) -> ComplexArray:
-        """E_chr at the points ``q`` (one-dimensional), evaluated only where not known yet (then kept)."""
-        known = self._known
-        points = q.tolist()
-        values = [known.get(z) for z in points]
-        new = list(dict.fromkeys(z for z, v in zip(points, values) if v is None))
-        if new:
-            known.update(zip(new, self._evaluate(np.array(new, dtype=complex)).tolist()))
-            values = [known[z] for z in points]
-        return np.array(values, dtype=complex)
+        """E_chr at the points ``q`` (one-dimensional), evaluated only where not known yet (then kept).
+
+        A point is known when it equals a kept one (``==`` of complex numbers, as a dict's keys compare):
+        found by binary search in the sorted kept points. The points not known are evaluated once each."""
+        known, values = self._known, self._values
+        at = np.minimum(np.searchsorted(known, q), max(known.size - 1, 0))
+        found = known[at] == q if known.size else np.zeros(q.shape, dtype=bool)
+        out = np.empty(q.shape, dtype=complex)
+        out[found] = values[at[found]]
+        if not np.all(found):
+            new, where = np.unique(q[~found], return_inverse=True)
+            fresh = self._evaluate(new)
+            out[~found] = fresh[where.ravel()]
+            merged = np.concatenate([known, new])
+            order = np.argsort(merged, kind="stable")
+            self._known, self._values = merged[order], np.concatenate([values, fresh])[order]
+        return out
 
     def value_and_derivative(self, q: ArrayLike) -> tuple[ComplexArray, ComplexArray]:
         """(E_chr(q), dE_chr/dq) in double precision, by Jacobi's formula (Eq. (40))."""

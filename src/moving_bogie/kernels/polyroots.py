@@ -75,17 +75,26 @@ def quartic_roots(c: ArrayLike) -> np.ndarray:
     e1, e2 = p / 2 + m - t / 2, p / 2 + m + t / 2
     d1, d2 = np.sqrt(sm * sm - 4 * e1), np.sqrt(sm * sm - 4 * e2)
     z = np.stack([(-sm + d1) / 2, (-sm - d1) / 2, (sm + d2) / 2, (sm - d2) / 2], -1) - a4[..., None]
+    a, b, cc, d = a[..., None], b[..., None], cc[..., None], d[..., None]
     for _ in range(2):
-        val = (((z + a[..., None]) * z + b[..., None]) * z + cc[..., None]) * z + d[..., None]
-        den = np.ones_like(z)
-        for j in range(4):
-            diff = z - z[..., j : j + 1]
-            diff[..., j] = 1
-            den = den * diff
+        val = (((z + a) * z + b) * z + cc) * z + d
         with np.errstate(all="ignore"):
-            step = val / den
+            step = val / _products_of_differences(z)
         z = np.where(np.isfinite(step), z - step, z)
     return z
+
+
+def _products_of_differences(z: np.ndarray) -> np.ndarray:
+    """prod_{j != i} (z_i - z_j) for each of the four ``z[..., i]``, the factors in the order j = 0..3 (the
+    Durand-Kerner denominators): each difference is computed once and its negative reused (exact)."""
+    z0, z1, z2, z3 = (z[..., k] for k in range(4))
+    d01, d02, d03, d12, d13, d23 = z0 - z1, z0 - z2, z0 - z3, z1 - z2, z1 - z3, z2 - z3
+    out = np.empty_like(z)
+    out[..., 0] = d01 * d02 * d03
+    out[..., 1] = -d01 * d12 * d13
+    out[..., 2] = -d02 * -d12 * d23
+    out[..., 3] = -d03 * -d13 * -d23
+    return out
 
 
 #: Batches of at most this many quartics go through :func:`_quartic_one` (Python complex arithmetic).
