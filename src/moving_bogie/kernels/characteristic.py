@@ -153,9 +153,8 @@ class CharacteristicArray:
             new, where = np.unique(q[~found], return_inverse=True)
             fresh = self._evaluate(new)
             out[~found] = fresh[where.ravel()]
-            merged = np.concatenate([known, new])
-            order = np.argsort(merged, kind="stable")
-            self._known, self._values = merged[order], np.concatenate([values, fresh])[order]
+            at = np.searchsorted(known, new)  # both sorted: the merge keeps the kept points sorted
+            self._known, self._values = np.insert(known, at, new), np.insert(values, at, fresh)
         return out
 
     def value_and_derivative(self, q: ArrayLike) -> tuple[ComplexArray, ComplexArray]:
