@@ -1,5 +1,5 @@
-"""The test suite's time: the whole suite and the fast subset on two pytest-xdist workers, of this checkout and
-of another one side by side.
+"""The test suite's time: the whole suite and the fast subset on two pytest-xdist workers, of this checkout
+and of another one side by side.
 
 Run: ``python benchmarks/bench_suite.py [--before DIR] [--only whole|fast] [--record]``
 
@@ -70,6 +70,25 @@ def run_suite(root: Path, extra: list[str]) -> tuple[float, float, str]:
     return wall, cpu, summary
 
 
+def _counts(summary: str) -> str:
+    """pytest's counts without its time (``1109 passed, 5 skipped`` of ``1109 passed, 5 skipped in 315s``)."""
+    return summary.split(" in ")[0]
+
+
+def _row(name: str, measured: dict, reused: dict) -> dict:
+    """The record's row of one subset: this checkout measured, the other one the alternative."""
+    work, _, target = SUBSETS[name]
+    wall, cpu, summary = measured[(name, "this")]
+    text = f"{wall:.0f} s wall, {cpu:.0f} s CPU; {_counts(summary)}"
+    other = measured.get((name, "before"))
+    alternative = "-"
+    if other is not None:
+        alternative = f"the code before: {other[0]:.0f} s wall, {other[1]:.0f} s CPU; {_counts(other[2])}"
+    if name == "whole":
+        work += f" (notebooks: {reused['this']}" + (f"; before: {reused['before']})" if other else ")")
+    return row(work, text, alternative, f"{target:.0f} s")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--before", type=Path, default=None, help="another checkout (its root folder)")
@@ -87,15 +106,11 @@ def main() -> None:
     print(f"{'subset':<8}{'code':<8}{'wall s':>8}{'CPU s':>8}  {'notebooks':<10}{'target s':>9}  pytest")
     rows = []
     for name in names:
-        work, _, target = SUBSETS[name]
+        target = SUBSETS[name][2]
         for label, _ in checkouts:
             wall, cpu, summary = measured[(name, label)]
             print(f"{name:<8}{label:<8}{wall:>8.1f}{cpu:>8.1f}  {reused[label]:<10}{target:>9.0f}  {summary}")
-        wall, cpu, _ = measured[(name, "this")]
-        other = measured.get((name, "before"))
-        alternative = "-" if other is None else f"{other[0]:.0f} s wall, {other[1]:.0f} s CPU (before)"
-        note = f" (notebooks {reused['this']})" if name == "whole" else ""
-        rows.append(row(work + note, f"{wall:.0f} s wall, {cpu:.0f} s CPU", alternative, f"{target:.0f} s"))
+        rows.append(_row(name, measured, reused))
     if args.record:
         placeholders = {str(args.before): "DIR"} if args.before else None
         title = "Test suite (two workers, no pytest cache)"
