@@ -7,6 +7,10 @@ sets ``MOVING_BOGIE_QUICK=1`` (coarse grids, short windows: what ``tests/test_no
 this same function); ``--out`` keeps the executed notebook with its outputs. A failing cell prints its
 traceback and exits with status 1. Needs the dev extra (``pip install -e '.[dev]'``: jupytext, nbformat,
 nbclient, ipykernel).
+
+An executed notebook records how it ran (``metadata["moving_bogie_run"]``, quick or not). The documentation
+build keeps its runs while :func:`is_current`; the tests check such a run with :func:`check_executed`
+instead of running the notebook again.
 """
 
 from __future__ import annotations

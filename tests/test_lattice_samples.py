@@ -84,3 +84,11 @@ def test_remembered_values_are_the_values_and_count_once():
     assert np.allclose(again.ravel(), reference, rtol=1e-13, atol=0)
     near = np.abs(q[:200]) <= 2.0
     assert np.array_equal(again.ravel()[:200][near], first[near])  # the values kept, to the bit
+    # a point repeated within one batch, and a zero of either sign (equal as complex numbers, as they were
+    # as a dict's keys), is evaluated once; the repeats get its value
+    fresh = np.array([0.3 + 0.2j, 0.4 - 0.1j, 0.3 + 0.2j, complex(-0.0, 0.7), complex(0.0, 0.7)])
+    before = remembering.evaluations
+    values = remembering(fresh)
+    assert remembering.evaluations == before + 3
+    assert values[0] == values[2] and values[3] == values[4]
+    assert np.allclose(values, plain(fresh), rtol=1e-13, atol=0)
