@@ -118,7 +118,8 @@ def execute_notebooks() -> None:
     for old in TUTORIALS.glob("*.ipynb"):
         if ".partial" in old.name or not (NOTEBOOKS / f"{old.stem}.py").exists():
             old.unlink()
-    stale = [s for s in sources if not RUNNER.is_current(s, TUTORIALS / f"{s.stem}.ipynb")]
+    newest = RUNNER.newest_package_file()  # once for every notebook
+    stale = [s for s in sources if not RUNNER.is_current(s, TUTORIALS / f"{s.stem}.ipynb", newest)]
     if stale:
         with ThreadPoolExecutor(min(2, len(stale))) as pool:
             for line in pool.map(_execute, stale):

@@ -107,21 +107,25 @@ def run_notebook(path, *, quick: bool = False, out=None, timeout: int = 600) -> 
 RUN_METADATA = "moving_bogie_run"
 
 
-def newest_package_file() -> float:
-    """The modification time of the newest ``.py`` file of the imported package ``moving_bogie``."""
-    import moving_bogie
+def newest_package_file(package=None) -> float:
+    """The modification time of the newest ``.py`` file of the package folder ``package`` (by default that of
+    the imported ``moving_bogie``)."""
+    if package is None:
+        import moving_bogie
 
-    package = Path(moving_bogie.__file__).resolve().parent
-    return max(p.stat().st_mtime for p in package.rglob("*.py"))
+        package = Path(moving_bogie.__file__).resolve().parent
+    return max(p.stat().st_mtime for p in Path(package).rglob("*.py"))
 
 
-def is_current(source, executed) -> bool:
+def is_current(source, executed, newest: float | None = None) -> bool:
     """Whether the executed notebook ``executed`` is newer than its ``source`` and than every file of the
-    package: the documentation build keeps such a copy instead of running the notebook again."""
+    package (``newest``: :func:`newest_package_file`, when already known): the documentation build keeps
+    such a copy instead of running the notebook again."""
     source, executed = Path(source), Path(executed)
     if not executed.is_file():
         return False
-    return executed.stat().st_mtime >= max(source.stat().st_mtime, newest_package_file())
+    newest = newest_package_file() if newest is None else newest
+    return executed.stat().st_mtime >= max(source.stat().st_mtime, newest)
 
 
 def check_executed(source, executed, *, quick: bool) -> list[str]:
