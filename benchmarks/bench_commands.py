@@ -75,8 +75,9 @@ DECIMAL = re.compile(r"[-+]?\d+(\.\d*)?([eE][-+]?\d+)?")
 
 
 def numbers(text: str) -> dict:
-    """Every number of a --json output by its path (timings left out; strings of digits, such as the
-    printed roots, as numbers too), or {} when it is not one."""
+    """Every number of a --json output by its path (timings and a sweep's worker count left out: how it
+    ran, not what it computed; strings of digits, such as the printed roots, as numbers too), or {} when
+    it is not one."""
     try:
         data = json.loads(text)
     except json.JSONDecodeError:
@@ -86,7 +87,14 @@ def numbers(text: str) -> dict:
     def walk(value: object, path: str) -> None:
         if isinstance(value, dict):
             for key, item in value.items():
-                if key not in ("timings", "elapsed", "seconds", "points_per_second", "evaluations"):
+                if key not in (
+                    "timings",
+                    "elapsed",
+                    "seconds",
+                    "points_per_second",
+                    "evaluations",
+                    "workers",
+                ):
                     walk(item, f"{path}/{key}")
         elif isinstance(value, list) and value and all(isinstance(v, (int, float)) for v in value):
             out[path] = np.asarray(value, dtype=float)
@@ -104,18 +112,21 @@ def numbers(text: str) -> dict:
 
 def largest_difference(a: str, b: str) -> str:
     """The largest difference between the numbers of two ``--json`` outputs, path by path, and where it is
-    (the path, when it is not zero)."""
+    (the path, when it is not zero), over the paths both print with the same shape; the paths only one
+    prints (an output that gained or lost a field between the two codes) are counted after it."""
     x, y = numbers(a), numbers(b)
     if not x or not y:
         return "(no numbers)"
-    if x.keys() != y.keys() or any(x[k].shape != y[k].shape for k in x):
-        return "DIFFERENT FIELDS"
-    diffs = {k: float(np.nanmax(np.abs(x[k] - y[k]), initial=0.0)) for k in x}
-    nan_mismatch = any(not np.array_equal(np.isnan(x[k]), np.isnan(y[k])) for k in x)
+    common = [k for k in x if k in y and x[k].shape == y[k].shape]
+    apart = len(x.keys() ^ y.keys()) + sum(1 for k in x.keys() & y.keys() if x[k].shape != y[k].shape)
+    extra = f"; {apart} field(s) printed by one code only" if apart else ""
+    if not common:
+        return "DIFFERENT FIELDS" + extra
+    if any(not np.array_equal(np.isnan(x[k]), np.isnan(y[k])) for k in common):
+        return "NaN MISMATCH" + extra
+    diffs = {k: float(np.nanmax(np.abs(x[k] - y[k]), initial=0.0)) for k in common}
     where = max(diffs, key=lambda k: diffs[k])
-    if nan_mismatch:
-        return "NaN MISMATCH"
-    return f"{diffs[where]:.1e}" + (f" (at {where})" if diffs[where] else "")
+    return f"{diffs[where]:.1e}" + (f" (at {where})" if diffs[where] else "") + extra
 
 
 def compare(before: Path, repeat: int, only: list[str] | None = None) -> list[tuple[str, Run, Run, str]]:
@@ -165,7 +176,7 @@ def record(results: list[tuple[str, Run, Run, str]], before: Path) -> None:
         row(
             f"`moving-bogie {' '.join(COMMANDS[label][0]).replace(str(EXAMPLES.parent) + '/', '')}`",
             f"{new.cpu:.2f} s CPU, {new.wall:.1f} s wall, exit {new.code}; "
-            f"numbers within {diff} of the code before",
+            f"largest difference of the printed numbers from the code before: {diff}",
             f"the code before ({source_revision(before)}): {old.cpu:.2f} s CPU, {old.wall:.1f} s wall",
             COMMANDS[label][1],
         )
