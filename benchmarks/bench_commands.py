@@ -118,7 +118,7 @@ def largest_difference(a: str, b: str) -> str:
     if not x or not y:
         return "(no numbers)"
     common = [k for k in x if k in y and x[k].shape == y[k].shape]
-    apart = len(x.keys() ^ y.keys()) + sum(1 for k in x.keys() & y.keys() if x[k].shape != y[k].shape)
+    apart = len(x.keys() | y.keys()) - len(common)
     extra = f"; {apart} field(s) printed by one code only" if apart else ""
     if not common:
         return "DIFFERENT FIELDS" + extra
