@@ -12,19 +12,16 @@ benchmarks/bench_search_random.py (no contour code) for the roots with Im q < 0.
 """
 
 import functools
-import importlib.util
-from pathlib import Path
 
 import numpy as np
 import pytest
+from scripts import load_script
 from test_cut_clearance import AVOIDED_CROSSING
 
 from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.cut import cut_locus
 from moving_bogie.model.params import DimensionlessParams
-
-BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_random.py"
 
 # Sets 144 and 149 of the random benchmark (seed 24) with alpha = 0: a light sleeper layer whose cut has a
 # segment on Re q = 0, and two masses on three layers (the ZeroDivisionError).
@@ -82,9 +79,7 @@ def test_the_search_ends_with_a_decided_verdict(params):
 
 @pytest.mark.slow
 def test_three_layers_at_rest_agree_with_the_scan():
-    spec = importlib.util.spec_from_file_location("bench_search_random", BENCH)
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
+    bench = load_script("benchmarks/bench_search_random.py")
     res = _search(THREE_LAYERS)
     assert res.count_ok and max(u.height for u in res.unsearched) <= 1e-8
     reference = bench.scan_roots(THREE_LAYERS, res.window, n=(401, 401))

@@ -6,25 +6,13 @@ written by hand (two small JSON outputs), so each result is known without the be
 
 from __future__ import annotations
 
-import importlib.util
 import json
-import sys
-from pathlib import Path
 
-BENCHMARKS = Path(__file__).resolve().parent.parent / "benchmarks"
+from scripts import load_script
 
 
 def _compare():
-    sys.path.insert(0, str(BENCHMARKS))  # bench_commands imports records beside it
-    try:
-        spec = importlib.util.spec_from_file_location("bench_commands", BENCHMARKS / "bench_commands.py")
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = module  # its dataclasses look their module up there
-        spec.loader.exec_module(module)
-    finally:
-        sys.path.remove(str(BENCHMARKS))
-        sys.modules.pop("bench_commands", None)
-    return module.largest_difference
+    return load_script("benchmarks/bench_commands.py").largest_difference
 
 
 def test_common_paths_are_compared_and_the_others_counted():

@@ -11,12 +11,12 @@ both fail it.
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import shutil
 from pathlib import Path
 
 import pytest
+from scripts import load_script
 
 ROOT = Path(__file__).resolve().parent.parent
 SITE = ROOT / "docs" / "_build" / "html"
@@ -111,17 +111,12 @@ def test_a_tutorial_page_shows_its_figures(browser, tmp_path):
 def test_every_internal_link_resolves():
     if not (SITE / "index.html").is_file():
         _missing(f"the documentation site is not built: {BUILD}")
-    spec = importlib.util.spec_from_file_location("check_links", ROOT / "docs" / "check_links.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    assert module.broken_links(SITE) == []
+    assert load_script("docs/check_links.py").broken_links(SITE) == []
 
 
 def test_link_checker_finds_a_broken_link(tmp_path):
     """The checker itself: a missing file and a missing fragment are reported, good links are not."""
-    spec = importlib.util.spec_from_file_location("check_links", ROOT / "docs" / "check_links.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = load_script("docs/check_links.py")
     (tmp_path / "index.html").write_text(
         '<a href="page.html#here">ok</a><a href="page.html#gone">bad</a><img src="nofile.png">'
         '<a href="https://example.org/x">external</a>'

@@ -23,12 +23,12 @@ the documentation site, whose build runs every notebook through the same runner 
 
 from __future__ import annotations
 
-import importlib.util
 import sys
 from pathlib import Path
 
 import pytest
 from optional_tools import NOTEBOOK_INSTALL, NOTEBOOK_VARIABLE, require_notebook_tools
+from scripts import load_script
 
 ROOT = Path(__file__).resolve().parent.parent
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("[0-9][0-9]-*.py"))
@@ -52,10 +52,7 @@ def test_notebooks_exist():
 
 def _runner():
     """notebooks/run.py, the documented headless runner (README, "Notebooks"), loaded from its path."""
-    spec = importlib.util.spec_from_file_location("notebook_runner", ROOT / "notebooks" / "run.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("notebooks/run.py")
 
 
 @pytest.mark.slow

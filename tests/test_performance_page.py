@@ -6,24 +6,17 @@ page must be their current rendering, and every record must have the fields the 
 
 from __future__ import annotations
 
-import importlib.util
 import json
-import sys
 from pathlib import Path
+
+from scripts import load_script
 
 ROOT = Path(__file__).resolve().parent.parent
 BENCHMARKS = ROOT / "benchmarks"
 
 
 def _page_module():
-    sys.path.insert(0, str(BENCHMARKS))  # performance_page imports records beside it
-    try:
-        spec = importlib.util.spec_from_file_location("performance_page", BENCHMARKS / "performance_page.py")
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-    finally:
-        sys.path.remove(str(BENCHMARKS))
-    return module
+    return load_script("benchmarks/performance_page.py")
 
 
 def test_every_record_has_the_fields_of_the_page():

@@ -13,13 +13,13 @@ References:
   and the verdicts equal, on sets drawn with a fixed seed by that benchmark.
 """
 
-import importlib.util
 import inspect
 from pathlib import Path
 
 import mpmath
 import numpy as np
 import pytest
+from scripts import load_script
 
 from moving_bogie.api import induced_frequencies
 from moving_bogie.kernels.bound import bind
@@ -33,8 +33,6 @@ from moving_bogie.roots.count.window import far_field_window
 from moving_bogie.roots.frequencies import default_window
 from moving_bogie.roots.search import counting
 from moving_bogie.roots.search.search_regions import tile_window
-
-BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_random.py"
 
 # A light-ish sleeper layer at 0.93 v_cr (set 0 of the benchmark's seed 24): its two cut curves fold next
 # to Re q = 0, one lens opening towards larger Re q, its mirror towards smaller Re q. The search stopped
@@ -138,10 +136,7 @@ def test_purely_imaginary_roots_between_crossing_cut_curves():
 
 
 def _bench():
-    spec = importlib.util.spec_from_file_location("bench_search_random", BENCH)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("benchmarks/bench_search_random.py")
 
 
 def test_winding_numbers_of_many_regions_agree_with_one_at_a_time():

@@ -6,7 +6,6 @@ code); Eq. (38) in closed form (``generated/vehicle_bogie.py``) with K(xi, q) by
 Eq. (29) over real p (``tests/test_track_kernel.py``), independent of the residue kernel.
 """
 
-import importlib.util
 import json
 from fractions import Fraction
 from pathlib import Path
@@ -14,6 +13,7 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import pytest
+from scripts import load_script
 from test_track_kernel import quadrature_K
 
 from moving_bogie.api import induced_frequencies
@@ -28,15 +28,10 @@ from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import far_field_radius, rho
 from moving_bogie.roots.count.outcomes import Reason
 
-BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_search_random.py"
-
 
 def _scan_roots(params, window, n):
     """The brute-force roots with Im q < 0 of ``benchmarks/bench_search_random.py`` (no contour code)."""
-    spec = importlib.util.spec_from_file_location("bench_search_random", BENCH)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.scan_roots(params, window, n=n)
+    return load_script("benchmarks/bench_search_random.py").scan_roots(params, window, n=n)
 
 
 @pytest.fixture(scope="module")
