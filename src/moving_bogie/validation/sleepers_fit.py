@@ -51,6 +51,10 @@ ROUND_OFF = 1e-6
 #: the fewest stroboscopic samples per fitted multiplier (the map of rank r is fitted to K - 1 >= 3 r pairs)
 SAMPLES_PER_MODE = 3
 
+#: the fewest periods a window must hold: room for rank 2, a complex-conjugate pair of multipliers (one
+#: oscillating mode of a real signal)
+MIN_PERIODS = 2 * SAMPLES_PER_MODE + 1
+
 
 def smooth_steps(x: np.ndarray) -> np.ndarray:
     """``(x_{n-1} + 2 x_n + x_{n+1}) / 4`` at interior steps: removes the period-two oscillation that the
@@ -174,15 +178,15 @@ def fit_floquet_modes(
     ``start`` to its end (module doc). The first signal sets the dominant harmonic.
 
     The periods after the run has decayed below ``ROUND_OFF`` of its largest value are left out. Raises
-    ValueError when the window holds fewer than 6 periods above it (nothing is left to fit)."""
+    ValueError when the window holds fewer than ``MIN_PERIODS`` periods above it (nothing is left to fit)."""
     signals = np.atleast_2d(signals)
     snapshots, phases, first, scales = stroboscopic_samples(tau, signals, period, start)
     size = np.max(np.abs(snapshots) * np.repeat(scales, phases)[:, None], axis=0, initial=0.0)
     above = np.nonzero(size >= ROUND_OFF * np.max(np.abs(signals)))[0]
     count = int(above[-1]) + 1 if above.size else 0
     snapshots = snapshots[:, :count]
-    if count < 6:
-        raise ValueError("the fit window holds fewer than 6 periods")
+    if count < MIN_PERIODS:
+        raise ValueError(f"the fit window holds fewer than {MIN_PERIODS} periods")
     multipliers, shapes, singular = _fitted_map(snapshots, level)
     amplitudes = np.linalg.lstsq(shapes, snapshots[:, 0].astype(complex), rcond=None)[0]
     shares = np.abs(amplitudes) * np.linalg.norm(shapes, axis=0) * np.abs(multipliers) ** (count - 1)
