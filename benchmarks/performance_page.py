@@ -4,8 +4,10 @@
 
 Each benchmark run with ``--record`` writes its record (``records.py`` describes the format); this script
 assembles them into one page: a table per record (what was run, what it cost, the same work done another
-way in the same run, the target), with the date, the machine and the command of each. ``--check`` writes
-nothing and exits 1 when the page differs from what the records give.
+way in the same run, the target), with the date, the machine and the command of each. A record whose
+measured code changed after it was made (the hashes of its ``sources`` no longer match the files) is marked
+stale, one that keeps no hashes is marked as such (:func:`freshness`). ``--check`` writes nothing and exits 1
+when the page differs from what the records give.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import json
 import sys
 from pathlib import Path
 
-from records import FIELDS, RESULTS
+from records import FIELDS, RESULTS, stale_sources
 
 PAGE = Path(__file__).resolve().parent.parent / "docs" / "performance.md"
 HEADER = ("work", "measured", "alternative (same run)", "target")
@@ -38,12 +40,40 @@ def describe_machine(machine: dict) -> str:
     return ", ".join(parts)
 
 
+#: The first words of the line that says whether a record is still current (:func:`freshness`).
+STALE = "> **Stale:**"
+UNKNOWN = "> **Not dated by its code:**"
+
+
+def freshness(record: dict) -> str | None:
+    """The line marking ``record`` stale (its code changed after it was made) or of unknown currency (it
+    keeps no hashes of its code); None when it is current."""
+    stale = stale_sources(record)
+    if stale is None:
+        return (
+            f"{UNKNOWN} the record keeps no hash of the code it measured; that code may have changed since."
+        )
+    if stale:
+        folders = ", ".join(f"`{folder}`" for folder in stale)
+        return (
+            f"{STALE} the code it measures ({folders}) changed after this record was made; "
+            "run its command again."
+        )
+    return None
+
+
+def without_marks(page: str) -> str:
+    """``page`` without the lines of :func:`freshness` (each a paragraph of its own)."""
+    paragraphs = page.split("\n\n")
+    return "\n\n".join(p for p in paragraphs if not p.startswith((STALE, UNKNOWN)))
+
+
 def _cell(text: str) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 
-def render(records: list[dict]) -> str:
-    """The Markdown page."""
+def render(records: list[dict], marks: bool = True) -> str:
+    """The Markdown page (with the :func:`freshness` line of each record unless ``marks`` is false)."""
     machines = {describe_machine(r["machine"]) for r in records}
     dates = sorted(r["date"] for r in records)
     lines = [
@@ -67,6 +97,9 @@ def render(records: list[dict]) -> str:
     for record in records:
         lines += ["", f"## {record['title']}", ""]
         lines += [f"`{record['command']}`, {record['date']}."]
+        mark = freshness(record) if marks else None
+        if mark is not None:
+            lines += ["", mark]
         if len(machines) > 1:
             lines += ["", f"Machine: {describe_machine(record['machine'])}."]
         lines += ["", "| " + " | ".join(HEADER) + " |", "|" + "---|" * len(HEADER)]
