@@ -68,6 +68,12 @@ class FloquetResult:
         return "STABLE" if complete and all(r.q.imag > 0 for r in self.roots) else "UNDETERMINED"
 
     @property
+    def unstable_count(self) -> int:
+        """How many located roots have Im q < 0 (the count of unstable roots when every counted root was
+        located)."""
+        return sum(r.q.imag < 0 for r in self.roots)
+
+    @property
     def least_damped(self) -> FloquetRoot | None:
         """The located root with the smallest Im q (None when none was located)."""
         return min(self.roots, key=lambda r: r.q.imag, default=None)
