@@ -82,7 +82,7 @@ def test_short_bays_strip_holds_the_continuous_roots_folded_to_its_edge():
     track = SleeperTrack("eb", "sleepers", {"lam": lam, "alpha": alpha, "kappa_f": 0.0})
     track.groups.update(eta_f=0.18, eta_sup=0.02)
     vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": eta_M})
-    tol = 1e-10
+    tol = 1e-9  # one more harmonic than the default 1e-8 needs: converged at N = 3, not N = 2
     result = floquet_frequencies(track, vehicle, tol=tol)
     top = result.window.y1
     assert result.window.x0 == -track.Omega0 / 4 and top > 0

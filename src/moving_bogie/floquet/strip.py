@@ -7,7 +7,7 @@ no starting guesses, located by bisection and polished by Newton's method; the c
 are compared, and the whole is repeated with one more harmonic on each side until the count is the same and
 the roots move less than ``tol``. The receptance over real wavenumbers is analytic below the lowest Im q of
 the rail's free waves (Eq. (S15), :meth:`~moving_bogie.floquet.track.SleeperTrack.free_wave_floor`): ``top``
-is nine tenths of that floor when it is known and positive, so that decaying roots below it are found too;
+is 0.99 of that floor when it is known and positive, so that decaying roots below it are found too;
 0 when the rail is damped along its length but the floor is not known; slightly below the axis when the rail
 is undamped between the supports (its pinned-pinned waves put singular points of the receptance on the real
 axis). The band above ``top`` is not searched and the result says so. The depth is doubled until a band as
@@ -42,9 +42,7 @@ class FloquetResult:
 
     ``harmonics`` is N (the harmonics -N-1..N); ``converged`` says whether the roots and the count agreed
     at N - 1 and N; ``notes`` say why a verdict is UNDETERMINED. ``free_waves`` is the lowest Im q of the
-    rail's free waves (the singular lines of the receptance, Eq. (S15); 0 when not known) and
-    ``unsearched`` names the bands of the strip above the window that were not searched (they hold decaying
-    vibrations only: the verdict does not depend on them).
+    rail's free waves (the singular lines of the receptance, Eq. (S15); 0 when not known).
     """
 
     roots: tuple[FloquetRoot, ...]
@@ -56,7 +54,6 @@ class FloquetResult:
     evaluations: int
     notes: tuple[str, ...] = field(default=())
     free_waves: float = 0.0
-    unsearched: tuple[str, ...] = field(default=())
 
     @property
     def verdict(self) -> str:
@@ -66,6 +63,20 @@ class FloquetResult:
             return "UNSTABLE"
         complete = not self.notes and len(self.roots) == self.count
         return "STABLE" if complete and all(r.q.imag > 0 for r in self.roots) else "UNDETERMINED"
+
+    def unsearched(self, scale: float = 1.0, unit: str = "") -> tuple[str, ...]:
+        """The band of the strip above the window that was not searched and why, Im q times ``scale`` (in
+        ``unit``); it holds decaying vibrations only, so the verdict does not depend on it."""
+        top = self.window.y1
+        if top < 0:
+            return ()
+        band = f"Im > {top * scale:.6g}{unit}"
+        if self.free_waves > top:
+            return (
+                f"{band}: the rail's free waves put singular lines of the receptance from Im = "
+                f"{self.free_waves * scale:.6g}{unit} up, and roots beyond them are not searched",
+            )
+        return (f"{band}: the lowest decay rate of this rail's free waves is not known",)
 
     @property
     def unstable_count(self) -> int:
@@ -84,6 +95,8 @@ class FloquetResult:
 
         The least-damped root's Im q, or the free waves' lowest Im q when that is smaller (or no root lies
         in the window): the rail's own free waves decay at that rate, and roots beyond it are not searched.
+        The window stops at 0.99 of the free waves' rate, so a root in the band left between would lower
+        the margin by less than 1 %.
         """
         if self.verdict != "STABLE":
             return None
@@ -91,9 +104,18 @@ class FloquetResult:
         return min(rates) if rates else None
 
 
+#: the receptance's relative tolerance while counting: the winding number needs the phase of the
+#: determinant only, and an error of 1e-6 moves it by 1e-6 rad where |det| is not within 1e-6 of zero
+COUNT_TOL = 1e-6
+
+
 def _count(system: FloquetSystem, rect: Rectangle) -> int:
     spacing = min(rect.width, rect.height) / 12
-    return winding_number(system, rect, spacing=spacing, max_points=20_000)
+    kept, system.tol = system.tol, COUNT_TOL
+    try:
+        return winding_number(system, rect, spacing=spacing, max_points=20_000)
+    finally:
+        system.tol = kept
 
 
 def _newton(
@@ -278,7 +300,6 @@ def floquet_frequencies(
             f"roots with {top:.3g} < Im q <= 0 are not searched (rail undamped between the supports)"
         )
     found = tuple(FloquetRoot(q, res, s) for (q, res), s in zip(roots, steps))
-    unsearched = (_unsearched(top, floor),) if top >= 0 else ()
     return FloquetResult(
         found,
         count,
@@ -289,22 +310,12 @@ def floquet_frequencies(
         system.evaluations,
         tuple(notes),
         floor,
-        unsearched,
     )
 
 
 def _default_top(track: SleeperTrack, floor: float) -> float:
     """The window's upper edge: below the free waves' floor, on the axis, or just below it (module doc)."""
     if floor > 0:
-        return 0.9 * floor
+        return 0.99 * floor
     return 0.0 if float(track.groups.get("eta_f", 0.0)) > 0 else -1e-3 * track.Omega0
 
-
-def _unsearched(top: float, floor: float) -> str:
-    """The band above the window that was not searched, and why."""
-    if floor > top:
-        return (
-            f"Im q > {top:.6g}: the rail's free waves put singular lines of the receptance from "
-            f"Im q = {floor:.6g} up; roots beyond them are not searched"
-        )
-    return f"Im q > {top:.6g}: the lowest decay rate of the rail's free waves is not known for this rail"
