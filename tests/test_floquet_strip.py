@@ -97,6 +97,11 @@ def test_short_bays_strip_holds_the_continuous_roots_folded_to_its_edge():
     for root in result.roots:
         assert root.step < tol * max(1.0, abs(root.q))
         assert abs(_newton(more, root.q) - root.q) < 10 * tol * max(1.0, abs(root.q))
+    # the dominant harmonic of each root's Hill null vector is the continuous track's (n = 0 at q, n = -1 at
+    # its mirror image folded by Omega_0): the frequency the finite-beam check compares is |Re q_c|
+    for root in result.roots:
+        nu = floquet_frequency(track, vehicle, root.q, result.harmonics)
+        assert nu == pytest.approx(abs(reference[0].real), abs=bay_effect)
     # the harmonic limit: N = 1 only, nothing to compare with
     limited = floquet_frequencies(track, vehicle, N_max=1)
     _assert_matches(limited, reference, bay_effect)
