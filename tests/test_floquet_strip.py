@@ -13,8 +13,8 @@ References:
   claim that the roots have converged in the harmonics;
 - the finite rail of validation/sleepers_rail.py stepped in time (quintic Hermite elements, point supports,
   Newmark's rule: no harmonics, no receptance, no lattice sum), for the steady contact force of a damped
-  Hertz contact over a bay, and for the growth rate and the dominant frequency of a wheel in the principal
-  parametric zone.
+  Hertz contact over a bay, for the growth rate and the dominant frequency of a wheel in the principal
+  parametric zone, and for the decay rate of a heavy wheel's decaying roots.
 """
 
 from __future__ import annotations
@@ -31,12 +31,16 @@ from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.roots.count.contour import Rectangle, winding_number
+from moving_bogie.validation.sleepers_beam import simulate_sleeper_beam
 from moving_bogie.validation.sleepers_check import (
+    MARGIN,
     FloquetSide,
     SleeperBeamSettings,
     check_sleepers,
     floquet_frequency,
 )
+from moving_bogie.validation.sleepers_fit import envelope_rate
+from moving_bogie.validation.sleepers_rail import SleeperRail
 
 ZETA4 = math.pi**4 / 90
 
@@ -179,3 +183,29 @@ def test_growth_rate_its_spread_and_dominant_frequency_against_the_finite_rail()
     assert spread < 3e-3 * rate, (spread, rate)
     (growth, dominant) = result.comparisons
     assert dominant.relative < 3e-3, dominant
+
+
+@pytest.mark.slow
+def test_decaying_roots_of_a_heavy_wheel_against_the_finite_rails_free_decay():
+    """The rail of examples/sleepers.toml under a wheel five times as heavy (M = 3000 kg): STABLE, with a
+    pair of decaying roots (q and Omega_0 - conj(q)) below the rail's free waves; the finite rail's free
+    vibration (80 bay-passing periods, 4 elements per bay, 100 steps per period) decays at their rate
+    Im q, within the finite-beam check's 1 % (measured: 0.2 %)."""
+    values = {"eta_M": 5 * 13.998576285}
+    vehicle = VehicleMatrices.from_module(vehicle_mass, values)
+    track = SleeperTrack("eb", "sleepers", dict(EXAMPLE_GROUPS))
+    result = floquet_frequencies(track, vehicle)
+    assert result.verdict == "STABLE" and result.count == 2
+    low, high = sorted((r.q for r in result.roots), key=lambda q: q.real)
+    assert high == pytest.approx(track.Omega0 - low.conjugate(), abs=1e-9)
+    assert result.margin == pytest.approx(low.imag) and low.imag < result.free_waves
+    T0 = track.lam / track.alpha
+    tau = 80 * T0
+    margin = math.ceil(MARGIN / track.lam)
+    rail = SleeperRail(track, 2 * margin + math.ceil(track.alpha * tau / track.lam) + 1, 4)
+    loads = static_loads(vehicle_mass, values)
+    run = simulate_sleeper_beam(
+        rail, vehicle, loads, entry=margin * track.lam, tau_max=tau, dt=T0 / 100, loaded=False
+    )
+    rate, _ = envelope_rate(run.tau, run.deflection[0], T0, 0.4 * tau)
+    assert abs(-rate / result.margin - 1) < 0.01, (rate, result.margin)
