@@ -20,6 +20,7 @@ References:
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
@@ -43,6 +44,7 @@ from moving_bogie.validation.sleepers_fit import envelope_rate
 from moving_bogie.validation.sleepers_rail import SleeperRail
 
 ZETA4 = math.pi**4 / 90
+EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml"
 
 
 def _continuous_folded(alpha: float, eta: float, eta_M: float, Omega0: float, top: float) -> list[complex]:
@@ -209,3 +211,23 @@ def test_decaying_roots_of_a_heavy_wheel_against_the_finite_rails_free_decay():
     )
     rate, _ = envelope_rate(run.tau, run.deflection[0], T0, 0.4 * tau)
     assert abs(-rate / result.margin - 1) < 0.01, (rate, result.margin)
+
+
+def test_the_stable_example_reports_its_margin(capsys):
+    """frequencies --json on examples/sleepers.toml: STABLE, no root below the rail's free waves, whose
+    decay rate is the margin: the pinned-pinned waves do not move the supports, so they decay at
+    c_f / (2 m) (computed here from the file's c_f and m)."""
+    import json
+    import tomllib
+
+    from moving_bogie.cli import main
+
+    physical = tomllib.loads(EXAMPLE.read_text())["physical"]
+    assert main(["frequencies", "--file", str(EXAMPLE), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["verdict"] == "STABLE" and out["roots"] == [] and out["count"] == 0
+    rate = physical["c_f"] / (2 * physical["m"])
+    assert out["margin_1_s"] == pytest.approx(rate, rel=1e-9)
+    assert out["free_waves_im_rad_s"] == pytest.approx(rate, rel=1e-9)
+    assert out["margin_source"] == "the rail's free waves"
+    assert out["window_im_rad_s"][1] == pytest.approx(0.99 * rate, rel=1e-9) and out["unsearched"]

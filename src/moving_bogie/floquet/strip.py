@@ -64,6 +64,14 @@ class FloquetResult:
         complete = not self.notes and len(self.roots) == self.count
         return "STABLE" if complete and all(r.q.imag > 0 for r in self.roots) else "UNDETERMINED"
 
+    @property
+    def margin_source(self) -> str | None:
+        """What sets the margin: "a root" or "the rail's free waves" (None without a margin)."""
+        if self.margin is None:
+            return None
+        least = self.least_damped
+        return "a root" if least is not None and least.q.imag <= self.margin else "the rail's free waves"
+
     def unsearched(self, scale: float = 1.0, unit: str = "") -> tuple[str, ...]:
         """The band of the strip above the window that was not searched and why, Im q times ``scale`` (in
         ``unit``); it holds decaying vibrations only, so the verdict does not depend on it."""
