@@ -14,10 +14,13 @@ if TYPE_CHECKING:
     from moving_bogie.stability.lines.line_results import InstabilityLines
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.bar import bar_note, held_groups
 
 from . import sleepers_map_cmd
+from .checks import count, number, workers
 from .common import (
     PROG,
+    add_bar_option,
     add_json_option,
     add_output_option,
     print_json,
@@ -35,6 +38,9 @@ from .stability_options import (
     plane_units,
     save_figure,
 )
+
+#: The most grid points per axis of a stability map (--n).
+MAX_N = 10_000
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -75,22 +81,23 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=True)
-    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=number, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=number, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=number, default=200.0, metavar="X",
         help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
     )  # fmt: skip
     p.add_argument(
         "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
     )
-    p.add_argument("--q-max", type=float, default=1.5, help="largest real induced frequency searched")
+    p.add_argument("--q-max", type=number, default=1.5, help="largest real induced frequency searched")
     p.add_argument(
         "--verify",
         action="store_true",
         help="count unstable roots (induced_frequencies) on both sides of each branch",
     )
     add_plane_options(p)
+    add_bar_option(p)
     add_figure_option(p, "--plot", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_instability_lines)
@@ -119,12 +126,14 @@ def run_instability_lines(args: argparse.Namespace) -> int:
             q_max=args.q_max,
             verify=args.verify,
             progress=bar,
+            held=held_groups(params, args.bar),
         )
     if args.plot:
         fig = instability_figure(res, units, (alpha_min, alpha_max), theta_max)
         save_figure(fig, args.plot)
     if args.json:
-        print_json(units.with_si(res.to_dict()) | {"units": units.to_dict()})
+        note = {"bar": bar_note(params, args.bar, args.parameter)}
+        print_json(units.with_si(res.to_dict()) | {"units": units.to_dict()} | note)
     else:
         if units.si:
             print(_si_line(units, args.parameter, params))
@@ -205,19 +214,20 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=False)
-    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=number, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=number, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=number, default=200.0, metavar="X",
         help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
     )  # fmt: skip
     p.add_argument(
         "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
     )
-    p.add_argument("--n", type=int, default=200, help="grid points per axis (default 200)")
-    p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
+    p.add_argument("--n", type=count(2, MAX_N), default=200, help="grid points per axis (default 200)")
+    p.add_argument("--workers", type=workers, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
     add_plane_options(p)
+    add_bar_option(p)
     add_figure_option(p, "--plot", help="write the figure")
     add_output_option(p, "--npz", metavar="F.npz", formats=("npz",), help="save the arrays")
     add_output_option(
@@ -247,6 +257,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
     from moving_bogie.stability.maps.map import stability_map
 
     bound = bind(params)  # bound once: the map and its lines share it
+    held = held_groups(params, args.bar)
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
     with progress_bar("stability map") as bar:
@@ -257,6 +268,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
             thetas=thetas.tolist(),
             workers=args.workers,
             progress=bar,
+            held=held,
         )
     lines = None
     if args.lines:
@@ -267,6 +279,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
                 alpha_range=(alpha_min, alpha_max),
                 theta_max=theta_max,
                 progress=bar,
+                held=held,
             )
     if args.npz:
         import io
@@ -289,7 +302,10 @@ def run_stability_map(args: argparse.Namespace) -> int:
         "x": units.axis("alpha", smap.alphas[0], smap.alphas[-1], len(smap.alphas)),
         "y": units.axis(args.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
     }
-    summary = units.with_si(summary) | {"units": units.to_dict()}
+    summary = units.with_si(summary) | {
+        "units": units.to_dict(),
+        "bar": bar_note(params, args.bar, args.parameter),
+    }
     if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
         rate = units.frequency(summary["max_degree"])
         summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
@@ -302,11 +318,13 @@ def run_stability_map(args: argparse.Namespace) -> int:
         if units.si:
             print(_si_line(units, args.parameter, params))
         for key, value in summary.items():
-            if key not in ("params", "uncertain", "axes", "units"):
+            if key not in ("params", "uncertain", "axes", "units", "bar"):
                 print(f"{key:18s} {value}")
         for key, axis in summary["axes"].items():
             (lo, hi), name = axis["range"], axis["name"]
-            print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {axis['count']} points")
+            note = f" ({axis['note']})" if "note" in axis else ""
+            points = f"{axis['count']} points{note}"
+            print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {points}")
         for cell in summary["uncertain"]:
             print("uncertain cell     " + ", ".join(f"{k} = {v:.6g}" for k, v in cell.items()))
     return 0
