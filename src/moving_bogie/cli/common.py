@@ -18,7 +18,7 @@ from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.output import atomic_write  # noqa: F401  (re-exported for the commands)
 
-from .checks import count, decimal_number, exact_number, named_values
+from .checks import decimal_number, exact_number, named_values
 from .outputs import add_output_option  # noqa: F401  (re-exported for the commands)
 from .reporting import PROG, handle_errors  # noqa: F401  (re-exported for the commands)
 
@@ -117,7 +117,7 @@ def add_parameter_options(parser: argparse.ArgumentParser) -> None:
     )
     source.add_argument(
         "--case",
-        type=count(TABLE1_CASES[0], TABLE1_CASES[-1]),
+        type=int,
         metavar="N",
         help=f"Table 1 case of the paper ({TABLE1_CASES[0]}-{TABLE1_CASES[-1]})",
     )
