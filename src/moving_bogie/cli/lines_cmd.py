@@ -18,6 +18,7 @@ from moving_bogie.model.bar import bar_note, held_groups
 
 from . import sleepers_map_cmd
 from .checks import count, number, workers
+from .job_size import add_yes_option, estimate_grid
 from .common import (
     PROG,
     add_bar_option,
@@ -39,8 +40,10 @@ from .stability_options import (
     save_figure,
 )
 
-#: The most grid points per axis of a stability map (--n).
-MAX_N = 10_000
+#: The most grid points per axis of a stability map (--n); a map of over TIMED cells per axis is timed on
+#: one column before it starts (cli/job_size.py).
+MAX_N = 1000
+TIMED = 100
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -226,6 +229,7 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--n", type=count(2, MAX_N), default=200, help="grid points per axis (default 200)")
     p.add_argument("--workers", type=workers, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
+    add_yes_option(p)
     add_plane_options(p)
     add_bar_option(p)
     add_figure_option(p, "--plot", help="write the figure")
@@ -254,12 +258,22 @@ def run_stability_map(args: argparse.Namespace) -> int:
 
     from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.lines.instability_lines import instability_lines
-    from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.stability.maps.map import map_columns, stability_map
 
     bound = bind(params)  # bound once: the map and its lines share it
     held = held_groups(params, args.bar)
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
+    if args.n > TIMED:  # a long map says so before it starts
+        middle = [alphas[args.n // 2]]
+        estimate_grid(
+            "stability map",
+            (args.n, args.n),
+            args.workers,
+            lambda: map_columns(bound, args.parameter, middle, thetas, held=held),
+            yes=args.yes,
+            shorter="lower --n (the time grows as its square at least)",
+        )
     with progress_bar("stability map") as bar:
         smap = stability_map(
             bound,

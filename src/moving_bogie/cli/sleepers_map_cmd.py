@@ -11,6 +11,7 @@ from moving_bogie.errors import ParameterError
 
 from .checks import named_values, value_range
 from .common import print_json, refuse_for_sleepers
+from .job_size import estimate_grid
 from .progress import progress_bar
 
 if TYPE_CHECKING:
@@ -18,6 +19,9 @@ if TYPE_CHECKING:
 
     from moving_bogie.floquet.inputs import SleeperInput
     from moving_bogie.floquet.sleeper_map import SleeperMap
+
+#: a sleeper map of over TIMED cells per axis is timed on one column before it starts
+TIMED = 50
 
 #: the velocity and mass axes without --range, m/s and kg
 DEFAULT_RANGES = {"v": (20.0, 400.0), "M": (0.0, 3000.0)}
@@ -125,6 +129,16 @@ def run_sleeper_map(args: argparse.Namespace) -> int:
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
 
     data, vs, ms = sleeper_plane(args, args.n)
+    if args.n > TIMED:  # a long map says so before it starts
+        middle = vs[args.n // 2 : args.n // 2 + 1]
+        estimate_grid(
+            "sleeper map",
+            (args.n, args.n),
+            args.workers,
+            lambda: sleeper_map(data, middle, ms, verify=0, workers=1),
+            yes=args.yes,
+            shorter="lower --n (the time grows as its square at least)",
+        )
     physical = smeared_track(data)  # None: no continuous counterpart, the sleeper map alone
     with progress_bar("sleeper map") as bar:
         smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar)

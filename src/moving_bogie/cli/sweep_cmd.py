@@ -24,6 +24,7 @@ from .common import (
     si_input,
     vary_texts,
 )
+from .job_size import check_points
 from .outputs import add_figure_option, add_output_option
 from .reporting import fail
 
@@ -202,6 +203,7 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
     else:
         continuous = _spec(args)
         spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
+    check_points(spec.size)  # a sweep's size is bounded before its store is created
     # every option is checked (and the store created) before any computation
     try:
         with _points_bar(not args.json) as bar:
