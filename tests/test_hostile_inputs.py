@@ -114,7 +114,7 @@ FILES = {
     "case-huge": "case = 99999999999999999999\n",
 }
 BASES = [[], ["--case", "1"], ["--case", "7"], ["--file", "{uic60}"], ["--file", "{sleepers}"]]
-BASES += [["--file", "{%s}" % name] for name in FILES if name not in ("uic60", "sleepers")]
+BASES += [["--file", "{" + name + "}"] for name in FILES if name not in ("uic60", "sleepers")]
 BASES += [["--file", "{missing}"], ["--file", "{folder}"]]
 
 

@@ -18,7 +18,6 @@ from moving_bogie.model.bar import bar_note, held_groups
 
 from . import sleepers_map_cmd
 from .checks import count, number, workers
-from .job_size import add_yes_option, estimate_grid
 from .common import (
     PROG,
     add_bar_option,
@@ -27,6 +26,7 @@ from .common import (
     print_json,
     si_input,
 )
+from .job_size import add_yes_option, estimate_grid
 from .outputs import add_figure_option
 from .progress import progress_bar
 from .sleepers_map_cmd import sleeper_file

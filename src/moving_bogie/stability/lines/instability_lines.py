@@ -127,8 +127,9 @@ def instability_lines(
         rule ``"fixed"`` of :mod:`~moving_bogie.model.bar`; default none, Eq. (63)); not with an
         undamped foundation.
     """
-    options = dict(spacings=spacings, parameter=parameter, alpha_range=alpha_range, theta_max=theta_max)
-    options |= dict(q_max=q_max, q_max_cap=q_max_cap, alpha_step=alpha_step, q_step=q_step, h_max=h_max)
+    options: dict[str, Any] = dict(spacings=spacings, parameter=parameter, alpha_range=alpha_range)
+    options |= dict(theta_max=theta_max, q_max=q_max, q_max_cap=q_max_cap, alpha_step=alpha_step)
+    options |= dict(q_step=q_step, h_max=h_max)
     options |= dict(tol=tol, verify=verify, progress=progress, held=held)
     return instability_lines_many([(bound, options)])[0]
 
