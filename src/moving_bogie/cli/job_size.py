@@ -20,7 +20,16 @@ from moving_bogie.errors import ParameterError
 
 from .reporting import PROG
 
-__all__ = ["ASK", "MAX_POINTS", "SAY", "add_yes_option", "check_points", "duration", "estimate_grid"]
+__all__ = [
+    "ASK",
+    "MAX_POINTS",
+    "SAY",
+    "SHORTER",
+    "add_yes_option",
+    "check_points",
+    "duration",
+    "estimate_grid",
+]
 
 #: A job estimated to take longer than this (seconds) says so before it starts.
 SAY = 120.0
@@ -28,6 +37,8 @@ SAY = 120.0
 ASK = 3600.0
 #: The most points of a sweep.
 MAX_POINTS = 10_000_000
+#: How to make a long map shorter.
+SHORTER = "lower --n (the time grows as its square at least)"
 
 
 def add_yes_option(parser: argparse.ArgumentParser) -> None:

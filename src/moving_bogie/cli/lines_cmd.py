@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import TYPE_CHECKING
+from functools import partial
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -12,6 +13,7 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.line_results import InstabilityLines
+    from moving_bogie.stability.maps.map import StabilityMap
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.bar import bar_note, held_groups
@@ -26,7 +28,7 @@ from .common import (
     print_json,
     si_input,
 )
-from .job_size import add_yes_option, estimate_grid
+from .job_size import SHORTER, add_yes_option, estimate_grid
 from .outputs import add_figure_option
 from .progress import progress_bar
 from .sleepers_map_cmd import sleeper_file
@@ -265,15 +267,8 @@ def run_stability_map(args: argparse.Namespace) -> int:
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
     if args.n > TIMED:  # a long map says so before it starts
-        middle = [alphas[args.n // 2]]
-        estimate_grid(
-            "stability map",
-            (args.n, args.n),
-            args.workers,
-            lambda: map_columns(bound, args.parameter, middle, thetas, held=held),
-            yes=args.yes,
-            shorter="lower --n (the time grows as its square at least)",
-        )
+        column = partial(map_columns, bound, args.parameter, [alphas[args.n // 2]], thetas, held=held)
+        estimate_grid("stability map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
     with progress_bar("stability map") as bar:
         smap = stability_map(
             bound,
@@ -311,21 +306,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
         from moving_bogie.stability.figures.plots import plot_stability_map
 
         save_figure(plot_stability_map(smap, lines, units=units), args.plot)
-    summary = smap.summary()
-    summary["axes"] = {
-        "x": units.axis("alpha", smap.alphas[0], smap.alphas[-1], len(smap.alphas)),
-        "y": units.axis(args.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
-    }
-    summary = units.with_si(summary) | {
-        "units": units.to_dict(),
-        "bar": bar_note(params, args.bar, args.parameter),
-    }
-    if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
-        rate = units.frequency(summary["max_degree"])
-        summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
-        if summary["min_decay_rate"] is not None:
-            decay = units.frequency(summary["min_decay_rate"])
-            summary["min_decay_rate"] = {"value": decay, "unit": "1/s"}
+    summary = _map_summary(smap, units, bar_note(params, args.bar, args.parameter))
     if args.json:
         print_json(summary)
     else:
@@ -342,6 +323,23 @@ def run_stability_map(args: argparse.Namespace) -> int:
         for cell in summary["uncertain"]:
             print("uncertain cell     " + ", ".join(f"{k} = {v:.6g}" for k, v in cell.items()))
     return 0
+
+
+def _map_summary(smap: StabilityMap, units: PlaneUnits, bar: dict[str, str] | None) -> dict[str, Any]:
+    """The map's summary with its axes in ``units``, the rule of the bar, and in SI the rates in 1/s."""
+    summary = smap.summary()
+    summary["axes"] = {
+        "x": units.axis("alpha", smap.alphas[0], smap.alphas[-1], len(smap.alphas)),
+        "y": units.axis(smap.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
+    }
+    summary = units.with_si(summary) | {"units": units.to_dict(), "bar": bar}
+    if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
+        rate = units.frequency(summary["max_degree"])
+        summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
+        if summary["min_decay_rate"] is not None:
+            decay = units.frequency(summary["min_decay_rate"])
+            summary["min_decay_rate"] = {"value": decay, "unit": "1/s"}
+    return summary
 
 
 def _si_line(units: PlaneUnits, parameter: str, params: DimensionlessParams) -> str:

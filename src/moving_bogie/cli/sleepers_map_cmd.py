@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import argparse
 import sys
+from functools import partial
 from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 
 from .checks import named_values, value_range
 from .common import print_json, refuse_for_sleepers
-from .job_size import estimate_grid
+from .job_size import SHORTER, estimate_grid
 from .progress import progress_bar
 
 if TYPE_CHECKING:
@@ -131,14 +132,8 @@ def run_sleeper_map(args: argparse.Namespace) -> int:
     data, vs, ms = sleeper_plane(args, args.n)
     if args.n > TIMED:  # a long map says so before it starts
         middle = vs[args.n // 2 : args.n // 2 + 1]
-        estimate_grid(
-            "sleeper map",
-            (args.n, args.n),
-            args.workers,
-            lambda: sleeper_map(data, middle, ms, verify=0, workers=1),
-            yes=args.yes,
-            shorter="lower --n (the time grows as its square at least)",
-        )
+        column = partial(sleeper_map, data, middle, ms, verify=0, workers=1)
+        estimate_grid("sleeper map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
     physical = smeared_track(data)  # None: no continuous counterpart, the sleeper map alone
     with progress_bar("sleeper map") as bar:
         smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar)

@@ -151,10 +151,10 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     return table1_case(case).replace(**values), None
 
 
-def _no_parameters(model: dict[str, Any]) -> str:
+def _no_parameters(table: dict[str, Any]) -> str:
     """What a file that sets no parameters lacks: the SI names and units of its model's [physical] table."""
     try:
-        specs = get_model(**model)
+        specs = get_model(**table)
     except ParameterError:
         specs = get_model()
     required = {k: v["unit"] for k, v in specs.scale_parameters.items()}

@@ -189,7 +189,7 @@ def stability_map(
     chunk: int = 8,
     settle: bool = True,
     progress: Callable[[float], None] | None = None,
-    held: Iterable[str] = (),
+    held: tuple[str, ...] = (),
     **options: Any,
 ) -> StabilityMap:
     """Degree of instability over the grid ``alphas x thetas`` (beyond the paper).
@@ -211,9 +211,8 @@ def stability_map(
         Settle the cells the column count leaves uncertain by a full count (default True).
     progress : callable, optional
         Called with the fraction of columns done.
-    held : iterable of str
-        Groups that keep their values instead of following ``parameter`` (the bar's mu_v, J_b under the
-        rule ``"fixed"`` of :mod:`~moving_bogie.model.bar`; default none: they follow, Eq. (63)).
+    held : tuple of str
+        Groups held instead of following ``parameter`` (mu_v, J_b: :mod:`~moving_bogie.model.bar`).
     **options
         Passed to :func:`~moving_bogie.stability.maps.column.stability_column`.
     """
@@ -224,7 +223,6 @@ def stability_map(
     if "top" not in options:
         options["top"] = top_edge(bound, alpha_grid)
     chunks = [alpha_grid[i : i + chunk] for i in range(0, len(alpha_grid), chunk)]
-    held = tuple(held)
     tasks = [(bound, parameter, c, theta_grid, options, settle, held) for c in chunks]
     workers = workers or min(len(chunks), os.cpu_count() or 1)
     columns: list[ColumnResult] = []
