@@ -23,8 +23,10 @@ __all__ = [
     "decimal_number",
     "exact_number",
     "named_values",
+    "nonnegative",
     "number",
     "number_list",
+    "positive",
     "value_range",
     "workers",
 ]
@@ -66,6 +68,22 @@ def number(text: str) -> float:
         return float(exact_number(text))
     except ValueError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def positive(text: str) -> float:
+    """argparse type: a :func:`number` > 0 (a largest value, a tolerance)."""
+    value = number(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be positive (got {text.strip()})")
+    return value
+
+
+def nonnegative(text: str) -> float:
+    """argparse type: a :func:`number` >= 0 (a velocity)."""
+    value = number(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0 (got {text.strip()})")
+    return value
 
 
 def number_list(text: str) -> list[str]:

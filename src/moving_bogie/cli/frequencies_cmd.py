@@ -124,8 +124,9 @@ def run_frequencies(args: argparse.Namespace) -> int:
     if args.window:
         try:
             x, y = (float(exact_number(v)) for v in args.window.split(","))
-        except ValueError:
-            raise ParameterError("window", f"window must be two numbers X,Y (got {args.window!r})") from None
+        except ValueError as exc:
+            reason = str(exc) if "range" in str(exc) else f"got {args.window!r}"
+            raise ParameterError("window", f"window must be two numbers X,Y ({reason})") from None
         if not (x > 0 and y > 0):
             raise ParameterError("window", "window sizes must be positive")
 

@@ -104,8 +104,13 @@ def estimate_grid(
 def check_points(points: int, option: str = "--vary") -> None:
     """Refuse, naming ``option``, a sweep of more than :data:`MAX_POINTS` points."""
     if points > MAX_POINTS:
+        how = (
+            "draw fewer"
+            if option == "--sample"
+            else "split it into several stores (fewer values per --vary), or sample it"
+        )
         raise ParameterError(
             option,
-            f"{option}: {points} points is more than a sweep holds ({MAX_POINTS}): split it into several "
-            "stores (fewer values per --vary), or sample it (--sample sobol:N)",
+            f"{option}: {points} points is more than a sweep holds ({MAX_POINTS}): {how} "
+            f"(--sample sobol:N, N <= {MAX_POINTS})",
         )

@@ -19,7 +19,7 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.model.bar import bar_note, held_groups
 
 from . import sleepers_map_cmd
-from .checks import count, number, workers
+from .checks import count, nonnegative, positive, workers
 from .common import (
     PROG,
     add_bar_option,
@@ -86,16 +86,16 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=True)
-    p.add_argument("--alpha-min", type=number, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=number, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=number, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=positive, default=200.0, metavar="X",
         help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
     )  # fmt: skip
     p.add_argument(
         "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
     )
-    p.add_argument("--q-max", type=number, default=1.5, help="largest real induced frequency searched")
+    p.add_argument("--q-max", type=positive, default=1.5, help="largest real induced frequency searched")
     p.add_argument(
         "--verify",
         action="store_true",
@@ -219,10 +219,10 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=False)
-    p.add_argument("--alpha-min", type=number, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=number, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=number, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=positive, default=200.0, metavar="X",
         help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
     )  # fmt: skip
     p.add_argument(

@@ -54,6 +54,10 @@ def sleeper_spec(args: argparse.Namespace) -> SleeperSweepSpec:
     chunk_points = 1 if args.chunk_points is None else args.chunk_points
     vary = vary_texts(args.vary)
     sample = parse_sample(args.sample) if args.sample else None
+    if sample is not None:
+        from .job_size import check_points
+
+        check_points(sample, "--sample")
     data = tomllib.loads(args.file.read_text())
     settings = sleeper_settings(args.set)
     return make_sleeper_spec(

@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.frequency_lines import FrequencyLine, FrequencyLines
 
-from .checks import count, decimal_number, number
+from .checks import count, decimal_number, nonnegative, positive
 from .common import (
     add_json_option,
     add_parameter_options,
@@ -171,8 +171,8 @@ def _register_frequency_lines(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--alpha-min", type=number, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=number, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
         "--checkpoints", type=count(2, 10_000), default=13, help="velocities where all roots are found afresh"
     )
@@ -282,17 +282,17 @@ def _register_critical_stiffness(subparsers: argparse._SubParsersAction) -> None
         formatter_class=RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--alpha-min", type=number, default=0.3, help="smallest velocity alpha (default 0.3)")
-    p.add_argument("--alpha-max", type=number, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.3, help="smallest velocity alpha (default 0.3)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument("--alphas", type=count(1, 10_000), default=19, help="number of velocities")
     p.add_argument(
         "--kappa-max",
-        type=number,
+        type=positive,
         default=1.0,
         help="largest suspension stiffness kappa_v searched (default 1)",
     )
     p.add_argument(
-        "--q-max", type=number, default=1.5, help="largest real induced frequency searched (default 1.5)"
+        "--q-max", type=positive, default=1.5, help="largest real induced frequency searched (default 1.5)"
     )
     add_json_option(p)
     p.set_defaults(handler=run_critical_stiffness)

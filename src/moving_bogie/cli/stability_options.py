@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 
-from .checks import count, decimal_number, named_values, number_list, value_range
+from .checks import decimal_number, named_values, number_list, value_range
 from .common import (
     MODEL_OPTIONS,
     add_model_options,
@@ -34,9 +34,7 @@ RAW = argparse.RawDescriptionHelpFormatter
 def add_track_vehicle_options(parser: argparse.ArgumentParser, *, spacing_list: bool) -> None:
     """Parameters of the instability-lines / stability-map family (no alpha, no eta_M: they are the axes)."""
     g = parser.add_argument_group("parameters", "A Table 1 case as base (optional), then overrides.")
-    g.add_argument(
-        "--case", type=count(1, 13), metavar="N", help="take the other parameters from Table 1 case N"
-    )
+    g.add_argument("--case", type=int, metavar="N", help="take the other parameters from Table 1 case N")
     if spacing_list:
         g.add_argument("--d", type=number_list, metavar="D1,D2,...", help="wheel spacing(s) d (default 1)")
     else:

@@ -150,6 +150,8 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
     from moving_bogie.sweep.design import parse_sample
 
     sample = parse_sample(args.sample) if args.sample else None
+    if sample is not None:
+        check_points(sample, "--sample")
     return make_spec(params, vary, sample=sample, physical=physical, **options)
 
 
