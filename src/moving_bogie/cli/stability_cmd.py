@@ -174,7 +174,7 @@ def _register_frequency_lines(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
     p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--checkpoints", type=count(2, 10_000), default=13, help="velocities where all roots are found afresh"
+        "--checkpoints", type=count(2, 200), default=13, help="velocities where all roots are found afresh"
     )
     add_plane_options(p, set_option=False)
     add_figure_option(p, "--plot", help="write the figure")
@@ -284,7 +284,7 @@ def _register_critical_stiffness(subparsers: argparse._SubParsersAction) -> None
     add_parameter_options(p)
     p.add_argument("--alpha-min", type=nonnegative, default=0.3, help="smallest velocity alpha (default 0.3)")
     p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
-    p.add_argument("--alphas", type=count(1, 10_000), default=19, help="number of velocities")
+    p.add_argument("--alphas", type=count(1, 1000), default=19, help="number of velocities")
     p.add_argument(
         "--kappa-max",
         type=positive,

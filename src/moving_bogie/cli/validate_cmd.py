@@ -47,7 +47,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add_parameter_options(parser)
     parser.add_argument(
         "--modes",
-        type=count(1, 100_000),
+        type=count(4, 20_000),
         default=500,
         metavar="N",
         help="sine modes of the finite beam (default 500)",
