@@ -48,7 +48,7 @@ def map_margin(tmp_path: Path, rule: str | None) -> tuple[float, xr.Dataset]:
 
 def sweep_margin(tmp_path: Path, rule: str | None) -> tuple[float, xr.Dataset]:
     out = tmp_path / f"sweep-{rule}.zarr"
-    argv = ["sweep", "--file", FILE, "--vary", "v=400", "--vary", "M=3000", "--out", str(out)]
+    argv = ["sweep", "--file", FILE, "--vary", "v=400", "--vary", "M=3000", "--margin", "--out", str(out)]
     assert main(argv + (["--bar", rule] if rule else [])) == 0
     ds = xr.open_zarr(out)
     return float(ds.margin.values.ravel()[0]), ds
