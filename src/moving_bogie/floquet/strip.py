@@ -147,7 +147,9 @@ def _newton(
     return complex(q), float(abs(step))
 
 
-def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float, reach: float) -> list[complex]:
+def _locate(
+    system: FloquetSystem, rect: Rectangle, n: int, cell: float, reach: float
+) -> list[complex]:
     """Bisect ``rect`` (holding n roots) until each piece holds one root of size below ``cell``.
 
     In a piece that holds one root, Newton's method from its centre may wander through the window
@@ -218,9 +220,7 @@ def _roots_at(
     """Count in ``rect``, locate (or start from ``previous`` when the count is unchanged) and polish."""
     count = _count(system, rect)
     starts = (
-        previous
-        if previous is not None and len(previous) == count
-        else _locate(system, rect, count, cell, reach)
+        previous if previous is not None and len(previous) == count else _locate(system, rect, count, cell, reach)
     )
     system.tol = 1e-12
     polished = [_newton(system, q, rect, margin=reach) for q in starts]
@@ -318,3 +318,4 @@ def _default_top(track: SleeperTrack, floor: float) -> float:
     if floor > 0:
         return 0.99 * floor
     return 0.0 if float(track.groups.get("eta_f", 0.0)) > 0 else -1e-3 * track.Omega0
+
