@@ -45,7 +45,8 @@ def write_map(
 
     axes = (axis("alpha", smap.alphas), axis(smap.parameter, smap.thetas))
     bar = "fixed" if smap.held else "follows"
-    spec = SweepSpec(smap.params, smap.model, axes, check=0, physical=physical, bar=bar)
+    margin = smap.margin is not None  # the map's margin is stored as a sweep's with --margin
+    spec = SweepSpec(smap.params, smap.model, axes, check=0, physical=physical, bar=bar, margin=margin)
     path = prepare_store(path, spec, overwrite=overwrite)
     certain = ~smap.uncertain.T
     n = np.where(certain, smap.count.T, -1).astype(np.int16)
