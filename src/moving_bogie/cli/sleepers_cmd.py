@@ -12,15 +12,14 @@ def sleeper_settings(texts: list[str] | None) -> dict[str, float]:
     """``--set NAME=VALUE`` as SI floats, the overrides of a sleeper file's ``[physical]`` values."""
     from moving_bogie.errors import ParameterError
 
+    from .checks import exact_number, named_values
+
     out: dict[str, float] = {}
-    for text in texts or ():
-        name, eq, value = text.partition("=")
+    for name, value in named_values(texts or (), "--set", "NAME=NUMBER").items():
         try:
-            out[name.strip()] = float(value)
-        except ValueError:
-            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER") from None
-        if not eq or not name.strip():
-            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER")
+            out[name] = float(exact_number(value))
+        except ValueError as exc:
+            raise ParameterError("--set", f"--set {name}={value}: {exc}") from None
     return out
 
 
