@@ -71,6 +71,7 @@ def run_sleeper_frequencies(args: argparse.Namespace) -> int:
         "roots": roots,
         "verdict": result.verdict,
         "margin_1_s": None if result.margin is None else result.margin * to_si,
+        "margin_source": result.margin_source,
         "free_waves_im_rad_s": result.free_waves * to_si,
         "unsearched": list(result.unsearched(to_si, " rad/s")),
         "notes": list(result.notes),
@@ -102,6 +103,9 @@ def format_sleeper_result(out: dict) -> str:
             lines.append(f"  {r['Omega_rad_s'][0]:18.10g}  {r['Omega_rad_s'][1]:18.10g}")
     lines.append(f"verdict: {out['verdict']}")
     if out["margin_1_s"] is not None:
-        lines.append(f"margin: the least-damped vibration decays at {out['margin_1_s']:.6g} 1/s")
+        lines.append(
+            f"margin: the least-damped vibration decays at {out['margin_1_s']:.6g} 1/s "
+            f"({out['margin_source']})"
+        )
     lines += [f"not searched: {band}" for band in out["unsearched"]]
     return "\n".join(lines)

@@ -64,6 +64,14 @@ class FloquetResult:
         complete = not self.notes and len(self.roots) == self.count
         return "STABLE" if complete and all(r.q.imag > 0 for r in self.roots) else "UNDETERMINED"
 
+    @property
+    def margin_source(self) -> str | None:
+        """What sets the margin: "a root" or "the rail's free waves" (None without a margin)."""
+        if self.margin is None:
+            return None
+        least = self.least_damped
+        return "a root" if least is not None and least.q.imag <= self.margin else "the rail's free waves"
+
     def unsearched(self, scale: float = 1.0, unit: str = "") -> tuple[str, ...]:
         """The band of the strip above the window that was not searched and why, Im q times ``scale`` (in
         ``unit``); it holds decaying vibrations only, so the verdict does not depend on it."""
@@ -147,9 +155,7 @@ def _newton(
     return complex(q), float(abs(step))
 
 
-def _locate(
-    system: FloquetSystem, rect: Rectangle, n: int, cell: float, reach: float
-) -> list[complex]:
+def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float, reach: float) -> list[complex]:
     """Bisect ``rect`` (holding n roots) until each piece holds one root of size below ``cell``.
 
     In a piece that holds one root, Newton's method from its centre may wander through the window
@@ -220,7 +226,9 @@ def _roots_at(
     """Count in ``rect``, locate (or start from ``previous`` when the count is unchanged) and polish."""
     count = _count(system, rect)
     starts = (
-        previous if previous is not None and len(previous) == count else _locate(system, rect, count, cell, reach)
+        previous
+        if previous is not None and len(previous) == count
+        else _locate(system, rect, count, cell, reach)
     )
     system.tol = 1e-12
     polished = [_newton(system, q, rect, margin=reach) for q in starts]
@@ -318,4 +326,3 @@ def _default_top(track: SleeperTrack, floor: float) -> float:
     if floor > 0:
         return 0.99 * floor
     return 0.0 if float(track.groups.get("eta_f", 0.0)) > 0 else -1e-3 * track.Omega0
-
