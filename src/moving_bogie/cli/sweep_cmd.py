@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import argparse
-import sys
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -22,6 +20,7 @@ from .common import (
     vary_texts,
 )
 from .outputs import add_figure_option, add_output_option
+from .progress import counts_bar
 from .reporting import fail
 
 if TYPE_CHECKING:
@@ -154,40 +153,6 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
     return make_spec(params, vary, sample=sample, physical=physical, **options)
 
 
-@contextmanager
-def _points_bar(enabled: bool) -> Iterator[Callable[[int, int], None]]:
-    """A rich bar with points/s and ETA on an interactive stderr; a no-op callback otherwise."""
-    if not enabled or not sys.stderr.isatty():
-        yield lambda done, total: None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-    with Progress(
-        TextColumn("sweep"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TextColumn("{task.fields[rate]} points/s"),
-        TextColumn("ETA"),
-        TimeRemainingColumn(),
-        console=Console(stderr=True),
-        transient=True,
-    ) as bar:
-        task = bar.add_task("sweep", total=None, rate="-")
-        first: dict[Any, Any] = {}
-
-        def update(done: int, total: int) -> None:
-            import time
-
-            now = time.perf_counter()
-            first.setdefault("t", now)
-            first.setdefault("done", done)
-            rate = (done - first["done"]) / (now - first["t"]) if now > first["t"] else 0.0
-            bar.update(task, completed=done, total=total, rate=f"{rate:8.1f}")
-
-        yield update
-
-
 def run_sweep_cmd(args: argparse.Namespace) -> int:
     from moving_bogie.floquet.inputs import is_sleeper_file
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
@@ -206,7 +171,7 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
         spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
     # every option is checked (and the store created) before any computation
     try:
-        with _points_bar(not args.json) as bar:
+        with counts_bar("sweep", "points", enabled=not args.json) as bar:
             run = run_sweep(
                 spec,
                 args.out,
