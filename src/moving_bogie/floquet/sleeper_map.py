@@ -242,7 +242,7 @@ def sleeper_map(
     if checkpoint is not None:
         job = {"data": repr(data), "velocities": vs.tolist(), "eta_max": eta_max, "N": N, "samples": samples}
         kept = Checkpoint.open(checkpoint, "sleeper-map", job, resume=resume)
-    share = len(tasks) / (len(tasks) + 2 * verify)  # a check costs about two columns
+    share = len(tasks) / (len(tasks) + 16 * verify)  # about 2 checks per verified column, 8 columns each
     part = None if progress is None else (lambda x: progress(share * x))
     parts = run_parts(column_part, tasks, workers=workers, checkpoint=kept, progress=part, what="columns")
     columns = [part_column(p) for p in parts]
