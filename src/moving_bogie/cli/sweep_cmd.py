@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from collections.abc import Callable
 from functools import partial
 from pathlib import Path
@@ -21,7 +22,7 @@ from .common import (
 )
 from .outputs import add_figure_option, add_output_option
 from .progress import counts_bar
-from .reporting import fail
+from .reporting import PROG, fail
 
 if TYPE_CHECKING:
     from moving_bogie.sweep.design import SweepSpec
@@ -45,7 +46,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "parameters are the SI ones (v in m/s, M in kg, ...; every other SI parameter fixed) and the\n"
             "store's coordinates are named and unitted so, the dimensionless groups kept beside them.\n"
             "A sleeper-track file (docs/sleepers.md) is swept over its [physical] names, each point one\n"
-            "Floquet strip search: count, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
+            "Floquet strip search: n_roots, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
             "harmonics, Omega0 [rad/s]."
         ),
         epilog=(
@@ -230,7 +231,7 @@ def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
 
 def run_sweep_plot(args: argparse.Namespace) -> int:
     from moving_bogie.sweep.plots import plot_sweep_slice
-    from moving_bogie.sweep.store import open_sweep
+    from moving_bogie.sweep.store import missing_points, open_sweep
 
     from .stability_options import save_figure
 
@@ -244,6 +245,13 @@ def run_sweep_plot(args: argparse.Namespace) -> int:
         if not eq:
             raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER")
     ds = open_sweep(args.store)
+    missing, total = missing_points(args.store)
+    if missing:
+        print(
+            f"{PROG}: warning: {args.store} is incomplete: {missing} of {total} points not computed (drawn "
+            "blank); run the sweep again with --resume to complete it",
+            file=sys.stderr,
+        )
     if ds.attrs.get("kind") == "sleepers":
         from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep
 
