@@ -157,7 +157,7 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
 def run_sweep_cmd(args: argparse.Namespace) -> int:
     from moving_bogie.floquet.inputs import is_sleeper_file
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
-    from moving_bogie.sweep.store import open_sweep, read_store
+    from moving_bogie.sweep.store import discarded_if_empty, open_sweep, read_store
 
     spec: SweepPlan
     summarise: Callable[[Path], dict[str, Any]]
@@ -172,7 +172,10 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
         spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
     # every option is checked (and the store created) before any computation
     try:
-        with counts_bar("sweep", "points", enabled=not args.json) as bar:
+        with (
+            discarded_if_empty(args.out, overwrite=args.overwrite),
+            counts_bar("sweep", "points", enabled=not args.json) as bar,
+        ):
             run = run_sweep(
                 spec,
                 args.out,

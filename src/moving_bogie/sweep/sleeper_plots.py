@@ -95,6 +95,9 @@ def _growth_line(ax: Axes, s: xarray.Dataset, x: str) -> None:
         )
     ax.axhline(0.0, color="0.7", lw=0.8)
     ax.set_ylabel("growth rate -Im Omega [1/s]")
+    if not computed.all():  # the axis spans the points not computed too (left blank)
+        pad = 0.03 * (xs.max() - xs.min())
+        ax.set_xlim(xs.min() - pad, xs.max() + pad)
 
 
 def _class_map(ax: Axes, s: xarray.Dataset, x: str, y: str) -> list[Artist]:
