@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -212,14 +213,23 @@ def check_sleepers(
     tol: float = 0.01,
     harmonics: tuple[int, int] = (1, 6),
     floquet: FloquetSide | None = None,
+    progress: Callable[[float], None] | None = None,
 ) -> SleeperCheck:
     """Compare the finite rail with the Floquet theory for one vehicle on one sleeper track (module doc).
 
     ``harmonics`` are the first and the largest N of the Floquet search (:func:`floquet_frequencies`);
-    ``floquet`` the Floquet side already computed (:func:`floquet_side`), e.g. for a convergence study.
+    ``floquet`` the Floquet side already computed (:func:`floquet_side`), e.g. for a convergence study;
+    ``progress`` is called with the fraction done (the Floquet side, then the finite rail's runs).
     """
     settings = SleeperBeamSettings() if settings is None else settings
     side = floquet_side(track, vehicle, loads, harmonics) if floquet is None else floquet
+
+    def stage(start: float, width: float) -> Callable[[float], None] | None:
+        return None if progress is None else (lambda x: progress(start + width * x))
+
+    runs = 1 if side.root is not None else 2  # a stable case runs the loaded rail too
+    if progress is not None:
+        progress(0.1)  # the Floquet side, about a tenth of the time
     root, steady = side.root, side.steady
     T0 = track.lam / track.alpha
     tau_free = settings.periods * T0
@@ -229,7 +239,10 @@ def check_sleepers(
     entry = margin * track.lam
     dt = T0 / settings.steps_per_period
     start = time.perf_counter()
-    free = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, loaded=False)
+    free_progress = stage(0.1, 0.9 / runs)
+    free = simulate_sleeper_beam(
+        rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, loaded=False, progress=free_progress
+    )
     fit_start = settings.transient * tau_free
     notes = list(side.result.notes)
     try:
@@ -256,7 +269,9 @@ def check_sleepers(
             f"no Floquet root with Im q <= 0 (stable): the free vibration's rate {rate:.4g} is not compared"
         )
         assert steady is not None
-        loaded = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt)
+        loaded = simulate_sleeper_beam(
+            rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, progress=stage(0.55, 0.45)
+        )
         comparison, steady_tau, steady_force = _steady_comparison(track, steady, loaded, T0, tol)
         comparisons.append(comparison)
     finite_s = time.perf_counter() - start
