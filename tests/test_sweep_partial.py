@@ -62,3 +62,28 @@ def test_an_older_store_opens_with_the_new_names(tmp_path):
     ds = open_sweep(path)
     assert "count" not in ds.variables and ds.n_roots.values.tolist() == [0, 2]
     assert callable(ds.count)  # the xarray method again
+
+
+def test_a_partial_sleeper_sweep_leaves_its_missing_points_out():
+    import xarray as xr
+
+    from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep
+
+    v, M = np.array([40.0, 60.0, 80.0]), np.array([400.0, 800.0])
+    computed = np.array([[True, True], [True, True], [False, False]])  # (v, M): the last velocity missing
+    stable = computed.copy()
+    data = {
+        "stable": (("v", "M"), stable),
+        "unstable": (("v", "M"), np.zeros((3, 2), dtype=bool)),
+        "certain": (("v", "M"), computed),  # a missing point is not certain: it must not look uncertain
+        "computed": (("v", "M"), computed),
+        "Omega_im": (("v", "M"), np.full((3, 2), np.nan)),
+    }
+    ds = xr.Dataset(data, coords={"v": v, "M": M}, attrs={"kind": "sleepers", "model": "eb/sleepers/mass"})
+    ax = plot_sleeper_sweep(ds, "v", "M").axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["stable", "not computed (interrupted)"]  # neither undetermined nor hatched
+    assert "2 of 6 points not computed" in ax.get_title()
+    ax = plot_sleeper_sweep(ds, "v", None, {"M": 400.0}).axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["stable (growth 0)"] and ax.get_xlim()[1] > 80.0  # the axis spans the missing point

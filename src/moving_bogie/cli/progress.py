@@ -14,6 +14,8 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any
 
+from .reporting import PROG
+
 if TYPE_CHECKING:
     from rich.console import Console
     from rich.progress import Progress, ProgressColumn
@@ -39,10 +41,22 @@ def add_resume_option(parser: argparse.ArgumentParser) -> None:
 
 def checkpoint_options(args: argparse.Namespace) -> dict[str, Any]:
     """The ``checkpoint`` and ``resume`` arguments of a long job run by a command: its finished parts kept
-    in the cache folder (:func:`~moving_bogie.checkpoint.cache_root`), read back with ``--resume``."""
+    in the cache folder (:func:`~moving_bogie.checkpoint.cache_root`), read back with ``--resume``; none
+    (and a warning) when that folder cannot be written."""
+    import os
+
     from moving_bogie.checkpoint import cache_root
 
-    return {"checkpoint": cache_root(), "resume": bool(getattr(args, "resume", False))}
+    root = cache_root()
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+        writable = os.access(root, os.W_OK)
+    except OSError:
+        writable = False
+    if not writable:  # the job runs all the same, without keeping its parts
+        print(f"{PROG}: warning: {root} is not writable: an interrupted run is not kept", file=sys.stderr)
+        return {"checkpoint": None, "resume": False}
+    return {"checkpoint": root, "resume": bool(getattr(args, "resume", False))}
 
 
 def shown(enabled: bool, console: Console | None) -> bool:
