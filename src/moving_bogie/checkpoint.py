@@ -28,7 +28,7 @@ import numpy as np
 
 from moving_bogie.errors import JobInterrupted
 from moving_bogie.output import atomic_write
-from moving_bogie.processes import ignore_interrupts
+from moving_bogie.processes import ignore_interrupts, require_main_guard
 
 __all__ = ["Checkpoint", "Part", "cache_root", "run_parts"]
 
@@ -142,6 +142,8 @@ def _finished(
     if n <= 1:
         yield from ((k, work(tasks[k])) for k in todo)
         return
+    if multiprocessing.get_start_method() != "fork":  # spawn, forkserver: the script is imported again
+        require_main_guard(f"a job on {n} worker processes")
     with multiprocessing.Pool(n, initializer=ignore_interrupts) as pool:  # left: workers terminated
         yield from pool.imap_unordered(_Indexed(work), [(k, tasks[k]) for k in todo])
 

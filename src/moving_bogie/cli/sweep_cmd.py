@@ -156,8 +156,9 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
 
 def run_sweep_cmd(args: argparse.Namespace) -> int:
     from moving_bogie.floquet.inputs import is_sleeper_file
+    from moving_bogie.sweep.api import discarded_if_empty
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
-    from moving_bogie.sweep.store import discarded_if_empty, open_sweep, read_store
+    from moving_bogie.sweep.store import open_sweep, read_store
 
     spec: SweepPlan
     summarise: Callable[[Path], dict[str, Any]]

@@ -7,24 +7,27 @@ is missing.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection, Iterable, Mapping
+import shutil
+from collections.abc import Callable, Collection, Iterable, Iterator, Mapping
+from contextlib import contextmanager
 from fractions import Fraction
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from moving_bogie.errors import ParameterError
+from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.processes import require_main_guard
 from moving_bogie.sweep.design import Axis, SweepSpec, parse_vary, sobol_axes, sweep_parameters
 from moving_bogie.sweep.engine import IN_PROCESS_POINTS, run_sweep
-from moving_bogie.sweep.store import StorePath, discarded_if_empty, open_sweep
+from moving_bogie.sweep.store import StorePath, missing_points, open_sweep
 
 if TYPE_CHECKING:
     import xarray
     from distributed import Client
 
-__all__ = ["make_spec", "sweep"]
+__all__ = ["discarded_if_empty", "make_spec", "sweep"]
 
 
 def _axis(
@@ -187,3 +190,22 @@ def sweep(
             progress=progress,
         )
     return open_sweep(out)
+
+
+@contextmanager
+def discarded_if_empty(path: StorePath, *, overwrite: bool = False) -> Iterator[None]:
+    """Around a run into the store at ``path``: when the run fails (an error, Ctrl-C) before any block is
+    in the store, a store the run made goes (a failed start leaves none behind). A store that was there
+    before stays, unless the run was to ``overwrite`` it."""
+    made = overwrite or not Path(path).exists()
+    try:
+        yield
+    except BaseException:
+        if made and Path(path).exists():
+            try:
+                missing, total = missing_points(path)
+            except (MovingBogieError, KeyError):
+                missing, total = 0, 1  # not a sweep store: left alone
+            if missing == total:
+                shutil.rmtree(path, ignore_errors=True)
+        raise

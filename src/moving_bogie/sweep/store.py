@@ -22,8 +22,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
-from collections.abc import Iterable, Iterator
-from contextlib import contextmanager
+from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
@@ -58,7 +57,6 @@ __all__ = [
     "VARIABLE_NAMES",
     "consolidate",
     "create_store",
-    "discarded_if_empty",
     "missing_blocks",
     "missing_points",
     "open_sweep",
@@ -331,25 +329,6 @@ def missing_blocks(path: StorePath, spec: SweepPlan) -> list[Block]:
     """Blocks of ``spec`` whose ``computed`` chunk is not in the store at ``path``."""
     computed = np.asarray(store_array(store_group(path, "r"), "computed")[...])
     return [b for b in spec.blocks() if not np.all(computed[b.slices])]
-
-
-@contextmanager
-def discarded_if_empty(path: StorePath, *, overwrite: bool = False) -> Iterator[None]:
-    """Around a run into the store at ``path``: when the run fails (an error, Ctrl-C) before any block is
-    in the store, a store the run made goes (a failed start leaves none behind). A store that was there
-    before stays, unless the run was to ``overwrite`` it."""
-    made = overwrite or not Path(path).exists()
-    try:
-        yield
-    except BaseException:
-        if made and Path(path).exists():
-            try:
-                missing, total = missing_points(path)
-            except (MovingBogieError, KeyError):
-                missing, total = 0, 1  # not a sweep store: left alone
-            if missing == total:
-                shutil.rmtree(path, ignore_errors=True)
-        raise
 
 
 def missing_points(path: StorePath) -> tuple[int, int]:

@@ -23,6 +23,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -186,6 +187,15 @@ def floquet_side(
     return FloquetSide(result, root, nu, steady, time.perf_counter() - start)
 
 
+def _stage(progress: Callable[[float], None] | None, k: int, runs: int) -> Callable[[float], None] | None:
+    """The progress of the finite rail's run ``k`` of ``runs``: after the Floquet side (a tenth of the
+    time), the runs share the rest equally."""
+    if progress is None:
+        return None
+    progress(0.1 + 0.9 * k / runs)
+    return lambda x: progress(0.1 + 0.9 * (k + x) / runs)
+
+
 def _steady_comparison(
     track: SleeperTrack, steady: SteadyResponse, loaded: BeamRun, T0: float, tol: float
 ) -> tuple[Comparison, np.ndarray, np.ndarray]:
@@ -223,13 +233,7 @@ def check_sleepers(
     """
     settings = SleeperBeamSettings() if settings is None else settings
     side = floquet_side(track, vehicle, loads, harmonics) if floquet is None else floquet
-
-    def stage(start: float, width: float) -> Callable[[float], None] | None:
-        return None if progress is None else (lambda x: progress(start + width * x))
-
     runs = 1 if side.root is not None else 2  # a stable case runs the loaded rail too
-    if progress is not None:
-        progress(0.1)  # the Floquet side, about a tenth of the time
     root, steady = side.root, side.steady
     T0 = track.lam / track.alpha
     tau_free = settings.periods * T0
@@ -239,10 +243,8 @@ def check_sleepers(
     entry = margin * track.lam
     dt = T0 / settings.steps_per_period
     start = time.perf_counter()
-    free_progress = stage(0.1, 0.9 / runs)
-    free = simulate_sleeper_beam(
-        rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, loaded=False, progress=free_progress
-    )
+    simulate = partial(simulate_sleeper_beam, rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt)
+    free = simulate(loaded=False, progress=_stage(progress, 0, runs))
     fit_start = settings.transient * tau_free
     notes = list(side.result.notes)
     try:
@@ -269,9 +271,7 @@ def check_sleepers(
             f"no Floquet root with Im q <= 0 (stable): the free vibration's rate {rate:.4g} is not compared"
         )
         assert steady is not None
-        loaded = simulate_sleeper_beam(
-            rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, progress=stage(0.55, 0.45)
-        )
+        loaded = simulate(progress=_stage(progress, 1, runs))
         comparison, steady_tau, steady_force = _steady_comparison(track, steady, loaded, T0, tol)
         comparisons.append(comparison)
     finite_s = time.perf_counter() - start

@@ -236,8 +236,10 @@ def stability_map(
     tasks = [(bound, parameter, c, theta_grid, options, settle) for c in chunks]
     kept = None
     if checkpoint is not None:
+        track = bound.foundation_model  # a track model beside the parameters' own is another map
         job = {
             "params": params.to_dict(),
+            "track": [track.module.__name__, track.values, getattr(bound.track_factory, "__qualname__", "")],
             "parameter": parameter,
             "alphas": alpha_grid.tolist(),
             "thetas": theta_grid.tolist(),
