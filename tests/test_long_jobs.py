@@ -18,7 +18,7 @@ import pytest
 from rich.console import Console
 
 from moving_bogie import table1_case
-from moving_bogie.checkpoint import Checkpoint, run_parts
+from moving_bogie.checkpoint import Checkpoint, kept_until_done, run_parts
 from moving_bogie.cli import main
 from moving_bogie.cli.progress import counts_bar, progress_bar
 from moving_bogie.errors import JobInterrupted
@@ -97,6 +97,19 @@ def test_parts_run_on_workers_come_back_in_order(tmp_path):
     parts = run_parts(_square, list(range(5)), workers=2, checkpoint=kept)
     assert [int(p["y"]) for p in parts] == [0, 1, 4, 9, 16]
     assert len(list(kept.folder.glob("part-*"))) == 5
+
+
+def test_a_command_of_several_jobs_keeps_each_until_it_is_done(tmp_path):
+    first = Checkpoint.open(tmp_path, "first", {}, resume=False)
+    with pytest.raises(KeyboardInterrupt), kept_until_done():
+        run_parts(_square, [1, 2], workers=1, checkpoint=first)
+        first.remove()  # the first job is done ...
+        raise KeyboardInterrupt  # ... and the second one interrupted
+    assert len(list(first.folder.glob("part-*"))) == 2  # --resume reads the first job back
+    with kept_until_done():
+        first.remove()
+        assert first.folder.exists()
+    assert not first.folder.exists()  # the command done: nothing left
 
 
 def _square(x: int) -> dict[str, np.ndarray]:

@@ -20,6 +20,7 @@ import multiprocessing
 import os
 import shutil
 from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
@@ -30,7 +31,7 @@ from moving_bogie.errors import JobInterrupted
 from moving_bogie.output import atomic_write
 from moving_bogie.processes import ignore_interrupts, require_main_guard
 
-__all__ = ["Checkpoint", "Part", "cache_root", "run_parts"]
+__all__ = ["Checkpoint", "Part", "cache_root", "kept_until_done", "run_parts"]
 
 #: A finished part: named arrays (numbers, booleans, text), as a .npz holds them.
 Part = dict[str, np.ndarray]
@@ -91,8 +92,30 @@ class Checkpoint:
         atomic_write(self._path(index), buffer.getvalue())
 
     def remove(self) -> None:
-        """The job is done: its folder goes."""
-        shutil.rmtree(self.folder, ignore_errors=True)
+        """The job is done: its folder goes (inside :func:`kept_until_done`, when that block ends)."""
+        if _DEFERRED:
+            _DEFERRED[-1].append(self)
+        else:
+            shutil.rmtree(self.folder, ignore_errors=True)
+
+
+#: The checkpoints of finished jobs kept until the blocks of :func:`kept_until_done` end (innermost last).
+_DEFERRED: list[list[Checkpoint]] = []
+
+
+@contextmanager
+def kept_until_done() -> Iterator[None]:
+    """Within the block, a finished job keeps its parts until the block ends without an error: a command
+    that runs several jobs (a sleeper map, then the continuous map beside it) resumes after an
+    interruption of the last one without computing the first again."""
+    _DEFERRED.append([])
+    try:
+        yield
+    except BaseException:
+        _DEFERRED.pop()
+        raise
+    for done in _DEFERRED.pop():
+        done.remove()
 
 
 def run_parts(

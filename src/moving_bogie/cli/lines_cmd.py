@@ -236,6 +236,15 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_stability_map(args: argparse.Namespace) -> int:
+    """``stability-map``: the jobs it runs (a map; on sleepers the continuous map beside it) keep their
+    parts until the command is done, so ``--resume`` after any of them computes only what is missing."""
+    from moving_bogie.checkpoint import kept_until_done
+
+    with kept_until_done():
+        return _stability_map(args)
+
+
+def _stability_map(args: argparse.Namespace) -> int:
     import numpy as np
 
     if sleeper_file(args):
