@@ -187,3 +187,17 @@ def test_ctrl_c_on_a_map_with_workers_prints_one_line_and_resumes(tmp_path):
     done = subprocess.run([*args, "--resume", "--json"], env=env, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert not any(tmp_path.iterdir())
+
+
+def _die(x: int) -> dict[str, np.ndarray]:
+    if x == 1:
+        os.kill(os.getpid(), signal.SIGKILL)  # a worker killed (out of memory, say)
+    return {"y": np.array(x)}
+
+
+def test_a_killed_worker_is_an_error_not_a_wait(tmp_path):
+    from concurrent.futures.process import BrokenProcessPool
+
+    kept = Checkpoint.open(tmp_path, "die", {}, resume=False)
+    with pytest.raises(BrokenProcessPool):
+        run_parts(_die, [0, 1, 2], workers=2, checkpoint=kept)

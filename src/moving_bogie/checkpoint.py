@@ -20,6 +20,7 @@ import multiprocessing
 import os
 import shutil
 from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -160,22 +161,24 @@ def run_parts(
 def _finished(
     work: Callable[[T], Part], tasks: Sequence[T], todo: list[int], workers: int | None
 ) -> Iterator[tuple[int, Part]]:
-    """(index, part) of the tasks ``todo`` as they finish."""
+    """(index, part) of the tasks ``todo`` as they finish. A worker that dies (killed, out of memory)
+    raises :class:`~concurrent.futures.process.BrokenProcessPool` instead of leaving its task waiting;
+    when the caller stops early (Ctrl-C, an error) the workers are stopped at once."""
     n = min(len(todo), workers or os.cpu_count() or 1)
     if n <= 1:
         yield from ((k, work(tasks[k])) for k in todo)
         return
     if multiprocessing.get_start_method() != "fork":  # spawn, forkserver: the script is imported again
         require_main_guard(f"a job on {n} worker processes")
-    with multiprocessing.Pool(n, initializer=ignore_interrupts) as pool:  # left: workers terminated
-        yield from pool.imap_unordered(_Indexed(work), [(k, tasks[k]) for k in todo])
-
-
-@dataclass(frozen=True)
-class _Indexed:
-    """``work`` on (index, task), returning (index, part): picklable for the pool."""
-
-    work: Callable[[Any], Part]
-
-    def __call__(self, item: tuple[int, Any]) -> tuple[int, Part]:
-        return item[0], self.work(item[1])
+    pool = ProcessPoolExecutor(n, initializer=ignore_interrupts)
+    done = False
+    try:
+        futures = {pool.submit(work, tasks[k]): k for k in todo}
+        for future in as_completed(futures):
+            yield futures[future], future.result()
+        done = True
+    finally:
+        if not done:  # the running tasks are not waited for
+            for process in list((getattr(pool, "_processes", None) or {}).values()):
+                process.terminate()
+        pool.shutdown(wait=done, cancel_futures=True)
