@@ -53,6 +53,7 @@ class StabilityMap:
     settled: np.ndarray | None = None
     margin: np.ndarray | None = None
     margin_bound: np.ndarray | None = None
+    held: tuple[str, ...] = ()  # groups held instead of following the vertical axis (model/bar.py)
 
     def save_npz(self, path: str | os.PathLike[str] | IO[bytes]) -> None:
         """Write the arrays (and the parameters as JSON text) to ``path``: a name or a binary file (.npz)."""
@@ -194,6 +195,7 @@ def stability_map(
     chunk: int = 8,
     settle: bool = True,
     progress: Callable[[float], None] | None = None,
+    held: tuple[str, ...] = (),
     checkpoint: str | os.PathLike[str] | None = None,
     resume: bool = False,
     **options: Any,
@@ -217,6 +219,8 @@ def stability_map(
         Settle the cells the column count leaves uncertain by a full count (default True).
     progress : callable, optional
         Called with the fraction of columns done.
+    held : tuple of str
+        Groups held instead of following ``parameter`` (mu_v, J_b: :mod:`~moving_bogie.model.bar`).
     checkpoint : path, optional
         A folder in which each finished chunk is kept (:class:`~moving_bogie.checkpoint.Checkpoint`):
         Ctrl-C raises :class:`~moving_bogie.errors.JobInterrupted`, and the same map with
@@ -233,7 +237,7 @@ def stability_map(
     if "top" not in options:
         options["top"] = top_edge(bound, alpha_grid)
     chunks = [alpha_grid[i : i + chunk] for i in range(0, len(alpha_grid), chunk)]
-    tasks = [(bound, parameter, c, theta_grid, options, settle) for c in chunks]
+    tasks = [(bound, parameter, c, theta_grid, options, settle, held) for c in chunks]
     kept = None
     if checkpoint is not None:
         track = bound.foundation_model  # a track model beside the parameters' own is another map
@@ -241,6 +245,7 @@ def stability_map(
             "params": params.to_dict(),
             "track": [track.module.__name__, track.values, getattr(bound.track_factory, "__qualname__", "")],
             "parameter": parameter,
+            "held": list(held),
             "alphas": alpha_grid.tolist(),
             "thetas": theta_grid.tolist(),
             "options": options,
@@ -253,4 +258,4 @@ def stability_map(
     cells = {name: np.concatenate([p[name] for p in parts], axis=1) for name in CELL_ARRAYS}
     if kept is not None:
         kept.remove()
-    return StabilityMap(params, params.vehicle, parameter, alpha_grid, theta_grid, **cells)
+    return StabilityMap(params, params.vehicle, parameter, alpha_grid, theta_grid, **cells, held=held)
