@@ -86,4 +86,5 @@ def test_a_partial_sleeper_sweep_leaves_its_missing_points_out():
     assert "2 of 6 points not computed" in ax.get_title()
     ax = plot_sleeper_sweep(ds, "v", None, {"M": 400.0}).axes[0]
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
-    assert labels == ["stable (growth 0)"] and ax.get_xlim()[1] > 80.0  # the axis spans the missing point
+    assert len(labels) == 1 and labels[0].startswith("stable")  # the missing point: no mark at all
+    assert ax.get_xlim()[1] > 80.0  # the axis spans the missing point
