@@ -19,7 +19,7 @@ def sleeper_settings(texts: list[str] | None) -> dict[str, float]:
         try:
             out[name] = float(exact_number(value))
         except ValueError as exc:
-            raise ParameterError("--set", f"--set {name}={value}: {exc}") from None
+            raise ParameterError("--set", f"--set {name}={value}: expected NAME=NUMBER ({exc})") from None
     return out
 
 
