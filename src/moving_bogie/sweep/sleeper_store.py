@@ -31,7 +31,13 @@ __all__ = ["SLEEPER_VARIABLES", "SleeperLayout", "create_sleeper_store", "write_
 
 #: Data variables of a sleeper sweep: (name, dtype, fill value, long_name, units).
 SLEEPER_VARIABLES: tuple[tuple[str, str, Any, str, str], ...] = (
-    ("count", "int16", -1, "roots counted in the strip up to the rail's free waves (-1: not searched)", "1"),
+    (
+        "n_roots",
+        "int16",
+        -1,
+        "roots counted in the strip up to the rail's free waves (-1: not searched)",
+        "1",
+    ),
     ("stable", "bool", False, "verdict STABLE: every root found decays, the window complete", "1"),
     ("unstable", "bool", False, "verdict UNSTABLE: a root with Im Omega < 0", "1"),
     ("certain", "bool", False, "converged in the harmonics and every counted root located", "1"),
@@ -118,8 +124,8 @@ def create_sleeper_store(path: StorePath, spec: SleeperLayout) -> None:
         units="si",
         time_factor="exp(i Omega t): a root with Im Omega < 0 grows at the rate -Im Omega",
         search=(
-            "floquet.strip.floquet_frequencies: the roots with Im Omega <= 0 in one strip of width Omega_0, "
-            "counted by the argument principle and converged in the harmonics (docs/sleepers.md)"
+            "floquet.strip.floquet_frequencies: the roots in one strip of width Omega_0 up to the rail's "
+            "free waves, counted by the argument principle and converged in the harmonics (docs/sleepers.md)"
         ),
         operating_point=json.dumps(spec.operating_point()),
     )
