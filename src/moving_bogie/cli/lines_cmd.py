@@ -279,7 +279,7 @@ def _stability_map(args: argparse.Namespace) -> int:
     held = held_groups(params, args.bar)
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
-    if args.n > TIMED:  # a long map says so before it starts
+    if args.n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
         column = partial(map_columns, bound, args.parameter, [alphas[args.n // 2]], thetas, held=held)
         estimate_grid("stability map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
     with progress_bar("stability map", enabled=not args.json) as bar:

@@ -299,6 +299,10 @@ def format_series(
     return "\n".join(lines)
 
 
+#: How far from the rear wheel (in beam lengths 1/chi) ``shape`` evaluates the deflection.
+XI_REACH = 500.0
+
+
 def run_shape(args: argparse.Namespace) -> int:
     """Compute and print (or write) the deflection shape at one time."""
     import numpy as np
@@ -315,6 +319,14 @@ def run_shape(args: argparse.Namespace) -> int:
     hi = args.xi_max if args.xi_max is not None else (d + 10.0) / chi
     if not (np.isfinite(lo) and np.isfinite(hi) and hi > lo):
         raise ParameterError("xi_max", f"need xi_min < xi_max (got {lo}, {hi})")
+    reach = XI_REACH / chi  # the closed form's exponentials leave double precision farther out
+    if max(abs(lo), abs(hi)) > reach:
+        unit = " m" if physical is not None else ""
+        raise ParameterError(
+            "xi_min" if abs(lo) > reach else "xi_max",
+            f"xi_min and xi_max (--xi-min, --xi-max) must lie within +-{reach:.6g}{unit} of the rear wheel "
+            f"(got {lo:g}, {hi:g})",
+        )
     xi = np.linspace(lo, hi, args.points)
 
     from moving_bogie.kernels.bound import bind
