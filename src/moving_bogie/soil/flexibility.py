@@ -12,22 +12,23 @@ import numpy as np
 
 from moving_bogie.typing import ComplexArray, FloatArray
 
-from .layer import det2, halfspace_stiffness, inv2, layer_stiffness, layer_waves, mul2
+from .layer import blocks_of_waves, halfspace_stiffness, layer_stiffness, layer_waves
+from .mat2 import Mat2
 from .profile import SoilLayer, SoilProfile
 
 __all__ = ["condensed", "surface_flexibility", "surface_stiffness"]
 
 
-def surface_stiffness(k: ComplexArray, omega: ComplexArray, soil: SoilProfile) -> ComplexArray:
-    """The 2 x 2 stiffness (u_x, u_z) of the whole stack at its surface, shape (..., 2, 2)."""
+def surface_stiffness(k: ComplexArray, omega: ComplexArray, soil: SoilProfile) -> Mat2:
+    """The 2 x 2 stiffness (u_x, u_z) of the whole stack at its surface."""
     stiffness = halfspace_stiffness(k, omega, soil.halfspace)[0]
     for layer in reversed(soil.layers[:-1]):
         tt, tb, bt, bb, _ = layer_stiffness(k, omega, layer)
-        stiffness = tt - mul2(mul2(tb, inv2(bb + stiffness)), bt)
+        stiffness = tt - tb @ (bb + stiffness).inv() @ bt
     return stiffness
 
 
-def condensed(k: ComplexArray, omega: ComplexArray, soil: SoilProfile) -> tuple[ComplexArray, ComplexArray]:
+def condensed(k: ComplexArray, omega: ComplexArray, soil: SoilProfile) -> tuple[Mat2, ComplexArray]:
     """(K_surface, Delta): the surface stiffness and the secular determinant of the stack.
 
     Delta, the determinant of the global matrix of wave amplitudes, has no poles in k and vanishes exactly
@@ -42,13 +43,14 @@ def condensed(k: ComplexArray, omega: ComplexArray, soil: SoilProfile) -> tuple[
     stiffness, det_d = halfspace_stiffness(k, omega, soil.halfspace)
     delta = det_d * _unit(layer_waves(k, omega, soil.halfspace)[2]) / _scale(k, omega, soil.halfspace)
     for layer in reversed(soil.layers[:-1]):
-        tt, tb, bt, bb, det_d = layer_stiffness(k, omega, layer)
+        waves = layer_waves(k, omega, layer)
+        tt, tb, bt, bb, det_d = blocks_of_waves(waves, layer.h)
         block = bb + stiffness
-        stiffness = tt - mul2(mul2(tb, inv2(block)), bt)
-        p, s, gap, _ = layer_waves(k, omega, layer)
+        stiffness = tt - tb @ block.inv() @ bt
+        p, s, gap, _ = waves
         shift = np.exp(1j * np.imag((p + s) * layer.h)) * _unit(gap) ** 2
-        delta = delta * det_d * det2(block) * shift / _scale(k, omega, layer)
-    return stiffness, delta * det2(stiffness) / _scale(k, omega, soil.layers[0])
+        delta = delta * det_d * block.det() * shift / _scale(k, omega, layer)
+    return stiffness, delta * stiffness.det() / _scale(k, omega, soil.layers[0])
 
 
 def _unit(z: ComplexArray) -> ComplexArray:
@@ -65,5 +67,4 @@ def surface_flexibility(k: ComplexArray, omega: ComplexArray, soil: SoilProfile)
     Statically, on a homogeneous half-space, U = (1 - nu) / (mu k) (Boussinesq's solution transformed).
     """
     kk = surface_stiffness(np.asarray(k, dtype=complex), np.asarray(omega, dtype=complex), soil)
-    det = kk[..., 0, 0] * kk[..., 1, 1] - kk[..., 0, 1] * kk[..., 1, 0]
-    return kk[..., 0, 0] / det
+    return kk.a / kk.det()

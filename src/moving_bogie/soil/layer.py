@@ -14,17 +14,10 @@ import numpy as np
 from moving_bogie.generated.soil_layer import layer_basis
 from moving_bogie.typing import ComplexArray
 
+from .mat2 import Mat2
 from .profile import SoilLayer
 
-__all__ = [
-    "det2",
-    "halfspace_stiffness",
-    "inv2",
-    "layer_stiffness",
-    "layer_waves",
-    "mul2",
-    "vertical_wavenumber",
-]
+__all__ = ["blocks_of_waves", "halfspace_stiffness", "layer_stiffness", "layer_waves", "vertical_wavenumber"]
 
 #: Below this |x|, exprel(x) = (e^x - 1) / x is summed as its Taylor series (error < 1e-20).
 _SERIES = 0.1
@@ -73,27 +66,31 @@ def layer_waves(
     return p, s, delta, tuple(basis)
 
 
-def halfspace_stiffness(
-    k: ComplexArray, omega: ComplexArray, layer: SoilLayer
-) -> tuple[ComplexArray, ComplexArray]:
-    """The 2 x 2 stiffness of the half-space at its surface, shape (..., 2, 2): K = -T D^{-1}; and det D."""
+def halfspace_stiffness(k: ComplexArray, omega: ComplexArray, layer: SoilLayer) -> tuple[Mat2, ComplexArray]:
+    """The 2 x 2 stiffness of the half-space at its surface, K = -T D^{-1}, and det D."""
     _, _, _, a = layer_waves(k, omega, layer)
-    disp = _matrix(a[0], a[4], a[1], a[5])
-    trac = _matrix(-a[2], -a[6], -a[3], -a[7])
-    return mul2(trac, inv2(disp)), det2(disp)
+    disp = Mat2(a[0], a[4], a[1], a[5])
+    trac = Mat2(-a[2], -a[6], -a[3], -a[7])
+    return trac @ disp.inv(), disp.det()
 
 
 def layer_stiffness(
     k: ComplexArray, omega: ComplexArray, layer: SoilLayer
-) -> tuple[ComplexArray, ComplexArray, ComplexArray, ComplexArray, ComplexArray]:
-    """The blocks (K_tt, K_tb, K_bt, K_bb), each (..., 2, 2), and det D, of the 4 x 4 stiffness of a layer
-    of thickness h (dofs u_x, u_z at the top, then at the bottom): K = F D^{-1}.
+) -> tuple[Mat2, Mat2, Mat2, Mat2, ComplexArray]:
+    """The blocks (K_tt, K_tb, K_bt, K_bb) and det D of the 4 x 4 stiffness of a layer of thickness h
+    (dofs u_x, u_z at the top, then at the bottom): K = F D^{-1}.
 
     D = [[P, Q], [R, S]] holds the displacements of the down- and up-going basis at the top and bottom; Q and
     R carry the decaying exponentials, so the Schur complement X = (P - Q S^{-1} R)^{-1} is well conditioned.
     """
-    p, s, delta, a = layer_waves(k, omega, layer)
-    h = layer.h
+    return blocks_of_waves(layer_waves(k, omega, layer), layer.h)
+
+
+def blocks_of_waves(
+    waves: tuple[ComplexArray, ComplexArray, ComplexArray, tuple[ComplexArray, ...]], h: float
+) -> tuple[Mat2, Mat2, Mat2, Mat2, ComplexArray]:
+    """:func:`layer_stiffness` from the layer's waves (:func:`layer_waves`) and thickness."""
+    p, s, delta, a = waves
     ep, es = np.exp(-p * h), np.exp(-s * h)
     x = -delta * h
     small = np.abs(x) < 1
@@ -101,52 +98,23 @@ def layer_stiffness(
     e_h = np.where(small, -h * ep * _exprel(np.where(small, x, 0)), (es - ep) / np.where(small, 1, delta))
     d1, d2, d3 = a[0:4], a[4:8], a[8:12]
     u1, u2, u3 = a[12:16], a[16:20], a[20:24]
-
-    down_top = _matrix(d1[0], d2[0], d1[1], d2[1])
-    up_bottom = _matrix(u1[0], u2[0], u1[1], u2[1])
-    up_top = _matrix(u1[0] * ep, u2[0] * es + u3[0] * e_h, u1[1] * ep, u2[1] * es + u3[1] * e_h)
-    down_bottom = _matrix(d1[0] * ep, d2[0] * es + d3[0] * e_h, d1[1] * ep, d2[1] * es + d3[1] * e_h)
-    f_top_d = _matrix(-d1[2], -d2[2], -d1[3], -d2[3])
-    f_top_u = _matrix(-u1[2] * ep, -(u2[2] * es + u3[2] * e_h), -u1[3] * ep, -(u2[3] * es + u3[3] * e_h))
-    f_bot_d = _matrix(d1[2] * ep, d2[2] * es + d3[2] * e_h, d1[3] * ep, d2[3] * es + d3[3] * e_h)
-    f_bot_u = _matrix(u1[2], u2[2], u1[3], u2[3])
-    s_inv = inv2(up_bottom)
-    s_inv_r = mul2(s_inv, down_bottom)
-    schur = down_top - mul2(up_top, s_inv_r)
-    x_inv = inv2(schur)
-    q_s_inv = mul2(up_top, s_inv)
-    k_tt = mul2(f_top_d - mul2(f_top_u, s_inv_r), x_inv)
-    k_bt = mul2(f_bot_d - mul2(f_bot_u, s_inv_r), x_inv)
-    k_tb = mul2(f_top_u, s_inv) - mul2(k_tt, q_s_inv)
-    k_bb = mul2(f_bot_u, s_inv) - mul2(k_bt, q_s_inv)
-    return k_tt, k_tb, k_bt, k_bb, det2(up_bottom) * det2(schur)
-
-
-def _matrix(a: ComplexArray, b: ComplexArray, c: ComplexArray, d: ComplexArray) -> ComplexArray:
-    """[[a, b], [c, d]] with the 2 x 2 axes last."""
-    return np.stack([np.stack(np.broadcast_arrays(a, b), -1), np.stack(np.broadcast_arrays(c, d), -1)], -2)
-
-
-def mul2(m: ComplexArray, n: ComplexArray) -> ComplexArray:
-    """Product of stacks of 2 x 2 matrices, written out (faster than matmul on small batches)."""
-    out = np.empty(np.broadcast_shapes(m.shape, n.shape), dtype=complex)
-    for i in range(2):
-        for j in range(2):
-            out[..., i, j] = m[..., i, 0] * n[..., 0, j] + m[..., i, 1] * n[..., 1, j]
-    return out
-
-
-def det2(m: ComplexArray) -> ComplexArray:
-    """Determinant of a stack of 2 x 2 matrices."""
-    return m[..., 0, 0] * m[..., 1, 1] - m[..., 0, 1] * m[..., 1, 0]
-
-
-def inv2(m: ComplexArray) -> ComplexArray:
-    """Inverse of a stack of 2 x 2 matrices."""
-    det = det2(m)
-    inv = np.empty_like(m)
-    inv[..., 0, 0] = m[..., 1, 1] / det
-    inv[..., 1, 1] = m[..., 0, 0] / det
-    inv[..., 0, 1] = -m[..., 0, 1] / det
-    inv[..., 1, 0] = -m[..., 1, 0] / det
-    return inv
+    d2h = [d2[i] * es + d3[i] * e_h for i in range(4)]  # f2 of the down-going waves at the bottom
+    u2h = [u2[i] * es + u3[i] * e_h for i in range(4)]  # f2 of the up-going waves at the top
+    down_top = Mat2(d1[0], d2[0], d1[1], d2[1])
+    up_bottom = Mat2(u1[0], u2[0], u1[1], u2[1])
+    up_top = Mat2(u1[0] * ep, u2h[0], u1[1] * ep, u2h[1])
+    down_bottom = Mat2(d1[0] * ep, d2h[0], d1[1] * ep, d2h[1])
+    f_top_d = Mat2(-d1[2], -d2[2], -d1[3], -d2[3])
+    f_top_u = Mat2(-u1[2] * ep, -u2h[2], -u1[3] * ep, -u2h[3])
+    f_bot_d = Mat2(d1[2] * ep, d2h[2], d1[3] * ep, d2h[3])
+    f_bot_u = Mat2(u1[2], u2[2], u1[3], u2[3])
+    s_inv = up_bottom.inv()
+    s_inv_r = s_inv @ down_bottom
+    schur = down_top - up_top @ s_inv_r
+    x_inv = schur.inv()
+    q_s_inv = up_top @ s_inv
+    k_tt = (f_top_d - f_top_u @ s_inv_r) @ x_inv
+    k_bt = (f_bot_d - f_bot_u @ s_inv_r) @ x_inv
+    k_tb = f_top_u @ s_inv - k_tt @ q_s_inv
+    k_bb = f_bot_u @ s_inv - k_bt @ q_s_inv
+    return k_tt, k_tb, k_bt, k_bb, up_bottom.det() * schur.det()

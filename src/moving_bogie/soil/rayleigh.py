@@ -19,10 +19,10 @@ import numpy.typing as npt
 from moving_bogie.typing import FloatArray
 
 from .flexibility import condensed
+from .illinois import IntArray, illinois
 from .profile import SoilProfile
 
 BoolArray = npt.NDArray[np.bool_]
-IntArray = npt.NDArray[np.intp]
 
 __all__ = ["SoilModes", "soil_modes"]
 
@@ -72,27 +72,6 @@ def _regime_grid(soil: SoilProfile, c_floor: float, points: int) -> tuple[FloatA
     return grid, ~crossing
 
 
-def _refine(lo: FloatArray, hi: FloatArray, w: FloatArray, soil: SoilProfile, iterations: int) -> FloatArray:
-    """Refine sign changes of :func:`_secular`, all brackets at once, by the Illinois method (regula falsi
-    that halves the stale end's value; a step outside the bracket bisects)."""
-    f_lo, f_hi = _secular(lo, w, soil), _secular(hi, w, soil)
-    side = np.zeros(lo.shape, dtype=int)
-    for _ in range(iterations):
-        width = hi - lo
-        if not np.any(width > 1e-14 * hi):
-            break
-        mid = hi - f_hi * width / (f_hi - f_lo)
-        mid = np.where(np.isfinite(mid) & (mid > lo) & (mid < hi), mid, 0.5 * (lo + hi))
-        f_mid = _secular(mid, w, soil)
-        left = np.sign(f_mid) == np.sign(f_lo)
-        f_hi = np.where(~left & (side == -1), 0.5 * f_hi, f_hi)
-        f_lo = np.where(left & (side == 1), 0.5 * f_lo, f_lo)
-        lo, f_lo = np.where(left, mid, lo), np.where(left, f_mid, f_lo)
-        hi, f_hi = np.where(left, hi, mid), np.where(left, f_hi, f_mid)
-        side = np.where(left, 1, -1)
-    return np.where(np.abs(f_lo) < np.abs(f_hi), lo, hi)
-
-
 def _dips(
     grid: FloatArray, f: FloatArray, valid: BoolArray, omega: FloatArray, soil: SoilProfile, sub: int = 24
 ) -> list[tuple[IntArray, FloatArray, FloatArray]]:
@@ -112,7 +91,7 @@ def _dips(
 
 
 def soil_modes(
-    omega: FloatArray, soil: SoilProfile, *, points: int = 200, c_floor: float = 0.5, iterations: int = 60
+    omega: FloatArray, soil: SoilProfile, *, points: int = 200, c_floor: float = 0.5, modes: int | None = None
 ) -> SoilModes:
     """The trapped surface-wave modes of the undamped ``soil`` at each positive ``omega`` (rad/s).
 
@@ -127,8 +106,8 @@ def soil_modes(
     c_floor : float
         The scan starts at ``c_floor`` times the least shear speed (every mode is faster than 0.87 times
         it for nu >= 0; 0.5 leaves room for any admissible nu).
-    iterations : int
-        At most this many Illinois steps (each bracket shrinks below 1e-14 of c well before).
+    modes : int, optional
+        Refine only the slowest ``modes`` modes at each frequency (all by default).
     """
     elastic = soil.undamped()
     omega = np.atleast_1d(np.asarray(omega, dtype=float))
@@ -143,7 +122,13 @@ def soil_modes(
         lo.append(a)
         hi.append(b)
     rows = np.concatenate(rows_all)
-    roots = _refine(np.concatenate(lo), np.concatenate(hi), omega[rows], elastic, iterations)
+    if modes is not None:  # the slowest brackets of each frequency (lo ascends within a row)
+        order = np.lexsort((np.concatenate(lo), rows))
+        rank = np.arange(order.size) - np.searchsorted(rows[order], rows[order])
+        keep = np.sort(order[rank < modes])
+        rows, lo, hi = rows[keep], [np.concatenate(lo)[keep]], [np.concatenate(hi)[keep]]
+    w_rows = omega[rows]
+    roots = illinois(lambda c, i: _secular(c, w_rows[i], elastic), np.concatenate(lo), np.concatenate(hi))
     count = np.bincount(rows, minlength=len(omega))
     c = np.full((len(omega), max(int(count.max(initial=0)), 1)), np.nan)
     for i in range(len(omega)):

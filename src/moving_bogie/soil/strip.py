@@ -5,7 +5,7 @@ the width and the track's deflection equal to the soil's on the centre line, fee
 
     chi(k1, omega) = 2 pi / I,   I = int_{-inf}^{inf} sinc(k2 b) U(sqrt(k1^2 + k2^2), omega) dk2,
 
-sinc(x) = sin(x) / x, for the wave exp(i (omega t - k1 x)). It is the stiffness of the whole strip (per track).
+sinc(x) = sin(x) / x, for the wave exp(i (omega t - k1 x)): the stiffness of the whole strip (per track).
 
 The integral: U minus its large-wavenumber form U_inf = C / kappa + D / (kappa^2 + beta^2)^(3/2) (the top
 layer's Lamb flexibility expanded, C = (1 - nu) / mu, D = k_s^2 (8 nu^2 - 12 nu + 7) / (8 mu), beta = omega /
@@ -97,20 +97,22 @@ def _integral_inf3(a: FloatArray, b: float) -> FloatArray:
 def _breakpoints(k1: float, omega: float, soil: SoilProfile, b: float, top: float) -> FloatArray:
     """Panel ends in k2 for one (k1, omega) (module docstring)."""
     layers = soil.layers
-    scale = max(k1, 1 / b, abs(omega) / soil.c_s_min)
+    scale = min(k1, top)
     near = np.geomspace(1e-4 * scale, scale, 15)
-    eta = max(min(layer.eta for layer in layers) * abs(omega), 0.0)
+    eta = min(layer.eta for layer in layers) * abs(omega)
     speeds = [c for layer in layers for c in (layer.c_s, layer.c_p)]
     band = [abs(omega) / max(speeds) * 0.8, abs(omega) / (0.5 * soil.c_s_min)]
     ratio = 1 + min(0.1, max(1.5 * eta, 0.01))
     kappa = []
-    if band[1] > band[0]:
+    # the poles of U lie in this band of kappa, on the real axis without damping (k1 must exceed them)
+    # and next to it with damping, where the panels follow them at a relative width of 1.5 omega eta
+    if band[1] > band[0] and eta > 0:
         kappa.append(np.geomspace(band[0], band[1], int(np.log(band[1] / band[0]) / np.log(ratio)) + 2))
     kappa.append(np.geomspace(max(k1, 1e-3 * scale), top, 25))
     kap = np.concatenate(kappa)
     kap = kap[kap > k1]
     waves = np.sqrt(kap**2 - k1**2)
-    sinc = np.arange(0.0, top, np.pi / b)
+    sinc = np.arange(0.0, top, 2 * np.pi / b)
     ends = np.unique(np.concatenate([[0.0, top], near, waves, sinc]))
     return ends[ends <= top]
 
@@ -123,6 +125,8 @@ def strip_stiffness(k1: FloatArray, omega: FloatArray, soil: SoilProfile, b: flo
     """
     k1 = np.abs(np.atleast_1d(np.asarray(k1, dtype=float)))
     omega = np.broadcast_to(np.asarray(omega, dtype=float), k1.shape)
+    if k1.size == 0:
+        return StripStiffness(chi=np.empty(k1.shape, dtype=complex), error=np.empty(k1.shape))
     top_layer = soil.layers[0]
     factor = 1 + 1j * omega * top_layer.eta
     mu = top_layer.mu * factor
@@ -135,7 +139,7 @@ def strip_stiffness(k1: FloatArray, omega: FloatArray, soil: SoilProfile, b: flo
     nodes, weights_k, weights_g, owner = [], [], [], []
     tops = np.empty(k1.shape)
     for i, (a, w) in enumerate(zip(k1.ravel(), omega.ravel(), strict=True)):
-        top = 40 * max(1 / b, 1 / h_top, abs(w) / soil.c_s_min, a / 8)
+        top = 20 * max(1 / b, 1 / h_top, abs(w) / soil.c_s_min)
         tops[i] = top
         ends = _breakpoints(a, w, soil, b, top)
         half, mid = np.diff(ends) / 2, (ends[1:] + ends[:-1]) / 2
@@ -161,7 +165,7 @@ def strip_stiffness(k1: FloatArray, omega: FloatArray, soil: SoilProfile, b: flo
     envelope = 2 * np.abs(u - u_inf)[last] / (k2[last] * b)
     tail = envelope * tops.ravel() / 3
     error_i = np.abs(rest_k - rest_g) + tail
-    chi = 2 * np.pi / total
+    chi: ComplexArray = np.asarray(2 * np.pi / total, dtype=complex)
     return StripStiffness(
         chi=chi.reshape(k1.shape), error=(np.abs(chi) * error_i / np.abs(total)).reshape(k1.shape)
     )

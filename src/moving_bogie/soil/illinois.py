@@ -1,0 +1,52 @@
+"""Sign changes refined by the Illinois method, many brackets at once (the soil's modes, the free waves)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import numpy.typing as npt
+
+from moving_bogie.typing import FloatArray
+
+IntArray = npt.NDArray[np.intp]
+
+__all__ = ["IntArray", "illinois"]
+
+
+def illinois(
+    f: Callable[[FloatArray, IntArray], FloatArray],
+    lo: FloatArray,
+    hi: FloatArray,
+    *,
+    rtol: float = 1e-13,
+    iterations: int = 80,
+) -> FloatArray:
+    """Roots of ``f(x, index)`` in the brackets [lo, hi] (f changes sign in each; ``index`` says which
+    bracket each x belongs to, so that f can look up its other arguments): regula falsi that halves the
+    value kept at a stale end (Illinois), a step outside the bracket bisects; stops when every bracket is
+    below ``rtol`` of its end, or after ``iterations`` steps. Returns the end of smaller |f| of each."""
+    lo, hi = np.asarray(lo, dtype=float).copy(), np.asarray(hi, dtype=float).copy()
+    index = np.arange(lo.size)
+    f_lo, f_hi = f(lo, index), f(hi, index)
+    side = np.zeros(lo.shape, dtype=int)
+    for _ in range(iterations):
+        active = np.abs(hi - lo) > rtol * np.maximum(np.abs(hi), np.abs(lo))
+        if not np.any(active):
+            break
+        a = np.nonzero(active)[0]
+        width = hi[a] - lo[a]
+        mid = hi[a] - f_hi[a] * width / (f_hi[a] - f_lo[a])
+        mid = np.where(
+            np.isfinite(mid) & (mid > np.minimum(lo[a], hi[a])) & (mid < np.maximum(lo[a], hi[a])),
+            mid,
+            lo[a] + width / 2,
+        )
+        f_mid = f(mid, index[a])
+        left = np.sign(f_mid) == np.sign(f_lo[a])
+        f_hi[a] = np.where(~left & (side[a] == -1), 0.5 * f_hi[a], f_hi[a])
+        f_lo[a] = np.where(left & (side[a] == 1), 0.5 * f_lo[a], f_lo[a])
+        lo[a], f_lo[a] = np.where(left, mid, lo[a]), np.where(left, f_mid, f_lo[a])
+        hi[a], f_hi[a] = np.where(left, hi[a], mid), np.where(left, f_hi[a], f_mid)
+        side[a] = np.where(left, 1, -1)
+    return np.where(np.abs(f_lo) < np.abs(f_hi), lo, hi)
