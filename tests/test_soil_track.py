@@ -160,7 +160,8 @@ def test_static_deflection_against_closed_form_quadrature():
 @pytest.mark.slow
 def test_moving_load_against_direct_two_dimensional_quadrature():
     """w(0) at 50 m/s on the damped homogeneous half-space: both wavenumber integrals by scipy's adaptive
-    quad (QUADPACK) with Lamb's closed-form flexibility, no code of soil/ in the reference."""
+    quad (QUADPACK, relative tolerances only: the integrands are ~1e-10) with Lamb's closed-form flexibility,
+    no code of soil/ in the reference."""
     loaded = load_soil_file(EXAMPLES / "soil-homogeneous.toml")
     track, layer, v = loaded.track, loaded.soil.layers[0], 50.0
 
@@ -180,13 +181,13 @@ def test_moving_load_against_direct_two_dimensional_quadrature():
         w = k1 * v
         parts = []
         for part in (np.real, np.imag):
-            f = lambda k2: part(np.sinc(k2 * track.b / np.pi) * lamb(np.hypot(k1, k2), w))  # noqa: E731
+            f = lambda k2, part=part: part(np.sinc(k2 * track.b / np.pi) * lamb(np.hypot(k1, k2), w))  # noqa: E731
             near = np.sqrt(max((w / 56.9) ** 2 - k1 * k1, 0.0))
             head = integrate.quad(
                 f, 0, 30, points=[near] if 0 < near < 30 else None, limit=400, epsrel=1e-10
             )[0]
-            g = lambda k2: part(lamb(np.hypot(k1, k2), w)) / (k2 * track.b)  # noqa: E731
-            parts.append(head + integrate.quad(g, 30, np.inf, weight="sin", wvar=track.b)[0])
+            g = lambda k2, part=part: part(lamb(np.hypot(k1, k2), w)) / (k2 * track.b)  # noqa: E731
+            parts.append(head + integrate.quad(g, 30, np.inf, weight="sin", wvar=track.b, epsabs=1e-22)[0])
         chi = 2 * np.pi / (2 * (parts[0] + 1j * parts[1]))
         return 1 / (track.EI * k1**4 - track.m * w**2 + chi)
 
@@ -205,3 +206,42 @@ def test_dispersion_command_json(capsys):
     assert out["per"] == "rail" and out["soil_modes"][0]["mode"] == 0
     assert out["soil_modes"][0]["omega"] == [1.0, 10.0, 50.0]
     assert len(out["track_waves"]["c_uncoupled"]) == 3
+
+
+@pytest.mark.slow
+def test_ballasted_example_critical_velocity_against_disba(tmp_path, capsys):
+    """The uncoupled estimate: the track's own curve (closed form, chi = 0) crosses the fundamental mode
+    of disba (Dunkin's method), found here by brentq; the coupled value ends on the same point (its branch
+    meets the fundamental mode, chi -> 0 there); the command writes both and the figure."""
+    disba = pytest.importorskip("disba")
+    loaded = load_soil_file(EXAMPLES / "soil-ballasted.toml")
+    layers = loaded.soil.layers
+    th = np.array([layer.h if np.isfinite(layer.h) else 0.0 for layer in layers]) / 1e3
+    vp, vs = (np.array([getattr(layer, c) for layer in layers]) / 1e3 for c in ("c_p", "c_s"))
+    rho = np.array([layer.rho for layer in layers]) / 1e3
+    pd = disba.PhaseDispersion(th, vp, vs, rho, algorithm="dunkin", dc=1e-6)
+
+    def gap(w: float) -> float:
+        c0 = pd(np.array([2 * np.pi / w]), mode=0).velocity[0] * 1e3
+        return w / loaded.track.undamped().free_wavenumber(np.array([w + 0j])).real[0] - c0
+
+    w_ref = optimize.brentq(gap, 30.0, 100.0, xtol=1e-10)
+    c_ref = w_ref / loaded.track.undamped().free_wavenumber(np.array([w_ref + 0j])).real[0]
+    figure = tmp_path / "disp.png"
+    assert (
+        main(
+            [
+                "critical-velocity",
+                "--file",
+                str(EXAMPLES / "soil-ballasted.toml"),
+                "--json",
+                "--plot",
+                str(figure),
+            ]
+        )
+        == 0
+    )
+    out = json.loads(capsys.readouterr().out)
+    assert abs(out["v_cr_uncoupled"] / c_ref - 1) < 1e-6
+    assert abs(out["v_cr"] / c_ref - 1) < 1e-6
+    assert figure.stat().st_size > 10_000
