@@ -174,11 +174,12 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
     )
     lowest = min((r.q for r in result.roots), key=lambda q: q.imag, default=complex(np.nan, np.nan))
     return {
-        "count": result.count,
+        "n_roots": result.count,
         "stable": result.verdict == "STABLE",
         "unstable": result.verdict == "UNSTABLE",
         "certain": result.converged and result.count == len(result.roots),
         "Omega_im": lowest.imag / inp.t_scale,
+        "margin": np.nan if result.margin is None else result.margin / inp.t_scale,
         "Omega_re": lowest.real / inp.t_scale,
         "harmonics": result.harmonics,
         "Omega0": result.Omega0 / inp.t_scale,
