@@ -68,6 +68,8 @@ _WG = np.array(
         0.417959183673469387755102040816327,
     ]
 )
+#: Panels graded geometrically towards k2 = 0, and geometric in kappa up to the last node (module docstring).
+NEAR_PANELS, KAPPA_PANELS = 8, 10
 NODES = np.concatenate([-_XK[:-1], _XK[::-1]])
 WEIGHTS_K = np.concatenate([_WK[:-1], _WK[::-1]])
 WEIGHTS_G = np.zeros(15)
@@ -98,7 +100,7 @@ def _breakpoints(k1: float, omega: float, soil: SoilProfile, b: float, top: floa
     """Panel ends in k2 for one (k1, omega) (module docstring)."""
     layers = soil.layers
     scale = min(k1, top)
-    near = np.geomspace(1e-4 * scale, scale, 15)
+    near = np.geomspace(1e-4 * scale, scale, NEAR_PANELS)
     eta = min(layer.eta for layer in layers) * abs(omega)
     speeds = [c for layer in layers for c in (layer.c_s, layer.c_p)]
     band = [abs(omega) / max(speeds) * 0.8, abs(omega) / (0.5 * soil.c_s_min)]
@@ -108,7 +110,7 @@ def _breakpoints(k1: float, omega: float, soil: SoilProfile, b: float, top: floa
     # and next to it with damping, where the panels follow them at a relative width of 1.5 omega eta
     if band[1] > band[0] and eta > 0:
         kappa.append(np.geomspace(band[0], band[1], int(np.log(band[1] / band[0]) / np.log(ratio)) + 2))
-    kappa.append(np.geomspace(max(k1, 1e-3 * scale), top, 25))
+    kappa.append(np.geomspace(max(k1, 1e-3 * scale), top, KAPPA_PANELS))
     kap = np.concatenate(kappa)
     kap = kap[kap > k1]
     waves = np.sqrt(kap**2 - k1**2)
