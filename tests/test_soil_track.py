@@ -251,3 +251,17 @@ def test_ballasted_example_critical_velocity_against_disba(tmp_path, capsys):
     assert abs(out["v_cr_uncoupled"] / c_ref - 1) < 1e-6
     assert abs(out["v_cr"] / c_ref - 1) < 1e-6
     assert figure.stat().st_size > 10_000
+
+
+@pytest.mark.slow
+def test_moving_load_command_peak(capsys, tmp_path):
+    """The peak refined between grid points is at least every grid value, between the grid's neighbours of
+    the largest, and its speed is the soil's Rayleigh speed for this light beam (the guided branch hugs it)."""
+    figure = tmp_path / "daf.png"
+    path = str(EXAMPLES / "soil-homogeneous.toml")
+    assert main(["moving-load", "--file", path, "--range", "v=40:70:4", "--json", "--plot", str(figure)]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["per"] == "rail" and out["P"] == 80e3 and out["w_static"] > 0
+    assert out["daf_peak"] >= max(out["daf"]) and 50 <= out["v_peak"] <= 60
+    assert abs(out["v_peak"] - 56.9376) < 0.05
+    assert figure.stat().st_size > 10_000

@@ -78,7 +78,12 @@ def moving_load_figure(result: MovingLoad, title: str) -> Figure:
 
     fig = Figure(figsize=(7.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
-    ax.plot(result.v, result.daf, "-o", ms=3, color="tab:blue", label="deflection under the load / static")
+    # the refined peak lies between grid points: the line passes through it
+    v = np.append(result.v, result.v_peak)
+    order = np.argsort(v)
+    daf = np.append(result.daf, result.daf_peak)[order]
+    ax.plot(v[order], daf, "-", color="tab:blue", label="deflection under the load / static")
+    ax.plot(result.v, result.daf, "o", ms=3, color="tab:blue")
     ax.plot(
         result.v_peak,
         result.daf_peak,
