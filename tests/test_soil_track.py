@@ -256,7 +256,7 @@ def test_ballasted_example_critical_velocity_against_disba(tmp_path, capsys):
 @pytest.mark.slow
 def test_moving_load_command_peak(capsys, tmp_path):
     """The peak refined between grid points is at least every grid value, between the grid's neighbours of
-    the largest, and its speed is the soil's Rayleigh speed for this light beam (the guided branch hugs it)."""
+    the largest, and its speed is the Rayleigh speed for this light beam (the guided branch hugs it)."""
     figure = tmp_path / "daf.png"
     path = str(EXAMPLES / "soil-homogeneous.toml")
     assert main(["moving-load", "--file", path, "--range", "v=40:70:4", "--json", "--plot", str(figure)]) == 0
