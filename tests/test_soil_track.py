@@ -259,7 +259,7 @@ def test_moving_load_command_peak(capsys, tmp_path):
     the largest, and its speed is the Rayleigh speed for this light beam (the guided branch hugs it)."""
     figure = tmp_path / "daf.png"
     path = str(EXAMPLES / "soil-homogeneous.toml")
-    assert main(["moving-load", "--file", path, "--range", "v=40:70:4", "--json", "--plot", str(figure)]) == 0
+    assert main(["moving-load", "--file", path, "--range", "v=48:64:3", "--json", "--plot", str(figure)]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["per"] == "rail" and out["P"] == 80e3 and out["w_static"] > 0
     assert out["daf_peak"] >= max(out["daf"]) and 50 <= out["v_peak"] <= 60

@@ -140,7 +140,7 @@ def moving_load(
         a, b = float(speeds[i - 1]), float(speeds[i + 1])
         x1, x2 = b - g * (b - a), a + g * (b - a)
         f1, f2 = (abs(deflection(track, soil, load, x, rtol=rtol).w[0]) for x in (x1, x2))
-        for _ in range(25):
+        for _ in range(20):  # the bracket shrinks to 1e-4 of two grid steps
             if f1 > f2:
                 b, x2, f2 = x2, x1, f1
                 x1 = b - g * (b - a)
