@@ -15,6 +15,7 @@ response is unbounded.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,7 +46,12 @@ def _integrand(track: SoilTrack, soil: SoilProfile, k1: FloatArray, v: float) ->
 
 
 def _panels(
-    f: object, xi: FloatArray, k_lo: float, k_hi: float, rtol: float, rounds: int
+    f: Callable[[FloatArray], ComplexArray],
+    xi: FloatArray,
+    k_lo: float,
+    k_hi: float,
+    rtol: float,
+    rounds: int,
 ) -> tuple[ComplexArray, FloatArray]:
     """int_{k_lo}^{k_hi} exp(-i k1 xi) f(k1) dk1 for each xi by adaptive Gauss-Kronrod panels (geometric
     halves); a panel is kept when its Kronrod-Gauss difference is below its share (its width in log k1) of
@@ -58,7 +64,7 @@ def _panels(
     for step in range(rounds):
         half, mid = (panels[:, 1] - panels[:, 0]) / 2, (panels[:, 1] + panels[:, 0]) / 2
         k1 = mid[:, None] + half[:, None] * NODES
-        g = f(k1.ravel()).reshape(k1.shape)  # type: ignore[operator]
+        g = f(k1.ravel()).reshape(k1.shape)
         weighted = np.exp(-1j * np.multiply.outer(xi, k1)) * g
         kronrod = (weighted * WEIGHTS_K).sum(-1) * half
         diff = np.abs(kronrod - (weighted * WEIGHTS_G).sum(-1) * half)
