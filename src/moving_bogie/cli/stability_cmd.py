@@ -92,16 +92,31 @@ def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
         p.add_argument(
             spec.option, dest=name, type=decimal_number, default=None, metavar="X", help=f"{spec.meaning}"
         )
+    add_figure_option(p, "--plot", help="write the dispersion figure (a track on soil: docs/soil.md)")
     add_json_option(p)
     p.set_defaults(handler=run_critical_velocity)
 
 
 def run_critical_velocity(args: argparse.Namespace) -> int:
+    from moving_bogie.errors import ParameterError
     from moving_bogie.model.catalogue import get_model
+    from moving_bogie.soil.file import is_soil_file
 
     physical = None
     groups = {name: getattr(args, name) for name in _track_groups() if getattr(args, name) is not None}
     chosen = {k: getattr(args, k) for k in ("beam", "track") if getattr(args, k) is not None}
+    if args.file is not None and is_soil_file(args.file):
+        if chosen or groups:
+            raise ParameterError(
+                next(iter({**chosen, **groups})), "give a soil-track file's values in the file"
+            )
+        from .soil_cmd import run_soil_critical_velocity
+
+        return run_soil_critical_velocity(args)
+    if args.plot is not None:
+        raise ParameterError(
+            "plot", "--plot draws the dispersion figure of a track on soil (a soil-track --file)"
+        )
     if args.file is not None:
         from .common import read_params_file
 
