@@ -14,6 +14,7 @@ if TYPE_CHECKING:
     from moving_bogie.stability.lines.line_results import InstabilityLines
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.presentation import field_lines, json_clean, quantity
 
 from . import sleepers_map_cmd
 from .common import (
@@ -291,19 +292,19 @@ def run_stability_map(args: argparse.Namespace) -> int:
     }
     summary = units.with_si(summary) | {"units": units.to_dict()}
     if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
-        rate = units.frequency(summary["max_degree"])
-        summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
+        summary["max_growth_rate"] = quantity(units.frequency(summary["max_degree"]), "1/s")
         if summary["min_decay_rate"] is not None:
-            decay = units.frequency(summary["min_decay_rate"])
-            summary["min_decay_rate"] = {"value": decay, "unit": "1/s"}
+            summary["min_decay_rate"] = quantity(units.frequency(summary["min_decay_rate"]), "1/s")
+    summary = json_clean(summary)
     if args.json:
         print_json(summary)
     else:
         if units.si:
             print(_si_line(units, args.parameter, params))
-        for key, value in summary.items():
-            if key not in ("params", "uncertain", "axes", "units"):
-                print(f"{key:18s} {value}")
+        hidden = ["params", "uncertain", "axes", "units"]
+        if units.si:  # the groups' values, in SI on the lines below
+            hidden += ["max_degree", "alpha_range", f"{args.parameter}_range"]
+        print("\n".join(field_lines(summary, skip=hidden)))
         for key, axis in summary["axes"].items():
             (lo, hi), name = axis["range"], axis["name"]
             print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {axis['count']} points")

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.presentation import field_lines
 
 from .common import (
     add_json_option,
@@ -240,8 +241,7 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
     if args.json:
         print_json(summary)
     else:
-        for key, value in summary.items():
-            print(f"{key:20s} {value}")
+        print("\n".join(field_lines(summary, width=20)))
     return 0
 
 
