@@ -51,12 +51,16 @@ def quantity_text(value: object, unit: str, digits: int = 6) -> str:
 
 
 def _is_quantity(value: object) -> bool:
-    return isinstance(value, Mapping) and set(value) >= {"value", "unit"} and set(value) <= {"value", "unit", "name"}
+    return (
+        isinstance(value, Mapping)
+        and set(value) >= {"value", "unit"}
+        and set(value) <= {"value", "unit", "name"}
+    )
 
 
 def value_text(value: object, digits: int = 6) -> str:
-    """Any JSON value as text for the terminal: a quantity as ``1.22 1/s``, a list as ``a, b, c``, an object as
-    ``key value; key value``, a number by :func:`number_text`."""
+    """Any JSON value as text for the terminal: a quantity as ``1.22 1/s``, a list as ``a, b, c``, an
+    object as ``key value; key value``, a number by :func:`number_text`."""
     if _is_quantity(value):
         assert isinstance(value, Mapping)
         text = quantity_text(value["value"], str(value["unit"]), digits)
