@@ -10,6 +10,7 @@ import numpy as np
 from moving_bogie.floquet.sleeper_map import SleeperMap
 
 if TYPE_CHECKING:
+    from matplotlib.artist import Artist
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
@@ -70,7 +71,7 @@ def sleeper_map_figure(
     axs = fig.subplots(1, panels, sharex=True, sharey=True, squeeze=False)[0]
     vmax = int(max(1, smap.count.max(initial=0), 0 if continuous is None else continuous.count.max()))
     _counts(axs[0], smap.velocities, smap.masses, smap.count, vmax)
-    handles = []  # only what is drawn
+    handles: list[Artist] = []  # only what is drawn
     if smap.count.any():
         handles.append(Patch(fc="#f4a582", ec="k", lw=0.5, label="unstable cell of the grid"))
     zones = _zone_bars(axs[0], smap, float(smap.masses[-1]))
