@@ -129,3 +129,15 @@ def test_stability_map_terminal_prints_numbers_with_units(capsys):
     assert "{" not in out and "'" not in out and not re.search(r"(?<![\w.])-0(?![.\d])", out), out
     assert re.search(r"^min_decay_rate +\d[\d.e+-]* 1/s$", out, re.M), out
     assert "max_degree" not in out and "eta_M_range" not in out  # dimensionless, not asked for
+
+
+def test_critical_velocity_of_si_parameters_is_in_si(capsys):
+    """Eq. (65) without a shear layer: alpha_cr = 1 at p_cr = sqrt(2), so v_cr = v_ref and the critical
+    wavelength is 2 pi / (sqrt(2) chi) (Eq. (16)); no group is printed."""
+    assert main(["critical-velocity", "--file", str(FILE)]) == 0
+    out = capsys.readouterr().out
+    first = out.splitlines()[0].split()
+    assert (
+        first[:3] == ["v_cr", f"{V_REF:.6f}", "m/s"] and first[4] == f"{2 * np.pi / (np.sqrt(2) * CHI):.5g}"
+    )
+    assert "alpha" not in out and "p_cr" not in out, out
