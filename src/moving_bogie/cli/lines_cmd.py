@@ -309,7 +309,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
             (lo, hi), name = axis["range"], axis["name"]
             print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {axis['count']} points")
         for cell in summary["uncertain"]:
-            print("uncertain cell     " + ", ".join(f"{k} = {v:.6g}" for k, v in cell.items()))
+            print("uncertain cell     " + ", ".join(units.legend(k, v) for k, v in cell.items()))
     return 0
 
 
