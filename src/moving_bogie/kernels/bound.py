@@ -3,14 +3,16 @@
 The entry points (the Python API of :mod:`moving_bogie.api`, the commands, the paper's recipes) call
 :func:`bind` once; every function and kernel of ``kernels/``, ``roots/``, ``response/``, ``validation/``,
 ``stability/`` and ``sweep/`` takes the :class:`BoundModel` (``bound: BoundModel``) and never binds again.
-Another vehicle or track is another bound model: ``bound.replace(vehicle=...)``, or a foundation module
-given beside the parameters (``BoundModel(params, foundation=Foundation(module, values))``). It plays the
+Another vehicle or track is another bound model: ``bound.replace(vehicle=...)``, a foundation module
+given beside the parameters (``BoundModel(params, foundation=Foundation(module, values))``), or another
+kind of track (``BoundModel(params, track=MyTrack)``, :mod:`moving_bogie.kernels.track_model`). It plays the
 part of PyBaMM's ``Simulation``, which binds a model to its parameter values once.
 """
 
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from fractions import Fraction
 from types import ModuleType, SimpleNamespace
 from typing import TYPE_CHECKING, Any, cast
@@ -19,7 +21,9 @@ import mpmath
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.kernels.foundation import Foundation
+from moving_bogie.kernels.track_model import Track
 from moving_bogie.kernels.vehicle import VehicleSystem
 
 if TYPE_CHECKING:
@@ -27,7 +31,10 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import PhysicalParams
 
-__all__ = ["BoundModel", "Foundation", "bind"]
+__all__ = ["BoundModel", "Foundation", "TrackFactory", "bind"]
+
+#: How a bound model makes its track: a callable of the bound model (a track class, ``MyTrack(bound)``).
+TrackFactory = Callable[["BoundModel"], Track]
 
 
 class BoundModel:
@@ -40,7 +47,9 @@ class BoundModel:
     - ``foundation_model``: the track as a :class:`~moving_bogie.kernels.foundation.Foundation`, the
       generated foundation module of the parameters' OWN catalogue (a catalogue loaded with
       :func:`~moving_bogie.model.catalogue.load_catalogue` reaches its own kernels; no name is looked up),
-      or the one given as ``foundation`` with the values of the groups the parameters do not carry.
+      or the one given as ``foundation`` with the values of the groups the parameters do not carry;
+    - ``track_factory``: what makes :attr:`track` of the bound model (the ``track`` given, else
+      :class:`~moving_bogie.kernels.continuous_track.ContinuousTrack`).
 
     It caches (computed on first use, kept for its life):
 
@@ -50,6 +59,8 @@ class BoundModel:
     - ``float_system``: the vehicle's :class:`~moving_bogie.kernels.vehicle.VehicleSystem` in double
       precision, and :meth:`vehicle_system` one per mpmath precision;
     - ``positions``, ``offsets``: the contact positions xi_j and their distinct differences (floats);
+    - ``track``: the :class:`~moving_bogie.kernels.track_model.Track` that gives the rail-side receptance,
+      the search region, the far field, the cuts and the smeared track (made once by ``track_factory``);
     - ``kernel_decay``, ``polynomial_degrees``: gamma of K = O(|q|^-gamma) (``KERNEL_DECAY`` of the track)
       and the degrees of E_chr in the vehicle's groups (``POLYNOMIAL_DEGREES``).
 
@@ -60,6 +71,9 @@ class BoundModel:
     foundation : Foundation or module, optional
         The track model when it is not that of ``params.model`` (a generated module, or a module with the
         values of its extra groups).
+    track : callable, optional
+        The kind of track, a callable of the bound model that returns its
+        :class:`~moving_bogie.kernels.track_model.Track` (default: a continuous track on ``foundation``).
 
     Examples
     --------
@@ -71,9 +85,14 @@ class BoundModel:
 
     params: DimensionlessParams
     foundation_model: Foundation
+    track_factory: TrackFactory
 
     def __init__(
-        self, params: DimensionlessParams, *, foundation: Foundation | ModuleType | None = None
+        self,
+        params: DimensionlessParams,
+        *,
+        foundation: Foundation | ModuleType | None = None,
+        track: TrackFactory | None = None,
     ) -> None:
         if not hasattr(params, "model") or not hasattr(params, "as_float"):
             raise ParameterError(
@@ -88,10 +107,13 @@ class BoundModel:
             self.foundation_model = (
                 foundation if isinstance(foundation, Foundation) else Foundation(foundation)
             )
+        self.track_factory = ContinuousTrack if track is None else track
         self._systems: dict[int, VehicleSystem] = {}
 
     def __repr__(self) -> str:
         extra = "" if self._override is None else f", foundation={self._override!r}"
+        if self.track_factory is not ContinuousTrack:
+            extra += f", track={getattr(self.track_factory, '__qualname__', self.track_factory)!r}"
         return f"BoundModel({self.params!r}{extra})"
 
     def __eq__(self, other: object) -> bool:
@@ -99,15 +121,26 @@ class BoundModel:
             isinstance(other, BoundModel)
             and other.params == self.params
             and other.foundation_model == self.foundation_model
+            and other.track_factory == self.track_factory
         )
 
     def __hash__(self) -> int:
         return hash(self.params)
 
     def __reduce__(self) -> tuple[Any, ...]:
-        if self._override is None:
+        options = self._options()
+        if not options:
             return (BoundModel, (self.params,))
-        return (functools.partial(BoundModel, foundation=self._override), (self.params,))
+        return (functools.partial(BoundModel, **options), (self.params,))
+
+    def _options(self, keep_foundation: bool = True) -> dict[str, Any]:
+        """The keyword arguments given at construction beside the parameters (None ones left out)."""
+        out: dict[str, Any] = {}
+        if self._override is not None and keep_foundation:
+            out["foundation"] = self._override
+        if self.track_factory is not ContinuousTrack:
+            out["track"] = self.track_factory
+        return out
 
     # --- the model ----------------------------------------------------------------------------------
     @property
@@ -134,14 +167,20 @@ class BoundModel:
         """A new bound model with some parameters (or the model's names) changed, as ``params.replace``.
 
         A foundation given at construction is kept, unless the beam or the track changes (then the new
-        model's own).
+        model's own); the kind of track (``track``) is kept.
         """
-        keep = self._override if not {"beam", "track"} & set(changes) else None
-        return BoundModel(self.params.replace(**changes), foundation=keep)
+        options = self._options(keep_foundation=not {"beam", "track"} & set(changes))
+        return BoundModel(self.params.replace(**changes), **options)
 
     def with_foundation(self, foundation: Foundation | ModuleType) -> BoundModel:
         """The same parameters on another track model (a generated module, with values of its groups)."""
-        return BoundModel(self.params, foundation=foundation)
+        return BoundModel(self.params, **(self._options(keep_foundation=False) | {"foundation": foundation}))
+
+    @functools.cached_property
+    def track(self) -> Track:
+        """The track (:mod:`moving_bogie.kernels.track_model`): the rail-side receptance, the search
+        region, the far field, the cuts and the smeared track; made once by ``track_factory``."""
+        return self.track_factory(self)
 
     # --- numbers ------------------------------------------------------------------------------------
     @functools.cached_property

@@ -19,19 +19,21 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath
 import numpy as np
 from numpy.typing import ArrayLike
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.coefficient_matrix import Coefficients
 from moving_bogie.kernels.foundation import Foundation
 from moving_bogie.kernels.polynomial import derivative_coefficients, horner
 from moving_bogie.kernels.polyroots import poly_roots, polyder, polyval
 from moving_bogie.typing import ComplexArray, Mpc, Mpf
+
+if TYPE_CHECKING:
+    from moving_bogie.kernels.bound import BoundModel
 
 
 def foundation_arguments(bound: BoundModel, numbers: Any) -> dict[str, Any]:
