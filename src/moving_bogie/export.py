@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from moving_bogie.presentation import json_clean
+from moving_bogie.presentation import GroupUnits, json_clean
 
 if TYPE_CHECKING:
     import pandas
@@ -144,9 +144,7 @@ def frequencies_dataset(result: FrequencyResult) -> xarray.Dataset:
 def map_dataset(smap: StabilityMap) -> xarray.Dataset:
     """A :class:`~moving_bogie.stability.maps.map.StabilityMap` over its two axes, in SI (v [m/s], M [kg],
     rates [1/s]) when it has SI units, with the groups (alpha, eta_M) as coordinates beside them."""
-    from moving_bogie.stability.figures.plot_units import PlaneUnits
-
-    units = smap.units or PlaneUnits()
+    units = smap.units or GroupUnits()
     x, y = units.name("alpha"), units.name(smap.parameter)
     coords = {
         x: Variable((x,), units.value("alpha", smap.alphas), units.unit("alpha"), "velocity"),

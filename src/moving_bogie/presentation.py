@@ -12,7 +12,15 @@ from collections.abc import Iterable, Mapping
 from numbers import Real
 from typing import Any
 
-__all__ = ["field_lines", "json_clean", "number_text", "quantity", "quantity_text", "value_text"]
+__all__ = [
+    "GroupUnits",
+    "field_lines",
+    "json_clean",
+    "number_text",
+    "quantity",
+    "quantity_text",
+    "value_text",
+]
 
 
 def _is_number(x: object) -> bool:
@@ -87,3 +95,25 @@ def json_clean(data: Any) -> Any:
     if isinstance(data, list | tuple):
         return [json_clean(v) for v in data]
     return data
+
+
+class GroupUnits:
+    """A plane shown in its own dimensionless groups: the units of a result that has no SI units.
+
+    It answers as :class:`~moving_bogie.stability.figures.plot_units.PlaneUnits` does for the groups (the
+    same methods), so that a result shows itself through either without importing the figures.
+    """
+
+    si = False
+
+    def name(self, group: str) -> str:
+        return group
+
+    def unit(self, group: str) -> str:
+        return "1"
+
+    def value(self, group: str, x: Any) -> Any:
+        return x
+
+    def frequency(self, q: Any) -> Any:
+        return q

@@ -103,10 +103,9 @@ class StabilityMap:
         """Jupyter: the verdict over the grid first, then its axes, margin and uncertain cells (in SI for a
         map of SI parameters, :attr:`units`)."""
         from moving_bogie.html_repr import html_table
-        from moving_bogie.presentation import quantity_text
-        from moving_bogie.stability.figures.plot_units import PlaneUnits
+        from moving_bogie.presentation import GroupUnits, quantity_text
 
-        units = self.units or PlaneUnits()
+        units = self.units or GroupUnits()
         unstable, uncertain = int((self.count > 0).sum()), int(self.uncertain.sum())
         if unstable:
             verdict = f"UNSTABLE in {unstable} of {self.count.size} cells"
