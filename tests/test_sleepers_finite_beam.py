@@ -120,6 +120,23 @@ def test_stable_case_steady_force_within_one_percent(module):
     assert force.quantity == "steady force over a bay"
     assert force.relative < 0.01, force
     assert result.rate < 0  # the free vibration decays
+    _figure_in_si(result)
+
+
+def _figure_in_si(result) -> None:
+    """The figure in SI: times, forces, deflections and rates scaled by the units given, labelled with them
+    (scales chosen here, not a file's, so that each one is seen apart)."""
+    from moving_bogie.validation.sleepers_plots import CheckUnits, plot_sleeper_check
+
+    units = CheckUnits(t_scale=2.0, force=3.0, deflection=5.0, si=True)
+    ax_f, ax_e = plot_sleeper_check(result, units=units).axes
+    assert (ax_f.get_xlabel(), ax_f.get_ylabel()) == ("t [s]", "contact force [N]")
+    assert (ax_e.get_xlabel(), ax_e.get_ylabel()) == ("t [s]", "RMS of the deflection [m]")
+    finite = ax_f.get_lines()[0]
+    np.testing.assert_allclose(finite.get_xdata(), result.loaded.tau * 2.0)
+    assert np.mean(finite.get_ydata()) == pytest.approx(2 * 3.0, rel=0.05)  # the static load 2, as P / 2 = 3
+    fitted = [line.get_label() for line in ax_e.get_lines() if "fitted rate" in line.get_label()]
+    assert fitted == [f"finite rail, fitted rate {result.rate / 2.0:.5g} 1/s"]
 
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml"

@@ -10,6 +10,7 @@ from moving_bogie.cli.common import print_json, refuse_for_sleepers
 if TYPE_CHECKING:
     from moving_bogie.floquet.inputs import SleeperInput
     from moving_bogie.validation.sleepers_check import SleeperCheck
+    from moving_bogie.validation.sleepers_plots import CheckUnits
 
 #: options of ``validate`` that the continuous tracks' check takes and a sleeper file does not, and why
 _MODEL = "give the model in the file"
@@ -62,7 +63,8 @@ def run_sleeper_validation(args: argparse.Namespace) -> int:
         from moving_bogie.validation.sleepers_plots import plot_sleeper_check
 
         title = f"{data.beam}/{data.track}/{data.vehicle}, v = {data.physical['v']:g} m/s"
-        save_figure(plot_sleeper_check(result, title=title), args.plot, dpi=150)
+        figure = plot_sleeper_check(result, title=title, units=check_units(data))
+        save_figure(figure, args.plot, dpi=150)
     out = sleeper_check_dict(result, data)
     if args.plot:
         out["plot"] = str(args.plot)
@@ -73,6 +75,15 @@ def run_sleeper_validation(args: argparse.Namespace) -> int:
         if args.plot:
             print(f"figure written to {args.plot}")
     return 0 if result.agrees else 1
+
+
+def check_units(data: SleeperInput) -> CheckUnits:
+    """The SI scales of a sleeper file (docs/sleepers.md (S2)): t_scale [s], P / 2 [N] per unit of the static
+    load 2, w_st = P chi / (2 k_e) [m]."""
+    from moving_bogie.validation.sleepers_plots import CheckUnits
+
+    load = float(data.physical.get("P", 2.0))
+    return CheckUnits(data.t_scale, load / 2, load * data.chi / (2 * data.k_e), si=True)
 
 
 def sleeper_check_dict(result: SleeperCheck, data: SleeperInput) -> dict[str, Any]:
@@ -89,6 +100,8 @@ def sleeper_check_dict(result: SleeperCheck, data: SleeperInput) -> dict[str, An
             else ("1/s" if "rate" in item["quantity"] else "rad/s")
         )
         item["floquet_si"], item["finite_beam_si"] = item["floquet"] * scale, item["finite_beam"] * scale
+    out["finite_beam"]["dt_s"] = out["finite_beam"]["dt"] * data.t_scale
+    out["finite_beam"]["free_vibration_rate_per_s"] = result.rate / data.t_scale
     return out
 
 
@@ -98,7 +111,7 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
     lines = [
         f"model {out['model']}: finite rail of {fb['bays']} bays "
         f"({fb['elements_per_bay']} quintic elements per bay, "
-        f"{fb['unknowns']} unknowns, dt = {fb['dt']:.4g}) against the Floquet theory "
+        f"{fb['unknowns']} unknowns, dt = {fb['dt_s']:.4g} s) against the Floquet theory "
         f"(verdict {out['floquet_verdict']})",
         f"  {'quantity':<26}{'Floquet':>14}{'finite beam':>14}  {'unit':<6}{'rel. diff':>10}  within",
     ]
@@ -113,6 +126,9 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
     )
     t = out["timings"]
     lines.append(f"time: Floquet {t['floquet_s']:.2f} s, finite beam {t['finite_beam_s']:.2f} s")
+    lines.append(
+        f"free vibration on the finite rail: rate {fb['free_vibration_rate_per_s']:.4g} 1/s (< 0: decays)"
+    )
     lines += [f"NOTE: {note}" for note in out["notes"]]
     tol = out["comparisons"][0]["tolerance"] if out["comparisons"] else float("nan")
     lines.append(f"verdict: {'AGREE' if out['agrees'] else 'DISAGREE'} (every quantity within {tol:.3g})")
