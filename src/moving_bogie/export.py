@@ -52,10 +52,12 @@ class Variable:
 
     dims: tuple[str, ...]
     values: Any
-    unit: str
+    unit: str | None  # None: not a quantity (a text, a flag); no units attribute
     long_name: str
 
     def attrs(self) -> dict[str, str]:
+        if self.unit is None:
+            return {"long_name": self.long_name}
         units, scale = cf_unit(self.unit)
         out = {"units": units, "long_name": self.long_name}
         return out | ({"scale": scale} if scale else {})
@@ -93,8 +95,8 @@ def to_dataframe(dataset: xarray.Dataset, order: Sequence[str] | None = None) ->
     """The Dataset as a DataFrame indexed by its dimensions (``order``: their order), the units of every
     column and index level in ``attrs["units"]`` and the Dataset's attributes beside them."""
     frame = dataset.to_dataframe(dim_order=list(order) if order is not None else None)
-    names = list(dataset.variables)
-    frame.attrs = dict(dataset.attrs) | {"units": {n: dataset[n].attrs.get("units", "1") for n in names}}
+    units = {str(n): v.attrs["units"] for n, v in dataset.variables.items() if "units" in v.attrs}
+    frame.attrs = dict(dataset.attrs) | {"units": units}
     return frame
 
 
@@ -133,7 +135,7 @@ def frequencies_dataset(result: FrequencyResult) -> xarray.Dataset:
             "q_im": Variable(("root",), q.imag, "1", "Im q (< 0: grows)"),
         }
     variables |= {
-        "side": Variable(("root",), [r.side for r in roots], "", "side of the cut of K"),
+        "side": Variable(("root",), [r.side for r in roots], None, "side of the cut of K"),
         "multiplicity": Variable(("root",), [r.multiplicity for r in roots], "1", "multiplicity"),
         "digits": Variable(("root",), [r.digits for r in roots], "1", "digits confirmed at higher precision"),
     }
@@ -160,8 +162,8 @@ def map_dataset(smap: StabilityMap) -> xarray.Dataset:
     variables = {
         "degree": Variable(dims, units.frequency(smap.degree), rate, f"degree of instability, min {im}"),
         "unstable_count": Variable(dims, smap.count, "1", "induced frequencies with Im q < 0"),
-        "uncertain": Variable(dims, smap.uncertain, "1", "cell not certified"),
-        "settled": Variable(dims, smap.settled_cells, "1", "cell settled by a full count"),
+        "uncertain": Variable(dims, smap.uncertain, None, "cell not certified"),
+        "settled": Variable(dims, smap.settled_cells, None, "cell settled by a full count"),
     }
     if smap.margin is not None:
         variables["margin"] = Variable(dims, units.frequency(smap.margin), rate, f"margin, smallest {im}")
