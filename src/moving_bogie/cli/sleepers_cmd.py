@@ -25,7 +25,8 @@ def sleeper_settings(texts: list[str] | None) -> dict[str, float]:
 
 
 def run_sleeper_frequencies(args: argparse.Namespace) -> int:
-    """Every root with Im Omega <= 0 in one strip of width Omega_0 in rad/s, the harmonics, the verdict."""
+    """Every root in one strip of width Omega_0 up to the stated Im Omega in rad/s, the harmonics, the
+    verdict and a stable result's margin [1/s]."""
     import importlib
 
     from moving_bogie.errors import ParameterError
@@ -70,6 +71,9 @@ def run_sleeper_frequencies(args: argparse.Namespace) -> int:
         "count": result.count,
         "roots": roots,
         "verdict": result.verdict,
+        "margin_1_s": None if result.margin is None else result.margin * to_si,
+        "free_waves_im_rad_s": result.free_waves * to_si,
+        "unsearched": list(result.unsearched(to_si, " rad/s")),
         "notes": list(result.notes),
         "evaluations": result.evaluations,
     }
@@ -98,4 +102,7 @@ def format_sleeper_result(out: dict) -> str:
         for r in out["roots"]:
             lines.append(f"  {r['Omega_rad_s'][0]:18.10g}  {r['Omega_rad_s'][1]:18.10g}")
     lines.append(f"verdict: {out['verdict']}")
+    if out["margin_1_s"] is not None:
+        lines.append(f"margin: the least-damped vibration decays at {out['margin_1_s']:.6g} 1/s")
+    lines += [f"not searched: {band}" for band in out["unsearched"]]
     return "\n".join(lines)
