@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from moving_bogie.roots.proof.certify import Certificate
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
 
+from .checks import count, exact_number
 from .common import (
     PROG,
     add_json_option,
@@ -73,8 +74,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "  moving-bogie table2 --json\n  moving-bogie table2 --certify",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    table.add_argument("--decimals", type=int, default=6, help="decimals shown in the text table (default 6)")
-    table.add_argument("--dps", type=int, default=30, help="working precision in decimal digits (default 30)")
+    table.add_argument(
+        "--decimals", type=count(0, 30), default=6, help="decimals shown in the text table (default 6)"
+    )
+    table.add_argument(
+        "--dps",
+        type=count(15, 1000, "digits"),
+        default=30,
+        help="working precision in decimal digits (default 30)",
+    )
     _add_certify_option(table)
     add_json_option(table)
     table.set_defaults(handler=run_table2)
@@ -91,7 +99,10 @@ def _add_certify_option(parser: argparse._ActionsContainer) -> None:
 
 def _add_search_options(parser: argparse._ActionsContainer) -> None:
     parser.add_argument(
-        "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
+        "--dps",
+        type=count(15, 1000, "digits"),
+        default=30,
+        help="working precision in decimal digits (default 30)",
     )
     parser.add_argument(
         "--window",
@@ -122,9 +133,10 @@ def run_frequencies(args: argparse.Namespace) -> int:
     window = None
     if args.window:
         try:
-            x, y = (float(v) for v in args.window.split(","))
-        except ValueError:
-            raise ParameterError("window", f"window must be two numbers X,Y (got {args.window!r})") from None
+            x, y = (float(exact_number(v)) for v in args.window.split(","))
+        except ValueError as exc:
+            reason = str(exc) if "range" in str(exc) else f"got {args.window!r}"
+            raise ParameterError("window", f"window must be two numbers X,Y ({reason})") from None
         if not (x > 0 and y > 0):
             raise ParameterError("window", "window sizes must be positive")
 

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import TYPE_CHECKING
+from functools import partial
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -12,20 +13,25 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.line_results import InstabilityLines
+    from moving_bogie.stability.maps.map import StabilityMap
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.bar import bar_note, held_groups
 from moving_bogie.presentation import field_lines, json_clean, quantity
 
 from . import sleepers_map_cmd
+from .checks import count, nonnegative, positive, workers
 from .common import (
     PROG,
+    add_bar_option,
     add_json_option,
     add_output_option,
     print_json,
     si_input,
 )
+from .job_size import SHORTER, add_yes_option, estimate_grid
 from .outputs import add_figure_option
-from .progress import progress_bar
+from .progress import add_resume_option, checkpoint_options, progress_bar
 from .sleepers_map_cmd import sleeper_file
 from .stability_options import (
     RAW,
@@ -36,6 +42,11 @@ from .stability_options import (
     plane_units,
     save_figure,
 )
+
+#: The most grid points per axis of a stability map (--n); a map of over TIMED cells per axis is timed on
+#: one column before it starts (cli/job_size.py).
+MAX_N = 1000
+TIMED = 100
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -76,22 +87,23 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=True)
-    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=positive, default=200.0, metavar="X",
         help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
     )  # fmt: skip
     p.add_argument(
         "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
     )
-    p.add_argument("--q-max", type=float, default=1.5, help="largest real induced frequency searched")
+    p.add_argument("--q-max", type=positive, default=1.5, help="largest real induced frequency searched")
     p.add_argument(
         "--verify",
         action="store_true",
         help="count unstable roots (induced_frequencies) on both sides of each branch",
     )
     add_plane_options(p)
+    add_bar_option(p)
     add_figure_option(p, "--plot", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_instability_lines)
@@ -110,7 +122,7 @@ def run_instability_lines(args: argparse.Namespace) -> int:
     from moving_bogie.stability.lines.undamped_lines import KIND_TEXT
     from moving_bogie.stability.maps.undamped import MECHANISMS
 
-    with progress_bar("instability lines") as bar:
+    with progress_bar("instability lines", enabled=not args.json) as bar:
         res = instability_lines(
             bind(params),
             spacings=spacings,
@@ -120,12 +132,14 @@ def run_instability_lines(args: argparse.Namespace) -> int:
             q_max=args.q_max,
             verify=args.verify,
             progress=bar,
+            held=held_groups(params, args.bar),
         )
     if args.plot:
         fig = instability_figure(res, units, (alpha_min, alpha_max), theta_max)
         save_figure(fig, args.plot)
     if args.json:
-        print_json(units.with_si(res.to_dict()) | {"units": units.to_dict()})
+        note = {"bar": bar_note(params, args.bar, args.parameter)}
+        print_json(units.with_si(res.to_dict()) | {"units": units.to_dict()} | note)
     else:
         if units.si:
             print(_si_line(units, args.parameter, params))
@@ -201,30 +215,36 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
             "      --range M=0:3000 --n 100 --workers 2 --plot map.png --csv map.csv\n\n"
             "A file on a sleeper track (docs/sleepers.md): the unstable count of each cell from the\n"
             "D-decomposition in M at each velocity (none at M -> 0, then the signed crossings), checked by\n"
-            "floquet_frequencies at a few cells, beside the continuous track of the same smeared support."
+            "floquet_frequencies at a few cells, beside the continuous track of the same smeared support.\n\n"
+            "Every finished column is kept: after Ctrl-C, the same command with --resume computes only the\n"
+            "columns missing (kept under $MOVING_BOGIE_CACHE, else ~/.cache/moving-bogie, until the map\n"
+            "is done)."
         ),
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=False)
-    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=positive, default=200.0, metavar="X",
         help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
     )  # fmt: skip
     p.add_argument(
         "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
     )
-    p.add_argument("--n", type=int, default=200, help="grid points per axis (default 200)")
-    p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
+    p.add_argument("--n", type=count(2, MAX_N), default=200, help="grid points per axis (default 200)")
+    p.add_argument("--workers", type=workers, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
+    add_yes_option(p)
     add_plane_options(p)
+    add_bar_option(p)
     add_figure_option(p, "--plot", help="write the figure")
     add_output_option(p, "--npz", metavar="F.npz", formats=("npz",), help="save the arrays")
     add_output_option(
         p, "--out", folder=True, metavar="S.zarr", help="save as a 2-D sweep store (sweep-plot, xarray)"
     )
     p.add_argument("--overwrite", action="store_true", help="replace an existing --out store")
+    add_resume_option(p)
     add_output_option(
         p, "--csv", metavar="F.csv", formats=("csv",), help="save the cells as CSV (a sleeper track's file)"
     )
@@ -233,6 +253,15 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_stability_map(args: argparse.Namespace) -> int:
+    """``stability-map``: the jobs it runs (a map; on sleepers the continuous map beside it) keep their
+    parts until the command is done, so ``--resume`` after any of them computes only what is missing."""
+    from moving_bogie.checkpoint import kept_until_done
+
+    with kept_until_done():
+        return _stability_map(args)
+
+
+def _stability_map(args: argparse.Namespace) -> int:
     import numpy as np
 
     if sleeper_file(args):
@@ -245,12 +274,16 @@ def run_stability_map(args: argparse.Namespace) -> int:
 
     from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.lines.instability_lines import instability_lines
-    from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.stability.maps.map import map_columns, stability_map
 
     bound = bind(params)  # bound once: the map and its lines share it
+    held = held_groups(params, args.bar)
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
-    with progress_bar("stability map") as bar:
+    if args.n > TIMED:  # a long map says so before it starts
+        column = partial(map_columns, bound, args.parameter, [alphas[args.n // 2]], thetas, held=held)
+        estimate_grid("stability map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
+    with progress_bar("stability map", enabled=not args.json) as bar:
         smap = stability_map(
             bound,
             parameter=args.parameter,
@@ -258,16 +291,19 @@ def run_stability_map(args: argparse.Namespace) -> int:
             thetas=thetas.tolist(),
             workers=args.workers,
             progress=bar,
+            held=held,
+            **checkpoint_options(args),
         )
     lines = None
     if args.lines:
-        with progress_bar("instability lines") as bar:
+        with progress_bar("instability lines", enabled=not args.json) as bar:
             lines = instability_lines(
                 bound,
                 parameter=args.parameter,
                 alpha_range=(alpha_min, alpha_max),
                 theta_max=theta_max,
                 progress=bar,
+                held=held,
             )
     if args.npz:
         import io
@@ -285,32 +321,39 @@ def run_stability_map(args: argparse.Namespace) -> int:
         from moving_bogie.stability.figures.plots import plot_stability_map
 
         save_figure(plot_stability_map(smap, lines, units=units), args.plot)
-    summary = smap.summary()
-    summary["axes"] = {
-        "x": units.axis("alpha", smap.alphas[0], smap.alphas[-1], len(smap.alphas)),
-        "y": units.axis(args.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
-    }
-    summary = units.with_si(summary) | {"units": units.to_dict()}
-    if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
-        summary["max_growth_rate"] = quantity(units.frequency(summary["max_degree"]), "1/s")
-        if summary["min_decay_rate"] is not None:
-            summary["min_decay_rate"] = quantity(units.frequency(summary["min_decay_rate"]), "1/s")
-    summary = json_clean(summary)
+    summary = _map_summary(smap, units, bar_note(params, args.bar, args.parameter))
     if args.json:
         print_json(summary)
     else:
         if units.si:
             print(_si_line(units, args.parameter, params))
-        hidden = ["params", "uncertain", "axes", "units"]
+        hidden = ["params", "uncertain", "axes", "units", "bar"]
         if units.si:  # the groups' values, in SI on the lines below
             hidden += ["max_degree", "alpha_range", f"{args.parameter}_range"]
         print("\n".join(field_lines(summary, skip=hidden)))
         for key, axis in summary["axes"].items():
             (lo, hi), name = axis["range"], axis["name"]
-            print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {axis['count']} points")
+            note = f" ({axis['note']})" if "note" in axis else ""
+            points = f"{axis['count']} points{note}"
+            print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {points}")
         for cell in summary["uncertain"]:
             print("uncertain cell     " + ", ".join(units.legend(k, v) for k, v in cell.items()))
     return 0
+
+
+def _map_summary(smap: StabilityMap, units: PlaneUnits, bar: dict[str, str] | None) -> dict[str, Any]:
+    """The map's summary with its axes in ``units``, the rule of the bar, and in SI the rates in 1/s."""
+    summary = smap.summary()
+    summary["axes"] = {
+        "x": units.axis("alpha", smap.alphas[0], smap.alphas[-1], len(smap.alphas)),
+        "y": units.axis(smap.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
+    }
+    summary = units.with_si(summary) | {"units": units.to_dict(), "bar": bar}
+    if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
+        summary["max_growth_rate"] = quantity(units.frequency(summary["max_degree"]), "1/s")
+        if summary["min_decay_rate"] is not None:
+            summary["min_decay_rate"] = quantity(units.frequency(summary["min_decay_rate"]), "1/s")
+    return json_clean(summary)
 
 
 def _si_line(units: PlaneUnits, parameter: str, params: DimensionlessParams) -> str:

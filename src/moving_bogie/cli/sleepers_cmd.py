@@ -12,15 +12,14 @@ def sleeper_settings(texts: list[str] | None) -> dict[str, float]:
     """``--set NAME=VALUE`` as SI floats, the overrides of a sleeper file's ``[physical]`` values."""
     from moving_bogie.errors import ParameterError
 
+    from .checks import exact_number, named_values
+
     out: dict[str, float] = {}
-    for text in texts or ():
-        name, eq, value = text.partition("=")
+    for name, value in named_values(texts or (), "--set", "NAME=NUMBER").items():
         try:
-            out[name.strip()] = float(value)
-        except ValueError:
-            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER") from None
-        if not eq or not name.strip():
-            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER")
+            out[name] = float(exact_number(value))
+        except ValueError as exc:
+            raise ParameterError("--set", f"--set {name}={value}: expected NAME=NUMBER ({exc})") from None
     return out
 
 
@@ -72,6 +71,7 @@ def run_sleeper_frequencies(args: argparse.Namespace) -> int:
         "roots": roots,
         "verdict": result.verdict,
         "margin_1_s": None if result.margin is None else result.margin * to_si,
+        "margin_source": result.margin_source,
         "free_waves_im_rad_s": result.free_waves * to_si,
         "unsearched": list(result.unsearched(to_si, " rad/s")),
         "notes": list(result.notes),
@@ -103,6 +103,9 @@ def format_sleeper_result(out: dict) -> str:
             lines.append(f"  {r['Omega_rad_s'][0]:18.10g}  {r['Omega_rad_s'][1]:18.10g}")
     lines.append(f"verdict: {out['verdict']}")
     if out["margin_1_s"] is not None:
-        lines.append(f"margin: the least-damped vibration decays at {out['margin_1_s']:.6g} 1/s")
+        lines.append(
+            f"margin: the least-damped vibration decays at {out['margin_1_s']:.6g} 1/s "
+            f"({out['margin_source']})"
+        )
     lines += [f"not searched: {band}" for band in out["unsearched"]]
     return "\n".join(lines)

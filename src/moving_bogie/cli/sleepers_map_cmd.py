@@ -5,19 +5,24 @@ from __future__ import annotations
 
 import argparse
 import sys
-from fractions import Fraction
+from functools import partial
 from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 
+from .checks import named_values, value_range
 from .common import print_json, refuse_for_sleepers
-from .progress import progress_bar
+from .job_size import SHORTER, estimate_grid
+from .progress import checkpoint_options, progress_bar
 
 if TYPE_CHECKING:
     import numpy as np
 
     from moving_bogie.floquet.inputs import SleeperInput
     from moving_bogie.floquet.sleeper_map import SleeperMap
+
+#: a sleeper map of over TIMED cells per axis is timed on one column before it starts
+TIMED = 50
 
 #: the velocity and mass axes without --range, m/s and kg
 DEFAULT_RANGES = {"v": (20.0, 400.0), "M": (0.0, 3000.0)}
@@ -53,17 +58,10 @@ def _refuse_options(args: argparse.Namespace) -> None:
 
 def _ranges(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
     ranges = dict(DEFAULT_RANGES)
-    for text in args.range:
-        name, eq, spec = text.partition("=")
-        try:
-            lo, hi = (float(Fraction(x.strip())) for x in spec.split(":"))
-        except (ValueError, ZeroDivisionError):
-            raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI") from None
-        if not eq or not hi > lo:
-            raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI")
-        if name.strip() not in ranges:
-            raise ParameterError("--range", f"--range {name.strip()}: not an axis (known: v, M)")
-        ranges[name.strip()] = (lo, hi)
+    for name, spec in named_values(args.range, "--range", "NAME=LO:HI").items():
+        if name not in ranges:
+            raise ParameterError("--range", f"--range {name}: not an axis (known: v, M)")
+        ranges[name] = value_range(name, spec)
     if ranges["v"][0] <= 0:
         raise ParameterError("--range", "--range v: the velocities must be positive on a sleeper track")
     if ranges["M"][0] != 0:
@@ -79,11 +77,6 @@ def sleeper_plane(args: argparse.Namespace, n: int) -> tuple[SleeperInput, np.nd
 
     _refuse_options(args)
     ranges = _ranges(args)
-    workers = getattr(args, "workers", None)
-    if n < 2:
-        raise ParameterError("--n", f"--n must be at least 2 (got {n})")
-    if workers is not None and workers < 1:
-        raise ParameterError("--workers", f"--workers must be at least 1 (got {workers})")
     data = load_sleeper_file(args.file)
     if data.vehicle_groups.get("eta_M") is None or "M" not in data.physical:
         raise ParameterError("vehicle", f"vehicle {data.vehicle!r} has no wheel mass M")
@@ -124,7 +117,7 @@ def run_sleeper_lines(args: argparse.Namespace) -> int:
     from moving_bogie.floquet.sleeper_map import sleeper_map
 
     data, vs, ms = sleeper_plane(args, getattr(args, "n", 60))
-    with progress_bar("D-decomposition lines") as bar:
+    with progress_bar("D-decomposition lines", enabled=not args.json) as bar:
         smap = sleeper_map(data, vs, ms, verify=3 if args.verify else 0, progress=bar)
     return _report(args, data, smap, crossings=True, continuous=None)
 
@@ -137,12 +130,17 @@ def run_sleeper_map(args: argparse.Namespace) -> int:
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
 
     data, vs, ms = sleeper_plane(args, args.n)
+    if args.n > TIMED:  # a long map says so before it starts
+        middle = vs[args.n // 2 : args.n // 2 + 1]
+        column = partial(sleeper_map, data, middle, ms, verify=0, workers=1)
+        estimate_grid("sleeper map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
     physical = smeared_track(data)  # None: no continuous counterpart, the sleeper map alone
-    with progress_bar("sleeper map") as bar:
-        smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar)
+    kept = checkpoint_options(args)
+    with progress_bar("sleeper map", enabled=not args.json) as bar:
+        smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar, **kept)
     continuous: StabilityMap | None = None
     if physical is not None:
-        with progress_bar("continuous map") as bar:
+        with progress_bar("continuous map", enabled=not args.json) as bar:
             continuous = stability_map(
                 bind(physical.to_dimensionless()),
                 parameter="eta_M",
@@ -150,6 +148,7 @@ def run_sleeper_map(args: argparse.Namespace) -> int:
                 thetas=(ms / physical.si_factor("eta_M")).tolist(),
                 workers=args.workers,
                 progress=bar,
+                **kept,
             )
     return _report(args, data, smap, crossings=False, continuous=continuous)
 

@@ -56,8 +56,11 @@ def run_sleeper_validation(args: argparse.Namespace) -> int:
     track = SleeperTrack(data.beam, data.track, data.groups)
     module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
+    from .progress import progress_bar
+
     loads = static_loads(module, data.vehicle_groups)
-    result = check_sleepers(track, vehicle, loads, tol=args.tol, time_scale=data.t_scale)
+    with progress_bar("Floquet theory + finite rail", enabled=not args.json) as update:
+        result = check_sleepers(track, vehicle, loads, tol=args.tol, time_scale=data.t_scale, progress=update)
     if args.plot:
         from moving_bogie.response.plots import save_figure
         from moving_bogie.validation.sleepers_plots import plot_sleeper_check

@@ -4,16 +4,18 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.bar import bar_note
 from moving_bogie.presentation import field_lines
 
+from .checks import count, exact_number, named_values, workers
 from .common import (
+    add_bar_option,
     add_json_option,
     add_parameter_options,
     add_units_option,
@@ -22,8 +24,10 @@ from .common import (
     si_input,
     vary_texts,
 )
+from .job_size import check_points
 from .outputs import add_figure_option, add_output_option
-from .reporting import fail
+from .progress import counts_bar
+from .reporting import PROG, fail
 
 if TYPE_CHECKING:
     from moving_bogie.sweep.design import SweepSpec
@@ -47,7 +51,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "parameters are the SI ones (v in m/s, M in kg, ...; every other SI parameter fixed) and the\n"
             "store's coordinates are named and unitted so, the dimensionless groups kept beside them.\n"
             "A sleeper-track file (docs/sleepers.md) is swept over its [physical] names, each point one\n"
-            "Floquet strip search: count, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
+            "Floquet strip search: n_roots, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
             "harmonics, Omega0 [rad/s]."
         ),
         epilog=(
@@ -81,11 +85,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace an existing store")
     p.add_argument(
         "--workers",
-        type=int,
+        type=workers,
         metavar="N",
         help="local worker processes (default: one per core; under 1000 points run in this process)",
     )
     p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="use an existing Dask scheduler")
+    add_bar_option(p)
     p.add_argument("--roots", action="store_true", help="store the unstable roots of every point")
     p.add_argument(
         "--margin",
@@ -94,13 +99,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--check",
-        type=int,
+        type=count(0, 1_000_000),
         metavar="K",
         help="points per chunk verified by a full count (default 1; not on a sleeper track)",
     )
     p.add_argument(
         "--chunk-points",
-        type=int,
+        type=count(1, 10_000_000),
         metavar="N",
         help="points per chunk, about (default 2048; on a sleeper track 1: a point costs seconds)",
     )
@@ -138,64 +143,28 @@ def _register_plot(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _spec(args: argparse.Namespace) -> SweepSpec:
-    if args.workers is not None and args.workers < 1:
-        raise ParameterError("--workers", "--workers must be >= 1")
-    if args.workers is not None and args.scheduler:
+    if args.workers is not None and args.scheduler:  # their values: the argparse types of cli/checks.py
         raise ParameterError("--workers", "give either --workers or --scheduler, not both")
     check = 1 if args.check is None else args.check
     chunk_points = 2048 if args.chunk_points is None else args.chunk_points
-    if check < 0:
-        raise ParameterError("--check", "--check must be >= 0")
-    if chunk_points < 1:
-        raise ParameterError("--chunk-points", "--chunk-points must be >= 1")
     params, physical = params_from_args(args)
     physical = si_input(args, physical)
     vary = vary_texts(args.vary)
     options = dict(roots=args.roots, margin=args.margin, check=check, block_points=chunk_points)
+    options["bar"] = args.bar
 
     from moving_bogie.sweep.api import make_spec
     from moving_bogie.sweep.design import parse_sample
 
     sample = parse_sample(args.sample) if args.sample else None
+    if sample is not None:
+        check_points(sample, "--sample")
     return make_spec(params, vary, sample=sample, physical=physical, **options)
-
-
-@contextmanager
-def _points_bar(enabled: bool) -> Iterator[Callable[[int, int], None]]:
-    """A rich bar with points/s and ETA on an interactive stderr; a no-op callback otherwise."""
-    if not enabled or not sys.stderr.isatty():
-        yield lambda done, total: None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-    with Progress(
-        TextColumn("sweep"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TextColumn("{task.fields[rate]} points/s"),
-        TextColumn("ETA"),
-        TimeRemainingColumn(),
-        console=Console(stderr=True),
-        transient=True,
-    ) as bar:
-        task = bar.add_task("sweep", total=None, rate="-")
-        first: dict[Any, Any] = {}
-
-        def update(done: int, total: int) -> None:
-            import time
-
-            now = time.perf_counter()
-            first.setdefault("t", now)
-            first.setdefault("done", done)
-            rate = (done - first["done"]) / (now - first["t"]) if now > first["t"] else 0.0
-            bar.update(task, completed=done, total=total, rate=f"{rate:8.1f}")
-
-        yield update
 
 
 def run_sweep_cmd(args: argparse.Namespace) -> int:
     from moving_bogie.floquet.inputs import is_sleeper_file
+    from moving_bogie.sweep.api import discarded_if_empty
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
     from moving_bogie.sweep.store import open_sweep, read_store
 
@@ -210,9 +179,13 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
     else:
         continuous = _spec(args)
         spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
+    check_points(spec.size)  # a sweep's size is bounded before its store is created
     # every option is checked (and the store created) before any computation
     try:
-        with _points_bar(not args.json) as bar:
+        with (
+            discarded_if_empty(args.out, overwrite=args.overwrite),
+            counts_bar("sweep", "points", enabled=not args.json) as bar,
+        ):
             run = run_sweep(
                 spec,
                 args.out,
@@ -263,6 +236,13 @@ def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
         "check_disagreements": int((a["checked"] < 0).sum()),
         "units": {axis.label: store.units.get(axis.label, "1") for axis in spec.axes},
     }
+    varied = [axis.name for axis in spec.axes]
+    note = next(
+        (bar_note(spec.params, spec.bar, name) for name in varied if bar_note(spec.params, spec.bar, name)),
+        None,
+    )
+    if note is not None:  # what the bar did along a varied wheel mass
+        out["bar"] = note
     if "supercritical" in a:  # the points above the critical velocity of their track
         out["supercritical_points"] = int(a["supercritical"].sum())
     return out
@@ -270,20 +250,24 @@ def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
 
 def run_sweep_plot(args: argparse.Namespace) -> int:
     from moving_bogie.sweep.plots import plot_sweep_slice
-    from moving_bogie.sweep.store import open_sweep
+    from moving_bogie.sweep.store import missing_points, open_sweep
 
     from .stability_options import save_figure
 
     sel: dict[str, float] = {}
-    for text in args.sel:
-        name, eq, value = text.partition("=")
+    for name, value in named_values(args.sel, "--sel", "NAME=NUMBER").items():
         try:
-            sel[name.strip()] = float(value)
-        except ValueError:
-            raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER") from None
-        if not eq:
-            raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER")
+            sel[name] = float(exact_number(value))
+        except ValueError as exc:
+            raise ParameterError("--sel", f"--sel {name}={value}: {exc}") from None
     ds = open_sweep(args.store)
+    missing, total = missing_points(args.store)
+    if missing:
+        print(
+            f"{PROG}: warning: {args.store} is incomplete: {missing} of {total} points not computed (drawn "
+            "blank); run the sweep again with --resume to complete it",
+            file=sys.stderr,
+        )
     if ds.attrs.get("kind") == "sleepers":
         from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep
 

@@ -3,7 +3,8 @@
 The characteristic function (:mod:`moving_bogie.floquet.hill`) is periodic in q with period Omega_0, so the
 strip x0 <= Re q < x0 + Omega_0 holds one copy of every root (docs/sleepers.md, Eq. (S14)). Its roots with
 Im q <= top are counted by the argument principle on the rectangle [x0, x0 + Omega_0] x [-depth, top], with
-no starting guesses, located by bisection and polished by Newton's method; the count and the located roots
+no starting guesses, located by Newton's method from a grid of the window (or, failing that, by bisection)
+and polished; the count and the located roots
 are compared, and the whole is repeated with one more harmonic on each side until the count is the same and
 the roots move less than ``tol``. The receptance over real wavenumbers is analytic below the lowest Im q of
 the rail's free waves (Eq. (S15), :meth:`~moving_bogie.floquet.track.SleeperTrack.free_wave_floor`): ``top``
@@ -64,6 +65,23 @@ class FloquetResult:
         complete = not self.notes and len(self.roots) == self.count
         return "STABLE" if complete and all(r.q.imag > 0 for r in self.roots) else "UNDETERMINED"
 
+    @property
+    def _ceiling(self) -> float:
+        """The decay rate beyond which the window vouches for no vibration: the free waves' when the window
+        reaches 0.99 of it (the default), else the window's top (a root may lie above it)."""
+        return self.free_waves if self.window.y1 >= 0.99 * self.free_waves else self.window.y1
+
+    @property
+    def margin_source(self) -> str | None:
+        """What sets the margin: "a root", "the rail's free waves", or "the window's top" when the window
+        was stopped below them (the margin is then a lower bound); None without a margin."""
+        if self.margin is None:
+            return None
+        least = self.least_damped
+        if least is not None and least.q.imag <= self.margin:
+            return "a root"
+        return "the rail's free waves" if self._ceiling == self.free_waves else "the window's top"
+
     def unsearched(self, scale: float = 1.0, unit: str = "") -> tuple[str, ...]:
         """The band of the strip above the window that was not searched and why, Im q times ``scale`` (in
         ``unit``); it holds decaying vibrations only, so the verdict does not depend on it."""
@@ -95,12 +113,13 @@ class FloquetResult:
 
         The least-damped root's Im q, or the free waves' lowest Im q when that is smaller (or no root lies
         in the window): the rail's own free waves decay at that rate, and roots beyond it are not searched.
-        The window stops at 0.99 of the free waves' rate, so a root in the band left between would lower
-        the margin by less than 1 %.
+        The default window stops at 0.99 of the free waves' rate, so a root in the band left between would
+        lower the margin by less than 1 %; a window stopped lower gives its top instead (a lower bound).
         """
         if self.verdict != "STABLE":
             return None
-        rates = [r.q.imag for r in self.roots] + ([self.free_waves] if self.free_waves > 0 else [])
+        ceiling = self._ceiling
+        rates = [r.q.imag for r in self.roots] + ([ceiling] if ceiling > 0 else [])
         return min(rates) if rates else None
 
 
@@ -147,9 +166,7 @@ def _newton(
     return complex(q), float(abs(step))
 
 
-def _locate(
-    system: FloquetSystem, rect: Rectangle, n: int, cell: float, reach: float
-) -> list[complex]:
+def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float, reach: float) -> list[complex]:
     """Bisect ``rect`` (holding n roots) until each piece holds one root of size below ``cell``.
 
     In a piece that holds one root, Newton's method from its centre may wander through the window
@@ -220,7 +237,9 @@ def _roots_at(
     """Count in ``rect``, locate (or start from ``previous`` when the count is unchanged) and polish."""
     count = _count(system, rect)
     starts = (
-        previous if previous is not None and len(previous) == count else _locate(system, rect, count, cell, reach)
+        previous
+        if previous is not None and len(previous) == count
+        else _locate(system, rect, count, cell, reach)
     )
     system.tol = 1e-12
     polished = [_newton(system, q, rect, margin=reach) for q in starts]
@@ -318,4 +337,3 @@ def _default_top(track: SleeperTrack, floor: float) -> float:
     if floor > 0:
         return 0.99 * floor
     return 0.0 if float(track.groups.get("eta_f", 0.0)) > 0 else -1e-3 * track.Omega0
-

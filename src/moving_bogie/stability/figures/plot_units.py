@@ -63,6 +63,9 @@ class PlaneUnits:
         None: the figure draws alpha = 1 (Eq. (65) without a shear layer).
     base : dict
         The SI parameters of the input, as text (``PhysicalParams.to_dict``), for the figures' titles.
+    notes : dict
+        Group -> a note its axis label and JSON carry (what moves with the wheel mass: ``"M_b, J_b follow
+        M"``, :mod:`~moving_bogie.model.bar`).
     """
 
     names: dict[str, str] = field(default_factory=dict)
@@ -72,6 +75,7 @@ class PlaneUnits:
     operating: dict[str, float] = field(default_factory=dict)
     alpha_cr: float | None = None
     base: dict[str, str | None] = field(default_factory=dict)
+    notes: dict[str, str] = field(default_factory=dict)
 
     @classmethod
     def of(
@@ -117,8 +121,9 @@ class PlaneUnits:
         return shown / self.factors.get(group, 1.0)
 
     def label(self, group: str) -> str:
-        """Axis label: ``v [m/s]``, or the group's name."""
-        return f"{self.name(group)} [{self.unit(group)}]" if group in self.units else group
+        """Axis label: ``v [m/s]``, or the group's name, and its note (``M [kg] (M_b, J_b follow M)``)."""
+        text = f"{self.name(group)} [{self.unit(group)}]" if group in self.units else group
+        return f"{text} ({self.notes[group]})" if group in self.notes else text
 
     def legend(self, group: str, x: float) -> str:
         """Legend entry of one value: ``d = 2.5 m``, or ``d = 2.95544`` for a group."""
@@ -166,10 +171,11 @@ class PlaneUnits:
         shown = self.value("alpha", self.alpha_cr)
         return f"{self.name('alpha')}_cr = {shown:.6g}{unit} (critical velocity)"
 
-    def fixed_text(self, params: DimensionlessParams, parameter: str) -> dict:
+    def fixed_text(self, params: DimensionlessParams, parameter: str, held: tuple[str, ...] = ()) -> dict:
         """The parameters a plane (alpha, ``parameter``) holds fixed, as title text (SI values for an SI
         input, with their units; :func:`~moving_bogie.stability.figures.margin_plot.fixed_parameters`);
-        the groups Eq. (63) ties to ``parameter`` are said to follow it."""
+        the groups Eq. (63) ties to ``parameter`` are said to follow it, unless ``held``
+        (:mod:`~moving_bogie.model.bar`)."""
         from moving_bogie.stability.figures.margin_plot import fixed_parameters
 
         follow = {
@@ -177,7 +183,7 @@ class PlaneUnits:
                 meta["sets"]
             ): f"follows {self.name(parameter)} ({name} = {float(getattr(params, name)):.4g})"
             for name, meta in params.model.alternatives.items()
-            if parameter in meta["depends"]
+            if parameter in meta["depends"] and meta["sets"] not in held
         }
         values = self.base if self.si else params.to_dict()
         shown = {self.name("alpha"), self.name(parameter)}
@@ -218,6 +224,8 @@ class PlaneUnits:
         out: dict[str, Any] = {"name": self.name(group), "unit": self.unit(group)}
         out["range"] = [float(self.value(group, lo)), float(self.value(group, hi))]
         out["group"] = {"name": group, "range": [float(lo), float(hi)]}
+        if group in self.notes:
+            out["note"] = self.notes[group]
         return out | ({"count": count} if count is not None else {})
 
     def to_dict(self) -> dict:
