@@ -84,7 +84,8 @@ numpydoc_xref_param_type = False
 
 html_theme = "furo"
 html_title = "moving-bogie"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_css_files = ["tables.css"]  # tables wrap their text to the page's width
 html_theme_options = {"navigation_with_keys": True}
 nitpicky = False
 
@@ -162,7 +163,22 @@ def escape_bars(app, what, name, obj, options, lines) -> None:
         lines[k] = "".join(p if i % 2 else p.replace("|", "\\|") for i, p in enumerate(parts))
 
 
+#: Abbreviations a summary does not end at: autosummary takes a docstring's first sentence, and "Closed-form
+#: time series, Eqs. (35)-(43)." would otherwise read "Closed-form time series, Eqs.".
+SUMMARY_ABBREVIATIONS = ("Eq.", "Eqs.", "Fig.", "Figs.", "Sec.", "cf.", "approx.")
+
+
+def keep_abbreviations_in_summaries() -> None:
+    """Add :data:`SUMMARY_ABBREVIATIONS` to the abbreviations after which autosummary does not end a
+    sentence (``sphinx.ext.autosummary.WELL_KNOWN_ABBREVIATIONS``, read at each summary)."""
+    from sphinx.ext import autosummary
+
+    known = tuple(autosummary.WELL_KNOWN_ABBREVIATIONS)
+    autosummary.WELL_KNOWN_ABBREVIATIONS = known + tuple(a for a in SUMMARY_ABBREVIATIONS if a not in known)
+
+
 def setup(app) -> None:
+    keep_abbreviations_in_summaries()
     app.connect("autodoc-process-docstring", escape_bars, priority=400)
 
 

@@ -252,7 +252,13 @@ def _units_line(ts: TimeSeries) -> str:
             groups[-1][0].append(label)
         else:
             groups.append(([label], unit))
-    return f"units: tau [{ts.units['tau']}], " + ", ".join(f"{', '.join(g)} [{unit}]" for g, unit in groups)
+    time = f"{_time_name(ts)} [{ts.units['tau']}]"
+    return f"units: {time}, " + ", ".join(f"{', '.join(g)} [{unit}]" for g, unit in groups)
+
+
+def _time_name(ts: TimeSeries) -> str:
+    """``t`` for a series in seconds (SI parameters), else the dimensionless ``tau`` of Eq. (16)."""
+    return "t" if ts.units.get("tau") == "s" else "tau"
 
 
 def write_csv_series(ts: TimeSeries, path: str | os.PathLike[str]) -> None:
@@ -273,17 +279,23 @@ def format_series(
 ) -> str:
     """The readable series: summary lines, then one row per time (``rows``), then the notes; without the
     rows, one line saying where they went (``csv``, the data file) or were drawn (``plots``)."""
+    from moving_bogie.presentation import quantity_text
+
     bc = (
         "all times"
         if ts.branch_cut_until == float("inf")
-        else (f"tau <= {ts.branch_cut_until:g}" if ts.branch_cut else "not included")
+        else (
+            f"{_time_name(ts)} <= {quantity_text(ts.branch_cut_until, ts.units['tau'])}"
+            if ts.branch_cut
+            else "not included"
+        )
     )
     lines = [
         f"Closed-form response ({ts.model}); {len(ts.frequencies.roots)} induced-frequency pair(s); "
         f"branch-cut part: {bc}",
         "steady parts: " + "  ".join(f"{n} {v:.10g}" for n, v in ts.steady.items()),
         _units_line(ts),
-        f"{'tau':>14} " + " ".join(f"{n:>18}" for n in ts.responses),
+        f"{_time_name(ts):>14} " + " ".join(f"{n:>18}" for n in ts.responses),
     ]
     columns = [ts.tau, *ts.responses.values()]
     if rows:
