@@ -137,6 +137,10 @@ THEORY_PAGES = {
     "layered_tracks.html": 100,
     "stability.html": 150,
     "frequencies.html": 100,
+    "vibrations.html": 100,
+    "sweeps.html": 20,
+    "validation.html": 15,
+    "theory_to_code.html": 30,
 }
 
 
