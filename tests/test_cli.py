@@ -200,14 +200,20 @@ def test_models_lists_one_line_per_model_and_a_name_gives_its_parameters(capsys)
     models = default_catalogue().models()
     assert main(["models"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    # the catalogue's models, then the rails on discrete supports (docs/sleepers.md) after their heading
-    cut = next(i for i, line in enumerate(lines) if line.startswith("rails on discrete supports"))
-    listed = [line.split()[0] for line in lines[:cut] if line.startswith("  ")]
+    # one list: the rails on discrete supports (docs/sleepers.md) are models like the others
+    listed = [line.split()[0] for line in lines if line.startswith("  ")]
     assert listed == [model.name for model in models]
-    from moving_bogie.generated import sleepers
+    from moving_bogie.generated import VEHICLES, sleepers
 
-    discrete = [line.split()[0] for line in lines[cut:] if line.startswith("  ")]
-    assert discrete == [f"{beam}/{track}" for track in sleepers.TRACKS for beam in sleepers.BEAMS]
+    periodic = {
+        f"{beam}/{track}/{vehicle}"
+        for track in sleepers.TRACKS
+        for beam in sleepers.BEAMS
+        for vehicle in VEHICLES
+    }
+    assert periodic <= set(listed)
+    assert main(["models", "eb/sleepers/masses"]) == 0
+    assert "--lam" in capsys.readouterr().out
     bogie = next(model for model in models if model.vehicle == "bogie")
     assert main(["models", bogie.name]) == 0
     out = capsys.readouterr().out

@@ -23,7 +23,7 @@ from moving_bogie.model.physical import PhysicalParams, Scales
 
 #: Main entry points, imported on first use so that ``import moving_bogie`` (and the CLI) stays light.
 _LAZY = {
-    "bind": "kernels.bound",
+    "bind": "api",
     "BoundModel": "kernels.bound",
     "induced_frequencies": "api",
     "FrequencyResult": "roots.frequencies",

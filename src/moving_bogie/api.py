@@ -2,10 +2,10 @@
 
 Every function here accepts :class:`~moving_bogie.model.params.DimensionlessParams`,
 :class:`~moving_bogie.model.physical.PhysicalParams` (made dimensionless, its scales kept where the result
-has units) or a :class:`~moving_bogie.kernels.bound.BoundModel`, calls
-:func:`~moving_bogie.kernels.bound.bind` once and passes the bound model down; below this module nothing
-binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stability/`` and ``sweep/`` take
-``bound: BoundModel``). The options are those of the function each one calls, documented there.
+has units) or a :class:`~moving_bogie.kernels.bound.BoundModel`, calls :func:`bind` once (the bound model
+with the track of its model's kind, :data:`TRACK_KINDS`) and passes the bound model down; below this module
+nothing binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stability/`` and ``sweep/``
+take ``bound: BoundModel``). The options are those of the function each one calls, documented there.
 """
 
 from __future__ import annotations
@@ -13,7 +13,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
-from moving_bogie.kernels.bound import BoundModel, bind
+from moving_bogie.floquet.periodic_track import PeriodicTrack
+from moving_bogie.kernels.bound import BoundModel, TrackFactory
+from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
 
 if TYPE_CHECKING:
@@ -29,9 +31,12 @@ if TYPE_CHECKING:
     from moving_bogie.stability.maps.map import StabilityMap
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
+    from moving_bogie.stability.velocity.supercritical import SpeedRegime
     from moving_bogie.validation.verdict import ValidationResult
 
 __all__ = [
+    "TRACK_KINDS",
+    "bind",
     "bind_with_scales",
     "closed_form_response",
     "critical_stiffness",
@@ -42,9 +47,49 @@ __all__ = [
     "induced_frequencies",
     "instability_lines",
     "instability_lines_many",
+    "speed_regime",
     "stability_map",
     "validate",
 ]
+
+
+#: The track of each kind of foundation (its ``TRACK_KIND``; a generated foundation module without one is a
+#: continuous track, :class:`~moving_bogie.kernels.continuous_track.ContinuousTrack`). A new kind of track
+#: adds its class here (kernels/track_model.py says what the class provides).
+TRACK_KINDS: dict[str, TrackFactory] = {PERIODIC: PeriodicTrack}
+
+
+def bind(params: DimensionlessParams | PhysicalParams | BoundModel) -> BoundModel:
+    """The bound model of ``params`` on the track of its model's kind (a :class:`BoundModel` as it is).
+
+    Called once by each entry point; SI parameters are made dimensionless first (``to_dimensionless()``).
+
+    Examples
+    --------
+    >>> from moving_bogie import load_parameters
+    >>> params, _ = load_parameters("examples/sleepers.toml")
+    >>> bound = bind(params)
+    >>> bound.name, bound.track.search_region().kind
+    ('eb/sleepers/mass', 'strip')
+    """
+    if isinstance(params, BoundModel):
+        return params
+    dimensionless = params.to_dimensionless() if isinstance(params, PhysicalParams) else params
+    kind = getattr(dimensionless.model.foundation, "TRACK_KIND", None)
+    return BoundModel(dimensionless, track=TRACK_KINDS.get(kind) if kind is not None else None)
+
+
+def speed_regime(params: DimensionlessParams, physical: PhysicalParams | None = None) -> SpeedRegime:
+    """The speed against the track's critical velocity
+    (:func:`~moving_bogie.stability.velocity.supercritical.speed_regime`; on periodic supports that of the
+    smeared track, :func:`~moving_bogie.floquet.smeared.smeared_regime`)."""
+    if params.model.periodic:
+        from moving_bogie.floquet.smeared import smeared_regime
+
+        return smeared_regime(params, physical)
+    from moving_bogie.stability.velocity.supercritical import speed_regime as continuous
+
+    return continuous(params, physical)
 
 
 def bind_with_scales(
@@ -59,10 +104,17 @@ def bind_with_scales(
 def induced_frequencies(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> FrequencyResult:
-    """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies`."""
+    """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies` in
+    the window, or :func:`moving_bogie.floquet.frequencies.strip_frequencies` in one strip of a periodic
+    track (the search region of the bound model's track)."""
     from moving_bogie.roots.frequencies import induced_frequencies as run
 
-    return run(bind(params), **options)
+    bound = bind(params)
+    if bound.track.search_region().periodic:
+        from moving_bogie.floquet.frequencies import strip_frequencies
+
+        return strip_frequencies(bound, **options)
+    return run(bound, **options)
 
 
 def closed_form_response(

@@ -102,13 +102,10 @@ def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
 
     _check_dps(args.dps)
-    from moving_bogie.floquet.inputs import is_sleeper_file
-
-    if args.file is not None and is_sleeper_file(args.file):
-        from .sleepers_cmd import run_sleeper_frequencies
-
-        return run_sleeper_frequencies(args)
     params, physical = params_from_args(args)  # every input checked before the heavy imports
+    periodic = params.model.periodic
+    if periodic:
+        _refuse_on_a_strip(args)
     window = None
     if args.window:
         try:
@@ -118,21 +115,18 @@ def run_frequencies(args: argparse.Namespace) -> int:
         if not (x > 0 and y > 0):
             raise ParameterError("window", "window sizes must be positive")
 
-    from moving_bogie.kernels.bound import bind
+    from moving_bogie.api import bind, induced_frequencies, speed_regime
     from moving_bogie.roots.count.contour import Rectangle
     from moving_bogie.roots.damping_limit import damping_limit
-    from moving_bogie.roots.frequencies import induced_frequencies
-    from moving_bogie.stability.velocity.supercritical import speed_regime
 
     from .progress import progress_bar
 
     if args.window:
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
+    options = {} if periodic else {"dps": args.dps, "window": window, "certify": args.certify}
     with progress_bar("induced frequencies", enabled=not args.json) as update:
-        result = induced_frequencies(
-            bind(params), dps=args.dps, window=window, progress=update, certify=args.certify
-        )
-    limit = damping_limit(result)
+        result = induced_frequencies(bind(params), progress=update, **options)
+    limit = None if periodic else damping_limit(result)
     regime = speed_regime(params, physical)
     if args.json:
         data = with_si(result.to_dict(), result, physical)
@@ -151,6 +145,19 @@ def run_frequencies(args: argparse.Namespace) -> int:
         print(line, file=sys.stderr)
     proven = result.certificate is None or result.certificate.all_proven
     return 0 if result.count_ok and result.verdict.determined and proven else 1
+
+
+def _refuse_on_a_strip(args: argparse.Namespace) -> None:
+    """--window and --certify do not apply to a track on periodic supports (one message, exit status 2)."""
+    from moving_bogie.errors import ParameterError
+
+    if args.window:
+        raise ParameterError(
+            "window",
+            "--window does not apply to a sleeper track: it is searched in one strip of width Omega_0",
+        )
+    if args.certify:
+        raise ParameterError("certify", "--certify is not available on a sleeper track (periodic supports)")
 
 
 def _with_regime(verdict: Any, regime: SpeedRegime) -> Any:
@@ -174,6 +181,8 @@ def with_si(data: dict[str, Any], result: FrequencyResult, physical: PhysicalPar
     for entry, root in zip(data["roots"], result.roots):
         entry.update(root_in_si(root.q, t_scale, digits=min(12, root.digits)))
     data["si"] = {"t_scale_s": repr(t_scale), "physical": physical.to_dict(), "time_factor": "exp(i omega t)"}
+    if "region" in data and data["region"]["Omega_0"] is not None:
+        data["region"]["Omega_0_rad_s"] = data["region"]["Omega_0"] / t_scale
     return data
 
 
@@ -186,8 +195,9 @@ def format_si(result: FrequencyResult, physical: PhysicalParams) -> str:
     for k, root in enumerate(result.roots, 1):
         si = root_in_si(root.q, t_scale, digits=min(8, root.digits))
         growth = f", growth time {si['growth_time_s']} s" if si["growth_time_s"] else ""
+        pair = "" if result.periodic else "+-"
         lines.append(
-            f"  {k:>2} omega = +-{si['omega']['re']} + {si['omega']['im']}i rad/s, "
+            f"  {k:>2} omega = {pair}{si['omega']['re']} + {si['omega']['im']}i rad/s, "
             f"f = {si['frequency_hz']} Hz{growth}"
         )
     return "\n".join(lines)
@@ -197,11 +207,23 @@ def format_result(result: FrequencyResult) -> str:
     import mpmath
 
     lines = [f"Induced frequencies ({result.model}, {result.params.beam.upper()} beam), {result.dps} digits:"]
+    region = result.region
+    pair = "" if result.periodic else "+-"
+    if region is not None and region.periodic:
+        lines[0] = (
+            f"Induced frequencies ({result.model}, {result.params.beam.upper()} beam on "
+            f"{result.params.track}), "
+            f"one strip of width Omega_0 = {region.period:.6g}, harmonics {region.harmonics[0]}.."
+            f"{region.harmonics[-1]}, double precision:"
+        )
     lines.append(f"  {'':2}{'Re q':>36}  {'Im q':>36}  side   digits")
     for k, r in enumerate(result.roots, 1):
         flag = "unstable" if r.unstable else ("real" if r.marginal else "")
-        lines.append(f"  {k:<2}{'+-' + r.re_text:>36}  {r.im_text:>36}  {r.side:<5}  {r.digits:>3}  {flag}")
+        lines.append(f"  {k:<2}{pair + r.re_text:>36}  {r.im_text:>36}  {r.side:<5}  {r.digits:>3}  {flag}")
     lines.append(f"count (argument principle): {result.count}, found: {result.found}")
+    if region is not None and region.periodic:
+        w = result.window
+        lines.append(f"searched: {w.x0:.6g} <= Re q <= {w.x1:.6g}, {w.y0:.6g} <= Im q <= {w.y1:.6g}")
     if result.unsearched:
         height = max(u.height for u in result.unsearched)
         lines.append(
@@ -230,8 +252,9 @@ def format_result(result: FrequencyResult) -> str:
         )
     else:
         growth = mpmath.nstr(result.growth_time, 6)
+        kind = "root(s) in the strip" if result.periodic else "pair(s)"
         lines.append(
-            f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s); degree of instability "
+            f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable {kind}; degree of instability "
             f"{mpmath.nstr(result.degree_of_instability, 6)}, growth time 1/|Im q| = {growth}"
         )
     if result.certificate is not None:

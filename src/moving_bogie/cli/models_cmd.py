@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import textwrap
 from collections.abc import Sequence
-from typing import cast
 
 from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.model.catalogue import Model, default_catalogue
@@ -66,30 +65,16 @@ def format_summary(models: Sequence[Model]) -> str:
     lines = [f"{len(models)} models (beam/track/vehicle):"]
     for model in models:
         degrees = model.degrees
+        supports = "; periodic supports (one strip of width Omega_0)" if model.periodic else ""
         lines.append(
             f"  {model.name:<{width}}  N of degree {degrees['N_in_p']}, Q of degree {degrees['Q_in_p']} "
-            f"in p; {len(model.specs)} parameters"
+            f"in p; {len(model.specs)} parameters{supports}"
         )
     lines.append(
         "a model's parameters, their SI units and the per-rail convention of SI inputs: "
         "moving-bogie models NAME (every model: --verbose)"
     )
-    lines += format_sleeper_tracks()
     return "\n".join(lines)
-
-
-def format_sleeper_tracks() -> list[str]:
-    """The rails on discrete supports (docs/sleepers.md): each beam on each sleeper track, its SI inputs."""
-    from moving_bogie.generated import sleepers
-
-    lines = ["rails on discrete supports (Floquet; analysed by frequencies --file, any vehicle):"]
-    for track, meta in sleepers.TRACKS.items():
-        for beam in sleepers.BEAMS:
-            table = cast(dict[str, dict[str, str]], sleepers.PARAMETERS[track][beam])
-            names = ", ".join(spec["si"] for spec in table.values())
-            reference = cast(tuple[str, str, str], meta["reference"])  # (SI name, unit, meaning)
-            lines.append(f"  {beam}/{track}  SI: EI, m, {reference[0]}, {names}")
-    return lines
 
 
 def format_catalogue(models: Sequence[Model]) -> str:
@@ -103,6 +88,9 @@ def format_catalogue(models: Sequence[Model]) -> str:
             f"  vehicle: {model.catalogue.vehicles[model.vehicle]}",
             f"  N of degree {degrees['N_in_p']} and Q of degree {degrees['Q_in_p']} in p",
         ]
+        if model.periodic:
+            scales = ", ".join(f"{k} [{v['unit']}]" for k, v in model.scale_parameters.items())
+            lines.append(f"  on periodic supports (docs/sleepers.md); SI scale parameters: {scales}")
         width = max(len(spec.option) for spec in model.specs.values())
         for spec in model.specs.values():
             default = "required" if spec.default is None else f"default {spec.default}"

@@ -30,14 +30,10 @@ from pathlib import Path
 from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
-from moving_bogie.generated.sleepers import TRACKS as SLEEPER_TRACKS
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
-
-#: The commands that route a sleeper-track file to the Floquet analyses (cli/sleepers_*.py).
-SLEEPER_COMMANDS = ("frequencies", "timeseries", "validate", "stability-map", "instability-lines", "sweep")
 
 __all__ = ["dimensionless_keys", "load_parameters", "load_params_file", "parse_params_toml", "physical_keys"]
 
@@ -124,12 +120,6 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     if "dimensionless" in data and "physical" in data:
         raise ParameterError("physical", "give either a [dimensionless] or a [physical] table, not both")
     model = _table(data, "model", _MODEL_KEYS)
-    if model.get("track") in SLEEPER_TRACKS:
-        raise ParameterError(
-            "track",
-            f"track {model['track']!r} (a rail on discrete supports) is analysed by the commands "
-            f"{', '.join(SLEEPER_COMMANDS)} with --file (docs/sleepers.md), not by this one",
-        )
     if "physical" in data:
         if "case" in data:
             raise ParameterError(

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 import mpmath
 
 from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.track_model import SearchRegion
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import FarField
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, notes_with
@@ -94,6 +95,12 @@ class FrequencyResult:
     strip: StripCount | None = None  # the sliver below the real axis, counted (roots/count/strip.py)
     unlocated: tuple[Unlocated, ...] = ()  # roots counted in a cell but not located
     decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
+    region: SearchRegion | None = None  # one strip of width Omega_0 and its harmonics (None: the window)
+
+    @property
+    def periodic(self) -> bool:
+        """Whether the roots are those of one strip of a periodic track (no pairs q, -conj(q))."""
+        return self.region is not None and self.region.periodic
 
     @property
     def params(self) -> DimensionlessParams:
@@ -151,7 +158,7 @@ class FrequencyResult:
         params = self.params.to_dict()
         rows = [
             ("model", f"{params.get('beam')} beam, {params.get('track')} track, {self.model}"),
-            ("roots counted / found", f"{self.count} / {self.found} (Re q >= 0, pairs q, -conj(q) once)"),
+            ("roots counted / found", f"{self.count} / {self.found} ({self._counted_where})"),
             ("degree of instability", mpmath.nstr(self.degree_of_instability, 6)),
             (
                 "window",
@@ -165,26 +172,45 @@ class FrequencyResult:
             "induced frequencies", self.verdict.state.upper(), rows, reasons=reasons, items=(header, roots)
         )
 
+    @property
+    def _counted_where(self) -> str:
+        if self.region is not None and self.region.periodic:
+            return f"one strip of width Omega_0 = {self.region.period:.6g}, harmonics {self._harmonics}"
+        return "Re q >= 0, pairs q, -conj(q) once"
+
+    @property
+    def _harmonics(self) -> str:
+        h = self.region.harmonics if self.region is not None else (0,)
+        return f"{h[0]}..{h[-1]}"
+
     def to_dict(self) -> dict:
-        return {
-            "params": self.params.to_dict(),
-            "model": self.model,
-            "dps": self.dps,
-            "window": {"re": [self.window.x0, self.window.x1], "im": [self.window.y0, self.window.y1]},
-            "roots": [r.to_dict() for r in self.roots],
-            "count": self.count,
-            "found": self.found,
-            "count_ok": self.count_ok,
-            "verdict": self.verdict.to_dict(),
-            "stable": self.stable if self.verdict.determined else None,
-            "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
-            "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
-            "evaluations": self.evaluations,
-            "unsearched": [
-                {"re": [u.x0, u.x1], "im": [u.y0, u.y1], "height": u.height} for u in self.unsearched
-            ],
-            "far_field": None if self.far_field is None else self.far_field.to_dict(),
-            "warnings": list(self.warnings),
-            "decaying_outside": self.decaying_outside,
-            "strip": None if self.strip is None else self.strip.to_dict(),
-        } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
+        return (
+            {
+                "params": self.params.to_dict(),
+                "model": self.model,
+                "dps": self.dps,
+                "window": {"re": [self.window.x0, self.window.x1], "im": [self.window.y0, self.window.y1]},
+                "roots": [r.to_dict() for r in self.roots],
+                "count": self.count,
+                "found": self.found,
+                "count_ok": self.count_ok,
+                "verdict": self.verdict.to_dict(),
+                "stable": self.stable if self.verdict.determined else None,
+                "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
+                "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
+                "evaluations": self.evaluations,
+                "unsearched": [
+                    {"re": [u.x0, u.x1], "im": [u.y0, u.y1], "height": u.height} for u in self.unsearched
+                ],
+                "far_field": None if self.far_field is None else self.far_field.to_dict(),
+                "warnings": list(self.warnings),
+                "decaying_outside": self.decaying_outside,
+                "strip": None if self.strip is None else self.strip.to_dict(),
+            }
+            | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
+            | self._region_dict()
+        )
+
+    def _region_dict(self) -> dict:
+        """``region`` (the strip's ``Omega_0`` and ``harmonics``) on a periodic track, nothing on a window."""
+        return {"region": self.region.to_dict()} if self.region is not None and self.region.periodic else {}
