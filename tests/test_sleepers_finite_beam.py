@@ -133,11 +133,12 @@ EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml"
         (["--tmax", "50"], "--tmax"),
         (["--modes", "100"], "--modes"),
         (["--no-estimate"], "--no-estimate"),
-        (["--set", "v=50"], "--set"),
+        (["--set", "Mx=50"], "--set"),
     ],
 )
 def test_options_of_the_continuous_check_are_refused_by_name(capsys, extra, option):
-    """A sleeper file with an option that only the continuous tracks' check takes: one message naming the
+    """A sleeper file with an option that only the continuous tracks' check takes, or a --set of a name
+    the file's model does not have (--set itself applies, as on every track): one message naming the
     option, exit status 2, before any computation."""
     assert main(["validate", "--file", str(EXAMPLE), *extra]) == 2
     err = capsys.readouterr().err

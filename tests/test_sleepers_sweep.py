@@ -32,7 +32,7 @@ def _no_computation(monkeypatch: pytest.MonkeyPatch) -> None:
     "options, fragment",
     [
         (["--vary", "v=0:40:2"], "--vary v: v must be positive"),
-        (["--vary", "v=40:80:3", "--vary", "M=-1,600"], "--vary M: M must be positive"),
+        (["--vary", "v=40:80:3", "--vary", "M=-1,600"], "M must be a positive"),
         (["--vary", "P=1,2"], "unknown parameter 'P'"),
         (["--vary", "v=40:80"], "START:STOP:COUNT"),
         (["--vary", "v=40,50", "--case", "1"], "--case does not apply to a sleeper-track file"),

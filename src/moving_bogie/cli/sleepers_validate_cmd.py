@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 #: options of ``validate`` that the continuous tracks' check takes and a sleeper file does not, and why
 _MODEL = "give the model in the file"
 _NOT_HERE = {
-    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL, "set": _MODEL,
+    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL,
     "tmax": "the check runs its own times (growth over periods, a steady bay)",
     "no_correction": "the rail on sleepers is meshed in beam elements, not in truncated sine modes",
     "no_estimate": "the rail on sleepers has no second run of the error estimate",
@@ -32,15 +32,13 @@ def _refuse(args: argparse.Namespace) -> None:
         )
 
 
-def run_sleeper_validation(args: argparse.Namespace) -> int:
-    """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers`, printed."""
-    import importlib
+def run_sleeper_validation(args: argparse.Namespace, data: SleeperInput) -> int:
+    """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers` on the
+    parameters ``data`` (the file's, ``--set`` applied), printed."""
 
     from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.inputs import load_sleeper_file
 
     _refuse(args)
-    data = load_sleeper_file(args.file)
     if data.groups["alpha"] <= 0:
         raise ParameterError("v", "v must be positive on a sleeper track (the vehicle must cross the bays)")
     if data.beam != "eb":
@@ -54,7 +52,7 @@ def run_sleeper_validation(args: argparse.Namespace) -> int:
     from moving_bogie.validation.sleepers_check import check_sleepers
 
     track = SleeperTrack(data.beam, data.track, data.groups)
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    module = data.vehicle_kernels
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     result = check_sleepers(track, vehicle, static_loads(module, data.vehicle_groups), tol=args.tol)
     if args.plot:

@@ -15,7 +15,6 @@ displacements times ``w_st = P chi / (2 k_e)``, forces times ``P / 2`` (the stat
 
 from __future__ import annotations
 
-import importlib
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -207,7 +206,7 @@ def sleeper_series(
     if si["v"] <= 0:
         raise ParameterError("v", "v must be positive: the steady response over a bay needs a moving vehicle")
     track = SleeperTrack(data.beam, data.track, data.groups)
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    module = data.vehicle_kernels
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     loads = static_loads(module, data.vehicle_groups)
     steady = steady_response(track, vehicle, loads, tol=tol, points=129)

@@ -12,7 +12,6 @@ converged in the harmonics or a sign change not resolved is said in ``notes`` an
 from __future__ import annotations
 
 import csv
-import importlib
 import io
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -136,7 +135,7 @@ def mass_unit(data: SleeperInput) -> float:
 
 def column_at(data: SleeperInput, v: float, eta_max: float, N: int, samples: int) -> DColumn:
     """The D-decomposition column at velocity v [m/s] (one process's task)."""
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    module = data.vehicle_kernels
     track = SleeperTrack(data.beam, data.track, _groups(data, v))
     return d_column(mass_pencil(track, module, data.vehicle_groups, N), eta_max=eta_max, samples=samples)
 
@@ -148,7 +147,7 @@ def _columns(task: tuple[SleeperInput, list[float], float, int, int]) -> list[DC
 
 def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapCheck:
     """floquet_frequencies at (v, M): its count beside the map's."""
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    module = data.vehicle_kernels
     track = SleeperTrack(data.beam, data.track, _groups(data, v))
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | {"eta_M": M / mass_unit(data)})
     res = floquet_frequencies(track, vehicle)

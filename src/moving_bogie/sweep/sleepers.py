@@ -11,7 +11,6 @@ varied parameter, a Sobol design one dimension ``point``; the points are cut int
 
 from __future__ import annotations
 
-import importlib
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -168,7 +167,7 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
     from moving_bogie.floquet.strip import floquet_frequencies
     from moving_bogie.floquet.track import SleeperTrack
 
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{inp.vehicle}")
+    module = inp.vehicle_kernels
     result = floquet_frequencies(
         SleeperTrack(inp.beam, inp.track, inp.groups), VehicleMatrices.from_module(module, inp.vehicle_groups)
     )
