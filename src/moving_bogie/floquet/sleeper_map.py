@@ -129,8 +129,8 @@ def _groups(data: SleeperInput, v: float) -> dict:
 
 
 def mass_unit(data: SleeperInput) -> float:
-    """kg per unit of eta_M (eta_M is proportional to M: the file's M over its group)."""
-    return float(data.physical["M"] / data.vehicle_groups["eta_M"])
+    """kg per unit of the wheel mass group (proportional to M: the file's M over its group)."""
+    return float(data.physical["M"] / data.vehicle_groups[data.vehicle_kernels.WHEEL_MASS])
 
 
 def column_at(data: SleeperInput, v: float, eta_max: float, N: int, samples: int) -> DColumn:
@@ -149,7 +149,8 @@ def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapChe
     """floquet_frequencies at (v, M): its count beside the map's."""
     module = data.vehicle_kernels
     track = SleeperTrack(data.beam, data.track, _groups(data, v))
-    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | {"eta_M": M / mass_unit(data)})
+    wheel = {module.WHEEL_MASS: M / mass_unit(data)}
+    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | wheel)
     res = floquet_frequencies(track, vehicle)
     return MapCheck(v, M, map_count, res.count, res.verdict, res.converged)
 

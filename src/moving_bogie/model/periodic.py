@@ -121,6 +121,52 @@ class PeriodicFoundation:
     DEGREE_Q = 0
     DEGREE_N_IN_Q = None
 
+    # --- the generated functions of this beam and track (docs/sleepers.md, (S1)-(S2)) ------------------
+    @property
+    def symbol_groups(self) -> tuple[str, ...]:
+        """The groups of the beam's symbol N~, Q~ (arguments of :attr:`n_coeffs`, :attr:`q_coeffs`)."""
+        return tuple(self.module.BEAMS[self.beam]["groups"])
+
+    @property
+    def moving_groups(self) -> tuple[str, ...]:
+        """The groups of the moving symbol (arguments of :attr:`moving_n_coeffs` besides q, alpha)."""
+        return tuple(self.module.BEAMS[self.beam]["moving_groups"])
+
+    @property
+    def support_groups(self) -> tuple[str, ...]:
+        """The groups of the support's stiffness z(w) (arguments of :attr:`support`)."""
+        return tuple(self.module.TRACKS[self.track]["support_arguments"])
+
+    @property
+    def n_coeffs(self) -> Callable[..., Any]:
+        """N~(p, w) of the beam as a polynomial in p^2 (highest power first)."""
+        return getattr(self.module, f"n_coeffs_{self.beam}")
+
+    @property
+    def q_coeffs(self) -> Callable[..., Any]:
+        """Q~(p, w) of the beam as a polynomial in p^2 (highest power first)."""
+        return getattr(self.module, f"q_coeffs_{self.beam}")
+
+    @property
+    def moving_n_coeffs(self) -> Callable[..., Any]:
+        """N~(p, q + alpha p) as a polynomial in p (highest power first)."""
+        return getattr(self.module, f"moving_n_coeffs_{self.beam}")
+
+    @property
+    def moving_q_coeffs(self) -> Callable[..., Any]:
+        """Q~(p, q + alpha p) as a polynomial in p (highest power first)."""
+        return getattr(self.module, f"moving_q_coeffs_{self.beam}")
+
+    @property
+    def support(self) -> Callable[..., Any]:
+        """z(w) = (Z_s / l) / k_e of the track's supports."""
+        return getattr(self.module, f"support_{self._tag}")
+
+    @property
+    def support_polynomials(self) -> Callable[..., Any]:
+        """(numerator, denominator) of z(w) as polynomials in w (highest power first)."""
+        return getattr(self.module, f"support_polynomials_{self._tag}")
+
     # --- scaling ------------------------------------------------------------------------------------
     def scales(self, values: Mapping[str, Any], sqrt: Callable[[Any], Any]) -> tuple[Any, Any, Any, Any]:
         """(chi, v_ref, w_st, t_scale) of (S2) from the SI ``values`` (w_st = P chi / (2 k_e))."""
