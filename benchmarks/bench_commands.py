@@ -55,10 +55,11 @@ class Run:
     code: int
 
 
-def run_child(src: Path, argv: list[str]) -> Run:
-    """``moving-bogie argv`` in a child process with the package from ``src`` (one BLAS thread)."""
+def run_child(src: Path, argv: list[str], setup: str = "") -> Run:
+    """``moving-bogie argv`` in a child process with the package from ``src`` (one BLAS thread), after the
+    Python statements ``setup``."""
     env = dict(os.environ, PYTHONPATH=str(src), OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
-    code = "import sys; from moving_bogie.cli import main; sys.exit(main(sys.argv[1:]))"
+    code = setup + "import sys; from moving_bogie.cli import main; sys.exit(main(sys.argv[1:]))"
     with tempfile.TemporaryDirectory() as out:
         args = [a.replace("{out}", out) for a in argv]
         before = resource.getrusage(resource.RUSAGE_CHILDREN)

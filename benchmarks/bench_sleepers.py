@@ -1,17 +1,19 @@
-"""Benchmark one ``frequencies`` call on a rail on sleepers beside the continuous track of the same smeared
-stiffness, in one run.
+"""Benchmark ``frequencies`` on a rail on sleepers (every root of the strip down to the free waves, the
+verdict and a stable result's margin) beside the continuous track of the same smeared stiffness, in one run.
 
-Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sleepers.py [--file examples/sleepers.toml]
-[--repeat 3] [--against DIR] [--record]``. A script, not a test: nothing is asserted, the table is printed.
+Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sleepers.py [--repeat 3] [--against DIR] [--record]``.
+A script, not a test: nothing is asserted, the table is printed.
 
-The continuous track is the ``l -> 0`` limit of the file's (docs/sleepers.md): the paper's one-layer track
-with ``k_f = k_sup / l + k_f`` and ``c_f = c_sup / l + c_f``, the same rail, vehicle and speed, written to a
-temporary file. Each command runs as a fresh child process (``python -m moving_bogie frequencies --file
-... --json``); the table gives the least of ``--repeat`` runs of its CPU seconds (user + system of the child)
-and of its wall-clock seconds, the verdict and the roots counted (each search in its own window: the
-strip's Im Omega <= 0 on sleepers, the paper's window on the continuous track). The two tracks (and, with
-``--against``, the same commands with the package of another checkout, ``DIR/src``) are timed alternately,
-so that all see the same load.
+Two cases: ``examples/sleepers.toml`` (stable: its margin, the least-damped vibration's decay rate) and
+``examples/sleepers_zones.toml`` at ``v = 97.2881`` m/s, ``M = 1416`` kg (unstable: inside the principal
+parametric zone). The continuous track of each is its ``l -> 0`` limit (docs/sleepers.md): the paper's
+one-layer track with ``k_f = k_sup / l + k_f`` and ``c_f = c_sup / l + c_f``, the same rail, vehicle and
+speed; both are written to temporary files. Each command runs as a fresh child process (``python -m
+moving_bogie frequencies --file ... --json``); the table gives the least of ``--repeat`` runs of its CPU
+seconds (user + system of the child) and of its wall-clock seconds, the verdict, the roots counted (each
+search in its own window) and the margin [1/s] of a stable result. The tracks (and, with ``--against``,
+the same commands with the package of another checkout, ``DIR/src``) are timed alternately, so that all see
+the same load.
 """
 
 from __future__ import annotations
@@ -30,6 +32,26 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent.parent
 
 
+#: (name, file, [physical] values set) of the cases timed
+CASES = [
+    ("stable", "sleepers.toml", {}),
+    ("unstable", "sleepers_zones.toml", {"v": 97.2881, "M": 1416.0}),
+]
+
+
+def _write(model: dict, si: dict, out: Path) -> Path:
+    lines = ["[model]"] + [f'{k} = "{v}"' for k, v in model.items()] + ["", "[physical]"]
+    lines += [f"{k} = {float(v)!r}" for k, v in si.items()]
+    out.write_text("\n".join(lines) + "\n")
+    return out
+
+
+def sleeper_file(sleepers: Path, values: dict, out: Path) -> Path:
+    """The sleeper file with ``values`` set in its ``[physical]`` table."""
+    data = tomllib.loads(sleepers.read_text())
+    return _write(data["model"], dict(data["physical"]) | values, out)
+
+
 def continuous_file(sleepers: Path, out: Path) -> Path:
     """The one-layer track of the same smeared stiffness and damping as the sleeper file (l -> 0)."""
     data = tomllib.loads(sleepers.read_text())
@@ -40,10 +62,7 @@ def continuous_file(sleepers: Path, out: Path) -> Path:
     si["k_f"] = si.pop("k_sup") / bay + si.get("k_f", 0.0)
     si["c_f"] = si.pop("c_sup", 0.0) / bay + si.get("c_f", 0.0)
     model = {k: v for k, v in data["model"].items() if k != "track"}
-    lines = ["[model]"] + [f'{k} = "{v}"' for k, v in model.items()] + ["", "[physical]"]
-    lines += [f"{k} = {float(v)!r}" for k, v in si.items()]
-    out.write_text("\n".join(lines) + "\n")
-    return out
+    return _write(model, si, out)
 
 
 def run(src: Path, path: Path) -> tuple[float, float, dict]:
@@ -64,9 +83,17 @@ def run(src: Path, path: Path) -> tuple[float, float, dict]:
     return cpu, wall, json.loads(out)
 
 
+def margin(out: dict) -> str:
+    """The margin [1/s] of a stable result: the sleeper track's ``margin_1_s``, on the continuous track the
+    decay rate Im omega of its least-damped root; "-" for an unstable result."""
+    if "margin_1_s" in out:
+        return "-" if out["margin_1_s"] is None else f"{out['margin_1_s']:.4g}"
+    rates = [float(r["omega"]["im"]) for r in out.get("roots", []) if "omega" in r]
+    return f"{min(rates):.4g}" if rates and min(rates) > 0 else "-"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--file", type=Path, default=HERE / "examples" / "sleepers.toml")
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--against", type=Path, default=None, help="another checkout, timed alternately")
     from records import add_record_option
@@ -76,43 +103,54 @@ def main() -> None:
     checkouts = [("this", HERE / "src")] + (
         [(args.against.name, args.against / "src")] if args.against else []
     )
+    best: dict[tuple[str, str, str], list] = {}
     with tempfile.TemporaryDirectory() as tmp:
-        tracks = [("sleepers", args.file), ("one-layer", continuous_file(args.file, Path(tmp) / "c.toml"))]
-        best: dict[tuple[str, str], list] = {}
+        runs = []
+        for case, name, values in CASES:
+            path = sleeper_file(HERE / "examples" / name, values, Path(tmp) / f"{case}.toml")
+            smeared = continuous_file(path, Path(tmp) / f"c{case}.toml")
+            runs += [(case, "sleepers", path), (case, "one-layer", smeared)]
         for _ in range(args.repeat):
             for label, src in checkouts:
-                for track, path in tracks:
+                for case, track, path in runs:
                     cpu, wall, out = run(src, path)
-                    old = best.get((label, track))
-                    best[(label, track)] = [
+                    old = best.get((label, case, track))
+                    best[(label, case, track)] = [
                         min(cpu, old[0]) if old else cpu,
                         min(wall, old[1]) if old else wall,
                         out,
                     ]
-    print(f"frequencies --file {args.file.name} (least of {args.repeat} runs, fresh processes)")
-    print(f"{'checkout':<12}{'track':<12}{'CPU s':>8}{'wall s':>9}  {'verdict':<13}{'roots':>6}  harmonics")
-    for (label, track), (cpu, wall, out) in best.items():
+    print(f"frequencies --file (least of {args.repeat} runs, fresh processes)")
+    head = f"{'checkout':<12}{'case':<10}{'track':<12}{'CPU s':>8}{'wall s':>9}  {'verdict':<13}{'roots':>6}"
+    print(head + f"{'margin 1/s':>12}  harmonics")
+    for (label, case, track), (cpu, wall, out) in best.items():
         harmonics = out.get("harmonics")
         span = f"{harmonics[0]}..{harmonics[-1]}" if harmonics else "-"
         verdict = out["verdict"] if isinstance(out["verdict"], str) else out["verdict"]["state"].upper()
-        print(f"{label:<12}{track:<12}{cpu:>8.2f}{wall:>9.2f}  {verdict:<13}{out['count']:>6}  {span}")
+        print(
+            f"{label:<12}{case:<10}{track:<12}{cpu:>8.2f}{wall:>9.2f}  {verdict:<13}{out['count']:>6}"
+            f"{margin(out):>12}  {span}"
+        )
     if args.record:
-        record(args.file, best)
+        record(best)
 
 
-def record(path: Path, best: dict) -> None:
+def record(best: dict) -> None:
     """benchmarks/results/bench_sleepers.json: this checkout's sleeper track, the continuous one beside it."""
     from records import row, write_record
 
-    def cost(key: tuple[str, str]) -> str:
+    def cost(key: tuple[str, str, str]) -> str:
         cpu, wall, out = best[key]
         verdict = out["verdict"] if isinstance(out["verdict"], str) else out["verdict"]["state"].upper()
-        return f"{wall:.2f} s wall, {cpu:.2f} s CPU, {verdict}"
+        return f"{wall:.2f} s wall, {cpu:.2f} s CPU, {verdict}, margin {margin(out)} 1/s"
 
-    work = f"frequencies --file {path.name} (Floquet roots in one strip, converged in the harmonics)"
-    continuous = cost(("this", "one-layer"))
-    alternative = f"the continuous one-layer track of the same smeared stiffness: {continuous}"
-    rows = [row(work, cost(("this", "sleepers")), alternative, "< 5 s")]
+    rows = []
+    for (case, name, values), target in zip(CASES, ("< 3 s", "< 5 s")):
+        sets = "".join(f" --set {k}={v:g}" for k, v in values.items())
+        work = f"frequencies --file {name}{sets} (every root of the strip to the free waves, the margin)"
+        continuous = cost(("this", case, "one-layer"))
+        alternative = f"the continuous one-layer track of the same smeared stiffness: {continuous}"
+        rows.append(row(work, cost(("this", case, "sleepers")), alternative, target))
     write_record(__file__, "A rail on sleepers beside the continuous track", rows)
 
 

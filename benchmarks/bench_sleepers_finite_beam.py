@@ -16,6 +16,15 @@ run: its finite beam and its closed form timed apart).
 ``--convergence [unstable|example]``: the relative differences from the Floquet theory as the finite
 model is refined one setting at a time from the defaults (elements per bay, time steps per period, the
 rail beyond the wheel's path, the periods of the free run), the Floquet side computed once (N up to 6).
+
+``--zone``: the growth rate across the principal zones of ``examples/sleepers_zones.toml`` at v = 97.2881
+and 71.5 m/s (M from 5 kg inside one edge to 5 kg inside the other; the edges from ``moving-bogie
+instability-lines --file examples/sleepers_zones.toml --range v=70:100 --range M=0:3000``), Floquet against
+the finite rail at dt, at 2 dt and extrapolated to dt -> 0.
+
+``--before SRC``: ``moving-bogie validate --file`` on ``examples/sleepers.toml`` and on the zone example at
+three points of its zone, run by this checkout and by the package in ``SRC`` (another checkout's ``src``)
+side by side, one BLAS thread: CPU and wall seconds, exit status, the growth rate each finds.
 """
 
 from __future__ import annotations
@@ -23,6 +32,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import importlib
+import sys
 from pathlib import Path
 
 from moving_bogie.floquet.hill import VehicleMatrices
@@ -50,8 +60,27 @@ def unstable_case() -> tuple[SleeperTrack, VehicleMatrices, object]:
     return SleeperTrack("eb", "sleepers", UNSTABLE), vehicle, static_loads(vehicle_mass, values)
 
 
-def example_case() -> tuple[SleeperTrack, VehicleMatrices, object]:
-    data = load_sleeper_file(HERE / "examples" / "sleepers.toml")
+#: (v in m/s, M in kg) in the principal zones of examples/sleepers_zones.toml: at v = 97.2881 the zone is
+#: M = 1375..1458 kg, at v = 71.5 M = 2606..2769 kg (instability-lines, module doc)
+ZONE_POINTS = [("97.2881", m) for m in ("1380", "1390", "1400", "1416", "1440", "1453")] + [
+    ("71.5", m) for m in ("2612", "2685", "2760")
+]
+#: the points of ZONE_POINTS that ``--before`` validates with both codes
+VALIDATED = [("97.2881", "1400"), ("97.2881", "1416"), ("71.5", "2685")]
+
+
+def zone_file(folder: Path, v: str, M: str) -> Path:
+    """examples/sleepers_zones.toml with its v and M replaced, written in ``folder``."""
+    text = (HERE / "examples" / "sleepers_zones.toml").read_text()
+    path = folder / f"zones_v{v}_M{M}.toml"
+    path.write_text(text.replace("\nM = 600 ", f"\nM = {M} ").replace("\nv = 100 ", f"\nv = {v} "))
+    return path
+
+
+def example_case(
+    path: Path = HERE / "examples" / "sleepers.toml",
+) -> tuple[SleeperTrack, VehicleMatrices, object]:
+    data = load_sleeper_file(path)
     module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     return (
@@ -135,6 +164,52 @@ def convergence(which: str) -> None:
         _print(["setting"] + [c.quantity for c in check.comparisons] + ["finite beam [s]"], rows)
 
 
+def zone() -> None:
+    """The table of ``--zone`` (module doc)."""
+    import tempfile
+
+    rows = []
+    with tempfile.TemporaryDirectory() as folder:
+        for v, M in ZONE_POINTS:
+            path = zone_file(Path(folder), v, M)
+            scale = load_sleeper_file(path).t_scale
+            check = check_sleepers(*example_case(path), time_scale=scale)  # type: ignore[arg-type]
+            rate = check.comparisons[0]
+            assert check.coarse is not None, "the zone points are unstable"
+            rows.append(
+                [v, M]
+                + [f"{x / scale:.6g}" for x in (rate.floquet, check.fit.rate, check.coarse.rate, rate.finite)]
+                + [f"{100 * abs(check.fit.rate / rate.floquet - 1):.3f} %", f"{100 * rate.relative:.3f} %"]
+            )
+            print(f"  v = {v}, M = {M}: done", file=sys.stderr)
+    header = ["v [m/s]", "M [kg]", "-Im q [1/s]", "finite, dt", "finite, 2 dt", "finite, dt -> 0"]
+    _print(header + ["rel. diff at dt", "rel. diff at dt -> 0"], rows)
+
+
+def before_after(before: Path) -> None:
+    """The table of ``--before`` (module doc)."""
+    import json
+    import tempfile
+
+    from bench_commands import run_child
+
+    rows = [["file", "code", "CPU s", "wall s", "exit", "-Im q [1/s]", "finite beam [1/s]", "rel. diff"]]
+    with tempfile.TemporaryDirectory() as folder:
+        files = [("examples/sleepers.toml", HERE / "examples" / "sleepers.toml")] + [
+            (f"sleepers_zones.toml, v = {v}, M = {M}", zone_file(Path(folder), v, M)) for v, M in VALIDATED
+        ]
+        for label, path in files:
+            for who, src in (("before", before), ("this", HERE / "src")):
+                run = run_child(src, ["validate", "--file", str(path), "--json"])
+                first = json.loads(run.stdout)["comparisons"][0]
+                values = [f"{first['floquet_si']:.6g}", f"{first['finite_beam_si']:.6g}"]
+                values += [f"{100 * first['relative_diff']:.3f} % ({first['quantity']})"]
+                rows.append([label, who, f"{run.cpu:.2f}", f"{run.wall:.1f}", str(run.code), *values])
+                label = ""
+            print(f"  {path.name}: done", file=sys.stderr)
+    _print(rows[0], rows[1:])
+
+
 def _print(header: list[str], rows: list[list[str]]) -> None:
     widths = [max(len(str(r[i])) for r in [header, *rows]) for i in range(len(header))]
     for row in [header, *rows]:
@@ -152,9 +227,16 @@ def main() -> None:
     )
     from records import add_record_option
 
+    parser.add_argument("--zone", action="store_true", help="the rate across the zones of the zone example")
+    parser.add_argument("--before", metavar="SRC", type=Path, help="validate side by side with this src")
     add_record_option(parser)
     args = parser.parse_args()
-    convergence(args.convergence) if args.convergence else timing(args.record)
+    if args.zone:
+        zone()
+    elif args.before:
+        before_after(args.before)
+    else:
+        convergence(args.convergence) if args.convergence else timing(args.record)
 
 
 if __name__ == "__main__":

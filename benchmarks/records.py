@@ -4,16 +4,21 @@ A benchmark run with ``--record`` writes ``benchmarks/results/<script-stem>.json
 
     {"title": ..., "date": "YYYY-MM-DD",
      "machine": {"platform": ..., "processor": ..., "cores": ..., "memory_gib": ..., "python": ...},
-     "command": ..., "rows": [{"work": ..., "measured": ..., "alternative": ..., "target": ...}]}
+     "command": ..., "rows": [{"work": ..., "measured": ..., "alternative": ..., "target": ...}],
+     "sources": {"src/moving_bogie": "<hash>"}}
 
 ``work`` says what was run, ``measured`` what it cost (with its unit), ``alternative`` the same work done
-another way in the same run ("-" when none was run) and ``target`` the aim ("-" when there is none). The
-file is written atomically, so an interrupted run leaves the previous record in place.
+another way in the same run ("-" when none was run) and ``target`` the aim ("-" when there is none).
+``sources`` holds, for each folder of the repository whose code the benchmark measures, the hash of its
+files as they were when the record was made (:func:`source_hash`): the page marks a record stale when a
+hash no longer matches. The file is written atomically, so an interrupted run leaves the previous record in
+place.
 """
 
 from __future__ import annotations
 
 import datetime
+import hashlib
 import json
 import os
 import platform
@@ -21,7 +26,43 @@ import sys
 from pathlib import Path
 
 RESULTS = Path(__file__).resolve().parent / "results"
+ROOT = RESULTS.parent.parent
 FIELDS = ("work", "measured", "alternative", "target")
+#: The code a benchmark measures unless it names narrower folders: the whole package.
+PACKAGE = ("src/moving_bogie",)
+
+
+def source_hash(folder: str, root: Path = ROOT) -> str:
+    """SHA-256 of the files of ``folder`` (relative to ``root``) as they are on disk: every file git tracks
+    or would track there (untracked files too, ignored ones such as ``__pycache__`` not), each by its path
+    and bytes; every ``*.py`` file when ``root`` is not a git checkout. Any edit, committed or not, changes
+    it."""
+    import subprocess
+
+    try:
+        listed = subprocess.run(
+            ["git", "-C", str(root), "ls-files", "-co", "--exclude-standard", "-z", "--", folder],
+            capture_output=True,
+            check=True,
+        ).stdout.decode()
+        names = sorted(n for n in listed.split("\0") if n)
+    except (OSError, subprocess.CalledProcessError):
+        names = sorted(str(p.relative_to(root)) for p in (root / folder).rglob("*.py"))
+    digest = hashlib.sha256()
+    for name in names:
+        path = root / name
+        if path.is_file():  # a tracked file deleted on disk is left out
+            digest.update(name.encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()[:16]
+
+
+def stale_sources(record: dict, root: Path = ROOT) -> list[str] | None:
+    """The folders of ``record["sources"]`` whose files changed since the record was made; None when the
+    record names no sources (whether its code changed is unknown)."""
+    sources = record.get("sources")
+    if not sources:
+        return None
+    return [folder for folder, digest in sources.items() if source_hash(folder, root) != digest]
 
 
 def machine() -> dict:
@@ -62,10 +103,15 @@ def row(work: str, measured: str, alternative: str = "-", target: str = "-") -> 
 
 
 def write_record(
-    script: str, title: str, rows: list[dict], placeholders: dict[str, str] | None = None
+    script: str,
+    title: str,
+    rows: list[dict],
+    placeholders: dict[str, str] | None = None,
+    sources: tuple[str, ...] = PACKAGE,
 ) -> Path:
     """Write the record of the benchmark ``script`` (its ``__file__``); returns the path written.
-    ``placeholders``: arguments of the command shown as a name (a local path as ``SRC``)."""
+    ``placeholders``: arguments of the command shown as a name (a local path as ``SRC``); ``sources``: the
+    folders of the code measured, whose hashes the record keeps."""
     for r in rows:
         missing = [f for f in FIELDS if f not in r]
         if missing:
@@ -80,6 +126,7 @@ def write_record(
             + [(placeholders or {}).get(arg, arg) for arg in sys.argv[1:]]
         ),
         "rows": [{f: str(r[f]) for f in FIELDS} for r in rows],
+        "sources": {folder: source_hash(folder) for folder in sources},
     }
     RESULTS.mkdir(exist_ok=True)
     path = RESULTS / f"{stem}.json"

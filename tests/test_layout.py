@@ -469,6 +469,7 @@ def _model_names() -> set[str]:
 #: Beam or vehicle names the generic runtime keeps, each with its reason: (module, name).
 MODEL_NAMES_ALLOWED: dict[tuple[str, str], str] = {
     ("moving_bogie.floquet.track", "eb"): "the finite rail of the sleeper check has Euler-Bernoulli elements",
+    ("moving_bogie.floquet.track", "eb_axial"): "the free waves' damping floor is known on EB rails (S15)",
 }
 
 

@@ -92,8 +92,21 @@ def si_store(tmp_path_factory, uic60):
 
     params, physical = uic60
     out = tmp_path_factory.mktemp("store") / "s.zarr"
-    ds = sweep(params, {"v": "60,120", "M": "600,1400"}, out=out, physical=physical, check=0)
+    ds = sweep(params, {"v": "60,120", "M": "600,1400"}, out=out, physical=physical, check=0, margin=True)
     return out, ds, params, physical
+
+
+def test_a_sweep_measures_the_margin_only_when_asked(si_store, tmp_path):
+    """Without ``margin`` the store has no margin variables, and every other variable is the one the sweep
+    with the margin stores (the margin changes nothing else)."""
+    from moving_bogie.sweep.api import sweep
+
+    out, with_margin, params, physical = si_store
+    ds = sweep(params, {"v": "60,120", "M": "600,1400"}, out=tmp_path / "s.zarr", physical=physical, check=0)
+    assert "margin" not in ds and "margin_bound" not in ds
+    assert set(with_margin.data_vars) - set(ds.data_vars) == {"margin", "margin_bound"}
+    for name in ds.data_vars:
+        np.testing.assert_array_equal(ds[name].values, with_margin[name].values, err_msg=name)
 
 
 def test_store_keeps_the_margin_in_si_units(si_store):

@@ -13,6 +13,7 @@ Floquet theory: no harmonics, no receptance, no lattice sum. The references are
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -143,3 +144,58 @@ def test_options_of_the_continuous_check_are_refused_by_name(capsys, extra, opti
     assert main(["validate", "--file", str(EXAMPLE), *extra]) == 2
     err = capsys.readouterr().err
     assert option in err and err.count("\n") == 1, err
+
+
+ZONES = EXAMPLE.parent / "sleepers_zones.toml"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("v", "M", "independent"),
+    [
+        # -Im Omega in 1/s of an independent Floquet-Hill computation (a separate code) where it was made
+        ("97.2881", "1400", 2.90111),
+        ("97.2881", "1416", 3.22093),
+        ("71.5", "2685", None),
+    ],
+)
+def test_validate_agrees_inside_the_zone_of_the_example(tmp_path, capsys, v, M, independent):
+    """examples/sleepers_zones.toml at three points of its principal zone (1400 kg is 25 kg inside the lower
+    edge near 1375 kg, 1416 kg near the middle): ``validate`` exits 0, its growth rate and frequency within
+    1 % of the Floquet root's; the Floquet rate within 1e-5 of the independent one."""
+    text = ZONES.read_text().replace("\nM = 600 ", f"\nM = {M} ").replace("\nv = 100 ", f"\nv = {v} ")
+    path = tmp_path / "zone.toml"
+    path.write_text(text)
+    assert main(["validate", "--file", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    rate, frequency = out["comparisons"]
+    assert rate["quantity"] == "growth rate -Im q" and frequency["quantity"] == "dominant frequency"
+    assert rate["relative_diff"] < 0.01 and frequency["relative_diff"] < 0.01
+    assert rate["floquet_si"] > 0 and out["agrees"]
+    if independent is not None:
+        assert abs(rate["floquet_si"] / independent - 1) < 1e-5
+
+
+def test_the_verdict_line_states_the_numbers_it_judged():
+    """Each compared quantity with its two values, the unit, the difference and the tolerance."""
+    from moving_bogie.cli.sleepers_validate_cmd import format_sleeper_check
+
+    rows = [("growth rate -Im q", 2.90112, 2.90285, "1/s", 0.0006, True), ("x", 1.0, 1.5, "N", 0.5, False)]
+    out = {
+        "model": "eb/sleepers/mass",
+        "floquet_verdict": "UNSTABLE",
+        "agrees": False,
+        "finite_beam": {"bays": 57, "elements_per_bay": 8, "unknowns": 1369, "dt": 0.066},
+        "timings": {"floquet_s": 1.0, "finite_beam_s": 2.0},
+        "notes": [],
+        "comparisons": [
+            {"quantity": q, "floquet_si": a, "finite_beam_si": b, "unit_si": u, "relative_diff": r}
+            | {"tolerance": 0.01, "within": w}
+            for q, a, b, u, r, w in rows
+        ],
+    }
+    verdict = format_sleeper_check(out).splitlines()[-1]
+    assert verdict == (
+        "verdict: DISAGREE: growth rate -Im q 2.90112 (Floquet) vs 2.90285 (finite beam) 1/s: "
+        "0.060% <= 1.00%; x 1 (Floquet) vs 1.5 (finite beam) N: 50.000% > 1.00%"
+    )

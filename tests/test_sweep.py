@@ -210,6 +210,7 @@ def test_sobol_design_and_cli_json(tmp_path, capsys):
             "--check",
             "0",
             "--roots",
+            "--margin",
             "--out",
             str(out),
             "--json",
@@ -231,6 +232,8 @@ def test_sobol_design_and_cli_json(tmp_path, capsys):
         )
     )
     assert int(ds.n_unstable[k]) == len(ref.unstable_roots)
+    # --margin: the smallest Im q of the full count's roots
+    assert float(ds.margin[k]) == pytest.approx(min(float(r.q.imag) for r in ref.roots), rel=1e-9)
 
 
 @pytest.mark.slow

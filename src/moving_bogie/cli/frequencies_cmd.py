@@ -181,8 +181,12 @@ def with_si(data: dict[str, Any], result: FrequencyResult, physical: PhysicalPar
     for entry, root in zip(data["roots"], result.roots):
         entry.update(root_in_si(root.q, t_scale, digits=min(12, root.digits)))
     data["si"] = {"t_scale_s": repr(t_scale), "physical": physical.to_dict(), "time_factor": "exp(i omega t)"}
-    if "region" in data and data["region"]["Omega_0"] is not None:
-        data["region"]["Omega_0_rad_s"] = data["region"]["Omega_0"] / t_scale
+    if "region" in data:
+        region = data["region"]
+        region["Omega_0_rad_s"] = region["Omega_0"] / t_scale
+        waves = region["free_waves_im"]
+        region["free_waves_im_rad_s"] = None if waves is None else waves / t_scale
+        data["margin_1_s"] = None if result.margin is None else float(result.margin) / t_scale
     return data
 
 
@@ -199,6 +203,10 @@ def format_si(result: FrequencyResult, physical: PhysicalParams) -> str:
         lines.append(
             f"  {k:>2} omega = {pair}{si['omega']['re']} + {si['omega']['im']}i rad/s, "
             f"f = {si['frequency_hz']} Hz{growth}"
+        )
+    if result.margin is not None:
+        lines.append(
+            f"  margin: the least-damped vibration decays at {float(result.margin) / t_scale:.6g} 1/s"
         )
     return "\n".join(lines)
 
@@ -224,6 +232,10 @@ def format_result(result: FrequencyResult) -> str:
     if region is not None and region.periodic:
         w = result.window
         lines.append(f"searched: {w.x0:.6g} <= Re q <= {w.x1:.6g}, {w.y0:.6g} <= Im q <= {w.y1:.6g}")
+        if result.margin is not None:
+            lines.append(
+                f"margin: the least-damped vibration decays at Im q = {mpmath.nstr(result.margin, 6)}"
+            )
     if result.unsearched:
         height = max(u.height for u in result.unsearched)
         lines.append(

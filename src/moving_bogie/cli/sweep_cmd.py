@@ -87,6 +87,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="use an existing Dask scheduler")
     p.add_argument("--roots", action="store_true", help="store the unstable roots of every point")
     p.add_argument(
+        "--margin",
+        action="store_true",
+        help="store the stability margin of every point (smallest Im q; about 4x the time of the sweep)",
+    )
+    p.add_argument(
         "--check",
         type=int,
         metavar="K",
@@ -145,7 +150,7 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
     params, physical = params_from_args(args)
     physical = si_input(args, physical)
     vary = vary_texts(args.vary)
-    options = dict(roots=args.roots, check=check, block_points=chunk_points)
+    options = dict(roots=args.roots, margin=args.margin, check=check, block_points=chunk_points)
 
     from moving_bogie.sweep.api import make_spec
     from moving_bogie.sweep.design import parse_sample

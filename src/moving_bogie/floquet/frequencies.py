@@ -4,8 +4,10 @@
 docs/sleepers.md, Eq. (S14)) on the track and vehicle of a bound model and returns the
 :class:`~moving_bogie.roots.frequency_result.FrequencyResult` that a continuous track's search returns:
 the roots, the argument-principle count beside them, the notes (with the reason
-:attr:`~moving_bogie.roots.count.outcomes.Reason.STRIP`) and the verdict of
-:mod:`moving_bogie.roots.verdict`; its ``region`` holds Omega_0 and the harmonics.
+:attr:`~moving_bogie.roots.count.outcomes.Reason.STRIP`; the band above the window, which holds decaying
+vibrations only, with the reason ``BEYOND_WINDOW``) and the verdict of :mod:`moving_bogie.roots.verdict`;
+its ``region`` holds Omega_0, the harmonics and the free waves' lowest Im q, from which a stable result
+has its margin (:attr:`~moving_bogie.roots.frequency_result.FrequencyResult.margin`).
 
 The digits of each root are those the search confirmed by recomputation: the root moved by ``step`` when
 the last harmonic was added, and is a zero of the Hill determinant to ``residual``; the decimals printed
@@ -59,7 +61,9 @@ def strip_frequencies(
     found = floquet_frequencies(track.sleepers, vehicle, **options)
     roots = tuple(_induced(root) for root in found.roots)
     notes = tuple(Note(Reason.STRIP, text) for text in found.notes)
-    region = SearchRegion(STRIP, found.Omega0, tuple(int(n) for n in harmonic_set(found.harmonics)))
+    notes += tuple(Note(Reason.BEYOND_WINDOW, text) for text in found.unsearched())
+    harmonics = tuple(int(n) for n in harmonic_set(found.harmonics))
+    region = SearchRegion(STRIP, found.Omega0, harmonics, found.free_waves or None)
     if progress is not None:
         progress(1.0)
     return FrequencyResult(

@@ -152,7 +152,7 @@ def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapChe
     wheel = {module.WHEEL_MASS: M / mass_unit(data)}
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | wheel)
     res = floquet_frequencies(track, vehicle)
-    return MapCheck(v, M, map_count, res.count, res.verdict, res.converged)
+    return MapCheck(v, M, map_count, res.unstable_count, res.verdict, res.converged)
 
 
 def _verify_cells(

@@ -1,14 +1,17 @@
-"""Every induced frequency with Im q <= 0 in one strip of width Omega_0, converged in the harmonics.
+"""Every induced frequency in one strip of width Omega_0 up to a stated Im q, converged in the harmonics.
 
 The characteristic function (:mod:`moving_bogie.floquet.hill`) is periodic in q with period Omega_0, so the
 strip x0 <= Re q < x0 + Omega_0 holds one copy of every root (docs/sleepers.md, Eq. (S14)). Its roots with
-Im q <= 0 are counted by the argument principle on the rectangle [x0, x0 + Omega_0] x [-depth, top], with no
-starting guesses, located by bisection and polished by Newton's method; the count and the located roots are
-compared, and the whole is repeated with one more harmonic on each side until the count is the same and
-the roots move less than ``tol``. ``top`` is 0 when the rail is damped along its length (eta_f > 0), else
-slightly below the axis: the rail's pinned-pinned waves, undamped by the supports, put singular points of
-the receptance on the real axis (Eq. (S15)). The depth is doubled until a band as deep again below the
-window holds no root.
+Im q <= top are counted by the argument principle on the rectangle [x0, x0 + Omega_0] x [-depth, top], with
+no starting guesses, located by bisection and polished by Newton's method; the count and the located roots
+are compared, and the whole is repeated with one more harmonic on each side until the count is the same and
+the roots move less than ``tol``. The receptance over real wavenumbers is analytic below the lowest Im q of
+the rail's free waves (Eq. (S15), :meth:`~moving_bogie.floquet.track.SleeperTrack.free_wave_floor`): ``top``
+is 0.99 of that floor when it is known and positive, so that decaying roots below it are found too;
+0 when the rail is damped along its length but the floor is not known; slightly below the axis when the rail
+is undamped between the supports (its pinned-pinned waves put singular points of the receptance on the real
+axis). The band above ``top`` is not searched and the result says so. The depth is doubled until a band as
+deep again below the window holds no root.
 """
 
 from __future__ import annotations
@@ -38,7 +41,8 @@ class FloquetResult:
     """The roots with Im q <= top in the strip, with the count, the harmonics and the verdict's reasons.
 
     ``harmonics`` is N (the harmonics -N-1..N); ``converged`` says whether the roots and the count agreed
-    at N - 1 and N; ``notes`` say why a verdict is UNDETERMINED.
+    at N - 1 and N; ``notes`` say why a verdict is UNDETERMINED. ``free_waves`` is the lowest Im q of the
+    rail's free waves (the singular lines of the receptance, Eq. (S15); 0 when not known).
     """
 
     roots: tuple[FloquetRoot, ...]
@@ -49,27 +53,84 @@ class FloquetResult:
     Omega0: float
     evaluations: int
     notes: tuple[str, ...] = field(default=())
+    free_waves: float = 0.0
 
     @property
     def verdict(self) -> str:
-        """UNSTABLE when a root has Im q < 0, STABLE when none can, else UNDETERMINED."""
+        """UNSTABLE when a root has Im q < 0; STABLE when every counted root was located, decays
+        (Im q > 0) and the search left no note; else UNDETERMINED."""
         if any(r.q.imag < 0 for r in self.roots):
             return "UNSTABLE"
-        return "STABLE" if not self.notes and self.count == 0 else "UNDETERMINED"
+        complete = not self.notes and len(self.roots) == self.count
+        return "STABLE" if complete and all(r.q.imag > 0 for r in self.roots) else "UNDETERMINED"
+
+    def unsearched(self, scale: float = 1.0, unit: str = "") -> tuple[str, ...]:
+        """The band of the strip above the window that was not searched and why, Im q times ``scale`` (in
+        ``unit``); it holds decaying vibrations only, so the verdict does not depend on it."""
+        top = self.window.y1
+        if top < 0:
+            return ()
+        band = f"Im > {top * scale:.6g}{unit}"
+        if self.free_waves > top:
+            return (
+                f"{band}: the rail's free waves put singular lines of the receptance from Im = "
+                f"{self.free_waves * scale:.6g}{unit} up, and roots beyond them are not searched",
+            )
+        return (f"{band}: the lowest decay rate of this rail's free waves is not known",)
+
+    @property
+    def unstable_count(self) -> int:
+        """How many located roots have Im q < 0 (the count of unstable roots when every counted root was
+        located)."""
+        return sum(r.q.imag < 0 for r in self.roots)
+
+    @property
+    def least_damped(self) -> FloquetRoot | None:
+        """The located root with the smallest Im q (None when none was located)."""
+        return min(self.roots, key=lambda r: r.q.imag, default=None)
+
+    @property
+    def margin(self) -> float | None:
+        """A STABLE result's decay rate Im q of its least-damped vibration, else None.
+
+        The least-damped root's Im q, or the free waves' lowest Im q when that is smaller (or no root lies
+        in the window): the rail's own free waves decay at that rate, and roots beyond it are not searched.
+        The window stops at 0.99 of the free waves' rate, so a root in the band left between would lower
+        the margin by less than 1 %.
+        """
+        if self.verdict != "STABLE":
+            return None
+        rates = [r.q.imag for r in self.roots] + ([self.free_waves] if self.free_waves > 0 else [])
+        return min(rates) if rates else None
+
+
+#: the receptance's relative tolerance while counting: the winding number needs the phase of the
+#: determinant only, and an error of 1e-6 moves it by 1e-6 rad where |det| is not within 1e-6 of zero
+COUNT_TOL = 1e-6
 
 
 def _count(system: FloquetSystem, rect: Rectangle) -> int:
     spacing = min(rect.width, rect.height) / 12
-    return winding_number(system, rect, spacing=spacing, max_points=20_000)
+    kept, system.tol = system.tol, COUNT_TOL
+    try:
+        return winding_number(system, rect, spacing=spacing, max_points=20_000)
+    finally:
+        system.tol = kept
 
 
 def _newton(
-    system: FloquetSystem, q: complex, rect: Rectangle, margin: float = 0.0, max_iter: int = 40
+    system: FloquetSystem,
+    q: complex,
+    rect: Rectangle,
+    margin: float = 0.0,
+    max_iter: int = 40,
+    cap: float = np.inf,
 ) -> tuple[complex, float]:
     """Newton's method with a central-difference derivative; returns (q, abs(f / f')).
 
     An iterate that leaves ``rect`` widened by ``margin`` stops the iteration (residual inf): above the
-    window the receptance may be on the far side of its singularities.
+    window the receptance may be on the far side of its singularities. A step longer than ``cap`` is
+    shortened to it.
     """
     step = np.inf
     for _ in range(max_iter):
@@ -79,15 +140,22 @@ def _newton(
         f0 = system(q)
         d = (system(q + h) - system(q - h)) / (2 * h)
         step = f0 / d
-        q = q - step
+        q = q - step * min(1.0, cap / abs(step)) if abs(step) > 0 else q
         # the receptance is good to system.tol: a step below ten times that is at the noise floor
         if abs(step) < max(1e-13, 10 * system.tol) * max(1.0, abs(q)):
             break
     return complex(q), float(abs(step))
 
 
-def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float) -> list[complex]:
-    """Bisect ``rect`` (holding n roots) until each piece holds one root of size below ``cell``."""
+def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float, reach: float) -> list[complex]:
+    """Bisect ``rect`` (holding n roots) until each piece holds one root of size below ``cell``.
+
+    In a piece that holds one root, Newton's method from its centre may wander through the window
+    (``rect`` widened by ``reach``); the root it reaches is taken when it lies in the piece.
+    """
+    seeded = _seeded(system, rect, n, reach)
+    if seeded is not None:
+        return seeded
     out: list[complex] = []
     level = [(rect, n)]
     while level:
@@ -96,7 +164,7 @@ def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float) -> list
             if k == 0:
                 continue
             if k == 1:
-                q, res = _newton(system, r.center, r)
+                q, res = _newton(system, r.center, rect, margin=reach)
                 if res < 1e-6 and r.contains(q):
                     out.append(q)
                     continue
@@ -122,16 +190,40 @@ def _locate(system: FloquetSystem, rect: Rectangle, n: int, cell: float) -> list
     return out
 
 
+def _seeded(system: FloquetSystem, rect: Rectangle, n: int, reach: float) -> list[complex] | None:
+    """The n roots of ``rect`` by Newton's method from a 4 x 4 grid of it (a row just below its top) and the
+    mirror image ``Omega_0 - conj(q)`` (Eq. (S14)) of each root found, with full steps then with steps of at
+    most a tenth of the window; None unless n distinct roots in ``rect`` are reached (then :func:`_locate`
+    bisects). The count certifies that none is missing."""
+    period = system.track.Omega0
+    xs = rect.x0 + (np.arange(4) + 0.5) / 4 * rect.width
+    ys = rect.y1 - np.array([5 / 6, 1 / 2, 1 / 6, 0.02]) * rect.height  # the last tried first
+    found: list[complex] = []
+    for cap in (np.inf, 0.1 * min(rect.width, rect.height)):
+        starts = [complex(x, y) for y in ys for x in xs]
+        while starts and len(found) < n:
+            q, res = _newton(system, starts.pop(), rect, margin=reach, cap=cap)
+            if res > 1e-6 or not rect.contains(q):
+                continue
+            if all(abs(q - r) > 1e-6 * max(1.0, abs(r)) for r in found):
+                found.append(q)
+                mirror = period - q.conjugate()
+                starts.append(mirror - period * np.floor((mirror.real - rect.x0) / period))
+    return found if len(found) == n else None
+
+
 def _roots_at(
-    system: FloquetSystem, rect: Rectangle, previous: list[complex] | None, cell: float
+    system: FloquetSystem, rect: Rectangle, previous: list[complex] | None, cell: float, reach: float
 ) -> tuple[int, list[tuple[complex, float]]]:
     """Count in ``rect``, locate (or start from ``previous`` when the count is unchanged) and polish."""
     count = _count(system, rect)
     starts = (
-        previous if previous is not None and len(previous) == count else _locate(system, rect, count, cell)
+        previous
+        if previous is not None and len(previous) == count
+        else _locate(system, rect, count, cell, reach)
     )
     system.tol = 1e-12
-    polished = [_newton(system, q, rect, margin=0.05 * min(rect.width, rect.height)) for q in starts]
+    polished = [_newton(system, q, rect, margin=reach) for q in starts]
     system.tol = 1e-8
     return count, polished
 
@@ -166,8 +258,8 @@ def floquet_frequencies(
     """
     if track.Omega0 <= 0:
         raise ValueError("alpha: the Floquet strip needs a moving vehicle (v > 0)")
-    eta_f = float(track.groups.get("eta_f", 0.0))
-    top = (0.0 if eta_f > 0 else -1e-3 * track.Omega0) if top is None else top
+    floor = track.free_wave_floor()
+    top = _default_top(track, floor) if top is None else top
     depth = max(track.Omega0, 1.0) if depth is None else depth
     x0 = -0.25 * track.Omega0
     cell = 0.05 * min(track.Omega0, depth)
@@ -182,11 +274,15 @@ def floquet_frequencies(
     else:
         notes.append(f"roots below Im q = -{depth:g} at every depth tried: the window may be incomplete")
     rect = _window(track, depth, top, x0)
-    count, roots = _roots_at(system, rect, None, cell)
+    # Newton's iterates may leave the window by a little, never up to the free waves' singular lines
+    reach = 0.05 * min(rect.width, rect.height)
+    if floor > top:
+        reach = min(reach, 0.5 * (floor - top))
+    count, roots = _roots_at(system, rect, None, cell, reach)
     converged, steps = False, [np.inf] * len(roots)
     for N in range(N0 + 1, N_max + 1):
         system.N = N
-        new_count, new_roots = _roots_at(system, rect, [q for q, _ in roots], cell)
+        new_count, new_roots = _roots_at(system, rect, [q for q, _ in roots], cell, reach)
         if new_count == count and len(new_roots) == len(roots):
             steps = [abs(a[0] - b[0]) for a, b in zip(new_roots, roots)]
             count, roots = new_count, new_roots
@@ -205,5 +301,20 @@ def floquet_frequencies(
         )
     found = tuple(FloquetRoot(q, res, s) for (q, res), s in zip(roots, steps))
     return FloquetResult(
-        found, count, system.N, converged, rect, track.Omega0, system.evaluations, tuple(notes)
+        found,
+        count,
+        system.N,
+        converged,
+        rect,
+        track.Omega0,
+        system.evaluations,
+        tuple(notes),
+        floor,
     )
+
+
+def _default_top(track: SleeperTrack, floor: float) -> float:
+    """The window's upper edge: below the free waves' floor, on the axis, or just below it (module doc)."""
+    if floor > 0:
+        return 0.99 * floor
+    return 0.0 if float(track.groups.get("eta_f", 0.0)) > 0 else -1e-3 * track.Omega0

@@ -120,6 +120,26 @@ class SleeperTrack:
             raise ValueError(f"beam: a rail of Euler-Bernoulli elements has no beam {self.beam!r}")
         return float(self.groups.get("kappa_f", 0.0)), 2 * float(self.groups.get("eta_f", 0.0))
 
+    def free_wave_floor(self) -> float:
+        """The lowest Im w of the rail's free waves at a real wavenumber (docs/sleepers.md, Eq. (S15)); 0 when
+        none is known.
+
+        A free (Bloch) wave of the periodic rail satisfies, integrated against its conjugate over one bay
+        (the Bloch phases of the ends cancel), ``A - w^2 B + i w C = 0`` with the real forms
+        ``B = int |w|^2`` (plus ``lam mu_sl |y|^2`` for a sleeper mass), ``C = 2 eta_f int |w|^2`` plus the
+        supports' dashpots, and ``A`` the stiffness: an oscillating wave has ``Im w = C / (2 B)``, at least
+        ``eta_f`` on an Euler-Bernoulli rail (compressed or not) on ``sleepers``, and at least
+        ``min(eta_f, eta_bal / mu_sl)`` on ``sleepers-two-layer``. The pinned-pinned waves, which do not move
+        the supports, reach ``eta_f``. An overdamped wave (damping ratio above 1) is not bounded so; nor is
+        a Timoshenko rail, whose rotation is not damped by ``c_f``: 0.
+        """
+        if self.beam not in ("eb", "eb_axial"):
+            return 0.0
+        floor = float(self.groups.get("eta_f", 0.0))
+        if self.track == "sleepers-two-layer" and self.groups["mu_sl"] > 0:
+            floor = min(floor, float(self.groups["eta_bal"]) / float(self.groups["mu_sl"]))
+        return floor
+
     def _coeffs(self, w: np.ndarray) -> tuple[list, list]:
         w = np.asarray(w, dtype=complex)
         n = self.kernels.n_coeffs(w, **self.arguments("groups"))

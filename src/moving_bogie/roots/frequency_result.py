@@ -20,7 +20,7 @@ from moving_bogie.roots.count.far_field import FarField
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, notes_with
 from moving_bogie.roots.count.strip import StripCount
 from moving_bogie.roots.refine.polish import fixed_text
-from moving_bogie.roots.verdict import Verdict, judge
+from moving_bogie.roots.verdict import STABLE, Verdict, judge
 from moving_bogie.typing import Mpf
 
 if TYPE_CHECKING:
@@ -211,6 +211,23 @@ class FrequencyResult:
             | self._region_dict()
         )
 
+    @property
+    def margin(self) -> Mpf | None:
+        """On a periodic track, a STABLE result's decay rate Im q of its least-damped vibration: the least
+        Im q of its roots, or the rail's free waves' when lower (they decay at that rate and the search
+        stops below them); None otherwise (on a window the roots themselves say it)."""
+        if not self.periodic or self.verdict.state != STABLE:
+            return None
+        assert self.region is not None  # periodic
+        rates = [mpmath.im(r.q) for r in self.roots]
+        if self.region.free_waves is not None and self.region.free_waves > 0:
+            rates.append(mpmath.mpf(self.region.free_waves))
+        return min(rates, default=None)
+
     def _region_dict(self) -> dict:
-        """``region`` (the strip's ``Omega_0`` and ``harmonics``) on a periodic track, nothing on a window."""
-        return {"region": self.region.to_dict()} if self.region is not None and self.region.periodic else {}
+        """``region`` (the strip's ``Omega_0``, ``harmonics``, free waves) and ``margin`` on a periodic
+        track, nothing on a window."""
+        if self.region is None or not self.region.periodic:
+            return {}
+        margin = self.margin
+        return {"region": self.region.to_dict(), "margin": None if margin is None else mpmath.nstr(margin, 6)}

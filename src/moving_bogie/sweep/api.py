@@ -144,7 +144,8 @@ def sweep(
     client, workers, scheduler, processes, progress
         See :func:`~moving_bogie.sweep.engine.run_sweep`.
     **options
-        ``roots`` (keep the unstable roots), ``check`` (points per block verified by a full count),
+        ``roots`` (keep the unstable roots), ``margin`` (measure the stability margin of every point:
+        about four times the time), ``check`` (points per block verified by a full count),
         ``block_points`` (points per block, about).
 
     Examples

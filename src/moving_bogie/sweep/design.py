@@ -202,9 +202,11 @@ class SweepSpec:
     """A sweep: base parameters, model, varied parameters, design and per-point options.
 
     ``design`` is "grid" (one dimension per axis) or "sobol" (one dimension ``point``). ``roots`` keeps
-    the unstable roots of every point; ``check`` is the number of points per block verified by a full
-    count. ``physical`` (:class:`~moving_bogie.model.physical.PhysicalParams` of a ``[physical]`` input)
-    makes it a sweep in SI units: the axes carry their SI values, the store's dimensions are the SI names,
+    the unstable roots of every point; ``margin`` measures the stability margin of every point (the
+    smallest Im q of its induced frequencies: about four times the work of the count alone, so asked for
+    rather than made); ``check`` is the number of points per block verified by a full count.
+    ``physical`` (:class:`~moving_bogie.model.physical.PhysicalParams` of a ``[physical]`` input) makes it
+    a sweep in SI units: the axes carry their SI values, the store's dimensions are the SI names,
     and every SI parameter not varied stays fixed (:attr:`fixed`).
     """
 
@@ -215,6 +217,7 @@ class SweepSpec:
     roots: bool = False
     max_roots: int = 8
     check: int = 1
+    margin: bool = False
     block_points: int = 2048
     extra: dict[str, Any] = field(default_factory=dict)
     physical: PhysicalParams | None = None
@@ -331,6 +334,7 @@ class SweepSpec:
             "roots": self.roots,
             "max_roots": self.max_roots,
             "check": self.check,
+            "margin": self.margin,
             "chunks": list(self.chunks),
         } | (self._describe_si(self.physical) if self.physical is not None else {})
 

@@ -83,6 +83,7 @@ def block_task(spec: SweepSpec, block: Block) -> BlockTask:
         spec.check,
         fixed=spec.fixed,
         held=spec.held,
+        margin=spec.margin,
     )
 
 

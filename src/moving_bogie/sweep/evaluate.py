@@ -7,8 +7,10 @@ the neighbouring alpha). Points the column count cannot settle get a full count
 (:func:`~moving_bogie.roots.frequencies.induced_frequencies`); ``check`` further points per block, drawn
 at random with the block's index as seed, are verified by a full count too, and a disagreement replaces
 the verdict (``checked = -1``). A point whose count no method could certify has ``certain = False``,
-``n_unstable = -1`` and a NaN degree: it is never classified. The ``margin`` of a point is the smallest Im q
-of its induced frequencies (:mod:`~moving_bogie.stability.maps.column_margin`).
+``n_unstable = -1`` and a NaN degree: it is never classified. The ``margin`` of a point, measured when the
+task asks for it (``margin``), is the smallest Im q of its induced frequencies
+(:mod:`~moving_bogie.stability.maps.column_margin`); it costs about three times the count, so a block without
+it has no ``margin`` and ``margin_bound`` arrays (:data:`MARGIN_VARIABLES`).
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.maps.column import ColumnResult
 from moving_bogie.stability.maps.map import map_columns
 
-__all__ = ["BlockTask", "VARIABLES", "evaluate_block"]
+__all__ = ["BlockTask", "MARGIN_VARIABLES", "VARIABLES", "evaluate_block"]
 
 #: Data variables of a block: (name, dtype, fill value, description).
 VARIABLES = (
@@ -57,6 +59,9 @@ VARIABLES = (
     ("computed", "bool", False, "the point's block has been computed and written"),
 )
 
+#: The variables of :data:`VARIABLES` that only a block measuring the margin has.
+MARGIN_VARIABLES = ("margin", "margin_bound")
+
 
 @dataclass(frozen=True)
 class BlockTask:
@@ -79,6 +84,7 @@ class BlockTask:
     check: int
     fixed: dict[str, Fraction] = field(default_factory=dict)
     held: tuple[str, ...] = ()
+    margin: bool = False
 
     def evaluate(self) -> dict[str, np.ndarray]:
         """:func:`evaluate_block` of this task."""
@@ -95,7 +101,8 @@ PointGroup: TypeAlias = tuple[
 
 
 def evaluate_block(task: BlockTask) -> dict[str, np.ndarray]:
-    """Arrays of the block (shape of the block; ``roots_re``/``roots_im`` with a trailing root axis)."""
+    """Arrays of the block (shape of the block; ``roots_re``/``roots_im`` with a trailing root axis; the
+    :data:`MARGIN_VARIABLES` only when ``task.margin``)."""
     if task.design == "sobol":
         shape: tuple[int, ...] = (len(task.values[0]),)
         groups: list[PointGroup] = [(_point(task, (i,)), None, None, [[(i,)]]) for i in range(shape[0])]
@@ -115,7 +122,8 @@ def evaluate_block(task: BlockTask) -> dict[str, np.ndarray]:
         params = task.params.replace(**(task.fixed | changes)) if changes else task.params
         alphas = alphas if alphas is not None else [params.alpha]
         thetas = thetas if thetas is not None else [getattr(params, parameter)]
-        columns = map_columns(BoundModel(params), parameter, alphas, thetas, held=held)  # this point bound
+        options = {"margin": task.margin}
+        columns = map_columns(BoundModel(params), parameter, alphas, thetas, options, held=held)
         for col, row in zip(columns, index_grid):
             col_settled, col_margin, col_bound = _settled_and_margins(col)
             for j, index in enumerate(row):
@@ -133,13 +141,13 @@ def evaluate_block(task: BlockTask) -> dict[str, np.ndarray]:
         "stable": certain & (n == 0),
         "n_unstable": n,
         "degree_of_instability": degree,
-        "margin": margin,
-        "margin_bound": bound,
         "certain": certain,
         "settled": settled,
         "checked": checked,
         "computed": np.ones(shape, dtype=bool),
     }
+    if task.margin:
+        out["margin"], out["margin_bound"] = margin, bound
     if task.roots:
         out["roots_re"], out["roots_im"] = roots.real.copy(), roots.imag.copy()
     return out
@@ -147,7 +155,7 @@ def evaluate_block(task: BlockTask) -> dict[str, np.ndarray]:
 
 def _settled_and_margins(col: ColumnResult) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``settled``, ``margin`` and ``margin_bound`` of a column of :func:`map_columns`, which fills them all
-    (a column is settled and its margins computed unless asked otherwise)."""
+    (a column is settled; its margins are NaN where not measured)."""
     if col.settled is None or col.margin is None or col.margin_bound is None:
         raise RuntimeError("map_columns returned a column without its settled cells or margins")
     return col.settled, col.margin, col.margin_bound

@@ -69,16 +69,19 @@ def plot_sleeper_sweep(
 
 
 def _growth_line(ax: Axes, s: xarray.Dataset, x: str) -> None:
-    """-Im Omega against x: unstable points joined by a line, stable points at 0, the others marked."""
+    """-Im Omega against x: the growth rate of an unstable point, minus the margin (the least-damped
+    vibration's decay rate) of a stable one, joined by a line; the others marked at 0."""
     xs = s[x].values
-    growth = np.where(s.unstable.values, -s.Omega_im.values, np.nan)
+    margin = s.margin.values if "margin" in s else np.zeros(xs.shape)
+    growth = np.where(s.unstable.values, -s.Omega_im.values, np.where(s.stable.values, -margin, np.nan))
     stable, unstable = s.stable.values, s.unstable.values
     undetermined = ~stable & ~unstable
     ax.plot(xs, np.where(stable | unstable, np.nan_to_num(growth), np.nan), "-", color="0.4", lw=1)
     if unstable.any():
         ax.plot(xs[unstable], growth[unstable], "o", color=_CLASSES[1][1], label="unstable: growth rate")
     if stable.any():
-        ax.plot(xs[stable], np.zeros(stable.sum()), "s", color=_CLASSES[0][1], label="stable (growth 0)")
+        label = "stable: minus the margin (decay rate)"
+        ax.plot(xs[stable], np.nan_to_num(growth[stable]), "s", color=_CLASSES[0][1], label=label)
     if undetermined.any():
         label = "undetermined (no growing root found, the window incomplete)"
         ax.plot(xs[undetermined], np.zeros(undetermined.sum()), "^", color=_CLASSES[2][1], label=label)

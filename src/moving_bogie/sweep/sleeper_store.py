@@ -31,11 +31,12 @@ __all__ = ["SLEEPER_VARIABLES", "SleeperLayout", "create_sleeper_store", "write_
 
 #: Data variables of a sleeper sweep: (name, dtype, fill value, long_name, units).
 SLEEPER_VARIABLES: tuple[tuple[str, str, Any, str, str], ...] = (
-    ("count", "int16", -1, "roots with Im Omega <= 0 counted in the strip (-1: not searched)", "1"),
-    ("stable", "bool", False, "verdict STABLE: no root with Im Omega <= 0, the window complete", "1"),
+    ("count", "int16", -1, "roots counted in the strip up to the rail's free waves (-1: not searched)", "1"),
+    ("stable", "bool", False, "verdict STABLE: every root found decays, the window complete", "1"),
     ("unstable", "bool", False, "verdict UNSTABLE: a root with Im Omega < 0", "1"),
     ("certain", "bool", False, "converged in the harmonics and every counted root located", "1"),
     ("Omega_im", "float64", np.nan, "most negative Im Omega (-Im Omega: growth rate); NaN: no root", "1/s"),
+    ("margin", "float64", np.nan, "STABLE: decay rate of the least-damped vibration; else NaN", "1/s"),
     ("Omega_re", "float64", np.nan, "Re Omega of that root", "rad/s"),
     ("harmonics", "int16", -1, "harmonics used: N of n = -N-1..N", "1"),
     ("Omega0", "float64", np.nan, "sleeper-passing frequency Omega_0 = 2 pi v / l", "rad/s"),

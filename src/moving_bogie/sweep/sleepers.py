@@ -178,6 +178,7 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
         "unstable": result.verdict == "UNSTABLE",
         "certain": result.converged and result.count == len(result.roots),
         "Omega_im": lowest.imag / inp.t_scale,
+        "margin": np.nan if result.margin is None else result.margin / inp.t_scale,
         "Omega_re": lowest.real / inp.t_scale,
         "harmonics": result.harmonics,
         "Omega0": result.Omega0 / inp.t_scale,

@@ -6,9 +6,9 @@ coordinate along it). A sweep in SI units (a ``[physical]`` input) names its dim
 parameters (``v`` in m/s, ``M`` in kg, ... with their ``units``) and keeps each group as a further
 coordinate along the same dimension (``alpha``, ``eta_M``; ``d_dimensionless`` where the names clash).
 The attribute ``operating_point`` holds the base point by the store's names. Then come the data variables of
-:data:`~moving_bogie.sweep.evaluate.VARIABLES` (and the unstable roots ``roots_re``, ``roots_im`` along a
-last dimension ``root`` when asked), chunked exactly like the blocks of the sweep, so that writing one block
-writes one chunk file per variable.
+:data:`~moving_bogie.sweep.evaluate.VARIABLES` (``margin`` and ``margin_bound`` only when the margin is
+asked for; the unstable roots ``roots_re``, ``roots_im`` along a last dimension ``root`` when asked),
+chunked exactly like the blocks of the sweep, so that writing one block writes one chunk file per variable.
 
 Safety. The store is created under a temporary name and renamed into place (a store never exists half
 made). Chunk files are written atomically by zarr (temporary file, then rename), and ``computed`` is
@@ -39,7 +39,7 @@ from moving_bogie.sweep.design import (
     parameter_attributes,
     si_attributes,
 )
-from moving_bogie.sweep.evaluate import VARIABLES
+from moving_bogie.sweep.evaluate import MARGIN_VARIABLES, VARIABLES
 
 if TYPE_CHECKING:
     import xarray
@@ -293,7 +293,7 @@ def write_coordinate(
 
 
 def _variables(spec: SweepSpec) -> list[Variable]:
-    out: list[Variable] = list(VARIABLES)
+    out: list[Variable] = [v for v in VARIABLES if spec.margin or v[0] not in MARGIN_VARIABLES]
     if spec.roots:
         out += [
             (

@@ -3,12 +3,13 @@
 Three quantities, each from the Floquet theory (:mod:`moving_bogie.floquet`) and from the finite rail in
 the time domain (:mod:`moving_bogie.validation.sleepers_beam`, which uses no Floquet theory):
 
-- the growth (or decay) rate of the free vibration: ``-Im q`` of the least damped root against the slope of
-  the logarithm of the deflection's RMS per bay-passing period of a run released from the static
-  deflection with the loads removed (:func:`~moving_bogie.validation.sleepers_fit.envelope_rate`);
+- the growth (or decay) rate of the free vibration: ``-Im q`` of the least damped root against
+  ``ln |mu| / T0``, ``mu`` the Floquet multiplier of the mode that dominates a run released from the static
+  deflection with the loads removed: an eigenvalue of its stroboscopic map, sampled once per bay-passing
+  period ``T0`` (:func:`~moving_bogie.validation.sleepers_fit.fit_floquet_modes`);
 - the dominant frequency of that free vibration: ``|Re q + n Omega_0|`` for the harmonic ``n`` that carries
-  the largest contact displacement in the root's null vector of the Hill matrix (S13), against the peak of
-  the spectrum of the run with its growth removed;
+  the largest contact displacement in the root's null vector of the Hill matrix (S13), against the same for
+  the fitted mode's largest harmonic at the rear wheel;
 - the steady contact force over a bay (S16)-(S18), against the loaded run's last bay; the difference is
   judged relative to the Floquet force's peak-to-peak variation over the bay.
 
@@ -31,7 +32,12 @@ from moving_bogie.floquet.steady import SteadyResponse, steady_response
 from moving_bogie.floquet.strip import FloquetResult, floquet_frequencies
 from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.validation.sleepers_beam import BeamRun, simulate_sleeper_beam
-from moving_bogie.validation.sleepers_fit import dominant_frequency, envelope_rate, smooth_steps
+from moving_bogie.validation.sleepers_fit import (
+    FloquetFit,
+    extrapolated,
+    fit_floquet_modes,
+    smooth_steps,
+)
 from moving_bogie.validation.sleepers_rail import SleeperRail
 
 __all__ = [
@@ -104,13 +110,29 @@ class SleeperCheck:
     loaded: BeamRun | None
     steady_tau: np.ndarray | None
     steady_force: np.ndarray | None
-    fit_start: float
-    rate: float
+    fit: FloquetFit
+    coarse: FloquetFit | None
     rate_spread: float
     rail: SleeperRail
     floquet_s: float
     finite_s: float
     notes: tuple[str, ...] = field(default=())
+    time_scale: float | None = None
+
+    @property
+    def rate(self) -> float:
+        """The finite rail's growth rate ``ln |mu| / T0`` (per unit tau), extrapolated to a zero time step
+        when the run at twice the step was made (:func:`extrapolated`)."""
+        return self.fit.rate if self.coarse is None else extrapolated(self.fit, self.coarse)[0]
+
+    @property
+    def frequency(self) -> float:
+        """The finite rail's dominant frequency, extrapolated as :attr:`rate`."""
+        return self.fit.frequency if self.coarse is None else extrapolated(self.fit, self.coarse)[1]
+
+    @property
+    def fit_start(self) -> float:
+        return self.fit.window[0]
 
     @property
     def agrees(self) -> bool:
@@ -131,8 +153,15 @@ class SleeperCheck:
                 "dt": self.free.dt,
                 "free_run_tau": float(self.free.tau[-1]),
                 "fit_start": self.fit_start,
+                "fit_end": self.fit.window[1],
+                "fitted_periods": self.fit.samples,
                 "free_vibration_rate": self.rate,
+                "rate_at_dt": self.fit.rate,
+                "rate_at_2dt": None if self.coarse is None else self.coarse.rate,
                 "rate_spread": self.rate_spread,
+                "multipliers": [[m.real, m.imag] for m in self.fit.multipliers.tolist()],
+                "dominant_multiplier": [self.fit.multiplier.real, self.fit.multiplier.imag],
+                "dominant_harmonic": self.fit.harmonic,
             },
             "timings": {"floquet_s": self.floquet_s, "finite_beam_s": self.finite_s},
             "notes": list(self.notes),
@@ -185,6 +214,53 @@ def floquet_side(
     return FloquetSide(result, root, nu, steady, time.perf_counter() - start)
 
 
+def _rate_text(rate: float, time_scale: float | None) -> str:
+    """A rate with its unit: 1/s when the seconds per unit tau are known, else per unit tau."""
+    return f"{rate:.4g} per unit tau" if time_scale is None else f"{rate / time_scale:.4g} 1/s"
+
+
+def _free_vibration_fit(
+    free: BeamRun, T0: float, fit_start: float, notes: list[str]
+) -> tuple[FloquetFit, float]:
+    """The stroboscopic map fitted to the free run (the deflection under every wheel and the vehicle's
+    internal unknowns) from ``fit_start`` on, or from tau = 0 when the run has decayed to round-off before
+    it (noted); with the spread of its rate, the difference between the rates fitted to the window's first
+    and second halves (how steady the rate is: a transient not yet gone shows here)."""
+    signals = np.vstack([free.deflection, free.internal])
+    try:
+        fit = fit_floquet_modes(free.tau, signals, T0, fit_start)
+    except ValueError:  # decayed to round-off before the window: a stable case, whose rate is not compared
+        fit = fit_floquet_modes(free.tau, signals, T0, 0.0)
+        notes.append("the free vibration decayed to round-off early: its rate is fitted from tau = 0")
+    middle = fit.window[0] + (fit.samples // 2) * T0
+    try:
+        first = fit_floquet_modes(
+            free.tau[free.tau < middle], signals[:, free.tau < middle], T0, fit.window[0]
+        )
+        second = fit_floquet_modes(free.tau, signals, T0, middle)
+        spread = abs(first.rate - second.rate)
+    except ValueError:  # a half too short, or decayed to round-off
+        spread = math.nan
+    return fit, spread
+
+
+def _rate_comparisons(
+    fit: FloquetFit, coarse: FloquetFit, root: complex, frequency: float, tol: float, notes: list[str]
+) -> list[Comparison]:
+    """The growth rate and the dominant frequency of the Floquet root against the finite rail's, extrapolated
+    to a zero time step from its runs at dt and 2 dt (noted when that moves the rate by more than ``tol``)."""
+    rate, nu = extrapolated(fit, coarse)
+    if abs(rate - fit.rate) > tol * abs(root.imag):
+        notes.append(
+            f"the time step moves the finite rail's rate by {abs(fit.rate / rate - 1):.2%} (more than the "
+            "tolerance; near a zone's edge the rate tends to 0): it is compared extrapolated to dt -> 0"
+        )
+    return [
+        Comparison("growth rate -Im q", -root.imag, rate, _relative(-root.imag, rate), tol),
+        Comparison("dominant frequency", frequency, nu, _relative(frequency, nu), tol),
+    ]
+
+
 def _steady_comparison(
     track: SleeperTrack, steady: SteadyResponse, loaded: BeamRun, T0: float, tol: float
 ) -> tuple[Comparison, np.ndarray, np.ndarray]:
@@ -212,11 +288,13 @@ def check_sleepers(
     tol: float = 0.01,
     harmonics: tuple[int, int] = (1, 6),
     floquet: FloquetSide | None = None,
+    time_scale: float | None = None,
 ) -> SleeperCheck:
     """Compare the finite rail with the Floquet theory for one vehicle on one sleeper track (module doc).
 
     ``harmonics`` are the first and the largest N of the Floquet search (:func:`floquet_frequencies`);
-    ``floquet`` the Floquet side already computed (:func:`floquet_side`), e.g. for a convergence study.
+    ``floquet`` the Floquet side already computed (:func:`floquet_side`), e.g. for a convergence study;
+    ``time_scale`` the seconds per unit of tau (for the notes and the figure in SI units).
     """
     settings = SleeperBeamSettings() if settings is None else settings
     side = floquet_side(track, vehicle, loads, harmonics) if floquet is None else floquet
@@ -230,30 +308,22 @@ def check_sleepers(
     dt = T0 / settings.steps_per_period
     start = time.perf_counter()
     free = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, loaded=False)
-    fit_start = settings.transient * tau_free
     notes = list(side.result.notes)
-    try:
-        rate, spread = envelope_rate(free.tau, free.deflection[0], T0, fit_start)
-    except (
-        ValueError
-    ):  # decayed to round-off before the fit window: a stable case, whose rate is not compared
-        fit_start = 0.0
-        rate, spread = envelope_rate(free.tau, free.deflection[0], T0, fit_start)
-        notes.append("the free vibration decayed to round-off early: its rate is fitted from tau = 0")
-    comparisons = []
-    loaded = None
+    fit, spread = _free_vibration_fit(free, T0, settings.transient * tau_free, notes)
+    comparisons: list[Comparison] = []
+    loaded = coarse = None
     steady_tau = steady_force = None
     if root is not None and side.frequency is not None:
-        comparisons.append(
-            Comparison("growth rate -Im q", -root.imag, rate, _relative(-root.imag, rate), tol)
+        # the same free run at twice the step: the rate and the frequency extrapolated to dt -> 0
+        run = simulate_sleeper_beam(
+            rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=2 * dt, loaded=False
         )
-        nu = side.frequency
-        top = 4 * track.Omega0 + 2 * nu
-        found = dominant_frequency(free.tau, free.deflection[0], rate, fit_start, top)
-        comparisons.append(Comparison("dominant frequency", nu, found, _relative(nu, found), tol))
+        coarse = _free_vibration_fit(run, T0, settings.transient * tau_free, notes)[0]
+        comparisons = _rate_comparisons(fit, coarse, root, side.frequency, tol, notes)
     else:
+        rate_text = _rate_text(fit.rate, time_scale)
         notes.append(
-            f"no Floquet root with Im q <= 0 (stable): the free vibration's rate {rate:.4g} is not compared"
+            f"no Floquet root with Im q <= 0 (stable): the free vibration's rate {rate_text} is not compared"
         )
         assert steady is not None
         loaded = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt)
@@ -269,11 +339,12 @@ def check_sleepers(
         loaded,
         steady_tau,
         steady_force,
-        fit_start,
-        rate,
+        fit,
+        coarse,
         spread,
         rail,
         side.seconds,
         finite_s,
         tuple(notes),
+        time_scale,
     )

@@ -10,26 +10,76 @@ from moving_bogie.validation.sleepers_check import SleeperCheck
 from moving_bogie.validation.sleepers_fit import period_rms, smooth_steps
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ["plot_sleeper_check"]
 
 
+def _time_axis(result: SleeperCheck) -> tuple[float, str, str]:
+    """(seconds per unit tau or 1, the time label, the rate unit): SI when the check knows its time scale."""
+    if result.time_scale is None:
+        return 1.0, r"$\tau$", "per unit $\\tau$"
+    return result.time_scale, "time [s]", "1/s"
+
+
+def _envelope_panel(ax: Axes, result: SleeperCheck) -> None:
+    """The RMS over each period of the free vibration under the rear wheel, the fitted modes' RMS, the
+    dominant mode alone and the Floquet rate drawn from the dominant mode at the window's start."""
+    scale, label, unit = _time_axis(result)
+    fit, free = result.fit, result.free
+    period = fit.period
+    mids, rms = period_rms(free.tau, free.deflection[0], period)
+    ax.semilogy(mids * scale, rms, "o", ms=3, color="C0", label="finite rail: RMS over each period $T_0$")
+    k = np.arange(fit.samples)
+    centres = (fit.window[0] + (k + 0.5) * period) * scale
+    ax.semilogy(centres, fit.period_rms(k), "-", color="k", lw=0.9, label=f"fitted modes (rank {fit.rank})")
+    dominant = fit.period_rms(k, [fit.dominant])
+    extrapolated = "" if result.coarse is None else f" ({result.rate / scale:.6g} at dt -> 0)"
+    ax.semilogy(
+        centres,
+        dominant,
+        "-",
+        color="C0",
+        lw=1.2,
+        label=f"its dominant mode: rate {fit.rate / scale:.6g} {unit}" + extrapolated,
+    )
+    if result.root is not None:
+        rate = -result.root.imag
+        ax.semilogy(
+            centres,
+            dominant[0] * np.exp(rate * k * period),
+            "--",
+            color="C3",
+            lw=1.2,
+            label=f"Floquet growth rate $-$Im q = {rate / scale:.6g} {unit}",
+        )
+    ax.axvline(fit.window[0] * scale, color="k", ls=":", lw=1, label="start of the fit")
+    ax.set_xlabel(label)
+    ax.set_ylabel(r"RMS of the deflection / $w_{st}$")
+    ax.legend(fontsize=8)
+    ax.set_title("(b) free vibration released from the static deflection", loc="left", fontsize=9)
+
+
 def plot_sleeper_check(result: SleeperCheck, *, title: str = "") -> Figure:
     """(a) The finite rail's contact force over time with the Floquet steady force over the last bay (a
     stable case) or the free vibration's deflection under the wheel (an unstable one); (b) the free
-    vibration's RMS per bay-passing period (log scale) with the finite rail's fitted rate and the Floquet
-    growth rate ``-Im q`` drawn through the same point. Dimensionless (docs/sleepers.md (S2))."""
+    vibration's RMS per bay-passing period (log scale) with the fitted modes, the dominant one and the
+    Floquet growth rate ``-Im q`` drawn from it. Times in s and rates in 1/s when the check has its time
+    scale, else dimensionless; deflections over ``w_st = P chi / (2 k_e)``, forces over half the static
+    load (docs/sleepers.md (S2))."""
     from matplotlib.figure import Figure
 
+    scale, label, _ = _time_axis(result)
     fig = Figure(figsize=(8, 6.2), layout="constrained")
     ax_f, ax_e = fig.subplots(2, 1)
     if result.loaded is not None and result.steady_force is not None:
         run = result.loaded
-        ax_f.plot(run.tau, smooth_steps(run.force[0]), color="C0", lw=0.9, label="finite rail, contact force")
+        force = smooth_steps(run.force[0])
+        ax_f.plot(run.tau * scale, force, color="C0", lw=0.9, label="finite rail, contact force")
         assert result.steady_tau is not None
         ax_f.plot(
-            result.steady_tau,
+            result.steady_tau * scale,
             result.steady_force,
             "--",
             color="C3",
@@ -40,42 +90,20 @@ def plot_sleeper_check(result: SleeperCheck, *, title: str = "") -> Figure:
     else:
         run = result.free
         ax_f.plot(
-            run.tau,
+            run.tau * scale,
             run.deflection[0],
             color="C0",
             lw=0.7,
             label="finite rail, free vibration under the wheel",
         )
-        ax_f.set_ylabel("deflection under the wheel")
-    ax_f.set_xlabel(r"$\tau$")
-    ax_f.legend(fontsize=8, loc="upper right")
+        ax_f.set_ylabel(r"deflection under the wheel / $w_{st}$")
+    ax_f.set_xlabel(label)
+    ax_f.legend(fontsize=8, loc="upper left")
     ax_f.set_title(
         "(a) " + ("contact force" if result.loaded is not None else "free vibration"), loc="left", fontsize=9
     )
-    free = result.free
-    period = 2 * np.pi / result.Omega0
-    mids, rms = period_rms(free.tau, free.deflection[0], period)
-    ax_e.semilogy(mids, rms, "o", ms=3, color="C0", label="finite rail: RMS over each period $T_0$")
-    fit = mids >= result.fit_start
-    anchor = mids[fit][0], rms[fit][0]
-    line = anchor[1] * np.exp(result.rate * (mids - anchor[0]))
-    ax_e.semilogy(mids, line, "-", color="C0", lw=1, label=f"finite rail, fitted rate {result.rate:.5g}")
-    if result.root is not None:
-        rate = -result.root.imag
-        ax_e.semilogy(
-            mids,
-            anchor[1] * np.exp(rate * (mids - anchor[0])),
-            "--",
-            color="C3",
-            lw=1.2,
-            label=f"Floquet growth rate $-$Im q = {rate:.5g}",
-        )
-    ax_e.axvline(result.fit_start, color="k", ls=":", lw=1, label="start of the fit")
-    ax_e.set_xlabel(r"$\tau$")
-    ax_e.set_ylabel("RMS of the deflection")
-    ax_e.legend(fontsize=8)
-    ax_e.set_title("(b) free vibration released from the static deflection", loc="left", fontsize=9)
+    _envelope_panel(ax_e, result)
     verdict = "agree" if result.agrees else "DISAGREE"
-    rows = ", ".join(f"{c.quantity} {100 * c.relative:.2g} %" for c in result.comparisons)
+    rows = ", ".join(f"{c.quantity} {c.relative:.3%}" for c in result.comparisons)
     fig.suptitle(f"{title}\nfinite rail vs Floquet: {rows}: {verdict}", fontsize=9)
     return fig
