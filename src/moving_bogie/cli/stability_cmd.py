@@ -4,6 +4,7 @@ stability-figure (instability-lines and stability-map: :mod:`.lines_cmd`)."""
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -13,12 +14,15 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.frequency_lines import FrequencyLine, FrequencyLines
 
 from .common import (
     add_json_option,
     add_parameter_options,
+    add_set_option,
+    apply_settings,
     params_from_args,
     print_json,
     si_input,
@@ -71,7 +75,11 @@ def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
         epilog=(
             "examples:\n  moving-bogie critical-velocity --eta-s 0.5\n"
             "  moving-bogie critical-velocity --beam tr --S 100 --r 0.03 --json\n"
-            "  moving-bogie critical-velocity --file examples/two-layer.toml"
+            "  moving-bogie critical-velocity --file examples/two-layer.toml\n"
+            "  moving-bogie critical-velocity --file examples/sleepers.toml --set v=80\n"
+            "On a sleeper track (docs/sleepers.md): the critical velocity of the smeared track (the\n"
+            "supports spread along the rail), the rail's pinned-pinned frequency and the sleeper-passing\n"
+            "frequency 2 pi v / l."
         ),
         formatter_class=RAW,
     )
@@ -92,6 +100,7 @@ def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
         p.add_argument(
             spec.option, dest=name, type=decimal_number, default=None, metavar="X", help=f"{spec.meaning}"
         )
+    add_set_option(p)
     add_json_option(p)
     p.set_defaults(handler=run_critical_velocity)
 
@@ -106,6 +115,10 @@ def run_critical_velocity(args: argparse.Namespace) -> int:
         from .common import read_params_file
 
         params, physical = read_params_file(args.file)
+        if args.set:
+            physical, params = apply_settings(physical, args.set)
+        if params.model.periodic:
+            return _critical_velocity_on_supports(args, params, physical, chosen | groups)
         if chosen or groups:
             params = params.replace(**chosen, **groups)
             if physical is not None:
@@ -125,6 +138,56 @@ def run_critical_velocity(args: argparse.Namespace) -> int:
         data["v_cr_unit"] = "m/s"
         for minimum in data["minima"]:
             minimum["v"] = f"{float(minimum['alpha']) * v_ref:.10g}"
+    _print_critical_velocity(args, data)
+    return 0
+
+
+def _critical_velocity_on_supports(
+    args: argparse.Namespace, params: DimensionlessParams, physical: PhysicalParams | None, given: dict
+) -> int:
+    """critical-velocity of a track on periodic supports: that of its smeared track (the supports spread
+    along the rail, docs/sleepers.md), its pinned-pinned frequency and the sleeper-passing frequency."""
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.inputs import sleeper_input_of
+    from moving_bogie.floquet.smeared import smeared_physical
+    from moving_bogie.floquet.track import SleeperTrack
+    from moving_bogie.paper.critical_velocity_formulas import paper_formula
+    from moving_bogie.stability.velocity.critical_velocity import critical_velocity
+
+    if given:
+        flag = "--" + next(iter(given)).replace("_", "-")
+        raise ParameterError(
+            flag.lstrip("-"), f"{flag} does not apply to a sleeper track: use --set NAME=VALUE"
+        )
+    data_in = sleeper_input_of(params, physical)
+    smeared = smeared_physical(physical) if physical is not None else None
+    if smeared is None:
+        raise ParameterError("track", f"{params.model.name} has no smeared continuous track")
+    res = critical_velocity(smeared.to_dimensionless(), formula=paper_formula)
+    data = res.to_dict()
+    v_ref = smeared.scales().v_ref
+    data["v_cr"] = f"{float(data['alpha_cr']) * v_ref:.10g}"
+    data["v_cr_unit"] = "m/s"
+    for minimum in data["minima"]:
+        minimum["v"] = f"{float(minimum['alpha']) * v_ref:.10g}"
+    track = SleeperTrack(data_in.beam, data_in.track, data_in.groups)
+    to_si = 1 / data_in.t_scale
+    pinned, passing = track.pinned_pinned() * to_si, track.Omega0 * to_si
+    data["on_supports"] = {
+        "model": params.model.name,
+        "smeared_track": smeared.model.name,
+        "alpha_cr": float(res.alpha_cr) * v_ref / data_in.v_ref,
+        "pinned_pinned_rad_s": pinned,
+        "pinned_pinned_hz": pinned / (2 * math.pi),
+        "sleeper_passing_rad_s": passing,
+        "sleeper_passing_hz": passing / (2 * math.pi),
+    }
+    _print_critical_velocity(args, data)
+    return 0
+
+
+def _print_critical_velocity(args: argparse.Namespace, data: dict) -> None:
+    """The critical velocity's JSON, or its text (with the frequencies of a track on supports)."""
     if args.json:
         print_json(data)
     else:
@@ -150,7 +213,18 @@ def run_critical_velocity(args: argparse.Namespace) -> int:
         print(f"method           {data['method']}")
         if "v_cr" in data:
             print(f"v_cr             {data['v_cr']} m/s")
-    return 0
+        supports = data.get("on_supports")
+        if supports:
+            smeared = supports["smeared_track"]
+            print(f"on supports      {supports['model']}: v_cr of the smeared track ({smeared})")
+            print(
+                f"pinned-pinned    {supports['pinned_pinned_rad_s']:.6g} rad/s "
+                f"({supports['pinned_pinned_hz']:.6g} Hz)"
+            )
+            print(
+                f"sleeper passing  {supports['sleeper_passing_rad_s']:.6g} rad/s "
+                f"({supports['sleeper_passing_hz']:.6g} Hz) at v"
+            )
 
 
 # -- frequency-lines ----------------------------------------------------------------------------------

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from moving_bogie.kernels.brent import brentq
 from moving_bogie.kernels.polynomial import horner
 from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.periodic import PeriodicFoundation
@@ -139,6 +140,27 @@ class SleeperTrack:
         if self.track == "sleepers-two-layer" and self.groups["mu_sl"] > 0:
             floor = min(floor, float(self.groups["eta_bal"]) / float(self.groups["mu_sl"]))
         return floor
+
+    def pinned_pinned(self) -> float:
+        """The lowest pinned-pinned frequency w of the rail between two supports (docs/sleepers.md).
+
+        The pinned-pinned mode has its nodes on the supports: the free wave of the undamped rail (every
+        damping group 0) at the wavenumber p = pi / lam, the lowest root w > 0 of N~(pi / lam, w) = 0,
+        bracketed by the first sign change of a doubling scan and found by Brent's method.
+        """
+        specs = default_catalogue().specs
+        groups = {n: 0.0 if specs[n].damping else self.groups[n] for n in self.kernels.symbol_groups}
+        p2 = (np.pi / self.lam) ** 2
+
+        def symbol(w: float) -> float:
+            return float(np.real(horner(self.kernels.n_coeffs(w, **groups), p2)))
+
+        low, high = 0.0, 1e-3
+        while symbol(low) * symbol(high) > 0:
+            low, high = high, 2 * high
+            if high > 1e12:
+                raise ValueError("the rail's symbol has no pinned-pinned root below w = 1e12")
+        return brentq(symbol, low, high, xtol=1e-15)
 
     def _coeffs(self, w: np.ndarray) -> tuple[list, list]:
         w = np.asarray(w, dtype=complex)
