@@ -40,6 +40,12 @@ _LAZY = {
     "d_decomposition": "api",
     "critical_stiffness": "api",
     "stability_map": "api",
+    "speed_regime": "api",
+    "smeared_track": "api",
+    "sleeper_series": "api",
+    "sleeper_map": "api",
+    "sleeper_map_figure": "floquet.map_figure",
+    "sleeper_series_figure": "floquet.plots",
 }
 
 

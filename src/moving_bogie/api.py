@@ -22,6 +22,9 @@ if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import ArrayLike
 
+    from moving_bogie.floquet.inputs import SleeperInput
+    from moving_bogie.floquet.series import SleeperSeries
+    from moving_bogie.floquet.sleeper_map import SleeperMap
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
@@ -32,6 +35,7 @@ if TYPE_CHECKING:
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
+    from moving_bogie.validation.sleepers_check import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 __all__ = [
@@ -47,7 +51,11 @@ __all__ = [
     "induced_frequencies",
     "instability_lines",
     "instability_lines_many",
+    "sleeper_map",
+    "sleeper_series",
+    "smeared_track",
     "speed_regime",
+    "validate_on_supports",
     "stability_map",
     "validate",
 ]
@@ -152,14 +160,82 @@ def deflection_shape_details(
     return run(bound, xi, tau, scales=scales, **options)
 
 
-def validate(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> ValidationResult:
-    """Finite beam against closed form (Section 3.2): :func:`~moving_bogie.validation.compare.validate`.
+def validate(
+    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
+) -> ValidationResult | SleeperCheck:
+    """Finite beam against closed form (Section 3.2): :func:`~moving_bogie.validation.compare.validate`; on
+    periodic supports the finite rail against the Floquet theory (:func:`validate_on_supports`).
 
     Physical parameters are made dimensionless: the comparison runs in dimensionless tau and w / w_st.
     """
     from moving_bogie.validation.compare import validate as run
 
-    return run(bind(params), **options)
+    bound = bind(params)
+    if bound.model.periodic:
+        return validate_on_supports(params, **options)
+    return run(bound, **options)
+
+
+def validate_on_supports(
+    params: DimensionlessParams | PhysicalParams | BoundModel, *, tol: float = 0.01
+) -> SleeperCheck:
+    """The finite rail on sleepers against the Floquet theory (docs/sleepers.md):
+    :func:`~moving_bogie.validation.on_supports.check_on_supports` of SI parameters on periodic supports."""
+    from moving_bogie.validation.on_supports import check_on_supports
+
+    return check_on_supports(_sleeper_data(params), tol=tol)
+
+
+def smeared_track(params: PhysicalParams) -> PhysicalParams:
+    """The continuous track with the same smeared supports as SI parameters on periodic supports (the
+    limit l -> 0, docs/sleepers.md (S2)): :func:`~moving_bogie.floquet.smeared.smeared_physical`.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``track`` when the track has no such limit.
+    """
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.smeared import smeared_physical
+
+    smeared = smeared_physical(params)
+    if smeared is None:
+        raise ParameterError("track", f"{params.model.name} has no smeared continuous track")
+    return smeared
+
+
+def sleeper_series(
+    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
+) -> SleeperSeries:
+    """The steady response over a bay and the free vibrations on sleepers, in SI:
+    :func:`~moving_bogie.floquet.series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    from moving_bogie.floquet.series import sleeper_series as run
+
+    return run(_sleeper_data(params), **options)
+
+
+def sleeper_map(
+    params: DimensionlessParams | PhysicalParams | BoundModel,
+    velocities: Sequence[float] | np.ndarray,
+    masses: Sequence[float] | np.ndarray,
+    **options: Any,
+) -> SleeperMap:
+    """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
+    (S19)-(S22)): :func:`~moving_bogie.floquet.sleeper_map.sleeper_map` (``verify``, ``workers``,
+    ``progress``)."""
+    from moving_bogie.floquet.sleeper_map import sleeper_map as run
+
+    return run(_sleeper_data(params), velocities, masses, **options)
+
+
+def _sleeper_data(params: DimensionlessParams | PhysicalParams | BoundModel) -> SleeperInput:
+    """The Floquet runtime's input of SI parameters on periodic supports (a bound model: its own)."""
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.inputs import sleeper_input_of
+
+    if isinstance(params, BoundModel) or not isinstance(params, PhysicalParams):
+        raise ParameterError("params", "the analyses on sleepers take SI parameters (PhysicalParams)")
+    return sleeper_input_of(params.to_dimensionless(), params)
 
 
 def frequency_lines(

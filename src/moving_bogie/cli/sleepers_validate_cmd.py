@@ -35,27 +35,10 @@ def _refuse(args: argparse.Namespace) -> None:
 def run_sleeper_validation(args: argparse.Namespace, data: SleeperInput) -> int:
     """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers` on the
     parameters ``data`` (the file's, ``--set`` applied), printed."""
-
-    from moving_bogie.errors import ParameterError
+    from moving_bogie.validation.on_supports import check_on_supports
 
     _refuse(args)
-    if data.groups["alpha"] <= 0:
-        raise ParameterError("v", "v must be positive on a sleeper track (the vehicle must cross the bays)")
-    if data.beam != "eb":
-        raise ParameterError(
-            "beam", f"the finite rail on sleepers has Euler-Bernoulli elements (got {data.beam!r})"
-        )
-
-    from moving_bogie.floquet.hill import VehicleMatrices
-    from moving_bogie.floquet.steady import static_loads
-    from moving_bogie.floquet.track import SleeperTrack
-    from moving_bogie.validation.sleepers_check import check_sleepers
-
-    track = SleeperTrack(data.beam, data.track, data.groups)
-    module = data.vehicle_kernels
-    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
-    loads = static_loads(module, data.vehicle_groups)
-    result = check_sleepers(track, vehicle, loads, tol=args.tol, time_scale=data.t_scale)
+    result = check_on_supports(data, tol=args.tol)
     if args.plot:
         from moving_bogie.response.plots import save_figure
         from moving_bogie.validation.sleepers_plots import plot_sleeper_check
