@@ -75,7 +75,9 @@ def run_sleeper_timeseries(args: argparse.Namespace, data: SleeperInput) -> int:
     warnings += list(series.free_notes)
     for text in warnings:
         print(f"warning: {text}", file=sys.stderr)
-    return 0 if series.converged and series.free_verdict != "UNDETERMINED" else 1
+    from moving_bogie.roots.verdict import UNDETERMINED
+
+    return 0 if series.converged and series.free_verdict != UNDETERMINED else 1
 
 
 def _not_converged(series: SleeperSeries) -> str:
@@ -122,7 +124,7 @@ def _free_lines(series: SleeperSeries) -> list[str]:
             f"  {r.frequency_rad_s:>12.6g} {r.frequency_hz:>10.5g} {r.growth_rate:>13.5g} {double:>15} "
             f"{halve:>14}  {r.state}"
         )
-    lines.append(f"verdict: {series.free_verdict}")
+    lines.append(f"verdict: {series.free_verdict.upper()}")
     return lines
 
 

@@ -81,7 +81,7 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
         f"model {out['model']}: finite rail of {fb['bays']} bays "
         f"({fb['elements_per_bay']} quintic elements per bay, "
         f"{fb['unknowns']} unknowns, dt = {fb['dt']:.4g}) against the Floquet theory "
-        f"(verdict {out['floquet_verdict']})",
+        f"(verdict {out['floquet_verdict'].upper()})",
         f"  {'quantity':<26}{'Floquet':>14}{'finite beam':>14}  {'unit':<6}{'rel. diff':>10}  within",
     ]
     for c in out["comparisons"]:

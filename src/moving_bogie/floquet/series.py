@@ -265,7 +265,7 @@ def _free_vibrations(track: SleeperTrack, vehicle: VehicleMatrices, t_scale: flo
     return {
         "free": tuple(FreeVibration(r.q / t_scale) for r in result.roots),
         "free_count": result.count,
-        "free_verdict": result.verdict,
+        "free_verdict": result.verdict.state,
         "free_strip": (window.x0 / t_scale, window.x1 / t_scale),
         "free_window": (window.y0 / t_scale, window.y1 / t_scale),
         "free_notes": result.notes,

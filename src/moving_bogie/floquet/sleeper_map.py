@@ -152,7 +152,7 @@ def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapChe
     wheel = {module.WHEEL_MASS: M / mass_unit(data)}
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | wheel)
     res = floquet_frequencies(track, vehicle)
-    return MapCheck(v, M, map_count, res.unstable_count, res.verdict, res.converged)
+    return MapCheck(v, M, map_count, res.unstable_count, res.verdict.state, res.converged)
 
 
 def _verify_cells(
@@ -224,7 +224,7 @@ def sleeper_map(
     notes = [f"v = {col.alpha * data.v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
     notes += [
         f"v = {c.v:.6g} m/s, M = {c.M:.6g} kg: the map counts {c.map_count} unstable root(s), "
-        f"floquet_frequencies {c.search_count} ({c.verdict})"
+        f"floquet_frequencies {c.search_count} ({c.verdict.upper()})"
         for c in checks
         if not c.agrees
     ]

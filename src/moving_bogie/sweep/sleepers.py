@@ -23,6 +23,7 @@ import numpy as np
 from moving_bogie.errors import ParameterError
 from moving_bogie.floquet.inputs import SleeperInput, sleeper_input, sleeper_units
 from moving_bogie.model.exact import fraction_to_text
+from moving_bogie.roots.verdict import STABLE, UNSTABLE
 from moving_bogie.sweep.design import Axis, Block, grid_blocks, parse_vary, sobol_axes
 from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
 
@@ -174,8 +175,8 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
     lowest = min((r.q for r in result.roots), key=lambda q: q.imag, default=complex(np.nan, np.nan))
     return {
         "count": result.count,
-        "stable": result.verdict == "STABLE",
-        "unstable": result.verdict == "UNSTABLE",
+        "stable": result.verdict.state == STABLE,
+        "unstable": result.verdict.state == UNSTABLE,
         "certain": result.converged and result.count == len(result.roots),
         "Omega_im": lowest.imag / inp.t_scale,
         "margin": np.nan if result.margin is None else result.margin / inp.t_scale,

@@ -332,7 +332,7 @@ def check_sleepers(
     finite_s = time.perf_counter() - start
     return SleeperCheck(
         tuple(comparisons),
-        side.result.verdict,
+        side.result.verdict.state,
         root,
         track.Omega0,
         free,
