@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.floquet.inputs import is_sleeper_file, load_sleeper_file
+from moving_bogie.floquet.inputs import load_sleeper_file
 from moving_bogie.generated import MODULES, VEHICLES
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
@@ -20,9 +20,17 @@ from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-#: The continuous tracks' examples; a rail on discrete supports (floquet/) has its own reader.
-FILES = [path for path in sorted(EXAMPLES.glob("*.toml")) if not is_sleeper_file(path)]
-SLEEPER_FILES = [path for path in sorted(EXAMPLES.glob("*.toml")) if is_sleeper_file(path)]
+
+
+#: The continuous tracks' examples, and the rails on discrete supports (a periodic track of the catalogue).
+def _periodic(path: Path) -> bool:
+    """Whether the example's model is on periodic supports (read as any parameter file)."""
+    return load_params_file(path)[0].model.periodic
+
+
+#: The continuous tracks' examples, and the rails on discrete supports (a periodic track of the catalogue).
+FILES = [path for path in sorted(EXAMPLES.glob("*.toml")) if not _periodic(path)]
+SLEEPER_FILES = [path for path in sorted(EXAMPLES.glob("*.toml")) if _periodic(path)]
 
 
 def test_every_sleeper_example_loads_as_a_model_of_the_catalogue():

@@ -35,7 +35,7 @@ def _no_computation(monkeypatch: pytest.MonkeyPatch) -> None:
         (["--vary", "v=40:80:3", "--vary", "M=-1,600"], "M must be a positive"),
         (["--vary", "P=1,2"], "unknown parameter 'P'"),
         (["--vary", "v=40:80"], "START:STOP:COUNT"),
-        (["--vary", "v=40,50", "--case", "1"], "--case does not apply to a sleeper-track file"),
+        (["--vary", "v=40,50", "--case", "1"], "give either --case or --file, not both"),
         (["--vary", "v=40,50", "--roots"], "--roots does not apply"),
         (["--vary", "v=40,50", "--margin"], "--margin does not apply"),
         (["--vary", "v=40,50", "--check", "2"], "--check does not apply"),

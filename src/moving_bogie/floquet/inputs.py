@@ -27,7 +27,6 @@ if TYPE_CHECKING:
 
 __all__ = [
     "SleeperInput",
-    "is_sleeper_file",
     "load_sleeper_file",
     "sleeper_input",
     "sleeper_input_of",
@@ -78,22 +77,6 @@ def sleeper_input_of(params: DimensionlessParams, physical: PhysicalParams | Non
         model.beam, model.track, model.vehicle, groups, vehicle_groups, si, scales.chi, scales.v_ref,
         scales.t_scale, k_e,
     )  # fmt: skip
-
-
-def is_sleeper_file(path: str | Path) -> bool:
-    """True when the file's ``[model]`` table names a track on periodic supports (read before any other
-    check)."""
-    try:
-        data = tomllib.loads(Path(path).read_text())
-    except (OSError, tomllib.TOMLDecodeError):
-        return False
-    model = data.get("model")
-    if not isinstance(model, dict):
-        return False
-    try:
-        return get_model(model.get("beam"), model.get("track"), model.get("vehicle")).periodic
-    except ParameterError:
-        return False
 
 
 def load_sleeper_file(path: str | Path, overrides: Mapping[str, float] | None = None) -> SleeperInput:
