@@ -72,6 +72,29 @@ class SleeperMap:
                 bad[int(np.argmin(np.abs(self.velocities - check.v)))] = True
         return np.broadcast_to(bad[None, :], self.count.shape)
 
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict over the grid first, then the grid and the checks (as a stability map)."""
+        from moving_bogie.html_repr import html_table
+
+        s = self.summary()
+        unstable, uncertain = s["unstable_cells"], s["uncertain_columns"]
+        if unstable:
+            verdict = f"UNSTABLE in {unstable} of {s['cells']} cells"
+        else:
+            verdict = "STABLE in every certain column" if uncertain else "STABLE in every cell"
+        rows = [
+            ("model", s["model"]),
+            ("v [m/s]", f"{s['v_m_s'][0]:.6g}..{s['v_m_s'][1]:.6g} ({s['v_m_s'][2]})"),
+            ("M [kg]", f"{s['M_kg'][0]:.6g}..{s['M_kg'][1]:.6g} ({s['M_kg'][2]})"),
+            ("method", s["method"]),
+            ("crossings, uncertain columns", f"{s['crossings']}, {s['uncertain_columns']}"),
+        ]
+        items = [(f"{c.v:.6g}", f"{c.M:.6g}", c.map_count, c.search_count, c.verdict) for c in self.checks]
+        header = ("v [m/s]", "M [kg]", "map count", "search count", "verdict")
+        return html_table(
+            "stability map on sleepers", verdict, rows, reasons=list(self.notes), items=(header, items)
+        )
+
     def lines(self) -> list[dict]:
         """Every crossing in SI: v [m/s], M [kg], the real frequency Omega [rad/s] and the change."""
         return [
