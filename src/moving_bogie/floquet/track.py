@@ -13,6 +13,7 @@ the lattice sum in closed form (docs/sleepers.md, Eq. (S7)).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -51,9 +52,9 @@ class SleeperTrack:
     track: str
     groups: dict = field(hash=False)
 
-    @property
+    @functools.cached_property
     def kernels(self) -> PeriodicFoundation:
-        """The generated functions of this beam on this track, from the catalogue."""
+        """The generated functions of this beam on this track, from the catalogue (looked up once)."""
         found: PeriodicFoundation = default_catalogue().periodic[(self.beam, self.track)]
         return found
 

@@ -52,6 +52,10 @@ class PeriodicFoundation:
 
     TRACK_KIND = PERIODIC
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickled by its names: the packaged catalogue's own (its modules are not pickled)."""
+        return (_packaged, (self.beam, self.track))
+
     @property
     def _table(self) -> dict[str, dict[str, Any]]:
         table: dict[str, dict[str, Any]] = self.module.PARAMETERS[self.track][self.beam]
@@ -122,47 +126,47 @@ class PeriodicFoundation:
     DEGREE_N_IN_Q = None
 
     # --- the generated functions of this beam and track (docs/sleepers.md, (S1)-(S2)) ------------------
-    @property
+    @functools.cached_property
     def symbol_groups(self) -> tuple[str, ...]:
         """The groups of the beam's symbol N~, Q~ (arguments of :attr:`n_coeffs`, :attr:`q_coeffs`)."""
         return tuple(self.module.BEAMS[self.beam]["groups"])
 
-    @property
+    @functools.cached_property
     def moving_groups(self) -> tuple[str, ...]:
         """The groups of the moving symbol (arguments of :attr:`moving_n_coeffs` besides q, alpha)."""
         return tuple(self.module.BEAMS[self.beam]["moving_groups"])
 
-    @property
+    @functools.cached_property
     def support_groups(self) -> tuple[str, ...]:
         """The groups of the support's stiffness z(w) (arguments of :attr:`support`)."""
         return tuple(self.module.TRACKS[self.track]["support_arguments"])
 
-    @property
+    @functools.cached_property
     def n_coeffs(self) -> Callable[..., Any]:
         """N~(p, w) of the beam as a polynomial in p^2 (highest power first)."""
         return getattr(self.module, f"n_coeffs_{self.beam}")
 
-    @property
+    @functools.cached_property
     def q_coeffs(self) -> Callable[..., Any]:
         """Q~(p, w) of the beam as a polynomial in p^2 (highest power first)."""
         return getattr(self.module, f"q_coeffs_{self.beam}")
 
-    @property
+    @functools.cached_property
     def moving_n_coeffs(self) -> Callable[..., Any]:
         """N~(p, q + alpha p) as a polynomial in p (highest power first)."""
         return getattr(self.module, f"moving_n_coeffs_{self.beam}")
 
-    @property
+    @functools.cached_property
     def moving_q_coeffs(self) -> Callable[..., Any]:
         """Q~(p, q + alpha p) as a polynomial in p (highest power first)."""
         return getattr(self.module, f"moving_q_coeffs_{self.beam}")
 
-    @property
+    @functools.cached_property
     def support(self) -> Callable[..., Any]:
         """z(w) = (Z_s / l) / k_e of the track's supports."""
         return getattr(self.module, f"support_{self._tag}")
 
-    @property
+    @functools.cached_property
     def support_polynomials(self) -> Callable[..., Any]:
         """(numerator, denominator) of z(w) as polynomials in w (highest power first)."""
         return getattr(self.module, f"support_polynomials_{self._tag}")
@@ -191,6 +195,14 @@ class PeriodicFoundation:
             return _call(own, values, sqrt)
         smeared = dict(values) | {"k_f": self.smeared_stiffness(values, sqrt)}
         return _call(getattr(self.paper, f"dimensionless_{group}"), smeared, sqrt)
+
+
+def _packaged(beam: str, track: str) -> PeriodicFoundation:
+    """The packaged catalogue's periodic track ``beam`` on ``track`` (unpickling)."""
+    from moving_bogie.model.catalogue import default_catalogue
+
+    found: PeriodicFoundation = default_catalogue().periodic[(beam, track)]
+    return found
 
 
 def _call(func: Callable[..., Any], values: Mapping[str, Any], sqrt: Callable[[Any], Any]) -> Any:
