@@ -108,8 +108,10 @@ def main() -> None:
         runs = []
         for case, name, values in CASES:
             path = sleeper_file(HERE / "examples" / name, values, Path(tmp) / f"{case}.toml")
-            smeared = continuous_file(path, Path(tmp) / f"c{case}.toml")
-            runs += [(case, "sleepers", path), (case, "one-layer", smeared)]
+            runs += [
+                (case, "sleepers", path),
+                (case, "one-layer", continuous_file(path, Path(tmp) / f"c{case}.toml")),
+            ]
         for _ in range(args.repeat):
             for label, src in checkouts:
                 for case, track, path in runs:

@@ -194,7 +194,7 @@ def before_after(before: Path) -> None:
 
     from bench_commands import run_child
 
-    rows = [["file", "code", "CPU s", "wall s", "exit", "-Im q [1/s]", "finite beam [1/s]", "rel. diff"]]
+    rows = [["file", "code", "CPU s", "wall s", "exit", "quantity", "Floquet", "finite beam", "rel. diff"]]
     with tempfile.TemporaryDirectory() as folder:
         files = [("examples/sleepers.toml", HERE / "examples" / "sleepers.toml")] + [
             (f"sleepers_zones.toml, v = {v}, M = {M}", zone_file(Path(folder), v, M)) for v, M in VALIDATED
@@ -203,8 +203,9 @@ def before_after(before: Path) -> None:
             for who, src in (("before", before), ("this", HERE / "src")):
                 run = run_child(src, ["validate", "--file", str(path), "--json"])
                 first = json.loads(run.stdout)["comparisons"][0]
-                values = [f"{first['floquet_si']:.6g}", f"{first['finite_beam_si']:.6g}"]
-                values += [f"{100 * first['relative_diff']:.3f} % ({first['quantity']})"]
+                values = [first["quantity"]]
+                values += [f"{first[key]:.6g} {first['unit_si']}" for key in ("floquet_si", "finite_beam_si")]
+                values += [f"{100 * first['relative_diff']:.3f} %"]
                 rows.append([label, who, f"{run.cpu:.2f}", f"{run.wall:.1f}", str(run.code), *values])
                 label = ""
             print(f"  {path.name}: done", file=sys.stderr)

@@ -53,13 +53,17 @@ SOURCES = ("src/moving_bogie",)
 @dataclass(frozen=True)
 class Run:
     """One sweep: the command's wall seconds, the sweep's own seconds, CPU seconds, the load average (1 min)
-    at its end, and the store it wrote."""
+    at its start and at its end, and the store it wrote."""
 
     wall: float
     seconds: float
     cpu: float
-    load: float
+    loads: tuple[float, float]
     store: Path
+
+    @property
+    def load(self) -> str:
+        return f"{self.loads[0]:.1f}-{self.loads[1]:.1f}"
 
     def per_worker(self, points: int, workers: int) -> float:
         return points / self.seconds / workers
@@ -71,14 +75,14 @@ def sweep(src: Path, args: list[str], workers: int, store: Path) -> Run:
     code = "import sys; from moving_bogie.cli import main; sys.exit(main(sys.argv[1:]))"
     argv = ["sweep", *args, "--workers", str(workers), "--out", str(store), "--overwrite", "--json"]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
+    start, load = time.perf_counter(), os.getloadavg()[0]
     done = subprocess.run([sys.executable, "-c", code, *argv], env=env, capture_output=True, text=True)
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode != 0:
         raise SystemExit(f"moving-bogie sweep failed with {src}:\n{done.stderr[-3000:]}")
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return Run(wall, float(json.loads(done.stdout)["seconds"]), cpu, os.getloadavg()[0], store)
+    return Run(wall, float(json.loads(done.stdout)["seconds"]), cpu, (load, os.getloadavg()[0]), store)
 
 
 def differences(a: Path, b: Path) -> dict[str, int]:
@@ -147,7 +151,7 @@ def compare_case7(before: Path, repeat: int, folder: Path) -> dict[int, dict[str
 
 def print_case7(results: dict[int, dict[str, Run]], name: str) -> None:
     header = f"{'code':22s} {'wall s':>7s} {'sweep s':>8s} {'CPU s':>7s} {'points/s/worker':>15s}"
-    header += f" {'vs before':>10s} {'load':>5s}"
+    header += f" {'vs before':>10s} {'load':>9s}"
     for workers, runs in results.items():
         print(f"\n{POINTS}-point sweep of Case 7, {workers} worker(s)")
         print(header)
@@ -158,7 +162,7 @@ def print_case7(results: dict[int, dict[str, Run]], name: str) -> None:
             ratio = run.seconds / old.seconds
             print(
                 f"{label:22s} {run.wall:7.1f} {run.seconds:8.1f} {run.cpu:7.1f} "
-                f"{run.per_worker(POINTS, workers):15.0f} {ratio:9.2f}x {run.load:5.1f}"
+                f"{run.per_worker(POINTS, workers):15.0f} {ratio:9.2f}x {run.load:>9s}"
             )
         cost = runs["this --margin"].seconds / runs["this"].seconds - 1
         print(f"the margin's cost: +{100 * cost:.0f} % of the sweep's seconds (CPU: "
@@ -212,7 +216,7 @@ def record(
                 f"`moving-bogie sweep {' '.join(CASE7)}`, {POINTS} points, {workers} worker(s)",
                 f"{this.wall:.1f} s wall, the sweep {this.seconds:.1f} s: "
                 f"{this.per_worker(POINTS, workers):.0f} points/s per worker, {this.cpu:.1f} s CPU "
-                f"(load {this.load:.1f}); with `--margin`: {margin.seconds:.1f} s, the margin's cost "
+                f"(load {this.load}); with `--margin`: {margin.seconds:.1f} s, the margin's cost "
                 f"+{100 * (margin.seconds / this.seconds - 1):.0f} %",
                 f"{name}: {old.wall:.1f} s wall, the sweep {old.seconds:.1f} s: "
                 f"{old.per_worker(POINTS, workers):.0f} points/s per worker, {old.cpu:.1f} s CPU",
@@ -225,7 +229,7 @@ def record(
     rows.append(
         row(
             "`moving-bogie sweep`, 10^6 points (100 alpha x 1000 eta_M x 10 eta_f, Case 1), 2 workers",
-            f"{run.wall * scale:.0f} s wall, {run.cpu * scale:.0f} s CPU ({how}; load {run.load:.1f})",
+            f"{run.wall * scale:.0f} s wall, {run.cpu * scale:.0f} s CPU ({how}; load average {run.load})",
             "-",
             "< 5 min",
         )
@@ -256,7 +260,7 @@ def main() -> None:
         stores = print_stores(results)
         big = million(args.million, Path(tmp))
         label, run, scale = big
-        print(f"\n{label}: {run.wall:.1f} s wall, {run.cpu:.1f} s CPU, load {run.load:.1f}")
+        print(f"\n{label}: {run.wall:.1f} s wall, {run.cpu:.1f} s CPU, load average {run.load}")
         what = "measured" if scale == 1 else f"x{scale:g} the run above"
         print(f"10^6-point 3-D sweep, 2 workers ({what}): {run.wall * scale:.0f} s wall (target < 300 s)")
         if args.record:

@@ -186,3 +186,14 @@ def test_the_rate_is_extrapolated_to_a_zero_time_step():
     rate, frequency = extrapolated(*fits)
     assert abs(rate / exact - 1) < 1e-8
     assert frequency == pytest.approx(0.2, rel=1e-8)
+
+
+def test_a_decay_is_fitted_down_to_the_round_off_only():
+    """A mode decaying at 0.06 (e^-30 over the record) over a floor of seeded noise at 1e-9 of its start: the
+    fit stops at the period where the run falls below 1e-6 of its largest value (below is its round-off, not
+    its modes: the finite rail's stable runs settle near 1e-8) and gives the rate to 1e-6."""
+    tau, x = _run([(1.0, 0.2 + 0.06j, {0: 1.0})])
+    x = x + 1e-9 * np.random.default_rng(3).standard_normal(tau.size)
+    fit = fit_floquet_modes(tau, x, T0, 0.0)
+    assert abs(fit.rate / -0.06 - 1) < 1e-6
+    assert fit.window[1] < np.log(1e6) / 0.06 < fit.window[1] + 2 * T0

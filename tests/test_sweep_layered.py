@@ -42,7 +42,7 @@ Q = np.array([0.3 - 0.2j, 1.1 - 0.05j, 2.4 - 0.6j, 0.05 - 1.3j, 0.7 + 0.0j])
 @pytest.fixture(scope="module")
 def spec():
     params, physical = load_params_file(EXAMPLE)
-    return make_spec(params, GRID, physical=physical, check=0)
+    return make_spec(params, GRID, physical=physical, check=0, bar="fixed")
 
 
 def _grid(spec, task_changes) -> dict:

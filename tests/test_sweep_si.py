@@ -51,6 +51,7 @@ def si_store(tmp_path_factory):
     v = f"{0.6 * v_ref:.0f}:{1.05 * v_ref:.0f}:4"
     out = tmp / "si.zarr"
     args = ["sweep", "--file", str(path), "--vary", f"v={v}", "--vary", "M=200:1800:3", "--check", "0"]
+    args += ["--bar", "fixed"]  # the bar (M_b, J_b) at the file's values: the reference below holds it
     assert main([*args, "--workers", "1", "--out", str(out), "--json"]) == 0
     return out, physical
 
@@ -146,7 +147,9 @@ def test_units_option(tmp_path, capsys):
 
 def test_make_spec_holds_the_bar_fixed_in_si():
     physical = PhysicalParams.from_dimensionless(table1_case(1), digits=8, **SCALES)
-    spec = make_spec(physical.to_dimensionless(), {"M": "500,1500"}, physical=physical)
+    default = make_spec(physical.to_dimensionless(), {"M": "500,1500"}, physical=physical)
+    assert default.fixed == {} and default.held == ()  # the bar follows M by default, Eq. (63), as in maps
+    spec = make_spec(physical.to_dimensionless(), {"M": "500,1500"}, physical=physical, bar="fixed")
     assert spec.dims == ("M",)
     # a column of eta_M with the bar's mu_v, J_b held (not scaled with it: FIXED_POLYNOMIAL_DEGREES)
     assert spec.column_parameter == "eta_M" and spec.held == ("J_b", "mu_v")

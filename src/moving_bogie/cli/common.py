@@ -6,11 +6,11 @@ import argparse
 import json
 import sys
 from collections.abc import Iterable
-from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.bar import BAR_RULES, DEFAULT_BAR
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
 from moving_bogie.model.catalogue import Catalogue, default_catalogue
 from moving_bogie.model.files import load_params_file
@@ -18,12 +18,14 @@ from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.output import atomic_write  # noqa: F401  (re-exported for the commands)
 
+from .checks import decimal_number, exact_number, named_values
 from .outputs import add_output_option  # noqa: F401  (re-exported for the commands)
 from .reporting import PROG, handle_errors  # noqa: F401  (re-exported for the commands)
 
 __all__ = [
     "MODEL_OPTIONS",
     "add_model_options",
+    "add_bar_option",
     "add_json_option",
     "add_output_option",
     "add_parameter_options",
@@ -103,15 +105,6 @@ def refuse_for_sleepers(
 MODEL_OPTIONS = {"--beam": "beam", "--track": "track", "--vehicle": "vehicle"}
 
 
-def _decimal_text(text: str) -> str:
-    """argparse type: keep the text (converted exactly later) once it is known to be a number."""
-    try:
-        Fraction(text.strip())
-    except (ValueError, ZeroDivisionError):
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    return text
-
-
 def add_parameter_options(parser: argparse.ArgumentParser) -> None:
     """Add the model options, ``--case``, ``--file`` and one override option per dimensionless group.
 
@@ -135,7 +128,7 @@ def add_parameter_options(parser: argparse.ArgumentParser) -> None:
         help="TOML parameter file ([model], and a [dimensionless] or [physical] table)",
     )
     for name, option, text in parameter_options():
-        source.add_argument(option, dest=name, type=_decimal_text, metavar="X", help=text)
+        source.add_argument(option, dest=name, type=decimal_number, metavar="X", help=text)
     add_set_option(source)
 
 
@@ -168,15 +161,11 @@ def apply_settings(
             "--set needs a [physical] parameter file (--file F.toml); use the group options otherwise",
         )
     changes = {}
-    for text in texts:
-        name, eq, value = text.partition("=")
-        name = name.strip()
+    for name, value in named_values(texts, "--set", "NAME=NUMBER").items():
         try:
-            changes[name] = Fraction(value.strip())
-        except (ValueError, ZeroDivisionError):
-            raise ParameterError("--set", f"--set {text!r}: expected NAME=NUMBER") from None
-        if not eq or not name:
-            raise ParameterError("--set", f"--set {text!r}: expected NAME=NUMBER")
+            changes[name] = exact_number(value)
+        except ValueError as exc:
+            raise ParameterError("--set", f"--set {name}={value}: {exc}") from None
     try:
         values: dict[str, Any] = physical.values() | changes  # Fractions, passed as **values
         physical = PhysicalParams(model=physical.model, **values)
@@ -282,6 +271,18 @@ def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, Phy
     return params, physical
 
 
+def add_bar_option(parser: argparse._ActionsContainer) -> None:
+    """Add ``--bar follows|fixed``: what moves with the wheel mass along an axis or a varied M (the same
+    default in every map, line and sweep; :mod:`~moving_bogie.model.bar`)."""
+    parser.add_argument(
+        "--bar",
+        choices=tuple(BAR_RULES),
+        default=DEFAULT_BAR,
+        help="along the wheel mass M (eta_M), the bogie's bar (frame M_b, J_b): follows (default; M_b/M and "
+        "J_b/(M d^2) held, Eq. (63), the paper's convention) or fixed (M_b, J_b held at the input's values)",
+    )
+
+
 def add_json_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--json``: print machine-readable JSON instead of the readable table."""
     parser.add_argument("--json", action="store_true", help="print JSON instead of a readable table")
@@ -328,14 +329,4 @@ def vary_texts(texts: list[str]) -> dict[str, str]:
     """``--vary NAME=SPEC`` options as {NAME: SPEC}; a malformed one or a name given twice is refused."""
     if not texts:
         raise ParameterError("--vary", "give at least one --vary NAME=START:STOP:COUNT or NAME=V1,V2,...")
-    vary: dict[str, str] = {}
-    for text in texts:
-        name, eq, spec = text.partition("=")
-        if not eq:
-            raise ParameterError(
-                "--vary", f"--vary {text!r}: expected NAME=START:STOP:COUNT or NAME=V1,V2,..."
-            )
-        if name.strip() in vary:
-            raise ParameterError("--vary", f"--vary: {name.strip()} is varied twice")
-        vary[name.strip()] = spec
-    return vary
+    return named_values(texts, "--vary", "NAME=START:STOP:COUNT or NAME=V1,V2,...")

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 
+from .checks import nonnegative, positive
 from .common import PROG, add_json_option, print_json
 from .outputs import add_figure_option
 from .progress import progress_bar
@@ -44,10 +45,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=True)
-    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=positive, default=200.0, metavar="X",
         help="largest wheel mass ratio eta_M (default 200)",
     )  # fmt: skip
     p.add_argument("--quick", action="store_true", help="coarser seed grid and steps (a preview)")

@@ -12,6 +12,7 @@ if TYPE_CHECKING:
     from moving_bogie.roots.proof.certify import Certificate
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
 
+from .checks import count, exact_number
 from .common import PROG, add_json_option, add_parameter_options, params_from_args, print_json
 
 
@@ -63,8 +64,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "  moving-bogie table2 --json\n  moving-bogie table2 --certify",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    table.add_argument("--decimals", type=int, default=6, help="decimals shown in the text table (default 6)")
-    table.add_argument("--dps", type=int, default=30, help="working precision in decimal digits (default 30)")
+    table.add_argument(
+        "--decimals", type=count(0, 30), default=6, help="decimals shown in the text table (default 6)"
+    )
+    table.add_argument(
+        "--dps",
+        type=count(15, 1000, "digits"),
+        default=30,
+        help="working precision in decimal digits (default 30)",
+    )
     _add_certify_option(table)
     add_json_option(table)
     table.set_defaults(handler=run_table2)
@@ -81,7 +89,10 @@ def _add_certify_option(parser: argparse._ActionsContainer) -> None:
 
 def _add_search_options(parser: argparse._ActionsContainer) -> None:
     parser.add_argument(
-        "--dps", type=int, default=30, help="working precision in decimal digits (default 30)"
+        "--dps",
+        type=count(15, 1000, "digits"),
+        default=30,
+        help="working precision in decimal digits (default 30)",
     )
     parser.add_argument(
         "--window",
@@ -109,9 +120,10 @@ def run_frequencies(args: argparse.Namespace) -> int:
     window = None
     if args.window:
         try:
-            x, y = (float(v) for v in args.window.split(","))
-        except ValueError:
-            raise ParameterError("window", f"window must be two numbers X,Y (got {args.window!r})") from None
+            x, y = (float(exact_number(v)) for v in args.window.split(","))
+        except ValueError as exc:
+            reason = str(exc) if "range" in str(exc) else f"got {args.window!r}"
+            raise ParameterError("window", f"window must be two numbers X,Y ({reason})") from None
         if not (x > 0 and y > 0):
             raise ParameterError("window", "window sizes must be positive")
 
@@ -205,8 +217,9 @@ def format_si(result: FrequencyResult, physical: PhysicalParams) -> str:
             f"f = {si['frequency_hz']} Hz{growth}"
         )
     if result.margin is not None:
+        rate = float(result.margin) / t_scale
         lines.append(
-            f"  margin: the least-damped vibration decays at {float(result.margin) / t_scale:.6g} 1/s"
+            f"  margin: the least-damped vibration decays at {rate:.6g} 1/s ({result.margin_source})"
         )
     return "\n".join(lines)
 
@@ -233,8 +246,9 @@ def format_result(result: FrequencyResult) -> str:
         w = result.window
         lines.append(f"searched: {w.x0:.6g} <= Re q <= {w.x1:.6g}, {w.y0:.6g} <= Im q <= {w.y1:.6g}")
         if result.margin is not None:
+            rate = mpmath.nstr(result.margin, 6)
             lines.append(
-                f"margin: the least-damped vibration decays at Im q = {mpmath.nstr(result.margin, 6)}"
+                f"margin: the least-damped vibration decays at Im q = {rate} ({result.margin_source})"
             )
     if result.unsearched:
         height = max(u.height for u in result.unsearched)

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import TYPE_CHECKING
+from functools import partial
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -12,17 +13,22 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.line_results import InstabilityLines
+    from moving_bogie.stability.maps.map import StabilityMap
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.bar import bar_note, held_groups
 
 from . import sleepers_map_cmd
+from .checks import count, nonnegative, positive, workers
 from .common import (
     PROG,
+    add_bar_option,
     add_json_option,
     add_output_option,
     print_json,
     si_input,
 )
+from .job_size import SHORTER, add_yes_option, estimate_grid
 from .outputs import add_figure_option
 from .progress import progress_bar
 from .sleepers_map_cmd import sleeper_data
@@ -35,6 +41,11 @@ from .stability_options import (
     plane_units,
     save_figure,
 )
+
+#: The most grid points per axis of a stability map (--n); a map of over TIMED cells per axis is timed on
+#: one column before it starts (cli/job_size.py).
+MAX_N = 1000
+TIMED = 100
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -75,22 +86,23 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=True)
-    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=positive, default=200.0, metavar="X",
         help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
     )  # fmt: skip
     p.add_argument(
         "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
     )
-    p.add_argument("--q-max", type=float, default=1.5, help="largest real induced frequency searched")
+    p.add_argument("--q-max", type=positive, default=1.5, help="largest real induced frequency searched")
     p.add_argument(
         "--verify",
         action="store_true",
         help="count unstable roots (induced_frequencies) on both sides of each branch",
     )
     add_plane_options(p)
+    add_bar_option(p)
     add_figure_option(p, "--plot", help="write the figure")
     add_json_option(p)
     p.set_defaults(handler=run_instability_lines)
@@ -120,12 +132,14 @@ def run_instability_lines(args: argparse.Namespace) -> int:
             q_max=args.q_max,
             verify=args.verify,
             progress=bar,
+            held=held_groups(params, args.bar),
         )
     if args.plot:
         fig = instability_figure(res, units, (alpha_min, alpha_max), theta_max)
         save_figure(fig, args.plot)
     if args.json:
-        print_json(units.with_si(res.to_dict()) | {"units": units.to_dict()})
+        note = {"bar": bar_note(params, args.bar, args.parameter)}
+        print_json(units.with_si(res.to_dict()) | {"units": units.to_dict()} | note)
     else:
         if units.si:
             print(_si_line(units, args.parameter, params))
@@ -206,19 +220,21 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_track_vehicle_options(p, spacing_list=False)
-    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
     p.add_argument(
-        "--eta-M-max", dest="theta_max", type=float, default=200.0, metavar="X",
+        "--eta-M-max", dest="theta_max", type=positive, default=200.0, metavar="X",
         help="largest value of the vertical axis (eta_M, or the --parameter; default 200)",
     )  # fmt: skip
     p.add_argument(
         "--parameter", choices=("eta_M", "kappa_v", "eta_v"), default="eta_M", help="vertical axis"
     )
-    p.add_argument("--n", type=int, default=200, help="grid points per axis (default 200)")
-    p.add_argument("--workers", type=int, default=None, help="processes (default: CPUs)")
+    p.add_argument("--n", type=count(2, MAX_N), default=200, help="grid points per axis (default 200)")
+    p.add_argument("--workers", type=workers, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
+    add_yes_option(p)
     add_plane_options(p)
+    add_bar_option(p)
     add_figure_option(p, "--plot", help="write the figure")
     add_output_option(p, "--npz", metavar="F.npz", formats=("npz",), help="save the arrays")
     add_output_option(
@@ -246,11 +262,15 @@ def run_stability_map(args: argparse.Namespace) -> int:
 
     from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.lines.instability_lines import instability_lines
-    from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.stability.maps.map import map_columns, stability_map
 
     bound = bind(params)  # bound once: the map and its lines share it
+    held = held_groups(params, args.bar)
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
+    if args.n > TIMED:  # a long map says so before it starts
+        column = partial(map_columns, bound, args.parameter, [alphas[args.n // 2]], thetas, held=held)
+        estimate_grid("stability map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
     with progress_bar("stability map") as bar:
         smap = stability_map(
             bound,
@@ -259,6 +279,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
             thetas=thetas.tolist(),
             workers=args.workers,
             progress=bar,
+            held=held,
         )
     lines = None
     if args.lines:
@@ -269,6 +290,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
                 alpha_range=(alpha_min, alpha_max),
                 theta_max=theta_max,
                 progress=bar,
+                held=held,
             )
     if args.npz:
         import io
@@ -286,32 +308,40 @@ def run_stability_map(args: argparse.Namespace) -> int:
         from moving_bogie.stability.figures.plots import plot_stability_map
 
         save_figure(plot_stability_map(smap, lines, units=units), args.plot)
-    summary = smap.summary()
-    summary["axes"] = {
-        "x": units.axis("alpha", smap.alphas[0], smap.alphas[-1], len(smap.alphas)),
-        "y": units.axis(args.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
-    }
-    summary = units.with_si(summary) | {"units": units.to_dict()}
-    if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
-        rate = units.frequency(summary["max_degree"])
-        summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
-        if summary["min_decay_rate"] is not None:
-            decay = units.frequency(summary["min_decay_rate"])
-            summary["min_decay_rate"] = {"value": decay, "unit": "1/s"}
+    summary = _map_summary(smap, units, bar_note(params, args.bar, args.parameter))
     if args.json:
         print_json(summary)
     else:
         if units.si:
             print(_si_line(units, args.parameter, params))
         for key, value in summary.items():
-            if key not in ("params", "uncertain", "axes", "units"):
+            if key not in ("params", "uncertain", "axes", "units", "bar"):
                 print(f"{key:18s} {value}")
         for key, axis in summary["axes"].items():
             (lo, hi), name = axis["range"], axis["name"]
-            print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {axis['count']} points")
+            note = f" ({axis['note']})" if "note" in axis else ""
+            points = f"{axis['count']} points{note}"
+            print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {points}")
         for cell in summary["uncertain"]:
             print("uncertain cell     " + ", ".join(f"{k} = {v:.6g}" for k, v in cell.items()))
     return 0
+
+
+def _map_summary(smap: StabilityMap, units: PlaneUnits, bar: dict[str, str] | None) -> dict[str, Any]:
+    """The map's summary with its axes in ``units``, the rule of the bar, and in SI the rates in 1/s."""
+    summary = smap.summary()
+    summary["axes"] = {
+        "x": units.axis("alpha", smap.alphas[0], smap.alphas[-1], len(smap.alphas)),
+        "y": units.axis(smap.parameter, smap.thetas[0], smap.thetas[-1], len(smap.thetas)),
+    }
+    summary = units.with_si(summary) | {"units": units.to_dict(), "bar": bar}
+    if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
+        rate = units.frequency(summary["max_degree"])
+        summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
+        if summary["min_decay_rate"] is not None:
+            decay = units.frequency(summary["min_decay_rate"])
+            summary["min_decay_rate"] = {"value": decay, "unit": "1/s"}
+    return summary
 
 
 def _si_line(units: PlaneUnits, parameter: str, params: DimensionlessParams) -> str:

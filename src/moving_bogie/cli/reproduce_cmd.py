@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .checks import count
 from .outputs import add_output_option
 
 
@@ -42,7 +43,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--only", nargs="+", metavar="ID", help="build only these artifacts (ids as listed by --list)"
     )
     parser.add_argument(
-        "--dps", type=int, help="working precision of the induced frequencies (default 30; quick 20)"
+        "--dps",
+        type=count(15, 1000, "digits"),
+        help="working precision of the induced frequencies (default 30; quick 20)",
     )
     parser.add_argument("--list", action="store_true", help="list the artifacts and exit")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")

@@ -5,12 +5,14 @@ from __future__ import annotations
 
 import argparse
 import sys
-from fractions import Fraction
+from functools import partial
 from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 
+from .checks import named_values, value_range
 from .common import print_json, refuse_for_sleepers
+from .job_size import SHORTER, estimate_grid
 from .progress import progress_bar
 
 if TYPE_CHECKING:
@@ -18,6 +20,9 @@ if TYPE_CHECKING:
 
     from moving_bogie.floquet.inputs import SleeperInput
     from moving_bogie.floquet.sleeper_map import SleeperMap
+
+#: a sleeper map of over TIMED cells per axis is timed on one column before it starts
+TIMED = 50
 
 #: the velocity and mass axes without --range, m/s and kg
 DEFAULT_RANGES = {"v": (20.0, 400.0), "M": (0.0, 3000.0)}
@@ -57,17 +62,10 @@ def _refuse_options(args: argparse.Namespace) -> None:
 
 def _ranges(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
     ranges = dict(DEFAULT_RANGES)
-    for text in args.range:
-        name, eq, spec = text.partition("=")
-        try:
-            lo, hi = (float(Fraction(x.strip())) for x in spec.split(":"))
-        except (ValueError, ZeroDivisionError):
-            raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI") from None
-        if not eq or not hi > lo:
-            raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI")
-        if name.strip() not in ranges:
-            raise ParameterError("--range", f"--range {name.strip()}: not an axis (known: v, M)")
-        ranges[name.strip()] = (lo, hi)
+    for name, spec in named_values(args.range, "--range", "NAME=LO:HI").items():
+        if name not in ranges:
+            raise ParameterError("--range", f"--range {name}: not an axis (known: v, M)")
+        ranges[name] = value_range(name, spec)
     if ranges["v"][0] <= 0:
         raise ParameterError("--range", "--range v: the velocities must be positive on a sleeper track")
     if ranges["M"][0] < 0:
@@ -86,11 +84,6 @@ def sleeper_plane(
 
     _refuse_options(args)
     ranges = _ranges(args)
-    workers = getattr(args, "workers", None)
-    if n < 2:
-        raise ParameterError("--n", f"--n must be at least 2 (got {n})")
-    if workers is not None and workers < 1:
-        raise ParameterError("--workers", f"--workers must be at least 1 (got {workers})")
     if data.vehicle_groups.get("eta_M") is None or "M" not in data.physical:
         raise ParameterError("vehicle", f"vehicle {data.vehicle!r} has no wheel mass M")
     if data.groups.get("eta_f", 0.0) <= 0:
@@ -144,6 +137,10 @@ def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
 
     data, vs, ms = sleeper_plane(args, args.n, data)
+    if args.n > TIMED:  # a long map says so before it starts
+        middle = vs[args.n // 2 : args.n // 2 + 1]
+        column = partial(sleeper_map, data, middle, ms, verify=0, workers=1)
+        estimate_grid("sleeper map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
     physical = smeared_track(data)  # None: no continuous counterpart, the sleeper map alone
     with progress_bar("sleeper map") as bar:
         smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar)

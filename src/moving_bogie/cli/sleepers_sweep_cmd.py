@@ -49,15 +49,15 @@ def sleeper_spec(args: argparse.Namespace) -> SleeperSweepSpec:
     from .common import vary_texts
 
     _refuse_options(args)
-    if args.workers is not None and args.workers < 1:
-        raise ParameterError("--workers", "--workers must be >= 1")
     if args.workers is not None and args.scheduler:
         raise ParameterError("--workers", "give either --workers or --scheduler, not both")
     chunk_points = 1 if args.chunk_points is None else args.chunk_points
-    if chunk_points < 1:
-        raise ParameterError("--chunk-points", "--chunk-points must be >= 1")
     vary = vary_texts(args.vary)
     sample = parse_sample(args.sample) if args.sample else None
+    if sample is not None:
+        from .job_size import check_points
+
+        check_points(sample, "--sample")
     data = tomllib.loads(args.file.read_text())
     settings = sleeper_settings(args.set)
     return make_sleeper_spec(

@@ -18,6 +18,7 @@ if TYPE_CHECKING:
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.frequency_lines import FrequencyLine, FrequencyLines
 
+from .checks import count, decimal_number, nonnegative, positive
 from .common import (
     add_json_option,
     add_parameter_options,
@@ -32,7 +33,6 @@ from .progress import progress_bar
 from .stability_options import (
     RAW,
     add_plane_options,
-    decimal_number,
     plane_ranges,
     save_figure,
 )
@@ -245,9 +245,11 @@ def _register_frequency_lines(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--alpha-min", type=float, default=0.0, help="smallest velocity alpha (default 0)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
-    p.add_argument("--checkpoints", type=int, default=13, help="velocities where all roots are found afresh")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.0, help="smallest velocity alpha (default 0)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument(
+        "--checkpoints", type=count(2, 200), default=13, help="velocities where all roots are found afresh"
+    )
     add_plane_options(p, set_option=False)
     add_figure_option(p, "--plot", help="write the figure")
     add_json_option(p)
@@ -354,17 +356,17 @@ def _register_critical_stiffness(subparsers: argparse._SubParsersAction) -> None
         formatter_class=RAW,
     )
     add_parameter_options(p)
-    p.add_argument("--alpha-min", type=float, default=0.3, help="smallest velocity alpha (default 0.3)")
-    p.add_argument("--alpha-max", type=float, default=1.2, help="largest velocity alpha (default 1.2)")
-    p.add_argument("--alphas", type=int, default=19, help="number of velocities")
+    p.add_argument("--alpha-min", type=nonnegative, default=0.3, help="smallest velocity alpha (default 0.3)")
+    p.add_argument("--alpha-max", type=nonnegative, default=1.2, help="largest velocity alpha (default 1.2)")
+    p.add_argument("--alphas", type=count(1, 1000), default=19, help="number of velocities")
     p.add_argument(
         "--kappa-max",
-        type=float,
+        type=positive,
         default=1.0,
         help="largest suspension stiffness kappa_v searched (default 1)",
     )
     p.add_argument(
-        "--q-max", type=float, default=1.5, help="largest real induced frequency searched (default 1.5)"
+        "--q-max", type=positive, default=1.5, help="largest real induced frequency searched (default 1.5)"
     )
     add_json_option(p)
     p.set_defaults(handler=run_critical_stiffness)

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 
+from .checks import decimal_number, named_values, number_list, value_range
 from .common import (
     MODEL_OPTIONS,
     add_model_options,
@@ -28,18 +29,6 @@ if TYPE_CHECKING:  # the stability package imports the numerical modules: not be
 
 #: Help layout of the stability subcommands (their descriptions hold line breaks and formulas).
 RAW = argparse.RawDescriptionHelpFormatter
-
-
-def decimal_number(text: str) -> str:
-    try:
-        Fraction(text.strip())
-    except (ValueError, ZeroDivisionError):
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    return text
-
-
-def number_list(text: str) -> list[str]:
-    return [decimal_number(t) for t in text.split(",") if t.strip()]
 
 
 def add_track_vehicle_options(parser: argparse.ArgumentParser, *, spacing_list: bool) -> None:
@@ -147,11 +136,20 @@ def add_plane_options(parser: argparse.ArgumentParser, *, set_option: bool = Tru
 
 def plane_units(args: argparse.Namespace, params: DimensionlessParams) -> PlaneUnits:
     """How the plane of ``params`` is shown: SI for a [physical] file (unless --units dimensionless); the
-    operating point is the file's own (a --file input)."""
+    operating point is the file's own (a --file input); the vertical axis of the wheel mass says whether the
+    bar follows it or is held (``--bar``)."""
+    from dataclasses import replace
+
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
     physical = si_input(args, getattr(args, "physical", None))
-    return PlaneUnits.of(params, physical, operating=getattr(args, "file", None) is not None)
+    units = PlaneUnits.of(params, physical, operating=getattr(args, "file", None) is not None)
+    parameter = getattr(args, "parameter", params.model.wheel_mass)
+    bar = [m["sets"] for m in params.model.alternatives.values() if parameter in m["depends"]]
+    if not bar:
+        return units
+    verb = "fixed" if getattr(args, "bar", "follows") == "fixed" else f"follow {units.name(parameter)}"
+    return replace(units, notes={parameter: f"{', '.join(units.name(g) for g in bar)} {verb}"})
 
 
 def plane_ranges(args: argparse.Namespace, units: PlaneUnits, parameter: str) -> tuple[float, float, float]:
@@ -161,28 +159,24 @@ def plane_ranges(args: argparse.Namespace, units: PlaneUnits, parameter: str) ->
     alpha_max: float = args.alpha_max
     theta_max: float = getattr(args, "theta_max", math.nan)
     axes = {units.name("alpha"): "alpha", units.name(parameter): parameter}
-    for text in args.range:
-        name, eq, spec = text.partition("=")
-        name = name.strip()
-        bounds: tuple[float, float] | None
-        try:
-            lo, hi = (float(Fraction(x.strip())) for x in spec.split(":"))
-            bounds = lo, hi
-        except (ValueError, ZeroDivisionError):
-            bounds = None
-        if not eq or bounds is None or not bounds[1] > bounds[0]:
-            raise ParameterError("--range", f"--range {text!r}: expected NAME=LO:HI with LO < HI")
+    for name, spec in named_values(args.range, "--range", "NAME=LO:HI").items():
         if name not in axes:
             raise ParameterError("--range", f"--range {name}: not an axis (known: {', '.join(axes)})")
-        lo, hi = bounds
+        lo, hi = value_range(name, spec)
         if axes[name] == "alpha":
             alpha_min, alpha_max = units.group_value("alpha", lo), units.group_value("alpha", hi)
         elif lo != 0:
-            raise ParameterError("--range", f"--range {text!r}: the vertical axis starts at 0")
+            raise ParameterError("--range", f"--range {name}={spec}: the vertical axis starts at 0")
         else:
             theta_max = units.group_value(parameter, hi)
     if alpha_min < 0:
         raise ParameterError("--range", "the velocity range must be >= 0")
+    if not alpha_max > alpha_min:
+        raise ParameterError(
+            "--alpha-max", f"--alpha-max ({alpha_max:g}) must exceed --alpha-min ({alpha_min:g})"
+        )
+    if not (math.isnan(theta_max) or theta_max > 0):
+        raise ParameterError("--eta-M-max", f"--eta-M-max must be positive (got {theta_max:g})")
     return alpha_min, alpha_max, theta_max
 
 

@@ -11,8 +11,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.bar import bar_note
 
+from .checks import count, exact_number, named_values, workers
 from .common import (
+    add_bar_option,
     add_json_option,
     add_parameter_options,
     add_units_option,
@@ -21,6 +24,7 @@ from .common import (
     si_input,
     vary_texts,
 )
+from .job_size import check_points
 from .outputs import add_figure_option, add_output_option
 from .reporting import fail
 
@@ -80,11 +84,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace an existing store")
     p.add_argument(
         "--workers",
-        type=int,
+        type=workers,
         metavar="N",
         help="local worker processes (default: one per core; under 1000 points run in this process)",
     )
     p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="use an existing Dask scheduler")
+    add_bar_option(p)
     p.add_argument("--roots", action="store_true", help="store the unstable roots of every point")
     p.add_argument(
         "--margin",
@@ -93,13 +98,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--check",
-        type=int,
+        type=count(0, 1_000_000),
         metavar="K",
         help="points per chunk verified by a full count (default 1; not on a sleeper track)",
     )
     p.add_argument(
         "--chunk-points",
-        type=int,
+        type=count(1, 10_000_000),
         metavar="N",
         help="points per chunk, about (default 2048; on a sleeper track 1: a point costs seconds)",
     )
@@ -137,25 +142,22 @@ def _register_plot(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _spec(args: argparse.Namespace) -> SweepSpec:
-    if args.workers is not None and args.workers < 1:
-        raise ParameterError("--workers", "--workers must be >= 1")
-    if args.workers is not None and args.scheduler:
+    if args.workers is not None and args.scheduler:  # their values: the argparse types of cli/checks.py
         raise ParameterError("--workers", "give either --workers or --scheduler, not both")
     check = 1 if args.check is None else args.check
     chunk_points = 2048 if args.chunk_points is None else args.chunk_points
-    if check < 0:
-        raise ParameterError("--check", "--check must be >= 0")
-    if chunk_points < 1:
-        raise ParameterError("--chunk-points", "--chunk-points must be >= 1")
     params, physical = params_from_args(args)
     physical = si_input(args, physical)
     vary = vary_texts(args.vary)
     options = dict(roots=args.roots, margin=args.margin, check=check, block_points=chunk_points)
+    options["bar"] = args.bar
 
     from moving_bogie.sweep.api import make_spec
     from moving_bogie.sweep.design import parse_sample
 
     sample = parse_sample(args.sample) if args.sample else None
+    if sample is not None:
+        check_points(sample, "--sample")
     return make_spec(params, vary, sample=sample, physical=physical, **options)
 
 
@@ -208,6 +210,7 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
     else:
         continuous = _spec(args)
         spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
+    check_points(spec.size)  # a sweep's size is bounded before its store is created
     # every option is checked (and the store created) before any computation
     try:
         with _points_bar(not args.json) as bar:
@@ -262,6 +265,13 @@ def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
         "check_disagreements": int((a["checked"] < 0).sum()),
         "units": {axis.label: store.units.get(axis.label, "1") for axis in spec.axes},
     }
+    varied = [axis.name for axis in spec.axes]
+    note = next(
+        (bar_note(spec.params, spec.bar, name) for name in varied if bar_note(spec.params, spec.bar, name)),
+        None,
+    )
+    if note is not None:  # what the bar did along a varied wheel mass
+        out["bar"] = note
     if "supercritical" in a:  # the points above the critical velocity of their track
         out["supercritical_points"] = int(a["supercritical"].sum())
     return out
@@ -274,14 +284,11 @@ def run_sweep_plot(args: argparse.Namespace) -> int:
     from .stability_options import save_figure
 
     sel: dict[str, float] = {}
-    for text in args.sel:
-        name, eq, value = text.partition("=")
+    for name, value in named_values(args.sel, "--sel", "NAME=NUMBER").items():
         try:
-            sel[name.strip()] = float(value)
-        except ValueError:
-            raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER") from None
-        if not eq:
-            raise ParameterError("--sel", f"--sel {text!r}: expected NAME=NUMBER")
+            sel[name] = float(exact_number(value))
+        except ValueError as exc:
+            raise ParameterError("--sel", f"--sel {name}={value}: {exc}") from None
     ds = open_sweep(args.store)
     if ds.attrs.get("kind") == "sleepers":
         from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep

@@ -14,6 +14,7 @@ if TYPE_CHECKING:
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.roots.frequency_result import FrequencyResult
 
+from .checks import count, number
 from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
 from .outputs import add_figure_option
 
@@ -77,12 +78,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_parameter_options(shape)
     _add_common(shape)
-    shape.add_argument("--tau", type=float, required=True, metavar="T", help="the time")
-    shape.add_argument("--xi-min", type=float, default=None, metavar="X", help="default -10 (or -10/chi m)")
+    shape.add_argument("--tau", type=number, required=True, metavar="T", help="the time")
+    shape.add_argument("--xi-min", type=number, default=None, metavar="X", help="default -10 (or -10/chi m)")
     shape.add_argument(
-        "--xi-max", type=float, default=None, metavar="X", help="default d + 10 (or (d+10)/chi m)"
+        "--xi-max", type=number, default=None, metavar="X", help="default d + 10 (or (d+10)/chi m)"
     )
-    shape.add_argument("--points", type=int, default=401, metavar="K", help="points in xi (default 401)")
+    shape.add_argument(
+        "--points", type=count(2, 1_000_000), default=401, metavar="K", help="points in xi (default 401)"
+    )
     sout = shape.add_argument_group("output")
     add_json_option(sout)
     add_output_option(sout, "--csv", metavar="F.csv", help="write xi, w as CSV")
@@ -93,16 +96,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def _add_times(parser: argparse.ArgumentParser) -> None:
     times = parser.add_argument_group("times")
     times.add_argument("--tau", metavar="T1,T2,...", help="comma-separated times")
-    times.add_argument("--tmax", type=float, metavar="T", help="uniform times 0..T")
+    times.add_argument("--tmax", type=number, metavar="T", help="uniform times 0..T")
     times.add_argument(
         "--points",
-        type=int,
+        type=count(2, 1_000_000),
         metavar="K",
         help="points with --tmax (default 2001); a sleeper file: points over the bays (default 201 per bay)",
     )
     times.add_argument(
         "--bays",
-        type=int,
+        type=count(1, 10_000),
         metavar="n",
         help="a sleeper-track file only: bays shown of the steady response (default 1)",
     )
@@ -116,7 +119,9 @@ def _add_common(parser: argparse._ActionsContainer) -> None:
         help="force the branch-cut part on or off (default: automatic, where it exceeds 1e-6 of the steady "
         "deflection)",
     )
-    parser.add_argument("--dps", type=int, help="working precision in decimal digits (default 30)")
+    parser.add_argument(
+        "--dps", type=count(15, 1000, "digits"), help="working precision in decimal digits (default 30)"
+    )
 
 
 def _branch_cut(args: argparse.Namespace) -> bool | str:

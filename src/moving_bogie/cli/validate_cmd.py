@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from moving_bogie.validation.verdict import ValidationResult
 
+from .checks import count, number
 from .common import add_json_option, add_parameter_options, params_from_args, print_json
 from .outputs import add_figure_option
 
@@ -45,17 +46,21 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_parameter_options(parser)
     parser.add_argument(
-        "--modes", type=int, default=500, metavar="N", help="sine modes of the finite beam (default 500)"
+        "--modes",
+        type=count(4, 20_000),
+        default=500,
+        metavar="N",
+        help="sine modes of the finite beam (default 500)",
     )
     parser.add_argument(
         "--tmax",
-        type=float,
+        type=number,
         metavar="T",
         help="end of the run in dimensionless time (default 200 with foundation damping, 100 without)",
     )
     parser.add_argument(
         "--tol",
-        type=float,
+        type=number,
         default=0.01,
         metavar="X",
         help="relative tolerance per quantity, a fraction of its largest value (default 0.01)",

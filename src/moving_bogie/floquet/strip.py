@@ -74,6 +74,14 @@ class FloquetResult:
             reasons.append(Note(Reason.STRIP, "a root lies on the real axis (neither grows nor decays)"))
         return Verdict(UNDETERMINED, tuple(reasons))
 
+    @property
+    def margin_source(self) -> str | None:
+        """What sets the margin: "a root" or "the rail's free waves" (None without a margin)."""
+        if self.margin is None:
+            return None
+        least = self.least_damped
+        return "a root" if least is not None and least.q.imag <= self.margin else "the rail's free waves"
+
     def unsearched(self, scale: float = 1.0, unit: str = "") -> tuple[str, ...]:
         """The band of the strip above the window that was not searched and why, Im q times ``scale`` (in
         ``unit``); it holds decaying vibrations only, so the verdict does not depend on it."""

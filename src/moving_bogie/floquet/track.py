@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -51,6 +52,12 @@ class SleeperTrack:
     beam: str
     track: str
     groups: dict = field(hash=False)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickled without the cached :attr:`kernels` (looked up again from the catalogue)."""
+        state = dict(self.__dict__)
+        state.pop("kernels", None)
+        return state
 
     @functools.cached_property
     def kernels(self) -> PeriodicFoundation:

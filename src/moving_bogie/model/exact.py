@@ -20,6 +20,7 @@ from mpmath.libmp import from_rational, round_nearest
 from moving_bogie.errors import ParameterError
 
 __all__ = [
+    "LARGEST",
     "NumberLike",
     "dataclass_repr",
     "fraction_to_exact_text",
@@ -35,8 +36,32 @@ __all__ = [
 NumberLike: TypeAlias = Fraction | int | float | str | Decimal
 
 
+#: The largest magnitude of a parameter value (and, but for zero, the reciprocal of the smallest): the
+#: computations run in double precision, where squares and products of values beyond it overflow.
+LARGEST = Fraction(10) ** 150
+
+
 def to_fraction(name: str, value: object) -> Fraction:
-    """Convert one parameter value exactly to a :class:`~fractions.Fraction`.
+    """Convert one parameter value exactly to a :class:`~fractions.Fraction`, within :data:`LARGEST`.
+
+    See :func:`_to_fraction` for the accepted types.
+
+    Raises
+    ------
+    ParameterError
+        For a value :func:`_to_fraction` refuses, or one beyond :data:`LARGEST` (or nearer 0 than its
+        reciprocal); the message names `name`.
+    """
+    x = _to_fraction(name, value)
+    if x != 0 and not 1 / LARGEST <= abs(x) <= LARGEST:
+        raise ParameterError(
+            name, f"{name} = {value} is out of range: give a magnitude from 1e-150 to 1e150, or 0"
+        )
+    return x
+
+
+def _to_fraction(name: str, value: object) -> Fraction:
+    """Convert one parameter value exactly to a :class:`~fractions.Fraction` (no range check).
 
     Parameters
     ----------

@@ -31,7 +31,7 @@ from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.model.cases import table1_case
-from moving_bogie.model.catalogue import default_catalogue
+from moving_bogie.model.catalogue import default_catalogue, get_model
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 
@@ -120,6 +120,8 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     if "dimensionless" in data and "physical" in data:
         raise ParameterError("physical", "give either a [dimensionless] or a [physical] table, not both")
     model = _table(data, "model", _MODEL_KEYS)
+    if not {"case", "dimensionless", "physical"} & set(data):
+        raise ParameterError("file", _no_parameters(model))
     if "physical" in data:
         if "case" in data:
             raise ParameterError(
@@ -137,6 +139,21 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     if isinstance(case, bool) or not isinstance(case, int):
         raise ParameterError("case", f"case must be an integer (got {_toml_type(case)} {case!r})")
     return table1_case(case).replace(**values), None
+
+
+def _no_parameters(table: dict[str, Any]) -> str:
+    """What a file that sets no parameters lacks: the SI names and units of its model's [physical] table."""
+    try:
+        specs = get_model(**table)
+    except ParameterError:
+        specs = get_model()
+    required = {k: v["unit"] for k, v in specs.scale_parameters.items()}
+    required |= {spec.si: spec.unit for spec in specs.specs.values() if spec.default is None}
+    names = ", ".join(f"{k} [{unit}]" for k, unit in required.items())
+    return (
+        f"the file sets no parameters: give a [physical] table in SI units ({names}), or a [dimensionless] "
+        "table of the groups, or case = N of Table 1 (moving-bogie models lists the names)"
+    )
 
 
 def _table(data: dict[str, Any], name: str, keys: tuple[str, ...]) -> dict[str, Any]:

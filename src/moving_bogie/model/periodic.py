@@ -52,10 +52,6 @@ class PeriodicFoundation:
 
     TRACK_KIND = PERIODIC
 
-    def __reduce__(self) -> tuple[Any, ...]:
-        """Pickled by its names: the packaged catalogue's own (its modules are not pickled)."""
-        return (_packaged, (self.beam, self.track))
-
     @property
     def _table(self) -> dict[str, dict[str, Any]]:
         table: dict[str, dict[str, Any]] = self.module.PARAMETERS[self.track][self.beam]
@@ -195,14 +191,6 @@ class PeriodicFoundation:
             return _call(own, values, sqrt)
         smeared = dict(values) | {"k_f": self.smeared_stiffness(values, sqrt)}
         return _call(getattr(self.paper, f"dimensionless_{group}"), smeared, sqrt)
-
-
-def _packaged(beam: str, track: str) -> PeriodicFoundation:
-    """The packaged catalogue's periodic track ``beam`` on ``track`` (unpickling)."""
-    from moving_bogie.model.catalogue import default_catalogue
-
-    found: PeriodicFoundation = default_catalogue().periodic[(beam, track)]
-    return found
 
 
 def _call(func: Callable[..., Any], values: Mapping[str, Any], sqrt: Callable[[Any], Any]) -> Any:

@@ -224,10 +224,23 @@ class FrequencyResult:
             rates.append(mpmath.mpf(self.region.free_waves))
         return min(rates, default=None)
 
+    @property
+    def margin_source(self) -> str | None:
+        """What sets :attr:`margin`: "a root" or "the rail's free waves" (None without a margin)."""
+        margin = self.margin
+        if margin is None:
+            return None
+        least = min((mpmath.im(r.q) for r in self.roots), default=None)
+        return "a root" if least is not None and least <= margin else "the rail's free waves"
+
     def _region_dict(self) -> dict:
         """``region`` (the strip's ``Omega_0``, ``harmonics``, free waves) and ``margin`` on a periodic
         track, nothing on a window."""
         if self.region is None or not self.region.periodic:
             return {}
         margin = self.margin
-        return {"region": self.region.to_dict(), "margin": None if margin is None else mpmath.nstr(margin, 6)}
+        return {
+            "region": self.region.to_dict(),
+            "margin": None if margin is None else mpmath.nstr(margin, 6),
+            "margin_source": self.margin_source,
+        }

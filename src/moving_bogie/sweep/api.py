@@ -52,7 +52,8 @@ def make_spec(
     ``[physical]`` input) the names are the SI parameters of the model's metadata (``v`` [m/s], ``M``
     [kg], ...) and the values are in their units; each is converted to its group exactly as
     :meth:`~moving_bogie.model.physical.PhysicalParams.to_dimensionless` does, every other SI parameter
-    fixed.
+    fixed but the bar's M_b, J_b, which follow the wheel mass unless ``bar="fixed"``
+    (:mod:`~moving_bogie.model.bar`).
     """
     if not vary:
         raise ParameterError("vary", "give at least one parameter to vary")
@@ -146,7 +147,8 @@ def sweep(
     **options
         ``roots`` (keep the unstable roots), ``margin`` (measure the stability margin of every point:
         about four times the time), ``check`` (points per block verified by a full count),
-        ``block_points`` (points per block, about).
+        ``block_points`` (points per block, about), ``bar`` (``"follows"``, the default, or ``"fixed"``:
+        what moves with the wheel mass, :mod:`~moving_bogie.model.bar`).
 
     Examples
     --------

@@ -26,6 +26,7 @@ import numpy as np
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import polynomial_degree
+from moving_bogie.model.bar import DEFAULT_BAR, held_groups
 from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
@@ -206,8 +207,8 @@ class SweepSpec:
     smallest Im q of its induced frequencies: about four times the work of the count alone, so asked for
     rather than made); ``check`` is the number of points per block verified by a full count.
     ``physical`` (:class:`~moving_bogie.model.physical.PhysicalParams` of a ``[physical]`` input) makes it
-    a sweep in SI units: the axes carry their SI values, the store's dimensions are the SI names,
-    and every SI parameter not varied stays fixed (:attr:`fixed`).
+    a sweep in SI units: the axes carry their SI values, the store's dimensions are the SI names.
+    ``bar`` says what moves with the wheel mass (:mod:`~moving_bogie.model.bar`, :attr:`fixed`).
     """
 
     params: DimensionlessParams
@@ -221,6 +222,7 @@ class SweepSpec:
     block_points: int = 2048
     extra: dict[str, Any] = field(default_factory=dict)
     physical: PhysicalParams | None = None
+    bar: str = DEFAULT_BAR
 
     def __post_init__(self) -> None:
         if self.model != self.params.vehicle:
@@ -251,17 +253,11 @@ class SweepSpec:
 
     @property
     def fixed(self) -> dict[str, Fraction]:
-        """Groups held at their base value whatever varies, passed with every point's changes.
-
-        In SI units every SI parameter that is not varied stays fixed: the groups that an alternative input
-        of the metadata sets (mu_v, J_b through cf1, cf2 of Eq. (63)) must not follow the groups it depends
-        on (the bar's mass M_b does not change with the wheel mass M). Dimensionless sweeps keep Table 1's
-        convention (cf1, cf2 fixed) and hold nothing.
+        """Groups held at their base value whatever varies, passed with every point's changes: the bar's
+        mu_v, J_b under the rule ``bar = "fixed"`` (M_b, J_b in SI), none under the default ``"follows"``
+        (cf1, cf2 of Eq. (63) held, as in the maps and lines; :mod:`~moving_bogie.model.bar`).
         """
-        if not self.si:
-            return {}
-        sets = {meta["sets"] for meta in self.params.model.alternatives.values()}
-        return {name: getattr(self.params, name) for name in sorted(sets)}
+        return {name: getattr(self.params, name) for name in held_groups(self.params, self.bar)}
 
     @property
     def dims(self) -> tuple[str, ...]:
@@ -324,19 +320,23 @@ class SweepSpec:
 
     def describe(self) -> dict[str, Any]:
         """JSON-ready description (stored in the attributes; a resumed sweep must match it)."""
-        return {
-            "model": self.model,
-            "params": self.params.to_dict(),
-            "design": self.design,
-            "varied": self.extra.get("ranges")
-            or {a.name: [fraction_to_text(v) for v in a.values] for a in self.axes},
-            "points": self.size,
-            "roots": self.roots,
-            "max_roots": self.max_roots,
-            "check": self.check,
-            "margin": self.margin,
-            "chunks": list(self.chunks),
-        } | (self._describe_si(self.physical) if self.physical is not None else {})
+        return (
+            {
+                "model": self.model,
+                "params": self.params.to_dict(),
+                "design": self.design,
+                "varied": self.extra.get("ranges")
+                or {a.name: [fraction_to_text(v) for v in a.values] for a in self.axes},
+                "points": self.size,
+                "roots": self.roots,
+                "max_roots": self.max_roots,
+                "check": self.check,
+                "margin": self.margin,
+                "chunks": list(self.chunks),
+            }
+            | ({"bar": self.bar} if self.bar != DEFAULT_BAR else {})
+            | (self._describe_si(self.physical) if self.physical is not None else {})
+        )
 
     def _describe_si(self, physical: PhysicalParams) -> dict[str, Any]:
         varied = self.extra.get("si_ranges") or {

@@ -27,8 +27,9 @@ def write_map(
     With ``physical`` (the SI parameters of the map's base point) the store is in SI units, as a sweep of
     a ``[physical]`` input: dimensions ``v``, ``M``, ... (each SI value the group times
     :meth:`~moving_bogie.model.physical.PhysicalParams.si_factor`, read by its shortest decimal text), the
-    groups beside them. Along the map's vertical axis the groups that Eq. (63) ties to it follow it, as
-    the attribute ``vertical_axis`` says.
+    groups beside them. Along the map's vertical axis the groups that Eq. (63) ties to it follow it, or
+    are held (``smap.held``, :mod:`~moving_bogie.model.bar`), as the attributes ``vertical_axis``
+    and ``bar`` say.
     """
     from moving_bogie.stability.maps.column import exact
     from moving_bogie.sweep.design import Axis
@@ -43,7 +44,9 @@ def write_map(
         return Axis(name, exact_values, si=spec.si, unit=spec.unit, si_values=si_values)
 
     axes = (axis("alpha", smap.alphas), axis(smap.parameter, smap.thetas))
-    spec = SweepSpec(smap.params, smap.model, axes, check=0, physical=physical)
+    bar = "fixed" if smap.held else "follows"
+    margin = smap.margin is not None  # the map's margin is stored as a sweep's with --margin
+    spec = SweepSpec(smap.params, smap.model, axes, check=0, physical=physical, bar=bar, margin=margin)
     path = prepare_store(path, spec, overwrite=overwrite)
     certain = ~smap.uncertain.T
     n = np.where(certain, smap.count.T, -1).astype(np.int16)
@@ -69,9 +72,12 @@ def write_map(
         if smap.parameter in meta["depends"]
     ]
     if follow:
-        store_group(path, "r+").attrs["vertical_axis"] = (
-            f"a stability map: along {smap.parameter} " + ", ".join(follow) + " follow it (Eq. (63))"
+        text = (
+            f"held at the base point's values ({', '.join(smap.held)})"
+            if smap.held
+            else ", ".join(follow) + " follow it (Eq. (63))"
         )
+        store_group(path, "r+").attrs["vertical_axis"] = f"a stability map: along {smap.parameter} {text}"
         consolidate(path)
     return path
 

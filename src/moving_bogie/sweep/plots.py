@@ -122,7 +122,10 @@ def _fixed(
     base = json.loads(ds.attrs["physical"]) if si and "physical" in ds.attrs else params
     varied = set(ds.dims) | {str(c) for c in ds.coords}
     follow: dict[str, str] = {}
-    if not si or "vertical_axis" in ds.attrs:  # groups Eq. (63) ties to a varied one follow it
+    # the rule of the store's attribute bar (model/bar.py); a store without one: an SI sweep held
+    # the bar, a dimensionless sweep and a map let it follow
+    old_rule = "follows" if not si or "vertical_axis" in ds.attrs else "fixed"
+    if json.loads(ds.attrs.get("bar", "{}")).get("rule", old_rule) == "follows":
         for name, meta in model.alternatives.items():
             for axis in (x, y, *(sel or {})):
                 group = ds[axis].attrs.get("group", axis)

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias, cast
 import numpy as np
 
 from moving_bogie.errors import MovingBogieError, ParameterError
+from moving_bogie.model.bar import BAR_RULES, bar_note
 from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.sweep.design import (
     Block,
@@ -227,6 +228,8 @@ def create_store(path: StorePath, spec: SweepSpec) -> None:
     )
     if spec.physical is not None:
         g.attrs["physical"] = json.dumps(spec.physical.to_dict())
+    if bar_note(spec.params, spec.bar, spec.params.model.wheel_mass) is not None:
+        g.attrs["bar"] = json.dumps({"rule": spec.bar, "meaning": BAR_RULES[spec.bar]})
     _write_speed(g, spec)
     consolidate(tmp)
     if path.exists():

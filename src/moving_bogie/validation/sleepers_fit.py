@@ -27,6 +27,7 @@ import numpy as np
 __all__ = [
     "FloquetFit",
     "RANK_LEVEL",
+    "ROUND_OFF",
     "dominant_harmonic",
     "fit_floquet_modes",
     "extrapolated",
@@ -43,8 +44,16 @@ __all__ = [
 #: (the zone example's rates move by less than 1e-5 between ranks 2 and 7)
 RANK_LEVEL = 1e-8
 
+#: a run below this fraction of its largest value is at its round-off (the finite rail's released run
+#: settles near 1e-8 of its start): periods below it are left out of the fit
+ROUND_OFF = 1e-6
+
 #: the fewest stroboscopic samples per fitted multiplier (the map of rank r is fitted to K - 1 >= 3 r pairs)
 SAMPLES_PER_MODE = 3
+
+#: the fewest periods a window must hold: room for rank 2, a complex-conjugate pair of multipliers (one
+#: oscillating mode of a real signal)
+MIN_PERIODS = 2 * SAMPLES_PER_MODE + 1
 
 
 def smooth_steps(x: np.ndarray) -> np.ndarray:
@@ -168,16 +177,16 @@ def fit_floquet_modes(
     """Fit the stroboscopic map to the run ``signals`` (signals x times, on the uniform steps ``tau``) from
     ``start`` to its end (module doc). The first signal sets the dominant harmonic.
 
-    Raises ValueError when the window holds fewer than 6 periods, or when the run has decayed there below
-    1e-6 of its largest value (round-off: nothing is left to fit)."""
+    The periods after the run has decayed below ``ROUND_OFF`` of its largest value are left out. Raises
+    ValueError when the window holds fewer than ``MIN_PERIODS`` periods above it (nothing is left to fit)."""
     signals = np.atleast_2d(signals)
-    inside = tau >= start - 1e-9 * period
-    if np.max(np.abs(signals[:, inside])) < 1e-6 * np.max(np.abs(signals)):
-        raise ValueError("the run decayed to round-off before the fit window")
     snapshots, phases, first, scales = stroboscopic_samples(tau, signals, period, start)
-    count = snapshots.shape[1]
-    if count < 6:
-        raise ValueError("the fit window holds fewer than 6 periods")
+    size = np.max(np.abs(snapshots) * np.repeat(scales, phases)[:, None], axis=0, initial=0.0)
+    above = np.nonzero(size >= ROUND_OFF * np.max(np.abs(signals)))[0]
+    count = int(above[-1]) + 1 if above.size else 0
+    snapshots = snapshots[:, :count]
+    if count < MIN_PERIODS:
+        raise ValueError(f"the fit window holds fewer than {MIN_PERIODS} periods")
     multipliers, shapes, singular = _fitted_map(snapshots, level)
     amplitudes = np.linalg.lstsq(shapes, snapshots[:, 0].astype(complex), rcond=None)[0]
     shares = np.abs(amplitudes) * np.linalg.norm(shapes, axis=0) * np.abs(multipliers) ** (count - 1)

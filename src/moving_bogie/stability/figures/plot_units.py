@@ -63,6 +63,9 @@ class PlaneUnits:
         None: the figure draws alpha = 1 (Eq. (65) without a shear layer).
     base : dict
         The SI parameters of the input, as text (``PhysicalParams.to_dict``), for the figures' titles.
+    notes : dict
+        Group -> a note its axis label and JSON carry (what moves with the wheel mass: ``"M_b, J_b follow
+        M"``, :mod:`~moving_bogie.model.bar`).
     """
 
     names: dict[str, str] = field(default_factory=dict)
@@ -72,6 +75,7 @@ class PlaneUnits:
     operating: dict[str, float] = field(default_factory=dict)
     alpha_cr: float | None = None
     base: dict[str, str | None] = field(default_factory=dict)
+    notes: dict[str, str] = field(default_factory=dict)
 
     @classmethod
     def of(
@@ -117,8 +121,9 @@ class PlaneUnits:
         return shown / self.factors.get(group, 1.0)
 
     def label(self, group: str) -> str:
-        """Axis label: ``v [m/s]``, or the group's name."""
-        return f"{self.name(group)} [{self.unit(group)}]" if group in self.units else group
+        """Axis label: ``v [m/s]``, or the group's name, and its note (``M [kg] (M_b, J_b follow M)``)."""
+        text = f"{self.name(group)} [{self.unit(group)}]" if group in self.units else group
+        return f"{text} ({self.notes[group]})" if group in self.notes else text
 
     def legend(self, group: str, x: float) -> str:
         """Legend entry of one value: ``d = 2.5 m``, or ``d = 2.95544`` for a group."""
@@ -221,6 +226,8 @@ class PlaneUnits:
         out: dict[str, Any] = {"name": self.name(group), "unit": self.unit(group)}
         out["range"] = [float(self.value(group, lo)), float(self.value(group, hi))]
         out["group"] = {"name": group, "range": [float(lo), float(hi)]}
+        if group in self.notes:
+            out["note"] = self.notes[group]
         return out | ({"count": count} if count is not None else {})
 
     def to_dict(self) -> dict:

@@ -50,6 +50,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.lines.continuation import PathTracer, evaluate
@@ -58,6 +59,7 @@ from moving_bogie.stability.lines.line_results import InstabilityBranch, Instabi
 from moving_bogie.stability.lines.seeds import report, seed_groups
 from moving_bogie.stability.lines.undamped_lines import undamped_lines
 from moving_bogie.stability.lines.walkers import trace_all_many
+from moving_bogie.stability.maps.column import at_theta
 from moving_bogie.stability.maps.undamped import regime
 from moving_bogie.typing import FloatArray
 
@@ -81,6 +83,7 @@ def instability_lines(
     tol: float = 1e-11,
     verify: bool = False,
     progress: Callable[[float], None] | None = None,
+    held: tuple[str, ...] = (),
 ) -> InstabilityLines:
     """Instability lines in the (alpha, theta) plane, Section 3.5 (Figures 3, 4, 7, 8).
 
@@ -119,10 +122,16 @@ def instability_lines(
         (in theta, at fixed alpha) and store them in ``verified`` (about one second per branch).
     progress : callable, optional
         Called with the fraction of work done.
+    held : tuple of str
+        Groups that keep their values instead of following ``parameter`` (the bar's mu_v, J_b under the
+        rule ``"fixed"`` of :mod:`~moving_bogie.model.bar`; default none, Eq. (63)); not with an
+        undamped foundation.
     """
-    options = dict(spacings=spacings, parameter=parameter, alpha_range=alpha_range, theta_max=theta_max)
-    options |= dict(q_max=q_max, q_max_cap=q_max_cap, alpha_step=alpha_step, q_step=q_step, h_max=h_max)
-    return instability_lines_many([(bound, options | dict(tol=tol, verify=verify, progress=progress))])[0]
+    options: dict[str, Any] = dict(spacings=spacings, parameter=parameter, alpha_range=alpha_range)
+    options |= dict(theta_max=theta_max, q_max=q_max, q_max_cap=q_max_cap, alpha_step=alpha_step)
+    options |= dict(q_step=q_step, h_max=h_max)
+    options |= dict(tol=tol, verify=verify, progress=progress, held=held)
+    return instability_lines_many([(bound, options)])[0]
 
 
 def instability_lines_many(requests: Sequence[tuple[BoundModel, dict[str, Any]]]) -> list[InstabilityLines]:
@@ -168,15 +177,20 @@ class _Panel:
         tol: float,
         verify: bool,
         progress: Callable[[float], None] | None,
+        held: tuple[str, ...],
     ) -> None:
         params = bound.params
-        self.bound, self.verify, self.progress = bound, verify, progress
+        self.bound, self.verify, self.progress, self.held = bound, verify, progress, tuple(held)
         self.parameter = parameter or params.model.wheel_mass
         self.ds = [float(params.d)] if spacings is None else [float(d) for d in spacings]
         self.alpha_range = (float(alpha_range[0]), float(alpha_range[1]))
         self.theta_max, self.q_max = theta_max, q_max
         self.result: InstabilityLines | None = None
         if regime(params.eta_f) != "damped":
+            if self.held:
+                raise ParameterError(
+                    "bar", "the bar held fixed is not available for the lines of an undamped foundation"
+                )
             step = max(alpha_step, 0.02)
             self.result = undamped_lines(
                 bound,
@@ -188,7 +202,7 @@ class _Panel:
                 progress=progress,
             )
             return
-        self.sweep = SweepCharacteristic(bound, self.parameter)
+        self.sweep = SweepCharacteristic(bound, self.parameter, held=self.held)
         self.cap = 8 * q_max if q_max_cap is None else q_max_cap
         self.grid = dict(alpha_step=alpha_step, q_step=q_step, h_max=h_max, tol=tol)
 
@@ -225,7 +239,7 @@ class _Panel:
         if reaches:
             warnings.insert(0, f"a line reaches q_max={self.q_max:g} (the cap); raise q_max_cap")
         if self.verify:
-            branches = [_verify(self.bound, self.parameter, b) for b in branches]
+            branches = [_verify(self.bound, self.parameter, b, self.held) for b in branches]
         report(self.progress, 1.0)
         params = self.bound.params
         self.result = InstabilityLines(
@@ -240,7 +254,9 @@ class _Panel:
         )
 
 
-def _verify(bound: BoundModel, parameter: str, branch: InstabilityBranch) -> InstabilityBranch:
+def _verify(
+    bound: BoundModel, parameter: str, branch: InstabilityBranch, held: tuple[str, ...] = ()
+) -> InstabilityBranch:
     """Unstable counts by induced_frequencies just below and above the branch's middle point."""
     from dataclasses import replace
 
@@ -251,7 +267,7 @@ def _verify(bound: BoundModel, parameter: str, branch: InstabilityBranch) -> Ins
     base = bound.replace(alpha=_exact(a), d=_exact(branch.d))
     counts = []
     for t in (theta * 0.98, theta * 1.02):
-        res = induced_frequencies(base.replace(**{parameter: _exact(t)}), dps=20)
+        res = induced_frequencies(at_theta(base, parameter, _exact(t), held), dps=20)
         counts.append(len(res.unstable_roots))
     return replace(
         branch, verified=(float(a), float(theta * 0.98), counts[0], float(theta * 1.02), counts[1])

@@ -53,6 +53,7 @@ class StabilityMap:
     settled: np.ndarray | None = None
     margin: np.ndarray | None = None
     margin_bound: np.ndarray | None = None
+    held: tuple[str, ...] = ()  # groups held instead of following the vertical axis (model/bar.py)
 
     def save_npz(self, path: str | os.PathLike[str] | IO[bytes]) -> None:
         """Write the arrays (and the parameters as JSON text) to ``path``: a name or a binary file (.npz)."""
@@ -188,6 +189,7 @@ def stability_map(
     chunk: int = 8,
     settle: bool = True,
     progress: Callable[[float], None] | None = None,
+    held: tuple[str, ...] = (),
     **options: Any,
 ) -> StabilityMap:
     """Degree of instability over the grid ``alphas x thetas`` (beyond the paper).
@@ -209,6 +211,8 @@ def stability_map(
         Settle the cells the column count leaves uncertain by a full count (default True).
     progress : callable, optional
         Called with the fraction of columns done.
+    held : tuple of str
+        Groups held instead of following ``parameter`` (mu_v, J_b: :mod:`~moving_bogie.model.bar`).
     **options
         Passed to :func:`~moving_bogie.stability.maps.column.stability_column`.
     """
@@ -219,7 +223,7 @@ def stability_map(
     if "top" not in options:
         options["top"] = top_edge(bound, alpha_grid)
     chunks = [alpha_grid[i : i + chunk] for i in range(0, len(alpha_grid), chunk)]
-    tasks = [(bound, parameter, c, theta_grid, options, settle) for c in chunks]
+    tasks = [(bound, parameter, c, theta_grid, options, settle, held) for c in chunks]
     workers = workers or min(len(chunks), os.cpu_count() or 1)
     columns: list[ColumnResult] = []
     results: Iterator[list[ColumnResult]]
@@ -253,4 +257,5 @@ def stability_map(
         stack("settled"),
         stack("margin"),
         stack("margin_bound"),
+        held,
     )

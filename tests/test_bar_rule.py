@@ -1,0 +1,92 @@
+"""One meaning of the wheel mass M: the map, the sweep and the lines move the bar (M_b, J_b) by one rule.
+
+At v = 400 m/s, M = 3000 kg on the track of ``examples/uic60-bogie.toml`` (M = 1000 kg, M_b = 2600 kg,
+J_b = 2200 kg m^2, d = 2.5 m) the map's cell and the sweep's point must have the same margin under each rule,
+and that margin must be the one ``induced_frequencies`` gives (a full count at 30 digits, not the columns of
+the map and the sweep) with the bar's values written out by hand: M_b = 2.6 M = 7800 kg and J_b = 2200 x 3 =
+6600 kg m^2 when the bar follows (Eq. (63): M_b/M and J_b/(M d^2) held), the file's 2600 kg and 2200 kg m^2
+when it is fixed.
+"""
+
+import json
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+from moving_bogie.cli import main
+from moving_bogie.kernels.bound import bind
+from moving_bogie.model.files import load_parameters
+from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.roots.frequencies import induced_frequencies
+
+FILE = str(Path(__file__).parents[1] / "examples" / "uic60-bogie.toml")
+POINT = {"v": 400, "M": 3000}
+#: the bar at M = 3000 kg under each rule, written out from the file's values (see the module text)
+BAR = {"follows": {"M_b": 7800, "J_b": 6600}, "fixed": {"M_b": 2600, "J_b": 2200}}
+
+
+def reference_margin(rule: str) -> float:
+    """min Im omega [1/s] of every induced frequency at the point, the bar's values given explicitly."""
+    _, physical = load_parameters(FILE)
+    assert physical is not None
+    point = PhysicalParams(model=physical.model, **(physical.values() | POINT | BAR[rule]))
+    result = induced_frequencies(bind(point.to_dimensionless()), dps=30)
+    return min(float(r.q.imag) for r in result.roots) / point.scales().t_scale
+
+
+def map_margin(tmp_path: Path, rule: str | None) -> tuple[float, xr.Dataset]:
+    out = tmp_path / f"map-{rule}.zarr"
+    argv = ["stability-map", "--file", FILE, "--range", "v=0:400", "--range", "M=0:3000", "--n", "2"]
+    argv += ["--workers", "1", "--out", str(out)] + (["--bar", rule] if rule else [])
+    assert main(argv) == 0
+    ds = xr.open_zarr(out)
+    corner = ds.margin.isel(v=-1, M=-1)  # the grid's last cell: v = 400 m/s, M = 3000 kg
+    assert (float(corner.v), float(corner.M)) == pytest.approx((400, 3000), rel=1e-12)
+    return float(corner), ds
+
+
+def sweep_margin(tmp_path: Path, rule: str | None) -> tuple[float, xr.Dataset]:
+    out = tmp_path / f"sweep-{rule}.zarr"
+    argv = ["sweep", "--file", FILE, "--vary", "v=400", "--vary", "M=3000", "--margin", "--out", str(out)]
+    assert main(argv + (["--bar", rule] if rule else [])) == 0
+    ds = xr.open_zarr(out)
+    return float(ds.margin.values.ravel()[0]), ds
+
+
+def test_default_rule_is_the_same_in_the_map_and_the_sweep(tmp_path):
+    """No --bar: both follow Eq. (63), and both stores say so (issue: 1.22 1/s against 3.64 1/s)."""
+    on_map, map_store = map_margin(tmp_path, None)
+    on_sweep, sweep_store = sweep_margin(tmp_path, None)
+    assert on_map == pytest.approx(on_sweep, rel=1e-9)
+    for ds in (map_store, sweep_store):
+        assert json.loads(ds.attrs["bar"])["rule"] == "follows"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("rule", ["follows", "fixed"])
+def test_each_rule_agrees_with_the_full_count_of_the_bar_written_out(tmp_path, rule):
+    on_map, map_store = map_margin(tmp_path, rule)
+    on_sweep, sweep_store = sweep_margin(tmp_path, rule)
+    assert on_map == pytest.approx(on_sweep, rel=1e-9)
+    assert on_map == pytest.approx(reference_margin(rule), rel=1e-8)
+    assert ("held" in map_store.attrs["vertical_axis"]) == (rule == "fixed")
+    assert json.loads(sweep_store.attrs["bar"])["rule"] == rule
+
+
+def test_map_json_and_label_name_the_rule(capsys):
+    argv = ["stability-map", "--file", FILE, "--range", "v=0:400", "--range", "M=0:3000", "--n", "2"]
+    assert main([*argv, "--workers", "1", "--bar", "fixed", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["bar"]["rule"] == "fixed"
+    assert data["axes"]["y"]["note"] == "M_b, J_b fixed"
+
+
+def test_rule_not_for_a_parameter_that_does_not_move_the_bar():
+    """kappa_v moves no bar: its map JSON carries no rule (bar_note is None)."""
+    from moving_bogie.model.bar import bar_note, held_groups
+
+    params, _ = load_parameters(FILE)
+    assert bar_note(params, "fixed", "kappa_v") is None
+    assert held_groups(params, "follows") == ()
+    assert set(held_groups(params, "fixed")) == {"mu_v", "J_b"}
