@@ -123,14 +123,15 @@ def main() -> None:
                         out,
                     ]
     print(f"frequencies --file (least of {args.repeat} runs, fresh processes)")
-    head = f"{'checkout':<12}{'case':<10}{'track':<12}{'CPU s':>8}{'wall s':>9}  {'verdict':<13}{'roots':>6}"
-    print(head + f"{'margin 1/s':>12}  harmonics")
+    width = max(len(label) for label, _ in checkouts) + 2
+    head = f"{'checkout':<{width}}{'case':<10}{'track':<12}{'CPU s':>8}{'wall s':>9}"
+    print(head + f"  {'verdict':<13}{'roots':>6}{'margin 1/s':>12}  harmonics")
     for (label, case, track), (cpu, wall, out) in best.items():
         harmonics = out.get("harmonics") or (out.get("region") or {}).get("harmonics")
         span = f"{harmonics[0]}..{harmonics[-1]}" if harmonics else "-"
         verdict = out["verdict"] if isinstance(out["verdict"], str) else out["verdict"]["state"].upper()
         print(
-            f"{label:<12}{case:<10}{track:<12}{cpu:>8.2f}{wall:>9.2f}  {verdict:<13}{out['count']:>6}"
+            f"{label:<{width}}{case:<10}{track:<12}{cpu:>8.2f}{wall:>9.2f}  {verdict:<13}{out['count']:>6}"
             f"{margin(out):>12}  {span}"
         )
     if args.record:
@@ -144,7 +145,7 @@ def record(best: dict) -> None:
     def cost(key: tuple[str, str, str]) -> str:
         cpu, wall, out = best[key]
         verdict = out["verdict"] if isinstance(out["verdict"], str) else out["verdict"]["state"].upper()
-        return f"{wall:.2f} s wall, {cpu:.2f} s CPU, {verdict}, margin {margin(out)} 1/s"
+        return f"{cpu:.2f} s CPU ({wall:.2f} s wall), {verdict}, margin {margin(out)} 1/s"
 
     rows = []
     for (case, name, values), target in zip(CASES, ("< 3 s", "< 5 s")):

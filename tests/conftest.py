@@ -27,6 +27,13 @@ if os.environ.pop("PYTHONDONTWRITEBYTECODE", None):
     sys.pycache_prefix = os.environ["PYTHONPYCACHEPREFIX"]
     sys.dont_write_bytecode = False
 
+# Interrupted long jobs (maps) keep their finished parts in a cache folder: the suite's own, never the
+# user's (the commands run in this process and in subprocesses both read the variable).
+if "MOVING_BOGIE_CACHE" not in os.environ:
+    import tempfile
+
+    os.environ["MOVING_BOGIE_CACHE"] = tempfile.mkdtemp(prefix="moving-bogie-cache-")
+
 import mpmath  # noqa: E402
 import pytest  # noqa: E402
 from hypothesis import settings  # noqa: E402

@@ -90,3 +90,19 @@ def test_rule_not_for_a_parameter_that_does_not_move_the_bar():
     assert bar_note(params, "fixed", "kappa_v") is None
     assert held_groups(params, "follows") == ()
     assert set(held_groups(params, "fixed")) == {"mu_v", "J_b"}
+
+
+@pytest.mark.slow
+def test_lines_with_the_bar_held_cross_where_the_full_count_changes():
+    """Lines traced with mu_v, J_b held (degree 2 in eta_M): on each branch the unstable count of
+    induced_frequencies (30 digits, the bar held by at_theta) 2 % below and above differs by one."""
+    from moving_bogie.model.bar import held_groups
+    from moving_bogie.model.cases import table1_case
+    from moving_bogie.stability.lines.instability_lines import instability_lines
+
+    params = table1_case(1).replace(d="1.5")
+    res = instability_lines(bind(params), held=held_groups(params, "fixed"), verify=True)
+    assert res.branches
+    for branch in res.branches:
+        assert branch.verified is not None
+        assert abs(branch.verified[2] - branch.verified[4]) == 1

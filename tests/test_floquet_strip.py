@@ -235,3 +235,24 @@ def test_the_stable_example_reports_its_margin(capsys):
     top = out["window"]["im"][1] / float(out["si"]["t_scale_s"])
     assert top == pytest.approx(0.99 * rate, rel=1e-9)
     assert any(w.startswith("beyond the window: ") for w in out["warnings"])
+
+
+@pytest.mark.parametrize(
+    ("top", "roots", "margin", "source"),
+    [
+        (0.99, (), 1.0, "the rail's free waves"),
+        (0.5, (), 0.5, "the window's top"),
+        (0.99, (0.3 + 0.3j, 0.7 + 0.3j), 0.3, "a root"),
+        (0.99, (0.3 - 0.3j,), None, None),
+    ],
+)
+def test_the_margin_is_what_the_window_vouches_for(top, roots, margin, source):
+    """A stable result's margin is its least-damped root, or the free waves' rate when the window reaches
+    0.99 of it, or else only the window's top (nothing above it was searched); an unstable one has none."""
+    from moving_bogie.floquet.strip import FloquetRoot
+
+    window = Rectangle(-0.25, 0.75, -1.0, top)
+    found = tuple(FloquetRoot(q, 0.0, 0.0) for q in roots)
+    result = FloquetResult(found, len(found), 2, True, window, 1.0, 0, (), free_waves=1.0)
+    assert result.margin == (None if margin is None else pytest.approx(margin))
+    assert result.margin_source == source

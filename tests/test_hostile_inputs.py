@@ -33,10 +33,6 @@ class Reached(Exception):
     """The run got past every check to the work (a valid command line)."""
 
 
-def _reached(*args: object, **kwargs: object) -> None:
-    raise Reached
-
-
 #: The entries where the commands' work starts (each imported by the command when it runs).
 WORK = [
     ("moving_bogie.roots.frequencies", "induced_frequencies"),
@@ -63,14 +59,31 @@ WORK = [
 
 @pytest.fixture(scope="module")
 def no_work():
-    """Every work entry of :data:`WORK` replaced by :func:`_reached` for the module's tests."""
+    """Every work entry of :data:`WORK` replaced by a stand-in raising :class:`Reached` for the module's
+    tests; afterwards also where a module first imported meanwhile took the stand-in by name."""
     import importlib
+    import sys
 
     patch = pytest.MonkeyPatch()
+    originals, stand_ins = {}, []  # the stand-ins kept alive, so that their ids stay theirs
     for module, name in WORK:
-        patch.setattr(importlib.import_module(module), name, _reached)
+        target = importlib.import_module(module)
+        stand_ins.append(_stand_in())
+        originals[id(stand_ins[-1])] = getattr(target, name)
+        patch.setattr(target, name, stand_ins[-1])
     yield
     patch.undo()
+    for loaded in list(sys.modules.values()):
+        for attr, value in list(vars(loaded).items()):
+            if id(value) in originals:
+                setattr(loaded, attr, originals[id(value)])
+
+
+def _stand_in() -> object:
+    def reached(*args: object, **kwargs: object) -> None:
+        raise Reached
+
+    return reached
 
 
 def _options() -> dict[str, dict[str, tuple[int, tuple[str, ...]]]]:

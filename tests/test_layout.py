@@ -516,6 +516,7 @@ PARAMETER_LITERALS_ALLOWED: dict[tuple[str, str], str] = {
         "eta_f",
     ): "names the damping it needs > 0",
     ("moving_bogie.floquet.sleeper_map", "eta_f"): "names the damping along the rail it needs > 0 (S15)",
+    ("moving_bogie.floquet.sleeper_map", "eta_M"): "the key of a crossing's wheel mass in a map's checkpoint",
     ("moving_bogie.floquet.strip", "eta_f"): "a rail undamped along its length: singular points on the axis",
     # the rail on supports as finite elements (S24) and its bay: typed here until generated with the track
     ("moving_bogie.floquet.track", "lam"): "the bay of a periodic track (Omega_0 = 2 pi alpha / lam)",

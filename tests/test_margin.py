@@ -113,12 +113,9 @@ def test_store_keeps_the_margin_in_si_units(si_store):
     _, ds, params, physical = si_store
     t_scale = physical.scales().t_scale
     assert ds.margin.attrs["units"] == "1/s"
-    for i, j in [(0, 0), (1, 1)]:
+    for i, j in [(0, 0), (1, 1)]:  # the bar (mu_v, J_b) follows M: the default rule of model/bar.py
         point = at_theta(
-            bind(params.replace(alpha=exact(ds.alpha.values[i]))),
-            "eta_M",
-            exact(ds.eta_M.values[j]),
-            ("mu_v", "J_b"),
+            bind(params.replace(alpha=exact(ds.alpha.values[i]))), "eta_M", exact(ds.eta_M.values[j])
         )
         assert float(ds.margin[i, j]) == pytest.approx(smallest_im(point) / t_scale, rel=1e-9)
 

@@ -10,6 +10,8 @@ import pty
 import subprocess
 import sys
 
+import pytest
+
 
 def _run_on_a_terminal(args, cwd):
     """stderr and stdout of ``moving-bogie ARGS`` on a pseudo-terminal (what a user sees)."""
@@ -42,3 +44,12 @@ def test_reproduce_shows_the_recipe_on_a_terminal_and_nothing_on_a_pipe(tmp_path
     assert code == 0 and "reproducing the paper" in screen and "Table 1" in screen and "%" in screen
     piped = subprocess.run([sys.executable, "-m", "moving_bogie", *args], capture_output=True, text=True)
     assert piped.returncode == 0 and "%" not in piped.stderr and "reproducing the paper" not in piped.stderr
+
+
+@pytest.mark.slow
+def test_a_map_shows_its_time_left_on_a_terminal_and_nothing_with_json(tmp_path):
+    args = ["stability-map", "--case", "1", "--n", "9", "--workers", "1"]
+    code, screen = _run_on_a_terminal(args, tmp_path)
+    assert code == 0 and "stability map" in screen and "ETA" in screen
+    code, screen = _run_on_a_terminal([*args, "--json"], tmp_path)
+    assert code == 0 and "ETA" not in screen and "stability map" not in screen

@@ -197,3 +197,26 @@ def test_a_decay_is_fitted_down_to_the_round_off_only():
     fit = fit_floquet_modes(tau, x, T0, 0.0)
     assert abs(fit.rate / -0.06 - 1) < 1e-6
     assert fit.window[1] < np.log(1e6) / 0.06 < fit.window[1] + 2 * T0
+
+
+@pytest.mark.parametrize(
+    ("singular", "rank"),
+    [
+        ([1, 5.3e-2, 6.6e-7, 5.7e-7, 3.6e-7], 2),  # the zone example: a growing and a decaying mode
+        (
+            [1, 2.0e-3, 4.3e-6, 3.6e-6, 1.3e-6, 1.1e-6, 9e-7, 8e-7, 7e-7],
+            2,
+        ),  # the same later: the decaying mode at 2e-3 is kept
+        # a growing mode over the rail's reflections
+        ([1, 7.0e-4, 3.7e-4, 1.6e-4, 1.1e-4, 3.2e-5, 2.0e-5, 1.3e-5, 1.1e-5, 6.7e-6], 1),
+        ([1, 0.5, 0.3, 1e-9], 3),  # the last values below RANK_LEVEL: round-off
+        ([1, 0.5, 0.05, 0.02, 0.01, 0.008, 0.005, 0.004, 0.003], 2),  # no fall of 100: the largest
+    ],
+)
+def test_the_rank_is_at_the_last_gap_of_the_singular_values(singular, rank):
+    """The measured singular values of the finite rail's snapshots (and two made up): the modes kept are
+    those above the last fall by RANK_GAP = 100 (a rank beyond the gap fits the reflections, whose modes
+    moved the growing case's rate by 7e-4 and could outgrow it)."""
+    from moving_bogie.validation.sleepers_fit import RANK_LEVEL, _rank
+
+    assert _rank(np.array(singular, float), RANK_LEVEL, 7) == rank

@@ -103,7 +103,7 @@ def test_an_interrupted_sweep_resumes_and_equals_the_direct_search(tmp_path, cap
     for k, v in enumerate([40.0, 65.0]):
         ref = _direct(EXAMPLE, v)
         point = ds.isel(v=k)
-        assert int(point["count"]) == ref["count"] and int(point.harmonics) == ref["N"]
+        assert int(point.n_roots) == ref["count"] and int(point.harmonics) == ref["N"]
         assert bool(point.stable) == (ref["verdict"] == "stable")
         assert bool(point.unstable) == (ref["verdict"] == "unstable")
         assert bool(point.certain) == (ref["converged"] and ref["count"] == ref["located"])

@@ -9,8 +9,16 @@ from __future__ import annotations
 import difflib
 import re
 from collections.abc import Iterable
+from pathlib import Path
 
-__all__ = ["MovingBogieError", "MovingBogieWarning", "ParameterError", "did_you_mean", "suggestion"]
+__all__ = [
+    "JobInterrupted",
+    "MovingBogieError",
+    "MovingBogieWarning",
+    "ParameterError",
+    "did_you_mean",
+    "suggestion",
+]
 
 
 class MovingBogieError(Exception):
@@ -80,3 +88,22 @@ def suggestion(name: str, known: Iterable[str], *, listing: str = "expected one 
     """
     known = [str(k) for k in known]
     return did_you_mean(name, known) or f"{listing} {', '.join(known)}"
+
+
+class JobInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a long job of parts (:func:`~moving_bogie.checkpoint.run_parts`): ``done`` of
+    ``total`` parts (named ``what``) are kept in ``folder`` (None: no checkpoint), and the same job
+    resumed computes the others."""
+
+    def __init__(self, done: int, total: int, folder: Path | None, what: str = "parts") -> None:
+        super().__init__(f"interrupted after {done} of {total} {what}")
+        self.done, self.total, self.folder, self.what = done, total, folder, what
+
+    def advice(self) -> str:
+        """One line: what is kept and how to go on."""
+        if self.folder is None:
+            return f"{self}: nothing kept"
+        return (
+            f"{self}, kept in {self.folder}: run the same command with --resume to compute only the "
+            f"{self.total - self.done} others"
+        )

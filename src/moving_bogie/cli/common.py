@@ -165,7 +165,7 @@ def apply_settings(
         try:
             changes[name] = exact_number(value)
         except ValueError as exc:
-            raise ParameterError("--set", f"--set {name}={value}: {exc}") from None
+            raise ParameterError("--set", f"--set {name}={value}: expected NAME=NUMBER ({exc})") from None
     try:
         values: dict[str, Any] = physical.values() | changes  # Fractions, passed as **values
         physical = PhysicalParams(model=physical.model, **values)

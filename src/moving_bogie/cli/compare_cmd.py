@@ -87,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
     from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.figures.track_comparison import compare_tracks, figure_track_comparison
 
-    with progress_bar("instability lines on both tracks") as bar:
+    with progress_bar("instability lines on both tracks", enabled=not getattr(args, "json", False)) as bar:
         comparison = compare_tracks(
             bind(base),
             layered.track,

@@ -30,7 +30,7 @@ from .common import (
 )
 from .job_size import SHORTER, add_yes_option, estimate_grid
 from .outputs import add_figure_option
-from .progress import progress_bar
+from .progress import add_resume_option, checkpoint_options, progress_bar
 from .sleepers_map_cmd import sleeper_data
 from .stability_options import (
     RAW,
@@ -122,7 +122,7 @@ def run_instability_lines(args: argparse.Namespace) -> int:
     from moving_bogie.stability.lines.undamped_lines import KIND_TEXT
     from moving_bogie.stability.maps.undamped import MECHANISMS
 
-    with progress_bar("instability lines") as bar:
+    with progress_bar("instability lines", enabled=not args.json) as bar:
         res = instability_lines(
             bind(params),
             spacings=spacings,
@@ -215,7 +215,10 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
             "      --range M=0:3000 --n 100 --workers 2 --plot map.png --csv map.csv\n\n"
             "A file on a sleeper track (docs/sleepers.md): the unstable count of each cell from the\n"
             "D-decomposition in M at each velocity (none at M -> 0, then the signed crossings), checked by\n"
-            "floquet_frequencies at a few cells, beside the continuous track of the same smeared support."
+            "floquet_frequencies at a few cells, beside the continuous track of the same smeared support.\n\n"
+            "Every finished column is kept: after Ctrl-C, the same command with --resume computes only the\n"
+            "columns missing (kept under $MOVING_BOGIE_CACHE, else ~/.cache/moving-bogie, until the map\n"
+            "is done)."
         ),
         formatter_class=RAW,
     )
@@ -241,6 +244,7 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
         p, "--out", folder=True, metavar="S.zarr", help="save as a 2-D sweep store (sweep-plot, xarray)"
     )
     p.add_argument("--overwrite", action="store_true", help="replace an existing --out store")
+    add_resume_option(p)
     add_output_option(
         p, "--csv", metavar="F.csv", formats=("csv",), help="save the cells as CSV (a sleeper track's file)"
     )
@@ -249,6 +253,15 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_stability_map(args: argparse.Namespace) -> int:
+    """``stability-map``: the jobs it runs (a map; on sleepers the continuous map beside it) keep their
+    parts until the command is done, so ``--resume`` after any of them computes only what is missing."""
+    from moving_bogie.checkpoint import kept_until_done
+
+    with kept_until_done():
+        return _stability_map(args)
+
+
+def _stability_map(args: argparse.Namespace) -> int:
     import numpy as np
 
     sleepers = sleeper_data(args)
@@ -271,7 +284,7 @@ def run_stability_map(args: argparse.Namespace) -> int:
     if args.n > TIMED:  # a long map says so before it starts
         column = partial(map_columns, bound, args.parameter, [alphas[args.n // 2]], thetas, held=held)
         estimate_grid("stability map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
-    with progress_bar("stability map") as bar:
+    with progress_bar("stability map", enabled=not args.json) as bar:
         smap = stability_map(
             bound,
             parameter=args.parameter,
@@ -280,10 +293,11 @@ def run_stability_map(args: argparse.Namespace) -> int:
             workers=args.workers,
             progress=bar,
             held=held,
+            **checkpoint_options(args),
         )
     lines = None
     if args.lines:
-        with progress_bar("instability lines") as bar:
+        with progress_bar("instability lines", enabled=not args.json) as bar:
             lines = instability_lines(
                 bound,
                 parameter=args.parameter,

@@ -23,7 +23,7 @@ import tomllib
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NoReturn
 
-from moving_bogie.errors import MovingBogieError, ParameterError, did_you_mean
+from moving_bogie.errors import JobInterrupted, MovingBogieError, ParameterError, did_you_mean
 
 PROG = "moving-bogie"
 
@@ -146,6 +146,8 @@ def handle_errors(func: Callable[..., int | None], argv: Sequence[str] = ()) -> 
                 raise
             option = _path_option(exc.filename, args)
             return fail(f"{exc.strerror}: {exc.filename}", option, json_mode=json_mode)
+        except JobInterrupted as exc:  # a long job that kept its finished parts
+            return fail(exc.advice(), json_mode=json_mode, code=130)
         except KeyboardInterrupt:
             return fail("interrupted", json_mode=json_mode, code=130)
 

@@ -13,7 +13,7 @@ from moving_bogie.errors import ParameterError
 from .checks import named_values, value_range
 from .common import print_json, refuse_for_sleepers
 from .job_size import SHORTER, estimate_grid
-from .progress import progress_bar
+from .progress import checkpoint_options, progress_bar
 
 if TYPE_CHECKING:
     import numpy as np
@@ -124,7 +124,7 @@ def run_sleeper_lines(args: argparse.Namespace, data: SleeperInput) -> int:
     from moving_bogie.floquet.sleeper_map import sleeper_map
 
     data, vs, ms = sleeper_plane(args, getattr(args, "n", 60), data)
-    with progress_bar("D-decomposition lines") as bar:
+    with progress_bar("D-decomposition lines", enabled=not args.json) as bar:
         smap = sleeper_map(data, vs, ms, verify=3 if args.verify else 0, progress=bar)
     return _report(args, data, smap, crossings=True, continuous=None)
 
@@ -142,11 +142,12 @@ def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
         column = partial(sleeper_map, data, middle, ms, verify=0, workers=1)
         estimate_grid("sleeper map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
     physical = smeared_track(data)  # None: no continuous counterpart, the sleeper map alone
-    with progress_bar("sleeper map") as bar:
-        smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar)
+    kept = checkpoint_options(args)
+    with progress_bar("sleeper map", enabled=not args.json) as bar:
+        smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar, **kept)
     continuous: StabilityMap | None = None
     if physical is not None:
-        with progress_bar("continuous map") as bar:
+        with progress_bar("continuous map", enabled=not args.json) as bar:
             continuous = stability_map(
                 bind(physical.to_dimensionless()),
                 parameter="eta_M",
@@ -154,6 +155,7 @@ def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
                 thetas=(ms / physical.si_factor("eta_M")).tolist(),
                 workers=args.workers,
                 progress=bar,
+                **kept,
             )
     return _report(args, data, smap, crossings=False, continuous=continuous)
 

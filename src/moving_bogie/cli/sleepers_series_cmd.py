@@ -108,8 +108,8 @@ def _free_lines(series: SleeperSeries) -> list[str]:
     y0, y1 = series.free_window
     lines = [
         f"free vibrations: Floquet roots Omega (e^(i Omega t)) with Re Omega in [{x0:.6g}, {x1:.6g}] rad/s "
-        f"(one copy modulo Omega_0) and Im Omega in [{y0:.6g}, {y1:.6g}] rad/s: the growing ones "
-        "(decaying roots are not searched)",
+        f"(one copy modulo Omega_0) and Im Omega in [{y0:.6g}, {y1:.6g}] rad/s: the growing ones and, up to "
+        "the rail's free waves, the decaying ones",
         f"{series.free_count} root(s) counted by the argument principle, {len(series.free)} located",
     ]
     if series.free:

@@ -23,7 +23,7 @@ _NOT_FOR_SLEEPERS = {
     "vehicle": _MODEL,
     "roots": "the store keeps the fastest-growing root of every point (Omega_re, Omega_im)",
     "check": "every point is a full strip search of its own",
-    "margin": "the store keeps Omega_im, the growth or decay rate of the fastest root, at every point",
+    "margin": "a sleeper sweep stores the margin of every stable point (margin, in 1/s) without it",
 }
 
 

@@ -38,7 +38,10 @@ def run_sleeper_validation(args: argparse.Namespace, data: SleeperInput) -> int:
     from moving_bogie.validation.on_supports import check_on_supports
 
     _refuse(args)
-    result = check_on_supports(data, tol=args.tol)
+    from .progress import progress_bar
+
+    with progress_bar("Floquet theory + finite rail", enabled=not args.json) as update:
+        result = check_on_supports(data, tol=args.tol, progress=update)
     if args.plot:
         from moving_bogie.response.plots import save_figure
         from moving_bogie.validation.sleepers_plots import plot_sleeper_check

@@ -266,7 +266,7 @@ def run_frequency_lines(args: argparse.Namespace) -> int:
     from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.lines.frequency_lines import frequency_lines
 
-    with progress_bar("frequency lines") as bar:
+    with progress_bar("frequency lines", enabled=not getattr(args, "json", False)) as bar:
         res = frequency_lines(
             bind(params),
             alpha_range=(alpha_min, alpha_max),
@@ -380,7 +380,7 @@ def run_critical_stiffness(args: argparse.Namespace) -> int:
     from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness
 
-    with progress_bar("critical stiffness") as bar:
+    with progress_bar("critical stiffness", enabled=not getattr(args, "json", False)) as bar:
         res = critical_stiffness(
             bind(params),
             np.linspace(args.alpha_min, args.alpha_max, args.alphas).tolist(),
@@ -437,7 +437,7 @@ def _register_figure(subparsers: argparse._SubParsersAction) -> None:
 def run_figure(args: argparse.Namespace) -> int:
     from moving_bogie.paper import stability_figures as plots_stability
 
-    with progress_bar(f"figure {args.number}") as bar:
+    with progress_bar(f"figure {args.number}", enabled=not getattr(args, "json", False)) as bar:
         fig = getattr(plots_stability, f"figure{args.number}")(quick=args.quick, progress=bar)
     save_figure(fig, args.plot)
     print(args.plot)

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -26,7 +25,8 @@ from .common import (
 )
 from .job_size import check_points
 from .outputs import add_figure_option, add_output_option
-from .reporting import fail
+from .progress import counts_bar
+from .reporting import PROG, fail
 
 if TYPE_CHECKING:
     from moving_bogie.sweep.design import SweepSpec
@@ -50,7 +50,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "parameters are the SI ones (v in m/s, M in kg, ...; every other SI parameter fixed) and the\n"
             "store's coordinates are named and unitted so, the dimensionless groups kept beside them.\n"
             "A sleeper-track file (docs/sleepers.md) is swept over its [physical] names, each point one\n"
-            "Floquet strip search: count, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
+            "Floquet strip search: n_roots, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
             "harmonics, Omega0 [rad/s]."
         ),
         epilog=(
@@ -161,41 +161,8 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
     return make_spec(params, vary, sample=sample, physical=physical, **options)
 
 
-@contextmanager
-def _points_bar(enabled: bool) -> Iterator[Callable[[int, int], None]]:
-    """A rich bar with points/s and ETA on an interactive stderr; a no-op callback otherwise."""
-    if not enabled or not sys.stderr.isatty():
-        yield lambda done, total: None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-    with Progress(
-        TextColumn("sweep"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TextColumn("{task.fields[rate]} points/s"),
-        TextColumn("ETA"),
-        TimeRemainingColumn(),
-        console=Console(stderr=True),
-        transient=True,
-    ) as bar:
-        task = bar.add_task("sweep", total=None, rate="-")
-        first: dict[Any, Any] = {}
-
-        def update(done: int, total: int) -> None:
-            import time
-
-            now = time.perf_counter()
-            first.setdefault("t", now)
-            first.setdefault("done", done)
-            rate = (done - first["done"]) / (now - first["t"]) if now > first["t"] else 0.0
-            bar.update(task, completed=done, total=total, rate=f"{rate:8.1f}")
-
-        yield update
-
-
 def run_sweep_cmd(args: argparse.Namespace) -> int:
+    from moving_bogie.sweep.api import discarded_if_empty
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
     from moving_bogie.sweep.store import open_sweep, read_store
 
@@ -213,7 +180,10 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
     check_points(spec.size)  # a sweep's size is bounded before its store is created
     # every option is checked (and the store created) before any computation
     try:
-        with _points_bar(not args.json) as bar:
+        with (
+            discarded_if_empty(args.out, overwrite=args.overwrite),
+            counts_bar("sweep", "points", enabled=not args.json) as bar,
+        ):
             run = run_sweep(
                 spec,
                 args.out,
@@ -279,7 +249,7 @@ def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
 
 def run_sweep_plot(args: argparse.Namespace) -> int:
     from moving_bogie.sweep.plots import plot_sweep_slice
-    from moving_bogie.sweep.store import open_sweep
+    from moving_bogie.sweep.store import missing_points, open_sweep
 
     from .stability_options import save_figure
 
@@ -290,6 +260,13 @@ def run_sweep_plot(args: argparse.Namespace) -> int:
         except ValueError as exc:
             raise ParameterError("--sel", f"--sel {name}={value}: {exc}") from None
     ds = open_sweep(args.store)
+    missing, total = missing_points(args.store)
+    if missing:
+        print(
+            f"{PROG}: warning: {args.store} is incomplete: {missing} of {total} points not computed (drawn "
+            "blank); run the sweep again with --resume to complete it",
+            file=sys.stderr,
+        )
     if ds.attrs.get("kind") == "sleepers":
         from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep
 

@@ -77,6 +77,7 @@ def strip_frequencies(
         evaluations=found.evaluations,
         notes=notes,
         region=region,
+        strip_margin=None if found.margin is None else (found.margin, found.margin_source or ""),
     )
 
 

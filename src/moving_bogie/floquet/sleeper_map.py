@@ -13,14 +13,15 @@ from __future__ import annotations
 
 import csv
 import io
+import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from moving_bogie.checkpoint import Checkpoint, Part, run_parts
 from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.d_lines import DColumn, d_column
+from moving_bogie.floquet.d_lines import DColumn, DCrossing, d_column
 from moving_bogie.floquet.hill import VehicleMatrices
 from moving_bogie.floquet.inputs import SleeperInput
 from moving_bogie.floquet.mass_pencil import mass_pencil
@@ -163,9 +164,33 @@ def column_at(data: SleeperInput, v: float, eta_max: float, N: int, samples: int
     return d_column(mass_pencil(track, module, data.vehicle_groups, N), eta_max=eta_max, samples=samples)
 
 
-def _columns(task: tuple[SleeperInput, list[float], float, int, int]) -> list[DColumn]:
-    data, vs, eta_max, N, samples = task
-    return [column_at(data, v, eta_max, N, samples) for v in vs]
+def column_part(task: tuple[SleeperInput, float, float, int, int]) -> Part:
+    """The column of ``task`` = (data, v, eta_max, N, samples) as arrays (a checkpoint's part)."""
+    col = column_at(*task)
+    crossings = col.crossings
+    return {
+        "alpha": np.array(col.alpha),
+        "Omega0": np.array(col.Omega0),
+        "sizes": np.array([col.harmonics, col.samples, col.evaluations]),
+        "q": np.array([c.q for c in crossings], dtype=float),
+        "eta_M": np.array([c.eta_M for c in crossings], dtype=float),
+        "change": np.array([c.change for c in crossings], dtype=int),
+        "moved": np.array([c.moved for c in crossings], dtype=float),
+        "notes": np.array(col.notes, dtype=str),
+    }
+
+
+def part_column(part: Part) -> DColumn:
+    """The column of :func:`column_part`, read back exactly."""
+    crossings = tuple(
+        DCrossing(float(q), float(e), int(c), float(m))
+        for q, e, c, m in zip(part["q"], part["eta_M"], part["change"], part["moved"])
+    )
+    harmonics, samples, evaluations = (int(x) for x in part["sizes"])
+    notes = tuple(str(n) for n in part["notes"])
+    return DColumn(
+        float(part["alpha"]), float(part["Omega0"]), crossings, harmonics, samples, evaluations, notes
+    )
 
 
 def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapCheck:
@@ -202,6 +227,8 @@ def sleeper_map(
     verify: int = 2,
     workers: int | None = None,
     progress: Callable[[float], None] | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
+    resume: bool = False,
 ) -> SleeperMap:
     """Unstable counts over velocities [m/s] x masses [kg] (module docstring).
 
@@ -215,6 +242,14 @@ def sleeper_map(
         Columns whose count regions are each checked by floquet_frequencies at one cell.
     workers : int, optional
         Processes (default: the number of CPUs); 1 runs in-process.
+    progress : callable, optional
+        Called with the fraction done (the columns, then the checks).
+    checkpoint : path, optional
+        A folder in which each finished column is kept (:class:`~moving_bogie.checkpoint.Checkpoint`):
+        Ctrl-C raises :class:`~moving_bogie.errors.JobInterrupted`, and the same map with
+        ``resume=True`` computes only the columns missing.
+    resume : bool
+        Read back the columns kept under ``checkpoint`` (else they are computed anew).
     """
     vs, ms = np.asarray(velocities, dtype=float), np.asarray(masses, dtype=float)
     if data.groups.get("eta_f", 0.0) <= 0:
@@ -225,25 +260,24 @@ def sleeper_map(
         raise ParameterError("v", "the velocities of a sleeper map must be positive")
     unit = mass_unit(data)
     eta_max = float(ms.max()) / unit
-    chunks = [list(map(float, c)) for c in np.array_split(vs, min(len(vs), 4 * max(1, workers or 2)))]
-    tasks = [(data, c, eta_max, N, samples) for c in chunks if len(c)]
-    columns: list[DColumn] = []
-    if workers == 1:
-        for k, task in enumerate(tasks):
-            columns += _columns(task)
-            if progress:
-                progress((k + 1) / len(tasks))
-    else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            for k, part in enumerate(pool.map(_columns, tasks)):
-                columns += part
-                if progress:
-                    progress((k + 1) / len(tasks))
+    tasks = [(data, float(v), eta_max, N, samples) for v in vs]
+    kept = None
+    if checkpoint is not None:
+        job = {"data": repr(data), "velocities": vs.tolist(), "eta_max": eta_max, "N": N, "samples": samples}
+        kept = Checkpoint.open(checkpoint, "sleeper-map", job, resume=resume)
+    share = len(tasks) / (len(tasks) + 16 * verify)  # about 2 checks per verified column, 8 columns each
+    part = None if progress is None else (lambda x: progress(share * x))
+    parts = run_parts(column_part, tasks, workers=workers, checkpoint=kept, progress=part, what="columns")
+    columns = [part_column(p) for p in parts]
     count = np.stack([col.counts(ms / unit) for col in columns], axis=1)
-    checks = tuple(
-        check_cell(data, float(vs[i]), float(ms[j]), int(count[j, i]))
-        for i, j in _verify_cells(count, columns, ms, verify)
-    )
+    cells = _verify_cells(count, columns, ms, verify)
+    checks: list[MapCheck] = []
+    for k, (i, j) in enumerate(cells):
+        checks.append(check_cell(data, float(vs[i]), float(ms[j]), int(count[j, i])))
+        if progress is not None:
+            progress(share + (1 - share) * (k + 1) / len(cells))
+    if kept is not None:
+        kept.remove()
     notes = [f"v = {col.alpha * data.v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
     notes += [
         f"v = {c.v:.6g} m/s, M = {c.M:.6g} kg: the map counts {c.map_count} unstable root(s), "
@@ -253,5 +287,5 @@ def sleeper_map(
     ]
     model = f"{data.beam}/{data.track}/{data.vehicle}"
     return SleeperMap(
-        model, vs, ms, data.v_ref, unit, data.t_scale, tuple(columns), count, checks, tuple(notes)
+        model, vs, ms, data.v_ref, unit, data.t_scale, tuple(columns), count, tuple(checks), tuple(notes)
     )

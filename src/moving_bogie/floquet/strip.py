@@ -3,7 +3,8 @@
 The characteristic function (:mod:`moving_bogie.floquet.hill`) is periodic in q with period Omega_0, so the
 strip x0 <= Re q < x0 + Omega_0 holds one copy of every root (docs/sleepers.md, Eq. (S14)). Its roots with
 Im q <= top are counted by the argument principle on the rectangle [x0, x0 + Omega_0] x [-depth, top], with
-no starting guesses, located by bisection and polished by Newton's method; the count and the located roots
+no starting guesses, located by Newton's method from a grid of the window (or, failing that, by bisection)
+and polished; the count and the located roots
 are compared, and the whole is repeated with one more harmonic on each side until the count is the same and
 the roots move less than ``tol``. The receptance over real wavenumbers is analytic below the lowest Im q of
 the rail's free waves (Eq. (S15), :meth:`~moving_bogie.floquet.track.SleeperTrack.free_wave_floor`): ``top``
@@ -75,12 +76,21 @@ class FloquetResult:
         return Verdict(UNDETERMINED, tuple(reasons))
 
     @property
+    def _ceiling(self) -> float:
+        """The decay rate beyond which the window vouches for no vibration: the free waves' when the window
+        reaches 0.99 of it (the default), else the window's top (a root may lie above it)."""
+        return self.free_waves if self.window.y1 >= 0.99 * self.free_waves else self.window.y1
+
+    @property
     def margin_source(self) -> str | None:
-        """What sets the margin: "a root" or "the rail's free waves" (None without a margin)."""
+        """What sets the margin: "a root", "the rail's free waves", or "the window's top" when the window
+        was stopped below them (the margin is then a lower bound); None without a margin."""
         if self.margin is None:
             return None
         least = self.least_damped
-        return "a root" if least is not None and least.q.imag <= self.margin else "the rail's free waves"
+        if least is not None and least.q.imag <= self.margin:
+            return "a root"
+        return "the rail's free waves" if self._ceiling == self.free_waves else "the window's top"
 
     def unsearched(self, scale: float = 1.0, unit: str = "") -> tuple[str, ...]:
         """The band of the strip above the window that was not searched and why, Im q times ``scale`` (in
@@ -113,12 +123,13 @@ class FloquetResult:
 
         The least-damped root's Im q, or the free waves' lowest Im q when that is smaller (or no root lies
         in the window): the rail's own free waves decay at that rate, and roots beyond it are not searched.
-        The window stops at 0.99 of the free waves' rate, so a root in the band left between would lower
-        the margin by less than 1 %.
+        The default window stops at 0.99 of the free waves' rate, so a root in the band left between would
+        lower the margin by less than 1 %; a window stopped lower gives its top instead (a lower bound).
         """
         if self.verdict.state != STABLE:
             return None
-        rates = [r.q.imag for r in self.roots] + ([self.free_waves] if self.free_waves > 0 else [])
+        ceiling = self._ceiling
+        rates = [r.q.imag for r in self.roots] + ([ceiling] if ceiling > 0 else [])
         return min(rates) if rates else None
 
 

@@ -96,6 +96,7 @@ class FrequencyResult:
     unlocated: tuple[Unlocated, ...] = ()  # roots counted in a cell but not located
     decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
     region: SearchRegion | None = None  # one strip of width Omega_0 and its harmonics (None: the window)
+    strip_margin: tuple[float, str] | None = None  # a stable strip's margin and what sets it
 
     @property
     def periodic(self) -> bool:
@@ -213,25 +214,18 @@ class FrequencyResult:
 
     @property
     def margin(self) -> Mpf | None:
-        """On a periodic track, a STABLE result's decay rate Im q of its least-damped vibration: the least
-        Im q of its roots, or the rail's free waves' when lower (they decay at that rate and the search
-        stops below them); None otherwise (on a window the roots themselves say it)."""
-        if not self.periodic or self.verdict.state != STABLE:
+        """On a periodic track, a STABLE result's decay rate Im q of its least-damped vibration as the strip
+        search states it (:attr:`~moving_bogie.floquet.strip.FloquetResult.margin`: the least-damped root,
+        or the rail's free waves, or the window's top as a lower bound); None otherwise (on a window the
+        roots themselves say it)."""
+        if not self.periodic or self.strip_margin is None or self.verdict.state != STABLE:
             return None
-        assert self.region is not None  # periodic
-        rates = [mpmath.im(r.q) for r in self.roots]
-        if self.region.free_waves is not None and self.region.free_waves > 0:
-            rates.append(mpmath.mpf(self.region.free_waves))
-        return min(rates, default=None)
+        return mpmath.mpf(self.strip_margin[0])
 
     @property
     def margin_source(self) -> str | None:
-        """What sets :attr:`margin`: "a root" or "the rail's free waves" (None without a margin)."""
-        margin = self.margin
-        if margin is None:
-            return None
-        least = min((mpmath.im(r.q) for r in self.roots), default=None)
-        return "a root" if least is not None and least <= margin else "the rail's free waves"
+        """What sets :attr:`margin`: "a root", "the rail's free waves" or "the window's top"."""
+        return None if self.margin is None or self.strip_margin is None else self.strip_margin[1]
 
     def _region_dict(self) -> dict:
         """``region`` (the strip's ``Omega_0``, ``harmonics``, free waves) and ``margin`` on a periodic

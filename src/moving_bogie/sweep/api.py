@@ -1,24 +1,33 @@
-"""``sweep()``: the Python counterpart of ``moving-bogie sweep``."""
+"""``sweep()``: the Python counterpart of ``moving-bogie sweep``.
+
+Worker processes (a LocalCluster of Dask) import the calling script again: a script calls ``sweep()``
+under ``if __name__ == "__main__":``, and :func:`sweep` says so, before anything starts, when the guard
+is missing.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection, Iterable, Mapping
+import shutil
+from collections.abc import Callable, Collection, Iterable, Iterator, Mapping
+from contextlib import contextmanager
 from fractions import Fraction
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from moving_bogie.errors import ParameterError
+from moving_bogie.errors import MovingBogieError, ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.processes import require_main_guard
 from moving_bogie.sweep.design import Axis, SweepSpec, parse_vary, sobol_axes, sweep_parameters
-from moving_bogie.sweep.engine import run_sweep
-from moving_bogie.sweep.store import StorePath, open_sweep
+from moving_bogie.sweep.engine import IN_PROCESS_POINTS, run_sweep
+from moving_bogie.sweep.store import StorePath, missing_points, open_sweep
 
 if TYPE_CHECKING:
     import xarray
     from distributed import Client
 
-__all__ = ["make_spec", "sweep"]
+__all__ = ["discarded_if_empty", "make_spec", "sweep"]
 
 
 def _axis(
@@ -150,22 +159,56 @@ def sweep(
         ``block_points`` (points per block, about), ``bar`` (``"follows"``, the default, or ``"fixed"``:
         what moves with the wheel mass, :mod:`~moving_bogie.model.bar`).
 
+    Raises
+    ------
+    MovingBogieError
+        When worker processes would start (``workers`` given, or :data:`IN_PROCESS_POINTS` points or
+        more) from the top level of a script outside ``if __name__ == "__main__":``: each worker runs
+        the script again (:func:`~moving_bogie.processes.require_main_guard`). Nothing is written then,
+        and a run that fails before its first block is stored leaves no store behind.
+
     Examples
     --------
+    In a script, under the guard that worker processes need:
+
     >>> from moving_bogie import table1_case
-    >>> ds = sweep(table1_case(1), {"alpha": "0.5:1:24", "eta_M": "5:100:24"}, "s.zarr")  # doctest: +SKIP
-    >>> ds.stable.sel(alpha=0.75, method="nearest").values  # doctest: +SKIP
+    >>> if __name__ == "__main__":
+    ...     ds = sweep(table1_case(1), {"alpha": "0.5:1:24", "eta_M": "5:100:24"}, "s.zarr", workers=2)
+    ...     print(ds.stable.sel(alpha=0.75, method="nearest").values)  # doctest: +SKIP
     """
     spec = make_spec(params, vary, sample=sample, physical=physical, **options)
-    run_sweep(
-        spec,
-        out,
-        resume=resume,
-        overwrite=overwrite,
-        client=client,
-        workers=workers,
-        scheduler=scheduler,
-        processes=processes,
-        progress=progress,
-    )
+    local = client is None and scheduler is None and processes
+    if local and (workers is not None or spec.size >= IN_PROCESS_POINTS):  # a LocalCluster will start
+        require_main_guard(f"sweep(workers={workers})")
+    with discarded_if_empty(out, overwrite=overwrite):
+        run_sweep(
+            spec,
+            out,
+            resume=resume,
+            overwrite=overwrite,
+            client=client,
+            workers=workers,
+            scheduler=scheduler,
+            processes=processes,
+            progress=progress,
+        )
     return open_sweep(out)
+
+
+@contextmanager
+def discarded_if_empty(path: StorePath, *, overwrite: bool = False) -> Iterator[None]:
+    """Around a run into the store at ``path``: when the run fails (an error, Ctrl-C) before any block is
+    in the store, a store the run made goes (a failed start leaves none behind). A store that was there
+    before stays, unless the run was to ``overwrite`` it."""
+    made = overwrite or not Path(path).exists()
+    try:
+        yield
+    except BaseException:
+        if made and Path(path).exists():
+            try:
+                missing, total = missing_points(path)
+            except (MovingBogieError, KeyError):
+                missing, total = 0, 1  # not a sweep store: left alone
+            if missing == total:
+                shutil.rmtree(path, ignore_errors=True)
+        raise

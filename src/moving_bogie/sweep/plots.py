@@ -15,7 +15,7 @@ if TYPE_CHECKING:
     import xarray
     from matplotlib.figure import Figure
 
-__all__ = ["plot_sweep_slice", "select_slice"]
+__all__ = ["missing_text", "plot_sweep_slice", "select_slice"]
 
 
 def select_slice(
@@ -63,15 +63,17 @@ def plot_sweep_slice(
     unstable, in 1/s in a sweep in SI units; :mod:`~moving_bogie.stability.figures.margin_plot`), the
     boundary between stable and unstable points, uncertain points hatched, the axes in the store's units
     and the base point of the sweep marked where the store records it (``operating_point``); the title
-    names the model and the fixed parameters. A store without a ``margin`` (written by an earlier version)
-    shows its stable points grey and says so. ``vmin_log`` is kept for callers."""
+    names the model and the fixed parameters. Points an interrupted sweep has not computed are left blank
+    and counted in the title. A store without a ``margin`` (written by an earlier version) shows its
+    stable points grey and says so. ``vmin_log`` is kept for callers."""
     from matplotlib.figure import Figure
 
     from moving_bogie.stability.figures.margin_plot import MarginPlane, draw_margin, plane_title
 
     s = select_slice(ds, x, y, sel).compute()
     xs, ys = s[x].values, s[y].values
-    certain = s.certain.values
+    missing = ~s.computed.values
+    certain = s.certain.values & ~missing
     unstable = certain & (s.n_unstable.values > 0)
     si = ds.attrs.get("units") == "si"
     if "margin" in s:
@@ -82,7 +84,7 @@ def plot_sweep_slice(
         bound = np.zeros(margin.shape, dtype=bool)
     fig = Figure(figsize=(8.5, 5.8), layout="constrained")
     ax = fig.subplots()
-    plane = MarginPlane(xs, ys, margin, bound, certain, unstable, "1/s" if si else "")
+    plane = MarginPlane(xs, ys, margin, bound, certain, unstable, "1/s" if si else "", missing)
     handles = draw_margin(fig, ax, plane)
     ax.set_xlabel(axis_label(ds[x]))
     ax.set_ylabel(axis_label(ds[y]))
@@ -93,8 +95,9 @@ def plot_sweep_slice(
     heading = "sweep, stability margin"
     if "margin" not in s:
         heading += " (not in this store: run the sweep again to store it)"
-    if (~certain).any():
-        heading += f" ({int((~certain).sum())} uncertain point(s) hatched)"
+    if (~certain & ~missing).any():
+        heading += f" ({int((~certain & ~missing).sum())} uncertain point(s) hatched)"
+    heading += missing_text(missing)
     ax.set_title(
         plane_title(heading, json.loads(ds.attrs.get("params", "{}")), _fixed(ds, s, x, y, sel)), fontsize=8
     )
@@ -102,6 +105,12 @@ def plot_sweep_slice(
     if drawn or handles:
         ax.legend(handles=[h for h in drawn if h not in handles] + handles, loc="upper left", fontsize=8)
     return fig
+
+
+def missing_text(missing: np.ndarray) -> str:
+    """The title's note of the points an interrupted sweep has not computed (empty: none)."""
+    n = int(missing.sum())
+    return f" ({n} of {missing.size} points not computed, left blank: the sweep was interrupted)" if n else ""
 
 
 def _fixed(

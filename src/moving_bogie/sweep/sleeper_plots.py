@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from moving_bogie.stability.figures.plot_units import axis_label, mark_operating_point, unit_suffix
-from moving_bogie.sweep.plots import select_slice
+from moving_bogie.sweep.plots import missing_text, select_slice
 
 if TYPE_CHECKING:
     import xarray
@@ -33,7 +33,8 @@ def plot_sleeper_sweep(
 ) -> Figure:
     """Figure: with ``y`` None the growth rate ``-Im Omega`` [1/s] of the fastest-growing root against
     ``x`` (stable points on the zero line, undetermined and uncertain points marked); with ``y`` the
-    (x, y) map of stable, unstable and undetermined points, uncertain points hatched. The base point of
+    (x, y) map of stable, unstable and undetermined points, uncertain points hatched; points an
+    interrupted sweep has not computed are left out and counted in the title. The base point of
     the sweep is marked where it lies on the axes; the title names the model and the fixed parameters."""
     from matplotlib.figure import Figure
 
@@ -62,6 +63,7 @@ def plot_sleeper_sweep(
     varied = set(map(str, ds.dims))
     fixed += [f"{k} = {v:.4g}" for k, v in physical.items() if k not in varied and k not in (sel or {})]
     heading = "sleeper sweep, " + ("growth rate" if y is None else "Floquet verdict")
+    heading += missing_text(~s.computed.values)
     ax.set_title(f"{heading}: {ds.attrs.get('model', '')}\n" + ", ".join(fixed), fontsize=8)
     drawn, _ = ax.get_legend_handles_labels()
     ax.legend(handles=[*drawn, *patches], loc="best", fontsize=8)
@@ -74,8 +76,8 @@ def _growth_line(ax: Axes, s: xarray.Dataset, x: str) -> None:
     xs = s[x].values
     margin = s.margin.values if "margin" in s else np.zeros(xs.shape)
     growth = np.where(s.unstable.values, -s.Omega_im.values, np.where(s.stable.values, -margin, np.nan))
-    stable, unstable = s.stable.values, s.unstable.values
-    undetermined = ~stable & ~unstable
+    stable, unstable, computed = s.stable.values, s.unstable.values, s.computed.values
+    undetermined = ~stable & ~unstable & computed
     ax.plot(xs, np.where(stable | unstable, np.nan_to_num(growth), np.nan), "-", color="0.4", lw=1)
     if unstable.any():
         ax.plot(xs[unstable], growth[unstable], "o", color=_CLASSES[1][1], label="unstable: growth rate")
@@ -85,7 +87,7 @@ def _growth_line(ax: Axes, s: xarray.Dataset, x: str) -> None:
     if undetermined.any():
         label = "undetermined (no growing root found, the window incomplete)"
         ax.plot(xs[undetermined], np.zeros(undetermined.sum()), "^", color=_CLASSES[2][1], label=label)
-    uncertain = ~s.certain.values
+    uncertain = ~s.certain.values & computed
     if uncertain.any():
         ax.plot(
             xs[uncertain],
@@ -96,19 +98,23 @@ def _growth_line(ax: Axes, s: xarray.Dataset, x: str) -> None:
         )
     ax.axhline(0.0, color="0.7", lw=0.8)
     ax.set_ylabel("growth rate -Im Omega [1/s]")
+    if not computed.all():  # the axis spans the points not computed too (left blank)
+        pad = 0.03 * (xs.max() - xs.min())
+        ax.set_xlim(xs.min() - pad, xs.max() + pad)
 
 
 def _class_map(ax: Axes, s: xarray.Dataset, x: str, y: str) -> list[Artist]:
-    """The classes stable / unstable / undetermined over (x, y), uncertain points hatched."""
+    """The classes stable / unstable / undetermined over (x, y), uncertain points hatched, points not
+    computed left blank."""
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
-    stable, unstable = s.stable.values, s.unstable.values
-    classes = np.where(stable, 0, np.where(unstable, 1, 2))
+    stable, unstable, computed = s.stable.values, s.unstable.values, s.computed.values
+    classes = np.where(computed, np.where(stable, 0, np.where(unstable, 1, 2)), np.nan)
     cmap = ListedColormap([c for _, c in _CLASSES])
     xs, ys = s[x].values, s[y].values
     ax.pcolormesh(xs, ys, classes, cmap=cmap, vmin=-0.5, vmax=2.5, shading="nearest")
-    uncertain = ~s.certain.values
+    uncertain = ~s.certain.values & computed
     if uncertain.any():
         ax.contourf(xs, ys, uncertain.astype(float), levels=[0.5, 1.5], hatches=["//"], colors="none")
     present: list[Artist] = [
@@ -116,5 +122,7 @@ def _class_map(ax: Axes, s: xarray.Dataset, x: str, y: str) -> list[Artist]:
     ]
     if uncertain.any():
         present.append(Patch(facecolor="none", hatch="//", label="not converged or a root not located"))
+    if not computed.all():
+        present.append(Patch(facecolor="white", edgecolor="0.6", label="not computed (interrupted)"))
     ax.set_ylabel(axis_label(s[y]))
     return present

@@ -31,7 +31,13 @@ __all__ = ["SLEEPER_VARIABLES", "SleeperLayout", "create_sleeper_store", "write_
 
 #: Data variables of a sleeper sweep: (name, dtype, fill value, long_name, units).
 SLEEPER_VARIABLES: tuple[tuple[str, str, Any, str, str], ...] = (
-    ("count", "int16", -1, "roots counted in the strip up to the rail's free waves (-1: not searched)", "1"),
+    (
+        "n_roots",
+        "int16",
+        -1,
+        "roots counted in the strip up to the rail's free waves (-1: not searched)",
+        "1",
+    ),
     ("stable", "bool", False, "verdict STABLE: every root found decays, the window complete", "1"),
     ("unstable", "bool", False, "verdict UNSTABLE: a root with Im Omega < 0", "1"),
     ("certain", "bool", False, "converged in the harmonics and every counted root located", "1"),

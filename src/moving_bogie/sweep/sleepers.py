@@ -174,7 +174,7 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
     )
     lowest = min((r.q for r in result.roots), key=lambda q: q.imag, default=complex(np.nan, np.nan))
     return {
-        "count": result.count,
+        "n_roots": result.count,
         "stable": result.verdict.state == STABLE,
         "unstable": result.verdict.state == UNSTABLE,
         "certain": result.converged and result.count == len(result.roots),

@@ -54,10 +54,12 @@ StorePath: TypeAlias = str | os.PathLike[str]
 Variable: TypeAlias = tuple[str, str, Any, str]
 
 __all__ = [
+    "RENAMED",
     "VARIABLE_NAMES",
     "consolidate",
     "create_store",
     "missing_blocks",
+    "missing_points",
     "open_sweep",
     "package_version",
     "prepare_store",
@@ -85,6 +87,10 @@ VARIABLE_NAMES = {
     "alpha_cr": ("critical velocity of the track, alpha_cr", "1"),
     "supercritical": ("the point moves above the critical velocity", "1"),
 }
+
+#: Variables renamed since older stores (old name: new name), renamed again when such a store is opened:
+#: ``count`` shadowed :meth:`xarray.Dataset.count` (``ds.count`` is the method, not the variable).
+RENAMED = {"count": "n_roots"}
 
 #: The margin of a sweep in SI units: Im omega = Im q / t_scale.
 SI_MARGIN = ("stability margin, smallest Im omega (decay rate; < 0: growth rate)", "1/s")
@@ -328,6 +334,12 @@ def missing_blocks(path: StorePath, spec: SweepPlan) -> list[Block]:
     return [b for b in spec.blocks() if not np.all(computed[b.slices])]
 
 
+def missing_points(path: StorePath) -> tuple[int, int]:
+    """(points not computed, points) of the store at ``path``: an interrupted sweep's is not complete."""
+    computed = np.asarray(store_array(store_group(path, "r"), "computed")[...])
+    return int((~computed).sum()), int(computed.size)
+
+
 def read_store(path: StorePath, names: Iterable[str]) -> StoreSummary:
     """The dimensions of the store at ``path``, the units of its arrays and those arrays ``names`` that it
     holds, read whole with zarr: a summary without starting xarray and dask."""
@@ -357,7 +369,8 @@ def open_sweep(path: StorePath, dask: bool = True) -> xarray.Dataset:
     without dask, which a summary of the store reads faster than dask starts).
 
     A store has its metadata consolidated (:func:`consolidate`); one without (written by an earlier
-    version) is read array by array, without the margin and the units of its variables.
+    version) is read array by array, without the margin and the units of its variables. The variables of
+    an older store named otherwise are given their names of :data:`RENAMED`.
     """
     import xarray as xr
 
@@ -368,7 +381,10 @@ def open_sweep(path: StorePath, dask: bool = True) -> xarray.Dataset:
         root = json.loads((path / "zarr.json").read_text()) if (path / "zarr.json").exists() else {}
         consolidated = "consolidated_metadata" in root
         if dask:
-            return xr.open_zarr(str(path), consolidated=consolidated)
-        return xr.open_zarr(str(path), consolidated=consolidated, chunks=None)
+            ds = xr.open_zarr(str(path), consolidated=consolidated)
+        else:
+            ds = xr.open_zarr(str(path), consolidated=consolidated, chunks=None)
     except (FileNotFoundError, ValueError, KeyError) as exc:
         raise MovingBogieError(f"{path}: not a sweep store ({exc})") from None
+    old = {name: new for name, new in RENAMED.items() if name in ds.variables and new not in ds.variables}
+    return ds.rename_vars(old)

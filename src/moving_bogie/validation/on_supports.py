@@ -8,6 +8,8 @@ catalogue's parameters) and runs :func:`~moving_bogie.validation.sleepers_check.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from moving_bogie.errors import ParameterError
 from moving_bogie.floquet.hill import VehicleMatrices
 from moving_bogie.floquet.inputs import SleeperInput
@@ -18,7 +20,9 @@ from moving_bogie.validation.sleepers_check import SleeperCheck, check_sleepers
 __all__ = ["check_on_supports"]
 
 
-def check_on_supports(data: SleeperInput, *, tol: float = 0.01) -> SleeperCheck:
+def check_on_supports(
+    data: SleeperInput, *, tol: float = 0.01, progress: Callable[[float], None] | None = None
+) -> SleeperCheck:
     """The finite rail against the Floquet theory for the vehicle and track of ``data``.
 
     Raises
@@ -38,4 +42,4 @@ def check_on_supports(data: SleeperInput, *, tol: float = 0.01) -> SleeperCheck:
     module = data.vehicle_kernels
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     loads = static_loads(module, data.vehicle_groups)
-    return check_sleepers(track, vehicle, loads, tol=tol, time_scale=data.t_scale)
+    return check_sleepers(track, vehicle, loads, tol=tol, time_scale=data.t_scale, progress=progress)

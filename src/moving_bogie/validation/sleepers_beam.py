@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -141,12 +142,13 @@ def simulate_sleeper_beam(
     dt: float,
     loaded: bool = True,
     every: int = 1,
+    progress: Callable[[float], None] | None = None,
 ) -> BeamRun:
     """Step the vehicle over the finite rail from the static deflection under its loads at ``tau = 0``.
 
     ``loaded``: the loads stay on (the run tends to the steady response, docs/sleepers.md (S16)); False:
     they are removed at ``tau = 0`` and the run is the free vibration released from the static deflection.
-    Output every ``every`` steps.
+    Output every ``every`` steps; ``progress`` is called with the fraction of steps done (100 times).
     """
     system = _Coupled(rail, vehicle, loads, entry)
     steps = int(np.ceil(tau_max / dt - 1e-9))
@@ -177,4 +179,6 @@ def simulate_sleeper_beam(
             x, f = system.vehicle_state(state.t, state.z, state.v, state.a)
             k = i // every
             deflection[:, k], force[:, k], internal[:, k] = x[: system.nc], f, x[system.nc :]
+        if progress is not None and (i + 1) % max(1, steps // 100) == 0:
+            progress((i + 1) / (steps + 1))
     return BeamRun(tau, deflection, force, internal, h, entry, time.perf_counter() - start)

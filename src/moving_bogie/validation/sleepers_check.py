@@ -22,7 +22,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -244,6 +246,17 @@ def floquet_side(
     return FloquetSide(result, root, nu, steady, time.perf_counter() - start)
 
 
+def _stage(
+    progress: Callable[[float], None] | None, start: float, width: float
+) -> Callable[[float], None] | None:
+    """The progress of one run of the finite rail, from ``start`` over ``width`` of the whole check (the
+    Floquet side takes about its first tenth)."""
+    if progress is None:
+        return None
+    progress(start)
+    return lambda x: progress(start + width * x)
+
+
 def _rate_text(rate: float, time_scale: float | None) -> str:
     """A rate with its unit: 1/s when the seconds per unit tau are known, else per unit tau."""
     return f"{rate:.4g} per unit tau" if time_scale is None else f"{rate / time_scale:.4g} 1/s"
@@ -319,12 +332,14 @@ def check_sleepers(
     harmonics: tuple[int, int] = (1, 6),
     floquet: FloquetSide | None = None,
     time_scale: float | None = None,
+    progress: Callable[[float], None] | None = None,
 ) -> SleeperCheck:
     """Compare the finite rail with the Floquet theory for one vehicle on one sleeper track (module doc).
 
     ``harmonics`` are the first and the largest N of the Floquet search (:func:`floquet_frequencies`);
     ``floquet`` the Floquet side already computed (:func:`floquet_side`), e.g. for a convergence study;
-    ``time_scale`` the seconds per unit of tau (for the notes and the figure in SI units).
+    ``time_scale`` the seconds per unit of tau (for the notes and the figure in SI units); ``progress`` is
+    called with the fraction done (the Floquet side, then the finite rail's runs).
     """
     settings = SleeperBeamSettings() if settings is None else settings
     side = floquet_side(track, vehicle, loads, harmonics) if floquet is None else floquet
@@ -337,7 +352,9 @@ def check_sleepers(
     entry = margin * track.lam
     dt = T0 / settings.steps_per_period
     start = time.perf_counter()
-    free = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt, loaded=False)
+    simulate = partial(simulate_sleeper_beam, rail, vehicle, loads, entry=entry, tau_max=tau_free)
+    share = 0.9 / (1.5 if root is not None and side.frequency is not None else 2.0)  # the first run's
+    free = simulate(dt=dt, loaded=False, progress=_stage(progress, 0.1, share))
     notes = list(side.result.notes)
     fit, spread = _free_vibration_fit(free, T0, settings.transient * tau_free, notes)
     comparisons: list[Comparison] = []
@@ -345,9 +362,7 @@ def check_sleepers(
     steady_tau = steady_force = None
     if root is not None and side.frequency is not None:
         # the same free run at twice the step: the rate and the frequency extrapolated to dt -> 0
-        run = simulate_sleeper_beam(
-            rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=2 * dt, loaded=False
-        )
+        run = simulate(dt=2 * dt, loaded=False, progress=_stage(progress, 0.1 + share, 0.9 - share))
         coarse = _free_vibration_fit(run, T0, settings.transient * tau_free, notes)[0]
         comparisons = _rate_comparisons(fit, coarse, root, side.frequency, tol, notes)
     else:
@@ -356,7 +371,7 @@ def check_sleepers(
             f"no Floquet root with Im q <= 0 (stable): the free vibration's rate {rate_text} is not compared"
         )
         assert steady is not None
-        loaded = simulate_sleeper_beam(rail, vehicle, loads, entry=entry, tau_max=tau_free, dt=dt)
+        loaded = simulate(dt=dt, progress=_stage(progress, 0.1 + share, 0.9 - share))
         comparison, steady_tau, steady_force = _steady_comparison(track, steady, loaded, T0, tol)
         comparisons.append(comparison)
     finite_s = time.perf_counter() - start

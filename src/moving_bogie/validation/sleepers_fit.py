@@ -26,6 +26,7 @@ import numpy as np
 
 __all__ = [
     "FloquetFit",
+    "RANK_GAP",
     "RANK_LEVEL",
     "ROUND_OFF",
     "dominant_harmonic",
@@ -36,13 +37,18 @@ __all__ = [
     "stroboscopic_samples",
 ]
 
-#: singular values of the snapshots below this fraction of the largest are left out of the fitted map (the
-#: signals are scaled to 1, so this is far above their round-off). A mode left out biases the multipliers
-#: by about its size, which is a large part of a slow rate: a decaying mode at 1e-4 of the growing one moves
-#: a growth of 0.03 per period by 3 %. So the level is low, and the rank is bounded by the samples instead
-#: (``SAMPLES_PER_MODE``); modes fitted to the rest have small shares and leave the dominant one as it is
-#: (the zone example's rates move by less than 1e-5 between ranks 2 and 7)
+#: singular values of the snapshots below this fraction of the largest are round-off (the signals are
+#: scaled to 1): never fitted
 RANK_LEVEL = 1e-8
+
+#: the modes kept stand above the rest of the snapshots by this factor: the rank is the last such gap in the
+#: singular values (else the largest). A mode left out biases the multipliers by about its size, a large part
+#: of a slow rate (a decaying mode at 1e-4 of the growing one moves a growth of 0.03 per period by 3 %), so a
+#: small second mode must be kept; modes fitted to what is not modal (the waves the release radiates and the
+#: rail's ends reflect) perturb the dominant multiplier and can outgrow it, so they must not (the zone
+#: example: gaps of 1e4 or more after its 2 modes; the growing case of the tests: 1.4e3 after its 1, then
+#: ratios below 4)
+RANK_GAP = 100.0
 
 #: a run below this fraction of its largest value is at its round-off (the finite rail's released run
 #: settles near 1e-8 of its start): periods below it are left out of the fit
@@ -157,14 +163,28 @@ def dominant_harmonic(shape: np.ndarray, multiplier: complex, period: float) -> 
     return abs(q.real + n * omega0), n
 
 
+def _rank(relative: np.ndarray, level: float, most: int) -> int:
+    """The number of modes to fit, from the singular values ``relative`` to the largest (``_fitted_map``)."""
+    above = relative[relative > level]
+    candidates = min(above.size, max(most, 1))
+    if candidates == 1:
+        return 1
+    # the fall after each candidate rank r = 1..candidates (to round-off past the last value above level)
+    after = np.append(above[1:], level)[:candidates]
+    falls = above[:candidates] / after
+    gaps = np.nonzero(falls >= RANK_GAP)[0]
+    return int(gaps[-1] + 1) if gaps.size else int(np.argmax(falls) + 1)
+
+
 def _fitted_map(snapshots: np.ndarray, level: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(multipliers, mode shapes over the channels, singular values): the least-squares map
-    ``Y_1 = A Y_0`` on the leading ``r`` left singular vectors of ``Y_0`` (those above ``level`` of the
-    largest, at most ``(K - 1) / 3``)."""
+    ``Y_1 = A Y_0`` on the leading ``r`` left singular vectors of ``Y_0``: ``r`` at the last fall by
+    ``RANK_GAP`` or more from one singular value to the next (else the largest fall), among those above
+    ``level`` of the largest and at most ``(K - 1) / 3``."""
     before, after = snapshots[:, :-1], snapshots[:, 1:]
     u, s, vh = np.linalg.svd(before, full_matrices=False)
     relative = s / s[0]
-    rank = max(1, min(int(np.sum(relative > level)), before.shape[1] // SAMPLES_PER_MODE))
+    rank = _rank(relative, level, before.shape[1] // SAMPLES_PER_MODE)
     u, s, vh = u[:, :rank], s[:rank], vh[:rank]
     reduced = u.T @ after @ vh.T / s
     multipliers, vectors = np.linalg.eig(reduced)

@@ -105,7 +105,8 @@ class MarginPlane:
     """What :func:`draw_margin` draws, every array indexed ``[j, i]`` at (x[i], y[j]).
 
     ``margin`` is the smallest Im q, or Im omega [1/s] with ``unit`` "1/s" (NaN: undetermined);
-    ``bound`` marks a lower bound; ``certain`` a certified verdict; ``unstable`` a certified unstable one.
+    ``bound`` marks a lower bound; ``certain`` a certified verdict; ``unstable`` a certified unstable one;
+    ``missing`` the points not computed (an interrupted sweep), drawn blank and neither certain nor not.
     """
 
     x: np.ndarray
@@ -115,6 +116,7 @@ class MarginPlane:
     certain: np.ndarray
     unstable: np.ndarray
     unit: str = ""
+    missing: np.ndarray | None = None
 
     @property
     def stable(self) -> np.ndarray:
@@ -171,12 +173,13 @@ def draw_margin(fig: Figure, ax: Axes, plane: MarginPlane) -> list:
         handles.append(Patch(facecolor="0.8", label="stable, margin undetermined"))
     bound = plane.stable & plane.bound & np.isfinite(m)
     if bound.any():
-        hatch_cells(
-            ax, x, y, bound, hatch="..", color="0.3", label="stable, margin at least the colour shown"
-        )
+        hatch_cells(ax, x, y, bound, hatch="..", color="0.3", label="_lower bound")  # _: in handles only
         handles.append(Patch(facecolor="none", edgecolor="0.3", hatch="..", label="margin: a lower bound"))
-    if hatch_cells(ax, x, y, ~plane.certain):
+    missing = np.zeros(m.shape, dtype=bool) if plane.missing is None else plane.missing
+    if hatch_cells(ax, x, y, ~plane.certain & ~missing, label="_not certified"):
         handles.append(Patch(facecolor="none", edgecolor="tab:blue", hatch="////", label="not certified"))
+    if missing.any():  # left blank: no colour, no hatch
+        handles.append(Patch(facecolor="white", edgecolor="0.6", label="not computed (interrupted)"))
     flag = np.where(plane.certain, plane.unstable.astype(float), np.nan)
     if len(x) > 1 and len(y) > 1 and np.nanmin(flag, initial=1) < 0.5 < np.nanmax(flag, initial=0):
         ax.contour(x, y, flag, levels=[0.5], colors="k", linewidths=1.0)

@@ -174,10 +174,11 @@ class PlaneUnits:
         shown = self.value("alpha", self.alpha_cr)
         return f"{self.name('alpha')}_cr = {shown:.6g}{unit} (critical velocity)"
 
-    def fixed_text(self, params: DimensionlessParams, parameter: str) -> dict:
+    def fixed_text(self, params: DimensionlessParams, parameter: str, held: tuple[str, ...] = ()) -> dict:
         """The parameters a plane (alpha, ``parameter``) holds fixed, as title text (SI values for an SI
         input, with their units; :func:`~moving_bogie.stability.figures.margin_plot.fixed_parameters`);
-        the groups Eq. (63) ties to ``parameter`` are said to follow it."""
+        the groups Eq. (63) ties to ``parameter`` are said to follow it, unless ``held``
+        (:mod:`~moving_bogie.model.bar`)."""
         from moving_bogie.stability.figures.margin_plot import fixed_parameters
 
         follow = {
@@ -185,7 +186,7 @@ class PlaneUnits:
                 meta["sets"]
             ): f"follows {self.name(parameter)} ({name} = {float(getattr(params, name)):.4g})"
             for name, meta in params.model.alternatives.items()
-            if parameter in meta["depends"]
+            if parameter in meta["depends"] and meta["sets"] not in held
         }
         values = self.base if self.si else params.to_dict()
         shown = {self.name("alpha"), self.name(parameter)}

@@ -167,7 +167,8 @@ def plot_stability_map(
     if n_uncertain:
         heading += f" ({n_uncertain} uncertain cell(s) hatched)"
     ax.set_title(
-        plane_title(heading, smap.params.to_dict(), units.fixed_text(smap.params, smap.parameter)), fontsize=8
+        plane_title(heading, smap.params.to_dict(), units.fixed_text(smap.params, smap.parameter, smap.held)),
+        fontsize=8,
     )
     drawn, _ = ax.get_legend_handles_labels()
     if drawn or handles:

@@ -14,14 +14,14 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Callable, Iterable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
 
+from moving_bogie.checkpoint import Checkpoint, Part, run_parts
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import ColumnResult, settle_cells, stability_column, top_edge
@@ -174,9 +174,15 @@ def map_columns(
     return out
 
 
-def _column_task(args: tuple[Any, ...]) -> list[ColumnResult]:
-    """One chunk of columns (the arguments of :func:`map_columns`), in a worker process."""
-    return map_columns(*args)
+#: The arrays of a map, one value per cell (theta rows, alpha columns).
+CELL_ARRAYS = ("degree", "count", "uncertain", "settled", "margin", "margin_bound")
+
+
+def _column_task(args: tuple[Any, ...]) -> Part:
+    """One chunk of columns (the arguments of :func:`map_columns`), in a worker process: its cells'
+    arrays, one column per alpha."""
+    columns = map_columns(*args)
+    return {name: np.stack([getattr(c, name) for c in columns], axis=1) for name in CELL_ARRAYS}
 
 
 def stability_map(
@@ -190,6 +196,8 @@ def stability_map(
     settle: bool = True,
     progress: Callable[[float], None] | None = None,
     held: tuple[str, ...] = (),
+    checkpoint: str | os.PathLike[str] | None = None,
+    resume: bool = False,
     **options: Any,
 ) -> StabilityMap:
     """Degree of instability over the grid ``alphas x thetas`` (beyond the paper).
@@ -206,13 +214,19 @@ def stability_map(
     workers : int, optional
         Processes (default: the number of CPUs); 1 runs in-process.
     chunk : int
-        Columns per task.
+        Columns per task (the continuation in alpha starts again at each chunk).
     settle : bool
         Settle the cells the column count leaves uncertain by a full count (default True).
     progress : callable, optional
         Called with the fraction of columns done.
     held : tuple of str
         Groups held instead of following ``parameter`` (mu_v, J_b: :mod:`~moving_bogie.model.bar`).
+    checkpoint : path, optional
+        A folder in which each finished chunk is kept (:class:`~moving_bogie.checkpoint.Checkpoint`):
+        Ctrl-C raises :class:`~moving_bogie.errors.JobInterrupted`, and the same map with
+        ``resume=True`` computes only the chunks missing, its cells equal to an uninterrupted map's.
+    resume : bool
+        Read back the chunks kept under ``checkpoint`` (else they are computed anew).
     **options
         Passed to :func:`~moving_bogie.stability.maps.column.stability_column`.
     """
@@ -224,38 +238,24 @@ def stability_map(
         options["top"] = top_edge(bound, alpha_grid)
     chunks = [alpha_grid[i : i + chunk] for i in range(0, len(alpha_grid), chunk)]
     tasks = [(bound, parameter, c, theta_grid, options, settle, held) for c in chunks]
-    workers = workers or min(len(chunks), os.cpu_count() or 1)
-    columns: list[ColumnResult] = []
-    results: Iterator[list[ColumnResult]]
-    if workers <= 1:
-        results = map(_column_task, tasks)
-        pool = None
-    else:
-        pool = ProcessPoolExecutor(max_workers=workers)
-        results = pool.map(_column_task, tasks)
-    try:
-        for k, result in enumerate(results):
-            columns += result
-            if progress is not None:
-                progress((k + 1) / len(tasks))
-    finally:
-        if pool is not None:
-            pool.shutdown(cancel_futures=True)
-
-    def stack(name: str) -> np.ndarray:
-        return np.stack([getattr(c, name) for c in columns], axis=1)
-
-    return StabilityMap(
-        params,
-        params.vehicle,
-        parameter,
-        alpha_grid,
-        theta_grid,
-        stack("degree"),
-        stack("count"),
-        stack("uncertain"),
-        stack("settled"),
-        stack("margin"),
-        stack("margin_bound"),
-        held,
-    )
+    kept = None
+    if checkpoint is not None:
+        track = bound.foundation_model  # a track model beside the parameters' own is another map
+        job = {
+            "params": params.to_dict(),
+            "track": [track.module.__name__, track.values, getattr(bound.track_factory, "__qualname__", "")],
+            "parameter": parameter,
+            "held": list(held),
+            "alphas": alpha_grid.tolist(),
+            "thetas": theta_grid.tolist(),
+            "options": options,
+            "chunk": chunk,
+            "settle": settle,
+        }
+        kept = Checkpoint.open(checkpoint, "stability-map", job, resume=resume)
+    what = f"chunks of {chunk} columns"
+    parts = run_parts(_column_task, tasks, workers=workers, checkpoint=kept, progress=progress, what=what)
+    cells = {name: np.concatenate([p[name] for p in parts], axis=1) for name in CELL_ARRAYS}
+    if kept is not None:
+        kept.remove()
+    return StabilityMap(params, params.vehicle, parameter, alpha_grid, theta_grid, **cells, held=held)
