@@ -11,6 +11,7 @@ take ``bound: BoundModel``). The options are those of the function each one call
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.floquet.periodic_track import PeriodicTrack
@@ -114,15 +115,20 @@ def induced_frequencies(
 ) -> FrequencyResult:
     """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies` in
     the window, or :func:`moving_bogie.floquet.frequencies.strip_frequencies` in one strip of a periodic
-    track (the search region of the bound model's track)."""
+    track (the search region of the bound model's track).
+
+    For SI parameters the result keeps their scales and shows itself in SI (rad/s, Hz, s).
+    """
     from moving_bogie.roots.frequencies import induced_frequencies as run
 
-    bound = bind(params)
+    bound, scales = bind_with_scales(params)
     if bound.track.search_region().periodic:
         from moving_bogie.floquet.frequencies import strip_frequencies
 
-        return strip_frequencies(bound, **options)
-    return run(bound, **options)
+        result = strip_frequencies(bound, **options)
+    else:
+        result = run(bound, **options)
+    return result if scales is None else replace(result, scales=scales)
 
 
 def closed_form_response(
@@ -288,7 +294,15 @@ def critical_stiffness(
 
 
 def stability_map(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> StabilityMap:
-    """Degree of instability over a grid: :func:`moving_bogie.stability.maps.map.stability_map`."""
+    """Degree of instability over a grid: :func:`moving_bogie.stability.maps.map.stability_map`.
+
+    For SI parameters the map keeps their units and shows itself in SI (v [m/s], M [kg], rates [1/s]).
+    """
     from moving_bogie.stability.maps.map import stability_map as run
 
-    return run(bind(params), **options)
+    result = run(bind(params), **options)
+    if not isinstance(params, PhysicalParams):
+        return result
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
+
+    return replace(result, units=PlaneUnits.of(result.params, params, operating=True))

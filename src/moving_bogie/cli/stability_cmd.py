@@ -15,6 +15,7 @@ if TYPE_CHECKING:
 
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import PhysicalParams
+    from moving_bogie.model.scales import Scales
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.frequency_lines import FrequencyLine, FrequencyLines
 
@@ -100,17 +101,32 @@ def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
         p.add_argument(
             spec.option, dest=name, type=decimal_number, default=None, metavar="X", help=f"{spec.meaning}"
         )
+    add_figure_option(p, "--plot", help="write the dispersion figure (a track on soil: docs/soil.md)")
     add_set_option(p)
     add_json_option(p)
     p.set_defaults(handler=run_critical_velocity)
 
 
 def run_critical_velocity(args: argparse.Namespace) -> int:
+    from moving_bogie.errors import ParameterError
     from moving_bogie.model.catalogue import get_model
+    from moving_bogie.soil.file import is_soil_file
 
     physical = None
     groups = {name: getattr(args, name) for name in _track_groups() if getattr(args, name) is not None}
     chosen = {k: getattr(args, k) for k in ("beam", "track") if getattr(args, k) is not None}
+    if args.file is not None and is_soil_file(args.file):
+        if chosen or groups:
+            raise ParameterError(
+                next(iter({**chosen, **groups})), "give a soil-track file's values in the file"
+            )
+        from .soil_cmd import run_soil_critical_velocity
+
+        return run_soil_critical_velocity(args)
+    if args.plot is not None:
+        raise ParameterError(
+            "plot", "--plot draws the dispersion figure of a track on soil (a soil-track --file)"
+        )
     if args.file is not None:
         from .common import read_params_file
 
@@ -138,7 +154,10 @@ def run_critical_velocity(args: argparse.Namespace) -> int:
         data["v_cr_unit"] = "m/s"
         for minimum in data["minima"]:
             minimum["v"] = f"{float(minimum['alpha']) * v_ref:.10g}"
-    _print_critical_velocity(args, data)
+    if args.json:
+        print_json(data)
+    else:
+        print("\n".join(critical_velocity_lines(data, None if physical is None else physical.scales())))
     return 0
 
 
@@ -156,75 +175,75 @@ def _critical_velocity_on_supports(
 
     if given:
         flag = "--" + next(iter(given)).replace("_", "-")
-        raise ParameterError(
-            flag.lstrip("-"), f"{flag} does not apply to a sleeper track: use --set NAME=VALUE"
-        )
+        why = f"{flag} does not apply to a sleeper track: use --set NAME=VALUE"
+        raise ParameterError(flag.lstrip("-"), why)
     data_in = sleeper_input_of(params, physical)
     smeared = smeared_physical(physical) if physical is not None else None
     if smeared is None:
         raise ParameterError("track", f"{params.model.name} has no smeared continuous track")
     res = critical_velocity(smeared.to_dimensionless(), formula=paper_formula)
     data = res.to_dict()
-    v_ref = smeared.scales().v_ref
-    data["v_cr"] = f"{float(data['alpha_cr']) * v_ref:.10g}"
+    scales = smeared.scales()
+    data["v_cr"] = f"{float(data['alpha_cr']) * scales.v_ref:.10g}"
     data["v_cr_unit"] = "m/s"
     for minimum in data["minima"]:
-        minimum["v"] = f"{float(minimum['alpha']) * v_ref:.10g}"
+        minimum["v"] = f"{float(minimum['alpha']) * scales.v_ref:.10g}"
     track = SleeperTrack(data_in.beam, data_in.track, data_in.groups)
     to_si = 1 / data_in.t_scale
     pinned, passing = track.pinned_pinned() * to_si, track.Omega0 * to_si
     data["on_supports"] = {
         "model": params.model.name,
         "smeared_track": smeared.model.name,
-        "alpha_cr": float(res.alpha_cr) * v_ref / data_in.v_ref,
+        "alpha_cr": float(res.alpha_cr) * scales.v_ref / data_in.v_ref,
         "pinned_pinned_rad_s": pinned,
         "pinned_pinned_hz": pinned / (2 * math.pi),
         "sleeper_passing_rad_s": passing,
         "sleeper_passing_hz": passing / (2 * math.pi),
     }
-    _print_critical_velocity(args, data)
+    if args.json:
+        print_json(data)
+        return 0
+    lines = critical_velocity_lines(data, scales)
+    supports = data["on_supports"]
+    lines.append(f"on supports      {supports['model']}: v_cr of the smeared track ({smeared.model.name})")
+    lines.append(f"pinned-pinned    {pinned:.6g} rad/s ({supports['pinned_pinned_hz']:.6g} Hz)")
+    lines.append(f"sleeper passing  {passing:.6g} rad/s ({supports['sleeper_passing_hz']:.6g} Hz) at v")
+    print("\n".join(lines))
     return 0
 
 
-def _print_critical_velocity(args: argparse.Namespace, data: dict) -> None:
-    """The critical velocity's JSON, or its text (with the frequencies of a track on supports)."""
-    if args.json:
-        print_json(data)
-    else:
-        print(f"model            {data['model']}  ({data['branches']} dispersion branch(es))")
-        print(
+def critical_velocity_lines(data: dict[str, Any], scales: Scales | None) -> list[str]:
+    """The readable critical velocity: in the groups (alpha_cr, p_cr), or in SI for SI parameters (v_cr
+    [m/s] and the critical wavelength 2 pi / (p_cr chi) [m], Eq. (16))."""
+    lines = []
+    if scales is not None:
+        wavelength = 2 * math.pi / (float(data["p_cr"]) * scales.chi)
+        lines.append(
+            f"v_cr             {data['v_cr']} m/s  (wavelength {wavelength:.6g} m, branch {data['branch']}, "
+            f"{data['digits']} digits confirmed)"
+        )
+    lines.append(f"model            {data['model']}  ({data['branches']} dispersion branch(es))")
+    if scales is None:
+        lines.append(
             f"alpha_cr         {data['alpha_cr']}  (p_cr = {data['p_cr']}, branch {data['branch']}, "
             f"{data['digits']} digits confirmed)"
         )
-        if data["formula"]:
-            print(
-                f"closed form      {data['alpha_cr_formula']}  ({data['formula']}; agrees: {data['agrees']})"
-            )
-        for minimum in data["minima"]:
-            v = f", v = {minimum['v']} m/s" if "v" in minimum else ""
-            print(
-                f"local minimum    branch {minimum['branch']}: alpha = {minimum['alpha']} "
-                f"at p = {minimum['p']}{v}"
-            )
-        for j in data["branches_without_minimum"]:
-            print(f"branch {j}         no local minimum of the phase speed on 0 < p <= {data['p_max']}")
-        if "note" in data:
-            print(f"note             {data['note']}")
-        print(f"method           {data['method']}")
-        if "v_cr" in data:
-            print(f"v_cr             {data['v_cr']} m/s")
-        supports = data.get("on_supports")
-        if supports:
-            smeared = supports["smeared_track"]
-            print(f"on supports      {supports['model']}: v_cr of the smeared track ({smeared})")
-            print(
-                f"pinned-pinned    {supports['pinned_pinned_rad_s']:.6g} rad/s "
-                f"({supports['pinned_pinned_hz']:.6g} Hz)"
-            )
-            print(
-                f"sleeper passing  {supports['sleeper_passing_rad_s']:.6g} rad/s "
-                f"({supports['sleeper_passing_hz']:.6g} Hz) at v"
-            )
+    if data["formula"]:
+        shown = "" if scales is not None else f"{data['alpha_cr_formula']}  "
+        lines.append(f"closed form      {shown}({data['formula']}; agrees: {data['agrees']})")
+    for minimum in data["minima"]:
+        where = (
+            f"v = {minimum['v']} m/s"
+            if scales is not None
+            else f"alpha = {minimum['alpha']} at p = {minimum['p']}"
+        )
+        lines.append(f"local minimum    branch {minimum['branch']}: {where}")
+    for j in data["branches_without_minimum"]:
+        lines.append(f"branch {j}         no local minimum of the phase speed on 0 < p <= {data['p_max']}")
+    if "note" in data:
+        lines.append(f"note             {data['note']}")
+    lines.append(f"method           {data['method']}")
+    return lines
 
 
 # -- frequency-lines ----------------------------------------------------------------------------------

@@ -35,6 +35,10 @@ from moving_bogie.model.catalogue import default_catalogue, get_model
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 
+#: The tracks on soil (soil/track.py) and the commands that take their files (cli/soil_cmd.py).
+SOIL_TRACKS = ("soil", "ballasted-soil")
+SOIL_COMMANDS = ("dispersion", "critical-velocity", "moving-load")
+
 __all__ = ["dimensionless_keys", "load_parameters", "load_params_file", "parse_params_toml", "physical_keys"]
 
 _TOP_LEVEL = ("case", "model", "dimensionless", "physical")
@@ -119,6 +123,12 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
             )
     if "dimensionless" in data and "physical" in data:
         raise ParameterError("physical", "give either a [dimensionless] or a [physical] table, not both")
+    if isinstance(data.get("model"), dict) and data["model"].get("track") in SOIL_TRACKS:
+        raise ParameterError(
+            "track",
+            f"track {data['model']['track']!r} (a track on soil) is analysed by the commands "
+            f"{', '.join(SOIL_COMMANDS)} with --file (docs/soil.md), not by this one",
+        )
     model = _table(data, "model", _MODEL_KEYS)
     if not {"case", "dimensionless", "physical"} & set(data):
         raise ParameterError("file", _no_parameters(model))
