@@ -127,7 +127,7 @@ def _breakpoints(k1: float, omega: float, soil: SoilProfile, b: float, top: floa
     return ends[ends <= top]
 
 
-def _flexibility(kappa: FloatArray, omega: FloatArray, soil: SoilProfile) -> ComplexArray:
+def _flexibility(kappa: ComplexArray, omega: ComplexArray, soil: SoilProfile) -> ComplexArray:
     """U(kappa, omega) in blocks of CHUNK nodes (the same values; small arrays stay in the cache)."""
     out = np.empty(kappa.shape, dtype=complex)
     for i in range(0, kappa.size, CHUNK):
@@ -150,7 +150,7 @@ class _Integrand:
     def difference(self, k2: FloatArray, who: IntArray) -> ComplexArray:
         """U - U_inf."""
         kappa = np.sqrt(self.k1[who] ** 2 + k2**2)
-        u = _flexibility(kappa, self.omega[who], self.soil)
+        u = _flexibility(kappa.astype(complex), self.omega[who].astype(complex), self.soil)
         u_inf = self.c_coef[who] / kappa + self.d_coef[who] / (kappa**2 + self.beta[who] ** 2) ** 1.5
         return np.asarray(u - u_inf, dtype=complex)
 
@@ -209,13 +209,15 @@ def strip_stiffness(
     top_layer = soil.layers[0]
     mu = top_layer.mu * (1 + 1j * omega * top_layer.eta)
     nu = top_layer.nu
-    c_coef = (1 - nu) / mu
+    c_coef = np.asarray((1 - nu) / mu, dtype=complex)
     d_coef = top_layer.rho * omega**2 / mu * (8 * nu**2 - 12 * nu + 7) / (8 * mu)
     beta = np.abs(omega) / top_layer.c_s
     h_top = top_layer.h if np.isfinite(top_layer.h) else np.inf
     tops = 20 * np.maximum(max(1 / b, 1 / h_top), np.abs(omega) / soil.c_s_min)
     ends = [_breakpoints(a, w, soil, b, t) for a, w, t in zip(k1, omega, tops, strict=True)]
-    closed = c_coef * _integral_inf(k1, b) + d_coef * _integral_inf3(np.sqrt(k1**2 + beta**2), b)
+    closed = np.asarray(
+        c_coef * _integral_inf(k1, b) + d_coef * _integral_inf3(np.sqrt(k1**2 + beta**2), b), dtype=complex
+    )
     f = _Integrand(k1, omega, c_coef, d_coef, beta, soil, b)
     rest, quadrature_error = _adaptive(f, ends, closed, rtol, rounds)
     total = closed + rest
