@@ -192,7 +192,7 @@ def _sum(who: IntArray, values: ComplexArray, n: int) -> ComplexArray:
 
 
 def strip_stiffness(
-    k1: FloatArray, omega: FloatArray, soil: SoilProfile, b: float, *, rtol: float = 1e-11, rounds: int = 20
+    k1: FloatArray, omega: FloatArray, soil: SoilProfile, b: float, *, rtol: float = 1e-11, rounds: int = 6
 ) -> StripStiffness:
     """chi(k1, omega) of a strip of half-width ``b`` (m) on ``soil`` for real k1 > 0 and real omega.
 
