@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from moving_bogie.roots.verdict import UNSTABLE, Verdict
 from moving_bogie.validation import sleepers_check
 from moving_bogie.validation.sleepers_fit import (
     dominant_harmonic,
@@ -142,12 +143,20 @@ def test_the_check_fits_the_window_of_its_settings(monkeypatch):
     assert all(c.relative < 1e-8 for c in result.comparisons), result.comparisons
     assert result.rate_spread < 1e-10
     assert result.agrees
+    # the figure in SI: deflections times the metres per unit given (w_st), the labels in m
+    from moving_bogie.validation.sleepers_plots import plot_sleeper_check
+
+    free_panel, envelope = plot_sleeper_check(result, newtons=3.2e4, metres=2e-3).axes
+    assert (
+        free_panel.get_ylabel() == "deflection [m]" and envelope.get_ylabel() == "RMS of the deflection [m]"
+    )
+    np.testing.assert_allclose(free_panel.lines[0].get_ydata(), 2e-3 * x)
 
 
 class _UnstableResult:
     """What check_sleepers reads of a Floquet search: its verdict and its notes."""
 
-    verdict = "UNSTABLE"
+    verdict = Verdict(UNSTABLE)
     notes = ()
 
 
