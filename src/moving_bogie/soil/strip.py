@@ -75,7 +75,8 @@ _WG = np.array(
 NEAR_PANELS, KAPPA_PANELS = 8, 10
 #: Ratio of the initial geometric panels in kappa over the band of the soil's wave speeds (damped soil).
 BAND_RATIO = 1.1
-#: Periods of the sinc per initial panel (Gauss-Kronrod 15 resolves two; bisection catches the rest).
+#: Periods of the sinc per initial panel when panels are bisected (Gauss-Kronrod 15 resolves two; bisection
+#: catches the rest); one without bisection (``rounds=1``, a fixed grid).
 SINC_PERIODS = 2
 #: Nodes of U evaluated at once.
 CHUNK = 4096
@@ -105,7 +106,9 @@ def _integral_inf3(a: FloatArray, b: float) -> FloatArray:
     return 2 * (special.iti0k0(x)[1] / x - special.k0(x)) / a**2
 
 
-def _breakpoints(k1: float, omega: float, soil: SoilProfile, b: float, top: float) -> FloatArray:
+def _breakpoints(
+    k1: float, omega: float, soil: SoilProfile, b: float, top: float, periods: int
+) -> FloatArray:
     """Initial panel ends in k2 for one (k1, omega) (module docstring), bisected later."""
     layers = soil.layers
     scale = min(k1, top)
@@ -122,7 +125,7 @@ def _breakpoints(k1: float, omega: float, soil: SoilProfile, b: float, top: floa
     kap = np.concatenate(kappa)
     kap = kap[kap > k1]
     waves = np.sqrt(kap**2 - k1**2)
-    sinc = np.arange(0.0, top, SINC_PERIODS * 2 * np.pi / b)
+    sinc = np.arange(0.0, top, periods * 2 * np.pi / b)
     ends = np.unique(np.concatenate([[0.0, top], near, waves, sinc]))
     return ends[ends <= top]
 
@@ -197,7 +200,8 @@ def strip_stiffness(
     """chi(k1, omega) of a strip of half-width ``b`` (m) on ``soil`` for real k1 > 0 and real omega.
 
     The k2 integral is refined until the Kronrod-Gauss differences sum to about ``rtol`` of it (at most
-    ``rounds`` bisections); ``error`` states what was reached. On an undamped soil the k2 path must not meet
+    ``rounds`` bisections; ``rounds=1``: the initial panels only, one per period of the sinc); ``error``
+    states what was reached. On an undamped soil the k2 path must not meet
     a surface-wave pole: take |k1| above the wavenumber of the slowest wave (phase speed omega / k1 below
     every mode's), or give the layers Kelvin-Voigt damping.
     """
@@ -214,7 +218,8 @@ def strip_stiffness(
     beta = np.abs(omega) / top_layer.c_s
     h_top = top_layer.h if np.isfinite(top_layer.h) else np.inf
     tops = 20 * np.maximum(max(1 / b, 1 / h_top), np.abs(omega) / soil.c_s_min)
-    ends = [_breakpoints(a, w, soil, b, t) for a, w, t in zip(k1, omega, tops, strict=True)]
+    periods = SINC_PERIODS if rounds > 1 else 1
+    ends = [_breakpoints(a, w, soil, b, t, periods) for a, w, t in zip(k1, omega, tops, strict=True)]
     closed = np.asarray(
         c_coef * _integral_inf(k1, b) + d_coef * _integral_inf3(np.sqrt(k1**2 + beta**2), b), dtype=complex
     )
