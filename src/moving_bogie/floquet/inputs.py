@@ -20,6 +20,7 @@ from typing import Any
 from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.generated import parameters as paper_groups
 from moving_bogie.generated import sleepers as generated
+from moving_bogie.model.catalogue import contact_spring_vehicle
 
 __all__ = ["SleeperInput", "is_sleeper_file", "load_sleeper_file", "sleeper_input", "sleeper_units"]
 
@@ -64,10 +65,18 @@ def load_sleeper_file(path: str | Path, overrides: Mapping[str, float] | None = 
     return sleeper_input(tomllib.loads(Path(path).read_text()), path, overrides)
 
 
+def _vehicle(data: Mapping[str, Any], overrides: Mapping[str, float] | None = None) -> str:
+    """The file's vehicle (``mass`` when it names none), on Hertz contact springs when its ``[physical]``
+    table or the overrides set k_H or c_H."""
+    physical = data.get("physical", {})
+    keys = {*(physical if isinstance(physical, Mapping) else ()), *(overrides or {})}
+    return contact_spring_vehicle(data.get("model", {}).get("vehicle", "mass"), keys)
+
+
 def sleeper_units(data: Mapping[str, Any]) -> dict[str, str]:
     """The ``[physical]`` names a sleeper file of this ``[model]`` takes, with their SI units."""
     model = data.get("model", {})
-    beam, track, vehicle = model.get("beam", "eb"), model["track"], model.get("vehicle", "mass")
+    beam, track, vehicle = model.get("beam", "eb"), model["track"], _vehicle(data)
     module = importlib.import_module(f"moving_bogie.generated.vehicle_{vehicle}")
     table: dict[str, dict[str, Any]] = generated.PARAMETERS[track][beam]  # type: ignore[assignment]
     ref = generated.TRACKS[track]["reference"]
@@ -82,7 +91,7 @@ def sleeper_input(
 ) -> SleeperInput:
     """:func:`load_sleeper_file` of the file's parsed TOML ``data`` (``path`` names it in the messages)."""
     model = data.get("model", {})
-    beam, track, vehicle = model.get("beam", "eb"), model["track"], model.get("vehicle", "mass")
+    beam, track, vehicle = model.get("beam", "eb"), model["track"], _vehicle(data, overrides)
     if beam not in generated.BEAMS:
         raise ParameterError(
             "beam", f"no beam {beam!r}; {suggestion(beam, list(generated.BEAMS), listing='one of')}"
