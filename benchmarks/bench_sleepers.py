@@ -123,7 +123,7 @@ def main() -> None:
                         out,
                     ]
     print(f"frequencies --file (least of {args.repeat} runs, fresh processes)")
-    width = max(len(label) for label, _ in checkouts) + 2
+    width = max(len("checkout"), *(len(label) for label, _ in checkouts)) + 2
     head = f"{'checkout':<{width}}{'case':<10}{'track':<12}{'CPU s':>8}{'wall s':>9}"
     print(head + f"  {'verdict':<13}{'roots':>6}{'margin 1/s':>12}  harmonics")
     for (label, case, track), (cpu, wall, out) in best.items():

@@ -11,8 +11,8 @@ A benchmark run with ``--record`` writes ``benchmarks/results/<script-stem>.json
 another way in the same run ("-" when none was run) and ``target`` the aim ("-" when there is none).
 ``sources`` holds, for each folder of the repository whose code the benchmark measures, the hash of its
 files as they were when the record was written (:func:`source_hash`; leave the code alone while a benchmark
-runs): the page marks a record stale when a hash no longer matches. The file is written atomically, so an interrupted run leaves the previous record in
-place.
+runs): the page marks a record stale when a hash no longer matches. The file is written atomically, so an
+interrupted run leaves the previous record in place.
 """
 
 from __future__ import annotations

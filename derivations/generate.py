@@ -30,6 +30,7 @@ from .model import coefficients, derivative, foundation_image
 from .paper import all_proofs
 from .sleepers import TRACKS as SLEEPER_TRACKS
 from .sleepers import sleepers_module
+from .soil import soil_module
 from .vehicle_modules import vehicle_module
 from .vehicles import CONTACT_SPRING_GROUPS, CONTACT_SPRINGS
 from .vehicles import VEHICLES as DECLARED
@@ -271,7 +272,7 @@ def proofs_markdown():
 
 def selectable() -> tuple:
     """The names ``--only`` accepts: every beam, track and vehicle of the catalogue."""
-    return (*BEAMS, *TRACKS, *SLEEPER_TRACKS, *DECLARED)
+    return (*BEAMS, *TRACKS, *SLEEPER_TRACKS, "soil", *DECLARED)
 
 
 def outputs(root: Path, only=None) -> dict:
@@ -306,6 +307,8 @@ def outputs(root: Path, only=None) -> dict:
     files[root / GENERATED / "asymptotics.py"] = asymptotics_module(models)
     if only is None or only & {"sleepers", "sleepers-two-layer"}:
         files[root / GENERATED / "sleepers.py"] = sleepers_module()
+    if only is None or "soil" in only:
+        files[root / GENERATED / "soil_layer.py"] = soil_module()
     if only is None:
         files[root / "docs" / "proofs.md"] = proofs_markdown()
     return files

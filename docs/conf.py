@@ -5,7 +5,8 @@ never committed:
 
 - ``cli.md``, the command line reference, rendered from the argparse parsers by
   :func:`moving_bogie.cli.docs.render`;
-- ``_generated/uic60-series.png``, the home page's figure, drawn by ``moving-bogie timeseries``;
+- ``_generated/uic60-series.png``, the home page's figure, drawn by ``moving-bogie timeseries``, and
+  ``_generated/soil-dispersion.png``, soil.md's, by ``moving-bogie critical-velocity`` (``FIGURES``);
 - ``tutorials/*.ipynb``, the notebooks of ``notebooks/`` (jupytext percent ``.py`` files) executed in quick
   mode (``MOVING_BOGIE_QUICK=1``) by ``notebooks/run.py``, the runner the tests use; an executed notebook is
   kept while it is newer than its source and the package (delete ``docs/tutorials/`` to run them again).
@@ -83,7 +84,8 @@ numpydoc_xref_param_type = False
 
 html_theme = "furo"
 html_title = "moving-bogie"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_css_files = ["tables.css"]  # tables wrap their text to the page's width
 html_theme_options = {"navigation_with_keys": True}
 nitpicky = False
 
@@ -126,17 +128,26 @@ def execute_notebooks() -> None:
                 print(line, flush=True)
 
 
+#: The figures the pages show, drawn by the command line: name -> its arguments (``--plot`` added).
+FIGURES = {
+    # the home page's: the walkthrough's time series
+    "uic60-series.png": "timeseries --file examples/uic60-bogie.toml --set v=83.3 --tmax 1".split(),
+    # soil.md's: the dispersion figure of the ballasted track on soil
+    "soil-dispersion.png": "critical-velocity --file examples/soil-ballasted.toml".split(),
+}
+
+
 def make_home_figure() -> None:
-    """``_generated/uic60-series.png``: the walkthrough's time series, drawn by the command line."""
-    out = DOCS / "_generated" / "uic60-series.png"
-    if out.exists() and out.stat().st_mtime >= RUNNER.newest_package_file():
-        return
-    out.parent.mkdir(exist_ok=True)
-    env = dict(os.environ, MPLBACKEND="Agg")
-    env["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT / "src"), env.get("PYTHONPATH")) if p)
-    argv = [sys.executable, "-m", "moving_bogie", "timeseries", "--file", "examples/uic60-bogie.toml"]
-    argv += ["--set", "v=83.3", "--tmax", "1", "--plot", str(out)]
-    subprocess.run(argv, cwd=ROOT, env=env, check=True, capture_output=True)
+    """``_generated/*.png`` of :data:`FIGURES`, each drawn by the command line when older than the package."""
+    for name, args in FIGURES.items():
+        out = DOCS / "_generated" / name
+        if out.exists() and out.stat().st_mtime >= RUNNER.newest_package_file():
+            continue
+        out.parent.mkdir(exist_ok=True)
+        env = dict(os.environ, MPLBACKEND="Agg")
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT / "src"), env.get("PYTHONPATH")) if p)
+        argv = [sys.executable, "-m", "moving_bogie", *args, "--plot", str(out)]
+        subprocess.run(argv, cwd=ROOT, env=env, check=True, capture_output=True)
 
 
 _LITERAL = re.compile(r"(``.+?``|`[^`]+`)")
@@ -152,7 +163,22 @@ def escape_bars(app, what, name, obj, options, lines) -> None:
         lines[k] = "".join(p if i % 2 else p.replace("|", "\\|") for i, p in enumerate(parts))
 
 
+#: Abbreviations a summary does not end at: autosummary takes a docstring's first sentence, and "Closed-form
+#: time series, Eqs. (35)-(43)." would otherwise read "Closed-form time series, Eqs.".
+SUMMARY_ABBREVIATIONS = ("Eq.", "Eqs.", "Fig.", "Figs.", "Sec.", "cf.", "approx.")
+
+
+def keep_abbreviations_in_summaries() -> None:
+    """Add :data:`SUMMARY_ABBREVIATIONS` to the abbreviations after which autosummary does not end a
+    sentence (``sphinx.ext.autosummary.WELL_KNOWN_ABBREVIATIONS``, read at each summary)."""
+    from sphinx.ext import autosummary
+
+    known = tuple(autosummary.WELL_KNOWN_ABBREVIATIONS)
+    autosummary.WELL_KNOWN_ABBREVIATIONS = known + tuple(a for a in SUMMARY_ABBREVIATIONS if a not in known)
+
+
 def setup(app) -> None:
+    keep_abbreviations_in_summaries()
     app.connect("autodoc-process-docstring", escape_bars, priority=400)
 
 

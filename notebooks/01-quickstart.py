@@ -127,7 +127,7 @@ assert np.isclose(float(params.eta_f), c_f / (2 * np.sqrt(m * k_f)), rtol=1e-12)
 
 # %%
 start = time.perf_counter()
-freq = induced_frequencies(params, dps=20 if QUICK else 30)
+freq = induced_frequencies(bogie, dps=20 if QUICK else 30)  # SI parameters: the result keeps their scales
 print(
     f"found {freq.found} of {freq.count} counted roots in {time.perf_counter() - start:.1f} s; "
     f"count ok: {freq.count_ok}"
@@ -145,6 +145,14 @@ assert freq.count_ok and freq.stable
 hz = [abs(scales.angular_frequency(complex(root.q)).real) / (2 * np.pi) for root in freq.roots]
 assert len(freq.roots) == 4 and all(float(root.q.imag) > 0 for root in freq.roots)
 assert 6 <= min(hz) and max(hz) <= 22, hz
+
+# %% [markdown]
+# A result of SI parameters shows itself in SI: the last value of a cell, `freq`, is its table in rad/s,
+# 1/s and Hz (no dimensionless $q$), and `freq.to_dataframe()` (or `.to_xarray()`) is the same table for
+# pandas (xarray), the units of each column in `.attrs["units"]`.
+
+# %%
+freq
 
 # %% [markdown]
 # Four pairs, all with $\mathrm{Im}\,q > 0$: the vibrations excited when the bogie "appears" on the track at

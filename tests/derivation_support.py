@@ -4,7 +4,7 @@ scratch copies of the source tree in which those tests add a model and regenerat
 Without SymPy the check that ``generated/`` and ``docs/proofs.md`` are current cannot run. A skip would
 make it disappear from the summary of a CI run without anyone noticing, so a missing SymPy fails the
 collection of these test files with the command that installs it. A developer who works without SymPy
-on purpose sets ``MOVING_BOGIE_SKIP_DERIVATIONS=1`` (README, "Two commands"); the files are then reported
+on purpose sets ``MOVING_BOGIE_SKIP_DERIVATIONS=1`` (README, "Tests"); the files are then reported
 as skipped with that reason.
 """
 

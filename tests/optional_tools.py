@@ -2,7 +2,7 @@
 
 A skip would make a check disappear from the summary of a CI run without anyone noticing, so a missing
 tool fails the test with the command that installs it. A developer who works without a tool on purpose
-sets the tool's documented variable to ``1`` (README, "Two commands"); the tests are then reported as
+sets the tool's documented variable to ``1`` (README, "Tests"); the tests are then reported as
 skipped with that reason.
 """
 

@@ -194,20 +194,26 @@ def test_atomic_write_leaves_old_file_when_writing_fails(tmp_path, monkeypatch):
     assert [p.name for p in tmp_path.iterdir()] == ["result.txt"]
 
 
-def test_models_lists_one_line_per_model_and_a_name_gives_its_parameters(capsys):
+def test_models_lists_beams_tracks_and_vehicles_and_a_name_gives_its_parameters(capsys):
+    """The listing is the catalogue's beams x tracks x vehicles in a few lines (each model one of each), then
+    the sleeper tracks; ``models NAME`` gives one model's details, for a sleeper track too."""
+    from moving_bogie.generated import sleepers
     from moving_bogie.model.catalogue import default_catalogue
 
     models = default_catalogue().models()
     assert main(["models"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    # the catalogue's models, then the rails on discrete supports (docs/sleepers.md) after their heading
-    cut = next(i for i, line in enumerate(lines) if line.startswith("rails on discrete supports"))
-    listed = [line.split()[0] for line in lines[:cut] if line.startswith("  ")]
-    assert listed == [model.name for model in models]
-    from moving_bogie.generated import sleepers
-
-    discrete = [line.split()[0] for line in lines[cut:] if line.startswith("  ")]
-    assert discrete == [f"{beam}/{track}" for track in sleepers.TRACKS for beam in sleepers.BEAMS]
+    assert len(lines) <= 10, lines
+    cut = next(k for k, line in enumerate(lines) if line.startswith("rails on discrete supports"))
+    rows = {line.split()[0]: line.split(None, 1)[1].split(", ") for line in lines[:cut] if line[:2] == "  "}
+    listed = {f"{b}/{t}/{v}" for b in rows["beams"] for t in rows["tracks"] for v in rows["vehicles"]}
+    assert listed == {model.name for model in models} and len(listed) == len(models)
+    assert f"{len(models)} models" in lines[0] and "every beam on every track under every vehicle" in lines[0]
+    assert [line for line in lines if line.startswith("  tracks") and "sleepers" in line] == [
+        "  tracks    " + ", ".join(sleepers.TRACKS)
+    ]
+    assert main(["models", "tr/sleepers-two-layer"]) == 0
+    assert "k_pad" in capsys.readouterr().out
     bogie = next(model for model in models if model.vehicle == "bogie")
     assert main(["models", bogie.name]) == 0
     out = capsys.readouterr().out

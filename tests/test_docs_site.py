@@ -4,7 +4,9 @@
 tests. This opens the home page and a tutorial page in headless Chromium (the system's ``chromium`` and
 ``chromium-driver`` packages, driven by selenium) and checks that every ``<img>`` has loaded
 (``complete`` and ``naturalWidth > 0``), that MathJax typesets the equations, that the tutorial shows its
-figures, and that every internal link of the site resolves (``docs/check_links.py``). Outside CI, a
+figures, and that every internal link of the site resolves (``docs/check_links.py``). The theory pages
+must show their equations typeset, with no ``$`` left as text and no MathJax error; the API pages must
+give whole sentences as summaries (not cut at "Eqs.") in tables no wider than the page. Outside CI, a
 missing browser or an unbuilt site skips the test and says what to install or run; in CI (``CI=true``)
 both fail it.
 """
@@ -125,3 +127,64 @@ def test_link_checker_finds_a_broken_link(tmp_path):
     problems = module.broken_links(tmp_path)
     assert len(problems) == 2, problems
     assert any("nofile.png" in p for p in problems) and any("'gone'" in p for p in problems)
+
+
+#: The pages of the theory, each with equations that MathJax must typeset (at least this many).
+THEORY_PAGES = {"theory.html": 20, "sleepers.html": 100}
+
+
+def _raw_dollars(driver) -> int:
+    """``$`` signs left as text in the page's article, outside code (math that was not recognised)."""
+    return driver.execute_script(
+        "const a = (document.querySelector('article') || document.body).cloneNode(true);"
+        "a.querySelectorAll('pre, code, mjx-container, script').forEach(n => n.remove());"
+        "return (a.textContent.match(/\\$/g) || []).length;"
+    )
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("page", sorted(THEORY_PAGES))
+def test_theory_pages_show_their_math_typeset(browser, page, tmp_path):
+    browser.get((SITE / page).as_uri())
+    _check_equations(browser, page)
+    count = browser.execute_script("return document.querySelectorAll('mjx-container').length")
+    assert count >= THEORY_PAGES[page], f"{page}: {count} equations typeset"
+    assert browser.execute_script("return document.querySelectorAll('mjx-merror').length") == 0, page
+    assert _raw_dollars(browser) == 0, f"{page}: '$' left as text"
+    browser.save_screenshot(
+        str(SHOTS / page.replace(".html", ".png")) if SHOTS else str(tmp_path / "page.png")
+    )
+
+
+def _summaries(driver, page: str) -> list[str]:
+    driver.get((SITE / page).as_uri())
+    return driver.execute_script(
+        "return Array.from(document.querySelectorAll('table.autosummary tr td:nth-child(2)'))"
+        ".map(td => td.textContent.trim())"
+    )
+
+
+def _overflowing_tables(driver) -> list[str]:
+    """Tables wider than the column that holds them (they would scroll or spill out of the page)."""
+    return driver.execute_script(
+        "const main = document.querySelector('article') || document.body;"
+        "const width = main.getBoundingClientRect().width;"
+        "return Array.from(document.querySelectorAll('table'))"
+        ".filter(t => t.getBoundingClientRect().width > width + 1 || t.scrollWidth > t.clientWidth + 1)"
+        ".map(t => t.textContent.trim().slice(0, 60));"
+    )
+
+
+@pytest.mark.slow
+def test_api_summaries_are_whole_sentences_in_tables_that_fit(browser, tmp_path):
+    pages = ["api.html"] + sorted(
+        str(p.relative_to(SITE)) for p in (SITE / "_autosummary").glob("moving_bogie.*.html")
+    )[:40]
+    cut = []
+    for page in pages:
+        summaries = _summaries(browser, page)
+        cut += [f"{page}: {s}" for s in summaries if s.endswith(("Eq.", "Eqs.", "Fig.", "e.g.", "i.e."))]
+        assert not _overflowing_tables(browser), f"{page}: tables wider than the page"
+    assert not cut, f"summaries cut at an abbreviation: {cut}"
+    browser.get((SITE / "api.html").as_uri())
+    browser.save_screenshot(str(SHOTS / "api.png") if SHOTS else str(tmp_path / "api.png"))

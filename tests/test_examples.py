@@ -19,10 +19,14 @@ from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import SLEEPER_COMMANDS, load_params_file
+from moving_bogie.soil.file import is_soil_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-#: The continuous tracks' examples; a rail on discrete supports (floquet/) has its own reader.
-FILES = [path for path in sorted(EXAMPLES.glob("*.toml")) if not is_sleeper_file(path)]
+#: The continuous tracks' examples; a rail on discrete supports (floquet/) and a track on soil (soil/) have
+#: their own readers (tests/test_soil_track.py runs the soil examples).
+FILES = [
+    path for path in sorted(EXAMPLES.glob("*.toml")) if not is_sleeper_file(path) and not is_soil_file(path)
+]
 SLEEPER_FILES = [path for path in sorted(EXAMPLES.glob("*.toml")) if is_sleeper_file(path)]
 
 

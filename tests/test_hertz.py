@@ -66,8 +66,12 @@ def test_hertz_wheel_on_sleepers_tends_to_the_rigid_contact():
 
 @pytest.mark.parametrize("vehicle", ["mass", "hertz_mass"])
 def test_hertz_and_mass_are_both_listed(vehicle, capsys):
-    """``moving-bogie models`` lists the Hertz wheel beside the rigid one on a continuous track."""
+    """``moving-bogie models`` lists the Hertz wheel beside the rigid one, and ``models NAME`` gives each on a
+    continuous track."""
     from moving_bogie.cli import main
 
     assert main(["models"]) == 0
-    assert f"eb/one-layer/{vehicle} " in capsys.readouterr().out
+    vehicles = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("  vehicles"))
+    assert vehicle in vehicles.split(None, 1)[1].split(", ")
+    assert main(["models", f"eb/one-layer/{vehicle}"]) == 0
+    assert capsys.readouterr().out.startswith(f"eb/one-layer/{vehicle} ")

@@ -172,11 +172,18 @@ def test_figure_shows_the_margin_and_lists_only_what_is_drawn(uic60):
         np.sort(mesh.get_array().compressed()), np.sort(smap.margin.ravel() / units.t_scale)
     )
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
-    # v_cr = 649 m/s lies beyond the 0.3 alpha axis: not listed; the stable cell closest to instability is
-    # marked with its rate, the smallest margin of the map
+    # v_cr = 649 m/s lies beyond the 0.3 alpha axis: not drawn, listed as beyond it; the stable cell closest
+    # to instability is marked with its rate, the smallest margin of the map
     closest = float(np.nanmin(smap.margin) / units.t_scale)
-    assert labels == ["operating point", f"smallest decay rate {closest:.3g} 1/s"]
-    assert any("beyond this axis" in t.get_text() for t in ax.texts)
+    v_cr = "v_cr = 649.336 m/s (critical velocity): beyond this axis"  # v_ref (alpha_cr = 1, Eq. (65))
+    assert labels == [v_cr, "operating point", f"smallest decay rate {closest:.3g} 1/s"]
+    assert not ax.texts  # no note in the plane, where it could hide a cell or a marker
+    fig.canvas.draw()
+    legend = ax.get_legend().get_window_extent()
+    for line in ax.get_lines():  # neither the closest cell nor the operating point lies under the legend
+        if len(line.get_xdata()):
+            x, y = ax.transData.transform((line.get_xdata()[0], line.get_ydata()[0]))
+            assert not legend.contains(x, y), line.get_label()
     title = ax.get_title()
     assert "bogie, eb beam, one-layer track" in title and "c_f = 1.2e+04 N s/m^2" in title
 

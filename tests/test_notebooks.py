@@ -51,7 +51,7 @@ def test_notebooks_exist():
 
 
 def _runner():
-    """notebooks/run.py, the documented headless runner (README, "Notebooks"), loaded from its path."""
+    """notebooks/run.py, the documented headless runner (README, "Documentation"), loaded from its path."""
     return load_script("notebooks/run.py")
 
 

@@ -11,6 +11,7 @@ binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stabili
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.kernels.bound import BoundModel, bind
@@ -59,10 +60,15 @@ def bind_with_scales(
 def induced_frequencies(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> FrequencyResult:
-    """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies`."""
+    """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies`.
+
+    For SI parameters the result keeps their scales and shows itself in SI (rad/s, Hz, s).
+    """
     from moving_bogie.roots.frequencies import induced_frequencies as run
 
-    return run(bind(params), **options)
+    bound, scales = bind_with_scales(params)
+    result = run(bound, **options)
+    return result if scales is None else replace(result, scales=scales)
 
 
 def closed_form_response(
@@ -160,7 +166,15 @@ def critical_stiffness(
 
 
 def stability_map(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> StabilityMap:
-    """Degree of instability over a grid: :func:`moving_bogie.stability.maps.map.stability_map`."""
+    """Degree of instability over a grid: :func:`moving_bogie.stability.maps.map.stability_map`.
+
+    For SI parameters the map keeps their units and shows itself in SI (v [m/s], M [kg], rates [1/s]).
+    """
     from moving_bogie.stability.maps.map import stability_map as run
 
-    return run(bind(params), **options)
+    result = run(bind(params), **options)
+    if not isinstance(params, PhysicalParams):
+        return result
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
+
+    return replace(result, units=PlaneUnits.of(result.params, params, operating=True))

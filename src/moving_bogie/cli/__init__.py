@@ -32,6 +32,7 @@ SUBCOMMAND_MODULES: list[str] = [
     "lines_cmd",
     "compare_cmd",
     "sweep_cmd",
+    "soil_cmd",
 ]
 
 

@@ -49,7 +49,7 @@ def exact_number(text: str) -> Fraction:
     except (ValueError, ZeroDivisionError):
         raise ValueError(f"not a number: {text!r}") from None
     if value != 0 and not 1 / LARGEST <= abs(value) <= LARGEST:
-        raise ValueError(f"{text.strip()} is out of range: give a magnitude from 1e-150 to 1e150, or 0")
+        raise ValueError(f"{text.strip()} is out of range: give a magnitude from 1e-30 to 1e30, or 0")
     return value
 
 

@@ -84,7 +84,8 @@ def render(width: int = WIDTH) -> str:
         "",
         "## The models and their parameters",
         "",
-        "The output of `moving-bogie models`: every model of the generated catalogue (from `derivations/`).",
+        "The output of `moving-bogie models --verbose`: every model of the generated catalogue (from "
+        "`derivations/`).",
         "",
         "```",
         format_catalogue(default_catalogue().models()),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -13,7 +14,15 @@ if TYPE_CHECKING:
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
 
 from .checks import count, exact_number
-from .common import PROG, add_json_option, add_parameter_options, params_from_args, print_json
+from .common import (
+    PROG,
+    add_json_option,
+    add_parameter_options,
+    add_units_option,
+    params_from_args,
+    print_json,
+    si_input,
+)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -48,6 +57,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_parameter_options(parser)
     _add_search_options(parser)
+    add_units_option(parser)
     add_json_option(parser)
     parser.set_defaults(handler=run_frequencies)
 
@@ -144,6 +154,9 @@ def run_frequencies(args: argparse.Namespace) -> int:
         result = induced_frequencies(
             bind(params), dps=args.dps, window=window, progress=update, certify=args.certify
         )
+    physical = si_input(args, physical)  # the units shown: SI for a [physical] file unless --units says
+    if physical is not None:
+        result = replace(result, scales=physical.scales())
     limit = damping_limit(result)
     regime = speed_regime(params, physical)
     if args.json:
@@ -153,12 +166,12 @@ def run_frequencies(args: argparse.Namespace) -> int:
         speed = {"alpha_cr": regime.alpha_cr, "v_cr": regime.v_cr, "supercritical": regime.supercritical}
         print_json(data | speed | {"speed": regime.to_dict()})
     else:
+        if physical is not None:  # the roots in SI in place of q
+            print(format_si(result, physical))
         print(format_result(result))
         if limit is not None:
             print(limit.statement())
         print(regime.line())
-        if physical is not None:
-            print(format_si(result, physical))
     for line in format_warnings(result):
         print(line, file=sys.stderr)
     proven = result.certificate is None or result.certificate.all_proven
@@ -194,7 +207,10 @@ def format_si(result: FrequencyResult, physical: PhysicalParams) -> str:
     from moving_bogie.model.si_results import root_in_si
 
     t_scale = physical.scales().t_scale
-    lines = [f"In SI (t = tau * {t_scale:.6g} s; time factor exp(i omega t), Im omega < 0 grows):"]
+    lines = [
+        f"Induced frequencies ({result.model}, {result.params.beam.upper()} beam) in SI, time factor "
+        "exp(i omega t) (Im omega < 0 grows):"
+    ]
     for k, root in enumerate(result.roots, 1):
         si = root_in_si(root.q, t_scale, digits=min(8, root.digits))
         growth = f", growth time {si['growth_time_s']} s" if si["growth_time_s"] else ""
@@ -206,49 +222,74 @@ def format_si(result: FrequencyResult, physical: PhysicalParams) -> str:
 
 
 def format_result(result: FrequencyResult) -> str:
-    import mpmath
-
-    lines = [f"Induced frequencies ({result.model}, {result.params.beam.upper()} beam), {result.dps} digits:"]
-    lines.append(f"  {'':2}{'Re q':>36}  {'Im q':>36}  side   digits")
-    for k, r in enumerate(result.roots, 1):
-        flag = "unstable" if r.unstable else ("real" if r.marginal else "")
-        lines.append(f"  {k:<2}{'+-' + r.re_text:>36}  {r.im_text:>36}  {r.side:<5}  {r.digits:>3}  {flag}")
+    """The roots (q to their confirmed digits; left to :func:`format_si` for a result in SI, which has
+    ``scales``), the count, what was searched and the verdict."""
+    lines = []
+    if result.scales is None:
+        lines.append(
+            f"Induced frequencies ({result.model}, {result.params.beam.upper()} beam), {result.dps} digits:"
+        )
+        lines.append(f"  {'':2}{'Re q':>36}  {'Im q':>36}  side   digits")
+        for k, r in enumerate(result.roots, 1):
+            flag = "unstable" if r.unstable else ("real" if r.marginal else "")
+            lines.append(
+                f"  {k:<2}{'+-' + r.re_text:>36}  {r.im_text:>36}  {r.side:<5}  {r.digits:>3}  {flag}"
+            )
     lines.append(f"count (argument principle): {result.count}, found: {result.found}")
-    if result.unsearched:
-        height = max(u.height for u in result.unsearched)
-        lines.append(
-            f"not searched: a sliver of height <= {height:.1e} around the cut of K ('unsearched' in --json)"
-        )
-    if result.strip is not None:
-        lines.append("below the axis: " + result.strip.statement())
-    far = result.far_field
-    if far is not None and far.radius is not None:
-        lines.append(
-            f"far field: no root with Im q < 0 beyond |q| = {far.radius:g} "
-            f"(|E_chr - E_lead| / |E_lead| <= {far.rho:.2f} there); searched: Re q <= {result.window.x1:g}, "
-            f"{result.window.y0:g} <= Im q <= {result.window.y1:g}"
-        )
-    verdict = result.verdict
-    if verdict.state == "undetermined":
-        lines.append("verdict: UNDETERMINED: " + "; ".join(note.text for note in verdict.reasons))
-    elif verdict.state == "stable":
-        real = sum(r.marginal for r in result.roots)
-        neutral = f"; {real} real, neutral (constant amplitude)" if real else ""
-        lines.append(f"verdict: STABLE (no induced frequency with Im q < 0{neutral})")
-    elif not result.unstable_roots:
-        lines.append(
-            f"verdict: UNSTABLE, {result.strip_unstable} root(s) with Im q < 0 counted in the strip just "
-            "below the cut (not located)"
-        )
-    else:
-        growth = mpmath.nstr(result.growth_time, 6)
-        lines.append(
-            f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s); degree of instability "
-            f"{mpmath.nstr(result.degree_of_instability, 6)}, growth time 1/|Im q| = {growth}"
-        )
+    lines += _searched_lines(result)
+    lines.append(verdict_line(result))
     if result.certificate is not None:
         lines += format_certificate(result.certificate)
     return "\n".join(lines)
+
+
+def verdict_line(result: FrequencyResult) -> str:
+    """``verdict: ...`` with, when unstable, the fastest growth (Im q, or 1/s and s for a result in SI)."""
+    import mpmath
+
+    verdict, q = result.verdict, "q" if result.scales is None else "omega"
+    if verdict.state == "undetermined":
+        return "verdict: UNDETERMINED: " + "; ".join(note.text for note in verdict.reasons)
+    if verdict.state == "stable":
+        real = sum(r.marginal for r in result.roots)
+        neutral = f"; {real} real, neutral (constant amplitude)" if real else ""
+        return f"verdict: STABLE (no induced frequency with Im {q} < 0{neutral})"
+    if not result.unstable_roots:
+        return (
+            f"verdict: UNSTABLE, {result.strip_unstable} root(s) with Im {q} < 0 counted in the strip just "
+            "below the cut (not located)"
+        )
+    pairs = f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s)"
+    if result.scales is not None:
+        rate = -float(result.degree_of_instability) / result.scales.t_scale
+        return f"{pairs}; growth rate -min Im omega = {rate:.6g} 1/s, growth time {1 / rate:.6g} s"
+    growth = mpmath.nstr(result.growth_time, 6)
+    degree = mpmath.nstr(result.degree_of_instability, 6)
+    return f"{pairs}; degree of instability {degree}, growth time 1/|Im q| = {growth}"
+
+
+def _searched_lines(result: FrequencyResult) -> list[str]:
+    """Where the search went: the sliver around the cut not searched, the far field (Im q, or Im omega [1/s]
+    and |omega| [rad/s] for a result in SI)."""
+    scale = 1.0 if result.scales is None else result.scales.t_scale
+    name, rate, freq = ("q", "", "") if result.scales is None else ("omega", " 1/s", " rad/s")
+    lines = []
+    if result.unsearched:
+        height = max(u.height for u in result.unsearched) / scale
+        lines.append(
+            f"not searched: a sliver of height <= {height:.1e}{rate} around the cut of K "
+            "('unsearched' in --json)"
+        )
+    if result.strip is not None:
+        lines.append("below the axis: " + result.strip.statement())
+    far, window = result.far_field, result.window
+    if far is not None and far.radius is not None:
+        lines.append(
+            f"far field: no root with Im {name} < 0 beyond |{name}| = {far.radius / scale:g}{freq} "
+            f"(|E_chr - E_lead| / |E_lead| <= {far.rho:.2f} there); searched: Re {name} <= "
+            f"{window.x1 / scale:g}{freq}, {window.y0 / scale:g} <= Im {name} <= {window.y1 / scale:g}{rate}"
+        )
+    return lines
 
 
 def format_warnings(result: FrequencyResult) -> list[str]:

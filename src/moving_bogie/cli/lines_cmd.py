@@ -17,6 +17,7 @@ if TYPE_CHECKING:
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.bar import bar_note, held_groups
+from moving_bogie.presentation import field_lines, json_clean, quantity
 
 from . import sleepers_map_cmd
 from .checks import count, nonnegative, positive, workers
@@ -279,7 +280,7 @@ def _stability_map(args: argparse.Namespace) -> int:
     held = held_groups(params, args.bar)
     alphas = np.linspace(alpha_min, alpha_max, args.n)
     thetas = np.linspace(theta_max / args.n, theta_max, args.n)
-    if args.n > TIMED:  # a long map says so before it starts
+    if args.n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
         column = partial(map_columns, bound, args.parameter, [alphas[args.n // 2]], thetas, held=held)
         estimate_grid("stability map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
     with progress_bar("stability map", enabled=not args.json) as bar:
@@ -326,16 +327,17 @@ def _stability_map(args: argparse.Namespace) -> int:
     else:
         if units.si:
             print(_si_line(units, args.parameter, params))
-        for key, value in summary.items():
-            if key not in ("params", "uncertain", "axes", "units", "bar"):
-                print(f"{key:18s} {value}")
+        hidden = ["params", "uncertain", "axes", "units", "bar"]
+        if units.si:  # the groups' values, in SI on the lines below
+            hidden += ["max_degree", "alpha_range", f"{args.parameter}_range"]
+        print("\n".join(field_lines(summary, skip=hidden)))
         for key, axis in summary["axes"].items():
             (lo, hi), name = axis["range"], axis["name"]
             note = f" ({axis['note']})" if "note" in axis else ""
             points = f"{axis['count']} points{note}"
             print(f"{key + ' axis':18s} {name} {lo:.6g}..{hi:.6g} [{axis['unit']}], {points}")
         for cell in summary["uncertain"]:
-            print("uncertain cell     " + ", ".join(f"{k} = {v:.6g}" for k, v in cell.items()))
+            print("uncertain cell     " + ", ".join(units.legend(k, v) for k, v in cell.items()))
     return 0
 
 
@@ -348,12 +350,10 @@ def _map_summary(smap: StabilityMap, units: PlaneUnits, bar: dict[str, str] | No
     }
     summary = units.with_si(summary) | {"units": units.to_dict(), "bar": bar}
     if units.si:  # the degree of instability as a growth rate: Im omega = Im q / t_scale
-        rate = units.frequency(summary["max_degree"])
-        summary["max_growth_rate"] = {"value": rate, "unit": "1/s"}
+        summary["max_growth_rate"] = quantity(units.frequency(summary["max_degree"]), "1/s")
         if summary["min_decay_rate"] is not None:
-            decay = units.frequency(summary["min_decay_rate"])
-            summary["min_decay_rate"] = {"value": decay, "unit": "1/s"}
-    return summary
+            summary["min_decay_rate"] = quantity(units.frequency(summary["min_decay_rate"]), "1/s")
+    return json_clean(summary)
 
 
 def _si_line(units: PlaneUnits, parameter: str, params: DimensionlessParams) -> str:

@@ -1,4 +1,4 @@
-"""``moving-bogie models``: the models of the generated catalogue, one line each, or with their parameters."""
+"""``moving-bogie models``: the generated catalogue in a few lines, or one model with its parameters."""
 
 from __future__ import annotations
 
@@ -18,11 +18,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``models`` subcommand."""
     parser = subparsers.add_parser(
         "models",
-        help="list every model (beam x track x vehicle), one line each; NAME or --verbose for the parameters",
+        help="list the models (beams x tracks x vehicles); NAME or --verbose for the parameters",
         description=(
-            "List the models of the generated catalogue, one line each: beam/track/vehicle, the degrees\n"
-            "of N and Q in p (Eq. (24)) and the number of dimensionless parameters. With a\n"
-            "model NAME (as listed: beam/track/vehicle), or --verbose for every model, each parameter: its\n"
+            "List the models of the generated catalogue: its beams, tracks and vehicles (a model is one\n"
+            "of each, NAME = beam/track/vehicle) and the rails on discrete supports. With a model NAME,\n"
+            "or --verbose for every model, the degrees of N and Q in p (Eq. (24)) and each parameter: its\n"
             "meaning, range, default, defining equation, command-line option and SI counterpart with its\n"
             "unit. Everything comes from derivations/ through python -m derivations. SI inputs are per rail\n"
             "(one rail and the half vehicle on it); the listing ends with the convention and the\n"
@@ -41,13 +41,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Print the catalogue: one line per model, or the parameters of NAME (of every model with --verbose)."""
+    """Print the catalogue: its beams x tracks x vehicles in a few lines, or the parameters of NAME (of every
+    model with --verbose)."""
     catalogue = default_catalogue()
     models = catalogue.models()
     if args.name is not None:
+        if args.name in sleeper_tracks() and not args.json:
+            print(sleeper_tracks()[args.name])
+            return 0
         chosen = [model for model in models if model.name == args.name]
         if not chosen:
-            hint = suggestion(args.name, [model.name for model in models], listing="one of")
+            names = [model.name for model in models] + list(sleeper_tracks())
+            hint = suggestion(args.name, names, listing="one of")
             raise ParameterError("model", f"no model {args.name!r}; {hint}")
         models = chosen
     if args.json:
@@ -60,36 +65,54 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _choices(names: Sequence[str], width: int = 100, indent: int = 12) -> list[str]:
+    """``names`` joined by commas, wrapped to ``width`` under an indent of ``indent``."""
+    return textwrap.wrap(", ".join(names), width - indent)
+
+
 def format_summary(models: Sequence[Model]) -> str:
-    """One line per model: its name, the degrees of N and Q in p, its parameters; then where to look next."""
-    width = max(len(model.name) for model in models)
-    lines = [f"{len(models)} models (beam/track/vehicle):"]
-    for model in models:
-        degrees = model.degrees
-        lines.append(
-            f"  {model.name:<{width}}  N of degree {degrees['N_in_p']}, Q of degree {degrees['Q_in_p']} "
-            f"in p; {len(model.specs)} parameters"
-        )
-    lines.append(
-        "a model's parameters, their SI units and the per-rail convention of SI inputs: "
-        "moving-bogie models NAME (every model: --verbose)"
+    """The catalogue in a few lines: its beams, tracks and vehicles (each model one combination of them, all
+    combinations declared), the rails on discrete supports, and how to see one model's parameters."""
+    beams = list(dict.fromkeys(model.beam for model in models))
+    tracks = list(dict.fromkeys(model.track for model in models))
+    vehicles = list(dict.fromkeys(model.vehicle for model in models))
+    product = len(models) == len(beams) * len(tracks) * len(vehicles)
+    every = "every beam on every track under every vehicle" if product else "these combinations"
+    lines = [f"{len(models)} models, NAME = beam/track/vehicle: {every}"]
+    for heading, names in (("beams", beams), ("tracks", tracks), ("vehicles", vehicles)):
+        for k, line in enumerate(_choices(names)):
+            lines.append(f"  {heading if k == 0 else '':<10}{line}")
+    if not product:
+        lines += [f"    {model.name}" for model in models]
+    sleepers = list(sleeper_tracks())
+    lines.append("rails on discrete supports (Floquet, docs/sleepers.md; any vehicle, NAME = beam/track):")
+    lines.append(f"  {'tracks':<10}{', '.join(dict.fromkeys(name.split('/')[1] for name in sleepers))}")
+    example = next(
+        (model.name for model in models if model.vehicle == "bogie"), models[0].name if models else ""
     )
-    lines += format_sleeper_tracks()
+    lines.append(
+        f"a model's parameters, ranges, equations and SI units: moving-bogie models NAME (e.g. {example}); "
+        "every model: --verbose"
+    )
     return "\n".join(lines)
 
 
-def format_sleeper_tracks() -> list[str]:
-    """The rails on discrete supports (docs/sleepers.md): each beam on each sleeper track, its SI inputs."""
+def sleeper_tracks() -> dict[str, str]:
+    """The rails on discrete supports (docs/sleepers.md) by name, beam/track: each one's description and SI
+    inputs, as ``moving-bogie models NAME`` prints them."""
     from moving_bogie.generated import sleepers
 
-    lines = ["rails on discrete supports (Floquet; analysed by frequencies --file, any vehicle):"]
+    out = {}
     for track, meta in sleepers.TRACKS.items():
         for beam in sleepers.BEAMS:
             table = cast(dict[str, dict[str, str]], sleepers.PARAMETERS[track][beam])
             names = ", ".join(spec["si"] for spec in table.values())
             reference = cast(tuple[str, str, str], meta["reference"])  # (SI name, unit, meaning)
-            lines.append(f"  {beam}/{track}  SI: EI, m, {reference[0]}, {names}")
-    return lines
+            out[f"{beam}/{track}"] = (
+                f"{beam}/{track}  ({meta['description']}; Floquet, any vehicle)\n"
+                f"  SI inputs of a [physical] file: EI, m, {reference[0]}, {names}"
+            )
+    return out
 
 
 def format_catalogue(models: Sequence[Model]) -> str:

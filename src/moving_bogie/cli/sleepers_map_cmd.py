@@ -130,7 +130,7 @@ def run_sleeper_map(args: argparse.Namespace) -> int:
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
 
     data, vs, ms = sleeper_plane(args, args.n)
-    if args.n > TIMED:  # a long map says so before it starts
+    if args.n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
         middle = vs[args.n // 2 : args.n // 2 + 1]
         column = partial(sleeper_map, data, middle, ms, verify=0, workers=1)
         estimate_grid("sleeper map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)

@@ -93,7 +93,15 @@ def sleeper_check_dict(result: SleeperCheck, data: SleeperInput) -> dict[str, An
             else ("1/s" if "rate" in item["quantity"] else "rad/s")
         )
         item["floquet_si"], item["finite_beam_si"] = item["floquet"] * scale, item["finite_beam"] * scale
+    out["finite_beam"]["dt_s"] = out["finite_beam"]["dt"] * data.t_scale
     return out
+
+
+def _dt_text(finite_beam: dict[str, Any]) -> str:
+    """The finite rail's time step: in s when known (``dt_s``), else per unit tau."""
+    if "dt_s" in finite_beam:
+        return f"{finite_beam['dt_s']:.4g} s"
+    return f"{finite_beam['dt']:.4g}"
 
 
 def format_sleeper_check(out: dict[str, Any]) -> str:
@@ -102,7 +110,7 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
     lines = [
         f"model {out['model']}: finite rail of {fb['bays']} bays "
         f"({fb['elements_per_bay']} quintic elements per bay, "
-        f"{fb['unknowns']} unknowns, dt = {fb['dt']:.4g}) against the Floquet theory "
+        f"{fb['unknowns']} unknowns, dt = {_dt_text(fb)}) against the Floquet theory "
         f"(verdict {out['floquet_verdict']})",
         f"  {'quantity':<26}{'Floquet':>14}{'finite beam':>14}  {'unit':<6}{'rel. diff':>10}  within",
     ]

@@ -4,6 +4,7 @@ stability-figure (instability-lines and stability-map: :mod:`.lines_cmd`)."""
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -13,6 +14,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.scales import Scales
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.frequency_lines import FrequencyLine, FrequencyLines
 
@@ -92,16 +94,31 @@ def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
         p.add_argument(
             spec.option, dest=name, type=decimal_number, default=None, metavar="X", help=f"{spec.meaning}"
         )
+    add_figure_option(p, "--plot", help="write the dispersion figure (a track on soil: docs/soil.md)")
     add_json_option(p)
     p.set_defaults(handler=run_critical_velocity)
 
 
 def run_critical_velocity(args: argparse.Namespace) -> int:
+    from moving_bogie.errors import ParameterError
     from moving_bogie.model.catalogue import get_model
+    from moving_bogie.soil.file import is_soil_file
 
     physical = None
     groups = {name: getattr(args, name) for name in _track_groups() if getattr(args, name) is not None}
     chosen = {k: getattr(args, k) for k in ("beam", "track") if getattr(args, k) is not None}
+    if args.file is not None and is_soil_file(args.file):
+        if chosen or groups:
+            raise ParameterError(
+                next(iter({**chosen, **groups})), "give a soil-track file's values in the file"
+            )
+        from .soil_cmd import run_soil_critical_velocity
+
+        return run_soil_critical_velocity(args)
+    if args.plot is not None:
+        raise ParameterError(
+            "plot", "--plot draws the dispersion figure of a track on soil (a soil-track --file)"
+        )
     if args.file is not None:
         from .common import read_params_file
 
@@ -128,29 +145,42 @@ def run_critical_velocity(args: argparse.Namespace) -> int:
     if args.json:
         print_json(data)
     else:
-        print(f"model            {data['model']}  ({data['branches']} dispersion branch(es))")
-        print(
+        print("\n".join(critical_velocity_lines(data, None if physical is None else physical.scales())))
+    return 0
+
+
+def critical_velocity_lines(data: dict[str, Any], scales: Scales | None) -> list[str]:
+    """The readable critical velocity: in the groups (alpha_cr, p_cr), or in SI for SI parameters (v_cr
+    [m/s] and the critical wavelength 2 pi / (p_cr chi) [m], Eq. (16))."""
+    lines = []
+    if scales is not None:
+        wavelength = 2 * math.pi / (float(data["p_cr"]) * scales.chi)
+        lines.append(
+            f"v_cr             {data['v_cr']} m/s  (wavelength {wavelength:.6g} m, branch {data['branch']}, "
+            f"{data['digits']} digits confirmed)"
+        )
+    lines.append(f"model            {data['model']}  ({data['branches']} dispersion branch(es))")
+    if scales is None:
+        lines.append(
             f"alpha_cr         {data['alpha_cr']}  (p_cr = {data['p_cr']}, branch {data['branch']}, "
             f"{data['digits']} digits confirmed)"
         )
-        if data["formula"]:
-            print(
-                f"closed form      {data['alpha_cr_formula']}  ({data['formula']}; agrees: {data['agrees']})"
-            )
-        for minimum in data["minima"]:
-            v = f", v = {minimum['v']} m/s" if "v" in minimum else ""
-            print(
-                f"local minimum    branch {minimum['branch']}: alpha = {minimum['alpha']} "
-                f"at p = {minimum['p']}{v}"
-            )
-        for j in data["branches_without_minimum"]:
-            print(f"branch {j}         no local minimum of the phase speed on 0 < p <= {data['p_max']}")
-        if "note" in data:
-            print(f"note             {data['note']}")
-        print(f"method           {data['method']}")
-        if "v_cr" in data:
-            print(f"v_cr             {data['v_cr']} m/s")
-    return 0
+    if data["formula"]:
+        shown = "" if scales is not None else f"{data['alpha_cr_formula']}  "
+        lines.append(f"closed form      {shown}({data['formula']}; agrees: {data['agrees']})")
+    for minimum in data["minima"]:
+        where = (
+            f"v = {minimum['v']} m/s"
+            if scales is not None
+            else f"alpha = {minimum['alpha']} at p = {minimum['p']}"
+        )
+        lines.append(f"local minimum    branch {minimum['branch']}: {where}")
+    for j in data["branches_without_minimum"]:
+        lines.append(f"branch {j}         no local minimum of the phase speed on 0 < p <= {data['p_max']}")
+    if "note" in data:
+        lines.append(f"note             {data['note']}")
+    lines.append(f"method           {data['method']}")
+    return lines
 
 
 # -- frequency-lines ----------------------------------------------------------------------------------

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.bar import bar_note
+from moving_bogie.presentation import field_lines
 
 from .checks import count, exact_number, named_values, workers
 from .common import (
@@ -218,8 +219,7 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
     if args.json:
         print_json(summary)
     else:
-        for key, value in summary.items():
-            print(f"{key:20s} {value}")
+        print("\n".join(field_lines(summary, width=20)))
     return 0
 
 

@@ -252,7 +252,13 @@ def _units_line(ts: TimeSeries) -> str:
             groups[-1][0].append(label)
         else:
             groups.append(([label], unit))
-    return f"units: tau [{ts.units['tau']}], " + ", ".join(f"{', '.join(g)} [{unit}]" for g, unit in groups)
+    time = f"{_time_name(ts)} [{ts.units['tau']}]"
+    return f"units: {time}, " + ", ".join(f"{', '.join(g)} [{unit}]" for g, unit in groups)
+
+
+def _time_name(ts: TimeSeries) -> str:
+    """``t`` for a series in seconds (SI parameters), else the dimensionless ``tau`` of Eq. (16)."""
+    return "t" if ts.units.get("tau") == "s" else "tau"
 
 
 def write_csv_series(ts: TimeSeries, path: str | os.PathLike[str]) -> None:
@@ -273,17 +279,23 @@ def format_series(
 ) -> str:
     """The readable series: summary lines, then one row per time (``rows``), then the notes; without the
     rows, one line saying where they went (``csv``, the data file) or were drawn (``plots``)."""
+    from moving_bogie.presentation import quantity_text
+
     bc = (
         "all times"
         if ts.branch_cut_until == float("inf")
-        else (f"tau <= {ts.branch_cut_until:g}" if ts.branch_cut else "not included")
+        else (
+            f"{_time_name(ts)} <= {quantity_text(ts.branch_cut_until, ts.units['tau'])}"
+            if ts.branch_cut
+            else "not included"
+        )
     )
     lines = [
         f"Closed-form response ({ts.model}); {len(ts.frequencies.roots)} induced-frequency pair(s); "
         f"branch-cut part: {bc}",
         "steady parts: " + "  ".join(f"{n} {v:.10g}" for n, v in ts.steady.items()),
         _units_line(ts),
-        f"{'tau':>14} " + " ".join(f"{n:>18}" for n in ts.responses),
+        f"{_time_name(ts):>14} " + " ".join(f"{n:>18}" for n in ts.responses),
     ]
     columns = [ts.tau, *ts.responses.values()]
     if rows:
@@ -297,6 +309,10 @@ def format_series(
             lines[-1] = f"{len(ts.tau)} rows not printed ({drawn}--rows prints them, --csv F.csv writes them)"
     lines += [f"note: {n}" for n in ts.notes]
     return "\n".join(lines)
+
+
+#: How far from the rear wheel (in beam lengths 1/chi) ``shape`` evaluates the deflection.
+XI_REACH = 500.0
 
 
 def run_shape(args: argparse.Namespace) -> int:
@@ -315,6 +331,14 @@ def run_shape(args: argparse.Namespace) -> int:
     hi = args.xi_max if args.xi_max is not None else (d + 10.0) / chi
     if not (np.isfinite(lo) and np.isfinite(hi) and hi > lo):
         raise ParameterError("xi_max", f"need xi_min < xi_max (got {lo}, {hi})")
+    reach = XI_REACH / chi  # the closed form's exponentials leave double precision farther out
+    if max(abs(lo), abs(hi)) > reach:
+        unit = " m" if physical is not None else ""
+        raise ParameterError(
+            "xi_min" if abs(lo) > reach else "xi_max",
+            f"xi_min and xi_max (--xi-min, --xi-max) must lie within +-{reach:.6g}{unit} of the rear wheel "
+            f"(got {lo:g}, {hi:g})",
+        )
     xi = np.linspace(lo, hi, args.points)
 
     from moving_bogie.kernels.bound import bind

@@ -10,6 +10,7 @@ import numpy as np
 from moving_bogie.floquet.sleeper_map import SleeperMap
 
 if TYPE_CHECKING:
+    from matplotlib.artist import Artist
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
@@ -26,19 +27,29 @@ def _counts(ax: Axes, v: np.ndarray, M: np.ndarray, count: np.ndarray, vmax: int
     ax.pcolormesh(v, M, count, cmap=ListedColormap(colors), vmin=-0.5, vmax=vmax + 0.5, shading="nearest")
 
 
-def _zone_bars(ax: Axes, smap: SleeperMap, top: float) -> None:
+def _zone_bars(ax: Axes, smap: SleeperMap, top: float) -> bool:
     """Each column's unstable M-intervals between its crossings (S21)-(S22), as bars one column wide: a zone
-    narrower than a cell of the grid still shows as a band across the columns it spans."""
+    narrower than a cell of the grid still shows as a band across the columns it spans. True if any."""
     lines = smap.lines()
     width = float(np.min(np.diff(smap.velocities))) if len(smap.velocities) > 1 else 1.0
+    bars = []
     for v in sorted({p["v"] for p in lines}):
         count, start = 0, 0.0
         for p in sorted((p for p in lines if p["v"] == v), key=lambda p: p["M"]):
             if count > 0 and start < top:
-                ax.bar(v, min(p["M"], top) - start, width, bottom=start, color="#d6604d", lw=0, zorder=2)
+                bars.append((v, min(p["M"], top) - start, start))
             count, start = count + int(p["change"]), float(p["M"])
         if count > 0 and start < top:
-            ax.bar(v, top - start, width, bottom=start, color="#d6604d", lw=0, zorder=2)
+            bars.append((v, top - start, start))
+    for v, height, bottom in bars:
+        ax.bar(v, height, width, bottom=bottom, color="#d6604d", lw=0, zorder=2)
+    return bool(bars)
+
+
+def _stable_note(ax: Axes, stable: bool) -> None:
+    """Say so on a panel that shows nothing unstable nor uncertain (else it would be blank)."""
+    if stable:
+        ax.text(0.5, 0.5, "stable on the whole grid", transform=ax.transAxes, ha="center")
 
 
 def sleeper_map_figure(
@@ -60,30 +71,31 @@ def sleeper_map_figure(
     axs = fig.subplots(1, panels, sharex=True, sharey=True, squeeze=False)[0]
     vmax = int(max(1, smap.count.max(initial=0), 0 if continuous is None else continuous.count.max()))
     _counts(axs[0], smap.velocities, smap.masses, smap.count, vmax)
-    _zone_bars(axs[0], smap, float(smap.masses[-1]))
+    handles: list[Artist] = []  # only what is drawn
+    if smap.count.any():
+        handles.append(Patch(fc="#f4a582", ec="k", lw=0.5, label="unstable cell of the grid"))
+    zones = _zone_bars(axs[0], smap, float(smap.masses[-1]))
+    if zones:
+        handles.append(Patch(fc="#d6604d", lw=0, label="unstable between the D-lines (one column wide)"))
     lines = smap.lines()
     for change, color in ((1, "tab:red"), (-1, "tab:blue")):
         pts = np.array([(p["v"], p["M"]) for p in lines if p["change"] == change]).reshape(-1, 2)
-        axs[0].plot(pts[:, 0], pts[:, 1], ".", ms=3, color=color, zorder=3)
+        if len(pts):
+            axs[0].plot(pts[:, 0], pts[:, 1], ".", ms=3, color=color, zorder=3)
+            label = f"D-line: count {change:+d} as M grows"
+            handles.append(Line2D([], [], ls="", marker=".", color=color, label=label))
     unc = smap.uncertain[0]
     if unc.any():
         axs[0].fill_between(
             smap.velocities, smap.masses[0], smap.masses[-1], where=unc, step="mid", hatch="///", fc="none"
         )
+        handles.append(Patch(fc="none", hatch="///", label="uncertain column"))
     axs[0].set_title(f"rail on sleepers ({smap.model})", fontsize=9)
-    handles = [
-        Patch(fc="#f4a582", ec="k", lw=0.5, label="unstable cell of the grid"),
-        Patch(fc="#d6604d", lw=0, label="unstable between the D-lines (one column wide)"),
-        Line2D([], [], ls="", marker=".", color="tab:red", label="D-line: count +1 as M grows"),
-        Line2D([], [], ls="", marker=".", color="tab:blue", label="D-line: count -1 as M grows"),
-    ]
+    _stable_note(axs[0], not (smap.count.any() or zones or unc.any()))
     if continuous is not None:
         _counts(axs[1], smap.velocities, smap.masses, continuous.count, vmax)
         axs[1].set_title(continuous_label or "continuous track, same smeared support", fontsize=9)
-        stable = not continuous.count.any()
-        axs[1].text(
-            0.5, 0.5, "stable on the whole grid" if stable else "", transform=axs[1].transAxes, ha="center"
-        )
+        _stable_note(axs[1], not continuous.count.any())
     for ax in axs:
         if operating is not None:
             ax.plot(*operating, marker="*", ms=11, color="gold", mec="k", ls="")

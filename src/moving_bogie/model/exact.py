@@ -37,8 +37,9 @@ NumberLike: TypeAlias = Fraction | int | float | str | Decimal
 
 
 #: The largest magnitude of a parameter value (and, but for zero, the reciprocal of the smallest): the
-#: computations run in double precision, where squares and products of values beyond it overflow.
-LARGEST = Fraction(10) ** 150
+#: computations run in double precision (and the exact conversions in binary with bounded exponents), where
+#: powers and products of the groups built from values beyond it overflow.
+LARGEST = Fraction(10) ** 30
 
 
 def to_fraction(name: str, value: object) -> Fraction:
@@ -54,8 +55,13 @@ def to_fraction(name: str, value: object) -> Fraction:
     """
     x = _to_fraction(name, value)
     if x != 0 and not 1 / LARGEST <= abs(x) <= LARGEST:
+        shown = (
+            value.strip()
+            if isinstance(value, str)
+            else mpmath.nstr(mpmath.mpf(x.numerator) / x.denominator, 6)
+        )
         raise ParameterError(
-            name, f"{name} = {value} is out of range: give a magnitude from 1e-150 to 1e150, or 0"
+            name, f"{name} = {shown} is out of range: give a magnitude from 1e-30 to 1e30, or 0"
         )
     return x
 

@@ -36,6 +36,9 @@ from moving_bogie.model.catalogue import DEFAULT_MODEL, contact_spring_vehicle, 
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 
+#: The tracks on soil (soil/track.py) and the commands that take their files (cli/soil_cmd.py).
+SOIL_TRACKS = ("soil", "ballasted-soil")
+SOIL_COMMANDS = ("dispersion", "critical-velocity", "moving-load")
 #: The commands that route a sleeper-track file to the Floquet analyses (cli/sleepers_*.py).
 SLEEPER_COMMANDS = ("frequencies", "timeseries", "validate", "stability-map", "instability-lines", "sweep")
 
@@ -123,6 +126,12 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
             )
     if "dimensionless" in data and "physical" in data:
         raise ParameterError("physical", "give either a [dimensionless] or a [physical] table, not both")
+    if isinstance(data.get("model"), dict) and data["model"].get("track") in SOIL_TRACKS:
+        raise ParameterError(
+            "track",
+            f"track {data['model']['track']!r} (a track on soil) is analysed by the commands "
+            f"{', '.join(SOIL_COMMANDS)} with --file (docs/soil.md), not by this one",
+        )
     model = _table(data, "model", _MODEL_KEYS)
     # k_H or c_H (kappa_H, eta_H) put each wheel of the vehicle on its own contact spring
     vehicle = model.get("vehicle", DEFAULT_MODEL["vehicle"])

@@ -8,13 +8,17 @@ Im omega < 0 grows, with growth time 1 / |Im omega| [s]; Re omega / (2 pi) is it
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import mpmath
 
+from moving_bogie.presentation import number_text, quantity_text
 from moving_bogie.typing import Mpc, Mpf
 
-__all__ = ["root_in_si", "roots_in_si"]
+if TYPE_CHECKING:
+    from moving_bogie.roots.frequency_result import FrequencyResult
+
+__all__ = ["frequency_rows", "root_in_si", "root_table", "roots_in_si"]
 
 
 class HasFrequency(Protocol):
@@ -58,3 +62,53 @@ def roots_in_si(
 ) -> list[dict[str, Any]]:
     """:func:`root_in_si` of each root (objects with ``q``) of a frequency result."""
     return [root_in_si(r.q, t_scale, digits=digits) for r in roots]
+
+
+def frequency_rows(result: FrequencyResult) -> list[tuple[str, str]]:
+    """The facts of a frequency result beside its roots, as (name, text) rows: the rate of the root
+    nearest instability and the window searched, in SI (1/s, rad/s) when the result has ``scales``."""
+    window = result.window
+    if result.scales is None:
+        degree = mpmath.nstr(result.degree_of_instability, 6)
+        return [
+            ("degree of instability", degree),
+            ("window", f"Re q {window.x0:g}..{window.x1:g}, Im q {window.y0:g}..{window.y1:g}"),
+        ]
+    t_scale = result.scales.t_scale
+    im = [float(mpmath.im(r.q)) / t_scale for r in result.roots]
+    rows = [("time scale t_scale = sqrt(m / k_f)", quantity_text(t_scale, "s"))]
+    if result.unstable_roots:
+        rows.append(("largest growth rate, -min Im omega", quantity_text(-min(im), "1/s")))
+    elif im:
+        rows.append(("smallest decay rate, min Im omega", quantity_text(min(im), "1/s")))
+    re = f"Re omega {number_text(window.x0 / t_scale)}..{quantity_text(window.x1 / t_scale, 'rad/s')}"
+    rows.append(
+        ("window", f"{re}, Im omega {number_text(window.y0 / t_scale)}..{window.y1 / t_scale:.6g} 1/s")
+    )
+    return rows
+
+
+def root_table(result: FrequencyResult) -> tuple[tuple[str, ...], list[tuple[object, ...]]]:
+    """(header, rows) of the roots of a frequency result: q to its confirmed digits, or in SI (omega, f and
+    the 1/e time, to at most 8 of those digits) when the result has ``scales``."""
+    header: tuple[str, ...]
+    if result.scales is None:
+        header = ("Re q", "Im q (< 0: grows)", "side of the cut", "multiplicity", "digits")
+        return header, [(r.re_text, r.im_text, r.side, r.multiplicity, r.digits) for r in result.roots]
+    header = (
+        "Re omega [rad/s]",
+        "Im omega [1/s] (< 0: grows)",
+        "f [Hz]",
+        "1/e time [s]",
+        "side",
+        "multiplicity",
+    )
+    rows: list[tuple[object, ...]] = []
+    for r in result.roots:
+        si = root_in_si(r.q, result.scales.t_scale, digits=min(8, r.digits))
+        time = f"grows in {si['growth_time_s']}" if si["growth_time_s"] else f"decays in {si['decay_time_s']}"
+        time = time if si["growth_time_s"] or si["decay_time_s"] else "constant amplitude"
+        rows.append(
+            ("+-" + si["omega"]["re"], si["omega"]["im"], si["frequency_hz"], time, r.side, r.multiplicity)
+        )
+    return header, rows

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -34,6 +34,9 @@ from moving_bogie.response.deflection import deflection_shape, deflection_shape_
 from moving_bogie.response.residues import ResidueExpansion, frequencies_for, residue_expansion
 
 if TYPE_CHECKING:
+    import pandas
+    import xarray
+
     from moving_bogie.response.axis_sequence import AxisSequence
     from moving_bogie.response.branch_cut import BranchCut
     from moving_bogie.response.cut_integral import CurveBranchCut
@@ -111,20 +114,41 @@ class TimeSeries:
     def _repr_html_(self) -> str:
         """Jupyter: the verdict of the frequencies summed first, then the times, steady parts and notes."""
         from moving_bogie.html_repr import html_table
+        from moving_bogie.presentation import quantity_text
 
         state = getattr(getattr(self.frequencies, "verdict", None), "state", "frequencies not judged")
         verdict = f"{state.upper()} (the induced frequencies summed)"
         unit = self.units.get("tau", "")
         rows = [
             ("model", self.model),
-            ("times", f"{len(self.tau)} from {self.tau[0]:.6g} to {self.tau[-1]:.6g} {unit}".rstrip()),
-            ("branch cut included up to", f"{self.branch_cut_until:.6g}" if self.branch_cut else "nowhere"),
+            (
+                "times",
+                f"{len(self.tau)} from {quantity_text(self.tau[0], unit)} "
+                f"to {quantity_text(self.tau[-1], unit)}",
+            ),
+            (
+                "branch cut included up to",
+                quantity_text(self.branch_cut_until, unit) if self.branch_cut else "nowhere",
+            ),
         ]
         rows += [
-            (f"steady {k}", f"{v:.10g} {self.response_units.get(k, '')}".rstrip())
+            (f"steady {k}", quantity_text(v, self.response_units.get(k, ""), 10))
             for k, v in self.steady.items()
         ]
         return html_table("closed-form time series", verdict, rows, reasons=list(self.notes))
+
+    def to_xarray(self) -> xarray.Dataset:
+        """The series as an xarray Dataset over time, each response with its CF ``units`` attribute
+        (``t`` [s], m and rad for SI parameters): :func:`moving_bogie.export.series_dataset`."""
+        from moving_bogie.export import series_dataset
+
+        return series_dataset(self)
+
+    def to_dataframe(self) -> pandas.DataFrame:
+        """The series as a pandas DataFrame indexed by time, the units in ``attrs["units"]``."""
+        from moving_bogie.export import to_dataframe
+
+        return to_dataframe(self.to_xarray())
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: every response under its DOF name (arrays as lists, NaN as None), the steady
@@ -277,7 +301,7 @@ def _time_series(
         steady=steady_parts,
         response_units=response_units,
         branch_cut=bool(until > 0),
-        frequencies=result,
+        frequencies=result if scales is None else replace(result, scales=scales),
         model=bound.params.vehicle,
         branch_cut_until=until,
         units=units,

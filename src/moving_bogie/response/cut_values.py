@@ -1,5 +1,5 @@
-"""Values of the jump across the traced cut (Eq. (35)) that :class:`~moving_bogie.response.cut_integral.
-CurveBranchCut` keeps for reuse across the bands of times of a time series.
+"""Values of the jump across the traced cut (Eq. (35)) that
+:class:`~moving_bogie.response.cut_integral.CurveBranchCut` keeps for reuse across the bands of times.
 
 The jump is evaluated by chunks of whole panels of 16 nodes
 (:func:`~moving_bogie.response.cut_pieces.roots_along` seeds within a panel, so a value does not depend

@@ -23,7 +23,11 @@ from moving_bogie.roots.verdict import Verdict, judge
 from moving_bogie.typing import Mpf
 
 if TYPE_CHECKING:
+    import pandas
+    import xarray
+
     from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.scales import Scales
     from moving_bogie.roots.proof.certify import Certificate
     from moving_bogie.roots.search.cut_cells import Sliver
 
@@ -94,6 +98,7 @@ class FrequencyResult:
     strip: StripCount | None = None  # the sliver below the real axis, counted (roots/count/strip.py)
     unlocated: tuple[Unlocated, ...] = ()  # roots counted in a cell but not located
     decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
+    scales: Scales | None = None  # the SI scales of a [physical] input: shown in SI (Eqs. (15)-(16))
 
     @property
     def params(self) -> DimensionlessParams:
@@ -145,25 +150,33 @@ class FrequencyResult:
         return 1 / abs(self.degree_of_instability) if self.unstable_roots else None
 
     def _repr_html_(self) -> str:
-        """Jupyter: the verdict first, then the count and the roots (:mod:`moving_bogie.html_repr`)."""
+        """Jupyter: the verdict first, then the count and the roots (in SI for SI parameters: ``scales``)."""
         from moving_bogie.html_repr import html_table
+        from moving_bogie.model.si_results import frequency_rows, root_table
 
         params = self.params.to_dict()
         rows = [
             ("model", f"{params.get('beam')} beam, {params.get('track')} track, {self.model}"),
-            ("roots counted / found", f"{self.count} / {self.found} (Re q >= 0, pairs q, -conj(q) once)"),
-            ("degree of instability", mpmath.nstr(self.degree_of_instability, 6)),
-            (
-                "window",
-                f"Re q {self.window.x0:g}..{self.window.x1:g}, Im q {self.window.y0:g}..{self.window.y1:g}",
-            ),
+            ("roots counted / found", f"{self.count} / {self.found} (Re >= 0, each pair once)"),
         ]
-        roots = [(r.re_text, r.im_text, r.side, r.multiplicity, r.digits) for r in self.roots]
-        header = ("Re q", "Im q (< 0: grows)", "side of the cut", "multiplicity", "digits")
+        rows += frequency_rows(self)
         reasons = [note.text for note in self.verdict.reasons] + list(self.warnings)
         return html_table(
-            "induced frequencies", self.verdict.state.upper(), rows, reasons=reasons, items=(header, roots)
+            "induced frequencies", self.verdict.state.upper(), rows, reasons=reasons, items=root_table(self)
         )
+
+    def to_xarray(self) -> xarray.Dataset:
+        """The roots as an xarray Dataset (one row per pair, double precision), with CF ``units``: omega
+        [rad/s] and f [Hz] for SI parameters, else q: :func:`moving_bogie.export.frequencies_dataset`."""
+        from moving_bogie.export import frequencies_dataset
+
+        return frequencies_dataset(self)
+
+    def to_dataframe(self) -> pandas.DataFrame:
+        """The roots as a pandas DataFrame, the units in ``attrs["units"]``."""
+        from moving_bogie.export import to_dataframe
+
+        return to_dataframe(self.to_xarray())
 
     def to_dict(self) -> dict:
         return {

@@ -3,10 +3,11 @@
 Each point is the file's ``[physical]`` values with the point's values in their place, read and checked by
 :func:`~moving_bogie.floquet.inputs.sleeper_input` exactly as the file's own (the smallest and the largest
 value of every axis are checked before any computation), and searched by
-:func:`~moving_bogie.floquet.strip.floquet_frequencies`: every root with Im Omega <= 0 in one strip of
-width Omega_0 (docs/sleepers.md, Eq. (S14)), converged in the harmonics. A grid has one dimension per
-varied parameter, a Sobol design one dimension ``point``; the points are cut into blocks of
-``block_points`` points along the last dimension (one chunk of the store each: a point costs seconds).
+:func:`~moving_bogie.floquet.strip.floquet_frequencies`: every root in one strip of width Omega_0 up to the
+rail's free waves (docs/sleepers.md, Eq. (S14)), converged in the harmonics, and a stable point's margin.
+A grid has one dimension per varied parameter, a Sobol design one dimension ``point``; the points are cut
+into blocks of ``block_points`` points along the last dimension (one chunk of the store each: a point costs
+seconds).
 """
 
 from __future__ import annotations

@@ -139,7 +139,16 @@ def _closest(ax: Axes, plane: MarginPlane, decay: np.ndarray) -> Artist:
     unit = plane.unit or "(dimensionless)"
     label = f"smallest decay rate {decay[j, i]:.3g} {unit}" + (" (lower bound)" if plane.bound[j, i] else "")
     (marker,) = ax.plot(
-        plane.x[i], plane.y[j], ls="none", marker="v", ms=8, mfc="white", mec="k", label=label, zorder=5
+        plane.x[i],
+        plane.y[j],
+        ls="none",
+        marker="v",
+        ms=8,
+        mfc="white",
+        mec="k",
+        label=label,
+        zorder=5,
+        clip_on=False,  # whole on the edge of the plane too, where the closest cell often lies
     )
     return marker
 

@@ -153,16 +153,13 @@ class PlaneUnits:
     def critical(self, ax: Axes, x_range: tuple[float, float] | None = None) -> None:
         """The critical velocity of the track, dotted and labelled (alpha = 1 unlabelled when unknown).
 
-        With ``x_range`` (the shown velocity axis) a critical velocity beyond it is not drawn (nor listed
-        in the legend) but noted in a corner of the axes.
+        With ``x_range`` (the shown velocity axis) a critical velocity beyond it is not drawn but listed in
+        the legend as beyond the axis (a note in the legend, where it hides no cell of the plane).
         """
         value = self.value("alpha", 1.0 if self.alpha_cr is None else self.alpha_cr)
         if x_range is not None and not min(x_range) <= value <= max(x_range):
             if self.alpha_cr is not None:
-                ax.text(
-                    0.99, 0.99, self._critical_text() + ": beyond this axis", transform=ax.transAxes,
-                    ha="right", va="top", fontsize=7, bbox=dict(fc="white", ec="0.6", alpha=0.9),
-                )  # fmt: skip
+                ax.plot([], [], color="k", ls=":", lw=1, label=self._critical_text() + ": beyond this axis")
             return
         if self.alpha_cr is None:
             ax.axvline(1.0, color="k", ls=":", lw=1)

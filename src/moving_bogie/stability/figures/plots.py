@@ -172,5 +172,5 @@ def plot_stability_map(
     )
     drawn, _ = ax.get_legend_handles_labels()
     if drawn or handles:
-        ax.legend(handles=[h for h in drawn if h not in handles] + handles, loc="upper left", fontsize=8)
+        ax.legend(handles=[h for h in drawn if h not in handles] + handles, loc="best", fontsize=8)
     return fig

@@ -27,7 +27,11 @@ from moving_bogie.kernels.sweep_characteristic import SweepCharacteristic
 from moving_bogie.stability.maps.column import ColumnResult, settle_cells, stability_column, top_edge
 
 if TYPE_CHECKING:
+    import pandas
+    import xarray
+
     from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.stability.figures.plot_units import PlaneUnits
 
 __all__ = ["ColumnResult", "StabilityMap", "map_columns", "stability_column", "stability_map"]
 
@@ -54,6 +58,7 @@ class StabilityMap:
     margin: np.ndarray | None = None
     margin_bound: np.ndarray | None = None
     held: tuple[str, ...] = ()  # groups held instead of following the vertical axis (model/bar.py)
+    units: PlaneUnits | None = None  # SI units of a [physical] input (v, M, rates in 1/s), else the groups
 
     def save_npz(self, path: str | os.PathLike[str] | IO[bytes]) -> None:
         """Write the arrays (and the parameters as JSON text) to ``path``: a name or a binary file (.npz)."""
@@ -96,26 +101,54 @@ class StabilityMap:
         return float(margins.min()) if margins.size else None
 
     def _repr_html_(self) -> str:
-        """Jupyter: the verdict over the grid first, then its axes, margin and uncertain cells."""
+        """Jupyter: the verdict over the grid first, then its axes, margin and uncertain cells (in SI for a
+        map of SI parameters, :attr:`units`)."""
         from moving_bogie.html_repr import html_table
+        from moving_bogie.presentation import GroupUnits, quantity_text
 
+        units = self.units or GroupUnits()
         unstable, uncertain = int((self.count > 0).sum()), int(self.uncertain.sum())
         if unstable:
             verdict = f"UNSTABLE in {unstable} of {self.count.size} cells"
         else:
             verdict = "STABLE in every certified cell" if uncertain else "STABLE in every cell"
+        im, rate = ("Im omega", "1/s") if units.si else ("Im q", "1")
+
+        def axis(group: str, values: np.ndarray) -> tuple[str, str]:
+            lo, hi = (
+                quantity_text(units.value(group, v), units.unit(group)) for v in (values[0], values[-1])
+            )
+            return units.name(group), f"{lo}..{hi}, {len(values)} points"
+
+        decay = self.min_decay_rate
         rows = [
             ("model", f"{self.params.beam} beam, {self.params.track} track, {self.model}"),
-            ("alpha", f"{self.alphas[0]:.6g}..{self.alphas[-1]:.6g}, {len(self.alphas)} points"),
-            (self.parameter, f"{self.thetas[0]:.6g}..{self.thetas[-1]:.6g}, {len(self.thetas)} points"),
-            ("largest growth rate, -min Im q", f"{-float(self.degree.min()):.6g}" if unstable else "none"),
+            axis("alpha", self.alphas),
+            axis(self.parameter, self.thetas),
             (
-                "smallest decay rate of the stable cells, min Im q",
-                _text(self.min_decay_rate),
+                f"largest growth rate, -min {im}",
+                quantity_text(units.frequency(-float(self.degree.min())), rate) if unstable else "none",
+            ),
+            (
+                f"smallest decay rate of the stable cells, min {im}",
+                quantity_text(None if decay is None else units.frequency(decay), rate),
             ),
             ("cells settled by a full count / uncertain", f"{int(self.settled_cells.sum())} / {uncertain}"),
         ]
         return html_table("stability map", verdict, rows)
+
+    def to_xarray(self) -> xarray.Dataset:
+        """The map as an xarray Dataset over its two axes with CF ``units`` (v [m/s], M [kg], rates [1/s] for
+        SI parameters): :func:`moving_bogie.export.map_dataset`."""
+        from moving_bogie.export import map_dataset
+
+        return map_dataset(self)
+
+    def to_dataframe(self) -> pandas.DataFrame:
+        """The map as a pandas DataFrame, one row per cell, the units in ``attrs["units"]``."""
+        from moving_bogie.export import to_dataframe
+
+        return to_dataframe(self.to_xarray())
 
     def summary(self) -> dict:
         return {
@@ -132,10 +165,6 @@ class StabilityMap:
             "uncertain_cells": int(self.uncertain.sum()),
             "uncertain": self.uncertain_list(),
         }
-
-
-def _text(x: float | None) -> str:
-    return "n/a" if x is None else f"{x:.6g}"
 
 
 def map_columns(
@@ -255,7 +284,7 @@ def stability_map(
         kept = Checkpoint.open(checkpoint, "stability-map", job, resume=resume)
     what = f"chunks of {chunk} columns"
     parts = run_parts(_column_task, tasks, workers=workers, checkpoint=kept, progress=progress, what=what)
-    cells = {name: np.concatenate([p[name] for p in parts], axis=1) for name in CELL_ARRAYS}
+    cells: dict[str, Any] = {name: np.concatenate([p[name] for p in parts], axis=1) for name in CELL_ARRAYS}
     if kept is not None:
         kept.remove()
     return StabilityMap(params, params.vehicle, parameter, alpha_grid, theta_grid, **cells, held=held)

@@ -75,8 +75,7 @@ class SpeedRegime:
                 f"speed: UNDETERMINED against the critical velocity (alpha = {self.alpha:.6g}): {self.note}"
             )
         if self.v_cr is not None:
-            speed = f"v = {self.v:.6g} m/s, v_cr = {self.v_cr:.6g} m/s (alpha = {self.alpha:.6g}, "
-            speed += f"alpha_cr = {self.alpha_cr:.6g})"
+            speed = f"v = {self.v:.6g} m/s, v_cr = {self.v_cr:.6g} m/s"  # SI: the groups in --json
         else:
             speed = f"alpha = {self.alpha:.6g}, alpha_cr = {self.alpha_cr:.6g}"
         if self.supercritical:

@@ -1,0 +1,103 @@
+"""The soil: dispersion of 100 frequencies, the critical velocity and a moving-load point, side by side.
+
+    python benchmarks/bench_soil.py [--record]
+
+In one run, wall time of:
+
+- the surface-wave modes of ``examples/soil-ballasted.toml``'s layered soil at 100 frequencies (1 to
+  300 rad/s), every mode (target: under 1 s), beside a brute-force scan (the same secular function on a grid
+  20 times finer, no dip refinement) and beside disba (Dunkin's method, another code, when installed; its
+  numba kernels compiled before the timing), with the largest difference between them;
+- the same, only the fundamental mode;
+- ``critical-velocity`` of the same file (its guided waves on 32 frequencies and the refinements; target
+  under 2 s), beside the uncoupled intersection estimate alone;
+- the moving-load deflection under the load at one speed (70 m/s) and at rest.
+
+Prints a table; nothing is asserted (tests/test_soil_*.py check the values).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+import numpy as np
+
+from moving_bogie.soil.critical import critical_velocity
+from moving_bogie.soil.file import load_soil_file
+from moving_bogie.soil.moving_load import deflection
+from moving_bogie.soil.rayleigh import soil_modes
+
+FILE = Path(__file__).resolve().parent.parent / "examples" / "soil-ballasted.toml"
+
+
+def _timed(func):
+    start = time.perf_counter()
+    out = func()
+    return time.perf_counter() - start, out
+
+
+def _disba(soil, omega):
+    try:
+        from disba import PhaseDispersion
+    except ImportError:
+        return None
+    layers = soil.layers
+    th = np.array([layer.h if np.isfinite(layer.h) else 0.0 for layer in layers]) / 1e3
+    vp, vs = (np.array([getattr(layer, c) for layer in layers]) / 1e3 for c in ("c_p", "c_s"))
+    rho = np.array([layer.rho for layer in layers]) / 1e3
+    pd = PhaseDispersion(th, vp, vs, rho, algorithm="dunkin", dc=1e-5)
+    period = np.sort(2 * np.pi / omega)
+    pd(period[:3], mode=0)  # compile
+    seconds, result = _timed(lambda: pd(period, mode=0))
+    return seconds, result.velocity[::-1] * 1e3
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--record", action="store_true", help="write benchmarks/results/bench_soil.json")
+    args = parser.parse_args()
+    data = load_soil_file(FILE)
+    omega = np.linspace(1.0, 300.0, 100)
+    rows = []
+    t_all, modes = _timed(lambda: soil_modes(omega, data.soil))
+    t_brute, brute = _timed(lambda: soil_modes(omega, data.soil, points=4000))
+    same = modes.c.shape == brute.c.shape and np.allclose(modes.c, brute.c, rtol=1e-9, equal_nan=True)
+    rows.append(
+        ("soil modes, 100 frequencies, every mode", f"{t_all:.2f} s",
+         f"scan 20x finer: {t_brute:.2f} s ({'same modes' if same else 'DIFFERENT modes'})", "< 1 s")
+    )  # fmt: skip
+    t_one, fundamental = _timed(lambda: soil_modes(omega, data.soil, modes=1))
+    reference = _disba(data.soil, omega)
+    if reference is None:
+        alternative = "disba not installed"
+    else:
+        diff = np.max(np.abs(fundamental.c[:, 0] / reference[1] - 1))
+        alternative = f"disba (Dunkin): {reference[0]:.2f} s, largest difference {diff:.1e}"
+    rows.append(("soil modes, 100 frequencies, fundamental only", f"{t_one:.2f} s", alternative, "< 1 s"))
+    t_cr, crit = _timed(lambda: critical_velocity(data.track, data.soil))
+    rows.append(
+        ("critical velocity (coupled guided waves)", f"{t_cr:.1f} s (v_cr = {crit.v_cr:.4f} m/s)",
+         f"uncoupled estimate {crit.v_cr_uncoupled:.4f} m/s, from the same run", "< 2 s")
+    )  # fmt: skip
+    t_ml, moving = _timed(lambda: deflection(data.track, data.soil, data.load, 70.0))
+    t_st, static = _timed(lambda: deflection(data.track, data.soil, data.load, 0.0))
+    daf = moving.w[0] / static.w[0]
+    rows.append(
+        ("moving-load deflection under the load, one speed", f"{t_ml:.1f} s (DAF {daf:.3f})",
+         f"at rest: {t_st:.1f} s", "100 speeds < 10 s")
+    )  # fmt: skip
+    header = ("work", "measured", "alternative", "target")
+    widths = [max(len(str(r[k])) for r in [*rows, header]) for k in range(4)]
+    for r in [header, *rows]:
+        print(" | ".join(str(v).ljust(w) for v, w in zip(r, widths, strict=True)))
+    if args.record:
+        from records import row, write_record
+
+        write_record(__file__, "The soil under the track", [row(*r) for r in rows])
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
