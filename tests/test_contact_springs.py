@@ -195,3 +195,17 @@ def test_contact_spring_vehicle_on_a_continuous_track_tends_to_the_rigid_contact
         distances.append(np.array([min(abs(h - r) for h in hertz) for r in rigid]))
     ratio = distances[0] / distances[1]
     assert np.all((9 < ratio) & (ratio < 11)), (distances, ratio)
+
+
+def test_sleeper_file_chooses_the_contact_spring_vehicle():
+    """On sleepers too: k_H in [physical] (or in the overrides of --set) runs the vehicle's variant, and the
+    wheel spacing d of two wheels is read with or without it (the reader takes every group of the model)."""
+    from moving_bogie.floquet.inputs import sleeper_input
+
+    physical = {"EI": 6.42e6, "m": 60.21, "l": 1.0, "k_sup": 1e8, "c_sup": 3e3, "M": 1400, "d": 2.0}
+    data = {"model": {"track": "sleepers", "vehicle": "masses"}, "physical": physical | {"P": 6.4e4, "v": 90}}
+    rigid = sleeper_input(data, "rigid.toml")
+    assert rigid.vehicle == "masses" and rigid.vehicle_groups["d"] > 0
+    hertz = sleeper_input(data, "hertz.toml", {"k_H": 1.4e9})
+    assert hertz.vehicle == "hertz_masses" and hertz.vehicle_groups["d"] == rigid.vehicle_groups["d"]
+    assert hertz.vehicle_groups["kappa_H"] > 0

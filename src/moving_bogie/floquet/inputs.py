@@ -73,17 +73,18 @@ def _vehicle(data: Mapping[str, Any], overrides: Mapping[str, float] | None = No
     return contact_spring_vehicle(data.get("model", {}).get("vehicle", "mass"), keys)
 
 
-def sleeper_units(data: Mapping[str, Any]) -> dict[str, str]:
-    """The ``[physical]`` names a sleeper file of this ``[model]`` takes, with their SI units."""
+def sleeper_units(data: Mapping[str, Any], overrides: Mapping[str, float] | None = None) -> dict[str, str]:
+    """The ``[physical]`` names a sleeper file of this ``[model]`` takes (with `overrides`), with their SI
+    units."""
     model = data.get("model", {})
-    beam, track, vehicle = model.get("beam", "eb"), model["track"], _vehicle(data)
+    beam, track, vehicle = model.get("beam", "eb"), model["track"], _vehicle(data, overrides)
     module = importlib.import_module(f"moving_bogie.generated.vehicle_{vehicle}")
     table: dict[str, dict[str, Any]] = generated.PARAMETERS[track][beam]  # type: ignore[assignment]
     ref = generated.TRACKS[track]["reference"]
     paper: dict[str, dict[str, Any]] = paper_groups.PARAMETERS  # type: ignore[assignment]
     units = {"EI": "N m^2", "m": "kg/m", "P": "N", ref[0]: ref[1]}
     units |= {spec["si"]: spec["unit"] for spec in table.values()}
-    return units | {paper[g]["si"]: paper[g]["unit"] for g in module.PARAMETERS}
+    return units | {paper[g]["si"]: paper[g]["unit"] for g in module.MODEL_PARAMETERS}
 
 
 def sleeper_input(
@@ -107,8 +108,8 @@ def sleeper_input(
     table: dict[str, dict[str, Any]] = generated.PARAMETERS[track][beam]  # type: ignore[assignment]
     ref: str = generated.TRACKS[track]["reference"][0]
     paper: dict[str, dict[str, Any]] = paper_groups.PARAMETERS  # type: ignore[assignment]
-    vehicle_si = {paper[g]["si"]: g for g in module.PARAMETERS}
-    known = set(sleeper_units(data))
+    vehicle_si = {paper[g]["si"]: g for g in module.MODEL_PARAMETERS}
+    known = set(sleeper_units(data, overrides))
     si = {**data["physical"], **(overrides or {})}
     for key in si:
         if key not in known:
@@ -147,7 +148,8 @@ def sleeper_input(
         else:
             groups[name] = float(_call(fn, values))
     vehicle_groups = {
-        g: float(_call(getattr(paper_groups, f"dimensionless_{g}"), values, k_e)) for g in module.PARAMETERS
+        g: float(_call(getattr(paper_groups, f"dimensionless_{g}"), values, k_e))
+        for g in module.MODEL_PARAMETERS
     }
     return SleeperInput(beam, track, vehicle, groups, vehicle_groups, values, chi, v_ref, t_scale, k_e)
 
