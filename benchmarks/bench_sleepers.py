@@ -127,7 +127,7 @@ def main() -> None:
     head = f"{'checkout':<{width}}{'case':<10}{'track':<12}{'CPU s':>8}{'wall s':>9}"
     print(head + f"  {'verdict':<13}{'roots':>6}{'margin 1/s':>12}  harmonics")
     for (label, case, track), (cpu, wall, out) in best.items():
-        harmonics = out.get("harmonics")
+        harmonics = out.get("harmonics") or (out.get("region") or {}).get("harmonics")
         span = f"{harmonics[0]}..{harmonics[-1]}" if harmonics else "-"
         verdict = out["verdict"] if isinstance(out["verdict"], str) else out["verdict"]["state"].upper()
         print(

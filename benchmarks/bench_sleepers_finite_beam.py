@@ -160,7 +160,8 @@ def convergence(which: str) -> None:
         for name, settings in variants:
             check = check_sleepers(track, vehicle, loads, settings=settings, floquet=side)  # type: ignore[arg-type]
             rows.append([name] + [f"{c.relative:.2e}" for c in check.comparisons] + [f"{check.finite_s:.2f}"])
-        print(f"\n{label}: Floquet {side.result.verdict}, root {side.root}, N = {side.result.harmonics}")
+        state = side.result.verdict.state.upper()
+        print(f"\n{label}: Floquet {state}, root {side.root}, N = {side.result.harmonics}")
         _print(["setting"] + [c.quantity for c in check.comparisons] + ["finite beam [s]"], rows)
 
 

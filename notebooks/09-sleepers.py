@@ -27,29 +27,25 @@
 
 # %%
 import os
-import tempfile
-import tomllib
 from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
 
-from moving_bogie.api import induced_frequencies
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.inputs import load_sleeper_file
-from moving_bogie.floquet.series import sleeper_series
-from moving_bogie.floquet.smeared import smeared_track
-from moving_bogie.floquet.strip import floquet_frequencies
-from moving_bogie.floquet.track import SleeperTrack
-from moving_bogie.generated import vehicle_hertz_mass
-from moving_bogie.stability.velocity.supercritical import speed_regime
+import moving_bogie as mb
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 EXAMPLES = Path.cwd().parent / "examples"
 if not EXAMPLES.exists():  # run from the repository root
     EXAMPLES = Path("examples")
-SLEEPERS = EXAMPLES / "sleepers.toml"
-print(tomllib.loads(SLEEPERS.read_text())["physical"])
+_, SLEEPERS = mb.load_parameters(EXAMPLES / "sleepers.toml")  # a model of the catalogue, eb/sleepers/mass
+print(SLEEPERS.model.name, {name: float(value) for name, value in SLEEPERS.values().items()})
+
+
+def with_si(physical, **changes):
+    """The same SI parameters with some changed (as --set NAME=VALUE does)."""
+    return mb.PhysicalParams(model=physical.model, **(physical.values() | changes))
+
 
 # %% [markdown]
 # ## 1. The steady contact force over a bay, against the speed
@@ -63,7 +59,7 @@ print(tomllib.loads(SLEEPERS.read_text())["physical"])
 speeds = [20.0, 40.0, 80.0] if QUICK else [10.0, 20.0, 40.0, 60.0, 80.0, 100.0]
 fig, (ax_f, ax_w) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
 for v in speeds:
-    s = sleeper_series(load_sleeper_file(SLEEPERS, overrides={"v": v}), points=201, free=False)
+    s = mb.sleeper_series(with_si(SLEEPERS, v=v), points=201, free=False)
     print(
         f"v = {v:5.1f} m/s: Omega_0 = {s.Omega0:7.1f} rad/s, F mean {s.force_mean[0]:.1f} N, "
         f"F peak-to-peak {s.force_peak_to_peak[0]:7.1f} N, "
@@ -92,23 +88,19 @@ plt.show()
 # parametric zone is expected where $\Omega_0(v) = 2\,\mathrm{Re}\,\Omega(v)$.
 
 # %%
-hertz = tomllib.loads((EXAMPLES / "hertz_mass.toml").read_text())["physical"]
-table = tomllib.loads(SLEEPERS.read_text())
-physical = table["physical"] | {"k_H": hertz["k_H"], "M": hertz["M"]}
-HERTZ_FILE = Path(tempfile.mkdtemp()) / "hertz-on-sleepers.toml"
-HERTZ_FILE.write_text(
-    '[model]\nbeam = "eb"\ntrack = "sleepers"\nvehicle = "hertz_mass"\n\n[physical]\n'
-    + "".join(f"{k} = {v!r}\n" for k, v in physical.items())
-)
+_, HERTZ_EXAMPLE = mb.load_parameters(EXAMPLES / "hertz_mass.toml")
+physical = {name: float(value) for name, value in SLEEPERS.values().items()}
+physical |= {"k_H": float(HERTZ_EXAMPLE.k_H), "M": float(HERTZ_EXAMPLE.M)}
+HERTZ = mb.PhysicalParams(beam="eb", track="sleepers", vehicle="hertz_mass", **physical)
 
 
 def continuous(v):
     """The continuous track with the smeared supports: natural frequency [rad/s], verdict, speed regime."""
-    params = smeared_track(load_sleeper_file(HERTZ_FILE, overrides={"v": v}))
-    result = induced_frequencies(params.to_dimensionless(), dps=15)
-    t_scale = params.scales().t_scale
+    smeared = mb.smeared_track(with_si(HERTZ, v=v))
+    result = mb.induced_frequencies(smeared, dps=15)
+    t_scale = smeared.scales().t_scale
     Omega = [complex(r.q) / t_scale for r in result.roots]
-    return Omega, result.verdict.state, speed_regime(params.to_dimensionless(), params)
+    return Omega, result.verdict.state, mb.speed_regime(smeared.to_dimensionless(), smeared)
 
 
 scan = [20.0, 80.0, 140.0] if QUICK else list(np.arange(20.0, 201.0, 20.0))
@@ -155,33 +147,34 @@ plt.show()
 #
 # ## 3. The Floquet roots on sleepers around the principal zone
 #
-# `floquet_frequencies` counts the roots with $\mathrm{Im}\,\Omega \le 0$ in one strip of width $\Omega_0$
-# by the argument principle (no starting guesses) and converges them in the harmonics: a root there is a
-# growing vibration, none means the wheel is stable at that speed. The speeds are a modest set around $v^*$.
+# `induced_frequencies`, on a model on sleepers, counts the roots in one strip of width $\Omega_0$ by the
+# argument principle (no starting guesses) and converges them in the harmonics: a root with
+# $\mathrm{Im}\,\Omega < 0$ is a growing vibration, none means the wheel is stable at that speed. The
+# speeds are a modest set around $v^*$.
 
 # %%
-data = load_sleeper_file(HERTZ_FILE)
 centre = v_star if v_star is not None else 100.0
 around = [1.0, 1.2] if QUICK else [0.6, 0.8, 0.9, 1.0, 1.1, 1.2, 1.4]
 rows = []
 for factor in around:
     v = round(centre * factor, 1)
-    d = load_sleeper_file(HERTZ_FILE, overrides={"v": v})
-    track = SleeperTrack(d.beam, d.track, d.groups)
-    result = floquet_frequencies(track, VehicleMatrices.from_module(vehicle_hertz_mass, d.vehicle_groups))
+    at = with_si(HERTZ, v=v)
+    result = mb.induced_frequencies(at)  # one strip of width Omega_0, as on every track: the same result
     _, verdict, _ = continuous(v)
-    roots = [complex(r.q) / d.t_scale for r in result.roots]
-    rows.append((v, result.count, result.verdict, verdict))
+    t_scale = at.scales().t_scale
+    roots = [complex(r.q) / t_scale for r in result.roots]
+    rows.append((v, result.count, result.verdict.state, verdict))
+    harmonics = result.region.harmonics
+    reasons = "; ".join(note.text for note in result.verdict.reasons)
     print(
-        f"v = {v:6.1f} m/s: sleepers: {result.count} root(s) with Im Omega <= 0 "
+        f"v = {v:6.1f} m/s: sleepers: {result.count} root(s) "
         f"{[f'{z.real:.1f}{z.imag:+.2f}i' for z in roots]}, "
-        f"harmonics -{result.harmonics + 1}..{result.harmonics}, "
-        f"verdict {result.verdict}{' (' + '; '.join(result.notes) + ')' if result.notes else ''}; "
+        f"harmonics {harmonics[0]}..{harmonics[-1]}, "
+        f"verdict {result.verdict.state.upper()}"
+        f"{f' ({reasons})' if reasons else ''}; "
         f"continuous track: {verdict}"
     )
-HERTZ_FILE.unlink()
-HERTZ_FILE.parent.rmdir()
-growing = [v for v, _, state, _ in rows if state == "UNSTABLE"]
+growing = [v for v, _, state, _ in rows if state == "unstable"]
 print("growing roots on sleepers at v =", growing or "none of the speeds scanned")
 print("continuous track unstable at v =", [v for v, *_, c in rows if c == "unstable"] or "none of them")
 
@@ -207,25 +200,20 @@ print("continuous track unstable at v =", [v for v, *_, c in rows if c == "unsta
 # %%
 from IPython.display import display  # noqa: E402
 
-from moving_bogie.floquet.map_figure import sleeper_map_figure  # noqa: E402
-from moving_bogie.floquet.sleeper_map import sleeper_map  # noqa: E402
-from moving_bogie.kernels.bound import bind  # noqa: E402
-from moving_bogie.stability.maps.map import stability_map  # noqa: E402
-
-zones = load_sleeper_file(EXAMPLES / "sleepers_zones.toml")
+_, ZONES = mb.load_parameters(EXAMPLES / "sleepers_zones.toml")
 vs = np.linspace(80.0, 140.0, 3) if QUICK else np.linspace(40.0, 250.0, 43)
 ms = np.linspace(100.0, 3000.0, 30 if QUICK else 120)
-smap = sleeper_map(zones, vs, ms, verify=0 if QUICK else 2, workers=1 if QUICK else None)
-smeared = smeared_track(zones)
-continuous = stability_map(
-    bind(smeared.to_dimensionless()),
+smap = mb.sleeper_map(ZONES, vs, ms, verify=0 if QUICK else 2, workers=1 if QUICK else None)
+smeared = mb.smeared_track(ZONES)
+continuous_map = mb.stability_map(
+    smeared,
     parameter="eta_M",
     alphas=(vs / smeared.si_factor("alpha")).tolist(),
     thetas=(ms / smeared.si_factor("eta_M")).tolist(),
 )
 unstable = int((smap.count > 0).sum())
 print(f"sleepers: {unstable} unstable cells of {smap.count.size}; notes: {list(smap.notes)}")
-print(f"continuous track, same smeared support: {int((continuous.count > 0).sum())} unstable cells")
+print(f"continuous track, same smeared support: {int((continuous_map.count > 0).sum())} unstable cells")
 for check in smap.checks:
     print(
         f"check at v = {check.v:g} m/s, M = {check.M:g} kg: "
@@ -236,7 +224,7 @@ for line in smap.lines()[:8]:
         f"v = {line['v']:6.1f} m/s: crossing at M = {line['M']:7.1f} kg, "
         f"Omega = {line['Omega_rad_s']:.1f} rad/s, change {line['change']:+d}"
     )
-display(sleeper_map_figure(smap, continuous, operating=(zones.physical["v"], zones.physical["M"])))
+display(mb.sleeper_map_figure(smap, continuous_map, operating=(float(ZONES.v), float(ZONES.M))))
 
 # %% [markdown]
 # Each band is a parametric zone: a narrow interval of wheel masses, at each speed, in which the wheel's
@@ -258,28 +246,24 @@ display(sleeper_map_figure(smap, continuous, operating=(zones.physical["v"], zon
 # column.
 
 # %%
-from moving_bogie.floquet.inputs import sleeper_input  # noqa: E402
-
-rail = tomllib.loads((EXAMPLES / "sleepers_zones.toml").read_text())
+RAIL_KEYS = {"EI", "m", "k_f", "c_f", "k_s"}
 
 
-def on_the_rail(example: str, vehicle: str) -> dict:
+def on_the_rail(example: str, vehicle: str):
     """The rail of sleepers_zones.toml under the vehicle of a continuous example (its wheel, frame, body)."""
-    parts = tomllib.loads((EXAMPLES / example).read_text())["physical"]
-    rail_keys = {"EI", "m", "k_f", "c_f", "k_s"}
-    physical = dict(rail["physical"]) | {k: v for k, v in parts.items() if k not in rail_keys}
-    return {"model": {"beam": "eb", "track": "sleepers", "vehicle": vehicle}, "physical": physical}
+    _, parts = mb.load_parameters(EXAMPLES / example)
+    physical = ZONES.values() | {k: v for k, v in parts.values().items() if k not in RAIL_KEYS}
+    return mb.PhysicalParams(beam="eb", track="sleepers", vehicle=vehicle, **physical)
 
 
-vehicles = {"wheel": rail, "bogie": on_the_rail("uic60-bogie.toml", "bogie")}
+vehicles = {"wheel": ZONES, "bogie": on_the_rail("uic60-bogie.toml", "bogie")}
 if not QUICK:
     vehicles["car"] = on_the_rail("car.toml", "car")
 zone_speeds = [88.0] if QUICK else [80.0, 84.0, 88.0, 92.0, 96.0]
 wheel_masses = np.linspace(100.0, 3000.0, 59 if QUICK else 291)
 zones_by_vehicle = {}
-for name, table in vehicles.items():
-    vehicle_input = sleeper_input(table, f"{name} on sleepers_zones.toml")
-    vmap = sleeper_map(vehicle_input, zone_speeds, wheel_masses, verify=0, workers=1)
+for name, on_rail in vehicles.items():
+    vmap = mb.sleeper_map(on_rail, zone_speeds, wheel_masses, verify=0, workers=1)
     zones_by_vehicle[name] = vmap
     for v in zone_speeds:
         crossings = sorted((p for p in vmap.lines() if p["v"] == v), key=lambda p: p["M"])
@@ -289,8 +273,8 @@ for name, table in vehicles.items():
             print(f"{name:5s} v = {v:5.1f} m/s: no crossing for 100 <= M <= 3000 kg")
             continue
         low, high = min(ups), max(downs)
-        smeared_params = smeared_track(sleeper_input(table, name, overrides={"v": v, "M": (low + high) / 2}))
-        state = induced_frequencies(smeared_params.to_dimensionless(), dps=15).verdict.state
+        middle = mb.smeared_track(with_si(on_rail, v=v, M=(low + high) / 2))
+        state = mb.induced_frequencies(middle, dps=15).verdict.state
         print(
             f"{name:5s} v = {v:5.1f} m/s: {len(ups)} crossing(s) up, {len(downs)} down; unstable for "
             f"{low:7.1f} < M < {high:7.1f} kg; continuous track at the zone's middle: {state}"

@@ -12,33 +12,41 @@ import numpy as np
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.inputs import is_sleeper_file, load_sleeper_file
+from moving_bogie.floquet.inputs import load_sleeper_file
 from moving_bogie.generated import CONTACT_SPRINGS, MODULES, VEHICLES
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.model.cases import table1_case
-from moving_bogie.model.files import SLEEPER_COMMANDS, load_params_file
+from moving_bogie.model.files import load_params_file
 from moving_bogie.soil.file import is_soil_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-#: The continuous tracks' examples; a rail on discrete supports (floquet/) and a track on soil (soil/) have
-#: their own readers (tests/test_soil_track.py runs the soil examples).
-FILES = [
-    path for path in sorted(EXAMPLES.glob("*.toml")) if not is_sleeper_file(path) and not is_soil_file(path)
-]
-SLEEPER_FILES = [path for path in sorted(EXAMPLES.glob("*.toml")) if is_sleeper_file(path)]
 
 
-def test_every_sleeper_example_loads_as_a_rail_on_supports():
-    """The sleeper examples are read by the Floquet reader (the continuous one refuses them, naming every
-    command that takes a sleeper file)."""
+def _periodic(path: Path) -> bool:
+    """Whether the example's model is on periodic supports (read as any parameter file)."""
+    return load_params_file(path)[0].model.periodic
+
+
+#: The continuous tracks' examples, and the rails on discrete supports (a periodic track of the catalogue);
+#: a track on soil (soil/) has its own reader (tests/test_soil_track.py runs the soil examples).
+ALL = [path for path in sorted(EXAMPLES.glob("*.toml")) if not is_soil_file(path)]
+FILES = [path for path in ALL if not _periodic(path)]
+SLEEPER_FILES = [path for path in ALL if _periodic(path)]
+
+
+def test_every_sleeper_example_loads_as_a_model_of_the_catalogue():
+    """The sleeper examples load like any other file, as a model of the one catalogue; their groups are
+    those of the Floquet reader (floquet/inputs.py, the same generated scaling in floats)."""
     assert SLEEPER_FILES, "examples/sleepers.toml is the README's and docs/sleepers.md's example"
     for path in SLEEPER_FILES:
         loaded = load_sleeper_file(path)
-        assert loaded is not None
-        with pytest.raises(ParameterError, match=", ".join(SLEEPER_COMMANDS) + " with --file"):
-            load_params_file(path)
+        params, physical = load_params_file(path)
+        assert params.model.periodic and physical is not None
+        assert params.model.name == f"{loaded.beam}/{loaded.track}/{loaded.vehicle}"
+        for name, value in (loaded.groups | loaded.vehicle_groups).items():
+            assert float(getattr(params, name)) == pytest.approx(value, rel=1e-14, abs=1e-300), name
+        assert physical.scales().t_scale == pytest.approx(loaded.t_scale, rel=1e-14)
 
 
 def _kind(path):

@@ -77,7 +77,7 @@ def test_zone_edges_are_the_d_decomposition_crossings():
         (["--d", "0"], "--d"),  # a zero is given too (0.0 == False must not hide it)
         (["--eta-f", "0.0"], "--eta-f"),
         (["--range", "v=0:100"], "--range"),
-        (["--range", "M=10:100"], "--range"),
+        (["--range", "M=-10:100"], "--range"),
         (["--range", "w=1:2"], "--range"),
         (["--n", "1"], "--n"),
         (["--parameter", "kappa_v"], "--parameter"),
@@ -91,3 +91,15 @@ def test_bad_options_are_named_before_any_computation(extra, option, capsys):
     out = json.loads(capsys.readouterr().out)
     assert code == 2
     assert option in out["error"]
+
+
+@pytest.mark.slow
+def test_a_sleeper_map_takes_an_m_axis_above_zero_and_set(capsys):
+    """--range M=1000:2000 (the counts still start from M -> 0 below the axis) and --set on a sleeper map:
+    the cells checked by the strip search (floquet_frequencies, an independent count at the cell) agree."""
+    args = ["stability-map", "--file", str(EXAMPLES / "sleepers_zones.toml"), "--range", "v=90:100"]
+    args += ["--range", "M=1000:2000", "--n", "3", "--workers", "1", "--set", "c_f=600", "--json"]
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["M_kg"] == [1000.0, 2000.0, 3]
+    assert out["checks"] and all(check["agrees"] for check in out["checks"])

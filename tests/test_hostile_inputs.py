@@ -53,6 +53,9 @@ WORK = [
     ("moving_bogie.floquet.sleeper_map", "sleeper_map"),
     ("moving_bogie.floquet.series", "sleeper_series"),
     ("moving_bogie.validation.sleepers_check", "check_sleepers"),
+    ("moving_bogie.soil.rayleigh", "soil_modes"),
+    ("moving_bogie.soil.critical", "critical_velocity"),
+    ("moving_bogie.soil.moving_load", "moving_load"),
     *[("moving_bogie.paper.stability_figures", f"figure{n}") for n in (2, 3, 4, 7, 8, 16)],
 ]
 
@@ -116,6 +119,7 @@ HOSTILE = [
 FILES = {
     "uic60": (ROOT / "examples" / "uic60-bogie.toml").read_text(),
     "sleepers": (ROOT / "examples" / "sleepers.toml").read_text(),
+    "soil": (ROOT / "examples" / "soil-ballasted.toml").read_text(),
     "empty": "",
     "model-only": '[model]\nvehicle = "masses"\n',
     "not-toml": "[physical\nv = ",
@@ -127,7 +131,8 @@ FILES = {
     "case-huge": "case = 99999999999999999999\n",
 }
 BASES = [[], ["--case", "1"], ["--case", "7"], ["--file", "{uic60}"], ["--file", "{sleepers}"]]
-BASES += [["--file", "{" + name + "}"] for name in FILES if name not in ("uic60", "sleepers")]
+BASES += [["--file", "{" + name + "}"] for name in FILES if name not in ("uic60", "sleepers", "soil")]
+BASES += [["--file", "{soil}"]]
 BASES += [["--file", "{missing}"], ["--file", "{folder}"]]
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from moving_bogie import induced_frequencies, table1_case
 from moving_bogie.api import stability_map
@@ -38,3 +39,23 @@ def test_stability_map_shows_its_verdict_first():
     unstable = int((smap.count > 0).sum())
     assert unstable == 1  # alpha = 0.9 lies beyond Case 1's boundary near alpha = 0.72, alpha = 0.5 before it
     assert html.index(f"UNSTABLE in {unstable} of 2 cells") < html.index("<table>")
+
+
+@pytest.mark.slow
+def test_sleeper_results_show_their_verdict_first():
+    """A rail on sleepers: the steady response (its mean contact force is the static load P of the file,
+    (S17) at n = 0) and a one-column map show themselves as the continuous tracks' results do."""
+    from pathlib import Path
+
+    import moving_bogie as mb
+
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    _, physical = mb.load_parameters(examples / "sleepers_zones.toml")
+    series = mb.sleeper_series(physical, points=33, free=False)
+    html = series._repr_html_()
+    assert html.index("NOT SEARCHED") < html.index("<table>") and f"{float(physical.P):.6g}" in html
+    smap = mb.sleeper_map(physical, [88.0], [1500.0, 1750.0], verify=0, workers=1)
+    html = smap._repr_html_()
+    unstable = int((smap.count > 0).sum())
+    verdict = f"UNSTABLE in {unstable} of 2 cells" if unstable else "STABLE in every cell"
+    assert html.index(verdict) < html.index("<table>")

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from moving_bogie.roots.verdict import UNSTABLE, Verdict
 from moving_bogie.validation import sleepers_check
 from moving_bogie.validation.sleepers_fit import (
     dominant_harmonic,
@@ -147,7 +148,7 @@ def test_the_check_fits_the_window_of_its_settings(monkeypatch):
 class _UnstableResult:
     """What check_sleepers reads of a Floquet search: its verdict and its notes."""
 
-    verdict = "UNSTABLE"
+    verdict = Verdict(UNSTABLE)
     notes = ()
 
 

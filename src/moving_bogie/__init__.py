@@ -23,7 +23,7 @@ from moving_bogie.model.physical import PhysicalParams, Scales
 
 #: Main entry points, imported on first use so that ``import moving_bogie`` (and the CLI) stays light.
 _LAZY = {
-    "bind": "kernels.bound",
+    "bind": "api",
     "BoundModel": "kernels.bound",
     "induced_frequencies": "api",
     "FrequencyResult": "roots.frequencies",
@@ -40,6 +40,12 @@ _LAZY = {
     "d_decomposition": "api",
     "critical_stiffness": "api",
     "stability_map": "api",
+    "speed_regime": "api",
+    "smeared_track": "api",
+    "sleeper_series": "api",
+    "sleeper_map": "api",
+    "sleeper_map_figure": "floquet.map_figure",
+    "sleeper_series_figure": "floquet.plots",
 }
 
 

@@ -2,10 +2,10 @@
 
 Every function here accepts :class:`~moving_bogie.model.params.DimensionlessParams`,
 :class:`~moving_bogie.model.physical.PhysicalParams` (made dimensionless, its scales kept where the result
-has units) or a :class:`~moving_bogie.kernels.bound.BoundModel`, calls
-:func:`~moving_bogie.kernels.bound.bind` once and passes the bound model down; below this module nothing
-binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stability/`` and ``sweep/`` take
-``bound: BoundModel``). The options are those of the function each one calls, documented there.
+has units) or a :class:`~moving_bogie.kernels.bound.BoundModel`, calls :func:`bind` once (the bound model
+with the track of its model's kind, :data:`TRACK_KINDS`) and passes the bound model down; below this module
+nothing binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stability/`` and ``sweep/``
+take ``bound: BoundModel``). The options are those of the function each one calls, documented there.
 """
 
 from __future__ import annotations
@@ -14,13 +14,18 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
-from moving_bogie.kernels.bound import BoundModel, bind
+from moving_bogie.floquet.periodic_track import PeriodicTrack
+from moving_bogie.kernels.bound import BoundModel, TrackFactory
+from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
 
 if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import ArrayLike
 
+    from moving_bogie.floquet.inputs import SleeperInput
+    from moving_bogie.floquet.series import SleeperSeries
+    from moving_bogie.floquet.sleeper_map import SleeperMap
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
@@ -30,9 +35,13 @@ if TYPE_CHECKING:
     from moving_bogie.stability.maps.map import StabilityMap
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
+    from moving_bogie.stability.velocity.supercritical import SpeedRegime
+    from moving_bogie.validation.sleepers_check import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 __all__ = [
+    "TRACK_KINDS",
+    "bind",
     "bind_with_scales",
     "closed_form_response",
     "critical_stiffness",
@@ -43,9 +52,53 @@ __all__ = [
     "induced_frequencies",
     "instability_lines",
     "instability_lines_many",
+    "sleeper_map",
+    "sleeper_series",
+    "smeared_track",
+    "speed_regime",
+    "validate_on_supports",
     "stability_map",
     "validate",
 ]
+
+
+#: The track of each kind of foundation (its ``TRACK_KIND``; a generated foundation module without one is a
+#: continuous track, :class:`~moving_bogie.kernels.continuous_track.ContinuousTrack`). A new kind of track
+#: adds its class here (kernels/track_model.py says what the class provides).
+TRACK_KINDS: dict[str, TrackFactory] = {PERIODIC: PeriodicTrack}
+
+
+def bind(params: DimensionlessParams | PhysicalParams | BoundModel) -> BoundModel:
+    """The bound model of ``params`` on the track of its model's kind (a :class:`BoundModel` as it is).
+
+    Called once by each entry point; SI parameters are made dimensionless first (``to_dimensionless()``).
+
+    Examples
+    --------
+    >>> from moving_bogie import load_parameters
+    >>> params, _ = load_parameters("examples/sleepers.toml")
+    >>> bound = bind(params)
+    >>> bound.name, bound.track.search_region().kind
+    ('eb/sleepers/mass', 'strip')
+    """
+    if isinstance(params, BoundModel):
+        return params
+    dimensionless = params.to_dimensionless() if isinstance(params, PhysicalParams) else params
+    kind = getattr(dimensionless.model.foundation, "TRACK_KIND", None)
+    return BoundModel(dimensionless, track=TRACK_KINDS.get(kind) if kind is not None else None)
+
+
+def speed_regime(params: DimensionlessParams, physical: PhysicalParams | None = None) -> SpeedRegime:
+    """The speed against the track's critical velocity
+    (:func:`~moving_bogie.stability.velocity.supercritical.speed_regime`; on periodic supports that of the
+    smeared track, :func:`~moving_bogie.floquet.smeared.smeared_regime`)."""
+    if params.model.periodic:
+        from moving_bogie.floquet.smeared import smeared_regime
+
+        return smeared_regime(params, physical)
+    from moving_bogie.stability.velocity.supercritical import speed_regime as continuous
+
+    return continuous(params, physical)
 
 
 def bind_with_scales(
@@ -60,14 +113,21 @@ def bind_with_scales(
 def induced_frequencies(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> FrequencyResult:
-    """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies`.
+    """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies` in
+    the window, or :func:`moving_bogie.floquet.frequencies.strip_frequencies` in one strip of a periodic
+    track (the search region of the bound model's track).
 
     For SI parameters the result keeps their scales and shows itself in SI (rad/s, Hz, s).
     """
     from moving_bogie.roots.frequencies import induced_frequencies as run
 
     bound, scales = bind_with_scales(params)
-    result = run(bound, **options)
+    if bound.track.search_region().periodic:
+        from moving_bogie.floquet.frequencies import strip_frequencies
+
+        result = strip_frequencies(bound, **options)
+    else:
+        result = run(bound, **options)
     return result if scales is None else replace(result, scales=scales)
 
 
@@ -106,14 +166,82 @@ def deflection_shape_details(
     return run(bound, xi, tau, scales=scales, **options)
 
 
-def validate(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> ValidationResult:
-    """Finite beam against closed form (Section 3.2): :func:`~moving_bogie.validation.compare.validate`.
+def validate(
+    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
+) -> ValidationResult | SleeperCheck:
+    """Finite beam against closed form (Section 3.2): :func:`~moving_bogie.validation.compare.validate`; on
+    periodic supports the finite rail against the Floquet theory (:func:`validate_on_supports`).
 
     Physical parameters are made dimensionless: the comparison runs in dimensionless tau and w / w_st.
     """
     from moving_bogie.validation.compare import validate as run
 
-    return run(bind(params), **options)
+    bound = bind(params)
+    if bound.model.periodic:
+        return validate_on_supports(params, **options)
+    return run(bound, **options)
+
+
+def validate_on_supports(
+    params: DimensionlessParams | PhysicalParams | BoundModel, *, tol: float = 0.01
+) -> SleeperCheck:
+    """The finite rail on sleepers against the Floquet theory (docs/sleepers.md):
+    :func:`~moving_bogie.validation.on_supports.check_on_supports` of SI parameters on periodic supports."""
+    from moving_bogie.validation.on_supports import check_on_supports
+
+    return check_on_supports(_sleeper_data(params), tol=tol)
+
+
+def smeared_track(params: PhysicalParams) -> PhysicalParams:
+    """The continuous track with the same smeared supports as SI parameters on periodic supports (the
+    limit l -> 0, docs/sleepers.md (S2)): :func:`~moving_bogie.floquet.smeared.smeared_physical`.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``track`` when the track has no such limit.
+    """
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.smeared import smeared_physical
+
+    smeared = smeared_physical(params)
+    if smeared is None:
+        raise ParameterError("track", f"{params.model.name} has no smeared continuous track")
+    return smeared
+
+
+def sleeper_series(
+    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
+) -> SleeperSeries:
+    """The steady response over a bay and the free vibrations on sleepers, in SI:
+    :func:`~moving_bogie.floquet.series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    from moving_bogie.floquet.series import sleeper_series as run
+
+    return run(_sleeper_data(params), **options)
+
+
+def sleeper_map(
+    params: DimensionlessParams | PhysicalParams | BoundModel,
+    velocities: Sequence[float] | np.ndarray,
+    masses: Sequence[float] | np.ndarray,
+    **options: Any,
+) -> SleeperMap:
+    """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
+    (S19)-(S22)): :func:`~moving_bogie.floquet.sleeper_map.sleeper_map` (``verify``, ``workers``,
+    ``progress``)."""
+    from moving_bogie.floquet.sleeper_map import sleeper_map as run
+
+    return run(_sleeper_data(params), velocities, masses, **options)
+
+
+def _sleeper_data(params: DimensionlessParams | PhysicalParams | BoundModel) -> SleeperInput:
+    """The Floquet runtime's input of SI parameters on periodic supports (a bound model: its own)."""
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.inputs import sleeper_input_of
+
+    if isinstance(params, BoundModel) or not isinstance(params, PhysicalParams):
+        raise ParameterError("params", "the analyses on sleepers take SI parameters (PhysicalParams)")
+    return sleeper_input_of(params.to_dimensionless(), params)
 
 
 def frequency_lines(

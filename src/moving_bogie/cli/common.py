@@ -235,6 +235,14 @@ def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, Phy
             params, physical = read_params_file(args.file)
             if getattr(args, "set", None):
                 physical, params = apply_settings(physical, args.set)
+            if (overrides or models) and physical is not None and physical.model.periodic:
+                dest = next(iter(overrides or models))
+                flag = options.get(dest) or option_flag(dest)
+                raise ParameterError(
+                    flag.lstrip("-"),
+                    f"{flag} does not apply to a [physical] file on a sleeper track (periodic supports): "
+                    "change its SI value with --set NAME=VALUE",
+                )
             if overrides or models:
                 params = params.replace(**models, **overrides)
                 if physical is not None:

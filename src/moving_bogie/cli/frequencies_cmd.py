@@ -123,13 +123,10 @@ def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
 
     _check_dps(args.dps)
-    from moving_bogie.floquet.inputs import is_sleeper_file
-
-    if args.file is not None and is_sleeper_file(args.file):
-        from .sleepers_cmd import run_sleeper_frequencies
-
-        return run_sleeper_frequencies(args)
     params, physical = params_from_args(args)  # every input checked before the heavy imports
+    periodic = params.model.periodic
+    if periodic:
+        _refuse_on_a_strip(args)
     window = None
     if args.window:
         try:
@@ -140,24 +137,21 @@ def run_frequencies(args: argparse.Namespace) -> int:
         if not (x > 0 and y > 0):
             raise ParameterError("window", "window sizes must be positive")
 
-    from moving_bogie.kernels.bound import bind
+    from moving_bogie.api import bind, induced_frequencies, speed_regime
     from moving_bogie.roots.count.contour import Rectangle
     from moving_bogie.roots.damping_limit import damping_limit
-    from moving_bogie.roots.frequencies import induced_frequencies
-    from moving_bogie.stability.velocity.supercritical import speed_regime
 
     from .progress import progress_bar
 
     if args.window:
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
+    options = {} if periodic else {"dps": args.dps, "window": window, "certify": args.certify}
     with progress_bar("induced frequencies", enabled=not args.json) as update:
-        result = induced_frequencies(
-            bind(params), dps=args.dps, window=window, progress=update, certify=args.certify
-        )
+        result = induced_frequencies(bind(params), progress=update, **options)
     physical = si_input(args, physical)  # the units shown: SI for a [physical] file unless --units says
     if physical is not None:
         result = replace(result, scales=physical.scales())
-    limit = damping_limit(result)
+    limit = None if periodic else damping_limit(result)
     regime = speed_regime(params, physical)
     if args.json:
         data = with_si(result.to_dict(), result, physical)
@@ -176,6 +170,19 @@ def run_frequencies(args: argparse.Namespace) -> int:
         print(line, file=sys.stderr)
     proven = result.certificate is None or result.certificate.all_proven
     return 0 if result.count_ok and result.verdict.determined and proven else 1
+
+
+def _refuse_on_a_strip(args: argparse.Namespace) -> None:
+    """--window and --certify do not apply to a track on periodic supports (one message, exit status 2)."""
+    from moving_bogie.errors import ParameterError
+
+    if args.window:
+        raise ParameterError(
+            "window",
+            "--window does not apply to a sleeper track: it is searched in one strip of width Omega_0",
+        )
+    if args.certify:
+        raise ParameterError("certify", "--certify is not available on a sleeper track (periodic supports)")
 
 
 def _with_regime(verdict: Any, regime: SpeedRegime) -> Any:
@@ -199,6 +206,12 @@ def with_si(data: dict[str, Any], result: FrequencyResult, physical: PhysicalPar
     for entry, root in zip(data["roots"], result.roots):
         entry.update(root_in_si(root.q, t_scale, digits=min(12, root.digits)))
     data["si"] = {"t_scale_s": repr(t_scale), "physical": physical.to_dict(), "time_factor": "exp(i omega t)"}
+    if "region" in data:
+        region = data["region"]
+        region["Omega_0_rad_s"] = region["Omega_0"] / t_scale
+        waves = region["free_waves_im"]
+        region["free_waves_im_rad_s"] = None if waves is None else waves / t_scale
+        data["margin_1_s"] = None if result.margin is None else float(result.margin) / t_scale
     return data
 
 
@@ -214,9 +227,15 @@ def format_si(result: FrequencyResult, physical: PhysicalParams) -> str:
     for k, root in enumerate(result.roots, 1):
         si = root_in_si(root.q, t_scale, digits=min(8, root.digits))
         growth = f", growth time {si['growth_time_s']} s" if si["growth_time_s"] else ""
+        pair = "" if result.periodic else "+-"
         lines.append(
-            f"  {k:>2} omega = +-{si['omega']['re']} + {si['omega']['im']}i rad/s, "
+            f"  {k:>2} omega = {pair}{si['omega']['re']} + {si['omega']['im']}i rad/s, "
             f"f = {si['frequency_hz']} Hz{growth}"
+        )
+    if result.margin is not None:
+        rate = float(result.margin) / t_scale
+        lines.append(
+            f"  margin: the least-damped vibration decays at {rate:.6g} 1/s ({result.margin_source})"
         )
     return "\n".join(lines)
 
@@ -225,15 +244,23 @@ def format_result(result: FrequencyResult) -> str:
     """The roots (q to their confirmed digits; left to :func:`format_si` for a result in SI, which has
     ``scales``), the count, what was searched and the verdict."""
     lines = []
+    region = result.region
+    pair = "" if result.periodic else "+-"
     if result.scales is None:
         lines.append(
             f"Induced frequencies ({result.model}, {result.params.beam.upper()} beam), {result.dps} digits:"
         )
+        if region is not None and region.periodic:
+            lines[0] = (
+                f"Induced frequencies ({result.model}, {result.params.beam.upper()} beam on "
+                f"{result.params.track}), one strip of width Omega_0 = {region.period:.6g}, harmonics "
+                f"{region.harmonics[0]}..{region.harmonics[-1]}, double precision:"
+            )
         lines.append(f"  {'':2}{'Re q':>36}  {'Im q':>36}  side   digits")
         for k, r in enumerate(result.roots, 1):
             flag = "unstable" if r.unstable else ("real" if r.marginal else "")
             lines.append(
-                f"  {k:<2}{'+-' + r.re_text:>36}  {r.im_text:>36}  {r.side:<5}  {r.digits:>3}  {flag}"
+                f"  {k:<2}{pair + r.re_text:>36}  {r.im_text:>36}  {r.side:<5}  {r.digits:>3}  {flag}"
             )
     lines.append(f"count (argument principle): {result.count}, found: {result.found}")
     lines += _searched_lines(result)
@@ -259,7 +286,8 @@ def verdict_line(result: FrequencyResult) -> str:
             f"verdict: UNSTABLE, {result.strip_unstable} root(s) with Im {q} < 0 counted in the strip just "
             "below the cut (not located)"
         )
-    pairs = f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable pair(s)"
+    kind = "root(s) in the strip" if result.periodic else "pair(s)"
+    pairs = f"verdict: UNSTABLE, {len(result.unstable_roots)} unstable {kind}"
     if result.scales is not None:
         rate = -float(result.degree_of_instability) / result.scales.t_scale
         return f"{pairs}; growth rate -min Im omega = {rate:.6g} 1/s, growth time {1 / rate:.6g} s"
@@ -274,6 +302,19 @@ def _searched_lines(result: FrequencyResult) -> list[str]:
     scale = 1.0 if result.scales is None else result.scales.t_scale
     name, rate, freq = ("q", "", "") if result.scales is None else ("omega", " 1/s", " rad/s")
     lines = []
+    if result.periodic:
+        w = result.window
+        lines.append(
+            f"searched: {w.x0 / scale:.6g} <= Re {name} <= {w.x1 / scale:.6g}{freq}, "
+            f"{w.y0 / scale:.6g} <= Im {name} <= {w.y1 / scale:.6g}{rate}"
+        )
+        if result.scales is None and result.margin is not None:
+            import mpmath
+
+            lines.append(
+                f"margin: the least-damped vibration decays at Im q = {mpmath.nstr(result.margin, 6)} "
+                f"({result.margin_source})"
+            )
     if result.unsearched:
         height = max(u.height for u in result.unsearched) / scale
         lines.append(

@@ -32,7 +32,7 @@ from .common import (
 from .job_size import SHORTER, add_yes_option, estimate_grid
 from .outputs import add_figure_option
 from .progress import add_resume_option, checkpoint_options, progress_bar
-from .sleepers_map_cmd import sleeper_file
+from .sleepers_map_cmd import sleeper_data
 from .stability_options import (
     RAW,
     add_plane_options,
@@ -110,8 +110,9 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_instability_lines(args: argparse.Namespace) -> int:
-    if sleeper_file(args):
-        return sleepers_map_cmd.run_sleeper_lines(args)
+    sleepers = sleeper_data(args)
+    if sleepers is not None:
+        return sleepers_map_cmd.run_sleeper_lines(args, sleepers)
     params, spacings = params_and_spacings(args)
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
@@ -264,8 +265,9 @@ def run_stability_map(args: argparse.Namespace) -> int:
 def _stability_map(args: argparse.Namespace) -> int:
     import numpy as np
 
-    if sleeper_file(args):
-        return sleepers_map_cmd.run_sleeper_map(args)
+    sleepers = sleeper_data(args)
+    if sleepers is not None:
+        return sleepers_map_cmd.run_sleeper_map(args, sleepers)
     params, _ = params_and_spacings(args)
     if args.out is not None and args.out.exists() and not args.overwrite:
         raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")

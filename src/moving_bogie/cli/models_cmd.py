@@ -72,7 +72,8 @@ def _choices(names: Sequence[str], width: int = 100, indent: int = 12) -> list[s
 
 def format_summary(models: Sequence[Model]) -> str:
     """The catalogue in a few lines: its beams, tracks and vehicles (each model one combination of them, all
-    combinations declared), the rails on discrete supports, and how to see one model's parameters."""
+    combinations declared, the rails on discrete supports among the tracks), and how to see one model's
+    parameters."""
     beams = list(dict.fromkeys(model.beam for model in models))
     tracks = list(dict.fromkeys(model.track for model in models))
     vehicles = list(dict.fromkeys(model.vehicle for model in models))
@@ -84,9 +85,6 @@ def format_summary(models: Sequence[Model]) -> str:
             lines.append(f"  {heading if k == 0 else '':<10}{line}")
     if not product:
         lines += [f"    {model.name}" for model in models]
-    sleepers = list(sleeper_tracks())
-    lines.append("rails on discrete supports (Floquet, docs/sleepers.md; any vehicle, NAME = beam/track):")
-    lines.append(f"  {'tracks':<10}{', '.join(dict.fromkeys(name.split('/')[1] for name in sleepers))}")
     example = next(
         (model.name for model in models if model.vehicle == "bogie"), models[0].name if models else ""
     )
@@ -126,6 +124,9 @@ def format_catalogue(models: Sequence[Model]) -> str:
             f"  vehicle: {model.catalogue.vehicles[model.vehicle]}",
             f"  N of degree {degrees['N_in_p']} and Q of degree {degrees['Q_in_p']} in p",
         ]
+        if model.periodic:
+            scales = ", ".join(f"{k} [{v['unit']}]" for k, v in model.scale_parameters.items())
+            lines.append(f"  on periodic supports (docs/sleepers.md); SI scale parameters: {scales}")
         width = max(len(spec.option) for spec in model.specs.values())
         for spec in model.specs.values():
             default = "required" if spec.default is None else f"default {spec.default}"

@@ -32,15 +32,19 @@ _MODEL = "give the model and its values in the file"
 _NOT_APPLICABLE = {
     "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL,
     "npz": "a sleeper map writes its figure and its JSON only", "out": "a sleeper map is not a sweep store",
-    "set": "give the model and its values in the file",
 }  # fmt: skip
 
 
-def sleeper_file(args: argparse.Namespace) -> bool:
-    """Whether ``--file`` names a sleeper track (its ``[model]`` table read first)."""
-    from moving_bogie.floquet.inputs import is_sleeper_file
+def sleeper_data(args: argparse.Namespace) -> SleeperInput | None:
+    """The parameters of ``--file`` (``--set`` applied) when its model is on periodic supports, else None."""
+    if getattr(args, "file", None) is None:
+        return None
+    from moving_bogie.floquet.inputs import sleeper_input_of
 
-    return getattr(args, "file", None) is not None and is_sleeper_file(args.file)
+    from .common import params_from_args
+
+    params, physical = params_from_args(args)
+    return sleeper_input_of(params, physical) if params.model.periodic else None
 
 
 def _refuse_options(args: argparse.Namespace) -> None:
@@ -64,28 +68,31 @@ def _ranges(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
         ranges[name] = value_range(name, spec)
     if ranges["v"][0] <= 0:
         raise ParameterError("--range", "--range v: the velocities must be positive on a sleeper track")
-    if ranges["M"][0] != 0:
-        raise ParameterError("--range", "--range M: the mass axis starts at 0 (the count's base, M -> 0)")
+    if ranges["M"][0] < 0:
+        raise ParameterError("--range", "--range M: the masses must not be negative")
     return ranges
 
 
-def sleeper_plane(args: argparse.Namespace, n: int) -> tuple[SleeperInput, np.ndarray, np.ndarray]:
-    """The file and the grid (velocities, masses): every option checked before any computation."""
-    import numpy as np
+def sleeper_plane(
+    args: argparse.Namespace, n: int, data: SleeperInput
+) -> tuple[SleeperInput, np.ndarray, np.ndarray]:
+    """The parameters and the grid (velocities, masses): every option checked before any computation.
 
-    from moving_bogie.floquet.inputs import load_sleeper_file
+    The masses are n points up to the top of the M axis, from its bottom (from M = top / n when it starts
+    at 0: the counts are taken from M -> 0 up in any case)."""
+    import numpy as np
 
     _refuse_options(args)
     ranges = _ranges(args)
-    data = load_sleeper_file(args.file)
     if data.vehicle_groups.get("eta_M") is None or "M" not in data.physical:
         raise ParameterError("vehicle", f"vehicle {data.vehicle!r} has no wheel mass M")
     if data.groups.get("eta_f", 0.0) <= 0:
         raise ParameterError(
             "c_f", "c_f must be positive: the D-decomposition runs along the real axis (S15)"
         )
-    (v0, v1), (_, m1) = ranges["v"], ranges["M"]
-    return data, np.linspace(v0, v1, n), np.linspace(m1 / n, m1, n)
+    (v0, v1), (m0, m1) = ranges["v"], ranges["M"]
+    masses = np.linspace(m1 / n, m1, n) if m0 == 0 else np.linspace(m0, m1, n)
+    return data, np.linspace(v0, v1, n), masses
 
 
 def _text(smap: SleeperMap, *, crossings: bool) -> str:
@@ -112,24 +119,24 @@ def _text(smap: SleeperMap, *, crossings: bool) -> str:
     return "\n".join(lines)
 
 
-def run_sleeper_lines(args: argparse.Namespace) -> int:
+def run_sleeper_lines(args: argparse.Namespace, data: SleeperInput) -> int:
     """``instability-lines --file F`` on sleepers: every crossing of every velocity column."""
     from moving_bogie.floquet.sleeper_map import sleeper_map
 
-    data, vs, ms = sleeper_plane(args, getattr(args, "n", 60))
+    data, vs, ms = sleeper_plane(args, getattr(args, "n", 60), data)
     with progress_bar("D-decomposition lines", enabled=not args.json) as bar:
         smap = sleeper_map(data, vs, ms, verify=3 if args.verify else 0, progress=bar)
     return _report(args, data, smap, crossings=True, continuous=None)
 
 
-def run_sleeper_map(args: argparse.Namespace) -> int:
+def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
     """``stability-map --file F`` on sleepers: the map, the continuous track's map on the same grid."""
     from moving_bogie.floquet.sleeper_map import sleeper_map
     from moving_bogie.floquet.smeared import smeared_track
     from moving_bogie.kernels.bound import bind
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
 
-    data, vs, ms = sleeper_plane(args, args.n)
+    data, vs, ms = sleeper_plane(args, args.n, data)
     if args.n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
         middle = vs[args.n // 2 : args.n // 2 + 1]
         column = partial(sleeper_map, data, middle, ms, verify=0, workers=1)

@@ -10,10 +10,10 @@ import sys
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from moving_bogie.floquet.inputs import SleeperInput
     from moving_bogie.floquet.series import SleeperSeries
 
 from .common import print_json
-from .sleepers_cmd import sleeper_settings
 
 #: the options of the continuous-track time series that a sleeper file does not take, and what to do instead
 _MODEL = (
@@ -52,13 +52,12 @@ def check_sleeper_options(args: argparse.Namespace) -> None:
     args.bays, args.points = bays, points
 
 
-def run_sleeper_timeseries(args: argparse.Namespace) -> int:
-    """Print (or write) the steady response over ``--bays`` bays and the free vibrations in SI."""
+def run_sleeper_timeseries(args: argparse.Namespace, data: SleeperInput) -> int:
+    """Print (or write) the steady response over ``--bays`` bays and the free vibrations in SI of the
+    parameters ``data`` (the file's, ``--set`` applied)."""
     check_sleeper_options(args)
-    from moving_bogie.floquet.inputs import load_sleeper_file
     from moving_bogie.floquet.series import sleeper_series
 
-    data = load_sleeper_file(args.file, overrides=sleeper_settings(args.set))
     series = sleeper_series(data, bays=args.bays, points=args.points)
     if args.csv:
         write_sleeper_csv(series, args.csv)
@@ -76,7 +75,9 @@ def run_sleeper_timeseries(args: argparse.Namespace) -> int:
     warnings += list(series.free_notes)
     for text in warnings:
         print(f"warning: {text}", file=sys.stderr)
-    return 0 if series.converged and series.free_verdict != "UNDETERMINED" else 1
+    from moving_bogie.roots.verdict import UNDETERMINED
+
+    return 0 if series.converged and series.free_verdict != UNDETERMINED else 1
 
 
 def _not_converged(series: SleeperSeries) -> str:
@@ -123,7 +124,7 @@ def _free_lines(series: SleeperSeries) -> list[str]:
             f"  {r.frequency_rad_s:>12.6g} {r.frequency_hz:>10.5g} {r.growth_rate:>13.5g} {double:>15} "
             f"{halve:>14}  {r.state}"
         )
-    lines.append(f"verdict: {series.free_verdict}")
+    lines.append(f"verdict: {series.free_verdict.upper()}")
     return lines
 
 

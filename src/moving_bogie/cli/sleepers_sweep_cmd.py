@@ -47,7 +47,6 @@ def sleeper_spec(args: argparse.Namespace) -> SleeperSweepSpec:
     from moving_bogie.sweep.sleepers import make_sleeper_spec
 
     from .common import vary_texts
-    from .sleepers_cmd import sleeper_settings
 
     _refuse_options(args)
     if args.workers is not None and args.scheduler:
@@ -88,3 +87,19 @@ def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any
         "fastest_growth": fastest,
         "units": spec.units,
     }
+
+
+def sleeper_settings(texts: list[str] | None) -> dict[str, float]:
+    """``--set NAME=VALUE`` as SI floats, the overrides of a sleeper file's ``[physical]`` values."""
+    from moving_bogie.errors import ParameterError
+
+    out: dict[str, float] = {}
+    for text in texts or ():
+        name, eq, value = text.partition("=")
+        try:
+            out[name.strip()] = float(value)
+        except ValueError:
+            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER") from None
+        if not eq or not name.strip():
+            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER")
+    return out

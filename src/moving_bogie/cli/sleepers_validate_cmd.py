@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 #: options of ``validate`` that the continuous tracks' check takes and a sleeper file does not, and why
 _MODEL = "give the model in the file"
 _NOT_HERE = {
-    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL, "set": _MODEL,
+    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL,
     "tmax": "the check runs its own times (growth over periods, a steady bay)",
     "no_correction": "the rail on sleepers is meshed in beam elements, not in truncated sine modes",
     "no_estimate": "the rail on sleepers has no second run of the error estimate",
@@ -32,35 +32,16 @@ def _refuse(args: argparse.Namespace) -> None:
         )
 
 
-def run_sleeper_validation(args: argparse.Namespace) -> int:
-    """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers`, printed."""
-    import importlib
-
-    from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.inputs import load_sleeper_file
+def run_sleeper_validation(args: argparse.Namespace, data: SleeperInput) -> int:
+    """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers` on the
+    parameters ``data`` (the file's, ``--set`` applied), printed."""
+    from moving_bogie.validation.on_supports import check_on_supports
 
     _refuse(args)
-    data = load_sleeper_file(args.file)
-    if data.groups["alpha"] <= 0:
-        raise ParameterError("v", "v must be positive on a sleeper track (the vehicle must cross the bays)")
-    if data.beam != "eb":
-        raise ParameterError(
-            "beam", f"the finite rail on sleepers has Euler-Bernoulli elements (got {data.beam!r})"
-        )
-
-    from moving_bogie.floquet.hill import VehicleMatrices
-    from moving_bogie.floquet.steady import static_loads
-    from moving_bogie.floquet.track import SleeperTrack
-    from moving_bogie.validation.sleepers_check import check_sleepers
-
-    track = SleeperTrack(data.beam, data.track, data.groups)
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
-    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     from .progress import progress_bar
 
-    loads = static_loads(module, data.vehicle_groups)
     with progress_bar("Floquet theory + finite rail", enabled=not args.json) as update:
-        result = check_sleepers(track, vehicle, loads, tol=args.tol, time_scale=data.t_scale, progress=update)
+        result = check_on_supports(data, tol=args.tol, progress=update)
     if args.plot:
         from moving_bogie.response.plots import save_figure
         from moving_bogie.validation.sleepers_plots import plot_sleeper_check
@@ -111,7 +92,7 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
         f"model {out['model']}: finite rail of {fb['bays']} bays "
         f"({fb['elements_per_bay']} quintic elements per bay, "
         f"{fb['unknowns']} unknowns, dt = {_dt_text(fb)}) against the Floquet theory "
-        f"(verdict {out['floquet_verdict']})",
+        f"(verdict {out['floquet_verdict'].upper()})",
         f"  {'quantity':<26}{'Floquet':>14}{'finite beam':>14}  {'unit':<6}{'rel. diff':>10}  within",
     ]
     for c in out["comparisons"]:

@@ -7,11 +7,16 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from .checks import count, exact_number
 from .common import add_json_option, print_json
 from .outputs import add_figure_option
 from .stability_options import RAW
 
 __all__ = ["register", "run_soil_critical_velocity"]
+
+
+#: The most frequencies (--omega) or speeds (--range v=LO:HI:N) of one run.
+MAX_SAMPLES = 10_000
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -37,7 +42,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         metavar="W1,W2,...",
         help="frequencies in rad/s (default 32 from 0.6 to 600, geometric)",
     )
-    p.add_argument("--modes", type=int, default=None, metavar="N", help="report the N slowest soil modes")
+    p.add_argument(
+        "--modes", type=count(1, 1000), default=None, metavar="N", help="report the N slowest soil modes"
+    )
     add_figure_option(p, "--plot", help="write the dispersion figure")
     add_json_option(p)
     p.set_defaults(handler=run_dispersion)
@@ -72,9 +79,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def _omega_list(text: str) -> list[float]:
     try:
-        values = [float(x) for x in text.split(",") if x.strip()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--omega {text!r}: expected numbers separated by commas") from None
+        values = [float(exact_number(x)) for x in text.split(",") if x.strip()]
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(
+            f"--omega {text!r}: expected numbers separated by commas ({exc})"
+        ) from None
+    if len(values) > MAX_SAMPLES:
+        raise argparse.ArgumentTypeError(f"--omega: at most {MAX_SAMPLES} frequencies (got {len(values)})")
     if not values or any(not w > 0 for w in values):
         raise argparse.ArgumentTypeError(f"--omega {text!r}: give positive frequencies in rad/s")
     return sorted(values)
@@ -86,12 +97,15 @@ def _speed_range(text: str) -> tuple[float, float, int]:
     try:
         if name.strip() != "v" or not eq or len(parts) not in (2, 3):
             raise ValueError
-        lo, hi = float(parts[0]), float(parts[1])
+        lo, hi = float(exact_number(parts[0])), float(exact_number(parts[1]))
         n = int(parts[2]) if len(parts) == 3 else 21
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--range {text!r}: expected v=LO:HI or v=LO:HI:N (m/s)") from None
-    if not 0 < lo < hi or n < 3:
-        raise argparse.ArgumentTypeError(f"--range {text!r}: need 0 < LO < HI and N >= 3")
+    except ValueError as exc:
+        reason = f" ({exc})" if "range" in str(exc) else ""
+        raise argparse.ArgumentTypeError(
+            f"--range {text!r}: expected v=LO:HI or v=LO:HI:N (m/s){reason}"
+        ) from None
+    if not 0 < lo < hi or not 3 <= n <= MAX_SAMPLES:
+        raise argparse.ArgumentTypeError(f"--range {text!r}: need 0 < LO < HI and 3 <= N <= {MAX_SAMPLES}")
     return lo, hi, n
 
 

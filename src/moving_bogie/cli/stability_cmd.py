@@ -14,6 +14,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.model.scales import Scales
     from moving_bogie.stability.figures.plot_units import PlaneUnits
     from moving_bogie.stability.lines.frequency_lines import FrequencyLine, FrequencyLines
@@ -22,6 +23,8 @@ from .checks import count, decimal_number, nonnegative, positive
 from .common import (
     add_json_option,
     add_parameter_options,
+    add_set_option,
+    apply_settings,
     params_from_args,
     print_json,
     si_input,
@@ -73,7 +76,11 @@ def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
         epilog=(
             "examples:\n  moving-bogie critical-velocity --eta-s 0.5\n"
             "  moving-bogie critical-velocity --beam tr --S 100 --r 0.03 --json\n"
-            "  moving-bogie critical-velocity --file examples/two-layer.toml"
+            "  moving-bogie critical-velocity --file examples/two-layer.toml\n"
+            "  moving-bogie critical-velocity --file examples/sleepers.toml --set v=80\n"
+            "On a sleeper track (docs/sleepers.md): the critical velocity of the smeared track (the\n"
+            "supports spread along the rail), the rail's pinned-pinned frequency and the sleeper-passing\n"
+            "frequency 2 pi v / l."
         ),
         formatter_class=RAW,
     )
@@ -95,6 +102,7 @@ def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
             spec.option, dest=name, type=decimal_number, default=None, metavar="X", help=f"{spec.meaning}"
         )
     add_figure_option(p, "--plot", help="write the dispersion figure (a track on soil: docs/soil.md)")
+    add_set_option(p)
     add_json_option(p)
     p.set_defaults(handler=run_critical_velocity)
 
@@ -123,6 +131,10 @@ def run_critical_velocity(args: argparse.Namespace) -> int:
         from .common import read_params_file
 
         params, physical = read_params_file(args.file)
+        if args.set:
+            physical, params = apply_settings(physical, args.set)
+        if params.model.periodic:
+            return _critical_velocity_on_supports(args, params, physical, chosen | groups)
         if chosen or groups:
             params = params.replace(**chosen, **groups)
             if physical is not None:
@@ -146,6 +158,57 @@ def run_critical_velocity(args: argparse.Namespace) -> int:
         print_json(data)
     else:
         print("\n".join(critical_velocity_lines(data, None if physical is None else physical.scales())))
+    return 0
+
+
+def _critical_velocity_on_supports(
+    args: argparse.Namespace, params: DimensionlessParams, physical: PhysicalParams | None, given: dict
+) -> int:
+    """critical-velocity of a track on periodic supports: that of its smeared track (the supports spread
+    along the rail, docs/sleepers.md), its pinned-pinned frequency and the sleeper-passing frequency."""
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.floquet.inputs import sleeper_input_of
+    from moving_bogie.floquet.smeared import smeared_physical
+    from moving_bogie.floquet.track import SleeperTrack
+    from moving_bogie.paper.critical_velocity_formulas import paper_formula
+    from moving_bogie.stability.velocity.critical_velocity import critical_velocity
+
+    if given:
+        flag = "--" + next(iter(given)).replace("_", "-")
+        why = f"{flag} does not apply to a sleeper track: use --set NAME=VALUE"
+        raise ParameterError(flag.lstrip("-"), why)
+    data_in = sleeper_input_of(params, physical)
+    smeared = smeared_physical(physical) if physical is not None else None
+    if smeared is None:
+        raise ParameterError("track", f"{params.model.name} has no smeared continuous track")
+    res = critical_velocity(smeared.to_dimensionless(), formula=paper_formula)
+    data = res.to_dict()
+    scales = smeared.scales()
+    data["v_cr"] = f"{float(data['alpha_cr']) * scales.v_ref:.10g}"
+    data["v_cr_unit"] = "m/s"
+    for minimum in data["minima"]:
+        minimum["v"] = f"{float(minimum['alpha']) * scales.v_ref:.10g}"
+    track = SleeperTrack(data_in.beam, data_in.track, data_in.groups)
+    to_si = 1 / data_in.t_scale
+    pinned, passing = track.pinned_pinned() * to_si, track.Omega0 * to_si
+    data["on_supports"] = {
+        "model": params.model.name,
+        "smeared_track": smeared.model.name,
+        "alpha_cr": float(res.alpha_cr) * scales.v_ref / data_in.v_ref,
+        "pinned_pinned_rad_s": pinned,
+        "pinned_pinned_hz": pinned / (2 * math.pi),
+        "sleeper_passing_rad_s": passing,
+        "sleeper_passing_hz": passing / (2 * math.pi),
+    }
+    if args.json:
+        print_json(data)
+        return 0
+    lines = critical_velocity_lines(data, scales)
+    supports = data["on_supports"]
+    lines.append(f"on supports      {supports['model']}: v_cr of the smeared track ({smeared.model.name})")
+    lines.append(f"pinned-pinned    {pinned:.6g} rad/s ({supports['pinned_pinned_hz']:.6g} Hz)")
+    lines.append(f"sleeper passing  {passing:.6g} rad/s ({supports['sleeper_passing_hz']:.6g} Hz) at v")
+    print("\n".join(lines))
     return 0
 
 

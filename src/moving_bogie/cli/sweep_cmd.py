@@ -163,14 +163,13 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
 
 
 def run_sweep_cmd(args: argparse.Namespace) -> int:
-    from moving_bogie.floquet.inputs import is_sleeper_file
     from moving_bogie.sweep.api import discarded_if_empty
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
     from moving_bogie.sweep.store import open_sweep, read_store
 
     spec: SweepPlan
     summarise: Callable[[Path], dict[str, Any]]
-    if args.file is not None and is_sleeper_file(args.file):
+    if args.file is not None and params_from_args(args)[0].model.periodic:
         from .sleepers_sweep_cmd import sleeper_spec, sleeper_summary
 
         sleepers = sleeper_spec(args)

@@ -189,17 +189,18 @@ def run_timeseries(args: argparse.Namespace) -> int:
     """Compute and print (or write) the closed-form time series; a sleeper-track file's steady response
     over a bay and free vibrations (:mod:`.sleepers_series_cmd`)."""
     from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.inputs import is_sleeper_file
 
-    if args.file is not None and is_sleeper_file(args.file):
+    params, physical = params_from_args(args)  # every input checked before the heavy imports
+    if params.model.periodic:
+        from moving_bogie.floquet.inputs import sleeper_input_of
+
         from .sleepers_series_cmd import run_sleeper_timeseries
 
-        return run_sleeper_timeseries(args)
+        return run_sleeper_timeseries(args, sleeper_input_of(params, physical))
     if args.bays is not None:
-        raise ParameterError("bays", "--bays applies to a sleeper-track file only")
+        raise ParameterError("bays", "--bays applies to a sleeper track only")
     _check(args)
     tau = _times(args)
-    params, physical = params_from_args(args)  # every input checked before the heavy imports
 
     from moving_bogie.kernels.bound import bind
     from moving_bogie.response.closed_form import closed_form_response

@@ -82,14 +82,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.inputs import is_sleeper_file
 
-    if args.file is not None and is_sleeper_file(args.file):
-        from .sleepers_validate_cmd import run_sleeper_validation
+    if args.file is not None:
+        params, physical = params_from_args(args)
+        if params.model.periodic:
+            from moving_bogie.floquet.inputs import sleeper_input_of
 
-        if not (0 < args.tol < 1):
-            raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
-        return run_sleeper_validation(args)
+            from .sleepers_validate_cmd import run_sleeper_validation
+
+            if not (0 < args.tol < 1):
+                raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
+            return run_sleeper_validation(args, sleeper_input_of(params, physical))
     if args.modes < 4:
         raise ParameterError("modes", f"--modes must be at least 4 (got {args.modes})")
     if args.tmax is not None and not (args.tmax > 0 and args.tmax < float("inf")):

@@ -76,12 +76,15 @@ def mass_pencil(
     if name is None or name not in values:
         raise ParameterError("vehicle", f"vehicle {module.__name__.rsplit('_', 1)[-1]!r} has no wheel mass")
     at = [VehicleMatrices.from_module(module, values | {name: float(x)}) for x in (0, 1, 2)]
-    for attr in ("mass", "damping", "stiffness"):
-        m0, m1, m2 = (getattr(v, attr) for v in at)
-        if attr != "mass" and not (np.array_equal(m0, m1) and np.array_equal(m1, m2)):
-            raise ParameterError("vehicle", f"the wheel mass {name} enters the vehicle's {attr} matrix")
-        if not np.allclose(m2 - 2 * m1 + m0, 0, atol=1e-14):
-            raise ParameterError("vehicle", f"the vehicle's mass matrix is not affine in {name}")
+    for label, (m0, m1, m2) in (
+        ("damping", [v.damping for v in at]),
+        ("stiffness", [v.stiffness for v in at]),
+    ):
+        if not (np.array_equal(m0, m1) and np.array_equal(m1, m2)):
+            raise ParameterError("vehicle", f"the wheel mass {name} enters the vehicle's {label} matrix")
+    m0, m1, m2 = (v.mass for v in at)
+    if not np.allclose(m2 - 2 * m1 + m0, 0, atol=1e-14):
+        raise ParameterError("vehicle", f"the vehicle's mass matrix is not affine in {name}")
     if not np.array_equal(at[0].positions, at[1].positions):
         raise ParameterError("vehicle", f"the contact positions depend on the wheel mass {name}")
     return MassPencil(track, at[0], at[1], N, tol)

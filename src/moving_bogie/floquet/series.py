@@ -15,7 +15,6 @@ displacements times ``w_st = P chi / (2 k_e)``, forces times ``P / 2`` (the stat
 
 from __future__ import annotations
 
-import importlib
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -129,6 +128,31 @@ class SleeperSeries:
     def wheels(self) -> int:
         return int(self.contact_force.shape[0])
 
+    def _repr_html_(self) -> str:
+        """Jupyter: the free vibrations' verdict first, then the steady response per wheel and the roots."""
+        from moving_bogie.html_repr import html_table
+
+        rows = [
+            ("model", self.model),
+            ("v, bay", f"{self.v:.6g} m/s, {self.bay:.6g} m (Omega_0 = {self.Omega0:.6g} rad/s)"),
+            (
+                "harmonics",
+                f"-{self.harmonics}..{self.harmonics}" + ("" if self.converged else " (NOT converged)"),
+            ),
+            ("contact force mean [N]", ", ".join(f"{x:.6g}" for x in self.force_mean)),
+            ("contact force peak-to-peak [N]", ", ".join(f"{x:.6g}" for x in self.force_peak_to_peak)),
+            ("deflection peak-to-peak [m]", ", ".join(f"{x:.3e}" for x in self.deflection_peak_to_peak)),
+        ]
+        items = [(f"{f.Omega.real:.6g}", f"{f.Omega.imag:.6g}", f"{f.frequency_hz:.6g}") for f in self.free]
+        header = ("Re Omega [rad/s]", "Im Omega [rad/s] (< 0: grows)", "f [Hz]")
+        return html_table(
+            "steady response over a bay and free vibrations",
+            self.free_verdict.upper(),
+            rows,
+            reasons=list(self.free_notes),
+            items=(header, items),
+        )
+
     @property
     def period(self) -> float:
         """The bay-passing period l / v [s]."""
@@ -207,7 +231,7 @@ def sleeper_series(
     if si["v"] <= 0:
         raise ParameterError("v", "v must be positive: the steady response over a bay needs a moving vehicle")
     track = SleeperTrack(data.beam, data.track, data.groups)
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    module = data.vehicle_kernels
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     loads = static_loads(module, data.vehicle_groups)
     steady = steady_response(track, vehicle, loads, tol=tol, points=129)
@@ -266,7 +290,7 @@ def _free_vibrations(track: SleeperTrack, vehicle: VehicleMatrices, t_scale: flo
     return {
         "free": tuple(FreeVibration(r.q / t_scale) for r in result.roots),
         "free_count": result.count,
-        "free_verdict": result.verdict,
+        "free_verdict": result.verdict.state,
         "free_strip": (window.x0 / t_scale, window.x1 / t_scale),
         "free_window": (window.y0 / t_scale, window.y1 / t_scale),
         "free_notes": result.notes,

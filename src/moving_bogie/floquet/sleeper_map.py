@@ -12,7 +12,6 @@ converged in the harmonics or a sign change not resolved is said in ``notes`` an
 from __future__ import annotations
 
 import csv
-import importlib
 import io
 import os
 from collections.abc import Callable, Sequence
@@ -74,6 +73,29 @@ class SleeperMap:
                 bad[int(np.argmin(np.abs(self.velocities - check.v)))] = True
         return np.broadcast_to(bad[None, :], self.count.shape)
 
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict over the grid first, then the grid and the checks (as a stability map)."""
+        from moving_bogie.html_repr import html_table
+
+        s = self.summary()
+        unstable, uncertain = s["unstable_cells"], s["uncertain_columns"]
+        if unstable:
+            verdict = f"UNSTABLE in {unstable} of {s['cells']} cells"
+        else:
+            verdict = "STABLE in every certain column" if uncertain else "STABLE in every cell"
+        rows = [
+            ("model", s["model"]),
+            ("v [m/s]", f"{s['v_m_s'][0]:.6g}..{s['v_m_s'][1]:.6g} ({s['v_m_s'][2]})"),
+            ("M [kg]", f"{s['M_kg'][0]:.6g}..{s['M_kg'][1]:.6g} ({s['M_kg'][2]})"),
+            ("method", s["method"]),
+            ("crossings, uncertain columns", f"{s['crossings']}, {s['uncertain_columns']}"),
+        ]
+        items = [(f"{c.v:.6g}", f"{c.M:.6g}", c.map_count, c.search_count, c.verdict) for c in self.checks]
+        header = ("v [m/s]", "M [kg]", "map count", "search count", "verdict")
+        return html_table(
+            "stability map on sleepers", verdict, rows, reasons=list(self.notes), items=(header, items)
+        )
+
     def lines(self) -> list[dict]:
         """Every crossing in SI: v [m/s], M [kg], the real frequency Omega [rad/s] and the change."""
         return [
@@ -131,13 +153,13 @@ def _groups(data: SleeperInput, v: float) -> dict:
 
 
 def mass_unit(data: SleeperInput) -> float:
-    """kg per unit of eta_M (eta_M is proportional to M: the file's M over its group)."""
-    return float(data.physical["M"] / data.vehicle_groups["eta_M"])
+    """kg per unit of the wheel mass group (proportional to M: the file's M over its group)."""
+    return float(data.physical["M"] / data.vehicle_groups[data.vehicle_kernels.WHEEL_MASS])
 
 
 def column_at(data: SleeperInput, v: float, eta_max: float, N: int, samples: int) -> DColumn:
     """The D-decomposition column at velocity v [m/s] (one process's task)."""
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    module = data.vehicle_kernels
     track = SleeperTrack(data.beam, data.track, _groups(data, v))
     return d_column(mass_pencil(track, module, data.vehicle_groups, N), eta_max=eta_max, samples=samples)
 
@@ -173,11 +195,12 @@ def part_column(part: Part) -> DColumn:
 
 def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapCheck:
     """floquet_frequencies at (v, M): its count beside the map's."""
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
+    module = data.vehicle_kernels
     track = SleeperTrack(data.beam, data.track, _groups(data, v))
-    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | {"eta_M": M / mass_unit(data)})
+    wheel = {module.WHEEL_MASS: M / mass_unit(data)}
+    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | wheel)
     res = floquet_frequencies(track, vehicle)
-    return MapCheck(v, M, map_count, res.unstable_count, res.verdict, res.converged)
+    return MapCheck(v, M, map_count, res.unstable_count, res.verdict.state, res.converged)
 
 
 def _verify_cells(
@@ -258,7 +281,7 @@ def sleeper_map(
     notes = [f"v = {col.alpha * data.v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
     notes += [
         f"v = {c.v:.6g} m/s, M = {c.M:.6g} kg: the map counts {c.map_count} unstable root(s), "
-        f"floquet_frequencies {c.search_count} ({c.verdict})"
+        f"floquet_frequencies {c.search_count} ({c.verdict.upper()})"
         for c in checks
         if not c.agrees
     ]

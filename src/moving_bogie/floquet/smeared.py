@@ -14,9 +14,17 @@ import mpmath
 import numpy as np
 
 from moving_bogie.floquet.inputs import SleeperInput
+from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.stability.velocity.supercritical import SpeedRegime, speed_regime
 
-__all__ = ["continuous_steady_deflection", "smeared_track"]
+__all__ = [
+    "continuous_steady_deflection",
+    "smeared_physical",
+    "smeared_regime",
+    "smeared_track",
+    "smeared_values",
+]
 
 #: the sleeper track's own SI inputs (not passed on to the continuous track as they are)
 _SUPPORT_KEYS = frozenset({"l", "k_sup", "c_sup", "k_pad", "c_pad", "m_sl", "k_bal", "c_bal", "k_f", "c_f"})
@@ -28,19 +36,31 @@ def smeared_track(data: SleeperInput) -> PhysicalParams | None:
     ``sleepers-two-layer`` with a continuous foundation along the rail (``k_f`` or ``c_f`` > 0) has none: the
     two-layer track puts every spring under its mass layer.
     """
-    si = data.physical
+    return smeared_values(data.beam, data.track, data.vehicle, data.physical)
+
+
+def smeared_physical(physical: PhysicalParams) -> PhysicalParams | None:
+    """:func:`smeared_track` of the SI parameters of a model on periodic supports."""
+    model = physical.model
+    values = {k: float(v) for k, v in physical.values().items()}
+    return smeared_values(model.beam, model.track, model.vehicle, values)
+
+
+def smeared_values(beam: str, track: str, vehicle: str, si: dict) -> PhysicalParams | None:
+    """:func:`smeared_track` of the model's names and its SI values (floats)."""
+    si = {"k_f": 0.0, "c_f": 0.0} | {k: v for k, v in si.items() if v is not None}
     values = {k: v for k, v in si.items() if k not in _SUPPORT_KEYS}
     bay = si["l"]
-    if data.track == "sleepers":
-        track = "one-layer"
-        values |= {"k_f": si["k_sup"] / bay + si["k_f"], "c_f": si["c_sup"] / bay + si["c_f"]}
-    elif data.track == "sleepers-two-layer" and si["k_f"] == 0 and si["c_f"] == 0:
-        track = "two-layer"
-        values |= {"k_f": si["k_pad"] / bay, "c_1": si["c_pad"] / bay, "m_2": si["m_sl"] / bay}
-        values |= {"k_2": si["k_bal"] / bay, "c_2": si["c_bal"] / bay}
+    if track == "sleepers":
+        limit = "one-layer"
+        values |= {"k_f": si["k_sup"] / bay + si["k_f"], "c_f": si.get("c_sup", 0.0) / bay + si["c_f"]}
+    elif track == "sleepers-two-layer" and si["k_f"] == 0 and si["c_f"] == 0:
+        limit = "two-layer"
+        values |= {"k_f": si["k_pad"] / bay, "c_1": si.get("c_pad", 0.0) / bay, "m_2": si["m_sl"] / bay}
+        values |= {"k_2": si["k_bal"] / bay, "c_2": si.get("c_bal", 0.0) / bay}
     else:
         return None
-    return PhysicalParams(beam=data.beam, track=track, vehicle=data.vehicle, **values)
+    return PhysicalParams(beam=beam, track=limit, vehicle=vehicle, **values)
 
 
 def continuous_steady_deflection(params: PhysicalParams, dps: int = 30) -> np.ndarray:
@@ -60,3 +80,30 @@ def continuous_steady_deflection(params: PhysicalParams, dps: int = 30) -> np.nd
         n0 = chr_.numerators(zero, kv)
         steady = [complex(n0[name] / E0) for name in chr_.names[:contacts]]
     return np.array([s.real for s in steady]) * params.scales().w_st
+
+
+def smeared_regime(params: DimensionlessParams, physical: PhysicalParams | None) -> SpeedRegime:
+    """The speed of a model on periodic supports against the critical velocity of its smeared track.
+
+    The smeared track's v_cr (m/s, :func:`~moving_bogie.stability.velocity.supercritical.speed_regime` of
+    :func:`smeared_physical`) in the periodic track's own scaling: alpha_cr = v_cr / v_ref (docs/sleepers.md
+    (S2)). Without SI parameters, or for a track with no smeared limit, alpha_cr is None and the note says
+    why.
+    """
+    alpha = float(params.alpha)
+    smeared = None if physical is None else smeared_physical(physical)
+    if physical is None or smeared is None:
+        why = (
+            "no SI parameters" if physical is None else f"{params.model.name} has no smeared continuous track"
+        )
+        return SpeedRegime(
+            alpha, None, None, note=f"the smeared track's critical velocity is unknown ({why})"
+        )
+    regime = speed_regime(smeared.to_dimensionless(), smeared)
+    v_ref = physical.scales().v_ref
+    alpha_cr = None if regime.v_cr is None else regime.v_cr / v_ref
+    supercritical = None if alpha_cr is None else alpha > alpha_cr
+    note = f"v_cr of the smeared {smeared.model.track} track (the supports spread along the rail)"
+    if regime.note:
+        note += f"; {regime.note}"
+    return SpeedRegime(alpha, alpha_cr, supercritical, v=alpha * v_ref, v_cr=regime.v_cr, note=note)

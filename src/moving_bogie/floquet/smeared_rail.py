@@ -14,7 +14,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from moving_bogie.floquet.track import SleeperTrack
-from moving_bogie.generated import sleepers as generated
 
 __all__ = ["smeared_receptance"]
 
@@ -69,9 +68,9 @@ def smeared_receptance(track: SleeperTrack, q: ArrayLike, offsets: ArrayLike) ->
     xi = np.atleast_1d(np.asarray(offsets, dtype=float))
     batch = qs.reshape(-1)
     args = track.arguments("moving_groups")
-    beam = track.beam
-    n = _columns(getattr(generated, f"moving_n_coeffs_{beam}")(batch, track.alpha, **args), batch.shape)
-    qq = _columns(getattr(generated, f"moving_q_coeffs_{beam}")(batch, track.alpha, **args), batch.shape)
+    kernels = track.kernels
+    n = _columns(kernels.moving_n_coeffs(batch, track.alpha, **args), batch.shape)
+    qq = _columns(kernels.moving_q_coeffs(batch, track.alpha, **args), batch.shape)
     z_num, z_den = track.support_polynomials()
     zn, zd = (_polynomial_in_kappa(c, batch, track.alpha) for c in (z_num, z_den))
     den = _polyadd(_polymul(n, zd), _polymul(zn, qq))

@@ -24,6 +24,8 @@ import numpy as np
 from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number
+from moving_bogie.roots.count.outcomes import Note, Reason, count_mismatch
+from moving_bogie.roots.verdict import STABLE, UNDETERMINED, UNSTABLE, Verdict
 
 __all__ = ["FloquetResult", "FloquetRoot", "floquet_frequencies"]
 
@@ -57,13 +59,21 @@ class FloquetResult:
     free_waves: float = 0.0
 
     @property
-    def verdict(self) -> str:
-        """UNSTABLE when a root has Im q < 0; STABLE when every counted root was located, decays
-        (Im q > 0) and the search left no note; else UNDETERMINED."""
+    def verdict(self) -> Verdict:
+        """The one verdict type (:mod:`moving_bogie.roots.verdict`): UNSTABLE when a root has Im q < 0;
+        STABLE when every counted root was located, decays (Im q > 0) and the search left no note; else
+        UNDETERMINED with the notes (or the count not matched) as its reasons."""
         if any(r.q.imag < 0 for r in self.roots):
-            return "UNSTABLE"
+            return Verdict(UNSTABLE)
         complete = not self.notes and len(self.roots) == self.count
-        return "STABLE" if complete and all(r.q.imag > 0 for r in self.roots) else "UNDETERMINED"
+        if complete and all(r.q.imag > 0 for r in self.roots):
+            return Verdict(STABLE)
+        reasons = [Note(Reason.STRIP, text) for text in self.notes]
+        if len(self.roots) != self.count:
+            reasons.append(count_mismatch(self.count, len(self.roots)))
+        if not reasons:
+            reasons.append(Note(Reason.STRIP, "a root lies on the real axis (neither grows nor decays)"))
+        return Verdict(UNDETERMINED, tuple(reasons))
 
     @property
     def _ceiling(self) -> float:
@@ -116,7 +126,7 @@ class FloquetResult:
         The default window stops at 0.99 of the free waves' rate, so a root in the band left between would
         lower the margin by less than 1 %; a window stopped lower gives its top instead (a lower bound).
         """
-        if self.verdict != "STABLE":
+        if self.verdict.state != STABLE:
             return None
         ceiling = self._ceiling
         rates = [r.q.imag for r in self.roots] + ([ceiling] if ceiling > 0 else [])

@@ -13,11 +13,16 @@ the lattice sum in closed form (docs/sleepers.md, Eq. (S7)).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
-from moving_bogie.generated import sleepers as generated
+from moving_bogie.kernels.brent import brentq
+from moving_bogie.kernels.polynomial import horner
+from moving_bogie.model.catalogue import default_catalogue
+from moving_bogie.model.periodic import PeriodicFoundation
 
 __all__ = ["SleeperTrack", "stable_cot"]
 
@@ -48,9 +53,22 @@ class SleeperTrack:
     track: str
     groups: dict = field(hash=False)
 
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickled without the cached :attr:`kernels` (looked up again from the catalogue)."""
+        state = dict(self.__dict__)
+        state.pop("kernels", None)
+        return state
+
+    @functools.cached_property
+    def kernels(self) -> PeriodicFoundation:
+        """The generated functions of this beam on this track, from the catalogue (looked up once)."""
+        found: PeriodicFoundation = default_catalogue().periodic[(self.beam, self.track)]
+        return found
+
     def arguments(self, key: str) -> dict:
-        """The groups of ``generated.sleepers.BEAMS[beam][key]`` (``groups``, ``moving_groups``)."""
-        names: tuple[str, ...] = generated.BEAMS[self.beam][key]  # type: ignore[assignment]
+        """The groups of the beam's symbol (``key`` ``"groups"``) or moving symbol (``"moving_groups"``)."""
+        kernels = self.kernels
+        names = kernels.symbol_groups if key == "groups" else kernels.moving_groups
         return {name: self.groups[name] for name in names}
 
     @property
@@ -75,14 +93,14 @@ class SleeperTrack:
 
     def support_polynomials(self) -> tuple:
         """(numerator, denominator) of z as polynomials in w, highest power first."""
-        fn = getattr(generated, f"support_polynomials_{self.track.replace('-', '_')}")
-        return fn(**{n: self.groups[n] for n in generated.TRACKS[self.track]["support_arguments"]})
+        kernels = self.kernels
+        return kernels.support_polynomials(**{n: self.groups[n] for n in kernels.support_groups})
 
     def support(self, w: np.ndarray) -> np.ndarray:
         """z(w) = (Z_s / l) / k_e (docs/sleepers.md, Eq. (S2))."""
-        fn = getattr(generated, f"support_{self.track.replace('-', '_')}")
-        args = {n: self.groups[n] for n in generated.TRACKS[self.track]["support_arguments"]}
-        return fn(np.asarray(w, dtype=complex), **args) + 0j
+        kernels = self.kernels
+        args = {n: self.groups[n] for n in kernels.support_groups}
+        return kernels.support(np.asarray(w, dtype=complex), **args) + 0j
 
     def support_element(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(M, C, K) of one support as a finite element, times the bay lam (docs/sleepers.md, Eq. (S24)).
@@ -131,10 +149,31 @@ class SleeperTrack:
             floor = min(floor, float(self.groups["eta_bal"]) / float(self.groups["mu_sl"]))
         return floor
 
+    def pinned_pinned(self) -> float:
+        """The lowest pinned-pinned frequency w of the rail between two supports (docs/sleepers.md).
+
+        The pinned-pinned mode has its nodes on the supports: the free wave of the undamped rail (every
+        damping group 0) at the wavenumber p = pi / lam, the lowest root w > 0 of N~(pi / lam, w) = 0,
+        bracketed by the first sign change of a doubling scan and found by Brent's method.
+        """
+        specs = default_catalogue().specs
+        groups = {n: 0.0 if specs[n].damping else self.groups[n] for n in self.kernels.symbol_groups}
+        p2 = (np.pi / self.lam) ** 2
+
+        def symbol(w: float) -> float:
+            return float(np.real(horner(self.kernels.n_coeffs(w, **groups), p2)))
+
+        low, high = 0.0, 1e-3
+        while symbol(low) * symbol(high) > 0:
+            low, high = high, 2 * high
+            if high > 1e12:
+                raise ValueError("the rail's symbol has no pinned-pinned root below w = 1e12")
+        return brentq(symbol, low, high, xtol=1e-15)
+
     def _coeffs(self, w: np.ndarray) -> tuple[list, list]:
         w = np.asarray(w, dtype=complex)
-        n = getattr(generated, f"n_coeffs_{self.beam}")(w, **self.arguments("groups"))
-        q = getattr(generated, f"q_coeffs_{self.beam}")(w, **self.arguments("groups"))
+        n = self.kernels.n_coeffs(w, **self.arguments("groups"))
+        q = self.kernels.q_coeffs(w, **self.arguments("groups"))
         return [np.broadcast_to(np.asarray(c, dtype=complex), w.shape) for c in n], [
             np.broadcast_to(np.asarray(c, dtype=complex), w.shape) for c in q
         ]
@@ -143,7 +182,7 @@ class SleeperTrack:
         """G(p, w) = Q~ / N~ = k_e G0(k, omega) (docs/sleepers.md, Eq. (S1))."""
         n, q = self._coeffs(w)
         s = np.asarray(p, dtype=complex) ** 2
-        return _horner(q, s) / _horner(n, s)
+        return horner(q, s) / horner(n, s)
 
     def symbol_roots(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(roots r, residues Q~(r) / N~'(r)) of G(., w): arrays of shape w.shape + (4,).
@@ -166,7 +205,7 @@ class SleeperTrack:
         s = (t / a, c / t)  # the two roots in p^2
         root = [np.sqrt(x) for x in s]
         # Q~(r) / N~'(r), N~'(r) = 2 r (2 a r^2 + b): odd in r, so -r has the residue of r negated
-        res = [_horner(q, x) / (2 * y * (2 * a * x + b)) for x, y in zip(s, root)]
+        res = [horner(q, x) / (2 * y * (2 * a * x + b)) for x, y in zip(s, root)]
         return np.stack([*root, -root[0], -root[1]]), np.stack([*res, -res[0], -res[1]])
 
     def lattice_sum(self, p: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -179,8 +218,8 @@ class SleeperTrack:
     def moving_polynomials(self, q: complex) -> tuple[np.ndarray, np.ndarray]:
         """(N~, Q~)(kappa, q + alpha kappa) as numpy polynomial coefficients in kappa, highest first."""
         args = self.arguments("moving_groups")
-        n = getattr(generated, f"moving_n_coeffs_{self.beam}")(q, self.alpha, **args)
-        qq = getattr(generated, f"moving_q_coeffs_{self.beam}")(q, self.alpha, **args)
+        n = self.kernels.moving_n_coeffs(q, self.alpha, **args)
+        qq = self.kernels.moving_q_coeffs(q, self.alpha, **args)
         return np.array(n, dtype=complex), np.array(qq, dtype=complex)
 
     def free_receptance(self, q: complex, offsets: np.ndarray) -> np.ndarray:
@@ -206,10 +245,3 @@ class SleeperTrack:
                 sel = roots.imag < 0
                 out[i] = -1j * np.sum(res[sel] * np.exp(1j * roots[sel] * xi))
         return out
-
-
-def _horner(coeffs: list, x: np.ndarray) -> np.ndarray:
-    out = np.zeros(np.shape(x), dtype=complex) + coeffs[0]
-    for c in coeffs[1:]:
-        out = out * x + c
-    return out

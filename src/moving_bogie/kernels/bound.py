@@ -99,6 +99,12 @@ class BoundModel:
                 "params",
                 f"expected DimensionlessParams, PhysicalParams or a BoundModel (got {type(params).__name__})",
             )
+        if track is None and getattr(params.model, "periodic", False):
+            raise ParameterError(
+                "track",
+                f"{params.model.name} is a track on periodic supports: bind it with moving_bogie.bind, which "
+                "gives it its track (kernels/track_model.py)",
+            )
         self.params = params
         self._override = foundation
         if foundation is None:

@@ -62,11 +62,15 @@ class SearchRegion:
     harmonics : tuple of int
         The harmonics n of q + n Omega_0 the receptance couples at the start of the search ((0,) for a
         window); a strip search adds harmonics until its roots converge.
+    free_waves : float or None
+        The lowest Im q of the rail's free waves, where the singular lines of the receptance begin above
+        the real axis (a strip's search stops below it; None when not known or not used).
     """
 
     kind: str
     period: float | None = None
     harmonics: tuple[int, ...] = (0,)
+    free_waves: float | None = None
 
     @property
     def periodic(self) -> bool:
@@ -74,8 +78,13 @@ class SearchRegion:
         return self.kind == STRIP
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: ``kind``, ``period`` (``Omega_0``, dimensionless), ``harmonics``."""
-        return {"kind": self.kind, "Omega_0": self.period, "harmonics": list(self.harmonics)}
+        """JSON-ready: ``kind``, ``Omega_0`` (the period, dimensionless), ``harmonics``, ``free_waves_im``."""
+        return {
+            "kind": self.kind,
+            "Omega_0": self.period,
+            "harmonics": list(self.harmonics),
+            "free_waves_im": self.free_waves,
+        }
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,7 @@ from pathlib import Path
 from types import ModuleType
 
 from moving_bogie.errors import ParameterError, did_you_mean
+from moving_bogie.model.periodic import PERIODIC, periodic_foundations, periodic_specs
 
 __all__ = [
     "Catalogue",
@@ -106,10 +107,39 @@ class Catalogue:
         return self.modules[name]
 
     @functools.cached_property
+    def _sleepers(self) -> ModuleType | None:
+        """The generated rails on discrete supports (``sleepers``), None in a catalogue without them."""
+        try:
+            return self.module("sleepers")
+        except ModuleNotFoundError:
+            return None
+
+    @functools.cached_property
+    def periodic(self) -> dict:
+        """(beam, track) -> :class:`~moving_bogie.model.periodic.PeriodicFoundation` of the rails on
+        periodic supports (docs/sleepers.md)."""
+        return periodic_foundations(self._sleepers, self.parameters)
+
+    def foundation(self, beam: str, track: str) -> ModuleType:
+        """The generated foundation of ``beam`` on ``track`` (a module, or a periodic track's metadata)."""
+        if (beam, track) in self.periodic:
+            found: ModuleType = self.periodic[(beam, track)]
+            return found
+        return self.module(self.index.MODULES[(beam, track)])
+
+    def has_kernel(self, beam: str, track: str) -> bool:
+        """Whether ``beam`` on ``track`` has generated kernels (continuous or periodic)."""
+        return (beam, track) in self.index.MODULES or (beam, track) in self.periodic
+
+    @functools.cached_property
     def specs(self) -> dict[str, ParameterSpec]:
-        """Every dimensionless group of the catalogue, in declaration order."""
+        """Every dimensionless group of the catalogue, in declaration order (the periodic tracks' own
+        groups last)."""
         out = {}
-        for name, meta in self.parameters.PARAMETERS.items():
+        metas = dict(self.parameters.PARAMETERS)
+        for name, meta in periodic_specs(self._sleepers).items():
+            metas.setdefault(name, meta)
+        for name, meta in metas.items():
             default = None if meta["default"] is None else Fraction(meta["default"])
             out[name] = ParameterSpec(
                 name,
@@ -130,7 +160,9 @@ class Catalogue:
 
     @property
     def tracks(self) -> dict[str, str]:
-        return dict(self.index.TRACKS)
+        sleepers = self._sleepers
+        periodic = {} if sleepers is None else {t: m["description"] for t, m in sleepers.TRACKS.items()}
+        return dict(self.index.TRACKS) | periodic
 
     @property
     def vehicles(self) -> dict[str, str]:
@@ -138,9 +170,10 @@ class Catalogue:
 
     def models(self) -> list[Model]:
         """Every model of the catalogue: each beam on each track under each vehicle."""
+        kernels = [*self.index.MODULES, *self.periodic]
         return [
             Model(beam, track, vehicle, self)
-            for (beam, track), vehicle in itertools.product(self.index.MODULES, self.vehicles)
+            for (beam, track), vehicle in itertools.product(kernels, self.vehicles)
         ]
 
 
@@ -221,8 +254,14 @@ class Model:
 
     @property
     def foundation(self) -> ModuleType:
-        """Generated kernel of the beam on its track: N(p, q), Q(p, q) and their derivatives (Eq. (24))."""
-        return self.catalogue.module(self.catalogue.index.MODULES[(self.beam, self.track)])
+        """Generated kernel of the beam on its track: N(p, q), Q(p, q) and their derivatives (Eq. (24)); on
+        periodic supports the :class:`~moving_bogie.model.periodic.PeriodicFoundation` of the rail."""
+        return self.catalogue.foundation(self.beam, self.track)
+
+    @property
+    def periodic(self) -> bool:
+        """Whether the track's supports repeat every bay (a rail on sleepers, docs/sleepers.md)."""
+        return getattr(self.foundation, "TRACK_KIND", None) == PERIODIC
 
     @property
     def vehicle_kernels(self) -> ModuleType:
@@ -337,7 +376,7 @@ def get_model(
             raise ParameterError(key, message + (f"; {hint}" if hint else ""))
         else:
             names[key] = value
-    if (names["beam"], names["track"]) not in catalogue.index.MODULES:
+    if not catalogue.has_kernel(names["beam"], names["track"]):
         raise ParameterError(
             "track", f"no generated kernel for beam {names['beam']!r} on track {names['track']!r}"
         )

@@ -30,7 +30,6 @@ from pathlib import Path
 from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
-from moving_bogie.generated.sleepers import TRACKS as SLEEPER_TRACKS
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.catalogue import DEFAULT_MODEL, contact_spring_vehicle, default_catalogue, get_model
 from moving_bogie.model.params import DimensionlessParams
@@ -39,8 +38,6 @@ from moving_bogie.model.physical import PhysicalParams
 #: The tracks on soil (soil/track.py) and the commands that take their files (cli/soil_cmd.py).
 SOIL_TRACKS = ("soil", "ballasted-soil")
 SOIL_COMMANDS = ("dispersion", "critical-velocity", "moving-load")
-#: The commands that route a sleeper-track file to the Floquet analyses (cli/sleepers_*.py).
-SLEEPER_COMMANDS = ("frequencies", "timeseries", "validate", "stability-map", "instability-lines", "sweep")
 
 __all__ = ["dimensionless_keys", "load_parameters", "load_params_file", "parse_params_toml", "physical_keys"]
 
@@ -137,14 +134,8 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     vehicle = model.get("vehicle", DEFAULT_MODEL["vehicle"])
     if contact_spring_vehicle(vehicle, _keys(data)) != vehicle:
         model["vehicle"] = contact_spring_vehicle(vehicle, _keys(data))
-    if not {"case", "dimensionless", "physical"} & set(data) and model.get("track") not in SLEEPER_TRACKS:
+    if not {"case", "dimensionless", "physical"} & set(data):
         raise ParameterError("file", _no_parameters(model))
-    if model.get("track") in SLEEPER_TRACKS:
-        raise ParameterError(
-            "track",
-            f"track {model['track']!r} (a rail on discrete supports) is analysed by the commands "
-            f"{', '.join(SLEEPER_COMMANDS)} with --file (docs/sleepers.md), not by this one",
-        )
     if "physical" in data:
         if "case" in data:
             raise ParameterError(

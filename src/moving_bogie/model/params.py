@@ -116,8 +116,9 @@ class DimensionlessParams(ModelValues):
                 raise ParameterError(
                     name, f"{name} is not a parameter of the model {model.name} (got {value!r})"
                 )
+        own = model.specs
         for name in model.parameters:
-            spec = specs[name]
+            spec = own[name]
             value = values.get(name)
             if value is None:
                 if spec.default is None:
@@ -194,10 +195,10 @@ class DimensionlessParams(ModelValues):
                 else:
                     raise ParameterError(name, f"{name} is not a parameter of the model {model.name}")
         for name in model.parameters:
-            if values.get(name) is None and model.catalogue.specs[name].default is None:
+            if values.get(name) is None and model.specs[name].default is None:
                 alt_name = next((a for a, m in model.alternatives.items() if m["sets"] == name), None)
                 hint = f" (or {alt_name!r})" if alt_name else ""
-                meaning = model.catalogue.specs[name].meaning
+                meaning = model.specs[name].meaning
                 raise ParameterError(alt_name or name, f"missing parameter {name!r}{hint} ({meaning})")
         return cls(model=model, **values)
 

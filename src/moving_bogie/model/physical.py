@@ -25,6 +25,7 @@ from moving_bogie.model.scales import (
     Scales,
     call_scaling,
     catalogue_values,
+    group_from_si,
     rounded_fraction,
     scales_mp,
 )
@@ -184,16 +185,11 @@ class PhysicalParams(ModelValues):
         """
         from moving_bogie.model.params import DimensionlessParams, check_value
 
-        meta = self._model.catalogue.parameters
         exact: dict[str, Any] = {}  # Fractions, passed as DimensionlessParams' **values
         with mpmath.workdps(digits + 10):
-            mp_values = catalogue_values(
-                self._model, {k: fraction_to_mpf(v) for k, v in self._values.items()}
-            )
+            mp_values = {k: fraction_to_mpf(v) for k, v in self._values.items()}
             for name, spec in self._model.specs.items():
-                value = rounded_fraction(
-                    call_scaling(getattr(meta, f"dimensionless_{name}"), mp_values), digits
-                )
+                value = rounded_fraction(group_from_si(self._model, name, mp_values), digits)
                 try:
                     exact[name] = check_value(spec, value)
                 except ParameterError as exc:
@@ -232,13 +228,9 @@ class PhysicalParams(ModelValues):
         name, spec = specs[si]
         check = positive if spec.constraint == "positive" else nonnegative
         exact = check(si, value)
-        meta = self._model.catalogue.parameters
         with mpmath.workdps(digits + 10):
             values = {k: fraction_to_mpf(v) for k, v in (self._values | {si: exact}).items()}
-            group = rounded_fraction(
-                call_scaling(getattr(meta, f"dimensionless_{name}"), catalogue_values(self._model, values)),
-                digits,
-            )
+            group = rounded_fraction(group_from_si(self._model, name, values), digits)
         try:
             return name, check_value(spec, group)
         except ParameterError as exc:
@@ -247,6 +239,8 @@ class PhysicalParams(ModelValues):
     def si_factor(self, group: str) -> float:
         """The SI value of ``group`` = 1 at this track's scales (every group is proportional to its SI
         counterpart, Eqs. (15)-(17), (59)): SI value = group x factor, by the generated scaling."""
+        if self._model.periodic:
+            return self._periodic_si_factor(group)
         meta = self._model.catalogue.parameters
         with mpmath.workdps(30):
             values = catalogue_values(
@@ -257,6 +251,14 @@ class PhysicalParams(ModelValues):
             if abs(two - 2 * one) > abs(one) * mpmath.mpf(10) ** -25:
                 raise ParameterError(group, f"the SI counterpart of {group} is not proportional to it")
             return float(one)
+
+    def _periodic_si_factor(self, group: str) -> float:
+        """:meth:`si_factor` on periodic supports: the SI value over the group at 1 of the SI unit (each
+        group is proportional to its SI counterpart; docs/sleepers.md (S2))."""
+        spec = self._model.specs[group]
+        with mpmath.workdps(30):
+            values = {k: fraction_to_mpf(v) for k, v in self._values.items()} | {spec.si: mpmath.mpf(1)}
+            return float(1 / group_from_si(self._model, group, values))
 
     @classmethod
     def from_dimensionless(
@@ -283,6 +285,10 @@ class PhysicalParams(ModelValues):
             Naming a missing or unknown scale parameter.
         """
         model = params.model
+        if model.periodic:
+            raise ParameterError(
+                "track", f"the SI parameters of {model.name} are given as such (a [physical] table)"
+            )
         for name in scales:
             if name not in model.scale_parameters:
                 known = ", ".join(model.scale_parameters)

@@ -18,7 +18,14 @@ from moving_bogie.model.catalogue import Model
 from moving_bogie.model.exact import fraction_to_mpf
 from moving_bogie.typing import Mpf
 
-__all__ = ["Scales", "call_scaling", "catalogue_values", "rounded_fraction", "scales_mp"]
+__all__ = [
+    "Scales",
+    "call_scaling",
+    "catalogue_values",
+    "group_from_si",
+    "rounded_fraction",
+    "scales_mp",
+]
 
 
 def rounded_fraction(x: Mpf, digits: int) -> Fraction:
@@ -43,9 +50,24 @@ def catalogue_values(model: Model, values: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def scales_mp(model: Model, scale_values: Mapping[str, Fraction]) -> tuple[Mpf, Mpf, Mpf, Mpf]:
-    """(chi, v_ref, w_st, t_scale) of Eqs. (15)-(16) as mpf at the current precision."""
+    """(chi, v_ref, w_st, t_scale) of Eqs. (15)-(16) as mpf at the current precision (on periodic
+    supports those of docs/sleepers.md (S2), the track's own)."""
+    if model.periodic:
+        mp_values = {k: fraction_to_mpf(v) for k, v in scale_values.items()}
+        chi, v_ref, w_st, t_scale = model.foundation.scales(mp_values, mpmath.sqrt)
+        return chi, v_ref, w_st, t_scale
     values = catalogue_values(model, {k: fraction_to_mpf(v) for k, v in scale_values.items()})
     return call_scaling(model.catalogue.parameters.scales, values)
+
+
+def group_from_si(model: Model, name: str, values: Mapping[str, Any]) -> Mpf:
+    """The group ``name`` of ``model`` from SI ``values`` (mpf, by the model's SI names), exactly: the
+    generated scaling of Eqs. (15)-(17), (59), or a periodic track's own (docs/sleepers.md (S2))."""
+    if model.periodic:
+        value: Mpf = model.foundation.dimensionless(name, values, mpmath.sqrt)
+        return value
+    scaling = getattr(model.catalogue.parameters, f"dimensionless_{name}")
+    return call_scaling(scaling, catalogue_values(model, values))
 
 
 @dataclass(frozen=True)

@@ -161,8 +161,10 @@ def _validation_figure(ctx: BuildContext, fig_id: str, case: int) -> Built:
     from moving_bogie.api import validate
     from moving_bogie.model.cases import table1_case
     from moving_bogie.validation.compare import plot_validation
+    from moving_bogie.validation.verdict import ValidationResult
 
     result = validate(table1_case(case), progress=ctx.progress)
+    assert isinstance(result, ValidationResult)  # Table 1's cases are on the continuous track
     fig = plot_validation(result, title=f"Case {case}: finite beam (full) vs closed form (dashed)")
     diffs = "; ".join(
         f"{name}: {100 * q.relative:.2g} % of its largest value (tolerance {q.tolerance:.0%})"

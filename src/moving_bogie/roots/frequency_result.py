@@ -14,12 +14,13 @@ from typing import TYPE_CHECKING
 import mpmath
 
 from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.track_model import SearchRegion
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import FarField
 from moving_bogie.roots.count.outcomes import Note, Reason, Unlocated, notes_with
 from moving_bogie.roots.count.strip import StripCount
 from moving_bogie.roots.refine.polish import fixed_text
-from moving_bogie.roots.verdict import Verdict, judge
+from moving_bogie.roots.verdict import STABLE, Verdict, judge
 from moving_bogie.typing import Mpf
 
 if TYPE_CHECKING:
@@ -98,7 +99,14 @@ class FrequencyResult:
     strip: StripCount | None = None  # the sliver below the real axis, counted (roots/count/strip.py)
     unlocated: tuple[Unlocated, ...] = ()  # roots counted in a cell but not located
     decaying_outside: int = 0  # roots with Im q >= 0 in the window twice as large, outside this one
+    region: SearchRegion | None = None  # one strip of width Omega_0 and its harmonics (None: the window)
+    strip_margin: tuple[float, str] | None = None  # a stable strip's margin and what sets it
     scales: Scales | None = None  # the SI scales of a [physical] input: shown in SI (Eqs. (15)-(16))
+
+    @property
+    def periodic(self) -> bool:
+        """Whether the roots are those of one strip of a periodic track (no pairs q, -conj(q))."""
+        return self.region is not None and self.region.periodic
 
     @property
     def params(self) -> DimensionlessParams:
@@ -157,13 +165,24 @@ class FrequencyResult:
         params = self.params.to_dict()
         rows = [
             ("model", f"{params.get('beam')} beam, {params.get('track')} track, {self.model}"),
-            ("roots counted / found", f"{self.count} / {self.found} (Re >= 0, each pair once)"),
+            ("roots counted / found", f"{self.count} / {self.found} ({self._counted_where})"),
         ]
         rows += frequency_rows(self)
         reasons = [note.text for note in self.verdict.reasons] + list(self.warnings)
         return html_table(
             "induced frequencies", self.verdict.state.upper(), rows, reasons=reasons, items=root_table(self)
         )
+
+    @property
+    def _counted_where(self) -> str:
+        if self.region is not None and self.region.periodic:
+            return f"one strip of width Omega_0 = {self.region.period:.6g}, harmonics {self._harmonics}"
+        return "Re >= 0, each pair once"
+
+    @property
+    def _harmonics(self) -> str:
+        h = self.region.harmonics if self.region is not None else (0,)
+        return f"{h[0]}..{h[-1]}"
 
     def to_xarray(self) -> xarray.Dataset:
         """The roots as an xarray Dataset (one row per pair, double precision), with CF ``units``: omega
@@ -179,25 +198,56 @@ class FrequencyResult:
         return to_dataframe(self.to_xarray())
 
     def to_dict(self) -> dict:
+        return (
+            {
+                "params": self.params.to_dict(),
+                "model": self.model,
+                "dps": self.dps,
+                "window": {"re": [self.window.x0, self.window.x1], "im": [self.window.y0, self.window.y1]},
+                "roots": [r.to_dict() for r in self.roots],
+                "count": self.count,
+                "found": self.found,
+                "count_ok": self.count_ok,
+                "verdict": self.verdict.to_dict(),
+                "stable": self.stable if self.verdict.determined else None,
+                "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
+                "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
+                "evaluations": self.evaluations,
+                "unsearched": [
+                    {"re": [u.x0, u.x1], "im": [u.y0, u.y1], "height": u.height} for u in self.unsearched
+                ],
+                "far_field": None if self.far_field is None else self.far_field.to_dict(),
+                "warnings": list(self.warnings),
+                "decaying_outside": self.decaying_outside,
+                "strip": None if self.strip is None else self.strip.to_dict(),
+            }
+            | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
+            | self._region_dict()
+        )
+
+    @property
+    def margin(self) -> Mpf | None:
+        """On a periodic track, a STABLE result's decay rate Im q of its least-damped vibration as the strip
+        search states it (:attr:`~moving_bogie.floquet.strip.FloquetResult.margin`: the least-damped root,
+        or the rail's free waves, or the window's top as a lower bound); None otherwise (on a window the
+        roots themselves say it)."""
+        if not self.periodic or self.strip_margin is None or self.verdict.state != STABLE:
+            return None
+        return mpmath.mpf(self.strip_margin[0])
+
+    @property
+    def margin_source(self) -> str | None:
+        """What sets :attr:`margin`: "a root", "the rail's free waves" or "the window's top"."""
+        return None if self.margin is None or self.strip_margin is None else self.strip_margin[1]
+
+    def _region_dict(self) -> dict:
+        """``region`` (the strip's ``Omega_0``, ``harmonics``, free waves) and ``margin`` on a periodic
+        track, nothing on a window."""
+        if self.region is None or not self.region.periodic:
+            return {}
+        margin = self.margin
         return {
-            "params": self.params.to_dict(),
-            "model": self.model,
-            "dps": self.dps,
-            "window": {"re": [self.window.x0, self.window.x1], "im": [self.window.y0, self.window.y1]},
-            "roots": [r.to_dict() for r in self.roots],
-            "count": self.count,
-            "found": self.found,
-            "count_ok": self.count_ok,
-            "verdict": self.verdict.to_dict(),
-            "stable": self.stable if self.verdict.determined else None,
-            "degree_of_instability": mpmath.nstr(self.degree_of_instability, 6),
-            "growth_time": None if self.growth_time is None else mpmath.nstr(self.growth_time, 6),
-            "evaluations": self.evaluations,
-            "unsearched": [
-                {"re": [u.x0, u.x1], "im": [u.y0, u.y1], "height": u.height} for u in self.unsearched
-            ],
-            "far_field": None if self.far_field is None else self.far_field.to_dict(),
-            "warnings": list(self.warnings),
-            "decaying_outside": self.decaying_outside,
-            "strip": None if self.strip is None else self.strip.to_dict(),
-        } | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
+            "region": self.region.to_dict(),
+            "margin": None if margin is None else mpmath.nstr(margin, 6),
+            "margin_source": self.margin_source,
+        }

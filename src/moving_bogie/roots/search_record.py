@@ -12,9 +12,10 @@ from collections.abc import Sequence
 from typing import Any, Protocol
 
 from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.track_model import SearchRegion
 from moving_bogie.roots.count.contour import Rectangle
 from moving_bogie.roots.count.far_field import FarField
-from moving_bogie.roots.count.outcomes import Unlocated
+from moving_bogie.roots.count.outcomes import Note, Unlocated
 from moving_bogie.roots.count.strip import StripCount
 from moving_bogie.roots.search.cut_cells import Sliver
 from moving_bogie.typing import Mpc
@@ -58,6 +59,12 @@ class SearchRecord(Protocol):
 
     @property
     def far_field(self) -> FarField | None: ...
+
+    @property
+    def region(self) -> SearchRegion | None: ...
+
+    @property
+    def notes(self) -> tuple[Note, ...]: ...
 
     @property
     def unsearched(self) -> Sequence[Sliver]: ...

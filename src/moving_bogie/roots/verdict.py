@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from moving_bogie.roots.count.outcomes import Note, Reason, count_mismatch
+from moving_bogie.roots.count.outcomes import Note, Reason, count_mismatch, notes_with
 from moving_bogie.roots.search_record import SearchRecord
 
 STABLE, UNSTABLE, UNDETERMINED = "stable", "unstable", "undetermined"
@@ -42,7 +42,16 @@ class Verdict:
 
 
 def incompleteness(result: SearchRecord) -> list[Note]:
-    """Why the search of ``result`` (a FrequencyResult) may have missed a root with Im q < 0."""
+    """Why the search of ``result`` (a FrequencyResult) may have missed a root with Im q < 0.
+
+    On a periodic track (one strip of width Omega_0, docs/sleepers.md) the strip's own notes (its depth,
+    the harmonics, a band near the real axis) stand where the far field and the window do.
+    """
+    if result.region is not None and result.region.periodic:
+        reasons = notes_with(result.notes, Reason.STRIP)
+        if result.found != result.count:
+            reasons.append(count_mismatch(result.count, result.found))
+        return reasons
     reasons = []
     far = result.far_field
     if far is None:

@@ -12,7 +12,6 @@ seconds).
 
 from __future__ import annotations
 
-import importlib
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -25,6 +24,7 @@ import numpy as np
 from moving_bogie.errors import ParameterError
 from moving_bogie.floquet.inputs import SleeperInput, sleeper_input, sleeper_units
 from moving_bogie.model.exact import fraction_to_text
+from moving_bogie.roots.verdict import STABLE, UNSTABLE
 from moving_bogie.sweep.design import Axis, Block, grid_blocks, parse_vary, sobol_axes
 from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
 
@@ -169,15 +169,15 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
     from moving_bogie.floquet.strip import floquet_frequencies
     from moving_bogie.floquet.track import SleeperTrack
 
-    module = importlib.import_module(f"moving_bogie.generated.vehicle_{inp.vehicle}")
+    module = inp.vehicle_kernels
     result = floquet_frequencies(
         SleeperTrack(inp.beam, inp.track, inp.groups), VehicleMatrices.from_module(module, inp.vehicle_groups)
     )
     lowest = min((r.q for r in result.roots), key=lambda q: q.imag, default=complex(np.nan, np.nan))
     return {
         "n_roots": result.count,
-        "stable": result.verdict == "STABLE",
-        "unstable": result.verdict == "UNSTABLE",
+        "stable": result.verdict.state == STABLE,
+        "unstable": result.verdict.state == UNSTABLE,
         "certain": result.converged and result.count == len(result.roots),
         "Omega_im": lowest.imag / inp.t_scale,
         "margin": np.nan if result.margin is None else result.margin / inp.t_scale,

@@ -140,6 +140,36 @@ class SleeperCheck:
     def agrees(self) -> bool:
         return bool(self.comparisons) and all(c.within for c in self.comparisons)
 
+    def _repr_html_(self) -> str:
+        """Jupyter: whether the finite rail agrees first, then every quantity compared (as the continuous
+        tracks' check shows itself)."""
+        from moving_bogie.html_repr import html_table
+
+        rows = [
+            ("Floquet verdict", self.floquet_verdict.upper()),
+            ("finite rail", f"{self.rail.bays} bays, {self.rail.elements} elements per bay"),
+            ("wall times [s]", f"Floquet {self.floquet_s:.3g}, finite rail {self.finite_s:.3g}"),
+        ]
+        items = [
+            (
+                c.quantity,
+                f"{c.floquet:.6g}",
+                f"{c.finite:.6g}",
+                f"{c.relative:.3g}",
+                "yes" if c.within else "no",
+            )
+            for c in self.comparisons
+        ]
+        header = ("quantity", "Floquet", "finite rail", "relative difference", "within")
+        verdict = "AGREES" if self.agrees else "DISAGREES"
+        return html_table(
+            "finite rail on sleepers against the Floquet theory",
+            verdict,
+            rows,
+            reasons=list(self.notes),
+            items=(header, items),
+        )
+
     def to_dict(self) -> dict[str, Any]:
         return {
             "agrees": self.agrees,
@@ -347,7 +377,7 @@ def check_sleepers(
     finite_s = time.perf_counter() - start
     return SleeperCheck(
         tuple(comparisons),
-        side.result.verdict,
+        side.result.verdict.state,
         root,
         track.Omega0,
         free,

@@ -37,6 +37,9 @@ class Reason(Enum):
     POLISH = "polish"
     #: A root with Re q < 0 found without its mirror -conj(q).
     PAIR = "pair"
+    #: The search of one strip of a periodic track fell short (its depth, the harmonics, a band near the
+    #: real axis; docs/sleepers.md).
+    STRIP = "strip"
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,45 @@
+"""The finite-rail check of a model on periodic supports from its parameters, shared by the public API and
+the command line (docs/sleepers.md, "The finite rail on sleepers").
+
+:func:`check_on_supports` assembles the sleeper track, the vehicle's matrices and its static loads from the
+parameters (a :class:`~moving_bogie.floquet.inputs.SleeperInput`, :func:`sleeper_input_of` of the one
+catalogue's parameters) and runs :func:`~moving_bogie.validation.sleepers_check.check_sleepers`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from moving_bogie.errors import ParameterError
+from moving_bogie.floquet.hill import VehicleMatrices
+from moving_bogie.floquet.inputs import SleeperInput
+from moving_bogie.floquet.steady import static_loads
+from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.validation.sleepers_check import SleeperCheck, check_sleepers
+
+__all__ = ["check_on_supports"]
+
+
+def check_on_supports(
+    data: SleeperInput, *, tol: float = 0.01, progress: Callable[[float], None] | None = None
+) -> SleeperCheck:
+    """The finite rail against the Floquet theory for the vehicle and track of ``data``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``v`` when the vehicle does not move, ``beam`` for a rail other than Euler-Bernoulli (the
+        finite rail's elements), before any computation.
+    """
+    if data.groups["alpha"] <= 0:
+        raise ParameterError("v", "v must be positive on a sleeper track (the vehicle must cross the bays)")
+    track = SleeperTrack(data.beam, data.track, data.groups)
+    try:
+        track.rail_foundation()  # the finite rail's elements: Euler-Bernoulli
+    except ValueError:
+        why = f"the finite rail on sleepers has Euler-Bernoulli elements (got {data.beam!r})"
+        raise ParameterError("beam", why) from None
+    module = data.vehicle_kernels
+    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
+    loads = static_loads(module, data.vehicle_groups)
+    return check_sleepers(track, vehicle, loads, tol=tol, time_scale=data.t_scale, progress=progress)
