@@ -69,7 +69,7 @@ def sleeper_input_of(params: DimensionlessParams, physical: PhysicalParams | Non
     if physical is None:
         raise ParameterError("file", f"{model.name}: a sleeper track takes a [physical] table in SI units")
     groups = {name: float(getattr(params, name)) for name in model.foundation.MODEL_PARAMETERS}
-    vehicle_groups = {name: float(getattr(params, name)) for name in model.vehicle_kernels.PARAMETERS}
+    vehicle_groups = {name: float(getattr(params, name)) for name in model.vehicle_kernels.MODEL_PARAMETERS}
     si = {name: float(value) for name, value in physical.values().items()}
     scales = physical.scales()
     k_e = float(model.foundation.smeared_stiffness(si, math.sqrt))
