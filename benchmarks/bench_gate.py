@@ -1,6 +1,6 @@
 """The benchmark gate: the commands users wait for, timed against a fixed calibration, must not slow down 2x.
 
-    python benchmarks/bench_gate.py            # the gate (exit 1 when it fails); CI runs it after the tests
+    python benchmarks/bench_gate.py            # the gate (exit 1 when it fails); CI runs it before the tests
     python benchmarks/bench_gate.py --record   # record the ratios of this code as the gate's baseline
 
 Each command of :data:`COMMANDS` (Table 2, a sweep of 3,200 points, the induced frequencies of a rail on

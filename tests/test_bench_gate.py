@@ -62,19 +62,20 @@ def test_the_gate_fails_on_a_command_twice_as_slow_and_prints_its_table(gate, mo
 
 
 def _ci_tail(tests: str, gate: str) -> int:
-    """The exit status of ``.ci/run`` from its test command on, with ``tests`` and ``gate`` (shell
-    commands) in place of pytest and the benchmark gate."""
+    """The exit status of ``.ci/run`` from its benchmark gate on, with ``tests`` and ``gate`` (shell
+    commands) in place of pytest and the benchmark gate; the gate runs first, so that pytest's summary
+    closes the log."""
     text = (ROOT / ".ci" / "run").read_text()
-    tail = text[text.index("status=0") :]
+    tail = text[text.index("gate=0") :]
     assert "pytest -q -n 2 ||" in tail and "python benchmarks/bench_gate.py ||" in tail
-    assert tail.index("pytest -q -n 2 ||") < tail.index("python benchmarks/bench_gate.py ||")
+    assert tail.index("python benchmarks/bench_gate.py ||") < tail.index("pytest -q -n 2 ||")
     tail = tail.replace("pytest -q -n 2 ||", f"{tests} ||").replace(
         "python benchmarks/bench_gate.py ||", f"{gate} ||"
     )
     return subprocess.run(["bash", "-c", "set -euo pipefail\n" + tail], capture_output=True).returncode
 
 
-def test_ci_runs_the_gate_after_the_tests_and_fails_with_it():
+def test_ci_runs_the_gate_before_the_tests_and_fails_with_it():
     assert _ci_tail("true", "true") == 0
     assert _ci_tail("true", "false") != 0  # the gate fails CI
     assert _ci_tail("(exit 3)", "true") == 3  # a test failure is still what CI reports

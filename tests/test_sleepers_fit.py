@@ -143,6 +143,14 @@ def test_the_check_fits_the_window_of_its_settings(monkeypatch):
     assert all(c.relative < 1e-8 for c in result.comparisons), result.comparisons
     assert result.rate_spread < 1e-10
     assert result.agrees
+    # the figure in SI: deflections times the metres per unit given (w_st), the labels in m
+    from moving_bogie.validation.sleepers_plots import plot_sleeper_check
+
+    free_panel, envelope = plot_sleeper_check(result, newtons=3.2e4, metres=2e-3).axes
+    assert (
+        free_panel.get_ylabel() == "deflection [m]" and envelope.get_ylabel() == "RMS of the deflection [m]"
+    )
+    np.testing.assert_allclose(free_panel.lines[0].get_ydata(), 2e-3 * x)
 
 
 class _UnstableResult:

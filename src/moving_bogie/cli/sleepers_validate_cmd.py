@@ -47,7 +47,9 @@ def run_sleeper_validation(args: argparse.Namespace, data: SleeperInput) -> int:
         from moving_bogie.validation.sleepers_plots import plot_sleeper_check
 
         title = f"{data.beam}/{data.track}/{data.vehicle}, v = {data.physical['v']:g} m/s"
-        save_figure(plot_sleeper_check(result, title=title), args.plot, dpi=150)
+        newtons, metres = data.si_units()
+        figure = plot_sleeper_check(result, title=title, newtons=newtons, metres=metres)
+        save_figure(figure, args.plot, dpi=150)
     out = sleeper_check_dict(result, data)
     if args.plot:
         out["plot"] = str(args.plot)

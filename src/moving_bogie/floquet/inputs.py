@@ -19,6 +19,7 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.generated import parameters as paper_groups
 from moving_bogie.model.catalogue import DEFAULT_MODEL, contact_spring_vehicle, get_model
 from moving_bogie.model.physical import PhysicalParams
 
@@ -48,6 +49,21 @@ class SleeperInput:
     v_ref: float
     t_scale: float
     k_e: float
+
+    def si_units(self) -> tuple[float, float]:
+        """(newtons per unit force, metres per unit deflection): ``P / 2`` and ``w_st = P chi / (2 k_e)``
+        (docs/sleepers.md (S2); the generated scaling of Eq. (16) with ``k_e`` for ``k_f``).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``P`` when the file gives no static wheel load.
+        """
+        si = self.physical
+        if "P" not in si:
+            raise ParameterError("P", "P (the static wheel load, N) is required for the steady response")
+        w_st = paper_groups.scales(math.sqrt, si["EI"], si["m"], self.k_e, si["P"])[2]
+        return si["P"] / 2, float(w_st)
 
     @property
     def vehicle_kernels(self) -> ModuleType:

@@ -27,7 +27,6 @@ from moving_bogie.floquet.inputs import SleeperInput
 from moving_bogie.floquet.smeared import continuous_steady_deflection, smeared_track
 from moving_bogie.floquet.steady import static_loads, steady_response
 from moving_bogie.floquet.track import SleeperTrack
-from moving_bogie.generated import parameters as paper_groups
 
 __all__ = ["FreeVibration", "SleeperSeries", "sleeper_series"]
 
@@ -226,8 +225,7 @@ def sleeper_series(
         ``"not searched"``.
     """
     si = data.physical
-    if "P" not in si:
-        raise ParameterError("P", "P (the static wheel load, N) is required for the steady response")
+    f_unit, w_st = data.si_units()
     if si["v"] <= 0:
         raise ParameterError("v", "v must be positive: the steady response over a bay needs a moving vehicle")
     track = SleeperTrack(data.beam, data.track, data.groups)
@@ -235,8 +233,6 @@ def sleeper_series(
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     loads = static_loads(module, data.vehicle_groups)
     steady = steady_response(track, vehicle, loads, tol=tol, points=129)
-    w_st = paper_groups.scales(math.sqrt, si["EI"], si["m"], data.k_e, si["P"])[2]
-    f_unit = si["P"] / 2
     h, F, U = steady.harmonics, steady.force_harmonics, steady.deflection_harmonics
     tau = np.linspace(0.0, bays * 2 * np.pi / track.Omega0, points)
     one_bay = np.linspace(0.0, 2 * np.pi / track.Omega0, PEAK_POINTS)
