@@ -11,7 +11,8 @@ In one run, wall time of:
 - the same, only the fundamental mode;
 - ``critical-velocity`` of the same file (its guided waves on 32 frequencies and the refinements; target
   under 2 s), beside the uncoupled intersection estimate alone;
-- the moving-load deflection under the load at one speed (70 m/s) and at rest.
+- the moving-load deflection under the load at one speed (70 m/s) and at rest;
+- the machine's load average over the run (the timings scale with it on a shared machine).
 
 Prints a table; nothing is asserted (tests/test_soil_*.py check the values).
 """
@@ -19,6 +20,7 @@ Prints a table; nothing is asserted (tests/test_soil_*.py check the values).
 from __future__ import annotations
 
 import argparse
+import os
 import time
 from pathlib import Path
 
@@ -88,6 +90,7 @@ def main() -> int:
         ("moving-load deflection under the load, one speed", f"{t_ml:.1f} s (DAF {daf:.3f})",
          f"at rest: {t_st:.1f} s", "100 speeds < 10 s")
     )  # fmt: skip
+    rows.append(("load average of the machine (1 min, at the end)", f"{os.getloadavg()[0]:.1f}", "-", "-"))
     header = ("work", "measured", "alternative", "target")
     widths = [max(len(str(r[k])) for r in [*rows, header]) for k in range(4)]
     for r in [header, *rows]:

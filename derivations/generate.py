@@ -10,7 +10,8 @@ vehicle_<name>.py     the declared vehicle (derivations/vehicles.py): contacts, 
                       residue numerators and shape weights
 parameters.py         every dimensionless group: meaning, constraint, default, equation, SI name and unit,
                       the exact SI <-> dimensionless scaling, the scales of Eqs. (15)-(16), Eq. (63)
-__init__.py           the catalogue: beams, tracks, vehicles and which module holds each combination
+__init__.py           the catalogue: beams, tracks, vehicles and which module holds each combination; each
+                      rigid-contact vehicle's variant on Hertz contact springs and the groups that select it
 and docs/proofs.md: derived == printed, equation by equation (paper.py).
 """
 
@@ -31,6 +32,7 @@ from .sleepers import TRACKS as SLEEPER_TRACKS
 from .sleepers import sleepers_module
 from .soil import soil_module
 from .vehicle_modules import vehicle_module
+from .vehicles import CONTACT_SPRING_GROUPS, CONTACT_SPRINGS
 from .vehicles import VEHICLES as DECLARED
 
 HERE = Path(__file__).resolve().parent
@@ -294,6 +296,8 @@ def outputs(root: Path, only=None) -> dict:
         ("TRACKS", {name: track.title for name, track in TRACKS.items()}),
         ("VEHICLES", {name: DECLARED[name]().description for name in DECLARED}),
         ("DECLARED_VEHICLES", {name: DECLARED[name]().description for name in DECLARED}),
+        ("CONTACT_SPRINGS", CONTACT_SPRINGS),
+        ("CONTACT_SPRING_GROUPS", CONTACT_SPRING_GROUPS),
         ("MODULES", {(m.beam, m.track): f"foundation_{name}" for name, m in models.items()}),
         ("FOUNDATIONS", tuple(models)),
     ]

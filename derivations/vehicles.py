@@ -274,28 +274,66 @@ def car() -> Vehicle:
     return Vehicle(car.__doc__.splitlines()[0], wheels, bodies, links)
 
 
+def _contact_name(wheel: str) -> str:
+    """The contact point under a wheel: ``w`` -> ``c``, ``w_rear`` -> ``c_rear``, ``w_1`` -> ``c_1``."""
+    return "c" + wheel[1:] if wheel.startswith("w") else f"c_{wheel}"
+
+
+def on_contact_springs(vehicle: Vehicle) -> Vehicle:
+    """The vehicle with each wheel on its own linearised Hertz contact spring-damper (k_H, c_H).
+
+    Every wheel becomes a massless contact point (a wheel of mass 0, same position and load: its deflection
+    is the rail's) and, above it, a body of the wheel's mass and name, bouncing only, linked to it by
+    (k_H, c_H). The vehicle's own spring-dampers keep acting on that body. The load P acts at the contact:
+    the static compression P / k_H of each contact spring, a constant offset of its wheel, is left out of
+    the wheel's displacement; it changes no frequency and no contact force. As k_H -> infinity each contact
+    spring locks and the vehicle is the rigid-contact one (tests/test_hertz.py).
+    """
+    contacts = tuple(Wheel(_contact_name(w.name), sp.Integer(0), w.position, w.load) for w in vehicle.wheels)
+    wheels = tuple(Body(w.name, w.mass, w.position) for w in vehicle.wheels)
+    springs = tuple(Link(c.name, w.name, w.position, s.k_H, s.c_H) for c, w in zip(contacts, vehicle.wheels))
+    description = f"{vehicle.description.rstrip('.')}; each wheel on a Hertz contact spring (k_H, c_H)."
+    return Vehicle(description, contacts, wheels + vehicle.bodies, springs + vehicle.links)
+
+
 def hertz_mass() -> Vehicle:
     """One wheel on a Hertz spring: the wheel mass M on a linearised contact spring (k_H, c_H), load P.
 
-    The contact point is a wheel of mass 0 (its deflection is the rail's), the wheel mass a body above it.
-    The load P acts at the contact: the spring's static compression P / k_H, a constant offset of the
-    wheel, is left out of its displacement; it changes no frequency and no contact force. As k_H -> infinity
-    this is the rigid-contact ``mass`` (tests/test_hertz.py).
+    The rigid-contact ``mass`` on its contact spring (:func:`on_contact_springs`): the contact point is a
+    wheel of mass 0 (its deflection is the rail's), the wheel mass a body above it.
     """
-    return Vehicle(
-        hertz_mass.__doc__.splitlines()[0],
-        (Wheel("c", sp.Integer(0), x_rear),),
-        (Body("w", s.M, x_rear),),
-        (Link("c", "w", x_rear, s.k_H, s.c_H),),
-    )
+    declared = on_contact_springs(moving_mass())
+    return Vehicle(hertz_mass.__doc__.splitlines()[0], declared.wheels, declared.bodies, declared.links)
 
 
-#: name -> declaration. A new vehicle is one more entry (docs/adding_a_model.md).
-VEHICLES = {
+#: The rigid-contact vehicles, name -> declaration.
+RIGID = {
     "mass": moving_mass,
     "oscillator": oscillator,
     "masses": two_masses,
     "bogie": bogie,
     "car": car,
-    "hertz_mass": hertz_mass,
 }
+
+#: Each rigid-contact vehicle -> the name of its variant on Hertz contact springs (``hertz_mass`` for
+#: ``mass``); a parameter file that sets the contact spring (k_H, c_H) selects the variant.
+CONTACT_SPRINGS = {name: f"hertz_{name}" for name in RIGID}
+
+
+def _variant(name: str):
+    def build() -> Vehicle:
+        return on_contact_springs(RIGID[name]())
+
+    return build
+
+
+#: name -> declaration. A new vehicle is one more entry of ``RIGID`` (docs/adding_a_model.md); its variant
+#: on contact springs follows.
+VEHICLES = {
+    **RIGID,
+    "hertz_mass": hertz_mass,
+    **{CONTACT_SPRINGS[name]: _variant(name) for name in RIGID if name != "mass"},
+}
+
+#: The groups of the contact spring: a parameter file that sets one selects the contact-spring variant.
+CONTACT_SPRING_GROUPS = (str(s.kappa_H), str(s.eta_H))

@@ -205,7 +205,16 @@ def test_models_lists_beams_tracks_and_vehicles_and_a_name_gives_its_parameters(
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) <= 10, lines
     # one catalogue: the rails on discrete supports (docs/sleepers.md) are tracks like the others
-    rows = {line.split()[0]: line.split(None, 1)[1].split(", ") for line in lines if line[:2] == "  "}
+    rows: dict[str, list[str]] = {}
+    for line in lines:  # a long row continues on more deeply indented lines
+        if line[:2] == "  " and line[2] != " ":
+            key, text = line.split(None, 1)
+            rows[key] = []
+        elif line[:2] == "  ":
+            text = line.strip()
+        else:
+            continue
+        rows[key] += [x for x in text.strip().rstrip(",").split(", ")]
     listed = {f"{b}/{t}/{v}" for b in rows["beams"] for t in rows["tracks"] for v in rows["vehicles"]}
     assert listed == {model.name for model in models} and len(listed) == len(models)
     assert f"{len(models)} models" in lines[0] and "every beam on every track under every vehicle" in lines[0]

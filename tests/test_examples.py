@@ -13,7 +13,7 @@ import pytest
 
 from moving_bogie.cli import main
 from moving_bogie.floquet.inputs import load_sleeper_file
-from moving_bogie.generated import MODULES, VEHICLES
+from moving_bogie.generated import CONTACT_SPRINGS, MODULES, VEHICLES
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.model.cases import table1_case
@@ -70,7 +70,10 @@ def test_an_example_for_every_model_and_table():
     wanted = {w for w in wanted if w[2] == "one-layer"}
     assert wanted <= have, f"missing examples: {sorted(wanted - have)}"
     assert {track for _, _, track in have} >= {track for _, track in MODULES}
-    assert {model.vehicle for _, model in kinds} >= set(VEHICLES)
+    # each rigid-contact vehicle once, and the Hertz contact springs once (hertz_mass.toml; every vehicle on
+    # its contact springs: examples/sleepers_hertz_bogie.toml, tests/test_contact_springs.py)
+    vehicles, contact = {model.vehicle for _, model in kinds}, set(CONTACT_SPRINGS.values())
+    assert vehicles >= set(VEHICLES) - contact and vehicles & contact
 
 
 def _layered_v_cr(EI, m, layers):

@@ -42,7 +42,10 @@ def _matrices(name, seed=0):
 # vertical translation; a pitch when the wheels are linked to a body that pitches; the two unlinked masses
 # move independently; the car also pitches each bogie with its wheels about its centre, where the secondary
 # suspension acts (translation, car pitch, two bogie pitches).
-RIGID_MOTIONS = {"mass": 1, "oscillator": 1, "masses": 2, "bogie": 2, "car": 4, "hertz_mass": 1}
+#: DOFs less independent spring-dampers; a contact spring adds one DOF and one spring, so each vehicle on its
+#: contact springs keeps the rigid vehicle's count.
+RIGID_MOTIONS = {"mass": 1, "oscillator": 1, "masses": 2, "bogie": 2, "car": 4}
+RIGID_MOTIONS |= {f"hertz_{name}": count for name, count in RIGID_MOTIONS.items()}
 
 
 @pytest.mark.parametrize("name", tuple(generated.DECLARED_VEHICLES))
@@ -52,7 +55,7 @@ def test_rigid_motions_strain_no_spring(name):
     assert M.shape == C.shape == K.shape == (n, n)
     for A in (M, C, K):
         assert np.array_equal(A, A.T)
-    # every DOF has a mass but a massless contact point (hertz_mass), which a spring links to one that has
+    # every DOF has a mass but a massless contact point (hertz_*), which a spring links to one that has
     massless = [i for i in range(n) if M[i, i] == 0]
     assert all(i < module.CONTACTS and K[i, i] > 0 for i in massless)
     massive = [i for i in range(n) if i not in massless]

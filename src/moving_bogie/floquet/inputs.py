@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.generated import parameters as paper_groups
-from moving_bogie.model.catalogue import get_model
+from moving_bogie.model.catalogue import DEFAULT_MODEL, contact_spring_vehicle, get_model
 from moving_bogie.model.physical import PhysicalParams
 
 if TYPE_CHECKING:
@@ -85,7 +85,7 @@ def sleeper_input_of(params: DimensionlessParams, physical: PhysicalParams | Non
     if physical is None:
         raise ParameterError("file", f"{model.name}: a sleeper track takes a [physical] table in SI units")
     groups = {name: float(getattr(params, name)) for name in model.foundation.MODEL_PARAMETERS}
-    vehicle_groups = {name: float(getattr(params, name)) for name in model.vehicle_kernels.PARAMETERS}
+    vehicle_groups = {name: float(getattr(params, name)) for name in model.vehicle_kernels.MODEL_PARAMETERS}
     si = {name: float(value) for name, value in physical.values().items()}
     scales = physical.scales()
     k_e = float(model.foundation.smeared_stiffness(si, math.sqrt))
@@ -103,16 +103,21 @@ def load_sleeper_file(path: str | Path, overrides: Mapping[str, float] | None = 
     return sleeper_input(tomllib.loads(Path(path).read_text()), path, overrides)
 
 
-def sleeper_units(data: Mapping[str, Any]) -> dict[str, str]:
-    """The ``[physical]`` names a sleeper file of this ``[model]`` takes, with their SI units."""
-    model = _model(data)
+def sleeper_units(data: Mapping[str, Any], overrides: Mapping[str, float] | None = None) -> dict[str, str]:
+    """The ``[physical]`` names a sleeper file of this ``[model]`` takes (with `overrides`), with their SI
+    units."""
+    model = _model(data, overrides)
     units = {name: meta["unit"] for name, meta in model.scale_parameters.items()}
     return units | {spec.si: spec.unit for spec in model.specs.values()}
 
 
-def _model(data: Mapping[str, Any]) -> Any:
+def _model(data: Mapping[str, Any], overrides: Mapping[str, float] | None = None) -> Any:
+    """The file's model; k_H or c_H in ``[physical]`` or the overrides put its wheels on contact springs."""
     names = data.get("model", {})
-    return get_model(names.get("beam"), names.get("track"), names.get("vehicle"))
+    physical = data.get("physical", {})
+    keys = {*(physical if isinstance(physical, Mapping) else ()), *(overrides or {})}
+    vehicle = contact_spring_vehicle(names.get("vehicle", DEFAULT_MODEL["vehicle"]), keys)
+    return get_model(names.get("beam"), names.get("track"), vehicle)
 
 
 def sleeper_input(
@@ -120,7 +125,7 @@ def sleeper_input(
 ) -> SleeperInput:
     """:func:`load_sleeper_file` of the file's parsed TOML ``data`` (``path`` names it in the messages)."""
     try:
-        model = _model(data)
+        model = _model(data, overrides)
         if "physical" not in data:
             raise ParameterError("physical", "a sleeper track takes a [physical] table in SI units")
         physical = PhysicalParams(model=model, **{**data["physical"], **(overrides or {})})

@@ -15,7 +15,7 @@ import functools
 import importlib
 import importlib.util
 import itertools
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -24,7 +24,15 @@ from types import ModuleType
 from moving_bogie.errors import ParameterError, did_you_mean
 from moving_bogie.model.periodic import PERIODIC, periodic_foundations, periodic_specs
 
-__all__ = ["Catalogue", "Model", "ParameterSpec", "default_catalogue", "get_model", "load_catalogue"]
+__all__ = [
+    "Catalogue",
+    "Model",
+    "ParameterSpec",
+    "contact_spring_vehicle",
+    "default_catalogue",
+    "get_model",
+    "load_catalogue",
+]
 
 #: The paper's model: Euler-Bernoulli beam, one-layer track, the bogie of Figure 1b.
 DEFAULT_MODEL = {"beam": "eb", "track": "one-layer", "vehicle": "bogie"}
@@ -373,3 +381,18 @@ def get_model(
             "track", f"no generated kernel for beam {names['beam']!r} on track {names['track']!r}"
         )
     return Model(catalogue=catalogue, beam=names["beam"], track=names["track"], vehicle=names["vehicle"])
+
+
+def contact_spring_vehicle(vehicle: str, keys: Iterable[str], catalogue: Catalogue | None = None) -> str:
+    """The vehicle a parameter set with these `keys` runs: `vehicle` itself, or its variant on Hertz contact
+    springs when a key sets the contact spring (a generated ``CONTACT_SPRING_GROUPS`` group or its SI name:
+    ``k_H``, ``c_H``, ``kappa_H``, ``eta_H``) and the catalogue's ``CONTACT_SPRINGS`` gives `vehicle` one
+    (``bogie`` -> ``hertz_bogie``). A vehicle without a variant (one already on contact springs, or an
+    unknown name, which the model's lookup then reports) is returned as it is.
+    """
+    catalogue = catalogue or default_catalogue()
+    groups = catalogue.index.CONTACT_SPRING_GROUPS
+    contact = set(groups) | {catalogue.specs[group].si for group in groups}
+    if contact.isdisjoint(keys):
+        return vehicle
+    return str(catalogue.index.CONTACT_SPRINGS.get(vehicle, vehicle))

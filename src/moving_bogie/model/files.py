@@ -31,7 +31,7 @@ from typing import Any
 
 from moving_bogie.errors import ParameterError, suggestion
 from moving_bogie.model.cases import table1_case
-from moving_bogie.model.catalogue import default_catalogue, get_model
+from moving_bogie.model.catalogue import DEFAULT_MODEL, contact_spring_vehicle, default_catalogue, get_model
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 
@@ -130,6 +130,10 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
             f"{', '.join(SOIL_COMMANDS)} with --file (docs/soil.md), not by this one",
         )
     model = _table(data, "model", _MODEL_KEYS)
+    # k_H or c_H (kappa_H, eta_H) put each wheel of the vehicle on its own contact spring
+    vehicle = model.get("vehicle", DEFAULT_MODEL["vehicle"])
+    if contact_spring_vehicle(vehicle, _keys(data)) != vehicle:
+        model["vehicle"] = contact_spring_vehicle(vehicle, _keys(data))
     if not {"case", "dimensionless", "physical"} & set(data):
         raise ParameterError("file", _no_parameters(model))
     if "physical" in data:
@@ -149,6 +153,12 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
     if isinstance(case, bool) or not isinstance(case, int):
         raise ParameterError("case", f"case must be an integer (got {_toml_type(case)} {case!r})")
     return table1_case(case).replace(**values), None
+
+
+def _keys(data: dict[str, Any]) -> set[str]:
+    """The keys of the file's parameter tables."""
+    tables = (data.get(name) for name in ("physical", "dimensionless"))
+    return {key for table in tables if isinstance(table, dict) for key in table}
 
 
 def _no_parameters(table: dict[str, Any]) -> str:

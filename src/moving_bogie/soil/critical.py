@@ -48,7 +48,8 @@ class FreeWaves:
 
 def _determinant(track: SoilTrack, soil: SoilProfile, c: FloatArray, omega: FloatArray) -> FloatArray:
     k1 = omega / c
-    chi = strip_stiffness(k1, omega, soil, track.b).chi
+    # fixed panels: next to c_0 (where chi -> 0) bisection would not end
+    chi = strip_stiffness(k1, omega, soil, track.b, rounds=1).chi
     return np.real(track.determinant(k1, omega, chi))
 
 

@@ -85,7 +85,7 @@ class SleeperSweepSpec:
     @property
     def units(self) -> dict[str, str]:
         """The SI unit of every varied parameter."""
-        known = sleeper_units(self.data)
+        known = sleeper_units(self.data, self.settings)
         return {a.name: known[a.name] for a in self.axes}
 
     @property
@@ -215,7 +215,7 @@ def make_sleeper_spec(
 ) -> SleeperSweepSpec:
     """A :class:`SleeperSweepSpec` from ``vary`` = {SI name: "START:STOP:COUNT" or "V1,V2,..."} (with
     ``sample=N``: {SI name: "START:STOP"} and N scrambled Sobol points, seed 0)."""
-    known = [name for name in sleeper_units(data) if name != "P"]  # P does not enter the roots
+    known = [name for name in sleeper_units(data, settings) if name != "P"]  # P does not enter the roots
     if sample is None:
         axes = tuple(Axis(*parse_vary(f"{n}={s}", known)) for n, s in vary.items())
         extra: dict[str, Any] = {}
