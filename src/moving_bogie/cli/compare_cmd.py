@@ -74,6 +74,12 @@ def lowest_subcritical(lines: InstabilityLines, alpha_cr: float) -> dict[float, 
 
 def run(args: argparse.Namespace) -> int:
     layered, spacings = params_and_spacings(args)
+    if layered.model.periodic:
+        raise ParameterError(
+            "file",
+            "compare-tracks compares a layered continuous track with the one-layer track, not "
+            f"{layered.track}: stability-map --file draws a sleeper track beside its smeared track",
+        )
     if layered.track == "one-layer":
         raise ParameterError("track", "compare-tracks needs a layered --track (e.g. two-layer) to compare")
     base = layered.replace(track="one-layer")

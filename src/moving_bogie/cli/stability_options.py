@@ -114,7 +114,9 @@ def params_and_spacings(args: argparse.Namespace) -> tuple[DimensionlessParams, 
         physical = physical.with_dimensionless(params)
     args.model = params.vehicle
     args.physical = physical  # the SI parameters of a [physical] file (read by plane_units)
-    return params, [float(Fraction(d)) for d in spacings] if spacings else [float(params.d)]
+    if spacings:
+        return params, [float(Fraction(d)) for d in spacings]
+    return params, [] if params.d is None else [float(params.d)]  # a vehicle of one wheel has no d
 
 
 def add_plane_options(parser: argparse.ArgumentParser, *, set_option: bool = True) -> None:
