@@ -206,6 +206,21 @@ def vehicle_help(catalogue: Catalogue) -> str:
     return "; ".join(parts)
 
 
+def continuous_track_only(params: DimensionlessParams, command: str, instead: str) -> None:
+    """Refuse a track on periodic supports in a command that works on continuous tracks only, naming
+    ``--file`` and the command that answers on sleepers (``instead``), before any work.
+
+    Raises
+    ------
+    ParameterError
+        When ``params`` are of a track on periodic supports.
+    """
+    if params.model.periodic:
+        raise ParameterError(
+            "file", f"{command} works on continuous tracks, not {params.track}: on sleepers, {instead}"
+        )
+
+
 def params_from_args(args: argparse.Namespace) -> tuple[DimensionlessParams, PhysicalParams | None]:
     """Parameters selected by the options of :func:`add_parameter_options`.
 

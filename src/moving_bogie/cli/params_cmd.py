@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     """Print the parameters selected by `args`."""
     params, physical = params_from_args(args)
 
-    from moving_bogie.stability.velocity.supercritical import speed_regime
+    from moving_bogie.api import speed_regime
 
     regime = speed_regime(params, physical)
     if args.json:

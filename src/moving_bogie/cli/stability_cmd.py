@@ -25,6 +25,7 @@ from .common import (
     add_parameter_options,
     add_set_option,
     apply_settings,
+    continuous_track_only,
     params_from_args,
     print_json,
     si_input,
@@ -279,6 +280,9 @@ def run_frequency_lines(args: argparse.Namespace) -> int:
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
     params, physical = params_from_args(args)
+    continuous_track_only(
+        params, "frequency-lines", "frequencies --file F --set v=... gives the roots at each speed"
+    )
     units = PlaneUnits.of(params, si_input(args, physical), operating=args.file is not None)
     alpha_min, alpha_max, _ = plane_ranges(args, units, "alpha")
 

@@ -15,7 +15,14 @@ if TYPE_CHECKING:
     from moving_bogie.roots.frequency_result import FrequencyResult
 
 from .checks import count, number
-from .common import add_json_option, add_output_option, add_parameter_options, params_from_args, print_json
+from .common import (
+    add_json_option,
+    add_output_option,
+    add_parameter_options,
+    continuous_track_only,
+    params_from_args,
+    print_json,
+)
 from .outputs import add_figure_option
 
 _MAX_POINTS = 10_000_000
@@ -324,6 +331,7 @@ def run_shape(args: argparse.Namespace) -> int:
 
     _check(args)
     params, physical = params_from_args(args)  # every input checked before the heavy imports
+    continuous_track_only(params, "shape", "timeseries --file F gives the rail's deflection over a bay")
     if not (np.isfinite(args.tau) and args.tau >= 0):
         raise ParameterError("tau", f"tau must be finite and >= 0 (got {args.tau})")
     d = float(params.d)
