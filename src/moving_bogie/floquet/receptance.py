@@ -31,46 +31,9 @@ from numpy.typing import ArrayLike
 
 from moving_bogie.floquet.smeared_rail import smeared_receptance
 from moving_bogie.floquet.track import SleeperTrack, stable_cot
+from moving_bogie.kernels.gauss_kronrod import GAUSS, KRONROD, NODES
 
 __all__ = ["Receptance", "receptance"]
-
-_XGK = np.array(
-    [
-        0.991455371120812639206854697526329,
-        0.949107912342758524526189684047851,
-        0.864864423359769072789712788640926,
-        0.741531185599394439863864773280788,
-        0.586087235467691130294144845693013,
-        0.405845151377397166906606412076961,
-        0.207784955007898467600689403773245,
-        0.0,
-    ]
-)
-_WGK = np.array(
-    [
-        0.022935322010529224963732008058970,
-        0.063092092629978553290700663189204,
-        0.104790010322250183839876322541518,
-        0.140653259715525918745189590510238,
-        0.169004726639267902826583426598550,
-        0.190350578064785409913256402421014,
-        0.204432940075298892414161999234649,
-        0.209482141084727828012999174891714,
-    ]
-)
-_WG = np.array(
-    [
-        0.129484966168869693270611432679082,
-        0.279705391489276667901467771423780,
-        0.381830050505118944950369775488975,
-        0.417959183673469387755102040816327,
-    ]
-)
-#: the 15 Kronrod nodes on [-1, 1], their weights, and the 7-point Gauss weights on the same nodes
-NODES = np.concatenate([-_XGK[:-1], _XGK[::-1]])
-KRONROD = np.concatenate([_WGK[:-1], _WGK[::-1]])
-GAUSS = np.zeros(15)
-GAUSS[[1, 3, 5, 7, 9, 11, 13]] = np.concatenate([_WG[:-1], _WG[::-1]])
 
 #: cot y - 1 / y = -sum_k c_k y^(2k-1), c_k = 2^(2k) |B_2k| / (2k)!, for |y| < 0.5 (14 terms: < 1e-17)
 _COT_SERIES = [

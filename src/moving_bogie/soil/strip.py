@@ -29,6 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from moving_bogie.kernels.gauss_kronrod import GAUSS as WEIGHTS_G
+from moving_bogie.kernels.gauss_kronrod import KRONROD as WEIGHTS_K
+from moving_bogie.kernels.gauss_kronrod import NODES
 from moving_bogie.typing import ComplexArray, FloatArray
 
 from .flexibility import surface_flexibility
@@ -37,40 +40,6 @@ from .profile import SoilProfile
 
 __all__ = ["StripStiffness", "strip_stiffness"]
 
-# Gauss-Kronrod (7, 15) on [-1, 1] (Piessens et al., QUADPACK): the 15 Kronrod nodes, their weights, and the
-# weights of the 7-point Gauss rule on the odd-indexed nodes.
-_XK = np.array(
-    [
-        0.991455371120812639206854697526329,
-        0.949107912342758524526189684047851,
-        0.864864423359769072789712788640926,
-        0.741531185599394439863864773280788,
-        0.586087235467691130294144845693013,
-        0.405845151377397166906606412076961,
-        0.207784955007898467600689403773245,
-        0.0,
-    ]
-)
-_WK = np.array(
-    [
-        0.022935322010529224963732008058970,
-        0.063092092629978553290700663189204,
-        0.104790010322250183839876322541518,
-        0.140653259715525918745189590510238,
-        0.169004726639267902826583426598550,
-        0.190350578064785409913256402421014,
-        0.204432940075298892414161999234649,
-        0.209482141084727828012999174891714,
-    ]
-)
-_WG = np.array(
-    [
-        0.129484966168869693270611432679082,
-        0.279705391489276667901467771423780,
-        0.381830050505118944950369775488975,
-        0.417959183673469387755102040816327,
-    ]
-)
 #: Panels graded geometrically towards k2 = 0, and geometric in kappa up to the last node (module docstring).
 NEAR_PANELS, KAPPA_PANELS = 8, 10
 #: Ratio of the initial geometric panels in kappa over the band of the soil's wave speeds (damped soil).
@@ -80,10 +49,6 @@ BAND_RATIO = 1.1
 SINC_PERIODS = 2
 #: Nodes of U evaluated at once.
 CHUNK = 4096
-NODES = np.concatenate([-_XK[:-1], _XK[::-1]])
-WEIGHTS_K = np.concatenate([_WK[:-1], _WK[::-1]])
-WEIGHTS_G = np.zeros(15)
-WEIGHTS_G[1::2] = np.concatenate([_WG[:-1], _WG[::-1]])
 
 
 @dataclass(frozen=True)
