@@ -12,6 +12,9 @@ In one run, wall time of:
 - ``critical-velocity`` of the same file (its guided waves on 32 frequencies and the refinements; target
   under 2 s), beside the uncoupled intersection estimate alone;
 - the moving-load deflection under the load at one speed (70 m/s) and at rest;
+- the rail's receptance G(0, Omega) (docs/soil.md, Eq. (S9)) at Omega = 0 beside that deflection per unit
+  load (the same integral by another integrator), and at 32 complex Omega in one call (the k nodes shared)
+  beside one Omega alone;
 - the machine's load average over the run (the timings scale with it on a shared machine).
 
 Prints a table; nothing is asserted (tests/test_soil_*.py check the values).
@@ -30,6 +33,7 @@ from moving_bogie.soil.critical import critical_velocity
 from moving_bogie.soil.file import load_soil_file
 from moving_bogie.soil.moving_load import deflection
 from moving_bogie.soil.rayleigh import soil_modes
+from moving_bogie.soil.receptance import soil_receptance
 
 FILE = Path(__file__).resolve().parent.parent / "examples" / "soil-ballasted.toml"
 
@@ -54,6 +58,28 @@ def _disba(soil, omega):
     pd(period[:3], mode=0)  # compile
     seconds, result = _timed(lambda: pd(period, mode=0))
     return seconds, result.velocity[::-1] * 1e3
+
+
+def _receptance_rows(data, w_per_load: float, t_ml: float) -> list[tuple[str, str, str, str]]:
+    """The rail's receptance G at Omega = 0 beside the moving load (the same integral), and at 32 complex
+    Omega of a contour's side in one call beside one Omega alone."""
+    v = 70.0
+    t_0, g0 = _timed(lambda: soil_receptance(data.track, data.soil, v, [0.0]))
+    diff = abs(g0.G[0, 0].real / w_per_load - 1)
+    rows = [
+        ("receptance G(0, Omega = 0), 70 m/s",
+         f"{t_0:.1f} s ({g0.nodes} k nodes, {g0.chi_quadratures} chi quadratures)",
+         f"moving-load deflection / P: {t_ml:.1f} s, relative difference {diff:.1e}", "-")
+    ]  # fmt: skip
+    omega = np.linspace(0.0, 300.0, 32) - 100j
+    t_32, g32 = _timed(lambda: soil_receptance(data.track, data.soil, v, omega))
+    t_1, g1 = _timed(lambda: soil_receptance(data.track, data.soil, v, omega[16:17]))
+    rows.append(
+        ("receptance at 32 complex Omega in one call (0..300 - 100i rad/s)", f"{t_32 / 32:.2f} s per Omega "
+         f"(largest error / |G| {np.max(g32.error / np.abs(g32.G[:, 0])):.1e})",
+         f"one Omega alone: {t_1:.2f} s", "frequencies < 10 s")
+    )  # fmt: skip
+    return rows
 
 
 def main() -> int:
@@ -90,6 +116,7 @@ def main() -> int:
         ("moving-load deflection under the load, one speed", f"{t_ml:.1f} s (DAF {daf:.3f})",
          f"at rest: {t_st:.1f} s", "100 speeds < 10 s")
     )  # fmt: skip
+    rows += _receptance_rows(data, moving.w[0] / data.load, t_ml)
     rows.append(("load average of the machine (1 min, at the end)", f"{os.getloadavg()[0]:.1f}", "-", "-"))
     header = ("work", "measured", "alternative", "target")
     widths = [max(len(str(r[k])) for r in [*rows, header]) for k in range(4)]

@@ -71,10 +71,17 @@ def _quadosc(a: float, omega: float, eta: float) -> complex:
 
 @pytest.mark.parametrize(
     ("k1", "omega", "eta"),
-    [(0.25, 20.0, 0.0), (2.0, 150.0, 2e-3), pytest.param(0.6, 150.0, 2e-3, marks=pytest.mark.slow)],
+    [
+        (0.25, 20.0, 0.0),
+        (2.0, 150.0, 2e-3),
+        (0.6, 120.0 - 40.0j, 2e-3),
+        pytest.param(0.6, 150.0, 2e-3, marks=pytest.mark.slow),
+    ],
 )
 def test_dynamic_homogeneous_against_quadosc(k1, omega, eta):
-    """Undamped: k1 above the Rayleigh wavenumber (0.216 at 20 rad/s); damped: a pole near the path."""
+    """Undamped: k1 above the Rayleigh wavenumber (0.216 at 20 rad/s); damped: a pole near the path;
+    complex omega below the real axis (the soil's receptance of Eq. (S9) at a growing frequency): the
+    same defining integral, Lamb's flexibility with Re p, Re s >= 0 continued to complex omega."""
     soil = soil_profile([HALF | {"eta": eta}])
     result = strip_stiffness(np.array([k1]), omega, soil, B)
     ref = _quadosc(k1, omega, eta)

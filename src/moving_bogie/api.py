@@ -16,8 +16,10 @@ from typing import TYPE_CHECKING, Any
 
 from moving_bogie.floquet.periodic_track import PeriodicTrack
 from moving_bogie.kernels.bound import BoundModel, TrackFactory
+from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.soil.vehicle import SoilVehicle
 
 if TYPE_CHECKING:
     import numpy as np
@@ -68,10 +70,12 @@ __all__ = [
 TRACK_KINDS: dict[str, TrackFactory] = {PERIODIC: PeriodicTrack}
 
 
-def bind(params: DimensionlessParams | PhysicalParams | BoundModel) -> BoundModel:
+def bind(params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle) -> BoundModel:
     """The bound model of ``params`` on the track of its model's kind (a :class:`BoundModel` as it is).
 
     Called once by each entry point; SI parameters are made dimensionless first (``to_dimensionless()``).
+    A vehicle on the soil (:class:`~moving_bogie.soil.vehicle.SoilVehicle`, ``load_soil_vehicle``) is bound
+    to its track on the soil (:class:`~moving_bogie.soil.rail_track.SoilRail`).
 
     Examples
     --------
@@ -83,6 +87,8 @@ def bind(params: DimensionlessParams | PhysicalParams | BoundModel) -> BoundMode
     """
     if isinstance(params, BoundModel):
         return params
+    if isinstance(params, SoilVehicle):
+        return BoundModel(params.physical.to_dimensionless(), track=params.rail)
     dimensionless = params.to_dimensionless() if isinstance(params, PhysicalParams) else params
     kind = getattr(dimensionless.model.foundation, "TRACK_KIND", None)
     return BoundModel(dimensionless, track=TRACK_KINDS.get(kind) if kind is not None else None)
@@ -102,20 +108,25 @@ def speed_regime(params: DimensionlessParams, physical: PhysicalParams | None = 
 
 
 def bind_with_scales(
-    params: DimensionlessParams | PhysicalParams | BoundModel,
+    params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle,
 ) -> tuple[BoundModel, Scales | None]:
     """The bound model of ``params`` and, for SI parameters, their scales (Eqs. (15)-(16)), else None."""
     if isinstance(params, PhysicalParams):
         return bind(params.to_dimensionless()), params.scales()
+    if isinstance(params, SoilVehicle):
+        return bind(params), params.physical.scales()
     return bind(params), None
 
 
 def induced_frequencies(
-    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
+    params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle, **options: Any
 ) -> FrequencyResult:
     """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies` in
-    the window, or :func:`moving_bogie.floquet.frequencies.strip_frequencies` in one strip of a periodic
-    track (the search region of the bound model's track).
+    the window, :func:`moving_bogie.floquet.frequencies.strip_frequencies` in one strip of a periodic
+    track (the search region of the bound model's track), or
+    :func:`moving_bogie.roots.quadrature_window.window_frequencies` for a track whose receptance is a
+    quadrature (on the soil), in the window of the far-field radius of its Winkler equivalent (the same
+    parameters on their continuous track, :func:`~moving_bogie.roots.quadrature_window.window_radius`).
 
     For SI parameters the result keeps their scales and shows itself in SI (rad/s, Hz, s).
     """
@@ -126,8 +137,13 @@ def induced_frequencies(
         from moving_bogie.floquet.frequencies import strip_frequencies
 
         result = strip_frequencies(bound, **options)
-    else:
+    elif isinstance(bound.track, ContinuousTrack):
         result = run(bound, **options)
+    else:
+        from moving_bogie.roots.quadrature_window import window_frequencies, window_radius
+
+        radius, far = window_radius(BoundModel(bound.params))
+        result = window_frequencies(bound, radius=radius, far_field=far, **options)
     return result if scales is None else replace(result, scales=scales)
 
 

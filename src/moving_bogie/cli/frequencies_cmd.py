@@ -121,7 +121,10 @@ def _check_dps(dps: int) -> None:
 
 def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
+    from moving_bogie.soil.file import is_soil_file
 
+    if args.file is not None and is_soil_file(args.file):
+        return _print_soil(args)
     _check_dps(args.dps)
     params, physical = params_from_args(args)  # every input checked before the heavy imports
     periodic = params.model.periodic
@@ -155,7 +158,7 @@ def run_frequencies(args: argparse.Namespace) -> int:
     regime = speed_regime(params, physical)
     if args.json:
         data = with_si(result.to_dict(), result, physical)
-        data["verdict"] = _with_regime(data.get("verdict"), regime)
+        data["verdict"] = with_regime(data.get("verdict"), regime)
         data["damping_limit"] = None if limit is None else limit.to_dict()
         speed = {"alpha_cr": regime.alpha_cr, "v_cr": regime.v_cr, "supercritical": regime.supercritical}
         print_json(data | speed | {"speed": regime.to_dict()})
@@ -172,6 +175,29 @@ def run_frequencies(args: argparse.Namespace) -> int:
     return 0 if result.count_ok and result.verdict.determined and proven else 1
 
 
+def _print_soil(args: argparse.Namespace) -> int:
+    """``frequencies --file`` on a soil-track file with a vehicle (:mod:`.soil_frequencies_cmd`), printed
+    as on every track."""
+    from .soil_frequencies_cmd import soil_frequencies
+
+    run = soil_frequencies(args)
+    result, physical, regime = run.result, run.physical, run.regime
+    if args.json:
+        data = with_si(result.to_dict(), result, physical)
+        data["verdict"] = with_regime(data.get("verdict"), regime)
+        data["damping_limit"] = None
+        speed = {"alpha_cr": regime.alpha_cr, "v_cr": regime.v_cr, "supercritical": regime.supercritical}
+        print_json(data | speed | {"speed": regime.to_dict(), "soil": run.soil})
+    else:
+        print(run.title())
+        print(format_si(result, physical))
+        print(format_result(result))
+        print(regime.line())
+    for line in format_warnings(result):
+        print(line, file=sys.stderr)
+    return 0 if result.count_ok and result.verdict.determined else 1
+
+
 def _refuse_on_a_strip(args: argparse.Namespace) -> None:
     """--window and --certify do not apply to a track on periodic supports (one message, exit status 2)."""
     from moving_bogie.errors import ParameterError
@@ -185,7 +211,7 @@ def _refuse_on_a_strip(args: argparse.Namespace) -> None:
         raise ParameterError("certify", "--certify is not available on a sleeper track (periodic supports)")
 
 
-def _with_regime(verdict: Any, regime: SpeedRegime) -> Any:
+def with_regime(verdict: Any, regime: SpeedRegime) -> Any:
     """The JSON verdict object with ``supercritical``, ``alpha_cr`` (and ``v_cr`` in m/s) added (any other
     JSON value as it is)."""
     extra = {"supercritical": regime.supercritical, "alpha_cr": regime.alpha_cr}
@@ -374,7 +400,7 @@ def run_table2(args: argparse.Namespace) -> int:
     if args.json:
         data = table.to_dict()
         for entry, regime in zip(data["cases"], regimes):
-            entry["verdict"] = _with_regime(entry.get("verdict"), regime)
+            entry["verdict"] = with_regime(entry.get("verdict"), regime)
             entry |= {"alpha_cr": regime.alpha_cr, "supercritical": regime.supercritical}
         print_json(data)
     else:

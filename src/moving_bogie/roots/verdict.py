@@ -10,7 +10,9 @@ complete there:
   could not be located are stable whatever they are: they are named in the warnings, not in the verdict),
 - no unsearched sliver around the cut of K reaches below Im q = 0, or the part below it was counted
   (:mod:`strip`: with eta_f = 0 the cut lies on the real axis and K there is the limit from below),
-- no search cell reaching below Im q = 0 was left out because its count failed (``Sliver.reason``).
+- no search cell reaching below Im q = 0 was left out because its count failed (``Sliver.reason``),
+- on a track whose receptance is a quadrature, no root lies within the quadrature's error of the real axis
+  and no band next to it was left out (notes of reason ``QUADRATURE``).
 
 Otherwise the verdict is UNDETERMINED and lists what is missing; roots with Im q > 0 outside the window
 (a stated choice, checked against a window twice as large) do not affect it.
@@ -47,12 +49,13 @@ def incompleteness(result: SearchRecord) -> list[Note]:
     On a periodic track (one strip of width Omega_0, docs/sleepers.md) the strip's own notes (its depth,
     the harmonics, a band near the real axis) stand where the far field and the window do.
     """
+    quadrature = notes_with(result.notes, Reason.QUADRATURE)
     if result.region is not None and result.region.periodic:
-        reasons = notes_with(result.notes, Reason.STRIP)
+        reasons = notes_with(result.notes, Reason.STRIP) + quadrature
         if result.found != result.count:
             reasons.append(count_mismatch(result.count, result.found))
         return reasons
-    reasons = []
+    reasons = quadrature
     far = result.far_field
     if far is None:
         reasons.append(

@@ -46,6 +46,8 @@ UNITS = {
     "A_b": "m^2/m",
     "P": "N",
 }
+#: The keys of [model]: the track, per track or per rail, and a vehicle (``frequencies --file``).
+MODEL_KEYS = ("track", "per", "vehicle")
 #: Keys that may be zero.
 MAY_BE_ZERO = ("c_pad", "m_s")
 
@@ -58,6 +60,8 @@ class SoilInput:
     soil: SoilProfile
     per: str
     load: float | None
+    vehicle: str | None = None
+    vehicle_values: tuple[tuple[str, float], ...] = ()
 
     @property
     def rail_factor(self) -> float:
@@ -111,8 +115,11 @@ def soil_input(data: dict[str, Any]) -> SoilInput:
             )
     model = data.get("model", {})
     for key in model:
-        if key not in ("track", "per"):
-            raise ParameterError(key, f"unknown key {key!r} in [model]; {suggestion(key, ('track', 'per'))}")
+        if key not in MODEL_KEYS:
+            raise ParameterError(key, f"unknown key {key!r} in [model]; {suggestion(key, MODEL_KEYS)}")
+    vehicle = model.get("vehicle")
+    if vehicle is not None and not isinstance(vehicle, str):
+        raise ParameterError("vehicle", f"vehicle must be a vehicle's name (got {vehicle!r})")
     kind = model.get("track")
     if kind not in TRACK_KINDS:
         raise ParameterError("track", f"track must be one of {', '.join(TRACK_KINDS)} (got {kind!r})")
@@ -124,7 +131,9 @@ def soil_input(data: dict[str, Any]) -> SoilInput:
         raise ParameterError("physical", "physical must be a table [physical]")
     needed = TRACK_KINDS[kind]
     known = (*needed, *LOAD_KEYS)
-    for key in physical:
+    # with a vehicle, the other keys are the vehicle's: model/ checks them (soil.vehicle)
+    others = tuple((key, value) for key, value in physical.items() if key not in known)
+    for key in physical if vehicle is None else ():
         if key not in known:
             raise ParameterError(
                 key, f"unknown key {key!r} in [physical] of track {kind!r}; {suggestion(key, known)}"
@@ -132,11 +141,12 @@ def soil_input(data: dict[str, Any]) -> SoilInput:
     for key in needed:
         if key not in physical:
             raise ParameterError(key, f"{key} ({UNITS[key]}) is missing from [physical] of track {kind!r}")
-    values = {key: _value(physical, key) for key in physical}
+    values = {key: _value(physical, key) for key in physical if key in known}
     if "soil" not in data:
         raise ParameterError("soil", "soil is missing: give the layers as [[soil]] tables, top first")
     soil = soil_profile(data["soil"])
     factor = 2.0 if per == "rail" else 1.0
     whole = {key: value * factor if key in PER_RAIL else value for key, value in values.items()}
     load = whole.pop("P", None)
-    return SoilInput(track=SoilTrack(kind=kind, **whole), soil=soil, per=per, load=load)
+    track = SoilTrack(kind=kind, **whole)
+    return SoilInput(track=track, soil=soil, per=per, load=load, vehicle=vehicle, vehicle_values=others)

@@ -72,7 +72,7 @@ def _integral_inf3(a: FloatArray, b: float) -> FloatArray:
 
 
 def _breakpoints(
-    k1: float, omega: float, soil: SoilProfile, b: float, top: float, periods: int
+    k1: float, omega: complex, soil: SoilProfile, b: float, top: float, periods: int
 ) -> FloatArray:
     """Initial panel ends in k2 for one (k1, omega) (module docstring), bisected later."""
     layers = soil.layers
@@ -108,7 +108,7 @@ class _Integrand:
     """2 sinc(k2 b) (U - U_inf) at (k1, omega) of item ``who`` (module docstring)."""
 
     k1: FloatArray
-    omega: FloatArray
+    omega: ComplexArray
     c_coef: ComplexArray
     d_coef: ComplexArray
     beta: FloatArray
@@ -127,7 +127,7 @@ class _Integrand:
 
 
 def _adaptive(
-    f: _Integrand, ends: list[FloatArray], closed: ComplexArray, rtol: float, rounds: int
+    f: _Integrand, ends: list[FloatArray], closed: ComplexArray, rtol: FloatArray, rounds: int
 ) -> tuple[ComplexArray, FloatArray]:
     """Sum over each item's panels (``ends``) of Gauss-Kronrod (7, 15), all items at once; a panel is bisected
     while its Kronrod-Gauss difference exceeds rtol |closed + integral| / (its item's panel count).
@@ -144,7 +144,7 @@ def _adaptive(
         diff = np.abs(kronrod - gauss)
         estimate = closed + total + _sum(who, kronrod, n)
         count = np.bincount(who, minlength=n)
-        keep = (diff <= rtol * np.abs(estimate[who]) / count[who]) | (step == rounds - 1)
+        keep = (diff <= rtol[who] * np.abs(estimate[who]) / count[who]) | (step == rounds - 1)
         total += _sum(who[keep], kronrod[keep], n)
         error += np.bincount(who[keep], diff[keep], minlength=n)
         if keep.all():
@@ -160,21 +160,31 @@ def _sum(who: IntArray, values: ComplexArray, n: int) -> ComplexArray:
 
 
 def strip_stiffness(
-    k1: FloatArray, omega: FloatArray, soil: SoilProfile, b: float, *, rtol: float = 1e-11, rounds: int = 6
+    k1: FloatArray,
+    omega: FloatArray | ComplexArray,
+    soil: SoilProfile,
+    b: float,
+    *,
+    rtol: float | FloatArray = 1e-11,
+    rounds: int = 6,
 ) -> StripStiffness:
-    """chi(k1, omega) of a strip of half-width ``b`` (m) on ``soil`` for real k1 > 0 and real omega.
+    """chi(k1, omega) of a strip of half-width ``b`` (m) on ``soil`` for real k1 > 0 and real omega, or
+    complex omega with Im omega <= 0 (where U is analytic on the real path of k2: the soil is passive, its
+    free waves decay, Im omega > 0).
 
     The k2 integral is refined until the Kronrod-Gauss differences sum to about ``rtol`` of it (at most
-    ``rounds`` bisections; ``rounds=1``: the initial panels only, one per period of the sinc); ``error``
-    states what was reached. On an undamped soil the k2 path must not meet
-    a surface-wave pole: take |k1| above the wavenumber of the slowest wave (phase speed omega / k1 below
-    every mode's), or give the layers Kelvin-Voigt damping.
+    ``rounds`` bisections; ``rounds=1``: the initial panels only, one per period of the sinc); ``rtol`` may
+    be an array, one tolerance per (k1, omega); ``error`` states what was reached. On an undamped soil the
+    k2 path must not meet a surface-wave pole: take |k1| above the wavenumber of the slowest wave (phase
+    speed omega / k1 below every mode's), or give the layers Kelvin-Voigt damping.
     """
     k1 = np.abs(np.atleast_1d(np.asarray(k1, dtype=float)))
-    omega = np.broadcast_to(np.asarray(omega, dtype=float), k1.shape)
     if k1.size == 0:
         return StripStiffness(chi=np.empty(k1.shape, dtype=complex), error=np.empty(k1.shape))
-    shape, k1, omega = k1.shape, k1.ravel(), np.ascontiguousarray(omega).ravel()
+    rtol = np.broadcast_to(np.asarray(rtol, dtype=float), k1.shape).ravel()
+    shape, k1 = k1.shape, k1.ravel()
+    w: ComplexArray = np.ascontiguousarray(np.broadcast_to(np.asarray(omega, dtype=complex), shape)).ravel()
+    omega = w
     top_layer = soil.layers[0]
     mu = top_layer.mu * (1 + 1j * omega * top_layer.eta)
     nu = top_layer.nu
@@ -184,11 +194,11 @@ def strip_stiffness(
     h_top = top_layer.h if np.isfinite(top_layer.h) else np.inf
     tops = 20 * np.maximum(max(1 / b, 1 / h_top), np.abs(omega) / soil.c_s_min)
     periods = SINC_PERIODS if rounds > 1 else 1
-    ends = [_breakpoints(a, w, soil, b, t, periods) for a, w, t in zip(k1, omega, tops, strict=True)]
+    ends = [_breakpoints(a, complex(z), soil, b, t, periods) for a, z, t in zip(k1, w, tops, strict=True)]
     closed = np.asarray(
         c_coef * _integral_inf(k1, b) + d_coef * _integral_inf3(np.sqrt(k1**2 + beta**2), b), dtype=complex
     )
-    f = _Integrand(k1, omega, c_coef, d_coef, beta, soil, b)
+    f = _Integrand(k1, w, c_coef, d_coef, beta, soil, b)
     rest, quadrature_error = _adaptive(f, ends, closed, rtol, rounds)
     total = closed + rest
     # the tail beyond k2 = top: the envelope 2 |U - U_inf| / (k2 b) there decays at least like k2^-4

@@ -73,6 +73,17 @@ class SoilTrack:
         below = k_p * sinc + z11 - self.m_s * omega**2 * sinc - z12**2 / (z11 + chi * sinc)
         return beam + k_p - k_p**2 * sinc / below
 
+    def chi_sensitivity(self, omega: Array, chi: Array) -> Array:
+        """dD/dchi of :meth:`rail_stiffness` at (omega, chi) (it does not depend on k1): 1 on the ``soil``
+        track; through the railpads, sleepers and ballast on the ballasted one."""
+        if not self.ballasted:
+            return np.ones(np.broadcast(omega, chi).shape, dtype=complex)
+        k_p = self.k_pad + 1j * omega * self.c_pad
+        sinc, z11, z12 = self._ballast(omega)
+        bottom = z11 + chi * sinc
+        below = k_p * sinc + z11 - self.m_s * omega**2 * sinc - z12**2 / bottom
+        return k_p**2 * sinc * (z12**2 * sinc / bottom**2) / below**2
+
     def determinant(self, k1: Array, omega: Array, chi: Array) -> Array:
         """A multiple of D free of the poles of the track's own parts: zero exactly at its free waves.
 

@@ -40,6 +40,9 @@ class Reason(Enum):
     #: The search of one strip of a periodic track fell short (its depth, the harmonics, a band near the
     #: real axis; docs/sleepers.md).
     STRIP = "strip"
+    #: The error of a receptance by quadrature may decide the case: a root whose Im q is within its error
+    #: of 0, or a band next to the real axis left out (a track on the soil, docs/soil.md).
+    QUADRATURE = "quadrature"
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,291 @@
+"""Every induced frequency with Im q <= 0 of a track whose receptance is a quadrature (Eq. (48)).
+
+The characteristic function is that of every track, E_chr(q) = det A(q) of the vehicle-rail coupling
+(:mod:`moving_bogie.kernels.coupling`) with the track's receptance G(q)
+(:meth:`~moving_bogie.kernels.track_model.Track.receptance`), evaluated on arrays of q (one quadrature serves
+every q of a call). Such a track (a rail on the soil, docs/soil.md) has G analytic for Im q < 0 and
+continuous up to the real axis, its branch points and cuts in Im q >= 0, so the roots that grow are
+counted in the window
+
+    -S / 1000 <= Re q <= S,    -S <= Im q <= 0
+
+(the roots come in pairs q, -conj(q)) by the argument principle with no starting guesses
+(:func:`~moving_bogie.roots.count.contour.winding_number`: the boundary sampled until every step of
+arg E_chr is below pi / 5). S is the far-field radius of the track's continuous equivalent (the same
+parameters on the Winkler track of their k_f, :func:`window_radius`), beyond which the rail's bending
+and the vehicle's masses decide E_chr on both tracks alike (E_lead of
+:mod:`~moving_bogie.roots.count.far_field`); it is checked on the window's far edges with the track's
+own E_chr, rho = |E_chr - E_lead| / |E_lead| <= 1/2 there, else the verdict says FAR_FIELD.
+
+Locating: the same boundary samples give the moments s_p = (1 / 2 pi i) oint q^p d log E_chr = sum of the
+roots' p-th powers (Delves & Lyness 1967); for n <= 3 roots in a region they are the coefficients of the
+polynomial whose zeros start the secant method. A region whose polished roots are not n distinct points
+inside it is bisected and its halves counted. The roots with Im q > 0 (decaying) are not searched.
+
+Errors: the receptance's error e moves E_chr by at most delta E = sum_ij |dE_chr / dG_ij| e, and a root by
+delta q = delta E / |E_chr'(q)|; the decimals printed are those delta q leaves, and a root with
+|Im q| <= delta q is neither stable nor unstable (a note of reason QUADRATURE: UNDETERMINED).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import mpmath
+import numpy as np
+
+from moving_bogie.kernels.arithmetic import Batched
+from moving_bogie.kernels.coupling import coupled_system, dynamic_coefficients, dynamic_stiffness
+from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number
+from moving_bogie.roots.count.far_field import MARGIN, FarField, e_lead, far_field_radius
+from moving_bogie.roots.count.outcomes import Note, Reason
+from moving_bogie.roots.count.window import default_window
+from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
+
+if TYPE_CHECKING:
+    from moving_bogie.kernels.bound import BoundModel
+    from moving_bogie.typing import ComplexArray
+
+__all__ = ["QuadratureCharacteristic", "window_frequencies", "window_radius"]
+
+#: Initial boundary samples per side of a region; Delves-Lyness up to this many roots, else bisection.
+SAMPLES, MOMENTS = 16, 3
+#: The first far-field radius tried (doubled until the far field holds), and the smallest window.
+FIRST_RADIUS = 0.25
+#: Secant iterations, and bisection levels of a region, at most.
+SECANT_STEPS, LEVELS = 40, 8
+
+
+@dataclass
+class QuadratureCharacteristic:
+    """E_chr(q) = det A(q) on arrays of q, with the track's receptance; every evaluation recorded."""
+
+    bound: BoundModel
+    samples: dict[complex, complex] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        system = self.bound.float_system
+        floats = tuple(np.array(A, dtype=float) for A in system.matrices)
+        self._dynamic = dynamic_coefficients(floats, Batched)
+        self.contacts = system.contacts
+
+    def system(self, q: ComplexArray, G: ComplexArray) -> ComplexArray:
+        """A(q) of the coupling for the receptance matrices ``G``."""
+        D, _ = dynamic_stiffness(q, self._dynamic, Batched)
+        A: ComplexArray = coupled_system(D, G, Batched).A
+        return A
+
+    def __call__(self, q: ComplexArray) -> ComplexArray:
+        q = np.asarray(q, dtype=complex)
+        rec = self.bound.track.receptance(q)
+        E: ComplexArray = np.linalg.det(self.system(q, rec.matrix))
+        self.samples.update(zip(q.ravel().tolist(), E.ravel().tolist(), strict=True))
+        return E
+
+    def uncertainty(self, q: complex, slope: complex) -> float:
+        """delta q of a root at ``q`` (module docstring); ``slope`` ~ E_chr'(q)."""
+        rec = self.bound.track.receptance(np.array([q]))
+        G = rec.matrix
+        base = np.linalg.det(self.system(np.array([q]), G))[0]
+        n, h = self.contacts, 1e-6 * max(float(np.abs(G).max()), 1e-300)
+        change = 0.0
+        for i in range(n):
+            for j in range(n):
+                Gp = G.copy()
+                Gp[..., i, j] += h
+                change += abs(np.linalg.det(self.system(np.array([q]), Gp))[0] - base) / h
+        return change * rec.error / max(abs(slope), 1e-300)
+
+
+def _perimeter(rect: Rectangle, z: ComplexArray) -> np.ndarray:
+    """The position along the counter-clockwise boundary of ``rect`` (bottom, right, top, left edges)."""
+    w, h = rect.width, rect.height
+    x, y = z.real - rect.x0, z.imag - rect.y0
+    tol = 1e-12 * max(w, h)
+    return np.select(
+        [abs(y) <= tol, abs(x - w) <= tol, abs(y - h) <= tol],
+        [
+            x,
+            w + y,
+            w + h + (w - x),
+        ],
+        default=2 * w + h + (h - y),
+    )
+
+
+def _on_boundary(rect: Rectangle, z: ComplexArray) -> np.ndarray:
+    tol = 1e-12 * max(rect.width, rect.height)
+    inside = (z.real >= rect.x0 - tol) & (z.real <= rect.x1 + tol) & (z.imag >= rect.y0 - tol)
+    inside &= z.imag <= rect.y1 + tol
+    edge = (abs(z.real - rect.x0) <= tol) | (abs(z.real - rect.x1) <= tol)
+    edge |= (abs(z.imag - rect.y0) <= tol) | (abs(z.imag - rect.y1) <= tol)
+    return np.asarray(inside & edge)
+
+
+def _moments_start(E: QuadratureCharacteristic, rect: Rectangle, n: int) -> np.ndarray:
+    """The n roots of ``rect`` from the moments of its boundary samples (Newton's identities)."""
+    z = np.array(list(E.samples), dtype=complex)
+    w = np.array(list(E.samples.values()), dtype=complex)
+    keep = _on_boundary(rect, z)
+    z, w = z[keep], w[keep]
+    order = np.argsort(_perimeter(rect, z))
+    z, w = np.append(z[order], z[order][0]), np.append(w[order], w[order][0])
+    dlog = np.log(w[1:] / w[:-1])
+    mid = 0.5 * (z[1:] + z[:-1])
+    s = [np.sum(mid**p * dlog) / (2j * np.pi) for p in range(1, n + 1)]
+    e = [1.0 + 0j]
+    for k in range(1, n + 1):  # Newton's identities: k e_k = sum_i (-1)^(i-1) e_(k-i) s_i
+        e.append(sum((-1) ** (i - 1) * e[k - i] * s[i - 1] for i in range(1, k + 1)) / k)
+    return np.roots([(-1) ** k * e[k] for k in range(n + 1)])
+
+
+def _secant(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex, complex, float]:
+    """The secant method from q0 (Im q kept <= 0); returns (root, slope, |last step|)."""
+    a, b = complex(q0), complex(q0) + h
+    fa, fb = complex(E(np.array([a]))[0]), complex(E(np.array([b]))[0])
+    step = np.inf
+    for _ in range(SECANT_STEPS):
+        slope = (fb - fa) / (b - a) if b != a else 0
+        if slope == 0:
+            break
+        c = b - fb / slope
+        c = complex(c.real, min(c.imag, 0.0))
+        step = abs(c - b)
+        a, fa, b = b, fb, c
+        fb = complex(E(np.array([b]))[0])
+        if step < 1e-12 * max(1.0, abs(b)) or fb == 0:
+            break
+    slope = (fb - fa) / (b - a) if b != a else 0j
+    return b, slope, float(step)
+
+
+def _count(E: QuadratureCharacteristic, rect: Rectangle) -> int:
+    spacing = max(rect.width, rect.height) / SAMPLES
+    return winding_number(E, rect, spacing=spacing, max_points=4000)
+
+
+def _locate(
+    E: QuadratureCharacteristic, rect: Rectangle, n: int, level: int = 0
+) -> list[tuple[complex, complex, float]]:
+    """The n roots of ``rect`` as (q, slope, last step); fewer when they could not be located."""
+    if n == 0:
+        return []
+    if n <= MOMENTS:
+        h = 1e-4 * max(rect.width, rect.height)
+        found = [_secant(E, q0, h) for q0 in _moments_start(E, rect, n)]
+        margin = 1e-9 * max(rect.width, rect.height)
+        good = [r for r in found if rect.contains(r[0], margin) and r[2] < 1e-6 * max(1.0, abs(r[0]))]
+        distinct = {(round(r[0].real, 8), round(r[0].imag, 8)) for r in good}
+        if len(good) == n and len(distinct) == n:
+            return good
+    if level >= LEVELS:
+        return []
+    out = []
+    for half in rect.split(0.5):
+        try:
+            out += _locate(E, half, _count(E, half), level + 1)
+        except EdgeZeroError:
+            return out
+    return out
+
+
+def _far_check(E: QuadratureCharacteristic, radius: float) -> float:
+    """The largest rho = |E_chr - E_lead| / |E_lead| over the samples at |q| >= radius."""
+    z = np.array([q for q in E.samples if abs(q) >= radius], dtype=complex)
+    if z.size == 0:
+        return np.inf
+    track, system = E.bound.track, E.bound.float_system
+    G = track.receptance(z).matrix
+    K = [G[..., 0, 0]] if system.contacts == 1 else _kernel_list(G, system.index, len(system.offsets))
+    with np.errstate(all="ignore"):
+        full = np.array([E.samples[q] for q in z.tolist()])
+        main = e_lead(system, z, K)
+        rho = np.abs(full - main) / np.abs(main)
+    return float(np.max(np.where(np.isfinite(rho), rho, np.inf)))
+
+
+def _kernel_list(G: ComplexArray, index: list[list[int]], count: int) -> list[ComplexArray]:
+    """The kernel values at each distinct offset from the matrices G (the first entry that has it)."""
+    out: list[ComplexArray | None] = [None] * count
+    for i, row in enumerate(index):
+        for j, k in enumerate(row):
+            if out[k] is None:
+                out[k] = G[..., i, j]
+    return [x for x in out if x is not None]
+
+
+def _induced(E: QuadratureCharacteristic, q: complex, slope: complex, step: float) -> InducedFrequency:
+    delta = max(E.uncertainty(q, slope), step, 1e-15 * max(1.0, abs(q)))
+    decimals = max(0, math.floor(-math.log10(2 * delta)))
+    digits = max(0, decimals + math.floor(math.log10(max(abs(q), 1e-300))) + 1)
+    residual = abs(complex(E(np.array([q]))[0]) / slope) if slope else float("inf")
+    return InducedFrequency(mpmath.mpc(q.real, q.imag), "below", 1, mpmath.mpf(residual), digits, decimals)
+
+
+def window_radius(equivalent: BoundModel) -> tuple[float, FarField]:
+    """S and its far-field check: the smallest radius R = FIRST_RADIUS 2^k beyond which the continuous
+    equivalent's E_chr has no root with Im q < 0 (rho <= 1/2 up to 32 R,
+    :func:`~moving_bogie.roots.count.far_field.far_field_radius`); the default window's size when there
+    is none (the verdict then says so)."""
+    far = far_field_radius(equivalent, FIRST_RADIUS)
+    return (default_window(equivalent).x1 if far.radius is None else far.radius), far
+
+
+def window_frequencies(
+    bound: BoundModel,
+    *,
+    radius: float,
+    far_field: FarField | None = None,
+    progress: Callable[[float], None] | None = None,
+) -> FrequencyResult:
+    """Every root with Im q <= 0 in the window of size ``radius`` of a track whose receptance is a
+    quadrature (module docstring), with the count beside them and the notes of the verdict.
+
+    Parameters
+    ----------
+    bound : BoundModel
+        The parameters bound to such a track.
+    radius : float
+        S: the window's size (the far-field radius, or larger).
+    far_field : FarField, optional
+        The far-field check of the track's continuous equivalent that gave ``radius`` (None: not checked).
+    """
+    E = QuadratureCharacteristic(bound)
+    rect = Rectangle(-1e-3 * radius, radius, -radius, 0.0)
+    notes = [Note(Reason.BEYOND_WINDOW, "Im q > 0 is not searched: roots there decay")]
+    try:
+        count = _count(E, rect)
+    except EdgeZeroError:
+        rect = Rectangle(rect.x0, rect.x1, rect.y0, -1e-3 * radius)
+        notes.append(Note(Reason.QUADRATURE, f"a root lies within {1e-3 * radius:.3g} of the real axis"))
+        count = _count(E, rect)
+    if progress is not None:
+        progress(0.5)
+    roots = [_induced(E, q, slope, step) for q, slope, step in _locate(E, rect, count)]
+    for root in roots:
+        if root.marginal:
+            text = f"Im q of the root at Re q = {root.re_text} is within its error of 0"
+            notes.append(Note(Reason.QUADRATURE, text))
+    far = far_field
+    if far is not None and far.radius is not None:
+        worst = _far_check(E, far.radius)
+        if worst > MARGIN:
+            reason = f"|E_chr - E_lead| / |E_lead| = {worst:.3g} > {MARGIN} on the window's far edges"
+            far = FarField(None, worst, far.start, reason)
+    if progress is not None:
+        progress(1.0)
+    return FrequencyResult(
+        bound=bound,
+        model=bound.model.vehicle,
+        dps=15,
+        window=rect,
+        roots=tuple(sorted(roots, key=lambda r: float(mpmath.re(r.q)))),
+        count=count,
+        unsearched=(),
+        evaluations=len(E.samples),
+        notes=tuple(notes),
+        far_field=far,
+    )

@@ -1,0 +1,211 @@
+"""The rail's receptance on the soil at complex frequency, between moving contacts (docs/soil.md, Eq. (S9)).
+
+A vertical force F exp(i Omega t) at xi_j, moving with the vehicle (xi = x - v t, positive ahead), deflects
+the rail at xi_i by G(xi_i - xi_j, Omega) F exp(i Omega t), downwards:
+
+    G(Delta, Omega) = (1 / 2 pi) int exp(-i k Delta) dk / D(k, Omega + k v),                      (S9)
+
+D the rail's dynamic stiffness on the soil (Eqs. (S6)-(S7), :meth:`~.track.SoilTrack.rail_stiffness`).
+At Omega = 0 it is the moving load's deflection per unit load (Eq. (S8)).
+
+**Where it is analytic.** For real k, Im omega = Im Omega. The soil and the track are passive: their
+responses to a force exp(i omega t) are transforms of causal responses, analytic for Im omega < 0 (their
+free waves decay, Im omega > 0), so D(k, omega) has no zero and U(kappa, omega) no pole there and G is
+analytic for Im Omega < 0. With Kelvin-Voigt damping in every layer G is continuous up to the real axis;
+Omega = 0 is a branch point (chi(k1, k1 v + Omega) -> 0 like 1 / log k1 as k1, Omega -> 0: the kernel's
+cut at Omega = 0 when the soil's waves are faster than the load).
+
+**Quadrature.** Gauss-Kronrod (7, 15) panels in |k| from k_lo = 1e-9 / b to k_hi on both sides of k = 0
+(one up to 1e-3 / b, where the integrand is smooth unless Omega = 0, then geometric; bisected
+geometrically), shared by every Omega of a call (one set of k nodes: each panel is bisected until its
+Kronrod-Gauss difference is below its share of ``tol`` |G| for every Omega and offset). Outside
+[k_lo, k_hi] the integrand grows only like log(1 / k) (below) and is below 2 / (EI k^4) (above; checked at
+k_hi): both ends are bounded and added to the error.
+
+**chi only as accurate as 1/D needs.** An error e of chi changes 1/D by at most
+|S| e / (|D| (|D| - |S| e)), S = dD/dchi (:meth:`~.track.SoilTrack.chi_sensitivity`). Where |k| b >=
+``LOCAL_KB`` and |S chi_loc| <= tol |D| / 2, chi_loc = 2 b / U(|k|, omega) (the strip's limit |k| b >> 1:
+the sinc is narrow beside the variation of U, one U value) is taken with the error allowance
+e = |chi_loc| (100 %; tests/test_soil_receptance.py checks |chi / chi_loc - 1| < 1/2 there on the
+examples' soils); elsewhere chi is the strip's quadrature (:func:`~.strip.strip_stiffness`) to the
+relative tolerance tol |D| / (2 |S chi_loc|) (between 1e-10 and 1e-3) with its own error estimate e. So
+1/D is good to about tol relative at every node, and the bound above summed with the weights is the
+error of G that chi leaves; beside the panels' Kronrod-Gauss differences and the ends it makes
+``error``. The far panels (|k| up to 300 / b and beyond), where the strip quadrature would cost
+thousands of U values each, take one U value each.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+
+from moving_bogie.typing import ComplexArray, FloatArray
+
+from .flexibility import surface_flexibility
+from .profile import SoilProfile
+from .strip import NODES, WEIGHTS_G, WEIGHTS_K, strip_stiffness
+from .track import SoilTrack
+
+__all__ = ["LOCAL_KB", "SoilReceptance", "local_stiffness", "soil_receptance"]
+
+#: |k| b from which chi may be the local strip stiffness 2 b / U (module docstring).
+LOCAL_KB = 4.0
+#: Initial panels on each side of k = 0 (one from k_lo to K_NEAR / b, then geometric), most bisection rounds.
+PANELS, ROUNDS, K_NEAR = 8, 10, 1e-3
+#: The strip quadrature's relative tolerance is kept within these (module docstring).
+CHI_RTOL = (1e-10, 1e-3)
+
+
+@dataclass(frozen=True)
+class SoilReceptance:
+    """G[..., j] at each Omega (rad/s) and offset Delta_j (m), m/N; ``error`` its estimated absolute error
+    per Omega (the largest over the offsets); ``nodes`` the k nodes used and ``chi_quadratures`` how many
+    of them needed the strip's quadrature."""
+
+    omega: ComplexArray
+    offsets: FloatArray
+    G: ComplexArray
+    error: FloatArray
+    nodes: int
+    chi_quadratures: int
+
+
+def local_stiffness(k1: FloatArray, omega: ComplexArray, soil: SoilProfile, b: float) -> ComplexArray:
+    """chi_loc = 2 b / U(|k1|, omega): the strip's stiffness in the limit |k1| b >> 1 (module docstring)."""
+    u = surface_flexibility(np.abs(k1).astype(complex), np.asarray(omega, dtype=complex), soil)
+    return np.asarray(2 * b / u, dtype=complex)
+
+
+@dataclass(frozen=True)
+class _Integrand:
+    """1 / D(k, Omega + k v) at nodes k for every Omega, and the bound of its error through chi."""
+
+    track: SoilTrack
+    soil: SoilProfile
+    v: float
+    tol: float
+
+    def __call__(self, k: FloatArray, omega_ref: ComplexArray) -> tuple[ComplexArray, FloatArray, int]:
+        """(1/D, error bound of 1/D, strip quadratures used), each of shape (Omega, k)."""
+        track = self.track
+        w = omega_ref[:, None] + k[None, :] * self.v
+        kk = np.broadcast_to(k[None, :], w.shape)
+        chi = local_stiffness(kk.ravel(), w.ravel(), self.soil, track.b).reshape(w.shape)
+        sens = track.chi_sensitivity(w, chi)
+        d_loc = track.rail_stiffness(kk, w, chi)
+        ratio = np.abs(sens * chi) / np.maximum(np.abs(d_loc), 1e-300)
+        exact = (np.abs(kk) * track.b < LOCAL_KB) | (2 * ratio > self.tol)
+        err = np.abs(chi)
+        if exact.any():
+            rtol = np.clip(self.tol / (2 * np.maximum(ratio[exact], 1e-300)), *CHI_RTOL)
+            strip = strip_stiffness(np.abs(kk[exact]), w[exact], self.soil, track.b, rtol=rtol)
+            chi[exact], err[exact] = strip.chi, strip.error
+            sens[exact] = track.chi_sensitivity(w[exact], strip.chi)
+        d = track.rail_stiffness(kk, w, chi)
+        gap = np.abs(d) - np.abs(sens) * err
+        bound = np.where(gap > 0, np.abs(sens) * err / (np.abs(d) * np.maximum(gap, 1e-300)), np.inf)
+        return np.asarray(1 / d, dtype=complex), bound, int(exact.sum())
+
+
+@functools.lru_cache(maxsize=16)
+def _reference_wavenumber(track: SoilTrack, soil: SoilProfile) -> float:
+    """max(1 / b, (|chi(1 / b, 0)| / EI)^(1/4)): the scale of the rail's static deflection (as Eq. (S8))."""
+    chi_b = abs(strip_stiffness(np.array([1 / track.b]), np.zeros(1), soil, track.b).chi[0])
+    return float(max(1 / track.b, (chi_b / track.EI) ** 0.25))
+
+
+def _sum_panels(
+    f: _Integrand, omega: ComplexArray, offsets: FloatArray, panels: FloatArray, sign: float, rounds: int
+) -> tuple[ComplexArray, FloatArray, int, int]:
+    """int over sign * [k_lo, k_hi] of exp(-i k Delta) / D for every (Omega, Delta), panels bisected
+    (geometrically) until each one's Kronrod-Gauss difference is below its share (its width in log k) of
+    tol |total| for every Omega and offset. Returns (integral, error, nodes, strip quadratures)."""
+    span = np.log(panels[-1, 1] / panels[0, 0])
+    total = np.zeros((omega.size, offsets.size), dtype=complex)
+    error = np.zeros(omega.size)
+    nodes = quadratures = 0
+    for step in range(rounds):
+        half, mid = (panels[:, 1] - panels[:, 0]) / 2, (panels[:, 1] + panels[:, 0]) / 2
+        k = sign * (mid[:, None] + half[:, None] * NODES).ravel()
+        inv, bound, used = f(k, omega)
+        nodes, quadratures = nodes + k.size, quadratures + used
+        phase = np.exp(-1j * np.multiply.outer(offsets, k))  # (offsets, k)
+        g = (inv[:, None, :] * phase[None, :, :]).reshape(omega.size, offsets.size, -1, NODES.size)
+        kronrod = (g @ WEIGHTS_K) * half
+        diff = np.abs(kronrod - (g @ WEIGHTS_G) * half)  # (Omega, offsets, panels)
+        chi_err = (bound.reshape(omega.size, -1, NODES.size) @ WEIGHTS_K) * half  # (Omega, panels)
+        scale = np.abs(total + kronrod.sum(-1)).max(axis=1)  # (Omega,)
+        share = np.log(panels[:, 1] / panels[:, 0]) / span
+        limit = f.tol * scale[:, None, None] * share[None, None, :]
+        keep = (diff <= limit).all(axis=(0, 1)) | (step == rounds - 1)
+        total += kronrod[..., keep].sum(-1)
+        error += diff[..., keep].max(axis=1).sum(-1) + chi_err[:, keep].sum(-1)
+        if keep.all():
+            break
+        a, b = panels[~keep, 0], panels[~keep, 1]
+        centre = np.sqrt(a * b)
+        panels = np.concatenate([np.stack([a, centre], -1), np.stack([centre, b], -1)])
+    return total, error, nodes, quadratures
+
+
+def soil_receptance(
+    track: SoilTrack,
+    soil: SoilProfile,
+    v: float,
+    omega: ComplexArray,
+    offsets: FloatArray = (0.0,),  # type: ignore[assignment]
+    *,
+    tol: float = 1e-6,
+    rounds: int = ROUNDS,
+) -> SoilReceptance:
+    """G(Delta_j, Omega) of Eq. (S9) at every ``omega`` (complex, rad/s, Im <= 0) and offset (m).
+
+    Parameters
+    ----------
+    track, soil : SoilTrack, SoilProfile
+        The track and its soil (damped: eta > 0 in every layer, as for the moving load).
+    v : float
+        The speed of the contacts (m/s).
+    omega : array of complex
+        Frequencies Omega (rad/s), Im Omega <= 0; one set of k nodes serves them all.
+    offsets : array of float
+        Delta = xi_i - xi_j (m).
+    tol : float
+        Relative accuracy asked of each node's 1/D and of each panel (module docstring).
+    """
+    omega = np.atleast_1d(np.asarray(omega, dtype=complex))
+    shape, omega = omega.shape, omega.ravel()
+    offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
+    if np.any(omega.imag > 0):
+        raise ValueError("omega: the soil's receptance by real wavenumbers needs Im Omega <= 0")
+    k_ref = _reference_wavenumber(track, soil)
+    k_omega = (track.m * np.abs(omega).max() ** 2 / track.EI) ** 0.25
+    k_v = abs(v) * np.sqrt(track.m / track.EI)  # EI k^2 = m v^2: the speed's own wavenumber
+    k_lo, k_hi = 1e-9 / track.b, max(300 * k_ref, 30 * k_omega, 30 * k_v)
+    ends = np.concatenate([[k_lo], np.geomspace(K_NEAR / track.b, k_hi, PANELS + 1)])
+    panels = np.stack([ends[:-1], ends[1:]], -1)
+    f = _Integrand(track, soil, v, tol)
+    total = np.zeros((omega.size, offsets.size), dtype=complex)
+    error, nodes, quadratures = np.zeros(omega.size), 0, 0
+    for sign in (1.0, -1.0):
+        part, err, n, used = _sum_panels(f, omega, offsets, panels, sign, rounds)
+        total, error, nodes, quadratures = total + part, error + err, nodes + n, quadratures + used
+        # the ends: below k_lo the integrand grows like log(1 / k) (2 k_lo |f(k_lo)| bounds it); beyond
+        # k_hi, |D| >= EI k^4 / 2 (checked at k_hi) bounds it by 2 / (3 EI k_hi^3)
+        edge = np.array([sign * k_lo, sign * k_hi])
+        inv, _, _ = f(edge, omega)
+        if np.any(np.abs(inv[:, 1]) * track.EI * k_hi**4 > 2):
+            error[:] = np.inf
+        error += 2 * k_lo * np.abs(inv[:, 0]) + 2 / (3 * track.EI * k_hi**3)
+    G = total / (2 * np.pi)
+    return SoilReceptance(
+        omega=omega.reshape(shape),
+        offsets=offsets,
+        G=G.reshape((*shape, offsets.size)),
+        error=(error / (2 * np.pi)).reshape(shape),
+        nodes=nodes,
+        chi_quadratures=quadratures,
+    )

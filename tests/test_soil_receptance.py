@@ -1,0 +1,131 @@
+"""The rail's receptance on the soil at complex frequency (docs/soil.md, Eq. (S9)) and the soil as a track.
+
+References: the moving-load deflection per unit load (``soil/moving_load.py``: another integrator of the
+same integral at Omega = 0); (slow) a direct two-dimensional quadrature at a complex Omega with Lamb's
+closed-form flexibility, scipy's quad in both wavenumbers (no code of soil/); the continuous Winkler track
+of the bound model's own parameters (``kernels/continuous_track.py``, residues of a rational kernel) for a
+ballasted track on a rigid soil; the strip's quadrature itself where the local stiffness 2 b / U stands
+for it (the rule of ``soil/receptance.py``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from scipy import integrate
+
+from moving_bogie.api import bind
+from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.continuous_track import ContinuousTrack
+from moving_bogie.soil.file import load_soil_file, soil_input
+from moving_bogie.soil.moving_load import deflection
+from moving_bogie.soil.rail_track import SoilRail
+from moving_bogie.soil.receptance import LOCAL_KB, local_stiffness, soil_receptance
+from moving_bogie.soil.strip import strip_stiffness
+from moving_bogie.soil.vehicle import soil_vehicle
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+@pytest.mark.slow
+def test_receptance_at_rest_frequency_is_the_moving_load_deflection():
+    """G(Delta, 0) = w(Delta) / P of Eq. (S8), which moving_load.py sums on its own panels; both within
+    the sum of their stated errors (three times, the estimates being estimates), and G(0) is real
+    (G(-conj Omega) = conj G(Omega))."""
+    loaded = load_soil_file(EXAMPLES / "soil-homogeneous.toml")
+    xi = np.array([0.0, 2.0])
+    got = soil_receptance(loaded.track, loaded.soil, 40.0, [0.0], xi)
+    ref = deflection(loaded.track, loaded.soil, 1.0, 40.0, xi)
+    assert np.all(np.abs(got.G[0] - ref.w) <= 3 * (got.error[0] + ref.error))
+    assert np.all(np.abs(got.G[0].imag) <= 3 * got.error[0])
+    assert got.error[0] < 1e-5 * abs(got.G[0, 0])
+
+
+def test_local_stiffness_is_within_half_of_the_strip_where_the_rule_takes_it():
+    """The rule's allowance |chi - chi_loc| <= |chi_loc| where |k| b >= LOCAL_KB, checked against the
+    strip's quadrature (its error far below) on both examples' soils at real and complex omega."""
+    for name in ("soil-homogeneous.toml", "soil-ballasted.toml"):
+        loaded = load_soil_file(EXAMPLES / name)
+        b = loaded.track.b
+        k1 = np.array([LOCAL_KB, 2 * LOCAL_KB, 8 * LOCAL_KB]) / b
+        for omega in (k1 * 50.0, k1 * 50.0 - 30j):
+            exact = strip_stiffness(k1, omega, loaded.soil, b, rtol=1e-8).chi
+            local = local_stiffness(k1, omega, loaded.soil, b)
+            assert np.all(np.abs(exact / local - 1) < 0.5)
+
+
+RIGID = {
+    "model": {"track": "ballasted-soil", "vehicle": "mass"},
+    "physical": {
+        "EI": 1.29e7, "m": 120.0, "k_pad": 5e8, "c_pad": 0.0, "m_s": 0.0, "E_b": 130e6, "rho_b": 1e-3,
+        "h_b": 0.35, "A_b": 1.25, "b": 1.25, "P": 1e5, "M": 3000.0, "v": 60.0,
+    },
+    "soil": [{"rho": 2000.0, "c_s": 1e5, "nu": 0.33, "eta": 1e-6}],
+}  # fmt: skip
+
+
+def test_ballasted_track_on_rigid_soil_is_the_winkler_track_of_k_ref():
+    """Railpads and a massless ballast rod on a rigid soil: D = EI k^4 - m omega^2 + k_pad k_b / (k_pad + k_b)
+    up to z_12^2 / (z_22 + chi) over z_11 (E_b A_b / h_b = 4.6e8 N/m^2 against chi >= 6e12 N/m^2 for
+    |k| >= 1e-6 / m, about 1e-4) and (omega h_b / c_b)^2 (< 1e-9 with rho_b = 1e-3): the kernel matrix of
+    the continuous Winkler track of k_f = k_ref, eta_f = 0, from the same bound parameters, by residues."""
+    vehicle = soil_vehicle(soil_input(RIGID))
+    bound = bind(vehicle)
+    assert isinstance(bound.track, SoilRail)
+    winkler = ContinuousTrack(BoundModel(bound.params))
+    q = np.array([0.3 - 0.2j, 1.4 - 0.05j])
+    got = bound.track.receptance(q)
+    ref = winkler.receptance(q).matrix
+    assert np.all(np.abs(got.matrix - ref) <= 1e-4 * np.abs(ref) + 3 * got.error)
+
+
+@pytest.mark.slow
+def test_receptance_at_complex_frequency_against_two_dimensional_quadrature():
+    """G(0, Omega) at Omega = 25 - 15i rad/s, v = 40 m/s, on the damped homogeneous half-space: chi by
+    mpmath's quadosc in k2 of Lamb's flexibility (Re p, Re s >= 0) and the k integral by scipy's quad on both sides,
+    no code of soil/ in the reference; within three times the stated error plus the reference's own
+    (quad's 1e-8, quadosc's 1e-9 and the tail's 1e-5 of 2 / (3 EI 60^3), together below 1e-6 of G)."""
+    loaded = load_soil_file(EXAMPLES / "soil-homogeneous.toml")
+    track, layer, v, Omega = loaded.track, loaded.soil.layers[0], 40.0, 25.0 - 15.0j
+
+    def chi(k1: float, omega: complex) -> complex:
+        """2 pi / int sinc(k2 b) U_Lamb dk2 by mpmath's quadosc at 15 digits (as tests/test_soil_strip.py)."""
+        with mpmath.workdps(15):
+            mu = layer.mu * (1 + 1j * omega * layer.eta)
+            ks2 = layer.rho * omega**2 / mu
+            kp2 = ks2 * layer.xi
+
+            def root(z: complex) -> complex:
+                r = mpmath.sqrt(z)
+                return -r if mpmath.re(r) < 0 else r
+
+            def f(t: float) -> complex:
+                k = mpmath.sqrt(k1 * k1 + t * t)
+                p, s = root(k * k - kp2), root(k * k - ks2)
+                u = -ks2 * p / (mu * ((2 * k * k - ks2) ** 2 - 4 * k * k * p * s))
+                return u if t == 0 else mpmath.sin(t * track.b) / (t * track.b) * u
+
+            return complex(2 * mpmath.pi / (2 * mpmath.quadosc(f, [0, mpmath.inf], omega=track.b)))
+
+    cache: dict[float, complex] = {}
+
+    def inv_d(k: float) -> complex:
+        if k not in cache:
+            omega = Omega + k * v
+            cache[k] = 1 / (track.EI * k**4 - track.m * omega**2 + chi(abs(k), omega))
+        return cache[k]
+
+    # beyond |k| = 60 / m, 1 / D = 1 / (EI k^4) to 1e-5 of itself (chi, m omega^2 / EI k^4 there); below
+    # 1e-9 / m the integrand is bounded (D(0, Omega) != 0), a piece of 2e-9 |1 / D(0, Omega)|, left out
+    total = complex(2 / (3 * track.EI * 60.0**3))
+    for a, b in ((1e-9, 0.01), (0.01, 0.1), (0.1, 1.0), (1.0, 4.0), (4.0, 60.0)):
+        for sign in (1, -1):
+            for part, unit in ((np.real, 1), (np.imag, 1j)):
+                f = lambda k, part=part, sign=sign: part(inv_d(sign * k))  # noqa: E731
+                total += unit * integrate.quad(f, a, b, limit=200, epsrel=1e-8)[0]
+    ref = total / (2 * np.pi)
+    got = soil_receptance(track, loaded.soil, v, [Omega])
+    assert abs(got.G[0, 0] - ref) <= 3 * got.error[0] + 1e-6 * abs(ref)
