@@ -85,9 +85,9 @@ def test_ballasted_track_on_rigid_soil_is_the_winkler_track_of_k_ref():
 @pytest.mark.slow
 def test_receptance_at_complex_frequency_against_two_dimensional_quadrature():
     """G(0, Omega) at Omega = 25 - 15i rad/s, v = 40 m/s, on the damped homogeneous half-space: chi by
-    mpmath's quadosc in k2 of Lamb's flexibility (Re p, Re s >= 0) and the k integral by scipy's quad on both sides,
-    no code of soil/ in the reference; within three times the stated error plus the reference's own
-    (quad's 1e-8, quadosc's 1e-9 and the tail's 1e-5 of 2 / (3 EI 60^3), together below 1e-6 of G)."""
+    mpmath's quadosc in k2 of Lamb's flexibility (Re p, Re s >= 0) and the k integral by scipy's quad on
+    both sides, no code of soil/ in the reference; within three times the stated error plus the reference's own
+    (quad's 1e-6, quadosc's 1e-9 and the tail's 1e-5 of 2 / (3 EI 60^3), together below 2e-6 of G)."""
     loaded = load_soil_file(EXAMPLES / "soil-homogeneous.toml")
     track, layer, v, Omega = loaded.track, loaded.soil.layers[0], 40.0, 25.0 - 15.0j
 
@@ -121,11 +121,11 @@ def test_receptance_at_complex_frequency_against_two_dimensional_quadrature():
     # beyond |k| = 60 / m, 1 / D = 1 / (EI k^4) to 1e-5 of itself (chi, m omega^2 / EI k^4 there); below
     # 1e-9 / m the integrand is bounded (D(0, Omega) != 0), a piece of 2e-9 |1 / D(0, Omega)|, left out
     total = complex(2 / (3 * track.EI * 60.0**3))
-    for a, b in ((1e-9, 0.01), (0.01, 0.1), (0.1, 1.0), (1.0, 4.0), (4.0, 60.0)):
+    for a, b in ((1e-9, 0.1), (0.1, 1.0), (1.0, 4.0), (4.0, 60.0)):
         for sign in (1, -1):
             for part, unit in ((np.real, 1), (np.imag, 1j)):
                 f = lambda k, part=part, sign=sign: part(inv_d(sign * k))  # noqa: E731
-                total += unit * integrate.quad(f, a, b, limit=200, epsrel=1e-8)[0]
+                total += unit * integrate.quad(f, a, b, limit=200, epsrel=1e-6)[0]
     ref = total / (2 * np.pi)
     got = soil_receptance(track, loaded.soil, v, [Omega])
-    assert abs(got.G[0, 0] - ref) <= 3 * got.error[0] + 1e-6 * abs(ref)
+    assert abs(got.G[0, 0] - ref) <= 3 * got.error[0] + 2e-6 * abs(ref)

@@ -30,7 +30,8 @@ delta q = delta E / |E_chr'(q)|; the decimals printed are those delta q leaves, 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -52,7 +53,12 @@ if TYPE_CHECKING:
 __all__ = ["QuadratureCharacteristic", "window_frequencies", "window_radius"]
 
 #: Initial boundary samples per side of a region; Delves-Lyness up to this many roots, else bisection.
-SAMPLES, MOMENTS = 16, 3
+SAMPLES, MOMENTS = 8, 3
+#: The receptance's relative tolerance while counting and starting the roots (a track with a ``tol``): the
+#: winding number needs the phase of E_chr only, which an error of 1e-4 moves by 1e-4 rad where |E_chr| is
+#: not within 1e-4 of zero (the sampling refines where arg E_chr turns fast); the roots are polished at the
+#: track's own tolerance.
+COUNT_TOL = 1e-4
 #: The first far-field radius tried (doubled until the far field holds), and the smallest window.
 FIRST_RADIUS = 0.25
 #: Secant iterations, and bisection levels of a region, at most.
@@ -71,6 +77,22 @@ class QuadratureCharacteristic:
         floats = tuple(np.array(A, dtype=float) for A in system.matrices)
         self._dynamic = dynamic_coefficients(floats, Batched)
         self.contacts = system.contacts
+        self.tight = getattr(self.bound.track, "tol", None)
+
+    @contextmanager
+    def tolerance(self, tol: float | None) -> Iterator[None]:
+        """Evaluate at the receptance's relative tolerance ``tol`` inside the block (a track with a
+        ``tol`` attribute; None: the track's own)."""
+        track = self.bound.track
+        if self.tight is None:
+            yield
+            return
+        kept = track.tol  # type: ignore[attr-defined]
+        track.tol = self.tight if tol is None else tol  # type: ignore[attr-defined]
+        try:
+            yield
+        finally:
+            track.tol = kept  # type: ignore[attr-defined]
 
     def system(self, q: ComplexArray, G: ComplexArray) -> ComplexArray:
         """A(q) of the coupling for the receptance matrices ``G``."""
@@ -143,7 +165,13 @@ def _moments_start(E: QuadratureCharacteristic, rect: Rectangle, n: int) -> np.n
 
 
 def _secant(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex, complex, float]:
-    """The secant method from q0 (Im q kept <= 0); returns (root, slope, |last step|)."""
+    """The secant method from q0 (Im q kept <= 0) at the track's own tolerance; returns (root, slope,
+    |last step|)."""
+    with E.tolerance(None):
+        return _secant_steps(E, q0, h)
+
+
+def _secant_steps(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex, complex, float]:
     a, b = complex(q0), complex(q0) + h
     fa, fb = complex(E(np.array([a]))[0]), complex(E(np.array([b]))[0])
     step = np.inf
@@ -164,7 +192,8 @@ def _secant(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex
 
 def _count(E: QuadratureCharacteristic, rect: Rectangle) -> int:
     spacing = max(rect.width, rect.height) / SAMPLES
-    return winding_number(E, rect, spacing=spacing, max_points=4000)
+    with E.tolerance(COUNT_TOL):
+        return winding_number(E, rect, spacing=spacing, max_points=4000)
 
 
 def _locate(

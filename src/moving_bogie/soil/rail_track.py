@@ -87,7 +87,9 @@ class SoilRail:
         system = bound.float_system
         self._offsets = np.array([float(x) for x in system.offsets]) / self.chi
         self._index = np.array(system.index)
-        self._cache: dict[complex, tuple[np.ndarray, float]] = {}
+        self._cache: dict[complex, tuple[np.ndarray, float, float]] = {}
+        #: The relative tolerance of the next evaluations (a search counts at a looser one, COUNT_TOL).
+        self.tol = spec.tol
 
     @property
     def name(self) -> str:
@@ -100,17 +102,21 @@ class SoilRail:
         return float(np.pi * self.spec.k_ref / (2 * self.chi))
 
     def kernel_values(self, q: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-        """(K at the distinct offsets, shape q.shape + (offsets,), and its error per q), every q not seen
-        before evaluated in one quadrature (the k nodes shared), the rest from the cache."""
+        """(K at the distinct offsets, shape q.shape + (offsets,), and its error per q), every q not
+        evaluated before to :attr:`tol` evaluated in one quadrature (the k nodes shared), the rest from the
+        cache."""
         q = np.asarray(q, dtype=complex)
         flat = q.ravel()
-        new = np.array([z for z in dict.fromkeys(flat.tolist()) if z not in self._cache], dtype=complex)
+        unique = dict.fromkeys(flat.tolist())
+        new = np.array(
+            [z for z in unique if z not in self._cache or self._cache[z][2] > self.tol], dtype=complex
+        )
         if new.size:
             rec = soil_receptance(
-                self.spec.track, self.spec.soil, self.v, new * self.omega_0, self._offsets, tol=self.spec.tol
+                self.spec.track, self.spec.soil, self.v, new * self.omega_0, self._offsets, tol=self.tol
             )
             for z, g, e in zip(new.tolist(), rec.G * self.factor, rec.error * self.factor, strict=True):
-                self._cache[z] = (g, float(e))
+                self._cache[z] = (g, float(e), self.tol)
         values = np.array([self._cache[z][0] for z in flat.tolist()]).reshape((*q.shape, self._offsets.size))
         errors = np.array([self._cache[z][1] for z in flat.tolist()]).reshape(q.shape)
         return values, errors
