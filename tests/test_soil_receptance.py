@@ -86,8 +86,9 @@ def test_ballasted_track_on_rigid_soil_is_the_winkler_track_of_k_ref():
 def test_receptance_at_complex_frequency_against_two_dimensional_quadrature():
     """G(0, Omega) at Omega = 25 - 15i rad/s, v = 40 m/s, on the damped homogeneous half-space: chi by
     mpmath's quadosc in k2 of Lamb's flexibility (Re p, Re s >= 0) and the k integral by scipy's quad on
-    both sides, no code of soil/ in the reference; within three times the stated error plus the reference's own
-    (quad's 1e-6, quadosc's 1e-9 and the tail's 1e-5 of 2 / (3 EI 60^3), together below 2e-6 of G)."""
+    both sides, no code of soil/ in the reference; within three times the stated error plus the
+    reference's own (quad's 1e-6, quadosc's 1e-9 and the tail's 1e-5 of 2 / (3 EI 60^3), together below
+    2e-6 of G)."""
     loaded = load_soil_file(EXAMPLES / "soil-homogeneous.toml")
     track, layer, v, Omega = loaded.track, loaded.soil.layers[0], 40.0, 25.0 - 15.0j
 
