@@ -14,8 +14,9 @@ counted in the window
 arg E_chr is below pi / 5). S is the far-field radius of the track's continuous equivalent (the same
 parameters on the Winkler track of their k_f, :func:`window_radius`), beyond which the rail's bending
 and the vehicle's masses decide E_chr on both tracks alike (E_lead of
-:mod:`~moving_bogie.roots.count.far_field`); it is checked on the window's far edges with the track's
-own E_chr, rho = |E_chr - E_lead| / |E_lead| <= 1/2 there, else the verdict says FAR_FIELD.
+:mod:`~moving_bogie.roots.count.far_field`), doubled (up to three times) until the track's own E_chr has
+rho = |E_chr - E_lead| / |E_lead| <= 1/2 at five points of the window's far edges; rho is checked again
+on every sample of the far edges after the count, and above 1/2 the verdict says FAR_FIELD.
 
 Locating: the same boundary samples give the moments s_p = (1 / 2 pi i) oint q^p d log E_chr = sum of the
 roots' p-th powers (Delves & Lyness 1967); for n <= 3 roots in a region they are the coefficients of the
@@ -221,9 +222,29 @@ def _locate(
     return out
 
 
+#: Doublings of the window tried until rho <= MARGIN on the first samples of its far edges.
+FAR_DOUBLINGS = 3
+
+
+def _far_edges(radius: float) -> np.ndarray:
+    """Five points of the far edges of the window of size ``radius`` (right edge, bottom edge)."""
+    return radius * np.array([1.0, 1.0 - 0.5j, 1.0 - 1.0j, 0.5 - 1.0j, 0.0 - 1.0j])
+
+
+def _grown_radius(E: QuadratureCharacteristic, radius: float) -> float:
+    """``radius`` doubled (at most FAR_DOUBLINGS times) until rho <= MARGIN at :func:`_far_edges`."""
+    for _ in range(FAR_DOUBLINGS):
+        with E.tolerance(COUNT_TOL):
+            E(_far_edges(radius))
+        if _far_check(E, radius) <= MARGIN:
+            break
+        radius *= 2
+    return radius
+
+
 def _far_check(E: QuadratureCharacteristic, radius: float) -> float:
     """The largest rho = |E_chr - E_lead| / |E_lead| over the samples at |q| >= radius."""
-    z = np.array([q for q in E.samples if abs(q) >= radius], dtype=complex)
+    z = np.array([q for q in E.samples if abs(q) >= radius * (1 - 1e-12)], dtype=complex)
     if z.size == 0:
         return np.inf
     track, system = E.bound.track, E.bound.float_system
@@ -283,6 +304,8 @@ def window_frequencies(
         The far-field check of the track's continuous equivalent that gave ``radius`` (None: not checked).
     """
     E = QuadratureCharacteristic(bound)
+    if far_field is not None and far_field.radius is not None:
+        radius = _grown_radius(E, radius)
     rect = Rectangle(-1e-3 * radius, radius, -radius, 0.0)
     notes = [Note(Reason.BEYOND_WINDOW, "Im q > 0 is not searched: roots there decay")]
     try:
@@ -300,7 +323,8 @@ def window_frequencies(
             notes.append(Note(Reason.QUADRATURE, text))
     far = far_field
     if far is not None and far.radius is not None:
-        worst = _far_check(E, far.radius)
+        far = FarField(radius, far.rho, far.start)
+        worst = _far_check(E, radius)
         if worst > MARGIN:
             reason = f"|E_chr - E_lead| / |E_lead| = {worst:.3g} > {MARGIN} on the window's far edges"
             far = FarField(None, worst, far.start, reason)
