@@ -16,6 +16,8 @@
 Stability: the motion is unstable when some induced frequency has Im q < 0 (Eq. (35) with e^{i q tau}).
 The default window contains the lower half-disc of the radius R beyond which E_chr has no root with
 Im q < 0 (:mod:`far_field`), so the verdict (:mod:`verdict`) speaks about every root, or says UNDETERMINED.
+The search region is the bound model's track's: on a track whose region is one strip of width Omega_0
+(periodic supports), :mod:`strip_frequencies` searches that strip and returns the same result.
 """
 
 from __future__ import annotations
@@ -24,14 +26,14 @@ import dataclasses
 import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Any
 
 import mpmath
 import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import CharacteristicArray
-from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
+from moving_bogie.kernels.cut import CutLocus, cut_loci, side_of_cut
 from moving_bogie.roots.ball_polish import BallPrecise
 from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
@@ -49,9 +51,7 @@ from moving_bogie.roots.refine.polish import (
 )
 from moving_bogie.roots.search.continuation import ContinuedRegion
 from moving_bogie.roots.search.counting import TilingCount, count_tiling, frame
-
-if TYPE_CHECKING:
-    from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.roots.strip_frequencies import strip_frequencies
 
 
 def induced_frequencies(
@@ -68,8 +68,10 @@ def induced_frequencies(
     certify: bool = False,
     starts: Sequence[complex] | None = None,
     balls: bool = False,
+    **strip: Any,
 ) -> FrequencyResult:
-    """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`).
+    """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`), or in
+    the one strip of its track's search region (:func:`strip_frequencies`, in double precision).
 
     Count (:func:`count_tiling`), locate (:func:`locate`), polish and confirm (:func:`polish_and_confirm`),
     then compare the roots found with the count (module docstring).
@@ -105,7 +107,16 @@ def induced_frequencies(
         them instead of its bisection (:func:`_locate_counted`; :mod:`moving_bogie.response.axis_law`).
     balls : bool
         Polish in Arb's balls too (:class:`BallPrecise`; the digits are confirmed there in any case).
+    **strip
+        On a strip, the options of :func:`strip_frequencies`; ``window``, ``certify``, ``starts`` and
+        ``balls`` are refused there (TypeError), ``dps`` and the cut's options do not apply.
     """
+    if bound.track.search_region().periodic:
+        if window is not None or certify or starts is not None or balls:
+            raise TypeError("window, certify, starts, balls: a search of one strip takes none of them")
+        return strip_frequencies(bound, progress=progress, **strip)
+    if strip:
+        raise TypeError(f"induced_frequencies() got unexpected keyword arguments {sorted(strip)}")
     extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
     fast, in_balls = CharacteristicArray(bound, remember=NEAR), BallPrecise(bound)  # NEAR: the lattice's
@@ -350,7 +361,7 @@ def _polish_located(
                     Note(Reason.POLISH, f"Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
                 )
                 continue
-            side = _side(conf.q, conf.decimals, cut, polishing.params)
+            side = side_of_cut(conf.q, 10.0 ** (-conf.decimals), cut, float(polishing.params.eta_f))
             roots.append(InducedFrequency(conf.q, side, m, conf.step, conf.digits, conf.decimals))
         report(0.6 + 0.4 * (k + 1) / len(cells))
     return roots
@@ -359,24 +370,6 @@ def _polish_located(
 def _holds_far_disc(window: Rectangle, far: FarField | None) -> bool:
     """The window contains the lower half-disc of the far-field radius R (every root with Im q < 0)."""
     return far is not None and far.radius is not None and window.x1 >= far.radius and window.y0 <= -far.radius
-
-
-def _side(q: mpmath.mpc, decimals: int, cut: CutLocus, params: DimensionlessParams) -> str:
-    """Position relative to the cut: "below" or "above" every cut curve over Re q, or "between" two of them
-    (a layered track's curves, the lens of the Timoshenko-Rayleigh cut); a root on a curve within the
-    confirmed digits counts as below it (a limit from below)."""
-    y = float(mpmath.im(q))
-    x = float(mpmath.re(q))
-    tol = 10.0 ** (-decimals)
-    arms = [arm for arm in cut.arms if arm.x_lo <= x <= arm.x_hi]
-    if arms:
-        above = int(np.sum(y - arms_y_at(arms, np.array([x]))[:, 0] > tol))
-        return "below" if above == 0 else "above" if above == len(arms) else "between"
-    threshold = float(params.eta_f)
-    if cut.points.size and x >= cut.x_start:
-        near = cut.points[np.argmin(np.abs(cut.points.real - x))]
-        threshold = float(near.imag)
-    return "above" if y - threshold > tol else "below"
 
 
 def _fold_pairs(roots: list[InducedFrequency]) -> tuple[list[InducedFrequency], list[Note]]:
