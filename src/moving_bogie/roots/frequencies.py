@@ -70,8 +70,7 @@ def induced_frequencies(
     balls: bool = False,
     **strip: Any,
 ) -> FrequencyResult:
-    """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`), or in
-    the one strip of its track's search region (:func:`strip_frequencies`, in double precision).
+    """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`).
 
     Count (:func:`count_tiling`), locate (:func:`locate`), polish and confirm (:func:`polish_and_confirm`),
     then compare the roots found with the count (module docstring).
@@ -108,15 +107,11 @@ def induced_frequencies(
     balls : bool
         Polish in Arb's balls too (:class:`BallPrecise`; the digits are confirmed there in any case).
     **strip
-        On a strip, the options of :func:`strip_frequencies`; ``window``, ``certify``, ``starts`` and
-        ``balls`` are refused there (TypeError), ``dps`` and the cut's options do not apply.
+        Where the track's search region is one strip of width Omega_0, :func:`strip_frequencies` searches
+        it in double precision with these options (:func:`_on_a_strip`).
     """
-    if bound.track.search_region().periodic:
-        if window is not None or certify or starts is not None or balls:
-            raise TypeError("window, certify, starts, balls: a search of one strip takes none of them")
+    if _on_a_strip(bound, strip, window=window, certify=certify, starts=starts, balls=balls):
         return strip_frequencies(bound, progress=progress, **strip)
-    if strip:
-        raise TypeError(f"induced_frequencies() got unexpected keyword arguments {sorted(strip)}")
     extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
     fast, in_balls = CharacteristicArray(bound, remember=NEAR), BallPrecise(bound)  # NEAR: the lattice's
@@ -141,6 +136,19 @@ def induced_frequencies(
     result = _certified(result) if certify else result
     report(1.0)
     return result
+
+
+def _on_a_strip(bound: BoundModel, strip: dict[str, Any], **window_only: Any) -> bool:
+    """Whether the bound model's track is searched in one strip (periodic supports); TypeError for an option
+    of the other search given (``window``, ``certify``, ``starts``, ``balls`` on a strip; a strip's own
+    options on a window)."""
+    if bound.track.search_region().periodic:
+        if any(value is not None and value is not False for value in window_only.values()):
+            raise TypeError(f"{', '.join(window_only)}: a search of one strip takes none of them")
+        return True
+    if strip:
+        raise TypeError(f"induced_frequencies() got unexpected keyword arguments {sorted(strip)}")
+    return False
 
 
 def _certified(result: FrequencyResult) -> FrequencyResult:
