@@ -107,12 +107,10 @@ def induced_frequencies(
     balls : bool
         Polish in Arb's balls too (:class:`BallPrecise`; the digits are confirmed there in any case).
     **strip
-        Where the track's search region is one strip of width Omega_0, :func:`strip_frequencies` searches
-        it in double precision with these options (:func:`_on_a_strip`).
+        The options of :func:`strip_frequencies`, on a track searched in one strip (:func:`_on_a_strip`).
     """
     if _on_a_strip(bound, strip, window=window, certify=certify, starts=starts, balls=balls):
         return strip_frequencies(bound, progress=progress, **strip)
-    extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     window, far = _window_and_far_field(bound, window)
     fast, in_balls = CharacteristicArray(bound, remember=NEAR), BallPrecise(bound)  # NEAR: the lattice's
     polishing = (in_balls if balls else in_balls.precise, in_balls)  # (polish, confirm at higher precision)
@@ -185,7 +183,7 @@ def _confirmed_roots(
     counted: TilingCount,
     newton_cell: float,
     dps: int,
-    extra_dps: int,
+    extra_dps: int | None,
     notes: list[Note],
     report: Callable[[float], None],
     starts: Sequence[complex] | None = None,
@@ -193,7 +191,8 @@ def _confirmed_roots(
     """Locate the counted roots (from ``starts`` where they agree with the count of every tile), polish and
     confirm them (``precise``: the evaluations of E_chr for each, :func:`_polish_located`), keep one of each
     pair q, -conj(q) (largest Re q first); the roots, the located cells and the roots not located (notes
-    appended)."""
+    appended; ``extra_dps`` None: max(10, dps // 2))."""
+    extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     cells, unlocated = _locate_counted(fast, counted, newton_cell, starts)
     notes += [missing.note for missing in unlocated]
     report(0.6)
