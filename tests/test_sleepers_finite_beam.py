@@ -178,7 +178,7 @@ def test_validate_agrees_inside_the_zone_of_the_example(tmp_path, capsys, v, M, 
 
 def test_the_verdict_line_states_the_numbers_it_judged():
     """Each compared quantity with its two values, the unit, the difference and the tolerance."""
-    from moving_bogie.cli.sleepers_validate_cmd import format_sleeper_check
+    from moving_bogie.cli.validate_cmd import format_sleeper_check
 
     rows = [("growth rate -Im q", 2.90112, 2.90285, "1/s", 0.0006, True), ("x", 1.0, 1.5, "N", 0.5, False)]
     out = {

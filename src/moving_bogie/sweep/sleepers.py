@@ -17,7 +17,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -28,12 +28,16 @@ from moving_bogie.roots.verdict import STABLE, UNSTABLE
 from moving_bogie.sweep.design import Axis, Block, grid_blocks, parse_vary, sobol_axes
 from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
 
+if TYPE_CHECKING:
+    import xarray
+
 __all__ = [
     "SleeperSweepSpec",
     "SleeperTask",
     "evaluate_sleeper_block",
     "make_sleeper_spec",
     "sleeper_point",
+    "sleeper_summary",
 ]
 
 
@@ -227,3 +231,25 @@ def make_sleeper_spec(
     return SleeperSweepSpec(
         data, source, axes, dict(settings or {}), design=design, block_points=block_points, extra=extra
     )
+
+
+def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any]:
+    """The verdicts of a sleeper sweep for the summary: the counts of points and the fastest growth."""
+    ds = ds.compute()
+    growth = np.where(ds.unstable.values, -ds.Omega_im.values, np.nan)
+    fastest = None
+    if np.isfinite(growth).any():
+        at = np.unravel_index(int(np.nanargmax(growth)), growth.shape)
+        dims = list(ds.unstable.dims)
+        fastest = {"growth_rate_1_s": float(growth[at])} | {
+            name: float(ds[name].values[at[dims.index(ds[name].dims[0])]]) for name in spec.units
+        }
+    return {
+        "model": spec.model,
+        "stable_points": int(ds.stable.sum()),
+        "unstable_points": int(ds.unstable.sum()),
+        "undetermined_points": int((~ds.stable & ~ds.unstable).sum()),
+        "uncertain_points": int((~ds.certain).sum()),
+        "fastest_growth": fastest,
+        "units": spec.units,
+    }
