@@ -17,6 +17,7 @@ from moving_bogie.presentation import field_lines
 
 from .checks import count, exact_number, named_values, workers
 from .common import (
+    MODEL_FROM_THE_FILE,
     add_bar_option,
     add_json_option,
     add_parameter_options,
@@ -254,14 +255,8 @@ def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
 # --- on periodic supports -----------------------------------------------------------------------------
 
 #: the options of a continuous-track sweep that a sleeper file does not take, and why
-_MODEL = (
-    "the file's [model] and [physical] tables set the model and its SI values (--set NAME=VALUE changes one)"
-)
 _NOT_FOR_SLEEPERS = {
-    "case": _MODEL,
-    "beam": _MODEL,
-    "track": _MODEL,
-    "vehicle": _MODEL,
+    **MODEL_FROM_THE_FILE,
     "roots": "the store keeps the fastest-growing root of every point (Omega_re, Omega_im)",
     "check": "every point is a full strip search of its own",
     "margin": "a sleeper sweep stores the margin of every stable point (margin, in 1/s) without it",

@@ -20,6 +20,7 @@ if TYPE_CHECKING:
 
 from .checks import count, number
 from .common import (
+    MODEL_FROM_THE_FILE,
     add_json_option,
     add_output_option,
     add_parameter_options,
@@ -252,14 +253,8 @@ def run_timeseries(args: argparse.Namespace) -> int:
 # --- on periodic supports -----------------------------------------------------------------------------
 
 #: the options of the continuous-track time series that a sleeper file does not take, and what to do instead
-_MODEL = (
-    "the file's [model] and [physical] tables set the model and its SI values (--set NAME=VALUE changes one)"
-)
 _NOT_FOR_SLEEPERS = {
-    "case": _MODEL,
-    "beam": _MODEL,
-    "track": _MODEL,
-    "vehicle": _MODEL,
+    **MODEL_FROM_THE_FILE,
     "tau": "the steady response spans --bays bays on --points points",
     "tmax": "the steady response spans --bays bays on --points points",
     "branch_cut": "the steady response over a bay is a sum of harmonics, without a branch cut",
