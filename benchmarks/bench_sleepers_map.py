@@ -18,10 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
-from moving_bogie.floquet.inputs import load_sleeper_file
 from moving_bogie.floquet.sleeper_map import sleeper_map
-from moving_bogie.floquet.smeared import smeared_track
 from moving_bogie.kernels.bound import bind
+from moving_bogie.model.sleeper_input import load_sleeper_file
+from moving_bogie.model.smeared import smeared_track
 from moving_bogie.stability.maps.map import stability_map
 
 HERE = Path(__file__).resolve().parent.parent

@@ -1,7 +1,7 @@
 """D-decomposition lines and the (v, M) map of a vehicle on sleepers (docs/sleepers.md, (S19)-(S22)).
 
-References: the Hill determinant of floquet/hill.py (FloquetSystem, built without the pencil); the argument
-principle's count (roots/count/contour.py) on the window of floquet/strip.py, which knows nothing of the
+References: the Hill determinant of kernels/hill.py (FloquetSystem, built without the pencil); the argument
+principle's count (roots/count/contour.py) on the window of roots/strip.py, which knows nothing of the
 D-decomposition; the symmetry (S14), which puts the principal zone's crossings on Re q = Omega_0 / 2.
 """
 
@@ -14,12 +14,12 @@ import numpy as np
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.floquet.d_lines import d_column
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.mass_pencil import mass_pencil
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.mass_pencil import mass_pencil
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.roots.count.contour import Rectangle, winding_number
+from moving_bogie.stability.maps.d_lines import d_column
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 

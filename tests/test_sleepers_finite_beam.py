@@ -21,10 +21,10 @@ import pytest
 import scipy.sparse.linalg as sla
 
 from moving_bogie.cli import main
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.steady import static_loads, steady_response
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
+from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.response.steady_bay import static_loads, steady_response
 from moving_bogie.validation.sleepers_check import SleeperBeamSettings, check_sleepers
 from moving_bogie.validation.sleepers_rail import SleeperRail
 

@@ -120,7 +120,7 @@ def test_the_check_fits_the_window_of_its_settings(monkeypatch):
     the last 60 % of the record of the default settings (docs/sleepers.md (S26); noise before it would spoil
     the rate), the rate and the frequency are those of the modes put in, within 1e-8, and the two halves of
     the window agree."""
-    from moving_bogie.floquet.track import SleeperTrack
+    from moving_bogie.kernels.sleeper_track import SleeperTrack
     from moving_bogie.validation.sleepers_beam import BeamRun
 
     track = SleeperTrack("eb", "sleepers", {"lam": T0 * 0.24, "alpha": 0.24, "eta_sup": 0.01})
@@ -165,9 +165,9 @@ def test_the_floquet_side_takes_the_harmonic_that_undoes_the_fold():
     """A wheel on short bays (lam 0.4, Omega_0 = 4.7): its root, folded by -1, 0 or 1 strips, is one vibration
     of the smeared track, at |Re q| of the unfolded root; floquet_frequency finds that harmonic in the null
     vector of the Hill matrix at each fold (any other is at least Omega_0 - 2 |Re q| = 3.3 away)."""
-    from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-    from moving_bogie.floquet.track import SleeperTrack
     from moving_bogie.generated import vehicle_mass
+    from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+    from moving_bogie.kernels.sleeper_track import SleeperTrack
 
     vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": 2.0})
     groups = {"lam": 0.4, "alpha": 0.3, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.2}

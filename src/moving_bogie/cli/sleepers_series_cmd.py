@@ -1,6 +1,6 @@
 """``moving-bogie timeseries --file F`` for a file on a sleeper track: the steady response over a bay and the
 free vibrations (docs/sleepers.md, "The time series on sleepers"); the logic is
-:func:`moving_bogie.floquet.series.sleeper_series`."""
+:func:`moving_bogie.response.sleeper_series.sleeper_series`."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ import sys
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from moving_bogie.floquet.inputs import SleeperInput
-    from moving_bogie.floquet.series import SleeperSeries
+    from moving_bogie.model.sleeper_input import SleeperInput
+    from moving_bogie.response.sleeper_series import SleeperSeries
 
 from .common import print_json
 
@@ -56,14 +56,14 @@ def run_sleeper_timeseries(args: argparse.Namespace, data: SleeperInput) -> int:
     """Print (or write) the steady response over ``--bays`` bays and the free vibrations in SI of the
     parameters ``data`` (the file's, ``--set`` applied)."""
     check_sleeper_options(args)
-    from moving_bogie.floquet.series import sleeper_series
+    from moving_bogie.response.sleeper_series import sleeper_series
 
     series = sleeper_series(data, bays=args.bays, points=args.points)
     if args.csv:
         write_sleeper_csv(series, args.csv)
     if args.plot:
-        from moving_bogie.floquet.plots import sleeper_series_figure
         from moving_bogie.response.plots import save_figure
+        from moving_bogie.response.sleeper_plots import sleeper_series_figure
 
         save_figure(sleeper_series_figure(series, title=f"{args.file.name} ({series.model})"), args.plot)
     if args.json:

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 from moving_bogie.cli.common import print_json, refuse_for_sleepers
 
 if TYPE_CHECKING:
-    from moving_bogie.floquet.inputs import SleeperInput
+    from moving_bogie.model.sleeper_input import SleeperInput
     from moving_bogie.validation.sleepers_check import SleeperCheck
 
 #: options of ``validate`` that the continuous tracks' check takes and a sleeper file does not, and why

@@ -199,7 +199,7 @@ def run_timeseries(args: argparse.Namespace) -> int:
 
     params, physical = params_from_args(args)  # every input checked before the heavy imports
     if params.model.periodic:
-        from moving_bogie.floquet.inputs import sleeper_input_of
+        from moving_bogie.model.sleeper_input import sleeper_input_of
 
         from .sleepers_series_cmd import run_sleeper_timeseries
 

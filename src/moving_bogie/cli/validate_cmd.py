@@ -86,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
     if args.file is not None:
         params, physical = params_from_args(args)
         if params.model.periodic:
-            from moving_bogie.floquet.inputs import sleeper_input_of
+            from moving_bogie.model.sleeper_input import sleeper_input_of
 
             from .sleepers_validate_cmd import run_sleeper_validation
 

@@ -1,6 +1,6 @@
 """The (v, M) stability map of a vehicle on sleepers from its D-decomposition lines (docs/sleepers.md, (S22)).
 
-Each velocity is one column: its crossings (:func:`~moving_bogie.floquet.d_lines.d_column`) give the
+Each velocity is one column: its crossings (:func:`~moving_bogie.stability.maps.d_lines.d_column`) give the
 number of unstable roots in the strip at every wheel mass at once, none at M -> 0 plus the signed
 crossings below M. No cell is searched; the count is checked against
 :func:`~moving_bogie.floquet.strip.floquet_frequencies` (the argument principle, no D-decomposition) at a few
@@ -21,12 +21,12 @@ import numpy as np
 
 from moving_bogie.checkpoint import Checkpoint, Part, run_parts
 from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.d_lines import DColumn, DCrossing, d_column
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.inputs import SleeperInput
-from moving_bogie.floquet.mass_pencil import mass_pencil
-from moving_bogie.floquet.strip import floquet_frequencies
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.mass_pencil import mass_pencil
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.sleeper_input import SleeperInput
+from moving_bogie.roots.strip import floquet_frequencies
+from moving_bogie.stability.maps.d_lines import DColumn, DCrossing, d_column
 
 __all__ = ["MapCheck", "SleeperMap", "sleeper_map"]
 

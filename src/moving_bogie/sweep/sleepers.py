@@ -1,9 +1,9 @@
 """A sweep over the SI parameters of a sleeper-track file: one Floquet strip search per point.
 
 Each point is the file's ``[physical]`` values with the point's values in their place, read and checked by
-:func:`~moving_bogie.floquet.inputs.sleeper_input` exactly as the file's own (the smallest and the largest
-value of every axis are checked before any computation), and searched by
-:func:`~moving_bogie.floquet.strip.floquet_frequencies`: every root in one strip of width Omega_0 up to the
+:func:`~moving_bogie.model.sleeper_input.sleeper_input` exactly as the file's own (the smallest and the
+largest value of every axis are checked before any computation), and searched by
+:func:`~moving_bogie.roots.strip.floquet_frequencies`: every root in one strip of width Omega_0 up to the
 rail's free waves (docs/sleepers.md, Eq. (S14)), converged in the harmonics, and a stable point's margin.
 A grid has one dimension per varied parameter, a Sobol design one dimension ``point``; the points are cut
 into blocks of ``block_points`` points along the last dimension (one chunk of the store each: a point costs
@@ -22,8 +22,8 @@ from typing import Any
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.inputs import SleeperInput, sleeper_input, sleeper_units
 from moving_bogie.model.exact import fraction_to_text
+from moving_bogie.model.sleeper_input import SleeperInput, sleeper_input, sleeper_units
 from moving_bogie.roots.verdict import STABLE, UNSTABLE
 from moving_bogie.sweep.design import Axis, Block, grid_blocks, parse_vary, sobol_axes
 from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
@@ -165,9 +165,9 @@ class SleeperTask:
 
 def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
     """The stored values of one point (docs/sweeps.md): the strip search of Eq. (S14) in SI units."""
-    from moving_bogie.floquet.hill import VehicleMatrices
-    from moving_bogie.floquet.strip import floquet_frequencies
-    from moving_bogie.floquet.track import SleeperTrack
+    from moving_bogie.kernels.hill import VehicleMatrices
+    from moving_bogie.kernels.sleeper_track import SleeperTrack
+    from moving_bogie.roots.strip import floquet_frequencies
 
     module = inp.vehicle_kernels
     result = floquet_frequencies(

@@ -2,7 +2,7 @@
 the command line (docs/sleepers.md, "The finite rail on sleepers").
 
 :func:`check_on_supports` assembles the sleeper track, the vehicle's matrices and its static loads from the
-parameters (a :class:`~moving_bogie.floquet.inputs.SleeperInput`, :func:`sleeper_input_of` of the one
+parameters (a :class:`~moving_bogie.model.sleeper_input.SleeperInput`, :func:`sleeper_input_of` of the one
 catalogue's parameters) and runs :func:`~moving_bogie.validation.sleepers_check.check_sleepers`.
 """
 
@@ -11,10 +11,10 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.inputs import SleeperInput
-from moving_bogie.floquet.steady import static_loads
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.sleeper_input import SleeperInput
+from moving_bogie.response.steady_bay import static_loads
 from moving_bogie.validation.sleepers_check import SleeperCheck, check_sleepers
 
 __all__ = ["check_on_supports"]

@@ -29,10 +29,10 @@ from typing import Any
 
 import numpy as np
 
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.steady import SteadyResponse, steady_response
-from moving_bogie.floquet.strip import FloquetResult, floquet_frequencies
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.response.steady_bay import SteadyResponse, steady_response
+from moving_bogie.roots.strip import FloquetResult, floquet_frequencies
 from moving_bogie.validation.sleepers_beam import BeamRun, simulate_sleeper_beam
 from moving_bogie.validation.sleepers_fit import (
     FloquetFit,

@@ -1,7 +1,7 @@
 """D-decomposition of a vehicle on sleepers in its wheel mass at one velocity (docs/sleepers.md, (S19)-(S21)).
 
 A root q of the Hill determinant changes side of the real axis only where det(A(q) + eta_M B(q)) = 0 for a
-real q: at a real eigenvalue eta_M of the pencil (:mod:`~moving_bogie.floquet.mass_pencil`). The real
+real q: at a real eigenvalue eta_M of the pencil (:mod:`~moving_bogie.kernels.mass_pencil`). The real
 axis of one strip, Re q in [-Omega_0 / 4, 3 Omega_0 / 4] (the points 0 and Omega_0 / 2, where the
 parametric zones' roots cross, inside it), is sampled; the mirror symmetry (S14), mu(Omega_0 - q) =
 conj(mu(q)), gives the samples above Omega_0 / 2 from those below. The eigenvalues mu = 1 / eta_M are
@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
 
-from moving_bogie.floquet.mass_pencil import MassPencil
+from moving_bogie.kernels.mass_pencil import MassPencil
 
 __all__ = ["DColumn", "DCrossing", "d_column"]
 
