@@ -1,7 +1,8 @@
 """The finite-beam check of the Floquet theory of a vehicle on a rail on sleepers (docs/sleepers.md).
 
-Three quantities, each from the Floquet theory (:mod:`moving_bogie.floquet`) and from the finite rail in
-the time domain (:mod:`moving_bogie.validation.sleepers_beam`, which uses no Floquet theory):
+Three quantities, each from the Floquet theory (:mod:`moving_bogie.roots.strip`,
+:mod:`moving_bogie.response.steady_bay`) and from the finite rail in the time domain
+(:mod:`moving_bogie.validation.sleepers_beam`, which uses no Floquet theory):
 
 - the growth (or decay) rate of the free vibration: ``-Im q`` of the least damped root against
   ``ln |mu| / T0``, ``mu`` the Floquet multiplier of the mode that dominates a run released from the static
