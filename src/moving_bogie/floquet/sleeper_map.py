@@ -3,7 +3,7 @@
 Each velocity is one column: its crossings (:func:`~moving_bogie.stability.maps.d_lines.d_column`) give the
 number of unstable roots in the strip at every wheel mass at once, none at M -> 0 plus the signed
 crossings below M. No cell is searched; the count is checked against
-:func:`~moving_bogie.floquet.strip.floquet_frequencies` (the argument principle, no D-decomposition) at a few
+:func:`~moving_bogie.roots.strip.floquet_frequencies` (the argument principle, no D-decomposition) at a few
 cells: one in each count region of ``verify`` columns. A disagreement, a column whose crossings have not
 converged in the harmonics or a sign change not resolved is said in ``notes`` and marks the column
 ``uncertain``. Columns are spread over ``workers`` processes.
