@@ -524,7 +524,7 @@ def test_the_outside_pattern_matches_what_it_should():
 # --- (e) one bound model ------------------------------------------------------------------------------------
 
 #: Where the generic runtime lives: no beam or vehicle of the catalogue is named there.
-GENERIC = ("kernels", "roots", "response", "validation", "stability", "sweep", "floquet")
+GENERIC = ("kernels", "roots", "response", "validation", "stability", "sweep", "floquet", "soil")
 #: The entry points, which may choose a model by name (the command line) or name the paper's (its recipes).
 ENTRY_POINTS = ("moving_bogie.cli", "moving_bogie.paper")
 
