@@ -318,7 +318,11 @@ def _steady_comparison(
     its times (for the figure)."""
     keep = slice(0, loaded.tau.size - 1)  # the last step is not averaged (smooth_steps)
     force = smooth_steps(loaded.force[0])[keep]
-    limit = periodic_limit(loaded.tau[keep], force, T0, start)
+    try:
+        limit = periodic_limit(loaded.tau[keep], force, T0, start)
+    except ValueError:  # too few periods to fit: the last bay as it is (its transient not removed)
+        last = loaded.tau[keep] >= loaded.tau[keep][-1] - T0 * (1 - 1e-9)
+        limit = PeriodicLimit(force[last][None, :], loaded.tau[keep][last], math.nan, np.zeros(0))
     position = (loaded.entry + track.alpha * limit.tau) % track.lam
     phase = np.exp(1j * track.Omega0 * np.outer(position / track.alpha, steady.harmonics))
     reference = np.real(phase @ steady.force_harmonics[:, 0])
@@ -335,6 +339,8 @@ def _limit_notes(limit: PeriodicLimit, tol: float) -> list[str]:
     if not limit.settles:
         slowest = float(np.max(np.abs(limit.multipliers)))
         return [f"the loaded run does not settle (a multiplier of modulus {slowest:.6g} >= 1)"]
+    if math.isnan(limit.transient):
+        return ["the loaded run is too short to fit its periodic limit: its last bay is compared as it is"]
     if limit.transient <= tol:
         return []
     slowest = float(np.max(np.abs(limit.multipliers)))
