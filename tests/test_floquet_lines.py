@@ -109,7 +109,7 @@ def _previous_column(pencil, monkeypatch, **options):
     """The column as the D-decomposition computed it before its short cuts (the reference): each crossing
     followed with one more harmonic by Brent's method on its bracket, and Brent's method run to its
     tolerance on every sign change (a jump between two branches included)."""
-    from moving_bogie.floquet import d_lines
+    from moving_bogie.stability.maps import d_lines
 
     with monkeypatch.context() as m:
         m.setattr(d_lines, "POLISH_ITER", 100)
