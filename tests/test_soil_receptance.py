@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from moving_bogie.api import bind
+from moving_bogie.api import bind, soil_vehicle
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.soil.file import load_soil_file, soil_input
@@ -25,7 +25,6 @@ from moving_bogie.soil.moving_load import deflection
 from moving_bogie.soil.rail_track import SoilRail
 from moving_bogie.soil.receptance import LOCAL_KB, local_stiffness, soil_receptance
 from moving_bogie.soil.strip import strip_stiffness
-from moving_bogie.soil.vehicle import soil_vehicle
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 

@@ -16,7 +16,7 @@ import mpmath
 import numpy as np
 import pytest
 
-from moving_bogie.api import bind, induced_frequencies
+from moving_bogie.api import bind, induced_frequencies, load_soil_vehicle, soil_vehicle
 from moving_bogie.cli import main
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
@@ -24,7 +24,6 @@ from moving_bogie.roots.count.contour import Rectangle, winding_number
 from moving_bogie.roots.quadrature_window import QuadratureCharacteristic
 from moving_bogie.roots.verdict import UNSTABLE
 from moving_bogie.soil.file import soil_input
-from moving_bogie.soil.vehicle import load_soil_vehicle, soil_vehicle
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 RIGID = {

@@ -6,31 +6,43 @@ has units) or a :class:`~moving_bogie.kernels.bound.BoundModel`, calls :func:`bi
 with the track of its model's kind, :data:`TRACK_KINDS`) and passes the bound model down; below this module
 nothing binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stability/`` and ``sweep/``
 take ``bound: BoundModel``). The options are those of the function each one calls, documented there.
+
+A vehicle on a track on the soil (docs/soil.md) comes from a soil-track file that names a vehicle in
+``[model]`` (``vehicle = "mass"``) and gives its SI values in ``[physical]`` beside the track's
+(:func:`load_soil_vehicle`): the vehicle's groups are the paper's (Eqs. (15)-(17)) with the track's reference
+stiffness k_ref (:func:`~moving_bogie.soil.rail_track.reference_stiffness`) in the place of k_f and no
+foundation damping, the parameters of the Euler-Bernoulli rail on the Winkler track of k_ref, which
+:func:`bind` binds to the soil's own track (:class:`~moving_bogie.soil.rail_track.SoilRail`). Given per
+rail, the vehicle's masses, inertias, stiffnesses, dampings and loads (the values in kg or N) are doubled
+like the track's: the soil carries the whole track and the whole vehicle.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from moving_bogie.floquet.periodic_track import PeriodicTrack
+from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel, TrackFactory
 from moving_bogie.kernels.continuous_track import ContinuousTrack
+from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.soil.vehicle import SoilVehicle
+from moving_bogie.soil.file import SoilInput, load_soil_file
+from moving_bogie.soil.rail_track import SoilRailSpec, reference_stiffness
 
 if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import ArrayLike
 
-    from moving_bogie.floquet.inputs import SleeperInput
-    from moving_bogie.floquet.series import SleeperSeries
     from moving_bogie.floquet.sleeper_map import SleeperMap
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
+    from moving_bogie.model.sleeper_input import SleeperInput
     from moving_bogie.response.closed_form import TimeSeries
+    from moving_bogie.response.sleeper_series import SleeperSeries
     from moving_bogie.roots.frequencies import FrequencyResult
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
@@ -43,6 +55,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "TRACK_KINDS",
+    "SoilVehicle",
     "bind",
     "bind_with_scales",
     "closed_form_response",
@@ -52,11 +65,13 @@ __all__ = [
     "deflection_shape_details",
     "frequency_lines",
     "induced_frequencies",
+    "load_soil_vehicle",
     "instability_lines",
     "instability_lines_many",
     "sleeper_map",
     "sleeper_series",
     "smeared_track",
+    "soil_vehicle",
     "speed_regime",
     "validate_on_supports",
     "stability_map",
@@ -68,6 +83,64 @@ __all__ = [
 #: continuous track, :class:`~moving_bogie.kernels.continuous_track.ContinuousTrack`). A new kind of track
 #: adds its class here (kernels/track_model.py says what the class provides).
 TRACK_KINDS: dict[str, TrackFactory] = {PERIODIC: PeriodicTrack}
+
+
+#: The beam of the vehicle's scaling (the rail on the soil bends as an Euler-Bernoulli beam, Eq. (S6)).
+BEAM = "eb"
+#: [physical] keys the soil replaces (the support is the soil's).
+SUPPORT_KEYS = ("k_f", "c_f")
+
+
+@dataclass(frozen=True)
+class SoilVehicle:
+    """The file's track and soil (``input``), the vehicle's SI parameters scaled with k_ref
+    (``physical``) and the track the bound model gets (``rail``)."""
+
+    input: SoilInput
+    physical: PhysicalParams
+    rail: SoilRailSpec
+
+
+def _whole(physical: PhysicalParams, values: dict[str, float]) -> dict[str, float]:
+    """The values of a per-rail file for the whole track: those in kg or N doubled (module docstring)."""
+    units = physical.units()
+    return {k: 2 * v if ("kg" in units[k] or "N" in units[k]) else v for k, v in values.items()}
+
+
+def soil_vehicle(data: SoilInput, *, tol: float = 1e-6) -> SoilVehicle:
+    """The vehicle of a read soil-track file on its track (module docstring).
+
+    Raises
+    ------
+    ParameterError
+        When the file names no vehicle or no load P, gives k_f or c_f, or a vehicle value is wrong.
+    """
+    if data.vehicle is None:
+        raise ParameterError(
+            "vehicle", 'name the vehicle in [model] (vehicle = "mass", ...) and give its values in [physical]'
+        )
+    if data.load is None:
+        raise ParameterError("P", "P (N, the static load of the vehicle's wheels) is missing from [physical]")
+    values = dict(data.vehicle_values)
+    for key in SUPPORT_KEYS:
+        if key in values:
+            raise ParameterError(key, f"{key} does not apply to a track on the soil: the soil is the support")
+    k_ref = reference_stiffness(data.track, data.soil)
+    track = data.track
+    common: dict[str, Any] = {"EI": track.EI, "m": track.m, "k_f": k_ref, "c_f": 0.0, "P": data.load}
+    physical = PhysicalParams(beam=BEAM, vehicle=data.vehicle, **(common | values))
+    if data.per == "rail":
+        physical = PhysicalParams(beam=BEAM, vehicle=data.vehicle, **(common | _whole(physical, values)))
+    return SoilVehicle(data, physical, SoilRailSpec(track, data.soil, k_ref, tol))
+
+
+def load_soil_vehicle(path: str | Path) -> SoilVehicle:
+    """Read a soil-track file with a vehicle (:func:`soil_vehicle`); errors name the key and the file."""
+    data = load_soil_file(path)
+    try:
+        return soil_vehicle(data)
+    except ParameterError as exc:
+        raise ParameterError(exc.parameter, f"{path}: {exc}") from None
 
 
 def bind(params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle) -> BoundModel:
@@ -97,9 +170,9 @@ def bind(params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle
 def speed_regime(params: DimensionlessParams, physical: PhysicalParams | None = None) -> SpeedRegime:
     """The speed against the track's critical velocity
     (:func:`~moving_bogie.stability.velocity.supercritical.speed_regime`; on periodic supports that of the
-    smeared track, :func:`~moving_bogie.floquet.smeared.smeared_regime`)."""
+    smeared track, :func:`~moving_bogie.stability.velocity.smeared_regime.smeared_regime`)."""
     if params.model.periodic:
-        from moving_bogie.floquet.smeared import smeared_regime
+        from moving_bogie.stability.velocity.smeared_regime import smeared_regime
 
         return smeared_regime(params, physical)
     from moving_bogie.stability.velocity.supercritical import speed_regime as continuous
@@ -121,23 +194,18 @@ def bind_with_scales(
 def induced_frequencies(
     params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle, **options: Any
 ) -> FrequencyResult:
-    """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies` in
-    the window, :func:`moving_bogie.floquet.frequencies.strip_frequencies` in one strip of a periodic
-    track (the search region of the bound model's track), or
-    :func:`moving_bogie.roots.quadrature_window.window_frequencies` for a track whose receptance is a
-    quadrature (on the soil), in the window of the far-field radius of its Winkler equivalent (the same
-    parameters on their continuous track, :func:`~moving_bogie.roots.quadrature_window.window_radius`).
+    """Every induced frequency of ``params`` in the search region of its track (the window, or one strip of
+    a periodic track): :func:`moving_bogie.roots.frequencies.induced_frequencies`; for a track whose
+    receptance is a quadrature (on the soil) :func:`moving_bogie.roots.quadrature_window.window_frequencies`
+    in the window of the far-field radius of its Winkler equivalent (the same parameters on their
+    continuous track, :func:`~moving_bogie.roots.quadrature_window.window_radius`).
 
     For SI parameters the result keeps their scales and shows itself in SI (rad/s, Hz, s).
     """
     from moving_bogie.roots.frequencies import induced_frequencies as run
 
     bound, scales = bind_with_scales(params)
-    if bound.track.search_region().periodic:
-        from moving_bogie.floquet.frequencies import strip_frequencies
-
-        result = strip_frequencies(bound, **options)
-    elif isinstance(bound.track, ContinuousTrack):
+    if isinstance(bound.track, ContinuousTrack) or bound.track.search_region().periodic:
         result = run(bound, **options)
     else:
         from moving_bogie.roots.quadrature_window import window_frequencies, window_radius
@@ -210,7 +278,7 @@ def validate_on_supports(
 
 def smeared_track(params: PhysicalParams) -> PhysicalParams:
     """The continuous track with the same smeared supports as SI parameters on periodic supports (the
-    limit l -> 0, docs/sleepers.md (S2)): :func:`~moving_bogie.floquet.smeared.smeared_physical`.
+    limit l -> 0, docs/sleepers.md (S2)): :func:`~moving_bogie.model.smeared.smeared_physical`.
 
     Raises
     ------
@@ -218,7 +286,7 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
         Naming ``track`` when the track has no such limit.
     """
     from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.smeared import smeared_physical
+    from moving_bogie.model.smeared import smeared_physical
 
     smeared = smeared_physical(params)
     if smeared is None:
@@ -230,8 +298,8 @@ def sleeper_series(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> SleeperSeries:
     """The steady response over a bay and the free vibrations on sleepers, in SI:
-    :func:`~moving_bogie.floquet.series.sleeper_series` (``bays``, ``points``, ``free``)."""
-    from moving_bogie.floquet.series import sleeper_series as run
+    :func:`~moving_bogie.response.sleeper_series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    from moving_bogie.response.sleeper_series import sleeper_series as run
 
     return run(_sleeper_data(params), **options)
 
@@ -253,7 +321,7 @@ def sleeper_map(
 def _sleeper_data(params: DimensionlessParams | PhysicalParams | BoundModel) -> SleeperInput:
     """The Floquet runtime's input of SI parameters on periodic supports (a bound model: its own)."""
     from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.inputs import sleeper_input_of
+    from moving_bogie.model.sleeper_input import sleeper_input_of
 
     if isinstance(params, BoundModel) or not isinstance(params, PhysicalParams):
         raise ParameterError("params", "the analyses on sleepers take SI parameters (PhysicalParams)")

@@ -72,8 +72,7 @@ class SoilRun:
 def soil_frequencies(args: argparse.Namespace) -> SoilRun:
     """The induced frequencies of the file's vehicle on its track on the soil (module docstring)."""
     _refuse_options(args)
-    from moving_bogie.api import induced_frequencies
-    from moving_bogie.soil.vehicle import load_soil_vehicle
+    from moving_bogie.api import induced_frequencies, load_soil_vehicle
 
     from .progress import progress_bar
 
