@@ -1,29 +1,28 @@
 """A vehicle on a track on the soil: the file, the bound model, the induced frequencies and the verdict.
 
 References: the continuous Winkler track of the same bound parameters (``roots/frequencies.py``: residues,
-the cut traced, its own far field) for a ballasted track on a rigid soil; (slow) the winding number of the
-same characteristic function on every cell of a coarse grid over the window (a brute-force count that
-places each root in its cell, with no use of the search's bisection or moments).
+the cut traced, its own far field; its kernel by residues and Brent's method for the threshold masses) for
+a ballasted track on a rigid soil.
 """
 
 from __future__ import annotations
 
 import copy
-import json
 from pathlib import Path
 
 import mpmath
 import numpy as np
 import pytest
+from scipy import optimize
 
-from moving_bogie.api import bind, induced_frequencies, load_soil_vehicle, soil_vehicle
+from moving_bogie.api import bind, induced_frequencies, soil_vehicle
 from moving_bogie.cli import main
 from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
-from moving_bogie.roots.count.contour import Rectangle, winding_number
-from moving_bogie.roots.quadrature_window import QuadratureCharacteristic
+from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.roots.verdict import UNSTABLE
 from moving_bogie.soil.file import soil_input
+from moving_bogie.soil.threshold import threshold_mass
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 RIGID = {
@@ -87,23 +86,34 @@ def test_rigid_soil_roots_are_those_of_the_winkler_track():
 
 
 @pytest.mark.slow
-def test_example_count_and_roots_against_winding_on_a_grid(capsys):
-    """The window of examples/soil-mass.toml cut into 3 x 3 cells, each counted by its own winding number
-    (the same characteristic function, sampled afresh): the cells' counts add up to the search's count and
-    each root found lies in a cell that holds one; the command prints the same roots in its JSON."""
-    vehicle = load_soil_vehicle(EXAMPLES / "soil-mass.toml")
-    result = induced_frequencies(vehicle)
+def test_threshold_mass_on_rigid_soil_is_the_winkler_tracks():
+    """D-decomposition along real Omega: on the rigid soil (the Winkler track of k_ref, above) at 1100 m/s the
+    crossings of M = 1 / (Omega^2 G) are those of the continuous track's kernel by residues,
+    G = 2 chi K / (pi k_ref) at Omega = q sqrt(k_ref / m), whose sign changes of Im 1/K brentq closes in on
+    (no code of soil/ in the reference); to the receptance's 1e-4 of the rigid-soil approximation."""
+    data = soil_input(_with(v=1100.0))
+    vehicle = soil_vehicle(data)
     bound = bind(vehicle)
-    E = QuadratureCharacteristic(bound)
-    w = result.window
-    xs, ys = np.linspace(w.x0, w.x1, 4), np.linspace(w.y0, w.y1, 4)
-    cells = [Rectangle(xs[i], xs[i + 1], ys[j], ys[j + 1]) for i in range(3) for j in range(3)]
-    counts = [winding_number(E, c, spacing=min(c.width, c.height) / 8, max_points=4000) for c in cells]
-    assert sum(counts) == result.count == len(result.roots)
-    for root in result.roots:
-        q = complex(root.q)
-        assert any(n >= 1 and c.contains(q) for c, n in zip(cells, counts, strict=True))
-    assert main(["frequencies", "--file", str(EXAMPLES / "soil-mass.toml"), "--json"]) in (0, 1)
-    out = json.loads(capsys.readouterr().out)
-    assert out["verdict"]["state"] == result.verdict.state
-    assert len(out["roots"]) == len(result.roots)
+    k_ref, track = vehicle.rail.k_ref, data.track
+    chi, omega_0 = (k_ref / (4 * track.EI)) ** 0.25, np.sqrt(k_ref / track.m)
+    winkler = ContinuousTrack(BoundModel(bound.params))
+
+    def inverse(q: float) -> complex:
+        # just below the real axis: the undamped Winkler track's K there is the limit from below, which
+        # the soil's (damped, analytic for Im q < 0) receptance takes on the axis
+        G = 2 * chi * complex(winkler.receptance(q - 1e-10j).matrix[0, 0]) / (np.pi * k_ref)
+        return 1 / G
+
+    grid = np.geomspace(0.02, 4.0, 40)
+    values = [inverse(q).imag for q in grid]
+    ref = []
+    for a, b, fa, fb in zip(grid[:-1], grid[1:], values[:-1], values[1:], strict=True):
+        if fa * fb < 0:
+            q = optimize.brentq(lambda x: inverse(x).imag, a, b, xtol=1e-14)
+            M = inverse(q).real / (q * omega_0) ** 2
+            if M > 0:
+                ref.append(M)
+    got = threshold_mass(track, data.soil, 1100.0, grid * omega_0)
+    assert ref and len(got.crossings) == len(ref)
+    for c, M in zip(sorted(got.crossings, key=lambda c: c.omega), ref, strict=True):
+        assert abs(c.M / M - 1) < 1e-4
