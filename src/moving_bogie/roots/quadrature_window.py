@@ -323,8 +323,8 @@ def window_frequencies(
             notes.append(Note(Reason.QUADRATURE, text))
     far = far_field
     if far is not None and far.radius is not None:
-        far = FarField(radius, far.rho, far.start)
         worst = _far_check(E, radius)
+        far = FarField(radius, worst, far.start)  # the track's own rho on the far edges
         if worst > MARGIN:
             reason = f"|E_chr - E_lead| / |E_lead| = {worst:.3g} > {MARGIN} on the window's far edges"
             far = FarField(None, worst, far.start, reason)
