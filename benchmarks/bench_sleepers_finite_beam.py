@@ -35,13 +35,13 @@ import importlib
 import sys
 from pathlib import Path
 
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.inputs import load_sleeper_file
-from moving_bogie.floquet.steady import static_loads
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_mass
 from moving_bogie.kernels.bound import bind
+from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.model.cases import table1_case
+from moving_bogie.model.sleeper_input import load_sleeper_file
+from moving_bogie.response.steady_bay import static_loads
 from moving_bogie.validation.compare import validate
 from moving_bogie.validation.sleepers_check import (
     SleeperBeamSettings,

@@ -69,20 +69,29 @@ class Run:
         return points / self.seconds / workers
 
 
-def sweep(src: Path, args: list[str], workers: int, store: Path) -> Run:
-    """``moving-bogie sweep args`` on ``workers`` local workers, in a child with the package of ``src``."""
+def timed_child(
+    src: Path, code: str, argv: list[str], what: str
+) -> tuple[str, float, float, tuple[float, float]]:
+    """``python -c code argv`` in a child with the package of ``src`` (one BLAS thread): its output, wall
+    seconds, CPU seconds (the child and its own children) and the load average at its start and end."""
     env = dict(os.environ, PYTHONPATH=str(src), OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
-    code = "import sys; from moving_bogie.cli import main; sys.exit(main(sys.argv[1:]))"
-    argv = ["sweep", *args, "--workers", str(workers), "--out", str(store), "--overwrite", "--json"]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start, load = time.perf_counter(), os.getloadavg()[0]
     done = subprocess.run([sys.executable, "-c", code, *argv], env=env, capture_output=True, text=True)
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode != 0:
-        raise SystemExit(f"moving-bogie sweep failed with {src}:\n{done.stderr[-3000:]}")
+        raise SystemExit(f"{what} failed with {src}:\n{done.stderr[-3000:]}")
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return Run(wall, float(json.loads(done.stdout)["seconds"]), cpu, (load, os.getloadavg()[0]), store)
+    return done.stdout, wall, cpu, (load, os.getloadavg()[0])
+
+
+def sweep(src: Path, args: list[str], workers: int, store: Path) -> Run:
+    """``moving-bogie sweep args`` on ``workers`` local workers, in a child with the package of ``src``."""
+    code = "import sys; from moving_bogie.cli import main; sys.exit(main(sys.argv[1:]))"
+    argv = ["sweep", *args, "--workers", str(workers), "--out", str(store), "--overwrite", "--json"]
+    out, wall, cpu, loads = timed_child(src, code, argv, "moving-bogie sweep")
+    return Run(wall, float(json.loads(out)["seconds"]), cpu, loads, store)
 
 
 def differences(a: Path, b: Path) -> dict[str, int]:

@@ -25,7 +25,7 @@ from moving_bogie.kernels.bound import bind
 from moving_bogie.model.cases import TABLE1_CASES, table1_case
 from moving_bogie.response.branch_cut import BranchCut
 from moving_bogie.response.bromwich import bromwich_response
-from moving_bogie.response.closed_form import _s_min, branch_cut_extent
+from moving_bogie.response.cut_policy import branch_cut_extent, s_min_for
 from moving_bogie.response.residues import residue_expansion
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "vibrations.md"
@@ -44,7 +44,7 @@ def size_table() -> str:
         result = induced_frequencies(params, dps=30)
         expansion = residue_expansion(bind(params), result, shapes=False)
         bc = BranchCut(bind(params))
-        s_min = _s_min(bc, expansion)
+        s_min = s_min_for(bc, expansion)
         values = bc.responses(np.array(TAUS), s_min=s_min)
         bound = max(bc.l1_bound(s_min=s_min).values())
         scale = max(abs(expansion.steady["w_rear"]), abs(expansion.steady["w_front"]))

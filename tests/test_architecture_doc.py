@@ -1,4 +1,5 @@
-"""docs/architecture.md names every module of the package and of derivations/, and only modules that exist.
+"""docs/architecture.md names every module of the package and of derivations/, and only modules that exist;
+its table of imports between the stages of the pipeline is the one that tests/test_layout.py enforces.
 
 A module is named by its path in backticks: ``stability/maps/map.py`` for
 ``src/moving_bogie/stability/maps/map.py``,
@@ -11,6 +12,8 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
+
+from test_layout import SHARED_HELPERS, STAGE_IMPORTS
 
 REPO = Path(__file__).resolve().parents[1]
 PACKAGE = REPO / "src" / "moving_bogie"
@@ -62,3 +65,33 @@ def test_the_scan_sees_what_it_checks():
         "roots/frequencies.py",
         "__init__.py",
     ]
+
+
+#: A row of the table of imports: the stage (``kernels/``, ``api.py``) and what it imports.
+ROW = re.compile(r"^\| `(\w+)(?:/|\.py)` \| (.*) \|$", re.MULTILINE)
+#: A stage named in a row: a backticked subpackage (``roots/``) or entry module (``api.py``).
+STAGE = re.compile(r"`(\w+)(?:/|\.py)`")
+
+
+def _table(text: str) -> dict[str, set[str]]:
+    """The stages each row of the table of imports names (``cli/`` imports "everything above": its row
+    names only ``cli/``, which nothing imports)."""
+    return {stage: set(STAGE.findall(imports)) - SHARED_HELPERS for stage, imports in ROW.findall(text)}
+
+
+def test_the_table_of_imports_is_the_one_the_layout_test_enforces():
+    """Each row names the stages its stage may import, as STAGE_IMPORTS of tests/test_layout.py has them
+    (the shared helpers, which any stage uses, aside); every stage but the command line has a row."""
+    table = _table(DOC.read_text(encoding="utf-8"))
+    assert "cli" in table.pop("cli", set()), "the row of cli/ (everything above; nothing imports cli/)"
+    expected = {
+        stage: set(imports)
+        for stage, imports in STAGE_IMPORTS.items()
+        if stage not in ("cli", "moving_bogie", "__main__")
+    }
+    assert table == expected
+
+
+def test_the_table_scan_sees_what_it_checks():
+    text = "| `roots/` | `kernels/`, `model/` (`model/x.py`), `errors.py` |\n| `api.py` | `roots/` |\n"
+    assert _table(text) == {"roots": {"kernels", "model"}, "api": {"roots"}}

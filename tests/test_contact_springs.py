@@ -22,9 +22,9 @@ import importlib
 import numpy as np
 import pytest
 
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import CONTACT_SPRINGS
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.model.files import parse_params_toml
 
 RIGID = ("mass", "oscillator", "masses", "bogie", "car")
@@ -200,7 +200,7 @@ def test_contact_spring_vehicle_on_a_continuous_track_tends_to_the_rigid_contact
 def test_sleeper_file_chooses_the_contact_spring_vehicle():
     """On sleepers too: k_H in [physical] (or in the overrides of --set) runs the vehicle's variant, and the
     wheel spacing d of two wheels is read with or without it (the reader takes every group of the model)."""
-    from moving_bogie.floquet.inputs import sleeper_input
+    from moving_bogie.model.sleeper_input import sleeper_input
 
     physical = {"EI": 6.42e6, "m": 60.21, "l": 1.0, "k_sup": 1e8, "c_sup": 3e3, "M": 1400, "d": 2.0}
     data = {"model": {"track": "sleepers", "vehicle": "masses"}, "physical": physical | {"P": 6.4e4, "v": 90}}

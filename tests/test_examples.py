@@ -12,12 +12,12 @@ import numpy as np
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.floquet.inputs import load_sleeper_file
 from moving_bogie.generated import CONTACT_SPRINGS, MODULES, VEHICLES
 from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import CharacteristicArray
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.files import load_params_file
+from moving_bogie.model.sleeper_input import load_sleeper_file
 from moving_bogie.soil.file import is_soil_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -37,7 +37,7 @@ SLEEPER_FILES = [path for path in ALL if _periodic(path)]
 
 def test_every_sleeper_example_loads_as_a_model_of_the_catalogue():
     """The sleeper examples load like any other file, as a model of the one catalogue; their groups are
-    those of the Floquet reader (floquet/inputs.py, the same generated scaling in floats)."""
+    those of the Floquet reader (model/sleeper_input.py, the same generated scaling in floats)."""
     assert SLEEPER_FILES, "examples/sleepers.toml is the README's and docs/sleepers.md's example"
     for path in SLEEPER_FILES:
         loaded = load_sleeper_file(path)

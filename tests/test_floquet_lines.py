@@ -1,7 +1,7 @@
 """D-decomposition lines and the (v, M) map of a vehicle on sleepers (docs/sleepers.md, (S19)-(S22)).
 
-References: the Hill determinant of floquet/hill.py (FloquetSystem, built without the pencil); the argument
-principle's count (roots/count/contour.py) on the window of floquet/strip.py, which knows nothing of the
+References: the Hill determinant of kernels/hill.py (FloquetSystem, built without the pencil); the argument
+principle's count (roots/count/contour.py) on the window of roots/strip.py, which knows nothing of the
 D-decomposition; the symmetry (S14), which puts the principal zone's crossings on Re q = Omega_0 / 2.
 """
 
@@ -14,12 +14,12 @@ import numpy as np
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.floquet.d_lines import d_column
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.mass_pencil import mass_pencil
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.mass_pencil import mass_pencil
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.roots.count.contour import Rectangle, winding_number
+from moving_bogie.stability.maps.d_lines import d_column
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -103,3 +103,45 @@ def test_a_sleeper_map_takes_an_m_axis_above_zero_and_set(capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["M_kg"] == [1000.0, 2000.0, 3]
     assert out["checks"] and all(check["agrees"] for check in out["checks"])
+
+
+def _previous_column(pencil, monkeypatch, **options):
+    """The column as the D-decomposition computed it before its short cuts (the reference): each crossing
+    followed with one more harmonic by Brent's method on its bracket, and Brent's method run to its
+    tolerance on every sign change (a jump between two branches included)."""
+    from moving_bogie.stability.maps import d_lines
+
+    with monkeypatch.context() as m:
+        m.setattr(d_lines, "POLISH_ITER", 100)
+        m.setattr(d_lines, "_follow", lambda finer, q, mu, a, b: d_lines._polish(finer, a, b, mu, mu))
+        return d_column(pencil, **options)
+
+
+@pytest.mark.parametrize(
+    "v, zone",
+    [
+        (97.0, True),  # the principal zone: two crossings on Re q = Omega_0 / 2
+        pytest.param(30.0, False, marks=pytest.mark.slow),  # no crossing; two branches swap near q = 0
+    ],
+)
+def test_the_short_cuts_give_the_previous_crossings(v, zone, monkeypatch):
+    """On the map of examples/sleepers_zones.toml: the crossings, their changes, their move with one more
+    harmonic and the notes of a column are those of the previous algorithm (Brent's method on every
+    bracket, :func:`_previous_column`), so the counts of every cell are the same."""
+    from moving_bogie.floquet.sleeper_map import _groups, mass_unit
+    from moving_bogie.model.sleeper_input import load_sleeper_file
+
+    data = load_sleeper_file(EXAMPLES / "sleepers_zones.toml")
+    track = SleeperTrack(data.beam, data.track, _groups(data, v))
+    pencil = mass_pencil(track, data.vehicle_kernels, data.vehicle_groups, 2)
+    eta_max = 3000.0 / mass_unit(data)
+    fast = d_column(pencil, eta_max=eta_max)
+    previous = _previous_column(pencil, monkeypatch, eta_max=eta_max)
+    assert fast.notes == previous.notes == ()
+    assert [c.change for c in fast.crossings] == [c.change for c in previous.crossings]
+    assert bool(fast.crossings) == zone
+    for a, b in zip(fast.crossings, previous.crossings):
+        assert abs(a.eta_M - b.eta_M) <= 1e-12 * b.eta_M and abs(a.q - b.q) <= 1e-12 * track.Omega0
+        assert abs(a.moved - b.moved) <= 1e-9  # the followed crossing is Brent's to 1e-9 in eta_M
+    etas = np.linspace(0, eta_max, 400)
+    assert np.array_equal(fast.counts(etas), previous.counts(etas))

@@ -11,11 +11,11 @@ import mpmath
 import numpy as np
 import pytest
 
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.receptance import receptance
-from moving_bogie.floquet.smeared_rail import smeared_receptance
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_mass, vehicle_masses
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.periodic_receptance import receptance
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.kernels.smeared_rail import smeared_receptance
 
 GROUPS = {"lam": 1.0, "alpha": 0.2, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.1}
 
@@ -35,9 +35,9 @@ def test_lattice_sum_matches_direct_sum():
 
 def test_a_kept_receptance_is_the_computed_one_and_a_copy():
     """receptance keeps what it computed by its arguments: asked again it hands out the same numbers (those
-    of the computation itself, floquet.receptance._receptance) as a new array; another track's groups or
-    another q are other arguments."""
-    from moving_bogie.floquet import receptance as module
+    of the computation itself, kernels.periodic_receptance._receptance) as a new array; another track's
+    groups or another q are other arguments."""
+    from moving_bogie.kernels import periodic_receptance as module
 
     tr, q, h, s = _track(), 0.8 - 0.3j, np.array([-1, 0]), np.array([0.3, 1.7])
     first = receptance(tr, q, h, s, tol=1e-10)
@@ -263,7 +263,7 @@ def test_periodic_in_q_and_independent_of_the_bay_the_vehicle_starts_in():
 @pytest.mark.parametrize("positions", [[0.3], [0.3, 1.7]])
 def test_panel_sums_match_the_assembled_integrand(positions):
     """The factored panel sums against Gauss-Kronrod applied to the assembled (nodes, R, R) integrand."""
-    from moving_bogie.floquet.receptance import GAUSS, KRONROD, NODES, _integrand, _panel_sums
+    from moving_bogie.kernels.periodic_receptance import GAUSS, KRONROD, NODES, _integrand, _panel_sums
 
     tr, q, harmonics = _track(), 0.7 - 0.05j, np.arange(-2, 3)
     a = np.linspace(-9.0, 8.0, 7)

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_mass
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.roots.count.contour import Rectangle, winding_number
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml"

@@ -1,4 +1,5 @@
-"""The steady periodic response under the constant loads on a rail on supports (moving_bogie.floquet.steady).
+"""The steady periodic response under the constant loads on a rail on supports
+(moving_bogie.response.steady_bay).
 
 References: the continuous rail's steady deflection under a constant moving load, the integral
 (1 / 2 pi) int 2 G_c(p, alpha p) dp by scipy's QUADPACK (no residues, no Floquet harmonics); the same
@@ -11,10 +12,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import quad
 
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.steady import static_loads, steady_harmonics, steady_response
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_mass
+from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.response.steady_bay import static_loads, steady_harmonics, steady_response
 
 ALPHA, ETA_F, ETA_SUP = 0.25, 0.05, 0.05
 VALUES = {"eta_M": 2.0}

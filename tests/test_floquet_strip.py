@@ -1,4 +1,4 @@
-"""The whole strip search (floquet/strip.py) and the finite-beam comparison, each against an independent
+"""The whole strip search (roots/strip.py) and the finite-beam comparison, each against an independent
 reference.
 
 References:
@@ -9,7 +9,7 @@ References:
   3 Omega_0 / 4) of docs/sleepers.md: at short bays the strip holds exactly those roots. The bay's effect
   on a root is the lattice sum's first correction S - G = sum_{j != 0} G(p + j K) (Eq. (S7)), of relative
   size 2 sum_j 4 / (j K)^4 / 4 = 8 zeta(4) / K^4 at p = 0, the tolerance on each root;
-- Newton's method on the Hill determinant with one more harmonic on each side (floquet/hill.py), for the
+- Newton's method on the Hill determinant with one more harmonic on each side (kernels/hill.py), for the
   claim that the roots have converged in the harmonics;
 - the finite rail of validation/sleepers_rail.py stepped in time (quintic Hermite elements, point supports,
   Newmark's rule: no harmonics, no receptance, no lattice sum), for the steady contact force of a damped
@@ -25,13 +25,13 @@ from pathlib import Path
 import pytest
 
 from moving_bogie.api import induced_frequencies
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.steady import static_loads
-from moving_bogie.floquet.strip import FloquetResult, floquet_frequencies
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.response.steady_bay import static_loads
 from moving_bogie.roots.count.contour import Rectangle, winding_number
+from moving_bogie.roots.strip import FloquetResult, floquet_frequencies
 from moving_bogie.validation.sleepers_beam import simulate_sleeper_beam
 from moving_bogie.validation.sleepers_check import (
     MARGIN,
@@ -144,7 +144,7 @@ def test_short_bays_unstable_roots_are_the_continuous_ones_folded():
     assert result.verdict.state == "unstable" and result.margin is None and result.unstable_count == 2
 
 
-#: the rail of examples/sleepers.toml in its groups (floquet/inputs.py), a stable case
+#: the rail of examples/sleepers.toml in its groups (model/sleeper_input.py), a stable case
 EXAMPLE_GROUPS = {
     "lam": 0.8428542781,
     "alpha": 0.0436009096,
@@ -265,7 +265,7 @@ def test_the_stable_example_reports_its_margin(capsys):
 def test_the_margin_is_what_the_window_vouches_for(top, roots, margin, source):
     """A stable result's margin is its least-damped root, or the free waves' rate when the window reaches
     0.99 of it, or else only the window's top (nothing above it was searched); an unstable one has none."""
-    from moving_bogie.floquet.strip import FloquetRoot
+    from moving_bogie.roots.strip import FloquetRoot
 
     window = Rectangle(-0.25, 0.75, -1.0, top)
     found = tuple(FloquetRoot(q, 0.0, 0.0) for q in roots)

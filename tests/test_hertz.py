@@ -12,9 +12,9 @@ from __future__ import annotations
 import pytest
 
 from moving_bogie.api import induced_frequencies
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.model.params import DimensionlessParams
 
 CONTINUOUS = {"beam": "eb", "eta_f": "0.2", "alpha": "0.3", "eta_M": "2"}

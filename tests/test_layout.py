@@ -245,6 +245,102 @@ def test_data_flows_one_way_between_subpackages():
     assert (cycle := _find_cycle(layers)) is None, "subpackages import each other: " + " -> ".join(cycle)
 
 
+#: The stages of the pipeline (docs/architecture.md, "The pipeline" and its table of imports): which of them
+#: each subpackage (or entry module) may import. Every subpackage of the runtime has its line, so a new
+#: package, or a new import between stages, is a decision written here and in the table. The shared helpers
+#: (``errors.py``, ``typing.py``, ``output.py``, ``presentation.py``, ``html_repr.py``, ``export.py``,
+#: ``checkpoint.py``, ``processes.py``, ``generated/``, ``data/``) are not stages: any module may use them,
+#: without a cycle (:func:`test_modules_import_each_other_without_a_cycle`).
+STAGE_IMPORTS: dict[str, frozenset[str]] = {
+    "model": frozenset(),
+    "kernels": frozenset({"model"}),
+    "roots": frozenset({"kernels", "model"}),
+    "response": frozenset({"roots", "kernels", "model"}),
+    "stability": frozenset({"roots", "kernels", "model"}),
+    "validation": frozenset({"response", "roots", "kernels", "model"}),
+    "sweep": frozenset({"stability", "roots", "kernels", "model"}),
+    "floquet": frozenset({"stability", "roots", "kernels", "model"}),
+    "soil": frozenset({"kernels"}),
+    "api": frozenset({"stability", "validation", "response", "roots", "floquet", "kernels", "model"}),
+    "paper": frozenset({"api", "stability", "validation", "response", "roots", "model"}),
+    "cli": frozenset(
+        {"api", "paper", "sweep", "validation", "stability", "response", "roots", "kernels", "model"}
+        | {"floquet", "soil"}
+    ),
+    ROOT: frozenset({"model"}),  # __init__.py: the public names, loaded lazily from api.py and the rest
+    "__main__": frozenset({"cli"}),
+}
+#: Imports between two stages that only some modules make, each with its reason: (importer, imported) ->
+#: the importing modules.
+NARROW_STAGE_IMPORTS: dict[tuple[str, str], frozenset[str]] = {
+    # a rail on supports takes its generated functions from the catalogue's PeriodicFoundation by the names
+    # of its beam and track (SleeperTrack(beam, track, groups)); every other kernel gets the model as data
+    ("kernels", "model"): frozenset({"moving_bogie.kernels.sleeper_track"}),
+}
+SHARED_HELPERS = frozenset(
+    {"errors", "typing", "output", "presentation", "html_repr", "export", "checkpoint", "processes"}
+    | {"generated", "data"}
+)
+
+
+def _stage_imports() -> Iterator[tuple[str, str, str]]:
+    """(module, its stage, imported stage) of every runtime import between two stages of the pipeline."""
+    for module, tree in _trees():
+        for _, imported, names in _imports(module, list(_runtime_nodes(tree))):
+            for target in _targets(imported, names):
+                if _layer(target) != _layer(module) and _layer(target) not in SHARED_HELPERS:
+                    yield module, _layer(module), _layer(target)
+
+
+def _stage_offenders(found: Iterator[tuple[str, str, str]]) -> list[str]:
+    offenders = []
+    for module, stage, target in found:
+        if stage in SHARED_HELPERS:
+            offenders.append(f"{module} is a shared helper and imports the stage {target}")
+        elif stage not in STAGE_IMPORTS:
+            offenders.append(f"{module}: the stage {stage} has no line in STAGE_IMPORTS")
+        elif target not in STAGE_IMPORTS[stage]:
+            offenders.append(f"{module} imports {target}, which {stage} does not import")
+        elif module not in NARROW_STAGE_IMPORTS.get((stage, target), frozenset({module})):
+            offenders.append(
+                f"{module} imports {target}, which only {NARROW_STAGE_IMPORTS[stage, target]} may"
+            )
+    return offenders
+
+
+def test_every_stage_imports_only_the_stages_above_it():
+    """Every package of the runtime is a stage of STAGE_IMPORTS (or a shared helper), and imports only the
+    stages its line names (docs/architecture.md, the table of imports), counting imports inside functions."""
+    stages = {_layer(module) for module in MODULES}
+    assert not stages - set(STAGE_IMPORTS) - SHARED_HELPERS, stages - set(STAGE_IMPORTS) - SHARED_HELPERS
+    offenders = sorted(set(_stage_offenders(_stage_imports())))
+    assert not offenders, "imports between stages not in the table:\n" + "\n".join(offenders)
+
+
+def test_the_stage_check_sees_what_it_checks():
+    found = set(_stage_imports())
+    assert ("moving_bogie.roots.frequencies", "roots", "kernels") in found
+    assert ("moving_bogie.kernels.sleeper_track", "kernels", "model") in found
+    assert _stage_offenders(
+        iter(
+            [
+                ("moving_bogie.kernels.track", "kernels", "model"),  # narrow: another module
+                ("moving_bogie.kernels.track", "kernels", "roots"),  # upward
+                ("moving_bogie.new.x", "new", "model"),  # a stage without its line
+                ("moving_bogie.errors", "errors", "model"),  # a helper importing a stage
+                ("moving_bogie.roots.strip", "roots", "kernels"),
+            ]
+        )
+    ) == [
+        "moving_bogie.kernels.track imports model, which only "
+        + str(frozenset({"moving_bogie.kernels.sleeper_track"}))
+        + " may",
+        "moving_bogie.kernels.track imports roots, which kernels does not import",
+        "moving_bogie.new.x: the stage new has no line in STAGE_IMPORTS",
+        "moving_bogie.errors is a shared helper and imports the stage model",
+    ]
+
+
 def _room(module: str) -> str:
     """The room of `module` inside its subpackage (``moving_bogie.roots.count``), or the module itself."""
     parts = module.split(".")
@@ -428,7 +524,7 @@ def test_the_outside_pattern_matches_what_it_should():
 # --- (e) one bound model ------------------------------------------------------------------------------------
 
 #: Where the generic runtime lives: no beam or vehicle of the catalogue is named there.
-GENERIC = ("kernels", "roots", "response", "validation", "stability", "sweep", "floquet")
+GENERIC = ("kernels", "roots", "response", "validation", "stability", "sweep", "floquet", "soil")
 #: The entry points, which may choose a model by name (the command line) or name the paper's (its recipes).
 ENTRY_POINTS = ("moving_bogie.cli", "moving_bogie.paper")
 
@@ -468,8 +564,14 @@ def _model_names() -> set[str]:
 
 #: Beam or vehicle names the generic runtime keeps, each with its reason: (module, name).
 MODEL_NAMES_ALLOWED: dict[tuple[str, str], str] = {
-    ("moving_bogie.floquet.track", "eb"): "the finite rail of the sleeper check has Euler-Bernoulli elements",
-    ("moving_bogie.floquet.track", "eb_axial"): "the free waves' damping floor is known on EB rails (S15)",
+    (
+        "moving_bogie.kernels.sleeper_track",
+        "eb",
+    ): "the finite rail of the sleeper check has Euler-Bernoulli elements",
+    (
+        "moving_bogie.kernels.sleeper_track",
+        "eb_axial",
+    ): "the free waves' damping floor is known on EB rails (S15)",
 }
 
 
@@ -496,6 +598,8 @@ def test_the_model_checks_see_what_they_check():
     assert {"bogie", "masses", "eb", "tr"} <= _model_names()
 
 
+_S24 = "the support's finite element (S24), to be generated"
+
 #: The model-parameter literals the generic runtime keeps, each with its reason: (module or "*", name).
 PARAMETER_LITERALS_ALLOWED: dict[tuple[str, str], str] = {
     ("*", "alpha"): "the velocity of the moving load: an argument of every generated foundation (Eq. (16))",
@@ -517,16 +621,17 @@ PARAMETER_LITERALS_ALLOWED: dict[tuple[str, str], str] = {
     ): "names the damping it needs > 0",
     ("moving_bogie.floquet.sleeper_map", "eta_f"): "names the damping along the rail it needs > 0 (S15)",
     ("moving_bogie.floquet.sleeper_map", "eta_M"): "the key of a crossing's wheel mass in a map's checkpoint",
-    ("moving_bogie.floquet.strip", "eta_f"): "a rail undamped along its length: singular points on the axis",
+    ("moving_bogie.roots.strip", "eta_f"): "a rail undamped along its length: singular points on the axis",
     # the rail on supports as finite elements (S24) and its bay: typed here until generated with the track
-    ("moving_bogie.floquet.track", "lam"): "the bay of a periodic track (Omega_0 = 2 pi alpha / lam)",
-    ("moving_bogie.floquet.track", "eta_sup"): "the support's finite element (S24), to be generated",
-    ("moving_bogie.floquet.track", "mu_sl"): "the support's finite element (S24), to be generated",
-    ("moving_bogie.floquet.track", "kappa_bal"): "the support's finite element (S24), to be generated",
-    ("moving_bogie.floquet.track", "eta_pad"): "the support's finite element (S24), to be generated",
-    ("moving_bogie.floquet.track", "eta_bal"): "the support's finite element (S24), to be generated",
-    ("moving_bogie.floquet.track", "kappa_f"): "the finite rail's foundation (S24), to be generated",
-    ("moving_bogie.floquet.track", "eta_f"): "the finite rail's foundation (S24), to be generated",
+    **{("moving_bogie.kernels.sleeper_track", name): _S24 for name in ("eta_sup", "mu_sl", "kappa_bal")},
+    **{("moving_bogie.kernels.sleeper_track", name): _S24 for name in ("eta_pad", "eta_bal")},
+    ("moving_bogie.kernels.sleeper_track", "lam"): "the bay of a periodic track (Omega_0 = 2 pi alpha / lam)",
+    (
+        "moving_bogie.kernels.sleeper_track",
+        "kappa_bal",
+    ): "the support's finite element (S24), to be generated",
+    ("moving_bogie.kernels.sleeper_track", "kappa_f"): "the finite rail's foundation (S24), to be generated",
+    ("moving_bogie.kernels.sleeper_track", "eta_f"): "the finite rail's foundation (S24), to be generated",
 }
 
 
@@ -675,7 +780,8 @@ BOUND_MODELS_ALLOWED: dict[str, str] = {
     "moving_bogie.sweep.design": "a sweep's design binds its parameters (to move up to sweep/api.py)",
     "moving_bogie.sweep.evaluate": "a sweep point is bound from its parameters (to become bound.replace)",
     "moving_bogie.sweep.api": "sweep_spec unwraps a bound model to its parameters (the track is lost)",
-    "moving_bogie.floquet.smeared": "the smeared track's steady deflection binds it (floquet/ is folded)",
+    "moving_bogie.response.smeared_deflection": "the smeared continuous track is a model of its own, made "
+    "from the periodic one's SI values (model/smeared.py) and bound for its steady deflection",
     "moving_bogie.validation.finite_beam": "simulate_finite_beam (public) reads the groups of a bound model",
 }
 

@@ -80,6 +80,22 @@ def test_the_python_api_takes_a_sleeper_file():
     assert bound.replace(eta_M=20).track_factory is bound.track_factory
 
 
+def test_the_roots_entry_takes_the_search_region_from_the_bound_model():
+    """roots.frequencies.induced_frequencies serves every track: on a strip the window's options are refused
+    by name, and a strip's options on a window are unknown keywords (both before any search)."""
+    from moving_bogie.roots.count.contour import Rectangle
+    from moving_bogie.roots.frequencies import induced_frequencies
+
+    params, _ = moving_bogie.load_parameters(EXAMPLES / "sleepers.toml")
+    strip = moving_bogie.bind(params)
+    for option in ({"window": Rectangle(0, 1, -1, 1)}, {"certify": True}, {"starts": [1j]}, {"balls": True}):
+        with pytest.raises(TypeError, match="a search of one strip takes none of them"):
+            induced_frequencies(strip, **option)
+    window = moving_bogie.bind(moving_bogie.table1_case(1))
+    with pytest.raises(TypeError, match="N_max"):
+        induced_frequencies(window, N_max=3)
+
+
 def test_critical_velocity_on_sleepers_is_the_smeared_tracks_with_the_track_frequencies(capsys):
     code, out = _json(capsys, "critical-velocity", "--file", str(EXAMPLES / "sleepers.toml"), "--set", "v=80")
     assert code == 0

@@ -21,6 +21,7 @@ from moving_bogie.validation.sleepers_fit import (
     extrapolated,
     fit_floquet_modes,
     period_rms,
+    periodic_limit,
 )
 
 OMEGA0 = 0.47  # the bay-passing frequency of the synthetic runs (that of examples/sleepers_zones.toml)
@@ -119,7 +120,7 @@ def test_the_check_fits_the_window_of_its_settings(monkeypatch):
     the last 60 % of the record of the default settings (docs/sleepers.md (S26); noise before it would spoil
     the rate), the rate and the frequency are those of the modes put in, within 1e-8, and the two halves of
     the window agree."""
-    from moving_bogie.floquet.track import SleeperTrack
+    from moving_bogie.kernels.sleeper_track import SleeperTrack
     from moving_bogie.validation.sleepers_beam import BeamRun
 
     track = SleeperTrack("eb", "sleepers", {"lam": T0 * 0.24, "alpha": 0.24, "eta_sup": 0.01})
@@ -164,9 +165,9 @@ def test_the_floquet_side_takes_the_harmonic_that_undoes_the_fold():
     """A wheel on short bays (lam 0.4, Omega_0 = 4.7): its root, folded by -1, 0 or 1 strips, is one vibration
     of the smeared track, at |Re q| of the unfolded root; floquet_frequency finds that harmonic in the null
     vector of the Hill matrix at each fold (any other is at least Omega_0 - 2 |Re q| = 3.3 away)."""
-    from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-    from moving_bogie.floquet.track import SleeperTrack
     from moving_bogie.generated import vehicle_mass
+    from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+    from moving_bogie.kernels.sleeper_track import SleeperTrack
 
     vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": 2.0})
     groups = {"lam": 0.4, "alpha": 0.3, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.2}
@@ -228,3 +229,25 @@ def test_the_rank_is_at_the_last_gap_of_the_singular_values(singular, rank):
     from moving_bogie.validation.sleepers_fit import RANK_LEVEL, _rank
 
     assert _rank(np.array(singular, float), RANK_LEVEL, 7) == rank
+
+
+def test_the_periodic_limit_removes_a_slow_transient():
+    """A forced run: a periodic response (harmonics 0, 1, 2 of Omega_0) plus two slowly decaying Floquet
+    modes near the parametric line (decay 0.0015 per unit tau, still 60 % of the response's peak-to-peak
+    at the end). The fixed point of the stroboscopic map gives the periodic part to 1e-6 of its
+    peak-to-peak; the raw last period misses it by more than 10 %."""
+    forced = {0: 2.0, 1: 0.3 - 0.2j, 2: 0.05j}
+    modes = [
+        (1.0, 0.5 * OMEGA0 + 0.003 + 0.0015j, {0: 1.0, -1: 0.4}),
+        (0.7, 0.5 * OMEGA0 - 0.011 + 0.0015j, {0: 1.0, 1: 0.2j}),
+        (1.0, 0.0, forced),  # q = 0: the periodic response itself
+    ]
+    tau, x = _run(modes, periods=60)
+    limit = periodic_limit(tau, x, T0, 0.4 * tau[-1])
+    periodic = np.real(sum(c * np.exp(1j * n * OMEGA0 * limit.tau) for n, c in forced.items()))
+    spread = np.ptp(periodic)
+    assert limit.settles
+    assert limit.transient > 0.1  # the transient is far from gone at the end of the run
+    assert np.max(np.abs(limit.values[0] - periodic)) < 1e-6 * spread
+    last = np.interp(limit.tau, tau, x)
+    assert np.max(np.abs(last - periodic)) > 0.1 * spread

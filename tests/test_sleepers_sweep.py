@@ -53,11 +53,11 @@ def test_a_bad_option_is_named_before_any_computation(tmp_path, capsys, monkeypa
 
 def _direct(path: Path, v: float) -> dict[str, Any]:
     """The reference: floquet_frequencies at the point, in rad/s (docs/sleepers.md, Eq. (S14))."""
-    from moving_bogie.floquet.hill import VehicleMatrices
-    from moving_bogie.floquet.inputs import load_sleeper_file
-    from moving_bogie.floquet.strip import floquet_frequencies
-    from moving_bogie.floquet.track import SleeperTrack
     from moving_bogie.generated import vehicle_mass
+    from moving_bogie.kernels.hill import VehicleMatrices
+    from moving_bogie.kernels.sleeper_track import SleeperTrack
+    from moving_bogie.model.sleeper_input import load_sleeper_file
+    from moving_bogie.roots.strip import floquet_frequencies
 
     d = load_sleeper_file(path, overrides={"v": v})
     res = floquet_frequencies(

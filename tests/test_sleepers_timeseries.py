@@ -1,4 +1,4 @@
-"""The time series on a sleeper track: ``moving-bogie timeseries --file`` and floquet/series.py.
+"""The time series on a sleeper track: ``moving-bogie timeseries --file`` and response/sleeper_series.py.
 
 References: the static wheel load P of the file (the mean contact force over a bay: (S17) at n = 0 has no
 inertia or damping term, and the vehicle's springs carry no mean force, so F_0 = s); the continuous track's
@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 from moving_bogie.cli import main
-from moving_bogie.floquet.inputs import load_sleeper_file
-from moving_bogie.floquet.series import sleeper_series
+from moving_bogie.model.sleeper_input import load_sleeper_file
+from moving_bogie.response.sleeper_series import sleeper_series
 
 #: examples/sleepers.toml's UIC60 rail and wheel (its SI values, per rail)
 RAIL = {"EI": 6.42e6, "m": 60.21, "c_f": 2.0e3, "M": 600.0, "P": 6.4e4, "v": 40.0}
@@ -163,7 +163,7 @@ def test_an_unknown_set_key_and_bays_on_a_continuous_file_are_named(tmp_path, ca
 def test_growth_rate_and_doubling_time_of_a_root():
     """e^{i Omega t} with Im Omega = -2 1/s has modulus e^{2 t}: it doubles in ln 2 / 2 s; Im Omega = +3
     halves in ln 2 / 3 s."""
-    from moving_bogie.floquet.series import FreeVibration
+    from moving_bogie.response.sleeper_series import FreeVibration
 
     growing, decaying = FreeVibration(100 - 2j), FreeVibration(50 + 3j)
     t = growing.doubling_time

@@ -3,7 +3,7 @@
 References: the continuous track's receptance against the defining integral K(xi, q) = int exp(i p xi)
 Q(p, q) / N(p, q) dp (Eq. (29)) by mpmath's quadrature on the real p-axis (no residues); the periodic
 track's receptance, coupled to a vehicle by the one coupling of kernels/coupling.py, against the Hill
-determinant of floquet/hill.py, which assembles the same system in its own arithmetic (pi = 1).
+determinant of kernels/hill.py, which assembles the same system in its own arithmetic (pi = 1).
 """
 
 from __future__ import annotations
@@ -17,14 +17,14 @@ import numpy as np
 import pytest
 
 from moving_bogie import bind, table1_case
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices, harmonic_set
-from moving_bogie.floquet.inputs import load_sleeper_file
-from moving_bogie.floquet.periodic_track import PeriodicTrack
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.kernels.arithmetic import Batched
 from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, harmonic_blocks
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices, harmonic_set
+from moving_bogie.kernels.periodic_track import PeriodicTrack
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.kernels.track_model import STRIP, WINDOW, Track
+from moving_bogie.model.sleeper_input import load_sleeper_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 

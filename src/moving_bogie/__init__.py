@@ -45,7 +45,7 @@ _LAZY = {
     "sleeper_series": "api",
     "sleeper_map": "api",
     "sleeper_map_figure": "floquet.map_figure",
-    "sleeper_series_figure": "floquet.plots",
+    "sleeper_series_figure": "response.sleeper_plots",
 }
 
 

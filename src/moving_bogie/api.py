@@ -14,8 +14,8 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
-from moving_bogie.floquet.periodic_track import PeriodicTrack
 from moving_bogie.kernels.bound import BoundModel, TrackFactory
+from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
 
@@ -23,12 +23,12 @@ if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import ArrayLike
 
-    from moving_bogie.floquet.inputs import SleeperInput
-    from moving_bogie.floquet.series import SleeperSeries
     from moving_bogie.floquet.sleeper_map import SleeperMap
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
+    from moving_bogie.model.sleeper_input import SleeperInput
     from moving_bogie.response.closed_form import TimeSeries
+    from moving_bogie.response.sleeper_series import SleeperSeries
     from moving_bogie.roots.frequencies import FrequencyResult
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
@@ -91,9 +91,9 @@ def bind(params: DimensionlessParams | PhysicalParams | BoundModel) -> BoundMode
 def speed_regime(params: DimensionlessParams, physical: PhysicalParams | None = None) -> SpeedRegime:
     """The speed against the track's critical velocity
     (:func:`~moving_bogie.stability.velocity.supercritical.speed_regime`; on periodic supports that of the
-    smeared track, :func:`~moving_bogie.floquet.smeared.smeared_regime`)."""
+    smeared track, :func:`~moving_bogie.stability.velocity.smeared_regime.smeared_regime`)."""
     if params.model.periodic:
-        from moving_bogie.floquet.smeared import smeared_regime
+        from moving_bogie.stability.velocity.smeared_regime import smeared_regime
 
         return smeared_regime(params, physical)
     from moving_bogie.stability.velocity.supercritical import speed_regime as continuous
@@ -113,21 +113,15 @@ def bind_with_scales(
 def induced_frequencies(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> FrequencyResult:
-    """Every induced frequency of ``params``: :func:`moving_bogie.roots.frequencies.induced_frequencies` in
-    the window, or :func:`moving_bogie.floquet.frequencies.strip_frequencies` in one strip of a periodic
-    track (the search region of the bound model's track).
+    """Every induced frequency of ``params`` in the search region of its track (the window, or one strip of
+    a periodic track): :func:`moving_bogie.roots.frequencies.induced_frequencies`.
 
     For SI parameters the result keeps their scales and shows itself in SI (rad/s, Hz, s).
     """
     from moving_bogie.roots.frequencies import induced_frequencies as run
 
     bound, scales = bind_with_scales(params)
-    if bound.track.search_region().periodic:
-        from moving_bogie.floquet.frequencies import strip_frequencies
-
-        result = strip_frequencies(bound, **options)
-    else:
-        result = run(bound, **options)
+    result = run(bound, **options)
     return result if scales is None else replace(result, scales=scales)
 
 
@@ -194,7 +188,7 @@ def validate_on_supports(
 
 def smeared_track(params: PhysicalParams) -> PhysicalParams:
     """The continuous track with the same smeared supports as SI parameters on periodic supports (the
-    limit l -> 0, docs/sleepers.md (S2)): :func:`~moving_bogie.floquet.smeared.smeared_physical`.
+    limit l -> 0, docs/sleepers.md (S2)): :func:`~moving_bogie.model.smeared.smeared_physical`.
 
     Raises
     ------
@@ -202,7 +196,7 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
         Naming ``track`` when the track has no such limit.
     """
     from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.smeared import smeared_physical
+    from moving_bogie.model.smeared import smeared_physical
 
     smeared = smeared_physical(params)
     if smeared is None:
@@ -214,8 +208,8 @@ def sleeper_series(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> SleeperSeries:
     """The steady response over a bay and the free vibrations on sleepers, in SI:
-    :func:`~moving_bogie.floquet.series.sleeper_series` (``bays``, ``points``, ``free``)."""
-    from moving_bogie.floquet.series import sleeper_series as run
+    :func:`~moving_bogie.response.sleeper_series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    from moving_bogie.response.sleeper_series import sleeper_series as run
 
     return run(_sleeper_data(params), **options)
 
@@ -237,7 +231,7 @@ def sleeper_map(
 def _sleeper_data(params: DimensionlessParams | PhysicalParams | BoundModel) -> SleeperInput:
     """The Floquet runtime's input of SI parameters on periodic supports (a bound model: its own)."""
     from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.inputs import sleeper_input_of
+    from moving_bogie.model.sleeper_input import sleeper_input_of
 
     if isinstance(params, BoundModel) or not isinstance(params, PhysicalParams):
         raise ParameterError("params", "the analyses on sleepers take SI parameters (PhysicalParams)")

@@ -86,6 +86,13 @@ def first_given(
     return None
 
 
+#: The model options refused on a sleeper-track file, and why: the file sets the model.
+MODEL_FROM_THE_FILE = dict.fromkeys(
+    ("case", "beam", "track", "vehicle"),
+    "the file's [model] and [physical] tables set the model and its SI values (--set NAME=VALUE changes one)",
+)
+
+
 def refuse_for_sleepers(
     args: argparse.Namespace, reasons: dict[str, str], unset: tuple[object, ...] = (None, False)
 ) -> None:

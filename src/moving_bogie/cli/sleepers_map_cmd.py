@@ -18,8 +18,8 @@ from .progress import checkpoint_options, progress_bar
 if TYPE_CHECKING:
     import numpy as np
 
-    from moving_bogie.floquet.inputs import SleeperInput
     from moving_bogie.floquet.sleeper_map import SleeperMap
+    from moving_bogie.model.sleeper_input import SleeperInput
 
 #: a sleeper map of over TIMED cells per axis is timed on one column before it starts
 TIMED = 50
@@ -39,7 +39,7 @@ def sleeper_data(args: argparse.Namespace) -> SleeperInput | None:
     """The parameters of ``--file`` (``--set`` applied) when its model is on periodic supports, else None."""
     if getattr(args, "file", None) is None:
         return None
-    from moving_bogie.floquet.inputs import sleeper_input_of
+    from moving_bogie.model.sleeper_input import sleeper_input_of
 
     from .common import params_from_args
 
@@ -132,8 +132,8 @@ def run_sleeper_lines(args: argparse.Namespace, data: SleeperInput) -> int:
 def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
     """``stability-map --file F`` on sleepers: the map, the continuous track's map on the same grid."""
     from moving_bogie.floquet.sleeper_map import sleeper_map
-    from moving_bogie.floquet.smeared import smeared_track
     from moving_bogie.kernels.bound import bind
+    from moving_bogie.model.smeared import smeared_track
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
 
     data, vs, ms = sleeper_plane(args, args.n, data)

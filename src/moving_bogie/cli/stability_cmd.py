@@ -168,9 +168,9 @@ def _critical_velocity_on_supports(
     """critical-velocity of a track on periodic supports: that of its smeared track (the supports spread
     along the rail, docs/sleepers.md), its pinned-pinned frequency and the sleeper-passing frequency."""
     from moving_bogie.errors import ParameterError
-    from moving_bogie.floquet.inputs import sleeper_input_of
-    from moving_bogie.floquet.smeared import smeared_physical
-    from moving_bogie.floquet.track import SleeperTrack
+    from moving_bogie.kernels.sleeper_track import SleeperTrack
+    from moving_bogie.model.sleeper_input import sleeper_input_of
+    from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.paper.critical_velocity_formulas import paper_formula
     from moving_bogie.stability.velocity.critical_velocity import critical_velocity
 

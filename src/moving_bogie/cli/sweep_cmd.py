@@ -1,9 +1,11 @@
-"""``sweep`` and ``sweep-plot``: parameter sweeps on Dask into a zarr store, and slices of them."""
+"""``sweep`` and ``sweep-plot``: parameter sweeps on Dask into a zarr store, and slices of them; on periodic
+supports one strip search per point (:mod:`moving_bogie.sweep.sleepers`), on the engine of every sweep."""
 
 from __future__ import annotations
 
 import argparse
 import sys
+import tomllib
 from collections.abc import Callable
 from functools import partial
 from pathlib import Path
@@ -15,12 +17,14 @@ from moving_bogie.presentation import field_lines
 
 from .checks import count, exact_number, named_values, workers
 from .common import (
+    MODEL_FROM_THE_FILE,
     add_bar_option,
     add_json_option,
     add_parameter_options,
     add_units_option,
     params_from_args,
     print_json,
+    refuse_for_sleepers,
     si_input,
     vary_texts,
 )
@@ -32,6 +36,7 @@ from .reporting import PROG, fail
 if TYPE_CHECKING:
     from moving_bogie.sweep.design import SweepSpec
     from moving_bogie.sweep.plan import SweepPlan
+    from moving_bogie.sweep.sleepers import SleeperSweepSpec
 
 _RAW = argparse.RawDescriptionHelpFormatter
 
@@ -170,9 +175,9 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
     spec: SweepPlan
     summarise: Callable[[Path], dict[str, Any]]
     if args.file is not None and params_from_args(args)[0].model.periodic:
-        from .sleepers_sweep_cmd import sleeper_spec, sleeper_summary
+        from moving_bogie.sweep.sleepers import sleeper_summary
 
-        sleepers = sleeper_spec(args)
+        sleepers = _sleeper_spec(args)
         spec = sleepers
         summarise = lambda path: sleeper_summary(sleepers, open_sweep(path, dask=False))  # noqa: E731
     else:
@@ -244,6 +249,60 @@ def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
         out["bar"] = note
     if "supercritical" in a:  # the points above the critical velocity of their track
         out["supercritical_points"] = int(a["supercritical"].sum())
+    return out
+
+
+# --- on periodic supports -----------------------------------------------------------------------------
+
+#: the options of a continuous-track sweep that a sleeper file does not take, and why
+_NOT_FOR_SLEEPERS = {
+    **MODEL_FROM_THE_FILE,
+    "roots": "the store keeps the fastest-growing root of every point (Omega_re, Omega_im)",
+    "check": "every point is a full strip search of its own",
+    "margin": "a sleeper sweep stores the margin of every stable point (margin, in 1/s) without it",
+}
+
+
+def _refuse_options(args: argparse.Namespace) -> None:
+    """Refuse, naming it, the first option that does not apply to a sleeper file."""
+    refuse_for_sleepers(args, _NOT_FOR_SLEEPERS)
+    if args.units == "dimensionless":
+        raise ParameterError(
+            "--units", "--units dimensionless does not apply to a sleeper-track file: it is swept in SI units"
+        )
+
+
+def _sleeper_spec(args: argparse.Namespace) -> SleeperSweepSpec:
+    """The sweep of ``args.file``, every option and every axis's extreme values checked."""
+    from moving_bogie.sweep.design import parse_sample
+    from moving_bogie.sweep.sleepers import make_sleeper_spec
+
+    _refuse_options(args)
+    if args.workers is not None and args.scheduler:
+        raise ParameterError("--workers", "give either --workers or --scheduler, not both")
+    chunk_points = 1 if args.chunk_points is None else args.chunk_points
+    vary = vary_texts(args.vary)
+    sample = parse_sample(args.sample) if args.sample else None
+    if sample is not None:
+        check_points(sample, "--sample")
+    data = tomllib.loads(args.file.read_text())
+    settings = _sleeper_settings(args.set)
+    return make_sleeper_spec(
+        data, str(args.file), vary, settings=settings, sample=sample, block_points=chunk_points
+    )
+
+
+def _sleeper_settings(texts: list[str] | None) -> dict[str, float]:
+    """``--set NAME=VALUE`` as SI floats, the overrides of a sleeper file's ``[physical]`` values."""
+    out: dict[str, float] = {}
+    for text in texts or ():
+        name, eq, value = text.partition("=")
+        try:
+            out[name.strip()] = float(value)
+        except ValueError:
+            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER") from None
+        if not eq or not name.strip():
+            raise ParameterError("set", f"--set {text!r}: expected NAME=NUMBER")
     return out
 
 

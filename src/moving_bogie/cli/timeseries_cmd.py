@@ -1,21 +1,26 @@
-"""``moving-bogie timeseries`` and ``moving-bogie shape``: closed-form vibrations, Eqs. (35)-(47)."""
+"""``moving-bogie timeseries`` and ``moving-bogie shape``: closed-form vibrations, Eqs. (35)-(47); on periodic
+supports the steady response over a bay and the free vibrations (docs/sleepers.md, "The time series on
+sleepers"), from :func:`moving_bogie.response.sleeper_series.sleeper_series`. The output is
+:mod:`.timeseries_output`'s."""
 
 from __future__ import annotations
 
 import argparse
-import os
-from collections.abc import Sequence
+import sys
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     import numpy as np
 
     from moving_bogie.kernels.bound import BoundModel
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.roots.frequency_result import FrequencyResult
 
 from .checks import count, number
 from .common import (
+    MODEL_FROM_THE_FILE,
     add_json_option,
     add_output_option,
     add_parameter_options,
@@ -24,6 +29,15 @@ from .common import (
     print_json,
 )
 from .outputs import add_figure_option
+from .timeseries_output import (
+    format_series,
+    format_sleeper_series,
+    not_converged,
+    print_shape,
+    write_csv_series,
+    write_shape_csv,
+    write_sleeper_csv,
+)
 
 _MAX_POINTS = 10_000_000
 
@@ -193,17 +207,13 @@ def _frequencies_or_fail(
 
 
 def run_timeseries(args: argparse.Namespace) -> int:
-    """Compute and print (or write) the closed-form time series; a sleeper-track file's steady response
-    over a bay and free vibrations (:mod:`.sleepers_series_cmd`)."""
+    """Compute and print (or write) the closed-form time series; on periodic supports the steady response
+    over a bay and the free vibrations (:func:`run_on_supports`)."""
     from moving_bogie.errors import ParameterError
 
     params, physical = params_from_args(args)  # every input checked before the heavy imports
     if params.model.periodic:
-        from moving_bogie.floquet.inputs import sleeper_input_of
-
-        from .sleepers_series_cmd import run_sleeper_timeseries
-
-        return run_sleeper_timeseries(args, sleeper_input_of(params, physical))
+        return run_on_supports(args, params, physical)
     if args.bays is not None:
         raise ParameterError("bays", "--bays applies to a sleeper track only")
     _check(args)
@@ -240,6 +250,71 @@ def run_timeseries(args: argparse.Namespace) -> int:
     return 0
 
 
+# --- on periodic supports -----------------------------------------------------------------------------
+
+#: the options of the continuous-track time series that a sleeper file does not take, and what to do instead
+_NOT_FOR_SLEEPERS = {
+    **MODEL_FROM_THE_FILE,
+    "tau": "the steady response spans --bays bays on --points points",
+    "tmax": "the steady response spans --bays bays on --points points",
+    "branch_cut": "the steady response over a bay is a sum of harmonics, without a branch cut",
+    "plot_long": "--plot draws the steady response over the bays",
+    "dps": "the Floquet runtime works in double precision",
+}
+_MAX_SLEEPER_POINTS = 1_000_000
+_MAX_BAYS = 10_000
+SLEEPER_POINTS = 201
+
+
+def check_sleeper_options(args: argparse.Namespace) -> None:
+    """Refuse, naming it, the first option that does not apply to a sleeper file; check --bays, --points."""
+    from moving_bogie.errors import ParameterError
+
+    from .common import refuse_for_sleepers
+
+    # --no-branch-cut sets False: refused too
+    refuse_for_sleepers(args, _NOT_FOR_SLEEPERS, unset=(None,))
+    bays = 1 if args.bays is None else args.bays
+    if not 1 <= bays <= _MAX_BAYS:
+        raise ParameterError("bays", f"--bays must be between 1 and {_MAX_BAYS} (got {bays})")
+    points = SLEEPER_POINTS * bays if args.points is None else args.points
+    if not 2 <= points <= _MAX_SLEEPER_POINTS:
+        raise ParameterError("points", f"--points must be between 2 and {_MAX_SLEEPER_POINTS} (got {points})")
+    args.bays, args.points = bays, points
+
+
+def run_on_supports(
+    args: argparse.Namespace, params: DimensionlessParams, physical: PhysicalParams | None
+) -> int:
+    """Print (or write) the steady response over ``--bays`` bays and the free vibrations in SI of a model on
+    periodic supports (the file's parameters, ``--set`` applied)."""
+    check_sleeper_options(args)
+    from moving_bogie.model.sleeper_input import sleeper_input_of
+    from moving_bogie.response.sleeper_series import sleeper_series
+
+    data = sleeper_input_of(params, physical)
+    series = sleeper_series(data, bays=args.bays, points=args.points)
+    if args.csv:
+        write_sleeper_csv(series, args.csv)
+    if args.plot:
+        from moving_bogie.response.plots import save_figure
+        from moving_bogie.response.sleeper_plots import sleeper_series_figure
+
+        save_figure(sleeper_series_figure(series, title=f"{args.file.name} ({series.model})"), args.plot)
+    if args.json:
+        print_json(series.to_dict())
+    else:
+        files = [str(f) for f in (args.csv, args.plot) if f]
+        print(format_sleeper_series(series, rows=args.rows or not files, files=files))
+    warnings = [] if series.converged else [not_converged(series)]
+    warnings += list(series.free_notes)
+    for text in warnings:
+        print(f"warning: {text}", file=sys.stderr)
+    from moving_bogie.roots.verdict import UNDETERMINED
+
+    return 0 if series.converged and series.free_verdict != UNDETERMINED else 1
+
+
 def series_label(args: argparse.Namespace, ts: TimeSeries) -> str:
     """What a figure's title names: the Table 1 case, else the parameter file, else the model."""
     if args.case is not None:
@@ -247,76 +322,6 @@ def series_label(args: argparse.Namespace, ts: TimeSeries) -> str:
     if args.file is not None:
         return f"{args.file.name} ({ts.model})"
     return str(ts.model)
-
-
-def _units_line(ts: TimeSeries) -> str:
-    """``units: tau [...], ...``: the wheels' deflections as ``w``, then the bodies' DOFs, names of one unit
-    together (the bogie: ``w, u [w_st], theta [w_st chi]``)."""
-    groups: list[tuple[list[str], str]] = []
-    wheel_unit = ts.response_units[ts.names[0]]
-    labels = [("w", wheel_unit)] + [(n, ts.response_units[n]) for n in ts.names[ts.contacts :]]
-    for label, unit in labels:
-        if groups and groups[-1][1] == unit:
-            groups[-1][0].append(label)
-        else:
-            groups.append(([label], unit))
-    time = f"{_time_name(ts)} [{ts.units['tau']}]"
-    return f"units: {time}, " + ", ".join(f"{', '.join(g)} [{unit}]" for g, unit in groups)
-
-
-def _time_name(ts: TimeSeries) -> str:
-    """``t`` for a series in seconds (SI parameters), else the dimensionless ``tau`` of Eq. (16)."""
-    return "t" if ts.units.get("tau") == "s" else "tau"
-
-
-def write_csv_series(ts: TimeSeries, path: str | os.PathLike[str]) -> None:
-    """The series as CSV: tau, then every response under its DOF name, a units line below the header."""
-    from .common import atomic_write
-
-    names = ("tau", *ts.responses)
-    units = [ts.units["tau"], *ts.response_units.values()]
-    columns = [ts.tau, *ts.responses.values()]
-    lines = [",".join(names), "# units: " + ",".join(units)]
-    for row in zip(*columns):
-        lines.append(",".join(repr(float(v)) for v in row))
-    atomic_write(path, "\n".join(lines) + "\n")
-
-
-def format_series(
-    ts: TimeSeries, rows: bool = True, csv: str | os.PathLike[str] | None = None, plots: Sequence[str] = ()
-) -> str:
-    """The readable series: summary lines, then one row per time (``rows``), then the notes; without the
-    rows, one line saying where they went (``csv``, the data file) or were drawn (``plots``)."""
-    from moving_bogie.presentation import quantity_text
-
-    bc = (
-        "all times"
-        if ts.branch_cut_until == float("inf")
-        else (
-            f"{_time_name(ts)} <= {quantity_text(ts.branch_cut_until, ts.units['tau'])}"
-            if ts.branch_cut
-            else "not included"
-        )
-    )
-    lines = [
-        f"Closed-form response ({ts.model}); {len(ts.frequencies.roots)} induced-frequency pair(s); "
-        f"branch-cut part: {bc}",
-        "steady parts: " + "  ".join(f"{n} {v:.10g}" for n, v in ts.steady.items()),
-        _units_line(ts),
-        f"{_time_name(ts):>14} " + " ".join(f"{n:>18}" for n in ts.responses),
-    ]
-    columns = [ts.tau, *ts.responses.values()]
-    if rows:
-        for row in zip(*columns):
-            lines.append(" ".join(f"{v:>{14 if k == 0 else 18}.10g}" for k, v in enumerate(row)))
-    else:
-        if csv:
-            lines[-1] = f"{len(ts.tau)} rows written to {csv}; --rows prints them here too"
-        else:
-            drawn = f"drawn in {', '.join(plots)}; " if plots else ""
-            lines[-1] = f"{len(ts.tau)} rows not printed ({drawn}--rows prints them, --csv F.csv writes them)"
-    lines += [f"note: {n}" for n in ts.notes]
-    return "\n".join(lines)
 
 
 #: How far from the rear wheel (in beam lengths 1/chi) ``shape`` evaluates the deflection.
@@ -369,35 +374,20 @@ def run_shape(args: argparse.Namespace) -> int:
         else {"xi": "1", "tau": "1", "w": "w_st"}
     )
     if args.csv:
-        from .common import atomic_write
-
-        text = "xi,w\n# units: " + f"{units['xi']},{units['w']}\n"
-        text += "".join(f"{x!r},{float(v)!r}\n" for x, v in zip(xi.tolist(), w))
-        atomic_write(args.csv, text)
+        write_shape_csv(xi, w, units, args.csv)
     if args.plot:
         from moving_bogie.response.plots import save_figure, shape_figure
 
         fig = shape_figure(xi, w, tau=args.tau, d=d / chi, si=physical is not None)
         save_figure(fig, args.plot)
-    if args.json:
-        print_json(
-            {
-                "tau": args.tau,
-                "xi": xi.tolist(),
-                "w": [float(v) for v in w],
-                "model": args.model,
-                "units": units,
-                "branch_cut": with_cut,
-                "notes": list(notes),
-            }
-        )
-    else:
-        lines = [
-            f"Deflection shape at tau = {args.tau:g} [{units['tau']}] ({args.model}); "
-            f"branch-cut part: {'included' if with_cut else 'not included'}"
-        ]
-        lines.append(f"{'xi':>14} {'w':>18}")
-        lines += [f"{x:>14.8g} {v:>18.10g}" for x, v in zip(xi, w)]
-        lines += [f"note: {n}" for n in notes]
-        print("\n".join(lines))
+    print_shape(
+        xi,
+        w,
+        tau=args.tau,
+        model=args.model,
+        units=units,
+        with_cut=with_cut,
+        notes=notes,
+        json_mode=args.json,
+    )
     return 0

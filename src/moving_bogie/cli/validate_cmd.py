@@ -1,15 +1,17 @@
-"""``moving-bogie validate``: the finite beam against the closed form, side by side (Section 3.2)."""
+"""``moving-bogie validate``: the finite beam against the closed form, side by side (Section 3.2); on periodic
+supports the finite rail against the Floquet theory (docs/sleepers.md, "The finite rail on sleepers")."""
 
 from __future__ import annotations
 
 import argparse
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from moving_bogie.model.sleeper_input import SleeperInput
     from moving_bogie.validation.verdict import ValidationResult
 
 from .checks import count, number
-from .common import add_json_option, add_parameter_options, params_from_args, print_json
+from .common import add_json_option, add_parameter_options, params_from_args, print_json, refuse_for_sleepers
 from .outputs import add_figure_option
 
 
@@ -86,13 +88,11 @@ def run(args: argparse.Namespace) -> int:
     if args.file is not None:
         params, physical = params_from_args(args)
         if params.model.periodic:
-            from moving_bogie.floquet.inputs import sleeper_input_of
-
-            from .sleepers_validate_cmd import run_sleeper_validation
+            from moving_bogie.model.sleeper_input import sleeper_input_of
 
             if not (0 < args.tol < 1):
                 raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
-            return run_sleeper_validation(args, sleeper_input_of(params, physical))
+            return run_on_supports(args, sleeper_input_of(params, physical))
     if args.modes < 4:
         raise ParameterError("modes", f"--modes must be at least 4 (got {args.modes})")
     if args.tmax is not None and not (args.tmax > 0 and args.tmax < float("inf")):
@@ -176,4 +176,95 @@ def format_result(result: ValidationResult) -> str:
         lines.append(f"verdict: AGREE (every quantity within {result.tolerance:.3g})")
     else:
         lines.append(f"verdict: DISAGREE (some quantity differs by more than {result.tolerance:.3g})")
+    return "\n".join(lines)
+
+
+# --- on periodic supports -----------------------------------------------------------------------------
+
+#: options of ``validate`` that the continuous tracks' check takes and a sleeper file does not, and why
+_MODEL = "give the model in the file"
+_NOT_HERE = {
+    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL,
+    "tmax": "the check runs its own times (growth over periods, a steady bay)",
+    "no_correction": "the rail on sleepers is meshed in beam elements, not in truncated sine modes",
+    "no_estimate": "the rail on sleepers has no second run of the error estimate",
+}  # fmt: skip
+
+
+def _refuse_on_supports(args: argparse.Namespace) -> None:
+    """One message naming the first option that does not apply to a sleeper file (before any work)."""
+    from moving_bogie.errors import ParameterError
+
+    refuse_for_sleepers(args, _NOT_HERE)
+    if args.modes != 500:
+        raise ParameterError(
+            "modes", "--modes does not apply to a sleeper-track file: its rail is meshed in beam elements"
+        )
+
+
+def run_on_supports(args: argparse.Namespace, data: SleeperInput) -> int:
+    """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers` on the
+    parameters ``data`` of a model on periodic supports (the file's, ``--set`` applied), printed."""
+    from moving_bogie.validation.on_supports import check_on_supports, check_summary
+
+    _refuse_on_supports(args)
+    from .progress import progress_bar
+
+    with progress_bar("Floquet theory + finite rail", enabled=not args.json) as update:
+        result = check_on_supports(data, tol=args.tol, progress=update)
+    if args.plot:
+        from moving_bogie.response.plots import save_figure
+        from moving_bogie.validation.sleepers_plots import plot_sleeper_check
+
+        title = f"{data.beam}/{data.track}/{data.vehicle}, v = {data.physical['v']:g} m/s"
+        newtons, metres = data.si_units()
+        figure = plot_sleeper_check(result, title=title, newtons=newtons, metres=metres)
+        save_figure(figure, args.plot, dpi=150)
+    out = check_summary(result, data)
+    if args.plot:
+        out["plot"] = str(args.plot)
+    if args.json:
+        print_json(out)
+    else:
+        print(format_sleeper_check(out))
+        if args.plot:
+            print(f"figure written to {args.plot}")
+    return 0 if result.agrees else 1
+
+
+def _dt_text(finite_beam: dict[str, Any]) -> str:
+    """The finite rail's time step: in s when known (``dt_s``), else per unit tau."""
+    if "dt_s" in finite_beam:
+        return f"{finite_beam['dt_s']:.4g} s"
+    return f"{finite_beam['dt']:.4g}"
+
+
+def format_sleeper_check(out: dict[str, Any]) -> str:
+    """The table: quantity, Floquet, finite beam (SI), relative difference, and the verdict line."""
+    fb = out["finite_beam"]
+    lines = [
+        f"model {out['model']}: finite rail of {fb['bays']} bays "
+        f"({fb['elements_per_bay']} quintic elements per bay, "
+        f"{fb['unknowns']} unknowns, dt = {_dt_text(fb)}) against the Floquet theory "
+        f"(verdict {out['floquet_verdict'].upper()})",
+        f"  {'quantity':<26}{'Floquet':>14}{'finite beam':>14}  {'unit':<6}{'rel. diff':>10}  within",
+    ]
+    for c in out["comparisons"]:
+        lines.append(
+            f"  {c['quantity']:<26}{c['floquet_si']:>14.6g}{c['finite_beam_si']:>14.6g}  {c['unit_si']:<6}"
+            f"{c['relative_diff']:>10.3%}  {'yes' if c['within'] else 'NO'}"
+        )
+    lines.append(
+        "rule: |finite - Floquet| <= tol |Floquet| for the rate and the frequency; for the steady force "
+        "max |difference| over the last bay <= tol x the Floquet force's peak-to-peak"
+    )
+    t = out["timings"]
+    lines.append(f"time: Floquet {t['floquet_s']:.2f} s, finite beam {t['finite_beam_s']:.2f} s")
+    lines += [f"NOTE: {note}" for note in out["notes"]]
+    judged = "; ".join(
+        f"{c['quantity']} {c['floquet_si']:.6g} (Floquet) vs {c['finite_beam_si']:.6g} (finite beam) "
+        f"{c['unit_si']}: {c['relative_diff']:.3%} {'<=' if c['within'] else '>'} {c['tolerance']:.2%}"
+        for c in out["comparisons"]
+    )
+    lines.append(f"verdict: {'AGREE' if out['agrees'] else 'DISAGREE'}: {judged or 'nothing compared'}")
     return "\n".join(lines)

@@ -1,9 +1,8 @@
-"""Floquet induced frequencies of a vehicle on a rail on discrete supports (docs/sleepers.md).
+"""The (v, M) map of a vehicle on a rail on discrete supports (docs/sleepers.md, (S19)-(S22)).
 
-:mod:`~moving_bogie.floquet.track` the rail's symbol, supports and lattice sum at one parameter set;
-:mod:`~moving_bogie.floquet.receptance` the receptance between (contact, harmonic) pairs;
-:mod:`~moving_bogie.floquet.hill` the truncated Hill determinant; :mod:`~moving_bogie.floquet.strip` the
-roots in one strip of width Omega_0 by the argument principle, converged in the number of harmonics;
-:mod:`~moving_bogie.floquet.inputs` the parameters of a sleeper track from SI values;
-:mod:`~moving_bogie.floquet.steady` the steady periodic response under the constant loads over a bay.
+:mod:`~moving_bogie.floquet.sleeper_map` counts the map column by column from the D-decomposition
+crossings (:mod:`~moving_bogie.stability.maps.d_lines`); :mod:`~moving_bogie.floquet.map_figure` draws it
+beside the smeared continuous track's map. The rest of the periodic track lives beside its continuous
+counterpart: the track in ``kernels/``, the strip search in ``roots/``, the steady bay response in
+``response/``.
 """

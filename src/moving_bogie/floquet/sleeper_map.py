@@ -1,12 +1,12 @@
 """The (v, M) stability map of a vehicle on sleepers from its D-decomposition lines (docs/sleepers.md, (S22)).
 
-Each velocity is one column: its crossings (:func:`~moving_bogie.floquet.d_lines.d_column`) give the
+Each velocity is one column: its crossings (:func:`~moving_bogie.stability.maps.d_lines.d_column`) give the
 number of unstable roots in the strip at every wheel mass at once, none at M -> 0 plus the signed
 crossings below M. No cell is searched; the count is checked against
-:func:`~moving_bogie.floquet.strip.floquet_frequencies` (the argument principle, no D-decomposition) at a few
+:func:`~moving_bogie.roots.strip.floquet_frequencies` (the argument principle, no D-decomposition) at a few
 cells: one in each count region of ``verify`` columns. A disagreement, a column whose crossings have not
 converged in the harmonics or a sign change not resolved is said in ``notes`` and marks the column
-``uncertain``. Columns are spread over ``workers`` processes.
+``uncertain``. The columns, then the checks, are spread over ``workers`` processes.
 """
 
 from __future__ import annotations
@@ -20,13 +20,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from moving_bogie.checkpoint import Checkpoint, Part, run_parts
-from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.d_lines import DColumn, DCrossing, d_column
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.inputs import SleeperInput
-from moving_bogie.floquet.mass_pencil import mass_pencil
-from moving_bogie.floquet.strip import floquet_frequencies
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.errors import JobInterrupted, ParameterError
+from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.mass_pencil import mass_pencil
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.sleeper_input import SleeperInput
+from moving_bogie.roots.strip import floquet_frequencies
+from moving_bogie.stability.maps.d_lines import DColumn, DCrossing, d_column
 
 __all__ = ["MapCheck", "SleeperMap", "sleeper_map"]
 
@@ -203,6 +203,21 @@ def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapChe
     return MapCheck(v, M, map_count, res.unstable_count, res.verdict.state, res.converged)
 
 
+def check_part(task: tuple[SleeperInput, float, float, int]) -> Part:
+    """:func:`check_cell` of ``task`` = (data, v, M, map_count) as arrays (one worker's task)."""
+    c = check_cell(*task)
+    counts = np.array([c.map_count, c.search_count, int(c.converged)])
+    return {"cell": np.array([c.v, c.M]), "counts": counts, "verdict": np.array(c.verdict)}
+
+
+def part_check(part: Part) -> MapCheck:
+    """The check of :func:`check_part`, read back exactly."""
+    (v, M), (map_count, search_count, converged) = part["cell"], part["counts"]
+    return MapCheck(
+        float(v), float(M), int(map_count), int(search_count), str(part["verdict"]), bool(converged)
+    )
+
+
 def _verify_cells(
     smap_count: np.ndarray, columns: Sequence[DColumn], masses: np.ndarray, verify: int
 ) -> list:
@@ -271,11 +286,14 @@ def sleeper_map(
     columns = [part_column(p) for p in parts]
     count = np.stack([col.counts(ms / unit) for col in columns], axis=1)
     cells = _verify_cells(count, columns, ms, verify)
-    checks: list[MapCheck] = []
-    for k, (i, j) in enumerate(cells):
-        checks.append(check_cell(data, float(vs[i]), float(ms[j]), int(count[j, i])))
-        if progress is not None:
-            progress(share + (1 - share) * (k + 1) / len(cells))
+    checked = [(data, float(vs[i]), float(ms[j]), int(count[j, i])) for i, j in cells]
+    part = None if progress is None else (lambda x: progress(share + (1 - share) * x))
+    try:
+        done = run_parts(check_part, checked, workers=workers, progress=part, what="checks")
+    except JobInterrupted:  # the columns are kept: a resumed map computes the checks only
+        folder = None if kept is None else kept.folder
+        raise JobInterrupted(len(tasks), len(tasks), folder, "columns") from None
+    checks = [part_check(p) for p in done]
     if kept is not None:
         kept.remove()
     notes = [f"v = {col.alpha * data.v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]

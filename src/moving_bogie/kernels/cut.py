@@ -22,6 +22,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+import mpmath
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -41,6 +42,7 @@ __all__ = [
     "cut_loci",
     "cut_locus",
     "far_range",
+    "side_of_cut",
     "trace_curves",
 ]
 
@@ -321,3 +323,21 @@ def _locus(pieces: list[CutArm], turning: list, x_min: float, x_max: float) -> C
     return CutLocus(
         inside, x_start, float(inside.imag.min()), float(inside.imag.max()), tuple(arms), tuple(folds)
     )
+
+
+def side_of_cut(q: complex | mpmath.mpc, tol: float, cut: CutLocus, floor: float) -> str:
+    """Position of a root q relative to the cut: "below" or "above" every cut curve over Re q, or "between"
+    two of them (a layered track's curves, the lens of the Timoshenko-Rayleigh cut); a root on a curve
+    within ``tol`` counts as below it (a limit from below). Where no curve lies over Re q, the cut is the
+    nearest traced point's Im q beyond the cut's start, else ``floor`` (eta_f: the cut on the axis)."""
+    y = float(mpmath.im(q))
+    x = float(mpmath.re(q))
+    arms = [arm for arm in cut.arms if arm.x_lo <= x <= arm.x_hi]
+    if arms:
+        above = int(np.sum(y - arms_y_at(arms, np.array([x]))[:, 0] > tol))
+        return "below" if above == 0 else "above" if above == len(arms) else "between"
+    threshold = floor
+    if cut.points.size and x >= cut.x_start:
+        near = cut.points[np.argmin(np.abs(cut.points.real - x))]
+        threshold = float(near.imag)
+    return "above" if y - threshold > tol else "below"

@@ -1,5 +1,5 @@
 """The Gauss-Kronrod (7, 15) rule on [-1, 1] (Piessens et al., QUADPACK), shared by the quadratures of the
-Floquet receptance (:mod:`moving_bogie.floquet.receptance`) and of the soil's strip stiffness
+Floquet receptance (:mod:`moving_bogie.kernels.periodic_receptance`) and of the soil's strip stiffness
 (:mod:`moving_bogie.soil.strip`): the 15 Kronrod nodes, their weights, and the weights of the 7-point Gauss
 rule on the same nodes (zero on the even-indexed ones); the difference of the two sums estimates the error.
 """

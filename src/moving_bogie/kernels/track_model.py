@@ -28,7 +28,7 @@ parameters to it with ``BoundModel(params, track=MyTrack)``: the bound model cal
 keeps the class when it is copied (``bound.replace(alpha=...)`` binds the new parameters to a new
 ``MyTrack``) and pickles it by reference for the workers of a map or sweep. Nothing else changes: the
 receptance may be rational (residues, as :class:`~moving_bogie.kernels.continuous_track.ContinuousTrack`)
-or evaluated by quadrature, as the sleepers' (:mod:`moving_bogie.floquet.periodic_track`) and a layered
+or evaluated by quadrature, as the sleepers' (:mod:`moving_bogie.kernels.periodic_track`) and a layered
 soil's are: :class:`RailReceptance` carries the estimated ``error`` of a quadrature beside the matrix.
 """
 

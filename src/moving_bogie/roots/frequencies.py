@@ -16,6 +16,8 @@
 Stability: the motion is unstable when some induced frequency has Im q < 0 (Eq. (35) with e^{i q tau}).
 The default window contains the lower half-disc of the radius R beyond which E_chr has no root with
 Im q < 0 (:mod:`far_field`), so the verdict (:mod:`verdict`) speaks about every root, or says UNDETERMINED.
+The search region is the bound model's track's: on a track whose region is one strip of width Omega_0
+(periodic supports), :mod:`strip_frequencies` searches that strip and returns the same result.
 """
 
 from __future__ import annotations
@@ -24,14 +26,14 @@ import dataclasses
 import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Any
 
 import mpmath
 import numpy as np
 
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.characteristic import CharacteristicArray
-from moving_bogie.kernels.cut import CutLocus, arms_y_at, cut_loci
+from moving_bogie.kernels.cut import CutLocus, cut_loci, side_of_cut
 from moving_bogie.roots.ball_polish import BallPrecise
 from moving_bogie.roots.count.contour import Rectangle, Region
 from moving_bogie.roots.count.far_field import FarField, far_field_radius
@@ -49,9 +51,7 @@ from moving_bogie.roots.refine.polish import (
 )
 from moving_bogie.roots.search.continuation import ContinuedRegion
 from moving_bogie.roots.search.counting import TilingCount, count_tiling, frame
-
-if TYPE_CHECKING:
-    from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.roots.strip_frequencies import strip_frequencies
 
 
 def induced_frequencies(
@@ -68,6 +68,7 @@ def induced_frequencies(
     certify: bool = False,
     starts: Sequence[complex] | None = None,
     balls: bool = False,
+    **strip: Any,
 ) -> FrequencyResult:
     """Every induced frequency of the bound model in ``window`` (default :func:`far_field_window`).
 
@@ -105,8 +106,11 @@ def induced_frequencies(
         them instead of its bisection (:func:`_locate_counted`; :mod:`moving_bogie.response.axis_law`).
     balls : bool
         Polish in Arb's balls too (:class:`BallPrecise`; the digits are confirmed there in any case).
+    **strip
+        The options of :func:`strip_frequencies`, on a track searched in one strip (:func:`_on_a_strip`).
     """
-    extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
+    if _on_a_strip(bound, strip, window=window, certify=certify, starts=starts, balls=balls):
+        return strip_frequencies(bound, progress=progress, **strip)
     window, far = _window_and_far_field(bound, window)
     fast, in_balls = CharacteristicArray(bound, remember=NEAR), BallPrecise(bound)  # NEAR: the lattice's
     polishing = (in_balls if balls else in_balls.precise, in_balls)  # (polish, confirm at higher precision)
@@ -130,6 +134,19 @@ def induced_frequencies(
     result = _certified(result) if certify else result
     report(1.0)
     return result
+
+
+def _on_a_strip(bound: BoundModel, strip: dict[str, Any], **window_only: Any) -> bool:
+    """Whether the bound model's track is searched in one strip (periodic supports); TypeError for an option
+    of the other search given (``window``, ``certify``, ``starts``, ``balls`` on a strip; a strip's own
+    options on a window)."""
+    if bound.track.search_region().periodic:
+        if any(value is not None and value is not False for value in window_only.values()):
+            raise TypeError(f"{', '.join(window_only)}: a search of one strip takes none of them")
+        return True
+    if strip:
+        raise TypeError(f"induced_frequencies() got unexpected keyword arguments {sorted(strip)}")
+    return False
 
 
 def _certified(result: FrequencyResult) -> FrequencyResult:
@@ -166,7 +183,7 @@ def _confirmed_roots(
     counted: TilingCount,
     newton_cell: float,
     dps: int,
-    extra_dps: int,
+    extra_dps: int | None,
     notes: list[Note],
     report: Callable[[float], None],
     starts: Sequence[complex] | None = None,
@@ -174,7 +191,8 @@ def _confirmed_roots(
     """Locate the counted roots (from ``starts`` where they agree with the count of every tile), polish and
     confirm them (``precise``: the evaluations of E_chr for each, :func:`_polish_located`), keep one of each
     pair q, -conj(q) (largest Re q first); the roots, the located cells and the roots not located (notes
-    appended)."""
+    appended; ``extra_dps`` None: max(10, dps // 2))."""
+    extra_dps = max(10, dps // 2) if extra_dps is None else extra_dps
     cells, unlocated = _locate_counted(fast, counted, newton_cell, starts)
     notes += [missing.note for missing in unlocated]
     report(0.6)
@@ -350,7 +368,7 @@ def _polish_located(
                     Note(Reason.POLISH, f"Newton left its cell {rect} (ended at {mpmath.nstr(conf.q, 8)})")
                 )
                 continue
-            side = _side(conf.q, conf.decimals, cut, polishing.params)
+            side = side_of_cut(conf.q, 10.0 ** (-conf.decimals), cut, float(polishing.params.eta_f))
             roots.append(InducedFrequency(conf.q, side, m, conf.step, conf.digits, conf.decimals))
         report(0.6 + 0.4 * (k + 1) / len(cells))
     return roots
@@ -359,24 +377,6 @@ def _polish_located(
 def _holds_far_disc(window: Rectangle, far: FarField | None) -> bool:
     """The window contains the lower half-disc of the far-field radius R (every root with Im q < 0)."""
     return far is not None and far.radius is not None and window.x1 >= far.radius and window.y0 <= -far.radius
-
-
-def _side(q: mpmath.mpc, decimals: int, cut: CutLocus, params: DimensionlessParams) -> str:
-    """Position relative to the cut: "below" or "above" every cut curve over Re q, or "between" two of them
-    (a layered track's curves, the lens of the Timoshenko-Rayleigh cut); a root on a curve within the
-    confirmed digits counts as below it (a limit from below)."""
-    y = float(mpmath.im(q))
-    x = float(mpmath.re(q))
-    tol = 10.0 ** (-decimals)
-    arms = [arm for arm in cut.arms if arm.x_lo <= x <= arm.x_hi]
-    if arms:
-        above = int(np.sum(y - arms_y_at(arms, np.array([x]))[:, 0] > tol))
-        return "below" if above == 0 else "above" if above == len(arms) else "between"
-    threshold = float(params.eta_f)
-    if cut.points.size and x >= cut.x_start:
-        near = cut.points[np.argmin(np.abs(cut.points.real - x))]
-        threshold = float(near.imag)
-    return "above" if y - threshold > tol else "below"
 
 
 def _fold_pairs(roots: list[InducedFrequency]) -> tuple[list[InducedFrequency], list[Note]]:

@@ -228,7 +228,7 @@ class FrequencyResult:
     @property
     def margin(self) -> Mpf | None:
         """On a periodic track, a STABLE result's decay rate Im q of its least-damped vibration as the strip
-        search states it (:attr:`~moving_bogie.floquet.strip.FloquetResult.margin`: the least-damped root,
+        search states it (:attr:`~moving_bogie.roots.strip.FloquetResult.margin`: the least-damped root,
         or the rail's free waves, or the window's top as a lower bound); None otherwise (on a window the
         roots themselves say it)."""
         if not self.periodic or self.strip_margin is None or self.verdict.state != STABLE:

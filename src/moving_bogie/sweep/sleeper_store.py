@@ -124,7 +124,7 @@ def create_sleeper_store(path: StorePath, spec: SleeperLayout) -> None:
         units="si",
         time_factor="exp(i Omega t): a root with Im Omega < 0 grows at the rate -Im Omega",
         search=(
-            "floquet.strip.floquet_frequencies: the roots in one strip of width Omega_0 up to the rail's "
+            "roots.strip.floquet_frequencies: the roots in one strip of width Omega_0 up to the rail's "
             "free waves, counted by the argument principle and converged in the harmonics (docs/sleepers.md)"
         ),
         operating_point=json.dumps(spec.operating_point()),

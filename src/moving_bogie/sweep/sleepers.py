@@ -1,9 +1,9 @@
 """A sweep over the SI parameters of a sleeper-track file: one Floquet strip search per point.
 
 Each point is the file's ``[physical]`` values with the point's values in their place, read and checked by
-:func:`~moving_bogie.floquet.inputs.sleeper_input` exactly as the file's own (the smallest and the largest
-value of every axis are checked before any computation), and searched by
-:func:`~moving_bogie.floquet.strip.floquet_frequencies`: every root in one strip of width Omega_0 up to the
+:func:`~moving_bogie.model.sleeper_input.sleeper_input` exactly as the file's own (the smallest and the
+largest value of every axis are checked before any computation), and searched by
+:func:`~moving_bogie.roots.strip.floquet_frequencies`: every root in one strip of width Omega_0 up to the
 rail's free waves (docs/sleepers.md, Eq. (S14)), converged in the harmonics, and a stable point's margin.
 A grid has one dimension per varied parameter, a Sobol design one dimension ``point``; the points are cut
 into blocks of ``block_points`` points along the last dimension (one chunk of the store each: a point costs
@@ -17,16 +17,19 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.inputs import SleeperInput, sleeper_input, sleeper_units
 from moving_bogie.model.exact import fraction_to_text
+from moving_bogie.model.sleeper_input import SleeperInput, sleeper_input, sleeper_units
 from moving_bogie.roots.verdict import STABLE, UNSTABLE
 from moving_bogie.sweep.design import Axis, Block, grid_blocks, parse_vary, sobol_axes
 from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
+
+if TYPE_CHECKING:
+    import xarray
 
 __all__ = [
     "SleeperSweepSpec",
@@ -34,6 +37,7 @@ __all__ = [
     "evaluate_sleeper_block",
     "make_sleeper_spec",
     "sleeper_point",
+    "sleeper_summary",
 ]
 
 
@@ -165,9 +169,9 @@ class SleeperTask:
 
 def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
     """The stored values of one point (docs/sweeps.md): the strip search of Eq. (S14) in SI units."""
-    from moving_bogie.floquet.hill import VehicleMatrices
-    from moving_bogie.floquet.strip import floquet_frequencies
-    from moving_bogie.floquet.track import SleeperTrack
+    from moving_bogie.kernels.hill import VehicleMatrices
+    from moving_bogie.kernels.sleeper_track import SleeperTrack
+    from moving_bogie.roots.strip import floquet_frequencies
 
     module = inp.vehicle_kernels
     result = floquet_frequencies(
@@ -227,3 +231,25 @@ def make_sleeper_spec(
     return SleeperSweepSpec(
         data, source, axes, dict(settings or {}), design=design, block_points=block_points, extra=extra
     )
+
+
+def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any]:
+    """The verdicts of a sleeper sweep for the summary: the counts of points and the fastest growth."""
+    ds = ds.compute()
+    growth = np.where(ds.unstable.values, -ds.Omega_im.values, np.nan)
+    fastest = None
+    if np.isfinite(growth).any():
+        at = np.unravel_index(int(np.nanargmax(growth)), growth.shape)
+        dims = list(ds.unstable.dims)
+        fastest = {"growth_rate_1_s": float(growth[at])} | {
+            name: float(ds[name].values[at[dims.index(ds[name].dims[0])]]) for name in spec.units
+        }
+    return {
+        "model": spec.model,
+        "stable_points": int(ds.stable.sum()),
+        "unstable_points": int(ds.unstable.sum()),
+        "undetermined_points": int((~ds.stable & ~ds.unstable).sum()),
+        "uncertain_points": int((~ds.certain).sum()),
+        "fastest_growth": fastest,
+        "units": spec.units,
+    }

@@ -2,22 +2,24 @@
 the command line (docs/sleepers.md, "The finite rail on sleepers").
 
 :func:`check_on_supports` assembles the sleeper track, the vehicle's matrices and its static loads from the
-parameters (a :class:`~moving_bogie.floquet.inputs.SleeperInput`, :func:`sleeper_input_of` of the one
-catalogue's parameters) and runs :func:`~moving_bogie.validation.sleepers_check.check_sleepers`.
+parameters (a :class:`~moving_bogie.model.sleeper_input.SleeperInput`, :func:`sleeper_input_of` of the one
+catalogue's parameters) and runs :func:`~moving_bogie.validation.sleepers_check.check_sleepers`;
+:func:`check_summary` gives its summary with the SI values beside the dimensionless ones.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.inputs import SleeperInput
-from moving_bogie.floquet.steady import static_loads
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.sleeper_input import SleeperInput
+from moving_bogie.response.steady_bay import static_loads
 from moving_bogie.validation.sleepers_check import SleeperCheck, check_sleepers
 
-__all__ = ["check_on_supports"]
+__all__ = ["check_on_supports", "check_summary"]
 
 
 def check_on_supports(
@@ -43,3 +45,21 @@ def check_on_supports(
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     loads = static_loads(module, data.vehicle_groups)
     return check_sleepers(track, vehicle, loads, tol=tol, time_scale=data.t_scale, progress=progress)
+
+
+def check_summary(result: SleeperCheck, data: SleeperInput) -> dict[str, Any]:
+    """The check's summary with SI values beside the dimensionless ones (rates and frequencies in 1/s and
+    rad/s, forces in N: the static load 2 is P)."""
+    out = {"model": f"{data.beam}/{data.track}/{data.vehicle}", **result.to_dict()}
+    to_si = {"growth rate -Im q": 1 / data.t_scale, "dominant frequency": 1 / data.t_scale}
+    force = data.physical.get("P", 2.0) / 2
+    for item in out["comparisons"]:
+        scale = to_si.get(item["quantity"], force)
+        item["unit_si"] = (
+            "N"
+            if item["quantity"].startswith("steady")
+            else ("1/s" if "rate" in item["quantity"] else "rad/s")
+        )
+        item["floquet_si"], item["finite_beam_si"] = item["floquet"] * scale, item["finite_beam"] * scale
+    out["finite_beam"]["dt_s"] = out["finite_beam"]["dt"] * data.t_scale
+    return out

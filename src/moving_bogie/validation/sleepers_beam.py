@@ -2,7 +2,7 @@
 
 The rail of :mod:`moving_bogie.validation.sleepers_rail` (sparse ``M_r, C_r, K_r``, unknowns ``z_r``) carries
 a vehicle of generated matrices ``M, C, K`` (contacts first,
-:class:`~moving_bogie.floquet.hill.VehicleMatrices`) whose wheels sit at ``x_c(tau) = entry + alpha tau +
+:class:`~moving_bogie.kernels.hill.VehicleMatrices`) whose wheels sit at ``x_c(tau) = entry + alpha tau +
 xi_c``. With ``a_c = N(x_c)`` the Hermite shapes at a wheel (``a'_c``, ``a''_c`` their x-derivatives), a
 wheel follows the rail,
 
@@ -29,7 +29,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from moving_bogie.floquet.hill import VehicleMatrices
+from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.validation.newmark import AVERAGE_ACCELERATION, NewmarkState
 from moving_bogie.validation.sleepers_rail import SleeperRail
 

@@ -1,7 +1,8 @@
 """The finite-beam check of the Floquet theory of a vehicle on a rail on sleepers (docs/sleepers.md).
 
-Three quantities, each from the Floquet theory (:mod:`moving_bogie.floquet`) and from the finite rail in
-the time domain (:mod:`moving_bogie.validation.sleepers_beam`, which uses no Floquet theory):
+Three quantities, each from the Floquet theory (:mod:`moving_bogie.roots.strip`,
+:mod:`moving_bogie.response.steady_bay`) and from the finite rail in the time domain
+(:mod:`moving_bogie.validation.sleepers_beam`, which uses no Floquet theory):
 
 - the growth (or decay) rate of the free vibration: ``-Im q`` of the least damped root against
   ``ln |mu| / T0``, ``mu`` the Floquet multiplier of the mode that dominates a run released from the static
@@ -29,15 +30,17 @@ from typing import Any
 
 import numpy as np
 
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.steady import SteadyResponse, steady_response
-from moving_bogie.floquet.strip import FloquetResult, floquet_frequencies
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.response.steady_bay import SteadyResponse, steady_response
+from moving_bogie.roots.strip import FloquetResult, floquet_frequencies
 from moving_bogie.validation.sleepers_beam import BeamRun, simulate_sleeper_beam
 from moving_bogie.validation.sleepers_fit import (
     FloquetFit,
+    PeriodicLimit,
     extrapolated,
     fit_floquet_modes,
+    periodic_limit,
     smooth_steps,
 )
 from moving_bogie.validation.sleepers_rail import SleeperRail
@@ -120,6 +123,7 @@ class SleeperCheck:
     finite_s: float
     notes: tuple[str, ...] = field(default=())
     time_scale: float | None = None
+    limit_force: np.ndarray | None = None
 
     @property
     def rate(self) -> float:
@@ -305,21 +309,46 @@ def _rate_comparisons(
 
 
 def _steady_comparison(
-    track: SleeperTrack, steady: SteadyResponse, loaded: BeamRun, T0: float, tol: float
-) -> tuple[Comparison, np.ndarray, np.ndarray]:
-    """The loaded run's smoothed contact force over its last bay (up to its last averaged step) against the
-    Floquet steady force (S18) at the same positions in the bay, judged by max |difference| relative to the
-    Floquet peak-to-peak; with the times and the Floquet force there (for the figure)."""
-    end = loaded.tau[-2]  # the last step is not averaged (smooth_steps)
-    last = (loaded.tau >= end - T0) & (loaded.tau <= end)
-    position = (loaded.entry + track.alpha * loaded.tau[last]) % track.lam
+    track: SleeperTrack, steady: SteadyResponse, loaded: BeamRun, T0: float, start: float, tol: float
+) -> tuple[Comparison, PeriodicLimit, np.ndarray]:
+    """The loaded run's periodic limit (:func:`periodic_limit` of its smoothed contact force from ``start``
+    to its last averaged step: the stroboscopic map's fixed point, so that a slowly decaying vibration is
+    removed rather than waited out) against the Floquet steady force (S18) at the same positions in the bay,
+    judged by max |difference| relative to the Floquet peak-to-peak; with the limit and the Floquet force at
+    its times (for the figure)."""
+    keep = slice(0, loaded.tau.size - 1)  # the last step is not averaged (smooth_steps)
+    force = smooth_steps(loaded.force[0])[keep]
+    try:
+        limit = periodic_limit(loaded.tau[keep], force, T0, start)
+    except ValueError:  # too few periods to fit: the last bay as it is (its transient not removed)
+        last = loaded.tau[keep] >= loaded.tau[keep][-1] - T0 * (1 - 1e-9)
+        limit = PeriodicLimit(force[last][None, :], loaded.tau[keep][last], math.nan, np.zeros(0))
+    position = (loaded.entry + track.alpha * limit.tau) % track.lam
     phase = np.exp(1j * track.Omega0 * np.outer(position / track.alpha, steady.harmonics))
     reference = np.real(phase @ steady.force_harmonics[:, 0])
-    force = smooth_steps(loaded.force[0])[last]
     spread = float(np.ptp(reference))
-    diff = float(np.max(np.abs(force - reference)))
+    diff = float(np.max(np.abs(limit.values[0] - reference)))
     name = "steady force over a bay"
-    return Comparison(name, spread, float(np.ptp(force)), diff / spread, tol), loaded.tau[last], reference
+    comparison = Comparison(name, spread, float(np.ptp(limit.values[0])), diff / spread, tol)
+    return comparison, limit, reference
+
+
+def _limit_notes(limit: PeriodicLimit, tol: float) -> list[str]:
+    """What the notes say of the loaded run's periodic limit: a run that does not settle, or a transient
+    still above the tolerance at its end (removed by the fit rather than waited out)."""
+    if not limit.settles:
+        slowest = float(np.max(np.abs(limit.multipliers)))
+        return [f"the loaded run does not settle (a multiplier of modulus {slowest:.6g} >= 1)"]
+    if math.isnan(limit.transient):
+        return ["the loaded run is too short to fit its periodic limit: its last bay is compared as it is"]
+    if limit.transient <= tol:
+        return []
+    slowest = float(np.max(np.abs(limit.multipliers)))
+    return [
+        f"the loaded run's force still carries a transient of {limit.transient:.2%} of its peak-to-peak at "
+        f"its end (slowest multiplier modulus {slowest:.6g}): its periodic limit, the fixed point of the "
+        "stroboscopic map, is compared"
+    ]
 
 
 def check_sleepers(
@@ -359,7 +388,7 @@ def check_sleepers(
     fit, spread = _free_vibration_fit(free, T0, settings.transient * tau_free, notes)
     comparisons: list[Comparison] = []
     loaded = coarse = None
-    steady_tau = steady_force = None
+    steady_tau = steady_force = limit_force = None
     if root is not None and side.frequency is not None:
         # the same free run at twice the step: the rate and the frequency extrapolated to dt -> 0
         run = simulate(dt=2 * dt, loaded=False, progress=_stage(progress, 0.1 + share, 0.9 - share))
@@ -372,8 +401,11 @@ def check_sleepers(
         )
         assert steady is not None
         loaded = simulate(dt=dt, progress=_stage(progress, 0.1 + share, 0.9 - share))
-        comparison, steady_tau, steady_force = _steady_comparison(track, steady, loaded, T0, tol)
+        start_fit = settings.transient * tau_free
+        comparison, limit, steady_force = _steady_comparison(track, steady, loaded, T0, start_fit, tol)
         comparisons.append(comparison)
+        steady_tau, limit_force = limit.tau, limit.values[0]
+        notes.extend(_limit_notes(limit, tol))
     finite_s = time.perf_counter() - start
     return SleeperCheck(
         tuple(comparisons),
@@ -392,4 +424,5 @@ def check_sleepers(
         finite_s,
         tuple(notes),
         time_scale,
+        limit_force,
     )

@@ -32,6 +32,8 @@ __all__ = [
     "dominant_harmonic",
     "fit_floquet_modes",
     "extrapolated",
+    "PeriodicLimit",
+    "periodic_limit",
     "period_rms",
     "smooth_steps",
     "stroboscopic_samples",
@@ -231,3 +233,58 @@ def extrapolated(fine: FloquetFit, coarse: FloquetFit) -> tuple[float, float]:
     same = abs(coarse.frequency - fine.frequency) <= 0.01 * fine.frequency
     frequency = (4 * fine.frequency - coarse.frequency) / 3 if same else fine.frequency
     return rate, frequency
+
+
+@dataclass(frozen=True)
+class PeriodicLimit:
+    """The periodic response a forced run tends to, read from the run alone (:func:`periodic_limit`).
+
+    ``values[s, j]`` is signal ``s`` at phase ``j`` of the last sampled period, whose times are ``tau``;
+    ``transient`` the largest part of the first signal not yet settled at that period, relative to the
+    limit's peak-to-peak; ``multipliers`` those of the transient's modes (all ``|mu| < 1`` for a run that
+    settles)."""
+
+    values: np.ndarray
+    tau: np.ndarray
+    transient: float
+    multipliers: np.ndarray
+
+    @property
+    def settles(self) -> bool:
+        """Whether every mode of the transient decays (the limit exists)."""
+        return bool(np.all(np.abs(self.multipliers) < 1.0))
+
+
+def periodic_limit(tau: np.ndarray, signals: np.ndarray, period: float, start: float) -> PeriodicLimit:
+    """The fixed point ``y*`` of the stroboscopic map of a forced periodic run (docs/sleepers.md (S26)).
+
+    A forced run on the periodic rail is its periodic response plus free Floquet modes: sampled once per
+    period at every phase, ``y_k = y* + sum_i t_i mu_i^k phi_i``. The differences ``d_k = y_{k+1} - y_k``
+    are then a free run of the same map, ``d_k = sum_i t_i (mu_i - 1) mu_i^k phi_i``: its multipliers and
+    shapes are fitted as :func:`fit_floquet_modes` fits a free run, the amplitudes by least squares over
+    every difference, and ``y* = y_K - sum_i t_i mu_i^K phi_i``. A transient that decays slowly (a
+    multiplier near the unit circle) is thus removed, not waited out; the limit uses the run only, no
+    Floquet theory. Raises ValueError when the window holds too few periods."""
+    signals = np.atleast_2d(signals)
+    snapshots, phases, first, scales = stroboscopic_samples(tau, signals, period, start)
+    count = snapshots.shape[1]
+    if count < MIN_PERIODS + 1:
+        raise ValueError(f"the window holds fewer than {MIN_PERIODS + 1} periods")
+    differences = np.diff(snapshots, axis=1)
+    last = snapshots[:, -1].astype(complex)
+    if np.max(np.abs(differences)) <= ROUND_OFF * np.max(np.abs(snapshots)):
+        transient_now = np.zeros_like(last)
+        multipliers = np.zeros(0, dtype=complex)
+    else:
+        multipliers, shapes, _ = _fitted_map(differences, RANK_LEVEL)
+        powers = multipliers[None, :] ** np.arange(count - 1)[:, None]
+        design = (powers[:, None, :] * shapes[None, :, :]).reshape(-1, multipliers.size)
+        amplitudes = np.linalg.lstsq(design, differences.T.reshape(-1).astype(complex), rcond=None)[0]
+        # t_i mu_i^(K-1) phi_i summed: the part of the last sample not yet settled
+        settle = amplitudes * multipliers ** (count - 1) / (multipliers - 1.0)
+        transient_now = shapes @ settle
+    limit = np.real(last - transient_now).reshape(-1, phases) * scales[:, None]
+    offsets = np.real(transient_now).reshape(-1, phases)[0] * scales[0]
+    spread = float(np.ptp(limit[0])) or 1.0
+    times = first + (count - 1) * period + np.arange(phases) * period / phases
+    return PeriodicLimit(limit, times, float(np.max(np.abs(offsets))) / spread, multipliers)

@@ -96,6 +96,15 @@ def plot_sleeper_check(
             lw=1.4,
             label="Floquet steady force (S17), last bay",
         )
+        if result.limit_force is not None:
+            ax_f.plot(
+                result.steady_tau * scale,
+                np.asarray(result.limit_force) * force_unit,
+                ":",
+                color="k",
+                lw=1.4,
+                label="finite rail's periodic limit (fixed point of the stroboscopic map)",
+            )
         ax_f.set_ylabel("contact force (static load 2)" if newtons is None else "contact force [N]")
     else:
         run = result.free

@@ -1,17 +1,16 @@
 """A finite rail on discrete supports in beam finite elements (docs/sleepers.md, Eqs. (S23)-(S24)).
 
-The check of the Floquet theory by a model that does not use it: a rail of ``bays`` bays, pinned at its
-ends, on a support at every interior multiple of the bay ``lam``, in the dimensionless variables of
-docs/sleepers.md (S2) (the rail's mass per length 1, its bending stiffness 1/4, lengths in units of
-1 / chi, times in units of 1 / omega_e). Each bay is cut into ``elements`` Euler-Bernoulli elements with
-quintic Hermite shape functions (nodal unknowns: deflection, slope and curvature, so that the curvature
-under a moving wheel, which its acceleration contains, is continuous when it crosses a node); the continuous
-foundation
-``kappa_f``, ``2 eta_f`` takes the element's consistent mass matrix as its shape
-(:meth:`~moving_bogie.floquet.track.SleeperTrack.rail_foundation`). A support is the finite element of its
-track (:meth:`~moving_bogie.floquet.track.SleeperTrack.support_element`), whose dynamic stiffness at the
-rail is ``lam z(w)``: a spring-dashpot to the ground on ``sleepers``; on ``sleepers-two-layer`` a railpad
-over a sleeper of mass ``lam mu_sl`` on the ballast, the sleeper an unknown of its own.
+The check of the Floquet theory by a model that does not use it: a rail of ``bays`` bays, pinned at its ends,
+on a support at every interior multiple of the bay ``lam``, in the dimensionless variables of docs/sleepers.md
+(S2) (the rail's mass per length 1, its bending stiffness 1/4, lengths in units of 1 / chi, times in units of
+1 / omega_e). Each bay is cut into ``elements`` Euler-Bernoulli elements with quintic Hermite shape functions
+(nodal unknowns: deflection, slope and curvature, so that the curvature under a moving wheel, which its
+acceleration contains, is continuous when it crosses a node); the continuous foundation ``kappa_f``, ``2
+eta_f`` takes the element's consistent mass matrix as its shape
+(:meth:`~moving_bogie.kernels.sleeper_track.SleeperTrack.rail_foundation`). A support is the finite element of
+its track (:meth:`~moving_bogie.kernels.sleeper_track.SleeperTrack.support_element`), whose dynamic stiffness
+at the rail is ``lam z(w)``: a spring-dashpot to the ground on ``sleepers``; on ``sleepers-two-layer`` a
+railpad over a sleeper of mass ``lam mu_sl`` on the ballast, the sleeper an unknown of its own.
 
 The matrices are sparse (scipy.sparse), assembled once; :mod:`moving_bogie.validation.sleepers_beam` adds
 the moving vehicle.
@@ -26,7 +25,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from moving_bogie.errors import MovingBogieError
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 
 __all__ = ["SleeperRail", "hermite_shapes"]
 

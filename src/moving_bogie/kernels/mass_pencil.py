@@ -20,10 +20,10 @@ from types import ModuleType
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.hill import HillArithmetic, VehicleMatrices, harmonic_set
-from moving_bogie.floquet.receptance import receptance
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.kernels.coupling import coupled_system, dynamic_stiffness, harmonic_blocks
+from moving_bogie.kernels.hill import HillArithmetic, VehicleMatrices, harmonic_set
+from moving_bogie.kernels.periodic_receptance import receptance
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 
 __all__ = ["MassPencil", "mass_pencil"]
 

@@ -1,7 +1,7 @@
 """D-decomposition of a vehicle on sleepers in its wheel mass at one velocity (docs/sleepers.md, (S19)-(S21)).
 
 A root q of the Hill determinant changes side of the real axis only where det(A(q) + eta_M B(q)) = 0 for a
-real q: at a real eigenvalue eta_M of the pencil (:mod:`~moving_bogie.floquet.mass_pencil`). The real
+real q: at a real eigenvalue eta_M of the pencil (:mod:`~moving_bogie.kernels.mass_pencil`). The real
 axis of one strip, Re q in [-Omega_0 / 4, 3 Omega_0 / 4] (the points 0 and Omega_0 / 2, where the
 parametric zones' roots cross, inside it), is sampled; the mirror symmetry (S14), mu(Omega_0 - q) =
 conj(mu(q)), gives the samples above Omega_0 / 2 from those below. The eigenvalues mu = 1 / eta_M are
@@ -10,8 +10,8 @@ by Brent's method on the branch, and kept when 1 / mu is real to 1e-7 and at mos
 
 The rule of hatching (S21) gives the direction: eta_M(q) is analytic, a root is q(eta_M) its inverse, and
 for eta_M = eta* + e (e > 0 small) q - q* = e / eta_M'(q*): Im q < 0 exactly when Im eta_M' > 0, i.e. when
-Im mu falls through 0 as q increases. Each crossing is computed again with one more harmonic on each side;
-its relative move is the convergence in the harmonics.
+Im mu falls through 0 as q increases. Each crossing is computed again with one more harmonic on each side
+(followed from it by the secant method); its relative move is the convergence in the harmonics.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
 
-from moving_bogie.floquet.mass_pencil import MassPencil
+from moving_bogie.kernels.mass_pencil import MassPencil
 
 __all__ = ["DColumn", "DCrossing", "d_column"]
 
@@ -31,6 +31,10 @@ MOVE_TOL = 1e-3
 #: the receptance's relative tolerance along the scan (its signs of Im mu only; crossings are polished at
 #: the pencil's own)
 SCAN_TOL = 1e-6
+#: Brent's steps for a crossing: a zero of Im mu on one branch takes 3 or 4 on the example maps; a jump
+#: from one branch to another (no zero) is bisected down to the tolerance, some 30 steps, and is given up
+#: after these
+POLISH_ITER = 12
 
 
 @dataclass(frozen=True)
@@ -97,7 +101,9 @@ def _polish(
     pencil: MassPencil, a: float, b: float, mu_a: complex, mu_b: complex
 ) -> tuple[float, complex] | None:
     """The zero of Im mu on the branch through mu_a (at a) and mu_b (at b), by Brent's method; the branch at
-    q is the eigenvalue nearest the straight line between them. None when Im mu has no sign change."""
+    q is the eigenvalue nearest the straight line between them. None when Im mu has no sign change, or
+    when Brent's method has not converged in POLISH_ITER steps: then the sign change is a jump from one
+    branch to another (two branches that pass close to each other), which it bisects without end."""
 
     def pick(q: float) -> complex:
         t = (q - a) / (b - a)
@@ -111,8 +117,35 @@ def _polish(
     fa, fb = f(a), f(b)
     if fa == 0 or fb == 0 or np.sign(fa) == np.sign(fb):
         return None
-    q = float(brentq(f, a, b, xtol=1e-11 * max(1.0, abs(b)), rtol=1e-12, maxiter=60))
-    return q, pick(q)
+    xtol = 1e-11 * max(1.0, abs(b))
+    q, out = brentq(f, a, b, xtol=xtol, rtol=1e-12, maxiter=POLISH_ITER, full_output=True, disp=False)
+    return (float(q), pick(float(q))) if out.converged else None
+
+
+def _follow(pencil: MassPencil, q0: float, mu0: complex, a: float, b: float) -> tuple[float, complex] | None:
+    """The crossing of ``pencil`` near the crossing (q0, mu0) of a pencil with one harmonic fewer: the
+    secant method on Im mu of the eigenvalue nearest the last one, from q0, until 1 / mu is real to
+    REAL_TOL / 1000; Brent's method on [a, b] (:func:`_polish`) when it leaves [a, b] or stalls."""
+
+    def at(q: float, near: complex) -> complex:
+        mus = pencil.inverse_masses(q)
+        return complex(mus[np.argmin(np.abs(mus - near))])
+
+    q1, mu1 = q0, at(q0, mu0)
+    if abs(mu1.imag) <= 1e-3 * REAL_TOL * abs(mu1):
+        return q1, mu1
+    q2 = q0 + 1e-3 * (b - a) * (1 if q0 - a < b - q0 else -1)
+    mu2 = at(q2, mu1)
+    for _ in range(8):
+        if abs(mu2.imag) <= 1e-3 * REAL_TOL * abs(mu2):
+            return q2, mu2
+        if mu2.imag == mu1.imag:
+            break
+        q1, q2, mu1 = q2, q2 - mu2.imag * (q2 - q1) / (mu2.imag - mu1.imag), mu2
+        if not a <= q2 <= b:
+            break
+        mu2 = at(q2, mu1)
+    return _polish(pencil, a, b, mu0, mu0)
 
 
 def _match(previous: np.ndarray, current: np.ndarray) -> np.ndarray:
@@ -191,7 +224,7 @@ def d_column(
     for q, mu, change, a, b in hits:
         moved = np.nan
         if check_harmonics:
-            fine = _polish(finer, a, b, mu, mu)
+            fine = _follow(finer, q, mu, a, b)
             if fine is not None and abs(fine[1].imag) <= REAL_TOL * abs(fine[1]):
                 moved = abs(1 / fine[1].real - 1 / mu.real) * mu.real
         found.append(DCrossing(q, float(1 / mu.real), change, float(moved)))

@@ -6,7 +6,7 @@ maps onto itself), the contact displacements U and the vehicle's internal DOFs Y
 
     [[I + H D_cc, H D_ci], [D_ic, D_ii]] [U; Y] = 0,
 
-H the receptance between (contact, harmonic) pairs (:mod:`moving_bogie.floquet.receptance`) and D the
+H the receptance between (contact, harmonic) pairs (:mod:`moving_bogie.kernels.periodic_receptance`) and D the
 vehicle's dynamic stiffness -q_n^2 M + i q_n C + K at each harmonic, block diagonal over the harmonics.
 The characteristic function is the determinant; its zeros are the induced frequencies.
 
@@ -25,8 +25,6 @@ from types import ModuleType
 
 import numpy as np
 
-from moving_bogie.floquet.receptance import Receptance, receptance
-from moving_bogie.floquet.track import SleeperTrack
 from moving_bogie.kernels.arithmetic import Batched
 from moving_bogie.kernels.coupling import (
     Dynamic,
@@ -35,6 +33,8 @@ from moving_bogie.kernels.coupling import (
     dynamic_stiffness,
     harmonic_blocks,
 )
+from moving_bogie.kernels.periodic_receptance import Receptance, receptance
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 
 __all__ = ["FloquetSystem", "VehicleMatrices", "harmonic_set"]
 

@@ -24,8 +24,8 @@ from types import ModuleType
 
 import numpy as np
 
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 
 __all__ = ["SteadyResponse", "static_loads", "steady_harmonics", "steady_response"]
 

@@ -29,9 +29,9 @@ import mpmath
 import numpy as np
 from numpy.typing import ArrayLike
 
-from moving_bogie.floquet.smeared_rail import smeared_receptance
-from moving_bogie.floquet.track import SleeperTrack, stable_cot
 from moving_bogie.kernels.gauss_kronrod import GAUSS, KRONROD, NODES
+from moving_bogie.kernels.sleeper_track import SleeperTrack, stable_cot
+from moving_bogie.kernels.smeared_rail import smeared_receptance
 
 __all__ = ["Receptance", "receptance"]
 

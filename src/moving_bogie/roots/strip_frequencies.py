@@ -1,6 +1,6 @@
 """The induced frequencies of a bound model on periodic supports, as the one result of every track.
 
-:func:`strip_frequencies` runs the search of one strip of width Omega_0 (:mod:`moving_bogie.floquet.strip`,
+:func:`strip_frequencies` runs the search of one strip of width Omega_0 (:mod:`moving_bogie.roots.strip`,
 docs/sleepers.md, Eq. (S14)) on the track and vehicle of a bound model and returns the
 :class:`~moving_bogie.roots.frequency_result.FrequencyResult` that a continuous track's search returns:
 the roots, the argument-principle count beside them, the notes (with the reason
@@ -22,12 +22,12 @@ from typing import TYPE_CHECKING, Any
 
 import mpmath
 
-from moving_bogie.floquet.hill import VehicleMatrices, harmonic_set
-from moving_bogie.floquet.periodic_track import PeriodicTrack
-from moving_bogie.floquet.strip import FloquetRoot, floquet_frequencies
+from moving_bogie.kernels.hill import VehicleMatrices, harmonic_set
+from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.kernels.track_model import STRIP, SearchRegion
 from moving_bogie.roots.count.outcomes import Note, Reason
 from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
+from moving_bogie.roots.strip import FloquetRoot, floquet_frequencies
 
 if TYPE_CHECKING:
     from moving_bogie.kernels.bound import BoundModel
@@ -47,11 +47,11 @@ def strip_frequencies(
     ----------
     bound : BoundModel
         Parameters of a model on periodic supports, bound to a
-        :class:`~moving_bogie.floquet.periodic_track.PeriodicTrack`.
+        :class:`~moving_bogie.kernels.periodic_track.PeriodicTrack`.
     progress : callable, optional
         Called with the fraction done (1 at the end).
     **options
-        Those of :func:`~moving_bogie.floquet.strip.floquet_frequencies` (``N0``, ``N_max``, ``tol``,
+        Those of :func:`~moving_bogie.roots.strip.floquet_frequencies` (``N0``, ``N_max``, ``tol``,
         ``depth``, ``top``).
     """
     track = bound.track

@@ -1,7 +1,7 @@
 """A rail on discrete supports every l as a :class:`~moving_bogie.kernels.track_model.Track`.
 
 The rail-side receptance between the (contact, harmonic) pairs is the Hill receptance H of Eq. (S9)
-(:func:`~moving_bogie.floquet.receptance.receptance`, by residues and adaptive quadrature), in the
+(:func:`~moving_bogie.kernels.periodic_receptance.receptance`, by residues and adaptive quadrature), in the
 coupling's convention G = (pi / 2) H (:mod:`moving_bogie.kernels.coupling`: pi W = 2 G f); the
 characteristic function is periodic in q with period Omega_0 = 2 pi alpha / lam, so the search covers one
 strip of that width (docs/sleepers.md, Eq. (S14)); the free waves of the rail put singular lines of the
@@ -18,9 +18,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from moving_bogie.floquet.hill import harmonic_set
-from moving_bogie.floquet.receptance import receptance
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import harmonic_set
+from moving_bogie.kernels.periodic_receptance import receptance
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.kernels.track_model import STRIP, RailReceptance, SearchRegion
 
 if TYPE_CHECKING:
@@ -33,8 +33,8 @@ class PeriodicTrack:
     """The sleeper track of a bound model whose parameters carry the groups of ``generated/sleepers.py``.
 
     ``PeriodicTrack(bound)`` reads the beam and track names from ``bound.model`` and the groups from
-    ``bound.floats``; :meth:`on` makes one from a :class:`~moving_bogie.floquet.track.SleeperTrack` and
-    the contact positions directly.
+    ``bound.floats``; :meth:`on` makes one from a
+    :class:`~moving_bogie.kernels.sleeper_track.SleeperTrack` and the contact positions directly.
 
     Parameters
     ----------
@@ -112,6 +112,6 @@ class PeriodicTrack:
 
     @property
     def smeared(self) -> None:
-        """The continuous track with the smeared supports (``floquet/smeared.py``), not bound here yet:
+        """The continuous track with the smeared supports (``model/smeared.py``), not bound here yet:
         None until the sleeper parameters are a model of the one catalogue."""
         return None

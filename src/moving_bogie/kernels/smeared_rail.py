@@ -3,7 +3,7 @@
 The continuous rail on the supports smeared along it has G_c = G / (1 + z G), a rational function of the
 wavenumber kappa at w = q + alpha kappa: the integral (1 / 2 pi) int G_c e^{i kappa xi} dkappa is a sum of
 residues, every q at once (companion matrices over the batch).
-:func:`~moving_bogie.floquet.receptance.receptance` takes its diagonal harmonics from it (Eq. (S11)).
+:func:`~moving_bogie.kernels.periodic_receptance.receptance` takes its diagonal harmonics from it (Eq. (S11)).
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 
 __all__ = ["smeared_receptance"]
 

@@ -15,7 +15,7 @@ import numpy as np
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from moving_bogie.floquet.series import SleeperSeries
+    from moving_bogie.response.sleeper_series import SleeperSeries
 
 __all__ = ["sleeper_series_figure"]
 

@@ -1,18 +1,18 @@
 """Every induced frequency in one strip of width Omega_0 up to a stated Im q, converged in the harmonics.
 
-The characteristic function (:mod:`moving_bogie.floquet.hill`) is periodic in q with period Omega_0, so the
-strip x0 <= Re q < x0 + Omega_0 holds one copy of every root (docs/sleepers.md, Eq. (S14)). Its roots with
-Im q <= top are counted by the argument principle on the rectangle [x0, x0 + Omega_0] x [-depth, top], with
-no starting guesses, located by Newton's method from a grid of the window (or, failing that, by bisection)
-and polished; the count and the located roots
-are compared, and the whole is repeated with one more harmonic on each side until the count is the same and
-the roots move less than ``tol``. The receptance over real wavenumbers is analytic below the lowest Im q of
-the rail's free waves (Eq. (S15), :meth:`~moving_bogie.floquet.track.SleeperTrack.free_wave_floor`): ``top``
-is 0.99 of that floor when it is known and positive, so that decaying roots below it are found too;
-0 when the rail is damped along its length but the floor is not known; slightly below the axis when the rail
-is undamped between the supports (its pinned-pinned waves put singular points of the receptance on the real
-axis). The band above ``top`` is not searched and the result says so. The depth is doubled until a band as
-deep again below the window holds no root.
+The characteristic function (:mod:`moving_bogie.kernels.hill`) is periodic in q with period Omega_0, so the
+strip x0 <= Re q < x0 + Omega_0 holds one copy of every root (docs/sleepers.md, Eq. (S14)). Its roots with Im
+q <= top are counted by the argument principle on the rectangle [x0, x0 + Omega_0] x [-depth, top], with no
+starting guesses, located by Newton's method from a grid of the window (or, failing that, by bisection) and
+polished; the count and the located roots are compared, and the whole is repeated with one more harmonic on
+each side until the count is the same and the roots move less than ``tol``. The receptance over real
+wavenumbers is analytic below the lowest Im q of the rail's free waves (Eq. (S15),
+:meth:`~moving_bogie.kernels.sleeper_track.SleeperTrack.free_wave_floor`): ``top`` is 0.99 of that floor when
+it is known and positive, so that decaying roots below it are found too; 0 when the rail is damped along its
+length but the floor is not known; slightly below the axis when the rail is undamped between the supports (its
+pinned-pinned waves put singular points of the receptance on the real axis). The band above ``top`` is not
+searched and the result says so. The depth is doubled until a band as deep again below the window holds no
+root.
 """
 
 from __future__ import annotations
@@ -21,8 +21,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from moving_bogie.floquet.hill import FloquetSystem, VehicleMatrices
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number
 from moving_bogie.roots.count.outcomes import Note, Reason, count_mismatch
 from moving_bogie.roots.verdict import STABLE, UNDETERMINED, UNSTABLE, Verdict

@@ -1,11 +1,11 @@
 """The time series of a vehicle on a sleeper track in SI units: the steady response and the free vibrations.
 
 The steady response under the constant loads (docs/sleepers.md, Eqs. (S16)-(S18),
-:func:`moving_bogie.floquet.steady.steady_response`) gives, per wheel, the contact force and the rail
+:func:`moving_bogie.response.steady_bay.steady_response`) gives, per wheel, the contact force and the rail
 deflection under the wheel as functions of the position in the bay; its mean over a bay is the harmonic
 ``n = 0`` and its harmonics are converged (the series change by less than ``tol`` of their largest value
 when N doubles, else ``converged`` is False). The free vibrations are the Floquet roots in one strip
-(Eq. (S14), :func:`moving_bogie.floquet.strip.floquet_frequencies`): a root ``Omega`` (time dependence
+(Eq. (S14), :func:`moving_bogie.roots.strip.floquet_frequencies`): a root ``Omega`` (time dependence
 ``e^{i Omega t}``) oscillates at ``Re Omega`` (modulo ``Omega_0``) and grows at the rate ``-Im Omega``.
 
 Units (Eq. (16) of the paper with the smeared stiffness ``k_e`` for ``k_f``, docs/sleepers.md (S2)):
@@ -22,11 +22,12 @@ from typing import Any
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.floquet.hill import VehicleMatrices
-from moving_bogie.floquet.inputs import SleeperInput
-from moving_bogie.floquet.smeared import continuous_steady_deflection, smeared_track
-from moving_bogie.floquet.steady import static_loads, steady_response
-from moving_bogie.floquet.track import SleeperTrack
+from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.sleeper_input import SleeperInput
+from moving_bogie.model.smeared import smeared_track
+from moving_bogie.response.smeared_deflection import continuous_steady_deflection
+from moving_bogie.response.steady_bay import static_loads, steady_response
 
 __all__ = ["FreeVibration", "SleeperSeries", "sleeper_series"]
 
@@ -215,7 +216,8 @@ def sleeper_series(
     Parameters
     ----------
     data : SleeperInput
-        A sleeper-track file (:func:`moving_bogie.floquet.inputs.load_sleeper_file`) with ``v > 0`` and ``P``.
+        A sleeper-track file (:func:`moving_bogie.model.sleeper_input.load_sleeper_file`) with ``v > 0``
+        and ``P``.
     bays, points : int
         Bays shown and points over them (both ends included).
     tol : float
@@ -279,7 +281,7 @@ _NOT_SEARCHED: dict[str, Any] = {
 
 def _free_vibrations(track: SleeperTrack, vehicle: VehicleMatrices, t_scale: float) -> dict[str, Any]:
     """The Floquet roots of Eq. (S14) in rad/s, with the count, window and verdict of the strip search."""
-    from moving_bogie.floquet.strip import floquet_frequencies
+    from moving_bogie.roots.strip import floquet_frequencies
 
     result = floquet_frequencies(track, vehicle)
     window = result.window
