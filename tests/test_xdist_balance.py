@@ -8,6 +8,7 @@ scope would compute it once per worker instead of once: both are read here from 
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 import pytest
@@ -16,6 +17,7 @@ from xdist_balance import LONG_FIRST, SPREAD, TOGETHER
 ROOT = Path(__file__).resolve().parent.parent
 
 
+@functools.cache
 def _tree(module: str) -> ast.Module:
     path = ROOT / module
     assert path.is_file(), f"{module} does not exist"
@@ -42,13 +44,14 @@ def test_every_unit_of_long_first_names_a_module_and_a_test_that_exist():
     assert len(set(LONG_FIRST)) == len(LONG_FIRST)
     for unit in LONG_FIRST:
         module, _, test = unit.partition("::")
-        tree = _tree(module)
         if not test:
+            assert (ROOT / module).is_file(), f"{module} does not exist"
             assert module not in SPREAD, f"{unit}: a module of SPREAD is handed out per test"
             continue
         assert module in SPREAD, f"{unit}: only the modules of SPREAD are handed out per test"
         name = test.split("[", 1)[0]
-        assert any(isinstance(node, ast.FunctionDef) and node.name == name for node in tree.body), unit
+        defined = {node.name for node in _tree(module).body if isinstance(node, ast.FunctionDef)}
+        assert name in defined, unit
 
 
 @pytest.mark.parametrize("module", SPREAD)
@@ -67,5 +70,5 @@ def test_spread_modules_share_nothing_a_process_computes_once(module):
 def test_together_groups_name_modules_that_exist_outside_spread():
     for group in TOGETHER:
         for module in group:
-            _tree(module)
+            assert (ROOT / module).is_file(), f"{module} does not exist"
             assert module not in SPREAD, module
