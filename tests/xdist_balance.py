@@ -47,7 +47,10 @@ TOGETHER = (
 )
 
 _ZONE = "tests/test_sleepers_finite_beam.py::test_validate_agrees_inside_the_zone_of_the_example"
-_HERTZ = "tests/test_contact_springs.py::test_contact_spring_vehicle_on_a_continuous_track_tends_to_the_rigid_contact"
+_HERTZ = (
+    "tests/test_contact_springs.py::"
+    "test_contact_spring_vehicle_on_a_continuous_track_tends_to_the_rigid_contact"
+)
 
 #: The units that took longest in a full run (``pytest -n 2 --durations=0``, seconds per module, per test
 #: in :data:`SPREAD`), longest first: handed out in this order, the many short modules left to fill the
