@@ -75,6 +75,7 @@ LONG_FIRST = (
     "tests/test_hostile_inputs.py",
     "tests/test_floquet_lines.py",
     f"{_ZONE}[97.2881-1400-2.90111]",
+    "tests/test_sleepers_finite_beam.py::test_the_steady_force_is_checked_beside_a_slowly_decaying_vibration",
     "tests/test_finite_beam_tr.py",
     "tests/test_layered_search.py",
     "tests/test_car_certified.py",
