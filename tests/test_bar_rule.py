@@ -140,3 +140,12 @@ def test_a_sleeper_sweep_names_its_rule():
     along_m = make_sleeper_spec(data, str(SLEEPERS), {"M": "1000,1001"}, bar="fixed")
     assert along_m.describe()["bar"]["rule"] == "fixed"
     assert "bar" not in make_sleeper_spec(data, str(SLEEPERS), {"v": "40,41"}).describe()
+
+
+def test_a_sleeper_map_refuses_a_bar_that_would_follow(capsys):
+    """The map on sleepers is a pencil in the wheel mass alone (S19): a bogie's bar cannot follow M there,
+    so the default rule is refused naming --bar, before any computation."""
+    args = ["stability-map", "--file", str(SLEEPERS), "--range", "v=20:200", "--range", "M=0:2000"]
+    args += ["--n", "2"]
+    assert main(args) == 2
+    assert "--bar" in capsys.readouterr().err

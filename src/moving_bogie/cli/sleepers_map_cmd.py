@@ -73,6 +73,21 @@ def _ranges(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
     return ranges
 
 
+def _check_bar(args: argparse.Namespace, data: SleeperInput) -> None:
+    """A bar that would follow the wheel mass is refused, naming ``--bar``: the D-decomposition on sleepers
+    is a pencil in the wheel's mass alone (S19), so the map holds the bar's M_b and J_b (``--bar fixed``)."""
+    from moving_bogie.model.bar import moves_bar
+    from moving_bogie.model.catalogue import get_model
+
+    model = get_model(data.beam, data.track, data.vehicle)
+    if getattr(args, "bar", "fixed") != "fixed" and moves_bar(model, model.wheel_mass):
+        raise ParameterError(
+            "--bar",
+            "--bar follows does not apply on sleepers: the map holds the bar's M_b and J_b along M (its "
+            "D-decomposition is a pencil in the wheel mass alone, Eq. (S19)): give --bar fixed",
+        )
+
+
 def sleeper_plane(
     args: argparse.Namespace, n: int, data: SleeperInput
 ) -> tuple[SleeperInput, np.ndarray, np.ndarray]:
@@ -90,6 +105,7 @@ def sleeper_plane(
         raise ParameterError(
             "c_f", "c_f must be positive: the D-decomposition runs along the real axis (S15)"
         )
+    _check_bar(args, data)
     (v0, v1), (m0, m1) = ranges["v"], ranges["M"]
     masses = np.linspace(m1 / n, m1, n) if m0 == 0 else np.linspace(m0, m1, n)
     return data, np.linspace(v0, v1, n), masses
