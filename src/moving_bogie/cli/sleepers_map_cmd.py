@@ -18,8 +18,8 @@ from .progress import checkpoint_options, progress_bar
 if TYPE_CHECKING:
     import numpy as np
 
-    from moving_bogie.floquet.sleeper_map import SleeperMap
     from moving_bogie.model.sleeper_input import SleeperInput
+    from moving_bogie.stability.maps.sleeper_map import SleeperMap
 
 #: a sleeper map of over TIMED cells per axis is timed on one column before it starts
 TIMED = 50
@@ -137,7 +137,7 @@ def _text(smap: SleeperMap, *, crossings: bool) -> str:
 
 def run_sleeper_lines(args: argparse.Namespace, data: SleeperInput) -> int:
     """``instability-lines --file F`` on sleepers: every crossing of every velocity column."""
-    from moving_bogie.floquet.sleeper_map import sleeper_map
+    from moving_bogie.stability.maps.sleeper_map import sleeper_map
 
     data, vs, ms = sleeper_plane(args, getattr(args, "n", 60), data)
     with progress_bar("D-decomposition lines", enabled=not args.json) as bar:
@@ -147,10 +147,10 @@ def run_sleeper_lines(args: argparse.Namespace, data: SleeperInput) -> int:
 
 def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
     """``stability-map --file F`` on sleepers: the map, the continuous track's map on the same grid."""
-    from moving_bogie.floquet.sleeper_map import sleeper_map
     from moving_bogie.kernels.bound import bind
     from moving_bogie.model.smeared import smeared_track
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
+    from moving_bogie.stability.maps.sleeper_map import sleeper_map
 
     data, vs, ms = sleeper_plane(args, args.n, data)
     if args.n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
@@ -186,7 +186,7 @@ def _report(args: argparse.Namespace, data: SleeperInput, smap: SleeperMap, **kw
 
         atomic_write(args.csv, smap.to_csv().encode())
     if args.plot:
-        from moving_bogie.floquet.map_figure import sleeper_map_figure
+        from moving_bogie.stability.figures.sleeper_map_figure import sleeper_map_figure
 
         from .stability_options import save_figure
 
