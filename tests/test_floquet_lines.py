@@ -129,8 +129,8 @@ def test_the_short_cuts_give_the_previous_crossings(v, zone, monkeypatch):
     """On the map of examples/sleepers_zones.toml: the crossings, their changes, their move with one more
     harmonic and the notes of a column are those of the previous algorithm (Brent's method on every
     bracket, :func:`_previous_column`), so the counts of every cell are the same."""
-    from moving_bogie.floquet.sleeper_map import _groups, mass_unit
     from moving_bogie.model.sleeper_input import load_sleeper_file
+    from moving_bogie.stability.maps.sleeper_map import _groups, mass_unit
 
     data = load_sleeper_file(EXAMPLES / "sleepers_zones.toml")
     track = SleeperTrack(data.beam, data.track, _groups(data, v))
@@ -154,7 +154,7 @@ def test_only_a_worker_keeps_its_freed_memory():
     own process is left with glibc's defaults."""
     from concurrent.futures import ProcessPoolExecutor
 
-    from moving_bogie.floquet.sleeper_map import keep_freed_memory
+    from moving_bogie.stability.maps.sleeper_map import keep_freed_memory
 
     assert keep_freed_memory() is False
     with ProcessPoolExecutor(1) as pool:
