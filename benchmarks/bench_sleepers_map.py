@@ -6,7 +6,7 @@ Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sleepers_map.py [--file ex
 script, not a test: nothing is asserted, the table is printed.
 
 Without ``--before``: the sleeper map is the D-decomposition in M at each velocity
-(``floquet/sleeper_map.py``, its floquet_frequencies checks included); the continuous map is
+(``stability/maps/sleeper_map.py``, its floquet_frequencies checks included); the continuous map is
 ``stability/maps/map.py`` on the one-layer track with k_f = k_sup / l + k_f, c_f = c_sup / l + c_f, on the
 same grid. Both run in this process with the same number of workers, one after the other; the table gives
 the wall-clock seconds, the unstable cells and the uncertain ones.
@@ -140,11 +140,11 @@ def before_and_this(args: argparse.Namespace) -> None:
 
 def beside_continuous(args: argparse.Namespace) -> None:
     """The sleeper map and the continuous track's map on the same grid, in this process."""
-    from moving_bogie.floquet.sleeper_map import sleeper_map
     from moving_bogie.kernels.bound import bind
     from moving_bogie.model.sleeper_input import load_sleeper_file
     from moving_bogie.model.smeared import smeared_track
     from moving_bogie.stability.maps.map import stability_map
+    from moving_bogie.stability.maps.sleeper_map import sleeper_map
 
     data = load_sleeper_file(args.file)
     v0, v1 = (float(x) for x in args.range_v.split(":"))

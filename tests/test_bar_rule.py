@@ -106,3 +106,46 @@ def test_lines_with_the_bar_held_cross_where_the_full_count_changes():
     for branch in res.branches:
         assert branch.verified is not None
         assert abs(branch.verified[2] - branch.verified[4]) == 1
+
+
+SLEEPERS = Path(__file__).parents[1] / "examples" / "sleepers_hertz_bogie.toml"
+
+
+@pytest.mark.parametrize("rule", ["follows", "fixed"])
+def test_a_sleeper_sweep_moves_the_bar_by_the_same_rule(rule):
+    """A sleeper sweep's point M = 3000 kg of examples/sleepers_hertz_bogie.toml (M = 1000 kg, M_b = 2600 kg,
+    J_b = 2200 kg m^2): its vehicle is the one of the bar's values written out by hand (as above), under
+    each rule; varying M_b itself is never overridden."""
+    import tomllib
+
+    from moving_bogie.sweep.sleepers import _input
+
+    data = tomllib.loads(SLEEPERS.read_text())
+    point = _input(data, str(SLEEPERS), {"M": 3000.0}, rule, ("M",))
+    written = _input(data, str(SLEEPERS), {"M": 3000.0, **BAR[rule]}, "fixed", ())
+    assert point.vehicle_groups == pytest.approx(written.vehicle_groups, rel=1e-12)  # SI in floats
+    own = _input(data, str(SLEEPERS), {"M": 3000.0, "M_b": 5000.0}, rule, ("M", "M_b"))
+    by_hand = _input(data, str(SLEEPERS), {"M": 3000.0, "M_b": 5000.0, "J_b": BAR[rule]["J_b"]}, "fixed")
+    assert own.vehicle_groups == pytest.approx(by_hand.vehicle_groups, rel=1e-12)
+
+
+def test_a_sleeper_sweep_names_its_rule():
+    """A sleeper sweep along M names its rule in the store's description and the summary, as the
+    continuous sweep does; along v (which does not move the bar) it names none."""
+    import tomllib
+
+    from moving_bogie.sweep.sleepers import make_sleeper_spec
+
+    data = tomllib.loads(SLEEPERS.read_text())
+    along_m = make_sleeper_spec(data, str(SLEEPERS), {"M": "1000,1001"}, bar="fixed")
+    assert along_m.describe()["bar"]["rule"] == "fixed"
+    assert "bar" not in make_sleeper_spec(data, str(SLEEPERS), {"v": "40,41"}).describe()
+
+
+def test_a_sleeper_map_refuses_a_bar_that_would_follow(capsys):
+    """The map on sleepers is a pencil in the wheel mass alone (S19): a bogie's bar cannot follow M there,
+    so the default rule is refused naming --bar, before any computation."""
+    args = ["stability-map", "--file", str(SLEEPERS), "--range", "v=20:200", "--range", "M=0:2000"]
+    args += ["--n", "2"]
+    assert main(args) == 2
+    assert "--bar" in capsys.readouterr().err

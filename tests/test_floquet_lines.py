@@ -8,6 +8,7 @@ D-decomposition; the symmetry (S14), which puts the principal zone's crossings o
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -128,8 +129,8 @@ def test_the_short_cuts_give_the_previous_crossings(v, zone, monkeypatch):
     """On the map of examples/sleepers_zones.toml: the crossings, their changes, their move with one more
     harmonic and the notes of a column are those of the previous algorithm (Brent's method on every
     bracket, :func:`_previous_column`), so the counts of every cell are the same."""
-    from moving_bogie.floquet.sleeper_map import _groups, mass_unit
     from moving_bogie.model.sleeper_input import load_sleeper_file
+    from moving_bogie.stability.maps.sleeper_map import _groups, mass_unit
 
     data = load_sleeper_file(EXAMPLES / "sleepers_zones.toml")
     track = SleeperTrack(data.beam, data.track, _groups(data, v))
@@ -145,3 +146,16 @@ def test_the_short_cuts_give_the_previous_crossings(v, zone, monkeypatch):
         assert abs(a.moved - b.moved) <= 1e-9  # the followed crossing is Brent's to 1e-9 in eta_M
     etas = np.linspace(0, eta_max, 400)
     assert np.array_equal(fast.counts(etas), previous.counts(etas))
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc's mallopt")
+def test_only_a_worker_keeps_its_freed_memory():
+    """The sleeper map's workers take big arrays from the heap (mallopt accepts both settings); the caller's
+    own process is left with glibc's defaults."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    from moving_bogie.stability.maps.sleeper_map import keep_freed_memory
+
+    assert keep_freed_memory() is False
+    with ProcessPoolExecutor(1) as pool:
+        assert pool.submit(keep_freed_memory).result() is True

@@ -154,6 +154,9 @@ EXAMPLE_GROUPS = {
 }
 
 
+# slow (a finite rail of 12 periods); quick: the growth rate against the finite rail below, and the Hertz
+# wheel on sleepers against the rigid one (tests/test_hertz.py)
+@pytest.mark.slow
 def test_damped_hertz_contact_steady_force_over_a_bay_against_the_finite_rail():
     """The wheel of examples/sleepers.toml on a damped Hertz spring (kappa_H 20, eta_H 5: at Omega_0 the
     dashpot is 2 eta_H Omega_0 / kappa_H = 16 % of the spring): the finite rail's contact force over its

@@ -50,7 +50,7 @@ WORK = [
     ("moving_bogie.roots.table2", "compute_table2"),
     ("moving_bogie.paper.reproduce", "reproduce"),
     ("moving_bogie.roots.strip", "floquet_frequencies"),
-    ("moving_bogie.floquet.sleeper_map", "sleeper_map"),
+    ("moving_bogie.stability.maps.sleeper_map", "sleeper_map"),
     ("moving_bogie.response.sleeper_series", "sleeper_series"),
     ("moving_bogie.validation.sleepers_check", "check_sleepers"),
     ("moving_bogie.soil.rayleigh", "soil_modes"),

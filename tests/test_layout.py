@@ -259,13 +259,12 @@ STAGE_IMPORTS: dict[str, frozenset[str]] = {
     "stability": frozenset({"roots", "kernels", "model"}),
     "validation": frozenset({"response", "roots", "kernels", "model"}),
     "sweep": frozenset({"stability", "roots", "kernels", "model"}),
-    "floquet": frozenset({"stability", "roots", "kernels", "model"}),
     "soil": frozenset({"kernels"}),
-    "api": frozenset({"stability", "validation", "response", "roots", "floquet", "kernels", "model", "soil"}),
+    "api": frozenset({"stability", "validation", "response", "roots", "kernels", "model", "soil"}),
     "paper": frozenset({"api", "stability", "validation", "response", "roots", "model"}),
     "cli": frozenset(
         {"api", "paper", "sweep", "validation", "stability", "response", "roots", "kernels", "model"}
-        | {"floquet", "soil"}
+        | {"soil"}
     ),
     ROOT: frozenset({"model"}),  # __init__.py: the public names, loaded lazily from api.py and the rest
     "__main__": frozenset({"cli"}),
@@ -524,7 +523,7 @@ def test_the_outside_pattern_matches_what_it_should():
 # --- (e) one bound model ------------------------------------------------------------------------------------
 
 #: Where the generic runtime lives: no beam or vehicle of the catalogue is named there.
-GENERIC = ("kernels", "roots", "response", "validation", "stability", "sweep", "floquet", "soil")
+GENERIC = ("kernels", "roots", "response", "validation", "stability", "sweep", "soil")
 #: The entry points, which may choose a model by name (the command line) or name the paper's (its recipes).
 ENTRY_POINTS = ("moving_bogie.cli", "moving_bogie.paper")
 
@@ -619,8 +618,14 @@ PARAMETER_LITERALS_ALLOWED: dict[tuple[str, str], str] = {
         "moving_bogie.stability.stiffness.d_decomposition",
         "eta_f",
     ): "names the damping it needs > 0",
-    ("moving_bogie.floquet.sleeper_map", "eta_f"): "names the damping along the rail it needs > 0 (S15)",
-    ("moving_bogie.floquet.sleeper_map", "eta_M"): "the key of a crossing's wheel mass in a map's checkpoint",
+    (
+        "moving_bogie.stability.maps.sleeper_map",
+        "eta_f",
+    ): "names the damping along the rail it needs > 0 (S15)",
+    (
+        "moving_bogie.stability.maps.sleeper_map",
+        "eta_M",
+    ): "the key of a crossing's wheel mass in a map's checkpoint",
     ("moving_bogie.roots.strip", "eta_f"): "a rail undamped along its length: singular points on the axis",
     # the rail on supports as finite elements (S24) and its bay: typed here until generated with the track
     **{("moving_bogie.kernels.sleeper_track", name): _S24 for name in ("eta_sup", "mu_sl", "kappa_bal")},

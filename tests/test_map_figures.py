@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from moving_bogie.floquet.map_figure import sleeper_map_figure
-from moving_bogie.floquet.sleeper_map import SleeperMap
+from moving_bogie.stability.figures.sleeper_map_figure import sleeper_map_figure
 from moving_bogie.stability.maps.d_lines import DColumn, DCrossing
+from moving_bogie.stability.maps.sleeper_map import SleeperMap
 
 V, M = np.array([20.0, 40.0, 60.0]), np.array([500.0, 1000.0, 1500.0])
 

@@ -171,7 +171,11 @@ def _run(capsys, *argv):
 
 
 @pytest.mark.slow
-def test_cli_states_the_convention_and_what_is_computed(capsys):
+def test_cli_states_the_convention_and_what_is_computed(capsys, compute_once):
+    import moving_bogie.stability.lines.instability_lines as lines
+
+    # the text and the JSON runs below trace the same lines (same options): once, each run prints it
+    compute_once(lines, "instability_lines_many")
     common = ("--model", "masses", "--d", "1.5", "--alpha-min", "0.75", "--alpha-max", "0.85")
     code, out, _ = _run(capsys, "instability-lines", *common, "--eta-f", "0")
     assert code == 0

@@ -44,7 +44,7 @@ _LAZY = {
     "smeared_track": "api",
     "sleeper_series": "api",
     "sleeper_map": "api",
-    "sleeper_map_figure": "floquet.map_figure",
+    "sleeper_map_figure": "stability.figures.sleeper_map_figure",
     "sleeper_series_figure": "response.sleeper_plots",
 }
 

@@ -37,7 +37,6 @@ if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import ArrayLike
 
-    from moving_bogie.floquet.sleeper_map import SleeperMap
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
     from moving_bogie.model.sleeper_input import SleeperInput
@@ -47,6 +46,7 @@ if TYPE_CHECKING:
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
     from moving_bogie.stability.maps.map import StabilityMap
+    from moving_bogie.stability.maps.sleeper_map import SleeperMap
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
@@ -311,9 +311,9 @@ def sleeper_map(
     **options: Any,
 ) -> SleeperMap:
     """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
-    (S19)-(S22)): :func:`~moving_bogie.floquet.sleeper_map.sleeper_map` (``verify``, ``workers``,
+    (S19)-(S22)): :func:`~moving_bogie.stability.maps.sleeper_map.sleeper_map` (``verify``, ``workers``,
     ``progress``)."""
-    from moving_bogie.floquet.sleeper_map import sleeper_map as run
+    from moving_bogie.stability.maps.sleeper_map import sleeper_map as run
 
     return run(_sleeper_data(params), velocities, masses, **options)
 

@@ -28,6 +28,7 @@ SUBCOMMAND_MODULES: list[str] = [
     "reproduce_cmd",
     "validate_cmd",
     "timeseries_cmd",
+    "velocity_cmd",
     "stability_cmd",
     "lines_cmd",
     "compare_cmd",

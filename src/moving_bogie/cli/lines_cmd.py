@@ -19,7 +19,7 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.model.bar import bar_note, held_groups
 from moving_bogie.presentation import field_lines, json_clean, quantity
 
-from . import sleepers_map_cmd
+from . import lines_on_supports
 from .checks import count, nonnegative, positive, workers
 from .common import (
     PROG,
@@ -30,9 +30,9 @@ from .common import (
     si_input,
 )
 from .job_size import SHORTER, add_yes_option, estimate_grid
+from .lines_on_supports import sleeper_data
 from .outputs import add_figure_option
 from .progress import add_resume_option, checkpoint_options, progress_bar
-from .sleepers_map_cmd import sleeper_data
 from .stability_options import (
     RAW,
     add_plane_options,
@@ -112,7 +112,7 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
 def run_instability_lines(args: argparse.Namespace) -> int:
     sleepers = sleeper_data(args)
     if sleepers is not None:
-        return sleepers_map_cmd.run_sleeper_lines(args, sleepers)
+        return lines_on_supports.run_sleeper_lines(args, sleepers)
     params, spacings = params_and_spacings(args)
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
@@ -267,7 +267,7 @@ def _stability_map(args: argparse.Namespace) -> int:
 
     sleepers = sleeper_data(args)
     if sleepers is not None:
-        return sleepers_map_cmd.run_sleeper_map(args, sleepers)
+        return lines_on_supports.run_sleeper_map(args, sleepers)
     params, _ = params_and_spacings(args)
     if args.out is not None and args.out.exists() and not args.overwrite:
         raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")

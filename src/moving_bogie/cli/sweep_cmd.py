@@ -288,7 +288,7 @@ def _sleeper_spec(args: argparse.Namespace) -> SleeperSweepSpec:
     data = tomllib.loads(args.file.read_text())
     settings = _sleeper_settings(args.set)
     return make_sleeper_spec(
-        data, str(args.file), vary, settings=settings, sample=sample, block_points=chunk_points
+        data, str(args.file), vary, settings=settings, sample=sample, block_points=chunk_points, bar=args.bar
     )
 
 

@@ -15,11 +15,24 @@ vehicle added in ``derivations/`` follows the same rule with no edit here.
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.params import DimensionlessParams
 
-__all__ = ["BAR_RULES", "DEFAULT_BAR", "bar_note", "check_bar", "held_groups"]
+if TYPE_CHECKING:
+    from moving_bogie.model.catalogue import Model
+
+__all__ = [
+    "BAR_RULES",
+    "DEFAULT_BAR",
+    "bar_note",
+    "check_bar",
+    "follow_bar",
+    "held_groups",
+    "moves_bar",
+    "rule_note",
+]
 
 #: The rules, each with what it means (the text of the JSON outputs and the store attributes).
 BAR_RULES = {
@@ -52,5 +65,36 @@ def held_groups(params: DimensionlessParams, rule: str, varied: Iterable[str] = 
 def bar_note(params: DimensionlessParams, rule: str, parameter: str) -> dict[str, str] | None:
     """The rule as JSON (``{"rule": ..., "meaning": ...}``) when ``parameter`` moves the bar (the wheel mass
     under Eq. (63)); None for an axis that does not."""
-    moves = any(parameter in meta["depends"] for meta in params.model.alternatives.values())
-    return {"rule": rule, "meaning": BAR_RULES[check_bar(rule)]} if moves else None
+    return rule_note(rule) if moves_bar(params.model, parameter) else None
+
+
+def moves_bar(model: Model, group: str) -> bool:
+    """Whether ``group`` moves the bar under ``"follows"`` (a group an alternative of Eq. (63) depends on)."""
+    return any(group in meta["depends"] for meta in model.alternatives.values())
+
+
+def rule_note(rule: str) -> dict[str, str]:
+    """The rule as JSON: ``{"rule": ..., "meaning": ...}``."""
+    return {"rule": rule, "meaning": BAR_RULES[check_bar(rule)]}
+
+
+def follow_bar(
+    base: DimensionlessParams, point: DimensionlessParams, rule: str, varied: Iterable[str] = ()
+) -> DimensionlessParams:
+    """``point`` with the bar moved by ``rule`` from the base point ``base`` (Eq. (63)).
+
+    For a point given by its own values (a sweep of SI values holds M_b and J_b, whatever M does): under
+    ``"follows"``, each group an alternative sets (mu_v, J_b) is set again from the alternative's value at
+    ``base`` (cf1, cf2) and the point's groups it depends on (eta_M, d), unless that group is varied itself
+    (``varied``: group names) or nothing it depends on moved; under ``"fixed"``, ``point`` as it is."""
+    if check_bar(rule) == "fixed":
+        return point
+    model = point.model
+    changes = {}
+    for name, meta in model.alternatives.items():
+        depends = meta["depends"]
+        if meta["sets"] in varied or all(getattr(point, d) == getattr(base, d) for d in depends):
+            continue
+        set_by = getattr(model.catalogue.parameters, f"set_by_{name}")
+        changes[meta["sets"]] = set_by(getattr(base, name), **{d: getattr(point, d) for d in depends})
+    return point.replace(**changes) if changes else point

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.generated import parameters as paper_groups
+from moving_bogie.model.bar import follow_bar
 from moving_bogie.model.catalogue import DEFAULT_MODEL, contact_spring_vehicle, get_model
 from moving_bogie.model.physical import PhysicalParams
 
@@ -31,6 +32,7 @@ __all__ = [
     "load_sleeper_file",
     "sleeper_input",
     "sleeper_input_of",
+    "sleeper_model",
     "sleeper_units",
 ]
 
@@ -106,12 +108,12 @@ def load_sleeper_file(path: str | Path, overrides: Mapping[str, float] | None = 
 def sleeper_units(data: Mapping[str, Any], overrides: Mapping[str, float] | None = None) -> dict[str, str]:
     """The ``[physical]`` names a sleeper file of this ``[model]`` takes (with `overrides`), with their SI
     units."""
-    model = _model(data, overrides)
+    model = sleeper_model(data, overrides)
     units = {name: meta["unit"] for name, meta in model.scale_parameters.items()}
     return units | {spec.si: spec.unit for spec in model.specs.values()}
 
 
-def _model(data: Mapping[str, Any], overrides: Mapping[str, float] | None = None) -> Any:
+def sleeper_model(data: Mapping[str, Any], overrides: Mapping[str, float] | None = None) -> Any:
     """The file's model; k_H or c_H in ``[physical]`` or the overrides put its wheels on contact springs."""
     names = data.get("model", {})
     physical = data.get("physical", {})
@@ -121,14 +123,34 @@ def _model(data: Mapping[str, Any], overrides: Mapping[str, float] | None = None
 
 
 def sleeper_input(
-    data: Mapping[str, Any], path: str | Path, overrides: Mapping[str, float] | None = None
+    data: Mapping[str, Any],
+    path: str | Path,
+    overrides: Mapping[str, float] | None = None,
+    *,
+    bar: str = "fixed",
+    varied: Collection[str] = (),
 ) -> SleeperInput:
-    """:func:`load_sleeper_file` of the file's parsed TOML ``data`` (``path`` names it in the messages)."""
+    """:func:`load_sleeper_file` of the file's parsed TOML ``data`` (``path`` names it in the messages).
+
+    A point of a sweep: ``varied`` names the SI values of ``overrides`` that the sweep varies, the others
+    being its base point's; ``bar`` is the rule of :mod:`moving_bogie.model.bar` for the bogie's bar along a
+    varied wheel mass (``"fixed"``: M_b and J_b as given)."""
     try:
-        model = _model(data, overrides)
+        model = sleeper_model(data, overrides)
         if "physical" not in data:
             raise ParameterError("physical", "a sleeper track takes a [physical] table in SI units")
         physical = PhysicalParams(model=model, **{**data["physical"], **(overrides or {})})
-        return sleeper_input_of(physical.to_dimensionless(), physical)
+        params = physical.to_dimensionless()
+        if bar != "fixed" and varied:
+            base = {k: v for k, v in (overrides or {}).items() if k not in varied}
+            base_params = PhysicalParams(model=model, **{**data["physical"], **base}).to_dimensionless()
+            groups = {g for g, spec in model.specs.items() if spec.si in varied}
+            moved = follow_bar(base_params, params, bar, groups)
+            changed = [g for g in model.specs if getattr(moved, g) != getattr(params, g)]
+            if changed:  # the bar's SI values (M_b, J_b) from its moved groups
+                si = {model.specs[g].si: float(getattr(moved, g)) * physical.si_factor(g) for g in changed}
+                physical = PhysicalParams(model=model, **{**data["physical"], **(overrides or {}), **si})
+                params = physical.to_dimensionless()
+        return sleeper_input_of(params, physical)
     except ParameterError as exc:
         raise ParameterError(exc.parameter, f"{path}: {exc}") from None

@@ -22,8 +22,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.bar import DEFAULT_BAR, check_bar, moves_bar, rule_note
 from moving_bogie.model.exact import fraction_to_text
-from moving_bogie.model.sleeper_input import SleeperInput, sleeper_input, sleeper_units
+from moving_bogie.model.sleeper_input import SleeperInput, sleeper_input, sleeper_model, sleeper_units
 from moving_bogie.roots.verdict import STABLE, UNSTABLE
 from moving_bogie.sweep.design import Axis, Block, grid_blocks, parse_vary, sobol_axes
 from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
@@ -41,9 +42,16 @@ __all__ = [
 ]
 
 
-def _input(data: Mapping[str, Any], source: str, overrides: Mapping[str, float]) -> SleeperInput:
-    """The checked input of one point; a vehicle at rest has no Floquet strip."""
-    inp = sleeper_input(data, source, overrides)
+def _input(
+    data: Mapping[str, Any],
+    source: str,
+    overrides: Mapping[str, float],
+    bar: str = DEFAULT_BAR,
+    varied: tuple[str, ...] = (),
+) -> SleeperInput:
+    """The checked input of one point (the bogie's bar moved by ``bar`` along a varied wheel mass,
+    :mod:`moving_bogie.model.bar`); a vehicle at rest has no Floquet strip."""
+    inp = sleeper_input(data, source, overrides, bar=bar, varied=varied)
     if inp.groups["alpha"] <= 0:
         raise ParameterError("v", "v must be positive on a sleeper track (the strip has width 2 pi v / l)")
     return inp
@@ -61,6 +69,7 @@ class SleeperSweepSpec:
     design: str = "grid"
     block_points: int = 1
     extra: dict[str, Any] = field(default_factory=dict)
+    bar: str = DEFAULT_BAR
 
     def __post_init__(self) -> None:
         names = [a.name for a in self.axes]
@@ -72,7 +81,7 @@ class SleeperSweepSpec:
         for a in self.axes:  # every value is checked as the file's own, before any computation
             for v in sorted({min(a.values), max(a.values)}):
                 try:
-                    _input(self.data, self.source, self.settings | {a.name: float(v)})
+                    _input(self.data, self.source, self.settings | {a.name: float(v)}, self.bar, (a.name,))
                 except ParameterError as exc:
                     raise ParameterError("--vary", f"--vary {a.name}: {exc}") from None
 
@@ -80,6 +89,14 @@ class SleeperSweepSpec:
     def base(self) -> SleeperInput:
         """The file's values with the settings: the base point of the sweep."""
         return sleeper_input(self.data, self.source, self.settings)
+
+    @property
+    def bar_note(self) -> dict[str, str] | None:
+        """The rule of the bogie's bar (:func:`~moving_bogie.model.bar.bar_note`) when an axis moves it."""
+        model = sleeper_model(self.data, self.settings)
+        names = {a.name for a in self.axes}
+        moved = any(spec.si in names and moves_bar(model, g) for g, spec in model.specs.items())
+        return rule_note(self.bar) if moved else None
 
     @property
     def model(self) -> str:
@@ -126,6 +143,7 @@ class SleeperSweepSpec:
             or {a.name: [fraction_to_text(v) for v in a.values] for a in self.axes},
             "units": self.units,
             "points": self.size,
+            **({"bar": note} if (note := self.bar_note) else {}),
             "chunks": list(self.chunks),
         }
 
@@ -140,9 +158,8 @@ class SleeperSweepSpec:
             values = tuple(a.values[block.slices[0]] for a in self.axes)
         else:
             values = tuple(a.values[s] for a, s in zip(self.axes, block.slices))
-        return SleeperTask(
-            self.data, self.source, self.settings, tuple(a.name for a in self.axes), values, self.design
-        )
+        names = tuple(a.name for a in self.axes)
+        return SleeperTask(self.data, self.source, self.settings, names, values, self.design, self.bar)
 
     def create_store(self, path: Path) -> None:
         create_sleeper_store(path, self)
@@ -162,6 +179,7 @@ class SleeperTask:
     names: tuple[str, ...]
     values: tuple[tuple[Fraction, ...], ...]
     design: str
+    bar: str = DEFAULT_BAR
 
     def evaluate(self) -> dict[str, np.ndarray]:
         return evaluate_sleeper_block(self)
@@ -202,7 +220,8 @@ def evaluate_sleeper_block(task: SleeperTask) -> dict[str, np.ndarray]:
     out = {name: np.full(shape, fill, dtype=dtype) for name, dtype, fill, *_ in SLEEPER_VARIABLES}
     for index, point in points:
         overrides = task.settings | {n: float(v) for n, v in point.items()}
-        for name, value in sleeper_point(_input(task.data, task.source, overrides)).items():
+        inp = _input(task.data, task.source, overrides, task.bar, task.names)
+        for name, value in sleeper_point(inp).items():
             out[name][index] = value
     out["computed"][...] = True
     return out
@@ -216,6 +235,7 @@ def make_sleeper_spec(
     settings: Mapping[str, float] | None = None,
     sample: int | None = None,
     block_points: int = 1,
+    bar: str = DEFAULT_BAR,
 ) -> SleeperSweepSpec:
     """A :class:`SleeperSweepSpec` from ``vary`` = {SI name: "START:STOP:COUNT" or "V1,V2,..."} (with
     ``sample=N``: {SI name: "START:STOP"} and N scrambled Sobol points, seed 0)."""
@@ -229,7 +249,7 @@ def make_sleeper_spec(
         axes = sobol_axes(ranges, sample)
     design = "grid" if sample is None else "sobol"
     return SleeperSweepSpec(
-        data, source, axes, dict(settings or {}), design=design, block_points=block_points, extra=extra
+        data, source, axes, dict(settings or {}), design, block_points, extra, check_bar(bar)
     )
 
 
@@ -252,4 +272,5 @@ def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any
         "uncertain_points": int((~ds.certain).sum()),
         "fastest_growth": fastest,
         "units": spec.units,
+        **({"bar": note} if (note := spec.bar_note) else {}),
     }

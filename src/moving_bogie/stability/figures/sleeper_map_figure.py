@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from moving_bogie.floquet.sleeper_map import SleeperMap
+from moving_bogie.stability.maps.sleeper_map import SleeperMap
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist

@@ -18,8 +18,8 @@ from .progress import checkpoint_options, progress_bar
 if TYPE_CHECKING:
     import numpy as np
 
-    from moving_bogie.floquet.sleeper_map import SleeperMap
     from moving_bogie.model.sleeper_input import SleeperInput
+    from moving_bogie.stability.maps.sleeper_map import SleeperMap
 
 #: a sleeper map of over TIMED cells per axis is timed on one column before it starts
 TIMED = 50
@@ -73,6 +73,21 @@ def _ranges(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
     return ranges
 
 
+def _check_bar(args: argparse.Namespace, data: SleeperInput) -> None:
+    """A bar that would follow the wheel mass is refused, naming ``--bar``: the D-decomposition on sleepers
+    is a pencil in the wheel's mass alone (S19), so the map holds the bar's M_b and J_b (``--bar fixed``)."""
+    from moving_bogie.model.bar import moves_bar
+    from moving_bogie.model.catalogue import get_model
+
+    model = get_model(data.beam, data.track, data.vehicle)
+    if getattr(args, "bar", "fixed") != "fixed" and moves_bar(model, model.wheel_mass):
+        raise ParameterError(
+            "--bar",
+            "--bar follows does not apply on sleepers: the map holds the bar's M_b and J_b along M (its "
+            "D-decomposition is a pencil in the wheel mass alone, Eq. (S19)): give --bar fixed",
+        )
+
+
 def sleeper_plane(
     args: argparse.Namespace, n: int, data: SleeperInput
 ) -> tuple[SleeperInput, np.ndarray, np.ndarray]:
@@ -90,6 +105,7 @@ def sleeper_plane(
         raise ParameterError(
             "c_f", "c_f must be positive: the D-decomposition runs along the real axis (S15)"
         )
+    _check_bar(args, data)
     (v0, v1), (m0, m1) = ranges["v"], ranges["M"]
     masses = np.linspace(m1 / n, m1, n) if m0 == 0 else np.linspace(m0, m1, n)
     return data, np.linspace(v0, v1, n), masses
@@ -121,7 +137,7 @@ def _text(smap: SleeperMap, *, crossings: bool) -> str:
 
 def run_sleeper_lines(args: argparse.Namespace, data: SleeperInput) -> int:
     """``instability-lines --file F`` on sleepers: every crossing of every velocity column."""
-    from moving_bogie.floquet.sleeper_map import sleeper_map
+    from moving_bogie.stability.maps.sleeper_map import sleeper_map
 
     data, vs, ms = sleeper_plane(args, getattr(args, "n", 60), data)
     with progress_bar("D-decomposition lines", enabled=not args.json) as bar:
@@ -131,10 +147,10 @@ def run_sleeper_lines(args: argparse.Namespace, data: SleeperInput) -> int:
 
 def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
     """``stability-map --file F`` on sleepers: the map, the continuous track's map on the same grid."""
-    from moving_bogie.floquet.sleeper_map import sleeper_map
     from moving_bogie.kernels.bound import bind
     from moving_bogie.model.smeared import smeared_track
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
+    from moving_bogie.stability.maps.sleeper_map import sleeper_map
 
     data, vs, ms = sleeper_plane(args, args.n, data)
     if args.n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
@@ -170,7 +186,7 @@ def _report(args: argparse.Namespace, data: SleeperInput, smap: SleeperMap, **kw
 
         atomic_write(args.csv, smap.to_csv().encode())
     if args.plot:
-        from moving_bogie.floquet.map_figure import sleeper_map_figure
+        from moving_bogie.stability.figures.sleeper_map_figure import sleeper_map_figure
 
         from .stability_options import save_figure
 
