@@ -30,8 +30,6 @@ from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.soil.file import SoilInput, load_soil_file
-from moving_bogie.soil.rail_track import SoilRailSpec, reference_stiffness
 
 if TYPE_CHECKING:
     import numpy as np
@@ -43,6 +41,8 @@ if TYPE_CHECKING:
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.response.sleeper_series import SleeperSeries
     from moving_bogie.roots.frequencies import FrequencyResult
+    from moving_bogie.soil.file import SoilInput
+    from moving_bogie.soil.rail_track import SoilRailSpec
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
     from moving_bogie.stability.maps.map import StabilityMap
@@ -125,6 +125,8 @@ def soil_vehicle(data: SoilInput, *, tol: float = 1e-6) -> SoilVehicle:
     for key in SUPPORT_KEYS:
         if key in values:
             raise ParameterError(key, f"{key} does not apply to a track on the soil: the soil is the support")
+    from moving_bogie.soil.rail_track import SoilRailSpec, reference_stiffness
+
     k_ref = reference_stiffness(data.track, data.soil)
     track = data.track
     common: dict[str, Any] = {"EI": track.EI, "m": track.m, "k_f": k_ref, "c_f": 0.0, "P": data.load}
@@ -136,6 +138,8 @@ def soil_vehicle(data: SoilInput, *, tol: float = 1e-6) -> SoilVehicle:
 
 def load_soil_vehicle(path: str | Path) -> SoilVehicle:
     """Read a soil-track file with a vehicle (:func:`soil_vehicle`); errors name the key and the file."""
+    from moving_bogie.soil.file import load_soil_file
+
     data = load_soil_file(path)
     try:
         return soil_vehicle(data)
