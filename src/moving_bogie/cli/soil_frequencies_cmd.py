@@ -12,7 +12,7 @@ import argparse
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["SoilRun", "soil_frequencies"]
+__all__ = ["SoilRun", "run_soil_frequencies", "soil_frequencies"]
 
 #: Options of ``frequencies`` that a soil-track file does not take (its values are in the file).
 REFUSED = ("window", "certify", "set")
@@ -88,3 +88,14 @@ def soil_frequencies(args: argparse.Namespace) -> SoilRun:
         "layers": data.input.soil.to_dict(),
     }
     return SoilRun(result, physical, regime, soil)
+
+
+def run_soil_frequencies(args: argparse.Namespace) -> int:
+    """``frequencies --file`` on a soil-track file with a vehicle, printed as on every track (the JSON with a
+    ``soil`` key); exit 1 unless the count is matched and the verdict decided."""
+    from .frequencies_output import report
+
+    run = soil_frequencies(args)
+    report(args, run.result, run.physical, run.regime, extra={"soil": run.soil}, title=run.title())
+    result = run.result
+    return 0 if result.count_ok and result.verdict.determined else 1
