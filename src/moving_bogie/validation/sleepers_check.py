@@ -318,11 +318,7 @@ def _steady_comparison(
     its times (for the figure)."""
     keep = slice(0, loaded.tau.size - 1)  # the last step is not averaged (smooth_steps)
     force = smooth_steps(loaded.force[0])[keep]
-    try:
-        limit = periodic_limit(loaded.tau[keep], force, T0, start)
-    except ValueError:  # too few periods to fit: the last bay as it is (its transient not removed)
-        last = loaded.tau[keep] >= loaded.tau[keep][-1] - T0 * (1 - 1e-9)
-        limit = PeriodicLimit(force[last][None, :], loaded.tau[keep][last], math.nan, np.zeros(0))
+    limit = periodic_limit(loaded.tau[keep], force, T0, start)
     position = (loaded.entry + track.alpha * limit.tau) % track.lam
     phase = np.exp(1j * track.Omega0 * np.outer(position / track.alpha, steady.harmonics))
     reference = np.real(phase @ steady.force_harmonics[:, 0])
@@ -331,24 +327,6 @@ def _steady_comparison(
     name = "steady force over a bay"
     comparison = Comparison(name, spread, float(np.ptp(limit.values[0])), diff / spread, tol)
     return comparison, limit, reference
-
-
-def _limit_notes(limit: PeriodicLimit, tol: float) -> list[str]:
-    """What the notes say of the loaded run's periodic limit: a run that does not settle, or a transient
-    still above the tolerance at its end (removed by the fit rather than waited out)."""
-    if not limit.settles:
-        slowest = float(np.max(np.abs(limit.multipliers)))
-        return [f"the loaded run does not settle (a multiplier of modulus {slowest:.6g} >= 1)"]
-    if math.isnan(limit.transient):
-        return ["the loaded run is too short to fit its periodic limit: its last bay is compared as it is"]
-    if limit.transient <= tol:
-        return []
-    slowest = float(np.max(np.abs(limit.multipliers)))
-    return [
-        f"the loaded run's force still carries a transient of {limit.transient:.2%} of its peak-to-peak at "
-        f"its end (slowest multiplier modulus {slowest:.6g}): its periodic limit, the fixed point of the "
-        "stroboscopic map, is compared"
-    ]
 
 
 def check_sleepers(
@@ -405,7 +383,7 @@ def check_sleepers(
         comparison, limit, steady_force = _steady_comparison(track, steady, loaded, T0, start_fit, tol)
         comparisons.append(comparison)
         steady_tau, limit_force = limit.tau, limit.values[0]
-        notes.extend(_limit_notes(limit, tol))
+        notes.extend(limit.notes(tol))
     finite_s = time.perf_counter() - start
     return SleeperCheck(
         tuple(comparisons),

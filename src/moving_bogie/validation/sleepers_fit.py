@@ -254,6 +254,23 @@ class PeriodicLimit:
         """Whether every mode of the transient decays (the limit exists)."""
         return bool(np.all(np.abs(self.multipliers) < 1.0))
 
+    def notes(self, tol: float) -> list[str]:
+        """What a check says of the limit: a run too short to fit it, a run that does not settle, or a
+        transient still above ``tol`` at the run's end (removed by the fit rather than waited out)."""
+        if math.isnan(self.transient):
+            too_short = "the loaded run is too short to fit its periodic limit"
+            return [f"{too_short}: its last bay is compared as it is"]
+        slowest = float(np.max(np.abs(self.multipliers), initial=0.0))
+        if not self.settles:
+            return [f"the loaded run does not settle (a multiplier of modulus {slowest:.6g} >= 1)"]
+        if self.transient <= tol:
+            return []
+        return [
+            f"the loaded run's force still carries a transient of {self.transient:.2%} of its peak-to-peak "
+            f"at its end (slowest multiplier modulus {slowest:.6g}): its periodic limit, the fixed point of "
+            "the stroboscopic map, is compared"
+        ]
+
 
 def periodic_limit(tau: np.ndarray, signals: np.ndarray, period: float, start: float) -> PeriodicLimit:
     """The fixed point ``y*`` of the stroboscopic map of a forced periodic run (docs/sleepers.md (S26)).
@@ -264,12 +281,14 @@ def periodic_limit(tau: np.ndarray, signals: np.ndarray, period: float, start: f
     shapes are fitted as :func:`fit_floquet_modes` fits a free run, the amplitudes by least squares over
     every difference, and ``y* = y_K - sum_i t_i mu_i^K phi_i``. A transient that decays slowly (a
     multiplier near the unit circle) is thus removed, not waited out; the limit uses the run only, no
-    Floquet theory. Raises ValueError when the window holds too few periods."""
+    Floquet theory. A window of too few periods to fit gives the run's last period as it is, with
+    ``transient`` NaN."""
     signals = np.atleast_2d(signals)
     snapshots, phases, first, scales = stroboscopic_samples(tau, signals, period, start)
     count = snapshots.shape[1]
-    if count < MIN_PERIODS + 1:
-        raise ValueError(f"the window holds fewer than {MIN_PERIODS + 1} periods")
+    if count < MIN_PERIODS + 1:  # too few periods to fit: the last period as it is (``transient`` NaN)
+        last = tau >= tau[-1] - period * (1 - 1e-9)
+        return PeriodicLimit(signals[:, last], tau[last], math.nan, np.zeros(0, dtype=complex))
     differences = np.diff(snapshots, axis=1)
     last = snapshots[:, -1].astype(complex)
     if np.max(np.abs(differences)) <= ROUND_OFF * np.max(np.abs(snapshots)):
