@@ -120,9 +120,12 @@ def test_the_check_fits_the_window_of_its_settings(monkeypatch):
     the last 60 % of the record of the default settings (docs/sleepers.md (S26); noise before it would spoil
     the rate), the rate and the frequency are those of the modes put in, within 1e-8, and the two halves of
     the window agree."""
+    from moving_bogie.generated import vehicle_mass
+    from moving_bogie.kernels.hill import VehicleMatrices
     from moving_bogie.kernels.sleeper_track import SleeperTrack
     from moving_bogie.validation.sleepers_beam import BeamRun
 
+    vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": 14.0})  # its wheel's path sizes the rail
     track = SleeperTrack("eb", "sleepers", {"lam": T0 * 0.24, "alpha": 0.24, "eta_sup": 0.01})
     assert track.Omega0 == pytest.approx(OMEGA0, rel=1e-12)
     settings = sleepers_check.SleeperBeamSettings()
@@ -137,7 +140,7 @@ def test_the_check_fits_the_window_of_its_settings(monkeypatch):
 
     monkeypatch.setattr(sleepers_check, "simulate_sleeper_beam", synthetic)
     side = sleepers_check.FloquetSide(_UnstableResult(), q, OMEGA0 / 2, None, 0.0)
-    result = sleepers_check.check_sleepers(track, None, np.zeros(1), settings=settings, floquet=side)
+    result = sleepers_check.check_sleepers(track, vehicle, np.zeros(1), settings=settings, floquet=side)
     assert result.fit_start == pytest.approx(0.4 * settings.periods * T0, abs=T0 / STEPS)
     assert result.fit.window[1] == pytest.approx(tau[-1], abs=T0 / STEPS)
     assert [c.quantity for c in result.comparisons] == ["growth rate -Im q", "dominant frequency"]

@@ -12,6 +12,11 @@ its track (:meth:`~moving_bogie.kernels.sleeper_track.SleeperTrack.support_eleme
 at the rail is ``lam z(w)``: a spring-dashpot to the ground on ``sleepers``; on ``sleepers-two-layer`` a
 railpad over a sleeper of mass ``lam mu_sl`` on the ballast, the sleeper an unknown of its own.
 
+An absorbing layer of ``absorbing`` bays at each end adds a foundation damping ``ABSORBING_DAMPING s^2``
+(mass-proportional, ``s`` the depth into the layer, 0 to 1): the waves the vehicle radiates along the rail
+(its start, and its passage over the supports even in the steady state) die there instead of returning from
+the pinned ends to the wheels, as they do not return on the infinite rail of the Floquet theory.
+
 The matrices are sparse (scipy.sparse), assembled once; :mod:`moving_bogie.validation.sleepers_beam` adds
 the moving vehicle.
 """
@@ -35,6 +40,12 @@ PER_NODE = 3
 #: Gauss-Legendre nodes and weights on [0, 1] (exact for the degree-10 products of two quintics)
 _GAUSS = tuple(np.polynomial.legendre.leggauss(8))
 _GX, _GW = (_GAUSS[0] + 1) / 2, _GAUSS[1] / 2
+
+#: the foundation damping added at the outer end of an absorbing layer (units of omega_e, as 2 eta_f): the
+#: quadratic ramp to it over the layer reflects little, and a wave crossing a layer of L / chi at the group
+#: velocity c_g and back loses the factor e^{-2 L / (3 c_g)} (e^{-4} and less for the rail's waves up to 3
+#: omega_e, c_g <= 2.4, across the 15 / chi of the check's layers), besides the rest of the rail's damping
+ABSORBING_DAMPING = 2.0
 
 
 def _quintic_basis() -> np.ndarray:
@@ -79,21 +90,24 @@ class SleeperRail:
     """The rail of ``bays`` bays on its supports in ``elements`` Hermite elements per bay.
 
     Unknowns: the deflection and slope of every node but the deflections of the two pinned ends
-    (``rail_dofs`` of them), then one per sleeper on ``sleepers-two-layer``.
+    (``rail_dofs`` of them), then one per sleeper on ``sleepers-two-layer``. ``absorbing``: the bays of the
+    absorbing layer at each end (module doc), inside the ``bays``.
     """
 
     track: SleeperTrack
     bays: int
     elements: int
+    absorbing: int = 0
 
     def __post_init__(self) -> None:
         try:
             self.track.rail_foundation()
         except ValueError as exc:
             raise MovingBogieError(f"the finite rail on supports: {exc}") from None
-        if self.bays < 4 or self.elements < 1:
+        if self.bays < 4 + 2 * self.absorbing or self.elements < 1 or self.absorbing < 0:
             raise MovingBogieError(
-                f"the finite rail needs at least 4 bays and 1 element per bay (got {self})"
+                "the finite rail needs at least 4 bays between its absorbing layers and 1 element per bay "
+                f"(got {self})"
             )
 
     @property
@@ -146,15 +160,26 @@ class SleeperRail:
         """Nodes on a support: every ``elements``-th, the pinned ends excluded."""
         return np.arange(1, self.bays) * self.elements
 
+    def absorbing_damping(self) -> np.ndarray:
+        """The foundation damping added in each element: ``ABSORBING_DAMPING s^2`` at the depth ``s`` of its
+        middle into an absorbing layer (0 outside the layers)."""
+        middles = (np.arange(self.nodes - 1) + 0.5) / self.elements  # in bays
+        if self.absorbing == 0:
+            return np.zeros(middles.size)
+        depth = np.maximum(self.absorbing - middles, middles - (self.bays - self.absorbing)) / self.absorbing
+        return ABSORBING_DAMPING * np.clip(depth, 0.0, None) ** 2
+
     @cached_property
     def matrices(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
-        """Sparse M, C, K of the rail on its supports (Eqs. (S23)-(S24))."""
+        """Sparse M, C, K of the rail on its supports (Eqs. (S23)-(S24)), the absorbing layers' damping in
+        C."""
         k_f, c_f = self.track.rail_foundation()
         me, ke = _element_matrices(self.h)
-        ce = c_f * me
         kfe = ke + k_f * me
+        added = self.absorbing_damping()
         rows, cols, m_val, c_val, k_val = [], [], [], [], []
         for e in range(self.nodes - 1):
+            ce = (c_f + added[e]) * me
             dofs = self._index[PER_NODE * e : PER_NODE * e + 2 * PER_NODE]
             ok = dofs >= 0
             r, c = np.meshgrid(dofs[ok], dofs[ok], indexing="ij")
