@@ -14,6 +14,7 @@ Floquet theory: no harmonics, no receptance, no lattice sum. The references are
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -217,3 +218,100 @@ def test_the_verdict_line_states_the_numbers_it_judged():
         "verdict: DISAGREE: growth rate -Im q 2.90112 (Floquet) vs 2.90285 (finite beam) 1/s: "
         "0.060% <= 1.00%; x 1 (Floquet) vs 1.5 (finite beam) N: 50.000% > 1.00%"
     )
+
+
+def _zone_example(folder: Path, vehicle: str, M: str, extra: str = "") -> Path:
+    """examples/sleepers_zones.toml with another vehicle, wheel mass M and speed 97.2881 m/s, plus lines."""
+    text = ZONES.read_text().replace('vehicle = "mass"', f'vehicle = "{vehicle}"')
+    text = text.replace("\nM = 600 ", f"\nM = {M} ").replace("\nv = 100 ", "\nv = 97.2881 ")
+    path = folder / f"{vehicle}_{M}.toml"
+    path.write_text(text + extra)
+    return path
+
+
+#: two wheels 2 m apart, each on a linearised Hertz spring (k_H = 1.4e9 N/m), on the rail of the zone example
+TWO_WHEELS_ON_HERTZ_SPRINGS = "d = 2.0\nk_H = 1.4e9\n"
+
+
+@pytest.mark.parametrize("frequency", [1.2, 1.6])
+def test_absorbing_layers_make_the_finite_rail_look_infinite(frequency):
+    """A harmonic point load in the first pass band of the zone example's rail (its waves propagate, the
+    rail barely damps them): on the infinite rail the receptance under the load does not depend on where the
+    rail ends. With the check's absorbing layers (15 / chi at each end) it moves by less than 1e-3 as the
+    rail beyond the load grows bay by bay; with pinned ends alone the waves they reflect move it by more than
+    50 % (standing waves between the ends)."""
+    from moving_bogie.model.sleeper_input import load_sleeper_file
+    from moving_bogie.validation.sleepers_check import ABSORBING
+
+    track = SleeperTrack("eb", "sleepers", load_sleeper_file(ZONES).groups)
+    spreads = []
+    for layer in (math.ceil(ABSORBING / track.lam), 0):
+        values = []
+        for beyond in (10, 11, 12, 13):
+            rail = SleeperRail(track, 20 + beyond + 2 * layer, 8, layer)
+            m, c, k = rail.matrices
+            dofs, shape, _, _ = rail.contact_shapes((layer + 20.3) * track.lam)
+            force = np.zeros(rail.size, complex)
+            force[dofs] = shape
+            w = sla.spsolve((k + 1j * frequency * c - frequency**2 * m).tocsc(), force)
+            values.append(abs(shape @ w[dofs]))
+        spreads.append(np.ptp(values) / np.mean(values))
+    assert spreads[0] < 1e-3 < 0.5 < spreads[1], spreads
+
+
+@pytest.mark.slow
+def test_two_wheels_on_hertz_springs_in_the_zone(tmp_path):
+    """Two wheels on Hertz springs in the principal zone (M = 1340 kg; the rear wheel's zone moves down from
+    1375-1458 kg with the second wheel and the contact springs): the Floquet root with Im q < 0 and the
+    finite rail's free vibration agree on the growth rate and the frequency within 1 %."""
+    from moving_bogie.model.sleeper_input import load_sleeper_file
+    from moving_bogie.validation.on_supports import check_on_supports
+
+    data = load_sleeper_file(_zone_example(tmp_path, "masses", "1340", TWO_WHEELS_ON_HERTZ_SPRINGS))
+    assert data.vehicle == "hertz_masses"
+    result = check_on_supports(data)
+    assert result.floquet_verdict == "unstable"
+    assert [c.quantity for c in result.comparisons] == ["growth rate -Im q", "dominant frequency"]
+    assert result.rate > 0
+    for comparison in result.comparisons:
+        assert comparison.relative < 0.01, comparison
+
+
+class _StableResult:
+    """A Floquet search's verdict (stable) and notes, for a check given the steady response only."""
+
+    notes: tuple[str, ...] = ()
+
+    class verdict:  # noqa: N801 - the attribute of a FloquetResult
+        state = "stable"
+
+
+@pytest.mark.slow
+def test_two_wheels_on_hertz_springs_steady_force_beside_two_slow_modes(tmp_path):
+    """Two wheels on Hertz springs just outside the zone (M = 1400 kg: stable, every Floquet root decays;
+    floquet_frequencies finds four, two pairs at Re Omega = Omega_0 / 2 +- 16 and +- 5 rad/s, decaying at
+    1.0109 and 1.1069 1/s, the Floquet side taken as given here). Their beating keeps the loaded run's
+    transient above 10 % of the steady force's peak-to-peak over the whole record; the periodic limit fitted
+    to every signal of the run removes it: every wheel's steady force within 1 % of the Floquet steady
+    force (S18), and the transient's multipliers are those two modes, decay rates within 1 %. Without the
+    absorbing layers the waves the pinned ends reflect spoil the fit (more than 1 % off)."""
+    from moving_bogie.model.sleeper_input import load_sleeper_file
+    from moving_bogie.validation.sleepers_check import STEADY_TOL, FloquetSide
+    from moving_bogie.validation.sleepers_fit import periodic_limit, smooth_steps
+
+    data = load_sleeper_file(_zone_example(tmp_path, "masses", "1400", TWO_WHEELS_ON_HERTZ_SPRINGS))
+    track = SleeperTrack(data.beam, data.track, data.groups)
+    vehicle = VehicleMatrices.from_module(data.vehicle_kernels, data.vehicle_groups)
+    loads = static_loads(data.vehicle_kernels, data.vehicle_groups)
+    steady = steady_response(track, vehicle, loads, points=129, tol=STEADY_TOL)
+    side = FloquetSide(_StableResult(), None, None, steady, 0.0)  # type: ignore[arg-type]
+    result = check_sleepers(track, vehicle, loads, floquet=side)
+    (force,) = result.comparisons
+    assert force.quantity == "steady force over a bay" and force.relative < 0.01, force
+    loaded, T0 = result.loaded, track.lam / track.alpha
+    signals = smooth_steps(np.vstack([loaded.force, loaded.deflection, loaded.internal]))[:, :-1]
+    limit = periodic_limit(loaded.tau[:-1], signals, T0, SleeperBeamSettings().transient * loaded.tau[-1])
+    rates = np.sort(-np.log(np.abs(limit.multipliers)) / T0 / data.t_scale)
+    np.testing.assert_allclose(rates, [1.0109, 1.0109, 1.1069, 1.1069], rtol=0.01)
+    pinned = check_sleepers(track, vehicle, loads, floquet=side, settings=SleeperBeamSettings(absorbing=0.0))
+    assert pinned.comparisons[0].relative > 0.01

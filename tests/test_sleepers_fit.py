@@ -254,3 +254,35 @@ def test_the_periodic_limit_removes_a_slow_transient():
     assert np.max(np.abs(limit.values[0] - periodic)) < 1e-6 * spread
     last = np.interp(limit.tau, tau, x)
     assert np.max(np.abs(last - periodic)) > 0.1 * spread
+
+
+def test_the_limit_keeps_every_mode_above_the_last_fall_by_ten():
+    """The loaded run's differences of two wheels on Hertz springs below the zone (measured singular values:
+    two slow modes, falls by 8, 12, 21 and 11, then by less than 4): without a fall by RANK_GAP the
+    periodic limit keeps the 4 modes up to the last fall by LIMIT_GAP (the largest fall alone keeps 3)."""
+    from moving_bogie.validation.sleepers_fit import LIMIT_GAP, RANK_LEVEL, _rank
+
+    singular = np.array([1, 1.2e-1, 1.0e-2, 4.7e-4, 4.4e-5, 3.5e-5, 9.2e-6, 7e-6, 5e-6])
+    assert _rank(singular, RANK_LEVEL, 7) == 3
+    assert _rank(singular, RANK_LEVEL, 7, LIMIT_GAP) == 4
+
+
+def test_the_periodic_limit_of_two_wheels_separates_two_modes_of_one_shape():
+    """Two wheels: a periodic response at each plus two slow modes near the parametric line with the same
+    periodic part, in phase at the two wheels for one and in opposition for the other (the two wheels'
+    modes; multipliers 0.12 rad apart, as 1.0109 and 1.1069 1/s at Omega_0 / 2 -+ 16 and 5 rad/s on the
+    zone example), still 40 % of the response's peak-to-peak at the end of 40 periods. Fitted to both wheels
+    the limit is each wheel's periodic response within 1e-6 of its peak-to-peak."""
+    forced = [{0: 2.0, 1: 0.1 - 0.05j, 2: 0.02j}, {0: 2.0, 1: -0.08 + 0.06j, 2: 0.01}]
+    shape = {0: 1.0, -1: 0.3}
+    slow = [0.5 * OMEGA0 + 0.0123 + 0.00079j, 0.5 * OMEGA0 - 0.0036 + 0.00086j]
+    runs = []
+    for wheel, signs in enumerate([(1.0, 1.0), (1.0, -1.0)]):  # in phase, in opposition
+        modes = [(0.5 * sign, q, shape) for sign, q in zip(signs, slow)]
+        tau, x = _run([*modes, (1.0, 0.0, forced[wheel])], periods=40)
+        runs.append(x)
+    limit = periodic_limit(tau, np.array(runs), T0, 0.4 * tau[-1])
+    assert limit.settles and limit.transient > 0.1
+    for wheel in range(2):
+        periodic = np.real(sum(c * np.exp(1j * n * OMEGA0 * limit.tau) for n, c in forced[wheel].items()))
+        assert np.max(np.abs(limit.values[wheel] - periodic)) < 1e-6 * np.ptp(periodic)
