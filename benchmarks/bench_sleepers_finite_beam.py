@@ -22,9 +22,10 @@ and 71.5 m/s (M from 5 kg inside one edge to 5 kg inside the other; the edges fr
 instability-lines --file examples/sleepers_zones.toml --range v=70:100 --range M=0:3000``), Floquet against
 the finite rail at dt, at 2 dt and extrapolated to dt -> 0.
 
-``--before SRC``: ``moving-bogie validate --file`` on ``examples/sleepers.toml`` and on the zone example at
-three points of its zone, run by this checkout and by the package in ``SRC`` (another checkout's ``src``)
-side by side, one BLAS thread: CPU and wall seconds, exit status, the growth rate each finds.
+``--before SRC``: ``moving-bogie validate --file`` on ``examples/sleepers.toml``, on the zone example at
+three points of its zone and with two wheels on Hertz springs beside it (``TWO_WHEELS``), run by this
+checkout and by the package in ``SRC`` (another checkout's ``src``) side by side, one BLAS thread: CPU and
+wall seconds, exit status, the first quantity each compares.
 """
 
 from __future__ import annotations
@@ -69,12 +70,21 @@ ZONE_POINTS = [("97.2881", m) for m in ("1380", "1390", "1400", "1416", "1440", 
 VALIDATED = [("97.2881", "1400"), ("97.2881", "1416"), ("71.5", "2685")]
 
 
-def zone_file(folder: Path, v: str, M: str) -> Path:
-    """examples/sleepers_zones.toml with its v and M replaced, written in ``folder``."""
+def zone_file(folder: Path, v: str, M: str, vehicle: str = "") -> Path:
+    """examples/sleepers_zones.toml with its v and M replaced, written in ``folder``; ``vehicle``, a vehicle's
+    name and the lines it adds to [physical] (``"masses\nd = 2.0\nk_H = 1.4e9"``), replaces the wheel."""
     text = (HERE / "examples" / "sleepers_zones.toml").read_text()
-    path = folder / f"zones_v{v}_M{M}.toml"
-    path.write_text(text.replace("\nM = 600 ", f"\nM = {M} ").replace("\nv = 100 ", f"\nv = {v} "))
+    text = text.replace("\nM = 600 ", f"\nM = {M} ").replace("\nv = 100 ", f"\nv = {v} ")
+    if vehicle:
+        name, _, lines = vehicle.partition("\n")
+        text = text.replace('vehicle = "mass"', f'vehicle = "{name}"') + lines + "\n"
+    path = folder / f"zones_v{v}_M{M}{vehicle.split(chr(10))[0]}.toml"
+    path.write_text(text)
     return path
+
+
+#: the two wheels 2 m apart on Hertz springs of docs/sleepers.md (S27) that ``--before`` validates too
+TWO_WHEELS = ("97.2881", "1400", "masses\nd = 2.0\nk_H = 1.4e9")
 
 
 def example_case(
@@ -199,6 +209,12 @@ def before_after(before: Path) -> None:
         files = [("examples/sleepers.toml", HERE / "examples" / "sleepers.toml")] + [
             (f"sleepers_zones.toml, v = {v}, M = {M}", zone_file(Path(folder), v, M)) for v, M in VALIDATED
         ]
+        files.append(
+            (
+                "sleepers_zones.toml, two wheels on Hertz springs, M = 1400",
+                zone_file(Path(folder), *TWO_WHEELS),
+            )
+        )
         for label, path in files:
             for who, src in (("before", before), ("this", HERE / "src")):
                 run = run_child(src, ["validate", "--file", str(path), "--json"])

@@ -302,6 +302,19 @@ def _free_vibration_fit(
     return fit, spread
 
 
+def _rate_change(free: BeamRun, fit: FloquetFit, T0: float) -> float:
+    """How far the free vibration's rate moves when it is fitted to the last three quarters of the window of
+    ``fit`` only, relative to the rate (a window too short to separate the modes shows here); 0 when that
+    part is too short to fit."""
+    signals = np.vstack([free.deflection, free.internal])
+    later = fit.window[0] + 0.25 * (fit.window[1] - fit.window[0])
+    try:
+        rate = fit_floquet_modes(free.tau, signals, T0, later).rate
+    except ValueError:  # decayed to round-off, or too short: nothing to compare
+        return 0.0
+    return abs(rate - fit.rate) / abs(fit.rate) if fit.rate != 0 else math.inf
+
+
 def _rate_comparisons(
     fit: FloquetFit, coarse: FloquetFit, root: complex, frequency: float, tol: float, notes: list[str]
 ) -> list[Comparison]:
@@ -449,22 +462,33 @@ def check_sleepers(
     side = floquet_side(track, vehicle, loads, harmonics) if floquet is None else floquet
     root, steady = side.root, side.steady
     T0 = track.lam / track.alpha
-    tau_free = settings.periods * T0
-    rail, entry = _finite_rail(track, vehicle, settings, settings.periods)
+    periods = settings.periods
+    rail, entry = _finite_rail(track, vehicle, settings, periods)
     dt = T0 / settings.steps_per_period
     start = time.perf_counter()
-    simulate = partial(simulate_sleeper_beam, rail, vehicle, loads, entry=entry, tau_max=tau_free)
+    simulate = partial(simulate_sleeper_beam, rail, vehicle, loads, entry=entry, tau_max=periods * T0)
     share = 0.9 / (1.5 if root is not None and side.frequency is not None else 2.0)  # the first run's
     free = simulate(dt=dt, loaded=False, progress=_stage(progress, 0.1, share))
     notes = list(side.result.notes)
-    fit, spread = _free_vibration_fit(free, T0, settings.transient * tau_free, notes)
+    fit, spread = _free_vibration_fit(free, T0, settings.transient * periods * T0, notes)
     comparisons: list[Comparison] = []
     loaded = coarse = None
     steady_tau = steady_force = limit_force = None
     if root is not None and side.frequency is not None:
+        moved = _rate_change(free, fit, T0)
+        if moved > WINDOW_AGREEMENT * tol:  # too few periods to separate the modes: twice as many (once)
+            notes.append(
+                f"the free vibration's rate moved by {moved:.2%} between the fit window and its last three "
+                f"quarters over {periods} periods: the runs are made over {2 * periods}"
+            )
+            periods *= 2
+            rail, entry = _finite_rail(track, vehicle, settings, periods)
+            simulate = partial(simulate_sleeper_beam, rail, vehicle, loads, entry=entry, tau_max=periods * T0)
+            free = simulate(dt=dt, loaded=False)
+            fit, spread = _free_vibration_fit(free, T0, settings.transient * periods * T0, notes)
         # the same free run at twice the step: the rate and the frequency extrapolated to dt -> 0
         run = simulate(dt=2 * dt, loaded=False, progress=_stage(progress, 0.1 + share, 0.9 - share))
-        coarse = _free_vibration_fit(run, T0, settings.transient * tau_free, notes)[0]
+        coarse = _free_vibration_fit(run, T0, settings.transient * periods * T0, notes)[0]
         comparisons = _rate_comparisons(fit, coarse, root, side.frequency, tol, notes)
     else:
         rate_text = _rate_text(fit.rate, time_scale)
