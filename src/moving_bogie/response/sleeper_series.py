@@ -230,7 +230,7 @@ def sleeper_series(
     f_unit, w_st = data.si_units()
     if si["v"] <= 0:
         raise ParameterError("v", "v must be positive: the steady response over a bay needs a moving vehicle")
-    track = SleeperTrack(data.beam, data.track, data.groups)
+    track = SleeperTrack(data.foundation, data.groups)
     module = data.vehicle_kernels
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     loads = static_loads(module, data.vehicle_groups)

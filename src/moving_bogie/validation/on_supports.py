@@ -35,7 +35,7 @@ def check_on_supports(
     """
     if data.groups["alpha"] <= 0:
         raise ParameterError("v", "v must be positive on a sleeper track (the vehicle must cross the bays)")
-    track = SleeperTrack(data.beam, data.track, data.groups)
+    track = SleeperTrack(data.foundation, data.groups)
     try:
         track.rail_foundation()  # the finite rail's elements: Euler-Bernoulli
     except ValueError:
