@@ -221,3 +221,34 @@ def test_the_verdict_line_states_the_numbers_it_judged():
         "verdict: DISAGREE: growth rate -Im q 2.90112 (Floquet) vs 2.90285 (finite beam) 1/s: "
         "0.060% <= 1.00%; x 1 (Floquet) vs 1.5 (finite beam) N: 50.000% > 1.00%"
     )
+
+
+def test_the_check_on_supports_takes_the_bound_model_and_refuses_a_continuous_track():
+    """check_on_supports takes what the continuous tracks' check takes, the bound model (and its SI
+    scales); a bound model without periodic supports is refused by name before any computation."""
+    from moving_bogie import bind, table1_case
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.validation.on_supports import check_on_supports
+
+    with pytest.raises(ParameterError, match="periodic supports") as err:
+        check_on_supports(bind(table1_case(1)))
+    assert err.value.parameter == "track"
+
+
+@pytest.mark.slow
+def test_the_check_in_si_is_the_dimensionless_check_times_the_scales():
+    """moving_bogie.validate of examples/sleepers.toml in SI and of its dimensionless parameters: the same
+    comparisons; the SI values are the dimensionless ones times P / 2 = 32 kN (the file's P = 64 kN) for
+    the force, and per second (1 / t_scale) for the rates."""
+    import moving_bogie as mb
+
+    params, physical = mb.load_parameters(EXAMPLE)
+    si, plain = mb.validate(physical), mb.validate(params)
+    assert si.model == plain.model == "eb/sleepers/mass" and si.agrees and plain.agrees
+    out, bare = si.to_dict(), plain.to_dict()
+    assert "floquet_si" not in bare["comparisons"][0] and "dt_s" not in bare["finite_beam"]
+    assert physical.scales().load == 32000.0
+    for c, d in zip(out["comparisons"], bare["comparisons"], strict=True):
+        assert c["floquet"] == d["floquet"] and c["finite_beam"] == d["finite_beam"]
+        unit = 32000.0 if c["unit_si"] == "N" else 1 / physical.scales().t_scale
+        assert c["floquet_si"] == pytest.approx(c["floquet"] * unit, rel=1e-14)
