@@ -787,8 +787,6 @@ BOUND_MODELS_ALLOWED: dict[str, str] = {
     "moving_bogie.sweep.design": "a sweep's design binds its parameters (to move up to sweep/api.py)",
     "moving_bogie.sweep.evaluate": "a sweep point is bound from its parameters (to become bound.replace)",
     "moving_bogie.sweep.api": "sweep_spec unwraps a bound model to its parameters (the track is lost)",
-    "moving_bogie.response.smeared_deflection": "the smeared continuous track is a model of its own, made "
-    "from the periodic one's SI values (model/smeared.py) and bound for its steady deflection",
     "moving_bogie.validation.finite_beam": "simulate_finite_beam (public) reads the groups of a bound model",
 }
 

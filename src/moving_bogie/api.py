@@ -306,11 +306,15 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
 def sleeper_series(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> SleeperSeries:
-    """The steady response over a bay and the free vibrations on sleepers, in SI:
+    """The steady response over a bay and the free vibrations on sleepers (in SI for SI parameters, with
+    the steady deflection of the smeared continuous track beside):
     :func:`~moving_bogie.response.sleeper_series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.response.sleeper_series import sleeper_series as run
 
-    return run(_sleeper_data(params), **options)
+    bound, scales = bind_with_scales(params)
+    smeared = smeared_physical(params) if isinstance(params, PhysicalParams) else None
+    return run(bound, scales, smeared=None if smeared is None else bind_with_scales(smeared), **options)
 
 
 def sleeper_map(
