@@ -248,7 +248,8 @@ def _far_check(E: QuadratureCharacteristic, radius: float) -> float:
     if z.size == 0:
         return np.inf
     track, system = E.bound.track, E.bound.float_system
-    G = track.receptance(z).matrix
+    with E.tolerance(COUNT_TOL):  # rho against 1/2 needs no more (the samples' own tolerance: cached)
+        G = track.receptance(z).matrix
     K = [G[..., 0, 0]] if system.contacts == 1 else _kernel_list(G, system.index, len(system.offsets))
     with np.errstate(all="ignore"):
         full = np.array([E.samples[q] for q in z.tolist()])
