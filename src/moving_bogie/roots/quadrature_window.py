@@ -173,7 +173,10 @@ def _secant(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex
 
 
 def _secant_steps(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex, complex, float]:
-    a, b = complex(q0), complex(q0) + h
+    """The secant iterations of :func:`_secant`, every iterate (the start too) kept in Im q <= 0, where the
+    receptance is defined."""
+    a = complex(q0.real, min(q0.imag, 0.0))  # a start from the moments may lie just above the axis
+    b = a + h
     fa, fb = complex(E(np.array([a]))[0]), complex(E(np.array([b]))[0])
     step = np.inf
     for _ in range(SECANT_STEPS):
