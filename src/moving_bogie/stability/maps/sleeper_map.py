@@ -28,6 +28,7 @@ from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.mass_pencil import mass_pencil
 from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.scales import Scales
 from moving_bogie.roots.strip import floquet_frequencies
 from moving_bogie.stability.maps.d_lines import DColumn, DCrossing, d_column
@@ -67,6 +68,7 @@ class SleeperMap:
     count: np.ndarray
     checks: tuple[MapCheck, ...] = ()
     notes: tuple[str, ...] = field(default=())
+    params: DimensionlessParams | None = None
 
     @property
     def uncertain(self) -> np.ndarray:
@@ -115,8 +117,22 @@ class SleeperMap:
         ]
 
     def summary(self) -> dict:
-        """Counts, the verdict's limits and the checks (JSON-ready)."""
-        return {
+        """Counts, the verdict's limits and the checks (JSON-ready), after the keys of the continuous
+        tracks' map with the same meaning (:data:`~moving_bogie.stability.maps.map.MAP_KEYS`: the
+        parameters, the vertical axis' group, both axes in groups, the unstable fraction, the uncertain
+        cells)."""
+        alphas, etas = self.velocities / self.v_ref, self.masses / self.mass_unit
+        rows, cols = np.nonzero(self.uncertain)
+        shared = {
+            "params": None if self.params is None else self.params.to_dict(),
+            "parameter": "eta_M",
+            "alpha_range": [float(alphas[0]), float(alphas[-1]), len(alphas)],
+            "eta_M_range": [float(etas[0]), float(etas[-1]), len(etas)],
+            "unstable_fraction": float(np.mean(self.count > 0)),
+            "uncertain_cells": int(self.uncertain.sum()),
+            "uncertain": [{"alpha": float(alphas[i]), "eta_M": float(etas[j])} for j, i in zip(rows, cols)],
+        }
+        return shared | {
             "model": self.model,
             "method": "D-decomposition in the wheel mass at each velocity, count 0 at M -> 0 (S19)-(S22)",
             "v_m_s": [float(self.velocities[0]), float(self.velocities[-1]), len(self.velocities)],
@@ -358,4 +374,5 @@ def sleeper_map(
         count,
         tuple(checks),
         tuple(notes),
+        bound.params,
     )
