@@ -253,6 +253,8 @@ def _in_si(comparison: dict[str, Any]) -> dict[str, Any]:
 
 def format_sleeper_check(out: dict[str, Any]) -> str:
     """The table: quantity, Floquet, finite beam (SI), relative difference, and the verdict line."""
+    from moving_bogie.validation.sleeper_verdict import TOLERANCE_RULE
+
     fb = out["finite_beam"]
     lines = [
         f"model {out['model']}: finite rail of {fb['bays']} bays "
@@ -267,10 +269,7 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
             f"  {c['quantity']:<26}{c['floquet_si']:>14.6g}{c['finite_beam_si']:>14.6g}  {c['unit_si']:<6}"
             f"{c['relative_diff']:>10.3%}  {'yes' if c['within'] else 'NO'}"
         )
-    lines.append(
-        "rule: |finite - Floquet| <= tol |Floquet| for the rate and the frequency; for the steady force "
-        "max |difference| over the last bay <= tol x the Floquet force's peak-to-peak"
-    )
+    lines.append(f"rule: {TOLERANCE_RULE}")
     t = out["timings"]
     lines.append(f"time: Floquet {t['floquet_s']:.2f} s, finite beam {t['finite_beam_s']:.2f} s")
     lines += [f"NOTE: {note}" for note in out["notes"]]
