@@ -16,6 +16,7 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -25,9 +26,13 @@ from moving_bogie.cli import main
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
 from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.response.steady_bay import static_loads, steady_response
 from moving_bogie.validation.sleepers_check import SleeperBeamSettings, check_sleepers
 from moving_bogie.validation.sleepers_rail import SleeperRail
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 TRACKS = [
     ("sleepers", {"eta_sup": 0.1}),
@@ -44,7 +49,7 @@ def _vehicle(eta_M: float) -> tuple[VehicleMatrices, np.ndarray]:
 def test_the_support_element_has_the_generated_dynamic_stiffness(track, support):
     """The support's finite element, its own unknowns condensed out at a frequency w, is lam z(w), z the
     generated support function of docs/sleepers.md (S2) (derivations/sleepers.py)."""
-    sleeper_track = SleeperTrack("eb", track, {"lam": 1.3, "alpha": 0.1, **support})
+    sleeper_track = SleeperTrack(PERIODIC["eb", track], {"lam": 1.3, "alpha": 0.1, **support})
     m, c, k = sleeper_track.support_element()
     for w in (0.0, 0.4, 1.7):
         d = k + 1j * w * c - w * w * m
@@ -59,7 +64,7 @@ def test_the_pinned_pinned_mode_is_an_eigenmode_of_the_finite_rail(track, suppor
     1e-6 (their error falls like h^8 for the eigenvalue)."""
     lam = 1.5
     groups = {"lam": lam, "alpha": 0.1, "kappa_f": 0.0, "eta_f": 0.05, **support}
-    rail = SleeperRail(SleeperTrack("eb", track, groups), 12, 8)
+    rail = SleeperRail(SleeperTrack(PERIODIC["eb", track], groups), 12, 8)
     m, _, k = rail.matrices
     exact = (np.pi / lam) ** 2 / 2
     values = sla.eigsh(k, k=3, M=m, sigma=exact**2, return_eigenvectors=False)
@@ -73,7 +78,7 @@ def test_static_deflection_against_the_floquet_steady_response_at_low_speed(trac
     1e-3, the tolerance to which steady_response converges its time series."""
     lam, bays = 1.5, 28
     groups = {"lam": lam, "alpha": 1e-3, "kappa_f": 0.0, "eta_f": 0.05, **support}
-    sleeper_track = SleeperTrack("eb", track, groups)
+    sleeper_track = SleeperTrack(PERIODIC["eb", track], groups)
     vehicle, loads = _vehicle(1.0)
     steady = steady_response(sleeper_track, vehicle, loads, points=5)
     rail = SleeperRail(sleeper_track, bays, 8)
@@ -93,7 +98,7 @@ def test_unstable_case_growth_rate_and_frequency_within_one_percent():
     Floquet frequency, each within 1 % (the issue's tolerance)."""
     groups = {"lam": 2.5, "alpha": 0.24, "kappa_f": 0.0, "eta_f": 0.01, "eta_sup": 0.01}
     vehicle, loads = _vehicle(14.0)
-    track, settings = SleeperTrack("eb", "sleepers", groups), SleeperBeamSettings(periods=30)
+    track, settings = SleeperTrack(PERIODIC["eb", "sleepers"], groups), SleeperBeamSettings(periods=30)
     result = check_sleepers(track, vehicle, loads, settings=settings, harmonics=(3, 3))
     assert result.floquet_verdict == "unstable"
     names = [c.quantity for c in result.comparisons]
@@ -115,7 +120,7 @@ def test_stable_case_steady_force_within_one_percent(module):
     values = {name: values[name] for name in module.MATRIX_ARGUMENTS}
     vehicle = VehicleMatrices.from_module(module, values)
     settings = SleeperBeamSettings(periods=12)
-    track = SleeperTrack("eb", "sleepers", groups)
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], groups)
     result = check_sleepers(track, vehicle, static_loads(module, values), settings=settings)
     assert result.floquet_verdict == "stable"
     (force,) = result.comparisons
@@ -229,6 +234,14 @@ def _zone_example(folder: Path, vehicle: str, M: str, extra: str = "") -> Path:
     return path
 
 
+def _bound(path: Path) -> tuple[Any, Any]:
+    """The bound model of a sleeper file and its SI scales."""
+    import moving_bogie as mb
+
+    physical = mb.load_parameters(path)[1]
+    return mb.bind(physical), physical.scales()
+
+
 #: two wheels 2 m apart, each on a linearised Hertz spring (k_H = 1.4e9 N/m), on the rail of the zone example
 TWO_WHEELS_ON_HERTZ_SPRINGS = "d = 2.0\nk_H = 1.4e9\n"
 
@@ -240,10 +253,9 @@ def test_absorbing_layers_make_the_finite_rail_look_infinite(frequency):
     rail ends. With the check's absorbing layers (15 / chi at each end) it moves by less than 1e-3 as the
     rail beyond the load grows bay by bay; with pinned ends alone the waves they reflect move it by more than
     50 % (standing waves between the ends)."""
-    from moving_bogie.model.sleeper_input import load_sleeper_file
     from moving_bogie.validation.sleepers_check import ABSORBING
 
-    track = SleeperTrack("eb", "sleepers", load_sleeper_file(ZONES).groups)
+    track = _bound(ZONES)[0].track.sleepers
     spreads = []
     for layer in (math.ceil(ABSORBING / track.lam), 0):
         values = []
@@ -264,12 +276,11 @@ def test_two_wheels_on_hertz_springs_in_the_zone(tmp_path):
     """Two wheels on Hertz springs in the principal zone (M = 1340 kg; the rear wheel's zone moves down from
     1375-1458 kg with the second wheel and the contact springs): the Floquet root with Im q < 0 and the
     finite rail's free vibration agree on the growth rate and the frequency within 1 %."""
-    from moving_bogie.model.sleeper_input import load_sleeper_file
     from moving_bogie.validation.on_supports import check_on_supports
 
-    data = load_sleeper_file(_zone_example(tmp_path, "masses", "1340", TWO_WHEELS_ON_HERTZ_SPRINGS))
-    assert data.vehicle == "hertz_masses"
-    result = check_on_supports(data)
+    bound, scales = _bound(_zone_example(tmp_path, "masses", "1340", TWO_WHEELS_ON_HERTZ_SPRINGS))
+    assert bound.name == "eb/sleepers/hertz_masses"
+    result = check_on_supports(bound, scales)
     assert result.floquet_verdict == "unstable"
     assert [c.quantity for c in result.comparisons] == ["growth rate -Im q", "dominant frequency"]
     assert result.rate > 0
@@ -293,16 +304,15 @@ def test_two_wheels_on_hertz_springs_steady_force_beside_two_slow_modes(tmp_path
     1.0109 and 1.1069 1/s, the Floquet side taken as given here). Their beating keeps the loaded run's
     transient above 10 % of the steady force's peak-to-peak over the whole record; the periodic limit fitted
     to every signal of the run removes it: every wheel's steady force within 1 % of the Floquet steady
-    force (S18), and the transient's multipliers are those two modes, decay rates within 1 % (between pinned
-    ends, without the absorbing layers, the reflected waves spoil the fit: 6 % off, docs/sleepers.md (S27))."""
-    from moving_bogie.model.sleeper_input import load_sleeper_file
+    force (S18), and the transient's multipliers are those two modes, decay rates within 1 % (between
+    pinned ends, without the absorbing layers, the reflected waves spoil the fit: 6 % off, docs/sleepers.md
+    (S27))."""
     from moving_bogie.validation.sleepers_check import STEADY_TOL, FloquetSide
     from moving_bogie.validation.sleepers_fit import periodic_limit, smooth_steps
 
-    data = load_sleeper_file(_zone_example(tmp_path, "masses", "1400", TWO_WHEELS_ON_HERTZ_SPRINGS))
-    track = SleeperTrack(data.beam, data.track, data.groups)
-    vehicle = VehicleMatrices.from_module(data.vehicle_kernels, data.vehicle_groups)
-    loads = static_loads(data.vehicle_kernels, data.vehicle_groups)
+    bound, scales = _bound(_zone_example(tmp_path, "masses", "1400", TWO_WHEELS_ON_HERTZ_SPRINGS))
+    track, vehicle = bound.track.sleepers, VehicleMatrices.of(bound)
+    loads = static_loads(bound.vehicle, bound.vehicle_values(bound.floats))
     steady = steady_response(track, vehicle, loads, points=129, tol=STEADY_TOL)
     side = FloquetSide(_StableResult(), None, None, steady, 0.0)  # type: ignore[arg-type]
     result = check_sleepers(track, vehicle, loads, floquet=side)
@@ -311,5 +321,41 @@ def test_two_wheels_on_hertz_springs_steady_force_beside_two_slow_modes(tmp_path
     loaded, T0 = result.loaded, track.lam / track.alpha
     signals = smooth_steps(np.vstack([loaded.force, loaded.deflection, loaded.internal]))[:, :-1]
     limit = periodic_limit(loaded.tau[:-1], signals, T0, SleeperBeamSettings().transient * loaded.tau[-1])
-    rates = np.sort(-np.log(np.abs(limit.multipliers)) / T0 / data.t_scale)
+    rates = np.sort(-np.log(np.abs(limit.multipliers)) / T0 / scales.t_scale)
     np.testing.assert_allclose(rates, [1.0109, 1.0109, 1.1069, 1.1069], rtol=0.01)
+
+
+def test_the_check_on_supports_takes_the_bound_model_and_refuses_a_continuous_track():
+    """check_on_supports takes what the continuous tracks' check takes, the bound model (and its SI
+    scales); a bound model without periodic supports is refused by name before any computation."""
+    from moving_bogie import bind, table1_case
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.validation.on_supports import check_on_supports
+
+    with pytest.raises(ParameterError, match="periodic supports") as err:
+        check_on_supports(bind(table1_case(1)))
+    assert err.value.parameter == "track"
+
+
+@pytest.mark.slow
+def test_the_check_in_si_is_the_dimensionless_check_times_the_scales():
+    """moving_bogie.validate of examples/sleepers.toml in SI and of its dimensionless parameters: the same
+    comparisons; the SI values are the dimensionless ones times P / 2 = 32 kN (the file's P = 64 kN) for
+    the force, and per second (1 / t_scale) for the rates."""
+    import moving_bogie as mb
+
+    params, physical = mb.load_parameters(EXAMPLE)
+    si, plain = mb.validate(physical), mb.validate(params)
+    assert si.model == plain.model == "eb/sleepers/mass" and si.agrees and plain.agrees
+    out, bare = si.to_dict(), plain.to_dict()
+    from moving_bogie.validation.verdict import VERDICT_KEYS
+
+    assert set(VERDICT_KEYS) <= set(out)  # the continuous tracks' keys, same meaning
+    assert out["params"] == params.to_dict() and (out["beam"], out["track"]) == ("eb", "sleepers")
+    assert out["relative_diff"] == {c["quantity"]: c["relative_diff"] for c in out["comparisons"]}
+    assert "floquet_si" not in bare["comparisons"][0] and "dt_s" not in bare["finite_beam"]
+    assert physical.scales().load == 32000.0
+    for c, d in zip(out["comparisons"], bare["comparisons"], strict=True):
+        assert c["floquet"] == d["floquet"] and c["finite_beam"] == d["finite_beam"]
+        unit = 32000.0 if c["unit_si"] == "N" else 1 / physical.scales().t_scale
+        assert c["floquet_si"] == pytest.approx(c["floquet"] * unit, rel=1e-14)

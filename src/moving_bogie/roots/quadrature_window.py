@@ -56,10 +56,10 @@ __all__ = ["QuadratureCharacteristic", "window_frequencies", "window_radius"]
 #: Initial boundary samples per side of a region; Delves-Lyness up to this many roots, else bisection.
 SAMPLES, MOMENTS = 8, 3
 #: The receptance's relative tolerance while counting and starting the roots (a track with a ``tol``): the
-#: winding number needs the phase of E_chr only, which an error of 1e-4 moves by 1e-4 rad where |E_chr| is
-#: not within 1e-4 of zero (the sampling refines where arg E_chr turns fast); the roots are polished at the
+#: winding number needs the phase of E_chr only, which an error of 1e-3 moves by 1e-3 rad where |E_chr| is
+#: not within 1e-3 of zero (the sampling refines where arg E_chr turns fast); the roots are polished at the
 #: track's own tolerance.
-COUNT_TOL = 1e-4
+COUNT_TOL = 1e-3
 #: The first far-field radius tried (doubled until the far field holds), and the smallest window.
 FIRST_RADIUS = 0.25
 #: Secant iterations, and bisection levels of a region, at most.
@@ -173,7 +173,10 @@ def _secant(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex
 
 
 def _secant_steps(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex, complex, float]:
-    a, b = complex(q0), complex(q0) + h
+    """The secant iterations of :func:`_secant`, every iterate (the start too) kept in Im q <= 0, where the
+    receptance is defined."""
+    a = complex(q0.real, min(q0.imag, 0.0))  # a start from the moments may lie just above the axis
+    b = a + h
     fa, fb = complex(E(np.array([a]))[0]), complex(E(np.array([b]))[0])
     step = np.inf
     for _ in range(SECANT_STEPS):
@@ -248,7 +251,8 @@ def _far_check(E: QuadratureCharacteristic, radius: float) -> float:
     if z.size == 0:
         return np.inf
     track, system = E.bound.track, E.bound.float_system
-    G = track.receptance(z).matrix
+    with E.tolerance(COUNT_TOL):  # rho against 1/2 needs no more (the samples' own tolerance: cached)
+        G = track.receptance(z).matrix
     K = [G[..., 0, 0]] if system.contacts == 1 else _kernel_list(G, system.index, len(system.offsets))
     with np.errstate(all="ignore"):
         full = np.array([E.samples[q] for q in z.tolist()])
