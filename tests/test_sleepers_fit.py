@@ -260,15 +260,26 @@ def test_the_periodic_limit_removes_a_slow_transient():
     assert np.max(np.abs(last - periodic)) > 0.1 * spread
 
 
-def test_the_limit_keeps_every_mode_above_the_last_fall_by_ten():
-    """The loaded run's differences of two wheels on Hertz springs below the zone (measured singular values:
-    two slow modes, falls by 8, 12, 21 and 11, then by less than 4): without a fall by RANK_GAP the
-    periodic limit keeps the 4 modes up to the last fall by LIMIT_GAP (the largest fall alone keeps 3)."""
-    from moving_bogie.validation.sleepers_fit import LIMIT_GAP, RANK_LEVEL, _rank
+@pytest.mark.parametrize(
+    ("singular", "rank", "kept"),
+    [
+        # two wheels on Hertz springs below the zone: two slow modes, the fourth value at 4.7e-4
+        ([1, 1.2e-1, 1.0e-2, 4.7e-4, 4.4e-5, 3.5e-5, 9.2e-6, 7e-6, 5e-6], 3, 4),
+        # a bogie in a damped zone: no fall of 100, six values above 1e-4
+        ([1, 4.5e-2, 2.0e-2, 7.8e-3, 5.6e-3, 1.6e-3, 1.8e-4, 6e-5, 5e-5], 1, 7),
+        # the zone example's two modes, then a gap of 100: the gap's rank
+        ([1, 5.3e-2, 6.6e-7, 5.7e-7, 3.6e-7], 2, 2),
+    ],
+)
+def test_the_limit_keeps_every_mode_above_its_level(singular, rank, kept):
+    """The loaded runs' differences (measured singular values): the periodic limit keeps, beside the modes
+    before the last fall by RANK_GAP (else the largest fall), every mode above LIMIT_LEVEL, at most one per
+    three periods (7 here)."""
+    from moving_bogie.validation.sleepers_fit import LIMIT_LEVEL, RANK_LEVEL, _rank
 
-    singular = np.array([1, 1.2e-1, 1.0e-2, 4.7e-4, 4.4e-5, 3.5e-5, 9.2e-6, 7e-6, 5e-6])
-    assert _rank(singular, RANK_LEVEL, 7) == 3
-    assert _rank(singular, RANK_LEVEL, 7, LIMIT_GAP) == 4
+    values = np.array(singular, float)
+    assert _rank(values, RANK_LEVEL, 7) == rank
+    assert _rank(values, RANK_LEVEL, 7, LIMIT_LEVEL) == kept
 
 
 def test_the_periodic_limit_of_two_wheels_separates_two_modes_of_one_shape():

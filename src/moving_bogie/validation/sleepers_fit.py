@@ -26,7 +26,7 @@ import numpy as np
 
 __all__ = [
     "FloquetFit",
-    "LIMIT_GAP",
+    "LIMIT_LEVEL",
     "RANK_GAP",
     "RANK_LEVEL",
     "ROUND_OFF",
@@ -53,13 +53,13 @@ RANK_LEVEL = 1e-8
 #: ratios below 4)
 RANK_GAP = 100.0
 
-#: the periodic limit's fit keeps, where no fall by RANK_GAP ends the modes, every mode up to the last fall by
-#: this factor or more (rather than at the largest fall alone): a mode left out biases the limit by its part
-#: of the transient over |1 - mu|, a large part for a slow mode, while a mode fitted to what is not modal only
-#: adds a small part that decays (two slow modes of two wheels on Hertz springs, 0.36 and 1.9 1/s: singular
-#: values falling by 8, 12, 21 and 11, then by less than 4; the largest fall alone keeps 3 and leaves the
-#: limit 0.25 % of the force's peak-to-peak off, 4 modes 0.09 %)
-LIMIT_GAP = 10.0
+#: the periodic limit's fit keeps, beside the modes above the last fall by RANK_GAP, every mode whose singular
+#: value is above this fraction of the largest: a mode left out biases the limit by its part of the transient
+#: over |1 - mu|, a large part for a slow mode, while a mode fitted to what is not modal only adds a small
+#: part that decays (measured: two wheels on Hertz springs below the zone keep 4 modes, the fourth at 4.7e-4,
+#: and the limit 0.09 % of the force's peak-to-peak off, 0.25 % with 3; a bogie in a damped zone keeps 6
+#: modes down to 1.6e-3, 0.13 % off, 0.8 % with the one mode before the largest fall)
+LIMIT_LEVEL = 1e-4
 
 #: a run below this fraction of its largest value is at its round-off (the finite rail's released run
 #: settles near 1e-8 of its start): periods below it are left out of the fit
@@ -174,9 +174,11 @@ def dominant_harmonic(shape: np.ndarray, multiplier: complex, period: float) -> 
     return abs(q.real + n * omega0), n
 
 
-def _rank(relative: np.ndarray, level: float, most: int, least_gap: float | None = None) -> int:
-    """The number of modes to fit, from the singular values ``relative`` to the largest (``_fitted_map``);
-    without a fall by ``RANK_GAP``, the last fall by ``least_gap`` or more when given, else the largest."""
+def _rank(relative: np.ndarray, level: float, most: int, keep_above: float | None = None) -> int:
+    """The number of modes to fit, from the singular values ``relative`` to the largest (``_fitted_map``)."""
+    if keep_above is not None:
+        kept = min(int(np.count_nonzero(relative > keep_above)), max(most, 1))
+        return max(kept, _rank(relative, level, most))
     above = relative[relative > level]
     candidates = min(above.size, max(most, 1))
     if candidates == 1:
@@ -185,22 +187,21 @@ def _rank(relative: np.ndarray, level: float, most: int, least_gap: float | None
     after = np.append(above[1:], level)[:candidates]
     falls = above[:candidates] / after
     gaps = np.nonzero(falls >= RANK_GAP)[0]
-    if not gaps.size and least_gap is not None:
-        gaps = np.nonzero(falls >= least_gap)[0]
     return int(gaps[-1] + 1) if gaps.size else int(np.argmax(falls) + 1)
 
 
 def _fitted_map(
-    snapshots: np.ndarray, level: float, least_gap: float | None = None
+    snapshots: np.ndarray, level: float, keep_above: float | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(multipliers, mode shapes over the channels, singular values): the least-squares map
     ``Y_1 = A Y_0`` on the leading ``r`` left singular vectors of ``Y_0``: ``r`` at the last fall by
-    ``RANK_GAP`` or more from one singular value to the next (else the last by ``least_gap``, else the
-    largest fall), among those above ``level`` of the largest and at most ``(K - 1) / 3``."""
+    ``RANK_GAP`` or more from one singular value to the next (else the largest fall), among those above
+    ``level`` of the largest, or more to keep every value above ``keep_above`` when given; at most
+    ``(K - 1) / 3``."""
     before, after = snapshots[:, :-1], snapshots[:, 1:]
     u, s, vh = np.linalg.svd(before, full_matrices=False)
     relative = s / s[0]
-    rank = _rank(relative, level, before.shape[1] // SAMPLES_PER_MODE, least_gap)
+    rank = _rank(relative, level, before.shape[1] // SAMPLES_PER_MODE, keep_above)
     u, s, vh = u[:, :rank], s[:rank], vh[:rank]
     reduced = u.T @ after @ vh.T / s
     multipliers, vectors = np.linalg.eig(reduced)
@@ -293,8 +294,8 @@ def periodic_limit(tau: np.ndarray, signals: np.ndarray, period: float, start: f
     period at every phase, ``y_k = y* + sum_i t_i mu_i^k phi_i``. The differences ``d_k = y_{k+1} - y_k``
     are then a free run of the same map, ``d_k = sum_i t_i (mu_i - 1) mu_i^k phi_i``: its multipliers and
     shapes are fitted as :func:`fit_floquet_modes` fits a free run, the amplitudes by least squares over
-    every difference (the modes up to the last fall of the singular values by ``RANK_GAP``, else by
-    ``LIMIT_GAP``), and ``y* = y_K - sum_i t_i mu_i^K phi_i``. A transient that decays slowly (a
+    every difference (the modes up to the last fall of the singular values by ``RANK_GAP``, and every mode
+    above ``LIMIT_LEVEL``), and ``y* = y_K - sum_i t_i mu_i^K phi_i``. A transient that decays slowly (a
     multiplier near the unit circle) is thus removed, not waited out; the limit uses the run only, no
     Floquet theory. A window of too few periods to fit gives the run's last period as it is, with
     ``transient`` NaN."""
@@ -310,7 +311,7 @@ def periodic_limit(tau: np.ndarray, signals: np.ndarray, period: float, start: f
         transient_now = np.zeros_like(last)
         multipliers = np.zeros(0, dtype=complex)
     else:
-        multipliers, shapes, _ = _fitted_map(differences, RANK_LEVEL, LIMIT_GAP)
+        multipliers, shapes, _ = _fitted_map(differences, RANK_LEVEL, LIMIT_LEVEL)
         powers = multipliers[None, :] ** np.arange(count - 1)[:, None]
         design = (powers[:, None, :] * shapes[None, :, :]).reshape(-1, multipliers.size)
         amplitudes = np.linalg.lstsq(design, differences.T.reshape(-1).astype(complex), rcond=None)[0]
