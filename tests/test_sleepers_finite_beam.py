@@ -304,9 +304,9 @@ def test_two_wheels_on_hertz_springs_steady_force_beside_two_slow_modes(tmp_path
     1.0109 and 1.1069 1/s, the Floquet side taken as given here). Their beating keeps the loaded run's
     transient above 10 % of the steady force's peak-to-peak over the whole record; the periodic limit fitted
     to every signal of the run removes it: every wheel's steady force within 1 % of the Floquet steady
-    force (S18), and the transient's multipliers are those two modes, decay rates within 1 % (between
-    pinned ends, without the absorbing layers, the reflected waves spoil the fit: 6 % off, docs/sleepers.md
-    (S27))."""
+    force (S18), and the transient's four slowest multipliers are those two modes, decay rates within 1 %
+    (between pinned ends, without the absorbing layers, the reflected waves spoil the fit: 6 % off,
+    docs/sleepers.md (S27))."""
     from moving_bogie.validation.sleepers_check import STEADY_TOL, FloquetSide
     from moving_bogie.validation.sleepers_fit import periodic_limit, smooth_steps
 
@@ -322,7 +322,7 @@ def test_two_wheels_on_hertz_springs_steady_force_beside_two_slow_modes(tmp_path
     signals = smooth_steps(np.vstack([loaded.force, loaded.deflection, loaded.internal]))[:, :-1]
     limit = periodic_limit(loaded.tau[:-1], signals, T0, SleeperBeamSettings().transient * loaded.tau[-1])
     rates = np.sort(-np.log(np.abs(limit.multipliers)) / T0 / scales.t_scale)
-    np.testing.assert_allclose(rates, [1.0109, 1.0109, 1.1069, 1.1069], rtol=0.01)
+    np.testing.assert_allclose(rates[:4], [1.0109, 1.0109, 1.1069, 1.1069], rtol=0.01)  # the slowest
 
 
 def test_the_check_on_supports_takes_the_bound_model_and_refuses_a_continuous_track():
