@@ -110,6 +110,12 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_instability_lines(args: argparse.Namespace) -> int:
+    from moving_bogie.soil.file import is_soil_file
+
+    if args.file is not None and is_soil_file(args.file):
+        from .soil_lines_cmd import run_soil_lines
+
+        return run_soil_lines(args)
     sleepers = sleeper_data(args)
     if sleepers is not None:
         return lines_on_supports.run_sleeper_lines(args, sleepers)

@@ -1,0 +1,161 @@
+"""``instability-lines --file`` on a soil-track file that names a vehicle: the D-decomposition in the wheel
+mass M along the real frequency axis at the file's speed, and the threshold mass (docs/soil.md).
+
+The crossings are those of :func:`~moving_bogie.stability.maps.real_axis.real_axis_column` on the soil's
+own track, up to the window's far-field radius (the radius ``frequencies --file`` counts in). M is in the
+file's convention (per rail or per track); ``--range M=0:HI`` (kg) bounds the mass axis as on sleepers.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from typing import Any
+
+from moving_bogie.errors import ParameterError
+
+from .checks import named_values, value_range
+from .common import first_given, option_flag, parameter_options, print_json
+
+__all__ = ["run_soil_lines"]
+
+#: The mass axis without --range M=0:HI: up to this many times the file's M.
+DEFAULT_MASSES = 4.0
+
+_MODEL = "give the model and its values in the file (docs/soil.md)"
+#: Options of instability-lines that a soil file does not take (dest -> why).
+_REFUSED = {
+    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL, "set": _MODEL, "d": _MODEL,
+    "parameter": "on a soil track the vertical axis is the wheel mass M",
+    "verify": "count the roots of a mass with frequencies --file (the argument principle on the soil)",
+    "plot": "the crossings of one speed are printed (a figure of the (v, M) plane needs a map)",
+}  # fmt: skip
+
+
+def _refuse(args: argparse.Namespace) -> None:
+    """One message naming the first option that does not apply to a soil file, before any work."""
+    table = _REFUSED | {name: _MODEL for name, _, _ in parameter_options() if name not in _REFUSED}
+    if args.parameter == "eta_M":  # the default
+        del table["parameter"]
+    dest = first_given(args, table)
+    if dest is not None:
+        flag = option_flag(dest)
+        raise ParameterError(flag.lstrip("-"), f"{flag} does not apply to a soil-track file: {table[dest]}")
+    if args.alpha_min != 0.0 or args.alpha_max != 1.2 or args.theta_max != 200.0:
+        raise ParameterError("--range", "on a soil track give the mass axis as --range M=0:HI (kg)")
+    if getattr(args, "bar", "follows") != "follows":
+        why = "--bar fixed: on a soil track the bar follows the wheel mass (Eq. (63))"
+        raise ParameterError("--bar", why)
+
+
+def _mass_top(args: argparse.Namespace, file_mass: float) -> float:
+    """HI of --range M=0:HI (kg), or DEFAULT_MASSES times the file's M; any other axis refused."""
+    ranges = named_values(args.range, "--range", "NAME=LO:HI")
+    for name, spec in ranges.items():
+        if name == "v":
+            raise ParameterError(
+                "--range", "--range v: the D-decomposition on the soil runs at the file's v (give v there)"
+            )
+        if name != "M":
+            raise ParameterError("--range", f"--range {name}: not an axis (known: M)")
+        lo, hi = value_range(name, spec)
+        if lo != 0:
+            raise ParameterError("--range", "--range M=0:HI: the mass axis starts at 0 (counted from M -> 0)")
+        return hi
+    return DEFAULT_MASSES * file_mass
+
+
+def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
+    """The crossings, the threshold and the speed regime of the file's vehicle (JSON-ready, SI)."""
+    _refuse(args)
+    from moving_bogie.api import bind, load_soil_vehicle
+
+    data = load_soil_vehicle(args.file)
+    physical, per = data.physical, data.input.rail_factor
+    params = physical.to_dimensionless()
+    name = params.model.wheel_mass
+    unit = physical.si_factor(name) / per  # the file's kg per eta_M
+    file_mass = float(getattr(params, name)) * unit
+    top = _mass_top(args, file_mass)
+    from moving_bogie.stability.maps.real_axis import soil_column
+
+    from .progress import progress_bar
+    from .soil_frequencies_cmd import soil_speed_regime
+
+    bound = bind(data)
+    with progress_bar("D-decomposition on the soil", enabled=not args.json) as bar:
+        col = soil_column(bound, eta_max=top / unit, progress=bar)
+    omega_0 = bound.track.omega_0  # type: ignore[attr-defined]
+    v = float(physical.v)
+    regime = soil_speed_regime(data.input, v, physical.scales().v_ref)
+    crossings = [
+        {"Omega_rad_s": c.q * omega_0, "M": c.eta_M * unit, "change": c.change, "moved": c.moved}
+        for c in col.crossings
+    ]
+    threshold = col.threshold
+    count = int(col.counts([file_mass / unit])[0])
+    return {
+        "vehicle": physical.vehicle,
+        "track": data.input.track.kind,
+        "per": data.input.per,
+        "k_ref": data.rail.k_ref,
+        "v": v,
+        "v_cr": regime.v_cr,
+        "supercritical": regime.supercritical,
+        "Omega_max_rad_s": col.q_max * omega_0,
+        "samples": col.samples,
+        "M_max": top,
+        "M": file_mass,
+        "crossings": crossings,
+        "threshold": None
+        if threshold is None
+        else {"M": threshold.eta_M * unit, "Omega_rad_s": threshold.q * omega_0, "moved": threshold.moved},
+        "count_at_M": count,
+        "notes": list(col.notes),
+    }
+
+
+def _digits(moved: float) -> int:
+    """Significant digits that a relative change ``moved`` (with a 100 times tighter receptance) leaves."""
+    return max(2, min(10, math.floor(-math.log10(2 * max(moved, 1e-11)))))
+
+
+def _text(out: dict[str, Any]) -> str:
+    unit = f"kg (per {out['per']})"
+    regime = "no guided wave found" if out["v_cr"] is None else f"critical velocity {out['v_cr']:.6g} m/s"
+    lines = [
+        f"vehicle {out['vehicle']} on the {out['track']} track, v = {out['v']:.6g} m/s ({regime})",
+        f"D-decomposition in M along real Omega in (0, {out['Omega_max_rad_s']:.6g}] rad/s "
+        f"({out['samples']} samples), M up to {out['M_max']:.6g} {unit}",
+    ]
+    for c in out["crossings"]:
+        n = _digits(c["moved"])
+        lines.append(
+            f"  Omega {c['Omega_rad_s']:12.{n}g} rad/s  M {c['M']:14.{n}g} {unit}  "
+            f"count {c['change']:+d} as M grows"
+        )
+    t = out["threshold"]
+    if t is None:
+        lines.append(f"threshold mass: none up to {out['M_max']:.6g} {unit}: STABLE for every M up to it")
+    else:
+        n = _digits(t["moved"])
+        lines.append(
+            f"threshold mass {t['M']:.{n}g} {unit}: a root crosses into Im Omega < 0 at "
+            f"Omega = {t['Omega_rad_s']:.{n}g} rad/s"
+        )
+    verdict = "UNSTABLE" if out["count_at_M"] > 0 else "STABLE"
+    lines.append(f"the file's M = {out['M']:.6g} {unit}: {verdict} ({out['count_at_M']} growing root(s))")
+    return "\n".join(lines)
+
+
+def run_soil_lines(args: argparse.Namespace) -> int:
+    """``instability-lines --file`` on a soil file; exit 1 when the crossings carry a note."""
+    out = soil_lines(args)
+    if args.json:
+        print_json(out)
+    else:
+        print(_text(out))
+    for note in out["notes"]:
+        print(f"warning: {note}", file=sys.stderr)
+    return 0 if not out["notes"] else 1
