@@ -277,7 +277,8 @@ def _stability_map(args: argparse.Namespace) -> int:
         raise ParameterError(
             "--file",
             f"--file {args.file}: stability-map does not take a soil-track file yet (no (v, M) map on the "
-            "soil); the D-decomposition in M at the file's v and the threshold mass: instability-lines --file",
+            "soil); the D-decomposition in M at the file's v and the threshold mass: "
+            "instability-lines --file",
         )
     sleepers = sleeper_data(args)
     if sleepers is not None:

@@ -73,7 +73,8 @@ class ReceptancePencil:
         self._at = [QuadratureCharacteristic(bound.replace(**{name: x})) for x in (1, 2, 3)]
         self.evaluations = 0
         q = np.array([0.3 - 0.1j])
-        G = np.broadcast_to(np.eye(self.chr.contacts, dtype=complex), (1, self.chr.contacts, self.chr.contacts))
+        n = self.chr.contacts
+        G = np.broadcast_to(np.eye(n, dtype=complex), (1, n, n))
         A1, A2, A3 = (E.system(q, G) for E in self._at)
         if not np.allclose(A3 - 2 * A2 + A1, 0, atol=1e-12 * float(np.abs(A3).max())):
             raise ParameterError("vehicle", f"the coupling is not affine in the wheel mass {name}")
