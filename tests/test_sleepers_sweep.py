@@ -61,7 +61,7 @@ def _direct(path: Path, v: float) -> dict[str, Any]:
 
     d = load_sleeper_file(path, overrides={"v": v})
     res = floquet_frequencies(
-        SleeperTrack(d.beam, d.track, d.groups), VehicleMatrices.from_module(vehicle_mass, d.vehicle_groups)
+        SleeperTrack(d.foundation, d.groups), VehicleMatrices.from_module(vehicle_mass, d.vehicle_groups)
     )
     im = min((r.q.imag for r in res.roots), default=np.nan)
     return {

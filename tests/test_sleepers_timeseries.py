@@ -17,9 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from moving_bogie import load_parameters, sleeper_series
 from moving_bogie.cli import main
-from moving_bogie.model.sleeper_input import load_sleeper_file
-from moving_bogie.response.sleeper_series import sleeper_series
 
 #: examples/sleepers.toml's UIC60 rail and wheel (its SI values, per rail)
 RAIL = {"EI": 6.42e6, "m": 60.21, "c_f": 2.0e3, "M": 600.0, "P": 6.4e4, "v": 40.0}
@@ -48,10 +47,10 @@ def test_the_mean_contact_force_is_the_static_load(tmp_path, vehicle, extra):
     number of harmonics: the harmonic n = 0 of (S17) sees D_v(0) = K only, whose springs carry no mean
     force. Checked both on F_0 and on the mean of the series sampled over one bay (the periodic trapezoid
     rule, exact for the harmonics kept when the points exceed 2N)."""
-    data = load_sleeper_file(_file(tmp_path, vehicle, **extra))
-    series = sleeper_series(data, points=129, free=False)
+    _, physical = load_parameters(_file(tmp_path, vehicle, **extra))
+    series = sleeper_series(physical, points=129, free=False)
     assert series.converged
-    P = data.physical["P"]
+    P = float(physical.P)
     assert series.wheels == (2 if vehicle == "bogie" else 1)
     np.testing.assert_allclose(series.force_mean, P, rtol=1e-12)
     np.testing.assert_allclose(np.mean(series.contact_force[:, :-1], axis=1), P, rtol=1e-12)
@@ -81,7 +80,7 @@ def test_short_bays_give_the_continuous_tracks_steady_deflection(tmp_path):
     errors = []
     for bay in (0.15, 0.075, 0.0375):
         path = _file(tmp_path, l=bay, k_sup=K_PER_M * bay, c_sup=C_PER_M * bay)
-        series = sleeper_series(load_sleeper_file(path), points=65, free=False)
+        series = sleeper_series(load_parameters(path)[1], points=65, free=False)
         assert series.converged
         assert series.continuous_deflection is not None
         assert abs(series.continuous_deflection[0] - reference) < 1e-10 * reference
@@ -173,3 +172,15 @@ def test_growth_rate_and_doubling_time_of_a_root():
     assert (growing.state, decaying.state) == ("growing", "decaying")
     assert growing.halving_time is None and decaying.doubling_time is None
     assert growing.frequency_hz == pytest.approx(100 / (2 * np.pi), rel=1e-15)
+
+
+def test_the_series_takes_dimensionless_parameters_as_the_closed_form_does(tmp_path):
+    """The series of the file's dimensionless parameters: the mean contact force is the static load 2 (in
+    units of P / 2, Eq. (16)), and the SI series is the dimensionless one times the scales (P / 2 = 32 kN
+    for the forces, t_scale for the times); no smeared track without SI values."""
+    params, physical = load_parameters(_file(tmp_path))
+    plain, si = sleeper_series(params, points=33, free=False), sleeper_series(physical, points=33, free=False)
+    np.testing.assert_allclose(plain.force_mean, 2.0, rtol=1e-12)
+    np.testing.assert_allclose(si.contact_force, plain.contact_force * 32000.0, rtol=1e-12)
+    np.testing.assert_allclose(si.time, plain.time * physical.scales().t_scale, rtol=1e-12)
+    assert plain.continuous_deflection is None and si.continuous_deflection is not None

@@ -19,7 +19,7 @@ like the track's: the soil carries the whole track and the whole vehicle.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -50,7 +50,7 @@ if TYPE_CHECKING:
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
-    from moving_bogie.validation.sleepers_check import SleeperCheck
+    from moving_bogie.validation.sleeper_verdict import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 __all__ = [
@@ -265,19 +265,24 @@ def validate(
     from moving_bogie.validation.compare import validate as run
 
     bound = bind(params)
-    if bound.model.periodic:
+    if bound.track.search_region().periodic:
         return validate_on_supports(params, **options)
     return run(bound, **options)
 
 
 def validate_on_supports(
-    params: DimensionlessParams | PhysicalParams | BoundModel, *, tol: float = 0.01
+    params: DimensionlessParams | PhysicalParams | BoundModel,
+    *,
+    tol: float = 0.01,
+    progress: Callable[[float], None] | None = None,
 ) -> SleeperCheck:
     """The finite rail on sleepers against the Floquet theory (docs/sleepers.md):
-    :func:`~moving_bogie.validation.on_supports.check_on_supports` of SI parameters on periodic supports."""
+    :func:`~moving_bogie.validation.on_supports.check_on_supports` of the bound model, its values in SI
+    too for SI parameters."""
     from moving_bogie.validation.on_supports import check_on_supports
 
-    return check_on_supports(_sleeper_data(params), tol=tol)
+    bound, scales = bind_with_scales(params)
+    return check_on_supports(bound, scales, tol=tol, progress=progress)
 
 
 def smeared_track(params: PhysicalParams) -> PhysicalParams:
@@ -301,11 +306,15 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
 def sleeper_series(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> SleeperSeries:
-    """The steady response over a bay and the free vibrations on sleepers, in SI:
+    """The steady response over a bay and the free vibrations on sleepers (in SI for SI parameters, with
+    the steady deflection of the smeared continuous track beside):
     :func:`~moving_bogie.response.sleeper_series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.response.sleeper_series import sleeper_series as run
 
-    return run(_sleeper_data(params), **options)
+    bound, scales = bind_with_scales(params)
+    smeared = smeared_physical(params) if isinstance(params, PhysicalParams) else None
+    return run(bound, scales, smeared=None if smeared is None else bind_with_scales(smeared), **options)
 
 
 def sleeper_map(

@@ -7,7 +7,9 @@ import argparse
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from moving_bogie.model.sleeper_input import SleeperInput
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.physical import PhysicalParams
+    from moving_bogie.validation.sleeper_verdict import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 from .checks import count, number
@@ -88,11 +90,9 @@ def run(args: argparse.Namespace) -> int:
     if args.file is not None:
         params, physical = params_from_args(args)
         if params.model.periodic:
-            from moving_bogie.model.sleeper_input import sleeper_input_of
-
             if not (0 < args.tol < 1):
                 raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
-            return run_on_supports(args, sleeper_input_of(params, physical))
+            return run_on_supports(args, params if physical is None else physical)
     if args.modes < 4:
         raise ParameterError("modes", f"--modes must be at least 4 (got {args.modes})")
     if args.tmax is not None and not (args.tmax > 0 and args.tmax < float("inf")):
@@ -202,25 +202,23 @@ def _refuse_on_supports(args: argparse.Namespace) -> None:
         )
 
 
-def run_on_supports(args: argparse.Namespace, data: SleeperInput) -> int:
+def run_on_supports(args: argparse.Namespace, params: DimensionlessParams | PhysicalParams) -> int:
     """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers` on the
-    parameters ``data`` of a model on periodic supports (the file's, ``--set`` applied), printed."""
-    from moving_bogie.validation.on_supports import check_on_supports, check_summary
+    parameters of a model on periodic supports (the file's, ``--set`` applied), printed."""
+    from moving_bogie.api import validate_on_supports
 
     _refuse_on_supports(args)
     from .progress import progress_bar
 
     with progress_bar("Floquet theory + finite rail", enabled=not args.json) as update:
-        result = check_on_supports(data, tol=args.tol, progress=update)
+        result = validate_on_supports(params, tol=args.tol, progress=update)
     if args.plot:
         from moving_bogie.response.plots import save_figure
         from moving_bogie.validation.sleepers_plots import plot_sleeper_check
 
-        title = f"{data.beam}/{data.track}/{data.vehicle}, v = {data.physical['v']:g} m/s"
-        newtons, metres = data.si_units()
-        figure = plot_sleeper_check(result, title=title, newtons=newtons, metres=metres)
+        figure = plot_sleeper_check(result, title=_check_title(result, params))
         save_figure(figure, args.plot, dpi=150)
-    out = check_summary(result, data)
+    out = result.to_dict()
     if args.plot:
         out["plot"] = str(args.plot)
     if args.json:
@@ -232,11 +230,25 @@ def run_on_supports(args: argparse.Namespace, data: SleeperInput) -> int:
     return 0 if result.agrees else 1
 
 
+def _check_title(result: SleeperCheck, params: DimensionlessParams | PhysicalParams) -> str:
+    """The figure's title: the model and its speed (in m/s for SI parameters)."""
+    speed = (
+        f"v = {float(params.v):g} m/s" if result.scales is not None else f"alpha = {float(params.alpha):g}"
+    )
+    return f"{result.model}, {speed}"
+
+
 def _dt_text(finite_beam: dict[str, Any]) -> str:
     """The finite rail's time step: in s when known (``dt_s``), else per unit tau."""
     if "dt_s" in finite_beam:
         return f"{finite_beam['dt_s']:.4g} s"
     return f"{finite_beam['dt']:.4g}"
+
+
+def _in_si(comparison: dict[str, Any]) -> dict[str, Any]:
+    """A comparison of a check's ``to_dict()`` with its SI values (a dimensionless check: its own, unit 1)."""
+    keys = {"floquet_si": "floquet", "finite_beam_si": "finite_beam"}
+    return {k: comparison.get(v) for k, v in keys.items()} | {"unit_si": "1"} | comparison
 
 
 def format_sleeper_check(out: dict[str, Any]) -> str:
@@ -249,7 +261,8 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
         f"(verdict {out['floquet_verdict'].upper()})",
         f"  {'quantity':<26}{'Floquet':>14}{'finite beam':>14}  {'unit':<6}{'rel. diff':>10}  within",
     ]
-    for c in out["comparisons"]:
+    comparisons = [_in_si(c) for c in out["comparisons"]]
+    for c in comparisons:
         lines.append(
             f"  {c['quantity']:<26}{c['floquet_si']:>14.6g}{c['finite_beam_si']:>14.6g}  {c['unit_si']:<6}"
             f"{c['relative_diff']:>10.3%}  {'yes' if c['within'] else 'NO'}"
@@ -264,7 +277,7 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
     judged = "; ".join(
         f"{c['quantity']} {c['floquet_si']:.6g} (Floquet) vs {c['finite_beam_si']:.6g} (finite beam) "
         f"{c['unit_si']}: {c['relative_diff']:.3%} {'<=' if c['within'] else '>'} {c['tolerance']:.2%}"
-        for c in out["comparisons"]
+        for c in comparisons
     )
     lines.append(f"verdict: {'AGREE' if out['agrees'] else 'DISAGREE'}: {judged or 'nothing compared'}")
     return "\n".join(lines)

@@ -173,7 +173,7 @@ def _critical_velocity_on_supports(
     data["v_cr_unit"] = "m/s"
     for minimum in data["minima"]:
         minimum["v"] = f"{float(minimum['alpha']) * scales.v_ref:.10g}"
-    track = SleeperTrack(data_in.beam, data_in.track, data_in.groups)
+    track = SleeperTrack(data_in.foundation, data_in.groups)
     to_si = 1 / data_in.t_scale
     pinned, passing = track.pinned_pinned() * to_si, track.Omega0 * to_si
     data["on_supports"] = {

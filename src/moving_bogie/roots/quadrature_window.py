@@ -173,7 +173,10 @@ def _secant(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex
 
 
 def _secant_steps(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex, complex, float]:
-    a, b = complex(q0), complex(q0) + h
+    """The secant iterations of :func:`_secant`, every iterate (the start too) kept in Im q <= 0, where the
+    receptance is defined."""
+    a = complex(q0.real, min(q0.imag, 0.0))  # a start from the moments may lie just above the axis
+    b = a + h
     fa, fb = complex(E(np.array([a]))[0]), complex(E(np.array([b]))[0])
     step = np.inf
     for _ in range(SECANT_STEPS):
@@ -248,7 +251,8 @@ def _far_check(E: QuadratureCharacteristic, radius: float) -> float:
     if z.size == 0:
         return np.inf
     track, system = E.bound.track, E.bound.float_system
-    G = track.receptance(z).matrix
+    with E.tolerance(COUNT_TOL):  # rho against 1/2 needs no more (the samples' own tolerance: cached)
+        G = track.receptance(z).matrix
     K = [G[..., 0, 0]] if system.contacts == 1 else _kernel_list(G, system.index, len(system.offsets))
     with np.errstate(all="ignore"):
         full = np.array([E.samples[q] for q in z.tolist()])

@@ -26,21 +26,28 @@ _SERIES = 0.1
 def vertical_wavenumber(k2_minus: ComplexArray) -> ComplexArray:
     """sqrt(k^2 - k_j^2) on the radiating branch: Re >= 0, and Im >= 0 where Re = 0 (the limit of
     vanishing damping under exp(i omega t): waves travel away from the surface)."""
-    gamma = np.sqrt(k2_minus)
-    flip = (gamma.real < 0) | ((gamma.real == 0) & (gamma.imag < 0))
-    return np.where(flip, -gamma, gamma)
+    gamma = np.sqrt(k2_minus)  # the principal root: Re >= 0; Re = 0 only on the negative real axis
+    edge = gamma.real == 0
+    if edge.any():
+        g = gamma[edge]
+        gamma[edge] = np.where(g.imag < 0, -g, g)
+    return gamma
 
 
 def _exprel(x: ComplexArray) -> ComplexArray:
+    """(e^x - 1) / x, its Taylor series where |x| < _SERIES."""
+    out = np.empty_like(x)
     small = np.abs(x) < _SERIES
-    xs = np.where(small, x, 0)
+    big = ~small
+    out[big] = np.expm1(x[big]) / x[big]
+    xs = x[small]
     series = np.ones_like(xs)
     term = np.ones_like(xs)
     for n in range(2, 13):
         term = term * xs / n
         series = series + term
-    safe = np.where(small, 1, x)
-    return np.where(small, series, np.expm1(safe) / safe)
+    out[small] = series
+    return out
 
 
 def layer_waves(
@@ -95,7 +102,10 @@ def blocks_of_waves(
     x = -delta * h
     small = np.abs(x) < 1
     # E(h) = (e^{-s h} - e^{-p h}) / (s - p): the series form where the difference would cancel
-    e_h = np.where(small, -h * ep * _exprel(np.where(small, x, 0)), (es - ep) / np.where(small, 1, delta))
+    e_h = np.empty_like(ep)
+    big = ~small
+    e_h[big] = (es[big] - ep[big]) / delta[big]
+    e_h[small] = -h * ep[small] * _exprel(x[small])
     d1, d2, d3 = a[0:4], a[4:8], a[8:12]
     u1, u2, u3 = a[12:16], a[16:20], a[20:24]
     d2h = [d2[i] * es + d3[i] * e_h for i in range(4)]  # f2 of the down-going waves at the bottom

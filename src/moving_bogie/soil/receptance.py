@@ -45,6 +45,7 @@ import numpy as np
 from moving_bogie.typing import ComplexArray, FloatArray
 
 from .flexibility import surface_flexibility
+from .illinois import IntArray
 from .profile import SoilProfile
 from .strip import NODES, WEIGHTS_G, WEIGHTS_K, strip_stiffness
 from .track import SoilTrack
@@ -81,7 +82,7 @@ def local_stiffness(k1: FloatArray, omega: ComplexArray, soil: SoilProfile, b: f
 
 @dataclass(frozen=True)
 class _Integrand:
-    """1 / D(k, Omega + k v) at nodes k for every Omega, and the bound of its error through chi."""
+    """1 / D(k, Omega + k v) at pairs (k, Omega), and the bound of its error through chi."""
 
     track: SoilTrack
     soil: SoilProfile
@@ -89,22 +90,21 @@ class _Integrand:
     tol: float
 
     def __call__(self, k: FloatArray, omega_ref: ComplexArray) -> tuple[ComplexArray, FloatArray, int]:
-        """(1/D, error bound of 1/D, strip quadratures used), each of shape (Omega, k)."""
+        """(1/D, error bound of 1/D, strip quadratures used) at each pair (k[i], omega_ref[i])."""
         track = self.track
-        w = omega_ref[:, None] + k[None, :] * self.v
-        kk = np.broadcast_to(k[None, :], w.shape)
-        chi = local_stiffness(kk.ravel(), w.ravel(), self.soil, track.b).reshape(w.shape)
+        w = omega_ref + k * self.v
+        chi = local_stiffness(k, w, self.soil, track.b)
         sens = track.chi_sensitivity(w, chi)
-        d_loc = track.rail_stiffness(kk, w, chi)
+        d_loc = track.rail_stiffness(k, w, chi)
         ratio = np.abs(sens * chi) / np.maximum(np.abs(d_loc), 1e-300)
-        exact = (np.abs(kk) * track.b < LOCAL_KB) | (2 * ratio > self.tol)
+        exact = (np.abs(k) * track.b < LOCAL_KB) | (2 * ratio > self.tol)
         err = np.abs(chi)
         if exact.any():
             rtol = np.clip(self.tol / (2 * np.maximum(ratio[exact], 1e-300)), *CHI_RTOL)
-            strip = strip_stiffness(np.abs(kk[exact]), w[exact], self.soil, track.b, rtol=rtol)
+            strip = strip_stiffness(np.abs(k[exact]), w[exact], self.soil, track.b, rtol=rtol)
             chi[exact], err[exact] = strip.chi, strip.error
             sens[exact] = track.chi_sensitivity(w[exact], strip.chi)
-        d = track.rail_stiffness(kk, w, chi)
+        d = track.rail_stiffness(k, w, chi)
         gap = np.abs(d) - np.abs(sens) * err
         bound = np.where(gap > 0, np.abs(sens) * err / (np.abs(d) * np.maximum(gap, 1e-300)), np.inf)
         return np.asarray(1 / d, dtype=complex), bound, int(exact.sum())
@@ -118,37 +118,45 @@ def _reference_wavenumber(track: SoilTrack, soil: SoilProfile) -> float:
 
 
 def _sum_panels(
-    f: _Integrand, omega: ComplexArray, offsets: FloatArray, panels: FloatArray, sign: float, rounds: int
+    f: _Integrand, omega: ComplexArray, offsets: FloatArray, ends: FloatArray, sign: float, rounds: int
 ) -> tuple[ComplexArray, FloatArray, int, int]:
-    """int over sign * [k_lo, k_hi] of exp(-i k Delta) / D for every (Omega, Delta), panels bisected
-    (geometrically) until each one's Kronrod-Gauss difference is below its share (its width in log k) of
-    tol |total| for every Omega and offset. Returns (integral, error, nodes, strip quadratures)."""
-    span = np.log(panels[-1, 1] / panels[0, 0])
-    total = np.zeros((omega.size, offsets.size), dtype=complex)
-    error = np.zeros(omega.size)
+    """int over sign * [k_lo, k_hi] of exp(-i k Delta) / D for every (Omega, Delta), each Omega on its own
+    panels (initially its row of ``ends``), bisected (geometrically) until each one's Kronrod-Gauss
+    difference is below its share (its width in log k) of tol |total| for every offset. Returns (integral,
+    error, nodes, strip quadratures)."""
+    n = omega.size
+    span = np.log(ends[:, -1] / ends[:, 0])
+    lo, hi = ends[:, :-1].ravel(), ends[:, 1:].ravel()
+    who = np.repeat(np.arange(n), ends.shape[1] - 1)
+    total = np.zeros((n, offsets.size), dtype=complex)
+    error = np.zeros(n)
     nodes = quadratures = 0
     for step in range(rounds):
-        half, mid = (panels[:, 1] - panels[:, 0]) / 2, (panels[:, 1] + panels[:, 0]) / 2
+        half, mid = (hi - lo) / 2, (hi + lo) / 2
         k = sign * (mid[:, None] + half[:, None] * NODES).ravel()
-        inv, bound, used = f(k, omega)
+        inv, bound, used = f(k, np.repeat(omega[who], NODES.size))
         nodes, quadratures = nodes + k.size, quadratures + used
-        phase = np.exp(-1j * np.multiply.outer(offsets, k))  # (offsets, k)
-        g = (inv[:, None, :] * phase[None, :, :]).reshape(omega.size, offsets.size, -1, NODES.size)
-        kronrod = (g @ WEIGHTS_K) * half
-        diff = np.abs(kronrod - (g @ WEIGHTS_G) * half)  # (Omega, offsets, panels)
-        chi_err = (bound.reshape(omega.size, -1, NODES.size) @ WEIGHTS_K) * half  # (Omega, panels)
-        scale = np.abs(total + kronrod.sum(-1)).max(axis=1)  # (Omega,)
-        share = np.log(panels[:, 1] / panels[:, 0]) / span
-        limit = f.tol * scale[:, None, None] * share[None, None, :]
-        keep = (diff <= limit).all(axis=(0, 1)) | (step == rounds - 1)
-        total += kronrod[..., keep].sum(-1)
-        error += diff[..., keep].max(axis=1).sum(-1) + chi_err[:, keep].sum(-1)
+        g = (np.exp(-1j * np.multiply.outer(offsets, k)) * inv).reshape(offsets.size, -1, NODES.size)
+        kronrod = (g @ WEIGHTS_K) * half  # (offsets, panels)
+        diff = np.abs(kronrod - (g @ WEIGHTS_G) * half)
+        chi_err = (bound.reshape(-1, NODES.size) @ WEIGHTS_K) * half  # (panels,)
+        running = total + np.stack([_by_owner(who, row, n) for row in kronrod], -1)
+        scale = np.abs(running).max(axis=1)  # (Omega,)
+        share = np.log(hi / lo) / span[who]
+        keep = (diff <= f.tol * scale[who] * share).all(axis=0) | (step == rounds - 1)
+        total += np.stack([_by_owner(who[keep], row[keep], n) for row in kronrod], -1)
+        error += np.bincount(who[keep], diff[:, keep].max(axis=0) + chi_err[keep], minlength=n)
         if keep.all():
             break
-        a, b = panels[~keep, 0], panels[~keep, 1]
+        a, b, who = lo[~keep], hi[~keep], who[~keep]
         centre = np.sqrt(a * b)
-        panels = np.concatenate([np.stack([a, centre], -1), np.stack([centre, b], -1)])
+        lo, hi, who = np.concatenate([a, centre]), np.concatenate([centre, b]), np.concatenate([who, who])
     return total, error, nodes, quadratures
+
+
+def _by_owner(who: IntArray, values: ComplexArray, n: int) -> ComplexArray:
+    """The sums of ``values`` per owner 0..n-1."""
+    return np.bincount(who, values.real, minlength=n) + 1j * np.bincount(who, values.imag, minlength=n)
 
 
 def soil_receptance(
@@ -182,23 +190,23 @@ def soil_receptance(
     if np.any(omega.imag > 0):
         raise ValueError("omega: the soil's receptance by real wavenumbers needs Im Omega <= 0")
     k_ref = _reference_wavenumber(track, soil)
-    k_omega = (track.m * np.abs(omega).max() ** 2 / track.EI) ** 0.25
+    k_omega = (track.m * np.abs(omega) ** 2 / track.EI) ** 0.25
     k_v = abs(v) * np.sqrt(track.m / track.EI)  # EI k^2 = m v^2: the speed's own wavenumber
-    k_lo, k_hi = 1e-9 / track.b, max(300 * k_ref, 30 * k_omega, 30 * k_v)
-    ends = np.concatenate([[k_lo], np.geomspace(K_NEAR / track.b, k_hi, PANELS + 1)])
-    panels = np.stack([ends[:-1], ends[1:]], -1)
+    k_lo, k_hi = 1e-9 / track.b, np.maximum(max(300 * k_ref, 30 * k_v), 30 * k_omega)  # k_hi per Omega
+    steps = np.linspace(0.0, 1.0, PANELS + 1)
+    near = np.full((omega.size, 1), k_lo)
+    ends = np.concatenate([near, K_NEAR / track.b * (k_hi[:, None] * track.b / K_NEAR) ** steps], axis=1)
     f = _Integrand(track, soil, v, tol)
     total = np.zeros((omega.size, offsets.size), dtype=complex)
     error, nodes, quadratures = np.zeros(omega.size), 0, 0
     for sign in (1.0, -1.0):
-        part, err, n, used = _sum_panels(f, omega, offsets, panels, sign, rounds)
+        part, err, n, used = _sum_panels(f, omega, offsets, ends, sign, rounds)
         total, error, nodes, quadratures = total + part, error + err, nodes + n, quadratures + used
         # the ends: below k_lo the integrand grows like log(1 / k) (2 k_lo |f(k_lo)| bounds it); beyond
         # k_hi, |D| >= EI k^4 / 2 (checked at k_hi) bounds it by 2 / (3 EI k_hi^3)
-        edge = np.array([sign * k_lo, sign * k_hi])
-        inv, _, _ = f(edge, omega)
-        if np.any(np.abs(inv[:, 1]) * track.EI * k_hi**4 > 2):
-            error[:] = np.inf
+        edge = sign * np.stack([np.full(omega.size, k_lo), k_hi], -1)
+        inv = f(edge.ravel(), np.repeat(omega, 2))[0].reshape(-1, 2)
+        error[np.abs(inv[:, 1]) * track.EI * k_hi**4 > 2] = np.inf
         error += 2 * k_lo * np.abs(inv[:, 0]) + 2 / (3 * track.EI * k_hi**3)
     G = total / (2 * np.pi)
     return SoilReceptance(

@@ -74,28 +74,82 @@ def _integral_inf3(a: FloatArray, b: float) -> FloatArray:
     return 2 * (special.iti0k0(x)[1] / x - special.k0(x)) / a**2
 
 
+@dataclass(frozen=True)
+class _Start:
+    """The initial panels of an item: graded near k2 = 0, the band's ratio, geometric in kappa up to
+    ``reach`` times the soil's largest relevant wavenumber, and sinc periods per panel (module docstring)."""
+
+    near: int
+    ratio: float
+    kappa: int
+    reach: float
+    periods: int
+    #: At least one kappa panel per decade from k1 (a coarse start: bisection alone would need many rounds
+    #: to grade towards a small k1).
+    decades: bool = False
+
+
+#: For rtol < LOOSE: the fine start (a grid that meets 1e-11 before bisection); for looser items a
+#: coarse start that bisection refines where the Kronrod-Gauss differences ask for it.
+FINE = _Start(near=NEAR_PANELS, ratio=BAND_RATIO, kappa=KAPPA_PANELS, reach=20.0, periods=SINC_PERIODS)
+COARSE = _Start(near=2, ratio=2.5, kappa=3, reach=4.0, periods=4, decades=True)
+#: A coarse start's reach is (REACH_TAIL / rtol)^(1/5): the tail's bound is then about rtol / 4 (on the
+#: examples' soils the bound is 1.5e-4 of the integral at reach 5; it falls like reach^-5). The bound is
+#: computed and stated whatever the reach.
+REACH_TAIL = 1.9
+#: Bisection rounds a coarse start may take beyond ``rounds``.
+COARSE_ROUNDS = 4
+
+
+def _geometric(first: FloatArray, last: FloatArray, count: IntArray, width: int) -> FloatArray:
+    """Rows of ``count`` points from ``first`` to ``last`` (> 0) in geometric progression, NaN-padded to
+    ``width`` columns."""
+    j = np.arange(width)[None, :]
+    t = j / np.maximum(count - 1, 1)[:, None]
+    rows = first[:, None] * (last / first)[:, None] ** t
+    return np.where(j < count[:, None], rows, np.nan)
+
+
 def _breakpoints(
-    k1: float, omega: complex, soil: SoilProfile, b: float, top: float, periods: int, ratio: float
-) -> FloatArray:
-    """Initial panel ends in k2 for one (k1, omega) (module docstring), bisected later."""
-    layers = soil.layers
-    scale = min(k1, top)
-    near = np.geomspace(1e-4 * scale, scale, NEAR_PANELS)
-    eta = min(layer.eta for layer in layers) * abs(omega)
-    speeds = [c for layer in layers for c in (layer.c_s, layer.c_p)]
-    band = [abs(omega) / max(speeds) * 0.8, abs(omega) / (0.5 * soil.c_s_min)]
-    kappa = []
-    # the poles of U lie in this band of kappa, on the real axis without damping (k1 must exceed them)
-    # and next to it with damping: a geometric band of ratio ``ratio``, bisected where the rules differ
-    if band[1] > band[0] and eta > 0:
-        kappa.append(np.geomspace(band[0], band[1], int(np.log(band[1] / band[0]) / np.log(ratio)) + 2))
-    kappa.append(np.geomspace(max(k1, 1e-3 * scale), top, KAPPA_PANELS))
-    kap = np.concatenate(kappa)
-    kap = kap[kap > k1]
-    waves = np.sqrt(kap**2 - k1**2)
-    sinc = np.arange(0.0, top, periods * 2 * np.pi / b)
-    ends = np.unique(np.concatenate([[0.0, top], near, waves, sinc]))
-    return ends[ends <= top]
+    k1: FloatArray, omega: ComplexArray, soil: SoilProfile, b: float, top: FloatArray, starts: list[_Start]
+) -> tuple[FloatArray, FloatArray, IntArray]:
+    """The initial panels (lo, hi, item) in k2 of every item (k1, omega) (module docstring), bisected
+    later: ends graded towards 0, through the band of kappa where the poles of U lie (on the real axis
+    without damping, k1 above them; next to it with damping), geometric in kappa up to ``top``, and every
+    few periods of the sinc."""
+    near_n, kappa_n, periods = (
+        np.array([getattr(s, key) for s in starts]) for key in ("near", "kappa", "periods")
+    )
+    ratio = np.array([s.ratio for s in starts])
+    w = np.abs(omega)
+    c_max = max(c for layer in soil.layers for c in (layer.c_s, layer.c_p))
+    band0, band1 = w / c_max * 0.8, w / (0.5 * soil.c_s_min)
+    damped = (min(layer.eta for layer in soil.layers) * w > 0) & (band1 > band0)
+    band0, band1 = np.where(damped, band0, 1.0), np.where(damped, band1, 1.0)
+    band_n = (np.log(band1 / band0) / np.log(ratio)).astype(int) + 2
+    lo = k1
+    decades = np.array([s.decades for s in starts])
+    kap_n = np.where(decades, np.maximum(kappa_n, np.log10(top / lo).astype(int) + 2), kappa_n)
+    band = _geometric(band0, band1, band_n, int(band_n.max()))
+    band[~damped] = np.nan
+    kap = np.concatenate([band, _geometric(lo, top, kap_n, int(kap_n.max()))], axis=1)
+    with np.errstate(invalid="ignore"):
+        waves = np.where(kap > k1[:, None], np.sqrt(kap**2 - k1[:, None] ** 2), np.nan)
+    step = periods * 2 * np.pi / b
+    sinc_n = np.ceil(top / step).astype(int)
+    sinc = np.arange(int(sinc_n.max()))[None, :] * step[:, None]
+    sinc = np.where(np.arange(sinc.shape[1])[None, :] < sinc_n[:, None], sinc, np.nan)
+    scale = np.minimum(k1, top)
+    near = _geometric(1e-4 * scale, scale, near_n, int(near_n.max()))
+    ends = np.concatenate([np.zeros((k1.size, 1)), top[:, None], near, waves, sinc], axis=1)
+    ends[~(ends <= top[:, None])] = np.nan
+    ends.sort(axis=1)
+    ends[:, 1:][ends[:, 1:] == ends[:, :-1]] = np.nan  # repeated ends
+    ends.sort(axis=1)
+    first, second = ends[:, :-1], ends[:, 1:]
+    valid = np.isfinite(second)
+    who = np.broadcast_to(np.arange(k1.size)[:, None], first.shape)
+    return first[valid], second[valid], who[valid]
 
 
 def _flexibility(kappa: ComplexArray, omega: ComplexArray, soil: SoilProfile) -> ComplexArray:
@@ -130,24 +184,27 @@ class _Integrand:
 
 
 def _adaptive(
-    f: _Integrand, ends: list[FloatArray], closed: ComplexArray, rtol: FloatArray, rounds: int
+    f: _Integrand,
+    panels: tuple[FloatArray, FloatArray, IntArray],
+    closed: ComplexArray,
+    rtol: FloatArray,
+    rounds: IntArray,
 ) -> tuple[ComplexArray, FloatArray]:
-    """Sum over each item's panels (``ends``) of Gauss-Kronrod (7, 15), all items at once; a panel is bisected
-    while its Kronrod-Gauss difference exceeds rtol |closed + integral| / (its item's panel count).
-    Returns (integral, sum of the kept panels' differences) per item."""
-    n = len(ends)
-    lo = np.concatenate([e[:-1] for e in ends])
-    hi = np.concatenate([e[1:] for e in ends])
-    who = np.repeat(np.arange(n), [e.size - 1 for e in ends])
+    """Sum over each item's panels (``panels``: lo, hi, item) of Gauss-Kronrod (7, 15), all items at once;
+    a panel is bisected while its Kronrod-Gauss difference exceeds rtol |closed + integral| / (its item's
+    panel count), at most ``rounds`` (per item) times. Returns (integral, sum of the kept panels'
+    differences) per item."""
+    n = closed.size
+    lo, hi, who = panels
     total, error = np.zeros(n, dtype=complex), np.zeros(n)
-    for step in range(rounds):
+    for step in range(int(rounds.max())):
         half, mid = (hi - lo) / 2, (hi + lo) / 2
         g = f((mid[:, None] + half[:, None] * NODES).ravel(), np.repeat(who, NODES.size)).reshape(-1, 15)
         kronrod, gauss = (g @ WEIGHTS_K) * half, (g @ WEIGHTS_G) * half
         diff = np.abs(kronrod - gauss)
         estimate = closed + total + _sum(who, kronrod, n)
         count = np.bincount(who, minlength=n)
-        keep = (diff <= rtol[who] * np.abs(estimate[who]) / count[who]) | (step == rounds - 1)
+        keep = (diff <= rtol[who] * np.abs(estimate[who]) / count[who]) | (step >= rounds[who] - 1)
         total += _sum(who[keep], kronrod[keep], n)
         error += np.bincount(who[keep], diff[keep], minlength=n)
         if keep.all():
@@ -195,18 +252,22 @@ def strip_stiffness(
     d_coef = top_layer.rho * omega**2 / mu * (8 * nu**2 - 12 * nu + 7) / (8 * mu)
     beta = np.abs(omega) / top_layer.c_s
     h_top = top_layer.h if np.isfinite(top_layer.h) else np.inf
-    tops = 20 * np.maximum(max(1 / b, 1 / h_top), np.abs(omega) / soil.c_s_min)
-    periods = SINC_PERIODS if rounds > 1 else 1
-    ratios = np.where(rtol < LOOSE, BAND_RATIO, LOOSE_BAND_RATIO)
-    ends = [
-        _breakpoints(a, complex(z), soil, b, t, periods, r)
-        for a, z, t, r in zip(k1, w, tops, ratios, strict=True)
-    ]
+    loose = rtol >= LOOSE
+    starts = [(COARSE if x and rounds > 1 else FINE) for x in loose]
+    # the tail beyond top falls like reach^-5 (U - U_inf = O(kappa^-5)): a coarse start reaches as far as
+    # its rtol needs (REACH_TAIL, module constants), between COARSE.reach and FINE.reach
+    reach = np.array([start.reach for start in starts])
+    reach = np.where(loose, np.clip((REACH_TAIL / rtol) ** 0.2, COARSE.reach, FINE.reach), reach)
+    tops = reach * np.maximum(max(1 / b, 1 / h_top), np.abs(omega) / soil.c_s_min)
+    if rounds == 1:
+        starts = [_Start(NEAR_PANELS, BAND_RATIO, KAPPA_PANELS, 20.0, 1)] * k1.size
+    panels = _breakpoints(k1, w, soil, b, tops, starts)
     closed = np.asarray(
         c_coef * _integral_inf(k1, b) + d_coef * _integral_inf3(np.sqrt(k1**2 + beta**2), b), dtype=complex
     )
     f = _Integrand(k1, w, c_coef, d_coef, beta, soil, b)
-    rest, quadrature_error = _adaptive(f, ends, closed, rtol, rounds)
+    most = np.where(loose & (rounds > 1), rounds + COARSE_ROUNDS, rounds)
+    rest, quadrature_error = _adaptive(f, panels, closed, rtol, most)
     total = closed + rest
     # the tail beyond k2 = top: the envelope 2 |U - U_inf| / (k2 b) there decays at least like k2^-4
     # (U - U_inf = O(kappa^-5) past the layers' exponentials), so its integral is below top / 3

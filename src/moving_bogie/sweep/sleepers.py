@@ -193,7 +193,7 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
 
     module = inp.vehicle_kernels
     result = floquet_frequencies(
-        SleeperTrack(inp.beam, inp.track, inp.groups), VehicleMatrices.from_module(module, inp.vehicle_groups)
+        SleeperTrack(inp.foundation, inp.groups), VehicleMatrices.from_module(module, inp.vehicle_groups)
     )
     lowest = min((r.q for r in result.roots), key=lambda q: q.imag, default=complex(np.nan, np.nan))
     return {

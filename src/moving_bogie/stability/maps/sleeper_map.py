@@ -162,7 +162,7 @@ def mass_unit(data: SleeperInput) -> float:
 def column_at(data: SleeperInput, v: float, eta_max: float, N: int, samples: int) -> DColumn:
     """The D-decomposition column at velocity v [m/s] (one process's task)."""
     module = data.vehicle_kernels
-    track = SleeperTrack(data.beam, data.track, _groups(data, v))
+    track = SleeperTrack(data.foundation, _groups(data, v))
     return d_column(mass_pencil(track, module, data.vehicle_groups, N), eta_max=eta_max, samples=samples)
 
 
@@ -219,7 +219,7 @@ def part_column(part: Part) -> DColumn:
 def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapCheck:
     """floquet_frequencies at (v, M): its count beside the map's."""
     module = data.vehicle_kernels
-    track = SleeperTrack(data.beam, data.track, _groups(data, v))
+    track = SleeperTrack(data.foundation, _groups(data, v))
     wheel = {module.WHEEL_MASS: M / mass_unit(data)}
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | wheel)
     res = floquet_frequencies(track, vehicle)
