@@ -22,9 +22,12 @@ from moving_bogie.model.cases import table1_case
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.roots.count.contour import Rectangle, winding_number
 from moving_bogie.roots.quadrature_window import QuadratureCharacteristic
+from moving_bogie.roots.verdict import UNSTABLE
 from moving_bogie.soil.file import soil_input
 from moving_bogie.stability.lines.instability_lines import instability_lines
-from moving_bogie.stability.maps.real_axis import real_axis_column, soil_column
+from moving_bogie.stability.maps.map import stability_map
+from moving_bogie.stability.maps.real_axis import real_axis_column, window_column
+from moving_bogie.stability.maps.real_axis_map import real_axis_map
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -108,7 +111,7 @@ def test_threshold_mass_of_the_example_against_the_argument_principle():
     vehicle = load_soil_vehicle(EXAMPLES / "soil-unstable.toml")
     bound = bind(vehicle)
     eta_file = float(bound.floats.eta_M)
-    col = soil_column(bound, eta_max=4 * eta_file)
+    col = window_column(bound, eta_max=4 * eta_file)
     assert not col.notes
     threshold = col.threshold
     assert threshold is not None and threshold.change == 1 and threshold.eta_M < eta_file
@@ -123,28 +126,30 @@ def test_threshold_mass_of_the_example_against_the_argument_principle():
 
 @pytest.mark.slow
 def test_unstable_root_of_the_example_against_a_grid_of_winding_numbers():
-    """The one root with Im q < 0 that the window search finds on examples/soil-unstable.toml lies in the
-    one cell of a 4 x 4 grid around it (cells of 0.002) whose corners' E_chr wind once, every other cell
-    winding 0 (each corner-to-corner step of arg E_chr below pi / 2, checked), and |E_chr| is least at a
-    corner of that cell."""
+    """The one root with Im q < 0 that the window search finds on examples/soil-unstable.toml: on a 4 x 4
+    grid of cells of 0.002 whose middle cell is centred on it, the corners' E_chr wind once around that cell
+    and 0 around every other (each corner-to-corner step of arg E_chr below 3 pi / 4: a simple zero at a
+    cell's centre turns it by pi / 2 along each edge), so the root is within 0.001 of the grid's own, and
+    |E_chr| is least at a corner of that cell."""
     vehicle = load_soil_vehicle(EXAMPLES / "soil-unstable.toml")
     result = induced_frequencies(vehicle)
-    assert result.count == 1 and len(result.roots) == 1 and not result.verdict.stable
+    assert result.count == 1 and len(result.roots) == 1 and result.verdict.state == UNSTABLE
     root = complex(result.roots[0].q)
     assert root.imag < 0
     h = 0.002
-    x = np.round(root.real / h) * h + h * np.arange(-2, 3)
-    y = min(np.round(root.imag / h) * h, -2 * h) + h * np.arange(-2, 3)
+    assert root.imag < -1.5 * h  # the grid stays below the real axis
+    x = root.real + h * (np.arange(5) - 2.5)
+    y = root.imag + h * (np.arange(5) - 2.5)
     Z = x[None, :] + 1j * y[:, None]  # rows: Im q, columns: Re q
     E = QuadratureCharacteristic(bind(vehicle))
     with E.tolerance(None):
         W = E(Z)
     step_x, step_y = np.angle(W[:, 1:] / W[:, :-1]), np.angle(W[1:, :] / W[:-1, :])
-    assert np.abs(step_x).max() < np.pi / 2 and np.abs(step_y).max() < np.pi / 2
+    assert np.abs(step_x).max() < 0.75 * np.pi and np.abs(step_y).max() < 0.75 * np.pi
     winding = np.rint((step_x[:-1, :] + step_y[:, 1:] - step_x[1:, :] - step_y[:, :-1]) / (2 * np.pi))
     assert winding.sum() == 1 and np.abs(winding).max() == 1
     i, j = np.argwhere(winding == 1)[0]
-    assert x[j] <= root.real <= x[j + 1] and y[i] <= root.imag <= y[i + 1]
+    assert (i, j) == (2, 2)  # the cell centred on the root
     least = np.unravel_index(np.argmin(np.abs(W)), W.shape)
     assert least[0] in (i, i + 1) and least[1] in (j, j + 1)
 
@@ -167,7 +172,38 @@ def test_instability_lines_on_a_soil_file_names_an_option_that_does_not_apply(op
     assert named in capsys.readouterr().err
 
 
-def test_stability_map_refuses_a_soil_file_naming_the_command_that_takes_it(capsys):
-    assert main(["stability-map", "--file", str(EXAMPLES / "soil-unstable.toml")]) == 2
-    err = capsys.readouterr().err
-    assert "--file" in err and "instability-lines --file" in err
+@pytest.mark.parametrize(
+    ("options", "named"),
+    [
+        (["--lines"], "--lines"),
+        (["--npz", "map.npz"], "--npz"),
+        (["--units", "dimensionless"], "--units"),
+        (["--range", "v=0:100"], "--range v"),
+        (["--kappa-v", "0.1"], "--kappa-v"),
+    ],
+)
+def test_stability_map_on_a_soil_file_names_an_option_that_does_not_apply(options, named, capsys):
+    """Each refusal names its option and exits 2 before any column is computed."""
+    assert main(["stability-map", "--file", str(EXAMPLES / "soil-unstable.toml"), *options]) == 2
+    assert named in capsys.readouterr().err
+
+
+def test_map_from_real_axis_columns_is_the_continuous_map_of_counts():
+    """real_axis_map on a continuous track (Table 1's case 1 at two velocities, one of them supercritical)
+    counts the same growing roots in every cell as the continuous stability map (argument-principle counts
+    on a contour shared by a column, no D-decomposition)."""
+    params = table1_case(1)
+    alphas, masses = [0.8, 1.4], [6.0, 14.0, 60.0]
+    bounds = [bind(params.replace(alpha=str(a))) for a in alphas]
+    smap = real_axis_map(
+        bounds,
+        alphas,
+        masses,
+        scales=(1.0, 1.0, 1.0),
+        model="bogie",
+        track="continuous",
+        identity="",
+        workers=1,
+    )
+    ref = stability_map(bind(params), parameter="eta_M", alphas=alphas, thetas=masses, workers=1)
+    assert np.array_equal(smap.count, ref.count) and smap.count.any() and not smap.notes

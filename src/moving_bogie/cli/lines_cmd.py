@@ -274,12 +274,9 @@ def _stability_map(args: argparse.Namespace) -> int:
     from moving_bogie.soil.file import is_soil_file
 
     if args.file is not None and is_soil_file(args.file):
-        raise ParameterError(
-            "--file",
-            f"--file {args.file}: stability-map does not take a soil-track file yet (no (v, M) map on the "
-            "soil); the D-decomposition in M at the file's v and the threshold mass: "
-            "instability-lines --file",
-        )
+        from .soil_lines_cmd import run_soil_map
+
+        return run_soil_map(args)
     sleepers = sleeper_data(args)
     if sleepers is not None:
         return lines_on_supports.run_sleeper_map(args, sleepers)

@@ -1,5 +1,6 @@
 """``instability-lines --file`` on a soil-track file that names a vehicle: the D-decomposition in the wheel
-mass M along the real frequency axis at the file's speed, and the threshold mass (docs/soil.md).
+mass M along the real frequency axis at the file's speed, and the threshold mass; ``stability-map --file``:
+the (v, M) map of the growing roots, one such D-decomposition per velocity (docs/soil.md).
 
 The crossings are those of :func:`~moving_bogie.stability.maps.real_axis.real_axis_column` on the soil's
 own track, up to the window's far-field radius (the radius ``frequencies --file`` counts in). M is in the
@@ -11,6 +12,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from functools import partial
 from typing import Any
 
 from moving_bogie.errors import ParameterError
@@ -18,10 +20,14 @@ from moving_bogie.errors import ParameterError
 from .checks import named_values, value_range
 from .common import first_given, option_flag, parameter_options, print_json
 
-__all__ = ["run_soil_lines"]
+__all__ = ["run_soil_lines", "run_soil_map"]
 
-#: The mass axis without --range M=0:HI: up to this many times the file's M.
+#: The mass axis without --range M=0:HI: up to this many times the file's M; a map's velocity axis without
+#: --range v=LO:HI: these times the file's v.
 DEFAULT_MASSES = 4.0
+DEFAULT_SPEEDS = (0.5, 1.5)
+#: A soil map of over TIMED columns is timed on one column before it starts (cli/job_size.py).
+TIMED = 4
 
 _MODEL = "give the model and its values in the file (docs/soil.md)"
 #: Options of instability-lines that a soil file does not take (dest -> why).
@@ -31,11 +37,18 @@ _REFUSED = {
     "verify": "count the roots of a mass with frequencies --file (the argument principle on the soil)",
     "plot": "the crossings of one speed are printed (a figure of the (v, M) plane needs a map)",
 }  # fmt: skip
+#: Options of stability-map that a soil file does not take (dest -> why).
+_MAP_REFUSED = {
+    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL, "set": _MODEL, "d": _MODEL,
+    "parameter": "on a soil track the vertical axis is the wheel mass M",
+    "lines": "the map of a soil track always shows its D-lines",
+    "npz": "a soil map writes its figure, its CSV and its JSON", "out": "a soil map is not a sweep store",
+}  # fmt: skip
 
 
-def _refuse(args: argparse.Namespace) -> None:
+def _refuse(args: argparse.Namespace, refused: dict[str, str] = _REFUSED) -> None:
     """One message naming the first option that does not apply to a soil file, before any work."""
-    table = _REFUSED | {name: _MODEL for name, _, _ in parameter_options() if name not in _REFUSED}
+    table = refused | {name: _MODEL for name, _, _ in parameter_options() if name not in refused}
     if args.parameter == "eta_M":  # the default
         del table["parameter"]
     dest = first_given(args, table)
@@ -49,21 +62,27 @@ def _refuse(args: argparse.Namespace) -> None:
         raise ParameterError("--bar", why)
 
 
-def _mass_top(args: argparse.Namespace, file_mass: float) -> float:
-    """HI of --range M=0:HI (kg), or DEFAULT_MASSES times the file's M; any other axis refused."""
-    ranges = named_values(args.range, "--range", "NAME=LO:HI")
-    for name, spec in ranges.items():
-        if name == "v":
+def _axes(args: argparse.Namespace, file_v: float, file_mass: float, *, speeds: bool) -> dict[str, Any]:
+    """``--range`` v=LO:HI (m/s; a map's, default DEFAULT_SPEEDS times the file's v) and M=0:HI (kg,
+    default DEFAULT_MASSES times the file's M); any other axis refused."""
+    axes: dict[str, Any] = {"M": (0.0, DEFAULT_MASSES * file_mass)}
+    if speeds:
+        axes["v"] = (DEFAULT_SPEEDS[0] * file_v, DEFAULT_SPEEDS[1] * file_v)
+    for name, spec in named_values(args.range, "--range", "NAME=LO:HI").items():
+        if name == "v" and not speeds:
             raise ParameterError(
-                "--range", "--range v: the D-decomposition on the soil runs at the file's v (give v there)"
+                "--range",
+                "--range v: the D-decomposition on the soil runs at the file's v (the (v, M) map: "
+                "stability-map --file)",
             )
-        if name != "M":
-            raise ParameterError("--range", f"--range {name}: not an axis (known: M)")
-        lo, hi = value_range(name, spec)
-        if lo != 0:
-            raise ParameterError("--range", "--range M=0:HI: the mass axis starts at 0 (counted from M -> 0)")
-        return hi
-    return DEFAULT_MASSES * file_mass
+        if name not in axes:
+            raise ParameterError("--range", f"--range {name}: not an axis (known: {', '.join(axes)})")
+        axes[name] = value_range(name, spec)
+    if axes["M"][0] != 0:
+        raise ParameterError("--range", "--range M=0:HI: the mass axis starts at 0 (counted from M -> 0)")
+    if speeds and axes["v"][0] <= 0:
+        raise ParameterError("--range", "--range v: the velocities must be positive")
+    return axes
 
 
 def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
@@ -77,15 +96,15 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
     name = params.model.wheel_mass
     unit = physical.si_factor(name) / per  # the file's kg per eta_M
     file_mass = float(getattr(params, name)) * unit
-    top = _mass_top(args, file_mass)
-    from moving_bogie.stability.maps.real_axis import soil_column
+    top = _axes(args, float(physical.v), file_mass, speeds=False)["M"][1]
+    from moving_bogie.stability.maps.real_axis import window_column
 
     from .progress import progress_bar
     from .soil_frequencies_cmd import soil_speed_regime
 
     bound = bind(data)
     with progress_bar("D-decomposition on the soil", enabled=not args.json) as bar:
-        col = soil_column(bound, eta_max=top / unit, progress=bar)
+        col = window_column(bound, eta_max=top / unit, progress=bar)
     omega_0 = bound.track.omega_0  # type: ignore[attr-defined]
     v = float(physical.v)
     regime = soil_speed_regime(data.input, v, physical.scales().v_ref)
@@ -159,3 +178,56 @@ def run_soil_lines(args: argparse.Namespace) -> int:
     for note in out["notes"]:
         print(f"warning: {note}", file=sys.stderr)
     return 0 if not out["notes"] else 1
+
+
+def _vehicle_at(data: Any, v: float) -> Any:
+    """The file's vehicle on its soil at speed ``v`` (m/s): its SoilVehicle with [physical] v replaced."""
+    import dataclasses
+
+    from moving_bogie.api import soil_vehicle
+
+    values = tuple((k, v if k == "v" else x) for k, x in data.input.vehicle_values)
+    return soil_vehicle(dataclasses.replace(data.input, vehicle_values=values), tol=data.rail.tol)
+
+
+def run_soil_map(args: argparse.Namespace) -> int:
+    """``stability-map --file`` on a soil file with a vehicle: the (v, M) map of its growing roots, one
+    D-decomposition per velocity (every option checked first; a map of over TIMED columns timed first)."""
+    _refuse(args, _MAP_REFUSED)
+    if getattr(args, "units", None) == "dimensionless":
+        raise ParameterError("--units", "a soil map is in SI units (v in m/s, M in kg)")
+    import numpy as np
+
+    from moving_bogie.api import bind, load_soil_vehicle
+    from moving_bogie.stability.maps.real_axis_map import real_axis_map
+
+    from .job_size import estimate_grid
+    from .lines_on_supports import report
+    from .progress import checkpoint_options, progress_bar
+
+    data = load_soil_vehicle(args.file)
+    physical = data.physical
+    params = physical.to_dimensionless()
+    unit = physical.si_factor(params.model.wheel_mass) / data.input.rail_factor
+    file_v, file_mass = float(physical.v), float(getattr(params, params.model.wheel_mass)) * unit
+    axes = _axes(args, file_v, file_mass, speeds=True)
+    n = args.n
+    (v0, v1), top = axes["v"], axes["M"][1]
+    vs, ms = np.linspace(v0, v1, n), np.linspace(top / n, top, n)
+    bounds = [bind(_vehicle_at(data, float(v))) for v in vs]
+    omega_0 = bounds[0].track.omega_0  # type: ignore[attr-defined]
+    layers = len(data.input.soil.layers)
+    track = f"{data.input.track.kind} track on {layers} soil layer(s), per {data.input.per}"
+    options: dict[str, Any] = dict(
+        scales=(physical.scales().v_ref, unit, 1 / omega_0), model=f"soil/{physical.vehicle}", track=track
+    )
+    options["identity"] = repr((data.input, sorted(axes.items())))
+    if n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
+        middle = slice(n // 2, n // 2 + 1)
+        column = partial(real_axis_map, bounds[middle], vs[middle], ms, workers=1, **options)
+        estimate_grid("soil map", (n, n), args.workers, column, yes=args.yes, shorter="a smaller --n")
+    with progress_bar("soil map", enabled=not args.json) as bar:
+        smap = real_axis_map(
+            bounds, vs, ms, workers=args.workers, progress=bar, **options, **checkpoint_options(args)
+        )
+    return report(args, smap, (file_v, file_mass), crossings=False, continuous=None)

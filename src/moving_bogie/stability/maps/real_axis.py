@@ -46,7 +46,7 @@ from moving_bogie.stability.maps.d_lines import DCrossing, match_branches, real_
 if TYPE_CHECKING:
     from moving_bogie.kernels.bound import BoundModel
 
-__all__ = ["ReceptancePencil", "RealAxisColumn", "real_axis_column", "soil_column"]
+__all__ = ["ReceptancePencil", "RealAxisColumn", "real_axis_column", "window_column"]
 
 #: The receptance's relative tolerance along the scan (signs of Im mu only).
 SCAN_TOL = 1e-4
@@ -174,7 +174,7 @@ def real_axis_column(
     return RealAxisColumn(alpha, q_max, tuple(found), samples, pencil.evaluations, tuple(notes))
 
 
-def soil_column(
+def window_column(
     bound: BoundModel, *, eta_max: float, samples: int = 48, progress: Callable[[float], None] | None = None
 ) -> RealAxisColumn:
     """:func:`real_axis_column` up to the radius the window search of the same track counts in: the
