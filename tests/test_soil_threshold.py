@@ -111,7 +111,7 @@ def test_threshold_mass_of_the_example_against_the_argument_principle():
     vehicle = load_soil_vehicle(EXAMPLES / "soil-unstable.toml")
     bound = bind(vehicle)
     eta_file = float(bound.floats.eta_M)
-    col = window_column(bound, eta_max=4 * eta_file)
+    col = window_column(bound, eta_max=4 * eta_file, eta_min=eta_file / 16)
     assert not col.notes
     threshold = col.threshold
     assert threshold is not None and threshold.change == 1 and threshold.eta_M < eta_file

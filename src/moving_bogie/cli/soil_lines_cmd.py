@@ -26,6 +26,9 @@ __all__ = ["run_soil_lines", "run_soil_map"]
 #: --range v=LO:HI: these times the file's v.
 DEFAULT_MASSES = 4.0
 DEFAULT_SPEEDS = (0.5, 1.5)
+#: instability-lines searches the crossings at masses from the top of the axis over this (the lighter the
+#: mass, the higher its frequencies and the wider the scan).
+LIGHTEST = 64
 #: A soil map of over TIMED columns is timed on one column before it starts (cli/job_size.py).
 TIMED = 4
 
@@ -104,7 +107,7 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
 
     bound = bind(data)
     with progress_bar("D-decomposition on the soil", enabled=not args.json) as bar:
-        col = window_column(bound, eta_max=top / unit, progress=bar)
+        col = window_column(bound, eta_max=top / unit, eta_min=top / unit / LIGHTEST, progress=bar)
     omega_0 = bound.track.omega_0  # type: ignore[attr-defined]
     v = float(physical.v)
     regime = soil_speed_regime(data.input, v, physical.scales().v_ref)
@@ -125,6 +128,7 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
         "Omega_max_rad_s": col.q_max * omega_0,
         "samples": col.samples,
         "M_max": top,
+        "M_min": top / LIGHTEST,
         "M": file_mass,
         "crossings": crossings,
         "threshold": None
@@ -136,8 +140,9 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def _digits(moved: float) -> int:
-    """Significant digits that a relative change ``moved`` (with a 100 times tighter receptance) leaves."""
-    return max(2, min(10, math.floor(-math.log10(2 * max(moved, 1e-11)))))
+    """Significant digits that a relative change ``moved`` (with a 100 times tighter receptance) leaves,
+    at most 8 (Brent's tolerance in Omega, 1e-11, moves M by about 1e-10)."""
+    return max(2, min(8, math.floor(-math.log10(2 * max(moved, 1e-11)))))
 
 
 def _text(out: dict[str, Any]) -> str:
@@ -146,7 +151,7 @@ def _text(out: dict[str, Any]) -> str:
     lines = [
         f"vehicle {out['vehicle']} on the {out['track']} track, v = {out['v']:.6g} m/s ({regime})",
         f"D-decomposition in M along real Omega in (0, {out['Omega_max_rad_s']:.6g}] rad/s "
-        f"({out['samples']} samples), M up to {out['M_max']:.6g} {unit}",
+        f"({out['samples']} samples), M from {out['M_min']:.6g} to {out['M_max']:.6g} {unit}",
     ]
     for c in out["crossings"]:
         n = _digits(c["moved"])

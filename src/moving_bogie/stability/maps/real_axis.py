@@ -21,9 +21,9 @@ its branch points).
 **q = 0** is a branch point of the soil's kernel (its cut when the soil's waves are faster than the load,
 docs/soil.md), and no crossing happens there at a finite mass: the wheel mass enters D as -q^2 M, so
 B(0) = 0 and mu(0) = 0 (eta_M = infinity). The samples are the midpoints of equal cells of (0, q_max];
-a crossing at a mass above ``eta_max`` is not reported, and one at q > q_max is not searched (q_max is the
-far-field radius of the window search, beyond which the rail's bending decides E_chr and no root has
-Im q < 0, :mod:`~moving_bogie.roots.quadrature_window`).
+a crossing at a mass above ``eta_max`` is not reported, and one at q > q_max is not searched
+(:func:`window_column` takes q_max beyond every real root of the masses of its axis: beyond the far-field
+radius of the window search, where the rail's bending decides E_chr, :mod:`~.quadrature_window`).
 
 **Accuracy.** The scan runs at the receptance's relative tolerance SCAN_TOL (only the signs of Im mu are
 used), the polishing at the track's own; ``moved`` of each crossing is the relative change of eta_M when
@@ -52,6 +52,9 @@ __all__ = ["ReceptancePencil", "RealAxisColumn", "real_axis_column", "window_col
 SCAN_TOL = 1e-4
 #: The relative change of eta_M with a 100 times tighter receptance called converged.
 MOVE_TOL = 1e-3
+#: The note of a branch with Re mu > 0 and Im mu > 0 at q_max: Im mu must still fall through 0 (a crossing
+#: that makes a root grow) beyond the scan, at a lighter mass than its range holds.
+_BEYOND = "Im(1 / eta_M) > 0 at the top of the scan: a crossing lies beyond it (at a lighter mass)"
 
 
 class ReceptancePencil:
@@ -159,8 +162,11 @@ def real_axis_column(
         mus[k] = match_branches(mus[k - 1], mus[k])
     if progress is not None:
         progress(0.5)
+    top = mus[-1]
+    beyond = [] if not np.any((top.real > 0) & (top.imag > 0)) else [_BEYOND]
     with pencil.tolerance(None):
         hits, notes = real_crossings(pencil, qs, mus, eta_max)
+    notes = beyond + notes
     found = [DCrossing(q, float(1 / mu.real), change, _moved(pencil, q, mu)) for q, mu, change, _, _ in hits]
     found.sort(key=lambda c: c.eta_M)
     worst = max((c.moved for c in found), default=0.0)
@@ -175,14 +181,34 @@ def real_axis_column(
 
 
 def window_column(
-    bound: BoundModel, *, eta_max: float, samples: int = 48, progress: Callable[[float], None] | None = None
+    bound: BoundModel,
+    *,
+    eta_max: float,
+    eta_min: float,
+    samples: int = 64,
+    progress: Callable[[float], None] | None = None,
 ) -> RealAxisColumn:
-    """:func:`real_axis_column` up to the radius the window search of the same track counts in: the
-    far-field radius of its Winkler equivalent, grown until the track's own E_chr is within 1/2 of E_lead
-    on the window's far edges (:mod:`~moving_bogie.roots.quadrature_window`)."""
+    """:func:`real_axis_column` up to the radius S beyond which no real root exists at any wheel mass of
+    [eta_min, eta_max]: the largest far-field radius of the Winkler equivalent at masses spaced by factors
+    of 2 over that range (it grows as the mass falls: a lighter mass vibrates faster), grown until the
+    track's own E_chr at eta_min is within 1/2 of E_lead on the window's far edges
+    (:mod:`~moving_bogie.roots.quadrature_window`). A crossing at a mass below eta_min is not searched
+    (module docstring: the count starts from none at eta_M -> 0). ``samples`` is the number of samples
+    over the radius of eta_max; the scan keeps their density up to S."""
+    from fractions import Fraction
+
     from moving_bogie.kernels.bound import BoundModel
 
-    radius, far = window_radius(BoundModel(bound.params))
-    if far.radius is not None:
-        radius = _grown_radius(QuadratureCharacteristic(bound), radius)
-    return real_axis_column(bound, q_max=radius, eta_max=eta_max, samples=samples, progress=progress)
+    name = bound.model.wheel_mass
+    steps = max(1, int(np.ceil(np.log2(eta_max / eta_min))))
+    radii = []
+    for eta in np.geomspace(eta_min, eta_max, steps + 1):
+        value = Fraction(float(eta)).limit_denominator(10**9)
+        r, far = window_radius(BoundModel(bound.params.replace(**{name: value})))
+        if far.radius is None:
+            raise ParameterError("vehicle", f"no far field of the Winkler equivalent at {name} = {eta:.6g}")
+        radii.append(r)
+    light = bound.replace(**{name: Fraction(float(eta_min)).limit_denominator(10**9)})
+    radius = _grown_radius(QuadratureCharacteristic(light), max(radii))
+    count = int(np.ceil(samples * radius / radii[-1]))  # the density of ``samples`` over eta_max's radius
+    return real_axis_column(bound, q_max=radius, eta_max=eta_max, samples=count, progress=progress)

@@ -1,9 +1,10 @@
 """The (v, M) stability map of a vehicle on a track given by its receptance (a rail on the soil), column by
 column from the D-decomposition along the real axis (:mod:`~moving_bogie.stability.maps.real_axis`).
 
-Each velocity is one column, a bound model of its own: its crossings on 0 < q <= S (S the radius the window
-search counts in, :func:`~moving_bogie.stability.maps.real_axis.window_column`) give the number of growing
-roots at every wheel mass at once, none at M -> 0 plus the signed crossings below M, as on sleepers
+Each velocity is one column, a bound model of its own: its crossings on 0 < q <= S (S beyond every real
+root of the masses of the axis, :func:`~moving_bogie.stability.maps.real_axis.window_column`) at masses
+from the axis' first give the number of growing roots at every wheel mass at once, none at M -> 0 plus the
+signed crossings below M, as on sleepers
 (:mod:`~moving_bogie.stability.maps.sleeper_map`, whose map, parts and figure it shares). No cell is
 searched. A column whose crossings carry a note is ``uncertain``. The columns are spread over ``workers``
 processes and kept, one by one, under ``checkpoint``.
@@ -32,12 +33,12 @@ REGION = "with Re Omega >= 0 and Im Omega < 0"
 METHOD = "D-decomposition in the wheel mass along real Omega at each velocity, count 0 at M -> 0"
 
 
-def _column_part(task: tuple[BoundModel, float, int]) -> Part:
-    """The column of ``task`` = (bound, eta_max, samples) as arrays (a checkpoint's part; the strip width
-    of a sleeper column holds the radius S scanned)."""
+def _column_part(task: tuple[BoundModel, float, float, int]) -> Part:
+    """The column of ``task`` = (bound, eta_max, eta_min, samples) as arrays (a checkpoint's part; the
+    strip width of a sleeper column holds the radius S scanned)."""
     keep_freed_memory()
-    bound, eta_max, samples = task
-    col = window_column(bound, eta_max=eta_max, samples=samples)
+    bound, eta_max, eta_min, samples = task
+    col = window_column(bound, eta_max=eta_max, eta_min=eta_min, samples=samples)
     return column_arrays(
         DColumn(col.alpha, col.q_max, col.crossings, 0, col.samples, col.evaluations, col.notes)
     )
@@ -52,7 +53,7 @@ def real_axis_map(
     model: str,
     track: str,
     identity: str,
-    samples: int = 48,
+    samples: int = 64,
     workers: int | None = None,
     progress: Callable[[float], None] | None = None,
     checkpoint: str | os.PathLike[str] | None = None,
@@ -75,8 +76,8 @@ def real_axis_map(
     """
     vs, ms = np.asarray(velocities, dtype=float), np.asarray(masses, dtype=float)
     v_ref, unit, t_scale = scales
-    eta_max = float(ms.max()) / unit
-    tasks = [(bound, eta_max, samples) for bound in bounds]
+    eta_max, eta_min = float(ms.max()) / unit, float(ms.min()) / unit
+    tasks = [(bound, eta_max, eta_min, samples) for bound in bounds]
     kept = None
     if checkpoint is not None:
         job = {"identity": identity, "velocities": vs.tolist(), "eta_max": eta_max, "samples": samples}
