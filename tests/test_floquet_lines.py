@@ -133,13 +133,14 @@ def test_the_short_cuts_give_the_previous_crossings(v, zone, monkeypatch):
     """On the map of examples/sleepers_zones.toml: the crossings, their changes, their move with one more
     harmonic and the notes of a column are those of the previous algorithm (Brent's method on every
     bracket, :func:`_previous_column`), so the counts of every cell are the same."""
-    from moving_bogie.model.sleeper_input import load_sleeper_file
-    from moving_bogie.stability.maps.sleeper_map import _groups, mass_unit
+    from moving_bogie import bind, load_parameters
+    from moving_bogie.stability.maps.sleeper_map import track_at
 
-    data = load_sleeper_file(EXAMPLES / "sleepers_zones.toml")
-    track = SleeperTrack(data.foundation, _groups(data, v))
-    pencil = mass_pencil(track, data.vehicle_kernels, data.vehicle_groups, 2)
-    eta_max = 3000.0 / mass_unit(data)
+    _, physical = load_parameters(EXAMPLES / "sleepers_zones.toml")
+    bound, scales = bind(physical), physical.scales()
+    track = track_at(bound, v / scales.v_ref)
+    pencil = mass_pencil(track, bound.vehicle, bound.vehicle_values(bound.floats), 2)
+    eta_max = 3000.0 / scales.mass
     fast = d_column(pencil, eta_max=eta_max)
     previous = _previous_column(pencil, monkeypatch, eta_max=eta_max)
     assert fast.notes == previous.notes == ()

@@ -246,6 +246,11 @@ def test_the_check_in_si_is_the_dimensionless_check_times_the_scales():
     si, plain = mb.validate(physical), mb.validate(params)
     assert si.model == plain.model == "eb/sleepers/mass" and si.agrees and plain.agrees
     out, bare = si.to_dict(), plain.to_dict()
+    from moving_bogie.validation.verdict import VERDICT_KEYS
+
+    assert set(VERDICT_KEYS) <= set(out)  # the continuous tracks' keys, same meaning
+    assert out["params"] == params.to_dict() and (out["beam"], out["track"]) == ("eb", "sleepers")
+    assert out["relative_diff"] == {c["quantity"]: c["relative_diff"] for c in out["comparisons"]}
     assert "floquet_si" not in bare["comparisons"][0] and "dt_s" not in bare["finite_beam"]
     assert physical.scales().load == 32000.0
     for c, d in zip(out["comparisons"], bare["comparisons"], strict=True):

@@ -60,13 +60,16 @@ def test_the_mean_contact_force_is_the_static_load(tmp_path, vehicle, extra):
 
 def _continuous_steady(bay_free_values: dict) -> float:
     """The continuous one-layer track with the smeared supports: its steady deflection under the wheel [m],
-    the steady part of the closed form (the paper's Eq. (39)) of the continuous model's public API."""
+    the steady part of the closed form (the paper's Eq. (39)) of the continuous model's public API (whose
+    JSON has the keys every track's series has)."""
     from moving_bogie.api import closed_form_response
     from moving_bogie.model.physical import PhysicalParams
+    from moving_bogie.response.closed_form import SERIES_KEYS
 
     values = bay_free_values | {"k_f": K_PER_M, "c_f": C_PER_M + RAIL["c_f"]}
     params = PhysicalParams(beam="eb", track="one-layer", vehicle="mass", **values)
     series = closed_form_response(params, [0.0], branch_cut=False, dps=15)
+    assert set(SERIES_KEYS) <= set(series.to_dict())
     return float(series.steady[series.names[0]])
 
 
@@ -98,7 +101,12 @@ def test_json_csv_and_figure_are_complete(tmp_path, capsys):
     argv = ["timeseries", "--file", str(path), "--bays", "2", "--points", "17", "--json"]
     assert main([*argv, "--csv", str(out_csv), "--plot", str(out_png)]) == 0
     data = json.loads(capsys.readouterr().out)
-    steady, free = data["steady"], data["free"]
+    steady, free = data["steady_bay"], data["free"]
+    from moving_bogie.response.closed_form import SERIES_KEYS
+
+    assert set(SERIES_KEYS) <= set(data)  # the continuous tracks' keys, same meaning
+    assert data["tau"] == steady["time_s"] and data["responses"]["w"] == steady["deflection_m"][0]
+    assert data["steady"] == {"w": steady["wheels"][0]["deflection_mean_m"]} and data["units"]["w"] == "m"
     assert data["model"] == "eb/sleepers/mass" and data["l_m"] == 0.6 and data["v_m_s"] == 40.0
     assert data["Omega0_rad_s"] == pytest.approx(2 * np.pi * 40.0 / 0.6, rel=1e-14)
     assert steady["converged"] is True and steady["change"] < steady["tol"]
@@ -174,13 +182,19 @@ def test_growth_rate_and_doubling_time_of_a_root():
     assert growing.frequency_hz == pytest.approx(100 / (2 * np.pi), rel=1e-15)
 
 
-def test_the_series_takes_dimensionless_parameters_as_the_closed_form_does(tmp_path):
-    """The series of the file's dimensionless parameters: the mean contact force is the static load 2 (in
-    units of P / 2, Eq. (16)), and the SI series is the dimensionless one times the scales (P / 2 = 32 kN
-    for the forces, t_scale for the times); no smeared track without SI values."""
+def test_the_series_takes_the_bound_model_and_its_scales(tmp_path):
+    """The library's series takes the bound model and its SI scales, as the closed form does: the same
+    series as the public entry; without scales (dimensionless parameters) it is refused by name, since its
+    outputs are in s, m and N."""
+    from moving_bogie import bind
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.response.sleeper_series import sleeper_series as run
+
     params, physical = load_parameters(_file(tmp_path))
-    plain, si = sleeper_series(params, points=33, free=False), sleeper_series(physical, points=33, free=False)
-    np.testing.assert_allclose(plain.force_mean, 2.0, rtol=1e-12)
-    np.testing.assert_allclose(si.contact_force, plain.contact_force * 32000.0, rtol=1e-12)
-    np.testing.assert_allclose(si.time, plain.time * physical.scales().t_scale, rtol=1e-12)
-    assert plain.continuous_deflection is None and si.continuous_deflection is not None
+    public = sleeper_series(physical, points=33, free=False)
+    own = run(bind(physical), physical.scales(), points=33, free=False)
+    assert np.array_equal(public.contact_force, own.contact_force) and own.continuous_deflection is None
+    np.testing.assert_allclose(own.force_mean, RAIL["P"], rtol=1e-12)  # the static load P of the file
+    with pytest.raises(ParameterError) as err:
+        sleeper_series(params, points=33, free=False)
+    assert err.value.parameter == "params"

@@ -37,7 +37,6 @@ if TYPE_CHECKING:
 
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
-    from moving_bogie.model.sleeper_input import SleeperInput
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.response.sleeper_series import SleeperSeries
     from moving_bogie.roots.frequencies import FrequencyResult
@@ -326,19 +325,15 @@ def sleeper_map(
     """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
     (S19)-(S22)): :func:`~moving_bogie.stability.maps.sleeper_map.sleeper_map` (``verify``, ``workers``,
     ``progress``)."""
+    from moving_bogie.errors import ParameterError
     from moving_bogie.stability.maps.sleeper_map import sleeper_map as run
 
-    return run(_sleeper_data(params), velocities, masses, **options)
-
-
-def _sleeper_data(params: DimensionlessParams | PhysicalParams | BoundModel) -> SleeperInput:
-    """The Floquet runtime's input of SI parameters on periodic supports (a bound model: its own)."""
-    from moving_bogie.errors import ParameterError
-    from moving_bogie.model.sleeper_input import sleeper_input_of
-
-    if isinstance(params, BoundModel) or not isinstance(params, PhysicalParams):
-        raise ParameterError("params", "the analyses on sleepers take SI parameters (PhysicalParams)")
-    return sleeper_input_of(params.to_dimensionless(), params)
+    bound, scales = bind_with_scales(params)
+    if scales is None:
+        raise ParameterError(
+            "params", "a sleeper map is in SI units (v in m/s, M in kg): give PhysicalParams"
+        )
+    return run(bound, scales, velocities, masses, **options)
 
 
 def frequency_lines(

@@ -4,9 +4,11 @@ supports the finite rail against the Floquet theory (docs/sleepers.md, "The fini
 from __future__ import annotations
 
 import argparse
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.validation.sleeper_verdict import SleeperCheck
@@ -85,6 +87,39 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """One call of :func:`moving_bogie.validate` (the finite beam against the closed form, or on periodic
+    supports the finite rail against the Floquet theory: the library dispatches on the bound model), its
+    figure, its JSON or its table."""
+    params, physical = _checked(args)  # every input checked before the heavy imports
+    periodic = params.model.periodic
+    from moving_bogie.api import validate
+
+    from .progress import progress_bar
+
+    target = physical if periodic and physical is not None else params
+    what = "Floquet theory + finite rail" if periodic else "finite beam + closed form"
+    with progress_bar(what, enabled=not args.json) as update:
+        result = validate(target, progress=update, **_options(args, periodic))
+    if args.plot:
+        from moving_bogie.response.plots import save_figure
+
+        save_figure(_figure(args, result, target), args.plot, dpi=150)
+    data = result.to_dict()
+    if args.case is not None:
+        data["case"] = args.case
+    if args.plot:
+        data["plot"] = str(args.plot)
+    if args.json:
+        print_json(data)
+    else:
+        print(format_sleeper_check(data) if periodic else format_result(cast("ValidationResult", result)))
+        if args.plot:
+            print(f"figure written to {args.plot}")
+    return 0 if result.agrees else 1
+
+
+def _checked(args: argparse.Namespace) -> tuple[DimensionlessParams, PhysicalParams | None]:
+    """The parameters, every option checked for the kind of track (one message naming the first wrong)."""
     from moving_bogie.errors import ParameterError
 
     if args.file is not None:
@@ -92,51 +127,51 @@ def run(args: argparse.Namespace) -> int:
         if params.model.periodic:
             if not (0 < args.tol < 1):
                 raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
-            return run_on_supports(args, params if physical is None else physical)
+            _refuse_on_supports(args)
+            return params, physical
     if args.modes < 4:
         raise ParameterError("modes", f"--modes must be at least 4 (got {args.modes})")
     if args.tmax is not None and not (args.tmax > 0 and args.tmax < float("inf")):
         raise ParameterError("tmax", f"--tmax must be a positive number (got {args.tmax})")
     if not (0 < args.tol < 1):
         raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
-    params, _physical = params_from_args(args)  # every input checked before the heavy imports
+    return params_from_args(args)
 
-    from moving_bogie.kernels.bound import bind
-    from moving_bogie.response.plots import save_figure
-    from moving_bogie.validation.compare import plot_validation, validate
+
+def _options(args: argparse.Namespace, periodic: bool) -> dict[str, Any]:
+    """The options of the check of this kind of track (a sleeper file takes ``--tol`` only)."""
+    if periodic:
+        return {"tol": args.tol}
+    return {
+        "n_modes": args.modes,
+        "tau_max": args.tmax,
+        "tol": args.tol,
+        "static_correction": not args.no_correction,
+        "estimate": not args.no_estimate,
+    }
+
+
+def _figure(
+    args: argparse.Namespace,
+    result: ValidationResult | SleeperCheck,
+    params: DimensionlessParams | PhysicalParams,
+) -> Figure:
+    """The paper-style figure of the continuous check, or the finite rail's on sleepers."""
+    from moving_bogie.validation.sleeper_verdict import SleeperCheck
+
+    if isinstance(result, SleeperCheck):
+        from moving_bogie.validation.sleepers_plots import plot_sleeper_check
+
+        return plot_sleeper_check(result, title=_check_title(result, params))
+    from moving_bogie.validation.compare import plot_validation
     from moving_bogie.validation.verdict import beam_title
 
-    from .progress import progress_bar
-
-    with progress_bar("finite beam + closed form", enabled=not args.json) as update:
-        result = validate(
-            bind(params),
-            n_modes=args.modes,
-            tau_max=args.tmax,
-            tol=args.tol,
-            static_correction=not args.no_correction,
-            estimate=not args.no_estimate,
-            progress=update,
-        )
-    if args.plot:
-        name = f"Case {args.case}" if args.case is not None else "moving bogie"
-        beam = f", {beam_title(params)}"
-        track = getattr(params, "track", "one-layer")
-        beam += "" if track == "one-layer" else f", {track} track"
-        title = f"{name} ({args.model}{beam}): finite beam (solid) vs closed form (dashed)"
-        save_figure(plot_validation(result, title=title), args.plot, dpi=150)
-    if args.json:
-        data = result.to_dict()
-        if args.case is not None:
-            data["case"] = args.case
-        if args.plot:
-            data["plot"] = str(args.plot)
-        print_json(data)
-    else:
-        print(format_result(result))
-        if args.plot:
-            print(f"figure written to {args.plot}")
-    return 0 if result.agrees else 1
+    name = f"Case {args.case}" if args.case is not None else "moving bogie"
+    beam = f", {beam_title(params)}"
+    track = getattr(params, "track", "one-layer")
+    beam += "" if track == "one-layer" else f", {track} track"
+    title = f"{name} ({args.model}{beam}): finite beam (solid) vs closed form (dashed)"
+    return plot_validation(result, title=title)
 
 
 def format_result(result: ValidationResult) -> str:
@@ -202,34 +237,6 @@ def _refuse_on_supports(args: argparse.Namespace) -> None:
         )
 
 
-def run_on_supports(args: argparse.Namespace, params: DimensionlessParams | PhysicalParams) -> int:
-    """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers` on the
-    parameters of a model on periodic supports (the file's, ``--set`` applied), printed."""
-    from moving_bogie.api import validate_on_supports
-
-    _refuse_on_supports(args)
-    from .progress import progress_bar
-
-    with progress_bar("Floquet theory + finite rail", enabled=not args.json) as update:
-        result = validate_on_supports(params, tol=args.tol, progress=update)
-    if args.plot:
-        from moving_bogie.response.plots import save_figure
-        from moving_bogie.validation.sleepers_plots import plot_sleeper_check
-
-        figure = plot_sleeper_check(result, title=_check_title(result, params))
-        save_figure(figure, args.plot, dpi=150)
-    out = result.to_dict()
-    if args.plot:
-        out["plot"] = str(args.plot)
-    if args.json:
-        print_json(out)
-    else:
-        print(format_sleeper_check(out))
-        if args.plot:
-            print(f"figure written to {args.plot}")
-    return 0 if result.agrees else 1
-
-
 def _check_title(result: SleeperCheck, params: DimensionlessParams | PhysicalParams) -> str:
     """The figure's title: the model and its speed (in m/s for SI parameters)."""
     speed = (
@@ -253,6 +260,8 @@ def _in_si(comparison: dict[str, Any]) -> dict[str, Any]:
 
 def format_sleeper_check(out: dict[str, Any]) -> str:
     """The table: quantity, Floquet, finite beam (SI), relative difference, and the verdict line."""
+    from moving_bogie.validation.sleeper_verdict import TOLERANCE_RULE
+
     fb = out["finite_beam"]
     lines = [
         f"model {out['model']}: finite rail of {fb['bays']} bays "
@@ -267,10 +276,7 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
             f"  {c['quantity']:<26}{c['floquet_si']:>14.6g}{c['finite_beam_si']:>14.6g}  {c['unit_si']:<6}"
             f"{c['relative_diff']:>10.3%}  {'yes' if c['within'] else 'NO'}"
         )
-    lines.append(
-        "rule: |finite - Floquet| <= tol |Floquet| for the rate and the frequency; for the steady force "
-        "max |difference| over the last bay <= tol x the Floquet force's peak-to-peak"
-    )
+    lines.append(f"rule: {TOLERANCE_RULE}")
     t = out["timings"]
     lines.append(f"time: Floquet {t['floquet_s']:.2f} s, finite beam {t['finite_beam_s']:.2f} s")
     lines += [f"NOTE: {note}" for note in out["notes"]]

@@ -112,6 +112,12 @@ class Scales:
         """Bogie-bar rotation ``theta = theta~ w_st chi`` [rad], Eq. (16)."""
         return theta * self.w_st * self.chi
 
+    @property
+    def mass(self) -> float:
+        """``m / chi = (P / 2) t_scale^2 / w_st`` [kg], the unit of the vehicle's masses (Eq. (17):
+        eta_M = M chi / m)."""
+        return self.load * self.t_scale**2 / self.w_st
+
     def force(self, f: Any) -> Any:
         """Force ``F = f P / 2`` [N] (a contact force; a wheel's static load is f = 2)."""
         return f * self.load

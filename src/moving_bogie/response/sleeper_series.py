@@ -1,7 +1,7 @@
 """The time series of a vehicle on a sleeper track: the steady response and the free vibrations.
 
 :func:`sleeper_series` takes what the continuous tracks' closed form takes, the bound model (on its
-:class:`~moving_bogie.kernels.periodic_track.PeriodicTrack`) and, for SI parameters, their scales.
+:class:`~moving_bogie.kernels.periodic_track.PeriodicTrack`) and the SI scales of its parameters.
 
 The steady response under the constant loads (docs/sleepers.md, Eqs. (S16)-(S18),
 :func:`moving_bogie.response.steady_bay.steady_response`) gives, per wheel, the contact force and the rail
@@ -35,7 +35,10 @@ from moving_bogie.response.steady_bay import static_loads, steady_response
 if TYPE_CHECKING:
     from moving_bogie.model.scales import Scales
 
-__all__ = ["FreeVibration", "SleeperSeries", "sleeper_series"]
+__all__ = ["SLEEPER_UNITS", "FreeVibration", "SleeperSeries", "sleeper_series"]
+
+#: The units of the series by kind (the continuous tracks' ``units`` in SI, with the contact force's).
+SLEEPER_UNITS = {"tau": "s", "w": "m", "xi": "m", "force": "N"}
 
 #: points over one bay on which the peak-to-peak values are taken (independent of the output's points)
 PEAK_POINTS = 1025
@@ -129,6 +132,7 @@ class SleeperSeries:
     free_strip: tuple[float, float]
     free_window: tuple[float, float]
     free_notes: tuple[str, ...]
+    names: tuple[str, ...] = ()
 
     @property
     def wheels(self) -> int:
@@ -164,8 +168,29 @@ class SleeperSeries:
         """The bay-passing period l / v [s]."""
         return self.bay / self.v
 
+    @property
+    def wheel_names(self) -> tuple[str, ...]:
+        """The rail's deflection under each wheel by its DOF name (the vehicle's ``DOFS``, wheels first)."""
+        return self.names[: self.wheels] or tuple(f"w_{j}" for j in range(self.wheels))
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the summary per wheel, the series, the free vibrations (units in the key names)."""
+        """JSON-ready: the keys of the continuous tracks' series with the same meaning
+        (:data:`~moving_bogie.response.closed_form.SERIES_KEYS`: the times, the units, the rail's deflection
+        under each wheel by its DOF name, its steady part (here the mean over a bay, the harmonic n = 0),
+        the notes), then the bay, Omega_0, the steady response over the bay per wheel (``steady_bay``) and
+        the free vibrations (units in the key names)."""
+        names = self.wheel_names
+        return {
+            "tau": self.time.tolist(),
+            "units": dict(SLEEPER_UNITS),
+            "responses": {name: self.deflection[j].tolist() for j, name in enumerate(names)},
+            "steady": {name: float(self.deflection_mean[j]) for j, name in enumerate(names)},
+            "response_units": {name: "m" for name in names},
+            "notes": list(self.free_notes),
+            **self._own(),
+        }
+
+    def _own(self) -> dict[str, Any]:
         cont = self.continuous_deflection
         wheels = [
             {
@@ -186,7 +211,7 @@ class SleeperSeries:
             "Omega0_rad_s": self.Omega0,
             "Omega0_Hz": self.Omega0 / (2 * math.pi),
             "period_s": self.period,
-            "steady": {
+            "steady_bay": {
                 "harmonics": [-self.harmonics, self.harmonics],
                 "change": self.change,
                 "tol": self.tol,
@@ -230,9 +255,8 @@ def sleeper_series(
     ----------
     bound : BoundModel
         Parameters on periodic supports bound to their track (``moving_bogie.bind``), ``alpha > 0``.
-    scales : Scales, optional
-        Their SI scales (``PhysicalParams.scales()``): the series in s, m and N; else dimensionless (times in
-        tau, forces in P / 2, deflections in w_st, lengths in 1 / chi).
+    scales : Scales
+        Their SI scales (``PhysicalParams.scales()``): the series in s, m and N (required: None is refused).
     smeared : (BoundModel, Scales), optional
         The continuous track with the same smeared supports and its scales
         (:func:`~moving_bogie.model.smeared.smeared_physical`), whose steady deflection is given beside.
@@ -247,7 +271,8 @@ def sleeper_series(
     Raises
     ------
     ParameterError
-        Naming ``track`` for a track without periodic supports, ``v`` for a vehicle that does not move.
+        Naming ``params`` without SI scales, ``track`` for a track without periodic supports, ``v`` for a
+        vehicle that does not move.
     """
     track = bound.track
     if not isinstance(track, PeriodicTrack):
@@ -255,7 +280,10 @@ def sleeper_series(
     sleepers = track.sleepers
     if sleepers.alpha <= 0:
         raise ParameterError("v", "v must be positive: the steady response over a bay needs a moving vehicle")
-    units = _Units.of(scales)
+    if scales is None:
+        why = "the series on sleepers is in SI units (s, m, N): give SI parameters (PhysicalParams)"
+        raise ParameterError("params", why)
+    length = 1 / scales.chi
     vehicle = VehicleMatrices.of(bound)
     loads = static_loads(bound.vehicle, bound.vehicle_values(bound.floats))
     steady = steady_response(sleepers, vehicle, loads, tol=tol, points=129)
@@ -266,46 +294,30 @@ def sleeper_series(
     force, deflection = (_series(a, h, Omega0, tau) for a in (F, U))
     peak_f, peak_u = (_series(a, h, Omega0, one_bay) for a in (F, U))
     i0 = int(np.flatnonzero(h == 0)[0])
-    free_part = _free_vibrations(sleepers, vehicle, units.time) if free else None
+    free_part = _free_vibrations(sleepers, vehicle, scales.t_scale) if free else None
     return SleeperSeries(
         model=bound.name,
-        v=sleepers.alpha * units.speed,
-        bay=sleepers.lam * units.length,
-        Omega0=Omega0 / units.time,
-        time=tau * units.time,
-        position=sleepers.alpha * tau * units.length,
-        wheel_positions=vehicle.positions * units.length,
-        contact_force=force * units.force,
-        deflection=deflection * units.deflection,
-        force_mean=F[i0].real * units.force,
-        force_peak_to_peak=np.ptp(peak_f, axis=1) * units.force,
-        deflection_mean=U[i0].real * units.deflection,
-        deflection_peak_to_peak=np.ptp(peak_u, axis=1) * units.deflection,
-        static_force=loads * units.force,
+        v=sleepers.alpha * scales.v_ref,
+        bay=sleepers.lam * length,
+        Omega0=Omega0 / scales.t_scale,
+        time=tau * scales.t_scale,
+        position=sleepers.alpha * tau * length,
+        wheel_positions=vehicle.positions * length,
+        contact_force=force * scales.load,
+        deflection=deflection * scales.w_st,
+        force_mean=F[i0].real * scales.load,
+        force_peak_to_peak=np.ptp(peak_f, axis=1) * scales.load,
+        deflection_mean=U[i0].real * scales.w_st,
+        deflection_peak_to_peak=np.ptp(peak_u, axis=1) * scales.w_st,
+        static_force=loads * scales.load,
         **_smeared_part(smeared),
         harmonics=int(h[-1]),
         change=steady.change,
         tol=tol,
         converged=steady.converged,
         **(free_part or _NOT_SEARCHED),
+        names=bound.names,
     )
-
-
-@dataclass(frozen=True)
-class _Units:
-    """The SI value of each dimensionless unit of the series (all 1 without scales)."""
-
-    time: float = 1.0
-    length: float = 1.0
-    speed: float = 1.0
-    force: float = 1.0
-    deflection: float = 1.0
-
-    @classmethod
-    def of(cls, scales: Scales | None) -> _Units:
-        if scales is None:
-            return cls()
-        return cls(scales.t_scale, 1 / scales.chi, scales.v_ref, scales.load, scales.w_st)
 
 
 def _smeared_part(smeared: tuple[BoundModel, Scales | None] | None) -> dict[str, Any]:

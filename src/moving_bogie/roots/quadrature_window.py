@@ -56,10 +56,10 @@ __all__ = ["QuadratureCharacteristic", "window_frequencies", "window_radius"]
 #: Initial boundary samples per side of a region; Delves-Lyness up to this many roots, else bisection.
 SAMPLES, MOMENTS = 8, 3
 #: The receptance's relative tolerance while counting and starting the roots (a track with a ``tol``): the
-#: winding number needs the phase of E_chr only, which an error of 1e-4 moves by 1e-4 rad where |E_chr| is
-#: not within 1e-4 of zero (the sampling refines where arg E_chr turns fast); the roots are polished at the
+#: winding number needs the phase of E_chr only, which an error of 1e-3 moves by 1e-3 rad where |E_chr| is
+#: not within 1e-3 of zero (the sampling refines where arg E_chr turns fast); the roots are polished at the
 #: track's own tolerance.
-COUNT_TOL = 1e-4
+COUNT_TOL = 1e-3
 #: The first far-field radius tried (doubled until the far field holds), and the smallest window.
 FIRST_RADIUS = 0.25
 #: Secant iterations, and bisection levels of a region, at most.

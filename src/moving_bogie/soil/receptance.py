@@ -57,7 +57,7 @@ LOCAL_KB = 4.0
 #: Initial panels on each side of k = 0 (one from k_lo to K_NEAR / b, then geometric), most bisection rounds.
 PANELS, ROUNDS, K_NEAR = 8, 10, 1e-3
 #: The strip quadrature's relative tolerance is kept within these (module docstring).
-CHI_RTOL = (1e-10, 1e-3)
+CHI_RTOL = (1e-10, 1e-2)
 
 
 @dataclass(frozen=True)

@@ -167,6 +167,11 @@ class SleeperSweepSpec:
     def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
         write_sleeper_block(path, slices, arrays)
 
+    def summary(self, path: Path) -> dict[str, Any]:
+        from moving_bogie.sweep.store import open_sweep
+
+        return sleeper_summary(self, open_sweep(path, dask=False))
+
 
 @dataclass(frozen=True)
 class SleeperTask:
@@ -254,7 +259,8 @@ def make_sleeper_spec(
 
 
 def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any]:
-    """The verdicts of a sleeper sweep for the summary: the counts of points and the fastest growth."""
+    """The verdicts of a sleeper sweep for the summary (:data:`~moving_bogie.sweep.plan.SWEEP_KEYS`): the
+    counts of points and the fastest growth."""
     ds = ds.compute()
     growth = np.where(ds.unstable.values, -ds.Omega_im.values, np.nan)
     fastest = None
@@ -266,6 +272,7 @@ def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any
         }
     return {
         "model": spec.model,
+        "unstable_fraction": float(ds.unstable.values.mean()),
         "stable_points": int(ds.stable.sum()),
         "unstable_points": int(ds.unstable.sum()),
         "undetermined_points": int((~ds.stable & ~ds.unstable).sum()),

@@ -70,4 +70,4 @@ def check_on_supports(
     loads = static_loads(bound.vehicle, bound.vehicle_values(bound.floats))
     time_scale = None if scales is None else scales.t_scale
     result = check_sleepers(sleepers, vehicle, loads, tol=tol, time_scale=time_scale, progress=progress)
-    return replace(result, model=bound.name, scales=scales)
+    return replace(result, model=bound.name, scales=scales, params=bound.params)

@@ -16,9 +16,16 @@ from moving_bogie.validation.sleepers_fit import FloquetFit, extrapolated
 from moving_bogie.validation.sleepers_rail import SleeperRail
 
 if TYPE_CHECKING:
+    from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.scales import Scales
 
-__all__ = ["Comparison", "SleeperCheck"]
+__all__ = ["TOLERANCE_RULE", "Comparison", "SleeperCheck"]
+
+#: What the check judges (the continuous tracks' ``tolerance_rule`` of the same JSON key).
+TOLERANCE_RULE = (
+    "|finite - Floquet| <= tol |Floquet| for the rate and the frequency; for the steady force "
+    "max |difference| over the last bay <= tol x the Floquet force's peak-to-peak"
+)
 
 
 @dataclass(frozen=True)
@@ -75,6 +82,7 @@ class SleeperCheck:
     limit_force: np.ndarray | None = None
     model: str | None = None
     scales: Scales | None = None
+    params: DimensionlessParams | None = None
 
     @property
     def rate(self) -> float:
@@ -125,12 +133,31 @@ class SleeperCheck:
             items=(header, items),
         )
 
+    @property
+    def tolerance(self) -> float | None:
+        """The relative tolerance of the comparisons (None when nothing was compared)."""
+        return self.comparisons[0].tolerance if self.comparisons else None
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the model, the verdict, every comparison (in SI too when ``scales`` are known), the
-        finite rail's run and fit, the wall times and the notes."""
-        out = {"model": self.model, **self._summary()}
+        """JSON-ready: the keys of the continuous tracks' check
+        (:data:`~moving_bogie.validation.verdict.VERDICT_KEYS`: the model and its parameters, the verdict,
+        the tolerance and its rule, each quantity's relative difference and comparison, the wall times, the
+        notes), then the Floquet verdict, every comparison in order (in SI too when ``scales`` are known)
+        and the finite rail's run and fit."""
+        params = self.params
+        out: dict[str, Any] = {
+            "model": self.model,
+            "beam": None if params is None else params.beam,
+            "track": None if params is None else params.track,
+            "params": None if params is None else params.to_dict(),
+            "tolerance": self.tolerance,
+            "tolerance_rule": TOLERANCE_RULE,
+            "relative_diff": {c.quantity: c.relative for c in self.comparisons},
+            **self._summary(),
+        }
         if self.scales is not None:
             _add_si(out, self.scales)
+        out["quantities"] = {c["quantity"]: c for c in out["comparisons"]}
         return out
 
     def _summary(self) -> dict[str, Any]:

@@ -91,5 +91,6 @@ def real_axis_map(
         kept.remove()
     notes = [f"v = {col.alpha * v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
     return SleeperMap(
-        model, vs, ms, v_ref, unit, t_scale, tuple(columns), count, (), tuple(notes), track, REGION, METHOD
-    )
+        model, vs, ms, v_ref, unit, t_scale, tuple(columns), count, (), tuple(notes),
+        track=track, region=REGION, method=METHOD,
+    )  # fmt: skip
