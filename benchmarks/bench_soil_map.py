@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from moving_bogie.api import bind, induced_frequencies, load_soil_vehicle, soil_vehicle
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.stability.maps.real_axis import window_column
 from moving_bogie.stability.maps.real_axis_map import real_axis_map
 
@@ -56,7 +57,10 @@ def main() -> int:
     bound = bind(vehicle)
     eta = float(bound.floats.eta_M)
     unit = vehicle.physical.si_factor("eta_M") / vehicle.input.rail_factor
-    t_col, col = _timed(lambda: window_column(bound, eta_max=4 * eta, eta_min=eta / 16))
+    equivalent = BoundModel(bound.params)
+    t_col, col = _timed(
+        lambda: window_column(bound, equivalent=equivalent, eta_max=4 * eta, eta_min=eta / 16)
+    )
     t_win, res = _timed(lambda: induced_frequencies(vehicle))
     threshold = col.threshold
     text = "none" if threshold is None else f"M* = {threshold.eta_M * unit:.6g} kg"
@@ -71,10 +75,11 @@ def main() -> int:
     v, n = float(vehicle.physical.v), args.n
     vs, ms = np.linspace(v / 2, 1.5 * v, n), np.linspace(4 * eta * unit / n, 4 * eta * unit, n)
     bounds = [bind(_at_speed(vehicle, float(x))) for x in vs]
+    columns = [(b, BoundModel(b.params)) for b in bounds]
     scales = (vehicle.physical.scales().v_ref, unit, 1.0)
     t_map, smap = _timed(
         lambda: real_axis_map(
-            bounds, vs, ms, scales=scales, model="soil/mass", track="soil", identity="", workers=args.workers
+            columns, vs, ms, scales=scales, name="soil/mass", track="soil", identity="", workers=args.workers
         )
     )
     per_column = t_map * min(args.workers, n) / n

@@ -18,6 +18,7 @@ import pytest
 
 from moving_bogie.api import bind, induced_frequencies, load_soil_vehicle, soil_vehicle
 from moving_bogie.cli import main
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.model.cases import table1_case
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.roots.count.contour import Rectangle, winding_number
@@ -112,7 +113,9 @@ def test_threshold_mass_of_the_example_against_the_argument_principle():
     vehicle = load_soil_vehicle(EXAMPLES / "soil-unstable.toml")
     bound = bind(vehicle)
     eta_file = float(bound.floats.eta_M)
-    col = window_column(bound, eta_max=4 * eta_file, eta_min=eta_file / 16)
+    col = window_column(
+        bound, equivalent=BoundModel(bound.params), eta_max=4 * eta_file, eta_min=eta_file / 16
+    )
     assert not col.notes
     threshold = col.threshold
     assert threshold is not None and threshold.change == 1 and threshold.eta_M < eta_file

@@ -100,6 +100,7 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
     unit = physical.si_factor(name) / per  # the file's kg per eta_M
     file_mass = float(getattr(params, name)) * unit
     top = _axes(args, float(physical.v), file_mass, speeds=False)["M"][1]
+    from moving_bogie.kernels.bound import BoundModel
     from moving_bogie.stability.maps.real_axis import window_column
 
     from .progress import progress_bar
@@ -107,7 +108,10 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
 
     bound = bind(data)
     with progress_bar("D-decomposition on the soil", enabled=not args.json) as bar:
-        col = window_column(bound, eta_max=top / unit, eta_min=top / unit / LIGHTEST, progress=bar)
+        col = window_column(
+            bound, equivalent=BoundModel(bound.params), eta_max=top / unit, eta_min=top / unit / LIGHTEST,
+            progress=bar,
+        )  # fmt: skip
     omega_0 = bound.track.omega_0  # type: ignore[attr-defined]
     v = float(physical.v)
     regime = soil_speed_regime(data.input, v, physical.scales().v_ref)
@@ -219,20 +223,23 @@ def run_soil_map(args: argparse.Namespace) -> int:
     n = args.n
     (v0, v1), top = axes["v"], axes["M"][1]
     vs, ms = np.linspace(v0, v1, n), np.linspace(top / n, top, n)
+    from moving_bogie.kernels.bound import BoundModel
+
     bounds = [bind(_vehicle_at(data, float(v))) for v in vs]
     omega_0 = bounds[0].track.omega_0  # type: ignore[attr-defined]
+    columns = [(bound, BoundModel(bound.params)) for bound in bounds]
     layers = len(data.input.soil.layers)
     track = f"{data.input.track.kind} track on {layers} soil layer(s), per {data.input.per}"
     options: dict[str, Any] = dict(
-        scales=(physical.scales().v_ref, unit, 1 / omega_0), model=f"soil/{physical.vehicle}", track=track
+        scales=(physical.scales().v_ref, unit, 1 / omega_0), name=f"soil/{physical.vehicle}", track=track
     )
     options["identity"] = repr((data.input, sorted(axes.items())))
     if n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
         middle = slice(n // 2, n // 2 + 1)
-        column = partial(real_axis_map, bounds[middle], vs[middle], ms, workers=1, **options)
+        column = partial(real_axis_map, columns[middle], vs[middle], ms, workers=1, **options)
         estimate_grid("soil map", (n, n), args.workers, column, yes=args.yes, shorter="a smaller --n")
     with progress_bar("soil map", enabled=not args.json) as bar:
         smap = real_axis_map(
-            bounds, vs, ms, workers=args.workers, progress=bar, **options, **checkpoint_options(args)
+            columns, vs, ms, workers=args.workers, progress=bar, **options, **checkpoint_options(args)
         )
     return report(args, smap, (file_v, file_mass), crossings=False, continuous=None)

@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.roots.quadrature_window import QuadratureCharacteristic, _grown_radius, window_radius
+from moving_bogie.roots.quadrature_window import QuadratureCharacteristic, grown_radius, window_radius
 from moving_bogie.stability.maps.d_lines import DCrossing, match_branches, real_crossings, signed_counts
 
 if TYPE_CHECKING:
@@ -183,32 +183,31 @@ def real_axis_column(
 def window_column(
     bound: BoundModel,
     *,
+    equivalent: BoundModel,
     eta_max: float,
     eta_min: float,
     samples: int = 64,
     progress: Callable[[float], None] | None = None,
 ) -> RealAxisColumn:
     """:func:`real_axis_column` up to the radius S beyond which no real root exists at any wheel mass of
-    [eta_min, eta_max]: the largest far-field radius of the Winkler equivalent at masses spaced by factors
-    of 2 over that range (it grows as the mass falls: a lighter mass vibrates faster), grown until the
-    track's own E_chr at eta_min is within 1/2 of E_lead on the window's far edges
-    (:mod:`~moving_bogie.roots.quadrature_window`). A crossing at a mass below eta_min is not searched
-    (module docstring: the count starts from none at eta_M -> 0). ``samples`` is the number of samples
-    over the radius of eta_max; the scan keeps their density up to S."""
+    [eta_min, eta_max]: the largest far-field radius of ``equivalent`` (the same parameters on the
+    continuous track of their k_f) at masses spaced by factors of 2 over that range (it grows as the mass
+    falls: a lighter mass vibrates faster), grown until the track's own E_chr at eta_min is within 1/2 of
+    E_lead on the window's far edges (:mod:`~moving_bogie.roots.quadrature_window`). A crossing at a mass
+    below eta_min is not searched (module docstring: the count starts from none at eta_M -> 0).
+    ``samples`` is the number of samples over the radius of eta_max; the scan keeps their density up to S."""
     from fractions import Fraction
-
-    from moving_bogie.kernels.bound import BoundModel
 
     name = bound.model.wheel_mass
     steps = max(1, int(np.ceil(np.log2(eta_max / eta_min))))
     radii = []
     for eta in np.geomspace(eta_min, eta_max, steps + 1):
         value = Fraction(float(eta)).limit_denominator(10**9)
-        r, far = window_radius(BoundModel(bound.params.replace(**{name: value})))
+        r, far = window_radius(equivalent.replace(**{name: value}))
         if far.radius is None:
             raise ParameterError("vehicle", f"no far field of the Winkler equivalent at {name} = {eta:.6g}")
         radii.append(r)
     light = bound.replace(**{name: Fraction(float(eta_min)).limit_denominator(10**9)})
-    radius = _grown_radius(QuadratureCharacteristic(light), max(radii))
+    radius = grown_radius(QuadratureCharacteristic(light), max(radii))
     count = int(np.ceil(samples * radius / radii[-1]))  # the density of ``samples`` over eta_max's radius
     return real_axis_column(bound, q_max=radius, eta_max=eta_max, samples=count, progress=progress)

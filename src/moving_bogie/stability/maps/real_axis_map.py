@@ -33,24 +33,24 @@ REGION = "with Re Omega >= 0 and Im Omega < 0"
 METHOD = "D-decomposition in the wheel mass along real Omega at each velocity, count 0 at M -> 0"
 
 
-def _column_part(task: tuple[BoundModel, float, float, int]) -> Part:
-    """The column of ``task`` = (bound, eta_max, eta_min, samples) as arrays (a checkpoint's part; the
-    strip width of a sleeper column holds the radius S scanned)."""
+def _column_part(task: tuple[BoundModel, BoundModel, float, float, int]) -> Part:
+    """The column of ``task`` = (bound, equivalent, eta_max, eta_min, samples) as arrays (a checkpoint's
+    part; the strip width of a sleeper column holds the radius S scanned)."""
     keep_freed_memory()
-    bound, eta_max, eta_min, samples = task
-    col = window_column(bound, eta_max=eta_max, eta_min=eta_min, samples=samples)
+    bound, equivalent, eta_max, eta_min, samples = task
+    col = window_column(bound, equivalent=equivalent, eta_max=eta_max, eta_min=eta_min, samples=samples)
     return column_arrays(
         DColumn(col.alpha, col.q_max, col.crossings, 0, col.samples, col.evaluations, col.notes)
     )
 
 
 def real_axis_map(
-    bounds: Sequence[BoundModel],
+    bounds: Sequence[tuple[BoundModel, BoundModel]],
     velocities: Sequence[float] | np.ndarray,
     masses: Sequence[float] | np.ndarray,
     *,
     scales: tuple[float, float, float],
-    model: str,
+    name: str,
     track: str,
     identity: str,
     samples: int = 64,
@@ -63,12 +63,13 @@ def real_axis_map(
 
     Parameters
     ----------
-    bounds : sequence of BoundModel
-        The vehicle on its track at each velocity (the columns).
+    bounds : sequence of (BoundModel, BoundModel)
+        The vehicle on its track at each velocity (the columns), and on the continuous track of the same
+        parameters (its far field, :func:`~moving_bogie.stability.maps.real_axis.window_column`).
     scales : (float, float, float)
         (v_ref, mass_unit, t_scale): m/s per alpha, kg per eta_M, and Omega = q / t_scale (rad/s).
-    model, track, identity : str
-        The model's name, the track in words, and what identifies the job of a kept checkpoint.
+    name, track, identity : str
+        The map's model in words, the track in words, and what identifies the job of a kept checkpoint.
     samples : int
         Samples of the real axis of each column.
     workers, progress, checkpoint, resume
@@ -77,7 +78,7 @@ def real_axis_map(
     vs, ms = np.asarray(velocities, dtype=float), np.asarray(masses, dtype=float)
     v_ref, unit, t_scale = scales
     eta_max, eta_min = float(ms.max()) / unit, float(ms.min()) / unit
-    tasks = [(bound, eta_max, eta_min, samples) for bound in bounds]
+    tasks = [(bound, equivalent, eta_max, eta_min, samples) for bound, equivalent in bounds]
     kept = None
     if checkpoint is not None:
         job = {"identity": identity, "velocities": vs.tolist(), "eta_max": eta_max, "samples": samples}
@@ -91,6 +92,6 @@ def real_axis_map(
         kept.remove()
     notes = [f"v = {col.alpha * v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
     return SleeperMap(
-        model, vs, ms, v_ref, unit, t_scale, tuple(columns), count, (), tuple(notes),
+        name, vs, ms, v_ref, unit, t_scale, tuple(columns), count, (), tuple(notes),
         track=track, region=REGION, method=METHOD,
     )  # fmt: skip
