@@ -15,7 +15,7 @@ from typing import Any
 __all__ = ["SoilRun", "run_soil_frequencies", "soil_frequencies"]
 
 #: Options of ``frequencies`` that a soil-track file does not take (its values are in the file).
-REFUSED = ("window", "certify", "set")
+REFUSED = ("window", "certify")
 
 
 def _refuse_options(args: argparse.Namespace) -> None:
@@ -74,9 +74,10 @@ def soil_frequencies(args: argparse.Namespace) -> SoilRun:
     _refuse_options(args)
     from moving_bogie.api import induced_frequencies, load_soil_vehicle
 
+    from .common import soil_settings
     from .progress import progress_bar
 
-    data = load_soil_vehicle(args.file)
+    data = load_soil_vehicle(args.file, soil_settings(args))
     physical = data.physical
     with progress_bar("induced frequencies on the soil", enabled=not args.json) as update:
         result = induced_frequencies(data, progress=update)
