@@ -20,10 +20,12 @@ from moving_bogie.errors import ParameterError, did_you_mean
 from .profile import LAYER_KEYS
 from .track import TRACK_KINDS
 
-__all__ = ["settable_keys", "with_settings"]
+__all__ = ["key_unit", "settable_keys", "with_settings"]
 
 #: The ways a layer gives its stiffness (soil.profile): two keys each.
 STIFFNESS_FORMS = (("E", "nu"), ("c_s", "nu"), ("c_s", "c_p"))
+#: The SI unit of each layer key (soil.profile).
+LAYER_UNITS = {"h": "m", "rho": "kg/m^3", "E": "Pa", "nu": "1", "c_s": "m/s", "c_p": "m/s", "eta": "s"}
 _LAYER_KEY = re.compile(rf"^({'|'.join(LAYER_KEYS)})([1-9][0-9]*)$")
 
 
@@ -41,6 +43,14 @@ def settable_keys(data: Mapping[str, Any]) -> tuple[str, ...]:
     for i in range(1, n + 1):
         keys += [f"{key}{i}" for key in LAYER_KEYS if not (key == "h" and i == n)]
     return tuple(dict.fromkeys(keys))
+
+
+def key_unit(key: str) -> str:
+    """The SI unit of a settable key (a ``[physical]`` key of the track or a numbered layer key)."""
+    from .file import UNITS
+
+    match = _LAYER_KEY.match(key)
+    return LAYER_UNITS[match.group(1)] if match else UNITS.get(key, "1")
 
 
 def _stiffness(layer: dict[str, Any], key: str, index: int) -> None:
