@@ -102,3 +102,35 @@ def test_set_critical_velocity_equals_the_edited_file(tmp_path, capsys):
     argv = ["critical-velocity", "--file", str(EXAMPLES / "soil-ballasted.toml"), "--json"]
     assert main([*argv, "--set", "h1=3", "--set", "k_pad=3e8"]) == 0
     assert json.loads(capsys.readouterr().out) == expected
+
+
+def test_json_params_state_the_track_they_stand_for():
+    """``params`` of a vehicle on the soil keeps every key of every track's and says what it is."""
+    from types import SimpleNamespace
+
+    from moving_bogie.cli.soil_frequencies_cmd import equivalent_params
+    from moving_bogie.model.cases import table1_case
+
+    params = table1_case(1)
+    soil = {"track": "ballasted-soil", "per": "track", "k_ref": 3.5e7, "layers": [{}, {}]}
+    run = SimpleNamespace(result=SimpleNamespace(params=params), soil=soil)
+    out = equivalent_params(run)  # type: ignore[arg-type]
+    assert {k: v for k, v in out.items() if k != "equivalent_of"} == params.to_dict()
+    assert (
+        "ballasted-soil track on 2-layer soil" in out["equivalent_of"] and "3.5e+07" in out["equivalent_of"]
+    )
+
+
+@pytest.mark.slow
+def test_frequencies_set_on_the_soil_json(tmp_path, capsys):
+    """``frequencies --file soil-mass.toml --set M=2500 --json``: ``params`` are the groups of the vehicle
+    read with the setting (its SI values scaled with k_ref, api.soil_vehicle), the equivalent track named."""
+    argv = ["frequencies", "--file", str(EXAMPLES / "soil-mass.toml"), "--set", "M=2500", "--json"]
+    main(argv)
+    out = json.loads(capsys.readouterr().out)
+    assert out["params"]["track"] == "one-layer" and "ballasted-soil" in out["params"]["equivalent_of"]
+    vehicle = load_soil_vehicle(EXAMPLES / "soil-mass.toml", {"M": 2500.0})
+    assert out["params"] == vehicle.physical.to_dimensionless().to_dict() | {
+        "equivalent_of": out["params"]["equivalent_of"]
+    }
+    assert out["soil"]["k_ref"] == vehicle.rail.k_ref
