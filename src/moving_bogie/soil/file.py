@@ -26,27 +26,12 @@ from typing import Any
 from moving_bogie.errors import ParameterError, suggestion
 
 from .profile import SoilProfile, soil_profile
-from .track import TRACK_KINDS, SoilTrack
+from .track import LOAD_KEYS, TRACK_KINDS, UNITS, SoilTrack
 
 __all__ = ["SoilInput", "is_soil_file", "load_soil_file", "soil_input"]
 
 #: Values given per rail that the whole track has twice of (b is the whole track's half-width).
 PER_RAIL = ("EI", "m", "k_pad", "c_pad", "m_s", "A_b", "P")
-#: [physical] keys besides the track's: the moving load.
-LOAD_KEYS = ("P",)
-UNITS = {
-    "EI": "N m^2",
-    "m": "kg/m",
-    "b": "m",
-    "k_pad": "N/m^2",
-    "c_pad": "N s/m^2",
-    "m_s": "kg/m",
-    "E_b": "Pa",
-    "rho_b": "kg/m^3",
-    "h_b": "m",
-    "A_b": "m^2/m",
-    "P": "N",
-}
 #: The keys of [model]: the track, per track or per rail, and a vehicle (``frequencies --file``).
 MODEL_KEYS = ("track", "per", "vehicle")
 #: Keys that may be zero.

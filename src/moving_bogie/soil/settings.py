@@ -18,7 +18,7 @@ from typing import Any
 from moving_bogie.errors import ParameterError, did_you_mean
 
 from .profile import LAYER_KEYS
-from .track import TRACK_KINDS
+from .track import LOAD_KEYS, TRACK_KINDS, UNITS
 
 __all__ = ["key_unit", "settable_keys", "with_settings"]
 
@@ -32,8 +32,6 @@ _LAYER_KEY = re.compile(rf"^({'|'.join(LAYER_KEYS)})([1-9][0-9]*)$")
 def settable_keys(data: Mapping[str, Any]) -> tuple[str, ...]:
     """The keys ``--set`` takes on the parsed file ``data``: its ``[physical]`` keys, the track's keys and
     P, and every layer key with the layer's number (the half-space without ``h``)."""
-    from .file import LOAD_KEYS
-
     physical = data.get("physical", {})
     kind = data.get("model", {}).get("track")
     track = TRACK_KINDS.get(kind, ())
@@ -47,8 +45,6 @@ def settable_keys(data: Mapping[str, Any]) -> tuple[str, ...]:
 
 def key_unit(key: str) -> str:
     """The SI unit of a settable key (a ``[physical]`` key of the track or a numbered layer key)."""
-    from .file import UNITS
-
     match = _LAYER_KEY.match(key)
     return LAYER_UNITS[match.group(1)] if match else UNITS.get(key, "1")
 

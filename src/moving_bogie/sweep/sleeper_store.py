@@ -97,13 +97,14 @@ class PointGrid:
         return grid_blocks(self.shape, self.chunks)
 
     def grid_description(
-        self, kind: str, model: str, physical: dict[str, float], units: dict[str, str], ranges: Any
+        self, kind: str, label: str, physical: dict[str, float], units: dict[str, str], ranges: Any
     ) -> dict[str, Any]:
         """The JSON-ready description of the sweep (stored in the attributes; a resumed sweep must match
-        it): the varied values exactly, or the ranges of a Sobol design (``ranges``)."""
+        it): its ``kind``, the ``label`` of its model, the varied values exactly, or the ranges of a Sobol
+        design (``ranges``)."""
         return {
             "kind": kind,
-            "model": model,
+            "model": label,
             "physical": physical,
             "design": self.design,
             "varied": ranges or {a.name: [fraction_to_text(v) for v in a.values] for a in self.axes},

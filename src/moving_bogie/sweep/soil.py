@@ -21,9 +21,9 @@ from typing import Any
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.soil.file import LOAD_KEYS, SoilInput, soil_input
+from moving_bogie.soil.file import SoilInput, soil_input
 from moving_bogie.soil.settings import key_unit, settable_keys, with_settings
-from moving_bogie.soil.track import TRACK_KINDS
+from moving_bogie.soil.track import LOAD_KEYS, TRACK_KINDS
 from moving_bogie.sweep.design import Axis, Block
 from moving_bogie.sweep.sleeper_store import (
     PointGrid,
