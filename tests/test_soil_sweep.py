@@ -24,9 +24,13 @@ HOMOGENEOUS = str(EXAMPLES / "soil-homogeneous.toml")
 
 
 def _echo(track, soil, omega=None):
-    """A stand-in for critical_velocity: v_cr = the top layer's c_s + EI/1e6, omega_cr = the layer's h."""
+    """A stand-in for critical_velocity: v_cr = the top layer's c_s + EI/1e6, omega_cr = the layer's h, a note
+    where h = 4."""
     c_s, h = soil.layers[0].c_s, soil.layers[0].h
-    return SimpleNamespace(v_cr=c_s + track.EI / 1e6, omega_cr=h, v_cr_uncoupled=c_s, omega_uncoupled=np.nan)
+    notes = ("a note",) if h == 4 else ()
+    return SimpleNamespace(
+        v_cr=c_s + track.EI / 1e6, omega_cr=h, v_cr_uncoupled=c_s, omega_uncoupled=np.nan, notes=notes
+    )
 
 
 def test_points_are_stored_at_their_values(tmp_path, capsys, monkeypatch):
@@ -37,6 +41,7 @@ def test_points_are_stored_at_their_values(tmp_path, capsys, monkeypatch):
     assert main([*argv, "--set", "EI=2e7", "--out", str(out), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["points_computed"] == 6 and summary["unstable_fraction"] is None
+    assert summary["uncertain_points"] == 3  # the points of h1 = 4, noted
     assert summary["units"]["c_s1"] == "m/s" and summary["units"]["h1"] == "m"
     assert summary["v_cr_min"] == {"v_cr": pytest.approx(60 + 20), "c_s1": 60.0, "h1": 2.0}
     ds = open_sweep(out).compute()
@@ -45,6 +50,7 @@ def test_points_are_stored_at_their_values(tmp_path, capsys, monkeypatch):
     np.testing.assert_allclose(ds.v_cr.values, c_s + 20.0, rtol=1e-12)
     np.testing.assert_allclose(ds.omega_cr.values, h, rtol=0)
     assert ds.found.values.all() and ds.computed.values.all()
+    assert ds.noted.values.tolist() == [[False, True]] * 3
     assert json.loads(ds.attrs["operating_point"])["h1"] == 5.0  # the file's own top layer
     figure = tmp_path / "v.png"
     assert main(["sweep-plot", str(out), "--x", "c_s1", "--y", "h1", "--out", str(figure)]) == 0

@@ -42,6 +42,13 @@ SOIL_VARIABLES: tuple[tuple[str, str, Any, str, str], ...] = (
     ("v_cr_uncoupled", "float64", np.nan, "uncoupled intersection estimate (Mezher et al. 2016)", "m/s"),
     ("omega_uncoupled", "float64", np.nan, "frequency of v_cr_uncoupled", "rad/s"),
     ("found", "bool", False, "a guided wave of the coupled track was found (v_cr is finite)", "1"),
+    (
+        "noted",
+        "bool",
+        False,
+        "critical_velocity noted a doubt (v_cr at a grid point or the range's end)",
+        "1",
+    ),
     ("computed", "bool", False, "the point's block has been computed and written", "1"),
 )
 SOIL_ATTRS = {
@@ -165,6 +172,7 @@ def soil_point(inp: SoilInput) -> dict[str, Any]:
         "v_cr_uncoupled": crit.v_cr_uncoupled,
         "omega_uncoupled": crit.omega_uncoupled,
         "found": bool(np.isfinite(crit.v_cr)),
+        "noted": bool(crit.notes) and bool(np.isfinite(crit.v_cr)),
     }
 
 
@@ -193,13 +201,14 @@ def make_soil_spec(
 def soil_summary(spec: SoilSweepSpec, ds: Any) -> dict[str, Any]:
     """The summary of a soil sweep (:data:`~moving_bogie.sweep.plan.SWEEP_KEYS`: a critical velocity is no
     stability verdict, so ``unstable_fraction`` is None, and ``uncertain_points`` counts the points without
-    a guided wave), with the least and the greatest v_cr and their points."""
+    a guided wave or with a note of :func:`~moving_bogie.soil.critical.critical_velocity`), with the least and
+    the greatest v_cr and their points (of the points found and not noted)."""
     ds = ds.compute()
-    v = np.where(ds.found.values, ds.v_cr.values, np.nan)
+    v = np.where(ds.found.values & ~ds.noted.values, ds.v_cr.values, np.nan)
     out: dict[str, Any] = {
         "model": spec.model,
         "unstable_fraction": None,
-        "uncertain_points": int((ds.computed.values & ~ds.found.values).sum()),
+        "uncertain_points": int((ds.computed.values & (~ds.found.values | ds.noted.values)).sum()),
         "units": spec.units | {"v_cr": "m/s", "v_cr_uncoupled": "m/s"},
     }
     for label, pick in (("v_cr_min", np.nanargmin), ("v_cr_max", np.nanargmax)):

@@ -57,9 +57,15 @@ def plot_soil_sweep(
 
 
 def _lines(ax: Axes, s: xarray.Dataset, x: str, label: str, color: str) -> None:
-    """v_cr (solid, dots) and v_cr_uncoupled (dashed) of a 1-D slice against ``x``."""
+    """v_cr (solid, dots; a noted point crossed, off the line) and v_cr_uncoupled (dashed) of a 1-D slice
+    against ``x``."""
     xs = s[x].values
     found = s.found.values & s.computed.values
-    ax.plot(xs, np.where(found, s.v_cr.values, np.nan), "o-", color=color, label=f"{label}v_cr (coupled)")
+    noted = found & s.noted.values
+    sure = found & ~noted
+    ax.plot(xs, np.where(sure, s.v_cr.values, np.nan), "o-", color=color, label=f"{label}v_cr (coupled)")
+    if noted.any():
+        doubt = f"{label}v_cr doubtful (at a grid point or the range's end: critical-velocity --set says why)"
+        ax.plot(xs[noted], s.v_cr.values[noted], "x", color=color, ms=9, mew=2, label=doubt)
     uncoupled = np.where(s.computed.values, s.v_cr_uncoupled.values, np.nan)
     ax.plot(xs, uncoupled, "--", color=color, alpha=0.7, label=f"{label}v_cr uncoupled (estimate)")
