@@ -258,7 +258,7 @@ STAGE_IMPORTS: dict[str, frozenset[str]] = {
     "response": frozenset({"roots", "kernels", "model"}),
     "stability": frozenset({"roots", "kernels", "model"}),
     "validation": frozenset({"response", "roots", "kernels", "model"}),
-    "sweep": frozenset({"stability", "roots", "kernels", "model"}),
+    "sweep": frozenset({"stability", "roots", "kernels", "model", "soil"}),
     "soil": frozenset({"kernels"}),
     "api": frozenset({"stability", "validation", "response", "roots", "kernels", "model", "soil"}),
     "paper": frozenset({"api", "stability", "validation", "response", "roots", "model"}),

@@ -19,7 +19,7 @@ like the track's: the soil carries the whole track and the whole vehicle.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -135,15 +135,18 @@ def soil_vehicle(data: SoilInput, *, tol: float = 1e-6) -> SoilVehicle:
     return SoilVehicle(data, physical, SoilRailSpec(track, data.soil, k_ref, tol))
 
 
-def load_soil_vehicle(path: str | Path) -> SoilVehicle:
-    """Read a soil-track file with a vehicle (:func:`soil_vehicle`); errors name the key and the file."""
+def load_soil_vehicle(path: str | Path, settings: Mapping[str, float] | None = None) -> SoilVehicle:
+    """Read a soil-track file with a vehicle (:func:`soil_vehicle`), its values changed by ``settings``
+    (key -> SI value, ``--set``: :func:`~moving_bogie.soil.file.load_soil_file`); errors name the key and
+    the file, or ``--set`` when the key is one of the settings."""
     from moving_bogie.soil.file import load_soil_file
 
-    data = load_soil_file(path)
+    data = load_soil_file(path, settings)
     try:
         return soil_vehicle(data)
     except ParameterError as exc:
-        raise ParameterError(exc.parameter, f"{path}: {exc}") from None
+        where = "--set" if settings and exc.parameter in settings else str(path)
+        raise ParameterError(exc.parameter, f"{where}: {exc}") from None
 
 
 def bind(params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle) -> BoundModel:

@@ -54,7 +54,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "store's coordinates are named and unitted so, the dimensionless groups kept beside them.\n"
             "A sleeper-track file (docs/sleepers.md) is swept over its [physical] names, each point one\n"
             "Floquet strip search: n_roots, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
-            "harmonics, Omega0 [rad/s]."
+            "harmonics, Omega0 [rad/s]. A soil-track file (docs/soil.md) is swept over its track's\n"
+            "[physical] keys and its layers' keys (c_s1, h2, ... numbered from 1 at the top), each point\n"
+            "the critical velocity: v_cr, omega_cr, v_cr_uncoupled, omega_uncoupled, found."
         ),
         epilog=(
             "examples:\n"
@@ -68,7 +70,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "      --vary M=400:1600:40 --out si.zarr\n"
             "  moving-bogie sweep-plot si.zarr --x v --y M --out si.png\n"
             "  moving-bogie sweep --file examples/sleepers.toml --vary v=40:80:9 --out sl.zarr\n"
-            "  moving-bogie sweep-plot sl.zarr --x v --out growth.png"
+            "  moving-bogie sweep-plot sl.zarr --x v --out growth.png\n"
+            "  moving-bogie sweep --file examples/soil-ballasted.toml --vary c_s1=40:120:9 --out soil.zarr\n"
+            "  moving-bogie sweep-plot soil.zarr --x c_s1 --out vcr.png"
         ),
         formatter_class=_RAW,
     )
@@ -165,12 +169,20 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
 
 
 def run_sweep_cmd(args: argparse.Namespace) -> int:
+    from moving_bogie.soil.file import is_soil_file
     from moving_bogie.sweep.api import discarded_if_empty
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
     from moving_bogie.sweep.store import read_store
 
-    periodic = args.file is not None and params_from_args(args)[0].model.periodic
-    spec: SweepPlan = _sleeper_spec(args) if periodic else ContinuousPlan(_spec(args))
+    spec: SweepPlan
+    if args.file is not None and is_soil_file(args.file):
+        from .soil_sweep import soil_spec
+
+        spec = soil_spec(args)
+    elif args.file is not None and params_from_args(args)[0].model.periodic:
+        spec = _sleeper_spec(args)
+    else:
+        spec = ContinuousPlan(_spec(args))
     check_points(spec.size)  # a sweep's size is bounded before its store is created
     # every option is checked (and the store created) before any computation
     try:
@@ -289,7 +301,11 @@ def run_sweep_plot(args: argparse.Namespace) -> int:
             "blank); run the sweep again with --resume to complete it",
             file=sys.stderr,
         )
-    if ds.attrs.get("kind") == "sleepers":
+    if ds.attrs.get("kind") == "soil":
+        from moving_bogie.sweep.soil_plots import plot_soil_sweep
+
+        fig = plot_soil_sweep(ds, args.x, args.y, sel)
+    elif ds.attrs.get("kind") == "sleepers":
         from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep
 
         fig = plot_sleeper_sweep(ds, args.x, args.y, sel)
