@@ -271,7 +271,7 @@ class _SteadyCheck:
 
 
 def _steady_check(
-    run: Callable[[int, Callable[[float], None] | None], BeamRun],
+    run: Callable[..., BeamRun],
     track: SleeperTrack,
     steady: SteadyResponse,
     settings: SleeperBeamSettings,
@@ -279,12 +279,12 @@ def _steady_check(
     notes: list[str],
     progress: Callable[[float], None] | None,
 ) -> _SteadyCheck:
-    """The loaded run of ``settings.periods`` (``run(periods, progress)``) against the Floquet steady force;
+    """The loaded run of ``settings.periods`` (``run(periods, progress=)``) against the Floquet steady force;
     run again with twice the periods when its periodic limit moves by more than ``WINDOW_AGREEMENT tol``
     between the fit window and its last three quarters (noted, as a move left after that is)."""
     T0 = track.lam / track.alpha
     periods = settings.periods
-    loaded = run(periods, progress)
+    loaded = run(periods, progress=progress)
     start = settings.transient * periods * T0
     comparison, limit, reference = _steady_comparison(track, steady, loaded, T0, start, tol)
     moved = _window_change(loaded, limit, T0, start)
@@ -295,7 +295,7 @@ def _steady_check(
             f"{2 * periods}"
         )
         periods *= 2
-        loaded = run(periods, None)
+        loaded = run(periods)
         start = settings.transient * periods * T0
         comparison, limit, reference = _steady_comparison(track, steady, loaded, T0, start, tol)
         moved = _window_change(loaded, limit, T0, start)
@@ -311,6 +311,57 @@ def _steady_check(
             f"last harmonics (asked: {STEADY_TOL:g})"
         )
     return _SteadyCheck(comparison, loaded, limit, reference)
+
+
+def _run(
+    rails: dict[int, tuple[SleeperRail, float]],
+    track: SleeperTrack,
+    vehicle: VehicleMatrices,
+    loads: np.ndarray,
+    settings: SleeperBeamSettings,
+    periods: int,
+    dt: float,
+    loaded: bool,
+    progress: Callable[[float], None] | None = None,
+) -> BeamRun:
+    """A run of ``periods`` bay-passing periods on its rail (:func:`_finite_rail`, kept in ``rails``)."""
+    if periods not in rails:
+        rails[periods] = _finite_rail(track, vehicle, settings, periods)
+    rail, entry = rails[periods]
+    T0 = track.lam / track.alpha
+    return simulate_sleeper_beam(
+        rail, vehicle, loads, entry=entry, tau_max=periods * T0, dt=dt, loaded=loaded, progress=progress
+    )
+
+
+def _growing(
+    run: Callable[..., BeamRun],
+    free: BeamRun,
+    fit: FloquetFit,
+    spread: float,
+    settings: SleeperBeamSettings,
+    tol: float,
+    notes: list[str],
+    progress: Callable[[float], None] | None,
+) -> tuple[BeamRun, FloquetFit, float, FloquetFit]:
+    """(free run, its fit, the fit's spread, the fit at twice the step) of an unstable case: the free runs
+    made again over twice the periods when the rate moves by more than ``WINDOW_AGREEMENT tol`` between
+    the fit window and its last three quarters (noted), then the same run at ``2 dt``
+    (:func:`extrapolated`)."""
+    T0, periods = fit.period, settings.periods
+    dt = T0 / settings.steps_per_period
+    moved = _rate_change(free, fit, T0)
+    if moved > WINDOW_AGREEMENT * tol:  # too few periods to separate the modes: twice as many (once)
+        notes.append(
+            f"the free vibration's rate moved by {moved:.2%} between the fit window and its last three "
+            f"quarters over {periods} periods: the runs are made over {2 * periods}"
+        )
+        periods *= 2
+        free = run(periods, dt, False)
+        fit, spread = _free_vibration_fit(free, T0, settings.transient * periods * T0, notes)
+    coarse_run = run(periods, 2 * dt, False, progress)
+    coarse = _free_vibration_fit(coarse_run, T0, settings.transient * periods * T0, notes)[0]
+    return free, fit, spread, coarse
 
 
 def check_sleepers(
@@ -336,33 +387,20 @@ def check_sleepers(
     side = floquet_side(track, vehicle, loads, harmonics) if floquet is None else floquet
     root, steady = side.root, side.steady
     T0 = track.lam / track.alpha
-    periods = settings.periods
-    rail, entry = _finite_rail(track, vehicle, settings, periods)
+    rails: dict[int, tuple[SleeperRail, float]] = {}
+    run = partial(_run, rails, track, vehicle, loads, settings)
     dt = T0 / settings.steps_per_period
     start = time.perf_counter()
-    simulate = partial(simulate_sleeper_beam, rail, vehicle, loads, entry=entry, tau_max=periods * T0)
     share = 0.9 / (1.5 if root is not None and side.frequency is not None else 2.0)  # the first run's
-    free = simulate(dt=dt, loaded=False, progress=_stage(progress, 0.1, share))
+    free = run(settings.periods, dt, False, _stage(progress, 0.1, share))
     notes = list(side.result.notes)
-    fit, spread = _free_vibration_fit(free, T0, settings.transient * periods * T0, notes)
+    fit, spread = _free_vibration_fit(free, T0, settings.transient * settings.periods * T0, notes)
     comparisons: list[Comparison] = []
     loaded = coarse = None
     steady_tau = steady_force = limit_force = None
     if root is not None and side.frequency is not None:
-        moved = _rate_change(free, fit, T0)
-        if moved > WINDOW_AGREEMENT * tol:  # too few periods to separate the modes: twice as many (once)
-            notes.append(
-                f"the free vibration's rate moved by {moved:.2%} between the fit window and its last three "
-                f"quarters over {periods} periods: the runs are made over {2 * periods}"
-            )
-            periods *= 2
-            rail, entry = _finite_rail(track, vehicle, settings, periods)
-            simulate = partial(simulate_sleeper_beam, rail, vehicle, loads, entry=entry, tau_max=periods * T0)
-            free = simulate(dt=dt, loaded=False)
-            fit, spread = _free_vibration_fit(free, T0, settings.transient * periods * T0, notes)
-        # the same free run at twice the step: the rate and the frequency extrapolated to dt -> 0
-        run = simulate(dt=2 * dt, loaded=False, progress=_stage(progress, 0.1 + share, 0.9 - share))
-        coarse = _free_vibration_fit(run, T0, settings.transient * periods * T0, notes)[0]
+        later = _stage(progress, 0.1 + share, 0.9 - share)
+        free, fit, spread, coarse = _growing(run, free, fit, spread, settings, tol, notes, later)
         comparisons = _rate_comparisons(fit, coarse, root, side.frequency, tol, notes)
     else:
         rate_text = _rate_text(fit.rate, time_scale)
@@ -370,22 +408,12 @@ def check_sleepers(
             f"no Floquet root with Im q <= 0 (stable): the free vibration's rate {rate_text} is not compared"
         )
         assert steady is not None
-
-        def loaded_run(periods: int, stage: Callable[[float], None] | None) -> BeamRun:
-            own, at = (
-                (rail, entry)
-                if periods == settings.periods
-                else _finite_rail(track, vehicle, settings, periods)
-            )
-            return simulate_sleeper_beam(
-                own, vehicle, loads, entry=at, tau_max=periods * T0, dt=dt, progress=stage
-            )
-
         stage = _stage(progress, 0.1 + share, 0.9 - share)
-        checked = _steady_check(loaded_run, track, steady, settings, tol, notes, stage)
+        checked = _steady_check(partial(run, dt=dt, loaded=True), track, steady, settings, tol, notes, stage)
         comparisons.append(checked.comparison)
         loaded, steady_force = checked.loaded, checked.reference
         steady_tau, limit_force = checked.limit.tau, checked.limit.values[0]
+    rail = rails[max(rails)][0]  # that of the longest run
     finite_s = time.perf_counter() - start
     return SleeperCheck(
         tuple(comparisons),
