@@ -17,8 +17,10 @@ cut at Omega = 0 when the soil's waves are faster than the load).
 
 **Quadrature.** Gauss-Kronrod (7, 15) panels in |k| from k_lo = 1e-9 / b to k_hi on both sides of k = 0
 (one up to 1e-3 / b, where the integrand is smooth unless Omega = 0, then geometric; bisected
-geometrically), shared by every Omega of a call (one set of k nodes: each panel is bisected until its
-Kronrod-Gauss difference is below its share of ``tol`` |G| for every Omega and offset). Outside
+geometrically), each Omega of a call (and its speed v: one per Omega may be given) on its own panels,
+each panel bisected until its Kronrod-Gauss difference is below its share of ``tol`` |G| for every
+offset, the nodes of all of them evaluated together. At Omega = 0 the integrand at -k is the conjugate of
+that at k (D(-k, -conj w) = conj D(k, w)): one side is summed, G = (1 / pi) Re int_0^inf. Outside
 [k_lo, k_hi] the integrand grows only like log(1 / k) (below) and is below 2 / (EI k^4) (above; checked at
 k_hi): both ends are bounded and added to the error.
 
@@ -28,7 +30,7 @@ k_hi): both ends are bounded and added to the error.
 the sinc is narrow beside the variation of U, one U value) is taken with the error allowance
 e = |chi_loc| (100 %; tests/test_soil_receptance.py checks |chi / chi_loc - 1| < 1/2 there on the
 examples' soils); elsewhere chi is the strip's quadrature (:func:`~.strip.strip_stiffness`) to the
-relative tolerance tol |D| / (2 |S chi_loc|) (between 1e-10 and 1e-3) with its own error estimate e. So
+relative tolerance tol |D| / (2 |S chi_loc|) (between 1e-10 and 1e-2) with its own error estimate e. So
 1/D is good to about tol relative at every node, and the bound above summed with the weights is the
 error of G that chi leaves; beside the panels' Kronrod-Gauss differences and the ends it makes
 ``error``. The far panels (|k| up to 300 / b and beyond), where the strip quadrature would cost
