@@ -40,6 +40,7 @@ from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.model.cases import table1_case
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.sleeper_input import load_sleeper_file
 from moving_bogie.response.steady_bay import static_loads
 from moving_bogie.validation.compare import validate
@@ -57,7 +58,11 @@ UNSTABLE = {"lam": 2.5, "alpha": 0.24, "kappa_f": 0.0, "eta_f": 0.01, "eta_sup":
 def unstable_case() -> tuple[SleeperTrack, VehicleMatrices, object]:
     values = {"eta_M": 14.0}
     vehicle = VehicleMatrices.from_module(vehicle_mass, values)
-    return SleeperTrack("eb", "sleepers", UNSTABLE), vehicle, static_loads(vehicle_mass, values)
+    return (
+        SleeperTrack(default_catalogue().periodic["eb", "sleepers"], UNSTABLE),
+        vehicle,
+        static_loads(vehicle_mass, values),
+    )
 
 
 #: (v in m/s, M in kg) in the principal zones of examples/sleepers_zones.toml: at v = 97.2881 the zone is
@@ -84,7 +89,7 @@ def example_case(
     module = importlib.import_module(f"moving_bogie.generated.vehicle_{data.vehicle}")
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     return (
-        SleeperTrack(data.beam, data.track, data.groups),
+        SleeperTrack(data.foundation, data.groups),
         vehicle,
         static_loads(module, data.vehicle_groups),
     )

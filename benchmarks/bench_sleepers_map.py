@@ -140,13 +140,12 @@ def before_and_this(args: argparse.Namespace) -> None:
 
 def beside_continuous(args: argparse.Namespace) -> None:
     """The sleeper map and the continuous track's map on the same grid, in this process."""
+    from moving_bogie import load_parameters, sleeper_map
     from moving_bogie.kernels.bound import bind
-    from moving_bogie.model.sleeper_input import load_sleeper_file
-    from moving_bogie.model.smeared import smeared_track
+    from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.stability.maps.map import stability_map
-    from moving_bogie.stability.maps.sleeper_map import sleeper_map
 
-    data = load_sleeper_file(args.file)
+    _, data = load_parameters(args.file)
     v0, v1 = (float(x) for x in args.range_v.split(":"))
     vs = np.linspace(v0, v1, args.n)
     ms = np.linspace(args.range_M / args.n, args.range_M, args.n)
@@ -154,7 +153,7 @@ def beside_continuous(args: argparse.Namespace) -> None:
     start = time.perf_counter()
     smap = sleeper_map(data, vs, ms, workers=args.workers)
     rows.append(("sleepers (D-decomposition)", time.perf_counter() - start, smap.count, smap.uncertain))
-    physical = smeared_track(data)
+    physical = smeared_physical(data)
     assert physical is not None, "the benchmark compares with the smeared continuous track"
     start = time.perf_counter()
     cont = stability_map(

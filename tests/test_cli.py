@@ -78,6 +78,7 @@ def test_physical_file_prints_physical_parameters_and_scales(tmp_path, capsys):
     assert scales["v_ref"] == pytest.approx(v_ref, rel=1e-12)
     assert scales["w_st"] == pytest.approx(P * chi / (2 * k_f), rel=1e-12)
     assert scales["t_scale"] == pytest.approx((m / k_f) ** 0.5, rel=1e-12)  # tau = sqrt(k_f/m) t
+    assert scales["load"] == P / 2  # the unit of force: a wheel's static load is 2, Eq. (16)
     assert float(data["physical"]["v"]) == pytest.approx(0.5 * v_ref, rel=1e-12)  # alpha = v / v_ref
     assert float(data["dimensionless"]["eta_M"]) == pytest.approx(1500 * chi / m, rel=1e-12)
     assert float(data["dimensionless"]["d"]) == pytest.approx(1.7 * chi, rel=1e-12)

@@ -25,7 +25,11 @@ import pytest
 from moving_bogie.generated import CONTACT_SPRINGS
 from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.files import parse_params_toml
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 RIGID = ("mass", "oscillator", "masses", "bogie", "car")
 
@@ -144,7 +148,7 @@ def test_contact_spring_vehicle_on_sleepers_tends_to_the_rigid_contact(name):
     """The Floquet root of the Hertz vehicle on sleepers approaches the rigid vehicle's (found by Newton
     from the same start, same track and harmonics) as 1 / kappa_H: the distance falls by 10 per decade."""
     track = SleeperTrack(
-        "eb", "sleepers", {"lam": 1.0, "alpha": 0.3, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.2}
+        PERIODIC["eb", "sleepers"], {"lam": 1.0, "alpha": 0.3, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.2}
     )
     values = SLEEPER_VEHICLES[name]
     rigid = FloquetSystem(track, VehicleMatrices.from_module(_module(name), values), N=1, tol=1e-12)

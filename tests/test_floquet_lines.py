@@ -19,8 +19,12 @@ from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
 from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.kernels.mass_pencil import mass_pencil
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.roots.count.contour import Rectangle, winding_number
 from moving_bogie.stability.maps.d_lines import d_column
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -35,7 +39,7 @@ def test_pencil_is_the_hill_matrix_at_every_mass(module, values):
     masses); for the rigid contact A = I (no root at eta_M -> 0, Eq. (S19))."""
     if values is None:
         values = {"eta_M": 1.0, "kappa_H": 20.0, "eta_H": 0.1}
-    track = SleeperTrack("eb", "sleepers", ZONE_TRACK)
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], ZONE_TRACK)
     pencil = mass_pencil(track, module, values, 1)
     q = 0.37 - 0.05j
     A, B = pencil.matrices(q)
@@ -53,7 +57,7 @@ def test_zone_edges_are_the_d_decomposition_crossings():
     The argument principle on floquet_frequencies' window (the strip, Im q in [-max(Omega_0, 1), 0]) counts
     0 roots just below the lower edge, 1 just inside it and 0 just above the upper edge (1% of the zone's
     width away), as the column's counts say."""
-    track = SleeperTrack("eb", "sleepers", ZONE_TRACK)
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], ZONE_TRACK)
     column = d_column(mass_pencil(track, vehicle_mass, {"eta_M": 1.0}, 2), eta_max=6.0)
     assert not column.notes and column.converged
     assert [c.change for c in column.crossings] == [1, -1]
@@ -129,13 +133,14 @@ def test_the_short_cuts_give_the_previous_crossings(v, zone, monkeypatch):
     """On the map of examples/sleepers_zones.toml: the crossings, their changes, their move with one more
     harmonic and the notes of a column are those of the previous algorithm (Brent's method on every
     bracket, :func:`_previous_column`), so the counts of every cell are the same."""
-    from moving_bogie.model.sleeper_input import load_sleeper_file
-    from moving_bogie.stability.maps.sleeper_map import _groups, mass_unit
+    from moving_bogie import bind, load_parameters
+    from moving_bogie.stability.maps.sleeper_map import track_at
 
-    data = load_sleeper_file(EXAMPLES / "sleepers_zones.toml")
-    track = SleeperTrack(data.beam, data.track, _groups(data, v))
-    pencil = mass_pencil(track, data.vehicle_kernels, data.vehicle_groups, 2)
-    eta_max = 3000.0 / mass_unit(data)
+    _, physical = load_parameters(EXAMPLES / "sleepers_zones.toml")
+    bound, scales = bind(physical), physical.scales()
+    track = track_at(bound, v / scales.v_ref)
+    pencil = mass_pencil(track, bound.vehicle, bound.vehicle_values(bound.floats), 2)
+    eta_max = 3000.0 / scales.mass
     fast = d_column(pencil, eta_max=eta_max)
     previous = _previous_column(pencil, monkeypatch, eta_max=eta_max)
     assert fast.notes == previous.notes == ()

@@ -16,12 +16,16 @@ from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.kernels.periodic_receptance import receptance
 from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.kernels.smeared_rail import smeared_receptance
+from moving_bogie.model.catalogue import default_catalogue
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 GROUPS = {"lam": 1.0, "alpha": 0.2, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.1}
 
 
 def _track(**changes) -> SleeperTrack:
-    return SleeperTrack("eb", "sleepers", {**GROUPS, **changes})
+    return SleeperTrack(PERIODIC["eb", "sleepers"], {**GROUPS, **changes})
 
 
 def test_lattice_sum_matches_direct_sum():

@@ -17,7 +17,11 @@ from moving_bogie.cli import main
 from moving_bogie.generated import vehicle_mass
 from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.roots.count.contour import Rectangle, winding_number
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml"
 
@@ -37,7 +41,8 @@ def test_principal_parametric_zone_root_sits_on_half_the_passing_frequency():
     counted in a box around Re q = Omega_0 / 2, on that line; one more harmonic moves it by 2e-6 (N = 1 to
     2), a tenth of that from N = 2 to 3: it converges in the harmonics."""
     track = SleeperTrack(
-        "eb", "sleepers", {"lam": 1.5, "alpha": 0.25, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.005}
+        PERIODIC["eb", "sleepers"],
+        {"lam": 1.5, "alpha": 0.25, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.005},
     )
     vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": 5.0})
     omega0 = track.Omega0

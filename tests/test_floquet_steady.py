@@ -15,7 +15,11 @@ from scipy.integrate import quad
 from moving_bogie.generated import vehicle_mass
 from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.response.steady_bay import static_loads, steady_harmonics, steady_response
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 ALPHA, ETA_F, ETA_SUP = 0.25, 0.05, 0.05
 VALUES = {"eta_M": 2.0}
@@ -23,7 +27,7 @@ VALUES = {"eta_M": 2.0}
 
 def _track(lam: float) -> SleeperTrack:
     groups = {"lam": lam, "alpha": ALPHA, "kappa_f": 0.0, "eta_f": ETA_F, "eta_sup": ETA_SUP}
-    return SleeperTrack("eb", "sleepers", groups)
+    return SleeperTrack(PERIODIC["eb", "sleepers"], groups)
 
 
 def _continuous_deflection() -> float:

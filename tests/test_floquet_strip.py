@@ -28,6 +28,7 @@ from moving_bogie.api import induced_frequencies
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
 from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.response.steady_bay import static_loads
 from moving_bogie.roots.count.contour import Rectangle, winding_number
@@ -42,6 +43,9 @@ from moving_bogie.validation.sleepers_check import (
 )
 from moving_bogie.validation.sleepers_fit import fit_floquet_modes
 from moving_bogie.validation.sleepers_rail import SleeperRail
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 ZETA4 = math.pi**4 / 90
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml"
@@ -81,7 +85,7 @@ def _assert_matches(result: FloquetResult, reference: list[complex], tol: float)
 def _short_bays_light_wheel() -> tuple[SleeperTrack, VehicleMatrices, float, float]:
     """The track, the wheel, alpha and eta_M of the short-bay tests below (lam = 0.703, a light wheel)."""
     lam, alpha, eta_M = 0.703, 0.3, 2.0
-    track = SleeperTrack("eb", "sleepers", {"lam": lam, "alpha": alpha, "kappa_f": 0.0})
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], {"lam": lam, "alpha": alpha, "kappa_f": 0.0})
     track.groups.update(eta_f=0.18, eta_sup=0.02)
     return track, VehicleMatrices.from_module(vehicle_mass, {"eta_M": eta_M}), alpha, eta_M
 
@@ -136,7 +140,8 @@ def test_short_bays_unstable_roots_are_the_continuous_ones_folded():
     unstable root and its mirror image, and nothing else below the free waves, UNSTABLE."""
     lam, alpha, eta_M = 0.5, 1.2, 20.0
     track = SleeperTrack(
-        "eb", "sleepers", {"lam": lam, "alpha": alpha, "kappa_f": 0.0, "eta_f": 0.04, "eta_sup": 0.01}
+        PERIODIC["eb", "sleepers"],
+        {"lam": lam, "alpha": alpha, "kappa_f": 0.0, "eta_f": 0.04, "eta_sup": 0.01},
     )
     result = floquet_frequencies(track, VehicleMatrices.from_module(vehicle_mass, {"eta_M": eta_M}))
     reference = _continuous_folded(alpha, 0.05, eta_M, track.Omega0, result.window.y1)
@@ -166,7 +171,7 @@ def test_damped_hertz_contact_steady_force_over_a_bay_against_the_finite_rail():
     (after 6 the transient still stands at 2 %)."""
     values = {"eta_M": 13.998576285, "kappa_H": 20.0, "eta_H": 5.0}
     vehicle = VehicleMatrices.from_module(vehicle_hertz_mass, values)
-    track = SleeperTrack("eb", "sleepers", dict(EXAMPLE_GROUPS))
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], dict(EXAMPLE_GROUPS))
     settings = SleeperBeamSettings(elements=4, steps_per_period=100, periods=12)
     result = check_sleepers(track, vehicle, static_loads(vehicle_hertz_mass, values), settings=settings)
     assert result.floquet_verdict == "stable"
@@ -182,7 +187,7 @@ def test_growth_rate_its_spread_and_dominant_frequency_against_the_finite_rail()
     frequency of the Hill null vector (the harmonic with the largest contact displacement) is the finite
     rail's spectral peak within 0.3 %."""
     groups = {"lam": 2.5, "alpha": 0.24, "kappa_f": 0.0, "eta_f": 0.01, "eta_sup": 0.01}
-    track = SleeperTrack("eb", "sleepers", groups)
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], groups)
     values = {"eta_M": 14.0}
     vehicle = VehicleMatrices.from_module(vehicle_mass, values)
     system = FloquetSystem(track, vehicle, N=3, tol=1e-6)
@@ -216,7 +221,7 @@ def test_decaying_roots_of_a_heavy_wheel_against_the_finite_rails_free_decay():
     Im q, within the finite-beam check's 1 % (measured: 0.2 %)."""
     values = {"eta_M": 5 * 13.998576285}
     vehicle = VehicleMatrices.from_module(vehicle_mass, values)
-    track = SleeperTrack("eb", "sleepers", dict(EXAMPLE_GROUPS))
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], dict(EXAMPLE_GROUPS))
     result = floquet_frequencies(track, vehicle)
     assert result.verdict.state == "stable" and result.count == 2
     low, high = sorted((r.q for r in result.roots), key=lambda q: q.real)

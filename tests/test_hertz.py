@@ -15,7 +15,11 @@ from moving_bogie.api import induced_frequencies
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
 from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.model.params import DimensionlessParams
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 CONTINUOUS = {"beam": "eb", "eta_f": "0.2", "alpha": "0.3", "eta_M": "2"}
 
@@ -50,7 +54,7 @@ def test_hertz_wheel_on_sleepers_tends_to_the_rigid_contact():
     """The Floquet root of hertz_mass on sleepers approaches that of mass as 1 / kappa_H (same track,
     same harmonics): the distance falls by 10 per decade."""
     track = SleeperTrack(
-        "eb", "sleepers", {"lam": 1.0, "alpha": 0.3, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.2}
+        PERIODIC["eb", "sleepers"], {"lam": 1.0, "alpha": 0.3, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.2}
     )
     rigid = FloquetSystem(track, VehicleMatrices.from_module(vehicle_mass, {"eta_M": 2.0}), N=1, tol=1e-12)
     q0 = _newton(rigid, 0.69 + 0.11j)

@@ -118,10 +118,10 @@ def _square(x: int) -> dict[str, np.ndarray]:
 
 @pytest.mark.slow
 def test_an_interrupted_sleeper_map_resumes_to_the_uninterrupted_map(tmp_path):
-    from moving_bogie.model.sleeper_input import load_sleeper_file
-    from moving_bogie.stability.maps.sleeper_map import sleeper_map
+    from moving_bogie import load_parameters
+    from moving_bogie.api import sleeper_map
 
-    data = load_sleeper_file(REPO / "examples" / "sleepers_zones.toml")
+    _, data = load_parameters(REPO / "examples" / "sleepers_zones.toml")
     vs, ms = np.array([150.0, 250.0, 350.0]), np.linspace(150.0, 3000.0, 12)
     reference = sleeper_map(data, vs, ms, verify=0, workers=1)
     with pytest.raises(JobInterrupted) as stopped:

@@ -105,3 +105,20 @@ def test_critical_velocity_on_sleepers_is_the_smeared_tracks_with_the_track_freq
     assert supports["pinned_pinned_rad_s"] == pytest.approx(pinned, rel=1e-12)
     assert supports["sleeper_passing_rad_s"] == pytest.approx(2 * math.pi * v / bay, rel=1e-12)
     assert float(out["v_cr"]) == pytest.approx((4 * (k_sup / bay) * EI / m**2) ** 0.25, rel=1e-9)
+
+
+def test_a_sleeper_map_summary_has_the_continuous_maps_keys():
+    """The sleeper map's summary has the keys of the continuous map's with their meaning: the axes in the
+    groups (alpha = v / v_ref and eta_M = M chi / m: at the file's own v and M, the file's groups), the
+    vertical axis' group and the parameters; the continuous map of Case 1 has the same keys."""
+    from moving_bogie.stability.maps.map import MAP_KEYS
+
+    params, physical = moving_bogie.load_parameters(EXAMPLES / "sleepers_zones.toml")
+    smap = moving_bogie.sleeper_map(physical, [float(physical.v)], [float(physical.M)], verify=0, workers=1)
+    out = smap.summary()
+    assert set(MAP_KEYS) <= set(out) and out["parameter"] == "eta_M"
+    assert out["alpha_range"][0] == pytest.approx(float(params.alpha), rel=1e-12)
+    assert out["eta_M_range"][0] == pytest.approx(float(params.eta_M), rel=1e-12)
+    assert out["params"] == params.to_dict() and out["unstable_fraction"] in (0.0, 1.0)
+    case1 = moving_bogie.stability_map(moving_bogie.table1_case(1), alphas=[0.2], thetas=[50.0], workers=1)
+    assert set(MAP_KEYS) <= set(case1.summary()) and f"{case1.parameter}_range" in case1.summary()

@@ -24,9 +24,13 @@ from moving_bogie.cli import main
 from moving_bogie.generated import vehicle_hertz_mass, vehicle_mass
 from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.response.steady_bay import static_loads, steady_response
 from moving_bogie.validation.sleepers_check import SleeperBeamSettings, check_sleepers
 from moving_bogie.validation.sleepers_rail import SleeperRail
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 TRACKS = [
     ("sleepers", {"eta_sup": 0.1}),
@@ -43,7 +47,7 @@ def _vehicle(eta_M: float) -> tuple[VehicleMatrices, np.ndarray]:
 def test_the_support_element_has_the_generated_dynamic_stiffness(track, support):
     """The support's finite element, its own unknowns condensed out at a frequency w, is lam z(w), z the
     generated support function of docs/sleepers.md (S2) (derivations/sleepers.py)."""
-    sleeper_track = SleeperTrack("eb", track, {"lam": 1.3, "alpha": 0.1, **support})
+    sleeper_track = SleeperTrack(PERIODIC["eb", track], {"lam": 1.3, "alpha": 0.1, **support})
     m, c, k = sleeper_track.support_element()
     for w in (0.0, 0.4, 1.7):
         d = k + 1j * w * c - w * w * m
@@ -58,7 +62,7 @@ def test_the_pinned_pinned_mode_is_an_eigenmode_of_the_finite_rail(track, suppor
     1e-6 (their error falls like h^8 for the eigenvalue)."""
     lam = 1.5
     groups = {"lam": lam, "alpha": 0.1, "kappa_f": 0.0, "eta_f": 0.05, **support}
-    rail = SleeperRail(SleeperTrack("eb", track, groups), 12, 8)
+    rail = SleeperRail(SleeperTrack(PERIODIC["eb", track], groups), 12, 8)
     m, _, k = rail.matrices
     exact = (np.pi / lam) ** 2 / 2
     values = sla.eigsh(k, k=3, M=m, sigma=exact**2, return_eigenvectors=False)
@@ -72,7 +76,7 @@ def test_static_deflection_against_the_floquet_steady_response_at_low_speed(trac
     1e-3, the tolerance to which steady_response converges its time series."""
     lam, bays = 1.5, 28
     groups = {"lam": lam, "alpha": 1e-3, "kappa_f": 0.0, "eta_f": 0.05, **support}
-    sleeper_track = SleeperTrack("eb", track, groups)
+    sleeper_track = SleeperTrack(PERIODIC["eb", track], groups)
     vehicle, loads = _vehicle(1.0)
     steady = steady_response(sleeper_track, vehicle, loads, points=5)
     rail = SleeperRail(sleeper_track, bays, 8)
@@ -92,7 +96,7 @@ def test_unstable_case_growth_rate_and_frequency_within_one_percent():
     Floquet frequency, each within 1 % (the issue's tolerance)."""
     groups = {"lam": 2.5, "alpha": 0.24, "kappa_f": 0.0, "eta_f": 0.01, "eta_sup": 0.01}
     vehicle, loads = _vehicle(14.0)
-    track, settings = SleeperTrack("eb", "sleepers", groups), SleeperBeamSettings(periods=30)
+    track, settings = SleeperTrack(PERIODIC["eb", "sleepers"], groups), SleeperBeamSettings(periods=30)
     result = check_sleepers(track, vehicle, loads, settings=settings, harmonics=(3, 3))
     assert result.floquet_verdict == "unstable"
     names = [c.quantity for c in result.comparisons]
@@ -114,7 +118,7 @@ def test_stable_case_steady_force_within_one_percent(module):
     values = {name: values[name] for name in module.MATRIX_ARGUMENTS}
     vehicle = VehicleMatrices.from_module(module, values)
     settings = SleeperBeamSettings(periods=12)
-    track = SleeperTrack("eb", "sleepers", groups)
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], groups)
     result = check_sleepers(track, vehicle, static_loads(module, values), settings=settings)
     assert result.floquet_verdict == "stable"
     (force,) = result.comparisons
@@ -217,3 +221,39 @@ def test_the_verdict_line_states_the_numbers_it_judged():
         "verdict: DISAGREE: growth rate -Im q 2.90112 (Floquet) vs 2.90285 (finite beam) 1/s: "
         "0.060% <= 1.00%; x 1 (Floquet) vs 1.5 (finite beam) N: 50.000% > 1.00%"
     )
+
+
+def test_the_check_on_supports_takes_the_bound_model_and_refuses_a_continuous_track():
+    """check_on_supports takes what the continuous tracks' check takes, the bound model (and its SI
+    scales); a bound model without periodic supports is refused by name before any computation."""
+    from moving_bogie import bind, table1_case
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.validation.on_supports import check_on_supports
+
+    with pytest.raises(ParameterError, match="periodic supports") as err:
+        check_on_supports(bind(table1_case(1)))
+    assert err.value.parameter == "track"
+
+
+@pytest.mark.slow
+def test_the_check_in_si_is_the_dimensionless_check_times_the_scales():
+    """moving_bogie.validate of examples/sleepers.toml in SI and of its dimensionless parameters: the same
+    comparisons; the SI values are the dimensionless ones times P / 2 = 32 kN (the file's P = 64 kN) for
+    the force, and per second (1 / t_scale) for the rates."""
+    import moving_bogie as mb
+
+    params, physical = mb.load_parameters(EXAMPLE)
+    si, plain = mb.validate(physical), mb.validate(params)
+    assert si.model == plain.model == "eb/sleepers/mass" and si.agrees and plain.agrees
+    out, bare = si.to_dict(), plain.to_dict()
+    from moving_bogie.validation.verdict import VERDICT_KEYS
+
+    assert set(VERDICT_KEYS) <= set(out)  # the continuous tracks' keys, same meaning
+    assert out["params"] == params.to_dict() and (out["beam"], out["track"]) == ("eb", "sleepers")
+    assert out["relative_diff"] == {c["quantity"]: c["relative_diff"] for c in out["comparisons"]}
+    assert "floquet_si" not in bare["comparisons"][0] and "dt_s" not in bare["finite_beam"]
+    assert physical.scales().load == 32000.0
+    for c, d in zip(out["comparisons"], bare["comparisons"], strict=True):
+        assert c["floquet"] == d["floquet"] and c["finite_beam"] == d["finite_beam"]
+        unit = 32000.0 if c["unit_si"] == "N" else 1 / physical.scales().t_scale
+        assert c["floquet_si"] == pytest.approx(c["floquet"] * unit, rel=1e-14)

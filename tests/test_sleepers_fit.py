@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from moving_bogie.model.catalogue import default_catalogue
 from moving_bogie.roots.verdict import UNSTABLE, Verdict
 from moving_bogie.validation import sleepers_check
 from moving_bogie.validation.sleepers_fit import (
@@ -23,6 +24,9 @@ from moving_bogie.validation.sleepers_fit import (
     period_rms,
     periodic_limit,
 )
+
+#: the catalogue's rails on periodic supports, (beam, track) -> their generated functions
+PERIODIC = default_catalogue().periodic
 
 OMEGA0 = 0.47  # the bay-passing frequency of the synthetic runs (that of examples/sleepers_zones.toml)
 T0 = 2 * np.pi / OMEGA0
@@ -123,7 +127,7 @@ def test_the_check_fits_the_window_of_its_settings(monkeypatch):
     from moving_bogie.kernels.sleeper_track import SleeperTrack
     from moving_bogie.validation.sleepers_beam import BeamRun
 
-    track = SleeperTrack("eb", "sleepers", {"lam": T0 * 0.24, "alpha": 0.24, "eta_sup": 0.01})
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], {"lam": T0 * 0.24, "alpha": 0.24, "eta_sup": 0.01})
     assert track.Omega0 == pytest.approx(OMEGA0, rel=1e-12)
     settings = sleepers_check.SleeperBeamSettings()
     q = OMEGA0 / 2 - 0.002j
@@ -171,7 +175,7 @@ def test_the_floquet_side_takes_the_harmonic_that_undoes_the_fold():
 
     vehicle = VehicleMatrices.from_module(vehicle_mass, {"eta_M": 2.0})
     groups = {"lam": 0.4, "alpha": 0.3, "kappa_f": 0.0, "eta_f": 0.0, "eta_sup": 0.2}
-    track = SleeperTrack("eb", "sleepers", groups)
+    track = SleeperTrack(PERIODIC["eb", "sleepers"], groups)
     system = FloquetSystem(track, vehicle, N=1, tol=1e-10)
     q = 0.7 + 0.1j  # a starting point near the continuous track's root 0.686 + 0.115i (eta_f 0.2, alpha 0.3)
     for _ in range(30):

@@ -61,7 +61,7 @@ def _direct(path: Path, v: float) -> dict[str, Any]:
 
     d = load_sleeper_file(path, overrides={"v": v})
     res = floquet_frequencies(
-        SleeperTrack(d.beam, d.track, d.groups), VehicleMatrices.from_module(vehicle_mass, d.vehicle_groups)
+        SleeperTrack(d.foundation, d.groups), VehicleMatrices.from_module(vehicle_mass, d.vehicle_groups)
     )
     im = min((r.q.imag for r in res.roots), default=np.nan)
     return {
@@ -97,7 +97,11 @@ def test_an_interrupted_sweep_resumes_and_equals_the_direct_search(tmp_path, cap
     summary = json.loads(capsys.readouterr().out)
     assert summary["points_computed"] == 1 and summary["blocks"] == [1, 2]
     assert summary["scheduler"] == "in-process"  # a small sweep starts no cluster (IN_PROCESS_POINTS)
+    from moving_bogie.sweep.plan import SWEEP_KEYS
+
+    assert set(SWEEP_KEYS) <= set(summary) and summary["units"] == {"v": "m/s"}  # every track's keys
     ds = open_sweep(out).compute()
+    assert summary["unstable_fraction"] == float(ds.unstable.values.mean())
     assert ds.v.attrs["units"] == "m/s" and ds.v.attrs["exact"] == ["40", "65"]
     assert ds.attrs["kind"] == "sleepers" and ds.attrs["model"] == "eb/sleepers/mass"
     for k, v in enumerate([40.0, 65.0]):

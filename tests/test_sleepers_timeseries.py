@@ -17,9 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from moving_bogie import load_parameters, sleeper_series
 from moving_bogie.cli import main
-from moving_bogie.model.sleeper_input import load_sleeper_file
-from moving_bogie.response.sleeper_series import sleeper_series
 
 #: examples/sleepers.toml's UIC60 rail and wheel (its SI values, per rail)
 RAIL = {"EI": 6.42e6, "m": 60.21, "c_f": 2.0e3, "M": 600.0, "P": 6.4e4, "v": 40.0}
@@ -48,10 +47,10 @@ def test_the_mean_contact_force_is_the_static_load(tmp_path, vehicle, extra):
     number of harmonics: the harmonic n = 0 of (S17) sees D_v(0) = K only, whose springs carry no mean
     force. Checked both on F_0 and on the mean of the series sampled over one bay (the periodic trapezoid
     rule, exact for the harmonics kept when the points exceed 2N)."""
-    data = load_sleeper_file(_file(tmp_path, vehicle, **extra))
-    series = sleeper_series(data, points=129, free=False)
+    _, physical = load_parameters(_file(tmp_path, vehicle, **extra))
+    series = sleeper_series(physical, points=129, free=False)
     assert series.converged
-    P = data.physical["P"]
+    P = float(physical.P)
     assert series.wheels == (2 if vehicle == "bogie" else 1)
     np.testing.assert_allclose(series.force_mean, P, rtol=1e-12)
     np.testing.assert_allclose(np.mean(series.contact_force[:, :-1], axis=1), P, rtol=1e-12)
@@ -61,13 +60,16 @@ def test_the_mean_contact_force_is_the_static_load(tmp_path, vehicle, extra):
 
 def _continuous_steady(bay_free_values: dict) -> float:
     """The continuous one-layer track with the smeared supports: its steady deflection under the wheel [m],
-    the steady part of the closed form (the paper's Eq. (39)) of the continuous model's public API."""
+    the steady part of the closed form (the paper's Eq. (39)) of the continuous model's public API (whose
+    JSON has the keys every track's series has)."""
     from moving_bogie.api import closed_form_response
     from moving_bogie.model.physical import PhysicalParams
+    from moving_bogie.response.closed_form import SERIES_KEYS
 
     values = bay_free_values | {"k_f": K_PER_M, "c_f": C_PER_M + RAIL["c_f"]}
     params = PhysicalParams(beam="eb", track="one-layer", vehicle="mass", **values)
     series = closed_form_response(params, [0.0], branch_cut=False, dps=15)
+    assert set(SERIES_KEYS) <= set(series.to_dict())
     return float(series.steady[series.names[0]])
 
 
@@ -81,7 +83,7 @@ def test_short_bays_give_the_continuous_tracks_steady_deflection(tmp_path):
     errors = []
     for bay in (0.15, 0.075, 0.0375):
         path = _file(tmp_path, l=bay, k_sup=K_PER_M * bay, c_sup=C_PER_M * bay)
-        series = sleeper_series(load_sleeper_file(path), points=65, free=False)
+        series = sleeper_series(load_parameters(path)[1], points=65, free=False)
         assert series.converged
         assert series.continuous_deflection is not None
         assert abs(series.continuous_deflection[0] - reference) < 1e-10 * reference
@@ -99,7 +101,12 @@ def test_json_csv_and_figure_are_complete(tmp_path, capsys):
     argv = ["timeseries", "--file", str(path), "--bays", "2", "--points", "17", "--json"]
     assert main([*argv, "--csv", str(out_csv), "--plot", str(out_png)]) == 0
     data = json.loads(capsys.readouterr().out)
-    steady, free = data["steady"], data["free"]
+    steady, free = data["steady_bay"], data["free"]
+    from moving_bogie.response.closed_form import SERIES_KEYS
+
+    assert set(SERIES_KEYS) <= set(data)  # the continuous tracks' keys, same meaning
+    assert data["tau"] == steady["time_s"] and data["responses"]["w"] == steady["deflection_m"][0]
+    assert data["steady"] == {"w": steady["wheels"][0]["deflection_mean_m"]} and data["units"]["w"] == "m"
     assert data["model"] == "eb/sleepers/mass" and data["l_m"] == 0.6 and data["v_m_s"] == 40.0
     assert data["Omega0_rad_s"] == pytest.approx(2 * np.pi * 40.0 / 0.6, rel=1e-14)
     assert steady["converged"] is True and steady["change"] < steady["tol"]
@@ -173,3 +180,21 @@ def test_growth_rate_and_doubling_time_of_a_root():
     assert (growing.state, decaying.state) == ("growing", "decaying")
     assert growing.halving_time is None and decaying.doubling_time is None
     assert growing.frequency_hz == pytest.approx(100 / (2 * np.pi), rel=1e-15)
+
+
+def test_the_series_takes_the_bound_model_and_its_scales(tmp_path):
+    """The library's series takes the bound model and its SI scales, as the closed form does: the same
+    series as the public entry; without scales (dimensionless parameters) it is refused by name, since its
+    outputs are in s, m and N."""
+    from moving_bogie import bind
+    from moving_bogie.errors import ParameterError
+    from moving_bogie.response.sleeper_series import sleeper_series as run
+
+    params, physical = load_parameters(_file(tmp_path))
+    public = sleeper_series(physical, points=33, free=False)
+    own = run(bind(physical), physical.scales(), points=33, free=False)
+    assert np.array_equal(public.contact_force, own.contact_force) and own.continuous_deflection is None
+    np.testing.assert_allclose(own.force_mean, RAIL["P"], rtol=1e-12)  # the static load P of the file
+    with pytest.raises(ParameterError) as err:
+        sleeper_series(params, points=33, free=False)
+    assert err.value.parameter == "params"

@@ -82,6 +82,9 @@ def test_a_small_sweep_runs_in_process_and_equals_the_cluster_store(tmp_path, ca
     assert main(argv) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["scheduler"] == "in-process" and summary["points"] == 24 < IN_PROCESS_POINTS
+    from moving_bogie.sweep.plan import SWEEP_KEYS
+
+    assert set(SWEEP_KEYS) <= set(summary)  # the keys of every track's sweep (a sleeper file's too)
     (a, attrs_a), (b, attrs_b) = _arrays(tmp_path / "cluster.zarr"), _arrays(out)
     _same(a, b)
     assert attrs_a == attrs_b and a["computed"].all() and len(np.unique(a["n_unstable"])) > 1

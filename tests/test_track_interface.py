@@ -80,7 +80,7 @@ def test_the_kind_of_track_survives_replace_and_pickling() -> None:
 
 def test_periodic_track_receptance_couples_as_the_hill_determinant() -> None:
     data = load_sleeper_file(EXAMPLES / "sleepers.toml")
-    sleepers = SleeperTrack(data.beam, data.track, data.groups)
+    sleepers = SleeperTrack(data.foundation, data.groups)
     module = importlib.import_module("moving_bogie.generated.vehicle_mass")
     vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
     track = PeriodicTrack.on(sleepers, vehicle.positions)

@@ -19,7 +19,7 @@ like the track's: the soil carries the whole track and the whole vehicle.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -37,7 +37,6 @@ if TYPE_CHECKING:
 
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
-    from moving_bogie.model.sleeper_input import SleeperInput
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.response.sleeper_series import SleeperSeries
     from moving_bogie.roots.frequencies import FrequencyResult
@@ -50,7 +49,7 @@ if TYPE_CHECKING:
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
-    from moving_bogie.validation.sleepers_check import SleeperCheck
+    from moving_bogie.validation.sleeper_verdict import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 __all__ = [
@@ -136,15 +135,18 @@ def soil_vehicle(data: SoilInput, *, tol: float = 1e-6) -> SoilVehicle:
     return SoilVehicle(data, physical, SoilRailSpec(track, data.soil, k_ref, tol))
 
 
-def load_soil_vehicle(path: str | Path) -> SoilVehicle:
-    """Read a soil-track file with a vehicle (:func:`soil_vehicle`); errors name the key and the file."""
+def load_soil_vehicle(path: str | Path, settings: Mapping[str, float] | None = None) -> SoilVehicle:
+    """Read a soil-track file with a vehicle (:func:`soil_vehicle`), its values changed by ``settings``
+    (key -> SI value, ``--set``: :func:`~moving_bogie.soil.file.load_soil_file`); errors name the key and
+    the file, or ``--set`` when the key is one of the settings."""
     from moving_bogie.soil.file import load_soil_file
 
-    data = load_soil_file(path)
+    data = load_soil_file(path, settings)
     try:
         return soil_vehicle(data)
     except ParameterError as exc:
-        raise ParameterError(exc.parameter, f"{path}: {exc}") from None
+        where = "--set" if settings and exc.parameter in settings else str(path)
+        raise ParameterError(exc.parameter, f"{where}: {exc}") from None
 
 
 def bind(params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle) -> BoundModel:
@@ -265,19 +267,24 @@ def validate(
     from moving_bogie.validation.compare import validate as run
 
     bound = bind(params)
-    if bound.model.periodic:
+    if bound.track.search_region().periodic:
         return validate_on_supports(params, **options)
     return run(bound, **options)
 
 
 def validate_on_supports(
-    params: DimensionlessParams | PhysicalParams | BoundModel, *, tol: float = 0.01
+    params: DimensionlessParams | PhysicalParams | BoundModel,
+    *,
+    tol: float = 0.01,
+    progress: Callable[[float], None] | None = None,
 ) -> SleeperCheck:
     """The finite rail on sleepers against the Floquet theory (docs/sleepers.md):
-    :func:`~moving_bogie.validation.on_supports.check_on_supports` of SI parameters on periodic supports."""
+    :func:`~moving_bogie.validation.on_supports.check_on_supports` of the bound model, its values in SI
+    too for SI parameters."""
     from moving_bogie.validation.on_supports import check_on_supports
 
-    return check_on_supports(_sleeper_data(params), tol=tol)
+    bound, scales = bind_with_scales(params)
+    return check_on_supports(bound, scales, tol=tol, progress=progress)
 
 
 def smeared_track(params: PhysicalParams) -> PhysicalParams:
@@ -301,11 +308,15 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
 def sleeper_series(
     params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
 ) -> SleeperSeries:
-    """The steady response over a bay and the free vibrations on sleepers, in SI:
+    """The steady response over a bay and the free vibrations on sleepers (in SI for SI parameters, with
+    the steady deflection of the smeared continuous track beside):
     :func:`~moving_bogie.response.sleeper_series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.response.sleeper_series import sleeper_series as run
 
-    return run(_sleeper_data(params), **options)
+    bound, scales = bind_with_scales(params)
+    smeared = smeared_physical(params) if isinstance(params, PhysicalParams) else None
+    return run(bound, scales, smeared=None if smeared is None else bind_with_scales(smeared), **options)
 
 
 def sleeper_map(
@@ -317,19 +328,15 @@ def sleeper_map(
     """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
     (S19)-(S22)): :func:`~moving_bogie.stability.maps.sleeper_map.sleeper_map` (``verify``, ``workers``,
     ``progress``)."""
+    from moving_bogie.errors import ParameterError
     from moving_bogie.stability.maps.sleeper_map import sleeper_map as run
 
-    return run(_sleeper_data(params), velocities, masses, **options)
-
-
-def _sleeper_data(params: DimensionlessParams | PhysicalParams | BoundModel) -> SleeperInput:
-    """The Floquet runtime's input of SI parameters on periodic supports (a bound model: its own)."""
-    from moving_bogie.errors import ParameterError
-    from moving_bogie.model.sleeper_input import sleeper_input_of
-
-    if isinstance(params, BoundModel) or not isinstance(params, PhysicalParams):
-        raise ParameterError("params", "the analyses on sleepers take SI parameters (PhysicalParams)")
-    return sleeper_input_of(params.to_dimensionless(), params)
+    bound, scales = bind_with_scales(params)
+    if scales is None:
+        raise ParameterError(
+            "params", "a sleeper map is in SI units (v in m/s, M in kg): give PhysicalParams"
+        )
+    return run(bound, scales, velocities, masses, **options)
 
 
 def frequency_lines(

@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 from collections.abc import Iterable
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -38,7 +39,9 @@ __all__ = [
     "params_from_args",
     "print_json",
     "read_params_file",
+    "set_numbers",
     "si_input",
+    "soil_settings",
     "vary_texts",
 ]
 
@@ -139,15 +142,18 @@ def add_parameter_options(parser: argparse.ArgumentParser) -> None:
     add_set_option(source)
 
 
-def add_set_option(parser: argparse._ActionsContainer) -> None:
-    """Add ``--set NAME=VALUE``: an SI parameter of a ``[physical]`` file (see :func:`apply_settings`)."""
+def add_set_option(parser: argparse._ActionsContainer, help: str | None = None) -> None:
+    """Add ``--set NAME=VALUE``: an SI parameter of a ``[physical]`` file (see :func:`apply_settings`), or
+    of a soil-track file (``help`` says which)."""
     parser.add_argument(
         "--set",
         action="append",
         default=[],
         metavar="NAME=VALUE",
-        help="change an SI parameter of a [physical] --file, in its unit (e.g. --set v=900 --set M=1200; "
-        "'moving-bogie models' lists the names and units); applied before the group options",
+        help=help
+        or "change an SI parameter of a [physical] --file, in its unit (e.g. --set v=900 --set M=1200; "
+        "'moving-bogie models' lists the names and units, and docs/soil.md a soil-track file's); applied "
+        "before the group options",
     )
 
 
@@ -167,18 +173,30 @@ def apply_settings(
             "--set",
             "--set needs a [physical] parameter file (--file F.toml); use the group options otherwise",
         )
-    changes = {}
-    for name, value in named_values(texts, "--set", "NAME=NUMBER").items():
-        try:
-            changes[name] = exact_number(value)
-        except ValueError as exc:
-            raise ParameterError("--set", f"--set {name}={value}: expected NAME=NUMBER ({exc})") from None
+    changes = set_numbers(texts)
     try:
         values: dict[str, Any] = physical.values() | changes  # Fractions, passed as **values
         physical = PhysicalParams(model=physical.model, **values)
         return physical, physical.to_dimensionless()
     except ParameterError as exc:
         raise ParameterError("--set", f"--set: {exc}") from None
+
+
+def set_numbers(texts: Iterable[str]) -> dict[str, Fraction]:
+    """The ``--set NAME=VALUE`` texts as {NAME: exact value}; malformed text or a name given twice names
+    ``--set``."""
+    changes = {}
+    for name, value in named_values(texts, "--set", "NAME=NUMBER").items():
+        try:
+            changes[name] = exact_number(value)
+        except ValueError as exc:
+            raise ParameterError("--set", f"--set {name}={value}: expected NAME=NUMBER ({exc})") from None
+    return changes
+
+
+def soil_settings(args: argparse.Namespace) -> dict[str, float]:
+    """The ``--set`` changes of a soil-track file (key -> SI value; :mod:`moving_bogie.soil.settings`)."""
+    return {name: float(value) for name, value in set_numbers(getattr(args, "set", None) or ()).items()}
 
 
 def add_model_options(parser: argparse.ArgumentParser) -> None:

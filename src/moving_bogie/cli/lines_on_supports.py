@@ -18,7 +18,7 @@ from .progress import checkpoint_options, progress_bar
 if TYPE_CHECKING:
     import numpy as np
 
-    from moving_bogie.model.sleeper_input import SleeperInput
+    from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.stability.maps.sleeper_map import SleeperMap
 
 #: a sleeper map of over TIMED cells per axis is timed on one column before it starts
@@ -35,16 +35,21 @@ _NOT_APPLICABLE = {
 }  # fmt: skip
 
 
-def sleeper_data(args: argparse.Namespace) -> SleeperInput | None:
-    """The parameters of ``--file`` (``--set`` applied) when its model is on periodic supports, else None."""
+def sleeper_data(args: argparse.Namespace) -> PhysicalParams | None:
+    """The SI parameters of ``--file`` (``--set`` applied) when its model is on periodic supports, else
+    None."""
     if getattr(args, "file", None) is None:
         return None
-    from moving_bogie.model.sleeper_input import sleeper_input_of
-
     from .common import params_from_args
 
     params, physical = params_from_args(args)
-    return sleeper_input_of(params, physical) if params.model.periodic else None
+    if not params.model.periodic:
+        return None
+    if physical is None:
+        raise ParameterError(
+            "file", f"{params.model.name}: a sleeper track takes a [physical] table in SI units"
+        )
+    return physical
 
 
 def _refuse_options(args: argparse.Namespace) -> None:
@@ -73,13 +78,12 @@ def _ranges(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
     return ranges
 
 
-def _check_bar(args: argparse.Namespace, data: SleeperInput) -> None:
+def _check_bar(args: argparse.Namespace, physical: PhysicalParams) -> None:
     """A bar that would follow the wheel mass is refused, naming ``--bar``: the D-decomposition on sleepers
     is a pencil in the wheel's mass alone (S19), so the map holds the bar's M_b and J_b (``--bar fixed``)."""
     from moving_bogie.model.bar import moves_bar
-    from moving_bogie.model.catalogue import get_model
 
-    model = get_model(data.beam, data.track, data.vehicle)
+    model = physical.model
     if getattr(args, "bar", "fixed") != "fixed" and moves_bar(model, model.wheel_mass):
         raise ParameterError(
             "--bar",
@@ -89,9 +93,9 @@ def _check_bar(args: argparse.Namespace, data: SleeperInput) -> None:
 
 
 def sleeper_plane(
-    args: argparse.Namespace, n: int, data: SleeperInput
-) -> tuple[SleeperInput, np.ndarray, np.ndarray]:
-    """The parameters and the grid (velocities, masses): every option checked before any computation.
+    args: argparse.Namespace, n: int, physical: PhysicalParams
+) -> tuple[np.ndarray, np.ndarray]:
+    """The grid (velocities, masses) of the SI parameters: every option checked before any computation.
 
     The masses are n points up to the top of the M axis, from its bottom (from M = top / n when it starts
     at 0: the counts are taken from M -> 0 up in any case)."""
@@ -99,16 +103,17 @@ def sleeper_plane(
 
     _refuse_options(args)
     ranges = _ranges(args)
-    if data.vehicle_groups.get("eta_M") is None or "M" not in data.physical:
-        raise ParameterError("vehicle", f"vehicle {data.vehicle!r} has no wheel mass M")
-    if data.groups.get("eta_f", 0.0) <= 0:
+    values = physical.values()
+    if "M" not in values:
+        raise ParameterError("vehicle", f"vehicle {physical.model.vehicle!r} has no wheel mass M")
+    if not values.get("c_f", 0) > 0:
         raise ParameterError(
             "c_f", "c_f must be positive: the D-decomposition runs along the real axis (S15)"
         )
-    _check_bar(args, data)
+    _check_bar(args, physical)
     (v0, v1), (m0, m1) = ranges["v"], ranges["M"]
     masses = np.linspace(m1 / n, m1, n) if m0 == 0 else np.linspace(m0, m1, n)
-    return data, np.linspace(v0, v1, n), masses
+    return np.linspace(v0, v1, n), masses
 
 
 def _text(smap: SleeperMap, *, crossings: bool) -> str:
@@ -135,32 +140,32 @@ def _text(smap: SleeperMap, *, crossings: bool) -> str:
     return "\n".join(lines)
 
 
-def run_sleeper_lines(args: argparse.Namespace, data: SleeperInput) -> int:
+def run_sleeper_lines(args: argparse.Namespace, physical: PhysicalParams) -> int:
     """``instability-lines --file F`` on sleepers: every crossing of every velocity column."""
-    from moving_bogie.stability.maps.sleeper_map import sleeper_map
+    from moving_bogie.api import sleeper_map
 
-    data, vs, ms = sleeper_plane(args, getattr(args, "n", 60), data)
+    vs, ms = sleeper_plane(args, getattr(args, "n", 60), physical)
     with progress_bar("D-decomposition lines", enabled=not args.json) as bar:
-        smap = sleeper_map(data, vs, ms, verify=3 if args.verify else 0, progress=bar)
-    return _report(args, data, smap, crossings=True, continuous=None)
+        smap = sleeper_map(physical, vs, ms, verify=3 if args.verify else 0, progress=bar)
+    return _report(args, physical, smap, crossings=True, continuous=None)
 
 
-def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
+def run_sleeper_map(args: argparse.Namespace, on_supports: PhysicalParams) -> int:
     """``stability-map --file F`` on sleepers: the map, the continuous track's map on the same grid."""
+    from moving_bogie.api import sleeper_map
     from moving_bogie.kernels.bound import bind
-    from moving_bogie.model.smeared import smeared_track
+    from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.stability.maps.map import StabilityMap, stability_map
-    from moving_bogie.stability.maps.sleeper_map import sleeper_map
 
-    data, vs, ms = sleeper_plane(args, args.n, data)
+    vs, ms = sleeper_plane(args, args.n, on_supports)
     if args.n > TIMED and not getattr(args, "resume", False):  # a long map says so before it starts
         middle = vs[args.n // 2 : args.n // 2 + 1]
-        column = partial(sleeper_map, data, middle, ms, verify=0, workers=1)
+        column = partial(sleeper_map, on_supports, middle, ms, verify=0, workers=1)
         estimate_grid("sleeper map", (args.n, args.n), args.workers, column, yes=args.yes, shorter=SHORTER)
-    physical = smeared_track(data)  # None: no continuous counterpart, the sleeper map alone
+    physical = smeared_physical(on_supports)  # None: no continuous counterpart, the sleeper map alone
     kept = checkpoint_options(args)
     with progress_bar("sleeper map", enabled=not args.json) as bar:
-        smap = sleeper_map(data, vs, ms, workers=args.workers, progress=bar, **kept)
+        smap = sleeper_map(on_supports, vs, ms, workers=args.workers, progress=bar, **kept)
     continuous: StabilityMap | None = None
     if physical is not None:
         with progress_bar("continuous map", enabled=not args.json) as bar:
@@ -173,10 +178,10 @@ def run_sleeper_map(args: argparse.Namespace, data: SleeperInput) -> int:
                 progress=bar,
                 **kept,
             )
-    return _report(args, data, smap, crossings=False, continuous=continuous)
+    return _report(args, on_supports, smap, crossings=False, continuous=continuous)
 
 
-def _report(args: argparse.Namespace, data: SleeperInput, smap: SleeperMap, **kw: object) -> int:
+def _report(args: argparse.Namespace, physical: PhysicalParams, smap: SleeperMap, **kw: object) -> int:
     from moving_bogie.stability.maps.map import StabilityMap
 
     continuous = kw["continuous"]
@@ -191,7 +196,7 @@ def _report(args: argparse.Namespace, data: SleeperInput, smap: SleeperMap, **kw
         from .stability_options import save_figure
 
         label = "continuous one-layer track, k_f = k_sup / l + k_f, c_f = c_sup / l + c_f"
-        operating = (data.physical["v"], data.physical["M"])
+        operating = (float(physical.v), float(physical.M))
         save_figure(
             sleeper_map_figure(smap, continuous, operating=operating, continuous_label=label), args.plot
         )

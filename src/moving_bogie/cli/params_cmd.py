@@ -11,7 +11,13 @@ from moving_bogie.model.physical import PhysicalParams
 
 from .common import add_json_option, add_parameter_options, params_from_args, print_json
 
-_SCALE_UNITS = {"chi": "1/m", "v_ref": "m/s", "w_st": "m", "t_scale": "s"}
+_SCALE_UNITS = {
+    "chi": "1/m",
+    "v_ref": "m/s",
+    "w_st": "m",
+    "t_scale": "s",
+    "load": "N (P / 2, the unit of force)",
+}
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:

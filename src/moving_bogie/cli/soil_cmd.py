@@ -8,11 +8,11 @@ from pathlib import Path
 from typing import Any
 
 from .checks import count, exact_number
-from .common import add_json_option, print_json
+from .common import add_json_option, add_set_option, print_json, soil_settings
 from .outputs import add_figure_option
 from .stability_options import RAW
 
-__all__ = ["register", "run_soil_critical_velocity"]
+__all__ = ["add_soil_set_option", "register", "run_soil_critical_velocity"]
 
 
 #: The most frequencies (--omega) or speeds (--range v=LO:HI:N) of one run.
@@ -46,6 +46,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--modes", type=count(1, 1000), default=None, metavar="N", help="report the N slowest soil modes"
     )
     add_figure_option(p, "--plot", help="write the dispersion figure")
+    add_soil_set_option(p)
     add_json_option(p)
     p.set_defaults(handler=run_dispersion)
     q = subparsers.add_parser(
@@ -73,8 +74,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="speeds in m/s (N points, default 21)",
     )
     add_figure_option(q, "--plot", help="write the amplification against speed")
+    add_soil_set_option(q)
     add_json_option(q)
     q.set_defaults(handler=run_moving_load)
+
+
+def add_soil_set_option(parser: argparse.ArgumentParser) -> None:
+    """``--set KEY=VALUE`` of a soil-track file: a [physical] key or a layer key numbered from the top."""
+    add_set_option(
+        parser,
+        help="change a value of the file, in its unit: a [physical] key (--set EI=1.3e7) or a soil layer's "
+        "key with the layer's number, 1 at the top (--set c_s1=90, --set h2=8; docs/soil.md)",
+    )
 
 
 def _omega_list(text: str) -> list[float]:
@@ -120,7 +131,7 @@ def run_dispersion(args: argparse.Namespace) -> int:
     from moving_bogie.soil.file import load_soil_file
     from moving_bogie.soil.rayleigh import soil_modes
 
-    data = load_soil_file(args.file)
+    data = load_soil_file(args.file, soil_settings(args))
     omega = np.array(args.omega) if args.omega is not None else DEFAULT_OMEGA
     modes = soil_modes(omega, data.soil)
     crit = critical_velocity(data.track, data.soil, omega)
@@ -167,7 +178,7 @@ def run_soil_critical_velocity(args: argparse.Namespace) -> int:
     from moving_bogie.soil.file import load_soil_file
     from moving_bogie.soil.rayleigh import soil_modes
 
-    data = load_soil_file(args.file)
+    data = load_soil_file(args.file, soil_settings(args))
     crit = critical_velocity(data.track, data.soil)
     out = _header(data) | crit.to_dict() | {"units": {"v": "m/s", "omega": "rad/s", "k": "rad/m"}}
     plot = getattr(args, "plot", None)
@@ -200,7 +211,7 @@ def run_moving_load(args: argparse.Namespace) -> int:
     from moving_bogie.soil.file import load_soil_file
     from moving_bogie.soil.moving_load import deflection, moving_load
 
-    data = load_soil_file(args.file)
+    data = load_soil_file(args.file, soil_settings(args))
     if data.load is None:
         raise ParameterError("P", f"{args.file}: P (N) is missing from [physical]: the moving load")
     if any(layer.eta <= 0 for layer in data.soil.layers):

@@ -12,10 +12,10 @@ import argparse
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["SoilRun", "run_soil_frequencies", "soil_frequencies"]
+__all__ = ["SoilRun", "equivalent_params", "run_soil_frequencies", "soil_frequencies"]
 
 #: Options of ``frequencies`` that a soil-track file does not take (its values are in the file).
-REFUSED = ("window", "certify", "set")
+REFUSED = ("window", "certify")
 
 
 def _refuse_options(args: argparse.Namespace) -> None:
@@ -74,9 +74,10 @@ def soil_frequencies(args: argparse.Namespace) -> SoilRun:
     _refuse_options(args)
     from moving_bogie.api import induced_frequencies, load_soil_vehicle
 
+    from .common import soil_settings
     from .progress import progress_bar
 
-    data = load_soil_vehicle(args.file)
+    data = load_soil_vehicle(args.file, soil_settings(args))
     physical = data.physical
     with progress_bar("induced frequencies on the soil", enabled=not args.json) as update:
         result = induced_frequencies(data, progress=update)
@@ -90,12 +91,25 @@ def soil_frequencies(args: argparse.Namespace) -> SoilRun:
     return SoilRun(result, physical, regime, soil)
 
 
+def equivalent_params(run: SoilRun) -> dict[str, Any]:
+    """The JSON ``params`` of a vehicle on the soil: the keys of every track's (the groups of the vehicle on
+    the Winkler-equivalent track of k_ref, ``track`` "one-layer", by which the roots are scaled) and
+    ``equivalent_of``, the track on the soil they stand for (docs/soil.md, "A vehicle on the soil")."""
+    soil = run.soil
+    layers = len(soil["layers"])
+    return run.result.params.to_dict() | {
+        "equivalent_of": f"the {soil['track']} track on {layers}-layer soil: the groups of the rail on the "
+        f"Winkler track of k_ref = {soil['k_ref']:.6g} N/m^2, which scale the roots"
+    }
+
+
 def run_soil_frequencies(args: argparse.Namespace) -> int:
     """``frequencies --file`` on a soil-track file with a vehicle, printed as on every track (the JSON with a
     ``soil`` key); exit 1 unless the count is matched and the verdict decided."""
     from .frequencies_output import report
 
     run = soil_frequencies(args)
-    report(args, run.result, run.physical, run.regime, extra={"soil": run.soil}, title=run.title())
+    extra = {"soil": run.soil, "params": equivalent_params(run)}
+    report(args, run.result, run.physical, run.regime, extra=extra, title=run.title())
     result = run.result
     return 0 if result.count_ok and result.verdict.determined else 1

@@ -6,13 +6,10 @@ from __future__ import annotations
 import argparse
 import sys
 import tomllib
-from collections.abc import Callable
-from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.model.bar import bar_note
 from moving_bogie.presentation import field_lines
 
 from .checks import count, exact_number, named_values, workers
@@ -57,7 +54,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "store's coordinates are named and unitted so, the dimensionless groups kept beside them.\n"
             "A sleeper-track file (docs/sleepers.md) is swept over its [physical] names, each point one\n"
             "Floquet strip search: n_roots, stable, unstable, certain, Omega_im [1/s], Omega_re [rad/s],\n"
-            "harmonics, Omega0 [rad/s]."
+            "harmonics, Omega0 [rad/s]. A soil-track file (docs/soil.md) is swept over its track's\n"
+            "[physical] keys and its layers' keys (c_s1, h2, ... numbered from 1 at the top), each point\n"
+            "the critical velocity: v_cr, omega_cr, v_cr_uncoupled, omega_uncoupled, found."
         ),
         epilog=(
             "examples:\n"
@@ -71,7 +70,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "      --vary M=400:1600:40 --out si.zarr\n"
             "  moving-bogie sweep-plot si.zarr --x v --y M --out si.png\n"
             "  moving-bogie sweep --file examples/sleepers.toml --vary v=40:80:9 --out sl.zarr\n"
-            "  moving-bogie sweep-plot sl.zarr --x v --out growth.png"
+            "  moving-bogie sweep-plot sl.zarr --x v --out growth.png\n"
+            "  moving-bogie sweep --file examples/soil-ballasted.toml --vary c_s1=40:120:9 --out soil.zarr\n"
+            "  moving-bogie sweep-plot soil.zarr --x c_s1 --out vcr.png"
         ),
         formatter_class=_RAW,
     )
@@ -168,21 +169,20 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
 
 
 def run_sweep_cmd(args: argparse.Namespace) -> int:
+    from moving_bogie.soil.file import is_soil_file
     from moving_bogie.sweep.api import discarded_if_empty
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
-    from moving_bogie.sweep.store import open_sweep, read_store
+    from moving_bogie.sweep.store import read_store
 
     spec: SweepPlan
-    summarise: Callable[[Path], dict[str, Any]]
-    if args.file is not None and params_from_args(args)[0].model.periodic:
-        from moving_bogie.sweep.sleepers import sleeper_summary
+    if args.file is not None and is_soil_file(args.file):
+        from .soil_sweep import soil_spec
 
-        sleepers = _sleeper_spec(args)
-        spec = sleepers
-        summarise = lambda path: sleeper_summary(sleepers, open_sweep(path, dask=False))  # noqa: E731
+        spec = soil_spec(args)
+    elif args.file is not None and params_from_args(args)[0].model.periodic:
+        spec = _sleeper_spec(args)
     else:
-        continuous = _spec(args)
-        spec, summarise = ContinuousPlan(continuous), partial(_summary, continuous)
+        spec = ContinuousPlan(_spec(args))
     check_points(spec.size)  # a sweep's size is bounded before its store is created
     # every option is checked (and the store created) before any computation
     try:
@@ -219,37 +219,12 @@ def run_sweep_cmd(args: argparse.Namespace) -> int:
         "scheduler": run.scheduler,
         "seconds": round(run.seconds, 2),
         "points_per_second": round(run.points_per_second, 1) if run.points_computed else None,
-    } | summarise(args.out)
+    } | spec.summary(args.out)
     if args.json:
         print_json(summary)
     else:
         print("\n".join(field_lines(summary, width=20)))
     return 0
-
-
-def _summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
-    """The verdicts of a sweep of a continuous track, for the summary."""
-    from moving_bogie.sweep.store import read_store
-
-    store = read_store(path, ("n_unstable", "certain", "settled", "checked", "supercritical"))
-    a = store.arrays
-    out = {
-        "unstable_fraction": float((a["n_unstable"] > 0).mean()),
-        "uncertain_points": int((~a["certain"]).sum()),
-        "settled_points": int(a["settled"].sum()),
-        "check_disagreements": int((a["checked"] < 0).sum()),
-        "units": {axis.label: store.units.get(axis.label, "1") for axis in spec.axes},
-    }
-    varied = [axis.name for axis in spec.axes]
-    note = next(
-        (bar_note(spec.params, spec.bar, name) for name in varied if bar_note(spec.params, spec.bar, name)),
-        None,
-    )
-    if note is not None:  # what the bar did along a varied wheel mass
-        out["bar"] = note
-    if "supercritical" in a:  # the points above the critical velocity of their track
-        out["supercritical_points"] = int(a["supercritical"].sum())
-    return out
 
 
 # --- on periodic supports -----------------------------------------------------------------------------
@@ -326,7 +301,11 @@ def run_sweep_plot(args: argparse.Namespace) -> int:
             "blank); run the sweep again with --resume to complete it",
             file=sys.stderr,
         )
-    if ds.attrs.get("kind") == "sleepers":
+    if ds.attrs.get("kind") == "soil":
+        from moving_bogie.sweep.soil_plots import plot_soil_sweep
+
+        fig = plot_soil_sweep(ds, args.x, args.y, sel)
+    elif ds.attrs.get("kind") == "sleepers":
         from moving_bogie.sweep.sleeper_plots import plot_sleeper_sweep
 
         fig = plot_sleeper_sweep(ds, args.x, args.y, sel)

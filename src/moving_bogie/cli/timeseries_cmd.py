@@ -289,11 +289,9 @@ def run_on_supports(
     """Print (or write) the steady response over ``--bays`` bays and the free vibrations in SI of a model on
     periodic supports (the file's parameters, ``--set`` applied)."""
     check_sleeper_options(args)
-    from moving_bogie.model.sleeper_input import sleeper_input_of
-    from moving_bogie.response.sleeper_series import sleeper_series
+    from moving_bogie.api import sleeper_series
 
-    data = sleeper_input_of(params, physical)
-    series = sleeper_series(data, bays=args.bays, points=args.points)
+    series = sleeper_series(params if physical is None else physical, bays=args.bays, points=args.points)
     if args.csv:
         write_sleeper_csv(series, args.csv)
     if args.plot:

@@ -4,10 +4,14 @@ supports the finite rail against the Floquet theory (docs/sleepers.md, "The fini
 from __future__ import annotations
 
 import argparse
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 if TYPE_CHECKING:
-    from moving_bogie.model.sleeper_input import SleeperInput
+    from matplotlib.figure import Figure
+
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.physical import PhysicalParams
+    from moving_bogie.validation.sleeper_verdict import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 from .checks import count, number
@@ -83,60 +87,91 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """One call of :func:`moving_bogie.validate` (the finite beam against the closed form, or on periodic
+    supports the finite rail against the Floquet theory: the library dispatches on the bound model), its
+    figure, its JSON or its table."""
+    params, physical = _checked(args)  # every input checked before the heavy imports
+    periodic = params.model.periodic
+    from moving_bogie.api import validate
+
+    from .progress import progress_bar
+
+    target = physical if periodic and physical is not None else params
+    what = "Floquet theory + finite rail" if periodic else "finite beam + closed form"
+    with progress_bar(what, enabled=not args.json) as update:
+        result = validate(target, progress=update, **_options(args, periodic))
+    if args.plot:
+        from moving_bogie.response.plots import save_figure
+
+        save_figure(_figure(args, result, target), args.plot, dpi=150)
+    data = result.to_dict()
+    if args.case is not None:
+        data["case"] = args.case
+    if args.plot:
+        data["plot"] = str(args.plot)
+    if args.json:
+        print_json(data)
+    else:
+        print(format_sleeper_check(data) if periodic else format_result(cast("ValidationResult", result)))
+        if args.plot:
+            print(f"figure written to {args.plot}")
+    return 0 if result.agrees else 1
+
+
+def _checked(args: argparse.Namespace) -> tuple[DimensionlessParams, PhysicalParams | None]:
+    """The parameters, every option checked for the kind of track (one message naming the first wrong)."""
     from moving_bogie.errors import ParameterError
 
     if args.file is not None:
         params, physical = params_from_args(args)
         if params.model.periodic:
-            from moving_bogie.model.sleeper_input import sleeper_input_of
-
             if not (0 < args.tol < 1):
                 raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
-            return run_on_supports(args, sleeper_input_of(params, physical))
+            _refuse_on_supports(args)
+            return params, physical
     if args.modes < 4:
         raise ParameterError("modes", f"--modes must be at least 4 (got {args.modes})")
     if args.tmax is not None and not (args.tmax > 0 and args.tmax < float("inf")):
         raise ParameterError("tmax", f"--tmax must be a positive number (got {args.tmax})")
     if not (0 < args.tol < 1):
         raise ParameterError("tol", f"--tol must be a fraction between 0 and 1 (got {args.tol})")
-    params, _physical = params_from_args(args)  # every input checked before the heavy imports
+    return params_from_args(args)
 
-    from moving_bogie.kernels.bound import bind
-    from moving_bogie.response.plots import save_figure
-    from moving_bogie.validation.compare import plot_validation, validate
+
+def _options(args: argparse.Namespace, periodic: bool) -> dict[str, Any]:
+    """The options of the check of this kind of track (a sleeper file takes ``--tol`` only)."""
+    if periodic:
+        return {"tol": args.tol}
+    return {
+        "n_modes": args.modes,
+        "tau_max": args.tmax,
+        "tol": args.tol,
+        "static_correction": not args.no_correction,
+        "estimate": not args.no_estimate,
+    }
+
+
+def _figure(
+    args: argparse.Namespace,
+    result: ValidationResult | SleeperCheck,
+    params: DimensionlessParams | PhysicalParams,
+) -> Figure:
+    """The paper-style figure of the continuous check, or the finite rail's on sleepers."""
+    from moving_bogie.validation.sleeper_verdict import SleeperCheck
+
+    if isinstance(result, SleeperCheck):
+        from moving_bogie.validation.sleepers_plots import plot_sleeper_check
+
+        return plot_sleeper_check(result, title=_check_title(result, params))
+    from moving_bogie.validation.compare import plot_validation
     from moving_bogie.validation.verdict import beam_title
 
-    from .progress import progress_bar
-
-    with progress_bar("finite beam + closed form", enabled=not args.json) as update:
-        result = validate(
-            bind(params),
-            n_modes=args.modes,
-            tau_max=args.tmax,
-            tol=args.tol,
-            static_correction=not args.no_correction,
-            estimate=not args.no_estimate,
-            progress=update,
-        )
-    if args.plot:
-        name = f"Case {args.case}" if args.case is not None else "moving bogie"
-        beam = f", {beam_title(params)}"
-        track = getattr(params, "track", "one-layer")
-        beam += "" if track == "one-layer" else f", {track} track"
-        title = f"{name} ({args.model}{beam}): finite beam (solid) vs closed form (dashed)"
-        save_figure(plot_validation(result, title=title), args.plot, dpi=150)
-    if args.json:
-        data = result.to_dict()
-        if args.case is not None:
-            data["case"] = args.case
-        if args.plot:
-            data["plot"] = str(args.plot)
-        print_json(data)
-    else:
-        print(format_result(result))
-        if args.plot:
-            print(f"figure written to {args.plot}")
-    return 0 if result.agrees else 1
+    name = f"Case {args.case}" if args.case is not None else "moving bogie"
+    beam = f", {beam_title(params)}"
+    track = getattr(params, "track", "one-layer")
+    beam += "" if track == "one-layer" else f", {track} track"
+    title = f"{name} ({args.model}{beam}): finite beam (solid) vs closed form (dashed)"
+    return plot_validation(result, title=title)
 
 
 def format_result(result: ValidationResult) -> str:
@@ -202,34 +237,12 @@ def _refuse_on_supports(args: argparse.Namespace) -> None:
         )
 
 
-def run_on_supports(args: argparse.Namespace, data: SleeperInput) -> int:
-    """The three comparisons of :func:`~moving_bogie.validation.sleepers_check.check_sleepers` on the
-    parameters ``data`` of a model on periodic supports (the file's, ``--set`` applied), printed."""
-    from moving_bogie.validation.on_supports import check_on_supports, check_summary
-
-    _refuse_on_supports(args)
-    from .progress import progress_bar
-
-    with progress_bar("Floquet theory + finite rail", enabled=not args.json) as update:
-        result = check_on_supports(data, tol=args.tol, progress=update)
-    if args.plot:
-        from moving_bogie.response.plots import save_figure
-        from moving_bogie.validation.sleepers_plots import plot_sleeper_check
-
-        title = f"{data.beam}/{data.track}/{data.vehicle}, v = {data.physical['v']:g} m/s"
-        newtons, metres = data.si_units()
-        figure = plot_sleeper_check(result, title=title, newtons=newtons, metres=metres)
-        save_figure(figure, args.plot, dpi=150)
-    out = check_summary(result, data)
-    if args.plot:
-        out["plot"] = str(args.plot)
-    if args.json:
-        print_json(out)
-    else:
-        print(format_sleeper_check(out))
-        if args.plot:
-            print(f"figure written to {args.plot}")
-    return 0 if result.agrees else 1
+def _check_title(result: SleeperCheck, params: DimensionlessParams | PhysicalParams) -> str:
+    """The figure's title: the model and its speed (in m/s for SI parameters)."""
+    speed = (
+        f"v = {float(params.v):g} m/s" if result.scales is not None else f"alpha = {float(params.alpha):g}"
+    )
+    return f"{result.model}, {speed}"
 
 
 def _dt_text(finite_beam: dict[str, Any]) -> str:
@@ -239,8 +252,16 @@ def _dt_text(finite_beam: dict[str, Any]) -> str:
     return f"{finite_beam['dt']:.4g}"
 
 
+def _in_si(comparison: dict[str, Any]) -> dict[str, Any]:
+    """A comparison of a check's ``to_dict()`` with its SI values (a dimensionless check: its own, unit 1)."""
+    keys = {"floquet_si": "floquet", "finite_beam_si": "finite_beam"}
+    return {k: comparison.get(v) for k, v in keys.items()} | {"unit_si": "1"} | comparison
+
+
 def format_sleeper_check(out: dict[str, Any]) -> str:
     """The table: quantity, Floquet, finite beam (SI), relative difference, and the verdict line."""
+    from moving_bogie.validation.sleeper_verdict import TOLERANCE_RULE
+
     fb = out["finite_beam"]
     lines = [
         f"model {out['model']}: finite rail of {fb['bays']} bays "
@@ -249,22 +270,20 @@ def format_sleeper_check(out: dict[str, Any]) -> str:
         f"(verdict {out['floquet_verdict'].upper()})",
         f"  {'quantity':<26}{'Floquet':>14}{'finite beam':>14}  {'unit':<6}{'rel. diff':>10}  within",
     ]
-    for c in out["comparisons"]:
+    comparisons = [_in_si(c) for c in out["comparisons"]]
+    for c in comparisons:
         lines.append(
             f"  {c['quantity']:<26}{c['floquet_si']:>14.6g}{c['finite_beam_si']:>14.6g}  {c['unit_si']:<6}"
             f"{c['relative_diff']:>10.3%}  {'yes' if c['within'] else 'NO'}"
         )
-    lines.append(
-        "rule: |finite - Floquet| <= tol |Floquet| for the rate and the frequency; for the steady force "
-        "max |difference| over the last bay <= tol x the Floquet force's peak-to-peak"
-    )
+    lines.append(f"rule: {TOLERANCE_RULE}")
     t = out["timings"]
     lines.append(f"time: Floquet {t['floquet_s']:.2f} s, finite beam {t['finite_beam_s']:.2f} s")
     lines += [f"NOTE: {note}" for note in out["notes"]]
     judged = "; ".join(
         f"{c['quantity']} {c['floquet_si']:.6g} (Floquet) vs {c['finite_beam_si']:.6g} (finite beam) "
         f"{c['unit_si']}: {c['relative_diff']:.3%} {'<=' if c['within'] else '>'} {c['tolerance']:.2%}"
-        for c in out["comparisons"]
+        for c in comparisons
     )
     lines.append(f"verdict: {'AGREE' if out['agrees'] else 'DISAGREE'}: {judged or 'nothing compared'}")
     return "\n".join(lines)

@@ -151,9 +151,9 @@ def _critical_velocity_on_supports(
 ) -> int:
     """critical-velocity of a track on periodic supports: that of its smeared track (the supports spread
     along the rail, docs/sleepers.md), its pinned-pinned frequency and the sleeper-passing frequency."""
+    from moving_bogie.api import bind_with_scales
     from moving_bogie.errors import ParameterError
-    from moving_bogie.kernels.sleeper_track import SleeperTrack
-    from moving_bogie.model.sleeper_input import sleeper_input_of
+    from moving_bogie.kernels.periodic_track import PeriodicTrack
     from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.paper.critical_velocity_formulas import paper_formula
     from moving_bogie.stability.velocity.critical_velocity import critical_velocity
@@ -162,10 +162,11 @@ def _critical_velocity_on_supports(
         flag = "--" + next(iter(given)).replace("_", "-")
         why = f"{flag} does not apply to a sleeper track: use --set NAME=VALUE"
         raise ParameterError(flag.lstrip("-"), why)
-    data_in = sleeper_input_of(params, physical)
     smeared = smeared_physical(physical) if physical is not None else None
-    if smeared is None:
+    if smeared is None or physical is None:
         raise ParameterError("track", f"{params.model.name} has no smeared continuous track")
+    bound, own = bind_with_scales(physical)
+    assert isinstance(bound.track, PeriodicTrack) and own is not None
     res = critical_velocity(smeared.to_dimensionless(), formula=paper_formula)
     data = res.to_dict()
     scales = smeared.scales()
@@ -173,13 +174,13 @@ def _critical_velocity_on_supports(
     data["v_cr_unit"] = "m/s"
     for minimum in data["minima"]:
         minimum["v"] = f"{float(minimum['alpha']) * scales.v_ref:.10g}"
-    track = SleeperTrack(data_in.beam, data_in.track, data_in.groups)
-    to_si = 1 / data_in.t_scale
+    track = bound.track.sleepers
+    to_si = 1 / own.t_scale
     pinned, passing = track.pinned_pinned() * to_si, track.Omega0 * to_si
     data["on_supports"] = {
         "model": params.model.name,
         "smeared_track": smeared.model.name,
-        "alpha_cr": float(res.alpha_cr) * scales.v_ref / data_in.v_ref,
+        "alpha_cr": float(res.alpha_cr) * scales.v_ref / own.v_ref,
         "pinned_pinned_rad_s": pinned,
         "pinned_pinned_hz": pinned / (2 * math.pi),
         "sleeper_passing_rad_s": passing,

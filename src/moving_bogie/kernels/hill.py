@@ -22,6 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cached_property
 from types import ModuleType
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -35,6 +36,9 @@ from moving_bogie.kernels.coupling import (
 )
 from moving_bogie.kernels.periodic_receptance import Receptance, receptance
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+
+if TYPE_CHECKING:
+    from moving_bogie.kernels.bound import BoundModel
 
 __all__ = ["FloquetSystem", "VehicleMatrices", "harmonic_set"]
 
@@ -66,6 +70,11 @@ class VehicleMatrices:
         )
         positions = np.array([float(x) for x in module.contact_positions(**args)])
         return cls(mass, damping, stiffness, int(module.CONTACTS), positions)
+
+    @classmethod
+    def of(cls, bound: BoundModel) -> VehicleMatrices:
+        """The vehicle of a bound model (its generated module, its groups as floats)."""
+        return cls.from_module(bound.vehicle, bound.vehicle_values(bound.floats))
 
     @cached_property
     def dynamic(self) -> Dynamic:

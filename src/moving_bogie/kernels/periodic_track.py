@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,6 +25,7 @@ from moving_bogie.kernels.track_model import STRIP, RailReceptance, SearchRegion
 
 if TYPE_CHECKING:
     from moving_bogie.kernels.bound import BoundModel
+    from moving_bogie.model.periodic import PeriodicFoundation
 
 __all__ = ["PeriodicTrack"]
 
@@ -32,8 +33,9 @@ __all__ = ["PeriodicTrack"]
 class PeriodicTrack:
     """The sleeper track of a bound model whose parameters carry the groups of ``generated/sleepers.py``.
 
-    ``PeriodicTrack(bound)`` reads the beam and track names from ``bound.model`` and the groups from
-    ``bound.floats``; :meth:`on` makes one from a
+    ``PeriodicTrack(bound)`` takes the generated functions of the beam on its supports from
+    ``bound.foundation`` (the catalogue's :class:`~moving_bogie.model.periodic.PeriodicFoundation`) and the
+    groups from ``bound.floats``; :meth:`on` makes one from a
     :class:`~moving_bogie.kernels.sleeper_track.SleeperTrack` and the contact positions directly.
 
     Parameters
@@ -49,8 +51,8 @@ class PeriodicTrack:
     def __init__(self, bound: BoundModel, *, offset: float = 0.0, tol: float = 1e-12) -> None:
         numbers = vars(bound.floats)
         groups = {k: v for k, v in numbers.items() if isinstance(v, float)}
-        model = bound.model
-        self._set(SleeperTrack(model.beam, model.track, groups), bound.positions, offset, tol)
+        kernels = cast("PeriodicFoundation", bound.foundation)
+        self._set(SleeperTrack(kernels, groups), bound.positions, offset, tol)
 
     @classmethod
     def on(

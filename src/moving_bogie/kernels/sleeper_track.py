@@ -13,16 +13,16 @@ the lattice sum in closed form (docs/sleepers.md, Eq. (S7)).
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from moving_bogie.kernels.brent import brentq
 from moving_bogie.kernels.polynomial import horner
-from moving_bogie.model.catalogue import default_catalogue
-from moving_bogie.model.periodic import PeriodicFoundation
+
+if TYPE_CHECKING:
+    from moving_bogie.model.periodic import PeriodicFoundation
 
 __all__ = ["SleeperTrack", "stable_cot"]
 
@@ -43,27 +43,26 @@ class SleeperTrack:
 
     Parameters
     ----------
-    beam, track : str
-        A beam of ``generated.sleepers.BEAMS`` and a track of ``generated.sleepers.TRACKS``.
+    kernels : PeriodicFoundation
+        The generated functions of one beam on one track of periodic supports, as the catalogue presents
+        them (:class:`~moving_bogie.model.periodic.PeriodicFoundation`: a bound model's ``foundation``, a
+        model's ``foundation``); nothing here looks them up by name.
     groups : dict
         Every group the beam's symbol and the track's support take (``lam``, ``alpha``, ``kappa_f``, ...).
     """
 
-    beam: str
-    track: str
+    kernels: PeriodicFoundation
     groups: dict = field(hash=False)
 
-    def __getstate__(self) -> dict[str, Any]:
-        """Pickled without the cached :attr:`kernels` (looked up again from the catalogue)."""
-        state = dict(self.__dict__)
-        state.pop("kernels", None)
-        return state
+    @property
+    def beam(self) -> str:
+        """The beam's name (``generated.sleepers.BEAMS``), for output and the finite rail's elements."""
+        return self.kernels.beam
 
-    @functools.cached_property
-    def kernels(self) -> PeriodicFoundation:
-        """The generated functions of this beam on this track, from the catalogue (looked up once)."""
-        found: PeriodicFoundation = default_catalogue().periodic[(self.beam, self.track)]
-        return found
+    @property
+    def track(self) -> str:
+        """The track's name (``generated.sleepers.TRACKS``)."""
+        return self.kernels.track
 
     def arguments(self, key: str) -> dict:
         """The groups of the beam's symbol (``key`` ``"groups"``) or moving symbol (``"moving_groups"``)."""
@@ -156,8 +155,8 @@ class SleeperTrack:
         damping group 0) at the wavenumber p = pi / lam, the lowest root w > 0 of N~(pi / lam, w) = 0,
         bracketed by the first sign change of a doubling scan and found by Brent's method.
         """
-        specs = default_catalogue().specs
-        groups = {n: 0.0 if specs[n].damping else self.groups[n] for n in self.kernels.symbol_groups}
+        damping = self.kernels.damping_groups
+        groups = {n: 0.0 if n in damping else self.groups[n] for n in self.kernels.symbol_groups}
         p2 = (np.pi / self.lam) ** 2
 
         def symbol(w: float) -> float:

@@ -16,6 +16,8 @@ Nothing here names a track, a beam or a group: everything comes from the generat
 from __future__ import annotations
 
 import functools
+import importlib
+import sys
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -167,6 +169,18 @@ class PeriodicFoundation:
         """(numerator, denominator) of z(w) as polynomials in w (highest power first)."""
         return getattr(self.module, f"support_polynomials_{self._tag}")
 
+    @functools.cached_property
+    def damping_groups(self) -> frozenset[str]:
+        """The viscous damping groups of this beam and track (the track's own by their unit, N s..., the
+        others by the paper's metadata), set to zero on the undamped rail."""
+        paper: dict[str, dict[str, Any]] = self.paper.PARAMETERS
+        own = {name for name, spec in self._table.items() if _damping_unit(spec["unit"])}
+        return frozenset(own | {name for name, meta in paper.items() if meta.get("damping", False)})
+
+    def __reduce__(self) -> tuple[Callable[..., PeriodicFoundation], tuple[str, ...]]:
+        """Pickled by its names and those of its generated modules (imported again where unpickled)."""
+        return (_rebuild, (self.beam, self.track, self.module.__name__, self.paper.__name__))
+
     # --- scaling ------------------------------------------------------------------------------------
     def scales(self, values: Mapping[str, Any], sqrt: Callable[[Any], Any]) -> tuple[Any, Any, Any, Any]:
         """(chi, v_ref, w_st, t_scale) of (S2) from the SI ``values`` (w_st = P chi / (2 k_e))."""
@@ -196,6 +210,15 @@ class PeriodicFoundation:
 def _call(func: Callable[..., Any], values: Mapping[str, Any], sqrt: Callable[[Any], Any]) -> Any:
     names = func.__code__.co_varnames[: func.__code__.co_argcount]
     return func(**{name: (sqrt if name == "sqrt" else values[name]) for name in names})
+
+
+def _rebuild(beam: str, track: str, module: str, paper: str) -> PeriodicFoundation:
+    """The :class:`PeriodicFoundation` of ``beam`` on ``track`` with the generated modules of these names
+    (unpickling: a module loaded already, else imported)."""
+    sleepers, parameters = (
+        sys.modules.get(name) or importlib.import_module(name) for name in (module, paper)
+    )
+    return PeriodicFoundation(beam, track, sleepers, parameters)
 
 
 def periodic_foundations(sleepers: ModuleType | None, paper: ModuleType) -> dict:

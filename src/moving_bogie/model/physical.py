@@ -167,7 +167,10 @@ class PhysicalParams(ModelValues):
         """Reference scales chi, v_ref, w_st and the time scale, Eqs. (15)-(16), as floats."""
         with mpmath.workdps(30):
             chi, v_ref, w_st, t_scale = scales_mp(self._model, self._scale_values())
-            return Scales(chi=float(chi), v_ref=float(v_ref), w_st=float(w_st), t_scale=float(t_scale))
+            load = fraction_to_mpf(self._values["P"]) / 2
+            return Scales(
+                chi=float(chi), v_ref=float(v_ref), w_st=float(w_st), t_scale=float(t_scale), load=float(load)
+            )
 
     def to_dimensionless(self, *, digits: int = 20) -> DimensionlessParams:
         """Dimensionless parameters, Eqs. (15)-(17) and (59), by the generated exact scaling.

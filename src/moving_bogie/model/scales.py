@@ -84,6 +84,8 @@ class Scales:
         ``P chi / (2 k_f)`` [m], the static deflection under one wheel load.
     t_scale : float
         ``sqrt(m / k_f)`` [s]; ``tau = t / t_scale = chi v_ref t``.
+    load : float
+        ``P / 2 = k_f w_st / chi`` [N], the unit of force: a wheel's static load is 2.
 
     The methods take dimensionless values (floats, numpy arrays or mpf) and return SI values.
     """
@@ -92,6 +94,7 @@ class Scales:
     v_ref: float
     w_st: float
     t_scale: float
+    load: float
 
     def position(self, xi: Any) -> Any:
         """Moving coordinate ``r = xi / chi`` [m], Eq. (16)."""
@@ -108,6 +111,16 @@ class Scales:
     def rotation(self, theta: Any) -> Any:
         """Bogie-bar rotation ``theta = theta~ w_st chi`` [rad], Eq. (16)."""
         return theta * self.w_st * self.chi
+
+    @property
+    def mass(self) -> float:
+        """``m / chi = (P / 2) t_scale^2 / w_st`` [kg], the unit of the vehicle's masses (Eq. (17):
+        eta_M = M chi / m)."""
+        return self.load * self.t_scale**2 / self.w_st
+
+    def force(self, f: Any) -> Any:
+        """Force ``F = f P / 2`` [N] (a contact force; a wheel's static load is f = 2)."""
+        return f * self.load
 
     def time(self, tau: Any) -> Any:
         """Time ``t = tau t_scale`` [s], Eq. (16)."""

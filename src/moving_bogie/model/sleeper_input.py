@@ -16,7 +16,7 @@ from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.generated import parameters as paper_groups
@@ -26,6 +26,7 @@ from moving_bogie.model.physical import PhysicalParams
 
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.periodic import PeriodicFoundation
 
 __all__ = [
     "SleeperInput",
@@ -66,6 +67,11 @@ class SleeperInput:
             raise ParameterError("P", "P (the static wheel load, N) is required for the steady response")
         w_st = paper_groups.scales(math.sqrt, si["EI"], si["m"], self.k_e, si["P"])[2]
         return si["P"] / 2, float(w_st)
+
+    @property
+    def foundation(self) -> PeriodicFoundation:
+        """The generated functions of the beam on its periodic supports, from the catalogue."""
+        return cast("PeriodicFoundation", get_model(self.beam, self.track, self.vehicle).foundation)
 
     @property
     def vehicle_kernels(self) -> ModuleType:

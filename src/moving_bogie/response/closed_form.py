@@ -43,12 +43,20 @@ if TYPE_CHECKING:
     from moving_bogie.roots.frequencies import FrequencyResult
 
 __all__ = [
+    "SERIES_KEYS",
     "TimeSeries",
     "branch_cut_extent",
     "closed_form_response",
     "deflection_shape",
     "deflection_shape_details",
 ]
+
+#: The keys every time series' ``to_dict()`` has, with the same meaning on every track (the continuous
+#: tracks' :class:`TimeSeries` and the sleepers'
+#: :class:`~moving_bogie.response.sleeper_series.SleeperSeries`): the times, the units by kind, the rail's
+#: deflection under each wheel (and the bodies' motion) by DOF name, its steady part, the units of each
+#: response, the notes.
+SERIES_KEYS = ("tau", "units", "responses", "steady", "response_units", "notes")
 
 DIMENSIONLESS_UNITS = {"tau": "1", "w": "w_st", "u": "w_st", "theta": "w_st chi", "xi": "1"}
 SI_UNITS = {"tau": "s", "w": "m", "u": "m", "theta": "rad", "xi": "m"}

@@ -1,4 +1,7 @@
-"""The time series of a vehicle on a sleeper track in SI units: the steady response and the free vibrations.
+"""The time series of a vehicle on a sleeper track: the steady response and the free vibrations.
+
+:func:`sleeper_series` takes what the continuous tracks' closed form takes, the bound model (on its
+:class:`~moving_bogie.kernels.periodic_track.PeriodicTrack`) and the SI scales of its parameters.
 
 The steady response under the constant loads (docs/sleepers.md, Eqs. (S16)-(S18),
 :func:`moving_bogie.response.steady_bay.steady_response`) gives, per wheel, the contact force and the rail
@@ -8,28 +11,34 @@ when N doubles, else ``converged`` is False). The free vibrations are the Floque
 (Eq. (S14), :func:`moving_bogie.roots.strip.floquet_frequencies`): a root ``Omega`` (time dependence
 ``e^{i Omega t}``) oscillates at ``Re Omega`` (modulo ``Omega_0``) and grows at the rate ``-Im Omega``.
 
-Units (Eq. (16) of the paper with the smeared stiffness ``k_e`` for ``k_f``, docs/sleepers.md (S2)):
-displacements times ``w_st = P chi / (2 k_e)``, forces times ``P / 2`` (the static load is 2), times times
-``t_scale``, lengths divided by ``chi``.
+SI units from the scales (Eq. (16) of the paper with the smeared stiffness ``k_e`` for ``k_f``,
+docs/sleepers.md (S2)): displacements times ``w_st = P chi / (2 k_e)``, forces times ``P / 2`` (the static
+load is 2), times times ``t_scale``, lengths divided by ``chi``.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.hill import VehicleMatrices
+from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.kernels.sleeper_track import SleeperTrack
-from moving_bogie.model.sleeper_input import SleeperInput
-from moving_bogie.model.smeared import smeared_track
 from moving_bogie.response.smeared_deflection import continuous_steady_deflection
 from moving_bogie.response.steady_bay import static_loads, steady_response
 
-__all__ = ["FreeVibration", "SleeperSeries", "sleeper_series"]
+if TYPE_CHECKING:
+    from moving_bogie.model.scales import Scales
+
+__all__ = ["SLEEPER_UNITS", "FreeVibration", "SleeperSeries", "sleeper_series"]
+
+#: The units of the series by kind (the continuous tracks' ``units`` in SI, with the contact force's).
+SLEEPER_UNITS = {"tau": "s", "w": "m", "xi": "m", "force": "N"}
 
 #: points over one bay on which the peak-to-peak values are taken (independent of the output's points)
 PEAK_POINTS = 1025
@@ -123,6 +132,7 @@ class SleeperSeries:
     free_strip: tuple[float, float]
     free_window: tuple[float, float]
     free_notes: tuple[str, ...]
+    names: tuple[str, ...] = ()
 
     @property
     def wheels(self) -> int:
@@ -158,8 +168,29 @@ class SleeperSeries:
         """The bay-passing period l / v [s]."""
         return self.bay / self.v
 
+    @property
+    def wheel_names(self) -> tuple[str, ...]:
+        """The rail's deflection under each wheel by its DOF name (the vehicle's ``DOFS``, wheels first)."""
+        return self.names[: self.wheels] or tuple(f"w_{j}" for j in range(self.wheels))
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the summary per wheel, the series, the free vibrations (units in the key names)."""
+        """JSON-ready: the keys of the continuous tracks' series with the same meaning
+        (:data:`~moving_bogie.response.closed_form.SERIES_KEYS`: the times, the units, the rail's deflection
+        under each wheel by its DOF name, its steady part (here the mean over a bay, the harmonic n = 0),
+        the notes), then the bay, Omega_0, the steady response over the bay per wheel (``steady_bay``) and
+        the free vibrations (units in the key names)."""
+        names = self.wheel_names
+        return {
+            "tau": self.time.tolist(),
+            "units": dict(SLEEPER_UNITS),
+            "responses": {name: self.deflection[j].tolist() for j, name in enumerate(names)},
+            "steady": {name: float(self.deflection_mean[j]) for j, name in enumerate(names)},
+            "response_units": {name: "m" for name in names},
+            "notes": list(self.free_notes),
+            **self._own(),
+        }
+
+    def _own(self) -> dict[str, Any]:
         cont = self.continuous_deflection
         wheels = [
             {
@@ -180,7 +211,7 @@ class SleeperSeries:
             "Omega0_rad_s": self.Omega0,
             "Omega0_Hz": self.Omega0 / (2 * math.pi),
             "period_s": self.period,
-            "steady": {
+            "steady_bay": {
                 "harmonics": [-self.harmonics, self.harmonics],
                 "change": self.change,
                 "tol": self.tol,
@@ -209,15 +240,26 @@ def _series(amplitudes: np.ndarray, harmonics: np.ndarray, Omega0: float, tau: n
 
 
 def sleeper_series(
-    data: SleeperInput, *, bays: int = 1, points: int = 201, tol: float = 1e-3, free: bool = True
+    bound: BoundModel,
+    scales: Scales | None = None,
+    *,
+    smeared: tuple[BoundModel, Scales | None] | None = None,
+    bays: int = 1,
+    points: int = 201,
+    tol: float = 1e-3,
+    free: bool = True,
 ) -> SleeperSeries:
-    """The steady response over ``bays`` bays on ``points`` points and the free vibrations, in SI.
+    """The steady response over ``bays`` bays on ``points`` points and the free vibrations.
 
     Parameters
     ----------
-    data : SleeperInput
-        A sleeper-track file (:func:`moving_bogie.model.sleeper_input.load_sleeper_file`) with ``v > 0``
-        and ``P``.
+    bound : BoundModel
+        Parameters on periodic supports bound to their track (``moving_bogie.bind``), ``alpha > 0``.
+    scales : Scales
+        Their SI scales (``PhysicalParams.scales()``): the series in s, m and N (required: None is refused).
+    smeared : (BoundModel, Scales), optional
+        The continuous track with the same smeared supports and its scales
+        (:func:`~moving_bogie.model.smeared.smeared_physical`), whose steady deflection is given beside.
     bays, points : int
         Bays shown and points over them (both ends included).
     tol : float
@@ -225,48 +267,69 @@ def sleeper_series(
     free : bool
         Also search the Floquet roots (the free vibrations); False leaves ``free`` empty and the verdict
         ``"not searched"``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``params`` without SI scales, ``track`` for a track without periodic supports, ``v`` for a
+        vehicle that does not move.
     """
-    si = data.physical
-    f_unit, w_st = data.si_units()
-    if si["v"] <= 0:
+    track = bound.track
+    if not isinstance(track, PeriodicTrack):
+        raise ParameterError("track", f"{bound.name}: the steady response over a bay needs periodic supports")
+    sleepers = track.sleepers
+    if sleepers.alpha <= 0:
         raise ParameterError("v", "v must be positive: the steady response over a bay needs a moving vehicle")
-    track = SleeperTrack(data.beam, data.track, data.groups)
-    module = data.vehicle_kernels
-    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
-    loads = static_loads(module, data.vehicle_groups)
-    steady = steady_response(track, vehicle, loads, tol=tol, points=129)
+    if scales is None:
+        why = "the series on sleepers is in SI units (s, m, N): give SI parameters (PhysicalParams)"
+        raise ParameterError("params", why)
+    length = 1 / scales.chi
+    vehicle = VehicleMatrices.of(bound)
+    loads = static_loads(bound.vehicle, bound.vehicle_values(bound.floats))
+    steady = steady_response(sleepers, vehicle, loads, tol=tol, points=129)
     h, F, U = steady.harmonics, steady.force_harmonics, steady.deflection_harmonics
-    tau = np.linspace(0.0, bays * 2 * np.pi / track.Omega0, points)
-    one_bay = np.linspace(0.0, 2 * np.pi / track.Omega0, PEAK_POINTS)
-    force, deflection = (_series(a, h, track.Omega0, tau) for a in (F, U))
-    peak_f, peak_u = (_series(a, h, track.Omega0, one_bay) for a in (F, U))
+    Omega0 = sleepers.Omega0
+    tau = np.linspace(0.0, bays * 2 * np.pi / Omega0, points)
+    one_bay = np.linspace(0.0, 2 * np.pi / Omega0, PEAK_POINTS)
+    force, deflection = (_series(a, h, Omega0, tau) for a in (F, U))
+    peak_f, peak_u = (_series(a, h, Omega0, one_bay) for a in (F, U))
     i0 = int(np.flatnonzero(h == 0)[0])
-    smeared = smeared_track(data)
-    continuous = None if smeared is None else continuous_steady_deflection(smeared)
-    free_part = _free_vibrations(track, vehicle, data.t_scale) if free else None
+    free_part = _free_vibrations(sleepers, vehicle, scales.t_scale) if free else None
     return SleeperSeries(
-        model=f"{data.beam}/{data.track}/{data.vehicle}",
-        v=si["v"],
-        bay=si["l"],
-        Omega0=track.Omega0 / data.t_scale,
-        time=tau * data.t_scale,
-        position=track.alpha * tau / data.chi,
-        wheel_positions=vehicle.positions / data.chi,
-        contact_force=force * f_unit,
-        deflection=deflection * w_st,
-        force_mean=F[i0].real * f_unit,
-        force_peak_to_peak=np.ptp(peak_f, axis=1) * f_unit,
-        deflection_mean=U[i0].real * w_st,
-        deflection_peak_to_peak=np.ptp(peak_u, axis=1) * w_st,
-        static_force=loads * f_unit,
-        continuous_deflection=continuous,
-        continuous_model=None if smeared is None else smeared.model.name,
+        model=bound.name,
+        v=sleepers.alpha * scales.v_ref,
+        bay=sleepers.lam * length,
+        Omega0=Omega0 / scales.t_scale,
+        time=tau * scales.t_scale,
+        position=sleepers.alpha * tau * length,
+        wheel_positions=vehicle.positions * length,
+        contact_force=force * scales.load,
+        deflection=deflection * scales.w_st,
+        force_mean=F[i0].real * scales.load,
+        force_peak_to_peak=np.ptp(peak_f, axis=1) * scales.load,
+        deflection_mean=U[i0].real * scales.w_st,
+        deflection_peak_to_peak=np.ptp(peak_u, axis=1) * scales.w_st,
+        static_force=loads * scales.load,
+        **_smeared_part(smeared),
         harmonics=int(h[-1]),
         change=steady.change,
         tol=tol,
         converged=steady.converged,
         **(free_part or _NOT_SEARCHED),
+        names=bound.names,
     )
+
+
+def _smeared_part(smeared: tuple[BoundModel, Scales | None] | None) -> dict[str, Any]:
+    """The steady deflection of the smeared continuous track (in m with its scales) and its name."""
+    if smeared is None:
+        return {"continuous_deflection": None, "continuous_model": None}
+    bound, scales = smeared
+    w_st = 1.0 if scales is None else scales.w_st
+    return {
+        "continuous_deflection": continuous_steady_deflection(bound) * w_st,
+        "continuous_model": bound.name,
+    }
 
 
 _NOT_SEARCHED: dict[str, Any] = {

@@ -14,21 +14,21 @@ from typing import TYPE_CHECKING
 import mpmath
 import numpy as np
 
-from moving_bogie.kernels.bound import bind
 from moving_bogie.kernels.characteristic import Characteristic
 
 if TYPE_CHECKING:
-    from moving_bogie.model.physical import PhysicalParams
+    from moving_bogie.kernels.bound import BoundModel
 
 __all__ = ["continuous_steady_deflection"]
 
 
-def continuous_steady_deflection(params: PhysicalParams, dps: int = 30) -> np.ndarray:
-    """The steady rail deflection under each wheel [m]: n_X(0) / E_chr(0) (the paper's Eq. (39)) times w_st.
+def continuous_steady_deflection(bound: BoundModel, dps: int = 30) -> np.ndarray:
+    """The steady rail deflection under each wheel of the smeared track's bound model, n_X(0) / E_chr(0)
+    (the paper's Eq. (39)), in units of its w_st (its scales give metres).
 
     The wheels are the vehicle's contacts, in the order of its generated module.
     """
-    chr_ = Characteristic(bind(params.to_dimensionless()))
+    chr_ = Characteristic(bound)
     contacts = chr_.system.contacts
     with mpmath.workdps(dps):
         zero = mpmath.mpc(0)
@@ -36,4 +36,4 @@ def continuous_steady_deflection(params: PhysicalParams, dps: int = 30) -> np.nd
         E0 = chr_.system.e_chr(zero, kv.K)
         n0 = chr_.numerators(zero, kv)
         steady = [complex(n0[name] / E0) for name in chr_.names[:contacts]]
-    return np.array([s.real for s in steady]) * params.scales().w_st
+    return np.array([s.real for s in steady])

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -25,27 +26,12 @@ from typing import Any
 from moving_bogie.errors import ParameterError, suggestion
 
 from .profile import SoilProfile, soil_profile
-from .track import TRACK_KINDS, SoilTrack
+from .track import LOAD_KEYS, TRACK_KINDS, UNITS, SoilTrack
 
 __all__ = ["SoilInput", "is_soil_file", "load_soil_file", "soil_input"]
 
 #: Values given per rail that the whole track has twice of (b is the whole track's half-width).
 PER_RAIL = ("EI", "m", "k_pad", "c_pad", "m_s", "A_b", "P")
-#: [physical] keys besides the track's: the moving load.
-LOAD_KEYS = ("P",)
-UNITS = {
-    "EI": "N m^2",
-    "m": "kg/m",
-    "b": "m",
-    "k_pad": "N/m^2",
-    "c_pad": "N s/m^2",
-    "m_s": "kg/m",
-    "E_b": "Pa",
-    "rho_b": "kg/m^3",
-    "h_b": "m",
-    "A_b": "m^2/m",
-    "P": "N",
-}
 #: The keys of [model]: the track, per track or per rail, and a vehicle (``frequencies --file``).
 MODEL_KEYS = ("track", "per", "vehicle")
 #: Keys that may be zero.
@@ -78,17 +64,29 @@ def is_soil_file(path: str | Path) -> bool:
     return isinstance(data.get("model"), dict) and data["model"].get("track") in TRACK_KINDS
 
 
-def load_soil_file(path: str | Path) -> SoilInput:
-    """Read and check a soil-track file; errors name the key (and the layer) and the file."""
+def load_soil_file(path: str | Path, settings: Mapping[str, float] | None = None) -> SoilInput:
+    """Read and check a soil-track file; errors name the key (and the layer) and the file.
+
+    ``settings`` (key -> SI value, ``--set``; :mod:`.settings`) change the file's values: the file is
+    checked as written first, then as changed, and an error of the changed file names ``--set``.
+    """
+    from .settings import with_settings
+
     path = Path(path)
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except tomllib.TOMLDecodeError as exc:
         raise ParameterError("file", f"{path}: not a valid TOML file: {exc}") from None
     try:
-        return soil_input(data)
+        loaded = soil_input(data)
     except ParameterError as exc:
         raise ParameterError(exc.parameter, f"{path}: {exc}") from None
+    if not settings:
+        return loaded
+    try:
+        return soil_input(with_settings(data, settings))
+    except ParameterError as exc:
+        raise ParameterError("--set", f"--set: {exc}") from None
 
 
 def _value(table: dict[str, Any], key: str) -> float:

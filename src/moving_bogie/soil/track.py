@@ -23,12 +23,28 @@ import numpy.typing as npt
 
 Array = npt.NDArray[Any]
 
-__all__ = ["TRACK_KINDS", "SoilTrack"]
+__all__ = ["LOAD_KEYS", "TRACK_KINDS", "UNITS", "SoilTrack"]
 
 #: The tracks on soil, and the [physical] keys each needs (SI, per track or per rail).
 TRACK_KINDS = {
     "soil": ("EI", "m", "b"),
     "ballasted-soil": ("EI", "m", "k_pad", "c_pad", "m_s", "E_b", "rho_b", "h_b", "A_b", "b"),
+}
+#: [physical] keys of a soil-track file besides the track's: the moving load.
+LOAD_KEYS = ("P",)
+#: The SI unit of each [physical] key of a soil-track file.
+UNITS = {
+    "EI": "N m^2",
+    "m": "kg/m",
+    "b": "m",
+    "k_pad": "N/m^2",
+    "c_pad": "N s/m^2",
+    "m_s": "kg/m",
+    "E_b": "Pa",
+    "rho_b": "kg/m^3",
+    "h_b": "m",
+    "A_b": "m^2/m",
+    "P": "N",
 }
 
 

@@ -33,10 +33,18 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.model.bar import bar_note
 from moving_bogie.sweep.design import Block, SweepSpec
 from moving_bogie.sweep.evaluate import BlockTask
 from moving_bogie.sweep.plan import SweepPlan, evaluate_work
-from moving_bogie.sweep.store import StorePath, create_store, missing_blocks, prepare_store, write_block
+from moving_bogie.sweep.store import (
+    StorePath,
+    create_store,
+    missing_blocks,
+    prepare_store,
+    read_store,
+    write_block,
+)
 
 if TYPE_CHECKING:
     from distributed import Client, Future
@@ -112,6 +120,33 @@ class ContinuousPlan:
 
     def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
         write_block(path, self.spec, slices, arrays)
+
+    def summary(self, path: Path) -> dict[str, Any]:
+        return continuous_summary(self.spec, path)
+
+
+def continuous_summary(spec: SweepSpec, path: Path) -> dict[str, Any]:
+    """The verdicts of a finished sweep of a continuous track at ``path``, for the summary (opening with
+    :data:`~moving_bogie.sweep.plan.SWEEP_KEYS`)."""
+    store = read_store(path, ("n_unstable", "certain", "settled", "checked", "supercritical"))
+    a = store.arrays
+    out = {
+        "unstable_fraction": float((a["n_unstable"] > 0).mean()),
+        "uncertain_points": int((~a["certain"]).sum()),
+        "settled_points": int(a["settled"].sum()),
+        "check_disagreements": int((a["checked"] < 0).sum()),
+        "units": {axis.label: store.units.get(axis.label, "1") for axis in spec.axes},
+    }
+    varied = [axis.name for axis in spec.axes]
+    note = next(
+        (bar_note(spec.params, spec.bar, name) for name in varied if bar_note(spec.params, spec.bar, name)),
+        None,
+    )
+    if note is not None:  # what the bar did along a varied wheel mass
+        out["bar"] = note
+    if "supercritical" in a:  # the points above the critical velocity of their track
+        out["supercritical_points"] = int(a["supercritical"].sum())
+    return out
 
 
 def make_client(workers: int | None = None, scheduler: str | None = None, processes: bool = True) -> Client:

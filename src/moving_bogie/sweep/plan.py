@@ -16,7 +16,11 @@ import numpy as np
 
 from moving_bogie.sweep.design import Block
 
-__all__ = ["BlockWork", "SweepPlan"]
+__all__ = ["SWEEP_KEYS", "BlockWork", "SweepPlan"]
+
+#: The keys every sweep's summary has, with the same meaning on every track: the fraction of points with an
+#: unstable root, the points whose verdict is not certain, the unit of every varied parameter.
+SWEEP_KEYS = ("unstable_fraction", "uncertain_points", "units")
 
 
 class BlockWork(Protocol):
@@ -53,6 +57,10 @@ class SweepPlan(Protocol):
 
     def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
         """Write one block's arrays into its chunk of every variable, ``computed`` last."""
+        ...
+
+    def summary(self, path: Path) -> dict[str, Any]:
+        """The verdicts of the finished sweep at ``path`` (:data:`SWEEP_KEYS` and the sweep's own)."""
         ...
 
 

@@ -12,7 +12,6 @@ seconds).
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -23,11 +22,17 @@ import numpy as np
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.model.bar import DEFAULT_BAR, check_bar, moves_bar, rule_note
-from moving_bogie.model.exact import fraction_to_text
 from moving_bogie.model.sleeper_input import SleeperInput, sleeper_input, sleeper_model, sleeper_units
 from moving_bogie.roots.verdict import STABLE, UNSTABLE
-from moving_bogie.sweep.design import Axis, Block, grid_blocks, parse_vary, sobol_axes
-from moving_bogie.sweep.sleeper_store import SLEEPER_VARIABLES, create_sleeper_store, write_sleeper_block
+from moving_bogie.sweep.design import Axis, Block
+from moving_bogie.sweep.sleeper_store import (
+    SLEEPER_VARIABLES,
+    PointGrid,
+    block_points,
+    create_sleeper_store,
+    point_axes,
+    write_sleeper_block,
+)
 
 if TYPE_CHECKING:
     import xarray
@@ -58,7 +63,7 @@ def _input(
 
 
 @dataclass(frozen=True)
-class SleeperSweepSpec:
+class SleeperSweepSpec(PointGrid):
     """A sweep of a sleeper file: its parsed TOML ``data``, the ``settings`` (``--set``) of the base point,
     the varied SI parameters (``axes``, exact values in their units) and the design ("grid" or "sobol")."""
 
@@ -109,43 +114,11 @@ class SleeperSweepSpec:
         known = sleeper_units(self.data, self.settings)
         return {a.name: known[a.name] for a in self.axes}
 
-    @property
-    def dims(self) -> tuple[str, ...]:
-        return ("point",) if self.design == "sobol" else tuple(a.name for a in self.axes)
-
-    @property
-    def shape(self) -> tuple[int, ...]:
-        if self.design == "sobol":
-            return (len(self.axes[0].values),)
-        return tuple(len(a.values) for a in self.axes)
-
-    @property
-    def size(self) -> int:
-        return math.prod(self.shape)
-
-    @property
-    def chunks(self) -> tuple[int, ...]:
-        """One value of every dimension but the last, ``block_points`` values of the last."""
-        return (*(1 for _ in self.shape[:-1]), min(self.shape[-1], self.block_points))
-
-    def blocks(self) -> list[Block]:
-        """Every block, in a fixed order (its index is its place in that order)."""
-        return grid_blocks(self.shape, self.chunks)
-
     def describe(self) -> dict[str, Any]:
         """JSON-ready description (stored in the attributes; a resumed sweep must match it)."""
-        return {
-            "kind": "sleepers",
-            "model": self.model,
-            "physical": self.base.physical,
-            "design": self.design,
-            "varied": self.extra.get("ranges")
-            or {a.name: [fraction_to_text(v) for v in a.values] for a in self.axes},
-            "units": self.units,
-            "points": self.size,
-            **({"bar": note} if (note := self.bar_note) else {}),
-            "chunks": list(self.chunks),
-        }
+        ranges = self.extra.get("ranges")
+        own = self.grid_description("sleepers", self.model, self.base.physical, self.units, ranges)
+        return own | ({"bar": note} if (note := self.bar_note) else {}) | {"chunks": list(self.chunks)}
 
     def operating_point(self) -> dict[str, float]:
         """The base point's value of every varied parameter."""
@@ -154,11 +127,8 @@ class SleeperSweepSpec:
 
     def task(self, block: Block) -> SleeperTask:
         """The worker's task for ``block``: the file's data and only that block's values."""
-        if self.design == "sobol":
-            values = tuple(a.values[block.slices[0]] for a in self.axes)
-        else:
-            values = tuple(a.values[s] for a, s in zip(self.axes, block.slices))
         names = tuple(a.name for a in self.axes)
+        values = self.block_values(block)
         return SleeperTask(self.data, self.source, self.settings, names, values, self.design, self.bar)
 
     def create_store(self, path: Path) -> None:
@@ -166,6 +136,11 @@ class SleeperSweepSpec:
 
     def write_block(self, path: Path, slices: tuple[slice, ...], arrays: dict[str, np.ndarray]) -> None:
         write_sleeper_block(path, slices, arrays)
+
+    def summary(self, path: Path) -> dict[str, Any]:
+        from moving_bogie.sweep.store import open_sweep
+
+        return sleeper_summary(self, open_sweep(path, dask=False))
 
 
 @dataclass(frozen=True)
@@ -193,7 +168,7 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
 
     module = inp.vehicle_kernels
     result = floquet_frequencies(
-        SleeperTrack(inp.beam, inp.track, inp.groups), VehicleMatrices.from_module(module, inp.vehicle_groups)
+        SleeperTrack(inp.foundation, inp.groups), VehicleMatrices.from_module(module, inp.vehicle_groups)
     )
     lowest = min((r.q for r in result.roots), key=lambda q: q.imag, default=complex(np.nan, np.nan))
     return {
@@ -211,12 +186,7 @@ def sleeper_point(inp: SleeperInput) -> dict[str, Any]:
 
 def evaluate_sleeper_block(task: SleeperTask) -> dict[str, np.ndarray]:
     """The arrays of one block (shape of the block), one Floquet strip search per point."""
-    if task.design == "sobol":
-        shape: tuple[int, ...] = (len(task.values[0]),)
-        points = [((i,), {n: v[i] for n, v in zip(task.names, task.values)}) for i in range(shape[0])]
-    else:
-        shape = tuple(len(v) for v in task.values)
-        points = [(i, {n: v[k] for n, v, k in zip(task.names, task.values, i)}) for i in np.ndindex(shape)]
+    shape, points = block_points(task.names, task.values, task.design)
     out = {name: np.full(shape, fill, dtype=dtype) for name, dtype, fill, *_ in SLEEPER_VARIABLES}
     for index, point in points:
         overrides = task.settings | {n: float(v) for n, v in point.items()}
@@ -240,21 +210,15 @@ def make_sleeper_spec(
     """A :class:`SleeperSweepSpec` from ``vary`` = {SI name: "START:STOP:COUNT" or "V1,V2,..."} (with
     ``sample=N``: {SI name: "START:STOP"} and N scrambled Sobol points, seed 0)."""
     known = [name for name in sleeper_units(data, settings) if name != "P"]  # P does not enter the roots
-    if sample is None:
-        axes = tuple(Axis(*parse_vary(f"{n}={s}", known)) for n, s in vary.items())
-        extra: dict[str, Any] = {}
-    else:
-        ranges = dict(parse_vary(f"{n}={s}", known, needs_count=False) for n, s in vary.items())
-        extra = {"ranges": {k: [str(v) for v in r] for k, r in ranges.items()}, "n": sample, "seed": 0}
-        axes = sobol_axes(ranges, sample)
-    design = "grid" if sample is None else "sobol"
+    axes, extra, design = point_axes(vary, known, sample)
     return SleeperSweepSpec(
         data, source, axes, dict(settings or {}), design, block_points, extra, check_bar(bar)
     )
 
 
 def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any]:
-    """The verdicts of a sleeper sweep for the summary: the counts of points and the fastest growth."""
+    """The verdicts of a sleeper sweep for the summary (:data:`~moving_bogie.sweep.plan.SWEEP_KEYS`): the
+    counts of points and the fastest growth."""
     ds = ds.compute()
     growth = np.where(ds.unstable.values, -ds.Omega_im.values, np.nan)
     fastest = None
@@ -266,6 +230,7 @@ def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any
         }
     return {
         "model": spec.model,
+        "unstable_fraction": float(ds.unstable.values.mean()),
         "stable_points": int(ds.stable.sum()),
         "unstable_points": int(ds.unstable.sum()),
         "undetermined_points": int((~ds.stable & ~ds.unstable).sum()),

@@ -1,65 +1,73 @@
-"""The finite-rail check of a model on periodic supports from its parameters, shared by the public API and
+"""The finite-rail check of a model on periodic supports from its bound model, shared by the public API and
 the command line (docs/sleepers.md, "The finite rail on sleepers").
 
-:func:`check_on_supports` assembles the sleeper track, the vehicle's matrices and its static loads from the
-parameters (a :class:`~moving_bogie.model.sleeper_input.SleeperInput`, :func:`sleeper_input_of` of the one
-catalogue's parameters) and runs :func:`~moving_bogie.validation.sleepers_check.check_sleepers`;
-:func:`check_summary` gives its summary with the SI values beside the dimensionless ones.
+:func:`check_on_supports` takes what the continuous tracks' check takes, the bound model (on its
+:class:`~moving_bogie.kernels.periodic_track.PeriodicTrack`) and the SI scales of its parameters, and runs
+:func:`~moving_bogie.validation.sleepers_check.check_sleepers` on its sleeper track, vehicle and static
+loads; the :class:`~moving_bogie.validation.sleeper_verdict.SleeperCheck` it returns names the model and
+gives its values in SI beside the dimensionless ones (``to_dict()``).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.hill import VehicleMatrices
-from moving_bogie.kernels.sleeper_track import SleeperTrack
-from moving_bogie.model.sleeper_input import SleeperInput
+from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.response.steady_bay import static_loads
-from moving_bogie.validation.sleepers_check import SleeperCheck, check_sleepers
+from moving_bogie.validation.sleeper_verdict import SleeperCheck
+from moving_bogie.validation.sleepers_check import check_sleepers
 
-__all__ = ["check_on_supports", "check_summary"]
+if TYPE_CHECKING:
+    from moving_bogie.model.scales import Scales
+
+__all__ = ["check_on_supports"]
 
 
 def check_on_supports(
-    data: SleeperInput, *, tol: float = 0.01, progress: Callable[[float], None] | None = None
+    bound: BoundModel,
+    scales: Scales | None = None,
+    *,
+    tol: float = 0.01,
+    progress: Callable[[float], None] | None = None,
 ) -> SleeperCheck:
-    """The finite rail against the Floquet theory for the vehicle and track of ``data``.
+    """The finite rail against the Floquet theory for the vehicle and track of ``bound``.
+
+    Parameters
+    ----------
+    bound : BoundModel
+        Parameters on periodic supports bound to their track (``moving_bogie.bind``).
+    scales : Scales, optional
+        The SI scales of the parameters (``PhysicalParams.scales()``): the notes, the figure and
+        ``to_dict()`` then give SI values too.
+    tol : float
+        Relative tolerance of each comparison.
+    progress : callable, optional
+        Called with the fraction of the work done (0..1).
 
     Raises
     ------
     ParameterError
-        Naming ``v`` when the vehicle does not move, ``beam`` for a rail other than Euler-Bernoulli (the
-        finite rail's elements), before any computation.
+        Naming ``track`` for a track without periodic supports, ``v`` when the vehicle does not move,
+        ``beam`` for a rail other than Euler-Bernoulli (the finite rail's elements), before any computation.
     """
-    if data.groups["alpha"] <= 0:
+    track = bound.track
+    if not isinstance(track, PeriodicTrack):
+        raise ParameterError("track", f"{bound.name}: the finite rail on sleepers needs periodic supports")
+    sleepers = track.sleepers
+    if sleepers.alpha <= 0:
         raise ParameterError("v", "v must be positive on a sleeper track (the vehicle must cross the bays)")
-    track = SleeperTrack(data.beam, data.track, data.groups)
     try:
-        track.rail_foundation()  # the finite rail's elements: Euler-Bernoulli
+        sleepers.rail_foundation()  # the finite rail's elements: Euler-Bernoulli
     except ValueError:
-        why = f"the finite rail on sleepers has Euler-Bernoulli elements (got {data.beam!r})"
+        why = f"the finite rail on sleepers has Euler-Bernoulli elements (got {sleepers.beam!r})"
         raise ParameterError("beam", why) from None
-    module = data.vehicle_kernels
-    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups)
-    loads = static_loads(module, data.vehicle_groups)
-    return check_sleepers(track, vehicle, loads, tol=tol, time_scale=data.t_scale, progress=progress)
-
-
-def check_summary(result: SleeperCheck, data: SleeperInput) -> dict[str, Any]:
-    """The check's summary with SI values beside the dimensionless ones (rates and frequencies in 1/s and
-    rad/s, forces in N: the static load 2 is P)."""
-    out = {"model": f"{data.beam}/{data.track}/{data.vehicle}", **result.to_dict()}
-    to_si = {"growth rate -Im q": 1 / data.t_scale, "dominant frequency": 1 / data.t_scale}
-    force = data.physical.get("P", 2.0) / 2
-    for item in out["comparisons"]:
-        scale = to_si.get(item["quantity"], force)
-        item["unit_si"] = (
-            "N"
-            if item["quantity"].startswith("steady")
-            else ("1/s" if "rate" in item["quantity"] else "rad/s")
-        )
-        item["floquet_si"], item["finite_beam_si"] = item["floquet"] * scale, item["finite_beam"] * scale
-    out["finite_beam"]["dt_s"] = out["finite_beam"]["dt"] * data.t_scale
-    return out
+    vehicle = VehicleMatrices.of(bound)
+    loads = static_loads(bound.vehicle, bound.vehicle_values(bound.floats))
+    time_scale = None if scales is None else scales.t_scale
+    result = check_sleepers(sleepers, vehicle, loads, tol=tol, time_scale=time_scale, progress=progress)
+    return replace(result, model=bound.name, scales=scales, params=bound.params)

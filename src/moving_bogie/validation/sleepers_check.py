@@ -24,9 +24,8 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import partial
-from typing import Any
 
 import numpy as np
 
@@ -34,6 +33,7 @@ from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.response.steady_bay import SteadyResponse, steady_response
 from moving_bogie.roots.strip import FloquetResult, floquet_frequencies
+from moving_bogie.validation.sleeper_verdict import Comparison, SleeperCheck
 from moving_bogie.validation.sleepers_beam import BeamRun, simulate_sleeper_beam
 from moving_bogie.validation.sleepers_fit import (
     FloquetFit,
@@ -76,132 +76,6 @@ class SleeperBeamSettings:
     periods: int = 40
     transient: float = 0.4
     margin: float = MARGIN
-
-
-@dataclass(frozen=True)
-class Comparison:
-    """One quantity: the Floquet value, the finite rail's, their relative difference against ``tol``."""
-
-    quantity: str
-    floquet: float
-    finite: float
-    relative: float
-    tolerance: float
-
-    @property
-    def within(self) -> bool:
-        return bool(self.relative <= self.tolerance)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "quantity": self.quantity,
-            "floquet": self.floquet,
-            "finite_beam": self.finite,
-            "relative_diff": self.relative,
-            "tolerance": self.tolerance,
-            "within": self.within,
-        }
-
-
-@dataclass(frozen=True)
-class SleeperCheck:
-    """The comparisons, the Floquet verdict, the two runs (for plots) and the wall times."""
-
-    comparisons: tuple[Comparison, ...]
-    floquet_verdict: str
-    root: complex | None
-    Omega0: float
-    free: BeamRun
-    loaded: BeamRun | None
-    steady_tau: np.ndarray | None
-    steady_force: np.ndarray | None
-    fit: FloquetFit
-    coarse: FloquetFit | None
-    rate_spread: float
-    rail: SleeperRail
-    floquet_s: float
-    finite_s: float
-    notes: tuple[str, ...] = field(default=())
-    time_scale: float | None = None
-    limit_force: np.ndarray | None = None
-
-    @property
-    def rate(self) -> float:
-        """The finite rail's growth rate ``ln |mu| / T0`` (per unit tau), extrapolated to a zero time step
-        when the run at twice the step was made (:func:`extrapolated`)."""
-        return self.fit.rate if self.coarse is None else extrapolated(self.fit, self.coarse)[0]
-
-    @property
-    def frequency(self) -> float:
-        """The finite rail's dominant frequency, extrapolated as :attr:`rate`."""
-        return self.fit.frequency if self.coarse is None else extrapolated(self.fit, self.coarse)[1]
-
-    @property
-    def fit_start(self) -> float:
-        return self.fit.window[0]
-
-    @property
-    def agrees(self) -> bool:
-        return bool(self.comparisons) and all(c.within for c in self.comparisons)
-
-    def _repr_html_(self) -> str:
-        """Jupyter: whether the finite rail agrees first, then every quantity compared (as the continuous
-        tracks' check shows itself)."""
-        from moving_bogie.html_repr import html_table
-
-        rows = [
-            ("Floquet verdict", self.floquet_verdict.upper()),
-            ("finite rail", f"{self.rail.bays} bays, {self.rail.elements} elements per bay"),
-            ("wall times [s]", f"Floquet {self.floquet_s:.3g}, finite rail {self.finite_s:.3g}"),
-        ]
-        items = [
-            (
-                c.quantity,
-                f"{c.floquet:.6g}",
-                f"{c.finite:.6g}",
-                f"{c.relative:.3g}",
-                "yes" if c.within else "no",
-            )
-            for c in self.comparisons
-        ]
-        header = ("quantity", "Floquet", "finite rail", "relative difference", "within")
-        verdict = "AGREES" if self.agrees else "DISAGREES"
-        return html_table(
-            "finite rail on sleepers against the Floquet theory",
-            verdict,
-            rows,
-            reasons=list(self.notes),
-            items=(header, items),
-        )
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "agrees": self.agrees,
-            "floquet_verdict": self.floquet_verdict,
-            "root_q": None if self.root is None else [self.root.real, self.root.imag],
-            "Omega0": self.Omega0,
-            "comparisons": [c.to_dict() for c in self.comparisons],
-            "finite_beam": {
-                "bays": self.rail.bays,
-                "elements_per_bay": self.rail.elements,
-                "length": self.rail.length,
-                "unknowns": self.rail.size,
-                "dt": self.free.dt,
-                "free_run_tau": float(self.free.tau[-1]),
-                "fit_start": self.fit_start,
-                "fit_end": self.fit.window[1],
-                "fitted_periods": self.fit.samples,
-                "free_vibration_rate": self.rate,
-                "rate_at_dt": self.fit.rate,
-                "rate_at_2dt": None if self.coarse is None else self.coarse.rate,
-                "rate_spread": self.rate_spread,
-                "multipliers": [[m.real, m.imag] for m in self.fit.multipliers.tolist()],
-                "dominant_multiplier": [self.fit.multiplier.real, self.fit.multiplier.imag],
-                "dominant_harmonic": self.fit.harmonic,
-            },
-            "timings": {"floquet_s": self.floquet_s, "finite_beam_s": self.finite_s},
-            "notes": list(self.notes),
-        }
 
 
 def _dominant_root(result: FloquetResult) -> complex | None:

@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from moving_bogie.validation.sleepers_check import SleeperCheck
+from moving_bogie.validation.sleeper_verdict import SleeperCheck
 from moving_bogie.validation.sleepers_fit import period_rms, smooth_steps
 
 if TYPE_CHECKING:
@@ -75,8 +75,13 @@ def plot_sleeper_check(
     Floquet growth rate ``-Im q`` drawn from it. Times in s and rates in 1/s when the check has its time
     scale, else dimensionless; deflections over ``w_st = P chi / (2 k_e)``, forces over half the static
     load (docs/sleepers.md (S2)), unless ``newtons`` (per unit force, P / 2: forces in N) and ``metres``
-    (per unit deflection, w_st: deflections in m) are given (``SleeperInput.si_units``)."""
+    (per unit deflection, w_st: deflections in m) are given, or the check has its SI scales
+    (``result.scales``: ``load`` and ``w_st``)."""
     from matplotlib.figure import Figure
+
+    if result.scales is not None:
+        newtons = result.scales.load if newtons is None else newtons
+        metres = result.scales.w_st if metres is None else metres
 
     scale, label, _ = _time_axis(result)
     force_unit = 1.0 if newtons is None else newtons

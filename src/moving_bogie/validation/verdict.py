@@ -30,6 +30,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "DEFAULT_TOLERANCE",
+    "VERDICT_KEYS",
     "QuantityComparison",
     "ValidationResult",
     "beam_title",
@@ -183,6 +184,17 @@ def compare_series(
         tolerance=tolerance,
         **extra,
     )
+
+
+#: The keys every check's ``to_dict()`` has, with the same meaning on every track (the continuous
+#: tracks' :class:`ValidationResult` and the sleepers'
+#: :class:`~moving_bogie.validation.sleeper_verdict.SleeperCheck`): the model and its parameters, whether
+#: it agrees, the tolerance and its rule, each quantity's relative difference and comparison, the wall
+#: times and the notes.
+VERDICT_KEYS = (
+    "model", "beam", "track", "params", "agrees", "tolerance", "tolerance_rule", "relative_diff",
+    "quantities", "timings", "notes",
+)  # fmt: skip
 
 
 @dataclass(frozen=True)

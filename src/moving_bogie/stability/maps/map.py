@@ -33,7 +33,15 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
-__all__ = ["ColumnResult", "StabilityMap", "map_columns", "stability_column", "stability_map"]
+__all__ = ["MAP_KEYS", "ColumnResult", "StabilityMap", "map_columns", "stability_column", "stability_map"]
+
+
+#: The keys every stability map's summary has, with the same meaning on every track (the continuous
+#: tracks' :class:`StabilityMap` and the sleepers'
+#: :class:`~moving_bogie.stability.maps.sleeper_map.SleeperMap`), besides the range of the vertical axis'
+#: group (``f"{parameter}_range"``): the parameters, that group, the range of alpha, the fraction of
+#: unstable cells, the uncertain cells (their number and each by its groups).
+MAP_KEYS = ("params", "parameter", "alpha_range", "unstable_fraction", "uncertain_cells", "uncertain")
 
 
 @dataclass(frozen=True)

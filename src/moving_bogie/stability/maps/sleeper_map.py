@@ -23,10 +23,13 @@ import numpy as np
 
 from moving_bogie.checkpoint import Checkpoint, Part, run_parts
 from moving_bogie.errors import JobInterrupted, ParameterError
+from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.mass_pencil import mass_pencil
+from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.kernels.sleeper_track import SleeperTrack
-from moving_bogie.model.sleeper_input import SleeperInput
+from moving_bogie.model.params import DimensionlessParams
+from moving_bogie.model.scales import Scales
 from moving_bogie.roots.strip import floquet_frequencies
 from moving_bogie.stability.maps.d_lines import DColumn, DCrossing, d_column
 
@@ -65,6 +68,7 @@ class SleeperMap:
     count: np.ndarray
     checks: tuple[MapCheck, ...] = ()
     notes: tuple[str, ...] = field(default=())
+    params: DimensionlessParams | None = None
 
     @property
     def uncertain(self) -> np.ndarray:
@@ -113,8 +117,22 @@ class SleeperMap:
         ]
 
     def summary(self) -> dict:
-        """Counts, the verdict's limits and the checks (JSON-ready)."""
-        return {
+        """Counts, the verdict's limits and the checks (JSON-ready), after the keys of the continuous
+        tracks' map with the same meaning (:data:`~moving_bogie.stability.maps.map.MAP_KEYS`: the
+        parameters, the vertical axis' group, both axes in groups, the unstable fraction, the uncertain
+        cells)."""
+        alphas, etas = self.velocities / self.v_ref, self.masses / self.mass_unit
+        rows, cols = np.nonzero(self.uncertain)
+        shared = {
+            "params": None if self.params is None else self.params.to_dict(),
+            "parameter": "eta_M",
+            "alpha_range": [float(alphas[0]), float(alphas[-1]), len(alphas)],
+            "eta_M_range": [float(etas[0]), float(etas[-1]), len(etas)],
+            "unstable_fraction": float(np.mean(self.count > 0)),
+            "uncertain_cells": int(self.uncertain.sum()),
+            "uncertain": [{"alpha": float(alphas[i]), "eta_M": float(etas[j])} for j, i in zip(rows, cols)],
+        }
+        return shared | {
             "model": self.model,
             "method": "D-decomposition in the wheel mass at each velocity, count 0 at M -> 0 (S19)-(S22)",
             "v_m_s": [float(self.velocities[0]), float(self.velocities[-1]), len(self.velocities)],
@@ -150,20 +168,19 @@ class SleeperMap:
         return out.getvalue()
 
 
-def _groups(data: SleeperInput, v: float) -> dict:
-    return data.groups | {"alpha": v / data.v_ref}
+def track_at(bound: BoundModel, alpha: float) -> SleeperTrack:
+    """The sleeper track of the bound model at the velocity ratio ``alpha`` (its track's own rail)."""
+    track = bound.replace(alpha=alpha).track
+    if not isinstance(track, PeriodicTrack):
+        raise ParameterError("track", f"{bound.name}: a sleeper map needs a track on periodic supports")
+    return track.sleepers
 
 
-def mass_unit(data: SleeperInput) -> float:
-    """kg per unit of the wheel mass group (proportional to M: the file's M over its group)."""
-    return float(data.physical["M"] / data.vehicle_groups[data.vehicle_kernels.WHEEL_MASS])
-
-
-def column_at(data: SleeperInput, v: float, eta_max: float, N: int, samples: int) -> DColumn:
+def column_at(bound: BoundModel, scales: Scales, v: float, eta_max: float, N: int, samples: int) -> DColumn:
     """The D-decomposition column at velocity v [m/s] (one process's task)."""
-    module = data.vehicle_kernels
-    track = SleeperTrack(data.beam, data.track, _groups(data, v))
-    return d_column(mass_pencil(track, module, data.vehicle_groups, N), eta_max=eta_max, samples=samples)
+    track = track_at(bound, v / scales.v_ref)
+    pencil = mass_pencil(track, bound.vehicle, bound.vehicle_values(bound.floats), N)
+    return d_column(pencil, eta_max=eta_max, samples=samples)
 
 
 #: glibc's mallopt parameters, and the values a worker process sets (bytes)
@@ -186,8 +203,8 @@ def keep_freed_memory() -> bool:
     return all(mallopt(option, value) == 1 for option, value in _WORKER_HEAP.items())
 
 
-def column_part(task: tuple[SleeperInput, float, float, int, int]) -> Part:
-    """The column of ``task`` = (data, v, eta_max, N, samples) as arrays (a checkpoint's part)."""
+def column_part(task: tuple[BoundModel, Scales, float, float, int, int]) -> Part:
+    """The column of ``task`` = (bound, scales, v, eta_max, N, samples) as arrays (a checkpoint's part)."""
     keep_freed_memory()
     col = column_at(*task)
     crossings = col.crossings
@@ -216,18 +233,18 @@ def part_column(part: Part) -> DColumn:
     )
 
 
-def check_cell(data: SleeperInput, v: float, M: float, map_count: int) -> MapCheck:
+def check_cell(bound: BoundModel, scales: Scales, v: float, M: float, map_count: int) -> MapCheck:
     """floquet_frequencies at (v, M): its count beside the map's."""
-    module = data.vehicle_kernels
-    track = SleeperTrack(data.beam, data.track, _groups(data, v))
-    wheel = {module.WHEEL_MASS: M / mass_unit(data)}
-    vehicle = VehicleMatrices.from_module(module, data.vehicle_groups | wheel)
+    module = bound.vehicle
+    track = track_at(bound, v / scales.v_ref)
+    wheel = {module.WHEEL_MASS: M / scales.mass}
+    vehicle = VehicleMatrices.from_module(module, bound.vehicle_values(bound.floats) | wheel)
     res = floquet_frequencies(track, vehicle)
     return MapCheck(v, M, map_count, res.unstable_count, res.verdict.state, res.converged)
 
 
-def check_part(task: tuple[SleeperInput, float, float, int]) -> Part:
-    """:func:`check_cell` of ``task`` = (data, v, M, map_count) as arrays (one worker's task)."""
+def check_part(task: tuple[BoundModel, Scales, float, float, int]) -> Part:
+    """:func:`check_cell` of ``task`` = (bound, scales, v, M, map_count) as arrays (one worker's task)."""
     keep_freed_memory()
     c = check_cell(*task)
     counts = np.array([c.map_count, c.search_count, int(c.converged)])
@@ -256,8 +273,32 @@ def _verify_cells(
     return cells
 
 
+def _check_plane(bound: BoundModel, scales: Scales, vs: np.ndarray) -> None:
+    """A track on periodic supports, damped along the rail, and positive velocities, else a ParameterError
+    naming what is wrong (before any computation)."""
+    if not (getattr(bound.floats, "eta_f", None) or 0.0) > 0:
+        raise ParameterError(
+            "c_f", "the D-decomposition runs along the real axis: it needs c_f > 0 (docs/sleepers.md, S15)"
+        )
+    if vs.min() <= 0:
+        raise ParameterError("v", "the velocities of a sleeper map must be positive")
+    track_at(bound, float(vs[0]) / scales.v_ref)  # a track on periodic supports, else refused here
+
+
+def _notes(columns: Sequence[DColumn], checks: Sequence[MapCheck], v_ref: float) -> list[str]:
+    """The columns' notes and every check that disagrees with the map, with their (v, M) in SI."""
+    notes = [f"v = {col.alpha * v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
+    return notes + [
+        f"v = {c.v:.6g} m/s, M = {c.M:.6g} kg: the map counts {c.map_count} unstable root(s), "
+        f"floquet_frequencies {c.search_count} ({c.verdict.upper()})"
+        for c in checks
+        if not c.agrees
+    ]
+
+
 def sleeper_map(
-    data: SleeperInput,
+    bound: BoundModel,
+    scales: Scales,
     velocities: Sequence[float] | np.ndarray,
     masses: Sequence[float] | np.ndarray,
     *,
@@ -273,6 +314,12 @@ def sleeper_map(
 
     Parameters
     ----------
+    bound : BoundModel
+        Parameters on periodic supports bound to their track (``moving_bogie.bind``); the map moves their
+        velocity and wheel mass.
+    scales : Scales
+        Their SI scales (``PhysicalParams.scales()``): v = alpha v_ref, the wheel mass in units of
+        ``scales.mass``, Omega = q / t_scale.
     N : int
         Harmonics -N-1..N of the D-decomposition (each crossing is checked with N + 1).
     samples : int
@@ -291,18 +338,13 @@ def sleeper_map(
         Read back the columns kept under ``checkpoint`` (else they are computed anew).
     """
     vs, ms = np.asarray(velocities, dtype=float), np.asarray(masses, dtype=float)
-    if data.groups.get("eta_f", 0.0) <= 0:
-        raise ParameterError(
-            "c_f", "the D-decomposition runs along the real axis: it needs c_f > 0 (docs/sleepers.md, S15)"
-        )
-    if vs.min() <= 0:
-        raise ParameterError("v", "the velocities of a sleeper map must be positive")
-    unit = mass_unit(data)
+    _check_plane(bound, scales, vs)
+    unit = scales.mass
     eta_max = float(ms.max()) / unit
-    tasks = [(data, float(v), eta_max, N, samples) for v in vs]
+    tasks = [(bound, scales, float(v), eta_max, N, samples) for v in vs]
     kept = None
     if checkpoint is not None:
-        job = {"data": repr(data), "velocities": vs.tolist(), "eta_max": eta_max, "N": N, "samples": samples}
+        job = {"data": repr(bound), "velocities": vs.tolist(), "eta_max": eta_max, "N": N, "samples": samples}
         kept = Checkpoint.open(checkpoint, "sleeper-map", job, resume=resume)
     share = len(tasks) / (len(tasks) + 16 * verify)  # about 2 checks per verified column, 8 columns each
     part = None if progress is None else (lambda x: progress(share * x))
@@ -310,7 +352,7 @@ def sleeper_map(
     columns = [part_column(p) for p in parts]
     count = np.stack([col.counts(ms / unit) for col in columns], axis=1)
     cells = _verify_cells(count, columns, ms, verify)
-    checked = [(data, float(vs[i]), float(ms[j]), int(count[j, i])) for i, j in cells]
+    checked = [(bound, scales, float(vs[i]), float(ms[j]), int(count[j, i])) for i, j in cells]
     part = None if progress is None else (lambda x: progress(share + (1 - share) * x))
     try:
         done = run_parts(check_part, checked, workers=workers, progress=part, what="checks")
@@ -320,14 +362,17 @@ def sleeper_map(
     checks = [part_check(p) for p in done]
     if kept is not None:
         kept.remove()
-    notes = [f"v = {col.alpha * data.v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
-    notes += [
-        f"v = {c.v:.6g} m/s, M = {c.M:.6g} kg: the map counts {c.map_count} unstable root(s), "
-        f"floquet_frequencies {c.search_count} ({c.verdict.upper()})"
-        for c in checks
-        if not c.agrees
-    ]
-    model = f"{data.beam}/{data.track}/{data.vehicle}"
+    notes = _notes(columns, checks, scales.v_ref)
     return SleeperMap(
-        model, vs, ms, data.v_ref, unit, data.t_scale, tuple(columns), count, tuple(checks), tuple(notes)
+        bound.name,
+        vs,
+        ms,
+        scales.v_ref,
+        unit,
+        scales.t_scale,
+        tuple(columns),
+        count,
+        tuple(checks),
+        tuple(notes),
+        bound.params,
     )
