@@ -35,6 +35,7 @@ SPREAD = (
     "tests/test_search_random.py",
     "tests/test_contact_springs.py",
     "tests/test_soil_track.py",
+    "tests/test_soil_threshold.py",
     "tests/test_undamped_stability.py",
 )
 

@@ -110,6 +110,12 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_instability_lines(args: argparse.Namespace) -> int:
+    from moving_bogie.soil.file import is_soil_file
+
+    if args.file is not None and is_soil_file(args.file):
+        from .soil_lines_cmd import run_soil_lines
+
+        return run_soil_lines(args)
     sleepers = sleeper_data(args)
     if sleepers is not None:
         return lines_on_supports.run_sleeper_lines(args, sleepers)
@@ -257,8 +263,13 @@ def run_stability_map(args: argparse.Namespace) -> int:
     """``stability-map``: the jobs it runs (a map; on sleepers the continuous map beside it) keep their
     parts until the command is done, so ``--resume`` after any of them computes only what is missing."""
     from moving_bogie.checkpoint import kept_until_done
+    from moving_bogie.soil.file import is_soil_file
 
     with kept_until_done():
+        if args.file is not None and is_soil_file(args.file):
+            from .soil_lines_cmd import run_soil_map
+
+            return run_soil_map(args)
         return _stability_map(args)
 
 

@@ -119,7 +119,7 @@ def sleeper_plane(
 def _text(smap: SleeperMap, *, crossings: bool) -> str:
     s = smap.summary()
     lines = [
-        f"model {s['model']}: unstable roots in the strip of width 2 pi v / l, {s['method']}",
+        f"model {s['model']}: unstable roots {smap.region}, {s['method']}",
         f"v {s['v_m_s'][0]:.6g}..{s['v_m_s'][1]:.6g} m/s ({s['v_m_s'][2]}), "
         f"M {s['M_kg'][0]:.6g}..{s['M_kg'][1]:.6g} kg ({s['M_kg'][2]})",
         f"unstable cells {s['unstable_cells']} of {s['cells']}, most unstable roots {s['max_count']}, "
@@ -147,7 +147,7 @@ def run_sleeper_lines(args: argparse.Namespace, physical: PhysicalParams) -> int
     vs, ms = sleeper_plane(args, getattr(args, "n", 60), physical)
     with progress_bar("D-decomposition lines", enabled=not args.json) as bar:
         smap = sleeper_map(physical, vs, ms, verify=3 if args.verify else 0, progress=bar)
-    return _report(args, physical, smap, crossings=True, continuous=None)
+    return report(args, smap, _operating(physical), crossings=True, continuous=None)
 
 
 def run_sleeper_map(args: argparse.Namespace, on_supports: PhysicalParams) -> int:
@@ -178,10 +178,19 @@ def run_sleeper_map(args: argparse.Namespace, on_supports: PhysicalParams) -> in
                 progress=bar,
                 **kept,
             )
-    return _report(args, on_supports, smap, crossings=False, continuous=continuous)
+    return report(args, smap, _operating(on_supports), crossings=False, continuous=continuous)
 
 
-def _report(args: argparse.Namespace, physical: PhysicalParams, smap: SleeperMap, **kw: object) -> int:
+def _operating(physical: PhysicalParams) -> tuple[float, float]:
+    """The file's (v, M), marked on the figure."""
+    return (float(physical.v), float(physical.M))
+
+
+def report(
+    args: argparse.Namespace, smap: SleeperMap, operating: tuple[float, float] | None, **kw: object
+) -> int:
+    """Print a map of D-decomposition columns (``crossings``: with every crossing; ``continuous``: the
+    continuous track's map beside it, or None), write its ``--csv`` and ``--plot``; exit 1 on notes."""
     from moving_bogie.stability.maps.map import StabilityMap
 
     continuous = kw["continuous"]
@@ -196,7 +205,6 @@ def _report(args: argparse.Namespace, physical: PhysicalParams, smap: SleeperMap
         from .stability_options import save_figure
 
         label = "continuous one-layer track, k_f = k_sup / l + k_f, c_f = c_sup / l + c_f"
-        operating = (float(physical.v), float(physical.M))
         save_figure(
             sleeper_map_figure(smap, continuous, operating=operating, continuous_label=label), args.plot
         )

@@ -12,7 +12,7 @@ import argparse
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["SoilRun", "equivalent_params", "run_soil_frequencies", "soil_frequencies"]
+__all__ = ["SoilRun", "equivalent_params", "run_soil_frequencies", "soil_frequencies", "soil_speed_regime"]
 
 #: Options of ``frequencies`` that a soil-track file does not take (its values are in the file).
 REFUSED = ("window", "certify")
@@ -35,7 +35,7 @@ def _refuse_options(args: argparse.Namespace) -> None:
         )
 
 
-def _regime(data: Any, v: float, v_ref: float) -> Any:
+def soil_speed_regime(data: Any, v: float, v_ref: float) -> Any:
     """The speed against the critical velocity of the track on its soil (``soil/critical.py``)."""
     import math
 
@@ -81,7 +81,7 @@ def soil_frequencies(args: argparse.Namespace) -> SoilRun:
     physical = data.physical
     with progress_bar("induced frequencies on the soil", enabled=not args.json) as update:
         result = induced_frequencies(data, progress=update)
-    regime = _regime(data.input, float(physical.v), physical.scales().v_ref)
+    regime = soil_speed_regime(data.input, float(physical.v), physical.scales().v_ref)
     soil = {
         "track": data.input.track.kind,
         "per": data.input.per,

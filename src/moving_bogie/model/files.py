@@ -37,7 +37,9 @@ from moving_bogie.model.physical import PhysicalParams
 
 #: The tracks on soil (soil/track.py) and the commands that take their files (cli/soil_cmd.py).
 SOIL_TRACKS = ("soil", "ballasted-soil")
-SOIL_COMMANDS = ("dispersion", "critical-velocity", "moving-load", "frequencies")
+SOIL_COMMANDS = (
+    "dispersion", "critical-velocity", "moving-load", "frequencies", "instability-lines", "stability-map"
+)  # fmt: skip
 
 __all__ = ["dimensionless_keys", "load_parameters", "load_params_file", "parse_params_toml", "physical_keys"]
 

@@ -51,7 +51,7 @@ if TYPE_CHECKING:
     from moving_bogie.kernels.bound import BoundModel
     from moving_bogie.typing import ComplexArray
 
-__all__ = ["QuadratureCharacteristic", "window_frequencies", "window_radius"]
+__all__ = ["QuadratureCharacteristic", "grown_radius", "window_frequencies", "window_radius"]
 
 #: Initial boundary samples per side of a region; Delves-Lyness up to this many roots, else bisection.
 SAMPLES, MOMENTS = 8, 3
@@ -234,7 +234,7 @@ def _far_edges(radius: float) -> np.ndarray:
     return radius * np.array([1.0, 1.0 - 0.5j, 1.0 - 1.0j, 0.5 - 1.0j, 0.0 - 1.0j])
 
 
-def _grown_radius(E: QuadratureCharacteristic, radius: float) -> float:
+def grown_radius(E: QuadratureCharacteristic, radius: float) -> float:
     """``radius`` doubled (at most FAR_DOUBLINGS times) until rho <= MARGIN at :func:`_far_edges`."""
     for _ in range(FAR_DOUBLINGS):
         with E.tolerance(COUNT_TOL):
@@ -309,7 +309,7 @@ def window_frequencies(
     """
     E = QuadratureCharacteristic(bound)
     if far_field is not None and far_field.radius is not None:
-        radius = _grown_radius(E, radius)
+        radius = grown_radius(E, radius)
     rect = Rectangle(-1e-3 * radius, radius, -radius, 0.0)
     notes = [Note(Reason.BEYOND_WINDOW, "Im q > 0 is not searched: roots there decay")]
     try:

@@ -34,6 +34,11 @@ __all__ = ["CriticalVelocity", "FreeWaves", "critical_velocity", "free_waves", "
 
 #: Default frequency grid (rad/s) of the critical-velocity search: 0.1 to 100 Hz.
 DEFAULT_OMEGA = np.geomspace(0.6, 600.0, 32)
+#: A guided wave whose phase speed is within this relative distance of the soil's fundamental mode is the
+#: soil's own wave, slowed by the track's mass (at low frequency chi ~ sqrt(1 - c / c_0) needs only
+#: 1 - c / c_0 ~ (m omega^2 / chi's scale)^2, 1e-12 to 1e-8 on the examples); a run of such waves alone is
+#: not the rail's branch (:func:`critical_velocity`).
+HUGGING = 1e-6
 
 
 @dataclass(frozen=True)
@@ -200,19 +205,30 @@ def critical_velocity(
     rail's bending branch; a later run may be a locally reacting branch (the sleepers and ballast
     bouncing between a rail held by its bending stiffness and the soil), whose phase speed falls towards 0
     as k1 grows, because the model gives sleepers and ballast no bending stiffness: the critical velocity is
-    taken on the first run, and every run's least phase velocity is listed (``minima``).
+    taken on the first run that holds a wave the track slows by more than :data:`HUGGING` below the
+    soil's mode (a run of the soil's own wave alone is passed over), and every run's least phase velocity
+    is listed (``minima``).
     """
     omega = DEFAULT_OMEGA if omega is None else np.asarray(omega, dtype=float)
     waves = free_waves(track, soil, omega)
     notes = []
     has: npt.NDArray[np.bool_] = np.asarray(np.isfinite(waves.c).any(axis=1))
     slowest = np.where(has, np.min(np.where(np.isfinite(waves.c), waves.c, np.inf), axis=1), np.nan)
-    minima = [_branch_minimum(track, soil, omega, slowest, run) for run in _runs(has)]
+    runs = _runs(has)
+    minima = [_branch_minimum(track, soil, omega, slowest, run) for run in runs]
+    # the rail's branch: the first run with a wave the track slows by more than HUGGING (a run that only
+    # follows the soil's mode is split off it where the grid's top, 1 - 1e-12, misses a wave); when every
+    # run follows it (a beam on a homogeneous half-space), the first
+    own = [
+        i
+        for i, (a, b) in enumerate(runs)
+        if np.any(1 - slowest[a : b + 1] / waves.c_soil[a : b + 1] > HUGGING)
+    ]
     if not minima:
         v_cr, w_cr = float("nan"), float("nan")
         notes.append("no guided wave of the coupled track below the soil's fundamental mode in the range")
     else:
-        w_cr, v_cr, where = minima[0]
+        w_cr, v_cr, where = minima[own[0] if own else 0]
         if where in ("range end", "grid"):
             notes.append("the least phase velocity lies at an end of the frequency range: widen it")
     w_u, v_u = _uncoupled(track, soil.undamped(), omega, waves.c_soil)

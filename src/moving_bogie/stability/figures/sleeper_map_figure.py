@@ -90,7 +90,7 @@ def sleeper_map_figure(
             smap.velocities, smap.masses[0], smap.masses[-1], where=unc, step="mid", hatch="///", fc="none"
         )
         handles.append(Patch(fc="none", hatch="///", label="uncertain column"))
-    axs[0].set_title(f"rail on sleepers ({smap.model})", fontsize=9)
+    axs[0].set_title(f"{smap.track} ({smap.model})", fontsize=9)
     _stable_note(axs[0], not (smap.count.any() or zones or unc.any()))
     if continuous is not None:
         _counts(axs[1], smap.velocities, smap.masses, continuous.count, vmax)

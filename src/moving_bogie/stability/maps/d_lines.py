@@ -16,14 +16,24 @@ Im mu falls through 0 as q increases. Each crossing is computed again with one m
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
 
 from moving_bogie.kernels.mass_pencil import MassPencil
 
-__all__ = ["DColumn", "DCrossing", "d_column"]
+__all__ = [
+    "DColumn",
+    "DCrossing",
+    "InverseMasses",
+    "d_column",
+    "match_branches",
+    "real_crossings",
+    "signed_counts",
+]
 
 #: largest |Im mu| / |mu| of a polished crossing, and the move in the harmonics called converged
 REAL_TOL = 1e-7
@@ -35,6 +45,12 @@ SCAN_TOL = 1e-6
 #: from one branch to another (no zero) is bisected down to the tolerance, some 30 steps, and is given up
 #: after these
 POLISH_ITER = 12
+
+
+class InverseMasses(Protocol):
+    """A pencil in the wheel mass: mu = 1 / eta_M of every eta_M that makes E_chr vanish at q."""
+
+    def inverse_masses(self, q: float) -> np.ndarray: ...
 
 
 @dataclass(frozen=True)
@@ -64,16 +80,21 @@ class DColumn:
     def counts(self, etas: np.ndarray | list[float]) -> np.ndarray:
         """Unstable roots in the strip at each eta_M: none at eta_M -> 0 (A has no root there, (S19)) plus
         the changes of the crossings below it (Eq. (S21))."""
-        at = np.asarray(etas, dtype=float)
-        out = np.zeros(at.shape, dtype=int)
-        for c in self.crossings:
-            out += np.where(at > c.eta_M, c.change, 0)
-        return out
+        return signed_counts(self.crossings, etas)
 
     @property
     def converged(self) -> bool:
         """Every crossing moved less than MOVE_TOL (relative) with one more harmonic."""
         return all(np.isfinite(c.moved) and c.moved < MOVE_TOL for c in self.crossings)
+
+
+def signed_counts(crossings: Sequence[DCrossing], etas: np.ndarray | list[float]) -> np.ndarray:
+    """Unstable roots at each eta_M: none at eta_M -> 0 plus the changes of the crossings below it (S21)."""
+    at = np.asarray(etas, dtype=float)
+    out = np.zeros(at.shape, dtype=int)
+    for c in crossings:
+        out += np.where(at > c.eta_M, c.change, 0)
+    return out
 
 
 def strip_samples(Omega0: float, samples: int) -> np.ndarray:
@@ -82,7 +103,7 @@ def strip_samples(Omega0: float, samples: int) -> np.ndarray:
     return -Omega0 / 4 + (np.arange(samples) + 0.5) * Omega0 / samples
 
 
-def _branches(pencil: MassPencil, qs: np.ndarray) -> np.ndarray:
+def _branches(pencil: InverseMasses, qs: np.ndarray) -> np.ndarray:
     """mu at every sample (rows), the columns matched from sample to sample into branches."""
     n = qs.size
     lower = 3 * n // 4
@@ -93,12 +114,12 @@ def _branches(pencil: MassPencil, qs: np.ndarray) -> np.ndarray:
     for k in range(lower, n):  # the mirror image, Eq. (S14)
         mus[k] = mus[3 * n // 2 - 1 - k].conj()
     for k in range(1, n):
-        mus[k] = _match(mus[k - 1], mus[k])
+        mus[k] = match_branches(mus[k - 1], mus[k])
     return mus
 
 
 def _polish(
-    pencil: MassPencil, a: float, b: float, mu_a: complex, mu_b: complex
+    pencil: InverseMasses, a: float, b: float, mu_a: complex, mu_b: complex
 ) -> tuple[float, complex] | None:
     """The zero of Im mu on the branch through mu_a (at a) and mu_b (at b), by Brent's method; the branch at
     q is the eigenvalue nearest the straight line between them. None when Im mu has no sign change, or
@@ -148,14 +169,14 @@ def _follow(pencil: MassPencil, q0: float, mu0: complex, a: float, b: float) -> 
     return _polish(pencil, a, b, mu0, mu0)
 
 
-def _match(previous: np.ndarray, current: np.ndarray) -> np.ndarray:
+def match_branches(previous: np.ndarray, current: np.ndarray) -> np.ndarray:
     """``current`` reordered to follow ``previous`` (least total distance)."""
     _, order = linear_sum_assignment(np.abs(previous[:, None] - current[None, :]))
     return current[order]
 
 
 def _resolve(
-    pencil: MassPencil, a: float, b: float, mus_a: np.ndarray, j: int, depth: int = 0
+    pencil: InverseMasses, a: float, b: float, mus_a: np.ndarray, j: int, depth: int = 0
 ) -> tuple[list[tuple[float, complex, int, float, float]], bool]:
     """The real crossings of branch j between samples a and b: ([(q, mu, change, a', b')], resolved).
 
@@ -167,7 +188,7 @@ def _resolve(
     qs = np.linspace(a, b, 4)
     rows = [mus_a]
     for q in qs[1:]:
-        rows.append(_match(rows[-1], pencil.inverse_masses(q)))
+        rows.append(match_branches(rows[-1], pencil.inverse_masses(q)))
     branch = np.array([r[j] for r in rows])
     out: list[tuple[float, complex, int, float, float]] = []
     resolved = True
@@ -189,8 +210,8 @@ def _resolve(
     return out, resolved
 
 
-def _crossings(
-    pencil: MassPencil, qs: np.ndarray, mus: np.ndarray, eta_max: float
+def real_crossings(
+    pencil: InverseMasses, qs: np.ndarray, mus: np.ndarray, eta_max: float
 ) -> tuple[list[tuple[float, complex, int, float, float]], list[str]]:
     """Every polished crossing (q, mu, change, bracket) with 0 < 1 / mu <= eta_max, and the notes."""
     found: list[tuple[float, complex, int, float, float]] = []
@@ -218,7 +239,7 @@ def d_column(
     omega0 = pencil.track.Omega0
     start = pencil.evaluations[0]
     qs = strip_samples(omega0, samples)
-    hits, notes = _crossings(pencil, qs, _branches(pencil.but(tol=SCAN_TOL), qs), eta_max)
+    hits, notes = real_crossings(pencil, qs, _branches(pencil.but(tol=SCAN_TOL), qs), eta_max)
     finer = pencil.but(N=pencil.N + 1)
     found: list[DCrossing] = []
     for q, mu, change, a, b in hits:

@@ -69,6 +69,10 @@ class SleeperMap:
     checks: tuple[MapCheck, ...] = ()
     notes: tuple[str, ...] = field(default=())
     params: DimensionlessParams | None = None
+    #: the track in words, where the roots are counted, and how (the text output, the figure's title)
+    track: str = "rail on sleepers"
+    region: str = "in the strip of width 2 pi v / l"
+    method: str = "D-decomposition in the wheel mass at each velocity, count 0 at M -> 0 (S19)-(S22)"
 
     @property
     def uncertain(self) -> np.ndarray:
@@ -99,7 +103,7 @@ class SleeperMap:
         items = [(f"{c.v:.6g}", f"{c.M:.6g}", c.map_count, c.search_count, c.verdict) for c in self.checks]
         header = ("v [m/s]", "M [kg]", "map count", "search count", "verdict")
         return html_table(
-            "stability map on sleepers", verdict, rows, reasons=list(self.notes), items=(header, items)
+            f"stability map, {self.track}", verdict, rows, reasons=list(self.notes), items=(header, items)
         )
 
     def lines(self) -> list[dict]:
@@ -134,7 +138,7 @@ class SleeperMap:
         }
         return shared | {
             "model": self.model,
-            "method": "D-decomposition in the wheel mass at each velocity, count 0 at M -> 0 (S19)-(S22)",
+            "method": self.method,
             "v_m_s": [float(self.velocities[0]), float(self.velocities[-1]), len(self.velocities)],
             "M_kg": [float(self.masses[0]), float(self.masses[-1]), len(self.masses)],
             "unstable_cells": int(np.count_nonzero(self.count > 0)),
@@ -206,7 +210,11 @@ def keep_freed_memory() -> bool:
 def column_part(task: tuple[BoundModel, Scales, float, float, int, int]) -> Part:
     """The column of ``task`` = (bound, scales, v, eta_max, N, samples) as arrays (a checkpoint's part)."""
     keep_freed_memory()
-    col = column_at(*task)
+    return column_arrays(column_at(*task))
+
+
+def column_arrays(col: DColumn) -> Part:
+    """A column as arrays (a checkpoint's part), read back exactly by :func:`part_column`."""
     crossings = col.crossings
     return {
         "alpha": np.array(col.alpha),
