@@ -30,7 +30,7 @@ k_hi): both ends are bounded and added to the error.
 the sinc is narrow beside the variation of U, one U value) is taken with the error allowance
 e = |chi_loc| (100 %; tests/test_soil_receptance.py checks |chi / chi_loc - 1| < 1/2 there on the
 examples' soils); elsewhere chi is the strip's quadrature (:func:`~.strip.strip_stiffness`) to the
-relative tolerance tol |D| / (2 |S chi_loc|) (between 1e-10 and 1e-2) with its own error estimate e. So
+relative tolerance tol |D| / (2 |S chi_loc|) (between 1e-10 and 0.1) with its own error estimate e. So
 1/D is good to about tol relative at every node, and the bound above summed with the weights is the
 error of G that chi leaves; beside the panels' Kronrod-Gauss differences and the ends it makes
 ``error``. The far panels (|k| up to 300 / b and beyond), where the strip quadrature would cost
@@ -59,7 +59,7 @@ LOCAL_KB = 4.0
 #: Initial panels on each side of k = 0 (one from k_lo to K_NEAR / b, then geometric), most bisection rounds.
 PANELS, ROUNDS, K_NEAR = 8, 10, 1e-3
 #: The strip quadrature's relative tolerance is kept within these (module docstring).
-CHI_RTOL = (1e-10, 1e-2)
+CHI_RTOL = (1e-10, 0.1)
 
 
 @dataclass(frozen=True)
