@@ -114,7 +114,7 @@ def test_threshold_mass_of_the_example_against_the_argument_principle():
     bound = bind(vehicle)
     eta_file = float(bound.floats.eta_M)
     col = window_column(
-        bound, equivalent=BoundModel(bound.params), eta_max=4 * eta_file, eta_min=eta_file / 16
+        bound, equivalent=BoundModel(bound.params), eta_max=2 * eta_file, eta_min=eta_file / 4
     )
     assert not col.notes
     threshold = col.threshold
@@ -199,13 +199,13 @@ def test_map_from_real_axis_columns_is_the_continuous_map_of_counts():
     (argument-principle counts on a contour shared by a column, no D-decomposition)."""
     params = table1_case(1)
     alphas, masses = [1.4], [1.5, 3.0, 30.0]
-    bounds = [bind(params.replace(alpha=str(a))) for a in alphas]
+    columns = [(bind(params.replace(alpha=str(a))),) * 2 for a in alphas]  # continuous: its own equivalent
     smap = real_axis_map(
-        bounds,
+        columns,
         alphas,
         masses,
         scales=(1.0, 1.0, 1.0),
-        model="bogie",
+        name="bogie",
         track="continuous",
         identity="",
         workers=1,
