@@ -1,6 +1,6 @@
 """The soil: dispersion of 100 frequencies, the critical velocity and a moving-load point, side by side.
 
-    python benchmarks/bench_soil.py [--record]
+    python benchmarks/bench_soil.py [--before REV] [--record]
 
 In one run, wall time of:
 
@@ -15,6 +15,12 @@ In one run, wall time of:
 - the rail's receptance G(0, Omega) (docs/soil.md, Eq. (S9)) at Omega = 0 beside that deflection per unit
   load (the same integral by another integrator), and at 32 complex Omega in one call (the k nodes shared)
   beside one Omega alone;
+- the induced frequencies of a vehicle on the soil track (``examples/soil-mass.toml``: the window's count,
+  the roots and the verdict; the ``frequencies --file`` command adds the critical velocity, above),
+  target under 10 s, and a DAF curve of 100 speeds (20 to 120 m/s, ``moving_load``: every grid speed,
+  the static deflection and the golden-section peak), target under 10 s; each beside the same work by the
+  code before when ``--before REV`` names a commit (checked out into a temporary worktree) or a checkout,
+  run in a subprocess of this script, with the answers of both;
 - the machine's load average over the run (the timings scale with it on a shared machine).
 
 Prints a table; nothing is asserted (tests/test_soil_*.py check the values).
@@ -23,19 +29,25 @@ Prints a table; nothing is asserted (tests/test_soil_*.py check the values).
 from __future__ import annotations
 
 import argparse
+import contextlib
+import json
 import os
+import subprocess
+import sys
 import time
 from pathlib import Path
 
 import numpy as np
+from bench_sweep import checkout
 
 from moving_bogie.soil.critical import critical_velocity
 from moving_bogie.soil.file import load_soil_file
-from moving_bogie.soil.moving_load import deflection
+from moving_bogie.soil.moving_load import deflection, moving_load
 from moving_bogie.soil.rayleigh import soil_modes
 from moving_bogie.soil.receptance import soil_receptance
 
 FILE = Path(__file__).resolve().parent.parent / "examples" / "soil-ballasted.toml"
+VEHICLE = FILE.with_name("soil-mass.toml")
 
 
 def _timed(func):
@@ -82,10 +94,51 @@ def _receptance_rows(data, w_per_load: float, t_ml: float) -> list[tuple[str, st
     return rows
 
 
+def _work(name: str) -> tuple[float, str]:
+    """(seconds, the answer) of the work ``name`` (``frequencies`` or ``daf``) with the code imported."""
+    if name == "frequencies":
+        from moving_bogie.api import induced_frequencies, load_soil_vehicle
+
+        seconds, res = _timed(lambda: induced_frequencies(load_soil_vehicle(VEHICLE)))
+        state = res.verdict.state
+        return seconds, f"count {res.count}, {len(res.roots)} roots, {state}, {res.evaluations} E_chr"
+    data = load_soil_file(FILE)
+    speeds = np.linspace(20.0, 120.0, 100)
+    seconds, ml = _timed(lambda: moving_load(data.track, data.soil, data.load, speeds))
+    return seconds, f"peak DAF {ml.daf_peak:.5f} at {ml.v_peak:.3f} m/s"
+
+
+def _before_rows(before: str | None) -> list[tuple[str, str, str, str]]:
+    """The search on the soil and the 100-speed DAF, here and (``--before``) in the code before."""
+    rows = []
+    labels = {
+        "frequencies": ("induced frequencies, soil-mass.toml (count, roots, verdict)", "< 10 s"),
+        "daf": ("moving load, DAF curve of 100 speeds (20-120 m/s) and its peak", "< 10 s"),
+    }
+    with checkout(before) if before else contextlib.nullcontext((None, "")) as (src, _):
+        for name, (label, target) in labels.items():
+            seconds, answer = _work(name)
+            alternative = "code before: run with --before REV"
+            if src is not None:
+                argv = [sys.executable, __file__, "--work", name]
+                env = os.environ | {"PYTHONPATH": str(src)}
+                out = subprocess.run(argv, env=env, capture_output=True, text=True, check=True).stdout
+                old = json.loads(out.strip().splitlines()[-1])
+                alternative = f"code before ({before}): {old['seconds']:.1f} s, {old['answer']}"
+            rows.append((label, f"{seconds:.1f} s ({answer})", alternative, target))
+    return rows
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--record", action="store_true", help="write benchmarks/results/bench_soil.json")
+    parser.add_argument("--before", help="a commit or a checkout: the code before, for the last two rows")
+    parser.add_argument("--work", choices=("frequencies", "daf"), help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.work:  # one work, for the code before (a subprocess)
+        seconds, answer = _work(args.work)
+        print(json.dumps({"seconds": seconds, "answer": answer}))
+        return 0
     data = load_soil_file(FILE)
     omega = np.linspace(1.0, 300.0, 100)
     rows = []
@@ -117,6 +170,7 @@ def main() -> int:
          f"at rest: {t_st:.1f} s", "100 speeds < 10 s")
     )  # fmt: skip
     rows += _receptance_rows(data, moving.w[0] / data.load, t_ml)
+    rows += _before_rows(args.before)
     rows.append(("load average of the machine (1 min, at the end)", f"{os.getloadavg()[0]:.1f}", "-", "-"))
     header = ("work", "measured", "alternative", "target")
     widths = [max(len(str(r[k])) for r in [*rows, header]) for k in range(4)]

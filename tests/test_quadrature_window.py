@@ -48,3 +48,27 @@ def test_count_and_roots_against_the_winding_number_on_a_grid():
     for root in result.roots:
         q = complex(root.q)
         assert any(n >= 1 and c.contains(q) for c, n in zip(cells, counts, strict=True))
+
+
+def test_a_count_on_values_within_their_error_of_zero_is_not_a_verdict(monkeypatch):
+    """The same search with the receptance's stated error raised to a tenth of its largest entry: the
+    samples of the window's edge near the growing root no longer hold |E_chr| above twice delta E, so the
+    count does not stand and the verdict is UNDETERMINED (reason QUADRATURE), never UNSTABLE or STABLE."""
+    import dataclasses
+
+    from moving_bogie.kernels.continuous_track import ContinuousTrack
+    from moving_bogie.roots.count.outcomes import Reason
+    from moving_bogie.roots.verdict import UNDETERMINED
+
+    exact = ContinuousTrack.receptance
+
+    def coarse(self, q, *args, **kwargs):
+        rec = exact(self, q, *args, **kwargs)
+        return dataclasses.replace(rec, error=0.1 * float(np.abs(rec.matrix).max()))
+
+    monkeypatch.setattr(ContinuousTrack, "receptance", coarse)
+    bound = bind(table1_case(1))
+    radius, far = window_radius(bound)
+    result = window_frequencies(bound, radius=radius, far_field=far)
+    assert result.verdict.state == UNDETERMINED
+    assert any(n.reason == Reason.QUADRATURE and "count rests" in n.text for n in result.notes)

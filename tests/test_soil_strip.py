@@ -99,3 +99,21 @@ def test_equal_layers_give_the_halfspace():
         assert np.allclose(
             strip_stiffness(k1, omega, stack, B).chi, strip_stiffness(k1, omega, one, B).chi, rtol=1e-9
         )
+
+
+@pytest.mark.parametrize(
+    ("k1", "omega", "eta"),
+    [
+        (2.0, 150.0, 2e-3),
+        pytest.param(0.25, 20.0, 0.0, marks=pytest.mark.slow),
+        pytest.param(0.6, 120.0 - 40.0j, 2e-3, marks=pytest.mark.slow),
+    ],
+)
+def test_coarse_start_meets_its_tolerance(k1, omega, eta):
+    """A chi asked to 1e-4 (the receptance's rule) starts from the coarse grid: against mpmath's quadosc
+    of the defining integral, within 1e-4 and within its own stated error."""
+    soil = soil_profile([HALF | {"eta": eta}])
+    result = strip_stiffness(np.array([k1]), omega, soil, B, rtol=1e-4)
+    actual = abs(result.chi[0] / _quadosc(k1, omega, eta) - 1)
+    assert actual < 1e-4
+    assert actual * abs(result.chi[0]) <= result.error[0]

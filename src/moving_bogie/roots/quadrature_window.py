@@ -25,7 +25,10 @@ inside it is bisected and its halves counted. The roots with Im q > 0 (decaying)
 
 Errors: the receptance's error e moves E_chr by at most delta E = sum_ij |dE_chr / dG_ij| e, and a root by
 delta q = delta E / |E_chr'(q)|; the decimals printed are those delta q leaves, and a root with
-|Im q| <= delta q is neither stable nor unstable (a note of reason QUADRATURE: UNDETERMINED).
+|Im q| <= delta q is neither stable nor unstable (a note of reason QUADRATURE: UNDETERMINED). The count
+stands when delta E <= |E_chr| / 2 at every sample of the boundary (the winding number is then that of the
+exact values); otherwise the boundary is counted again at the track's own tolerance, and if it still
+fails, a note of reason QUADRATURE makes the verdict UNDETERMINED.
 """
 
 from __future__ import annotations
@@ -72,6 +75,8 @@ class QuadratureCharacteristic:
 
     bound: BoundModel
     samples: dict[complex, complex] = field(default_factory=dict)
+    #: delta E of each sample: the receptance's error carried through E_chr (module docstring)
+    bounds: dict[complex, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         system = self.bound.float_system
@@ -105,22 +110,40 @@ class QuadratureCharacteristic:
         q = np.asarray(q, dtype=complex)
         rec = self.bound.track.receptance(q)
         E: ComplexArray = np.linalg.det(self.system(q, rec.matrix))
+        delta = rec.error * self.sensitivity(q, rec.matrix, E) if rec.error else np.zeros(q.shape)
         self.samples.update(zip(q.ravel().tolist(), E.ravel().tolist(), strict=True))
+        self.bounds.update(zip(q.ravel().tolist(), np.ravel(delta).tolist(), strict=True))
         return E
 
-    def uncertainty(self, q: complex, slope: complex) -> float:
-        """delta q of a root at ``q`` (module docstring); ``slope`` ~ E_chr'(q)."""
-        rec = self.bound.track.receptance(np.array([q]))
-        G = rec.matrix
-        base = np.linalg.det(self.system(np.array([q]), G))[0]
-        n, h = self.contacts, 1e-6 * max(float(np.abs(G).max()), 1e-300)
-        change = 0.0
+    def sensitivity(self, q: ComplexArray, G: ComplexArray, E: ComplexArray) -> np.ndarray:
+        """sum_ij |dE_chr / dG_ij| at each q (forward differences of relative step 1e-6 in each entry)."""
+        n = self.contacts
+        h = 1e-6 * np.maximum(np.abs(G).max(axis=(-2, -1)), 1e-300)
+        change = np.zeros(q.shape)
         for i in range(n):
             for j in range(n):
                 Gp = G.copy()
                 Gp[..., i, j] += h
-                change += abs(np.linalg.det(self.system(np.array([q]), Gp))[0] - base) / h
+                change += np.abs(np.linalg.det(self.system(q, Gp)) - E) / h
+        return change
+
+    def uncertainty(self, q: complex, slope: complex) -> float:
+        """delta q of a root at ``q`` (module docstring); ``slope`` ~ E_chr'(q)."""
+        z = np.array([q])
+        rec = self.bound.track.receptance(z)
+        base = np.linalg.det(self.system(z, rec.matrix))
+        change = float(self.sensitivity(z, rec.matrix, base)[0])
         return change * rec.error / max(abs(slope), 1e-300)
+
+    def resolved(self, rect: Rectangle) -> bool:
+        """Whether every sample on the boundary of ``rect`` has delta E <= |E_chr| / 2: each phase is then
+        within pi / 6 of the exact one, each step of the count within pi / 5 + pi / 3 < pi of it, and the
+        winding number is that of the exact values."""
+        z = np.array(list(self.samples), dtype=complex)
+        keep = _on_boundary(rect, z)
+        E = np.abs(np.array(list(self.samples.values()), dtype=complex)[keep])
+        delta = np.array([self.bounds.get(key, 0.0) for key in z[keep].tolist()])
+        return bool(np.all(delta <= 0.5 * E))
 
 
 def _perimeter(rect: Rectangle, z: ComplexArray) -> np.ndarray:
@@ -194,10 +217,17 @@ def _secant_steps(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[c
     return b, slope, float(step)
 
 
-def _count(E: QuadratureCharacteristic, rect: Rectangle) -> int:
+def _count(E: QuadratureCharacteristic, rect: Rectangle) -> tuple[int, bool]:
+    """The winding number of ``rect`` at COUNT_TOL, counted again at the track's own tolerance when a
+    boundary sample's delta E exceeds |E_chr| / 2; and whether the count stands (:meth:`resolved`)."""
     spacing = max(rect.width, rect.height) / SAMPLES
     with E.tolerance(COUNT_TOL):
-        return winding_number(E, rect, spacing=spacing, max_points=4000)
+        n = winding_number(E, rect, spacing=spacing, max_points=4000)
+    if E.resolved(rect) or E.tight is None:
+        return n, E.resolved(rect)
+    with E.tolerance(None):
+        n = winding_number(E, rect, spacing=spacing, max_points=4000)
+    return n, E.resolved(rect)
 
 
 def _locate(
@@ -219,7 +249,7 @@ def _locate(
     out = []
     for half in rect.split(0.5):
         try:
-            out += _locate(E, half, _count(E, half), level + 1)
+            out += _locate(E, half, _count(E, half)[0], level + 1)
         except EdgeZeroError:
             return out
     return out
@@ -313,11 +343,14 @@ def window_frequencies(
     rect = Rectangle(-1e-3 * radius, radius, -radius, 0.0)
     notes = [Note(Reason.BEYOND_WINDOW, "Im q > 0 is not searched: roots there decay")]
     try:
-        count = _count(E, rect)
+        count, stands = _count(E, rect)
     except EdgeZeroError:
         rect = Rectangle(rect.x0, rect.x1, rect.y0, -1e-3 * radius)
         notes.append(Note(Reason.QUADRATURE, f"a root lies within {1e-3 * radius:.3g} of the real axis"))
-        count = _count(E, rect)
+        count, stands = _count(E, rect)
+    if not stands:
+        text = "the count rests on values of E_chr on the window's edge within twice their error of 0"
+        notes.append(Note(Reason.QUADRATURE, text))
     if progress is not None:
         progress(0.5)
     roots = [_induced(E, q, slope, step) for q, slope, step in _locate(E, rect, count)]

@@ -5,26 +5,27 @@ In the frame of the load, xi = x - v t (positive ahead), the rail's deflection i
     w(xi) = (1 / 2 pi) int P exp(-i k1 xi) / D(k1, k1 v) dk1 = (P / pi) Re int_0^inf exp(-i k1 xi) / D dk1,
 
 D the rail's dynamic stiffness on the soil (:meth:`~.track.SoilTrack.rail_stiffness`) at omega = k1 v
-(D(-k1, -omega) is the complex conjugate of D(k1, omega) under Kelvin-Voigt damping). The integral runs on
-Gauss-Kronrod (7, 15) panels, geometric in k1, bisected where the two rules differ (adaptively, all panels
-of a round at once); below k_lo = 1e-6 / b the integrand grows only like log(1 / k1) (chi vanishes like
-1 / log there) and above k_hi it is 1 / (EI k1^4): both ends are bounded and added to the error.
+(D(-k1, -omega) is the complex conjugate of D(k1, omega) under Kelvin-Voigt damping): the rail's receptance
+at Omega = 0 times P, w(xi) = P G(xi, 0) (:func:`~.receptance.soil_receptance`, Eq. (S9), one side of
+k1 = 0): its Gauss-Kronrod panels, geometric in k1 and bisected where the two rules differ, each speed on
+its own panels and every speed of a call evaluated together; chi only as accurate as 1/D needs; the ends
+below k_lo (where the integrand grows only like log(1 / k1)) and above k_hi (1 / (EI k1^4)) bounded and,
+with chi's error, added to the error.
 The soil must be damped (eta > 0 in every layer): at and beyond the critical velocity the undamped steady
 response is unbounded.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from moving_bogie.errors import ParameterError
-from moving_bogie.typing import ComplexArray, FloatArray
+from moving_bogie.typing import FloatArray
 
 from .profile import SoilProfile
-from .strip import NODES, WEIGHTS_G, WEIGHTS_K, strip_stiffness
+from .receptance import soil_receptance
 from .track import SoilTrack
 
 __all__ = ["Deflection", "MovingLoad", "deflection", "moving_load"]
@@ -39,73 +40,29 @@ class Deflection:
     error: FloatArray
 
 
-def _integrand(track: SoilTrack, soil: SoilProfile, k1: FloatArray, v: float) -> ComplexArray:
-    omega = k1 * v
-    chi = strip_stiffness(k1, omega, soil, track.b).chi
-    return np.asarray(1 / track.rail_stiffness(k1, omega, chi), dtype=complex)
-
-
-def _panels(
-    f: Callable[[FloatArray], ComplexArray],
-    xi: FloatArray,
-    k_lo: float,
-    k_hi: float,
-    rtol: float,
-    rounds: int,
-) -> tuple[ComplexArray, FloatArray]:
-    """int_{k_lo}^{k_hi} exp(-i k1 xi) f(k1) dk1 for each xi by adaptive Gauss-Kronrod panels (geometric
-    halves); a panel is kept when its Kronrod-Gauss difference is below its share (its width in log k1) of
-    rtol times the running total. Returns (integral, error estimate) per xi."""
-    panels = np.geomspace(k_lo, k_hi, 25)
-    panels = np.stack([panels[:-1], panels[1:]], -1)
-    span = np.log(k_hi / k_lo)
-    total = np.zeros(xi.shape, dtype=complex)
-    error = np.zeros(xi.shape)
-    for step in range(rounds):
-        half, mid = (panels[:, 1] - panels[:, 0]) / 2, (panels[:, 1] + panels[:, 0]) / 2
-        k1 = mid[:, None] + half[:, None] * NODES
-        g = f(k1.ravel()).reshape(k1.shape)
-        weighted = np.exp(-1j * np.multiply.outer(xi, k1)) * g
-        kronrod = (weighted * WEIGHTS_K).sum(-1) * half
-        diff = np.abs(kronrod - (weighted * WEIGHTS_G).sum(-1) * half)
-        scale = np.abs(total + kronrod.sum(-1)).max()
-        share = np.log(panels[:, 1] / panels[:, 0]) / span
-        keep = (diff.max(axis=0) <= rtol * scale * share) | (step == rounds - 1)
-        total += kronrod[:, keep].sum(-1)
-        error += diff[:, keep].sum(-1)
-        if keep.all():
-            break
-        a, b = panels[~keep, 0], panels[~keep, 1]
-        centre = np.sqrt(a * b)
-        panels = np.concatenate([np.stack([a, centre], -1), np.stack([centre, b], -1)])
-    return total, error
-
-
 def deflection(
     track: SoilTrack,
     soil: SoilProfile,
     load: float,
-    v: float,
+    v: float | FloatArray,
     xi: FloatArray | None = None,
     *,
     rtol: float = 1e-5,
-    rounds: int = 8,
 ) -> Deflection:
-    """The steady deflection w(xi) (m) under ``load`` (N, downwards) moving at ``v`` (m/s) (module doc)."""
-    if v != 0 and any(layer.eta <= 0 for layer in soil.layers):
+    """The steady deflection w(xi) (m) under ``load`` (N, downwards) moving at ``v`` (m/s) (module doc); an
+    array of speeds gives ``w`` and ``error`` of shape (speeds, xi), all computed together."""
+    if np.any(np.asarray(v) != 0) and any(layer.eta <= 0 for layer in soil.layers):
         raise ParameterError(
             "eta", "a moving load needs Kelvin-Voigt damping eta > 0 in every [[soil]] layer"
         )
     xi = np.atleast_1d(np.asarray(0.0 if xi is None else xi, dtype=float))
-    chi_b = abs(strip_stiffness(np.array([1 / track.b]), np.zeros(1), soil, track.b).chi[0])
-    k_ref = max(1 / track.b, (chi_b / track.EI) ** 0.25)
-    k_lo, k_hi = 1e-6 / track.b, 300 * k_ref
-    total, error = _panels(lambda k1: _integrand(track, soil, k1, v), xi, k_lo, k_hi, rtol, rounds)
-    # the ends: int_0^k_lo of a log-growing integrand is below 2 k_lo |f(k_lo)|; beyond k_hi,
-    # 1 / (3 EI k_hi^3)
-    g_lo = abs(_integrand(track, soil, np.array([k_lo]), v)[0])
-    error = error + 2 * k_lo * g_lo + 1 / (3 * track.EI * k_hi**3)
-    return Deflection(xi=xi, w=load / np.pi * total.real, error=abs(load) / np.pi * error)
+    rest = np.zeros(np.shape(v), dtype=complex)  # Omega = 0: the steady response
+    rec = soil_receptance(track, soil, np.asarray(v, dtype=float), rest, xi, tol=rtol)
+    w = load * rec.G.real
+    error = np.multiply.outer(abs(load) * rec.error, np.ones(xi.size))
+    if np.ndim(v) == 0:
+        w, error = w[0], error[0]
+    return Deflection(xi=xi, w=w, error=error)
 
 
 @dataclass(frozen=True)
@@ -136,9 +93,9 @@ def moving_load(
     search between the neighbours of the largest grid value."""
     speeds = np.asarray(speeds, dtype=float)
     static = deflection(track, soil, load, 0.0, rtol=rtol)
-    values = [deflection(track, soil, load, float(v), rtol=rtol) for v in speeds]
-    w = np.array([d.w[0] for d in values])
-    error = max([static.error[0], *(d.error[0] for d in values)])
+    values = deflection(track, soil, load, speeds, rtol=rtol)  # every speed in one quadrature
+    w = values.w[:, 0]
+    error = float(max(static.error[0], values.error.max()))
     i = int(np.argmax(np.abs(w)))
     v_peak, w_peak = float(speeds[i]), float(w[i])
     if 0 < i < len(speeds) - 1:

@@ -20,6 +20,11 @@ close when k1 is near its wavenumber), follow kappa geometrically through the ba
 Kronrod and Gauss sums differ by more than its share of the tolerance is bisected, all (k1, omega) at once,
 so the panels close in on the poles of U only where they are. The estimate of the error is the sum of the
 Gauss-Kronrod differences plus a bound of the neglected tail.
+
+An item asked to rtol >= LOOSE (1e-7) starts from a coarse grid (:data:`COARSE`: few panels near k2 = 0 and
+in the band, at least one per decade of kappa, four sinc periods per panel, the tail cut where its bound is
+about rtol / 4) and takes COARSE_ROUNDS more bisection rounds; tighter items start from the fine grid
+(:data:`FINE`), which meets 1e-11 mostly before any bisection.
 """
 
 from __future__ import annotations
@@ -233,8 +238,9 @@ def strip_stiffness(
     free waves decay, Im omega > 0).
 
     The k2 integral is refined until the Kronrod-Gauss differences sum to about ``rtol`` of it (at most
-    ``rounds`` bisections; ``rounds=1``: the initial panels only, one per period of the sinc); ``rtol`` may
-    be an array, one tolerance per (k1, omega); ``error`` states what was reached. On an undamped soil the
+    ``rounds`` bisections, COARSE_ROUNDS more from a coarse start (module docstring); ``rounds=1``: the
+    fine initial panels only, one per period of the sinc); ``rtol`` may be an array, one tolerance per
+    (k1, omega); ``error`` states what was reached. On an undamped soil the
     k2 path must not meet a surface-wave pole: take |k1| above the wavenumber of the slowest wave (phase
     speed omega / k1 below every mode's), or give the layers Kelvin-Voigt damping.
     """
