@@ -47,6 +47,7 @@ def test_notebooks_exist():
         "07-layered-track.py",
         "08-a-full-car.py",
         "09-sleepers.py",
+        "10-soil.py",
     ]
 
 
