@@ -32,6 +32,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
+from IPython.display import display
 
 from moving_bogie.api import bind, induced_frequencies, load_soil_vehicle
 from moving_bogie.kernels.bound import BoundModel
@@ -69,8 +70,7 @@ modes = soil_modes(omega, BALLASTED.soil)
 print(f"coupled critical velocity   v_cr = {crit.v_cr:.2f} m/s ({crit.v_cr * 3.6:.0f} km/h)")
 print(f"uncoupled estimate                 {crit.v_cr_uncoupled:.2f} m/s")
 print("notes:", list(crit.notes) or "none")
-fig = dispersion_figure(modes, crit, "ballasted track on a layered soil")
-plt.show()
+display(dispersion_figure(modes, crit, "ballasted track on a layered soil"))
 
 # %% [markdown]
 # ## 2. A moving constant load: the deflection under it against speed
@@ -84,8 +84,7 @@ speeds = np.linspace(20.0, 120.0, 11 if QUICK else 41)
 daf = moving_load(BALLASTED.track, BALLASTED.soil, BALLASTED.load, speeds)
 print(f"static deflection {daf.w_static * 1e3:.3f} mm; peak DAF {daf.daf_peak:.3f} at {daf.v_peak:.2f} m/s")
 print(f"the peak speed over the critical velocity: {daf.v_peak / crit.v_cr:.3f}")
-fig = moving_load_figure(daf, "ballasted track on a layered soil")
-plt.show()
+display(moving_load_figure(daf, "ballasted track on a layered soil"))
 
 # %% [markdown]
 # ## 3. A heavy mass on a soft half-space, faster than the critical speed
