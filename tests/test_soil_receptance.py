@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scipy import integrate
+from soil_cases import RIGID
 
 from moving_bogie.api import bind, soil_vehicle
 from moving_bogie.kernels.bound import BoundModel
@@ -78,16 +79,6 @@ def test_local_stiffness_is_within_half_of_the_strip_where_the_rule_takes_it():
             exact = strip_stiffness(k1, omega, loaded.soil, b, rtol=1e-8).chi
             local = local_stiffness(k1, omega, loaded.soil, b)
             assert np.all(np.abs(exact / local - 1) < 0.5)
-
-
-RIGID = {
-    "model": {"track": "ballasted-soil", "vehicle": "mass"},
-    "physical": {
-        "EI": 1.29e7, "m": 120.0, "k_pad": 5e8, "c_pad": 0.0, "m_s": 0.0, "E_b": 130e6, "rho_b": 1e-3,
-        "h_b": 0.35, "A_b": 1.25, "b": 1.25, "P": 1e5, "M": 3000.0, "v": 60.0,
-    },
-    "soil": [{"rho": 2000.0, "c_s": 1e5, "nu": 0.33, "eta": 1e-6}],
-}  # fmt: skip
 
 
 def test_ballasted_track_on_rigid_soil_is_the_winkler_track_of_k_ref():

@@ -12,6 +12,7 @@ import copy
 from pathlib import Path
 
 import pytest
+from soil_cases import RIGID
 
 from moving_bogie.api import soil_vehicle
 from moving_bogie.cli import main
@@ -19,14 +20,6 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.soil.file import soil_input
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-RIGID = {
-    "model": {"track": "ballasted-soil", "vehicle": "mass"},
-    "physical": {
-        "EI": 1.29e7, "m": 120.0, "k_pad": 5e8, "c_pad": 0.0, "m_s": 0.0, "E_b": 130e6, "rho_b": 1e-3,
-        "h_b": 0.35, "A_b": 1.25, "b": 1.25, "P": 1e5, "M": 3000.0, "v": 60.0,
-    },
-    "soil": [{"rho": 2000.0, "c_s": 1e5, "nu": 0.33, "eta": 1e-6}],
-}  # fmt: skip
 
 
 def _with(**changes: object) -> dict:
