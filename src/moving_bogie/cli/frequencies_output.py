@@ -77,6 +77,8 @@ def with_si(data: dict[str, Any], result: FrequencyResult, physical: PhysicalPar
         region["Omega_0_rad_s"] = region["Omega_0"] / t_scale
         waves = region["free_waves_im"]
         region["free_waves_im_rad_s"] = None if waves is None else waves / t_scale
+        top = region.get("continued_to_im")
+        region["continued_to_im_rad_s"] = None if top is None else top / t_scale
         data["margin_1_s"] = None if result.margin is None else float(result.margin) / t_scale
     return data
 

@@ -34,6 +34,7 @@ from moving_bogie.kernels.coupling import (
     dynamic_stiffness,
     harmonic_blocks,
 )
+from moving_bogie.kernels.free_wave_poles import Sheet
 from moving_bogie.kernels.periodic_receptance import Receptance, receptance
 from moving_bogie.kernels.sleeper_track import SleeperTrack
 
@@ -92,7 +93,9 @@ class FloquetSystem:
     """The characteristic function of ``vehicle`` on ``track`` with harmonics -N-1..N.
 
     ``offset`` is the rear wheel's position at tau = 0 relative to a support (dimensionless; the
-    determinant does not depend on it). ``tol`` is the relative tolerance of the receptance.
+    determinant does not depend on it). ``tol`` is the relative tolerance of the receptance. ``sheet``,
+    when given, continues the receptance across the rail's free waves' singular lines
+    (:func:`~moving_bogie.kernels.periodic_receptance.receptance`).
     """
 
     track: SleeperTrack
@@ -101,6 +104,7 @@ class FloquetSystem:
     offset: float = 0.0
     tol: float = 1e-8
     evaluations: int = 0
+    sheet: Sheet | None = None
 
     @property
     def harmonics(self) -> np.ndarray:
@@ -110,7 +114,9 @@ class FloquetSystem:
         """The Hill block matrix at q and the receptance it was built from."""
         v = self.vehicle
         h = self.harmonics
-        rec = receptance(self.track, q, h, v.positions + self.offset, tol=self.tol)
+        rec = receptance(
+            self.track, q, h, v.positions + self.offset, tol=self.tol, continued_from=self.sheet
+        )
         D, _ = dynamic_stiffness(q + h * self.track.Omega0, v.dynamic, HillArithmetic)
         blocks = harmonic_blocks(list(D), v.contacts, HillArithmetic)
         return coupled_system(blocks, rec.matrix / 2, HillArithmetic).A, rec

@@ -29,6 +29,7 @@ import mpmath
 import numpy as np
 from numpy.typing import ArrayLike
 
+from moving_bogie.kernels.free_wave_poles import Sheet, SheetPoles, sheet_poles
 from moving_bogie.kernels.gauss_kronrod import GAUSS, KRONROD, NODES
 from moving_bogie.kernels.sleeper_track import SleeperTrack, stable_cot
 from moving_bogie.kernels.smeared_rail import smeared_receptance
@@ -127,17 +128,19 @@ def _panel_sums(
     positions: np.ndarray,
     a: np.ndarray,
     b: np.ndarray,
+    poles: Subtracted | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Kronrod and Gauss sums over panels [a_i, b_i]: arrays (panels, R, R) each (in chunks of panels).
 
     The weighted sums of the factors of :func:`_integrand_factors`, a batched matrix product for the
-    rank-one part and one per diagonal block, without forming the (nodes, R, R) integrand.
+    rank-one part and one per diagonal block, without forming the (nodes, R, R) integrand; less the
+    pole parts ``R_k / (p - p_k)`` of ``poles`` when given (:func:`_subtracted`).
     """
     R = _r(harmonics, positions)
     chunk = max(1, 200_000 // (15 * R * R))
     if a.size > chunk:
         parts = [
-            _panel_sums(track, q, harmonics, positions, a[i : i + chunk], b[i : i + chunk])
+            _panel_sums(track, q, harmonics, positions, a[i : i + chunk], b[i : i + chunk], poles)
             for i in range(0, a.size, chunk)
         ]
         return np.concatenate([k for k, _ in parts]), np.concatenate([g for _, g in parts])
@@ -153,7 +156,46 @@ def _panel_sums(
     blocks = np.einsum("wpkh,pkhc,pkhd->wphcd", wd, out_ph.reshape(n, 15, H, C), in_ph.reshape(n, 15, H, C))
     for i in range(H):
         sums[:, :, i * C : (i + 1) * C, i * C : (i + 1) * C] = blocks[:, :, i]
+    if poles is not None and poles.poles.size:
+        inverse = weights[..., None] / (p.reshape(n, 15)[None, :, :, None] - poles.poles)  # (2, panels, 15, K)
+        sums -= np.einsum("wpk,kr,ks->wprs", inverse.sum(axis=2), poles.left, poles.right)
     return sums[0], sums[1]
+
+
+@dataclass(frozen=True)
+class Subtracted:
+    """Poles p_k of the integrand with their residue matrices ``left[k] right[k]^T`` (the coefficient of
+    -z / D folded into ``left``) and their sides below the singular lines."""
+
+    poles: np.ndarray
+    left: np.ndarray
+    right: np.ndarray
+    sides: np.ndarray
+
+    def integral(self, a: float, b: float) -> np.ndarray:
+        """sum_k R_k int_a^b dp / (p - p_k) along the real axis deformed to leave p_k on its side:
+        Log(b - p_k) - Log(p_k - a) + i pi side_k (analytic in p_k off the rays beyond a and b)."""
+        p = self.poles
+        f = np.log(b - p) - np.log(p - a) + 1j * np.pi * self.sides
+        return np.einsum("k,kr,ks->rs", f, self.left, self.right)
+
+
+def _subtracted(
+    track: SleeperTrack, q: complex, harmonics: np.ndarray, positions: np.ndarray, sheet: SheetPoles
+) -> Subtracted:
+    """The residue matrices of the integrand at the free waves' poles: -z G_n G_m e^(...) / D'(p_k),
+    the same on and off the diagonal blocks (docs/sleepers.md, "Beyond the free waves")."""
+    p = sheet.poles
+    w = q + track.alpha * p
+    shift = p[:, None] - harmonics[None, :] * track.K  # (K, H), complex
+    G = track.green(shift, np.broadcast_to(w[:, None], shift.shape))
+    s = np.asarray(positions, dtype=float)
+    out_ph = np.exp(-1j * shift[:, :, None] * s)  # e^{-i (p - n K) s_c'}
+    in_ph = np.exp(1j * shift[:, :, None] * s)
+    k = p.size
+    left = (sheet.coefficients[:, None, None] * G[:, :, None] * out_ph).reshape(k, -1)
+    right = (G[:, :, None] * in_ph).reshape(k, -1)
+    return Subtracted(p, left, right, sheet.sides)
 
 
 def _r(harmonics: np.ndarray, positions: np.ndarray) -> int:
@@ -169,6 +211,7 @@ def receptance(
     tol: float = 1e-12,
     tail: float | None = None,
     max_rounds: int = 40,
+    continued_from: Sheet | None = None,
 ) -> Receptance:
     """H[(c', n), (c, m)](q) of Eq. (S9) for the given harmonics n and contact positions s_c (dimensionless).
 
@@ -178,6 +221,12 @@ def receptance(
         Relative tolerance (to the largest free-rail receptance) of every entry.
     tail : float, optional
         Half-width beyond the outermost harmonic's zone where the integration starts (default 2 K + 10).
+    continued_from : Sheet, optional
+        Above its level ``y0`` of Im q (below the rail's free waves) H is continued across the free
+        waves' singular lines along the vertical path from it (:mod:`moving_bogie.kernels.free_wave_poles`):
+        the poles of the integrand that crossed the real axis are subtracted and integrated in closed form
+        along the deformed contour (none when the reach is within the sheet's regular reach).
+        ContinuationError when the poles cannot be followed.
 
     The last :data:`_KEPT` receptances are kept by their arguments (the track's groups included): the Hill
     matrices of several vehicles on one track (the counts on either side of a zone edge, a column of
@@ -188,10 +237,11 @@ def receptance(
     q = complex(q)
     at = np.complex128(q).tobytes()  # -0.0 apart from 0.0
     model = (track.beam, track.track, tuple(sorted(track.groups.items())))
-    key = (model, at, harmonics.tobytes(), positions.tobytes(), tol, tail, max_rounds)
+    sheet = continued_from if continued_from is not None and q.imag > continued_from.y0 else None
+    key = (model, at, harmonics.tobytes(), positions.tobytes(), tol, tail, max_rounds, sheet)
     kept = _kept.get(key)
     if kept is None:
-        kept = _receptance(track, q, harmonics, positions, tol, tail, max_rounds)
+        kept = _receptance(track, q, harmonics, positions, tol, tail, max_rounds, sheet)
         with _keeping:  # threads of one process (a threaded scheduler) share the memory
             _kept[key] = kept
             while len(_kept) > _KEPT:
@@ -213,8 +263,9 @@ def _receptance(
     tol: float,
     tail: float | None,
     max_rounds: int,
+    sheet: Sheet | None = None,
 ) -> Receptance:
-    """:func:`receptance` computed (Eqs. (S9), (S11))."""
+    """:func:`receptance` computed (Eqs. (S9), (S11)); continued on ``sheet`` when given."""
     C, H = positions.size, harmonics.size
     K = track.K
     offsets = positions[None, :] - positions[:, None]  # [c', c] -> s_c - s_c'
@@ -226,14 +277,27 @@ def _receptance(
     atol = tol * scale
     reach = (np.max(np.abs(harmonics)) + 1) * K + (2 * K + 10 if tail is None else tail)
     # the reach first (the tail's estimate needs no integral inside it), then one adaptive integral
+    poles = None
     while True:
+        if sheet is not None and reach <= sheet.regular:
+            # the integral over real p is the continuation to the sheet's tolerance, and no better
+            atol = max(atol, sheet.regular_atol)
+        elif sheet is not None:
+            found = sheet_poles(track, q, reach, sheet.y0, int(np.max(np.abs(harmonics))), atol)
+            poles = _subtracted(track, q, harmonics, positions, found) if found.poles.size else None
+        # the tail of the integrand as it stands (a subtracted pole part falls like 1 / p, but is
+        # integrated in closed form over the same reach)
         outer = _zone_magnitude(track, q, harmonics, positions, reach, K)
         tail_bound = outer * reach / (2 * K)
         if tail_bound < atol or reach > _MAX_REACH * K:
             break
         reach *= 1.6
     edges = np.arange(-reach, reach + 1e-9 * K, K / 4)
-    total, err, panels = _adaptive(track, q, harmonics, positions, edges[:-1], edges[1:], atol, max_rounds)
+    total, err, panels = _adaptive(
+        track, q, harmonics, positions, edges[:-1], edges[1:], atol, max_rounds, poles
+    )
+    if poles is not None:
+        total = total + poles.integral(float(edges[0]), float(edges[-1]))
     return Receptance(free + total / (2 * np.pi), float((err + tail_bound) / (2 * np.pi)), scale, panels)
 
 
@@ -249,10 +313,11 @@ def _zone_magnitude(
     positions: np.ndarray,
     reach: float,
     K: float,
+    poles: Subtracted | None = None,
 ) -> float:
     """Largest entry of the integrals over the two outermost zones of width K (the tail's estimate)."""
     a = np.array([reach - K, -reach])
-    kron, _ = _panel_sums(track, q, harmonics, positions, a, a + K)
+    kron, _ = _panel_sums(track, q, harmonics, positions, a, a + K, poles)
     return float(np.max(np.abs(kron)))
 
 
@@ -265,6 +330,7 @@ def _adaptive(
     b: np.ndarray,
     atol: float,
     max_rounds: int,
+    poles: Subtracted | None = None,
 ) -> tuple[Any, float, int]:
     """Sum of the panel integrals, bisecting every panel whose Gauss-Kronrod difference exceeds its share.
 
@@ -275,7 +341,7 @@ def _adaptive(
     err = 0.0
     panels = 0
     for _ in range(max_rounds):
-        kron, gauss = _panel_sums(track, q, harmonics, positions, a, b)
+        kron, gauss = _panel_sums(track, q, harmonics, positions, a, b, poles)
         e = np.max(np.abs(kron - gauss), axis=(1, 2))
         panels += a.size
         ok = e <= (atol - err) * (b - a) / float(np.sum(b - a))

@@ -148,6 +148,20 @@ class SleeperTrack:
             floor = min(floor, float(self.groups["eta_bal"]) / float(self.groups["mu_sl"]))
         return floor
 
+    def smeared_wave_floor(self) -> float:
+        """The lowest Im w of the smeared rail's free waves at a real wavenumber (the zeros of 1 + z G,
+        docs/sleepers.md, "Beyond the free waves"); 0 when not known.
+
+        On an Euler-Bernoulli rail on ``sleepers``, ``1 + z G = 0`` reads
+        ``p^4 - 4 w^2 + 8 i (eta_f + eta_sup) w + 4 (1 + kappa_f) = 0``: every wave decays at
+        ``eta_f + eta_sup`` while it oscillates at every p, that is while
+        ``(eta_f + eta_sup)^2 < 1 + kappa_f``.
+        """
+        if self.beam != "eb" or self.track != "sleepers":
+            return 0.0
+        rate = float(self.groups.get("eta_f", 0.0)) + float(self.groups["eta_sup"])
+        return rate if rate**2 < 1 + float(self.groups.get("kappa_f", 0.0)) else 0.0
+
     def pinned_pinned(self) -> float:
         """The lowest pinned-pinned frequency w of the rail between two supports (docs/sleepers.md).
 

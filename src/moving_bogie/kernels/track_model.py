@@ -64,13 +64,17 @@ class SearchRegion:
         window); a strip search adds harmonics until its roots converge.
     free_waves : float or None
         The lowest Im q of the rail's free waves, where the singular lines of the receptance begin above
-        the real axis (a strip's search stops below it; None when not known or not used).
+        the real axis (None when not known or not used).
+    continued_to : float or None
+        The Im q up to which a strip's search continued the receptance across the free waves' singular
+        lines (docs/sleepers.md, "Beyond the free waves"); None when it stopped below them.
     """
 
     kind: str
     period: float | None = None
     harmonics: tuple[int, ...] = (0,)
     free_waves: float | None = None
+    continued_to: float | None = None
 
     @property
     def periodic(self) -> bool:
@@ -78,12 +82,14 @@ class SearchRegion:
         return self.kind == STRIP
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: ``kind``, ``Omega_0`` (the period, dimensionless), ``harmonics``, ``free_waves_im``."""
+        """JSON-ready: ``kind``, ``Omega_0`` (the period, dimensionless), ``harmonics``, ``free_waves_im``,
+        ``continued_to_im``."""
         return {
             "kind": self.kind,
             "Omega_0": self.period,
             "harmonics": list(self.harmonics),
             "free_waves_im": self.free_waves,
+            "continued_to_im": self.continued_to,
         }
 
 

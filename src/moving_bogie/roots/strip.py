@@ -10,19 +10,25 @@ wavenumbers is analytic below the lowest Im q of the rail's free waves (Eq. (S15
 :meth:`~moving_bogie.kernels.sleeper_track.SleeperTrack.free_wave_floor`): ``top`` is 0.99 of that floor when
 it is known and positive, so that decaying roots below it are found too; 0 when the rail is damped along its
 length but the floor is not known; slightly below the axis when the rail is undamped between the supports (its
-pinned-pinned waves put singular points of the receptance on the real axis). The band above ``top`` is not
+pinned-pinned waves put singular points of the receptance on the real axis). With ``continued=True``, where
+the free waves' poles can be followed (:mod:`moving_bogie.kernels.free_wave_poles`: an Euler-Bernoulli rail
+on ``sleepers``) the window reaches further, to 0.9 of the smeared rail's free waves' decay rate, with the receptance continued across the
+periodic rail's singular lines from ``top``; a band the continuation cannot search is named with the band
+above the window (it holds decaying vibrations only) and the window falls back to ``top``. The band above the window is not
 searched and the result says so. The depth is doubled until a band as deep again below the window holds no
 root.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from moving_bogie.kernels.free_wave_poles import ContinuationError, Sheet, regular_band
 from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.kernels.smeared_rail import smeared_receptance
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number
 from moving_bogie.roots.count.outcomes import Note, Reason, count_mismatch
 from moving_bogie.roots.verdict import STABLE, UNDETERMINED, UNSTABLE, Verdict
@@ -45,7 +51,9 @@ class FloquetResult:
 
     ``harmonics`` is N (the harmonics -N-1..N); ``converged`` says whether the roots and the count agreed
     at N - 1 and N; ``notes`` say why a verdict is UNDETERMINED. ``free_waves`` is the lowest Im q of the
-    rail's free waves (the singular lines of the receptance, Eq. (S15); 0 when not known).
+    rail's free waves (the singular lines of the receptance, Eq. (S15); 0 when not known);
+    ``continued_to`` the top of the window when the receptance was continued across them (else None);
+    ``skipped`` names a band the continuation could not search, and why.
     """
 
     roots: tuple[FloquetRoot, ...]
@@ -57,6 +65,8 @@ class FloquetResult:
     evaluations: int
     notes: tuple[str, ...] = field(default=())
     free_waves: float = 0.0
+    continued_to: float | None = None
+    skipped: tuple[str, ...] = ()
 
     @property
     def verdict(self) -> Verdict:
@@ -98,7 +108,15 @@ class FloquetResult:
         top = self.window.y1
         if top < 0:
             return ()
+        if self.skipped:
+            return self.skipped
         band = f"Im > {top * scale:.6g}{unit}"
+        if self.continued_to is not None:
+            return (
+                f"{band}: the receptance is continued across the rail's free waves up to "
+                f"{CONTINUED:g} of the smeared rail's free waves' decay rate, and roots beyond are not "
+                "searched",
+            )
         if self.free_waves > top:
             return (
                 f"{band}: the rail's free waves put singular lines of the receptance from Im = "
@@ -136,6 +154,11 @@ class FloquetResult:
 #: the receptance's relative tolerance while counting: the winding number needs the phase of the
 #: determinant only, and an error of 1e-6 moves it by 1e-6 rad where |det| is not within 1e-6 of zero
 COUNT_TOL = 1e-6
+
+
+#: the receptance's relative tolerance while polishing a root, and while locating one
+POLISH_TOL = 1e-12
+LOCATE_TOL = 1e-8
 
 
 def _count(system: FloquetSystem, rect: Rectangle) -> int:
@@ -251,9 +274,9 @@ def _roots_at(
         if previous is not None and len(previous) == count
         else _locate(system, rect, count, cell, reach)
     )
-    system.tol = 1e-12
+    system.tol = POLISH_TOL
     polished = [_newton(system, q, rect, margin=reach) for q in starts]
-    system.tol = 1e-8
+    system.tol = LOCATE_TOL
     return count, polished
 
 
@@ -271,6 +294,7 @@ def floquet_frequencies(
     tol: float = 1e-8,
     depth: float | None = None,
     top: float | None = None,
+    continued: bool = False,
 ) -> FloquetResult:
     """Every root with Im q <= top of the Floquet characteristic in one strip (docs/sleepers.md, Eq. (S14)).
 
@@ -284,29 +308,69 @@ def floquet_frequencies(
         Largest move of a root (relative to max(1, abs(q))) between N - 1 and N: the roots have converged.
     depth, top : float, optional
         Lower and upper edge of the window in Im q (defaults: see the module docstring).
+    continued : bool
+        Whether the default window reaches across the free waves' singular lines where it can (module
+        docstring; off by default: certifying the band costs seconds to a minute); a ``top`` given stops
+        the window there.
     """
     if track.Omega0 <= 0:
         raise ValueError("alpha: the Floquet strip needs a moving vehicle (v > 0)")
     floor = track.free_wave_floor()
+    sheet = _continued_top(track, floor) if top is None and continued else None
     top = _default_top(track, floor) if top is None else top
     depth = max(track.Omega0, 1.0) if depth is None else depth
-    x0 = -0.25 * track.Omega0
-    cell = 0.05 * min(track.Omega0, depth)
     notes: list[str] = []
     system = FloquetSystem(track, vehicle, N0, offset=offset)
-    # the depth: doubled until a band as deep again below the window holds no root
+    depth = _depth(system, depth, notes)
+    skipped: tuple[str, ...] = ()
+    if sheet is not None:
+        try:
+            system.sheet = _sheet(track, top, sheet, N_max)
+            return _search(system, depth, sheet, floor, N_max, tol, notes, continued=sheet)
+        except (ContinuationError, EdgeZeroError) as exc:
+            skipped = (
+                f"{top:.6g} < Im q <= {sheet:.6g}: the receptance could not be continued across the "
+                f"rail's free waves ({exc})",
+            )
+            system.sheet, system.N = None, N0
+    result = _search(system, depth, top, floor, N_max, tol, notes)
+    return replace(result, skipped=skipped)
+
+
+def _depth(system: FloquetSystem, depth: float, notes: list[str]) -> float:
+    """The window's depth: doubled until a band as deep again below the window holds no root."""
+    x0, period = -0.25 * system.track.Omega0, system.track.Omega0
     for _ in range(6):
-        below = Rectangle(x0, x0 + track.Omega0, -2 * depth, -depth)
+        below = Rectangle(x0, x0 + period, -2 * depth, -depth)
         if _count(system, below) == 0:
-            break
+            return depth
         depth *= 2
-    else:
-        notes.append(f"roots below Im q = -{depth:g} at every depth tried: the window may be incomplete")
+    notes.append(f"roots below Im q = -{depth:g} at every depth tried: the window may be incomplete")
+    return depth
+
+
+def _search(
+    system: FloquetSystem,
+    depth: float,
+    top: float,
+    floor: float,
+    N_max: int,
+    tol: float,
+    notes: list[str],
+    continued: float | None = None,
+) -> FloquetResult:
+    """Count, locate and converge in the harmonics the roots of the window [x0, x0 + Omega_0] x
+    [-depth, top] (the steps of :func:`floquet_frequencies`)."""
+    track, N0 = system.track, system.N
+    x0 = -0.25 * track.Omega0
+    cell = 0.05 * min(track.Omega0, depth)
+    notes = list(notes)
     rect = _window(track, depth, top, x0)
-    # Newton's iterates may leave the window by a little, never up to the free waves' singular lines
+    # Newton's iterates may leave the window by a little, never up to the singular lines above it
+    ceiling = track.smeared_wave_floor() if continued is not None else floor
     reach = 0.05 * min(rect.width, rect.height)
-    if floor > top:
-        reach = min(reach, 0.5 * (floor - top))
+    if ceiling > top:
+        reach = min(reach, 0.5 * (ceiling - top))
     count, roots = _roots_at(system, rect, None, cell, reach)
     converged, steps = False, [np.inf] * len(roots)
     for N in range(N0 + 1, N_max + 1):
@@ -339,7 +403,41 @@ def floquet_frequencies(
         system.evaluations,
         tuple(notes),
         floor,
+        continued,
     )
+
+
+def _sheet(track: SleeperTrack, y0: float, top: float, N_max: int) -> Sheet:
+    """The sheet continued from ``y0``: within the quadrature's first reach at N_max harmonics (a reach
+    its tail widens beyond follows the poles one by one) no free wave's pole whose residue exceeds the polish's tolerance, or else
+    the locating steps' (the receptance is then computed to that one), crosses the real axis below
+    ``top`` in the strip; ContinuationError when one does (the search does not continue then: following
+    every crossing pole costs seconds per value)."""
+    reach = (N_max + 2) * track.K + 2 * track.K + 10
+    x0 = -0.25 * track.Omega0
+    # the receptance's scale (its largest free-rail entry) is at least that of the harmonic 0 mid-strip
+    scale = abs(smeared_receptance(track, complex(x0 + track.Omega0 / 2, top), [0.0])[0])
+    for tol in (POLISH_TOL, LOCATE_TOL):
+        if regular_band(track, x0, x0 + track.Omega0, y0, top, reach, N_max + 1, tol * scale):
+            return Sheet(y0, reach, tol * scale)
+    raise ContinuationError(
+        f"a free wave's pole whose residue exceeds {LOCATE_TOL:g} of the receptance crosses the real "
+        "axis in the band"
+    )
+
+
+def _continued_top(track: SleeperTrack, floor: float) -> float | None:
+    """The top of a window continued across the free waves: :data:`CONTINUED` of the smeared rail's free
+    waves (the singular lines of the smeared part of Eq. (S11)), when the free waves' poles can be
+    followed and it lies above the periodic rail's; else None."""
+    top = CONTINUED * track.smeared_wave_floor()
+    return top if floor > 0 and top > floor else None
+
+
+#: How far the continued window reaches, in units of the smeared rail's free waves' decay rate: the
+#: periodic rail's first-band waves, which move the supports as the smeared rail's do, put singular lines
+#: just below and above that rate, where the quadrature's integrand is nearly singular
+CONTINUED = 0.9
 
 
 def _default_top(track: SleeperTrack, floor: float) -> float:
