@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from test_floquet_strip import PERIODIC, ZETA4, _assert_matches, _continuous_folded
 
 from moving_bogie.generated import vehicle_mass
 from moving_bogie.kernels.free_wave_poles import Sheet, sheet_poles
@@ -27,7 +28,6 @@ from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.periodic_receptance import receptance
 from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.roots.strip import floquet_frequencies
-from test_floquet_strip import PERIODIC, ZETA4, _assert_matches, _continuous_folded
 
 
 def _long_bay_track() -> SleeperTrack:

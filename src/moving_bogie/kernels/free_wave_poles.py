@@ -178,17 +178,21 @@ def _zero_count(track: SleeperTrack, q: complex, edge: float, band: float, poles
     """The zeros of D in |Re p| < edge, |Im p| < band: the argument principle (D's winding number on the
     rectangle) plus the poles of S inside (D's poles, simple). Its boundary is sampled until no step turns
     the phase by more than 1 rad (ContinuationError after five halvings of the spacing)."""
-    corners = np.array([-edge - 1j * band, edge - 1j * band, edge + 1j * band, -edge + 1j * band, -edge - 1j * band])
+    corners = np.array(
+        [-edge - 1j * band, edge - 1j * band, edge + 1j * band, -edge + 1j * band, -edge - 1j * band]
+    )
     spacing = 0.25
     for _ in range(6):
         z = np.concatenate(
-            [a + (b - a) * np.arange(int(abs(b - a) / spacing) + 8) / (int(abs(b - a) / spacing) + 8)
-             for a, b in zip(corners[:-1], corners[1:])]
+            [
+                a + (b - a) * np.arange(int(abs(b - a) / spacing) + 8) / (int(abs(b - a) / spacing) + 8)
+                for a, b in zip(corners[:-1], corners[1:])
+            ]
         )
         with np.errstate(all="ignore"):
             turn = np.angle(np.roll(_D(track, q, z), -1) / _D(track, q, z))
         if np.all(np.isfinite(turn)) and np.max(np.abs(turn)) < 1.0:
-            inside = np.count_nonzero((np.abs(poles.real) < edge) & (np.abs(poles.imag) < band))
+            inside = int(np.count_nonzero((np.abs(poles.real) < edge) & (np.abs(poles.imag) < band)))
             return int(round(float(np.sum(turn)) / (2 * np.pi))) + inside
         spacing /= 2
     raise ContinuationError(f"the free waves' poles at q = {q:.6g} could not be counted")

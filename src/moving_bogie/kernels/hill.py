@@ -114,9 +114,7 @@ class FloquetSystem:
         """The Hill block matrix at q and the receptance it was built from."""
         v = self.vehicle
         h = self.harmonics
-        rec = receptance(
-            self.track, q, h, v.positions + self.offset, tol=self.tol, continued_from=self.sheet
-        )
+        rec = receptance(self.track, q, h, v.positions + self.offset, tol=self.tol, continued_from=self.sheet)
         D, _ = dynamic_stiffness(q + h * self.track.Omega0, v.dynamic, HillArithmetic)
         blocks = harmonic_blocks(list(D), v.contacts, HillArithmetic)
         return coupled_system(blocks, rec.matrix / 2, HillArithmetic).A, rec

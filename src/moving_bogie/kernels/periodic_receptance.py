@@ -157,7 +157,9 @@ def _panel_sums(
     for i in range(H):
         sums[:, :, i * C : (i + 1) * C, i * C : (i + 1) * C] = blocks[:, :, i]
     if poles is not None and poles.poles.size:
-        inverse = weights[..., None] / (p.reshape(n, 15)[None, :, :, None] - poles.poles)  # (2, panels, 15, K)
+        inverse = weights[..., None] / (
+            p.reshape(n, 15)[None, :, :, None] - poles.poles
+        )  # (2, panels, 15, K)
         sums -= np.einsum("wpk,kr,ks->wprs", inverse.sum(axis=2), poles.left, poles.right)
     return sums[0], sums[1]
 

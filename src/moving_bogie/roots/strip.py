@@ -10,13 +10,13 @@ wavenumbers is analytic below the lowest Im q of the rail's free waves (Eq. (S15
 :meth:`~moving_bogie.kernels.sleeper_track.SleeperTrack.free_wave_floor`): ``top`` is 0.99 of that floor when
 it is known and positive, so that decaying roots below it are found too; 0 when the rail is damped along its
 length but the floor is not known; slightly below the axis when the rail is undamped between the supports (its
-pinned-pinned waves put singular points of the receptance on the real axis). With ``continued=True``, where
-the free waves' poles can be followed (:mod:`moving_bogie.kernels.free_wave_poles`: an Euler-Bernoulli rail
-on ``sleepers``) the window reaches further, to 0.9 of the smeared rail's free waves' decay rate, with the receptance continued across the
-periodic rail's singular lines from ``top``; a band the continuation cannot search is named with the band
-above the window (it holds decaying vibrations only) and the window falls back to ``top``. The band above the window is not
-searched and the result says so. The depth is doubled until a band as deep again below the window holds no
-root.
+pinned-pinned waves put singular points of the receptance on the real axis). With ``continued=True``,
+where the free waves' poles can be followed (:mod:`moving_bogie.kernels.free_wave_poles`: an
+Euler-Bernoulli rail on ``sleepers``) the window reaches further, to 0.9 of the smeared rail's free waves'
+decay rate, with the receptance continued across the periodic rail's singular lines from ``top``; a band
+the continuation cannot search is named with the band above the window (it holds decaying vibrations
+only) and the window falls back to ``top``. The band above the window is not searched and the result says
+so. The depth is doubled until a band as deep again below the window holds no root.
 """
 
 from __future__ import annotations
@@ -408,11 +408,11 @@ def _search(
 
 
 def _sheet(track: SleeperTrack, y0: float, top: float, N_max: int) -> Sheet:
-    """The sheet continued from ``y0``: within the quadrature's first reach at N_max harmonics (a reach
-    its tail widens beyond follows the poles one by one) no free wave's pole whose residue exceeds the polish's tolerance, or else
-    the locating steps' (the receptance is then computed to that one), crosses the real axis below
-    ``top`` in the strip; ContinuationError when one does (the search does not continue then: following
-    every crossing pole costs seconds per value)."""
+    """The sheet continued from ``y0``: within the quadrature's first reach at N_max harmonics (beyond
+    a reach its tail widens, the poles are followed one by one) no free wave's pole whose residue exceeds
+    the polish's tolerance, or else the locating steps' (the receptance is then computed to that one),
+    crosses the real axis below ``top`` in the strip; ContinuationError when one does (the search does
+    not continue then: following every crossing pole costs seconds per value)."""
     reach = (N_max + 2) * track.K + 2 * track.K + 10
     x0 = -0.25 * track.Omega0
     # the receptance's scale (its largest free-rail entry) is at least that of the harmonic 0 mid-strip
