@@ -52,7 +52,7 @@ def strip_frequencies(
         Called with the fraction done (1 at the end).
     **options
         Those of :func:`~moving_bogie.roots.strip.floquet_frequencies` (``N0``, ``N_max``, ``tol``,
-        ``depth``, ``top``).
+        ``depth``, ``top``, ``continued``).
     """
     track = bound.track
     if not isinstance(track, PeriodicTrack):
@@ -63,7 +63,7 @@ def strip_frequencies(
     notes = tuple(Note(Reason.STRIP, text) for text in found.notes)
     notes += tuple(Note(Reason.BEYOND_WINDOW, text) for text in found.unsearched())
     harmonics = tuple(int(n) for n in harmonic_set(found.harmonics))
-    region = SearchRegion(STRIP, found.Omega0, harmonics, found.free_waves or None)
+    region = SearchRegion(STRIP, found.Omega0, harmonics, found.free_waves or None, found.continued_to)
     if progress is not None:
         progress(1.0)
     return FrequencyResult(
