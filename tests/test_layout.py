@@ -260,7 +260,9 @@ STAGE_IMPORTS: dict[str, frozenset[str]] = {
     "validation": frozenset({"response", "roots", "kernels", "model"}),
     "sweep": frozenset({"stability", "roots", "kernels", "model", "soil"}),
     "soil": frozenset({"kernels"}),
-    "api": frozenset({"stability", "validation", "response", "roots", "kernels", "model", "soil"}),
+    "soil_vehicle": frozenset({"model", "soil"}),
+    "api": frozenset({"stability", "validation", "response", "roots", "kernels", "model", "soil"})
+    | {"soil_vehicle"},
     "paper": frozenset({"api", "stability", "validation", "response", "roots", "model"}),
     "cli": frozenset(
         {"api", "paper", "sweep", "validation", "stability", "response", "roots", "kernels", "model"}
