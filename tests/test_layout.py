@@ -629,6 +629,10 @@ PARAMETER_LITERALS_ALLOWED: dict[tuple[str, str], str] = {
     (
         "moving_bogie.stability.maps.sleeper_map",
         "eta_M",
+    ): "the vertical axis of a map's JSON, as the continuous map's",
+    (
+        "moving_bogie.stability.maps.d_map",
+        "eta_M",
     ): "the key of a crossing's wheel mass in a map's checkpoint",
     ("moving_bogie.roots.strip", "eta_f"): "a rail undamped along its length: singular points on the axis",
     # the rail on supports as finite elements (S24) and its bay: typed here until generated with the track

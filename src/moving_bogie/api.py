@@ -32,7 +32,6 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
-    from moving_bogie.response.sleeper_series import SleeperSeries
     from moving_bogie.roots.frequencies import FrequencyResult
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
@@ -61,6 +60,7 @@ __all__ = [
     "instability_lines_many",
     "sleeper_map",
     "sleeper_series",
+    "time_series",
     "smeared_track",
     "soil_vehicle",
     "speed_regime",
@@ -163,6 +163,37 @@ def closed_form_response(
     return run(bound, tau, scales=scales, **options)
 
 
+def time_series(
+    params: DimensionlessParams | PhysicalParams | BoundModel,
+    tau: ArrayLike | None = None,
+    *,
+    progress: Callable[[float], None] | None = None,
+    **options: Any,
+) -> TimeSeries:
+    """The time series of ``params`` on its track, one type on every track (:class:`~moving_bogie.response.
+    closed_form.TimeSeries`): the closed form at the times ``tau`` (:func:`closed_form_response`, after a
+    complete search of the induced frequencies: else a :class:`~moving_bogie.errors.MovingBogieError`);
+    on periodic supports the steady response over ``bays`` bays on ``points`` points and the free
+    vibrations (:func:`sleeper_series`, ``tau`` not given).
+
+    ``options`` are those of the track's series (``branch_cut``, ``dps``, ... on a continuous track;
+    ``bays``, ``points``, ``free``, ``tol`` on periodic supports).
+    """
+    bound, scales = bind_with_scales(params)
+    if bound.track.search_region().periodic:
+        if tau is not None:
+            why = "a series on periodic supports spans its bays (bays=, points=), not given times"
+            raise ParameterError("tau", why)
+        return sleeper_series(params, progress=progress, **options)
+    from moving_bogie.response.closed_form import closed_form_response as run
+    from moving_bogie.response.residues import complete_frequencies
+
+    if tau is None:
+        raise ParameterError("tau", "give the times of the series")
+    frequencies = complete_frequencies(bound, options.get("dps", 30), options.get("branch_cut"), progress)
+    return run(bound, tau, scales=scales, frequencies=frequencies, **options)
+
+
 def deflection_shape(
     params: DimensionlessParams | PhysicalParams | BoundModel, xi: ArrayLike, tau: float, **options: Any
 ) -> np.ndarray:
@@ -231,12 +262,11 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
     return smeared
 
 
-def sleeper_series(
-    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
-) -> SleeperSeries:
+def sleeper_series(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> TimeSeries:
     """The steady response over a bay and the free vibrations on sleepers (in SI for SI parameters, with
-    the steady deflection of the smeared continuous track beside):
-    :func:`~moving_bogie.response.sleeper_series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    the steady deflection of the smeared continuous track beside), as a time series whose ``bay`` holds
+    the contact forces and the harmonics: :func:`~moving_bogie.response.sleeper_series.sleeper_series`
+    (``bays``, ``points``, ``free``, ``progress``)."""
     from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.response.sleeper_series import sleeper_series as run
 
