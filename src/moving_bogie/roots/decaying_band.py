@@ -53,7 +53,7 @@ if TYPE_CHECKING:
 __all__ = ["DecayingBand", "decaying_band", "soil_depth"]
 
 #: Rectangles of the staircase; wavenumbers per sign and edge samples of the track's scan; depth halvings.
-STEPS, K_POINTS, EDGE_POINTS, HALVINGS = 1, 8, 24, 2
+STEPS, K_POINTS, EDGE_POINTS, HALVINGS = 2, 8, 24, 2
 #: The least phase speed of the soil's free waves over its least shear speed (module docstring).
 SLOWEST, SLOWEST_ANY_NU = 0.87, 0.5
 
@@ -171,16 +171,16 @@ class DecayingBand:
         }
 
 
-def decaying_band(E: QuadratureCharacteristic, radius: float) -> DecayingBand:
-    """Count and locate the roots of ``E`` in the staircase under the singular lines (module docstring),
-    the window's size ``radius`` (q) its right end."""
+def decaying_band(E: QuadratureCharacteristic, radius: float, steps: int = STEPS) -> DecayingBand:
+    """Count and locate the roots of ``E`` in the staircase of ``steps`` rectangles under the singular
+    lines (module docstring), the window's size ``radius`` (q) its right end."""
     from moving_bogie.roots.quadrature_window import count_rectangle, induced, locate
     from moving_bogie.soil.rail_track import SoilRail
 
     rail = E.bound.track
     assert isinstance(rail, SoilRail)
     track, soil, scale = rail.spec.track, rail.spec.soil, float(rail.omega_0)
-    ends = [radius * 2.0**-i for i in range(STEPS + 1)]
+    ends = [radius * 2.0**-i for i in range(steps + 1)]
     rects: list[Rectangle] = []
     dropped: list[Rectangle] = []
     for x1, x0 in zip(ends[:-1], ends[1:], strict=True):

@@ -340,6 +340,7 @@ def window_frequencies(
     far_field: FarField | None = None,
     progress: Callable[[float], None] | None = None,
     decaying: bool = True,
+    band_steps: int | None = None,
 ) -> FrequencyResult:
     """Every root with Im q <= 0 in the window of size ``radius`` of a track whose receptance is a
     quadrature (module docstring), with the count beside them and the notes of the verdict.
@@ -354,7 +355,8 @@ def window_frequencies(
         The far-field check of the track's continuous equivalent that gave ``radius`` (None: not checked).
     decaying : bool
         On a track on the soil, also search the band of decaying roots under the singular lines
-        (:mod:`~moving_bogie.roots.decaying_band`) for the margin.
+        (:mod:`~moving_bogie.roots.decaying_band`) for the margin; ``band_steps`` rectangles in its
+        staircase (None: :data:`~moving_bogie.roots.decaying_band.STEPS`).
     """
     E = QuadratureCharacteristic(bound)
     if far_field is not None and far_field.radius is not None:
@@ -381,9 +383,9 @@ def window_frequencies(
     from moving_bogie.soil.rail_track import SoilRail
 
     if decaying and isinstance(bound.track, SoilRail):
-        from moving_bogie.roots.decaying_band import decaying_band
+        from moving_bogie.roots.decaying_band import STEPS, decaying_band
 
-        band = decaying_band(E, radius)
+        band = decaying_band(E, radius, STEPS if band_steps is None else band_steps)
         notes.append(Note(Reason.BEYOND_WINDOW, band.statement()))
     else:
         notes.append(Note(Reason.BEYOND_WINDOW, "Im q > 0 is not searched: roots there decay"))
