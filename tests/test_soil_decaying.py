@@ -82,3 +82,65 @@ def test_stiff_soil_band_finds_the_winkler_tracks_decaying_root() -> None:
         q_ref = min(inside, key=lambda z: abs(z - q))
         assert abs(q - q_ref) <= 10.0**-root.decimals + MODEL * abs(q_ref)
     assert band.margin == pytest.approx(min(float(mpmath.im(r.q)) for r in band.roots))
+
+
+#: A bogie with an undamped suspension on a ballasted track on a soft, lossy half-space: its bounce mode
+#: decays slowly, under the soil's singular lines (found at about 68 + 2i rad/s).
+SOFT_BOGIE = {
+    "model": {"track": "ballasted-soil", "vehicle": "bogie"},
+    "physical": {
+        "EI": 1.29e7, "m": 120.0, "k_pad": 5e8, "c_pad": 2.5e5, "m_s": 490.0, "E_b": 130e6, "rho_b": 1700.0,
+        "h_b": 0.35, "A_b": 1.25, "b": 1.25, "P": 1e5, "M": 1360.0, "M_b": 2313.0, "J_b": 4.37,
+        "k_v": 5.67e6, "c_v": 0.0, "d": 0.567, "v": 30.0,
+    },
+    "soil": [{"rho": 1900.0, "c_s": 100.0, "nu": 0.33, "eta": 1e-2}],
+}  # fmt: skip
+
+
+@pytest.mark.slow
+def test_soft_soil_band_against_a_grid_of_winding_numbers() -> None:
+    from moving_bogie.api import bind_with_scales, soil_vehicle
+    from moving_bogie.roots.count.contour import winding_number
+    from moving_bogie.roots.decaying_band import decaying_band
+    from moving_bogie.roots.quadrature_window import COUNT_TOL, QuadratureCharacteristic
+    from moving_bogie.soil.file import soil_input
+
+    bound = bind_with_scales(soil_vehicle(soil_input(SOFT_BOGIE)))[0]
+    E = QuadratureCharacteristic(bound)
+    band = decaying_band(E, 200.0 / bound.track.omega_0)  # Re omega from 50 to 200 rad/s
+    assert band.count is not None and band.count == len(band.roots) >= 1
+    # the reference: the winding number of the same E_chr along every cell of a 3 x 2 grid over each
+    # rectangle (brute force, cells sampled on their own)
+    cells, total = [], 0
+    for rect in band.rects:
+        xs, ys = np.linspace(rect.x0, rect.x1, 4), np.linspace(rect.y0, rect.y1, 3)
+        for i in range(3):
+            for j in range(2):
+                cell = type(rect)(xs[i], xs[i + 1], ys[j], ys[j + 1])
+                with E.tolerance(COUNT_TOL):
+                    n = winding_number(E, cell, spacing=cell.width / 6, max_points=4000)
+                cells.append((cell, n))
+                total += n
+    assert total == band.count
+    for root in band.roots:
+        q = complex(root.q)
+        assert q.imag > 0
+        assert [n for cell, n in cells if cell.contains(q, 0.0)] == [1]
+
+
+def test_the_margin_needs_a_matched_count() -> None:
+    """The band's margin is the least Im q of its roots only when every rectangle's count stands and the
+    roots located match it; the statement says which rectangles were searched and what was not."""
+    from moving_bogie.roots.count.contour import Rectangle
+    from moving_bogie.roots.decaying_band import DecayingBand
+    from moving_bogie.roots.frequency_result import InducedFrequency
+
+    rects = (Rectangle(1.0, 2.0, 0.0, 0.1), Rectangle(0.5, 1.0, 0.0, 0.02))
+    root = InducedFrequency(mpmath.mpc(1.5, 0.04), "above", 1, mpmath.mpf(0), 6, 6)
+    band = DecayingBand(rects, (1, 0), (root,), (), 0.5, 100.0)
+    assert band.margin == pytest.approx(0.04) and band.to_dict()["margin_1_s"] == pytest.approx(4.0)
+    assert "1 decaying root(s)" in band.statement() and "Re omega < 50 rad/s" in band.statement()
+    assert DecayingBand(rects, (1, 1), (root,), (), 0.5, 100.0).margin is None  # one root missing
+    assert DecayingBand(rects, (None, 0), (), (), 0.5, 100.0).margin is None  # a count not established
+    undamped = DecayingBand((), (), (), (), 2.0, 100.0, damped=False)
+    assert undamped.margin is None and "not searched" in undamped.statement()

@@ -25,10 +25,12 @@ constant depth exists along the whole real axis. The band searched is a staircas
 rectangles X1 2^-(i+1) <= Re Omega <= X1 2^-i, 0 <= Im Omega <= y_soil(X1 2^-(i+1)), X1 the window's size.
 
 **The track's lines** (zeros of D at real k) have no such bound (the rail's bending and the ballast store
-energy without damping). Each rectangle is scanned: at K_POINTS wavenumbers of each sign between k_lo and
-k_hi the winding number of D(k, Omega + k v) along the rectangle's edge, at EDGE_POINTS samples, must be 0
-with every phase step below pi / 2; a rectangle where it is not is halved in depth (HALVINGS times at most)
-or dropped. This is a scan, not a bound, and the notes say so.
+energy without damping). Each rectangle is scanned: at K_POINTS wavenumbers of each sign, geometric from
+1e-3 / b to beyond the rail's bending in the window, the winding number of D(k, Omega + k v) along the
+rectangle's edge (EDGE_POINTS samples, segments halved where a phase step reaches pi / 4, until every step
+is below pi / 2) must be 0; a rectangle where it is not is halved in depth (HALVINGS times at most) or
+dropped. This is a scan, not a bound (a wave between two scanned wavenumbers that enters and leaves the
+rectangle is not seen), and the notes say so.
 
 The roots found in the band, the least Im Omega among them (the margin, in 1/s) and the band itself are
 reported; beyond the band (Re Omega < X1 2^-STEPS, or above the staircase) nothing is searched.
@@ -52,8 +54,9 @@ if TYPE_CHECKING:
 
 __all__ = ["DecayingBand", "decaying_band", "soil_depth"]
 
-#: Rectangles of the staircase; wavenumbers per sign and edge samples of the track's scan; depth halvings.
-STEPS, K_POINTS, EDGE_POINTS, HALVINGS = 2, 8, 24, 2
+#: Rectangles of the staircase; wavenumbers per sign and edge samples of the track's scan; depth halvings;
+#: refinements of the scan's edge.
+STEPS, K_POINTS, EDGE_POINTS, HALVINGS, REFINE = 2, 16, 24, 5, 4
 #: The least phase speed of the soil's free waves over its least shear speed (module docstring).
 SLOWEST, SLOWEST_ANY_NU = 0.87, 0.5
 
@@ -77,18 +80,50 @@ def _wavenumbers(track: SoilTrack, v: float, x1: float) -> np.ndarray:
     return np.concatenate([-k[::-1], k])
 
 
+def _edge(rect: Rectangle, t: np.ndarray) -> np.ndarray:
+    """The point at fraction ``t`` of the counter-clockwise boundary of ``rect`` from its lower left."""
+    w, h = rect.width, rect.height
+    s = t * 2 * (w + h)
+    return np.select(
+        [s <= w, s <= w + h, s <= 2 * w + h],
+        [
+            rect.x0 + s + 1j * rect.y0,
+            rect.x1 + 1j * (rect.y0 + s - w),
+            rect.x1 - (s - w - h) + 1j * rect.y1,
+        ],
+        default=rect.x0 + 1j * (rect.y1 - (s - 2 * w - h)),
+    )
+
+
 def track_waves_clear(track: SoilTrack, soil: SoilProfile, v: float, rect: Rectangle) -> bool:
     """Whether no zero of D(k, Omega + k v) (a free wave of the track on its soil) lies in ``rect`` (rad/s)
-    at any scanned k: every winding number 0, every phase step below pi / 2 (module docstring)."""
+    at any scanned k: the edge sampled (EDGE_POINTS, segments halved up to REFINE times where a phase step
+    reaches pi / 4 at some k) until every step is below pi / 2, and every winding number 0 (module
+    docstring). False when the sampling does not resolve the phase."""
     from moving_bogie.soil.strip import strip_stiffness
 
     k = _wavenumbers(track, v, rect.x1)
-    edge = rect.boundary(2 * (rect.width + rect.height) / EDGE_POINTS)
-    edge = np.append(edge, edge[0])
-    K, W = np.meshgrid(k, edge, indexing="ij")
-    omega = W + K * v
-    chi = strip_stiffness(K.ravel(), omega.ravel(), soil, track.b, rtol=1e-3).chi.reshape(K.shape)
-    D = track.determinant(K, omega, chi)
+
+    def determinant(t: np.ndarray) -> np.ndarray:
+        K, W = np.meshgrid(k, _edge(rect, t), indexing="ij")
+        omega = W + K * v
+        chi = strip_stiffness(K.ravel(), omega.ravel(), soil, track.b, rtol=1e-3).chi.reshape(K.shape)
+        det = np.asarray(track.determinant(K, omega, chi))
+        # the ballasted determinant also vanishes where the rod's sin(lam) / lam does (lam = n pi, on the
+        # real axis), where D itself does not: divided out
+        return det / track._ballast(omega)[0] if track.ballasted else det
+
+    t = np.linspace(0.0, 1.0, EDGE_POINTS + 1)
+    D = determinant(t)
+    for _ in range(REFINE + 1):
+        steps = np.abs(np.angle(D[:, 1:] / D[:, :-1]))
+        coarse = np.any(steps >= np.pi / 4, axis=0)
+        if not coarse.any() or _ == REFINE:
+            break
+        mid = 0.5 * (t[:-1] + t[1:])[coarse]
+        t = np.concatenate([t, mid])
+        order = np.argsort(t)
+        t, D = t[order], np.concatenate([D, determinant(mid)], axis=1)[:, order]
     steps = np.angle(D[:, 1:] / D[:, :-1])
     return bool(np.all(np.abs(steps) < np.pi / 2) and np.all(np.abs(steps.sum(axis=1)) < np.pi))
 
@@ -120,7 +155,10 @@ class DecayingBand:
 
     @property
     def margin(self) -> float | None:
-        """The least Im q of the decaying roots found (None: none found)."""
+        """The least Im q of the decaying roots found; None when none was found or when a rectangle's count
+        is not established or not matched by the roots located (a root may be missing)."""
+        if self.count is None or self.count != len(self.roots):
+            return None
         return min((float(mpmath.im(r.q)) for r in self.roots), default=None)
 
     @property
@@ -140,11 +178,19 @@ class DecayingBand:
             for r in self.rects
         ]
         found = "no root" if not self.roots else f"{len(self.roots)} decaying root(s)"
+        if self.count is None:
+            found += (
+                " located (a count not established: a root on an edge, or values within their error of 0)"
+            )
+        elif self.count != len(self.roots):
+            found += f" located of {self.count} counted (a root may be missing)"
         return (
             f"above the axis (physical sheet, below the singular lines): {found} in "
             + "; ".join(parts)
-            + f"; not searched: Re omega < {self.x_end * s:.4g} rad/s, above these depths (where the "
-            "integral along real k is no longer the continued function), and beyond the window"
+            + f" (the track's free waves scanned at {2 * K_POINTS} wavenumbers, not bounded)"
+            + (f"; {len(self.dropped)} rectangle(s) dropped (a track's wave)" if self.dropped else "")
+            + f"; not searched: Re omega < {self.x_end * s:.4g} rad/s, above these depths (beyond the "
+            "singular lines the integral along real k is not the continued function), and beyond the window"
         )
 
     def to_dict(self) -> dict[str, object]:
