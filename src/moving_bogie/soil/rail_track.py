@@ -113,7 +113,13 @@ class SoilRail:
         )
         if new.size:
             rec = soil_receptance(
-                self.spec.track, self.spec.soil, self.v, new * self.omega_0, self._offsets, tol=self.tol
+                self.spec.track,
+                self.spec.soil,
+                self.v,
+                new * self.omega_0,
+                self._offsets,
+                tol=self.tol,
+                above=True,
             )
             for z, g, e in zip(new.tolist(), rec.G * self.factor, rec.error * self.factor, strict=True):
                 self._cache[z] = (g, float(e), self.tol)
@@ -124,14 +130,15 @@ class SoilRail:
     def receptance(
         self, q: ArrayLike, harmonics: Sequence[int] = (0,), *, derivative: bool = False
     ) -> RailReceptance:
-        """The kernel matrix K(xi_i - xi_j, q) of the soil (module docstring) at q (Im q <= 0; a number or
-        an array), ``error`` the largest estimate over the q given; no derivative (None).
+        """The kernel matrix K(xi_i - xi_j, q) of the soil (module docstring) at q (a number or an array),
+        ``error`` the largest estimate over the q given; no derivative (None). For Im q > 0 it is the
+        integral along real wavenumbers, the continued function only under the singular lines
+        (:mod:`moving_bogie.roots.decaying_band`).
 
         Raises
         ------
         ValueError
-            For harmonics other than (0,), or Im q > 0 (above the real axis the integral over real
-            wavenumbers is not the analytic continuation).
+            For harmonics other than (0,).
         """
         if tuple(harmonics) != (0,):
             raise ValueError(f"harmonics: a track on the soil has the one harmonic 0 (got {harmonics})")
