@@ -40,7 +40,6 @@ if TYPE_CHECKING:
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
-    from moving_bogie.validation.sleeper_verdict import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 __all__ = [
@@ -214,11 +213,10 @@ def deflection_shape_details(
     return run(bound, xi, tau, scales=scales, **options)
 
 
-def validate(
-    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
-) -> ValidationResult | SleeperCheck:
+def validate(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> ValidationResult:
     """Finite beam against closed form (Section 3.2): :func:`~moving_bogie.validation.compare.validate`; on
-    periodic supports the finite rail against the Floquet theory (:func:`validate_on_supports`).
+    periodic supports the finite rail against the Floquet theory (:func:`validate_on_supports`), the same
+    result type (its ``supports`` holds what that check adds).
 
     Physical parameters are made dimensionless: the comparison runs in dimensionless tau and w / w_st.
     """
@@ -235,7 +233,7 @@ def validate_on_supports(
     *,
     tol: float = 0.01,
     progress: Callable[[float], None] | None = None,
-) -> SleeperCheck:
+) -> ValidationResult:
     """The finite rail on sleepers against the Floquet theory (docs/sleepers.md):
     :func:`~moving_bogie.validation.on_supports.check_on_supports` of the bound model, its values in SI
     too for SI parameters."""
