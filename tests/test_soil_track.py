@@ -21,6 +21,7 @@ from scipy import integrate, optimize, special
 
 from moving_bogie.cli import main
 from moving_bogie.errors import ParameterError
+from moving_bogie.soil import critical
 from moving_bogie.soil.critical import critical_velocity, free_waves
 from moving_bogie.soil.file import load_soil_file, soil_input
 from moving_bogie.soil.moving_load import deflection
@@ -151,6 +152,22 @@ def test_beam_on_homogeneous_halfspace_critical_velocities():
     assert abs(result.v_cr / c_r - 1) < 1e-6
     assert abs(result.v_cr_uncoupled / c_r - 1) < 1e-10
     assert abs(result.omega_uncoupled / (c_r**2 * np.sqrt(loaded.track.m / loaded.track.EI)) - 1) < 1e-9
+
+
+def test_meeting_on_the_track_curve_against_the_nested_search(monkeypatch):
+    """The meeting of the track's own curve with the soil's fundamental mode, found as the root of the soil's
+    secular function along that curve, against the nested search (Illinois steps in omega on the track's
+    determinant at c_0(omega), a mode search per step), taken when the check of the first is made to
+    fail; on the ballasted example's rail branch end (between the default grid's frequencies 51.7 and
+    64.6 rad/s)."""
+    loaded = load_soil_file(EXAMPLES / "soil-ballasted.toml")
+    meeting = critical._meeting.__wrapped__
+    w, c = meeting(loaded.track, loaded.soil, 51.717213988518196, 64.62630336220614)
+    monkeypatch.setattr(critical, "MEETING_CHECK", 0.0)
+    w_ref, c_ref = meeting(loaded.track, loaded.soil, 51.717213988518196, 64.62630336220614)
+    assert 51.7 < w < 64.7
+    assert abs(w / w_ref - 1) < 1e-10
+    assert abs(c / c_ref - 1) < 1e-10
 
 
 def test_static_deflection_against_closed_form_quadrature():

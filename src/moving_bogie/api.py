@@ -7,21 +7,14 @@ with the track of its model's kind, :data:`TRACK_KINDS`) and passes the bound mo
 nothing binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stability/`` and ``sweep/``
 take ``bound: BoundModel``). The options are those of the function each one calls, documented there.
 
-A vehicle on a track on the soil (docs/soil.md) comes from a soil-track file that names a vehicle in
-``[model]`` (``vehicle = "mass"``) and gives its SI values in ``[physical]`` beside the track's
-(:func:`load_soil_vehicle`): the vehicle's groups are the paper's (Eqs. (15)-(17)) with the track's reference
-stiffness k_ref (:func:`~moving_bogie.soil.rail_track.reference_stiffness`) in the place of k_f and no
-foundation damping, the parameters of the Euler-Bernoulli rail on the Winkler track of k_ref, which
-:func:`bind` binds to the soil's own track (:class:`~moving_bogie.soil.rail_track.SoilRail`). Given per
-rail, the vehicle's masses, inertias, stiffnesses, dampings and loads (the values in kg or N) are doubled
-like the track's: the soil carries the whole track and the whole vehicle.
+A vehicle on a track on the soil (docs/soil.md) is read by :func:`load_soil_vehicle`
+(:mod:`moving_bogie.soil_vehicle`) and bound to the soil's own track.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, replace
-from pathlib import Path
+from collections.abc import Callable, Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
@@ -30,6 +23,7 @@ from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.soil_vehicle import SoilVehicle, load_soil_vehicle, soil_vehicle
 
 if TYPE_CHECKING:
     import numpy as np
@@ -39,8 +33,6 @@ if TYPE_CHECKING:
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.roots.frequencies import FrequencyResult
-    from moving_bogie.soil.file import SoilInput
-    from moving_bogie.soil.rail_track import SoilRailSpec
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
     from moving_bogie.stability.maps.map import StabilityMap
@@ -81,71 +73,6 @@ __all__ = [
 #: continuous track, :class:`~moving_bogie.kernels.continuous_track.ContinuousTrack`). A new kind of track
 #: adds its class here (kernels/track_model.py says what the class provides).
 TRACK_KINDS: dict[str, TrackFactory] = {PERIODIC: PeriodicTrack}
-
-
-#: The beam of the vehicle's scaling (the rail on the soil bends as an Euler-Bernoulli beam, Eq. (S6)).
-BEAM = "eb"
-#: [physical] keys the soil replaces (the support is the soil's).
-SUPPORT_KEYS = ("k_f", "c_f")
-
-
-@dataclass(frozen=True)
-class SoilVehicle:
-    """The file's track and soil (``input``), the vehicle's SI parameters scaled with k_ref
-    (``physical``) and the track the bound model gets (``rail``)."""
-
-    input: SoilInput
-    physical: PhysicalParams
-    rail: SoilRailSpec
-
-
-def _whole(physical: PhysicalParams, values: dict[str, float]) -> dict[str, float]:
-    """The values of a per-rail file for the whole track: those in kg or N doubled (module docstring)."""
-    units = physical.units()
-    return {k: 2 * v if ("kg" in units[k] or "N" in units[k]) else v for k, v in values.items()}
-
-
-def soil_vehicle(data: SoilInput, *, tol: float = 1e-6) -> SoilVehicle:
-    """The vehicle of a read soil-track file on its track (module docstring).
-
-    Raises
-    ------
-    ParameterError
-        When the file names no vehicle or no load P, gives k_f or c_f, or a vehicle value is wrong.
-    """
-    if data.vehicle is None:
-        raise ParameterError(
-            "vehicle", 'name the vehicle in [model] (vehicle = "mass", ...) and give its values in [physical]'
-        )
-    if data.load is None:
-        raise ParameterError("P", "P (N, the static load of the vehicle's wheels) is missing from [physical]")
-    values = dict(data.vehicle_values)
-    for key in SUPPORT_KEYS:
-        if key in values:
-            raise ParameterError(key, f"{key} does not apply to a track on the soil: the soil is the support")
-    from moving_bogie.soil.rail_track import SoilRailSpec, reference_stiffness
-
-    k_ref = reference_stiffness(data.track, data.soil)
-    track = data.track
-    common: dict[str, Any] = {"EI": track.EI, "m": track.m, "k_f": k_ref, "c_f": 0.0, "P": data.load}
-    physical = PhysicalParams(beam=BEAM, vehicle=data.vehicle, **(common | values))
-    if data.per == "rail":
-        physical = PhysicalParams(beam=BEAM, vehicle=data.vehicle, **(common | _whole(physical, values)))
-    return SoilVehicle(data, physical, SoilRailSpec(track, data.soil, k_ref, tol))
-
-
-def load_soil_vehicle(path: str | Path, settings: Mapping[str, float] | None = None) -> SoilVehicle:
-    """Read a soil-track file with a vehicle (:func:`soil_vehicle`), its values changed by ``settings``
-    (key -> SI value, ``--set``: :func:`~moving_bogie.soil.file.load_soil_file`); errors name the key and
-    the file, or ``--set`` when the key is one of the settings."""
-    from moving_bogie.soil.file import load_soil_file
-
-    data = load_soil_file(path, settings)
-    try:
-        return soil_vehicle(data)
-    except ParameterError as exc:
-        where = "--set" if settings and exc.parameter in settings else str(path)
-        raise ParameterError(exc.parameter, f"{where}: {exc}") from None
 
 
 def bind(params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle) -> BoundModel:
@@ -325,7 +252,6 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
     ParameterError
         Naming ``track`` when the track has no such limit.
     """
-    from moving_bogie.errors import ParameterError
     from moving_bogie.model.smeared import smeared_physical
 
     smeared = smeared_physical(params)
@@ -356,7 +282,6 @@ def sleeper_map(
     """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
     (S19)-(S22)): :func:`~moving_bogie.stability.maps.sleeper_map.sleeper_map` (``verify``, ``workers``,
     ``progress``)."""
-    from moving_bogie.errors import ParameterError
     from moving_bogie.stability.maps.sleeper_map import sleeper_map as run
 
     bound, scales = bind_with_scales(params)

@@ -5,17 +5,21 @@ the track's determinant (:meth:`~.track.SoilTrack.determinant`) with chi(k1, ome
 phase speeds c = omega / k1 below the soil's slowest wave at that frequency (the fundamental mode c_0(omega)),
 where chi is real: above it the track radiates into the soil and no wave is guided. At each frequency c runs
 on a grid from ``c_low`` c_0 up to c_0 (1 - 1e-12), geometric at both ends (chi falls to 0 at c_0 like a
-square root); each sign change is refined by the Illinois method in s = sqrt(1 - c / c_0).
+square root); each sign change is refined by the Illinois method in s = sqrt(1 - c / c_0), to 1e-10 of s
+or until c is held to 1e-12 of c_0.
 
 The critical velocity is the smallest phase velocity of those waves (Dieterman & Metrikine 1996) on the
 rail's bending branch (:func:`critical_velocity`): inside a branch, refined by golden-section search between
-neighbouring frequencies; where the branch ends on the soil's fundamental mode, the limit there. Beside it,
+neighbouring frequencies; where the branch ends on the soil's fundamental mode, the limit there: where the
+track's own curve (chi = 0) crosses that mode, the root of the soil's secular function along the curve,
+checked against the mode. Beside it,
 the uncoupled estimate of Mezher et al. (2016): the first intersection of the track's own dispersion curve
 (the soil replaced by nothing under the ballast, chi = 0) with the soil's fundamental mode.
 """
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -26,7 +30,7 @@ from moving_bogie.typing import FloatArray
 
 from .illinois import IntArray, illinois
 from .profile import SoilProfile
-from .rayleigh import soil_modes
+from .rayleigh import secular, soil_modes
 from .strip import strip_stiffness
 from .track import SoilTrack
 
@@ -39,6 +43,11 @@ DEFAULT_OMEGA = np.geomspace(0.6, 600.0, 32)
 #: 1 - c / c_0 ~ (m omega^2 / chi's scale)^2, 1e-12 to 1e-8 on the examples); a run of such waves alone is
 #: not the rail's branch (:func:`critical_velocity`).
 HUGGING = 1e-6
+#: A free wave's s = sqrt(1 - c / c_0) is refined to S_RTOL relative, or only until c is held to C_RTOL
+#: relative where that is looser (:func:`free_waves`).
+S_RTOL, C_RTOL = 1e-10, 1e-12
+#: The root on the track's own curve is its meeting with c_0 when they agree to this (:func:`_meeting`).
+MEETING_CHECK = 1e-9
 
 
 @dataclass(frozen=True)
@@ -76,7 +85,10 @@ def free_waves(
         return _determinant(track, soil, c_end[i] * (1 - s**2), w[i])
 
     s_lo, s_hi = np.sqrt(1 - grid[rows, cols] / c_end), np.sqrt(1 - grid[rows, cols + 1] / c_end)
-    roots = c_end * (1 - illinois(in_s, s_lo, s_hi, rtol=1e-10) ** 2) if rows.size else np.empty(0)
+    # rtol 1e-10 in s, or less where that already holds c to C_RTOL: |dc| / c_0 = 2 s |ds| (a wave hugging
+    # c_0, s ~ 1e-6, is then held by its first bracket, below the determinant's rounding)
+    rtol = np.maximum(S_RTOL, C_RTOL / (2 * np.maximum(s_lo, s_hi) ** 2))
+    roots = c_end * (1 - illinois(in_s, s_lo, s_hi, rtol=rtol) ** 2) if rows.size else np.empty(0)
     count = np.bincount(rows, minlength=len(omega))
     c = np.full((len(omega), max(int(count.max(initial=0)), 1)), np.nan)
     for i in range(len(omega)):
@@ -135,21 +147,39 @@ def _golden(fun: Callable[[float], float], a: float, b: float, steps: int = 30) 
     return (x1, f1) if f1 < f2 else (x2, f2)
 
 
-def _meeting(track: SoilTrack, soil: SoilProfile, a: float, b: float) -> float:
-    """The frequency in [a, b] where the track's determinant with chi = 0 vanishes at the soil's fundamental
-    mode (Illinois steps in log omega; NaN when it has one sign at both ends)."""
+@functools.lru_cache(maxsize=64)
+def _meeting(track: SoilTrack, soil: SoilProfile, a: float, b: float) -> tuple[float, float]:
+    """(omega, c_0(omega)): the frequency in [a, b] where the track's own curve (chi = 0) crosses the soil's
+    fundamental mode c_0, and c_0 there; NaN when the track's determinant with chi = 0 at c_0 has one
+    sign at both ends.
+
+    Along the track's own curve c_t(omega) the soil's secular function changes sign where c_t meets a mode:
+    its root in log omega (one secular value per Illinois step) is the meeting when c_0 there equals c_t
+    to :data:`MEETING_CHECK`; otherwise (a higher mode or a layer's wave speed crossed in [a, b] as well)
+    Illinois steps in log omega on the determinant at c_0 (a search of the soil's modes per step)."""
     elastic, free = soil.undamped(), track.undamped()
 
-    def f(log_w: FloatArray, _: IntArray) -> FloatArray:
+    def on_mode(log_w: FloatArray, _: IntArray) -> FloatArray:
         w = np.exp(log_w)
         c0 = soil_modes(w, elastic, modes=1).c[:, 0]
         return np.real(free.determinant(w / c0, w, np.zeros_like(w)))
 
+    def on_curve(log_w: FloatArray, _: IntArray) -> FloatArray:
+        w = np.exp(log_w)
+        with np.errstate(invalid="ignore"):  # NaN where the track has no free wave: then no sign change
+            return secular(uncoupled_curve(free, w), w, elastic)
+
     ends = np.log(np.array([a, b]))
-    values = f(ends, np.arange(2))
+    values = on_mode(ends, np.arange(2))
     if not np.all(np.isfinite(values)) or np.sign(values[0]) * np.sign(values[1]) >= 0:
-        return float("nan")
-    return float(np.exp(illinois(f, ends[:1], ends[1:], rtol=1e-12)[0]))
+        return float("nan"), float("nan")
+    if np.sign(np.prod(on_curve(ends, np.arange(2)))) < 0:
+        w = float(np.exp(illinois(on_curve, ends[:1], ends[1:], rtol=1e-12)[0]))
+        c0 = float(soil_modes(np.array([w]), elastic, modes=1).c[0, 0])
+        if abs(uncoupled_curve(free, np.array([w]))[0] / c0 - 1) < MEETING_CHECK:
+            return w, c0
+    w = float(np.exp(illinois(on_mode, ends[:1], ends[1:], rtol=1e-12)[0]))
+    return w, float(soil_modes(np.array([w]), elastic, modes=1).c[0, 0])
 
 
 def _uncoupled(track: SoilTrack, soil: SoilProfile, omega: FloatArray, c0: FloatArray) -> tuple[float, float]:
@@ -158,7 +188,7 @@ def _uncoupled(track: SoilTrack, soil: SoilProfile, omega: FloatArray, c0: Float
     idx = np.nonzero(np.isfinite(gap[:-1]) & (np.sign(gap[:-1]) * np.sign(gap[1:]) < 0))[0]
     if idx.size == 0:
         return float("nan"), float("nan")
-    w = _meeting(track, soil, float(omega[idx[0]]), float(omega[idx[0] + 1]))
+    w = _meeting(track, soil, float(omega[idx[0]]), float(omega[idx[0] + 1]))[0]
     return w, float(uncoupled_curve(track, np.array([w]))[0])
 
 
@@ -190,10 +220,10 @@ def _branch_minimum(
     outer = i - 1 if i == first else i + 1
     if outer < 0 or outer >= len(omega):
         return float(omega[i]), float(slowest[i]), "range end"
-    w_end = _meeting(track, soil, float(omega[i]), float(omega[outer]))
+    w_end, c_end = _meeting(track, soil, float(omega[i]), float(omega[outer]))
     if not np.isfinite(w_end):
         return float(omega[i]), float(slowest[i]), "grid"
-    return w_end, float(soil_modes(np.array([w_end]), soil.undamped(), modes=1).c[0, 0]), "branch end"
+    return w_end, c_end, "branch end"
 
 
 def critical_velocity(
@@ -231,7 +261,7 @@ def critical_velocity(
         w_cr, v_cr, where = minima[own[0] if own else 0]
         if where in ("range end", "grid"):
             notes.append("the least phase velocity lies at an end of the frequency range: widen it")
-    w_u, v_u = _uncoupled(track, soil.undamped(), omega, waves.c_soil)
+    w_u, v_u = _uncoupled(track, soil, omega, waves.c_soil)
     if not np.isfinite(v_u):
         notes.append(
             "the track's own curve does not cross the soil's fundamental mode in the frequency range"

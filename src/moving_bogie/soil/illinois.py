@@ -19,14 +19,15 @@ def illinois(
     lo: FloatArray,
     hi: FloatArray,
     *,
-    rtol: float = 1e-13,
+    rtol: float | FloatArray = 1e-13,
     iterations: int = 80,
 ) -> FloatArray:
     """Roots of ``f(x, index)`` in the brackets [lo, hi] (f changes sign in each; ``index`` says which
     bracket each x belongs to, so that f can look up its other arguments): regula falsi that halves the
     value kept at a stale end (Illinois); a step outside the bracket, or a bracket that has not halved in two
     steps (a square-root behaviour near a layer's wave speed), bisects; stops when every bracket is
-    below ``rtol`` of its end, or after ``iterations`` steps. Returns the end of smaller |f| of each."""
+    below ``rtol`` (one for all, or one per bracket) of its end, or after ``iterations`` steps. Returns
+    the end of smaller |f| of each."""
     lo, hi = np.asarray(lo, dtype=float).copy(), np.asarray(hi, dtype=float).copy()
     index = np.arange(lo.size)
     f_lo, f_hi = f(lo, index), f(hi, index)

@@ -24,7 +24,7 @@ from .profile import SoilProfile
 
 BoolArray = npt.NDArray[np.bool_]
 
-__all__ = ["SoilModes", "soil_modes"]
+__all__ = ["SoilModes", "secular", "soil_modes"]
 
 
 @dataclass(frozen=True)
@@ -51,7 +51,7 @@ class SoilModes:
         return out
 
 
-def _secular(c: FloatArray, omega: FloatArray, soil: SoilProfile) -> FloatArray:
+def secular(c: FloatArray, omega: FloatArray, soil: SoilProfile) -> FloatArray:
     """The secular determinant at k = omega / c (:func:`~.flexibility.condensed`) projected on its axis:
     real, with no poles, changing sign at each mode (and possibly at a layer's wave speed)."""
     value = condensed(np.asarray(omega / c, dtype=complex), np.asarray(omega, dtype=complex), soil)[1]
@@ -60,7 +60,7 @@ def _secular(c: FloatArray, omega: FloatArray, soil: SoilProfile) -> FloatArray:
 
 def _regime_grid(soil: SoilProfile, c_floor: float, points: int) -> tuple[FloatArray, BoolArray]:
     """The c grid and a mask of its cells that hold no wave speed of a layer (where the axis of
-    :func:`_secular` may turn: a sign change there is no mode)."""
+    :func:`secular` may turn: a sign change there is no mode)."""
     low, top = c_floor * soil.c_s_min, soil.halfspace.c_s * (1 - 1e-9)
     speeds = np.array([c for layer in soil.layers[:-1] for c in (layer.c_s, layer.c_p) if low < c < top])
     grid = np.unique(
@@ -85,7 +85,7 @@ def _dips(
     if rows.size == 0:
         return []
     fine = grid[cols, None] + (grid[cols + 2] - grid[cols])[:, None] * np.linspace(0, 1, 2 * sub + 1)
-    g = _secular(fine, omega[rows, None], soil)
+    g = secular(fine, omega[rows, None], soil)
     r, j = np.nonzero(np.sign(g[:, :-1]) * np.sign(g[:, 1:]) < 0)
     return [(rows[r], fine[r, j], fine[r, j + 1])]
 
@@ -112,7 +112,7 @@ def soil_modes(
     elastic = soil.undamped()
     omega = np.atleast_1d(np.asarray(omega, dtype=float))
     grid, valid = _regime_grid(elastic, c_floor, points)
-    f = _secular(grid[None, :], omega[:, None], elastic)
+    f = secular(grid[None, :], omega[:, None], elastic)
     change = (np.sign(f[:, :-1]) * np.sign(f[:, 1:]) < 0) & valid
     rows, cols = np.nonzero(change)
     lo, hi = [grid[cols]], [grid[cols + 1]]
@@ -128,7 +128,7 @@ def soil_modes(
         keep = np.sort(order[rank < modes])
         rows, lo, hi = rows[keep], [np.concatenate(lo)[keep]], [np.concatenate(hi)[keep]]
     w_rows = omega[rows]
-    roots = illinois(lambda c, i: _secular(c, w_rows[i], elastic), np.concatenate(lo), np.concatenate(hi))
+    roots = illinois(lambda c, i: secular(c, w_rows[i], elastic), np.concatenate(lo), np.concatenate(hi))
     count = np.bincount(rows, minlength=len(omega))
     c = np.full((len(omega), max(int(count.max(initial=0)), 1)), np.nan)
     for i in range(len(omega)):
