@@ -277,11 +277,14 @@ def sleeper_map(
     params: DimensionlessParams | PhysicalParams | BoundModel,
     velocities: Sequence[float] | np.ndarray,
     masses: Sequence[float] | np.ndarray,
+    margin: bool = False,
+    progress: Callable[[float], None] | None = None,
     **options: Any,
 ) -> SleeperMap:
     """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
     (S19)-(S22)): :func:`~moving_bogie.stability.maps.sleeper_map.sleeper_map` (``verify``, ``workers``,
-    ``progress``)."""
+    ``progress``, ``checkpoint``, ``resume``); ``margin``: with every cell's margin, a strip search each
+    (:func:`~moving_bogie.stability.maps.sleeper_margin.with_margins`, most of the time then)."""
     from moving_bogie.stability.maps.sleeper_map import sleeper_map as run
 
     bound, scales = bind_with_scales(params)
@@ -289,7 +292,16 @@ def sleeper_map(
         raise ParameterError(
             "params", "a sleeper map is in SI units (v in m/s, M in kg): give PhysicalParams"
         )
-    return run(bound, scales, velocities, masses, **options)
+    if not margin:
+        return run(bound, scales, velocities, masses, progress=progress, **options)
+    from moving_bogie.stability.maps.sleeper_margin import with_margins
+
+    first, rest = (
+        (None, None) if progress is None else (lambda x: progress(0.1 * x), lambda x: progress(0.1 + 0.9 * x))
+    )
+    smap = run(bound, scales, velocities, masses, progress=first, **options)
+    kept = {k: options[k] for k in ("workers", "checkpoint", "resume") if k in options}
+    return with_margins(smap, bound, scales, progress=rest, **kept)
 
 
 def frequency_lines(

@@ -288,7 +288,6 @@ def sleeper_map(
     progress: Callable[[float], None] | None = None,
     checkpoint: str | os.PathLike[str] | None = None,
     resume: bool = False,
-    margin: bool = False,
 ) -> SleeperMap:
     """Unstable counts over velocities [m/s] x masses [kg] (module docstring).
 
@@ -316,9 +315,6 @@ def sleeper_map(
         ``resume=True`` computes only the columns missing.
     resume : bool
         Read back the columns kept under ``checkpoint`` (else they are computed anew).
-    margin : bool
-        Also the margin of every cell, a strip search each
-        (:func:`~moving_bogie.stability.maps.sleeper_margin.sleeper_margins`; most of the time then).
     """
     vs, ms = np.asarray(velocities, dtype=float), np.asarray(masses, dtype=float)
     _check_plane(bound, scales, vs)
@@ -327,29 +323,20 @@ def sleeper_map(
     tasks = [(column_at, (bound, scales, float(v), eta_max, N, samples)) for v in vs]
     job = {"data": repr(bound), "velocities": vs.tolist(), "eta_max": eta_max, "N": N, "samples": samples}
     share = len(tasks) / (len(tasks) + 16 * verify)  # about 2 checks per verified column, 8 columns each
-    whole = 0.1 if margin else 1.0  # the margins' strip searches take most of the time
-    part = None if progress is None else (lambda x: progress(whole * share * x))
+    part = None if progress is None else (lambda x: progress(share * x))
     columns, count, kept = count_columns(
         tasks, ms / unit, kind="sleeper-map", job=job, workers=workers, progress=part,
         checkpoint=checkpoint, resume=resume,
     )  # fmt: skip
     cells = _verify_cells(count, columns, ms, verify)
     checked = [(bound, scales, float(vs[i]), float(ms[j]), int(count[j, i])) for i, j in cells]
-    part = None if progress is None else (lambda x: progress(whole * (share + (1 - share) * x)))
+    part = None if progress is None else (lambda x: progress(share + (1 - share) * x))
     try:
         done = run_parts(check_part, checked, workers=workers, progress=part, what="checks")
     except JobInterrupted:  # the columns are kept: a resumed map computes the checks only
         folder = None if kept is None else kept.folder
         raise JobInterrupted(len(tasks), len(tasks), folder, "columns") from None
     checks = [part_check(p) for p in done]
-    margins: tuple[np.ndarray | None, np.ndarray | None] = (None, None)
-    if margin:
-        from moving_bogie.stability.maps.sleeper_margin import sleeper_margins
-
-        part = None if progress is None else (lambda x: progress(whole + (1 - whole) * x))
-        margins = sleeper_margins(
-            bound, scales, vs, ms, workers=workers, progress=part, checkpoint=checkpoint, resume=resume
-        )
     if kept is not None:
         kept.remove()
     notes = _notes(columns, checks, scales.v_ref)
@@ -365,6 +352,4 @@ def sleeper_map(
         tuple(checks),
         tuple(notes),
         bound.params,
-        margin=margins[0],
-        margin_bound=margins[1],
     )

@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 
@@ -28,9 +29,9 @@ from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.model.scales import Scales
 from moving_bogie.roots.verdict import STABLE, UNSTABLE
 from moving_bogie.stability.maps.d_map import keep_freed_memory
-from moving_bogie.stability.maps.sleeper_map import search_cell
+from moving_bogie.stability.maps.sleeper_map import SleeperMap, search_cell
 
-__all__ = ["cell_margin", "sleeper_margins"]
+__all__ = ["cell_margin", "sleeper_margins", "with_margins"]
 
 #: what sets a stable margin that is a lower bound only (FloquetResult.margin_source)
 LOWER_BOUND = "the window's top"
@@ -71,7 +72,7 @@ def sleeper_margins(
     tasks = [(bound, scales, float(v), float(M)) for M in masses for v in velocities]
     kept = None
     if checkpoint is not None:
-        job = {"data": repr(bound), "velocities": velocities.tolist(), "masses": masses.tolist()}
+        job = {"data": repr(bound), "velocities": velocities.tolist(), "mass_axis": masses.tolist()}
         kept = Checkpoint.open(checkpoint, "sleeper-margin", job, resume=resume)
     parts = run_parts(margin_part, tasks, workers=workers, checkpoint=kept, progress=progress, what="cells")
     shape = (len(masses), len(velocities))
@@ -80,3 +81,22 @@ def sleeper_margins(
     if kept is not None:
         kept.remove()
     return margin, lower
+
+
+def with_margins(
+    smap: SleeperMap,
+    bound: BoundModel,
+    scales: Scales,
+    *,
+    workers: int | None = None,
+    progress: Callable[[float], None] | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
+    resume: bool = False,
+) -> SleeperMap:
+    """``smap`` (of ``bound`` and its ``scales``) with the margin of each of its cells
+    (:func:`sleeper_margins`)."""
+    margin, lower = sleeper_margins(
+        bound, scales, smap.velocities, smap.masses,
+        workers=workers, progress=progress, checkpoint=checkpoint, resume=resume,
+    )  # fmt: skip
+    return replace(smap, margin=margin, margin_bound=lower)
