@@ -128,7 +128,7 @@ def induced_frequencies(
 ) -> FrequencyResult:
     """Every induced frequency of ``params`` in the search region of its track (the window, or one strip of
     a periodic track): :func:`moving_bogie.roots.frequencies.induced_frequencies`; for a track whose
-    receptance is a quadrature (on the soil) :func:`moving_bogie.roots.quadrature_window.window_frequencies`
+    receptance is a quadrature (on the soil) :func:`moving_bogie.roots.quadrature_search.window_frequencies`
     in the window of the far-field radius of its Winkler equivalent (the same parameters on their
     continuous track, :func:`~moving_bogie.roots.quadrature_window.window_radius`).
 
@@ -140,7 +140,8 @@ def induced_frequencies(
     if isinstance(bound.track, ContinuousTrack) or bound.track.search_region().periodic:
         result = run(bound, **options)
     else:
-        from moving_bogie.roots.quadrature_window import window_frequencies, window_radius
+        from moving_bogie.roots.quadrature_search import window_frequencies
+        from moving_bogie.roots.quadrature_window import window_radius
 
         radius, far = window_radius(BoundModel(bound.params))
         result = window_frequencies(bound, radius=radius, far_field=far, **options)
