@@ -160,7 +160,14 @@ def closed_form_response(
     from moving_bogie.response.closed_form import closed_form_response as run
 
     bound, scales = bind_with_scales(params)
+    _closed_form_track(bound, "time_series gives the steady response over a bay and the free vibrations")
     return run(bound, tau, scales=scales, **options)
+
+
+def _closed_form_track(bound: BoundModel, instead: str) -> None:
+    """A ParameterError naming ``params`` on periodic supports, where no closed form exists (``instead``)."""
+    if bound.track.search_region().periodic:
+        raise ParameterError("params", f"{bound.name}: no closed form on periodic supports; {instead}")
 
 
 def time_series(
@@ -211,6 +218,7 @@ def deflection_shape_details(
     from moving_bogie.response.closed_form import deflection_shape_details as run
 
     bound, scales = bind_with_scales(params)
+    _closed_form_track(bound, "time_series gives the rail's deflection under the wheels over a bay")
     return run(bound, xi, tau, scales=scales, **options)
 
 
