@@ -154,7 +154,12 @@ def record(best: dict) -> None:
         continuous = cost(("this", case, "one-layer"))
         alternative = f"the continuous one-layer track of the same smeared stiffness: {continuous}"
         rows.append(row(work, cost(("this", case, "sleepers")), alternative, target))
-    write_record(__file__, "A rail on sleepers beside the continuous track", rows)
+    write_record(
+        __file__,
+        "A rail on sleepers beside the continuous track",
+        rows,
+        entries=("moving_bogie.__main__", "moving_bogie.cli.frequencies_cmd"),
+    )
 
 
 if __name__ == "__main__":

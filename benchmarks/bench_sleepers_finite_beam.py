@@ -154,7 +154,12 @@ def _record(rows: list[list[str]]) -> None:
         )
         for label, finite, reference, worst, compared in rows[:-1]
     ]
-    write_record(__file__, "The finite-beam check on sleepers", out)
+    write_record(
+        __file__,
+        "The finite-beam check on sleepers",
+        out,
+        entries=("moving_bogie.__main__", "moving_bogie.cli.validate_cmd"),
+    )
 
 
 def convergence(which: str) -> None:

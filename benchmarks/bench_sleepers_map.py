@@ -40,8 +40,9 @@ if TYPE_CHECKING:
 
 HERE = Path(__file__).resolve().parent.parent
 SRC = HERE / "src"
-#: The folders of the code this benchmark measures (records.py: a record is stale once they change).
-SOURCES = ("src/moving_bogie",)
+#: Where the map's child processes and workers start (records.py: a record is stale once a file of their
+#: import closure, or of the modules loaded here, changes).
+ENTRIES = ("moving_bogie.stability.maps.sleeper_map",)
 
 #: The child's program: the sleeper map of the file on the grid through the public API, its JSON written
 #: to the path given (argv: file, v0, v1, n, M top, workers, out).
@@ -213,7 +214,7 @@ def record(args: argparse.Namespace, rows: list) -> None:
         f"{continuous:.1f} s wall, {int((c_count > 0).sum())} unstable cells"
     )
     rows_out = [row(work, measured, alternative, "< 60 s")]
-    write_record(__file__, "A (v, M) stability map on sleepers", rows_out, sources=SOURCES)
+    write_record(__file__, "A (v, M) stability map on sleepers", rows_out, entries=ENTRIES)
 
 
 def record_before(
@@ -240,7 +241,7 @@ def record_before(
     ]
     where = {args.before: name}
     write_record(
-        __file__, "A (v, M) stability map on sleepers", rows_out, placeholders=where, sources=SOURCES
+        __file__, "A (v, M) stability map on sleepers", rows_out, placeholders=where, entries=ENTRIES
     )
 
 

@@ -179,7 +179,7 @@ def main() -> int:
     if args.record:
         from records import row, write_record
 
-        write_record(__file__, "The soil under the track", [row(*r) for r in rows])
+        write_record(__file__, "The soil under the track", [row(*r) for r in rows], entries=())
     return 0
 
 

@@ -100,7 +100,12 @@ def main() -> int:
     if args.record:
         from records import row, write_record
 
-        write_record(__file__, "The threshold mass and the (v, M) map on the soil", [row(*r) for r in rows])
+        write_record(
+            __file__,
+            "The threshold mass and the (v, M) map on the soil",
+            [row(*r) for r in rows],
+            entries=("moving_bogie.stability.maps.real_axis_map",),
+        )
     return 0
 
 

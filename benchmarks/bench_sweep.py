@@ -46,8 +46,9 @@ HERE = ROOT / "src"
 CASE7 = ["--case", "7", "--vary", "alpha=0.3:0.95:40", "--vary", "eta_M=5:60:40"]
 CASE7 += ["--vary", "eta_f=0.05,0.1,0.15,0.2"]
 POINTS = 40 * 40 * 4
-#: The folders of the code this benchmark measures (records.py: a record is stale once they change).
-SOURCES = ("src/moving_bogie",)
+#: Where the sweep's child processes and workers start (records.py: a record is stale once a file of their
+#: import closure changes).
+ENTRIES = ("moving_bogie.__main__", "moving_bogie.cli.sweep_cmd")
 
 
 @dataclass(frozen=True)
@@ -245,7 +246,7 @@ def record(
     )
     argv = sys.argv
     where = {argv[k + 1]: name for k, arg in enumerate(argv[:-1]) if arg == "--before"}
-    write_record(__file__, "Parameter sweeps on Dask", rows, placeholders=where, sources=SOURCES)
+    write_record(__file__, "Parameter sweeps on Dask", rows, placeholders=where, entries=ENTRIES)
 
 
 def main() -> None:

@@ -36,18 +36,11 @@ def source_hash(folder: str, root: Path = ROOT) -> str:
     """SHA-256 of the files of ``folder`` (relative to ``root``) as they are on disk: every file git tracks
     or would track there (untracked files too, ignored ones such as ``__pycache__`` not), each by its path
     and bytes; every ``*.py`` file when ``root`` is not a git checkout. Any edit, committed or not, changes
-    it."""
-    import subprocess
-
-    try:
-        listed = subprocess.run(
-            ["git", "-C", str(root), "ls-files", "-co", "--exclude-standard", "-z", "--", folder],
-            capture_output=True,
-            check=True,
-        ).stdout.decode()
-        names = sorted(n for n in listed.split("\0") if n)
-    except (OSError, subprocess.CalledProcessError):
-        names = sorted(str(p.relative_to(root)) for p in (root / folder).rglob("*.py"))
+    it. A single file is hashed the same way, without asking git."""
+    if (root / folder).is_file():
+        names = [folder]
+    else:
+        names = _listed(folder, root)
     digest = hashlib.sha256()
     for name in names:
         path = root / name
@@ -56,11 +49,26 @@ def source_hash(folder: str, root: Path = ROOT) -> str:
     return digest.hexdigest()[:16]
 
 
+def _listed(folder: str, root: Path) -> list[str]:
+    """The files of ``folder`` that git tracks or would track, sorted (every ``*.py`` file outside git)."""
+    import subprocess
+
+    try:
+        listed = subprocess.run(
+            ["git", "-C", str(root), "ls-files", "-co", "--exclude-standard", "-z", "--", folder],
+            capture_output=True,
+            check=True,
+        ).stdout.decode()
+        return sorted(n for n in listed.split("\0") if n)
+    except (OSError, subprocess.CalledProcessError):
+        return sorted(str(p.relative_to(root)) for p in (root / folder).rglob("*.py"))
+
+
 def stale_sources(record: dict, root: Path = ROOT) -> list[str] | None:
     """The folders of ``record["sources"]`` whose files changed since the record was made; None when the
     record names no sources (whether its code changed is unknown)."""
     sources = record.get("sources")
-    if not sources:
+    if not sources:  # None or empty
         return None
     return [folder for folder, digest in sources.items() if source_hash(folder, root) != digest]
 
@@ -108,10 +116,19 @@ def write_record(
     rows: list[dict],
     placeholders: dict[str, str] | None = None,
     sources: tuple[str, ...] = PACKAGE,
+    entries: tuple[str, ...] | None = None,
 ) -> Path:
     """Write the record of the benchmark ``script`` (its ``__file__``); returns the path written.
     ``placeholders``: arguments of the command shown as a name (a local path as ``SRC``); ``sources``: the
-    folders of the code measured, whose hashes the record keeps."""
+    folders of the code measured, whose hashes the record keeps; ``entries``: the modules the work of child
+    processes starts from (``()`` when all of it ran here), which replace ``sources`` by the files of the
+    package loaded in this process and of the import closure of ``entries``
+    (:func:`import_closure.measured_files`), so that an edit to another part of the package leaves the
+    record current."""
+    if entries is not None:
+        from import_closure import measured_files
+
+        sources = tuple(measured_files(entries))
     for r in rows:
         missing = [f for f in FIELDS if f not in r]
         if missing:

@@ -131,3 +131,42 @@ def test_induced_frequencies_tend_to_table2_for_a_stiff_second_layer(two_layer):
         assert abs(q - ref) < 1.5e-6, (q, ref)
     # and the stiffness matters at the level of the first-order term (the test can tell the models apart)
     assert max(abs(a - b) for a, b in zip(found["1000"], printed)) > 1e-5
+
+
+def test_a_sweep_hands_its_bound_model_to_every_block(two_layer):
+    """The quick guard of the test below: the spec and every block's task carry the bound model itself."""
+    from moving_bogie.sweep import make_spec
+    from moving_bogie.sweep.engine import block_task
+
+    bound = BoundModel(PARAMS, foundation=Foundation(two_layer, LAYER))
+    spec = make_spec(bound, {"alpha": "1/2,9/10", "eta_M": "5,60"}, check=0)
+    assert spec.bound == bound
+    assert all(block_task(spec, block).bound == bound for block in spec.blocks())
+    assert bound != bind(PARAMS)  # the comparison sees the foundation
+
+
+@pytest.mark.slow
+def test_a_sweep_keeps_the_foundation_of_its_bound_model(two_layer, tmp_path):
+    """A sweep of a bound model on another foundation sweeps that model: each point's count equals the
+    full search on ``bound.replace(...)`` of the same bound model (argument principle, roots confirmed at
+    15 digits), and differs from the sweep of the one-layer track of the same parameters at three of the
+    four points, so a sweep that rebinds the bare parameters fails here."""
+    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.sweep import make_spec, open_sweep
+    from moving_bogie.sweep.engine import run_sweep
+
+    alphas, masses = ("1/2", "9/10"), (5, 60)
+    vary = {"alpha": ",".join(alphas), "eta_M": "5,60"}
+    swept = {}
+    for name, bound in (
+        ("two", BoundModel(PARAMS, foundation=Foundation(two_layer, LAYER))),
+        ("one", bind(PARAMS)),
+    ):
+        run_sweep(make_spec(bound, vary, check=0), tmp_path / f"{name}.zarr", processes=False)
+        swept[name] = open_sweep(tmp_path / f"{name}.zarr").n_unstable.values
+    two = BoundModel(PARAMS, foundation=Foundation(two_layer, LAYER))
+    for i, alpha in enumerate(alphas):
+        for j, eta_M in enumerate(masses):
+            found = induced_frequencies(two.replace(alpha=alpha, eta_M=eta_M), dps=15)
+            assert swept["two"][i, j] == len(found.unstable_roots), (alpha, eta_M)
+    assert np.sum(swept["two"] != swept["one"]) == 3

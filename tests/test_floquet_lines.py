@@ -159,7 +159,7 @@ def test_only_a_worker_keeps_its_freed_memory():
     own process is left with glibc's defaults."""
     from concurrent.futures import ProcessPoolExecutor
 
-    from moving_bogie.stability.maps.sleeper_map import keep_freed_memory
+    from moving_bogie.stability.maps.d_map import keep_freed_memory
 
     assert keep_freed_memory() is False
     with ProcessPoolExecutor(1) as pool:

@@ -7,21 +7,14 @@ with the track of its model's kind, :data:`TRACK_KINDS`) and passes the bound mo
 nothing binds again (``kernels/``, ``roots/``, ``response/``, ``validation/``, ``stability/`` and ``sweep/``
 take ``bound: BoundModel``). The options are those of the function each one calls, documented there.
 
-A vehicle on a track on the soil (docs/soil.md) comes from a soil-track file that names a vehicle in
-``[model]`` (``vehicle = "mass"``) and gives its SI values in ``[physical]`` beside the track's
-(:func:`load_soil_vehicle`): the vehicle's groups are the paper's (Eqs. (15)-(17)) with the track's reference
-stiffness k_ref (:func:`~moving_bogie.soil.rail_track.reference_stiffness`) in the place of k_f and no
-foundation damping, the parameters of the Euler-Bernoulli rail on the Winkler track of k_ref, which
-:func:`bind` binds to the soil's own track (:class:`~moving_bogie.soil.rail_track.SoilRail`). Given per
-rail, the vehicle's masses, inertias, stiffnesses, dampings and loads (the values in kg or N) are doubled
-like the track's: the soil carries the whole track and the whole vehicle.
+A vehicle on a track on the soil (docs/soil.md) is read by :func:`load_soil_vehicle`
+(:mod:`moving_bogie.soil_vehicle`) and bound to the soil's own track.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, replace
-from pathlib import Path
+from collections.abc import Callable, Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import ParameterError
@@ -30,6 +23,7 @@ from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
+from moving_bogie.soil_vehicle import SoilVehicle, load_soil_vehicle, soil_vehicle
 
 if TYPE_CHECKING:
     import numpy as np
@@ -38,10 +32,7 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
-    from moving_bogie.response.sleeper_series import SleeperSeries
     from moving_bogie.roots.frequencies import FrequencyResult
-    from moving_bogie.soil.file import SoilInput
-    from moving_bogie.soil.rail_track import SoilRailSpec
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
     from moving_bogie.stability.maps.map import StabilityMap
@@ -49,7 +40,6 @@ if TYPE_CHECKING:
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
-    from moving_bogie.validation.sleeper_verdict import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 __all__ = [
@@ -69,6 +59,7 @@ __all__ = [
     "instability_lines_many",
     "sleeper_map",
     "sleeper_series",
+    "time_series",
     "smeared_track",
     "soil_vehicle",
     "speed_regime",
@@ -82,71 +73,6 @@ __all__ = [
 #: continuous track, :class:`~moving_bogie.kernels.continuous_track.ContinuousTrack`). A new kind of track
 #: adds its class here (kernels/track_model.py says what the class provides).
 TRACK_KINDS: dict[str, TrackFactory] = {PERIODIC: PeriodicTrack}
-
-
-#: The beam of the vehicle's scaling (the rail on the soil bends as an Euler-Bernoulli beam, Eq. (S6)).
-BEAM = "eb"
-#: [physical] keys the soil replaces (the support is the soil's).
-SUPPORT_KEYS = ("k_f", "c_f")
-
-
-@dataclass(frozen=True)
-class SoilVehicle:
-    """The file's track and soil (``input``), the vehicle's SI parameters scaled with k_ref
-    (``physical``) and the track the bound model gets (``rail``)."""
-
-    input: SoilInput
-    physical: PhysicalParams
-    rail: SoilRailSpec
-
-
-def _whole(physical: PhysicalParams, values: dict[str, float]) -> dict[str, float]:
-    """The values of a per-rail file for the whole track: those in kg or N doubled (module docstring)."""
-    units = physical.units()
-    return {k: 2 * v if ("kg" in units[k] or "N" in units[k]) else v for k, v in values.items()}
-
-
-def soil_vehicle(data: SoilInput, *, tol: float = 1e-6) -> SoilVehicle:
-    """The vehicle of a read soil-track file on its track (module docstring).
-
-    Raises
-    ------
-    ParameterError
-        When the file names no vehicle or no load P, gives k_f or c_f, or a vehicle value is wrong.
-    """
-    if data.vehicle is None:
-        raise ParameterError(
-            "vehicle", 'name the vehicle in [model] (vehicle = "mass", ...) and give its values in [physical]'
-        )
-    if data.load is None:
-        raise ParameterError("P", "P (N, the static load of the vehicle's wheels) is missing from [physical]")
-    values = dict(data.vehicle_values)
-    for key in SUPPORT_KEYS:
-        if key in values:
-            raise ParameterError(key, f"{key} does not apply to a track on the soil: the soil is the support")
-    from moving_bogie.soil.rail_track import SoilRailSpec, reference_stiffness
-
-    k_ref = reference_stiffness(data.track, data.soil)
-    track = data.track
-    common: dict[str, Any] = {"EI": track.EI, "m": track.m, "k_f": k_ref, "c_f": 0.0, "P": data.load}
-    physical = PhysicalParams(beam=BEAM, vehicle=data.vehicle, **(common | values))
-    if data.per == "rail":
-        physical = PhysicalParams(beam=BEAM, vehicle=data.vehicle, **(common | _whole(physical, values)))
-    return SoilVehicle(data, physical, SoilRailSpec(track, data.soil, k_ref, tol))
-
-
-def load_soil_vehicle(path: str | Path, settings: Mapping[str, float] | None = None) -> SoilVehicle:
-    """Read a soil-track file with a vehicle (:func:`soil_vehicle`), its values changed by ``settings``
-    (key -> SI value, ``--set``: :func:`~moving_bogie.soil.file.load_soil_file`); errors name the key and
-    the file, or ``--set`` when the key is one of the settings."""
-    from moving_bogie.soil.file import load_soil_file
-
-    data = load_soil_file(path, settings)
-    try:
-        return soil_vehicle(data)
-    except ParameterError as exc:
-        where = "--set" if settings and exc.parameter in settings else str(path)
-        raise ParameterError(exc.parameter, f"{where}: {exc}") from None
 
 
 def bind(params: DimensionlessParams | PhysicalParams | BoundModel | SoilVehicle) -> BoundModel:
@@ -202,7 +128,7 @@ def induced_frequencies(
 ) -> FrequencyResult:
     """Every induced frequency of ``params`` in the search region of its track (the window, or one strip of
     a periodic track): :func:`moving_bogie.roots.frequencies.induced_frequencies`; for a track whose
-    receptance is a quadrature (on the soil) :func:`moving_bogie.roots.quadrature_window.window_frequencies`
+    receptance is a quadrature (on the soil) :func:`moving_bogie.roots.quadrature_search.window_frequencies`
     in the window of the far-field radius of its Winkler equivalent (the same parameters on their
     continuous track, :func:`~moving_bogie.roots.quadrature_window.window_radius`).
 
@@ -214,7 +140,8 @@ def induced_frequencies(
     if isinstance(bound.track, ContinuousTrack) or bound.track.search_region().periodic:
         result = run(bound, **options)
     else:
-        from moving_bogie.roots.quadrature_window import window_frequencies, window_radius
+        from moving_bogie.roots.quadrature_search import window_frequencies
+        from moving_bogie.roots.quadrature_window import window_radius
 
         radius, far = window_radius(BoundModel(bound.params))
         result = window_frequencies(bound, radius=radius, far_field=far, **options)
@@ -234,6 +161,37 @@ def closed_form_response(
 
     bound, scales = bind_with_scales(params)
     return run(bound, tau, scales=scales, **options)
+
+
+def time_series(
+    params: DimensionlessParams | PhysicalParams | BoundModel,
+    tau: ArrayLike | None = None,
+    *,
+    progress: Callable[[float], None] | None = None,
+    **options: Any,
+) -> TimeSeries:
+    """The time series of ``params`` on its track, one type on every track (:class:`~moving_bogie.response.
+    closed_form.TimeSeries`): the closed form at the times ``tau`` (:func:`closed_form_response`, after a
+    complete search of the induced frequencies: else a :class:`~moving_bogie.errors.MovingBogieError`);
+    on periodic supports the steady response over ``bays`` bays on ``points`` points and the free
+    vibrations (:func:`sleeper_series`, ``tau`` not given).
+
+    ``options`` are those of the track's series (``branch_cut``, ``dps``, ... on a continuous track;
+    ``bays``, ``points``, ``free``, ``tol`` on periodic supports).
+    """
+    bound, scales = bind_with_scales(params)
+    if bound.track.search_region().periodic:
+        if tau is not None:
+            why = "a series on periodic supports spans its bays (bays=, points=), not given times"
+            raise ParameterError("tau", why)
+        return sleeper_series(params, progress=progress, **options)
+    from moving_bogie.response.closed_form import closed_form_response as run
+    from moving_bogie.response.residues import complete_frequencies
+
+    if tau is None:
+        raise ParameterError("tau", "give the times of the series")
+    frequencies = complete_frequencies(bound, options.get("dps", 30), options.get("branch_cut"), progress)
+    return run(bound, tau, scales=scales, frequencies=frequencies, **options)
 
 
 def deflection_shape(
@@ -256,11 +214,10 @@ def deflection_shape_details(
     return run(bound, xi, tau, scales=scales, **options)
 
 
-def validate(
-    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
-) -> ValidationResult | SleeperCheck:
+def validate(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> ValidationResult:
     """Finite beam against closed form (Section 3.2): :func:`~moving_bogie.validation.compare.validate`; on
-    periodic supports the finite rail against the Floquet theory (:func:`validate_on_supports`).
+    periodic supports the finite rail against the Floquet theory (:func:`validate_on_supports`), the same
+    result type (its ``supports`` holds what that check adds).
 
     Physical parameters are made dimensionless: the comparison runs in dimensionless tau and w / w_st.
     """
@@ -277,7 +234,7 @@ def validate_on_supports(
     *,
     tol: float = 0.01,
     progress: Callable[[float], None] | None = None,
-) -> SleeperCheck:
+) -> ValidationResult:
     """The finite rail on sleepers against the Floquet theory (docs/sleepers.md):
     :func:`~moving_bogie.validation.on_supports.check_on_supports` of the bound model, its values in SI
     too for SI parameters."""
@@ -296,7 +253,6 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
     ParameterError
         Naming ``track`` when the track has no such limit.
     """
-    from moving_bogie.errors import ParameterError
     from moving_bogie.model.smeared import smeared_physical
 
     smeared = smeared_physical(params)
@@ -305,12 +261,11 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
     return smeared
 
 
-def sleeper_series(
-    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
-) -> SleeperSeries:
+def sleeper_series(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> TimeSeries:
     """The steady response over a bay and the free vibrations on sleepers (in SI for SI parameters, with
-    the steady deflection of the smeared continuous track beside):
-    :func:`~moving_bogie.response.sleeper_series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    the steady deflection of the smeared continuous track beside), as a time series whose ``bay`` holds
+    the contact forces and the harmonics: :func:`~moving_bogie.response.sleeper_series.sleeper_series`
+    (``bays``, ``points``, ``free``, ``progress``)."""
     from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.response.sleeper_series import sleeper_series as run
 
@@ -328,7 +283,6 @@ def sleeper_map(
     """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
     (S19)-(S22)): :func:`~moving_bogie.stability.maps.sleeper_map.sleeper_map` (``verify``, ``workers``,
     ``progress``)."""
-    from moving_bogie.errors import ParameterError
     from moving_bogie.stability.maps.sleeper_map import sleeper_map as run
 
     bound, scales = bind_with_scales(params)

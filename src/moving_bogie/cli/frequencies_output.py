@@ -78,6 +78,9 @@ def with_si(data: dict[str, Any], result: FrequencyResult, physical: PhysicalPar
         waves = region["free_waves_im"]
         region["free_waves_im_rad_s"] = None if waves is None else waves / t_scale
         data["margin_1_s"] = None if result.margin is None else float(result.margin) / t_scale
+    if result.band is not None:
+        data["margin_1_s"] = None if result.margin is None else float(result.margin) / t_scale
+        data["margin_source"] = result.margin_source
     return data
 
 
@@ -181,6 +184,8 @@ def _searched_lines(result: FrequencyResult) -> list[str]:
                 f"margin: the least-damped vibration decays at Im q = {mpmath.nstr(result.margin, 6)} "
                 f"({result.margin_source})"
             )
+    if result.band is not None:
+        lines.append(result.band.statement())
     if result.unsearched:
         height = max(u.height for u in result.unsearched) / scale
         lines.append(

@@ -329,7 +329,7 @@ def _stability_map(args: argparse.Namespace) -> int:
     if args.out:
         from moving_bogie.sweep.map_store import write_map
 
-        write_map(args.out, smap, overwrite=args.overwrite, physical=si_input(args, args.physical))
+        write_map(args.out, smap, bound, overwrite=args.overwrite, physical=si_input(args, args.physical))
     if args.plot:
         from moving_bogie.stability.figures.plots import plot_stability_map
 

@@ -29,6 +29,7 @@ if TYPE_CHECKING:
 
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.scales import Scales
+    from moving_bogie.roots.decaying_band import DecayingBand
     from moving_bogie.roots.proof.certify import Certificate
     from moving_bogie.roots.search.cut_cells import Sliver
 
@@ -102,6 +103,7 @@ class FrequencyResult:
     region: SearchRegion | None = None  # one strip of width Omega_0 and its harmonics (None: the window)
     strip_margin: tuple[float, str] | None = None  # a stable strip's margin and what sets it
     scales: Scales | None = None  # the SI scales of a [physical] input: shown in SI (Eqs. (15)-(16))
+    band: DecayingBand | None = None  # on the soil: the decaying roots under the singular lines
 
     @property
     def periodic(self) -> bool:
@@ -221,6 +223,7 @@ class FrequencyResult:
                 "decaying_outside": self.decaying_outside,
                 "strip": None if self.strip is None else self.strip.to_dict(),
             }
+            | ({} if self.band is None else {"decaying": self.band.to_dict()})
             | (self.certificate.to_dict_for(self) if self.certificate is not None else {})
             | self._region_dict()
         )
@@ -229,15 +232,25 @@ class FrequencyResult:
     def margin(self) -> Mpf | None:
         """On a periodic track, a STABLE result's decay rate Im q of its least-damped vibration as the strip
         search states it (:attr:`~moving_bogie.roots.strip.FloquetResult.margin`: the least-damped root,
-        or the rail's free waves, or the window's top as a lower bound); None otherwise (on a window the
-        roots themselves say it)."""
-        if not self.periodic or self.strip_margin is None or self.verdict.state != STABLE:
+        or the rail's free waves, or the window's top as a lower bound); on the soil, the least Im q of the
+        decaying roots found in the band under the singular lines (:mod:`~moving_bogie.roots.decaying_band`:
+        roots outside the band are not searched, so a less damped one may lie there); None otherwise (on a
+        window the roots themselves say it)."""
+        if self.verdict.state != STABLE:
+            return None
+        if self.band is not None:
+            band = self.band.margin
+            return None if band is None else mpmath.mpf(band)
+        if not self.periodic or self.strip_margin is None:
             return None
         return mpmath.mpf(self.strip_margin[0])
 
     @property
     def margin_source(self) -> str | None:
-        """What sets :attr:`margin`: "a root", "the rail's free waves" or "the window's top"."""
+        """What sets :attr:`margin`: "a root", "the rail's free waves" or "the window's top"; on the soil
+        "a root in the band under the singular lines"."""
+        if self.margin is not None and self.band is not None:
+            return "the least-damped root found in the band under the singular lines, physical sheet"
         return None if self.margin is None or self.strip_margin is None else self.strip_margin[1]
 
     def _region_dict(self) -> dict:

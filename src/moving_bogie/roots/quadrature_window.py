@@ -21,7 +21,9 @@ on every sample of the far edges after the count, and above 1/2 the verdict says
 Locating: the same boundary samples give the moments s_p = (1 / 2 pi i) oint q^p d log E_chr = sum of the
 roots' p-th powers (Delves & Lyness 1967); for n <= 3 roots in a region they are the coefficients of the
 polynomial whose zeros start the secant method. A region whose polished roots are not n distinct points
-inside it is bisected and its halves counted. The roots with Im q > 0 (decaying) are not searched.
+inside it is bisected and its halves counted. The roots with Im q > 0 (decaying) are searched on a track
+on the soil in the band under the singular lines of the integral along real k
+(:mod:`~moving_bogie.roots.decaying_band`), with the same count and locating; elsewhere they are not.
 
 Errors: the receptance's error e moves E_chr by at most delta E = sum_ij |dE_chr / dG_ij| e, and a root by
 delta q = delta E / |E_chr'(q)|; the decimals printed are those delta q leaves, and a root with
@@ -34,7 +36,7 @@ fails, a note of reason QUADRATURE makes the verdict UNDETERMINED.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -46,15 +48,22 @@ from moving_bogie.kernels.arithmetic import Batched
 from moving_bogie.kernels.coupling import coupled_system, dynamic_coefficients, dynamic_stiffness
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number
 from moving_bogie.roots.count.far_field import MARGIN, FarField, e_lead, far_field_radius
-from moving_bogie.roots.count.outcomes import Note, Reason
 from moving_bogie.roots.count.window import default_window
-from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
+from moving_bogie.roots.frequency_result import InducedFrequency
 
 if TYPE_CHECKING:
     from moving_bogie.kernels.bound import BoundModel
     from moving_bogie.typing import ComplexArray
 
-__all__ = ["QuadratureCharacteristic", "grown_radius", "window_frequencies", "window_radius"]
+__all__ = [
+    "QuadratureCharacteristic",
+    "count_rectangle",
+    "far_check",
+    "grown_radius",
+    "induced",
+    "locate",
+    "window_radius",
+]
 
 #: Initial boundary samples per side of a region; Delves-Lyness up to this many roots, else bisection.
 SAMPLES, MOMENTS = 8, 3
@@ -188,17 +197,26 @@ def _moments_start(E: QuadratureCharacteristic, rect: Rectangle, n: int) -> np.n
     return np.roots([(-1) ** k * e[k] for k in range(n + 1)])
 
 
-def _secant(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex, complex, float]:
-    """The secant method from q0 (Im q kept <= 0) at the track's own tolerance; returns (root, slope,
-    |last step|)."""
+#: The range of Im q kept by the secant method: the growing side (its iterates stay where G is defined).
+BELOW = (-math.inf, 0.0)
+
+
+def _secant(
+    E: QuadratureCharacteristic, q0: complex, h: float, band: tuple[float, float] = BELOW
+) -> tuple[complex, complex, float]:
+    """The secant method from q0 (Im q kept in ``band``) at the track's own tolerance; returns (root,
+    slope, |last step|)."""
     with E.tolerance(None):
-        return _secant_steps(E, q0, h)
+        return _secant_steps(E, q0, h, band)
 
 
-def _secant_steps(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[complex, complex, float]:
-    """The secant iterations of :func:`_secant`, every iterate (the start too) kept in Im q <= 0, where the
-    receptance is defined."""
-    a = complex(q0.real, min(q0.imag, 0.0))  # a start from the moments may lie just above the axis
+def _secant_steps(
+    E: QuadratureCharacteristic, q0: complex, h: float, band: tuple[float, float]
+) -> tuple[complex, complex, float]:
+    """The secant iterations of :func:`_secant`, every iterate (the start too) kept in ``band`` of Im q,
+    where the receptance is the function counted."""
+    lo, hi = band
+    a = complex(q0.real, min(max(q0.imag, lo), hi))  # a start from the moments may lie just outside
     b = a + h
     fa, fb = complex(E(np.array([a]))[0]), complex(E(np.array([b]))[0])
     step = np.inf
@@ -207,7 +225,7 @@ def _secant_steps(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[c
         if slope == 0:
             break
         c = b - fb / slope
-        c = complex(c.real, min(c.imag, 0.0))
+        c = complex(c.real, min(max(c.imag, lo), hi))
         step = abs(c - b)
         a, fa, b = b, fb, c
         fb = complex(E(np.array([b]))[0])
@@ -217,7 +235,7 @@ def _secant_steps(E: QuadratureCharacteristic, q0: complex, h: float) -> tuple[c
     return b, slope, float(step)
 
 
-def _count(E: QuadratureCharacteristic, rect: Rectangle) -> tuple[int, bool]:
+def count_rectangle(E: QuadratureCharacteristic, rect: Rectangle) -> tuple[int, bool]:
     """The winding number of ``rect`` at COUNT_TOL, counted again at the track's own tolerance when a
     boundary sample's delta E exceeds |E_chr| / 2; and whether the count stands (:meth:`resolved`)."""
     spacing = max(rect.width, rect.height) / SAMPLES
@@ -230,15 +248,16 @@ def _count(E: QuadratureCharacteristic, rect: Rectangle) -> tuple[int, bool]:
     return n, E.resolved(rect)
 
 
-def _locate(
-    E: QuadratureCharacteristic, rect: Rectangle, n: int, level: int = 0
+def locate(
+    E: QuadratureCharacteristic, rect: Rectangle, n: int, band: tuple[float, float] = BELOW, level: int = 0
 ) -> list[tuple[complex, complex, float]]:
-    """The n roots of ``rect`` as (q, slope, last step); fewer when they could not be located."""
+    """The n roots of ``rect`` as (q, slope, last step), the secant's iterates kept in ``band`` of Im q;
+    fewer when they could not be located."""
     if n == 0:
         return []
     if n <= MOMENTS:
         h = 1e-4 * max(rect.width, rect.height)
-        found = [_secant(E, q0, h) for q0 in _moments_start(E, rect, n)]
+        found = [_secant(E, q0, h, band) for q0 in _moments_start(E, rect, n)]
         margin = 1e-9 * max(rect.width, rect.height)
         good = [r for r in found if rect.contains(r[0], margin) and r[2] < 1e-6 * max(1.0, abs(r[0]))]
         distinct = {(round(r[0].real, 8), round(r[0].imag, 8)) for r in good}
@@ -249,7 +268,7 @@ def _locate(
     out = []
     for half in rect.split(0.5):
         try:
-            out += _locate(E, half, _count(E, half)[0], level + 1)
+            out += locate(E, half, count_rectangle(E, half)[0], band, level + 1)
         except EdgeZeroError:
             return out
     return out
@@ -269,13 +288,13 @@ def grown_radius(E: QuadratureCharacteristic, radius: float) -> float:
     for _ in range(FAR_DOUBLINGS):
         with E.tolerance(COUNT_TOL):
             E(_far_edges(radius))
-        if _far_check(E, radius) <= MARGIN:
+        if far_check(E, radius) <= MARGIN:
             break
         radius *= 2
     return radius
 
 
-def _far_check(E: QuadratureCharacteristic, radius: float) -> float:
+def far_check(E: QuadratureCharacteristic, radius: float) -> float:
     """The largest rho = |E_chr - E_lead| / |E_lead| over the samples at |q| >= radius."""
     z = np.array([q for q in E.samples if abs(q) >= radius * (1 - 1e-12)], dtype=complex)
     if z.size == 0:
@@ -301,12 +320,15 @@ def _kernel_list(G: ComplexArray, index: list[list[int]], count: int) -> list[Co
     return [x for x in out if x is not None]
 
 
-def _induced(E: QuadratureCharacteristic, q: complex, slope: complex, step: float) -> InducedFrequency:
+def induced(
+    E: QuadratureCharacteristic, q: complex, slope: complex, step: float, side: str = "below"
+) -> InducedFrequency:
+    """The root at ``q`` with its decimals (those its error delta q leaves) and residual."""
     delta = max(E.uncertainty(q, slope), step, 1e-15 * max(1.0, abs(q)))
     decimals = max(0, math.floor(-math.log10(2 * delta)))
     digits = max(0, decimals + math.floor(math.log10(max(abs(q), 1e-300))) + 1)
     residual = abs(complex(E(np.array([q]))[0]) / slope) if slope else float("inf")
-    return InducedFrequency(mpmath.mpc(q.real, q.imag), "below", 1, mpmath.mpf(residual), digits, decimals)
+    return InducedFrequency(mpmath.mpc(q.real, q.imag), side, 1, mpmath.mpf(residual), digits, decimals)
 
 
 def window_radius(equivalent: BoundModel) -> tuple[float, FarField]:
@@ -316,66 +338,3 @@ def window_radius(equivalent: BoundModel) -> tuple[float, FarField]:
     is none (the verdict then says so)."""
     far = far_field_radius(equivalent, FIRST_RADIUS)
     return (default_window(equivalent).x1 if far.radius is None else far.radius), far
-
-
-def window_frequencies(
-    bound: BoundModel,
-    *,
-    radius: float,
-    far_field: FarField | None = None,
-    progress: Callable[[float], None] | None = None,
-) -> FrequencyResult:
-    """Every root with Im q <= 0 in the window of size ``radius`` of a track whose receptance is a
-    quadrature (module docstring), with the count beside them and the notes of the verdict.
-
-    Parameters
-    ----------
-    bound : BoundModel
-        The parameters bound to such a track.
-    radius : float
-        S: the window's size (the far-field radius, or larger).
-    far_field : FarField, optional
-        The far-field check of the track's continuous equivalent that gave ``radius`` (None: not checked).
-    """
-    E = QuadratureCharacteristic(bound)
-    if far_field is not None and far_field.radius is not None:
-        radius = grown_radius(E, radius)
-    rect = Rectangle(-1e-3 * radius, radius, -radius, 0.0)
-    notes = [Note(Reason.BEYOND_WINDOW, "Im q > 0 is not searched: roots there decay")]
-    try:
-        count, stands = _count(E, rect)
-    except EdgeZeroError:
-        rect = Rectangle(rect.x0, rect.x1, rect.y0, -1e-3 * radius)
-        notes.append(Note(Reason.QUADRATURE, f"a root lies within {1e-3 * radius:.3g} of the real axis"))
-        count, stands = _count(E, rect)
-    if not stands:
-        text = "the count rests on values of E_chr on the window's edge within twice their error of 0"
-        notes.append(Note(Reason.QUADRATURE, text))
-    if progress is not None:
-        progress(0.5)
-    roots = [_induced(E, q, slope, step) for q, slope, step in _locate(E, rect, count)]
-    for root in roots:
-        if root.marginal:
-            text = f"Im q of the root at Re q = {root.re_text} is within its error of 0"
-            notes.append(Note(Reason.QUADRATURE, text))
-    far = far_field
-    if far is not None and far.radius is not None:
-        worst = _far_check(E, radius)
-        far = FarField(radius, worst, far.start)  # the track's own rho on the far edges
-        if worst > MARGIN:
-            reason = f"|E_chr - E_lead| / |E_lead| = {worst:.3g} > {MARGIN} on the window's far edges"
-            far = FarField(None, worst, far.start, reason)
-    if progress is not None:
-        progress(1.0)
-    return FrequencyResult(
-        bound=bound,
-        model=bound.model.vehicle,
-        dps=15,
-        window=rect,
-        roots=tuple(sorted(roots, key=lambda r: float(mpmath.re(r.q)))),
-        count=count,
-        unsearched=(),
-        evaluations=len(E.samples),
-        notes=tuple(notes),
-        far_field=far,
-    )

@@ -223,6 +223,7 @@ def soil_receptance(
     *,
     tol: float = 1e-6,
     rounds: int = ROUNDS,
+    above: bool = False,
 ) -> SoilReceptance:
     """G(Delta_j, Omega) of Eq. (S9) at every ``omega`` (complex, rad/s, Im <= 0) and offset (m).
 
@@ -238,12 +239,15 @@ def soil_receptance(
         Delta = xi_i - xi_j (m).
     tol : float
         Relative accuracy asked of each node's 1/D and of each panel (module docstring).
+    above : bool
+        Also Im Omega > 0: the caller keeps Omega under the singular lines, where the integral along real
+        k is still the continued function (roots/decaying_band.py).
     """
     omega, speed = np.broadcast_arrays(np.asarray(omega, dtype=complex), np.asarray(v, dtype=float))
     shape = omega.shape if omega.ndim else (1,)
     omega, speed = omega.ravel().copy(), speed.ravel().copy()
     offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
-    if np.any(omega.imag > 0):
+    if np.any(omega.imag > 0) and not above:
         raise ValueError("omega: the soil's receptance by real wavenumbers needs Im Omega <= 0")
     k_ref = _reference_wavenumber(track, soil)
     k_omega = (track.m * np.abs(omega) ** 2 / track.EI) ** 0.25

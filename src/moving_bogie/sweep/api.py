@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from moving_bogie.errors import MovingBogieError, ParameterError
-from moving_bogie.kernels.bound import BoundModel
+from moving_bogie.kernels.bound import BoundModel, bind
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams
 from moving_bogie.processes import require_main_guard
@@ -66,7 +66,8 @@ def make_spec(
     """
     if not vary:
         raise ParameterError("vary", "give at least one parameter to vary")
-    params = params.params if isinstance(params, BoundModel) else params
+    bound = bind(params)  # the sweep's entry binds once; every point is bound.replace(...) of it
+    params = bound.params
     si = physical is not None
     known = sweep_parameters(params, si=si)
     for name in vary:
@@ -84,7 +85,7 @@ def make_spec(
             extra["si_ranges"] = extra.pop("ranges")
             extra["ranges"] = {a.name: [str(min(a.values)), str(max(a.values))] for a in axes}
     design = "grid" if sample is None else "sobol"
-    return SweepSpec(params, params.vehicle, axes, design=design, extra=extra, physical=physical, **options)
+    return SweepSpec(bound, params.vehicle, axes, design=design, extra=extra, physical=physical, **options)
 
 
 def _check_units(params: DimensionlessParams, name: str, si: bool) -> None:

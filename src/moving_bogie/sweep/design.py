@@ -211,7 +211,7 @@ class SweepSpec:
     ``bar`` says what moves with the wheel mass (:mod:`~moving_bogie.model.bar`, :attr:`fixed`).
     """
 
-    params: DimensionlessParams
+    bound: BoundModel  # the base point's bound model: each point is bound.replace(...), its track kept
     model: str  # the vehicle's name (params.vehicle), for the store's attributes
     axes: tuple[Axis, ...]
     design: str = "grid"
@@ -245,6 +245,11 @@ class SweepSpec:
                     self.params.replace(**(self.fixed | {a.name: v}))
                 except ParameterError as exc:
                     raise ParameterError("--vary", f"--vary {a.label}: {exc}") from None
+
+    @property
+    def params(self) -> DimensionlessParams:
+        """The base point's parameters."""
+        return self.bound.params
 
     @property
     def si(self) -> bool:
@@ -290,10 +295,9 @@ class SweepSpec:
         """
         if self.design == "sobol":
             return None
-        bound = BoundModel(self.params)
         for a in self.axes:
             try:
-                polynomial_degree(bound, a.name, set(self.held) - {a.name})
+                polynomial_degree(self.bound, a.name, set(self.held) - {a.name})
             except (ParameterError, AttributeError):
                 continue
             return a.name

@@ -81,7 +81,7 @@ def block_task(spec: SweepSpec, block: Block) -> BlockTask:
         values = tuple(a.values[s] for a, s in zip(spec.axes, block.slices))
     return BlockTask(
         block.index,
-        spec.params,
+        spec.bound,
         tuple(a.name for a in spec.axes),
         values,
         spec.design,

@@ -24,7 +24,6 @@ import numpy as np
 
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.bound import BoundModel
-from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.stability.maps.column import ColumnResult
 from moving_bogie.stability.maps.map import map_columns
 
@@ -74,7 +73,7 @@ class BlockTask:
     """
 
     index: int
-    params: DimensionlessParams
+    bound: BoundModel
     names: tuple[str, ...]
     values: tuple[tuple[Fraction, ...], ...]
     design: str
@@ -117,13 +116,13 @@ def evaluate_block(task: BlockTask) -> dict[str, np.ndarray]:
     settled = np.zeros(shape, dtype=bool)
     roots = np.full((*shape, task.max_roots), complex(np.nan, np.nan))
     # without a column every point is a column of one at its own wheel mass: nothing varies, nothing is held
-    parameter, held = (task.column, task.held) if task.column else (task.params.model.wheel_mass, ())
+    parameter, held = (task.column, task.held) if task.column else (task.bound.model.wheel_mass, ())
     for changes, alphas, thetas, index_grid in groups:
-        params = task.params.replace(**(task.fixed | changes)) if changes else task.params
-        alphas = alphas if alphas is not None else [params.alpha]
-        thetas = thetas if thetas is not None else [getattr(params, parameter)]
+        point = task.bound.replace(**(task.fixed | changes)) if changes else task.bound
+        alphas = alphas if alphas is not None else [point.params.alpha]
+        thetas = thetas if thetas is not None else [getattr(point.params, parameter)]
         options = {"margin": task.margin}
-        columns = map_columns(BoundModel(params), parameter, alphas, thetas, options, held=held)
+        columns = map_columns(point, parameter, alphas, thetas, options, held=held)
         for col, row in zip(columns, index_grid):
             col_settled, col_margin, col_bound = _settled_and_margins(col)
             for j, index in enumerate(row):
@@ -220,8 +219,7 @@ def _check(
     for k in rng.choice(len(candidates), size=min(task.check, len(candidates)), replace=False):
         index = candidates[int(k)]
         try:
-            point = task.params.replace(**(task.fixed | _point(task, index)))
-            res = induced_frequencies(BoundModel(point), dps=15)
+            res = induced_frequencies(task.bound.replace(**(task.fixed | _point(task, index))), dps=15)
         except MovingBogieError:
             continue
         if not (res.count_ok and res.verdict.determined):

@@ -13,6 +13,7 @@ from moving_bogie.sweep.design import SweepSpec
 from moving_bogie.sweep.store import StorePath, consolidate, prepare_store, store_group, write_block
 
 if TYPE_CHECKING:
+    from moving_bogie.kernels.bound import BoundModel
     from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.stability.maps.map import StabilityMap
 
@@ -20,9 +21,15 @@ __all__ = ["write_map"]
 
 
 def write_map(
-    path: StorePath, smap: StabilityMap, *, overwrite: bool = False, physical: PhysicalParams | None = None
+    path: StorePath,
+    smap: StabilityMap,
+    bound: BoundModel,
+    *,
+    overwrite: bool = False,
+    physical: PhysicalParams | None = None,
 ) -> Path:
-    """Write a :class:`~moving_bogie.stability.maps.map.StabilityMap` as a 2-D sweep store (alpha, parameter).
+    """Write a :class:`~moving_bogie.stability.maps.map.StabilityMap` as a 2-D sweep store (alpha, parameter);
+    ``bound`` is the bound model the map was computed with.
 
     With ``physical`` (the SI parameters of the map's base point) the store is in SI units, as a sweep of
     a ``[physical]`` input: dimensions ``v``, ``M``, ... (each SI value the group times
@@ -46,7 +53,7 @@ def write_map(
     axes = (axis("alpha", smap.alphas), axis(smap.parameter, smap.thetas))
     bar = "fixed" if smap.held else "follows"
     margin = smap.margin is not None  # the map's margin is stored as a sweep's with --margin
-    spec = SweepSpec(smap.params, smap.model, axes, check=0, physical=physical, bar=bar, margin=margin)
+    spec = SweepSpec(bound, smap.model, axes, check=0, physical=physical, bar=bar, margin=margin)
     path = prepare_store(path, spec, overwrite=overwrite)
     certain = ~smap.uncertain.T
     n = np.where(certain, smap.count.T, -1).astype(np.int16)

@@ -35,6 +35,7 @@ __all__ = [
     "PointGrid",
     "block_points",
     "point_axes",
+    "point_values",
     "SLEEPER_ATTRS",
     "SLEEPER_VARIABLES",
     "SleeperLayout",
@@ -131,6 +132,13 @@ def point_axes(
     ranges = dict(parse_vary(f"{n}={s}", known, needs_count=False) for n, s in vary.items())
     extra = {"ranges": {k: [str(v) for v in r] for k, r in ranges.items()}, "n": sample, "seed": 0}
     return sobol_axes(ranges, sample), extra, "sobol"
+
+
+def point_values(ds: Any, variable: str, at: tuple[Any, ...], names: Collection[str]) -> dict[str, float]:
+    """The value of the parameters ``names`` at the index ``at`` of the data variable ``variable`` of a
+    finished store ``ds`` (each parameter a coordinate along one of its dimensions)."""
+    dims = list(ds[variable].dims)
+    return {name: float(ds[name].values[at[dims.index(ds[name].dims[0])]]) for name in names}
 
 
 def block_points(

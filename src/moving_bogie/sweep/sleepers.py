@@ -31,6 +31,7 @@ from moving_bogie.sweep.sleeper_store import (
     block_points,
     create_sleeper_store,
     point_axes,
+    point_values,
     write_sleeper_block,
 )
 
@@ -224,10 +225,7 @@ def sleeper_summary(spec: SleeperSweepSpec, ds: xarray.Dataset) -> dict[str, Any
     fastest = None
     if np.isfinite(growth).any():
         at = np.unravel_index(int(np.nanargmax(growth)), growth.shape)
-        dims = list(ds.unstable.dims)
-        fastest = {"growth_rate_1_s": float(growth[at])} | {
-            name: float(ds[name].values[at[dims.index(ds[name].dims[0])]]) for name in spec.units
-        }
+        fastest = {"growth_rate_1_s": float(growth[at])} | point_values(ds, "unstable", at, spec.units)
     return {
         "model": spec.model,
         "unstable_fraction": float(ds.unstable.values.mean()),

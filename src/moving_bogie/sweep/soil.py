@@ -30,6 +30,7 @@ from moving_bogie.sweep.sleeper_store import (
     block_points,
     create_sleeper_store,
     point_axes,
+    point_values,
     write_sleeper_block,
 )
 
@@ -216,8 +217,5 @@ def soil_summary(spec: SoilSweepSpec, ds: Any) -> dict[str, Any]:
             out[label] = None
             continue
         at = np.unravel_index(int(pick(v)), v.shape)
-        dims = list(ds.v_cr.dims)
-        out[label] = {"v_cr": float(v[at])} | {
-            name: float(ds[name].values[at[dims.index(ds[name].dims[0])]]) for name in spec.units
-        }
+        out[label] = {"v_cr": float(v[at])} | point_values(ds, "v_cr", at, spec.units)
     return out

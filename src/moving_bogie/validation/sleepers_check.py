@@ -26,13 +26,13 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
+from typing import TypeVar
 
 import numpy as np
 
-from moving_bogie.kernels.hill import FloquetSystem, VehicleMatrices
+from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.sleeper_track import SleeperTrack
-from moving_bogie.response.steady_bay import SteadyResponse, steady_response
-from moving_bogie.roots.strip import FloquetResult, floquet_frequencies
+from moving_bogie.response.steady_bay import SteadyResponse
 from moving_bogie.validation.sleeper_verdict import Comparison, SleeperCheck
 from moving_bogie.validation.sleepers_beam import BeamRun, simulate_sleeper_beam
 from moving_bogie.validation.sleepers_fit import (
@@ -43,96 +43,38 @@ from moving_bogie.validation.sleepers_fit import (
     periodic_limit,
     smooth_steps,
 )
-from moving_bogie.validation.sleepers_rail import SleeperRail
+from moving_bogie.validation.sleepers_floquet import STEADY_TOL, FloquetSide, floquet_frequency, floquet_side
+from moving_bogie.validation.sleepers_rail import (
+    ABSORBING,
+    MARGIN,
+    SleeperBeamSettings,
+    SleeperRail,
+    rail_for_run,
+)
 
 __all__ = [
+    "ABSORBING",
+    "MARGIN",
     "Comparison",
     "FloquetSide",
     "SleeperBeamSettings",
     "SleeperCheck",
+    "STEADY_TOL",
     "check_sleepers",
+    "floquet_frequency",
     "floquet_side",
 ]
-
-#: the rail beyond the wheels' path at each end, in units of 1 / chi (the static deflection decays like
-#: e^{-x} cos x: below 1e-4 of its peak there)
-MARGIN = 10.0
-
-#: the absorbing layer beyond the margin at each end, in units of 1 / chi (sleepers_rail.ABSORBING_DAMPING):
-#: the waves the wheels radiate along the rail die in it rather than return from the ends to the wheels
-ABSORBING = 15.0
-
 
 #: the periodic limit read from the fit window's last three quarters must agree with the whole window's
 #: within this fraction of the tolerance (relative to the limit's peak-to-peak); otherwise the window holds
 #: too few periods to separate the transient's modes, and the loaded run is made again, twice as long (once)
 WINDOW_AGREEMENT = 0.25
 
-#: the Floquet steady response's convergence in the harmonics, relative to its largest value (the mean force
-#: 2): a hundredth of its default, so that its truncation stays far below the tolerance on the force's
-#: peak-to-peak, a few percent of the mean
-STEADY_TOL = 1e-5
-
-
-@dataclass(frozen=True)
-class SleeperBeamSettings:
-    """The finite model's resolution: Hermite elements per bay, time steps per bay-passing period, the
-    periods of the free run, the fraction of them left out of the fit as the transient, the rail beyond
-    the wheels' path at each end and the absorbing layer beyond it (units of 1 / chi; 0: pinned ends
-    that reflect)."""
-
-    elements: int = 8
-    steps_per_period: int = 200
-    periods: int = 40
-    transient: float = 0.4
-    margin: float = MARGIN
-    absorbing: float = ABSORBING
-
-
-def _dominant_root(result: FloquetResult) -> complex | None:
-    roots = [r.q for r in result.roots if r.q.imag <= 0]
-    return min(roots, key=lambda q: q.imag) if roots else None
-
-
-def floquet_frequency(track: SleeperTrack, vehicle: VehicleMatrices, q: complex, N: int) -> float:
-    """``|Re q + n Omega_0|`` for the harmonic n with the largest contact displacement in the null vector of
-    the Hill matrix (S13) at the root ``q`` (the smallest right singular vector)."""
-    system = FloquetSystem(track, vehicle, N, tol=1e-10)
-    matrix, _ = system.matrix(q)
-    null = np.linalg.svd(matrix)[2][-1].conj()
-    c = vehicle.contacts
-    amplitudes = np.abs(null[: system.harmonics.size * c].reshape(-1, c)[:, 0])
-    n = system.harmonics[int(np.argmax(amplitudes))]
-    return abs(q.real + n * track.Omega0)
+T = TypeVar("T")
 
 
 def _relative(floquet: float, finite: float) -> float:
     return abs(finite - floquet) / abs(floquet) if floquet != 0 else math.inf
-
-
-@dataclass(frozen=True)
-class FloquetSide:
-    """The Floquet theory's answers: the search, its least damped root with Im q <= 0 and that root's
-    dominant frequency (an unstable case), or the steady response (a stable one); the wall time."""
-
-    result: FloquetResult
-    root: complex | None
-    frequency: float | None
-    steady: SteadyResponse | None
-    seconds: float
-
-
-def floquet_side(
-    track: SleeperTrack, vehicle: VehicleMatrices, loads: np.ndarray, harmonics: tuple[int, int] = (1, 6)
-) -> FloquetSide:
-    """Roots by :func:`floquet_frequencies` (N from ``harmonics[0]`` to ``harmonics[1]``), then the root's
-    frequency (:func:`floquet_frequency`) or the steady response (:func:`steady_response`)."""
-    start = time.perf_counter()
-    result = floquet_frequencies(track, vehicle, N0=harmonics[0], N_max=harmonics[1])
-    root = _dominant_root(result)
-    nu = None if root is None else floquet_frequency(track, vehicle, root, result.harmonics)
-    steady = None if root is not None else steady_response(track, vehicle, loads, points=129, tol=STEADY_TOL)
-    return FloquetSide(result, root, nu, steady, time.perf_counter() - start)
 
 
 def _stage(
@@ -246,20 +188,6 @@ def _steady_comparison(
     return comparison, limit, references[0]
 
 
-def _finite_rail(
-    track: SleeperTrack, vehicle: VehicleMatrices, settings: SleeperBeamSettings, periods: int
-) -> tuple[SleeperRail, float]:
-    """The rail for a run of ``periods`` bay-passing periods and the rear wheel's start on it: the wheels'
-    path (the travel and the vehicle's length) between two margins, each with an absorbing layer beyond."""
-    margin = math.ceil(settings.margin / track.lam)
-    layer = math.ceil(settings.absorbing / track.lam)
-    offsets = np.asarray(vehicle.positions, float)
-    span = float(np.ptp(offsets)) if offsets.size else 0.0
-    travel = math.ceil((periods * track.lam + span) / track.lam) + 1
-    rail = SleeperRail(track, 2 * (margin + layer) + travel, settings.elements, layer)
-    return rail, (margin + layer) * track.lam - float(np.min(offsets, initial=0.0))
-
-
 @dataclass(frozen=True)
 class _SteadyCheck:
     """The steady force's comparison, the loaded run it read, its periodic limit and the Floquet force."""
@@ -268,6 +196,33 @@ class _SteadyCheck:
     loaded: BeamRun
     limit: PeriodicLimit
     reference: np.ndarray
+
+
+def _twice(
+    attempt: Callable[[int, Callable[[float], None] | None], tuple[T, float]],
+    periods: int,
+    limit: float,
+    what: str,
+    notes: list[str],
+    progress: Callable[[float], None] | None,
+) -> tuple[T, int]:
+    """``attempt(periods, progress)`` -> (its result, how far ``what`` moves between the fit window and its
+    last three quarters); made once more over twice the periods when that move exceeds ``limit`` (too few
+    periods to separate the transient's modes), noted, as a move left after that is. Returns the last
+    result and its periods."""
+    for again in (False, True):
+        result, moved = attempt(periods, None if again else progress)
+        if moved <= limit:
+            break
+        told = (
+            f"{what} moved by {moved:.2%} between the fit window and its last three quarters over {periods}"
+        )
+        if again:
+            notes.append(f"{told} periods, made again: the record may be too short")
+        else:
+            notes.append(f"{told} periods: the run is made again over {2 * periods}")
+            periods *= 2
+    return result, periods
 
 
 def _steady_check(
@@ -281,36 +236,24 @@ def _steady_check(
 ) -> _SteadyCheck:
     """The loaded run of ``settings.periods`` (``run(periods, progress=)``) against the Floquet steady force;
     run again with twice the periods when its periodic limit moves by more than ``WINDOW_AGREEMENT tol``
-    between the fit window and its last three quarters (noted, as a move left after that is)."""
+    between the fit window and its last three quarters (:func:`_twice`)."""
     T0 = track.lam / track.alpha
-    periods = settings.periods
-    loaded = run(periods, progress=progress)
-    start = settings.transient * periods * T0
-    comparison, limit, reference = _steady_comparison(track, steady, loaded, T0, start, tol)
-    moved = _window_change(loaded, limit, T0, start)
-    if moved > WINDOW_AGREEMENT * tol:
-        notes.append(
-            f"the loaded run's periodic limit moved by {moved:.2%} of its peak-to-peak between the fit "
-            f"window and its last three quarters over {periods} periods: the run is made again over "
-            f"{2 * periods}"
-        )
-        periods *= 2
-        loaded = run(periods)
+
+    def attempt(periods: int, stage: Callable[[float], None] | None) -> tuple[_SteadyCheck, float]:
+        loaded = run(periods, progress=stage)
         start = settings.transient * periods * T0
         comparison, limit, reference = _steady_comparison(track, steady, loaded, T0, start, tol)
-        moved = _window_change(loaded, limit, T0, start)
-        if moved > WINDOW_AGREEMENT * tol:
-            notes.append(
-                f"the loaded run's periodic limit still moves by {moved:.2%} of its peak-to-peak between the "
-                f"fit window and its last three quarters over {periods} periods: the record may be too short"
-            )
-    notes.extend(limit.notes(tol))
+        return _SteadyCheck(comparison, loaded, limit, reference), _window_change(loaded, limit, T0, start)
+
+    what = "the loaded run's periodic limit (relative to its peak-to-peak)"
+    checked = _twice(attempt, settings.periods, WINDOW_AGREEMENT * tol, what, notes, progress)[0]
+    notes.extend(checked.limit.notes(tol))
     if not steady.converged:
         notes.append(
             f"the Floquet steady response still changes by {steady.change:.2g} of its largest value at its "
             f"last harmonics (asked: {STEADY_TOL:g})"
         )
-    return _SteadyCheck(comparison, loaded, limit, reference)
+    return checked
 
 
 def _run(
@@ -324,9 +267,16 @@ def _run(
     loaded: bool,
     progress: Callable[[float], None] | None = None,
 ) -> BeamRun:
-    """A run of ``periods`` bay-passing periods on its rail (:func:`_finite_rail`, kept in ``rails``)."""
+    """A run of ``periods`` bay-passing periods on its rail (:func:`rail_for_run`, kept in ``rails``)."""
     if periods not in rails:
-        rails[periods] = _finite_rail(track, vehicle, settings, periods)
+        rails[periods] = rail_for_run(
+            track,
+            vehicle.positions,
+            periods * track.lam,
+            settings.elements,
+            settings.margin,
+            settings.absorbing,
+        )
     rail, entry = rails[periods]
     T0 = track.lam / track.alpha
     return simulate_sleeper_beam(
@@ -344,21 +294,25 @@ def _growing(
     notes: list[str],
     progress: Callable[[float], None] | None,
 ) -> tuple[BeamRun, FloquetFit, float, FloquetFit]:
-    """(free run, its fit, the fit's spread, the fit at twice the step) of an unstable case: the free runs
-    made again over twice the periods when the rate moves by more than ``WINDOW_AGREEMENT tol`` between
-    the fit window and its last three quarters (noted), then the same run at ``2 dt``
-    (:func:`extrapolated`)."""
-    T0, periods = fit.period, settings.periods
+    """(free run, its fit, the fit's spread, the fit at twice the step) of an unstable case: the free run
+    (``free``, already made over ``settings.periods``) made again over twice the periods when the rate
+    moves by more than ``WINDOW_AGREEMENT tol`` between the fit window and its last three quarters
+    (:func:`_twice`), then the same run at ``2 dt`` (:func:`extrapolated`)."""
+    T0 = fit.period
     dt = T0 / settings.steps_per_period
-    moved = _rate_change(free, fit, T0)
-    if moved > WINDOW_AGREEMENT * tol:  # too few periods to separate the modes: twice as many (once)
-        notes.append(
-            f"the free vibration's rate moved by {moved:.2%} between the fit window and its last three "
-            f"quarters over {periods} periods: the runs are made over {2 * periods}"
-        )
-        periods *= 2
-        free = run(periods, dt, False)
-        fit, spread = _free_vibration_fit(free, T0, settings.transient * periods * T0, notes)
+
+    def attempt(periods: int, _: object) -> tuple[tuple[BeamRun, FloquetFit, float], float]:
+        if periods == settings.periods:
+            made = (free, fit, spread)
+        else:
+            again = run(periods, dt, False)
+            made = (again, *_free_vibration_fit(again, T0, settings.transient * periods * T0, notes))
+        return made, _rate_change(made[0], made[1], T0)
+
+    what = "the free vibration's rate"
+    (free, fit, spread), periods = _twice(
+        attempt, settings.periods, WINDOW_AGREEMENT * tol, what, notes, None
+    )
     coarse_run = run(periods, 2 * dt, False, progress)
     coarse = _free_vibration_fit(coarse_run, T0, settings.transient * periods * T0, notes)[0]
     return free, fit, spread, coarse

@@ -23,6 +23,7 @@ the moving vehicle.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -32,7 +33,7 @@ import scipy.sparse as sp
 from moving_bogie.errors import MovingBogieError
 from moving_bogie.kernels.sleeper_track import SleeperTrack
 
-__all__ = ["SleeperRail", "hermite_shapes"]
+__all__ = ["ABSORBING", "MARGIN", "SleeperBeamSettings", "SleeperRail", "hermite_shapes", "rail_for_run"]
 
 
 #: unknowns per node: the deflection and its first two x-derivatives (quintic Hermite elements, C2)
@@ -223,3 +224,48 @@ class SleeperRail:
         dofs = self._index[PER_NODE * e : PER_NODE * e + 2 * PER_NODE]
         ok = dofs >= 0
         return dofs[ok], shapes[0][ok], shapes[1][ok], shapes[2][ok]
+
+
+#: the rail beyond the wheels' path at each end, in units of 1 / chi (the static deflection decays like
+#: e^{-x} cos x: below 1e-4 of its peak there)
+MARGIN = 10.0
+
+#: the absorbing layer beyond the margin at each end, in units of 1 / chi (sleepers_rail.ABSORBING_DAMPING):
+#: the waves the wheels radiate along the rail die in it rather than return from the ends to the wheels
+ABSORBING = 15.0
+
+
+@dataclass(frozen=True)
+class SleeperBeamSettings:
+    """The finite model's resolution: Hermite elements per bay, time steps per bay-passing period, the
+    periods of the free run, the fraction of them left out of the fit as the transient, the rail beyond
+    the wheels' path at each end and the absorbing layer beyond it (units of 1 / chi; 0: pinned ends
+    that reflect)."""
+
+    elements: int = 8
+    steps_per_period: int = 200
+    periods: int = 40
+    transient: float = 0.4
+    margin: float = MARGIN
+    absorbing: float = ABSORBING
+
+
+def rail_for_run(
+    track: SleeperTrack,
+    positions: np.ndarray,
+    travel: float,
+    elements: int,
+    margin: float,
+    absorbing: float,
+) -> tuple[SleeperRail, float]:
+    """The rail for a run over ``travel`` (in units of 1 / chi) of wheels at ``positions`` (their offsets from
+    the rear wheel), and the rear wheel's start on it: the wheels' path (the travel and the vehicle's
+    length) between two ``margin`` long, each with an ``absorbing`` layer beyond (units of 1 / chi), in
+    ``elements`` Hermite elements per bay."""
+    margin_bays = math.ceil(margin / track.lam)
+    layer = math.ceil(absorbing / track.lam)
+    offsets = np.asarray(positions, float)
+    span = float(np.ptp(offsets)) if offsets.size else 0.0
+    bays = math.ceil((travel + span) / track.lam) + 1
+    rail = SleeperRail(track, 2 * (margin_bays + layer) + bays, elements, layer)
+    return rail, (margin_bays + layer) * track.lam - float(np.min(offsets, initial=0.0))

@@ -5,7 +5,8 @@ Each velocity is one column, a bound model of its own: its crossings on 0 < q <=
 root of the masses of the axis, :func:`~moving_bogie.stability.maps.real_axis.window_column`) at masses
 from the axis' first give the number of growing roots at every wheel mass at once, none at M -> 0 plus the
 signed crossings below M, as on sleepers
-(:mod:`~moving_bogie.stability.maps.sleeper_map`, whose map, parts and figure it shares). No cell is
+(:mod:`~moving_bogie.stability.maps.sleeper_map`, whose map and figure it shares, and whose columns'
+workers and checkpoint, :mod:`~moving_bogie.stability.maps.d_map`). No cell is
 searched. A column whose crossings carry a note is ``uncertain``. The columns are spread over ``workers``
 processes and kept, one by one, under ``checkpoint``.
 """
@@ -18,10 +19,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from moving_bogie.checkpoint import Checkpoint, Part, run_parts
 from moving_bogie.stability.maps.d_lines import DColumn
+from moving_bogie.stability.maps.d_map import column_notes, count_columns
 from moving_bogie.stability.maps.real_axis import window_column
-from moving_bogie.stability.maps.sleeper_map import SleeperMap, column_arrays, keep_freed_memory, part_column
+from moving_bogie.stability.maps.sleeper_map import SleeperMap
 
 if TYPE_CHECKING:
     from moving_bogie.kernels.bound import BoundModel
@@ -33,15 +34,13 @@ REGION = "with Re Omega >= 0 and Im Omega < 0"
 METHOD = "D-decomposition in the wheel mass along real Omega at each velocity, count 0 at M -> 0"
 
 
-def _column_part(task: tuple[BoundModel, BoundModel, float, float, int]) -> Part:
-    """The column of ``task`` = (bound, equivalent, eta_max, eta_min, samples) as arrays (a checkpoint's
-    part; the strip width of a sleeper column holds the radius S scanned)."""
-    keep_freed_memory()
-    bound, equivalent, eta_max, eta_min, samples = task
+def _column(
+    bound: BoundModel, equivalent: BoundModel, eta_max: float, eta_min: float, samples: int
+) -> DColumn:
+    """The column of one velocity (:func:`~moving_bogie.stability.maps.real_axis.window_column`); the strip
+    width of a sleeper column holds the radius S scanned."""
     col = window_column(bound, equivalent=equivalent, eta_max=eta_max, eta_min=eta_min, samples=samples)
-    return column_arrays(
-        DColumn(col.alpha, col.q_max, col.crossings, 0, col.samples, col.evaluations, col.notes)
-    )
+    return DColumn(col.alpha, col.q_max, col.crossings, 0, col.samples, col.evaluations, col.notes)
 
 
 def real_axis_map(
@@ -78,19 +77,15 @@ def real_axis_map(
     vs, ms = np.asarray(velocities, dtype=float), np.asarray(masses, dtype=float)
     v_ref, unit, t_scale = scales
     eta_max, eta_min = float(ms.max()) / unit, float(ms.min()) / unit
-    tasks = [(bound, equivalent, eta_max, eta_min, samples) for bound, equivalent in bounds]
-    kept = None
-    if checkpoint is not None:
-        job = {"identity": identity, "velocities": vs.tolist(), "eta_max": eta_max, "samples": samples}
-        kept = Checkpoint.open(checkpoint, "real-axis-map", job, resume=resume)
-    parts = run_parts(
-        _column_part, tasks, workers=workers, checkpoint=kept, progress=progress, what="columns"
-    )
-    columns = [part_column(p) for p in parts]
-    count = np.stack([col.counts(ms / unit) for col in columns], axis=1)
+    tasks = [(_column, (bound, equivalent, eta_max, eta_min, samples)) for bound, equivalent in bounds]
+    job = {"identity": identity, "velocities": vs.tolist(), "eta_max": eta_max, "samples": samples}
+    columns, count, kept = count_columns(
+        tasks, ms / unit, kind="real-axis-map", job=job, workers=workers, progress=progress,
+        checkpoint=checkpoint, resume=resume,
+    )  # fmt: skip
     if kept is not None:
         kept.remove()
-    notes = [f"v = {col.alpha * v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
+    notes = column_notes(columns, v_ref)
     return SleeperMap(
         name, vs, ms, v_ref, unit, t_scale, tuple(columns), count, (), tuple(notes),
         track=track, region=REGION, method=METHOD,

@@ -12,16 +12,14 @@ converged in the harmonics or a sign change not resolved is said in ``notes`` an
 from __future__ import annotations
 
 import csv
-import ctypes
 import io
-import multiprocessing
 import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from moving_bogie.checkpoint import Checkpoint, Part, run_parts
+from moving_bogie.checkpoint import Part, run_parts
 from moving_bogie.errors import JobInterrupted, ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.hill import VehicleMatrices
@@ -31,7 +29,8 @@ from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.scales import Scales
 from moving_bogie.roots.strip import floquet_frequencies
-from moving_bogie.stability.maps.d_lines import DColumn, DCrossing, d_column
+from moving_bogie.stability.maps.d_lines import DColumn, d_column
+from moving_bogie.stability.maps.d_map import column_notes, count_columns, keep_freed_memory
 
 __all__ = ["MapCheck", "SleeperMap", "sleeper_map"]
 
@@ -187,60 +186,6 @@ def column_at(bound: BoundModel, scales: Scales, v: float, eta_max: float, N: in
     return d_column(pencil, eta_max=eta_max, samples=samples)
 
 
-#: glibc's mallopt parameters, and the values a worker process sets (bytes)
-_M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
-_WORKER_HEAP = {_M_MMAP_THRESHOLD: 1 << 26, _M_TRIM_THRESHOLD: 1 << 27}
-
-
-def keep_freed_memory() -> bool:
-    """In a worker process on glibc: arrays below 64 MB from the heap, which keeps up to 128 MB of freed
-    memory instead of giving it back to the system at once. The receptance's quadrature makes and frees
-    arrays of a few MB at every panel round; by default glibc maps each anew or trims the heap after it,
-    and the worker spends a fifth of its time in the page faults of fresh memory. Only in workers (the
-    caller's own process is left as it is); True when set. Cheap: called at every task."""
-    if multiprocessing.parent_process() is None:
-        return False
-    try:
-        mallopt = ctypes.CDLL("libc.so.6").mallopt
-    except (OSError, AttributeError):  # not glibc
-        return False
-    return all(mallopt(option, value) == 1 for option, value in _WORKER_HEAP.items())
-
-
-def column_part(task: tuple[BoundModel, Scales, float, float, int, int]) -> Part:
-    """The column of ``task`` = (bound, scales, v, eta_max, N, samples) as arrays (a checkpoint's part)."""
-    keep_freed_memory()
-    return column_arrays(column_at(*task))
-
-
-def column_arrays(col: DColumn) -> Part:
-    """A column as arrays (a checkpoint's part), read back exactly by :func:`part_column`."""
-    crossings = col.crossings
-    return {
-        "alpha": np.array(col.alpha),
-        "Omega0": np.array(col.Omega0),
-        "sizes": np.array([col.harmonics, col.samples, col.evaluations]),
-        "q": np.array([c.q for c in crossings], dtype=float),
-        "eta_M": np.array([c.eta_M for c in crossings], dtype=float),
-        "change": np.array([c.change for c in crossings], dtype=int),
-        "moved": np.array([c.moved for c in crossings], dtype=float),
-        "notes": np.array(col.notes, dtype=str),
-    }
-
-
-def part_column(part: Part) -> DColumn:
-    """The column of :func:`column_part`, read back exactly."""
-    crossings = tuple(
-        DCrossing(float(q), float(e), int(c), float(m))
-        for q, e, c, m in zip(part["q"], part["eta_M"], part["change"], part["moved"])
-    )
-    harmonics, samples, evaluations = (int(x) for x in part["sizes"])
-    notes = tuple(str(n) for n in part["notes"])
-    return DColumn(
-        float(part["alpha"]), float(part["Omega0"]), crossings, harmonics, samples, evaluations, notes
-    )
-
-
 def check_cell(bound: BoundModel, scales: Scales, v: float, M: float, map_count: int) -> MapCheck:
     """floquet_frequencies at (v, M): its count beside the map's."""
     module = bound.vehicle
@@ -295,8 +240,7 @@ def _check_plane(bound: BoundModel, scales: Scales, vs: np.ndarray) -> None:
 
 def _notes(columns: Sequence[DColumn], checks: Sequence[MapCheck], v_ref: float) -> list[str]:
     """The columns' notes and every check that disagrees with the map, with their (v, M) in SI."""
-    notes = [f"v = {col.alpha * v_ref:.6g} m/s: {note}" for col in columns for note in col.notes]
-    return notes + [
+    return column_notes(columns, v_ref) + [
         f"v = {c.v:.6g} m/s, M = {c.M:.6g} kg: the map counts {c.map_count} unstable root(s), "
         f"floquet_frequencies {c.search_count} ({c.verdict.upper()})"
         for c in checks
@@ -349,16 +293,14 @@ def sleeper_map(
     _check_plane(bound, scales, vs)
     unit = scales.mass
     eta_max = float(ms.max()) / unit
-    tasks = [(bound, scales, float(v), eta_max, N, samples) for v in vs]
-    kept = None
-    if checkpoint is not None:
-        job = {"data": repr(bound), "velocities": vs.tolist(), "eta_max": eta_max, "N": N, "samples": samples}
-        kept = Checkpoint.open(checkpoint, "sleeper-map", job, resume=resume)
+    tasks = [(column_at, (bound, scales, float(v), eta_max, N, samples)) for v in vs]
+    job = {"data": repr(bound), "velocities": vs.tolist(), "eta_max": eta_max, "N": N, "samples": samples}
     share = len(tasks) / (len(tasks) + 16 * verify)  # about 2 checks per verified column, 8 columns each
     part = None if progress is None else (lambda x: progress(share * x))
-    parts = run_parts(column_part, tasks, workers=workers, checkpoint=kept, progress=part, what="columns")
-    columns = [part_column(p) for p in parts]
-    count = np.stack([col.counts(ms / unit) for col in columns], axis=1)
+    columns, count, kept = count_columns(
+        tasks, ms / unit, kind="sleeper-map", job=job, workers=workers, progress=part,
+        checkpoint=checkpoint, resume=resume,
+    )  # fmt: skip
     cells = _verify_cells(count, columns, ms, verify)
     checked = [(bound, scales, float(vs[i]), float(ms[j]), int(count[j, i])) for i, j in cells]
     part = None if progress is None else (lambda x: progress(share + (1 - share) * x))
