@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.roots.frequencies import FrequencyResult
+    from moving_bogie.soil_vehicle import ThresholdMass
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
     from moving_bogie.stability.maps.map import StabilityMap
@@ -65,6 +66,7 @@ __all__ = [
     "speed_regime",
     "validate_on_supports",
     "stability_map",
+    "threshold_mass",
     "validate",
 ]
 
@@ -375,3 +377,39 @@ def stability_map(params: DimensionlessParams | PhysicalParams | BoundModel, **o
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
     return replace(result, units=PlaneUnits.of(result.params, params, operating=True))
+
+
+def threshold_mass(
+    vehicle: SoilVehicle, M_max: float, *, progress: Callable[[float], None] | None = None
+) -> ThresholdMass:
+    """The threshold mass of ``vehicle`` at its speed (:class:`~moving_bogie.soil_vehicle.ThresholdMass`),
+    masses up to ``M_max`` (kg, as the file gives them) down to M_max /
+    :data:`~moving_bogie.soil_vehicle.LIGHTEST`
+    (:func:`~moving_bogie.stability.maps.real_axis.window_column`: the real axis sampled beyond every real
+    root of those masses, the Winkler equivalent's far field).
+
+    Examples
+    --------
+    >>> import moving_bogie as mb
+    >>> vehicle = mb.load_soil_vehicle("examples/soil-unstable.toml")
+    >>> found = mb.threshold_mass(vehicle, M_max=240e3)  # doctest: +SKIP
+    >>> round(found.threshold["M"])  # doctest: +SKIP
+    27552
+    """
+    from moving_bogie.soil_vehicle import LIGHTEST, ThresholdMass
+    from moving_bogie.stability.maps.real_axis import window_column
+
+    if not M_max > 0:
+        raise ParameterError("M_max", f"M_max must be a positive mass in kg (got {M_max!r})")
+    physical = vehicle.physical
+    unit = physical.si_factor(physical.to_dimensionless().model.wheel_mass) / vehicle.input.rail_factor
+    bound = bind(vehicle)
+    col = window_column(
+        bound,
+        equivalent=BoundModel(bound.params),
+        eta_max=M_max / unit,
+        eta_min=M_max / unit / LIGHTEST,
+        progress=progress,
+    )
+    omega_0 = float(bound.track.omega_0)  # type: ignore[attr-defined]
+    return ThresholdMass.from_column(col, M_max, omega_0, unit)
