@@ -413,9 +413,12 @@ def test_the_check_in_si_is_the_dimensionless_check_times_the_scales(monkeypatch
     assert list(si.quantities) == ["steady force over a bay"] and si.finite is None and si.closed is None
     assert si.model == plain.model == "eb/sleepers/mass" and si.agrees and plain.agrees
     out, bare = si.to_dict(), plain.to_dict()
-    from moving_bogie.validation.verdict import VERDICT_KEYS
+    from moving_bogie.validation.verdict import CHECK_KEYS, VERDICT_KEYS
 
     assert set(VERDICT_KEYS) <= set(out)  # the continuous tracks' keys, same meaning
+    assert set(CHECK_KEYS) <= set(out) and out["n_modes"] is None and out["L"] > 0  # and all of theirs
+    (name,) = out["quantities"]
+    assert {"max_abs_diff", "amplitude", "floquet", "finite_beam"} <= set(out["quantities"][name])
     assert out["params"] == params.to_dict() and (out["beam"], out["track"]) == ("eb", "sleepers")
     assert out["relative_diff"] == {c["quantity"]: c["relative_diff"] for c in out["comparisons"]}
     assert "floquet_si" not in bare["comparisons"][0] and "dt_s" not in bare["finite_beam"]
