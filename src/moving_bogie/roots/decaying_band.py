@@ -57,8 +57,22 @@ __all__ = ["DecayingBand", "decaying_band", "soil_depth"]
 #: Rectangles of the staircase; wavenumbers per sign and edge samples of the track's scan; depth halvings;
 #: refinements of the scan's edge.
 STEPS, K_POINTS, EDGE_POINTS, HALVINGS, REFINE = 2, 16, 24, 5, 4
+#: The band's count: the receptance's relative tolerance, the largest step of arg E_chr and the initial
+#: samples along a rectangle's long side (refined where the phase turns; the guard of
+#: :func:`~moving_bogie.roots.quadrature_window.count_rectangle` recounts at the track's own tolerance
+#: where an error reaches |E_chr| / 2).
+BAND_TOL, BAND_STEP, BAND_SAMPLES = 1e-2, np.pi / 3, 4
 #: The least phase speed of the soil's free waves over its least shear speed (module docstring).
 SLOWEST, SLOWEST_ANY_NU = 0.87, 0.5
+
+
+class BandRectangle(Rectangle):
+    """A rectangle of the band: its first boundary samples at about the spacing asked on every edge, at
+    least one segment per edge (a :class:`Rectangle` takes at least 8 per edge, which on a thin band's
+    short sides costs values of E_chr that the phase does not need; the count refines where it turns)."""
+
+    def boundary(self, spacing: float, least: int = 1) -> np.ndarray:
+        return super().boundary(spacing, least)
 
 
 def soil_depth(soil: SoilProfile, v: float, x: float) -> float:
@@ -236,7 +250,7 @@ def decaying_band(E: QuadratureCharacteristic, radius: float, steps: int = STEPS
         for _ in range(HALVINGS + 1):
             si = Rectangle(x0 * scale, x1 * scale, 0.0, depth * scale)
             if track_waves_clear(track, soil, rail.v, si):
-                rects.append(Rectangle(x0, x1, 0.0, depth))
+                rects.append(BandRectangle(x0, x1, 0.0, depth))
                 break
             depth /= 2
         else:
@@ -245,7 +259,7 @@ def decaying_band(E: QuadratureCharacteristic, radius: float, steps: int = STEPS
     roots = []
     for rect in rects:
         try:
-            n, stands = count_rectangle(E, rect)
+            n, stands = count_rectangle(E, rect, BAND_TOL, BAND_STEP, BAND_SAMPLES)
         except EdgeZeroError:
             counts.append(None)
             continue
