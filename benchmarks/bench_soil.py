@@ -19,9 +19,9 @@ In one run, wall time of:
   the roots, the verdict and the band of decaying roots above the axis; the ``frequencies --file``
   command adds the critical velocity, above),
   target under 10 s, and a DAF curve of 100 speeds (20 to 120 m/s, ``moving_load``: every grid speed,
-  the static deflection and the golden-section peak), target under 10 s; each beside the same work by the
-  code before when ``--before REV`` names a commit (checked out into a temporary worktree) or a checkout,
-  run in a subprocess of this script, with the answers of both;
+  the static deflection and the peak refined between grid speeds), target under 10 s; each beside the
+  same work by the code before when ``--before REV`` names a commit (checked out into a temporary
+  worktree) or a checkout, run in a subprocess of this script, with the answers of both;
 - the machine's load average over the run (the timings scale with it on a shared machine).
 
 Prints a table; nothing is asserted (tests/test_soil_*.py check the values).

@@ -59,7 +59,7 @@ def with_si(physical, **changes):
 speeds = [20.0, 40.0, 80.0] if QUICK else [10.0, 20.0, 40.0, 60.0, 80.0, 100.0]
 fig, (ax_f, ax_w) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
 for v in speeds:
-    s = mb.sleeper_series(with_si(SLEEPERS, v=v), points=201, free=False)
+    s = mb.sleeper_series(with_si(SLEEPERS, v=v), points=201, free=False).bay  # what the bays add
     print(
         f"v = {v:5.1f} m/s: Omega_0 = {s.Omega0:7.1f} rad/s, F mean {s.force_mean[0]:.1f} N, "
         f"F peak-to-peak {s.force_peak_to_peak[0]:7.1f} N, "

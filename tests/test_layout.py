@@ -629,6 +629,10 @@ PARAMETER_LITERALS_ALLOWED: dict[tuple[str, str], str] = {
     (
         "moving_bogie.stability.maps.sleeper_map",
         "eta_M",
+    ): "the vertical axis of a map's JSON, as the continuous map's",
+    (
+        "moving_bogie.stability.maps.d_map",
+        "eta_M",
     ): "the key of a crossing's wheel mass in a map's checkpoint",
     ("moving_bogie.roots.strip", "eta_f"): "a rail undamped along its length: singular points on the axis",
     # the rail on supports as finite elements (S24) and its bay: typed here until generated with the track
@@ -957,3 +961,38 @@ def test_the_signature_checks_see_what_they_check():
         max(n.end_lineno - n.lineno + 1 for n in _walk(tree) if isinstance(n, ast.FunctionDef))
         > MAX_FUNCTION_LINES
     )
+
+
+#: The commands that run one path on every track: the options of each kind of track come from a table, and
+#: the one result type (a TimeSeries, a ValidationResult) prints, writes and draws itself on any track.
+ONE_PATH_COMMANDS = ("moving_bogie.cli.timeseries_cmd", "moving_bogie.cli.validate_cmd")
+
+#: What a branch on the kind of track tests: the model's periodic supports, or the result's own part.
+TRACK_WORDS = re.compile(r"periodic|sleeper|supports|\.bay\b")
+
+
+def _track_branches(module: str, tree: ast.AST) -> Iterator[str]:
+    for node in _walk(tree):
+        if isinstance(node, ast.If | ast.IfExp):
+            test = ast.unparse(node.test)
+            if TRACK_WORDS.search(test):
+                yield f"{module}:{node.lineno}: if {test}"
+
+
+def test_the_one_path_commands_do_not_branch_on_the_track():
+    """``timeseries`` and ``validate`` make one call of the library on every track and hand its one result
+    type to one output: no ``if`` (statement or expression) on the track in the command."""
+    found = {module for module, _ in _trees() if module in ONE_PATH_COMMANDS}
+    assert found == set(ONE_PATH_COMMANDS)
+    offenders = [
+        line
+        for module, tree in _trees()
+        if module in ONE_PATH_COMMANDS
+        for line in _track_branches(module, tree)
+    ]
+    assert not offenders, "a command branches on the kind of track:\n" + "\n".join(offenders)
+
+
+def test_the_track_branch_check_sees_a_branch():
+    tree = ast.parse("def run(params):\n    if params.model.periodic:\n        return 1\n    return 0\n")
+    assert list(_track_branches("m", tree)) == ["m:2: if params.model.periodic"]

@@ -17,7 +17,8 @@ import numpy as np
 from moving_bogie import table1_case
 from moving_bogie.api import bind, induced_frequencies
 from moving_bogie.roots.count.contour import Rectangle, winding_number
-from moving_bogie.roots.quadrature_window import QuadratureCharacteristic, window_frequencies, window_radius
+from moving_bogie.roots.quadrature_search import window_frequencies
+from moving_bogie.roots.quadrature_window import QuadratureCharacteristic, window_radius
 from moving_bogie.roots.verdict import UNSTABLE
 
 

@@ -202,7 +202,7 @@ def test_the_steady_force_is_checked_beside_a_slowly_decaying_vibration(tmp_path
 
 def test_the_verdict_line_states_the_numbers_it_judged():
     """Each compared quantity with its two values, the unit, the difference and the tolerance."""
-    from moving_bogie.cli.validate_cmd import format_sleeper_check
+    from moving_bogie.cli.validate_output import format_sleeper_check
 
     rows = [("growth rate -Im q", 2.90112, 2.90285, "1/s", 0.0006, True), ("x", 1.0, 1.5, "N", 0.5, False)]
     out = {
@@ -280,7 +280,10 @@ def test_two_wheels_on_hertz_springs_in_the_zone(tmp_path):
 
     bound, scales = _bound(_zone_example(tmp_path, "masses", "1340", TWO_WHEELS_ON_HERTZ_SPRINGS))
     assert bound.name == "eb/sleepers/hertz_masses"
-    result = check_on_supports(bound, scales)
+    checked = check_on_supports(bound, scales)
+    result = checked.supports
+    assert result is not None and checked.agrees
+    assert list(checked.quantities) == ["growth rate -Im q", "dominant frequency"]
     assert result.floquet_verdict == "unstable"
     assert [c.quantity for c in result.comparisons] == ["growth rate -Im q", "dominant frequency"]
     assert result.rate > 0
@@ -346,6 +349,10 @@ def test_the_check_in_si_is_the_dimensionless_check_times_the_scales():
 
     params, physical = mb.load_parameters(EXAMPLE)
     si, plain = mb.validate(physical), mb.validate(params)
+    from moving_bogie.validation.verdict import ValidationResult
+
+    assert isinstance(si, ValidationResult) and si.supports is not None  # the one type of a check
+    assert list(si.quantities) == ["steady force over a bay"] and si.finite is None and si.closed is None
     assert si.model == plain.model == "eb/sleepers/mass" and si.agrees and plain.agrees
     out, bare = si.to_dict(), plain.to_dict()
     from moving_bogie.validation.verdict import VERDICT_KEYS

@@ -35,7 +35,7 @@ def _line(c: float, eta: float, k: np.ndarray, v: float) -> np.ndarray:
 
 @pytest.mark.parametrize("v", [20.0, 50.0, 150.0])
 def test_the_soil_depth_stays_under_the_singular_lines(v: float) -> None:
-    from moving_bogie.roots.decaying_band import soil_depth
+    from moving_bogie.soil.sheet import soil_depth
 
     soil = _half_space(60.0, 0.33, 2e-3)
     layer = soil.halfspace
@@ -53,7 +53,7 @@ def test_the_soil_depth_stays_under_the_singular_lines(v: float) -> None:
 
 
 def test_no_damping_no_band() -> None:
-    from moving_bogie.roots.decaying_band import soil_depth
+    from moving_bogie.soil.sheet import soil_depth
 
     assert soil_depth(_half_space(60.0, 0.33, 0.0), 50.0, 100.0) == 0.0
 

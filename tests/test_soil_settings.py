@@ -134,3 +134,15 @@ def test_frequencies_set_on_the_soil_json(tmp_path, capsys):
         "equivalent_of": out["params"]["equivalent_of"]
     }
     assert out["soil"]["k_ref"] == vehicle.rail.k_ref
+
+
+@pytest.mark.parametrize("command", ["instability-lines", "stability-map"])
+def test_set_reaches_the_threshold_and_the_map(command, capsys):
+    """``--set`` on the D-decomposition commands goes through the same reader as ``frequencies`` (whose
+    result equals the edited file's, above): a wrong value is named before any work, exit 2."""
+    file = str(EXAMPLES / "soil-mass.toml")
+    assert main([command, "--file", file, "--set", "M=-3"]) == 2
+    err = capsys.readouterr().err
+    assert "--set: M must be a positive" in err and "Traceback" not in err
+    assert main([command, "--file", file, "--set", "M=-3", "--json"]) == 2
+    assert json.loads(capsys.readouterr().out)["option"] == "--set"

@@ -24,7 +24,7 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.soil import critical
 from moving_bogie.soil.critical import critical_velocity, free_waves
 from moving_bogie.soil.file import load_soil_file, soil_input
-from moving_bogie.soil.moving_load import deflection
+from moving_bogie.soil.moving_load import PEAK_XTOL, deflection
 from moving_bogie.soil.profile import soil_profile
 from moving_bogie.soil.track import SoilTrack
 
@@ -292,10 +292,10 @@ def test_moving_load_command_peak(capsys, tmp_path):
 
     Reference: c_R of the file's half-space from the Rayleigh cubic (``_rayleigh_speed``), which is v_cr of
     this beam (``test_beam_on_homogeneous_halfspace_critical_velocities``): the lightly damped response
-    peaks there. Tolerance: the golden-section search the command refines with shrinks the bracket of the
-    grid's two neighbours of the largest value (two grid steps, 2 h = 16 m/s) by g = 0.618 per step, 20
-    steps (soil/moving_load.py): the peak is known to the last bracket, 2 h g^20 = 1.06e-3 m/s, and no
-    better."""
+    peaks there. Tolerance: the command refines between the grid's two neighbours of the largest value (two
+    grid steps, 2 h = 16 m/s) by scipy's bounded Brent search with xatol = PEAK_XTOL 2 h, which stops when
+    its bracket lies within 2 (sqrt(eps) |v| + xatol / 3) of its best point (soil/moving_load.py): the
+    peak is known to that, 1.07e-3 m/s, and no better."""
     figure = tmp_path / "daf.png"
     path = EXAMPLES / "soil-homogeneous.toml"
     lo, hi, n = 48.0, 64.0, 3
@@ -305,7 +305,7 @@ def test_moving_load_command_peak(capsys, tmp_path):
     assert out["per"] == "rail" and out["P"] == 80e3 and out["w_static"] > 0
     assert out["daf_peak"] >= max(out["daf"]) and 50 <= out["v_peak"] <= 60
     step = (hi - lo) / (n - 1)
-    bracket = 2 * step * ((np.sqrt(5) - 1) / 2) ** 20
+    bracket = 2 * (np.sqrt(np.finfo(float).eps) * out["v_peak"] + PEAK_XTOL * 2 * step / 3)
     c_r = _rayleigh_speed(path)
     assert abs(out["v_peak"] - c_r) <= bracket, (out["v_peak"], c_r, bracket)
     assert figure.stat().st_size > 10_000

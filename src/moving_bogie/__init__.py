@@ -43,6 +43,7 @@ _LAZY = {
     "speed_regime": "api",
     "smeared_track": "api",
     "sleeper_series": "api",
+    "time_series": "api",
     "sleeper_map": "api",
     "sleeper_map_figure": "stability.figures.sleeper_map_figure",
     "sleeper_series_figure": "response.sleeper_plots",

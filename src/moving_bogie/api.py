@@ -32,7 +32,6 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
-    from moving_bogie.response.sleeper_series import SleeperSeries
     from moving_bogie.roots.frequencies import FrequencyResult
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
@@ -41,7 +40,6 @@ if TYPE_CHECKING:
     from moving_bogie.stability.stiffness.critical_stiffness import CriticalStiffness
     from moving_bogie.stability.stiffness.d_decomposition import DDecomposition
     from moving_bogie.stability.velocity.supercritical import SpeedRegime
-    from moving_bogie.validation.sleeper_verdict import SleeperCheck
     from moving_bogie.validation.verdict import ValidationResult
 
 __all__ = [
@@ -61,6 +59,7 @@ __all__ = [
     "instability_lines_many",
     "sleeper_map",
     "sleeper_series",
+    "time_series",
     "smeared_track",
     "soil_vehicle",
     "speed_regime",
@@ -129,7 +128,7 @@ def induced_frequencies(
 ) -> FrequencyResult:
     """Every induced frequency of ``params`` in the search region of its track (the window, or one strip of
     a periodic track): :func:`moving_bogie.roots.frequencies.induced_frequencies`; for a track whose
-    receptance is a quadrature (on the soil) :func:`moving_bogie.roots.quadrature_window.window_frequencies`
+    receptance is a quadrature (on the soil) :func:`moving_bogie.roots.quadrature_search.window_frequencies`
     in the window of the far-field radius of its Winkler equivalent (the same parameters on their
     continuous track, :func:`~moving_bogie.roots.quadrature_window.window_radius`).
 
@@ -141,7 +140,8 @@ def induced_frequencies(
     if isinstance(bound.track, ContinuousTrack) or bound.track.search_region().periodic:
         result = run(bound, **options)
     else:
-        from moving_bogie.roots.quadrature_window import window_frequencies, window_radius
+        from moving_bogie.roots.quadrature_search import window_frequencies
+        from moving_bogie.roots.quadrature_window import window_radius
 
         radius, far = window_radius(BoundModel(bound.params))
         result = window_frequencies(bound, radius=radius, far_field=far, **options)
@@ -161,6 +161,37 @@ def closed_form_response(
 
     bound, scales = bind_with_scales(params)
     return run(bound, tau, scales=scales, **options)
+
+
+def time_series(
+    params: DimensionlessParams | PhysicalParams | BoundModel,
+    tau: ArrayLike | None = None,
+    *,
+    progress: Callable[[float], None] | None = None,
+    **options: Any,
+) -> TimeSeries:
+    """The time series of ``params`` on its track, one type on every track (:class:`~moving_bogie.response.
+    closed_form.TimeSeries`): the closed form at the times ``tau`` (:func:`closed_form_response`, after a
+    complete search of the induced frequencies: else a :class:`~moving_bogie.errors.MovingBogieError`);
+    on periodic supports the steady response over ``bays`` bays on ``points`` points and the free
+    vibrations (:func:`sleeper_series`, ``tau`` not given).
+
+    ``options`` are those of the track's series (``branch_cut``, ``dps``, ... on a continuous track;
+    ``bays``, ``points``, ``free``, ``tol`` on periodic supports).
+    """
+    bound, scales = bind_with_scales(params)
+    if bound.track.search_region().periodic:
+        if tau is not None:
+            why = "a series on periodic supports spans its bays (bays=, points=), not given times"
+            raise ParameterError("tau", why)
+        return sleeper_series(params, progress=progress, **options)
+    from moving_bogie.response.closed_form import closed_form_response as run
+    from moving_bogie.response.residues import complete_frequencies
+
+    if tau is None:
+        raise ParameterError("tau", "give the times of the series")
+    frequencies = complete_frequencies(bound, options.get("dps", 30), options.get("branch_cut"), progress)
+    return run(bound, tau, scales=scales, frequencies=frequencies, **options)
 
 
 def deflection_shape(
@@ -183,11 +214,10 @@ def deflection_shape_details(
     return run(bound, xi, tau, scales=scales, **options)
 
 
-def validate(
-    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
-) -> ValidationResult | SleeperCheck:
+def validate(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> ValidationResult:
     """Finite beam against closed form (Section 3.2): :func:`~moving_bogie.validation.compare.validate`; on
-    periodic supports the finite rail against the Floquet theory (:func:`validate_on_supports`).
+    periodic supports the finite rail against the Floquet theory (:func:`validate_on_supports`), the same
+    result type (its ``supports`` holds what that check adds).
 
     Physical parameters are made dimensionless: the comparison runs in dimensionless tau and w / w_st.
     """
@@ -204,7 +234,7 @@ def validate_on_supports(
     *,
     tol: float = 0.01,
     progress: Callable[[float], None] | None = None,
-) -> SleeperCheck:
+) -> ValidationResult:
     """The finite rail on sleepers against the Floquet theory (docs/sleepers.md):
     :func:`~moving_bogie.validation.on_supports.check_on_supports` of the bound model, its values in SI
     too for SI parameters."""
@@ -231,12 +261,11 @@ def smeared_track(params: PhysicalParams) -> PhysicalParams:
     return smeared
 
 
-def sleeper_series(
-    params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any
-) -> SleeperSeries:
+def sleeper_series(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> TimeSeries:
     """The steady response over a bay and the free vibrations on sleepers (in SI for SI parameters, with
-    the steady deflection of the smeared continuous track beside):
-    :func:`~moving_bogie.response.sleeper_series.sleeper_series` (``bays``, ``points``, ``free``)."""
+    the steady deflection of the smeared continuous track beside), as a time series whose ``bay`` holds
+    the contact forces and the harmonics: :func:`~moving_bogie.response.sleeper_series.sleeper_series`
+    (``bays``, ``points``, ``free``, ``progress``)."""
     from moving_bogie.model.smeared import smeared_physical
     from moving_bogie.response.sleeper_series import sleeper_series as run
 

@@ -105,13 +105,19 @@ def usage_failure(exc: UsageError, argv: Sequence[str]) -> int:
 
 
 def _parameter_option(parameter: str, argv: Sequence[str]) -> str | None:
-    """The option the user typed for ``parameter`` (``eta_M`` -> ``--eta-M``), ``--file`` for a file value."""
+    """The option the user typed for ``parameter`` (``eta_M`` -> ``--eta-M``), ``--set`` for a value given
+    as ``--set NAME=VALUE``, ``--file`` for a file value."""
     given = {a.split("=", 1)[0] for a in argv if a.startswith("--")}
     if parameter.startswith("--"):  # the error names the option itself (--vary, --range, --units)
         return parameter
     for option in ("--" + parameter.replace("_", "-"), "--" + parameter):
         if option in given:
             return option
+    settings = [b for a, b in zip(argv, argv[1:]) if a == "--set"] + [
+        a.split("=", 1)[1] for a in argv if a.startswith("--set=")
+    ]
+    if any(s.split("=", 1)[0].strip() == parameter for s in settings):  # a value the user set
+        return "--set"
     return "--file" if "--file" in given else None
 
 

@@ -18,7 +18,7 @@ from typing import Any
 from moving_bogie.errors import ParameterError
 
 from .checks import named_values, value_range
-from .common import first_given, option_flag, parameter_options, print_json
+from .common import first_given, option_flag, parameter_options, print_json, soil_settings
 
 __all__ = ["run_soil_lines", "run_soil_map"]
 
@@ -35,14 +35,14 @@ TIMED = 4
 _MODEL = "give the model and its values in the file (docs/soil.md)"
 #: Options of instability-lines that a soil file does not take (dest -> why).
 _REFUSED = {
-    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL, "set": _MODEL, "d": _MODEL,
+    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL, "d": _MODEL,
     "parameter": "on a soil track the vertical axis is the wheel mass M",
     "verify": "count the roots of a mass with frequencies --file (the argument principle on the soil)",
     "plot": "the crossings of one speed are printed (a figure of the (v, M) plane needs a map)",
 }  # fmt: skip
 #: Options of stability-map that a soil file does not take (dest -> why).
 _MAP_REFUSED = {
-    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL, "set": _MODEL, "d": _MODEL,
+    "case": _MODEL, "beam": _MODEL, "track": _MODEL, "vehicle": _MODEL, "d": _MODEL,
     "parameter": "on a soil track the vertical axis is the wheel mass M",
     "lines": "the map of a soil track always shows its D-lines",
     "npz": "a soil map writes its figure, its CSV and its JSON", "out": "a soil map is not a sweep store",
@@ -93,7 +93,7 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
     _refuse(args)
     from moving_bogie.api import bind, load_soil_vehicle
 
-    data = load_soil_vehicle(args.file)
+    data = load_soil_vehicle(args.file, soil_settings(args))
     physical, per = data.physical, data.input.rail_factor
     params = physical.to_dimensionless()
     name = params.model.wheel_mass
@@ -214,7 +214,7 @@ def run_soil_map(args: argparse.Namespace) -> int:
     from .lines_on_supports import report
     from .progress import checkpoint_options, progress_bar
 
-    data = load_soil_vehicle(args.file)
+    data = load_soil_vehicle(args.file, soil_settings(args))
     physical = data.physical
     params = physical.to_dimensionless()
     unit = physical.si_factor(params.model.wheel_mass) / data.input.rail_factor

@@ -1,20 +1,18 @@
 """``moving-bogie timeseries`` and ``moving-bogie shape``: closed-form vibrations, Eqs. (35)-(47); on periodic
 supports the steady response over a bay and the free vibrations (docs/sleepers.md, "The time series on
-sleepers"), from :func:`moving_bogie.response.sleeper_series.sleeper_series`. The output is
-:mod:`.timeseries_output`'s."""
+sleepers"). One path on every track: :func:`moving_bogie.api.time_series` gives a
+:class:`~moving_bogie.response.closed_form.TimeSeries`, printed and written by :mod:`.timeseries_output`."""
 
 from __future__ import annotations
 
 import argparse
 import sys
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     import numpy as np
 
     from moving_bogie.kernels.bound import BoundModel
-    from moving_bogie.model.params import DimensionlessParams
-    from moving_bogie.model.physical import PhysicalParams
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.roots.frequency_result import FrequencyResult
 
@@ -29,15 +27,7 @@ from .common import (
     print_json,
 )
 from .outputs import add_figure_option
-from .timeseries_output import (
-    format_series,
-    format_sleeper_series,
-    not_converged,
-    print_shape,
-    write_csv_series,
-    write_shape_csv,
-    write_sleeper_csv,
-)
+from .timeseries_output import format_series, print_shape, write_csv_series, write_shape_csv
 
 _MAX_POINTS = 10_000_000
 
@@ -189,70 +179,48 @@ def _times(args: argparse.Namespace) -> np.ndarray:
 def _frequencies_or_fail(
     bound: BoundModel, dps: int, json_mode: bool, branch_cut: bool | str
 ) -> FrequencyResult:
-    from moving_bogie.errors import MovingBogieError
-    from moving_bogie.response.cut_integral import branch_cut_for
-    from moving_bogie.roots.frequencies import induced_frequencies
+    from moving_bogie.response.residues import complete_frequencies
 
     from .progress import progress_bar
 
-    if branch_cut is True:
-        branch_cut_for(bound)  # refuses a supercritical velocity before the long frequency search
-
     with progress_bar("induced frequencies", enabled=not json_mode) as update:
-        result = induced_frequencies(bound, dps=dps, progress=update)
-    if not result.count_ok:
-        detail = "; ".join(result.warnings) or f"{result.found} of {result.count} roots confirmed"
-        raise MovingBogieError(f"induced frequencies incomplete ({detail}); no closed-form response")
-    return result
+        return complete_frequencies(bound, dps, branch_cut, update)
 
 
 def run_timeseries(args: argparse.Namespace) -> int:
-    """Compute and print (or write) the closed-form time series; on periodic supports the steady response
-    over a bay and the free vibrations (:func:`run_on_supports`)."""
-    from moving_bogie.errors import ParameterError
-
+    """Compute and print (or write) the time series of the parameters on their track
+    (:func:`moving_bogie.api.time_series`: the closed form, or on periodic supports the steady response over
+    a bay and the free vibrations), with the options of that track (:data:`_SERIES_OPTIONS`)."""
     params, physical = params_from_args(args)  # every input checked before the heavy imports
-    if params.model.periodic:
-        return run_on_supports(args, params, physical)
-    if args.bays is not None:
-        raise ParameterError("bays", "--bays applies to a sleeper track only")
-    _check(args)
-    tau = _times(args)
+    options = _SERIES_OPTIONS[params.model.periodic](args)
 
-    from moving_bogie.kernels.bound import bind
-    from moving_bogie.response.closed_form import closed_form_response
+    from moving_bogie.api import time_series
 
-    bound = bind(params)  # bound once: the frequency search and the closed form share it
-    result = _frequencies_or_fail(bound, args.dps, args.json, _branch_cut(args))
-    ts = closed_form_response(
-        bound,
-        tau,
-        scales=physical.scales() if physical is not None else None,
-        frequencies=result,
-        branch_cut=_branch_cut(args),
-    )
+    from .progress import progress_bar
+
+    with progress_bar("time series", enabled=not args.json) as update:
+        ts = time_series(physical if physical is not None else params, progress=update, **options)
     if args.csv:
         write_csv_series(ts, args.csv)
     if args.plot or args.plot_long:
-        from moving_bogie.response.plots import long_time_figure, save_figure, time_series_figure
+        from moving_bogie.response.plots import long_time_figure, save_figure, series_figure
 
         label = series_label(args, ts)
         if args.plot:
-            save_figure(time_series_figure(ts, title=f"{label}: closed-form time series"), args.plot)
+            save_figure(series_figure(ts, label), args.plot)
         if args.plot_long:
             save_figure(long_time_figure(ts, title=f"{label}: closed form at long times"), args.plot_long)
     if args.json:
         print_json(ts.to_dict())
     else:
-        files = args.csv or args.plot or args.plot_long
         plots = [str(f) for f in (args.plot, args.plot_long) if f]
-        print(format_series(ts, rows=args.rows or not files, csv=args.csv, plots=plots))
-    return 0
+        print(format_series(ts, rows=args.rows or not (args.csv or plots), csv=args.csv, plots=plots))
+    for text in ts.warnings:
+        print(f"warning: {text}", file=sys.stderr)
+    return 0 if ts.complete else 1
 
 
-# --- on periodic supports -----------------------------------------------------------------------------
-
-#: the options of the continuous-track time series that a sleeper file does not take, and what to do instead
+#: the options of the closed form that a file on periodic supports does not take, and what to do instead
 _NOT_FOR_SLEEPERS = {
     **MODEL_FROM_THE_FILE,
     "tau": "the steady response spans --bays bays on --points points",
@@ -266,51 +234,36 @@ _MAX_BAYS = 10_000
 SLEEPER_POINTS = 201
 
 
-def check_sleeper_options(args: argparse.Namespace) -> None:
-    """Refuse, naming it, the first option that does not apply to a sleeper file; check --bays, --points."""
+def _bay_options(args: argparse.Namespace) -> dict[str, Any]:
+    """On periodic supports: the bays and the points over them, checked, and the closed form's options
+    refused by name (one message, before any work)."""
     from moving_bogie.errors import ParameterError
 
     from .common import refuse_for_sleepers
 
-    # --no-branch-cut sets False: refused too
-    refuse_for_sleepers(args, _NOT_FOR_SLEEPERS, unset=(None,))
+    refuse_for_sleepers(args, _NOT_FOR_SLEEPERS, unset=(None,))  # --no-branch-cut sets False: refused too
     bays = 1 if args.bays is None else args.bays
     if not 1 <= bays <= _MAX_BAYS:
         raise ParameterError("bays", f"--bays must be between 1 and {_MAX_BAYS} (got {bays})")
     points = SLEEPER_POINTS * bays if args.points is None else args.points
     if not 2 <= points <= _MAX_SLEEPER_POINTS:
         raise ParameterError("points", f"--points must be between 2 and {_MAX_SLEEPER_POINTS} (got {points})")
-    args.bays, args.points = bays, points
+    return {"bays": bays, "points": points}
 
 
-def run_on_supports(
-    args: argparse.Namespace, params: DimensionlessParams, physical: PhysicalParams | None
-) -> int:
-    """Print (or write) the steady response over ``--bays`` bays and the free vibrations in SI of a model on
-    periodic supports (the file's parameters, ``--set`` applied)."""
-    check_sleeper_options(args)
-    from moving_bogie.api import sleeper_series
+def _closed_form_options(args: argparse.Namespace) -> dict[str, Any]:
+    """The times, the precision and the branch cut of the closed form, checked (``--bays`` refused)."""
+    from moving_bogie.errors import ParameterError
 
-    series = sleeper_series(params if physical is None else physical, bays=args.bays, points=args.points)
-    if args.csv:
-        write_sleeper_csv(series, args.csv)
-    if args.plot:
-        from moving_bogie.response.plots import save_figure
-        from moving_bogie.response.sleeper_plots import sleeper_series_figure
+    if args.bays is not None:
+        raise ParameterError("bays", "--bays applies to a sleeper track only")
+    _check(args)
+    return {"tau": _times(args), "dps": args.dps, "branch_cut": _branch_cut(args)}
 
-        save_figure(sleeper_series_figure(series, title=f"{args.file.name} ({series.model})"), args.plot)
-    if args.json:
-        print_json(series.to_dict())
-    else:
-        files = [str(f) for f in (args.csv, args.plot) if f]
-        print(format_sleeper_series(series, rows=args.rows or not files, files=files))
-    warnings = [] if series.converged else [not_converged(series)]
-    warnings += list(series.free_notes)
-    for text in warnings:
-        print(f"warning: {text}", file=sys.stderr)
-    from moving_bogie.roots.verdict import UNDETERMINED
 
-    return 0 if series.converged and series.free_verdict != UNDETERMINED else 1
+#: The options each kind of track takes (by ``params.model.periodic``), read and checked from the command
+#: line: what :func:`moving_bogie.api.time_series` passes on to the series of that track.
+_SERIES_OPTIONS = {False: _closed_form_options, True: _bay_options}
 
 
 def series_label(args: argparse.Namespace, ts: TimeSeries) -> str:

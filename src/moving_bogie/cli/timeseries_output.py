@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 
+    from moving_bogie.response.bay_response import BayResponse
     from moving_bogie.response.closed_form import TimeSeries
-    from moving_bogie.response.sleeper_series import SleeperSeries
 
 from .common import atomic_write, print_json
 
@@ -38,7 +38,10 @@ def _time_name(ts: TimeSeries) -> str:
 
 
 def write_csv_series(ts: TimeSeries, path: str | os.PathLike[str]) -> None:
-    """The series as CSV: tau, then every response under its DOF name, a units line below the header."""
+    """The series as CSV: tau, then every response under its DOF name, a units line below the header (on
+    periodic supports the bay's columns, :func:`_write_bay_csv`)."""
+    if ts.bay is not None:
+        return _write_bay_csv(ts.bay, path)
     names = ("tau", *ts.responses)
     units = [ts.units["tau"], *ts.response_units.values()]
     columns = [ts.tau, *ts.responses.values()]
@@ -52,8 +55,13 @@ def format_series(
     ts: TimeSeries, rows: bool = True, csv: str | os.PathLike[str] | None = None, plots: Sequence[str] = ()
 ) -> str:
     """The readable series: summary lines, then one row per time (``rows``), then the notes; without the
-    rows, one line saying where they went (``csv``, the data file) or were drawn (``plots``)."""
+    rows, one line saying where they went (``csv``, the data file) or were drawn (``plots``). On periodic
+    supports the bay's summary and rows, then the free vibrations (:func:`_format_bay`)."""
     from moving_bogie.presentation import quantity_text
+
+    if ts.bay is not None:
+        return _format_bay(ts.bay, rows, [str(f) for f in (csv, *plots) if f])
+    roots = () if ts.frequencies is None else ts.frequencies.roots
 
     bc = (
         "all times"
@@ -65,8 +73,7 @@ def format_series(
         )
     )
     lines = [
-        f"Closed-form response ({ts.model}); {len(ts.frequencies.roots)} induced-frequency pair(s); "
-        f"branch-cut part: {bc}",
+        f"Closed-form response ({ts.model}); {len(roots)} induced-frequency pair(s); branch-cut part: {bc}",
         "steady parts: " + "  ".join(f"{n} {v:.10g}" for n, v in ts.steady.items()),
         _units_line(ts),
         f"{_time_name(ts):>14} " + " ".join(f"{n:>18}" for n in ts.responses),
@@ -132,15 +139,7 @@ def write_shape_csv(
 # --- on periodic supports -----------------------------------------------------------------------------
 
 
-def not_converged(series: SleeperSeries) -> str:
-    """The warning of a steady response that has not converged in the harmonics."""
-    return (
-        f"the steady response has NOT converged: it changed by {series.change:.3g} (relative) at "
-        f"N = {series.harmonics}, tolerance {series.tol:g}"
-    )
-
-
-def _wheel_lines(series: SleeperSeries) -> list[str]:
+def _wheel_lines(series: BayResponse) -> list[str]:
     lines = [
         f"  {'wheel':>5} {'at [m]':>8} {'F mean [N]':>13} {'F p-p [N]':>12} {'w mean [m]':>13} "
         f"{'w p-p [m]':>12} {'w continuous [m]':>17}"
@@ -156,7 +155,7 @@ def _wheel_lines(series: SleeperSeries) -> list[str]:
     return lines
 
 
-def _free_lines(series: SleeperSeries) -> list[str]:
+def _free_lines(series: BayResponse) -> list[str]:
     x0, x1 = series.free_strip
     y0, y1 = series.free_window
     lines = [
@@ -181,8 +180,10 @@ def _free_lines(series: SleeperSeries) -> list[str]:
     return lines
 
 
-def format_sleeper_series(series: SleeperSeries, rows: bool = True, files: list[str] | None = None) -> str:
+def _format_bay(series: BayResponse, rows: bool = True, files: list[str] | None = None) -> str:
     """The readable output: the bay, the convergence, the per-wheel summary, the rows, the free vibrations."""
+    from moving_bogie.response.bay_response import not_converged
+
     status = (
         f"converged: changes by {series.change:.2g} < {series.tol:g} of the largest value when N doubles"
         if series.converged
@@ -218,7 +219,7 @@ def format_sleeper_series(series: SleeperSeries, rows: bool = True, files: list[
     return "\n".join(lines + _free_lines(series))
 
 
-def write_sleeper_csv(series: SleeperSeries, path: str | os.PathLike[str]) -> None:
+def _write_bay_csv(series: BayResponse, path: str | os.PathLike[str]) -> None:
     """The series as CSV: t, x (rear wheel's position), then F_j, w_j per wheel; a units line below."""
     names = ["t", "x"] + [f"{q}_{j}" for j in range(series.wheels) for q in ("F", "w")]
     units = ["s", "m"] + ["N", "m"] * series.wheels

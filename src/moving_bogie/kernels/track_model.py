@@ -41,7 +41,7 @@ from typing import Any, Protocol, runtime_checkable
 
 from numpy.typing import ArrayLike
 
-__all__ = ["STRIP", "WINDOW", "RailReceptance", "SearchRegion", "Track"]
+__all__ = ["STRIP", "WINDOW", "BandTrack", "RailReceptance", "SearchRegion", "Track"]
 
 #: The kinds of search region: a window of the right half-plane, or one strip of the period in Re q.
 WINDOW, STRIP = "window", "strip"
@@ -135,3 +135,24 @@ class Track(Protocol):
     @property
     def smeared(self) -> Any:
         """The continuous track whose free waves give the critical velocity (a :class:`Track`)."""
+
+
+@runtime_checkable
+class BandTrack(Protocol):
+    """A track whose kernel, a quadrature along real wavenumbers, stays analytic in a band above the real
+    axis of q (its decaying roots there are searched, :mod:`moving_bogie.roots.decaying_band`)."""
+
+    @property
+    def band_scale(self) -> float:
+        """rad/s per unit of q, for output."""
+
+    @property
+    def band_caveat(self) -> str:
+        """What :meth:`waves_clear` is (a bound, or a scan), for the notes of a result ("" for a bound)."""
+
+    def band_depth(self, x: float) -> float:
+        """The depth in Im q under which no singular line of the kernel lies at Re q >= ``x`` > 0 (0:
+        none)."""
+
+    def waves_clear(self, x0: float, x1: float, y0: float, y1: float) -> bool:
+        """Whether no other singular line of the kernel crosses the rectangle [x0, x1] x [y0, y1] of q."""

@@ -171,8 +171,8 @@ def _validation_figure(ctx: BuildContext, fig_id: str, case: int) -> Built:
         for name, q in result.quantities.items()
     )
     notes = [
-        f"Finite beam: L = {result.finite.length:.1f}, {result.finite.n_modes} modes, comparison window "
-        f"τ ≤ {result.window[1]:.1f} (dotted line). "
+        f"Finite beam: L = {result.finite_beam.length:.1f}, {result.finite_beam.n_modes} modes, "
+        f"comparison window τ ≤ {result.window[1]:.1f} (dotted line). "
         f"Validation {'agrees' if result.agrees else 'DISAGREES'}: {diffs}.",
         *result.notes,
     ]

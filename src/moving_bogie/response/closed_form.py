@@ -38,6 +38,7 @@ if TYPE_CHECKING:
     import xarray
 
     from moving_bogie.response.axis_sequence import AxisSequence
+    from moving_bogie.response.bay_response import BayResponse
     from moving_bogie.response.branch_cut import BranchCut
     from moving_bogie.response.cut_integral import CurveBranchCut
     from moving_bogie.roots.frequencies import FrequencyResult
@@ -51,9 +52,8 @@ __all__ = [
     "deflection_shape_details",
 ]
 
-#: The keys every time series' ``to_dict()`` has, with the same meaning on every track (the continuous
-#: tracks' :class:`TimeSeries` and the sleepers'
-#: :class:`~moving_bogie.response.sleeper_series.SleeperSeries`): the times, the units by kind, the rail's
+#: The keys every time series' ``to_dict()`` has, with the same meaning on every track (a
+#: :class:`TimeSeries` on sleepers adds its ``bay``'s): the times, the units by kind, the rail's
 #: deflection under each wheel (and the bodies' motion) by DOF name, its steady part, the units of each
 #: response, the notes.
 SERIES_KEYS = ("tau", "units", "responses", "steady", "response_units", "notes")
@@ -82,8 +82,9 @@ class TimeSeries:
         Whether I_bc was included at some of the times.
     branch_cut_until : float
         I_bc is included for tau <= this (0: nowhere, inf: everywhere), in the units of ``tau``.
-    frequencies : FrequencyResult
-        The induced frequencies whose residues were summed.
+    frequencies : FrequencyResult or None
+        The induced frequencies whose residues were summed; on periodic supports the roots of the strip
+        (the free vibrations; None when not searched).
     model : str
     units : dict
         Units by kind of quantity: time ``tau``, rail deflection ``w``, body displacement ``u``, body
@@ -92,6 +93,10 @@ class TimeSeries:
         What the computation decided (e.g. up to which time the branch cut was included).
     contacts : int
         How many of the responses, the first ones, are the rail under a wheel (``CONTACTS``).
+    bay : BayResponse or None
+        On periodic supports (:func:`~moving_bogie.response.sleeper_series.sleeper_series`), what they add:
+        the contact forces over the bays, the bay, Omega_0, the harmonics, the free vibrations in rad/s;
+        None on a continuous track.
     """
 
     tau: np.ndarray
@@ -99,12 +104,27 @@ class TimeSeries:
     steady: dict[str, float]
     response_units: dict[str, str]
     branch_cut: bool
-    frequencies: FrequencyResult
+    frequencies: FrequencyResult | None
     model: str | None = None
     branch_cut_until: float = 0.0
     units: dict[str, str] = field(default_factory=lambda: dict(DIMENSIONLESS_UNITS))
     notes: tuple[str, ...] = ()
     contacts: int = 1
+    bay: BayResponse | None = None
+
+    @property
+    def complete(self) -> bool:
+        """Whether the series is the whole answer: on periodic supports, the steady response converged in
+        the harmonics and the free vibrations' verdict is not UNDETERMINED (a closed form is only made from
+        a complete frequency search)."""
+        return self.bay is None or self.bay.complete
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What leaves the answer short (:attr:`complete`): on periodic supports, a steady response not
+        converged and the strip search's notes; none on a continuous track (its notes say what was
+        decided)."""
+        return () if self.bay is None else self.bay.warnings
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -120,8 +140,13 @@ class TimeSeries:
             raise KeyError(f"{name!r}: no such response of {self.model}; known: {known}") from None
 
     def _repr_html_(self) -> str:
-        """Jupyter: the verdict of the frequencies summed first, then the times, steady parts and notes."""
+        """Jupyter: the verdict of the frequencies summed first, then the times, steady parts and notes (on
+        periodic supports, the free vibrations' verdict, then the steady response over the bay per wheel
+        and the roots)."""
         from moving_bogie.html_repr import html_table
+
+        if self.bay is not None:
+            return self.bay._repr_html_()
         from moving_bogie.presentation import quantity_text
 
         state = getattr(getattr(self.frequencies, "verdict", None), "state", "frequencies not judged")
@@ -160,7 +185,8 @@ class TimeSeries:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: every response under its DOF name (arrays as lists, NaN as None), the steady
-        parts, flags, units and frequencies."""
+        parts, flags, units and frequencies; on periodic supports then the ``bay``'s keys
+        (:meth:`~moving_bogie.response.sleeper_series.BayResponse.to_dict`)."""
 
         def clean(x: ArrayLike) -> list[float | None]:
             return [None if not math.isfinite(v) else float(v) for v in np.asarray(x, dtype=float).ravel()]
@@ -168,7 +194,8 @@ class TimeSeries:
         def scalar(v: float) -> float | None:
             return None if not math.isfinite(v) else float(v)
 
-        return {
+        roots = () if self.frequencies is None else self.frequencies.roots
+        series = {
             "tau": clean(self.tau),
             **{name: clean(v) for name, v in self.responses.items()},
             "branch_cut": bool(self.branch_cut),
@@ -178,11 +205,10 @@ class TimeSeries:
             "responses": {name: clean(v) for name, v in self.responses.items()},
             "steady": {name: scalar(v) for name, v in self.steady.items()},
             "response_units": dict(self.response_units),
-            "induced_frequencies": [
-                {"re": r.re_text, "im": r.im_text, "side": r.side} for r in self.frequencies.roots
-            ],
+            "induced_frequencies": [{"re": r.re_text, "im": r.im_text, "side": r.side} for r in roots],
             "notes": list(self.notes),
         }
+        return series if self.bay is None else series | self.bay.to_dict()
 
 
 def _dimensionless_times(tau: ArrayLike, scales: Scales | None) -> tuple[np.ndarray, np.ndarray]:

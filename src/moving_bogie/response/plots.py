@@ -116,6 +116,17 @@ def time_series_figure(ts: TimeSeries, *, title: str | None = None, steady: bool
     return _panels(ts, names, 2.3 * len(names) + 0.4, title, steady)
 
 
+def series_figure(ts: TimeSeries, label: str) -> Figure:
+    """The figure of a series on any track, titled by ``label`` (the case, file or model): the closed form's
+    panels (:func:`time_series_figure`), or on periodic supports the contact force and the deflection over
+    the bays (:func:`~moving_bogie.response.sleeper_plots.sleeper_series_figure`)."""
+    if ts.bay is not None:
+        from moving_bogie.response.sleeper_plots import sleeper_series_figure
+
+        return sleeper_series_figure(ts, title=label)
+    return time_series_figure(ts, title=f"{label}: closed-form time series")
+
+
 def long_time_figure(ts: TimeSeries, *, title: str | None = None) -> Figure:
     """Two stacked panels, the rear wheel and the first body's bounce (the bogie: w_rear, u), for long
     times (Figures 6, 13, 15, A5, A7); a vehicle without a body: the rear and the front wheel."""

@@ -31,7 +31,13 @@ from moving_bogie.typing import Mpc
 if TYPE_CHECKING:
     from moving_bogie.roots.frequencies import FrequencyResult
 
-__all__ = ["IncompleteFrequencies", "ResidueExpansion", "both_members", "residue_expansion"]
+__all__ = [
+    "IncompleteFrequencies",
+    "ResidueExpansion",
+    "both_members",
+    "complete_frequencies",
+    "residue_expansion",
+]
 
 
 class IncompleteFrequencies(MovingBogieError):
@@ -267,4 +273,26 @@ def frequencies_for(
         from moving_bogie.roots.frequencies import induced_frequencies
 
         result = induced_frequencies(bound, dps=dps, progress=progress)
+    return result
+
+
+def complete_frequencies(
+    bound: BoundModel,
+    dps: int,
+    branch_cut: bool | str | None = "auto",
+    progress: Callable[[float], None] | None = None,
+) -> FrequencyResult:
+    """Every induced frequency of ``bound`` at ``dps`` digits, for a closed form: a
+    :class:`~moving_bogie.errors.MovingBogieError` when the search is incomplete (found and counted roots
+    differ). ``branch_cut=True`` first refuses a velocity whose branch cut cannot be integrated, before the
+    long search."""
+    from moving_bogie.response.cut_integral import branch_cut_for
+    from moving_bogie.roots.frequencies import induced_frequencies
+
+    if branch_cut is True:
+        branch_cut_for(bound)
+    result = induced_frequencies(bound, dps=dps, progress=progress)
+    if not result.count_ok:
+        detail = "; ".join(result.warnings) or f"{result.found} of {result.count} roots confirmed"
+        raise MovingBogieError(f"induced frequencies incomplete ({detail}); no closed-form response")
     return result

@@ -15,14 +15,21 @@ import numpy as np
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from moving_bogie.response.sleeper_series import SleeperSeries
+    from moving_bogie.response.closed_form import TimeSeries
 
 __all__ = ["sleeper_series_figure"]
 
 
-def sleeper_series_figure(series: SleeperSeries, *, title: str | None = None) -> Figure:
-    """Contact force [kN] and deflection under the wheel [mm] over the bays, per wheel (Eqs. (S16)-(S18))."""
+def sleeper_series_figure(ts: TimeSeries, *, title: str | None = None) -> Figure:
+    """Contact force [kN] and deflection under the wheel [mm] over the bays, per wheel (Eqs. (S16)-(S18)), of
+    a series on periodic supports (its ``bay``)."""
     from matplotlib.figure import Figure
+
+    from moving_bogie.errors import ParameterError
+
+    series = ts.bay
+    if series is None:
+        raise ParameterError("series", "the figure over the bays needs a series on periodic supports")
 
     fig = Figure(figsize=(7.0, 5.6), constrained_layout=True)
     ax_f, ax_w = fig.subplots(2, 1, sharex=True)

@@ -1,7 +1,10 @@
 """The time series of a vehicle on a sleeper track: the steady response and the free vibrations.
 
 :func:`sleeper_series` takes what the continuous tracks' closed form takes, the bound model (on its
-:class:`~moving_bogie.kernels.periodic_track.PeriodicTrack`) and the SI scales of its parameters.
+:class:`~moving_bogie.kernels.periodic_track.PeriodicTrack`) and the SI scales of its parameters, and gives
+what it gives, a :class:`~moving_bogie.response.closed_form.TimeSeries` (the rail's deflection under each
+wheel by its DOF name, its steady part, the induced frequencies of the strip search), whose ``bay`` holds
+what periodic supports add (:class:`BayResponse`: the contact forces, the bay, Omega_0, the harmonics).
 
 The steady response under the constant loads (docs/sleepers.md, Eqs. (S16)-(S18),
 :func:`moving_bogie.response.steady_bay.steady_response`) gives, per wheel, the contact force and the rail
@@ -19,8 +22,9 @@ load is 2), times times ``t_scale``, lengths divided by ``chi``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -28,210 +32,19 @@ from moving_bogie.errors import ParameterError
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.periodic_track import PeriodicTrack
-from moving_bogie.kernels.sleeper_track import SleeperTrack
+from moving_bogie.response.bay_response import SLEEPER_UNITS, BayResponse, FreeVibration
 from moving_bogie.response.smeared_deflection import continuous_steady_deflection
 from moving_bogie.response.steady_bay import static_loads, steady_response
 
 if TYPE_CHECKING:
     from moving_bogie.model.scales import Scales
+    from moving_bogie.response.closed_form import TimeSeries
+    from moving_bogie.roots.frequency_result import FrequencyResult
 
-__all__ = ["SLEEPER_UNITS", "FreeVibration", "SleeperSeries", "sleeper_series"]
-
-#: The units of the series by kind (the continuous tracks' ``units`` in SI, with the contact force's).
-SLEEPER_UNITS = {"tau": "s", "w": "m", "xi": "m", "force": "N"}
+__all__ = ["sleeper_series"]
 
 #: points over one bay on which the peak-to-peak values are taken (independent of the output's points)
 PEAK_POINTS = 1025
-
-
-@dataclass(frozen=True)
-class FreeVibration:
-    """One Floquet root ``Omega`` [rad/s] (time dependence ``e^{i Omega t}``), its copy in the strip."""
-
-    Omega: complex
-
-    @property
-    def frequency_rad_s(self) -> float:
-        """Re Omega [rad/s] (modulo the sleeper-passing frequency Omega_0)."""
-        return self.Omega.real
-
-    @property
-    def frequency_hz(self) -> float:
-        return self.Omega.real / (2 * math.pi)
-
-    @property
-    def growth_rate(self) -> float:
-        """-Im Omega [1/s]: positive grows, negative decays."""
-        return -self.Omega.imag
-
-    @property
-    def doubling_time(self) -> float | None:
-        """ln 2 / growth rate [s] for a growing vibration, else None."""
-        return math.log(2) / self.growth_rate if self.growth_rate > 0 else None
-
-    @property
-    def halving_time(self) -> float | None:
-        """ln 2 / decay rate [s] for a decaying vibration, else None."""
-        return math.log(2) / -self.growth_rate if self.growth_rate < 0 else None
-
-    @property
-    def state(self) -> str:
-        return "growing" if self.growth_rate > 0 else ("decaying" if self.growth_rate < 0 else "neutral")
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "Omega_rad_s": [self.Omega.real, self.Omega.imag],
-            "frequency_rad_s": self.frequency_rad_s,
-            "frequency_Hz": self.frequency_hz,
-            "growth_rate_1_s": self.growth_rate,
-            "doubling_time_s": self.doubling_time,
-            "halving_time_s": self.halving_time,
-            "state": self.state,
-        }
-
-
-@dataclass(frozen=True)
-class SleeperSeries:
-    """The steady response over ``bays`` bays and the free vibrations of one sleeper-track file, in SI.
-
-    ``time`` [s] and ``position`` [m] (the rear wheel's distance from the support behind it at t = 0) share
-    the axis; ``contact_force`` [N] and ``deflection`` [m] have shape (wheels, points); ``wheel_positions``
-    [m] are the wheels' distances ahead of the rear one, ``bay`` is l [m]. The means are the harmonic
-    n = 0, the peak-to-peak values are taken on ``PEAK_POINTS`` points of one bay. ``harmonics`` is N (the
-    harmonics -N..N), ``change`` the series' relative change when N last doubled.
-    ``continuous_deflection`` [m] is the steady deflection of the continuous track with the same smeared
-    supports (None: no such track), under which each wheel's force is its static load ``static_force``
-    [N]. ``free`` are the Floquet roots with ``Im Omega <= free_window[1]`` in the strip ``free_strip``,
-    ``free_count`` the argument principle's count, ``free_verdict`` and ``free_notes`` its verdict and
-    reasons.
-    """
-
-    model: str
-    v: float
-    bay: float
-    Omega0: float
-    time: np.ndarray
-    position: np.ndarray
-    wheel_positions: np.ndarray
-    contact_force: np.ndarray
-    deflection: np.ndarray
-    force_mean: np.ndarray
-    force_peak_to_peak: np.ndarray
-    deflection_mean: np.ndarray
-    deflection_peak_to_peak: np.ndarray
-    static_force: np.ndarray
-    continuous_deflection: np.ndarray | None
-    continuous_model: str | None
-    harmonics: int
-    change: float
-    tol: float
-    converged: bool
-    free: tuple[FreeVibration, ...]
-    free_count: int
-    free_verdict: str
-    free_strip: tuple[float, float]
-    free_window: tuple[float, float]
-    free_notes: tuple[str, ...]
-    names: tuple[str, ...] = ()
-
-    @property
-    def wheels(self) -> int:
-        return int(self.contact_force.shape[0])
-
-    def _repr_html_(self) -> str:
-        """Jupyter: the free vibrations' verdict first, then the steady response per wheel and the roots."""
-        from moving_bogie.html_repr import html_table
-
-        rows = [
-            ("model", self.model),
-            ("v, bay", f"{self.v:.6g} m/s, {self.bay:.6g} m (Omega_0 = {self.Omega0:.6g} rad/s)"),
-            (
-                "harmonics",
-                f"-{self.harmonics}..{self.harmonics}" + ("" if self.converged else " (NOT converged)"),
-            ),
-            ("contact force mean [N]", ", ".join(f"{x:.6g}" for x in self.force_mean)),
-            ("contact force peak-to-peak [N]", ", ".join(f"{x:.6g}" for x in self.force_peak_to_peak)),
-            ("deflection peak-to-peak [m]", ", ".join(f"{x:.3e}" for x in self.deflection_peak_to_peak)),
-        ]
-        items = [(f"{f.Omega.real:.6g}", f"{f.Omega.imag:.6g}", f"{f.frequency_hz:.6g}") for f in self.free]
-        header = ("Re Omega [rad/s]", "Im Omega [rad/s] (< 0: grows)", "f [Hz]")
-        return html_table(
-            "steady response over a bay and free vibrations",
-            self.free_verdict.upper(),
-            rows,
-            reasons=list(self.free_notes),
-            items=(header, items),
-        )
-
-    @property
-    def period(self) -> float:
-        """The bay-passing period l / v [s]."""
-        return self.bay / self.v
-
-    @property
-    def wheel_names(self) -> tuple[str, ...]:
-        """The rail's deflection under each wheel by its DOF name (the vehicle's ``DOFS``, wheels first)."""
-        return self.names[: self.wheels] or tuple(f"w_{j}" for j in range(self.wheels))
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the keys of the continuous tracks' series with the same meaning
-        (:data:`~moving_bogie.response.closed_form.SERIES_KEYS`: the times, the units, the rail's deflection
-        under each wheel by its DOF name, its steady part (here the mean over a bay, the harmonic n = 0),
-        the notes), then the bay, Omega_0, the steady response over the bay per wheel (``steady_bay``) and
-        the free vibrations (units in the key names)."""
-        names = self.wheel_names
-        return {
-            "tau": self.time.tolist(),
-            "units": dict(SLEEPER_UNITS),
-            "responses": {name: self.deflection[j].tolist() for j, name in enumerate(names)},
-            "steady": {name: float(self.deflection_mean[j]) for j, name in enumerate(names)},
-            "response_units": {name: "m" for name in names},
-            "notes": list(self.free_notes),
-            **self._own(),
-        }
-
-    def _own(self) -> dict[str, Any]:
-        cont = self.continuous_deflection
-        wheels = [
-            {
-                "position_m": float(self.wheel_positions[j]),
-                "force_mean_N": float(self.force_mean[j]),
-                "force_peak_to_peak_N": float(self.force_peak_to_peak[j]),
-                "deflection_mean_m": float(self.deflection_mean[j]),
-                "deflection_peak_to_peak_m": float(self.deflection_peak_to_peak[j]),
-                "static_force_N": float(self.static_force[j]),
-                "continuous_deflection_m": None if cont is None else float(cont[j]),
-            }
-            for j in range(self.wheels)
-        ]
-        return {
-            "model": self.model,
-            "v_m_s": self.v,
-            "l_m": self.bay,
-            "Omega0_rad_s": self.Omega0,
-            "Omega0_Hz": self.Omega0 / (2 * math.pi),
-            "period_s": self.period,
-            "steady_bay": {
-                "harmonics": [-self.harmonics, self.harmonics],
-                "change": self.change,
-                "tol": self.tol,
-                "converged": self.converged,
-                "continuous_model": self.continuous_model,
-                "wheels": wheels,
-                "time_s": self.time.tolist(),
-                "position_m": self.position.tolist(),
-                "contact_force_N": self.contact_force.tolist(),
-                "deflection_m": self.deflection.tolist(),
-            },
-            "free": {
-                "strip_rad_s": list(self.free_strip),
-                "window_im_rad_s": list(self.free_window),
-                "count": self.free_count,
-                "roots": [r.to_dict() for r in self.free],
-                "verdict": self.free_verdict,
-                "notes": list(self.free_notes),
-            },
-        }
 
 
 def _series(amplitudes: np.ndarray, harmonics: np.ndarray, Omega0: float, tau: np.ndarray) -> np.ndarray:
@@ -248,7 +61,8 @@ def sleeper_series(
     points: int = 201,
     tol: float = 1e-3,
     free: bool = True,
-) -> SleeperSeries:
+    progress: Callable[[float], None] | None = None,
+) -> TimeSeries:
     """The steady response over ``bays`` bays on ``points`` points and the free vibrations.
 
     Parameters
@@ -265,8 +79,16 @@ def sleeper_series(
     tol : float
         Largest change of the steady series when N doubles, relative to their largest value (Eq. (S18)).
     free : bool
-        Also search the Floquet roots (the free vibrations); False leaves ``free`` empty and the verdict
-        ``"not searched"``.
+        Also search the Floquet roots (the free vibrations, the series' ``frequencies``); False leaves
+        ``frequencies`` None, ``bay.free`` empty and the verdict ``"not searched"``.
+    progress : callable, optional
+        Called with the fraction done (the strip search, then the steady response).
+
+    Returns
+    -------
+    TimeSeries
+        The rail's deflection under each wheel by DOF name (in m, times in s), its steady part the mean over
+        a bay, and in ``bay`` the :class:`BayResponse`.
 
     Raises
     ------
@@ -283,6 +105,24 @@ def sleeper_series(
     if scales is None:
         why = "the series on sleepers is in SI units (s, m, N): give SI parameters (PhysicalParams)"
         raise ParameterError("params", why)
+    found = _strip_search(bound, scales, progress) if free else None
+    bay = _bay_response(bound, scales, smeared, bays, points, tol, found)
+    if progress is not None:
+        progress(1.0)
+    return _time_series(bay, found)
+
+
+def _bay_response(
+    bound: BoundModel,
+    scales: Scales,
+    smeared: tuple[BoundModel, Scales | None] | None,
+    bays: int,
+    points: int,
+    tol: float,
+    found: FrequencyResult | None,
+) -> BayResponse:
+    """The steady response over ``bays`` bays (Eqs. (S16)-(S18)) in SI, with the roots ``found``."""
+    sleepers = cast("PeriodicTrack", bound.track).sleepers
     length = 1 / scales.chi
     vehicle = VehicleMatrices.of(bound)
     loads = static_loads(bound.vehicle, bound.vehicle_values(bound.floats))
@@ -294,8 +134,7 @@ def sleeper_series(
     force, deflection = (_series(a, h, Omega0, tau) for a in (F, U))
     peak_f, peak_u = (_series(a, h, Omega0, one_bay) for a in (F, U))
     i0 = int(np.flatnonzero(h == 0)[0])
-    free_part = _free_vibrations(sleepers, vehicle, scales.t_scale) if free else None
-    return SleeperSeries(
+    return BayResponse(
         model=bound.name,
         v=sleepers.alpha * scales.v_ref,
         bay=sleepers.lam * length,
@@ -315,8 +154,29 @@ def sleeper_series(
         change=steady.change,
         tol=tol,
         converged=steady.converged,
-        **(free_part or _NOT_SEARCHED),
+        **(_NOT_SEARCHED if found is None else _free_vibrations(found, scales.t_scale)),
         names=bound.names,
+    )
+
+
+def _time_series(bay: BayResponse, found: FrequencyResult | None) -> TimeSeries:
+    """The series every track gives: the rail's deflection under each wheel by its DOF name, its steady
+    part (the mean over a bay, the harmonic n = 0), in s and m; the bay's own part in ``bay``."""
+    from moving_bogie.response.closed_form import TimeSeries
+
+    names = bay.wheel_names
+    return TimeSeries(
+        tau=bay.time,
+        responses={name: bay.deflection[j] for j, name in enumerate(names)},
+        steady={name: float(bay.deflection_mean[j]) for j, name in enumerate(names)},
+        response_units=dict.fromkeys(names, "m"),
+        branch_cut=False,
+        frequencies=found,
+        model=bay.model,
+        units=dict(SLEEPER_UNITS),
+        notes=bay.free_notes,
+        contacts=bay.wheels,
+        bay=bay,
     )
 
 
@@ -342,17 +202,29 @@ _NOT_SEARCHED: dict[str, Any] = {
 }
 
 
-def _free_vibrations(track: SleeperTrack, vehicle: VehicleMatrices, t_scale: float) -> dict[str, Any]:
-    """The Floquet roots of Eq. (S14) in rad/s, with the count, window and verdict of the strip search."""
-    from moving_bogie.roots.strip import floquet_frequencies
+def _strip_search(
+    bound: BoundModel, scales: Scales, progress: Callable[[float], None] | None
+) -> FrequencyResult:
+    """The Floquet roots of Eq. (S14) in one strip (:func:`~moving_bogie.roots.strip_frequencies.
+    strip_frequencies`, as ``frequencies`` gives them), shown in SI with ``scales``."""
+    from moving_bogie.roots.strip_frequencies import strip_frequencies
 
-    result = floquet_frequencies(track, vehicle)
-    window = result.window
+    stage = None if progress is None else (lambda x: progress(0.9 * x))
+    return replace(strip_frequencies(bound, progress=stage), scales=scales)
+
+
+def _free_vibrations(found: FrequencyResult, t_scale: float) -> dict[str, Any]:
+    """The roots of the strip search in rad/s, with its count, window, verdict and the notes of the search
+    (the band above the window, which holds decaying vibrations only, is the window's top in
+    ``free_window``)."""
+    from moving_bogie.roots.count.outcomes import Reason
+
+    window = found.window
     return {
-        "free": tuple(FreeVibration(r.q / t_scale) for r in result.roots),
-        "free_count": result.count,
-        "free_verdict": result.verdict.state,
+        "free": tuple(FreeVibration(complex(r.q) / t_scale) for r in found.roots),
+        "free_count": found.count,
+        "free_verdict": found.verdict.state,
         "free_strip": (window.x0 / t_scale, window.x1 / t_scale),
         "free_window": (window.y0 / t_scale, window.y1 / t_scale),
-        "free_notes": result.notes,
+        "free_notes": tuple(n.detail for n in found.notes if n.reason is not Reason.BEYOND_WINDOW),
     }

@@ -1,4 +1,5 @@
-"""The decaying roots of a vehicle on the soil on the physical sheet: a band above the real axis.
+"""The decaying roots on the physical sheet of a track whose kernel is a quadrature: a band above the real
+axis.
 
 The kernel G(0, Omega) = (1/2 pi) int dk / D(k, Omega + k v), integrated along real k (docs/soil.md,
 Eq. (S9)), is analytic for Im Omega < 0. It continues analytically into Im Omega > 0 as long as no
@@ -9,31 +10,15 @@ real k is another function (the continuation deforms the path). Below every sing
 analytic and its roots with Im Omega > 0 (decaying) are counted by the argument principle as those with
 Im Omega < 0 are.
 
-**The soil's lines.** A free wave of the soil at a real horizontal wavenumber kappa solves
--omega^2 m + k + i omega c = 0 with its kinetic m > 0, strain k >= 0 and Kelvin-Voigt c = sum eta_j k_j
-(each layer's strain energy times its eta), so Im omega = c / (2 m) >= eta_min |omega|^2 / 2 (|omega|^2 = k/m)
-when underdamped, and Im omega >= k / c >= 1 / eta_max when overdamped. Its phase speed is at least
-c_lo = 0.87 c_s,min (every surface wave of a soil with nu >= 0 is faster than 0.87 times its least shear
-speed, :func:`~moving_bogie.soil.rayleigh.soil_modes`; 0.5 c_s,min for a negative nu), so the k1 <= kappa <=
-|omega| / c_lo that meets it has |Re Omega| <= |omega| (1 + v / c_lo), and at Re Omega = X the soil's lines
-lie no lower than
-
-    y_soil(X) = min(eta_min X^2 / (2 (1 + v / c_lo)^2), 1 / eta_max)        (rad/s).
-
-It vanishes like X^2 at Omega = 0 (the branch point where the lines start) and without damping: no band of
-constant depth exists along the whole real axis. The band searched is a staircase under y_soil: STEPS
-rectangles X1 2^-(i+1) <= Re Omega <= X1 2^-i, 0 <= Im Omega <= y_soil(X1 2^-(i+1)), X1 the window's size.
-
-**The track's lines** (zeros of D at real k) have no such bound (the rail's bending and the ballast store
-energy without damping). Each rectangle is scanned: at K_POINTS wavenumbers of each sign, geometric from
-1e-3 / b to beyond the rail's bending in the window, the winding number of D(k, Omega + k v) along the
-rectangle's edge (EDGE_POINTS samples, segments halved where a phase step reaches pi / 4, until every step
-is below pi / 2) must be 0; a rectangle where it is not is halved in depth (HALVINGS times at most) or
-dropped. This is a scan, not a bound (a wave between two scanned wavenumbers that enters and leaves the
-rectangle is not seen), and the notes say so.
-
-The roots found in the band, the least Im Omega among them (the margin, in 1/s) and the band itself are
-reported; beyond the band (Re Omega < X1 2^-STEPS, or above the staircase) nothing is searched.
+The track says where its kernel stays analytic (:class:`~moving_bogie.kernels.track_model.BandTrack`: on
+the soil, :mod:`moving_bogie.soil.sheet`): under the depth ``band_depth(X)`` it gives at Re q = X, in a
+rectangle its ``waves_clear`` passes. The band searched is a staircase under that depth: STEPS rectangles
+X1 2^-(i+1) <= Re q <= X1 2^-i, 0 <= Im q <= band_depth(X1 2^-(i+1)), X1 the window's size; a rectangle
+that its ``waves_clear`` refuses is halved in depth (HALVINGS times at most) or dropped. The roots found in
+the band, the least Im Omega among them (the margin, in 1/s) and the band itself are reported; beyond the
+band (Re Omega < X1 2^-STEPS, or above the staircase) nothing is searched. The count is coarser than
+the window's (BAND_TOL, BAND_STEP, BAND_SAMPLES) with the same guard: where the receptance's error reaches
+|E_chr| / 2 on the edge, the rectangle is counted again at the track's tolerance.
 """
 
 from __future__ import annotations
@@ -44,26 +29,27 @@ from typing import TYPE_CHECKING
 import mpmath
 import numpy as np
 
+from moving_bogie.kernels.track_model import BandTrack
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle
+from moving_bogie.roots.quadrature_window import (
+    QuadratureCharacteristic,
+    count_rectangle,
+    induced,
+    locate,
+)
 
 if TYPE_CHECKING:
     from moving_bogie.roots.frequency_result import InducedFrequency
-    from moving_bogie.roots.quadrature_window import QuadratureCharacteristic
-    from moving_bogie.soil.profile import SoilProfile
-    from moving_bogie.soil.track import SoilTrack
 
-__all__ = ["DecayingBand", "decaying_band", "soil_depth"]
+__all__ = ["STEPS", "DecayingBand", "decaying_band"]
 
-#: Rectangles of the staircase; wavenumbers per sign and edge samples of the track's scan; depth halvings;
-#: refinements of the scan's edge.
-STEPS, K_POINTS, EDGE_POINTS, HALVINGS, REFINE = 2, 16, 24, 5, 4
+#: Rectangles of the staircase; depth halvings of a rectangle the track refuses.
+STEPS, HALVINGS = 2, 5
 #: The band's count: the receptance's relative tolerance, the largest step of arg E_chr and the initial
 #: samples along a rectangle's long side (refined where the phase turns; the guard of
 #: :func:`~moving_bogie.roots.quadrature_window.count_rectangle` recounts at the track's own tolerance
 #: where an error reaches |E_chr| / 2).
 BAND_TOL, BAND_STEP, BAND_SAMPLES = 1e-2, np.pi / 3, 4
-#: The least phase speed of the soil's free waves over its least shear speed (module docstring).
-SLOWEST, SLOWEST_ANY_NU = 0.87, 0.5
 
 
 class BandRectangle(Rectangle):
@@ -73,73 +59,6 @@ class BandRectangle(Rectangle):
 
     def boundary(self, spacing: float, least: int = 1) -> np.ndarray:
         return super().boundary(spacing, least)
-
-
-def soil_depth(soil: SoilProfile, v: float, x: float) -> float:
-    """y_soil(X) (rad/s) at Re Omega = ``x`` (rad/s) for a load at ``v`` (m/s): 0 without damping in some
-    layer (module docstring)."""
-    etas = [layer.eta for layer in soil.layers]
-    if min(etas) <= 0:
-        return 0.0
-    floor = SLOWEST if min(layer.nu for layer in soil.layers) >= 0 else SLOWEST_ANY_NU
-    c_lo = floor * soil.c_s_min
-    return float(min(min(etas) * x**2 / (2 * (1 + v / c_lo) ** 2), 1 / max(etas)))
-
-
-def _wavenumbers(track: SoilTrack, v: float, x1: float) -> np.ndarray:
-    """The scan's k (1/m), both signs: from 1e-3 / b to where EI k^4 exceeds 16 m_tot (x1 + k v)^2."""
-    m_tot = track.m + track.m_s + track.rho_b * track.A_b
-    k_hi = 2 * max(1 / track.b, (16 * m_tot * x1**2 / track.EI) ** 0.25, 4 * v * np.sqrt(m_tot / track.EI))
-    k = np.geomspace(1e-3 / track.b, k_hi, K_POINTS)
-    return np.concatenate([-k[::-1], k])
-
-
-def _edge(rect: Rectangle, t: np.ndarray) -> np.ndarray:
-    """The point at fraction ``t`` of the counter-clockwise boundary of ``rect`` from its lower left."""
-    w, h = rect.width, rect.height
-    s = t * 2 * (w + h)
-    return np.select(
-        [s <= w, s <= w + h, s <= 2 * w + h],
-        [
-            rect.x0 + s + 1j * rect.y0,
-            rect.x1 + 1j * (rect.y0 + s - w),
-            rect.x1 - (s - w - h) + 1j * rect.y1,
-        ],
-        default=rect.x0 + 1j * (rect.y1 - (s - 2 * w - h)),
-    )
-
-
-def track_waves_clear(track: SoilTrack, soil: SoilProfile, v: float, rect: Rectangle) -> bool:
-    """Whether no zero of D(k, Omega + k v) (a free wave of the track on its soil) lies in ``rect`` (rad/s)
-    at any scanned k: the edge sampled (EDGE_POINTS, segments halved up to REFINE times where a phase step
-    reaches pi / 4 at some k) until every step is below pi / 2, and every winding number 0 (module
-    docstring). False when the sampling does not resolve the phase."""
-    from moving_bogie.soil.strip import strip_stiffness
-
-    k = _wavenumbers(track, v, rect.x1)
-
-    def determinant(t: np.ndarray) -> np.ndarray:
-        K, W = np.meshgrid(k, _edge(rect, t), indexing="ij")
-        omega = W + K * v
-        chi = strip_stiffness(K.ravel(), omega.ravel(), soil, track.b, rtol=1e-3).chi.reshape(K.shape)
-        det = np.asarray(track.determinant(K, omega, chi))
-        # the ballasted determinant also vanishes where the rod's sin(lam) / lam does (lam = n pi, on the
-        # real axis), where D itself does not: divided out
-        return det / track._ballast(omega)[0] if track.ballasted else det
-
-    t = np.linspace(0.0, 1.0, EDGE_POINTS + 1)
-    D = determinant(t)
-    for _ in range(REFINE + 1):
-        steps = np.abs(np.angle(D[:, 1:] / D[:, :-1]))
-        coarse = np.any(steps >= np.pi / 4, axis=0)
-        if not coarse.any() or _ == REFINE:
-            break
-        mid = 0.5 * (t[:-1] + t[1:])[coarse]
-        t = np.concatenate([t, mid])
-        order = np.argsort(t)
-        t, D = t[order], np.concatenate([D, determinant(mid)], axis=1)[:, order]
-    steps = np.angle(D[:, 1:] / D[:, :-1])
-    return bool(np.all(np.abs(steps) < np.pi / 2) and np.all(np.abs(steps.sum(axis=1)) < np.pi))
 
 
 @dataclass(frozen=True)
@@ -157,6 +76,7 @@ class DecayingBand:
     x_end: float
     scale: float
     damped: bool = True
+    caveat: str = ""  # what the track's check of a rectangle is (BandTrack.band_caveat)
 
     @property
     def count(self) -> int | None:
@@ -201,7 +121,7 @@ class DecayingBand:
         return (
             f"above the axis (physical sheet, below the singular lines): {found} in "
             + "; ".join(parts)
-            + f" (the track's free waves scanned at {2 * K_POINTS} wavenumbers, not bounded)"
+            + (f" ({self.caveat})" if self.caveat else "")
             + (f"; {len(self.dropped)} rectangle(s) dropped (a track's wave)" if self.dropped else "")
             + f"; not searched: Re omega < {self.x_end * s:.4g} rad/s, above these depths (beyond the "
             "singular lines the integral along real k is not the continued function), and beyond the window"
@@ -232,24 +152,21 @@ class DecayingBand:
 
 
 def decaying_band(E: QuadratureCharacteristic, radius: float, steps: int = STEPS) -> DecayingBand:
-    """Count and locate the roots of ``E`` in the staircase of ``steps`` rectangles under the singular
-    lines (module docstring), the window's size ``radius`` (q) its right end."""
-    from moving_bogie.roots.quadrature_window import count_rectangle, induced, locate
-    from moving_bogie.soil.rail_track import SoilRail
-
-    rail = E.bound.track
-    assert isinstance(rail, SoilRail)
-    track, soil, scale = rail.spec.track, rail.spec.soil, float(rail.omega_0)
+    """Count and locate the roots of ``E`` in the staircase of ``steps`` rectangles under the depth its
+    track gives (module docstring), the window's size ``radius`` (q) its right end."""
+    track = E.bound.track
+    if not isinstance(track, BandTrack):
+        raise TypeError(f"the track {track.name!r} does not say where its kernel stays analytic")
+    scale, caveat = track.band_scale, track.band_caveat
     ends = [radius * 2.0**-i for i in range(steps + 1)]
     rects: list[Rectangle] = []
     dropped: list[Rectangle] = []
     for x1, x0 in zip(ends[:-1], ends[1:], strict=True):
-        depth = soil_depth(soil, rail.v, x0 * scale) / scale
+        depth = track.band_depth(x0)
         if depth <= 0:
-            return DecayingBand((), (), (), (), radius, scale, damped=False)
+            return DecayingBand((), (), (), (), radius, scale, damped=False, caveat=caveat)
         for _ in range(HALVINGS + 1):
-            si = Rectangle(x0 * scale, x1 * scale, 0.0, depth * scale)
-            if track_waves_clear(track, soil, rail.v, si):
+            if track.waves_clear(x0, x1, 0.0, depth):
                 rects.append(BandRectangle(x0, x1, 0.0, depth))
                 break
             depth /= 2
@@ -267,4 +184,6 @@ def decaying_band(E: QuadratureCharacteristic, radius: float, steps: int = STEPS
         roots += [
             induced(E, q, slope, step, "above") for q, slope, step in locate(E, rect, n, (0.0, rect.y1))
         ]
-    return DecayingBand(tuple(rects), tuple(counts), tuple(roots), tuple(dropped), ends[-1], scale)
+    return DecayingBand(
+        tuple(rects), tuple(counts), tuple(roots), tuple(dropped), ends[-1], scale, caveat=caveat
+    )

@@ -36,7 +36,7 @@ fails, a note of reason QUADRATURE makes the verdict UNDETERMINED.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -48,15 +48,22 @@ from moving_bogie.kernels.arithmetic import Batched
 from moving_bogie.kernels.coupling import coupled_system, dynamic_coefficients, dynamic_stiffness
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle, winding_number
 from moving_bogie.roots.count.far_field import MARGIN, FarField, e_lead, far_field_radius
-from moving_bogie.roots.count.outcomes import Note, Reason
 from moving_bogie.roots.count.window import default_window
-from moving_bogie.roots.frequency_result import FrequencyResult, InducedFrequency
+from moving_bogie.roots.frequency_result import InducedFrequency
 
 if TYPE_CHECKING:
     from moving_bogie.kernels.bound import BoundModel
     from moving_bogie.typing import ComplexArray
 
-__all__ = ["QuadratureCharacteristic", "grown_radius", "window_frequencies", "window_radius"]
+__all__ = [
+    "QuadratureCharacteristic",
+    "count_rectangle",
+    "far_check",
+    "grown_radius",
+    "induced",
+    "locate",
+    "window_radius",
+]
 
 #: Initial boundary samples per side of a region; Delves-Lyness up to this many roots, else bisection.
 SAMPLES, MOMENTS = 8, 3
@@ -290,13 +297,13 @@ def grown_radius(E: QuadratureCharacteristic, radius: float) -> float:
     for _ in range(FAR_DOUBLINGS):
         with E.tolerance(COUNT_TOL):
             E(_far_edges(radius))
-        if _far_check(E, radius) <= MARGIN:
+        if far_check(E, radius) <= MARGIN:
             break
         radius *= 2
     return radius
 
 
-def _far_check(E: QuadratureCharacteristic, radius: float) -> float:
+def far_check(E: QuadratureCharacteristic, radius: float) -> float:
     """The largest rho = |E_chr - E_lead| / |E_lead| over the samples at |q| >= radius."""
     z = np.array([q for q in E.samples if abs(q) >= radius * (1 - 1e-12)], dtype=complex)
     if z.size == 0:
@@ -340,83 +347,3 @@ def window_radius(equivalent: BoundModel) -> tuple[float, FarField]:
     is none (the verdict then says so)."""
     far = far_field_radius(equivalent, FIRST_RADIUS)
     return (default_window(equivalent).x1 if far.radius is None else far.radius), far
-
-
-def window_frequencies(
-    bound: BoundModel,
-    *,
-    radius: float,
-    far_field: FarField | None = None,
-    progress: Callable[[float], None] | None = None,
-    decaying: bool = True,
-    band_steps: int | None = None,
-) -> FrequencyResult:
-    """Every root with Im q <= 0 in the window of size ``radius`` of a track whose receptance is a
-    quadrature (module docstring), with the count beside them and the notes of the verdict.
-
-    Parameters
-    ----------
-    bound : BoundModel
-        The parameters bound to such a track.
-    radius : float
-        S: the window's size (the far-field radius, or larger).
-    far_field : FarField, optional
-        The far-field check of the track's continuous equivalent that gave ``radius`` (None: not checked).
-    decaying : bool
-        On a track on the soil, also search the band of decaying roots under the singular lines
-        (:mod:`~moving_bogie.roots.decaying_band`) for the margin; ``band_steps`` rectangles in its
-        staircase (None: :data:`~moving_bogie.roots.decaying_band.STEPS`).
-    """
-    E = QuadratureCharacteristic(bound)
-    if far_field is not None and far_field.radius is not None:
-        radius = grown_radius(E, radius)
-    rect = Rectangle(-1e-3 * radius, radius, -radius, 0.0)
-    notes: list[Note] = []
-    try:
-        count, stands = count_rectangle(E, rect)
-    except EdgeZeroError:
-        rect = Rectangle(rect.x0, rect.x1, rect.y0, -1e-3 * radius)
-        notes.append(Note(Reason.QUADRATURE, f"a root lies within {1e-3 * radius:.3g} of the real axis"))
-        count, stands = count_rectangle(E, rect)
-    if not stands:
-        text = "the count rests on values of E_chr on the window's edge within twice their error of 0"
-        notes.append(Note(Reason.QUADRATURE, text))
-    if progress is not None:
-        progress(0.5)
-    roots = [induced(E, q, slope, step) for q, slope, step in locate(E, rect, count)]
-    for root in roots:
-        if root.marginal:
-            text = f"Im q of the root at Re q = {root.re_text} is within its error of 0"
-            notes.append(Note(Reason.QUADRATURE, text))
-    band = None
-    from moving_bogie.soil.rail_track import SoilRail
-
-    if decaying and isinstance(bound.track, SoilRail):
-        from moving_bogie.roots.decaying_band import STEPS, decaying_band
-
-        band = decaying_band(E, radius, STEPS if band_steps is None else band_steps)
-        notes.append(Note(Reason.BEYOND_WINDOW, band.statement()))
-    else:
-        notes.append(Note(Reason.BEYOND_WINDOW, "Im q > 0 is not searched: roots there decay"))
-    far = far_field
-    if far is not None and far.radius is not None:
-        worst = _far_check(E, radius)
-        far = FarField(radius, worst, far.start)  # the track's own rho on the far edges
-        if worst > MARGIN:
-            reason = f"|E_chr - E_lead| / |E_lead| = {worst:.3g} > {MARGIN} on the window's far edges"
-            far = FarField(None, worst, far.start, reason)
-    if progress is not None:
-        progress(1.0)
-    return FrequencyResult(
-        bound=bound,
-        model=bound.model.vehicle,
-        dps=15,
-        window=rect,
-        roots=tuple(sorted(roots, key=lambda r: float(mpmath.re(r.q)))),
-        count=count,
-        unsearched=(),
-        evaluations=len(E.samples),
-        notes=tuple(notes),
-        far_field=far,
-        band=band,
-    )

@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import optimize
 
 from moving_bogie.errors import ParameterError
 from moving_bogie.typing import FloatArray
@@ -28,7 +29,10 @@ from .profile import SoilProfile
 from .receptance import soil_receptance
 from .track import SoilTrack
 
-__all__ = ["Deflection", "MovingLoad", "deflection", "moving_load"]
+__all__ = ["PEAK_XTOL", "Deflection", "MovingLoad", "deflection", "moving_load"]
+
+#: The peak speed is refined to this fraction of the bracket of two grid steps around the largest value.
+PEAK_XTOL = 1e-4
 
 
 @dataclass(frozen=True)
@@ -89,29 +93,29 @@ class MovingLoad:
 def moving_load(
     track: SoilTrack, soil: SoilProfile, load: float, speeds: FloatArray, *, rtol: float = 1e-5
 ) -> MovingLoad:
-    """w(0) at each speed of ``speeds`` (m/s), w_static, and the peak of |w(0)| refined by golden-section
-    search between the neighbours of the largest grid value."""
+    """w(0) at each speed of ``speeds`` (m/s), w_static, and the peak of |w(0)| refined between the
+    neighbours of the largest grid value by Brent's bounded search (golden sections and parabolic steps,
+    scipy's ``minimize_scalar``) to PEAK_XTOL of that bracket."""
     speeds = np.asarray(speeds, dtype=float)
-    static = deflection(track, soil, load, 0.0, rtol=rtol)
-    values = deflection(track, soil, load, speeds, rtol=rtol)  # every speed in one quadrature
-    w = values.w[:, 0]
-    error = float(max(static.error[0], values.error.max()))
+    # the static deflection and every speed in one quadrature
+    values = deflection(track, soil, load, np.concatenate([[0.0], speeds]), rtol=rtol)
+    static, w = values.w[0, 0], values.w[1:, 0]
+    error = float(values.error.max())
     i = int(np.argmax(np.abs(w)))
     v_peak, w_peak = float(speeds[i]), float(w[i])
     if 0 < i < len(speeds) - 1:
-        g = (np.sqrt(5) - 1) / 2
+        seen: dict[float, float] = {}
+
+        def minus_peak(x: float) -> float:
+            seen[x] = float(deflection(track, soil, load, x, rtol=rtol).w[0])
+            return -abs(seen[x])
+
         a, b = float(speeds[i - 1]), float(speeds[i + 1])
-        x1, x2 = b - g * (b - a), a + g * (b - a)
-        f1, f2 = (abs(deflection(track, soil, load, x, rtol=rtol).w[0]) for x in (x1, x2))
-        for _ in range(20):  # the bracket shrinks to 1e-4 of two grid steps
-            if f1 > f2:
-                b, x2, f2 = x2, x1, f1
-                x1 = b - g * (b - a)
-                f1 = abs(deflection(track, soil, load, x1, rtol=rtol).w[0])
-            else:
-                a, x1, f1 = x1, x2, f2
-                x2 = a + g * (b - a)
-                f2 = abs(deflection(track, soil, load, x2, rtol=rtol).w[0])
-        v_peak = x1 if f1 > f2 else x2
-        w_peak = float(deflection(track, soil, load, v_peak, rtol=rtol).w[0])
-    return MovingLoad(v=speeds, w=w, w_static=float(static.w[0]), v_peak=v_peak, w_peak=w_peak, error=error)
+        options = {"xatol": PEAK_XTOL * (b - a)}
+        v_peak = float(
+            optimize.minimize_scalar(minus_peak, bounds=(a, b), method="bounded", options=options).x
+        )
+        w_peak = (
+            seen[v_peak] if v_peak in seen else float(deflection(track, soil, load, v_peak, rtol=rtol).w[0])
+        )
+    return MovingLoad(v=speeds, w=w, w_static=float(static), v_peak=v_peak, w_peak=w_peak, error=error)

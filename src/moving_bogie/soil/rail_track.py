@@ -11,7 +11,9 @@ e^{-i k x} of docs/soil.md), and so has the soil: :meth:`SoilRail.receptance` re
 
 G is analytic for Im q < 0 and continuous on the real axis (module :mod:`.receptance`): its branch points
 and cuts lie in Im q >= 0 (the branch point q = 0 on the real axis, where G stays finite), so a window of
-Im q <= 0 holds none (``has_cut`` False) and the roots with Im q > 0, which decay, are not searched.
+Im q <= 0 holds none (``has_cut`` False). Above it G stays analytic up to the singular lines of the soil's
+and the track's free waves (:mod:`.sheet`): the members ``band_*`` and ``waves_clear`` say where, for the
+search of the decaying roots below them (:mod:`moving_bogie.roots.decaying_band`).
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from moving_bogie.kernels.track_model import WINDOW, RailReceptance, SearchRegio
 
 from .profile import SoilProfile
 from .receptance import soil_receptance
+from .sheet import SCAN_NOTE, soil_depth, track_waves_clear
 from .strip import strip_stiffness
 from .track import SoilTrack
 
@@ -164,3 +167,24 @@ class SoilRail:
     def smeared(self) -> None:
         """None: the critical velocity on the soil is that of its guided waves (``soil/critical.py``)."""
         return None
+
+    # --- the band above the real axis (kernels/track_model.py: BandTrack; soil/sheet.py) ----------------
+    @property
+    def band_scale(self) -> float:
+        """rad/s per unit of q: sqrt(k_ref / m)."""
+        return float(self.omega_0)
+
+    @property
+    def band_caveat(self) -> str:
+        """The track's own lines are scanned, not bounded (:func:`~.sheet.track_waves_clear`)."""
+        return SCAN_NOTE
+
+    def band_depth(self, x: float) -> float:
+        """The soil's lines' lower bound y_soil at Re q = ``x`` (:func:`~.sheet.soil_depth`), in q."""
+        scale = self.band_scale
+        return soil_depth(self.spec.soil, self.v, x * scale) / scale
+
+    def waves_clear(self, x0: float, x1: float, y0: float, y1: float) -> bool:
+        """No free wave of the track on its soil in the rectangle of q (:func:`~.sheet.track_waves_clear`)."""
+        s = self.band_scale
+        return track_waves_clear(self.spec.track, self.spec.soil, self.v, (x0 * s, x1 * s, y0 * s, y1 * s))

@@ -114,6 +114,12 @@ class SoilTrack:
         middle = (k_p - self.m_s * omega**2) * sinc + z11
         return (beam + k_p) * (middle * bottom - z12**2) - k_p**2 * sinc * bottom
 
+    def wave_determinant(self, k1: Array, omega: Array, chi: Array) -> Array:
+        """:meth:`determinant` without the zeros of the ballast rod's sin(lam) / lam (lam = n pi, on the real
+        axis, where D itself does not vanish): zero exactly at the track's free waves."""
+        det = self.determinant(k1, omega, chi)
+        return det / self._ballast(omega)[0] if self.ballasted else det
+
     def free_wavenumber(self, omega: Array) -> Array:
         """k1 > 0 of the track's free wave without the soil (chi = 0: the ballast's bottom free), or NaN.
 

@@ -4,12 +4,16 @@ the command line (docs/sleepers.md, "The finite rail on sleepers").
 :func:`check_on_supports` takes what the continuous tracks' check takes, the bound model (on its
 :class:`~moving_bogie.kernels.periodic_track.PeriodicTrack`) and the SI scales of its parameters, and runs
 :func:`~moving_bogie.validation.sleepers_check.check_sleepers` on its sleeper track, vehicle and static
-loads; the :class:`~moving_bogie.validation.sleeper_verdict.SleeperCheck` it returns names the model and
-gives its values in SI beside the dimensionless ones (``to_dict()``).
+loads, and gives what the continuous tracks' check gives, a
+:class:`~moving_bogie.validation.verdict.ValidationResult`: each compared quantity, the verdict, the wall
+times, and in its ``supports`` the :class:`~moving_bogie.validation.sleeper_verdict.SleeperCheck` (the
+runs, the fits, the Floquet side), which names the model and gives its values in SI beside the
+dimensionless ones (``to_dict()``).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import replace
 from typing import TYPE_CHECKING
@@ -19,8 +23,9 @@ from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.hill import VehicleMatrices
 from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.response.steady_bay import static_loads
-from moving_bogie.validation.sleeper_verdict import SleeperCheck
+from moving_bogie.validation.sleeper_verdict import Comparison, SleeperCheck
 from moving_bogie.validation.sleepers_check import check_sleepers
+from moving_bogie.validation.verdict import QuantityComparison, ValidationResult
 
 if TYPE_CHECKING:
     from moving_bogie.model.scales import Scales
@@ -34,7 +39,7 @@ def check_on_supports(
     *,
     tol: float = 0.01,
     progress: Callable[[float], None] | None = None,
-) -> SleeperCheck:
+) -> ValidationResult:
     """The finite rail against the Floquet theory for the vehicle and track of ``bound``.
 
     Parameters
@@ -70,4 +75,35 @@ def check_on_supports(
     loads = static_loads(bound.vehicle, bound.vehicle_values(bound.floats))
     time_scale = None if scales is None else scales.t_scale
     result = check_sleepers(sleepers, vehicle, loads, tol=tol, time_scale=time_scale, progress=progress)
-    return replace(result, model=bound.name, scales=scales, params=bound.params)
+    return validation_result(replace(result, model=bound.name, scales=scales, params=bound.params), tol)
+
+
+def _quantity(c: Comparison) -> QuantityComparison:
+    """A comparison as the continuous check's: the difference (``relative`` times the Floquet value, the
+    force's peak-to-peak for the steady force) against that Floquet value as the amplitude."""
+    amplitude = abs(c.floquet)
+    diff = c.relative * amplitude if math.isfinite(c.relative) else abs(c.finite - c.floquet)
+    return QuantityComparison(c.quantity, diff, amplitude, c.relative, c.tolerance)
+
+
+def validation_result(check: SleeperCheck, tol: float) -> ValidationResult:
+    """The check on supports as the one result type of a check (its ``supports``; the free run's times as
+    ``tau``, its fit window as ``window``)."""
+    assert check.params is not None and check.model is not None  # named by check_on_supports
+    return ValidationResult(
+        model=check.model,
+        params=check.params,
+        tau=check.free.tau,
+        finite=None,
+        reference=None,
+        closed=None,
+        window=check.fit.window,
+        quantities={c.quantity: _quantity(c) for c in check.comparisons},
+        finite_beam_s=check.finite_s,
+        reference_s=0.0,
+        closed_form_s=check.floquet_s,
+        tolerance=tol,
+        reflection_level=math.nan,
+        notes=check.notes,
+        supports=check,
+    )

@@ -10,7 +10,10 @@ from moving_bogie.validation.verdict import ValidationResult, beam_title, quanti
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["plot_validation"]
+    from moving_bogie.model.params import DimensionlessParams
+    from moving_bogie.model.physical import PhysicalParams
+
+__all__ = ["check_figure", "plot_validation"]
 
 
 def plot_validation(
@@ -42,28 +45,28 @@ def plot_validation(
 
     # the rear wheel and every internal degree of freedom
     names = list(result.quantities)
-    panels = [names[0], *names[result.finite.contacts :]]
+    panels = [names[0], *names[result.finite_beam.contacts :]]
     # labels from the vehicle's generated DOFS and UNITS (ValidationResult.labels)
-    labels = result.labels or quantity_labels(names, {}, result.finite.contacts)
+    labels = result.labels or quantity_labels(names, {}, result.finite_beam.contacts)
     fig = Figure(figsize=(7.5, 2.3 * len(panels) + 0.9), layout="constrained")
     axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
     tau = result.tau
     tau_w = result.window[1]
-    correction = " + static correction" if result.finite.static_correction else ""
+    correction = " + static correction" if result.finite_beam.static_correction else ""
     for letter, (ax, name) in zip("abcdefghijklmnop", zip(axes, panels)):
         attr = name
         curves = (
-            (result.finite, "-", "C0", f"finite beam, {result.finite.n_modes} modes{correction}"),
-            (result.closed, "--", "C3", "closed form (infinite beam)"),
+            (result.finite_beam, "-", "C0", f"finite beam, {result.finite_beam.n_modes} modes{correction}"),
+            (result.closed_form, "--", "C3", "closed form (infinite beam)"),
         )
         for source, style, color, label in curves:
             ax.plot(tau, series(source, attr, tau.size), style, color=color, lw=1.2, label=label)
         if tau_w < tau[-1]:
             ax.axvspan(tau_w, tau[-1], color="0.88", zorder=0, label="after the window")
         ax.axvline(tau_w, color="k", ls=":", lw=1.0, label="window end")
-        if result.finite.tau_valid < tau_w:
+        if result.finite_beam.tau_valid < tau_w:
             ax.axvline(
-                result.finite.tau_valid,
+                result.finite_beam.tau_valid,
                 color="0.55",
                 ls=(0, (1, 3)),
                 lw=0.9,
@@ -90,7 +93,7 @@ def plot_validation(
 
 def _suptitle(result: ValidationResult, title: str | None) -> str:
     """The figure's title: `title` (default: the vehicle and its beam), then the run and the verdict."""
-    finite, tau_w = result.finite, result.window[1]
+    finite, tau_w = result.finite_beam, result.window[1]
     verdict = "agree" if result.agrees else "DISAGREE"
     if title is None:
         vehicle = result.model
@@ -100,3 +103,18 @@ def _suptitle(result: ValidationResult, title: str | None) -> str:
         f"L = {finite.length:.1f}, k_max = {finite.k_max:.2f}; window [0, {tau_w:.1f}], "
         f"tau_valid = {finite.tau_valid:.1f}: {verdict}"
     )
+
+
+def check_figure(
+    result: ValidationResult, params: DimensionlessParams | PhysicalParams, *, title: str
+) -> Figure:
+    """The figure of a check on any track: :func:`plot_validation` titled ``title``, or on periodic supports
+    the finite rail's (:func:`~moving_bogie.validation.sleepers_plots.plot_sleeper_check`), titled by the
+    model and its speed (in m/s for SI ``params``)."""
+    if result.supports is None:
+        return plot_validation(result, title=title)
+    from moving_bogie.validation.sleepers_plots import plot_sleeper_check
+
+    check = result.supports
+    speed = f"v = {float(params.v):g} m/s" if check.scales is not None else f"alpha = {float(params.alpha):g}"
+    return plot_sleeper_check(check, title=f"{check.model}, {speed}")

@@ -27,6 +27,7 @@ from moving_bogie.validation.finite_beam import FiniteBeamResult
 if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.response.closed_form import TimeSeries
+    from moving_bogie.validation.sleeper_verdict import SleeperCheck
 
 __all__ = [
     "DEFAULT_TOLERANCE",
@@ -186,8 +187,8 @@ def compare_series(
     )
 
 
-#: The keys every check's ``to_dict()`` has, with the same meaning on every track (the continuous
-#: tracks' :class:`ValidationResult` and the sleepers'
+#: The keys every check's ``to_dict()`` has, with the same meaning on every track (a
+#: :class:`ValidationResult`, on sleepers with those of its ``supports``,
 #: :class:`~moving_bogie.validation.sleeper_verdict.SleeperCheck`): the model and its parameters, whether
 #: it agrees, the tolerance and its rule, each quantity's relative difference and comparison, the wall
 #: times and the notes.
@@ -199,7 +200,12 @@ VERDICT_KEYS = (
 
 @dataclass(frozen=True)
 class ValidationResult:
-    """Finite beam against closed form on one tau grid (:func:`moving_bogie.validation.compare.validate`).
+    """Finite beam against closed form on one tau grid (:func:`moving_bogie.validation.compare.validate`);
+    on periodic supports the finite rail against the Floquet theory
+    (:func:`~moving_bogie.validation.on_supports.check_on_supports`), the same type: ``supports`` then holds
+    what that check adds, ``finite`` and ``closed`` are None, ``quantities`` the compared growth rate and
+    frequency, or the steady force (each difference against the Floquet value, or the Floquet force's
+    peak-to-peak, as its amplitude), ``closed_form_s`` the Floquet side's wall time.
 
     Attributes
     ----------
@@ -209,12 +215,13 @@ class ValidationResult:
         The parameters compared.
     tau : ndarray
         The common output grid.
-    finite : FiniteBeamResult
-        The finite-beam run.
+    finite : FiniteBeamResult or None
+        The finite-beam run (None on periodic supports: ``supports.free``, ``supports.loaded``).
     reference : FiniteBeamResult or None
         The same beam with twice the time step (error estimate), None when not run.
-    closed : TimeSeries
-        The closed form's :class:`~moving_bogie.response.closed_form.TimeSeries`.
+    closed : TimeSeries or None
+        The closed form's :class:`~moving_bogie.response.closed_form.TimeSeries` (None on periodic
+        supports).
     window : tuple of float
         ``(0, tau_w)``, the comparison window.
     quantities : dict of str to QuantityComparison
@@ -229,14 +236,17 @@ class ValidationResult:
     notes : tuple of str
     labels : dict of str to str
         A label per quantity (:func:`quantity_labels`).
+    supports : SleeperCheck or None
+        On periodic supports, the finite rail's runs and fits and the Floquet side (None on a continuous
+        track).
     """
 
     model: str
     params: DimensionlessParams
     tau: np.ndarray
-    finite: FiniteBeamResult
+    finite: FiniteBeamResult | None
     reference: FiniteBeamResult | None
-    closed: TimeSeries
+    closed: TimeSeries | None
     window: tuple[float, float]
     quantities: dict[str, QuantityComparison]
     finite_beam_s: float
@@ -246,6 +256,22 @@ class ValidationResult:
     reflection_level: float
     notes: tuple[str, ...] = field(default=())
     labels: dict[str, str] = field(default_factory=dict)
+    supports: SleeperCheck | None = None
+
+    @property
+    def finite_beam(self) -> FiniteBeamResult:
+        """The finite-beam run of a continuous track's check (a ValueError on periodic supports, whose
+        runs are ``supports.free`` and ``supports.loaded``)."""
+        if self.finite is None:
+            raise ValueError(f"{self.model}: the check on supports has no finite-beam modal run")
+        return self.finite
+
+    @property
+    def closed_form(self) -> TimeSeries:
+        """The closed form of a continuous track's check (a ValueError on periodic supports)."""
+        if self.closed is None:
+            raise ValueError(f"{self.model}: the check on supports compares no closed form")
+        return self.closed
 
     @property
     def max_abs_diff_rear(self) -> float:
@@ -268,13 +294,13 @@ class ValidationResult:
 
     @property
     def tau_valid(self) -> float:
-        """The finite beam's strict reflection-free window (fastest modelled wave)."""
-        return self.finite.tau_valid
+        """The finite beam's strict reflection-free window (fastest modelled wave; NaN on supports)."""
+        return math.nan if self.finite is None else self.finite.tau_valid
 
     @property
     def agrees(self) -> bool:
-        """Every compared quantity within the tolerance."""
-        return all(q.within for q in self.quantities.values())
+        """Some quantity compared, and every one within the tolerance."""
+        return bool(self.quantities) and all(q.within for q in self.quantities.values())
 
     @property
     def ratio(self) -> float:
@@ -282,9 +308,12 @@ class ValidationResult:
         return self.finite_beam_s / self.closed_form_s if self.closed_form_s > 0 else math.inf
 
     def _repr_html_(self) -> str:
-        """Jupyter: whether the finite beam agrees first, then every quantity's relative difference."""
+        """Jupyter: whether the finite beam agrees first, then every quantity's relative difference (on
+        supports, the Floquet and finite-rail values of each)."""
         from moving_bogie.html_repr import html_table
 
+        if self.supports is not None:
+            return self.supports._repr_html_()
         verdict = "AGREES" if self.agrees else "DISAGREES"
         rows = [
             ("model", self.model),
@@ -302,10 +331,13 @@ class ValidationResult:
         )
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (no time series)."""
+        """JSON-ready summary (no time series); on supports, :meth:`SleeperCheck.to_dict` (the keys of
+        :data:`VERDICT_KEYS`, then the Floquet verdict, the comparisons and the finite rail's run)."""
+        if self.supports is not None:
+            return self.supports.to_dict()
         params = self.params.to_dict() if hasattr(self.params, "to_dict") else None
         q = self.quantities
-        finite = self.finite
+        finite = self.finite_beam
         return {
             "model": self.model,
             "beam": getattr(self.params, "beam", None),

@@ -64,7 +64,7 @@ def column_arrays(col: DColumn) -> Part:
         "Omega0": np.array(col.Omega0),
         "sizes": np.array([col.harmonics, col.samples, col.evaluations]),
         "q": np.array([c.q for c in crossings], dtype=float),
-        "eta_M": np.array([c.eta_M for c in crossings], dtype=float),
+        "theta": np.array([c.eta_M for c in crossings], dtype=float),  # the vertical axis
         "change": np.array([c.change for c in crossings], dtype=int),
         "moved": np.array([c.moved for c in crossings], dtype=float),
         "notes": np.array(col.notes, dtype=str),
@@ -75,7 +75,7 @@ def part_column(part: Part) -> DColumn:
     """The column of :func:`column_part`, read back exactly."""
     crossings = tuple(
         DCrossing(float(q), float(e), int(c), float(m))
-        for q, e, c, m in zip(part["q"], part["eta_M"], part["change"], part["moved"])
+        for q, e, c, m in zip(part["q"], part["theta"], part["change"], part["moved"])
     )
     harmonics, samples, evaluations = (int(x) for x in part["sizes"])
     notes = tuple(str(n) for n in part["notes"])
