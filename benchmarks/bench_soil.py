@@ -16,7 +16,8 @@ In one run, wall time of:
   load (the same integral by another integrator), and at 32 complex Omega in one call (the k nodes shared)
   beside one Omega alone;
 - the induced frequencies of a vehicle on the soil track (``examples/soil-mass.toml``: the window's count,
-  the roots and the verdict; the ``frequencies --file`` command adds the critical velocity, above),
+  the roots, the verdict and the band of decaying roots above the axis; the ``frequencies --file``
+  command adds the critical velocity, above),
   target under 10 s, and a DAF curve of 100 speeds (20 to 120 m/s, ``moving_load``: every grid speed,
   the static deflection and the peak refined between grid speeds), target under 10 s; each beside the
   same work by the code before when ``--before REV`` names a commit (checked out into a temporary
@@ -101,7 +102,9 @@ def _work(name: str) -> tuple[float, str]:
 
         seconds, res = _timed(lambda: induced_frequencies(load_soil_vehicle(VEHICLE)))
         state = res.verdict.state
-        return seconds, f"count {res.count}, {len(res.roots)} roots, {state}, {res.evaluations} E_chr"
+        band = getattr(res, "band", None)  # the decaying band (absent from older code)
+        above = "" if band is None else f", {band.count} decaying in the band"
+        return seconds, f"count {res.count}, {len(res.roots)} roots, {state}{above}, {res.evaluations} E_chr"
     data = load_soil_file(FILE)
     speeds = np.linspace(20.0, 120.0, 100)
     seconds, ml = _timed(lambda: moving_load(data.track, data.soil, data.load, speeds))

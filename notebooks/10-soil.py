@@ -34,20 +34,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 from IPython.display import display
 
-from moving_bogie.api import bind, induced_frequencies, load_soil_vehicle
-from moving_bogie.kernels.bound import BoundModel
-from moving_bogie.soil.critical import critical_velocity
-from moving_bogie.soil.file import load_soil_file
-from moving_bogie.soil.moving_load import moving_load
-from moving_bogie.soil.plots import dispersion_figure, moving_load_figure
-from moving_bogie.soil.rayleigh import soil_modes
-from moving_bogie.stability.maps.real_axis import window_column
+import moving_bogie as mb
 
 QUICK = os.environ.get("MOVING_BOGIE_QUICK", "").lower() in ("1", "true", "yes", "on")
 EXAMPLES = Path.cwd().parent / "examples"
 if not EXAMPLES.exists():  # run from the repository root
     EXAMPLES = Path("examples")
-BALLASTED = load_soil_file(EXAMPLES / "soil-ballasted.toml")
+BALLASTED = mb.load_soil_file(EXAMPLES / "soil-ballasted.toml")
 print(f"{BALLASTED.track.kind} track, input per {BALLASTED.per}, on {len(BALLASTED.soil.layers)} layers")
 for i, layer in enumerate(BALLASTED.soil.layers, start=1):
     h = "half-space" if not np.isfinite(layer.h) else f"h = {layer.h:g} m"
@@ -65,12 +58,12 @@ for i, layer in enumerate(BALLASTED.soil.layers, start=1):
 
 # %%
 omega = np.geomspace(0.6, 600.0, 16 if QUICK else 32)
-crit = critical_velocity(BALLASTED.track, BALLASTED.soil, omega)
-modes = soil_modes(omega, BALLASTED.soil)
+crit = mb.soil_critical_velocity(BALLASTED.track, BALLASTED.soil, omega)
+modes = mb.soil_modes(omega, BALLASTED.soil)
 print(f"coupled critical velocity   v_cr = {crit.v_cr:.2f} m/s ({crit.v_cr * 3.6:.0f} km/h)")
 print(f"uncoupled estimate                 {crit.v_cr_uncoupled:.2f} m/s")
 print("notes:", list(crit.notes) or "none")
-display(dispersion_figure(modes, crit, "ballasted track on a layered soil"))
+display(mb.dispersion_figure(modes, crit, "ballasted track on a layered soil"))
 
 # %% [markdown]
 # ## 2. A moving constant load: the deflection under it against speed
@@ -81,10 +74,10 @@ display(dispersion_figure(modes, crit, "ballasted track on a layered soil"))
 
 # %%
 speeds = np.linspace(20.0, 120.0, 11 if QUICK else 41)
-daf = moving_load(BALLASTED.track, BALLASTED.soil, BALLASTED.load, speeds)
+daf = mb.moving_load(BALLASTED.track, BALLASTED.soil, BALLASTED.load, speeds)
 print(f"static deflection {daf.w_static * 1e3:.3f} mm; peak DAF {daf.daf_peak:.3f} at {daf.v_peak:.2f} m/s")
 print(f"the peak speed over the critical velocity: {daf.v_peak / crit.v_cr:.3f}")
-display(moving_load_figure(daf, "ballasted track on a layered soil"))
+display(mb.moving_load_figure(daf, "ballasted track on a layered soil"))
 
 # %% [markdown]
 # ## 3. A heavy mass on a soft half-space, faster than the critical speed
@@ -95,8 +88,8 @@ display(moving_load_figure(daf, "ballasted track on a layered soil"))
 # guess): a root with $\mathrm{Im}\,\Omega < 0$ grows (`moving-bogie frequencies --file ...`).
 
 # %%
-HEAVY = load_soil_vehicle(EXAMPLES / "soil-unstable.toml")
-result = induced_frequencies(HEAVY)
+HEAVY = mb.load_soil_vehicle(EXAMPLES / "soil-unstable.toml")
+result = mb.induced_frequencies(HEAVY)
 print(result.verdict.state, "- count", result.count)
 print(result.to_dataframe())
 
@@ -107,22 +100,14 @@ print(result.to_dataframe())
 # no root crosses; above it the threshold mass falls as the mass moves faster.
 
 # %%
-data_v = float(HEAVY.physical.v)
-per = HEAVY.input.rail_factor
-name = HEAVY.physical.to_dimensionless().model.wheel_mass
 top = 240e3  # kg per rail: the mass axis 0..top
 
 
 def threshold_at(v: float) -> float:
     """The threshold mass (kg per rail) of the file's vehicle at speed v (NaN: none up to ``top``)."""
-    vehicle = load_soil_vehicle(EXAMPLES / "soil-unstable.toml", settings={"v": v})
-    unit = vehicle.physical.si_factor(name) / per
-    bound = bind(vehicle)
-    column = window_column(
-        bound, equivalent=BoundModel(bound.params), eta_max=top / unit, eta_min=top / unit / 64
-    )
-    found = column.threshold
-    return float("nan") if found is None else found.eta_M * unit
+    vehicle = mb.load_soil_vehicle(EXAMPLES / "soil-unstable.toml", settings={"v": v})
+    found = mb.threshold_mass(vehicle, M_max=top).threshold
+    return float("nan") if found is None else found["M"]
 
 
 velocities = [150.0] if QUICK else [50.0, 130.0, 150.0, 180.0, 220.0]
@@ -131,7 +116,7 @@ for v, m in zip(velocities, thresholds, strict=True):
     text = "no crossing up to 240 t" if np.isnan(m) else f"{m / 1e3:.2f} t per rail"
     print(f"v = {v:5.0f} m/s: threshold mass {text}")
 
-v_cr = critical_velocity(HEAVY.input.track, HEAVY.input.soil).v_cr
+v_cr = mb.soil_critical_velocity(HEAVY.input.track, HEAVY.input.soil).v_cr
 fig, ax = plt.subplots(figsize=(6, 3.5))
 ax.plot(velocities, np.array(thresholds) / 1e3, "o-", label="threshold mass")
 ax.axvline(v_cr, color="0.5", ls=":", label=f"critical velocity {v_cr:.1f} m/s")

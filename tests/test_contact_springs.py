@@ -183,17 +183,21 @@ def _continuous(name: str):
     return table1_case(1).replace(vehicle=name)
 
 
-@pytest.mark.slow  # half a minute each and more; test_hertz.py keeps the one-wheel case quick
+@pytest.mark.slow  # 1-10 s each; test_hertz.py keeps the one-wheel case quick
 @pytest.mark.parametrize("name", ["masses", "bogie", "car"])
 def test_contact_spring_vehicle_on_a_continuous_track_tends_to_the_rigid_contact(name):
     """``frequencies`` of the Hertz vehicle: next to every root of the rigid vehicle (searched on its own
     by the argument principle) lies one of the Hertz vehicle's, at a distance that falls like 1 / kappa_H, and
-    the verdicts agree (Table 1 case 1 is unstable on the bogie)."""
+    the verdicts agree (Table 1 case 1 is unstable on the bogie).
+
+    kappa_H = 1e3 and 1e4, as on sleepers above: already in the 1 / kappa_H regime (every ratio within 0.5 %
+    of 10 for the three vehicles), while the search at 1e5 costs two to five times as much (the stiff contact
+    puts roots where the kernel varies fast)."""
     rigid_params = _continuous(name)
     verdict, rigid = _roots(rigid_params)
     assert rigid
     distances = []
-    for kappa in (1e4, 1e5):
+    for kappa in (1e3, 1e4):
         hertz_verdict, hertz = _roots(rigid_params.replace(vehicle=CONTACT_SPRINGS[name], kappa_H=kappa))
         assert hertz_verdict == verdict
         distances.append(np.array([min(abs(h - r) for h in hertz) for r in rigid]))

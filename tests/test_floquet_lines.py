@@ -164,3 +164,32 @@ def test_only_a_worker_keeps_its_freed_memory():
     assert keep_freed_memory() is False
     with ProcessPoolExecutor(1) as pool:
         assert pool.submit(keep_freed_memory).result() is True
+
+
+def test_margin_on_a_continuous_map_is_named(capsys):
+    """--margin colours a sleeper map; the continuous map has every margin without it: named, exit 2."""
+    args = ["stability-map", "--file", str(EXAMPLES / "uic60-bogie.toml"), "--n", "2", "--margin", "--json"]
+    assert main(args) == 2
+    assert "--margin" in json.loads(capsys.readouterr().out)["error"]
+
+
+@pytest.mark.slow
+def test_the_margins_of_a_sleeper_map_are_the_strip_searchs(tmp_path):
+    """examples/sleepers_zones.toml at v = 97.2881 m/s with margins: the two cells inside the principal zone
+    grow at -Im Omega = 2.90111 and 3.22093 1/s, those of an independent Floquet-Hill computation (a separate
+    code; the test of validate at the same points) within 1e-5; the cell below the zone, which the
+    D-decomposition counts stable (its crossings, independent of the strip search), decays (margin > 0)
+    and is the map's smallest decay rate; JSON and CSV carry the margins."""
+    import moving_bogie as mb
+
+    _, physical = mb.load_parameters(EXAMPLES / "sleepers_zones.toml")
+    smap = mb.sleeper_map(physical, [97.2881], [1300.0, 1400.0, 1416.0], verify=0, workers=1, margin=True)
+    assert smap.margin is not None and smap.margin_bound is not None
+    assert smap.count[:, 0].tolist() == [0, 1, 1]
+    np.testing.assert_allclose(-smap.margin[1:, 0], [2.90111, 3.22093], rtol=1e-5)
+    assert smap.margin[0, 0] > 0 and smap.min_decay_rate == smap.margin[0, 0]
+    data = smap.to_dict()
+    assert data["margin_1_s"] == smap.margin.tolist() and data["min_decay_rate_1_s"] == smap.margin[0, 0]
+    header, first = smap.to_csv().splitlines()[:2]
+    assert header.endswith(",margin_1_s")
+    assert float(first.split(",")[-1]) == pytest.approx(smap.margin[0, 0], rel=1e-9)  # 10 digits

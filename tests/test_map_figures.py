@@ -63,3 +63,28 @@ def test_an_unstable_zone_is_drawn_and_listed():
         "D-line: count -1 as M grows",
     ]
     assert _texts(fig.axes[0]) == []
+
+
+def test_a_sleeper_map_with_margins_is_coloured_by_them():
+    """With ``margin`` (stability-map --margin) the cells are coloured as the continuous map's: the stable
+    ones by their decay rate (a colour bar, the smallest decay rate marked and named), the unstable one by
+    its growth rate (no zone bar over it); no count cells, and the panel is not called blank."""
+    from dataclasses import replace
+
+    up, down = (
+        DCrossing(q=0.5, eta_M=0.8, change=1, moved=0.0),
+        DCrossing(q=0.5, eta_M=1.2, change=-1, moved=0.0),
+    )
+    smap = _map({1: (up, down)})
+    margin = np.full(smap.count.shape, 2.0)
+    margin[0, 0] = 0.25  # the least-damped stable cell
+    margin[1, 1] = -3.0  # the unstable cell grows at 3 1/s
+    with_margin = replace(smap, margin=margin, margin_bound=np.zeros(margin.shape, dtype=bool))
+    fig = sleeper_map_figure(with_margin)
+    legend = _legend(fig)
+    assert "smallest decay rate 0.25 1/s" in legend and "unstable cell of the grid" not in legend
+    assert not any("between the D-lines" in t for t in legend)  # the growth colour is not hidden
+    labels = [ax.get_ylabel() for ax in fig.axes[1:]]  # the colour bars
+    assert any("decay rate" in t for t in labels) and any("growth rate" in t for t in labels), labels
+    assert _texts(fig.axes[0]) == []
+    assert with_margin.min_decay_rate == 0.25 and smap.min_decay_rate is None

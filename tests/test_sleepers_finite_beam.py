@@ -340,24 +340,85 @@ def test_the_check_on_supports_takes_the_bound_model_and_refuses_a_continuous_tr
     assert err.value.parameter == "track"
 
 
+def _replayed(monkeypatch, module, names: tuple[str, ...]) -> dict[str, int]:
+    """Replace each function ``module.<name>`` of ``names`` by one that computes and records its result while
+    its arguments are new, and hands back the recorded result when the same function is called again with
+    arguments equal to a recorded call's (compared by their pickled bytes, callables left out, a dataclass by
+    its fields alone: not by what a ``cached_property`` kept, which a replayed call does not compute). Returns
+    the counts of the calls ``computed`` and of those ``replayed`` from the record, updated as they happen."""
+    import dataclasses
+    import importlib
+    import io
+    import pickle
+    import types
+
+    class ByFields(pickle.Pickler):
+        def reducer_override(self, obj: Any) -> Any:
+            if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+                return type(obj), tuple(getattr(obj, f.name) for f in dataclasses.fields(obj))
+            if isinstance(obj, types.ModuleType):  # a generated module: by its name
+                return importlib.import_module, (obj.__name__,)
+            return NotImplemented
+
+    def pickled(value: Any) -> bytes:
+        out = io.BytesIO()
+        ByFields(out).dump(value)
+        return out.getvalue()
+
+    recorded: dict[tuple[str, bytes], Any] = {}
+    calls = {"computed": 0, "replayed": 0}
+
+    def replaying(name: str, compute: Any) -> Any:
+        def function(*args: Any, **kwargs: Any) -> Any:
+            data = {key: value for key, value in kwargs.items() if not callable(value)}
+            key = (name, pickled((args, sorted(data.items()))))
+            if key in recorded:
+                calls["replayed"] += 1
+            else:
+                calls["computed"] += 1
+                recorded[key] = compute(*args, **kwargs)
+            return recorded[key]
+
+        return function
+
+    for name in names:
+        monkeypatch.setattr(module, name, replaying(name, getattr(module, name)))
+    return calls
+
+
 @pytest.mark.slow
-def test_the_check_in_si_is_the_dimensionless_check_times_the_scales():
+def test_the_check_in_si_is_the_dimensionless_check_times_the_scales(monkeypatch):
     """moving_bogie.validate of examples/sleepers.toml in SI and of its dimensionless parameters: the same
     comparisons; the SI values are the dimensionless ones times P / 2 = 32 kN (the file's P = 64 kN) for
-    the force, and per second (1 / t_scale) for the rates."""
-    import moving_bogie as mb
+    the force, and per second (1 / t_scale) for the rates.
 
+    The two checks compute the same: their Floquet searches and finite-rail runs get equal dimensionless
+    arguments (byte for byte), so the SI check's are answered from the dimensionless check's record instead
+    of being computed twice (each is a deterministic function of its arguments); a call with any other
+    argument (an SI value where a dimensionless one belongs, another rail, another time step) would be
+    computed anew and fails the counts. The fits, the comparisons and the SI values run in both checks."""
+    import moving_bogie as mb
+    from moving_bogie.validation import sleepers_check
+
+    calls = _replayed(monkeypatch, sleepers_check, ("floquet_side", "simulate_sleeper_beam"))
     params, physical = mb.load_parameters(EXAMPLE)
-    si, plain = mb.validate(physical), mb.validate(params)
+    plain = mb.validate(params)
+    computed = calls["computed"]
+    assert computed >= 2 and calls["replayed"] == 0  # the Floquet side and at least one run
+    si = mb.validate(physical)
+    assert calls == {"computed": computed, "replayed": computed}  # every call again, with equal arguments
     from moving_bogie.validation.verdict import ValidationResult
 
     assert isinstance(si, ValidationResult) and si.supports is not None  # the one type of a check
     assert list(si.quantities) == ["steady force over a bay"] and si.finite is None and si.closed is None
     assert si.model == plain.model == "eb/sleepers/mass" and si.agrees and plain.agrees
     out, bare = si.to_dict(), plain.to_dict()
-    from moving_bogie.validation.verdict import VERDICT_KEYS
+    from moving_bogie.validation.verdict import CHECK_KEYS, VERDICT_KEYS
 
     assert set(VERDICT_KEYS) <= set(out)  # the continuous tracks' keys, same meaning
+    assert set(CHECK_KEYS) <= set(out) and out["n_modes"] is None and out["L"] > 0  # and all of theirs
+    (name,) = out["quantities"]
+    assert {"max_abs_diff", "amplitude", "floquet", "finite_beam"} <= set(out["quantities"][name])
     assert out["params"] == params.to_dict() and (out["beam"], out["track"]) == ("eb", "sleepers")
     assert out["relative_diff"] == {c["quantity"]: c["relative_diff"] for c in out["comparisons"]}
     assert "floquet_si" not in bare["comparisons"][0] and "dt_s" not in bare["finite_beam"]

@@ -301,3 +301,35 @@ def test_the_periodic_limit_of_two_wheels_separates_two_modes_of_one_shape():
     for wheel in range(2):
         periodic = np.real(sum(c * np.exp(1j * n * OMEGA0 * limit.tau) for n, c in forced[wheel].items()))
         assert np.max(np.abs(limit.values[wheel] - periodic)) < 1e-6 * np.ptp(periodic)
+
+
+def test_a_window_too_short_is_tried_once_more_over_twice_the_periods():
+    """The check's two tries are one loop (sleepers_check._twice): a first run whose fit moves by more than
+    the limit between the window and its last three quarters is made again over twice the periods (the
+    progress goes to the first run only), once, and each move left is noted; a first run that settles is
+    kept alone, without a note."""
+    from moving_bogie.validation.sleepers_check import _twice
+
+    def tries(moves: dict[int, float]):
+        calls: list[tuple[int, object]] = []
+
+        def attempt(periods: int, progress: object) -> tuple[int, float]:
+            calls.append((periods, progress))
+            return periods, moves[periods]
+
+        return attempt, calls
+
+    def report(x: float) -> None:
+        pass
+
+    attempt, calls = tries({40: 0.5, 80: 0.3})
+    notes: list[str] = []
+    assert _twice(attempt, 40, 0.1, "the rate", notes, report) == (80, 80)
+    assert calls == [(40, report), (80, None)]
+    assert len(notes) == 2 and notes[0].endswith("made again over 80") and "too short" in notes[1]
+    attempt, calls = tries({40: 0.5, 80: 0.05})
+    notes = []
+    assert _twice(attempt, 40, 0.1, "the rate", notes, None) == (80, 80) and len(notes) == 1
+    attempt, calls = tries({40: 0.05})
+    notes = []
+    assert _twice(attempt, 40, 0.1, "the rate", notes, None) == (40, 40) and not notes and len(calls) == 1

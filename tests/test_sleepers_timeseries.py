@@ -223,3 +223,19 @@ def test_one_series_type_and_one_json_schema_on_every_track(tmp_path):
     with pytest.raises(ParameterError) as err:
         time_series(physical, [0.0, 0.01])
     assert err.value.parameter == "tau"
+
+
+def test_the_closed_form_on_sleepers_is_refused_by_name(tmp_path):
+    """No closed form exists on periodic supports: the public closed form and deflection shape name
+    ``params`` and point to time_series, before any computation (not an error from deep inside)."""
+    import moving_bogie as mb
+    from moving_bogie.errors import ParameterError
+
+    _, physical = load_parameters(_file(tmp_path))
+    for call in (
+        lambda: mb.closed_form_response(physical, [0.0, 0.01]),
+        lambda: mb.deflection_shape(physical, [0.0, 1.0], 0.01),
+    ):
+        with pytest.raises(ParameterError, match="time_series") as err:
+            call()
+        assert err.value.parameter == "params"

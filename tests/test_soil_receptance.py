@@ -5,7 +5,8 @@ two-dimensional quadrature at a complex Omega with Lamb's
 closed-form flexibility, scipy's quad in both wavenumbers (no code of soil/); the continuous Winkler track
 of the bound model's own parameters (``kernels/continuous_track.py``, residues of a rational kernel) for a
 ballasted track on a rigid soil; the strip's quadrature itself where the local stiffness 2 b / U stands
-for it (the rule of ``soil/receptance.py``).
+for it (the rule of ``soil/receptance.py``); the strip's quadrature at 1e-10 where chi is interpolated in
+the speed (``soil/receptance_chi.py``), and the receptance computed without that interpolation.
 """
 
 from __future__ import annotations
@@ -21,9 +22,11 @@ from soil_cases import RIGID
 from moving_bogie.api import bind, soil_vehicle
 from moving_bogie.kernels.bound import BoundModel
 from moving_bogie.kernels.continuous_track import ContinuousTrack
+from moving_bogie.soil import receptance
 from moving_bogie.soil.file import load_soil_file, soil_input
 from moving_bogie.soil.rail_track import SoilRail
 from moving_bogie.soil.receptance import LOCAL_KB, local_stiffness, soil_receptance
+from moving_bogie.soil.receptance_chi import speed_table
 from moving_bogie.soil.strip import strip_stiffness
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -152,3 +155,38 @@ def test_receptance_at_complex_frequency_against_two_dimensional_quadrature():
     ref = total / (2 * np.pi)
     got = soil_receptance(track, loaded.soil, v, [Omega])
     assert abs(got.G[0, 0] - ref) <= 3 * got.error[0] + 2e-6 * abs(ref)
+
+
+def test_chi_interpolated_in_speed_within_its_estimate():
+    """chi(k, k v) interpolated in v from the table of soil/receptance_chi.py, at speeds between its
+    Chebyshev points, against the strip's quadrature at 1e-10 there (itself checked against mpmath in
+    tests/test_soil_strip.py): within the stated estimate (plus the direct value's own error) wherever the
+    estimate is below 1e-3 of chi; and the estimate is that small at the small wavenumbers (the soil there
+    a half-space faster than every speed) and large where a soil's wave speed lies in the range."""
+    loaded = load_soil_file(EXAMPLES / "soil-ballasted.toml")
+    soil, b = loaded.soil, loaded.track.b
+    k = np.geomspace(1e-3, 2.5, 9)
+    speeds = np.linspace(21.3, 118.9, 7)  # none at a Chebyshev point of [21.3, 118.9]
+    chi, error = speed_table(k, speeds, soil, b, tol=1e-5)
+    kk = np.tile(k, speeds.size)
+    direct = strip_stiffness(kk, kk * np.repeat(speeds, k.size), soil, b, rtol=1e-10)
+    relative = error / np.abs(chi)
+    used = relative < 1e-3
+    assert used[:, :4].all() and not used[:, -1].any()
+    gap = np.abs(chi.ravel() - direct.chi) - direct.error
+    assert np.all(gap[used.ravel()] <= error.ravel()[used.ravel()]), np.max(gap / error.ravel())
+
+
+@pytest.mark.slow
+def test_receptance_of_many_speeds_with_the_speed_table_against_each_alone(monkeypatch):
+    """The moving load's receptance at six speeds in one call with chi at the first nodes interpolated in
+    the speed (the table made to serve six) against the same speeds without the table: within the two
+    stated errors, the table having spared strip quadratures."""
+    loaded = load_soil_file(EXAMPLES / "soil-ballasted.toml")
+    speeds = np.linspace(30.0, 110.0, 6)
+    monkeypatch.setattr(receptance, "BY_SPEED", 2)
+    table = soil_receptance(loaded.track, loaded.soil, speeds, np.zeros(6), tol=1e-5)
+    monkeypatch.setattr(receptance, "BY_SPEED", 10**9)
+    alone = soil_receptance(loaded.track, loaded.soil, speeds, np.zeros(6), tol=1e-5)
+    assert table.chi_quadratures < alone.chi_quadratures
+    assert np.all(np.abs(table.G[:, 0] - alone.G[:, 0]) <= table.error + alone.error)

@@ -54,3 +54,24 @@ def test_frequencies_command_on_a_bad_soil_file_exits_2(tmp_path, capsys):
     path.write_text(text)
     assert main(["frequencies", "--file", str(path), "--json"]) == 2
     assert "vehicle" in capsys.readouterr().out  # --json: the error as JSON on stdout
+
+
+def test_the_soil_has_a_public_api():
+    """Notebook 10-soil runs on ``moving_bogie``'s public names alone; each is the function of its module."""
+    import moving_bogie as mb
+    from moving_bogie.soil.critical import critical_velocity
+
+    names = ("load_soil_file", "load_soil_vehicle", "soil_modes", "moving_load", "threshold_mass")
+    names += ("dispersion_figure", "moving_load_figure", "soil_critical_velocity")
+    assert all(callable(getattr(mb, name)) for name in names)
+    assert mb.soil_critical_velocity is critical_velocity
+    notebook = (Path(__file__).resolve().parent.parent / "notebooks" / "10-soil.py").read_text("utf-8")
+    assert "from moving_bogie." not in notebook and "import moving_bogie as mb" in notebook
+
+
+def test_threshold_mass_refuses_a_mass_axis_without_masses():
+    import moving_bogie as mb
+
+    vehicle = mb.load_soil_vehicle(EXAMPLES / "soil-unstable.toml")
+    with pytest.raises(ParameterError, match="M_max must be a positive mass"):
+        mb.threshold_mass(vehicle, M_max=0.0)

@@ -185,9 +185,10 @@ def test_cli_exits_1_when_outside_tolerance(capsys):
     code = main(["validate", "--case", "2", "--modes", "60", "--tmax", "20", "--no-correction", "--json"])
     data = json.loads(capsys.readouterr().out)
     assert code == 1 and data["agrees"] is False and max(data["relative_diff"].values()) > 0.01
-    from moving_bogie.validation.verdict import VERDICT_KEYS
+    from moving_bogie.validation.verdict import CHECK_KEYS, VERDICT_KEYS
 
     assert set(VERDICT_KEYS) <= set(data)  # the keys every track's check has (a sleeper file's too)
+    assert set(data) - {"case", "max_abs_diff_u", "max_abs_diff_theta"} == set(CHECK_KEYS)
 
 
 def test_cli_rejects_a_bad_tolerance(capsys):

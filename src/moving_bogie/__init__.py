@@ -21,7 +21,8 @@ from moving_bogie.model.files import load_parameters, load_params_file
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.physical import PhysicalParams, Scales
 
-#: Main entry points, imported on first use so that ``import moving_bogie`` (and the CLI) stays light.
+#: Main entry points, imported on first use so that ``import moving_bogie`` (and the CLI) stays light: the
+#: module of each name (``module:attribute`` when the attribute has another name there).
 _LAZY = {
     "bind": "api",
     "BoundModel": "kernels.bound",
@@ -47,6 +48,15 @@ _LAZY = {
     "sleeper_map": "api",
     "sleeper_map_figure": "stability.figures.sleeper_map_figure",
     "sleeper_series_figure": "response.sleeper_plots",
+    # a track on the soil (docs/soil.md)
+    "load_soil_file": "soil.file",
+    "load_soil_vehicle": "api",
+    "soil_modes": "soil.rayleigh",
+    "soil_critical_velocity": "soil.critical:critical_velocity",
+    "moving_load": "soil.moving_load",
+    "threshold_mass": "api",
+    "dispersion_figure": "soil.plots",
+    "moving_load_figure": "soil.plots",
 }
 
 
@@ -54,7 +64,8 @@ def __getattr__(name: str) -> Any:
     if name in _LAZY:
         import importlib
 
-        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        module, _, attribute = _LAZY[name].partition(":")  # "module:attribute" when the names differ
+        return getattr(importlib.import_module(f".{module}", __name__), attribute or name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.roots.frequencies import FrequencyResult
+    from moving_bogie.soil_vehicle import ThresholdMass
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
     from moving_bogie.stability.maps.map import StabilityMap
@@ -65,6 +66,7 @@ __all__ = [
     "speed_regime",
     "validate_on_supports",
     "stability_map",
+    "threshold_mass",
     "validate",
 ]
 
@@ -160,7 +162,14 @@ def closed_form_response(
     from moving_bogie.response.closed_form import closed_form_response as run
 
     bound, scales = bind_with_scales(params)
+    _closed_form_track(bound, "time_series gives the steady response over a bay and the free vibrations")
     return run(bound, tau, scales=scales, **options)
+
+
+def _closed_form_track(bound: BoundModel, instead: str) -> None:
+    """A ParameterError naming ``params`` on periodic supports, where no closed form exists (``instead``)."""
+    if bound.track.search_region().periodic:
+        raise ParameterError("params", f"{bound.name}: no closed form on periodic supports; {instead}")
 
 
 def time_series(
@@ -211,6 +220,7 @@ def deflection_shape_details(
     from moving_bogie.response.closed_form import deflection_shape_details as run
 
     bound, scales = bind_with_scales(params)
+    _closed_form_track(bound, "time_series gives the rail's deflection under the wheels over a bay")
     return run(bound, xi, tau, scales=scales, **options)
 
 
@@ -278,11 +288,14 @@ def sleeper_map(
     params: DimensionlessParams | PhysicalParams | BoundModel,
     velocities: Sequence[float] | np.ndarray,
     masses: Sequence[float] | np.ndarray,
+    margin: bool = False,
+    progress: Callable[[float], None] | None = None,
     **options: Any,
 ) -> SleeperMap:
     """Unstable counts over velocities [m/s] x wheel masses [kg] on sleepers (the D-decomposition of
     (S19)-(S22)): :func:`~moving_bogie.stability.maps.sleeper_map.sleeper_map` (``verify``, ``workers``,
-    ``progress``)."""
+    ``progress``, ``checkpoint``, ``resume``); ``margin``: with every cell's margin, a strip search each
+    (:func:`~moving_bogie.stability.maps.sleeper_margin.with_margins`, most of the time then)."""
     from moving_bogie.stability.maps.sleeper_map import sleeper_map as run
 
     bound, scales = bind_with_scales(params)
@@ -290,7 +303,16 @@ def sleeper_map(
         raise ParameterError(
             "params", "a sleeper map is in SI units (v in m/s, M in kg): give PhysicalParams"
         )
-    return run(bound, scales, velocities, masses, **options)
+    if not margin:
+        return run(bound, scales, velocities, masses, progress=progress, **options)
+    from moving_bogie.stability.maps.sleeper_margin import with_margins
+
+    first, rest = (
+        (None, None) if progress is None else (lambda x: progress(0.1 * x), lambda x: progress(0.1 + 0.9 * x))
+    )
+    smap = run(bound, scales, velocities, masses, progress=first, **options)
+    kept = {k: options[k] for k in ("workers", "checkpoint", "resume") if k in options}
+    return with_margins(smap, bound, scales, progress=rest, **kept)
 
 
 def frequency_lines(
@@ -355,3 +377,39 @@ def stability_map(params: DimensionlessParams | PhysicalParams | BoundModel, **o
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
     return replace(result, units=PlaneUnits.of(result.params, params, operating=True))
+
+
+def threshold_mass(
+    vehicle: SoilVehicle, M_max: float, *, progress: Callable[[float], None] | None = None
+) -> ThresholdMass:
+    """The threshold mass of ``vehicle`` at its speed (:class:`~moving_bogie.soil_vehicle.ThresholdMass`),
+    masses up to ``M_max`` (kg, as the file gives them) down to M_max /
+    :data:`~moving_bogie.soil_vehicle.LIGHTEST`
+    (:func:`~moving_bogie.stability.maps.real_axis.window_column`: the real axis sampled beyond every real
+    root of those masses, the Winkler equivalent's far field).
+
+    Examples
+    --------
+    >>> import moving_bogie as mb
+    >>> vehicle = mb.load_soil_vehicle("examples/soil-unstable.toml")
+    >>> found = mb.threshold_mass(vehicle, M_max=240e3)  # doctest: +SKIP
+    >>> round(found.threshold["M"])  # doctest: +SKIP
+    27552
+    """
+    from moving_bogie.soil_vehicle import LIGHTEST, ThresholdMass
+    from moving_bogie.stability.maps.real_axis import window_column
+
+    if not M_max > 0:
+        raise ParameterError("M_max", f"M_max must be a positive mass in kg (got {M_max!r})")
+    physical = vehicle.physical
+    unit = physical.si_factor(physical.to_dimensionless().model.wheel_mass) / vehicle.input.rail_factor
+    bound = bind(vehicle)
+    col = window_column(
+        bound,
+        equivalent=BoundModel(bound.params),
+        eta_max=M_max / unit,
+        eta_min=M_max / unit / LIGHTEST,
+        progress=progress,
+    )
+    omega_0 = float(bound.track.omega_0)  # type: ignore[attr-defined]
+    return ThresholdMass.from_column(col, M_max, omega_0, unit)

@@ -7,7 +7,8 @@ place of k_f and no foundation damping, the parameters of the rail (:data:`RAIL_
 track of k_ref, which :func:`~moving_bogie.api.bind` binds to the soil's own track
 (:class:`~moving_bogie.soil.rail_track.SoilRail`). Given per rail, the vehicle's masses, inertias,
 stiffnesses, dampings and loads (the values in kg or N) are doubled like the track's: the soil carries the
-whole track and the whole vehicle.
+whole track and the whole vehicle. Its threshold mass (:class:`ThresholdMass`, from
+:func:`moving_bogie.api.threshold_mass`) is the D-decomposition in the wheel mass along real Omega, in SI.
 """
 
 from __future__ import annotations
@@ -24,7 +25,14 @@ if TYPE_CHECKING:
     from moving_bogie.soil.file import SoilInput
     from moving_bogie.soil.rail_track import SoilRailSpec
 
-__all__ = ["RAIL_BEAM", "SUPPORT_KEYS", "SoilVehicle", "load_soil_vehicle", "soil_vehicle"]
+__all__ = [
+    "RAIL_BEAM",
+    "SUPPORT_KEYS",
+    "SoilVehicle",
+    "ThresholdMass",
+    "load_soil_vehicle",
+    "soil_vehicle",
+]
 
 #: The beam of the vehicle's scaling: the rails of every track on the soil bend as Euler-Bernoulli beams,
 #: EI k1^4 - m omega^2 in the rail's dynamic stiffness (:mod:`moving_bogie.soil.track`, Eq. (S6)).
@@ -90,3 +98,49 @@ def load_soil_vehicle(path: str | Path, settings: Mapping[str, float] | None = N
     except ParameterError as exc:
         where = "--set" if settings and exc.parameter in settings else str(path)
         raise ParameterError(exc.parameter, f"{where}: {exc}") from None
+
+
+#: The lightest mass of a threshold search: the heaviest over this (the lighter the mass, the higher its
+#: frequencies and the wider the scan).
+LIGHTEST = 64
+
+
+@dataclass(frozen=True)
+class ThresholdMass:
+    """The D-decomposition of a vehicle on the soil in its wheel mass along real Omega, in SI (docs/soil.md,
+    "The threshold mass"): the masses at which a root crosses the real axis, the direction of each
+    crossing, and the threshold (the least mass with a growing root), for masses in [M_min, M_max] and
+    0 < Omega <= Omega_max. Masses in kg as the file gives them (per rail or per track)."""
+
+    crossings: tuple[dict[str, float], ...]  # Omega_rad_s, M (kg), change (+1: a root enters Im < 0), moved
+    threshold: dict[str, float] | None  # M, Omega_rad_s, moved of the first crossing that makes a root grow
+    M_max: float
+    M_min: float
+    Omega_max_rad_s: float
+    samples: int
+    notes: tuple[str, ...]
+    column: Any  # the dimensionless column (stability/maps/real_axis.py), for counts
+    kg_per_group: float
+
+    @classmethod
+    def from_column(cls, col: Any, M_max: float, omega_0: float, unit: float) -> ThresholdMass:
+        """In SI: ``col`` the dimensionless column of
+        :func:`~moving_bogie.stability.maps.real_axis.window_column`, ``omega_0`` rad/s per unit of q,
+        ``unit`` kg per unit of the wheel-mass group."""
+        crossings = tuple(
+            {"Omega_rad_s": c.q * omega_0, "M": c.eta_M * unit, "change": c.change, "moved": c.moved}
+            for c in col.crossings
+        )
+        t = col.threshold
+        first = None if t is None else {"M": t.eta_M * unit, "Omega_rad_s": t.q * omega_0, "moved": t.moved}
+        top = col.q_max * omega_0
+        return cls(crossings, first, M_max, M_max / LIGHTEST, top, col.samples, tuple(col.notes), col, unit)
+
+    def count_at(self, M: float) -> int:
+        """The growing roots at the wheel mass ``M`` (kg): the signed crossings below it."""
+        return int(self.column.counts([M / self.kg_per_group])[0])
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: every field but the column."""
+        keys = ("Omega_max_rad_s", "samples", "M_max", "M_min", "crossings", "threshold", "notes")
+        return {k: list(v) if isinstance(v, tuple) else v for k, v in ((k, getattr(self, k)) for k in keys)}

@@ -243,6 +243,12 @@ def _register_stability_map(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--workers", type=workers, default=None, help="processes (default: CPUs)")
     p.add_argument("--lines", action="store_true", help="draw the instability lines on the plot")
     add_yes_option(p)
+    p.add_argument(
+        "--margin",
+        action="store_true",
+        help="a sleeper-track file: colour every cell by its margin, the smallest Im Omega of a strip search "
+        "at its (v, M) (1-3 s per cell; the continuous map gives the margin without it)",
+    )
     add_plane_options(p)
     add_bar_option(p)
     add_figure_option(p, "--plot", help="write the figure")
@@ -273,6 +279,14 @@ def run_stability_map(args: argparse.Namespace) -> int:
         return _stability_map(args)
 
 
+def _check_map_options(args: argparse.Namespace) -> None:
+    """The continuous map's own options: no --margin (every cell has its margin), --out not overwritten."""
+    if args.margin:
+        raise ParameterError("--margin", "--margin: the continuous map gives every cell's margin without it")
+    if args.out is not None and args.out.exists() and not args.overwrite:
+        raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")
+
+
 def _stability_map(args: argparse.Namespace) -> int:
     import numpy as np
 
@@ -280,8 +294,7 @@ def _stability_map(args: argparse.Namespace) -> int:
     if sleepers is not None:
         return lines_on_supports.run_sleeper_map(args, sleepers)
     params, _ = params_and_spacings(args)
-    if args.out is not None and args.out.exists() and not args.overwrite:
-        raise ParameterError("--out", f"--out {args.out} exists: pass --overwrite to replace it")
+    _check_map_options(args)
     units = plane_units(args, params)
     alpha_min, alpha_max, theta_max = plane_ranges(args, units, args.parameter)
 

@@ -125,6 +125,10 @@ def _text(smap: SleeperMap, *, crossings: bool) -> str:
         f"unstable cells {s['unstable_cells']} of {s['cells']}, most unstable roots {s['max_count']}, "
         f"crossings {s['crossings']}, uncertain columns {s['uncertain_columns']}",
     ]
+    if smap.margin is not None:
+        decay = s["min_decay_rate_1_s"]
+        told = "no stable cell measured" if decay is None else f"{decay:.6g} 1/s"
+        lines.append(f"margin (smallest Im Omega of a strip search per cell): the stable cells' least {told}")
     if crossings:
         for p in smap.lines():
             lines.append(
@@ -165,7 +169,9 @@ def run_sleeper_map(args: argparse.Namespace, on_supports: PhysicalParams) -> in
     physical = smeared_physical(on_supports)  # None: no continuous counterpart, the sleeper map alone
     kept = checkpoint_options(args)
     with progress_bar("sleeper map", enabled=not args.json) as bar:
-        smap = sleeper_map(on_supports, vs, ms, workers=args.workers, progress=bar, **kept)
+        smap = sleeper_map(
+            on_supports, vs, ms, workers=args.workers, progress=bar, margin=args.margin, **kept
+        )
     continuous: StabilityMap | None = None
     if physical is not None:
         with progress_bar("continuous map", enabled=not args.json) as bar:

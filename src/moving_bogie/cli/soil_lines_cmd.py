@@ -26,9 +26,6 @@ __all__ = ["run_soil_lines", "run_soil_map"]
 #: --range v=LO:HI: these times the file's v.
 DEFAULT_MASSES = 4.0
 DEFAULT_SPEEDS = (0.5, 1.5)
-#: instability-lines searches the crossings at masses from the top of the axis over this (the lighter the
-#: mass, the higher its frequencies and the wider the scan).
-LIGHTEST = 64
 #: A soil map of over TIMED columns is timed on one column before it starts (cli/job_size.py).
 TIMED = 4
 
@@ -91,36 +88,23 @@ def _axes(args: argparse.Namespace, file_v: float, file_mass: float, *, speeds: 
 def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
     """The crossings, the threshold and the speed regime of the file's vehicle (JSON-ready, SI)."""
     _refuse(args)
-    from moving_bogie.api import bind, load_soil_vehicle
+    from moving_bogie.api import load_soil_vehicle, threshold_mass
 
     data = load_soil_vehicle(args.file, soil_settings(args))
     physical, per = data.physical, data.input.rail_factor
     params = physical.to_dimensionless()
-    name = params.model.wheel_mass
-    unit = physical.si_factor(name) / per  # the file's kg per eta_M
-    file_mass = float(getattr(params, name)) * unit
+    file_mass = (
+        float(getattr(params, params.model.wheel_mass)) * physical.si_factor(params.model.wheel_mass) / per
+    )
     top = _axes(args, float(physical.v), file_mass, speeds=False)["M"][1]
-    from moving_bogie.kernels.bound import BoundModel
-    from moving_bogie.stability.maps.real_axis import window_column
-
     from .progress import progress_bar
     from .soil_frequencies_cmd import soil_speed_regime
 
-    bound = bind(data)
     with progress_bar("D-decomposition on the soil", enabled=not args.json) as bar:
-        col = window_column(
-            bound, equivalent=BoundModel(bound.params), eta_max=top / unit, eta_min=top / unit / LIGHTEST,
-            progress=bar,
-        )  # fmt: skip
-    omega_0 = bound.track.omega_0  # type: ignore[attr-defined]
+        found = threshold_mass(data, top, progress=bar)
     v = float(physical.v)
     regime = soil_speed_regime(data.input, v, physical.scales().v_ref)
-    crossings = [
-        {"Omega_rad_s": c.q * omega_0, "M": c.eta_M * unit, "change": c.change, "moved": c.moved}
-        for c in col.crossings
-    ]
-    threshold = col.threshold
-    count = int(col.counts([file_mass / unit])[0])
+    table = found.to_dict()
     return {
         "vehicle": physical.vehicle,
         "track": data.input.track.kind,
@@ -129,17 +113,15 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
         "v": v,
         "v_cr": regime.v_cr,
         "supercritical": regime.supercritical,
-        "Omega_max_rad_s": col.q_max * omega_0,
-        "samples": col.samples,
+        "Omega_max_rad_s": table["Omega_max_rad_s"],
+        "samples": table["samples"],
         "M_max": top,
-        "M_min": top / LIGHTEST,
+        "M_min": table["M_min"],
         "M": file_mass,
-        "crossings": crossings,
-        "threshold": None
-        if threshold is None
-        else {"M": threshold.eta_M * unit, "Omega_rad_s": threshold.q * omega_0, "moved": threshold.moved},
-        "count_at_M": count,
-        "notes": list(col.notes),
+        "crossings": table["crossings"],
+        "threshold": table["threshold"],
+        "count_at_M": found.count_at(file_mass),
+        "notes": table["notes"],
     }
 
 

@@ -157,7 +157,8 @@ class BandTrack(Protocol):
         """What :meth:`waves_clear` is (a bound, or a scan), for the notes of a result ("" for a bound)."""
 
     def band_depth(self, x: float) -> float:
-        """The depth in Im q under which no singular line of the kernel lies at Re q >= ``x`` > 0 (0: none)."""
+        """The depth in Im q under which no singular line of the kernel lies at Re q >= ``x`` > 0 (0:
+        none)."""
 
     def waves_clear(self, x0: float, x1: float, y0: float, y1: float) -> bool:
         """Whether no other singular line of the kernel crosses the rectangle [x0, x1] x [y0, y1] of q."""

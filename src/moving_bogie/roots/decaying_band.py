@@ -16,7 +16,9 @@ rectangle its ``waves_clear`` passes. The band searched is a staircase under tha
 X1 2^-(i+1) <= Re q <= X1 2^-i, 0 <= Im q <= band_depth(X1 2^-(i+1)), X1 the window's size; a rectangle
 that its ``waves_clear`` refuses is halved in depth (HALVINGS times at most) or dropped. The roots found in
 the band, the least Im Omega among them (the margin, in 1/s) and the band itself are reported; beyond the
-band (Re Omega < X1 2^-STEPS, or above the staircase) nothing is searched.
+band (Re Omega < X1 2^-STEPS, or above the staircase) nothing is searched. The count is coarser than
+the window's (BAND_TOL, BAND_STEP, BAND_SAMPLES) with the same guard: where the receptance's error reaches
+|E_chr| / 2 on the edge, the rectangle is counted again at the track's tolerance.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import mpmath
+import numpy as np
 
 from moving_bogie.kernels.track_model import BandTrack
 from moving_bogie.roots.count.contour import EdgeZeroError, Rectangle
@@ -42,6 +45,20 @@ __all__ = ["STEPS", "DecayingBand", "decaying_band"]
 
 #: Rectangles of the staircase; depth halvings of a rectangle the track refuses.
 STEPS, HALVINGS = 2, 5
+#: The band's count: the receptance's relative tolerance, the largest step of arg E_chr and the initial
+#: samples along a rectangle's long side (refined where the phase turns; the guard of
+#: :func:`~moving_bogie.roots.quadrature_window.count_rectangle` recounts at the track's own tolerance
+#: where an error reaches |E_chr| / 2).
+BAND_TOL, BAND_STEP, BAND_SAMPLES = 1e-2, np.pi / 3, 4
+
+
+class BandRectangle(Rectangle):
+    """A rectangle of the band: its first boundary samples at about the spacing asked on every edge, at
+    least one segment per edge (a :class:`Rectangle` takes at least 8 per edge, which on a thin band's
+    short sides costs values of E_chr that the phase does not need; the count refines where it turns)."""
+
+    def boundary(self, spacing: float, least: int = 1) -> np.ndarray:
+        return super().boundary(spacing, least)
 
 
 @dataclass(frozen=True)
@@ -150,7 +167,7 @@ def decaying_band(E: QuadratureCharacteristic, radius: float, steps: int = STEPS
             return DecayingBand((), (), (), (), radius, scale, damped=False, caveat=caveat)
         for _ in range(HALVINGS + 1):
             if track.waves_clear(x0, x1, 0.0, depth):
-                rects.append(Rectangle(x0, x1, 0.0, depth))
+                rects.append(BandRectangle(x0, x1, 0.0, depth))
                 break
             depth /= 2
         else:
@@ -159,7 +176,7 @@ def decaying_band(E: QuadratureCharacteristic, radius: float, steps: int = STEPS
     roots = []
     for rect in rects:
         try:
-            n, stands = count_rectangle(E, rect)
+            n, stands = count_rectangle(E, rect, BAND_TOL, BAND_STEP, BAND_SAMPLES)
         except EdgeZeroError:
             counts.append(None)
             continue

@@ -235,16 +235,25 @@ def _secant_steps(
     return b, slope, float(step)
 
 
-def count_rectangle(E: QuadratureCharacteristic, rect: Rectangle) -> tuple[int, bool]:
-    """The winding number of ``rect`` at COUNT_TOL, counted again at the track's own tolerance when a
-    boundary sample's delta E exceeds |E_chr| / 2; and whether the count stands (:meth:`resolved`)."""
-    spacing = max(rect.width, rect.height) / SAMPLES
-    with E.tolerance(COUNT_TOL):
-        n = winding_number(E, rect, spacing=spacing, max_points=4000)
+def count_rectangle(
+    E: QuadratureCharacteristic,
+    rect: Rectangle,
+    tol: float = COUNT_TOL,
+    max_step: float = np.pi / 5,
+    samples: int = SAMPLES,
+) -> tuple[int, bool]:
+    """The winding number of ``rect`` at the receptance's tolerance ``tol`` (``samples`` initial samples
+    along its longer side, steps of arg E_chr below ``max_step``, at most pi / 3), counted again at the
+    track's own tolerance when a boundary sample's delta E exceeds |E_chr| / 2; and whether the count
+    stands (:meth:`resolved`: each sampled phase then within pi / 6 of the exact one, each step of the
+    count within max_step + pi / 3 < pi of it)."""
+    spacing = max(rect.width, rect.height) / samples
+    with E.tolerance(tol):
+        n = winding_number(E, rect, spacing=spacing, max_step=max_step, max_points=4000)
     if E.resolved(rect) or E.tight is None:
         return n, E.resolved(rect)
     with E.tolerance(None):
-        n = winding_number(E, rect, spacing=spacing, max_points=4000)
+        n = winding_number(E, rect, spacing=spacing, max_step=max_step, max_points=4000)
     return n, E.resolved(rect)
 
 

@@ -20,9 +20,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
 from moving_bogie.errors import ParameterError
+from moving_bogie.kernels.fminbound import fminbound
 from moving_bogie.typing import FloatArray
 
 from .profile import SoilProfile
@@ -95,7 +95,7 @@ def moving_load(
 ) -> MovingLoad:
     """w(0) at each speed of ``speeds`` (m/s), w_static, and the peak of |w(0)| refined between the
     neighbours of the largest grid value by Brent's bounded search (golden sections and parabolic steps,
-    scipy's ``minimize_scalar``) to PEAK_XTOL of that bracket."""
+    :func:`~moving_bogie.kernels.fminbound.fminbound`) to PEAK_XTOL of that bracket."""
     speeds = np.asarray(speeds, dtype=float)
     # the static deflection and every speed in one quadrature
     values = deflection(track, soil, load, np.concatenate([[0.0], speeds]), rtol=rtol)
@@ -111,11 +111,6 @@ def moving_load(
             return -abs(seen[x])
 
         a, b = float(speeds[i - 1]), float(speeds[i + 1])
-        options = {"xatol": PEAK_XTOL * (b - a)}
-        v_peak = float(
-            optimize.minimize_scalar(minus_peak, bounds=(a, b), method="bounded", options=options).x
-        )
-        w_peak = (
-            seen[v_peak] if v_peak in seen else float(deflection(track, soil, load, v_peak, rtol=rtol).w[0])
-        )
+        v_peak = fminbound(minus_peak, a, b, xatol=PEAK_XTOL * (b - a))[0]
+        w_peak = seen[v_peak]  # the best point is one of those evaluated
     return MovingLoad(v=speeds, w=w, w_static=float(static), v_peak=v_peak, w_peak=w_peak, error=error)

@@ -35,6 +35,11 @@ relative tolerance tol |D| / (2 |S chi_loc|) (between 1e-10 and 0.1) with its ow
 error of G that chi leaves; beside the panels' Kronrod-Gauss differences and the ends it makes
 ``error``. The far panels (|k| up to 300 / b and beyond), where the strip quadrature would cost
 thousands of U values each, take one U value each.
+
+**Many speeds at Omega = 0 (a DAF curve).** Their first panels are the same: at each first node with
+|k| b < ``LOCAL_KB``, chi(|k|, |k| v) is interpolated in v from a table at a few speeds, with an error
+estimate (:mod:`.receptance_chi`), and taken wherever that estimate meets the allowance above (the
+estimate is then the node's e); elsewhere the strip's quadrature as above.
 """
 
 from __future__ import annotations
@@ -49,6 +54,8 @@ from moving_bogie.typing import ComplexArray, FloatArray
 from .flexibility import surface_flexibility
 from .illinois import IntArray
 from .profile import SoilProfile
+from .rayleigh import BoolArray
+from .receptance_chi import POINTS, speed_table
 from .strip import NODES, WEIGHTS_G, WEIGHTS_K, strip_stiffness
 from .track import SoilTrack
 
@@ -58,6 +65,9 @@ __all__ = ["LOCAL_KB", "SoilReceptance", "local_stiffness", "soil_receptance"]
 LOCAL_KB = 4.0
 #: Initial panels on each side of k = 0 (one from k_lo to K_NEAR / b, then geometric), most bisection rounds.
 PANELS, ROUNDS, K_NEAR = 8, 10, 1e-3
+#: chi at the first nodes is interpolated in the speed (:mod:`.receptance_chi`) for at least this many
+#: speeds at Omega = 0 (the table costs POINTS quadratures per node).
+BY_SPEED = 2 * POINTS
 #: The strip quadrature's relative tolerance is kept within these (module docstring).
 CHI_RTOL = (1e-10, 0.1)
 
@@ -91,9 +101,15 @@ class _Integrand:
     tol: float
 
     def __call__(
-        self, k: FloatArray, omega_ref: ComplexArray, v: FloatArray
+        self,
+        k: FloatArray,
+        omega_ref: ComplexArray,
+        v: FloatArray,
+        guess: tuple[ComplexArray, FloatArray] | None = None,
     ) -> tuple[ComplexArray, FloatArray, int]:
-        """(1/D, error bound of 1/D, strip quadratures used) at each (k[i], omega_ref[i], v[i])."""
+        """(1/D, error bound of 1/D, strip quadratures used) at each (k[i], omega_ref[i], v[i]); ``guess``:
+        chi interpolated there and its error estimate (:mod:`.receptance_chi`), taken where it is as
+        accurate as 1/D needs."""
         track = self.track
         w = omega_ref + k * v
         chi = local_stiffness(k, w, self.soil, track.b)
@@ -102,6 +118,11 @@ class _Integrand:
         ratio = np.abs(sens * chi) / np.maximum(np.abs(d_loc), 1e-300)
         exact = (np.abs(k) * track.b < LOCAL_KB) | (2 * ratio > self.tol)
         err = np.abs(chi)
+        if guess is not None:
+            taken = exact & self._good(k, w, *guess)
+            exact &= ~taken
+            chi[taken], err[taken] = guess[0][taken], guess[1][taken]
+            sens[taken] = track.chi_sensitivity(w[taken], chi[taken])
         if exact.any():
             rtol = np.clip(self.tol / (2 * np.maximum(ratio[exact], 1e-300)), *CHI_RTOL)
             strip = strip_stiffness(np.abs(k[exact]), w[exact], self.soil, track.b, rtol=rtol)
@@ -111,6 +132,12 @@ class _Integrand:
         gap = np.abs(d) - np.abs(sens) * err
         bound = np.where(gap > 0, np.abs(sens) * err / (np.abs(d) * np.maximum(gap, 1e-300)), np.inf)
         return np.asarray(1 / d, dtype=complex), bound, int(exact.sum())
+
+    def _good(self, k: FloatArray, w: ComplexArray, chi: ComplexArray, err: FloatArray) -> BoolArray:
+        """Where chi with the error ``err`` gives 1/D to tol / 2: 2 |S| err <= tol |D| (module docstring)."""
+        d = self.track.rail_stiffness(k, w, chi)
+        sens = self.track.chi_sensitivity(w, chi)
+        return np.asarray(np.isfinite(err) & (2 * np.abs(sens) * err <= self.tol * np.abs(d)))
 
 
 @functools.lru_cache(maxsize=16)
@@ -144,7 +171,8 @@ def _sum_panels(
     for step in range(rounds):
         half, mid = (hi - lo) / 2, (hi + lo) / 2
         k = sign * (mid[:, None] + half[:, None] * NODES).ravel()
-        inv, bound, used = f(k, np.repeat(omega[who], NODES.size), np.repeat(speed[who], NODES.size))
+        guess = _by_speed(f, k, items, ends) if step == 0 else None
+        inv, bound, used = f(k, np.repeat(omega[who], NODES.size), np.repeat(speed[who], NODES.size), guess)
         nodes, quadratures = nodes + k.size, quadratures + used
         g = (np.exp(-1j * np.multiply.outer(offsets, k)) * inv).reshape(offsets.size, -1, NODES.size)
         kronrod = (g @ WEIGHTS_K) * half  # (offsets, panels)
@@ -162,6 +190,23 @@ def _sum_panels(
         centre = np.sqrt(a * b)
         lo, hi, who = np.concatenate([a, centre]), np.concatenate([centre, b]), np.concatenate([who, who])
     return total, error, nodes, quadratures
+
+
+def _by_speed(
+    f: _Integrand, k: FloatArray, items: tuple[ComplexArray, FloatArray], ends: FloatArray
+) -> tuple[ComplexArray, FloatArray] | None:
+    """chi at the first nodes ``k`` of every item interpolated in the speed (:mod:`.receptance_chi`), and its
+    error estimate, where the items are at least :data:`BY_SPEED` speeds at Omega = 0 on the same first
+    panels (a DAF curve) and |k| b < LOCAL_KB (chi's quadrature needed); None otherwise."""
+    omega, speed = items
+    if omega.size < BY_SPEED or np.any(omega != 0) or np.any(ends != ends[:1]):
+        return None
+    k_item = np.abs(k[: k.size // omega.size])
+    near = k_item * f.track.b < LOCAL_KB
+    chi = np.zeros((omega.size, k_item.size), dtype=complex)
+    error = np.full(chi.shape, np.inf)
+    chi[:, near], error[:, near] = speed_table(k_item[near], speed, f.soil, f.track.b, f.tol)
+    return chi.ravel(), error.ravel()
 
 
 def _by_owner(who: IntArray, values: ComplexArray, n: int) -> ComplexArray:

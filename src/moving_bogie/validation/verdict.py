@@ -30,6 +30,7 @@ if TYPE_CHECKING:
     from moving_bogie.validation.sleeper_verdict import SleeperCheck
 
 __all__ = [
+    "CHECK_KEYS",
     "DEFAULT_TOLERANCE",
     "VERDICT_KEYS",
     "QuantityComparison",
@@ -197,15 +198,22 @@ VERDICT_KEYS = (
     "quantities", "timings", "notes",
 )  # fmt: skip
 
+#: Every key of a continuous track's check (beside ``max_abs_diff_<body DOF>``), a check on supports's too:
+#: the values its finite rail has (fit window, length, step), None for the modal beam's alone.
+CHECK_KEYS = (
+    "model", "beam", "track", "params", "closed_form_branch_cut", "agrees", "tolerance", "tolerance_rule",
+    "relative_diff", "labels", "max_abs_diff_rear", "max_abs_diff_front", "error_estimate", "quantities",
+    "window", "tau_valid", "reflection_level", "tau_max", "n_modes", "static_correction", "L", "entry",
+    "k_max", "dt", "reference_dt", "timings", "notes",
+)  # fmt: skip
+
 
 @dataclass(frozen=True)
 class ValidationResult:
     """Finite beam against closed form on one tau grid (:func:`moving_bogie.validation.compare.validate`);
-    on periodic supports the finite rail against the Floquet theory
-    (:func:`~moving_bogie.validation.on_supports.check_on_supports`), the same type: ``supports`` then holds
-    what that check adds, ``finite`` and ``closed`` are None, ``quantities`` the compared growth rate and
-    frequency, or the steady force (each difference against the Floquet value, or the Floquet force's
-    peak-to-peak, as its amplitude), ``closed_form_s`` the Floquet side's wall time.
+    on supports the finite rail against Floquet (:mod:`~moving_bogie.validation.on_supports`): ``supports``
+    holds what it adds, ``finite`` and ``closed`` are None, ``quantities`` the compared rate and frequency
+    or steady force (amplitude: the Floquet value), ``closed_form_s`` the Floquet side's wall time.
 
     Attributes
     ----------
@@ -260,8 +268,7 @@ class ValidationResult:
 
     @property
     def finite_beam(self) -> FiniteBeamResult:
-        """The finite-beam run of a continuous track's check (a ValueError on periodic supports, whose
-        runs are ``supports.free`` and ``supports.loaded``)."""
+        """The finite-beam run of a continuous track's check (a ValueError on periodic supports)."""
         if self.finite is None:
             raise ValueError(f"{self.model}: the check on supports has no finite-beam modal run")
         return self.finite
@@ -308,8 +315,7 @@ class ValidationResult:
         return self.finite_beam_s / self.closed_form_s if self.closed_form_s > 0 else math.inf
 
     def _repr_html_(self) -> str:
-        """Jupyter: whether the finite beam agrees first, then every quantity's relative difference (on
-        supports, the Floquet and finite-rail values of each)."""
+        """Jupyter: whether the finite beam agrees first, then every quantity's relative difference."""
         from moving_bogie.html_repr import html_table
 
         if self.supports is not None:
@@ -331,10 +337,9 @@ class ValidationResult:
         )
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (no time series); on supports, :meth:`SleeperCheck.to_dict` (the keys of
-        :data:`VERDICT_KEYS`, then the Floquet verdict, the comparisons and the finite rail's run)."""
+        """JSON-ready summary (no time series); on supports :meth:`_on_supports`."""
         if self.supports is not None:
-            return self.supports.to_dict()
+            return self._on_supports(self.supports)
         params = self.params.to_dict() if hasattr(self.params, "to_dict") else None
         q = self.quantities
         finite = self.finite_beam
@@ -377,3 +382,19 @@ class ValidationResult:
             },
             "notes": list(self.notes),
         }
+
+    def _on_supports(self, check: SleeperCheck) -> dict[str, Any]:
+        """:data:`CHECK_KEYS` (None where the modal finite beam's alone), then :meth:`SleeperCheck.to_dict`'s
+        keys; each quantity with the keys of both."""
+        own = check.to_dict()
+        shared = dict.fromkeys(CHECK_KEYS) | {
+            "closed_form_branch_cut": False,
+            "labels": {name: name for name in self.quantities},
+            "error_estimate": dict.fromkeys(self.quantities),
+            "window": list(self.window),
+            "tau_max": float(self.tau[-1]),
+            "L": check.rail.length,
+            "dt": check.free.dt,
+        }
+        quantities = {name: q.to_dict() | own["quantities"][name] for name, q in self.quantities.items()}
+        return shared | own | {"quantities": quantities}

@@ -143,8 +143,9 @@ class Rectangle(BoundingBox):
         ym = self.y0 + fraction * self.height
         return Rectangle(self.x0, self.x1, self.y0, ym), Rectangle(self.x0, self.x1, ym, self.y1)
 
-    def boundary(self, spacing: float) -> ComplexArray:
-        """Counter-clockwise closed polyline, each edge sampled at about ``spacing`` (at least 8 points)."""
+    def boundary(self, spacing: float, least: int = 8) -> ComplexArray:
+        """Counter-clockwise closed polyline, each edge sampled at about ``spacing`` (at least ``least``
+        points)."""
         corners = [
             complex(self.x0, self.y0),
             complex(self.x1, self.y0),
@@ -153,7 +154,7 @@ class Rectangle(BoundingBox):
         ]
         pieces = []
         for a, b in zip(corners, corners[1:] + corners[:1]):
-            n = max(8, int(np.ceil(abs(b - a) / spacing)))
+            n = max(least, int(np.ceil(abs(b - a) / spacing)))
             pieces.append(a + (b - a) * np.arange(n) / n)
         pts = np.concatenate(pieces)
         return np.append(pts, pts[0])

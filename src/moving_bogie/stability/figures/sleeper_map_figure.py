@@ -46,6 +46,20 @@ def _zone_bars(ax: Axes, smap: SleeperMap, top: float) -> bool:
     return bool(bars)
 
 
+def _margins(fig: Figure, ax: Axes, smap: SleeperMap) -> list:
+    """The cells coloured by their margin [1/s] as the continuous map's
+    (:func:`~moving_bogie.stability.figures.margin_plot.draw_margin`: decay rates of the stable cells, growth
+    rates of the unstable ones); the legend handles of what is drawn beside the colours."""
+    from moving_bogie.stability.figures.margin_plot import MarginPlane, draw_margin
+
+    assert smap.margin is not None and smap.margin_bound is not None
+    unstable = smap.count > 0
+    plane = MarginPlane(
+        smap.velocities, smap.masses, smap.margin, smap.margin_bound, ~smap.uncertain, unstable, unit="1/s"
+    )
+    return draw_margin(fig, ax, plane)
+
+
 def _stable_note(ax: Axes, stable: bool) -> None:
     """Say so on a panel that shows nothing unstable nor uncertain (else it would be blank)."""
     if stable:
@@ -70,11 +84,15 @@ def sleeper_map_figure(
     fig = Figure(figsize=(5.2 * panels + 0.6, 4.6), layout="constrained")
     axs = fig.subplots(1, panels, sharex=True, sharey=True, squeeze=False)[0]
     vmax = int(max(1, smap.count.max(initial=0), 0 if continuous is None else continuous.count.max()))
-    _counts(axs[0], smap.velocities, smap.masses, smap.count, vmax)
     handles: list[Artist] = []  # only what is drawn
-    if smap.count.any():
-        handles.append(Patch(fc="#f4a582", ec="k", lw=0.5, label="unstable cell of the grid"))
-    zones = _zone_bars(axs[0], smap, float(smap.masses[-1]))
+    if smap.margin is not None and smap.margin_bound is not None:
+        handles += _margins(fig, axs[0], smap)
+    else:
+        _counts(axs[0], smap.velocities, smap.masses, smap.count, vmax)
+        if smap.count.any():
+            handles.append(Patch(fc="#f4a582", ec="k", lw=0.5, label="unstable cell of the grid"))
+    # with margins the unstable cells show their growth rate: no zone bars over them (the D-lines remain)
+    zones = smap.margin is None and _zone_bars(axs[0], smap, float(smap.masses[-1]))
     if zones:
         handles.append(Patch(fc="#d6604d", lw=0, label="unstable between the D-lines (one column wide)"))
     lines = smap.lines()
@@ -91,7 +109,7 @@ def sleeper_map_figure(
         )
         handles.append(Patch(fc="none", hatch="///", label="uncertain column"))
     axs[0].set_title(f"{smap.track} ({smap.model})", fontsize=9)
-    _stable_note(axs[0], not (smap.count.any() or zones or unc.any()))
+    _stable_note(axs[0], smap.margin is None and not (smap.count.any() or zones or unc.any()))
     if continuous is not None:
         _counts(axs[1], smap.velocities, smap.masses, continuous.count, vmax)
         axs[1].set_title(continuous_label or "continuous track, same smeared support", fontsize=9)

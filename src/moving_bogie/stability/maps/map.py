@@ -33,7 +33,15 @@ if TYPE_CHECKING:
     from moving_bogie.model.params import DimensionlessParams
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
-__all__ = ["MAP_KEYS", "ColumnResult", "StabilityMap", "map_columns", "stability_column", "stability_map"]
+__all__ = [
+    "MAP_KEYS",
+    "ColumnResult",
+    "StabilityMap",
+    "map_columns",
+    "min_decay_rate",
+    "stability_column",
+    "stability_map",
+]
 
 
 #: The keys every stability map's summary has, with the same meaning on every track (the continuous
@@ -42,6 +50,15 @@ __all__ = ["MAP_KEYS", "ColumnResult", "StabilityMap", "map_columns", "stability
 #: group (``f"{parameter}_range"``): the parameters, that group, the range of alpha, the fraction of
 #: unstable cells, the uncertain cells (their number and each by its groups).
 MAP_KEYS = ("params", "parameter", "alpha_range", "unstable_fraction", "uncertain_cells", "uncertain")
+
+
+def min_decay_rate(margin: np.ndarray | None, stable: np.ndarray) -> float | None:
+    """The smallest finite margin of the ``stable`` cells (None: no margin, or no such cell measured)."""
+    if margin is None:
+        return None
+    margins = margin[stable]
+    margins = margins[np.isfinite(margins)]
+    return float(margins.min()) if margins.size else None
 
 
 @dataclass(frozen=True)
@@ -102,11 +119,7 @@ class StabilityMap:
     @property
     def min_decay_rate(self) -> float | None:
         """The smallest margin of the stable, certain cells (min Im q; None: no such cell measured)."""
-        if self.margin is None:
-            return None
-        margins = self.margin[(self.count == 0) & ~self.uncertain]
-        margins = margins[np.isfinite(margins)]
-        return float(margins.min()) if margins.size else None
+        return min_decay_rate(self.margin, (self.count == 0) & ~self.uncertain)
 
     def _repr_html_(self) -> str:
         """Jupyter: the verdict over the grid first, then its axes, margin and uncertain cells (in SI for a

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -28,7 +29,7 @@ from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.kernels.sleeper_track import SleeperTrack
 from moving_bogie.model.params import DimensionlessParams
 from moving_bogie.model.scales import Scales
-from moving_bogie.roots.strip import floquet_frequencies
+from moving_bogie.roots.strip import FloquetResult, floquet_frequencies
 from moving_bogie.stability.maps.d_lines import DColumn, d_column
 from moving_bogie.stability.maps.d_map import column_notes, count_columns, keep_freed_memory
 
@@ -72,6 +73,17 @@ class SleeperMap:
     track: str = "rail on sleepers"
     region: str = "in the strip of width 2 pi v / l"
     method: str = "D-decomposition in the wheel mass at each velocity, count 0 at M -> 0 (S19)-(S22)"
+    #: the margin of every cell, smallest Im Omega [1/s] (NaN: undetermined), and where it is a lower bound
+    #: (:mod:`~moving_bogie.stability.maps.sleeper_margin`); None when not computed
+    margin: np.ndarray | None = None
+    margin_bound: np.ndarray | None = None
+
+    @property
+    def min_decay_rate(self) -> float | None:
+        """The smallest margin of the stable cells of certain columns [1/s] (None: no such cell measured)."""
+        from moving_bogie.stability.maps.map import min_decay_rate
+
+        return min_decay_rate(self.margin, (self.count == 0) & ~self.uncertain)
 
     @property
     def uncertain(self) -> np.ndarray:
@@ -146,28 +158,38 @@ class SleeperMap:
             "uncertain_columns": int(np.count_nonzero(self.uncertain[0])),
             "crossings": len(self.lines()),
             "checks": [c.__dict__ | {"agrees": c.agrees} for c in self.checks],
+            "min_decay_rate_1_s": self.min_decay_rate,
             "notes": list(self.notes),
         }
 
     def to_dict(self) -> dict:
-        """The summary with the lines and the count array."""
+        """The summary with the lines, the count array and, when computed, the margins [1/s] (NaN: None)."""
+        margins = {}
+        if self.margin is not None and self.margin_bound is not None:
+            values = [[None if math.isnan(x) else float(x) for x in row] for row in self.margin]
+            margins = {"margin_1_s": values, "margin_bound": self.margin_bound.tolist()}
         return self.summary() | {
             "velocities_m_s": self.velocities.tolist(),
             "masses_kg": self.masses.tolist(),
             "count": self.count.tolist(),
             "uncertain": self.uncertain[0].tolist(),
             "lines": self.lines(),
+            **margins,
         }
 
     def to_csv(self) -> str:
-        """One row per cell: v [m/s], M [kg], count, uncertain."""
+        """One row per cell: v [m/s], M [kg], count, uncertain (and the margin [1/s] when computed)."""
         out = io.StringIO()
         writer = csv.writer(out, lineterminator="\n")
-        writer.writerow(["v_m_s", "M_kg", "unstable_count", "uncertain"])
+        margin = self.margin
+        writer.writerow(
+            ["v_m_s", "M_kg", "unstable_count", "uncertain"] + ([] if margin is None else ["margin_1_s"])
+        )
         unc = self.uncertain
         for i, v in enumerate(self.velocities):
             for j, m in enumerate(self.masses):
-                writer.writerow([f"{v:.10g}", f"{m:.10g}", int(self.count[j, i]), int(unc[j, i])])
+                row = [f"{v:.10g}", f"{m:.10g}", int(self.count[j, i]), int(unc[j, i])]
+                writer.writerow(row + ([] if margin is None else [f"{margin[j, i]:.10g}"]))
         return out.getvalue()
 
 
@@ -186,13 +208,18 @@ def column_at(bound: BoundModel, scales: Scales, v: float, eta_max: float, N: in
     return d_column(pencil, eta_max=eta_max, samples=samples)
 
 
-def check_cell(bound: BoundModel, scales: Scales, v: float, M: float, map_count: int) -> MapCheck:
-    """floquet_frequencies at (v, M): its count beside the map's."""
+def search_cell(bound: BoundModel, scales: Scales, v: float, M: float) -> FloquetResult:
+    """floquet_frequencies (the argument principle in one strip) at (v [m/s], M [kg])."""
     module = bound.vehicle
     track = track_at(bound, v / scales.v_ref)
     wheel = {module.WHEEL_MASS: M / scales.mass}
     vehicle = VehicleMatrices.from_module(module, bound.vehicle_values(bound.floats) | wheel)
-    res = floquet_frequencies(track, vehicle)
+    return floquet_frequencies(track, vehicle)
+
+
+def check_cell(bound: BoundModel, scales: Scales, v: float, M: float, map_count: int) -> MapCheck:
+    """floquet_frequencies at (v, M): its count beside the map's."""
+    res = search_cell(bound, scales, v, M)
     return MapCheck(v, M, map_count, res.unstable_count, res.verdict.state, res.converged)
 
 
