@@ -292,12 +292,12 @@ def _search(
 
 
 def _sheet(track: SleeperTrack, y0: float, top: float, N_max: int) -> Sheet:
-    """The sheet continued from ``y0``: within the quadrature's first reach at N_max harmonics (beyond
-    a reach its tail widens, the poles are followed one by one) no free wave's pole whose residue exceeds
-    the polish's tolerance, or else the locating steps' (the receptance is then computed to that one),
-    crosses the real axis below ``top`` in the strip; ContinuationError when one does (the search does
-    not continue then: following every crossing pole costs seconds per value)."""
-    reach = (N_max + 2) * track.K + 2 * track.K + 10
+    """The sheet continued from ``y0``: within the quadrature's reach at N_max harmonics widened twice by
+    its tail's factor 1.6 (beyond, the poles are followed one by one) no free wave's pole whose residue
+    exceeds the polish's tolerance, or else the locating steps' (the receptance is then computed to that
+    one), crosses the real axis below ``top`` in the strip; ContinuationError when one does (the search
+    does not continue then: following every crossing pole costs seconds per value)."""
+    reach = 1.6**2 * ((N_max + 2) * track.K + 2 * track.K + 10)
     x0 = -0.25 * track.Omega0
     # the receptance's scale (its largest free-rail entry) is at least that of the harmonic 0 mid-strip
     scale = abs(smeared_receptance(track, complex(x0 + track.Omega0 / 2, top), [0.0])[0])
