@@ -78,7 +78,8 @@ def _h_and_slope(track: SleeperTrack, q: complex, p: np.ndarray) -> tuple[np.nda
     """h and dh/dp (the five-point central stencil), in one evaluation of the symbol."""
     values = _h(track, q, np.concatenate([p, *(p + d for d in _STENCIL)]))
     parts = values.reshape(5, p.size)
-    return parts[0], _WEIGHTS @ parts[1:]
+    with np.errstate(invalid="ignore", over="ignore"):  # a start at a pole of S: non-finite, not stepped
+        return parts[0], _WEIGHTS @ parts[1:]
 
 
 def _newton(
