@@ -260,7 +260,7 @@ STAGE_IMPORTS: dict[str, frozenset[str]] = {
     "validation": frozenset({"response", "roots", "kernels", "model"}),
     "sweep": frozenset({"stability", "roots", "kernels", "model", "soil"}),
     "soil": frozenset({"kernels"}),
-    "soil_vehicle": frozenset({"model", "soil"}),
+    "soil_vehicle": frozenset({"model", "soil", "kernels", "stability"}),
     "api": frozenset({"stability", "validation", "response", "roots", "kernels", "model", "soil"})
     | {"soil_vehicle"},
     "paper": frozenset({"api", "stability", "validation", "response", "roots", "model"}),
@@ -786,6 +786,7 @@ def test_the_bind_checks_see_what_they_check():
 #: Where a bound model may be made from parameters: ``bind`` (kernels/bound.py, api.py) and the entry points.
 #: ``sweep/api.py`` is the sweep's public entry: it binds once, and each point is ``bound.replace(...)``.
 BINDERS = ("moving_bogie.kernels.bound", "moving_bogie.api", "moving_bogie.sweep.api", *ENTRY_POINTS)
+BINDERS += ("moving_bogie.soil_vehicle",)  # the soil's public entry: a vehicle read, bound to its track once
 
 #: Bound models made from parameters, or unwrapped to their parameters and bound again, below the entry
 #: points, each with its reason (module, line text). The coordinator empties this list as they move up

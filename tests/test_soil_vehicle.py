@@ -87,3 +87,20 @@ def test_a_command_that_takes_no_soil_file_names_those_that_do(command, capsys):
     err = capsys.readouterr().err
     assert "a track on soil" in err and all(name in err for name in SOIL_COMMANDS), err
     assert "Traceback" not in err
+
+
+def test_the_continuous_tracks_analyses_refuse_other_tracks_by_name():
+    """mb.stability_map, instability_lines, ... trace a continuous track's kernels: on sleepers and on the
+    soil one ParameterError naming ``params`` and what serves that track (not an error from deep inside)."""
+    import moving_bogie as mb
+
+    sleepers, _ = mb.load_parameters(EXAMPLES / "sleepers.toml")
+    soil = mb.load_soil_vehicle(EXAMPLES / "soil-mass.toml")
+    for params, serves in ((sleepers, "sleeper_map"), (soil, "threshold_mass")):
+        for call in (mb.stability_map, mb.instability_lines, mb.frequency_lines, mb.d_decomposition):
+            with pytest.raises(ParameterError, match=serves) as err:
+                call(params)
+            assert err.value.parameter == "params"
+    with pytest.raises(ParameterError, match="smeared track") as err:
+        mb.critical_velocity(sleepers)
+    assert err.value.parameter == "track"

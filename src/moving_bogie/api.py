@@ -23,7 +23,7 @@ from moving_bogie.kernels.continuous_track import ContinuousTrack
 from moving_bogie.kernels.periodic_track import PeriodicTrack
 from moving_bogie.model.periodic import PERIODIC
 from moving_bogie.model.physical import PhysicalParams
-from moving_bogie.soil_vehicle import SoilVehicle, load_soil_vehicle, soil_vehicle
+from moving_bogie.soil_vehicle import SoilVehicle, load_soil_vehicle, soil_vehicle, threshold_mass
 
 if TYPE_CHECKING:
     import numpy as np
@@ -33,7 +33,6 @@ if TYPE_CHECKING:
     from moving_bogie.model.physical import Scales
     from moving_bogie.response.closed_form import TimeSeries
     from moving_bogie.roots.frequencies import FrequencyResult
-    from moving_bogie.soil_vehicle import ThresholdMass
     from moving_bogie.stability.lines.frequency_lines import FrequencyLines
     from moving_bogie.stability.lines.line_results import InstabilityLines
     from moving_bogie.stability.maps.map import StabilityMap
@@ -170,6 +169,18 @@ def _closed_form_track(bound: BoundModel, instead: str) -> None:
     """A ParameterError naming ``params`` on periodic supports, where no closed form exists (``instead``)."""
     if bound.track.search_region().periodic:
         raise ParameterError("params", f"{bound.name}: no closed form on periodic supports; {instead}")
+
+
+def _continuous(bound: BoundModel, what: str) -> BoundModel:
+    """``bound`` when its track is continuous (the closed-form kernels that ``what`` traces), else a
+    ParameterError naming ``params`` and what serves its track."""
+    if isinstance(bound.track, ContinuousTrack):
+        return bound
+    if bound.track.search_region().periodic:
+        instead = "sleeper_map (the (v, M) map by D-decomposition along real Omega) and induced_frequencies"
+    else:
+        instead = "threshold_mass (the D-decomposition in the wheel mass) and induced_frequencies"
+    raise ParameterError("params", f"{bound.name}: {what} follow a continuous track's kernels; use {instead}")
 
 
 def time_series(
@@ -321,7 +332,7 @@ def frequency_lines(
     """Induced frequencies over alpha (Figure 2): :func:`moving_bogie.stability.lines.frequency_lines`."""
     from moving_bogie.stability.lines.frequency_lines import frequency_lines as run
 
-    return run(bind(params), **options)
+    return run(_continuous(bind(params), "frequency lines"), **options)
 
 
 def instability_lines(
@@ -330,7 +341,7 @@ def instability_lines(
     """Instability lines (Section 3.5): :func:`moving_bogie.stability.lines.instability_lines`."""
     from moving_bogie.stability.lines.instability_lines import instability_lines as run
 
-    return run(bind(params), **options)
+    return run(_continuous(bind(params), "instability lines"), **options)
 
 
 def instability_lines_many(
@@ -340,7 +351,7 @@ def instability_lines_many(
     of a figure): :func:`moving_bogie.stability.lines.instability_lines.instability_lines_many`."""
     from moving_bogie.stability.lines.instability_lines import instability_lines_many as run
 
-    return run([(bind(params), options) for params, options in requests])
+    return run([(_continuous(bind(params), "instability lines"), options) for params, options in requests])
 
 
 def d_decomposition(
@@ -349,7 +360,7 @@ def d_decomposition(
     """D-decomposition at one velocity: :func:`moving_bogie.stability.stiffness.d_decomposition`."""
     from moving_bogie.stability.stiffness.d_decomposition import d_decomposition as run
 
-    return run(bind(params), *args, **options)
+    return run(_continuous(bind(params), "the D-decomposition curves in the suspension"), *args, **options)
 
 
 def critical_stiffness(
@@ -361,7 +372,7 @@ def critical_stiffness(
     """
     from moving_bogie.stability.stiffness.critical_stiffness import critical_stiffness as run
 
-    return run(bind(params), *args, **options)
+    return run(_continuous(bind(params), "critical stiffnesses"), *args, **options)
 
 
 def stability_map(params: DimensionlessParams | PhysicalParams | BoundModel, **options: Any) -> StabilityMap:
@@ -371,45 +382,9 @@ def stability_map(params: DimensionlessParams | PhysicalParams | BoundModel, **o
     """
     from moving_bogie.stability.maps.map import stability_map as run
 
-    result = run(bind(params), **options)
+    result = run(_continuous(bind(params), "the map's columns"), **options)
     if not isinstance(params, PhysicalParams):
         return result
     from moving_bogie.stability.figures.plot_units import PlaneUnits
 
     return replace(result, units=PlaneUnits.of(result.params, params, operating=True))
-
-
-def threshold_mass(
-    vehicle: SoilVehicle, M_max: float, *, progress: Callable[[float], None] | None = None
-) -> ThresholdMass:
-    """The threshold mass of ``vehicle`` at its speed (:class:`~moving_bogie.soil_vehicle.ThresholdMass`),
-    masses up to ``M_max`` (kg, as the file gives them) down to M_max /
-    :data:`~moving_bogie.soil_vehicle.LIGHTEST`
-    (:func:`~moving_bogie.stability.maps.real_axis.window_column`: the real axis sampled beyond every real
-    root of those masses, the Winkler equivalent's far field).
-
-    Examples
-    --------
-    >>> import moving_bogie as mb
-    >>> vehicle = mb.load_soil_vehicle("examples/soil-unstable.toml")
-    >>> found = mb.threshold_mass(vehicle, M_max=240e3)  # doctest: +SKIP
-    >>> round(found.threshold["M"])  # doctest: +SKIP
-    27552
-    """
-    from moving_bogie.soil_vehicle import LIGHTEST, ThresholdMass
-    from moving_bogie.stability.maps.real_axis import window_column
-
-    if not M_max > 0:
-        raise ParameterError("M_max", f"M_max must be a positive mass in kg (got {M_max!r})")
-    physical = vehicle.physical
-    unit = physical.si_factor(physical.to_dimensionless().model.wheel_mass) / vehicle.input.rail_factor
-    bound = bind(vehicle)
-    col = window_column(
-        bound,
-        equivalent=BoundModel(bound.params),
-        eta_max=M_max / unit,
-        eta_min=M_max / unit / LIGHTEST,
-        progress=progress,
-    )
-    omega_0 = float(bound.track.omega_0)  # type: ignore[attr-defined]
-    return ThresholdMass.from_column(col, M_max, omega_0, unit)

@@ -7,13 +7,13 @@ place of k_f and no foundation damping, the parameters of the rail (:data:`RAIL_
 track of k_ref, which :func:`~moving_bogie.api.bind` binds to the soil's own track
 (:class:`~moving_bogie.soil.rail_track.SoilRail`). Given per rail, the vehicle's masses, inertias,
 stiffnesses, dampings and loads (the values in kg or N) are doubled like the track's: the soil carries the
-whole track and the whole vehicle. Its threshold mass (:class:`ThresholdMass`, from
-:func:`moving_bogie.api.threshold_mass`) is the D-decomposition in the wheel mass along real Omega, in SI.
+whole track and the whole vehicle. Its threshold mass (:func:`threshold_mass`, bound here once as
+:func:`~moving_bogie.api.bind` would) is the D-decomposition in the wheel mass along real Omega, in SI.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -32,6 +32,7 @@ __all__ = [
     "ThresholdMass",
     "load_soil_vehicle",
     "soil_vehicle",
+    "threshold_mass",
 ]
 
 #: The beam of the vehicle's scaling: the rails of every track on the soil bend as Euler-Bernoulli beams,
@@ -144,3 +145,39 @@ class ThresholdMass:
         """JSON-ready: every field but the column."""
         keys = ("Omega_max_rad_s", "samples", "M_max", "M_min", "crossings", "threshold", "notes")
         return {k: list(v) if isinstance(v, tuple) else v for k, v in ((k, getattr(self, k)) for k in keys)}
+
+
+def threshold_mass(
+    vehicle: SoilVehicle, M_max: float, *, progress: Callable[[float], None] | None = None
+) -> ThresholdMass:
+    """The threshold mass of ``vehicle`` at its speed (:class:`ThresholdMass`),
+    masses up to ``M_max`` (kg, as the file gives them) down to M_max /
+    :data:`LIGHTEST`
+    (:func:`~moving_bogie.stability.maps.real_axis.window_column`: the real axis sampled beyond every real
+    root of those masses, the Winkler equivalent's far field).
+
+    Examples
+    --------
+    >>> import moving_bogie as mb
+    >>> vehicle = mb.load_soil_vehicle("examples/soil-unstable.toml")
+    >>> found = mb.threshold_mass(vehicle, M_max=240e3)  # doctest: +SKIP
+    >>> round(found.threshold["M"])  # doctest: +SKIP
+    27552
+    """
+    from moving_bogie.kernels.bound import BoundModel
+    from moving_bogie.stability.maps.real_axis import window_column
+
+    if not M_max > 0:
+        raise ParameterError("M_max", f"M_max must be a positive mass in kg (got {M_max!r})")
+    physical = vehicle.physical
+    unit = physical.si_factor(physical.to_dimensionless().model.wheel_mass) / vehicle.input.rail_factor
+    bound = BoundModel(physical.to_dimensionless(), track=vehicle.rail)  # bound once, as api.bind does
+    col = window_column(
+        bound,
+        equivalent=BoundModel(bound.params),
+        eta_max=M_max / unit,
+        eta_min=M_max / unit / LIGHTEST,
+        progress=progress,
+    )
+    omega_0 = float(bound.track.omega_0)  # type: ignore[attr-defined]
+    return ThresholdMass.from_column(col, M_max, omega_0, unit)

@@ -69,6 +69,14 @@ def _track(source: Source, groups: Mapping[str, Any]) -> tuple[Model, dict[str, 
         groups = {**source.values(), **{k: v for k, v in groups.items() if v is not None}}
     else:
         raise ParameterError("model", f"expected a Model or parameters (got {source!r})")
+    if getattr(model, "periodic", False):
+        raise ParameterError(
+            "track",
+            f"{model.name} is a track on periodic supports: its critical velocity is that of its smeared "
+            "track, critical_velocity(moving_bogie.smeared_track(physical).to_dimensionless()) "
+            "(docs/sleepers.md), which `moving-bogie critical-velocity --file F` prints with the "
+            "pinned-pinned and sleeper-passing frequencies",
+        )
     module = model.foundation
     damping = set(getattr(module, "DAMPING", ()))
     specs = model.catalogue.specs
