@@ -136,3 +136,33 @@ def test_the_examples_root_beyond_the_free_waves_against_the_finite_rails_free_d
     )
     rate = fit_floquet_modes(run.tau, run.deflection, T0, 0.0).rate
     assert abs(-rate / least.q.imag - 1) < 0.01, (rate, least.q)
+
+
+@pytest.mark.parametrize("where", [["--case", "1"], ["--file", "examples/soil-mass.toml"]])
+def test_continued_is_refused_off_sleepers(where, capsys):
+    from moving_bogie.cli import main
+
+    root = __import__("pathlib").Path(__file__).resolve().parent.parent
+    argv = [a if not a.startswith("examples/") else str(root / a) for a in where]
+    assert main(["frequencies", *argv, "--continued"]) == 2
+    err = capsys.readouterr().err
+    assert "--continued applies to a rail on sleepers" in err and "Traceback" not in err
+
+
+@pytest.mark.slow  # the continued search of the example (a few seconds)
+def test_the_command_line_searches_beyond_the_free_waves_when_asked(capsys):
+    """``frequencies --continued`` runs the continued search: the pair of roots of the test above (beyond
+    the free waves, which the search without it does not reach) and the depth searched in the JSON."""
+    import json
+    from pathlib import Path
+
+    from moving_bogie.cli import main
+
+    file = str(Path(__file__).resolve().parent.parent / "examples" / "sleepers.toml")
+    assert main(["frequencies", "--file", file, "--json"]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert main(["frequencies", "--file", file, "--continued", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert len(out["roots"]) == 2 and not plain["roots"] and out["stable"]
+    assert out["region"]["continued_to_im"] > out["region"]["free_waves_im"]
+    assert plain["region"]["continued_to_im"] is None

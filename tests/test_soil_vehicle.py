@@ -75,3 +75,15 @@ def test_threshold_mass_refuses_a_mass_axis_without_masses():
     vehicle = mb.load_soil_vehicle(EXAMPLES / "soil-unstable.toml")
     with pytest.raises(ParameterError, match="M_max must be a positive mass"):
         mb.threshold_mass(vehicle, M_max=0.0)
+
+
+@pytest.mark.parametrize("command", ["timeseries", "validate", "frequency-lines", "compare-tracks", "params"])
+def test_a_command_that_takes_no_soil_file_names_those_that_do(command, capsys):
+    """A soil example given to a command of the other tracks: one message naming the commands that take it
+    (not a complaint about its [[soil]] tables), exit status 2."""
+    from moving_bogie.model.files import SOIL_COMMANDS
+
+    assert main([command, "--file", str(EXAMPLES / "soil-mass.toml")]) == 2
+    err = capsys.readouterr().err
+    assert "a track on soil" in err and all(name in err for name in SOIL_COMMANDS), err
+    assert "Traceback" not in err

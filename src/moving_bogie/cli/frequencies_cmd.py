@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     pass
@@ -56,6 +56,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_parameter_options(parser)
     _add_search_options(parser)
+    parser.add_argument(
+        "--continued",
+        action="store_true",
+        help="on a rail on sleepers, also search beyond the rail's free waves: the receptance continued "
+        "across them, to the depth the result states (docs/sleepers.md, 'Beyond the free waves'; about "
+        "four times the time)",
+    )
     add_units_option(parser)
     add_json_option(parser)
     parser.set_defaults(handler=run_frequencies)
@@ -125,12 +132,18 @@ def run_frequencies(args: argparse.Namespace) -> int:
     if args.file is not None and is_soil_file(args.file):
         from .soil_frequencies_cmd import run_soil_frequencies
 
+        if args.continued:
+            raise ParameterError(
+                "continued", "--continued applies to a rail on sleepers, not a soil-track file"
+            )
         return run_soil_frequencies(args)
     _check_dps(args.dps)
     params, physical = params_from_args(args)  # every input checked before the heavy imports
     periodic = params.model.periodic
     if periodic:
         _refuse_on_a_strip(args)
+    elif args.continued:
+        raise ParameterError("continued", "--continued applies to a rail on sleepers (periodic supports)")
     window = None
     if args.window:
         try:
@@ -149,7 +162,10 @@ def run_frequencies(args: argparse.Namespace) -> int:
 
     if args.window:
         window = Rectangle(-1e-3 * x, x, -y, y + float(params.eta_f))
-    options = {} if periodic else {"dps": args.dps, "window": window, "certify": args.certify}
+    if periodic:
+        options: dict[str, Any] = {"continued": True} if args.continued else {}
+    else:
+        options = {"dps": args.dps, "window": window, "certify": args.certify}
     with progress_bar("induced frequencies", enabled=not args.json) as update:
         result = induced_frequencies(bind(params), progress=update, **options)
     physical = si_input(args, physical)  # the units shown: SI for a [physical] file unless --units says

@@ -38,7 +38,8 @@ from moving_bogie.model.physical import PhysicalParams
 #: The tracks on soil (soil/track.py) and the commands that take their files (cli/soil_cmd.py).
 SOIL_TRACKS = ("soil", "ballasted-soil")
 SOIL_COMMANDS = (
-    "dispersion", "critical-velocity", "moving-load", "frequencies", "instability-lines", "stability-map"
+    "dispersion", "critical-velocity", "moving-load", "frequencies", "instability-lines", "stability-map",
+    "sweep",
 )  # fmt: skip
 
 __all__ = ["dimensionless_keys", "load_parameters", "load_params_file", "parse_params_toml", "physical_keys"]
@@ -118,6 +119,12 @@ def parse_params_toml(
 
 
 def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | None]:
+    if isinstance(data.get("model"), dict) and data["model"].get("track") in SOIL_TRACKS:
+        raise ParameterError(
+            "track",
+            f"track {data['model']['track']!r} (a track on soil) is analysed by the commands "
+            f"{', '.join(SOIL_COMMANDS)} with --file (docs/soil.md), not by this one",
+        )
     for key in data:
         if key not in _TOP_LEVEL:
             raise ParameterError(
@@ -125,12 +132,6 @@ def _build(data: dict[str, Any]) -> tuple[DimensionlessParams, PhysicalParams | 
             )
     if "dimensionless" in data and "physical" in data:
         raise ParameterError("physical", "give either a [dimensionless] or a [physical] table, not both")
-    if isinstance(data.get("model"), dict) and data["model"].get("track") in SOIL_TRACKS:
-        raise ParameterError(
-            "track",
-            f"track {data['model']['track']!r} (a track on soil) is analysed by the commands "
-            f"{', '.join(SOIL_COMMANDS)} with --file (docs/soil.md), not by this one",
-        )
     model = _table(data, "model", _MODEL_KEYS)
     # k_H or c_H (kappa_H, eta_H) put each wheel of the vehicle on its own contact spring
     vehicle = model.get("vehicle", DEFAULT_MODEL["vehicle"])

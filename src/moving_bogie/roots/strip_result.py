@@ -91,7 +91,8 @@ class FloquetResult:
             return ()
         if self.skipped:
             return self.skipped
-        band = f"Im > {top * scale:.6g}{unit}"
+        im = "Im" if unit else "Im q"  # without a unit: the dimensionless q of the strip
+        band = f"{im} > {top * scale:.6g}{unit}"
         if self.continued_to is not None:
             return (
                 f"{band}: the receptance is continued across the rail's free waves up to "
@@ -100,7 +101,7 @@ class FloquetResult:
             )
         if self.free_waves > top:
             return (
-                f"{band}: the rail's free waves put singular lines of the receptance from Im = "
+                f"{band}: the rail's free waves put singular lines of the receptance from {im} = "
                 f"{self.free_waves * scale:.6g}{unit} up, and roots beyond them are not searched",
             )
         return (f"{band}: the lowest decay rate of this rail's free waves is not known",)
