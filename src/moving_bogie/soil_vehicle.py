@@ -51,6 +51,18 @@ class SoilVehicle:
     physical: PhysicalParams
     rail: SoilRailSpec
 
+    @property
+    def mass_unit(self) -> float:
+        """kg of the wheel mass, as the file gives it (per rail or per track), per unit of its group."""
+        name = self.physical.to_dimensionless().model.wheel_mass
+        return float(self.physical.si_factor(name)) / self.input.rail_factor
+
+    @property
+    def wheel_mass(self) -> float:
+        """The file's wheel mass in kg, as the file gives it (per rail or per track)."""
+        params = self.physical.to_dimensionless()
+        return float(getattr(params, params.model.wheel_mass)) * self.mass_unit
+
 
 def _whole(physical: PhysicalParams, values: dict[str, float]) -> dict[str, float]:
     """The values of a per-rail file for the whole track: those in kg or N doubled (module docstring)."""
@@ -169,9 +181,10 @@ def threshold_mass(
 
     if not M_max > 0:
         raise ParameterError("M_max", f"M_max must be a positive mass in kg (got {M_max!r})")
-    physical = vehicle.physical
-    unit = physical.si_factor(physical.to_dimensionless().model.wheel_mass) / vehicle.input.rail_factor
-    bound = BoundModel(physical.to_dimensionless(), track=vehicle.rail)  # bound once, as api.bind does
+    unit = vehicle.mass_unit
+    bound = BoundModel(
+        vehicle.physical.to_dimensionless(), track=vehicle.rail
+    )  # bound once, as api.bind does
     col = window_column(
         bound,
         equivalent=BoundModel(bound.params),

@@ -91,11 +91,7 @@ def soil_lines(args: argparse.Namespace) -> dict[str, Any]:
     from moving_bogie.api import load_soil_vehicle, threshold_mass
 
     data = load_soil_vehicle(args.file, soil_settings(args))
-    physical, per = data.physical, data.input.rail_factor
-    params = physical.to_dimensionless()
-    file_mass = (
-        float(getattr(params, params.model.wheel_mass)) * physical.si_factor(params.model.wheel_mass) / per
-    )
+    physical, file_mass = data.physical, data.wheel_mass
     top = _axes(args, float(physical.v), file_mass, speeds=False)["M"][1]
     from .progress import progress_bar
     from .soil_frequencies_cmd import soil_speed_regime
@@ -197,10 +193,8 @@ def run_soil_map(args: argparse.Namespace) -> int:
     from .progress import checkpoint_options, progress_bar
 
     data = load_soil_vehicle(args.file, soil_settings(args))
-    physical = data.physical
-    params = physical.to_dimensionless()
-    unit = physical.si_factor(params.model.wheel_mass) / data.input.rail_factor
-    file_v, file_mass = float(physical.v), float(getattr(params, params.model.wheel_mass)) * unit
+    physical, unit = data.physical, data.mass_unit
+    file_v, file_mass = float(physical.v), data.wheel_mass
     axes = _axes(args, file_v, file_mass, speeds=True)
     n = args.n
     (v0, v1), top = axes["v"], axes["M"][1]
