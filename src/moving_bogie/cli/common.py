@@ -194,6 +194,13 @@ def set_numbers(texts: Iterable[str]) -> dict[str, Fraction]:
     return changes
 
 
+def soil_file_given(args: argparse.Namespace) -> bool:
+    """Whether ``--file`` names a soil-track file (the commands that take one hand it to their soil path)."""
+    from moving_bogie.soil.file import is_soil_file
+
+    return getattr(args, "file", None) is not None and is_soil_file(args.file)
+
+
 def soil_settings(args: argparse.Namespace) -> dict[str, float]:
     """The ``--set`` changes of a soil-track file (key -> SI value; :mod:`moving_bogie.soil.settings`)."""
     return {name: float(value) for name, value in set_numbers(getattr(args, "set", None) or ()).items()}

@@ -17,6 +17,7 @@ from .common import (
     params_from_args,
     print_json,
     si_input,
+    soil_file_given,
 )
 from .frequencies_output import (
     report,
@@ -127,9 +128,8 @@ def _check_dps(dps: int) -> None:
 
 def run_frequencies(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
-    from moving_bogie.soil.file import is_soil_file
 
-    if args.file is not None and is_soil_file(args.file):
+    if soil_file_given(args):
         from .soil_frequencies_cmd import run_soil_frequencies
 
         if args.continued:

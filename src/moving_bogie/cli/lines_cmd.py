@@ -28,6 +28,7 @@ from .common import (
     add_output_option,
     print_json,
     si_input,
+    soil_file_given,
 )
 from .job_size import SHORTER, add_yes_option, estimate_grid
 from .lines_on_supports import sleeper_data
@@ -110,9 +111,7 @@ def _register_instability_lines(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_instability_lines(args: argparse.Namespace) -> int:
-    from moving_bogie.soil.file import is_soil_file
-
-    if args.file is not None and is_soil_file(args.file):
+    if soil_file_given(args):
         from .soil_lines_cmd import run_soil_lines
 
         return run_soil_lines(args)
@@ -269,10 +268,9 @@ def run_stability_map(args: argparse.Namespace) -> int:
     """``stability-map``: the jobs it runs (a map; on sleepers the continuous map beside it) keep their
     parts until the command is done, so ``--resume`` after any of them computes only what is missing."""
     from moving_bogie.checkpoint import kept_until_done
-    from moving_bogie.soil.file import is_soil_file
 
     with kept_until_done():
-        if args.file is not None and is_soil_file(args.file):
+        if soil_file_given(args):
             from .soil_lines_cmd import run_soil_map
 
             return run_soil_map(args)

@@ -23,6 +23,7 @@ from .common import (
     print_json,
     refuse_for_sleepers,
     si_input,
+    soil_file_given,
     vary_texts,
 )
 from .job_size import check_points
@@ -169,13 +170,12 @@ def _spec(args: argparse.Namespace) -> SweepSpec:
 
 
 def run_sweep_cmd(args: argparse.Namespace) -> int:
-    from moving_bogie.soil.file import is_soil_file
     from moving_bogie.sweep.api import discarded_if_empty
     from moving_bogie.sweep.engine import ContinuousPlan, run_sweep
     from moving_bogie.sweep.store import read_store
 
     spec: SweepPlan
-    if args.file is not None and is_soil_file(args.file):
+    if soil_file_given(args):
         from .soil_sweep import soil_spec
 
         spec = soil_spec(args)

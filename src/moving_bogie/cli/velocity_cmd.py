@@ -22,6 +22,7 @@ from .common import (
     add_set_option,
     apply_settings,
     print_json,
+    soil_file_given,
 )
 from .outputs import add_figure_option
 from .stability_options import (
@@ -95,12 +96,11 @@ def _register_critical_velocity(subparsers: argparse._SubParsersAction) -> None:
 def run_critical_velocity(args: argparse.Namespace) -> int:
     from moving_bogie.errors import ParameterError
     from moving_bogie.model.catalogue import get_model
-    from moving_bogie.soil.file import is_soil_file
 
     physical = None
     groups = {name: getattr(args, name) for name in _track_groups() if getattr(args, name) is not None}
     chosen = {k: getattr(args, k) for k in ("beam", "track") if getattr(args, k) is not None}
-    if args.file is not None and is_soil_file(args.file):
+    if soil_file_given(args):
         if chosen or groups:
             raise ParameterError(
                 next(iter({**chosen, **groups})), "give a soil-track file's values in the file"
